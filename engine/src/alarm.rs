@@ -1,0 +1,100 @@
+//! NC alarms: numbers and texts as the control shows them, and how each one is cleared.
+
+/// How an alarm is acknowledged.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Clear {
+    /// Cleared by a channel reset.
+    Reset,
+    /// Cleared by the cancel key (or a reset).
+    Cancel,
+}
+
+/// One active alarm.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Alarm {
+    pub number: u32,
+    pub message: String,
+    /// 1-based program line, when the alarm belongs to a block.
+    pub line: Option<u32>,
+    pub clear: Clear,
+}
+
+impl Alarm {
+    fn new(number: u32, message: String, line: Option<u32>) -> Alarm {
+        Alarm { number, message, line, clear: Clear::Reset }
+    }
+
+    /// 10720: the programmed end point lies beyond a software limit switch.
+    pub fn software_limit(line: u32, axis: &str, plus: bool) -> Alarm {
+        let sign = if plus { '+' } else { '-' };
+        Alarm::new(10720, format!("Channel 1 block {line} axis {axis} software limit switch {sign}"), Some(line))
+    }
+
+    /// 10621: a JOG motion stopped at a software limit switch.
+    pub fn rests_on_software_limit(axis: &str, plus: bool) -> Alarm {
+        let sign = if plus { '+' } else { '-' };
+        Alarm { clear: Clear::Cancel, ..Alarm::new(10621, format!("Channel 1 axis {axis} rests on software limit switch {sign}"), None) }
+    }
+
+    /// 10860: a feed motion without a feedrate.
+    pub fn no_feed(line: u32) -> Alarm {
+        Alarm::new(10860, format!("Channel 1 block {line} feedrate not programmed"), Some(line))
+    }
+
+    /// 12080: syntax error.
+    pub fn syntax(line: u32, detail: &str) -> Alarm {
+        Alarm::new(12080, format!("Channel 1 block {line} syntax error in text area {detail}"), Some(line))
+    }
+
+    /// 12470: unknown G function.
+    pub fn unknown_g(line: u32, code: u32) -> Alarm {
+        Alarm::new(12470, format!("Channel 1 block {line} G function G{code} is unknown"), Some(line))
+    }
+
+    /// 12550: name not defined or function not available.
+    pub fn unknown_name(line: u32, name: &str) -> Alarm {
+        Alarm::new(12550, format!("Channel 1 block {line} name {name} not defined or option/function not available"), Some(line))
+    }
+
+    /// 12000: address programmed more than once.
+    pub fn repeated_address(line: u32, address: &str) -> Alarm {
+        Alarm::new(12000, format!("Channel 1 block {line} address {address} programmed repeatedly"), Some(line))
+    }
+
+    /// 14040: circle end point error.
+    pub fn circle_end_point(line: u32) -> Alarm {
+        Alarm::new(14040, format!("Channel 1 block {line} error in end point of circle"), Some(line))
+    }
+
+    /// 14800: programmed path velocity not positive.
+    pub fn feed_not_positive(line: u32) -> Alarm {
+        Alarm::new(14800, format!("Channel 1 block {line} programmed path velocity smaller than or equal to zero"), Some(line))
+    }
+
+    /// 17180: the cutting edge D does not exist.
+    pub fn illegal_d(line: u32, d: u32) -> Alarm {
+        Alarm::new(17180, format!("Channel 1 block {line} illegal D number D{d}"), Some(line))
+    }
+
+    /// 17190: the tool T does not exist.
+    pub fn illegal_t(line: u32, t: u32) -> Alarm {
+        Alarm::new(17190, format!("Channel 1 block {line} illegal T number T{t}"), Some(line))
+    }
+
+    /// 14760: the same auxiliary function group programmed twice (M3 with M5, M0 with M30, ...).
+    pub fn conflicting_functions(line: u32, what: &str) -> Alarm {
+        Alarm::new(14760, format!("Channel 1 block {line} auxiliary function of a group programmed repeatedly ({what})"), Some(line))
+    }
+
+    /// 12560: a value outside its allowed range.
+    pub fn value_out_of_range(line: u32, what: &str) -> Alarm {
+        Alarm::new(12560, format!("Channel 1 block {line} programmed value {what} exceeds allowed limits"), Some(line))
+    }
+}
+
+impl Alarm {
+    /// 14051: arithmetic error (division by zero, root of a negative number, ...).
+    pub fn arithmetic(line: u32, what: &str) -> Alarm {
+        Alarm::new(14051, format!("Channel 1 block {line} arithmetic error in part program: {what}"), Some(line))
+    }
+}

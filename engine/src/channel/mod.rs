@@ -1,0 +1,651 @@
+//! One NC channel: modes, program control, JOG, MDA, alarms, and the snapshot of its state.
+//!
+//! Input: commands ([`Channel::run_program`], [`Channel::start`], [`Channel::jog`], ...) and
+//! [`Channel::step`], one IPO cycle each. Output: [`Snapshot`]s and [`Event`]s. Block preparation
+//! runs ahead of the main run by up to [`LOOKAHEAD`] items, as on the real control.
+
+mod snapshot;
+mod spindle;
+
+use std::collections::VecDeque;
+use std::sync::Arc;
+
+pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
+use spindle::Spindle;
+
+use crate::alarm::{Alarm, Clear};
+use crate::interp::{Interpreter, Item, Offsets, StopKind};
+use crate::lang::{self, Program};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::machine_data::{MachineConfig, MachineData, MdError};
+use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
+
+/// How many prepared items (moves, dwells, stops) block preparation may run ahead.
+pub const LOOKAHEAD: usize = 48;
+
+/// Operating mode of the mode group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Jog,
+    Mda,
+    Auto,
+}
+
+impl Mode {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Mode::Jog => "JOG",
+            Mode::Mda => "MDA",
+            Mode::Auto => "AUTO",
+        }
+    }
+}
+
+/// What the channel is doing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// Reset state: no program active, nothing moves.
+    Idle,
+    /// A program or a JOG motion is executing.
+    Running,
+    /// A program is interrupted (M0, M1, NC stop) and can be continued.
+    Stopped,
+    /// An alarm stopped the channel; a reset is needed.
+    Alarm,
+}
+
+impl Status {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Idle => "idle",
+            Status::Running => "running",
+            Status::Stopped => "stopped",
+            Status::Alarm => "alarm",
+        }
+    }
+}
+
+/// Something that happened, for event streams.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    AlarmRaised(Alarm),
+    AlarmCleared { number: u32 },
+    BlockChanged(BlockRef),
+    /// The program ended (M2/M17/M30 or end of text).
+    ProgramEnded,
+    /// The program stopped at M0/M1.
+    ProgramStopped { line: u32 },
+    ModeChanged(Mode),
+}
+
+/// A command the channel refuses in its current state.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CommandError {
+    #[error("program has syntax errors: line {line}: {message}")]
+    Syntax { line: u32, message: String },
+    #[error("the channel is busy ({0}); stop or reset it first")]
+    Busy(&'static str),
+    #[error("an alarm is active; reset the channel first")]
+    AlarmActive,
+    #[error("not possible in mode {0}: {1}")]
+    WrongMode(&'static str, &'static str),
+    #[error("unknown axis {0}")]
+    UnknownAxis(String),
+    #[error("{0}")]
+    Invalid(String),
+    #[error("machine data: {0}")]
+    MachineData(#[from] MdError),
+}
+
+/// A JOG request for one axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JogRequest {
+    /// Program name of the axis (geometry or channel axis name).
+    pub axis: String,
+    /// +1 or -1.
+    pub direction: i8,
+    /// `Some(mm or deg)`: incremental JOG; `None`: continuous until [`Channel::jog_stop`].
+    pub increment: Option<f64>,
+    /// Rapid traverse override (`$MA_JOG_VELO_RAPID` instead of `$MA_JOG_VELO`).
+    pub rapid: bool,
+}
+
+/// Bookkeeping for a move in the main run: its block and the offsets active with it.
+#[derive(Debug, Clone)]
+struct MoveMeta {
+    line: u32,
+    offsets: Offsets,
+}
+
+/// One simulated NC channel.
+#[derive(Debug, Clone)]
+pub struct Channel {
+    data: MachineData,
+    cfg: Arc<MachineConfig>,
+    mode: Mode,
+    status: Status,
+    tick: u64,
+    program: Option<Arc<Program>>,
+    /// Index of the next block to prepare.
+    next_block: usize,
+    /// Block preparation has reached the end of the program or stopped on an alarm.
+    prep_done: bool,
+    interp: Interpreter,
+    /// Prepared items not yet handed to the planner.
+    pending: VecDeque<Item>,
+    planner: Planner,
+    /// Meta data of the moves in the planner, in queue order, with their tags.
+    in_planner: VecDeque<(u32, MoveMeta)>,
+    next_tag: u32,
+    /// Offsets of the block in the main run (for BCS and WCS display).
+    offsets: Offsets,
+    dwell_ticks: u64,
+    current_line: Option<u32>,
+    spindles: Vec<Spindle>,
+    alarms: Vec<Alarm>,
+    events: Vec<Event>,
+    /// M1 stops only when optional stop is selected.
+    pub optional_stop: bool,
+    /// Axis of a JOG motion in progress.
+    jog_axis: Option<usize>,
+}
+
+impl Channel {
+    /// A channel for the given machine data (applied on top of the defaults).
+    pub fn new(data: MachineData) -> Result<Channel, MdError> {
+        let cfg = data.activate().map_err(|e| MdError { line: None, message: e.message })?;
+        Ok(Channel::with_config(data, cfg))
+    }
+
+    /// A channel for a built-in preset plus extra NC data text.
+    pub fn from_preset(preset_id: &str, extra: &str) -> Result<Channel, MdError> {
+        let preset = crate::machine_data::presets::find(preset_id)
+            .ok_or_else(|| MdError { line: None, message: format!("unknown machine preset `{preset_id}`") })?;
+        let mut data = MachineData::default();
+        data.apply_text(preset.text)?;
+        let cfg = data.apply_text(extra)?;
+        Ok(Channel::with_config(data, cfg))
+    }
+
+    fn with_config(data: MachineData, cfg: MachineConfig) -> Channel {
+        let cfg = Arc::new(cfg);
+        let planner = Planner::new(cfg.ipo_cycle, axis_limits(&cfg), [0.0; MAX_CHANNEL_AXES]);
+        let spindles = spindle::for_config(&cfg);
+        Channel {
+            interp: Interpreter::new(&cfg),
+            offsets: Offsets::default(),
+            data,
+            cfg,
+            mode: Mode::Auto,
+            status: Status::Idle,
+            tick: 0,
+            program: None,
+            next_block: 0,
+            prep_done: true,
+            pending: VecDeque::new(),
+            planner,
+            in_planner: VecDeque::new(),
+            next_tag: 0,
+            dwell_ticks: 0,
+            current_line: None,
+            spindles,
+            alarms: Vec::new(),
+            events: Vec::new(),
+            optional_stop: false,
+            jog_axis: None,
+        }
+    }
+
+    /// The activated configuration.
+    pub fn config(&self) -> &MachineConfig {
+        &self.cfg
+    }
+
+    /// The stored machine data.
+    pub fn machine_data(&self) -> &MachineData {
+        &self.data
+    }
+
+    /// Applies NC data text (all-or-nothing) and activates it as a reset would. Only in reset
+    /// state; axis positions are kept where the axes still exist.
+    pub fn apply_machine_data(&mut self, text: &str) -> Result<(), CommandError> {
+        if self.is_active() || self.status == Status::Stopped {
+            return Err(CommandError::Busy("machine data can only change in reset state"));
+        }
+        let mut data = self.data.clone();
+        let cfg = data.apply_text(text)?;
+        let old_pos = *self.planner.position();
+        let old_names: Vec<String> = self.cfg.machine_axes.iter().map(|a| a.name.clone()).collect();
+        let mut next = Channel::with_config(data, cfg);
+        let mut pos = [0.0; MAX_CHANNEL_AXES];
+        for (k, ch) in next.cfg.channel_axes.iter().enumerate() {
+            let name = &next.cfg.machine_axes[ch.machine_axis].name;
+            if let Some(old) = self.cfg.channel_axes.iter().position(|c| old_names[c.machine_axis] == *name) {
+                pos[k] = old_pos[old];
+            }
+        }
+        next.planner.set_position(pos);
+        next.interp.sync_position(&pos);
+        next.mode = self.mode;
+        next.tick = self.tick;
+        *self = next;
+        Ok(())
+    }
+
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    pub fn status(&self) -> Status {
+        self.status
+    }
+
+    /// Simulated time since the channel was created, in seconds.
+    pub fn time(&self) -> f64 {
+        self.tick as f64 * self.cfg.ipo_cycle
+    }
+
+    /// Number of IPO cycles stepped so far.
+    pub fn ticks(&self) -> u64 {
+        self.tick
+    }
+
+    pub fn alarms(&self) -> &[Alarm] {
+        &self.alarms
+    }
+
+    /// True while stepping changes anything: a program runs, axes move or a spindle turns.
+    pub fn is_active(&self) -> bool {
+        self.status == Status::Running || !self.planner.is_idle() || self.spindles.iter().any(|s| s.is_turning())
+    }
+
+    /// True while a program or JOG motion is executing or the axes are still braking.
+    pub fn is_busy(&self) -> bool {
+        self.status == Status::Running || !self.planner.is_idle()
+    }
+
+    /// Events since the last call, oldest first.
+    pub fn take_events(&mut self) -> Vec<Event> {
+        std::mem::take(&mut self.events)
+    }
+
+    /// Changes the mode; only in reset state (no program interrupted, nothing moving).
+    pub fn set_mode(&mut self, mode: Mode) -> Result<(), CommandError> {
+        if mode == self.mode {
+            return Ok(());
+        }
+        if self.is_busy() || self.status == Status::Stopped {
+            return Err(CommandError::Busy("a program or motion is active"));
+        }
+        self.mode = mode;
+        self.events.push(Event::ModeChanged(mode));
+        Ok(())
+    }
+
+    /// Loads `text` as the active program and starts it in AUTO mode.
+    pub fn run_program(&mut self, text: &str) -> Result<(), CommandError> {
+        self.load_and_start(text, Mode::Auto)
+    }
+
+    /// Executes `text` (one or more blocks) in MDA mode.
+    pub fn mda(&mut self, text: &str) -> Result<(), CommandError> {
+        self.load_and_start(text, Mode::Mda)
+    }
+
+    fn load_and_start(&mut self, text: &str, mode: Mode) -> Result<(), CommandError> {
+        let program = lang::parse(text);
+        if let Some(d) = program.diagnostics.first() {
+            return Err(CommandError::Syntax { line: d.line, message: d.message.clone() });
+        }
+        if self.is_busy() || self.status == Status::Stopped {
+            return Err(CommandError::Busy("a program is active"));
+        }
+        if self.status == Status::Alarm {
+            return Err(CommandError::AlarmActive);
+        }
+        self.set_mode(mode)?;
+        self.program = Some(Arc::new(program));
+        self.next_block = 0;
+        self.prep_done = false;
+        self.interp.begin_program(&self.cfg, self.planner.position());
+        self.status = Status::Running;
+        Ok(())
+    }
+
+    /// NC start: continues an interrupted program (M0, M1, NC stop).
+    pub fn start(&mut self) -> Result<(), CommandError> {
+        match self.status {
+            Status::Alarm => Err(CommandError::AlarmActive),
+            Status::Running => Ok(()),
+            Status::Stopped => {
+                self.planner.set_hold(false);
+                self.status = Status::Running;
+                Ok(())
+            }
+            Status::Idle => match (&self.program, self.mode) {
+                (Some(p), Mode::Auto) => {
+                    let text = p.blocks.iter().map(|b| b.text.as_str()).collect::<Vec<_>>().join("\n");
+                    self.run_program(&text)
+                }
+                (_, Mode::Jog) => Err(CommandError::WrongMode("JOG", "NC start runs programs in AUTO or MDA")),
+                _ => Err(CommandError::Invalid("no program loaded".into())),
+            },
+        }
+    }
+
+    /// NC stop: brakes on the path; the program can be continued with [`Channel::start`].
+    pub fn stop(&mut self) {
+        match self.status {
+            Status::Running if self.jog_axis.is_some() => self.jog_stop(),
+            Status::Running => {
+                self.planner.set_hold(true);
+                self.status = Status::Stopped;
+            }
+            _ => {}
+        }
+    }
+
+    /// Channel reset: ends the program, stops every axis and spindle at once, clears the alarms
+    /// a reset clears and returns the modal state to its reset values.
+    pub fn reset(&mut self) {
+        self.planner.abort();
+        self.pending.clear();
+        self.in_planner.clear();
+        self.prep_done = true;
+        self.dwell_ticks = 0;
+        self.jog_axis = None;
+        self.current_line = None;
+        for s in &mut self.spindles {
+            s.stop_now();
+        }
+        let pos = *self.planner.position();
+        self.interp.reset(&self.cfg, &pos);
+        self.offsets = self.interp.offsets();
+        for a in std::mem::take(&mut self.alarms) {
+            self.events.push(Event::AlarmCleared { number: a.number });
+        }
+        self.status = Status::Idle;
+    }
+
+    /// Starts a JOG motion of one axis (JOG mode only).
+    pub fn jog(&mut self, req: &JogRequest) -> Result<(), CommandError> {
+        if self.mode != Mode::Jog {
+            return Err(CommandError::WrongMode(self.mode.as_str(), "JOG needs JOG mode"));
+        }
+        if self.status == Status::Alarm {
+            return Err(CommandError::AlarmActive);
+        }
+        if self.is_busy() {
+            return Err(CommandError::Busy("an axis is moving"));
+        }
+        if req.direction != 1 && req.direction != -1 {
+            return Err(CommandError::Invalid(format!("direction must be 1 or -1, not {}", req.direction)));
+        }
+        let k = self.cfg.program_axis(&req.axis).ok_or_else(|| CommandError::UnknownAxis(req.axis.clone()))?;
+        let ax = self.cfg.axis(k).clone();
+        if ax.spindle.is_some() {
+            return Err(CommandError::Invalid(format!("{} is a spindle", req.axis)));
+        }
+        let start = *self.planner.position();
+        let dir = req.direction as f64;
+        let target = match req.increment {
+            Some(inc) if inc.is_finite() && inc > 0.0 => start[k] + dir * inc,
+            Some(inc) => return Err(CommandError::Invalid(format!("increment must be positive, not {inc}"))),
+            None if ax.modulo.is_some() => start[k] + dir * 1e9,
+            None => if dir > 0.0 { ax.limit_plus } else { ax.limit_minus },
+        };
+        // Without modulo, JOG stops at the software limit.
+        let target = if ax.modulo.is_some() { target } else { target.clamp(ax.limit_minus, ax.limit_plus) };
+        if (target - start[k]).abs() < 1e-9 {
+            self.raise(Alarm::rests_on_software_limit(&ax.name, dir > 0.0));
+            return Ok(());
+        }
+        let mut end = start;
+        end[k] = target;
+        let velocity = if req.rapid { ax.jog_rapid_velocity } else { ax.jog_velocity }.min(ax.max_velocity);
+        let length = (target - start[k]).abs();
+        let mv = Move::new(Path { start, end, arc: None }, length, Feed::Path(velocity), &axis_limits(&self.cfg), true, self.next_tag);
+        self.push_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone() });
+        self.jog_axis = Some(k);
+        self.status = Status::Running;
+        Ok(())
+    }
+
+    /// Releases the JOG key: the axis brakes to standstill.
+    pub fn jog_stop(&mut self) {
+        if self.jog_axis.is_some() {
+            self.planner.stop_and_flush();
+        }
+    }
+
+    /// A view of the state for the outside world.
+    pub fn snapshot(&self) -> Snapshot {
+        snapshot::build(self)
+    }
+
+    /// Advances exactly one IPO cycle.
+    pub fn step(&mut self) {
+        self.tick += 1;
+        for s in &mut self.spindles {
+            s.step(self.cfg.ipo_cycle);
+        }
+        if self.status == Status::Running && self.jog_axis.is_none() {
+            self.prepare();
+            self.feed_planner();
+        }
+        self.planner.step();
+        self.retire_finished_moves();
+        if self.jog_axis.is_some() {
+            self.finish_jog_if_done();
+            return;
+        }
+        if self.status == Status::Running && self.planner.is_empty() {
+            self.execute_actions();
+        }
+    }
+
+    /// Block preparation: interpret blocks until the look-ahead is full.
+    fn prepare(&mut self) {
+        let Some(program) = self.program.clone() else { return };
+        while !self.prep_done && self.pending.len() + self.planner.len() < LOOKAHEAD {
+            let Some(block) = program.blocks.get(self.next_block) else {
+                self.pending.push_back(Item::Stop { kind: StopKind::End, line: program.blocks.last().map_or(1, |b| b.line) });
+                self.prep_done = true;
+                break;
+            };
+            self.next_block += 1;
+            let before = self.pending.len();
+            let mut out = Vec::new();
+            self.interp.prepare(block, &self.cfg, &mut out);
+            self.pending.extend(out);
+            if self.pending.iter().skip(before).any(|i| matches!(i, Item::Alarm(_) | Item::Stop { kind: StopKind::End, .. })) {
+                self.prep_done = true;
+            }
+        }
+    }
+
+    /// Hands consecutive moves from the front of the prepared items to the planner. A move
+    /// followed by anything else ends with an exact stop.
+    fn feed_planner(&mut self) {
+        while let Some(Item::Move { .. }) = self.pending.front() {
+            let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
+            let next_is_move = matches!(self.pending.front(), Some(Item::Move { .. }));
+            if !next_is_move && !(self.pending.is_empty() && !self.prep_done) {
+                mv.exact_stop = true;
+            }
+            self.push_move(mv, MoveMeta { line, offsets });
+        }
+    }
+
+    fn push_move(&mut self, mut mv: Move, meta: MoveMeta) {
+        mv.tag = self.next_tag;
+        self.next_tag = self.next_tag.wrapping_add(1);
+        self.in_planner.push_back((mv.tag, meta));
+        self.planner.push(mv);
+        self.sync_current_block();
+    }
+
+    fn retire_finished_moves(&mut self) {
+        let finished = self.planner.take_finished();
+        if finished.is_empty() {
+            return;
+        }
+        for tag in finished {
+            while let Some((t, meta)) = self.in_planner.front() {
+                let done = *t == tag;
+                self.offsets = meta.offsets.clone();
+                self.in_planner.pop_front();
+                if done {
+                    break;
+                }
+            }
+        }
+        self.sync_current_block();
+    }
+
+    /// Shows the block whose move is executing.
+    fn sync_current_block(&mut self) {
+        if let Some((_, meta)) = self.in_planner.front() {
+            self.offsets = meta.offsets.clone();
+            let line = meta.line;
+            if line > 0 {
+                self.enter_block(line);
+            }
+        }
+    }
+
+    fn enter_block(&mut self, line: u32) {
+        if self.current_line != Some(line) {
+            self.current_line = Some(line);
+            if let Some(b) = self.block_ref(line) {
+                self.events.push(Event::BlockChanged(b));
+            }
+        }
+    }
+
+    fn block_ref(&self, line: u32) -> Option<BlockRef> {
+        let program = self.program.as_ref()?;
+        let text = program.blocks.iter().find(|b| b.line == line).map(|b| b.text.clone())?;
+        Some(BlockRef { line, text })
+    }
+
+    /// Executes non-motion items at the head of the queue once all motion before them is done.
+    fn execute_actions(&mut self) {
+        if self.dwell_ticks > 0 {
+            self.dwell_ticks -= 1;
+            return;
+        }
+        while self.status == Status::Running {
+            match self.pending.front() {
+                None | Some(Item::Move { .. }) => return,
+                Some(_) => {}
+            }
+            let item = self.pending.pop_front().expect("front exists");
+            match item {
+                Item::Move { .. } => unreachable!(),
+                Item::Offsets { line, offsets } => {
+                    self.offsets = offsets;
+                    self.enter_block(line);
+                }
+                Item::Dwell { seconds, line } => {
+                    self.enter_block(line);
+                    self.dwell_ticks = (seconds / self.cfg.ipo_cycle).round() as u64;
+                    if self.dwell_ticks > 0 {
+                        self.dwell_ticks -= 1;
+                        return;
+                    }
+                }
+                Item::Spindle { axis, rpm, line } => {
+                    self.enter_block(line);
+                    if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
+                        s.set_speed(rpm);
+                    }
+                }
+                Item::Stop { kind, line } => {
+                    self.enter_block(line);
+                    match kind {
+                        StopKind::M0 => self.program_stop(line),
+                        StopKind::M1 if self.optional_stop => self.program_stop(line),
+                        StopKind::M1 => {}
+                        StopKind::End => self.program_end(),
+                    }
+                }
+                Item::Alarm(alarm) => {
+                    if let Some(line) = alarm.line {
+                        self.enter_block(line);
+                    }
+                    self.raise(alarm);
+                }
+            }
+        }
+    }
+
+    fn program_stop(&mut self, line: u32) {
+        self.status = Status::Stopped;
+        self.events.push(Event::ProgramStopped { line });
+    }
+
+    fn program_end(&mut self) {
+        self.status = Status::Idle;
+        self.prep_done = true;
+        self.current_line = None;
+        self.interp.end_program(&self.cfg);
+        self.events.push(Event::ProgramEnded);
+    }
+
+    fn raise(&mut self, alarm: Alarm) {
+        self.planner.abort();
+        self.pending.clear();
+        self.in_planner.clear();
+        self.prep_done = true;
+        self.jog_axis = None;
+        if alarm.clear == Clear::Reset {
+            self.status = Status::Alarm;
+        } else if self.status == Status::Running {
+            self.status = Status::Idle;
+        }
+        self.events.push(Event::AlarmRaised(alarm.clone()));
+        self.alarms.push(alarm);
+    }
+
+    fn finish_jog_if_done(&mut self) {
+        let Some(k) = self.jog_axis else { return };
+        if !self.planner.is_idle() {
+            return;
+        }
+        self.jog_axis = None;
+        if self.status == Status::Running {
+            self.status = Status::Idle;
+        }
+        let ax = self.cfg.axis(k);
+        let p = self.planner.position()[k];
+        if ax.modulo.is_none() && (p >= ax.limit_plus || p <= ax.limit_minus) {
+            let name = ax.name.clone();
+            self.raise(Alarm::rests_on_software_limit(&name, p >= ax.limit_plus));
+        }
+        self.interp.sync_position(self.planner.position());
+    }
+
+    /// Removes alarms that the cancel key clears.
+    pub fn cancel_alarms(&mut self) {
+        let (cancel, keep): (Vec<_>, Vec<_>) = std::mem::take(&mut self.alarms).into_iter().partition(|a| a.clear == Clear::Cancel);
+        self.alarms = keep;
+        for a in cancel {
+            self.events.push(Event::AlarmCleared { number: a.number });
+        }
+    }
+
+    pub(crate) fn position(&self) -> &AxisVec {
+        self.planner.position()
+    }
+}
+
+/// Planner limits per channel axis, from the machine axes behind them.
+fn axis_limits(cfg: &MachineConfig) -> Vec<AxisLimit> {
+    (0..cfg.channel_axes.len())
+        .map(|k| {
+            let a = cfg.axis(k);
+            AxisLimit { max_velocity: a.max_velocity, max_accel: a.max_accel, accel_overload: a.accel_overload }
+        })
+        .collect()
+}

@@ -1,0 +1,96 @@
+//! The channel's state as the outside world sees it (the contract's state object, in engine
+//! types; the server turns it into JSON).
+
+use super::{Channel, Mode, Status};
+use crate::alarm::Alarm;
+
+/// The block shown as current.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockRef {
+    /// 1-based line in the program text.
+    pub line: u32,
+    pub text: String,
+}
+
+/// The active kinematic transformation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransformationInfo {
+    pub name: String,
+    pub trafo_type: u32,
+    pub index: u32,
+}
+
+/// A consistent view of one channel at one IPO cycle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    pub status: Status,
+    pub mode: Mode,
+    /// Simulated seconds since the channel was created.
+    pub time: f64,
+    pub tick: u64,
+    /// MCS: every machine axis of the channel, by machine axis name.
+    pub machine: Vec<(String, f64)>,
+    /// BCS: channel axes by program name (geometry axes first by their geometry names).
+    pub basic: Vec<(String, f64)>,
+    /// WCS: as `basic`, after work offsets.
+    pub workpiece: Vec<(String, f64)>,
+    /// Unit tool direction in the WCS, when known.
+    pub orientation: Option<[f64; 3]>,
+    pub transformation: Option<TransformationInfo>,
+    pub block: Option<BlockRef>,
+    pub alarms: Vec<Alarm>,
+    /// Active tool and cutting edge (T, D); D0 = no offset.
+    pub tool: (u32, u32),
+    /// Path velocity in mm/min.
+    pub path_velocity: f64,
+    /// Spindles: (channel axis name, speed in rev/min, signed: + = M3).
+    pub spindles: Vec<(String, f64)>,
+}
+
+pub(super) fn build(ch: &Channel) -> Snapshot {
+    let cfg = &ch.cfg;
+    let pos = ch.position();
+    let n = cfg.channel_axes.len();
+    let value = |k: usize| -> f64 {
+        match ch.spindles.iter().find(|s| s.axis == k) {
+            Some(s) => s.position,
+            None => pos[k],
+        }
+    };
+    let display = |k: usize, v: f64| -> f64 {
+        match cfg.axis(k).modulo {
+            Some((start, range)) => start + (v - start).rem_euclid(range),
+            None => v,
+        }
+    };
+    let mut machine: Vec<(usize, (String, f64))> =
+        (0..n).map(|k| (cfg.channel_axes[k].machine_axis, (cfg.axis(k).name.clone(), display(k, value(k))))).collect();
+    machine.sort_by_key(|(m, _)| *m);
+    // Geometry axes first, in geometry order, then the other channel axes in channel order.
+    let geo: Vec<usize> = cfg.geo_axes.iter().flatten().copied().collect();
+    let order: Vec<usize> = geo.iter().copied().chain((0..n).filter(|k| !geo.contains(k))).collect();
+    let offsets = &ch.offsets;
+    let basic: Vec<(String, f64)> =
+        order.iter().map(|&k| (cfg.program_axis_name(k).to_string(), display(k, value(k) - offsets.tool[k]))).collect();
+    let workpiece: Vec<(String, f64)> = order
+        .iter()
+        .map(|&k| (cfg.program_axis_name(k).to_string(), display(k, value(k) - offsets.tool[k] - offsets.work[k])))
+        .collect();
+    let orientation = cfg.geo_axes[2].map(|_| [0.0, 0.0, 1.0]).filter(|_| cfg.geo_axes.iter().all(Option::is_some));
+    Snapshot {
+        status: ch.status,
+        mode: ch.mode,
+        time: ch.time(),
+        tick: ch.tick,
+        machine: machine.into_iter().map(|(_, p)| p).collect(),
+        basic,
+        workpiece,
+        orientation,
+        transformation: None,
+        block: ch.current_line.and_then(|l| ch.block_ref(l)),
+        alarms: ch.alarms.clone(),
+        tool: ch.interp.tool_in_main_run(&ch.offsets),
+        path_velocity: ch.planner.velocity() * 60.0,
+        spindles: ch.spindles.iter().map(|s| (cfg.program_axis_name(s.axis).to_string(), s.speed)).collect(),
+    }
+}

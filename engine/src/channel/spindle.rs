@@ -1,0 +1,63 @@
+//! Spindles in speed mode: S and M3/M4/M5 set a target speed; the spindle ramps to it with its
+//! axis' acceleration and its position turns with it (shown modulo 360°).
+
+use crate::machine_data::MachineConfig;
+
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Spindle {
+    /// Channel axis of the spindle.
+    pub axis: usize,
+    /// Current speed in rev/min (+ = M3, - = M4).
+    pub speed: f64,
+    target: f64,
+    /// Acceleration in rev/min per second.
+    accel: f64,
+    max_speed: f64,
+    /// Angle in degrees (not wrapped).
+    pub position: f64,
+}
+
+impl Spindle {
+    pub fn is_turning(&self) -> bool {
+        self.speed != 0.0 || self.target != 0.0
+    }
+
+    pub fn set_speed(&mut self, rpm: f64) {
+        self.target = rpm.clamp(-self.max_speed, self.max_speed);
+    }
+
+    pub fn stop_now(&mut self) {
+        self.speed = 0.0;
+        self.target = 0.0;
+    }
+
+    pub fn step(&mut self, dt: f64) {
+        let dv = self.accel * dt;
+        let before = self.speed;
+        self.speed = if self.target > self.speed { (self.speed + dv).min(self.target) } else { (self.speed - dv).max(self.target) };
+        // Trapezoidal integration of the angle: rev/min → deg/s is ×6.
+        self.position += (before + self.speed) * 0.5 * 6.0 * dt;
+        if self.position.abs() > 3.6e9 {
+            self.position = self.position.rem_euclid(360.0);
+        }
+    }
+}
+
+/// One spindle per channel axis whose machine axis is a spindle.
+pub(super) fn for_config(cfg: &MachineConfig) -> Vec<Spindle> {
+    (0..cfg.channel_axes.len())
+        .filter(|&k| cfg.axis(k).spindle.is_some())
+        .map(|k| {
+            let ax = cfg.axis(k);
+            Spindle {
+                axis: k,
+                speed: 0.0,
+                target: 0.0,
+                // deg/s² → rev/min per s: /360 · 60.
+                accel: ax.max_accel / 6.0,
+                max_speed: ax.max_velocity / 6.0,
+                position: 0.0,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,380 @@
+//! Block preparation ("preprocessing"): the modal state of the channel applied to each block.
+//!
+//! Input: parsed [`Block`]s and the [`MachineConfig`]. Output: [`Item`]s in main-run order:
+//! moves in channel-axis space (tool tip + tool length + work offset), dwells, spindle commands,
+//! programmed stops and alarms. The interpreter runs ahead of the main run and keeps its own
+//! programmed position, as the control's preprocessing does.
+
+pub mod arc;
+mod eval;
+mod modal;
+
+use crate::alarm::Alarm;
+use crate::lang::{Block, CoordMode};
+use crate::machine_data::MachineConfig;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
+pub use modal::{Modal, MotionMode, Plane};
+
+/// Offsets in effect for a block, per channel axis, and the tool that causes them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Offsets {
+    /// Tool length vector (MCS = BCS + tool).
+    pub tool: AxisVec,
+    /// Settable work offset (BCS = WCS + work).
+    pub work: AxisVec,
+    /// Active tool number and cutting edge.
+    pub t: u32,
+    pub d: u32,
+}
+
+/// Why the main run stops.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopKind {
+    /// M0: programmed stop.
+    M0,
+    /// M1: optional stop.
+    M1,
+    /// M2/M17/M30 or end of text.
+    End,
+}
+
+/// One prepared item for the main run.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Item {
+    Move { mv: Move, line: u32, offsets: Offsets },
+    /// A block without motion that changes the offsets shown (T, D, G54, ...).
+    Offsets { line: u32, offsets: Offsets },
+    Dwell { seconds: f64, line: u32 },
+    /// Target speed of the spindle on channel axis `axis` in rev/min (+ = M3).
+    Spindle { axis: usize, rpm: f64, line: u32 },
+    Stop { kind: StopKind, line: u32 },
+    Alarm(Alarm),
+}
+
+/// Preprocessing state of the channel.
+#[derive(Debug, Clone)]
+pub struct Interpreter {
+    modal: Modal,
+    /// Programmed end position of the last block in channel-axis (machine) coordinates.
+    pos: AxisVec,
+    offsets: Offsets,
+    /// R parameters R0..R99.
+    r: Vec<f64>,
+    /// Programmed spindle speed (rev/min) and direction (+1 M3, -1 M4, 0 M5).
+    speed: f64,
+    direction: i8,
+}
+
+const R_PARAMS: usize = 100;
+
+impl Interpreter {
+    pub fn new(cfg: &MachineConfig) -> Interpreter {
+        Interpreter {
+            modal: Modal::reset(cfg),
+            pos: [0.0; MAX_CHANNEL_AXES],
+            offsets: Offsets::default(),
+            r: vec![0.0; R_PARAMS],
+            speed: 0.0,
+            direction: 0,
+        }
+    }
+
+    /// Channel reset: modal state to reset values; the tool stays selected.
+    pub fn reset(&mut self, cfg: &MachineConfig, pos: &AxisVec) {
+        self.modal = Modal::reset(cfg);
+        self.direction = 0;
+        self.pos = *pos;
+        self.offsets.work = [0.0; MAX_CHANNEL_AXES];
+        self.offsets.work.copy_from_slice(&work_offset(cfg, self.modal.work_offset));
+    }
+
+    /// Program end acts like a reset of the modal state (the spindle keeps turning until M5 or reset).
+    pub fn end_program(&mut self, cfg: &MachineConfig) {
+        let pos = self.pos;
+        let direction = self.direction;
+        self.reset(cfg, &pos);
+        self.direction = direction;
+    }
+
+    /// Starts preparing a program from the machine's current position.
+    pub fn begin_program(&mut self, _cfg: &MachineConfig, pos: &AxisVec) {
+        self.pos = *pos;
+    }
+
+    /// Sets the programmed position after motion outside programs (JOG).
+    pub fn sync_position(&mut self, pos: &AxisVec) {
+        self.pos = *pos;
+    }
+
+    /// Offsets currently selected by preprocessing.
+    pub fn offsets(&self) -> Offsets {
+        self.offsets.clone()
+    }
+
+    pub fn modal(&self) -> &Modal {
+        &self.modal
+    }
+
+    /// The tool shown for the block in the main run.
+    pub fn tool_in_main_run(&self, offsets: &Offsets) -> (u32, u32) {
+        (offsets.t, offsets.d)
+    }
+
+    /// Prepares one block. On an error, an [`Item::Alarm`] is the last item and nothing of the
+    /// block is applied.
+    pub fn prepare(&mut self, block: &Block, cfg: &MachineConfig, out: &mut Vec<Item>) {
+        let mut next = self.clone();
+        match next.prepare_block(block, cfg, out) {
+            Ok(()) => *self = next,
+            Err(alarm) => {
+                out.clear();
+                out.push(Item::Alarm(alarm));
+            }
+        }
+    }
+
+    fn prepare_block(&mut self, block: &Block, cfg: &MachineConfig, out: &mut Vec<Item>) -> Result<(), Alarm> {
+        let line = block.line;
+        let words = modal::collect(block, cfg, &self.r)?;
+        // R parameter assignments take effect in block order before the rest.
+        for (n, v) in &words.r_assign {
+            self.r[*n] = *v;
+        }
+        let offsets_before = self.offsets.clone();
+        self.modal.apply(&words, cfg, line)?;
+        if let Some(f) = words.feed {
+            if !words.dwell {
+                self.modal.feed = Some(f);
+            }
+        }
+        if let Some(s) = words.speed.filter(|_| !words.dwell) {
+            if s < 0.0 {
+                return Err(Alarm::value_out_of_range(line, &format!("S{s}")));
+            }
+            self.speed = s;
+        }
+        self.select_tool(&words, cfg, line)?;
+        self.offsets.work.copy_from_slice(&work_offset(cfg, self.modal.work_offset));
+        self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
+
+        // Spindle before motion.
+        let old_direction = self.direction;
+        if let Some(dir) = words.spindle_dir {
+            self.direction = dir;
+        }
+        if (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell {
+            if let Some(axis) = cfg.master_spindle {
+                if self.direction != old_direction || self.direction != 0 {
+                    out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
+                }
+            }
+        }
+
+        if words.dwell {
+            let seconds = match (words.feed, words.speed) {
+                (Some(f), None) => f,
+                (None, Some(revs)) if self.speed > 0.0 => revs * 60.0 / self.speed,
+                (None, Some(_)) => return Err(Alarm::value_out_of_range(line, "G4 S (spindle stands)")),
+                _ => return Err(Alarm::syntax(line, "G4 needs F<seconds> or S<revolutions>")),
+            };
+            if !(0.0..=1e6).contains(&seconds) {
+                return Err(Alarm::value_out_of_range(line, &format!("G4 {seconds} s")));
+            }
+            out.push(Item::Dwell { seconds, line });
+        } else if !words.axes.is_empty() || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw)) {
+            let mv = self.motion(&words, cfg, line)?;
+            out.push(Item::Move { mv, line, offsets: self.offsets.clone() });
+        } else if self.offsets != offsets_before {
+            out.push(Item::Offsets { line, offsets: self.offsets.clone() });
+        }
+
+        if let Some(kind) = words.stop {
+            out.push(Item::Stop { kind, line });
+        }
+        Ok(())
+    }
+
+    fn select_tool(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
+        if let Some(t) = words.tool {
+            if t != 0 && !cfg.tools.keys().any(|(tt, _)| *tt == t) {
+                return Err(Alarm::illegal_t(line, t));
+            }
+            self.offsets.t = t;
+            // MD20270 CUTTING_EDGE_DEFAULT = 1: a new tool brings its first cutting edge.
+            self.offsets.d = if t == 0 { 0 } else { 1 };
+        }
+        if let Some(d) = words.edge {
+            if d != 0 && !cfg.tools.contains_key(&(self.offsets.t, d)) {
+                return Err(Alarm::illegal_d(line, d));
+            }
+            self.offsets.d = d;
+        }
+        Ok(())
+    }
+
+    fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<Move, Alarm> {
+        let n = cfg.channel_axes.len();
+        let start = self.pos;
+        let mut end = start;
+        let suppress_work = words.g53;
+        let work = if suppress_work { [0.0; MAX_CHANNEL_AXES] } else { self.offsets.work };
+        let tool = self.offsets.tool;
+        for &(k, value, mode) in &words.axes {
+            let ax = cfg.axis(k);
+            let v = if ax.rotary { value } else { value * self.modal.length_factor() };
+            let current_wcs = start[k] - tool[k] - work[k];
+            let absolute = match mode {
+                Some(CoordMode::Ac) => true,
+                Some(CoordMode::Ic) => false,
+                Some(CoordMode::Dc | CoordMode::Acp | CoordMode::Acn) if ax.modulo.is_none() => {
+                    return Err(Alarm::value_out_of_range(line, &format!("{}: DC/ACP/ACN need a modulo rotary axis", cfg.program_axis_name(k))));
+                }
+                Some(_) => true,
+                None => self.modal.absolute,
+            };
+            let target_wcs = if absolute { v } else { current_wcs + v };
+            end[k] = match (ax.modulo, mode, absolute) {
+                (Some((mstart, range)), m, true) => {
+                    let target = mstart + (target_wcs - mstart).rem_euclid(range);
+                    modulo_target(current_wcs, target, range, m) + tool[k] + work[k]
+                }
+                _ => target_wcs + tool[k] + work[k],
+            };
+        }
+
+        let geo: Vec<usize> = cfg.geo_axes.iter().flatten().copied().collect();
+        let geo_len = geo.iter().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
+        let mut path = Path { start, end, arc: None };
+        let mut length = geo_len;
+        if let MotionMode::Cw | MotionMode::Ccw = self.modal.motion {
+            let (a, o, app) = self.modal.plane.axes();
+            let (Some(ka), Some(ko)) = (cfg.geo_axes[a], cfg.geo_axes[o]) else {
+                return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
+            };
+            let offs = |k: usize| tool[k] + work[k];
+            let s = (start[ka] - offs(ka), start[ko] - offs(ko));
+            let e = (end[ka] - offs(ka), end[ko] - offs(ko));
+            let turn = if self.modal.motion == MotionMode::Cw { arc::Turn::Clockwise } else { arc::Turn::CounterClockwise };
+            let circle = match (words.cr, words.center(a, o)) {
+                (Some(cr), _) => arc::from_radius(s, e, cr * self.modal.length_factor(), turn),
+                (None, Some(((ia, abs_a), (io, abs_o)))) => {
+                    let f = self.modal.length_factor();
+                    let c = (if abs_a { ia * f } else { s.0 + ia * f }, if abs_o { io * f } else { s.1 + io * f });
+                    arc::from_center(s, e, c, turn)
+                }
+                (None, None) => return Err(Alarm::circle_end_point(line)),
+            }
+            .map_err(|_| Alarm::circle_end_point(line))?;
+            path.arc = Some(Arc {
+                plane: (ka, ko),
+                center: (circle.center.0 + offs(ka), circle.center.1 + offs(ko)),
+                radius: circle.radius,
+                start_angle: circle.start_angle,
+                sweep: circle.sweep,
+            });
+            let helix: f64 = geo.iter().filter(|&&k| k != ka && k != ko).map(|&k| (end[k] - start[k]).powi(2)).sum();
+            let _ = app;
+            length = ((circle.radius * circle.sweep).powi(2) + helix).sqrt();
+        }
+        if length < 1e-9 {
+            // No geometry axis moves: the feed applies to the other axes together.
+            length = (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
+        }
+
+        check_software_limits(cfg, &path, line)?;
+
+        let feed = match self.modal.motion {
+            MotionMode::Rapid => Feed::Rapid,
+            _ => {
+                let f = self.modal.feed.ok_or_else(|| Alarm::no_feed(line))?;
+                let per_min = if self.modal.feed_per_rev { f * self.speed } else { f } * self.modal.feed_factor();
+                if per_min <= 0.0 {
+                    return Err(Alarm::feed_not_positive(line));
+                }
+                Feed::Path(per_min / 60.0)
+            }
+        };
+        let exact_stop = self.modal.exact_stop || words.g9;
+        self.pos = end;
+        Ok(Move::new(path, length, feed, &limits(cfg), exact_stop, line))
+    }
+}
+
+/// Target of a modulo rotary axis: shortest way (G90, DC), or forced direction (ACP, ACN).
+fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>) -> f64 {
+    let delta = (target - current).rem_euclid(range);
+    match mode {
+        Some(CoordMode::Acp) => current + delta,
+        Some(CoordMode::Acn) => current + delta - if delta > 0.0 { range } else { 0.0 },
+        _ if delta > range / 2.0 => current + delta - range,
+        _ => current + delta,
+    }
+}
+
+fn limits(cfg: &MachineConfig) -> Vec<AxisLimit> {
+    (0..cfg.channel_axes.len())
+        .map(|k| {
+            let a = cfg.axis(k);
+            AxisLimit { max_velocity: a.max_velocity, max_accel: a.max_accel, accel_overload: a.accel_overload }
+        })
+        .collect()
+}
+
+/// Alarm 10720 when any point of the path lies beyond a software limit switch.
+fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<(), Alarm> {
+    let (lo, hi) = path.extent();
+    for k in 0..cfg.channel_axes.len() {
+        let ax = cfg.axis(k);
+        if ax.modulo.is_some() || ax.spindle.is_some() {
+            continue;
+        }
+        let moves = (path.end[k] - path.start[k]).abs() > 1e-12 || path.arc.is_some_and(|a| a.plane.0 == k || a.plane.1 == k);
+        if !moves {
+            continue;
+        }
+        if hi[k] > ax.limit_plus + 1e-9 {
+            return Err(Alarm::software_limit(line, &ax.name, true));
+        }
+        if lo[k] < ax.limit_minus - 1e-9 {
+            return Err(Alarm::software_limit(line, &ax.name, false));
+        }
+    }
+    Ok(())
+}
+
+/// Translation of settable frame `frame` (0 = G500) per channel axis.
+fn work_offset(cfg: &MachineConfig, frame: usize) -> AxisVec {
+    let mut v = [0.0; MAX_CHANNEL_AXES];
+    if let Some(f) = cfg.work_offsets.get(frame) {
+        v[..f.len()].copy_from_slice(f);
+    }
+    v
+}
+
+/// Tool length vector per channel axis: lengths L1..L3 (geometry + wear + adapter) mapped to the
+/// geometry axes by tool type and plane (SD42940 = 0).
+fn tool_vector(cfg: &MachineConfig, modal: &Modal, t: u32, d: u32) -> AxisVec {
+    let mut v = [0.0; MAX_CHANNEL_AXES];
+    let Some(p) = cfg.tools.get(&(t, d)).filter(|_| d != 0) else { return v };
+    let lengths = [p[2] + p[11] + p[20], p[3] + p[12] + p[21], p[4] + p[13] + p[22]];
+    let turning = (400.0..600.0).contains(&p[0]);
+    // Geometry axis (0 = 1st) that receives L1, L2, L3.
+    let map: [usize; 3] = match (turning, modal.plane) {
+        (false, Plane::G17) => [2, 1, 0],
+        (false, Plane::G18) => [1, 0, 2],
+        (false, Plane::G19) => [0, 2, 1],
+        (true, Plane::G17) => [1, 0, 2],
+        (true, Plane::G18) => [0, 2, 1],
+        (true, Plane::G19) => [2, 1, 0],
+    };
+    for (l, g) in lengths.iter().zip(map) {
+        if let Some(k) = cfg.geo_axes[g] {
+            v[k] += l;
+        }
+    }
+    v
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,285 @@
+//! The modal state (G groups, feed) and the words of one block sorted by meaning.
+
+use super::StopKind;
+use super::eval::eval;
+use crate::alarm::Alarm;
+use crate::lang::{Block, CoordMode, Word};
+use crate::machine_data::MachineConfig;
+
+/// G group 1: motion type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MotionMode {
+    /// G0.
+    Rapid,
+    /// G1.
+    Linear,
+    /// G2.
+    Cw,
+    /// G3.
+    Ccw,
+}
+
+/// G group 6: working plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plane {
+    G17,
+    G18,
+    G19,
+}
+
+impl Plane {
+    /// Geometry axis indices (0 = 1st) of abscissa, ordinate and applicate.
+    pub fn axes(self) -> (usize, usize, usize) {
+        match self {
+            Plane::G17 => (0, 1, 2),
+            Plane::G18 => (2, 0, 1),
+            Plane::G19 => (1, 2, 0),
+        }
+    }
+}
+
+/// The modal state of block preparation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Modal {
+    pub motion: MotionMode,
+    pub plane: Plane,
+    /// G90 (true) or G91.
+    pub absolute: bool,
+    /// G70/G700: geometry in inch.
+    pub inch: bool,
+    /// G700/G710: feed follows the unit system too.
+    pub inch_feed: bool,
+    /// G95 (feed per spindle revolution) instead of G94.
+    pub feed_per_rev: bool,
+    /// G60 (true) or G64.
+    pub exact_stop: bool,
+    /// Active settable frame: 0 = G500, 1..4 = G54..G57, 5.. = G505...
+    pub work_offset: usize,
+    /// Programmed F (mm/min, or mm/rev under G95), in program units.
+    pub feed: Option<f64>,
+}
+
+impl Modal {
+    /// Reset values (MD20150 GCODE_RESET_VALUES defaults): G1, G17 (G18 on a machine without a
+    /// 2nd geometry axis), G90, G71, G94, G60, G500; no feed.
+    pub fn reset(cfg: &MachineConfig) -> Modal {
+        Modal {
+            motion: MotionMode::Linear,
+            plane: if cfg.geo_axes[1].is_none() { Plane::G18 } else { Plane::G17 },
+            absolute: true,
+            inch: false,
+            inch_feed: false,
+            feed_per_rev: false,
+            exact_stop: true,
+            work_offset: 0,
+            feed: None,
+        }
+    }
+
+    /// Millimetres per programmed length unit.
+    pub fn length_factor(&self) -> f64 {
+        if self.inch { 25.4 } else { 1.0 }
+    }
+
+    /// Millimetres per programmed feed length unit.
+    pub fn feed_factor(&self) -> f64 {
+        if self.inch && self.inch_feed { 25.4 } else { 1.0 }
+    }
+
+    /// Applies the modal G functions of a block.
+    pub(super) fn apply(&mut self, w: &Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
+        if let Some(m) = w.motion {
+            self.motion = m;
+        }
+        if let Some(p) = w.plane {
+            self.plane = p;
+        }
+        if let Some(a) = w.absolute {
+            self.absolute = a;
+        }
+        if let Some((inch, feed)) = w.units {
+            self.inch = inch;
+            self.inch_feed = feed;
+        }
+        if let Some(f) = w.feed_per_rev {
+            self.feed_per_rev = f;
+        }
+        if let Some(e) = w.exact_stop {
+            self.exact_stop = e;
+        }
+        if let Some(frame) = w.work_offset {
+            if frame >= cfg.work_offsets.len() {
+                return Err(Alarm::value_out_of_range(line, &format!("settable frame {frame} (MD28080 MM_NUM_USER_FRAMES = {})", cfg.work_offsets.len())));
+            }
+            self.work_offset = frame;
+        }
+        Ok(())
+    }
+}
+
+/// The words of one block, sorted by meaning and evaluated.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Words {
+    pub motion: Option<MotionMode>,
+    pub plane: Option<Plane>,
+    pub absolute: Option<bool>,
+    pub units: Option<(bool, bool)>,
+    pub feed_per_rev: Option<bool>,
+    pub exact_stop: Option<bool>,
+    pub work_offset: Option<usize>,
+    /// G4 dwell (F and S of the block are dwell values then).
+    pub dwell: bool,
+    /// G9 non-modal exact stop.
+    pub g9: bool,
+    /// G53/SUPA: work offsets suppressed for this block.
+    pub g53: bool,
+    /// Channel axis, value, coordinate mode.
+    pub axes: Vec<(usize, f64, Option<CoordMode>)>,
+    /// I, J, K by geometry axis: value and whether it is absolute (`AC`).
+    pub ijk: [Option<(f64, bool)>; 3],
+    pub cr: Option<f64>,
+    pub feed: Option<f64>,
+    pub speed: Option<f64>,
+    pub tool: Option<u32>,
+    pub edge: Option<u32>,
+    pub spindle_dir: Option<i8>,
+    pub stop: Option<StopKind>,
+    pub r_assign: Vec<(usize, f64)>,
+}
+
+impl Words {
+    /// Centre parameters of the plane's abscissa and ordinate; a missing one counts as 0.
+    pub fn center(&self, a: usize, o: usize) -> Option<((f64, bool), (f64, bool))> {
+        if self.ijk[a].is_none() && self.ijk[o].is_none() {
+            return None;
+        }
+        Some((self.ijk[a].unwrap_or((0.0, false)), self.ijk[o].unwrap_or((0.0, false))))
+    }
+
+    pub fn arc_params_given(&self) -> bool {
+        self.cr.is_some() || self.ijk.iter().any(Option::is_some)
+    }
+}
+
+/// Sorts and evaluates the words of `block`.
+pub(super) fn collect(block: &Block, cfg: &MachineConfig, r: &[f64]) -> Result<Words, Alarm> {
+    let line = block.line;
+    let mut w = Words::default();
+    let mut seen: Vec<String> = Vec::new();
+    let mut once = |name: &str| -> Result<(), Alarm> {
+        if seen.iter().any(|s| s == name) {
+            return Err(Alarm::repeated_address(line, name));
+        }
+        seen.push(name.to_string());
+        Ok(())
+    };
+    for word in &block.words {
+        match word {
+            Word::G(code) => g_function(&mut w, *code, line)?,
+            Word::M(code) => m_function(&mut w, *code, line)?,
+            Word::Keyword { name, args } if args.is_empty() && (name == "SUPA" || name == "STOPRE") => {
+                if name == "SUPA" {
+                    w.g53 = true;
+                }
+            }
+            Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
+            Word::Address { name, value } => {
+                let v = eval(&value.expr, r, line)?;
+                let whole = |what: &str| -> Result<u32, Alarm> {
+                    if v < 0.0 || v.fract() != 0.0 || v > u32::MAX as f64 {
+                        Err(Alarm::value_out_of_range(line, &format!("{what}{v}")))
+                    } else {
+                        Ok(v as u32)
+                    }
+                };
+                once(name)?;
+                match name.as_str() {
+                    "F" => w.feed = Some(v),
+                    "S" => w.speed = Some(v),
+                    "T" => w.tool = Some(whole("T")?),
+                    "D" => w.edge = Some(whole("D")?),
+                    "CR" => w.cr = Some(v),
+                    "H" => {}
+                    "I" | "J" | "K" => {
+                        let g = (name.as_bytes()[0] - b'I') as usize;
+                        w.ijk[g] = Some((v, value.mode == Some(CoordMode::Ac)));
+                    }
+                    _ => {
+                        if let Some(n) = name.strip_prefix('R').and_then(|n| n.parse::<usize>().ok()) {
+                            if n >= r.len() {
+                                return Err(Alarm::unknown_name(line, name));
+                            }
+                            w.r_assign.push((n, v));
+                            continue;
+                        }
+                        let k = cfg.program_axis(name).ok_or_else(|| Alarm::unknown_name(line, name))?;
+                        if cfg.axis(k).spindle.is_some() {
+                            return Err(Alarm::unknown_name(line, &format!("{name} (spindle positioning comes with SPOS)")));
+                        }
+                        w.axes.push((k, v, value.mode));
+                    }
+                }
+            }
+        }
+    }
+    Ok(w)
+}
+
+fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
+    match code {
+        0 => w.motion = Some(MotionMode::Rapid),
+        1 => w.motion = Some(MotionMode::Linear),
+        2 => w.motion = Some(MotionMode::Cw),
+        3 => w.motion = Some(MotionMode::Ccw),
+        4 => w.dwell = true,
+        9 => w.g9 = true,
+        17 => w.plane = Some(Plane::G17),
+        18 => w.plane = Some(Plane::G18),
+        19 => w.plane = Some(Plane::G19),
+        53 => w.g53 = true,
+        54..=57 => w.work_offset = Some(code as usize - 53),
+        500 => w.work_offset = Some(0),
+        505..=599 => w.work_offset = Some(code as usize - 500),
+        60 => w.exact_stop = Some(true),
+        64 => w.exact_stop = Some(false),
+        70 => w.units = Some((true, false)),
+        71 => w.units = Some((false, false)),
+        700 => w.units = Some((true, true)),
+        710 => w.units = Some((false, true)),
+        90 => w.absolute = Some(true),
+        91 => w.absolute = Some(false),
+        94 => w.feed_per_rev = Some(false),
+        95 => w.feed_per_rev = Some(true),
+        _ => return Err(Alarm::unknown_g(line, code)),
+    }
+    Ok(())
+}
+
+fn m_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
+    let stop = match code {
+        0 => Some(StopKind::M0),
+        1 => Some(StopKind::M1),
+        2 | 17 | 30 => Some(StopKind::End),
+        _ => None,
+    };
+    if let Some(kind) = stop {
+        if w.stop.is_some() {
+            return Err(Alarm::conflicting_functions(line, "M0/M1/M2/M17/M30"));
+        }
+        w.stop = Some(kind);
+    }
+    let dir = match code {
+        3 => Some(1),
+        4 => Some(-1),
+        5 => Some(0),
+        _ => None,
+    };
+    if let Some(d) = dir {
+        if w.spindle_dir.is_some() {
+            return Err(Alarm::conflicting_functions(line, "M3/M4/M5"));
+        }
+        w.spindle_dir = Some(d);
+    }
+    // Other M functions go to the PLC and need no NC reaction here.
+    Ok(())
+}

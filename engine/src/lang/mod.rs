@@ -1,0 +1,11 @@
+//! The part-program language, syntax only.
+//!
+//! Input: program text. Output: a [`Program`] of [`Block`]s whose words carry source lines and
+//! offsets, plus every syntax error found ([`Diagnostic`]). What a word means (modal groups,
+//! units, valid combinations) is decided by [`crate::interp`].
+
+pub mod ast;
+mod parser;
+
+pub use ast::{AddressValue, BinOp, Block, CoordMode, Diagnostic, Expr, Program, Word};
+pub use parser::{parse, parse_block};

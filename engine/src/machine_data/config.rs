@@ -1,0 +1,234 @@
+//! The activated, typed configuration derived from [`MachineData`]: what the interpreter, the
+//! planner and the channel read. Built once per activation (session start, reset after new data).
+
+use std::collections::BTreeMap;
+
+use super::{EdgeParams, FrameComponent, MachineData, registry};
+
+/// Inconsistent machine data found at activation; `datum` names the datum to blame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActivationError {
+    pub datum: Option<&'static str>,
+    pub message: String,
+}
+
+fn fail<T>(datum: &'static str, message: String) -> Result<T, ActivationError> {
+    Err(ActivationError { datum: Some(datum), message })
+}
+
+/// One machine axis with its dynamics in engine units (mm or degrees, seconds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MachineAxis {
+    pub name: String,
+    pub rotary: bool,
+    /// Modulo range `(start, size)` for modulo rotary axes.
+    pub modulo: Option<(f64, f64)>,
+    /// Spindle number when the axis is a spindle (`$MA_SPIND_ASSIGN_TO_MACHAX`).
+    pub spindle: Option<u32>,
+    /// Maximum velocity in mm/s or deg/s.
+    pub max_velocity: f64,
+    /// Maximum acceleration in mm/s² or deg/s².
+    pub max_accel: f64,
+    /// Factor by which a velocity jump at a block transition may exceed `max_accel` for one cycle.
+    pub accel_overload: f64,
+    /// JOG velocities in mm/s or deg/s.
+    pub jog_velocity: f64,
+    pub jog_rapid_velocity: f64,
+    /// Software limit switches (MCS).
+    pub limit_minus: f64,
+    pub limit_plus: f64,
+}
+
+/// One channel axis and the machine axis it drives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChannelAxis {
+    pub name: String,
+    pub machine_axis: usize,
+}
+
+/// The typed configuration of one channel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MachineConfig {
+    /// Interpolation cycle in seconds (`$MN_SYSCLOCK_CYCLE_TIME * $MN_IPO_SYSCLOCK_TIME_RATIO`).
+    pub ipo_cycle: f64,
+    /// The machine axes used by the channel, in machine-axis-number order.
+    pub machine_axes: Vec<MachineAxis>,
+    /// Channel axes in channel order; `machine_axis` indexes `machine_axes`.
+    pub channel_axes: Vec<ChannelAxis>,
+    /// Channel axis index of the 1st/2nd/3rd geometry axis (no transformation active).
+    pub geo_axes: [Option<usize>; 3],
+    pub geo_names: [String; 3],
+    /// Channel axis of the master spindle, if the channel has one.
+    pub master_spindle: Option<usize>,
+    /// Cutting edges `(T, D)` → `$TC_DP1..25`.
+    pub tools: BTreeMap<(u32, u32), EdgeParams>,
+    /// Settable frames G500, G54..: translation per channel axis (TR + FI).
+    pub work_offsets: Vec<Vec<f64>>,
+}
+
+impl MachineConfig {
+    pub(super) fn build(md: &MachineData) -> Result<Self, ActivationError> {
+        let ipo_cycle = md.num("$MN_SYSCLOCK_CYCLE_TIME", 0, 0) * md.num("$MN_IPO_SYSCLOCK_TIME_RATIO", 0, 0);
+        if ipo_cycle > 0.1 {
+            return fail("IPO_SYSCLOCK_TIME_RATIO", format!("IPO cycle {:.4} s is longer than 100 ms", ipo_cycle));
+        }
+        let gaps_allowed = md.num("$MN_ENABLE_CHAN_AX_GAP", 0, 0) != 0.0;
+
+        // Channel axes and the machine axes they use.
+        let mut machine_numbers = Vec::new();
+        let mut channel_slots = Vec::new();
+        for k in 0..registry::MAX_CHANNEL_AXES {
+            let m = md.num("$MC_AXCONF_MACHAX_USED", 0, k) as usize;
+            if m == 0 {
+                if gaps_allowed {
+                    continue;
+                }
+                break;
+            }
+            if machine_numbers.contains(&m) {
+                return fail("AXCONF_MACHAX_USED", format!("$MC_AXCONF_MACHAX_USED[{k}]: machine axis {m} is used twice"));
+            }
+            machine_numbers.push(m);
+            channel_slots.push(k);
+        }
+        if channel_slots.is_empty() {
+            return fail("AXCONF_MACHAX_USED", "$MC_AXCONF_MACHAX_USED assigns no machine axis to the channel".into());
+        }
+        let mut order = machine_numbers.clone();
+        order.sort_unstable();
+        let machine_axes = order.iter().map(|&m| machine_axis(md, m - 1)).collect::<Result<Vec<_>, _>>()?;
+        let channel_axes: Vec<ChannelAxis> = channel_slots
+            .iter()
+            .zip(&machine_numbers)
+            .map(|(&k, m)| ChannelAxis {
+                name: md.string("$MC_AXCONF_CHANAX_NAME_TAB", k),
+                machine_axis: order.iter().position(|o| o == m).expect("machine axis listed"),
+            })
+            .collect();
+        unique_names(&machine_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_MACHAX_NAME_TAB")?;
+        unique_names(&channel_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_CHANAX_NAME_TAB")?;
+
+        // Geometry axes.
+        let geo_names: [String; 3] = std::array::from_fn(|g| md.string("$MC_AXCONF_GEOAX_NAME_TAB", g));
+        let mut geo_axes = [None; 3];
+        for (g, slot) in geo_axes.iter_mut().enumerate() {
+            let k = md.num("$MC_AXCONF_GEOAX_ASSIGN_TAB", 0, g) as usize;
+            if k == 0 {
+                continue;
+            }
+            let idx = channel_slots.iter().position(|&s| s == k - 1).ok_or_else(|| ActivationError {
+                datum: Some("AXCONF_GEOAX_ASSIGN_TAB"),
+                message: format!("$MC_AXCONF_GEOAX_ASSIGN_TAB[{g}]={k}: channel axis {k} does not exist"),
+            })?;
+            if machine_axes[channel_axes[idx].machine_axis].rotary {
+                return fail("AXCONF_GEOAX_ASSIGN_TAB", format!("geometry axis {} cannot be the rotary axis {}", geo_names[g], channel_axes[idx].name));
+            }
+            *slot = Some(idx);
+        }
+        let assigned: Vec<usize> = geo_axes.iter().flatten().copied().collect();
+        if (1..assigned.len()).any(|i| assigned[..i].contains(&assigned[i])) {
+            return fail("AXCONF_GEOAX_ASSIGN_TAB", "$MC_AXCONF_GEOAX_ASSIGN_TAB assigns one channel axis to two geometry axes".into());
+        }
+        let active_geo: Vec<&str> = geo_axes.iter().zip(&geo_names).filter(|(a, _)| a.is_some()).map(|(_, n)| n.as_str()).collect();
+        unique_names(&active_geo, "AXCONF_GEOAX_NAME_TAB")?;
+
+        let master = md.num("$MC_SPIND_DEF_MASTER_SPIND", 0, 0) as u32;
+        let master_spindle = channel_axes.iter().position(|c| machine_axes[c.machine_axis].spindle == Some(master));
+
+        let frame_count = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
+        let mut work_offsets = vec![vec![0.0; channel_axes.len()]; frame_count];
+        for ((frame, axis, component), value) in md.frames() {
+            let idx = resolve_program_axis(axis, &geo_axes, &geo_names, &channel_axes).ok_or_else(|| ActivationError {
+                datum: None,
+                message: format!("$P_UIFR[{frame},{axis},{}]: {axis} is not an axis of this channel", if *component == FrameComponent::Translation { "TR" } else { "FI" }),
+            })?;
+            if *frame >= frame_count {
+                return fail("MM_NUM_USER_FRAMES", format!("$P_UIFR[{frame}] exceeds $MC_MM_NUM_USER_FRAMES={frame_count}"));
+            }
+            work_offsets[*frame][idx] += value;
+        }
+
+        Ok(MachineConfig {
+            ipo_cycle,
+            machine_axes,
+            channel_axes,
+            geo_axes,
+            geo_names,
+            master_spindle,
+            tools: md.tools().clone(),
+            work_offsets,
+        })
+    }
+
+    /// The channel axis a program addresses by `name`: a geometry axis name first, then a
+    /// channel axis name.
+    pub fn program_axis(&self, name: &str) -> Option<usize> {
+        resolve_program_axis(name, &self.geo_axes, &self.geo_names, &self.channel_axes)
+    }
+
+    /// The name under which the program and the state show channel axis `idx`.
+    pub fn program_axis_name(&self, idx: usize) -> &str {
+        match self.geo_axes.iter().position(|g| *g == Some(idx)) {
+            Some(g) => &self.geo_names[g],
+            None => &self.channel_axes[idx].name,
+        }
+    }
+
+    /// The machine axis driving channel axis `idx`.
+    pub fn axis(&self, idx: usize) -> &MachineAxis {
+        &self.machine_axes[self.channel_axes[idx].machine_axis]
+    }
+}
+
+fn resolve_program_axis(name: &str, geo_axes: &[Option<usize>; 3], geo_names: &[String; 3], channel_axes: &[ChannelAxis]) -> Option<usize> {
+    geo_axes
+        .iter()
+        .zip(geo_names)
+        .find_map(|(a, n)| a.filter(|_| n.eq_ignore_ascii_case(name)))
+        .or_else(|| channel_axes.iter().position(|c| c.name.eq_ignore_ascii_case(name)))
+}
+
+fn unique_names(names: &[&str], datum: &'static str) -> Result<(), ActivationError> {
+    for (i, n) in names.iter().enumerate() {
+        if n.is_empty() {
+            return fail(datum, format!("${}{datum}: empty axis name", if datum.starts_with("AXCONF_MACHAX") { "MN_" } else { "MC_" }));
+        }
+        if names[..i].iter().any(|m| m.eq_ignore_ascii_case(n)) {
+            return fail(datum, format!("axis name {n} is used twice"));
+        }
+    }
+    Ok(())
+}
+
+fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationError> {
+    let num = |name: &str| md.num(name, ax, 0);
+    let rotary = num("$MA_IS_ROT_AX") != 0.0;
+    // The control's units: linear mm/min and m/s², rotary rev/min and rev/s².
+    let (velo, accel) = if rotary { (360.0 / 60.0, 360.0) } else { (1.0 / 60.0, 1000.0) };
+    let name = md.string("$MN_AXCONF_MACHAX_NAME_TAB", ax);
+    let (minus, plus) = (num("$MA_POS_LIMIT_MINUS"), num("$MA_POS_LIMIT_PLUS"));
+    if minus >= plus {
+        return fail("POS_LIMIT_MINUS", format!("axis {name}: $MA_POS_LIMIT_MINUS ({minus}) must be below $MA_POS_LIMIT_PLUS ({plus})"));
+    }
+    let modulo_flag = num("$MA_ROT_IS_MODULO") != 0.0;
+    if modulo_flag && !rotary {
+        return fail("ROT_IS_MODULO", format!("axis {name}: $MA_ROT_IS_MODULO needs $MA_IS_ROT_AX=TRUE"));
+    }
+    let spindle = num("$MA_SPIND_ASSIGN_TO_MACHAX") as u32;
+    if spindle != 0 && !rotary {
+        return fail("SPIND_ASSIGN_TO_MACHAX", format!("axis {name}: a spindle must be a rotary axis ($MA_IS_ROT_AX=TRUE)"));
+    }
+    Ok(MachineAxis {
+        name,
+        rotary,
+        modulo: modulo_flag.then(|| (num("$MA_MODULO_RANGE_START"), num("$MA_MODULO_RANGE"))),
+        spindle: (spindle != 0).then_some(spindle),
+        max_velocity: num("$MA_MAX_AX_VELO") * velo,
+        max_accel: num("$MA_MAX_AX_ACCEL") * accel,
+        accel_overload: num("$MA_MAX_ACCEL_OVL_FACTOR"),
+        jog_velocity: num("$MA_JOG_VELO") * velo,
+        jog_rapid_velocity: num("$MA_JOG_VELO_RAPID") * velo,
+        limit_minus: minus,
+        limit_plus: plus,
+    })
+}

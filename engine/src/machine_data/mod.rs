@@ -1,0 +1,357 @@
+//! Machine data, tool data and settable frames: the control's configuration.
+//!
+//! Input: NC data text in the control's assignment syntax ([`text`]), checked against the
+//! table of known data ([`registry`]). Output: a validated, typed [`MachineConfig`] that the
+//! rest of the engine reads. Text is applied all-or-nothing: an unknown name, a bad index, a
+//! bad value or an inconsistent result rejects the whole text with the offending line.
+
+mod config;
+pub mod presets;
+pub mod registry;
+pub mod text;
+
+use std::collections::BTreeMap;
+
+pub use config::{ChannelAxis, MachineAxis, MachineConfig};
+use registry::{Def, Kind, Scope};
+use text::{IndexTok, Line, Literal};
+
+/// A value of a machine datum.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    Bool(bool),
+    Int(i64),
+    Real(f64),
+    Str(String),
+}
+
+impl Value {
+    /// Numeric view (booleans as 0/1); `None` for strings.
+    pub fn as_f64(&self) -> Option<f64> {
+        match *self {
+            Value::Bool(b) => Some(if b { 1.0 } else { 0.0 }),
+            Value::Int(i) => Some(i as f64),
+            Value::Real(r) => Some(r),
+            Value::Str(_) => None,
+        }
+    }
+}
+
+/// Rejected NC data: what is wrong and, where it comes from one line, that line (1-based).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{}{message}", line.map(|l| format!("line {l}: ")).unwrap_or_default())]
+pub struct MdError {
+    pub line: Option<u32>,
+    pub message: String,
+}
+
+impl MdError {
+    pub(crate) fn at(line: u32, message: impl Into<String>) -> Self {
+        MdError { line: Some(line), message: message.into() }
+    }
+    pub(crate) fn general(message: impl Into<String>) -> Self {
+        MdError { line: None, message: message.into() }
+    }
+}
+
+/// Where one machine datum element is stored: the datum, the machine axis (axial data) and the
+/// array index.
+type Key = (&'static str, Scope, usize, usize);
+
+/// Number of tool parameters `$TC_DP1..$TC_DP25` per cutting edge.
+pub const TOOL_PARAMS: usize = 25;
+/// Highest tool number and cutting-edge number accepted.
+pub const MAX_TOOL_NUMBER: i64 = 32000;
+pub const MAX_EDGE_NUMBER: i64 = 12;
+
+/// The offsets of one cutting edge: `$TC_DP1..$TC_DP25` (index 0 = DP1).
+pub type EdgeParams = [f64; TOOL_PARAMS];
+
+/// One component of a settable frame `$P_UIFR[n, axis, TR|FI]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum FrameComponent {
+    /// Coarse translation.
+    Translation,
+    /// Fine translation.
+    Fine,
+}
+
+/// The stored configuration of a channel: only values that differ from the defaults are kept,
+/// so a session costs memory in proportion to what was configured.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MachineData {
+    values: BTreeMap<Key, Value>,
+    tools: BTreeMap<(u32, u32), EdgeParams>,
+    frames: BTreeMap<(usize, String, FrameComponent), f64>,
+}
+
+impl MachineData {
+    /// The value of element `index` of `def` for machine axis `axis` (0 for non-axial data),
+    /// or its default.
+    pub fn get(&self, def: &'static Def, axis: usize, index: usize) -> Value {
+        let key = (def.name, def.scope, axis, index);
+        match self.values.get(&key) {
+            Some(v) => v.clone(),
+            None => {
+                let rotary = def.scope == Scope::Axis && self.is_rotary(axis);
+                def.default_value(index, rotary)
+            }
+        }
+    }
+
+    fn is_rotary(&self, axis: usize) -> bool {
+        self.values
+            .get(&("IS_ROT_AX", Scope::Axis, axis, 0))
+            .is_some_and(|v| *v == Value::Bool(true))
+    }
+
+    /// Numeric value by full name; panics only on a programming error (unknown name).
+    pub(crate) fn num(&self, full_name: &str, axis: usize, index: usize) -> f64 {
+        let def = registry::lookup(full_name).unwrap_or_else(|| panic!("{full_name} is not in the registry"));
+        self.get(def, axis, index).as_f64().unwrap_or(0.0)
+    }
+
+    pub(crate) fn string(&self, full_name: &str, index: usize) -> String {
+        let def = registry::lookup(full_name).unwrap_or_else(|| panic!("{full_name} is not in the registry"));
+        match self.get(def, 0, index) {
+            Value::Str(s) => s,
+            other => format!("{other:?}"),
+        }
+    }
+
+    /// Applies NC data text all-or-nothing and returns the activated configuration.
+    pub fn apply_text(&mut self, text: &str) -> Result<MachineConfig, MdError> {
+        let lines = text::parse(text)?;
+        let mut staged = self.clone();
+        let mut origin: BTreeMap<&'static str, u32> = BTreeMap::new();
+        for line in &lines {
+            match line {
+                Line::ChanData { line, channel } if *channel != 1 => {
+                    return Err(MdError::at(*line, format!("CHANDATA({channel}): this control has one channel")));
+                }
+                Line::ChanData { .. } => {}
+                Line::Assign { line, name, indices, value } => {
+                    if let Some(datum) = staged.assign(*line, name, indices, value)? {
+                        origin.insert(datum, *line);
+                    }
+                }
+            }
+        }
+        let config = staged.activate().map_err(|e| match e.datum.and_then(|d| origin.get(d)) {
+            Some(&line) => MdError::at(line, e.message),
+            None => MdError::general(e.message),
+        })?;
+        *self = staged;
+        Ok(config)
+    }
+
+    /// Builds the typed configuration; fails on inconsistent data.
+    pub fn activate(&self) -> Result<MachineConfig, config::ActivationError> {
+        MachineConfig::build(self)
+    }
+
+    /// Assigns one line; returns the datum name for error attribution.
+    fn assign(&mut self, line: u32, name: &str, indices: &[IndexTok], value: &Literal) -> Result<Option<&'static str>, MdError> {
+        let err = |m: String| MdError::at(line, m);
+        if let Some(n) = name.strip_prefix("$TC_DP") {
+            self.assign_tool(line, name, n, indices, value)?;
+            return Ok(None);
+        }
+        if name == "$P_UIFR" {
+            self.assign_frame(line, indices, value)?;
+            return Ok(None);
+        }
+        let def = registry::lookup(name).ok_or_else(|| err(format!("unknown name {name}")))?;
+        let (axis, index) = self.resolve_indices(line, def, indices)?;
+        let value = convert(def, value).map_err(|m| err(format!("{name}: {m}")))?;
+        self.values.insert((def.name, def.scope, axis, index), value);
+        Ok(Some(def.name))
+    }
+
+    fn resolve_indices(&self, line: u32, def: &'static Def, indices: &[IndexTok]) -> Result<(usize, usize), MdError> {
+        let name = def.full_name();
+        let err = |m: String| MdError::at(line, m);
+        let array_index = |tok: Option<&IndexTok>| -> Result<usize, MdError> {
+            match tok {
+                None if def.len == 1 => Ok(0),
+                None => Err(err(format!("{name} is an array of {}: an index is needed", def.len))),
+                Some(IndexTok::Number(n)) if *n >= 0 && (*n as usize) < def.len => Ok(*n as usize),
+                Some(t) => Err(err(format!("bad index {} for {name} (valid: 0..{})", show(t), def.len - 1))),
+            }
+        };
+        match def.scope {
+            Scope::Axis => {
+                let (arr, ax) = match indices {
+                    [ax] => (None, ax),
+                    [i, ax] => (Some(i), ax),
+                    _ => return Err(err(format!("{name} is axial data: index it by AXn or a machine axis name"))),
+                };
+                Ok((self.resolve_axis(line, &name, ax)?, array_index(arr)?))
+            }
+            Scope::Nck | Scope::Channel => match indices {
+                [] | [_] => Ok((0, array_index(indices.first())?)),
+                _ => Err(err(format!("{name} takes at most one index"))),
+            },
+        }
+    }
+
+    /// `AXn` (1-based) or a machine axis name from `$MN_AXCONF_MACHAX_NAME_TAB`.
+    fn resolve_axis(&self, line: u32, name: &str, tok: &IndexTok) -> Result<usize, MdError> {
+        let bad = || MdError::at(line, format!("bad axis index {} for {name}: use AXn (n = 1..{}) or a machine axis name", show(tok), registry::MAX_MACHINE_AXES));
+        let IndexTok::Name(id) = tok else { return Err(bad()) };
+        if let Some(n) = id.strip_prefix("AX").and_then(|n| n.parse::<usize>().ok()) {
+            return (1..=registry::MAX_MACHINE_AXES).contains(&n).then_some(n - 1).ok_or_else(bad);
+        }
+        (0..registry::MAX_MACHINE_AXES)
+            .find(|&i| self.string("$MN_AXCONF_MACHAX_NAME_TAB", i).eq_ignore_ascii_case(id))
+            .ok_or_else(bad)
+    }
+
+    fn assign_tool(&mut self, line: u32, name: &str, param: &str, indices: &[IndexTok], value: &Literal) -> Result<(), MdError> {
+        let err = |m: String| MdError::at(line, m);
+        let p: usize = param
+            .parse()
+            .ok()
+            .filter(|p| (1..=TOOL_PARAMS).contains(p))
+            .ok_or_else(|| err(format!("unknown name {name} (tool data is $TC_DP1..$TC_DP{TOOL_PARAMS})")))?;
+        let (t, d) = match indices {
+            [IndexTok::Number(t), IndexTok::Number(d)] => (*t, *d),
+            _ => return Err(err(format!("{name} needs [tool number, cutting edge], e.g. {name}[1,1]"))),
+        };
+        if !(1..=MAX_TOOL_NUMBER).contains(&t) {
+            return Err(err(format!("{name}: tool number {t} out of range 1..{MAX_TOOL_NUMBER}")));
+        }
+        if !(1..=MAX_EDGE_NUMBER).contains(&d) {
+            return Err(err(format!("{name}: cutting edge {d} out of range 1..{MAX_EDGE_NUMBER}")));
+        }
+        let Literal::Number(v) = value else {
+            return Err(err(format!("{name}: expected a number")));
+        };
+        self.tools.entry((t as u32, d as u32)).or_insert([0.0; TOOL_PARAMS])[p - 1] = *v;
+        Ok(())
+    }
+
+    fn assign_frame(&mut self, line: u32, indices: &[IndexTok], value: &Literal) -> Result<(), MdError> {
+        let err = |m: String| MdError::at(line, m);
+        let [IndexTok::Number(n), IndexTok::Name(axis), IndexTok::Name(comp)] = indices else {
+            return Err(err("$P_UIFR needs [frame, axis, TR|FI], e.g. $P_UIFR[1,X,TR]=10".into()));
+        };
+        let component = match comp.as_str() {
+            "TR" => FrameComponent::Translation,
+            "FI" => FrameComponent::Fine,
+            other => return Err(err(format!("$P_UIFR component {other} is not supported yet (TR and FI are)"))),
+        };
+        let frames = self.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as i64;
+        if !(0..frames).contains(n) {
+            return Err(err(format!("$P_UIFR[{n}]: settable frame out of range 0..{}", frames - 1)));
+        }
+        let Literal::Number(v) = value else {
+            return Err(err("$P_UIFR: expected a number".into()));
+        };
+        self.frames.insert((*n as usize, axis.clone(), component), *v);
+        Ok(())
+    }
+
+    /// Cutting edges with their parameters, ordered by (tool, edge).
+    pub fn tools(&self) -> &BTreeMap<(u32, u32), EdgeParams> {
+        &self.tools
+    }
+
+    /// Settable-frame components by (frame, axis name, component).
+    pub fn frames(&self) -> &BTreeMap<(usize, String, FrameComponent), f64> {
+        &self.frames
+    }
+}
+
+fn show(tok: &IndexTok) -> String {
+    match tok {
+        IndexTok::Number(n) => n.to_string(),
+        IndexTok::Name(s) => s.clone(),
+    }
+}
+
+fn convert(def: &Def, lit: &Literal) -> Result<Value, String> {
+    let in_range = |v: f64| -> Result<f64, String> {
+        if v < def.min || v > def.max {
+            Err(format!("value {v} out of range {}..{}", def.min, def.max))
+        } else {
+            Ok(v)
+        }
+    };
+    match (def.kind, lit) {
+        (Kind::Bool, Literal::Bool(b)) => Ok(Value::Bool(*b)),
+        (Kind::Bool, Literal::Number(n)) if *n == 0.0 || *n == 1.0 => Ok(Value::Bool(*n == 1.0)),
+        (Kind::Int, Literal::Number(n)) if n.fract() == 0.0 => Ok(Value::Int(in_range(*n)? as i64)),
+        (Kind::Int, Literal::Number(n)) => Err(format!("expected an integer, found {n}")),
+        (Kind::Real, Literal::Number(n)) => Ok(Value::Real(in_range(*n)?)),
+        (Kind::Str, Literal::Str(s)) if s.len() <= 32 => Ok(Value::Str(s.clone())),
+        (Kind::Str, Literal::Str(_)) => Err("string longer than 32 characters".into()),
+        (kind, lit) => Err(format!("expected {}, found {lit:?}", kind_name(kind))),
+    }
+}
+
+fn kind_name(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Bool => "TRUE or FALSE",
+        Kind::Int => "an integer",
+        Kind::Real => "a number",
+        Kind::Str => "a string in double quotes",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axial_data_is_indexed_by_axn_or_by_machine_axis_name() {
+        let mut md = MachineData::default();
+        md.apply_text("$MA_POS_LIMIT_PLUS[AX1]=500\n$MA_POS_LIMIT_PLUS[Y1]=400").unwrap();
+        assert_eq!(md.num("$MA_POS_LIMIT_PLUS", 0, 0), 500.0);
+        assert_eq!(md.num("$MA_POS_LIMIT_PLUS", 1, 0), 400.0);
+    }
+
+    #[test]
+    fn an_error_on_any_line_applies_nothing() {
+        let mut md = MachineData::default();
+        let before = md.clone();
+        let e = md.apply_text("$MA_POS_LIMIT_PLUS[AX1]=500\n$MA_NO_SUCH=1\n").unwrap_err();
+        assert_eq!(e.line, Some(2));
+        assert!(e.message.contains("$MA_NO_SUCH"));
+        assert_eq!(md, before);
+    }
+
+    #[test]
+    fn bad_indices_and_values_are_rejected_with_their_line() {
+        let mut md = MachineData::default();
+        for (text, needle) in [
+            ("$MC_AXCONF_GEOAX_NAME_TAB[3]=\"Q\"", "bad index 3"),
+            ("$MA_IS_ROT_AX[AX32]=TRUE", "bad axis index AX32"),
+            ("$MA_IS_ROT_AX[AX1]=\"yes\"", "expected TRUE or FALSE"),
+            ("$MN_IPO_SYSCLOCK_TIME_RATIO=2.5", "expected an integer"),
+            ("$MN_SYSCLOCK_CYCLE_TIME=5", "out of range"),
+            ("$TC_DP6[0,1]=3", "tool number 0"),
+            ("$TC_DP26[1,1]=3", "unknown name"),
+        ] {
+            let e = md.apply_text(&format!("; first\n{text}")).unwrap_err();
+            assert_eq!(e.line, Some(2), "{text}");
+            assert!(e.message.contains(needle), "{text}: {}", e.message);
+        }
+    }
+
+    #[test]
+    fn inconsistent_data_names_the_line_that_caused_it() {
+        let mut md = MachineData::default();
+        let e = md.apply_text("$MA_POS_LIMIT_PLUS[AX1]=500\n$MA_POS_LIMIT_MINUS[AX1]=600\n").unwrap_err();
+        assert!(e.line.is_some(), "{e}");
+        assert!(e.message.contains("POS_LIMIT"), "{e}");
+    }
+
+    #[test]
+    fn tool_data_is_stored_per_edge() {
+        let mut md = MachineData::default();
+        md.apply_text("$TC_DP1[3,2]=120\n$TC_DP3[3,2]=55.5").unwrap();
+        let edge = md.tools()[&(3, 2)];
+        assert_eq!((edge[0], edge[2]), (120.0, 55.5));
+    }
+}

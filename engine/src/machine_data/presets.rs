@@ -1,0 +1,192 @@
+//! Built-in machines, each written as NC data text and applied like any user's text, so a
+//! preset can never hold what the text format cannot express.
+
+/// A built-in machine.
+#[derive(Debug, Clone, Copy)]
+pub struct Preset {
+    pub id: &'static str,
+    pub name: &'static str,
+    pub description: &'static str,
+    /// NC data text applied on top of the defaults.
+    pub text: &'static str,
+}
+
+/// Every preset; the first is the default.
+pub static PRESETS: &[Preset] = &[
+    Preset {
+        id: "mill-3axis",
+        name: "3-axis vertical mill",
+        description: "Linear axes X, Y, Z (no transformation), 30 m/min rapid, 3 m/s²; tools T1 (end mill R5), T2 (drill R4).",
+        text: MILL_3AXIS,
+    },
+    Preset {
+        id: "lathe-2axis",
+        name: "2-axis lathe",
+        description: "Geometry axes X (diameter direction) and Z, main spindle SP (spindle 1); turning tools T1, T2.",
+        text: LATHE_2AXIS,
+    },
+    Preset {
+        id: "transmit-example",
+        name: "Lathe with driven tools (TRANSMIT example axis configuration)",
+        description: "The axis configuration of the Transformations Function Manual's TRANSMIT example: XM, CM (spindle 1 / C axis), ZM, ASM (driven tool spindle 2).",
+        text: TRANSMIT_EXAMPLE,
+    },
+];
+
+/// Looks a preset up by id.
+pub fn find(id: &str) -> Option<&'static Preset> {
+    PRESETS.iter().find(|p| p.id == id)
+}
+
+const MILL_3AXIS: &str = r#"; 3-axis vertical milling machine
+$MN_AXCONF_MACHAX_NAME_TAB[0]="X"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=0
+$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MA_MAX_AX_VELO[X]=30000.
+$MA_MAX_AX_VELO[Y]=30000.
+$MA_MAX_AX_VELO[Z]=30000.
+$MA_MAX_AX_ACCEL[X]=3.
+$MA_MAX_AX_ACCEL[Y]=3.
+$MA_MAX_AX_ACCEL[Z]=3.
+$MA_POS_LIMIT_MINUS[X]=-500.
+$MA_POS_LIMIT_PLUS[X]=500.
+$MA_POS_LIMIT_MINUS[Y]=-300.
+$MA_POS_LIMIT_PLUS[Y]=300.
+$MA_POS_LIMIT_MINUS[Z]=-400.
+$MA_POS_LIMIT_PLUS[Z]=300.
+; T1 D1: end mill, length 100, radius 5
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=100.
+$TC_DP6[1,1]=5.
+; T2 D1: twist drill, length 120, radius 4
+$TC_DP1[2,1]=200
+$TC_DP3[2,1]=120.
+$TC_DP6[2,1]=4.
+"#;
+
+const LATHE_2AXIS: &str = r#"; 2-axis lathe: X radial, Z along the spindle, main spindle as channel axis SP
+$MN_AXCONF_MACHAX_NAME_TAB[0]="X1"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="Z1"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="SP1"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=0
+$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="Z"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="SP"
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=0
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=2
+$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+$MA_MAX_AX_VELO[SP1]=4000.
+$MA_MAX_AX_ACCEL[SP1]=30.
+$MA_MAX_AX_VELO[X1]=20000.
+$MA_MAX_AX_VELO[Z1]=24000.
+$MA_MAX_AX_ACCEL[X1]=4.
+$MA_MAX_AX_ACCEL[Z1]=4.
+$MA_POS_LIMIT_MINUS[X1]=-20.
+$MA_POS_LIMIT_PLUS[X1]=250.
+$MA_POS_LIMIT_MINUS[Z1]=-300.
+$MA_POS_LIMIT_PLUS[Z1]=400.
+; T1 D1: roughing tool, cutting edge position 3, nose radius 0.8
+$TC_DP1[1,1]=500
+$TC_DP2[1,1]=3
+$TC_DP3[1,1]=40.
+$TC_DP4[1,1]=60.
+$TC_DP6[1,1]=0.8
+; T2 D1: finishing tool, nose radius 0.4
+$TC_DP1[2,1]=510
+$TC_DP2[2,1]=3
+$TC_DP3[2,1]=42.
+$TC_DP4[2,1]=58.
+$TC_DP6[2,1]=0.4
+"#;
+
+const TRANSMIT_EXAMPLE: &str = r#"; Axis configuration of the TRANSMIT example (Transformations Function Manual, M1)
+$MN_AXCONF_MACHAX_NAME_TAB[0]="XM"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="CM"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="ZM"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="ASM"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=0
+$MC_AXCONF_CHANAX_NAME_TAB[0]="XC"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="C"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="ZC"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="ASC"
+$MC_AXCONF_GEOAX_NAME_TAB[0]="X"
+$MC_AXCONF_GEOAX_NAME_TAB[1]="Y"
+$MC_AXCONF_GEOAX_NAME_TAB[2]="Z"
+; without transformation: X and Z only (TRANSMIT will map Y onto channel axis 2)
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=0
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MA_IS_ROT_AX[CM]=TRUE
+$MA_ROT_IS_MODULO[CM]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+$MA_IS_ROT_AX[ASM]=TRUE
+$MA_ROT_IS_MODULO[ASM]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[ASM]=2
+$MA_MAX_AX_VELO[XM]=15000.
+$MA_MAX_AX_VELO[ZM]=15000.
+$MA_MAX_AX_VELO[CM]=100.
+$MA_MAX_AX_VELO[ASM]=6000.
+$MA_POS_LIMIT_MINUS[XM]=-50.
+$MA_POS_LIMIT_PLUS[XM]=200.
+$MA_POS_LIMIT_MINUS[ZM]=-200.
+$MA_POS_LIMIT_PLUS[ZM]=300.
+; T1 D1: end mill on the driven tool spindle, length 30 along X, radius 4
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=30.
+$TC_DP6[1,1]=4.
+"#;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::machine_data::MachineData;
+
+    #[test]
+    fn every_preset_activates() {
+        for p in PRESETS {
+            MachineData::default().apply_text(p.text).unwrap_or_else(|e| panic!("{}: {e}", p.id));
+        }
+    }
+
+    #[test]
+    fn the_mill_has_three_linear_geometry_axes_and_a_4ms_ipo_cycle() {
+        let cfg = MachineData::default().apply_text(find("mill-3axis").unwrap().text).unwrap();
+        let names: Vec<_> = cfg.machine_axes.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["X", "Y", "Z"]);
+        assert!(cfg.machine_axes.iter().all(|a| !a.rotary));
+        assert_eq!(cfg.geo_axes, [Some(0), Some(1), Some(2)]);
+        assert!((cfg.ipo_cycle - 0.004).abs() < 1e-12);
+        // 30000 mm/min = 500 mm/s, 3 m/s² = 3000 mm/s².
+        assert_eq!((cfg.machine_axes[0].max_velocity, cfg.machine_axes[0].max_accel), (500.0, 3000.0));
+    }
+
+    #[test]
+    fn the_transmit_machine_has_x_and_z_geometry_axes_and_two_spindles() {
+        let cfg = MachineData::default().apply_text(find("transmit-example").unwrap().text).unwrap();
+        assert_eq!(cfg.geo_axes, [Some(0), None, Some(2)]);
+        assert_eq!(cfg.program_axis("C"), Some(1));
+        assert_eq!(cfg.machine_axes[1].spindle, Some(1));
+        assert_eq!(cfg.machine_axes[3].spindle, Some(2));
+        assert_eq!(cfg.master_spindle, Some(1));
+    }
+}

@@ -1,0 +1,190 @@
+//! The table of every machine datum the product knows: name, number, scope, type, size,
+//! default and valid range, in one place. Adding a datum is adding one row here.
+
+use super::Value;
+
+/// Where a datum lives: NCK-wide (`$MN_`/`$SN_`), per channel (`$MC_`/`$SC_`), per axis (`$MA_`/`$SA_`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Scope {
+    Nck,
+    Channel,
+    Axis,
+}
+
+/// The value type of a datum.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Bool,
+    Int,
+    Real,
+    Str,
+}
+
+/// How a datum's default is computed for an array index (and, for axial data, the axis type).
+#[derive(Debug, Clone, Copy)]
+pub enum Default {
+    Bool(bool),
+    Int(i64),
+    Real(f64),
+    /// Axial data whose default depends on `$MA_IS_ROT_AX` (the control's units differ).
+    RealByAxisType { linear: f64, rotary: f64 },
+    Str(&'static str),
+    /// A different default per array index.
+    Indexed(fn(usize) -> Value),
+}
+
+/// One machine datum.
+#[derive(Debug, Clone, Copy)]
+pub struct Def {
+    /// Name without prefix, e.g. `AXCONF_MACHAX_NAME_TAB`.
+    pub name: &'static str,
+    /// Machine data number as in the Siemens lists (0 for non-MD data).
+    pub number: u32,
+    pub scope: Scope,
+    /// Setting data (`$S?_`) rather than machine data (`$M?_`).
+    pub setting: bool,
+    pub kind: Kind,
+    /// Number of array elements; 1 for a scalar.
+    pub len: usize,
+    pub default: Default,
+    /// Inclusive valid range for numbers.
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Def {
+    /// The full name with its prefix, as written in NC data text.
+    pub fn full_name(&self) -> String {
+        let prefix = match (self.setting, self.scope) {
+            (false, Scope::Nck) => "$MN_",
+            (false, Scope::Channel) => "$MC_",
+            (false, Scope::Axis) => "$MA_",
+            (true, Scope::Nck) => "$SN_",
+            (true, Scope::Channel) => "$SC_",
+            (true, Scope::Axis) => "$SA_",
+        };
+        format!("{prefix}{}", self.name)
+    }
+
+    /// The default of element `index`; `rotary` is the axis type for axial data.
+    pub fn default_value(&self, index: usize, rotary: bool) -> Value {
+        match self.default {
+            Default::Bool(b) => Value::Bool(b),
+            Default::Int(i) => Value::Int(i),
+            Default::Real(r) => Value::Real(r),
+            Default::RealByAxisType { linear, rotary: rot } => Value::Real(if rotary { rot } else { linear }),
+            Default::Str(s) => Value::Str(s.to_string()),
+            Default::Indexed(f) => f(index),
+        }
+    }
+}
+
+/// Maximum numbers of axes this product models (a real 840D sl NCU allows 31 machine axes and
+/// 20 channel axes per channel).
+pub const MAX_MACHINE_AXES: usize = 31;
+pub const MAX_CHANNEL_AXES: usize = 20;
+
+const fn def(name: &'static str, number: u32, scope: Scope, kind: Kind, len: usize, default: Default, min: f64, max: f64) -> Def {
+    Def { name, number, scope, setting: false, kind, len, default, min, max }
+}
+
+const INF: f64 = f64::INFINITY;
+const N: Scope = Scope::Nck;
+const C: Scope = Scope::Channel;
+const A: Scope = Scope::Axis;
+
+fn default_machax_name(i: usize) -> Value {
+    const FIRST: [&str; 8] = ["X1", "Y1", "Z1", "A1", "B1", "C1", "U1", "V1"];
+    Value::Str(FIRST.get(i).map_or_else(|| format!("AX{}", i + 1), |s| s.to_string()))
+}
+
+fn default_chanax_name(i: usize) -> Value {
+    const FIRST: [&str; 8] = ["X", "Y", "Z", "A", "B", "C", "U", "V"];
+    Value::Str(FIRST.get(i).map_or_else(|| format!("CH{}", i + 1), |s| s.to_string()))
+}
+
+fn default_geoax_name(i: usize) -> Value {
+    Value::Str(["X", "Y", "Z"][i].to_string())
+}
+
+fn default_geoax_assign(i: usize) -> Value {
+    Value::Int(i as i64 + 1)
+}
+
+fn default_machax_used(i: usize) -> Value {
+    Value::Int(if i < 6 { i as i64 + 1 } else { 0 })
+}
+
+/// Every datum, in Siemens number order.
+pub static DEFS: &[Def] = &[
+    def("AXCONF_MACHAX_NAME_TAB", 10000, N, Kind::Str, MAX_MACHINE_AXES, Default::Indexed(default_machax_name), 0.0, 0.0),
+    def("SYSCLOCK_CYCLE_TIME", 10050, N, Kind::Real, 1, Default::Real(0.002), 0.000125, 0.031),
+    def("IPO_SYSCLOCK_TIME_RATIO", 10070, N, Kind::Int, 1, Default::Int(2), 1.0, 100.0),
+    def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
+    def("AXCONF_GEOAX_ASSIGN_TAB", 20050, C, Kind::Int, 3, Default::Indexed(default_geoax_assign), 0.0, MAX_CHANNEL_AXES as f64),
+    def("AXCONF_GEOAX_NAME_TAB", 20060, C, Kind::Str, 3, Default::Indexed(default_geoax_name), 0.0, 0.0),
+    def("AXCONF_MACHAX_USED", 20070, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_machax_used), 0.0, MAX_MACHINE_AXES as f64),
+    def("AXCONF_CHANAX_NAME_TAB", 20080, C, Kind::Str, MAX_CHANNEL_AXES, Default::Indexed(default_chanax_name), 0.0, 0.0),
+    def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
+    def("MM_NUM_USER_FRAMES", 28080, C, Kind::Int, 1, Default::Int(5), 5.0, 100.0),
+    def("IS_ROT_AX", 30300, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    def("ROT_IS_MODULO", 30310, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
+    def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
+    // Linear axes: mm/min and m/s²; rotary axes: rev/min and rev/s², as on the control.
+    def("MAX_AX_VELO", 32000, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 1e-6, 1e9),
+    def("JOG_VELO_RAPID", 32010, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 0.0, 1e9),
+    def("JOG_VELO", 32020, A, Kind::Real, 1, Default::RealByAxisType { linear: 2000.0, rotary: 5.55 }, 0.0, 1e9),
+    def("MAX_AX_ACCEL", 32300, A, Kind::Real, 1, Default::RealByAxisType { linear: 1.0, rotary: 2.77 }, 1e-6, 1e6),
+    def("MAX_ACCEL_OVL_FACTOR", 32310, A, Kind::Real, 1, Default::Real(1.2), 1.0, 10.0),
+    def("SPIND_ASSIGN_TO_MACHAX", 35000, A, Kind::Int, 1, Default::Int(0), 0.0, 20.0),
+    def("POS_LIMIT_MINUS", 36100, A, Kind::Real, 1, Default::Real(-1e8), -INF, INF),
+    def("POS_LIMIT_PLUS", 36110, A, Kind::Real, 1, Default::Real(1e8), -INF, INF),
+];
+
+/// Looks a datum up by its full name (`$MC_TRAFO_TYPE_1`).
+pub fn lookup(full_name: &str) -> Option<&'static Def> {
+    let (prefix, rest) = full_name.split_at_checked(4)?;
+    let (setting, scope) = match prefix {
+        "$MN_" => (false, Scope::Nck),
+        "$MC_" => (false, Scope::Channel),
+        "$MA_" => (false, Scope::Axis),
+        "$SN_" => (true, Scope::Nck),
+        "$SC_" => (true, Scope::Channel),
+        "$SA_" => (true, Scope::Axis),
+        _ => return None,
+    };
+    DEFS.iter().find(|d| d.name == rest && d.scope == scope && d.setting == setting)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_default_lies_in_its_range() {
+        for d in DEFS {
+            for i in 0..d.len {
+                for rotary in [false, true] {
+                    if let Some(v) = d.default_value(i, rotary).as_f64() {
+                        assert!(v >= d.min && v <= d.max || d.kind == Kind::Str, "{} [{i}] = {v}", d.name);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn names_are_unique() {
+        for (i, a) in DEFS.iter().enumerate() {
+            assert!(DEFS[i + 1..].iter().all(|b| b.full_name() != a.full_name()), "{}", a.name);
+        }
+    }
+
+    #[test]
+    fn lookup_needs_the_right_prefix() {
+        assert!(lookup("$MA_IS_ROT_AX").is_some());
+        assert!(lookup("$MC_IS_ROT_AX").is_none());
+        assert!(lookup("$MA_NO_SUCH_DATUM").is_none());
+    }
+}

@@ -1,0 +1,254 @@
+//! Syntax of NC data text: one assignment per line in the control's own notation.
+//!
+//! Input: text such as `$MA_IS_ROT_AX[AX4]=TRUE`. Output: [`Line`]s with their 1-based line
+//! numbers. This module knows nothing about which names exist; [`super::registry`] does.
+
+use super::MdError;
+
+/// A literal on the right-hand side of an assignment.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Literal {
+    Number(f64),
+    Bool(bool),
+    Str(String),
+    /// A bare identifier, e.g. an axis name for AXIS-typed data (`$TC_CARR21[1]=C`).
+    Ident(String),
+}
+
+/// One index inside `[...]`: a number or a name (`AX1`, `XM`, `TR`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum IndexTok {
+    Number(i64),
+    Name(String),
+}
+
+/// One meaningful line of NC data text.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Line {
+    Assign {
+        line: u32,
+        /// Full upper-case name including `$` and prefix, e.g. `$MC_TRAFO_TYPE_1`.
+        name: String,
+        indices: Vec<IndexTok>,
+        value: Literal,
+    },
+    /// `CHANDATA(n)`: the following channel data belongs to channel n.
+    ChanData { line: u32, channel: i64 },
+}
+
+/// Splits NC data text into lines; the first syntax error is returned with its line number.
+pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
+    let mut out = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = i as u32 + 1;
+        let src = strip_comment(raw).trim();
+        if src.is_empty() {
+            continue;
+        }
+        let upper = src.to_ascii_uppercase();
+        // Archives end with M17/M30; they carry no data.
+        if upper == "M17" || upper == "M30" || upper == "M02" || upper == "M2" {
+            continue;
+        }
+        if let Some(rest) = upper.strip_prefix("CHANDATA") {
+            let inner = rest
+                .trim()
+                .strip_prefix('(')
+                .and_then(|r| r.strip_suffix(')'))
+                .ok_or_else(|| MdError::at(line, format!("expected CHANDATA(<n>), found `{src}`")))?;
+            let channel = inner
+                .trim()
+                .parse::<i64>()
+                .map_err(|_| MdError::at(line, format!("bad channel number in `{src}`")))?;
+            out.push(Line::ChanData { line, channel });
+            continue;
+        }
+        out.push(parse_assignment(line, src)?);
+    }
+    Ok(out)
+}
+
+fn strip_comment(raw: &str) -> &str {
+    let mut in_str = false;
+    for (i, c) in raw.char_indices() {
+        match c {
+            '"' => in_str = !in_str,
+            ';' if !in_str => return &raw[..i],
+            _ => {}
+        }
+    }
+    raw
+}
+
+fn parse_assignment(line: u32, src: &str) -> Result<Line, MdError> {
+    let err = |msg: String| MdError::at(line, msg);
+    if !src.starts_with('$') {
+        return Err(err(format!("expected an assignment `$NAME=value`, found `{src}`")));
+    }
+    let eq = find_top_level_eq(src).ok_or_else(|| err(format!("missing `=` in `{src}`")))?;
+    let (lhs, rhs) = (src[..eq].trim(), src[eq + 1..].trim());
+    let (name, indices) = match lhs.find('[') {
+        Some(open) => {
+            let close = lhs
+                .rfind(']')
+                .filter(|&c| c > open && lhs[c + 1..].trim().is_empty())
+                .ok_or_else(|| err(format!("unbalanced `[` in `{lhs}`")))?;
+            let inner = &lhs[open + 1..close];
+            let indices = inner
+                .split(',')
+                .map(|t| parse_index(t.trim()).ok_or_else(|| err(format!("bad index `{}` in `{lhs}`", t.trim()))))
+                .collect::<Result<Vec<_>, _>>()?;
+            (lhs[..open].trim(), indices)
+        }
+        None => (lhs, Vec::new()),
+    };
+    if name.len() < 2 || !name[1..].chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return Err(err(format!("bad name `{name}`")));
+    }
+    let value = parse_literal(rhs).ok_or_else(|| err(format!("bad value `{rhs}` for {name}")))?;
+    Ok(Line::Assign { line, name: name.to_ascii_uppercase(), indices, value })
+}
+
+fn find_top_level_eq(src: &str) -> Option<usize> {
+    let mut in_str = false;
+    for (i, c) in src.char_indices() {
+        match c {
+            '"' => in_str = !in_str,
+            '=' if !in_str => return Some(i),
+            _ => {}
+        }
+    }
+    None
+}
+
+fn parse_index(tok: &str) -> Option<IndexTok> {
+    if tok.is_empty() {
+        return None;
+    }
+    if let Ok(n) = tok.parse::<i64>() {
+        return Some(IndexTok::Number(n));
+    }
+    let valid_name = tok.chars().next()?.is_ascii_alphabetic() && tok.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    valid_name.then(|| IndexTok::Name(tok.to_ascii_uppercase()))
+}
+
+/// Parses a literal in the control's notation. Decimal comma (`1,0`) is not a number.
+pub fn parse_literal(src: &str) -> Option<Literal> {
+    let s = src.trim();
+    if s.is_empty() {
+        return None;
+    }
+    if let Some(inner) = s.strip_prefix('"') {
+        let inner = inner.strip_suffix('"')?;
+        return (!inner.contains('"')).then(|| Literal::Str(inner.to_string()));
+    }
+    if let Some(inner) = s.strip_prefix('\'') {
+        let inner = inner.strip_suffix('\'')?;
+        let (radix, digits) = match inner.chars().next()?.to_ascii_uppercase() {
+            'H' => (16, &inner[1..]),
+            'B' => (2, &inner[1..]),
+            _ => return None,
+        };
+        return u64::from_str_radix(digits, radix).ok().map(|v| Literal::Number(v as f64));
+    }
+    match s.to_ascii_uppercase().as_str() {
+        "TRUE" => return Some(Literal::Bool(true)),
+        "FALSE" => return Some(Literal::Bool(false)),
+        _ => {}
+    }
+    if let Some(n) = parse_number(s) {
+        return Some(Literal::Number(n));
+    }
+    let is_ident = s.chars().next()?.is_ascii_alphabetic() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    is_ident.then(|| Literal::Ident(s.to_ascii_uppercase()))
+}
+
+/// `1`, `1.`, `-2.5`, `.5`, `+3`, `1.5E3`: digits with at most one point, optional exponent.
+fn parse_number(s: &str) -> Option<f64> {
+    let body = s.strip_prefix(['+', '-']).unwrap_or(s);
+    let (mantissa, exponent) = match body.find(['E', 'e']) {
+        Some(i) => (&body[..i], Some(&body[i + 1..])),
+        None => (body, None),
+    };
+    let digits = mantissa.chars().filter(|c| c.is_ascii_digit()).count();
+    let points = mantissa.chars().filter(|&c| c == '.').count();
+    if digits == 0 || points > 1 || digits + points != mantissa.len() {
+        return None;
+    }
+    if let Some(e) = exponent {
+        let e = e.strip_prefix(['+', '-']).unwrap_or(e);
+        if e.is_empty() || !e.chars().all(|c| c.is_ascii_digit()) {
+            return None;
+        }
+    }
+    let normalized = s.replace(['E', 'e'], "e");
+    let normalized = if normalized.contains(".e") || normalized.ends_with('.') {
+        normalized.replacen('.', ".0", 1)
+    } else {
+        normalized
+    };
+    normalized.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn assign(text: &str) -> Line {
+        parse(text).unwrap().remove(0)
+    }
+
+    #[test]
+    fn numbers_in_control_notation_are_accepted() {
+        for (src, want) in [("1", 1.0), ("1.", 1.0), ("-2.5", -2.5), (".5", 0.5), ("+3", 3.0), ("1.5E3", 1500.0)] {
+            assert_eq!(parse_literal(src), Some(Literal::Number(want)), "{src}");
+        }
+    }
+
+    #[test]
+    fn decimal_comma_is_not_a_number() {
+        assert_eq!(parse_literal("1,0"), None);
+        assert!(parse("$MA_MAX_AX_VELO[AX1]=1,0").is_err());
+    }
+
+    #[test]
+    fn hex_and_binary_literals_are_numbers() {
+        assert_eq!(parse_literal("'H1F'"), Some(Literal::Number(31.0)));
+        assert_eq!(parse_literal("'B101'"), Some(Literal::Number(5.0)));
+    }
+
+    #[test]
+    fn assignment_with_named_and_numeric_indices_is_split() {
+        let l = assign("$tc_dp6[1,1]=6. ; radius");
+        assert_eq!(
+            l,
+            Line::Assign {
+                line: 1,
+                name: "$TC_DP6".into(),
+                indices: vec![IndexTok::Number(1), IndexTok::Number(1)],
+                value: Literal::Number(6.0)
+            }
+        );
+        let l = assign("$MA_IS_ROT_AX[AX4]=TRUE");
+        assert!(matches!(l, Line::Assign { value: Literal::Bool(true), .. }));
+    }
+
+    #[test]
+    fn strings_may_contain_semicolons() {
+        let l = assign("$MN_AXCONF_MACHAX_NAME_TAB[0]=\"X;M\"");
+        assert!(matches!(l, Line::Assign { value: Literal::Str(ref s), .. } if s == "X;M"));
+    }
+
+    #[test]
+    fn comments_blank_lines_and_chandata_are_understood() {
+        let lines = parse("; header\n\nCHANDATA(1)\n$MC_TRAFO_TYPE_1=256\nM17\n").unwrap();
+        assert_eq!(lines.len(), 2);
+        assert_eq!(lines[0], Line::ChanData { line: 3, channel: 1 });
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let e = parse("$MC_A=1\n$MC_B 2\n").unwrap_err();
+        assert_eq!(e.line, Some(2));
+    }
+}

@@ -1,0 +1,11 @@
+//! The main run: moves prepared by the interpreter are planned with look-ahead and
+//! interpolated one IPO cycle at a time.
+//!
+//! Input: [`Move`]s (a [`Path`] in channel-axis space plus feed and exact-stop flag) and the
+//! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
+
+mod path;
+mod planner;
+
+pub use path::{Arc, AxisVec, Path};
+pub use planner::{AxisLimit, Feed, Move, Planner, brake_speed};

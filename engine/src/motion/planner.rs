@@ -1,0 +1,439 @@
+//! The main run: a queue of prepared moves, a look-ahead over it, and one IPO step at a time.
+//!
+//! The path velocity is advanced once per IPO cycle: it rises by at most `a·dt`, never exceeds
+//! the block's limit, and never exceeds the speed from which the remaining queue can still be
+//! braked to its planned transition speeds. The result is a trapezoidal (BRISK) profile that
+//! is exact to one cycle and never violates a limit, however the queue changes.
+
+use std::collections::VecDeque;
+
+use super::path::{AxisVec, Path};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+
+/// Velocity requested for a move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Feed {
+    /// G0: every axis at its own maximum, interpolated together.
+    Rapid,
+    /// Path feed in units per second.
+    Path(f64),
+}
+
+/// Per-axis dynamics the planner respects (engine units per second).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxisLimit {
+    pub max_velocity: f64,
+    pub max_accel: f64,
+    /// Factor by which the acceleration may be exceeded for one cycle at a block transition.
+    pub accel_overload: f64,
+}
+
+/// One prepared block ready for the main run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Move {
+    pub path: Path,
+    /// Path length in the units the feed refers to.
+    pub length: f64,
+    /// Highest path velocity allowed by feed and axes.
+    pub v_max: f64,
+    /// Highest path acceleration allowed by the axes.
+    pub a_max: f64,
+    /// Stop exactly at the end (G60/G9, or the next item is not a move).
+    pub exact_stop: bool,
+    /// Caller's identifier (the block the move belongs to).
+    pub tag: u32,
+}
+
+impl Move {
+    /// Builds a move, deriving its velocity and acceleration limits from the axes.
+    /// `length` is the path length the feed refers to (geometry axes, or all axes if none moves).
+    pub fn new(path: Path, length: f64, feed: Feed, limits: &[AxisLimit], exact_stop: bool, tag: u32) -> Move {
+        let rate = path.max_rate();
+        let mut v_max = match feed {
+            Feed::Rapid => f64::INFINITY,
+            Feed::Path(f) => f,
+        };
+        let mut a_max = f64::INFINITY;
+        for (i, lim) in limits.iter().enumerate() {
+            let d = rate[i] / length;
+            if d > 1e-12 {
+                v_max = v_max.min(lim.max_velocity / d);
+                a_max = a_max.min(lim.max_accel / d);
+            }
+        }
+        if let Some(arc) = &path.arc {
+            // Half of the plane axes' acceleration goes to the centripetal part, half to the
+            // tangential part, so their sum never exceeds either axis' limit.
+            let k = arc.radius * arc.sweep.abs() / length;
+            let a_plane = limits[arc.plane.0].max_accel.min(limits[arc.plane.1].max_accel);
+            if k > 1e-12 {
+                v_max = v_max.min((0.5 * a_plane * arc.radius).sqrt() / k);
+                a_max = a_max.min(0.5 * a_plane / k);
+            }
+        }
+        Move { path, length, v_max, a_max, exact_stop, tag }
+    }
+}
+
+/// The move queue and its interpolator state.
+#[derive(Debug, Clone)]
+pub struct Planner {
+    dt: f64,
+    limits: Vec<AxisLimit>,
+    queue: VecDeque<Move>,
+    /// Planned velocity at the end of each queued move.
+    v_end: VecDeque<f64>,
+    /// Distance travelled within the front move.
+    s: f64,
+    /// Current path velocity.
+    v: f64,
+    /// Feed hold: brake to standstill on the path.
+    hold: bool,
+    /// Drop the queue once standstill is reached under hold (JOG key released).
+    flush_at_standstill: bool,
+    position: AxisVec,
+    finished: Vec<u32>,
+}
+
+impl Planner {
+    pub fn new(dt: f64, limits: Vec<AxisLimit>, position: AxisVec) -> Planner {
+        Planner {
+            dt,
+            limits,
+            queue: VecDeque::new(),
+            v_end: VecDeque::new(),
+            s: 0.0,
+            v: 0.0,
+            hold: false,
+            flush_at_standstill: false,
+            position,
+            finished: Vec::new(),
+        }
+    }
+
+    /// Appends a move and replans the look-ahead. Zero-length moves are finished at once.
+    pub fn push(&mut self, mv: Move) {
+        if mv.length <= 1e-9 {
+            self.finished.push(mv.tag);
+            return;
+        }
+        self.queue.push_back(mv);
+        self.v_end.push_back(0.0);
+        self.replan();
+    }
+
+    /// Number of queued moves.
+    pub fn len(&self) -> usize {
+        self.queue.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.queue.is_empty()
+    }
+
+    /// True when nothing moves and nothing is queued.
+    pub fn is_idle(&self) -> bool {
+        self.queue.is_empty() && self.v == 0.0
+    }
+
+    /// Current interpolated position of every axis.
+    pub fn position(&self) -> &AxisVec {
+        &self.position
+    }
+
+    /// Current path velocity.
+    pub fn velocity(&self) -> f64 {
+        self.v
+    }
+
+    /// Tag of the move being executed.
+    pub fn current_tag(&self) -> Option<u32> {
+        self.queue.front().map(|m| m.tag)
+    }
+
+    /// Tags of moves finished since the last call.
+    pub fn take_finished(&mut self) -> Vec<u32> {
+        std::mem::take(&mut self.finished)
+    }
+
+    /// Feed hold on/off (NC stop / NC start). The path is kept.
+    pub fn set_hold(&mut self, hold: bool) {
+        self.hold = hold;
+        if !hold {
+            self.flush_at_standstill = false;
+        }
+    }
+
+    pub fn is_held(&self) -> bool {
+        self.hold
+    }
+
+    /// Brakes to standstill on the path, then drops every queued move.
+    pub fn stop_and_flush(&mut self) {
+        self.hold = true;
+        self.flush_at_standstill = true;
+    }
+
+    /// Drops everything at once (reset): the axes stay where they are.
+    pub fn abort(&mut self) {
+        self.queue.clear();
+        self.v_end.clear();
+        self.s = 0.0;
+        self.v = 0.0;
+        self.hold = false;
+        self.flush_at_standstill = false;
+    }
+
+    /// Sets the position of a stationary machine (after reset or a configuration change).
+    pub fn set_position(&mut self, position: AxisVec) {
+        debug_assert!(self.queue.is_empty());
+        self.position = position;
+    }
+
+    /// Advances one IPO cycle.
+    pub fn step(&mut self) {
+        let dt = self.dt;
+        let Some(front) = self.queue.front() else {
+            self.v = 0.0;
+            return;
+        };
+        let a = front.a_max;
+        let brake = self.brake_limit();
+        let mut v_new = if self.hold { (self.v - a * dt).max(0.0) } else { (self.v + a * dt).min(front.v_max) };
+        v_new = v_new.min(brake);
+        // A cycle that crosses into the next move crosses at no more than the planned
+        // transition speed, so the corner's velocity jump stays as planned.
+        let remaining = front.length - self.s;
+        if self.queue.len() > 1 && v_new * dt >= remaining && v_new > self.v_end[0] {
+            v_new = self.v_end[0].max(self.v - a * dt).max(remaining / dt).min(v_new);
+        }
+        self.v = v_new;
+        if v_new == 0.0 && self.hold {
+            if self.flush_at_standstill {
+                self.abort();
+            }
+            return;
+        }
+        let mut d = v_new * dt;
+        loop {
+            let front = &self.queue[0];
+            let remaining = front.length - self.s;
+            if d < remaining - 1e-12 {
+                self.s += d;
+                let u = self.s / front.length;
+                front.path.at(u, &mut self.position);
+                break;
+            }
+            // The move ends within this cycle.
+            d -= remaining;
+            self.position = front.path.end;
+            let stop_here = self.v_end[0] == 0.0;
+            let done = self.queue.pop_front().expect("front exists");
+            self.v_end.pop_front();
+            self.finished.push(done.tag);
+            self.s = 0.0;
+            if stop_here || self.queue.is_empty() {
+                self.v = 0.0;
+                break;
+            }
+        }
+    }
+
+    /// The highest speed from which every planned transition ahead can still be met. Looks
+    /// past the front move so that a cycle which crosses into the next move cannot arrive too fast.
+    fn brake_limit(&self) -> f64 {
+        let mut distance = -self.s;
+        let mut a = f64::INFINITY;
+        let mut limit = f64::INFINITY;
+        for (k, mv) in self.queue.iter().enumerate().take(16) {
+            distance += mv.length;
+            a = a.min(mv.a_max);
+            // One cycle at the transition speed is kept in reserve for the crossing cycle.
+            let reserve = if k + 1 < self.queue.len() { self.v_end[k] * self.dt } else { 0.0 };
+            limit = limit.min(brake_speed(distance - reserve, self.v_end[k], a, self.dt));
+            if self.v_end[k] == 0.0 || distance > limit * limit / a {
+                break;
+            }
+        }
+        limit
+    }
+
+    /// Backward pass: the highest transition speed at each boundary from which every later
+    /// move can still be braked in time; the last queued move ends at standstill.
+    fn replan(&mut self) {
+        let n = self.queue.len();
+        let mut next_v_end = 0.0;
+        for k in (0..n).rev() {
+            let v = if k + 1 == n {
+                0.0
+            } else {
+                let next = &self.queue[k + 1];
+                let reach = brake_speed(next.length, next_v_end, next.a_max, self.dt);
+                self.corner_speed(k).min(reach)
+            };
+            self.v_end[k] = v;
+            next_v_end = v;
+        }
+    }
+
+    /// The highest speed at the transition from move `k` to `k+1`. Within the transition
+    /// cycle an axis may also be accelerating at its full `a`, so the velocity jump a corner adds
+    /// is limited to `(overload − 1) · a · dt`: together they stay within `overload · a`
+    /// (MD32310 MAX_ACCEL_OVL_FACTOR). Tangent transitions need no slowdown.
+    fn corner_speed(&self, k: usize) -> f64 {
+        let (a, b) = (&self.queue[k], &self.queue[k + 1]);
+        if a.exact_stop {
+            return 0.0;
+        }
+        let ta = a.path.tangent(1.0);
+        let tb = b.path.tangent(0.0);
+        let mut v = a.v_max.min(b.v_max);
+        for i in 0..MAX_CHANNEL_AXES.min(self.limits.len()) {
+            let jump = (tb[i] / b.length - ta[i] / a.length).abs();
+            if jump > 1e-12 {
+                let lim = &self.limits[i];
+                v = v.min((lim.accel_overload - 1.0) * lim.max_accel * self.dt / jump);
+            }
+        }
+        v
+    }
+}
+
+/// The highest speed at a point `distance` before a boundary from which cycle-wise braking
+/// with deceleration `a` reaches `v_end` at the boundary. Accounts for the cycle discretisation:
+/// braking from `v` in steps of `a·dt` covers `v²/(2a) + v·dt/2`.
+pub fn brake_speed(distance: f64, v_end: f64, a: f64, dt: f64) -> f64 {
+    let b = a * dt;
+    (-b + (b * b + 4.0 * (2.0 * a * distance.max(0.0) + v_end * v_end)).sqrt()) / 2.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const DT: f64 = 0.004;
+
+    fn limits(v: f64, a: f64) -> Vec<AxisLimit> {
+        vec![AxisLimit { max_velocity: v, max_accel: a, accel_overload: 1.2 }; 3]
+    }
+
+    fn line(from: [f64; 3], to: [f64; 3]) -> Path {
+        let mut start = [0.0; MAX_CHANNEL_AXES];
+        let mut end = [0.0; MAX_CHANNEL_AXES];
+        start[..3].copy_from_slice(&from);
+        end[..3].copy_from_slice(&to);
+        Path { start, end, arc: None }
+    }
+
+    fn run(p: &mut Planner) -> Vec<AxisVec> {
+        let mut out = vec![*p.position()];
+        while !p.is_idle() {
+            p.step();
+            out.push(*p.position());
+            assert!(out.len() < 1_000_000);
+        }
+        out
+    }
+
+    #[test]
+    fn a_long_move_takes_the_trapezoid_time() {
+        // 100 mm at 50 mm/s with 500 mm/s²: ramp 0.1 s and 2.5 mm each way,
+        // cruise 95 mm in 1.9 s: 2.1 s in all.
+        let mut p = Planner::new(DT, limits(1000.0, 500.0), [0.0; MAX_CHANNEL_AXES]);
+        let path = line([0.0; 3], [100.0, 0.0, 0.0]);
+        p.push(Move::new(path, 100.0, Feed::Path(50.0), &limits(1000.0, 500.0), true, 1));
+        let samples = run(&mut p);
+        let t = (samples.len() - 1) as f64 * DT;
+        assert!((t - 2.1).abs() <= 2.0 * DT, "took {t}");
+        assert_eq!(samples.last().unwrap()[0], 100.0);
+    }
+
+    #[test]
+    fn a_short_move_takes_the_triangle_time() {
+        // 1 mm with 500 mm/s², never reaching feed: t = 2·sqrt(1/500) = 0.0894 s.
+        let lim = limits(1000.0, 500.0);
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        p.push(Move::new(line([0.0; 3], [1.0, 0.0, 0.0]), 1.0, Feed::Path(1000.0), &lim, true, 1));
+        let t = (run(&mut p).len() - 1) as f64 * DT;
+        assert!((t - 0.0894).abs() <= 2.0 * DT, "took {t}");
+    }
+
+    #[test]
+    fn rapid_moves_run_the_slowest_axis_at_its_limit() {
+        // X 100 mm at 200 mm/s and Y 50 mm at 50 mm/s: Y limits, 1 s cruise plus ramps.
+        let lim = vec![
+            AxisLimit { max_velocity: 200.0, max_accel: 1e6, accel_overload: 1.0 },
+            AxisLimit { max_velocity: 50.0, max_accel: 1e6, accel_overload: 1.0 },
+        ];
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        let len = (100.0f64 * 100.0 + 50.0 * 50.0).sqrt();
+        p.push(Move::new(line([0.0; 3], [100.0, 50.0, 0.0]), len, Feed::Rapid, &lim, true, 1));
+        let t = (run(&mut p).len() - 1) as f64 * DT;
+        assert!((t - 1.0).abs() <= 2.0 * DT, "took {t}");
+    }
+
+    #[test]
+    fn no_axis_ever_exceeds_its_velocity_or_acceleration() {
+        let lim = vec![
+            AxisLimit { max_velocity: 100.0, max_accel: 800.0, accel_overload: 1.2 },
+            AxisLimit { max_velocity: 60.0, max_accel: 400.0, accel_overload: 1.2 },
+            AxisLimit { max_velocity: 30.0, max_accel: 300.0, accel_overload: 1.2 },
+        ];
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        let pts = [[0.0, 0.0, 0.0], [30.0, 0.0, 0.0], [30.0, 20.0, 5.0], [0.0, 40.0, 0.0], [5.0, 41.0, -3.0], [80.0, 0.0, 0.0]];
+        for (i, w) in pts.windows(2).enumerate() {
+            let path = line(w[0], w[1]);
+            let len = (0..3).map(|k| (w[1][k] - w[0][k]).powi(2)).sum::<f64>().sqrt();
+            p.push(Move::new(path, len, Feed::Path(1000.0), &lim, false, i as u32));
+        }
+        let s = run(&mut p);
+        let vel: Vec<[f64; 3]> = s.windows(2).map(|w| std::array::from_fn(|k| (w[1][k] - w[0][k]) / DT)).collect();
+        for v in &vel {
+            for k in 0..3 {
+                assert!(v[k].abs() <= lim[k].max_velocity * (1.0 + 1e-9), "axis {k} at {}", v[k]);
+            }
+        }
+        for (i, w) in vel.windows(2).enumerate() {
+            for k in 0..3 {
+                let acc = (w[1][k] - w[0][k]).abs() / DT;
+                assert!(acc <= lim[k].max_accel * lim[k].accel_overload * (1.0 + 1e-6), "axis {k} accel {acc} at {i}: {:?} {:?} {:?}", vel[i.saturating_sub(1)], w[0], w[1]);
+            }
+        }
+        assert_eq!(&s.last().unwrap()[..3], &[80.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn continuous_path_is_faster_than_exact_stop_on_collinear_blocks() {
+        let lim = limits(1000.0, 500.0);
+        let time = |exact| {
+            let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+            for i in 0..10 {
+                let path = line([i as f64 * 10.0, 0.0, 0.0], [(i + 1) as f64 * 10.0, 0.0, 0.0]);
+                p.push(Move::new(path, 10.0, Feed::Path(100.0), &lim, exact, i));
+            }
+            run(&mut p).len()
+        };
+        assert!(time(false) < time(true));
+        // Continuous: 100 mm at 100 mm/s plus one ramp of 0.2 s total (~1.2 s).
+        assert!(((time(false) - 1) as f64 * DT - 1.2).abs() < 3.0 * DT);
+    }
+
+    #[test]
+    fn feed_hold_brakes_on_the_path_and_resumes() {
+        let lim = limits(1000.0, 500.0);
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        p.push(Move::new(line([0.0; 3], [100.0, 0.0, 0.0]), 100.0, Feed::Path(50.0), &lim, true, 1));
+        for _ in 0..100 {
+            p.step();
+        }
+        p.set_hold(true);
+        for _ in 0..100 {
+            p.step();
+        }
+        assert_eq!(p.velocity(), 0.0);
+        assert!(p.position()[0] > 10.0 && p.position()[0] < 100.0);
+        p.set_hold(false);
+        run(&mut p);
+        assert_eq!(p.position()[0], 100.0);
+    }
+}
