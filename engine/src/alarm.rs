@@ -33,7 +33,10 @@ impl Alarm {
     /// 10621: a JOG motion stopped at a software limit switch.
     pub fn rests_on_software_limit(axis: &str, plus: bool) -> Alarm {
         let sign = if plus { '+' } else { '-' };
-        Alarm { clear: Clear::Cancel, ..Alarm::new(10621, format!("Channel 1 axis {axis} rests on software limit switch {sign}"), None) }
+        Alarm {
+            clear: Clear::Cancel,
+            ..Alarm::new(10621, format!("Channel 1 axis {axis} rests on software limit switch {sign}"), None)
+        }
     }
 
     /// 10860: a feed motion without a feedrate.
@@ -53,7 +56,11 @@ impl Alarm {
 
     /// 12550: name not defined or function not available.
     pub fn unknown_name(line: u32, name: &str) -> Alarm {
-        Alarm::new(12550, format!("Channel 1 block {line} name {name} not defined or option/function not available"), Some(line))
+        Alarm::new(
+            12550,
+            format!("Channel 1 block {line} name {name} not defined or option/function not available"),
+            Some(line),
+        )
     }
 
     /// 12000: address programmed more than once.
@@ -68,7 +75,11 @@ impl Alarm {
 
     /// 14800: programmed path velocity not positive.
     pub fn feed_not_positive(line: u32) -> Alarm {
-        Alarm::new(14800, format!("Channel 1 block {line} programmed path velocity smaller than or equal to zero"), Some(line))
+        Alarm::new(
+            14800,
+            format!("Channel 1 block {line} programmed path velocity smaller than or equal to zero"),
+            Some(line),
+        )
     }
 
     /// 17180: the cutting edge D does not exist.
@@ -83,7 +94,11 @@ impl Alarm {
 
     /// 14760: the same auxiliary function group programmed twice (M3 with M5, M0 with M30, ...).
     pub fn conflicting_functions(line: u32, what: &str) -> Alarm {
-        Alarm::new(14760, format!("Channel 1 block {line} auxiliary function of a group programmed repeatedly ({what})"), Some(line))
+        Alarm::new(
+            14760,
+            format!("Channel 1 block {line} auxiliary function of a group programmed repeatedly ({what})"),
+            Some(line),
+        )
     }
 
     /// 12560: a value outside its allowed range.

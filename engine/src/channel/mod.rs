@@ -69,12 +69,16 @@ impl Status {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Event {
     AlarmRaised(Alarm),
-    AlarmCleared { number: u32 },
+    AlarmCleared {
+        number: u32,
+    },
     BlockChanged(BlockRef),
     /// The program ended (M2/M17/M30 or end of text).
     ProgramEnded,
     /// The program stopped at M0/M1.
-    ProgramStopped { line: u32 },
+    ProgramStopped {
+        line: u32,
+    },
     ModeChanged(Mode),
 }
 
@@ -256,12 +260,12 @@ impl Channel {
 
     /// True while stepping changes anything: a program runs, axes move or a spindle turns.
     pub fn is_active(&self) -> bool {
-        self.status == Status::Running || !self.planner.is_idle() || self.spindles.iter().any(|s| s.is_turning())
+        self.is_busy() || self.spindles.iter().any(|s| s.is_turning())
     }
 
     /// True while a program or JOG motion is executing or the axes are still braking.
     pub fn is_busy(&self) -> bool {
-        self.status == Status::Running || !self.planner.is_idle()
+        self.status == Status::Running || self.planner.velocity() > 0.0
     }
 
     /// Events since the last call, oldest first.
@@ -392,7 +396,13 @@ impl Channel {
             Some(inc) if inc.is_finite() && inc > 0.0 => start[k] + dir * inc,
             Some(inc) => return Err(CommandError::Invalid(format!("increment must be positive, not {inc}"))),
             None if ax.modulo.is_some() => start[k] + dir * 1e9,
-            None => if dir > 0.0 { ax.limit_plus } else { ax.limit_minus },
+            None => {
+                if dir > 0.0 {
+                    ax.limit_plus
+                } else {
+                    ax.limit_minus
+                }
+            }
         };
         // Without modulo, JOG stops at the software limit.
         let target = if ax.modulo.is_some() { target } else { target.clamp(ax.limit_minus, ax.limit_plus) };
@@ -404,7 +414,14 @@ impl Channel {
         end[k] = target;
         let velocity = if req.rapid { ax.jog_rapid_velocity } else { ax.jog_velocity }.min(ax.max_velocity);
         let length = (target - start[k]).abs();
-        let mv = Move::new(Path { start, end, arc: None }, length, Feed::Path(velocity), &axis_limits(&self.cfg), true, self.next_tag);
+        let mv = Move::new(
+            Path { start, end, arc: None },
+            length,
+            Feed::Path(velocity),
+            &axis_limits(&self.cfg),
+            true,
+            self.next_tag,
+        );
         self.push_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone() });
         self.jog_axis = Some(k);
         self.status = Status::Running;
@@ -449,7 +466,8 @@ impl Channel {
         let Some(program) = self.program.clone() else { return };
         while !self.prep_done && self.pending.len() + self.planner.len() < LOOKAHEAD {
             let Some(block) = program.blocks.get(self.next_block) else {
-                self.pending.push_back(Item::Stop { kind: StopKind::End, line: program.blocks.last().map_or(1, |b| b.line) });
+                self.pending
+                    .push_back(Item::Stop { kind: StopKind::End, line: program.blocks.last().map_or(1, |b| b.line) });
                 self.prep_done = true;
                 break;
             };
@@ -458,7 +476,12 @@ impl Channel {
             let mut out = Vec::new();
             self.interp.prepare(block, &self.cfg, &mut out);
             self.pending.extend(out);
-            if self.pending.iter().skip(before).any(|i| matches!(i, Item::Alarm(_) | Item::Stop { kind: StopKind::End, .. })) {
+            if self
+                .pending
+                .iter()
+                .skip(before)
+                .any(|i| matches!(i, Item::Alarm(_) | Item::Stop { kind: StopKind::End, .. }))
+            {
                 self.prep_done = true;
             }
         }
@@ -469,8 +492,8 @@ impl Channel {
     fn feed_planner(&mut self) {
         while let Some(Item::Move { .. }) = self.pending.front() {
             let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
-            let next_is_move = matches!(self.pending.front(), Some(Item::Move { .. }));
-            if !next_is_move && !(self.pending.is_empty() && !self.prep_done) {
+            // Anything but a move next (a dwell, a stop, the end) needs standstill first.
+            if self.pending.front().is_some_and(|i| !matches!(i, Item::Move { .. })) {
                 mv.exact_stop = true;
             }
             self.push_move(mv, MoveMeta { line, offsets });
@@ -628,7 +651,8 @@ impl Channel {
 
     /// Removes alarms that the cancel key clears.
     pub fn cancel_alarms(&mut self) {
-        let (cancel, keep): (Vec<_>, Vec<_>) = std::mem::take(&mut self.alarms).into_iter().partition(|a| a.clear == Clear::Cancel);
+        let (cancel, keep): (Vec<_>, Vec<_>) =
+            std::mem::take(&mut self.alarms).into_iter().partition(|a| a.clear == Clear::Cancel);
         self.alarms = keep;
         for a in cancel {
             self.events.push(Event::AlarmCleared { number: a.number });
@@ -637,6 +661,12 @@ impl Channel {
 
     pub(crate) fn position(&self) -> &AxisVec {
         self.planner.position()
+    }
+
+    /// Interpolated positions of the channel axes (machine coordinates, channel order); cheap
+    /// to call every cycle, for recording IPO samples.
+    pub fn axis_positions(&self) -> &[f64] {
+        &self.planner.position()[..self.cfg.channel_axes.len()]
     }
 }
 

@@ -34,7 +34,11 @@ impl Spindle {
     pub fn step(&mut self, dt: f64) {
         let dv = self.accel * dt;
         let before = self.speed;
-        self.speed = if self.target > self.speed { (self.speed + dv).min(self.target) } else { (self.speed - dv).max(self.target) };
+        self.speed = if self.target > self.speed {
+            (self.speed + dv).min(self.target)
+        } else {
+            (self.speed - dv).max(self.target)
+        };
         // Trapezoidal integration of the angle: rev/min → deg/s is ×6.
         self.position += (before + self.speed) * 0.5 * 6.0 * dt;
         if self.position.abs() > 3.6e9 {

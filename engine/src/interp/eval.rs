@@ -31,9 +31,12 @@ fn call(name: &str, args: &[Expr], r: &[f64], line: u32) -> Result<f64, Alarm> {
         if vals.len() == n { Ok(()) } else { Err(Alarm::syntax(line, &format!("{name} takes {n} argument(s)"))) }
     };
     let x = vals.first().copied().unwrap_or(0.0);
-    let checked = |ok: bool, v: f64| if ok { Ok(v) } else { Err(Alarm::arithmetic(line, &format!("{name}({x}) is undefined"))) };
+    let checked =
+        |ok: bool, v: f64| if ok { Ok(v) } else { Err(Alarm::arithmetic(line, &format!("{name}({x}) is undefined"))) };
     match name {
-        "SIN" | "COS" | "TAN" | "ASIN" | "ACOS" | "SQRT" | "ABS" | "POT" | "TRUNC" | "ROUND" | "LN" | "EXP" => arity(1)?,
+        "SIN" | "COS" | "TAN" | "ASIN" | "ACOS" | "SQRT" | "ABS" | "POT" | "TRUNC" | "ROUND" | "LN" | "EXP" => {
+            arity(1)?
+        }
         "ATAN2" => arity(2)?,
         _ => return Err(Alarm::unknown_name(line, name)),
     }

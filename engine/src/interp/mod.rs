@@ -41,14 +41,35 @@ pub enum StopKind {
 
 /// One prepared item for the main run.
 #[derive(Debug, Clone, PartialEq)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "items live briefly in a bounded queue; boxing moves would cost an allocation per block"
+)]
 pub enum Item {
-    Move { mv: Move, line: u32, offsets: Offsets },
+    Move {
+        mv: Move,
+        line: u32,
+        offsets: Offsets,
+    },
     /// A block without motion that changes the offsets shown (T, D, G54, ...).
-    Offsets { line: u32, offsets: Offsets },
-    Dwell { seconds: f64, line: u32 },
+    Offsets {
+        line: u32,
+        offsets: Offsets,
+    },
+    Dwell {
+        seconds: f64,
+        line: u32,
+    },
     /// Target speed of the spindle on channel axis `axis` in rev/min (+ = M3).
-    Spindle { axis: usize, rpm: f64, line: u32 },
-    Stop { kind: StopKind, line: u32 },
+    Spindle {
+        axis: usize,
+        rpm: f64,
+        line: u32,
+    },
+    Stop {
+        kind: StopKind,
+        line: u32,
+    },
     Alarm(Alarm),
 }
 
@@ -143,10 +164,8 @@ impl Interpreter {
         }
         let offsets_before = self.offsets.clone();
         self.modal.apply(&words, cfg, line)?;
-        if let Some(f) = words.feed {
-            if !words.dwell {
-                self.modal.feed = Some(f);
-            }
+        if let Some(f) = words.feed.filter(|_| !words.dwell) {
+            self.modal.feed = Some(f);
         }
         if let Some(s) = words.speed.filter(|_| !words.dwell) {
             if s < 0.0 {
@@ -163,12 +182,10 @@ impl Interpreter {
         if let Some(dir) = words.spindle_dir {
             self.direction = dir;
         }
-        if (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell {
-            if let Some(axis) = cfg.master_spindle {
-                if self.direction != old_direction || self.direction != 0 {
-                    out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
-                }
-            }
+        let spindle_words = (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell;
+        let changes = self.direction != old_direction || self.direction != 0;
+        if let Some(axis) = cfg.master_spindle.filter(|_| spindle_words && changes) {
+            out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
         }
 
         if words.dwell {
@@ -182,7 +199,9 @@ impl Interpreter {
                 return Err(Alarm::value_out_of_range(line, &format!("G4 {seconds} s")));
             }
             out.push(Item::Dwell { seconds, line });
-        } else if !words.axes.is_empty() || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw)) {
+        } else if !words.axes.is_empty()
+            || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
+        {
             let mv = self.motion(&words, cfg, line)?;
             out.push(Item::Move { mv, line, offsets: self.offsets.clone() });
         } else if self.offsets != offsets_before {
@@ -228,7 +247,10 @@ impl Interpreter {
                 Some(CoordMode::Ac) => true,
                 Some(CoordMode::Ic) => false,
                 Some(CoordMode::Dc | CoordMode::Acp | CoordMode::Acn) if ax.modulo.is_none() => {
-                    return Err(Alarm::value_out_of_range(line, &format!("{}: DC/ACP/ACN need a modulo rotary axis", cfg.program_axis_name(k))));
+                    return Err(Alarm::value_out_of_range(
+                        line,
+                        &format!("{}: DC/ACP/ACN need a modulo rotary axis", cfg.program_axis_name(k)),
+                    ));
                 }
                 Some(_) => true,
                 None => self.modal.absolute,
@@ -255,7 +277,8 @@ impl Interpreter {
             let offs = |k: usize| tool[k] + work[k];
             let s = (start[ka] - offs(ka), start[ko] - offs(ko));
             let e = (end[ka] - offs(ka), end[ko] - offs(ko));
-            let turn = if self.modal.motion == MotionMode::Cw { arc::Turn::Clockwise } else { arc::Turn::CounterClockwise };
+            let turn =
+                if self.modal.motion == MotionMode::Cw { arc::Turn::Clockwise } else { arc::Turn::CounterClockwise };
             let circle = match (words.cr, words.center(a, o)) {
                 (Some(cr), _) => arc::from_radius(s, e, cr * self.modal.length_factor(), turn),
                 (None, Some(((ia, abs_a), (io, abs_o)))) => {
@@ -329,7 +352,8 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
         if ax.modulo.is_some() || ax.spindle.is_some() {
             continue;
         }
-        let moves = (path.end[k] - path.start[k]).abs() > 1e-12 || path.arc.is_some_and(|a| a.plane.0 == k || a.plane.1 == k);
+        let moves =
+            (path.end[k] - path.start[k]).abs() > 1e-12 || path.arc.is_some_and(|a| a.plane.0 == k || a.plane.1 == k);
         if !moves {
             continue;
         }
@@ -375,6 +399,3 @@ fn tool_vector(cfg: &MachineConfig, modal: &Modal, t: u32, d: u32) -> AxisVec {
     }
     v
 }
-
-#[cfg(test)]
-mod tests;

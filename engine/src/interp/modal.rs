@@ -109,7 +109,10 @@ impl Modal {
         }
         if let Some(frame) = w.work_offset {
             if frame >= cfg.work_offsets.len() {
-                return Err(Alarm::value_out_of_range(line, &format!("settable frame {frame} (MD28080 MM_NUM_USER_FRAMES = {})", cfg.work_offsets.len())));
+                return Err(Alarm::value_out_of_range(
+                    line,
+                    &format!("settable frame {frame} (MD28080 MM_NUM_USER_FRAMES = {})", cfg.work_offsets.len()),
+                ));
             }
             self.work_offset = frame;
         }
@@ -214,7 +217,10 @@ pub(super) fn collect(block: &Block, cfg: &MachineConfig, r: &[f64]) -> Result<W
                         }
                         let k = cfg.program_axis(name).ok_or_else(|| Alarm::unknown_name(line, name))?;
                         if cfg.axis(k).spindle.is_some() {
-                            return Err(Alarm::unknown_name(line, &format!("{name} (spindle positioning comes with SPOS)")));
+                            return Err(Alarm::unknown_name(
+                                line,
+                                &format!("{name} (spindle positioning comes with SPOS)"),
+                            ));
                         }
                         w.axes.push((k, v, value.mode));
                     }

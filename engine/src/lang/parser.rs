@@ -247,7 +247,9 @@ fn parse_primary(cur: &mut Cursor) -> Result<Expr, (usize, String)> {
             }
             Ok(Expr::Str(String::from_utf8_lossy(&cur.src[s..cur.pos - 1]).into_owned()))
         }
-        Some(c) if c.is_ascii_digit() || c == b'.' => cur.number().map(Expr::Number).ok_or_else(|| (start, "bad number".into())),
+        Some(c) if c.is_ascii_digit() || c == b'.' => {
+            cur.number().map(Expr::Number).ok_or_else(|| (start, "bad number".into()))
+        }
         Some(b'$') => {
             let id = cur.ident().unwrap_or_default();
             if id == "$R" && cur.eat(b'[') {
@@ -354,7 +356,12 @@ impl Cursor<'_> {
         if self.src[self.pos..].len() >= 2 && self.src[self.pos..self.pos + 2].eq_ignore_ascii_case(b"EX") {
             let save = self.pos;
             self.pos += 2;
-            let sign = if self.eat(b'-') { "-" } else { self.eat(b'+'); "" };
+            let sign = if self.eat(b'-') {
+                "-"
+            } else {
+                self.eat(b'+');
+                ""
+            };
             match self.digits() {
                 Some(e) => text = format!("{text}e{sign}{e}"),
                 None => self.pos = save,
@@ -412,9 +419,19 @@ mod tests {
     #[test]
     fn addresses_with_equals_take_expressions_and_coordinate_modes() {
         let w = words("X=AC(10) CR=-5 F=2*(R1+3)");
-        assert_eq!(w[0], Word::Address { name: "X".into(), value: AddressValue { mode: Some(CoordMode::Ac), expr: Expr::Number(10.0) } });
-        assert!(matches!(&w[1], Word::Address { name, value } if name == "CR" && value.expr == Expr::Neg(Box::new(Expr::Number(5.0)))));
-        assert!(matches!(&w[2], Word::Address { name, value: AddressValue { expr: Expr::Binary(BinOp::Mul, _, _), .. } } if name == "F"));
+        assert_eq!(
+            w[0],
+            Word::Address {
+                name: "X".into(),
+                value: AddressValue { mode: Some(CoordMode::Ac), expr: Expr::Number(10.0) }
+            }
+        );
+        assert!(
+            matches!(&w[1], Word::Address { name, value } if name == "CR" && value.expr == Expr::Neg(Box::new(Expr::Number(5.0))))
+        );
+        assert!(
+            matches!(&w[2], Word::Address { name, value: AddressValue { expr: Expr::Binary(BinOp::Mul, _, _), .. } } if name == "F")
+        );
     }
 
     #[test]

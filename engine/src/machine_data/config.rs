@@ -86,7 +86,10 @@ impl MachineConfig {
                 break;
             }
             if machine_numbers.contains(&m) {
-                return fail("AXCONF_MACHAX_USED", format!("$MC_AXCONF_MACHAX_USED[{k}]: machine axis {m} is used twice"));
+                return fail(
+                    "AXCONF_MACHAX_USED",
+                    format!("$MC_AXCONF_MACHAX_USED[{k}]: machine axis {m} is used twice"),
+                );
             }
             machine_numbers.push(m);
             channel_slots.push(k);
@@ -121,15 +124,22 @@ impl MachineConfig {
                 message: format!("$MC_AXCONF_GEOAX_ASSIGN_TAB[{g}]={k}: channel axis {k} does not exist"),
             })?;
             if machine_axes[channel_axes[idx].machine_axis].rotary {
-                return fail("AXCONF_GEOAX_ASSIGN_TAB", format!("geometry axis {} cannot be the rotary axis {}", geo_names[g], channel_axes[idx].name));
+                return fail(
+                    "AXCONF_GEOAX_ASSIGN_TAB",
+                    format!("geometry axis {} cannot be the rotary axis {}", geo_names[g], channel_axes[idx].name),
+                );
             }
             *slot = Some(idx);
         }
         let assigned: Vec<usize> = geo_axes.iter().flatten().copied().collect();
         if (1..assigned.len()).any(|i| assigned[..i].contains(&assigned[i])) {
-            return fail("AXCONF_GEOAX_ASSIGN_TAB", "$MC_AXCONF_GEOAX_ASSIGN_TAB assigns one channel axis to two geometry axes".into());
+            return fail(
+                "AXCONF_GEOAX_ASSIGN_TAB",
+                "$MC_AXCONF_GEOAX_ASSIGN_TAB assigns one channel axis to two geometry axes".into(),
+            );
         }
-        let active_geo: Vec<&str> = geo_axes.iter().zip(&geo_names).filter(|(a, _)| a.is_some()).map(|(_, n)| n.as_str()).collect();
+        let active_geo: Vec<&str> =
+            geo_axes.iter().zip(&geo_names).filter(|(a, _)| a.is_some()).map(|(_, n)| n.as_str()).collect();
         unique_names(&active_geo, "AXCONF_GEOAX_NAME_TAB")?;
 
         let master = md.num("$MC_SPIND_DEF_MASTER_SPIND", 0, 0) as u32;
@@ -138,12 +148,19 @@ impl MachineConfig {
         let frame_count = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
         let mut work_offsets = vec![vec![0.0; channel_axes.len()]; frame_count];
         for ((frame, axis, component), value) in md.frames() {
-            let idx = resolve_program_axis(axis, &geo_axes, &geo_names, &channel_axes).ok_or_else(|| ActivationError {
-                datum: None,
-                message: format!("$P_UIFR[{frame},{axis},{}]: {axis} is not an axis of this channel", if *component == FrameComponent::Translation { "TR" } else { "FI" }),
-            })?;
+            let idx =
+                resolve_program_axis(axis, &geo_axes, &geo_names, &channel_axes).ok_or_else(|| ActivationError {
+                    datum: None,
+                    message: format!(
+                        "$P_UIFR[{frame},{axis},{}]: {axis} is not an axis of this channel",
+                        if *component == FrameComponent::Translation { "TR" } else { "FI" }
+                    ),
+                })?;
             if *frame >= frame_count {
-                return fail("MM_NUM_USER_FRAMES", format!("$P_UIFR[{frame}] exceeds $MC_MM_NUM_USER_FRAMES={frame_count}"));
+                return fail(
+                    "MM_NUM_USER_FRAMES",
+                    format!("$P_UIFR[{frame}] exceeds $MC_MM_NUM_USER_FRAMES={frame_count}"),
+                );
             }
             work_offsets[*frame][idx] += value;
         }
@@ -180,7 +197,12 @@ impl MachineConfig {
     }
 }
 
-fn resolve_program_axis(name: &str, geo_axes: &[Option<usize>; 3], geo_names: &[String; 3], channel_axes: &[ChannelAxis]) -> Option<usize> {
+fn resolve_program_axis(
+    name: &str,
+    geo_axes: &[Option<usize>; 3],
+    geo_names: &[String; 3],
+    channel_axes: &[ChannelAxis],
+) -> Option<usize> {
     geo_axes
         .iter()
         .zip(geo_names)
@@ -191,7 +213,10 @@ fn resolve_program_axis(name: &str, geo_axes: &[Option<usize>; 3], geo_names: &[
 fn unique_names(names: &[&str], datum: &'static str) -> Result<(), ActivationError> {
     for (i, n) in names.iter().enumerate() {
         if n.is_empty() {
-            return fail(datum, format!("${}{datum}: empty axis name", if datum.starts_with("AXCONF_MACHAX") { "MN_" } else { "MC_" }));
+            return fail(
+                datum,
+                format!("${}{datum}: empty axis name", if datum.starts_with("AXCONF_MACHAX") { "MN_" } else { "MC_" }),
+            );
         }
         if names[..i].iter().any(|m| m.eq_ignore_ascii_case(n)) {
             return fail(datum, format!("axis name {n} is used twice"));
@@ -208,7 +233,10 @@ fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationEr
     let name = md.string("$MN_AXCONF_MACHAX_NAME_TAB", ax);
     let (minus, plus) = (num("$MA_POS_LIMIT_MINUS"), num("$MA_POS_LIMIT_PLUS"));
     if minus >= plus {
-        return fail("POS_LIMIT_MINUS", format!("axis {name}: $MA_POS_LIMIT_MINUS ({minus}) must be below $MA_POS_LIMIT_PLUS ({plus})"));
+        return fail(
+            "POS_LIMIT_MINUS",
+            format!("axis {name}: $MA_POS_LIMIT_MINUS ({minus}) must be below $MA_POS_LIMIT_PLUS ({plus})"),
+        );
     }
     let modulo_flag = num("$MA_ROT_IS_MODULO") != 0.0;
     if modulo_flag && !rotary {
@@ -216,7 +244,10 @@ fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationEr
     }
     let spindle = num("$MA_SPIND_ASSIGN_TO_MACHAX") as u32;
     if spindle != 0 && !rotary {
-        return fail("SPIND_ASSIGN_TO_MACHAX", format!("axis {name}: a spindle must be a rotary axis ($MA_IS_ROT_AX=TRUE)"));
+        return fail(
+            "SPIND_ASSIGN_TO_MACHAX",
+            format!("axis {name}: a spindle must be a rotary axis ($MA_IS_ROT_AX=TRUE)"),
+        );
     }
     Ok(MachineAxis {
         name,

@@ -100,9 +100,7 @@ impl MachineData {
     }
 
     fn is_rotary(&self, axis: usize) -> bool {
-        self.values
-            .get(&("IS_ROT_AX", Scope::Axis, axis, 0))
-            .is_some_and(|v| *v == Value::Bool(true))
+        self.values.get(&("IS_ROT_AX", Scope::Axis, axis, 0)).is_some_and(|v| *v == Value::Bool(true))
     }
 
     /// Numeric value by full name; panics only on a programming error (unknown name).
@@ -151,7 +149,13 @@ impl MachineData {
     }
 
     /// Assigns one line; returns the datum name for error attribution.
-    fn assign(&mut self, line: u32, name: &str, indices: &[IndexTok], value: &Literal) -> Result<Option<&'static str>, MdError> {
+    fn assign(
+        &mut self,
+        line: u32,
+        name: &str,
+        indices: &[IndexTok],
+        value: &Literal,
+    ) -> Result<Option<&'static str>, MdError> {
         let err = |m: String| MdError::at(line, m);
         if let Some(n) = name.strip_prefix("$TC_DP") {
             self.assign_tool(line, name, n, indices, value)?;
@@ -197,7 +201,16 @@ impl MachineData {
 
     /// `AXn` (1-based) or a machine axis name from `$MN_AXCONF_MACHAX_NAME_TAB`.
     fn resolve_axis(&self, line: u32, name: &str, tok: &IndexTok) -> Result<usize, MdError> {
-        let bad = || MdError::at(line, format!("bad axis index {} for {name}: use AXn (n = 1..{}) or a machine axis name", show(tok), registry::MAX_MACHINE_AXES));
+        let bad = || {
+            MdError::at(
+                line,
+                format!(
+                    "bad axis index {} for {name}: use AXn (n = 1..{}) or a machine axis name",
+                    show(tok),
+                    registry::MAX_MACHINE_AXES
+                ),
+            )
+        };
         let IndexTok::Name(id) = tok else { return Err(bad()) };
         if let Some(n) = id.strip_prefix("AX").and_then(|n| n.parse::<usize>().ok()) {
             return (1..=registry::MAX_MACHINE_AXES).contains(&n).then_some(n - 1).ok_or_else(bad);
@@ -207,7 +220,14 @@ impl MachineData {
             .ok_or_else(bad)
     }
 
-    fn assign_tool(&mut self, line: u32, name: &str, param: &str, indices: &[IndexTok], value: &Literal) -> Result<(), MdError> {
+    fn assign_tool(
+        &mut self,
+        line: u32,
+        name: &str,
+        param: &str,
+        indices: &[IndexTok],
+        value: &Literal,
+    ) -> Result<(), MdError> {
         let err = |m: String| MdError::at(line, m);
         let p: usize = param
             .parse()
@@ -272,11 +292,7 @@ fn show(tok: &IndexTok) -> String {
 
 fn convert(def: &Def, lit: &Literal) -> Result<Value, String> {
     let in_range = |v: f64| -> Result<f64, String> {
-        if v < def.min || v > def.max {
-            Err(format!("value {v} out of range {}..{}", def.min, def.max))
-        } else {
-            Ok(v)
-        }
+        if v < def.min || v > def.max { Err(format!("value {v} out of range {}..{}", def.min, def.max)) } else { Ok(v) }
     };
     match (def.kind, lit) {
         (Kind::Bool, Literal::Bool(b)) => Ok(Value::Bool(*b)),

@@ -27,7 +27,10 @@ pub enum Default {
     Int(i64),
     Real(f64),
     /// Axial data whose default depends on `$MA_IS_ROT_AX` (the control's units differ).
-    RealByAxisType { linear: f64, rotary: f64 },
+    RealByAxisType {
+        linear: f64,
+        rotary: f64,
+    },
     Str(&'static str),
     /// A different default per array index.
     Indexed(fn(usize) -> Value),
@@ -84,7 +87,17 @@ impl Def {
 pub const MAX_MACHINE_AXES: usize = 31;
 pub const MAX_CHANNEL_AXES: usize = 20;
 
-const fn def(name: &'static str, number: u32, scope: Scope, kind: Kind, len: usize, default: Default, min: f64, max: f64) -> Def {
+#[allow(clippy::too_many_arguments, reason = "one positional row per datum keeps the table readable")]
+const fn def(
+    name: &'static str,
+    number: u32,
+    scope: Scope,
+    kind: Kind,
+    len: usize,
+    default: Default,
+    min: f64,
+    max: f64,
+) -> Def {
     Def { name, number, scope, setting: false, kind, len, default, min, max }
 }
 
@@ -117,14 +130,50 @@ fn default_machax_used(i: usize) -> Value {
 
 /// Every datum, in Siemens number order.
 pub static DEFS: &[Def] = &[
-    def("AXCONF_MACHAX_NAME_TAB", 10000, N, Kind::Str, MAX_MACHINE_AXES, Default::Indexed(default_machax_name), 0.0, 0.0),
+    def(
+        "AXCONF_MACHAX_NAME_TAB",
+        10000,
+        N,
+        Kind::Str,
+        MAX_MACHINE_AXES,
+        Default::Indexed(default_machax_name),
+        0.0,
+        0.0,
+    ),
     def("SYSCLOCK_CYCLE_TIME", 10050, N, Kind::Real, 1, Default::Real(0.002), 0.000125, 0.031),
     def("IPO_SYSCLOCK_TIME_RATIO", 10070, N, Kind::Int, 1, Default::Int(2), 1.0, 100.0),
     def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
-    def("AXCONF_GEOAX_ASSIGN_TAB", 20050, C, Kind::Int, 3, Default::Indexed(default_geoax_assign), 0.0, MAX_CHANNEL_AXES as f64),
+    def(
+        "AXCONF_GEOAX_ASSIGN_TAB",
+        20050,
+        C,
+        Kind::Int,
+        3,
+        Default::Indexed(default_geoax_assign),
+        0.0,
+        MAX_CHANNEL_AXES as f64,
+    ),
     def("AXCONF_GEOAX_NAME_TAB", 20060, C, Kind::Str, 3, Default::Indexed(default_geoax_name), 0.0, 0.0),
-    def("AXCONF_MACHAX_USED", 20070, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_machax_used), 0.0, MAX_MACHINE_AXES as f64),
-    def("AXCONF_CHANAX_NAME_TAB", 20080, C, Kind::Str, MAX_CHANNEL_AXES, Default::Indexed(default_chanax_name), 0.0, 0.0),
+    def(
+        "AXCONF_MACHAX_USED",
+        20070,
+        C,
+        Kind::Int,
+        MAX_CHANNEL_AXES,
+        Default::Indexed(default_machax_used),
+        0.0,
+        MAX_MACHINE_AXES as f64,
+    ),
+    def(
+        "AXCONF_CHANAX_NAME_TAB",
+        20080,
+        C,
+        Kind::Str,
+        MAX_CHANNEL_AXES,
+        Default::Indexed(default_chanax_name),
+        0.0,
+        0.0,
+    ),
     def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
     def("MM_NUM_USER_FRAMES", 28080, C, Kind::Int, 1, Default::Int(5), 5.0, 100.0),
     def("IS_ROT_AX", 30300, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
@@ -133,7 +182,16 @@ pub static DEFS: &[Def] = &[
     def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
     // Linear axes: mm/min and m/s²; rotary axes: rev/min and rev/s², as on the control.
     def("MAX_AX_VELO", 32000, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 1e-6, 1e9),
-    def("JOG_VELO_RAPID", 32010, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 0.0, 1e9),
+    def(
+        "JOG_VELO_RAPID",
+        32010,
+        A,
+        Kind::Real,
+        1,
+        Default::RealByAxisType { linear: 10000.0, rotary: 27.77 },
+        0.0,
+        1e9,
+    ),
     def("JOG_VELO", 32020, A, Kind::Real, 1, Default::RealByAxisType { linear: 2000.0, rotary: 5.55 }, 0.0, 1e9),
     def("MAX_AX_ACCEL", 32300, A, Kind::Real, 1, Default::RealByAxisType { linear: 1.0, rotary: 2.77 }, 1e-6, 1e6),
     def("MAX_ACCEL_OVL_FACTOR", 32310, A, Kind::Real, 1, Default::Real(1.2), 1.0, 10.0),

@@ -56,10 +56,8 @@ pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
                 .strip_prefix('(')
                 .and_then(|r| r.strip_suffix(')'))
                 .ok_or_else(|| MdError::at(line, format!("expected CHANDATA(<n>), found `{src}`")))?;
-            let channel = inner
-                .trim()
-                .parse::<i64>()
-                .map_err(|_| MdError::at(line, format!("bad channel number in `{src}`")))?;
+            let channel =
+                inner.trim().parse::<i64>().map_err(|_| MdError::at(line, format!("bad channel number in `{src}`")))?;
             out.push(Line::ChanData { line, channel });
             continue;
         }
@@ -128,7 +126,8 @@ fn parse_index(tok: &str) -> Option<IndexTok> {
     if let Ok(n) = tok.parse::<i64>() {
         return Some(IndexTok::Number(n));
     }
-    let valid_name = tok.chars().next()?.is_ascii_alphabetic() && tok.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let valid_name =
+        tok.chars().next()?.is_ascii_alphabetic() && tok.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
     valid_name.then(|| IndexTok::Name(tok.to_ascii_uppercase()))
 }
 

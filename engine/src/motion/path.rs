@@ -30,8 +30,8 @@ pub struct Path {
 impl Path {
     /// Position at parameter `u` in 0..=1 (uniform in path length).
     pub fn at(&self, u: f64, out: &mut AxisVec) {
-        for i in 0..MAX_CHANNEL_AXES {
-            out[i] = self.start[i] + (self.end[i] - self.start[i]) * u;
+        for (o, (s, e)) in out.iter_mut().zip(self.start.iter().zip(&self.end)) {
+            *o = s + (e - s) * u;
         }
         if u >= 1.0 {
             *out = self.end;
@@ -113,7 +113,11 @@ mod tests {
         start[0] = 10.0;
         end[0] = -10.0;
         end[2] = 4.0;
-        Path { start, end, arc: Some(Arc { plane: (0, 1), center: (0.0, 0.0), radius: 10.0, start_angle: 0.0, sweep: PI }) }
+        Path {
+            start,
+            end,
+            arc: Some(Arc { plane: (0, 1), center: (0.0, 0.0), radius: 10.0, start_angle: 0.0, sweep: PI }),
+        }
     }
 
     #[test]

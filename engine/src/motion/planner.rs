@@ -380,7 +380,14 @@ mod tests {
             AxisLimit { max_velocity: 30.0, max_accel: 300.0, accel_overload: 1.2 },
         ];
         let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
-        let pts = [[0.0, 0.0, 0.0], [30.0, 0.0, 0.0], [30.0, 20.0, 5.0], [0.0, 40.0, 0.0], [5.0, 41.0, -3.0], [80.0, 0.0, 0.0]];
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [30.0, 0.0, 0.0],
+            [30.0, 20.0, 5.0],
+            [0.0, 40.0, 0.0],
+            [5.0, 41.0, -3.0],
+            [80.0, 0.0, 0.0],
+        ];
         for (i, w) in pts.windows(2).enumerate() {
             let path = line(w[0], w[1]);
             let len = (0..3).map(|k| (w[1][k] - w[0][k]).powi(2)).sum::<f64>().sqrt();
@@ -396,7 +403,13 @@ mod tests {
         for (i, w) in vel.windows(2).enumerate() {
             for k in 0..3 {
                 let acc = (w[1][k] - w[0][k]).abs() / DT;
-                assert!(acc <= lim[k].max_accel * lim[k].accel_overload * (1.0 + 1e-6), "axis {k} accel {acc} at {i}: {:?} {:?} {:?}", vel[i.saturating_sub(1)], w[0], w[1]);
+                assert!(
+                    acc <= lim[k].max_accel * lim[k].accel_overload * (1.0 + 1e-6),
+                    "axis {k} accel {acc} at {i}: {:?} {:?} {:?}",
+                    vel[i.saturating_sub(1)],
+                    w[0],
+                    w[1]
+                );
             }
         }
         assert_eq!(&s.last().unwrap()[..3], &[80.0, 0.0, 0.0]);
