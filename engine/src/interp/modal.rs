@@ -243,6 +243,8 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         18 => w.plane = Some(Plane::G18),
         19 => w.plane = Some(Plane::G19),
         53 => w.g53 = true,
+        // Tool radius compensation off: the only state until TRC is modelled.
+        40 => {}
         54..=57 => w.work_offset = Some(code as usize - 53),
         500 => w.work_offset = Some(0),
         505..=599 => w.work_offset = Some(code as usize - 500),
