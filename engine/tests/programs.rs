@@ -101,9 +101,10 @@ fn work_offset_g54_shifts_the_workpiece_zero() {
     let s = ch.snapshot();
     assert_eq!(machine(&s, "X"), 110.0);
     assert!(close(machine(&s, "Z"), -44.5, 1e-12));
-    assert_eq!(pos(&s.workpiece, "X"), 10.0);
-    // Program end resets G54 to the reset value G500: the display follows.
-    assert_eq!(pos(&s.workpiece, "X"), 10.0);
+    // Program end resets G54 to the reset value G500: the WCS display follows.
+    assert_eq!(pos(&s.workpiece, "X"), 110.0);
+    let (ch, _) = run("mill-3axis", md, "G54 G0 X10 Z5\nM0\nM30");
+    assert_eq!(pos(&ch.snapshot().workpiece, "X"), 10.0);
 }
 
 #[test]

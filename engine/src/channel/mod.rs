@@ -613,6 +613,8 @@ impl Channel {
         self.prep_done = true;
         self.current_line = None;
         self.interp.end_program(&self.cfg);
+        // Program end returns the offsets to their reset values (G500); the display follows.
+        self.offsets = self.interp.offsets();
         self.events.push(Event::ProgramEnded);
     }
 

@@ -22,7 +22,7 @@ pub static PRESETS: &[Preset] = &[
     Preset {
         id: "lathe-2axis",
         name: "2-axis lathe",
-        description: "Geometry axes X (diameter direction) and Z, main spindle SP (spindle 1); turning tools T1, T2.",
+        description: "Geometry axes X (radius programming) and Z, main spindle SP (spindle 1); turning tools T1, T2.",
         text: LATHE_2AXIS,
     },
     Preset {
