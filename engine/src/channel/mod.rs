@@ -15,7 +15,7 @@ use spindle::Spindle;
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, Offsets, StopKind};
-use crate::lang::{self, Program};
+use crate::lang;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::machine_data::{MachineConfig, MachineData, MdError};
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
@@ -129,9 +129,12 @@ pub struct Channel {
     mode: Mode,
     status: Status,
     tick: u64,
-    program: Option<Arc<Program>>,
-    /// Index of the next block to prepare.
-    next_block: usize,
+    /// The active program's text; blocks are read from it one at a time.
+    program: Option<Arc<str>>,
+    /// Byte offset and line number of the next block to prepare.
+    cursor: (usize, u32),
+    /// Line and byte offset of the prepared blocks whose items are still queued (for display).
+    queued_blocks: VecDeque<(u32, usize)>,
     /// Block preparation has reached the end of the program or stopped on an alarm.
     prep_done: bool,
     interp: Interpreter,
@@ -184,7 +187,8 @@ impl Channel {
             status: Status::Idle,
             tick: 0,
             program: None,
-            next_block: 0,
+            cursor: (0, 1),
+            queued_blocks: VecDeque::new(),
             prep_done: true,
             pending: VecDeque::new(),
             planner,
@@ -297,9 +301,8 @@ impl Channel {
     }
 
     fn load_and_start(&mut self, text: &str, mode: Mode) -> Result<(), CommandError> {
-        let program = lang::parse(text);
-        if let Some(d) = program.diagnostics.first() {
-            return Err(CommandError::Syntax { line: d.line, message: d.message.clone() });
+        if let Some(d) = lang::check(text).into_iter().next() {
+            return Err(CommandError::Syntax { line: d.line, message: d.message });
         }
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active"));
@@ -308,8 +311,9 @@ impl Channel {
             return Err(CommandError::AlarmActive);
         }
         self.set_mode(mode)?;
-        self.program = Some(Arc::new(program));
-        self.next_block = 0;
+        self.program = Some(Arc::from(text));
+        self.cursor = (0, 1);
+        self.queued_blocks.clear();
         self.prep_done = false;
         self.interp.begin_program(&self.cfg, self.planner.position());
         self.status = Status::Running;
@@ -326,11 +330,8 @@ impl Channel {
                 self.status = Status::Running;
                 Ok(())
             }
-            Status::Idle => match (&self.program, self.mode) {
-                (Some(p), Mode::Auto) => {
-                    let text = p.blocks.iter().map(|b| b.text.as_str()).collect::<Vec<_>>().join("\n");
-                    self.run_program(&text)
-                }
+            Status::Idle => match (self.program.clone(), self.mode) {
+                (Some(text), Mode::Auto) => self.run_program(&text),
                 (_, Mode::Jog) => Err(CommandError::WrongMode("JOG", "NC start runs programs in AUTO or MDA")),
                 _ => Err(CommandError::Invalid("no program loaded".into())),
             },
@@ -464,18 +465,36 @@ impl Channel {
     /// Block preparation: interpret blocks until the look-ahead is full.
     fn prepare(&mut self) {
         let Some(program) = self.program.clone() else { return };
+        let mut out = Vec::new();
         while !self.prep_done && self.pending.len() + self.planner.len() < LOOKAHEAD {
-            let Some(block) = program.blocks.get(self.next_block) else {
-                self.pending
-                    .push_back(Item::Stop { kind: StopKind::End, line: program.blocks.last().map_or(1, |b| b.line) });
+            let (offset, line) = self.cursor;
+            let Some((block, next_offset, next_line)) = lang::read_block(&program, offset, line) else {
+                let last = self.queued_blocks.back().map_or(line.saturating_sub(1).max(1), |b| b.0);
+                self.pending.push_back(Item::Stop { kind: StopKind::End, line: last });
                 self.prep_done = true;
                 break;
             };
-            self.next_block += 1;
+            self.cursor = (next_offset, next_line);
             let before = self.pending.len();
-            let mut out = Vec::new();
-            self.interp.prepare(block, &self.cfg, &mut out);
-            self.pending.extend(out);
+            out.clear();
+            let position = match block {
+                Ok(block) => {
+                    self.interp.prepare(&block, &self.cfg, &mut out);
+                    (block.line, block.offset)
+                }
+                Err(d) => {
+                    out.push(Item::Alarm(Alarm::syntax(d.line, &d.message)));
+                    (d.line, program[..d.offset.min(program.len())].rfind('\n').map_or(0, |i| i + 1))
+                }
+            };
+            // Remember where the block is, for showing it while its items execute.
+            if !out.is_empty() {
+                self.queued_blocks.push_back(position);
+                if self.queued_blocks.len() > 2 * LOOKAHEAD {
+                    self.queued_blocks.pop_front();
+                }
+            }
+            self.pending.extend(out.drain(..));
             if self
                 .pending
                 .iter()
@@ -548,8 +567,9 @@ impl Channel {
 
     fn block_ref(&self, line: u32) -> Option<BlockRef> {
         let program = self.program.as_ref()?;
-        let text = program.blocks.iter().find(|b| b.line == line).map(|b| b.text.clone())?;
-        Some(BlockRef { line, text })
+        let &(_, offset) = self.queued_blocks.iter().rev().find(|b| b.0 == line)?;
+        let raw = program[offset..].split('\n').next().unwrap_or("");
+        Some(BlockRef { line, text: raw.strip_suffix('\r').unwrap_or(raw).to_string() })
     }
 
     /// Executes non-motion items at the head of the queue once all motion before them is done.

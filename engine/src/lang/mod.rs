@@ -8,4 +8,4 @@ pub mod ast;
 mod parser;
 
 pub use ast::{AddressValue, BinOp, Block, CoordMode, Diagnostic, Expr, Program, Word};
-pub use parser::{parse, parse_block};
+pub use parser::{check, parse, parse_block, read_block};

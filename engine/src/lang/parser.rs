@@ -3,21 +3,74 @@
 
 use super::ast::*;
 
-/// Parses a whole program.
+/// Parses a whole program into memory (tests, small programs).
 pub fn parse(source: &str) -> Program {
     let mut program = Program::default();
-    let mut offset = 0;
-    for (i, raw) in source.split('\n').enumerate() {
-        let text = raw.strip_suffix('\r').unwrap_or(raw);
-        let line = i as u32 + 1;
-        match parse_block(text, line, offset) {
+    for (line, offset, result) in Lines::new(source, 0, 1) {
+        match result {
             Ok(Some(block)) => program.blocks.push(block),
             Ok(None) => {}
             Err((col, message)) => program.diagnostics.push(Diagnostic { line, offset: offset + col, message }),
         }
-        offset += raw.len() + 1;
     }
     program
+}
+
+/// Every syntax error of a program, found in one streaming pass that keeps no blocks.
+pub fn check(source: &str) -> Vec<Diagnostic> {
+    Lines::new(source, 0, 1)
+        .filter_map(|(line, offset, r)| {
+            r.err().map(|(col, message)| Diagnostic { line, offset: offset + col, message })
+        })
+        .collect()
+}
+
+/// Reads the next non-empty block at or after byte `offset` (which starts line `line`).
+/// Returns the block (or its syntax error) and the offset and line number after it; `None` at
+/// the end of the text. Lets a channel walk a program of any length without holding its blocks.
+pub fn read_block(source: &str, offset: usize, line: u32) -> Option<(Result<Block, Diagnostic>, usize, u32)> {
+    let mut lines = Lines::new(source, offset, line);
+    loop {
+        let (l, off, result) = lines.next()?;
+        let after = (lines.offset, lines.line);
+        match result {
+            Ok(Some(block)) => return Some((Ok(block), after.0, after.1)),
+            Ok(None) => {}
+            Err((col, message)) => {
+                return Some((Err(Diagnostic { line: l, offset: off + col, message }), after.0, after.1));
+            }
+        }
+    }
+}
+
+/// Iterator over the lines of a source: (line, offset of line start, parse result).
+struct Lines<'a> {
+    source: &'a str,
+    offset: usize,
+    line: u32,
+}
+
+impl<'a> Lines<'a> {
+    fn new(source: &'a str, offset: usize, line: u32) -> Self {
+        Lines { source, offset, line }
+    }
+}
+
+impl Iterator for Lines<'_> {
+    type Item = (u32, usize, Result<Option<Block>, (usize, String)>);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.offset > self.source.len() || (self.offset == self.source.len() && self.offset > 0) {
+            return None;
+        }
+        let rest = &self.source[self.offset..];
+        let raw = rest.split('\n').next().unwrap_or("");
+        let text = raw.strip_suffix('\r').unwrap_or(raw);
+        let (line, offset) = (self.line, self.offset);
+        self.offset += raw.len() + 1;
+        self.line += 1;
+        Some((line, offset, parse_block(text, line, offset)))
+    }
 }
 
 /// Parses one line; `Ok(None)` for an empty line.
@@ -461,5 +514,28 @@ mod tests {
         let p = parse(src);
         assert_eq!(p.blocks[0].offset, 0);
         assert!(p.diagnostics[0].offset >= 6);
+    }
+}
+
+#[cfg(test)]
+mod streaming_tests {
+    use super::*;
+
+    #[test]
+    fn reading_block_by_block_gives_the_same_blocks_as_parsing_at_once() {
+        let src = "N10 G0 X1\n\n; only a comment\r\nG1 X2 F3\nM30";
+        let mut streamed = Vec::new();
+        let (mut offset, mut line) = (0, 1);
+        while let Some((block, next_offset, next_line)) = read_block(src, offset, line) {
+            streamed.push(block.unwrap());
+            (offset, line) = (next_offset, next_line);
+        }
+        assert_eq!(streamed, parse(src).blocks);
+    }
+
+    #[test]
+    fn check_reports_what_parse_reports() {
+        let src = "G1 X=\nG0 X1\nG1 #";
+        assert_eq!(check(src), parse(src).diagnostics);
     }
 }
