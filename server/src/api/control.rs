@@ -1,0 +1,158 @@
+//! Program control of a session's channel: run, start, stop, reset, cancel, MDA and the mode.
+
+use axum::extract::{Path, State};
+
+use super::{StateReply, command};
+use crate::dto::{self, ErrorBody, MdaRequest, ModeRequest, RunRequest, StartRequest, drive};
+use crate::error::ApiError;
+use crate::extract::{ApiJson, OptionalJson};
+use crate::session::Action;
+use crate::state::AppState;
+
+/// Loads a part program and starts it in AUTO mode.
+///
+/// A program with syntax errors is not started (`400` with the line) and nothing moves.
+/// `pace: "fast"` computes as fast as possible (simulated time unaffected) for at most 3600 s of
+/// simulated time per command; then the channel is stopped (NC stop) and the reply carries
+/// the header `nctwin-limit: fast-sim-time`. With `wait: true` the reply comes when the program
+/// has ended, stopped (M0, M1 with optional stop, alarm) or a limit was hit; a wait lasts at
+/// most 600 s of wall time (then the current state with `nctwin-limit: wait-wall-time`).
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/run",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = RunRequest,
+    responses(
+        (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
+            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+        (status = 400, description = "Syntax error (with its line) or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 409, description = "A program is active or an alarm needs a reset", body = ErrorBody),
+    )
+)]
+pub async fn run(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<RunRequest>,
+) -> Result<StateReply, ApiError> {
+    let action = Action::Run { program: body.program, optional_stop: body.optional_stop };
+    command(&state, &id, action, Some(drive(body.pace, body.wait))).await
+}
+
+/// NC start: continues a program stopped at M0/M1 or by NC stop (or restarts the loaded
+/// program from reset state in AUTO). Same `pace`/`wait` options and limits as `run`; the body
+/// may be empty.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/start",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body(content = Option<StartRequest>, description = "Optional; empty means realtime, no wait"),
+    responses(
+        (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
+            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+        (status = 400, description = "No program loaded, or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 409, description = "An alarm needs a reset, or JOG mode", body = ErrorBody),
+    )
+)]
+pub async fn start(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    OptionalJson(body): OptionalJson<StartRequest>,
+) -> Result<StateReply, ApiError> {
+    command(&state, &id, Action::Start, Some(drive(body.pace, body.wait))).await
+}
+
+/// NC stop: the axes brake on the path; `start` continues.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/stop",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    responses(
+        (status = 200, description = "The state after the stop command (axes may still be braking)", body = dto::State),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn stop(State(state): State<AppState>, Path(id): Path<String>) -> Result<StateReply, ApiError> {
+    command(&state, &id, Action::Stop, None).await
+}
+
+/// Channel reset: ends the program, stops every axis and spindle at once and clears the alarms
+/// a reset clears.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/reset",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    responses(
+        (status = 200, description = "The state after the reset", body = dto::State),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn reset(State(state): State<AppState>, Path(id): Path<String>) -> Result<StateReply, ApiError> {
+    command(&state, &id, Action::Reset, None).await
+}
+
+/// Cancel key: clears the alarms that cancel clears (e.g. 10621 after a JOG to a limit).
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/cancel",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    responses(
+        (status = 200, description = "The state after the cancel", body = dto::State),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn cancel(State(state): State<AppState>, Path(id): Path<String>) -> Result<StateReply, ApiError> {
+    command(&state, &id, Action::Cancel, None).await
+}
+
+/// Executes blocks in MDA mode (switching to MDA if the channel is in reset state). Same
+/// `pace`/`wait` options and limits as `run`.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/mda",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = MdaRequest,
+    responses(
+        (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
+            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+        (status = 400, description = "Syntax error (with its line) or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 409, description = "A program is active or an alarm needs a reset", body = ErrorBody),
+    )
+)]
+pub async fn mda(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<MdaRequest>,
+) -> Result<StateReply, ApiError> {
+    command(&state, &id, Action::Mda { program: body.program }, Some(drive(body.pace, body.wait))).await
+}
+
+/// Changes the operating mode; only in reset state.
+#[utoipa::path(
+    put,
+    path = "/sessions/{id}/mode",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = ModeRequest,
+    responses(
+        (status = 200, description = "The state in the new mode", body = dto::State),
+        (status = 400, description = "Malformed body or unknown mode", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 409, description = "A program or motion is active", body = ErrorBody),
+    )
+)]
+pub async fn set_mode(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<ModeRequest>,
+) -> Result<StateReply, ApiError> {
+    command(&state, &id, Action::SetMode(body.mode.into()), None).await
+}

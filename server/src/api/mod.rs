@@ -1,0 +1,101 @@
+//! The REST API (prefix `/api/v1`) and the WebSocket stream, one file per resource.
+//!
+//! Handlers are thin: parse the request, send one command to the session, map the reply.
+
+pub mod control;
+pub mod health;
+pub mod jog;
+pub mod machine_data;
+pub mod machines;
+pub mod sessions;
+pub mod stream;
+
+use std::time::Duration;
+
+use axum::Json;
+use axum::http::{HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use tower_http::timeout::TimeoutLayer;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+use crate::dto::State;
+use crate::error::ApiError;
+use crate::session::{Action, Drive, Limit, Outcome, SessionHandle};
+use crate::state::AppState;
+
+/// URL prefix of the REST API.
+pub const PREFIX: &str = "/api/v1";
+
+/// Time limit of requests that answer at once (everything that cannot wait for motion).
+pub const QUICK_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// Time limit of requests that may wait for motion (`wait: true`, answered after at most 600 s
+/// by the session) and of the WebSocket upgrade: longer than any wait, so no wait is cut short.
+pub const WAIT_TIMEOUT: Duration = Duration::from_secs(660);
+
+/// Response header set when a server-side limit ended a command or its wait early:
+/// `fast-sim-time` (a fast run reached 3600 s of simulated time and was stopped) or
+/// `wait-wall-time` (the request waited 600 s of wall time).
+pub const LIMIT_HEADER: &str = "nctwin-limit";
+
+/// Every API route under [`PREFIX`], with its timeout, and the OpenAPI paths they document.
+pub fn router() -> OpenApiRouter<AppState> {
+    let quick = OpenApiRouter::new()
+        .routes(routes!(health::health))
+        .routes(routes!(machines::list_machines))
+        .routes(routes!(machines::get_machine))
+        .routes(routes!(sessions::list_sessions, sessions::create_session))
+        .routes(routes!(sessions::get_session, sessions::delete_session))
+        .routes(routes!(sessions::get_state))
+        .routes(routes!(control::stop))
+        .routes(routes!(control::reset))
+        .routes(routes!(control::cancel))
+        .routes(routes!(control::set_mode))
+        .routes(routes!(jog::jog_stop))
+        .routes(routes!(machine_data::put_machine_data))
+        .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, QUICK_TIMEOUT));
+    let waiting = OpenApiRouter::new()
+        .routes(routes!(control::run))
+        .routes(routes!(control::start))
+        .routes(routes!(control::mda))
+        .routes(routes!(jog::jog))
+        .routes(routes!(stream::stream))
+        .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, WAIT_TIMEOUT));
+    OpenApiRouter::new().nest(PREFIX, quick.merge(waiting))
+}
+
+/// The live session `id`, or `404`.
+pub(crate) fn find_session(state: &AppState, id: &str) -> Result<SessionHandle, ApiError> {
+    state.session(id).ok_or_else(|| ApiError::SessionNotFound(id.to_string()))
+}
+
+/// Sends one command to session `id` and answers with the resulting state.
+pub(crate) async fn command(
+    state: &AppState,
+    id: &str,
+    action: Action,
+    drive: Option<Drive>,
+) -> Result<StateReply, ApiError> {
+    let session = find_session(state, id)?;
+    let outcome = session.command(action, drive).await.map_err(|e| ApiError::from_session(id, e))?;
+    Ok(StateReply(outcome))
+}
+
+/// A command's reply: the state as JSON, plus [`LIMIT_HEADER`] when a limit ended it early.
+#[derive(Debug)]
+pub struct StateReply(pub Outcome);
+
+impl IntoResponse for StateReply {
+    fn into_response(self) -> Response {
+        let mut response = Json(State::from(self.0.snapshot.as_ref())).into_response();
+        if let Some(limit) = self.0.limit {
+            let value = match limit {
+                Limit::FastSimTime => "fast-sim-time",
+                Limit::WaitWallTime => "wait-wall-time",
+            };
+            response.headers_mut().insert(LIMIT_HEADER, HeaderValue::from_static(value));
+        }
+        response
+    }
+}

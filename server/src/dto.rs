@@ -1,0 +1,502 @@
+//! Wire types: what the REST API and the WebSocket stream send and accept, with their OpenAPI
+//! schemas, and the conversions from engine types (the engine has no serde).
+//!
+//! Request bodies reject unknown fields, so a typo (`"wiat": true`) is a `400`, not a silently
+//! ignored option.
+
+use nctwin_engine::channel::{BlockRef, TransformationInfo};
+use nctwin_engine::{Alarm, Event, Mode, Snapshot, Status};
+use serde::ser::SerializeMap;
+use serde::{Deserialize, Serialize, Serializer};
+use utoipa::ToSchema;
+
+use crate::session::{Drive, Pace};
+
+/// An error: what is wrong and, when the error belongs to one line of a program or of machine
+/// data text, that line (1-based).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct ErrorBody {
+    pub error: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<u32>,
+}
+
+/// Liveness and size of the server.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct Health {
+    /// Always `"ok"` when the server answers.
+    pub status: String,
+    pub version: String,
+    /// Number of live sessions.
+    pub sessions: usize,
+}
+
+/// A built-in machine preset.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct MachineSummary {
+    pub id: String,
+    pub name: String,
+    pub description: String,
+}
+
+/// A built-in machine preset with its NC data text.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct MachineDetail {
+    pub id: String,
+    pub name: String,
+    pub description: String,
+    /// The preset as NC data text (`$MN_...`, `$MC_...`, `$MA_...`, `$TC_DP...` assignments).
+    pub machine_data: String,
+}
+
+impl From<&nctwin_engine::machine_data::presets::Preset> for MachineSummary {
+    fn from(p: &nctwin_engine::machine_data::presets::Preset) -> MachineSummary {
+        MachineSummary { id: p.id.into(), name: p.name.into(), description: p.description.into() }
+    }
+}
+
+impl From<&nctwin_engine::machine_data::presets::Preset> for MachineDetail {
+    fn from(p: &nctwin_engine::machine_data::presets::Preset) -> MachineDetail {
+        MachineDetail {
+            id: p.id.into(),
+            name: p.name.into(),
+            description: p.description.into(),
+            machine_data: p.text.into(),
+        }
+    }
+}
+
+/// Body of `POST /sessions`; an empty body means all defaults.
+#[derive(Debug, Clone, Default, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CreateSession {
+    /// Preset id from `GET /machines`; default `mill-3axis`.
+    #[schema(example = "mill-3axis")]
+    pub machine: Option<String>,
+    /// NC data text applied on top of the preset, as if written and activated by a reset.
+    #[schema(example = "$MA_POS_LIMIT_PLUS[X]=400.")]
+    pub machine_data: Option<String>,
+}
+
+/// A session with its full state.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct Session {
+    pub id: String,
+    /// The preset the session was created from.
+    pub machine: String,
+    pub state: State,
+}
+
+/// A session in the list.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct SessionSummary {
+    pub id: String,
+    pub machine: String,
+    pub status: ChannelStatus,
+    pub mode: OpMode,
+}
+
+/// What the channel is doing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum ChannelStatus {
+    /// Reset state: no program active, nothing moves.
+    Idle,
+    /// A program, MDA blocks or a JOG motion execute.
+    Running,
+    /// A program is interrupted (M0, M1, NC stop) and can be continued with `start`.
+    Stopped,
+    /// An alarm stopped the channel; a reset is needed.
+    Alarm,
+}
+
+impl From<Status> for ChannelStatus {
+    fn from(s: Status) -> ChannelStatus {
+        match s {
+            Status::Idle => ChannelStatus::Idle,
+            Status::Running => ChannelStatus::Running,
+            Status::Stopped => ChannelStatus::Stopped,
+            Status::Alarm => ChannelStatus::Alarm,
+        }
+    }
+}
+
+/// Operating mode of the channel's mode group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "UPPERCASE")]
+pub enum OpMode {
+    Jog,
+    Mda,
+    Auto,
+}
+
+impl From<Mode> for OpMode {
+    fn from(m: Mode) -> OpMode {
+        match m {
+            Mode::Jog => OpMode::Jog,
+            Mode::Mda => OpMode::Mda,
+            Mode::Auto => OpMode::Auto,
+        }
+    }
+}
+
+impl From<OpMode> for Mode {
+    fn from(m: OpMode) -> Mode {
+        match m {
+            OpMode::Jog => Mode::Jog,
+            OpMode::Mda => Mode::Mda,
+            OpMode::Auto => Mode::Auto,
+        }
+    }
+}
+
+/// The state of a session's channel at one IPO cycle.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct State {
+    pub status: ChannelStatus,
+    pub mode: OpMode,
+    /// Simulated seconds since the session started.
+    pub time: f64,
+    /// IPO cycles since the session started.
+    pub tick: u64,
+    pub positions: Positions,
+    /// Unit tool direction in the WCS, when known.
+    pub orientation: Option<[f64; 3]>,
+    /// The active kinematic transformation, if any.
+    pub transformation: Option<Transformation>,
+    /// The block shown as current.
+    pub block: Option<Block>,
+    /// Active alarms, oldest first.
+    pub alarms: Vec<AlarmInfo>,
+    /// Active tool and cutting edge.
+    pub tool: Tool,
+    /// Path velocity in mm/min.
+    pub path_velocity: f64,
+    /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
+    #[schema(value_type = std::collections::HashMap<String, f64>)]
+    pub spindles: AxisValues,
+}
+
+/// Axis positions in the three coordinate systems (mm or degrees), as objects name -> value in
+/// the machine's axis order.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct Positions {
+    /// MCS: every machine axis by its machine axis name.
+    #[schema(value_type = std::collections::HashMap<String, f64>)]
+    pub machine: AxisValues,
+    /// BCS: geometry axes, then the other channel axes, by program name.
+    #[schema(value_type = std::collections::HashMap<String, f64>)]
+    pub basic: AxisValues,
+    /// WCS: as `basic`, after work offsets.
+    #[schema(value_type = std::collections::HashMap<String, f64>)]
+    pub workpiece: AxisValues,
+}
+
+/// Named values that serialize as a JSON object in their given order (the engine's axis order),
+/// independent of any map's iteration order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct AxisValues(pub Vec<(String, f64)>);
+
+impl Serialize for AxisValues {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(self.0.len()))?;
+        for (name, value) in &self.0 {
+            map.serialize_entry(name, value)?;
+        }
+        map.end()
+    }
+}
+
+/// A kinematic transformation.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct Transformation {
+    /// E.g. `TRANSMIT`.
+    pub name: String,
+    /// `$MC_TRAFO_TYPE_n`, e.g. 256.
+    #[serde(rename = "type")]
+    pub trafo_type: u32,
+    /// The data set n (1-based).
+    pub index: u32,
+}
+
+/// A program block.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct Block {
+    /// 1-based line in the program text.
+    pub line: u32,
+    pub text: String,
+}
+
+/// An active NC alarm.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct AlarmInfo {
+    pub number: u32,
+    pub message: String,
+    /// 1-based program line, when the alarm belongs to a block.
+    pub line: Option<u32>,
+}
+
+/// Active tool number T and cutting edge D (D0 = no offset).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Tool {
+    pub t: u32,
+    pub d: u32,
+}
+
+impl From<&Snapshot> for State {
+    fn from(s: &Snapshot) -> State {
+        State {
+            status: s.status.into(),
+            mode: s.mode.into(),
+            time: s.time,
+            tick: s.tick,
+            positions: Positions {
+                machine: AxisValues(s.machine.clone()),
+                basic: AxisValues(s.basic.clone()),
+                workpiece: AxisValues(s.workpiece.clone()),
+            },
+            orientation: s.orientation,
+            transformation: s.transformation.as_ref().map(Transformation::from),
+            block: s.block.as_ref().map(Block::from),
+            alarms: s.alarms.iter().map(AlarmInfo::from).collect(),
+            tool: Tool { t: s.tool.0, d: s.tool.1 },
+            path_velocity: s.path_velocity,
+            spindles: AxisValues(s.spindles.clone()),
+        }
+    }
+}
+
+impl From<&TransformationInfo> for Transformation {
+    fn from(t: &TransformationInfo) -> Transformation {
+        Transformation { name: t.name.clone(), trafo_type: t.trafo_type, index: t.index }
+    }
+}
+
+impl From<&BlockRef> for Block {
+    fn from(b: &BlockRef) -> Block {
+        Block { line: b.line, text: b.text.clone() }
+    }
+}
+
+impl From<&Alarm> for AlarmInfo {
+    fn from(a: &Alarm) -> AlarmInfo {
+        AlarmInfo { number: a.number, message: a.message.clone(), line: a.line }
+    }
+}
+
+/// How a command's motion is stepped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum PaceOption {
+    /// At wall-clock pace (what an operator watches).
+    #[default]
+    Realtime,
+    /// As fast as the server can compute; simulated time is unaffected. Limited to 3600 s of
+    /// simulated time per command, after which the channel is stopped (NC stop).
+    Fast,
+}
+
+impl From<PaceOption> for Pace {
+    fn from(p: PaceOption) -> Pace {
+        match p {
+            PaceOption::Realtime => Pace::Realtime,
+            PaceOption::Fast => Pace::Fast,
+        }
+    }
+}
+
+/// Body of `POST /sessions/{id}/run`.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RunRequest {
+    /// Part program text, one block per line.
+    #[schema(example = "G0 X10 Y20 Z30\nM30")]
+    pub program: String,
+    #[serde(default)]
+    pub pace: PaceOption,
+    /// Answer when the program has ended, stopped (M0/M1, alarm) or a server-side limit was hit
+    /// (fast: 3600 s simulated; any pace: 600 s wall time), with the state at that moment.
+    #[serde(default)]
+    pub wait: bool,
+    /// Sets optional stop (M1 stops) before the start; absent keeps the current setting.
+    pub optional_stop: Option<bool>,
+}
+
+/// Body of `POST /sessions/{id}/start`; may be empty.
+#[derive(Debug, Clone, Default, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StartRequest {
+    #[serde(default)]
+    pub pace: PaceOption,
+    /// As for `run`.
+    #[serde(default)]
+    pub wait: bool,
+}
+
+/// Body of `POST /sessions/{id}/mda`.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MdaRequest {
+    /// Blocks to execute in MDA mode.
+    #[schema(example = "G91 G1 X5 F500")]
+    pub program: String,
+    #[serde(default)]
+    pub pace: PaceOption,
+    /// As for `run`.
+    #[serde(default)]
+    pub wait: bool,
+}
+
+/// Body of `PUT /sessions/{id}/mode`.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ModeRequest {
+    pub mode: OpMode,
+}
+
+/// Body of `POST /sessions/{id}/jog`.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JogBody {
+    /// Program name of the axis (geometry or channel axis name).
+    #[schema(example = "X")]
+    pub axis: String,
+    /// `1` (plus) or `-1` (minus).
+    #[schema(minimum = -1, maximum = 1, example = 1)]
+    pub direction: i8,
+    /// Incremental JOG by this distance (mm or degrees, positive); absent: continuous JOG until
+    /// `jog/stop` or the software limit.
+    pub increment: Option<f64>,
+    /// Rapid traverse override.
+    #[serde(default)]
+    pub rapid: bool,
+    #[serde(default)]
+    pub pace: PaceOption,
+    /// As for `run`: answer when the axis stands.
+    #[serde(default)]
+    pub wait: bool,
+}
+
+/// Body of `PUT /sessions/{id}/machine-data`.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MachineDataRequest {
+    /// NC data text, applied all-or-nothing and activated as by a reset.
+    #[schema(example = "$MA_POS_LIMIT_PLUS[X]=400.")]
+    pub text: String,
+}
+
+/// The stepping options shared by run, start, MDA and JOG.
+pub fn drive(pace: PaceOption, wait: bool) -> Drive {
+    Drive { pace: pace.into(), wait }
+}
+
+/// A message on `GET /sessions/{id}/stream`.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum StreamMessage {
+    /// The state (at most one per stream period, only when it changed; the first at once).
+    State(Box<State>),
+    /// Something happened.
+    Event(EventMessage),
+}
+
+/// An event of a session.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+#[serde(tag = "event", rename_all = "snake_case")]
+pub enum EventMessage {
+    AlarmRaised {
+        alarm: AlarmInfo,
+    },
+    AlarmCleared {
+        number: u32,
+    },
+    BlockChanged {
+        line: u32,
+        text: String,
+    },
+    /// The program ended (M2/M17/M30 or end of text).
+    ProgramEnded,
+    /// The program stopped at M0/M1.
+    ProgramStopped {
+        line: u32,
+    },
+    ModeChanged {
+        mode: OpMode,
+    },
+}
+
+impl From<&Event> for EventMessage {
+    fn from(e: &Event) -> EventMessage {
+        match e {
+            Event::AlarmRaised(a) => EventMessage::AlarmRaised { alarm: a.into() },
+            Event::AlarmCleared { number } => EventMessage::AlarmCleared { number: *number },
+            Event::BlockChanged(b) => EventMessage::BlockChanged { line: b.line, text: b.text.clone() },
+            Event::ProgramEnded => EventMessage::ProgramEnded,
+            Event::ProgramStopped { line } => EventMessage::ProgramStopped { line: *line },
+            Event::ModeChanged(m) => EventMessage::ModeChanged { mode: (*m).into() },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn state() -> State {
+        State {
+            status: ChannelStatus::Idle,
+            mode: OpMode::Auto,
+            time: 0.5,
+            tick: 125,
+            positions: Positions {
+                machine: AxisValues(vec![("Z".into(), 3.0), ("A".into(), 1.0)]),
+                basic: AxisValues::default(),
+                workpiece: AxisValues::default(),
+            },
+            orientation: None,
+            transformation: None,
+            block: None,
+            alarms: vec![],
+            tool: Tool { t: 0, d: 0 },
+            path_velocity: 0.0,
+            spindles: AxisValues::default(),
+        }
+    }
+
+    #[test]
+    fn axis_values_keep_the_engine_order() {
+        let text = serde_json::to_string(&state().positions.machine).unwrap();
+        assert_eq!(text, r#"{"Z":3.0,"A":1.0}"#);
+    }
+
+    #[test]
+    fn a_state_message_is_the_state_with_a_type_field() {
+        let v = serde_json::to_value(StreamMessage::State(Box::new(state()))).unwrap();
+        assert_eq!(v["type"], "state");
+        assert_eq!(v["status"], "idle");
+        assert_eq!(v["mode"], "AUTO");
+        assert_eq!(v["positions"]["machine"]["Z"], 3.0);
+    }
+
+    #[test]
+    fn event_messages_name_the_event() {
+        let ended = serde_json::to_value(StreamMessage::Event(EventMessage::ProgramEnded)).unwrap();
+        assert_eq!(ended, json!({"type": "event", "event": "program_ended"}));
+        let mode = serde_json::to_value(StreamMessage::Event(EventMessage::ModeChanged { mode: OpMode::Jog })).unwrap();
+        assert_eq!(mode, json!({"type": "event", "event": "mode_changed", "mode": "JOG"}));
+        let alarm = EventMessage::AlarmRaised { alarm: AlarmInfo { number: 10720, message: "m".into(), line: None } };
+        let v = serde_json::to_value(StreamMessage::Event(alarm)).unwrap();
+        assert_eq!(
+            v,
+            json!({"type": "event", "event": "alarm_raised", "alarm": {"number": 10720, "message": "m", "line": null}})
+        );
+    }
+
+    #[test]
+    fn request_bodies_reject_unknown_fields() {
+        let e = serde_json::from_str::<RunRequest>(r#"{"program": "M30", "wiat": true}"#).unwrap_err();
+        assert!(e.to_string().contains("unknown field `wiat`"), "{e}");
+    }
+}

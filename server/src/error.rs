@@ -1,0 +1,122 @@
+//! [`ApiError`]: every way a request can fail, each with its HTTP status, as one JSON shape
+//! `{"error": "<message>", "line": <1-based line, only when the error belongs to one>}`.
+
+use axum::Json;
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use nctwin_engine::{CommandError, MdError};
+
+use crate::dto::ErrorBody;
+use crate::session::SessionError;
+
+/// A failed request. Client mistakes are 4xx with a message that names the problem; nothing
+/// a client sends produces a 5xx.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ApiError {
+    /// Malformed or invalid input: bad JSON, unknown fields, a program with syntax errors, bad
+    /// machine data, an unknown preset or axis, ...
+    #[error("{message}")]
+    BadRequest { message: String, line: Option<u32> },
+    /// The channel refuses the command in its current state (busy, alarm, wrong mode).
+    #[error("{0}")]
+    Conflict(String),
+    #[error("session `{0}` does not exist")]
+    SessionNotFound(String),
+    /// The session was deleted (or the server shut down) while the request waited for it.
+    #[error("session `{0}` has ended")]
+    SessionEnded(String),
+    #[error("machine preset `{0}` does not exist")]
+    MachineNotFound(String),
+    #[error("no such resource: {0}")]
+    NotFound(String),
+    #[error("request body is larger than the limit of {0} bytes")]
+    PayloadTooLarge(usize),
+}
+
+impl ApiError {
+    /// A 400 without a line.
+    pub fn bad_request(message: impl Into<String>) -> ApiError {
+        ApiError::BadRequest { message: message.into(), line: None }
+    }
+
+    /// The HTTP status this error is sent with.
+    pub fn status(&self) -> StatusCode {
+        match self {
+            ApiError::BadRequest { .. } => StatusCode::BAD_REQUEST,
+            ApiError::Conflict(_) => StatusCode::CONFLICT,
+            ApiError::SessionNotFound(_)
+            | ApiError::SessionEnded(_)
+            | ApiError::MachineNotFound(_)
+            | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
+            ApiError::PayloadTooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
+        }
+    }
+
+    /// The JSON body sent to the client.
+    pub fn body(&self) -> ErrorBody {
+        let line = match self {
+            ApiError::BadRequest { line, .. } => *line,
+            _ => None,
+        };
+        ErrorBody { error: self.to_string(), line }
+    }
+
+    /// Maps a session's reply error; `id` names the session in the message.
+    pub fn from_session(id: &str, e: SessionError) -> ApiError {
+        match e {
+            SessionError::Command(e) => e.into(),
+            SessionError::Ended => ApiError::SessionEnded(id.to_string()),
+        }
+    }
+}
+
+impl From<CommandError> for ApiError {
+    fn from(e: CommandError) -> ApiError {
+        match &e {
+            CommandError::Syntax { line, .. } => ApiError::BadRequest { message: e.to_string(), line: Some(*line) },
+            CommandError::MachineData(md) => md.clone().into(),
+            CommandError::UnknownAxis(_) | CommandError::Invalid(_) => ApiError::bad_request(e.to_string()),
+            CommandError::Busy(_) | CommandError::AlarmActive | CommandError::WrongMode(..) => {
+                ApiError::Conflict(e.to_string())
+            }
+        }
+    }
+}
+
+impl From<MdError> for ApiError {
+    fn from(e: MdError) -> ApiError {
+        ApiError::BadRequest { message: format!("machine data: {e}"), line: e.line }
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        (self.status(), Json(self.body())).into_response()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn syntax_errors_are_400_with_their_line() {
+        let e: ApiError = CommandError::Syntax { line: 3, message: "bad".into() }.into();
+        assert_eq!(e.status(), StatusCode::BAD_REQUEST);
+        assert_eq!(e.body().line, Some(3));
+    }
+
+    #[test]
+    fn refusals_in_the_current_state_are_409() {
+        for e in [CommandError::Busy("x"), CommandError::AlarmActive, CommandError::WrongMode("AUTO", "y")] {
+            assert_eq!(ApiError::from(e).status(), StatusCode::CONFLICT);
+        }
+    }
+
+    #[test]
+    fn machine_data_errors_keep_their_line() {
+        let e: ApiError = CommandError::MachineData(MdError { line: Some(2), message: "unknown name".into() }).into();
+        assert_eq!((e.status(), e.body().line), (StatusCode::BAD_REQUEST, Some(2)));
+        assert!(e.body().error.contains("line 2"), "{}", e.body().error);
+    }
+}

@@ -1,0 +1,82 @@
+//! `nctwin`: serves the REST API, the WebSocket streams and the browser HMI.
+
+use std::io::IsTerminal;
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use nctwin_server::AppState;
+use tokio::net::TcpListener;
+use tracing_subscriber::EnvFilter;
+
+/// NCTwin: simulated SINUMERIK 840D sl-style NC channels over HTTP and WebSocket.
+#[derive(Debug, Parser)]
+#[command(name = "nctwin", version)]
+struct Args {
+    /// Address to listen on, IP:PORT (port 0 picks a free port).
+    #[arg(long, default_value = "127.0.0.1:8080")]
+    bind: SocketAddr,
+    /// Where data that must survive a restart is kept (created if missing).
+    #[arg(long, default_value = "./nctwin-data")]
+    data_dir: PathBuf,
+    /// Folder of the browser HMI's static files.
+    #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web"))]
+    web_dir: PathBuf,
+}
+
+#[tokio::main]
+async fn main() -> ExitCode {
+    tracing_subscriber::fmt()
+        .with_env_filter(EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("info")))
+        .with_ansi(std::io::stdout().is_terminal())
+        .init();
+    let args = Args::parse();
+    match serve(args).await {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            tracing::error!("{message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+async fn serve(args: Args) -> Result<(), String> {
+    std::fs::create_dir_all(&args.data_dir)
+        .map_err(|e| format!("cannot create data directory {}: {e}", args.data_dir.display()))?;
+    if !args.web_dir.join("index.html").is_file() {
+        tracing::warn!("no index.html in {}: the HMI will not be served", args.web_dir.display());
+    }
+    let listener = TcpListener::bind(args.bind).await.map_err(|e| format!("cannot bind {}: {e}", args.bind))?;
+    let addr = listener.local_addr().map_err(|e| format!("cannot read the bound address: {e}"))?;
+    let state = AppState::new(args.data_dir, args.web_dir);
+    tracing::info!("listening on http://{addr}");
+    nctwin_server::run(listener, state, shutdown_signal()).await.map_err(|e| format!("server error: {e}"))?;
+    tracing::info!("stopped");
+    Ok(())
+}
+
+/// Completes on Ctrl-C (SIGINT) or, on Unix, SIGTERM.
+async fn shutdown_signal() {
+    let ctrl_c = async {
+        if tokio::signal::ctrl_c().await.is_err() {
+            std::future::pending::<()>().await;
+        }
+    };
+    #[cfg(unix)]
+    let terminate = async {
+        match tokio::signal::unix::signal(tokio::signal::unix::SignalKind::terminate()) {
+            Ok(mut signal) => {
+                signal.recv().await;
+            }
+            Err(_) => std::future::pending::<()>().await,
+        }
+    };
+    #[cfg(not(unix))]
+    let terminate = std::future::pending::<()>();
+    tokio::select! {
+        () = ctrl_c => {}
+        () = terminate => {}
+    }
+    tracing::info!("shutting down");
+}

@@ -1,0 +1,306 @@
+//! The session actor: the one task that owns a `Channel`, applies commands to it and steps it.
+//!
+//! When is the channel stepped?
+//! - Idle (`Channel::is_active()` is false): never; the task sleeps until a request arrives.
+//! - Real-time pace: the task wakes once per period and runs the IPO cycles wall time owes
+//!   ([`Pacer`]), so thousands of sessions fit on two cores.
+//! - Fast pace: chunks of [`ActorConfig::fast_chunk`] cycles run back to back on a blocking
+//!   worker (`spawn_blocking`), the channel moved there and back, so the async runtime is never
+//!   starved. Between chunks the state is published and queued requests are handled, so an NC
+//!   stop or reset acts at once. Fast pace ends with the motion (`is_busy()` false); whatever
+//!   still turns (a spindle) then goes on in real time.
+
+use std::sync::Arc;
+
+use nctwin_engine::{Channel, CommandError, Event, Snapshot, Status};
+use tokio::sync::{broadcast, mpsc, oneshot, watch};
+use tokio::time::{Instant, sleep_until};
+
+use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
+
+/// Extra simulated seconds a fast run stopped by its limit may take to brake before the actor
+/// resets the channel.
+const BRAKE_GRACE: f64 = 60.0;
+
+/// A request that asked to be answered once the motion is over.
+#[derive(Debug)]
+struct Waiter {
+    reply: oneshot::Sender<Result<Outcome, CommandError>>,
+    /// Wall time at which it is answered anyway.
+    deadline: Instant,
+}
+
+/// What the loop does after a request.
+enum Flow {
+    Continue,
+    Stop(oneshot::Sender<()>),
+}
+
+/// Everything the actor keeps besides the channel itself (which is moved to blocking workers
+/// in fast pace and therefore lives in a local variable of [`Actor::run`]).
+pub(super) struct Actor {
+    config: ActorConfig,
+    state: watch::Sender<Arc<Snapshot>>,
+    events: broadcast::Sender<Event>,
+    pace: Pace,
+    /// Tick at which the current fast-paced command is stopped.
+    fast_limit_tick: u64,
+    /// The fast limit stopped the channel; replies report it until the next driving command.
+    limit_hit: bool,
+    /// Present while the channel is stepped in real time.
+    pacer: Option<Pacer>,
+    next_wake: Instant,
+    waiters: Vec<Waiter>,
+}
+
+impl Actor {
+    pub(super) fn new(
+        config: ActorConfig,
+        state: watch::Sender<Arc<Snapshot>>,
+        events: broadcast::Sender<Event>,
+    ) -> Actor {
+        Actor {
+            config,
+            state,
+            events,
+            pace: Pace::Realtime,
+            fast_limit_tick: 0,
+            limit_hit: false,
+            pacer: None,
+            next_wake: Instant::now(),
+            waiters: Vec::new(),
+        }
+    }
+
+    /// The actor loop; ends on a shutdown request, when every handle is gone, or when the
+    /// engine panics on a blocking worker (the session then reports that it has ended).
+    pub(super) async fn run(mut self, mut channel: Box<Channel>, mut requests: mpsc::Receiver<Request>) {
+        loop {
+            if self.pace == Pace::Fast && !channel.is_busy() {
+                // The fast motion is over (or never started); what still turns goes on in real time.
+                self.pace = Pace::Realtime;
+            }
+            if self.pace == Pace::Fast {
+                self.pacer = None;
+                // Requests that queued up during the last chunk act before the next one.
+                loop {
+                    match requests.try_recv() {
+                        Ok(request) => match self.handle(&mut channel, request) {
+                            Flow::Continue => {}
+                            Flow::Stop(reply) => return self.finish(reply),
+                        },
+                        Err(mpsc::error::TryRecvError::Empty) => break,
+                        Err(mpsc::error::TryRecvError::Disconnected) => return,
+                    }
+                }
+                if self.pace == Pace::Fast && channel.is_busy() {
+                    match self.fast_chunk(channel).await {
+                        Some(c) => channel = c,
+                        None => return,
+                    }
+                }
+                continue;
+            }
+
+            let stepping = channel.is_active();
+            if !stepping {
+                self.pacer = None;
+            } else if self.pacer.is_none() {
+                let now = Instant::now();
+                self.pacer = Some(Pacer::new(channel.config().ipo_cycle, now));
+                self.next_wake = now + self.config.period;
+            }
+            tokio::select! {
+                request = requests.recv() => match request {
+                    None => return,
+                    Some(request) => match self.handle(&mut channel, request) {
+                        Flow::Continue => {}
+                        Flow::Stop(reply) => return self.finish(reply),
+                    },
+                },
+                () = sleep_until(self.next_wake), if stepping => self.realtime_wake(&mut channel),
+            }
+        }
+    }
+
+    /// Drops the state and event senders (closing every stream) and then confirms shutdown.
+    fn finish(self, reply: oneshot::Sender<()>) {
+        drop(self);
+        let _ = reply.send(());
+    }
+
+    fn handle(&mut self, channel: &mut Channel, request: Request) -> Flow {
+        let (action, drive, reply) = match request {
+            Request::Shutdown { reply } => return Flow::Stop(reply),
+            Request::Command { action, drive, reply } => (action, drive, reply),
+        };
+        let result = apply(channel, action);
+        self.publish(channel);
+        if let Err(e) = result {
+            let _ = reply.send(Err(e));
+            return Flow::Continue;
+        }
+        let now = Instant::now();
+        match drive {
+            Some(drive) => {
+                self.pace = drive.pace;
+                self.limit_hit = false;
+                if drive.pace == Pace::Fast {
+                    let cycles = (self.config.fast_sim_time / channel.config().ipo_cycle).ceil() as u64;
+                    self.fast_limit_tick = channel.ticks().saturating_add(cycles);
+                }
+                if drive.wait {
+                    self.waiters.push(Waiter { reply, deadline: now + self.config.wait_wall_time });
+                    self.settle_waiters(channel, now);
+                } else {
+                    let _ = reply.send(Ok(self.outcome(None)));
+                }
+            }
+            None => {
+                let _ = reply.send(Ok(self.outcome(None)));
+            }
+        }
+        Flow::Continue
+    }
+
+    /// Runs the IPO cycles wall time owes, stopping early once nothing is left to move.
+    fn realtime_wake(&mut self, channel: &mut Channel) {
+        let now = Instant::now();
+        let owed = self.pacer.as_mut().map_or(0, |p| p.owed(now));
+        for _ in 0..owed {
+            if !channel.is_active() {
+                break;
+            }
+            channel.step();
+        }
+        self.next_wake += self.config.period;
+        if self.next_wake <= now {
+            self.next_wake = now + self.config.period;
+        }
+        self.publish(channel);
+        self.settle_waiters(channel, now);
+    }
+
+    /// Runs one chunk of fast-paced cycles on a blocking worker. `None` if the engine panicked.
+    async fn fast_chunk(&mut self, mut channel: Box<Channel>) -> Option<Box<Channel>> {
+        let (steps, limit) = (self.config.fast_chunk, self.fast_limit_tick);
+        let joined = tokio::task::spawn_blocking(move || {
+            step_fast(&mut channel, steps, limit);
+            channel
+        })
+        .await;
+        let mut channel = match joined {
+            Ok(channel) => channel,
+            Err(e) => {
+                tracing::error!(error = %e, "session engine failed during a fast run; the session has ended");
+                return None;
+            }
+        };
+        if channel.is_busy() && channel.ticks() >= self.fast_limit_tick {
+            if self.limit_hit {
+                // Still moving after the grace period: a reset stops everything at once.
+                channel.reset();
+            } else {
+                channel.stop();
+                self.limit_hit = true;
+                let grace = (BRAKE_GRACE / channel.config().ipo_cycle).ceil() as u64;
+                self.fast_limit_tick = self.fast_limit_tick.saturating_add(grace);
+            }
+        }
+        if !channel.is_busy() {
+            self.pace = Pace::Realtime;
+        }
+        self.publish(&mut channel);
+        self.settle_waiters(&channel, Instant::now());
+        Some(channel)
+    }
+
+    /// Broadcasts new events and publishes the state if it changed.
+    fn publish(&mut self, channel: &mut Channel) {
+        for event in channel.take_events() {
+            // No subscribers is not an error: events are for whoever listens right now.
+            let _ = self.events.send(event);
+        }
+        let snapshot = channel.snapshot();
+        self.state.send_if_modified(|current| {
+            if **current == snapshot {
+                false
+            } else {
+                *current = Arc::new(snapshot);
+                true
+            }
+        });
+    }
+
+    /// Answers waiting requests whose motion is over or whose wall-time limit has come.
+    fn settle_waiters(&mut self, channel: &Channel, now: Instant) {
+        if self.waiters.is_empty() {
+            return;
+        }
+        let done = channel.status() != Status::Running && !channel.is_busy();
+        let limit = self.limit_hit.then_some(Limit::FastSimTime);
+        let mut keep = Vec::new();
+        for waiter in std::mem::take(&mut self.waiters) {
+            if done {
+                let _ = waiter.reply.send(Ok(self.outcome(limit)));
+            } else if now >= waiter.deadline {
+                let _ = waiter.reply.send(Ok(self.outcome(Some(Limit::WaitWallTime))));
+            } else {
+                keep.push(waiter);
+            }
+        }
+        self.waiters = keep;
+    }
+
+    fn outcome(&self, limit: Option<Limit>) -> Outcome {
+        Outcome { snapshot: self.state.borrow().clone(), limit }
+    }
+}
+
+/// Applies one action; a refused action changes nothing.
+fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
+    match action {
+        Action::Run { program, optional_stop } => {
+            let before = channel.optional_stop;
+            if let Some(on) = optional_stop {
+                channel.optional_stop = on;
+            }
+            let result = channel.run_program(&program);
+            if result.is_err() {
+                channel.optional_stop = before;
+            }
+            result
+        }
+        Action::Mda { program } => channel.mda(&program),
+        Action::Start => channel.start(),
+        Action::Stop => {
+            channel.stop();
+            Ok(())
+        }
+        Action::Reset => {
+            channel.reset();
+            Ok(())
+        }
+        Action::Cancel => {
+            channel.cancel_alarms();
+            Ok(())
+        }
+        Action::SetMode(mode) => channel.set_mode(mode),
+        Action::Jog(request) => channel.jog(&request),
+        Action::JogStop => {
+            channel.jog_stop();
+            Ok(())
+        }
+        Action::MachineData(text) => channel.apply_machine_data(&text),
+    }
+}
+
+/// Steps up to `max_steps` cycles while something moves and the limit tick is not reached.
+fn step_fast(channel: &mut Channel, max_steps: u64, limit_tick: u64) {
+    for _ in 0..max_steps {
+        if !channel.is_busy() || channel.ticks() >= limit_tick {
+            break;
+        }
+        channel.step();
+    }
+}

@@ -1,0 +1,288 @@
+//! Sessions: one actor task per simulated channel, and the handle the rest of the server uses.
+//!
+//! The actor (module `actor`) is the only code that touches a session's `Channel`; everything else
+//! talks to it through a [`SessionHandle`]:
+//! - commands go on a bounded `mpsc` queue, each with a `oneshot` for its reply;
+//! - the latest state is published on a `watch` channel: readers (REST `GET .../state`, every
+//!   WebSocket viewer) just look at the newest snapshot, and a slow viewer skips intermediate
+//!   states, so nobody can slow the machine down;
+//! - events (alarms, block changes, program end, ...) go on a `broadcast` channel of
+//!   [`EVENT_CAPACITY`] entries.
+//!
+//! This module knows nothing of HTTP or JSON: it speaks engine types.
+
+mod actor;
+mod pacer;
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use nctwin_engine::{Channel, CommandError, Event, JogRequest, Mode, Snapshot};
+use tokio::sync::{broadcast, mpsc, oneshot, watch};
+
+pub use pacer::Pacer;
+
+/// Capacity of a session's event channel. A subscriber that falls more than this many events
+/// behind does not slow the session down: its next `recv` reports the lag and it continues with
+/// the oldest event still held (the skipped events are lost for that subscriber only).
+pub const EVENT_CAPACITY: usize = 256;
+
+/// Capacity of a session's command queue. Senders wait when it is full, which is back-pressure
+/// on clients that flood one session, not on the session.
+const COMMAND_CAPACITY: usize = 64;
+
+/// How a command that starts motion is stepped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pace {
+    /// At wall-clock pace: the actor wakes once per stream period and runs the IPO cycles that
+    /// wall time owes.
+    #[default]
+    Realtime,
+    /// As fast as the machine can compute, on a blocking-capable worker, until the program or
+    /// motion ends (or the simulated-time limit is hit).
+    Fast,
+}
+
+/// Stepping options of a command that starts something (run, start, MDA, JOG).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Drive {
+    pub pace: Pace,
+    /// Reply only once the channel is no longer running and nothing moves (or a limit is hit).
+    pub wait: bool,
+}
+
+/// What a command asks the channel to do.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    /// Load a program and start it in AUTO mode; `optional_stop` sets M1 behaviour first.
+    Run {
+        program: String,
+        optional_stop: Option<bool>,
+    },
+    /// Execute blocks in MDA mode.
+    Mda {
+        program: String,
+    },
+    /// NC start: continue after M0/M1/NC stop.
+    Start,
+    /// NC stop.
+    Stop,
+    /// Channel reset.
+    Reset,
+    /// Clear cancel-type alarms.
+    Cancel,
+    SetMode(Mode),
+    Jog(JogRequest),
+    JogStop,
+    /// Apply NC data text in reset state.
+    MachineData(String),
+}
+
+/// A server-side limit that ended a command early.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Limit {
+    /// A fast run reached [`crate::Limits::fast_sim_time`] of simulated time and was stopped.
+    FastSimTime,
+    /// A waiting request reached [`crate::Limits::wait_wall_time`] of wall time.
+    WaitWallTime,
+}
+
+/// The reply to a successful command: the state at that moment.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    pub snapshot: Arc<Snapshot>,
+    /// Set when a server-side limit ended the command (or its wait) early.
+    pub limit: Option<Limit>,
+}
+
+/// Why a command got no reply from the channel.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SessionError {
+    /// The channel refused the command.
+    #[error(transparent)]
+    Command(#[from] CommandError),
+    /// The actor has ended (the session was deleted or the server is shutting down).
+    #[error("the session has ended")]
+    Ended,
+}
+
+/// Tunables of every session actor; see [`crate::Limits`] for the values and their meaning.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ActorConfig {
+    /// Wake period of real-time pacing.
+    pub period: Duration,
+    /// Simulated seconds a fast-paced command may run before it is stopped.
+    pub fast_sim_time: f64,
+    /// Wall time after which a waiting request is answered anyway.
+    pub wait_wall_time: Duration,
+    /// IPO cycles per blocking chunk in fast pace.
+    pub fast_chunk: u64,
+}
+
+/// A request to the actor with the channel for its reply.
+#[derive(Debug)]
+enum Request {
+    Command {
+        action: Action,
+        drive: Option<Drive>,
+        reply: oneshot::Sender<Result<Outcome, CommandError>>,
+    },
+    /// End the actor; the reply is sent as its last act.
+    Shutdown {
+        reply: oneshot::Sender<()>,
+    },
+}
+
+/// A cheap-to-clone handle to one running session.
+#[derive(Debug, Clone)]
+pub struct SessionHandle {
+    id: Arc<str>,
+    machine: Arc<str>,
+    requests: mpsc::Sender<Request>,
+    state: watch::Receiver<Arc<Snapshot>>,
+    events: broadcast::Sender<Event>,
+}
+
+impl SessionHandle {
+    /// Starts the actor for `channel` on the current Tokio runtime.
+    pub fn spawn(id: &str, machine: &str, channel: Channel, config: ActorConfig) -> SessionHandle {
+        let (requests, rx) = mpsc::channel(COMMAND_CAPACITY);
+        let (state_tx, state) = watch::channel(Arc::new(channel.snapshot()));
+        let (events, _) = broadcast::channel(EVENT_CAPACITY);
+        let actor = actor::Actor::new(config, state_tx, events.clone());
+        tokio::spawn(actor.run(Box::new(channel), rx));
+        SessionHandle { id: id.into(), machine: machine.into(), requests, state, events }
+    }
+
+    /// The id the registry knows the session by.
+    pub fn id(&self) -> &str {
+        &self.id
+    }
+
+    /// The preset the session was created from.
+    pub fn machine(&self) -> &str {
+        &self.machine
+    }
+
+    /// The latest published state; never waits for the actor.
+    pub fn snapshot(&self) -> Arc<Snapshot> {
+        self.state.borrow().clone()
+    }
+
+    /// A receiver of the latest state; `changed()` fails once the session has ended.
+    pub fn watch_state(&self) -> watch::Receiver<Arc<Snapshot>> {
+        self.state.clone()
+    }
+
+    /// A receiver of the events from now on (see [`EVENT_CAPACITY`] for lag behaviour).
+    pub fn subscribe_events(&self) -> broadcast::Receiver<Event> {
+        self.events.subscribe()
+    }
+
+    /// Sends a command and waits for its reply (with `drive.wait`, until the motion is over).
+    pub async fn command(&self, action: Action, drive: Option<Drive>) -> Result<Outcome, SessionError> {
+        let (reply, rx) = oneshot::channel();
+        self.requests.send(Request::Command { action, drive, reply }).await.map_err(|_| SessionError::Ended)?;
+        Ok(rx.await.map_err(|_| SessionError::Ended)??)
+    }
+
+    /// Ends the actor and waits until it has stopped. Waiting requests get
+    /// [`SessionError::Ended`]; streams see the state channel close.
+    pub async fn shutdown(&self) {
+        let (reply, rx) = oneshot::channel();
+        if self.requests.send(Request::Shutdown { reply }).await.is_ok() {
+            let _ = rx.await;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use nctwin_engine::Status;
+    use tokio::time::Instant;
+
+    use super::*;
+
+    fn config() -> ActorConfig {
+        ActorConfig {
+            period: Duration::from_millis(50),
+            fast_sim_time: 3600.0,
+            wait_wall_time: Duration::from_secs(600),
+            fast_chunk: 1000,
+        }
+    }
+
+    fn mill() -> SessionHandle {
+        let channel = Channel::from_preset("mill-3axis", "").expect("preset");
+        SessionHandle::spawn("t", "mill-3axis", channel, config())
+    }
+
+    fn run(program: &str) -> Action {
+        Action::Run { program: program.into(), optional_stop: None }
+    }
+
+    fn x(snapshot: &Snapshot) -> f64 {
+        snapshot.machine[0].1
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn realtime_pace_keeps_simulated_time_with_the_clock() {
+        let session = mill();
+        let start = Instant::now();
+        let drive = Drive { pace: Pace::Realtime, wait: true };
+        let outcome = session.command(run("G1 X10 F600\nM30"), Some(drive)).await.expect("run");
+        let wall = start.elapsed().as_secs_f64();
+        let snapshot = &outcome.snapshot;
+        assert_eq!((snapshot.status, x(snapshot)), (Status::Idle, 10.0));
+        // The clock is paused and advanced by Tokio only when every task sleeps, so this is
+        // exact arithmetic, not a measurement: the difference is below one wake period.
+        assert!((snapshot.time - wall).abs() <= 0.05 + 0.004, "simulated {} s, wall {wall} s", snapshot.time);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn an_idle_session_is_not_stepped() {
+        let session = mill();
+        let drive = Drive { pace: Pace::Realtime, wait: true };
+        let end = session.command(run("G1 X1 F600\nM30"), Some(drive)).await.expect("run").snapshot;
+        tokio::time::sleep(Duration::from_secs(60)).await;
+        assert_eq!(session.snapshot().tick, end.tick);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn fast_and_realtime_pace_end_in_the_same_state() {
+        let program = "G1 X10 Y5 F900\nG0 Z20\nG1 X0 F3000\nM30";
+        let fast = mill()
+            .command(run(program), Some(Drive { pace: Pace::Fast, wait: true }))
+            .await
+            .expect("fast run")
+            .snapshot;
+        let realtime = mill()
+            .command(run(program), Some(Drive { pace: Pace::Realtime, wait: true }))
+            .await
+            .expect("realtime run")
+            .snapshot;
+        assert_eq!(fast, realtime);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn a_stop_acts_between_fast_chunks() {
+        let session = mill();
+        // One hundred simulated seconds: many chunks of 1000 cycles.
+        let moving = session.command(run("G1 X100 F60\nM30"), Some(Drive { pace: Pace::Fast, wait: false })).await;
+        assert_eq!(moving.expect("run").snapshot.status, Status::Running);
+        let stopped = session.command(Action::Stop, None).await.expect("stop").snapshot;
+        assert_eq!(stopped.status, Status::Stopped);
+        assert!(x(&stopped) < 100.0);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn commands_after_shutdown_report_that_the_session_ended() {
+        let session = mill();
+        let mut states = session.watch_state();
+        session.shutdown().await;
+        assert_eq!(session.command(Action::Reset, None).await.unwrap_err(), SessionError::Ended);
+        assert!(states.changed().await.is_err(), "the state channel is closed");
+    }
+}
