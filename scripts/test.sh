@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# The one command that runs every NCTwin test:
+#   formatting, clippy, the Rust tests of the workspace, and the browser test of the HMI
+#   (headless Chromium against a freshly started server).
+#
+#   scripts/test.sh            everything
+#   scripts/test.sh rust       only fmt, clippy and cargo test
+#   scripts/test.sh browser    only the browser test
+#
+# Needs /usr/bin/chromium (scripts/install-deps.sh installs it). Runs from any directory.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+
+WHAT="${1:-all}"
+case "$WHAT" in
+  all | rust | browser) ;;
+  *) echo "usage: $0 [all|rust|browser]" >&2; exit 2 ;;
+esac
+
+CHROMIUM="${CHROMIUM_PATH:-/usr/bin/chromium}"
+TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
+STARTUP_TIMEOUT_S=60
+
+section() { printf '\n==> %s\n' "$*"; }
+
+if [ "$WHAT" != rust ] && [ ! -x "$CHROMIUM" ]; then
+  echo "error: $CHROMIUM not found; the browser test needs it. Run scripts/install-deps.sh first." >&2
+  exit 1
+fi
+
+if [ "$WHAT" != browser ]; then
+  section "cargo fmt --check"
+  cargo fmt --all -- --check
+
+  section "cargo clippy"
+  cargo clippy --workspace --all-targets -- -D warnings
+
+  section "cargo test"
+  cargo test --workspace
+fi
+
+[ "$WHAT" = rust ] && exit 0
+
+section "browser test (HMI)"
+cargo build -p nctwin-server
+
+DATA_DIR="$(mktemp -d "${TMPDIR:-/tmp}/nctwin-data.XXXXXX")"
+LOG="$(mktemp "${TMPDIR:-/tmp}/nctwin-server.XXXXXX.log")"
+SERVER_PID=""
+
+cleanup() {
+  if [ -n "$SERVER_PID" ]; then
+    kill "$SERVER_PID" 2>/dev/null || true
+    wait "$SERVER_PID" 2>/dev/null || true
+  fi
+  rm -rf "$DATA_DIR"
+  rm -f "$LOG"
+}
+trap cleanup EXIT
+
+server_log() {
+  echo "---- server log ($LOG) ----" >&2
+  tail -n 60 "$LOG" >&2 || true
+  echo "---- end of server log ----" >&2
+}
+
+NO_COLOR=1 "$TARGET_DIR/debug/nctwin" --bind 127.0.0.1:0 --data-dir "$DATA_DIR" >"$LOG" 2>&1 &
+SERVER_PID=$!
+
+# Wait for "listening on http://IP:PORT" and take the address from it.
+URL=""
+for _ in $(seq $((STARTUP_TIMEOUT_S * 10))); do
+  URL="$(sed 's/\x1b\[[0-9;]*m//g' "$LOG" | grep -oE 'listening on http://[^[:space:]"]+' | head -n 1 |
+    sed -E 's/^listening on //; s#[/.,;)]+$##')" || true
+  [ -n "$URL" ] && break
+  if ! kill -0 "$SERVER_PID" 2>/dev/null; then
+    wait "$SERVER_PID" && rc=0 || rc=$?
+    SERVER_PID=""
+    echo "error: the server exited (status $rc) before it was listening" >&2
+    server_log
+    exit 1
+  fi
+  sleep 0.1
+done
+if [ -z "$URL" ]; then
+  echo "error: no 'listening on http://' line from the server within ${STARTUP_TIMEOUT_S} s" >&2
+  server_log
+  exit 1
+fi
+echo "server listening on $URL (pid $SERVER_PID)"
+
+if [ ! -d tests/browser/node_modules/playwright-core ]; then
+  (cd tests/browser && npm ci --no-audit --no-fund)
+fi
+
+if ! (cd tests/browser && NCTWIN_URL="$URL" CHROMIUM_PATH="$CHROMIUM" node hmi.test.mjs); then
+  server_log
+  exit 1
+fi
