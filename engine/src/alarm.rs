@@ -113,3 +113,35 @@ impl Alarm {
         Alarm::new(14051, format!("Channel 1 block {line} arithmetic error in part program: {what}"), Some(line))
     }
 }
+
+impl Alarm {
+    /// 12150: an operation does not fit the data type.
+    pub fn type_error(line: u32, what: &str) -> Alarm {
+        Alarm::new(12150, format!("Channel 1 block {line} operation not compatible with data type: {what}"), Some(line))
+    }
+
+    /// 17020: an array index outside the declared dimension.
+    pub fn index_error(line: u32, name: &str, what: &str) -> Alarm {
+        Alarm::new(17020, format!("Channel 1 block {line} illegal array index of {name}: {what}"), Some(line))
+    }
+
+    /// 14080: the jump destination does not exist.
+    pub fn jump_not_found(line: u32, target: &str) -> Alarm {
+        Alarm::new(14080, format!("Channel 1 block {line} jump destination {target} not found"), Some(line))
+    }
+
+    /// 12640: control structures are not properly nested (ENDIF without IF, ...).
+    pub fn nesting(line: u32, what: &str) -> Alarm {
+        Alarm::new(12640, format!("Channel 1 block {line} invalid nesting of control structures: {what}"), Some(line))
+    }
+
+    /// 12170: a name defined twice.
+    pub fn defined_twice(line: u32, name: &str) -> Alarm {
+        Alarm::new(12170, format!("Channel 1 block {line} name {name} defined repeatedly"), Some(line))
+    }
+
+    /// 14011: a called program does not exist.
+    pub fn program_not_found(line: u32, name: &str) -> Alarm {
+        Alarm::new(14011, format!("Channel 1 block {line} program {name} not available"), Some(line))
+    }
+}

@@ -43,3 +43,88 @@ proptest! {
         }
     }
 }
+
+/// An arithmetic expression tree for the reference evaluator.
+#[derive(Debug, Clone)]
+enum Tree {
+    Num(u8),
+    Neg(Box<Tree>),
+    Op(char, Box<Tree>, Box<Tree>),
+}
+
+fn tree() -> impl Strategy<Value = Tree> {
+    (0u8..20).prop_map(Tree::Num).prop_recursive(5, 32, 2, |inner| {
+        prop_oneof![
+            inner.clone().prop_map(|t| Tree::Neg(Box::new(t))),
+            (prop::sample::select(vec!['+', '-', '*', '/']), inner.clone(), inner).prop_map(|(op, a, b)| Tree::Op(
+                op,
+                Box::new(a),
+                Box::new(b)
+            )),
+        ]
+    })
+}
+
+/// Straightforward evaluation of the tree; `None` on division by zero.
+fn reference(t: &Tree) -> Option<f64> {
+    Some(match t {
+        Tree::Num(n) => f64::from(*n),
+        Tree::Neg(a) => -reference(a)?,
+        Tree::Op(op, a, b) => {
+            let (a, b) = (reference(a)?, reference(b)?);
+            match op {
+                '+' => a + b,
+                '-' => a - b,
+                '*' => a * b,
+                _ if b == 0.0 => return None,
+                _ => a / b,
+            }
+        }
+    })
+}
+
+fn priority(op: char) -> u8 {
+    if op == '+' || op == '-' { 1 } else { 2 }
+}
+
+/// Writes the tree with only the parentheses the control's priorities require.
+fn render(t: &Tree) -> String {
+    match t {
+        Tree::Num(n) => n.to_string(),
+        Tree::Neg(a) => match **a {
+            Tree::Num(_) => format!("-{}", render(a)),
+            _ => format!("-({})", render(a)),
+        },
+        Tree::Op(op, a, b) => {
+            let side = |child: &Tree, right: bool| {
+                let needs = match child {
+                    Tree::Op(c, ..) => priority(*c) < priority(*op) || (right && priority(*c) == priority(*op)),
+                    _ => false,
+                };
+                if needs { format!("({})", render(child)) } else { render(child) }
+            };
+            format!("{}{op}{}", side(a, false), side(b, true))
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+
+    #[test]
+    fn random_expressions_evaluate_like_the_reference(t in tree()) {
+        let text = format!("R1={}\nM30", render(&t));
+        let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+        ch.run_program(&text).unwrap();
+        while ch.is_busy() {
+            ch.step();
+        }
+        match reference(&t) {
+            Some(want) if want.is_finite() => {
+                let got = ch.r_param(1);
+                prop_assert!((got - want).abs() <= 1e-9 * want.abs().max(1.0), "{text}: {got} vs {want}");
+            }
+            _ => prop_assert!(ch.alarms().iter().any(|a| a.number == 14051), "{text}: {:?}", ch.alarms()),
+        }
+    }
+}

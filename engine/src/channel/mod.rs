@@ -14,7 +14,7 @@ pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Interpreter, Item, Offsets, StopKind};
+use crate::interp::{Interpreter, Item, Offsets, Prep, StopKind};
 use crate::lang;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::machine_data::{MachineConfig, MachineData, MdError};
@@ -22,6 +22,11 @@ use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
 
 /// How many prepared items (moves, dwells, stops) block preparation may run ahead.
 pub const LOOKAHEAD: usize = 48;
+
+/// How many blocks preparation may interpret in one IPO cycle. Bounds the work of a cycle, so
+/// a loop without motion (`LOOP ... ENDLOOP`) keeps running like on the control instead of
+/// hanging the caller.
+pub const MAX_BLOCKS_PER_CYCLE: usize = 1000;
 
 /// Operating mode of the mode group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -131,8 +136,6 @@ pub struct Channel {
     tick: u64,
     /// The active program's text; blocks are read from it one at a time.
     program: Option<Arc<str>>,
-    /// Byte offset and line number of the next block to prepare.
-    cursor: (usize, u32),
     /// Line and byte offset of the prepared blocks whose items are still queued (for display).
     queued_blocks: VecDeque<(u32, usize)>,
     /// Block preparation has reached the end of the program or stopped on an alarm.
@@ -187,7 +190,6 @@ impl Channel {
             status: Status::Idle,
             tick: 0,
             program: None,
-            cursor: (0, 1),
             queued_blocks: VecDeque::new(),
             prep_done: true,
             pending: VecDeque::new(),
@@ -311,11 +313,11 @@ impl Channel {
             return Err(CommandError::AlarmActive);
         }
         self.set_mode(mode)?;
-        self.program = Some(Arc::from(text));
-        self.cursor = (0, 1);
+        let text: Arc<str> = Arc::from(text);
+        self.program = Some(text.clone());
         self.queued_blocks.clear();
         self.prep_done = false;
-        self.interp.begin_program(&self.cfg, self.planner.position());
+        self.interp.begin_program(text, self.planner.position());
         self.status = Status::Running;
         Ok(())
     }
@@ -466,42 +468,24 @@ impl Channel {
     fn prepare(&mut self) {
         let Some(program) = self.program.clone() else { return };
         let mut out = Vec::new();
-        while !self.prep_done && self.pending.len() + self.planner.len() < LOOKAHEAD {
-            let (offset, line) = self.cursor;
-            let Some((block, next_offset, next_line)) = lang::read_block(&program, offset, line) else {
-                let last = self.queued_blocks.back().map_or(line.saturating_sub(1).max(1), |b| b.0);
-                self.pending.push_back(Item::Stop { kind: StopKind::End, line: last });
-                self.prep_done = true;
-                break;
-            };
-            self.cursor = (next_offset, next_line);
-            let before = self.pending.len();
+        let mut budget = MAX_BLOCKS_PER_CYCLE;
+        while !self.prep_done && self.pending.len() + self.planner.len() < LOOKAHEAD && budget > 0 {
+            budget -= 1;
+            let main_run_idle = self.pending.is_empty() && self.planner.is_empty() && self.dwell_ticks == 0;
             out.clear();
-            let position = match block {
-                Ok(block) => {
-                    self.interp.prepare(&block, &self.cfg, &mut out);
-                    (block.line, block.offset)
-                }
-                Err(d) => {
-                    out.push(Item::Alarm(Alarm::syntax(d.line, &d.message)));
-                    (d.line, program[..d.offset.min(program.len())].rfind('\n').map_or(0, |i| i + 1))
-                }
-            };
-            // Remember where the block is, for showing it while its items execute.
-            if !out.is_empty() {
-                self.queued_blocks.push_back(position);
+            let prep = self.interp.prepare_next(&self.cfg, main_run_idle, &mut out);
+            if let Some(line) = out.iter().find_map(Item::line) {
+                // Remember where the block is, for showing it while its items execute.
+                self.queued_blocks.push_back((line, line_offset(&program, line, self.queued_blocks.back())));
                 if self.queued_blocks.len() > 2 * LOOKAHEAD {
                     self.queued_blocks.pop_front();
                 }
             }
             self.pending.extend(out.drain(..));
-            if self
-                .pending
-                .iter()
-                .skip(before)
-                .any(|i| matches!(i, Item::Alarm(_) | Item::Stop { kind: StopKind::End, .. }))
-            {
-                self.prep_done = true;
+            match prep {
+                Prep::Prepared => {}
+                Prep::WaitForMainRun => break,
+                Prep::Done => self.prep_done = true,
             }
         }
     }
@@ -685,11 +669,39 @@ impl Channel {
         self.planner.position()
     }
 
+    /// An R parameter's value (0 for numbers beyond the R parameter count).
+    pub fn r_param(&self, n: usize) -> f64 {
+        self.interp.variables().r.get(n).copied().unwrap_or(0.0)
+    }
+
+    /// A user variable's element (flat index for arrays), if it is declared in the program
+    /// level being prepared or globally.
+    pub fn variable(&self, name: &str, index: usize) -> Option<crate::interp::value::Value> {
+        self.interp.variables().get(&name.to_ascii_uppercase()).and_then(|v| v.data.get(index).cloned())
+    }
+
     /// Interpolated positions of the channel axes (machine coordinates, channel order); cheap
     /// to call every cycle, for recording IPO samples.
     pub fn axis_positions(&self) -> &[f64] {
         &self.planner.position()[..self.cfg.channel_axes.len()]
     }
+}
+
+/// Byte offset of the start of `line`, counting from the last remembered block when it lies
+/// before (blocks are mostly prepared in order, so this is a short forward scan).
+fn line_offset(program: &str, line: u32, last: Option<&(u32, usize)>) -> usize {
+    let (mut at_line, mut offset) = match last {
+        Some(&(l, o)) if l <= line => (l, o),
+        _ => (1, 0),
+    };
+    while at_line < line {
+        match program[offset..].find('\n') {
+            Some(i) => offset += i + 1,
+            None => break,
+        }
+        at_line += 1;
+    }
+    offset
 }
 
 /// Planner limits per channel axis, from the machine axes behind them.

@@ -1,58 +1,236 @@
-//! Evaluation of arithmetic expressions in block words (R parameters and the basic functions).
+//! Evaluation of expressions: operators with the control's semantics, the predefined
+//! functions, variables and system variables.
 
+use super::value::Value;
+use super::vars::Variables;
 use crate::alarm::Alarm;
-use crate::lang::{BinOp, Expr};
+use crate::lang::{BinOp, Expr, UnOp};
 
-/// Evaluates `expr` with R parameters `r`; errors become alarms of `line`.
-pub fn eval(expr: &Expr, r: &[f64], line: u32) -> Result<f64, Alarm> {
-    let v = match expr {
-        Expr::Number(n) => *n,
-        Expr::Str(s) => return Err(Alarm::syntax(line, &format!("string \"{s}\" where a number is needed"))),
-        Expr::RParam(n) => *r.get(*n as usize).ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?,
-        Expr::Neg(e) => -eval(e, r, line)?,
-        Expr::Binary(op, a, b) => {
-            let (a, b) = (eval(a, r, line)?, eval(b, r, line)?);
-            match op {
-                BinOp::Add => a + b,
-                BinOp::Sub => a - b,
-                BinOp::Mul => a * b,
-                BinOp::Div if b == 0.0 => return Err(Alarm::arithmetic(line, "division by zero")),
-                BinOp::Div => a / b,
-            }
-        }
-        Expr::Call(name, args) => call(name, args, r, line)?,
-    };
-    if v.is_finite() { Ok(v) } else { Err(Alarm::arithmetic(line, "result is not a finite number")) }
+/// What an expression can read besides its literals.
+pub trait Scope {
+    fn vars(&self) -> &Variables;
+    /// A system variable (`$AA_IM[X]`, `$P_TOOLNO`, ...) with evaluated indices.
+    fn system(&self, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm>;
+    /// True if `name` is an axis of the channel (a bare axis name evaluates to an AXIS value).
+    fn is_axis(&self, name: &str) -> bool;
 }
 
-fn call(name: &str, args: &[Expr], r: &[f64], line: u32) -> Result<f64, Alarm> {
-    let vals = args.iter().map(|a| eval(a, r, line)).collect::<Result<Vec<_>, _>>()?;
+/// Relative precision of comparisons: the control compares REAL values for relative, not
+/// absolute, equality so that decimal fractions compare as written.
+const REL_EQ: f64 = 1e-12;
+
+/// Evaluates `expr`; errors become alarms of `line`.
+pub fn eval(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
+    Ok(match expr {
+        Expr::Number(n) => {
+            if n.fract() == 0.0 && n.abs() <= 2_147_483_647.0 {
+                Value::Int(*n as i64)
+            } else {
+                Value::Real(*n)
+            }
+        }
+        Expr::Str(s) => Value::Str(s.clone()),
+        Expr::Bool(b) => Value::Bool(*b),
+        Expr::RParam(index) => {
+            let n = eval(index, scope, line)?.as_i64().map_err(type_err)?;
+            let r = &scope.vars().r;
+            let v = usize::try_from(n)
+                .ok()
+                .and_then(|i| r.get(i))
+                .ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?;
+            Value::Real(*v)
+        }
+        Expr::Var { name, indices } => {
+            let idx = indices.iter().map(|e| eval(e, scope, line)).collect::<Result<Vec<_>, _>>()?;
+            if name.starts_with('$') {
+                return scope.system(name, &idx, line);
+            }
+            if let Some(var) = scope.vars().get(name) {
+                let ints = idx.iter().map(|v| v.as_i64()).collect::<Result<Vec<_>, _>>().map_err(type_err)?;
+                let i = var.index(&ints).map_err(|e| Alarm::index_error(line, name, &e.0))?;
+                return Ok(var.data[i].clone());
+            }
+            if idx.is_empty() && scope.is_axis(name) {
+                return Ok(Value::Axis(name.clone()));
+            }
+            return Err(Alarm::unknown_name(line, name));
+        }
+        Expr::Unary(op, e) => {
+            let v = eval(e, scope, line)?;
+            match op {
+                UnOp::Neg => match v {
+                    Value::Int(i) => Value::Int(-i),
+                    other => Value::Real(-other.as_f64().map_err(type_err)?),
+                },
+                UnOp::Not => Value::Bool(!v.as_bool().map_err(type_err)?),
+                UnOp::BNot => Value::Int(!v.as_i64().map_err(type_err)?),
+            }
+        }
+        Expr::Binary(op, a, b) => binary(*op, eval(a, scope, line)?, eval(b, scope, line)?, line)?,
+        Expr::Call(name, args) => call(name, args, scope, line)?,
+    })
+}
+
+/// Evaluates to a number (the common case for addresses).
+pub fn eval_f64(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<f64, Alarm> {
+    let v = eval(expr, scope, line)?;
+    let x = v.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    if x.is_finite() { Ok(x) } else { Err(Alarm::arithmetic(line, "result is not a finite number")) }
+}
+
+fn binary(op: BinOp, a: Value, b: Value, line: u32) -> Result<Value, Alarm> {
+    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
+    let num = |v: &Value| v.as_f64().map_err(type_err);
+    let int = |v: &Value| v.as_i64().map_err(type_err);
+    let both_int = matches!((&a, &b), (Value::Int(_), Value::Int(_)));
+    Ok(match op {
+        BinOp::Concat => Value::Str(a.as_text() + &b.as_text()),
+        BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Lt | BinOp::Ge | BinOp::Le => {
+            Value::Bool(compare(op, &a, &b, line)?)
+        }
+        BinOp::Or => Value::Bool(a.as_bool().map_err(type_err)? || b.as_bool().map_err(type_err)?),
+        BinOp::Xor => Value::Bool(a.as_bool().map_err(type_err)? ^ b.as_bool().map_err(type_err)?),
+        BinOp::And => Value::Bool(a.as_bool().map_err(type_err)? && b.as_bool().map_err(type_err)?),
+        BinOp::BOr => Value::Int(int(&a)? | int(&b)?),
+        BinOp::BXor => Value::Int(int(&a)? ^ int(&b)?),
+        BinOp::BAnd => Value::Int(int(&a)? & int(&b)?),
+        BinOp::Add | BinOp::Sub | BinOp::Mul if both_int => {
+            let (x, y) = (int(&a)?, int(&b)?);
+            let r = match op {
+                BinOp::Add => x.checked_add(y),
+                BinOp::Sub => x.checked_sub(y),
+                _ => x.checked_mul(y),
+            };
+            match r.filter(|r| r.abs() <= 2_147_483_647) {
+                Some(r) => Value::Int(r),
+                None => Value::Real(match op {
+                    BinOp::Add => x as f64 + y as f64,
+                    BinOp::Sub => x as f64 - y as f64,
+                    _ => x as f64 * y as f64,
+                }),
+            }
+        }
+        BinOp::Add => Value::Real(num(&a)? + num(&b)?),
+        BinOp::Sub => Value::Real(num(&a)? - num(&b)?),
+        BinOp::Mul => Value::Real(num(&a)? * num(&b)?),
+        BinOp::Div | BinOp::IntDiv | BinOp::Mod => {
+            let (x, y) = (num(&a)?, num(&b)?);
+            if y == 0.0 {
+                return Err(Alarm::arithmetic(line, "division by zero"));
+            }
+            match op {
+                BinOp::Div => Value::Real(x / y),
+                // DIV: division with the result truncated to INT.
+                BinOp::IntDiv => Value::Int((x / y).trunc() as i64),
+                // MOD: remainder with the sign of the dividend.
+                _ if both_int => Value::Int(int(&a)? % int(&b)?),
+                _ => Value::Real(x - (x / y).trunc() * y),
+            }
+        }
+    })
+}
+
+fn compare(op: BinOp, a: &Value, b: &Value, line: u32) -> Result<bool, Alarm> {
+    use std::cmp::Ordering;
+    let ord = match (a, b) {
+        (Value::Str(x), Value::Str(y)) => x.cmp(y),
+        (Value::Axis(x), Value::Axis(y)) => x.cmp(y),
+        (Value::Str(_) | Value::Axis(_), _) | (_, Value::Str(_) | Value::Axis(_)) => {
+            return Err(Alarm::type_error(line, "cannot compare a string with a number"));
+        }
+        _ => {
+            let (x, y) = (a.as_f64().unwrap_or(0.0), b.as_f64().unwrap_or(0.0));
+            if (x - y).abs() <= REL_EQ * x.abs().max(y.abs()) {
+                Ordering::Equal
+            } else {
+                x.partial_cmp(&y).unwrap_or(Ordering::Equal)
+            }
+        }
+    };
+    Ok(match op {
+        BinOp::Eq => ord == Ordering::Equal,
+        BinOp::Ne => ord != Ordering::Equal,
+        BinOp::Gt => ord == Ordering::Greater,
+        BinOp::Lt => ord == Ordering::Less,
+        BinOp::Ge => ord != Ordering::Less,
+        _ => ord != Ordering::Greater,
+    })
+}
+
+fn call(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    let vals = args.iter().map(|a| eval(a, scope, line)).collect::<Result<Vec<_>, _>>()?;
     let arity = |n: usize| -> Result<(), Alarm> {
         if vals.len() == n { Ok(()) } else { Err(Alarm::syntax(line, &format!("{name} takes {n} argument(s)"))) }
     };
-    let x = vals.first().copied().unwrap_or(0.0);
-    let checked =
-        |ok: bool, v: f64| if ok { Ok(v) } else { Err(Alarm::arithmetic(line, &format!("{name}({x}) is undefined"))) };
+    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
+    let f = |i: usize| vals[i].as_f64().map_err(type_err);
+    let text = |i: usize| match &vals[i] {
+        Value::Str(s) => Ok(s.clone()),
+        Value::Char(c) => Ok((*c as char).to_string()),
+        other => Err(Alarm::type_error(line, &format!("{name} needs a string, not {other:?}"))),
+    };
+    let undefined = |x: f64| Alarm::arithmetic(line, &format!("{name}({x}) is undefined"));
+    let real = |v: f64| Ok(Value::Real(v));
     match name {
-        "SIN" | "COS" | "TAN" | "ASIN" | "ACOS" | "SQRT" | "ABS" | "POT" | "TRUNC" | "ROUND" | "LN" | "EXP" => {
-            arity(1)?
-        }
-        "ATAN2" => arity(2)?,
+        "SIN" | "COS" | "TAN" | "ASIN" | "ACOS" | "SQRT" | "ABS" | "POT" | "TRUNC" | "ROUND" | "LN" | "EXP"
+        | "STRLEN" | "TOUPPER" | "TOLOWER" | "NUMBER" | "ISNUMBER" | "AXNAME" | "AXSTRING" => arity(1)?,
+        "ATAN2" | "MINVAL" | "MAXVAL" | "INDEX" | "RINDEX" => arity(2)?,
+        "BOUND" | "SUBSTR" => arity(3)?,
         _ => return Err(Alarm::unknown_name(line, name)),
     }
     match name {
-        "SIN" => Ok(x.to_radians().sin()),
-        "COS" => Ok(x.to_radians().cos()),
-        "TAN" => Ok(x.to_radians().tan()),
-        "ASIN" => checked((-1.0..=1.0).contains(&x), x.asin().to_degrees()),
-        "ACOS" => checked((-1.0..=1.0).contains(&x), x.acos().to_degrees()),
-        "ATAN2" => Ok(vals[0].atan2(vals[1]).to_degrees()),
-        "SQRT" => checked(x >= 0.0, x.sqrt()),
-        "ABS" => Ok(x.abs()),
-        "POT" => Ok(x * x),
-        "TRUNC" => Ok(x.trunc()),
-        "ROUND" => Ok(x.round()),
-        "LN" => checked(x > 0.0, x.ln()),
-        _ => Ok(x.exp()),
+        "SIN" => real(f(0)?.to_radians().sin()),
+        "COS" => real(f(0)?.to_radians().cos()),
+        "TAN" => real(f(0)?.to_radians().tan()),
+        "ASIN" | "ACOS" => {
+            let x = f(0)?;
+            if !(-1.0..=1.0).contains(&x) {
+                return Err(undefined(x));
+            }
+            real(if name == "ASIN" { x.asin() } else { x.acos() }.to_degrees())
+        }
+        "ATAN2" => real(f(0)?.atan2(f(1)?).to_degrees()),
+        "SQRT" => {
+            let x = f(0)?;
+            if x < 0.0 { Err(undefined(x)) } else { real(x.sqrt()) }
+        }
+        "ABS" => match vals[0] {
+            Value::Int(i) => Ok(Value::Int(i.abs())),
+            _ => real(f(0)?.abs()),
+        },
+        "POT" => real(f(0)? * f(0)?),
+        "TRUNC" => real(f(0)?.trunc()),
+        "ROUND" => real(f(0)?.round()),
+        "LN" => {
+            let x = f(0)?;
+            if x <= 0.0 { Err(undefined(x)) } else { real(x.ln()) }
+        }
+        "EXP" => real(f(0)?.exp()),
+        "MINVAL" => real(f(0)?.min(f(1)?)),
+        "MAXVAL" => real(f(0)?.max(f(1)?)),
+        // BOUND(min, max, value): the value limited to the range.
+        "BOUND" => real(f(2)?.max(f(0)?).min(f(1)?)),
+        "STRLEN" => Ok(Value::Int(text(0)?.len() as i64)),
+        "TOUPPER" => Ok(Value::Str(text(0)?.to_ascii_uppercase())),
+        "TOLOWER" => Ok(Value::Str(text(0)?.to_ascii_lowercase())),
+        "INDEX" | "RINDEX" => {
+            let (s, c) = (text(0)?, text(1)?);
+            let found = if name == "INDEX" { s.find(&c) } else { s.rfind(&c) };
+            Ok(Value::Int(found.map_or(-1, |i| i as i64)))
+        }
+        "SUBSTR" => {
+            let s = text(0)?;
+            let (start, count) = (vals[1].as_i64().map_err(type_err)?, vals[2].as_i64().map_err(type_err)?);
+            let start = usize::try_from(start).unwrap_or(usize::MAX).min(s.len());
+            let end = start.saturating_add(usize::try_from(count).unwrap_or(0)).min(s.len());
+            Ok(Value::Str(s[start..end].to_string()))
+        }
+        "NUMBER" => {
+            text(0)?.trim().parse::<f64>().map(Value::Real).map_err(|_| Alarm::type_error(line, "NUMBER: not a number"))
+        }
+        "ISNUMBER" => Ok(Value::Bool(text(0)?.trim().parse::<f64>().is_ok())),
+        "AXNAME" => Ok(Value::Axis(text(0)?.to_ascii_uppercase())),
+        _ => Ok(Value::Str(vals[0].as_text())),
     }
 }

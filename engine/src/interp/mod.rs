@@ -7,14 +7,24 @@
 
 pub mod arc;
 mod eval;
+mod flow;
 mod modal;
+mod scope;
+mod statements;
+pub mod value;
+pub mod vars;
+
+use std::sync::Arc as Shared;
 
 use crate::alarm::Alarm;
 use crate::lang::{Block, CoordMode};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
+use flow::Flow;
 pub use modal::{Modal, MotionMode, Plane};
+use scope::SysView;
+use vars::Variables;
 
 /// Offsets in effect for a block, per channel axis, and the tool that causes them.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -73,6 +83,31 @@ pub enum Item {
     Alarm(Alarm),
 }
 
+/// What one call of [`Interpreter::prepare_next`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Prep {
+    /// A block was prepared (it may have produced no items).
+    Prepared,
+    /// The next block reads main-run values: call again once the main run has caught up.
+    WaitForMainRun,
+    /// Nothing left to prepare (end of program, or an alarm).
+    Done,
+}
+
+impl Item {
+    /// The program line the item belongs to.
+    pub fn line(&self) -> Option<u32> {
+        match self {
+            Item::Move { line, .. }
+            | Item::Offsets { line, .. }
+            | Item::Dwell { line, .. }
+            | Item::Spindle { line, .. }
+            | Item::Stop { line, .. } => Some(*line),
+            Item::Alarm(a) => a.line,
+        }
+    }
+}
+
 /// Preprocessing state of the channel.
 #[derive(Debug, Clone)]
 pub struct Interpreter {
@@ -80,14 +115,14 @@ pub struct Interpreter {
     /// Programmed end position of the last block in channel-axis (machine) coordinates.
     pos: AxisVec,
     offsets: Offsets,
-    /// R parameters R0..R99.
-    r: Vec<f64>,
+    /// R parameters and user variables.
+    vars: Variables,
     /// Programmed spindle speed (rev/min) and direction (+1 M3, -1 M4, 0 M5).
     speed: f64,
     direction: i8,
+    /// Read position in the active program, if one runs.
+    flow: Option<Flow>,
 }
-
-const R_PARAMS: usize = 100;
 
 impl Interpreter {
     pub fn new(cfg: &MachineConfig) -> Interpreter {
@@ -95,9 +130,10 @@ impl Interpreter {
             modal: Modal::reset(cfg),
             pos: [0.0; MAX_CHANNEL_AXES],
             offsets: Offsets::default(),
-            r: vec![0.0; R_PARAMS],
+            vars: Variables::default(),
             speed: 0.0,
             direction: 0,
+            flow: None,
         }
     }
 
@@ -118,9 +154,17 @@ impl Interpreter {
         self.direction = direction;
     }
 
-    /// Starts preparing a program from the machine's current position.
-    pub fn begin_program(&mut self, _cfg: &MachineConfig, pos: &AxisVec) {
+    /// Starts preparing `text` from the machine's current position. Local variables of an
+    /// earlier program are dropped; R parameters and global user data stay.
+    pub fn begin_program(&mut self, text: Shared<str>, pos: &AxisVec) {
         self.pos = *pos;
+        self.vars.reset_locals();
+        self.flow = Some(Flow::new(text));
+    }
+
+    /// The user variables and R parameters.
+    pub fn variables(&self) -> &Variables {
+        &self.vars
     }
 
     /// Sets the programmed position after motion outside programs (JOG).
@@ -142,26 +186,28 @@ impl Interpreter {
         (offsets.t, offsets.d)
     }
 
-    /// Prepares one block. On an error, an [`Item::Alarm`] is the last item and nothing of the
-    /// block is applied.
-    pub fn prepare(&mut self, block: &Block, cfg: &MachineConfig, out: &mut Vec<Item>) {
-        let mut next = self.clone();
-        match next.prepare_block(block, cfg, out) {
-            Ok(()) => *self = next,
+    /// Prepares the next block of the active program into `out`. `main_run_idle` tells whether
+    /// everything prepared so far has been executed (needed by blocks that read main-run
+    /// values). On an error the last item is an [`Item::Alarm`] and preparation is done.
+    pub fn prepare_next(&mut self, cfg: &MachineConfig, main_run_idle: bool, out: &mut Vec<Item>) -> Prep {
+        match self.step_program(cfg, main_run_idle, out) {
+            Ok(prep) => prep,
             Err(alarm) => {
                 out.clear();
                 out.push(Item::Alarm(alarm));
+                self.flow = None;
+                Prep::Done
             }
         }
     }
 
+    /// Prepares one block: a statement (control flow, declaration) or NC words.
     fn prepare_block(&mut self, block: &Block, cfg: &MachineConfig, out: &mut Vec<Item>) -> Result<(), Alarm> {
         let line = block.line;
-        let words = modal::collect(block, cfg, &self.r)?;
-        // R parameter assignments take effect in block order before the rest.
-        for (n, v) in &words.r_assign {
-            self.r[*n] = *v;
-        }
+        let words = {
+            let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
+            modal::collect(block, cfg, &mut self.vars, &sys)?
+        };
         let offsets_before = self.offsets.clone();
         self.modal.apply(&words, cfg, line)?;
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
@@ -210,6 +256,9 @@ impl Interpreter {
 
         if let Some(kind) = words.stop {
             out.push(Item::Stop { kind, line });
+        }
+        if let (Some(goto), Some(flow)) = (&words.goto, &mut self.flow) {
+            flow.jump(goto)?;
         }
         Ok(())
     }

@@ -1,9 +1,11 @@
 //! The modal state (G groups, feed) and the words of one block sorted by meaning.
 
 use super::StopKind;
-use super::eval::eval;
+use super::eval::{eval, eval_f64};
+use super::scope::{Ctx, SysView};
+use super::vars::Variables;
 use crate::alarm::Alarm;
-use crate::lang::{Block, CoordMode, Word};
+use crate::lang::{Block, CoordMode, Expr, Goto, Word};
 use crate::machine_data::MachineConfig;
 
 /// G group 1: motion type.
@@ -147,7 +149,8 @@ pub(super) struct Words {
     pub edge: Option<u32>,
     pub spindle_dir: Option<i8>,
     pub stop: Option<StopKind>,
-    pub r_assign: Vec<(usize, f64)>,
+    /// A jump at the end of the block (`... GOTOF LABEL`).
+    pub goto: Option<Goto>,
 }
 
 impl Words {
@@ -164,8 +167,9 @@ impl Words {
     }
 }
 
-/// Sorts and evaluates the words of `block`.
-pub(super) fn collect(block: &Block, cfg: &MachineConfig, r: &[f64]) -> Result<Words, Alarm> {
+/// Sorts and evaluates the words of `block`. Assignments (`R1=5`, `A[2]=R1`) take effect in
+/// block order, so a later word of the same block sees the new value.
+pub(super) fn collect(block: &Block, cfg: &MachineConfig, vars: &mut Variables, sys: &SysView) -> Result<Words, Alarm> {
     let line = block.line;
     let mut w = Words::default();
     let mut seen: Vec<String> = Vec::new();
@@ -180,14 +184,18 @@ pub(super) fn collect(block: &Block, cfg: &MachineConfig, r: &[f64]) -> Result<W
         match word {
             Word::G(code) => g_function(&mut w, *code, line)?,
             Word::M(code) => m_function(&mut w, *code, line)?,
+            Word::Goto(goto) => w.goto = Some(goto.clone()),
             Word::Keyword { name, args } if args.is_empty() && (name == "SUPA" || name == "STOPRE") => {
                 if name == "SUPA" {
                     w.g53 = true;
                 }
             }
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
-            Word::Address { name, value } => {
-                let v = eval(&value.expr, r, line)?;
+            Word::Address { name, indices, value } => {
+                if assign(name, indices, &value.expr, cfg, vars, sys, line)? {
+                    continue;
+                }
+                let v = eval_f64(&value.expr, &Ctx { vars, sys }, line)?;
                 let whole = |what: &str| -> Result<u32, Alarm> {
                     if v < 0.0 || v.fract() != 0.0 || v > u32::MAX as f64 {
                         Err(Alarm::value_out_of_range(line, &format!("{what}{v}")))
@@ -208,13 +216,6 @@ pub(super) fn collect(block: &Block, cfg: &MachineConfig, r: &[f64]) -> Result<W
                         w.ijk[g] = Some((v, value.mode == Some(CoordMode::Ac)));
                     }
                     _ => {
-                        if let Some(n) = name.strip_prefix('R').and_then(|n| n.parse::<usize>().ok()) {
-                            if n >= r.len() {
-                                return Err(Alarm::unknown_name(line, name));
-                            }
-                            w.r_assign.push((n, v));
-                            continue;
-                        }
                         let k = cfg.program_axis(name).ok_or_else(|| Alarm::unknown_name(line, name))?;
                         if cfg.axis(k).spindle.is_some() {
                             return Err(Alarm::unknown_name(
@@ -229,6 +230,59 @@ pub(super) fn collect(block: &Block, cfg: &MachineConfig, r: &[f64]) -> Result<W
         }
     }
     Ok(w)
+}
+
+/// Performs `name[indices] = expr` if `name` is an R parameter or a variable; returns false
+/// for addresses (axes, F, S, ...), which the caller handles.
+pub(super) fn assign(
+    name: &str,
+    indices: &[Expr],
+    expr: &Expr,
+    cfg: &MachineConfig,
+    vars: &mut Variables,
+    sys: &SysView,
+    line: u32,
+) -> Result<bool, Alarm> {
+    let r_index = match name {
+        "R" | "$R" if indices.len() == 1 => {
+            Some(eval(&indices[0], &Ctx { vars, sys }, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?)
+        }
+        _ if indices.is_empty() => name.strip_prefix('R').and_then(|n| n.parse::<i64>().ok()),
+        _ => None,
+    };
+    if let Some(n) = r_index {
+        let v = eval_f64(expr, &Ctx { vars, sys }, line)?;
+        let slot = usize::try_from(n)
+            .ok()
+            .and_then(|i| vars.r.get_mut(i))
+            .ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?;
+        *slot = v;
+        return Ok(true);
+    }
+    if name.starts_with('$') {
+        return Err(Alarm::unknown_name(line, &format!("{name} (writing this system variable is not supported yet)")));
+    }
+    if vars.get(name).is_none() {
+        if !indices.is_empty() || cfg.program_axis(name).is_none() && !is_nc_address(name) {
+            return Err(Alarm::unknown_name(line, name));
+        }
+        return Ok(false);
+    }
+    let ctx = Ctx { vars, sys };
+    let value = eval(expr, &ctx, line)?;
+    let idx = indices
+        .iter()
+        .map(|e| eval(e, &ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let var = vars.get_mut(name).expect("checked above");
+    let i = var.index(&idx).map_err(|e| Alarm::index_error(line, name, &e.0))?;
+    var.data[i] = value.convert(var.ty).map_err(|e| Alarm::type_error(line, &e.0))?;
+    Ok(true)
+}
+
+/// Addresses with a fixed meaning in a block.
+fn is_nc_address(name: &str) -> bool {
+    matches!(name, "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K")
 }
 
 fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {

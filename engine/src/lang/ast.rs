@@ -1,5 +1,6 @@
-//! Syntax tree of a part program: blocks of words with source positions. Meaning (modal
-//! groups, units, which words may stand together) is the interpreter's business.
+//! Syntax tree of a part program: blocks of words and statements with source positions.
+//! Meaning (modal groups, units, which words may stand together, what a name refers to) is
+//! the interpreter's business.
 
 /// A parsed program: every block in source order, and every syntax error found.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -17,6 +18,13 @@ pub struct Diagnostic {
     pub message: String,
 }
 
+impl Diagnostic {
+    /// 1-based column of the error within its line, given the line's start offset.
+    pub fn column(&self, line_start: usize) -> usize {
+        self.offset.saturating_sub(line_start) + 1
+    }
+}
+
 /// One NC block (one source line).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Block {
@@ -32,6 +40,8 @@ pub struct Block {
     pub number: Option<u32>,
     /// `LABEL:` jump label.
     pub label: Option<String>,
+    /// A control-flow or declaration statement filling the block (`IF`, `DEF`, `WHILE`, ...).
+    pub stmt: Option<Stmt>,
     pub words: Vec<Word>,
     /// Text after `;`.
     pub comment: Option<String>,
@@ -44,10 +54,13 @@ pub enum Word {
     G(u32),
     /// `M3`, `M30`: a miscellaneous function by number.
     M(u32),
-    /// An address with a value: `X10`, `F=100`, `CR=5`, `X=AC(10)`, `T1`, `D2`, `S1000`.
-    Address { name: String, value: AddressValue },
-    /// A bare keyword: `SUPA`, `TRAFOOF`, `ROT` (unknown keywords are reported by the interpreter).
+    /// An address or assignment: `X10`, `F=100`, `CR=5`, `X=AC(10)`, `R1=2`, `ABC[2]=R1`,
+    /// `$TC_DP1[1,1]=120`.
+    Address { name: String, indices: Vec<Expr>, value: AddressValue },
+    /// A bare keyword or call: `SUPA`, `TRAFOOF`, `TRANSMIT(1)`, `MSG("x")`, `L100`-style calls.
     Keyword { name: String, args: Vec<Expr> },
+    /// `GOTOF LABEL` and its kin at the end of a block.
+    Goto(Goto),
 }
 
 /// The value of an address, with the coordinate mode if one was written.
@@ -72,23 +85,171 @@ pub enum CoordMode {
     Acn,
 }
 
-/// An arithmetic expression.
+/// Direction of a jump.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GotoKind {
+    /// `GOTOF`: search forward.
+    Forward,
+    /// `GOTOB`: search backward.
+    Backward,
+    /// `GOTO`: forward, then backward.
+    Both,
+    /// `GOTOC`: like GOTO, but a missing target is not an error.
+    Continue,
+}
+
+/// A jump and its target.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Goto {
+    pub kind: GotoKind,
+    pub target: JumpTarget,
+}
+
+/// Where a jump goes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JumpTarget {
+    Label(String),
+    /// `N100` or `:100`.
+    BlockNumber(u32),
+    /// A string variable holding the label: `GOTOF LBL_VAR` where the name is not a label is
+    /// resolved by the interpreter.
+    Expr(Expr),
+}
+
+/// Statements that fill a block (declarations and control flow).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stmt {
+    /// `DEF REAL A, B[3]=SET(1,2,3)`; `global` for `DEF CHAN`/`DEF NCK` (global user data).
+    Def {
+        global: bool,
+        ty: VarType,
+        vars: Vec<VarDecl>,
+    },
+    /// `IF cond` (block form) or `IF cond GOTOF L` (jump form).
+    If {
+        cond: Expr,
+        goto: Option<Goto>,
+    },
+    Else,
+    EndIf,
+    While(Expr),
+    EndWhile,
+    /// `FOR var = start TO end`.
+    For {
+        var: Lvalue,
+        start: Expr,
+        end: Expr,
+    },
+    EndFor,
+    Repeat,
+    Until(Expr),
+    Loop,
+    EndLoop,
+    /// `CASE(expr) OF c1 GOTOF L1 c2 GOTOF L2 DEFAULT GOTOF L3`.
+    Case {
+        expr: Expr,
+        arms: Vec<(Expr, Goto)>,
+        default: Option<Goto>,
+    },
+    /// `GOTOF L` alone.
+    Goto(Goto),
+    /// `PROC NAME(type param, ...)`.
+    Proc {
+        name: String,
+        params: Vec<Param>,
+    },
+    /// `RET` (end of subprogram).
+    Ret,
+    /// `EXTERN NAME(types)`.
+    Extern {
+        name: String,
+    },
+}
+
+/// A declared variable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VarDecl {
+    pub name: String,
+    pub dims: Vec<Expr>,
+    /// Initial values (one, or one per element in order).
+    pub init: Vec<Expr>,
+}
+
+/// A formal parameter of a `PROC`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Param {
+    pub by_reference: bool,
+    pub ty: VarType,
+    pub name: String,
+    pub dims: Vec<Expr>,
+}
+
+/// Data types of the NC language.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VarType {
+    Int,
+    Real,
+    Bool,
+    Char,
+    /// `STRING[n]`: maximum length.
+    Str(u16),
+    Axis,
+    Frame,
+}
+
+/// A place a value can be assigned to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lvalue {
+    pub name: String,
+    pub indices: Vec<Expr>,
+}
+
+/// An expression.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Expr {
     Number(f64),
     Str(String),
-    /// `R1`, `$R[1]`: an R parameter by number.
-    RParam(u32),
-    Neg(Box<Expr>),
+    Bool(bool),
+    /// `R1`, `R[i]`, `$R[1]`: an R parameter by number.
+    RParam(Box<Expr>),
+    /// A user variable, system variable (`$AA_IM[X]`) or name (an axis), with indices.
+    Var {
+        name: String,
+        indices: Vec<Expr>,
+    },
+    Unary(UnOp, Box<Expr>),
     Binary(BinOp, Box<Expr>, Box<Expr>),
     /// `SIN(30)`: a function call by name.
     Call(String, Vec<Expr>),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnOp {
+    Neg,
+    Not,
+    BNot,
+}
+
+/// Binary operators, from the lowest priority (comparison) to the highest (`*`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BinOp {
+    Eq,
+    Ne,
+    Gt,
+    Lt,
+    Ge,
+    Le,
+    Concat,
+    Or,
+    Xor,
+    And,
+    BOr,
+    BXor,
+    BAnd,
     Add,
     Sub,
     Mul,
     Div,
+    IntDiv,
+    Mod,
 }

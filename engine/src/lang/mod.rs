@@ -5,7 +5,8 @@
 //! units, valid combinations) is decided by [`crate::interp`].
 
 pub mod ast;
+mod cursor;
 mod parser;
 
-pub use ast::{AddressValue, BinOp, Block, CoordMode, Diagnostic, Expr, Program, Word};
+pub use ast::*;
 pub use parser::{check, parse, parse_block, read_block};

@@ -2,6 +2,7 @@
 //! parser goes on, so one run reports every syntax error of a program.
 
 use super::ast::*;
+use super::cursor::Cursor;
 
 /// Parses a whole program into memory (tests, small programs).
 pub fn parse(source: &str) -> Program {
@@ -73,10 +74,13 @@ impl Iterator for Lines<'_> {
     }
 }
 
+/// A syntax error: column offset within the line and message.
+type PResult<T> = Result<T, (usize, String)>;
+
 /// Parses one line; `Ok(None)` for an empty line.
-pub fn parse_block(text: &str, line: u32, offset: usize) -> Result<Option<Block>, (usize, String)> {
+pub fn parse_block(text: &str, line: u32, offset: usize) -> PResult<Option<Block>> {
     let (code, comment) = split_comment(text);
-    let mut cur = Cursor { src: code.as_bytes(), pos: 0 };
+    let mut cur = Cursor::new(code);
     let mut block = Block {
         line,
         offset,
@@ -84,6 +88,7 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> Result<Option<Block>
         skip: false,
         number: None,
         label: None,
+        stmt: None,
         words: Vec::new(),
         comment: comment.map(|c| c.trim().to_string()),
     };
@@ -97,7 +102,7 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> Result<Option<Block>
         let save = cur.pos;
         cur.pos += 1;
         match cur.digits() {
-            Some(d) if c != b'N' || !cur.peek().is_some_and(|c| c.is_ascii_alphabetic() || c == b'_') => {
+            Some(d) if c == b':' || !cur.peek().is_some_and(|c| c.is_ascii_alphabetic() || c == b'_') => {
                 block.number = Some(d.parse().map_err(|_| (save, format!("block number {d} is too large")))?);
             }
             _ => cur.pos = save,
@@ -113,6 +118,19 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> Result<Option<Block>
             cur.pos = save;
         }
     }
+    cur.skip_ws();
+    let save = cur.pos;
+    if let Some(id) = cur.ident() {
+        if is_statement(&id) {
+            block.stmt = Some(parse_statement(&id, &mut cur)?);
+            cur.skip_ws();
+            if !cur.at_end() {
+                return Err((cur.pos, format!("unexpected text after {id}")));
+            }
+        } else {
+            cur.pos = save;
+        }
+    }
     loop {
         cur.skip_ws();
         if cur.at_end() {
@@ -121,7 +139,11 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> Result<Option<Block>
         let word = parse_word(&mut cur)?;
         block.words.push(word);
     }
-    let empty = block.words.is_empty() && block.number.is_none() && block.label.is_none() && !block.skip;
+    let empty = block.words.is_empty()
+        && block.stmt.is_none()
+        && block.number.is_none()
+        && block.label.is_none()
+        && !block.skip;
     Ok(if empty && block.comment.is_none() { None } else { Some(block) })
 }
 
@@ -137,28 +159,304 @@ fn split_comment(text: &str) -> (&str, Option<&str>) {
     (text, None)
 }
 
-fn parse_word(cur: &mut Cursor) -> Result<Word, (usize, String)> {
+const STATEMENTS: &[&str] = &[
+    "DEF", "IF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "UNTIL", "LOOP", "ENDLOOP", "CASE",
+    "GOTOF", "GOTOB", "GOTO", "GOTOC", "PROC", "RET", "EXTERN",
+];
+
+fn is_statement(id: &str) -> bool {
+    STATEMENTS.contains(&id)
+}
+
+fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
+    cur.skip_ws();
+    Ok(match id {
+        "DEF" => parse_def(cur)?,
+        "IF" => {
+            let cond = parse_expr(cur)?;
+            cur.skip_ws();
+            let goto = match goto_kind_at(cur) {
+                Some(kind) => Some(parse_goto_target(kind, cur)?),
+                None => None,
+            };
+            Stmt::If { cond, goto }
+        }
+        "ELSE" => Stmt::Else,
+        "ENDIF" => Stmt::EndIf,
+        "WHILE" => Stmt::While(parse_expr(cur)?),
+        "ENDWHILE" => Stmt::EndWhile,
+        "FOR" => {
+            let var = parse_lvalue(cur)?;
+            cur.skip_ws();
+            if !cur.eat(b'=') {
+                return Err((cur.pos, "FOR needs `variable = start TO end`".into()));
+            }
+            cur.skip_ws();
+            let start = parse_expr(cur)?;
+            cur.skip_ws();
+            if cur.ident().as_deref() != Some("TO") {
+                return Err((cur.pos, "FOR needs TO".into()));
+            }
+            cur.skip_ws();
+            Stmt::For { var, start, end: parse_expr(cur)? }
+        }
+        "ENDFOR" => Stmt::EndFor,
+        "REPEAT" => Stmt::Repeat,
+        "UNTIL" => Stmt::Until(parse_expr(cur)?),
+        "LOOP" => Stmt::Loop,
+        "ENDLOOP" => Stmt::EndLoop,
+        "CASE" => parse_case(cur)?,
+        "GOTOF" => Stmt::Goto(parse_goto_target(GotoKind::Forward, cur)?),
+        "GOTOB" => Stmt::Goto(parse_goto_target(GotoKind::Backward, cur)?),
+        "GOTO" => Stmt::Goto(parse_goto_target(GotoKind::Both, cur)?),
+        "GOTOC" => Stmt::Goto(parse_goto_target(GotoKind::Continue, cur)?),
+        "PROC" => parse_proc(cur)?,
+        "RET" => Stmt::Ret,
+        "EXTERN" => {
+            let name = cur.ident().ok_or((cur.pos, "EXTERN needs a name".to_string()))?;
+            // The parameter types are for the caller's checks; the text is not needed here.
+            cur.pos = cur.len();
+            Stmt::Extern { name }
+        }
+        _ => unreachable!("not a statement: {id}"),
+    })
+}
+
+fn goto_kind_at(cur: &mut Cursor) -> Option<GotoKind> {
+    let save = cur.pos;
+    let kind = match cur.ident().as_deref() {
+        Some("GOTOF") => GotoKind::Forward,
+        Some("GOTOB") => GotoKind::Backward,
+        Some("GOTO") => GotoKind::Both,
+        Some("GOTOC") => GotoKind::Continue,
+        _ => {
+            cur.pos = save;
+            return None;
+        }
+    };
+    Some(kind)
+}
+
+fn parse_goto_target(kind: GotoKind, cur: &mut Cursor) -> PResult<Goto> {
+    cur.skip_ws();
+    let start = cur.pos;
+    if cur.eat(b':') {
+        let n = cur.digits().ok_or((start, "expected a block number after `:`".to_string()))?;
+        return Ok(Goto {
+            kind,
+            target: JumpTarget::BlockNumber(n.parse().map_err(|_| (start, "block number too large".to_string()))?),
+        });
+    }
+    let id = cur.ident().ok_or((start, "jump needs a label or block number".to_string()))?;
+    if let Some(n) = id.strip_prefix('N').and_then(|n| n.parse::<u32>().ok()) {
+        return Ok(Goto { kind, target: JumpTarget::BlockNumber(n) });
+    }
+    Ok(Goto { kind, target: JumpTarget::Label(id) })
+}
+
+fn parse_case(cur: &mut Cursor) -> PResult<Stmt> {
+    let expr = parse_expr(cur)?;
+    cur.skip_ws();
+    if cur.ident().as_deref() != Some("OF") {
+        return Err((cur.pos, "CASE needs OF".into()));
+    }
+    let mut arms = Vec::new();
+    let mut default = None;
+    loop {
+        cur.skip_ws();
+        if cur.at_end() {
+            break;
+        }
+        let save = cur.pos;
+        if cur.ident().as_deref() == Some("DEFAULT") {
+            cur.skip_ws();
+            let kind = goto_kind_at(cur).ok_or((cur.pos, "DEFAULT needs GOTOF/GOTOB".to_string()))?;
+            default = Some(parse_goto_target(kind, cur)?);
+            continue;
+        }
+        cur.pos = save;
+        let value = parse_unary(cur)?;
+        cur.skip_ws();
+        let kind = goto_kind_at(cur).ok_or((cur.pos, "CASE value needs GOTOF/GOTOB".to_string()))?;
+        arms.push((value, parse_goto_target(kind, cur)?));
+    }
+    Ok(Stmt::Case { expr, arms, default })
+}
+
+fn parse_type(cur: &mut Cursor) -> PResult<VarType> {
+    let start = cur.pos;
+    let id =
+        cur.ident().ok_or((start, "expected a type (INT, REAL, BOOL, CHAR, STRING[n], AXIS, FRAME)".to_string()))?;
+    Ok(match id.as_str() {
+        "INT" => VarType::Int,
+        "REAL" => VarType::Real,
+        "BOOL" => VarType::Bool,
+        "CHAR" => VarType::Char,
+        "AXIS" => VarType::Axis,
+        "FRAME" => VarType::Frame,
+        "STRING" => {
+            cur.skip_ws();
+            if !cur.eat(b'[') {
+                return Err((cur.pos, "STRING needs its length: STRING[n]".into()));
+            }
+            let n = cur.digits().and_then(|d| d.parse::<u16>().ok()).filter(|n| (1..=400).contains(n));
+            let n = n.ok_or((cur.pos, "STRING length must be 1..400".to_string()))?;
+            if !cur.eat(b']') {
+                return Err((cur.pos, "missing `]`".into()));
+            }
+            VarType::Str(n)
+        }
+        other => return Err((start, format!("unknown type {other}"))),
+    })
+}
+
+fn parse_def(cur: &mut Cursor) -> PResult<Stmt> {
+    // Optional storage class of global user data: DEF CHAN / DEF NCK.
+    let save = cur.pos;
+    let global = matches!(cur.ident().as_deref(), Some("CHAN" | "NCK"));
+    if global {
+        cur.skip_ws();
+    } else {
+        cur.pos = save;
+    }
+    let ty = parse_type(cur)?;
+    let mut vars = Vec::new();
+    loop {
+        cur.skip_ws();
+        let start = cur.pos;
+        let name = cur.ident().ok_or((start, "DEF needs a variable name".to_string()))?;
+        if name.starts_with('$') || is_statement(&name) {
+            return Err((start, format!("{name} cannot be a variable name")));
+        }
+        let dims = parse_indices(cur)?;
+        cur.skip_ws();
+        let init = if cur.eat(b'=') {
+            cur.skip_ws();
+            parse_init(cur)?
+        } else {
+            Vec::new()
+        };
+        vars.push(VarDecl { name, dims, init });
+        cur.skip_ws();
+        if !cur.eat(b',') {
+            break;
+        }
+    }
+    Ok(Stmt::Def { global, ty, vars })
+}
+
+/// `value`, `(v1, v2, ...)`, `SET(v1, ...)` or `REP(v)` (the latter as a one-element call).
+fn parse_init(cur: &mut Cursor) -> PResult<Vec<Expr>> {
+    let save = cur.pos;
+    if let Some(id) = cur.ident() {
+        cur.skip_ws();
+        if id == "SET" && cur.eat(b'(') {
+            return parse_args(cur);
+        }
+        if id == "REP" && cur.eat(b'(') {
+            return Ok(vec![Expr::Call("REP".into(), parse_args(cur)?)]);
+        }
+    }
+    cur.pos = save;
+    Ok(vec![parse_expr(cur)?])
+}
+
+fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
+    let name = cur.ident().ok_or((cur.pos, "PROC needs a name".to_string()))?;
+    let mut params = Vec::new();
+    cur.skip_ws();
+    if cur.eat(b'(') {
+        cur.skip_ws();
+        if !cur.eat(b')') {
+            loop {
+                cur.skip_ws();
+                let save = cur.pos;
+                let by_reference = cur.ident().as_deref() == Some("VAR");
+                if !by_reference {
+                    cur.pos = save;
+                }
+                cur.skip_ws();
+                let ty = parse_type(cur)?;
+                cur.skip_ws();
+                let pname = cur.ident().ok_or((cur.pos, "parameter needs a name".to_string()))?;
+                let dims = parse_indices(cur)?;
+                params.push(Param { by_reference, ty, name: pname, dims });
+                cur.skip_ws();
+                if cur.eat(b')') {
+                    break;
+                }
+                if !cur.eat(b',') {
+                    return Err((cur.pos, "expected `,` or `)` in PROC parameters".into()));
+                }
+            }
+        }
+    }
+    // Attributes such as SAVE, DISPLOF, SBLOF need no parsing here.
+    cur.pos = cur.len();
+    Ok(Stmt::Proc { name, params })
+}
+
+fn parse_lvalue(cur: &mut Cursor) -> PResult<Lvalue> {
+    let start = cur.pos;
+    let name = cur.ident().ok_or((start, "expected a variable".to_string()))?;
+    Ok(Lvalue { name, indices: parse_indices(cur)? })
+}
+
+/// `[e1, e2, ...]` after a name, or nothing.
+fn parse_indices(cur: &mut Cursor) -> PResult<Vec<Expr>> {
+    if !cur.eat(b'[') {
+        return Ok(Vec::new());
+    }
+    let mut out = Vec::new();
+    loop {
+        cur.skip_ws();
+        out.push(parse_expr(cur)?);
+        cur.skip_ws();
+        if cur.eat(b']') {
+            return Ok(out);
+        }
+        if !cur.eat(b',') {
+            return Err((cur.pos, "expected `,` or `]`".into()));
+        }
+    }
+}
+
+fn parse_word(cur: &mut Cursor) -> PResult<Word> {
     let start = cur.pos;
     let Some(c) = cur.peek() else { return Err((start, "unexpected end of block".into())) };
     if !(c.is_ascii_alphabetic() || c == b'_' || c == b'$') {
         return Err((start, format!("unexpected character `{}`", c as char)));
     }
-    // `NAME=value` (NAME may carry digits, e.g. axis X1 or R parameter R1).
+    // `NAME=value` or `NAME[i]=value` (NAME may carry digits, e.g. axis X1 or R parameter R1).
     let save = cur.pos;
     if let Some(id) = cur.ident() {
+        if let Some(kind) = match id.as_str() {
+            "GOTOF" => Some(GotoKind::Forward),
+            "GOTOB" => Some(GotoKind::Backward),
+            "GOTO" => Some(GotoKind::Both),
+            "GOTOC" => Some(GotoKind::Continue),
+            _ => None,
+        } {
+            return Ok(Word::Goto(parse_goto_target(kind, cur)?));
+        }
+        let indices = parse_indices(cur)?;
         cur.skip_ws();
-        if cur.eat(b'=') {
+        if cur.peek() == Some(b'=') && cur.peek_at(1) != Some(b'=') {
+            cur.pos += 1;
             cur.skip_ws();
             let value = parse_address_value(cur)?;
-            return Ok(Word::Address { name: id, value });
+            return Ok(Word::Address { name: id, indices, value });
+        }
+        if !indices.is_empty() {
+            return Err((cur.pos, format!("expected `=` after {id}[...]")));
         }
     }
     cur.pos = save;
+    if c == b'$' {
+        return Err((start, "a system variable needs `=` and a value".into()));
+    }
     // Letters followed directly by a number: `X10`, `G01`, `M30`, `X-5.5`.
     let letters = cur.letters();
-    if letters.is_empty() {
-        return Err((start, "expected an address letter".into()));
-    }
     if cur.peek().is_some_and(|c| c.is_ascii_digit() || matches!(c, b'.' | b'-' | b'+')) {
         let num_start = cur.pos;
         let value = cur.number().ok_or_else(|| (num_start, format!("bad number after {letters}")))?;
@@ -168,7 +466,11 @@ fn parse_word(cur: &mut Cursor) -> Result<Word, (usize, String)> {
             }
             "G" => Word::G(value as u32),
             "M" => Word::M(value as u32),
-            _ => Word::Address { name: letters, value: AddressValue { mode: None, expr: Expr::Number(value) } },
+            _ => Word::Address {
+                name: letters,
+                indices: Vec::new(),
+                value: AddressValue { mode: None, expr: Expr::Number(value) },
+            },
         });
     }
     // A keyword, possibly with arguments: `SUPA`, `TRANSMIT(1)`, `MSG("x")`.
@@ -182,7 +484,7 @@ fn parse_word(cur: &mut Cursor) -> Result<Word, (usize, String)> {
     Ok(Word::Keyword { name, args })
 }
 
-fn parse_address_value(cur: &mut Cursor) -> Result<AddressValue, (usize, String)> {
+fn parse_address_value(cur: &mut Cursor) -> PResult<AddressValue> {
     let save = cur.pos;
     if let Some(id) = cur.ident() {
         let mode = match id.as_str() {
@@ -208,14 +510,20 @@ fn parse_address_value(cur: &mut Cursor) -> Result<AddressValue, (usize, String)
     Ok(AddressValue { mode: None, expr: parse_expr(cur)? })
 }
 
-fn parse_args(cur: &mut Cursor) -> Result<Vec<Expr>, (usize, String)> {
+fn parse_args(cur: &mut Cursor) -> PResult<Vec<Expr>> {
     let mut args = Vec::new();
     cur.skip_ws();
     if cur.eat(b')') {
         return Ok(args);
     }
     loop {
-        args.push(parse_expr(cur)?);
+        cur.skip_ws();
+        // An omitted argument (`TRAANG(,2)`) is kept as an empty string marker.
+        if matches!(cur.peek(), Some(b',' | b')')) {
+            args.push(Expr::Call("_OMITTED".into(), Vec::new()));
+        } else {
+            args.push(parse_expr(cur)?);
+        }
         cur.skip_ws();
         if cur.eat(b')') {
             return Ok(args);
@@ -226,62 +534,85 @@ fn parse_args(cur: &mut Cursor) -> Result<Vec<Expr>, (usize, String)> {
     }
 }
 
-/// `expr := term (('+'|'-') term)*` — spaces are allowed around operators.
-pub(crate) fn parse_expr(cur: &mut Cursor) -> Result<Expr, (usize, String)> {
-    let mut lhs = parse_term(cur)?;
-    loop {
-        let save = cur.pos;
-        cur.skip_ws();
-        let op = match cur.peek() {
-            Some(b'+') => BinOp::Add,
-            Some(b'-') => BinOp::Sub,
-            _ => {
-                cur.pos = save;
-                return Ok(lhs);
-            }
-        };
-        cur.pos += 1;
-        cur.skip_ws();
-        lhs = Expr::Binary(op, Box::new(lhs), Box::new(parse_term(cur)?));
-    }
+/// Binary operators by priority level, lowest first (Programming Manual, "Priority of the
+/// operations"): comparison < `<<` < OR < XOR < AND < B_OR < B_XOR < B_AND < `+ -` < `* / DIV MOD`.
+const LEVELS: &[&[(&str, BinOp)]] = &[
+    &[("==", BinOp::Eq), ("<>", BinOp::Ne), (">=", BinOp::Ge), ("<=", BinOp::Le), (">", BinOp::Gt), ("<", BinOp::Lt)],
+    &[("<<", BinOp::Concat)],
+    &[("OR", BinOp::Or)],
+    &[("XOR", BinOp::Xor)],
+    &[("AND", BinOp::And)],
+    &[("B_OR", BinOp::BOr)],
+    &[("B_XOR", BinOp::BXor)],
+    &[("B_AND", BinOp::BAnd)],
+    &[("+", BinOp::Add), ("-", BinOp::Sub)],
+    &[("*", BinOp::Mul), ("/", BinOp::Div), ("DIV", BinOp::IntDiv), ("MOD", BinOp::Mod)],
+];
+
+/// Parses an expression with the control's operator priorities; equal priorities associate
+/// to the left.
+pub(crate) fn parse_expr(cur: &mut Cursor) -> PResult<Expr> {
+    parse_level(cur, 0)
 }
 
-fn parse_term(cur: &mut Cursor) -> Result<Expr, (usize, String)> {
-    let mut lhs = parse_unary(cur)?;
-    loop {
-        let save = cur.pos;
-        cur.skip_ws();
-        let op = match cur.peek() {
-            Some(b'*') => BinOp::Mul,
-            Some(b'/') => BinOp::Div,
-            _ => {
-                cur.pos = save;
-                return Ok(lhs);
-            }
-        };
-        cur.pos += 1;
-        cur.skip_ws();
-        lhs = Expr::Binary(op, Box::new(lhs), Box::new(parse_unary(cur)?));
+fn parse_level(cur: &mut Cursor, level: usize) -> PResult<Expr> {
+    if level == LEVELS.len() {
+        return parse_unary(cur);
     }
+    let mut lhs = parse_level(cur, level + 1)?;
+    while let Some(op) = peek_operator(cur, LEVELS[level]) {
+        cur.skip_ws();
+        let rhs = parse_level(cur, level + 1)?;
+        lhs = Expr::Binary(op, Box::new(lhs), Box::new(rhs));
+    }
+    Ok(lhs)
 }
 
-fn parse_unary(cur: &mut Cursor) -> Result<Expr, (usize, String)> {
+/// Consumes an operator of `ops` if one follows (after blanks); word operators must stand
+/// alone (`AND`, not `ANDX`).
+fn peek_operator(cur: &mut Cursor, ops: &[(&str, BinOp)]) -> Option<BinOp> {
+    let save = cur.pos;
+    cur.skip_ws();
+    for (text, op) in ops {
+        if cur.starts_with_ignore_case(text) {
+            let after = cur.peek_at(text.len());
+            let word = text.as_bytes()[0].is_ascii_alphabetic();
+            let glued = word && after.is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_');
+            // `<` must not take the first half of `<<`, `<>` or `<=`.
+            let partial =
+                *text == "<" && matches!(after, Some(b'<' | b'>' | b'=')) || *text == ">" && after == Some(b'=');
+            if !glued && !partial {
+                cur.pos += text.len();
+                return Some(*op);
+            }
+        }
+    }
+    cur.pos = save;
+    None
+}
+
+fn parse_unary(cur: &mut Cursor) -> PResult<Expr> {
+    cur.skip_ws();
     if cur.eat(b'-') {
-        cur.skip_ws();
-        return Ok(Expr::Neg(Box::new(parse_unary(cur)?)));
+        return Ok(Expr::Unary(UnOp::Neg, Box::new(parse_unary(cur)?)));
     }
     if cur.eat(b'+') {
-        cur.skip_ws();
+        return parse_unary(cur);
+    }
+    let save = cur.pos;
+    match cur.ident().as_deref() {
+        Some("NOT") => return Ok(Expr::Unary(UnOp::Not, Box::new(parse_unary(cur)?))),
+        Some("B_NOT") => return Ok(Expr::Unary(UnOp::BNot, Box::new(parse_unary(cur)?))),
+        _ => cur.pos = save,
     }
     parse_primary(cur)
 }
 
-fn parse_primary(cur: &mut Cursor) -> Result<Expr, (usize, String)> {
+fn parse_primary(cur: &mut Cursor) -> PResult<Expr> {
     let start = cur.pos;
     match cur.peek() {
         Some(b'(') => {
             cur.pos += 1;
-            cur.skip_ws();
             let e = parse_expr(cur)?;
             cur.skip_ws();
             if !cur.eat(b')') {
@@ -298,244 +629,60 @@ fn parse_primary(cur: &mut Cursor) -> Result<Expr, (usize, String)> {
             if !cur.eat(b'"') {
                 return Err((start, "unterminated string".into()));
             }
-            Ok(Expr::Str(String::from_utf8_lossy(&cur.src[s..cur.pos - 1]).into_owned()))
+            Ok(Expr::Str(cur.slice(s, cur.pos - 1).to_string()))
+        }
+        Some(b'\'') => {
+            cur.pos += 1;
+            let s = cur.pos;
+            while cur.peek().is_some_and(|c| c != b'\'') {
+                cur.pos += 1;
+            }
+            if !cur.eat(b'\'') {
+                return Err((start, "unterminated literal".into()));
+            }
+            let inner = cur.slice(s, cur.pos - 1);
+            let (radix, digits) = match inner.as_bytes().first().map(u8::to_ascii_uppercase) {
+                Some(b'H') => (16, &inner[1..]),
+                Some(b'B') => (2, &inner[1..]),
+                // A character constant: 'A'.
+                _ if inner.chars().count() == 1 => {
+                    return Ok(Expr::Number(inner.chars().next().unwrap_or('\0') as u32 as f64));
+                }
+                _ => return Err((start, format!("bad literal '{inner}' (use 'H..' or 'B..')"))),
+            };
+            u64::from_str_radix(digits, radix)
+                .map(|v| Expr::Number(v as f64))
+                .map_err(|_| (start, format!("bad {} literal '{inner}'", if radix == 16 { "hex" } else { "binary" })))
         }
         Some(c) if c.is_ascii_digit() || c == b'.' => {
             cur.number().map(Expr::Number).ok_or_else(|| (start, "bad number".into()))
         }
-        Some(b'$') => {
-            let id = cur.ident().unwrap_or_default();
-            if id == "$R" && cur.eat(b'[') {
-                let n = cur.digits().and_then(|d| d.parse().ok());
-                if let (Some(n), true) = (n, cur.eat(b']')) {
-                    return Ok(Expr::RParam(n));
-                }
-                return Err((start, "expected $R[<number>]".into()));
+        Some(c) if c.is_ascii_alphabetic() || c == b'_' || c == b'$' => {
+            let id = cur.ident().ok_or((start, "bad name".to_string()))?;
+            match id.as_str() {
+                "TRUE" => return Ok(Expr::Bool(true)),
+                "FALSE" => return Ok(Expr::Bool(false)),
+                _ => {}
             }
-            Err((start, format!("system variable {id} is not supported in expressions yet")))
-        }
-        Some(c) if c.is_ascii_alphabetic() || c == b'_' => {
-            let id = cur.ident().unwrap_or_default();
             if let Some(n) = id.strip_prefix('R').and_then(|n| n.parse::<u32>().ok()) {
-                return Ok(Expr::RParam(n));
+                return Ok(Expr::RParam(Box::new(Expr::Number(n as f64))));
             }
+            let save = cur.pos;
             cur.skip_ws();
-            if cur.eat(b'(') {
+            if cur.eat(b'(') && !id.starts_with('$') {
                 return Ok(Expr::Call(id, parse_args(cur)?));
             }
-            Err((start, format!("unknown name {id} in expression")))
+            cur.pos = save;
+            let indices = parse_indices(cur)?;
+            if (id == "$R" || id == "R") && indices.len() == 1 {
+                return Ok(Expr::RParam(Box::new(indices.into_iter().next().expect("one index"))));
+            }
+            Ok(Expr::Var { name: id, indices })
         }
         Some(c) => Err((start, format!("unexpected character `{}` in expression", c as char))),
         None => Err((start, "missing value".into())),
     }
 }
 
-/// A byte cursor over one line's code part.
-pub(crate) struct Cursor<'a> {
-    src: &'a [u8],
-    pos: usize,
-}
-
-impl Cursor<'_> {
-    fn peek(&self) -> Option<u8> {
-        self.src.get(self.pos).copied()
-    }
-    fn at_end(&self) -> bool {
-        self.pos >= self.src.len()
-    }
-    fn eat(&mut self, c: u8) -> bool {
-        if self.peek() == Some(c) {
-            self.pos += 1;
-            true
-        } else {
-            false
-        }
-    }
-    fn eat_digit(&mut self) {
-        if self.peek().is_some_and(|c| c.is_ascii_digit()) {
-            self.pos += 1;
-        }
-    }
-    fn skip_ws(&mut self) {
-        while self.peek().is_some_and(|c| c == b' ' || c == b'\t') {
-            self.pos += 1;
-        }
-    }
-    fn digits(&mut self) -> Option<String> {
-        let s = self.pos;
-        while self.peek().is_some_and(|c| c.is_ascii_digit()) {
-            self.pos += 1;
-        }
-        (self.pos > s).then(|| String::from_utf8_lossy(&self.src[s..self.pos]).into_owned())
-    }
-    fn letters(&mut self) -> String {
-        let s = self.pos;
-        while self.peek().is_some_and(|c| c.is_ascii_alphabetic() || c == b'_' || (c == b'$' && self.pos == s)) {
-            self.pos += 1;
-        }
-        String::from_utf8_lossy(&self.src[s..self.pos]).to_ascii_uppercase()
-    }
-    fn ident_continue(&mut self) -> String {
-        let s = self.pos;
-        while self.peek().is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_') {
-            self.pos += 1;
-        }
-        String::from_utf8_lossy(&self.src[s..self.pos]).to_ascii_uppercase()
-    }
-    /// An identifier: `$`? letter (letter | digit | `_`)*, upper-cased.
-    fn ident(&mut self) -> Option<String> {
-        let s = self.pos;
-        self.eat(b'$');
-        if !self.peek().is_some_and(|c| c.is_ascii_alphabetic() || c == b'_') {
-            self.pos = s;
-            return None;
-        }
-        self.ident_continue();
-        Some(String::from_utf8_lossy(&self.src[s..self.pos]).to_ascii_uppercase())
-    }
-    /// A signed decimal number with optional `EX` exponent (`1.5EX3`).
-    fn number(&mut self) -> Option<f64> {
-        let s = self.pos;
-        if matches!(self.peek(), Some(b'-' | b'+')) {
-            self.pos += 1;
-        }
-        let int = self.digits();
-        let frac = if self.eat(b'.') { self.digits() } else { None };
-        if int.is_none() && frac.is_none() {
-            self.pos = s;
-            return None;
-        }
-        let mut text = String::from_utf8_lossy(&self.src[s..self.pos]).into_owned();
-        if self.src[self.pos..].len() >= 2 && self.src[self.pos..self.pos + 2].eq_ignore_ascii_case(b"EX") {
-            let save = self.pos;
-            self.pos += 2;
-            let sign = if self.eat(b'-') {
-                "-"
-            } else {
-                self.eat(b'+');
-                ""
-            };
-            match self.digits() {
-                Some(e) => text = format!("{text}e{sign}{e}"),
-                None => self.pos = save,
-            }
-        }
-        if text.ends_with('.') {
-            text.push('0');
-        }
-        text.parse::<f64>().ok().filter(|v| v.is_finite())
-    }
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn words(src: &str) -> Vec<Word> {
-        let p = parse(src);
-        assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
-        p.blocks.into_iter().flat_map(|b| b.words).collect()
-    }
-
-    fn num(name: &str, v: f64) -> Word {
-        Word::Address { name: name.into(), value: AddressValue { mode: None, expr: Expr::Number(v) } }
-    }
-
-    #[test]
-    fn empty_input_yields_no_blocks() {
-        assert!(parse("").blocks.is_empty());
-        assert!(parse("\n  \n").blocks.is_empty());
-    }
-
-    #[test]
-    fn words_may_be_written_without_spaces() {
-        assert_eq!(words("G1X10Y-20.5F1000"), vec![Word::G(1), num("X", 10.0), num("Y", -20.5), num("F", 1000.0)]);
-    }
-
-    #[test]
-    fn leading_zeros_and_trailing_points_are_numbers() {
-        assert_eq!(words("G01 X10. Z.5"), vec![Word::G(1), num("X", 10.0), num("Z", 0.5)]);
-    }
-
-    #[test]
-    fn block_numbers_skip_marks_labels_and_comments_are_recognised() {
-        let p = parse("/N20 G0 X1 ; rapid\nSTART: G1 X2\n:30 M30");
-        let b = &p.blocks;
-        assert!(b[0].skip);
-        assert_eq!(b[0].number, Some(20));
-        assert_eq!(b[0].comment.as_deref(), Some("rapid"));
-        assert_eq!(b[1].label.as_deref(), Some("START"));
-        assert_eq!(b[2].number, Some(30));
-        assert_eq!(b[2].words, vec![Word::M(30)]);
-    }
-
-    #[test]
-    fn addresses_with_equals_take_expressions_and_coordinate_modes() {
-        let w = words("X=AC(10) CR=-5 F=2*(R1+3)");
-        assert_eq!(
-            w[0],
-            Word::Address {
-                name: "X".into(),
-                value: AddressValue { mode: Some(CoordMode::Ac), expr: Expr::Number(10.0) }
-            }
-        );
-        assert!(
-            matches!(&w[1], Word::Address { name, value } if name == "CR" && value.expr == Expr::Neg(Box::new(Expr::Number(5.0))))
-        );
-        assert!(
-            matches!(&w[2], Word::Address { name, value: AddressValue { expr: Expr::Binary(BinOp::Mul, _, _), .. } } if name == "F")
-        );
-    }
-
-    #[test]
-    fn axis_names_with_digits_need_equals() {
-        assert_eq!(words("X1=5"), vec![num("X1", 5.0)]);
-        assert_eq!(words("X1"), vec![num("X", 1.0)]);
-    }
-
-    #[test]
-    fn keywords_with_and_without_arguments_are_words() {
-        let w = words("SUPA TRANSMIT(2)");
-        assert_eq!(w[0], Word::Keyword { name: "SUPA".into(), args: vec![] });
-        assert_eq!(w[1], Word::Keyword { name: "TRANSMIT".into(), args: vec![Expr::Number(2.0)] });
-    }
-
-    #[test]
-    fn every_syntax_error_is_reported_with_its_line() {
-        let p = parse("G1 X10\nG1 X=\nG1 #\nG1.5\n");
-        let lines: Vec<u32> = p.diagnostics.iter().map(|d| d.line).collect();
-        assert_eq!(lines, vec![2, 3, 4]);
-        assert_eq!(p.blocks.len(), 1);
-    }
-
-    #[test]
-    fn offsets_point_into_the_source() {
-        let src = "G0 X0\nG1 X=(\n";
-        let p = parse(src);
-        assert_eq!(p.blocks[0].offset, 0);
-        assert!(p.diagnostics[0].offset >= 6);
-    }
-}
-
-#[cfg(test)]
-mod streaming_tests {
-    use super::*;
-
-    #[test]
-    fn reading_block_by_block_gives_the_same_blocks_as_parsing_at_once() {
-        let src = "N10 G0 X1\n\n; only a comment\r\nG1 X2 F3\nM30";
-        let mut streamed = Vec::new();
-        let (mut offset, mut line) = (0, 1);
-        while let Some((block, next_offset, next_line)) = read_block(src, offset, line) {
-            streamed.push(block.unwrap());
-            (offset, line) = (next_offset, next_line);
-        }
-        assert_eq!(streamed, parse(src).blocks);
-    }
-
-    #[test]
-    fn check_reports_what_parse_reports() {
-        let src = "G1 X=\nG0 X1\nG1 #";
-        assert_eq!(check(src), parse(src).diagnostics);
-    }
-}
+mod tests;

@@ -1,0 +1,180 @@
+//! Program flow: the read position in the program text, control structures (IF, WHILE, FOR,
+//! REPEAT, LOOP, CASE) and jumps (GOTOF, GOTOB, GOTO, GOTOC).
+//!
+//! The program is never held as a list of blocks: blocks are parsed from the text as they are
+//! reached, and jumps and skipped branches scan the text for their target. Memory stays
+//! bounded for programs of any length.
+
+use std::sync::Arc;
+
+use crate::alarm::Alarm;
+use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, Stmt};
+
+/// A position in the program text: byte offset of a line start and its 1-based line number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Pos {
+    pub offset: usize,
+    pub line: u32,
+}
+
+/// An open control structure.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Ctrl {
+    If { at: Pos },
+    While { at: Pos },
+    For { at: Pos, body: Pos, var: Lvalue, end: f64 },
+    Repeat { at: Pos, body: Pos },
+    Loop { at: Pos, body: Pos },
+}
+
+impl Ctrl {
+    fn at(&self) -> Pos {
+        match self {
+            Ctrl::If { at }
+            | Ctrl::While { at }
+            | Ctrl::For { at, .. }
+            | Ctrl::Repeat { at, .. }
+            | Ctrl::Loop { at, .. } => *at,
+        }
+    }
+}
+
+/// The most control structures open at once (the control allows 16 levels per program level).
+pub const MAX_NESTING: usize = 16;
+
+/// The read position of one program level and its open control structures.
+#[derive(Debug, Clone)]
+pub(super) struct Flow {
+    pub text: Arc<str>,
+    /// Next block to read.
+    pub next: Pos,
+    /// The block read last (the one being prepared).
+    pub current: Pos,
+    pub control: Vec<Ctrl>,
+}
+
+impl Flow {
+    pub fn new(text: Arc<str>) -> Flow {
+        let start = Pos { offset: 0, line: 1 };
+        Flow { text, next: start, current: start, control: Vec::new() }
+    }
+
+    /// Reads the block at the read position; returns it with its own position.
+    pub fn read(&mut self) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
+        let (block, offset, line) = lang::read_block(&self.text, self.next.offset, self.next.line)?;
+        let at = match &block {
+            Ok(b) => Pos { offset: b.offset, line: b.line },
+            Err(d) => Pos { offset: self.next.offset, line: d.line },
+        };
+        self.next = Pos { offset, line };
+        self.current = at;
+        Some((block, at))
+    }
+
+    /// Moves the read position forward past the block that closes the structure opened just
+    /// before it. `stop` decides which statements at nesting depth 0 end the search; the
+    /// statement found is returned (the read position is after it).
+    pub fn skip(&mut self, from_line: u32, stop: impl Fn(&Stmt) -> bool) -> Result<Stmt, Alarm> {
+        let mut depth = 0usize;
+        while let Some((block, _)) = self.read() {
+            let Ok(Block { stmt: Some(stmt), .. }) = block else { continue };
+            if depth == 0 && stop(&stmt) {
+                return Ok(stmt);
+            }
+            if opens(&stmt) {
+                depth += 1;
+            } else if closes(&stmt) {
+                depth = depth.saturating_sub(1);
+            }
+        }
+        Err(Alarm::nesting(from_line, "the structure is never closed"))
+    }
+
+    /// Pushes a control structure, checking the nesting depth.
+    pub fn open(&mut self, ctrl: Ctrl, line: u32) -> Result<(), Alarm> {
+        if self.control.len() >= MAX_NESTING {
+            return Err(Alarm::nesting(line, &format!("more than {MAX_NESTING} levels")));
+        }
+        self.control.push(ctrl);
+        Ok(())
+    }
+
+    /// Executes a jump from the block at `from`. Returns false for a GOTOC whose target does
+    /// not exist (the program goes on with the next block).
+    pub fn jump(&mut self, goto: &Goto) -> Result<bool, Alarm> {
+        let from = self.current;
+        let forward = || self.find(goto, from, false);
+        let backward = || self.find(goto, Pos { offset: 0, line: 1 }, true);
+        let found = match goto.kind {
+            GotoKind::Forward => forward(),
+            GotoKind::Backward => backward(),
+            GotoKind::Both | GotoKind::Continue => forward().or_else(backward),
+        };
+        let Some(target) = found else {
+            if goto.kind == GotoKind::Continue {
+                return Ok(false);
+            }
+            let name = match &goto.target {
+                JumpTarget::Label(l) => l.clone(),
+                JumpTarget::BlockNumber(n) => format!("N{n}"),
+                JumpTarget::Expr(_) => "(expression)".into(),
+            };
+            return Err(Alarm::jump_not_found(from.line, &name));
+        };
+        // Structures the jump leaves are closed: those opened after the target (backward
+        // jumps) and those whose end lies before the target (forward jumps).
+        self.control.retain(|c| c.at().offset < target.offset);
+        while let Some(c) = self.control.last() {
+            let mut probe = Flow { text: self.text.clone(), next: c.at(), current: c.at(), control: Vec::new() };
+            probe.read();
+            let closer = probe.skip(from.line, closes);
+            if closer.is_ok() && probe.next.offset <= target.offset {
+                self.control.pop();
+            } else {
+                break;
+            }
+        }
+        self.next = target;
+        Ok(true)
+    }
+
+    /// The block carrying the jump target: searching forward, the first one after `from`;
+    /// searching backward (`from` = program start), the last one before the jumping block
+    /// `self.jumping`. The target block itself is executed (a label may share its block).
+    fn find(&self, goto: &Goto, from: Pos, backward: bool) -> Option<Pos> {
+        let end = self.current.offset;
+        let mut probe = Flow { text: self.text.clone(), next: from, control: Vec::new(), current: from };
+        if !backward {
+            // A forward search starts after the jumping block.
+            probe.read();
+        }
+        let last = backward;
+        let mut found = None;
+        while let Some((Ok(block), at)) = probe.read() {
+            if backward && at.offset >= end {
+                break;
+            }
+            let hit = match &goto.target {
+                JumpTarget::Label(l) => block.label.as_deref() == Some(l.as_str()),
+                JumpTarget::BlockNumber(n) => block.number == Some(*n),
+                JumpTarget::Expr(_) => false,
+            };
+            if hit {
+                found = Some(at);
+                if !last {
+                    break;
+                }
+            }
+        }
+        found
+    }
+}
+
+/// Statements that open a structure closed by a later statement.
+pub(super) fn opens(s: &Stmt) -> bool {
+    matches!(s, Stmt::If { goto: None, .. } | Stmt::While(_) | Stmt::For { .. } | Stmt::Repeat | Stmt::Loop)
+}
+
+pub(super) fn closes(s: &Stmt) -> bool {
+    matches!(s, Stmt::EndIf | Stmt::EndWhile | Stmt::EndFor | Stmt::Until(_) | Stmt::EndLoop)
+}

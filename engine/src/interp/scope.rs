@@ -1,0 +1,139 @@
+//! What expressions in a block can read: variables and the system variables of preparation.
+
+use super::Offsets;
+use super::eval::Scope;
+use super::modal::{Modal, MotionMode, Plane};
+use super::value::Value;
+use super::vars::Variables;
+use crate::alarm::Alarm;
+use crate::machine_data::MachineConfig;
+use crate::motion::AxisVec;
+
+/// A read-only view of the preparation state for system variables.
+pub(crate) struct SysView<'a> {
+    pub cfg: &'a MachineConfig,
+    pub modal: &'a Modal,
+    /// Programmed end position in machine coordinates per channel axis.
+    pub pos: &'a AxisVec,
+    pub offsets: &'a Offsets,
+}
+
+/// Variables plus system variables, for [`super::eval::eval`].
+pub(crate) struct Ctx<'a> {
+    pub vars: &'a Variables,
+    pub sys: &'a SysView<'a>,
+}
+
+/// Main-run variables: reading them makes preparation wait until the main run has caught up
+/// (the control's implicit preprocessing stop), because their value is only known there.
+pub fn is_main_run_variable(name: &str) -> bool {
+    ["$AA_", "$AC_", "$VA_"].iter().any(|p| name.starts_with(p))
+}
+
+impl Scope for Ctx<'_> {
+    fn vars(&self) -> &Variables {
+        self.vars
+    }
+
+    fn is_axis(&self, name: &str) -> bool {
+        self.sys.cfg.program_axis(name).is_some()
+    }
+
+    fn system(&self, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+        let sys = self.sys;
+        let axis = || -> Result<usize, Alarm> {
+            match indices {
+                [Value::Axis(a)] | [Value::Str(a)] => {
+                    sys.cfg.program_axis(a).ok_or_else(|| Alarm::unknown_name(line, &format!("{name}[{a}]")))
+                }
+                _ => Err(Alarm::index_error(line, name, "needs one axis name")),
+            }
+        };
+        let wcs = |k: usize| sys.pos[k] - sys.offsets.tool[k] - sys.offsets.work[k];
+        Ok(match name {
+            "$P_TOOLNO" => Value::Int(sys.offsets.t.into()),
+            "$P_TOOL" => Value::Int(sys.offsets.d.into()),
+            "$P_EP" => Value::Real(wcs(axis()?)),
+            "$AA_IM" => Value::Real(sys.pos[axis()?]),
+            "$AA_IB" => {
+                let k = axis()?;
+                Value::Real(sys.pos[k] - sys.offsets.tool[k])
+            }
+            "$AA_IW" => Value::Real(wcs(axis()?)),
+            // Seconds since the start of the block: preparation after a preprocessing stop
+            // reads it at the block's start.
+            "$AC_TIME" => Value::Real(0.0),
+            "$P_GG" => {
+                let group = match indices {
+                    [g] => g.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
+                    _ => return Err(Alarm::index_error(line, name, "needs one G group number")),
+                };
+                Value::Int(
+                    g_group_index(sys.modal, group)
+                        .ok_or_else(|| Alarm::index_error(line, name, &format!("G group {group} is not modelled")))?,
+                )
+            }
+            _ if name.starts_with("$TC_DP") => tool_param(sys.cfg, name, indices, line)?,
+            _ => return Err(Alarm::unknown_name(line, name)),
+        })
+    }
+}
+
+fn tool_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    let p: usize =
+        name[6..].parse().ok().filter(|p| (1..=25).contains(p)).ok_or_else(|| Alarm::unknown_name(line, name))?;
+    let [t, d] = indices else { return Err(Alarm::index_error(line, name, "needs [tool, edge]")) };
+    let t = t.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    let d = d.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    let edge = u32::try_from(t).ok().zip(u32::try_from(d).ok()).and_then(|k| cfg.tools.get(&k));
+    Ok(Value::Real(edge.map_or(0.0, |e| e[p - 1])))
+}
+
+/// Position of the active G function within its group, numbered as `$P_GG` reports it.
+fn g_group_index(m: &Modal, group: i64) -> Option<i64> {
+    Some(match group {
+        1 => match m.motion {
+            MotionMode::Rapid => 1,
+            MotionMode::Linear => 2,
+            MotionMode::Cw => 3,
+            MotionMode::Ccw => 4,
+        },
+        6 => match m.plane {
+            Plane::G17 => 1,
+            Plane::G18 => 2,
+            Plane::G19 => 3,
+        },
+        8 => match m.work_offset {
+            0 => 1,
+            n => n as i64 + 1,
+        },
+        10 => {
+            if m.exact_stop {
+                1
+            } else {
+                2
+            }
+        }
+        13 => match (m.inch, m.inch_feed) {
+            (true, false) => 1,
+            (false, false) => 2,
+            (true, true) => 3,
+            (false, true) => 4,
+        },
+        14 => {
+            if m.absolute {
+                1
+            } else {
+                2
+            }
+        }
+        15 => {
+            if m.feed_per_rev {
+                3
+            } else {
+                2
+            }
+        }
+        _ => return None,
+    })
+}

@@ -1,0 +1,315 @@
+//! Statements: declarations (DEF) and control flow, executed during block preparation.
+
+use super::eval::{eval, eval_f64};
+use super::flow::{Ctrl, Pos};
+use super::modal::assign;
+use super::scope::{Ctx, SysView, is_main_run_variable};
+use super::value::Value;
+use super::vars::Variable;
+use super::{Interpreter, Item, Prep, StopKind};
+use crate::alarm::Alarm;
+use crate::lang::{Block, Expr, Stmt, VarDecl, VarType, Word};
+use crate::machine_data::MachineConfig;
+
+impl Interpreter {
+    /// Reads and prepares the next block of the program.
+    pub(super) fn step_program(
+        &mut self,
+        cfg: &MachineConfig,
+        main_run_idle: bool,
+        out: &mut Vec<Item>,
+    ) -> Result<Prep, Alarm> {
+        let Some(flow) = self.flow.as_mut() else { return Ok(Prep::Done) };
+        let (next, current) = (flow.next, flow.current);
+        let Some((block, at)) = flow.read() else {
+            if let Some(open) = flow.control.last() {
+                return Err(Alarm::nesting(open_line(open), "structure not closed before the end of the program"));
+            }
+            out.push(Item::Stop { kind: StopKind::End, line: current.line });
+            self.flow = None;
+            return Ok(Prep::Done);
+        };
+        let block = block.map_err(|d| Alarm::syntax(d.line, &d.message))?;
+        if !main_run_idle && reads_main_run(&block) {
+            // The control's implicit preprocessing stop: wait for the main run, then read again.
+            flow.next = next;
+            flow.current = current;
+            return Ok(Prep::WaitForMainRun);
+        }
+        match &block.stmt {
+            Some(stmt) => self.statement(stmt, &block, at, cfg, out)?,
+            None => self.prepare_block(&block, cfg, out)?,
+        }
+        if out.iter().any(|i| matches!(i, Item::Stop { kind: StopKind::End, .. })) {
+            self.flow = None;
+            return Ok(Prep::Done);
+        }
+        Ok(Prep::Prepared)
+    }
+
+    fn statement(
+        &mut self,
+        stmt: &Stmt,
+        block: &Block,
+        at: Pos,
+        cfg: &MachineConfig,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
+        let line = block.line;
+        let cond = |this: &Self, e: &Expr| -> Result<bool, Alarm> {
+            let sys = SysView { cfg, modal: &this.modal, pos: &this.pos, offsets: &this.offsets };
+            eval(e, &Ctx { vars: &this.vars, sys: &sys }, line)?.as_bool().map_err(|e| Alarm::type_error(line, &e.0))
+        };
+        match stmt {
+            Stmt::Def { global, ty, vars } => {
+                for decl in vars {
+                    self.declare(*global, *ty, decl, cfg, line)?;
+                }
+            }
+            Stmt::If { cond: c, goto: Some(goto) } => {
+                if cond(self, c)? {
+                    self.flow_mut().jump(goto)?;
+                }
+            }
+            Stmt::If { cond: c, goto: None } => {
+                let taken = cond(self, c)?;
+                let flow = self.flow_mut();
+                flow.open(Ctrl::If { at }, line)?;
+                if !taken && flow.skip(line, |s| matches!(s, Stmt::Else | Stmt::EndIf))? == Stmt::EndIf {
+                    flow.control.pop();
+                }
+            }
+            Stmt::Else => {
+                let flow = self.flow_mut();
+                close(flow.control.pop(), line, "ELSE without IF", |c| matches!(c, Ctrl::If { .. }))?;
+                flow.skip(line, |s| matches!(s, Stmt::EndIf))?;
+            }
+            Stmt::EndIf => {
+                close(self.flow_mut().control.pop(), line, "ENDIF without IF", |c| matches!(c, Ctrl::If { .. }))?
+            }
+            Stmt::While(c) => {
+                if cond(self, c)? {
+                    self.flow_mut().open(Ctrl::While { at }, line)?;
+                } else {
+                    self.flow_mut().skip(line, |s| matches!(s, Stmt::EndWhile))?;
+                }
+            }
+            Stmt::EndWhile => {
+                let flow = self.flow_mut();
+                match flow.control.pop() {
+                    Some(Ctrl::While { at }) => flow.next = at,
+                    other => close(other, line, "ENDWHILE without WHILE", |_| false)?,
+                }
+            }
+            Stmt::For { var, start, end } => {
+                self.assign_to(&var.name, &var.indices, start, cfg, line)?;
+                let end = eval_f64(end, &Ctx { vars: &self.vars, sys: &self.sys(cfg) }, line)?;
+                let value = self.read_var(&var.name, &var.indices, cfg, line)?;
+                let flow = self.flow_mut();
+                if value <= end {
+                    let body = flow.next;
+                    flow.open(Ctrl::For { at, body, var: var.clone(), end }, line)?;
+                } else {
+                    flow.skip(line, |s| matches!(s, Stmt::EndFor))?;
+                }
+            }
+            Stmt::EndFor => {
+                let Some(Ctrl::For { at, body, var, end }) = self.flow_mut().control.pop() else {
+                    return Err(Alarm::nesting(line, "ENDFOR without FOR"));
+                };
+                let next = self.read_var(&var.name, &var.indices, cfg, line)? + 1.0;
+                self.assign_to(&var.name, &var.indices, &Expr::Number(next), cfg, line)?;
+                if next <= end {
+                    let flow = self.flow_mut();
+                    flow.control.push(Ctrl::For { at, body, var, end });
+                    flow.next = body;
+                }
+            }
+            Stmt::Repeat => {
+                let flow = self.flow_mut();
+                let body = flow.next;
+                flow.open(Ctrl::Repeat { at, body }, line)?;
+            }
+            Stmt::Until(c) => {
+                let done = cond(self, c)?;
+                let flow = self.flow_mut();
+                match flow.control.last() {
+                    Some(Ctrl::Repeat { body, .. }) if !done => flow.next = *body,
+                    Some(Ctrl::Repeat { .. }) => {
+                        flow.control.pop();
+                    }
+                    _ => return Err(Alarm::nesting(line, "UNTIL without REPEAT")),
+                }
+            }
+            Stmt::Loop => {
+                let flow = self.flow_mut();
+                let body = flow.next;
+                flow.open(Ctrl::Loop { at, body }, line)?;
+            }
+            Stmt::EndLoop => {
+                let flow = self.flow_mut();
+                match flow.control.last() {
+                    Some(Ctrl::Loop { body, .. }) => flow.next = *body,
+                    _ => return Err(Alarm::nesting(line, "ENDLOOP without LOOP")),
+                }
+            }
+            Stmt::Case { expr, arms, default } => {
+                let sys = self.sys(cfg);
+                let ctx = Ctx { vars: &self.vars, sys: &sys };
+                let value = eval(expr, &ctx, line)?;
+                let mut target = default.as_ref();
+                for (constant, goto) in arms {
+                    let c = eval(constant, &ctx, line)?;
+                    if equal(&value, &c) {
+                        target = Some(goto);
+                        break;
+                    }
+                }
+                if let Some(goto) = target.cloned() {
+                    self.flow_mut().jump(&goto)?;
+                }
+            }
+            Stmt::Goto(goto) => {
+                self.flow_mut().jump(goto)?;
+            }
+            // The main program's own PROC line and EXTERN declarations need no action.
+            Stmt::Proc { .. } | Stmt::Extern { .. } => {}
+            Stmt::Ret => out.push(Item::Stop { kind: StopKind::End, line }),
+        }
+        Ok(())
+    }
+
+    fn flow_mut(&mut self) -> &mut super::flow::Flow {
+        self.flow.as_mut().expect("statements run inside a program")
+    }
+
+    fn sys<'a>(&'a self, cfg: &'a MachineConfig) -> SysView<'a> {
+        SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets }
+    }
+
+    fn assign_to(
+        &mut self,
+        name: &str,
+        indices: &[Expr],
+        value: &Expr,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
+        if assign(name, indices, value, cfg, &mut self.vars, &sys, line)? {
+            Ok(())
+        } else {
+            Err(Alarm::type_error(line, &format!("{name} is not a variable")))
+        }
+    }
+
+    fn read_var(&self, name: &str, indices: &[Expr], cfg: &MachineConfig, line: u32) -> Result<f64, Alarm> {
+        let e = Expr::Var { name: name.to_string(), indices: indices.to_vec() };
+        let e = match name.strip_prefix('R').and_then(|n| n.parse::<u32>().ok()) {
+            Some(n) if indices.is_empty() => Expr::RParam(Box::new(Expr::Number(n as f64))),
+            _ => e,
+        };
+        eval_f64(&e, &Ctx { vars: &self.vars, sys: &self.sys(cfg) }, line)
+    }
+
+    fn declare(
+        &mut self,
+        global: bool,
+        ty: VarType,
+        decl: &VarDecl,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        if cfg.program_axis(&decl.name).is_some() || decl.name.starts_with('R') && decl.name[1..].parse::<u32>().is_ok()
+        {
+            return Err(Alarm::defined_twice(line, &decl.name));
+        }
+        let sys = self.sys(cfg);
+        let ctx = Ctx { vars: &self.vars, sys: &sys };
+        let mut dims = Vec::new();
+        for d in &decl.dims {
+            let n = eval(d, &ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+            if !(1..=65_535).contains(&n) {
+                return Err(Alarm::index_error(line, &decl.name, &format!("dimension {n} must be 1..65535")));
+            }
+            dims.push(n as usize);
+        }
+        let mut var = Variable::new(ty, dims);
+        if var.data.len() > 1_000_000 {
+            return Err(Alarm::index_error(line, &decl.name, "array larger than 1,000,000 elements"));
+        }
+        let convert = |v: Value| v.convert(ty).map_err(|e| Alarm::type_error(line, &e.0));
+        match decl.init.as_slice() {
+            [Expr::Call(f, args)] if f == "REP" && args.len() == 1 => {
+                let v = convert(eval(&args[0], &ctx, line)?)?;
+                var.data.iter_mut().for_each(|d| *d = v.clone());
+            }
+            values => {
+                if values.len() > var.data.len() {
+                    return Err(Alarm::index_error(line, &decl.name, "more initial values than elements"));
+                }
+                for (slot, e) in var.data.iter_mut().zip(values) {
+                    *slot = convert(eval(e, &ctx, line)?)?;
+                }
+            }
+        }
+        self.vars.declare(&decl.name, var, global).map_err(|_| Alarm::defined_twice(line, &decl.name))
+    }
+}
+
+fn open_line(c: &Ctrl) -> u32 {
+    match c {
+        Ctrl::If { at }
+        | Ctrl::While { at }
+        | Ctrl::For { at, .. }
+        | Ctrl::Repeat { at, .. }
+        | Ctrl::Loop { at, .. } => at.line,
+    }
+}
+
+fn close(popped: Option<Ctrl>, line: u32, what: &str, fits: impl Fn(&Ctrl) -> bool) -> Result<(), Alarm> {
+    match popped {
+        Some(c) if fits(&c) => Ok(()),
+        _ => Err(Alarm::nesting(line, what)),
+    }
+}
+
+fn equal(a: &Value, b: &Value) -> bool {
+    match (a.as_f64(), b.as_f64()) {
+        (Ok(x), Ok(y)) => (x - y).abs() <= 1e-12 * x.abs().max(y.abs()),
+        _ => a.as_text() == b.as_text(),
+    }
+}
+
+/// True if any expression of the block reads a main-run variable.
+fn reads_main_run(block: &Block) -> bool {
+    let mut exprs: Vec<&Expr> = Vec::new();
+    for w in &block.words {
+        match w {
+            Word::Address { indices, value, .. } => {
+                exprs.push(&value.expr);
+                exprs.extend(indices);
+            }
+            Word::Keyword { args, .. } => exprs.extend(args),
+            _ => {}
+        }
+    }
+    match &block.stmt {
+        Some(Stmt::If { cond, .. } | Stmt::While(cond) | Stmt::Until(cond)) => exprs.push(cond),
+        Some(Stmt::For { start, end, .. }) => exprs.extend([start, end]),
+        Some(Stmt::Case { expr, .. }) => exprs.push(expr),
+        Some(Stmt::Def { vars, .. }) => exprs.extend(vars.iter().flat_map(|v| v.init.iter().chain(&v.dims))),
+        _ => {}
+    }
+    exprs.into_iter().any(expr_reads_main_run)
+}
+
+fn expr_reads_main_run(e: &Expr) -> bool {
+    match e {
+        Expr::Var { name, indices } => is_main_run_variable(name) || indices.iter().any(expr_reads_main_run),
+        Expr::RParam(i) | Expr::Unary(_, i) => expr_reads_main_run(i),
+        Expr::Binary(_, a, b) => expr_reads_main_run(a) || expr_reads_main_run(b),
+        Expr::Call(_, args) => args.iter().any(expr_reads_main_run),
+        Expr::Number(_) | Expr::Str(_) | Expr::Bool(_) => false,
+    }
+}

@@ -1,0 +1,232 @@
+use super::*;
+
+fn words(src: &str) -> Vec<Word> {
+    let p = parse(src);
+    assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
+    p.blocks.into_iter().flat_map(|b| b.words).collect()
+}
+
+fn stmt(src: &str) -> Stmt {
+    let p = parse(src);
+    assert!(p.diagnostics.is_empty(), "{:?}", p.diagnostics);
+    p.blocks[0].stmt.clone().expect("a statement")
+}
+
+fn expr(src: &str) -> Expr {
+    let mut cur = Cursor::new(src);
+    let e = parse_expr(&mut cur).unwrap();
+    cur.skip_ws();
+    assert!(cur.at_end(), "unparsed rest of {src}");
+    e
+}
+
+fn num(name: &str, v: f64) -> Word {
+    Word::Address { name: name.into(), indices: vec![], value: AddressValue { mode: None, expr: Expr::Number(v) } }
+}
+
+fn bin(op: BinOp, a: Expr, b: Expr) -> Expr {
+    Expr::Binary(op, Box::new(a), Box::new(b))
+}
+
+fn var(name: &str) -> Expr {
+    Expr::Var { name: name.into(), indices: vec![] }
+}
+
+#[test]
+fn empty_input_yields_no_blocks() {
+    assert!(parse("").blocks.is_empty());
+    assert!(parse("\n  \n").blocks.is_empty());
+}
+
+#[test]
+fn words_may_be_written_without_spaces() {
+    assert_eq!(words("G1X10Y-20.5F1000"), vec![Word::G(1), num("X", 10.0), num("Y", -20.5), num("F", 1000.0)]);
+}
+
+#[test]
+fn leading_zeros_and_trailing_points_are_numbers() {
+    assert_eq!(words("G01 X10. Z.5"), vec![Word::G(1), num("X", 10.0), num("Z", 0.5)]);
+}
+
+#[test]
+fn block_numbers_skip_marks_labels_and_comments_are_recognised() {
+    let p = parse("/N20 G0 X1 ; rapid\nSTART: G1 X2\n:30 M30");
+    let b = &p.blocks;
+    assert!(b[0].skip);
+    assert_eq!(b[0].number, Some(20));
+    assert_eq!(b[0].comment.as_deref(), Some("rapid"));
+    assert_eq!(b[1].label.as_deref(), Some("START"));
+    assert_eq!(b[2].number, Some(30));
+    assert_eq!(b[2].words, vec![Word::M(30)]);
+}
+
+#[test]
+fn addresses_with_equals_take_expressions_and_coordinate_modes() {
+    let w = words("X=AC(10) CR=-5 F=2*(R1+3)");
+    assert_eq!(
+        w[0],
+        Word::Address {
+            name: "X".into(),
+            indices: vec![],
+            value: AddressValue { mode: Some(CoordMode::Ac), expr: Expr::Number(10.0) }
+        }
+    );
+    assert!(
+        matches!(&w[1], Word::Address { name, value, .. } if name == "CR" && value.expr == Expr::Unary(UnOp::Neg, Box::new(Expr::Number(5.0))))
+    );
+    assert!(
+        matches!(&w[2], Word::Address { name, value: AddressValue { expr: Expr::Binary(BinOp::Mul, _, _), .. }, .. } if name == "F")
+    );
+}
+
+#[test]
+fn axis_names_with_digits_need_equals() {
+    assert_eq!(words("X1=5"), vec![num("X1", 5.0)]);
+    assert_eq!(words("X1"), vec![num("X", 1.0)]);
+}
+
+#[test]
+fn keywords_with_and_without_arguments_are_words() {
+    let w = words("SUPA TRANSMIT(2)");
+    assert_eq!(w[0], Word::Keyword { name: "SUPA".into(), args: vec![] });
+    assert_eq!(w[1], Word::Keyword { name: "TRANSMIT".into(), args: vec![Expr::Number(2.0)] });
+}
+
+#[test]
+fn every_syntax_error_is_reported_with_its_line() {
+    let p = parse("G1 X10\nG1 X=\nG1 #\nG1.5\n");
+    let lines: Vec<u32> = p.diagnostics.iter().map(|d| d.line).collect();
+    assert_eq!(lines, vec![2, 3, 4]);
+    assert_eq!(p.blocks.len(), 1);
+}
+
+#[test]
+fn offsets_point_into_the_source() {
+    let p = parse("G0 X0\nG1 X=(\n");
+    assert_eq!(p.blocks[0].offset, 0);
+    assert!(p.diagnostics[0].offset >= 6);
+}
+
+#[test]
+fn multiplication_binds_tighter_than_addition() {
+    assert_eq!(
+        expr("1+2*3"),
+        bin(BinOp::Add, Expr::Number(1.0), bin(BinOp::Mul, Expr::Number(2.0), Expr::Number(3.0)))
+    );
+}
+
+#[test]
+fn equal_priorities_associate_to_the_left() {
+    assert_eq!(
+        expr("8-4-2"),
+        bin(BinOp::Sub, bin(BinOp::Sub, Expr::Number(8.0), Expr::Number(4.0)), Expr::Number(2.0))
+    );
+    assert_eq!(
+        expr("8 DIV 4 MOD 3"),
+        bin(BinOp::Mod, bin(BinOp::IntDiv, Expr::Number(8.0), Expr::Number(4.0)), Expr::Number(3.0))
+    );
+}
+
+#[test]
+fn comparison_has_the_lowest_priority_so_logic_needs_parentheses() {
+    // `A==1 AND B==2` is `A == (1 AND B) == 2` on the control.
+    let e = expr("A==1 AND B==2");
+    assert_eq!(
+        e,
+        bin(BinOp::Eq, bin(BinOp::Eq, var("A"), bin(BinOp::And, Expr::Number(1.0), var("B"))), Expr::Number(2.0))
+    );
+    let e = expr("(A==1) AND (B==2)");
+    assert!(matches!(e, Expr::Binary(BinOp::And, _, _)));
+}
+
+#[test]
+fn word_operators_need_word_boundaries() {
+    assert_eq!(expr("ANDY"), var("ANDY"));
+    assert_eq!(expr("A OR B"), bin(BinOp::Or, var("A"), var("B")));
+    assert_eq!(expr("A B_AND 3"), bin(BinOp::BAnd, var("A"), Expr::Number(3.0)));
+}
+
+#[test]
+fn less_than_is_not_confused_with_concatenation_or_not_equal() {
+    assert!(matches!(expr("A<<B"), Expr::Binary(BinOp::Concat, _, _)));
+    assert!(matches!(expr("A<>B"), Expr::Binary(BinOp::Ne, _, _)));
+    assert!(matches!(expr("A<=B"), Expr::Binary(BinOp::Le, _, _)));
+    assert!(matches!(expr("A<B"), Expr::Binary(BinOp::Lt, _, _)));
+}
+
+#[test]
+fn literals_of_every_kind_are_parsed() {
+    assert_eq!(expr("'H1F'"), Expr::Number(31.0));
+    assert_eq!(expr("'B101'"), Expr::Number(5.0));
+    assert_eq!(expr("1.5EX3"), Expr::Number(1500.0));
+    assert_eq!(expr("\"abc\""), Expr::Str("abc".into()));
+    assert_eq!(expr("TRUE"), Expr::Bool(true));
+    assert_eq!(expr("$R[2]"), Expr::RParam(Box::new(Expr::Number(2.0))));
+    assert_eq!(expr("$AA_IM[X]"), Expr::Var { name: "$AA_IM".into(), indices: vec![var("X")] });
+}
+
+#[test]
+fn assignments_to_array_elements_and_system_variables_are_words() {
+    let w = words("ABC[2]=5 $TC_DP1[1,1]=120");
+    assert!(matches!(&w[0], Word::Address { name, indices, .. } if name == "ABC" && indices.len() == 1));
+    assert!(matches!(&w[1], Word::Address { name, indices, .. } if name == "$TC_DP1" && indices.len() == 2));
+}
+
+#[test]
+fn def_declares_typed_variables_with_arrays_and_initial_values() {
+    let s = stmt("DEF REAL A=1.5, B[3]=SET(1,2,3), C");
+    let Stmt::Def { ty, vars, global: false } = s else { panic!() };
+    assert_eq!(ty, VarType::Real);
+    assert_eq!(vars.len(), 3);
+    assert_eq!(vars[1].init.len(), 3);
+    assert_eq!(
+        stmt("DEF STRING[12] S=\"x\""),
+        Stmt::Def {
+            global: false,
+            ty: VarType::Str(12),
+            vars: vec![VarDecl { name: "S".into(), dims: vec![], init: vec![Expr::Str("x".into())] }]
+        }
+    );
+}
+
+#[test]
+fn control_flow_statements_are_recognised() {
+    assert!(matches!(stmt("IF R1>5 GOTOF END"), Stmt::If { goto: Some(Goto { kind: GotoKind::Forward, .. }), .. }));
+    assert!(matches!(stmt("IF (R1>5) AND (R2<1)"), Stmt::If { goto: None, .. }));
+    assert!(matches!(stmt("FOR I=1 TO 10"), Stmt::For { .. }));
+    assert!(matches!(stmt("WHILE R1<10"), Stmt::While(_)));
+    assert!(matches!(stmt("UNTIL R1>=3"), Stmt::Until(_)));
+    assert_eq!(stmt("GOTOB N100"), Stmt::Goto(Goto { kind: GotoKind::Backward, target: JumpTarget::BlockNumber(100) }));
+    let Stmt::Case { arms, default, .. } = stmt("CASE(R1) OF 1 GOTOF ONE 2 GOTOF TWO DEFAULT GOTOF OTHER") else {
+        panic!()
+    };
+    assert_eq!(arms.len(), 2);
+    assert!(default.is_some());
+    assert!(
+        matches!(stmt("PROC CONTOUR(REAL X1, VAR REAL RES) SAVE"), Stmt::Proc { params, .. } if params.len() == 2 && params[1].by_reference)
+    );
+}
+
+#[test]
+fn statements_followed_by_stray_text_are_errors() {
+    assert!(!parse("ENDIF X10").diagnostics.is_empty());
+    assert!(!parse("FOR I=1 10").diagnostics.is_empty());
+}
+
+#[test]
+fn reading_block_by_block_gives_the_same_blocks_as_parsing_at_once() {
+    let src = "N10 G0 X1\n\n; only a comment\r\nG1 X2 F3\nM30";
+    let mut streamed = Vec::new();
+    let (mut offset, mut line) = (0, 1);
+    while let Some((block, next_offset, next_line)) = read_block(src, offset, line) {
+        streamed.push(block.unwrap());
+        (offset, line) = (next_offset, next_line);
+    }
+    assert_eq!(streamed, parse(src).blocks);
+}
+
+#[test]
+fn check_reports_what_parse_reports() {
+    let src = "G1 X=\nG0 X1\nG1 #";
+    assert_eq!(check(src), parse(src).diagnostics);
+}

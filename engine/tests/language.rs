@@ -1,0 +1,104 @@
+//! Fixture programs under `tests/programs/lang/`, each carrying its expected results in
+//! `; expect ...` comments worked out by hand:
+//!
+//! - `; expect R1=5`            R parameter value
+//! - `; expect VAR A=1.5`       user variable (`VAR M[5]=7`: flat element index; TRUE/FALSE for BOOL)
+//! - `; expect STR S=abc`       string variable
+//! - `; expect X=10`            WCS position of an axis at the end
+//! - `; expect alarm 14080 line 4`
+//! - `; expect status alarm`    final channel status (idle unless an alarm is expected)
+//! - `; machine lathe-2axis`    preset (default mill-3axis)
+
+use std::path::Path;
+
+use nctwin_engine::interp::value::Value;
+use nctwin_engine::{Channel, Status};
+
+const TOLERANCE: f64 = 1e-9;
+const MAX_TICKS: usize = 5_000_000;
+
+fn run_fixture(path: &Path) -> Result<(), String> {
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let expectations: Vec<&str> = text.lines().filter_map(|l| l.trim().strip_prefix("; expect ")).collect();
+    if expectations.is_empty() {
+        return Err("no expectations".into());
+    }
+    let machine = text.lines().find_map(|l| l.trim().strip_prefix("; machine ")).unwrap_or("mill-3axis");
+    let mut ch = Channel::from_preset(machine, "").map_err(|e| e.to_string())?;
+    ch.run_program(&text).map_err(|e| format!("not started: {e}"))?;
+    let mut ticks = 0;
+    while ch.is_busy() {
+        ch.step();
+        ticks += 1;
+        if ticks > MAX_TICKS {
+            return Err("does not end".into());
+        }
+    }
+    let snap = ch.snapshot();
+    let mut expected_status = Status::Idle;
+    for e in expectations {
+        let fail = |got: String| Err(format!("expected {e}, got {got}"));
+        if let Some(rest) = e.strip_prefix("alarm ") {
+            expected_status = Status::Alarm;
+            let mut parts = rest.split_whitespace();
+            let number: u32 = parts.next().and_then(|n| n.parse().ok()).ok_or("bad alarm expectation")?;
+            let line: Option<u32> =
+                (parts.next() == Some("line")).then(|| parts.next().and_then(|n| n.parse().ok())).flatten();
+            let hit = snap.alarms.iter().any(|a| a.number == number && (line.is_none() || a.line == line));
+            if !hit {
+                return fail(format!("{:?}", snap.alarms));
+            }
+        } else if let Some(s) = e.strip_prefix("status ") {
+            expected_status = match s {
+                "idle" => Status::Idle,
+                "stopped" => Status::Stopped,
+                "alarm" => Status::Alarm,
+                other => return Err(format!("unknown status {other}")),
+            };
+        } else if let Some(rest) = e.strip_prefix("VAR ").or_else(|| e.strip_prefix("STR ")) {
+            let (lhs, want) = rest.split_once('=').ok_or("bad VAR expectation")?;
+            let (name, index) = match lhs.split_once('[') {
+                Some((n, i)) => (n, i.trim_end_matches(']').parse::<usize>().map_err(|e| e.to_string())?),
+                None => (lhs, 0),
+            };
+            let got = ch.variable(name, index).ok_or(format!("variable {name} not found"))?;
+            let ok = match (&got, want) {
+                (Value::Bool(b), "TRUE") => *b,
+                (Value::Bool(b), "FALSE") => !*b,
+                (Value::Str(s), w) => s == w,
+                (v, w) => w.parse::<f64>().ok().zip(v.as_f64().ok()).is_some_and(|(w, v)| (w - v).abs() <= TOLERANCE),
+            };
+            if !ok {
+                return fail(format!("{got:?}"));
+            }
+        } else if let Some((lhs, want)) = e.split_once('=') {
+            let want: f64 = want.parse().map_err(|_| format!("bad number in {e}"))?;
+            let got = match lhs.strip_prefix('R').and_then(|n| n.parse::<usize>().ok()) {
+                Some(n) => ch.r_param(n),
+                None => snap.workpiece.iter().find(|(n, _)| n == lhs).ok_or(format!("no axis {lhs}"))?.1,
+            };
+            if (got - want).abs() > TOLERANCE {
+                return fail(got.to_string());
+            }
+        } else {
+            return Err(format!("cannot read expectation `{e}`"));
+        }
+    }
+    if snap.status != expected_status {
+        return Err(format!("status {:?}, expected {expected_status:?}; alarms {:?}", snap.status, snap.alarms));
+    }
+    Ok(())
+}
+
+#[test]
+fn every_language_fixture_gives_its_expected_results() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/programs/lang");
+    let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    files.sort();
+    assert!(files.len() >= 40, "only {} fixtures", files.len());
+    let failures: Vec<String> = files
+        .iter()
+        .filter_map(|f| run_fixture(f).err().map(|e| format!("{}: {e}", f.file_name().unwrap().to_string_lossy())))
+        .collect();
+    assert!(failures.is_empty(), "{} of {} fixtures failed:\n{}", failures.len(), files.len(), failures.join("\n"));
+}
