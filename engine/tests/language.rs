@@ -8,6 +8,8 @@
 //! - `; expect alarm 14080 line 4`
 //! - `; expect status alarm`    final channel status (idle unless an alarm is expected)
 //! - `; machine lathe-2axis`    preset (default mill-3axis)
+//!
+//! A line `;;; NAME` starts a subprogram stored under NAME; the main program is what comes first.
 
 use std::path::Path;
 
@@ -25,7 +27,13 @@ fn run_fixture(path: &Path) -> Result<(), String> {
     }
     let machine = text.lines().find_map(|l| l.trim().strip_prefix("; machine ")).unwrap_or("mill-3axis");
     let mut ch = Channel::from_preset(machine, "").map_err(|e| e.to_string())?;
-    ch.run_program(&text).map_err(|e| format!("not started: {e}"))?;
+    let mut parts = text.split("\n;;; ");
+    let main = parts.next().unwrap_or_default();
+    for part in parts {
+        let (name, body) = part.split_once('\n').unwrap_or((part, ""));
+        ch.store_program(name.trim(), body).map_err(|e| format!("subprogram {name}: {e}"))?;
+    }
+    ch.run_program(main).map_err(|e| format!("not started: {e}"))?;
     let mut ticks = 0;
     while ch.is_busy() {
         ch.step();

@@ -500,3 +500,51 @@ mod tests {
         assert!(e.to_string().contains("unknown field `wiat`"), "{e}");
     }
 }
+
+/// A stored program in a listing.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ProgramInfo {
+    /// Upper-case name (a `.MPF`/`.SPF` ending given on upload is dropped).
+    pub name: String,
+    /// Size of the text in bytes.
+    pub size: usize,
+}
+
+/// A stored program with its text.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ProgramText {
+    pub name: String,
+    pub text: String,
+}
+
+/// Body of `PUT /sessions/{id}/programs/{name}`.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProgramBody {
+    /// Program text; refused with 400 and the line when it has syntax errors.
+    #[schema(example = "PROC HOLE(REAL DEPTH)\nG1 Z=-DEPTH F200\nG0 Z5\nRET")]
+    pub text: String,
+}
+
+/// Body of `POST /sessions/{id}/check`.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CheckRequest {
+    pub program: String,
+}
+
+/// One syntax error found by `check`.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct DiagnosticInfo {
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based column within the line.
+    pub column: usize,
+    pub message: String,
+}
+
+/// Every syntax error of a program, found without running it.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct CheckResponse {
+    pub diagnostics: Vec<DiagnosticInfo>,
+}

@@ -31,6 +31,7 @@ pub const COMMITTED_PATH: &str = "openapi/openapi.json";
         (name = "sessions", description = "Sessions: one simulated NC channel each"),
         (name = "program", description = "Program control: run, start, stop, reset, MDA, mode"),
         (name = "jog", description = "Moving axes by hand"),
+        (name = "programs", description = "Stored programs (called by name as subprograms) and syntax checks"),
         (name = "stream", description = "Live state and events over WebSocket"),
     )
 )]

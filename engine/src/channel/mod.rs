@@ -14,7 +14,7 @@ pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Interpreter, Item, Offsets, Prep, StopKind};
+use crate::interp::{Interpreter, Item, Offsets, Prep, Programs, StopKind};
 use crate::lang;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::machine_data::{MachineConfig, MachineData, MdError};
@@ -136,6 +136,8 @@ pub struct Channel {
     tick: u64,
     /// The active program's text; blocks are read from it one at a time.
     program: Option<Arc<str>>,
+    /// Stored programs (main programs and subprograms) by upper-case name.
+    programs: Programs,
     /// Line and byte offset of the prepared blocks whose items are still queued (for display).
     queued_blocks: VecDeque<(u32, usize)>,
     /// Block preparation has reached the end of the program or stopped on an alarm.
@@ -191,6 +193,7 @@ impl Channel {
             tick: 0,
             program: None,
             queued_blocks: VecDeque::new(),
+            programs: Programs::new(),
             prep_done: true,
             pending: VecDeque::new(),
             planner,
@@ -473,7 +476,7 @@ impl Channel {
             budget -= 1;
             let main_run_idle = self.pending.is_empty() && self.planner.is_empty() && self.dwell_ticks == 0;
             out.clear();
-            let prep = self.interp.prepare_next(&self.cfg, main_run_idle, &mut out);
+            let prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
             if let Some(line) = out.iter().find_map(Item::line) {
                 // Remember where the block is, for showing it while its items execute.
                 self.queued_blocks.push_back((line, line_offset(&program, line, self.queued_blocks.back())));
@@ -669,6 +672,32 @@ impl Channel {
         self.planner.position()
     }
 
+    /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
+    /// calls by name. The text is checked first: a program with syntax errors is refused.
+    pub fn store_program(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
+        let name = program_name(name)?;
+        if let Some(d) = lang::check(text).into_iter().next() {
+            return Err(CommandError::Syntax { line: d.line, message: d.message });
+        }
+        self.programs.insert(name.clone(), Arc::from(text));
+        Ok(name)
+    }
+
+    /// A stored program's text.
+    pub fn stored_program(&self, name: &str) -> Option<&str> {
+        self.programs.get(&program_name(name).ok()?).map(|t| &**t)
+    }
+
+    /// Removes a stored program; false if there was none.
+    pub fn delete_program(&mut self, name: &str) -> bool {
+        program_name(name).is_ok_and(|n| self.programs.remove(&n).is_some())
+    }
+
+    /// Names and sizes (bytes) of the stored programs, by name.
+    pub fn stored_programs(&self) -> Vec<(String, usize)> {
+        self.programs.iter().map(|(n, t)| (n.clone(), t.len())).collect()
+    }
+
     /// An R parameter's value (0 for numbers beyond the R parameter count).
     pub fn r_param(&self, n: usize) -> f64 {
         self.interp.variables().r.get(n).copied().unwrap_or(0.0)
@@ -702,6 +731,23 @@ fn line_offset(program: &str, line: u32, last: Option<&(u32, usize)>) -> usize {
         at_line += 1;
     }
     offset
+}
+
+/// The canonical name of a stored program: letters, digits and `_`, starting with a letter,
+/// at most 32 characters, upper-cased; a `.MPF` or `.SPF` ending is dropped.
+fn program_name(name: &str) -> Result<String, CommandError> {
+    let upper = name.trim().to_ascii_uppercase();
+    let base = upper.strip_suffix(".MPF").or_else(|| upper.strip_suffix(".SPF")).unwrap_or(&upper);
+    let valid = base.len() <= 32
+        && base.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+        && base.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if valid {
+        Ok(base.to_string())
+    } else {
+        Err(CommandError::Invalid(format!(
+            "bad program name `{name}`: letters, digits and _, starting with a letter, at most 32"
+        )))
+    }
 }
 
 /// Planner limits per channel axis, from the machine axes behind them.

@@ -6,6 +6,7 @@
 //! programmed position, as the control's preprocessing does.
 
 pub mod arc;
+mod calls;
 mod eval;
 mod flow;
 mod modal;
@@ -21,6 +22,8 @@ use crate::lang::{Block, CoordMode};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
+use calls::CallFrame;
+pub use calls::Programs;
 use flow::Flow;
 pub use modal::{Modal, MotionMode, Plane};
 use scope::SysView;
@@ -120,8 +123,10 @@ pub struct Interpreter {
     /// Programmed spindle speed (rev/min) and direction (+1 M3, -1 M4, 0 M5).
     speed: f64,
     direction: i8,
-    /// Read position in the active program, if one runs.
+    /// Read position in the active program level, if one runs.
     flow: Option<Flow>,
+    /// Subprogram calls in progress, outermost first.
+    calls: Vec<CallFrame>,
 }
 
 impl Interpreter {
@@ -134,12 +139,15 @@ impl Interpreter {
             speed: 0.0,
             direction: 0,
             flow: None,
+            calls: Vec::new(),
         }
     }
 
     /// Channel reset: modal state to reset values; the tool stays selected.
     pub fn reset(&mut self, cfg: &MachineConfig, pos: &AxisVec) {
         self.modal = Modal::reset(cfg);
+        self.flow = None;
+        self.calls.clear();
         self.direction = 0;
         self.pos = *pos;
         self.offsets.work = [0.0; MAX_CHANNEL_AXES];
@@ -159,6 +167,7 @@ impl Interpreter {
     pub fn begin_program(&mut self, text: Shared<str>, pos: &AxisVec) {
         self.pos = *pos;
         self.vars.reset_locals();
+        self.calls.clear();
         self.flow = Some(Flow::new(text));
     }
 
@@ -189,24 +198,37 @@ impl Interpreter {
     /// Prepares the next block of the active program into `out`. `main_run_idle` tells whether
     /// everything prepared so far has been executed (needed by blocks that read main-run
     /// values). On an error the last item is an [`Item::Alarm`] and preparation is done.
-    pub fn prepare_next(&mut self, cfg: &MachineConfig, main_run_idle: bool, out: &mut Vec<Item>) -> Prep {
-        match self.step_program(cfg, main_run_idle, out) {
+    pub fn prepare_next(
+        &mut self,
+        cfg: &MachineConfig,
+        programs: &Programs,
+        main_run_idle: bool,
+        out: &mut Vec<Item>,
+    ) -> Prep {
+        match self.step_program(cfg, programs, main_run_idle, out) {
             Ok(prep) => prep,
             Err(alarm) => {
                 out.clear();
                 out.push(Item::Alarm(alarm));
                 self.flow = None;
+                self.calls.clear();
                 Prep::Done
             }
         }
     }
 
     /// Prepares one block: a statement (control flow, declaration) or NC words.
-    fn prepare_block(&mut self, block: &Block, cfg: &MachineConfig, out: &mut Vec<Item>) -> Result<(), Alarm> {
+    fn prepare_block(
+        &mut self,
+        block: &Block,
+        cfg: &MachineConfig,
+        programs: &Programs,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
         let line = block.line;
         let words = {
             let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
-            modal::collect(block, cfg, &mut self.vars, &sys)?
+            modal::collect(block, cfg, &mut self.vars, &sys, programs)?
         };
         let offsets_before = self.offsets.clone();
         self.modal.apply(&words, cfg, line)?;
@@ -259,6 +281,9 @@ impl Interpreter {
         }
         if let (Some(goto), Some(flow)) = (&words.goto, &mut self.flow) {
             flow.jump(goto)?;
+        }
+        if let Some((name, args)) = &words.call {
+            self.call(name, args, words.repeat.unwrap_or(1), programs, cfg, line)?;
         }
         Ok(())
     }

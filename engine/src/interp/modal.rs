@@ -1,6 +1,7 @@
 //! The modal state (G groups, feed) and the words of one block sorted by meaning.
 
 use super::StopKind;
+use super::calls::Programs;
 use super::eval::{eval, eval_f64};
 use super::scope::{Ctx, SysView};
 use super::vars::Variables;
@@ -151,6 +152,10 @@ pub(super) struct Words {
     pub stop: Option<StopKind>,
     /// A jump at the end of the block (`... GOTOF LABEL`).
     pub goto: Option<Goto>,
+    /// A subprogram call at the end of the block, with its arguments.
+    pub call: Option<(String, Vec<Expr>)>,
+    /// `P`: number of runs of the call.
+    pub repeat: Option<u32>,
 }
 
 impl Words {
@@ -169,7 +174,13 @@ impl Words {
 
 /// Sorts and evaluates the words of `block`. Assignments (`R1=5`, `A[2]=R1`) take effect in
 /// block order, so a later word of the same block sees the new value.
-pub(super) fn collect(block: &Block, cfg: &MachineConfig, vars: &mut Variables, sys: &SysView) -> Result<Words, Alarm> {
+pub(super) fn collect(
+    block: &Block,
+    cfg: &MachineConfig,
+    vars: &mut Variables,
+    sys: &SysView,
+    programs: &Programs,
+) -> Result<Words, Alarm> {
     let line = block.line;
     let mut w = Words::default();
     let mut seen: Vec<String> = Vec::new();
@@ -189,6 +200,14 @@ pub(super) fn collect(block: &Block, cfg: &MachineConfig, vars: &mut Variables, 
                 if name == "SUPA" {
                     w.g53 = true;
                 }
+            }
+            Word::Keyword { name, args } if programs.contains_key(name) => w.call = Some((name.clone(), args.clone())),
+            Word::Keyword { name, args } if name == "CALL" => {
+                let target = match args.as_slice() {
+                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
+                    _ => return Err(Alarm::syntax(line, "CALL needs one program name")),
+                };
+                w.call = Some((target, Vec::new()));
             }
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
             Word::Address { name, indices, value } => {
@@ -211,6 +230,9 @@ pub(super) fn collect(block: &Block, cfg: &MachineConfig, vars: &mut Variables, 
                     "D" => w.edge = Some(whole("D")?),
                     "CR" => w.cr = Some(v),
                     "H" => {}
+                    // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
+                    "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
+                    "P" => w.repeat = Some(whole("P")?),
                     "I" | "J" | "K" => {
                         let g = (name.as_bytes()[0] - b'I') as usize;
                         w.ijk[g] = Some((v, value.mode == Some(CoordMode::Ac)));
@@ -282,7 +304,7 @@ pub(super) fn assign(
 
 /// Addresses with a fixed meaning in a block.
 fn is_nc_address(name: &str) -> bool {
-    matches!(name, "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K")
+    matches!(name, "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K" | "L" | "P")
 }
 
 fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {

@@ -6,7 +6,7 @@ use super::modal::assign;
 use super::scope::{Ctx, SysView, is_main_run_variable};
 use super::value::Value;
 use super::vars::Variable;
-use super::{Interpreter, Item, Prep, StopKind};
+use super::{Interpreter, Item, Prep, Programs, StopKind};
 use crate::alarm::Alarm;
 use crate::lang::{Block, Expr, Stmt, VarDecl, VarType, Word};
 use crate::machine_data::MachineConfig;
@@ -16,6 +16,7 @@ impl Interpreter {
     pub(super) fn step_program(
         &mut self,
         cfg: &MachineConfig,
+        programs: &Programs,
         main_run_idle: bool,
         out: &mut Vec<Item>,
     ) -> Result<Prep, Alarm> {
@@ -24,6 +25,10 @@ impl Interpreter {
         let Some((block, at)) = flow.read() else {
             if let Some(open) = flow.control.last() {
                 return Err(Alarm::nesting(open_line(open), "structure not closed before the end of the program"));
+            }
+            // The end of a subprogram's text returns like M17.
+            if self.return_from_call(cfg, current.line)? {
+                return Ok(Prep::Prepared);
             }
             out.push(Item::Stop { kind: StopKind::End, line: current.line });
             self.flow = None;
@@ -37,10 +42,23 @@ impl Interpreter {
             return Ok(Prep::WaitForMainRun);
         }
         match &block.stmt {
-            Some(stmt) => self.statement(stmt, &block, at, cfg, out)?,
-            None => self.prepare_block(&block, cfg, out)?,
+            Some(Stmt::Proc { params, .. }) => self.bind_params(params, block.line)?,
+            Some(stmt) => {
+                self.check_unbound(block.line)?;
+                self.statement(stmt, &block, at, cfg, out)?;
+            }
+            None => {
+                self.check_unbound(block.line)?;
+                self.prepare_block(&block, cfg, programs, out)?;
+            }
         }
-        if out.iter().any(|i| matches!(i, Item::Stop { kind: StopKind::End, .. })) {
+        if let Some(i) = out.iter().position(|i| matches!(i, Item::Stop { kind: StopKind::End, .. })) {
+            // M17, M2, M30 and RET end a subprogram run; in the main program they end it.
+            if !self.calls.is_empty() {
+                out.remove(i);
+                self.return_from_call(cfg, block.line)?;
+                return Ok(Prep::Prepared);
+            }
             self.flow = None;
             return Ok(Prep::Done);
         }
@@ -172,7 +190,7 @@ impl Interpreter {
             Stmt::Goto(goto) => {
                 self.flow_mut().jump(goto)?;
             }
-            // The main program's own PROC line and EXTERN declarations need no action.
+            // PROC lines are bound in `step_program`; EXTERN declarations need no action.
             Stmt::Proc { .. } | Stmt::Extern { .. } => {}
             Stmt::Ret => out.push(Item::Stop { kind: StopKind::End, line }),
         }

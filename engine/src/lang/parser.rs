@@ -455,9 +455,10 @@ fn parse_word(cur: &mut Cursor) -> PResult<Word> {
     if c == b'$' {
         return Err((start, "a system variable needs `=` and a value".into()));
     }
-    // Letters followed directly by a number: `X10`, `G01`, `M30`, `X-5.5`.
+    // One address letter followed directly by a number: `X10`, `G01`, `M30`, `X-5.5`. Longer
+    // names with digits (`SUB1`, `L_PART2`) are identifiers: subprogram calls or keywords.
     let letters = cur.letters();
-    if cur.peek().is_some_and(|c| c.is_ascii_digit() || matches!(c, b'.' | b'-' | b'+')) {
+    if letters.len() == 1 && cur.peek().is_some_and(|c| c.is_ascii_digit() || matches!(c, b'.' | b'-' | b'+')) {
         let num_start = cur.pos;
         let value = cur.number().ok_or_else(|| (num_start, format!("bad number after {letters}")))?;
         return Ok(match letters.as_str() {
@@ -480,6 +481,9 @@ fn parse_word(cur: &mut Cursor) -> PResult<Word> {
     cur.skip_ws();
     if cur.eat(b'(') {
         args = parse_args(cur)?;
+    } else if cur.peek() == Some(b'"') {
+        // `CALL "NAME"`: a keyword with a string operand.
+        args.push(parse_primary(cur)?);
     }
     Ok(Word::Keyword { name, args })
 }

@@ -7,6 +7,7 @@ pub mod health;
 pub mod jog;
 pub mod machine_data;
 pub mod machines;
+pub mod programs;
 pub mod sessions;
 pub mod stream;
 
@@ -54,6 +55,9 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(control::set_mode))
         .routes(routes!(jog::jog_stop))
         .routes(routes!(machine_data::put_machine_data))
+        .routes(routes!(programs::list_programs))
+        .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
+        .routes(routes!(programs::check))
         .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, QUICK_TIMEOUT));
     let waiting = OpenApiRouter::new()
         .routes(routes!(control::run))

@@ -132,6 +132,11 @@ impl Actor {
     fn handle(&mut self, channel: &mut Channel, request: Request) -> Flow {
         let (action, drive, reply) = match request {
             Request::Shutdown { reply } => return Flow::Stop(reply),
+            Request::Query(job) => {
+                (job.0)(channel);
+                self.publish(channel);
+                return Flow::Continue;
+            }
             Request::Command { action, drive, reply } => (action, drive, reply),
         };
         let result = apply(channel, action);

@@ -131,6 +131,18 @@ enum Request {
     Shutdown {
         reply: oneshot::Sender<()>,
     },
+    /// Read or change data of the channel that needs no stepping (stored programs, ...); the
+    /// closure sends its own reply.
+    Query(Query),
+}
+
+/// A job run on the channel inside the actor.
+struct Query(Box<dyn FnOnce(&mut Channel) + Send>);
+
+impl std::fmt::Debug for Query {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Query")
+    }
 }
 
 /// A cheap-to-clone handle to one running session.
@@ -184,6 +196,19 @@ impl SessionHandle {
         let (reply, rx) = oneshot::channel();
         self.requests.send(Request::Command { action, drive, reply }).await.map_err(|_| SessionError::Ended)?;
         Ok(rx.await.map_err(|_| SessionError::Ended)??)
+    }
+
+    /// Runs `query` on the channel inside the actor (between IPO cycles) and returns its result.
+    pub async fn with_channel<R: Send + 'static>(
+        &self,
+        query: impl FnOnce(&mut Channel) -> R + Send + 'static,
+    ) -> Result<R, SessionError> {
+        let (reply, rx) = oneshot::channel();
+        let job = Box::new(move |channel: &mut Channel| {
+            let _ = reply.send(query(channel));
+        });
+        self.requests.send(Request::Query(Query(job))).await.map_err(|_| SessionError::Ended)?;
+        rx.await.map_err(|_| SessionError::Ended)
     }
 
     /// Ends the actor and waits until it has stopped. Waiting requests get

@@ -1,0 +1,178 @@
+//! Subprogram calls: program levels, parameters by value (`REAL A`) and by reference
+//! (`VAR REAL A`), repetitions (`P=3`), and the return (RET, M17, M2/M30 or the end of text).
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use super::Interpreter;
+use super::eval::eval;
+use super::flow::Flow;
+use super::modal::assign;
+use super::scope::{Ctx, SysView};
+use super::value::Value;
+use super::vars::Variable;
+use crate::alarm::Alarm;
+use crate::lang::{Expr, Lvalue, Param};
+use crate::machine_data::MachineConfig;
+
+/// Stored programs by upper-case name.
+pub type Programs = BTreeMap<String, Arc<str>>;
+
+/// Program levels: the main program plus up to 15 nested subprogram calls.
+pub const MAX_LEVELS: usize = 16;
+
+/// A subprogram call in progress.
+#[derive(Debug, Clone)]
+pub(super) struct CallFrame {
+    /// Where the caller goes on.
+    caller: Flow,
+    text: Arc<str>,
+    /// Argument values, bound to the PROC parameters when the subprogram starts.
+    args: Vec<Value>,
+    /// For each argument, the caller's variable it came from (for VAR parameters).
+    sources: Vec<Option<Lvalue>>,
+    /// (parameter, caller variable) pairs written back on return.
+    by_reference: Vec<(String, Lvalue)>,
+    /// Runs still to do after the current one.
+    repeats_left: u32,
+    /// Parameters are bound (the PROC line has been passed).
+    bound: bool,
+}
+
+impl Interpreter {
+    /// Calls program `name` with `args`, `repeat` times, from the block at `line`.
+    pub(super) fn call(
+        &mut self,
+        name: &str,
+        args: &[Expr],
+        repeat: u32,
+        programs: &Programs,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        let text = programs.get(name).cloned().ok_or_else(|| Alarm::program_not_found(line, name))?;
+        if self.calls.len() + 1 >= MAX_LEVELS {
+            return Err(Alarm::nesting(line, &format!("more than {MAX_LEVELS} program levels")));
+        }
+        let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
+        let ctx = Ctx { vars: &self.vars, sys: &sys };
+        let mut values = Vec::new();
+        let mut sources = Vec::new();
+        for a in args {
+            values.push(eval(a, &ctx, line)?);
+            sources.push(match a {
+                Expr::Var { name, indices } if !name.starts_with('$') => {
+                    Some(Lvalue { name: name.clone(), indices: evaluated(indices, &ctx, line)? })
+                }
+                Expr::RParam(n) => Some(Lvalue {
+                    name: "R".into(),
+                    indices: vec![Expr::Number(eval(n, &ctx, line)?.as_f64().unwrap_or(0.0))],
+                }),
+                _ => None,
+            });
+        }
+        let caller = self.flow.take().expect("a call happens inside a program");
+        self.calls.push(CallFrame {
+            caller,
+            text: text.clone(),
+            args: values,
+            sources,
+            by_reference: Vec::new(),
+            repeats_left: repeat.max(1) - 1,
+            bound: false,
+        });
+        self.vars.push_frame();
+        self.flow = Some(Flow::new(text));
+        Ok(())
+    }
+
+    /// Binds the call's arguments to the parameters of the subprogram's PROC line.
+    pub(super) fn bind_params(&mut self, params: &[Param], line: u32) -> Result<(), Alarm> {
+        let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) else { return Ok(()) };
+        frame.bound = true;
+        if frame.args.len() > params.len() {
+            return Err(Alarm::syntax(
+                line,
+                &format!("{} arguments for {} parameters", frame.args.len(), params.len()),
+            ));
+        }
+        let args = frame.args.clone();
+        let sources = frame.sources.clone();
+        let mut by_reference = Vec::new();
+        for (i, p) in params.iter().enumerate() {
+            let mut var = Variable::new(p.ty, Vec::new());
+            if let Some(v) = args.get(i) {
+                var.data[0] = v.clone().convert(p.ty).map_err(|e| Alarm::type_error(line, &e.0))?;
+            }
+            if p.by_reference {
+                match sources.get(i).cloned().flatten() {
+                    Some(src) => by_reference.push((p.name.clone(), src)),
+                    None if i < args.len() => {
+                        return Err(Alarm::type_error(line, &format!("VAR parameter {} needs a variable", p.name)));
+                    }
+                    None => {}
+                }
+            }
+            self.vars.declare(&p.name, var, false).map_err(|_| Alarm::defined_twice(line, &p.name))?;
+        }
+        if let Some(frame) = self.calls.last_mut() {
+            frame.by_reference = by_reference;
+        }
+        Ok(())
+    }
+
+    /// Checks, at the first block of a subprogram that is not its PROC line, that no
+    /// arguments were passed to a program without parameters.
+    pub(super) fn check_unbound(&mut self, line: u32) -> Result<(), Alarm> {
+        if let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) {
+            frame.bound = true;
+            if !frame.args.is_empty() {
+                return Err(Alarm::syntax(line, "arguments passed to a program without PROC parameters"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Ends the current subprogram run: writes VAR parameters back, repeats or returns to the
+    /// caller. Returns false in the main program (the program ends instead).
+    pub(super) fn return_from_call(&mut self, cfg: &MachineConfig, line: u32) -> Result<bool, Alarm> {
+        let Some(frame) = self.calls.last_mut() else { return Ok(false) };
+        let results: Vec<(Lvalue, Value)> = frame
+            .by_reference
+            .iter()
+            .filter_map(|(param, src)| self.vars.get(param).map(|v| (src.clone(), v.data[0].clone())))
+            .collect();
+        if frame.repeats_left > 0 {
+            frame.repeats_left -= 1;
+            frame.bound = false;
+            let text = frame.text.clone();
+            self.vars.pop_frame();
+            self.write_back(&results, cfg, line)?;
+            self.vars.push_frame();
+            self.flow = Some(Flow::new(text));
+            return Ok(true);
+        }
+        let frame = self.calls.pop().expect("checked above");
+        self.vars.pop_frame();
+        self.flow = Some(frame.caller);
+        self.write_back(&results, cfg, line)?;
+        Ok(true)
+    }
+
+    fn write_back(&mut self, results: &[(Lvalue, Value)], cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
+        for (target, value) in results {
+            let expr = match value {
+                Value::Str(s) | Value::Axis(s) => Expr::Str(s.clone()),
+                Value::Bool(b) => Expr::Bool(*b),
+                v => Expr::Number(v.as_f64().unwrap_or(0.0)),
+            };
+            let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
+            assign(&target.name, &target.indices, &expr, cfg, &mut self.vars, &sys, line)?;
+        }
+        Ok(())
+    }
+}
+
+fn evaluated(indices: &[Expr], ctx: &Ctx, line: u32) -> Result<Vec<Expr>, Alarm> {
+    indices.iter().map(|e| Ok(Expr::Number(eval(e, ctx, line)?.as_f64().unwrap_or(0.0)))).collect()
+}

@@ -1,0 +1,137 @@
+//! Stored programs of a session (main programs and subprograms called by name) and the syntax
+//! check of a program text.
+
+use axum::Json;
+use axum::extract::{Path, State};
+use axum::http::StatusCode;
+
+use super::find_session;
+use crate::dto::{CheckRequest, CheckResponse, DiagnosticInfo, ErrorBody, ProgramBody, ProgramInfo, ProgramText};
+use crate::error::ApiError;
+use crate::extract::ApiJson;
+use crate::state::AppState;
+
+/// Lists the session's stored programs by name.
+#[utoipa::path(
+    get,
+    path = "/sessions/{id}/programs",
+    tag = "programs",
+    params(("id" = String, Path, description = "Session id")),
+    responses(
+        (status = 200, description = "Stored programs by name", body = [ProgramInfo]),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn list_programs(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+) -> Result<Json<Vec<ProgramInfo>>, ApiError> {
+    let session = find_session(&state, &id)?;
+    let list = session.with_channel(|ch| ch.stored_programs()).await.map_err(|e| ApiError::from_session(&id, e))?;
+    Ok(Json(list.into_iter().map(|(name, size)| ProgramInfo { name, size }).collect()))
+}
+
+/// A stored program's text.
+#[utoipa::path(
+    get,
+    path = "/sessions/{id}/programs/{name}",
+    tag = "programs",
+    params(("id" = String, Path, description = "Session id"), ("name" = String, Path, description = "Program name")),
+    responses(
+        (status = 200, description = "The program", body = ProgramText),
+        (status = 404, description = "No such session or program", body = ErrorBody),
+    )
+)]
+pub async fn get_program(
+    State(state): State<AppState>,
+    Path((id, name)): Path<(String, String)>,
+) -> Result<Json<ProgramText>, ApiError> {
+    let session = find_session(&state, &id)?;
+    let wanted = name.clone();
+    let text = session
+        .with_channel(move |ch| ch.stored_program(&wanted).map(str::to_string))
+        .await
+        .map_err(|e| ApiError::from_session(&id, e))?
+        .ok_or_else(|| ApiError::NotFound(format!("program `{name}`")))?;
+    Ok(Json(ProgramText { name: name.to_ascii_uppercase(), text }))
+}
+
+/// Stores (creates or replaces) a program under `name`, for calls by name from other
+/// programs. A text with syntax errors is refused with the first error's line.
+#[utoipa::path(
+    put,
+    path = "/sessions/{id}/programs/{name}",
+    tag = "programs",
+    params(("id" = String, Path, description = "Session id"), ("name" = String, Path, description = "Program name: letters, digits, _; starts with a letter; at most 32; .MPF/.SPF dropped")),
+    request_body = ProgramBody,
+    responses(
+        (status = 200, description = "Stored", body = ProgramInfo),
+        (status = 400, description = "Bad name, syntax error (with its line) or malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn put_program(
+    State(state): State<AppState>,
+    Path((id, name)): Path<(String, String)>,
+    ApiJson(body): ApiJson<ProgramBody>,
+) -> Result<Json<ProgramInfo>, ApiError> {
+    let session = find_session(&state, &id)?;
+    let size = body.text.len();
+    let stored = session
+        .with_channel(move |ch| ch.store_program(&name, &body.text))
+        .await
+        .map_err(|e| ApiError::from_session(&id, e))??;
+    Ok(Json(ProgramInfo { name: stored, size }))
+}
+
+/// Deletes a stored program.
+#[utoipa::path(
+    delete,
+    path = "/sessions/{id}/programs/{name}",
+    tag = "programs",
+    params(("id" = String, Path, description = "Session id"), ("name" = String, Path, description = "Program name")),
+    responses(
+        (status = 204, description = "Deleted"),
+        (status = 404, description = "No such session or program", body = ErrorBody),
+    )
+)]
+pub async fn delete_program(
+    State(state): State<AppState>,
+    Path((id, name)): Path<(String, String)>,
+) -> Result<StatusCode, ApiError> {
+    let session = find_session(&state, &id)?;
+    let wanted = name.clone();
+    let deleted =
+        session.with_channel(move |ch| ch.delete_program(&wanted)).await.map_err(|e| ApiError::from_session(&id, e))?;
+    if deleted { Ok(StatusCode::NO_CONTENT) } else { Err(ApiError::NotFound(format!("program `{name}`"))) }
+}
+
+/// Checks a program's syntax without running it: every error with its line and column.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/check",
+    tag = "programs",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = CheckRequest,
+    responses(
+        (status = 200, description = "The syntax errors (empty when the program parses)", body = CheckResponse),
+        (status = 400, description = "Malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn check(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<CheckRequest>,
+) -> Result<Json<CheckResponse>, ApiError> {
+    find_session(&state, &id)?;
+    let text = &body.program;
+    let diagnostics = nctwin_engine::lang::check(text)
+        .into_iter()
+        .map(|d| {
+            let line_start = text[..d.offset.min(text.len())].rfind('\n').map_or(0, |i| i + 1);
+            DiagnosticInfo { line: d.line, column: d.column(line_start), message: d.message }
+        })
+        .collect();
+    Ok(Json(CheckResponse { diagnostics }))
+}
