@@ -3,6 +3,7 @@
 
 use super::{Channel, Mode, Status};
 use crate::alarm::Alarm;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// The block shown as current.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,10 +73,13 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
     let offsets = &ch.offsets;
     let basic: Vec<(String, f64)> =
         order.iter().map(|&k| (cfg.program_axis_name(k).to_string(), display(k, value(k) - offsets.tool[k]))).collect();
-    let workpiece: Vec<(String, f64)> = order
-        .iter()
-        .map(|&k| (cfg.program_axis_name(k).to_string(), display(k, value(k) - offsets.tool[k] - offsets.work[k])))
-        .collect();
+    let mut basic_vec = [0.0; MAX_CHANNEL_AXES];
+    for k in 0..n {
+        basic_vec[k] = value(k) - offsets.tool[k];
+    }
+    let wcs = offsets.frame.unapply(&cfg.geo_axes, &basic_vec).unwrap_or(basic_vec);
+    let workpiece: Vec<(String, f64)> =
+        order.iter().map(|&k| (cfg.program_axis_name(k).to_string(), display(k, wcs[k]))).collect();
     let orientation = cfg.geo_axes[2].map(|_| [0.0, 0.0, 1.0]).filter(|_| cfg.geo_axes.iter().all(Option::is_some));
     Snapshot {
         status: ch.status,

@@ -9,6 +9,7 @@ pub mod arc;
 mod calls;
 mod eval;
 mod flow;
+pub mod frame;
 mod modal;
 mod scope;
 mod statements;
@@ -25,6 +26,7 @@ use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 use calls::CallFrame;
 pub use calls::Programs;
 use flow::Flow;
+pub use frame::Frame;
 pub use modal::{Modal, MotionMode, Plane};
 use scope::SysView;
 use vars::Variables;
@@ -34,8 +36,8 @@ use vars::Variables;
 pub struct Offsets {
     /// Tool length vector (MCS = BCS + tool).
     pub tool: AxisVec,
-    /// Settable work offset (BCS = WCS + work).
-    pub work: AxisVec,
+    /// The active frame, WCS → BCS: settable frame (G54 ...) then programmable frame.
+    pub frame: Frame,
     /// Active tool number and cutting edge.
     pub t: u32,
     pub d: u32,
@@ -120,6 +122,8 @@ pub struct Interpreter {
     offsets: Offsets,
     /// R parameters and user variables.
     vars: Variables,
+    /// The programmable frame ($P_PFRAME: TRANS, ROT, SCALE, MIRROR ...).
+    pframe: Frame,
     /// Programmed spindle speed (rev/min) and direction (+1 M3, -1 M4, 0 M5).
     speed: f64,
     direction: i8,
@@ -136,6 +140,7 @@ impl Interpreter {
             pos: [0.0; MAX_CHANNEL_AXES],
             offsets: Offsets::default(),
             vars: Variables::default(),
+            pframe: Frame::identity(),
             speed: 0.0,
             direction: 0,
             flow: None,
@@ -150,8 +155,8 @@ impl Interpreter {
         self.calls.clear();
         self.direction = 0;
         self.pos = *pos;
-        self.offsets.work = [0.0; MAX_CHANNEL_AXES];
-        self.offsets.work.copy_from_slice(&work_offset(cfg, self.modal.work_offset));
+        self.pframe = Frame::identity();
+        self.offsets.frame = work_offset(cfg, self.modal.work_offset);
     }
 
     /// Program end acts like a reset of the modal state (the spindle keeps turning until M5 or reset).
@@ -242,7 +247,7 @@ impl Interpreter {
             self.speed = s;
         }
         self.select_tool(&words, cfg, line)?;
-        self.offsets.work.copy_from_slice(&work_offset(cfg, self.modal.work_offset));
+        self.offsets.frame = work_offset(cfg, self.modal.work_offset).then(&self.pframe, &cfg.geo_axes);
         self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
 
         // Spindle before motion.
@@ -308,15 +313,22 @@ impl Interpreter {
 
     fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<Move, Alarm> {
         let n = cfg.channel_axes.len();
+        let geo = &cfg.geo_axes;
         let start = self.pos;
-        let mut end = start;
-        let suppress_work = words.g53;
-        let work = if suppress_work { [0.0; MAX_CHANNEL_AXES] } else { self.offsets.work };
         let tool = self.offsets.tool;
+        // G53/SUPA: settable and programmable frames suppressed for this block.
+        let frame = if words.g53 { Frame::identity() } else { self.offsets.frame.clone() };
+        let mut basic = start;
+        for k in 0..n {
+            basic[k] -= tool[k];
+        }
+        let current =
+            frame.unapply(geo, &basic).ok_or_else(|| Alarm::value_out_of_range(line, "frame with scale 0"))?;
+        let mut target = current;
+        let mut programmed = [false; MAX_CHANNEL_AXES];
         for &(k, value, mode) in &words.axes {
             let ax = cfg.axis(k);
             let v = if ax.rotary { value } else { value * self.modal.length_factor() };
-            let current_wcs = start[k] - tool[k] - work[k];
             let absolute = match mode {
                 Some(CoordMode::Ac) => true,
                 Some(CoordMode::Ic) => false,
@@ -329,28 +341,42 @@ impl Interpreter {
                 Some(_) => true,
                 None => self.modal.absolute,
             };
-            let target_wcs = if absolute { v } else { current_wcs + v };
-            end[k] = match (ax.modulo, mode, absolute) {
-                (Some((mstart, range)), m, true) => {
-                    let target = mstart + (target_wcs - mstart).rem_euclid(range);
-                    modulo_target(current_wcs, target, range, m) + tool[k] + work[k]
+            target[k] = match (ax.modulo, absolute) {
+                (Some((mstart, range)), true) => {
+                    let wrapped = mstart + (v - mstart).rem_euclid(range);
+                    modulo_target(current[k], wrapped, range, mode)
                 }
-                _ => target_wcs + tool[k] + work[k],
+                (_, true) => v,
+                (_, false) => current[k] + v,
             };
+            programmed[k] = true;
+        }
+        // With a rotation in the frame, a programmed geometry axis moves the others too.
+        let any_geo = geo.iter().flatten().any(|&k| programmed[k]);
+        if any_geo && frame.couples_axes() {
+            for &k in geo.iter().flatten() {
+                programmed[k] = true;
+            }
+        }
+        let target_basic = frame.apply(geo, &target);
+        let mut end = start;
+        for k in 0..n {
+            if programmed[k] {
+                end[k] = target_basic[k] + tool[k];
+            }
         }
 
-        let geo: Vec<usize> = cfg.geo_axes.iter().flatten().copied().collect();
-        let geo_len = geo.iter().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
+        let geo_list: Vec<usize> = geo.iter().flatten().copied().collect();
         let mut path = Path { start, end, arc: None };
-        let mut length = geo_len;
+        let mut length = geo_list.iter().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
         if let MotionMode::Cw | MotionMode::Ccw = self.modal.motion {
             let (a, o, app) = self.modal.plane.axes();
-            let (Some(ka), Some(ko)) = (cfg.geo_axes[a], cfg.geo_axes[o]) else {
+            let (Some(ka), Some(ko)) = (geo[a], geo[o]) else {
                 return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
             };
-            let offs = |k: usize| tool[k] + work[k];
-            let s = (start[ka] - offs(ka), start[ko] - offs(ko));
-            let e = (end[ka] - offs(ka), end[ko] - offs(ko));
+            // The circle is defined in the WCS plane and mapped through the frame.
+            let s = (current[ka], current[ko]);
+            let e = (target[ka], target[ko]);
             let turn =
                 if self.modal.motion == MotionMode::Cw { arc::Turn::Clockwise } else { arc::Turn::CounterClockwise };
             let circle = match (words.cr, words.center(a, o)) {
@@ -363,16 +389,12 @@ impl Interpreter {
                 (None, None) => return Err(Alarm::circle_end_point(line)),
             }
             .map_err(|_| Alarm::circle_end_point(line))?;
-            path.arc = Some(Arc {
-                plane: (ka, ko),
-                center: (circle.center.0 + offs(ka), circle.center.1 + offs(ko)),
-                radius: circle.radius,
-                start_angle: circle.start_angle,
-                sweep: circle.sweep,
-            });
-            let helix: f64 = geo.iter().filter(|&&k| k != ka && k != ko).map(|&k| (end[k] - start[k]).powi(2)).sum();
-            let _ = app;
-            length = ((circle.radius * circle.sweep).powi(2) + helix).sqrt();
+            let u = frame.geo_direction(geo, a);
+            let v = frame.geo_direction(geo, o);
+            path.arc = Some(Arc { u, v, radius: circle.radius, start_angle: circle.start_angle, sweep: circle.sweep });
+            let scale = (norm(&u) + norm(&v)) / 2.0;
+            let helix = geo[app].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, app)));
+            length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
         }
         if length < 1e-9 {
             // No geometry axis moves: the feed applies to the other axes together.
@@ -396,6 +418,10 @@ impl Interpreter {
         self.pos = end;
         Ok(Move::new(path, length, feed, &limits(cfg), exact_stop, line))
     }
+}
+
+fn norm(v: &AxisVec) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 /// Target of a modulo rotary axis: shortest way (G90, DC), or forced direction (ACP, ACN).
@@ -426,8 +452,7 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
         if ax.modulo.is_some() || ax.spindle.is_some() {
             continue;
         }
-        let moves =
-            (path.end[k] - path.start[k]).abs() > 1e-12 || path.arc.is_some_and(|a| a.plane.0 == k || a.plane.1 == k);
+        let moves = (path.end[k] - path.start[k]).abs() > 1e-12 || path.arc.is_some_and(|a| a.moves_axis(k));
         if !moves {
             continue;
         }
@@ -441,13 +466,13 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
     Ok(())
 }
 
-/// Translation of settable frame `frame` (0 = G500) per channel axis.
-fn work_offset(cfg: &MachineConfig, frame: usize) -> AxisVec {
+/// Settable frame `frame` (0 = G500): a translation per channel axis.
+fn work_offset(cfg: &MachineConfig, frame: usize) -> Frame {
     let mut v = [0.0; MAX_CHANNEL_AXES];
     if let Some(f) = cfg.work_offsets.get(frame) {
         v[..f.len()].copy_from_slice(f);
     }
-    v
+    Frame::translation(v)
 }
 
 /// Tool length vector per channel axis: lengths L1..L3 (geometry + wear + adapter) mapped to the

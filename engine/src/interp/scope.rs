@@ -49,7 +49,13 @@ impl Scope for Ctx<'_> {
                 _ => Err(Alarm::index_error(line, name, "needs one axis name")),
             }
         };
-        let wcs = |k: usize| sys.pos[k] - sys.offsets.tool[k] - sys.offsets.work[k];
+        let wcs = |k: usize| {
+            let mut basic = *sys.pos;
+            for (b, t) in basic.iter_mut().zip(&sys.offsets.tool) {
+                *b -= t;
+            }
+            sys.offsets.frame.unapply(&sys.cfg.geo_axes, &basic).map_or(f64::NAN, |w| w[k])
+        };
         Ok(match name {
             "$P_TOOLNO" => Value::Int(sys.offsets.t.into()),
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),

@@ -1,24 +1,44 @@
-//! Geometry of one motion block in axis space: a straight line or a circular arc (helix) in a
-//! plane of two axes, every other axis moving linearly along with it.
+//! Geometry of one motion block in axis space: a straight line, or a circular arc (helix) in
+//! any plane of the geometry axes with every other axis moving linearly along.
 
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// Positions of all channel axes (only the first `n` of a channel are used).
 pub type AxisVec = [f64; MAX_CHANNEL_AXES];
 
-/// An arc in the plane of axes `plane.0` (abscissa) and `plane.1` (ordinate).
+/// A circular arc spanned by the axis-space vectors `u` and `v`: the circle is
+/// `centre + radius·(cos a·u + sin a·v)` for `a` from `start_angle` to `start_angle + sweep`.
+/// `u` and `v` are orthonormal for an undistorted circle; they carry a frame's rotation (any
+/// plane) and mirroring (reversed sense) without special cases.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Arc {
-    pub plane: (usize, usize),
-    pub center: (f64, f64),
+    pub u: AxisVec,
+    pub v: AxisVec,
     pub radius: f64,
-    /// Angle of the start point, radians, measured from the abscissa towards the ordinate.
+    /// Angle of the start point, radians.
     pub start_angle: f64,
-    /// Signed sweep in radians: positive turns from the abscissa towards the ordinate.
+    /// Signed sweep in radians: positive turns from `u` towards `v`.
     pub sweep: f64,
 }
 
-/// The geometric path of one block.
+impl Arc {
+    /// An arc in the plane of axes `a` (abscissa) and `o` (ordinate).
+    pub fn in_plane(a: usize, o: usize, radius: f64, start_angle: f64, sweep: f64) -> Arc {
+        let mut u = [0.0; MAX_CHANNEL_AXES];
+        let mut v = [0.0; MAX_CHANNEL_AXES];
+        u[a] = 1.0;
+        v[o] = 1.0;
+        Arc { u, v, radius, start_angle, sweep }
+    }
+
+    /// True if axis `k` takes part in the circular motion.
+    pub fn moves_axis(&self, k: usize) -> bool {
+        self.u[k] != 0.0 || self.v[k] != 0.0
+    }
+}
+
+/// The geometric path of one block. The start and end points are met exactly; an arc adds
+/// its circular deviation from the straight line between them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Path {
     pub start: AxisVec,
@@ -28,46 +48,61 @@ pub struct Path {
 }
 
 impl Path {
-    /// Position at parameter `u` in 0..=1 (uniform in path length).
-    pub fn at(&self, u: f64, out: &mut AxisVec) {
-        for (o, (s, e)) in out.iter_mut().zip(self.start.iter().zip(&self.end)) {
-            *o = s + (e - s) * u;
-        }
-        if u >= 1.0 {
+    /// Position at parameter `s` in 0..=1 (uniform in path length).
+    pub fn at(&self, s: f64, out: &mut AxisVec) {
+        if s >= 1.0 {
             *out = self.end;
             return;
         }
+        for (o, (a, b)) in out.iter_mut().zip(self.start.iter().zip(&self.end)) {
+            *o = a + (b - a) * s;
+        }
         if let Some(arc) = &self.arc {
-            let a = arc.start_angle + arc.sweep * u;
-            out[arc.plane.0] = arc.center.0 + arc.radius * a.cos();
-            out[arc.plane.1] = arc.center.1 + arc.radius * a.sin();
+            // Circle minus its chord: zero at both ends.
+            let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
+            let a = a0 + arc.sweep * s;
+            let cu = arc.radius * (a.cos() - a0.cos() - s * (a1.cos() - a0.cos()));
+            let cv = arc.radius * (a.sin() - a0.sin() - s * (a1.sin() - a0.sin()));
+            for (k, o) in out.iter_mut().enumerate() {
+                *o += cu * arc.u[k] + cv * arc.v[k];
+            }
         }
     }
 
-    /// Tangent `dp/du` at `u` (not normalised).
-    pub fn tangent(&self, u: f64) -> AxisVec {
+    /// Tangent `dp/ds` at `s` (not normalised).
+    pub fn tangent(&self, s: f64) -> AxisVec {
         let mut t = [0.0; MAX_CHANNEL_AXES];
-        for (i, ti) in t.iter_mut().enumerate() {
-            *ti = self.end[i] - self.start[i];
+        for (k, tk) in t.iter_mut().enumerate() {
+            *tk = self.end[k] - self.start[k];
         }
         if let Some(arc) = &self.arc {
-            let a = arc.start_angle + arc.sweep * u;
-            t[arc.plane.0] = -arc.radius * arc.sweep * a.sin();
-            t[arc.plane.1] = arc.radius * arc.sweep * a.cos();
+            let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
+            let a = a0 + arc.sweep * s;
+            let du = arc.radius * (-arc.sweep * a.sin() - (a1.cos() - a0.cos()));
+            let dv = arc.radius * (arc.sweep * a.cos() - (a1.sin() - a0.sin()));
+            for (k, tk) in t.iter_mut().enumerate() {
+                *tk += du * arc.u[k] + dv * arc.v[k];
+            }
         }
         t
     }
 
-    /// Upper bound of `|dp_i/du|` over the whole block, per axis.
+    /// Upper bound of `|dp_k/ds|` over the whole block, per axis.
     pub fn max_rate(&self) -> AxisVec {
         let mut r = [0.0; MAX_CHANNEL_AXES];
-        for (i, ri) in r.iter_mut().enumerate() {
-            *ri = (self.end[i] - self.start[i]).abs();
-        }
-        if let Some(arc) = &self.arc {
-            let k = arc.radius * arc.sweep.abs();
-            r[arc.plane.0] = k;
-            r[arc.plane.1] = k;
+        match &self.arc {
+            None => {
+                for (k, rk) in r.iter_mut().enumerate() {
+                    *rk = (self.end[k] - self.start[k]).abs();
+                }
+            }
+            Some(arc) => {
+                let (linear, _) = self.arc_parts(arc);
+                for (k, rk) in r.iter_mut().enumerate() {
+                    let circle = arc.radius * arc.sweep.abs() * arc.u[k].hypot(arc.v[k]);
+                    *rk = linear[k].abs() + circle;
+                }
+            }
         }
         r
     }
@@ -76,29 +111,54 @@ impl Path {
     pub fn extent(&self) -> (AxisVec, AxisVec) {
         let mut lo = [0.0; MAX_CHANNEL_AXES];
         let mut hi = [0.0; MAX_CHANNEL_AXES];
-        for i in 0..MAX_CHANNEL_AXES {
-            lo[i] = self.start[i].min(self.end[i]);
-            hi[i] = self.start[i].max(self.end[i]);
+        for k in 0..MAX_CHANNEL_AXES {
+            lo[k] = self.start[k].min(self.end[k]);
+            hi[k] = self.start[k].max(self.end[k]);
         }
-        if let Some(arc) = &self.arc {
-            // Quadrant points the arc passes through.
-            let (a0, a1) = if arc.sweep >= 0.0 {
-                (arc.start_angle, arc.start_angle + arc.sweep)
-            } else {
-                (arc.start_angle + arc.sweep, arc.start_angle)
-            };
-            let first = (a0 / std::f64::consts::FRAC_PI_2).ceil() as i64;
-            let last = (a1 / std::f64::consts::FRAC_PI_2).floor() as i64;
-            for q in first..=last.min(first + 4) {
-                let a = q as f64 * std::f64::consts::FRAC_PI_2;
-                let (x, y) = (arc.center.0 + arc.radius * a.cos(), arc.center.1 + arc.radius * a.sin());
-                lo[arc.plane.0] = lo[arc.plane.0].min(x);
-                hi[arc.plane.0] = hi[arc.plane.0].max(x);
-                lo[arc.plane.1] = lo[arc.plane.1].min(y);
-                hi[arc.plane.1] = hi[arc.plane.1].max(y);
+        let Some(arc) = &self.arc else { return (lo, hi) };
+        // Axis k follows f(s) = c + b·s + ρ·cos(a0 + sweep·s − φ): its extremes lie where
+        // f'(s) = b − ρ·sweep·sin(…) = 0.
+        let (linear, _) = self.arc_parts(arc);
+        let mut p = [0.0; MAX_CHANNEL_AXES];
+        for k in 0..MAX_CHANNEL_AXES {
+            if !arc.moves_axis(k) {
+                continue;
+            }
+            let rho = arc.radius * arc.u[k].hypot(arc.v[k]);
+            let phi = arc.v[k].atan2(arc.u[k]);
+            let ratio = linear[k] / (rho * arc.sweep);
+            if !ratio.is_finite() || ratio.abs() > 1.0 {
+                continue;
+            }
+            let base = ratio.asin();
+            for root in [base, std::f64::consts::PI - base] {
+                // θ = a0 + sweep·s − φ ≡ root (mod 2π): every s in 0..1.
+                let theta0 = arc.start_angle - phi;
+                let turns = ((theta0.min(theta0 + arc.sweep) - root) / std::f64::consts::TAU).floor() as i64;
+                for n in turns..=turns + 2 + (arc.sweep.abs() / std::f64::consts::TAU) as i64 {
+                    let s = (root + n as f64 * std::f64::consts::TAU - theta0) / arc.sweep;
+                    if (0.0..=1.0).contains(&s) {
+                        self.at(s, &mut p);
+                        lo[k] = lo[k].min(p[k]);
+                        hi[k] = hi[k].max(p[k]);
+                    }
+                }
             }
         }
         (lo, hi)
+    }
+
+    /// The linear part of an arc path per axis (end − start without the chord of the circle),
+    /// and the chord.
+    fn arc_parts(&self, arc: &Arc) -> (AxisVec, AxisVec) {
+        let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
+        let mut linear = [0.0; MAX_CHANNEL_AXES];
+        let mut chord = [0.0; MAX_CHANNEL_AXES];
+        for k in 0..MAX_CHANNEL_AXES {
+            chord[k] = arc.radius * ((a1.cos() - a0.cos()) * arc.u[k] + (a1.sin() - a0.sin()) * arc.v[k]);
+            linear[k] = self.end[k] - self.start[k] - chord[k];
+        }
+        (linear, chord)
     }
 }
 
@@ -113,11 +173,7 @@ mod tests {
         start[0] = 10.0;
         end[0] = -10.0;
         end[2] = 4.0;
-        Path {
-            start,
-            end,
-            arc: Some(Arc { plane: (0, 1), center: (0.0, 0.0), radius: 10.0, start_angle: 0.0, sweep: PI }),
-        }
+        Path { start, end, arc: Some(Arc::in_plane(0, 1, 10.0, 0.0, PI)) }
     }
 
     #[test]
@@ -125,13 +181,37 @@ mod tests {
         let p = half_circle();
         let mut q = [0.0; MAX_CHANNEL_AXES];
         p.at(0.5, &mut q);
-        assert!((q[0]).abs() < 1e-12 && (q[1] - 10.0).abs() < 1e-12 && (q[2] - 2.0).abs() < 1e-12);
+        assert!((q[0]).abs() < 1e-12 && (q[1] - 10.0).abs() < 1e-12 && (q[2] - 2.0).abs() < 1e-12, "{q:?}");
     }
 
     #[test]
     fn the_extent_of_an_arc_includes_the_quadrant_points_it_crosses() {
         let (lo, hi) = half_circle().extent();
-        assert_eq!((lo[1], hi[1]), (0.0, 10.0));
+        assert!(lo[1].abs() < 1e-12 && (hi[1] - 10.0).abs() < 1e-12, "{} {}", lo[1], hi[1]);
         assert_eq!((lo[0], hi[0]), (-10.0, 10.0));
+        assert_eq!((lo[2], hi[2]), (0.0, 4.0));
+    }
+
+    #[test]
+    fn an_arc_in_a_tilted_plane_stays_on_its_sphere() {
+        // u = x, v = (0, cos 30°, sin 30°): a circle of radius 5 about the origin tilted about X.
+        let mut u = [0.0; MAX_CHANNEL_AXES];
+        let mut v = [0.0; MAX_CHANNEL_AXES];
+        u[0] = 1.0;
+        v[1] = (PI / 6.0).cos();
+        v[2] = (PI / 6.0).sin();
+        let arc = Arc { u, v, radius: 5.0, start_angle: 0.0, sweep: PI };
+        let mut start = [0.0; MAX_CHANNEL_AXES];
+        let mut end = [0.0; MAX_CHANNEL_AXES];
+        start[0] = 5.0;
+        end[0] = -5.0;
+        let p = Path { start, end, arc: Some(arc) };
+        let mut q = [0.0; MAX_CHANNEL_AXES];
+        for i in 0..=20 {
+            p.at(i as f64 / 20.0, &mut q);
+            assert!(((q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt() - 5.0).abs() < 1e-12);
+        }
+        let (_, hi) = p.extent();
+        assert!((hi[2] - 2.5).abs() < 1e-9, "top of the tilted half circle: {}", hi[2]);
     }
 }

@@ -65,7 +65,12 @@ impl Move {
             // Half of the plane axes' acceleration goes to the centripetal part, half to the
             // tangential part, so their sum never exceeds either axis' limit.
             let k = arc.radius * arc.sweep.abs() / length;
-            let a_plane = limits[arc.plane.0].max_accel.min(limits[arc.plane.1].max_accel);
+            let a_plane = limits
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| arc.moves_axis(*i))
+                .map(|(_, l)| l.max_accel)
+                .fold(f64::INFINITY, f64::min);
             if k > 1e-12 {
                 v_max = v_max.min((0.5 * a_plane * arc.radius).sqrt() / k);
                 a_max = a_max.min(0.5 * a_plane / k);

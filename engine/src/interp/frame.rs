@@ -1,0 +1,227 @@
+//! Coordinate frames between the workpiece (WCS) and basic (BCS) coordinate systems.
+//!
+//! A frame maps child coordinates to parent coordinates, `p_parent = t + A·p_child` for the
+//! geometry axes (A: rotation × scale × mirror, kept as one matrix so that any chain of frame
+//! instructions composes exactly) and `p = t + f·p` for every other channel axis. The active
+//! frame is the settable frame (G54 ...) followed by the programmable frame (TRANS, ROT, SCALE,
+//! MIRROR and their additive forms).
+
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::AxisVec;
+
+/// Geometry axes by channel-axis index (`None`: not present).
+pub type GeoAxes = [Option<usize>; 3];
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// Translation per channel axis (coarse plus fine).
+    pub trans: AxisVec,
+    /// Linear part for the geometry axes (rows: parent axis, columns: child axis).
+    pub lin: [[f64; 3]; 3],
+    /// Factor per channel axis for the axes that are not geometry axes (scale, mirror).
+    pub factor: AxisVec,
+}
+
+impl Default for Frame {
+    fn default() -> Self {
+        Frame::identity()
+    }
+}
+
+impl Frame {
+    pub fn identity() -> Frame {
+        Frame {
+            trans: [0.0; MAX_CHANNEL_AXES],
+            lin: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            factor: [1.0; MAX_CHANNEL_AXES],
+        }
+    }
+
+    /// A pure translation.
+    pub fn translation(trans: AxisVec) -> Frame {
+        Frame { trans, ..Frame::identity() }
+    }
+
+    /// A rotation of the geometry axes by the matrix `r` (columns: images of the child axes).
+    pub fn rotation(r: [[f64; 3]; 3]) -> Frame {
+        Frame { lin: r, ..Frame::identity() }
+    }
+
+    /// Scale factors (negative ones mirror) for the listed channel axes; geometry axes go
+    /// into the matrix.
+    pub fn scaling(geo: &GeoAxes, factors: &[(usize, f64)]) -> Frame {
+        let mut f = Frame::identity();
+        for &(k, s) in factors {
+            match geo.iter().position(|g| *g == Some(k)) {
+                Some(g) => f.lin[g][g] = s,
+                None => f.factor[k] = s,
+            }
+        }
+        f
+    }
+
+    /// True if geometry axes are mixed (a rotation): programming one moves others.
+    pub fn couples_axes(&self) -> bool {
+        (0..3).any(|i| (0..3).any(|j| i != j && self.lin[i][j].abs() > 1e-15))
+    }
+
+    /// True if the frame is the identity.
+    pub fn is_identity(&self) -> bool {
+        *self == Frame::identity()
+    }
+
+    /// `self ∘ child`: first `child`, then `self`.
+    pub fn then(&self, child: &Frame, geo: &GeoAxes) -> Frame {
+        let mut out = Frame::identity();
+        for i in 0..3 {
+            for j in 0..3 {
+                out.lin[i][j] = (0..3).map(|k| self.lin[i][k] * child.lin[k][j]).sum();
+            }
+        }
+        out.trans = self.apply_vector(geo, &child.trans);
+        for k in 0..MAX_CHANNEL_AXES {
+            out.trans[k] += self.trans[k];
+            out.factor[k] = self.factor[k] * child.factor[k];
+        }
+        out
+    }
+
+    /// Maps a point from child to parent coordinates.
+    pub fn apply(&self, geo: &GeoAxes, p: &AxisVec) -> AxisVec {
+        let mut out = self.apply_vector(geo, p);
+        for k in 0..MAX_CHANNEL_AXES {
+            out[k] += self.trans[k];
+        }
+        out
+    }
+
+    /// Maps a direction (no translation) from child to parent coordinates.
+    pub fn apply_vector(&self, geo: &GeoAxes, p: &AxisVec) -> AxisVec {
+        let mut out = *p;
+        for k in 0..MAX_CHANNEL_AXES {
+            out[k] *= self.factor[k];
+        }
+        let child = geo.map(|a| a.map_or(0.0, |k| p[k]));
+        for (g, axis) in geo.iter().enumerate() {
+            if let Some(k) = axis {
+                out[*k] = (0..3).map(|j| self.lin[g][j] * child[j]).sum();
+            }
+        }
+        out
+    }
+
+    /// Maps a point from parent back to child coordinates; `None` if the frame is singular
+    /// (a scale factor of zero).
+    pub fn unapply(&self, geo: &GeoAxes, p: &AxisVec) -> Option<AxisVec> {
+        let inv = invert3(&self.lin)?;
+        let mut out = *p;
+        for k in 0..MAX_CHANNEL_AXES {
+            if self.factor[k] == 0.0 {
+                return None;
+            }
+            out[k] = (p[k] - self.trans[k]) / self.factor[k];
+        }
+        let d = geo.map(|a| a.map_or(0.0, |k| p[k] - self.trans[k]));
+        for (g, axis) in geo.iter().enumerate() {
+            if let Some(k) = axis {
+                out[*k] = (0..3).map(|j| inv[g][j] * d[j]).sum();
+            }
+        }
+        Some(out)
+    }
+
+    /// The image of the unit vector of geometry axis `g` in parent coordinates.
+    pub fn geo_direction(&self, geo: &GeoAxes, g: usize) -> AxisVec {
+        let mut out = [0.0; MAX_CHANNEL_AXES];
+        for (row, axis) in geo.iter().enumerate() {
+            if let Some(k) = axis {
+                out[*k] = self.lin[row][g];
+            }
+        }
+        out
+    }
+}
+
+/// `Rz(z)·Ry(y)·Rx(x)`: the RPY rotation of ROT X.. Y.. Z.. (MD10600 FRAME_ANGLE_INPUT_MODE = 1),
+/// angles in degrees, right-hand rule.
+pub fn rpy(x: f64, y: f64, z: f64) -> [[f64; 3]; 3] {
+    let (sx, cx) = x.to_radians().sin_cos();
+    let (sy, cy) = y.to_radians().sin_cos();
+    let (sz, cz) = z.to_radians().sin_cos();
+    [
+        [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
+        [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
+        [-sy, cy * sx, cy * cx],
+    ]
+}
+
+/// Rotation about geometry axis `g` (0 = X, 1 = Y, 2 = Z) by `angle` degrees.
+pub fn about_axis(g: usize, angle: f64) -> [[f64; 3]; 3] {
+    match g {
+        0 => rpy(angle, 0.0, 0.0),
+        1 => rpy(0.0, angle, 0.0),
+        _ => rpy(0.0, 0.0, angle),
+    }
+}
+
+fn invert3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    if det.abs() < 1e-15 {
+        return None;
+    }
+    let c = |r0: usize, c0: usize, r1: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
+    Some([
+        [c(1, 1, 2, 2) / det, -c(0, 1, 2, 2) / det, c(0, 1, 1, 2) / det],
+        [-c(1, 0, 2, 2) / det, c(0, 0, 2, 2) / det, -c(0, 0, 1, 2) / det],
+        [c(1, 0, 2, 1) / det, -c(0, 0, 2, 1) / det, c(0, 0, 1, 1) / det],
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GEO: GeoAxes = [Some(0), Some(1), Some(2)];
+
+    fn p(x: f64, y: f64, z: f64) -> AxisVec {
+        let mut v = [0.0; MAX_CHANNEL_AXES];
+        v[..3].copy_from_slice(&[x, y, z]);
+        v
+    }
+
+    fn close(a: &AxisVec, b: &AxisVec) -> bool {
+        a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9)
+    }
+
+    #[test]
+    fn a_positive_rotation_about_z_turns_x_towards_y() {
+        let f = Frame::rotation(rpy(0.0, 0.0, 90.0));
+        assert!(close(&f.apply(&GEO, &p(1.0, 0.0, 0.0)), &p(0.0, 1.0, 0.0)));
+    }
+
+    #[test]
+    fn rpy_applies_x_first_then_y_then_z() {
+        // Rx(90) takes Y to Z, Rz(90) leaves Z alone: Y → Z.
+        let f = Frame::rotation(rpy(90.0, 0.0, 90.0));
+        assert!(close(&f.apply(&GEO, &p(0.0, 1.0, 0.0)), &p(0.0, 0.0, 1.0)));
+        // X: Rx leaves it, Rz(90) turns it to Y.
+        assert!(close(&f.apply(&GEO, &p(1.0, 0.0, 0.0)), &p(0.0, 1.0, 0.0)));
+    }
+
+    #[test]
+    fn an_additive_translation_after_a_rotation_moves_along_the_rotated_axes() {
+        let rot = Frame::rotation(rpy(0.0, 0.0, 90.0));
+        let f = rot.then(&Frame::translation(p(10.0, 0.0, 0.0)), &GEO);
+        assert!(close(&f.apply(&GEO, &p(0.0, 0.0, 0.0)), &p(0.0, 10.0, 0.0)));
+    }
+
+    #[test]
+    fn unapply_inverts_apply() {
+        let f = Frame::translation(p(5.0, -3.0, 2.0))
+            .then(&Frame::rotation(rpy(10.0, 20.0, 30.0)), &GEO)
+            .then(&Frame::scaling(&GEO, &[(0, 2.0), (1, -1.0), (2, 0.5)]), &GEO);
+        let q = p(1.5, -7.0, 3.25);
+        assert!(close(&f.unapply(&GEO, &f.apply(&GEO, &q)).unwrap(), &q));
+    }
+}
