@@ -74,8 +74,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
     let basic: Vec<(String, f64)> =
         order.iter().map(|&k| (cfg.program_axis_name(k).to_string(), display(k, value(k) - offsets.tool[k]))).collect();
     let mut basic_vec = [0.0; MAX_CHANNEL_AXES];
-    for k in 0..n {
-        basic_vec[k] = value(k) - offsets.tool[k];
+    for (k, b) in basic_vec.iter_mut().enumerate().take(n) {
+        *b = value(k) - offsets.tool[k];
     }
     let wcs = offsets.frame.unapply(&cfg.geo_axes, &basic_vec).unwrap_or(basic_vec);
     let workpiece: Vec<(String, f64)> =

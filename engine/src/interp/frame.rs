@@ -89,8 +89,8 @@ impl Frame {
     /// Maps a point from child to parent coordinates.
     pub fn apply(&self, geo: &GeoAxes, p: &AxisVec) -> AxisVec {
         let mut out = self.apply_vector(geo, p);
-        for k in 0..MAX_CHANNEL_AXES {
-            out[k] += self.trans[k];
+        for (o, t) in out.iter_mut().zip(&self.trans) {
+            *o += t;
         }
         out
     }
@@ -98,8 +98,8 @@ impl Frame {
     /// Maps a direction (no translation) from child to parent coordinates.
     pub fn apply_vector(&self, geo: &GeoAxes, p: &AxisVec) -> AxisVec {
         let mut out = *p;
-        for k in 0..MAX_CHANNEL_AXES {
-            out[k] *= self.factor[k];
+        for (o, f) in out.iter_mut().zip(&self.factor) {
+            *o *= f;
         }
         let child = geo.map(|a| a.map_or(0.0, |k| p[k]));
         for (g, axis) in geo.iter().enumerate() {
