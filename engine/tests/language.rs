@@ -8,6 +8,7 @@
 //! - `; expect alarm 14080 line 4`
 //! - `; expect status alarm`    final channel status (idle unless an alarm is expected)
 //! - `; machine lathe-2axis`    preset (default mill-3axis)
+//! - `; md $P_UIFR[1,X,TR]=100` machine data applied on top of the preset
 //!
 //! A line `;;; NAME` starts a subprogram stored under NAME; the main program is what comes first.
 
@@ -26,7 +27,8 @@ fn run_fixture(path: &Path) -> Result<(), String> {
         return Err("no expectations".into());
     }
     let machine = text.lines().find_map(|l| l.trim().strip_prefix("; machine ")).unwrap_or("mill-3axis");
-    let mut ch = Channel::from_preset(machine, "").map_err(|e| e.to_string())?;
+    let md: Vec<&str> = text.lines().filter_map(|l| l.trim().strip_prefix("; md ")).collect();
+    let mut ch = Channel::from_preset(machine, &md.join("\n")).map_err(|e| e.to_string())?;
     let mut parts = text.split("\n;;; ");
     let main = parts.next().unwrap_or_default();
     for part in parts {

@@ -410,3 +410,25 @@ fn the_transmit_machine_moves_x_and_z_and_refuses_its_spindle_as_an_axis_without
     assert_eq!(a.number, 12550);
     assert!(a.message.contains("SPOS"), "{}", a.message);
 }
+
+#[test]
+fn a_mirrored_counter_clockwise_arc_runs_clockwise_in_the_machine() {
+    // MIRROR X0: the WCS quarter circle from (10,0) to (0,10) around the origin is the BCS
+    // quarter from (-10,0) to (0,10), travelled clockwise through the second quadrant.
+    let (_, samples) = run("mill-3axis", "", "MIRROR X0\nG0 X10 Y0\nG3 X0 Y10 I-10 J0 F1000\nM30");
+    let arc: Vec<_> = samples.iter().filter(|p| p[1] > 1e-6).collect();
+    assert!(arc.len() > 50);
+    for p in arc {
+        assert!(p[0] <= 1e-9 && close(p[0].hypot(p[1]), 10.0, 1e-9), "{p:?}");
+    }
+}
+
+#[test]
+fn an_arc_under_rot_x90_runs_in_the_machine_x_z_plane() {
+    let (_, samples) = run("mill-3axis", "", "ROT X90\nG0 X10 Y0 Z0\nG3 X0 Y10 I-10 J0 F1000\nM30");
+    let arc: Vec<_> = samples.iter().filter(|p| p[2] > 1e-6).collect();
+    assert!(arc.len() > 50);
+    for p in arc {
+        assert!(p[1].abs() < 1e-9 && close(p[0].hypot(p[2]), 10.0, 1e-9), "{p:?}");
+    }
+}

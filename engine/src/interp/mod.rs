@@ -27,6 +27,7 @@ use calls::CallFrame;
 pub use calls::Programs;
 use flow::Flow;
 pub use frame::Frame;
+use modal::{FrameKind, FrameOp};
 pub use modal::{Modal, MotionMode, Plane};
 use scope::SysView;
 use vars::Variables;
@@ -247,6 +248,9 @@ impl Interpreter {
             self.speed = s;
         }
         self.select_tool(&words, cfg, line)?;
+        if let Some(op) = words.frame_op {
+            self.frame_instruction(op, &words, cfg, line)?;
+        }
         self.offsets.frame = work_offset(cfg, self.modal.work_offset).then(&self.pframe, &cfg.geo_axes);
         self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
 
@@ -272,7 +276,7 @@ impl Interpreter {
                 return Err(Alarm::value_out_of_range(line, &format!("G4 {seconds} s")));
             }
             out.push(Item::Dwell { seconds, line });
-        } else if !words.axes.is_empty()
+        } else if words.frame_op.is_none() && !words.axes.is_empty()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
             let mv = self.motion(&words, cfg, line)?;
@@ -308,6 +312,60 @@ impl Interpreter {
             }
             self.offsets.d = d;
         }
+        Ok(())
+    }
+
+    /// TRANS/ROT/SCALE/MIRROR replace the programmable frame; ATRANS/AROT/ASCALE/AMIRROR add
+    /// to it in the current (already transformed) system. The block's axis words are the
+    /// instruction's values.
+    fn frame_instruction(
+        &mut self,
+        op: FrameOp,
+        words: &modal::Words,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        let geo = &cfg.geo_axes;
+        let geo_index = |k: usize| geo.iter().position(|g| *g == Some(k));
+        let g = match op.kind {
+            FrameKind::Trans => {
+                let mut t = [0.0; MAX_CHANNEL_AXES];
+                for &(k, v, _) in &words.axes {
+                    t[k] = if cfg.axis(k).rotary { v } else { v * self.modal.length_factor() };
+                }
+                Frame::translation(t)
+            }
+            FrameKind::Rot => {
+                if let Some(angle) = words.rpl {
+                    let (_, _, applicate) = self.modal.plane.axes();
+                    Frame::rotation(frame::about_axis(applicate, angle))
+                } else {
+                    let mut angles = [0.0; 3];
+                    for &(k, v, _) in &words.axes {
+                        let g = geo_index(k).ok_or_else(|| {
+                            Alarm::value_out_of_range(
+                                line,
+                                &format!("ROT about {}: only geometry axes rotate", cfg.program_axis_name(k)),
+                            )
+                        })?;
+                        angles[g] = v;
+                    }
+                    Frame::rotation(frame::rpy(angles[0], angles[1], angles[2]))
+                }
+            }
+            FrameKind::Scale => {
+                let factors: Vec<(usize, f64)> = words.axes.iter().map(|&(k, v, _)| (k, v)).collect();
+                if factors.iter().any(|&(_, f)| f == 0.0) {
+                    return Err(Alarm::value_out_of_range(line, "SCALE factor 0"));
+                }
+                Frame::scaling(geo, &factors)
+            }
+            FrameKind::Mirror => {
+                let factors: Vec<(usize, f64)> = words.axes.iter().map(|&(k, _, _)| (k, -1.0)).collect();
+                Frame::scaling(geo, &factors)
+            }
+        };
+        self.pframe = if op.additive { self.pframe.then(&g, geo) } else { g };
         Ok(())
     }
 

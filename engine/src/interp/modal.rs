@@ -123,6 +123,37 @@ impl Modal {
     }
 }
 
+/// The kind of a programmable frame instruction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameKind {
+    Trans,
+    Rot,
+    Scale,
+    Mirror,
+}
+
+/// A programmable frame instruction: absolute (replaces the programmable frame) or additive.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FrameOp {
+    pub kind: FrameKind,
+    pub additive: bool,
+}
+
+fn frame_op(name: &str) -> Option<FrameOp> {
+    let (additive, base) = match name.strip_prefix('A') {
+        Some(rest) if matches!(rest, "TRANS" | "ROT" | "SCALE" | "MIRROR") => (true, rest),
+        _ => (false, name),
+    };
+    let kind = match base {
+        "TRANS" => FrameKind::Trans,
+        "ROT" => FrameKind::Rot,
+        "SCALE" => FrameKind::Scale,
+        "MIRROR" => FrameKind::Mirror,
+        _ => return None,
+    };
+    Some(FrameOp { kind, additive })
+}
+
 /// The words of one block, sorted by meaning and evaluated.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Words {
@@ -156,6 +187,10 @@ pub(super) struct Words {
     pub call: Option<(String, Vec<Expr>)>,
     /// `P`: number of runs of the call.
     pub repeat: Option<u32>,
+    /// A frame instruction; the block's axis words are its values.
+    pub frame_op: Option<FrameOp>,
+    /// `RPL=`: rotation angle in the working plane (with ROT/AROT).
+    pub rpl: Option<f64>,
 }
 
 impl Words {
@@ -201,6 +236,12 @@ pub(super) fn collect(
                     w.g53 = true;
                 }
             }
+            Word::Keyword { name, args } if args.is_empty() && frame_op(name).is_some() => {
+                if w.frame_op.is_some() {
+                    return Err(Alarm::syntax(line, "one frame instruction per block"));
+                }
+                w.frame_op = frame_op(name);
+            }
             Word::Keyword { name, args } if programs.contains_key(name) => w.call = Some((name.clone(), args.clone())),
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
@@ -229,6 +270,7 @@ pub(super) fn collect(
                     "T" => w.tool = Some(whole("T")?),
                     "D" => w.edge = Some(whole("D")?),
                     "CR" => w.cr = Some(v),
+                    "RPL" => w.rpl = Some(v),
                     "H" => {}
                     // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
                     "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
@@ -304,7 +346,7 @@ pub(super) fn assign(
 
 /// Addresses with a fixed meaning in a block.
 fn is_nc_address(name: &str) -> bool {
-    matches!(name, "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K" | "L" | "P")
+    matches!(name, "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K" | "L" | "P" | "RPL")
 }
 
 fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
