@@ -432,3 +432,21 @@ fn an_arc_under_rot_x90_runs_in_the_machine_x_z_plane() {
         assert!(p[1].abs() < 1e-9 && close(p[0].hypot(p[2]), 10.0, 1e-9), "{p:?}");
     }
 }
+
+#[test]
+fn an_opening_angle_of_90_degrees_bulges_by_the_sagitta() {
+    // Chord 20, AR=90: radius 14.142, the clockwise arc from (0,0) to (20,0) rises
+    // r - r·cos 45° = 4.142 above the chord.
+    let (_, samples) = run("mill-3axis", "", "G0 X0 Y0\nG2 X20 Y0 AR=90 F1000\nM30");
+    let top = samples.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
+    let r = 20.0 / 2f64.sqrt();
+    assert!(close(top, r - r * (std::f64::consts::FRAC_PI_4).cos(), 1e-3), "{top}");
+}
+
+#[test]
+fn a_helix_with_turn_takes_three_circles_of_path() {
+    let (ch, samples) = run("mill-3axis", "", "G0 X10 Y0 Z0\nG3 X10 Y0 Z-6 I-10 J0 TURN=2 F3000\nM30");
+    let moving = samples.iter().filter(|p| p[2] < 0.0 && p[2] > -6.0).count() as f64 * ch.config().ipo_cycle;
+    let length = ((3.0 * 2.0 * std::f64::consts::PI * 10.0).powi(2) + 36.0).sqrt();
+    assert!(close(moving, length / 50.0, 0.05), "{moving} s for {length} mm at 50 mm/s");
+}

@@ -75,6 +75,46 @@ pub fn from_radius(start: (f64, f64), end: (f64, f64), cr: f64, turn: Turn) -> R
     from_center(start, end, center, turn)
 }
 
+/// Circle from its end point and opening angle `AR=` (degrees, 0 < AR < 360).
+pub fn from_end_and_angle(start: (f64, f64), end: (f64, f64), ar: f64, turn: Turn) -> Result<Circle, CircleError> {
+    if !(ar > 0.0 && ar < 360.0) {
+        return Err(CircleError);
+    }
+    let chord = (end.0 - start.0).hypot(end.1 - start.1);
+    let r = chord / (2.0 * (ar.to_radians() / 2.0).sin());
+    // Up to 180° the centre is on the short-arc side (as CR > 0), beyond on the other.
+    from_radius(start, end, if ar <= 180.0 { r } else { -r }, turn)
+}
+
+/// Circle from its centre and opening angle `AR=` (degrees): the end point follows.
+pub fn from_center_and_angle(
+    start: (f64, f64),
+    center: (f64, f64),
+    ar: f64,
+    turn: Turn,
+) -> Result<(Circle, (f64, f64)), CircleError> {
+    if !(ar > 0.0 && ar <= 360.0) {
+        return Err(CircleError);
+    }
+    let sweep = match turn {
+        Turn::CounterClockwise => ar.to_radians(),
+        Turn::Clockwise => -ar.to_radians(),
+    };
+    let radius = (start.0 - center.0).hypot(start.1 - center.1);
+    if radius < 1e-9 {
+        return Err(CircleError);
+    }
+    let a0 = (start.1 - center.1).atan2(start.0 - center.0);
+    let end = (center.0 + radius * (a0 + sweep).cos(), center.1 + radius * (a0 + sweep).sin());
+    Ok((Circle { center, radius, start_angle: a0, sweep }, end))
+}
+
+/// Adds `turns` full turns (`TURN=`) in the circle's own direction.
+pub fn with_turns(mut c: Circle, turns: u32) -> Circle {
+    c.sweep += c.sweep.signum() * TAU * f64::from(turns);
+    c
+}
+
 fn positive_angle(a: f64) -> f64 {
     let a = a.rem_euclid(TAU);
     if a < 1e-12 { TAU } else { a }
@@ -123,6 +163,27 @@ mod tests {
         let c = from_radius((0.0, 0.0), (20.0, 0.0), 10.0, Turn::CounterClockwise).unwrap();
         assert!(close(c.center.0, 10.0) && c.center.1.abs() < 1e-6);
         assert!(close(c.sweep.abs(), PI));
+    }
+
+    #[test]
+    fn an_opening_angle_with_an_end_point_gives_the_radius() {
+        // Chord 20 with AR=90: radius 20/(2 sin 45°) = 14.142, sweep 90°.
+        let c = from_end_and_angle((0.0, 0.0), (20.0, 0.0), 90.0, Turn::CounterClockwise).unwrap();
+        assert!(close(c.radius, 20.0 / 2f64.sqrt()) && close(c.sweep, FRAC_PI_2));
+        let c = from_end_and_angle((0.0, 0.0), (20.0, 0.0), 270.0, Turn::Clockwise).unwrap();
+        assert!(close(c.sweep, -1.5 * PI));
+    }
+
+    #[test]
+    fn an_opening_angle_with_a_centre_gives_the_end_point() {
+        let (c, end) = from_center_and_angle((10.0, 0.0), (0.0, 0.0), 90.0, Turn::Clockwise).unwrap();
+        assert!(close(end.0, 0.0) && close(end.1, -10.0) && close(c.sweep, -FRAC_PI_2));
+    }
+
+    #[test]
+    fn turns_add_full_circles_in_the_same_direction() {
+        let c = from_center((10.0, 0.0), (0.0, 10.0), (0.0, 0.0), Turn::Clockwise).unwrap();
+        assert!(close(with_turns(c, 2).sweep, -1.5 * PI - 2.0 * TAU));
     }
 
     #[test]

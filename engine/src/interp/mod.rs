@@ -27,7 +27,7 @@ use calls::CallFrame;
 pub use calls::Programs;
 use flow::Flow;
 pub use frame::Frame;
-use modal::{FrameKind, FrameOp};
+use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
 use scope::SysView;
 use vars::Variables;
@@ -276,7 +276,10 @@ impl Interpreter {
                 return Err(Alarm::value_out_of_range(line, &format!("G4 {seconds} s")));
             }
             out.push(Item::Dwell { seconds, line });
+        } else if let Some(reference) = words.pole {
+            self.define_pole(reference, &words, cfg, line)?;
         } else if words.frame_op.is_none() && !words.axes.is_empty()
+            || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
             let mv = self.motion(&words, cfg, line)?;
@@ -369,6 +372,35 @@ impl Interpreter {
         Ok(())
     }
 
+    /// G110/G111/G112 with the working-plane coordinates of the pole.
+    fn define_pole(
+        &mut self,
+        reference: PoleRef,
+        words: &modal::Words,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        let geo = &cfg.geo_axes;
+        let (pa, po, _) = self.modal.plane.axes();
+        let (Some(ka), Some(ko)) = (geo[pa], geo[po]) else {
+            return Err(Alarm::value_out_of_range(line, "pole in a plane without both geometry axes"));
+        };
+        let mut basic = self.pos;
+        for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
+            *b -= t;
+        }
+        let current = self.offsets.frame.unapply(geo, &basic).unwrap_or(basic);
+        let base = match reference {
+            PoleRef::LastPosition => (current[ka], current[ko]),
+            PoleRef::WorkpieceZero => (0.0, 0.0),
+            PoleRef::LastPole => self.modal.pole,
+        };
+        let f = self.modal.length_factor();
+        let value = |k: usize| words.axes.iter().find(|(a, _, _)| *a == k).map_or(0.0, |(_, v, _)| v * f);
+        self.modal.pole = (base.0 + value(ka), base.1 + value(ko));
+        Ok(())
+    }
+
     fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<Move, Alarm> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
@@ -409,6 +441,66 @@ impl Interpreter {
             };
             programmed[k] = true;
         }
+        // Polar coordinates: the working-plane end point from the pole, angle AP and radius RP.
+        let (pa, po, papp) = self.modal.plane.axes();
+        let plane = (geo[pa], geo[po]);
+        if words.polar() {
+            let (Some(ka), Some(ko)) = plane else {
+                return Err(Alarm::value_out_of_range(line, "polar coordinates in a plane without both geometry axes"));
+            };
+            let ap = words.ap.unwrap_or(self.modal.polar.0);
+            let rp = words.rp.map(|r| r * self.modal.length_factor()).unwrap_or(self.modal.polar.1);
+            if rp < 0.0 {
+                return Err(Alarm::value_out_of_range(line, &format!("RP={rp}")));
+            }
+            self.modal.polar = (ap, rp);
+            let pole = self.modal.pole;
+            target[ka] = pole.0 + rp * ap.to_radians().cos();
+            target[ko] = pole.1 + rp * ap.to_radians().sin();
+            programmed[ka] = true;
+            programmed[ko] = true;
+        }
+
+        // The circle in the WCS plane (it may decide the end point: centre plus AR=).
+        let circle = match self.modal.motion {
+            MotionMode::Cw | MotionMode::Ccw => {
+                let (Some(ka), Some(ko)) = plane else {
+                    return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
+                };
+                let turn = if self.modal.motion == MotionMode::Cw {
+                    arc::Turn::Clockwise
+                } else {
+                    arc::Turn::CounterClockwise
+                };
+                let f = self.modal.length_factor();
+                let s = (current[ka], current[ko]);
+                let e = (target[ka], target[ko]);
+                let center = words.center(pa, po).map(|((ia, abs_a), (io, abs_o))| {
+                    (if abs_a { ia * f } else { s.0 + ia * f }, if abs_o { io * f } else { s.1 + io * f })
+                });
+                let end_given = programmed[ka] || programmed[ko];
+                let c = match (words.cr, words.ar, center) {
+                    _ if words.polar() => arc::from_center(s, e, self.modal.pole, turn),
+                    (Some(cr), _, _) => arc::from_radius(s, e, cr * f, turn),
+                    (None, Some(ar), Some(c)) if !end_given => {
+                        arc::from_center_and_angle(s, c, ar, turn).map(|(circle, end)| {
+                            target[ka] = end.0;
+                            target[ko] = end.1;
+                            programmed[ka] = true;
+                            programmed[ko] = true;
+                            circle
+                        })
+                    }
+                    (None, Some(ar), _) => arc::from_end_and_angle(s, e, ar, turn),
+                    (None, None, Some(c)) => arc::from_center(s, e, c, turn),
+                    (None, None, None) => return Err(Alarm::circle_end_point(line)),
+                }
+                .map_err(|_| Alarm::circle_end_point(line))?;
+                Some(arc::with_turns(c, words.turn.unwrap_or(0)))
+            }
+            _ => None,
+        };
+
         // With a rotation in the frame, a programmed geometry axis moves the others too.
         let any_geo = geo.iter().flatten().any(|&k| programmed[k]);
         if any_geo && frame.couples_axes() {
@@ -427,31 +519,13 @@ impl Interpreter {
         let geo_list: Vec<usize> = geo.iter().flatten().copied().collect();
         let mut path = Path { start, end, arc: None };
         let mut length = geo_list.iter().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
-        if let MotionMode::Cw | MotionMode::Ccw = self.modal.motion {
-            let (a, o, app) = self.modal.plane.axes();
-            let (Some(ka), Some(ko)) = (geo[a], geo[o]) else {
-                return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
-            };
+        if let Some(circle) = circle {
             // The circle is defined in the WCS plane and mapped through the frame.
-            let s = (current[ka], current[ko]);
-            let e = (target[ka], target[ko]);
-            let turn =
-                if self.modal.motion == MotionMode::Cw { arc::Turn::Clockwise } else { arc::Turn::CounterClockwise };
-            let circle = match (words.cr, words.center(a, o)) {
-                (Some(cr), _) => arc::from_radius(s, e, cr * self.modal.length_factor(), turn),
-                (None, Some(((ia, abs_a), (io, abs_o)))) => {
-                    let f = self.modal.length_factor();
-                    let c = (if abs_a { ia * f } else { s.0 + ia * f }, if abs_o { io * f } else { s.1 + io * f });
-                    arc::from_center(s, e, c, turn)
-                }
-                (None, None) => return Err(Alarm::circle_end_point(line)),
-            }
-            .map_err(|_| Alarm::circle_end_point(line))?;
-            let u = frame.geo_direction(geo, a);
-            let v = frame.geo_direction(geo, o);
+            let u = frame.geo_direction(geo, pa);
+            let v = frame.geo_direction(geo, po);
             path.arc = Some(Arc { u, v, radius: circle.radius, start_angle: circle.start_angle, sweep: circle.sweep });
             let scale = (norm(&u) + norm(&v)) / 2.0;
-            let helix = geo[app].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, app)));
+            let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
             length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
         }
         if length < 1e-9 {

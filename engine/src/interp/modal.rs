@@ -60,6 +60,10 @@ pub struct Modal {
     pub work_offset: usize,
     /// Programmed F (mm/min, or mm/rev under G95), in program units.
     pub feed: Option<f64>,
+    /// Pole of polar coordinates (abscissa, ordinate of the working plane, WCS).
+    pub pole: (f64, f64),
+    /// Last polar angle AP (degrees) and radius RP.
+    pub polar: (f64, f64),
 }
 
 impl Modal {
@@ -76,6 +80,8 @@ impl Modal {
             exact_stop: true,
             work_offset: 0,
             feed: None,
+            pole: (0.0, 0.0),
+            polar: (0.0, 0.0),
         }
     }
 
@@ -121,6 +127,17 @@ impl Modal {
         }
         Ok(())
     }
+}
+
+/// What the coordinates of a pole definition refer to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PoleRef {
+    /// G110: the last programmed position.
+    LastPosition,
+    /// G111: the workpiece zero.
+    WorkpieceZero,
+    /// G112: the last pole.
+    LastPole,
 }
 
 /// The kind of a programmable frame instruction.
@@ -191,6 +208,14 @@ pub(super) struct Words {
     pub frame_op: Option<FrameOp>,
     /// `RPL=`: rotation angle in the working plane (with ROT/AROT).
     pub rpl: Option<f64>,
+    /// G110/G111/G112: the block's plane-axis words define the pole.
+    pub pole: Option<PoleRef>,
+    /// `AP=` polar angle, `RP=` polar radius.
+    pub ap: Option<f64>,
+    pub rp: Option<f64>,
+    /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
+    pub ar: Option<f64>,
+    pub turn: Option<u32>,
 }
 
 impl Words {
@@ -203,7 +228,12 @@ impl Words {
     }
 
     pub fn arc_params_given(&self) -> bool {
-        self.cr.is_some() || self.ijk.iter().any(Option::is_some)
+        self.cr.is_some() || self.ar.is_some() || self.ijk.iter().any(Option::is_some)
+    }
+
+    /// Polar coordinates in the block.
+    pub fn polar(&self) -> bool {
+        self.ap.is_some() || self.rp.is_some()
     }
 }
 
@@ -271,6 +301,10 @@ pub(super) fn collect(
                     "D" => w.edge = Some(whole("D")?),
                     "CR" => w.cr = Some(v),
                     "RPL" => w.rpl = Some(v),
+                    "AP" => w.ap = Some(v),
+                    "RP" => w.rp = Some(v),
+                    "AR" => w.ar = Some(v),
+                    "TURN" => w.turn = Some(whole("TURN=")?),
                     "H" => {}
                     // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
                     "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
@@ -346,7 +380,10 @@ pub(super) fn assign(
 
 /// Addresses with a fixed meaning in a block.
 fn is_nc_address(name: &str) -> bool {
-    matches!(name, "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K" | "L" | "P" | "RPL")
+    matches!(
+        name,
+        "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K" | "L" | "P" | "RPL" | "AP" | "RP" | "AR" | "TURN"
+    )
 }
 
 fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
@@ -366,6 +403,9 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         54..=57 => w.work_offset = Some(code as usize - 53),
         500 => w.work_offset = Some(0),
         505..=599 => w.work_offset = Some(code as usize - 500),
+        110 => w.pole = Some(PoleRef::LastPosition),
+        111 => w.pole = Some(PoleRef::WorkpieceZero),
+        112 => w.pole = Some(PoleRef::LastPole),
         60 => w.exact_stop = Some(true),
         64 => w.exact_stop = Some(false),
         70 => w.units = Some((true, false)),
