@@ -14,7 +14,7 @@ pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Interpreter, Item, Offsets, Prep, Programs, StopKind};
+use crate::interp::{Interpreter, Item, NEWCONF, Offsets, Prep, Programs, StopKind};
 use crate::lang;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::machine_data::{MachineConfig, MachineData, MdError};
@@ -368,6 +368,15 @@ impl Channel {
         for s in &mut self.spindles {
             s.stop_now();
         }
+        // Machine data written by programs becomes active with the reset (when it is valid and
+        // keeps the axes; otherwise it waits for a PUT of machine data to report the problem).
+        if let Ok(cfg) = self.data.activate()
+            && cfg != *self.cfg
+            && cfg.channel_axes == self.cfg.channel_axes
+        {
+            self.planner.set_limits(axis_limits(&cfg));
+            self.cfg = Arc::new(cfg);
+        }
         let pos = *self.planner.position();
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();
@@ -476,7 +485,14 @@ impl Channel {
             budget -= 1;
             let main_run_idle = self.pending.is_empty() && self.planner.is_empty() && self.dwell_ticks == 0;
             out.clear();
-            let prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
+            let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
+            for (line, text) in self.interp.take_data_writes() {
+                if let Err(alarm) = self.apply_program_data(line, &text) {
+                    out.push(Item::Alarm(alarm));
+                    prep = Prep::Done;
+                    break;
+                }
+            }
             if let Some(line) = out.iter().find_map(Item::line) {
                 // Remember where the block is, for showing it while its items execute.
                 self.queued_blocks.push_back((line, line_offset(&program, line, self.queued_blocks.back())));
@@ -491,6 +507,28 @@ impl Channel {
                 Prep::Done => self.prep_done = true,
             }
         }
+    }
+
+    /// Applies data a program wrote: tool data and settable frames act at once, machine data
+    /// waits for NEWCONF (or a reset).
+    fn apply_program_data(&mut self, line: u32, text: &str) -> Result<(), Alarm> {
+        let bad = |message: String| Alarm::value_out_of_range(line, &message);
+        if text == NEWCONF {
+            let cfg = self.data.activate().map_err(|e| bad(format!("NEWCONF: {}", e.message)))?;
+            if cfg.channel_axes != self.cfg.channel_axes || cfg.geo_axes != self.cfg.geo_axes {
+                return Err(bad(
+                    "NEWCONF cannot change the axis configuration while a program runs: reset instead".into()
+                ));
+            }
+            self.planner.set_limits(axis_limits(&cfg));
+            self.cfg = Arc::new(cfg);
+            return Ok(());
+        }
+        self.data.stage_text(text).map_err(|e| bad(format!("{text}: {}", e.message)))?;
+        if !text.starts_with("$M") && !text.starts_with("$S") {
+            Arc::make_mut(&mut self.cfg).refresh_data(&self.data).map_err(|e| bad(e.message))?;
+        }
+        Ok(())
     }
 
     /// Hands consecutive moves from the front of the prepared items to the planner. A move

@@ -89,6 +89,9 @@ pub enum Item {
     Alarm(Alarm),
 }
 
+/// Marker in [`Interpreter::take_data_writes`]: activate the machine data written so far.
+pub const NEWCONF: &str = "NEWCONF";
+
 /// What one call of [`Interpreter::prepare_next`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Prep {
@@ -132,6 +135,9 @@ pub struct Interpreter {
     flow: Option<Flow>,
     /// Subprogram calls in progress, outermost first.
     calls: Vec<CallFrame>,
+    /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
+    /// not applied yet.
+    data_writes: Vec<(u32, String)>,
 }
 
 impl Interpreter {
@@ -146,6 +152,7 @@ impl Interpreter {
             direction: 0,
             flow: None,
             calls: Vec::new(),
+            data_writes: Vec::new(),
         }
     }
 
@@ -175,6 +182,12 @@ impl Interpreter {
         self.vars.reset_locals();
         self.calls.clear();
         self.flow = Some(Flow::new(text));
+    }
+
+    /// Data written by the blocks prepared since the last call (line, NC data text, or
+    /// [`NEWCONF`]): the channel applies them before the next block is prepared.
+    pub fn take_data_writes(&mut self) -> Vec<(u32, String)> {
+        std::mem::take(&mut self.data_writes)
     }
 
     /// The user variables and R parameters.
@@ -236,6 +249,10 @@ impl Interpreter {
             let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
             modal::collect(block, cfg, &mut self.vars, &sys, programs)?
         };
+        self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
+        if words.newconf {
+            self.data_writes.push((line, NEWCONF.to_string()));
+        }
         let offsets_before = self.offsets.clone();
         self.modal.apply(&words, cfg, line)?;
         if let Some(f) = words.feed.filter(|_| !words.dwell) {

@@ -4,6 +4,7 @@ use super::StopKind;
 use super::calls::Programs;
 use super::eval::{eval, eval_f64};
 use super::scope::{Ctx, SysView};
+use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
 use crate::lang::{Block, CoordMode, Expr, Goto, Word};
@@ -213,6 +214,10 @@ pub(super) struct Words {
     /// `AP=` polar angle, `RP=` polar radius.
     pub ap: Option<f64>,
     pub rp: Option<f64>,
+    /// Tool, frame and machine data written by the block, as NC data text lines.
+    pub data_writes: Vec<String>,
+    /// NEWCONF: activate machine data written by the program.
+    pub newconf: bool,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
     pub ar: Option<f64>,
     pub turn: Option<u32>,
@@ -261,9 +266,13 @@ pub(super) fn collect(
             Word::G(code) => g_function(&mut w, *code, line)?,
             Word::M(code) => m_function(&mut w, *code, line)?,
             Word::Goto(goto) => w.goto = Some(goto.clone()),
-            Word::Keyword { name, args } if args.is_empty() && (name == "SUPA" || name == "STOPRE") => {
-                if name == "SUPA" {
-                    w.g53 = true;
+            Word::Keyword { name, args }
+                if args.is_empty() && matches!(name.as_str(), "SUPA" | "STOPRE" | "NEWCONF") =>
+            {
+                match name.as_str() {
+                    "SUPA" => w.g53 = true,
+                    "NEWCONF" => w.newconf = true,
+                    _ => {}
                 }
             }
             Word::Keyword { name, args } if args.is_empty() && frame_op(name).is_some() => {
@@ -282,8 +291,13 @@ pub(super) fn collect(
             }
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
             Word::Address { name, indices, value } => {
-                if assign(name, indices, &value.expr, cfg, vars, sys, line)? {
-                    continue;
+                match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
+                    Assigned::Variable => continue,
+                    Assigned::Data(text) => {
+                        w.data_writes.push(text);
+                        continue;
+                    }
+                    Assigned::Address => {}
                 }
                 let v = eval_f64(&value.expr, &Ctx { vars, sys }, line)?;
                 let whole = |what: &str| -> Result<u32, Alarm> {
@@ -332,6 +346,17 @@ pub(super) fn collect(
 
 /// Performs `name[indices] = expr` if `name` is an R parameter or a variable; returns false
 /// for addresses (axes, F, S, ...), which the caller handles.
+/// What an assignment-shaped word turned out to be.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Assigned {
+    /// A variable or R parameter was written.
+    Variable,
+    /// An NC address (axis, F, S, ...): the caller handles it.
+    Address,
+    /// Tool data, frame data or machine data, as one line of NC data text.
+    Data(String),
+}
+
 pub(super) fn assign(
     name: &str,
     indices: &[Expr],
@@ -340,7 +365,7 @@ pub(super) fn assign(
     vars: &mut Variables,
     sys: &SysView,
     line: u32,
-) -> Result<bool, Alarm> {
+) -> Result<Assigned, Alarm> {
     let r_index = match name {
         "R" | "$R" if indices.len() == 1 => {
             Some(eval(&indices[0], &Ctx { vars, sys }, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?)
@@ -355,16 +380,16 @@ pub(super) fn assign(
             .and_then(|i| vars.r.get_mut(i))
             .ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?;
         *slot = v;
-        return Ok(true);
+        return Ok(Assigned::Variable);
     }
     if name.starts_with('$') {
-        return Err(Alarm::unknown_name(line, &format!("{name} (writing this system variable is not supported yet)")));
+        return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
     }
     if vars.get(name).is_none() {
         if !indices.is_empty() || cfg.program_axis(name).is_none() && !is_nc_address(name) {
             return Err(Alarm::unknown_name(line, name));
         }
-        return Ok(false);
+        return Ok(Assigned::Address);
     }
     let ctx = Ctx { vars, sys };
     let value = eval(expr, &ctx, line)?;
@@ -375,7 +400,45 @@ pub(super) fn assign(
     let var = vars.get_mut(name).expect("checked above");
     let i = var.index(&idx).map_err(|e| Alarm::index_error(line, name, &e.0))?;
     var.data[i] = value.convert(var.ty).map_err(|e| Alarm::type_error(line, &e.0))?;
-    Ok(true)
+    Ok(Assigned::Variable)
+}
+
+/// A write to tool data (`$TC_DP..`), settable frames (`$P_UIFR`) or machine and setting data
+/// (`$MC_..`, `$MA_..`, ...) as one line of NC data text. Bare names among the indices
+/// (`$P_UIFR[1,X,TR]`) are taken literally.
+fn data_write(
+    name: &str,
+    indices: &[Expr],
+    expr: &Expr,
+    vars: &Variables,
+    sys: &SysView,
+    line: u32,
+) -> Result<String, Alarm> {
+    let writable = name.starts_with("$TC_DP")
+        || name == "$P_UIFR"
+        || ["$MN_", "$MC_", "$MA_", "$SN_", "$SC_", "$SA_"].iter().any(|p| name.starts_with(p));
+    if !writable {
+        return Err(Alarm::unknown_name(line, &format!("{name} (not writable from a program)")));
+    }
+    let ctx = Ctx { vars, sys };
+    let mut idx = Vec::new();
+    for e in indices {
+        idx.push(match e {
+            Expr::Var { name, indices } if indices.is_empty() && vars.get(name).is_none() => name.clone(),
+            e => match eval(e, &ctx, line)? {
+                Value::Axis(a) | Value::Str(a) => a,
+                v => v.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?.to_string(),
+            },
+        });
+    }
+    let value = match eval(expr, &ctx, line)? {
+        Value::Bool(b) => if b { "TRUE" } else { "FALSE" }.to_string(),
+        Value::Str(s) => format!("\"{s}\""),
+        Value::Axis(a) => a,
+        v => format!("{:?}", v.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?),
+    };
+    let index = if idx.is_empty() { String::new() } else { format!("[{}]", idx.join(",")) };
+    Ok(format!("{name}{index}={value}"))
 }
 
 /// Addresses with a fixed meaning in a block.

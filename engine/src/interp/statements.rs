@@ -2,7 +2,7 @@
 
 use super::eval::{eval, eval_f64};
 use super::flow::{Ctrl, Pos};
-use super::modal::assign;
+use super::modal::{Assigned, assign};
 use super::scope::{Ctx, SysView, is_main_run_variable};
 use super::value::Value;
 use super::vars::Variable;
@@ -214,10 +214,9 @@ impl Interpreter {
         line: u32,
     ) -> Result<(), Alarm> {
         let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
-        if assign(name, indices, value, cfg, &mut self.vars, &sys, line)? {
-            Ok(())
-        } else {
-            Err(Alarm::type_error(line, &format!("{name} is not a variable")))
+        match assign(name, indices, value, cfg, &mut self.vars, &sys, line)? {
+            Assigned::Variable => Ok(()),
+            _ => Err(Alarm::type_error(line, &format!("{name} is not a variable"))),
         }
     }
 

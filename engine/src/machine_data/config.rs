@@ -145,17 +145,33 @@ impl MachineConfig {
         let master = md.num("$MC_SPIND_DEF_MASTER_SPIND", 0, 0) as u32;
         let master_spindle = channel_axes.iter().position(|c| machine_axes[c.machine_axis].spindle == Some(master));
 
+        let mut cfg = MachineConfig {
+            ipo_cycle,
+            machine_axes,
+            channel_axes,
+            geo_axes,
+            geo_names,
+            master_spindle,
+            tools: BTreeMap::new(),
+            work_offsets: Vec::new(),
+        };
+        cfg.refresh_data(md)?;
+        Ok(cfg)
+    }
+
+    /// Takes over tool data and settable frames from `md`, which act at once (unlike machine
+    /// data, which waits for NEWCONF or a reset).
+    pub fn refresh_data(&mut self, md: &MachineData) -> Result<(), ActivationError> {
         let frame_count = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
-        let mut work_offsets = vec![vec![0.0; channel_axes.len()]; frame_count];
+        let mut work_offsets = vec![vec![0.0; self.channel_axes.len()]; frame_count];
         for ((frame, axis, component), value) in md.frames() {
-            let idx =
-                resolve_program_axis(axis, &geo_axes, &geo_names, &channel_axes).ok_or_else(|| ActivationError {
-                    datum: None,
-                    message: format!(
-                        "$P_UIFR[{frame},{axis},{}]: {axis} is not an axis of this channel",
-                        if *component == FrameComponent::Translation { "TR" } else { "FI" }
-                    ),
-                })?;
+            let idx = self.program_axis(axis).ok_or_else(|| ActivationError {
+                datum: None,
+                message: format!(
+                    "$P_UIFR[{frame},{axis},{}]: {axis} is not an axis of this channel",
+                    if *component == FrameComponent::Translation { "TR" } else { "FI" }
+                ),
+            })?;
             if *frame >= frame_count {
                 return fail(
                     "MM_NUM_USER_FRAMES",
@@ -164,17 +180,9 @@ impl MachineConfig {
             }
             work_offsets[*frame][idx] += value;
         }
-
-        Ok(MachineConfig {
-            ipo_cycle,
-            machine_axes,
-            channel_axes,
-            geo_axes,
-            geo_names,
-            master_spindle,
-            tools: md.tools().clone(),
-            work_offsets,
-        })
+        self.work_offsets = work_offsets;
+        self.tools = md.tools().clone();
+        Ok(())
     }
 
     /// The channel axis a program addresses by `name`: a geometry axis name first, then a

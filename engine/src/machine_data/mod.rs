@@ -143,6 +143,19 @@ impl MachineData {
         Ok(config)
     }
 
+    /// Assigns NC data text all-or-nothing without activating it (as a part program writes
+    /// machine data: it becomes active with NEWCONF or a reset).
+    pub fn stage_text(&mut self, text: &str) -> Result<(), MdError> {
+        let mut staged = self.clone();
+        for line in text::parse(text)? {
+            if let Line::Assign { line, name, indices, value } = line {
+                staged.assign(line, &name, &indices, &value)?;
+            }
+        }
+        *self = staged;
+        Ok(())
+    }
+
     /// Builds the typed configuration; fails on inconsistent data.
     pub fn activate(&self) -> Result<MachineConfig, config::ActivationError> {
         MachineConfig::build(self)

@@ -127,6 +127,12 @@ impl Planner {
         self.replan();
     }
 
+    /// Replaces the axis limits (new machine data); queued moves keep the limits they were
+    /// planned with.
+    pub fn set_limits(&mut self, limits: Vec<AxisLimit>) {
+        self.limits = limits;
+    }
+
     /// Number of queued moves.
     pub fn len(&self) -> usize {
         self.queue.len()
