@@ -145,3 +145,11 @@ impl Alarm {
         Alarm::new(14011, format!("Channel 1 block {line} program {name} not available"), Some(line))
     }
 }
+
+impl Alarm {
+    /// A cycle alarm set by the program with SETAL (60000..67999).
+    pub fn user(line: u32, number: u32, text: &str) -> Alarm {
+        let message = if text.is_empty() { format!("Channel 1 block {line} cycle alarm") } else { text.to_string() };
+        Alarm::new(number, message, Some(line))
+    }
+}

@@ -7,6 +7,7 @@
 //! - `; expect X=10`            WCS position of an axis at the end
 //! - `; expect alarm 14080 line 4`
 //! - `; expect status alarm`    final channel status (idle unless an alarm is expected)
+//! - `; expect MSG text`        the last MSG text
 //! - `; machine lathe-2axis`    preset (default mill-3axis)
 //! - `; md $P_UIFR[1,X,TR]=100` machine data applied on top of the preset
 //!
@@ -57,6 +58,10 @@ fn run_fixture(path: &Path) -> Result<(), String> {
             let hit = snap.alarms.iter().any(|a| a.number == number && (line.is_none() || a.line == line));
             if !hit {
                 return fail(format!("{:?}", snap.alarms));
+            }
+        } else if let Some(text) = e.strip_prefix("MSG ") {
+            if snap.message.as_deref() != Some(text) {
+                return fail(format!("{:?}", snap.message));
             }
         } else if let Some(s) = e.strip_prefix("status ") {
             expected_status = match s {

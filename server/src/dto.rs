@@ -175,6 +175,8 @@ pub struct State {
     /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub spindles: AxisValues,
+    /// The program's last MSG text, if any.
+    pub message: Option<String>,
 }
 
 /// Axis positions in the three coordinate systems (mm or degrees), as objects name -> value in
@@ -262,6 +264,7 @@ impl From<&Snapshot> for State {
             tool: Tool { t: s.tool.0, d: s.tool.1 },
             path_velocity: s.path_velocity,
             spindles: AxisValues(s.spindles.clone()),
+            message: s.message.clone(),
         }
     }
 }
@@ -462,6 +465,7 @@ mod tests {
             tool: Tool { t: 0, d: 0 },
             path_velocity: 0.0,
             spindles: AxisValues::default(),
+            message: None,
         }
     }
 

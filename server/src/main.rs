@@ -21,7 +21,7 @@ struct Args {
     #[arg(long, default_value = "./nctwin-data")]
     data_dir: PathBuf,
     /// Folder of the browser HMI's static files.
-    #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web"))]
+    #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web/dist"))]
     web_dir: PathBuf,
 }
 

@@ -160,6 +160,8 @@ pub struct Channel {
     pub optional_stop: bool,
     /// Axis of a JOG motion in progress.
     jog_axis: Option<usize>,
+    /// The last MSG text of the program.
+    message: Option<String>,
 }
 
 impl Channel {
@@ -206,6 +208,7 @@ impl Channel {
             events: Vec::new(),
             optional_stop: false,
             jog_axis: None,
+            message: None,
         }
     }
 
@@ -365,6 +368,7 @@ impl Channel {
         self.dwell_ticks = 0;
         self.jog_axis = None;
         self.current_line = None;
+        self.message = None;
         for s in &mut self.spindles {
             s.stop_now();
         }
@@ -614,6 +618,10 @@ impl Channel {
                 Item::Offsets { line, offsets } => {
                     self.offsets = offsets;
                     self.enter_block(line);
+                }
+                Item::Message { text, line } => {
+                    self.enter_block(line);
+                    self.message = (!text.is_empty()).then_some(text);
                 }
                 Item::Dwell { seconds, line } => {
                     self.enter_block(line);

@@ -46,6 +46,8 @@ pub struct Snapshot {
     pub path_velocity: f64,
     /// Spindles: (channel axis name, speed in rev/min, signed: + = M3).
     pub spindles: Vec<(String, f64)>,
+    /// The program's last MSG text.
+    pub message: Option<String>,
 }
 
 pub(super) fn build(ch: &Channel) -> Snapshot {
@@ -96,5 +98,6 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         tool: ch.interp.tool_in_main_run(&ch.offsets),
         path_velocity: ch.planner.velocity() * 60.0,
         spindles: ch.spindles.iter().map(|s| (cfg.program_axis_name(s.axis).to_string(), s.speed)).collect(),
+        message: ch.message.clone(),
     }
 }

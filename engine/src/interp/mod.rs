@@ -86,6 +86,11 @@ pub enum Item {
         kind: StopKind,
         line: u32,
     },
+    /// MSG: text shown to the operator from this block on (empty clears it).
+    Message {
+        text: String,
+        line: u32,
+    },
     Alarm(Alarm),
 }
 
@@ -111,7 +116,8 @@ impl Item {
             | Item::Offsets { line, .. }
             | Item::Dwell { line, .. }
             | Item::Spindle { line, .. }
-            | Item::Stop { line, .. } => Some(*line),
+            | Item::Stop { line, .. }
+            | Item::Message { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -305,6 +311,12 @@ impl Interpreter {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
         }
 
+        if let Some(text) = &words.message {
+            out.push(Item::Message { text: text.clone(), line });
+        }
+        if let Some(alarm) = &words.user_alarm {
+            out.push(Item::Alarm(alarm.clone()));
+        }
         if let Some(kind) = words.stop {
             out.push(Item::Stop { kind, line });
         }

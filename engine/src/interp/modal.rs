@@ -218,6 +218,10 @@ pub(super) struct Words {
     pub data_writes: Vec<String>,
     /// NEWCONF: activate machine data written by the program.
     pub newconf: bool,
+    /// MSG: text for the operator (empty clears it).
+    pub message: Option<String>,
+    /// SETAL: a cycle alarm raised by the program.
+    pub user_alarm: Option<Alarm>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
     pub ar: Option<f64>,
     pub turn: Option<u32>,
@@ -282,6 +286,31 @@ pub(super) fn collect(
                 w.frame_op = frame_op(name);
             }
             Word::Keyword { name, args } if programs.contains_key(name) => w.call = Some((name.clone(), args.clone())),
+            Word::Keyword { name, args } if name == "MSG" => {
+                w.message = Some(match args.as_slice() {
+                    [] => String::new(),
+                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text(),
+                    _ => return Err(Alarm::syntax(line, "MSG takes one text")),
+                });
+            }
+            Word::Keyword { name, args } if name == "SETAL" => {
+                let ctx = Ctx { vars, sys };
+                let number = match args.first() {
+                    Some(e) => eval(e, &ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
+                    None => return Err(Alarm::syntax(line, "SETAL needs an alarm number")),
+                };
+                if !(60000..=67999).contains(&number) {
+                    return Err(Alarm::value_out_of_range(
+                        line,
+                        &format!("SETAL({number}): cycle alarms are 60000..67999"),
+                    ));
+                }
+                let text = match args.get(1) {
+                    Some(e) => eval(e, &ctx, line)?.as_text(),
+                    None => String::new(),
+                };
+                w.user_alarm = Some(Alarm::user(line, number as u32, &text));
+            }
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
                     [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),

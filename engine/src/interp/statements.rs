@@ -52,6 +52,12 @@ impl Interpreter {
                 self.prepare_block(&block, cfg, programs, out)?;
             }
         }
+        if out.iter().any(|i| matches!(i, Item::Alarm(_))) {
+            // A programmed alarm (SETAL) ends preparation like any other.
+            self.flow = None;
+            self.calls.clear();
+            return Ok(Prep::Done);
+        }
         if let Some(i) = out.iter().position(|i| matches!(i, Item::Stop { kind: StopKind::End, .. })) {
             // M17, M2, M30 and RET end a subprogram run; in the main program they end it.
             if !self.calls.is_empty() {
