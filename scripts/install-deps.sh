@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian machine (with Rust, Node/npm, Python and apt) lacks for the tests:
-# Debian's Chromium for the browser test, and the browser test's npm packages. Idempotent.
+# Debian's Chromium for the browser test, the HMI's npm packages (web/) and the browser test's
+# (tests/browser). Idempotent.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -14,6 +15,9 @@ if [ ! -x /usr/bin/chromium ]; then
 else
   echo "==> chromium present: $(/usr/bin/chromium --version 2>/dev/null || echo /usr/bin/chromium)"
 fi
+
+echo "==> npm ci (web)"
+(cd "$ROOT/web" && npm ci --no-audit --no-fund)
 
 echo "==> npm ci (tests/browser)"
 cd "$ROOT/tests/browser"

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # The one command that runs every NCTwin test:
-#   formatting, clippy, the Rust tests of the workspace, and the browser test of the HMI
-#   (headless Chromium against a freshly started server).
+#   formatting, clippy, the Rust tests of the workspace, the HMI's type check and build, and the
+#   browser test of the HMI (headless Chromium against a freshly started server).
 #
 #   scripts/test.sh            everything
 #   scripts/test.sh rust       only fmt, clippy and cargo test
-#   scripts/test.sh browser    only the browser test
+#   scripts/test.sh browser    only the HMI: type check, build, browser test
 #
 # Needs /usr/bin/chromium (scripts/install-deps.sh installs it). Runs from any directory.
 set -euo pipefail
@@ -43,6 +43,9 @@ fi
 
 [ "$WHAT" = rust ] && exit 0
 
+section "HMI: type check and build (web/)"
+bash scripts/build-web.sh
+
 section "browser test (HMI)"
 cargo build -p nctwin-server
 
@@ -66,7 +69,7 @@ server_log() {
   echo "---- end of server log ----" >&2
 }
 
-NO_COLOR=1 "$TARGET_DIR/debug/nctwin" --bind 127.0.0.1:0 --data-dir "$DATA_DIR" >"$LOG" 2>&1 &
+NO_COLOR=1 "$TARGET_DIR/debug/nctwin" --bind 127.0.0.1:0 --data-dir "$DATA_DIR" --web-dir "$ROOT/web/dist" >"$LOG" 2>&1 &
 SERVER_PID=$!
 
 # Wait for "listening on http://IP:PORT" and take the address from it.

@@ -2,32 +2,28 @@
 //
 //   NCTWIN_URL=http://127.0.0.1:8080 node hmi.test.mjs
 //
-// Starts nothing itself (scripts/test.sh starts the server). Exits non-zero on failure.
+// Starts nothing itself (scripts/test.sh starts the server). Exits non-zero on failure, with a
+// screenshot of the page at that moment. SHOTS_DIR=dir keeps the screenshots it takes.
 
 import { mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
+import { CHROMIUM_ARGS } from "./chromium.mjs";
 
 const BASE = (process.env.NCTWIN_URL || "").replace(/\/+$/, "");
 const CHROMIUM = process.env.CHROMIUM_PATH || "/usr/bin/chromium";
-const TOTAL_TIMEOUT_MS = 120_000;
+const SHOTS_DIR = process.env.SHOTS_DIR || tmpdir();
+const TOTAL_TIMEOUT_MS = 180_000;
 
-// A few seconds of real-time motion in X, then program end.
-const PROGRAM = ["G0 X0 Y0 Z50", "G1 X100 F3000", "G0 Z100", "M30", ""].join("\n");
+// A program with a syntax error in line 2, to be caught before start.
+const BAD_PROGRAM = ["G0 X0 Y0 Z50", "IF R1 >", "M30", ""].join("\n");
+// About two seconds of real-time motion in X over two blocks, then program end.
+const PROGRAM = ["G0 X0 Y0 Z50", "G1 X50 F3000", "G1 X100", "G0 Z100", "M30", ""].join("\n");
+const PROGRAM_NAME = "HMITEST";
 
 const WCS_X = '#positions [data-frame="workpiece"][data-axis="X"]';
-
-const CHROMIUM_ARGS = [
-  "--no-sandbox",
-  "--disable-gpu",
-  "--enable-unsafe-swiftshader",
-  "--disable-background-networking",
-  "--disable-component-update",
-  "--disable-sync",
-  "--no-first-run",
-  "--disable-quic",
-];
+const EDITOR = "#editor textarea";
 
 const results = [];
 const pageErrors = [];
@@ -45,6 +41,55 @@ async function step(name, fn) {
   }
 }
 
+const wcsX = async (page) => Number(await page.textContent(WCS_X));
+
+/** Records every status text, WCS X value and highlighted program line the page shows. */
+async function startRecording(page) {
+  await page.evaluate((sel) => {
+    const log = { status: [], x: [], line: [] };
+    window.__hmiLog = log;
+    const push = (list, v) => v && v !== list.at(-1) && list.push(v);
+    const sample = () => {
+      push(log.status, document.getElementById("status")?.textContent?.trim().toLowerCase());
+      push(log.x, document.querySelector(sel)?.textContent?.trim());
+      push(log.line, document.querySelector("#blocks li.current")?.dataset.line);
+    };
+    sample();
+    new MutationObserver(sample).observe(document.body, {
+      childList: true,
+      characterData: true,
+      subtree: true,
+      attributes: true,
+      attributeFilter: ["class"],
+    });
+  }, WCS_X);
+}
+
+/** Number of distinct colours and their spread in the 3D view's WebGL canvas. */
+async function canvasStats(page) {
+  return page.evaluate(() => {
+    const gl = document.querySelector("#view3d canvas");
+    if (!gl) return null;
+    const c = document.createElement("canvas");
+    c.width = Math.min(gl.width, 400);
+    c.height = Math.min(gl.height, 300);
+    const ctx = c.getContext("2d");
+    ctx.drawImage(gl, 0, 0, c.width, c.height); // needs preserveDrawingBuffer
+    const { data } = ctx.getImageData(0, 0, c.width, c.height);
+    const colours = new Set();
+    let sum = 0;
+    let sumSq = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      const v = data[i] + data[i + 1] + data[i + 2];
+      colours.add((data[i] << 16) | (data[i + 1] << 8) | data[i + 2]);
+      sum += v;
+      sumSq += v * v;
+    }
+    const n = data.length / 4;
+    return { colours: colours.size, variance: sumSq / n - (sum / n) ** 2, width: gl.width, height: gl.height };
+  });
+}
+
 async function main() {
   if (!BASE) throw new Error("NCTWIN_URL is not set (e.g. NCTWIN_URL=http://127.0.0.1:8080)");
   const userDataDir = await mkdtemp(join(tmpdir(), "nctwin-chromium-"));
@@ -59,7 +104,7 @@ async function main() {
       executablePath: CHROMIUM,
       headless: true,
       args: CHROMIUM_ARGS,
-      viewport: { width: 1440, height: 900 },
+      viewport: { width: 1280, height: 800 },
     });
     page = context.pages()[0] || (await context.newPage());
     page.setDefaultTimeout(20_000);
@@ -73,18 +118,14 @@ async function main() {
       if (!res || !res.ok()) throw new Error(`GET / answered ${res ? res.status() : "nothing"}`);
     });
 
-    await step("session created and shown", async () => {
-      await page.waitForFunction(() => {
-        const t = document.getElementById("session-id")?.textContent?.trim();
-        return t && t !== "–";
-      });
+    let sessionId = "";
+    await step("a new session is created and shown", async () => {
+      await page.waitForFunction(() => /\S/.test(document.getElementById("session-id")?.textContent?.replace("–", "") || ""));
+      sessionId = (await page.textContent("#session-id")).trim();
     });
 
-    await step("position table shows WCS X", async () => {
-      await page.waitForFunction(
-        (sel) => /^-?\d+\.\d+$/.test(document.querySelector(sel)?.textContent?.trim() || ""),
-        WCS_X,
-      );
+    await step("coordinate display shows WCS X", async () => {
+      await page.waitForFunction((sel) => /^-?\d+\.\d{3}$/.test(document.querySelector(sel)?.textContent?.trim() || ""), WCS_X);
     });
 
     await step("stream connected and status idle", async () => {
@@ -95,56 +136,125 @@ async function main() {
       );
     });
 
-    // Record every status text and WCS X value the page shows from now on.
-    await page.evaluate((sel) => {
-      const log = { status: [], x: [] };
-      window.__hmiLog = log;
-      const sample = () => {
-        const s = document.getElementById("status")?.textContent?.trim().toLowerCase();
-        const x = document.querySelector(sel)?.textContent?.trim();
-        if (s && s !== log.status.at(-1)) log.status.push(s);
-        if (x && x !== log.x.at(-1)) log.x.push(x);
-      };
-      sample();
-      new MutationObserver(sample).observe(document.body, {
-        childList: true,
-        characterData: true,
-        subtree: true,
-      });
-    }, WCS_X);
-
-    await step("program entered and started", async () => {
-      await page.fill("#program", PROGRAM);
-      await page.click("#btn-start");
+    await step("MCS/WCS toggle switches the coordinate display", async () => {
+      await page.click('#coords-toggle [data-frame="machine"]');
+      await page.waitForSelector('#positions [data-frame="machine"][data-axis="X"]');
+      if (!(await page.textContent("#coords-title")).includes("MCS")) throw new Error("title does not say MCS");
+      await page.click('#coords-toggle [data-frame="workpiece"]');
+      await page.waitForSelector(WCS_X);
     });
 
-    await step('status badge shows "running"', async () => {
-      await page.waitForFunction(() => window.__hmiLog.status.includes("running"), null, {
-        timeout: 15_000,
-      });
+    await step("session lobby lists the session with its status", async () => {
+      await page.click('[data-goto="sessions"]');
+      await page.waitForSelector(`#sessions tr[data-session="${sessionId}"]`);
+      const row = await page.textContent(`#sessions tr[data-session="${sessionId}"]`);
+      if (!/idle/.test(row)) throw new Error(`session row: ${row}`);
+      if ((await page.locator("#preset-select option").count()) < 1) throw new Error("no machine presets");
     });
 
-    await step("WCS X position changes", async () => {
+    await step("editor shows a syntax error at its line before start", async () => {
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", PROGRAM_NAME);
+      await page.fill(EDITOR, BAD_PROGRAM);
+      await page.click("#btn-editor-check");
+      await page.waitForSelector('#diagnostics li[data-line="2"]');
+      await page.waitForSelector("#editor .code-gutter .error");
+      const marked = await page.textContent("#editor .code-gutter .error");
+      if (marked.trim() !== "2") throw new Error(`gutter marks line ${marked}, expected 2`);
+      await page.click("#btn-editor-execute"); // refused: stays in the editor
+      await page.waitForSelector("#message:not([hidden])");
+      if (await page.isHidden("#area-program")) throw new Error("a program with errors was selected");
+    });
+
+    await step("program saved, listed by the program manager, selected", async () => {
+      await page.fill(EDITOR, PROGRAM);
+      await page.click("#btn-editor-check");
+      await page.waitForFunction(() => document.querySelectorAll("#diagnostics li").length === 0);
+      await page.click("#btn-editor-save");
+      await page.click('[data-goto="manager"]');
+      await page.waitForSelector(`#programs tr[data-program="${PROGRAM_NAME}"]`);
+      await page.click(`#programs tr[data-program="${PROGRAM_NAME}"] [data-action="execute"]`);
+      await page.waitForSelector("#area-machine:not([hidden])");
+      await page.waitForFunction((name) => document.getElementById("blocks-name")?.textContent === name, PROGRAM_NAME);
+      const lines = await page.locator("#blocks li").count();
+      if (lines !== 5) throw new Error(`program display shows ${lines} lines, expected 5`);
+    });
+
+    await startRecording(page);
+
+    await step("cycle start: status running", async () => {
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => window.__hmiLog.status.includes("running"), null, { timeout: 15_000 });
+    });
+
+    await step("WCS X changes and the highlighted block moves", async () => {
       await page.waitForFunction(() => new Set(window.__hmiLog.x).size >= 3, null, { timeout: 15_000 });
+      await page.waitForFunction(() => new Set(window.__hmiLog.line).size >= 2, null, { timeout: 15_000 });
     });
 
-    await step('status badge returns to "idle" at program end', async () => {
+    await step("status idle at program end, X at 100", async () => {
       await page.waitForFunction(
         () => {
           const s = window.__hmiLog.status;
           const i = s.indexOf("running");
-          return i >= 0 && s.slice(i + 1).includes("idle") && s.at(-1) === "idle";
+          return i >= 0 && s.at(-1) === "idle";
         },
         null,
         { timeout: 30_000 },
       );
-      const x = await page.textContent(WCS_X);
-      if (Math.abs(Number(x) - 100) > 1e-3) throw new Error(`WCS X at program end is ${x}, expected 100.000`);
+      const x = await wcsX(page);
+      if (Math.abs(x - 100) > 1e-3) throw new Error(`WCS X at program end is ${x}, expected 100.000`);
+      const lines = await page.evaluate(() => window.__hmiLog.line);
+      if (!lines.includes("2") || !lines.includes("3")) throw new Error(`highlighted lines: ${lines.join(",")}`);
+    });
+
+    await step("event log shows block changes", async () => {
+      await page.waitForSelector('#events li[data-event="block_changed"]');
+    });
+
+    await step("3D view rendered something", async () => {
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d.png") });
+      const stats = await canvasStats(page);
+      if (!stats) throw new Error("no canvas in #view3d");
+      if (stats.colours < 20 || stats.variance < 50) {
+        throw new Error(`canvas looks empty: ${JSON.stringify(stats)}`);
+      }
+    });
+
+    await step("axis plot drawn", async () => {
+      await page.waitForSelector("#plot .uplot canvas");
+    });
+
+    await step("JOG: holding X+ moves X, release stops it", async () => {
+      await page.click('[data-set-mode="JOG"]');
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="JOG"]')?.classList.contains("active"));
+      await page.selectOption("#jog-increment", "");
+      const before = await wcsX(page);
+      const key = page.locator('#jog-axes button[data-jog-axis="X"][data-dir="1"]');
+      await key.hover();
+      await page.mouse.down();
+      await page.waitForFunction((sel) => document.getElementById("status")?.textContent?.trim() === "running", WCS_X);
+      await page.waitForTimeout(500);
+      await page.mouse.up();
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      const after = await wcsX(page);
+      if (!(after > before)) throw new Error(`X went from ${before} to ${after}`);
+      const settled = await wcsX(page);
+      await page.waitForTimeout(300);
+      if ((await wcsX(page)) !== settled) throw new Error("X still moves after release");
+    });
+
+    await step("JOG: one press with increment 1 moves X by -1", async () => {
+      await page.selectOption("#jog-increment", "1");
+      const before = await wcsX(page);
+      await page.click('#jog-axes button[data-jog-axis="X"][data-dir="-1"]');
+      await page.waitForFunction((want) => Math.abs(Number(document.querySelector('#positions [data-frame="workpiece"][data-axis="X"]')?.textContent) - want) < 1e-3, before - 1);
     });
 
     await step("no error in the message bar", async () => {
-      const hidden = await page.locator("#message").isHidden();
-      if (!hidden) throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);
+      if (!(await page.locator("#message").isHidden())) {
+        throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);
+      }
     });
 
     await step("no page or console errors", async () => {
@@ -153,14 +263,12 @@ async function main() {
   } catch (e) {
     if (page) {
       const log = await page.evaluate(() => window.__hmiLog).catch(() => null);
-      if (log) console.error(`seen statuses: ${log.status.join(" → ")}; WCS X values: ${log.x.length}`);
+      if (log) console.error(`seen statuses: ${log.status.join(" → ")}; lines: ${log.line.join(",")}; X values: ${log.x.length}`);
       const msg = await page.textContent("#message-text").catch(() => "");
       if (msg) console.error(`message bar: ${msg}`);
       if (pageErrors.length) console.error(`page errors:\n  ${pageErrors.join("\n  ")}`);
       const shot = join(tmpdir(), `nctwin-hmi-failure-${Date.now()}.png`);
-      if (await page.screenshot({ path: shot }).then(() => true, () => false)) {
-        console.error(`screenshot: ${shot}`);
-      }
+      if (await page.screenshot({ path: shot }).then(() => true, () => false)) console.error(`screenshot: ${shot}`);
     }
     throw e;
   } finally {

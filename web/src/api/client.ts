@@ -1,0 +1,103 @@
+// REST client for the NCTwin server (prefix /api/v1, JSON in and out).
+
+import type {
+  Diagnostic,
+  JogCommand,
+  MachineDetail,
+  MachineSummary,
+  OpMode,
+  Pace,
+  Session,
+  SessionSummary,
+  State,
+  StoredProgram,
+} from "./types";
+
+const BASE = "/api/v1";
+
+/** An error answer of the server ({"error", "line"?}) or a network failure (status 0). */
+export class ApiError extends Error {
+  readonly status: number;
+  readonly line: number | null;
+
+  constructor(status: number, error: string, line: number | null = null) {
+    // "line 3: ..." unless the server's text names the line already.
+    const named = line != null && new RegExp(`\\bline ${line}\\b`).test(error);
+    super(line != null && !named ? `line ${line}: ${error}` : error);
+    this.name = "ApiError";
+    this.status = status;
+    this.line = line;
+  }
+}
+
+async function request<T>(method: string, path: string, body?: unknown): Promise<T> {
+  const headers: Record<string, string> = { Accept: "application/json" };
+  const init: RequestInit = { method, headers };
+  if (body !== undefined) {
+    headers["Content-Type"] = "application/json";
+    init.body = JSON.stringify(body);
+  }
+  let res: Response;
+  try {
+    res = await fetch(BASE + path, init);
+  } catch (e) {
+    throw new ApiError(0, `server not reachable (${(e as Error).message})`);
+  }
+  const text = await res.text();
+  let data: unknown = null;
+  if (text) {
+    try {
+      data = JSON.parse(text);
+    } catch {
+      data = text;
+    }
+  }
+  if (!res.ok) {
+    const obj = data && typeof data === "object" ? (data as { error?: unknown; line?: unknown }) : null;
+    const error =
+      (obj && typeof obj.error === "string" && obj.error) ||
+      (typeof data === "string" && data.trim()) ||
+      `${res.status} ${res.statusText}`;
+    const line = obj && typeof obj.line === "number" ? obj.line : null;
+    throw new ApiError(res.status, error, line);
+  }
+  return data as T;
+}
+
+const s = (id: string) => `/sessions/${encodeURIComponent(id)}`;
+const p = (id: string, name: string) => `${s(id)}/programs/${encodeURIComponent(name)}`;
+
+export const api = {
+  machines: () => request<MachineSummary[]>("GET", "/machines"),
+  machine: (id: string) => request<MachineDetail>("GET", `/machines/${encodeURIComponent(id)}`),
+
+  sessions: () => request<SessionSummary[]>("GET", "/sessions"),
+  session: (id: string) => request<Session>("GET", s(id)),
+  createSession: (machine: string, machineData?: string) =>
+    request<Session>("POST", "/sessions", machineData ? { machine, machine_data: machineData } : { machine }),
+  deleteSession: (id: string) => request<null>("DELETE", s(id)),
+
+  state: (id: string) => request<State>("GET", `${s(id)}/state`),
+  run: (id: string, program: string, pace: Pace) => request<State>("POST", `${s(id)}/run`, { program, pace }),
+  start: (id: string, pace: Pace) => request<State>("POST", `${s(id)}/start`, { pace }),
+  stop: (id: string) => request<State>("POST", `${s(id)}/stop`, {}),
+  reset: (id: string) => request<State>("POST", `${s(id)}/reset`, {}),
+  cancel: (id: string) => request<State>("POST", `${s(id)}/cancel`, {}),
+  mda: (id: string, program: string, pace: Pace) => request<State>("POST", `${s(id)}/mda`, { program, pace }),
+  setMode: (id: string, mode: OpMode) => request<State>("PUT", `${s(id)}/mode`, { mode }),
+  jog: (id: string, jog: JogCommand) => request<State>("POST", `${s(id)}/jog`, jog),
+  jogStop: (id: string) => request<State>("POST", `${s(id)}/jog/stop`, {}),
+
+  programs: (id: string) => request<StoredProgram[]>("GET", `${s(id)}/programs`),
+  program: (id: string, name: string) => request<{ text: string }>("GET", p(id, name)),
+  saveProgram: (id: string, name: string, text: string) => request<unknown>("PUT", p(id, name), { text }),
+  deleteProgram: (id: string, name: string) => request<unknown>("DELETE", p(id, name)),
+  check: (id: string, program: string) =>
+    request<{ diagnostics: Diagnostic[] }>("POST", `${s(id)}/check`, { program }),
+};
+
+/** WebSocket address of a session's stream. */
+export function streamUrl(id: string, periodMs = 50): string {
+  const proto = location.protocol === "https:" ? "wss:" : "ws:";
+  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}`;
+}

@@ -1,0 +1,94 @@
+// Wire types of the NCTwin server (see /api/v1/openapi.json).
+
+export type ChannelStatus = "idle" | "running" | "stopped" | "alarm";
+export type OpMode = "JOG" | "MDA" | "AUTO";
+export type Pace = "realtime" | "fast";
+
+/** Axis name -> value (mm or degrees), in the machine's axis order. */
+export type AxisValues = Record<string, number>;
+
+export interface Positions {
+  machine: AxisValues; // MCS: every machine axis
+  basic: AxisValues; // BCS: channel axes by program name
+  workpiece: AxisValues; // WCS
+}
+
+export interface Alarm {
+  number: number;
+  message: string;
+  line?: number | null;
+}
+
+export interface Block {
+  line: number; // 1-based line in the program text
+  text: string;
+}
+
+export interface Transformation {
+  name: string;
+  type: number;
+  index: number;
+}
+
+export interface State {
+  status: ChannelStatus;
+  mode: OpMode;
+  time: number;
+  tick: number;
+  positions: Positions;
+  orientation?: [number, number, number] | null;
+  transformation?: Transformation | null;
+  block?: Block | null;
+  alarms: Alarm[];
+  tool: { t: number; d: number };
+  path_velocity: number;
+  spindles: Record<string, number>;
+}
+
+export interface MachineSummary {
+  id: string;
+  name: string;
+  description: string;
+}
+
+export interface MachineDetail extends MachineSummary {
+  machine_data: string; // the preset as NC data text
+}
+
+export interface SessionSummary {
+  id: string;
+  machine: string;
+  status: ChannelStatus;
+  mode: OpMode;
+}
+
+export interface Session {
+  id: string;
+  machine: string;
+  state: State;
+}
+
+export interface StoredProgram {
+  name: string;
+  size: number;
+}
+
+export interface Diagnostic {
+  line: number;
+  column?: number | null;
+  message: string;
+}
+
+/** An event message of the stream: {"type": "event", "event": "...", ...details}. */
+export interface StreamEvent {
+  type: "event";
+  event: string;
+  [detail: string]: unknown;
+}
+
+export interface JogCommand {
+  axis: string;
+  direction: 1 | -1;
+  increment?: number;
+  rapid?: boolean;
+}

@@ -1,0 +1,36 @@
+// The event log: what the stream reported (alarms, block changes, program end, mode changes),
+// newest first, with the simulated time it arrived at.
+
+import type { StreamEvent } from "../api/types";
+import { byId, el, fmt } from "../core/dom";
+import type { SessionController } from "../core/session";
+
+const MAX_EVENTS = 200;
+
+function describe(ev: StreamEvent): string {
+  const { type: _type, event: _event, ...rest } = ev;
+  const alarm = rest.alarm as { number?: number; message?: string; line?: number | null } | undefined;
+  if (alarm && typeof alarm === "object") {
+    return `${alarm.number}${alarm.line != null ? ` (line ${alarm.line})` : ""}: ${alarm.message ?? ""}`;
+  }
+  if (typeof rest.line === "number" && typeof rest.text === "string") return `line ${rest.line}: ${rest.text}`;
+  return Object.entries(rest)
+    .map(([k, v]) => `${k}=${typeof v === "object" ? JSON.stringify(v) : String(v)}`)
+    .join(" ");
+}
+
+export function mountEvents(session: SessionController): void {
+  const list = byId("events");
+  session.on("session", () => list.replaceChildren());
+  session.on("event", (ev) => {
+    const time = session.latest ? fmt(session.latest.time, 2) : "";
+    const li = el("li", { "data-event": ev.event });
+    li.append(
+      el("span", { class: "event-time" }, time),
+      el("span", { class: "event-name" }, ev.event.replace(/_/g, " ")),
+      el("span", { class: "event-detail" }, describe(ev)),
+    );
+    list.prepend(li);
+    while (list.children.length > MAX_EVENTS) list.lastElementChild?.remove();
+  });
+}

@@ -1,0 +1,45 @@
+// The header line: session, machine, mode, channel status, newest alarm, stream connection.
+
+import { api } from "../api/client";
+import type { Connection } from "../api/stream";
+import type { OpMode, State } from "../api/types";
+import { byId, setText } from "../core/dom";
+import type { SessionController } from "../core/session";
+import { selection } from "../program/selected";
+
+function renderState(st: State): void {
+  const badge = byId("status");
+  badge.dataset.status = st.status;
+  setText(badge, st.status);
+
+  for (const b of document.querySelectorAll<HTMLElement>("[data-set-mode]")) {
+    b.classList.toggle("active", b.dataset.setMode === st.mode);
+  }
+
+  // Operate shows the newest alarm in the header on every screen.
+  const line = byId("alarm-line");
+  const newest = st.alarms.at(-1);
+  line.hidden = !newest;
+  setText(line, newest ? `${newest.number}  ${newest.message}` : "");
+}
+
+function renderConnection(conn: Connection): void {
+  const node = byId("connection");
+  node.dataset.conn = conn;
+  setText(node, conn);
+}
+
+export function mountHeader(session: SessionController): void {
+  session.on("session", (info) => {
+    setText(byId("session-id"), info.id);
+    setText(byId("machine-name"), info.machine.name);
+  });
+  session.on("state", renderState);
+  session.on("connection", renderConnection);
+  selection.on("change", (p) => setText(byId("header-program"), p.name));
+  setText(byId("header-program"), selection.current.name);
+
+  for (const b of document.querySelectorAll<HTMLButtonElement>("[data-set-mode]")) {
+    b.addEventListener("click", () => session.act((id) => api.setMode(id, b.dataset.setMode as OpMode)));
+  }
+}

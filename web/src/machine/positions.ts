@@ -1,0 +1,71 @@
+// The coordinate display: one frame at a time (MCS, WCS or BCS), switched like Operate's
+// "Act. values MCS" softkey.
+
+import type { AxisValues, State } from "../api/types";
+import { byId, el, fmt, setText } from "../core/dom";
+import type { SessionController } from "../core/session";
+
+export type Frame = "machine" | "workpiece" | "basic";
+
+const TITLES: Record<Frame, string> = {
+  machine: "Machine coordinates (MCS)",
+  workpiece: "Workpiece coordinates (WCS)",
+  basic: "Basic coordinates (BCS)",
+};
+
+export class PositionsView {
+  private frame: Frame = "workpiece";
+  private rowsKey = "";
+  private cells = new Map<string, HTMLElement>();
+  private latest: State | null = null;
+
+  constructor() {
+    for (const b of document.querySelectorAll<HTMLButtonElement>("#coords-toggle [data-frame]")) {
+      b.addEventListener("click", () => this.setFrame(b.dataset.frame as Frame));
+    }
+    this.setFrame(this.frame);
+  }
+
+  setFrame(frame: Frame): void {
+    this.frame = frame;
+    setText(byId("coords-title"), TITLES[frame]);
+    byId("positions").dataset.frame = frame;
+    for (const b of document.querySelectorAll<HTMLElement>("#coords-toggle [data-frame]")) {
+      b.classList.toggle("active", b.dataset.frame === frame);
+    }
+    this.rowsKey = "";
+    if (this.latest) this.render(this.latest);
+  }
+
+  render(st: State): void {
+    this.latest = st;
+    const values: AxisValues = st.positions[this.frame] ?? {};
+    const axes = Object.keys(values);
+    const key = `${this.frame}:${axes.join(",")}`;
+    if (key !== this.rowsKey) this.buildRows(axes, key, st.spindles);
+    for (const [axis, value] of Object.entries(values)) {
+      const td = this.cells.get(axis);
+      if (td) setText(td, fmt(value));
+    }
+  }
+
+  /** Spindles (by channel axis name) count in degrees, everything else here in mm. */
+  private buildRows(axes: string[], key: string, spindles: Record<string, number>): void {
+    this.rowsKey = key;
+    this.cells.clear();
+    const rows = axes.map((axis) => {
+      const value = el("td", { class: "num value", "data-frame": this.frame, "data-axis": axis });
+      this.cells.set(axis, value);
+      const tr = el("tr");
+      tr.append(el("th", { class: "axis" }, axis), value, el("td", { class: "unit" }, axis in spindles ? "°" : "mm"));
+      return tr;
+    });
+    byId<HTMLTableElement>("positions").tBodies[0]!.replaceChildren(...rows);
+  }
+}
+
+export function mountPositions(session: SessionController): PositionsView {
+  const view = new PositionsView();
+  session.on("state", (st) => view.render(st));
+  return view;
+}

@@ -1,0 +1,24 @@
+// The T, F, S window: active tool and edge, path feed, spindle speeds, transformation, time.
+
+import type { State } from "../api/types";
+import { byId, fmt, setText } from "../core/dom";
+import type { SessionController } from "../core/session";
+
+function spindleText(name: string, rpm: number): string {
+  const dir = rpm > 0 ? "M3" : rpm < 0 ? "M4" : "M5";
+  return `${name} ${fmt(Math.abs(rpm), 0)} rpm ${dir}`;
+}
+
+function render(st: State): void {
+  setText(byId("tool"), `T${st.tool.t}  D${st.tool.d}`);
+  setText(byId("path-feed"), fmt(st.path_velocity, 1));
+  const spindles = Object.entries(st.spindles);
+  setText(byId("spindles"), spindles.length ? spindles.map(([n, rpm]) => spindleText(n, rpm)).join("   ") : "–");
+  const tr = st.transformation;
+  setText(byId("transformation"), tr ? `${tr.name} (${tr.index})` : "none");
+  setText(byId("sim-time"), fmt(st.time, 2));
+}
+
+export function mountTfs(session: SessionController): void {
+  session.on("state", render);
+}

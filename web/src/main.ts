@@ -1,0 +1,61 @@
+// NCTwin HMI: mounts every view and attaches to a session (the one in the URL, or a new one).
+
+import "./styles/base.css";
+import "./styles/layout.css";
+import "./styles/machine.css";
+import "./styles/program.css";
+import { api } from "./api/client";
+import { showMessage, wireMessageBar } from "./core/message";
+import { SessionController } from "./core/session";
+import { mountJog } from "./jog/jog";
+import { Lobby } from "./lobby/lobby";
+import { mountAlarms } from "./machine/alarms";
+import { mountBlocks } from "./machine/blocks";
+import { mountControls } from "./machine/controls";
+import { mountEvents } from "./machine/events";
+import { mountHeader } from "./machine/header";
+import { mountPositions } from "./machine/positions";
+import { mountTfs } from "./machine/tfs";
+import { mountAxisPlot } from "./plot/axisPlot";
+import { EditorArea } from "./program/editorArea";
+import { ProgramManager } from "./program/manager";
+import { showArea, wireAreas } from "./ui/areas";
+import { mountMachineView } from "./view3d/machineView";
+
+const DEFAULT_MACHINE = "mill-3axis";
+
+async function main(): Promise<void> {
+  const session = new SessionController();
+  wireMessageBar();
+  wireAreas();
+  mountHeader(session);
+  mountPositions(session);
+  mountTfs(session);
+  mountBlocks(session);
+  mountControls(session);
+  mountJog(session);
+  mountAlarms(session);
+  mountEvents(session);
+  mountMachineView(session);
+  mountAxisPlot(session);
+  const editor = new EditorArea(session);
+  new ProgramManager(session, editor);
+  const lobby = new Lobby(session);
+  showArea("machine");
+
+  // ?session=ID joins that session; ?machine=PRESET picks the preset of a new one.
+  const params = new URLSearchParams(location.search);
+  const preset = params.get("machine") ?? DEFAULT_MACHINE;
+  await lobby.loadMachines(preset).catch((e: Error) => showMessage(`machine list: ${e.message}`));
+  const wanted = params.get("session");
+  if (!wanted) return lobby.create(preset);
+  try {
+    const existing = await api.session(wanted);
+    await session.attach(existing.id, existing.machine);
+  } catch (e) {
+    await lobby.create(preset);
+    showMessage(`session ${wanted}: ${(e as Error).message}; opened a new session`);
+  }
+}
+
+void main();

@@ -1,0 +1,128 @@
+// The Program area: edit a program, check it (errors at their lines), save it in the session's
+// program store, select it for execution.
+
+import { api, ApiError } from "../api/client";
+import type { Diagnostic } from "../api/types";
+import { byId, el, setText } from "../core/dom";
+import { clearMessage, showMessage } from "../core/message";
+import type { SessionController } from "../core/session";
+import { showArea } from "../ui/areas";
+import { CodeEditor } from "./codeEditor";
+import { selection } from "./selected";
+
+const CHECK_DELAY_MS = 600; // check this long after the last keystroke
+
+export class EditorArea {
+  readonly editor = new CodeEditor(byId("editor"));
+  private savedText = "";
+  private checkTimer: ReturnType<typeof setTimeout> | undefined;
+  private checkSeq = 0;
+  private readonly nameInput = byId<HTMLInputElement>("editor-name");
+
+  constructor(private readonly session: SessionController) {
+    this.editor.onInput(() => {
+      this.updateDirty();
+      clearTimeout(this.checkTimer);
+      this.checkTimer = setTimeout(() => void this.check(), CHECK_DELAY_MS);
+    });
+    byId("btn-editor-new").addEventListener("click", () => this.open("NEW", ""));
+    byId("btn-editor-save").addEventListener("click", () => void this.save());
+    byId("btn-editor-check").addEventListener("click", () => void this.check());
+    byId("btn-editor-execute").addEventListener("click", () => void this.execute());
+    byId("diagnostics").addEventListener("click", (ev) => {
+      const li = (ev.target as HTMLElement).closest<HTMLElement>("li[data-line]");
+      if (li) this.editor.goToLine(Number(li.dataset.line), Number(li.dataset.column) || 1);
+    });
+    this.open(selection.current.name, selection.current.text);
+  }
+
+  get name(): string {
+    return this.nameInput.value.trim().toUpperCase();
+  }
+
+  /** Loads a program into the editor (saved state = as given). */
+  open(name: string, text: string): void {
+    this.nameInput.value = name;
+    this.editor.text = text;
+    this.savedText = text;
+    this.showDiagnostics([]);
+    this.updateDirty();
+  }
+
+  /** Checks the syntax on the server; shows and returns the errors (none if it cannot check). */
+  async check(): Promise<Diagnostic[]> {
+    clearTimeout(this.checkTimer);
+    const id = this.session.id;
+    if (!id) return [];
+    const seq = ++this.checkSeq;
+    try {
+      const { diagnostics } = await api.check(id, this.editor.text);
+      if (seq === this.checkSeq) this.showDiagnostics(diagnostics);
+      return diagnostics;
+    } catch (e) {
+      if (seq === this.checkSeq) showMessage(`check: ${(e as Error).message}`);
+      return [];
+    }
+  }
+
+  async save(): Promise<boolean> {
+    const name = this.name;
+    if (!name) {
+      showMessage("give the program a name first");
+      return false;
+    }
+    const id = this.session.id;
+    if (!id) return false;
+    const text = this.editor.text;
+    try {
+      await api.saveProgram(id, name, text);
+      this.savedText = text;
+      this.updateDirty();
+      showMessage(`${name} saved`, "info");
+      return true;
+    } catch (e) {
+      this.showServerError(e);
+      return false;
+    }
+  }
+
+  /** Checks, then selects the program for AUTO and switches to the machine screen. */
+  async execute(): Promise<void> {
+    const errors = await this.check();
+    if (errors.length) {
+      showMessage(`${this.name || "the program"} has ${errors.length} error(s): not selected`);
+      const first = errors[0]!;
+      this.editor.goToLine(first.line, first.column ?? 1);
+      return;
+    }
+    clearMessage();
+    selection.select({ name: this.name || "NONAME", text: this.editor.text });
+    showArea("machine");
+  }
+
+  private showDiagnostics(diagnostics: Diagnostic[]): void {
+    this.editor.setMarks(diagnostics);
+    byId("diagnostics").replaceChildren(
+      ...diagnostics.map((d) => {
+        const li = el("li", { "data-line": String(d.line), "data-column": String(d.column ?? "") });
+        li.append(
+          el("span", { class: "diag-pos" }, `line ${d.line}${d.column != null ? `:${d.column}` : ""}`),
+          el("span", {}, d.message),
+        );
+        return li;
+      }),
+    );
+  }
+
+  private showServerError(e: unknown): void {
+    const err = e as Error;
+    if (err instanceof ApiError && err.line != null) {
+      this.showDiagnostics([{ line: err.line, message: err.message }]);
+    }
+    showMessage(err.message);
+  }
+
+  private updateDirty(): void {
+    setText(byId("editor-dirty"), this.editor.text !== this.savedText ? "modified" : "");
+  }
+}

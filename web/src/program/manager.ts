@@ -1,0 +1,85 @@
+// The Program manager: the session's stored programs; open, select for execution, delete, new.
+
+import { api } from "../api/client";
+import type { StoredProgram } from "../api/types";
+import { byId, el } from "../core/dom";
+import { showMessage } from "../core/message";
+import type { SessionController } from "../core/session";
+import { areaChanged, showArea } from "../ui/areas";
+import type { EditorArea } from "./editorArea";
+import { selection } from "./selected";
+
+export class ProgramManager {
+  constructor(
+    private readonly session: SessionController,
+    private readonly editor: EditorArea,
+  ) {
+    byId("btn-programs-refresh").addEventListener("click", () => void this.refresh());
+    byId("btn-programs-new").addEventListener("click", () => {
+      this.editor.open("NEW", "");
+      showArea("program");
+    });
+    byId("programs").addEventListener("click", (ev) => void this.onClick(ev));
+    areaChanged.on("change", (area) => area === "manager" && void this.refresh());
+    session.on("session", () => byId<HTMLTableElement>("programs").tBodies[0]!.replaceChildren());
+  }
+
+  async refresh(): Promise<void> {
+    const id = this.session.id;
+    if (!id) return;
+    const note = byId("programs-note");
+    let programs: StoredProgram[];
+    try {
+      programs = await api.programs(id);
+    } catch (e) {
+      note.hidden = false;
+      note.textContent = `The program store is not available: ${(e as Error).message}`;
+      return;
+    }
+    note.hidden = programs.length > 0;
+    note.textContent = "No stored programs yet: write one in the Program area and save it.";
+    byId<HTMLTableElement>("programs").tBodies[0]!.replaceChildren(...programs.map((p) => this.row(p)));
+  }
+
+  private row(p: StoredProgram): HTMLTableRowElement {
+    const tr = el("tr", { "data-program": p.name });
+    const actions = el("td", { class: "actions" });
+    actions.append(
+      el("button", { type: "button", "data-action": "open" }, "Open"),
+      el("button", { type: "button", "data-action": "execute" }, "Execute"),
+      el("button", { type: "button", "data-action": "delete" }, "Delete"),
+    );
+    tr.append(el("td", { class: "mono" }, p.name), el("td", { class: "num" }, `${p.size} B`), actions);
+    return tr;
+  }
+
+  private async onClick(ev: Event): Promise<void> {
+    const button = (ev.target as HTMLElement).closest<HTMLButtonElement>("button[data-action]");
+    const name = button?.closest<HTMLElement>("tr[data-program]")?.dataset.program;
+    const id = this.session.id;
+    if (!button || !name || !id) return;
+    try {
+      switch (button.dataset.action) {
+        case "open": {
+          const { text } = await api.program(id, name);
+          this.editor.open(name, text);
+          showArea("program");
+          break;
+        }
+        case "execute": {
+          const { text } = await api.program(id, name);
+          selection.select({ name, text });
+          showArea("machine");
+          break;
+        }
+        case "delete":
+          if (!confirm(`Delete program ${name}?`)) return;
+          await api.deleteProgram(id, name);
+          await this.refresh();
+          break;
+      }
+    } catch (e) {
+      showMessage(`${name}: ${(e as Error).message}`);
+    }
+  }
+}

@@ -1,0 +1,52 @@
+// The program selected for AUTO: what Cycle start runs and the machine screen shows.
+
+import { Emitter } from "../core/emitter";
+
+export interface SelectedProgram {
+  name: string;
+  text: string;
+}
+
+export const DEMO_PROGRAM: SelectedProgram = {
+  name: "DEMO",
+  text: [
+    "; Demo: a square and a circle at Z-2",
+    "G54 G17 G90 T1 D1",
+    "G0 X-60 Y-60 Z50",
+    "G0 Z2",
+    "G1 Z-2 F1000",
+    "G1 X60 F3000",
+    "Y60",
+    "X-60",
+    "Y-60",
+    "G0 Z10",
+    "G0 X40 Y0",
+    "G1 Z-2 F1000",
+    "G2 X40 Y0 I-40 J0 F3000",
+    "G0 Z50",
+    "M30",
+    "",
+  ].join("\n"),
+};
+
+class Selection extends Emitter<{ change: SelectedProgram; mda: string }> {
+  private program: SelectedProgram = DEMO_PROGRAM;
+  /** The blocks last sent in MDA mode (block lines in MDA refer to them). */
+  mdaText = "";
+
+  get current(): SelectedProgram {
+    return this.program;
+  }
+
+  select(program: SelectedProgram): void {
+    this.program = { ...program };
+    this.emit("change", this.program);
+  }
+
+  setMda(text: string): void {
+    this.mdaText = text;
+    this.emit("mda", text);
+  }
+}
+
+export const selection = new Selection();
