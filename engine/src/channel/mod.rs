@@ -744,6 +744,22 @@ impl Channel {
         self.programs.iter().map(|(n, t)| (n.clone(), t.len())).collect()
     }
 
+    /// Puts the axes at `positions` (channel axis order, machine coordinates), as after a
+    /// restart that restores a saved session. Only in reset state with nothing moving.
+    pub fn restore_positions(&mut self, positions: &[f64]) -> Result<(), CommandError> {
+        if self.is_busy() || self.status == Status::Stopped {
+            return Err(CommandError::Busy("positions can only be restored in reset state"));
+        }
+        if positions.len() != self.cfg.channel_axes.len() || positions.iter().any(|p| !p.is_finite()) {
+            return Err(CommandError::Invalid(format!("expected {} finite positions", self.cfg.channel_axes.len())));
+        }
+        let mut pos = [0.0; MAX_CHANNEL_AXES];
+        pos[..positions.len()].copy_from_slice(positions);
+        self.planner.set_position(pos);
+        self.interp.sync_position(&pos);
+        Ok(())
+    }
+
     /// An R parameter's value (0 for numbers beyond the R parameter count).
     pub fn r_param(&self, n: usize) -> f64 {
         self.interp.variables().r.get(n).copied().unwrap_or(0.0)

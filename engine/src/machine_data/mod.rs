@@ -285,6 +285,41 @@ impl MachineData {
         Ok(())
     }
 
+    /// The stored data as NC data text (only what differs from the defaults), in a stable
+    /// order. Applying it to default data gives this data back.
+    pub fn to_text(&self) -> String {
+        let mut out = String::new();
+        for ((name, scope, axis, index), value) in &self.values {
+            let def = registry::DEFS
+                .iter()
+                .find(|d| d.name == *name && d.scope == *scope)
+                .expect("stored data is registered");
+            let value = match value {
+                Value::Bool(b) => if *b { "TRUE" } else { "FALSE" }.to_string(),
+                Value::Int(i) => i.to_string(),
+                Value::Real(r) => format!("{r:?}"),
+                Value::Str(s) => format!("\"{s}\""),
+            };
+            let index = match (def.scope, def.len) {
+                (Scope::Axis, 1) => format!("[AX{}]", axis + 1),
+                (Scope::Axis, _) => format!("[{index},AX{}]", axis + 1),
+                (_, 1) => String::new(),
+                _ => format!("[{index}]"),
+            };
+            out += &format!("{}{index}={value}\n", def.full_name());
+        }
+        for ((t, d), params) in &self.tools {
+            for (p, v) in params.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", p + 1);
+            }
+        }
+        for ((frame, axis, component), v) in &self.frames {
+            let c = if *component == FrameComponent::Translation { "TR" } else { "FI" };
+            out += &format!("$P_UIFR[{frame},{axis},{c}]={v:?}\n");
+        }
+        out
+    }
+
     /// Cutting edges with their parameters, ordered by (tool, edge).
     pub fn tools(&self) -> &BTreeMap<(u32, u32), EdgeParams> {
         &self.tools
@@ -374,6 +409,18 @@ mod tests {
         let e = md.apply_text("$MA_POS_LIMIT_PLUS[AX1]=500\n$MA_POS_LIMIT_MINUS[AX1]=600\n").unwrap_err();
         assert!(e.line.is_some(), "{e}");
         assert!(e.message.contains("POS_LIMIT"), "{e}");
+    }
+
+    #[test]
+    fn text_export_round_trips_every_preset() {
+        for preset in presets::PRESETS {
+            let mut md = MachineData::default();
+            md.apply_text(preset.text).unwrap();
+            md.apply_text("$TC_DP3[9,2]=1.25\n$P_UIFR[1,X,FI]=0.5").unwrap_or_else(|e| panic!("{}: {e}", preset.id));
+            let mut again = MachineData::default();
+            again.apply_text(&md.to_text()).unwrap_or_else(|e| panic!("{}: {e}\n{}", preset.id, md.to_text()));
+            assert_eq!(again, md, "{}", preset.id);
+        }
     }
 
     #[test]
