@@ -450,3 +450,32 @@ fn a_helix_with_turn_takes_three_circles_of_path() {
     let length = ((3.0 * 2.0 * std::f64::consts::PI * 10.0).powi(2) + 36.0).sqrt();
     assert!(close(moving, length / 50.0, 0.05), "{moving} s for {length} mm at 50 mm/s");
 }
+
+#[test]
+fn rnd_rounds_a_right_angle_corner_on_a_circle_tangent_to_both_lines() {
+    let (ch, samples) = run("mill-3axis", "", "G64 G1 X0 Y0 F2000\nG1 X20 RND=5\nY20\nM30");
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    let fillet: Vec<_> = samples.iter().filter(|p| p[0] > 15.0 + 1e-9 && p[1] < 5.0 - 1e-9).collect();
+    assert!(fillet.len() > 5, "the path runs on the fillet");
+    for p in fillet {
+        assert!(close((p[0] - 15.0).hypot(p[1] - 5.0), 5.0, 1e-9), "{p:?}");
+    }
+    assert_eq!(ch.axis_positions()[..2], [20.0, 20.0]);
+}
+
+#[test]
+fn chf_cuts_the_corner_with_a_chamfer_of_the_given_length() {
+    // CHF = 2·sqrt(2) at a right angle: legs of 2 mm, the chamfer from (18,0) to (20,2).
+    let (_, samples) = run("mill-3axis", "", "G1 X0 Y0 F2000\nG1 X20 CHF=2.8284271247461903\nY20\nM30");
+    let cut: Vec<_> = samples.iter().filter(|p| p[0] > 18.0 + 1e-9 && p[1] < 2.0 - 1e-9).collect();
+    assert!(!cut.is_empty());
+    for p in cut {
+        assert!(close(p[0] - p[1], 18.0, 1e-9), "{p:?}");
+    }
+}
+
+#[test]
+fn a_rounding_larger_than_the_blocks_allow_is_an_alarm() {
+    let (ch, _) = run("mill-3axis", "", "G1 X0 Y0 F2000\nG1 X3 RND=5\nY20\nM30");
+    assert_eq!(ch.snapshot().alarms[0].number, 12560);
+}

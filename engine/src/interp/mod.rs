@@ -7,6 +7,7 @@
 
 pub mod arc;
 mod calls;
+mod corners;
 mod eval;
 mod flow;
 pub mod frame;
@@ -25,6 +26,7 @@ use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 use calls::CallFrame;
 pub use calls::Programs;
+pub use corners::Corner;
 use flow::Flow;
 pub use frame::Frame;
 use modal::{FrameKind, FrameOp, PoleRef};
@@ -144,6 +146,10 @@ pub struct Interpreter {
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
     /// not applied yet.
     data_writes: Vec<(u32, String)>,
+    /// A move held back until the next block decides its corner (RND, CHF, CHR).
+    held: Option<corners::Held>,
+    /// The corner the block being prepared asks for.
+    corner_request: Option<Corner>,
 }
 
 impl Interpreter {
@@ -159,6 +165,8 @@ impl Interpreter {
             flow: None,
             calls: Vec::new(),
             data_writes: Vec::new(),
+            held: None,
+            corner_request: None,
         }
     }
 
@@ -167,6 +175,7 @@ impl Interpreter {
         self.modal = Modal::reset(cfg);
         self.flow = None;
         self.calls.clear();
+        self.held = None;
         self.direction = 0;
         self.pos = *pos;
         self.pframe = Frame::identity();
@@ -230,13 +239,22 @@ impl Interpreter {
         main_run_idle: bool,
         out: &mut Vec<Item>,
     ) -> Prep {
-        match self.step_program(cfg, programs, main_run_idle, out) {
+        self.corner_request = None;
+        // A held move is not in the main run yet: blocks that read main-run values wait for it.
+        let idle = main_run_idle && !self.holds_move();
+        let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
+            let request = self.corner_request.take();
+            self.shape_corners(out, prep, request, &limits(cfg))?;
+            Ok(prep)
+        });
+        match result {
             Ok(prep) => prep,
             Err(alarm) => {
                 out.clear();
                 out.push(Item::Alarm(alarm));
                 self.flow = None;
                 self.calls.clear();
+                self.held = None;
                 Prep::Done
             }
         }
@@ -256,6 +274,7 @@ impl Interpreter {
             modal::collect(block, cfg, &mut self.vars, &sys, programs)?
         };
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
+        self.corner_request = words.corner;
         if words.newconf {
             self.data_writes.push((line, NEWCONF.to_string()));
         }

@@ -2,6 +2,7 @@
 
 use super::StopKind;
 use super::calls::Programs;
+use super::corners::Corner;
 use super::eval::{eval, eval_f64};
 use super::scope::{Ctx, SysView};
 use super::value::Value;
@@ -222,6 +223,8 @@ pub(super) struct Words {
     pub message: Option<String>,
     /// SETAL: a cycle alarm raised by the program.
     pub user_alarm: Option<Alarm>,
+    /// RND=, CHF=, CHR=: the corner at the end of this block.
+    pub corner: Option<Corner>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
     pub ar: Option<f64>,
     pub turn: Option<u32>,
@@ -344,6 +347,9 @@ pub(super) fn collect(
                     "D" => w.edge = Some(whole("D")?),
                     "CR" => w.cr = Some(v),
                     "RPL" => w.rpl = Some(v),
+                    "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
+                    "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
+                    "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
                     "AP" => w.ap = Some(v),
                     "RP" => w.rp = Some(v),
                     "AR" => w.ar = Some(v),
@@ -474,7 +480,24 @@ fn data_write(
 fn is_nc_address(name: &str) -> bool {
     matches!(
         name,
-        "F" | "S" | "T" | "D" | "CR" | "H" | "I" | "J" | "K" | "L" | "P" | "RPL" | "AP" | "RP" | "AR" | "TURN"
+        "F" | "S"
+            | "T"
+            | "D"
+            | "CR"
+            | "H"
+            | "I"
+            | "J"
+            | "K"
+            | "L"
+            | "P"
+            | "RPL"
+            | "AP"
+            | "RP"
+            | "AR"
+            | "TURN"
+            | "RND"
+            | "CHF"
+            | "CHR"
     )
 }
 
