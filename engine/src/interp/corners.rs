@@ -76,7 +76,7 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
     let (Some(d1), Some(d2)) = (d1, d2) else { return sharp() };
     let cos_phi = dot(&d1, &d2).clamp(-1.0, 1.0);
     let phi = cos_phi.acos();
-    if phi < 1e-9 || phi > std::f64::consts::PI - 1e-9 {
+    if !(1e-9..=std::f64::consts::PI - 1e-9).contains(&phi) {
         // Tangent or reversing blocks have no corner to round.
         return sharp();
     }
@@ -87,7 +87,8 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
     };
     let len1 = norm(&diff(&first.path.end, &first.path.start));
     let len2 = norm(&diff(&next.path.end, &next.path.start));
-    if !(leg > 0.0) || leg > len1 + 1e-9 || leg > len2 + 1e-9 {
+    let fits = leg > 0.0 && leg <= len1 + 1e-9 && leg <= len2 + 1e-9;
+    if !fits {
         return Err(Alarm::value_out_of_range(
             held.line,
             &format!(
