@@ -183,7 +183,7 @@ impl Channel {
 
     fn with_config(data: MachineData, cfg: MachineConfig) -> Channel {
         let cfg = Arc::new(cfg);
-        let planner = Planner::new(cfg.ipo_cycle, axis_limits(&cfg), [0.0; MAX_CHANNEL_AXES]);
+        let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg);
         Channel {
             interp: Interpreter::new(&cfg),
@@ -378,7 +378,7 @@ impl Channel {
             && cfg != *self.cfg
             && cfg.channel_axes == self.cfg.channel_axes
         {
-            self.planner.set_limits(axis_limits(&cfg));
+            self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
         }
         let pos = *self.planner.position();
@@ -437,7 +437,7 @@ impl Channel {
             Path { start, end, arc: None },
             length,
             Feed::Path(velocity),
-            &axis_limits(&self.cfg),
+            &AxisLimit::for_channel(&self.cfg),
             true,
             self.next_tag,
         );
@@ -524,7 +524,7 @@ impl Channel {
                     "NEWCONF cannot change the axis configuration while a program runs: reset instead".into()
                 ));
             }
-            self.planner.set_limits(axis_limits(&cfg));
+            self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
             return Ok(());
         }
@@ -810,14 +810,4 @@ fn program_name(name: &str) -> Result<String, CommandError> {
             "bad program name `{name}`: letters, digits and _, starting with a letter, at most 32"
         )))
     }
-}
-
-/// Planner limits per channel axis, from the machine axes behind them.
-fn axis_limits(cfg: &MachineConfig) -> Vec<AxisLimit> {
-    (0..cfg.channel_axes.len())
-        .map(|k| {
-            let a = cfg.axis(k);
-            AxisLimit { max_velocity: a.max_velocity, max_accel: a.max_accel, accel_overload: a.accel_overload }
-        })
-        .collect()
 }

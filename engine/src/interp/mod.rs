@@ -244,7 +244,7 @@ impl Interpreter {
         let idle = main_run_idle && !self.holds_move();
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
             let request = self.corner_request.take();
-            self.shape_corners(out, prep, request, &limits(cfg))?;
+            self.shape_corners(out, prep, request, &AxisLimit::for_channel(cfg))?;
             Ok(prep)
         });
         match result {
@@ -596,7 +596,7 @@ impl Interpreter {
         };
         let exact_stop = self.modal.exact_stop || words.g9;
         self.pos = end;
-        Ok(Move::new(path, length, feed, &limits(cfg), exact_stop, line))
+        Ok(Move::new(path, length, feed, &AxisLimit::for_channel(cfg), exact_stop, line))
     }
 }
 
@@ -613,15 +613,6 @@ fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>)
         _ if delta > range / 2.0 => current + delta - range,
         _ => current + delta,
     }
-}
-
-fn limits(cfg: &MachineConfig) -> Vec<AxisLimit> {
-    (0..cfg.channel_axes.len())
-        .map(|k| {
-            let a = cfg.axis(k);
-            AxisLimit { max_velocity: a.max_velocity, max_accel: a.max_accel, accel_overload: a.accel_overload }
-        })
-        .collect()
 }
 
 /// Alarm 10720 when any point of the path lies beyond a software limit switch.

@@ -8,6 +8,7 @@
 use std::collections::VecDeque;
 
 use super::path::{AxisVec, Path};
+use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// Velocity requested for a move.
@@ -26,6 +27,18 @@ pub struct AxisLimit {
     pub max_accel: f64,
     /// Factor by which the acceleration may be exceeded for one cycle at a block transition.
     pub accel_overload: f64,
+}
+
+impl AxisLimit {
+    /// The limits of every channel axis, from the machine axis behind it.
+    pub fn for_channel(cfg: &MachineConfig) -> Vec<AxisLimit> {
+        (0..cfg.channel_axes.len())
+            .map(|k| {
+                let a = cfg.axis(k);
+                AxisLimit { max_velocity: a.max_velocity, max_accel: a.max_accel, accel_overload: a.accel_overload }
+            })
+            .collect()
+    }
 }
 
 /// One prepared block ready for the main run.
