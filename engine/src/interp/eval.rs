@@ -1,6 +1,7 @@
 //! Evaluation of expressions: operators with the control's semantics, the predefined
 //! functions, variables and system variables.
 
+use super::frame::{self, Frame, GeoAxes};
 use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
@@ -12,7 +13,17 @@ pub trait Scope {
     /// A system variable (`$AA_IM[X]`, `$P_TOOLNO`, ...) with evaluated indices.
     fn system(&self, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm>;
     /// True if `name` is an axis of the channel (a bare axis name evaluates to an AXIS value).
-    fn is_axis(&self, name: &str) -> bool;
+    fn is_axis(&self, name: &str) -> bool {
+        self.axis_index(name).is_some()
+    }
+    /// The channel axis a program name refers to.
+    fn axis_index(&self, name: &str) -> Option<usize>;
+    /// The geometry axes (for frame functions).
+    fn geo_axes(&self) -> GeoAxes;
+    /// The geometry axis perpendicular to the working plane (G17: Z).
+    fn applicate(&self) -> usize {
+        2
+    }
 }
 
 /// Relative precision of comparisons: the control compares REAL values for relative, not
@@ -41,11 +52,23 @@ pub fn eval(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
                 .ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?;
             Value::Real(*v)
         }
+        Expr::Var { name, indices } if name.starts_with('$') => {
+            // Bare names among a system variable's indices are keywords (`$P_UIFR[1,X,TR]`).
+            let idx = indices
+                .iter()
+                .map(|e| match e {
+                    Expr::Var { name, indices }
+                        if indices.is_empty() && scope.vars().get(name).is_none() && !scope.is_axis(name) =>
+                    {
+                        Ok(Value::Str(name.clone()))
+                    }
+                    e => eval(e, scope, line),
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            return scope.system(name, &idx, line);
+        }
         Expr::Var { name, indices } => {
             let idx = indices.iter().map(|e| eval(e, scope, line)).collect::<Result<Vec<_>, _>>()?;
-            if name.starts_with('$') {
-                return scope.system(name, &idx, line);
-            }
             if let Some(var) = scope.vars().get(name) {
                 let ints = idx.iter().map(|v| v.as_i64()).collect::<Result<Vec<_>, _>>().map_err(type_err)?;
                 let i = var.index(&ints).map_err(|e| Alarm::index_error(line, name, &e.0))?;
@@ -67,7 +90,12 @@ pub fn eval(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
                 UnOp::BNot => Value::Int(!v.as_i64().map_err(type_err)?),
             }
         }
+        Expr::Binary(BinOp::Chain, a, b) => match (eval(a, scope, line)?, eval(b, scope, line)?) {
+            (Value::Frame(f1), Value::Frame(f2)) => Value::Frame(Box::new(f1.then(&f2, &scope.geo_axes()))),
+            _ => return Err(Alarm::type_error(line, "`:` chains frames only")),
+        },
         Expr::Binary(op, a, b) => binary(*op, eval(a, scope, line)?, eval(b, scope, line)?, line)?,
+        Expr::Call(name, args) if FRAME_FUNCTIONS.contains(&name.as_str()) => frame_function(name, args, scope, line)?,
         Expr::Call(name, args) => call(name, args, scope, line)?,
     })
 }
@@ -85,6 +113,7 @@ fn binary(op: BinOp, a: Value, b: Value, line: u32) -> Result<Value, Alarm> {
     let int = |v: &Value| v.as_i64().map_err(type_err);
     let both_int = matches!((&a, &b), (Value::Int(_), Value::Int(_)));
     Ok(match op {
+        BinOp::Chain => unreachable!("chains are evaluated by `eval`"),
         BinOp::Concat => Value::Str(a.as_text() + &b.as_text()),
         BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Lt | BinOp::Ge | BinOp::Le => {
             Value::Bool(compare(op, &a, &b, line)?)
@@ -233,4 +262,67 @@ fn call(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value
         "AXNAME" => Ok(Value::Axis(text(0)?.to_ascii_uppercase())),
         _ => Ok(Value::Str(vals[0].as_text())),
     }
+}
+
+/// Functions that build frames from (axis, value) pairs.
+const FRAME_FUNCTIONS: &[&str] = &["CTRANS", "CFINE", "CROT", "CSCALE", "CMIRROR", "CRPL"];
+
+/// `CTRANS(X,10,Y,20)`, `CFINE(...)`, `CROT(Z,45)`, `CSCALE(X,2)`, `CMIRROR(X)`, `CRPL(axis, angle)`:
+/// a frame with only that component (no arguments: the neutral frame).
+fn frame_function(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    let geo = scope.geo_axes();
+    let vals = args.iter().map(|a| eval(a, scope, line)).collect::<Result<Vec<_>, _>>()?;
+    let axis = |v: &Value| -> Result<usize, Alarm> {
+        match v {
+            Value::Axis(a) | Value::Str(a) => scope.axis_index(a).ok_or_else(|| Alarm::unknown_name(line, a)),
+            other => Err(Alarm::type_error(line, &format!("{name} needs axis names, not {other:?}"))),
+        }
+    };
+    let number = |v: &Value| v.as_f64().map_err(|e| Alarm::type_error(line, &e.0));
+    let pairs = || -> Result<Vec<(usize, f64)>, Alarm> {
+        if vals.len() % 2 != 0 {
+            return Err(Alarm::syntax(line, &format!("{name} takes axis, value pairs")));
+        }
+        vals.chunks(2).map(|p| Ok((axis(&p[0])?, number(&p[1])?))).collect()
+    };
+    let f = match name {
+        "CTRANS" | "CFINE" => {
+            let mut t = [0.0; crate::machine_data::registry::MAX_CHANNEL_AXES];
+            for (k, v) in pairs()? {
+                t[k] += v;
+            }
+            Frame::translation(t)
+        }
+        "CROT" => {
+            let mut angles = [0.0; 3];
+            for (k, v) in pairs()? {
+                let g = geo
+                    .iter()
+                    .position(|a| *a == Some(k))
+                    .ok_or_else(|| Alarm::type_error(line, "CROT rotates geometry axes only"))?;
+                angles[g] = v;
+            }
+            Frame::rotation(frame::rpy(angles[0], angles[1], angles[2]))
+        }
+        "CSCALE" => Frame::scaling(&geo, &pairs()?),
+        "CMIRROR" => {
+            let axes = vals.iter().map(axis).collect::<Result<Vec<_>, _>>()?;
+            Frame::scaling(&geo, &axes.into_iter().map(|k| (k, -1.0)).collect::<Vec<_>>())
+        }
+        // CRPL(rotation axis: 0 = applicate of the plane, 1..3 = Z, Y, X; angle)
+        _ => {
+            let [which, angle] = vals.as_slice() else {
+                return Err(Alarm::syntax(line, "CRPL takes (axis code, angle)"));
+            };
+            let g = match number(which)? as i64 {
+                0 => scope.applicate(),
+                1 => 2,
+                2 => 1,
+                3 => 0,
+                other => return Err(Alarm::value_out_of_range(line, &format!("CRPL axis code {other}"))),
+            };
+            Frame::rotation(frame::about_axis(g, number(angle)?))
+        }
+    };
+    Ok(Value::Frame(Box::new(f)))
 }

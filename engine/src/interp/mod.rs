@@ -270,7 +270,7 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let line = block.line;
         let words = {
-            let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
+            let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe };
             modal::collect(block, cfg, &mut self.vars, &sys, programs)?
         };
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
@@ -292,6 +292,9 @@ impl Interpreter {
         self.select_tool(&words, cfg, line)?;
         if let Some(op) = words.frame_op {
             self.frame_instruction(op, &words, cfg, line)?;
+        }
+        if let Some(f) = &words.program_frame {
+            self.pframe = f.clone();
         }
         self.offsets.frame = work_offset(cfg, self.modal.work_offset).then(&self.pframe, &cfg.geo_axes);
         self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
@@ -638,7 +641,7 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
 }
 
 /// Settable frame `frame` (0 = G500): a translation per channel axis.
-fn work_offset(cfg: &MachineConfig, frame: usize) -> Frame {
+pub(super) fn work_offset(cfg: &MachineConfig, frame: usize) -> Frame {
     let mut v = [0.0; MAX_CHANNEL_AXES];
     if let Some(f) = cfg.work_offsets.get(frame) {
         v[..f.len()].copy_from_slice(f);

@@ -4,6 +4,7 @@ use super::StopKind;
 use super::calls::Programs;
 use super::corners::Corner;
 use super::eval::{eval, eval_f64};
+use super::frame::Frame;
 use super::scope::{Ctx, SysView};
 use super::value::Value;
 use super::vars::Variables;
@@ -223,6 +224,8 @@ pub(super) struct Words {
     pub message: Option<String>,
     /// SETAL: a cycle alarm raised by the program.
     pub user_alarm: Option<Alarm>,
+    /// `$P_PFRAME=...`: the new programmable frame.
+    pub program_frame: Option<Frame>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
     pub corner: Option<Corner>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
@@ -329,6 +332,10 @@ pub(super) fn collect(
                         w.data_writes.push(text);
                         continue;
                     }
+                    Assigned::ProgramFrame(f) => {
+                        w.program_frame = Some(*f);
+                        continue;
+                    }
                     Assigned::Address => {}
                 }
                 let v = eval_f64(&value.expr, &Ctx { vars, sys }, line)?;
@@ -388,8 +395,10 @@ pub(super) enum Assigned {
     Variable,
     /// An NC address (axis, F, S, ...): the caller handles it.
     Address,
-    /// Tool data, frame data or machine data, as one line of NC data text.
+    /// Tool data, frame data or machine data, as NC data text.
     Data(String),
+    /// A new programmable frame (`$P_PFRAME=...`).
+    ProgramFrame(Box<Frame>),
 }
 
 pub(super) fn assign(
@@ -417,6 +426,9 @@ pub(super) fn assign(
         *slot = v;
         return Ok(Assigned::Variable);
     }
+    if name == "$P_PFRAME" {
+        return program_frame(indices, expr, vars, sys, line).map(|f| Assigned::ProgramFrame(Box::new(f)));
+    }
     if name.starts_with('$') {
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
     }
@@ -438,6 +450,49 @@ pub(super) fn assign(
     Ok(Assigned::Variable)
 }
 
+/// `$P_PFRAME = <frame>` or `$P_PFRAME[axis, TR] = <value>`: the new programmable frame.
+fn program_frame(indices: &[Expr], expr: &Expr, vars: &Variables, sys: &SysView, line: u32) -> Result<Frame, Alarm> {
+    let ctx = Ctx { vars, sys };
+    match indices {
+        [] => match eval(expr, &ctx, line)? {
+            Value::Frame(f) => Ok(*f),
+            other => Err(Alarm::type_error(line, &format!("$P_PFRAME needs a frame, not {other:?}"))),
+        },
+        [Expr::Var { name: axis, .. }, Expr::Var { name: component, .. }] if component == "TR" => {
+            let k = sys.cfg.program_axis(axis).ok_or_else(|| Alarm::unknown_name(line, axis))?;
+            let mut f = sys.pframe.clone();
+            f.trans[k] = eval_f64(expr, &ctx, line)?;
+            Ok(f)
+        }
+        _ => Err(Alarm::index_error(
+            line,
+            "$P_PFRAME",
+            "components other than [axis, TR] are set with CROT/CSCALE/CMIRROR",
+        )),
+    }
+}
+
+/// `$P_UIFR[n] = <frame>` as NC data text, one translation line per axis. Settable frames hold
+/// translations only in this product: a frame with rotation, scale or mirror is refused.
+fn settable_frame_lines(index: &Expr, expr: &Expr, ctx: &Ctx, sys: &SysView, line: u32) -> Result<String, Alarm> {
+    let n = eval(index, ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    let Value::Frame(f) = eval(expr, ctx, line)? else {
+        return Err(Alarm::type_error(line, "$P_UIFR[n] needs a frame"));
+    };
+    let neutral = Frame { trans: f.trans, ..Frame::identity() };
+    if *f != neutral {
+        return Err(Alarm::value_out_of_range(
+            line,
+            "settable frames take translations only here (no ROT, SCALE, MIRROR)",
+        ));
+    }
+    let cfg = sys.cfg;
+    Ok((0..cfg.channel_axes.len())
+        .map(|k| format!("$P_UIFR[{n},{},TR]={:?}", cfg.program_axis_name(k), f.trans[k]))
+        .collect::<Vec<_>>()
+        .join("\n"))
+}
+
 /// A write to tool data (`$TC_DP..`), settable frames (`$P_UIFR`) or machine and setting data
 /// (`$MC_..`, `$MA_..`, ...) as one line of NC data text. Bare names among the indices
 /// (`$P_UIFR[1,X,TR]`) are taken literally.
@@ -456,6 +511,9 @@ fn data_write(
         return Err(Alarm::unknown_name(line, &format!("{name} (not writable from a program)")));
     }
     let ctx = Ctx { vars, sys };
+    if name == "$P_UIFR" && indices.len() == 1 {
+        return settable_frame_lines(&indices[0], expr, &ctx, sys, line);
+    }
     let mut idx = Vec::new();
     for e in indices {
         idx.push(match e {

@@ -2,6 +2,7 @@
 
 use super::Offsets;
 use super::eval::Scope;
+use super::frame::{Frame, GeoAxes};
 use super::modal::{Modal, MotionMode, Plane};
 use super::value::Value;
 use super::vars::Variables;
@@ -16,6 +17,8 @@ pub(crate) struct SysView<'a> {
     /// Programmed end position in machine coordinates per channel axis.
     pub pos: &'a AxisVec,
     pub offsets: &'a Offsets,
+    /// The programmable frame.
+    pub pframe: &'a Frame,
 }
 
 /// Variables plus system variables, for [`super::eval::eval`].
@@ -35,8 +38,16 @@ impl Scope for Ctx<'_> {
         self.vars
     }
 
-    fn is_axis(&self, name: &str) -> bool {
-        self.sys.cfg.program_axis(name).is_some()
+    fn axis_index(&self, name: &str) -> Option<usize> {
+        self.sys.cfg.program_axis(name)
+    }
+
+    fn geo_axes(&self) -> GeoAxes {
+        self.sys.cfg.geo_axes
+    }
+
+    fn applicate(&self) -> usize {
+        self.sys.modal.plane.axes().2
     }
 
     fn system(&self, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
@@ -80,6 +91,28 @@ impl Scope for Ctx<'_> {
                 )
             }
             _ if name.starts_with("$TC_DP") => tool_param(sys.cfg, name, indices, line)?,
+            "$P_PFRAME" | "$P_ACTFRAME" | "$P_IFRAME" | "$P_UIFR" => {
+                let (frame, rest) = match name {
+                    "$P_PFRAME" => (sys.pframe.clone(), indices),
+                    "$P_ACTFRAME" => (sys.offsets.frame.clone(), indices),
+                    "$P_IFRAME" => (super::work_offset(sys.cfg, sys.modal.work_offset), indices),
+                    _ => {
+                        let (n, rest) = indices
+                            .split_first()
+                            .ok_or_else(|| Alarm::index_error(line, name, "needs the frame number"))?;
+                        let n = n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+                        if n < 0 || n as usize >= sys.cfg.work_offsets.len() {
+                            return Err(Alarm::index_error(line, name, &format!("frame {n} does not exist")));
+                        }
+                        (super::work_offset(sys.cfg, n as usize), rest)
+                    }
+                };
+                match rest {
+                    [] => Value::Frame(Box::new(frame)),
+                    [axis, component] => frame_component(sys, &frame, name, axis, component, line)?,
+                    _ => return Err(Alarm::index_error(line, name, "a frame takes [axis, TR|FI|RT|SC|MI]")),
+                }
+            }
             _ => return Err(Alarm::unknown_name(line, name)),
         })
     }
@@ -142,4 +175,43 @@ fn g_group_index(m: &Modal, group: i64) -> Option<i64> {
         }
         _ => return None,
     })
+}
+
+/// One component of a frame: `TR` translation (FI fine is part of it), `RT` RPY angle about a
+/// geometry axis, `SC` scale factor, `MI` mirror (1 when mirrored).
+fn frame_component(
+    sys: &SysView,
+    frame: &Frame,
+    name: &str,
+    axis: &Value,
+    component: &Value,
+    line: u32,
+) -> Result<Value, Alarm> {
+    let (Value::Axis(a) | Value::Str(a)) = axis else {
+        return Err(Alarm::index_error(line, name, "first index is an axis"));
+    };
+    let k = sys.cfg.program_axis(a).ok_or_else(|| Alarm::unknown_name(line, a))?;
+    let g = sys.cfg.geo_axes.iter().position(|x| *x == Some(k));
+    let column = |g: usize| (0..3).map(|r| frame.lin[r][g]).collect::<Vec<_>>();
+    let scale = |g: usize| column(g).iter().map(|x| x * x).sum::<f64>().sqrt();
+    Ok(Value::Real(match (component.as_text().as_str(), g) {
+        ("TR", _) => frame.trans[k],
+        ("FI", _) => 0.0,
+        ("RT", Some(g)) => {
+            // R = Rz(z)·Ry(y)·Rx(x) of the unscaled rotation.
+            let s = [scale(0), scale(1), scale(2)];
+            let m = |r: usize, c: usize| frame.lin[r][c] / s[c];
+            match g {
+                0 => m(2, 1).atan2(m(2, 2)).to_degrees(),
+                1 => (-m(2, 0)).clamp(-1.0, 1.0).asin().to_degrees(),
+                _ => m(1, 0).atan2(m(0, 0)).to_degrees(),
+            }
+        }
+        ("RT", None) => 0.0,
+        ("SC", Some(g)) => scale(g),
+        ("SC", None) => frame.factor[k].abs(),
+        ("MI", Some(g)) => f64::from(u8::from(frame.lin[g][g] < 0.0)),
+        ("MI", None) => f64::from(u8::from(frame.factor[k] < 0.0)),
+        (other, _) => return Err(Alarm::index_error(line, name, &format!("unknown frame component {other}"))),
+    }))
 }

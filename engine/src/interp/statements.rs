@@ -81,7 +81,7 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let line = block.line;
         let cond = |this: &Self, e: &Expr| -> Result<bool, Alarm> {
-            let sys = SysView { cfg, modal: &this.modal, pos: &this.pos, offsets: &this.offsets };
+            let sys = SysView { cfg, modal: &this.modal, pos: &this.pos, offsets: &this.offsets, pframe: &this.pframe };
             eval(e, &Ctx { vars: &this.vars, sys: &sys }, line)?.as_bool().map_err(|e| Alarm::type_error(line, &e.0))
         };
         match stmt {
@@ -208,7 +208,7 @@ impl Interpreter {
     }
 
     fn sys<'a>(&'a self, cfg: &'a MachineConfig) -> SysView<'a> {
-        SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets }
+        SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe }
     }
 
     fn assign_to(
@@ -219,7 +219,7 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
-        let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets };
+        let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe };
         match assign(name, indices, value, cfg, &mut self.vars, &sys, line)? {
             Assigned::Variable => Ok(()),
             _ => Err(Alarm::type_error(line, &format!("{name} is not a variable"))),

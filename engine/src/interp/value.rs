@@ -1,5 +1,6 @@
 //! Values of the NC language and the control's conversions between its types.
 
+use super::frame::Frame;
 use crate::lang::VarType;
 
 /// A value of a variable or an expression.
@@ -12,6 +13,8 @@ pub enum Value {
     Str(String),
     /// An axis identifier (type AXIS).
     Axis(String),
+    /// A coordinate frame (type FRAME).
+    Frame(Box<Frame>),
 }
 
 /// Why a value cannot be used where it stands.
@@ -23,7 +26,8 @@ impl Value {
     pub fn default_of(ty: VarType) -> Value {
         match ty {
             VarType::Int => Value::Int(0),
-            VarType::Real | VarType::Frame => Value::Real(0.0),
+            VarType::Real => Value::Real(0.0),
+            VarType::Frame => Value::Frame(Box::default()),
             VarType::Bool => Value::Bool(false),
             VarType::Char => Value::Char(0),
             VarType::Str(_) => Value::Str(String::new()),
@@ -40,6 +44,7 @@ impl Value {
             Value::Char(c) => Ok(f64::from(*c)),
             Value::Str(s) => Err(TypeError(format!("string \"{s}\" where a number is needed"))),
             Value::Axis(a) => Err(TypeError(format!("axis {a} where a number is needed"))),
+            Value::Frame(_) => Err(TypeError("a frame where a number is needed".into())),
         }
     }
 
@@ -70,6 +75,7 @@ impl Value {
             Value::Char(c) => (*c as char).to_string(),
             Value::Str(s) => s.clone(),
             Value::Axis(a) => a.clone(),
+            Value::Frame(_) => "FRAME".into(),
         }
     }
 
@@ -77,7 +83,11 @@ impl Value {
     pub fn convert(self, ty: VarType) -> Result<Value, TypeError> {
         Ok(match ty {
             VarType::Int => Value::Int(self.as_i64()?),
-            VarType::Real | VarType::Frame => Value::Real(self.as_f64()?),
+            VarType::Real => Value::Real(self.as_f64()?),
+            VarType::Frame => match self {
+                Value::Frame(f) => Value::Frame(f),
+                other => return Err(TypeError(format!("{other:?} is not a frame"))),
+            },
             VarType::Bool => Value::Bool(self.as_bool()?),
             VarType::Char => match self {
                 Value::Str(s) if s.len() == 1 => Value::Char(s.as_bytes()[0]),

@@ -233,6 +233,8 @@ pub enum UnOp {
 /// Binary operators, from the lowest priority (comparison) to the highest (`*`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BinOp {
+    /// `:` frame concatenation (may not be mixed with other operators).
+    Chain,
     Eq,
     Ne,
     Gt,

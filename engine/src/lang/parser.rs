@@ -556,7 +556,20 @@ const LEVELS: &[&[(&str, BinOp)]] = &[
 /// Parses an expression with the control's operator priorities; equal priorities associate
 /// to the left.
 pub(crate) fn parse_expr(cur: &mut Cursor) -> PResult<Expr> {
-    parse_level(cur, 0)
+    let mut lhs = parse_level(cur, 0)?;
+    // `F1:F2` chains frames; it stands apart from every other operator.
+    loop {
+        let save = cur.pos;
+        cur.skip_ws();
+        if cur.peek() == Some(b':') {
+            cur.pos += 1;
+            cur.skip_ws();
+            lhs = Expr::Binary(BinOp::Chain, Box::new(lhs), Box::new(parse_level(cur, 0)?));
+        } else {
+            cur.pos = save;
+            return Ok(lhs);
+        }
+    }
 }
 
 fn parse_level(cur: &mut Cursor, level: usize) -> PResult<Expr> {
