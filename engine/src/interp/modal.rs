@@ -570,7 +570,9 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         17 => w.plane = Some(Plane::G17),
         18 => w.plane = Some(Plane::G18),
         19 => w.plane = Some(Plane::G19),
-        53 => w.g53 = true,
+        // G53 suppresses the settable and programmable frames for the block; G153 also the
+        // basic frames, which this product does not model separately.
+        53 | 153 => w.g53 = true,
         // Tool radius compensation off: the only state until TRC is modelled.
         40 => {}
         54..=57 => w.work_offset = Some(code as usize - 53),
