@@ -12,6 +12,12 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 400, .. ProptestConfig::default() })]
 
     #[test]
+    fn arbitrary_unicode_never_panics_the_parsers(text in "\\PC{0,200}") {
+        let _ = lang::parse(&text);
+        let _ = MachineData::default().apply_text(&text);
+    }
+
+    #[test]
     fn the_parser_accepts_or_reports_any_text(text in nc_text()) {
         let p = lang::parse(&text);
         for d in &p.diagnostics {
