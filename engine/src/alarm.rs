@@ -153,3 +153,23 @@ impl Alarm {
         Alarm::new(number, message, Some(line))
     }
 }
+
+impl Alarm {
+    /// 10751: the compensated path would violate the contour (bottleneck, radius too large).
+    pub fn collision(line: u32, what: &str) -> Alarm {
+        Alarm::new(
+            10751,
+            format!("Channel 1 block {line} danger of collision with tool radius compensation: {what}"),
+            Some(line),
+        )
+    }
+
+    /// 10744: tool radius compensation selected in a block that is not a straight line.
+    pub fn trc_selection(line: u32) -> Alarm {
+        Alarm::new(
+            10744,
+            format!("Channel 1 block {line} tool radius compensation must be selected in a linear block"),
+            Some(line),
+        )
+    }
+}

@@ -14,6 +14,7 @@ pub mod frame;
 mod modal;
 mod scope;
 mod statements;
+pub mod trc;
 pub mod value;
 pub mod vars;
 
@@ -150,6 +151,8 @@ pub struct Interpreter {
     held: Option<corners::Held>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
+    /// Tool radius compensation: moves held until their successor decides their end.
+    trc: trc::Compensator,
 }
 
 impl Interpreter {
@@ -167,6 +170,7 @@ impl Interpreter {
             data_writes: Vec::new(),
             held: None,
             corner_request: None,
+            trc: trc::Compensator::default(),
         }
     }
 
@@ -176,6 +180,7 @@ impl Interpreter {
         self.flow = None;
         self.calls.clear();
         self.held = None;
+        self.trc.clear();
         self.direction = 0;
         self.pos = *pos;
         self.pframe = Frame::identity();
@@ -241,10 +246,18 @@ impl Interpreter {
     ) -> Prep {
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
-        let idle = main_run_idle && !self.holds_move();
+        let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
+            let limits = AxisLimit::for_channel(cfg);
+            // Whatever follows that is not a move ends a held compensated move first.
+            if self.trc.holds() && (prep != Prep::Prepared || out.iter().any(|i| !matches!(i, Item::Move { .. }))) {
+                let mut flushed = Vec::new();
+                self.trc.flush(&limits, &mut flushed)?;
+                let at = out.iter().rposition(|i| matches!(i, Item::Move { .. })).map_or(0, |i| i + 1);
+                out.splice(at..at, flushed);
+            }
             let request = self.corner_request.take();
-            self.shape_corners(out, prep, request, &AxisLimit::for_channel(cfg))?;
+            self.shape_corners(out, prep, request, &limits)?;
             Ok(prep)
         });
         match result {
@@ -307,6 +320,7 @@ impl Interpreter {
         let spindle_words = (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell;
         let changes = self.direction != old_direction || self.direction != 0;
         if let Some(axis) = cfg.master_spindle.filter(|_| spindle_words && changes) {
+            self.trc.flush(&AxisLimit::for_channel(cfg), out)?;
             out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
         }
 
@@ -327,8 +341,10 @@ impl Interpreter {
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
-            let mv = self.motion(&words, cfg, line)?;
-            out.push(Item::Move { mv, line, offsets: self.offsets.clone() });
+            let (mv, feed) = self.motion(&words, cfg, line)?;
+            let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
+            let comp = self.compensation(cfg, &words);
+            self.trc.push(trc::Prepared { mv, feed, line, item }, comp, &AxisLimit::for_channel(cfg), out)?;
         } else if self.offsets != offsets_before {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
         }
@@ -452,7 +468,29 @@ impl Interpreter {
         Ok(())
     }
 
-    fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<Move, Alarm> {
+    /// The radius compensation for the block's move: side and corner mode from G41/G42 and
+    /// G450/G451, radius from the active cutting edge (geometry + wear) plus OFFN, plane from
+    /// the working plane through the active frame.
+    fn compensation(&self, cfg: &MachineConfig, words: &modal::Words) -> Option<trc::Compensation> {
+        let side = self.modal.trc?;
+        let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
+        let radius = edge.map_or(0.0, |p| p[5] + p[14]) + self.modal.offn;
+        let frame = if words.g53 { Frame::identity() } else { self.offsets.frame.clone() };
+        let (pa, po, _) = self.modal.plane.axes();
+        let unit = |v: AxisVec| {
+            let n = norm(&v);
+            if n > 0.0 { v.map(|x| x / n) } else { v }
+        };
+        Some(trc::Compensation {
+            side,
+            radius,
+            corners: self.modal.trc_corners,
+            u: unit(frame.geo_direction(&cfg.geo_axes, pa)),
+            v: unit(frame.geo_direction(&cfg.geo_axes, po)),
+        })
+    }
+
+    fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
         let start = self.pos;
@@ -599,7 +637,7 @@ impl Interpreter {
         };
         let exact_stop = self.modal.exact_stop || words.g9;
         self.pos = end;
-        Ok(Move::new(path, length, feed, &AxisLimit::for_channel(cfg), exact_stop, line))
+        Ok((Move::new(path, length, feed, &AxisLimit::for_channel(cfg), exact_stop, line), feed))
     }
 }
 

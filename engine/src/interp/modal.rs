@@ -6,6 +6,7 @@ use super::corners::Corner;
 use super::eval::{eval, eval_f64};
 use super::frame::Frame;
 use super::scope::{Ctx, SysView};
+use super::trc::{CornerMode, Side};
 use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
@@ -65,6 +66,12 @@ pub struct Modal {
     pub feed: Option<f64>,
     /// Pole of polar coordinates (abscissa, ordinate of the working plane, WCS).
     pub pole: (f64, f64),
+    /// Tool radius compensation: G40 (None), G41, G42.
+    pub trc: Option<Side>,
+    /// G450 (transition circle) or G451 (intersection) at outer corners.
+    pub trc_corners: CornerMode,
+    /// OFFN contour offset.
+    pub offn: f64,
     /// Last polar angle AP (degrees) and radius RP.
     pub polar: (f64, f64),
 }
@@ -85,6 +92,9 @@ impl Modal {
             feed: None,
             pole: (0.0, 0.0),
             polar: (0.0, 0.0),
+            trc: None,
+            trc_corners: CornerMode::Circle,
+            offn: 0.0,
         }
     }
 
@@ -118,6 +128,15 @@ impl Modal {
         }
         if let Some(e) = w.exact_stop {
             self.exact_stop = e;
+        }
+        if let Some(side) = w.trc {
+            self.trc = side;
+        }
+        if let Some(c) = w.trc_corners {
+            self.trc_corners = c;
+        }
+        if let Some(o) = w.offn {
+            self.offn = o;
         }
         if let Some(frame) = w.work_offset {
             if frame >= cfg.work_offsets.len() {
@@ -224,6 +243,12 @@ pub(super) struct Words {
     pub message: Option<String>,
     /// SETAL: a cycle alarm raised by the program.
     pub user_alarm: Option<Alarm>,
+    /// G40 (`Some(None)`), G41, G42.
+    pub trc: Option<Option<Side>>,
+    /// G450/G451.
+    pub trc_corners: Option<CornerMode>,
+    /// OFFN=: contour offset added to the tool radius.
+    pub offn: Option<f64>,
     /// `$P_PFRAME=...`: the new programmable frame.
     pub program_frame: Option<Frame>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
@@ -354,6 +379,7 @@ pub(super) fn collect(
                     "D" => w.edge = Some(whole("D")?),
                     "CR" => w.cr = Some(v),
                     "RPL" => w.rpl = Some(v),
+                    "OFFN" => w.offn = Some(v * sys.modal.length_factor()),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
                     "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
@@ -536,27 +562,11 @@ fn data_write(
 
 /// Addresses with a fixed meaning in a block.
 fn is_nc_address(name: &str) -> bool {
-    matches!(
-        name,
-        "F" | "S"
-            | "T"
-            | "D"
-            | "CR"
-            | "H"
-            | "I"
-            | "J"
-            | "K"
-            | "L"
-            | "P"
-            | "RPL"
-            | "AP"
-            | "RP"
-            | "AR"
-            | "TURN"
-            | "RND"
-            | "CHF"
-            | "CHR"
-    )
+    const ADDRESSES: &[&str] = &[
+        "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
+        "OFFN",
+    ];
+    ADDRESSES.contains(&name)
 }
 
 fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
@@ -573,8 +583,11 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         // G53 suppresses the settable and programmable frames for the block; G153 also the
         // basic frames, which this product does not model separately.
         53 | 153 => w.g53 = true,
-        // Tool radius compensation off: the only state until TRC is modelled.
-        40 => {}
+        40 => w.trc = Some(None),
+        41 => w.trc = Some(Some(Side::Left)),
+        42 => w.trc = Some(Some(Side::Right)),
+        450 => w.trc_corners = Some(CornerMode::Circle),
+        451 => w.trc_corners = Some(CornerMode::Intersection),
         54..=57 => w.work_offset = Some(code as usize - 53),
         500 => w.work_offset = Some(0),
         505..=599 => w.work_offset = Some(code as usize - 500),

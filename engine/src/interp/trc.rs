@@ -1,0 +1,473 @@
+//! Tool radius compensation (G40/G41/G42, G450/G451, OFFN): the tool centre runs on the
+//! equidistant of the programmed contour in the working plane.
+//!
+//! Works on prepared moves: each move's working-plane part is read in plane coordinates (the
+//! frame's images of the plane axes, so mirroring and rotation need no special cases), offset
+//! to the left (G41) or right (G42) by the radius, and joined to its neighbour at the corner:
+//! G450 inserts a transition arc about the contour corner, G451 extends both equidistants to
+//! their intersection; inner corners are cut at the intersection. A move is held back until
+//! its successor decides its end point.
+
+use super::Item;
+use crate::alarm::Alarm;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
+
+/// Compensation side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// G41: tool left of the contour in the direction of travel.
+    Left,
+    /// G42: tool right of the contour.
+    Right,
+}
+
+/// Behaviour at outer corners (G group 18).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CornerMode {
+    /// G450: transition circle about the corner.
+    Circle,
+    /// G451: intersection of the equidistants.
+    Intersection,
+}
+
+/// The compensation a move is prepared with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Compensation {
+    pub side: Side,
+    /// Tool radius plus OFFN.
+    pub radius: f64,
+    pub corners: CornerMode,
+    /// The working plane's abscissa and ordinate in axis space (unit vectors).
+    pub u: AxisVec,
+    pub v: AxisVec,
+}
+
+impl Compensation {
+    /// Signed offset: positive to the left of the direction of travel.
+    fn offset(&self) -> f64 {
+        match self.side {
+            Side::Left => self.radius,
+            Side::Right => -self.radius,
+        }
+    }
+}
+
+/// A prepared move with what the compensation needs besides it.
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    pub mv: Move,
+    pub feed: Feed,
+    pub line: u32,
+    pub item: Item,
+}
+
+/// The contour element of a move in plane coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Elem {
+    Line { s: P2, e: P2 },
+    Arc { c: P2, r: f64, a0: f64, sweep: f64 },
+}
+
+type P2 = (f64, f64);
+
+/// A compensated move waiting for its successor.
+#[derive(Debug, Clone)]
+struct Held {
+    p: Prepared,
+    /// The programmed contour element.
+    contour: Elem,
+    /// Where its equidistant starts (decided by the previous corner).
+    start: P2,
+    comp: Compensation,
+}
+
+/// State of the compensation between moves.
+#[derive(Debug, Clone, Default)]
+pub struct Compensator {
+    held: Option<Held>,
+    /// The selection move (G41/G42 switched on), waiting for the first compensated element.
+    approach: Option<Prepared>,
+    /// Where the tool centre stands in plane coordinates after the last emitted move, while
+    /// compensation is active.
+    tool_at: Option<P2>,
+}
+
+impl Compensator {
+    /// True while a move is held back.
+    pub fn holds(&self) -> bool {
+        self.held.is_some() || self.approach.is_some()
+    }
+
+    /// Feeds one move. `comp` is the compensation active for it (None: G40). Appends the moves
+    /// that are ready for the main run to `out`.
+    pub fn push(
+        &mut self,
+        p: Prepared,
+        comp: Option<Compensation>,
+        limits: &[AxisLimit],
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
+        let Some(comp) = comp else {
+            // Deselection (or no compensation): finish what is held, then this move goes
+            // uncompensated from where the tool stands to its programmed end.
+            let was_active = self.tool_at.is_some() || self.holds();
+            self.flush(limits, out)?;
+            self.tool_at = None;
+            let mut p = p;
+            if let Some(start) = last_end(out).filter(|_| was_active) {
+                p.mv = rebuild(&p, Path { start, end: p.mv.path.end, arc: None }, limits);
+            }
+            out.push(p.item_with(p.mv.clone()));
+            return Ok(());
+        };
+        let line = p.line;
+        let Some(contour) = element(&p.mv, &comp) else {
+            // No motion in the working plane: the tool stays on the equidistant.
+            self.flush(limits, out)?;
+            let mut p = p;
+            if let (Some(at), Some(start)) = (self.tool_at, last_end(out)) {
+                let end = with_plane(&p.mv.path.end, at, &comp);
+                p.mv = rebuild(&p, Path { start, end, arc: None }, limits);
+            }
+            out.push(p.item_with(p.mv.clone()));
+            return Ok(());
+        };
+        let d = comp.offset();
+        if let Some(approach) = self.approach.take() {
+            // The selection block ends where the first element's equidistant starts (NORM).
+            let start = offset_start(&contour, d);
+            let end = with_plane(&approach.mv.path.end, start, &comp);
+            let mv = rebuild(&approach, Path { start: approach.mv.path.start, end, arc: None }, limits);
+            out.push(approach.item_with(mv));
+            self.tool_at = Some(start);
+            self.held = Some(Held { p, contour, start, comp });
+            return Ok(());
+        }
+        match self.held.take() {
+            None if self.tool_at.is_none() => {
+                // The selection block itself: a straight move, held until the next element.
+                if matches!(contour, Elem::Arc { .. }) {
+                    return Err(Alarm::trc_selection(line));
+                }
+                self.approach = Some(p);
+            }
+            None => {
+                // After moves outside the plane: link from where the tool stands.
+                let start = offset_start(&contour, d);
+                if let (Some(at), Some(from)) = (self.tool_at, last_end(out))
+                    && dist(at, start) > 1e-9
+                {
+                    let to = with_plane(&from, start, &comp);
+                    out.push(p.item_with(rebuild(&p, Path { start: from, end: to, arc: None }, limits)));
+                }
+                self.tool_at = Some(start);
+                self.held = Some(Held { p, contour, start, comp });
+            }
+            Some(prev) => {
+                let (prev_end, transition, next_start) = corner(&prev.contour, &contour, d, comp.corners, prev.p.line)?;
+                let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
+                out.push(prev.p.item_with(finish(&prev.p, eq, &prev.comp, limits, true)));
+                if let Some(arc) = transition {
+                    out.push(prev.p.item_with(finish(&prev.p, arc, &prev.comp, limits, false)));
+                }
+                self.tool_at = Some(next_start);
+                self.held = Some(Held { p, contour, start: next_start, comp });
+            }
+        }
+        Ok(())
+    }
+
+    /// Ends the held move perpendicular to its contour end (before anything that is not a
+    /// compensated move, and at the end of the program).
+    pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        if let Some(approach) = self.approach.take() {
+            // A selection block without a following element stays uncompensated.
+            out.push(approach.item_with(approach.mv.clone()));
+            self.tool_at = None;
+        }
+        if let Some(h) = self.held.take() {
+            let eq = offset_elem(&h.contour, h.comp.offset(), Some(h.start), None, h.p.line)?;
+            self.tool_at = Some(elem_end(&eq));
+            out.push(h.p.item_with(finish(&h.p, eq, &h.comp, limits, true)));
+        }
+        Ok(())
+    }
+
+    /// Drops everything (reset).
+    pub fn clear(&mut self) {
+        *self = Compensator::default();
+    }
+}
+
+/// The end point of the last move in `out`.
+fn last_end(out: &[Item]) -> Option<AxisVec> {
+    out.iter().rev().find_map(|i| match i {
+        Item::Move { mv, .. } => Some(mv.path.end),
+        _ => None,
+    })
+}
+
+impl Prepared {
+    fn item_with(&self, mv: Move) -> Item {
+        match &self.item {
+            Item::Move { line, offsets, .. } => Item::Move { mv, line: *line, offsets: offsets.clone() },
+            other => other.clone(),
+        }
+    }
+}
+
+/// The move rebuilt on a new path with the same feed and limits.
+fn rebuild(p: &Prepared, path: Path, limits: &[AxisLimit]) -> Move {
+    let length = path_length(&path);
+    Move::new(path, length, p.feed, limits, p.mv.exact_stop, p.mv.tag)
+}
+
+/// The move of an equidistant element (or, with `contour_feed` false, a transition arc at
+/// the programmed feed). Its axis-space start is the original start with the plane part
+/// replaced, its end likewise; axes outside the plane move as programmed.
+fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], contour_feed: bool) -> Move {
+    let (s, e) = (elem_start(&elem), elem_end(&elem));
+    let (from, to) = if contour_feed { (p.mv.path.start, p.mv.path.end) } else { (p.mv.path.end, p.mv.path.end) };
+    let start3 = with_plane(&from, s, comp);
+    let end3 = with_plane(&to, e, comp);
+    let (path, feed) = match elem {
+        Elem::Line { .. } => (Path { start: start3, end: end3, arc: None }, p.feed),
+        Elem::Arc { r, a0, sweep, .. } => {
+            // CFC: the programmed feed acts on the contour; the centre path runs faster on
+            // outer and slower on inner arcs, by the ratio of the radii.
+            let feed = match (p.feed, contour_feed, element(&p.mv, comp)) {
+                (Feed::Path(f), true, Some(Elem::Arc { r: r0, .. })) if r0 > 1e-9 => Feed::Path(f * r / r0),
+                (f, _, _) => f,
+            };
+            let arc = Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep };
+            (Path { start: start3, end: end3, arc: Some(arc) }, feed)
+        }
+    };
+    let length = path_length(&path);
+    Move::new(path, length, feed, limits, p.mv.exact_stop, p.mv.tag)
+}
+
+fn path_length(path: &Path) -> f64 {
+    let chord: f64 = path.start.iter().zip(&path.end).map(|(a, b)| (b - a).powi(2)).sum::<f64>().sqrt();
+    match &path.arc {
+        None => chord,
+        Some(arc) => {
+            // Arc length in the plane plus the linear remainder (helix).
+            let mut linear = 0.0;
+            for k in 0..MAX_CHANNEL_AXES {
+                if !arc.moves_axis(k) {
+                    linear += (path.end[k] - path.start[k]).powi(2);
+                }
+            }
+            ((arc.radius * arc.sweep).powi(2) + linear).sqrt()
+        }
+    }
+}
+
+/// The move's contour in plane coordinates; `None` without motion in the plane.
+fn element(mv: &Move, comp: &Compensation) -> Option<Elem> {
+    let s = to_plane(&mv.path.start, comp);
+    let e = to_plane(&mv.path.end, comp);
+    match &mv.path.arc {
+        Some(arc) => {
+            let c = (s.0 - arc.radius * arc.start_angle.cos(), s.1 - arc.radius * arc.start_angle.sin());
+            Some(Elem::Arc { c, r: arc.radius, a0: arc.start_angle, sweep: arc.sweep })
+        }
+        None if dist(s, e) > 1e-9 => Some(Elem::Line { s, e }),
+        None => None,
+    }
+}
+
+fn to_plane(p: &AxisVec, comp: &Compensation) -> P2 {
+    (dot(p, &comp.u), dot(p, &comp.v))
+}
+
+/// `p` with its working-plane part replaced by `q`.
+fn with_plane(p: &AxisVec, q: P2, comp: &Compensation) -> AxisVec {
+    let (x, y) = to_plane(p, comp);
+    std::array::from_fn(|k| p[k] + (q.0 - x) * comp.u[k] + (q.1 - y) * comp.v[k])
+}
+
+fn dot(a: &AxisVec, b: &AxisVec) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn dist(a: P2, b: P2) -> f64 {
+    (a.0 - b.0).hypot(a.1 - b.1)
+}
+
+fn elem_start(e: &Elem) -> P2 {
+    match *e {
+        Elem::Line { s, .. } => s,
+        Elem::Arc { c, r, a0, .. } => (c.0 + r * a0.cos(), c.1 + r * a0.sin()),
+    }
+}
+
+fn elem_end(e: &Elem) -> P2 {
+    match *e {
+        Elem::Line { e, .. } => e,
+        Elem::Arc { c, r, a0, sweep } => (c.0 + r * (a0 + sweep).cos(), c.1 + r * (a0 + sweep).sin()),
+    }
+}
+
+/// Unit tangent at the start (`at_end` false) or end of an element.
+fn tangent(e: &Elem, at_end: bool) -> P2 {
+    match *e {
+        Elem::Line { s, e } => {
+            let l = dist(s, e);
+            ((e.0 - s.0) / l, (e.1 - s.1) / l)
+        }
+        Elem::Arc { a0, sweep, .. } => {
+            let a = if at_end { a0 + sweep } else { a0 };
+            let sgn = sweep.signum();
+            (-sgn * a.sin(), sgn * a.cos())
+        }
+    }
+}
+
+/// Left normal of a tangent.
+fn left(t: P2) -> P2 {
+    (-t.1, t.0)
+}
+
+/// Start point of the equidistant at offset `d` (perpendicular at the contour start).
+fn offset_start(e: &Elem, d: f64) -> P2 {
+    let p = elem_start(e);
+    let n = left(tangent(e, false));
+    (p.0 + d * n.0, p.1 + d * n.1)
+}
+
+/// The element offset by `d`, with its start and end optionally moved to given points on the
+/// equidistant (corners decide them).
+fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) -> Result<Elem, Alarm> {
+    Ok(match *e {
+        Elem::Line { s, e } => {
+            let n = left(tangent(&Elem::Line { s, e }, false));
+            let shift = |p: P2| (p.0 + d * n.0, p.1 + d * n.1);
+            Elem::Line { s: start.unwrap_or(shift(s)), e: end.unwrap_or(shift(e)) }
+        }
+        Elem::Arc { c, r, a0, sweep } => {
+            let r2 = r - d * sweep.signum();
+            if r2 <= 1e-9 {
+                return Err(Alarm::collision(line, "the tool radius is larger than the radius of an inner arc"));
+            }
+            let a_start = start.map_or(a0, |p| (p.1 - c.1).atan2(p.0 - c.0));
+            let a_end = end.map_or(a0 + sweep, |p| (p.1 - c.1).atan2(p.0 - c.0));
+            let sw = if start.is_none() && end.is_none() {
+                sweep
+            } else {
+                // The trimmed sweep: same direction, the number of turns nearest the original.
+                let base = a_end - a_start;
+                (-3..=3)
+                    .map(|k| base + f64::from(k) * std::f64::consts::TAU)
+                    .filter(|w| w * sweep >= 0.0)
+                    .min_by(|x, y| (x - sweep).abs().total_cmp(&(y - sweep).abs()))
+                    .unwrap_or(base)
+            };
+            Elem::Arc { c, r: r2, a0: a_start, sweep: sw }
+        }
+    })
+}
+
+/// The corner between two elements (already in contour coordinates) at offset `d`: the end of
+/// the first equidistant, a transition arc if one is needed, and the start of the second.
+fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2, Option<Elem>, P2), Alarm> {
+    let p = elem_end(a);
+    let (ta, tb) = (tangent(a, true), tangent(b, false));
+    let (na, nb) = (left(ta), left(tb));
+    let q1 = (p.0 + d * na.0, p.1 + d * na.1);
+    let q2 = (p.0 + d * nb.0, p.1 + d * nb.1);
+    if dist(q1, q2) < 1e-9 {
+        return Ok((q1, None, q1));
+    }
+    let cross = ta.0 * tb.1 - ta.1 * tb.0;
+    let outer = cross * d < 0.0;
+    let oa = offset_elem(a, d, None, None, line)?;
+    let ob = offset_elem(b, d, None, None, line)?;
+    if outer {
+        if let (CornerMode::Intersection, Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (mode, oa, ob)
+            && let Some(x) = line_line(s1, e1, s2, e2)
+        {
+            return Ok((x, None, x));
+        }
+        // Transition circle about the contour corner, turning like the corner.
+        let a0 = (q1.1 - p.1).atan2(q1.0 - p.0);
+        let a1 = (q2.1 - p.1).atan2(q2.0 - p.0);
+        let mut sweep = a1 - a0;
+        let tau = std::f64::consts::TAU;
+        if cross > 0.0 {
+            while sweep <= 0.0 {
+                sweep += tau;
+            }
+        } else {
+            while sweep >= 0.0 {
+                sweep -= tau;
+            }
+        }
+        return Ok((q1, Some(Elem::Arc { c: p, r: d.abs(), a0, sweep }), q2));
+    }
+    // Inner corner: cut both equidistants at their intersection nearest the corner.
+    let x = intersection(&oa, &ob, p)
+        .ok_or_else(|| Alarm::collision(line, "the equidistants of an inner corner do not meet"))?;
+    // The cut must lie on both equidistants, not beyond their other ends.
+    let behind_a = match oa {
+        Elem::Line { s, e } => ((x.0 - s.0) * (e.0 - s.0) + (x.1 - s.1) * (e.1 - s.1)) < -1e-9,
+        Elem::Arc { .. } => false,
+    };
+    let beyond_b = match ob {
+        Elem::Line { s, e } => ((x.0 - e.0) * (s.0 - e.0) + (x.1 - e.1) * (s.1 - e.1)) < -1e-9,
+        Elem::Arc { .. } => false,
+    };
+    if behind_a || beyond_b {
+        return Err(Alarm::collision(line, "the tool does not fit between the contour elements (bottleneck)"));
+    }
+    Ok((x, None, x))
+}
+
+/// Intersection of two infinite lines through (s1, e1) and (s2, e2).
+fn line_line(s1: P2, e1: P2, s2: P2, e2: P2) -> Option<P2> {
+    let (d1, d2) = ((e1.0 - s1.0, e1.1 - s1.1), (e2.0 - s2.0, e2.1 - s2.1));
+    let den = d1.0 * d2.1 - d1.1 * d2.0;
+    if den.abs() < 1e-12 {
+        return None;
+    }
+    let t = ((s2.0 - s1.0) * d2.1 - (s2.1 - s1.1) * d2.0) / den;
+    Some((s1.0 + t * d1.0, s1.1 + t * d1.1))
+}
+
+/// Intersection of two offset elements nearest `near`.
+fn intersection(a: &Elem, b: &Elem, near: P2) -> Option<P2> {
+    let points: Vec<P2> = match (*a, *b) {
+        (Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) => line_line(s1, e1, s2, e2).into_iter().collect(),
+        (Elem::Line { s, e }, Elem::Arc { c, r, .. }) | (Elem::Arc { c, r, .. }, Elem::Line { s, e }) => {
+            line_circle(s, e, c, r)
+        }
+        (Elem::Arc { c: c1, r: r1, .. }, Elem::Arc { c: c2, r: r2, .. }) => circle_circle(c1, r1, c2, r2),
+    };
+    points.into_iter().min_by(|p, q| dist(*p, near).total_cmp(&dist(*q, near)))
+}
+
+fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
+    let d = (e.0 - s.0, e.1 - s.1);
+    let f = (s.0 - c.0, s.1 - c.1);
+    let (a, b, cc) = (d.0 * d.0 + d.1 * d.1, 2.0 * (f.0 * d.0 + f.1 * d.1), f.0 * f.0 + f.1 * f.1 - r * r);
+    let disc = b * b - 4.0 * a * cc;
+    if disc < 0.0 || a < 1e-18 {
+        return Vec::new();
+    }
+    let sq = disc.sqrt();
+    [(-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a)].iter().map(|t| (s.0 + t * d.0, s.1 + t * d.1)).collect()
+}
+
+fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64) -> Vec<P2> {
+    let d = dist(c1, c2);
+    if d < 1e-12 || d > r1 + r2 || d < (r1 - r2).abs() {
+        return Vec::new();
+    }
+    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+    let h = (r1 * r1 - a * a).max(0.0).sqrt();
+    let m = (c1.0 + a * (c2.0 - c1.0) / d, c1.1 + a * (c2.1 - c1.1) / d);
+    let o = (-(c2.1 - c1.1) / d * h, (c2.0 - c1.0) / d * h);
+    vec![(m.0 + o.0, m.1 + o.1), (m.0 - o.0, m.1 - o.1)]
+}
