@@ -113,3 +113,16 @@ fn without_g41_nothing_is_compensated() {
     let (_, samples) = run(&SQUARE.replace("{sel}", ""));
     assert!(passes(&samples, 50.0, 0.0) && passes(&samples, 50.0, 50.0));
 }
+
+#[test]
+fn cftcp_keeps_the_programmed_feed_on_the_centre_path() {
+    let program = "T1 D1\nG0 X0 Y0 Z-1\nCFTCP G41 G1 X20 Y0 F1200\nG3 X20 Y0 I-20 J0\nG40 G1 X0 Y0\nM30";
+    let (ch, samples) = run(program);
+    let dt = ch.config().ipo_cycle;
+    let cruise = samples
+        .windows(2)
+        .filter(|w| (w[0][0].hypot(w[0][1]) - 15.0).abs() < 1e-9 && (w[1][0].hypot(w[1][1]) - 15.0).abs() < 1e-9)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]) / dt * 60.0)
+        .fold(0.0, f64::max);
+    assert!((cruise - 1200.0).abs() < 1.0, "{cruise}");
+}

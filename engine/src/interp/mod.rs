@@ -485,6 +485,7 @@ impl Interpreter {
             side,
             radius,
             corners: self.modal.trc_corners,
+            arc_feed: self.modal.arc_feed,
             u: unit(frame.geo_direction(&cfg.geo_axes, pa)),
             v: unit(frame.geo_direction(&cfg.geo_axes, po)),
         })

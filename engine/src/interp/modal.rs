@@ -6,7 +6,7 @@ use super::corners::Corner;
 use super::eval::{eval, eval_f64};
 use super::frame::Frame;
 use super::scope::{Ctx, SysView};
-use super::trc::{CornerMode, Side};
+use super::trc::{ArcFeed, CornerMode, Side};
 use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
@@ -72,6 +72,8 @@ pub struct Modal {
     pub trc_corners: CornerMode,
     /// OFFN contour offset.
     pub offn: f64,
+    /// Where the feed applies on compensated arcs (G group 16).
+    pub arc_feed: ArcFeed,
     /// Last polar angle AP (degrees) and radius RP.
     pub polar: (f64, f64),
 }
@@ -95,6 +97,7 @@ impl Modal {
             trc: None,
             trc_corners: CornerMode::Circle,
             offn: 0.0,
+            arc_feed: ArcFeed::Contour,
         }
     }
 
@@ -137,6 +140,9 @@ impl Modal {
         }
         if let Some(o) = w.offn {
             self.offn = o;
+        }
+        if let Some(f) = w.arc_feed {
+            self.arc_feed = f;
         }
         if let Some(frame) = w.work_offset {
             if frame >= cfg.work_offsets.len() {
@@ -249,6 +255,8 @@ pub(super) struct Words {
     pub trc_corners: Option<CornerMode>,
     /// OFFN=: contour offset added to the tool radius.
     pub offn: Option<f64>,
+    /// CFC, CFTCP, CFIN.
+    pub arc_feed: Option<ArcFeed>,
     /// `$P_PFRAME=...`: the new programmable frame.
     pub program_frame: Option<Frame>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
@@ -302,11 +310,17 @@ pub(super) fn collect(
             Word::M(code) => m_function(&mut w, *code, line)?,
             Word::Goto(goto) => w.goto = Some(goto.clone()),
             Word::Keyword { name, args }
-                if args.is_empty() && matches!(name.as_str(), "SUPA" | "STOPRE" | "NEWCONF") =>
+                if args.is_empty()
+                    && matches!(name.as_str(), "SUPA" | "STOPRE" | "NEWCONF" | "CFC" | "CFTCP" | "CFIN" | "NORM") =>
             {
                 match name.as_str() {
                     "SUPA" => w.g53 = true,
                     "NEWCONF" => w.newconf = true,
+                    "CFC" => w.arc_feed = Some(ArcFeed::Contour),
+                    "CFTCP" => w.arc_feed = Some(ArcFeed::CentrePath),
+                    "CFIN" => w.arc_feed = Some(ArcFeed::InnerOnly),
+                    // NORM (straight approach perpendicular to the contour) is the only
+                    // approach mode modelled and therefore the standing one.
                     _ => {}
                 }
             }

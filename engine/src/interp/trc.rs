@@ -31,6 +31,17 @@ pub enum CornerMode {
     Intersection,
 }
 
+/// Where the programmed feed applies on compensated arcs (G group 16).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcFeed {
+    /// CFC: at the contour, on outer and inner arcs.
+    Contour,
+    /// CFTCP: at the tool centre path (no correction).
+    CentrePath,
+    /// CFIN: at the contour on inner arcs only (reduced), centre path on outer arcs.
+    InnerOnly,
+}
+
 /// The compensation a move is prepared with.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Compensation {
@@ -38,6 +49,7 @@ pub struct Compensation {
     /// Tool radius plus OFFN.
     pub radius: f64,
     pub corners: CornerMode,
+    pub arc_feed: ArcFeed,
     /// The working plane's abscissa and ordinate in axis space (unit vectors).
     pub u: AxisVec,
     pub v: AxisVec,
@@ -237,7 +249,14 @@ fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], c
             // CFC: the programmed feed acts on the contour; the centre path runs faster on
             // outer and slower on inner arcs, by the ratio of the radii.
             let feed = match (p.feed, contour_feed, element(&p.mv, comp)) {
-                (Feed::Path(f), true, Some(Elem::Arc { r: r0, .. })) if r0 > 1e-9 => Feed::Path(f * r / r0),
+                (Feed::Path(f), true, Some(Elem::Arc { r: r0, .. })) if r0 > 1e-9 => {
+                    let ratio = r / r0;
+                    match comp.arc_feed {
+                        ArcFeed::Contour => Feed::Path(f * ratio),
+                        ArcFeed::InnerOnly if ratio < 1.0 => Feed::Path(f * ratio),
+                        _ => Feed::Path(f),
+                    }
+                }
                 (f, _, _) => f,
             };
             let arc = Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep };
