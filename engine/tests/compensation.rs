@@ -126,3 +126,50 @@ fn cftcp_keeps_the_programmed_feed_on_the_centre_path() {
         .fold(0.0, f64::max);
     assert!((cruise - 1200.0).abs() < 1.0, "{cruise}");
 }
+
+/// Distance from a point to a segment.
+fn seg_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let t = (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+    (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dy)
+}
+
+mod polygons {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 40, .. ProptestConfig::default() })]
+
+        /// Inside a convex polygon (G41 on a counter-clockwise contour) every point of the
+        /// compensated path lies exactly one tool radius from the nearest edge.
+        #[test]
+        fn the_inset_of_a_convex_polygon_keeps_the_radius_everywhere(
+            n in 3usize..8, size in 30.0f64..60.0, turn in 0.0f64..360.0, side_g42 in any::<bool>()
+        ) {
+            let pts: Vec<(f64, f64)> = (0..n)
+                .map(|i| {
+                    let a = (turn + 360.0 * i as f64 / n as f64).to_radians();
+                    (100.0 + size * a.cos(), 100.0 + size * a.sin())
+                })
+                .collect();
+            // G42 on the clockwise contour is the same inset.
+            let order: Vec<(f64, f64)> = if side_g42 { pts.iter().rev().cloned().collect() } else { pts.clone() };
+            let mut program = format!("T1 D1\nG0 X100 Y100 Z-1\n{} G1 X{} Y{} F3000\n", if side_g42 { "G42" } else { "G41" }, order[0].0, order[0].1);
+            for p in order.iter().skip(1).chain(std::iter::once(&order[0])) {
+                program += &format!("X{} Y{}\n", p.0, p.1);
+            }
+            program += "G40 G1 X100 Y100\nM30";
+            let (ch, samples) = run(&program);
+            prop_assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+            let edges: Vec<_> = (0..n).map(|i| (pts[i], pts[(i + 1) % n])).collect();
+            let near = |p: &Vec<f64>| edges.iter().map(|(a, b)| seg_dist((p[0], p[1]), *a, *b)).fold(f64::MAX, f64::min);
+            // From the first sample one radius from the contour to the last one.
+            let on: Vec<usize> = (0..samples.len()).filter(|&i| (near(&samples[i]) - 5.0).abs() < 1e-6).collect();
+            prop_assert!(on.len() > 20);
+            for p in &samples[on[0]..=*on.last().unwrap()] {
+                prop_assert!((near(p) - 5.0).abs() < 1e-6, "{:?} is {} from the contour", p, near(p));
+            }
+        }
+    }
+}
