@@ -19,5 +19,5 @@ pub mod machine_data;
 pub mod motion;
 
 pub use alarm::Alarm;
-pub use channel::{Channel, CommandError, Event, JogRequest, Mode, Snapshot, Status};
+pub use channel::{Channel, CommandError, Event, JogRequest, Mode, Overrides, Snapshot, Status};
 pub use machine_data::{MachineConfig, MachineData, MdError};

@@ -479,3 +479,61 @@ fn a_rounding_larger_than_the_blocks_allow_is_an_alarm() {
     let (ch, _) = run("mill-3axis", "", "G1 X0 Y0 F2000\nG1 X3 RND=5\nY20\nM30");
     assert_eq!(ch.snapshot().alarms[0].number, 12560);
 }
+
+#[test]
+fn the_feed_override_scales_the_path_speed_and_zero_stops_on_the_path() {
+    use nctwin_engine::Overrides;
+    let mut ch = channel("mill-3axis", "");
+    ch.set_overrides(Overrides { feed: 50.0, ..Overrides::default() }).unwrap();
+    ch.run_program("G1 X100 F3000\nM30").unwrap();
+    settle(&mut ch);
+    // 100 mm at 1500 mm/min = 25 mm/s: 4 s plus 25/3000 s of ramps.
+    assert!(close(ch.time(), 4.0 + 25.0 / 3000.0, 0.01), "{}", ch.time());
+
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("G1 X100 F3000\nM30").unwrap();
+    for _ in 0..100 {
+        ch.step();
+    }
+    ch.set_overrides(Overrides { feed: 0.0, ..Overrides::default() }).unwrap();
+    for _ in 0..100 {
+        ch.step();
+    }
+    let x = ch.axis_positions()[0];
+    ch.step();
+    assert_eq!(ch.axis_positions()[0], x, "standing still at 0 %");
+    assert_eq!(ch.status(), Status::Running);
+    ch.set_overrides(Overrides::default()).unwrap();
+    settle(&mut ch);
+    assert_eq!(ch.axis_positions()[0], 100.0);
+}
+
+#[test]
+fn overrides_outside_their_range_are_refused() {
+    use nctwin_engine::Overrides;
+    let mut ch = channel("mill-3axis", "");
+    assert!(ch.set_overrides(Overrides { feed: 130.0, ..Overrides::default() }).is_err());
+    assert!(ch.set_overrides(Overrides { rapid: 110.0, ..Overrides::default() }).is_err());
+    assert!(ch.set_overrides(Overrides { spindle: 10.0, ..Overrides::default() }).is_err());
+}
+
+#[test]
+fn single_block_stops_after_each_moving_block() {
+    let mut ch = channel("mill-3axis", "");
+    ch.single_block = true;
+    ch.run_program("G0 X10\nR1=5\nG0 Y10\nG0 Z10\nM30").unwrap();
+    let mut stops = Vec::new();
+    for _ in 0..10 {
+        settle(&mut ch);
+        if ch.status() != Status::Stopped {
+            break;
+        }
+        stops.push((ch.snapshot().block.map(|b| b.line), ch.axis_positions().to_vec()));
+        ch.start().unwrap();
+    }
+    assert_eq!(stops.len(), 3, "{stops:?}");
+    assert_eq!(stops[0], (Some(1), vec![10.0, 0.0, 0.0]));
+    assert_eq!(stops[1], (Some(3), vec![10.0, 10.0, 0.0]));
+    assert_eq!(stops[2], (Some(4), vec![10.0, 10.0, 10.0]));
+    assert_eq!(ch.status(), Status::Idle);
+}

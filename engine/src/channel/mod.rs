@@ -106,6 +106,23 @@ pub enum CommandError {
     MachineData(#[from] MdError),
 }
 
+/// The operator's overrides in percent.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Overrides {
+    /// Path feed, 0..=120.
+    pub feed: f64,
+    /// Rapid traverse, 0..=100 (the control's rapid override stops at 100 %).
+    pub rapid: f64,
+    /// Spindle speed, 50..=120.
+    pub spindle: f64,
+}
+
+impl Default for Overrides {
+    fn default() -> Self {
+        Overrides { feed: 100.0, rapid: 100.0, spindle: 100.0 }
+    }
+}
+
 /// A JOG request for one axis.
 #[derive(Debug, Clone, PartialEq)]
 pub struct JogRequest {
@@ -158,6 +175,11 @@ pub struct Channel {
     events: Vec<Event>,
     /// M1 stops only when optional stop is selected.
     pub optional_stop: bool,
+    /// Single block (SBL1): the program stops after each block that moves.
+    pub single_block: bool,
+    overrides: Overrides,
+    /// Single block: the line of the block whose moves have just finished.
+    sbl_done: Option<u32>,
     /// Axis of a JOG motion in progress.
     jog_axis: Option<usize>,
     /// The last MSG text of the program.
@@ -207,6 +229,9 @@ impl Channel {
             alarms: Vec::new(),
             events: Vec::new(),
             optional_stop: false,
+            single_block: false,
+            overrides: Overrides::default(),
+            sbl_done: None,
             jog_axis: None,
             message: None,
         }
@@ -361,6 +386,7 @@ impl Channel {
     /// Channel reset: ends the program, stops every axis and spindle at once, clears the alarms
     /// a reset clears and returns the modal state to its reset values.
     pub fn reset(&mut self) {
+        self.sbl_done = None;
         self.planner.abort();
         self.pending.clear();
         self.in_planner.clear();
@@ -445,6 +471,32 @@ impl Channel {
         self.jog_axis = Some(k);
         self.status = Status::Running;
         Ok(())
+    }
+
+    /// Sets feed, rapid and spindle override; they act at once (the path speed changes within
+    /// the axes' acceleration).
+    pub fn set_overrides(&mut self, o: Overrides) -> Result<(), CommandError> {
+        let check = |name: &str, v: f64, lo: f64, hi: f64| {
+            if v.is_finite() && (lo..=hi).contains(&v) {
+                Ok(())
+            } else {
+                Err(CommandError::Invalid(format!("{name} override {v} % outside {lo}..{hi} %")))
+            }
+        };
+        check("feed", o.feed, 0.0, 120.0)?;
+        check("rapid", o.rapid, 0.0, 100.0)?;
+        check("spindle", o.spindle, 50.0, 120.0)?;
+        self.overrides = o;
+        self.planner.set_overrides(o.feed, o.rapid);
+        for s in &mut self.spindles {
+            s.set_override(o.spindle / 100.0);
+        }
+        Ok(())
+    }
+
+    /// The active overrides.
+    pub fn overrides(&self) -> Overrides {
+        self.overrides
     }
 
     /// Releases the JOG key: the axis brakes to standstill.
@@ -538,10 +590,24 @@ impl Channel {
     /// Hands consecutive moves from the front of the prepared items to the planner. A move
     /// followed by anything else ends with an exact stop.
     fn feed_planner(&mut self) {
-        while let Some(Item::Move { .. }) = self.pending.front() {
+        // Single block: one block's moves at a time, and only once the last one is done.
+        let single = self.single_block.then(|| self.pending.front().and_then(Item::line));
+        if single.is_some() && (!self.planner.is_empty() || self.sbl_done.is_some()) {
+            return;
+        }
+        while let Some(Item::Move { line: next, .. }) = self.pending.front() {
+            if let Some(Some(block)) = single
+                && *next != block
+            {
+                break;
+            }
             let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
             // Anything but a move next (a dwell, a stop, the end) needs standstill first.
-            if self.pending.front().is_some_and(|i| !matches!(i, Item::Move { .. })) {
+            let next_is_other = self
+                .pending
+                .front()
+                .is_some_and(|i| !matches!(i, Item::Move { .. }) || single.is_some() && i.line() != Some(line));
+            if next_is_other || single.is_some() && self.pending.is_empty() {
                 mv.exact_stop = true;
             }
             self.push_move(mv, MoveMeta { line, offsets });
@@ -565,6 +631,9 @@ impl Channel {
             while let Some((t, meta)) = self.in_planner.front() {
                 let done = *t == tag;
                 self.offsets = meta.offsets.clone();
+                if done && self.single_block && self.jog_axis.is_none() && meta.line > 0 {
+                    self.sbl_done = Some(meta.line);
+                }
                 self.in_planner.pop_front();
                 if done {
                     break;
@@ -608,6 +677,15 @@ impl Channel {
             return;
         }
         while self.status == Status::Running {
+            // Single block: the block is done once the items of its line are; then stop.
+            if let Some(line) = self.sbl_done
+                && self.planner.is_empty()
+                && self.pending.front().and_then(Item::line) != Some(line)
+            {
+                self.sbl_done = None;
+                self.program_stop(line);
+                return;
+            }
             match self.pending.front() {
                 None | Some(Item::Move { .. }) => return,
                 Some(_) => {}

@@ -48,6 +48,11 @@ pub struct Snapshot {
     pub spindles: Vec<(String, f64)>,
     /// The program's last MSG text.
     pub message: Option<String>,
+    /// Feed, rapid and spindle override.
+    pub overrides: super::Overrides,
+    /// Single block (SBL1) and optional stop (M1) selected.
+    pub single_block: bool,
+    pub optional_stop: bool,
 }
 
 pub(super) fn build(ch: &Channel) -> Snapshot {
@@ -99,5 +104,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         path_velocity: ch.planner.velocity() * 60.0,
         spindles: ch.spindles.iter().map(|s| (cfg.program_axis_name(s.axis).to_string(), s.speed)).collect(),
         message: ch.message.clone(),
+        overrides: ch.overrides,
+        single_block: ch.single_block,
+        optional_stop: ch.optional_stop,
     }
 }

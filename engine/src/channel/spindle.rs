@@ -15,6 +15,9 @@ pub(super) struct Spindle {
     max_speed: f64,
     /// Angle in degrees (not wrapped).
     pub position: f64,
+    /// Programmed speed before the override.
+    programmed: f64,
+    override_factor: f64,
 }
 
 impl Spindle {
@@ -23,12 +26,20 @@ impl Spindle {
     }
 
     pub fn set_speed(&mut self, rpm: f64) {
-        self.target = rpm.clamp(-self.max_speed, self.max_speed);
+        self.programmed = rpm;
+        self.target = (rpm * self.override_factor).clamp(-self.max_speed, self.max_speed);
+    }
+
+    /// Spindle override (1.0 = 100 %): the speed follows at once, within the acceleration.
+    pub fn set_override(&mut self, factor: f64) {
+        self.override_factor = factor;
+        self.set_speed(self.programmed);
     }
 
     pub fn stop_now(&mut self) {
         self.speed = 0.0;
         self.target = 0.0;
+        self.programmed = 0.0;
     }
 
     pub fn step(&mut self, dt: f64) {
@@ -61,6 +72,8 @@ pub(super) fn for_config(cfg: &MachineConfig) -> Vec<Spindle> {
                 accel: ax.max_accel / 6.0,
                 max_speed: ax.max_velocity / 6.0,
                 position: 0.0,
+                programmed: 0.0,
+                override_factor: 1.0,
             }
         })
         .collect()

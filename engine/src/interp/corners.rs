@@ -170,6 +170,8 @@ mod tests {
                 path: Path { start: s, end: e, arc: None },
                 length: len,
                 v_max: 10.0,
+                v_axes: 10.0,
+                feed: 10.0,
                 a_max: 100.0,
                 exact_stop: false,
                 tag: 0,

@@ -49,6 +49,10 @@ pub struct Move {
     pub length: f64,
     /// Highest path velocity allowed by feed and axes.
     pub v_max: f64,
+    /// Highest path velocity the axes allow (what an override above 100 % may reach).
+    pub v_axes: f64,
+    /// The programmed path feed; infinite for rapid traverse.
+    pub feed: f64,
     /// Highest path acceleration allowed by the axes.
     pub a_max: f64,
     /// Stop exactly at the end (G60/G9, or the next item is not a move).
@@ -62,10 +66,11 @@ impl Move {
     /// `length` is the path length the feed refers to (geometry axes, or all axes if none moves).
     pub fn new(path: Path, length: f64, feed: Feed, limits: &[AxisLimit], exact_stop: bool, tag: u32) -> Move {
         let rate = path.max_rate();
-        let mut v_max = match feed {
+        let feed = match feed {
             Feed::Rapid => f64::INFINITY,
             Feed::Path(f) => f,
         };
+        let mut v_max = f64::INFINITY;
         let mut a_max = f64::INFINITY;
         for (i, lim) in limits.iter().enumerate() {
             let d = rate[i] / length;
@@ -89,7 +94,22 @@ impl Move {
                 a_max = a_max.min(0.5 * a_plane / k);
             }
         }
-        Move { path, length, v_max, a_max, exact_stop, tag }
+        Move { path, length, v_max: v_max.min(feed), v_axes: v_max, feed, a_max, exact_stop, tag }
+    }
+
+    /// True for rapid traverse (G0).
+    pub fn is_rapid(&self) -> bool {
+        self.feed.is_infinite()
+    }
+
+    /// The velocity cap under the overrides: the feed override scales the programmed feed (up to
+    /// the axes' limit), the rapid override scales rapid traverse.
+    fn capped(&self, feed_override: f64, rapid_override: f64) -> f64 {
+        if self.is_rapid() {
+            self.v_axes * rapid_override.min(1.0)
+        } else {
+            (self.feed * feed_override).min(self.v_axes)
+        }
     }
 }
 
@@ -107,6 +127,9 @@ pub struct Planner {
     v: f64,
     /// Feed hold: brake to standstill on the path.
     hold: bool,
+    /// Feed override and rapid traverse override as factors (1.0 = 100 %).
+    feed_override: f64,
+    rapid_override: f64,
     /// Drop the queue once standstill is reached under hold (JOG key released).
     flush_at_standstill: bool,
     position: AxisVec,
@@ -123,6 +146,8 @@ impl Planner {
             s: 0.0,
             v: 0.0,
             hold: false,
+            feed_override: 1.0,
+            rapid_override: 1.0,
             flush_at_standstill: false,
             position,
             finished: Vec::new(),
@@ -180,6 +205,12 @@ impl Planner {
         std::mem::take(&mut self.finished)
     }
 
+    /// Feed override and rapid traverse override in percent (0..=120; rapid above 100 acts as 100).
+    pub fn set_overrides(&mut self, feed_percent: f64, rapid_percent: f64) {
+        self.feed_override = feed_percent.clamp(0.0, 120.0) / 100.0;
+        self.rapid_override = rapid_percent.clamp(0.0, 120.0) / 100.0;
+    }
+
     /// Feed hold on/off (NC stop / NC start). The path is kept.
     pub fn set_hold(&mut self, hold: bool) {
         self.hold = hold;
@@ -223,7 +254,15 @@ impl Planner {
         };
         let a = front.a_max;
         let brake = self.brake_limit();
-        let mut v_new = if self.hold { (self.v - a * dt).max(0.0) } else { (self.v + a * dt).min(front.v_max) };
+        let cap = front.capped(self.feed_override, self.rapid_override);
+        // Above the cap (override lowered) the path brakes at the axes' deceleration.
+        let mut v_new = if self.hold {
+            (self.v - a * dt).max(0.0)
+        } else if self.v > cap {
+            (self.v - a * dt).max(cap)
+        } else {
+            (self.v + a * dt).min(cap)
+        };
         v_new = v_new.min(brake);
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
