@@ -537,3 +537,16 @@ fn single_block_stops_after_each_moving_block() {
     assert_eq!(stops[2], (Some(4), vec![10.0, 10.0, 10.0]));
     assert_eq!(ch.status(), Status::Idle);
 }
+
+#[test]
+fn spos_stops_the_spindle_and_makes_it_a_rotary_axis_until_m3() {
+    let (ch, _) = run("lathe-2axis", "", "S600 M3\nG4 F1\nSPOS=90\nR1=$AA_IM[SP]\nG0 SP=180\nM0");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert!(close(ch.r_param(1), 90.0, 1e-9), "{}", ch.r_param(1));
+    assert!(close(machine(&s, "SP1"), 180.0, 1e-9));
+    assert_eq!(s.spindles[0].1, 0.0, "the spindle stands");
+    // Without SPOS the spindle cannot be programmed as an axis.
+    let (ch, _) = run("lathe-2axis", "", "G0 SP=180\nM30");
+    assert_eq!(ch.snapshot().alarms[0].number, 12550);
+}

@@ -395,7 +395,9 @@ impl Channel {
         self.jog_axis = None;
         self.current_line = None;
         self.message = None;
+        let pos = *self.planner.position();
         for s in &mut self.spindles {
+            s.leave_axis_mode(pos[s.axis]);
             s.stop_now();
         }
         // Machine data written by programs becomes active with the reset (when it is valid and
@@ -535,6 +537,9 @@ impl Channel {
     /// Block preparation: interpret blocks until the look-ahead is full.
     fn prepare(&mut self) {
         let Some(program) = self.program.clone() else { return };
+        for s in self.spindles.iter().filter(|s| !s.axis_mode) {
+            self.interp.observe_spindle(s.axis, s.position);
+        }
         let mut out = Vec::new();
         let mut budget = MAX_BLOCKS_PER_CYCLE;
         while !self.prep_done && self.pending.len() + self.planner.len() < LOOKAHEAD && budget > 0 {
@@ -711,9 +716,20 @@ impl Channel {
                 }
                 Item::Spindle { axis, rpm, line } => {
                     self.enter_block(line);
+                    let angle = self.planner.position()[axis];
                     if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
+                        s.leave_axis_mode(angle);
                         s.set_speed(rpm);
                     }
+                }
+                Item::SpindleToAxis { axis, angle, line } => {
+                    self.enter_block(line);
+                    if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
+                        s.enter_axis_mode();
+                    }
+                    let mut pos = *self.planner.position();
+                    pos[axis] = angle;
+                    self.planner.set_position(pos);
                 }
                 Item::Stop { kind, line } => {
                     self.enter_block(line);

@@ -60,7 +60,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
     let pos = ch.position();
     let n = cfg.channel_axes.len();
     let value = |k: usize| -> f64 {
-        match ch.spindles.iter().find(|s| s.axis == k) {
+        match ch.spindles.iter().find(|s| s.axis == k && !s.axis_mode) {
             Some(s) => s.position,
             None => pos[k],
         }

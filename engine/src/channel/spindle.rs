@@ -15,6 +15,8 @@ pub(super) struct Spindle {
     max_speed: f64,
     /// Angle in degrees (not wrapped).
     pub position: f64,
+    /// Position control after SPOS: the spindle is a rotary axis moved by the planner.
+    pub axis_mode: bool,
     /// Programmed speed before the override.
     programmed: f64,
     override_factor: f64,
@@ -30,6 +32,20 @@ impl Spindle {
         self.target = (rpm * self.override_factor).clamp(-self.max_speed, self.max_speed);
     }
 
+    /// SPOS: stops where it is; from now on the planner moves it.
+    pub fn enter_axis_mode(&mut self) {
+        self.stop_now();
+        self.axis_mode = true;
+    }
+
+    /// M3/M4/M5 after SPOS: speed control again, from the angle the planner left it at.
+    pub fn leave_axis_mode(&mut self, angle: f64) {
+        if self.axis_mode {
+            self.axis_mode = false;
+            self.position = angle;
+        }
+    }
+
     /// Spindle override (1.0 = 100 %): the speed follows at once, within the acceleration.
     pub fn set_override(&mut self, factor: f64) {
         self.override_factor = factor;
@@ -43,6 +59,9 @@ impl Spindle {
     }
 
     pub fn step(&mut self, dt: f64) {
+        if self.axis_mode {
+            return;
+        }
         let dv = self.accel * dt;
         let before = self.speed;
         self.speed = if self.target > self.speed {
@@ -72,6 +91,7 @@ pub(super) fn for_config(cfg: &MachineConfig) -> Vec<Spindle> {
                 accel: ax.max_accel / 6.0,
                 max_speed: ax.max_velocity / 6.0,
                 position: 0.0,
+                axis_mode: false,
                 programmed: 0.0,
                 override_factor: 1.0,
             }

@@ -54,7 +54,14 @@ impl Interpreter {
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::nesting(line, &format!("more than {MAX_LEVELS} program levels")));
         }
-        let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe };
+        let sys = SysView {
+            cfg,
+            modal: &self.modal,
+            pos: &self.pos,
+            offsets: &self.offsets,
+            pframe: &self.pframe,
+            positioned: &self.positioned,
+        };
         let ctx = Ctx { vars: &self.vars, sys: &sys };
         let mut values = Vec::new();
         let mut sources = Vec::new();
@@ -166,7 +173,14 @@ impl Interpreter {
                 Value::Bool(b) => Expr::Bool(*b),
                 v => Expr::Number(v.as_f64().unwrap_or(0.0)),
             };
-            let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe };
+            let sys = SysView {
+                cfg,
+                modal: &self.modal,
+                pos: &self.pos,
+                offsets: &self.offsets,
+                pframe: &self.pframe,
+                positioned: &self.positioned,
+            };
             assign(&target.name, &target.indices, &expr, cfg, &mut self.vars, &sys, line)?;
         }
         Ok(())

@@ -89,6 +89,12 @@ pub enum Item {
         kind: StopKind,
         line: u32,
     },
+    /// SPOS: the spindle stops at `angle` and becomes a rotary axis in position control.
+    SpindleToAxis {
+        axis: usize,
+        angle: f64,
+        line: u32,
+    },
     /// MSG: text shown to the operator from this block on (empty clears it).
     Message {
         text: String,
@@ -120,7 +126,8 @@ impl Item {
             | Item::Dwell { line, .. }
             | Item::Spindle { line, .. }
             | Item::Stop { line, .. }
-            | Item::Message { line, .. } => Some(*line),
+            | Item::Message { line, .. }
+            | Item::SpindleToAxis { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -153,6 +160,10 @@ pub struct Interpreter {
     corner_request: Option<Corner>,
     /// Tool radius compensation: moves held until their successor decides their end.
     trc: trc::Compensator,
+    /// Spindles in position control (after SPOS), by channel axis.
+    positioned: [bool; MAX_CHANNEL_AXES],
+    /// The spindles' angles in the main run, as last observed (for SPOS).
+    spindle_angles: AxisVec,
 }
 
 impl Interpreter {
@@ -171,6 +182,8 @@ impl Interpreter {
             held: None,
             corner_request: None,
             trc: trc::Compensator::default(),
+            positioned: [false; MAX_CHANNEL_AXES],
+            spindle_angles: [0.0; MAX_CHANNEL_AXES],
         }
     }
 
@@ -181,6 +194,7 @@ impl Interpreter {
         self.calls.clear();
         self.held = None;
         self.trc.clear();
+        self.positioned = [false; MAX_CHANNEL_AXES];
         self.direction = 0;
         self.pos = *pos;
         self.pframe = Frame::identity();
@@ -208,6 +222,12 @@ impl Interpreter {
     /// [`NEWCONF`]): the channel applies them before the next block is prepared.
     pub fn take_data_writes(&mut self) -> Vec<(u32, String)> {
         std::mem::take(&mut self.data_writes)
+    }
+
+    /// Tells preparation where a spindle in speed mode stands in the main run (SPOS starts
+    /// from there).
+    pub fn observe_spindle(&mut self, axis: usize, angle: f64) {
+        self.spindle_angles[axis] = angle;
     }
 
     /// The user variables and R parameters.
@@ -283,7 +303,14 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let line = block.line;
         let words = {
-            let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe };
+            let sys = SysView {
+                cfg,
+                modal: &self.modal,
+                pos: &self.pos,
+                offsets: &self.offsets,
+                pframe: &self.pframe,
+                positioned: &self.positioned,
+            };
             modal::collect(block, cfg, &mut self.vars, &sys, programs)?
         };
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
@@ -316,6 +343,10 @@ impl Interpreter {
         let old_direction = self.direction;
         if let Some(dir) = words.spindle_dir {
             self.direction = dir;
+            // M3/M4/M5 return a positioned spindle to speed control.
+            if let Some(axis) = cfg.master_spindle {
+                self.positioned[axis] = false;
+            }
         }
         let spindle_words = (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell;
         let changes = self.direction != old_direction || self.direction != 0;
@@ -324,7 +355,13 @@ impl Interpreter {
             out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
         }
 
-        if words.dwell {
+        if let Some(target) = words.spos {
+            let (mv, feed) = self.spindle_position(target, cfg, line)?;
+            let axis = cfg.master_spindle.expect("checked in spindle_position");
+            out.push(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line });
+            let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
+            self.trc.push(trc::Prepared { mv, feed, line, item }, None, &AxisLimit::for_channel(cfg), out)?;
+        } else if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
                 (None, Some(revs)) if self.speed > 0.0 => revs * 60.0 / self.speed,
@@ -466,6 +503,23 @@ impl Interpreter {
         let value = |k: usize| words.axes.iter().find(|(a, _, _)| *a == k).map_or(0.0, |(_, v, _)| v * f);
         self.modal.pole = (base.0 + value(ka), base.1 + value(ko));
         Ok(())
+    }
+
+    /// SPOS: stops the master spindle where it is, switches it to position control and moves it
+    /// the short way to `target` degrees at its maximum velocity.
+    fn spindle_position(&mut self, target: f64, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {
+        let axis = cfg.master_spindle.ok_or_else(|| Alarm::unknown_name(line, "SPOS (no master spindle)"))?;
+        let start_angle = self.spindle_angles[axis].rem_euclid(360.0);
+        self.positioned[axis] = true;
+        self.direction = 0;
+        let mut start = self.pos;
+        start[axis] = start_angle;
+        let mut end = start;
+        end[axis] = modulo_target(start_angle, target.rem_euclid(360.0), 360.0, None);
+        self.pos = end;
+        let length = (end[axis] - start[axis]).abs();
+        let path = Path { start, end, arc: None };
+        Ok((Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line), Feed::Rapid))
     }
 
     /// The radius compensation for the block's move: side and corner mode from G41/G42 and

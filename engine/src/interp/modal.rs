@@ -257,6 +257,8 @@ pub(super) struct Words {
     pub offn: Option<f64>,
     /// CFC, CFTCP, CFIN.
     pub arc_feed: Option<ArcFeed>,
+    /// SPOS=: position the master spindle (it becomes a rotary axis).
+    pub spos: Option<f64>,
     /// `$P_PFRAME=...`: the new programmable frame.
     pub program_frame: Option<Frame>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
@@ -393,6 +395,7 @@ pub(super) fn collect(
                     "D" => w.edge = Some(whole("D")?),
                     "CR" => w.cr = Some(v),
                     "RPL" => w.rpl = Some(v),
+                    "SPOS" => w.spos = Some(v),
                     "OFFN" => w.offn = Some(v * sys.modal.length_factor()),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
@@ -411,7 +414,7 @@ pub(super) fn collect(
                     }
                     _ => {
                         let k = cfg.program_axis(name).ok_or_else(|| Alarm::unknown_name(line, name))?;
-                        if cfg.axis(k).spindle.is_some() {
+                        if cfg.axis(k).spindle.is_some() && !sys.positioned[k] {
                             return Err(Alarm::unknown_name(
                                 line,
                                 &format!("{name} (spindle positioning comes with SPOS)"),
@@ -578,7 +581,7 @@ fn data_write(
 fn is_nc_address(name: &str) -> bool {
     const ADDRESSES: &[&str] = &[
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "OFFN",
+        "OFFN", "SPOS",
     ];
     ADDRESSES.contains(&name)
 }

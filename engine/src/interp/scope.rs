@@ -8,6 +8,7 @@ use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::AxisVec;
 
 /// A read-only view of the preparation state for system variables.
@@ -19,6 +20,8 @@ pub(crate) struct SysView<'a> {
     pub offsets: &'a Offsets,
     /// The programmable frame.
     pub pframe: &'a Frame,
+    /// Spindles switched to position control (SPOS): programmable as rotary axes.
+    pub positioned: &'a [bool; MAX_CHANNEL_AXES],
 }
 
 /// Variables plus system variables, for [`super::eval::eval`].

@@ -81,7 +81,14 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let line = block.line;
         let cond = |this: &Self, e: &Expr| -> Result<bool, Alarm> {
-            let sys = SysView { cfg, modal: &this.modal, pos: &this.pos, offsets: &this.offsets, pframe: &this.pframe };
+            let sys = SysView {
+                cfg,
+                modal: &this.modal,
+                pos: &this.pos,
+                offsets: &this.offsets,
+                pframe: &this.pframe,
+                positioned: &this.positioned,
+            };
             eval(e, &Ctx { vars: &this.vars, sys: &sys }, line)?.as_bool().map_err(|e| Alarm::type_error(line, &e.0))
         };
         match stmt {
@@ -208,7 +215,14 @@ impl Interpreter {
     }
 
     fn sys<'a>(&'a self, cfg: &'a MachineConfig) -> SysView<'a> {
-        SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe }
+        SysView {
+            cfg,
+            modal: &self.modal,
+            pos: &self.pos,
+            offsets: &self.offsets,
+            pframe: &self.pframe,
+            positioned: &self.positioned,
+        }
     }
 
     fn assign_to(
@@ -219,7 +233,14 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
-        let sys = SysView { cfg, modal: &self.modal, pos: &self.pos, offsets: &self.offsets, pframe: &self.pframe };
+        let sys = SysView {
+            cfg,
+            modal: &self.modal,
+            pos: &self.pos,
+            offsets: &self.offsets,
+            pframe: &self.pframe,
+            positioned: &self.positioned,
+        };
         match assign(name, indices, value, cfg, &mut self.vars, &sys, line)? {
             Assigned::Variable => Ok(()),
             _ => Err(Alarm::type_error(line, &format!("{name} is not a variable"))),
@@ -324,7 +345,9 @@ fn reads_main_run(block: &Block) -> bool {
         Some(Stmt::Def { vars, .. }) => exprs.extend(vars.iter().flat_map(|v| v.init.iter().chain(&v.dims))),
         _ => {}
     }
-    exprs.into_iter().any(expr_reads_main_run)
+    // SPOS starts from where the spindle stands in the main run.
+    let spos = block.words.iter().any(|w| matches!(w, Word::Address { name, .. } if name == "SPOS"));
+    spos || exprs.into_iter().any(expr_reads_main_run)
 }
 
 fn expr_reads_main_run(e: &Expr) -> bool {
