@@ -8,12 +8,14 @@
 //! - [`lang`]: program text → blocks of words with source lines (syntax only).
 //! - [`interp`]: block preparation: modal state, offsets, arc geometry → [`motion::Move`]s and
 //!   channel actions.
+//! - [`kinematics`]: TRANSMIT, TRACYL, TRAANG: BCS ↔ machine axes, poles, working areas.
 //! - [`motion`]: look-ahead planning and IPO-cycle interpolation within every axis' limits.
 //! - [`channel`]: modes, program control, JOG, MDA, alarms, and the [`Snapshot`] of the state.
 
 pub mod alarm;
 pub mod channel;
 pub mod interp;
+pub mod kinematics;
 pub mod lang;
 pub mod machine_data;
 pub mod motion;

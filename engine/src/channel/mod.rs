@@ -6,6 +6,7 @@
 
 mod snapshot;
 mod spindle;
+mod trafo;
 
 use std::collections::VecDeque;
 use std::sync::Arc;
@@ -15,6 +16,7 @@ use spindle::Spindle;
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, NEWCONF, Offsets, Prep, Programs, StopKind};
+use crate::kinematics::ActiveTrafo;
 use crate::lang;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::machine_data::{MachineConfig, MachineData, MdError};
@@ -141,6 +143,8 @@ pub struct JogRequest {
 struct MoveMeta {
     line: u32,
     offsets: Offsets,
+    /// The path is in machine axes although a transformation is active.
+    machine_space: bool,
 }
 
 /// One simulated NC channel.
@@ -184,6 +188,14 @@ pub struct Channel {
     jog_axis: Option<usize>,
     /// The last MSG text of the program.
     message: Option<String>,
+    /// Machine position of every channel axis. Equals the planner's position without a
+    /// transformation; with one, each IPO sample of the BCS is mapped to it.
+    machine: AxisVec,
+    /// The transformation active in the main run.
+    trafo: Option<ActiveTrafo>,
+    /// Preparation waits until a transformation change it prepared has been executed, then
+    /// continues from the machine position the main run reached.
+    prep_waits_for_trafo: bool,
 }
 
 impl Channel {
@@ -234,6 +246,9 @@ impl Channel {
             sbl_done: None,
             jog_axis: None,
             message: None,
+            machine: [0.0; MAX_CHANNEL_AXES],
+            trafo: None,
+            prep_waits_for_trafo: false,
         }
     }
 
@@ -266,6 +281,7 @@ impl Channel {
             }
         }
         next.planner.set_position(pos);
+        next.machine = pos;
         next.interp.sync_position(&pos);
         next.mode = self.mode;
         next.tick = self.tick;
@@ -348,7 +364,7 @@ impl Channel {
         self.program = Some(text.clone());
         self.queued_blocks.clear();
         self.prep_done = false;
-        self.interp.begin_program(text, self.planner.position());
+        self.interp.begin_program(text, &self.machine);
         self.status = Status::Running;
         Ok(())
     }
@@ -391,6 +407,7 @@ impl Channel {
         self.pending.clear();
         self.in_planner.clear();
         self.prep_done = true;
+        self.prep_waits_for_trafo = false;
         self.dwell_ticks = 0;
         self.jog_axis = None;
         self.current_line = None;
@@ -400,6 +417,7 @@ impl Channel {
             s.leave_axis_mode(pos[s.axis]);
             s.stop_now();
         }
+        self.deselect_transformation();
         // Machine data written by programs becomes active with the reset (when it is valid and
         // keeps the axes; otherwise it waits for a PUT of machine data to report the problem).
         if let Ok(cfg) = self.data.activate()
@@ -409,7 +427,7 @@ impl Channel {
             self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
         }
-        let pos = *self.planner.position();
+        let pos = self.machine;
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();
         for a in std::mem::take(&mut self.alarms) {
@@ -469,7 +487,7 @@ impl Channel {
             true,
             self.next_tag,
         );
-        self.push_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone() });
+        self.push_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space: false });
         self.jog_axis = Some(k);
         self.status = Status::Running;
         Ok(())
@@ -524,6 +542,7 @@ impl Channel {
             self.feed_planner();
         }
         self.planner.step();
+        self.update_machine_position();
         self.retire_finished_moves();
         if self.jog_axis.is_some() {
             self.finish_jog_if_done();
@@ -542,11 +561,18 @@ impl Channel {
         }
         let mut out = Vec::new();
         let mut budget = MAX_BLOCKS_PER_CYCLE;
-        while !self.prep_done && self.pending.len() + self.planner.len() < LOOKAHEAD && budget > 0 {
+        while !self.prep_done
+            && !self.prep_waits_for_trafo
+            && self.pending.len() + self.planner.len() < LOOKAHEAD
+            && budget > 0
+        {
             budget -= 1;
             let main_run_idle = self.pending.is_empty() && self.planner.is_empty() && self.dwell_ticks == 0;
             out.clear();
+            let generation = self.interp.transformation_generation();
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
+            // A transformation change: continue once the main run has executed it.
+            self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
             for (line, text) in self.interp.take_data_writes() {
                 if let Err(alarm) = self.apply_program_data(line, &text) {
                     out.push(Item::Alarm(alarm));
@@ -615,7 +641,12 @@ impl Channel {
             if next_is_other || single.is_some() && self.pending.is_empty() {
                 mv.exact_stop = true;
             }
-            self.push_move(mv, MoveMeta { line, offsets });
+            // A change of the transformation or of the tool it includes needs standstill too.
+            if matches!(self.pending.front(), Some(Item::Move { offsets: next, .. }) if next.trafo != offsets.trafo) {
+                mv.exact_stop = true;
+            }
+            let machine_space = mv.machine_space;
+            self.push_move(mv, MoveMeta { line, offsets, machine_space });
         }
     }
 
@@ -699,6 +730,11 @@ impl Channel {
             match item {
                 Item::Move { .. } => unreachable!(),
                 Item::Offsets { line, offsets } => {
+                    if offsets.trafo != self.trafo && !self.switch_transformation(offsets.trafo.clone()) {
+                        // The rotary spindle is still braking: try again next cycle.
+                        self.pending.push_front(Item::Offsets { line, offsets });
+                        return;
+                    }
                     self.offsets = offsets;
                     self.enter_block(line);
                 }
@@ -730,6 +766,7 @@ impl Channel {
                     let mut pos = *self.planner.position();
                     pos[axis] = angle;
                     self.planner.set_position(pos);
+                    self.machine[axis] = angle;
                 }
                 Item::Stop { kind, line } => {
                     self.enter_block(line);
@@ -759,7 +796,9 @@ impl Channel {
         self.status = Status::Idle;
         self.prep_done = true;
         self.current_line = None;
+        self.deselect_transformation();
         self.interp.end_program(&self.cfg);
+        self.interp.sync_transformation(&self.machine);
         // Program end returns the offsets to their reset values (G500); the display follows.
         self.offsets = self.interp.offsets();
         self.events.push(Event::ProgramEnded);
@@ -770,6 +809,7 @@ impl Channel {
         self.pending.clear();
         self.in_planner.clear();
         self.prep_done = true;
+        self.prep_waits_for_trafo = false;
         self.jog_axis = None;
         if alarm.clear == Clear::Reset {
             self.status = Status::Alarm;
@@ -806,10 +846,6 @@ impl Channel {
         for a in cancel {
             self.events.push(Event::AlarmCleared { number: a.number });
         }
-    }
-
-    pub(crate) fn position(&self) -> &AxisVec {
-        self.planner.position()
     }
 
     /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
@@ -850,6 +886,7 @@ impl Channel {
         let mut pos = [0.0; MAX_CHANNEL_AXES];
         pos[..positions.len()].copy_from_slice(positions);
         self.planner.set_position(pos);
+        self.machine = pos;
         self.interp.sync_position(&pos);
         Ok(())
     }
@@ -868,7 +905,7 @@ impl Channel {
     /// Interpolated positions of the channel axes (machine coordinates, channel order); cheap
     /// to call every cycle, for recording IPO samples.
     pub fn axis_positions(&self) -> &[f64] {
-        &self.planner.position()[..self.cfg.channel_axes.len()]
+        &self.machine[..self.cfg.channel_axes.len()]
     }
 }
 

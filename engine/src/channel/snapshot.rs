@@ -3,6 +3,7 @@
 
 use super::{Channel, Mode, Status};
 use crate::alarm::Alarm;
+use crate::kinematics::Transformation;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// The block shown as current.
@@ -57,7 +58,7 @@ pub struct Snapshot {
 
 pub(super) fn build(ch: &Channel) -> Snapshot {
     let cfg = &ch.cfg;
-    let pos = ch.position();
+    let pos = &ch.machine;
     let n = cfg.channel_axes.len();
     let value = |k: usize| -> f64 {
         match ch.spindles.iter().find(|s| s.axis == k && !s.axis_mode) {
@@ -74,20 +75,38 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
     let mut machine: Vec<(usize, (String, f64))> =
         (0..n).map(|k| (cfg.channel_axes[k].machine_axis, (cfg.axis(k).name.clone(), display(k, value(k))))).collect();
     machine.sort_by_key(|(m, _)| *m);
-    // Geometry axes first, in geometry order, then the other channel axes in channel order.
-    let geo: Vec<usize> = cfg.geo_axes.iter().flatten().copied().collect();
-    let order: Vec<usize> = geo.iter().copied().chain((0..n).filter(|k| !geo.contains(k))).collect();
+    // BCS: with a transformation the forward map of the machine position (the tool tip), the
+    // geometry axes named by the transformation's assignment; the axes it drives have no BCS
+    // value of their own.
+    let (geo_axes, driven, bcs) = match &ch.trafo {
+        Some(t) => (t.trafo.geo_slots(), t.trafo.machine_slots(), t.forward(pos)),
+        None => (cfg.geo_axes, Vec::new(), std::array::from_fn(value)),
+    };
+    let geo: Vec<usize> = geo_axes.iter().flatten().copied().collect();
+    let order: Vec<usize> =
+        geo.iter().copied().chain((0..n).filter(|k| !geo.contains(k) && !driven.contains(k))).collect();
+    let name = |k: usize| -> String {
+        match geo_axes.iter().position(|g| *g == Some(k)) {
+            Some(g) => cfg.geo_names[g].clone(),
+            None => cfg.channel_axes[k].name.clone(),
+        }
+    };
+    // A Cartesian coordinate in a rotary axis' slot is not shown modulo.
+    let show = |k: usize, v: f64| if ch.trafo.is_some() && geo.contains(&k) { v } else { display(k, v) };
     let offsets = &ch.offsets;
-    let basic: Vec<(String, f64)> =
-        order.iter().map(|&k| (cfg.program_axis_name(k).to_string(), display(k, value(k) - offsets.tool[k]))).collect();
+    let basic: Vec<(String, f64)> = order.iter().map(|&k| (name(k), show(k, bcs[k] - offsets.tool[k]))).collect();
     let mut basic_vec = [0.0; MAX_CHANNEL_AXES];
     for (k, b) in basic_vec.iter_mut().enumerate().take(n) {
-        *b = value(k) - offsets.tool[k];
+        *b = bcs[k] - offsets.tool[k];
     }
-    let wcs = offsets.frame.unapply(&cfg.geo_axes, &basic_vec).unwrap_or(basic_vec);
-    let workpiece: Vec<(String, f64)> =
-        order.iter().map(|&k| (cfg.program_axis_name(k).to_string(), display(k, wcs[k]))).collect();
-    let orientation = cfg.geo_axes[2].map(|_| [0.0, 0.0, 1.0]).filter(|_| cfg.geo_axes.iter().all(Option::is_some));
+    let wcs = offsets.frame.unapply(&geo_axes, &basic_vec).unwrap_or(basic_vec);
+    let workpiece: Vec<(String, f64)> = order.iter().map(|&k| (name(k), show(k, wcs[k]))).collect();
+    let orientation = geo_axes[2].map(|_| [0.0, 0.0, 1.0]).filter(|_| geo_axes.iter().all(Option::is_some));
+    let transformation = ch.trafo.as_ref().map(|t| TransformationInfo {
+        name: t.trafo.name().to_string(),
+        trafo_type: t.trafo.trafo_type(),
+        index: t.number as u32,
+    });
     Snapshot {
         status: ch.status,
         mode: ch.mode,
@@ -97,7 +116,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         basic,
         workpiece,
         orientation,
-        transformation: None,
+        transformation,
         block: ch.current_line.and_then(|l| ch.block_ref(l)),
         alarms: ch.alarms.clone(),
         tool: ch.interp.tool_in_main_run(&ch.offsets),

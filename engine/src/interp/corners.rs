@@ -175,6 +175,8 @@ mod tests {
                 a_max: 100.0,
                 exact_stop: false,
                 tag: 0,
+                machine_space: false,
+                axis_tangents: None,
             }
         };
         let held = Held {

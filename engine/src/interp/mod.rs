@@ -19,6 +19,7 @@ pub mod value;
 pub mod vars;
 
 use std::sync::Arc as Shared;
+mod trafo;
 
 use crate::alarm::Alarm;
 use crate::lang::{Block, CoordMode};
@@ -45,6 +46,8 @@ pub struct Offsets {
     /// Active tool number and cutting edge.
     pub t: u32,
     pub d: u32,
+    /// The active kinematic transformation with the tool length it includes.
+    pub trafo: Option<crate::kinematics::ActiveTrafo>,
 }
 
 /// Why the main run stops.
@@ -164,6 +167,8 @@ pub struct Interpreter {
     positioned: [bool; MAX_CHANNEL_AXES],
     /// The spindles' angles in the main run, as last observed (for SPOS).
     spindle_angles: AxisVec,
+    /// The active kinematic transformation, if any (see `trafo.rs`).
+    trafo: trafo::TrafoState,
 }
 
 impl Interpreter {
@@ -184,6 +189,7 @@ impl Interpreter {
             trc: trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
+            trafo: Default::default(),
         }
     }
 
@@ -195,6 +201,7 @@ impl Interpreter {
         self.held = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
+        self.clear_transformation();
         self.direction = 0;
         self.pos = *pos;
         self.pframe = Frame::identity();
@@ -278,6 +285,7 @@ impl Interpreter {
             }
             let request = self.corner_request.take();
             self.shape_corners(out, prep, request, &limits)?;
+            self.transform_moves(out)?;
             Ok(prep)
         });
         match result {
@@ -302,6 +310,8 @@ impl Interpreter {
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
         let line = block.line;
+        let (base_cfg, derived) = (cfg, self.trafo.config());
+        let cfg = derived.as_deref().unwrap_or(base_cfg);
         let words = {
             let sys = SysView {
                 cfg,
@@ -319,6 +329,20 @@ impl Interpreter {
             self.data_writes.push((line, NEWCONF.to_string()));
         }
         let offsets_before = self.offsets.clone();
+        let selection = {
+            let sys = SysView {
+                cfg,
+                modal: &self.modal,
+                pos: &self.pos,
+                offsets: &self.offsets,
+                pframe: &self.pframe,
+                positioned: &self.positioned,
+            };
+            trafo::selection(block, |e| eval::eval_f64(e, &scope::Ctx { vars: &self.vars, sys: &sys }, line))?
+        };
+        self.apply_transformation(selection, block, base_cfg, line)?;
+        let derived = self.trafo.config();
+        let cfg = derived.as_deref().unwrap_or(base_cfg);
         self.modal.apply(&words, cfg, line)?;
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
             self.modal.feed = Some(f);
@@ -338,6 +362,7 @@ impl Interpreter {
         }
         self.offsets.frame = work_offset(cfg, self.modal.work_offset).then(&self.pframe, &cfg.geo_axes);
         self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
+        self.absorb_tool_into_transformation();
 
         // Spindle before motion.
         let old_direction = self.direction;

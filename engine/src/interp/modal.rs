@@ -365,6 +365,7 @@ pub(super) fn collect(
                 };
                 w.call = Some((target, Vec::new()));
             }
+            Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
             Word::Address { name, indices, value } => {
                 match assign(name, indices, &value.expr, cfg, vars, sys, line)? {

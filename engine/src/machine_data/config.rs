@@ -3,6 +3,7 @@
 
 use std::collections::BTreeMap;
 
+use super::trafo::{self, TrafoDataSet};
 use super::{EdgeParams, FrameComponent, MachineData, registry};
 
 /// Inconsistent machine data found at activation; `datum` names the datum to blame.
@@ -64,6 +65,8 @@ pub struct MachineConfig {
     pub tools: BTreeMap<(u32, u32), EdgeParams>,
     /// Settable frames G500, G54..: translation per channel axis (TR + FI).
     pub work_offsets: Vec<Vec<f64>>,
+    /// Configured transformation data sets in data-set order (`$MC_TRAFO_TYPE_1..10`).
+    pub trafos: Vec<TrafoDataSet>,
 }
 
 impl MachineConfig {
@@ -145,6 +148,9 @@ impl MachineConfig {
         let master = md.num("$MC_SPIND_DEF_MASTER_SPIND", 0, 0) as u32;
         let master_spindle = channel_axes.iter().position(|c| machine_axes[c.machine_axis].spindle == Some(master));
 
+        let resolve = |k: usize| channel_slots.iter().position(|&s| s + 1 == k);
+        let trafos = trafo::build(md, &resolve, &channel_axes, &machine_axes)?;
+
         let mut cfg = MachineConfig {
             ipo_cycle,
             machine_axes,
@@ -154,6 +160,7 @@ impl MachineConfig {
             master_spindle,
             tools: BTreeMap::new(),
             work_offsets: Vec::new(),
+            trafos,
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

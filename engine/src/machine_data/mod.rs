@@ -9,12 +9,14 @@ mod config;
 pub mod presets;
 pub mod registry;
 pub mod text;
+pub mod trafo;
 
 use std::collections::BTreeMap;
 
 pub use config::{ChannelAxis, MachineAxis, MachineConfig};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
+pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};
 
 /// A value of a machine datum.
 #[derive(Debug, Clone, PartialEq)]

@@ -28,8 +28,20 @@ pub static PRESETS: &[Preset] = &[
     Preset {
         id: "transmit-example",
         name: "Lathe with driven tools (TRANSMIT example axis configuration)",
-        description: "The axis configuration of the Transformations Function Manual's TRANSMIT example: XM, CM (spindle 1 / C axis), ZM, ASM (driven tool spindle 2).",
+        description: "The axis configuration of the Transformations Function Manual's TRANSMIT example: XM, CM (spindle 1 / C axis), ZM, ASM (driven tool spindle 2); TRANSMIT data set 1 (type 256).",
         text: TRANSMIT_EXAMPLE,
+    },
+    Preset {
+        id: "tracyl-xyzc",
+        name: "Lathe with Y axis (TRACYL X-Y-Z-C example)",
+        description: "The Transformations Function Manual's TRACYL example machine: XM, YM, ZM, CM (spindle 1 / C axis); TRACYL data set 1 of type 513 (groove-wall offset with the real Y axis).",
+        text: TRACYL_XYZC,
+    },
+    Preset {
+        id: "traang-grinder",
+        name: "Grinding machine with inclined infeed axis (TRAANG example)",
+        description: "Inclined infeed axis MU at 45° and longitudinal axis MZ, work spindle C; TRAANG data set 1 (type 1024) with 20 % velocity and acceleration reserve on the parallel axis.",
+        text: TRAANG_GRINDER,
     },
 ];
 
@@ -150,10 +162,125 @@ $MA_POS_LIMIT_MINUS[XM]=-50.
 $MA_POS_LIMIT_PLUS[XM]=200.
 $MA_POS_LIMIT_MINUS[ZM]=-200.
 $MA_POS_LIMIT_PLUS[ZM]=300.
-; T1 D1: end mill on the driven tool spindle, length 30 along X, radius 4
+; T1 D1: end mill on the driven tool spindle, length 30 (along Z in G17), radius 4
 $TC_DP1[1,1]=120
 $TC_DP3[1,1]=30.
 $TC_DP6[1,1]=4.
+; TRANSMIT data set 1 (Transformations FM, M1 TRANSMIT example)
+$MC_TRAFO_TYPE_1=256
+$MC_TRAFO_AXES_IN_1[0]=1      ; XC: linear axis perpendicular to the rotary axis
+$MC_TRAFO_AXES_IN_1[1]=2      ; C: rotary axis
+$MC_TRAFO_AXES_IN_1[2]=3      ; ZC: linear axis parallel to the rotary axis
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1   ; X
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=2   ; Y on the rotary axis' channel slot
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3   ; Z
+$MC_TRANSMIT_ROT_AX_OFFSET_1=0
+$MC_TRANSMIT_ROT_SIGN_IS_PLUS_1=TRUE
+$MC_TRANSMIT_BASE_TOOL_1[0]=0
+$MC_TRANSMIT_BASE_TOOL_1[1]=0
+$MC_TRANSMIT_BASE_TOOL_1[2]=0
+"#;
+
+const TRACYL_XYZC: &str = r#"; TRACYL example machine X-Y-Z-C (Transformations FM, M1 TRACYL examples)
+$MN_AXCONF_MACHAX_NAME_TAB[0]="XM"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="YM"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="ZM"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="CM"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=0
+$MC_AXCONF_CHANAX_NAME_TAB[0]="XC"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="YC"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="ZC"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="CC"
+$MC_AXCONF_GEOAX_NAME_TAB[0]="X"
+$MC_AXCONF_GEOAX_NAME_TAB[1]="Y"
+$MC_AXCONF_GEOAX_NAME_TAB[2]="Z"
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MA_IS_ROT_AX[CM]=TRUE
+$MA_ROT_IS_MODULO[CM]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+$MA_MAX_AX_VELO[XM]=15000.
+$MA_MAX_AX_VELO[YM]=10000.
+$MA_MAX_AX_VELO[ZM]=15000.
+$MA_MAX_AX_VELO[CM]=100.
+$MA_POS_LIMIT_MINUS[XM]=-50.
+$MA_POS_LIMIT_PLUS[XM]=200.
+$MA_POS_LIMIT_MINUS[YM]=-60.
+$MA_POS_LIMIT_PLUS[YM]=60.
+$MA_POS_LIMIT_MINUS[ZM]=-200.
+$MA_POS_LIMIT_PLUS[ZM]=300.
+; T1 D1: slot cutter (milling tool), length 9 along the radial axis in G19, radius 6
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=9.
+$TC_DP6[1,1]=6.
+; TRACYL data set 1: type 513, with groove-wall offset by the real Y axis
+$MC_TRAFO_TYPE_1=513
+$MC_TRAFO_AXES_IN_1[0]=1      ; XC: radial to the rotary axis
+$MC_TRAFO_AXES_IN_1[1]=4      ; CC: rotary axis
+$MC_TRAFO_AXES_IN_1[2]=3      ; ZC: parallel to the rotary axis
+$MC_TRAFO_AXES_IN_1[3]=2      ; YC: real Y axis for the groove-wall offset
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1   ; X
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=4   ; Y: unrolled surface, on the rotary axis' channel slot
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3   ; Z
+$MC_TRACYL_ROT_AX_OFFSET_1=0
+$MC_TRACYL_ROT_SIGN_IS_PLUS_1=TRUE
+$MC_TRACYL_BASE_TOOL_1[0]=0
+$MC_TRACYL_BASE_TOOL_1[1]=0
+$MC_TRACYL_BASE_TOOL_1[2]=0
+"#;
+
+const TRAANG_GRINDER: &str = r#"; Grinding machine with an inclined infeed axis (Transformations FM, M1 TRAANG)
+$MN_AXCONF_MACHAX_NAME_TAB[0]="MU"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="MZ"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="CM"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=0
+$MC_AXCONF_CHANAX_NAME_TAB[0]="MU"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="MZ"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="C"
+$MC_AXCONF_GEOAX_NAME_TAB[0]="X"
+$MC_AXCONF_GEOAX_NAME_TAB[1]="Y"
+$MC_AXCONF_GEOAX_NAME_TAB[2]="Z"
+; without TRAANG the inclined axis moves as X, the longitudinal axis as Z
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=0
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=2
+$MA_IS_ROT_AX[CM]=TRUE
+$MA_ROT_IS_MODULO[CM]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+$MA_MAX_AX_VELO[MU]=10000.
+$MA_MAX_AX_VELO[MZ]=12000.
+$MA_MAX_AX_ACCEL[MU]=2.
+$MA_MAX_AX_ACCEL[MZ]=2.
+$MA_POS_LIMIT_MINUS[MU]=-100.
+$MA_POS_LIMIT_PLUS[MU]=300.
+$MA_POS_LIMIT_MINUS[MZ]=-300.
+$MA_POS_LIMIT_PLUS[MZ]=500.
+; T1 D1: grinding wheel
+$TC_DP1[1,1]=400
+$TC_DP3[1,1]=0.
+$TC_DP6[1,1]=200.
+; TRAANG data set 1
+$MC_TRAFO_TYPE_1=1024
+$MC_TRAFO_AXES_IN_1[0]=1      ; MU: inclined axis
+$MC_TRAFO_AXES_IN_1[1]=2      ; MZ: axis parallel to Z
+$MC_TRAFO_AXES_IN_1[2]=0
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1   ; X on the inclined axis' channel slot
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=0
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=2   ; Z
+$MC_TRAANG_ANGLE_1=45.
+$MC_TRAANG_PARALLEL_VELO_RES_1=0.2
+$MC_TRAANG_PARALLEL_ACCEL_RES_1=0.2
+$MC_TRAANG_BASE_TOOL_1[0]=0
+$MC_TRAANG_BASE_TOOL_1[1]=0
+$MC_TRAANG_BASE_TOOL_1[2]=0
 "#;
 
 #[cfg(test)]

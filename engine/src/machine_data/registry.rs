@@ -128,6 +128,14 @@ fn default_machax_used(i: usize) -> Value {
     Value::Int(if i < 6 { i as i64 + 1 } else { 0 })
 }
 
+/// Number of transformation data sets per channel (`$MC_TRAFO_TYPE_1` .. `_10`).
+pub const MAX_TRAFO_SETS: usize = 10;
+
+fn default_trafo_axes_in(i: usize) -> Value {
+    // The control's default: channel axes 1..5 in order, then none.
+    Value::Int(if i < 5 { i as i64 + 1 } else { 0 })
+}
+
 /// Every datum, in Siemens number order.
 pub static DEFS: &[Def] = &[
     def(
@@ -174,7 +182,88 @@ pub static DEFS: &[Def] = &[
         0.0,
         0.0,
     ),
+    def("RESET_MODE_MASK", 20110, C, Kind::Int, 1, Default::Int(1), 0.0, 65535.0),
+    def("GEOAX_CHANGE_RESET", 20118, C, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    def("TRAFO_RESET_VALUE", 20140, C, Kind::Int, 1, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
+    def("TRAFO_MODE_MASK", 20144, C, Kind::Int, 1, Default::Int(0), 0.0, 255.0),
     def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
+    // Transformation data sets 1..10: type, axes, geometry axes, tool handling (M1 data lists).
+    def("TRAFO_TYPE_1", 24100, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_1", 24110, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_1", 24120, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_1", 24130, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_2", 24200, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_2", 24210, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_2", 24220, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_2", 24230, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_3", 24300, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_3", 24310, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_3", 24320, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_3", 24330, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_4", 24400, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_4", 24410, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_4", 24420, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_4", 24426, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_5", 24430, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_5", 24432, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_5", 24434, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_5", 24436, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_6", 24440, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_6", 24442, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_6", 24444, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_6", 24446, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_7", 24450, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_7", 24452, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_7", 24454, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_7", 24456, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_8", 24460, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_8", 24462, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_8", 24464, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_8", 24466, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_9", 24470, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_9", 24472, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_9", 24474, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_9", 24476, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO_TYPE_10", 24480, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("TRAFO_AXES_IN_10", 24482, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
+    def("TRAFO_GEOAX_ASSIGN_TAB_10", 24484, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
+    def("TRAFO_INCLUDES_TOOL_10", 24486, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    // TRAANG data sets 1 and 2 (angle of the inclined axis, base tool, reserves of the parallel axis).
+    def("TRAANG_ANGLE_1", 24700, C, Kind::Real, 1, Default::Real(0.0), -90.0, 90.0),
+    def("TRAANG_BASE_TOOL_1", 24710, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAANG_PARALLEL_VELO_RES_1", 24720, C, Kind::Real, 1, Default::Real(0.0), 0.0, 1.0),
+    def("TRAANG_PARALLEL_ACCEL_RES_1", 24721, C, Kind::Real, 1, Default::Real(0.0), 0.0, 1.0),
+    def("TRAANG_ANGLE_2", 24750, C, Kind::Real, 1, Default::Real(0.0), -90.0, 90.0),
+    def("TRAANG_BASE_TOOL_2", 24760, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAANG_PARALLEL_VELO_RES_2", 24770, C, Kind::Real, 1, Default::Real(0.0), 0.0, 1.0),
+    def("TRAANG_PARALLEL_ACCEL_RES_2", 24771, C, Kind::Real, 1, Default::Real(0.0), 0.0, 1.0),
+    // TRACYL data sets 1 and 2.
+    def("TRACYL_ROT_AX_OFFSET_1", 24800, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRACYL_ROT_AX_FRAME_1", 24805, C, Kind::Int, 1, Default::Int(0), 0.0, 2.0),
+    def("TRACYL_DEFAULT_MODE_1", 24808, C, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
+    def("TRACYL_ROT_SIGN_IS_PLUS_1", 24810, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRACYL_BASE_TOOL_1", 24820, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRACYL_ROT_AX_OFFSET_2", 24850, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRACYL_ROT_AX_FRAME_2", 24855, C, Kind::Int, 1, Default::Int(0), 0.0, 2.0),
+    def("TRACYL_DEFAULT_MODE_2", 24858, C, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
+    def("TRACYL_ROT_SIGN_IS_PLUS_2", 24860, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRACYL_BASE_TOOL_2", 24870, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    // TRANSMIT data sets 1 and 2.
+    def("TRANSMIT_ROT_AX_OFFSET_1", 24900, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRANSMIT_ROT_AX_FRAME_1", 24905, C, Kind::Int, 1, Default::Int(0), 0.0, 2.0),
+    def("TRANSMIT_ROT_SIGN_IS_PLUS_1", 24910, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRANSMIT_POLE_SIDE_FIX_1", 24911, C, Kind::Int, 1, Default::Int(0), 0.0, 2.0),
+    def("TRANSMIT_BASE_TOOL_1", 24920, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRANSMIT_ROT_AX_OFFSET_2", 24950, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRANSMIT_ROT_AX_FRAME_2", 24955, C, Kind::Int, 1, Default::Int(0), 0.0, 2.0),
+    def("TRANSMIT_ROT_SIGN_IS_PLUS_2", 24960, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("TRANSMIT_POLE_SIDE_FIX_2", 24961, C, Kind::Int, 1, Default::Int(0), 0.0, 2.0),
+    def("TRANSMIT_BASE_TOOL_2", 24970, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    // Chained transformations: the data-set numbers of the members of chain 1..4.
+    def("TRACON_CHAIN_1", 24995, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
+    def("TRACON_CHAIN_2", 24996, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
+    def("TRACON_CHAIN_3", 24997, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
+    def("TRACON_CHAIN_4", 24998, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("MM_NUM_USER_FRAMES", 28080, C, Kind::Int, 1, Default::Int(5), 5.0, 100.0),
     def("IS_ROT_AX", 30300, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("ROT_IS_MODULO", 30310, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),

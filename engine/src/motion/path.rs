@@ -69,6 +69,17 @@ impl Path {
         }
     }
 
+    /// The part of the path between parameters `u0` and `u1` (0 ≤ u0 < u1 ≤ 1), as a path of
+    /// its own: the same line, or the same arc with a shorter sweep.
+    pub fn slice(&self, u0: f64, u1: f64) -> Path {
+        let mut start = [0.0; MAX_CHANNEL_AXES];
+        let mut end = [0.0; MAX_CHANNEL_AXES];
+        self.at(u0, &mut start);
+        self.at(u1, &mut end);
+        let arc = self.arc.map(|a| Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..a });
+        Path { start, end, arc }
+    }
+
     /// Tangent `dp/ds` at `s` (not normalised).
     pub fn tangent(&self, s: f64) -> AxisVec {
         let mut t = [0.0; MAX_CHANNEL_AXES];
@@ -182,6 +193,18 @@ mod tests {
         let mut q = [0.0; MAX_CHANNEL_AXES];
         p.at(0.5, &mut q);
         assert!((q[0]).abs() < 1e-12 && (q[1] - 10.0).abs() < 1e-12 && (q[2] - 2.0).abs() < 1e-12, "{q:?}");
+    }
+
+    #[test]
+    fn a_slice_of_a_helix_lies_on_the_helix() {
+        let p = half_circle();
+        let s = p.slice(0.25, 0.75);
+        let (mut a, mut b) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
+        for u in [0.0, 0.3, 1.0] {
+            s.at(u, &mut a);
+            p.at(0.25 + 0.5 * u, &mut b);
+            assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12), "{u}");
+        }
     }
 
     #[test]

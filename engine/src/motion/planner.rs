@@ -59,6 +59,14 @@ pub struct Move {
     pub exact_stop: bool,
     /// Caller's identifier (the block the move belongs to).
     pub tag: u32,
+    /// The path is in machine axes although a kinematic transformation is active (a positioning
+    /// motion such as the rotation in the TRANSMIT pole). The planner ignores it; the caller
+    /// uses it to map samples to machine positions.
+    pub machine_space: bool,
+    /// Rates of the machine axes per unit path length `dm/ds` at the start and at the end of
+    /// the move, when the path is not in machine axes. Used for the velocity jump at block
+    /// transitions instead of the path's own tangent.
+    pub axis_tangents: Option<Box<(AxisVec, AxisVec)>>,
 }
 
 impl Move {
@@ -94,7 +102,18 @@ impl Move {
                 a_max = a_max.min(0.5 * a_plane / k);
             }
         }
-        Move { path, length, v_max: v_max.min(feed), v_axes: v_max, feed, a_max, exact_stop, tag }
+        Move {
+            path,
+            length,
+            v_max: v_max.min(feed),
+            v_axes: v_max,
+            feed,
+            a_max,
+            exact_stop,
+            tag,
+            machine_space: false,
+            axis_tangents: None,
+        }
     }
 
     /// True for rapid traverse (G0).
@@ -133,6 +152,8 @@ pub struct Planner {
     /// Drop the queue once standstill is reached under hold (JOG key released).
     flush_at_standstill: bool,
     position: AxisVec,
+    /// Tag of the move whose path produced `position` (`None` after [`Planner::set_position`]).
+    position_tag: Option<u32>,
     finished: Vec<u32>,
 }
 
@@ -150,6 +171,7 @@ impl Planner {
             rapid_override: 1.0,
             flush_at_standstill: false,
             position,
+            position_tag: None,
             finished: Vec::new(),
         }
     }
@@ -188,6 +210,11 @@ impl Planner {
     /// Current interpolated position of every axis.
     pub fn position(&self) -> &AxisVec {
         &self.position
+    }
+
+    /// Tag of the move the current position lies on (the last one finished when idle).
+    pub fn position_tag(&self) -> Option<u32> {
+        self.position_tag
     }
 
     /// Current path velocity.
@@ -243,6 +270,7 @@ impl Planner {
     pub fn set_position(&mut self, position: AxisVec) {
         debug_assert!(self.queue.is_empty());
         self.position = position;
+        self.position_tag = None;
     }
 
     /// Advances one IPO cycle.
@@ -285,11 +313,13 @@ impl Planner {
                 self.s += d;
                 let u = self.s / front.length;
                 front.path.at(u, &mut self.position);
+                self.position_tag = Some(front.tag);
                 break;
             }
             // The move ends within this cycle.
             d -= remaining;
             self.position = front.path.end;
+            self.position_tag = Some(front.tag);
             let stop_here = self.v_end[0] == 0.0;
             let done = self.queue.pop_front().expect("front exists");
             self.v_end.pop_front();
@@ -308,13 +338,16 @@ impl Planner {
         let mut distance = -self.s;
         let mut a = f64::INFINITY;
         let mut limit = f64::INFINITY;
-        for (k, mv) in self.queue.iter().enumerate().take(16) {
+        // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
+        // (moves split by a kinematic transformation may decelerate very differently).
+        let a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
+        for (k, mv) in self.queue.iter().enumerate() {
             distance += mv.length;
             a = a.min(mv.a_max);
             // One cycle at the transition speed is kept in reserve for the crossing cycle.
             let reserve = if k + 1 < self.queue.len() { self.v_end[k] * self.dt } else { 0.0 };
             limit = limit.min(brake_speed(distance - reserve, self.v_end[k], a, self.dt));
-            if self.v_end[k] == 0.0 || distance > limit * limit / a {
+            if self.v_end[k] == 0.0 || distance > limit * limit / a_min {
                 break;
             }
         }
@@ -348,11 +381,26 @@ impl Planner {
         if a.exact_stop {
             return 0.0;
         }
-        let ta = a.path.tangent(1.0);
-        let tb = b.path.tangent(0.0);
+        if a.machine_space != b.machine_space {
+            return 0.0;
+        }
+        // Axis rates per unit path length on either side of the transition.
+        let rates = |m: &Move, end: bool| -> AxisVec {
+            match &m.axis_tangents {
+                Some(t) => {
+                    if end {
+                        t.1
+                    } else {
+                        t.0
+                    }
+                }
+                None => m.path.tangent(if end { 1.0 } else { 0.0 }).map(|x| x / m.length),
+            }
+        };
+        let (ta, tb) = (rates(a, true), rates(b, false));
         let mut v = a.v_max.min(b.v_max);
         for i in 0..MAX_CHANNEL_AXES.min(self.limits.len()) {
-            let jump = (tb[i] / b.length - ta[i] / a.length).abs();
+            let jump = (tb[i] - ta[i]).abs();
             if jump > 1e-12 {
                 let lim = &self.limits[i];
                 v = v.min((lim.accel_overload - 1.0) * lim.max_accel * self.dt / jump);

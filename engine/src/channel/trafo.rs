@@ -1,0 +1,72 @@
+//! The main run's side of a kinematic transformation: mapping every IPO sample of the BCS to
+//! machine positions, and switching transformations at standstill.
+
+use super::Channel;
+use crate::kinematics::{ActiveTrafo, Transformation};
+
+impl Channel {
+    /// Maps the planner's position of this cycle to machine positions: through the
+    /// transformation of the move the position lies on, continuous with the last cycle.
+    pub(super) fn update_machine_position(&mut self) {
+        let pos = *self.planner.position();
+        let meta = self.planner.position_tag().and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t));
+        if let Some((_, m)) = meta.filter(|(_, m)| !m.machine_space && m.offsets.trafo != self.trafo) {
+            // A tool change inside a motion block reaches the main run with the move.
+            self.trafo = m.offsets.trafo.clone();
+        }
+        let machine_space = meta.is_some_and(|(_, m)| m.machine_space);
+        match self.trafo.as_ref().filter(|_| !machine_space) {
+            None => self.machine = pos,
+            Some(t) => {
+                if let Ok(m) = t.inverse(&pos, &self.machine) {
+                    self.machine = m;
+                }
+            }
+        }
+        self.sync_rotary_spindle();
+    }
+
+    /// A spindle used as the transformation's rotary axis is in position control: its angle
+    /// is the machine position.
+    fn sync_rotary_spindle(&mut self) {
+        let Some(k) = self.trafo.as_ref().and_then(|t| t.trafo.rotary_slot()) else { return };
+        if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == k) {
+            s.position = self.machine[k];
+        }
+    }
+
+    /// Selects, deselects or updates (new tool) the transformation at standstill. Returns
+    /// false while a spindle that is to become the rotary axis still turns.
+    pub(super) fn switch_transformation(&mut self, new: Option<ActiveTrafo>) -> bool {
+        let rotary = |t: &ActiveTrafo| t.trafo.rotary_slot();
+        let spindle = new.as_ref().and_then(rotary).and_then(|k| self.spindles.iter().find(|s| s.axis == k));
+        if let Some(s) = spindle {
+            if s.is_turning() {
+                return false;
+            }
+            // After SPOS the angle is already the axis position; in speed mode it is the spindle's.
+            if self.trafo.as_ref().and_then(rotary) != Some(s.axis) && !s.axis_mode {
+                self.machine[s.axis] = s.position;
+            }
+        }
+        self.trafo = new;
+        let space = match &self.trafo {
+            Some(t) => t.forward(&self.machine),
+            None => self.machine,
+        };
+        self.planner.set_position(space);
+        if self.prep_waits_for_trafo {
+            self.prep_waits_for_trafo = false;
+            self.interp.sync_transformation(&self.machine);
+        }
+        true
+    }
+
+    /// Program end and reset deselect the transformation (MD20110 RESET_MODE_MASK default);
+    /// the axes stay where they are.
+    pub(super) fn deselect_transformation(&mut self) {
+        if self.trafo.take().is_some() {
+            self.planner.set_position(self.machine);
+        }
+    }
+}

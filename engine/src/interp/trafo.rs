@@ -1,0 +1,336 @@
+//! The interpreter's side of the kinematic transformations: the selection words TRANSMIT,
+//! TRACYL, TRAANG and TRAFOOF, the geometry-axis reassignment while one is active, the tool
+//! length taken into it, and the planning of each block in the BCS.
+//!
+//! While a transformation is active the interpreter works on a derived configuration in which
+//! every channel axis that carries a Cartesian coordinate (`$MC_TRAFO_GEOAX_ASSIGN_TAB_n`) is a
+//! virtual linear axis named like its geometry axis: `Y` then addresses TRANSMIT's rotary axis
+//! slot, and the rotary axis' own name is no longer defined (alarm 12550), as the rotary axis is
+//! "occupied by a geometry axis" (Programming Manual). Moves are prepared in the BCS (tool tip)
+//! and planned per block by [`crate::kinematics::plan`] against the real machine axes.
+
+use std::sync::Arc;
+
+use super::{Interpreter, Item};
+use crate::alarm::{Alarm, Clear};
+use crate::kinematics::plan::{PlanError, plan_block};
+use crate::kinematics::{self, ActiveTrafo, AnyTrafo, SelectArgs, Transformation};
+use crate::lang::{Block, Expr, Word};
+use crate::machine_data::{ChannelAxis, MachineAxis, MachineConfig, TrafoKind};
+use crate::motion::AxisVec;
+
+/// The words this module handles; `modal::collect` lets them through.
+pub fn is_keyword(name: &str) -> bool {
+    matches!(name, "TRANSMIT" | "TRACYL" | "TRAANG" | "TRAFOOF")
+}
+
+/// A selection or deselection programmed in a block.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Selection {
+    Off,
+    On { kind: TrafoKind, n: usize, args: SelectArgs },
+}
+
+/// The selection word of `block`, with its arguments evaluated by `eval`.
+pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> Result<Option<Selection>, Alarm> {
+    let line = block.line;
+    let mut found = None;
+    for word in &block.words {
+        let Word::Keyword { name, args } = word else { continue };
+        if !is_keyword(name) {
+            continue;
+        }
+        if found.is_some() {
+            return Err(Alarm::syntax(line, "only one transformation selection per block"));
+        }
+        // An omitted argument (`TRAANG(,2)`) arrives as the parser's `_OMITTED` marker.
+        let arg = |i: usize| -> Result<Option<f64>, Alarm> {
+            match args.get(i) {
+                None => Ok(None),
+                Some(Expr::Call(n, a)) if n == "_OMITTED" && a.is_empty() => Ok(None),
+                Some(e) => eval(e).map(Some),
+            }
+        };
+        let data_set = |v: Option<f64>| -> Result<usize, Alarm> {
+            match v {
+                None => Ok(1),
+                Some(n) if n == 1.0 || n == 2.0 => Ok(n as usize),
+                Some(n) => Err(Alarm::value_out_of_range(line, &format!("{name} data set {n} (1 or 2)"))),
+            }
+        };
+        let max_args = match name.as_str() {
+            "TRAFOOF" => 0,
+            "TRANSMIT" => 1,
+            "TRAANG" => 2,
+            _ => 3,
+        };
+        if args.len() > max_args {
+            return Err(Alarm::syntax(line, &format!("{name} takes at most {max_args} parameter(s)")));
+        }
+        found = Some(match name.as_str() {
+            "TRAFOOF" => Selection::Off,
+            "TRANSMIT" => {
+                Selection::On { kind: TrafoKind::Transmit, n: data_set(arg(0)?)?, args: SelectArgs::default() }
+            }
+            "TRACYL" => {
+                let diameter = arg(0)?.ok_or_else(|| Alarm::syntax(line, "TRACYL needs the working diameter"))?;
+                let groove_wall = match arg(2)? {
+                    None => None,
+                    Some(k) if k == 0.0 || k == 1.0 => Some(k == 1.0),
+                    Some(k) => return Err(Alarm::value_out_of_range(line, &format!("TRACYL groove-wall mode {k}"))),
+                };
+                Selection::On {
+                    kind: TrafoKind::Tracyl,
+                    n: data_set(arg(1)?)?,
+                    args: SelectArgs { diameter: Some(diameter), groove_wall, angle: None },
+                }
+            }
+            _ => Selection::On {
+                kind: TrafoKind::Traang,
+                n: data_set(arg(1)?)?,
+                args: SelectArgs { angle: arg(0)?, ..SelectArgs::default() },
+            },
+        });
+    }
+    Ok(found)
+}
+
+/// 14401: the programmed transformation is not configured.
+fn not_available(line: u32, what: &str) -> Alarm {
+    Alarm {
+        number: 14401,
+        message: format!("Channel 1 block {line} transformation not available ({what})"),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
+}
+
+/// 21619: a motion into the working-area limitation of TRANSMIT; the block is not executed.
+pub fn working_area(line: u32) -> Alarm {
+    Alarm {
+        number: 21619,
+        message: format!("Channel 1 block {line} transformation active: motion not possible (working-area limitation)"),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
+}
+
+/// 14092: an axis used in a way its current role does not allow (the spindle that a
+/// transformation uses as rotary axis cannot turn in speed mode). Number chosen by this product
+/// after the control's "axis is wrong axis type".
+fn wrong_axis_type(line: u32, axis: &str) -> Alarm {
+    Alarm {
+        number: 14092,
+        message: format!("Channel 1 block {line} axis {axis} is wrong axis type"),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
+}
+
+/// The interpreter's view of the active transformation.
+#[derive(Debug, Clone, Default)]
+pub(super) struct TrafoState {
+    active: Option<Box<Active>>,
+    /// Counts selections and deselections, so the channel can see one happen.
+    generation: u32,
+}
+
+#[derive(Debug, Clone)]
+struct Active {
+    trafo: ActiveTrafo,
+    includes_tool: bool,
+    /// The real configuration (machine axes, limits) and the derived one the words are read with.
+    base: Arc<MachineConfig>,
+    derived: Arc<MachineConfig>,
+    /// Machine position at the end of the last prepared block.
+    machine: AxisVec,
+}
+
+impl TrafoState {
+    /// The configuration blocks are read with while a transformation is active.
+    pub fn config(&self) -> Option<Arc<MachineConfig>> {
+        self.active.as_ref().map(|a| a.derived.clone())
+    }
+}
+
+/// `cfg` with the geometry axes of `trafo` and a virtual linear axis, named like the geometry
+/// axis, in each channel slot that carries a Cartesian coordinate.
+fn derive(cfg: &MachineConfig, trafo: &AnyTrafo) -> MachineConfig {
+    let mut d = cfg.clone();
+    let geo = trafo.geo_slots();
+    let driven = trafo.machine_slots();
+    d.geo_axes = geo;
+    for (g, slot) in geo.iter().enumerate() {
+        let Some(k) = *slot else { continue };
+        if !driven.contains(&k) {
+            continue;
+        }
+        let real = cfg.axis(k);
+        d.machine_axes.push(MachineAxis {
+            name: cfg.geo_names[g].clone(),
+            rotary: false,
+            modulo: None,
+            spindle: None,
+            // The transformation planning limits the path by the real axes.
+            max_velocity: f64::INFINITY,
+            max_accel: f64::INFINITY,
+            accel_overload: real.accel_overload,
+            jog_velocity: real.jog_velocity,
+            jog_rapid_velocity: real.jog_rapid_velocity,
+            limit_minus: f64::NEG_INFINITY,
+            limit_plus: f64::INFINITY,
+        });
+        d.channel_axes[k] = ChannelAxis { name: cfg.geo_names[g].clone(), machine_axis: d.machine_axes.len() - 1 };
+    }
+    d
+}
+
+impl Interpreter {
+    /// Applies a selection or deselection (and checks the block against the active one).
+    /// The frame is reset as by G500 at selection, as the control does.
+    pub(super) fn apply_transformation(
+        &mut self,
+        selection: Option<Selection>,
+        block: &Block,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        if let Some(a) = &self.trafo.active {
+            let rot = a.trafo.trafo.rotary_slot();
+            let turns = block.words.iter().any(|w| matches!(w, Word::M(3 | 4)));
+            if let Some(k) = rot.filter(|&k| turns && cfg.master_spindle == Some(k)) {
+                return Err(wrong_axis_type(line, &cfg.channel_axes[k].name));
+            }
+        }
+        let Some(selection) = selection else { return Ok(()) };
+        let derived = self.trafo.config();
+        let moving = block.words.iter().any(|w| match w {
+            Word::Address { name, .. } => {
+                derived.as_deref().unwrap_or(cfg).program_axis(name).is_some()
+                    || matches!(name.as_str(), "I" | "J" | "K" | "CR")
+            }
+            _ => false,
+        });
+        if moving {
+            return Err(Alarm::syntax(line, "a transformation is selected or deselected in a block without motion"));
+        }
+        let machine = self.transformation_machine_position();
+        match selection {
+            Selection::Off => {
+                if self.trafo.active.take().is_some() {
+                    self.pos = machine;
+                    self.trafo.generation = self.trafo.generation.wrapping_add(1);
+                }
+            }
+            Selection::On { kind, n, args } => {
+                let set = cfg
+                    .trafos
+                    .iter()
+                    .filter(|s| s.kind == kind)
+                    .nth(n - 1)
+                    .ok_or_else(|| not_available(line, &format!("{} data set {n}", kind.name())))?;
+                let trafo =
+                    kinematics::build(set, cfg, &args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
+                if let Some(k) = trafo.rotary_slot().filter(|&k| cfg.master_spindle == Some(k) && self.direction != 0) {
+                    return Err(wrong_axis_type(line, &cfg.channel_axes[k].name));
+                }
+                let derived = Arc::new(derive(cfg, &trafo));
+                let trafo = ActiveTrafo { trafo, tool: [0.0; 3], number: set.number };
+                self.pos = trafo.forward(&machine);
+                self.modal.work_offset = 0;
+                self.trafo.active = Some(Box::new(Active {
+                    trafo,
+                    includes_tool: set.includes_tool,
+                    base: Arc::new(cfg.clone()),
+                    derived,
+                    machine,
+                }));
+                self.trafo.generation = self.trafo.generation.wrapping_add(1);
+            }
+        }
+        Ok(())
+    }
+
+    /// Moves the tool length of the geometry axes into the active transformation (when it
+    /// includes the tool) and keeps the rotary axis' work offset out of the Cartesian
+    /// coordinate in its slot. A new tool leaves the machine where it is, so the tip moves.
+    pub(super) fn absorb_tool_into_transformation(&mut self) {
+        let Some(a) = self.trafo.active.as_mut() else {
+            self.offsets.trafo = None;
+            return;
+        };
+        let geo = a.trafo.trafo.geo_slots();
+        let mut tool = [0.0; 3];
+        if a.includes_tool {
+            for (g, slot) in geo.iter().enumerate() {
+                if let Some(k) = *slot {
+                    tool[g] = self.offsets.tool[k];
+                    self.offsets.tool[k] = 0.0;
+                }
+            }
+        }
+        if let Some(rot) = a.trafo.trafo.rotary_slot() {
+            self.offsets.frame.trans[rot] = 0.0;
+        }
+        if tool != a.trafo.tool {
+            a.trafo.tool = tool;
+            self.pos = a.trafo.forward(&a.machine);
+        }
+        self.offsets.trafo = Some(a.trafo.clone());
+    }
+
+    /// With a transformation, replaces the prepared BCS moves of `out` (after radius
+    /// compensation and corner shaping) by moves whose limits come from the machine axes
+    /// (alarm 21619 for the working-area limitation, 10720 for a machine axis' software limit).
+    pub(super) fn transform_moves(&mut self, out: &mut Vec<Item>) -> Result<(), Alarm> {
+        let Some(a) = self.trafo.active.as_mut() else { return Ok(()) };
+        if !out.iter().any(|i| matches!(i, Item::Move { .. })) {
+            return Ok(());
+        }
+        let mut result = Vec::with_capacity(out.len());
+        for item in out.drain(..) {
+            let Item::Move { mv, line, offsets } = item else {
+                result.push(item);
+                continue;
+            };
+            let (moves, end) = plan_block(&a.trafo, &mv, &a.machine, &a.base).map_err(|e| match e {
+                PlanError::Unreachable => working_area(line),
+                PlanError::SoftLimit { axis, plus } => Alarm::software_limit(line, &axis, plus),
+            })?;
+            a.machine = end;
+            result.extend(moves.into_iter().map(|mv| Item::Move { mv, line, offsets: offsets.clone() }));
+        }
+        *out = result;
+        Ok(())
+    }
+
+    /// Machine position at the end of what was prepared.
+    fn transformation_machine_position(&self) -> AxisVec {
+        self.trafo.active.as_ref().map_or(self.pos, |a| a.machine)
+    }
+
+    /// Counts selections and deselections prepared so far.
+    pub fn transformation_generation(&self) -> u32 {
+        self.trafo.generation
+    }
+
+    /// Takes over the machine position from the main run (after a selection executed, or at
+    /// reset and program end); the programmed position follows through the active transformation.
+    pub fn sync_transformation(&mut self, machine: &AxisVec) {
+        match self.trafo.active.as_mut() {
+            Some(a) => {
+                a.machine = *machine;
+                self.pos = a.trafo.forward(machine);
+            }
+            None => self.pos = *machine,
+        }
+    }
+
+    /// Drops the active transformation (reset, program end).
+    pub(super) fn clear_transformation(&mut self) {
+        if self.trafo.active.take().is_some() {
+            self.trafo.generation = self.trafo.generation.wrapping_add(1);
+        }
+        self.offsets.trafo = None;
+    }
+}

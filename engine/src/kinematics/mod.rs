@@ -1,0 +1,235 @@
+//! Kinematic transformations: the map between the Cartesian basic coordinate system (BCS) in
+//! which a program's contour is interpolated and the machine axes that realise it.
+//!
+//! Input: a transformation data set from the machine data ([`TrafoDataSet`]) plus the selection
+//! parameters of the program (TRACYL diameter, TRAANG angle). Output: a value implementing
+//! [`Transformation`]: forward (machine → BCS), inverse (BCS → machine, continuous with the
+//! previous machine position) and what it knows about poles and unreachable regions.
+//!
+//! Positions on both sides are [`AxisVec`]s indexed by channel axis. While a transformation is
+//! active, the channel axis that a geometry axis is assigned to by `$MC_TRAFO_GEOAX_ASSIGN_TAB_n`
+//! holds that Cartesian coordinate on the BCS side (TRANSMIT's Y lives in the rotary axis'
+//! slot); every axis the transformation does not touch passes through unchanged. One file per
+//! transformation; [`plan`] turns a BCS block into moves that respect every machine axis' limits.
+
+pub mod plan;
+mod traang;
+mod tracyl;
+mod transmit;
+
+pub use traang::Traang;
+pub use tracyl::Tracyl;
+pub use transmit::Transmit;
+
+use crate::machine_data::{MachineConfig, TrafoDataSet, TrafoKind};
+use crate::motion::{AxisVec, Path};
+
+/// A 3-vector by geometry axis index (X, Y, Z of the transformation).
+pub type Vec3 = [f64; 3];
+
+/// Radius around the TRANSMIT pole within which a point counts as "in the pole" (mm).
+pub const POLE_EPS: f64 = 1e-6;
+
+/// A BCS point the machine cannot reach (TRANSMIT's unmachinable cylinder).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("point lies in the working-area limitation of the transformation")]
+pub struct Unreachable;
+
+/// One kinematic transformation, built from machine data. The planner never sees it: the
+/// interpreter uses it to plan blocks in the BCS, the channel to map each IPO sample.
+pub trait Transformation {
+    /// The NC word that selects it (`TRANSMIT`, `TRACYL`, `TRAANG`).
+    fn name(&self) -> &'static str;
+    /// `$MC_TRAFO_TYPE_n`.
+    fn trafo_type(&self) -> u32;
+    /// Channel axis of the 1st/2nd/3rd geometry axis while active.
+    fn geo_slots(&self) -> [Option<usize>; 3];
+    /// Channel axes of the machine axes the transformation moves (`TRAFO_AXES_IN_n`).
+    fn machine_slots(&self) -> Vec<usize>;
+    /// The rotary axis whose own name is blocked while active (TRANSMIT, TRACYL).
+    fn rotary_slot(&self) -> Option<usize> {
+        None
+    }
+    /// Machine → BCS for tool length `tool` (by geometry axis). Other slots are copied.
+    fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec);
+    /// BCS → machine; among several solutions (pole side, rotary turns) the one closest to
+    /// `prev` in axis travel time. Other slots are copied.
+    fn inverse(&self, bcs: &AxisVec, prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable>;
+    /// Rejects a block whose path enters an unreachable region.
+    fn check_path(&self, _path: &Path, _tool: &Vec3) -> Result<(), Unreachable> {
+        Ok(())
+    }
+    /// Path parameters (0..=1) at which the path passes through a singular point (a pole),
+    /// where the machine solution may change branch or need an inserted rotation.
+    fn poles(&self, _path: &Path, _tool: &Vec3) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Path parameters where machine axis rates peak (closest approach to a pole), so the
+    /// velocity planning samples them.
+    fn critical_params(&self, _path: &Path, _tool: &Vec3) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Share of a machine axis' velocity and acceleration the planning may use (TRAANG keeps a
+    /// reserve on the parallel axis).
+    fn limit_share(&self, _slot: usize) -> f64 {
+        1.0
+    }
+}
+
+/// Any of the modelled transformations, as a plain value (cheap to clone and compare).
+#[derive(Debug, Clone, PartialEq)]
+pub enum AnyTrafo {
+    Transmit(Transmit),
+    Tracyl(Tracyl),
+    Traang(Traang),
+}
+
+macro_rules! dispatch {
+    ($self:ident, $t:ident => $e:expr) => {
+        match $self {
+            AnyTrafo::Transmit($t) => $e,
+            AnyTrafo::Tracyl($t) => $e,
+            AnyTrafo::Traang($t) => $e,
+        }
+    };
+}
+
+impl Transformation for AnyTrafo {
+    fn name(&self) -> &'static str {
+        dispatch!(self, t => t.name())
+    }
+    fn trafo_type(&self) -> u32 {
+        dispatch!(self, t => t.trafo_type())
+    }
+    fn geo_slots(&self) -> [Option<usize>; 3] {
+        dispatch!(self, t => t.geo_slots())
+    }
+    fn machine_slots(&self) -> Vec<usize> {
+        dispatch!(self, t => t.machine_slots())
+    }
+    fn rotary_slot(&self) -> Option<usize> {
+        dispatch!(self, t => t.rotary_slot())
+    }
+    fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
+        dispatch!(self, t => t.forward(machine, tool, bcs))
+    }
+    fn inverse(&self, bcs: &AxisVec, prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
+        dispatch!(self, t => t.inverse(bcs, prev, tool, machine))
+    }
+    fn check_path(&self, path: &Path, tool: &Vec3) -> Result<(), Unreachable> {
+        dispatch!(self, t => t.check_path(path, tool))
+    }
+    fn poles(&self, path: &Path, tool: &Vec3) -> Vec<f64> {
+        dispatch!(self, t => t.poles(path, tool))
+    }
+    fn critical_params(&self, path: &Path, tool: &Vec3) -> Vec<f64> {
+        dispatch!(self, t => t.critical_params(path, tool))
+    }
+    fn limit_share(&self, slot: usize) -> f64 {
+        dispatch!(self, t => t.limit_share(slot))
+    }
+}
+
+/// Parameters given with the selection in the program.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SelectArgs {
+    /// TRACYL working diameter d.
+    pub diameter: Option<f64>,
+    /// TRACYL 3rd parameter k (type 514): groove-wall offset on/off.
+    pub groove_wall: Option<bool>,
+    /// TRAANG angle α; `None` = `$MC_TRAANG_ANGLE_t`.
+    pub angle: Option<f64>,
+}
+
+/// Why a selection cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BuildError {
+    #[error("{0}")]
+    Value(String),
+}
+
+/// The transformation of data set `set` with the program's selection parameters.
+pub fn build(set: &TrafoDataSet, cfg: &MachineConfig, args: &SelectArgs) -> Result<AnyTrafo, BuildError> {
+    Ok(match set.kind {
+        TrafoKind::Transmit => AnyTrafo::Transmit(Transmit::new(set, cfg)),
+        TrafoKind::Tracyl => AnyTrafo::Tracyl(Tracyl::new(set, args)?),
+        TrafoKind::Traang => AnyTrafo::Traang(Traang::new(set, args)?),
+    })
+}
+
+/// An active transformation: the kinematics, the tool length it includes and its data set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActiveTrafo {
+    pub trafo: AnyTrafo,
+    /// Tool length vector (tip → reference) by geometry axis, taken into the transformation.
+    pub tool: Vec3,
+    /// Data-set number n of `$MC_TRAFO_TYPE_n`.
+    pub number: usize,
+}
+
+impl ActiveTrafo {
+    pub fn forward(&self, machine: &AxisVec) -> AxisVec {
+        let mut out = *machine;
+        self.trafo.forward(machine, &self.tool, &mut out);
+        out
+    }
+
+    pub fn inverse(&self, bcs: &AxisVec, prev: &AxisVec) -> Result<AxisVec, Unreachable> {
+        let mut out = *bcs;
+        self.trafo.inverse(bcs, prev, &self.tool, &mut out)?;
+        Ok(out)
+    }
+}
+
+/// Where a role of `TRAFO_AXES_IN_n` has its Cartesian coordinate: the channel axis and the
+/// geometry axis index that share it.
+pub(crate) fn role_geo(set: &TrafoDataSet, role: usize) -> Option<(usize, usize)> {
+    let slot = set.axes_in[role]?;
+    let g = set.geo_axes.iter().position(|a| *a == Some(slot))?;
+    Some((slot, g))
+}
+
+/// Local minima of the distance of the path from the axis through the origin of the plane of
+/// channel axes `x`, `y`: `(u, r)` pairs, endpoints included. Dense sampling followed by a
+/// golden-section refinement, so it works for lines, arcs in any plane and helices alike.
+pub(crate) fn radial_minima(path: &Path, x: usize, y: usize) -> Vec<(f64, f64)> {
+    const N: usize = 256;
+    let mut p = [0.0; crate::machine_data::registry::MAX_CHANNEL_AXES];
+    let mut r = |u: f64| -> f64 {
+        path.at(u, &mut p);
+        p[x].hypot(p[y])
+    };
+    let samples: Vec<f64> = (0..=N).map(|i| r(i as f64 / N as f64)).collect();
+    let mut out = Vec::new();
+    for i in 0..=N {
+        let left = if i == 0 { f64::INFINITY } else { samples[i - 1] };
+        let right = if i == N { f64::INFINITY } else { samples[i + 1] };
+        if samples[i] > left || samples[i] > right {
+            continue;
+        }
+        let (mut a, mut b) = ((i.saturating_sub(1)) as f64 / N as f64, ((i + 1).min(N)) as f64 / N as f64);
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..80 {
+            let (c, d) = (b - g * (b - a), a + g * (b - a));
+            if r(c) <= r(d) {
+                b = d;
+            } else {
+                a = c;
+            }
+        }
+        let u = 0.5 * (a + b);
+        let (u, ru) = [(u, r(u)), (i as f64 / N as f64, samples[i])]
+            .into_iter()
+            .min_by(|p, q| p.1.total_cmp(&q.1))
+            .expect("two candidates");
+        if out.last().is_none_or(|&(v, _): &(f64, f64)| (u - v).abs() > 1e-9) {
+            out.push((u, ru));
+        }
+    }
+    out
+}
+
+/// `angle` (degrees) shifted by whole turns to lie closest to `near`.
+pub(crate) fn unwrap_near(angle: f64, near: f64) -> f64 {
+    angle + 360.0 * ((near - angle) / 360.0).round()
+}

@@ -1,0 +1,231 @@
+//! Planning one BCS block for the planner while a transformation is active.
+//!
+//! The planner interpolates the BCS and never learns which transformation maps it; so the
+//! per-axis limits must reach it as path limits. For each block this module:
+//! 1. rejects a path that enters an unreachable region (TRANSMIT's unmachinable cylinder);
+//! 2. cuts the path at pole passages and, where leaving the pole needs another rotary angle
+//!    than arriving (a corner in the pole, or `POLE_SIDE_FIX` forbids the radial axis to change
+//!    sign), inserts a positioning move of the rotary axis alone in machine space;
+//! 3. samples the path densely (every 0.25 mm, at least 8 and at most 400 samples, plus the
+//!    transformation's critical points such as the closest approach to the pole), maps each
+//!    sample to machine axes with the same continuity rule the channel uses per IPO cycle,
+//!    checks the software limits, and takes the machine rates `dm/ds` and their change
+//!    `d²m/ds²` by finite differences;
+//! 4. limits the path velocity so that every machine axis stays within its velocity
+//!    (`v·|dm/ds| ≤ v_max`) and keeps half of its acceleration for the curvature term
+//!    (`v²·|d²m/ds²| ≤ a_max/2`), and the path acceleration so that the tangential term fits
+//!    into what is left. Where the allowed velocity varies by more than a factor 2 along the
+//!    path (near the TRANSMIT pole the rotary axis limits the feed), the block is split into
+//!    16 equal parts, each with the limits of its own samples.
+//!
+//! Conservative by construction between samples only to the sampling density; the property
+//! tests check the resulting IPO samples against every machine axis' limits.
+
+use super::{ActiveTrafo, Transformation, Unreachable};
+use crate::machine_data::MachineConfig;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::{AxisVec, Move, Path};
+
+/// Why a block cannot be planned.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PlanError {
+    /// The path enters the working-area limitation (alarm 21619).
+    Unreachable,
+    /// A machine axis would pass a software limit switch (alarm 10720).
+    SoftLimit { axis: String, plus: bool },
+}
+
+impl From<Unreachable> for PlanError {
+    fn from(_: Unreachable) -> Self {
+        PlanError::Unreachable
+    }
+}
+
+/// Plans BCS move `mv` starting at machine position `start`. Returns the moves for the
+/// planner and the machine position at the end of the block.
+pub fn plan_block(
+    active: &ActiveTrafo,
+    mv: &Move,
+    start: &AxisVec,
+    cfg: &MachineConfig,
+) -> Result<(Vec<Move>, AxisVec), PlanError> {
+    let t = &active.trafo;
+    let tool = &active.tool;
+    let path = &mv.path;
+    t.check_path(path, tool)?;
+    let poles = t.poles(path, tool);
+    let mut cuts = vec![0.0, 1.0];
+    cuts.extend(poles.iter().copied().filter(|&u| u > 1e-9 && u < 1.0 - 1e-9));
+    cuts.sort_by(f64::total_cmp);
+    let critical = t.critical_params(path, tool);
+
+    let mut machine = *start;
+    let mut out: Vec<Move> = Vec::new();
+    for w in cuts.windows(2) {
+        let (u0, u1) = (w[0], w[1]);
+        let len = mv.length * (u1 - u0);
+        if len < 1e-9 {
+            continue;
+        }
+        let sub = path.slice(u0, u1);
+        if let Some(rot) = t.rotary_slot().filter(|_| poles.iter().any(|&p| (p - u0).abs() < 1e-9)) {
+            // Leaving the pole: the rotary angle the first step out of the pole needs.
+            let mut probe = [0.0; MAX_CHANNEL_AXES];
+            sub.at((1e-4 / len).min(0.01), &mut probe);
+            let target = active.inverse(&probe, &machine)?[rot];
+            if (target - machine[rot]).abs() > 1e-6 {
+                if let Some(last) = out.last_mut() {
+                    last.exact_stop = true;
+                }
+                let mut end = machine;
+                end[rot] = target;
+                out.push(rotation(cfg, rot, &machine, &end, mv.tag));
+                machine = end;
+            }
+        }
+        let local: Vec<f64> = critical.iter().filter(|&&c| c > u0 && c < u1).map(|&c| (c - u0) / (u1 - u0)).collect();
+        let (moves, end) = plan_piece(active, mv, &sub, len, &local, &machine, cfg)?;
+        out.extend(moves);
+        machine = end;
+    }
+    if let Some(last) = out.last_mut() {
+        last.exact_stop |= mv.exact_stop;
+    }
+    Ok((out, machine))
+}
+
+/// A positioning move of the rotary axis alone, in machine space, at its own limits.
+fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: u32) -> Move {
+    let ax = cfg.axis(rot);
+    Move {
+        path: Path { start: *from, end: *to, arc: None },
+        length: (to[rot] - from[rot]).abs(),
+        v_max: ax.max_velocity,
+        v_axes: ax.max_velocity,
+        // A positioning motion: like rapid traverse, under the rapid override.
+        feed: f64::INFINITY,
+        a_max: ax.max_accel,
+        exact_stop: true,
+        tag,
+        machine_space: true,
+        axis_tangents: None,
+    }
+}
+
+/// Samples one pole-free piece and turns it into one or more moves with machine-derived limits.
+fn plan_piece(
+    active: &ActiveTrafo,
+    mv: &Move,
+    sub: &Path,
+    len: f64,
+    critical: &[f64],
+    start: &AxisVec,
+    cfg: &MachineConfig,
+) -> Result<(Vec<Move>, AxisVec), PlanError> {
+    let t = &active.trafo;
+    let slots = t.machine_slots();
+    let n = ((len / 0.25).ceil() as usize).clamp(8, 400);
+    let mut us: Vec<f64> = (0..=n).map(|i| i as f64 / n as f64).collect();
+    for &c in critical {
+        us.extend([c - 1e-4, c, c + 1e-4].into_iter().filter(|u| *u > 0.0 && *u < 1.0));
+    }
+    us.sort_by(f64::total_cmp);
+    us.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+
+    // Machine positions along the piece, each continuous with the one before.
+    let mut ms: Vec<AxisVec> = Vec::with_capacity(us.len());
+    let mut prev = *start;
+    let mut p = [0.0; MAX_CHANNEL_AXES];
+    for &u in &us {
+        sub.at(u, &mut p);
+        let m = active.inverse(&p, &prev)?;
+        for &k in &slots {
+            let ax = cfg.axis(k);
+            if ax.modulo.is_some() || ax.spindle.is_some() {
+                continue;
+            }
+            if m[k] > ax.limit_plus + 1e-9 || m[k] < ax.limit_minus - 1e-9 {
+                return Err(PlanError::SoftLimit { axis: ax.name.clone(), plus: m[k] > ax.limit_plus });
+            }
+        }
+        ms.push(m);
+        prev = m;
+    }
+
+    // Rates dm/ds per interval, and their change per unit length at the samples.
+    let intervals = us.len() - 1;
+    let ds: Vec<f64> = us.windows(2).map(|w| (w[1] - w[0]) * len).collect();
+    let rate = |j: usize, k: usize| (ms[j + 1][k] - ms[j][k]) / ds[j];
+    let curvature = |j: usize, k: usize| -> f64 {
+        // At the interval's ends, against its neighbours.
+        let at = |i: usize| -> f64 {
+            if i == 0 || i >= intervals {
+                return 0.0;
+            }
+            (rate(i, k) - rate(i - 1, k)).abs() / (0.5 * (ds[i] + ds[i - 1]))
+        };
+        at(j).max(at(j + 1))
+    };
+    let limit = |k: usize| -> (f64, f64) {
+        let ax = cfg.axis(k);
+        let share = t.limit_share(k);
+        (ax.max_velocity * share, ax.max_accel * share)
+    };
+    let v_allowed: Vec<f64> = (0..intervals)
+        .map(|j| {
+            slots.iter().fold(f64::INFINITY, |v, &k| {
+                let (vmax, amax) = limit(k);
+                let (r, c) = (rate(j, k).abs(), curvature(j, k));
+                let v = if r > 1e-12 { v.min(vmax / r) } else { v };
+                if c > 1e-12 { v.min((0.5 * amax / c).sqrt()) } else { v }
+            })
+        })
+        .collect();
+    let lo = v_allowed.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = v_allowed.iter().copied().fold(0.0, f64::max);
+    let parts = if hi > 2.0 * lo { 16 } else { 1 };
+
+    let mut moves = Vec::with_capacity(parts);
+    for part in 0..parts {
+        let (a, b) = (part as f64 / parts as f64, (part + 1) as f64 / parts as f64);
+        let js: Vec<usize> = (0..intervals).filter(|&j| us[j + 1] > a + 1e-12 && us[j] < b - 1e-12).collect();
+        let v_axes = js.iter().fold(mv.v_axes, |v, &j| v.min(v_allowed[j]));
+        let v_max = v_axes.min(mv.feed);
+        let mut a_max = mv.a_max;
+        for &j in &js {
+            for &k in &slots {
+                let (_, amax) = limit(k);
+                let r = rate(j, k).abs();
+                if r > 1e-12 {
+                    let left = (amax - curvature(j, k) * v_max * v_max).max(0.5 * amax);
+                    a_max = a_max.min(left / r);
+                }
+            }
+        }
+        let piece = sub.slice(a, b);
+        let plen = len * (b - a);
+        let tangent = |j: usize, u: f64| -> AxisVec {
+            let mut tv = piece.tangent(u).map(|x| x / plen);
+            for &k in &slots {
+                tv[k] = rate(j, k);
+            }
+            tv
+        };
+        let first = *js.first().expect("every part has samples");
+        let last = *js.last().expect("every part has samples");
+        let axis_tangents = Some(Box::new((tangent(first, 0.0), tangent(last, 1.0))));
+        moves.push(Move {
+            path: piece,
+            length: plen,
+            v_max,
+            v_axes,
+            feed: mv.feed,
+            a_max,
+            exact_stop: false,
+            tag: mv.tag,
+            machine_space: false,
+            axis_tangents,
+        });
+    }
+    Ok((moves, *ms.last().expect("samples")))
+}

@@ -1,0 +1,115 @@
+//! TRACYL (types 512, 513, 514): grooves on a cylinder surface, programmed on the unrolled
+//! surface. BCS: X radial (infeed), Y the arc length on the working diameter d (it lives in the
+//! rotary axis' channel slot), Z axial.
+//!
+//! Roles of `TRAFO_AXES_IN_n`: [0] linear axis radial to the rotary axis, [1] rotary axis,
+//! [2] linear axis parallel to the rotary axis, [3] (513, 514) real Y axis perpendicular to both.
+//!
+//! Math (REFERENCE §4.4): `Y = (d/2)·φ + e`, `φ = s·(C − c0)` in radians, `X = Xm + Bx − Lx`,
+//! `Z = Zm + Bz − Lz`, where `e = By − Ly (+ Ym for 513/514)` is the tangential offset of the tool.
+//! The unrolled coordinate is linear in C, so C is continuous over any number of turns.
+//! The groove-wall offset of 513/514 moves the real Y axis by `OFFN − tool radius` on the
+//! side of the radius compensation; it needs OFFN and G41/G42, which this product does not
+//! model yet, so the real Y axis keeps its programmed position (it should stand at 0).
+
+use super::{BuildError, SelectArgs, Transformation, Unreachable, Vec3, role_geo};
+use crate::machine_data::{TrafoDataSet, TrafoParams};
+use crate::motion::AxisVec;
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tracyl {
+    trafo_type: u32,
+    radial: (usize, usize),
+    rotary: (usize, usize),
+    axial: Option<(usize, usize)>,
+    /// Channel axis of the real Y axis (513, 514).
+    extra: Option<usize>,
+    geo: [Option<usize>; 3],
+    /// Working radius d/2.
+    radius: f64,
+    rot_offset: f64,
+    sign: f64,
+    base_tool: Vec3,
+    /// Groove-wall offset selected (513 always; 514 by TRACYL's 3rd parameter or the default mode).
+    pub groove_wall: bool,
+}
+
+impl Tracyl {
+    pub fn new(set: &TrafoDataSet, args: &SelectArgs) -> Result<Tracyl, BuildError> {
+        let TrafoParams::Tracyl { rot_offset, sign_plus, base_tool, default_mode, .. } = set.params else {
+            unreachable!("a TRACYL data set has TRACYL parameters")
+        };
+        let d = args.diameter.ok_or_else(|| BuildError::Value("TRACYL needs the working diameter".into()))?;
+        // The manual: the working diameter must always be given and be larger than 1.
+        if d <= 1.0 {
+            return Err(BuildError::Value(format!("TRACYL working diameter {d} (must be > 1)")));
+        }
+        let groove_wall = match set.trafo_type {
+            512 => false,
+            513 => true,
+            _ => args.groove_wall.unwrap_or(default_mode == 1),
+        };
+        Ok(Tracyl {
+            trafo_type: set.trafo_type,
+            radial: role_geo(set, 0).expect("checked at activation"),
+            rotary: role_geo(set, 1).expect("checked at activation"),
+            axial: role_geo(set, 2),
+            extra: if set.trafo_type == 512 { None } else { set.axes_in[3] },
+            geo: set.geo_axes,
+            radius: d / 2.0,
+            rot_offset,
+            sign: if sign_plus { 1.0 } else { -1.0 },
+            base_tool,
+            groove_wall,
+        })
+    }
+
+    fn off(&self, tool: &Vec3, g: usize) -> f64 {
+        self.base_tool[g] - tool[g]
+    }
+
+    fn tangential(&self, pos: &AxisVec, tool: &Vec3) -> f64 {
+        self.off(tool, self.rotary.1) + self.extra.map_or(0.0, |k| pos[k])
+    }
+}
+
+impl Transformation for Tracyl {
+    fn name(&self) -> &'static str {
+        "TRACYL"
+    }
+
+    fn trafo_type(&self) -> u32 {
+        self.trafo_type
+    }
+
+    fn geo_slots(&self) -> [Option<usize>; 3] {
+        self.geo
+    }
+
+    fn machine_slots(&self) -> Vec<usize> {
+        [Some(self.radial.0), Some(self.rotary.0), self.axial.map(|a| a.0)].into_iter().flatten().collect()
+    }
+
+    fn rotary_slot(&self) -> Option<usize> {
+        Some(self.rotary.0)
+    }
+
+    fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
+        let phi = (self.sign * (machine[self.rotary.0] - self.rot_offset)).to_radians();
+        bcs[self.radial.0] = machine[self.radial.0] + self.off(tool, self.radial.1);
+        bcs[self.rotary.0] = self.radius * phi + self.tangential(machine, tool);
+        if let Some((k, g)) = self.axial {
+            bcs[k] = machine[k] + self.off(tool, g);
+        }
+    }
+
+    fn inverse(&self, bcs: &AxisVec, _prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
+        let y = bcs[self.rotary.0] - self.tangential(bcs, tool);
+        machine[self.rotary.0] = self.rot_offset + self.sign * (y / self.radius).to_degrees();
+        machine[self.radial.0] = bcs[self.radial.0] - self.off(tool, self.radial.1);
+        if let Some((k, g)) = self.axial {
+            machine[k] = bcs[k] - self.off(tool, g);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,536 @@
+//! Kinematic transformations (TRANSMIT, TRACYL, TRAANG) run through a whole channel on the
+//! manual's example machines. Expected machine positions are worked out here with simpler
+//! formulas (polar coordinates, unrolled arc length, a 2×2 linear system), not with the
+//! engine's own code.
+
+use nctwin_engine::kinematics::{self, ActiveTrafo, SelectArgs};
+use nctwin_engine::machine_data::{MachineConfig, MachineData, presets};
+use nctwin_engine::{Channel, Snapshot, Status};
+use proptest::prelude::*;
+
+const MAX_TICKS: usize = 2_000_000;
+
+/// One IPO cycle as seen from outside: machine positions by channel axis and the block shown.
+struct Sample {
+    axes: Vec<f64>,
+    line: Option<u32>,
+}
+
+fn run(preset: &str, md: &str, program: &str) -> (Channel, Vec<Sample>) {
+    let mut ch = Channel::from_preset(preset, md).unwrap();
+    ch.run_program(program).unwrap();
+    let mut samples = Vec::new();
+    while ch.is_busy() {
+        ch.step();
+        let s = ch.snapshot();
+        samples.push(Sample { axes: ch.axis_positions().to_vec(), line: s.block.map(|b| b.line) });
+        assert!(samples.len() < MAX_TICKS, "program does not end");
+    }
+    (ch, samples)
+}
+
+fn pos(list: &[(String, f64)], name: &str) -> f64 {
+    list.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no axis {name} in {list:?}")).1
+}
+
+fn machine(s: &Snapshot, name: &str) -> f64 {
+    pos(&s.machine, name)
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+/// Angle difference modulo 360°, in −180..180.
+fn angle_diff(a: f64, b: f64) -> f64 {
+    (a - b + 180.0).rem_euclid(360.0) - 180.0
+}
+
+fn alarm_numbers(s: &Snapshot) -> Vec<u32> {
+    s.alarms.iter().map(|a| a.number).collect()
+}
+
+/// Polar coordinates of a face point: radial axis = distance from the centre, C = polar angle
+/// (TRANSMIT with no offsets, ROT_SIGN_IS_PLUS = TRUE).
+fn polar(x: f64, y: f64) -> (f64, f64) {
+    (x.hypot(y), y.atan2(x).to_degrees())
+}
+
+// ---------------------------------------------------------------------------------------------
+// TRANSMIT
+// ---------------------------------------------------------------------------------------------
+
+/// The manual's TRANSMIT example (Transformations FM, M1 §2.1.5) without the parts this product
+/// does not model yet (ROT/ATRANS frames, G41 with OFFN): a square on the face, T1 of length 30
+/// along Z.
+const TRANSMIT_SQUARE: &str = "\
+N10 T1 D1 G17 G90 F5000 G94
+N20 G0 X20 Z10
+N30 TRANSMIT
+N40 G1 X10 Y-10
+N50 X-10
+N60 Y10
+N70 X10
+N80 Y-10
+N90 G0 Z20
+N100 TRAFOOF
+N110 G0 X20 Z10
+N120 M30";
+
+#[test]
+fn transmit_mills_a_square_on_the_face_with_radial_axis_and_c() {
+    let (ch, samples) = run("transmit-example", "", TRANSMIT_SQUARE);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
+    assert_eq!(s.transformation, None);
+    // After TRAFOOF: X20, Z10 + tool length 30; C stays where the square left it (at (10, −10)).
+    assert!(close(machine(&s, "XM"), 20.0, 1e-9));
+    assert!(close(machine(&s, "ZM"), 40.0, 1e-9));
+    assert!(close(angle_diff(machine(&s, "CM"), -45.0), 0.0, 1e-6), "{}", machine(&s, "CM"));
+
+    // Channel axes: XC, C, ZC, ASC. Every sample of a square edge (text lines 5..8 = N50..N80)
+    // lies on that edge.
+    let edge = |line: u32| -> Option<(char, f64)> {
+        match line {
+            5 => Some(('y', -10.0)),
+            6 => Some(('x', -10.0)),
+            7 => Some(('y', 10.0)),
+            8 => Some(('x', 10.0)),
+            _ => None,
+        }
+    };
+    let mut checked = 0;
+    for s in &samples {
+        let Some((axis, value)) = s.line.and_then(edge) else { continue };
+        let (r, c) = (s.axes[0], s.axes[1].to_radians());
+        let (x, y) = (r * c.cos(), r * c.sin());
+        let v = if axis == 'x' { x } else { y };
+        assert!(close(v, value, 1e-6), "line {:?}: ({x}, {y})", s.line);
+        checked += 1;
+    }
+    assert!(checked > 100, "{checked} samples checked");
+}
+
+#[test]
+fn transmit_checkpoints_follow_the_polar_formula() {
+    // Stop at each corner (M0) and compare with the polar coordinates of the corner.
+    let program = "T1 D1 G17 F5000\nG0 X20 Z10\nTRANSMIT\nG1 X10 Y-10\nM0\nX-10\nM0\nY10\nM0\nM30";
+    let mut ch = Channel::from_preset("transmit-example", "").unwrap();
+    ch.run_program(program).unwrap();
+    for (x, y) in [(10.0, -10.0), (-10.0, -10.0), (-10.0, 10.0)] {
+        while ch.is_busy() {
+            ch.step();
+        }
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+        let (r, c) = polar(x, y);
+        assert!(close(machine(&s, "XM"), r, 1e-9), "{x},{y}: XM {}", machine(&s, "XM"));
+        assert!(close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-9), "{x},{y}: CM {}", machine(&s, "CM"));
+        assert!(close(machine(&s, "ZM"), 40.0, 1e-9));
+        // BCS shows the tool tip in X, Y, Z while TRANSMIT is active.
+        assert!(close(pos(&s.basic, "X"), x, 1e-9) && close(pos(&s.basic, "Y"), y, 1e-9), "{:?}", s.basic);
+        assert!(close(pos(&s.basic, "Z"), 10.0, 1e-9));
+        let t = s.transformation.clone().expect("TRANSMIT active");
+        assert_eq!((t.name.as_str(), t.trafo_type, t.index), ("TRANSMIT", 256, 1));
+        ch.start().unwrap();
+    }
+}
+
+#[test]
+fn c_cannot_be_programmed_while_transmit_is_active() {
+    let (ch, _) = run("transmit-example", "", "G0 X20\nTRANSMIT\nC90\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [12550]);
+    // Y exists only with TRANSMIT.
+    let (ch, _) = run("transmit-example", "", "G0 X20 Y10\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [12550]);
+}
+
+#[test]
+fn a_missing_data_set_raises_14401_and_a_turning_spindle_14092() {
+    let (ch, _) = run("transmit-example", "", "TRANSMIT(2)\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [14401]);
+    let (ch, _) = run("transmit-example", "", "M3 S100\nTRANSMIT\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [14092]);
+}
+
+#[test]
+fn transmit_takes_over_the_angle_of_the_stopped_spindle() {
+    // The spindle turns, stops; TRANSMIT waits for standstill and starts from its angle.
+    let program = "M3 S60\nG4 F1\nM5\nTRANSMIT\nG1 F1000 X20 Y0\nM0\nM30";
+    let mut ch = Channel::from_preset("transmit-example", "").unwrap();
+    ch.run_program(program).unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    // X20 Y0 is polar angle 0: C returned to 0 (modulo 360) whatever the spindle's angle was.
+    assert!(close(angle_diff(machine(&s, "CM"), 0.0), 0.0, 1e-9), "{}", machine(&s, "CM"));
+    assert!(close(machine(&s, "XM"), 20.0, 1e-9));
+}
+
+#[test]
+fn a_line_through_the_pole_reverses_the_radial_axis_and_keeps_c() {
+    let (ch, samples) = run("transmit-example", "", "G0 X10\nTRANSMIT\nG1 F2000 X-10 Y0\nM0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert!(close(machine(&s, "XM"), -10.0, 1e-9));
+    for s in &samples {
+        assert!(close(s.axes[1], 0.0, 1e-9), "C moved: {}", s.axes[1]);
+    }
+}
+
+#[test]
+fn pole_side_fix_rotates_c_by_180_degrees_in_the_pole() {
+    let md = "$MC_TRANSMIT_POLE_SIDE_FIX_1=1";
+    let (ch, samples) = run("transmit-example", md, "G0 X10\nTRANSMIT\nG1 F2000 X-10 Y0\nM0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    // The radial axis stays in its positive range; C has turned half a revolution.
+    assert!(close(machine(&s, "XM"), 10.0, 1e-9), "{}", machine(&s, "XM"));
+    assert!(close(angle_diff(machine(&s, "CM"), 180.0), 0.0, 1e-9), "{}", machine(&s, "CM"));
+    assert!(samples.iter().all(|s| s.axes[0] >= -1e-9));
+    // The rotation happened with X at the pole.
+    let turning: Vec<&Sample> =
+        samples.windows(2).filter(|w| (w[1].axes[1] - w[0].axes[1]).abs() > 1e-9).map(|w| &w[1]).collect();
+    assert!(!turning.is_empty() && turning.iter().all(|s| s.axes[0].abs() < 1e-6));
+}
+
+#[test]
+fn a_corner_in_the_pole_turns_c_before_leaving_it() {
+    let (ch, samples) = run("transmit-example", "", "G0 X10\nTRANSMIT\nG1 F2000 X0 Y0\nX0 Y10\nM0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let (r, c) = polar(0.0, 10.0);
+    // Leaving along +Y: either C = 90° with X positive, or C = −90° with X negative; the
+    // product prefers the positive side on a tie.
+    assert!(close(machine(&s, "XM"), r, 1e-9) && close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-9));
+    // No jump of C between two cycles beyond its velocity limit (100 rpm = 600°/s, 4 ms).
+    for w in samples.windows(2) {
+        assert!((w[1].axes[1] - w[0].axes[1]).abs() <= 600.0 * 0.004 * (1.0 + 1e-9));
+    }
+}
+
+#[test]
+fn the_working_area_limitation_rejects_the_block_with_21619() {
+    // A base tool 5 mm off the radial line leaves a cylinder of radius 5 unmachinable.
+    let md = "$MC_TRANSMIT_BASE_TOOL_1[1]=5";
+    let (ch, _) = run("transmit-example", md, "G0 X20\nTRANSMIT\nG1 F1000 X10 Y3\nX-10 Y3\nM30");
+    let s = ch.snapshot();
+    assert_eq!(alarm_numbers(&s), [21619]);
+    assert_eq!(s.alarms[0].line, Some(4));
+    // The block before it was executed, the rejected one not at all: r never fell below 5.
+    let (x, y) = (pos(&s.basic, "X"), pos(&s.basic, "Y"));
+    assert!(close(x, 10.0, 1e-9) && close(y, 3.0, 1e-9), "{x} {y}");
+}
+
+#[test]
+fn a_lateral_offset_follows_the_reference_test_vector() {
+    // REFERENCE §10: e = 5, target (30, −40) ⇒ qx = +49.749, φ = −58.869° (positive side).
+    let md = "$MC_TRANSMIT_BASE_TOOL_1[1]=5";
+    let (ch, _) = run("transmit-example", md, "G0 X60\nTRANSMIT\nG1 F3000 X30 Y-40\nM0\nM30");
+    let s = ch.snapshot();
+    let (r, e) = (50.0f64, 5.0f64);
+    let qx = (r * r - e * e).sqrt();
+    let phi = (-40.0f64).atan2(30.0) - e.atan2(qx);
+    assert!(close(machine(&s, "XM"), qx, 1e-9), "{}", machine(&s, "XM"));
+    assert!(close(angle_diff(machine(&s, "CM"), phi.to_degrees()), 0.0, 1e-9), "{}", machine(&s, "CM"));
+    assert!(close(qx, 49.749, 1e-3) && close(phi.to_degrees(), -58.869, 1e-3));
+}
+
+/// Velocities and accelerations of every machine axis over a run.
+fn check_limits(samples: &[Sample], limits: &[(f64, f64)], dt: f64, overload: f64) {
+    let vel: Vec<Vec<f64>> =
+        samples.windows(2).map(|w| w[1].axes.iter().zip(&w[0].axes).map(|(b, a)| (b - a) / dt).collect()).collect();
+    for v in &vel {
+        for (k, &(vmax, _)) in limits.iter().enumerate() {
+            assert!(v[k].abs() <= vmax * (1.0 + 1e-6), "axis {k}: {} > {vmax}", v[k]);
+        }
+    }
+    for w in vel.windows(2) {
+        for (k, &(_, amax)) in limits.iter().enumerate() {
+            let a = (w[1][k] - w[0][k]).abs() / dt;
+            assert!(a <= amax * overload * (1.0 + 1e-3), "axis {k}: accel {a} > {}", amax * overload);
+        }
+    }
+}
+
+#[test]
+fn near_the_pole_the_rotary_axis_limits_the_feed() {
+    // A line 0.5 mm past the centre: C turns half a revolution within a few millimetres.
+    let program = "G0 X20\nTRANSMIT\nG1 F6000 X20 Y0.5\nX-20 Y0.5\nM0\nM30";
+    let (ch, samples) = run("transmit-example", "", program);
+    assert_eq!(ch.snapshot().status, Status::Stopped, "{:?}", ch.snapshot().alarms);
+    // XM 15000 mm/min, CM 100 rpm; accelerations: defaults 1 m/s² and 2.77 rev/s².
+    let limits = [(250.0, 1000.0), (600.0, 2.77 * 360.0), (250.0, 1000.0)];
+    check_limits(&samples, &limits, 0.004, 1.2);
+    // At F6000 (100 mm/s) 40 mm take 0.4 s; C at most 600°/s needs far longer near the pole.
+    let cycles = samples.iter().filter(|s| s.line == Some(4)).count();
+    assert!(cycles as f64 * 0.004 > 0.6, "{cycles} cycles");
+}
+
+// ---------------------------------------------------------------------------------------------
+// TRACYL
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn tracyl_unrolls_y_onto_the_working_diameter() {
+    // Working diameter 40: an arc length of Y on the surface is C = Y / (π·40) · 360°.
+    let program = "G0 X20 Y0 Z0\nTRACYL(40)\nG1 F1000 Y31.4159265358979 Z-10\nM0\nY-62.8318530717959\nM0\nM30";
+    let mut ch = Channel::from_preset("tracyl-xyzc", "").unwrap();
+    ch.run_program(program).unwrap();
+    for (y, z) in [(31.4159265358979, -10.0), (-62.8318530717959, -10.0)] {
+        while ch.is_busy() {
+            ch.step();
+        }
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+        let c = y / (std::f64::consts::PI * 40.0) * 360.0;
+        assert!(close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-6), "C {} vs {c}", machine(&s, "CM"));
+        assert!(close(machine(&s, "ZM"), z, 1e-9) && close(machine(&s, "XM"), 20.0, 1e-9));
+        // The real Y axis keeps its position (no groove-wall offset without OFFN).
+        assert!(close(machine(&s, "YM"), 0.0, 1e-12));
+        assert!(close(pos(&s.basic, "Y"), y, 1e-9), "{:?}", s.basic);
+        let t = s.transformation.clone().expect("TRACYL active");
+        assert_eq!((t.name.as_str(), t.trafo_type, t.index), ("TRACYL", 513, 1));
+        ch.start().unwrap();
+    }
+}
+
+#[test]
+fn tracyl_turns_c_continuously_over_several_revolutions() {
+    // 3 turns on d = 20: Y = 3·π·20; C ends at 1080° (shown modulo 360 = 0).
+    let program = "G0 X10\nTRACYL(20)\nG1 F3000 Y188.495559215388\nM0\nM30";
+    let (ch, samples) = run("tracyl-xyzc", "", program);
+    let c_max = samples.iter().map(|s| s.axes[3]).fold(f64::MIN, f64::max);
+    assert!(close(c_max, 1080.0, 1e-6), "{c_max}");
+    assert!(close(angle_diff(machine(&ch.snapshot(), "CM"), 0.0), 0.0, 1e-6));
+}
+
+#[test]
+fn tracyl_needs_a_working_diameter_above_1() {
+    let (ch, _) = run("tracyl-xyzc", "", "TRACYL(1)\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [12560]);
+    let (ch, _) = run("tracyl-xyzc", "", "TRACYL(40)\nCC10\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [12550]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// TRAANG
+// ---------------------------------------------------------------------------------------------
+
+/// Machine positions of the inclined axis MU (unit vector (cos α, sin α) in X/Z) and the
+/// longitudinal axis MZ that reach Cartesian (x, z): Cramer's rule on
+/// `MU·cos α = x`, `MU·sin α + MZ = z`.
+fn traang_axes(alpha_deg: f64, x: f64, z: f64) -> (f64, f64) {
+    let (s, c) = alpha_deg.to_radians().sin_cos();
+    let det = c * 1.0 - 0.0 * s;
+    let mu = (x * 1.0 - 0.0 * z) / det;
+    let mz = (c * z - s * x) / det;
+    (mu, mz)
+}
+
+#[test]
+fn traang_moves_the_inclined_and_the_parallel_axis() {
+    for (select, alpha) in [("TRAANG", 45.0f64), ("TRAANG(30)", 30.0), ("TRAANG(-20,1)", -20.0), ("TRAANG(,1)", 45.0)] {
+        let program = format!("G0 X0 Z0\n{select}\nG1 F2000 X10 Z-5\nM0\nM30");
+        let (ch, samples) = run("traang-grinder", "", &program);
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{select}: {:?}", s.alarms);
+        let (mu, mz) = traang_axes(alpha, 10.0, -5.0);
+        assert!(close(machine(&s, "MU"), mu, 1e-9) && close(machine(&s, "MZ"), mz, 1e-9), "{select}: {:?}", s.machine);
+        assert_eq!(s.transformation.as_ref().map(|t| t.trafo_type), Some(1024));
+        // The Cartesian path is a straight line: every sample satisfies the line equation.
+        let (sn, cs) = alpha.to_radians().sin_cos();
+        for smp in samples.iter().filter(|s| s.line == Some(3)) {
+            let (x, z) = (smp.axes[0] * cs, smp.axes[1] + smp.axes[0] * sn);
+            assert!(close(z, -0.5 * x, 1e-9), "{select}: ({x}, {z})");
+        }
+    }
+}
+
+#[test]
+fn traang_rejects_angles_outside_its_range() {
+    for select in ["TRAANG(0)", "TRAANG(90)", "TRAANG(-95)"] {
+        let (ch, _) = run("traang-grinder", "", &format!("{select}\nM30"));
+        assert_eq!(alarm_numbers(&ch.snapshot()), [12560], "{select}");
+    }
+}
+
+#[test]
+fn traang_keeps_the_velocity_reserve_on_the_parallel_axis() {
+    // A pure Z move at high feed: only MZ moves; it may use 80 % of its 200 mm/s.
+    let (ch, samples) = run("traang-grinder", "", "TRAANG\nG1 F60000 Z200\nM0\nM30");
+    assert_eq!(ch.snapshot().status, Status::Stopped);
+    let vmax = samples.windows(2).map(|w| (w[1].axes[1] - w[0].axes[1]).abs() / 0.004).fold(0.0, f64::max);
+    assert!(vmax <= 160.0 * (1.0 + 1e-9) && vmax > 150.0, "{vmax}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Selection rules
+// ---------------------------------------------------------------------------------------------
+
+/// The TRANSMIT machine with a second data set: TRACYL 512 on the same axes.
+const TRACYL_ON_TRANSMIT: &str = "\
+$MC_TRAFO_TYPE_2=512
+$MC_TRAFO_AXES_IN_2[0]=1
+$MC_TRAFO_AXES_IN_2[1]=2
+$MC_TRAFO_AXES_IN_2[2]=3
+$MC_TRAFO_GEOAX_ASSIGN_TAB_2[0]=1
+$MC_TRAFO_GEOAX_ASSIGN_TAB_2[1]=2
+$MC_TRAFO_GEOAX_ASSIGN_TAB_2[2]=3";
+
+#[test]
+fn selecting_one_transformation_deselects_the_other_and_reset_ends_both() {
+    let program = "G0 X20\nTRANSMIT\nG1 F1000 X20 Y5\nTRACYL(40)\nM0\nTRAFOOF\nM0\nM30";
+    let mut ch = Channel::from_preset("transmit-example", TRACYL_ON_TRANSMIT).unwrap();
+    ch.run_program(program).unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let t = s.transformation.clone().expect("TRACYL active");
+    assert_eq!((t.name.as_str(), t.trafo_type, t.index), ("TRACYL", 512, 2));
+    // Machine unchanged by the switch: XM = r of (20, 5), C its polar angle.
+    let (r, c) = polar(20.0, 5.0);
+    assert!(close(machine(&s, "XM"), r, 1e-9) && close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-9));
+    // In TRACYL's BCS, Y is the arc length of C on d = 40.
+    assert!(close(pos(&s.basic, "Y"), c.to_radians() * 20.0, 1e-9), "{:?}", s.basic);
+    ch.start().unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert_eq!(ch.snapshot().transformation, None);
+    ch.reset();
+    assert_eq!(ch.snapshot().transformation, None);
+}
+
+#[test]
+fn reset_deselects_the_transformation_and_the_axes_stay() {
+    let mut ch = Channel::from_preset("transmit-example", "").unwrap();
+    ch.run_program("G0 X20\nTRANSMIT\nG1 F1000 X0 Y20\nM0\nM30").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let before = ch.snapshot().machine.clone();
+    ch.reset();
+    let s = ch.snapshot();
+    assert_eq!(s.transformation, None);
+    assert_eq!(s.machine, before);
+    // Without TRANSMIT the BCS is the machine again: X is the radial axis.
+    assert!(close(pos(&s.basic, "X"), 20.0, 1e-9));
+    // A new program starts from there.
+    ch.run_program("G0 X30\nM30").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert!(close(machine(&ch.snapshot(), "XM"), 30.0, 1e-9));
+}
+
+#[test]
+fn transformations_are_deterministic() {
+    let a = run("transmit-example", "", TRANSMIT_SQUARE).1;
+    let b = run("transmit-example", "", TRANSMIT_SQUARE).1;
+    assert!(a.len() == b.len() && a.iter().zip(&b).all(|(p, q)| p.axes == q.axes));
+}
+
+#[test]
+fn bad_transformation_data_is_rejected_with_its_line() {
+    let mut md = MachineData::default();
+    md.apply_text(presets::find("transmit-example").unwrap().text).unwrap();
+    // The rotary role must be a rotary axis.
+    let e = md.apply_text("$MC_TRAFO_AXES_IN_1[1]=3\n$MC_TRAFO_AXES_IN_1[2]=2").unwrap_err();
+    assert!(e.message.contains("rotary"), "{e}");
+    let e = md.apply_text("$MC_TRAFO_TYPE_3=16").unwrap_err();
+    assert_eq!(e.line, Some(1));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Round trips
+// ---------------------------------------------------------------------------------------------
+
+fn config(preset: &str, md: &str) -> MachineConfig {
+    let mut data = MachineData::default();
+    data.apply_text(presets::find(preset).unwrap().text).unwrap();
+    data.apply_text(md).unwrap()
+}
+
+fn active(cfg: &MachineConfig, set: usize, args: SelectArgs, tool: [f64; 3]) -> ActiveTrafo {
+    let trafo = kinematics::build(&cfg.trafos[set], cfg, &args).unwrap();
+    ActiveTrafo { trafo, tool, number: cfg.trafos[set].number }
+}
+
+fn axes(values: &[f64]) -> [f64; 20] {
+    let mut v = [0.0; 20];
+    v[..values.len()].copy_from_slice(values);
+    v
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, .. ProptestConfig::default() })]
+
+    /// Machine → BCS → machine returns the same machine position (tolerance 1e-9 mm / 1e-9°)
+    /// for both pole sides, lateral offsets and tool lengths.
+    #[test]
+    fn transmit_round_trips(x in -150.0f64..150.0, c in -720.0f64..720.0, z in -100.0f64..100.0,
+                            e in -8.0f64..8.0, lx in -20.0f64..20.0, lz in 0.0f64..50.0, fix in 0u8..3) {
+        let cfg = config("transmit-example", &format!("$MC_TRANSMIT_BASE_TOOL_1[1]={e}\n$MC_TRANSMIT_POLE_SIDE_FIX_1={fix}"));
+        let t = active(&cfg, 0, SelectArgs::default(), [lx, 0.0, lz]);
+        let qx = x - lx;
+        prop_assume!(qx.hypot(e) > 1e-3);
+        prop_assume!(fix == 0 || (fix == 1) == (qx > 0.0));
+        let m = axes(&[x, c, z, 0.0]);
+        let b = t.forward(&m);
+        let back = t.inverse(&b, &m).unwrap();
+        prop_assert!((back[0] - m[0]).abs() < 1e-9 && (back[1] - m[1]).abs() < 1e-9 && (back[2] - m[2]).abs() < 1e-9,
+            "{m:?} -> {b:?} -> {back:?}");
+    }
+
+    /// BCS → machine → BCS reproduces the point (1e-9 mm) wherever it is reachable.
+    #[test]
+    fn transmit_inverse_then_forward(x in -150.0f64..150.0, y in -150.0f64..150.0, e in -8.0f64..8.0, c0 in -360.0f64..360.0) {
+        let cfg = config("transmit-example", &format!("$MC_TRANSMIT_BASE_TOOL_1[1]={e}"));
+        let t = active(&cfg, 0, SelectArgs::default(), [0.0; 3]);
+        let b = axes(&[x, y, 5.0]);
+        let prev = axes(&[0.0, c0, 0.0]);
+        match t.inverse(&b, &prev) {
+            Ok(m) => {
+                let f = t.forward(&m);
+                prop_assert!((f[0] - x).abs() < 1e-9 && (f[1] - y).abs() < 1e-9 && (f[2] - 5.0).abs() < 1e-9);
+                prop_assert!((m[1] - c0).abs() <= 180.0 + 1e-9, "C {} not the turn closest to {c0}", m[1]);
+            }
+            Err(_) => prop_assert!(x.hypot(y) < e.abs()),
+        }
+    }
+
+    #[test]
+    fn tracyl_round_trips(x in 0.0f64..100.0, c in -1000.0f64..1000.0, z in -100.0f64..100.0, d in 1.5f64..300.0,
+                          ly in -5.0f64..5.0, ym in -20.0f64..20.0) {
+        let cfg = config("tracyl-xyzc", "$MC_TRACYL_ROT_SIGN_IS_PLUS_1=FALSE\n$MC_TRACYL_ROT_AX_OFFSET_1=30");
+        let t = active(&cfg, 0, SelectArgs { diameter: Some(d), ..SelectArgs::default() }, [0.0, ly, 0.0]);
+        let m = axes(&[x, ym, z, c]);
+        let back = t.inverse(&t.forward(&m), &m).unwrap();
+        prop_assert!(m.iter().zip(&back).all(|(a, b)| (a - b).abs() < 1e-9), "{m:?} {back:?}");
+    }
+
+    #[test]
+    fn traang_round_trips(mu in -300.0f64..300.0, mz in -300.0f64..300.0, alpha in -89.0f64..89.0, lx in -20.0f64..20.0) {
+        prop_assume!(alpha.abs() > 0.1);
+        let cfg = config("traang-grinder", "$MC_TRAANG_BASE_TOOL_1[0]=3\n$MC_TRAANG_BASE_TOOL_1[2]=-7");
+        let t = active(&cfg, 0, SelectArgs { angle: Some(alpha), ..SelectArgs::default() }, [lx, 0.0, 0.0]);
+        let m = axes(&[mu, mz, 0.0]);
+        let back = t.inverse(&t.forward(&m), &m).unwrap();
+        prop_assert!((back[0] - mu).abs() < 1e-9 * (1.0 + mu.abs()) && (back[1] - mz).abs() < 1e-8, "{m:?} {back:?}");
+    }
+}
+
+#[test]
+fn transmit_after_spos_starts_from_the_positioned_spindle() {
+    // The manual's example positions the spindle with SPOS before TRANSMIT.
+    let (ch, _) = run("transmit-example", "", "G0 X20 Z10\nSPOS=45\nTRANSMIT\nM0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let (x, y) = (20.0 * 45f64.to_radians().cos(), 20.0 * 45f64.to_radians().sin());
+    assert!(close(pos(&s.basic, "X"), x, 1e-9) && close(pos(&s.basic, "Y"), y, 1e-9), "{:?}", s.basic);
+}
