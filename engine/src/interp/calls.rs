@@ -8,7 +8,7 @@ use super::Interpreter;
 use super::eval::eval;
 use super::flow::Flow;
 use super::modal::assign;
-use super::scope::{Ctx, SysView};
+use super::scope::{Ctx, sys_view};
 use super::value::Value;
 use super::vars::Variable;
 use crate::alarm::Alarm;
@@ -54,14 +54,7 @@ impl Interpreter {
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::nesting(line, &format!("more than {MAX_LEVELS} program levels")));
         }
-        let sys = SysView {
-            cfg,
-            modal: &self.modal,
-            pos: &self.pos,
-            offsets: &self.offsets,
-            pframe: &self.pframe,
-            positioned: &self.positioned,
-        };
+        let sys = sys_view!(self, cfg);
         let ctx = Ctx { vars: &self.vars, sys: &sys };
         let mut values = Vec::new();
         let mut sources = Vec::new();
@@ -173,14 +166,7 @@ impl Interpreter {
                 Value::Bool(b) => Expr::Bool(*b),
                 v => Expr::Number(v.as_f64().unwrap_or(0.0)),
             };
-            let sys = SysView {
-                cfg,
-                modal: &self.modal,
-                pos: &self.pos,
-                offsets: &self.offsets,
-                pframe: &self.pframe,
-                positioned: &self.positioned,
-            };
+            let sys = sys_view!(self, cfg);
             assign(&target.name, &target.indices, &expr, cfg, &mut self.vars, &sys, line)?;
         }
         Ok(())

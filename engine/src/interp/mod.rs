@@ -14,12 +14,12 @@ pub mod frame;
 mod modal;
 mod scope;
 mod statements;
+mod trafo;
 pub mod trc;
 pub mod value;
 pub mod vars;
 
 use std::sync::Arc as Shared;
-mod trafo;
 
 use crate::alarm::Alarm;
 use crate::lang::{Block, CoordMode};
@@ -33,7 +33,7 @@ use flow::Flow;
 pub use frame::Frame;
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
-use scope::SysView;
+use scope::sys_view;
 use vars::Variables;
 
 /// Offsets in effect for a block, per channel axis, and the tool that causes them.
@@ -313,14 +313,7 @@ impl Interpreter {
         let (base_cfg, derived) = (cfg, self.trafo.config());
         let cfg = derived.as_deref().unwrap_or(base_cfg);
         let words = {
-            let sys = SysView {
-                cfg,
-                modal: &self.modal,
-                pos: &self.pos,
-                offsets: &self.offsets,
-                pframe: &self.pframe,
-                positioned: &self.positioned,
-            };
+            let sys = sys_view!(self, cfg);
             modal::collect(block, cfg, &mut self.vars, &sys, programs)?
         };
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
@@ -330,14 +323,7 @@ impl Interpreter {
         }
         let offsets_before = self.offsets.clone();
         let selection = {
-            let sys = SysView {
-                cfg,
-                modal: &self.modal,
-                pos: &self.pos,
-                offsets: &self.offsets,
-                pframe: &self.pframe,
-                positioned: &self.positioned,
-            };
+            let sys = sys_view!(self, cfg);
             trafo::selection(block, |e| eval::eval_f64(e, &scope::Ctx { vars: &self.vars, sys: &sys }, line))?
         };
         self.apply_transformation(selection, block, base_cfg, line)?;

@@ -24,6 +24,22 @@ pub(crate) struct SysView<'a> {
     pub positioned: &'a [bool; MAX_CHANNEL_AXES],
 }
 
+/// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
+/// interpreter's variables can be borrowed mutably beside it.
+macro_rules! sys_view {
+    ($interp:expr, $cfg:expr) => {
+        $crate::interp::scope::SysView {
+            cfg: $cfg,
+            modal: &$interp.modal,
+            pos: &$interp.pos,
+            offsets: &$interp.offsets,
+            pframe: &$interp.pframe,
+            positioned: &$interp.positioned,
+        }
+    };
+}
+pub(crate) use sys_view;
+
 /// Variables plus system variables, for [`super::eval::eval`].
 pub(crate) struct Ctx<'a> {
     pub vars: &'a Variables,

@@ -3,7 +3,7 @@
 use super::eval::{eval, eval_f64};
 use super::flow::{Ctrl, Pos};
 use super::modal::{Assigned, assign};
-use super::scope::{Ctx, SysView, is_main_run_variable};
+use super::scope::{Ctx, SysView, is_main_run_variable, sys_view};
 use super::value::Value;
 use super::vars::Variable;
 use super::{Interpreter, Item, Prep, Programs, StopKind};
@@ -81,14 +81,7 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let line = block.line;
         let cond = |this: &Self, e: &Expr| -> Result<bool, Alarm> {
-            let sys = SysView {
-                cfg,
-                modal: &this.modal,
-                pos: &this.pos,
-                offsets: &this.offsets,
-                pframe: &this.pframe,
-                positioned: &this.positioned,
-            };
+            let sys = sys_view!(this, cfg);
             eval(e, &Ctx { vars: &this.vars, sys: &sys }, line)?.as_bool().map_err(|e| Alarm::type_error(line, &e.0))
         };
         match stmt {
@@ -215,14 +208,7 @@ impl Interpreter {
     }
 
     fn sys<'a>(&'a self, cfg: &'a MachineConfig) -> SysView<'a> {
-        SysView {
-            cfg,
-            modal: &self.modal,
-            pos: &self.pos,
-            offsets: &self.offsets,
-            pframe: &self.pframe,
-            positioned: &self.positioned,
-        }
+        sys_view!(self, cfg)
     }
 
     fn assign_to(
@@ -233,14 +219,7 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
-        let sys = SysView {
-            cfg,
-            modal: &self.modal,
-            pos: &self.pos,
-            offsets: &self.offsets,
-            pframe: &self.pframe,
-            positioned: &self.positioned,
-        };
+        let sys = sys_view!(self, cfg);
         match assign(name, indices, value, cfg, &mut self.vars, &sys, line)? {
             Assigned::Variable => Ok(()),
             _ => Err(Alarm::type_error(line, &format!("{name} is not a variable"))),
