@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian machine (with Rust, Node/npm, Python and apt) lacks for the tests:
 # Debian's Chromium for the browser test, the HMI's npm packages (web/) and the browser test's
-# (tests/browser). Idempotent.
+# (tests/browser), and a Python venv (.venv, git-ignored) with schemathesis for the API
+# bad-input campaign (scripts/fuzz-api.sh). Idempotent.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -22,3 +23,14 @@ echo "==> npm ci (web)"
 echo "==> npm ci (tests/browser)"
 cd "$ROOT/tests/browser"
 npm ci --no-audit --no-fund
+
+# Pinned so a CI run tests what was tested here; bump deliberately.
+SCHEMATHESIS_VERSION=4.32.5
+if [ ! -x "$ROOT/.venv/bin/schemathesis" ] ||
+  [ "$("$ROOT/.venv/bin/schemathesis" --version 2>/dev/null)" != "schemathesis, version $SCHEMATHESIS_VERSION" ]; then
+  echo "==> python venv with schemathesis $SCHEMATHESIS_VERSION (.venv)"
+  python3 -m venv "$ROOT/.venv"
+  "$ROOT/.venv/bin/pip" install --quiet --disable-pip-version-check "schemathesis==$SCHEMATHESIS_VERSION"
+else
+  echo "==> schemathesis $SCHEMATHESIS_VERSION present in .venv"
+fi

@@ -6,6 +6,7 @@
 #   scripts/test.sh            everything
 #   scripts/test.sh rust       only fmt, clippy and cargo test
 #   scripts/test.sh browser    only the HMI: type check, build, browser test
+#   scripts/test.sh fuzz       only the API bad-input campaign (schemathesis, scripts/fuzz-api.sh)
 #
 # Needs /usr/bin/chromium (scripts/install-deps.sh installs it). Runs from any directory.
 set -euo pipefail
@@ -15,8 +16,8 @@ cd "$ROOT"
 
 WHAT="${1:-all}"
 case "$WHAT" in
-  all | rust | browser) ;;
-  *) echo "usage: $0 [all|rust|browser]" >&2; exit 2 ;;
+  all | rust | browser | fuzz) ;;
+  *) echo "usage: $0 [all|rust|browser|fuzz]" >&2; exit 2 ;;
 esac
 
 CHROMIUM="${CHROMIUM_PATH:-/usr/bin/chromium}"
@@ -25,12 +26,12 @@ STARTUP_TIMEOUT_S=60
 
 section() { printf '\n==> %s\n' "$*"; }
 
-if [ "$WHAT" != rust ] && [ ! -x "$CHROMIUM" ]; then
+if [ "$WHAT" != rust ] && [ "$WHAT" != fuzz ] && [ ! -x "$CHROMIUM" ]; then
   echo "error: $CHROMIUM not found; the browser test needs it. Run scripts/install-deps.sh first." >&2
   exit 1
 fi
 
-if [ "$WHAT" != browser ]; then
+if [ "$WHAT" = all ] || [ "$WHAT" = rust ]; then
   section "cargo fmt --check"
   cargo fmt --all -- --check
 
@@ -39,9 +40,17 @@ if [ "$WHAT" != browser ]; then
 
   section "cargo test"
   cargo test --workspace
+
+  section "benchmarks: build and run every case once on small programs (no timing)"
+  cargo test -p nctwin-engine --bench engine
 fi
 
-[ "$WHAT" = rust ] && exit 0
+if [ "$WHAT" = all ] || [ "$WHAT" = fuzz ]; then
+  section "API bad-input campaign: schemathesis against the OpenAPI document"
+  bash scripts/fuzz-api.sh
+fi
+
+if [ "$WHAT" = rust ] || [ "$WHAT" = fuzz ]; then exit 0; fi
 
 section "HMI: type check and build (web/)"
 bash scripts/build-web.sh

@@ -24,11 +24,62 @@ pub struct ErrorBody {
 /// Liveness and size of the server.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct Health {
-    /// Always `"ok"` when the server answers.
+    /// `"ok"` when the server answers and its storage works, `"degraded"` when the storage
+    /// fails (changes cannot be saved).
     pub status: String,
     pub version: String,
     /// Number of live sessions.
     pub sessions: usize,
+    pub storage: StorageStatus,
+    /// `"off"` (no tokens needed) or `"required"`.
+    pub auth: String,
+}
+
+/// Whether the storage works.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct StorageStatus {
+    /// `sqlite` (the embedded default under `--data-dir`) or `memory`.
+    pub backend: String,
+    /// `"ok"` or `"error"`.
+    pub status: String,
+    /// What failed, when it failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// The tokens of a new session, shown only in the reply that creates it (the server keeps
+/// only their hashes). Each is `nct_` + 32 hex digits (128 random bits).
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct Tokens {
+    /// Full control, can always take control back, may delete the session. Keep it.
+    pub owner: String,
+    /// To share: may take control when it is free and then drive the session.
+    pub operator: String,
+    /// To share: may read everything (state, stream, programs) and change nothing.
+    pub observer: String,
+}
+
+/// Control of a session.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ControlState {
+    /// Whether the server requires tokens (`--auth required`).
+    pub auth: bool,
+    /// The caller's role (always `owner` when auth is off).
+    pub role: crate::auth::Role,
+    /// The role holding control, if any (auth required only).
+    pub holder: Option<crate::auth::Role>,
+    /// Whether the caller may send commands now.
+    pub you_hold_control: bool,
+}
+
+/// The reply to `POST /sessions`: the session and its tokens.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct CreatedSession {
+    pub id: String,
+    /// The preset the session was created from.
+    pub machine: String,
+    pub state: State,
+    pub tokens: Tokens,
 }
 
 /// A built-in machine preset.
@@ -177,6 +228,12 @@ pub struct State {
     pub spindles: AxisValues,
     /// The program's last MSG text, if any.
     pub message: Option<String>,
+    /// Feed, rapid and spindle override in percent.
+    pub overrides: OverridesInfo,
+    /// Single block (SBL1) selected.
+    pub single_block: bool,
+    /// Optional stop (M1) selected.
+    pub optional_stop: bool,
 }
 
 /// Axis positions in the three coordinate systems (mm or degrees), as objects name -> value in
@@ -265,6 +322,9 @@ impl From<&Snapshot> for State {
             path_velocity: s.path_velocity,
             spindles: AxisValues(s.spindles.clone()),
             message: s.message.clone(),
+            overrides: OverridesInfo { feed: s.overrides.feed, rapid: s.overrides.rapid, spindle: s.overrides.spindle },
+            single_block: s.single_block,
+            optional_stop: s.optional_stop,
         }
     }
 }
@@ -355,6 +415,37 @@ pub struct MdaRequest {
 #[serde(deny_unknown_fields)]
 pub struct ModeRequest {
     pub mode: OpMode,
+}
+
+/// Body of `PUT /sessions/{id}/overrides`: the operator's override switches in percent; absent
+/// fields keep their value.
+#[derive(Debug, Clone, Default, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OverridesRequest {
+    /// Path feed override, 0..=120 %.
+    pub feed: Option<f64>,
+    /// Rapid traverse override, 0..=100 %.
+    pub rapid: Option<f64>,
+    /// Spindle speed override, 50..=120 %.
+    pub spindle: Option<f64>,
+}
+
+/// Body of `PUT /sessions/{id}/options`: program control switches; absent fields keep their value.
+#[derive(Debug, Clone, Default, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OptionsRequest {
+    /// Single block (SBL1): the program stops after each block that moves.
+    pub single_block: Option<bool>,
+    /// Optional stop: M1 stops the program.
+    pub optional_stop: Option<bool>,
+}
+
+/// Override switches in percent.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct OverridesInfo {
+    pub feed: f64,
+    pub rapid: f64,
+    pub spindle: f64,
 }
 
 /// Body of `POST /sessions/{id}/jog`.
@@ -466,6 +557,9 @@ mod tests {
             path_velocity: 0.0,
             spindles: AxisValues::default(),
             message: None,
+            overrides: OverridesInfo { feed: 100.0, rapid: 100.0, spindle: 100.0 },
+            single_block: false,
+            optional_stop: false,
         }
     }
 

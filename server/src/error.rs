@@ -1,8 +1,10 @@
 //! [`ApiError`]: every way a request can fail, each with its HTTP status, as one JSON shape
 //! `{"error": "<message>", "line": <1-based line, only when the error belongs to one>}`.
 
+use std::time::Duration;
+
 use axum::Json;
-use axum::http::StatusCode;
+use axum::http::{HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use nctwin_engine::{CommandError, MdError};
 
@@ -31,6 +33,21 @@ pub enum ApiError {
     NotFound(String),
     #[error("request body is larger than the limit of {0} bytes")]
     PayloadTooLarge(usize),
+    /// A program or the programs of a session exceed a size limit.
+    #[error("{0}")]
+    TooLarge(String),
+    /// No token, or a token that belongs to no role of this session (`--auth required`).
+    #[error("{0}")]
+    Unauthorized(String),
+    /// The token's role may not do this (an observer sending a command, ...).
+    #[error("{0}")]
+    Forbidden(String),
+    /// A count or rate limit; `retry_after` when waiting that long helps.
+    #[error("{message}")]
+    TooManyRequests { message: String, retry_after: Option<Duration> },
+    /// The storage failed: the change was not saved (and not acknowledged).
+    #[error("{0}")]
+    StorageUnavailable(String),
 }
 
 impl ApiError {
@@ -48,7 +65,11 @@ impl ApiError {
             | ApiError::SessionEnded(_)
             | ApiError::MachineNotFound(_)
             | ApiError::NotFound(_) => StatusCode::NOT_FOUND,
-            ApiError::PayloadTooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
+            ApiError::PayloadTooLarge(_) | ApiError::TooLarge(_) => StatusCode::PAYLOAD_TOO_LARGE,
+            ApiError::Unauthorized(_) => StatusCode::UNAUTHORIZED,
+            ApiError::Forbidden(_) => StatusCode::FORBIDDEN,
+            ApiError::TooManyRequests { .. } => StatusCode::TOO_MANY_REQUESTS,
+            ApiError::StorageUnavailable(_) => StatusCode::SERVICE_UNAVAILABLE,
         }
     }
 
@@ -89,9 +110,28 @@ impl From<MdError> for ApiError {
     }
 }
 
+impl From<crate::storage::StorageError> for ApiError {
+    fn from(e: crate::storage::StorageError) -> ApiError {
+        tracing::error!(error = %e, "storage failed; the change was not saved");
+        ApiError::StorageUnavailable(format!("not saved: {e}"))
+    }
+}
+
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
-        (self.status(), Json(self.body())).into_response()
+        let mut response = (self.status(), Json(self.body())).into_response();
+        match &self {
+            ApiError::TooManyRequests { retry_after: Some(wait), .. } => {
+                // Whole seconds, rounded up, at least 1: what `Retry-After` can say.
+                let seconds = wait.as_secs() + u64::from(wait.subsec_nanos() > 0);
+                response.headers_mut().insert(header::RETRY_AFTER, HeaderValue::from(seconds.max(1)));
+            }
+            ApiError::Unauthorized(_) => {
+                response.headers_mut().insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
+            }
+            _ => {}
+        }
+        response
     }
 }
 
@@ -111,6 +151,14 @@ mod tests {
         for e in [CommandError::Busy("x"), CommandError::AlarmActive, CommandError::WrongMode("AUTO", "y")] {
             assert_eq!(ApiError::from(e).status(), StatusCode::CONFLICT);
         }
+    }
+
+    #[test]
+    fn rate_limits_say_when_to_retry_in_whole_seconds() {
+        let e = ApiError::TooManyRequests { message: "slow down".into(), retry_after: Some(Duration::from_millis(20)) };
+        let response = e.into_response();
+        assert_eq!(response.status(), StatusCode::TOO_MANY_REQUESTS);
+        assert_eq!(response.headers()[header::RETRY_AFTER], "1");
     }
 
     #[test]

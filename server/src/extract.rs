@@ -7,13 +7,32 @@
 //! that mentions a non-JSON content type when there was one.
 
 use axum::body::Bytes;
-use axum::extract::{FromRequest, Request};
+use axum::extract::{FromRequest, Request, State};
 use axum::http::StatusCode;
-use axum::http::header::CONTENT_TYPE;
+use axum::http::header::{CONTENT_LENGTH, CONTENT_TYPE};
+use axum::middleware::Next;
+use axum::response::{IntoResponse, Response};
 use serde::de::DeserializeOwned;
 
 use crate::error::ApiError;
-use crate::http::BODY_LIMIT;
+use crate::limits::Limits;
+
+/// The request body limit of a group of routes (see [`limit_body`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BodyLimit(pub usize);
+
+/// Middleware that refuses a body whose `Content-Length` exceeds the group's limit with `413`
+/// before reading it, and tells the extractors the limit (axum's `DefaultBodyLimit`, set with
+/// the same value, cuts off bodies without a length).
+pub async fn limit_body(State(limit): State<BodyLimit>, mut request: Request, next: Next) -> Response {
+    let length =
+        request.headers().get(CONTENT_LENGTH).and_then(|v| v.to_str().ok()).and_then(|v| v.parse::<u64>().ok());
+    if length.is_some_and(|n| n > limit.0 as u64) {
+        return ApiError::PayloadTooLarge(limit.0).into_response();
+    }
+    request.extensions_mut().insert(limit);
+    next.run(request).await
+}
 
 /// A required JSON body.
 #[derive(Debug, Clone)]
@@ -57,9 +76,10 @@ where
 /// when the content type says it is not JSON.
 async fn read_body<S: Send + Sync>(req: Request, state: &S) -> Result<Option<(Bytes, Option<String>)>, ApiError> {
     let content_type = req.headers().get(CONTENT_TYPE).map(|v| String::from_utf8_lossy(v.as_bytes()).into_owned());
+    let limit = req.extensions().get::<BodyLimit>().map_or(Limits::default().body_bytes, |l| l.0);
     let bytes = Bytes::from_request(req, state).await.map_err(|rejection| {
         if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
-            ApiError::PayloadTooLarge(BODY_LIMIT)
+            ApiError::PayloadTooLarge(limit)
         } else {
             ApiError::bad_request(format!("could not read the request body: {}", rejection.body_text()))
         }

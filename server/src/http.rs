@@ -3,31 +3,40 @@
 
 use axum::Json;
 use axum::Router;
-use axum::extract::DefaultBodyLimit;
+use axum::extract::Request;
 use axum::handler::HandlerWithoutStateExt;
 use axum::http::header::{CONTENT_LENGTH, CONTENT_TYPE};
 use axum::http::{StatusCode, Uri, Version};
 use axum::middleware;
 use axum::response::{IntoResponse, Response};
+use axum::routing::get;
 use tower_http::compression::CompressionLayer;
 use tower_http::compression::predicate::{DefaultPredicate, Predicate};
 use tower_http::cors::CorsLayer;
-use tower_http::limit::RequestBodyLimitLayer;
 use tower_http::services::ServeDir;
 use tower_http::trace::TraceLayer;
 use utoipa_swagger_ui::SwaggerUi;
 
+use crate::auth::access;
 use crate::dto::ErrorBody;
 use crate::error::ApiError;
+use crate::metrics;
 use crate::openapi;
 use crate::state::AppState;
 
-/// Largest request body accepted: 1 MiB (larger is `413`).
-pub const BODY_LIMIT: usize = 1 << 20;
+/// Where the Prometheus metrics are served (outside `/api/v1`, where scrapers look).
+pub const METRICS_PATH: &str = "/metrics";
 
-/// See [`crate::app`].
+/// See [`crate::app`]. Body limits are per route group (see [`crate::api::router`]).
 pub fn app(state: AppState) -> Router {
-    let (api, document) = openapi::router().split_for_parts();
+    let (api, document) = openapi::router(state.limits()).split_for_parts();
+    let document = openapi::finish(document);
+    // Route layers run after routing, so they see the route template (`MatchedPath`): the
+    // access check applies the policy by template, the metrics count by it. Metrics is outer,
+    // so refusals are counted too.
+    let api = api
+        .route_layer(middleware::from_fn_with_state(state.clone(), access::layer))
+        .route_layer(middleware::from_fn_with_state(state.clone(), metrics::track));
     let hmi = ServeDir::new(state.web_dir())
         .call_fallback_on_method_not_allowed(true)
         .not_found_service(not_found.into_service());
@@ -37,16 +46,20 @@ pub fn app(state: AppState) -> Router {
             status != StatusCode::SWITCHING_PROTOCOLS
         },
     );
+    let metrics = Router::new().route(METRICS_PATH, get(metrics::metrics)).with_state(state.clone());
+    // The span names the path without the query: a stream's `?token=` stays out of the logs.
+    let trace = TraceLayer::new_for_http().make_span_with(
+        |request: &Request| tracing::info_span!("request", method = %request.method(), path = %request.uri().path()),
+    );
     Router::new()
         .merge(api.with_state(state))
+        .merge(metrics)
         .merge(SwaggerUi::new(openapi::SWAGGER_UI_PATH).url(openapi::DOCUMENT_PATH, document))
         .fallback_service(hmi)
-        .layer(DefaultBodyLimit::max(BODY_LIMIT))
-        .layer(RequestBodyLimitLayer::new(BODY_LIMIT))
         .layer(middleware::map_response(json_errors))
         .layer(CompressionLayer::new().compress_when(compress))
         .layer(CorsLayer::permissive())
-        .layer(TraceLayer::new_for_http())
+        .layer(trace)
 }
 
 /// Unknown routes and missing files.
@@ -70,7 +83,7 @@ async fn json_errors(response: Response) -> Response {
         return response;
     }
     let body = if status == StatusCode::PAYLOAD_TOO_LARGE {
-        ApiError::PayloadTooLarge(BODY_LIMIT).body()
+        ErrorBody { error: "request body is larger than the limit".into(), line: None }
     } else {
         let reason = status.canonical_reason().unwrap_or("error").to_lowercase();
         ErrorBody { error: reason, line: None }

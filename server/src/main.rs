@@ -6,14 +6,20 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use nctwin_server::AppState;
+use nctwin_server::limits::LimitFlags;
+use nctwin_server::{AppState, AuthMode, Config, Limits};
 use tokio::net::TcpListener;
 use tracing_subscriber::EnvFilter;
+
+mod cli;
 
 /// NCTwin: simulated SINUMERIK 840D sl-style NC channels over HTTP and WebSocket.
 #[derive(Debug, Parser)]
 #[command(name = "nctwin", version)]
 struct Args {
+    /// Without a subcommand, `nctwin` serves HTTP.
+    #[command(subcommand)]
+    command: Option<cli::Command>,
     /// Address to listen on, IP:PORT (port 0 picks a free port).
     #[arg(long, default_value = "127.0.0.1:8080")]
     bind: SocketAddr,
@@ -23,6 +29,12 @@ struct Args {
     /// Folder of the browser HMI's static files.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web/dist"))]
     web_dir: PathBuf,
+    /// `off`: no tokens needed (a local server). `required`: every request to a session needs
+    /// one of its tokens (owner, operator, observer), see README.
+    #[arg(long, value_enum, default_value_t = AuthMode::Off)]
+    auth: AuthMode,
+    #[command(flatten)]
+    limits: LimitFlags,
 }
 
 #[tokio::main]
@@ -31,7 +43,10 @@ async fn main() -> ExitCode {
         .with_env_filter(EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("info")))
         .with_ansi(std::io::stdout().is_terminal())
         .init();
-    let args = Args::parse();
+    let args = Args::try_parse().unwrap_or_else(cli::parse_error);
+    if let Some(command) = &args.command {
+        return cli::run(command);
+    }
     match serve(args).await {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
@@ -49,7 +64,12 @@ async fn serve(args: Args) -> Result<(), String> {
     }
     let listener = TcpListener::bind(args.bind).await.map_err(|e| format!("cannot bind {}: {e}", args.bind))?;
     let addr = listener.local_addr().map_err(|e| format!("cannot read the bound address: {e}"))?;
-    let state = AppState::new(args.data_dir, args.web_dir);
+    let config = Config {
+        limits: args.limits.apply(Limits::default()),
+        auth: args.auth,
+        ..Config::new(args.data_dir, args.web_dir)
+    };
+    let state = AppState::open(config).await.map_err(|e| format!("cannot open the storage: {e}"))?;
     tracing::info!("listening on http://{addr}");
     nctwin_server::run(listener, state, shutdown_signal()).await.map_err(|e| format!("server error: {e}"))?;
     tracing::info!("stopped");

@@ -4,10 +4,14 @@
 //! `openapi/openapi.json`; a test fails when the two differ
 //! (`NCTWIN_UPDATE_OPENAPI=1 cargo test -p nctwin-server openapi` rewrites the file).
 
+use axum::http::Method;
+use serde_json::{Value, json};
 use utoipa::OpenApi;
 use utoipa_axum::router::OpenApiRouter;
 
 use crate::api;
+use crate::auth::access::{self, Need};
+use crate::limits::Limits;
 use crate::state::AppState;
 
 /// Where the document is served.
@@ -22,7 +26,7 @@ pub const COMMITTED_PATH: &str = "openapi/openapi.json";
 #[openapi(
     info(
         title = "NCTwin",
-        description = "Simulated SINUMERIK 840D sl-style NC channels: sessions, part programs, JOG, MDA, machine data and live state streams.\n\nUnits: lengths mm, angles degrees, feed mm/min, time s.\n\nServer-side limits: a `pace: \"fast\"` command runs at most 3600 s of simulated time (then NC stop); a `wait: true` request is answered after at most 600 s of wall time; request bodies are limited to 1 MiB. A reply cut short by a limit carries the header `nctwin-limit`.\n\nErrors are JSON `{\"error\": \"...\", \"line\": n}` (`line` only when the error belongs to one line).",
+        description = "Simulated SINUMERIK 840D sl-style NC channels: sessions, part programs, JOG, MDA, machine data and live state streams.\n\nUnits: lengths mm, angles degrees, feed mm/min, time s.\n\nServer-side limits: a `pace: \"fast\"` command runs at most 3600 s of simulated time (then NC stop); a `wait: true` request is answered after at most 600 s of wall time; request bodies are limited to 1 MiB, except program uploads (`PUT .../programs/{name}`: 16 MiB of program text, 64 MiB per session). A reply cut short by a limit carries the header `nctwin-limit`. Counts and rates (defaults, each a flag of `nctwin`): 1000 sessions, 100 per client address, 64 stream clients per session, 50 commands per second per session in bursts of 100; a refusal is `429` (with `Retry-After` for the rate).\n\nAuthentication: creating a session returns an owner token and two tokens to share (operator, observer). By default (`nctwin --auth off`) no token is needed. With `nctwin --auth required` every request to a session needs `Authorization: Bearer <token>` (the WebSocket stream may pass `?token=`): `401` without a valid token; observers read but every command is `403`; commands need control (`POST .../control/take`; the owner holds it first and can always take it back), otherwise `409`.\n\nErrors are JSON `{\"error\": \"...\", \"line\": n}` (`line` only when the error belongs to one line).",
         license(name = "MIT"),
     ),
     tags(
@@ -33,18 +37,76 @@ pub const COMMITTED_PATH: &str = "openapi/openapi.json";
         (name = "jog", description = "Moving axes by hand"),
         (name = "programs", description = "Stored programs (called by name as subprograms) and syntax checks"),
         (name = "stream", description = "Live state and events over WebSocket"),
+        (name = "control", description = "Who holds control of a session (with `--auth required`)"),
     )
 )]
 struct ApiDoc;
 
-/// The API routes with the complete OpenAPI document attached.
-pub fn router() -> OpenApiRouter<AppState> {
-    OpenApiRouter::with_openapi(ApiDoc::openapi()).merge(api::router())
+/// The API routes with the OpenAPI document attached (before [`finish`]).
+pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
+    OpenApiRouter::with_openapi(ApiDoc::openapi()).merge(api::router(limits))
 }
 
-/// The OpenAPI document.
+/// The OpenAPI document, as served.
 pub fn document() -> utoipa::openapi::OpenApi {
-    router().into_openapi()
+    finish(router(&Limits::default()).into_openapi())
+}
+
+/// Adds what follows from the access policy ([`access::need`]) to every operation on a
+/// session, so the document and the middleware cannot disagree: the optional bearer security
+/// scheme, `401`, `403` where a role can be refused, and for commands `409` (not holding
+/// control) and `429` (rate limit, with `Retry-After`).
+pub fn finish(document: utoipa::openapi::OpenApi) -> utoipa::openapi::OpenApi {
+    let mut doc = match serde_json::to_value(&document) {
+        Ok(doc) => doc,
+        Err(_) => return document,
+    };
+    let error = |description: &str| {
+        json!({
+            "description": description,
+            "content": {"application/json": {"schema": {"$ref": "#/components/schemas/ErrorBody"}}}
+        })
+    };
+    doc["components"]["securitySchemes"]["bearer"] = json!({
+        "type": "http",
+        "scheme": "bearer",
+        "description": "A session token (`nct_` + 32 hex digits) from `POST /sessions`. Needed only when the server runs with `--auth required`."
+    });
+    if let Some(paths) = doc["paths"].as_object_mut() {
+        for (path, item) in paths.iter_mut() {
+            let Some(item) = item.as_object_mut() else { continue };
+            for (method, operation) in item.iter_mut() {
+                let Ok(method) = method.to_ascii_uppercase().parse::<Method>() else { continue };
+                let Some(need) = access::need(&method, path) else { continue };
+                operation["security"] = json!([{}, {"bearer": []}]);
+                let responses = &mut operation["responses"];
+                let mut add = |status: &str, response: Value| {
+                    if responses.get(status).is_none() {
+                        responses[status] = response;
+                    }
+                };
+                add("401", error("No token, or a token not of this session (auth required only)"));
+                if need != Need::Read {
+                    add(
+                        "403",
+                        error(
+                            "The token's role may not do this: observers change nothing; only the owner deletes (auth required only)",
+                        ),
+                    );
+                }
+                if need == Need::Command {
+                    add("409", error("The caller does not hold control (auth required only)"));
+                    let mut too_many = error("More commands per second than the session allows");
+                    too_many["headers"] = json!({"retry-after": {
+                        "description": "Seconds until a command is accepted again",
+                        "schema": {"type": "integer", "minimum": 1}
+                    }});
+                    add("429", too_many);
+                }
+            }
+        }
+    }
+    serde_json::from_value(doc).unwrap_or(document)
 }
 
 /// The document as committed: pretty-printed JSON with a trailing newline.
@@ -84,5 +146,20 @@ mod tests {
         for path in ["/api/v1/health", "/api/v1/sessions/{id}/run", "/api/v1/sessions/{id}/stream"] {
             assert!(json["paths"].get(path).is_some(), "{path} documented");
         }
+    }
+
+    #[test]
+    fn session_operations_document_the_access_policy() {
+        let json = serde_json::to_value(document()).expect("serializable");
+        assert_eq!(json["components"]["securitySchemes"]["bearer"]["scheme"], "bearer");
+        let run = &json["paths"]["/api/v1/sessions/{id}/run"]["post"];
+        for status in ["401", "403", "409", "429"] {
+            assert!(run["responses"].get(status).is_some(), "run documents {status}");
+        }
+        assert!(run["responses"]["429"]["headers"].get("retry-after").is_some());
+        let state = &json["paths"]["/api/v1/sessions/{id}/state"]["get"];
+        assert!(state["responses"].get("401").is_some() && state["responses"].get("403").is_none());
+        assert_eq!(state["security"], serde_json::json!([{}, {"bearer": []}]));
+        assert!(json["paths"]["/api/v1/health"]["get"].get("security").is_none(), "health needs no token");
     }
 }

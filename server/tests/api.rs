@@ -13,11 +13,16 @@ use serde_json::{Value, json};
 // ---- health and machines ----
 
 #[tokio::test]
-async fn health_reports_ok_version_and_session_count() {
+async fn health_reports_ok_version_session_count_and_storage() {
     let server = Server::start().await;
     let reply = server.get("/health").await;
     assert_eq!(reply.status, StatusCode::OK);
-    assert_eq!(reply.body, json!({"status": "ok", "version": "0.1.0", "sessions": 0}));
+    assert_eq!(
+        (&reply.body["status"], &reply.body["version"], &reply.body["sessions"]),
+        (&json!("ok"), &json!("0.1.0"), &json!(0))
+    );
+    assert_eq!(reply.body["storage"], json!({"backend": "sqlite", "status": "ok"}));
+    assert_eq!(reply.body["auth"], "off");
     server.session("mill-3axis").await;
     assert_eq!(server.get("/health").await.body["sessions"], 1);
 }
@@ -519,4 +524,39 @@ async fn the_hmi_is_served_at_the_root() {
     } else {
         assert_eq!(response.status(), StatusCode::NOT_FOUND);
     }
+}
+
+#[tokio::test]
+async fn overrides_scale_a_run_and_bad_values_are_400() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let reply = server.put(&format!("/sessions/{id}/overrides"), json!({"feed": 50})).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["overrides"], json!({"feed": 50.0, "rapid": 100.0, "spindle": 100.0}));
+    let state = server
+        .post(&format!("/sessions/{id}/run"), json!({"program": "G1 X100 F3000\nM30", "pace": "fast", "wait": true}))
+        .await
+        .body;
+    // 100 mm at 50 % of 3000 mm/min: 4 s plus the ramps (25/3000 s).
+    let t = state["time"].as_f64().unwrap();
+    assert!((t - 4.0 - 25.0 / 3000.0).abs() < 0.01, "{t}");
+    let reply = server.put(&format!("/sessions/{id}/overrides"), json!({"feed": 130})).await;
+    assert_eq!(reply.status, StatusCode::BAD_REQUEST);
+    assert!(reply.body["error"].as_str().unwrap().contains("feed override"));
+}
+
+#[tokio::test]
+async fn single_block_stops_after_each_moving_block() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let reply = server.put(&format!("/sessions/{id}/options"), json!({"single_block": true})).await;
+    assert_eq!((reply.status, reply.body["single_block"].clone()), (StatusCode::OK, json!(true)));
+    let run = json!({"program": "G0 X10\nG0 Y10\nM30", "pace": "fast", "wait": true});
+    let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
+    assert_eq!((state["status"].clone(), state["block"]["line"].clone()), (json!("stopped"), json!(1)));
+    let start = json!({"pace": "fast", "wait": true});
+    let state = server.post(&format!("/sessions/{id}/start"), start.clone()).await.body;
+    assert_eq!((state["status"].clone(), state["block"]["line"].clone()), (json!("stopped"), json!(2)));
+    let state = server.post(&format!("/sessions/{id}/start"), start).await.body;
+    assert_eq!(state["status"], "idle");
 }

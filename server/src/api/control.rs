@@ -3,7 +3,9 @@
 use axum::extract::{Path, State};
 
 use super::{StateReply, command};
-use crate::dto::{self, ErrorBody, MdaRequest, ModeRequest, RunRequest, StartRequest, drive};
+use crate::dto::{
+    self, ErrorBody, MdaRequest, ModeRequest, OptionsRequest, OverridesRequest, RunRequest, StartRequest, drive,
+};
 use crate::error::ApiError;
 use crate::extract::{ApiJson, OptionalJson};
 use crate::session::Action;
@@ -155,4 +157,48 @@ pub async fn set_mode(
     ApiJson(body): ApiJson<ModeRequest>,
 ) -> Result<StateReply, ApiError> {
     command(&state, &id, Action::SetMode(body.mode.into()), None).await
+}
+
+/// Sets feed, rapid and spindle override (percent); they act at once on a running program.
+#[utoipa::path(
+    put,
+    path = "/sessions/{id}/overrides",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = OverridesRequest,
+    responses(
+        (status = 200, description = "The state with the new overrides", body = dto::State),
+        (status = 400, description = "A value outside its range, or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn set_overrides(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<OverridesRequest>,
+) -> Result<StateReply, ApiError> {
+    let action = Action::SetOverrides { feed: body.feed, rapid: body.rapid, spindle: body.spindle };
+    command(&state, &id, action, None).await
+}
+
+/// Switches single block (SBL1) and optional stop (M1).
+#[utoipa::path(
+    put,
+    path = "/sessions/{id}/options",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = OptionsRequest,
+    responses(
+        (status = 200, description = "The state with the new options", body = dto::State),
+        (status = 400, description = "Malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn set_options(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<OptionsRequest>,
+) -> Result<StateReply, ApiError> {
+    let action = Action::SetOptions { single_block: body.single_block, optional_stop: body.optional_stop };
+    command(&state, &id, action, None).await
 }

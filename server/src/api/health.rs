@@ -3,10 +3,12 @@
 use axum::Json;
 use axum::extract::State;
 
-use crate::dto::Health;
+use crate::auth::AuthMode;
+use crate::dto::{Health, StorageStatus};
 use crate::state::AppState;
 
-/// The server answers; reports its version and the number of live sessions.
+/// The server answers; reports its version, the number of live sessions, the auth mode and
+/// whether the storage works (a trivial read).
 #[utoipa::path(
     get,
     path = "/health",
@@ -14,5 +16,21 @@ use crate::state::AppState;
     responses((status = 200, description = "The server is up", body = Health))
 )]
 pub async fn health(State(state): State<AppState>) -> Json<Health> {
-    Json(Health { status: "ok".into(), version: crate::VERSION.into(), sessions: state.session_count() })
+    let storage = state.storage_health().await;
+    let status = if storage.error.is_none() { "ok" } else { "degraded" };
+    Json(Health {
+        status: status.into(),
+        version: crate::VERSION.into(),
+        sessions: state.session_count(),
+        storage: StorageStatus {
+            backend: storage.backend.into(),
+            status: if storage.error.is_none() { "ok" } else { "error" }.into(),
+            error: storage.error,
+        },
+        auth: match state.auth() {
+            AuthMode::Off => "off",
+            AuthMode::Required => "required",
+        }
+        .into(),
+    })
 }

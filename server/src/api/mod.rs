@@ -8,13 +8,16 @@ pub mod jog;
 pub mod machine_data;
 pub mod machines;
 pub mod programs;
+pub mod roles;
 pub mod sessions;
 pub mod stream;
 
 use std::time::Duration;
 
 use axum::Json;
+use axum::extract::DefaultBodyLimit;
 use axum::http::{HeaderValue, StatusCode};
+use axum::middleware;
 use axum::response::{IntoResponse, Response};
 use tower_http::timeout::TimeoutLayer;
 use utoipa_axum::router::OpenApiRouter;
@@ -22,6 +25,8 @@ use utoipa_axum::routes;
 
 use crate::dto::State;
 use crate::error::ApiError;
+use crate::extract::{BodyLimit, limit_body};
+use crate::limits::Limits;
 use crate::session::{Action, Drive, Limit, Outcome, SessionHandle};
 use crate::state::AppState;
 
@@ -40,8 +45,10 @@ pub const WAIT_TIMEOUT: Duration = Duration::from_secs(660);
 /// `wait-wall-time` (the request waited 600 s of wall time).
 pub const LIMIT_HEADER: &str = "nctwin-limit";
 
-/// Every API route under [`PREFIX`], with its timeout, and the OpenAPI paths they document.
-pub fn router() -> OpenApiRouter<AppState> {
+/// Every API route under [`PREFIX`], with its timeout and body limit, and the OpenAPI paths
+/// they document. Program uploads take [`Limits::program_body_bytes`], every other body
+/// [`Limits::body_bytes`].
+pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
     let quick = OpenApiRouter::new()
         .routes(routes!(health::health))
         .routes(routes!(machines::list_machines))
@@ -53,25 +60,43 @@ pub fn router() -> OpenApiRouter<AppState> {
         .routes(routes!(control::reset))
         .routes(routes!(control::cancel))
         .routes(routes!(control::set_mode))
+        .routes(routes!(control::set_overrides))
+        .routes(routes!(control::set_options))
         .routes(routes!(jog::jog_stop))
         .routes(routes!(machine_data::put_machine_data))
         .routes(routes!(programs::list_programs))
-        .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
         .routes(routes!(programs::check))
+        .routes(routes!(roles::get_control))
+        .routes(routes!(roles::take_control))
+        .routes(routes!(roles::release_control));
+    let uploads =
+        OpenApiRouter::new().routes(routes!(programs::get_program, programs::put_program, programs::delete_program));
+    let quick = with_body_limit(quick, limits.body_bytes)
+        .merge(with_body_limit(uploads, limits.program_body_bytes()))
         .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, QUICK_TIMEOUT));
     let waiting = OpenApiRouter::new()
         .routes(routes!(control::run))
         .routes(routes!(control::start))
         .routes(routes!(control::mda))
         .routes(routes!(jog::jog))
-        .routes(routes!(stream::stream))
+        .routes(routes!(stream::stream));
+    let waiting = with_body_limit(waiting, limits.body_bytes)
         .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, WAIT_TIMEOUT));
     OpenApiRouter::new().nest(PREFIX, quick.merge(waiting))
+}
+
+fn with_body_limit(routes: OpenApiRouter<AppState>, bytes: usize) -> OpenApiRouter<AppState> {
+    routes.layer(DefaultBodyLimit::max(bytes)).layer(middleware::from_fn_with_state(BodyLimit(bytes), limit_body))
 }
 
 /// The live session `id`, or `404`.
 pub(crate) fn find_session(state: &AppState, id: &str) -> Result<SessionHandle, ApiError> {
     state.session(id).ok_or_else(|| ApiError::SessionNotFound(id.to_string()))
+}
+
+/// The registry entry of session `id`, or `404`.
+pub(crate) fn find_entry(state: &AppState, id: &str) -> Result<std::sync::Arc<crate::state::SessionEntry>, ApiError> {
+    state.entry(id).ok_or_else(|| ApiError::SessionNotFound(id.to_string()))
 }
 
 /// Sends one command to session `id` and answers with the resulting state.

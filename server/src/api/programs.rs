@@ -5,7 +5,7 @@ use axum::Json;
 use axum::extract::{Path, State};
 use axum::http::StatusCode;
 
-use super::find_session;
+use super::{find_entry, find_session};
 use crate::dto::{CheckRequest, CheckResponse, DiagnosticInfo, ErrorBody, ProgramBody, ProgramInfo, ProgramText};
 use crate::error::ApiError;
 use crate::extract::ApiJson;
@@ -57,7 +57,10 @@ pub async fn get_program(
 }
 
 /// Stores (creates or replaces) a program under `name`, for calls by name from other
-/// programs. A text with syntax errors is refused with the first error's line.
+/// programs. A text with syntax errors is refused with the first error's line. The program is
+/// saved before the reply. Limits: 16 MiB per program, 64 MiB per session (`413`); this is the
+/// one endpoint whose body may exceed 1 MiB, so large programs are stored here and called by
+/// name from a short `run`.
 #[utoipa::path(
     put,
     path = "/sessions/{id}/programs/{name}",
@@ -68,6 +71,8 @@ pub async fn get_program(
         (status = 200, description = "Stored", body = ProgramInfo),
         (status = 400, description = "Bad name, syntax error (with its line) or malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
+        (status = 413, description = "The program or the session's programs exceed their size limit", body = ErrorBody),
+        (status = 503, description = "The storage failed; the program was not saved", body = ErrorBody),
     )
 )]
 pub async fn put_program(
@@ -75,12 +80,9 @@ pub async fn put_program(
     Path((id, name)): Path<(String, String)>,
     ApiJson(body): ApiJson<ProgramBody>,
 ) -> Result<Json<ProgramInfo>, ApiError> {
-    let session = find_session(&state, &id)?;
+    let entry = find_entry(&state, &id)?;
     let size = body.text.len();
-    let stored = session
-        .with_channel(move |ch| ch.store_program(&name, &body.text))
-        .await
-        .map_err(|e| ApiError::from_session(&id, e))??;
+    let stored = state.put_program(&entry, name, body.text).await?;
     Ok(Json(ProgramInfo { name: stored, size }))
 }
 
@@ -93,16 +95,15 @@ pub async fn put_program(
     responses(
         (status = 204, description = "Deleted"),
         (status = 404, description = "No such session or program", body = ErrorBody),
+        (status = 503, description = "The storage failed; the deletion was not saved", body = ErrorBody),
     )
 )]
 pub async fn delete_program(
     State(state): State<AppState>,
     Path((id, name)): Path<(String, String)>,
 ) -> Result<StatusCode, ApiError> {
-    let session = find_session(&state, &id)?;
-    let wanted = name.clone();
-    let deleted =
-        session.with_channel(move |ch| ch.delete_program(&wanted)).await.map_err(|e| ApiError::from_session(&id, e))?;
+    let entry = find_entry(&state, &id)?;
+    let deleted = state.delete_program(&entry, name.clone()).await?;
     if deleted { Ok(StatusCode::NO_CONTENT) } else { Err(ApiError::NotFound(format!("program `{name}`"))) }
 }
 

@@ -1,30 +1,39 @@
 //! `/sessions`: create, list, inspect and delete sessions, and read a session's state.
 
+use std::net::SocketAddr;
+
 use axum::Json;
-use axum::extract::{Path, State};
-use axum::http::{HeaderValue, StatusCode, header};
+use axum::extract::{ConnectInfo, Extension, Path, State};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 use nctwin_engine::Channel;
 use nctwin_engine::machine_data::presets;
 
 use super::{PREFIX, find_session};
-use crate::dto::{self, CreateSession, ErrorBody, Session, SessionSummary};
+use crate::auth::access;
+use crate::dto::{self, CreateSession, CreatedSession, ErrorBody, Session, SessionSummary, Tokens};
 use crate::error::ApiError;
 use crate::extract::OptionalJson;
 use crate::state::AppState;
 
-/// Every live session, oldest first.
+/// Every live session, oldest first. With `--auth required`, the sessions the bearer token
+/// belongs to.
 #[utoipa::path(
     get,
     path = "/sessions",
     tag = "sessions",
-    responses((status = 200, description = "The live sessions", body = Vec<SessionSummary>))
+    responses(
+        (status = 200, description = "The live sessions", body = Vec<SessionSummary>),
+        (status = 401, description = "No bearer token (auth required only)", body = ErrorBody),
+    ),
+    security((), ("bearer" = []))
 )]
-pub async fn list_sessions(State(state): State<AppState>) -> Json<Vec<SessionSummary>> {
-    let list = state
-        .list_sessions()
+pub async fn list_sessions(State(state): State<AppState>, headers: HeaderMap) -> Json<Vec<SessionSummary>> {
+    let token = access::bearer(&headers);
+    let list = access::visible_to(&state, token.as_deref())
         .iter()
-        .map(|s| {
+        .map(|e| {
+            let s = &e.handle;
             let snapshot = s.snapshot();
             SessionSummary {
                 id: s.id().into(),
@@ -39,21 +48,27 @@ pub async fn list_sessions(State(state): State<AppState>) -> Json<Vec<SessionSum
 
 /// Creates a session: a simulated channel of a preset machine, plus optional NC data text.
 ///
-/// The body may be empty (all defaults: preset `mill-3axis`).
+/// The body may be empty (all defaults: preset `mill-3axis`). The session is saved before the
+/// reply. The reply holds the session's three tokens (owner, operator, observer), shown only
+/// here; with `--auth required` every request to the session needs one of them. Creating a
+/// session needs no token.
 #[utoipa::path(
     post,
     path = "/sessions",
     tag = "sessions",
     request_body(content = Option<CreateSession>, description = "Optional; empty means defaults"),
     responses(
-        (status = 201, description = "The new session", body = Session,
+        (status = 201, description = "The new session with its tokens", body = CreatedSession,
             headers(("location" = String, description = "URL of the new session"))),
         (status = 400, description = "Unknown preset, bad machine data (with its line) or a malformed body", body = ErrorBody),
         (status = 413, description = "Body larger than 1 MiB", body = ErrorBody),
+        (status = 429, description = "Too many sessions on the server or from this client address", body = ErrorBody),
+        (status = 503, description = "The storage failed; no session was created", body = ErrorBody),
     )
 )]
 pub async fn create_session(
     State(state): State<AppState>,
+    peer: Option<Extension<ConnectInfo<SocketAddr>>>,
     OptionalJson(body): OptionalJson<CreateSession>,
 ) -> Result<Response, ApiError> {
     let machine = match body.machine {
@@ -65,11 +80,14 @@ pub async fn create_session(
         return Err(ApiError::bad_request(format!("unknown machine preset `{machine}` (known: {})", known.join(", "))));
     }
     let channel = Channel::from_preset(&machine, body.machine_data.as_deref().unwrap_or(""))?;
-    let handle = state.create_session(&machine, channel);
-    let body = Session {
+    let client_ip = peer.map(|Extension(ConnectInfo(addr))| addr.ip());
+    let (entry, tokens) = state.create_session(&machine, channel, client_ip).await?;
+    let handle = &entry.handle;
+    let body = CreatedSession {
         id: handle.id().into(),
         machine: machine.clone(),
         state: dto::State::from(handle.snapshot().as_ref()),
+        tokens: Tokens { owner: tokens.owner, operator: tokens.operator, observer: tokens.observer },
     };
     let mut response = (StatusCode::CREATED, Json(body)).into_response();
     if let Ok(location) = HeaderValue::from_str(&format!("{PREFIX}/sessions/{}", handle.id())) {
@@ -98,7 +116,8 @@ pub async fn get_session(State(state): State<AppState>, Path(id): Path<String>) 
     }))
 }
 
-/// Deletes a session: its channel stops, its streams close and requests waiting on it end.
+/// Deletes a session: its channel stops, its streams close, requests waiting on it end and it
+/// is removed from storage (with its programs) before the reply. Owner only.
 #[utoipa::path(
     delete,
     path = "/sessions/{id}",
@@ -107,10 +126,11 @@ pub async fn get_session(State(state): State<AppState>, Path(id): Path<String>) 
     responses(
         (status = 204, description = "Deleted"),
         (status = 404, description = "No such session", body = ErrorBody),
+        (status = 503, description = "The storage failed; the session was not deleted", body = ErrorBody),
     )
 )]
 pub async fn delete_session(State(state): State<AppState>, Path(id): Path<String>) -> Result<StatusCode, ApiError> {
-    if state.remove_session(&id).await { Ok(StatusCode::NO_CONTENT) } else { Err(ApiError::SessionNotFound(id)) }
+    if state.remove_session(&id).await? { Ok(StatusCode::NO_CONTENT) } else { Err(ApiError::SessionNotFound(id)) }
 }
 
 /// The current state of the session's channel (the latest published snapshot; never waits).

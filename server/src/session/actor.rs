@@ -11,8 +11,9 @@
 //!   still turns (a spindle) then goes on in real time.
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-use nctwin_engine::{Channel, CommandError, Event, Snapshot, Status};
+use nctwin_engine::{Channel, CommandError, Event, Overrides, Snapshot, Status};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 use tokio::time::{Instant, sleep_until};
 
@@ -51,6 +52,13 @@ pub(super) struct Actor {
     pacer: Option<Pacer>,
     next_wake: Instant,
     waiters: Vec<Waiter>,
+    /// Incremented when the channel comes to rest after commands (see
+    /// `SessionHandle::watch_settled`).
+    settled: watch::Sender<u64>,
+    /// A command was applied since the channel last came to rest.
+    dirty: bool,
+    /// Lateness of the last real-time wake-up in microseconds (see `SessionHandle::ipo_lag`).
+    lag_micros: Arc<AtomicU64>,
 }
 
 impl Actor {
@@ -58,6 +66,8 @@ impl Actor {
         config: ActorConfig,
         state: watch::Sender<Arc<Snapshot>>,
         events: broadcast::Sender<Event>,
+        settled: watch::Sender<u64>,
+        lag_micros: Arc<AtomicU64>,
     ) -> Actor {
         Actor {
             config,
@@ -69,6 +79,9 @@ impl Actor {
             pacer: None,
             next_wake: Instant::now(),
             waiters: Vec::new(),
+            settled,
+            dirty: false,
+            lag_micros,
         }
     }
 
@@ -105,6 +118,7 @@ impl Actor {
             let stepping = channel.is_active();
             if !stepping {
                 self.pacer = None;
+                self.lag_micros.store(0, Ordering::Relaxed);
             } else if self.pacer.is_none() {
                 let now = Instant::now();
                 self.pacer = Some(Pacer::new(channel.config().ipo_cycle, now));
@@ -140,6 +154,7 @@ impl Actor {
             Request::Command { action, drive, reply } => (action, drive, reply),
         };
         let result = apply(channel, action);
+        self.dirty |= result.is_ok();
         self.publish(channel);
         if let Err(e) = result {
             let _ = reply.send(Err(e));
@@ -171,6 +186,8 @@ impl Actor {
     /// Runs the IPO cycles wall time owes, stopping early once nothing is left to move.
     fn realtime_wake(&mut self, channel: &mut Channel) {
         let now = Instant::now();
+        let late = now.saturating_duration_since(self.next_wake);
+        self.lag_micros.store(u64::try_from(late.as_micros()).unwrap_or(u64::MAX), Ordering::Relaxed);
         let owed = self.pacer.as_mut().map_or(0, |p| p.owed(now));
         for _ in 0..owed {
             if !channel.is_active() {
@@ -220,8 +237,13 @@ impl Actor {
         Some(channel)
     }
 
-    /// Broadcasts new events and publishes the state if it changed.
+    /// Broadcasts new events, publishes the state if it changed, and reports when the channel
+    /// has come to rest after commands.
     fn publish(&mut self, channel: &mut Channel) {
+        if self.dirty && !channel.is_busy() {
+            self.dirty = false;
+            self.settled.send_modify(|n| *n = n.wrapping_add(1));
+        }
         for event in channel.take_events() {
             // No subscribers is not an error: events are for whoever listens right now.
             let _ = self.events.send(event);
@@ -291,6 +313,23 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
             Ok(())
         }
         Action::SetMode(mode) => channel.set_mode(mode),
+        Action::SetOverrides { feed, rapid, spindle } => {
+            let now = channel.overrides();
+            channel.set_overrides(Overrides {
+                feed: feed.unwrap_or(now.feed),
+                rapid: rapid.unwrap_or(now.rapid),
+                spindle: spindle.unwrap_or(now.spindle),
+            })
+        }
+        Action::SetOptions { single_block, optional_stop } => {
+            if let Some(on) = single_block {
+                channel.single_block = on;
+            }
+            if let Some(on) = optional_stop {
+                channel.optional_stop = on;
+            }
+            Ok(())
+        }
         Action::Jog(request) => channel.jog(&request),
         Action::JogStop => {
             channel.jog_stop();

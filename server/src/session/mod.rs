@@ -15,6 +15,7 @@ mod actor;
 mod pacer;
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
 use nctwin_engine::{Channel, CommandError, Event, JogRequest, Mode, Snapshot};
@@ -72,6 +73,17 @@ pub enum Action {
     /// Clear cancel-type alarms.
     Cancel,
     SetMode(Mode),
+    /// Override switches in percent; `None` keeps a value.
+    SetOverrides {
+        feed: Option<f64>,
+        rapid: Option<f64>,
+        spindle: Option<f64>,
+    },
+    /// Single block and optional stop; `None` keeps a value.
+    SetOptions {
+        single_block: Option<bool>,
+        optional_stop: Option<bool>,
+    },
     Jog(JogRequest),
     JogStop,
     /// Apply NC data text in reset state.
@@ -153,6 +165,8 @@ pub struct SessionHandle {
     requests: mpsc::Sender<Request>,
     state: watch::Receiver<Arc<Snapshot>>,
     events: broadcast::Sender<Event>,
+    settled: watch::Receiver<u64>,
+    lag_micros: Arc<AtomicU64>,
 }
 
 impl SessionHandle {
@@ -161,9 +175,11 @@ impl SessionHandle {
         let (requests, rx) = mpsc::channel(COMMAND_CAPACITY);
         let (state_tx, state) = watch::channel(Arc::new(channel.snapshot()));
         let (events, _) = broadcast::channel(EVENT_CAPACITY);
-        let actor = actor::Actor::new(config, state_tx, events.clone());
+        let (settled_tx, settled) = watch::channel(0);
+        let lag_micros = Arc::new(AtomicU64::new(0));
+        let actor = actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone());
         tokio::spawn(actor.run(Box::new(channel), rx));
-        SessionHandle { id: id.into(), machine: machine.into(), requests, state, events }
+        SessionHandle { id: id.into(), machine: machine.into(), requests, state, events, settled, lag_micros }
     }
 
     /// The id the registry knows the session by.
@@ -189,6 +205,19 @@ impl SessionHandle {
     /// A receiver of the events from now on (see [`EVENT_CAPACITY`] for lag behaviour).
     pub fn subscribe_events(&self) -> broadcast::Receiver<Event> {
         self.events.subscribe()
+    }
+
+    /// A counter the actor increments each time the channel comes to rest (nothing moves, no
+    /// program runs) after one or more commands: the moment to save positions and mode.
+    /// `changed()` fails once the session has ended.
+    pub fn watch_settled(&self) -> watch::Receiver<u64> {
+        self.settled.clone()
+    }
+
+    /// How late the last real-time wake-up came against its schedule (zero while the channel
+    /// is not stepped in real time): the IPO lag a viewer sees on top of the stream period.
+    pub fn ipo_lag(&self) -> Duration {
+        Duration::from_micros(self.lag_micros.load(Ordering::Relaxed))
     }
 
     /// Sends a command and waits for its reply (with `drive.wait`, until the motion is over).
@@ -300,6 +329,22 @@ mod tests {
         let stopped = session.command(Action::Stop, None).await.expect("stop").snapshot;
         assert_eq!(stopped.status, Status::Stopped);
         assert!(x(&stopped) < 100.0);
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn the_settled_counter_moves_when_a_command_has_come_to_rest() {
+        let session = mill();
+        let mut settled = session.watch_settled();
+        let drive = Drive { pace: Pace::Realtime, wait: false };
+        session.command(run("G1 X1 F600\nM30"), Some(drive)).await.expect("run");
+        assert!(!settled.has_changed().expect("open"), "not while the program runs");
+        settled.changed().await.expect("settles at the program end");
+        assert_eq!(session.snapshot().status, Status::Idle);
+        session.command(Action::SetMode(Mode::Jog), None).await.expect("mode");
+        settled.changed().await.expect("a command without motion settles at once");
+        session.with_channel(|ch| ch.stored_programs()).await.expect("query");
+        tokio::time::sleep(Duration::from_secs(1)).await;
+        assert!(!settled.has_changed().expect("open"), "reads do not count");
     }
 
     #[tokio::test(start_paused = true)]

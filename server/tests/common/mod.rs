@@ -3,28 +3,46 @@
 #![allow(dead_code)] // Each test binary uses a different part of the harness.
 
 use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
-use nctwin_server::{AppState, Limits};
+use nctwin_server::{AppState, Config, Limits};
 use reqwest::StatusCode;
 use serde_json::{Value, json};
 use tokio::net::TcpListener;
 use tokio::sync::oneshot;
 
-/// A server running in this process until dropped.
+/// A server running in this process until dropped, on SQLite storage in its own temporary
+/// data directory (removed on drop unless stopped with [`Server::stop`]).
 pub struct Server {
     pub addr: SocketAddr,
     pub client: reqwest::Client,
+    pub data_dir: PathBuf,
     shutdown: Option<oneshot::Sender<()>>,
+    task: Option<tokio::task::JoinHandle<std::io::Result<()>>>,
 }
 
 impl Drop for Server {
     fn drop(&mut self) {
         if let Some(tx) = self.shutdown.take() {
             let _ = tx.send(());
+            let _ = std::fs::remove_dir_all(&self.data_dir);
         }
     }
 }
+
+/// A fresh, empty data directory for one server of this test process.
+pub fn temp_data_dir() -> PathBuf {
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("nctwin-test-{}-{n}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// The HMI folder the tests serve.
+pub const WEB_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../web");
 
 /// A reply: status, headers and the JSON body (`Value::Null` when the body is empty).
 pub struct Reply {
@@ -39,16 +57,37 @@ impl Server {
     }
 
     pub async fn start_with(limits: Limits) -> Server {
+        Server::start_config(Config { limits, ..Config::new(temp_data_dir(), WEB_DIR) }).await
+    }
+
+    /// A server for `config`, restoring what its data directory holds.
+    pub async fn start_config(config: Config) -> Server {
+        let state = AppState::open(config).await.expect("storage opens");
+        Server::start_state(state).await
+    }
+
+    /// A server for a prepared state (e.g. on a test storage).
+    pub async fn start_state(state: AppState) -> Server {
         let listener = TcpListener::bind("127.0.0.1:0").await.expect("bind 127.0.0.1:0");
         let addr = listener.local_addr().expect("local address");
-        let data_dir = std::env::temp_dir().join(format!("nctwin-test-{}", std::process::id()));
-        let web_dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../web");
-        let state = AppState::with_limits(data_dir, web_dir, limits);
+        let data_dir = state.data_dir().to_path_buf();
         let (tx, rx) = oneshot::channel::<()>();
-        tokio::spawn(nctwin_server::run(listener, state, async {
+        let task = tokio::spawn(nctwin_server::run(listener, state, async {
             let _ = rx.await;
         }));
-        Server { addr, client: reqwest::Client::new(), shutdown: Some(tx) }
+        Server { addr, client: reqwest::Client::new(), data_dir, shutdown: Some(tx), task: Some(task) }
+    }
+
+    /// Shuts the server down gracefully and waits until it has stopped; keeps the data
+    /// directory (for a restart on it) and returns it.
+    pub async fn stop(mut self) -> PathBuf {
+        if let Some(tx) = self.shutdown.take() {
+            let _ = tx.send(());
+        }
+        if let Some(task) = self.task.take() {
+            task.await.expect("server task").expect("server ran");
+        }
+        self.data_dir.clone()
     }
 
     pub fn url(&self, path: &str) -> String {

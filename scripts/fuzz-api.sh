@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# Bad-input campaign: schemathesis generates requests from the server's own OpenAPI document
+# (/api/v1/openapi.json) and fails on any 5xx and on any response that does not match the
+# document (status code, content type, headers, body schema).
+#
+#   scripts/fuzz-api.sh              about 100 generated cases per operation, fixed seed
+#   FUZZ_EXAMPLES=500 scripts/fuzz-api.sh
+#   FUZZ_SEED=random scripts/fuzz-api.sh
+#
+# Starts the debug build of `nctwin` on a free port with a temporary data directory. Needs the
+# venv that scripts/install-deps.sh creates (.venv with schemathesis).
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+
+ST="$ROOT/.venv/bin/schemathesis"
+TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
+EXAMPLES="${FUZZ_EXAMPLES:-100}"
+SEED="${FUZZ_SEED:-20261122}"
+STARTUP_TIMEOUT_S=60
+
+if [ ! -x "$ST" ]; then
+  echo "error: $ST not found; run scripts/install-deps.sh first" >&2
+  exit 1
+fi
+
+cargo build -p nctwin-server
+
+DATA_DIR="$(mktemp -d "${TMPDIR:-/tmp}/nctwin-fuzz-data.XXXXXX")"
+LOG="$(mktemp "${TMPDIR:-/tmp}/nctwin-fuzz-server.XXXXXX.log")"
+REPORT="$(mktemp -d "${TMPDIR:-/tmp}/nctwin-fuzz-report.XXXXXX")"
+SERVER_PID=""
+
+cleanup() {
+  if [ -n "$SERVER_PID" ]; then
+    kill "$SERVER_PID" 2>/dev/null || true
+    wait "$SERVER_PID" 2>/dev/null || true
+  fi
+  rm -rf "$DATA_DIR" "$REPORT"
+  rm -f "$LOG"
+}
+trap cleanup EXIT
+
+# Generous limits: the fuzzer creates many sessions from one address and sends commands to
+# one session back to back (the limits themselves are tested by server/tests/limits.rs).
+NO_COLOR=1 RUST_LOG=info "$TARGET_DIR/debug/nctwin" --bind 127.0.0.1:0 --data-dir "$DATA_DIR" \
+  --max-sessions 100000 --max-sessions-per-ip 100000 --commands-per-second 100000 --command-burst 100000 \
+  >"$LOG" 2>&1 &
+SERVER_PID=$!
+
+URL=""
+for _ in $(seq $((STARTUP_TIMEOUT_S * 10))); do
+  URL="$(grep -oE 'listening on http://[^[:space:]"]+' "$LOG" | head -n 1 | sed -E 's/^listening on //')" || true
+  [ -n "$URL" ] && break
+  if ! kill -0 "$SERVER_PID" 2>/dev/null; then
+    echo "error: the server exited before it was listening" >&2
+    cat "$LOG" >&2
+    exit 1
+  fi
+  sleep 0.1
+done
+if [ -z "$URL" ]; then
+  echo "error: no 'listening on http://' line within ${STARTUP_TIMEOUT_S} s" >&2
+  cat "$LOG" >&2
+  exit 1
+fi
+SEED_ARGS=(--seed "$SEED")
+[ "$SEED" = random ] && SEED_ARGS=()
+
+# Zero 5xx and every response as documented: status code, content type, headers, body schema.
+CHECKS=not_a_server_error,status_code_conformance,content_type_conformance,response_headers_conformance,response_schema_conformance
+
+campaign() {
+  local name="$1"
+  shift
+  echo "==> schemathesis ($name) against $URL: ${EXAMPLES} cases per operation, seed $SEED"
+  local status=0
+  "$ST" "$@" run "$URL/api/v1/openapi.json" \
+    --checks "$CHECKS" \
+    --max-examples "$EXAMPLES" "${SEED_ARGS[@]}" \
+    --generation-database none \
+    --request-timeout 30 \
+    --workers 2 \
+    --no-color \
+    --report ndjson --report-dir "$REPORT/$name" "${EXTRA_ARGS[@]}" || status=$?
+  if [ "$status" -ne 0 ]; then
+    echo "error: schemathesis ($name) found problems (exit $status); server log:" >&2
+    tail -n 40 "$LOG" >&2
+    exit "$status"
+  fi
+}
+
+# 1. Everything generated, session ids included (mostly unknown: the 404 paths and every
+#    malformed body, query and header).
+EXTRA_ARGS=()
+campaign random-ids
+
+# 2. Every operation on one live session, so generated bodies reach the channel (programs,
+#    MDA, JOG, machine data, stored programs). Deleting it would end the campaign early.
+SESSION="$(curl -sf -X POST "$URL/api/v1/sessions" | sed -E 's/^\{"id":"([^"]+)".*/\1/')"
+CONFIG="$REPORT/live-session.toml"
+printf '[parameters]\n"path.id" = "%s"\n' "$SESSION" >"$CONFIG"
+EXTRA_ARGS=(--exclude-operation-id delete_session)
+campaign live-session --config-file "$CONFIG"
+
+if ! kill -0 "$SERVER_PID" 2>/dev/null; then
+  echo "error: the server died during the campaign" >&2
+  cat "$LOG" >&2
+  exit 1
+fi
+echo "==> schemathesis: no 5xx, every response matches the OpenAPI document"

@@ -1,0 +1,437 @@
+//! `nctwin simulate`: one program in fast pace on one channel, straight on the engine.
+//!
+//! For CI users (no server needed: the exit code tells whether the program ran to its end) and
+//! for benchmarks (no HTTP in the figures). Prints one JSON object on stdout: the final state in
+//! the same shape as `GET /api/v1/sessions/{id}/state`, and the timing figures.
+//!
+//! Exit codes: 0 the program ended normally; 2 it ended in an alarm or has syntax errors;
+//! 3 it was stopped by `--max-sim-time`; 1 usage or I/O error (message on stderr).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::time::Instant;
+
+use nctwin_engine::interp::{Interpreter, Item, Prep, Programs};
+use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
+use nctwin_engine::{Channel, CommandError, Event, Status};
+use nctwin_server::dto;
+use serde::Serialize;
+
+/// Exit code: the program ended in an alarm or did not pass the syntax check.
+pub const EXIT_ALARM: u8 = 2;
+/// Exit code: `--max-sim-time` stopped the program.
+pub const EXIT_LIMIT: u8 = 3;
+
+/// How many IPO cycles run between two looks at the events and the time limit.
+const CHUNK: u64 = 4096;
+
+/// Arguments of `nctwin simulate`.
+#[derive(Debug, clap::Args)]
+pub struct SimulateArgs {
+    /// Built-in machine preset, e.g. mill-3axis (see GET /api/v1/machines).
+    #[arg(long, value_name = "PRESET")]
+    pub machine: String,
+    /// NC data text applied on top of the preset ($MN_/$MC_/$MA_, $TC_DP, $P_UIFR).
+    #[arg(long, value_name = "FILE")]
+    pub machine_data: Option<PathBuf>,
+    /// Folder of subprograms (*.SPF, *.MPF, any case) stored for calls by name.
+    #[arg(long, value_name = "DIR")]
+    pub program_dir: Option<PathBuf>,
+    /// Stop (NC stop, then braking) after this many simulated seconds; exit code 3.
+    #[arg(long, value_name = "SECONDS")]
+    pub max_sim_time: Option<f64>,
+    /// Stay at M0 (and M1 with --optional-stop) instead of continuing as an operator's NC
+    /// start would.
+    #[arg(long)]
+    pub stop_at_m0: bool,
+    /// Optional stop selected: M1 stops like M0.
+    #[arg(long)]
+    pub optional_stop: bool,
+    /// Block preparation only: every block parsed and interpreted into moves, nothing
+    /// planned or interpolated (no IPO cycles). The figure to compare with interpreters that
+    /// only translate a program into motion segments. The report has no `state`.
+    #[arg(long)]
+    pub interpret_only: bool,
+    /// Print the JSON on one line.
+    #[arg(long)]
+    pub compact: bool,
+    /// The part program (main program) to run.
+    pub program: PathBuf,
+}
+
+/// How the run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    /// M2/M30 or the end of the text.
+    Ended,
+    /// Stopped at M0/M1 (`--stop-at-m0`).
+    Stopped,
+    /// An alarm stopped the program.
+    Alarm,
+    /// `--max-sim-time` stopped the program.
+    Limit,
+    /// The program (or a stored subprogram) did not pass the syntax check; nothing ran.
+    SyntaxError,
+}
+
+/// A syntax error found before the run.
+#[derive(Debug, Clone, Serialize)]
+pub struct SyntaxError {
+    /// Program file the error is in.
+    pub program: String,
+    pub line: u32,
+    pub message: String,
+}
+
+/// What `nctwin simulate` prints.
+#[derive(Debug, Serialize)]
+pub struct Report {
+    pub outcome: Outcome,
+    pub program: String,
+    pub machine: String,
+    /// The channel's state at the end, as `GET /api/v1/sessions/{id}/state` shows it (not
+    /// with `--interpret-only`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub state: Option<dto::State>,
+    /// With `--interpret-only`: the moves prepared and the alarm that ended preparation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub moves: Option<u64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub alarm: Option<dto::AlarmInfo>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub syntax_errors: Vec<SyntaxError>,
+    /// Program size in bytes.
+    pub program_bytes: usize,
+    /// Non-empty lines of the program (one block each, comment lines included), the count the
+    /// benchmark generator and the peers' figures use.
+    pub blocks: u64,
+    /// Blocks that became the current block (blocks with motion or a main-run action).
+    pub block_changes: u64,
+    /// M0/M1 stops continued.
+    pub program_stops: u64,
+    pub ipo_cycle_s: f64,
+    pub ipo_cycles: u64,
+    pub simulated_time_s: f64,
+    /// Wall time of loading (syntax check) and running the program.
+    pub wall_time_s: f64,
+    /// Wall time of the syntax check and loading alone (part of `wall_time_s`).
+    pub load_time_s: f64,
+    /// CPU time of the simulating thread over `wall_time_s` (from /proc/thread-self/schedstat;
+    /// `null` where missing): on a busy machine `blocks / cpu_time_s` is the steadier figure.
+    pub cpu_time_s: Option<f64>,
+    pub blocks_per_s: f64,
+    pub cycles_per_s: f64,
+    /// Simulated time per wall time.
+    pub real_time_factor: f64,
+    /// Peak resident set size of the process (VmHWM), KiB; `null` where /proc is missing.
+    pub peak_rss_kib: Option<u64>,
+}
+
+/// Usage and I/O errors: printed on stderr, exit code 1.
+#[derive(Debug)]
+struct UsageError(String);
+
+/// Entry point of the subcommand.
+pub fn main(args: &SimulateArgs) -> ExitCode {
+    match simulate(args) {
+        Ok(report) => {
+            let json =
+                if args.compact { serde_json::to_string(&report) } else { serde_json::to_string_pretty(&report) };
+            match json {
+                Ok(json) => println!("{json}"),
+                Err(e) => {
+                    eprintln!("nctwin simulate: cannot write the report: {e}");
+                    return ExitCode::FAILURE;
+                }
+            }
+            match report.outcome {
+                Outcome::Ended | Outcome::Stopped => ExitCode::SUCCESS,
+                Outcome::Alarm | Outcome::SyntaxError => ExitCode::from(EXIT_ALARM),
+                Outcome::Limit => ExitCode::from(EXIT_LIMIT),
+            }
+        }
+        Err(UsageError(message)) => {
+            eprintln!("nctwin simulate: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn read_text(path: &Path, what: &str) -> Result<String, UsageError> {
+    std::fs::read_to_string(path).map_err(|e| UsageError(format!("cannot read {what} {}: {e}", path.display())))
+}
+
+fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
+    if let Some(t) = args.max_sim_time
+        && !(t.is_finite() && t > 0.0)
+    {
+        return Err(UsageError(format!("--max-sim-time must be a positive number of seconds, not {t}")));
+    }
+    let extra = match &args.machine_data {
+        Some(path) => read_text(path, "machine data")?,
+        None => String::new(),
+    };
+    let mut channel = Channel::from_preset(&args.machine, &extra).map_err(|e| match e.line {
+        Some(line) => UsageError(format!("machine data line {line}: {}", e.message)),
+        None => UsageError(e.message),
+    })?;
+    channel.optional_stop = args.optional_stop;
+    let mut syntax_errors = Vec::new();
+    if let Some(dir) = &args.program_dir {
+        store_programs(&mut channel, dir, &mut syntax_errors)?;
+    }
+    let text = read_text(&args.program, "program")?;
+    let program_bytes = text.len();
+    let blocks = text.lines().filter(|l| !l.trim().is_empty()).count() as u64;
+    let program = args.program.display().to_string();
+
+    if args.interpret_only {
+        return Ok(interpret_only(&channel, args, text, syntax_errors, program, blocks));
+    }
+    let started = Instant::now();
+    let cpu_started = thread_cpu_time_s();
+    let loaded = if syntax_errors.is_empty() {
+        match channel.run_program(&text) {
+            Ok(()) => true,
+            Err(CommandError::Syntax { line, message }) => {
+                syntax_errors.push(SyntaxError { program: program.clone(), line, message });
+                false
+            }
+            Err(e) => return Err(UsageError(e.to_string())),
+        }
+    } else {
+        false
+    };
+    drop(text);
+    let load_time_s = started.elapsed().as_secs_f64();
+    let run = if loaded { run(&mut channel, args) } else { Run::default() };
+    let wall_time_s = started.elapsed().as_secs_f64();
+    let cpu_time_s = thread_cpu_time_s().zip(cpu_started).map(|(end, start)| end - start);
+
+    let outcome = if !loaded {
+        Outcome::SyntaxError
+    } else if channel.status() == Status::Alarm || !channel.alarms().is_empty() {
+        Outcome::Alarm
+    } else if run.limit_hit {
+        Outcome::Limit
+    } else if channel.status() == Status::Stopped {
+        Outcome::Stopped
+    } else {
+        Outcome::Ended
+    };
+    let ipo_cycles = channel.ticks();
+    let simulated_time_s = channel.time();
+    let per_s = |n: f64| if wall_time_s > 0.0 { n / wall_time_s } else { 0.0 };
+    Ok(Report {
+        outcome,
+        program,
+        machine: args.machine.clone(),
+        state: Some(dto::State::from(&channel.snapshot())),
+        moves: None,
+        alarm: None,
+        syntax_errors,
+        program_bytes,
+        blocks,
+        block_changes: run.block_changes,
+        program_stops: run.program_stops,
+        ipo_cycle_s: channel.config().ipo_cycle,
+        ipo_cycles,
+        simulated_time_s,
+        wall_time_s,
+        load_time_s,
+        cpu_time_s,
+        blocks_per_s: per_s(blocks as f64),
+        cycles_per_s: per_s(ipo_cycles as f64),
+        real_time_factor: per_s(simulated_time_s),
+        peak_rss_kib: peak_rss_kib(),
+    })
+}
+
+/// `--interpret-only`: the syntax check, then block preparation of the whole program (as if
+/// the main run had executed everything prepared so far), counting the moves.
+fn interpret_only(
+    channel: &Channel,
+    args: &SimulateArgs,
+    text: String,
+    mut syntax_errors: Vec<SyntaxError>,
+    program: String,
+    blocks: u64,
+) -> Report {
+    let program_bytes = text.len();
+    let started = Instant::now();
+    let cpu_started = thread_cpu_time_s();
+    if syntax_errors.is_empty()
+        && let Some(d) = nctwin_engine::lang::check(&text).into_iter().next()
+    {
+        syntax_errors.push(SyntaxError { program: program.clone(), line: d.line, message: d.message });
+    }
+    let load_time_s = started.elapsed().as_secs_f64();
+    let (mut moves, mut alarm, mut limit_hit) = (0u64, None, false);
+    if syntax_errors.is_empty() {
+        let cfg = channel.config();
+        let programs: Programs = channel
+            .stored_programs()
+            .into_iter()
+            .filter_map(|(name, _)| Some((name.clone(), Arc::from(channel.stored_program(&name)?))))
+            .collect();
+        let mut position = [0.0; MAX_CHANNEL_AXES];
+        position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
+        let mut interp = Interpreter::new(cfg);
+        interp.begin_program(Arc::from(text), &position);
+        // Loops without end would never finish: stop after this many preparation steps.
+        let budget = blocks.saturating_mul(100).saturating_add(1_000_000);
+        let mut out = Vec::new();
+        let mut steps = 0u64;
+        loop {
+            out.clear();
+            let prep = interp.prepare_next(cfg, &programs, true, &mut out);
+            drop(interp.take_data_writes());
+            for item in out.drain(..) {
+                match item {
+                    Item::Move { .. } => moves += 1,
+                    Item::Alarm(a) => alarm = Some(dto::AlarmInfo::from(&a)),
+                    _ => {}
+                }
+            }
+            steps += 1;
+            if prep == Prep::Done || alarm.is_some() {
+                break;
+            }
+            if steps >= budget {
+                limit_hit = true;
+                break;
+            }
+        }
+    }
+    let wall_time_s = started.elapsed().as_secs_f64();
+    let cpu_time_s = thread_cpu_time_s().zip(cpu_started).map(|(end, start)| end - start);
+    let outcome = if !syntax_errors.is_empty() {
+        Outcome::SyntaxError
+    } else if alarm.is_some() {
+        Outcome::Alarm
+    } else if limit_hit {
+        Outcome::Limit
+    } else {
+        Outcome::Ended
+    };
+    Report {
+        outcome,
+        program,
+        machine: args.machine.clone(),
+        state: None,
+        moves: Some(moves),
+        alarm,
+        syntax_errors,
+        program_bytes,
+        blocks,
+        block_changes: 0,
+        program_stops: 0,
+        ipo_cycle_s: channel.config().ipo_cycle,
+        ipo_cycles: 0,
+        simulated_time_s: 0.0,
+        wall_time_s,
+        load_time_s,
+        cpu_time_s,
+        blocks_per_s: if wall_time_s > 0.0 { blocks as f64 / wall_time_s } else { 0.0 },
+        cycles_per_s: 0.0,
+        real_time_factor: 0.0,
+        peak_rss_kib: peak_rss_kib(),
+    }
+}
+
+/// Stores every *.SPF / *.MPF file of `dir` in the channel; syntax errors are collected.
+fn store_programs(channel: &mut Channel, dir: &Path, errors: &mut Vec<SyntaxError>) -> Result<(), UsageError> {
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| UsageError(format!("cannot read program folder {}: {e}", dir.display())))?;
+    let mut paths = Vec::new();
+    for entry in entries {
+        let path = entry.map_err(|e| UsageError(format!("cannot read program folder {}: {e}", dir.display())))?.path();
+        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_uppercase);
+        if path.is_file() && matches!(ext.as_deref(), Some("SPF" | "MPF")) {
+            paths.push(path);
+        }
+    }
+    paths.sort();
+    for path in paths {
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default().to_string();
+        let text = read_text(&path, "program")?;
+        match channel.store_program(&name, &text) {
+            Ok(_) => {}
+            Err(CommandError::Syntax { line, message }) => {
+                errors.push(SyntaxError { program: path.display().to_string(), line, message });
+            }
+            Err(e) => return Err(UsageError(format!("{}: {e}", path.display()))),
+        }
+    }
+    Ok(())
+}
+
+#[derive(Debug, Default)]
+struct Run {
+    block_changes: u64,
+    program_stops: u64,
+    limit_hit: bool,
+}
+
+/// Steps the channel until the program is over (or stopped at M0 with `--stop-at-m0`, or by
+/// the time limit). Events are drained every [`CHUNK`] cycles so memory stays flat.
+fn run(channel: &mut Channel, args: &SimulateArgs) -> Run {
+    let mut run = Run::default();
+    let limit_tick = args.max_sim_time.map(|t| channel.ticks() + (t / channel.config().ipo_cycle).ceil() as u64);
+    loop {
+        while channel.is_busy() {
+            let mut steps = CHUNK;
+            if let Some(limit) = limit_tick.filter(|_| !run.limit_hit) {
+                if channel.ticks() >= limit {
+                    // NC stop: the axes brake on the path, as the server's fast-pace limit does.
+                    channel.stop();
+                    run.limit_hit = true;
+                } else {
+                    steps = steps.min(limit - channel.ticks());
+                }
+            }
+            for _ in 0..steps {
+                channel.step();
+                if !channel.is_busy() {
+                    break;
+                }
+            }
+            count_events(channel, &mut run);
+        }
+        count_events(channel, &mut run);
+        if channel.status() == Status::Stopped && !run.limit_hit && !args.stop_at_m0 {
+            // M0/M1: the operator presses NC start.
+            run.program_stops += 1;
+            if channel.start().is_ok() {
+                continue;
+            }
+        }
+        return run;
+    }
+}
+
+fn count_events(channel: &mut Channel, run: &mut Run) {
+    for event in channel.take_events() {
+        if let Event::BlockChanged(_) = event {
+            run.block_changes += 1;
+        }
+    }
+}
+
+/// CPU time of the calling thread in seconds (first field of /proc/thread-self/schedstat, ns).
+fn thread_cpu_time_s() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: u64 = stat.split_whitespace().next()?.parse().ok()?;
+    Some(ns as f64 * 1e-9)
+}
+
+/// Peak resident set size of this process in KiB (`VmHWM` of /proc/self/status).
+pub fn peak_rss_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+}

@@ -1,0 +1,189 @@
+//! [`Limits`]: every server-side limit in one place, with its default and why, and the
+//! per-session command [`RateLimiter`].
+//!
+//! Each refusal is a 4xx with a message naming the limit: `413` for sizes, `429` (with
+//! `Retry-After` where waiting helps) for counts and rates.
+
+use std::time::Duration;
+
+use tokio::time::Instant;
+
+use crate::session::ActorConfig;
+
+/// Server-side limits and pacing; [`Limits::default`] holds the documented values, `nctwin`
+/// flags override some, tests shrink them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Wake period of real-time pacing (the default stream period): 50 ms, 20 Hz.
+    pub period: Duration,
+    /// Simulated time one fast-paced command may run before the channel is stopped: 3600 s.
+    pub fast_sim_time: f64,
+    /// Wall time after which a `wait: true` request is answered with the current state: 600 s.
+    pub wait_wall_time: Duration,
+    /// IPO cycles per blocking chunk in fast pace: 20,000.
+    pub fast_chunk: u64,
+    /// Largest request body of every endpoint except program uploads: 1 MiB (`413`).
+    pub body_bytes: usize,
+    /// Largest stored program (`PUT .../programs/{name}`): 16 MiB of text (`413`). Its request
+    /// body may be [`Limits::program_body_bytes`] for the JSON around it. Programs larger than
+    /// [`Limits::body_bytes`] are stored first and then called by name from a short `run`.
+    pub program_bytes: usize,
+    /// Total text of one session's stored programs: 64 MiB (`413`).
+    pub session_program_bytes: usize,
+    /// Live sessions on the server: 1000 (`429`). An idle session costs a sleeping task and
+    /// some kilobytes, so this guards memory, not CPU.
+    pub sessions: usize,
+    /// Live sessions created from one client IP address: 100 (`429`), enough for a class behind
+    /// one NAT address with a few sessions each.
+    pub sessions_per_ip: usize,
+    /// WebSocket stream clients of one session: 64 (`429`): a class watching one machine.
+    pub stream_clients: usize,
+    /// Sustained commands per second per session: 50 (`429` with `Retry-After`). Commands are
+    /// every request that changes a session (run, start, stop, reset, MDA, JOG, mode, machine
+    /// data, program uploads and deletions); reads are not counted.
+    pub commands_per_second: f64,
+    /// Commands a session may take in a burst above the sustained rate: 100.
+    pub command_burst: f64,
+    /// Longest a graceful shutdown waits for open connections after every session is saved
+    /// and closed: 5 s. The process then exits anyway.
+    pub shutdown_grace: Duration,
+}
+
+impl Default for Limits {
+    fn default() -> Limits {
+        Limits {
+            period: Duration::from_millis(50),
+            fast_sim_time: 3600.0,
+            wait_wall_time: Duration::from_secs(600),
+            fast_chunk: 20_000,
+            body_bytes: 1 << 20,
+            program_bytes: 16 << 20,
+            session_program_bytes: 64 << 20,
+            sessions: 1000,
+            sessions_per_ip: 100,
+            stream_clients: 64,
+            commands_per_second: 50.0,
+            command_burst: 100.0,
+            shutdown_grace: Duration::from_secs(5),
+        }
+    }
+}
+
+impl Limits {
+    pub(crate) fn actor_config(&self) -> ActorConfig {
+        ActorConfig {
+            period: self.period,
+            fast_sim_time: self.fast_sim_time,
+            wait_wall_time: self.wait_wall_time,
+            fast_chunk: self.fast_chunk,
+        }
+    }
+
+    /// Largest request body of a program upload: the program limit plus a quarter for JSON
+    /// escapes (`\n` is two bytes) plus 64 KiB.
+    pub fn program_body_bytes(&self) -> usize {
+        self.program_bytes.saturating_add(self.program_bytes / 4).saturating_add(64 << 10)
+    }
+}
+
+/// The limits `nctwin` takes as flags (the others keep their defaults).
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct LimitFlags {
+    /// Live sessions on the server [default: 1000].
+    #[arg(long, value_name = "N")]
+    pub max_sessions: Option<usize>,
+    /// Live sessions created from one client IP address [default: 100].
+    #[arg(long, value_name = "N")]
+    pub max_sessions_per_ip: Option<usize>,
+    /// WebSocket stream clients per session [default: 64].
+    #[arg(long, value_name = "N")]
+    pub max_stream_clients: Option<usize>,
+    /// Sustained commands per second per session [default: 50].
+    #[arg(long, value_name = "RATE")]
+    pub commands_per_second: Option<f64>,
+    /// Commands per session in a burst above the sustained rate [default: 100].
+    #[arg(long, value_name = "N")]
+    pub command_burst: Option<f64>,
+    /// Largest stored program in bytes [default: 16777216 = 16 MiB].
+    #[arg(long, value_name = "BYTES")]
+    pub max_program_bytes: Option<usize>,
+}
+
+impl LimitFlags {
+    /// `limits` with the given flags applied.
+    pub fn apply(&self, limits: Limits) -> Limits {
+        Limits {
+            sessions: self.max_sessions.unwrap_or(limits.sessions),
+            sessions_per_ip: self.max_sessions_per_ip.unwrap_or(limits.sessions_per_ip),
+            stream_clients: self.max_stream_clients.unwrap_or(limits.stream_clients),
+            commands_per_second: self.commands_per_second.unwrap_or(limits.commands_per_second),
+            command_burst: self.command_burst.unwrap_or(limits.command_burst),
+            program_bytes: self.max_program_bytes.unwrap_or(limits.program_bytes),
+            ..limits
+        }
+    }
+}
+
+/// A token bucket: `rate` tokens per second up to `burst`; each command takes one.
+///
+/// Pure arithmetic on instants handed in by the caller, so it is tested without a clock.
+#[derive(Debug, Clone)]
+pub struct RateLimiter {
+    rate: f64,
+    burst: f64,
+    tokens: f64,
+    last: Instant,
+}
+
+impl RateLimiter {
+    /// A full bucket at `now`.
+    pub fn new(rate: f64, burst: f64, now: Instant) -> RateLimiter {
+        let burst = burst.max(1.0);
+        RateLimiter { rate: rate.max(f64::MIN_POSITIVE), burst, tokens: burst, last: now }
+    }
+
+    /// Takes one token; `Err(wait)` when none is left, with the time until one is.
+    pub fn take(&mut self, now: Instant) -> Result<(), Duration> {
+        let elapsed = now.saturating_duration_since(self.last).as_secs_f64();
+        self.last = now;
+        self.tokens = (self.tokens + elapsed * self.rate).min(self.burst);
+        if self.tokens >= 1.0 {
+            self.tokens -= 1.0;
+            Ok(())
+        } else {
+            Err(Duration::from_secs_f64(((1.0 - self.tokens) / self.rate).min(3600.0)))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_burst_is_allowed_then_the_rate_holds() {
+        let t0 = Instant::now();
+        let mut bucket = RateLimiter::new(10.0, 3.0, t0);
+        assert!((0..3).all(|_| bucket.take(t0).is_ok()));
+        let wait = bucket.take(t0).expect_err("the burst is spent");
+        assert!((wait.as_secs_f64() - 0.1).abs() < 1e-9, "{wait:?}");
+        assert!(bucket.take(t0 + Duration::from_millis(100)).is_ok(), "one token after 1/rate");
+        assert!(bucket.take(t0 + Duration::from_millis(100)).is_err());
+    }
+
+    #[test]
+    fn an_idle_bucket_refills_only_up_to_the_burst() {
+        let t0 = Instant::now();
+        let mut bucket = RateLimiter::new(10.0, 2.0, t0);
+        let later = t0 + Duration::from_secs(60);
+        assert!(bucket.take(later).is_ok() && bucket.take(later).is_ok());
+        assert!(bucket.take(later).is_err());
+    }
+
+    #[test]
+    fn program_uploads_may_be_larger_than_other_bodies() {
+        let limits = Limits::default();
+        assert!(limits.program_body_bytes() > limits.program_bytes);
+        assert!(limits.program_bytes > limits.body_bytes);
+    }
+}

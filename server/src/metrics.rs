@@ -1,0 +1,184 @@
+//! Metrics in the Prometheus text format (`GET /metrics`): sessions, stream clients, IPO lag,
+//! request counts and latencies per route, storage calls.
+//!
+//! Counters are plain atomics and one small map per route template (not per URL: the label
+//! set stays bounded however many sessions exist); gauges are read from the registry when
+//! scraped. No metrics crate: the format is a few lines of text.
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use axum::extract::{MatchedPath, Request, State};
+use axum::http::header::CONTENT_TYPE;
+use axum::middleware::Next;
+use axum::response::{IntoResponse, Response};
+use nctwin_engine::Status;
+
+use crate::state::AppState;
+
+/// Upper bounds (seconds) of the request latency histogram: quick answers up to the longest
+/// `wait: true` request.
+const LATENCY_BUCKETS: [f64; 12] = [0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 1.0, 5.0, 30.0, 600.0];
+
+/// Content type of the Prometheus text exposition format.
+pub const CONTENT_TYPE_TEXT: &str = "text/plain; version=0.0.4; charset=utf-8";
+
+/// The server's counters.
+#[derive(Debug, Default)]
+pub struct Metrics {
+    /// By (method, route template). Held for one update or one scrape, never across an await.
+    routes: Mutex<BTreeMap<(String, String), RouteStats>>,
+    storage_ok: AtomicU64,
+    storage_failed: AtomicU64,
+}
+
+#[derive(Debug, Default, Clone)]
+struct RouteStats {
+    by_status: BTreeMap<u16, u64>,
+    /// Counts per bucket of [`LATENCY_BUCKETS`] (not cumulative), plus one for +Inf.
+    buckets: [u64; LATENCY_BUCKETS.len() + 1],
+    sum: f64,
+    count: u64,
+}
+
+impl Metrics {
+    /// Counts one answered request.
+    pub fn record_request(&self, method: &str, route: &str, status: u16, elapsed: Duration) {
+        let seconds = elapsed.as_secs_f64();
+        let bucket = LATENCY_BUCKETS.iter().position(|b| seconds <= *b).unwrap_or(LATENCY_BUCKETS.len());
+        let mut routes = self.routes.lock().unwrap_or_else(|e| e.into_inner());
+        let stats = routes.entry((method.to_string(), route.to_string())).or_default();
+        *stats.by_status.entry(status).or_default() += 1;
+        stats.buckets[bucket] += 1;
+        stats.sum += seconds;
+        stats.count += 1;
+    }
+
+    /// Counts one storage call.
+    pub fn storage_call(&self, ok: bool) {
+        let counter = if ok { &self.storage_ok } else { &self.storage_failed };
+        counter.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// The text exposition of every metric, with the registry's gauges read now.
+    pub fn render(&self, state: &AppState) -> String {
+        let entries = state.list_entries();
+        let streams: usize = entries.iter().map(|e| e.stream_clients()).sum();
+        let running = entries.iter().filter(|e| e.handle.snapshot().status == Status::Running).count();
+        let lag = entries.iter().map(|e| e.handle.ipo_lag()).max().unwrap_or_default();
+
+        let mut out = String::new();
+        gauge(&mut out, "nctwin_sessions", "Live sessions.", entries.len() as f64);
+        gauge(&mut out, "nctwin_running_sessions", "Sessions whose channel is running.", running as f64);
+        gauge(&mut out, "nctwin_stream_clients", "Open WebSocket stream clients.", streams as f64);
+        gauge(
+            &mut out,
+            "nctwin_ipo_lag_seconds_max",
+            "Largest lateness of the last real-time wake-up over all sessions (0 when none is stepped in real time).",
+            lag.as_secs_f64(),
+        );
+        let _ = writeln!(out, "# HELP nctwin_storage_operations_total Storage calls by result.");
+        let _ = writeln!(out, "# TYPE nctwin_storage_operations_total counter");
+        let _ = writeln!(
+            out,
+            "nctwin_storage_operations_total{{result=\"ok\"}} {}",
+            self.storage_ok.load(Ordering::Relaxed)
+        );
+        let _ = writeln!(
+            out,
+            "nctwin_storage_operations_total{{result=\"error\"}} {}",
+            self.storage_failed.load(Ordering::Relaxed)
+        );
+
+        let routes = self.routes.lock().unwrap_or_else(|e| e.into_inner()).clone();
+        let _ = writeln!(out, "# HELP nctwin_http_requests_total Answered HTTP requests by method, route and status.");
+        let _ = writeln!(out, "# TYPE nctwin_http_requests_total counter");
+        for ((method, route), stats) in &routes {
+            for (status, n) in &stats.by_status {
+                let _ = writeln!(
+                    out,
+                    "nctwin_http_requests_total{{method=\"{}\",route=\"{}\",status=\"{status}\"}} {n}",
+                    escape(method),
+                    escape(route)
+                );
+            }
+        }
+        let _ = writeln!(out, "# HELP nctwin_http_request_duration_seconds Time to answer HTTP requests.");
+        let _ = writeln!(out, "# TYPE nctwin_http_request_duration_seconds histogram");
+        for ((method, route), stats) in &routes {
+            let labels = format!("method=\"{}\",route=\"{}\"", escape(method), escape(route));
+            let mut cumulative = 0;
+            for (i, bound) in LATENCY_BUCKETS.iter().enumerate() {
+                cumulative += stats.buckets[i];
+                let _ = writeln!(
+                    out,
+                    "nctwin_http_request_duration_seconds_bucket{{{labels},le=\"{bound}\"}} {cumulative}"
+                );
+            }
+            let _ =
+                writeln!(out, "nctwin_http_request_duration_seconds_bucket{{{labels},le=\"+Inf\"}} {}", stats.count);
+            let _ = writeln!(out, "nctwin_http_request_duration_seconds_sum{{{labels}}} {}", stats.sum);
+            let _ = writeln!(out, "nctwin_http_request_duration_seconds_count{{{labels}}} {}", stats.count);
+        }
+        out
+    }
+}
+
+fn gauge(out: &mut String, name: &str, help: &str, value: f64) {
+    let _ = writeln!(out, "# HELP {name} {help}");
+    let _ = writeln!(out, "# TYPE {name} gauge");
+    let _ = writeln!(out, "{name} {value}");
+}
+
+/// Escapes a label value (backslash, double quote, newline).
+fn escape(value: &str) -> String {
+    value.replace('\\', "\\\\").replace('"', "\\\"").replace('\n', "\\n")
+}
+
+/// Middleware (route layer) that counts every routed request by its route template.
+pub async fn track(State(state): State<AppState>, request: Request, next: Next) -> Response {
+    let start = Instant::now();
+    let method = request.method().to_string();
+    let route =
+        request.extensions().get::<MatchedPath>().map_or_else(|| "unmatched".to_string(), |p| p.as_str().to_string());
+    let response = next.run(request).await;
+    state.metrics().record_request(&method, &route, response.status().as_u16(), start.elapsed());
+    response
+}
+
+/// `GET /metrics`.
+pub async fn metrics(State(state): State<AppState>) -> Response {
+    ([(CONTENT_TYPE, CONTENT_TYPE_TEXT)], state.metrics().render(&state)).into_response()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn requests_are_counted_with_a_cumulative_latency_histogram() {
+        let metrics = Metrics::default();
+        let state = AppState::new("unused", "unused");
+        metrics.record_request("GET", "/api/v1/health", 200, Duration::from_micros(500));
+        metrics.record_request("GET", "/api/v1/health", 200, Duration::from_millis(20));
+        metrics.record_request("POST", "/api/v1/sessions/{id}/run", 404, Duration::from_secs(1000));
+        let text = metrics.render(&state);
+        assert!(
+            text.contains("nctwin_http_requests_total{method=\"GET\",route=\"/api/v1/health\",status=\"200\"} 2"),
+            "{text}"
+        );
+        assert!(text.contains("route=\"/api/v1/health\",le=\"0.001\"} 1\n"), "{text}");
+        assert!(text.contains("route=\"/api/v1/health\",le=\"0.025\"} 2\n"), "{text}");
+        assert!(text.contains("route=\"/api/v1/sessions/{id}/run\",le=\"600\"} 0\n"), "{text}");
+        assert!(text.contains("route=\"/api/v1/sessions/{id}/run\",le=\"+Inf\"} 1\n"), "{text}");
+        assert!(text.contains("nctwin_sessions 0\n"), "{text}");
+    }
+
+    #[test]
+    fn label_values_are_escaped() {
+        assert_eq!(escape("a\"b\\c\nd"), "a\\\"b\\\\c\\nd");
+    }
+}

@@ -1,0 +1,457 @@
+//! [`AppState`]: what every request handler shares: the session registry, the storage, the
+//! configured directories, limits and auth mode, and the metrics.
+//!
+//! Every save of a session goes through here (`persist_*`, `put_program`, ...), on a blocking
+//! worker, so the storage's disk waits never block the async runtime.
+
+mod entry;
+pub mod persist;
+
+use std::collections::HashMap;
+use std::net::IpAddr;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard};
+
+use nctwin_engine::Channel;
+
+pub use self::entry::{SessionEntry, StreamClientGuard};
+use crate::auth::{AuthMode, TokenSet};
+use crate::error::ApiError;
+pub use crate::limits::Limits;
+use crate::metrics::Metrics;
+use crate::session::SessionHandle;
+use crate::storage::{self, MemoryStorage, SessionRecord, Storage, StorageError};
+
+/// How the server is set up (from `nctwin`'s flags, or by tests).
+#[derive(Debug, Clone)]
+pub struct Config {
+    /// Where persistent data lives (`--data-dir`).
+    pub data_dir: PathBuf,
+    /// The HMI's static files, served at `/`.
+    pub web_dir: PathBuf,
+    pub limits: Limits,
+    pub auth: AuthMode,
+}
+
+impl Config {
+    /// Default limits, auth off.
+    pub fn new(data_dir: impl Into<PathBuf>, web_dir: impl Into<PathBuf>) -> Config {
+        Config { data_dir: data_dir.into(), web_dir: web_dir.into(), limits: Limits::default(), auth: AuthMode::Off }
+    }
+}
+
+/// Cheap-to-clone shared state of the server.
+#[derive(Debug, Clone)]
+pub struct AppState {
+    shared: Arc<Shared>,
+}
+
+#[derive(Debug)]
+struct Shared {
+    /// Live sessions by id.
+    ///
+    /// A std `Mutex`, not Tokio's: it is held only to look up, insert or remove an entry (and to
+    /// count for the session limits) and is never held across an `.await`, so it cannot block
+    /// the runtime or deadlock a task.
+    sessions: Mutex<HashMap<String, Arc<SessionEntry>>>,
+    next_session: AtomicU64,
+    /// Serialises session creation from the limit check to the registration, so concurrent
+    /// creations cannot together pass the session limits.
+    create_lock: tokio::sync::Mutex<()>,
+    config: Config,
+    storage: Arc<dyn Storage>,
+    metrics: Metrics,
+    /// Open WebSocket streams of every session, including those of sessions already closed
+    /// whose close frame is still being sent (graceful shutdown waits for them).
+    open_streams: Arc<AtomicUsize>,
+}
+
+/// Health of the storage, for `GET /health`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct StorageHealth {
+    pub backend: &'static str,
+    pub error: Option<String>,
+}
+
+impl AppState {
+    /// State with default [`Limits`], auth off and storage in memory: nothing survives the
+    /// process. `nctwin` uses [`AppState::open`].
+    pub fn new(data_dir: impl Into<PathBuf>, web_dir: impl Into<PathBuf>) -> AppState {
+        AppState::with_limits(data_dir, web_dir, Limits::default())
+    }
+
+    /// As [`AppState::new`] with other limits.
+    pub fn with_limits(data_dir: impl Into<PathBuf>, web_dir: impl Into<PathBuf>, limits: Limits) -> AppState {
+        let config = Config { limits, ..Config::new(data_dir, web_dir) };
+        AppState::with_storage(config, Arc::new(MemoryStorage::default()))
+    }
+
+    /// State on the given storage, with no session started (see [`AppState::restore`]).
+    pub fn with_storage(config: Config, storage: Arc<dyn Storage>) -> AppState {
+        AppState {
+            shared: Arc::new(Shared {
+                sessions: Mutex::new(HashMap::new()),
+                next_session: AtomicU64::new(1),
+                create_lock: tokio::sync::Mutex::new(()),
+                config,
+                storage,
+                metrics: Metrics::default(),
+                open_streams: Arc::new(AtomicUsize::new(0)),
+            }),
+        }
+    }
+
+    /// Opens the embedded SQLite storage under `config.data_dir` (creating it) and restores
+    /// every saved session. Needs a Tokio runtime (the sessions' actors start on it).
+    pub async fn open(config: Config) -> Result<AppState, StorageError> {
+        let dir = config.data_dir.clone();
+        let storage = tokio::task::spawn_blocking(move || storage::open_default(&dir))
+            .await
+            .map_err(|e| StorageError(format!("opening the storage failed: {e}")))??;
+        let state = AppState::with_storage(config, Arc::new(storage));
+        let restored = state.restore().await?;
+        tracing::info!(storage = %state.shared.storage.describe(), sessions = restored, "storage opened");
+        Ok(state)
+    }
+
+    /// Starts every session the storage holds (see [`persist`] for what a restored session
+    /// looks like) and continues numbering above them. Returns how many were restored.
+    pub async fn restore(&self) -> Result<usize, StorageError> {
+        let saved = self.storage_call(|s| s.load()).await?;
+        let mut restored = 0;
+        for session in saved {
+            let record = &session.record;
+            self.shared.next_session.fetch_max(record.number.saturating_add(1), Ordering::Relaxed);
+            let channel = match persist::rebuild(&session) {
+                Ok(channel) => channel,
+                Err(e) => {
+                    tracing::error!(session = %record.id, error = %e, "saved session not restored (kept in storage)");
+                    continue;
+                }
+            };
+            let client_ip = record.client_ip.as_deref().and_then(|ip| ip.parse().ok());
+            self.start_session(&record.id, record.number, &record.machine, channel, client_ip, record.tokens.clone());
+            restored += 1;
+        }
+        Ok(restored)
+    }
+
+    pub fn data_dir(&self) -> &Path {
+        &self.shared.config.data_dir
+    }
+
+    pub fn web_dir(&self) -> &Path {
+        &self.shared.config.web_dir
+    }
+
+    pub fn limits(&self) -> &Limits {
+        &self.shared.config.limits
+    }
+
+    pub fn auth(&self) -> AuthMode {
+        self.shared.config.auth
+    }
+
+    pub fn metrics(&self) -> &Metrics {
+        &self.shared.metrics
+    }
+
+    fn sessions(&self) -> MutexGuard<'_, HashMap<String, Arc<SessionEntry>>> {
+        // A panic while the lock was held cannot leave the map half-updated (every critical
+        // section is one map operation), so a poisoned lock is safe to use.
+        self.shared.sessions.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Runs a storage call on a blocking worker and counts it.
+    async fn storage_call<R: Send + 'static>(
+        &self,
+        call: impl FnOnce(&dyn Storage) -> Result<R, StorageError> + Send + 'static,
+    ) -> Result<R, StorageError> {
+        let storage = self.shared.storage.clone();
+        let result = tokio::task::spawn_blocking(move || call(storage.as_ref()))
+            .await
+            .unwrap_or_else(|e| Err(StorageError(format!("storage call failed: {e}"))));
+        self.shared.metrics.storage_call(result.is_ok());
+        result
+    }
+
+    /// Whether the storage answers, for `GET /health`.
+    pub async fn storage_health(&self) -> StorageHealth {
+        let backend = self.shared.storage.backend();
+        StorageHealth { backend, error: self.storage_call(|s| s.check()).await.err().map(|e| e.0) }
+    }
+
+    /// Creates a session for `channel`: checks the session limits, makes its tokens, saves it
+    /// (durably) and starts its actor. Ids are `s1`, `s2`, ... (base 36).
+    pub async fn create_session(
+        &self,
+        machine: &str,
+        channel: Channel,
+        client_ip: Option<IpAddr>,
+    ) -> Result<(Arc<SessionEntry>, TokenSet), ApiError> {
+        let limits = *self.limits();
+        let _creating = self.shared.create_lock.lock().await;
+        {
+            let sessions = self.sessions();
+            if sessions.len() >= limits.sessions {
+                return Err(ApiError::TooManyRequests {
+                    message: format!("the server holds {} sessions, its limit; delete one first", limits.sessions),
+                    retry_after: None,
+                });
+            }
+            if let Some(ip) = client_ip
+                && sessions.values().filter(|e| e.client_ip == Some(ip)).count() >= limits.sessions_per_ip
+            {
+                return Err(ApiError::TooManyRequests {
+                    message: format!(
+                        "{ip} has {} sessions, the limit per client; delete one first",
+                        limits.sessions_per_ip
+                    ),
+                    retry_after: None,
+                });
+            }
+        }
+        let tokens = TokenSet::generate()
+            .map_err(|e| ApiError::StorageUnavailable(format!("no random numbers for tokens: {e}")))?;
+        let number = self.shared.next_session.fetch_add(1, Ordering::Relaxed);
+        let id = format!("s{}", base36(number));
+        let record = SessionRecord {
+            id: id.clone(),
+            number,
+            machine: machine.to_string(),
+            client_ip: client_ip.map(|ip| ip.to_string()),
+            tokens: tokens.hashes(),
+            checkpoint: persist::checkpoint(&channel),
+        };
+        // Saved before it is started: a session the client hears of is on disk.
+        self.storage_call(move |s| s.create_session(&record)).await?;
+        let entry = self.start_session(&id, number, machine, channel, client_ip, tokens.hashes());
+        Ok((entry, tokens))
+    }
+
+    /// Registers a session and starts its actor and its saver (which writes a checkpoint each
+    /// time the channel comes to rest after commands).
+    fn start_session(
+        &self,
+        id: &str,
+        number: u64,
+        machine: &str,
+        channel: Channel,
+        client_ip: Option<IpAddr>,
+        tokens: storage::TokenHashes,
+    ) -> Arc<SessionEntry> {
+        let handle = SessionHandle::spawn(id, machine, channel, self.limits().actor_config());
+        let entry = Arc::new(SessionEntry::new(handle.clone(), number, client_ip, tokens, self.limits()));
+        self.sessions().insert(id.to_string(), entry.clone());
+        let state = self.clone();
+        let mut settled = handle.watch_settled();
+        let saver_entry = entry.clone();
+        tokio::spawn(async move {
+            // Ends when the actor ends (the counter's sender is dropped).
+            while settled.changed().await.is_ok() {
+                if let Err(e) = state.persist_checkpoint(&saver_entry).await {
+                    tracing::warn!(session = %saver_entry.id(), error = %e, "checkpoint not saved");
+                }
+            }
+        });
+        entry
+    }
+
+    /// Reads the channel's checkpoint and saves it. The read happens under the save lock, so
+    /// the last write is always of the newest state.
+    pub async fn persist_checkpoint(&self, entry: &SessionEntry) -> Result<(), ApiError> {
+        let _guard = entry.save_lock.lock().await;
+        let checkpoint = entry
+            .handle
+            .with_channel(|ch| persist::checkpoint(ch))
+            .await
+            .map_err(|e| ApiError::from_session(entry.id(), e))?;
+        let id = entry.id().to_string();
+        self.storage_call(move |s| s.save_checkpoint(&id, &checkpoint)).await?;
+        Ok(())
+    }
+
+    /// Stores a program in the channel and in storage; the stored name on success.
+    pub async fn put_program(&self, entry: &SessionEntry, name: String, text: String) -> Result<String, ApiError> {
+        let limits = *self.limits();
+        if text.len() > limits.program_bytes {
+            return Err(ApiError::TooLarge(format!(
+                "program of {} bytes is larger than the limit of {} bytes",
+                text.len(),
+                limits.program_bytes
+            )));
+        }
+        let _guard = entry.save_lock.lock().await;
+        let id = entry.id().to_string();
+        let text = Arc::<str>::from(text);
+        let for_channel = text.clone();
+        let (stored, previous) = entry
+            .handle
+            .with_channel(move |ch| {
+                let previous = ch.stored_program(&name).map(str::to_string);
+                let total: usize = ch.stored_programs().iter().map(|(_, size)| size).sum();
+                let replaced = previous.as_ref().map_or(0, String::len);
+                if total - replaced + for_channel.len() > limits.session_program_bytes {
+                    return Err(ApiError::TooLarge(format!(
+                        "the session's programs would exceed the limit of {} bytes in total; delete some first",
+                        limits.session_program_bytes
+                    )));
+                }
+                let stored = ch.store_program(&name, &for_channel).map_err(ApiError::from)?;
+                Ok((stored, previous))
+            })
+            .await
+            .map_err(|e| ApiError::from_session(&id, e))??;
+        let name = stored.clone();
+        let written = self.storage_call(move |s| s.put_program(&id, &name, &text)).await;
+        if let Err(e) = written {
+            // Not saved, so not applied either: the channel gets its previous program back.
+            let name = stored.clone();
+            let _ = entry
+                .handle
+                .with_channel(move |ch| match previous {
+                    Some(text) => drop(ch.store_program(&name, &text)),
+                    None => drop(ch.delete_program(&name)),
+                })
+                .await;
+            return Err(e.into());
+        }
+        Ok(stored)
+    }
+
+    /// Deletes a stored program from the channel and from storage; `false` if there was none.
+    pub async fn delete_program(&self, entry: &SessionEntry, name: String) -> Result<bool, ApiError> {
+        let _guard = entry.save_lock.lock().await;
+        let id = entry.id().to_string();
+        // The engine normalises names (upper case, no .MPF/.SPF); the one that disappeared is
+        // the stored name.
+        let removed = entry
+            .handle
+            .with_channel(move |ch| {
+                let before = ch.stored_programs();
+                let text = ch.stored_program(&name).map(str::to_string)?;
+                if !ch.delete_program(&name) {
+                    return None;
+                }
+                let after = ch.stored_programs();
+                let canonical = before.into_iter().map(|(n, _)| n).find(|n| !after.iter().any(|(a, _)| a == n))?;
+                Some((canonical, text))
+            })
+            .await
+            .map_err(|e| ApiError::from_session(&id, e))?;
+        let Some((canonical, text)) = removed else { return Ok(false) };
+        let name = canonical.clone();
+        if let Err(e) = self.storage_call(move |s| s.delete_program(&id, &name)).await {
+            // Not saved, so not applied either: the program is put back.
+            let _ = entry.handle.with_channel(move |ch| drop(ch.store_program(&canonical, &text))).await;
+            return Err(e.into());
+        }
+        Ok(true)
+    }
+
+    /// The live session `id`, if any; the handle stays usable after the lock is released.
+    pub fn session(&self, id: &str) -> Option<SessionHandle> {
+        self.sessions().get(id).map(|e| e.handle.clone())
+    }
+
+    /// The registry entry of session `id`.
+    pub fn entry(&self, id: &str) -> Option<Arc<SessionEntry>> {
+        self.sessions().get(id).cloned()
+    }
+
+    /// Every live session in creation order.
+    pub fn list_sessions(&self) -> Vec<SessionHandle> {
+        self.list_entries().into_iter().map(|e| e.handle.clone()).collect()
+    }
+
+    /// Every registry entry in creation order.
+    pub fn list_entries(&self) -> Vec<Arc<SessionEntry>> {
+        let mut all: Vec<Arc<SessionEntry>> = self.sessions().values().cloned().collect();
+        all.sort_by_key(|e| e.number);
+        all
+    }
+
+    /// Registers a WebSocket client of `entry` (`429` at the per-session limit).
+    pub fn add_stream_client(&self, entry: &SessionEntry) -> Result<StreamClientGuard, ApiError> {
+        entry.add_stream_client(self.limits(), &self.shared.open_streams)
+    }
+
+    /// Open WebSocket streams on the whole server.
+    pub fn open_streams(&self) -> usize {
+        self.shared.open_streams.load(Ordering::Acquire)
+    }
+
+    /// Number of live sessions.
+    pub fn session_count(&self) -> usize {
+        self.sessions().len()
+    }
+
+    /// Deletes a session from storage, then unregisters it and stops its actor; `Ok(false)` if
+    /// there was no such session.
+    pub async fn remove_session(&self, id: &str) -> Result<bool, ApiError> {
+        let Some(entry) = self.entry(id) else { return Ok(false) };
+        let _guard = entry.save_lock.lock().await;
+        let key = id.to_string();
+        self.storage_call(move |s| s.delete_session(&key)).await?;
+        let removed = self.sessions().remove(id);
+        if let Some(entry) = removed {
+            entry.handle.shutdown().await;
+        }
+        Ok(true)
+    }
+
+    /// Server shutdown: saves every session's checkpoint in one write, then stops every actor
+    /// (which closes every stream and answers every waiting request).
+    pub async fn shutdown_sessions(&self) {
+        let all = self.list_entries();
+        // Every save lock is held from the read to the write, so no later write is overtaken.
+        let mut guards = Vec::with_capacity(all.len());
+        let mut checkpoints = Vec::with_capacity(all.len());
+        for entry in &all {
+            guards.push(entry.save_lock.lock().await);
+            match entry.handle.with_channel(|ch| persist::checkpoint(ch)).await {
+                Ok(checkpoint) => checkpoints.push((entry.id().to_string(), checkpoint)),
+                Err(e) => tracing::warn!(session = %entry.id(), error = %e, "no checkpoint at shutdown"),
+            }
+        }
+        let saved = checkpoints.len();
+        match self.storage_call(move |s| s.save_checkpoints(&checkpoints)).await {
+            Ok(()) => tracing::info!(sessions = saved, "every session saved"),
+            Err(e) => tracing::error!(error = %e, "sessions not saved at shutdown"),
+        }
+        drop(guards);
+        let all: Vec<Arc<SessionEntry>> = self.sessions().drain().map(|(_, e)| e).collect();
+        for entry in all {
+            entry.handle.shutdown().await;
+        }
+    }
+}
+
+/// `n` in base 36 with digits `0-9a-z`.
+fn base36(mut n: u64) -> String {
+    const DIGITS: &[u8; 36] = b"0123456789abcdefghijklmnopqrstuvwxyz";
+    let mut out = Vec::new();
+    loop {
+        out.push(DIGITS[(n % 36) as usize]);
+        n /= 36;
+        if n == 0 {
+            break;
+        }
+    }
+    out.reverse();
+    String::from_utf8(out).unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::base36;
+
+    #[test]
+    fn session_numbers_are_written_in_base_36() {
+        assert_eq!(base36(0), "0");
+        assert_eq!(base36(35), "z");
+        assert_eq!(base36(36), "10");
+        assert_eq!(base36(1_295), "zz");
+    }
+}

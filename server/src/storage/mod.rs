@@ -1,0 +1,165 @@
+//! Persistence: everything about a session that must survive a restart goes through the
+//! [`Storage`] trait, and nothing else in the server touches files.
+//!
+//! What is stored per session ([`SessionRecord`]): its id and creation number, the preset it
+//! came from, the client address that created it (for the per-client session limit), the
+//! SHA-256 hashes of its three tokens (never the tokens themselves), and a [`Checkpoint`] of
+//! the channel: the whole machine data as NC data text (machine data, tool data, settable
+//! frames; applying it to default data rebuilds the same data), the axis positions and the
+//! operating mode. Stored programs are kept one row per program, so a large program is written
+//! once, not with every checkpoint.
+//!
+//! Durability: every method returns only after the change is on disk (see [`sqlite`]). Callers
+//! acknowledge a client's write only after the storage call returned `Ok`.
+//!
+//! The trait is synchronous (SQLite is); async callers run it on a blocking worker
+//! ([`crate::state::AppState`] does that in one place).
+
+mod memory;
+mod sqlite;
+
+use std::fmt::Debug;
+use std::path::Path;
+
+pub use memory::MemoryStorage;
+pub use sqlite::SqliteStorage;
+
+/// File name of the embedded database inside `--data-dir`.
+pub const SQLITE_FILE: &str = "nctwin.sqlite3";
+
+/// A storage failure (disk full, database locked by another process, corrupt file, ...).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("storage: {0}")]
+pub struct StorageError(pub String);
+
+impl From<rusqlite::Error> for StorageError {
+    fn from(e: rusqlite::Error) -> StorageError {
+        StorageError(e.to_string())
+    }
+}
+
+/// The part of a channel's state that is saved whenever a command ends and at shutdown.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpoint {
+    /// The channel's complete machine data as NC data text (`MachineData::to_text`).
+    pub machine_data: String,
+    /// Channel axis positions in machine coordinates, channel axis order.
+    pub positions: Vec<f64>,
+    /// Operating mode: `JOG`, `MDA` or `AUTO`.
+    pub mode: String,
+}
+
+/// SHA-256 hashes (lowercase hex) of a session's tokens.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TokenHashes {
+    pub owner: String,
+    pub operator: String,
+    pub observer: String,
+}
+
+/// A session as stored.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SessionRecord {
+    pub id: String,
+    /// Creation number: the listing order, and the next id after a restart continues above it.
+    pub number: u64,
+    /// Preset id the session was created from.
+    pub machine: String,
+    /// Address of the client that created it, if known.
+    pub client_ip: Option<String>,
+    pub tokens: TokenHashes,
+    pub checkpoint: Checkpoint,
+}
+
+/// A stored session with its stored programs (name, text), by name.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SavedSession {
+    pub record: SessionRecord,
+    pub programs: Vec<(String, String)>,
+}
+
+/// Where sessions are kept. Every method is durable when it returns `Ok`.
+pub trait Storage: Send + Sync + Debug {
+    /// A short description for logs and `GET /health`, e.g. `sqlite:/var/lib/nctwin/nctwin.sqlite3`.
+    fn describe(&self) -> String;
+    /// Kind of backend: `sqlite` or `memory`.
+    fn backend(&self) -> &'static str;
+    /// Checks that the storage answers (a trivial read).
+    fn check(&self) -> Result<(), StorageError>;
+    /// Every stored session with its programs, in creation order.
+    fn load(&self) -> Result<Vec<SavedSession>, StorageError>;
+    /// Stores a new session (replacing one with the same id, with its programs).
+    fn create_session(&self, record: &SessionRecord) -> Result<(), StorageError>;
+    /// Replaces the checkpoint of session `id`; a deleted session stays deleted (no error).
+    fn save_checkpoint(&self, id: &str, checkpoint: &Checkpoint) -> Result<(), StorageError>;
+    /// Replaces the checkpoints of many sessions at once (shutdown); the default saves them one
+    /// by one, a backend may do it in one transaction.
+    fn save_checkpoints(&self, checkpoints: &[(String, Checkpoint)]) -> Result<(), StorageError> {
+        checkpoints.iter().try_for_each(|(id, checkpoint)| self.save_checkpoint(id, checkpoint))
+    }
+    /// Deletes a session and its programs; deleting a missing session is no error.
+    fn delete_session(&self, id: &str) -> Result<(), StorageError>;
+    /// Stores (creates or replaces) program `name` of session `id`.
+    fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError>;
+    /// Deletes program `name` of session `id`; a missing program is no error.
+    fn delete_program(&self, id: &str, name: &str) -> Result<(), StorageError>;
+}
+
+/// Opens (creating if needed) the embedded default storage in `data_dir`.
+pub fn open_default(data_dir: &Path) -> Result<SqliteStorage, StorageError> {
+    std::fs::create_dir_all(data_dir)
+        .map_err(|e| StorageError(format!("cannot create data directory {}: {e}", data_dir.display())))?;
+    SqliteStorage::open(&data_dir.join(SQLITE_FILE))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One behaviour check run against every backend.
+    pub(crate) fn exercise(storage: &dyn Storage) {
+        let record = |id: &str, number: u64| SessionRecord {
+            id: id.into(),
+            number,
+            machine: "mill-3axis".into(),
+            client_ip: Some("127.0.0.1".into()),
+            tokens: TokenHashes { owner: "o".into(), operator: "p".into(), observer: "v".into() },
+            checkpoint: Checkpoint {
+                machine_data: "$MN_X=1\n".into(),
+                positions: vec![1.5, -0.1, 0.0],
+                mode: "AUTO".into(),
+            },
+        };
+        storage.check().expect("check");
+        assert!(storage.load().expect("load").is_empty());
+        storage.create_session(&record("s2", 2)).expect("create s2");
+        storage.create_session(&record("s1", 1)).expect("create s1");
+        storage.put_program("s1", "MAIN", "G0 X1\nM30").expect("put");
+        storage.put_program("s1", "MAIN", "G0 X2\nM30").expect("replace");
+        storage.put_program("s1", "AUX", "M17").expect("put aux");
+        storage.delete_program("s1", "AUX").expect("delete aux");
+        storage.delete_program("s1", "NONE").expect("deleting a missing program is fine");
+        let moved =
+            Checkpoint { machine_data: "".into(), positions: vec![0.1 + 0.2, 1e-300, -7.0], mode: "JOG".into() };
+        storage.save_checkpoint("s1", &moved).expect("checkpoint");
+        let both = [("s2".to_string(), record("s2", 2).checkpoint), ("gone".to_string(), moved.clone())];
+        storage.save_checkpoints(&both).expect("a batch, with a missing session in it");
+
+        let all = storage.load().expect("load");
+        assert_eq!(all.iter().map(|s| s.record.id.as_str()).collect::<Vec<_>>(), ["s1", "s2"], "creation order");
+        assert_eq!(all[0].record.checkpoint, moved, "positions round-trip bit for bit");
+        assert_eq!(all[0].programs, vec![("MAIN".to_string(), "G0 X2\nM30".to_string())]);
+        assert_eq!(all[1].record, record("s2", 2));
+
+        storage.delete_session("s1").expect("delete");
+        storage.save_checkpoint("s1", &moved).expect("a late checkpoint of a deleted session is ignored");
+        let all = storage.load().expect("load");
+        assert_eq!(all.len(), 1);
+        assert!(all[0].programs.is_empty());
+    }
+
+    #[test]
+    fn memory_storage_behaves_like_a_storage() {
+        exercise(&MemoryStorage::default());
+    }
+}

@@ -1,0 +1,268 @@
+//! [`SqliteStorage`]: the embedded default, one SQLite file under `--data-dir`.
+//!
+//! Durability: the database runs in WAL mode with `synchronous=FULL`, so every committed
+//! transaction is fsynced to the write-ahead log before `commit` returns; each trait method is
+//! one transaction. A process killed at any moment (SIGKILL, power loss after the fsync) keeps
+//! every change whose method returned `Ok`, and loses at most the one in flight, whole.
+//!
+//! One connection behind a std `Mutex`: the server writes little (a few rows per command), and a
+//! single writer is what SQLite supports anyway. Callers run on blocking workers, so waiting for
+//! the lock or the disk never blocks the async runtime.
+
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard};
+
+use rusqlite::{Connection, OptionalExtension, params};
+
+use super::{Checkpoint, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
+
+/// Schema version written to `PRAGMA user_version`; migrations go from each version to the next.
+const SCHEMA_VERSION: i64 = 1;
+
+const SCHEMA_V1: &str = "
+CREATE TABLE sessions (
+    id            TEXT PRIMARY KEY,
+    number        INTEGER NOT NULL,
+    machine       TEXT NOT NULL,
+    client_ip     TEXT,
+    owner_hash    TEXT NOT NULL,
+    operator_hash TEXT NOT NULL,
+    observer_hash TEXT NOT NULL,
+    machine_data  TEXT NOT NULL,
+    positions     TEXT NOT NULL,   -- JSON array of f64, exact round trip
+    mode          TEXT NOT NULL
+);
+CREATE TABLE programs (
+    session TEXT NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+    name    TEXT NOT NULL,
+    text    TEXT NOT NULL,
+    PRIMARY KEY (session, name)
+);
+";
+
+/// A SQLite database file.
+#[derive(Debug)]
+pub struct SqliteStorage {
+    path: PathBuf,
+    connection: Mutex<Connection>,
+}
+
+impl SqliteStorage {
+    /// Opens or creates the database at `path` and brings its schema up to date.
+    pub fn open(path: &Path) -> Result<SqliteStorage, StorageError> {
+        let connection = Connection::open(path)
+            .map_err(|e| StorageError(format!("cannot open database {}: {e}", path.display())))?;
+        // WAL + FULL: a commit is durable when it returns (see the module doc). The busy timeout
+        // covers a second process (a backup tool) holding the lock briefly.
+        let mode: String = connection.query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))?;
+        if !mode.eq_ignore_ascii_case("wal") {
+            return Err(StorageError(format!("{} cannot use WAL journaling (got {mode})", path.display())));
+        }
+        connection.execute_batch("PRAGMA synchronous=FULL; PRAGMA foreign_keys=ON; PRAGMA busy_timeout=5000;")?;
+        migrate(&connection)?;
+        Ok(SqliteStorage { path: path.to_path_buf(), connection: Mutex::new(connection) })
+    }
+
+    fn connection(&self) -> MutexGuard<'_, Connection> {
+        // A panic inside a transaction rolls it back when the transaction is dropped, so the
+        // connection behind a poisoned lock is still consistent.
+        self.connection.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+fn migrate(connection: &Connection) -> Result<(), StorageError> {
+    let version: i64 = connection.query_row("PRAGMA user_version", [], |r| r.get(0))?;
+    match version {
+        0 => {
+            connection.execute_batch(&format!("BEGIN; {SCHEMA_V1} PRAGMA user_version = {SCHEMA_VERSION}; COMMIT;"))?;
+            Ok(())
+        }
+        SCHEMA_VERSION => Ok(()),
+        other => Err(StorageError(format!(
+            "database schema version {other} is newer than this server understands ({SCHEMA_VERSION})"
+        ))),
+    }
+}
+
+fn positions_text(positions: &[f64]) -> String {
+    // serde_json writes the shortest text that reads back as the same f64.
+    serde_json::to_string(positions).unwrap_or_else(|_| "[]".into())
+}
+
+impl Storage for SqliteStorage {
+    fn describe(&self) -> String {
+        format!("sqlite:{}", self.path.display())
+    }
+
+    fn backend(&self) -> &'static str {
+        "sqlite"
+    }
+
+    fn check(&self) -> Result<(), StorageError> {
+        let n: i64 = self.connection().query_row("SELECT count(*) FROM sessions", [], |r| r.get(0))?;
+        debug_assert!(n >= 0);
+        Ok(())
+    }
+
+    fn load(&self) -> Result<Vec<SavedSession>, StorageError> {
+        let connection = self.connection();
+        let mut sessions = connection.prepare(
+            "SELECT id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
+                    machine_data, positions, mode
+             FROM sessions ORDER BY number",
+        )?;
+        let rows = sessions.query_map([], |r| {
+            let positions: String = r.get(8)?;
+            Ok(SessionRecord {
+                id: r.get(0)?,
+                number: r.get::<_, i64>(1)?.max(0) as u64,
+                machine: r.get(2)?,
+                client_ip: r.get(3)?,
+                tokens: TokenHashes { owner: r.get(4)?, operator: r.get(5)?, observer: r.get(6)? },
+                checkpoint: Checkpoint {
+                    machine_data: r.get(7)?,
+                    positions: serde_json::from_str(&positions).unwrap_or_default(),
+                    mode: r.get(9)?,
+                },
+            })
+        })?;
+        let records = rows.collect::<Result<Vec<_>, _>>()?;
+        let mut programs = connection.prepare("SELECT name, text FROM programs WHERE session = ?1 ORDER BY name")?;
+        let mut out = Vec::with_capacity(records.len());
+        for record in records {
+            let list = programs
+                .query_map([&record.id], |r| Ok((r.get(0)?, r.get(1)?)))?
+                .collect::<Result<Vec<(String, String)>, _>>()?;
+            out.push(SavedSession { record, programs: list });
+        }
+        Ok(out)
+    }
+
+    fn create_session(&self, record: &SessionRecord) -> Result<(), StorageError> {
+        let mut connection = self.connection();
+        let tx = connection.transaction()?;
+        tx.execute("DELETE FROM sessions WHERE id = ?1", [&record.id])?;
+        tx.execute(
+            "INSERT INTO sessions (id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
+                                   machine_data, positions, mode)
+             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
+            params![
+                record.id,
+                record.number as i64,
+                record.machine,
+                record.client_ip,
+                record.tokens.owner,
+                record.tokens.operator,
+                record.tokens.observer,
+                record.checkpoint.machine_data,
+                positions_text(&record.checkpoint.positions),
+                record.checkpoint.mode,
+            ],
+        )?;
+        tx.commit()?;
+        Ok(())
+    }
+
+    fn save_checkpoint(&self, id: &str, checkpoint: &Checkpoint) -> Result<(), StorageError> {
+        self.connection().execute(
+            "UPDATE sessions SET machine_data = ?2, positions = ?3, mode = ?4 WHERE id = ?1",
+            params![id, checkpoint.machine_data, positions_text(&checkpoint.positions), checkpoint.mode],
+        )?;
+        Ok(())
+    }
+
+    fn save_checkpoints(&self, checkpoints: &[(String, Checkpoint)]) -> Result<(), StorageError> {
+        // One transaction, one fsync, however many sessions shut down.
+        let mut connection = self.connection();
+        let tx = connection.transaction()?;
+        {
+            let mut update =
+                tx.prepare("UPDATE sessions SET machine_data = ?2, positions = ?3, mode = ?4 WHERE id = ?1")?;
+            for (id, c) in checkpoints {
+                update.execute(params![id, c.machine_data, positions_text(&c.positions), c.mode])?;
+            }
+        }
+        tx.commit()?;
+        Ok(())
+    }
+
+    fn delete_session(&self, id: &str) -> Result<(), StorageError> {
+        // Programs go with their session (ON DELETE CASCADE), in the same transaction.
+        self.connection().execute("DELETE FROM sessions WHERE id = ?1", [id])?;
+        Ok(())
+    }
+
+    fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError> {
+        let connection = self.connection();
+        let exists =
+            connection.query_row("SELECT 1 FROM sessions WHERE id = ?1", [id], |_| Ok(())).optional()?.is_some();
+        if !exists {
+            return Err(StorageError(format!("session `{id}` is not stored")));
+        }
+        connection.execute(
+            "INSERT INTO programs (session, name, text) VALUES (?1, ?2, ?3)
+             ON CONFLICT (session, name) DO UPDATE SET text = excluded.text",
+            params![id, name, text],
+        )?;
+        Ok(())
+    }
+
+    fn delete_program(&self, id: &str, name: &str) -> Result<(), StorageError> {
+        self.connection().execute("DELETE FROM programs WHERE session = ?1 AND name = ?2", [id, name])?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn temp_db(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("nctwin-sqlite-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        dir.join("test.sqlite3")
+    }
+
+    #[test]
+    fn sqlite_storage_behaves_like_a_storage() {
+        let path = temp_db("behaves");
+        super::super::tests::exercise(&SqliteStorage::open(&path).expect("open"));
+        let _ = std::fs::remove_dir_all(path.parent().expect("dir"));
+    }
+
+    #[test]
+    fn data_survives_reopening_and_the_database_is_in_wal_mode_with_full_sync() {
+        let path = temp_db("reopen");
+        {
+            let storage = SqliteStorage::open(&path).expect("open");
+            let record = SessionRecord {
+                id: "s1".into(),
+                number: 1,
+                machine: "mill-3axis".into(),
+                client_ip: None,
+                tokens: TokenHashes { owner: "a".into(), operator: "b".into(), observer: "c".into() },
+                checkpoint: Checkpoint { machine_data: String::new(), positions: vec![3.25], mode: "MDA".into() },
+            };
+            storage.create_session(&record).expect("create");
+            storage.put_program("s1", "P", "M30").expect("program");
+            let connection = storage.connection();
+            let sync: i64 = connection.query_row("PRAGMA synchronous", [], |r| r.get(0)).expect("pragma");
+            assert_eq!(sync, 2, "synchronous=FULL");
+        }
+        let storage = SqliteStorage::open(&path).expect("reopen");
+        let all = storage.load().expect("load");
+        assert_eq!(all.len(), 1);
+        assert_eq!(all[0].record.checkpoint.positions, vec![3.25]);
+        assert_eq!(all[0].programs, vec![("P".to_string(), "M30".to_string())]);
+        let _ = std::fs::remove_dir_all(path.parent().expect("dir"));
+    }
+
+    #[test]
+    fn a_program_of_an_unknown_session_is_refused() {
+        let path = temp_db("unknown");
+        let storage = SqliteStorage::open(&path).expect("open");
+        assert!(storage.put_program("nope", "P", "M30").is_err());
+        let _ = std::fs::remove_dir_all(path.parent().expect("dir"));
+    }
+}

@@ -1,0 +1,232 @@
+//! The real `nctwin` binary across restarts: sessions come back after a restart, SIGTERM shuts
+//! down gracefully (saves, closes streams with a close frame, exits in bounded time), and
+//! SIGKILL loses no acknowledged write.
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::Arc;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use futures_util::StreamExt;
+use reqwest::StatusCode;
+use serde_json::{Value, json};
+use tokio_tungstenite::connect_async;
+use tokio_tungstenite::tungstenite::Message;
+
+/// A running `nctwin`; killed if the test fails before it stops it.
+struct Nctwin {
+    child: Child,
+    base: String,
+    client: reqwest::Client,
+}
+
+impl Drop for Nctwin {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+impl Nctwin {
+    /// Starts the binary on a free port with `data_dir` and waits for its address.
+    fn start(data_dir: &Path) -> Nctwin {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_nctwin"))
+            .args(["--bind", "127.0.0.1:0", "--data-dir"])
+            .arg(data_dir)
+            .env("RUST_LOG", "info")
+            .env("NO_COLOR", "1")
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("start nctwin");
+        let lines = forward_lines(&mut child);
+        let deadline = Instant::now() + Duration::from_secs(60);
+        let addr = loop {
+            let left = deadline.saturating_duration_since(Instant::now());
+            let line = lines.recv_timeout(left).expect("a `listening on http://` line");
+            if let Some((_, rest)) = line.split_once("listening on http://") {
+                break rest.split_whitespace().next().expect("address").to_string();
+            }
+        };
+        // Keep draining the output so the server never blocks on a full pipe.
+        std::thread::spawn(move || while lines.recv().is_ok() {});
+        Nctwin { child, base: format!("http://{addr}/api/v1"), client: reqwest::Client::new() }
+    }
+
+    async fn send(&self, method: reqwest::Method, path: &str, body: Option<Value>) -> (StatusCode, Value) {
+        let mut request = self.client.request(method, format!("{}{path}", self.base));
+        if let Some(body) = body {
+            request = request.json(&body);
+        }
+        let response = request.send().await.expect("request");
+        let status = response.status();
+        let bytes = response.bytes().await.expect("body");
+        (status, if bytes.is_empty() { Value::Null } else { serde_json::from_slice(&bytes).expect("JSON") })
+    }
+
+    fn signal(&self, name: &str) {
+        let status = Command::new("kill").args([name, &self.child.id().to_string()]).status().expect("kill");
+        assert!(status.success());
+    }
+
+    /// Waits for the process to end (at most `limit`), returning whether it exited with 0.
+    fn wait_exit(&mut self, limit: Duration) -> bool {
+        let deadline = Instant::now() + limit;
+        loop {
+            if let Some(exit) = self.child.try_wait().expect("wait") {
+                return exit.success();
+            }
+            assert!(Instant::now() < deadline, "the server did not exit within {limit:?}");
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+}
+
+fn forward_lines(child: &mut Child) -> mpsc::Receiver<String> {
+    let (tx, rx) = mpsc::channel();
+    let stdout = child.stdout.take().expect("stdout piped");
+    let stderr = child.stderr.take().expect("stderr piped");
+    for reader in [Box::new(stdout) as Box<dyn Read + Send>, Box::new(stderr)] {
+        let tx = tx.clone();
+        std::thread::spawn(move || {
+            for line in BufReader::new(reader).lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+    }
+    rx
+}
+
+fn data_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("nctwin-lifecycle-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sigterm_saves_closes_streams_with_a_close_frame_exits_and_a_restart_restores() {
+    let dir = data_dir("sigterm");
+    let mut server = Nctwin::start(&dir);
+    let (status, created) =
+        server.send(reqwest::Method::POST, "/sessions", Some(json!({"machine": "mill-3axis"}))).await;
+    assert_eq!(status, StatusCode::CREATED);
+    let id = created["id"].as_str().expect("id").to_string();
+    let (status, _) = server
+        .send(reqwest::Method::PUT, &format!("/sessions/{id}/programs/SUB"), Some(json!({"text": "G0 X1\nM17"})))
+        .await;
+    assert_eq!(status, StatusCode::OK);
+    // A long real-time program keeps the session moving while the server is told to stop.
+    let (status, _) = server
+        .send(reqwest::Method::POST, &format!("/sessions/{id}/run"), Some(json!({"program": "G1 X200 F300\nM30"})))
+        .await;
+    assert_eq!(status, StatusCode::OK);
+    let ws = format!("{}/sessions/{id}/stream", server.base.replace("http://", "ws://"));
+    let (mut socket, _) = connect_async(ws).await.expect("stream");
+    tokio::time::sleep(Duration::from_millis(600)).await;
+    let (_, state) = server.send(reqwest::Method::GET, &format!("/sessions/{id}/state"), None).await;
+    let x_before = state["positions"]["machine"]["X"].as_f64().expect("X");
+    assert!(x_before > 0.0, "moving: {state}");
+
+    let started = Instant::now();
+    server.signal("-TERM");
+    let close = tokio::time::timeout(Duration::from_secs(10), async {
+        while let Some(message) = socket.next().await {
+            match message {
+                Ok(Message::Close(frame)) => return frame,
+                Ok(_) => {}
+                Err(e) => panic!("stream broke without a close frame: {e}"),
+            }
+        }
+        panic!("stream ended without a close frame");
+    })
+    .await
+    .expect("a close frame in time");
+    assert_eq!(u16::from(close.expect("a close code").code), 1001, "going away");
+    assert!(server.wait_exit(Duration::from_secs(15)), "exit status 0 after SIGTERM");
+    assert!(started.elapsed() < Duration::from_secs(15));
+
+    let server = Nctwin::start(&dir);
+    let (status, state) = server.send(reqwest::Method::GET, &format!("/sessions/{id}/state"), None).await;
+    assert_eq!(status, StatusCode::OK, "the session is back");
+    assert_eq!(state["status"], "idle");
+    let x_after = state["positions"]["machine"]["X"].as_f64().expect("X");
+    assert!(x_after >= x_before && x_after < 200.0, "saved where it stopped: {x_before} .. {x_after}");
+    let (status, program) = server.send(reqwest::Method::GET, &format!("/sessions/{id}/programs/SUB"), None).await;
+    assert_eq!((status, program["text"].as_str()), (StatusCode::OK, Some("G0 X1\nM17")));
+    drop(server);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn sigkill_during_writes_loses_no_acknowledged_write() {
+    let dir = data_dir("sigkill");
+    let server = Arc::new(Nctwin::start(&dir));
+    let (_, created) = server.send(reqwest::Method::POST, "/sessions", None).await;
+    let id = created["id"].as_str().expect("id").to_string();
+
+    // Writers, one session each (the command rate limit is per session), store programs as
+    // fast as they may and remember what was acknowledged; the server is killed while they are
+    // still writing.
+    let mut writers = Vec::new();
+    for w in 0..3 {
+        let server = server.clone();
+        let (_, session) = server.send(reqwest::Method::POST, "/sessions", None).await;
+        let sid = session["id"].as_str().expect("id").to_string();
+        writers.push(tokio::spawn(async move {
+            let mut acknowledged = Vec::new();
+            for n in 0.. {
+                let name = format!("W{w}_{n}");
+                let text = format!("; writer {w} program {n}\nG0 X{n}\nM17");
+                let url = format!("{}/sessions/{sid}/programs/{name}", server.base);
+                match server.client.put(url).json(&json!({"text": text})).send().await {
+                    Ok(response) if response.status() == StatusCode::OK => acknowledged.push((sid.clone(), name, text)),
+                    Ok(response) if response.status() == StatusCode::TOO_MANY_REQUESTS => {
+                        tokio::time::sleep(Duration::from_millis(20)).await;
+                    }
+                    Ok(response) => panic!("a write failed before the kill: {}", response.status()),
+                    Err(_) => break, // the server is gone: this write was not acknowledged
+                }
+            }
+            acknowledged
+        }));
+    }
+    // A created session and a machine-data change are acknowledged writes too.
+    let (status, second) =
+        server.send(reqwest::Method::POST, "/sessions", Some(json!({"machine": "lathe-2axis"}))).await;
+    assert_eq!(status, StatusCode::CREATED);
+    let second = second["id"].as_str().expect("id").to_string();
+    let md = json!({"text": "$MA_POS_LIMIT_PLUS[AX1]=77."});
+    assert_eq!(
+        server.send(reqwest::Method::PUT, &format!("/sessions/{id}/machine-data"), Some(md)).await.0,
+        StatusCode::OK
+    );
+
+    tokio::time::sleep(Duration::from_millis(700)).await;
+    server.signal("-KILL");
+    let mut acknowledged = Vec::new();
+    for writer in writers {
+        acknowledged.extend(writer.await.expect("writer"));
+    }
+    assert!(acknowledged.len() >= 10, "enough writes to mean something: {}", acknowledged.len());
+    drop(server);
+
+    let server = Nctwin::start(&dir);
+    for (sid, name, text) in &acknowledged {
+        let (status, program) =
+            server.send(reqwest::Method::GET, &format!("/sessions/{sid}/programs/{name}"), None).await;
+        assert_eq!(status, StatusCode::OK, "acknowledged {sid}/{name} is missing after SIGKILL");
+        assert_eq!(program["text"].as_str(), Some(text.as_str()));
+    }
+    assert_eq!(server.send(reqwest::Method::GET, &format!("/sessions/{second}"), None).await.0, StatusCode::OK);
+    // The machine data change is back: X stops at 77.
+    let run = json!({"program": "G0 X80\nM30", "pace": "fast", "wait": true});
+    let (_, state) = server.send(reqwest::Method::POST, &format!("/sessions/{id}/run"), Some(run)).await;
+    assert_eq!(state["status"], "alarm", "{state}");
+    drop(server);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,201 @@
+//! Persistence through a restart: two in-process servers, one after the other, on the same data
+//! directory (SQLite). The real binary's restart, SIGTERM and SIGKILL are in `lifecycle.rs`.
+
+mod common;
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use common::{Server, error_message, pos};
+use nctwin_server::storage::{Checkpoint, MemoryStorage, SavedSession, SessionRecord, Storage, StorageError};
+use nctwin_server::{AppState, Config};
+use reqwest::StatusCode;
+use serde_json::json;
+
+async fn restart(server: Server) -> Server {
+    let dir = server.stop().await;
+    Server::start_config(Config::new(dir, common::WEB_DIR)).await
+}
+
+#[tokio::test]
+async fn sessions_programs_machine_data_positions_and_mode_survive_a_restart() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let other = server.session("lathe-2axis").await;
+
+    let sub = "PROC HOLE\nG1 Z-1 F100\nG0 Z5\nRET";
+    assert_eq!(
+        server.put(&format!("/sessions/{id}/programs/hole.spf"), json!({"text": sub})).await.status,
+        StatusCode::OK
+    );
+    let reply =
+        server.put(&format!("/sessions/{id}/machine-data"), json!({"text": "$MA_POS_LIMIT_PLUS[AX1]=50."})).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let reply = server
+        .post(&format!("/sessions/{id}/mda"), json!({"program": "G0 X12.5 Y-3.25 Z7", "pace": "fast", "wait": true}))
+        .await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let before = server.put(&format!("/sessions/{id}/mode"), json!({"mode": "JOG"})).await.body;
+    assert_eq!(before["mode"], "JOG");
+
+    let server = restart(server).await;
+    let list = server.get("/sessions").await.body;
+    assert_eq!(
+        list,
+        json!([
+            {"id": id, "machine": "mill-3axis", "status": "idle", "mode": "JOG"},
+            {"id": other, "machine": "lathe-2axis", "status": "idle", "mode": "AUTO"},
+        ])
+    );
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!(state["positions"], before["positions"], "positions bit for bit");
+    let program = server.get(&format!("/sessions/{id}/programs/HOLE")).await;
+    assert_eq!(program.body, json!({"name": "HOLE", "text": sub}));
+
+    // The machine data came back too: X stops at the software limit of 50.
+    server.put(&format!("/sessions/{id}/mode"), json!({"mode": "AUTO"})).await;
+    let reply = server
+        .post(&format!("/sessions/{id}/run"), json!({"program": "G0 X60\nM30", "pace": "fast", "wait": true}))
+        .await;
+    assert_eq!(reply.body["status"], "alarm", "{}", reply.body);
+
+    let new = server.session("mill-3axis").await;
+    assert!(new != id && new != other, "new ids continue after the restored ones: {new}");
+}
+
+#[tokio::test]
+async fn deleted_sessions_and_programs_stay_deleted() {
+    let server = Server::start().await;
+    let gone = server.session("mill-3axis").await;
+    let kept = server.session("mill-3axis").await;
+    for name in ["A", "B"] {
+        server.put(&format!("/sessions/{kept}/programs/{name}"), json!({"text": "M17"})).await;
+    }
+    assert_eq!(server.delete(&format!("/sessions/{kept}/programs/a")).await.status, StatusCode::NO_CONTENT);
+    assert_eq!(server.delete(&format!("/sessions/{gone}")).await.status, StatusCode::NO_CONTENT);
+
+    let server = restart(server).await;
+    error_message(&server.get(&format!("/sessions/{gone}")).await, StatusCode::NOT_FOUND);
+    let programs = server.get(&format!("/sessions/{kept}/programs")).await.body;
+    assert_eq!(programs, json!([{"name": "B", "size": 3}]));
+}
+
+#[tokio::test]
+async fn a_running_program_comes_back_reset_where_the_axes_were_at_shutdown() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let reply = server.post(&format!("/sessions/{id}/run"), json!({"program": "G1 X100 F600\nM30"})).await;
+    assert_eq!(reply.body["status"], "running");
+    server.state_until(&id, "X moved", |s| pos(s, "machine", "X") > 0.5).await;
+
+    let server = restart(server).await;
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!(state["status"], "idle", "{state}");
+    assert!(state["block"].is_null() && state["alarms"] == json!([]), "{state}");
+    let x = pos(&state, "machine", "X");
+    assert!(x > 0.5 && x < 100.0, "stopped between start and target: {x}");
+    // It is a usable session: it runs a program from there.
+    let reply = server
+        .post(&format!("/sessions/{id}/run"), json!({"program": "G1 X0 F5000\nM30", "pace": "fast", "wait": true}))
+        .await;
+    assert_eq!((reply.body["status"].as_str(), pos(&reply.body, "machine", "X")), (Some("idle"), 0.0));
+}
+
+#[tokio::test]
+async fn positions_are_saved_when_a_command_ends_without_a_graceful_shutdown() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let reply = server
+        .post(&format!("/sessions/{id}/run"), json!({"program": "G0 X3 Y4\nM30", "pace": "fast", "wait": true}))
+        .await;
+    assert_eq!(pos(&reply.body, "machine", "Y"), 4.0);
+    // Read the database while the server still runs: the checkpoint is written in the
+    // background shortly after the command has come to rest.
+    let db = server.data_dir.join(nctwin_server::storage::SQLITE_FILE);
+    let mut saved = Vec::new();
+    for _ in 0..200 {
+        let storage = nctwin_server::storage::SqliteStorage::open(&db).expect("open");
+        use nctwin_server::storage::Storage;
+        saved = storage.load().expect("load");
+        if saved[0].record.checkpoint.positions == [3.0, 4.0, 0.0] {
+            return;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
+    }
+    panic!("positions never saved: {:?}", saved.first().map(|s| &s.record.checkpoint));
+}
+
+/// A storage that works until it is told to fail (a full disk, a lost database file).
+#[derive(Debug, Default)]
+struct BreakableStorage {
+    inner: MemoryStorage,
+    broken: AtomicBool,
+}
+
+impl BreakableStorage {
+    fn ok(&self) -> Result<(), StorageError> {
+        if self.broken.load(Ordering::Relaxed) { Err(StorageError("disk full".into())) } else { Ok(()) }
+    }
+}
+
+impl Storage for BreakableStorage {
+    fn describe(&self) -> String {
+        "breakable".into()
+    }
+    fn backend(&self) -> &'static str {
+        "memory"
+    }
+    fn check(&self) -> Result<(), StorageError> {
+        self.ok()
+    }
+    fn load(&self) -> Result<Vec<SavedSession>, StorageError> {
+        self.ok()?;
+        self.inner.load()
+    }
+    fn create_session(&self, record: &SessionRecord) -> Result<(), StorageError> {
+        self.ok()?;
+        self.inner.create_session(record)
+    }
+    fn save_checkpoint(&self, id: &str, checkpoint: &Checkpoint) -> Result<(), StorageError> {
+        self.ok()?;
+        self.inner.save_checkpoint(id, checkpoint)
+    }
+    fn delete_session(&self, id: &str) -> Result<(), StorageError> {
+        self.ok()?;
+        self.inner.delete_session(id)
+    }
+    fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError> {
+        self.ok()?;
+        self.inner.put_program(id, name, text)
+    }
+    fn delete_program(&self, id: &str, name: &str) -> Result<(), StorageError> {
+        self.ok()?;
+        self.inner.delete_program(id, name)
+    }
+}
+
+#[tokio::test]
+async fn a_failing_storage_is_503_nothing_is_acknowledged_and_health_says_so() {
+    let storage = Arc::new(BreakableStorage::default());
+    let state = AppState::with_storage(Config::new(common::temp_data_dir(), common::WEB_DIR), storage.clone());
+    let server = Server::start_state(state).await;
+    let id = server.session("mill-3axis").await;
+    storage.broken.store(true, Ordering::Relaxed);
+
+    let message = error_message(&server.post_empty("/sessions").await, StatusCode::SERVICE_UNAVAILABLE);
+    assert!(message.contains("disk full"), "{message}");
+    assert_eq!(server.get("/sessions").await.body.as_array().map(Vec::len), Some(1), "no session without its record");
+    error_message(
+        &server.put(&format!("/sessions/{id}/programs/P"), json!({"text": "M17"})).await,
+        StatusCode::SERVICE_UNAVAILABLE,
+    );
+    error_message(&server.delete(&format!("/sessions/{id}")).await, StatusCode::SERVICE_UNAVAILABLE);
+    assert_eq!(server.get(&format!("/sessions/{id}")).await.status, StatusCode::OK, "not deleted when not saved");
+    let health = server.get("/health").await.body;
+    assert_eq!((health["status"].as_str(), health["storage"]["status"].as_str()), (Some("degraded"), Some("error")));
+    assert!(health["storage"]["error"].as_str().is_some_and(|e| e.contains("disk full")), "{health}");
+
+    storage.broken.store(false, Ordering::Relaxed);
+    assert_eq!(server.get("/health").await.body["status"], "ok");
+    assert_eq!(server.delete(&format!("/sessions/{id}")).await.status, StatusCode::NO_CONTENT);
+}
