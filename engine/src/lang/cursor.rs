@@ -64,10 +64,14 @@ impl<'a> Cursor<'a> {
     }
     pub fn ident_continue(&mut self) -> String {
         let s = self.pos;
+        self.skip_ident_chars();
+        self.slice(s, self.pos).to_ascii_uppercase()
+    }
+
+    fn skip_ident_chars(&mut self) {
         while self.peek().is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_') {
             self.pos += 1;
         }
-        self.slice(s, self.pos).to_ascii_uppercase()
     }
     /// An identifier: `$`? letter (letter | digit | `_`)*, upper-cased.
     pub fn ident(&mut self) -> Option<String> {
@@ -77,7 +81,7 @@ impl<'a> Cursor<'a> {
             self.pos = s;
             return None;
         }
-        self.ident_continue();
+        self.skip_ident_chars();
         Some(self.slice(s, self.pos).to_ascii_uppercase())
     }
     /// A signed decimal number with optional `EX` exponent (`1.5EX3`).

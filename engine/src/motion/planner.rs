@@ -138,6 +138,9 @@ pub struct Planner {
     dt: f64,
     limits: Vec<AxisLimit>,
     queue: VecDeque<Move>,
+    /// The smallest acceleration of the queued moves (kept up to date on push and pop, so the
+    /// per-cycle braking check does not scan the queue).
+    a_min: f64,
     /// Planned velocity at the end of each queued move.
     v_end: VecDeque<f64>,
     /// Distance travelled within the front move.
@@ -163,6 +166,7 @@ impl Planner {
             dt,
             limits,
             queue: VecDeque::new(),
+            a_min: f64::INFINITY,
             v_end: VecDeque::new(),
             s: 0.0,
             v: 0.0,
@@ -182,6 +186,7 @@ impl Planner {
             self.finished.push(mv.tag);
             return;
         }
+        self.a_min = self.a_min.min(mv.a_max);
         self.queue.push_back(mv);
         self.v_end.push_back(0.0);
         self.replan();
@@ -259,6 +264,7 @@ impl Planner {
     /// Drops everything at once (reset): the axes stay where they are.
     pub fn abort(&mut self) {
         self.queue.clear();
+        self.a_min = f64::INFINITY;
         self.v_end.clear();
         self.s = 0.0;
         self.v = 0.0;
@@ -322,6 +328,9 @@ impl Planner {
             self.position_tag = Some(front.tag);
             let stop_here = self.v_end[0] == 0.0;
             let done = self.queue.pop_front().expect("front exists");
+            if done.a_max <= self.a_min {
+                self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
+            }
             self.v_end.pop_front();
             self.finished.push(done.tag);
             self.s = 0.0;
@@ -340,7 +349,7 @@ impl Planner {
         let mut limit = f64::INFINITY;
         // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
         // (moves split by a kinematic transformation may decelerate very differently).
-        let a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
+        let a_min = self.a_min;
         for (k, mv) in self.queue.iter().enumerate() {
             distance += mv.length;
             a = a.min(mv.a_max);
