@@ -54,6 +54,15 @@ impl<'a> Cursor<'a> {
         }
         (self.pos > s).then(|| self.slice(s, self.pos).to_string())
     }
+    /// Skips a run of digits; true if there was one.
+    fn skip_digits(&mut self) -> bool {
+        let s = self.pos;
+        while self.peek().is_some_and(|c| c.is_ascii_digit()) {
+            self.pos += 1;
+        }
+        self.pos > s
+    }
+
     /// A run of letters and underscores, upper-cased.
     pub fn letters(&mut self) -> String {
         let s = self.pos;
@@ -90,13 +99,18 @@ impl<'a> Cursor<'a> {
         if matches!(self.peek(), Some(b'-' | b'+')) {
             self.pos += 1;
         }
-        let int = self.digits();
-        let frac = if self.eat(b'.') { self.digits() } else { None };
-        if int.is_none() && frac.is_none() {
+        let int = self.skip_digits();
+        let frac = if self.eat(b'.') { self.skip_digits() } else { false };
+        if !int && !frac {
             self.pos = s;
             return None;
         }
-        let mut text = self.slice(s, self.pos).to_string();
+        let plain = self.slice(s, self.pos);
+        if !self.starts_with_ignore_case("EX") && !plain.ends_with('.') {
+            // The common case parses straight from the source, without a copy.
+            return plain.parse::<f64>().ok().filter(|v| v.is_finite());
+        }
+        let mut text = plain.to_string();
         if self.starts_with_ignore_case("EX") {
             let save = self.pos;
             self.pos += 2;

@@ -60,9 +60,11 @@ impl Path {
         if let Some(arc) = &self.arc {
             // Circle minus its chord: zero at both ends.
             let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
-            let a = a0 + arc.sweep * s;
-            let cu = arc.radius * (a.cos() - a0.cos() - s * (a1.cos() - a0.cos()));
-            let cv = arc.radius * (a.sin() - a0.sin() - s * (a1.sin() - a0.sin()));
+            let (sin, cos) = (a0 + arc.sweep * s).sin_cos();
+            let (sin0, cos0) = a0.sin_cos();
+            let (sin1, cos1) = a1.sin_cos();
+            let cu = arc.radius * (cos - cos0 - s * (cos1 - cos0));
+            let cv = arc.radius * (sin - sin0 - s * (sin1 - sin0));
             for (k, o) in out.iter_mut().enumerate() {
                 *o += cu * arc.u[k] + cv * arc.v[k];
             }
