@@ -181,6 +181,51 @@ impl ActiveTrafo {
     }
 }
 
+/// The axis roles TRANSMIT and TRACYL share: a radial linear axis, the rotary axis, an
+/// optional axial axis and an optional real supplementary axis (257, 513, 514), with the base
+/// tool. Each role is (channel axis, geometry index of its Cartesian axis).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct RotaryRoles {
+    pub radial: (usize, usize),
+    pub rotary: (usize, usize),
+    pub axial: Option<(usize, usize)>,
+    pub extra: Option<usize>,
+    pub geo: [Option<usize>; 3],
+    pub base_tool: Vec3,
+}
+
+impl RotaryRoles {
+    /// The roles of `set` (checked at activation); `with_extra` takes role [3] as the real
+    /// supplementary axis.
+    pub fn new(set: &TrafoDataSet, with_extra: bool, base_tool: Vec3) -> RotaryRoles {
+        RotaryRoles {
+            radial: role_geo(set, 0).expect("checked at activation"),
+            rotary: role_geo(set, 1).expect("checked at activation"),
+            axial: role_geo(set, 2),
+            extra: if with_extra { set.axes_in[3] } else { None },
+            geo: set.geo_axes,
+            base_tool,
+        }
+    }
+
+    /// `B − L` along the Cartesian axis of geometry index `g`.
+    pub fn off(&self, tool: &Vec3, g: usize) -> f64 {
+        self.base_tool[g] - tool[g]
+    }
+
+    /// Offset of the tool tip across the radial line through the rotary axis (TRANSMIT's
+    /// lateral offset `e`, TRACYL's tangential offset): base tool minus tool along the rotary
+    /// role's Cartesian axis, plus the real supplementary axis.
+    pub fn side_offset(&self, pos: &AxisVec, tool: &Vec3) -> f64 {
+        self.off(tool, self.rotary.1) + self.extra.map_or(0.0, |k| pos[k])
+    }
+
+    /// The channel axes the transformation drives.
+    pub fn machine_slots(&self) -> Vec<usize> {
+        [Some(self.radial.0), Some(self.rotary.0), self.axial.map(|a| a.0)].into_iter().flatten().collect()
+    }
+}
+
 /// Where a role of `TRAFO_AXES_IN_n` has its Cartesian coordinate: the channel axis and the
 /// geometry axis index that share it.
 pub(crate) fn role_geo(set: &TrafoDataSet, role: usize) -> Option<(usize, usize)> {

@@ -12,24 +12,18 @@
 //! side of the radius compensation; it needs OFFN and G41/G42, which this product does not
 //! model yet, so the real Y axis keeps its programmed position (it should stand at 0).
 
-use super::{BuildError, SelectArgs, Transformation, Unreachable, Vec3, role_geo};
+use super::{BuildError, RotaryRoles, SelectArgs, Transformation, Unreachable, Vec3};
 use crate::machine_data::{TrafoDataSet, TrafoParams};
 use crate::motion::AxisVec;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tracyl {
     trafo_type: u32,
-    radial: (usize, usize),
-    rotary: (usize, usize),
-    axial: Option<(usize, usize)>,
-    /// Channel axis of the real Y axis (513, 514).
-    extra: Option<usize>,
-    geo: [Option<usize>; 3],
+    axes: RotaryRoles,
     /// Working radius d/2.
     radius: f64,
     rot_offset: f64,
     sign: f64,
-    base_tool: Vec3,
     /// Groove-wall offset selected (513 always; 514 by TRACYL's 3rd parameter or the default mode).
     pub groove_wall: bool,
 }
@@ -51,25 +45,12 @@ impl Tracyl {
         };
         Ok(Tracyl {
             trafo_type: set.trafo_type,
-            radial: role_geo(set, 0).expect("checked at activation"),
-            rotary: role_geo(set, 1).expect("checked at activation"),
-            axial: role_geo(set, 2),
-            extra: if set.trafo_type == 512 { None } else { set.axes_in[3] },
-            geo: set.geo_axes,
+            axes: RotaryRoles::new(set, set.trafo_type != 512, base_tool),
             radius: d / 2.0,
             rot_offset,
             sign: if sign_plus { 1.0 } else { -1.0 },
-            base_tool,
             groove_wall,
         })
-    }
-
-    fn off(&self, tool: &Vec3, g: usize) -> f64 {
-        self.base_tool[g] - tool[g]
-    }
-
-    fn tangential(&self, pos: &AxisVec, tool: &Vec3) -> f64 {
-        self.off(tool, self.rotary.1) + self.extra.map_or(0.0, |k| pos[k])
     }
 }
 
@@ -83,32 +64,32 @@ impl Transformation for Tracyl {
     }
 
     fn geo_slots(&self) -> [Option<usize>; 3] {
-        self.geo
+        self.axes.geo
     }
 
     fn machine_slots(&self) -> Vec<usize> {
-        [Some(self.radial.0), Some(self.rotary.0), self.axial.map(|a| a.0)].into_iter().flatten().collect()
+        self.axes.machine_slots()
     }
 
     fn rotary_slot(&self) -> Option<usize> {
-        Some(self.rotary.0)
+        Some(self.axes.rotary.0)
     }
 
     fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
-        let phi = (self.sign * (machine[self.rotary.0] - self.rot_offset)).to_radians();
-        bcs[self.radial.0] = machine[self.radial.0] + self.off(tool, self.radial.1);
-        bcs[self.rotary.0] = self.radius * phi + self.tangential(machine, tool);
-        if let Some((k, g)) = self.axial {
-            bcs[k] = machine[k] + self.off(tool, g);
+        let phi = (self.sign * (machine[self.axes.rotary.0] - self.rot_offset)).to_radians();
+        bcs[self.axes.radial.0] = machine[self.axes.radial.0] + self.axes.off(tool, self.axes.radial.1);
+        bcs[self.axes.rotary.0] = self.radius * phi + self.axes.side_offset(machine, tool);
+        if let Some((k, g)) = self.axes.axial {
+            bcs[k] = machine[k] + self.axes.off(tool, g);
         }
     }
 
     fn inverse(&self, bcs: &AxisVec, _prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
-        let y = bcs[self.rotary.0] - self.tangential(bcs, tool);
-        machine[self.rotary.0] = self.rot_offset + self.sign * (y / self.radius).to_degrees();
-        machine[self.radial.0] = bcs[self.radial.0] - self.off(tool, self.radial.1);
-        if let Some((k, g)) = self.axial {
-            machine[k] = bcs[k] - self.off(tool, g);
+        let y = bcs[self.axes.rotary.0] - self.axes.side_offset(bcs, tool);
+        machine[self.axes.rotary.0] = self.rot_offset + self.sign * (y / self.radius).to_degrees();
+        machine[self.axes.radial.0] = bcs[self.axes.radial.0] - self.axes.off(tool, self.axes.radial.1);
+        if let Some((k, g)) = self.axes.axial {
+            machine[k] = bcs[k] - self.axes.off(tool, g);
         }
         Ok(())
     }
