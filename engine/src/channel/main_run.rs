@@ -1,0 +1,295 @@
+//! The main run of a program: block preparation ahead of the interpolator, handing moves to
+//! the planner, executing the non-motion items in order, program stop and end, alarms.
+
+use std::sync::Arc;
+
+use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta, Status};
+use crate::alarm::{Alarm, Clear};
+use crate::interp::{Item, NEWCONF, Prep, StopKind};
+use crate::motion::{AxisLimit, Move};
+
+impl Channel {
+    /// Block preparation: interpret blocks until the look-ahead is full.
+    pub(super) fn prepare(&mut self) {
+        let Some(program) = self.program.clone() else { return };
+        for s in self.spindles.iter().filter(|s| !s.axis_mode) {
+            self.interp.observe_spindle(s.axis, s.position);
+        }
+        let mut out = Vec::new();
+        let mut budget = MAX_BLOCKS_PER_CYCLE;
+        while !self.prep_done
+            && !self.prep_waits_for_trafo
+            && self.pending.len() + self.planner.len() < LOOKAHEAD
+            && budget > 0
+        {
+            budget -= 1;
+            let main_run_idle = self.pending.is_empty() && self.planner.is_empty() && self.dwell_ticks == 0;
+            out.clear();
+            let generation = self.interp.transformation_generation();
+            let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
+            // A transformation change: continue once the main run has executed it.
+            self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
+            for (line, text) in self.interp.take_data_writes() {
+                if let Err(alarm) = self.apply_program_data(line, &text) {
+                    out.push(Item::Alarm(alarm));
+                    prep = Prep::Done;
+                    break;
+                }
+            }
+            if let Some(line) = out.iter().find_map(Item::line) {
+                // Remember where the block is, for showing it while its items execute.
+                self.queued_blocks.push_back((line, line_offset(&program, line, self.queued_blocks.back())));
+                if self.queued_blocks.len() > 2 * LOOKAHEAD {
+                    self.queued_blocks.pop_front();
+                }
+            }
+            self.pending.extend(out.drain(..));
+            match prep {
+                Prep::Prepared => {}
+                Prep::WaitForMainRun => break,
+                Prep::Done => self.prep_done = true,
+            }
+        }
+    }
+
+    /// Applies data a program wrote: tool data and settable frames act at once, machine data
+    /// waits for NEWCONF (or a reset).
+    pub(super) fn apply_program_data(&mut self, line: u32, text: &str) -> Result<(), Alarm> {
+        let bad = |message: String| Alarm::value_out_of_range(line, &message);
+        if text == NEWCONF {
+            let cfg = self.data.activate().map_err(|e| bad(format!("NEWCONF: {}", e.message)))?;
+            if cfg.channel_axes != self.cfg.channel_axes || cfg.geo_axes != self.cfg.geo_axes {
+                return Err(bad(
+                    "NEWCONF cannot change the axis configuration while a program runs: reset instead".into()
+                ));
+            }
+            self.planner.set_limits(AxisLimit::for_channel(&cfg));
+            self.cfg = Arc::new(cfg);
+            return Ok(());
+        }
+        self.data.stage_text(text).map_err(|e| bad(format!("{text}: {}", e.message)))?;
+        if !text.starts_with("$M") && !text.starts_with("$S") {
+            Arc::make_mut(&mut self.cfg).refresh_data(&self.data).map_err(|e| bad(e.message))?;
+        }
+        Ok(())
+    }
+
+    /// Hands consecutive moves from the front of the prepared items to the planner. A move
+    /// followed by anything else ends with an exact stop.
+    pub(super) fn feed_planner(&mut self) {
+        // Single block: one block's moves at a time, and only once the last one is done.
+        let single = self.single_block.then(|| self.pending.front().and_then(Item::line));
+        if single.is_some() && (!self.planner.is_empty() || self.sbl_done.is_some()) {
+            return;
+        }
+        while let Some(Item::Move { line: next, .. }) = self.pending.front() {
+            if let Some(Some(block)) = single
+                && *next != block
+            {
+                break;
+            }
+            let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
+            // Anything but a move next (a dwell, a stop, the end) needs standstill first.
+            let next_is_other = self
+                .pending
+                .front()
+                .is_some_and(|i| !matches!(i, Item::Move { .. }) || single.is_some() && i.line() != Some(line));
+            if next_is_other || single.is_some() && self.pending.is_empty() {
+                mv.exact_stop = true;
+            }
+            // A change of the transformation or of the tool it includes needs standstill too.
+            if matches!(self.pending.front(), Some(Item::Move { offsets: next, .. }) if next.trafo != offsets.trafo) {
+                mv.exact_stop = true;
+            }
+            let machine_space = mv.machine_space;
+            self.push_move(mv, MoveMeta { line, offsets, machine_space });
+        }
+    }
+
+    pub(super) fn push_move(&mut self, mut mv: Move, meta: MoveMeta) {
+        mv.tag = self.next_tag;
+        self.next_tag = self.next_tag.wrapping_add(1);
+        self.in_planner.push_back((mv.tag, meta));
+        self.planner.push(mv);
+        self.sync_current_block();
+    }
+
+    pub(super) fn retire_finished_moves(&mut self) {
+        let finished = self.planner.take_finished();
+        if finished.is_empty() {
+            return;
+        }
+        for tag in finished {
+            while let Some((t, meta)) = self.in_planner.front() {
+                let done = *t == tag;
+                self.offsets = meta.offsets.clone();
+                if done && self.single_block && self.jog_axis.is_none() && meta.line > 0 {
+                    self.sbl_done = Some(meta.line);
+                }
+                self.in_planner.pop_front();
+                if done {
+                    break;
+                }
+            }
+        }
+        self.sync_current_block();
+    }
+
+    /// Shows the block whose move is executing.
+    pub(super) fn sync_current_block(&mut self) {
+        if let Some((_, meta)) = self.in_planner.front() {
+            self.offsets = meta.offsets.clone();
+            let line = meta.line;
+            if line > 0 {
+                self.enter_block(line);
+            }
+        }
+    }
+
+    pub(super) fn enter_block(&mut self, line: u32) {
+        if self.current_line != Some(line) {
+            self.current_line = Some(line);
+            if let Some(b) = self.block_ref(line) {
+                self.events.push(Event::BlockChanged(b));
+            }
+        }
+    }
+
+    pub(super) fn block_ref(&self, line: u32) -> Option<BlockRef> {
+        let program = self.program.as_ref()?;
+        let &(_, offset) = self.queued_blocks.iter().rev().find(|b| b.0 == line)?;
+        let raw = program[offset..].split('\n').next().unwrap_or("");
+        Some(BlockRef { line, text: raw.strip_suffix('\r').unwrap_or(raw).to_string() })
+    }
+
+    /// Executes non-motion items at the head of the queue once all motion before them is done.
+    pub(super) fn execute_actions(&mut self) {
+        if self.dwell_ticks > 0 {
+            self.dwell_ticks -= 1;
+            return;
+        }
+        while self.status == Status::Running {
+            // Single block: the block is done once the items of its line are; then stop.
+            if let Some(line) = self.sbl_done
+                && self.planner.is_empty()
+                && self.pending.front().and_then(Item::line) != Some(line)
+            {
+                self.sbl_done = None;
+                self.program_stop(line);
+                return;
+            }
+            match self.pending.front() {
+                None | Some(Item::Move { .. }) => return,
+                Some(_) => {}
+            }
+            let item = self.pending.pop_front().expect("front exists");
+            match item {
+                Item::Move { .. } => unreachable!(),
+                Item::Offsets { line, offsets } => {
+                    if offsets.trafo != self.trafo && !self.switch_transformation(offsets.trafo.clone()) {
+                        // The rotary spindle is still braking: try again next cycle.
+                        self.pending.push_front(Item::Offsets { line, offsets });
+                        return;
+                    }
+                    self.offsets = offsets;
+                    self.enter_block(line);
+                }
+                Item::Message { text, line } => {
+                    self.enter_block(line);
+                    self.message = (!text.is_empty()).then_some(text);
+                }
+                Item::Dwell { seconds, line } => {
+                    self.enter_block(line);
+                    self.dwell_ticks = (seconds / self.cfg.ipo_cycle).round() as u64;
+                    if self.dwell_ticks > 0 {
+                        self.dwell_ticks -= 1;
+                        return;
+                    }
+                }
+                Item::Spindle { axis, rpm, line } => {
+                    self.enter_block(line);
+                    let angle = self.planner.position()[axis];
+                    if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
+                        s.leave_axis_mode(angle);
+                        s.set_speed(rpm);
+                    }
+                }
+                Item::SpindleToAxis { axis, angle, line } => {
+                    self.enter_block(line);
+                    if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
+                        s.enter_axis_mode();
+                    }
+                    let mut pos = *self.planner.position();
+                    pos[axis] = angle;
+                    self.planner.set_position(pos);
+                    self.machine[axis] = angle;
+                }
+                Item::Stop { kind, line } => {
+                    self.enter_block(line);
+                    match kind {
+                        StopKind::M0 => self.program_stop(line),
+                        StopKind::M1 if self.optional_stop => self.program_stop(line),
+                        StopKind::M1 => {}
+                        StopKind::End => self.program_end(),
+                    }
+                }
+                Item::Alarm(alarm) => {
+                    if let Some(line) = alarm.line {
+                        self.enter_block(line);
+                    }
+                    self.raise(alarm);
+                }
+            }
+        }
+    }
+
+    pub(super) fn program_stop(&mut self, line: u32) {
+        self.status = Status::Stopped;
+        self.events.push(Event::ProgramStopped { line });
+    }
+
+    pub(super) fn program_end(&mut self) {
+        self.status = Status::Idle;
+        self.prep_done = true;
+        self.current_line = None;
+        self.deselect_transformation();
+        self.interp.end_program(&self.cfg);
+        self.interp.sync_transformation(&self.machine);
+        // Program end returns the offsets to their reset values (G500); the display follows.
+        self.offsets = self.interp.offsets();
+        self.events.push(Event::ProgramEnded);
+    }
+
+    pub(super) fn raise(&mut self, alarm: Alarm) {
+        self.planner.abort();
+        self.pending.clear();
+        self.in_planner.clear();
+        self.prep_done = true;
+        self.prep_waits_for_trafo = false;
+        self.jog_axis = None;
+        if alarm.clear == Clear::Reset {
+            self.status = Status::Alarm;
+        } else if self.status == Status::Running {
+            self.status = Status::Idle;
+        }
+        self.events.push(Event::AlarmRaised(alarm.clone()));
+        self.alarms.push(alarm);
+    }
+}
+
+/// Byte offset of the start of `line`, counting from the last remembered block when it lies
+/// before (blocks are mostly prepared in order, so this is a short forward scan).
+pub(super) fn line_offset(program: &str, line: u32, last: Option<&(u32, usize)>) -> usize {
+    let (mut at_line, mut offset) = match last {
+        Some(&(l, o)) if l <= line => (l, o),
+        _ => (1, 0),
+    };
+    while at_line < line {
+        match program[offset..].find('\n') {
+            Some(i) => offset += i + 1,
+            None => break,
+        }
+        at_line += 1;
+    }
+    offset
+}

@@ -1,0 +1,51 @@
+//! The session's stored programs (main programs and subprograms called by name).
+
+use std::sync::Arc;
+
+use super::{Channel, CommandError};
+use crate::lang;
+
+impl Channel {
+    /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
+    /// calls by name. The text is checked first: a program with syntax errors is refused.
+    pub fn store_program(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
+        let name = program_name(name)?;
+        if let Some(d) = lang::check(text).into_iter().next() {
+            return Err(CommandError::Syntax { line: d.line, message: d.message });
+        }
+        self.programs.insert(name.clone(), Arc::from(text));
+        Ok(name)
+    }
+
+    /// A stored program's text.
+    pub fn stored_program(&self, name: &str) -> Option<&str> {
+        self.programs.get(&program_name(name).ok()?).map(|t| &**t)
+    }
+
+    /// Removes a stored program; false if there was none.
+    pub fn delete_program(&mut self, name: &str) -> bool {
+        program_name(name).is_ok_and(|n| self.programs.remove(&n).is_some())
+    }
+
+    /// Names and sizes (bytes) of the stored programs, by name.
+    pub fn stored_programs(&self) -> Vec<(String, usize)> {
+        self.programs.iter().map(|(n, t)| (n.clone(), t.len())).collect()
+    }
+}
+
+/// The canonical name of a stored program: letters, digits and `_`, starting with a letter,
+/// at most 32 characters, upper-cased; a `.MPF` or `.SPF` ending is dropped.
+pub(super) fn program_name(name: &str) -> Result<String, CommandError> {
+    let upper = name.trim().to_ascii_uppercase();
+    let base = upper.strip_suffix(".MPF").or_else(|| upper.strip_suffix(".SPF")).unwrap_or(&upper);
+    let valid = base.len() <= 32
+        && base.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+        && base.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if valid {
+        Ok(base.to_string())
+    } else {
+        Err(CommandError::Invalid(format!(
+            "bad program name `{name}`: letters, digits and _, starting with a letter, at most 32"
+        )))
+    }
+}
