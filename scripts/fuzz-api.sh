@@ -37,7 +37,7 @@ cleanup() {
     kill "$SERVER_PID" 2>/dev/null || true
     wait "$SERVER_PID" 2>/dev/null || true
   fi
-  rm -rf "$DATA_DIR" "$REPORT"
+  rm -rf "$DATA_DIR"; [ -n "${FUZZ_KEEP_REPORT:-}" ] || rm -rf "$REPORT"
   rm -f "$LOG"
 }
 trap cleanup EXIT

@@ -560,3 +560,14 @@ async fn single_block_stops_after_each_moving_block() {
     let state = server.post(&format!("/sessions/{id}/start"), start).await.body;
     assert_eq!(state["status"], "idle");
 }
+
+#[tokio::test]
+async fn a_program_that_computes_forever_is_stopped_by_the_fast_wall_time_limit() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let run = json!({"program": "LOOP\nR1=R1+1\nENDLOOP", "pace": "fast", "wait": true});
+    let reply = server.post(&format!("/sessions/{id}/run"), run).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["status"], "stopped");
+    assert!(reply.headers.get("nctwin-limit").is_some());
+}

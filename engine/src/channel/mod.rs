@@ -35,7 +35,7 @@ pub const LOOKAHEAD: usize = 48;
 /// How many blocks preparation may interpret in one IPO cycle. Bounds the work of a cycle, so
 /// a loop without motion (`LOOP ... ENDLOOP`) keeps running like on the control instead of
 /// hanging the caller.
-pub const MAX_BLOCKS_PER_CYCLE: usize = 1000;
+pub const MAX_BLOCKS_PER_CYCLE: usize = 64;
 
 /// Operating mode of the mode group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

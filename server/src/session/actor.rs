@@ -19,6 +19,10 @@ use tokio::time::{Instant, sleep_until};
 
 use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
 
+/// Wall time a fast-paced command may compute before it is stopped like at the simulated-time
+/// limit.
+const FAST_WALL_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
+
 /// Extra simulated seconds a fast run stopped by its limit may take to brake before the actor
 /// resets the channel.
 const BRAKE_GRACE: f64 = 60.0;
@@ -46,6 +50,9 @@ pub(super) struct Actor {
     pace: Pace,
     /// Tick at which the current fast-paced command is stopped.
     fast_limit_tick: u64,
+    /// Wall time at which the current fast-paced command is stopped (a program that computes
+    /// without end, e.g. a LOOP without motion, must not hold a worker for long).
+    fast_deadline: Instant,
     /// The fast limit stopped the channel; replies report it until the next driving command.
     limit_hit: bool,
     /// Present while the channel is stepped in real time.
@@ -75,6 +82,7 @@ impl Actor {
             events,
             pace: Pace::Realtime,
             fast_limit_tick: 0,
+            fast_deadline: Instant::now(),
             limit_hit: false,
             pacer: None,
             next_wake: Instant::now(),
@@ -168,6 +176,7 @@ impl Actor {
                 if drive.pace == Pace::Fast {
                     let cycles = (self.config.fast_sim_time / channel.config().ipo_cycle).ceil() as u64;
                     self.fast_limit_tick = channel.ticks().saturating_add(cycles);
+                    self.fast_deadline = now + FAST_WALL_LIMIT;
                 }
                 if drive.wait {
                     self.waiters.push(Waiter { reply, deadline: now + self.config.wait_wall_time });
@@ -206,8 +215,9 @@ impl Actor {
     /// Runs one chunk of fast-paced cycles on a blocking worker. `None` if the engine panicked.
     async fn fast_chunk(&mut self, mut channel: Box<Channel>) -> Option<Box<Channel>> {
         let (steps, limit) = (self.config.fast_chunk, self.fast_limit_tick);
+        let deadline = self.fast_deadline.into_std();
         let joined = tokio::task::spawn_blocking(move || {
-            step_fast(&mut channel, steps, limit);
+            step_fast(&mut channel, steps, limit, deadline);
             channel
         })
         .await;
@@ -218,7 +228,8 @@ impl Actor {
                 return None;
             }
         };
-        if channel.is_busy() && channel.ticks() >= self.fast_limit_tick {
+        let out_of_time = Instant::now() >= self.fast_deadline;
+        if channel.is_busy() && (channel.ticks() >= self.fast_limit_tick || out_of_time) {
             if self.limit_hit {
                 // Still moving after the grace period: a reset stops everything at once.
                 channel.reset();
@@ -226,7 +237,8 @@ impl Actor {
                 channel.stop();
                 self.limit_hit = true;
                 let grace = (BRAKE_GRACE / channel.config().ipo_cycle).ceil() as u64;
-                self.fast_limit_tick = self.fast_limit_tick.saturating_add(grace);
+                self.fast_limit_tick = channel.ticks().max(self.fast_limit_tick).saturating_add(grace);
+                self.fast_deadline = Instant::now() + FAST_WALL_LIMIT;
             }
         }
         if !channel.is_busy() {
@@ -340,9 +352,13 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
 }
 
 /// Steps up to `max_steps` cycles while something moves and the limit tick is not reached.
-fn step_fast(channel: &mut Channel, max_steps: u64, limit_tick: u64) {
-    for _ in 0..max_steps {
+fn step_fast(channel: &mut Channel, max_steps: u64, limit_tick: u64, deadline: std::time::Instant) {
+    for i in 0..max_steps {
         if !channel.is_busy() || channel.ticks() >= limit_tick {
+            break;
+        }
+        // Cycles that prepare many blocks are slow: look at the clock now and then.
+        if i % 1024 == 1023 && std::time::Instant::now() >= deadline {
             break;
         }
         channel.step();
