@@ -1,10 +1,12 @@
 //! The real `nctwin` binary: it logs the address it listens on, serves the API there, creates
 //! its data directory and shuts down cleanly on SIGINT.
 
-use std::io::{BufRead, BufReader, Read, Write};
+mod process;
+
+use process::forward_lines;
+use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
-use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 /// Kills the server if the test fails before it stops it.
@@ -15,24 +17,6 @@ impl Drop for Running {
         let _ = self.0.kill();
         let _ = self.0.wait();
     }
-}
-
-/// Sends every line of stdout and stderr to one channel.
-fn forward_lines(child: &mut Child) -> mpsc::Receiver<String> {
-    let (tx, rx) = mpsc::channel();
-    let stdout = child.stdout.take().expect("stdout piped");
-    let stderr = child.stderr.take().expect("stderr piped");
-    for reader in [Box::new(stdout) as Box<dyn Read + Send>, Box::new(stderr)] {
-        let tx = tx.clone();
-        std::thread::spawn(move || {
-            for line in BufReader::new(reader).lines().map_while(Result::ok) {
-                if tx.send(line).is_err() {
-                    break;
-                }
-            }
-        });
-    }
-    rx
 }
 
 /// A plain HTTP/1.1 GET; returns the whole response text.

@@ -2,11 +2,12 @@
 //! down gracefully (saves, closes streams with a close frame, exits in bounded time), and
 //! SIGKILL loses no acknowledged write.
 
-use std::io::{BufRead, BufReader, Read};
+mod process;
+
+use process::forward_lines;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::Arc;
-use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use futures_util::StreamExt;
@@ -83,23 +84,6 @@ impl Nctwin {
             std::thread::sleep(Duration::from_millis(10));
         }
     }
-}
-
-fn forward_lines(child: &mut Child) -> mpsc::Receiver<String> {
-    let (tx, rx) = mpsc::channel();
-    let stdout = child.stdout.take().expect("stdout piped");
-    let stderr = child.stderr.take().expect("stderr piped");
-    for reader in [Box::new(stdout) as Box<dyn Read + Send>, Box::new(stderr)] {
-        let tx = tx.clone();
-        std::thread::spawn(move || {
-            for line in BufReader::new(reader).lines().map_while(Result::ok) {
-                if tx.send(line).is_err() {
-                    break;
-                }
-            }
-        });
-    }
-    rx
 }
 
 fn data_dir(name: &str) -> PathBuf {
