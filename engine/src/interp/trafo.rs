@@ -82,7 +82,7 @@ pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> R
                 Selection::On {
                     kind: TrafoKind::Tracyl,
                     n: data_set(arg(1)?)?,
-                    args: SelectArgs { diameter: Some(diameter), groove_wall, angle: None },
+                    args: SelectArgs { diameter: Some(diameter), groove_wall, ..SelectArgs::default() },
                 }
             }
             _ => Selection::On {

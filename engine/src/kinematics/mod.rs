@@ -74,6 +74,23 @@ pub trait Transformation {
     fn limit_share(&self, _slot: usize) -> f64 {
         1.0
     }
+    /// Channel axes of the orientation axes (1st, 2nd, 3rd rotary axis of an orientation
+    /// transformation). On the BCS side these slots hold the rotary axis positions themselves,
+    /// so direct rotary-axis programming and ORIAXES interpolation pass straight through.
+    fn orientation_slots(&self) -> [Option<usize>; 3] {
+        [None; 3]
+    }
+    /// Tool orientation in the BCS (unit vector from the tool tip towards the holder) at
+    /// machine position `machine`; `None` for transformations that do not orient the tool.
+    fn orientation(&self, _machine: &AxisVec) -> Option<Vec3> {
+        None
+    }
+    /// Writes into the orientation slots of `axes` the rotary axis positions that give BCS
+    /// orientation `o`: of the candidate solutions the one within the axis limits that is
+    /// nearest to `prev` (modulo axes unwrapped to stay continuous). Other slots are untouched.
+    fn orientation_axes(&self, _o: &Vec3, _prev: &AxisVec, _axes: &mut AxisVec) -> Result<(), Unreachable> {
+        Err(Unreachable)
+    }
 }
 
 /// Any of the modelled transformations, as a plain value (cheap to clone and compare).
@@ -128,6 +145,15 @@ impl Transformation for AnyTrafo {
     fn limit_share(&self, slot: usize) -> f64 {
         dispatch!(self, t => t.limit_share(slot))
     }
+    fn orientation_slots(&self) -> [Option<usize>; 3] {
+        dispatch!(self, t => t.orientation_slots())
+    }
+    fn orientation(&self, machine: &AxisVec) -> Option<Vec3> {
+        dispatch!(self, t => t.orientation(machine))
+    }
+    fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        dispatch!(self, t => t.orientation_axes(o, prev, axes))
+    }
 }
 
 /// Parameters given with the selection in the program.
@@ -139,6 +165,9 @@ pub struct SelectArgs {
     pub groove_wall: Option<bool>,
     /// TRAANG angle α; `None` = `$MC_TRAANG_ANGLE_t`.
     pub angle: Option<f64>,
+    /// TRAORI(n, x, y, z): basic tool orientation given with the selection (generic types);
+    /// `None` = the tool's or `$MC_TRAFO5_BASE_ORIENT_n`.
+    pub base_orient: Option<Vec3>,
 }
 
 /// Why a selection cannot be built.
@@ -178,6 +207,14 @@ impl ActiveTrafo {
         let mut out = *bcs;
         self.trafo.inverse(bcs, prev, &self.tool, &mut out)?;
         Ok(out)
+    }
+
+    /// Like [`ActiveTrafo::inverse`], with the tool orientation `o` (BCS) deciding the rotary
+    /// axes instead of the orientation slots of `bcs`.
+    pub fn inverse_oriented(&self, bcs: &AxisVec, o: &Vec3, prev: &AxisVec) -> Result<AxisVec, Unreachable> {
+        let mut oriented = *bcs;
+        self.trafo.orientation_axes(o, prev, &mut oriented)?;
+        self.inverse(&oriented, prev)
     }
 }
 
