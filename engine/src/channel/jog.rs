@@ -50,7 +50,7 @@ impl Channel {
         let velocity = if req.rapid { ax.jog_rapid_velocity } else { ax.jog_velocity }.min(ax.max_velocity);
         let length = (target - start[k]).abs();
         let mv = Move::new(
-            Path { start, end, arc: None },
+            Path::line(start, end),
             length,
             Feed::Path(velocity),
             &AxisLimit::for_channel(&self.cfg),

@@ -18,7 +18,11 @@ impl Channel {
         match self.trafo.as_ref().filter(|_| !machine_space) {
             None => self.machine = pos,
             Some(t) => {
-                if let Ok(m) = t.inverse(&pos, &self.machine) {
+                let mapped = match self.planner.orientation() {
+                    Some(o) => t.inverse_oriented(&pos, o, &self.machine),
+                    None => t.inverse(&pos, &self.machine),
+                };
+                if let Ok(m) = mapped {
                     self.machine = m;
                 }
             }

@@ -111,9 +111,9 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
             // Centre on the inner side: perpendicular to d1 in the plane of the corner.
             let inward = unit(&add(&d2, &scale(&d1, -cos_phi))).expect("the blocks are not parallel");
             let u = scale(&inward, -1.0);
-            Path { start: a, end: b, arc: Some(Arc { u, v: d1, radius: r, start_angle: 0.0, sweep: phi }) }
+            Path { start: a, end: b, arc: Some(Arc { u, v: d1, radius: r, start_angle: 0.0, sweep: phi }), ori: None }
         }
-        _ => Path { start: a, end: b, arc: None },
+        _ => Path::line(a, b),
     };
     let corner_len = match held.corner {
         Corner::Round(r) => r * phi,
@@ -167,7 +167,7 @@ mod tests {
             e[..2].copy_from_slice(&to);
             let len = ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2)).sqrt();
             Move {
-                path: Path { start: s, end: e, arc: None },
+                path: Path::line(s, e),
                 length: len,
                 v_max: 10.0,
                 v_axes: 10.0,

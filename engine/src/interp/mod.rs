@@ -529,7 +529,7 @@ impl Interpreter {
         end[axis] = modulo_target(start_angle, target.rem_euclid(360.0), 360.0, None);
         self.pos = end;
         let length = (end[axis] - start[axis]).abs();
-        let path = Path { start, end, arc: None };
+        let path = Path::line(start, end);
         Ok((Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line), Feed::Rapid))
     }
 
@@ -672,7 +672,7 @@ impl Interpreter {
         }
 
         let geo_list: Vec<usize> = geo.iter().flatten().copied().collect();
-        let mut path = Path { start, end, arc: None };
+        let mut path = Path::line(start, end);
         let mut length = geo_list.iter().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
         if let Some(circle) = circle {
             // The circle is defined in the WCS plane and mapped through the frame.

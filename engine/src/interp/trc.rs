@@ -128,7 +128,7 @@ impl Compensator {
             self.tool_at = None;
             let mut p = p;
             if let Some(start) = last_end(out).filter(|_| was_active) {
-                p.mv = rebuild(&p, Path { start, end: p.mv.path.end, arc: None }, limits);
+                p.mv = rebuild(&p, Path::line(start, p.mv.path.end), limits);
             }
             out.push(p.item_with(p.mv.clone()));
             return Ok(());
@@ -140,7 +140,7 @@ impl Compensator {
             let mut p = p;
             if let (Some(at), Some(start)) = (self.tool_at, last_end(out)) {
                 let end = with_plane(&p.mv.path.end, at, &comp);
-                p.mv = rebuild(&p, Path { start, end, arc: None }, limits);
+                p.mv = rebuild(&p, Path::line(start, end), limits);
             }
             out.push(p.item_with(p.mv.clone()));
             return Ok(());
@@ -150,7 +150,7 @@ impl Compensator {
             // The selection block ends where the first element's equidistant starts (NORM).
             let start = offset_start(&contour, d);
             let end = with_plane(&approach.mv.path.end, start, &comp);
-            let mv = rebuild(&approach, Path { start: approach.mv.path.start, end, arc: None }, limits);
+            let mv = rebuild(&approach, Path::line(approach.mv.path.start, end), limits);
             out.push(approach.item_with(mv));
             self.tool_at = Some(start);
             self.held = Some(Held { p, contour, start, comp });
@@ -171,7 +171,7 @@ impl Compensator {
                     && dist(at, start) > 1e-9
                 {
                     let to = with_plane(&from, start, &comp);
-                    out.push(p.item_with(rebuild(&p, Path { start: from, end: to, arc: None }, limits)));
+                    out.push(p.item_with(rebuild(&p, Path::line(from, to), limits)));
                 }
                 self.tool_at = Some(start);
                 self.held = Some(Held { p, contour, start, comp });
@@ -244,7 +244,7 @@ fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], c
     let start3 = with_plane(&from, s, comp);
     let end3 = with_plane(&to, e, comp);
     let (path, feed) = match elem {
-        Elem::Line { .. } => (Path { start: start3, end: end3, arc: None }, p.feed),
+        Elem::Line { .. } => (Path::line(start3, end3), p.feed),
         Elem::Arc { r, a0, sweep, .. } => {
             // CFC: the programmed feed acts on the contour; the centre path runs faster on
             // outer and slower on inner arcs, by the ratio of the radii.
@@ -260,7 +260,7 @@ fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], c
                 (f, _, _) => f,
             };
             let arc = Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep };
-            (Path { start: start3, end: end3, arc: Some(arc) }, feed)
+            (Path { start: start3, end: end3, arc: Some(arc), ori: None }, feed)
         }
     };
     let length = path_length(&path);

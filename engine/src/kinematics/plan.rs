@@ -98,7 +98,7 @@ pub fn plan_block(
 fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: u32) -> Move {
     let ax = cfg.axis(rot);
     Move {
-        path: Path { start: *from, end: *to, arc: None },
+        path: Path::line(*from, *to),
         length: (to[rot] - from[rot]).abs(),
         v_max: ax.max_velocity,
         v_axes: ax.max_velocity,
@@ -138,7 +138,10 @@ fn plan_piece(
     let mut p = [0.0; MAX_CHANNEL_AXES];
     for &u in &us {
         sub.at(u, &mut p);
-        let m = active.inverse(&p, &prev)?;
+        let m = match sub.orientation_at(u) {
+            Some(o) => active.inverse_oriented(&p, &o, &prev)?,
+            None => active.inverse(&p, &prev)?,
+        };
         for &k in &slots {
             let ax = cfg.axis(k);
             if ax.modulo.is_some() || ax.spindle.is_some() {

@@ -1,6 +1,7 @@
 //! Geometry of one motion block in axis space: a straight line, or a circular arc (helix) in
 //! any plane of the geometry axes with every other axis moving linearly along.
 
+use super::orientation::{OriPath, Vec3};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// Positions of all channel axes (only the first `n` of a channel are used).
@@ -45,6 +46,9 @@ pub struct Path {
     pub end: AxisVec,
     /// `None`: linear interpolation of every axis.
     pub arc: Option<Arc>,
+    /// The tool orientation when it is interpolated as a vector (an orientation
+    /// transformation's rotary axes then follow it); `None`: the axes interpolate.
+    pub ori: Option<Box<OriPath>>,
 }
 
 impl Path {
@@ -79,7 +83,18 @@ impl Path {
         self.at(u0, &mut start);
         self.at(u1, &mut end);
         let arc = self.arc.map(|a| Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..a });
-        Path { start, end, arc }
+        let ori = self.ori.as_ref().map(|o| Box::new(o.slice(u0, u1)));
+        Path { start, end, arc, ori }
+    }
+
+    /// A straight line from `start` to `end`.
+    pub fn line(start: AxisVec, end: AxisVec) -> Path {
+        Path { start, end, arc: None, ori: None }
+    }
+
+    /// Tool orientation at parameter `s` when the path carries one.
+    pub fn orientation_at(&self, s: f64) -> Option<Vec3> {
+        self.ori.as_ref().map(|o| o.at(s))
     }
 
     /// Tangent `dp/ds` at `s` (not normalised).
@@ -186,7 +201,7 @@ mod tests {
         start[0] = 10.0;
         end[0] = -10.0;
         end[2] = 4.0;
-        Path { start, end, arc: Some(Arc::in_plane(0, 1, 10.0, 0.0, PI)) }
+        Path { start, end, arc: Some(Arc::in_plane(0, 1, 10.0, 0.0, PI)), ori: None }
     }
 
     #[test]
@@ -230,7 +245,7 @@ mod tests {
         let mut end = [0.0; MAX_CHANNEL_AXES];
         start[0] = 5.0;
         end[0] = -5.0;
-        let p = Path { start, end, arc: Some(arc) };
+        let p = Path { start, end, arc: Some(arc), ori: None };
         let mut q = [0.0; MAX_CHANNEL_AXES];
         for i in 0..=20 {
             p.at(i as f64 / 20.0, &mut q);

@@ -7,6 +7,7 @@
 
 use std::collections::VecDeque;
 
+use super::orientation::Vec3;
 use super::path::{AxisVec, Path};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -157,6 +158,8 @@ pub struct Planner {
     position: AxisVec,
     /// Tag of the move whose path produced `position` (`None` after [`Planner::set_position`]).
     position_tag: Option<u32>,
+    /// Tool orientation at `position` when that move interpolates it as a vector.
+    orientation: Option<Vec3>,
     finished: Vec<u32>,
 }
 
@@ -176,6 +179,7 @@ impl Planner {
             flush_at_standstill: false,
             position,
             position_tag: None,
+            orientation: None,
             finished: Vec::new(),
         }
     }
@@ -215,6 +219,12 @@ impl Planner {
     /// Current interpolated position of every axis.
     pub fn position(&self) -> &AxisVec {
         &self.position
+    }
+
+    /// Tool orientation at the current position, when its move interpolates the orientation
+    /// as a vector (the rotary axes are then derived from it).
+    pub fn orientation(&self) -> Option<&Vec3> {
+        self.orientation.as_ref()
     }
 
     /// Tag of the move the current position lies on (the last one finished when idle).
@@ -277,6 +287,7 @@ impl Planner {
         debug_assert!(self.queue.is_empty());
         self.position = position;
         self.position_tag = None;
+        self.orientation = None;
     }
 
     /// Advances one IPO cycle.
@@ -319,12 +330,14 @@ impl Planner {
                 self.s += d;
                 let u = self.s / front.length;
                 front.path.at(u, &mut self.position);
+                self.orientation = front.path.orientation_at(u);
                 self.position_tag = Some(front.tag);
                 break;
             }
             // The move ends within this cycle.
             d -= remaining;
             self.position = front.path.end;
+            self.orientation = front.path.orientation_at(1.0);
             self.position_tag = Some(front.tag);
             let stop_here = self.v_end[0] == 0.0;
             let done = self.queue.pop_front().expect("front exists");
@@ -442,7 +455,7 @@ mod tests {
         let mut end = [0.0; MAX_CHANNEL_AXES];
         start[..3].copy_from_slice(&from);
         end[..3].copy_from_slice(&to);
-        Path { start, end, arc: None }
+        Path::line(start, end)
     }
 
     fn run(p: &mut Planner) -> Vec<AxisVec> {
