@@ -79,7 +79,12 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
     // geometry axes named by the transformation's assignment; the axes it drives have no BCS
     // value of their own.
     let (geo_axes, driven, bcs) = match &ch.trafo {
-        Some(t) => (t.trafo.geo_slots(), t.trafo.machine_slots(), t.forward(pos)),
+        // An orientation transformation's rotary axes keep their own value in the BCS.
+        Some(t) => {
+            let ori = t.trafo.orientation_slots();
+            let driven = t.trafo.machine_slots().into_iter().filter(|k| !ori.contains(&Some(*k))).collect();
+            (t.trafo.geo_slots(), driven, t.forward(pos))
+        }
         None => (cfg.geo_axes, Vec::new(), std::array::from_fn(value)),
     };
     let geo: Vec<usize> = geo_axes.iter().flatten().copied().collect();
@@ -101,7 +106,12 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
     }
     let wcs = offsets.frame.unapply(&geo_axes, &basic_vec).unwrap_or(basic_vec);
     let workpiece: Vec<(String, f64)> = order.iter().map(|&k| (name(k), show(k, wcs[k]))).collect();
-    let orientation = geo_axes[2].map(|_| [0.0, 0.0, 1.0]).filter(|_| geo_axes.iter().all(Option::is_some));
+    // The tool direction in the WCS: through the orientation transformation when one is
+    // active, else the fixed +Z of a milling head (when the channel has three geometry axes).
+    let orientation = match ch.trafo.as_ref().and_then(|t| t.trafo.orientation(pos)) {
+        Some(o) => Some(offsets.frame.unrotate_direction(o)),
+        None => geo_axes[2].map(|_| [0.0, 0.0, 1.0]).filter(|_| geo_axes.iter().all(Option::is_some)),
+    };
     let transformation = ch.trafo.as_ref().map(|t| TransformationInfo {
         name: t.trafo.name().to_string(),
         trafo_type: t.trafo.trafo_type(),

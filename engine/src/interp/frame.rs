@@ -9,6 +9,11 @@
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::AxisVec;
 
+fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (n > 1e-12).then(|| v.map(|x| x / n))
+}
+
 /// Geometry axes by channel-axis index (`None`: not present).
 pub type GeoAxes = [Option<usize>; 3];
 
@@ -108,6 +113,21 @@ impl Frame {
             }
         }
         out
+    }
+
+    /// A direction of the geometry axes (an orientation vector) from child to parent,
+    /// normalised.
+    pub fn rotate_direction(&self, v: [f64; 3]) -> [f64; 3] {
+        let l = &self.lin;
+        unit(std::array::from_fn(|g| l[g][0] * v[0] + l[g][1] * v[1] + l[g][2] * v[2])).unwrap_or(v)
+    }
+
+    /// A direction of the geometry axes from parent back to child, normalised. The linear part
+    /// of a frame is a rotation with mirroring and uniform scale, so its transpose inverts the
+    /// direction.
+    pub fn unrotate_direction(&self, v: [f64; 3]) -> [f64; 3] {
+        let l = &self.lin;
+        unit(std::array::from_fn(|j| l[0][j] * v[0] + l[1][j] * v[1] + l[2][j] * v[2])).unwrap_or(v)
     }
 
     /// Maps a point from parent back to child coordinates; `None` if the frame is singular

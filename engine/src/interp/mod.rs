@@ -12,6 +12,7 @@ mod eval;
 mod flow;
 pub mod frame;
 mod modal;
+mod orient;
 mod scope;
 mod statements;
 mod trafo;
@@ -386,6 +387,7 @@ impl Interpreter {
         } else if let Some(reference) = words.pole {
             self.define_pole(reference, &words, cfg, line)?;
         } else if words.frame_op.is_none() && !words.axes.is_empty()
+            || words.ori.programmed()
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
@@ -671,8 +673,11 @@ impl Interpreter {
             }
         }
 
+        let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, line)?;
+
         let geo_list: Vec<usize> = geo.iter().flatten().copied().collect();
         let mut path = Path::line(start, end);
+        path.ori = ori.map(Box::new);
         let mut length = geo_list.iter().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
         if let Some(circle) = circle {
             // The circle is defined in the WCS plane and mapped through the frame.
@@ -684,8 +689,12 @@ impl Interpreter {
             length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
         }
         if length < 1e-9 {
-            // No geometry axis moves: the feed applies to the other axes together.
-            length = (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
+            // No geometry axis moves: the feed applies to the other axes together, or to the
+            // angle the orientation turns through (degrees) when it is interpolated as a vector.
+            length = match &path.ori {
+                Some(o) => o.angle.abs().to_degrees(),
+                None => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
+            };
         }
 
         check_software_limits(cfg, &path, line)?;

@@ -5,6 +5,7 @@ use super::calls::Programs;
 use super::corners::Corner;
 use super::eval::{eval, eval_f64};
 use super::frame::Frame;
+use super::orient::{self, OriModal, OriWords};
 use super::scope::{Ctx, SysView};
 use super::trc::{ArcFeed, CornerMode, Side};
 use super::value::Value;
@@ -76,6 +77,8 @@ pub struct Modal {
     pub arc_feed: ArcFeed,
     /// Last polar angle AP (degrees) and radius RP.
     pub polar: (f64, f64),
+    /// G groups 25, 50 and 51 of orientation programming.
+    pub ori: OriModal,
 }
 
 impl Modal {
@@ -98,6 +101,7 @@ impl Modal {
             trc_corners: CornerMode::Circle,
             offn: 0.0,
             arc_feed: ArcFeed::Contour,
+            ori: OriModal::reset(),
         }
     }
 
@@ -144,6 +148,7 @@ impl Modal {
         if let Some(f) = w.arc_feed {
             self.arc_feed = f;
         }
+        self.ori.apply(&w.ori);
         if let Some(frame) = w.work_offset {
             if frame >= cfg.work_offsets.len() {
                 return Err(Alarm::value_out_of_range(
@@ -266,6 +271,8 @@ pub(super) struct Words {
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
     pub ar: Option<f64>,
     pub turn: Option<u32>,
+    /// Orientation words and G functions.
+    pub ori: OriWords,
 }
 
 impl Words {
@@ -326,6 +333,7 @@ pub(super) fn collect(
                     _ => {}
                 }
             }
+            Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && frame_op(name).is_some() => {
                 if w.frame_op.is_some() {
                     return Err(Alarm::syntax(line, "one frame instruction per block"));
@@ -409,6 +417,9 @@ pub(super) fn collect(
                     // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
                     "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
                     "P" => w.repeat = Some(whole("P")?),
+                    _ if orient::is_address(name) => {
+                        w.ori.address(name, v);
+                    }
                     "I" | "J" | "K" => {
                         let g = (name.as_bytes()[0] - b'I') as usize;
                         w.ijk[g] = Some((v, value.mode == Some(CoordMode::Ac)));
@@ -584,7 +595,7 @@ fn is_nc_address(name: &str) -> bool {
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
         "OFFN", "SPOS",
     ];
-    ADDRESSES.contains(&name)
+    ADDRESSES.contains(&name) || orient::is_address(name)
 }
 
 fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {

@@ -298,10 +298,22 @@ impl Interpreter {
                 PlanError::SoftLimit { axis, plus } => Alarm::software_limit(line, &axis, plus),
             })?;
             a.machine = end;
+            // The orientation axes end where the machine's continuity put them (a vector
+            // interpolation may pass a pole into the other solution).
+            for k in a.trafo.trafo.orientation_slots().into_iter().flatten() {
+                self.pos[k] = end[k];
+            }
             result.extend(moves.into_iter().map(|mv| Item::Move { mv, line, offsets: offsets.clone() }));
         }
         *out = result;
         Ok(())
+    }
+
+    /// The active transformation when it orients the tool, with the machine position at the
+    /// end of what was prepared.
+    pub(super) fn orientation_transformation(&self) -> Option<(&ActiveTrafo, &AxisVec)> {
+        let a = self.trafo.active.as_ref()?;
+        a.trafo.trafo.orientation_slots().iter().any(Option::is_some).then_some((&a.trafo, &a.machine))
     }
 
     /// Machine position at the end of what was prepared.

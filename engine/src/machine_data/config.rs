@@ -67,6 +67,28 @@ pub struct MachineConfig {
     pub work_offsets: Vec<Vec<f64>>,
     /// Configured transformation data sets in data-set order (`$MC_TRAFO_TYPE_1..10`).
     pub trafos: Vec<TrafoDataSet>,
+    /// How orientations are programmed and interpolated (MD21100..21130).
+    pub orientation: OriSettings,
+}
+
+/// Channel data on orientation programming.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OriSettings {
+    /// MD21100 ORIENTATION_IS_EULER: A2/B2/C2 are Euler angles (else RPY) when MD21102 is 0.
+    pub is_euler: bool,
+    /// MD21102 ORI_DEF_WITH_G_CODE: G group 50 decides how A2/B2/C2 are read.
+    pub def_with_g_code: bool,
+    /// MD21104 ORI_IPO_WITH_G_CODE: G group 51 decides the interpolation (else ORIWKS/ORIMKS).
+    pub ipo_with_g_code: bool,
+    /// MD21120/21130 ORIAX_TURN_TAB_1/2: reference axis (1 = X, 2 = Y, 3 = Z) of each virtual
+    /// orientation axis for ORIVIRT1/ORIVIRT2.
+    pub turn_tab: [[u8; 3]; 2],
+}
+
+impl Default for OriSettings {
+    fn default() -> Self {
+        OriSettings { is_euler: true, def_with_g_code: false, ipo_with_g_code: false, turn_tab: [[1, 2, 3]; 2] }
+    }
 }
 
 impl MachineConfig {
@@ -161,6 +183,7 @@ impl MachineConfig {
             tools: BTreeMap::new(),
             work_offsets: Vec::new(),
             trafos,
+            orientation: OriSettings::default(),
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

@@ -13,7 +13,7 @@ pub mod trafo;
 
 use std::collections::BTreeMap;
 
-pub use config::{ChannelAxis, MachineAxis, MachineConfig};
+pub use config::{ChannelAxis, MachineAxis, MachineConfig, OriSettings};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
 pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};

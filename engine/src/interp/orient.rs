@@ -1,0 +1,340 @@
+//! Tool orientation programming under an orientation transformation (TRAORI): the words
+//! A3/B3/C3 (direction vector), A2/B2/C2 (angles), A6/B6/C6 (cone axis), the G groups 25
+//! (ORIWKS/ORIMKS), 50 (ORIEULER/ORIRPY/ORIRPY2/ORIVIRT1/ORIVIRT2) and 51 (ORIVECT/ORIAXES/
+//! ORIPLANE/ORICONCW/ORICONCCW/...), and how a block's end orientation becomes rotary-axis
+//! positions and an orientation path.
+//!
+//! Conventions: an orientation vector points from the tool tip to the holder (a G17 milling
+//! tool in its zero position is +Z). Under ORIWKS the programmed vector refers to the workpiece
+//! coordinate system and turns with the active frame; under ORIMKS it refers to the basic
+//! coordinate system. The interpolation is decided by G group 51 when MD21104
+//! ORI_IPO_WITH_G_CODE is set, otherwise ORIWKS interpolates the vector on a great circle and
+//! ORIMKS the rotary axes linearly (Transformations Function Manual, F2).
+
+use super::Interpreter;
+use super::frame::Frame;
+use crate::alarm::{Alarm, Clear};
+use crate::kinematics::{Transformation, Vec3};
+use crate::machine_data::MachineConfig;
+use crate::motion::{AxisVec, OriPath, rotate};
+
+/// G group 25: what a programmed orientation refers to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OriReference {
+    /// ORIWKS: the workpiece coordinate system.
+    Workpiece,
+    /// ORIMKS: the machine (basic) coordinate system.
+    Machine,
+}
+
+/// G group 50: how A2/B2/C2 define the orientation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AngleDefinition {
+    Euler,
+    Rpy,
+    Rpy2,
+    Virtual1,
+    Virtual2,
+}
+
+/// G group 51: how the orientation is interpolated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OriInterpolation {
+    /// ORIVECT and ORIPLANE: great circle.
+    Vector,
+    /// ORIAXES: the rotary axes linearly.
+    Axes,
+    /// ORICONCW / ORICONCCW: on a cone about A6/B6/C6.
+    Cone { clockwise: bool },
+    /// ORIPATH, ORICONIO, ORICONTO, ORICURVE, ORIPATHS: not modelled (alarm when used).
+    Unmodelled(&'static str),
+}
+
+/// The modal orientation state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OriModal {
+    pub reference: OriReference,
+    pub angles: AngleDefinition,
+    pub interpolation: OriInterpolation,
+}
+
+impl OriModal {
+    /// Reset values: ORIMKS, ORIEULER, ORIVECT.
+    pub fn reset() -> OriModal {
+        OriModal {
+            reference: OriReference::Machine,
+            angles: AngleDefinition::Euler,
+            interpolation: OriInterpolation::Vector,
+        }
+    }
+
+    /// Applies the orientation G functions of a block.
+    pub(super) fn apply(&mut self, w: &OriWords) {
+        if let Some(r) = w.reference {
+            self.reference = r;
+        }
+        if let Some(a) = w.angles_def {
+            self.angles = a;
+        }
+        if let Some(i) = w.interpolation {
+            self.interpolation = i;
+        }
+    }
+}
+
+/// The orientation words of one block.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct OriWords {
+    /// A3, B3, C3.
+    pub vector: [Option<f64>; 3],
+    /// A2, B2, C2 (degrees).
+    pub angles: [Option<f64>; 3],
+    /// A6, B6, C6: cone axis.
+    pub cone_axis: [Option<f64>; 3],
+    pub reference: Option<OriReference>,
+    pub angles_def: Option<AngleDefinition>,
+    pub interpolation: Option<OriInterpolation>,
+}
+
+impl OriWords {
+    /// True if the block programs an orientation.
+    pub fn programmed(&self) -> bool {
+        self.vector.iter().chain(&self.angles).any(Option::is_some)
+    }
+
+    /// Takes an orientation G function (`ORIWKS`, ...); false if `name` is none.
+    pub fn keyword(&mut self, name: &str) -> bool {
+        use OriInterpolation as I;
+        match name {
+            "ORIWKS" => self.reference = Some(OriReference::Workpiece),
+            "ORIMKS" => self.reference = Some(OriReference::Machine),
+            "ORIEULER" => self.angles_def = Some(AngleDefinition::Euler),
+            "ORIRPY" => self.angles_def = Some(AngleDefinition::Rpy),
+            "ORIRPY2" => self.angles_def = Some(AngleDefinition::Rpy2),
+            "ORIVIRT1" => self.angles_def = Some(AngleDefinition::Virtual1),
+            "ORIVIRT2" => self.angles_def = Some(AngleDefinition::Virtual2),
+            "ORIVECT" | "ORIPLANE" => self.interpolation = Some(I::Vector),
+            "ORIAXES" => self.interpolation = Some(I::Axes),
+            "ORICONCW" => self.interpolation = Some(I::Cone { clockwise: true }),
+            "ORICONCCW" => self.interpolation = Some(I::Cone { clockwise: false }),
+            "ORIPATH" => self.interpolation = Some(I::Unmodelled("ORIPATH")),
+            "ORIPATHS" => self.interpolation = Some(I::Unmodelled("ORIPATHS")),
+            "ORICONIO" => self.interpolation = Some(I::Unmodelled("ORICONIO")),
+            "ORICONTO" => self.interpolation = Some(I::Unmodelled("ORICONTO")),
+            "ORICURVE" => self.interpolation = Some(I::Unmodelled("ORICURVE")),
+            _ => return false,
+        }
+        true
+    }
+
+    /// Takes an orientation address (`A3=`, ...); false if `name` is none.
+    pub fn address(&mut self, name: &str, value: f64) -> bool {
+        let slot = match name {
+            "A3" | "B3" | "C3" => &mut self.vector,
+            "A2" | "B2" | "C2" => &mut self.angles,
+            "A6" | "B6" | "C6" => &mut self.cone_axis,
+            _ => return false,
+        };
+        slot[(name.as_bytes()[0] - b'A') as usize] = Some(value);
+        true
+    }
+}
+
+/// True for the addresses [`OriWords::address`] takes.
+pub fn is_address(name: &str) -> bool {
+    matches!(name, "A2" | "B2" | "C2" | "A3" | "B3" | "C3" | "A6" | "B6" | "C6")
+}
+
+/// 14110: orientation programmed without an orientation transformation (number and wording
+/// after the control's alarm list, from memory).
+fn without_transformation(line: u32) -> Alarm {
+    Alarm {
+        number: 14110,
+        message: format!(
+            "Channel 1 block {line} Euler angles or orientation vector programmed without orientation transformation"
+        ),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
+}
+
+/// 14120: great-circle interpolation between antiparallel orientations.
+fn antiparallel(line: u32) -> Alarm {
+    Alarm {
+        number: 14120,
+        message: format!("Channel 1 block {line} plane of the orientation interpolation is undefined"),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
+}
+
+/// The unit vector of the programmed angles (degrees) under `def`.
+fn from_angles(def: AngleDefinition, [a, b, c]: [f64; 3], cfg: &MachineConfig) -> Vec3 {
+    let (sa, ca) = a.to_radians().sin_cos();
+    let (sb, cb) = b.to_radians().sin_cos();
+    let (sc, cc) = c.to_radians().sin_cos();
+    let z = [0.0, 0.0, 1.0];
+    match def {
+        // Rz(A2)·Rx(B2)·Rz(C2)·ez: C2 turns about the tool itself.
+        AngleDefinition::Euler => [sa * sb, -ca * sb, cb],
+        // Rz(C2)·Ry(B2)·Rx(A2)·ez.
+        AngleDefinition::Rpy => [cc * sb * ca + sc * sa, sc * sb * ca - cc * sa, cb * ca],
+        // Rx(C2)·Ry(B2)·Rz(A2)·ez.
+        AngleDefinition::Rpy2 => [sb, -sc * cb, cc * cb],
+        AngleDefinition::Virtual1 | AngleDefinition::Virtual2 => {
+            let table = if def == AngleDefinition::Virtual1 {
+                cfg.orientation.turn_tab[0]
+            } else {
+                cfg.orientation.turn_tab[1]
+            };
+            // Rotations in the table's order about the reference axes: R(t0, A2)·R(t1, B2)·R(t2, C2)·ez.
+            let axis = |t: u8| -> Vec3 { std::array::from_fn(|i| if i + 1 == t as usize { 1.0 } else { 0.0 }) };
+            let v = rotate(z, axis(table[2]), c.to_radians());
+            let v = rotate(v, axis(table[1]), b.to_radians());
+            rotate(v, axis(table[0]), a.to_radians())
+        }
+    }
+}
+
+fn normalized(v: Vec3) -> Option<Vec3> {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (n > 1e-12).then(|| v.map(|x| x / n))
+}
+
+impl Interpreter {
+    /// Sets the orientation axes of `end` for a block with orientation words and returns the
+    /// orientation path when the orientation is interpolated as a vector. `end` holds the
+    /// block's BCS end point with any directly programmed rotary axes.
+    pub(super) fn orientation_block(
+        &self,
+        words: &super::modal::Words,
+        cfg: &MachineConfig,
+        frame: &Frame,
+        start: &AxisVec,
+        end: &mut AxisVec,
+        line: u32,
+    ) -> Result<Option<OriPath>, Alarm> {
+        let ori = &words.ori;
+        let Some((active, machine)) = self.orientation_transformation() else {
+            return if ori.programmed() { Err(without_transformation(line)) } else { Ok(None) };
+        };
+        let slots = active.trafo.orientation_slots();
+        let rotary_words = words.axes.iter().any(|(k, ..)| slots.contains(&Some(*k)));
+        if ori.programmed() && rotary_words {
+            return Err(Alarm::conflicting_functions(line, "orientation axes together with A2..C3"));
+        }
+        let modal = self.modal.ori;
+        let target = if ori.programmed() {
+            let wcs = if ori.vector.iter().any(Option::is_some) {
+                normalized(ori.vector.map(|c| c.unwrap_or(0.0)))
+                    .ok_or_else(|| Alarm::value_out_of_range(line, "orientation vector A3/B3/C3 of length 0"))?
+            } else {
+                let def = if cfg.orientation.def_with_g_code {
+                    modal.angles
+                } else if cfg.orientation.is_euler {
+                    AngleDefinition::Euler
+                } else {
+                    AngleDefinition::Rpy
+                };
+                from_angles(def, ori.angles.map(|a| a.unwrap_or(0.0)), cfg)
+            };
+            let bcs = match modal.reference {
+                OriReference::Workpiece => frame.rotate_direction(wcs),
+                OriReference::Machine => wcs,
+            };
+            active.trafo.orientation_axes(&bcs, machine, end).map_err(|_| {
+                Alarm::value_out_of_range(line, "orientation not reachable by the rotary axes of the transformation")
+            })?;
+            Some(bcs)
+        } else if rotary_words {
+            let mut m = *machine;
+            for k in slots.iter().flatten() {
+                m[*k] = end[*k];
+            }
+            active.trafo.orientation(&m)
+        } else {
+            return Ok(None);
+        };
+        let Some(o_end) = target else { return Ok(None) };
+        let interpolation = if cfg.orientation.ipo_with_g_code {
+            modal.interpolation
+        } else if modal.reference == OriReference::Workpiece {
+            OriInterpolation::Vector
+        } else {
+            OriInterpolation::Axes
+        };
+        let mut m_start = *machine;
+        for k in slots.iter().flatten() {
+            m_start[*k] = start[*k];
+        }
+        let Some(o_start) = active.trafo.orientation(&m_start) else { return Ok(None) };
+        match interpolation {
+            OriInterpolation::Axes => Ok(None),
+            OriInterpolation::Vector => OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line)),
+            OriInterpolation::Cone { clockwise } => {
+                let given = ori.cone_axis.map(|c| c.unwrap_or(0.0));
+                let k = normalized(given).ok_or_else(|| {
+                    Alarm::value_out_of_range(line, "cone interpolation needs the cone axis A6/B6/C6")
+                })?;
+                let k = if modal.reference == OriReference::Workpiece { frame.rotate_direction(k) } else { k };
+                Ok(cone(o_start, o_end, k, clockwise))
+            }
+            OriInterpolation::Unmodelled(name) => Err(Alarm::unknown_name(line, name)),
+        }
+    }
+}
+
+/// The cone about `k` from `start` to `end`, turning clockwise (negative about `k`) or
+/// counter-clockwise; the end orientation's angle to `k` is the start's.
+fn cone(start: Vec3, end: Vec3, k: Vec3, clockwise: bool) -> Option<OriPath> {
+    let perp = |v: Vec3| {
+        let d = v[0] * k[0] + v[1] * k[1] + v[2] * k[2];
+        [v[0] - d * k[0], v[1] - d * k[1], v[2] - d * k[2]]
+    };
+    let (ps, pe) = (perp(start), perp(end));
+    let cross = [ps[1] * pe[2] - ps[2] * pe[1], ps[2] * pe[0] - ps[0] * pe[2], ps[0] * pe[1] - ps[1] * pe[0]];
+    let sin = cross[0] * k[0] + cross[1] * k[1] + cross[2] * k[2];
+    let cos = ps[0] * pe[0] + ps[1] * pe[1] + ps[2] * pe[2];
+    let mut angle = sin.atan2(cos);
+    let tau = std::f64::consts::TAU;
+    if clockwise && angle > 0.0 {
+        angle -= tau;
+    } else if !clockwise && angle < 0.0 {
+        angle += tau;
+    }
+    OriPath::cone(start, k, angle)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Vec3, b: Vec3) -> bool {
+        a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-9)
+    }
+
+    #[test]
+    fn euler_and_rpy_give_the_reference_vectors() {
+        let preset = crate::machine_data::presets::find("mill-3axis").unwrap();
+        let cfg = crate::machine_data::MachineData::default().apply_text(preset.text).unwrap();
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        // Euler: A2 about Z turns the tilt plane, B2 tilts away from Z; C2 has no effect.
+        assert!(close(from_angles(AngleDefinition::Euler, [90.0, 45.0, 33.0], &cfg), [h, 0.0, h]));
+        // RPY: B2 = 90 tilts Z onto X; then C2 = 90 about Z carries it onto Y.
+        assert!(close(from_angles(AngleDefinition::Rpy, [0.0, 90.0, 0.0], &cfg), [1.0, 0.0, 0.0]));
+        assert!(close(from_angles(AngleDefinition::Rpy, [0.0, 90.0, 90.0], &cfg), [0.0, 1.0, 0.0]));
+        // RPY: A2 = 90 about X turns Z onto −Y.
+        assert!(close(from_angles(AngleDefinition::Rpy, [90.0, 0.0, 0.0], &cfg), [0.0, -1.0, 0.0]));
+    }
+
+    #[test]
+    fn cone_turns_the_requested_way() {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let (s, e, k) = ([h, 0.0, h], [0.0, h, h], [0.0, 0.0, 1.0]);
+        let ccw = cone(s, e, k, false).unwrap();
+        assert!((ccw.angle - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        let cw = cone(s, e, k, true).unwrap();
+        assert!((cw.angle + 3.0 * std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        assert!(close(cw.at(1.0), e) && close(ccw.at(1.0), e));
+    }
+}

@@ -1,0 +1,128 @@
+//! How the tool orientation changes along one block when it is interpolated as a vector
+//! (ORIVECT/ORIPLANE great circle, ORICONxx cone) rather than through the rotary axes.
+//!
+//! Both kinds are a rotation of the start orientation about a fixed axis by an angle that grows
+//! uniformly with the path parameter: the great circle turns about `start × end`, the cone about
+//! its programmed axis. So one representation serves both, slices exactly, and costs one
+//! `sin_cos` per IPO point.
+
+/// A 3-vector in the BCS (X, Y, Z of the geometry axes).
+pub type Vec3 = [f64; 3];
+
+/// The orientation along a block: `o(u) = R(axis, angle·u) · start`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OriPath {
+    /// Unit orientation at the block start.
+    pub start: Vec3,
+    /// Unit rotation axis.
+    pub axis: Vec3,
+    /// Total rotation in radians (signed, right-handed about `axis`).
+    pub angle: f64,
+}
+
+/// Start and end orientation point in opposite directions: the plane of the great circle is
+/// undefined (alarm 14120).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("start and end orientation are antiparallel")]
+pub struct Antiparallel;
+
+impl OriPath {
+    /// The great circle from `start` to `end` (unit vectors). `None` when they coincide.
+    pub fn great_circle(start: Vec3, end: Vec3) -> Result<Option<OriPath>, Antiparallel> {
+        let c = cross(start, end);
+        let sin = norm(c);
+        let cos = dot(start, end);
+        if sin < 1e-9 {
+            return if cos > 0.0 { Ok(None) } else { Err(Antiparallel) };
+        }
+        Ok(Some(OriPath { start, axis: scale(c, 1.0 / sin), angle: sin.atan2(cos) }))
+    }
+
+    /// A rotation of `start` about `axis` (any length) by `angle` radians: the cone.
+    pub fn cone(start: Vec3, axis: Vec3, angle: f64) -> Option<OriPath> {
+        let n = norm(axis);
+        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle })
+    }
+
+    /// Orientation at path parameter `u` in 0..=1.
+    pub fn at(&self, u: f64) -> Vec3 {
+        rotate(self.start, self.axis, self.angle * u.clamp(0.0, 1.0))
+    }
+
+    /// The part between parameters `u0` and `u1`.
+    pub fn slice(&self, u0: f64, u1: f64) -> OriPath {
+        OriPath { start: self.at(u0), angle: self.angle * (u1 - u0), ..*self }
+    }
+}
+
+/// `v` rotated about unit axis `k` by `angle` radians (Rodrigues).
+pub fn rotate(v: Vec3, k: Vec3, angle: f64) -> Vec3 {
+    let (s, c) = angle.sin_cos();
+    let kxv = cross(k, v);
+    let kv = dot(k, v) * (1.0 - c);
+    std::array::from_fn(|i| v[i] * c + kxv[i] * s + k[i] * kv)
+}
+
+fn dot(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn norm(a: Vec3) -> f64 {
+    dot(a, a).sqrt()
+}
+
+fn scale(a: Vec3, f: f64) -> Vec3 {
+    a.map(|x| x * f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Vec3, b: Vec3) -> bool {
+        a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12)
+    }
+
+    #[test]
+    fn great_circle_from_z_to_x_passes_the_bisector() {
+        let p = OriPath::great_circle([0.0, 0.0, 1.0], [1.0, 0.0, 0.0]).unwrap().unwrap();
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(close(p.at(0.5), [h, 0.0, h]));
+        assert!(close(p.at(1.0), [1.0, 0.0, 0.0]));
+        // Every point stays a unit vector in the XZ plane.
+        for i in 0..=10 {
+            let o = p.at(i as f64 / 10.0);
+            assert!((norm(o) - 1.0).abs() < 1e-12 && o[1].abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn slices_continue_the_same_circle() {
+        let p = OriPath::great_circle([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]).unwrap().unwrap();
+        let s = p.slice(0.25, 0.75);
+        assert!(close(s.at(0.0), p.at(0.25)));
+        assert!(close(s.at(0.5), p.at(0.5)));
+        assert!(close(s.at(1.0), p.at(0.75)));
+    }
+
+    #[test]
+    fn equal_orientations_need_no_path_and_opposite_ones_are_refused() {
+        assert_eq!(OriPath::great_circle([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]), Ok(None));
+        assert_eq!(OriPath::great_circle([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]), Err(Antiparallel));
+    }
+
+    #[test]
+    fn cone_keeps_the_opening_angle() {
+        // 45° cone about Z, a quarter turn: from (s,0,c) to (0,s,c).
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let p = OriPath::cone([h, 0.0, h], [0.0, 0.0, 2.0], std::f64::consts::FRAC_PI_2).unwrap();
+        assert!(close(p.at(1.0), [0.0, h, h]));
+        for i in 0..=8 {
+            assert!((p.at(i as f64 / 8.0)[2] - h).abs() < 1e-12);
+        }
+    }
+}
