@@ -307,6 +307,92 @@ fn tracyl_turns_c_continuously_over_several_revolutions() {
     assert!(close(angle_diff(machine(&ch.snapshot(), "CM"), 0.0), 0.0, 1e-6));
 }
 
+/// Groove-wall offset (type 513): the centre line of a groove along Z and then around the
+/// periphery, cut with T1 (radius 6) and OFFN = 8 (groove width 16). The tool centre runs
+/// `OFFN − r` = 2 beside the centre line; along Z that offset is across the periphery and is
+/// travelled by the real Y axis (C stays on the centre line), around the periphery it is along Z.
+const GROOVE: &str = "T1 D1\nG0 X20 Y0 Z10\nTRACYL(40)\nG19 G1 F1000 G41 OFFN=8 Y0 Z0\nZ-30\n";
+
+#[test]
+fn tracyl_groove_wall_offset_keeps_c_on_the_centre_line() {
+    let program = format!("{GROOVE}M0\nM30");
+    let (ch, samples) = run("tracyl-xyzc", "", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    // G41 travelling −Z in the Y-Z plane (seen from +X): left is +Y.
+    assert!(close(angle_diff(machine(&s, "CM"), 0.0), 0.0, 1e-6), "C {}", machine(&s, "CM"));
+    assert!(close(machine(&s, "YM"), 2.0, 1e-9), "YM {}", machine(&s, "YM"));
+    assert!(close(machine(&s, "ZM"), -30.0, 1e-9));
+    // All along the groove (away from its ends) C and YM hold still: the wall is parallel.
+    let (y, z, c) = (1, 2, 3);
+    let inside: Vec<&Sample> = samples.iter().filter(|p| p.axes[z] < -1.0 && p.axes[z] > -29.0).collect();
+    assert!(!inside.is_empty());
+    for p in inside {
+        assert!(close(p.axes[y], 2.0, 1e-9) && close(angle_diff(p.axes[c], 0.0), 0.0, 1e-6), "{:?}", p.axes);
+    }
+}
+
+#[test]
+fn tracyl_groove_wall_offset_around_the_periphery_moves_z_and_hands_back_y() {
+    // Around a quarter of the circumference on d = 40 (arc length 10π): the offset now lies
+    // along Z (left of +Y is +Z), so Z = −28, YM returns to 0 and C = 90°.
+    let program = format!("{GROOVE}Y31.4159265358979\nM0\nM30");
+    let (ch, _) = run("tracyl-xyzc", "", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert!(close(angle_diff(machine(&s, "CM"), 90.0), 0.0, 1e-6), "C {}", machine(&s, "CM"));
+    assert!(close(machine(&s, "YM"), 0.0, 1e-9), "YM {}", machine(&s, "YM"));
+    assert!(close(machine(&s, "ZM"), -28.0, 1e-9), "ZM {}", machine(&s, "ZM"));
+}
+
+#[test]
+fn tracyl_groove_wall_offset_on_an_arc_splits_along_the_radius() {
+    // Centre line: arc about (Y20, Z0) of radius 20 from (0, 0) counter-clockwise to the 225°
+    // point (20 − 10√2, −10√2). G41 lies towards the centre: the tool centre is 2 inside, along
+    // the unit radial (cos 45°, sin 45°); its periphery share √2 is travelled by YM and C
+    // follows the centre line's Y = 20 − 10√2 on d = 40.
+    let r2 = std::f64::consts::SQRT_2;
+    let (yc, zc) = (20.0 - 10.0 * r2, -10.0 * r2);
+    let program =
+        format!("T1 D1\nG0 X20 Y0 Z10\nTRACYL(40)\nG19 G1 F1000 G41 OFFN=8 Y0 Z0\nG3 Y={yc} Z={zc} J20 K0\nM0\nM30");
+    let (ch, _) = run("tracyl-xyzc", "", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let c = yc / 20.0 * 180.0 / std::f64::consts::PI;
+    assert!(close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-6), "C {} vs {c}", machine(&s, "CM"));
+    assert!(close(machine(&s, "YM"), r2, 1e-9), "YM {}", machine(&s, "YM"));
+    assert!(close(machine(&s, "ZM"), zc + r2, 1e-9), "ZM {}", machine(&s, "ZM"));
+}
+
+#[test]
+fn tracyl_groove_wall_with_negative_offn_cuts_the_other_wall() {
+    let program = GROOVE.replace("OFFN=8", "OFFN=-8") + "M0\nM30";
+    let (ch, _) = run("tracyl-xyzc", "", &program);
+    let s = ch.snapshot();
+    assert!(close(machine(&s, "YM"), -2.0, 1e-9), "YM {}", machine(&s, "YM"));
+    assert!(close(angle_diff(machine(&s, "CM"), 0.0), 0.0, 1e-6));
+}
+
+#[test]
+fn tracyl_groove_wall_refuses_a_tool_wider_than_the_groove() {
+    let program = GROOVE.replace("OFFN=8", "OFFN=5") + "M30";
+    let (ch, _) = run("tracyl-xyzc", "", &program);
+    assert_eq!(alarm_numbers(&ch.snapshot()), [12560]);
+}
+
+#[test]
+fn tracyl_512_offsets_by_rotation_instead() {
+    // Without groove-wall offset the whole compensation (r + OFFN = 6 + 1) turns C.
+    let md = "$MC_TRAFO_TYPE_1=512\n$MC_TRAFO_AXES_IN_1[3]=0";
+    let program = GROOVE.replace("OFFN=8", "OFFN=1") + "M0\nM30";
+    let (ch, _) = run("tracyl-xyzc", md, &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let c = 7.0 / 20.0 * 180.0 / std::f64::consts::PI;
+    assert!(close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-6), "C {} vs {c}", machine(&s, "CM"));
+    assert!(close(machine(&s, "YM"), 0.0, 1e-12));
+}
+
 #[test]
 fn tracyl_needs_a_working_diameter_above_1() {
     let (ch, _) = run("tracyl-xyzc", "", "TRACYL(1)\nM30");

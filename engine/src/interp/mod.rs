@@ -393,7 +393,7 @@ impl Interpreter {
         {
             let (mv, feed) = self.motion(&words, cfg, line)?;
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
-            let comp = self.compensation(cfg, &words);
+            let comp = self.compensation(cfg, &words, line)?;
             self.trc.push(trc::Prepared { mv, feed, line, item }, comp, &AxisLimit::for_channel(cfg), out)?;
         } else if self.offsets != offsets_before {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
@@ -538,24 +538,51 @@ impl Interpreter {
     /// The radius compensation for the block's move: side and corner mode from G41/G42 and
     /// G450/G451, radius from the active cutting edge (geometry + wear) plus OFFN, plane from
     /// the working plane through the active frame.
-    fn compensation(&self, cfg: &MachineConfig, words: &modal::Words) -> Option<trc::Compensation> {
-        let side = self.modal.trc?;
+    ///
+    /// With TRACYL's groove-wall offset the programmed path is the groove centre line and OFFN
+    /// half the groove width: the tool runs at `|OFFN| − r` from it, on the G41/G42 side (the
+    /// other side for a negative OFFN). A tool wider than the groove is refused.
+    fn compensation(
+        &self,
+        cfg: &MachineConfig,
+        words: &modal::Words,
+        line: u32,
+    ) -> Result<Option<trc::Compensation>, Alarm> {
+        let Some(mut side) = self.modal.trc else { return Ok(None) };
         let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
-        let radius = edge.map_or(0.0, |p| p[5] + p[14]) + self.modal.offn;
+        let tool_radius = edge.map_or(0.0, |p| p[5] + p[14]);
+        let groove_wall = self.groove_wall_axes();
+        let offn = self.modal.offn;
+        let radius = match groove_wall {
+            None => tool_radius + offn,
+            Some(_) if offn.abs() < tool_radius => {
+                return Err(Alarm::value_out_of_range(
+                    line,
+                    &format!("groove-wall offset: tool radius {tool_radius} is larger than OFFN={offn}"),
+                ));
+            }
+            Some(_) => {
+                if offn < 0.0 {
+                    side = side.opposite();
+                }
+                offn.abs() - tool_radius
+            }
+        };
         let frame = if words.g53 { Frame::identity() } else { self.offsets.frame.clone() };
         let (pa, po, _) = self.modal.plane.axes();
         let unit = |v: AxisVec| {
             let n = norm(&v);
             if n > 0.0 { v.map(|x| x / n) } else { v }
         };
-        Some(trc::Compensation {
+        Ok(Some(trc::Compensation {
             side,
             radius,
             corners: self.modal.trc_corners,
             arc_feed: self.modal.arc_feed,
             u: unit(frame.geo_direction(&cfg.geo_axes, pa)),
             v: unit(frame.geo_direction(&cfg.geo_axes, po)),
-        })
+            groove_wall,
+        }))
     }
 
     fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {

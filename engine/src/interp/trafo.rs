@@ -17,7 +17,7 @@ use crate::kinematics::plan::{PlanError, plan_block};
 use crate::kinematics::{self, ActiveTrafo, AnyTrafo, SelectArgs, Transformation};
 use crate::lang::{Block, Expr, Word};
 use crate::machine_data::{ChannelAxis, MachineAxis, MachineConfig, TrafoKind};
-use crate::motion::AxisVec;
+use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path};
 
 /// The words this module handles; `modal::collect` lets them through.
 pub fn is_keyword(name: &str) -> bool {
@@ -144,6 +144,9 @@ struct Active {
     derived: Arc<MachineConfig>,
     /// Machine position at the end of the last prepared block.
     machine: AxisVec,
+    /// BCS point where the last prepared move ended, so a jump in the axes that the radius
+    /// compensation splits (TRACYL groove wall) gets a linking move.
+    bcs: Option<AxisVec>,
 }
 
 impl TrafoState {
@@ -244,6 +247,7 @@ impl Interpreter {
                     base: Arc::new(cfg.clone()),
                     derived,
                     machine,
+                    bcs: None,
                 }));
                 self.trafo.generation = self.trafo.generation.wrapping_add(1);
             }
@@ -274,6 +278,7 @@ impl Interpreter {
         }
         if tool != a.trafo.tool {
             a.trafo.tool = tool;
+            a.bcs = None;
             self.pos = a.trafo.forward(&a.machine);
         }
         self.offsets.trafo = Some(a.trafo.clone());
@@ -288,21 +293,38 @@ impl Interpreter {
             return Ok(());
         }
         let mut result = Vec::with_capacity(out.len());
+        let limits = AxisLimit::for_channel(&a.derived);
         for item in out.drain(..) {
             let Item::Move { mv, line, offsets } = item else {
                 result.push(item);
                 continue;
             };
-            let (moves, end) = plan_block(&a.trafo, &mv, &a.machine, &a.base).map_err(|e| match e {
-                PlanError::Unreachable => working_area(line),
-                PlanError::SoftLimit { axis, plus } => Alarm::software_limit(line, &axis, plus),
-            })?;
+            let plan = |a: &Active, mv: &Move| {
+                plan_block(&a.trafo, mv, &a.machine, &a.base).map_err(|e| match e {
+                    PlanError::Unreachable => working_area(line),
+                    PlanError::SoftLimit { axis, plus } => Alarm::software_limit(line, &axis, plus),
+                })
+            };
+            let jump = a.bcs.filter(|b| b.iter().zip(&mv.path.start).any(|(x, y)| (x - y).abs() > 1e-6));
+            if let Some(from) = jump {
+                let path = Path::line(from, mv.path.start);
+                let length = path.start.iter().zip(&path.end).map(|(x, y)| (y - x).powi(2)).sum::<f64>().sqrt();
+                let feed = if mv.is_rapid() { Feed::Rapid } else { Feed::Path(mv.feed) };
+                let link = Move::new(path, length, feed, &limits, true, mv.tag);
+                let (moves, end) = plan(a, &link)?;
+                a.machine = end;
+                result.extend(moves.into_iter().map(|mv| Item::Move { mv, line, offsets: offsets.clone() }));
+            }
+            let (moves, end) = plan(a, &mv)?;
             a.machine = end;
             // The orientation axes end where the machine's continuity put them (a vector
             // interpolation may pass a pole into the other solution).
+            let mut bcs_end = mv.path.end;
             for k in a.trafo.trafo.orientation_slots().into_iter().flatten() {
+                bcs_end[k] = end[k];
                 self.pos[k] = end[k];
             }
+            a.bcs = Some(bcs_end);
             result.extend(moves.into_iter().map(|mv| Item::Move { mv, line, offsets: offsets.clone() }));
         }
         *out = result;
@@ -314,6 +336,14 @@ impl Interpreter {
     pub(super) fn orientation_transformation(&self) -> Option<(&ActiveTrafo, &AxisVec)> {
         let a = self.trafo.active.as_ref()?;
         a.trafo.trafo.orientation_slots().iter().any(Option::is_some).then_some((&a.trafo, &a.machine))
+    }
+
+    /// The TRACYL groove-wall slots when that offset is selected.
+    pub(super) fn groove_wall_axes(&self) -> Option<(usize, usize)> {
+        match &self.trafo.active.as_ref()?.trafo.trafo {
+            AnyTrafo::Tracyl(t) => t.groove_wall_axes(),
+            _ => None,
+        }
     }
 
     /// Machine position at the end of what was prepared.
@@ -332,6 +362,7 @@ impl Interpreter {
         match self.trafo.active.as_mut() {
             Some(a) => {
                 a.machine = *machine;
+                a.bcs = None;
                 self.pos = a.trafo.forward(machine);
             }
             None => self.pos = *machine,

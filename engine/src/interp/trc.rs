@@ -22,6 +22,15 @@ pub enum Side {
     Right,
 }
 
+impl Side {
+    pub fn opposite(self) -> Side {
+        match self {
+            Side::Left => Side::Right,
+            Side::Right => Side::Left,
+        }
+    }
+}
+
 /// Behaviour at outer corners (G group 18).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CornerMode {
@@ -53,6 +62,10 @@ pub struct Compensation {
     /// The working plane's abscissa and ordinate in axis space (unit vectors).
     pub u: AxisVec,
     pub v: AxisVec,
+    /// TRACYL groove-wall offset (513, 514 with k = 1): the channel slots of the unrolled
+    /// peripheral coordinate and of the real Y axis. The part of the offset along the periphery
+    /// is then travelled by the real Y axis, so the groove walls stay parallel.
+    pub groove_wall: Option<(usize, usize)>,
 }
 
 impl Compensation {
@@ -243,8 +256,19 @@ fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], c
     let (from, to) = if contour_feed { (p.mv.path.start, p.mv.path.end) } else { (p.mv.path.end, p.mv.path.end) };
     let start3 = with_plane(&from, s, comp);
     let end3 = with_plane(&to, e, comp);
+    let (mut start3, mut end3) = (start3, end3);
     let (path, feed) = match elem {
-        Elem::Line { .. } => (Path::line(start3, end3), p.feed),
+        Elem::Line { s: ls, e: le } => {
+            if let Some((rot, extra)) = comp.groove_wall {
+                // The offset of a line is the same along it: the left normal times the offset.
+                let len = dist(ls, le);
+                let n = (-(le.1 - ls.1) / len, (le.0 - ls.0) / len);
+                let along = comp.offset() * (n.0 * comp.u[rot] + n.1 * comp.v[rot]);
+                start3[extra] += along;
+                end3[extra] += along;
+            }
+            (Path::line(start3, end3), p.feed)
+        }
         Elem::Arc { r, a0, sweep, .. } => {
             // CFC: the programmed feed acts on the contour; the centre path runs faster on
             // outer and slower on inner arcs, by the ratio of the radii.
@@ -259,7 +283,22 @@ fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], c
                 }
                 (f, _, _) => f,
             };
-            let arc = Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep };
+            let mut arc = Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep };
+            if let Some((rot, extra)) = comp.groove_wall {
+                // The offset runs along the radius: a share k of the radial vector, where k is
+                // the offset over the equidistant's radius (1 for a transition circle about a
+                // contour corner).
+                let r0 = match element(&p.mv, comp) {
+                    Some(Elem::Arc { r: r0, .. }) if contour_feed => r0,
+                    _ => 0.0,
+                };
+                let k = if r > 1e-12 { (r - r0) / r } else { 0.0 };
+                let radial = |a: f64| r * (a.cos() * comp.u[rot] + a.sin() * comp.v[rot]);
+                start3[extra] += k * radial(a0);
+                end3[extra] += k * radial(a0 + sweep);
+                arc.u[extra] += k * comp.u[rot];
+                arc.v[extra] += k * comp.v[rot];
+            }
             (Path { start: start3, end: end3, arc: Some(arc), ori: None }, feed)
         }
     };

@@ -8,9 +8,10 @@
 //! Math (REFERENCE §4.4): `Y = (d/2)·φ + e`, `φ = s·(C − c0)` in radians, `X = Xm + Bx − Lx`,
 //! `Z = Zm + Bz − Lz`, where `e = By − Ly (+ Ym for 513/514)` is the tangential offset of the tool.
 //! The unrolled coordinate is linear in C, so C is continuous over any number of turns.
-//! The groove-wall offset of 513/514 moves the real Y axis by `OFFN − tool radius` on the
-//! side of the radius compensation; it needs OFFN and G41/G42, which this product does not
-//! model yet, so the real Y axis keeps its programmed position (it should stand at 0).
+//! The groove-wall offset of 513/514 (radius compensation with `OFFN` = half the groove width)
+//! is built by the radius compensation: the tool centre runs at `OFFN − tool radius` from the
+//! programmed centre line, and the share of that offset along the periphery lives in the real Y
+//! axis' slot, so the rotary axis follows the centre line and the walls stay parallel.
 
 use super::{BuildError, RotaryRoles, SelectArgs, Transformation, Unreachable, Vec3};
 use crate::machine_data::{TrafoDataSet, TrafoParams};
@@ -51,6 +52,14 @@ impl Tracyl {
             sign: if sign_plus { 1.0 } else { -1.0 },
             groove_wall,
         })
+    }
+}
+
+impl Tracyl {
+    /// With the groove-wall offset selected: the channel slots of the unrolled peripheral
+    /// coordinate and of the real Y axis that travels the offset along the periphery.
+    pub fn groove_wall_axes(&self) -> Option<(usize, usize)> {
+        self.axes.extra.filter(|_| self.groove_wall).map(|y| (self.axes.rotary.0, y))
     }
 }
 
