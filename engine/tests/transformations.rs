@@ -620,3 +620,76 @@ fn transmit_after_spos_starts_from_the_positioned_spindle() {
     let (x, y) = (20.0 * 45f64.to_radians().cos(), 20.0 * 45f64.to_radians().sin());
     assert!(close(pos(&s.basic, "X"), x, 1e-9) && close(pos(&s.basic, "Y"), y, 1e-9), "{:?}", s.basic);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Reset transformation and persistent transformation
+// ---------------------------------------------------------------------------------------------
+
+/// TRAANG data set 1 of the grinder as the persistent transformation, with the reset mode the
+/// manual requires.
+const PERSISTENT_TRAANG: &str = "\
+$MC_TRAFO_MODE_MASK=1
+$MC_TRAFO_RESET_VALUE=1
+$MC_RESET_MODE_MASK=1
+$MC_GEOAX_CHANGE_RESET=TRUE";
+
+fn transformation_type(ch: &Channel) -> Option<u32> {
+    ch.snapshot().transformation.map(|t| t.trafo_type)
+}
+
+#[test]
+fn a_persistent_transformation_is_active_from_power_on_and_survives_trafoof_and_program_end() {
+    let mut ch = Channel::from_preset("traang-grinder", PERSISTENT_TRAANG).unwrap();
+    assert_eq!(transformation_type(&ch), Some(1024));
+    // Cartesian X/Z from the first block, through TRAFOOF and after M30.
+    let (ch2, _) = run("traang-grinder", PERSISTENT_TRAANG, "G0 X10 Z-5\nTRAFOOF\nG0 X20 Z0\nM30");
+    let s = ch2.snapshot();
+    assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
+    let (mu, mz) = traang_axes(45.0, 20.0, 0.0);
+    assert!(close(machine(&s, "MU"), mu, 1e-9) && close(machine(&s, "MZ"), mz, 1e-9), "{:?}", s.machine);
+    assert_eq!(transformation_type(&ch2), Some(1024));
+    ch.reset();
+    assert_eq!(transformation_type(&ch), Some(1024));
+}
+
+#[test]
+fn another_transformation_next_to_a_persistent_one_needs_a_chain() {
+    let md = format!(
+        "{PERSISTENT_TRAANG}\n$MC_TRAFO_TYPE_2=1024\n$MC_TRAFO_AXES_IN_2[0]=1\n$MC_TRAFO_AXES_IN_2[1]=2\n$MC_TRAFO_AXES_IN_2[2]=0\n$MC_TRAFO_GEOAX_ASSIGN_TAB_2[0]=1\n$MC_TRAFO_GEOAX_ASSIGN_TAB_2[2]=2"
+    );
+    let (ch, _) = run("traang-grinder", &md, "TRAANG(30,2)\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [14401]);
+}
+
+#[test]
+fn a_persistent_transformation_needs_the_reset_mode_the_manual_names() {
+    for md in [
+        "$MC_TRAFO_MODE_MASK=1\n$MC_TRAFO_RESET_VALUE=1",
+        "$MC_TRAFO_MODE_MASK=1\n$MC_TRAFO_RESET_VALUE=1\n$MC_GEOAX_CHANGE_RESET=TRUE\n$MC_RESET_MODE_MASK='H81'",
+        "$MC_TRAFO_MODE_MASK=1\n$MC_GEOAX_CHANGE_RESET=TRUE",
+    ] {
+        let err = Channel::from_preset("traang-grinder", md).expect_err(md);
+        assert!(err.to_string().contains("14404"), "{md}: {err}");
+    }
+}
+
+#[test]
+fn the_reset_value_selects_a_transformation_at_reset_and_trafoof_still_ends_it() {
+    // Stopped at M0: without transformation X and Z are the machine axes MU and MZ themselves.
+    let (mut ch, _) = run("traang-grinder", "$MC_TRAFO_RESET_VALUE=1", "TRAFOOF\nG0 X20 Z0\nM0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped);
+    assert_eq!(transformation_type(&ch), None);
+    assert!(close(machine(&s, "MU"), 20.0, 1e-9), "{:?}", s.machine);
+    ch.reset();
+    assert_eq!(transformation_type(&ch), Some(1024));
+}
+
+#[test]
+fn reset_mode_bit_7_keeps_the_active_transformation() {
+    let (ch, _) = run("traang-grinder", "$MC_RESET_MODE_MASK='H81'", "TRAANG(30)\nM30");
+    assert_eq!(ch.snapshot().status, Status::Idle);
+    assert_eq!(transformation_type(&ch), Some(1024));
+    let (ch, _) = run("traang-grinder", "", "TRAANG(30)\nM30");
+    assert_eq!(transformation_type(&ch), None);
+}

@@ -252,11 +252,10 @@ impl Channel {
         self.status = Status::Idle;
         self.prep_done = true;
         self.current_line = None;
-        self.deselect_transformation();
         self.interp.end_program(&self.cfg);
-        self.interp.sync_transformation(&self.machine);
         // Program end returns the offsets to their reset values (G500); the display follows.
         self.offsets = self.interp.offsets();
+        self.adopt_transformation();
         self.events.push(Event::ProgramEnded);
     }
 

@@ -226,7 +226,7 @@ impl Channel {
         let cfg = Arc::new(cfg);
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg);
-        Channel {
+        let mut ch = Channel {
             interp: Interpreter::new(&cfg),
             offsets: Offsets::default(),
             data,
@@ -256,7 +256,19 @@ impl Channel {
             machine: [0.0; MAX_CHANNEL_AXES],
             trafo: None,
             prep_waits_for_trafo: false,
-        }
+        };
+        // Power on acts like a reset: the reset transformation (if configured) is active.
+        ch.place_axes([0.0; MAX_CHANNEL_AXES]);
+        ch
+    }
+
+    /// Puts the stationary axes at machine position `pos` and brings the interpreter, the
+    /// displayed offsets and the transformation in line with it (power on, restore, new data).
+    fn place_axes(&mut self, pos: AxisVec) {
+        self.machine = pos;
+        self.interp.reset(&self.cfg, &pos);
+        self.offsets = self.interp.offsets();
+        self.adopt_transformation();
     }
 
     /// The activated configuration.
@@ -287,9 +299,7 @@ impl Channel {
                 pos[k] = old_pos[old];
             }
         }
-        next.planner.set_position(pos);
-        next.machine = pos;
-        next.interp.sync_position(&pos);
+        next.place_axes(pos);
         next.mode = self.mode;
         next.tick = self.tick;
         *self = next;
@@ -424,7 +434,6 @@ impl Channel {
             s.leave_axis_mode(pos[s.axis]);
             s.stop_now();
         }
-        self.deselect_transformation();
         // Machine data written by programs becomes active with the reset (when it is valid and
         // keeps the axes; otherwise it waits for a PUT of machine data to report the problem).
         if let Ok(cfg) = self.data.activate()
@@ -437,6 +446,7 @@ impl Channel {
         let pos = self.machine;
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();
+        self.adopt_transformation();
         for a in std::mem::take(&mut self.alarms) {
             self.events.push(Event::AlarmCleared { number: a.number });
         }
@@ -517,9 +527,7 @@ impl Channel {
         }
         let mut pos = [0.0; MAX_CHANNEL_AXES];
         pos[..positions.len()].copy_from_slice(positions);
-        self.planner.set_position(pos);
-        self.machine = pos;
-        self.interp.sync_position(&pos);
+        self.place_axes(pos);
         Ok(())
     }
 

@@ -66,11 +66,14 @@ impl Channel {
         true
     }
 
-    /// Program end and reset deselect the transformation (MD20110 RESET_MODE_MASK default);
-    /// the axes stay where they are.
-    pub(super) fn deselect_transformation(&mut self) {
-        if self.trafo.take().is_some() {
-            self.planner.set_position(self.machine);
-        }
+    /// After reset and program end: takes over the transformation the interpreter's reset
+    /// chose (none, the one that stays, or the reset data set); the axes stay where they are.
+    pub(super) fn adopt_transformation(&mut self) {
+        self.trafo = self.interp.offsets().trafo;
+        let space = match &self.trafo {
+            Some(t) => t.forward(&self.machine),
+            None => self.machine,
+        };
+        self.planner.set_position(space);
     }
 }

@@ -194,26 +194,27 @@ impl Interpreter {
         }
     }
 
-    /// Channel reset: modal state to reset values; the tool stays selected.
-    pub fn reset(&mut self, cfg: &MachineConfig, pos: &AxisVec) {
+    /// Channel reset with the machine standing at `machine`: modal state to reset values, the
+    /// reset transformation (if any); the tool stays selected.
+    pub fn reset(&mut self, cfg: &MachineConfig, machine: &AxisVec) {
         self.modal = Modal::reset(cfg);
         self.flow = None;
         self.calls.clear();
         self.held = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
-        self.clear_transformation();
         self.direction = 0;
-        self.pos = *pos;
         self.pframe = Frame::identity();
         self.offsets.frame = work_offset(cfg, self.modal.work_offset);
+        self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
+        self.reset_transformation(cfg, machine);
     }
 
     /// Program end acts like a reset of the modal state (the spindle keeps turning until M5 or reset).
     pub fn end_program(&mut self, cfg: &MachineConfig) {
-        let pos = self.pos;
+        let machine = self.transformation_machine_position();
         let direction = self.direction;
-        self.reset(cfg, &pos);
+        self.reset(cfg, &machine);
         self.direction = direction;
     }
 

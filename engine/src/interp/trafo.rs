@@ -218,13 +218,19 @@ impl Interpreter {
             return Err(Alarm::syntax(line, "a transformation is selected or deselected in a block without motion"));
         }
         let machine = self.transformation_machine_position();
+        let persistent = cfg.reset_trafo.data_set.filter(|_| cfg.reset_trafo.persistent);
         match selection {
-            Selection::Off => {
-                if self.trafo.active.take().is_some() {
-                    self.pos = machine;
-                    self.trafo.generation = self.trafo.generation.wrapping_add(1);
+            // TRAFOOF returns to a persistent transformation.
+            Selection::Off => match persistent {
+                Some(n) if self.trafo.active.as_ref().is_some_and(|a| a.trafo.number == n) => {}
+                Some(n) => self.select_data_set(n, &SelectArgs::default(), cfg, &machine, line)?,
+                None => {
+                    if self.trafo.active.take().is_some() {
+                        self.pos = machine;
+                        self.trafo.generation = self.trafo.generation.wrapping_add(1);
+                    }
                 }
-            }
+            },
             Selection::On { kind, n, args } => {
                 let set = cfg
                     .trafos
@@ -232,27 +238,72 @@ impl Interpreter {
                     .filter(|s| s.kind == kind)
                     .nth(n - 1)
                     .ok_or_else(|| not_available(line, &format!("{} data set {n}", kind.name())))?;
-                let trafo =
-                    kinematics::build(set, cfg, &args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
-                if let Some(k) = trafo.rotary_slot().filter(|&k| cfg.master_spindle == Some(k) && self.direction != 0) {
-                    return Err(wrong_axis_type(line, &cfg.channel_axes[k].name));
+                if persistent.is_some_and(|p| p != set.number) {
+                    // Another transformation would have to be chained before the persistent one.
+                    return Err(not_available(
+                        line,
+                        &format!("{} next to the persistent transformation (needs a TRACON chain)", kind.name()),
+                    ));
                 }
-                let derived = Arc::new(derive(cfg, &trafo));
-                let trafo = ActiveTrafo { trafo, tool: [0.0; 3], number: set.number };
-                self.pos = trafo.forward(&machine);
-                self.modal.work_offset = 0;
-                self.trafo.active = Some(Box::new(Active {
-                    trafo,
-                    includes_tool: set.includes_tool,
-                    base: Arc::new(cfg.clone()),
-                    derived,
-                    machine,
-                    bcs: None,
-                }));
-                self.trafo.generation = self.trafo.generation.wrapping_add(1);
+                self.select_data_set(set.number, &args, cfg, &machine, line)?;
             }
         }
         Ok(())
+    }
+
+    /// Makes data set `number` the active transformation, the machine standing at `machine`.
+    fn select_data_set(
+        &mut self,
+        number: usize,
+        args: &SelectArgs,
+        cfg: &MachineConfig,
+        machine: &AxisVec,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        let set = cfg
+            .trafos
+            .iter()
+            .find(|s| s.number == number)
+            .ok_or_else(|| not_available(line, &format!("data set {number}")))?;
+        let trafo = kinematics::build(set, cfg, args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
+        if let Some(k) = trafo.rotary_slot().filter(|&k| cfg.master_spindle == Some(k) && self.direction != 0) {
+            return Err(wrong_axis_type(line, &cfg.channel_axes[k].name));
+        }
+        let derived = Arc::new(derive(cfg, &trafo));
+        let trafo = ActiveTrafo { trafo, tool: [0.0; 3], number: set.number };
+        self.pos = trafo.forward(machine);
+        self.modal.work_offset = 0;
+        self.trafo.active = Some(Box::new(Active {
+            trafo,
+            includes_tool: set.includes_tool,
+            base: Arc::new(cfg.clone()),
+            derived,
+            machine: *machine,
+            bcs: None,
+        }));
+        self.trafo.generation = self.trafo.generation.wrapping_add(1);
+        Ok(())
+    }
+
+    /// The transformation after reset and program end: the active one stays (RESET_MODE_MASK
+    /// bit 7), or the reset data set (TRAFO_RESET_VALUE) is selected, or none. The machine
+    /// stands at `machine`. Data checked at activation cannot fail here; should it, the channel
+    /// is left without transformation rather than with a half-built one.
+    pub(super) fn reset_transformation(&mut self, cfg: &MachineConfig, machine: &AxisVec) {
+        if cfg.reset_trafo.keep_active && self.trafo.active.is_some() {
+            self.sync_transformation(machine);
+            self.absorb_tool_into_transformation();
+            return;
+        }
+        self.clear_transformation();
+        self.pos = *machine;
+        if let Some(n) = cfg.reset_trafo.data_set {
+            if self.select_data_set(n, &SelectArgs::default(), cfg, machine, 0).is_err() {
+                self.clear_transformation();
+                self.pos = *machine;
+            }
+            self.absorb_tool_into_transformation();
+        }
     }
 
     /// Moves the tool length of the geometry axes into the active transformation (when it
@@ -347,7 +398,7 @@ impl Interpreter {
     }
 
     /// Machine position at the end of what was prepared.
-    fn transformation_machine_position(&self) -> AxisVec {
+    pub(super) fn transformation_machine_position(&self) -> AxisVec {
         self.trafo.active.as_ref().map_or(self.pos, |a| a.machine)
     }
 

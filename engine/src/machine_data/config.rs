@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use super::trafo::{self, TrafoDataSet};
+use super::trafo::{self, TrafoDataSet, TrafoKind};
 use super::{EdgeParams, FrameComponent, MachineData, registry};
 
 /// Inconsistent machine data found at activation; `datum` names the datum to blame.
@@ -69,6 +69,59 @@ pub struct MachineConfig {
     pub trafos: Vec<TrafoDataSet>,
     /// How orientations are programmed and interpolated (MD21100..21130).
     pub orientation: OriSettings,
+    /// Which transformation is active after reset and program end.
+    pub reset_trafo: ResetTrafo,
+}
+
+/// The transformation after reset and program end (MD20110 RESET_MODE_MASK bits 0 and 7,
+/// MD20140 TRAFO_RESET_VALUE, MD20144 TRAFO_MODE_MASK bit 0).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ResetTrafo {
+    /// RESET_MODE_MASK bits 0 and 7 set: the active transformation stays.
+    pub keep_active: bool,
+    /// Data-set number selected at reset (TRAFO_RESET_VALUE, 0 = none).
+    pub data_set: Option<usize>,
+    /// TRAFO_MODE_MASK bit 0: that data set is persistent, TRAFOOF returns to it.
+    pub persistent: bool,
+}
+
+impl ResetTrafo {
+    fn build(md: &MachineData, trafos: &[TrafoDataSet]) -> Result<ResetTrafo, ActivationError> {
+        let mask = md.num("$MC_RESET_MODE_MASK", 0, 0) as u32;
+        let value = md.num("$MC_TRAFO_RESET_VALUE", 0, 0) as usize;
+        let persistent = md.num("$MC_TRAFO_MODE_MASK", 0, 0) as u32 & 1 != 0;
+        let data_set = (value != 0).then_some(value);
+        if let Some(n) = data_set {
+            let Some(set) = trafos.iter().find(|s| s.number == n) else {
+                return fail("TRAFO_RESET_VALUE", format!("$MC_TRAFO_RESET_VALUE={n}: data set {n} is not configured"));
+            };
+            if set.kind == TrafoKind::Tracyl {
+                return fail(
+                    "TRAFO_RESET_VALUE",
+                    format!(
+                        "$MC_TRAFO_RESET_VALUE={n}: TRACYL needs a working diameter and cannot be selected by reset"
+                    ),
+                );
+            }
+        }
+        // Alarm 14404: the persistent transformation needs reset mode bit 0 = 1, bit 7 = 0 and
+        // MD20118 GEOAX_CHANGE_RESET = TRUE (Transformations FM, persistent transformation).
+        if persistent {
+            let problem = if data_set.is_none() {
+                Some("$MC_TRAFO_RESET_VALUE names no data set")
+            } else if mask & 1 == 0 || mask & 0x80 != 0 {
+                Some("$MC_RESET_MODE_MASK needs bit 0 = 1 and bit 7 = 0")
+            } else if md.num("$MC_GEOAX_CHANGE_RESET", 0, 0) == 0.0 {
+                Some("$MC_GEOAX_CHANGE_RESET must be TRUE")
+            } else {
+                None
+            };
+            if let Some(p) = problem {
+                return fail("TRAFO_MODE_MASK", format!("alarm 14404: persistent transformation: {p}"));
+            }
+        }
+        Ok(ResetTrafo { keep_active: mask & 1 != 0 && mask & 0x80 != 0, data_set, persistent })
+    }
 }
 
 /// Channel data on orientation programming.
@@ -182,6 +235,7 @@ impl MachineConfig {
             master_spindle,
             tools: BTreeMap::new(),
             work_offsets: Vec::new(),
+            reset_trafo: ResetTrafo::build(md, &trafos)?,
             trafos,
             orientation: OriSettings::default(),
         };

@@ -13,7 +13,7 @@ pub mod trafo;
 
 use std::collections::BTreeMap;
 
-pub use config::{ChannelAxis, MachineAxis, MachineConfig, OriSettings};
+pub use config::{ChannelAxis, MachineAxis, MachineConfig, OriSettings, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
 pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};
