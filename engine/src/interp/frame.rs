@@ -6,6 +6,7 @@
 //! frame is the settable frame (G54 ...) followed by the programmable frame (TRANS, ROT, SCALE,
 //! MIRROR and their additive forms).
 
+use crate::machine_data::FrameData;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::AxisVec;
 
@@ -40,6 +41,76 @@ impl Frame {
             lin: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
             factor: [1.0; MAX_CHANNEL_AXES],
         }
+    }
+
+    /// A stored frame of the data management (settable or basic frame) on this channel's axes.
+    pub fn from_data(data: &FrameData, geo: &GeoAxes) -> Frame {
+        let mut f = Frame::identity();
+        if data.is_neutral() {
+            return f;
+        }
+        for (k, t) in data.trans.iter().enumerate() {
+            f.trans[k] = *t;
+        }
+        let factor = |k: usize| data.scale[k] * if data.mirror[k] { -1.0 } else { 1.0 };
+        for k in 0..data.scale.len() {
+            f.factor[k] = factor(k);
+        }
+        // Rotation of the scaled and mirrored child axes: R · diag(factors).
+        let r = rpy(data.rot[0], data.rot[1], data.rot[2]);
+        for (c, axis) in geo.iter().enumerate() {
+            let s = axis.map_or(1.0, factor);
+            for (row, r_row) in f.lin.iter_mut().zip(&r) {
+                row[c] = r_row[c] * s;
+            }
+        }
+        f
+    }
+
+    /// The frame as stored frame data for `n` channel axes: the rotation of the geometry axes
+    /// as RPY angles, scale and mirror per axis. `None` when the linear part is no rotation with
+    /// per-axis scale and mirror (a shear), which stored frames cannot hold.
+    pub fn to_data(&self, geo: &GeoAxes, n: usize) -> Option<FrameData> {
+        let mut data = FrameData::neutral(n);
+        data.trans.copy_from_slice(&self.trans[..n]);
+        for k in 0..n {
+            data.scale[k] = self.factor[k].abs();
+            data.mirror[k] = self.factor[k] < 0.0;
+        }
+        // Columns of the linear part: rotation columns times signed factors.
+        let mut q = self.lin;
+        let mut d = [1.0; 3];
+        for c in 0..3 {
+            let norm = (0..3).map(|r| q[r][c] * q[r][c]).sum::<f64>().sqrt();
+            if norm < 1e-12 {
+                return None;
+            }
+            d[c] = norm;
+            for row in q.iter_mut() {
+                row[c] /= norm;
+            }
+        }
+        let det = q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0])
+            + q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+        if det < 0.0 {
+            // One mirrored axis: the one whose column points most against its own direction.
+            let c = (0..3).min_by(|a, b| q[*a][*a].total_cmp(&q[*b][*b])).expect("three columns");
+            d[c] = -d[c];
+            for row in q.iter_mut() {
+                row[c] = -row[c];
+            }
+        }
+        data.rot =
+            [q[2][1].atan2(q[2][2]), (-q[2][0]).clamp(-1.0, 1.0).asin(), q[1][0].atan2(q[0][0])].map(f64::to_degrees);
+        for (g, axis) in geo.iter().enumerate() {
+            if let Some(k) = *axis {
+                data.scale[k] = d[g].abs();
+                data.mirror[k] = d[g] < 0.0;
+            }
+        }
+        let back = Frame::from_data(&data, geo);
+        let same = (0..3).all(|r| (0..3).all(|c| (back.lin[r][c] - self.lin[r][c]).abs() < 1e-9));
+        same.then_some(data)
     }
 
     /// A pure translation.
@@ -160,6 +231,31 @@ impl Frame {
         }
         out
     }
+}
+
+/// The system frames the control writes itself (toolholder, tool alignment, cycles), each a
+/// link of the frame chain. Like the control's system frames they survive a reset; the
+/// function that wrote one deletes it (TOROTOF, PAROTOF, CYCLE800 deselection).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SystemFrames {
+    /// `$P_PARTFRAME`: TCARR table offset and PAROT rotation (nearest to the BCS).
+    pub part: Frame,
+    /// `$P_TOOLFRAME`: TOROT / TOFRAME.
+    pub tool: Frame,
+    /// `$P_CYCFRAME`: the swivel cycle (nearest to the WCS).
+    pub cycle: Frame,
+}
+
+/// Frames from the BCS towards the WCS chained into one, skipping neutral links.
+pub fn chain(links: &[&Frame], geo: &GeoAxes) -> Frame {
+    let mut out: Option<Frame> = None;
+    for link in links.iter().filter(|f| !f.is_identity()) {
+        out = Some(match out {
+            None => (*link).clone(),
+            Some(parent) => parent.then(link, geo),
+        });
+    }
+    out.unwrap_or_default()
 }
 
 /// `Rz(z)·Ry(y)·Rx(x)`: the RPY rotation of ROT X.. Y.. Z.. (MD10600 FRAME_ANGLE_INPUT_MODE = 1),

@@ -32,6 +32,7 @@ pub use calls::Programs;
 pub use corners::Corner;
 use flow::Flow;
 pub use frame::Frame;
+use frame::SystemFrames;
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
 use scope::sys_view;
@@ -148,6 +149,8 @@ pub struct Interpreter {
     vars: Variables,
     /// The programmable frame ($P_PFRAME: TRANS, ROT, SCALE, MIRROR ...).
     pframe: Frame,
+    /// The system frames of the frame chain.
+    system: SystemFrames,
     /// Programmed spindle speed (rev/min) and direction (+1 M3, -1 M4, 0 M5).
     speed: f64,
     direction: i8,
@@ -180,6 +183,7 @@ impl Interpreter {
             offsets: Offsets::default(),
             vars: Variables::default(),
             pframe: Frame::identity(),
+            system: SystemFrames::default(),
             speed: 0.0,
             direction: 0,
             flow: None,
@@ -205,7 +209,7 @@ impl Interpreter {
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.direction = 0;
         self.pframe = Frame::identity();
-        self.offsets.frame = work_offset(cfg, self.modal.work_offset);
+        self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
         self.reset_transformation(cfg, machine);
     }
@@ -348,7 +352,7 @@ impl Interpreter {
         if let Some(f) = &words.program_frame {
             self.pframe = f.clone();
         }
-        self.offsets.frame = work_offset(cfg, self.modal.work_offset).then(&self.pframe, &cfg.geo_axes);
+        self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
         self.absorb_tool_into_transformation();
 
@@ -781,13 +785,26 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
     Ok(())
 }
 
-/// Settable frame `frame` (0 = G500): a translation per channel axis.
-pub(super) fn work_offset(cfg: &MachineConfig, frame: usize) -> Frame {
-    let mut v = [0.0; MAX_CHANNEL_AXES];
-    if let Some(f) = cfg.work_offsets.get(frame) {
-        v[..f.len()].copy_from_slice(f);
+impl Interpreter {
+    /// `$P_ACTFRAME`: $P_PARTFRAME : $P_ACTBFRAME : $P_IFRAME : $P_TOOLFRAME : $P_PFRAME :
+    /// $P_CYCFRAME, from the BCS towards the WCS (the frames this product models).
+    fn active_frame(&self, cfg: &MachineConfig) -> Frame {
+        let (base, settable) = (basic_frame(cfg), work_offset(cfg, self.modal.work_offset));
+        let s = &self.system;
+        frame::chain(&[&s.part, &base, &settable, &s.tool, &self.pframe, &s.cycle], &cfg.geo_axes)
     }
-    Frame::translation(v)
+}
+
+/// Settable frame `frame` (0 = G500).
+pub(super) fn work_offset(cfg: &MachineConfig, frame: usize) -> Frame {
+    cfg.work_offsets.get(frame).map_or_else(Frame::identity, |f| Frame::from_data(f, &cfg.geo_axes))
+}
+
+/// The total basic frame `$P_ACTBFRAME`: every channel basic frame chained in order.
+pub(super) fn basic_frame(cfg: &MachineConfig) -> Frame {
+    cfg.base_frames
+        .iter()
+        .fold(Frame::identity(), |acc, f| acc.then(&Frame::from_data(f, &cfg.geo_axes), &cfg.geo_axes))
 }
 
 /// Tool length vector per channel axis: lengths L1..L3 (geometry + wear + adapter) mapped to the

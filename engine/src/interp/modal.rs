@@ -527,25 +527,38 @@ fn program_frame(indices: &[Expr], expr: &Expr, vars: &Variables, sys: &SysView,
     }
 }
 
-/// `$P_UIFR[n] = <frame>` as NC data text, one translation line per axis. Settable frames hold
-/// translations only in this product: a frame with rotation, scale or mirror is refused.
-fn settable_frame_lines(index: &Expr, expr: &Expr, ctx: &Ctx, sys: &SysView, line: u32) -> Result<String, Alarm> {
+/// `$P_UIFR[n] = <frame>` (or `$P_CHBFR[n]`) as NC data text: every component of every axis,
+/// so the stored frame is replaced as a whole. A frame whose linear part is not a rotation with
+/// scale and mirror cannot be stored and is refused.
+fn stored_frame_lines(
+    var: &str,
+    index: &Expr,
+    expr: &Expr,
+    ctx: &Ctx,
+    sys: &SysView,
+    line: u32,
+) -> Result<String, Alarm> {
     let n = eval(index, ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
     let Value::Frame(f) = eval(expr, ctx, line)? else {
-        return Err(Alarm::type_error(line, "$P_UIFR[n] needs a frame"));
+        return Err(Alarm::type_error(line, &format!("{var}[n] needs a frame")));
     };
-    let neutral = Frame { trans: f.trans, ..Frame::identity() };
-    if *f != neutral {
-        return Err(Alarm::value_out_of_range(
-            line,
-            "settable frames take translations only here (no ROT, SCALE, MIRROR)",
-        ));
-    }
     let cfg = sys.cfg;
-    Ok((0..cfg.channel_axes.len())
-        .map(|k| format!("$P_UIFR[{n},{},TR]={:?}", cfg.program_axis_name(k), f.trans[k]))
-        .collect::<Vec<_>>()
-        .join("\n"))
+    let count = cfg.channel_axes.len();
+    let data = f
+        .to_data(&cfg.geo_axes, count)
+        .ok_or_else(|| Alarm::value_out_of_range(line, &format!("{var}[{n}]: the frame's rotation part is sheared")))?;
+    let mut lines = Vec::new();
+    for k in 0..count {
+        let axis = cfg.program_axis_name(k);
+        lines.push(format!("{var}[{n},{axis},TR]={:?}", data.trans[k]));
+        lines.push(format!("{var}[{n},{axis},FI]=0.0"));
+        lines.push(format!("{var}[{n},{axis},SC]={:?}", data.scale[k]));
+        lines.push(format!("{var}[{n},{axis},MI]={}", u8::from(data.mirror[k])));
+        if let Some(g) = cfg.geo_axes.iter().position(|a| *a == Some(k)) {
+            lines.push(format!("{var}[{n},{axis},RT]={:?}", data.rot[g]));
+        }
+    }
+    Ok(lines.join("\n"))
 }
 
 /// A write to tool data (`$TC_DP..`), settable frames (`$P_UIFR`) or machine and setting data
@@ -560,14 +573,17 @@ fn data_write(
     line: u32,
 ) -> Result<String, Alarm> {
     let writable = name.starts_with("$TC_DP")
-        || name == "$P_UIFR"
+        || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_UBFR")
         || ["$MN_", "$MC_", "$MA_", "$SN_", "$SC_", "$SA_"].iter().any(|p| name.starts_with(p));
     if !writable {
         return Err(Alarm::unknown_name(line, &format!("{name} (not writable from a program)")));
     }
     let ctx = Ctx { vars, sys };
-    if name == "$P_UIFR" && indices.len() == 1 {
-        return settable_frame_lines(&indices[0], expr, &ctx, sys, line);
+    if matches!(name, "$P_UIFR" | "$P_CHBFR") && indices.len() == 1 {
+        return stored_frame_lines(name, &indices[0], expr, &ctx, sys, line);
+    }
+    if name == "$P_UBFR" && indices.is_empty() {
+        return stored_frame_lines("$P_CHBFR", &Expr::Number(0.0), expr, &ctx, sys, line);
     }
     let mut idx = Vec::new();
     for e in indices {

@@ -20,6 +20,8 @@ pub(crate) struct SysView<'a> {
     pub offsets: &'a Offsets,
     /// The programmable frame.
     pub pframe: &'a Frame,
+    /// The system frames.
+    pub system: &'a super::frame::SystemFrames,
     /// Spindles switched to position control (SPOS): programmable as rotary axes.
     pub positioned: &'a [bool; MAX_CHANNEL_AXES],
 }
@@ -34,6 +36,7 @@ macro_rules! sys_view {
             pos: &$interp.pos,
             offsets: &$interp.offsets,
             pframe: &$interp.pframe,
+            system: &$interp.system,
             positioned: &$interp.positioned,
         }
     };
@@ -110,21 +113,36 @@ impl Scope for Ctx<'_> {
                 )
             }
             _ if name.starts_with("$TC_DP") => tool_param(sys.cfg, name, indices, line)?,
-            "$P_PFRAME" | "$P_ACTFRAME" | "$P_IFRAME" | "$P_UIFR" => {
+            "$P_PFRAME" | "$P_ACTFRAME" | "$P_IFRAME" | "$P_ACTBFRAME" | "$P_PARTFRAME" | "$P_TOOLFRAME"
+            | "$P_CYCFRAME" | "$P_UIFR" | "$P_CHBFR" | "$P_UBFR" => {
+                let stored = |list: &[crate::machine_data::FrameData]| {
+                    let (n, rest) = indices
+                        .split_first()
+                        .ok_or_else(|| Alarm::index_error(line, name, "needs the frame number"))?;
+                    let n = n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+                    let data = usize::try_from(n)
+                        .ok()
+                        .and_then(|n| list.get(n))
+                        .ok_or_else(|| Alarm::index_error(line, name, &format!("frame {n} does not exist")))?;
+                    Ok::<_, Alarm>((Frame::from_data(data, &sys.cfg.geo_axes), rest))
+                };
                 let (frame, rest) = match name {
                     "$P_PFRAME" => (sys.pframe.clone(), indices),
                     "$P_ACTFRAME" => (sys.offsets.frame.clone(), indices),
                     "$P_IFRAME" => (super::work_offset(sys.cfg, sys.modal.work_offset), indices),
-                    _ => {
-                        let (n, rest) = indices
-                            .split_first()
-                            .ok_or_else(|| Alarm::index_error(line, name, "needs the frame number"))?;
-                        let n = n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
-                        if n < 0 || n as usize >= sys.cfg.work_offsets.len() {
-                            return Err(Alarm::index_error(line, name, &format!("frame {n} does not exist")));
-                        }
-                        (super::work_offset(sys.cfg, n as usize), rest)
-                    }
+                    "$P_ACTBFRAME" => (super::basic_frame(sys.cfg), indices),
+                    "$P_PARTFRAME" => (sys.system.part.clone(), indices),
+                    "$P_TOOLFRAME" => (sys.system.tool.clone(), indices),
+                    "$P_CYCFRAME" => (sys.system.cycle.clone(), indices),
+                    "$P_UIFR" => stored(&sys.cfg.work_offsets)?,
+                    "$P_CHBFR" => stored(&sys.cfg.base_frames)?,
+                    _ => (
+                        sys.cfg
+                            .base_frames
+                            .first()
+                            .map_or_else(Frame::identity, |f| Frame::from_data(f, &sys.cfg.geo_axes)),
+                        indices,
+                    ),
                 };
                 match rest {
                     [] => Value::Frame(Box::new(frame)),

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::trafo::{self, TrafoDataSet, TrafoKind};
-use super::{EdgeParams, FrameComponent, MachineData, registry};
+use super::{EdgeParams, FrameComponent, FrameFamily, MachineData, registry};
 
 /// Inconsistent machine data found at activation; `datum` names the datum to blame.
 #[derive(Debug, Clone, PartialEq)]
@@ -63,8 +63,10 @@ pub struct MachineConfig {
     pub master_spindle: Option<usize>,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
     pub tools: BTreeMap<(u32, u32), EdgeParams>,
-    /// Settable frames G500, G54..: translation per channel axis (TR + FI).
-    pub work_offsets: Vec<Vec<f64>>,
+    /// Settable frames G500, G54.. (`$P_UIFR[n]`).
+    pub work_offsets: Vec<FrameData>,
+    /// Channel basic frames (`$P_CHBFR[n]`), chained in order into `$P_ACTBFRAME`.
+    pub base_frames: Vec<FrameData>,
     /// Configured transformation data sets in data-set order (`$MC_TRAFO_TYPE_1..10`).
     pub trafos: Vec<TrafoDataSet>,
     /// How orientations are programmed and interpolated (MD21100..21130).
@@ -121,6 +123,31 @@ impl ResetTrafo {
             }
         }
         Ok(ResetTrafo { keep_active: mask & 1 != 0 && mask & 0x80 != 0, data_set, persistent })
+    }
+}
+
+/// A stored frame as the data management holds it, by channel axis: translation (coarse plus
+/// fine), rotation of the geometry axes (RPY angles about X, Y, Z in degrees), scale and mirror.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameData {
+    pub trans: Vec<f64>,
+    pub rot: [f64; 3],
+    pub scale: Vec<f64>,
+    pub mirror: Vec<bool>,
+}
+
+impl FrameData {
+    /// The neutral frame for `n` channel axes.
+    pub fn neutral(n: usize) -> FrameData {
+        FrameData { trans: vec![0.0; n], rot: [0.0; 3], scale: vec![1.0; n], mirror: vec![false; n] }
+    }
+
+    /// True for a frame that changes nothing.
+    pub fn is_neutral(&self) -> bool {
+        self.trans.iter().all(|t| *t == 0.0)
+            && self.rot == [0.0; 3]
+            && self.scale.iter().all(|s| *s == 1.0)
+            && !self.mirror.iter().any(|m| *m)
     }
 }
 
@@ -235,6 +262,7 @@ impl MachineConfig {
             master_spindle,
             tools: BTreeMap::new(),
             work_offsets: Vec::new(),
+            base_frames: Vec::new(),
             reset_trafo: ResetTrafo::build(md, &trafos)?,
             trafos,
             orientation: OriSettings::default(),
@@ -246,25 +274,39 @@ impl MachineConfig {
     /// Takes over tool data and settable frames from `md`, which act at once (unlike machine
     /// data, which waits for NEWCONF or a reset).
     pub fn refresh_data(&mut self, md: &MachineData) -> Result<(), ActivationError> {
-        let frame_count = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
-        let mut work_offsets = vec![vec![0.0; self.channel_axes.len()]; frame_count];
-        for ((frame, axis, component), value) in md.frames() {
+        let n = self.channel_axes.len();
+        let user = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
+        let base = md.num("$MC_MM_NUM_BASE_FRAMES", 0, 0) as usize;
+        let mut work_offsets = vec![FrameData::neutral(n); user];
+        let mut base_frames = vec![FrameData::neutral(n); base];
+        for ((family, frame, axis, component), value) in md.frames() {
+            let (list, var, count) = match family {
+                FrameFamily::Settable => (&mut work_offsets, "$P_UIFR", "MM_NUM_USER_FRAMES"),
+                FrameFamily::Base => (&mut base_frames, "$P_CHBFR", "MM_NUM_BASE_FRAMES"),
+            };
+            let at = format!("{var}[{frame},{axis},{}]", component.code());
             let idx = self.program_axis(axis).ok_or_else(|| ActivationError {
                 datum: None,
-                message: format!(
-                    "$P_UIFR[{frame},{axis},{}]: {axis} is not an axis of this channel",
-                    if *component == FrameComponent::Translation { "TR" } else { "FI" }
-                ),
+                message: format!("{at}: {axis} is not an axis of this channel"),
             })?;
-            if *frame >= frame_count {
-                return fail(
-                    "MM_NUM_USER_FRAMES",
-                    format!("$P_UIFR[{frame}] exceeds $MC_MM_NUM_USER_FRAMES={frame_count}"),
-                );
+            let Some(f) = list.get_mut(*frame) else {
+                return fail(count, format!("{at}: frame {frame} exceeds $MC_{count}={}", list.len()));
+            };
+            match component {
+                FrameComponent::Translation | FrameComponent::Fine => f.trans[idx] += value,
+                FrameComponent::Rotation => {
+                    let g = self.geo_axes.iter().position(|a| *a == Some(idx)).ok_or_else(|| ActivationError {
+                        datum: None,
+                        message: format!("{at}: rotations are about geometry axes, {axis} is none"),
+                    })?;
+                    f.rot[g] = *value;
+                }
+                FrameComponent::Scale => f.scale[idx] = *value,
+                FrameComponent::Mirror => f.mirror[idx] = *value != 0.0,
             }
-            work_offsets[*frame][idx] += value;
         }
         self.work_offsets = work_offsets;
+        self.base_frames = base_frames;
         self.tools = md.tools().clone();
         Ok(())
     }

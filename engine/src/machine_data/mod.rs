@@ -13,7 +13,7 @@ pub mod trafo;
 
 use std::collections::BTreeMap;
 
-pub use config::{ChannelAxis, MachineAxis, MachineConfig, OriSettings, ResetTrafo};
+pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, OriSettings, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
 pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};
@@ -69,14 +69,61 @@ pub const MAX_EDGE_NUMBER: i64 = 12;
 /// The offsets of one cutting edge: `$TC_DP1..$TC_DP25` (index 0 = DP1).
 pub type EdgeParams = [f64; TOOL_PARAMS];
 
-/// One component of a settable frame `$P_UIFR[n, axis, TR|FI]`.
+/// One component of a stored frame `$P_UIFR[n, axis, TR|FI|RT|SC|MI]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum FrameComponent {
     /// Coarse translation.
     Translation,
     /// Fine translation.
     Fine,
+    /// Rotation about a geometry axis, degrees (RPY: Z, then Y', then X'').
+    Rotation,
+    /// Scale factor.
+    Scale,
+    /// Mirroring (1) of the axis.
+    Mirror,
 }
+
+impl FrameComponent {
+    /// The component's keyword in NC data text.
+    pub fn code(self) -> &'static str {
+        match self {
+            FrameComponent::Translation => "TR",
+            FrameComponent::Fine => "FI",
+            FrameComponent::Rotation => "RT",
+            FrameComponent::Scale => "SC",
+            FrameComponent::Mirror => "MI",
+        }
+    }
+
+    fn parse(code: &str) -> Option<FrameComponent> {
+        [Self::Translation, Self::Fine, Self::Rotation, Self::Scale, Self::Mirror]
+            .into_iter()
+            .find(|c| c.code() == code)
+    }
+}
+
+/// The stored frames of the data management.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum FrameFamily {
+    /// Channel basic frames `$P_CHBFR[n]` (`$P_UBFR` is `$P_CHBFR[0]`), chained into `$P_ACTBFRAME`.
+    Base,
+    /// Settable frames `$P_UIFR[n]`, selected by G500/G54.../G505...
+    Settable,
+}
+
+impl FrameFamily {
+    /// The system variable and the machine datum that sizes it.
+    fn names(self) -> (&'static str, &'static str) {
+        match self {
+            FrameFamily::Base => ("$P_CHBFR", "$MC_MM_NUM_BASE_FRAMES"),
+            FrameFamily::Settable => ("$P_UIFR", "$MC_MM_NUM_USER_FRAMES"),
+        }
+    }
+}
+
+/// Where a stored frame value lives: family, frame number, axis name, component.
+pub type FrameKey = (FrameFamily, usize, String, FrameComponent);
 
 /// The stored configuration of a channel: only values that differ from the defaults are kept,
 /// so a session costs memory in proportion to what was configured.
@@ -84,7 +131,7 @@ pub enum FrameComponent {
 pub struct MachineData {
     values: BTreeMap<Key, Value>,
     tools: BTreeMap<(u32, u32), EdgeParams>,
-    frames: BTreeMap<(usize, String, FrameComponent), f64>,
+    frames: BTreeMap<FrameKey, f64>,
 }
 
 impl MachineData {
@@ -176,8 +223,15 @@ impl MachineData {
             self.assign_tool(line, name, n, indices, value)?;
             return Ok(None);
         }
-        if name == "$P_UIFR" {
-            self.assign_frame(line, indices, value)?;
+        let family = match name {
+            "$P_UIFR" => Some((FrameFamily::Settable, indices.to_vec())),
+            "$P_CHBFR" => Some((FrameFamily::Base, indices.to_vec())),
+            // The user basic frame is channel basic frame 0.
+            "$P_UBFR" => Some((FrameFamily::Base, [&[IndexTok::Number(0)], indices].concat())),
+            _ => None,
+        };
+        if let Some((family, indices)) = family {
+            self.assign_frame(line, family, &indices, value)?;
             return Ok(None);
         }
         let def = registry::lookup(name).ok_or_else(|| err(format!("unknown name {name}")))?;
@@ -266,24 +320,38 @@ impl MachineData {
         Ok(())
     }
 
-    fn assign_frame(&mut self, line: u32, indices: &[IndexTok], value: &Literal) -> Result<(), MdError> {
+    fn assign_frame(
+        &mut self,
+        line: u32,
+        family: FrameFamily,
+        indices: &[IndexTok],
+        value: &Literal,
+    ) -> Result<(), MdError> {
         let err = |m: String| MdError::at(line, m);
+        let (var, count_datum) = family.names();
         let [IndexTok::Number(n), IndexTok::Name(axis), IndexTok::Name(comp)] = indices else {
-            return Err(err("$P_UIFR needs [frame, axis, TR|FI], e.g. $P_UIFR[1,X,TR]=10".into()));
+            return Err(err(format!("{var} needs [frame, axis, TR|FI|RT|SC|MI], e.g. {var}[1,X,TR]=10")));
         };
-        let component = match comp.as_str() {
-            "TR" => FrameComponent::Translation,
-            "FI" => FrameComponent::Fine,
-            other => return Err(err(format!("$P_UIFR component {other} is not supported yet (TR and FI are)"))),
-        };
-        let frames = self.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as i64;
+        let component = FrameComponent::parse(comp)
+            .ok_or_else(|| err(format!("{var}: unknown frame component {comp} (TR, FI, RT, SC, MI)")))?;
+        let frames = self.num(count_datum, 0, 0) as i64;
         if !(0..frames).contains(n) {
-            return Err(err(format!("$P_UIFR[{n}]: settable frame out of range 0..{}", frames - 1)));
+            return Err(err(format!("{var}[{n}]: frame out of range 0..{} ({count_datum})", frames - 1)));
         }
         let Literal::Number(v) = value else {
-            return Err(err("$P_UIFR: expected a number".into()));
+            return Err(err(format!("{var}: expected a number")));
         };
-        self.frames.insert((*n as usize, axis.clone(), component), *v);
+        if component == FrameComponent::Scale && *v == 0.0 {
+            return Err(err(format!("{var}[{n},{axis},SC]: a scale factor of 0 is not allowed")));
+        }
+        // Neutral values are not stored (the frame then reads as neutral there).
+        let key = (family, *n as usize, axis.clone(), component);
+        let neutral = if component == FrameComponent::Scale { 1.0 } else { 0.0 };
+        if *v == neutral {
+            self.frames.remove(&key);
+        } else {
+            self.frames.insert(key, *v);
+        }
         Ok(())
     }
 
@@ -315,9 +383,8 @@ impl MachineData {
                 out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", p + 1);
             }
         }
-        for ((frame, axis, component), v) in &self.frames {
-            let c = if *component == FrameComponent::Translation { "TR" } else { "FI" };
-            out += &format!("$P_UIFR[{frame},{axis},{c}]={v:?}\n");
+        for ((family, frame, axis, component), v) in &self.frames {
+            out += &format!("{}[{frame},{axis},{}]={v:?}\n", family.names().0, component.code());
         }
         out
     }
@@ -327,8 +394,8 @@ impl MachineData {
         &self.tools
     }
 
-    /// Settable-frame components by (frame, axis name, component).
-    pub fn frames(&self) -> &BTreeMap<(usize, String, FrameComponent), f64> {
+    /// Stored frame components by (family, frame, axis name, component).
+    pub fn frames(&self) -> &BTreeMap<FrameKey, f64> {
         &self.frames
     }
 }
@@ -385,6 +452,32 @@ mod tests {
         assert_eq!(e.line, Some(2));
         assert!(e.message.contains("$MA_NO_SUCH"));
         assert_eq!(md, before);
+    }
+
+    #[test]
+    fn stored_frames_keep_every_component_and_round_trip_as_text() {
+        let mut md = MachineData::default();
+        let text = "$P_UIFR[1,X,TR]=10.0\n$P_UIFR[1,Z,RT]=30.0\n$P_UIFR[2,Y,SC]=2.0\n$P_UIFR[2,X,MI]=1.0\n$P_UBFR[Z,TR]=-5.0\n$P_CHBFR[0,X,FI]=0.25";
+        md.apply_text(text).unwrap();
+        let cfg = md.activate().unwrap();
+        assert_eq!(cfg.work_offsets[1].trans[0], 10.0);
+        assert_eq!(cfg.work_offsets[1].rot, [0.0, 0.0, 30.0]);
+        assert_eq!((cfg.work_offsets[2].scale[1], cfg.work_offsets[2].mirror[0]), (2.0, true));
+        assert_eq!((cfg.base_frames[0].trans[2], cfg.base_frames[0].trans[0]), (-5.0, 0.25));
+        let mut again = MachineData::default();
+        again.apply_text(&md.to_text()).unwrap();
+        assert_eq!(again, md);
+        // A neutral value deletes the component again.
+        md.apply_text("$P_UIFR[1,Z,RT]=0").unwrap();
+        assert_eq!(md.activate().unwrap().work_offsets[1].rot, [0.0; 3]);
+        for (text, needle) in [
+            ("$P_UIFR[1,X,XX]=1", "unknown frame component XX"),
+            ("$P_UIFR[1,X,SC]=0", "scale factor of 0"),
+            ("$P_CHBFR[1,X,TR]=1", "out of range 0..0"),
+        ] {
+            let e = md.apply_text(text).unwrap_err();
+            assert!(e.message.contains(needle), "{text}: {}", e.message);
+        }
     }
 
     #[test]

@@ -265,6 +265,7 @@ pub static DEFS: &[Def] = &[
     def("TRACON_CHAIN_3", 24997, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("TRACON_CHAIN_4", 24998, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("MM_NUM_USER_FRAMES", 28080, C, Kind::Int, 1, Default::Int(5), 5.0, 100.0),
+    def("MM_NUM_BASE_FRAMES", 28081, C, Kind::Int, 1, Default::Int(1), 0.0, 16.0),
     def("IS_ROT_AX", 30300, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("ROT_IS_MODULO", 30310, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
