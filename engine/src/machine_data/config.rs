@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::trafo::{self, TrafoDataSet};
+use super::traori::OriSettings;
 use super::{EdgeParams, FrameComponent, MachineData, registry};
 
 /// Inconsistent machine data found at activation; `datum` names the datum to blame.
@@ -67,6 +68,8 @@ pub struct MachineConfig {
     pub work_offsets: Vec<Vec<f64>>,
     /// Configured transformation data sets in data-set order (`$MC_TRAFO_TYPE_1..10`).
     pub trafos: Vec<TrafoDataSet>,
+    /// Orientation programming data of the channel (MD21090..21130).
+    pub ori: OriSettings,
 }
 
 impl MachineConfig {
@@ -161,6 +164,7 @@ impl MachineConfig {
             tools: BTreeMap::new(),
             work_offsets: Vec::new(),
             trafos,
+            ori: OriSettings::read(md),
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

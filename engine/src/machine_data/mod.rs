@@ -10,6 +10,7 @@ pub mod presets;
 pub mod registry;
 pub mod text;
 pub mod trafo;
+pub mod traori;
 
 use std::collections::BTreeMap;
 
@@ -17,6 +18,7 @@ pub use config::{ChannelAxis, MachineAxis, MachineConfig};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
 pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};
+pub use traori::{OriMachine, OriSettings, TraoriParams};
 
 /// A value of a machine datum.
 #[derive(Debug, Clone, PartialEq)]
