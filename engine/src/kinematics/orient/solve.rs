@@ -57,7 +57,15 @@ pub fn two_axes(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) -> Opt
     let beta = (c12 * w1q - w2p) / d;
     let n = cross(w1, w2);
     let n2 = dot(&n, &n);
-    let g2 = (dot(p, p) - alpha * alpha - beta * beta - 2.0 * alpha * beta * c12) / n2;
+    // γ² = (|p|² − α² − β² − 2αβ·c12)/|n|² cancels badly next to a pole. The same value is
+    // |w1 × q|²/|n|² − β² = |w2 × p|²/|n|² − α² (the distance of c from each axis is kept by
+    // the rotations); taking the form with the smaller subtrahend keeps the tilt accurate to
+    // the last digits of the orientation's own components.
+    let g2 = if beta.abs() <= alpha.abs() {
+        dot(&cross(w1, q), &cross(w1, q)) / n2 - beta * beta
+    } else {
+        dot(&cross(w2, p), &cross(w2, p)) / n2 - alpha * alpha
+    };
     if g2 < -REACH_TOL {
         return None;
     }
