@@ -528,7 +528,7 @@ fn bad_transformation_data_is_rejected_with_its_line() {
     // The rotary role must be a rotary axis.
     let e = md.apply_text("$MC_TRAFO_AXES_IN_1[1]=3\n$MC_TRAFO_AXES_IN_1[2]=2").unwrap_err();
     assert!(e.message.contains("rotary"), "{e}");
-    let e = md.apply_text("$MC_TRAFO_TYPE_3=16").unwrap_err();
+    let e = md.apply_text("$MC_TRAFO_TYPE_3=2048").unwrap_err();
     assert_eq!(e.line, Some(1));
 }
 

@@ -183,9 +183,9 @@ fn from_angles(def: AngleDefinition, [a, b, c]: [f64; 3], cfg: &MachineConfig) -
         AngleDefinition::Rpy2 => [sb, -sc * cb, cc * cb],
         AngleDefinition::Virtual1 | AngleDefinition::Virtual2 => {
             let table = if def == AngleDefinition::Virtual1 {
-                cfg.orientation.turn_tab[0]
+                cfg.ori.turn_tab[0]
             } else {
-                cfg.orientation.turn_tab[1]
+                cfg.ori.turn_tab[1]
             };
             // Rotations in the table's order about the reference axes: R(t0, A2)·R(t1, B2)·R(t2, C2)·ez.
             let axis = |t: u8| -> Vec3 { std::array::from_fn(|i| if i + 1 == t as usize { 1.0 } else { 0.0 }) };
@@ -229,9 +229,9 @@ impl Interpreter {
                 normalized(ori.vector.map(|c| c.unwrap_or(0.0)))
                     .ok_or_else(|| Alarm::value_out_of_range(line, "orientation vector A3/B3/C3 of length 0"))?
             } else {
-                let def = if cfg.orientation.def_with_g_code {
+                let def = if cfg.ori.ori_def_with_g_code {
                     modal.angles
-                } else if cfg.orientation.is_euler {
+                } else if cfg.ori.orientation_is_euler {
                     AngleDefinition::Euler
                 } else {
                     AngleDefinition::Rpy
@@ -256,7 +256,7 @@ impl Interpreter {
             return Ok(None);
         };
         let Some(o_end) = target else { return Ok(None) };
-        let interpolation = if cfg.orientation.ipo_with_g_code {
+        let interpolation = if cfg.ori.ori_ipo_with_g_code {
             modal.interpolation
         } else if modal.reference == OriReference::Workpiece {
             OriInterpolation::Vector

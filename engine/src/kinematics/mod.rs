@@ -12,14 +12,17 @@
 //! slot); every axis the transformation does not touch passes through unchanged. One file per
 //! transformation; [`plan`] turns a BCS block into moves that respect every machine axis' limits.
 
+pub mod orient;
 pub mod plan;
 mod traang;
 mod tracyl;
 mod transmit;
+mod traori;
 
 pub use traang::Traang;
 pub use tracyl::Tracyl;
 pub use transmit::Transmit;
+pub use traori::Traori;
 
 use crate::machine_data::{MachineConfig, TrafoDataSet, TrafoKind};
 use crate::motion::{AxisVec, Path};
@@ -99,6 +102,8 @@ pub enum AnyTrafo {
     Transmit(Transmit),
     Tracyl(Tracyl),
     Traang(Traang),
+    /// Boxed: the orientation chain is several times larger than the other transformations.
+    Traori(Box<Traori>),
 }
 
 macro_rules! dispatch {
@@ -107,6 +112,7 @@ macro_rules! dispatch {
             AnyTrafo::Transmit($t) => $e,
             AnyTrafo::Tracyl($t) => $e,
             AnyTrafo::Traang($t) => $e,
+            AnyTrafo::Traori($t) => $e,
         }
     };
 }
@@ -183,6 +189,7 @@ pub fn build(set: &TrafoDataSet, cfg: &MachineConfig, args: &SelectArgs) -> Resu
         TrafoKind::Transmit => AnyTrafo::Transmit(Transmit::new(set, cfg)),
         TrafoKind::Tracyl => AnyTrafo::Tracyl(Tracyl::new(set, args)?),
         TrafoKind::Traang => AnyTrafo::Traang(Traang::new(set, args)?),
+        TrafoKind::Traori => AnyTrafo::Traori(Box::new(Traori::new(set, cfg, args)?)),
     })
 }
 

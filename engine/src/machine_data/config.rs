@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use super::trafo::{self, TrafoDataSet, TrafoKind};
+use super::traori::OriSettings;
 use super::{EdgeParams, FrameComponent, FrameFamily, MachineData, registry};
 
 /// Inconsistent machine data found at activation; `datum` names the datum to blame.
@@ -69,8 +70,8 @@ pub struct MachineConfig {
     pub base_frames: Vec<FrameData>,
     /// Configured transformation data sets in data-set order (`$MC_TRAFO_TYPE_1..10`).
     pub trafos: Vec<TrafoDataSet>,
-    /// How orientations are programmed and interpolated (MD21100..21130).
-    pub orientation: OriSettings,
+    /// How orientations are programmed and interpolated (MD21090..21130).
+    pub ori: OriSettings,
     /// Which transformation is active after reset and program end.
     pub reset_trafo: ResetTrafo,
 }
@@ -148,26 +149,6 @@ impl FrameData {
             && self.rot == [0.0; 3]
             && self.scale.iter().all(|s| *s == 1.0)
             && !self.mirror.iter().any(|m| *m)
-    }
-}
-
-/// Channel data on orientation programming.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OriSettings {
-    /// MD21100 ORIENTATION_IS_EULER: A2/B2/C2 are Euler angles (else RPY) when MD21102 is 0.
-    pub is_euler: bool,
-    /// MD21102 ORI_DEF_WITH_G_CODE: G group 50 decides how A2/B2/C2 are read.
-    pub def_with_g_code: bool,
-    /// MD21104 ORI_IPO_WITH_G_CODE: G group 51 decides the interpolation (else ORIWKS/ORIMKS).
-    pub ipo_with_g_code: bool,
-    /// MD21120/21130 ORIAX_TURN_TAB_1/2: reference axis (1 = X, 2 = Y, 3 = Z) of each virtual
-    /// orientation axis for ORIVIRT1/ORIVIRT2.
-    pub turn_tab: [[u8; 3]; 2],
-}
-
-impl Default for OriSettings {
-    fn default() -> Self {
-        OriSettings { is_euler: true, def_with_g_code: false, ipo_with_g_code: false, turn_tab: [[1, 2, 3]; 2] }
     }
 }
 
@@ -265,7 +246,7 @@ impl MachineConfig {
             base_frames: Vec::new(),
             reset_trafo: ResetTrafo::build(md, &trafos)?,
             trafos,
-            orientation: OriSettings::default(),
+            ori: OriSettings::read(md),
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

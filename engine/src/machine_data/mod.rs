@@ -10,13 +10,15 @@ pub mod presets;
 pub mod registry;
 pub mod text;
 pub mod trafo;
+pub mod traori;
 
 use std::collections::BTreeMap;
 
-pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, OriSettings, ResetTrafo};
+pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
 pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};
+pub use traori::{OriMachine, OriSettings, TraoriParams};
 
 /// A value of a machine datum.
 #[derive(Debug, Clone, PartialEq)]

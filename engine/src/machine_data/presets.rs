@@ -43,6 +43,24 @@ pub static PRESETS: &[Preset] = &[
         description: "Inclined infeed axis MU at 45° and longitudinal axis MZ, work spindle C; TRAANG data set 1 (type 1024) with 20 % velocity and acceleration reserve on the parallel axis.",
         text: TRAANG_GRINDER,
     },
+    Preset {
+        id: "mill5-head-ca",
+        name: "5-axis mill with swivel head C/A (TRAORI type 20)",
+        description: "Linear axes X, Y, Z (40 m/min, 4 m/s²); fork head with C about Z (modulo) carrying A about X (−110..+110°), 14400°/min; A pivot 150 mm above the spindle nose; TRAORI data set 1 (type 20, tool side); tool T1 (end mill L100 R5).",
+        text: MILL5_HEAD_CA,
+    },
+    Preset {
+        id: "mill5-table-ac",
+        name: "5-axis mill with trunnion table A/C (TRAORI type 33)",
+        description: "Linear axes X, Y, Z (50 m/min, 5 m/s²); trunnion A about X (−120..+120°, 10800°/min) carrying the rotary table C about Z (modulo, 18000°/min); TRAORI data set 1 (type 33, workpiece side, DIN-reversed axes); tool T1 (end mill L100 R5).",
+        text: MILL5_TABLE_AC,
+    },
+    Preset {
+        id: "mill5-mixed-bc",
+        name: "5-axis mill with swivel head B and rotary table C (TRAORI type 51)",
+        description: "Linear axes X, Y, Z (30 m/min, 3 m/s²); head B about Y (−100..+100°, 10800°/min), pivot 120 mm above the spindle nose; rotary table C about Z (modulo, 18000°/min); TRAORI data set 1 (type 51, mixed); tool T1 (end mill L100 R5).",
+        text: MILL5_MIXED_BC,
+    },
 ];
 
 /// Looks a preset up by id.
@@ -283,6 +301,211 @@ $MC_TRAANG_BASE_TOOL_1[1]=0
 $MC_TRAANG_BASE_TOOL_1[2]=0
 "#;
 
+const MILL5_HEAD_CA: &str = r#"; 5-axis vertical mill with a fork head: C turns about Z and carries A, which turns about X.
+$MN_AXCONF_MACHAX_NAME_TAB[0]="X"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="A"
+$MN_AXCONF_MACHAX_NAME_TAB[4]="C"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=5
+$MC_AXCONF_MACHAX_USED[5]=0
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="A"
+$MC_AXCONF_CHANAX_NAME_TAB[4]="C"
+$MA_MAX_AX_VELO[X]=40000.
+$MA_MAX_AX_ACCEL[X]=4.
+$MA_POS_LIMIT_MINUS[X]=-500.
+$MA_POS_LIMIT_PLUS[X]=500.
+$MA_MAX_AX_VELO[Y]=40000.
+$MA_MAX_AX_ACCEL[Y]=4.
+$MA_POS_LIMIT_MINUS[Y]=-300.
+$MA_POS_LIMIT_PLUS[Y]=300.
+$MA_MAX_AX_VELO[Z]=40000.
+$MA_MAX_AX_ACCEL[Z]=4.
+$MA_POS_LIMIT_MINUS[Z]=-400.
+$MA_POS_LIMIT_PLUS[Z]=300.
+$MA_IS_ROT_AX[A]=TRUE
+$MA_MAX_AX_VELO[A]=40.
+$MA_MAX_AX_ACCEL[A]=2.
+$MA_POS_LIMIT_MINUS[A]=-110.
+$MA_POS_LIMIT_PLUS[A]=110.
+$MA_IS_ROT_AX[C]=TRUE
+$MA_ROT_IS_MODULO[C]=TRUE
+$MA_MAX_AX_VELO[C]=40.
+$MA_MAX_AX_ACCEL[C]=2.
+; T1 D1: end mill, length 100, radius 5
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=100.
+$TC_DP6[1,1]=5.
+; TRAORI data set 1: head CA (type 20), both rotary axes turn the tool.
+$MC_TRAFO_TYPE_1=20
+$MC_TRAFO_AXES_IN_1[0]=1      ; X
+$MC_TRAFO_AXES_IN_1[1]=2      ; Y
+$MC_TRAFO_AXES_IN_1[2]=3      ; Z
+$MC_TRAFO_AXES_IN_1[3]=5      ; C: 1st rotary axis (outer, about Z)
+$MC_TRAFO_AXES_IN_1[4]=4      ; A: 2nd rotary axis (inner, about X)
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=2
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3
+; A pivot 150 mm above the spindle nose (l3 = BASE_TOOL, pivot → tool reference); the machine
+; position is the spindle nose at A = C = 0 (l1 = PART_OFFSET = −(JOINT_OFFSET + BASE_TOOL)).
+$MC_TRAFO5_BASE_TOOL_1[2]=-150.
+$MC_TRAFO5_PART_OFFSET_1[2]=150.
+$MC_TRAFO5_ROT_AX_OFFSET_1[0]=0
+$MC_TRAFO5_ROT_AX_OFFSET_1[1]=0
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
+$MC_TRAFO5_NON_POLE_LIMIT_1=2.
+$MC_TRAFO5_POLE_LIMIT_1=2.
+"#;
+
+const MILL5_TABLE_AC: &str = r#"; 5-axis mill with a trunnion table: A tilts about X and carries the rotary table C.
+$MN_AXCONF_MACHAX_NAME_TAB[0]="X"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="A"
+$MN_AXCONF_MACHAX_NAME_TAB[4]="C"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=5
+$MC_AXCONF_MACHAX_USED[5]=0
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="A"
+$MC_AXCONF_CHANAX_NAME_TAB[4]="C"
+$MA_MAX_AX_VELO[X]=50000.
+$MA_MAX_AX_ACCEL[X]=5.
+$MA_POS_LIMIT_MINUS[X]=-400.
+$MA_POS_LIMIT_PLUS[X]=400.
+$MA_MAX_AX_VELO[Y]=50000.
+$MA_MAX_AX_ACCEL[Y]=5.
+$MA_POS_LIMIT_MINUS[Y]=-300.
+$MA_POS_LIMIT_PLUS[Y]=300.
+$MA_MAX_AX_VELO[Z]=50000.
+$MA_MAX_AX_ACCEL[Z]=5.
+$MA_POS_LIMIT_MINUS[Z]=-300.
+$MA_POS_LIMIT_PLUS[Z]=400.
+$MA_IS_ROT_AX[A]=TRUE
+$MA_MAX_AX_VELO[A]=30.
+$MA_MAX_AX_ACCEL[A]=1.5
+$MA_POS_LIMIT_MINUS[A]=-120.
+$MA_POS_LIMIT_PLUS[A]=120.
+$MA_IS_ROT_AX[C]=TRUE
+$MA_ROT_IS_MODULO[C]=TRUE
+$MA_MAX_AX_VELO[C]=50.
+$MA_MAX_AX_ACCEL[C]=3.
+; T1 D1: end mill, length 100, radius 5
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=100.
+$TC_DP6[1,1]=5.
+; TRAORI data set 1: table AC (type 33), both rotary axes turn the workpiece; the type
+; reverses the axis directions (DIN: positive motion turns the tool relative to the part).
+$MC_TRAFO_TYPE_1=33
+$MC_TRAFO_AXES_IN_1[0]=1      ; X
+$MC_TRAFO_AXES_IN_1[1]=2      ; Y
+$MC_TRAFO_AXES_IN_1[2]=3      ; Z
+$MC_TRAFO_AXES_IN_1[3]=4      ; A: 1st rotary axis (trunnion)
+$MC_TRAFO_AXES_IN_1[4]=5      ; C: 2nd rotary axis (table on the trunnion)
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=2
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3
+; Machine reference = table zero (centre of the table surface) at A = C = 0. The A axis lies
+; 100 mm below and 20 mm behind it (l2 = BASE_TOOL), the C axis crosses the A axis' plane
+; 20 mm below the surface (l3 = JOINT_OFFSET), closing with l4 = PART_OFFSET = −(l2 + l3).
+$MC_TRAFO5_BASE_TOOL_1[1]=20.
+$MC_TRAFO5_BASE_TOOL_1[2]=-100.
+$MC_TRAFO5_JOINT_OFFSET_1[1]=-20.
+$MC_TRAFO5_JOINT_OFFSET_1[2]=80.
+$MC_TRAFO5_PART_OFFSET_1[2]=20.
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
+$MC_TRAFO5_NON_POLE_LIMIT_1=2.
+$MC_TRAFO5_POLE_LIMIT_1=2.
+"#;
+
+const MILL5_MIXED_BC: &str = r#"; 5-axis mill with a swivel head B (about Y) and a rotary table C (about Z).
+$MN_AXCONF_MACHAX_NAME_TAB[0]="X"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="B"
+$MN_AXCONF_MACHAX_NAME_TAB[4]="C"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=5
+$MC_AXCONF_MACHAX_USED[5]=0
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="B"
+$MC_AXCONF_CHANAX_NAME_TAB[4]="C"
+$MA_MAX_AX_VELO[X]=30000.
+$MA_MAX_AX_ACCEL[X]=3.
+$MA_POS_LIMIT_MINUS[X]=-600.
+$MA_POS_LIMIT_PLUS[X]=600.
+$MA_MAX_AX_VELO[Y]=30000.
+$MA_MAX_AX_ACCEL[Y]=3.
+$MA_POS_LIMIT_MINUS[Y]=-350.
+$MA_POS_LIMIT_PLUS[Y]=350.
+$MA_MAX_AX_VELO[Z]=30000.
+$MA_MAX_AX_ACCEL[Z]=3.
+$MA_POS_LIMIT_MINUS[Z]=-400.
+$MA_POS_LIMIT_PLUS[Z]=400.
+$MA_IS_ROT_AX[B]=TRUE
+$MA_MAX_AX_VELO[B]=30.
+$MA_MAX_AX_ACCEL[B]=1.5
+$MA_POS_LIMIT_MINUS[B]=-100.
+$MA_POS_LIMIT_PLUS[B]=100.
+$MA_IS_ROT_AX[C]=TRUE
+$MA_ROT_IS_MODULO[C]=TRUE
+$MA_MAX_AX_VELO[C]=50.
+$MA_MAX_AX_ACCEL[C]=3.
+; T1 D1: end mill, length 100, radius 5
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=100.
+$TC_DP6[1,1]=5.
+; TRAORI data set 1: mixed BC (type 51): B turns the tool, C (DIN-reversed) the workpiece.
+$MC_TRAFO_TYPE_1=51
+$MC_TRAFO_AXES_IN_1[0]=1      ; X
+$MC_TRAFO_AXES_IN_1[1]=2      ; Y
+$MC_TRAFO_AXES_IN_1[2]=3      ; Z
+$MC_TRAFO_AXES_IN_1[3]=4      ; B: 1st rotary axis (head)
+$MC_TRAFO_AXES_IN_1[4]=5      ; C: 2nd rotary axis (table)
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=2
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3
+; Head: B pivot 120 mm above the spindle nose (l2 = BASE_TOOL, l1 = JOINT_OFFSET = −l2).
+; Table: the C axis crosses the plane 80 mm below the table zero point
+; (l3 = JOINT_OFFSET_PART, l4 = PART_OFFSET = −l3).
+$MC_TRAFO5_BASE_TOOL_1[2]=-120.
+$MC_TRAFO5_JOINT_OFFSET_1[2]=120.
+$MC_TRAFO5_JOINT_OFFSET_PART_1[2]=-80.
+$MC_TRAFO5_PART_OFFSET_1[2]=80.
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
+$MC_TRAFO5_NON_POLE_LIMIT_1=2.
+$MC_TRAFO5_POLE_LIMIT_1=2.
+"#;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -315,5 +538,17 @@ mod tests {
         assert_eq!(cfg.machine_axes[1].spindle, Some(1));
         assert_eq!(cfg.machine_axes[3].spindle, Some(2));
         assert_eq!(cfg.master_spindle, Some(1));
+    }
+
+    #[test]
+    fn the_five_axis_machines_have_traori_data_set_1_and_a_modulo_c() {
+        for (id, t) in [("mill5-head-ca", 20), ("mill5-table-ac", 33), ("mill5-mixed-bc", 51)] {
+            let cfg = MachineData::default().apply_text(find(id).unwrap().text).unwrap();
+            assert_eq!((cfg.trafos.len(), cfg.trafos[0].trafo_type), (1, t), "{id}");
+            assert_eq!(cfg.trafos[0].kind, crate::machine_data::TrafoKind::Traori);
+            let c = cfg.program_axis("C").unwrap();
+            assert_eq!(cfg.axis(c).modulo, Some((0.0, 360.0)), "{id}");
+            assert_eq!(cfg.geo_axes, [Some(0), Some(1), Some(2)]);
+        }
     }
 }

@@ -136,6 +136,24 @@ fn default_trafo_axes_in(i: usize) -> Value {
     Value::Int(if i < 5 { i as i64 + 1 } else { 0 })
 }
 
+fn default_unit_z(i: usize) -> Value {
+    Value::Real(if i == 2 { 1.0 } else { 0.0 })
+}
+
+fn default_unit_x(i: usize) -> Value {
+    Value::Real(if i == 0 { 1.0 } else { 0.0 })
+}
+
+/// ORIVIRT1 default: the orientation axes turn about X, Y, Z in this order ([I], unverified).
+fn default_turn_tab_1(i: usize) -> Value {
+    Value::Int(i as i64 + 1)
+}
+
+/// ORIVIRT2 default: Z, X, Z (the Euler sequence) ([I], unverified).
+fn default_turn_tab_2(i: usize) -> Value {
+    Value::Int([3, 1, 3][i])
+}
+
 /// Every datum, in Siemens number order.
 pub static DEFS: &[Def] = &[
     def(
@@ -187,6 +205,17 @@ pub static DEFS: &[Def] = &[
     def("TRAFO_RESET_VALUE", 20140, C, Kind::Int, 1, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("TRAFO_MODE_MASK", 20144, C, Kind::Int, 1, Default::Int(0), 0.0, 255.0),
     def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
+    // Orientation programming (TRAORI), REFERENCE §6.2.
+    def("MAX_LEAD_ANGLE", 21090, C, Kind::Real, 1, Default::Real(60.0), 0.0, 89.999),
+    def("MAX_TILT_ANGLE", 21092, C, Kind::Real, 1, Default::Real(60.0), 0.0, 89.999),
+    def("ORIPATH_MODE", 21094, C, Kind::Int, 1, Default::Int(0), 0.0, 9999.0),
+    def("ORIENTATION_IS_EULER", 21100, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("ORI_DEF_WITH_G_CODE", 21102, C, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    def("ORI_IPO_WITH_G_CODE", 21104, C, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    def("POLE_ORI_MODE", 21108, C, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
+    def("X_AXIS_IN_OLD_X_Z_PLANE", 21110, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    def("ORIAX_TURN_TAB_1", 21120, C, Kind::Int, 3, Default::Indexed(default_turn_tab_1), 0.0, 3.0),
+    def("ORIAX_TURN_TAB_2", 21130, C, Kind::Int, 3, Default::Indexed(default_turn_tab_2), 0.0, 3.0),
     // Transformation data sets 1..10: type, axes, geometry axes, tool handling (M1 data lists).
     def("TRAFO_TYPE_1", 24100, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("TRAFO_AXES_IN_1", 24110, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
@@ -228,6 +257,44 @@ pub static DEFS: &[Def] = &[
     def("TRAFO_AXES_IN_10", 24482, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
     def("TRAFO_GEOAX_ASSIGN_TAB_10", 24484, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),
     def("TRAFO_INCLUDES_TOOL_10", 24486, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
+    // Orientation transformation data set 1 (TRAFO5_/TRAFO6_, REFERENCE §6.2; set 2 = set 1 + 100).
+    def("TRAFO5_PART_OFFSET_1", 24500, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_ROT_AX_OFFSET_1", 24510, C, Kind::Real, 3, Default::Real(0.0), -360.0, 360.0),
+    def("TRAFO5_ROT_SIGN_IS_PLUS_1", 24520, C, Kind::Bool, 3, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO5_NON_POLE_LIMIT_1", 24530, C, Kind::Real, 1, Default::Real(2.0), 0.0, 90.0),
+    def("TRAFO5_POLE_LIMIT_1", 24540, C, Kind::Real, 1, Default::Real(2.0), 0.0, 90.0),
+    def("TRAFO5_BASE_TOOL_1", 24550, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_JOINT_OFFSET_PART_1", 24558, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_JOINT_OFFSET_1", 24560, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO6_JOINT_OFFSET_2_3_1", 24561, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_TOOL_ROT_AX_OFFSET_1", 24562, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_NUTATOR_AX_ANGLE_1", 24564, C, Kind::Real, 1, Default::Real(45.0), 0.0, 89.0),
+    def("TRAFO5_AXIS1_1", 24570, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_AXIS2_1", 24572, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_AXIS3_1", 24573, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_BASE_ORIENT_1", 24574, C, Kind::Real, 3, Default::Indexed(default_unit_z), -INF, INF),
+    def("TRAFO6_BASE_ORIENT_NORMAL_1", 24576, C, Kind::Real, 3, Default::Indexed(default_unit_x), -INF, INF),
+    def("TRAFO5_TCARR_NO_1", 24582, C, Kind::Int, 1, Default::Int(0), 0.0, 9999.0),
+    def("TRAFO5_ORIAX_ASSIGN_TAB_1", 24585, C, Kind::Int, 3, Default::Int(0), 0.0, MAX_CHANNEL_AXES as f64),
+    // Orientation transformation data set 2 (TRAFO5_/TRAFO6_, REFERENCE §6.2; set 2 = set 1 + 100).
+    def("TRAFO5_PART_OFFSET_2", 24600, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_ROT_AX_OFFSET_2", 24610, C, Kind::Real, 3, Default::Real(0.0), -360.0, 360.0),
+    def("TRAFO5_ROT_SIGN_IS_PLUS_2", 24620, C, Kind::Bool, 3, Default::Bool(true), 0.0, 1.0),
+    def("TRAFO5_NON_POLE_LIMIT_2", 24630, C, Kind::Real, 1, Default::Real(2.0), 0.0, 90.0),
+    def("TRAFO5_POLE_LIMIT_2", 24640, C, Kind::Real, 1, Default::Real(2.0), 0.0, 90.0),
+    def("TRAFO5_BASE_TOOL_2", 24650, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_JOINT_OFFSET_PART_2", 24658, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_JOINT_OFFSET_2", 24660, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO6_JOINT_OFFSET_2_3_2", 24661, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_TOOL_ROT_AX_OFFSET_2", 24662, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_NUTATOR_AX_ANGLE_2", 24664, C, Kind::Real, 1, Default::Real(45.0), 0.0, 89.0),
+    def("TRAFO5_AXIS1_2", 24670, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_AXIS2_2", 24672, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_AXIS3_2", 24673, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
+    def("TRAFO5_BASE_ORIENT_2", 24674, C, Kind::Real, 3, Default::Indexed(default_unit_z), -INF, INF),
+    def("TRAFO6_BASE_ORIENT_NORMAL_2", 24676, C, Kind::Real, 3, Default::Indexed(default_unit_x), -INF, INF),
+    def("TRAFO5_TCARR_NO_2", 24682, C, Kind::Int, 1, Default::Int(0), 0.0, 9999.0),
+    def("TRAFO5_ORIAX_ASSIGN_TAB_2", 24685, C, Kind::Int, 3, Default::Int(0), 0.0, MAX_CHANNEL_AXES as f64),
     // TRAANG data sets 1 and 2 (angle of the inclined axis, base tool, reserves of the parallel axis).
     def("TRAANG_ANGLE_1", 24700, C, Kind::Real, 1, Default::Real(0.0), -90.0, 90.0),
     def("TRAANG_BASE_TOOL_1", 24710, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),

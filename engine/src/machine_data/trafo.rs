@@ -1,14 +1,16 @@
 //! Transformation data sets: `$MC_TRAFO_TYPE_n`, `$MC_TRAFO_AXES_IN_n`,
 //! `$MC_TRAFO_GEOAX_ASSIGN_TAB_n`, `$MC_TRAFO_INCLUDES_TOOL_n` (n = 1..10) and the
-//! TRANSMIT_/TRACYL_/TRAANG_ data of each kind, typed and checked once at activation so that
-//! selecting a transformation in a program can only fail for reasons the program controls.
+//! TRANSMIT_/TRACYL_/TRAANG_/TRAFO5_ data of each kind, typed and checked once at activation so
+//! that selecting a transformation in a program can only fail for reasons the program controls.
 //!
 //! The k-th data set of one kind (counted in data-set order) uses that kind's data with suffix
-//! `_k`; the control has two of each (`TRANSMIT(2)` is the 2nd TRANSMIT data set).
+//! `_k`; the control has two of each (`TRANSMIT(2)` is the 2nd TRANSMIT data set). The
+//! orientation transformations (TRAORI) are decoded in [`super::traori`].
 
 use super::MachineData;
 use super::config::{ActivationError, ChannelAxis, MachineAxis};
 use super::registry::MAX_TRAFO_SETS;
+use super::traori::{self, TraoriParams};
 
 /// The kinematic transformations this product models.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -19,6 +21,8 @@ pub enum TrafoKind {
     Tracyl,
     /// Inclined axis, type 1024.
     Traang,
+    /// Orientation transformation (3-, 4-, 5-, 6-axis, generic, cardan head), types 16..255.
+    Traori,
 }
 
 impl TrafoKind {
@@ -28,6 +32,8 @@ impl TrafoKind {
             256 | 257 => Some(TrafoKind::Transmit),
             512..=514 => Some(TrafoKind::Tracyl),
             1024 => Some(TrafoKind::Traang),
+            // Every code of the orientation range; `traori::decode` explains the ones it rejects.
+            16..=255 => Some(TrafoKind::Traori),
             _ => None,
         }
     }
@@ -38,6 +44,7 @@ impl TrafoKind {
             TrafoKind::Transmit => "TRANSMIT",
             TrafoKind::Tracyl => "TRACYL",
             TrafoKind::Traang => "TRAANG",
+            TrafoKind::Traori => "TRAORI",
         }
     }
 
@@ -46,6 +53,7 @@ impl TrafoKind {
             TrafoKind::Transmit => "$MC_TRANSMIT_",
             TrafoKind::Tracyl => "$MC_TRACYL_",
             TrafoKind::Traang => "$MC_TRAANG_",
+            TrafoKind::Traori => "$MC_TRAFO5_",
         }
     }
 }
@@ -83,6 +91,8 @@ pub enum TrafoParams {
         velo_reserve: f64,
         accel_reserve: f64,
     },
+    /// Boxed: the orientation data are several times larger than the other kinds'.
+    Traori(Box<TraoriParams>),
 }
 
 /// One configured transformation data set.
@@ -96,8 +106,9 @@ pub struct TrafoDataSet {
     /// `n` of `TRANSMIT(n)`.
     pub kind_index: usize,
     /// Channel axis (0-based index into `MachineConfig::channel_axes`) per role of
-    /// `TRAFO_AXES_IN_n`; `None` for a 0 entry. Roles are described per kind in `kinematics`.
-    pub axes_in: [Option<usize>; 4],
+    /// `TRAFO_AXES_IN_n`; `None` for a 0 entry. Roles are described per kind in `kinematics`
+    /// (TRAORI: [0..2] linear axes, [3] 1st, [4] 2nd, [5] 3rd rotary axis).
+    pub axes_in: [Option<usize>; 6],
     /// Channel axis of the 1st/2nd/3rd geometry axis while the transformation is active.
     pub geo_axes: [Option<usize>; 3],
     /// `TRAFO_INCLUDES_TOOL_n`: the tool length is handled inside the transformation.
@@ -159,7 +170,7 @@ pub(super) fn build(
     machine_axes: &[MachineAxis],
 ) -> Result<Vec<TrafoDataSet>, ActivationError> {
     let mut sets = Vec::new();
-    let mut per_kind = [0usize; 3];
+    let mut per_kind = [0usize; 4];
     for n in 1..=MAX_TRAFO_SETS {
         let (type_datum, axes_datum, geo_datum) = datum_names(n);
         let trafo_type = md.num(&format!("$MC_{type_datum}"), 0, 0) as u32;
@@ -170,7 +181,7 @@ pub(super) fn build(
             return fail(
                 type_datum,
                 format!(
-                    "$MC_{type_datum}={trafo_type}: this transformation type is not modelled (256, 257, 512, 513, 514, 1024 are)"
+                    "$MC_{type_datum}={trafo_type}: this transformation type is not modelled (orientation types 16..255, 256, 257, 512, 513, 514, 1024 are)"
                 ),
             );
         };
@@ -187,9 +198,19 @@ pub(super) fn build(
             (TrafoKind::Tracyl, 512) => &[(0, false, true), (1, true, true), (2, false, false)],
             (TrafoKind::Tracyl, _) => &[(0, false, true), (1, true, true), (2, false, false), (3, false, true)],
             (TrafoKind::Traang, _) => &[(0, false, true), (1, false, true), (2, false, false)],
+            // Which linear and rotary roles must be present depends on the type (3-/4-axis
+            // variants leave entries at 0); `traori::params` checks the combination.
+            (TrafoKind::Traori, _) => &[
+                (0, false, false),
+                (1, false, false),
+                (2, false, false),
+                (3, true, false),
+                (4, true, false),
+                (5, true, false),
+            ],
         };
         let rotary = |k: usize| machine_axes[channel_axes[k].machine_axis].rotary;
-        let mut axes_in = [None; 4];
+        let mut axes_in = [None; 6];
         // Only the entries of the roles this type has are read (the default lists axes 1..5).
         for (i, a) in axes_in.iter_mut().enumerate().take(roles.len()) {
             let k = md.num(&format!("$MC_{axes_datum}"), 0, i) as usize;
@@ -255,7 +276,7 @@ pub(super) fn build(
             return fail(axes_datum, format!("$MC_{axes_datum} names one channel axis twice"));
         }
         for &k in &assigned {
-            if rotary(k) && !roles_used.contains(&k) {
+            if rotary(k) && (kind == TrafoKind::Traori || !roles_used.contains(&k)) {
                 return fail(
                     geo_datum,
                     format!("$MC_{geo_datum}: geometry axis on rotary channel axis {}", channel_axes[k].name),
@@ -288,6 +309,9 @@ pub(super) fn build(
                 velo_reserve: p("PARALLEL_VELO_RES"),
                 accel_reserve: p("PARALLEL_ACCEL_RES"),
             },
+            TrafoKind::Traori => TrafoParams::Traori(Box::new(traori::params(
+                md, trafo_type, kind_index, &axes_in, type_datum, axes_datum, resolve,
+            )?)),
         };
         sets.push(TrafoDataSet { number: n, trafo_type, kind, kind_index, axes_in, geo_axes, includes_tool, params });
     }

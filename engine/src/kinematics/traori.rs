@@ -1,0 +1,289 @@
+//! TRAORI (types 16..255): the orientation transformation of 3- to 6-axis machines with a
+//! swivel head, a tilting rotary table or both (REFERENCE §6). The contour is programmed as the
+//! tool tip (TCP) in the BCS; the orientation either as rotary axis positions (A=, C=, which
+//! pass through) or as a vector/angles that [`Traori::orientation_axes`] turns into rotary
+//! positions.
+//!
+//! Roles of `TRAFO_AXES_IN_n`: [0..2] the linear axes along X, Y, Z of the chain, [3] the 1st,
+//! [4] the 2nd, [5] the 3rd rotary axis (6-axis). A 0 entry leaves the role out (3-/4-axis).
+//! On the BCS side the geometry slots hold the TCP, the rotary slots their own positions.
+//!
+//! Math: the vector chain of [`super::orient::chain`], with effective angles
+//! `α = s·(position − TRAFO5_ROT_AX_OFFSET)`, s = +1 if `TRAFO5_ROT_SIGN_IS_PLUS` else −1.
+//! The tool vector from the holder reference to the tip is `t_c = −L` (L = tool length vector
+//! by geometry axis, tip → holder).
+
+use super::orient::vec3::{dot, normalize, scale};
+use super::orient::{Chain, ChainKind};
+use super::{BuildError, SelectArgs, Transformation, Unreachable, Vec3, unwrap_near};
+use crate::machine_data::{MachineConfig, OriMachine, TrafoDataSet, TrafoParams};
+use crate::motion::AxisVec;
+
+/// One rotary axis of the transformation as the inverse needs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Rotary {
+    slot: usize,
+    /// `TRAFO5_ROT_AX_OFFSET`: position of the kinematic zero (degrees).
+    offset: f64,
+    /// +1 or −1 (`TRAFO5_ROT_SIGN_IS_PLUS`).
+    sign: f64,
+    /// Software limits; `None` for a modulo axis (any turn is allowed).
+    limits: Option<(f64, f64)>,
+    /// Seconds per degree at the axis' maximum velocity: the weight of the nearest-solution choice.
+    weight: f64,
+}
+
+impl Rotary {
+    fn angle(&self, pos: f64) -> f64 {
+        (self.sign * (pos - self.offset)).to_radians()
+    }
+
+    fn position(&self, angle: f64) -> f64 {
+        self.offset + self.sign * angle.to_degrees()
+    }
+
+    /// `pos` shifted by whole turns to the value nearest `near` that lies within the limits.
+    fn place(&self, pos: f64, near: f64) -> Option<f64> {
+        let p = unwrap_near(pos, near);
+        let Some((lo, hi)) = self.limits else { return Some(p) };
+        [0.0, -360.0, 360.0, -720.0, 720.0]
+            .into_iter()
+            .map(|k| p + k)
+            .filter(|q| *q >= lo - 1e-9 && *q <= hi + 1e-9)
+            .min_by(|a, b| (a - near).abs().total_cmp(&(b - near).abs()))
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Traori {
+    trafo_type: u32,
+    chain: Chain,
+    /// Channel axes of the linear roles [0..2].
+    lin: [Option<usize>; 3],
+    geo: [Option<usize>; 3],
+    /// The rotary axes in chain order (roles [3], [4], [5] without the empty ones).
+    rot: [Option<Rotary>; 3],
+    /// Channel axes of roles [3], [4], [5]: the orientation slots.
+    ori_slots: [Option<usize>; 3],
+    /// Index into `rot` of each role [3], [4], [5].
+    role_to_chain: [Option<usize>; 3],
+    /// `TRAFO5_NON_POLE_LIMIT`, `TRAFO5_POLE_LIMIT` (degrees).
+    non_pole_limit: f64,
+    pole_limit: f64,
+}
+
+impl Traori {
+    /// The transformation of `set`; rotary-axis limits and velocities come from `cfg`.
+    /// `args.base_orient` (TRAORI(n, x, y, z)) replaces the basic orientation of generic types.
+    pub fn new(set: &TrafoDataSet, cfg: &MachineConfig, args: &SelectArgs) -> Result<Traori, BuildError> {
+        let TrafoParams::Traori(p) = &set.params else { unreachable!("a TRAORI data set has TRAORI parameters") };
+        let base = match args.base_orient {
+            Some(b) if p.generic => {
+                normalize(&b).ok_or_else(|| BuildError::Value("TRAORI basic orientation is the zero vector".into()))?
+            }
+            _ => p.base_orient,
+        };
+        let mut rot = [None; 3];
+        let mut v = [[0.0; 3]; 3];
+        let mut role_to_chain = [None; 3];
+        let mut n = 0;
+        for (role, entry) in set.axes_in[3..].iter().enumerate() {
+            let Some(slot) = *entry else { continue };
+            let axis = cfg.axis(slot);
+            rot[n] = Some(Rotary {
+                slot,
+                offset: p.rot_offset[role],
+                sign: if p.sign_plus[role] { 1.0 } else { -1.0 },
+                limits: axis.modulo.is_none().then_some((axis.limit_minus, axis.limit_plus)),
+                weight: 1.0 / axis.max_velocity,
+            });
+            v[n] = p.axis[role];
+            role_to_chain[role] = Some(n);
+            n += 1;
+        }
+        let zero = [0.0; 3];
+        let (kind, l1, l2, l3, l4) = match p.machine {
+            OriMachine::Tool => (ChainKind::Tool, p.part_offset, p.joint_offset, p.base_tool, zero),
+            OriMachine::Part => (ChainKind::Part, zero, p.base_tool, p.joint_offset, p.part_offset),
+            OriMachine::Mixed => (ChainKind::Mixed, p.joint_offset, p.base_tool, p.joint_offset_part, p.part_offset),
+        };
+        let chain = Chain { kind, axes: n, v, l1, l2, l3, l4, l23: p.joint_offset_2_3, base };
+        Ok(Traori {
+            trafo_type: set.trafo_type,
+            chain,
+            lin: [set.axes_in[0], set.axes_in[1], set.axes_in[2]],
+            geo: set.geo_axes,
+            rot,
+            ori_slots: [set.axes_in[3], set.axes_in[4], set.axes_in[5]],
+            role_to_chain,
+            non_pole_limit: p.non_pole_limit,
+            pole_limit: p.pole_limit,
+        })
+    }
+
+    /// The vector chain (for the toolholder and for tests).
+    pub fn chain(&self) -> &Chain {
+        &self.chain
+    }
+
+    /// `TRAFO5_NON_POLE_LIMIT` and `TRAFO5_POLE_LIMIT` in degrees: the interpolator passes a
+    /// great circle exactly through the pole when it comes closer than the first
+    /// ([`Traori::pole_angle`]) and the end orientation deviates by less than the second.
+    pub fn pole_limits(&self) -> (f64, f64) {
+        (self.non_pole_limit, self.pole_limit)
+    }
+
+    /// Angle (degrees, 0..90) between orientation `o` and the pole line of this kinematics: the
+    /// direction at which one rotary axis becomes free (head and mixed: the outer axis of the
+    /// orientation equation, table: the inner one). 90 for one-axis variants.
+    pub fn pole_angle(&self, o: &Vec3) -> f64 {
+        if self.chain.axes < 2 {
+            return 90.0;
+        }
+        let Some(o) = normalize(o) else { return 90.0 };
+        let axis = match self.chain.kind {
+            ChainKind::Tool => &self.chain.v[0],
+            ChainKind::Part | ChainKind::Mixed => &self.chain.v[1],
+        };
+        dot(&o, axis).abs().clamp(0.0, 1.0).acos().to_degrees()
+    }
+
+    /// Both rotary-axis solutions for orientation `o`, each indexed like
+    /// [`Transformation::orientation_slots`] (absent axes 0), positions within ±180° of
+    /// `TRAFO5_ROT_AX_OFFSET`, sorted by the position of the first present rotary axis
+    /// (lower first: CYCLE800's "minus" direction). In a pole the free axis is at its zero
+    /// position; a one-axis variant returns its single solution twice.
+    pub fn solutions(&self, o: &Vec3) -> Result<[[f64; 3]; 2], Unreachable> {
+        let hint = self.hint(None);
+        let mut s = self.raw_solutions(o, &hint)?.map(|a| self.by_role(&a, |r, x| r.position(x)));
+        let first = self.role_to_chain.iter().position(Option::is_some).expect("at least one rotary axis");
+        if s[1][first] < s[0][first] {
+            s.swap(0, 1);
+        }
+        Ok(s)
+    }
+
+    /// Both solutions as [`Traori::solutions`], but each axis shifted by whole turns to lie
+    /// closest to its position in `prev` and the free axis of a pole kept at `prev`; not
+    /// sorted, not checked against the limits.
+    pub fn solutions_near(&self, o: &Vec3, prev: &AxisVec) -> Result<[[f64; 3]; 2], Unreachable> {
+        let hint = self.hint(Some(prev));
+        Ok(self.raw_solutions(o, &hint)?.map(|a| self.by_role(&a, |r, x| unwrap_near(r.position(x), prev[r.slot]))))
+    }
+
+    /// Effective angles (radians) of the rotary axes at `axes` (zero without).
+    fn hint(&self, axes: Option<&AxisVec>) -> [f64; 3] {
+        std::array::from_fn(|i| match (self.rot[i], axes) {
+            (Some(r), Some(a)) => r.angle(a[r.slot]),
+            _ => 0.0,
+        })
+    }
+
+    fn raw_solutions(&self, o: &Vec3, hint: &[f64; 3]) -> Result<[[f64; 3]; 2], Unreachable> {
+        let o = normalize(o).ok_or(Unreachable)?;
+        self.chain.solve(&o, hint).ok_or(Unreachable)
+    }
+
+    /// Chain-ordered angles → role-ordered values via `f`.
+    fn by_role(&self, angles: &[f64; 3], f: impl Fn(&Rotary, f64) -> f64) -> [f64; 3] {
+        std::array::from_fn(|role| match self.role_to_chain[role] {
+            Some(i) => f(self.rot[i].as_ref().expect("mapped rotary axis"), angles[i]),
+            None => 0.0,
+        })
+    }
+
+    fn angles(&self, axes: &AxisVec) -> [f64; 3] {
+        self.hint(Some(axes))
+    }
+
+    fn linear(&self, machine: &AxisVec) -> Vec3 {
+        std::array::from_fn(|i| self.lin[i].map_or(0.0, |k| machine[k]))
+    }
+
+    fn point(&self, bcs: &AxisVec) -> Vec3 {
+        std::array::from_fn(|g| self.geo[g].map_or(0.0, |k| bcs[k]))
+    }
+}
+
+impl Transformation for Traori {
+    fn name(&self) -> &'static str {
+        "TRAORI"
+    }
+
+    fn trafo_type(&self) -> u32 {
+        self.trafo_type
+    }
+
+    fn geo_slots(&self) -> [Option<usize>; 3] {
+        self.geo
+    }
+
+    fn machine_slots(&self) -> Vec<usize> {
+        self.lin.iter().flatten().copied().chain(self.rot.iter().flatten().map(|r| r.slot)).collect()
+    }
+
+    fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
+        let pose = self.chain.pose(&self.angles(machine));
+        let p = self.chain.tip(&self.linear(machine), &pose, &scale(tool, -1.0));
+        for (g, slot) in self.geo.iter().enumerate() {
+            if let Some(k) = slot {
+                bcs[*k] = p[g];
+            }
+        }
+        for r in self.rot.iter().flatten() {
+            bcs[r.slot] = machine[r.slot];
+        }
+    }
+
+    fn inverse(&self, bcs: &AxisVec, _prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
+        let pose = self.chain.pose(&self.angles(bcs));
+        let m = self.chain.linear(&self.point(bcs), &pose, &scale(tool, -1.0));
+        for (i, slot) in self.lin.iter().enumerate() {
+            if let Some(k) = slot {
+                machine[*k] = m[i];
+            }
+        }
+        for r in self.rot.iter().flatten() {
+            machine[r.slot] = bcs[r.slot];
+        }
+        Ok(())
+    }
+
+    fn orientation_slots(&self) -> [Option<usize>; 3] {
+        self.ori_slots
+    }
+
+    fn orientation(&self, machine: &AxisVec) -> Option<Vec3> {
+        Some(self.chain.orientation(&self.chain.pose(&self.angles(machine))))
+    }
+
+    /// Of the (up to) two solutions the one whose axes all fit their software limits (after
+    /// shifting by whole turns) with the least weighted travel from `prev`; in a pole the free
+    /// axis keeps its `prev` position. `Unreachable` if `o` cannot be reached or no solution
+    /// fits the limits.
+    fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        let sols = self.raw_solutions(o, &self.hint(Some(prev)))?;
+        let mut best: Option<(f64, [f64; 3])> = None;
+        'sol: for s in &sols {
+            let mut pos = [0.0; 3];
+            let mut cost = 0.0;
+            for (i, r) in self.rot.iter().enumerate() {
+                let Some(r) = r else { continue };
+                let Some(p) = r.place(r.position(s[i]), prev[r.slot]) else { continue 'sol };
+                cost += (p - prev[r.slot]).abs() * r.weight;
+                pos[i] = p;
+            }
+            // Ties keep the first (the "+γ" root), so the choice is deterministic.
+            if best.is_none_or(|(c, _)| cost < c - 1e-12) {
+                best = Some((cost, pos));
+            }
+        }
+        let (_, pos) = best.ok_or(Unreachable)?;
+        for (i, r) in self.rot.iter().enumerate() {
+            if let Some(r) = r {
+                axes[r.slot] = pos[i];
+            }
+        }
+        Ok(())
+    }
+}
