@@ -14,9 +14,10 @@
 use super::Interpreter;
 use super::frame::Frame;
 use crate::alarm::{Alarm, Clear};
+use crate::kinematics::orient::{angles, cone_sweep};
 use crate::kinematics::{Transformation, Vec3};
 use crate::machine_data::MachineConfig;
-use crate::motion::{AxisVec, OriPath, rotate};
+use crate::motion::{AxisVec, OriPath};
 
 /// G group 25: what a programmed orientation refers to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -168,31 +169,15 @@ fn antiparallel(line: u32) -> Alarm {
     }
 }
 
-/// The unit vector of the programmed angles (degrees) under `def`.
-fn from_angles(def: AngleDefinition, [a, b, c]: [f64; 3], cfg: &MachineConfig) -> Vec3 {
-    let (sa, ca) = a.to_radians().sin_cos();
-    let (sb, cb) = b.to_radians().sin_cos();
-    let (sc, cc) = c.to_radians().sin_cos();
-    let z = [0.0, 0.0, 1.0];
+/// The unit vector of the programmed angles (degrees) under `def`; `None` for a virtual-axis
+/// table (MD21120/21130) that names no reference axis.
+fn from_angles(def: AngleDefinition, [a, b, c]: [f64; 3], cfg: &MachineConfig) -> Option<Vec3> {
     match def {
-        // Rz(A2)·Rx(B2)·Rz(C2)·ez: C2 turns about the tool itself.
-        AngleDefinition::Euler => [sa * sb, -ca * sb, cb],
-        // Rz(C2)·Ry(B2)·Rx(A2)·ez.
-        AngleDefinition::Rpy => [cc * sb * ca + sc * sa, sc * sb * ca - cc * sa, cb * ca],
-        // Rx(C2)·Ry(B2)·Rz(A2)·ez.
-        AngleDefinition::Rpy2 => [sb, -sc * cb, cc * cb],
-        AngleDefinition::Virtual1 | AngleDefinition::Virtual2 => {
-            let table = if def == AngleDefinition::Virtual1 {
-                cfg.ori.turn_tab[0]
-            } else {
-                cfg.ori.turn_tab[1]
-            };
-            // Rotations in the table's order about the reference axes: R(t0, A2)·R(t1, B2)·R(t2, C2)·ez.
-            let axis = |t: u8| -> Vec3 { std::array::from_fn(|i| if i + 1 == t as usize { 1.0 } else { 0.0 }) };
-            let v = rotate(z, axis(table[2]), c.to_radians());
-            let v = rotate(v, axis(table[1]), b.to_radians());
-            rotate(v, axis(table[0]), a.to_radians())
-        }
+        AngleDefinition::Euler => Some(angles::euler_to_vector(a, b, c)),
+        AngleDefinition::Rpy => Some(angles::rpy_to_vector(a, b, c)),
+        AngleDefinition::Rpy2 => Some(angles::rpy2_to_vector(a, b, c)),
+        AngleDefinition::Virtual1 => angles::virt_to_vector(cfg.ori.turn_tab[0], [a, b, c]),
+        AngleDefinition::Virtual2 => angles::virt_to_vector(cfg.ori.turn_tab[1], [a, b, c]),
     }
 }
 
@@ -236,7 +221,9 @@ impl Interpreter {
                 } else {
                     AngleDefinition::Rpy
                 };
-                from_angles(def, ori.angles.map(|a| a.unwrap_or(0.0)), cfg)
+                from_angles(def, ori.angles.map(|a| a.unwrap_or(0.0)), cfg).ok_or_else(|| {
+                    Alarm::value_out_of_range(line, "ORIAX_TURN_TAB names no reference axis for ORIVIRT")
+                })?
             };
             let bcs = match modal.reference {
                 OriReference::Workpiece => frame.rotate_direction(wcs),
@@ -277,32 +264,14 @@ impl Interpreter {
                     Alarm::value_out_of_range(line, "cone interpolation needs the cone axis A6/B6/C6")
                 })?;
                 let k = if modal.reference == OriReference::Workpiece { frame.rotate_direction(k) } else { k };
-                Ok(cone(o_start, o_end, k, clockwise))
+                let sweep = cone_sweep(&k, &o_start, &o_end, !clockwise).ok_or_else(|| {
+                    Alarm::value_out_of_range(line, "cone interpolation: an orientation lies on the cone axis")
+                })?;
+                Ok(OriPath::cone(o_start, k, sweep))
             }
             OriInterpolation::Unmodelled(name) => Err(Alarm::unknown_name(line, name)),
         }
     }
-}
-
-/// The cone about `k` from `start` to `end`, turning clockwise (negative about `k`) or
-/// counter-clockwise; the end orientation's angle to `k` is the start's.
-fn cone(start: Vec3, end: Vec3, k: Vec3, clockwise: bool) -> Option<OriPath> {
-    let perp = |v: Vec3| {
-        let d = v[0] * k[0] + v[1] * k[1] + v[2] * k[2];
-        [v[0] - d * k[0], v[1] - d * k[1], v[2] - d * k[2]]
-    };
-    let (ps, pe) = (perp(start), perp(end));
-    let cross = [ps[1] * pe[2] - ps[2] * pe[1], ps[2] * pe[0] - ps[0] * pe[2], ps[0] * pe[1] - ps[1] * pe[0]];
-    let sin = cross[0] * k[0] + cross[1] * k[1] + cross[2] * k[2];
-    let cos = ps[0] * pe[0] + ps[1] * pe[1] + ps[2] * pe[2];
-    let mut angle = sin.atan2(cos);
-    let tau = std::f64::consts::TAU;
-    if clockwise && angle > 0.0 {
-        angle -= tau;
-    } else if !clockwise && angle < 0.0 {
-        angle += tau;
-    }
-    OriPath::cone(start, k, angle)
 }
 
 #[cfg(test)]
@@ -319,22 +288,11 @@ mod tests {
         let cfg = crate::machine_data::MachineData::default().apply_text(preset.text).unwrap();
         let h = std::f64::consts::FRAC_1_SQRT_2;
         // Euler: A2 about Z turns the tilt plane, B2 tilts away from Z; C2 has no effect.
-        assert!(close(from_angles(AngleDefinition::Euler, [90.0, 45.0, 33.0], &cfg), [h, 0.0, h]));
+        assert!(close(from_angles(AngleDefinition::Euler, [90.0, 45.0, 33.0], &cfg).unwrap(), [h, 0.0, h]));
         // RPY: B2 = 90 tilts Z onto X; then C2 = 90 about Z carries it onto Y.
-        assert!(close(from_angles(AngleDefinition::Rpy, [0.0, 90.0, 0.0], &cfg), [1.0, 0.0, 0.0]));
-        assert!(close(from_angles(AngleDefinition::Rpy, [0.0, 90.0, 90.0], &cfg), [0.0, 1.0, 0.0]));
+        assert!(close(from_angles(AngleDefinition::Rpy, [0.0, 90.0, 0.0], &cfg).unwrap(), [1.0, 0.0, 0.0]));
+        assert!(close(from_angles(AngleDefinition::Rpy, [0.0, 90.0, 90.0], &cfg).unwrap(), [0.0, 1.0, 0.0]));
         // RPY: A2 = 90 about X turns Z onto −Y.
-        assert!(close(from_angles(AngleDefinition::Rpy, [90.0, 0.0, 0.0], &cfg), [0.0, -1.0, 0.0]));
-    }
-
-    #[test]
-    fn cone_turns_the_requested_way() {
-        let h = std::f64::consts::FRAC_1_SQRT_2;
-        let (s, e, k) = ([h, 0.0, h], [0.0, h, h], [0.0, 0.0, 1.0]);
-        let ccw = cone(s, e, k, false).unwrap();
-        assert!((ccw.angle - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
-        let cw = cone(s, e, k, true).unwrap();
-        assert!((cw.angle + 3.0 * std::f64::consts::FRAC_PI_2).abs() < 1e-12);
-        assert!(close(cw.at(1.0), e) && close(ccw.at(1.0), e));
+        assert!(close(from_angles(AngleDefinition::Rpy, [90.0, 0.0, 0.0], &cfg).unwrap(), [0.0, -1.0, 0.0]));
     }
 }

@@ -21,7 +21,7 @@ use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path};
 
 /// The words this module handles; `modal::collect` lets them through.
 pub fn is_keyword(name: &str) -> bool {
-    matches!(name, "TRANSMIT" | "TRACYL" | "TRAANG" | "TRAFOOF")
+    matches!(name, "TRANSMIT" | "TRACYL" | "TRAANG" | "TRAORI" | "TRAFOOF")
 }
 
 /// A selection or deselection programmed in a block.
@@ -62,6 +62,9 @@ pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> R
             "TRAFOOF" => 0,
             "TRANSMIT" => 1,
             "TRAANG" => 2,
+            // TRAORI(n, x, y, z): the offsets of the orientation axes (5th and 6th parameter)
+            // are not modelled.
+            "TRAORI" => 4,
             _ => 3,
         };
         if args.len() > max_args {
@@ -83,6 +86,17 @@ pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> R
                     kind: TrafoKind::Tracyl,
                     n: data_set(arg(1)?)?,
                     args: SelectArgs { diameter: Some(diameter), groove_wall, ..SelectArgs::default() },
+                }
+            }
+            "TRAORI" => {
+                let base_orient = match (arg(1)?, arg(2)?, arg(3)?) {
+                    (None, None, None) => None,
+                    (x, y, z) => Some([x.unwrap_or(0.0), y.unwrap_or(0.0), z.unwrap_or(0.0)]),
+                };
+                Selection::On {
+                    kind: TrafoKind::Traori,
+                    n: data_set(arg(0)?)?,
+                    args: SelectArgs { base_orient, ..SelectArgs::default() },
                 }
             }
             _ => Selection::On {

@@ -1,0 +1,176 @@
+//! TRAORI run through a whole channel on the 5-axis presets: the tool tip stays on the
+//! programmed path while the orientation changes, orientation programming by vector and angles,
+//! the interpolation types, and the tool direction in the state. Expected values come from the
+//! head's closed form, written out here: with C about Z carrying A about X, pivot 150 above the
+//! spindle nose and a 100 mm tool, the machine position of tip P with orientation
+//! `o = (sin C·sin A, −cos C·sin A, cos A)` is `M = P − (0, 0, 150) + 250·o`.
+
+use nctwin_engine::{Channel, Snapshot, Status};
+
+const MAX_TICKS: usize = 1_000_000;
+
+struct Sample {
+    axes: Vec<f64>,
+}
+
+fn run(preset: &str, program: &str) -> (Channel, Vec<Sample>) {
+    let mut ch = Channel::from_preset(preset, "").unwrap();
+    ch.run_program(program).unwrap();
+    let mut samples = Vec::new();
+    while ch.is_busy() {
+        ch.step();
+        samples.push(Sample { axes: ch.axis_positions().to_vec() });
+        assert!(samples.len() < MAX_TICKS, "program does not end");
+    }
+    (ch, samples)
+}
+
+fn machine(s: &Snapshot, name: &str) -> f64 {
+    s.machine.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no axis {name}")).1
+}
+
+fn head_orientation(a: f64, c: f64) -> [f64; 3] {
+    let (sa, ca) = a.to_radians().sin_cos();
+    let (sc, cc) = c.to_radians().sin_cos();
+    [sc * sa, -cc * sa, ca]
+}
+
+/// The tool tip of the CA head at machine position (X, Y, Z, A, C).
+fn head_tip(m: &[f64]) -> [f64; 3] {
+    let o = head_orientation(m[3], m[4]);
+    [m[0] - 250.0 * o[0], m[1] - 250.0 * o[1], m[2] + 150.0 - 250.0 * o[2]]
+}
+
+fn close3(a: [f64; 3], b: [f64; 3], tol: f64) -> bool {
+    a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= tol)
+}
+
+fn assert_machine(s: &Snapshot, expected: [f64; 5]) {
+    for (name, v) in ["X", "Y", "Z", "A", "C"].iter().zip(expected) {
+        let got = machine(s, name);
+        let diff = if *name == "C" { (got - v + 180.0).rem_euclid(360.0) - 180.0 } else { got - v };
+        assert!(diff.abs() < 1e-6, "{name}: {got} vs {v} ({:?})", s.machine);
+    }
+}
+
+const START: &str = "T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000\n";
+
+#[test]
+fn a_rotary_axis_move_keeps_the_tool_tip_where_it_is() {
+    let (ch, samples) = run("mill5-head-ca", &format!("{START}A30\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let o = head_orientation(30.0, 0.0);
+    assert_machine(&s, [250.0 * o[0], 250.0 * o[1], 50.0 - 150.0 + 250.0 * o[2], 30.0, 0.0]);
+    let after_selection: Vec<&Sample> = samples.iter().filter(|p| p.axes[3].abs() > 1e-9).collect();
+    assert!(after_selection.len() > 10);
+    for p in after_selection {
+        assert!(close3(head_tip(&p.axes), [0.0, 0.0, 50.0], 1e-6), "tip {:?} at {:?}", head_tip(&p.axes), p.axes);
+    }
+    // The state shows the tool direction in the WCS.
+    let shown = s.orientation.expect("orientation");
+    assert!(close3(shown, o, 1e-9), "{shown:?}");
+    assert_eq!(s.transformation.map(|t| (t.name, t.trafo_type)), Some(("TRAORI".to_string(), 20)));
+}
+
+#[test]
+fn a_direction_vector_picks_the_solution_nearest_the_current_axes() {
+    // o = (1, 0, 1)/√2: A = 45, C = 90, or A = −45, C = 270; from C = 80 the first is nearer.
+    let (ch, _) = run("mill5-head-ca", &format!("{START}C80\nA3=1 B3=0 C3=1\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let o = head_orientation(45.0, 90.0);
+    assert_machine(&s, [250.0 * o[0], 250.0 * o[1], -100.0 + 250.0 * o[2], 45.0, 90.0]);
+}
+
+#[test]
+fn euler_angles_define_the_orientation() {
+    // ORIEULER: A2 = 90, B2 = 30 gives (sin 30°, 0, cos 30°): the head at A = 30, C = 90.
+    let (ch, _) = run("mill5-head-ca", &format!("{START}A30\nA2=90 B2=30\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let o = head_orientation(30.0, 90.0);
+    assert_machine(&s, [250.0 * o[0], 250.0 * o[1], -100.0 + 250.0 * o[2], 30.0, 90.0]);
+}
+
+/// From A30 C0 to A30 C90: interpolating the axes keeps the tilt at 30°; the great circle of
+/// ORIWKS passes nearer the vertical, at the normalised midpoint of the two vectors (22.21°).
+#[test]
+fn oriwks_interpolates_a_great_circle_and_orimks_the_axes() {
+    let great_circle_mid_tilt = {
+        let (s, e) = (head_orientation(30.0, 0.0), head_orientation(30.0, 90.0));
+        let m = [s[0] + e[0], s[1] + e[1], s[2] + e[2]];
+        (m[2] / (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt()).acos().to_degrees()
+    };
+    for (mode, lowest_tilt) in [("ORIMKS", 30.0), ("ORIWKS", great_circle_mid_tilt)] {
+        let program = format!("{START}A30\n{mode}\nA3=0.5 B3=0 C3={}\nM0\nM30", 0.75f64.sqrt());
+        let (ch, samples) = run("mill5-head-ca", &program);
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{mode}: {:?}", s.alarms);
+        assert!((machine(&s, "A") - 30.0).abs() < 1e-6 && (machine(&s, "C") - 90.0).abs() < 1e-6, "{mode}");
+        let swing: Vec<&Sample> = samples.iter().filter(|p| p.axes[4] > 1e-6).collect();
+        let min_a = swing.iter().map(|p| p.axes[3]).fold(f64::MAX, f64::min);
+        assert!((min_a - lowest_tilt).abs() < 0.05, "{mode}: lowest A {min_a} vs {lowest_tilt}");
+        let normal = {
+            let (a, b) = (head_orientation(30.0, 0.0), head_orientation(30.0, 90.0));
+            [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+        };
+        for p in swing {
+            assert!(close3(head_tip(&p.axes), [0.0, 0.0, 50.0], 1e-6), "{mode}: tip at {:?}", p.axes);
+            if mode == "ORIWKS" {
+                let o = head_orientation(p.axes[3], p.axes[4]);
+                let off_plane = o[0] * normal[0] + o[1] * normal[1] + o[2] * normal[2];
+                assert!(off_plane.abs() < 1e-9, "not on the great circle: {o:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn under_oriwks_the_vector_turns_with_the_frame() {
+    // ROT Z90: the programmed (1, 0, 1)/√2 is (0, 1, 1)/√2 in the BCS: A = −45 with C = 0.
+    let program = format!("{START}ORIWKS\nROT Z90\nA3=1 B3=0 C3=1\nM0\nM30");
+    let (ch, _) = run("mill5-head-ca", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let o = head_orientation(-45.0, 0.0);
+    assert_machine(&s, [250.0 * o[0], 250.0 * o[1], -100.0 + 250.0 * o[2], -45.0, 0.0]);
+    // Shown in the WCS: the programmed direction again.
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(close3(s.orientation.unwrap(), [h, 0.0, h], 1e-9), "{:?}", s.orientation);
+}
+
+#[test]
+fn the_path_and_the_orientation_move_together() {
+    // X travels 100 while A swings 0 → 30: every sample's tip lies on the line Y0 Z50.
+    let (ch, samples) = run("mill5-head-ca", &format!("{START}X100 A30\nM0\nM30"));
+    assert_eq!(ch.snapshot().status, Status::Stopped);
+    let moving: Vec<&Sample> = samples.iter().filter(|p| p.axes[3] > 1e-9).collect();
+    assert!(moving.len() > 10);
+    let mut last_x = f64::MIN;
+    for p in moving {
+        let tip = head_tip(&p.axes);
+        assert!(tip[1].abs() < 1e-6 && (tip[2] - 50.0).abs() < 1e-6, "tip {tip:?}");
+        assert!(tip[0] >= last_x - 1e-9, "tip goes back");
+        last_x = tip[0];
+    }
+    assert!((last_x - 100.0).abs() < 1e-6);
+}
+
+#[test]
+fn orientation_words_need_an_orientation_transformation() {
+    let (ch, _) = run("mill5-head-ca", "A3=0 B3=0 C3=1\nM30");
+    assert_eq!(ch.snapshot().alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14110]);
+    let (ch, _) = run("mill5-head-ca", &format!("{START}A30 A3=1 C3=1\nM30"));
+    assert_eq!(ch.snapshot().status, Status::Alarm);
+}
+
+#[test]
+fn trafoof_and_reset_return_to_machine_axes() {
+    let (ch, _) = run("mill5-head-ca", &format!("{START}A30\nTRAFOOF\nG0 X10\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert!(s.transformation.is_none());
+    // Without the transformation X is the machine axis again, with the tool length on Z.
+    assert!((machine(&s, "X") - 10.0).abs() < 1e-9);
+}
