@@ -757,3 +757,90 @@ fn the_presets_transform_an_ipo_point_both_ways() {
         assert!(near(&z[..3], &[12.0, -34.0, 105.0], 1e-9), "{id}: {:?}", &z[..5]);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Angle conventions and orientation interpolation (REFERENCE §6.3.3, §6.3.4)
+// ---------------------------------------------------------------------------------------------
+
+mod conventions {
+    use super::{near, sc};
+    use nctwin_engine::kinematics::orient::{OriPathError, angle_between, angles, cone, cone_sweep, slerp};
+
+    const POSES: [[f64; 3]; 5] =
+        [[10.0, 20.0, 30.0], [-45.0, 60.0, 170.0], [80.0, -30.0, -100.0], [0.0, 0.0, 0.0], [33.0, 89.0, 12.0]];
+
+    #[test]
+    fn orirpy_is_the_closed_form_of_the_reference() {
+        for [a, b, c] in POSES {
+            let ((sa, ca), (sb, cb), (s_c, c_c)) = (sc(a), sc(b), sc(c));
+            let expect = [c_c * sb * ca + s_c * sa, s_c * sb * ca - c_c * sa, cb * ca];
+            let o = angles::rpy_to_vector(a, b, c);
+            assert!(near(&o, &expect, 1e-12), "{o:?} vs {expect:?}");
+            let back = angles::rpy_from_vector(&o, c);
+            assert!(near(&angles::rpy_to_vector(back[0], back[1], back[2]), &o, 1e-12), "{back:?}");
+            if b.abs() < 90.0 && a.abs() < 90.0 {
+                assert!(near(&back, &[a, b, c], 1e-9), "{back:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn orieuler_ignores_c2_and_orirpy2_ignores_a2() {
+        for [a, b, c] in POSES {
+            let ((sa, ca), (sb, cb), (s_c, c_c)) = (sc(a), sc(b), sc(c));
+            assert!(near(&angles::euler_to_vector(a, b, c), &[sa * sb, -ca * sb, cb], 1e-12));
+            // Rx(C2)·Ry(B2)·ez = (sin B2, −sin C2·cos B2, cos C2·cos B2).
+            let o = angles::rpy2_to_vector(a, b, c);
+            assert!(near(&o, &[sb, -s_c * cb, c_c * cb], 1e-12), "{o:?}");
+            let back = angles::rpy2_from_vector(&o, a);
+            assert!(near(&angles::rpy2_to_vector(back[0], back[1], back[2]), &o, 1e-12), "{back:?}");
+            let e = angles::euler_from_vector(&angles::euler_to_vector(a, b, c), 0.0, c);
+            assert!(near(&angles::euler_to_vector(e[0], e[1], e[2]), &angles::euler_to_vector(a, b, c), 1e-12));
+        }
+        // The pole of ORIEULER (o = +Z) keeps the given A2.
+        assert_eq!(angles::euler_from_vector(&[0.0, 0.0, 1.0], 17.0, 0.0), [17.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn orivirt_follows_the_turn_table() {
+        // (1, 2, 3): first about X, then Y′, then Z″: Rx(A)·Ry(B)·ez = (sinB, −sinA·cosB, cosA·cosB).
+        for [a, b, c] in POSES {
+            let ((sa, ca), (sb, cb)) = (sc(a), sc(b));
+            let o = angles::virt_to_vector([1, 2, 3], [a, b, c]).unwrap();
+            assert!(near(&o, &[sb, -sa * cb, ca * cb], 1e-12), "{o:?}");
+            let back = angles::virt_from_vector([1, 2, 3], &o, a, c).unwrap();
+            assert!(near(&angles::virt_to_vector([1, 2, 3], back).unwrap(), &o, 1e-12), "{back:?}");
+            // (3, 1, 3) is the Euler sequence.
+            let e = angles::virt_to_vector([3, 1, 3], [a, b, c]).unwrap();
+            assert!(near(&e, &angles::euler_to_vector(a, b, c), 1e-12));
+        }
+        assert!(angles::virt_from_vector([3, 3, 1], &[0.0, 0.0, 1.0], 0.0, 0.0).is_none());
+    }
+
+    #[test]
+    fn the_great_circle_turns_at_constant_rate_in_one_plane() {
+        let (os, oe) = ([0.0, 0.0, 1.0], [0.6, 0.0, 0.8]);
+        let omega = angle_between(&os, &oe);
+        for u in [0.0, 0.25, 0.5, 0.9, 1.0] {
+            let o = slerp(&os, &oe, u).unwrap();
+            assert!((angle_between(&os, &o) - u * omega).abs() < 1e-12);
+            assert!(o[1].abs() < 1e-15 && ((o[0] * o[0] + o[2] * o[2]).sqrt() - 1.0).abs() < 1e-15);
+        }
+        assert_eq!(slerp(&[0.0, 1.0, 0.0], &[0.0, -3.0, 0.0], 0.5), Err(OriPathError::Antiparallel));
+        assert_eq!(slerp(&[0.0; 3], &[0.0, 1.0, 0.0], 0.5), Err(OriPathError::ZeroVector));
+        assert_eq!(slerp(&[0.0, 2.0, 0.0], &[0.0, 1.0, 0.0], 0.5), Ok([0.0, 1.0, 0.0]));
+    }
+
+    #[test]
+    fn a_cone_keeps_its_opening_angle() {
+        let k = [0.0, 0.0, 2.0];
+        let (s, c) = sc(30.0);
+        let os = [s, 0.0, c];
+        let o = cone(&k, &os, 90f64.to_radians()).unwrap();
+        assert!(near(&o, &[0.0, s, c], 1e-15), "{o:?}");
+        let ccw = cone_sweep(&k, &os, &o, true).unwrap();
+        let cw = cone_sweep(&k, &os, &o, false).unwrap();
+        assert!((ccw.to_degrees() - 90.0).abs() < 1e-12 && (cw.to_degrees() + 270.0).abs() < 1e-12);
+        assert!(cone_sweep(&k, &[0.0, 0.0, 1.0], &o, true).is_none());
+    }
+}
