@@ -416,6 +416,26 @@ fn modulo_axes_stay_continuous_and_the_nearer_branch_wins() {
     assert!(sn.iter().all(|s| (s[0] - 1000.0).abs() <= 180.0), "{sn:?}");
 }
 
+#[test]
+fn rot_ax_offset_and_sign_shift_and_reverse_the_axis_positions() {
+    // Head CA: effective α = s·(position − offset); the kinematic zero sits at C = 10, A = −5.
+    let plain = active(&six(20, [6, 4, 0], ""), SelectArgs::default(), [0.0, 0.0, 50.0]);
+    let md =
+        "$MC_TRAFO5_ROT_AX_OFFSET_1[0]=10\n$MC_TRAFO5_ROT_AX_OFFSET_1[1]=-5\n$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=FALSE\n";
+    let shifted = active(&six(20, [6, 4, 0], md), SelectArgs::default(), [0.0, 0.0, 50.0]);
+    // C = 50 ⇒ α1 = 40; A = −35 ⇒ α2 = −(−35 + 5) = 30: the same pose as C = 40, A = 30 plain.
+    let (a, b) = (axes(&[1.0, 2.0, 3.0, 30.0, 0.0, 40.0]), axes(&[1.0, 2.0, 3.0, -35.0, 0.0, 50.0]));
+    assert!(near(&plain.forward(&a)[..3], &shifted.forward(&b)[..3], 1e-12));
+    assert!(near(&plain.trafo.orientation(&a).unwrap(), &shifted.trafo.orientation(&b).unwrap(), 1e-15));
+    let o = plain.trafo.orientation(&a).unwrap();
+    let mut out = axes(&[]);
+    shifted.trafo.orientation_axes(&o, &b, &mut out).unwrap();
+    assert!(near(&[out[C], out[A]], &[50.0, -35.0], 1e-9), "{out:?}");
+    // In the pole without a previous position the free axis sits at its zero position.
+    assert!(near(&traori(&shifted).solutions(&[0.0, 0.0, 1.0]).unwrap()[0][..2], &[10.0, -5.0], 1e-12));
+    assert_eq!(traori(&shifted).pole_slot(), Some(C));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Variants: 3-/4-axis, 6-axis, basic orientation, data set 2
 // ---------------------------------------------------------------------------------------------
@@ -553,10 +573,11 @@ fn the_manual_example_data_set_places_the_holder_along_the_tool() {
               $MC_TRAFO5_ROT_AX_OFFSET_1[0]=0\n$MC_TRAFO5_ROT_AX_OFFSET_1[1]=0\n\
               $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE\n$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE\n\
               $MC_TRAFO5_NON_POLE_LIMIT_1=2.0\n$MC_TRAFO5_POLE_LIMIT_1=2.0\n\
-              $MC_TRAFO5_BASE_TOOL_1[0]=0.0\n$MC_TRAFO5_BASE_TOOL_1[1]=0.0\n$MC_TRAFO5_BASE_TOOL_1[2]=5,0\n\
+              $MC_TRAFO5_BASE_TOOL_1[0]=0.0\n$MC_TRAFO5_BASE_TOOL_1[1]=0.0\n$MC_TRAFO5_BASE_TOOL_1[2]=5.0\n\
               $MC_TRAFO5_JOINT_OFFSET_1[0]=0.0\n$MC_TRAFO5_JOINT_OFFSET_1[1]=0.0\n$MC_TRAFO5_JOINT_OFFSET_1[2]=0.0\n\
               $MA_POS_LIMIT_MINUS[A1]=-120\n$MA_POS_LIMIT_PLUS[A1]=120\n";
-    let cfg = try_six(16, [4, 5, 0], md).or_else(|_| try_six(16, [4, 5, 0], &md.replace("5,0", "5.0"))).unwrap();
+    // (The manual prints "5,0"; NC data text here takes a decimal point.)
+    let cfg = six(16, [4, 5, 0], md);
     let l = 30.0;
     let tr = active(&cfg, SelectArgs::default(), [0.0, 0.0, l]);
     let mut prev = axes(&[1.0, 0.0, 0.0]);
