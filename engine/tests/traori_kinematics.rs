@@ -692,8 +692,9 @@ fn offsets_md(o: &[f64; 12], signs: [bool; 2]) -> String {
     )
 }
 
-/// Forward, then inverse with the same rotary positions, and orientation → axes → forward.
-fn check_round_trip(tr: &ActiveTrafo, m: &Axes) -> Result<(), TestCaseError> {
+/// Forward, then inverse with the same rotary positions, and orientation → axes → forward;
+/// `tol` for the oriented inverse back to the pose (mm and degrees).
+fn check_round_trip(tr: &ActiveTrafo, m: &Axes, tol: f64) -> Result<(), TestCaseError> {
     let b = tr.forward(m);
     let back = tr.inverse(&b, m).unwrap();
     prop_assert!(near(&back[..6], &m[..6], 1e-9), "inverse: {:?} vs {:?}", &back[..6], &m[..6]);
@@ -714,7 +715,7 @@ fn check_round_trip(tr: &ActiveTrafo, m: &Axes) -> Result<(), TestCaseError> {
     }
     // The nearest solution from the pose itself is the pose (the free axis of a pole is kept).
     let oriented = tr.inverse_oriented(&b, &o, m).unwrap();
-    prop_assert!(near(&oriented[..6], &m[..6], 1e-9), "{:?} vs {:?}", &oriented[..6], &m[..6]);
+    prop_assert!(near(&oriented[..6], &m[..6], tol), "{:?} vs {:?}", &oriented[..6], &m[..6]);
     Ok(())
 }
 
@@ -734,11 +735,13 @@ proptest! {
         // Keep the tilt away from 0 and 180°, where the two branches of the pole axis meet.
         prop_assume!(rot.iter().all(|r| r.abs() > 1e-3 && (r.abs() - 180.0).abs() > 1e-3));
         let m = axes(&[lin[0], lin[1], lin[2], rot[0], rot[1], rot[2]]);
-        check_round_trip(&tr, &m)?;
+        check_round_trip(&tr, &m, 1e-9)?;
     }
 
     /// Generic types with random axis directions and basic orientation: both Paden–Kahan roots
-    /// map forward to the orientation.
+    /// map forward to the orientation. Where the two roots merge (γ → 0, the orientation on the
+    /// edge of the reachable cone) the square root halves the digits: the pose comes back to
+    /// 1e-6 there, the orientation still to 1e-9.
     #[test]
     fn generic_random_geometry_round_trips(kind in 0usize..3, v1 in prop::array::uniform3(-1.0f64..1.0),
                                            v2 in prop::array::uniform3(-1.0f64..1.0), b in prop::array::uniform3(-1.0f64..1.0),
@@ -756,7 +759,7 @@ proptest! {
         let m = axes(&[lin[0], lin[1], lin[2], rot[0], rot[1]]);
         // Away from poles (where the free axis is taken from the previous position anyway).
         prop_assume!(traori(&tr).pole_angle(&tr.trafo.orientation(&m).unwrap()) > 1e-3);
-        check_round_trip(&tr, &m)?;
+        check_round_trip(&tr, &m, 1e-6)?;
     }
 }
 
