@@ -9,6 +9,9 @@
 //!   amortised, plus the channel's bookkeeping).
 //! - `transform`: one `Channel::step` with each transformation family active (none, TRANSMIT,
 //!   TRACYL, TRAANG) on its preset: interpolation plus the inverse transformation per cycle.
+//! - `traori_point`: one TRAORI IPO point, `ActiveTrafo::inverse_oriented` (orientation →
+//!   rotary axes with both solutions, limits and nearest choice, then the linear axes) on each
+//!   5-axis preset; throughput in transforms/s.
 //! - `whole_program`: a whole fast-pace run, `run_program` until the motion ends; per block.
 //!   `NCTWIN_BENCH_PROGRAM=file.mpf` adds a case for that file (e.g. from
 //!   ../shared/bench/gen_program.py), on `NCTWIN_BENCH_MACHINE` (default mill-3axis).
@@ -323,6 +326,37 @@ mod transform {
             if ch.ticks().is_multiple_of(1024) {
                 black_box(ch.take_events());
             }
+        });
+    }
+}
+
+mod traori_point {
+    use super::*;
+    use nctwin_engine::kinematics::{self, ActiveTrafo, SelectArgs};
+
+    /// One IPO point per iteration along a precomputed ring of 1024 TCP/orientation pairs
+    /// (a tilted cone sweep), each continuous with the previous machine position.
+    #[divan::bench(args = ["mill5-head-ca", "mill5-table-ac", "mill5-mixed-bc"])]
+    fn inverse_oriented(bencher: Bencher, preset: &str) {
+        let cfg = channel(preset).config().clone();
+        let trafo = kinematics::build(&cfg.trafos[0], &cfg, &SelectArgs::default()).expect("TRAORI data set 1");
+        let t = ActiveTrafo { trafo, tool: [0.0, 0.0, 100.0], number: 1 };
+        let ring: Vec<([f64; 20], [f64; 3])> = (0..1024)
+            .map(|i| {
+                let u = i as f64 / 1024.0 * std::f64::consts::TAU;
+                let mut p = [0.0; 20];
+                (p[0], p[1], p[2]) = (40.0 * u.cos(), 40.0 * u.sin(), -5.0);
+                let tilt = 0.4f64;
+                (p, [tilt.sin() * u.cos(), tilt.sin() * u.sin(), tilt.cos()])
+            })
+            .collect();
+        let mut prev = t.inverse_oriented(&ring[0].0, &ring[0].1, &[0.0; 20]).expect("reachable");
+        let mut i = 0;
+        bencher.counter(ItemsCount::new(1usize)).bench_local(|| {
+            let (p, o) = &ring[i & 1023];
+            i += 1;
+            prev = t.inverse_oriented(black_box(p), black_box(o), &prev).expect("reachable");
+            black_box(&prev);
         });
     }
 }

@@ -148,6 +148,20 @@ impl Traori {
         dot(&o, axis).abs().clamp(0.0, 1.0).acos().to_degrees()
     }
 
+    /// The channel axis that becomes free in the pole ([`Traori::pole_angle`] = 0): the outer
+    /// axis of a head, the inner (table) axis of a table or mixed kinematics. The
+    /// interpolator keeps it still when it passes through the pole. `None` for one axis.
+    pub fn pole_slot(&self) -> Option<usize> {
+        if self.chain.axes < 2 {
+            return None;
+        }
+        let i = match self.chain.kind {
+            ChainKind::Tool => 0,
+            ChainKind::Part | ChainKind::Mixed => 1,
+        };
+        self.rot[i].map(|r| r.slot)
+    }
+
     /// Both rotary-axis solutions for orientation `o`, each indexed like
     /// [`Transformation::orientation_slots`] (absent axes 0), positions within ±180° of
     /// `TRAFO5_ROT_AX_OFFSET`, sorted by the position of the first present rotary axis
