@@ -174,3 +174,71 @@ fn trafoof_and_reset_return_to_machine_axes() {
     // Without the transformation X is the machine axis again, with the tool length on Z.
     assert!((machine(&s, "X") - 10.0).abs() < 1e-9);
 }
+
+/// The Transformations Function Manual's orientation-vector example (F2, 3.13: N100..N170) on
+/// the example machine data of the same pages: a head with A about X carrying B about Y
+/// (type 16), BASE_TOOL (0, 0, 5), no other offsets; T1 is 100 long. M0 after each block lets
+/// the test look. For this head `o = Rx(A)·Ry(B)·ez = (sin B, −sin A·cos B, cos A·cos B)` and the
+/// machine point is `M = P − Rx(A)·Ry(B)·(0, 0, 5 − 100)`. The chain is not closed (BASE_TOOL
+/// without PART_OFFSET): the spindle nose at Z100 of N100 is the tool tip P = (0, 0, 5) for
+/// TRAORI, which the example's later blocks keep.
+#[test]
+fn the_manuals_orientation_vector_example() {
+    let md = "\
+$MN_AXCONF_MACHAX_NAME_TAB[4]=\"B\"
+$MC_AXCONF_CHANAX_NAME_TAB[4]=\"B\"
+$MA_ROT_IS_MODULO[B]=FALSE
+$MA_POS_LIMIT_MINUS[B]=-120
+$MA_POS_LIMIT_PLUS[B]=120
+$MC_TRAFO_TYPE_1=16
+$MC_TRAFO_AXES_IN_1[3]=4
+$MC_TRAFO_AXES_IN_1[4]=5
+$MC_TRAFO5_PART_OFFSET_1[2]=0
+$MC_TRAFO5_BASE_TOOL_1[2]=5";
+    let program = "\
+N100 G1 x1 y0 z0 a0 b0 F20000 G90 G64 T1 D1 G17 ADIS=.5 ADISPOS=3
+N110 TRAORI(1)
+N120 ORIWKS
+N130 G1 G90
+N140 a3 = 0 b3 = 0 c3 = 1 x0
+M0
+N150 a3 = 0 b3 =-1 c3 = 0
+M0
+N160 a3 = 1 b3 = 0 c3 = 0
+M0
+N170 a3 = 1 b3 = 0 c3 = 1
+M0
+M30";
+    let mut ch = Channel::from_preset("mill5-head-ca", md).unwrap();
+    ch.run_program(program).unwrap();
+    let machine_point = |a: f64, b: f64| {
+        let (sa, ca) = a.to_radians().sin_cos();
+        let (sb, cb) = b.to_radians().sin_cos();
+        // Rx(A)·Ry(B)·(0, 0, −95).
+        let v = [-95.0 * sb, 95.0 * sa * cb, -95.0 * ca * cb];
+        [-v[0], -v[1], 5.0 - v[2]]
+    };
+    // (A, B) after each block; in N160 B = 90 puts the tool along X whatever A is (a pole):
+    // A keeps its position. N170 from there: B = 45 with A = 0 (A = 180 is beyond the limit).
+    for (block, (a, b)) in [("N140", (0.0, 0.0)), ("N150", (90.0, 0.0)), ("N160", (90.0, 90.0)), ("N170", (0.0, 45.0))]
+    {
+        let mut ticks = 0;
+        while ch.is_busy() {
+            ch.step();
+            ticks += 1;
+            assert!(ticks < MAX_TICKS);
+        }
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{block}: {:?}", s.alarms);
+        let m = machine_point(a, b);
+        for (name, v) in ["X", "Y", "Z", "A", "B"].iter().zip([m[0], m[1], m[2], a, b]) {
+            assert!(
+                (machine(&s, name) - v).abs() < 1e-6,
+                "{block} {name}: {} vs {v} ({:?})",
+                machine(&s, name),
+                s.machine
+            );
+        }
+        ch.start().unwrap();
+    }
+}

@@ -413,7 +413,9 @@ pub(super) fn collect(
                     "RP" => w.rp = Some(v),
                     "AR" => w.ar = Some(v),
                     "TURN" => w.turn = Some(whole("TURN=")?),
-                    "H" => {}
+                    // H: auxiliary function for the PLC. ADIS/ADISPOS: smoothing distances of
+                    // G641, which this product does not model (blocks meet at G64 corners).
+                    "H" | "ADIS" | "ADISPOS" => {}
                     // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
                     "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
                     "P" => w.repeat = Some(whole("P")?),
@@ -609,7 +611,7 @@ fn data_write(
 fn is_nc_address(name: &str) -> bool {
     const ADDRESSES: &[&str] = &[
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "OFFN", "SPOS",
+        "ADIS", "ADISPOS", "OFFN", "SPOS",
     ];
     ADDRESSES.contains(&name) || orient::is_address(name)
 }
