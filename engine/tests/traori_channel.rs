@@ -242,3 +242,22 @@ M30";
         ch.start().unwrap();
     }
 }
+
+#[test]
+fn orireset_moves_the_orientation_axes_to_their_rest_or_given_positions() {
+    // The 1st orientation axis of the head is C (TRAFO_AXES_IN_1[3]), the 2nd A.
+    for (call, (a, c)) in
+        [("ORIRESET()", (0.0, 0.0)), ("ORIRESET(10, 20)", (20.0, 10.0)), ("ORIRESET(, 5)", (5.0, 0.0))]
+    {
+        let (ch, samples) = run("mill5-head-ca", &format!("{START}A30 C45\n{call}\nM0\nM30"));
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{call}: {:?}", s.alarms);
+        let o = head_orientation(a, c);
+        assert_machine(&s, [250.0 * o[0], 250.0 * o[1], -100.0 + 250.0 * o[2], a, c]);
+        for p in samples.iter().filter(|p| p.axes[3].abs() > 1e-9) {
+            assert!(close3(head_tip(&p.axes), [0.0, 0.0, 50.0], 1e-6), "{call}: tip at {:?}", p.axes);
+        }
+    }
+    let (ch, _) = run("mill5-head-ca", "ORIRESET()\nM30");
+    assert_eq!(ch.snapshot().alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14110]);
+}

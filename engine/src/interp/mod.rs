@@ -392,7 +392,7 @@ impl Interpreter {
         } else if let Some(reference) = words.pole {
             self.define_pole(reference, &words, cfg, line)?;
         } else if words.frame_op.is_none() && !words.axes.is_empty()
-            || words.ori.programmed()
+            || words.ori.moves()
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {

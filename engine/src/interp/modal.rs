@@ -366,6 +366,18 @@ pub(super) fn collect(
                 };
                 w.user_alarm = Some(Alarm::user(line, number as u32, &text));
             }
+            Word::Keyword { name, args } if name == "ORIRESET" => {
+                if args.len() > 3 {
+                    return Err(Alarm::syntax(line, "ORIRESET takes at most three axis positions"));
+                }
+                let mut values = [None; 3];
+                for (v, e) in values.iter_mut().zip(args) {
+                    if !matches!(e, Expr::Call(n, a) if n == "_OMITTED" && a.is_empty()) {
+                        *v = Some(eval_f64(e, &Ctx { vars, sys }, line)?);
+                    }
+                }
+                w.ori.reset = Some(values);
+            }
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
                     [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),

@@ -92,6 +92,8 @@ pub struct OriWords {
     pub angles: [Option<f64>; 3],
     /// A6, B6, C6: cone axis.
     pub cone_axis: [Option<f64>; 3],
+    /// ORIRESET(a, b, c): the orientation axes to these positions (omitted: the rest position).
+    pub reset: Option<[Option<f64>; 3]>,
     pub reference: Option<OriReference>,
     pub angles_def: Option<AngleDefinition>,
     pub interpolation: Option<OriInterpolation>,
@@ -101,6 +103,11 @@ impl OriWords {
     /// True if the block programs an orientation.
     pub fn programmed(&self) -> bool {
         self.vector.iter().chain(&self.angles).any(Option::is_some)
+    }
+
+    /// True if the block moves the orientation (programmed, or ORIRESET).
+    pub fn moves(&self) -> bool {
+        self.programmed() || self.reset.is_some()
     }
 
     /// Takes an orientation G function (`ORIWKS`, ...); false if `name` is none.
@@ -201,12 +208,22 @@ impl Interpreter {
     ) -> Result<Option<OriPath>, Alarm> {
         let ori = &words.ori;
         let Some((active, machine)) = self.orientation_transformation() else {
-            return if ori.programmed() { Err(without_transformation(line)) } else { Ok(None) };
+            return if ori.moves() { Err(without_transformation(line)) } else { Ok(None) };
         };
         let slots = active.trafo.orientation_slots();
         let rotary_words = words.axes.iter().any(|(k, ..)| slots.contains(&Some(*k)));
-        if ori.programmed() && rotary_words {
-            return Err(Alarm::conflicting_functions(line, "orientation axes together with A2..C3"));
+        if (ori.moves() && rotary_words) || (ori.programmed() && ori.reset.is_some()) {
+            return Err(Alarm::conflicting_functions(line, "orientation axes, A2..C3 and ORIRESET together"));
+        }
+        if let Some(values) = ori.reset {
+            // ORIRESET: the orientation axes linearly to the given or the rest positions.
+            let rest = self.orientation_rest().unwrap_or_default();
+            for (role, slot) in slots.iter().enumerate() {
+                if let Some(k) = slot {
+                    end[*k] = values[role].unwrap_or(rest[role]);
+                }
+            }
+            return Ok(None);
         }
         let modal = self.modal.ori;
         let target = if ori.programmed() {

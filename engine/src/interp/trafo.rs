@@ -403,6 +403,14 @@ impl Interpreter {
         a.trafo.trafo.orientation_slots().iter().any(Option::is_some).then_some((&a.trafo, &a.machine))
     }
 
+    /// The orientation axes' rest positions of an active TRAORI (ORIRESET without values).
+    pub(super) fn orientation_rest(&self) -> Option<[f64; 3]> {
+        match &self.trafo.active.as_ref()?.trafo.trafo {
+            AnyTrafo::Traori(t) => Some(t.rest_positions()),
+            _ => None,
+        }
+    }
+
     /// The TRACYL groove-wall slots when that offset is selected.
     pub(super) fn groove_wall_axes(&self) -> Option<(usize, usize)> {
         match &self.trafo.active.as_ref()?.trafo.trafo {

@@ -185,6 +185,12 @@ impl Traori {
         Ok(self.raw_solutions(o, &hint)?.map(|a| self.by_role(&a, |r, x| unwrap_near(r.position(x), prev[r.slot]))))
     }
 
+    /// Positions of the orientation axes (by role, like the orientation slots) in the
+    /// kinematic zero position, `TRAFO5_ROT_AX_OFFSET`: where ORIRESET without values goes.
+    pub fn rest_positions(&self) -> [f64; 3] {
+        self.by_role(&[0.0; 3], |r, _| r.offset)
+    }
+
     /// Effective angles (radians) of the rotary axes at `axes` (zero without).
     fn hint(&self, axes: Option<&AxisVec>) -> [f64; 3] {
         std::array::from_fn(|i| match (self.rot[i], axes) {
