@@ -261,3 +261,50 @@ fn orireset_moves_the_orientation_axes_to_their_rest_or_given_positions() {
     let (ch, _) = run("mill5-head-ca", "ORIRESET()\nM30");
     assert_eq!(ch.snapshot().alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14110]);
 }
+
+/// PTP: the end point is transformed once and the machine axes travel linearly together, so
+/// the tool tip leaves the straight line; STAT= picks the orientation solution (bit 0: the
+/// higher position of the first orientation axis, C), TU= the turn ranges (bit 3: A negative,
+/// bit 4 clear: C in 0..360).
+#[test]
+fn ptp_moves_the_machine_axes_linearly_to_the_chosen_solution() {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    for (words, a_end, c_travel) in [("STAT=1", 45.0, 90.0), ("STAT=0", -45.0, -90.0), ("STAT=0 TU=8", -45.0, 270.0)] {
+        let program = format!("{START}PTP\nG0 X100 A3=1 B3=0 C3=1 {words}\nM0\nM30");
+        let (ch, samples) = run("mill5-head-ca", &program);
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{words}: {:?}", s.alarms);
+        let o = head_orientation(a_end, c_travel);
+        assert!(close3(o, [h, 0.0, h], 1e-12));
+        let end = [100.0 + 250.0 * h, 0.0, -100.0 + 250.0 * h, a_end, c_travel];
+        assert_machine(&s, end);
+        // Linear in machine space: every sample is start + u·(end − start) for one u.
+        let start = [0.0, 0.0, 150.0, 0.0, 0.0];
+        let moving: Vec<&Sample> = samples.iter().filter(|p| (p.axes[0] - 0.0).abs() > 1e-9).collect();
+        assert!(moving.len() > 10, "{words}");
+        let mut off_line = 0.0f64;
+        for p in &moving {
+            let u = p.axes[0] / end[0];
+            for k in 1..5 {
+                let expect = start[k] + u * (end[k] - start[k]);
+                assert!((p.axes[k] - expect).abs() < 1e-6, "{words}: axis {k} {} vs {expect}", p.axes[k]);
+            }
+            off_line = off_line.max(head_tip(&p.axes)[2] - 50.0).max(50.0 - head_tip(&p.axes)[2]);
+        }
+        // The tip does not follow the Cartesian line in between (it would under CP).
+        assert!(off_line > 1.0, "{words}: tip stayed on the line ({off_line})");
+    }
+}
+
+#[test]
+fn ptp_is_refused_with_radius_compensation_and_cp_keeps_the_path() {
+    let (ch, _) = run("mill5-head-ca", &format!("{START}PTP G41\nX10\nX20\nM30"));
+    assert_eq!(ch.snapshot().alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [10753]);
+    // PTPG0 leaves G1 blocks on the Cartesian path.
+    let (ch, samples) = run("mill5-head-ca", &format!("{START}PTPG0\nX100 A30\nM0\nM30"));
+    assert_eq!(ch.snapshot().status, Status::Stopped);
+    for p in samples.iter().filter(|p| p.axes[3] > 1e-9) {
+        let tip = head_tip(&p.axes);
+        assert!(tip[1].abs() < 1e-6 && (tip[2] - 50.0).abs() < 1e-6, "tip {tip:?}");
+    }
+}

@@ -397,6 +397,7 @@ impl Interpreter {
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
             let (mv, feed) = self.motion(&words, cfg, line)?;
+            self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let comp = self.compensation(cfg, &words, line)?;
             self.trc.push(trc::Prepared { mv, feed, line, item }, comp, &AxisLimit::for_channel(cfg), out)?;

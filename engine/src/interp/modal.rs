@@ -79,6 +79,32 @@ pub struct Modal {
     pub polar: (f64, f64),
     /// G groups 25, 50 and 51 of orientation programming.
     pub ori: OriModal,
+    /// G group 49: Cartesian path (CP) or point-to-point travel.
+    pub ptp: PtpMode,
+}
+
+/// G group 49: how a transformation's machine axes travel between the block end points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PtpMode {
+    /// CP: the Cartesian path is interpolated (default).
+    Cp,
+    /// PTP: only the end point is transformed; the machine axes move linearly together.
+    Ptp,
+    /// PTPG0: PTP for G0 blocks, CP otherwise.
+    PtpG0,
+    /// PTPWOC: PTP without compensating motion (handling robots); like PTP here.
+    PtpWoc,
+}
+
+impl PtpMode {
+    /// True if a block with this motion travels point to point.
+    pub fn applies(self, rapid: bool) -> bool {
+        match self {
+            PtpMode::Cp => false,
+            PtpMode::Ptp | PtpMode::PtpWoc => true,
+            PtpMode::PtpG0 => rapid,
+        }
+    }
 }
 
 impl Modal {
@@ -102,6 +128,7 @@ impl Modal {
             offn: 0.0,
             arc_feed: ArcFeed::Contour,
             ori: OriModal::reset(),
+            ptp: PtpMode::Cp,
         }
     }
 
@@ -149,6 +176,9 @@ impl Modal {
             self.arc_feed = f;
         }
         self.ori.apply(&w.ori);
+        if let Some(p) = w.ptp {
+            self.ptp = p;
+        }
         if let Some(frame) = w.work_offset {
             if frame >= cfg.work_offsets.len() {
                 return Err(Alarm::value_out_of_range(
@@ -273,6 +303,11 @@ pub(super) struct Words {
     pub turn: Option<u32>,
     /// Orientation words and G functions.
     pub ori: OriWords,
+    /// CP, PTP, PTPG0, PTPWOC.
+    pub ptp: Option<PtpMode>,
+    /// `STAT=`: joint configuration for PTP; `TU=`: turn direction of the rotary axes.
+    pub stat: Option<u32>,
+    pub tu: Option<u32>,
 }
 
 impl Words {
@@ -334,6 +369,16 @@ pub(super) fn collect(
                 }
             }
             Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
+            Word::Keyword { name, args }
+                if args.is_empty() && matches!(name.as_str(), "CP" | "PTP" | "PTPG0" | "PTPWOC") =>
+            {
+                w.ptp = Some(match name.as_str() {
+                    "CP" => PtpMode::Cp,
+                    "PTP" => PtpMode::Ptp,
+                    "PTPG0" => PtpMode::PtpG0,
+                    _ => PtpMode::PtpWoc,
+                });
+            }
             Word::Keyword { name, args } if args.is_empty() && frame_op(name).is_some() => {
                 if w.frame_op.is_some() {
                     return Err(Alarm::syntax(line, "one frame instruction per block"));
@@ -428,6 +473,8 @@ pub(super) fn collect(
                     // H: auxiliary function for the PLC. ADIS/ADISPOS: smoothing distances of
                     // G641, which this product does not model (blocks meet at G64 corners).
                     "H" | "ADIS" | "ADISPOS" => {}
+                    "STAT" => w.stat = Some(whole("STAT=")?),
+                    "TU" => w.tu = Some(whole("TU=")?),
                     // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
                     "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
                     "P" => w.repeat = Some(whole("P")?),
@@ -623,7 +670,7 @@ fn data_write(
 fn is_nc_address(name: &str) -> bool {
     const ADDRESSES: &[&str] = &[
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "ADIS", "ADISPOS", "OFFN", "SPOS",
+        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "SPOS",
     ];
     ADDRESSES.contains(&name) || orient::is_address(name)
 }

@@ -11,6 +11,7 @@
 
 use std::sync::Arc;
 
+use super::modal::PtpMode;
 use super::{Interpreter, Item};
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::plan::{PlanError, plan_block};
@@ -161,6 +162,26 @@ struct Active {
     /// BCS point where the last prepared move ended, so a jump in the axes that the radius
     /// compensation splits (TRACYL groove wall) gets a linking move.
     bcs: Option<AxisVec>,
+    /// Blocks (move tags) to travel point to point, with their STAT= and TU= values.
+    ptp: Vec<PtpBlock>,
+}
+
+/// A block to travel point to point (G group 49).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct PtpBlock {
+    pub tag: u32,
+    pub stat: Option<u32>,
+    pub tu: Option<u32>,
+}
+
+/// 10753: point-to-point travel with tool radius compensation active.
+fn ptp_with_trc(line: u32) -> Alarm {
+    Alarm {
+        number: 10753,
+        message: format!("Channel 1 block {line} PTP travel is not possible with tool radius compensation active"),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
 }
 
 impl TrafoState {
@@ -294,6 +315,7 @@ impl Interpreter {
             derived,
             machine: *machine,
             bcs: None,
+            ptp: Vec::new(),
         }));
         self.trafo.generation = self.trafo.generation.wrapping_add(1);
         Ok(())
@@ -370,6 +392,15 @@ impl Interpreter {
                     PlanError::SoftLimit { axis, plus } => Alarm::software_limit(line, &axis, plus),
                 })
             };
+            if let Some(i) = a.ptp.iter().position(|p| p.tag == mv.tag) {
+                let block = a.ptp.remove(i);
+                let m = point_to_point(a, &mv, block, line)?;
+                for k in a.trafo.trafo.orientation_slots().into_iter().flatten() {
+                    self.pos[k] = m.path.end[k];
+                }
+                result.push(Item::Move { mv: m, line, offsets });
+                continue;
+            }
             let jump = a.bcs.filter(|b| b.iter().zip(&mv.path.start).any(|(x, y)| (x - y).abs() > 1e-6));
             if let Some(from) = jump {
                 let path = Path::line(from, mv.path.start);
@@ -419,6 +450,28 @@ impl Interpreter {
         }
     }
 
+    /// Marks the move of block `tag` for point-to-point travel when G group 49 asks for it and
+    /// a transformation is active (alarm 10753 with radius compensation under PTP/PTPWOC; PTPG0
+    /// then travels the Cartesian path).
+    pub(super) fn request_point_to_point(
+        &mut self,
+        tag: u32,
+        rapid: bool,
+        stat: Option<u32>,
+        tu: Option<u32>,
+    ) -> Result<(), Alarm> {
+        let mode = self.modal.ptp;
+        let Some(a) = self.trafo.active.as_mut() else { return Ok(()) };
+        if !mode.applies(rapid) {
+            return Ok(());
+        }
+        if self.modal.trc.is_some() {
+            return if mode == PtpMode::PtpG0 { Ok(()) } else { Err(ptp_with_trc(tag)) };
+        }
+        a.ptp.push(PtpBlock { tag, stat, tu });
+        Ok(())
+    }
+
     /// Machine position at the end of what was prepared.
     pub(super) fn transformation_machine_position(&self) -> AxisVec {
         self.trafo.active.as_ref().map_or(self.pos, |a| a.machine)
@@ -449,4 +502,47 @@ impl Interpreter {
         }
         self.offsets.trafo = None;
     }
+}
+
+/// The machine-space move of a point-to-point block: the BCS end point (with the orientation
+/// solution STAT= picks and the turn ranges TU= asks for) transformed once, the machine axes
+/// moving linearly together from where the last block left them.
+///
+/// STAT bit 0 selects between the two orientation solutions of TRAORI: 0 the one with the lower
+/// position of the first orientation axis, 1 the higher (this product's reading; the manual
+/// leaves the bits to the transformation). TU bit k (channel axis k+1) places a rotary
+/// orientation axis in 0..360 (bit 0) or −360..0 (bit 1).
+fn point_to_point(a: &mut Active, mv: &Move, block: PtpBlock, line: u32) -> Result<Move, Alarm> {
+    let mut end = mv.path.end;
+    let slots = a.trafo.trafo.orientation_slots();
+    if let (Some(stat), AnyTrafo::Traori(t)) = (block.stat, &a.trafo.trafo) {
+        let o = t.orientation(&end).expect("TRAORI orients the tool");
+        let pick = t.solutions(&o).map_err(|_| working_area(line))?[(stat & 1) as usize];
+        for (role, slot) in slots.iter().enumerate() {
+            if let Some(k) = slot {
+                end[*k] = pick[role];
+            }
+        }
+    }
+    if let Some(tu) = block.tu {
+        for k in slots.iter().flatten() {
+            let turned = end[*k].rem_euclid(360.0);
+            end[*k] = if tu & (1 << k) != 0 && turned > 0.0 { turned - 360.0 } else { turned };
+        }
+    }
+    let machine = a.trafo.inverse(&end, &a.machine).map_err(|_| working_area(line))?;
+    for k in a.trafo.trafo.machine_slots() {
+        let ax = a.base.axis(k);
+        if ax.modulo.is_none() && (machine[k] > ax.limit_plus + 1e-9 || machine[k] < ax.limit_minus - 1e-9) {
+            return Err(Alarm::software_limit(line, &ax.name, machine[k] > ax.limit_plus));
+        }
+    }
+    let path = Path::line(a.machine, machine);
+    let length = path.start.iter().zip(&path.end).map(|(x, y)| (y - x).powi(2)).sum::<f64>().sqrt();
+    let feed = if mv.is_rapid() { Feed::Rapid } else { Feed::Path(mv.feed) };
+    let mut m = Move::new(path, length, feed, &AxisLimit::for_channel(&a.base), mv.exact_stop, mv.tag);
+    m.machine_space = true;
+    a.machine = machine;
+    a.bcs = Some(a.trafo.forward(&machine));
+    Ok(m)
 }
