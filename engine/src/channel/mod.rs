@@ -203,6 +203,9 @@ pub struct Channel {
     /// Preparation waits until a transformation change it prepared has been executed, then
     /// continues from the machine position the main run reached.
     prep_waits_for_trafo: bool,
+    /// The move whose transformation the main run has taken over (checked once per move, not
+    /// every cycle).
+    trafo_tag: Option<u32>,
 }
 
 impl Channel {
@@ -256,6 +259,7 @@ impl Channel {
             machine: [0.0; MAX_CHANNEL_AXES],
             trafo: None,
             prep_waits_for_trafo: false,
+            trafo_tag: None,
         };
         // Power on acts like a reset: the reset transformation (if configured) is active.
         ch.place_axes([0.0; MAX_CHANNEL_AXES]);

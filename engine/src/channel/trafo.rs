@@ -9,10 +9,14 @@ impl Channel {
     /// transformation of the move the position lies on, continuous with the last cycle.
     pub(super) fn update_machine_position(&mut self) {
         let pos = *self.planner.position();
-        let meta = self.planner.position_tag().and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t));
-        if let Some((_, m)) = meta.filter(|(_, m)| !m.machine_space && m.offsets.trafo != self.trafo) {
-            // A tool change inside a motion block reaches the main run with the move.
-            self.trafo = m.offsets.trafo.clone();
+        let tag = self.planner.position_tag();
+        let meta = tag.and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t));
+        if tag != self.trafo_tag {
+            self.trafo_tag = tag;
+            if let Some((_, m)) = meta.filter(|(_, m)| !m.machine_space && m.offsets.trafo != self.trafo) {
+                // A tool change inside a motion block reaches the main run with the move.
+                self.trafo = m.offsets.trafo.clone();
+            }
         }
         let machine_space = meta.is_some_and(|(_, m)| m.machine_space);
         match self.trafo.as_ref().filter(|_| !machine_space) {
