@@ -14,11 +14,14 @@ import { mountBlocks } from "./machine/blocks";
 import { mountControls } from "./machine/controls";
 import { mountEvents } from "./machine/events";
 import { mountHeader } from "./machine/header";
+import { mountOverrides } from "./machine/overrides";
 import { mountPositions } from "./machine/positions";
+import { mountProgress } from "./machine/progress";
 import { mountTfs } from "./machine/tfs";
 import { mountAxisPlot } from "./plot/axisPlot";
 import { EditorArea } from "./program/editorArea";
 import { ProgramManager } from "./program/manager";
+import { mountMachineData } from "./setup/machineData";
 import { showArea, wireAreas } from "./ui/areas";
 import { mountMachineView } from "./view3d/machineView";
 
@@ -32,6 +35,8 @@ async function main(): Promise<void> {
   mountPositions(session);
   mountTfs(session);
   mountBlocks(session);
+  mountProgress(session);
+  mountOverrides(session);
   mountControls(session);
   mountJog(session);
   mountAlarms(session);
@@ -40,6 +45,7 @@ async function main(): Promise<void> {
   mountAxisPlot(session);
   const editor = new EditorArea(session);
   new ProgramManager(session, editor);
+  mountMachineData(session);
   const lobby = new Lobby(session);
   showArea("machine");
 

@@ -6,6 +6,7 @@ pub mod control;
 pub mod health;
 pub mod jog;
 pub mod machine_data;
+pub mod machine_data_read;
 pub mod machines;
 pub mod programs;
 pub mod roles;
@@ -53,6 +54,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(health::health))
         .routes(routes!(machines::list_machines))
         .routes(routes!(machines::get_machine))
+        .routes(routes!(machine_data_read::list_definitions))
         .routes(routes!(sessions::list_sessions, sessions::create_session))
         .routes(routes!(sessions::get_session, sessions::delete_session))
         .routes(routes!(sessions::get_state))
@@ -63,7 +65,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(control::set_overrides))
         .routes(routes!(control::set_options))
         .routes(routes!(jog::jog_stop))
-        .routes(routes!(machine_data::put_machine_data))
+        .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))
         .routes(routes!(programs::list_programs))
         .routes(routes!(programs::check))
         .routes(routes!(roles::get_control))

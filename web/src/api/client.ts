@@ -3,10 +3,13 @@
 import type {
   Diagnostic,
   JogCommand,
+  MachineDatumDef,
   MachineDetail,
   MachineSummary,
   OpMode,
+  Overrides,
   Pace,
+  ProgramOptions,
   Session,
   SessionSummary,
   State,
@@ -87,6 +90,12 @@ export const api = {
   setMode: (id: string, mode: OpMode) => request<State>("PUT", `${s(id)}/mode`, { mode }),
   jog: (id: string, jog: JogCommand) => request<State>("POST", `${s(id)}/jog`, jog),
   jogStop: (id: string) => request<State>("POST", `${s(id)}/jog/stop`, {}),
+  setOverrides: (id: string, o: Partial<Overrides>) => request<State>("PUT", `${s(id)}/overrides`, o),
+  setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),
+
+  machineData: (id: string) => request<{ text: string }>("GET", `${s(id)}/machine-data`),
+  putMachineData: (id: string, text: string) => request<State>("PUT", `${s(id)}/machine-data`, { text }),
+  machineDataDefinitions: () => request<MachineDatumDef[]>("GET", "/machine-data/definitions"),
 
   programs: (id: string) => request<StoredProgram[]>("GET", `${s(id)}/programs`),
   program: (id: string, name: string) => request<{ text: string }>("GET", p(id, name)),
