@@ -37,11 +37,11 @@ pub struct MachineDatumDef {
     pub kind: String,
     /// Number of array elements; 1 for a scalar.
     pub len: usize,
-    /// The default of element 0 (of a linear axis, for axial data) in NC data syntax.
-    pub default: String,
-    /// Smallest valid number, when bounded.
+    /// The default of each element (of a linear axis, for axial data) in NC data syntax.
+    pub defaults: Vec<String>,
+    /// Smallest valid value of a number datum, when bounded.
     pub min: Option<f64>,
-    /// Largest valid number, when bounded.
+    /// Largest valid value of a number datum, when bounded.
     pub max: Option<f64>,
 }
 
@@ -75,7 +75,7 @@ pub async fn get_machine_data(
     responses((status = 200, description = "The registry, in its order", body = Vec<MachineDatumDef>))
 )]
 pub async fn list_definitions() -> Json<Vec<MachineDatumDef>> {
-    let bound = |v: f64| v.is_finite().then_some(v);
+    let numeric = |k: Kind| matches!(k, Kind::Int | Kind::Real);
     Json(
         registry::DEFS
             .iter()
@@ -96,9 +96,9 @@ pub async fn list_definitions() -> Json<Vec<MachineDatumDef>> {
                 }
                 .into(),
                 len: d.len,
-                default: literal(&d.default_value(0, false)),
-                min: bound(d.min),
-                max: bound(d.max),
+                defaults: (0..d.len).map(|i| literal(&d.default_value(i, false))).collect(),
+                min: (numeric(d.kind) && d.min.is_finite()).then_some(d.min),
+                max: (numeric(d.kind) && d.max.is_finite()).then_some(d.max),
             })
             .collect(),
     )

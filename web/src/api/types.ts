@@ -69,7 +69,7 @@ export interface MachineDatumDef {
   scope: "nck" | "channel" | "axis";
   kind: "bool" | "int" | "real" | "string";
   len: number;
-  default: string; // in NC data syntax
+  defaults: string[]; // per element, in NC data syntax
   min?: number | null;
   max?: number | null;
 }

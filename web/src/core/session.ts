@@ -36,9 +36,13 @@ export class SessionController extends Emitter<SessionEvents> {
 
   /** Attaches the screen to an existing session. */
   async attach(id: string, machineId: string): Promise<void> {
-    const machine = await api.machine(machineId).catch(
+    const preset = await api.machine(machineId).catch(
       (): MachineDetail => ({ id: machineId, name: machineId, description: "", machine_data: "" }),
     );
+    // The session's own data (preset plus what was applied since), for the views that read
+    // machine data (travel, axis types); the preset's when the server cannot tell.
+    const own = await api.machineData(id).catch(() => null);
+    const machine = own ? { ...preset, machine_data: own.text } : preset;
     this.stream?.close();
     this.info = { id, machine };
     this.latest = null;

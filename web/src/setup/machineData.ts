@@ -26,6 +26,33 @@ const TOOL_PARAMS: { p: number; label: string }[] = [
   { p: 6, label: "Radius" },
 ];
 const TOOL_PARAM_COUNT = 25;
+/** Tool types ($TC_DP1) by their numbers in the Siemens tool lists. */
+const TOOL_TYPES: Record<number, string> = {
+  100: "milling tool",
+  110: "ball end mill",
+  111: "conical ball end mill",
+  120: "end mill",
+  121: "end mill, corner rounding",
+  130: "angle head cutter",
+  140: "face mill",
+  145: "thread cutter",
+  150: "side mill",
+  155: "bevelled cutter",
+  200: "twist drill",
+  205: "solid drill",
+  210: "boring bar",
+  220: "center drill",
+  230: "countersink",
+  240: "tap",
+  500: "roughing tool",
+  510: "finishing tool",
+  520: "plunge cutter",
+  530: "parting tool",
+  540: "threading tool",
+  580: "3D probe, turning",
+  700: "slotting saw",
+  710: "3D probe, milling",
+};
 const NEW_TOOL_TYPE = "120"; // end mill
 /** Arrays longer than this show their set elements and the next one, not all of them. */
 const SHORT_ARRAY = 4;
@@ -195,9 +222,11 @@ export class MachineDataArea {
   private dataRow(def: MachineDatumDef, key: string, index: string, field: Field): HTMLTableRowElement {
     const tr = el("tr", { "data-key": key });
     const stored = this.values.get(key);
-    const value = this.pending.get(key)?.value ?? stored ?? def.default;
+    const element = Number(/^\[(\d+)/.exec(index)?.[1] ?? 0);
+    const dflt = def.defaults[element] ?? def.defaults[0] ?? "";
+    const value = this.pending.get(key)?.value ?? stored ?? dflt;
     const input = this.input(key, value, field, def.kind === "string" ? "text" : "value");
-    input.dataset.original = stored ?? def.default;
+    input.dataset.original = stored ?? dflt;
     const cell = el("td", { class: "md-value" });
     cell.append(input);
     this.decorate(tr, cell, key, stored !== undefined);
@@ -207,7 +236,7 @@ export class MachineDataArea {
       el("td", { class: "num" }, def.number ? String(def.number) : ""),
       el("td", { class: "mono md-name" }, `${def.name}${index}`),
       cell,
-      el("td", { class: "mono muted" }, def.default),
+      el("td", { class: "mono muted" }, dflt),
       el("td", { class: "mono muted" }, range),
     );
     return tr;
@@ -238,6 +267,10 @@ export class MachineDataArea {
         input.dataset.original = stored ?? "0";
         const cell = el("td", { class: "md-value" });
         cell.append(input);
+        if (p === 1) {
+          const type = TOOL_TYPES[Number(input.value)];
+          cell.append(el("span", { class: "tool-type" }, type ?? ""));
+        }
         this.decorate(tr, cell, key, stored !== undefined);
         tr.append(cell);
       }
@@ -365,8 +398,7 @@ export class MachineDataArea {
     this.showDiagnostics([]);
     try {
       this.session.accept(await api.putMachineData(id, this.text.text));
-      this.pending.clear();
-      await this.load(false);
+      await this.load(false); // fields changed but not activated stay pending
       showMessage("NC data text activated", "info");
     } catch (e) {
       const err = e as Error;
@@ -454,8 +486,9 @@ export function parseAssignment(raw: string): { key: string; value: string } | n
   return { key: `${name.toUpperCase()}${index.replace(/\s+/g, "").toUpperCase()}`, value: value.trim() };
 }
 
+/** "machine data: line 2: $MA_X: value ..." -> "$MA_X: value ..." (the field names the line). */
 function stripLine(message: string): string {
-  return message.replace(/^line \d+:\s*/, "");
+  return message.replace(/^.*?\bline \d+:\s*/, "");
 }
 
 function cssEscape(s: string): string {
