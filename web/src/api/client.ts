@@ -1,6 +1,8 @@
 // REST client for the NCTwin server (prefix /api/v1, JSON in and out).
 
+import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
+  ControlState,
   Diagnostic,
   JogCommand,
   MachineDatumDef,
@@ -33,8 +35,12 @@ export class ApiError extends Error {
   }
 }
 
-async function request<T>(method: string, path: string, body?: unknown): Promise<T> {
+/** `tokenOf`: the session whose token to present when the path names none. */
+async function request<T>(method: string, path: string, body?: unknown, tokenOf?: string | null): Promise<T> {
   const headers: Record<string, string> = { Accept: "application/json" };
+  const session = sessionOfPath(path) ?? tokenOf;
+  const token = session ? tokenFor(session) : undefined;
+  if (token) headers.Authorization = `Bearer ${token}`;
   const init: RequestInit = { method, headers };
   if (body !== undefined) {
     headers["Content-Type"] = "application/json";
@@ -74,10 +80,18 @@ export const api = {
   machines: () => request<MachineSummary[]>("GET", "/machines"),
   machine: (id: string) => request<MachineDetail>("GET", `/machines/${encodeURIComponent(id)}`),
 
-  sessions: () => request<SessionSummary[]>("GET", "/sessions"),
+  /** With `--auth required` the server lists the sessions of the token presented (`tokenOf`'s). */
+  sessions: (tokenOf?: string | null) => request<SessionSummary[]>("GET", "/sessions", undefined, tokenOf),
   session: (id: string) => request<Session>("GET", s(id)),
-  createSession: (machine: string, machineData?: string) =>
-    request<Session>("POST", "/sessions", machineData ? { machine, machine_data: machineData } : { machine }),
+  createSession: async (machine: string, machineData?: string) => {
+    const created = await request<Session & { tokens?: Tokens }>(
+      "POST",
+      "/sessions",
+      machineData ? { machine, machine_data: machineData } : { machine },
+    );
+    if (created.tokens) rememberTokens(created.id, created.tokens);
+    return created;
+  },
   deleteSession: (id: string) => request<null>("DELETE", s(id)),
 
   state: (id: string) => request<State>("GET", `${s(id)}/state`),
@@ -101,6 +115,10 @@ export const api = {
   program: (id: string, name: string) => request<{ text: string }>("GET", p(id, name)),
   saveProgram: (id: string, name: string, text: string) => request<unknown>("PUT", p(id, name), { text }),
   deleteProgram: (id: string, name: string) => request<unknown>("DELETE", p(id, name)),
+  control: (id: string) => request<ControlState>("GET", `${s(id)}/control`),
+  takeControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/take`, {}),
+  releaseControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/release`, {}),
+
   check: (id: string, program: string) =>
     request<{ diagnostics: Diagnostic[] }>("POST", `${s(id)}/check`, { program }),
 };
@@ -108,5 +126,7 @@ export const api = {
 /** WebSocket address of a session's stream. */
 export function streamUrl(id: string, periodMs = 50): string {
   const proto = location.protocol === "https:" ? "wss:" : "ws:";
-  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}`;
+  const token = tokenFor(id);
+  const auth = token ? `&token=${encodeURIComponent(token)}` : "";
+  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}${auth}`;
 }

@@ -121,3 +121,11 @@ export interface JogCommand {
   increment?: number;
   rapid?: boolean;
 }
+
+/** Who holds control of a session (GET .../control). */
+export interface ControlState {
+  auth: boolean; // the server requires tokens
+  role: "owner" | "operator" | "observer"; // the caller's
+  holder?: "owner" | "operator" | "observer" | null;
+  you_hold_control: boolean;
+}
