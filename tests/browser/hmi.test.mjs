@@ -5,7 +5,7 @@
 // Starts nothing itself (scripts/test.sh starts the server). Exits non-zero on failure, with a
 // screenshot of the page at that moment. SHOTS_DIR=dir keeps the screenshots it takes.
 
-import { mkdtemp, rm } from "node:fs/promises";
+import { mkdtemp, readFile, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
@@ -224,6 +224,15 @@ async function main() {
       if (rest !== "0.0 s") throw new Error(`remaining time at the end: ${rest}`);
     });
 
+    await step("second run: remaining time from the first run's duration, counting down", async () => {
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => /last complete run/.test(document.getElementById("remaining-time")?.title || ""));
+      const first = Number.parseFloat(await page.textContent("#remaining-time"));
+      await page.waitForFunction((t) => Number.parseFloat(document.getElementById("remaining-time")?.textContent || "") < t, first);
+      await page.waitForFunction(() => document.getElementById("progress-bar")?.style.width === "100%", null, { timeout: 30_000 });
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+    });
+
     await step("event log shows block changes", async () => {
       await page.waitForSelector('#events li[data-event="block_changed"]');
     });
@@ -321,6 +330,24 @@ async function main() {
       await page.click('[data-md-tab="text"]');
       const text = await page.inputValue("#md-text textarea");
       if (!text.includes("$MA_MAX_AX_VELO[AX1]=20000")) throw new Error(`text view lacks the new value:\n${text.slice(0, 300)}`);
+    });
+
+    await step("NC data export as a text file, import of a text file activated", async () => {
+      const [download] = await Promise.all([page.waitForEvent("download"), page.click("#btn-md-export")]);
+      const exported = await readFile(await download.path(), "utf8");
+      if (!exported.includes("$TC_DP6[1,1]=5.0")) throw new Error(`export lacks the tool radius:\n${exported.slice(0, 300)}`);
+      await page.setInputFiles("#md-import-file", {
+        name: "limits.txt",
+        mimeType: "text/plain",
+        buffer: Buffer.from("; new travel\n$MA_POS_LIMIT_PLUS[X]=450.\n"),
+      });
+      await page.waitForFunction(() => document.querySelector("#md-text textarea")?.value.includes("=450."));
+      await page.click("#btn-md-apply");
+      await page.waitForFunction(() => /activated/.test(document.getElementById("message-text")?.textContent || ""));
+      await page.click('[data-md-tab="axis"]');
+      const limit = '#md-table input[data-key="$MA_POS_LIMIT_PLUS[AX1]"]';
+      await page.waitForFunction((sel) => Number(document.querySelector(sel)?.value) === 450, limit);
+      await page.click("#btn-message-close");
       await page.click('[data-goto="machine"]');
     });
 

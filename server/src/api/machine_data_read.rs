@@ -62,7 +62,8 @@ pub async fn get_machine_data(
     Path(id): Path<String>,
 ) -> Result<Json<MachineDataText>, ApiError> {
     let session = find_session(&state, &id)?;
-    let text = session.with_channel(|ch| ch.machine_data().to_text()).await.map_err(|e| ApiError::from_session(&id, e))?;
+    let text =
+        session.with_channel(|ch| ch.machine_data().to_text()).await.map_err(|e| ApiError::from_session(&id, e))?;
     Ok(Json(MachineDataText { text }))
 }
 
