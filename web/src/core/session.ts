@@ -21,6 +21,8 @@ type SessionEvents = {
   state: State;
   event: StreamEvent;
   connection: Connection;
+  /** The session's NC data changed (new text in `info.machine.machine_data`). */
+  machine: SessionInfo;
 };
 
 export class SessionController extends Emitter<SessionEvents> {
@@ -61,6 +63,13 @@ export class SessionController extends Emitter<SessionEvents> {
       },
     });
     this.accept(await api.state(id));
+  }
+
+  /** Takes the session's NC data text as read after a change, for the views that use it. */
+  setMachineData(text: string): void {
+    if (!this.info || this.info.machine.machine_data === text) return;
+    this.info = { ...this.info, machine: { ...this.info.machine, machine_data: text } };
+    this.emit("machine", this.info);
   }
 
   /** Shows a state unless a newer one was shown already (an answer a stream message overtook). */

@@ -128,6 +128,7 @@ export class MachineDataArea {
       const { text } = await api.machineData(id);
       this.loadedFor = id;
       this.setServerText(text);
+      this.session.setMachineData(text);
       if (dropPending) {
         this.pending.clear();
         this.clearError();
