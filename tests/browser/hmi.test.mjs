@@ -144,6 +144,10 @@ async function main() {
       );
     });
 
+    await step("header counts this page among the session's viewers", async () => {
+      await page.waitForFunction(() => /^[1-9]\d* watching$/.test(document.getElementById("viewers")?.textContent || ""));
+    });
+
     await step("MCS/WCS toggle switches the coordinate display", async () => {
       await page.click('#coords-toggle [data-frame="machine"]');
       await page.waitForSelector('#positions [data-frame="machine"][data-axis="X"]');

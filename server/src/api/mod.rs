@@ -12,6 +12,7 @@ pub mod programs;
 pub mod roles;
 pub mod sessions;
 pub mod stream;
+pub mod viewers;
 
 use std::time::Duration;
 
@@ -70,7 +71,8 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(programs::check))
         .routes(routes!(roles::get_control))
         .routes(routes!(roles::take_control))
-        .routes(routes!(roles::release_control));
+        .routes(routes!(roles::release_control))
+        .routes(routes!(viewers::get_viewers));
     let uploads =
         OpenApiRouter::new().routes(routes!(programs::get_program, programs::put_program, programs::delete_program));
     let quick = with_body_limit(quick, limits.body_bytes)

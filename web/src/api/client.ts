@@ -116,6 +116,7 @@ export const api = {
   saveProgram: (id: string, name: string, text: string) => request<unknown>("PUT", p(id, name), { text }),
   deleteProgram: (id: string, name: string) => request<unknown>("DELETE", p(id, name)),
   control: (id: string) => request<ControlState>("GET", `${s(id)}/control`),
+  viewers: (id: string) => request<{ streams: number }>("GET", `${s(id)}/viewers`),
   takeControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/take`, {}),
   releaseControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/release`, {}),
 

@@ -1,6 +1,7 @@
-// Multi-user: the caller's role and who holds control, with take/release, in the header; and
-// links to share the session with an operator or an observer. Only shown when the server
-// requires tokens (`--auth required`); with auth off every client is the owner.
+// Multi-user: how many clients watch the session; the caller's role and who holds control,
+// with take/release, in the header; and links to share the session with an operator or an
+// observer. Roles and control are only shown when the server requires tokens
+// (`--auth required`); with auth off every client is the owner.
 
 import { api } from "../api/client";
 import { rememberTokens, tokensOf, type Role } from "../api/tokens";
@@ -18,19 +19,34 @@ export class ControlView {
   constructor(private readonly session: SessionController) {
     byId("btn-control").addEventListener("click", () => void this.toggle());
     session.on("session", () => void this.start());
+    session.on("connection", (conn) => conn === "online" && this.session.id && void this.refreshViewers(this.session.id));
   }
 
   private async start(): Promise<void> {
     clearInterval(this.timer);
     this.state = null;
     this.render();
-    const st = await this.refresh();
-    if (st?.auth) this.timer = setInterval(() => void this.refresh(), POLL_MS);
+    await this.refresh();
+    this.timer = setInterval(() => void this.refresh(), POLL_MS);
+  }
+
+  private async refreshViewers(id: string): Promise<void> {
+    const node = byId("viewers");
+    try {
+      const { streams } = await api.viewers(id);
+      node.hidden = false;
+      node.dataset.count = String(streams);
+      setText(node, `${streams} watching`);
+    } catch {
+      node.hidden = true; // a server without the endpoint
+    }
   }
 
   private async refresh(): Promise<ControlState | null> {
     const id = this.session.id;
     if (!id) return null;
+    void this.refreshViewers(id);
+    if (this.state && !this.state.auth) return this.state; // nothing changes with auth off
     try {
       this.state = await api.control(id);
       // A token from a link is stored as an observer's until the server names its role.

@@ -1,5 +1,5 @@
-//! The read-only NC data views the HMI's machine-data screens use: a session's NC data as
-//! text, and the registry of every datum.
+//! The read-only views the HMI adds: a session's NC data as text, the registry of every datum,
+//! and the number of clients watching a session.
 
 mod common;
 
@@ -55,4 +55,23 @@ async fn the_registry_names_number_scope_type_defaults_and_range_of_each_datum()
     let names = list.iter().find(|d| d["name"] == "$MN_AXCONF_MACHAX_NAME_TAB").expect("name table listed");
     assert_eq!(names["defaults"].as_array().map(Vec::len), names["len"].as_u64().map(|n| n as usize));
     assert_eq!((&names["min"], &names["max"]), (&json!(null), &json!(null)), "strings have no range");
+}
+
+#[tokio::test]
+async fn viewers_count_the_open_streams_of_a_session() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    assert_eq!(server.get(&format!("/sessions/{id}/viewers")).await.body, json!({"streams": 0}));
+    let (ws, _) =
+        tokio_tungstenite::connect_async(server.ws_url(&format!("/sessions/{id}/stream"))).await.expect("stream");
+    let mut seen = json!(null);
+    for _ in 0..100 {
+        seen = server.get(&format!("/sessions/{id}/viewers")).await.body;
+        if seen == json!({"streams": 1}) {
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
+    }
+    assert_eq!(seen, json!({"streams": 1}));
+    drop(ws);
 }
