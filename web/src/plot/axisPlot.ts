@@ -103,7 +103,12 @@ export class AxisPlot {
       height,
       legend: { show: true, live: false },
       cursor: { show: false },
-      scales: { x: { time: false }, y: { auto: true }, feed: { auto: true } },
+      scales: {
+        // At least one second: a few samples close together would otherwise fill the width.
+        x: { time: false, range: (_u, min, max) => (min == null || max == null || max - min < 1 ? [min ?? 0, (min ?? 0) + 1] : [min, max]) },
+        y: { auto: true },
+        feed: { auto: true },
+      },
       axes: [
         { ...AXIS_STYLE, size: 30, values: (_u, ticks) => ticks.map((t) => `${+t.toFixed(2)} s`) },
         { ...AXIS_STYLE, scale: "y", size: 60 },
