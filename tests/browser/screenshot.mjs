@@ -3,7 +3,8 @@
 //   NCTWIN_URL=http://127.0.0.1:8080 node screenshot.mjs [out-dir] [page-path]
 //
 // Writes hmi-1280x800.png and hmi-1920x1080.png (default out-dir: the system temp dir) after
-// the page has attached to a session and run its demo program for a few seconds.
+// the page has attached to a session and run its demo program for a few seconds, then
+// hmi-<area>-<size>.png of the areas in SHOT_AREAS (default "program,data").
 
 import { mkdtemp, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
@@ -42,6 +43,15 @@ try {
     const file = join(OUT, `hmi-${size.width}x${size.height}.png`);
     await page.screenshot({ path: file });
     console.log(file);
+    // The other areas, at the same size (SHOT_AREAS=program,data,... ; empty: none).
+    for (const area of (process.env.SHOT_AREAS ?? "program,data").split(",").filter(Boolean)) {
+      await page.click(`[data-goto="${area}"]`);
+      await page.waitForTimeout(500);
+      const shot = join(OUT, `hmi-${area}-${size.width}x${size.height}.png`);
+      await page.screenshot({ path: shot });
+      console.log(shot);
+    }
+    await page.click('[data-goto="machine"]');
   }
 } finally {
   await context.close();

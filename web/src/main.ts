@@ -5,20 +5,25 @@ import "./styles/layout.css";
 import "./styles/machine.css";
 import "./styles/program.css";
 import { api } from "./api/client";
+import { rememberToken } from "./api/tokens";
 import { showMessage, wireMessageBar } from "./core/message";
 import { SessionController } from "./core/session";
 import { mountJog } from "./jog/jog";
 import { Lobby } from "./lobby/lobby";
 import { mountAlarms } from "./machine/alarms";
+import { mountControl } from "./machine/control";
 import { mountBlocks } from "./machine/blocks";
 import { mountControls } from "./machine/controls";
 import { mountEvents } from "./machine/events";
 import { mountHeader } from "./machine/header";
+import { mountOverrides } from "./machine/overrides";
 import { mountPositions } from "./machine/positions";
+import { mountProgress } from "./machine/progress";
 import { mountTfs } from "./machine/tfs";
 import { mountAxisPlot } from "./plot/axisPlot";
 import { EditorArea } from "./program/editorArea";
 import { ProgramManager } from "./program/manager";
+import { mountMachineData } from "./setup/machineData";
 import { showArea, wireAreas } from "./ui/areas";
 import { mountMachineView } from "./view3d/machineView";
 
@@ -29,9 +34,12 @@ async function main(): Promise<void> {
   wireMessageBar();
   wireAreas();
   mountHeader(session);
+  mountControl(session);
   mountPositions(session);
   mountTfs(session);
   mountBlocks(session);
+  mountProgress(session);
+  mountOverrides(session);
   mountControls(session);
   mountJog(session);
   mountAlarms(session);
@@ -40,6 +48,7 @@ async function main(): Promise<void> {
   mountAxisPlot(session);
   const editor = new EditorArea(session);
   new ProgramManager(session, editor);
+  mountMachineData(session);
   const lobby = new Lobby(session);
   showArea("machine");
 
@@ -49,6 +58,14 @@ async function main(): Promise<void> {
   await lobby.loadMachines(preset).catch((e: Error) => showMessage(`machine list: ${e.message}`));
   const wanted = params.get("session");
   if (!wanted) return lobby.create(preset);
+  // A shared link: keep its token, and keep it out of the address bar.
+  const token = params.get("token");
+  if (token) {
+    rememberToken(wanted, token);
+    const url = new URL(location.href);
+    url.searchParams.delete("token");
+    history.replaceState(null, "", url);
+  }
   try {
     const existing = await api.session(wanted);
     await session.attach(existing.id, existing.machine);

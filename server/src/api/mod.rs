@@ -6,11 +6,13 @@ pub mod control;
 pub mod health;
 pub mod jog;
 pub mod machine_data;
+pub mod machine_data_read;
 pub mod machines;
 pub mod programs;
 pub mod roles;
 pub mod sessions;
 pub mod stream;
+pub mod viewers;
 
 use std::time::Duration;
 
@@ -53,6 +55,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(health::health))
         .routes(routes!(machines::list_machines))
         .routes(routes!(machines::get_machine))
+        .routes(routes!(machine_data_read::list_definitions))
         .routes(routes!(sessions::list_sessions, sessions::create_session))
         .routes(routes!(sessions::get_session, sessions::delete_session))
         .routes(routes!(sessions::get_state))
@@ -63,12 +66,13 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(control::set_overrides))
         .routes(routes!(control::set_options))
         .routes(routes!(jog::jog_stop))
-        .routes(routes!(machine_data::put_machine_data))
+        .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))
         .routes(routes!(programs::list_programs))
         .routes(routes!(programs::check))
         .routes(routes!(roles::get_control))
         .routes(routes!(roles::take_control))
-        .routes(routes!(roles::release_control));
+        .routes(routes!(roles::release_control))
+        .routes(routes!(viewers::get_viewers));
     let uploads =
         OpenApiRouter::new().routes(routes!(programs::get_program, programs::put_program, programs::delete_program));
     let quick = with_body_limit(quick, limits.body_bytes)

@@ -1,12 +1,17 @@
 // REST client for the NCTwin server (prefix /api/v1, JSON in and out).
 
+import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
+  ControlState,
   Diagnostic,
   JogCommand,
+  MachineDatumDef,
   MachineDetail,
   MachineSummary,
   OpMode,
+  Overrides,
   Pace,
+  ProgramOptions,
   Session,
   SessionSummary,
   State,
@@ -30,8 +35,12 @@ export class ApiError extends Error {
   }
 }
 
-async function request<T>(method: string, path: string, body?: unknown): Promise<T> {
+/** `tokenOf`: the session whose token to present when the path names none. */
+async function request<T>(method: string, path: string, body?: unknown, tokenOf?: string | null): Promise<T> {
   const headers: Record<string, string> = { Accept: "application/json" };
+  const session = sessionOfPath(path) ?? tokenOf;
+  const token = session ? tokenFor(session) : undefined;
+  if (token) headers.Authorization = `Bearer ${token}`;
   const init: RequestInit = { method, headers };
   if (body !== undefined) {
     headers["Content-Type"] = "application/json";
@@ -71,10 +80,18 @@ export const api = {
   machines: () => request<MachineSummary[]>("GET", "/machines"),
   machine: (id: string) => request<MachineDetail>("GET", `/machines/${encodeURIComponent(id)}`),
 
-  sessions: () => request<SessionSummary[]>("GET", "/sessions"),
+  /** With `--auth required` the server lists the sessions of the token presented (`tokenOf`'s). */
+  sessions: (tokenOf?: string | null) => request<SessionSummary[]>("GET", "/sessions", undefined, tokenOf),
   session: (id: string) => request<Session>("GET", s(id)),
-  createSession: (machine: string, machineData?: string) =>
-    request<Session>("POST", "/sessions", machineData ? { machine, machine_data: machineData } : { machine }),
+  createSession: async (machine: string, machineData?: string) => {
+    const created = await request<Session & { tokens?: Tokens }>(
+      "POST",
+      "/sessions",
+      machineData ? { machine, machine_data: machineData } : { machine },
+    );
+    if (created.tokens) rememberTokens(created.id, created.tokens);
+    return created;
+  },
   deleteSession: (id: string) => request<null>("DELETE", s(id)),
 
   state: (id: string) => request<State>("GET", `${s(id)}/state`),
@@ -87,11 +104,22 @@ export const api = {
   setMode: (id: string, mode: OpMode) => request<State>("PUT", `${s(id)}/mode`, { mode }),
   jog: (id: string, jog: JogCommand) => request<State>("POST", `${s(id)}/jog`, jog),
   jogStop: (id: string) => request<State>("POST", `${s(id)}/jog/stop`, {}),
+  setOverrides: (id: string, o: Partial<Overrides>) => request<State>("PUT", `${s(id)}/overrides`, o),
+  setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),
+
+  machineData: (id: string) => request<{ text: string }>("GET", `${s(id)}/machine-data`),
+  putMachineData: (id: string, text: string) => request<State>("PUT", `${s(id)}/machine-data`, { text }),
+  machineDataDefinitions: () => request<MachineDatumDef[]>("GET", "/machine-data/definitions"),
 
   programs: (id: string) => request<StoredProgram[]>("GET", `${s(id)}/programs`),
   program: (id: string, name: string) => request<{ text: string }>("GET", p(id, name)),
   saveProgram: (id: string, name: string, text: string) => request<unknown>("PUT", p(id, name), { text }),
   deleteProgram: (id: string, name: string) => request<unknown>("DELETE", p(id, name)),
+  control: (id: string) => request<ControlState>("GET", `${s(id)}/control`),
+  viewers: (id: string) => request<{ streams: number }>("GET", `${s(id)}/viewers`),
+  takeControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/take`, {}),
+  releaseControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/release`, {}),
+
   check: (id: string, program: string) =>
     request<{ diagnostics: Diagnostic[] }>("POST", `${s(id)}/check`, { program }),
 };
@@ -99,5 +127,7 @@ export const api = {
 /** WebSocket address of a session's stream. */
 export function streamUrl(id: string, periodMs = 50): string {
   const proto = location.protocol === "https:" ? "wss:" : "ws:";
-  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}`;
+  const token = tokenFor(id);
+  const auth = token ? `&token=${encodeURIComponent(token)}` : "";
+  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}${auth}`;
 }

@@ -43,6 +43,35 @@ export interface State {
   tool: { t: number; d: number };
   path_velocity: number;
   spindles: Record<string, number>;
+  /** The program's last MSG text. */
+  message?: string | null;
+  overrides: Overrides;
+  single_block: boolean;
+  optional_stop: boolean;
+}
+
+/** Override switches in percent. */
+export interface Overrides {
+  feed: number; // 0..120
+  rapid: number; // 0..100
+  spindle: number; // 50..120
+}
+
+export interface ProgramOptions {
+  single_block?: boolean;
+  optional_stop?: boolean;
+}
+
+/** One datum of the server's machine-data registry. */
+export interface MachineDatumDef {
+  name: string; // "$MA_MAX_AX_VELO"
+  number: number;
+  scope: "nck" | "channel" | "axis";
+  kind: "bool" | "int" | "real" | "string";
+  len: number;
+  defaults: string[]; // per element, in NC data syntax
+  min?: number | null;
+  max?: number | null;
 }
 
 export interface MachineSummary {
@@ -91,4 +120,12 @@ export interface JogCommand {
   direction: 1 | -1;
   increment?: number;
   rapid?: boolean;
+}
+
+/** Who holds control of a session (GET .../control). */
+export interface ControlState {
+  auth: boolean; // the server requires tokens
+  role: "owner" | "operator" | "observer"; // the caller's
+  holder?: "owner" | "operator" | "observer" | null;
+  you_hold_control: boolean;
 }

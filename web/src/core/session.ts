@@ -21,6 +21,8 @@ type SessionEvents = {
   state: State;
   event: StreamEvent;
   connection: Connection;
+  /** The session's NC data changed (new text in `info.machine.machine_data`). */
+  machine: SessionInfo;
 };
 
 export class SessionController extends Emitter<SessionEvents> {
@@ -36,9 +38,13 @@ export class SessionController extends Emitter<SessionEvents> {
 
   /** Attaches the screen to an existing session. */
   async attach(id: string, machineId: string): Promise<void> {
-    const machine = await api.machine(machineId).catch(
+    const preset = await api.machine(machineId).catch(
       (): MachineDetail => ({ id: machineId, name: machineId, description: "", machine_data: "" }),
     );
+    // The session's own data (preset plus what was applied since), for the views that read
+    // machine data (travel, axis types); the preset's when the server cannot tell.
+    const own = await api.machineData(id).catch(() => null);
+    const machine = own ? { ...preset, machine_data: own.text } : preset;
     this.stream?.close();
     this.info = { id, machine };
     this.latest = null;
@@ -57,6 +63,13 @@ export class SessionController extends Emitter<SessionEvents> {
       },
     });
     this.accept(await api.state(id));
+  }
+
+  /** Takes the session's NC data text as read after a change, for the views that use it. */
+  setMachineData(text: string): void {
+    if (!this.info || this.info.machine.machine_data === text) return;
+    this.info = { ...this.info, machine: { ...this.info.machine, machine_data: text } };
+    this.emit("machine", this.info);
   }
 
   /** Shows a state unless a newer one was shown already (an answer a stream message overtook). */

@@ -2,6 +2,7 @@
 // to join or end.
 
 import { api } from "../api/client";
+import { forgetTokens } from "../api/tokens";
 import type { MachineSummary, SessionSummary } from "../api/types";
 import { byId, el, setText } from "../core/dom";
 import { clearMessage, showMessage } from "../core/message";
@@ -55,7 +56,7 @@ export class Lobby {
   async refresh(): Promise<void> {
     let sessions: SessionSummary[];
     try {
-      sessions = await api.sessions();
+      sessions = await api.sessions(this.session.id);
     } catch (e) {
       showMessage(`session list: ${(e as Error).message}`);
       return;
@@ -94,7 +95,10 @@ export class Lobby {
       );
     } else if (del) {
       void api.deleteSession(del).then(
-        () => this.refresh(),
+        () => {
+          forgetTokens(del);
+          return this.refresh();
+        },
         (e: Error) => showMessage(`end session ${del}: ${e.message}`),
       );
     }

@@ -67,11 +67,11 @@ export class MachineView {
     this.viewport.scene.add(this.content);
   }
 
-  attach(info: SessionInfo): void {
+  attach(info: SessionInfo, opts: { keepPath?: boolean } = {}): void {
     this.info = info;
     this.ncData = new NcData(info.machine.machine_data);
     this.machineAxesKey = ""; // rebuilt from the first state (it names the machine axes)
-    this.toolpath.clear();
+    if (!opts.keepPath) this.toolpath.clear();
   }
 
   show(st: State): void {
@@ -137,6 +137,11 @@ export function mountMachineView(session: SessionController): MachineView {
   const view = new MachineView(byId("view3d"));
   session.on("session", (info) => view.attach(info));
   session.on("sample", (st) => view.show(st));
+  // New machine data (travel, tools): rebuild the model, keep the toolpath.
+  session.on("machine", (info) => {
+    view.attach(info, { keepPath: true });
+    if (session.latest) view.show(session.latest);
+  });
   const views: Record<string, ViewName> = { "btn-view-iso": "iso", "btn-view-top": "top", "btn-view-front": "front" };
   for (const [id, name] of Object.entries(views)) byId(id).addEventListener("click", () => view.setView(name));
   byId("btn-view-path").addEventListener("click", () => view.zoomToPath());
