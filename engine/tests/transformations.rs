@@ -600,6 +600,23 @@ proptest! {
         prop_assert!(m.iter().zip(&back).all(|(a, b)| (a - b).abs() < 1e-9), "{m:?} {back:?}");
     }
 
+    /// The chain TRANSMIT → TRAANG: machine → BCS → machine, and the BCS point against the
+    /// members' formulas written out (polar coordinates of the slide's Cartesian X).
+    #[test]
+    fn tracon_round_trips(mu in 1.0f64..200.0, c in -360.0f64..360.0, mz in -200.0f64..200.0, lz in 0.0f64..50.0) {
+        let cfg = config("slant-lathe-tracon", "");
+        let t = active(&cfg, 2, SelectArgs::default(), [0.0, 0.0, lz]);
+        let m = axes(&[mu, c, mz, 0.0]);
+        let b = t.forward(&m);
+        let (sn, cs) = 30f64.to_radians().sin_cos();
+        let (x, z) = (mu * cs, mz + mu * sn);
+        let phi = c.to_radians();
+        prop_assert!((b[0] - x * phi.cos()).abs() < 1e-9 && (b[1] - x * phi.sin()).abs() < 1e-9, "{b:?}");
+        prop_assert!((b[2] - (z - lz)).abs() < 1e-9, "{b:?}");
+        let back = t.inverse(&b, &m).unwrap();
+        prop_assert!(m[..3].iter().zip(&back[..3]).all(|(a, b)| (a - b).abs() < 1e-9), "{m:?} {back:?}");
+    }
+
     #[test]
     fn traang_round_trips(mu in -300.0f64..300.0, mz in -300.0f64..300.0, alpha in -89.0f64..89.0, lx in -20.0f64..20.0) {
         prop_assume!(alpha.abs() > 0.1);
@@ -692,4 +709,64 @@ fn reset_mode_bit_7_keeps_the_active_transformation() {
     assert_eq!(transformation_type(&ch), Some(1024));
     let (ch, _) = run("traang-grinder", "", "TRAANG(30)\nM30");
     assert_eq!(transformation_type(&ch), None);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Chained transformation (TRACON)
+// ---------------------------------------------------------------------------------------------
+
+/// The slide of the slant-bed lathe preset: MU inclined by 30° towards Z. Cartesian (x, z) of
+/// the slide and MZ: `MU·cos 30° = x`, `MZ + MU·sin 30° = z`.
+fn slant(x: f64, z: f64) -> (f64, f64) {
+    let (s, c) = 30f64.to_radians().sin_cos();
+    (x / c, z - x / c * s)
+}
+
+#[test]
+fn tracon_chains_transmit_in_front_of_the_persistent_traang() {
+    let program = "G0 X20 Z10\nM0\nTRANSMIT\nG1 F1000 X10 Y10\nM0\nTRAFOOF\nG0 X30\nM0\nM30";
+    let mut ch = Channel::from_preset("slant-lathe-tracon", "").unwrap();
+    ch.run_program(program).unwrap();
+    // Under the persistent TRAANG alone; then TRANSMIT's polar radius √200 and angle 45° on the
+    // slide; then TRAANG alone again.
+    let r = 200f64.sqrt();
+    let checks = [(20.0, 10.0, None, "TRAANG"), (r, 10.0, Some(45.0), "TRACON"), (30.0, 10.0, None, "TRAANG")];
+    for (x, z, c, name) in checks {
+        while ch.is_busy() {
+            ch.step();
+        }
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{name}: {:?}", s.alarms);
+        assert_eq!(s.transformation.as_ref().map(|t| t.name.as_str()), Some(name));
+        let (mu, mz) = slant(x, z);
+        assert!(close(machine(&s, "MU"), mu, 1e-9) && close(machine(&s, "MZ"), mz, 1e-9), "{name}: {:?}", s.machine);
+        if let Some(c) = c {
+            assert!(close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-9), "{name}: {:?}", s.machine);
+        }
+        ch.start().unwrap();
+    }
+}
+
+#[test]
+fn tracon_by_number_and_its_parameters() {
+    // TRACON(1, 40): the chain with a TRAANG angle of 40° instead of the machine data's 30°.
+    let (ch, _) = run("slant-lathe-tracon", "", "TRACON(1,40)\nG1 F1000 X10 Y0 Z5\nM0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert_eq!(s.transformation.clone().map(|t| (t.name, t.trafo_type)), Some(("TRACON".to_string(), 8192)));
+    let (sn, cs) = 40f64.to_radians().sin_cos();
+    assert!(close(machine(&s, "MU"), 10.0 / cs, 1e-9) && close(machine(&s, "MZ"), 5.0 - 10.0 / cs * sn, 1e-9));
+    assert!(close(angle_diff(machine(&s, "CM"), 0.0), 0.0, 1e-9));
+    let (ch, _) = run("slant-lathe-tracon", "", "TRACON(2)\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [14401]);
+}
+
+#[test]
+fn a_chain_needs_traang_as_its_second_member_defined_before_it() {
+    for (md, needle) in
+        [("$MC_TRACON_CHAIN_1[1]=1", "second member"), ("$MC_TRACON_CHAIN_1[0]=5", "configured before data set 3")]
+    {
+        let err = Channel::from_preset("slant-lathe-tracon", md).expect_err(md);
+        assert!(err.to_string().contains(needle), "{md}: {err}");
+    }
 }

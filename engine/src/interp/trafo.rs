@@ -17,12 +17,12 @@ use crate::alarm::{Alarm, Clear};
 use crate::kinematics::plan::{PlanError, plan_block};
 use crate::kinematics::{self, ActiveTrafo, AnyTrafo, SelectArgs, Transformation};
 use crate::lang::{Block, Expr, Word};
-use crate::machine_data::{ChannelAxis, MachineAxis, MachineConfig, TrafoKind};
+use crate::machine_data::{ChannelAxis, MachineAxis, MachineConfig, TrafoKind, TrafoParams};
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path};
 
 /// The words this module handles; `modal::collect` lets them through.
 pub fn is_keyword(name: &str) -> bool {
-    matches!(name, "TRANSMIT" | "TRACYL" | "TRAANG" | "TRAORI" | "TRAFOOF")
+    matches!(name, "TRANSMIT" | "TRACYL" | "TRAANG" | "TRAORI" | "TRACON" | "TRAFOOF")
 }
 
 /// A selection or deselection programmed in a block.
@@ -65,7 +65,7 @@ pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> R
             "TRAANG" => 2,
             // TRAORI(n, x, y, z): the offsets of the orientation axes (5th and 6th parameter)
             // are not modelled.
-            "TRAORI" => 4,
+            "TRAORI" | "TRACON" => 4,
             _ => 3,
         };
         if args.len() > max_args {
@@ -87,6 +87,14 @@ pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> R
                     kind: TrafoKind::Tracyl,
                     n: data_set(arg(1)?)?,
                     args: SelectArgs { diameter: Some(diameter), groove_wall, ..SelectArgs::default() },
+                }
+            }
+            "TRACON" => {
+                let n = arg(0)?.ok_or_else(|| Alarm::syntax(line, "TRACON needs the number of the chain"))?;
+                Selection::On {
+                    kind: TrafoKind::Tracon,
+                    n: data_set(Some(n))?,
+                    args: SelectArgs { chain: [arg(1)?, arg(2)?, arg(3)?], ..SelectArgs::default() },
                 }
             }
             "TRAORI" => {
@@ -273,14 +281,28 @@ impl Interpreter {
                     .filter(|s| s.kind == kind)
                     .nth(n - 1)
                     .ok_or_else(|| not_available(line, &format!("{} data set {n}", kind.name())))?;
-                if persistent.is_some_and(|p| p != set.number) {
-                    // Another transformation would have to be chained before the persistent one.
-                    return Err(not_available(
-                        line,
-                        &format!("{} next to the persistent transformation (needs a TRACON chain)", kind.name()),
-                    ));
+                match persistent.filter(|p| *p != set.number && kind != TrafoKind::Tracon) {
+                    None => self.select_data_set(set.number, &args, cfg, &machine, line)?,
+                    // Next to a persistent transformation another one runs as the first member
+                    // of the chain configured with it (the program names the first member).
+                    Some(p) => {
+                        let chain = cfg
+                            .trafos
+                            .iter()
+                            .find(|c| matches!(c.params, TrafoParams::Tracon { members } if members == [set.number, p]))
+                            .ok_or_else(|| {
+                                not_available(
+                                    line,
+                                    &format!(
+                                        "{} next to the persistent transformation (needs a TRACON chain)",
+                                        kind.name()
+                                    ),
+                                )
+                            })?;
+                        let chain_args = SelectArgs { chain: [args.diameter.or(args.angle), None, None], ..args };
+                        self.select_data_set(chain.number, &chain_args, cfg, &machine, line)?;
+                    }
                 }
-                self.select_data_set(set.number, &args, cfg, &machine, line)?;
             }
         }
         Ok(())

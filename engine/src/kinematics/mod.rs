@@ -15,16 +15,18 @@
 pub mod orient;
 pub mod plan;
 mod traang;
+mod tracon;
 mod tracyl;
 mod transmit;
 mod traori;
 
 pub use traang::Traang;
+pub use tracon::Tracon;
 pub use tracyl::Tracyl;
 pub use transmit::Transmit;
 pub use traori::Traori;
 
-use crate::machine_data::{MachineConfig, TrafoDataSet, TrafoKind};
+use crate::machine_data::{MachineConfig, TrafoDataSet, TrafoKind, TrafoParams};
 use crate::motion::{AxisVec, Path};
 
 /// A 3-vector by geometry axis index (X, Y, Z of the transformation).
@@ -104,6 +106,7 @@ pub enum AnyTrafo {
     Traang(Traang),
     /// Boxed: the orientation chain is several times larger than the other transformations.
     Traori(Box<Traori>),
+    Tracon(Box<Tracon>),
 }
 
 macro_rules! dispatch {
@@ -113,6 +116,7 @@ macro_rules! dispatch {
             AnyTrafo::Tracyl($t) => $e,
             AnyTrafo::Traang($t) => $e,
             AnyTrafo::Traori($t) => $e,
+            AnyTrafo::Tracon($t) => $e,
         }
     };
 }
@@ -174,6 +178,9 @@ pub struct SelectArgs {
     /// TRAORI(n, x, y, z): basic tool orientation given with the selection (generic types);
     /// `None` = the tool's or `$MC_TRAFO5_BASE_ORIENT_n`.
     pub base_orient: Option<Vec3>,
+    /// TRACON(n, p1, p2, ...): the parameters for the chain's members, first member first
+    /// (TRACYL: the diameter, TRAANG: the angle; TRANSMIT and TRAORI take none).
+    pub chain: [Option<f64>; 3],
 }
 
 /// Why a selection cannot be built.
@@ -190,6 +197,22 @@ pub fn build(set: &TrafoDataSet, cfg: &MachineConfig, args: &SelectArgs) -> Resu
         TrafoKind::Tracyl => AnyTrafo::Tracyl(Tracyl::new(set, args)?),
         TrafoKind::Traang => AnyTrafo::Traang(Traang::new(set, args)?),
         TrafoKind::Traori => AnyTrafo::Traori(Box::new(Traori::new(set, cfg, args)?)),
+        TrafoKind::Tracon => {
+            let TrafoParams::Tracon { members } = set.params else { unreachable!("TRACON data set") };
+            let member = |n: usize| cfg.trafos.iter().find(|s| s.number == n).expect("checked at activation");
+            let (first, second) = (member(members[0]), member(members[1]));
+            let mut params = args.chain.into_iter();
+            let first_args = match first.kind {
+                TrafoKind::Tracyl => SelectArgs { diameter: params.next().flatten(), ..SelectArgs::default() },
+                TrafoKind::Traang => SelectArgs { angle: params.next().flatten(), ..SelectArgs::default() },
+                _ => SelectArgs::default(),
+            };
+            let second_args = SelectArgs { angle: params.next().flatten(), ..SelectArgs::default() };
+            AnyTrafo::Tracon(Box::new(Tracon {
+                first: build(first, cfg, &first_args)?,
+                second: build(second, cfg, &second_args)?,
+            }))
+        }
     })
 }
 

@@ -32,6 +32,12 @@ pub static PRESETS: &[Preset] = &[
         text: TRANSMIT_EXAMPLE,
     },
     Preset {
+        id: "slant-lathe-tracon",
+        name: "Slant-bed lathe with driven tools (persistent TRAANG, chained TRANSMIT)",
+        description: "X slide MU inclined by 30° towards Z, MZ, main spindle C (spindle 1), driven tools ASC; TRAANG (data set 2) always active as persistent transformation, TRANSMIT (data set 1) chained in front of it by TRACON (data set 3).",
+        text: SLANT_LATHE_TRACON,
+    },
+    Preset {
         id: "tracyl-xyzc",
         name: "Lathe with Y axis (TRACYL X-Y-Z-C example)",
         description: "The Transformations Function Manual's TRACYL example machine: XM, YM, ZM, CM (spindle 1 / C axis); TRACYL data set 1 of type 513 (groove-wall offset with the real Y axis).",
@@ -197,6 +203,76 @@ $MC_TRANSMIT_ROT_SIGN_IS_PLUS_1=TRUE
 $MC_TRANSMIT_BASE_TOOL_1[0]=0
 $MC_TRANSMIT_BASE_TOOL_1[1]=0
 $MC_TRANSMIT_BASE_TOOL_1[2]=0
+"#;
+
+const SLANT_LATHE_TRACON: &str = r#"; Slant-bed lathe with driven tools: the X slide MU is inclined by 30° towards Z, so a
+; TRAANG data set is always active (persistent); TRANSMIT is chained in front of it (TRACON).
+$MN_AXCONF_MACHAX_NAME_TAB[0]="MU"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="CM"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="MZ"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="ASM"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=0
+$MC_AXCONF_CHANAX_NAME_TAB[0]="MU"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="C"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="MZ"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="ASC"
+$MC_AXCONF_GEOAX_NAME_TAB[0]="X"
+$MC_AXCONF_GEOAX_NAME_TAB[1]="Y"
+$MC_AXCONF_GEOAX_NAME_TAB[2]="Z"
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=0
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MA_IS_ROT_AX[CM]=TRUE
+$MA_ROT_IS_MODULO[CM]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+$MA_IS_ROT_AX[ASM]=TRUE
+$MA_ROT_IS_MODULO[ASM]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[ASM]=2
+$MA_MAX_AX_VELO[MU]=15000.
+$MA_MAX_AX_VELO[MZ]=15000.
+$MA_MAX_AX_VELO[CM]=100.
+$MA_MAX_AX_VELO[ASM]=6000.
+$MA_POS_LIMIT_MINUS[MU]=-50.
+$MA_POS_LIMIT_PLUS[MU]=250.
+$MA_POS_LIMIT_MINUS[MZ]=-300.
+$MA_POS_LIMIT_PLUS[MZ]=300.
+; T1 D1: end mill on the driven tool spindle, length 30, radius 4
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=30.
+$TC_DP6[1,1]=4.
+; data set 1: TRANSMIT (the first member of the chain)
+$MC_TRAFO_TYPE_1=256
+$MC_TRAFO_AXES_IN_1[0]=1
+$MC_TRAFO_AXES_IN_1[1]=2
+$MC_TRAFO_AXES_IN_1[2]=3
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=2
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3
+$MC_TRANSMIT_ROT_SIGN_IS_PLUS_1=TRUE
+; data set 2: TRAANG for the inclined slide (persistent)
+$MC_TRAFO_TYPE_2=1024
+$MC_TRAFO_AXES_IN_2[0]=1      ; MU: inclined axis
+$MC_TRAFO_AXES_IN_2[1]=3      ; MZ: axis parallel to Z
+$MC_TRAFO_AXES_IN_2[2]=0
+$MC_TRAFO_GEOAX_ASSIGN_TAB_2[0]=1
+$MC_TRAFO_GEOAX_ASSIGN_TAB_2[1]=0
+$MC_TRAFO_GEOAX_ASSIGN_TAB_2[2]=3
+$MC_TRAANG_ANGLE_1=30.
+$MC_TRAANG_PARALLEL_VELO_RES_1=0.1
+$MC_TRAANG_PARALLEL_ACCEL_RES_1=0.1
+; data set 3: the chain TRANSMIT → TRAANG
+$MC_TRAFO_TYPE_3=8192
+$MC_TRACON_CHAIN_1[0]=1
+$MC_TRACON_CHAIN_1[1]=2
+; the persistent transformation and the reset mode it needs
+$MC_TRAFO_MODE_MASK=1
+$MC_TRAFO_RESET_VALUE=2
+$MC_RESET_MODE_MASK=1
+$MC_GEOAX_CHANGE_RESET=TRUE
 "#;
 
 const TRACYL_XYZC: &str = r#"; TRACYL example machine X-Y-Z-C (Transformations FM, M1 TRACYL examples)

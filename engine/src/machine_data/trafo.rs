@@ -23,6 +23,8 @@ pub enum TrafoKind {
     Traang,
     /// Orientation transformation (3-, 4-, 5-, 6-axis, generic, cardan head), types 16..255.
     Traori,
+    /// Chained transformation, type 8192: two data sets one after the other (the second a TRAANG).
+    Tracon,
 }
 
 impl TrafoKind {
@@ -34,6 +36,7 @@ impl TrafoKind {
             1024 => Some(TrafoKind::Traang),
             // Every code of the orientation range; `traori::decode` explains the ones it rejects.
             16..=255 => Some(TrafoKind::Traori),
+            8192 => Some(TrafoKind::Tracon),
             _ => None,
         }
     }
@@ -45,6 +48,7 @@ impl TrafoKind {
             TrafoKind::Tracyl => "TRACYL",
             TrafoKind::Traang => "TRAANG",
             TrafoKind::Traori => "TRAORI",
+            TrafoKind::Tracon => "TRACON",
         }
     }
 
@@ -54,6 +58,7 @@ impl TrafoKind {
             TrafoKind::Tracyl => "$MC_TRACYL_",
             TrafoKind::Traang => "$MC_TRAANG_",
             TrafoKind::Traori => "$MC_TRAFO5_",
+            TrafoKind::Tracon => "$MC_TRACON_",
         }
     }
 }
@@ -93,6 +98,8 @@ pub enum TrafoParams {
     },
     /// Boxed: the orientation data are several times larger than the other kinds'.
     Traori(Box<TraoriParams>),
+    /// `TRACON_CHAIN_t[0..1]`: the data-set numbers of the two members, BCS side first.
+    Tracon { members: [usize; 2] },
 }
 
 /// One configured transformation data set.
@@ -170,7 +177,7 @@ pub(super) fn build(
     machine_axes: &[MachineAxis],
 ) -> Result<Vec<TrafoDataSet>, ActivationError> {
     let mut sets = Vec::new();
-    let mut per_kind = [0usize; 4];
+    let mut per_kind = [0usize; 5];
     for n in 1..=MAX_TRAFO_SETS {
         let (type_datum, axes_datum, geo_datum) = datum_names(n);
         let trafo_type = md.num(&format!("$MC_{type_datum}"), 0, 0) as u32;
@@ -181,7 +188,7 @@ pub(super) fn build(
             return fail(
                 type_datum,
                 format!(
-                    "$MC_{type_datum}={trafo_type}: this transformation type is not modelled (orientation types 16..255, 256, 257, 512, 513, 514, 1024 are)"
+                    "$MC_{type_datum}={trafo_type}: this transformation type is not modelled (orientation types 16..255, 256, 257, 512, 513, 514, 1024, 8192 are)"
                 ),
             );
         };
@@ -208,6 +215,8 @@ pub(super) fn build(
                 (4, true, false),
                 (5, true, false),
             ],
+            // A chain's axes and geometry axes are those of its members.
+            (TrafoKind::Tracon, _) => &[],
         };
         let rotary = |k: usize| machine_axes[channel_axes[k].machine_axis].rotary;
         let mut axes_in = [None; 6];
@@ -223,7 +232,7 @@ pub(super) fn build(
             })?);
         }
         let mut geo_axes = [None; 3];
-        for (g, a) in geo_axes.iter_mut().enumerate() {
+        for (g, a) in geo_axes.iter_mut().enumerate().filter(|_| kind != TrafoKind::Tracon) {
             let k = md.num(&format!("$MC_{geo_datum}"), 0, g) as usize;
             if k == 0 {
                 continue;
@@ -312,8 +321,47 @@ pub(super) fn build(
             TrafoKind::Traori => TrafoParams::Traori(Box::new(traori::params(
                 md, trafo_type, kind_index, &axes_in, type_datum, axes_datum, resolve,
             )?)),
+            TrafoKind::Tracon => {
+                let members = chain_members(md, kind_index, n, &sets)?;
+                geo_axes = sets.iter().find(|s| s.number == members[0]).expect("checked member").geo_axes;
+                TrafoParams::Tracon { members }
+            }
         };
         sets.push(TrafoDataSet { number: n, trafo_type, kind, kind_index, axes_in, geo_axes, includes_tool, params });
     }
     Ok(sets)
+}
+
+/// The members of the `kind_index`-th chained data set (number `n`), checked against the
+/// manual's rules: two members, both defined in lower data sets, the second a TRAANG, the first
+/// a TRANSMIT, TRACYL, TRAANG or TRAORI.
+fn chain_members(
+    md: &MachineData,
+    kind_index: usize,
+    n: usize,
+    sets: &[TrafoDataSet],
+) -> Result<[usize; 2], ActivationError> {
+    const CHAIN: [&str; 2] = ["TRACON_CHAIN_1", "TRACON_CHAIN_2"];
+    let datum = CHAIN[kind_index - 1];
+    let members = [0, 1].map(|i| md.num(&format!("$MC_{datum}"), 0, i) as usize);
+    for (i, m) in members.iter().enumerate() {
+        let Some(set) = sets.iter().find(|s| s.number == *m) else {
+            return fail(
+                datum,
+                format!("$MC_{datum}[{i}]={m}: a chain member must be a data set configured before data set {n}"),
+            );
+        };
+        let allowed = if i == 0 { set.kind != TrafoKind::Tracon } else { set.kind == TrafoKind::Traang };
+        if !allowed {
+            return fail(
+                datum,
+                format!(
+                    "$MC_{datum}[{i}]: {} cannot be the {} member of a chain (the second must be TRAANG)",
+                    set.kind.name(),
+                    if i == 0 { "first" } else { "second" }
+                ),
+            );
+        }
+    }
+    Ok(members)
 }
