@@ -550,3 +550,16 @@ fn spos_stops_the_spindle_and_makes_it_a_rotary_axis_until_m3() {
     let (ch, _) = run("lathe-2axis", "", "G0 SP=180\nM30");
     assert_eq!(ch.snapshot().alarms[0].number, 12550);
 }
+
+#[test]
+fn the_state_shows_the_g_functions_of_the_block_in_execution() {
+    let mut ch = channel("mill-3axis", "");
+    assert_eq!(ch.snapshot().gcodes[..8], ["G1", "G17", "G40", "G500", "G60", "G71", "G90", "G94"].map(String::from));
+    // Stopped at M0 after G0/G18/G91/G54/G64 were prepared: they show; the next block's G3 and
+    // G70 are prepared already but not executed, so they do not.
+    ch.run_program("G0 G18 G91 G54 G64 X1\nM0\nG70 G3 X1 Z1 CR=2 F100\nM30").unwrap();
+    settle(&mut ch);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped);
+    assert_eq!(s.gcodes[..8], ["G0", "G18", "G40", "G54", "G64", "G71", "G91", "G94"].map(String::from));
+}

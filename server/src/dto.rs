@@ -234,6 +234,10 @@ pub struct State {
     pub single_block: bool,
     /// Optional stop (M1) selected.
     pub optional_stop: bool,
+    /// Active G functions of the block in execution, one per displayed G group (motion, plane,
+    /// radius compensation, settable frame, exact stop, units, dimensions, feed type, arc feed,
+    /// corner type, orientation reference, PTP, angle definition, orientation interpolation).
+    pub gcodes: Vec<String>,
 }
 
 /// Axis positions in the three coordinate systems (mm or degrees), as objects name -> value in
@@ -325,6 +329,7 @@ impl From<&Snapshot> for State {
             overrides: OverridesInfo { feed: s.overrides.feed, rapid: s.overrides.rapid, spindle: s.overrides.spindle },
             single_block: s.single_block,
             optional_stop: s.optional_stop,
+            gcodes: s.gcodes.clone(),
         }
     }
 }
@@ -560,6 +565,7 @@ mod tests {
             overrides: OverridesInfo { feed: 100.0, rapid: 100.0, spindle: 100.0 },
             single_block: false,
             optional_stop: false,
+            gcodes: vec!["G1".into(), "G17".into()],
         }
     }
 

@@ -144,6 +144,13 @@ async function main() {
       );
     });
 
+    await step("active G functions shown (reset values)", async () => {
+      await page.waitForFunction(() => {
+        const g = document.getElementById("gcodes")?.textContent ?? "";
+        return ["G1", "G17", "G40", "G500", "G90"].every((c) => g.split(" ").includes(c));
+      });
+    });
+
     await step("header counts this page among the session's viewers", async () => {
       await page.waitForFunction(() => /^[1-9]\d* watching$/.test(document.getElementById("viewers")?.textContent || ""));
     });

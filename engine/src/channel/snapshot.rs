@@ -54,6 +54,8 @@ pub struct Snapshot {
     /// Single block (SBL1) and optional stop (M1) selected.
     pub single_block: bool,
     pub optional_stop: bool,
+    /// The active G functions of the block in execution, one per displayed G group.
+    pub gcodes: Vec<String>,
 }
 
 pub(super) fn build(ch: &Channel) -> Snapshot {
@@ -136,5 +138,6 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         overrides: ch.overrides,
         single_block: ch.single_block,
         optional_stop: ch.optional_stop,
+        gcodes: ch.offsets.gcodes.names(),
     }
 }

@@ -11,6 +11,7 @@ mod corners;
 mod eval;
 mod flow;
 pub mod frame;
+pub mod gcodes;
 mod modal;
 mod orient;
 mod scope;
@@ -50,6 +51,8 @@ pub struct Offsets {
     pub d: u32,
     /// The active kinematic transformation with the tool length it includes.
     pub trafo: Option<crate::kinematics::ActiveTrafo>,
+    /// The block's active G functions, for the display.
+    pub gcodes: gcodes::GCodes,
 }
 
 /// Why the main run stops.
@@ -211,6 +214,7 @@ impl Interpreter {
         self.pframe = Frame::identity();
         self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
+        self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
         self.reset_transformation(cfg, machine);
     }
 
@@ -336,6 +340,7 @@ impl Interpreter {
         let derived = self.trafo.config();
         let cfg = derived.as_deref().unwrap_or(base_cfg);
         self.modal.apply(&words, cfg, line)?;
+        self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
             self.modal.feed = Some(f);
         }

@@ -48,6 +48,8 @@ export interface State {
   overrides: Overrides;
   single_block: boolean;
   optional_stop: boolean;
+  /** Active G functions of the block in execution, one per displayed G group. */
+  gcodes: string[];
 }
 
 /** Override switches in percent. */

@@ -1,4 +1,5 @@
-// The T, F, S window: active tool and edge, path feed, spindle speeds, transformation, time.
+// The T, F, S window: active tool and edge, path feed, spindle speeds, transformation, active
+// G functions, time.
 
 import type { State } from "../api/types";
 import { byId, fmt, setText } from "../core/dom";
@@ -16,6 +17,7 @@ function render(st: State): void {
   setText(byId("spindles"), spindles.length ? spindles.map(([n, rpm]) => spindleText(n, rpm)).join("   ") : "–");
   const tr = st.transformation;
   setText(byId("transformation"), tr ? `${tr.name} (${tr.index})` : "none");
+  setText(byId("gcodes"), st.gcodes.length ? st.gcodes.join(" ") : "–");
   setText(byId("sim-time"), fmt(st.time, 2));
 }
 

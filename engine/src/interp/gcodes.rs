@@ -1,0 +1,106 @@
+//! The active G functions of a block in a compact form that travels with the block to the
+//! main run, so the display shows the G codes of the block being executed rather than of the
+//! block being prepared.
+
+use super::modal::{Modal, MotionMode, Plane, PtpMode};
+use super::orient::{AngleDefinition, OriInterpolation, OriReference};
+use super::trc::{ArcFeed, CornerMode, Side};
+
+/// One entry per displayed G group: the index of the active function in that group's list.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct GCodes([u8; GROUPS.len()]);
+
+/// The displayed groups in Operate's order: (group number, names by index). Group 8 (settable
+/// frame) is named from its number instead.
+const GROUPS: [(u8, &[&str]); 14] = [
+    (1, &["G0", "G1", "G2", "G3"]),
+    (6, &["G17", "G18", "G19"]),
+    (7, &["G40", "G41", "G42"]),
+    (8, &[]),
+    (10, &["G60", "G64"]),
+    (13, &["G70", "G71", "G700", "G710"]),
+    (14, &["G90", "G91"]),
+    (15, &["G94", "G95"]),
+    (16, &["CFC", "CFTCP", "CFIN"]),
+    (18, &["G450", "G451"]),
+    (25, &["ORIMKS", "ORIWKS"]),
+    (49, &["CP", "PTP", "PTPG0", "PTPWOC"]),
+    (50, &["ORIEULER", "ORIRPY", "ORIRPY2", "ORIVIRT1", "ORIVIRT2"]),
+    (51, &["ORIVECT", "ORIAXES", "ORICONCW", "ORICONCCW", "ORIPATH"]),
+];
+
+impl GCodes {
+    /// The G functions of the modal state `m`.
+    pub fn of(m: &Modal) -> GCodes {
+        let ori = &m.ori;
+        GCodes([
+            match m.motion {
+                MotionMode::Rapid => 0,
+                MotionMode::Linear => 1,
+                MotionMode::Cw => 2,
+                MotionMode::Ccw => 3,
+            },
+            match m.plane {
+                Plane::G17 => 0,
+                Plane::G18 => 1,
+                Plane::G19 => 2,
+            },
+            match m.trc {
+                None => 0,
+                Some(Side::Left) => 1,
+                Some(Side::Right) => 2,
+            },
+            u8::try_from(m.work_offset).unwrap_or(u8::MAX),
+            u8::from(!m.exact_stop),
+            match (m.inch, m.inch_feed) {
+                (true, false) => 0,
+                (false, false) => 1,
+                (true, true) => 2,
+                (false, true) => 3,
+            },
+            u8::from(!m.absolute),
+            u8::from(m.feed_per_rev),
+            match m.arc_feed {
+                ArcFeed::Contour => 0,
+                ArcFeed::CentrePath => 1,
+                ArcFeed::InnerOnly => 2,
+            },
+            u8::from(m.trc_corners == CornerMode::Intersection),
+            u8::from(ori.reference == OriReference::Workpiece),
+            match m.ptp {
+                PtpMode::Cp => 0,
+                PtpMode::Ptp => 1,
+                PtpMode::PtpG0 => 2,
+                PtpMode::PtpWoc => 3,
+            },
+            match ori.angles {
+                AngleDefinition::Euler => 0,
+                AngleDefinition::Rpy => 1,
+                AngleDefinition::Rpy2 => 2,
+                AngleDefinition::Virtual1 => 3,
+                AngleDefinition::Virtual2 => 4,
+            },
+            match ori.interpolation {
+                OriInterpolation::Vector => 0,
+                OriInterpolation::Axes => 1,
+                OriInterpolation::Cone { clockwise: true } => 2,
+                OriInterpolation::Cone { clockwise: false } => 3,
+                OriInterpolation::Unmodelled(_) => 4,
+            },
+        ])
+    }
+
+    /// The names of the active functions, one per displayed group (`G1`, `G17`, `G54`, ...).
+    pub fn names(&self) -> Vec<String> {
+        GROUPS
+            .iter()
+            .zip(self.0)
+            .map(|((group, names), i)| match (group, i) {
+                (8, 0) => "G500".to_string(),
+                (8, n @ 1..=4) => format!("G{}", 53 + n),
+                (8, n) => format!("G{}", 500 + u32::from(n)),
+                (_, i) => names.get(usize::from(i)).copied().unwrap_or("?").to_string(),
+            })
+            .collect()
+    }
+}
