@@ -54,6 +54,12 @@ pub struct Snapshot {
     /// Single block (SBL1) and optional stop (M1) selected.
     pub single_block: bool,
     pub optional_stop: bool,
+    /// Reference point state by machine axis name, in machine axis order.
+    pub referenced: Vec<(String, bool)>,
+    /// Number of the last JOG motion started (see `Channel::jog_stop_if`).
+    pub jog_serial: u64,
+    /// The program was interrupted and axes moved by JOG: NC start repositions first (REPOS).
+    pub repos_pending: bool,
 }
 
 pub(super) fn build(ch: &Channel) -> Snapshot {
@@ -126,5 +132,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         overrides: ch.overrides,
         single_block: ch.single_block,
         optional_stop: ch.optional_stop,
+        referenced: ch.reference_state(),
+        jog_serial: ch.jog_serial,
+        repos_pending: ch.repos_pending(),
     }
 }
