@@ -349,3 +349,27 @@ fn block_search_outputs_the_collected_spindle_command_at_nc_start() {
     let expected = (2600f64.sqrt() + 20.0) / (100.0 / 60.0);
     assert!(close(moving, expected, 0.1), "{moving} s, expected {expected} s");
 }
+
+#[test]
+fn block_search_over_a_transmit_selection_approaches_in_the_bcs_with_transmit_active() {
+    let mut ch = channel("transmit-example", "");
+    ch.mda("G0 X20 Z10").unwrap();
+    settle(&mut ch);
+    ch.set_mode(Mode::Auto).unwrap();
+    let program = "T1 D1 G17 F5000\nG0 X20 Z10\nTRANSMIT\nG1 X10 Y-10\nX-10\nM0\nY10\nM30";
+    ch.block_search(Some(program), 5).unwrap();
+    assert!(ch.snapshot().transformation.is_none(), "selected at NC start");
+    ch.start().unwrap();
+    let samples = settle(&mut ch);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert!(s.transformation.is_some());
+    assert!(close(pos(&s.basic, "X"), -10.0, 1e-6) && close(pos(&s.basic, "Y"), -10.0, 1e-6), "{:?}", s.basic);
+    // Tool length 30 of T1 D1 (collected) along Z: ZM = 10 + 30.
+    assert!(close(machine(&s, "ZM"), 40.0, 1e-9), "{:?}", s.machine);
+    // The approach ended at the start of line 5, BCS (10, -10): XM = √200 at CM = 315°.
+    assert!(
+        samples.iter().any(|m| close(m[0], 200f64.sqrt(), 1e-6) && close(m[1].rem_euclid(360.0), 315.0, 1e-6)),
+        "never at (10, -10)"
+    );
+}

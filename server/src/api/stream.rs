@@ -35,7 +35,7 @@ use crate::session::{Action, Drive, Pace, SessionHandle};
 use crate::state::{AppState, SessionEntry};
 
 /// A continuous JOG started over the stream stops when its client has sent no keep-alive
-/// (`jog_keepalive`, or the same `jog` again) for this long: the HMI sends one about every
+/// (`jog_keepalive`, or the same `jog` again) for this long: a client should send one about every
 /// 100 ms while the key is held.
 pub const JOG_DEADMAN: Duration = Duration::from_millis(400);
 
