@@ -373,3 +373,26 @@ fn block_search_over_a_transmit_selection_approaches_in_the_bcs_with_transmit_ac
         "never at (10, -10)"
     );
 }
+
+#[test]
+fn cartesian_jog_and_repos_past_the_transmit_pole_keep_the_rotary_axis_within_its_velocity() {
+    let program = "T1 D1 G17 F5000\nG0 X20 Z10\nTRANSMIT\nG1 X10 Y-10\nM0\nM30";
+    let mut ch = channel("transmit-example", "");
+    ch.run_program(program).unwrap();
+    settle(&mut ch);
+    ch.set_mode(Mode::Jog).unwrap();
+    ch.jog_in(&jog("Y", 1, Some(9.5)), JogSystem::Workpiece).unwrap();
+    let mut samples = settle(&mut ch);
+    // 0.5 mm beside the pole: C turns by about 180° within a few mm of X.
+    ch.jog_in(&jog("X", -1, Some(20.0)), JogSystem::Workpiece).unwrap();
+    samples.extend(settle(&mut ch));
+    let s = ch.snapshot();
+    assert!(close(pos(&s.basic, "X"), -10.0, 1e-6) && close(pos(&s.basic, "Y"), -0.5, 1e-6), "{:?}", s.basic);
+    ch.set_mode(Mode::Auto).unwrap();
+    ch.start().unwrap();
+    samples.extend(settle(&mut ch));
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    // CM: MAX_AX_VELO 100 rev/min = 600°/s, i.e. 2.4° per 4 ms cycle.
+    let max_step = samples.windows(2).map(|w| (w[1][1] - w[0][1]).abs()).fold(0.0, f64::max);
+    assert!(max_step <= 2.4 * (1.0 + 1e-6), "CM moved {max_step}° in one cycle");
+}

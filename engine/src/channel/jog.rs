@@ -208,7 +208,7 @@ impl Channel {
         );
         let mut mv = mv;
         mv.machine_space = machine_space;
-        self.push_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space, feed: 0.0 });
+        self.push_bcs_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space, feed: 0.0 });
         self.jog_serial = self.jog_serial.wrapping_add(1);
         let plus = direction.map(|d| d * dir);
         self.jog = Some(ActiveJog { axis: k, direction, plus, end, machine_space, handwheel, resume });

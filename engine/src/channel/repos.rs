@@ -20,7 +20,7 @@ use std::collections::VecDeque;
 
 use super::{Channel, MoveMeta, Status};
 use crate::interp::Item;
-use crate::kinematics::Transformation;
+use crate::kinematics::{Transformation, plan};
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
 
 /// The main run of an interrupted program, put aside while the operator jogs.
@@ -105,8 +105,30 @@ impl Channel {
         };
         let mv = self.straight_move(here, target, feed);
         let offsets = self.offsets.clone();
-        self.push_move(mv, MoveMeta { line: 0, offsets, machine_space: false, feed: 0.0 });
+        self.push_bcs_move(mv, MoveMeta { line: 0, offsets, machine_space: false, feed: 0.0 });
         self.repos_returning = true;
+    }
+
+    /// Queues a move of the program space. With a transformation active and the planner empty
+    /// (the machine position is where the move starts), it is planned like a program block: the
+    /// path velocity keeps every machine axis within its limits, pole passages get their
+    /// positioning moves. A move the transformation cannot plan is queued as it is.
+    pub(super) fn push_bcs_move(&mut self, mv: Move, meta: MoveMeta) {
+        let planned = match &self.trafo {
+            Some(t) if !mv.machine_space && self.planner.is_empty() => {
+                plan::plan_block(t, &mv, &self.machine, &self.cfg).ok().map(|(moves, _)| moves)
+            }
+            _ => None,
+        };
+        match planned {
+            Some(moves) if !moves.is_empty() => {
+                for m in moves {
+                    let meta = MoveMeta { machine_space: m.machine_space, ..meta.clone() };
+                    self.push_move(m, meta);
+                }
+            }
+            _ => self.push_move(mv, meta),
+        }
     }
 
     /// Once the REPOS motion has arrived, the program's main run takes over again.

@@ -179,7 +179,7 @@ impl Channel {
         let mut mv = self.straight_move(start, target.path.start, feed);
         mv.machine_space = target.machine_space;
         let meta = MoveMeta { line, offsets: offsets.clone(), machine_space: target.machine_space, feed: 0.0 };
-        self.push_move(mv, meta);
+        self.push_bcs_move(mv, meta);
     }
 }
 
