@@ -92,10 +92,12 @@ fn jog_in_the_wcs_follows_the_rotated_frame_and_repos_returns() {
     assert_eq!(ch.status(), Status::Stopped, "JOG keeps the program interrupted");
     let p = ch.axis_positions().to_vec();
     assert!(close(p[0], 10.0, 1e-9) && close(p[1], 7.0, 1e-9), "{p:?}");
-    // The same key in the MCS moves machine X.
-    ch.jog_in(&jog("X", 1, Some(2.0)), JogSystem::Machine).unwrap();
+    // The same key in the MCS, and in the BCS (where the frame does not act), moves machine X.
+    ch.jog_in(&jog("X", 1, Some(1.0)), JogSystem::Machine).unwrap();
     settle(&mut ch);
-    assert!(close(ch.axis_positions()[0], 12.0, 1e-9));
+    ch.jog_in(&jog("X", 1, Some(1.0)), JogSystem::Basic).unwrap();
+    settle(&mut ch);
+    assert!(close(ch.axis_positions()[0], 12.0, 1e-9) && close(ch.axis_positions()[1], 7.0, 1e-9));
     assert!(ch.snapshot().repos_pending);
     ch.set_mode(Mode::Auto).unwrap();
     ch.start().unwrap();

@@ -484,6 +484,10 @@ pub enum JogCoordinates {
     #[default]
     #[serde(rename = "MCS")]
     Mcs,
+    /// Basic coordinates: a geometry axis moves along the BCS axis (frames do not act); with a
+    /// transformation active the tool tip moves Cartesian. Other axes move as in the MCS.
+    #[serde(rename = "BCS")]
+    Bcs,
     /// Workpiece coordinates: a geometry axis moves along that axis of the active frame (all
     /// geometry axes move when the frame is rotated); with a transformation active the tool tip
     /// moves Cartesian and the machine axes follow. Other axes move as in the MCS.
@@ -495,6 +499,7 @@ impl From<JogCoordinates> for JogSystem {
     fn from(c: JogCoordinates) -> JogSystem {
         match c {
             JogCoordinates::Mcs => JogSystem::Machine,
+            JogCoordinates::Bcs => JogSystem::Basic,
             JogCoordinates::Wcs => JogSystem::Workpiece,
         }
     }
@@ -517,7 +522,7 @@ pub struct JogBody {
     /// JOG_INCR_WEIGHT (0.001 mm or 0.001° by default). Not together with `increment`.
     #[schema(example = 100)]
     pub inc: Option<u32>,
-    /// `MCS` (default) or `WCS`.
+    /// `MCS` (default), `BCS` or `WCS`.
     #[serde(default)]
     pub coordinates: JogCoordinates,
     /// Rapid traverse override.
@@ -558,7 +563,7 @@ pub struct HandwheelBody {
     pub pulses: i32,
     /// Increment per detent: 1, 10, 100 or 1000 steps of MD31090 JOG_INCR_WEIGHT (default 1).
     pub inc: Option<u32>,
-    /// `MCS` (default) or `WCS`.
+    /// `MCS` (default), `BCS` or `WCS`.
     #[serde(default)]
     pub coordinates: JogCoordinates,
 }

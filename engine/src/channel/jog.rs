@@ -29,6 +29,10 @@ pub enum JogSystem {
     /// the machine axis itself, not a Cartesian coordinate).
     #[default]
     Machine,
+    /// BCS: a geometry axis moves along that axis of the basic coordinate system (frames do not
+    /// act); with a transformation active, the tool tip moves Cartesian and the machine axes
+    /// follow. Other channel axes move as in the MCS.
+    Basic,
     /// WCS: a geometry axis moves along the direction of that axis of the active frame (all
     /// geometry axes move when the frame is rotated); with a transformation active, the tool tip
     /// moves Cartesian and the machine axes follow through the inverse transformation. Other
@@ -170,11 +174,11 @@ impl Channel {
             None => self.cfg.geo_axes,
         };
         let geo = geo_slots.iter().position(|s| *s == Some(k));
-        let cartesian = system == JogSystem::Workpiece && geo.is_some();
+        let cartesian = system != JogSystem::Machine && geo.is_some();
         let machine_space = self.trafo.is_some() && !cartesian;
         let mut direction = [0.0; MAX_CHANNEL_AXES];
         direction[k] = dir;
-        if cartesian {
+        if cartesian && system == JogSystem::Workpiece {
             direction = self.offsets.frame.apply_vector(&geo_slots, &direction);
             let norm = direction.iter().map(|d| d * d).sum::<f64>().sqrt();
             if norm < 1e-12 {

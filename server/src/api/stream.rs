@@ -91,7 +91,7 @@ impl StreamParams {
 /// Client messages (JSON text, see `ClientMessage`) drive JOG with the control's dead-man
 /// safety; they need control of the session like REST commands (observers: `error` 403):
 /// - `{"type": "jog", "axis": "X", "direction": 1}` (optional `inc`, `increment`,
-///   `coordinates` `MCS`/`WCS`, `rapid`, as for `POST .../jog`): continuous without `inc` and
+///   `coordinates` `MCS`/`BCS`/`WCS`, `rapid`, as for `POST .../jog`): continuous without `inc` and
 ///   `increment`. A continuous JOG runs while the client sends `{"type": "jog_keepalive"}` (or
 ///   the same `jog`) at least every 400 ms (`JOG_DEADMAN`); it stops on `{"type": "jog_stop"}`,
 ///   on a missed keep-alive and when the socket closes. An incremental JOG runs to its
