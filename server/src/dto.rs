@@ -10,6 +10,8 @@ use serde::ser::SerializeMap;
 use serde::{Deserialize, Serialize, Serializer};
 use utoipa::ToSchema;
 
+use nctwin_engine::channel::{JOG_INCREMENTS, JogSystem};
+
 use crate::session::{Drive, Pace};
 
 /// An error: what is wrong and, when the error belongs to one line of a program or of machine
@@ -238,6 +240,16 @@ pub struct State {
     /// radius compensation, settable frame, exact stop, units, dimensions, feed type, arc feed,
     /// corner type, orientation reference, PTP, angle definition, orientation interpolation).
     pub gcodes: Vec<String>,
+    /// Reference point state of every machine axis by machine axis name (`true` = referenced).
+    /// Unreferenced axes refuse NC start in AUTO and MDA (alarm 16905) while MD20700
+    /// REFP_NC_START_LOCK is set; presets start referenced (MD34210 ENC_REFP_STATE = 2).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<std::collections::HashMap<String, bool>>)]
+    pub referenced: Option<AxisFlags>,
+    /// The program is interrupted and axes were moved by JOG: NC start first returns to the
+    /// interruption point (REPOS).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub repos_pending: Option<bool>,
 }
 
 /// Axis positions in the three coordinate systems (mm or degrees), as objects name -> value in
@@ -261,6 +273,20 @@ pub struct Positions {
 pub struct AxisValues(pub Vec<(String, f64)>);
 
 impl Serialize for AxisValues {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(self.0.len()))?;
+        for (name, value) in &self.0 {
+            map.serialize_entry(name, value)?;
+        }
+        map.end()
+    }
+}
+
+/// Named flags that serialize as a JSON object in the engine's axis order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct AxisFlags(pub Vec<(String, bool)>);
+
+impl Serialize for AxisFlags {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let mut map = serializer.serialize_map(Some(self.0.len()))?;
         for (name, value) in &self.0 {
@@ -330,6 +356,8 @@ impl From<&Snapshot> for State {
             single_block: s.single_block,
             optional_stop: s.optional_stop,
             gcodes: s.gcodes.clone(),
+            referenced: Some(AxisFlags(s.referenced.clone())),
+            repos_pending: Some(s.repos_pending),
         }
     }
 }
@@ -453,19 +481,55 @@ pub struct OverridesInfo {
     pub spindle: f64,
 }
 
+/// The coordinate system of a JOG motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, ToSchema)]
+pub enum JogCoordinates {
+    /// Machine coordinates: the machine axis behind the named axis moves alone (with a
+    /// transformation active, the machine axis itself).
+    #[default]
+    #[serde(rename = "MCS")]
+    Mcs,
+    /// Basic coordinates: a geometry axis moves along the BCS axis (frames do not act); with a
+    /// transformation active the tool tip moves Cartesian. Other axes move as in the MCS.
+    #[serde(rename = "BCS")]
+    Bcs,
+    /// Workpiece coordinates: a geometry axis moves along that axis of the active frame (all
+    /// geometry axes move when the frame is rotated); with a transformation active the tool tip
+    /// moves Cartesian and the machine axes follow. Other axes move as in the MCS.
+    #[serde(rename = "WCS")]
+    Wcs,
+}
+
+impl From<JogCoordinates> for JogSystem {
+    fn from(c: JogCoordinates) -> JogSystem {
+        match c {
+            JogCoordinates::Mcs => JogSystem::Machine,
+            JogCoordinates::Bcs => JogSystem::Basic,
+            JogCoordinates::Wcs => JogSystem::Workpiece,
+        }
+    }
+}
+
 /// Body of `POST /sessions/{id}/jog`.
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct JogBody {
-    /// Program name of the axis (geometry or channel axis name).
+    /// The axis: a machine axis name, a geometry axis name or a channel axis name.
     #[schema(example = "X")]
     pub axis: String,
     /// `1` (plus) or `-1` (minus).
     #[schema(minimum = -1, maximum = 1, example = 1)]
     pub direction: i8,
-    /// Incremental JOG by this distance (mm or degrees, positive); absent: continuous JOG until
-    /// `jog/stop` or the software limit.
+    /// Variable increment (INCvar): JOG by this distance (mm or degrees, positive). Absent with
+    /// `inc` absent: continuous JOG until `jog/stop` or the software limit.
     pub increment: Option<f64>,
+    /// Fixed increment INC1, INC10, INC100 or INC1000: that many steps of MD31090
+    /// JOG_INCR_WEIGHT (0.001 mm or 0.001° by default). Not together with `increment`.
+    #[schema(example = 100)]
+    pub inc: Option<u32>,
+    /// `MCS` (default), `BCS` or `WCS`.
+    #[serde(default)]
+    pub coordinates: JogCoordinates,
     /// Rapid traverse override.
     #[serde(default)]
     pub rapid: bool,
@@ -474,6 +538,75 @@ pub struct JogBody {
     /// As for `run`: answer when the axis stands.
     #[serde(default)]
     pub wait: bool,
+}
+
+impl JogBody {
+    /// The JOG distance: `increment`, or `inc` steps (resolved by the channel); `Err` names
+    /// what is wrong.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.increment.is_some() && self.inc.is_some() {
+            return Err("give either `increment` (mm) or `inc` (INC steps), not both".into());
+        }
+        match self.inc {
+            Some(n) if !JOG_INCREMENTS.contains(&n) => Err(format!(
+                "inc must be 1, 10, 100 or 1000 (INC1 … INC1000), not {n}; use `increment` for a variable distance"
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Body of `POST /sessions/{id}/jog/handwheel`: pulses of a handwheel assigned to one axis.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HandwheelBody {
+    /// The axis: a machine axis name, a geometry axis name or a channel axis name.
+    #[schema(example = "X")]
+    pub axis: String,
+    /// Detents turned, signed by the direction (non-zero, at most 10000 either way).
+    #[schema(example = 5)]
+    pub pulses: i32,
+    /// Increment per detent: 1, 10, 100 or 1000 steps of MD31090 JOG_INCR_WEIGHT (default 1).
+    pub inc: Option<u32>,
+    /// `MCS` (default), `BCS` or `WCS`.
+    #[serde(default)]
+    pub coordinates: JogCoordinates,
+}
+
+impl HandwheelBody {
+    pub fn validate(&self) -> Result<u32, String> {
+        if self.pulses == 0 || self.pulses.unsigned_abs() > 10_000 {
+            return Err(format!("pulses must be between -10000 and 10000 and not 0, not {}", self.pulses));
+        }
+        let inc = self.inc.unwrap_or(1);
+        if !JOG_INCREMENTS.contains(&inc) {
+            return Err(format!("inc must be 1, 10, 100 or 1000 (INC1 … INC1000), not {inc}"));
+        }
+        Ok(inc)
+    }
+}
+
+/// Body of `POST /sessions/{id}/search`: block search with calculation.
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SearchRequest {
+    /// The target line (1-based) of the program.
+    #[schema(example = 5)]
+    pub line: u32,
+    /// The program text to search in (it becomes the active program); absent: the active
+    /// program (the one last run or searched).
+    pub program: Option<String>,
+    /// A stored program (`PUT .../programs/{name}`) to search in, instead of `program`.
+    pub name: Option<String>,
+}
+
+/// Body of `POST /sessions/{id}/reference`; may be empty.
+#[derive(Debug, Clone, Default, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceRequest {
+    /// The axis to reference (machine, geometry or channel axis name); absent: every axis.
+    #[schema(example = "X")]
+    pub axis: Option<String>,
 }
 
 /// Body of `PUT /sessions/{id}/machine-data`.
@@ -498,6 +631,55 @@ pub enum StreamMessage {
     State(Box<State>),
     /// Something happened.
     Event(EventMessage),
+    /// A client message (`jog`, `jog_stop`, `handwheel`) was carried out.
+    Ack {
+        /// The `type` of the client message.
+        request: String,
+    },
+    /// A client message was refused, or the server stopped a JOG of this client (dead man).
+    Error {
+        /// The `type` of the client message, when the error answers one.
+        request: Option<String>,
+        /// What is wrong.
+        error: String,
+        /// HTTP status the same request would have got over REST (400, 403, 409, 429 ...).
+        status: u16,
+    },
+}
+
+/// A message a client sends on `GET /sessions/{id}/stream` (JSON text): the HMI's JOG keys
+/// and handwheel over the low-latency path. Needs control of the session like the REST
+/// commands (observers get an `error` with status 403).
+#[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ClientMessage {
+    /// Press a JOG key. Continuous (no `inc`/`increment`): a dead-man motion that runs while
+    /// the client keeps sending `jog_keepalive` (or repeats `jog`) at least every 400 ms
+    /// (`JOG_DEADMAN`), and stops on `jog_stop`, a missed keep-alive, or disconnect.
+    /// Incremental: runs to its distance; stops early on `jog_stop` or disconnect.
+    Jog {
+        axis: String,
+        #[schema(minimum = -1, maximum = 1)]
+        direction: i8,
+        increment: Option<f64>,
+        inc: Option<u32>,
+        #[serde(default)]
+        coordinates: JogCoordinates,
+        #[serde(default)]
+        rapid: bool,
+    },
+    /// The JOG key is still held.
+    JogKeepalive,
+    /// Release the JOG key: the motion this client started brakes to standstill.
+    JogStop,
+    /// Handwheel pulses (as `POST .../jog/handwheel`); stops on disconnect.
+    Handwheel {
+        axis: String,
+        pulses: i32,
+        inc: Option<u32>,
+        #[serde(default)]
+        coordinates: JogCoordinates,
+    },
 }
 
 /// An event of a session.
@@ -566,6 +748,8 @@ mod tests {
             single_block: false,
             optional_stop: false,
             gcodes: vec!["G1".into(), "G17".into()],
+            referenced: None,
+            repos_pending: None,
         }
     }
 

@@ -89,6 +89,11 @@ impl Channel {
                 break;
             }
             let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
+            if self.search_approach {
+                // Block search: approach the start of the first move of the target, like that move.
+                self.search_approach = false;
+                self.push_approach(&mv, line, &offsets);
+            }
             // Anything but a move next (a dwell, a stop, the end) needs standstill first.
             let next_is_other = self
                 .pending
@@ -102,11 +107,12 @@ impl Channel {
                 mv.exact_stop = true;
             }
             let machine_space = mv.machine_space;
-            self.push_move(mv, MoveMeta { line, offsets, machine_space });
+            self.push_move(mv, MoveMeta { line, offsets, machine_space, feed: 0.0 });
         }
     }
 
     pub(super) fn push_move(&mut self, mut mv: Move, meta: MoveMeta) {
+        let meta = MoveMeta { feed: mv.feed, ..meta };
         mv.tag = self.next_tag;
         self.next_tag = self.next_tag.wrapping_add(1);
         self.in_planner.push_back((mv.tag, meta));
@@ -123,7 +129,7 @@ impl Channel {
             while let Some((t, meta)) = self.in_planner.front() {
                 let done = *t == tag;
                 self.offsets = meta.offsets.clone();
-                if done && self.single_block && self.jog_axis.is_none() && meta.line > 0 {
+                if done && self.single_block && self.jog.is_none() && meta.line > 0 {
                     self.sbl_done = Some(meta.line);
                 }
                 self.in_planner.pop_front();
@@ -265,7 +271,9 @@ impl Channel {
         self.in_planner.clear();
         self.prep_done = true;
         self.prep_waits_for_trafo = false;
-        self.jog_axis = None;
+        self.jog = None;
+        self.repos_returning = false;
+        self.drop_interruption();
         if alarm.clear == Clear::Reset {
             self.status = Status::Alarm;
         } else if self.status == Status::Running {

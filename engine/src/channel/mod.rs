@@ -5,12 +5,16 @@
 //! runs ahead of the main run by up to [`LOOKAHEAD`] items, as on the real control.
 //!
 //! Submodules: `main_run` (preparation, planner feeding, actions, stop/end/alarms), `jog`,
-//! `programs` (stored programs), `spindle`, `trafo` (the active transformation per IPO cycle),
-//! `snapshot`.
+//! `repos` (JOG in an interrupted program and the return to it), `search` (block search with
+//! calculation), `reference` (reference point state per axis), `programs` (stored programs),
+//! `spindle`, `trafo` (the active transformation per IPO cycle), `snapshot`.
 
 mod jog;
 mod main_run;
 mod programs;
+mod reference;
+mod repos;
+mod search;
 mod snapshot;
 mod spindle;
 mod trafo;
@@ -18,6 +22,7 @@ mod trafo;
 use std::collections::VecDeque;
 use std::sync::Arc;
 
+pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
@@ -152,6 +157,8 @@ struct MoveMeta {
     offsets: Offsets,
     /// The path is in machine axes although a transformation is active.
     machine_space: bool,
+    /// The move's programmed feed (infinite for rapid traverse), for REPOS.
+    feed: f64,
 }
 
 /// One simulated NC channel.
@@ -191,8 +198,20 @@ pub struct Channel {
     overrides: Overrides,
     /// Single block: the line of the block whose moves have just finished.
     sbl_done: Option<u32>,
-    /// Axis of a JOG motion in progress.
-    jog_axis: Option<usize>,
+    /// The JOG motion in progress.
+    jog: Option<jog::ActiveJog>,
+    /// Counts JOG motions started, so a client can stop only the motion it started.
+    jog_serial: u64,
+    /// A program interrupted for JOG: its main run, waiting for REPOS and NC start.
+    interrupted: Option<Box<repos::Interrupted>>,
+    /// The REPOS motion back to the interruption point is executing.
+    repos_returning: bool,
+    /// After a block search: the next program move is preceded by the approach to its start.
+    search_approach: bool,
+    /// The mode the active program was started in (AUTO or MDA).
+    program_mode: Mode,
+    /// Reference point state per channel axis (spindles count as referenced).
+    referenced: Vec<bool>,
     /// The last MSG text of the program.
     message: Option<String>,
     /// Machine position of every channel axis. Equals the planner's position without a
@@ -229,6 +248,7 @@ impl Channel {
         let cfg = Arc::new(cfg);
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg);
+        let referenced = reference::initial_state(&data, &cfg);
         let mut ch = Channel {
             interp: Interpreter::new(&cfg),
             offsets: Offsets::default(),
@@ -254,12 +274,18 @@ impl Channel {
             single_block: false,
             overrides: Overrides::default(),
             sbl_done: None,
-            jog_axis: None,
+            jog: None,
+            jog_serial: 0,
+            interrupted: None,
+            repos_returning: false,
+            search_approach: false,
+            program_mode: Mode::Auto,
             message: None,
             machine: [0.0; MAX_CHANNEL_AXES],
             trafo: None,
             prep_waits_for_trafo: false,
             trafo_tag: None,
+            referenced,
         };
         // Power on acts like a reset: the reset transformation (if configured) is active.
         ch.place_axes([0.0; MAX_CHANNEL_AXES]);
@@ -304,6 +330,7 @@ impl Channel {
             }
         }
         next.place_axes(pos);
+        next.keep_reference_state(self);
         next.mode = self.mode;
         next.tick = self.tick;
         *self = next;
@@ -347,13 +374,19 @@ impl Channel {
         std::mem::take(&mut self.events)
     }
 
-    /// Changes the mode; only in reset state (no program interrupted, nothing moving).
+    /// Changes the mode: in reset state to any mode; with an interrupted program (stopped,
+    /// nothing moving) between the program's mode and JOG (for JOG and REPOS).
     pub fn set_mode(&mut self, mode: Mode) -> Result<(), CommandError> {
         if mode == self.mode {
             return Ok(());
         }
-        if self.is_busy() || self.status == Status::Stopped {
+        if self.is_busy() {
             return Err(CommandError::Busy("a program or motion is active"));
+        }
+        if self.status == Status::Stopped && mode != Mode::Jog && mode != self.program_mode {
+            return Err(CommandError::Busy(
+                "a program is interrupted: only JOG or its own mode; reset it to change to another mode",
+            ));
         }
         self.mode = mode;
         self.events.push(Event::ModeChanged(mode));
@@ -380,7 +413,10 @@ impl Channel {
         if self.status == Status::Alarm {
             return Err(CommandError::AlarmActive);
         }
+        self.check_start_lock()?;
         self.set_mode(mode)?;
+        self.program_mode = mode;
+        self.search_approach = false;
         let text: Arc<str> = Arc::from(text);
         self.program = Some(text.clone());
         self.queued_blocks.clear();
@@ -396,8 +432,16 @@ impl Channel {
             Status::Alarm => Err(CommandError::AlarmActive),
             Status::Running => Ok(()),
             Status::Stopped => {
-                self.planner.set_hold(false);
-                self.status = Status::Running;
+                if self.mode == Mode::Jog {
+                    return Err(CommandError::WrongMode("JOG", "the interrupted program continues in its own mode"));
+                }
+                self.check_start_lock()?;
+                if self.interrupted.is_some() || self.repos_returning {
+                    self.start_repos();
+                } else {
+                    self.planner.set_hold(false);
+                    self.status = Status::Running;
+                }
                 Ok(())
             }
             Status::Idle => match (self.program.clone(), self.mode) {
@@ -411,7 +455,13 @@ impl Channel {
     /// NC stop: brakes on the path; the program can be continued with [`Channel::start`].
     pub fn stop(&mut self) {
         match self.status {
-            Status::Running if self.jog_axis.is_some() => self.jog_stop(),
+            Status::Running if self.jog.is_some() => self.jog_stop(),
+            Status::Running if self.repos_returning => {
+                // The REPOS motion is dropped at standstill; NC start plans it anew.
+                self.planner.stop_and_flush();
+                self.repos_returning = false;
+                self.status = Status::Stopped;
+            }
             Status::Running => {
                 self.planner.set_hold(true);
                 self.status = Status::Stopped;
@@ -430,7 +480,9 @@ impl Channel {
         self.prep_done = true;
         self.prep_waits_for_trafo = false;
         self.dwell_ticks = 0;
-        self.jog_axis = None;
+        self.jog = None;
+        self.drop_interruption();
+        self.search_approach = false;
         self.current_line = None;
         self.message = None;
         let pos = *self.planner.position();
@@ -494,15 +546,19 @@ impl Channel {
         for s in &mut self.spindles {
             s.step(self.cfg.ipo_cycle);
         }
-        if self.status == Status::Running && self.jog_axis.is_none() {
+        if self.status == Status::Running && self.jog.is_none() && !self.repos_returning {
             self.prepare();
             self.feed_planner();
         }
         self.planner.step();
         self.update_machine_position();
         self.retire_finished_moves();
-        if self.jog_axis.is_some() {
+        if self.jog.is_some() {
             self.finish_jog_if_done();
+            return;
+        }
+        if self.repos_returning {
+            self.finish_repos_if_done();
             return;
         }
         if self.status == Status::Running && self.planner.is_empty() {

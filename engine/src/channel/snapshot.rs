@@ -56,6 +56,12 @@ pub struct Snapshot {
     pub optional_stop: bool,
     /// The active G functions of the block in execution, one per displayed G group.
     pub gcodes: Vec<String>,
+    /// Reference point state by machine axis name, in machine axis order.
+    pub referenced: Vec<(String, bool)>,
+    /// Number of the last JOG motion started (see `Channel::jog_stop_if`).
+    pub jog_serial: u64,
+    /// The program was interrupted and axes moved by JOG: NC start repositions first (REPOS).
+    pub repos_pending: bool,
 }
 
 pub(super) fn build(ch: &Channel) -> Snapshot {
@@ -139,5 +145,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         single_block: ch.single_block,
         optional_stop: ch.optional_stop,
         gcodes: ch.offsets.gcodes.names(),
+        referenced: ch.reference_state(),
+        jog_serial: ch.jog_serial,
+        repos_pending: ch.repos_pending(),
     }
 }

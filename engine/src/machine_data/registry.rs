@@ -216,6 +216,8 @@ pub static DEFS: &[Def] = &[
     def("X_AXIS_IN_OLD_X_Z_PLANE", 21110, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     def("ORIAX_TURN_TAB_1", 21120, C, Kind::Int, 3, Default::Indexed(default_turn_tab_1), 0.0, 3.0),
     def("ORIAX_TURN_TAB_2", 21130, C, Kind::Int, 3, Default::Indexed(default_turn_tab_2), 0.0, 3.0),
+    // NC start refused while an axis is not referenced (alarm 16905).
+    def("REFP_NC_START_LOCK", 20700, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     // Transformation data sets 1..10: type, axes, geometry axes, tool handling (M1 data lists).
     def("TRAFO_TYPE_1", 24100, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("TRAFO_AXES_IN_1", 24110, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
@@ -337,6 +339,8 @@ pub static DEFS: &[Def] = &[
     def("ROT_IS_MODULO", 30310, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
     def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
+    // Distance of one increment (INC1, handwheel detent): [0] metric system, [1] inch system.
+    def("JOG_INCR_WEIGHT", 31090, A, Kind::Real, 2, Default::Real(0.001), -INF, INF),
     // Linear axes: mm/min and m/s²; rotary axes: rev/min and rev/s², as on the control.
     def("MAX_AX_VELO", 32000, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 1e-6, 1e9),
     def(
@@ -352,6 +356,11 @@ pub static DEFS: &[Def] = &[
     def("JOG_VELO", 32020, A, Kind::Real, 1, Default::RealByAxisType { linear: 2000.0, rotary: 5.55 }, 0.0, 1e9),
     def("MAX_AX_ACCEL", 32300, A, Kind::Real, 1, Default::RealByAxisType { linear: 1.0, rotary: 2.77 }, 1e-6, 1e6),
     def("MAX_ACCEL_OVL_FACTOR", 32310, A, Kind::Real, 1, Default::Real(1.2), 1.0, 10.0),
+    // Channel-specific referencing order; -1: the axis need not be referenced for NC start.
+    def("REFP_CYCLE_NR", 34110, A, Kind::Int, 1, Default::Int(0), -1.0, 31.0),
+    // 2: absolute encoder adjusted, the axis is referenced from power on. The control's default
+    // is 0 (not adjusted); the simulation starts referenced unless this is set below 2.
+    def("ENC_REFP_STATE", 34210, A, Kind::Int, 1, Default::Int(2), 0.0, 2.0),
     def("SPIND_ASSIGN_TO_MACHAX", 35000, A, Kind::Int, 1, Default::Int(0), 0.0, 20.0),
     def("POS_LIMIT_MINUS", 36100, A, Kind::Real, 1, Default::Real(-1e8), -INF, INF),
     def("POS_LIMIT_PLUS", 36110, A, Kind::Real, 1, Default::Real(1e8), -INF, INF),

@@ -4,7 +4,8 @@ use axum::extract::{Path, State};
 
 use super::{StateReply, command};
 use crate::dto::{
-    self, ErrorBody, MdaRequest, ModeRequest, OptionsRequest, OverridesRequest, RunRequest, StartRequest, drive,
+    self, ErrorBody, MdaRequest, ModeRequest, OptionsRequest, OverridesRequest, RunRequest, SearchRequest,
+    StartRequest, drive,
 };
 use crate::error::ApiError;
 use crate::extract::{ApiJson, OptionalJson};
@@ -200,5 +201,37 @@ pub async fn set_options(
     ApiJson(body): ApiJson<OptionsRequest>,
 ) -> Result<StateReply, ApiError> {
     let action = Action::SetOptions { single_block: body.single_block, optional_stop: body.optional_stop };
+    command(&state, &id, action, None).await
+}
+
+/// Block search with calculation to a line: the program runs from its start to the target
+/// line without motion, collecting the modal state, tool, frames, transformation, spindle
+/// commands and the programmed position. The channel then stands stopped at the target; NC
+/// start (`start`) outputs the collected spindle commands and offsets, approaches the start of
+/// the target block on a straight line (with its feed; rapid for G0) and continues there.
+/// AUTO mode in reset state. A line that does not exist or holds no block is `400`; a target
+/// the program never reaches (skipped, after M30) raises alarm 15370.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/search",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = SearchRequest,
+    responses(
+        (status = 200, description = "The state at the search target (or with alarm 15370)", body = dto::State),
+        (status = 400, description = "No such line, a line without a block, no program, a syntax error or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 409, description = "Not in AUTO mode, a program is active, or an alarm needs a reset", body = ErrorBody),
+    )
+)]
+pub async fn search(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<SearchRequest>,
+) -> Result<StateReply, ApiError> {
+    if body.program.is_some() && body.name.is_some() {
+        return Err(ApiError::bad_request("give either `program` (text) or `name` (a stored program), not both"));
+    }
+    let action = Action::Search { program: body.program, name: body.name, line: body.line };
     command(&state, &id, action, None).await
 }

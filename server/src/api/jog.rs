@@ -1,17 +1,23 @@
-//! JOG: move one axis by hand, continuously or by an increment.
+//! JOG: move one axis by hand, continuously, by an increment or by handwheel pulses, in the
+//! MCS or the WCS; referencing axes (the JOG function REF).
 
 use axum::extract::{Path, State};
 use nctwin_engine::JogRequest;
 
 use super::{StateReply, command};
-use crate::dto::{self, ErrorBody, JogBody, drive};
+use crate::dto::{self, ErrorBody, HandwheelBody, JogBody, ReferenceRequest, drive};
 use crate::error::ApiError;
-use crate::extract::ApiJson;
+use crate::extract::{ApiJson, OptionalJson};
 use crate::session::Action;
 use crate::state::AppState;
 
-/// Starts a JOG motion of one axis (JOG mode only). Continuous JOG (no `increment`) runs until
-/// `jog/stop` or the software limit. Same `pace`/`wait` options and limits as `run`.
+/// Starts a JOG motion of one axis (JOG mode only). Continuous JOG (neither `increment` nor
+/// `inc`) runs until `jog/stop` or the software limit; incremental JOG (`inc`: INC1 … INC1000
+/// steps of MD31090 JOG_INCR_WEIGHT, or `increment`: a variable distance) stops at its
+/// distance. In `WCS` a geometry axis moves along the active frame's axis. With a program
+/// interrupted (NC stop, M0) JOG moves away from it and NC start returns (REPOS). Same
+/// `pace`/`wait` options and limits as `run`. For the HMI's JOG keys use the dead-man JOG on
+/// the WebSocket stream instead.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/jog",
@@ -21,7 +27,7 @@ use crate::state::AppState;
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
             headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
-        (status = 400, description = "Unknown axis, bad direction or increment, or a malformed body", body = ErrorBody),
+        (status = 400, description = "Unknown axis, bad direction, increment or inc, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "Not in JOG mode, an axis moves, or an alarm needs a reset", body = ErrorBody),
     )
@@ -31,9 +37,63 @@ pub async fn jog(
     Path(id): Path<String>,
     ApiJson(body): ApiJson<JogBody>,
 ) -> Result<StateReply, ApiError> {
+    body.validate().map_err(ApiError::bad_request)?;
     let request =
         JogRequest { axis: body.axis, direction: body.direction, increment: body.increment, rapid: body.rapid };
-    command(&state, &id, Action::Jog(request), Some(drive(body.pace, body.wait))).await
+    let action = Action::Jog { request, system: body.coordinates.into(), inc: body.inc };
+    command(&state, &id, action, Some(drive(body.pace, body.wait))).await
+}
+
+/// Handwheel pulses: the axis moves `pulses` × `inc` steps of MD31090 JOG_INCR_WEIGHT (signed);
+/// pulses that come while it still moves from earlier ones are added to its path (at most 8
+/// queued, then `409`). JOG mode only; answers at once.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/jog/handwheel",
+    tag = "jog",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = HandwheelBody,
+    responses(
+        (status = 200, description = "The state after the pulses were taken", body = dto::State),
+        (status = 400, description = "Unknown axis, bad pulses or inc, or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 409, description = "Not in JOG mode, another axis moves, or an alarm needs a reset", body = ErrorBody),
+    )
+)]
+pub async fn handwheel(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<HandwheelBody>,
+) -> Result<StateReply, ApiError> {
+    let inc = body.validate().map_err(ApiError::bad_request)?;
+    let action = Action::Handwheel { axis: body.axis, pulses: body.pulses, inc, system: body.coordinates.into() };
+    command(&state, &id, action, Some(drive(dto::PaceOption::Realtime, false))).await
+}
+
+/// References one axis (or every axis when the body is empty): the JOG function REF. The
+/// simulated reference point approach ends where the axis stands (no motion). Unreferenced
+/// axes (MD34210 ENC_REFP_STATE below 2; presets start referenced) refuse NC start in AUTO and
+/// MDA with alarm 16905 while MD20700 REFP_NC_START_LOCK is set, unless MD34110 REFP_CYCLE_NR
+/// is -1. JOG mode, nothing moving.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/reference",
+    tag = "jog",
+    params(("id" = String, Path, description = "Session id")),
+    request_body(content = Option<ReferenceRequest>, description = "Optional; empty references every axis"),
+    responses(
+        (status = 200, description = "The state with the axis referenced", body = dto::State),
+        (status = 400, description = "Unknown axis, or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 409, description = "Not in JOG mode, or an axis moves", body = ErrorBody),
+    )
+)]
+pub async fn reference(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    OptionalJson(body): OptionalJson<ReferenceRequest>,
+) -> Result<StateReply, ApiError> {
+    command(&state, &id, Action::Reference(body.axis), None).await
 }
 
 /// Releases the JOG key: the axis brakes to standstill.

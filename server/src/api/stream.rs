@@ -1,7 +1,13 @@
-//! `GET /sessions/{id}/stream`: a WebSocket that pushes a session's state and events.
+//! `GET /sessions/{id}/stream`: a WebSocket that pushes a session's state and events, and takes
+//! the HMI's JOG keys and handwheel (the dead-man JOG).
 //!
 //! The socket logic ([`pump`]) is generic over a `Sink` of text messages and a future that
 //! completes when the client goes away, so it is tested without a socket.
+//!
+//! Dead-man JOG: a continuous JOG started by a client message moves only while that client
+//! keeps saying so: it is stopped when the client sends `jog_stop`, when no `jog_keepalive` (or
+//! repeated `jog`) came for [`JOG_DEADMAN`], and when the socket closes or breaks. Only the
+//! motion this socket started is stopped (a later motion started by someone else goes on).
 
 use std::future::Future;
 use std::sync::Arc;
@@ -10,20 +16,31 @@ use std::time::Duration;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::ws::rejection::WebSocketUpgradeRejection;
 use axum::extract::ws::{CloseFrame, Message, WebSocket, WebSocketUpgrade, close_code};
-use axum::extract::{Path, Query, State};
+use axum::extract::{Extension, Path, Query, State};
 use axum::response::Response;
-use futures_util::{Sink, SinkExt, StreamExt};
-use nctwin_engine::{Event, Snapshot};
+use futures_util::{Sink, SinkExt, Stream, StreamExt};
+use nctwin_engine::{Event, JogRequest, Snapshot};
 use serde::Deserialize;
 use tokio::sync::broadcast::error::RecvError;
-use tokio::sync::{broadcast, watch};
+use tokio::sync::{broadcast, mpsc, watch};
 use tokio::time::{Instant, sleep_until};
 use utoipa::IntoParams;
 
 use super::find_entry;
-use crate::dto::{self, ErrorBody, EventMessage, StreamMessage};
+use crate::auth::access::{Caller, Need, check};
+use crate::auth::{AuthMode, Role};
+use crate::dto::{self, ClientMessage, ErrorBody, EventMessage, StreamMessage};
 use crate::error::ApiError;
-use crate::state::AppState;
+use crate::session::{Action, Drive, Pace, SessionHandle};
+use crate::state::{AppState, SessionEntry};
+
+/// A continuous JOG started over the stream stops when its client has sent no keep-alive
+/// (`jog_keepalive`, or the same `jog` again) for this long: a client should send one about every
+/// 100 ms while the key is held.
+pub const JOG_DEADMAN: Duration = Duration::from_millis(400);
+
+/// Largest client message accepted (the JOG messages are a few dozen bytes).
+const MAX_CLIENT_MESSAGE_BYTES: usize = 16 * 1024;
 
 /// Default stream period: 50 ms (20 Hz).
 pub const DEFAULT_PERIOD_MS: u64 = 50;
@@ -68,8 +85,23 @@ impl StreamParams {
 /// event as it happens (`{"type": "event", "event": "alarm_raised" | "alarm_cleared" |
 /// "block_changed" | "program_ended" | "program_stopped" | "mode_changed", ...}`). A client that
 /// falls more than 256 events behind skips the oldest. The server closes the socket when the
-/// session is deleted or the server shuts down (close code 1001). Messages from the client are
-/// ignored. At most 64 clients per session (`429`).
+/// session is deleted or the server shuts down (close code 1001). At most 64 clients per
+/// session (`429`).
+///
+/// Client messages (JSON text, see `ClientMessage`) drive JOG with the control's dead-man
+/// safety; they need control of the session like REST commands (observers: `error` 403):
+/// - `{"type": "jog", "axis": "X", "direction": 1}` (optional `inc`, `increment`,
+///   `coordinates` `MCS`/`BCS`/`WCS`, `rapid`, as for `POST .../jog`): continuous without `inc` and
+///   `increment`. A continuous JOG runs while the client sends `{"type": "jog_keepalive"}` (or
+///   the same `jog`) at least every 400 ms (`JOG_DEADMAN`); it stops on `{"type": "jog_stop"}`,
+///   on a missed keep-alive and when the socket closes. An incremental JOG runs to its
+///   distance and stops early on `jog_stop` or disconnect.
+/// - `{"type": "handwheel", "axis": "X", "pulses": -3, "inc": 10}`: as `POST .../jog/handwheel`;
+///   stops on disconnect.
+///
+/// Each `jog`, `jog_stop` and `handwheel` is answered with `{"type": "ack", "request": ...}` or
+/// `{"type": "error", "request": ..., "error": "...", "status": <HTTP status of the same REST
+/// request>}`; a dead-man stop is reported as an `error` for `jog` with status 408.
 #[utoipa::path(
     get,
     path = "/sessions/{id}/stream",
@@ -85,6 +117,7 @@ impl StreamParams {
 pub async fn stream(
     State(state): State<AppState>,
     Path(id): Path<String>,
+    caller: Option<Extension<Caller>>,
     query: Result<Query<StreamParams>, QueryRejection>,
     upgrade: Result<WebSocketUpgrade, WebSocketUpgradeRejection>,
 ) -> Result<Response, ApiError> {
@@ -94,15 +127,19 @@ pub async fn stream(
     let period = params.period()?;
     let upgrade = upgrade
         .map_err(|e| ApiError::bad_request(format!("not a WebSocket request: {}", e.body_text())))?
-        .read_buffer_size(READ_BUFFER_BYTES);
+        .read_buffer_size(READ_BUFFER_BYTES)
+        .max_message_size(MAX_CLIENT_MESSAGE_BYTES);
     // Counted from before the upgrade until the socket is done (a failed upgrade drops the
     // closure and with it the guard).
     let client = state.add_stream_client(&entry)?;
     // Subscribe before the first state is read, so no event after it is missed.
     let events = session.subscribe_events();
     let states = session.watch_state();
+    // With `--auth off` every caller is the owner (the access layer always names the caller).
+    let role = caller.map_or(Role::Owner, |Extension(Caller(role))| role);
+    let commander = Commander { state, entry: entry.clone(), role };
     Ok(upgrade.on_upgrade(move |socket| async move {
-        serve_socket(socket, states, events, period).await;
+        serve_socket(socket, states, events, period, commander).await;
         drop(client);
     }))
 }
@@ -113,18 +150,13 @@ async fn serve_socket(
     states: watch::Receiver<Arc<Snapshot>>,
     events: broadcast::Receiver<Event>,
     period: Duration,
+    commander: Commander,
 ) {
-    let (tx, mut rx) = socket.split();
+    let (tx, rx) = socket.split();
     let mut sink = tx.with(|text: String| std::future::ready(Ok::<_, axum::Error>(Message::Text(text.into()))));
-    // Reading also answers pings; the client is gone on a close frame, an error or the end.
-    let client_gone = async move {
-        while let Some(Ok(message)) = rx.next().await {
-            if matches!(message, Message::Close(_)) {
-                break;
-            }
-        }
-    };
-    let end = pump(&mut sink, client_gone, states, events, period).await;
+    let (replies_tx, replies) = mpsc::channel(16);
+    let client = client_loop(rx, commander, replies_tx);
+    let end = pump(&mut sink, client, states, events, replies, period).await;
     if end == StreamEnd::SessionEnded {
         let frame = CloseFrame { code: close_code::AWAY, reason: "session ended".into() };
         let _ = sink.into_inner().send(Message::Close(Some(frame))).await;
@@ -149,6 +181,7 @@ pub async fn pump<S>(
     client_gone: impl Future<Output = ()>,
     mut states: watch::Receiver<Arc<Snapshot>>,
     mut events: broadcast::Receiver<Event>,
+    mut replies: mpsc::Receiver<StreamMessage>,
     period: Duration,
 ) -> StreamEnd
 where
@@ -161,9 +194,18 @@ where
     }
     let mut next_state_at = Instant::now() + period;
     let mut pending = false;
+    let mut replies_open = true;
     loop {
         tokio::select! {
             () = &mut client_gone => return StreamEnd::ClientGone,
+            reply = replies.recv(), if replies_open => match reply {
+                Some(message) => {
+                    if send(&mut sink, message).await.is_err() {
+                        return StreamEnd::SendFailed;
+                    }
+                }
+                None => replies_open = false,
+            },
             changed = states.changed(), if !pending => {
                 if changed.is_err() {
                     return StreamEnd::SessionEnded;
@@ -190,6 +232,184 @@ where
             },
         }
     }
+}
+
+/// The client of one socket as a commander of its session.
+struct Commander {
+    state: AppState,
+    entry: Arc<SessionEntry>,
+    role: Role,
+}
+
+impl Commander {
+    /// The access policy of a REST command, applied to a client message; `count` also takes it
+    /// from the session's command rate limit.
+    fn authorize(&self, count: bool) -> Result<(), ApiError> {
+        if self.state.auth() == AuthMode::Required {
+            check(Need::Command, self.role, self.entry.control_holder())?;
+        }
+        if count {
+            self.entry.take_command(self.state.limits())?;
+        }
+        Ok(())
+    }
+
+    fn session(&self) -> &SessionHandle {
+        &self.entry.handle
+    }
+}
+
+/// The JOG motion a socket started. Dropping it (the socket closed or broke, the session or
+/// the server ended) stops that motion.
+struct OwnJog {
+    session: SessionHandle,
+    /// Number of the motion (`Snapshot::jog_serial`) while it may still run.
+    serial: Option<u64>,
+    /// For a continuous JOG: when it is stopped unless a keep-alive comes first.
+    deadline: Option<Instant>,
+    /// For a continuous JOG: the key held (axis, direction).
+    key: Option<(String, i8)>,
+}
+
+impl OwnJog {
+    async fn stop(&mut self) {
+        self.deadline = None;
+        self.key = None;
+        if let Some(serial) = self.serial.take() {
+            let _ = self.session.command(Action::JogStopIf(serial), None).await;
+        }
+    }
+}
+
+impl Drop for OwnJog {
+    fn drop(&mut self) {
+        if let Some(serial) = self.serial.take()
+            && let Ok(runtime) = tokio::runtime::Handle::try_current()
+        {
+            let session = self.session.clone();
+            runtime.spawn(async move {
+                let _ = session.command(Action::JogStopIf(serial), None).await;
+            });
+        }
+    }
+}
+
+/// Reads the client's messages until it goes: carries out its JOG commands and watches the
+/// dead man. Reading also answers pings; the client is gone on a close frame, an error or the
+/// end of the stream.
+async fn client_loop<R>(mut rx: R, commander: Commander, replies: mpsc::Sender<StreamMessage>)
+where
+    R: Stream<Item = Result<Message, axum::Error>> + Unpin,
+{
+    let mut own = OwnJog { session: commander.session().clone(), serial: None, deadline: None, key: None };
+    loop {
+        let deadline = own.deadline;
+        tokio::select! {
+            message = rx.next() => match message {
+                Some(Ok(Message::Text(text))) => {
+                    let reply = handle_client_message(text.as_str(), &commander, &mut own).await;
+                    if let Some(reply) = reply && replies.send(reply).await.is_err() {
+                        break;
+                    }
+                }
+                Some(Ok(Message::Close(_))) | Some(Err(_)) | None => break,
+                Some(Ok(_)) => {}
+            },
+            () = sleep_until(deadline.unwrap_or_else(Instant::now)), if deadline.is_some() => {
+                own.stop().await;
+                let error = format!("no keep-alive within {} ms: the JOG was stopped (dead man)", JOG_DEADMAN.as_millis());
+                let _ = replies.send(StreamMessage::Error { request: Some("jog".into()), error, status: 408 }).await;
+            }
+        }
+    }
+    // `own` drops here and stops a motion that may still run.
+}
+
+/// Carries out one client message; the reply to send, if any.
+async fn handle_client_message(text: &str, commander: &Commander, own: &mut OwnJog) -> Option<StreamMessage> {
+    let message: ClientMessage = match serde_json::from_str(text) {
+        Ok(m) => m,
+        Err(e) => {
+            let error = format!("bad client message: {e}");
+            return Some(StreamMessage::Error { request: None, error, status: 400 });
+        }
+    };
+    let (request, result) = match message {
+        ClientMessage::JogKeepalive => {
+            if own.deadline.is_some() && commander.authorize(false).is_ok() {
+                own.deadline = Some(Instant::now() + JOG_DEADMAN);
+            }
+            return None;
+        }
+        ClientMessage::JogStop => {
+            // Stopping is always allowed: it only ends this client's own motion.
+            own.stop().await;
+            ("jog_stop", Ok(()))
+        }
+        ClientMessage::Jog { axis, direction, increment, inc, coordinates, rapid } => {
+            let continuous = increment.is_none() && inc.is_none();
+            if own.deadline.is_some() {
+                if continuous && own.key.as_ref().is_some_and(|(a, d)| a.eq_ignore_ascii_case(&axis) && *d == direction)
+                {
+                    // The key is still held: a repeated `jog` is a keep-alive.
+                    own.deadline = Some(Instant::now() + JOG_DEADMAN);
+                    return None;
+                }
+                let error = "another JOG key is held: send jog_stop first".to_string();
+                return Some(StreamMessage::Error { request: Some("jog".into()), error, status: 409 });
+            }
+            let key = (axis.clone(), direction);
+            let body = dto::JogBody {
+                axis,
+                direction,
+                increment,
+                inc,
+                coordinates,
+                rapid,
+                pace: dto::PaceOption::Realtime,
+                wait: false,
+            };
+            let result = async {
+                commander.authorize(true)?;
+                body.validate().map_err(ApiError::bad_request)?;
+                let request = JogRequest { axis: body.axis, direction, increment, rapid };
+                let action = Action::Jog { request, system: coordinates.into(), inc };
+                start_own(commander, own, action, continuous).await
+            }
+            .await;
+            if result.is_ok() && continuous {
+                own.key = Some(key);
+            }
+            ("jog", result)
+        }
+        ClientMessage::Handwheel { axis, pulses, inc, coordinates } => {
+            let body = dto::HandwheelBody { axis, pulses, inc, coordinates };
+            let result = async {
+                commander.authorize(true)?;
+                let inc = body.validate().map_err(ApiError::bad_request)?;
+                let action = Action::Handwheel { axis: body.axis, pulses, inc, system: coordinates.into() };
+                start_own(commander, own, action, false).await
+            }
+            .await;
+            ("handwheel", result)
+        }
+    };
+    Some(match result {
+        Ok(()) => StreamMessage::Ack { request: request.into() },
+        Err(e) => {
+            StreamMessage::Error { request: Some(request.into()), error: e.body().error, status: e.status().as_u16() }
+        }
+    })
+}
+
+/// Sends a JOG action and takes over the motion it started.
+async fn start_own(commander: &Commander, own: &mut OwnJog, action: Action, continuous: bool) -> Result<(), ApiError> {
+    let drive = Drive { pace: Pace::Realtime, wait: false };
+    let id = commander.entry.id().to_string();
+    let outcome = commander.session().command(action, Some(drive)).await.map_err(|e| ApiError::from_session(&id, e))?;
+    own.serial = Some(outcome.snapshot.jog_serial);
+    own.deadline = continuous.then(|| Instant::now() + JOG_DEADMAN);
+    Ok(())
 }
 
 async fn send<S: Sink<String> + Unpin>(sink: &mut S, message: StreamMessage) -> Result<(), S::Error> {
@@ -229,7 +449,8 @@ mod tests {
         let gone = async move {
             let _ = gone_rx.await;
         };
-        let task = tokio::spawn(pump(sink, gone, state_rx, event_rx, period));
+        let (_replies_tx, replies) = mpsc::channel(1);
+        let task = tokio::spawn(pump(sink, gone, state_rx, event_rx, replies, period));
         Harness { states, events, out, client_gone: Some(gone_tx), task, channel }
     }
 

@@ -342,11 +342,34 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
             }
             Ok(())
         }
-        Action::Jog(request) => channel.jog(&request),
+        Action::Jog { mut request, system, inc } => {
+            if let Some(steps) = inc {
+                request.increment = Some(channel.increment_distance(&request.axis, steps)?);
+            }
+            channel.jog_in(&request, system)
+        }
+        Action::Handwheel { axis, pulses, inc, system } => channel.handwheel(&axis, pulses, inc, system),
         Action::JogStop => {
             channel.jog_stop();
             Ok(())
         }
+        Action::JogStopIf(serial) => {
+            channel.jog_stop_if(serial);
+            Ok(())
+        }
+        Action::Search { program, name, line } => {
+            let text = match name {
+                Some(name) => Some(
+                    channel
+                        .stored_program(&name)
+                        .ok_or_else(|| CommandError::Invalid(format!("no stored program `{name}`")))?
+                        .to_string(),
+                ),
+                None => program,
+            };
+            channel.block_search(text.as_deref(), line)
+        }
+        Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
     }
 }

@@ -18,6 +18,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
+use nctwin_engine::channel::JogSystem;
 use nctwin_engine::{Channel, CommandError, Event, JogRequest, Mode, Snapshot};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 
@@ -84,8 +85,31 @@ pub enum Action {
         single_block: Option<bool>,
         optional_stop: Option<bool>,
     },
-    Jog(JogRequest),
+    /// Start a JOG motion; `inc` (INC steps of MD31090) replaces `request.increment`.
+    Jog {
+        request: JogRequest,
+        system: JogSystem,
+        inc: Option<u32>,
+    },
+    /// Handwheel pulses on one axis, `inc` steps per pulse.
+    Handwheel {
+        axis: String,
+        pulses: i32,
+        inc: u32,
+        system: JogSystem,
+    },
     JogStop,
+    /// Release the JOG key only if motion number `serial` is still the latest one.
+    JogStopIf(u64),
+    /// Block search with calculation to `line` of `program` (or of the active program).
+    Search {
+        program: Option<String>,
+        /// A stored program's name to search in.
+        name: Option<String>,
+        line: u32,
+    },
+    /// Reference one axis, or all.
+    Reference(Option<String>),
     /// Apply NC data text in reset state.
     MachineData(String),
 }
