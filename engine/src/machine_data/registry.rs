@@ -340,7 +340,7 @@ pub static DEFS: &[Def] = &[
     def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
     def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
     // Distance of one increment (INC1, handwheel detent): [0] metric system, [1] inch system.
-    def("JOG_INCR_WEIGHT", 31090, A, Kind::Real, 2, Default::Real(0.001), -INF, INF),
+    def("JOG_INCR_WEIGHT", 31090, A, Kind::Real, 2, Default::Real(0.001), 1e-6, 1000.0),
     // Linear axes: mm/min and m/s²; rotary axes: rev/min and rev/s², as on the control.
     def("MAX_AX_VELO", 32000, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 1e-6, 1e9),
     def(
