@@ -398,3 +398,70 @@ fn cartesian_jog_and_repos_past_the_transmit_pole_keep_the_rotary_axis_within_it
     let max_step = samples.windows(2).map(|w| (w[1][1] - w[0][1]).abs()).fold(0.0, f64::max);
     assert!(max_step <= 2.4 * (1.0 + 1e-6), "CM moved {max_step}° in one cycle");
 }
+
+/// The CA head of `mill5-head-ca` (C about Z carrying A about X, pivot 150 above the spindle
+/// nose, T1 100 long): tool direction `o = (sin C·sin A, −cos C·sin A, cos A)` and tool tip
+/// `P = M + (0, 0, 150) − 250·o`, written out here independently of the engine.
+fn head_tip(m: &[f64]) -> [f64; 3] {
+    let (sa, ca) = m[3].to_radians().sin_cos();
+    let (sc, cc) = m[4].to_radians().sin_cos();
+    let o = [sc * sa, -cc * sa, ca];
+    [m[0] - 250.0 * o[0], m[1] - 250.0 * o[1], m[2] + 150.0 - 250.0 * o[2]]
+}
+
+/// TRAORI stays active after program end (RESET_MODE_MASK bit 7) with the head at A30 and the
+/// tool tip at (0, 0, 50); then JOG mode.
+fn head_at_a30() -> Channel {
+    let mut ch = channel("mill5-head-ca", "$MC_RESET_MODE_MASK='H81'");
+    ch.run_program("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 A30\nM30").unwrap();
+    settle(&mut ch);
+    assert_eq!(ch.snapshot().transformation.map(|t| t.name), Some("TRAORI".to_string()));
+    ch.set_mode(Mode::Jog).unwrap();
+    ch
+}
+
+#[test]
+fn jog_in_the_tcs_moves_the_tool_along_its_own_axis_and_keeps_the_orientation() {
+    let mut ch = head_at_a30();
+    ch.jog_in(&jog("Z", 1, Some(10.0)), JogSystem::Tool).unwrap();
+    let samples = settle(&mut ch);
+    let s = ch.snapshot();
+    // o = (0, −sin 30°, cos 30°): the tip and every machine linear axis move by 10·o.
+    let (x, y, z) = (0.0, -5.0, 10.0 * 30f64.to_radians().cos());
+    assert!(close(machine(&s, "X"), x, 1e-9) && close(machine(&s, "Y"), -125.0 + y, 1e-9), "{:?}", s.machine);
+    assert!(close(machine(&s, "Z"), 50.0 - 150.0 + 250.0 * 30f64.to_radians().cos() + z, 1e-9), "{:?}", s.machine);
+    for p in &samples {
+        assert!(close(p[3], 30.0, 1e-9) && close(p[4], 0.0, 1e-9), "orientation moved: {p:?}");
+        let tip = head_tip(p);
+        // On the tool axis through the old tip: tip = (0, 0, 50) + t·o.
+        assert!(
+            close(tip[0], 0.0, 1e-9) && close(tip[1] * 30f64.to_radians().cos(), -(tip[2] - 50.0) * 0.5, 1e-9),
+            "{tip:?}"
+        );
+    }
+}
+
+#[test]
+fn orientation_jog_turns_the_tool_about_z_with_the_tip_standing_still() {
+    let mut ch = head_at_a30();
+    ch.jog_in(&jog("C2", 1, Some(90.0)), JogSystem::Basic).unwrap();
+    let samples = settle(&mut ch);
+    let s = ch.snapshot();
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    // (0, −0.5, 0.866) turned by 90° about Z is (0.5, 0, 0.866): A30 with C90.
+    assert!(close(machine(&s, "A"), 30.0, 1e-6) && close(machine(&s, "C"), 90.0, 1e-6), "{:?}", s.machine);
+    assert!(samples.len() > 10);
+    for p in &samples {
+        let tip = head_tip(p);
+        assert!(
+            close(tip[0], 0.0, 1e-6) && close(tip[1], 0.0, 1e-6) && close(tip[2], 50.0, 1e-6),
+            "tip {tip:?} at {p:?}"
+        );
+        // A turn about Z keeps the tilt.
+        assert!(close(p[3], 30.0, 1e-6), "A {p:?}");
+    }
+    // Without an orientation transformation there is nothing to turn.
+    let mut plain = channel("mill-3axis", "");
+    plain.set_mode(Mode::Jog).unwrap();
+    assert!(matches!(plain.jog_in(&jog("B2", 1, Some(5.0)), JogSystem::Basic), Err(CommandError::Invalid(_))));
+}

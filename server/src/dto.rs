@@ -498,6 +498,12 @@ pub enum JogCoordinates {
     /// moves Cartesian and the machine axes follow. Other axes move as in the MCS.
     #[serde(rename = "WCS")]
     Wcs,
+    /// Tool coordinates: a geometry axis moves along that axis of the tool (Z along the tool,
+    /// X in the old X-Z plane) with the orientation held. With an orientation transformation the
+    /// axes A2, B2, C2 turn the tool about X, Y, Z of the chosen system (BCS, WCS or TCS) while
+    /// the tool tip stands still (orientation JOG; increments in degrees).
+    #[serde(rename = "TCS")]
+    Tcs,
 }
 
 impl From<JogCoordinates> for JogSystem {
@@ -506,6 +512,7 @@ impl From<JogCoordinates> for JogSystem {
             JogCoordinates::Mcs => JogSystem::Machine,
             JogCoordinates::Bcs => JogSystem::Basic,
             JogCoordinates::Wcs => JogSystem::Workpiece,
+            JogCoordinates::Tcs => JogSystem::Tool,
         }
     }
 }

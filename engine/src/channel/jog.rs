@@ -38,6 +38,9 @@ pub enum JogSystem {
     /// moves Cartesian and the machine axes follow through the inverse transformation. Other
     /// channel axes move as in the MCS.
     Workpiece,
+    /// TCS: a geometry axis moves along that axis of the tool coordinate system (Z along the
+    /// tool), the orientation held; see `cartesian_jog.rs`.
+    Tool,
 }
 
 /// A JOG motion in progress.
@@ -59,6 +62,21 @@ pub(super) struct ActiveJog {
     resume: Status,
 }
 
+impl ActiveJog {
+    /// An orientation JOG ending at BCS point `end` (`axis`: an orientation axis, for reports).
+    pub(super) fn orientation(axis: usize, end: AxisVec, resume: Status) -> ActiveJog {
+        ActiveJog {
+            axis,
+            direction: [0.0; MAX_CHANNEL_AXES],
+            plus: [0.0; MAX_CHANNEL_AXES],
+            end,
+            machine_space: false,
+            handwheel: false,
+            resume,
+        }
+    }
+}
+
 impl Channel {
     /// Starts a JOG motion of one axis in the MCS (JOG mode only).
     pub fn jog(&mut self, req: &JogRequest) -> Result<(), CommandError> {
@@ -72,12 +90,19 @@ impl Channel {
         if req.direction != 1 && req.direction != -1 {
             return Err(CommandError::Invalid(format!("direction must be 1 or -1, not {}", req.direction)));
         }
-        let k = self.jog_axis_index(&req.axis)?;
         let distance = match req.increment {
             Some(inc) if inc.is_finite() && inc > 0.0 => Some(inc),
             Some(inc) => return Err(CommandError::Invalid(format!("increment must be positive, not {inc}"))),
             None => None,
         };
+        if let Some(about) = super::cartesian_jog::orientation_axis(&req.axis) {
+            let resume_stopped = self.status == Status::Stopped;
+            if resume_stopped {
+                self.interrupt_for_jog();
+            }
+            return self.start_orientation_jog(about, f64::from(req.direction), distance, system);
+        }
+        let k = self.jog_axis_index(&req.axis)?;
         self.start_jog(k, f64::from(req.direction), distance, req.rapid, system, false)
     }
 
@@ -178,7 +203,9 @@ impl Channel {
         let machine_space = self.trafo.is_some() && !cartesian;
         let mut direction = [0.0; MAX_CHANNEL_AXES];
         direction[k] = dir;
-        if cartesian && system == JogSystem::Workpiece {
+        if cartesian && system == JogSystem::Tool {
+            direction = self.tool_direction(geo.expect("cartesian"), &geo_slots).map(|d| d * dir);
+        } else if cartesian && system == JogSystem::Workpiece {
             direction = self.offsets.frame.apply_vector(&geo_slots, &direction);
             let norm = direction.iter().map(|d| d * d).sum::<f64>().sqrt();
             if norm < 1e-12 {

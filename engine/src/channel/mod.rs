@@ -9,6 +9,7 @@
 //! calculation), `reference` (reference point state per axis), `programs` (stored programs),
 //! `spindle`, `trafo` (the active transformation per IPO cycle), `snapshot`.
 
+mod cartesian_jog;
 mod jog;
 mod main_run;
 mod programs;
