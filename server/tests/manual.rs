@@ -52,7 +52,7 @@ async fn inc_jog_moves_by_md31090_steps_and_wcs_jog_follows_the_frame() {
     for (body, needle) in [
         (json!({"axis": "X", "direction": 1, "inc": 7}), "inc must be 1, 10, 100 or 1000"),
         (json!({"axis": "X", "direction": 1, "inc": 10, "increment": 2.0}), "not both"),
-        (json!({"axis": "X", "direction": 1, "coordinates": "TCS"}), "coordinates"),
+        (json!({"axis": "X", "direction": 1, "coordinates": "SZS"}), "coordinates"),
     ] {
         let reply = server.post(&format!("/sessions/{id}/jog"), body).await;
         let message = error_message(&reply, StatusCode::BAD_REQUEST);
