@@ -11,7 +11,14 @@ use crate::motion::{AxisLimit, Move};
 impl Channel {
     /// Block preparation: interpret blocks until the look-ahead is full.
     pub(super) fn prepare(&mut self) {
-        let Some(program) = self.program.clone() else { return };
+        // Most cycles find the look-ahead full: nothing to do then.
+        if self.program.is_none()
+            || self.prep_done
+            || self.prep_waits_for_trafo
+            || self.pending.len() + self.planner.len() >= LOOKAHEAD
+        {
+            return;
+        }
         for s in self.spindles.iter().filter(|s| !s.axis_mode) {
             self.interp.observe_spindle(s.axis, s.position);
         }
@@ -36,9 +43,9 @@ impl Channel {
                     break;
                 }
             }
-            if let Some(line) = out.iter().find_map(Item::line) {
+            if let (Some(line), Some(program)) = (out.iter().find_map(Item::line), &self.program) {
                 // Remember where the block is, for showing it while its items execute.
-                self.queued_blocks.push_back((line, line_offset(&program, line, self.queued_blocks.back())));
+                self.queued_blocks.push_back((line, line_offset(program, line, self.queued_blocks.back())));
                 if self.queued_blocks.len() > 2 * LOOKAHEAD {
                     self.queued_blocks.pop_front();
                 }

@@ -396,16 +396,22 @@ impl Channel {
 
     /// Loads `text` as the active program and starts it in AUTO mode.
     pub fn run_program(&mut self, text: &str) -> Result<(), CommandError> {
+        self.load_and_start(Arc::from(text), Mode::Auto)
+    }
+
+    /// [`Channel::run_program`] for text the caller already holds shared: the channel keeps
+    /// this one copy instead of its own (a long program is in memory once).
+    pub fn run_program_shared(&mut self, text: Arc<str>) -> Result<(), CommandError> {
         self.load_and_start(text, Mode::Auto)
     }
 
     /// Executes `text` (one or more blocks) in MDA mode.
     pub fn mda(&mut self, text: &str) -> Result<(), CommandError> {
-        self.load_and_start(text, Mode::Mda)
+        self.load_and_start(Arc::from(text), Mode::Mda)
     }
 
-    fn load_and_start(&mut self, text: &str, mode: Mode) -> Result<(), CommandError> {
-        if let Some(d) = lang::check(text).into_iter().next() {
+    fn load_and_start(&mut self, text: Arc<str>, mode: Mode) -> Result<(), CommandError> {
+        if let Some(d) = lang::check(&text).into_iter().next() {
             return Err(CommandError::Syntax { line: d.line, message: d.message });
         }
         if self.is_busy() || self.status == Status::Stopped {
@@ -418,7 +424,6 @@ impl Channel {
         self.set_mode(mode)?;
         self.program_mode = mode;
         self.search_approach = false;
-        let text: Arc<str> = Arc::from(text);
         self.program = Some(text.clone());
         self.queued_blocks.clear();
         self.prep_done = false;
@@ -446,7 +451,7 @@ impl Channel {
                 Ok(())
             }
             Status::Idle => match (self.program.clone(), self.mode) {
-                (Some(text), Mode::Auto) => self.run_program(&text),
+                (Some(text), Mode::Auto) => self.run_program_shared(text),
                 (_, Mode::Jog) => Err(CommandError::WrongMode("JOG", "NC start runs programs in AUTO or MDA")),
                 _ => Err(CommandError::Invalid("no program loaded".into())),
             },

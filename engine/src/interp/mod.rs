@@ -713,10 +713,9 @@ impl Interpreter {
 
         let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, line)?;
 
-        let geo_list: Vec<usize> = geo.iter().flatten().copied().collect();
         let mut path = Path::line(start, end);
         path.ori = ori.map(Box::new);
-        let mut length = geo_list.iter().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
+        let mut length = geo.iter().flatten().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
         if let Some(circle) = circle {
             // The circle is defined in the WCS plane and mapped through the frame.
             let u = frame.geo_direction(geo, pa);

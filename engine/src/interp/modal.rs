@@ -340,14 +340,8 @@ pub(super) fn collect(
 ) -> Result<Words, Alarm> {
     let line = block.line;
     let mut w = Words::default();
-    let mut seen: Vec<String> = Vec::new();
-    let mut once = |name: &str| -> Result<(), Alarm> {
-        if seen.iter().any(|s| s == name) {
-            return Err(Alarm::repeated_address(line, name));
-        }
-        seen.push(name.to_string());
-        Ok(())
-    };
+    // Addresses seen so far (each may appear once per block).
+    let mut seen: Vec<&str> = Vec::new();
     for word in &block.words {
         match word {
             Word::G(code) => g_function(&mut w, *code, line)?,
@@ -453,7 +447,10 @@ pub(super) fn collect(
                         Ok(v as u32)
                     }
                 };
-                once(name)?;
+                if seen.contains(&name.as_str()) {
+                    return Err(Alarm::repeated_address(line, name));
+                }
+                seen.push(name);
                 match name.as_str() {
                     "F" => w.feed = Some(v),
                     "S" => w.speed = Some(v),

@@ -30,10 +30,9 @@ impl Diagnostic {
 pub struct Block {
     /// 1-based source line.
     pub line: u32,
-    /// Byte offset of the line's start within the program (for highlighting in an HMI).
+    /// Byte offset of the line's start within the program (for highlighting in an HMI; the
+    /// line's text is the program's from there to the line break).
     pub offset: usize,
-    /// The source text of the line without its line break.
-    pub text: String,
     /// `/` at the start: skippable block.
     pub skip: bool,
     /// `N10` or `:10` block number.

@@ -19,7 +19,7 @@ pub fn parse(source: &str) -> Program {
 
 /// Every syntax error of a program, found in one streaming pass that keeps no blocks.
 pub fn check(source: &str) -> Vec<Diagnostic> {
-    Lines::new(source, 0, 1)
+    Lines { build: false, ..Lines::new(source, 0, 1) }
         .filter_map(|(line, offset, r)| {
             r.err().map(|(col, message)| Diagnostic { line, offset: offset + col, message })
         })
@@ -49,11 +49,13 @@ struct Lines<'a> {
     source: &'a str,
     offset: usize,
     line: u32,
+    /// Build the blocks; without, only the syntax is checked (no words are kept).
+    build: bool,
 }
 
 impl<'a> Lines<'a> {
     fn new(source: &'a str, offset: usize, line: u32) -> Self {
-        Lines { source, offset, line }
+        Lines { source, offset, line, build: true }
     }
 }
 
@@ -70,7 +72,7 @@ impl Iterator for Lines<'_> {
         let (line, offset) = (self.line, self.offset);
         self.offset += raw.len() + 1;
         self.line += 1;
-        Some((line, offset, parse_block(text, line, offset)))
+        Some((line, offset, parse_line(text, line, offset, self.build)))
     }
 }
 
@@ -79,18 +81,23 @@ type PResult<T> = Result<T, (usize, String)>;
 
 /// Parses one line; `Ok(None)` for an empty line.
 pub fn parse_block(text: &str, line: u32, offset: usize) -> PResult<Option<Block>> {
+    parse_line(text, line, offset, true)
+}
+
+/// Parses one line. Without `build` the line is only checked: the block comes back without
+/// its words, label and comment, and nothing is copied for them.
+fn parse_line(text: &str, line: u32, offset: usize, build: bool) -> PResult<Option<Block>> {
     let (code, comment) = split_comment(text);
     let mut cur = Cursor::new(code);
     let mut block = Block {
         line,
         offset,
-        text: text.to_string(),
         skip: false,
         number: None,
         label: None,
         stmt: None,
         words: Vec::new(),
-        comment: comment.map(|c| c.trim().to_string()),
+        comment: comment.filter(|_| build).map(|c| c.trim().to_string()),
     };
     cur.skip_ws();
     if cur.eat(b'/') {
@@ -111,18 +118,18 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> PResult<Option<Block
     }
     // A label is an identifier followed by ':' at the start of the block.
     let save = cur.pos;
-    if let Some(id) = cur.ident() {
+    if let Some(span) = cur.ident_span() {
         if cur.eat(b':') {
-            block.label = Some(id);
+            block.label = build.then(|| cur.upper(span));
         } else {
             cur.pos = save;
         }
     }
     cur.skip_ws();
     let save = cur.pos;
-    if let Some(id) = cur.ident() {
-        if is_statement(&id) {
-            block.stmt = Some(parse_statement(&id, &mut cur)?);
+    if let Some(span) = cur.ident_span() {
+        if let Some(id) = statement(&cur, span) {
+            block.stmt = Some(parse_statement(id, &mut cur)?);
             cur.skip_ws();
             if !cur.at_end() {
                 return Err((cur.pos, format!("unexpected text after {id}")));
@@ -136,8 +143,10 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> PResult<Option<Block
         if cur.at_end() {
             break;
         }
-        let word = parse_word(&mut cur)?;
-        block.words.push(word);
+        let word = parse_word(&mut cur, build)?;
+        if build {
+            block.words.push(word);
+        }
     }
     let empty = block.words.is_empty()
         && block.stmt.is_none()
@@ -168,6 +177,12 @@ fn is_statement(id: &str) -> bool {
     STATEMENTS.contains(&id)
 }
 
+/// The statement keyword a name is, if any.
+fn statement(cur: &Cursor, span: (usize, usize)) -> Option<&'static str> {
+    let len = span.1 - span.0;
+    STATEMENTS.iter().find(|s| s.len() == len && cur.span_is(span, s)).copied()
+}
+
 fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
     cur.skip_ws();
     Ok(match id {
@@ -194,7 +209,7 @@ fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
             cur.skip_ws();
             let start = parse_expr(cur)?;
             cur.skip_ws();
-            if cur.ident().as_deref() != Some("TO") {
+            if !cur.eat_word("TO") {
                 return Err((cur.pos, "FOR needs TO".into()));
             }
             cur.skip_ws();
@@ -224,17 +239,28 @@ fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
 
 fn goto_kind_at(cur: &mut Cursor) -> Option<GotoKind> {
     let save = cur.pos;
-    let kind = match cur.ident().as_deref() {
-        Some("GOTOF") => GotoKind::Forward,
-        Some("GOTOB") => GotoKind::Backward,
-        Some("GOTO") => GotoKind::Both,
-        Some("GOTOC") => GotoKind::Continue,
-        _ => {
-            cur.pos = save;
-            return None;
-        }
-    };
-    Some(kind)
+    let kind = cur.ident_span().and_then(|span| goto_kind(cur, span));
+    if kind.is_none() {
+        cur.pos = save;
+    }
+    kind
+}
+
+/// The jump a name stands for, if any.
+fn goto_kind(cur: &Cursor, span: (usize, usize)) -> Option<GotoKind> {
+    if span.1 - span.0 < 4 || !cur.span_is((span.0, span.0 + 4), "GOTO") {
+        return None;
+    }
+    match span.1 - span.0 {
+        4 => Some(GotoKind::Both),
+        5 => match cur.slice(span.0 + 4, span.1).as_bytes()[0].to_ascii_uppercase() {
+            b'F' => Some(GotoKind::Forward),
+            b'B' => Some(GotoKind::Backward),
+            b'C' => Some(GotoKind::Continue),
+            _ => None,
+        },
+        _ => None,
+    }
 }
 
 fn parse_goto_target(kind: GotoKind, cur: &mut Cursor) -> PResult<Goto> {
@@ -257,7 +283,7 @@ fn parse_goto_target(kind: GotoKind, cur: &mut Cursor) -> PResult<Goto> {
 fn parse_case(cur: &mut Cursor) -> PResult<Stmt> {
     let expr = parse_expr(cur)?;
     cur.skip_ws();
-    if cur.ident().as_deref() != Some("OF") {
+    if !cur.eat_word("OF") {
         return Err((cur.pos, "CASE needs OF".into()));
     }
     let mut arms = Vec::new();
@@ -267,14 +293,12 @@ fn parse_case(cur: &mut Cursor) -> PResult<Stmt> {
         if cur.at_end() {
             break;
         }
-        let save = cur.pos;
-        if cur.ident().as_deref() == Some("DEFAULT") {
+        if cur.eat_word("DEFAULT") {
             cur.skip_ws();
             let kind = goto_kind_at(cur).ok_or((cur.pos, "DEFAULT needs GOTOF/GOTOB".to_string()))?;
             default = Some(parse_goto_target(kind, cur)?);
             continue;
         }
-        cur.pos = save;
         let value = parse_unary(cur)?;
         cur.skip_ws();
         let kind = goto_kind_at(cur).ok_or((cur.pos, "CASE value needs GOTOF/GOTOB".to_string()))?;
@@ -312,12 +336,9 @@ fn parse_type(cur: &mut Cursor) -> PResult<VarType> {
 
 fn parse_def(cur: &mut Cursor) -> PResult<Stmt> {
     // Optional storage class of global user data: DEF CHAN / DEF NCK.
-    let save = cur.pos;
-    let global = matches!(cur.ident().as_deref(), Some("CHAN" | "NCK"));
+    let global = cur.eat_word("CHAN") || cur.eat_word("NCK");
     if global {
         cur.skip_ws();
-    } else {
-        cur.pos = save;
     }
     let ty = parse_type(cur)?;
     let mut vars = Vec::new();
@@ -370,11 +391,7 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
         if !cur.eat(b')') {
             loop {
                 cur.skip_ws();
-                let save = cur.pos;
-                let by_reference = cur.ident().as_deref() == Some("VAR");
-                if !by_reference {
-                    cur.pos = save;
-                }
+                let by_reference = cur.eat_word("VAR");
                 cur.skip_ws();
                 let ty = parse_type(cur)?;
                 cur.skip_ws();
@@ -421,7 +438,8 @@ fn parse_indices(cur: &mut Cursor) -> PResult<Vec<Expr>> {
     }
 }
 
-fn parse_word(cur: &mut Cursor) -> PResult<Word> {
+/// One word; without `build` (a syntax check) a plain address gets no name.
+fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
     let start = cur.pos;
     let Some(c) = cur.peek() else { return Err((start, "unexpected end of block".into())) };
     if !(c.is_ascii_alphabetic() || c == b'_' || c == b'$') {
@@ -429,26 +447,21 @@ fn parse_word(cur: &mut Cursor) -> PResult<Word> {
     }
     // `NAME=value` or `NAME[i]=value` (NAME may carry digits, e.g. axis X1 or R parameter R1).
     let save = cur.pos;
-    if let Some(id) = cur.ident() {
-        if let Some(kind) = match id.as_str() {
-            "GOTOF" => Some(GotoKind::Forward),
-            "GOTOB" => Some(GotoKind::Backward),
-            "GOTO" => Some(GotoKind::Both),
-            "GOTOC" => Some(GotoKind::Continue),
-            _ => None,
-        } {
+    if let Some(span) = cur.ident_span() {
+        if let Some(kind) = goto_kind(cur, span) {
             return Ok(Word::Goto(parse_goto_target(kind, cur)?));
         }
         let indices = parse_indices(cur)?;
         cur.skip_ws();
         if cur.peek() == Some(b'=') && cur.peek_at(1) != Some(b'=') {
+            let name = cur.upper(span);
             cur.pos += 1;
             cur.skip_ws();
             let value = parse_address_value(cur)?;
-            return Ok(Word::Address { name: id, indices, value });
+            return Ok(Word::Address { name, indices, value });
         }
         if !indices.is_empty() {
-            return Err((cur.pos, format!("expected `=` after {id}[...]")));
+            return Err((cur.pos, format!("expected `=` after {}[...]", cur.upper(span))));
         }
     }
     cur.pos = save;
@@ -457,26 +470,30 @@ fn parse_word(cur: &mut Cursor) -> PResult<Word> {
     }
     // One address letter followed directly by a number: `X10`, `G01`, `M30`, `X-5.5`. Longer
     // names with digits (`SUB1`, `L_PART2`) are identifiers: subprogram calls or keywords.
-    let letters = cur.letters();
-    if letters.len() == 1 && cur.peek().is_some_and(|c| c.is_ascii_digit() || matches!(c, b'.' | b'-' | b'+')) {
+    let (from, to) = cur.letters();
+    if to - from == 1 && cur.peek().is_some_and(|c| c.is_ascii_digit() || matches!(c, b'.' | b'-' | b'+')) {
+        let letter = char::from(c.to_ascii_uppercase());
         let num_start = cur.pos;
-        let value = cur.number().ok_or_else(|| (num_start, format!("bad number after {letters}")))?;
-        return Ok(match letters.as_str() {
-            "G" | "M" if value < 0.0 || value.fract() != 0.0 || value > u32::MAX as f64 => {
-                return Err((num_start, format!("{letters} needs a whole number, found {value}")));
+        let value = cur.number().ok_or_else(|| (num_start, format!("bad number after {letter}")))?;
+        return Ok(match letter {
+            'G' | 'M' if value < 0.0 || value.fract() != 0.0 || value > u32::MAX as f64 => {
+                return Err((num_start, format!("{letter} needs a whole number, found {value}")));
             }
-            "G" => Word::G(value as u32),
-            "M" => Word::M(value as u32),
+            'G' => Word::G(value as u32),
+            'M' => Word::M(value as u32),
             _ => Word::Address {
-                name: letters,
+                name: if build { letter.to_string() } else { String::new() },
                 indices: Vec::new(),
                 value: AddressValue { mode: None, expr: Expr::Number(value) },
             },
         });
     }
     // A keyword, possibly with arguments: `SUPA`, `TRANSMIT(1)`, `MSG("x")`.
-    let rest = cur.ident_continue();
-    let name = format!("{letters}{rest}");
+    cur.pos = to;
+    while cur.peek().is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_') {
+        cur.pos += 1;
+    }
+    let name = cur.upper((from, cur.pos));
     let mut args = Vec::new();
     cur.skip_ws();
     if cur.eat(b'(') {
@@ -490,22 +507,22 @@ fn parse_word(cur: &mut Cursor) -> PResult<Word> {
 
 fn parse_address_value(cur: &mut Cursor) -> PResult<AddressValue> {
     let save = cur.pos;
-    if let Some(id) = cur.ident() {
-        let mode = match id.as_str() {
-            "AC" => Some(CoordMode::Ac),
-            "IC" => Some(CoordMode::Ic),
-            "DC" => Some(CoordMode::Dc),
-            "ACP" => Some(CoordMode::Acp),
-            "ACN" => Some(CoordMode::Acn),
-            _ => None,
-        };
+    if let Some(span) = cur.ident_span() {
+        const MODES: [(&str, CoordMode); 5] = [
+            ("AC", CoordMode::Ac),
+            ("IC", CoordMode::Ic),
+            ("DC", CoordMode::Dc),
+            ("ACP", CoordMode::Acp),
+            ("ACN", CoordMode::Acn),
+        ];
+        let mode = MODES.iter().find(|(name, _)| cur.span_is(span, name)).map(|&(_, mode)| mode);
         cur.skip_ws();
         if let Some(mode) = mode.filter(|_| cur.peek() == Some(b'(')) {
             cur.pos += 1;
             let expr = parse_expr(cur)?;
             cur.skip_ws();
             if !cur.eat(b')') {
-                return Err((cur.pos, format!("missing `)` after {id}(")));
+                return Err((cur.pos, format!("missing `)` after {}(", cur.upper(span))));
             }
             return Ok(AddressValue { mode: Some(mode), expr });
         }
@@ -616,11 +633,11 @@ fn parse_unary(cur: &mut Cursor) -> PResult<Expr> {
     if cur.eat(b'+') {
         return parse_unary(cur);
     }
-    let save = cur.pos;
-    match cur.ident().as_deref() {
-        Some("NOT") => return Ok(Expr::Unary(UnOp::Not, Box::new(parse_unary(cur)?))),
-        Some("B_NOT") => return Ok(Expr::Unary(UnOp::BNot, Box::new(parse_unary(cur)?))),
-        _ => cur.pos = save,
+    if cur.eat_word("NOT") {
+        return Ok(Expr::Unary(UnOp::Not, Box::new(parse_unary(cur)?)));
+    }
+    if cur.eat_word("B_NOT") {
+        return Ok(Expr::Unary(UnOp::BNot, Box::new(parse_unary(cur)?)));
     }
     parse_primary(cur)
 }

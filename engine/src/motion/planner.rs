@@ -161,7 +161,13 @@ pub struct Planner {
     /// Tool orientation at `position` when that move interpolates it as a vector.
     orientation: Option<Vec3>,
     finished: Vec<u32>,
+    /// Sine and cosine of the front move's arc at its start and end angle: the same for every
+    /// cycle of the move, so computed once (`None` until needed, and again when the front changes).
+    front_arc_ends: Option<ArcEnds>,
 }
+
+/// `(sin, cos)` of an arc's start and end angle.
+type ArcEnds = [(f64, f64); 2];
 
 impl Planner {
     pub fn new(dt: f64, limits: Vec<AxisLimit>, position: AxisVec) -> Planner {
@@ -181,6 +187,7 @@ impl Planner {
             position_tag: None,
             orientation: None,
             finished: Vec::new(),
+            front_arc_ends: None,
         }
     }
 
@@ -191,6 +198,9 @@ impl Planner {
             return;
         }
         self.a_min = self.a_min.min(mv.a_max);
+        if self.queue.is_empty() {
+            self.front_arc_ends = None;
+        }
         self.queue.push_back(mv);
         self.v_end.push_back(0.0);
         self.replan();
@@ -274,6 +284,7 @@ impl Planner {
     /// Drops everything at once (reset): the axes stay where they are.
     pub fn abort(&mut self) {
         self.queue.clear();
+        self.front_arc_ends = None;
         self.a_min = f64::INFINITY;
         self.v_end.clear();
         self.s = 0.0;
@@ -329,7 +340,7 @@ impl Planner {
             if d < remaining - 1e-12 {
                 self.s += d;
                 let u = self.s / front.length;
-                front.path.at(u, &mut self.position);
+                position_on(&front.path, u, &mut self.front_arc_ends, &mut self.position);
                 self.orientation = front.path.orientation_at(u);
                 self.position_tag = Some(front.tag);
                 break;
@@ -341,6 +352,7 @@ impl Planner {
             self.position_tag = Some(front.tag);
             let stop_here = self.v_end[0] == 0.0;
             let done = self.queue.pop_front().expect("front exists");
+            self.front_arc_ends = None;
             if done.a_max <= self.a_min {
                 self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
             }
@@ -432,6 +444,26 @@ impl Planner {
     }
 }
 
+/// [`Path::at`] for the cycles of one move: the same arithmetic, with the sines and cosines of the
+/// arc's end angles taken from `ends` (filled on first use) instead of computed every cycle.
+fn position_on(path: &Path, u: f64, ends: &mut Option<ArcEnds>, out: &mut AxisVec) {
+    let arc = match &path.arc {
+        Some(arc) if u < 1.0 => arc,
+        _ => return path.at(u, out),
+    };
+    let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
+    let [(sin0, cos0), (sin1, cos1)] = *ends.get_or_insert_with(|| [a0.sin_cos(), a1.sin_cos()]);
+    for (o, (a, b)) in out.iter_mut().zip(path.start.iter().zip(&path.end)) {
+        *o = a + (b - a) * u;
+    }
+    let (sin, cos) = (a0 + arc.sweep * u).sin_cos();
+    let cu = arc.radius * (cos - cos0 - u * (cos1 - cos0));
+    let cv = arc.radius * (sin - sin0 - u * (sin1 - sin0));
+    for (k, o) in out.iter_mut().enumerate() {
+        *o += cu * arc.u[k] + cv * arc.v[k];
+    }
+}
+
 /// The highest speed at a point `distance` before a boundary from which cycle-wise braking
 /// with deceleration `a` reaches `v_end` at the boundary. Accounts for the cycle discretisation:
 /// braking from `v` in steps of `a·dt` covers `v²/(2a) + v·dt/2`.
@@ -466,6 +498,26 @@ mod tests {
             assert!(out.len() < 1_000_000);
         }
         out
+    }
+
+    #[test]
+    fn positions_on_a_move_are_those_of_its_path_bit_for_bit() {
+        use super::super::path::Arc;
+        let mut start = [0.0; MAX_CHANNEL_AXES];
+        let mut end = [0.0; MAX_CHANNEL_AXES];
+        (start[0], start[1], start[2]) = (10.0, -3.5, 1.25);
+        (end[0], end[1], end[2]) = (-2.0, 7.0, -4.0);
+        for arc in [None, Some(Arc::in_plane(0, 1, 6.3, 0.7, -2.9)), Some(Arc::in_plane(2, 0, 1.1, -1.3, 5.5))] {
+            let path = Path { start, end, arc, ori: None };
+            let mut ends = None;
+            for i in 0..=1000 {
+                let u = f64::from(i) / 1000.0;
+                let (mut expected, mut got) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
+                path.at(u, &mut expected);
+                super::position_on(&path, u, &mut ends, &mut got);
+                assert_eq!(expected.map(f64::to_bits), got.map(f64::to_bits), "u = {u}");
+            }
+        }
     }
 
     #[test]

@@ -7,6 +7,7 @@
 //! Exit codes: 0 the program ended normally; 2 it ended in an alarm or has syntax errors;
 //! 3 it was stopped by `--max-sim-time`; 1 usage or I/O error (message on stderr).
 
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -163,6 +164,26 @@ fn read_text(path: &Path, what: &str) -> Result<String, UsageError> {
     std::fs::read_to_string(path).map_err(|e| UsageError(format!("cannot read {what} {}: {e}", path.display())))
 }
 
+/// Reads a program straight into the shared text the channel keeps, so that a long program is
+/// in memory once (reading into a `String` and converting would hold it twice at the peak).
+fn read_shared_text(path: &Path) -> Result<Arc<str>, UsageError> {
+    let error = |e: std::io::Error| UsageError(format!("cannot read program {}: {e}", path.display()));
+    let mut file = std::fs::File::open(path).map_err(error)?;
+    let len = file.metadata().map_err(error)?.len();
+    let len = usize::try_from(len).map_err(|_| UsageError(format!("program {} is too large", path.display())))?;
+    let mut bytes: Arc<[u8]> = std::iter::repeat_n(0u8, len).collect();
+    file.read_exact(Arc::get_mut(&mut bytes).expect("not shared yet")).map_err(error)?;
+    if file.read(&mut [0u8]).map_err(error)? != 0 {
+        return Err(UsageError(format!("program {} changed while it was read", path.display())));
+    }
+    if let Err(e) = std::str::from_utf8(&bytes) {
+        return Err(UsageError(format!("cannot read program {}: not UTF-8 ({e})", path.display())));
+    }
+    // SAFETY: the bytes were checked to be UTF-8 just above, and `str` has the layout of `[u8]`,
+    // so the allocation is a valid `Arc<str>` (this is how std converts `Arc<[u8]>` itself).
+    Ok(unsafe { Arc::from_raw(Arc::into_raw(bytes) as *const str) })
+}
+
 fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     if let Some(t) = args.max_sim_time
         && !(t.is_finite() && t > 0.0)
@@ -182,7 +203,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     if let Some(dir) = &args.program_dir {
         store_programs(&mut channel, dir, &mut syntax_errors)?;
     }
-    let text = read_text(&args.program, "program")?;
+    let text = read_shared_text(&args.program)?;
     let program_bytes = text.len();
     let blocks = text.lines().filter(|l| !l.trim().is_empty()).count() as u64;
     let program = args.program.display().to_string();
@@ -193,7 +214,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
     let loaded = if syntax_errors.is_empty() {
-        match channel.run_program(&text) {
+        match channel.run_program_shared(text.clone()) {
             Ok(()) => true,
             Err(CommandError::Syntax { line, message }) => {
                 syntax_errors.push(SyntaxError { program: program.clone(), line, message });
@@ -254,7 +275,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
 fn interpret_only(
     channel: &Channel,
     args: &SimulateArgs,
-    text: String,
+    text: Arc<str>,
     mut syntax_errors: Vec<SyntaxError>,
     program: String,
     blocks: u64,
@@ -279,7 +300,7 @@ fn interpret_only(
         let mut position = [0.0; MAX_CHANNEL_AXES];
         position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
         let mut interp = Interpreter::new(cfg);
-        interp.begin_program(Arc::from(text), &position);
+        interp.begin_program(text, &position);
         // Loops without end would never finish: stop after this many preparation steps.
         let budget = blocks.saturating_mul(100).saturating_add(1_000_000);
         let mut out = Vec::new();
