@@ -308,3 +308,37 @@ fn ptp_is_refused_with_radius_compensation_and_cp_keeps_the_path() {
         assert!(tip[1].abs() < 1e-6 && (tip[2] - 50.0).abs() < 1e-6, "tip {tip:?}");
     }
 }
+
+/// LEAD and TILT against the path tangent and the surface normal (+Z): travelling +X, LEAD=20
+/// leans the tool 20° forward, o = (sin 20°, 0, cos 20°), the head at A20 C90; TILT=20 turns it
+/// about the tangent, o = Rx(20°)·z = (0, −sin 20°, cos 20°), the head at A20 C0. Under ORIPATH
+/// the next block (travelling +Y) keeps the lead: o = (0, sin 20°, cos 20°), A20 C180.
+#[test]
+fn lead_and_tilt_orient_the_tool_against_the_path() {
+    let (s20, c20) = 20f64.to_radians().sin_cos();
+    let (ch, _) = run("mill5-head-ca", &format!("{START}C80\nLEAD=20 X100\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert_machine(&s, [100.0 + 250.0 * s20, 0.0, -100.0 + 250.0 * c20, 20.0, 90.0]);
+
+    let (ch, _) = run("mill5-head-ca", &format!("{START}TILT=20 X100\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert_machine(&s, [100.0, -250.0 * s20, -100.0 + 250.0 * c20, 20.0, 0.0]);
+
+    let (ch, samples) = run("mill5-head-ca", &format!("{START}C80\nORIPATH\nLEAD=20 X100\nY100\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert_machine(&s, [100.0, 100.0 + 250.0 * s20, -100.0 + 250.0 * c20, 20.0, 180.0]);
+    // The tip stays on the programmed lines throughout.
+    for p in samples.iter().filter(|p| p.axes[3] > 1e-9) {
+        let tip = head_tip(&p.axes);
+        assert!((tip[2] - 50.0).abs() < 1e-6 && (tip[1].abs() < 1e-6 || (tip[0] - 100.0).abs() < 1e-6), "tip {tip:?}");
+    }
+}
+
+#[test]
+fn lead_beyond_md21090_is_refused() {
+    let (ch, _) = run("mill5-head-ca", &format!("{START}LEAD=70 X100\nM30"));
+    assert_eq!(ch.snapshot().alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14113]);
+}

@@ -85,7 +85,7 @@ impl GCodes {
                 OriInterpolation::Axes => 1,
                 OriInterpolation::Cone { clockwise: true } => 2,
                 OriInterpolation::Cone { clockwise: false } => 3,
-                OriInterpolation::Unmodelled(_) => 4,
+                OriInterpolation::Path | OriInterpolation::Unmodelled(_) => 4,
             },
         ])
     }

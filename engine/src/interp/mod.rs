@@ -711,7 +711,8 @@ impl Interpreter {
             }
         }
 
-        let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, line)?;
+        let tangent = end_tangent(&current, &target, geo, (pa, po, papp), circle.as_ref());
+        let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, tangent, line)?;
 
         let mut path = Path::line(start, end);
         path.ori = ori.map(Box::new);
@@ -751,6 +752,31 @@ impl Interpreter {
         self.pos = end;
         Ok((Move::new(path, length, feed, &AxisLimit::for_channel(cfg), exact_stop, line), feed))
     }
+}
+
+/// The unit direction of travel at the end of a block in the WCS geometry axes (X, Y, Z): along
+/// the line, or along the circle at its end angle with the helix lead. `None` without a move of
+/// the geometry axes.
+fn end_tangent(
+    current: &AxisVec,
+    target: &AxisVec,
+    geo: &[Option<usize>; 3],
+    (pa, po, papp): (usize, usize, usize),
+    circle: Option<&arc::Circle>,
+) -> Option<[f64; 3]> {
+    let delta = |g: usize| geo[g].map_or(0.0, |k| target[k] - current[k]);
+    let mut t = [0.0; 3];
+    match circle {
+        Some(c) => {
+            let (a1, turn) = (c.start_angle + c.sweep, c.sweep.signum());
+            t[pa] = -a1.sin() * turn;
+            t[po] = a1.cos() * turn;
+            t[papp] = delta(papp) / (c.radius * c.sweep.abs()).max(1e-12);
+        }
+        None => t = [delta(0), delta(1), delta(2)],
+    }
+    let n = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+    (n > 1e-12).then(|| t.map(|x| x / n))
 }
 
 fn norm(v: &AxisVec) -> f64 {

@@ -47,7 +47,10 @@ pub enum OriInterpolation {
     Axes,
     /// ORICONCW / ORICONCCW: on a cone about A6/B6/C6.
     Cone { clockwise: bool },
-    /// ORIPATH, ORICONIO, ORICONTO, ORICURVE, ORIPATHS: not modelled (alarm when used).
+    /// ORIPATH: every motion block ends with the orientation LEAD/TILT give relative to its
+    /// path tangent and the surface normal; in between a great circle.
+    Path,
+    /// ORICONIO, ORICONTO, ORICURVE, ORIPATHS: not modelled (alarm when used).
     Unmodelled(&'static str),
 }
 
@@ -57,6 +60,11 @@ pub struct OriModal {
     pub reference: OriReference,
     pub angles: AngleDefinition,
     pub interpolation: OriInterpolation,
+    /// LEAD and TILT (degrees), modal.
+    pub lead: f64,
+    pub tilt: f64,
+    /// The last surface normal (A5/B5/C5 of the last block that gave one; +Z at reset).
+    pub normal: Vec3,
 }
 
 impl OriModal {
@@ -66,6 +74,9 @@ impl OriModal {
             reference: OriReference::Machine,
             angles: AngleDefinition::Euler,
             interpolation: OriInterpolation::Vector,
+            lead: 0.0,
+            tilt: 0.0,
+            normal: [0.0, 0.0, 1.0],
         }
     }
 
@@ -79,6 +90,17 @@ impl OriModal {
         }
         if let Some(i) = w.interpolation {
             self.interpolation = i;
+        }
+        if let Some(l) = w.lead {
+            self.lead = l;
+        }
+        if let Some(t) = w.tilt {
+            self.tilt = t;
+        }
+        if let Some(n) =
+            normalized(w.normal_end.map(|c| c.unwrap_or(0.0))).filter(|_| w.normal_end.iter().any(Option::is_some))
+        {
+            self.normal = n;
         }
     }
 }
@@ -94,20 +116,31 @@ pub struct OriWords {
     pub cone_axis: [Option<f64>; 3],
     /// ORIRESET(a, b, c): the orientation axes to these positions (omitted: the rest position).
     pub reset: Option<[Option<f64>; 3]>,
+    /// LEAD=, TILT= (degrees).
+    pub lead: Option<f64>,
+    pub tilt: Option<f64>,
+    /// A4/B4/C4 and A5/B5/C5: surface normal at the block start and end.
+    pub normal_start: [Option<f64>; 3],
+    pub normal_end: [Option<f64>; 3],
     pub reference: Option<OriReference>,
     pub angles_def: Option<AngleDefinition>,
     pub interpolation: Option<OriInterpolation>,
 }
 
 impl OriWords {
-    /// True if the block programs an orientation.
+    /// True if the block programs an orientation directly (vector or angles).
     pub fn programmed(&self) -> bool {
         self.vector.iter().chain(&self.angles).any(Option::is_some)
     }
 
-    /// True if the block moves the orientation (programmed, or ORIRESET).
+    /// True if the block programs an orientation relative to the path (LEAD, TILT).
+    pub fn path_relative(&self) -> bool {
+        self.lead.is_some() || self.tilt.is_some()
+    }
+
+    /// True if the block moves the orientation (programmed, path-relative, or ORIRESET).
     pub fn moves(&self) -> bool {
-        self.programmed() || self.reset.is_some()
+        self.programmed() || self.path_relative() || self.reset.is_some()
     }
 
     /// Takes an orientation G function (`ORIWKS`, ...); false if `name` is none.
@@ -125,7 +158,7 @@ impl OriWords {
             "ORIAXES" => self.interpolation = Some(I::Axes),
             "ORICONCW" => self.interpolation = Some(I::Cone { clockwise: true }),
             "ORICONCCW" => self.interpolation = Some(I::Cone { clockwise: false }),
-            "ORIPATH" => self.interpolation = Some(I::Unmodelled("ORIPATH")),
+            "ORIPATH" => self.interpolation = Some(I::Path),
             "ORIPATHS" => self.interpolation = Some(I::Unmodelled("ORIPATHS")),
             "ORICONIO" => self.interpolation = Some(I::Unmodelled("ORICONIO")),
             "ORICONTO" => self.interpolation = Some(I::Unmodelled("ORICONTO")),
@@ -137,9 +170,19 @@ impl OriWords {
 
     /// Takes an orientation address (`A3=`, ...); false if `name` is none.
     pub fn address(&mut self, name: &str, value: f64) -> bool {
+        match name {
+            "LEAD" => self.lead = Some(value),
+            "TILT" => self.tilt = Some(value),
+            _ => {}
+        }
+        if matches!(name, "LEAD" | "TILT") {
+            return true;
+        }
         let slot = match name {
             "A3" | "B3" | "C3" => &mut self.vector,
             "A2" | "B2" | "C2" => &mut self.angles,
+            "A4" | "B4" | "C4" => &mut self.normal_start,
+            "A5" | "B5" | "C5" => &mut self.normal_end,
             "A6" | "B6" | "C6" => &mut self.cone_axis,
             _ => return false,
         };
@@ -150,7 +193,25 @@ impl OriWords {
 
 /// True for the addresses [`OriWords::address`] takes.
 pub fn is_address(name: &str) -> bool {
-    matches!(name, "A2" | "B2" | "C2" | "A3" | "B3" | "C3" | "A6" | "B6" | "C6")
+    matches!(
+        name,
+        "A2" | "B2"
+            | "C2"
+            | "A3"
+            | "B3"
+            | "C3"
+            | "A4"
+            | "B4"
+            | "C4"
+            | "A5"
+            | "B5"
+            | "C5"
+            | "A6"
+            | "B6"
+            | "C6"
+            | "LEAD"
+            | "TILT"
+    )
 }
 
 /// 14110: orientation programmed without an orientation transformation (number and wording
@@ -164,6 +225,33 @@ fn without_transformation(line: u32) -> Alarm {
         line: Some(line),
         clear: Clear::Reset,
     }
+}
+
+/// 14113 / 14114: LEAD or TILT beyond MD21090 MAX_LEAD_ANGLE / MD21092 MAX_TILT_ANGLE
+/// (numbers from the control's alarm list, from memory).
+fn angle_too_large(line: u32, lead: bool, value: f64, max: f64) -> Alarm {
+    Alarm {
+        number: if lead { 14113 } else { 14114 },
+        message: format!(
+            "Channel 1 block {line} programmed {} angle {value} too large (maximum {max})",
+            if lead { "lead" } else { "tilt" }
+        ),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
+}
+
+/// The orientation LEAD and TILT (degrees) give with the path tangent `t` and the surface
+/// normal `n` (both unit, same system): `o = R(T, TILT)·R(S, LEAD)·N` with N the normal made
+/// perpendicular to T and S = N × T. A positive LEAD leans the tool (tip → holder) forward in
+/// the direction of travel, a positive TILT turns it right-handed about the tangent (this
+/// product's sign conventions; the manual leaves them open). `None` when T ∥ N.
+fn lead_and_tilt(t: Vec3, n: Vec3, lead: f64, tilt: f64) -> Option<Vec3> {
+    let d = n[0] * t[0] + n[1] * t[1] + n[2] * t[2];
+    let np = normalized([n[0] - d * t[0], n[1] - d * t[1], n[2] - d * t[2]])?;
+    let s = [np[1] * t[2] - np[2] * t[1], np[2] * t[0] - np[0] * t[2], np[0] * t[1] - np[1] * t[0]];
+    let leaned = crate::motion::rotate(np, s, lead.to_radians());
+    Some(crate::motion::rotate(leaned, t, tilt.to_radians()))
 }
 
 /// 14120: great-circle interpolation between antiparallel orientations.
@@ -196,7 +284,9 @@ fn normalized(v: Vec3) -> Option<Vec3> {
 impl Interpreter {
     /// Sets the orientation axes of `end` for a block with orientation words and returns the
     /// orientation path when the orientation is interpolated as a vector. `end` holds the
-    /// block's BCS end point with any directly programmed rotary axes.
+    /// block's BCS end point with any directly programmed rotary axes; `tangent` is the unit
+    /// path direction at the block end in the WCS (for LEAD/TILT), if the tool tip moves.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn orientation_block(
         &self,
         words: &super::modal::Words,
@@ -204,6 +294,7 @@ impl Interpreter {
         frame: &Frame,
         start: &AxisVec,
         end: &mut AxisVec,
+        tangent: Option<Vec3>,
         line: u32,
     ) -> Result<Option<OriPath>, Alarm> {
         let ori = &words.ori;
@@ -226,7 +317,31 @@ impl Interpreter {
             return Ok(None);
         }
         let modal = self.modal.ori;
-        let target = if ori.programmed() {
+        let path_relative = ori.path_relative() || (modal.interpolation == OriInterpolation::Path && tangent.is_some());
+        if ori.programmed() && path_relative && ori.path_relative() {
+            return Err(Alarm::conflicting_functions(line, "LEAD/TILT together with A2..C3"));
+        }
+        let target = if path_relative && !ori.programmed() && !rotary_words {
+            if modal.lead.abs() > cfg.ori.max_lead_angle {
+                return Err(angle_too_large(line, true, modal.lead, cfg.ori.max_lead_angle));
+            }
+            if modal.tilt.abs() > cfg.ori.max_tilt_angle {
+                return Err(angle_too_large(line, false, modal.tilt, cfg.ori.max_tilt_angle));
+            }
+            let Some(t) = tangent else {
+                return Err(Alarm::value_out_of_range(line, "LEAD/TILT need a motion of the tool tip"));
+            };
+            let (t, n) = match modal.reference {
+                OriReference::Workpiece => (frame.rotate_direction(t), frame.rotate_direction(modal.normal)),
+                OriReference::Machine => (frame.rotate_direction(t), modal.normal),
+            };
+            let bcs = lead_and_tilt(t, n, modal.lead, modal.tilt)
+                .ok_or_else(|| Alarm::value_out_of_range(line, "LEAD/TILT: the path runs along the surface normal"))?;
+            active.trafo.orientation_axes(&bcs, machine, end).map_err(|_| {
+                Alarm::value_out_of_range(line, "orientation not reachable by the rotary axes of the transformation")
+            })?;
+            Some(bcs)
+        } else if ori.programmed() {
             let wcs = if ori.vector.iter().any(Option::is_some) {
                 normalized(ori.vector.map(|c| c.unwrap_or(0.0)))
                     .ok_or_else(|| Alarm::value_out_of_range(line, "orientation vector A3/B3/C3 of length 0"))?
@@ -260,7 +375,9 @@ impl Interpreter {
             return Ok(None);
         };
         let Some(o_end) = target else { return Ok(None) };
-        let interpolation = if cfg.ori.ori_ipo_with_g_code {
+        let interpolation = if path_relative {
+            OriInterpolation::Vector
+        } else if cfg.ori.ori_ipo_with_g_code {
             modal.interpolation
         } else if modal.reference == OriReference::Workpiece {
             OriInterpolation::Vector
@@ -274,7 +391,9 @@ impl Interpreter {
         let Some(o_start) = active.trafo.orientation(&m_start) else { return Ok(None) };
         match interpolation {
             OriInterpolation::Axes => Ok(None),
-            OriInterpolation::Vector => OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line)),
+            OriInterpolation::Vector | OriInterpolation::Path => {
+                OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line))
+            }
             OriInterpolation::Cone { clockwise } => {
                 let given = ori.cone_axis.map(|c| c.unwrap_or(0.0));
                 let k = normalized(given).ok_or_else(|| {
