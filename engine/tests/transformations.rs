@@ -770,3 +770,31 @@ fn a_chain_needs_traang_as_its_second_member_defined_before_it() {
         assert!(err.to_string().contains(needle), "{md}: {err}");
     }
 }
+
+/// Oblique plunging with TRAANG at 45°: G07 moves only along Z to the start point on the line
+/// through the end point along the inclined axis, S = (50, −20 + (50 − 10)·tan 45°) = (50, 20);
+/// G05 then plunges with the inclined axis MU alone to (10, −20).
+#[test]
+fn traang_g07_approaches_and_g05_plunges_along_the_inclined_axis() {
+    let program = "TRAANG\nG0 X50 Z0\nG1 F1000 G07 X10 Z-20\nM0\nG05 X10\nM0\nM30";
+    let mut ch = Channel::from_preset("traang-grinder", "").unwrap();
+    ch.run_program(program).unwrap();
+    let mut mz_during_plunge = Vec::new();
+    for (i, (x, z)) in [(50.0, 20.0), (10.0, -20.0)].into_iter().enumerate() {
+        while ch.is_busy() {
+            ch.step();
+            if i == 1 {
+                mz_during_plunge.push(ch.axis_positions()[1]);
+            }
+        }
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+        let (mu, mz) = traang_axes(45.0, x, z);
+        assert!(close(machine(&s, "MU"), mu, 1e-9) && close(machine(&s, "MZ"), mz, 1e-9), "{x},{z}: {:?}", s.machine);
+        ch.start().unwrap();
+    }
+    // MZ = Z − X·tan 45° stays at −30 while only MU moves.
+    assert!(mz_during_plunge.iter().all(|v| close(*v, -30.0, 1e-9)), "{mz_during_plunge:?}");
+    let (ch, _) = run("traang-grinder", "", "G05 X10\nM30");
+    assert_eq!(alarm_numbers(&ch.snapshot()), [14401]);
+}

@@ -711,6 +711,9 @@ impl Interpreter {
             }
         }
 
+        if let Some(kind) = words.oblique {
+            self.oblique_plunge(kind, &start, &mut end, line)?;
+        }
         let tangent = end_tangent(&current, &target, geo, (pa, po, papp), circle.as_ref());
         let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, tangent, line)?;
 

@@ -203,6 +203,15 @@ pub enum PoleRef {
     LastPole,
 }
 
+/// The oblique plunge functions of TRAANG (non-modal here).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Oblique {
+    /// G07: move along Z to where a plunge along the inclined axis reaches the end point.
+    Approach,
+    /// G05: plunge along the inclined axis to the programmed X.
+    Plunge,
+}
+
 /// The kind of a programmable frame instruction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FrameKind {
@@ -248,6 +257,8 @@ pub(super) struct Words {
     pub dwell: bool,
     /// G9 non-modal exact stop.
     pub g9: bool,
+    /// G07 (approach the start of an oblique plunge) or G05 (oblique plunge), TRAANG.
+    pub oblique: Option<Oblique>,
     /// G53/SUPA: work offsets suppressed for this block.
     pub g53: bool,
     /// Channel axis, value, coordinate mode.
@@ -680,6 +691,8 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         3 => w.motion = Some(MotionMode::Ccw),
         4 => w.dwell = true,
         9 => w.g9 = true,
+        5 => w.oblique = Some(Oblique::Plunge),
+        7 => w.oblique = Some(Oblique::Approach),
         17 => w.plane = Some(Plane::G17),
         18 => w.plane = Some(Plane::G18),
         19 => w.plane = Some(Plane::G19),

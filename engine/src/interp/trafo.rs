@@ -464,6 +464,30 @@ impl Interpreter {
         }
     }
 
+    /// G07/G05 with an active TRAANG: the BCS end of the block turned into the start of an
+    /// oblique plunge (G07: only Z moves, to the line through the programmed end along the
+    /// inclined axis) or the plunge itself (G05: Z follows X along the inclined axis).
+    pub(super) fn oblique_plunge(
+        &self,
+        kind: super::modal::Oblique,
+        start: &AxisVec,
+        end: &mut AxisVec,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        let Some(AnyTrafo::Traang(t)) = self.trafo.active.as_ref().map(|a| &a.trafo.trafo) else {
+            return Err(not_available(line, "G05/G07 oblique plunge needs an active TRAANG"));
+        };
+        let (x, z, tan) = t.plunge_axes();
+        match kind {
+            super::modal::Oblique::Approach => {
+                end[z] += (start[x] - end[x]) * tan;
+                end[x] = start[x];
+            }
+            super::modal::Oblique::Plunge => end[z] = start[z] + (end[x] - start[x]) * tan,
+        }
+        Ok(())
+    }
+
     /// The TRACYL groove-wall slots when that offset is selected.
     pub(super) fn groove_wall_axes(&self) -> Option<(usize, usize)> {
         match &self.trafo.active.as_ref()?.trafo.trafo {

@@ -53,6 +53,12 @@ impl Traang {
         })
     }
 
+    /// For oblique plunging (G05/G07): the channel slots of Cartesian X (infeed) and Z
+    /// (longitudinal) and tan α, the change of Z per unit of X along the inclined axis.
+    pub fn plunge_axes(&self) -> (usize, usize, f64) {
+        (self.inclined.0, self.parallel.0, self.sin / self.cos)
+    }
+
     fn off(&self, tool: &Vec3, g: usize) -> f64 {
         self.base_tool[g] - tool[g]
     }
