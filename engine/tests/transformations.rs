@@ -798,3 +798,16 @@ fn traang_g07_approaches_and_g05_plunges_along_the_inclined_axis() {
     let (ch, _) = run("traang-grinder", "", "G05 X10\nM30");
     assert_eq!(alarm_numbers(&ch.snapshot()), [14401]);
 }
+
+#[test]
+fn chain_layers_and_machine_axes_are_readable_under_tracon() {
+    // TRANSMIT → TRAANG 30° at X10 Y0 Z5 (C = 0): the first member's output is the slide's
+    // Cartesian X = 10, Z = 5; the machine layer MU = 10/cos 30°, MZ = 5 − MU·sin 30°.
+    let program = "TRACON(1)\nG1 F1000 X10 Y0 Z5\nR1=$AA_ITR[X,1]\nR2=$AA_ITR[X,2]\nR3=$AA_IBC[Z]\nR4=$AA_IM[Z]\nM30";
+    let (ch, _) = run("slant-lathe-tracon", "", program);
+    assert_eq!(ch.snapshot().status, Status::Idle, "{:?}", ch.snapshot().alarms);
+    let (mu, mz) = slant(10.0, 5.0);
+    for (r, want) in [(1, 10.0), (2, mu), (3, 5.0), (4, mz)] {
+        assert!(close(ch.r_param(r), want, 1e-9), "R{r} = {} vs {want}", ch.r_param(r));
+    }
+}

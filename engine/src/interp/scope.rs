@@ -24,6 +24,8 @@ pub(crate) struct SysView<'a> {
     pub system: &'a super::frame::SystemFrames,
     /// Spindles switched to position control (SPOS): programmable as rotary axes.
     pub positioned: &'a [bool; MAX_CHANNEL_AXES],
+    /// The active transformation's view (machine positions, chain layers).
+    pub trafo: &'a super::trafo::TrafoState,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -38,6 +40,7 @@ macro_rules! sys_view {
             pframe: &$interp.pframe,
             system: &$interp.system,
             positioned: &$interp.positioned,
+            trafo: &$interp.trafo,
         }
     };
 }
@@ -93,7 +96,30 @@ impl Scope for Ctx<'_> {
             "$P_TOOLNO" => Value::Int(sys.offsets.t.into()),
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),
             "$P_EP" => Value::Real(wcs(axis()?)),
-            "$AA_IM" => Value::Real(sys.pos[axis()?]),
+            // Machine axes: through the active transformation, not the BCS.
+            "$AA_IM" => Value::Real(sys.trafo.machine().unwrap_or(sys.pos)[axis()?]),
+            // Chained transformation: layer 1 is the output of the first member, the last layer
+            // the machine axes; without a chain there is only the machine layer.
+            "$AA_ITR" => {
+                let (k, layer) = match indices {
+                    [Value::Axis(a) | Value::Str(a), l] => (
+                        sys.cfg.program_axis(a).ok_or_else(|| Alarm::unknown_name(line, &format!("{name}[{a}]")))?,
+                        l.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
+                    ),
+                    _ => return Err(Alarm::index_error(line, name, "needs an axis and a layer")),
+                };
+                let machine = sys.trafo.machine().unwrap_or(sys.pos);
+                Value::Real(match (layer, sys.trafo.intermediate()) {
+                    (1, Some(mid)) => mid[k],
+                    (1, None) | (2, Some(_)) => machine[k],
+                    _ => return Err(Alarm::index_error(line, name, &format!("no transformation layer {layer}"))),
+                })
+            }
+            "$AA_IBC" => {
+                let k = axis()?;
+                let machine = sys.trafo.machine().unwrap_or(sys.pos);
+                Value::Real(sys.trafo.intermediate().map_or(machine[k], |mid| mid[k]))
+            }
             "$AA_IB" => {
                 let k = axis()?;
                 Value::Real(sys.pos[k] - sys.offsets.tool[k])

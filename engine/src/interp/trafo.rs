@@ -193,6 +193,22 @@ fn ptp_with_trc(line: u32) -> Alarm {
 }
 
 impl TrafoState {
+    /// The machine position at the end of what was prepared, while a transformation is active
+    /// (without one it is the programmed position itself).
+    pub fn machine(&self) -> Option<&AxisVec> {
+        self.active.as_ref().map(|a| &a.machine)
+    }
+
+    /// The setpoints between the members of a chained transformation (`$AA_ITR[.., 1]`,
+    /// `$AA_IBC`): the output of the first member.
+    pub fn intermediate(&self) -> Option<AxisVec> {
+        let a = self.active.as_ref()?;
+        match &a.trafo.trafo {
+            AnyTrafo::Tracon(t) => Some(t.intermediate(&a.machine)),
+            _ => None,
+        }
+    }
+
     /// The configuration blocks are read with while a transformation is active.
     pub fn config(&self) -> Option<Arc<MachineConfig>> {
         self.active.as_ref().map(|a| a.derived.clone())
