@@ -465,3 +465,17 @@ fn orientation_jog_turns_the_tool_about_z_with_the_tip_standing_still() {
     plain.set_mode(Mode::Jog).unwrap();
     assert!(matches!(plain.jog_in(&jog("B2", 1, Some(5.0)), JogSystem::Basic), Err(CommandError::Invalid(_))));
 }
+
+#[test]
+fn block_search_finds_the_main_program_line_not_the_same_line_of_a_subprogram() {
+    // The subprogram's 2nd line moves to X5; the search target is the main program's line 2.
+    let mut ch = channel("mill-3axis", "");
+    ch.store_program("SUB1", "G0 Y1\nG0 X5\nM17").unwrap();
+    ch.block_search(Some("SUB1\nG0 X30\nM30"), 2).unwrap();
+    let s = ch.snapshot();
+    assert_eq!(s.block.as_ref().map(|b| (b.line, b.text.as_str())), Some((2, "G0 X30")));
+    ch.start().unwrap();
+    settle(&mut ch);
+    // The subprogram ran during the search (Y1 collected), the target block ends at X30.
+    assert_eq!(ch.axis_positions(), &[30.0, 1.0, 0.0]);
+}

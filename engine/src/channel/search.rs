@@ -101,12 +101,16 @@ impl Channel {
         for _ in 0..SEARCH_BLOCK_BUDGET {
             out.clear();
             let generation = self.interp.transformation_generation();
+            // The target is a line of the main program: a block of a subprogram with the same
+            // line number is not it.
+            let in_main_program = self.interp.call_depth() == 0;
             let prep = self.interp.prepare_next(&self.cfg, &self.programs, true, &mut out);
             let trafo_changed = self.interp.transformation_generation() != generation;
             for (l, data) in self.interp.take_data_writes() {
                 self.apply_program_data(l, &data)?;
             }
-            let found = out.iter().position(|i| i.line() == Some(line) && !matches!(i, Item::Alarm(_)));
+            let found =
+                out.iter().position(|i| in_main_program && i.line() == Some(line) && !matches!(i, Item::Alarm(_)));
             let rest = out.split_off(found.unwrap_or(out.len()));
             let mut trafo_switched = false;
             for item in out.drain(..) {

@@ -257,6 +257,11 @@ impl Interpreter {
         self.pos = *pos;
     }
 
+    /// Number of subprogram levels below the main program being prepared (0: the main program).
+    pub fn call_depth(&self) -> usize {
+        self.calls.len()
+    }
+
     /// Offsets currently selected by preprocessing.
     pub fn offsets(&self) -> Offsets {
         self.offsets.clone()
