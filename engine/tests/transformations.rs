@@ -811,3 +811,26 @@ fn chain_layers_and_machine_axes_are_readable_under_tracon() {
         assert!(close(ch.r_param(r), want, 1e-9), "R{r} = {} vs {want}", ch.r_param(r));
     }
 }
+
+/// Radius compensation works in TRANSMIT's Cartesian plane: the square's sides at x = 10 and
+/// y = 10 with G41 and T1 (radius 4) become x = 6 and y = 6; the last side ends perpendicular at
+/// (−10, 6), which the machine reaches at the polar radius √136 and angle atan2(6, −10).
+#[test]
+fn transmit_with_radius_compensation_offsets_in_the_cartesian_plane() {
+    let program = "T1 D1\nG0 X20 Z10\nTRANSMIT\nG17 G1 F1000 G41 X10 Y-10\nX10 Y10\nX-10 Y10\nM0\nM30";
+    let (ch, samples) = run("transmit-example", "", program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let (r, c) = polar(-10.0, 6.0);
+    assert!(close(machine(&s, "XM"), r, 1e-9), "{:?}", s.machine);
+    assert!(close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-9), "{:?}", s.machine);
+    // On the first compensated side the tool centre runs on x = 6 from y = −10 to the inner
+    // corner at y = 6.
+    let on_side: Vec<&Sample> = samples.iter().filter(|p| p.line == Some(5)).collect();
+    assert!(!on_side.is_empty());
+    for p in on_side {
+        let x = p.axes[0] * p.axes[1].to_radians().cos();
+        let y = p.axes[0] * p.axes[1].to_radians().sin();
+        assert!(close(x, 6.0, 1e-6) && y > -10.0 - 1e-6 && y < 6.0 + 1e-6, "({x}, {y})");
+    }
+}
