@@ -14,7 +14,11 @@ struct Sample {
 }
 
 fn run(preset: &str, program: &str) -> (Channel, Vec<Sample>) {
-    let mut ch = Channel::from_preset(preset, "").unwrap();
+    run_with(preset, "", program)
+}
+
+fn run_with(preset: &str, md: &str, program: &str) -> (Channel, Vec<Sample>) {
+    let mut ch = Channel::from_preset(preset, md).unwrap();
     ch.run_program(program).unwrap();
     let mut samples = Vec::new();
     while ch.is_busy() {
@@ -341,4 +345,32 @@ fn lead_and_tilt_orient_the_tool_against_the_path() {
 fn lead_beyond_md21090_is_refused() {
     let (ch, _) = run("mill5-head-ca", &format!("{START}LEAD=70 X100\nM30"));
     assert_eq!(ch.snapshot().alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14113]);
+}
+
+/// From A10 C0 to the orientation of A10 C170 the great circle passes 0.87° beside the pole
+/// (+Z), inside TRAFO5_NON_POLE_LIMIT (2°). Moving the end onto the start's meridian (the Y-Z
+/// plane) changes it by asin(sin 170°·sin 10°) = 1.73°, inside TRAFO5_POLE_LIMIT (2°): the
+/// orientation goes exactly through the pole, C stays at 0 and A ends at −asin(y)
+/// of the moved end. With POLE_LIMIT 1° the programmed end is kept and C turns to 170°.
+#[test]
+fn a_great_circle_near_the_pole_goes_through_it() {
+    let o = head_orientation(10.0, 170.0);
+    let program = format!("{START}A10\nORIWKS\nA3={} B3={} C3={}\nM0\nM30", o[0], o[1], o[2]);
+    let (ch, samples) = run("mill5-head-ca", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let n = o[1].hypot(o[2]);
+    let a_end = -(o[1] / n).asin().to_degrees();
+    assert!((machine(&s, "A") - a_end).abs() < 1e-6 && machine(&s, "C").abs() < 1e-6, "{:?}", s.machine);
+    assert!(a_end < -9.0);
+    let tilted = samples.iter().position(|p| (p.axes[3] - 10.0).abs() < 1e-9).expect("reaches A10");
+    for p in &samples[tilted..] {
+        assert!(p.axes[4].abs() < 1e-9, "C moved: {:?}", p.axes);
+        assert!(close3(head_tip(&p.axes), [0.0, 0.0, 50.0], 1e-6), "tip at {:?}", p.axes);
+    }
+
+    let (ch, _) = run_with("mill5-head-ca", "$MC_TRAFO5_POLE_LIMIT_1=1", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert!((machine(&s, "A") - 10.0).abs() < 1e-6 && (machine(&s, "C") - 170.0).abs() < 1e-6, "{:?}", s.machine);
 }

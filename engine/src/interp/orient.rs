@@ -14,8 +14,9 @@
 use super::Interpreter;
 use super::frame::Frame;
 use crate::alarm::{Alarm, Clear};
+use crate::kinematics::orient::ChainKind;
 use crate::kinematics::orient::{angles, cone_sweep};
-use crate::kinematics::{Transformation, Vec3};
+use crate::kinematics::{AnyTrafo, Transformation, Traori, Vec3};
 use crate::machine_data::MachineConfig;
 use crate::motion::{AxisVec, OriPath};
 
@@ -254,6 +255,47 @@ fn lead_and_tilt(t: Vec3, n: Vec3, lead: f64, tilt: f64) -> Option<Vec3> {
     Some(crate::motion::rotate(leaned, t, tilt.to_radians()))
 }
 
+/// Pole handling of the great circle (TRAFO5_NON_POLE_LIMIT, TRAFO5_POLE_LIMIT): when the
+/// great circle from `start` to `end` passes the pole direction of the kinematics closer than
+/// NON_POLE_LIMIT without meeting it, and moving `end` onto the plane through the pole and
+/// `start` changes it by at most POLE_LIMIT, the orientation is interpolated exactly through the
+/// pole instead: the returned end orientation lies on that plane, so the great circle to it
+/// crosses the pole and the pole axis need not swing round. `None`: keep the programmed end.
+fn through_pole(t: &Traori, start: Vec3, end: Vec3) -> Option<Vec3> {
+    let chain = t.chain();
+    if chain.axes < 2 {
+        return None;
+    }
+    let pole = match chain.kind {
+        ChainKind::Tool => chain.v[0],
+        ChainKind::Part | ChainKind::Mixed => chain.v[1],
+    };
+    let (non_pole_limit, pole_limit) = t.pole_limits();
+    let dot = |a: Vec3, b: Vec3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let cross = |a: Vec3, b: Vec3| [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    // Closest approach of the great circle's arc to ±pole.
+    let normal = normalized(cross(start, end))?;
+    let p = if dot(pole, start) + dot(pole, end) >= 0.0 { pole } else { pole.map(|x| -x) };
+    let off_plane = dot(p, normal).abs().clamp(0.0, 1.0).asin().to_degrees();
+    let foot = normalized([
+        p[0] - dot(p, normal) * normal[0],
+        p[1] - dot(p, normal) * normal[1],
+        p[2] - dot(p, normal) * normal[2],
+    ])?;
+    let within = dot(cross(start, foot), normal) > 0.0 && dot(cross(foot, end), normal) > 0.0;
+    if !within || off_plane >= non_pole_limit || off_plane < 1e-9 || t.pole_angle(&start) < 1e-6 {
+        return None;
+    }
+    let meridian = normalized(cross(p, start))?;
+    let moved = normalized([
+        end[0] - dot(end, meridian) * meridian[0],
+        end[1] - dot(end, meridian) * meridian[1],
+        end[2] - dot(end, meridian) * meridian[2],
+    ])?;
+    let change = dot(moved, end).clamp(-1.0, 1.0).acos().to_degrees();
+    (change <= pole_limit).then_some(moved)
+}
+
 /// 14120: great-circle interpolation between antiparallel orientations.
 fn antiparallel(line: u32) -> Alarm {
     Alarm {
@@ -389,6 +431,24 @@ impl Interpreter {
             m_start[*k] = start[*k];
         }
         let Some(o_start) = active.trafo.orientation(&m_start) else { return Ok(None) };
+        let vector = matches!(interpolation, OriInterpolation::Vector | OriInterpolation::Path);
+        let o_end = match (&active.trafo, vector) {
+            (AnyTrafo::Traori(t), true) => match through_pole(t, o_start, o_end) {
+                Some(o) => {
+                    // Through the pole: the end moves onto the start's meridian, which the
+                    // rotary axes reach with the pole axis where it stands.
+                    active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
+                        Alarm::value_out_of_range(
+                            line,
+                            "orientation not reachable by the rotary axes of the transformation",
+                        )
+                    })?;
+                    o
+                }
+                None => o_end,
+            },
+            _ => o_end,
+        };
         match interpolation {
             OriInterpolation::Axes => Ok(None),
             OriInterpolation::Vector | OriInterpolation::Path => {
