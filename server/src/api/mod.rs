@@ -11,6 +11,7 @@ pub mod programs;
 pub mod roles;
 pub mod sessions;
 pub mod stream;
+pub mod swivel;
 
 use std::time::Duration;
 
@@ -78,6 +79,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(control::run))
         .routes(routes!(control::start))
         .routes(routes!(control::mda))
+        .routes(routes!(swivel::swivel))
         .routes(routes!(jog::jog))
         .routes(routes!(stream::stream));
     let waiting = with_body_limit(waiting, limits.body_bytes)
