@@ -405,3 +405,46 @@ fn the_compensation_type_words_are_modal_g_group_22() {
     assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
     assert_eq!((ch.r_param(1), ch.r_param(2), ch.r_param(3)), (6.0, 1.0, 5.0));
 }
+
+#[test]
+fn tcofr_and_parot_reproduce_the_w1_table_example() {
+    // W1 p.2-98: with ROT Y−45 and TCOFR the table axis along +Y gets +45°; PAROT then turns
+    // the WCS by 45° about Y ($P_PARTFRAME), PAROTOF keeps only the offset.
+    let ch = run(
+        "mill-3axis",
+        W1_TABLE,
+        "T1 D1\nROT Y-45\nTCARR=1 TCOFR\nR1=$P_TCANG[1] R2=$P_TCSOL\nPAROT\nR3=$P_PARTFRAME[Y,RT] R4=$P_GG[52]\n\
+         PAROTOF\nR5=$P_PARTFRAME[Y,RT] R6=$P_PARTFRAME[X,TR]\nM30",
+    );
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    assert!((ch.r_param(1) - 45.0).abs() < 1e-9, "{}", ch.r_param(1));
+    assert_eq!(ch.r_param(2), 1.0, "one axis: one solution");
+    assert!((ch.r_param(3) - 45.0).abs() < 1e-9, "{}", ch.r_param(3));
+    assert_eq!((ch.r_param(4), ch.r_param(5)), (1.0, 0.0));
+    assert!((ch.r_param(6) - 15.0 * 45f64.to_radians().sin()).abs() < 1e-9);
+}
+
+#[test]
+fn cut2d_compensates_in_the_plane_of_the_turned_tool_and_cut2df_in_the_frames() {
+    // A B head turned to 90° ($TC_CARR13, no axis named): the tool lies along +X, so its
+    // length (100) acts on X. G41 along +Y with a 5 mm radius: CUT2DF offsets in the frame's
+    // X-Y plane (−X), CUT2D in the plane perpendicular to the tool (Rx-turned: +Z).
+    let holder = "$MN_MM_NUM_TOOL_CARRIER=1\n$TC_CARR8[1]=1\n$TC_CARR13[1]=90\n$TC_DP6[1,1]=5\n$TC_DP3[1,1]=100";
+    let prog = |cut: &str| format!("T1 D1\nTCARR=1\n{cut}\nG0 X0 Y0 Z0\nG41 G1 Y50 F1000\nY100\nM0\nM30");
+    let ch = run("mill-3axis", holder, &prog("CUT2DF"));
+    assert_axes(&ch, &[("X", 100.0 - 5.0), ("Y", 100.0), ("Z", 0.0)]);
+    let ch = run("mill-3axis", holder, &prog("CUT2D"));
+    assert_axes(&ch, &[("X", 100.0), ("Y", 100.0), ("Z", 5.0)]);
+}
+
+#[test]
+fn toframex_and_toframey_make_the_tool_the_new_x_or_y() {
+    // G17 without a holder: the tool is the old Z. TOFRAMEX turns X onto it (Ry(−90)), so
+    // Z10 in the new frame is X−10; TOFRAMEY turns Y onto it (Rx(90)): Z10 is Y−10.
+    let ch = run("mill-3axis", "", "R1=$P_GG[53]\nTOFRAMEX\nR2=$P_GG[53]\nG0 X0 Y0 Z10\nM30");
+    assert_axes(&ch, &[("X", -10.0), ("Y", 0.0), ("Z", 0.0)]);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (1.0, 9.0));
+    let ch = run("mill-3axis", "", "TOFRAMEY\nG0 X0 Y0 Z10\nTOROTOF\nR1=$P_GG[53]\nM30");
+    assert_axes(&ch, &[("X", 0.0), ("Y", -10.0), ("Z", 0.0)]);
+    assert_eq!(ch.r_param(1), 1.0);
+}
