@@ -443,6 +443,89 @@ pub struct MdaRequest {
     pub wait: bool,
 }
 
+/// The swivel mode of `POST /sessions/{id}/swivel` (CYCLE800 `_MODE` bits 7–6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SwivelMode {
+    /// Rotations `a`, `b`, `c` about the axes of `sequence` in turn, each about the rotated axes.
+    AxisByAxis,
+    /// `a` about Z, then `b` about the new Y (`c` then turns about the new Z).
+    SolidAngle,
+    /// Projection angles `a`, `b` about the first two axes of `sequence`, `c` in the plane
+    /// about its third axis (e.g. `XYZ`: Xα, Yα, Zβ).
+    ProjectionAngle,
+    /// `a`, `b` are the positions of rotary axes 1 and 2; the frame follows the kinematics.
+    Direct,
+}
+
+/// Body of `POST /sessions/{id}/swivel`: the parameters of CYCLE800 by name. The swivel runs
+/// as one MDA block `CYCLE800(...)` (from JOG the channel returns to JOG when `wait` is set
+/// and the swivel ended without an alarm).
+#[derive(Debug, Clone, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SwivelRequest {
+    /// `_TC`: swivel data set name (`$TC_CARR34`) or number; absent: the active one; `"0"`
+    /// deselects (TCARR=0, PAROTOF, TOROTOF; nothing moves). Letters, digits and `_` only.
+    #[schema(example = "HEAD_CA")]
+    pub data_set: Option<String>,
+    /// `_FR` retraction before swivelling: 0 none, 1 machine Z to `$TC_CARR40`, 2 machine Z
+    /// then X/Y (`$TC_CARR38/39`), 4 maximum along the tool, 5 `retract_distance` along the tool.
+    #[serde(default)]
+    pub retract: u8,
+    /// `_FR_I`: incremental retraction path for `retract: 5` (mm, ≥ 0).
+    #[serde(default)]
+    pub retract_distance: f64,
+    /// `_ST` units digit: add to the active swivel instead of replacing it.
+    #[serde(default)]
+    pub additive: bool,
+    /// `_ST` tens digit: tool tip tracking (effective with an active TRAORI).
+    #[serde(default)]
+    pub tracking: bool,
+    pub mode: SwivelMode,
+    /// Axis sequence for axis-by-axis and projection angle: a permutation of `XYZ`.
+    #[serde(default = "default_sequence")]
+    #[schema(example = "XYZ")]
+    pub sequence: String,
+    /// `_X0`, `_Y0`, `_Z0`: reference point of the rotation.
+    #[serde(default)]
+    pub x0: f64,
+    #[serde(default)]
+    pub y0: f64,
+    #[serde(default)]
+    pub z0: f64,
+    /// `_A`, `_B`, `_C`: angles in degrees (meaning by `mode`).
+    #[serde(default)]
+    pub a: f64,
+    #[serde(default)]
+    pub b: f64,
+    #[serde(default)]
+    pub c: f64,
+    /// `_X1`, `_Y1`, `_Z1`: zero point of the swivelled plane.
+    #[serde(default)]
+    pub x1: f64,
+    #[serde(default)]
+    pub y1: f64,
+    #[serde(default)]
+    pub z1: f64,
+    /// `_DIR`: −1 minus (lower value of the direction-reference rotary axis), +1 plus (higher),
+    /// 0 compute the plane without moving the rotary axes.
+    #[serde(default = "default_direction")]
+    pub direction: i8,
+    #[serde(default)]
+    pub pace: PaceOption,
+    /// As for `run`.
+    #[serde(default)]
+    pub wait: bool,
+}
+
+fn default_sequence() -> String {
+    "XYZ".into()
+}
+
+fn default_direction() -> i8 {
+    1
+}
+
 /// Body of `PUT /sessions/{id}/mode`.
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]

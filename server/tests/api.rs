@@ -571,3 +571,46 @@ async fn a_program_that_computes_forever_is_stopped_by_the_fast_wall_time_limit(
     assert_eq!(reply.body["status"], "stopped");
     assert!(reply.headers.get("nctwin-limit").is_some());
 }
+
+// ---- swivel (CYCLE800) ----
+
+#[tokio::test]
+async fn the_swivel_endpoint_turns_the_head_from_jog_and_returns_to_jog() {
+    let server = Server::start().await;
+    let id = server.session("mill5-head-ca").await;
+    let mode = server.put(&format!("/sessions/{id}/mode"), json!({"mode": "JOG"})).await;
+    assert_eq!(mode.status, StatusCode::OK, "{}", mode.body);
+    let body = json!({"data_set": "HEAD_CA", "mode": "axis_by_axis", "sequence": "XYZ", "a": 30,
+        "direction": 1, "pace": "fast", "wait": true});
+    let reply = server.post(&format!("/sessions/{id}/swivel"), body).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["alarms"], json!([]), "{}", reply.body);
+    assert_eq!(reply.body["mode"], "JOG");
+    assert!((pos(&reply.body, "machine", "A") - 30.0).abs() < 1e-9, "{}", reply.body);
+    // Minus: the lower A (the head's direction reference), C half a turn away.
+    let body = json!({"data_set": "HEAD_CA", "mode": "axis_by_axis", "a": 30, "direction": -1,
+        "pace": "fast", "wait": true});
+    let reply = server.post(&format!("/sessions/{id}/swivel"), body).await;
+    assert!((pos(&reply.body, "machine", "A") + 30.0).abs() < 1e-9, "{}", reply.body);
+}
+
+#[tokio::test]
+async fn swivel_parameters_that_do_not_fit_are_400_or_an_alarm_without_motion() {
+    let server = Server::start().await;
+    let id = server.session("mill5-head-ca").await;
+    for body in [
+        json!({"mode": "axis_by_axis", "sequence": "XYX"}),
+        json!({"mode": "direct", "retract": 3}),
+        json!({"mode": "direct", "retract": 5, "retract_distance": -2}),
+        json!({"mode": "sideways"}),
+    ] {
+        let reply = server.post(&format!("/sessions/{id}/swivel"), body.clone()).await;
+        assert_eq!(reply.status, StatusCode::BAD_REQUEST, "{body}: {}", reply.body);
+    }
+    // A = 120 lies beyond the head's ±110°: the cycle's alarm 61184, nothing moves.
+    let body = json!({"data_set": "HEAD_CA", "mode": "direct", "a": 0, "b": 120, "pace": "fast", "wait": true});
+    let reply = server.post(&format!("/sessions/{id}/swivel"), body).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["alarms"][0]["number"], 61184, "{}", reply.body);
+    assert_eq!(pos(&reply.body, "machine", "A"), 0.0);
+}

@@ -16,6 +16,8 @@ mod modal;
 mod orient;
 mod scope;
 mod statements;
+mod swivel;
+pub mod toolholder;
 mod trafo;
 pub mod trc;
 pub mod value;
@@ -24,6 +26,7 @@ pub mod vars;
 use std::sync::Arc as Shared;
 
 use crate::alarm::Alarm;
+use crate::kinematics;
 use crate::lang::{Block, CoordMode};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -176,6 +179,8 @@ pub struct Interpreter {
     spindle_angles: AxisVec,
     /// The active kinematic transformation, if any (see `trafo.rs`).
     trafo: trafo::TrafoState,
+    /// The orientable toolholder and G groups 22, 42, 52, 53 (see `swivel.rs`).
+    holder: toolholder::Holder,
 }
 
 impl Interpreter {
@@ -198,6 +203,7 @@ impl Interpreter {
             positioned: [false; MAX_CHANNEL_AXES],
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
+            holder: toolholder::Holder { g53: 1, ..Default::default() },
         }
     }
 
@@ -213,7 +219,7 @@ impl Interpreter {
         self.direction = 0;
         self.pframe = Frame::identity();
         self.offsets.frame = self.active_frame(cfg);
-        self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
+        self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
         self.reset_transformation(cfg, machine);
     }
@@ -362,8 +368,9 @@ impl Interpreter {
         if let Some(f) = &words.program_frame {
             self.pframe = f.clone();
         }
+        self.holder_block(&words, cfg, line, out)?;
         self.offsets.frame = self.active_frame(cfg);
-        self.offsets.tool = tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
+        self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         self.absorb_tool_into_transformation();
 
         // Spindle before motion.
@@ -590,13 +597,37 @@ impl Interpreter {
             let n = norm(&v);
             if n > 0.0 { v.map(|x| x / n) } else { v }
         };
+        let (mut u, mut v) = (frame.geo_direction(&cfg.geo_axes, pa), frame.geo_direction(&cfg.geo_axes, po));
+        // CUT2D/CUT3DFS: a holder that turns the tool turns the compensation plane with it
+        // (seeds/004); CUT2DF/CUT3DFF keep the plane of the frame.
+        if let Some(c) = self.carrier(cfg).filter(|_| self.holder.cut.follows_holder())
+            && c.kind != crate::machine_data::CarrierKind::Part
+        {
+            let turned = |g: usize| {
+                let e = kinematics::orient::vec3::unit(g);
+                let d = toolholder::machine_orientation(c, self.holder.angles, e);
+                let mut out = [0.0; MAX_CHANNEL_AXES];
+                for (i, k) in cfg.geo_axes.iter().enumerate() {
+                    if let Some(k) = k {
+                        out[*k] = d[i];
+                    }
+                }
+                out
+            };
+            if (0..3).any(|g| {
+                toolholder::machine_orientation(c, self.holder.angles, kinematics::orient::vec3::unit(g))
+                    != kinematics::orient::vec3::unit(g)
+            }) {
+                (u, v) = (turned(pa), turned(po));
+            }
+        }
         Ok(Some(trc::Compensation {
             side,
             radius,
             corners: self.modal.trc_corners,
             arc_feed: self.modal.arc_feed,
-            u: unit(frame.geo_direction(&cfg.geo_axes, pa)),
-            v: unit(frame.geo_direction(&cfg.geo_axes, po)),
+            u: unit(u),
+            v: unit(v),
             groove_wall,
         }))
     }

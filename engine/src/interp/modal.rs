@@ -7,6 +7,7 @@ use super::eval::{eval, eval_f64};
 use super::frame::Frame;
 use super::orient::{self, OriModal, OriWords};
 use super::scope::{Ctx, SysView};
+use super::toolholder::{CutMode, TcoMode, g53_code};
 use super::trc::{ArcFeed, CornerMode, Side};
 use super::value::Value;
 use super::vars::Variables;
@@ -319,6 +320,18 @@ pub(super) struct Words {
     /// `STAT=`: joint configuration for PTP; `TU=`: turn direction of the rotary axes.
     pub stat: Option<u32>,
     pub tu: Option<u32>,
+    /// `TCARR=n` or `TCARR="name"`.
+    pub tcarr: Option<Value>,
+    /// G group 42: TCOABS, TCOFR, TCOFRZ/Y/X.
+    pub tco: Option<TcoMode>,
+    /// G group 52: PAROT (true), PAROTOF.
+    pub parot: Option<bool>,
+    /// G group 53: TOROTOF .. TOFRAMEX by its code (1..9).
+    pub g53_group: Option<i64>,
+    /// G group 22: CUT2D, CUT2DF, CUT3DFS, CUT3DFF.
+    pub cut: Option<CutMode>,
+    /// `CYCLE800(...)`: the evaluated arguments (`None` = omitted).
+    pub swivel: Option<Vec<Option<Value>>>,
 }
 
 impl Words {
@@ -383,6 +396,20 @@ pub(super) fn collect(
                     "PTPG0" => PtpMode::PtpG0,
                     _ => PtpMode::PtpWoc,
                 });
+            }
+            Word::Keyword { name, args } if args.is_empty() && holder_keyword(&mut w, name, line)? => {}
+            Word::Keyword { name, args } if name == "CYCLE800" => {
+                if w.swivel.is_some() {
+                    return Err(Alarm::syntax(line, "one CYCLE800 per block"));
+                }
+                let mut values = Vec::new();
+                for e in args {
+                    values.push(match e {
+                        Expr::Call(n, a) if n == "_OMITTED" && a.is_empty() => None,
+                        e => Some(eval(e, &Ctx { vars, sys }, line)?),
+                    });
+                }
+                w.swivel = Some(values);
             }
             Word::Keyword { name, args } if args.is_empty() && frame_op(name).is_some() => {
                 if w.frame_op.is_some() {
@@ -449,6 +476,14 @@ pub(super) fn collect(
                         continue;
                     }
                     Assigned::Address => {}
+                }
+                if name == "TCARR" {
+                    if seen.contains(&name.as_str()) {
+                        return Err(Alarm::repeated_address(line, name));
+                    }
+                    seen.push(name);
+                    w.tcarr = Some(eval(&value.expr, &Ctx { vars, sys }, line)?);
+                    continue;
                 }
                 let v = eval_f64(&value.expr, &Ctx { vars, sys }, line)?;
                 let whole = |what: &str| -> Result<u32, Alarm> {
@@ -642,6 +677,7 @@ fn data_write(
     line: u32,
 ) -> Result<String, Alarm> {
     let writable = name.starts_with("$TC_DP")
+        || name.starts_with("$TC_CARR")
         || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_UBFR")
         || ["$MN_", "$MC_", "$MA_", "$SN_", "$SC_", "$SA_"].iter().any(|p| name.starts_with(p));
     if !writable {
@@ -670,6 +706,9 @@ fn data_write(
         Value::Axis(a) => a,
         v => format!("{:?}", v.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?),
     };
+    if name == "$TC_CARR23" && !matches!(value.trim_matches('"').to_ascii_uppercase().as_str(), "T" | "P" | "M") {
+        return Err(super::swivel::invalid_kind(line, &value));
+    }
     let index = if idx.is_empty() { String::new() } else { format!("[{}]", idx.join(",")) };
     Ok(format!("{name}{index}={value}"))
 }
@@ -678,9 +717,57 @@ fn data_write(
 fn is_nc_address(name: &str) -> bool {
     const ADDRESSES: &[&str] = &[
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "SPOS",
+        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "SPOS", "TCARR",
     ];
     ADDRESSES.contains(&name) || orient::is_address(name)
+}
+
+/// The keywords of G groups 22, 42, 52 and 53; false for any other word.
+fn holder_keyword(w: &mut Words, name: &str, line: u32) -> Result<bool, Alarm> {
+    let set = |slot: bool| {
+        if slot {
+            Err(Alarm::syntax(line, &format!("{name}: two G functions of one group in a block")))
+        } else {
+            Ok(true)
+        }
+    };
+    if let Some(code) = g53_code(name) {
+        set(w.g53_group.is_some())?;
+        w.g53_group = Some(code);
+        return Ok(true);
+    }
+    let tco = match name {
+        "TCOABS" => Some(TcoMode::Abs),
+        "TCOFR" | "TCOFRZ" => Some(TcoMode::Frame(2)),
+        "TCOFRY" => Some(TcoMode::Frame(1)),
+        "TCOFRX" => Some(TcoMode::Frame(0)),
+        _ => None,
+    };
+    if let Some(t) = tco {
+        set(w.tco.is_some())?;
+        w.tco = Some(t);
+        return Ok(true);
+    }
+    let cut = match name {
+        "CUT2D" => Some(CutMode::Cut2d),
+        "CUT2DF" => Some(CutMode::Cut2dF),
+        "CUT3DFS" => Some(CutMode::Cut3dFs),
+        "CUT3DFF" => Some(CutMode::Cut3dFf),
+        _ => None,
+    };
+    if let Some(c) = cut {
+        set(w.cut.is_some())?;
+        w.cut = Some(c);
+        return Ok(true);
+    }
+    match name {
+        "PAROT" | "PAROTOF" => {
+            set(w.parot.is_some())?;
+            w.parot = Some(name == "PAROT");
+            Ok(true)
+        }
+        _ => Ok(false),
+    }
 }
 
 fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {

@@ -26,6 +26,8 @@ pub(crate) struct SysView<'a> {
     pub positioned: &'a [bool; MAX_CHANNEL_AXES],
     /// The active transformation's view (machine positions, chain layers).
     pub trafo: &'a super::trafo::TrafoState,
+    /// The orientable toolholder state.
+    pub holder: &'a super::toolholder::Holder,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -41,6 +43,7 @@ macro_rules! sys_view {
             system: &$interp.system,
             positioned: &$interp.positioned,
             trafo: &$interp.trafo,
+            holder: &$interp.holder,
         }
     };
 }
@@ -134,11 +137,28 @@ impl Scope for Ctx<'_> {
                     _ => return Err(Alarm::index_error(line, name, "needs one G group number")),
                 };
                 Value::Int(
-                    g_group_index(sys.modal, group)
+                    g_group_index(sys.modal, sys.holder, group)
                         .ok_or_else(|| Alarm::index_error(line, name, &format!("G group {group} is not modelled")))?,
                 )
             }
             _ if name.starts_with("$TC_DP") => tool_param(sys.cfg, name, indices, line)?,
+            _ if name.starts_with("$TC_CARR") => carrier_param(sys.cfg, name, indices, line)?,
+            "$P_TCANG" => {
+                let n = match indices {
+                    [n] => n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
+                    _ => return Err(Alarm::index_error(line, name, "needs one index 1..4")),
+                };
+                let h = sys.holder;
+                let second = h.second.unwrap_or([0.0; 2]);
+                Value::Real(match n {
+                    1 | 2 if h.number != 0 => h.angles[n as usize - 1],
+                    3 | 4 if h.number != 0 => second[n as usize - 3],
+                    1..=4 => 0.0,
+                    _ => return Err(Alarm::index_error(line, name, &format!("index {n} (1..4)"))),
+                })
+            }
+            "$P_TCSOL" => Value::Int(if sys.holder.number != 0 { sys.holder.solutions.into() } else { 0 }),
+            "$P_TCNUM" => Value::Int(sys.holder.number.into()),
             "$P_PFRAME" | "$P_ACTFRAME" | "$P_IFRAME" | "$P_ACTBFRAME" | "$P_PARTFRAME" | "$P_TOOLFRAME"
             | "$P_CYCFRAME" | "$P_UIFR" | "$P_CHBFR" | "$P_UBFR" => {
                 let stored = |list: &[crate::machine_data::FrameData]| {
@@ -181,6 +201,54 @@ impl Scope for Ctx<'_> {
     }
 }
 
+/// `$TC_CARRn[m]`: one toolholder parameter as stored (0 / "" for a holder without data).
+fn carrier_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    use crate::machine_data::carrier::{ParamKind, param_kind};
+    let n: u32 = name[8..].parse().map_err(|_| Alarm::unknown_name(line, name))?;
+    let kind = param_kind(n).ok_or_else(|| Alarm::unknown_name(line, name))?;
+    let [m] = indices else { return Err(Alarm::index_error(line, name, "needs [toolholder]")) };
+    let m = m.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    let c = u32::try_from(m).ok().and_then(|m| cfg.carriers.get(&m));
+    let Some(c) = c else {
+        return Ok(match kind {
+            ParamKind::Kind => Value::Str("T".into()),
+            ParamKind::Str | ParamKind::Axis => Value::Str(String::new()),
+            ParamKind::Int => Value::Int(0),
+            ParamKind::Real => Value::Real(0.0),
+        });
+    };
+    let v3 = |v: &[f64; 3], first: u32| v[(n - first) as usize];
+    Ok(match n {
+        1..=3 => Value::Real(v3(&c.l[0], 1)),
+        4..=6 => Value::Real(v3(&c.l[1], 4)),
+        7..=9 => Value::Real(v3(&c.v[0], 7)),
+        10..=12 => Value::Real(v3(&c.v[1], 10)),
+        13 | 14 => Value::Real(c.angles[(n - 13) as usize]),
+        15..=17 => Value::Real(v3(&c.l[2], 15)),
+        18..=20 => Value::Real(v3(&c.l[3], 18)),
+        21 | 22 => c.axes[(n - 21) as usize].clone().map_or(Value::Int(0), Value::Axis),
+        23 => Value::Str(
+            match c.kind {
+                crate::machine_data::CarrierKind::Tool => "T",
+                crate::machine_data::CarrierKind::Part => "P",
+                crate::machine_data::CarrierKind::Mixed => "M",
+            }
+            .into(),
+        ),
+        24 | 25 => Value::Real(c.offsets[(n - 24) as usize]),
+        26 | 27 => Value::Real(c.hirth[(n - 26) as usize].map_or(0.0, |h| h.offset)),
+        28 | 29 => Value::Real(c.hirth[(n - 28) as usize].map_or(0.0, |h| h.increment)),
+        30 | 31 => Value::Real(c.limits[(n - 30) as usize].map_or(0.0, |l| l.0)),
+        32 | 33 => Value::Real(c.limits[(n - 32) as usize].map_or(0.0, |l| l.1)),
+        34 => Value::Str(c.name.clone()),
+        35 | 36 => Value::Str(c.axis_names[(n - 35) as usize].clone()),
+        37 => Value::Int(c.control),
+        38..=40 => Value::Real(c.retract[(n - 38) as usize]),
+        // Fine offsets are folded into the vectors (SD42974); they read as 0 here.
+        _ => Value::Real(0.0),
+    })
+}
+
 fn tool_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
     let p: usize =
         name[6..].parse().ok().filter(|p| (1..=25).contains(p)).ok_or_else(|| Alarm::unknown_name(line, name))?;
@@ -192,7 +260,32 @@ fn tool_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> 
 }
 
 /// Position of the active G function within its group, numbered as `$P_GG` reports it.
-fn g_group_index(m: &Modal, group: i64) -> Option<i64> {
+fn g_group_index(m: &Modal, h: &super::toolholder::Holder, group: i64) -> Option<i64> {
+    use super::toolholder::{CutMode, TcoMode};
+    match group {
+        // Group 22: CUT2D 1 (the reset value); CUT3DFS 4, CUT3DFF 5, CUT2DF 6 are this product's
+        // numbering (the consulted sources do not list the group). Group 42: TCOABS 1, TCOFR 2,
+        // TCOFRY 4, TCOFRX 5 (TCOFRZ reads as TCOFR). Group 52: PAROT 1, PAROTOF 2. Group 53: P7.
+        22 => {
+            return Some(match h.cut {
+                CutMode::Cut2d => 1,
+                CutMode::Cut3dFs => 4,
+                CutMode::Cut3dFf => 5,
+                CutMode::Cut2dF => 6,
+            });
+        }
+        42 => {
+            return Some(match h.tco {
+                TcoMode::Abs => 1,
+                TcoMode::Frame(2) => 2,
+                TcoMode::Frame(1) => 4,
+                TcoMode::Frame(_) => 5,
+            });
+        }
+        52 => return Some(if h.parot { 1 } else { 2 }),
+        53 => return Some(h.g53),
+        _ => {}
+    }
     Some(match group {
         1 => match m.motion {
             MotionMode::Rapid => 1,

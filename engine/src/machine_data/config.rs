@@ -64,6 +64,12 @@ pub struct MachineConfig {
     pub master_spindle: Option<usize>,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
     pub tools: BTreeMap<(u32, u32), EdgeParams>,
+    /// Orientable toolholders `$TC_CARR..[m]` by number m.
+    pub carriers: BTreeMap<u32, super::Carrier>,
+    /// SD42980 TOFRAME_MODE.
+    pub toframe_mode: i64,
+    /// MD55410 MILL_SWIVEL_ALARM_MASK (CYCLE800 alarms 61186/61187).
+    pub swivel_alarm_mask: i64,
     /// Settable frames G500, G54.. (`$P_UIFR[n]`).
     pub work_offsets: Vec<FrameData>,
     /// Channel basic frames (`$P_CHBFR[n]`), chained in order into `$P_ACTBFRAME`.
@@ -242,6 +248,9 @@ impl MachineConfig {
             geo_names,
             master_spindle,
             tools: BTreeMap::new(),
+            carriers: BTreeMap::new(),
+            toframe_mode: md.num("$SC_TOFRAME_MODE", 0, 0) as i64,
+            swivel_alarm_mask: md.num("$MC_MILL_SWIVEL_ALARM_MASK", 0, 0) as i64,
             work_offsets: Vec::new(),
             base_frames: Vec::new(),
             reset_trafo: ResetTrafo::build(md, &trafos)?,
@@ -252,7 +261,7 @@ impl MachineConfig {
         Ok(cfg)
     }
 
-    /// Takes over tool data and settable frames from `md`, which act at once (unlike machine
+    /// Takes over tool data, toolholders and settable frames from `md`, which act at once (unlike machine
     /// data, which waits for NEWCONF or a reset).
     pub fn refresh_data(&mut self, md: &MachineData) -> Result<(), ActivationError> {
         let n = self.channel_axes.len();
@@ -289,6 +298,7 @@ impl MachineConfig {
         self.work_offsets = work_offsets;
         self.base_frames = base_frames;
         self.tools = md.tools().clone();
+        self.carriers = md.carriers();
         Ok(())
     }
 

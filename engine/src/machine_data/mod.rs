@@ -5,6 +5,7 @@
 //! rest of the engine reads. Text is applied all-or-nothing: an unknown name, a bad index, a
 //! bad value or an inconsistent result rejects the whole text with the offending line.
 
+pub mod carrier;
 mod config;
 pub mod presets;
 pub mod registry;
@@ -14,6 +15,7 @@ pub mod traori;
 
 use std::collections::BTreeMap;
 
+pub use carrier::{Carrier, CarrierKind};
 pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
@@ -134,6 +136,8 @@ pub struct MachineData {
     values: BTreeMap<Key, Value>,
     tools: BTreeMap<(u32, u32), EdgeParams>,
     frames: BTreeMap<FrameKey, f64>,
+    /// Toolholder data `$TC_CARRn[m]` by (m, n), values that differ from the default.
+    carriers: BTreeMap<(u32, u32), Value>,
 }
 
 impl MachineData {
@@ -223,6 +227,10 @@ impl MachineData {
         let err = |m: String| MdError::at(line, m);
         if let Some(n) = name.strip_prefix("$TC_DP") {
             self.assign_tool(line, name, n, indices, value)?;
+            return Ok(None);
+        }
+        if let Some(n) = name.strip_prefix("$TC_CARR") {
+            self.assign_carrier(line, name, n, indices, value)?;
             return Ok(None);
         }
         let family = match name {
@@ -322,6 +330,37 @@ impl MachineData {
         Ok(())
     }
 
+    /// `$TC_CARRn[m]=value`: toolholder m (1..MD18088 MM_NUM_TOOL_CARRIER), parameter n.
+    fn assign_carrier(
+        &mut self,
+        line: u32,
+        name: &str,
+        param: &str,
+        indices: &[IndexTok],
+        value: &Literal,
+    ) -> Result<(), MdError> {
+        let err = |m: String| MdError::at(line, m);
+        let n: u32 =
+            param.parse().ok().filter(|n| carrier::param_kind(*n).is_some()).ok_or_else(|| {
+                err(format!("unknown name {name} (toolholder data is $TC_CARR1..46, 55..60, 64, 65)"))
+            })?;
+        let [IndexTok::Number(m)] = indices else {
+            return Err(err(format!("{name} needs [toolholder number], e.g. {name}[1]")));
+        };
+        let count = self.num("$MN_MM_NUM_TOOL_CARRIER", 0, 0) as i64;
+        if !(1..=count).contains(m) {
+            return Err(err(format!("{name}[{m}]: toolholder out of range 1..{count} ($MN_MM_NUM_TOOL_CARRIER)")));
+        }
+        let v = carrier::convert(n, value).map_err(|e| err(format!("{name}[{m}]: {e}")))?;
+        let key = (*m as u32, n);
+        if v == carrier::default_value(n) {
+            self.carriers.remove(&key);
+        } else {
+            self.carriers.insert(key, v);
+        }
+        Ok(())
+    }
+
     fn assign_frame(
         &mut self,
         line: u32,
@@ -385,6 +424,9 @@ impl MachineData {
                 out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", p + 1);
             }
         }
+        for ((m, n), v) in &self.carriers {
+            out += &format!("$TC_CARR{n}[{m}]={}\n", carrier::show(*n, v));
+        }
         for ((family, frame, axis, component), v) in &self.frames {
             out += &format!("{}[{frame},{axis},{}]={v:?}\n", family.names().0, component.code());
         }
@@ -394,6 +436,16 @@ impl MachineData {
     /// Cutting edges with their parameters, ordered by (tool, edge).
     pub fn tools(&self) -> &BTreeMap<(u32, u32), EdgeParams> {
         &self.tools
+    }
+
+    /// The typed toolholders that have any stored value, by number.
+    pub fn carriers(&self) -> BTreeMap<u32, Carrier> {
+        let fine = self.num("$SC_TOCARR_FINE_CORRECTION", 0, 0) != 0.0;
+        let mut by_holder: BTreeMap<u32, BTreeMap<u32, Value>> = BTreeMap::new();
+        for ((m, n), v) in &self.carriers {
+            by_holder.entry(*m).or_default().insert(*n, v.clone());
+        }
+        by_holder.into_iter().map(|(m, p)| (m, Carrier::build(m, &p, fine))).collect()
     }
 
     /// Stored frame components by (family, frame, axis name, component).

@@ -52,19 +52,19 @@ pub static PRESETS: &[Preset] = &[
     Preset {
         id: "mill5-head-ca",
         name: "5-axis mill with swivel head C/A (TRAORI type 20)",
-        description: "Linear axes X, Y, Z (40 m/min, 4 m/s²); fork head with C about Z (modulo) carrying A about X (−110..+110°), 14400°/min; A pivot 150 mm above the spindle nose; TRAORI data set 1 (type 20, tool side); tool T1 (end mill L100 R5).",
+        description: "Linear axes X, Y, Z (40 m/min, 4 m/s²); fork head with C about Z (modulo) carrying A about X (−110..+110°), 14400°/min; A pivot 150 mm above the spindle nose; TRAORI data set 1 (type 20, tool side) and swivel data set 1 \"HEAD_CA\" (toolholder type T, CYCLE800); tool T1 (end mill L100 R5).",
         text: MILL5_HEAD_CA,
     },
     Preset {
         id: "mill5-table-ac",
         name: "5-axis mill with trunnion table A/C (TRAORI type 33)",
-        description: "Linear axes X, Y, Z (50 m/min, 5 m/s²); trunnion A about X (−120..+120°, 10800°/min) carrying the rotary table C about Z (modulo, 18000°/min); TRAORI data set 1 (type 33, workpiece side, DIN-reversed axes); tool T1 (end mill L100 R5).",
+        description: "Linear axes X, Y, Z (50 m/min, 5 m/s²); trunnion A about X (−120..+120°, 10800°/min) carrying the rotary table C about Z (modulo, 18000°/min); TRAORI data set 1 (type 33, workpiece side, DIN-reversed axes) and swivel data set 1 \"TABLE_AC\" (toolholder type P, CYCLE800); tool T1 (end mill L100 R5).",
         text: MILL5_TABLE_AC,
     },
     Preset {
         id: "mill5-mixed-bc",
         name: "5-axis mill with swivel head B and rotary table C (TRAORI type 51)",
-        description: "Linear axes X, Y, Z (30 m/min, 3 m/s²); head B about Y (−100..+100°, 10800°/min), pivot 120 mm above the spindle nose; rotary table C about Z (modulo, 18000°/min); TRAORI data set 1 (type 51, mixed); tool T1 (end mill L100 R5).",
+        description: "Linear axes X, Y, Z (30 m/min, 3 m/s²); head B about Y (−100..+100°, 10800°/min), pivot 120 mm above the spindle nose; rotary table C about Z (modulo, 18000°/min); TRAORI data set 1 (type 51, mixed) and swivel data set 1 \"MIXED_BC\" (toolholder type M, CYCLE800); tool T1 (end mill L100 R5).",
         text: MILL5_MIXED_BC,
     },
 ];
@@ -442,6 +442,25 @@ $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
 $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
 $MC_TRAFO5_NON_POLE_LIMIT_1=2.
 $MC_TRAFO5_POLE_LIMIT_1=2.
+; Swivel data set 1 (toolholder type T) with the same head for TCARR and CYCLE800: C carries A,
+; l1 = (0, 0, 150) from the spindle nose to the A pivot, l3 = −l1 back to the tool reference.
+$MN_MM_NUM_TOOL_CARRIER=1
+$TC_CARR3[1]=150.
+$TC_CARR17[1]=-150.
+$TC_CARR9[1]=1.               ; v1 = Z (C)
+$TC_CARR10[1]=1.              ; v2 = X (A)
+$TC_CARR21[1]=C
+$TC_CARR22[1]=A
+$TC_CARR23[1]="T"
+$TC_CARR31[1]=-110.
+$TC_CARR33[1]=110.
+$TC_CARR34[1]="HEAD_CA"
+$TC_CARR35[1]="C"
+$TC_CARR36[1]="A"
+$TC_CARR37[1]=2005            ; all swivel modes; direction reference: rotary axis 2 (A)
+$TC_CARR38[1]=0.
+$TC_CARR39[1]=0.
+$TC_CARR40[1]=250.            ; retraction position Z (machine)
 "#;
 
 const MILL5_TABLE_AC: &str = r#"; 5-axis mill with a trunnion table: A tilts about X and carries the rotary table C.
@@ -512,6 +531,26 @@ $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
 $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
 $MC_TRAFO5_NON_POLE_LIMIT_1=2.
 $MC_TRAFO5_POLE_LIMIT_1=2.
+; Swivel data set 1 (toolholder type P) with the same table: A (reversed, DIN) carries C
+; (reversed); l2 = BASE_TOOL, l3 = JOINT_OFFSET, l4 = PART_OFFSET of the TRAORI data.
+$MN_MM_NUM_TOOL_CARRIER=1
+$TC_CARR5[1]=20.
+$TC_CARR6[1]=-100.
+$TC_CARR16[1]=-20.
+$TC_CARR17[1]=80.
+$TC_CARR20[1]=20.
+$TC_CARR7[1]=-1.              ; v1 = −X (A turns the workpiece)
+$TC_CARR12[1]=-1.             ; v2 = −Z (C turns the workpiece)
+$TC_CARR21[1]=A
+$TC_CARR22[1]=C
+$TC_CARR23[1]="P"
+$TC_CARR30[1]=-120.
+$TC_CARR32[1]=120.
+$TC_CARR34[1]="TABLE_AC"
+$TC_CARR35[1]="A"
+$TC_CARR36[1]="C"
+$TC_CARR37[1]=1005            ; all swivel modes; direction reference: rotary axis 1 (A)
+$TC_CARR40[1]=350.            ; retraction position Z (machine)
 "#;
 
 const MILL5_MIXED_BC: &str = r#"; 5-axis mill with a swivel head B (about Y) and a rotary table C (about Z).
@@ -580,6 +619,25 @@ $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
 $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
 $MC_TRAFO5_NON_POLE_LIMIT_1=2.
 $MC_TRAFO5_POLE_LIMIT_1=2.
+; Swivel data set 1 (toolholder type M): head B (axis 1) and table C (axis 2, reversed);
+; l1 = JOINT_OFFSET, l2 = BASE_TOOL, l3 = JOINT_OFFSET_PART, l4 = PART_OFFSET.
+$MN_MM_NUM_TOOL_CARRIER=1
+$TC_CARR3[1]=120.
+$TC_CARR6[1]=-120.
+$TC_CARR17[1]=-80.
+$TC_CARR20[1]=80.
+$TC_CARR8[1]=1.               ; v1 = Y (B turns the tool)
+$TC_CARR12[1]=-1.             ; v2 = −Z (C turns the workpiece)
+$TC_CARR21[1]=B
+$TC_CARR22[1]=C
+$TC_CARR23[1]="M"
+$TC_CARR30[1]=-100.
+$TC_CARR32[1]=100.
+$TC_CARR34[1]="MIXED_BC"
+$TC_CARR35[1]="B"
+$TC_CARR36[1]="C"
+$TC_CARR37[1]=1005            ; all swivel modes; direction reference: rotary axis 1 (B)
+$TC_CARR40[1]=350.            ; retraction position Z (machine)
 "#;
 
 #[cfg(test)]

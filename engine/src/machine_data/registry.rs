@@ -101,6 +101,11 @@ const fn def(
     Def { name, number, scope, setting: false, kind, len, default, min, max }
 }
 
+/// A setting datum (`$SN_`/`$SC_`/`$SA_`).
+const fn sd(name: &'static str, number: u32, scope: Scope, kind: Kind, default: Default, min: f64, max: f64) -> Def {
+    Def { name, number, scope, setting: true, kind, len: 1, default, min, max }
+}
+
 const INF: f64 = f64::INFINITY;
 const N: Scope = Scope::Nck;
 const C: Scope = Scope::Channel;
@@ -168,6 +173,8 @@ pub static DEFS: &[Def] = &[
     ),
     def("SYSCLOCK_CYCLE_TIME", 10050, N, Kind::Real, 1, Default::Real(0.002), 0.000125, 0.031),
     def("IPO_SYSCLOCK_TIME_RATIO", 10070, N, Kind::Int, 1, Default::Int(2), 1.0, 100.0),
+    // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
+    def("MM_NUM_TOOL_CARRIER", 18088, N, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
     def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
     def(
         "AXCONF_GEOAX_ASSIGN_TAB",
@@ -364,6 +371,15 @@ pub static DEFS: &[Def] = &[
     def("SPIND_ASSIGN_TO_MACHAX", 35000, A, Kind::Int, 1, Default::Int(0), 0.0, 20.0),
     def("POS_LIMIT_MINUS", 36100, A, Kind::Real, 1, Default::Real(-1e8), -INF, INF),
     def("POS_LIMIT_PLUS", 36110, A, Kind::Real, 1, Default::Real(1e8), -INF, INF),
+    // Setting data. SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
+    sd("TOCARR_FINE_CORRECTION", 42974, C, Kind::Bool, Default::Bool(false), 0.0, 1.0),
+    // SD42980 TOFRAME_MODE: 0/1 as MD21110; 2000 X/Y compromise, 2001 new X in the old X-Z
+    // plane, 2002 new Y in the old Y-Z plane (808D list manual p.360). Default 2000, the value
+    // the IM9 commissioning manual (12/2017 p.566) prescribes for swivelling.
+    sd("TOFRAME_MODE", 42980, C, Kind::Int, Default::Int(2000), 0.0, 2002.0),
+    // Cycle machine datum MD55410 MILL_SWIVEL_ALARM_MASK: bit 0 shows CYCLE800 alarm 61186,
+    // bit 1 alarm 61187 (IM9 06/2019 p.581).
+    def("MILL_SWIVEL_ALARM_MASK", 55410, C, Kind::Int, 1, Default::Int(0), 0.0, 3.0),
 ];
 
 /// Looks a datum up by its full name (`$MC_TRAFO_TYPE_1`).

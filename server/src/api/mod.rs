@@ -13,6 +13,7 @@ pub mod roles;
 pub mod sessions;
 pub mod stream;
 pub mod viewers;
+pub mod swivel;
 
 use std::time::Duration;
 
@@ -85,6 +86,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(control::run))
         .routes(routes!(control::start))
         .routes(routes!(control::mda))
+        .routes(routes!(swivel::swivel))
         .routes(routes!(jog::jog))
         .routes(routes!(stream::stream));
     let waiting = with_body_limit(waiting, limits.body_bytes)
