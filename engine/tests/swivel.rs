@@ -98,6 +98,7 @@ fn tcarr_zero_and_tcarr_by_name_select_and_deselect() {
     let text = format!("{W1_TABLE}\n$TC_CARR34[1]=\"W1\"");
     let ch = run("mill-3axis", &text, "T1 D1\nTCARR=\"W1\"\nG0 X0 Y10 Z0\nTCARR=0\nG0 X0 Y10 Z0\nM30");
     assert_axes(&ch, &[("X", 0.0), ("Y", 10.0), ("Z", 13.0)]);
+    // MD18088 = 1: holder 2 does not exist (holder 1 would, even without data).
     let ch = run("mill-3axis", W1_TABLE, "T1 D1\nTCARR=2\nM30");
     assert_eq!(ch.alarms().first().map(|a| a.number), Some(14150));
 }
@@ -320,6 +321,10 @@ fn a_swivel_table_turns_the_workpiece_and_the_wcs_with_it() {
     let delta: Vec<f64> = (0..3).map(|i| l2[i] + inner[i] - (l2[i] + l3[i] + l4[i])).collect();
     assert_axes(&ch, &[("A", 30.0), ("C", 0.0)]);
     assert_axes(&ch, &[("X", 10.0 + delta[0]), ("Y", 20.0 + delta[1]), ("Z", 30.0 + delta[2] + 100.0)]);
+    // Direct swivelling to A = 30, C = 0 gives the same plane and the same machine position.
+    let call = "CYCLE800(0,\"TABLE_AC\",0,192,0,0,0,30,0,0,0,0,0,0,0,1)";
+    let direct = run("mill5-table-ac", "", &format!("T1 D1\n{call}\nG0 X10 Y20 Z30\nM30"));
+    assert_axes(&direct, &[("X", 10.0 + delta[0]), ("Y", 20.0 + delta[1]), ("Z", 30.0 + delta[2] + 100.0)]);
     // Minus takes the other solution (A = −30, C = 180): the same plane.
     let call = "CYCLE800(0,\"TABLE_AC\",0,57,0,0,0,30,0,0,0,0,0,-1,0,1)";
     let ch = run("mill5-table-ac", "", &format!("T1 D1\n{call}\nM30"));
@@ -395,6 +400,13 @@ fn holder_data_written_by_a_program_acts_from_the_next_block() {
     assert_axes(&ch, &[("Y", 10.0)]);
     assert!((machine(&ch.snapshot(), "X") - 10.606601717798213).abs() < 1e-9);
     assert_eq!(ch.r_param(1), 15.0);
+    // Fine offsets read back as written and act only with SD42974.
+    let ch = run(
+        "mill-3axis",
+        "$MN_MM_NUM_TOOL_CARRIER=1\n$TC_CARR20[1]=15\n$TC_CARR60[1]=0.5",
+        "R1=$TC_CARR20[1] R2=$TC_CARR60[1] R3=$TC_CARR23[1]\nM30",
+    );
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (15.0, 0.5));
     let ch = run("mill-3axis", "$MN_MM_NUM_TOOL_CARRIER=1", "$TC_CARR23[1]=\"Q\"\nM30");
     assert_eq!(ch.alarms().first().map(|a| a.number), Some(14153));
 }

@@ -219,13 +219,13 @@ fn carrier_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) 
     };
     let v3 = |v: &[f64; 3], first: u32| v[(n - first) as usize];
     Ok(match n {
-        1..=3 => Value::Real(v3(&c.l[0], 1)),
-        4..=6 => Value::Real(v3(&c.l[1], 4)),
+        1..=3 => Value::Real(v3(&c.l_basic[0], 1)),
+        4..=6 => Value::Real(v3(&c.l_basic[1], 4)),
         7..=9 => Value::Real(v3(&c.v[0], 7)),
         10..=12 => Value::Real(v3(&c.v[1], 10)),
         13 | 14 => Value::Real(c.angles[(n - 13) as usize]),
-        15..=17 => Value::Real(v3(&c.l[2], 15)),
-        18..=20 => Value::Real(v3(&c.l[3], 18)),
+        15..=17 => Value::Real(v3(&c.l_basic[2], 15)),
+        18..=20 => Value::Real(v3(&c.l_basic[3], 18)),
         21 | 22 => c.axes[(n - 21) as usize].clone().map_or(Value::Int(0), Value::Axis),
         23 => Value::Str(
             match c.kind {
@@ -235,7 +235,7 @@ fn carrier_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) 
             }
             .into(),
         ),
-        24 | 25 => Value::Real(c.offsets[(n - 24) as usize]),
+        24 | 25 => Value::Real(c.offsets_basic[(n - 24) as usize]),
         26 | 27 => Value::Real(c.hirth[(n - 26) as usize].map_or(0.0, |h| h.offset)),
         28 | 29 => Value::Real(c.hirth[(n - 28) as usize].map_or(0.0, |h| h.increment)),
         30 | 31 => Value::Real(c.limits[(n - 30) as usize].map_or(0.0, |l| l.0)),
@@ -244,8 +244,11 @@ fn carrier_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) 
         35 | 36 => Value::Str(c.axis_names[(n - 35) as usize].clone()),
         37 => Value::Int(c.control),
         38..=40 => Value::Real(c.retract[(n - 38) as usize]),
-        // Fine offsets are folded into the vectors (SD42974); they read as 0 here.
-        _ => Value::Real(0.0),
+        41..=43 => Value::Real(v3(&c.l_fine[0], 41)),
+        44..=46 => Value::Real(v3(&c.l_fine[1], 44)),
+        55..=57 => Value::Real(v3(&c.l_fine[2], 55)),
+        58..=60 => Value::Real(v3(&c.l_fine[3], 58)),
+        _ => Value::Real(c.offsets_fine[(n - 64) as usize]),
     })
 }
 

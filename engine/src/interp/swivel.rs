@@ -298,7 +298,9 @@ impl Interpreter {
             self.holder.parot = p;
             changed = true;
         }
-        if changed || words.plane.is_some() && self.holder.number != 0 {
+        // A plane change only swaps the tool's own length components (every block recomputes
+        // the tool vector); the holder's angles stay.
+        if changed {
             self.update_holder(cfg, line)?;
         }
         if let Some(code) = words.g53_group {

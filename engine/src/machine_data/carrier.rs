@@ -125,6 +125,12 @@ pub struct Carrier {
     pub kind: CarrierKind,
     /// Offset vectors l1..l4, fine offsets added when SD42974 TOCARR_FINE_CORRECTION is set.
     pub l: [[f64; 3]; 4],
+    /// The stored basic vectors (1..6, 15..20) and fine offsets (41..46, 55..60) as written.
+    pub l_basic: [[f64; 3]; 4],
+    pub l_fine: [[f64; 3]; 4],
+    /// The stored `$TC_CARR24/25` and their fine offsets `$TC_CARR64/65`.
+    pub offsets_basic: [f64; 2],
+    pub offsets_fine: [f64; 2],
     /// Rotary axis directions v1, v2 as entered (not normalised; zero = axis absent).
     pub v: [[f64; 3]; 2],
     /// `$TC_CARR13/14`: the stored angles.
@@ -171,6 +177,10 @@ impl Carrier {
             name: text(34),
             kind,
             l: [vec(1, 41), vec(4, 44), vec(15, 55), vec(18, 58)],
+            l_basic: [plain(1), plain(4), plain(15), plain(18)],
+            l_fine: [plain(41), plain(44), plain(55), plain(58)],
+            offsets_basic: [num(24), num(25)],
+            offsets_fine: [num(64), num(65)],
             v: [plain(7), plain(10)],
             angles: [num(13), num(14)],
             axes: [axis(21), axis(22)],

@@ -438,10 +438,11 @@ impl MachineData {
         &self.tools
     }
 
-    /// The typed toolholders that have any stored value, by number.
+    /// Every toolholder 1..MD18088 MM_NUM_TOOL_CARRIER, typed (defaults where nothing is stored).
     pub fn carriers(&self) -> BTreeMap<u32, Carrier> {
         let fine = self.num("$SC_TOCARR_FINE_CORRECTION", 0, 0) != 0.0;
-        let mut by_holder: BTreeMap<u32, BTreeMap<u32, Value>> = BTreeMap::new();
+        let count = self.num("$MN_MM_NUM_TOOL_CARRIER", 0, 0) as u32;
+        let mut by_holder: BTreeMap<u32, BTreeMap<u32, Value>> = (1..=count).map(|m| (m, BTreeMap::new())).collect();
         for ((m, n), v) in &self.carriers {
             by_holder.entry(*m).or_default().insert(*n, v.clone());
         }
