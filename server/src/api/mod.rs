@@ -12,8 +12,8 @@ pub mod programs;
 pub mod roles;
 pub mod sessions;
 pub mod stream;
-pub mod viewers;
 pub mod swivel;
+pub mod viewers;
 
 use std::time::Duration;
 
