@@ -278,6 +278,14 @@ fn retraction_to_the_holder_position_comes_before_the_swivel() {
     let ch = run("mill5-head-ca", "", &format!("T1 D1\nG0 X10 Y20 Z50\n{call}\nM30"));
     // 40 mm up along the tool (still vertical) from Z 50 + 100.
     assert_axes(&ch, &[("X", 10.0), ("Y", 20.0), ("Z", 190.0)]);
+    // Mode 2: machine Z to $TC_CARR40 = 250, then X/Y to $TC_CARR38/39 = 0.
+    let call = "CYCLE800(2,\"HEAD_CA\",0,57,0,0,0,30,0,0,0,0,0,1,0,1)";
+    let ch = run("mill5-head-ca", "", &format!("T1 D1\nG0 X10 Y20 Z50\n{call}\nM30"));
+    assert_axes(&ch, &[("X", 0.0), ("Y", 0.0), ("Z", 250.0), ("A", 30.0)]);
+    // Mode 4: as far as possible along the (vertical) tool: Z up to its software limit 300.
+    let call = "CYCLE800(4,\"HEAD_CA\",0,57,0,0,0,30,0,0,0,0,0,1,0,1)";
+    let ch = run("mill5-head-ca", "", &format!("T1 D1\nG0 X10 Y20 Z50\n{call}\nM30"));
+    assert_axes(&ch, &[("X", 10.0), ("Y", 20.0), ("Z", 300.0), ("A", 30.0)]);
 }
 
 #[test]
