@@ -362,6 +362,26 @@ async function main() {
       await page.click('[data-goto="machine"]');
     });
 
+    await step("swivel form: CYCLE800 on a 5-axis head turns A to 30°", async () => {
+      const id = await page.evaluate(async () => {
+        const res = await fetch("/api/v1/sessions", {
+          method: "POST",
+          headers: { "content-type": "application/json" },
+          body: JSON.stringify({ machine: "mill5-head-ca" }),
+        });
+        return (await res.json()).id;
+      });
+      await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.fill("#swivel-tc", "HEAD_CA");
+      await page.fill("#swivel-a", "30");
+      await page.click("#btn-swivel");
+      await page.click('#coords-toggle [data-frame="machine"]');
+      await page.waitForFunction(
+        () => Math.abs(Number(document.querySelector('#positions [data-frame="machine"][data-axis="A"]')?.textContent) - 30) < 1e-3,
+      );
+    });
+
     await step("no error in the message bar", async () => {
       if (!(await page.locator("#message").isHidden())) {
         throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);

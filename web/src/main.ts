@@ -9,6 +9,7 @@ import { rememberToken } from "./api/tokens";
 import { showMessage, wireMessageBar } from "./core/message";
 import { SessionController } from "./core/session";
 import { mountJog } from "./jog/jog";
+import { mountSwivel } from "./swivel/swivel";
 import { Lobby } from "./lobby/lobby";
 import { mountAlarms } from "./machine/alarms";
 import { mountControl } from "./machine/control";
@@ -42,6 +43,7 @@ async function main(): Promise<void> {
   mountOverrides(session);
   mountControls(session);
   mountJog(session);
+  mountSwivel(session);
   mountAlarms(session);
   mountEvents(session);
   mountMachineView(session);

@@ -16,6 +16,7 @@ import type {
   SessionSummary,
   State,
   StoredProgram,
+  SwivelCommand,
 } from "./types";
 
 const BASE = "/api/v1";
@@ -103,6 +104,7 @@ export const api = {
   mda: (id: string, program: string, pace: Pace) => request<State>("POST", `${s(id)}/mda`, { program, pace }),
   setMode: (id: string, mode: OpMode) => request<State>("PUT", `${s(id)}/mode`, { mode }),
   jog: (id: string, jog: JogCommand) => request<State>("POST", `${s(id)}/jog`, jog),
+  swivel: (id: string, swivel: SwivelCommand) => request<State>("POST", `${s(id)}/swivel`, swivel),
   jogStop: (id: string) => request<State>("POST", `${s(id)}/jog/stop`, {}),
   setOverrides: (id: string, o: Partial<Overrides>) => request<State>("PUT", `${s(id)}/overrides`, o),
   setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),

@@ -124,6 +124,27 @@ export interface JogCommand {
   rapid?: boolean;
 }
 
+/** Body of POST .../swivel: the CYCLE800 parameters by name. */
+export interface SwivelCommand {
+  data_set?: string;
+  retract: number;
+  additive: boolean;
+  tracking: boolean;
+  mode: "axis_by_axis" | "solid_angle" | "projection_angle" | "direct";
+  sequence: string;
+  x0: number;
+  y0: number;
+  z0: number;
+  a: number;
+  b: number;
+  c: number;
+  x1: number;
+  y1: number;
+  z1: number;
+  direction: 1 | -1;
+  wait: boolean;
+}
+
 /** Who holds control of a session (GET .../control). */
 export interface ControlState {
   auth: boolean; // the server requires tokens
