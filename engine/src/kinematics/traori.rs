@@ -46,6 +46,11 @@ impl Rotary {
     fn place(&self, pos: f64, near: f64) -> Option<f64> {
         let p = unwrap_near(pos, near);
         let Some((lo, hi)) = self.limits else { return Some(p) };
+        // p itself is the nearest turn (|p − near| ≤ 180°, and ties keep p): the usual case
+        // needs no search.
+        if p >= lo - 1e-9 && p <= hi + 1e-9 {
+            return Some(p);
+        }
         [0.0, -360.0, 360.0, -720.0, 720.0]
             .into_iter()
             .map(|k| p + k)
@@ -223,6 +228,48 @@ impl Traori {
     fn point(&self, bcs: &AxisVec) -> Vec3 {
         std::array::from_fn(|g| self.geo[g].map_or(0.0, |k| bcs[k]))
     }
+
+    /// Linear axis values `m` (chain order) into their channel axes.
+    fn write_linear(&self, m: &Vec3, machine: &mut AxisVec) {
+        for (i, slot) in self.lin.iter().enumerate() {
+            if let Some(k) = slot {
+                machine[*k] = m[i];
+            }
+        }
+    }
+
+    /// Rotary positions `pos` (chain order) into their channel axes.
+    fn write_rotary(&self, pos: &[f64; 3], axes: &mut AxisVec) {
+        for (r, p) in self.rot.iter().zip(pos) {
+            if let Some(r) = r {
+                axes[r.slot] = *p;
+            }
+        }
+    }
+
+    /// Of the (up to) two solutions for orientation `o` the one whose axes all fit their
+    /// software limits (after shifting by whole turns) with the least weighted travel from
+    /// `prev`: its positions and its effective angles (radians), both in chain order.
+    fn nearest_solution(&self, o: &Vec3, prev: &AxisVec) -> Result<([f64; 3], [f64; 3]), Unreachable> {
+        let sols = self.raw_solutions(o, &self.hint(Some(prev)))?;
+        let mut best: Option<(f64, usize, [f64; 3])> = None;
+        'sol: for (k, s) in sols.iter().enumerate() {
+            let mut pos = [0.0; 3];
+            let mut cost = 0.0;
+            for (i, r) in self.rot.iter().enumerate() {
+                let Some(r) = r else { continue };
+                let Some(p) = r.place(r.position(s[i]), prev[r.slot]) else { continue 'sol };
+                cost += (p - prev[r.slot]).abs() * r.weight;
+                pos[i] = p;
+            }
+            // Ties keep the first (the "+γ" root), so the choice is deterministic.
+            if best.is_none_or(|(c, _, _)| cost < c - 1e-12) {
+                best = Some((cost, k, pos));
+            }
+        }
+        let (_, k, pos) = best.ok_or(Unreachable)?;
+        Ok((pos, sols[k]))
+    }
 }
 
 impl Transformation for Traori {
@@ -258,11 +305,7 @@ impl Transformation for Traori {
     fn inverse(&self, bcs: &AxisVec, _prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
         let pose = self.chain.pose(&self.angles(bcs));
         let m = self.chain.linear(&self.point(bcs), &pose, &scale(tool, -1.0));
-        for (i, slot) in self.lin.iter().enumerate() {
-            if let Some(k) = slot {
-                machine[*k] = m[i];
-            }
-        }
+        self.write_linear(&m, machine);
         for r in self.rot.iter().flatten() {
             machine[r.slot] = bcs[r.slot];
         }
@@ -282,28 +325,20 @@ impl Transformation for Traori {
     /// axis keeps its `prev` position. `Unreachable` if `o` cannot be reached or no solution
     /// fits the limits.
     fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let sols = self.raw_solutions(o, &self.hint(Some(prev)))?;
-        let mut best: Option<(f64, [f64; 3])> = None;
-        'sol: for s in &sols {
-            let mut pos = [0.0; 3];
-            let mut cost = 0.0;
-            for (i, r) in self.rot.iter().enumerate() {
-                let Some(r) = r else { continue };
-                let Some(p) = r.place(r.position(s[i]), prev[r.slot]) else { continue 'sol };
-                cost += (p - prev[r.slot]).abs() * r.weight;
-                pos[i] = p;
-            }
-            // Ties keep the first (the "+γ" root), so the choice is deterministic.
-            if best.is_none_or(|(c, _)| cost < c - 1e-12) {
-                best = Some((cost, pos));
-            }
-        }
-        let (_, pos) = best.ok_or(Unreachable)?;
-        for (i, r) in self.rot.iter().enumerate() {
-            if let Some(r) = r {
-                axes[r.slot] = pos[i];
-            }
-        }
+        let (pos, _) = self.nearest_solution(o, prev)?;
+        self.write_rotary(&pos, axes);
+        Ok(())
+    }
+
+    /// One pass instead of [`Traori::orientation_axes`] then [`Traori::inverse`]: the pose for
+    /// the linear axes is built from the chosen solution's own angles, so the rotary positions
+    /// are not turned back into angles.
+    fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        let (pos, angles) = self.nearest_solution(o, prev)?;
+        let pose = self.chain.pose(&angles);
+        let m = self.chain.linear(&self.point(axes), &pose, &scale(tool, -1.0));
+        self.write_rotary(&pos, axes);
+        self.write_linear(&m, axes);
         Ok(())
     }
 }
