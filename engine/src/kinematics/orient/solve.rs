@@ -59,6 +59,46 @@ fn wrap(a: f64) -> f64 {
     }
 }
 
+/// An angle (radians) with its cosine and sine. [`two_axes_turns`] gets the cosine and sine
+/// from the same in-plane coordinates as the angle, so the caller builds the rotation matrices
+/// of the pose without a `sin_cos` per axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Turn {
+    pub angle: f64,
+    pub cos: f64,
+    pub sin: f64,
+}
+
+impl Turn {
+    /// No rotation.
+    pub const ZERO: Turn = Turn { angle: 0.0, cos: 1.0, sin: 0.0 };
+
+    pub fn new(angle: f64) -> Turn {
+        let (sin, cos) = angle.sin_cos();
+        Turn { angle, cos, sin }
+    }
+
+    /// The direction of the plane vector (x, y), not both zero.
+    fn of(y: f64, x: f64) -> Turn {
+        let r = (x * x + y * y).sqrt();
+        Turn { angle: atan2(y, x), cos: x / r, sin: y / r }
+    }
+
+    /// The opposite rotation.
+    pub fn reversed(self) -> Turn {
+        Turn { angle: -self.angle, cos: self.cos, sin: -self.sin }
+    }
+
+    /// `self − other`, the angle wrapped into −π..π.
+    fn minus(self, other: Turn) -> Turn {
+        Turn {
+            angle: wrap(self.angle - other.angle),
+            cos: self.cos * other.cos + self.sin * other.sin,
+            sin: self.sin * other.cos - self.cos * other.sin,
+        }
+    }
+}
+
 /// Subproblem 2: both pairs `[θ1, θ2]` (radians, −π..π) with `R(w1, θ1)·R(w2, θ2)·p = q`, for
 /// unit axes `w1`, `w2` that are not parallel and unit vectors `p`, `q`. The first pair is the
 /// "+γ" root.
@@ -76,6 +116,12 @@ fn wrap(a: f64) -> f64 {
 /// `atan2` give both roots; with perpendicular axes and p or q on an axis (every preset)
 /// two of them are the exact constants that [`atan2`] answers at once.
 pub fn two_axes(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) -> Option<[[f64; 2]; 2]> {
+    Some(two_axes_turns(w1, w2, p, q, hint)?.map(|r| r.map(|t| t.angle)))
+}
+
+/// [`two_axes`] with the cosine and sine of every angle.
+#[inline]
+pub fn two_axes_turns(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) -> Option<[[Turn; 2]; 2]> {
     let tol2 = POLE_TOL * POLE_TOL;
     // |p × w2|² and |q × w1|²: the pole tests, and below the terms of γ².
     let (pw2, qw1) = (cross(p, w2), cross(q, w1));
@@ -85,16 +131,18 @@ pub fn two_axes(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) -> Opt
         if (dot(w1, p) - dot(w1, q)).abs() > REACH_TOL {
             return None;
         }
-        let t1 = angle_about(w1, p, q).unwrap_or(hint[0]);
-        return Some([[t1, hint[1]], [t1, hint[1]]]);
+        let t1 = Turn::new(angle_about(w1, p, q).unwrap_or(hint[0]));
+        let t2 = Turn::new(hint[1]);
+        return Some([[t1, t2], [t1, t2]]);
     }
     // Pole of the outer axis: q lies on w1, so the intermediate vector is q itself.
     if sq2 < tol2 {
         if (dot(w2, p) - dot(w2, q)).abs() > REACH_TOL {
             return None;
         }
-        let t2 = angle_about(w2, p, q).unwrap_or(hint[1]);
-        return Some([[hint[0], t2], [hint[0], t2]]);
+        let t1 = Turn::new(hint[0]);
+        let t2 = Turn::new(angle_about(w2, p, q).unwrap_or(hint[1]));
+        return Some([[t1, t2], [t1, t2]]);
     }
     let c12 = dot(w1, w2);
     let d = c12 * c12 - 1.0;
@@ -112,15 +160,19 @@ pub fn two_axes(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) -> Opt
         return None;
     }
     let g = g2.max(0.0).sqrt();
-    let phi_q = atan2(dot(q, &n), w2q - c12 * w1q);
-    let phi_p = atan2(-dot(p, &n), w1p - c12 * w2p);
+    // q and p are off the axes here (the pole tests above): their in-plane parts are not zero.
+    let phi_q = Turn::of(dot(q, &n), w2q - c12 * w1q);
+    let phi_p = Turn::of(-dot(p, &n), w1p - c12 * w2p);
     // c lies on w1 (w2) when both its in-plane coordinates vanish: θ1 (θ2) is free.
-    let chi = (n2 * (beta * beta + g * g) >= tol2).then(|| atan2(g, beta));
-    let psi = (n2 * (alpha * alpha + g * g) >= tol2).then(|| atan2(g, alpha));
-    let root = |sign: f64| {
-        [chi.map_or(hint[0], |chi| wrap(phi_q - sign * chi)), psi.map_or(hint[1], |psi| wrap(-sign * psi - phi_p))]
-    };
-    Some([root(1.0), root(-1.0)])
+    let chi = (n2 * (beta * beta + g * g) >= tol2).then(|| Turn::of(g, beta));
+    let psi = (n2 * (alpha * alpha + g * g) >= tol2).then(|| Turn::of(g, alpha));
+    let t1 = |chi: Turn| phi_q.minus(chi);
+    let t2 = |psi: Turn| psi.minus(phi_p);
+    let (free1, free2) = (|| Turn::new(hint[0]), || Turn::new(hint[1]));
+    Some([
+        [chi.map_or_else(free1, t1), psi.map_or_else(free2, |psi| t2(psi.reversed()))],
+        [chi.map_or_else(free1, |chi| t1(chi.reversed())), psi.map_or_else(free2, t2)],
+    ])
 }
 
 #[cfg(test)]
@@ -209,6 +261,10 @@ mod tests {
             let (fast, slow) = (two_axes(&w1, &w2, &p, &q, hint), reference(&w1, &w2, &p, &q, hint));
             let (fast, slow) = (fast.expect("reachable"), slow.expect("reachable"));
             prop_assert!(max_diff(&fast, &slow) < 1e-12, "{fast:?} vs {slow:?}");
+            // The cosines and sines carried along are those of the angles.
+            for t in two_axes_turns(&w1, &w2, &p, &q, hint).expect("reachable").as_flattened() {
+                prop_assert!((t.cos - t.angle.cos()).abs() < 1e-12 && (t.sin - t.angle.sin()).abs() < 1e-12, "{t:?}");
+            }
             for [t1, t2] in fast {
                 prop_assert!((-PI..=PI).contains(&t1) && (-PI..=PI).contains(&t2));
                 let back = Rot::about(&w1, t1).apply(&Rot::about(&w2, t2).apply(&p));
