@@ -8,7 +8,6 @@ impl Channel {
     /// Maps the planner's position of this cycle to machine positions: through the
     /// transformation of the move the position lies on, continuous with the last cycle.
     pub(super) fn update_machine_position(&mut self) {
-        let pos = *self.planner.position();
         let tag = self.planner.position_tag();
         let meta = tag.and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t));
         if tag != self.trafo_tag {
@@ -20,13 +19,16 @@ impl Channel {
         }
         let machine_space = meta.is_some_and(|(_, m)| m.machine_space);
         match self.trafo.as_ref().filter(|_| !machine_space) {
-            None => self.machine = pos,
+            None => self.machine = *self.planner.position(),
             Some(t) => {
+                // Mapped in place in a copy of the BCS position (the transformation writes only
+                // its own slots); the last machine position stays the continuity reference.
+                let mut m = *self.planner.position();
                 let mapped = match self.planner.orientation() {
-                    Some(o) => t.inverse_oriented(&pos, o, &self.machine),
-                    None => t.inverse(&pos, &self.machine),
+                    Some(o) => t.trafo.inverse_oriented(o, &self.machine, &t.tool, &mut m),
+                    None => t.trafo.inverse(self.planner.position(), &self.machine, &t.tool, &mut m),
                 };
-                if let Ok(m) = mapped {
+                if mapped.is_ok() {
                     self.machine = m;
                 }
             }

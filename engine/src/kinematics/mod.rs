@@ -96,6 +96,14 @@ pub trait Transformation {
     fn orientation_axes(&self, _o: &Vec3, _prev: &AxisVec, _axes: &mut AxisVec) -> Result<(), Unreachable> {
         Err(Unreachable)
     }
+    /// [`Transformation::orientation_axes`] then [`Transformation::inverse`] in place: `axes`
+    /// holds the BCS position on entry and the machine position on return. Once per IPO cycle
+    /// of an oriented move, so a transformation may fuse the two (TRAORI reuses the solved angles).
+    fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        self.orientation_axes(o, prev, axes)?;
+        let bcs = *axes;
+        self.inverse(&bcs, prev, tool, axes)
+    }
 }
 
 /// Any of the modelled transformations, as a plain value (cheap to clone and compare).
@@ -163,6 +171,9 @@ impl Transformation for AnyTrafo {
     }
     fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
         dispatch!(self, t => t.orientation_axes(o, prev, axes))
+    }
+    fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        dispatch!(self, t => t.inverse_oriented(o, prev, tool, axes))
     }
 }
 
@@ -242,9 +253,9 @@ impl ActiveTrafo {
     /// Like [`ActiveTrafo::inverse`], with the tool orientation `o` (BCS) deciding the rotary
     /// axes instead of the orientation slots of `bcs`.
     pub fn inverse_oriented(&self, bcs: &AxisVec, o: &Vec3, prev: &AxisVec) -> Result<AxisVec, Unreachable> {
-        let mut oriented = *bcs;
-        self.trafo.orientation_axes(o, prev, &mut oriented)?;
-        self.inverse(&oriented, prev)
+        let mut out = *bcs;
+        self.trafo.inverse_oriented(o, prev, &self.tool, &mut out)?;
+        Ok(out)
     }
 }
 
@@ -343,5 +354,9 @@ pub(crate) fn radial_minima(path: &Path, x: usize, y: usize) -> Vec<(f64, f64)> 
 
 /// `angle` (degrees) shifted by whole turns to lie closest to `near`.
 pub(crate) fn unwrap_near(angle: f64, near: f64) -> f64 {
+    // Within half a turn the rounding gives ±0 turns: skip it (`round` is a library call).
+    if (near - angle).abs() < 180.0 {
+        return angle;
+    }
     angle + 360.0 * ((near - angle) / 360.0).round()
 }

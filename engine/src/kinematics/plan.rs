@@ -58,6 +58,7 @@ pub fn plan_block(
     cuts.extend(poles.iter().copied().filter(|&u| u > 1e-9 && u < 1.0 - 1e-9));
     cuts.sort_by(f64::total_cmp);
     let critical = t.critical_params(path, tool);
+    let slots = t.machine_slots();
 
     let mut machine = *start;
     let mut out: Vec<Move> = Vec::new();
@@ -84,7 +85,7 @@ pub fn plan_block(
             }
         }
         let local: Vec<f64> = critical.iter().filter(|&&c| c > u0 && c < u1).map(|&c| (c - u0) / (u1 - u0)).collect();
-        let (moves, end) = plan_piece(active, mv, &sub, len, &local, &machine, cfg)?;
+        let (moves, end) = plan_piece(active, mv, &sub, len, &local, &machine, &slots, cfg)?;
         out.extend(moves);
         machine = end;
     }
@@ -113,6 +114,8 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
 }
 
 /// Samples one pole-free piece and turns it into one or more moves with machine-derived limits.
+/// `slots` are the transformation's machine axes.
+#[allow(clippy::too_many_arguments)]
 fn plan_piece(
     active: &ActiveTrafo,
     mv: &Move,
@@ -120,10 +123,10 @@ fn plan_piece(
     len: f64,
     critical: &[f64],
     start: &AxisVec,
+    slots: &[usize],
     cfg: &MachineConfig,
 ) -> Result<(Vec<Move>, AxisVec), PlanError> {
     let t = &active.trafo;
-    let slots = t.machine_slots();
     let n = ((len / 0.25).ceil() as usize).clamp(8, 400);
     let mut us: Vec<f64> = (0..=n).map(|i| i as f64 / n as f64).collect();
     for &c in critical {
@@ -132,8 +135,10 @@ fn plan_piece(
     us.sort_by(f64::total_cmp);
     us.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
 
-    // Machine positions along the piece, each continuous with the one before.
-    let mut ms: Vec<AxisVec> = Vec::with_capacity(us.len());
+    // Machine positions of the slots along the piece (sample-major), each sample continuous
+    // with the one before.
+    let ns = slots.len();
+    let mut ms: Vec<f64> = Vec::with_capacity(us.len() * ns);
     let mut prev = *start;
     let mut p = [0.0; MAX_CHANNEL_AXES];
     for &u in &us {
@@ -142,7 +147,7 @@ fn plan_piece(
             Some(o) => active.inverse_oriented(&p, &o, &prev)?,
             None => active.inverse(&p, &prev)?,
         };
-        for &k in &slots {
+        for &k in slots {
             let ax = cfg.axis(k);
             if ax.modulo.is_some() || ax.spindle.is_some() {
                 continue;
@@ -151,34 +156,39 @@ fn plan_piece(
                 return Err(PlanError::SoftLimit { axis: ax.name.clone(), plus: m[k] > ax.limit_plus });
             }
         }
-        ms.push(m);
+        ms.extend(slots.iter().map(|&k| m[k]));
         prev = m;
     }
 
-    // Rates dm/ds per interval, and their change per unit length at the samples.
+    // Rates dm/ds per interval, and their change per unit length at the samples (zero at the
+    // ends), each computed once: the limits below read them several times per interval.
     let intervals = us.len() - 1;
     let ds: Vec<f64> = us.windows(2).map(|w| (w[1] - w[0]) * len).collect();
-    let rate = |j: usize, k: usize| (ms[j + 1][k] - ms[j][k]) / ds[j];
-    let curvature = |j: usize, k: usize| -> f64 {
-        // At the interval's ends, against its neighbours.
-        let at = |i: usize| -> f64 {
-            if i == 0 || i >= intervals {
+    let rates: Vec<f64> = (0..intervals * ns).map(|i| (ms[i + ns] - ms[i]) / ds[i / ns]).collect();
+    let bends: Vec<f64> = (0..(intervals + 1) * ns)
+        .map(|i| {
+            let (j, s) = (i / ns, i % ns);
+            if j == 0 || j >= intervals {
                 return 0.0;
             }
-            (rate(i, k) - rate(i - 1, k)).abs() / (0.5 * (ds[i] + ds[i - 1]))
-        };
-        at(j).max(at(j + 1))
-    };
-    let limit = |k: usize| -> (f64, f64) {
-        let ax = cfg.axis(k);
-        let share = t.limit_share(k);
-        (ax.max_velocity * share, ax.max_accel * share)
-    };
+            (rates[j * ns + s] - rates[(j - 1) * ns + s]).abs() / (0.5 * (ds[j] + ds[j - 1]))
+        })
+        .collect();
+    // By interval j and slot index s (not channel axis).
+    let rate = |j: usize, s: usize| rates[j * ns + s];
+    let curvature = |j: usize, s: usize| bends[j * ns + s].max(bends[(j + 1) * ns + s]);
+    let limits: Vec<(f64, f64)> = slots
+        .iter()
+        .map(|&k| {
+            let ax = cfg.axis(k);
+            let share = t.limit_share(k);
+            (ax.max_velocity * share, ax.max_accel * share)
+        })
+        .collect();
     let v_allowed: Vec<f64> = (0..intervals)
         .map(|j| {
-            slots.iter().fold(f64::INFINITY, |v, &k| {
-                let (vmax, amax) = limit(k);
-                let (r, c) = (rate(j, k).abs(), curvature(j, k));
+            limits.iter().enumerate().fold(f64::INFINITY, |v, (s, &(vmax, amax))| {
+                let (r, c) = (rate(j, s).abs(), curvature(j, s));
                 let v = if r > 1e-12 { v.min(vmax / r) } else { v };
                 if c > 1e-12 { v.min((0.5 * amax / c).sqrt()) } else { v }
             })
@@ -196,11 +206,10 @@ fn plan_piece(
         let v_max = v_axes.min(mv.feed);
         let mut a_max = mv.a_max;
         for &j in &js {
-            for &k in &slots {
-                let (_, amax) = limit(k);
-                let r = rate(j, k).abs();
+            for (s, &(_, amax)) in limits.iter().enumerate() {
+                let r = rate(j, s).abs();
                 if r > 1e-12 {
-                    let left = (amax - curvature(j, k) * v_max * v_max).max(0.5 * amax);
+                    let left = (amax - curvature(j, s) * v_max * v_max).max(0.5 * amax);
                     a_max = a_max.min(left / r);
                 }
             }
@@ -209,8 +218,8 @@ fn plan_piece(
         let plen = len * (b - a);
         let tangent = |j: usize, u: f64| -> AxisVec {
             let mut tv = piece.tangent(u).map(|x| x / plen);
-            for &k in &slots {
-                tv[k] = rate(j, k);
+            for (s, &k) in slots.iter().enumerate() {
+                tv[k] = rate(j, s);
             }
             tv
         };
@@ -230,5 +239,5 @@ fn plan_piece(
             axis_tangents,
         });
     }
-    Ok((moves, *ms.last().expect("samples")))
+    Ok((moves, prev))
 }

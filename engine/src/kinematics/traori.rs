@@ -13,6 +13,7 @@
 //! The tool vector from the holder reference to the tip is `t_c = −L` (L = tool length vector
 //! by geometry axis, tip → holder).
 
+use super::orient::solve::Turn;
 use super::orient::vec3::{dot, normalize, scale};
 use super::orient::{Chain, ChainKind};
 use super::{BuildError, SelectArgs, Transformation, Unreachable, Vec3, unwrap_near};
@@ -46,6 +47,11 @@ impl Rotary {
     fn place(&self, pos: f64, near: f64) -> Option<f64> {
         let p = unwrap_near(pos, near);
         let Some((lo, hi)) = self.limits else { return Some(p) };
+        // p itself is the nearest turn (|p − near| ≤ 180°, and ties keep p): the usual case
+        // needs no search.
+        if p >= lo - 1e-9 && p <= hi + 1e-9 {
+            return Some(p);
+        }
         [0.0, -360.0, 360.0, -720.0, 720.0]
             .into_iter()
             .map(|k| p + k)
@@ -193,15 +199,20 @@ impl Traori {
 
     /// Effective angles (radians) of the rotary axes at `axes` (zero without).
     fn hint(&self, axes: Option<&AxisVec>) -> [f64; 3] {
-        std::array::from_fn(|i| match (self.rot[i], axes) {
+        std::array::from_fn(|i| match (&self.rot[i], axes) {
             (Some(r), Some(a)) => r.angle(a[r.slot]),
             _ => 0.0,
         })
     }
 
     fn raw_solutions(&self, o: &Vec3, hint: &[f64; 3]) -> Result<[[f64; 3]; 2], Unreachable> {
+        Ok(self.raw_turns(o, hint)?.map(|[a1, a2, _]| [a1.angle, a2.angle, hint[2]]))
+    }
+
+    #[inline]
+    fn raw_turns(&self, o: &Vec3, hint: &[f64; 3]) -> Result<[[Turn; 3]; 2], Unreachable> {
         let o = normalize(o).ok_or(Unreachable)?;
-        self.chain.solve(&o, hint).ok_or(Unreachable)
+        self.chain.solve_turns(&o, hint).ok_or(Unreachable)
     }
 
     /// Chain-ordered angles → role-ordered values via `f`.
@@ -222,6 +233,56 @@ impl Traori {
 
     fn point(&self, bcs: &AxisVec) -> Vec3 {
         std::array::from_fn(|g| self.geo[g].map_or(0.0, |k| bcs[k]))
+    }
+
+    /// Linear axis values `m` (chain order) into their channel axes.
+    fn write_linear(&self, m: &Vec3, machine: &mut AxisVec) {
+        for (i, slot) in self.lin.iter().enumerate() {
+            if let Some(k) = slot {
+                machine[*k] = m[i];
+            }
+        }
+    }
+
+    /// Rotary positions `pos` (chain order) into their channel axes.
+    fn write_rotary(&self, pos: &[f64; 3], axes: &mut AxisVec) {
+        for (r, p) in self.rot.iter().zip(pos) {
+            if let Some(r) = r {
+                axes[r.slot] = *p;
+            }
+        }
+    }
+
+    /// Of the (up to) two solutions for orientation `o` the one whose axes all fit their
+    /// software limits (after shifting by whole turns) with the least weighted travel from
+    /// `prev`: its positions and its effective angles (with cosine and sine), in chain order.
+    #[inline]
+    fn nearest_solution(&self, o: &Vec3, prev: &AxisVec) -> Result<([f64; 3], [Turn; 3]), Unreachable> {
+        let sols = self.raw_turns(o, &self.hint(Some(prev)))?;
+        let mut best: Option<(f64, usize, [f64; 3])> = None;
+        for (k, s) in sols.iter().enumerate() {
+            let Some((cost, pos)) = self.placed(s, prev) else { continue };
+            // Ties keep the first (the "+γ" root), so the choice is deterministic.
+            if best.is_none_or(|(c, _, _)| cost < c - 1e-12) {
+                best = Some((cost, k, pos));
+            }
+        }
+        let (_, k, pos) = best.ok_or(Unreachable)?;
+        Ok((pos, sols[k]))
+    }
+
+    /// The positions of solution `s` (chain order) nearest `prev` within the limits, with
+    /// their weighted travel from `prev`; `None` if an axis cannot reach its angle.
+    #[inline]
+    fn placed(&self, s: &[Turn; 3], prev: &AxisVec) -> Option<(f64, [f64; 3])> {
+        let mut pos = [0.0; 3];
+        let mut cost = 0.0;
+        for ((r, t), p) in self.rot.iter().zip(s).zip(&mut pos) {
+            let Some(r) = r else { continue };
+            *p = r.place(r.position(t.angle), prev[r.slot])?;
+            cost += (*p - prev[r.slot]).abs() * r.weight;
+        }
+        Some((cost, pos))
     }
 }
 
@@ -258,11 +319,7 @@ impl Transformation for Traori {
     fn inverse(&self, bcs: &AxisVec, _prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
         let pose = self.chain.pose(&self.angles(bcs));
         let m = self.chain.linear(&self.point(bcs), &pose, &scale(tool, -1.0));
-        for (i, slot) in self.lin.iter().enumerate() {
-            if let Some(k) = slot {
-                machine[*k] = m[i];
-            }
-        }
+        self.write_linear(&m, machine);
         for r in self.rot.iter().flatten() {
             machine[r.slot] = bcs[r.slot];
         }
@@ -282,28 +339,20 @@ impl Transformation for Traori {
     /// axis keeps its `prev` position. `Unreachable` if `o` cannot be reached or no solution
     /// fits the limits.
     fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let sols = self.raw_solutions(o, &self.hint(Some(prev)))?;
-        let mut best: Option<(f64, [f64; 3])> = None;
-        'sol: for s in &sols {
-            let mut pos = [0.0; 3];
-            let mut cost = 0.0;
-            for (i, r) in self.rot.iter().enumerate() {
-                let Some(r) = r else { continue };
-                let Some(p) = r.place(r.position(s[i]), prev[r.slot]) else { continue 'sol };
-                cost += (p - prev[r.slot]).abs() * r.weight;
-                pos[i] = p;
-            }
-            // Ties keep the first (the "+γ" root), so the choice is deterministic.
-            if best.is_none_or(|(c, _)| cost < c - 1e-12) {
-                best = Some((cost, pos));
-            }
-        }
-        let (_, pos) = best.ok_or(Unreachable)?;
-        for (i, r) in self.rot.iter().enumerate() {
-            if let Some(r) = r {
-                axes[r.slot] = pos[i];
-            }
-        }
+        let (pos, _) = self.nearest_solution(o, prev)?;
+        self.write_rotary(&pos, axes);
+        Ok(())
+    }
+
+    /// One pass instead of [`Traori::orientation_axes`] then [`Traori::inverse`]: the pose for
+    /// the linear axes is built from the chosen solution's own cosines and sines, so the rotary
+    /// positions are not turned back into angles and no `sin_cos` is needed.
+    fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        let (pos, turns) = self.nearest_solution(o, prev)?;
+        let pose = self.chain.pose_turns(&turns);
+        let m = self.chain.linear(&self.point(axes), &pose, &scale(tool, -1.0));
+        self.write_rotary(&pos, axes);
+        self.write_linear(&m, axes);
         Ok(())
     }
 }

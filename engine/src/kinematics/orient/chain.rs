@@ -13,7 +13,7 @@
 //! Missing axes (3-/4-axis variants) are the identity rotation; a third axis (6-axis, T only)
 //! sits between axis 2 and the tool with the offset `l23` before it.
 
-use super::solve::{angle_about, two_axes};
+use super::solve::{Turn, angle_about, two_axes_turns};
 use super::vec3::{Rot, add, sub};
 use crate::kinematics::Vec3;
 
@@ -55,6 +55,15 @@ impl Chain {
     /// The rotations for effective angles `alpha` (radians).
     pub fn pose(&self, alpha: &[f64; 3]) -> Pose {
         let r = std::array::from_fn(|i| if i < self.axes { Rot::about(&self.v[i], alpha[i]) } else { Rot::IDENTITY });
+        Pose { r }
+    }
+
+    /// [`Chain::pose`] from angles given with their cosine and sine (no `sin_cos`).
+    #[inline]
+    pub fn pose_turns(&self, turns: &[Turn; 3]) -> Pose {
+        let r = std::array::from_fn(|i| {
+            if i < self.axes { Rot::about_cs(&self.v[i], turns[i].cos, turns[i].sin) } else { Rot::IDENTITY }
+        });
         Pose { r }
     }
 
@@ -112,7 +121,15 @@ impl Chain {
     /// twice) and the component of `o` along the axis is ignored: the orientation is projected
     /// onto the cone the axis can sweep (3-/4-axis transformations orient in one plane).
     pub fn solve(&self, o: &Vec3, hint: &[f64; 3]) -> Option<[[f64; 3]; 2]> {
+        Some(self.solve_turns(o, hint)?.map(|[a1, a2, _]| [a1.angle, a2.angle, hint[2]]))
+    }
+
+    /// [`Chain::solve`] with the cosine and sine of each angle, for [`Chain::pose_turns`]. The
+    /// 3rd turn is `hint[2]` with a 3rd axis and no rotation without.
+    #[inline]
+    pub fn solve_turns(&self, o: &Vec3, hint: &[f64; 3]) -> Option<[[Turn; 3]; 2]> {
         let [v1, v2, v3] = &self.v;
+        let third = if self.axes == 3 { Turn::new(hint[2]) } else { Turn::ZERO };
         if self.axes == 1 {
             let a = match self.kind {
                 ChainKind::Tool => angle_about(v1, &self.base, o),
@@ -120,21 +137,22 @@ impl Chain {
                 _ => angle_about(v1, o, &self.base),
             }
             .unwrap_or(hint[0]);
-            return Some([[a, hint[1], hint[2]]; 2]);
+            return Some([[Turn::new(a), Turn::new(hint[1]), third]; 2]);
         }
         let s = match self.kind {
             ChainKind::Tool => {
-                let p = if self.axes == 3 { Rot::about(v3, hint[2]).apply(&self.base) } else { self.base };
-                two_axes(v1, v2, &p, o, [hint[0], hint[1]])?
+                let p =
+                    if self.axes == 3 { Rot::about_cs(v3, third.cos, third.sin).apply(&self.base) } else { self.base };
+                two_axes_turns(v1, v2, &p, o, [hint[0], hint[1]])?
             }
-            ChainKind::Part => two_axes(v1, v2, o, &self.base, [hint[0], hint[1]])?,
+            ChainKind::Part => two_axes_turns(v1, v2, o, &self.base, [hint[0], hint[1]])?,
             ChainKind::Mixed => {
                 // R(v2, −α2)·R(v1, α1)·b = o: subproblem 2 with the axes swapped.
-                let s = two_axes(v2, v1, &self.base, o, [-hint[1], hint[0]])?;
-                s.map(|[t1, t2]| [t2, -t1])
+                let s = two_axes_turns(v2, v1, &self.base, o, [-hint[1], hint[0]])?;
+                s.map(|[t1, t2]| [t2, t1.reversed()])
             }
         };
-        Some(s.map(|[a1, a2]| [a1, a2, hint[2]]))
+        Some(s.map(|[a1, a2]| [a1, a2, third]))
     }
 }
 

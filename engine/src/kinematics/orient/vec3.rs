@@ -50,6 +50,11 @@ impl Rot {
     /// REFERENCE §0.2): `I + sin a·[v]x + (1 − cos a)·[v]x²`.
     pub fn about(v: &Vec3, angle: f64) -> Rot {
         let (s, c) = angle.sin_cos();
+        Rot::about_cs(v, c, s)
+    }
+
+    /// [`Rot::about`] for an angle given by its cosine `c` and sine `s`.
+    pub fn about_cs(v: &Vec3, c: f64, s: f64) -> Rot {
         let t = 1.0 - c;
         let [x, y, z] = *v;
         Rot([
