@@ -5,6 +5,7 @@
 //! rest of the engine reads. Text is applied all-or-nothing: an unknown name, a bad index, a
 //! bad value or an inconsistent result rejects the whole text with the offending line.
 
+pub mod chains;
 mod config;
 pub mod presets;
 pub mod registry;
@@ -17,7 +18,7 @@ use std::collections::BTreeMap;
 pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
-pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};
+pub use trafo::{ChainDef, TrafoDataSet, TrafoKind, TrafoParams};
 pub use traori::{OriMachine, OriSettings, TraoriParams};
 
 /// A value of a machine datum.
@@ -134,6 +135,8 @@ pub struct MachineData {
     values: BTreeMap<Key, Value>,
     tools: BTreeMap<(u32, u32), EdgeParams>,
     frames: BTreeMap<FrameKey, f64>,
+    /// Kinematic chain elements and transformation records (`$NK_`, `$NT_`).
+    kin: chains::KinData,
 }
 
 impl MachineData {
@@ -221,6 +224,14 @@ impl MachineData {
         value: &Literal,
     ) -> Result<Option<&'static str>, MdError> {
         let err = |m: String| MdError::at(line, m);
+        if chains::is_chain_name(name) {
+            let counts = (
+                self.num("$MN_MM_MAXNUM_KIN_CHAIN_ELEM", 0, 0) as usize,
+                self.num("$MN_MM_NUM_KIN_TRAFOS", 0, 0) as usize,
+            );
+            self.kin.assign(line, name, indices, value, counts)?;
+            return Ok(None);
+        }
         if let Some(n) = name.strip_prefix("$TC_DP") {
             self.assign_tool(line, name, n, indices, value)?;
             return Ok(None);
@@ -388,12 +399,29 @@ impl MachineData {
         for ((family, frame, axis, component), v) in &self.frames {
             out += &format!("{}[{frame},{axis},{}]={v:?}\n", family.names().0, component.code());
         }
+        out += &self.kin.to_text();
         out
     }
 
     /// Cutting edges with their parameters, ordered by (tool, edge).
     pub fn tools(&self) -> &BTreeMap<(u32, u32), EdgeParams> {
         &self.tools
+    }
+
+    /// The kinematic chain data (`$NK_`, `$NT_`).
+    pub fn kin(&self) -> &chains::KinData {
+        &self.kin
+    }
+
+    /// `DELOBJ("KIN_CHAIN_ELEM")` / `DELOBJ("TRAFO_DATA")`: deletes every chain element or
+    /// every transformation record (effective at the next activation).
+    pub fn delete_kin(&mut self, elements: bool, trafos: bool) {
+        if elements {
+            self.kin.clear_elements();
+        }
+        if trafos {
+            self.kin.clear_trafos();
+        }
     }
 
     /// Stored frame components by (family, frame, axis name, component).

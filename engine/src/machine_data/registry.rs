@@ -169,6 +169,11 @@ pub static DEFS: &[Def] = &[
     def("SYSCLOCK_CYCLE_TIME", 10050, N, Kind::Real, 1, Default::Real(0.002), 0.000125, 0.031),
     def("IPO_SYSCLOCK_TIME_RATIO", 10070, N, Kind::Int, 1, Default::Int(2), 1.0, 100.0),
     def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
+    // Kinematic chains (K12): root element name and the sizes of the $NK_/$NT_ data. The
+    // defaults are this product's choice (the manual names the data, not their defaults).
+    def("ROOT_KIN_ELEM_NAME", 16800, N, Kind::Str, 1, Default::Str("ROOT"), 0.0, 0.0),
+    def("MM_NUM_KIN_TRAFOS", 18866, N, Kind::Int, 1, Default::Int(10), 0.0, 64.0),
+    def("MM_MAXNUM_KIN_CHAIN_ELEM", 18880, N, Kind::Int, 1, Default::Int(64), 0.0, 256.0),
     def(
         "AXCONF_GEOAX_ASSIGN_TAB",
         20050,
