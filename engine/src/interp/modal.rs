@@ -665,8 +665,9 @@ fn stored_frame_lines(
     Ok(lines.join("\n"))
 }
 
-/// A write to tool data (`$TC_DP..`), settable frames (`$P_UIFR`) or machine and setting data
-/// (`$MC_..`, `$MA_..`, ...) as one line of NC data text. Bare names among the indices
+/// A write to tool data (`$TC_DP..`), settable frames (`$P_UIFR`), kinematic chain data
+/// (`$NK_..`, `$NT_..`) or machine and setting data (`$MC_..`, `$MA_..`, ...) as one line of NC
+/// data text. Bare names among the indices
 /// (`$P_UIFR[1,X,TR]`) are taken literally.
 fn data_write(
     name: &str,
@@ -678,6 +679,7 @@ fn data_write(
 ) -> Result<String, Alarm> {
     let writable = name.starts_with("$TC_DP")
         || name.starts_with("$TC_CARR")
+        || crate::machine_data::chains::is_chain_name(name)
         || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_UBFR")
         || ["$MN_", "$MC_", "$MA_", "$SN_", "$SC_", "$SA_"].iter().any(|p| name.starts_with(p));
     if !writable {

@@ -22,14 +22,23 @@ use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path};
 
 /// The words this module handles; `modal::collect` lets them through.
 pub fn is_keyword(name: &str) -> bool {
-    matches!(name, "TRANSMIT" | "TRACYL" | "TRAANG" | "TRAORI" | "TRACON" | "TRAFOOF")
+    matches!(name, "TRANSMIT" | "TRACYL" | "TRAANG" | "TRAORI" | "TRACON" | "TRAFOOF" | "TRAFOON")
 }
 
 /// A selection or deselection programmed in a block.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Selection {
     Off,
-    On { kind: TrafoKind, n: usize, args: SelectArgs },
+    On {
+        kind: TrafoKind,
+        n: usize,
+        args: SelectArgs,
+    },
+    /// `TRAFOON("name", ...)`: a transformation defined by kinematic chains, by `$NT_NAME`.
+    Named {
+        name: String,
+        args: SelectArgs,
+    },
 }
 
 /// The selection word of `block`, with its arguments evaluated by `eval`.
@@ -66,6 +75,7 @@ pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> R
             // TRAORI(n, x, y, z): the offsets of the orientation axes (5th and 6th parameter)
             // are not modelled.
             "TRAORI" | "TRACON" => 4,
+            // TRAFOON(name, d, k): the diameter and groove-wall mode are TRACYL_K's.
             _ => 3,
         };
         if args.len() > max_args {
@@ -73,6 +83,19 @@ pub fn selection(block: &Block, eval: impl Fn(&Expr) -> Result<f64, Alarm>) -> R
         }
         found = Some(match name.as_str() {
             "TRAFOOF" => Selection::Off,
+            "TRAFOON" => {
+                let Some(Expr::Str(trafo)) = args.first() else {
+                    return Err(Alarm::syntax(
+                        line,
+                        "TRAFOON needs the transformation name as a string, TRAFOON(\"name\")",
+                    ));
+                };
+                let groove_wall = arg(2)?.map(|k| k == 1.0);
+                Selection::Named {
+                    name: trafo.clone(),
+                    args: SelectArgs { diameter: arg(1)?, groove_wall, ..SelectArgs::default() },
+                }
+            }
             "TRANSMIT" => {
                 Selection::On { kind: TrafoKind::Transmit, n: data_set(arg(0)?)?, args: SelectArgs::default() }
             }
@@ -290,12 +313,25 @@ impl Interpreter {
                     }
                 }
             },
+            Selection::Named { name, args } => {
+                let set =
+                    cfg.trafos.iter().find(|s| s.chain.as_ref().is_some_and(|c| c.name == name)).ok_or_else(|| {
+                        not_available(
+                            line,
+                            &format!("\"{name}\" is no transformation defined by kinematic chains of a modelled type"),
+                        )
+                    })?;
+                self.select_data_set(set.number, &args, cfg, &machine, line)?;
+            }
             Selection::On { kind, n, args } => {
-                let set = cfg
+                // A chain-defined transformation linked by $NT_TRAFO_INDEX wins over the
+                // machine-data set of the conventional call.
+                let chain = cfg
                     .trafos
                     .iter()
-                    .filter(|s| s.kind == kind)
-                    .nth(n - 1)
+                    .find(|s| s.kind == kind && s.chain.as_ref().is_some_and(|c| c.conventional == Some(n)));
+                let set = chain
+                    .or_else(|| cfg.trafos.iter().filter(|s| s.kind == kind && s.chain.is_none()).nth(n - 1))
                     .ok_or_else(|| not_available(line, &format!("{} data set {n}", kind.name())))?;
                 match persistent.filter(|p| *p != set.number && kind != TrafoKind::Tracon) {
                     None => self.select_data_set(set.number, &args, cfg, &machine, line)?,

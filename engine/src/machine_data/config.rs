@@ -238,7 +238,12 @@ impl MachineConfig {
         let master_spindle = channel_axes.iter().position(|c| machine_axes[c.machine_axis].spindle == Some(master));
 
         let resolve = |k: usize| channel_slots.iter().position(|&s| s + 1 == k);
-        let trafos = trafo::build(md, &resolve, &channel_axes, &machine_axes)?;
+        let mut trafos = trafo::build(md, &resolve, &channel_axes, &machine_axes)?;
+        // Chain-defined orientation transformations take the defaults of MD24530/MD24540.
+        let default_of =
+            |name: &str| registry::lookup(name).and_then(|d| d.default_value(0, false).as_f64()).unwrap_or(2.0);
+        let pole = (default_of("$MC_TRAFO5_NON_POLE_LIMIT_1"), default_of("$MC_TRAFO5_POLE_LIMIT_1"));
+        trafos.extend(super::chains::build(md, &channel_axes, &machine_axes, pole)?);
 
         let mut cfg = MachineConfig {
             ipo_cycle,

@@ -6,6 +6,7 @@
 //! bad value or an inconsistent result rejects the whole text with the offending line.
 
 pub mod carrier;
+pub mod chains;
 mod config;
 pub mod presets;
 pub mod registry;
@@ -19,7 +20,7 @@ pub use carrier::{Carrier, CarrierKind};
 pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
-pub use trafo::{TrafoDataSet, TrafoKind, TrafoParams};
+pub use trafo::{ChainDef, TrafoDataSet, TrafoKind, TrafoParams};
 pub use traori::{OriMachine, OriSettings, TraoriParams};
 
 /// A value of a machine datum.
@@ -138,6 +139,8 @@ pub struct MachineData {
     frames: BTreeMap<FrameKey, f64>,
     /// Toolholder data `$TC_CARRn[m]` by (m, n), values that differ from the default.
     carriers: BTreeMap<(u32, u32), Value>,
+    /// Kinematic chain elements and transformation records (`$NK_`, `$NT_`).
+    kin: chains::KinData,
 }
 
 impl MachineData {
@@ -225,6 +228,14 @@ impl MachineData {
         value: &Literal,
     ) -> Result<Option<&'static str>, MdError> {
         let err = |m: String| MdError::at(line, m);
+        if chains::is_chain_name(name) {
+            let counts = (
+                self.num("$MN_MM_MAXNUM_KIN_CHAIN_ELEM", 0, 0) as usize,
+                self.num("$MN_MM_NUM_KIN_TRAFOS", 0, 0) as usize,
+            );
+            self.kin.assign(line, name, indices, value, counts)?;
+            return Ok(None);
+        }
         if let Some(n) = name.strip_prefix("$TC_DP") {
             self.assign_tool(line, name, n, indices, value)?;
             return Ok(None);
@@ -430,6 +441,7 @@ impl MachineData {
         for ((family, frame, axis, component), v) in &self.frames {
             out += &format!("{}[{frame},{axis},{}]={v:?}\n", family.names().0, component.code());
         }
+        out += &self.kin.to_text();
         out
     }
 
@@ -447,6 +459,22 @@ impl MachineData {
             by_holder.entry(*m).or_default().insert(*n, v.clone());
         }
         by_holder.into_iter().map(|(m, p)| (m, Carrier::build(m, &p, fine))).collect()
+    }
+
+    /// The kinematic chain data (`$NK_`, `$NT_`).
+    pub fn kin(&self) -> &chains::KinData {
+        &self.kin
+    }
+
+    /// `DELOBJ("KIN_CHAIN_ELEM")` / `DELOBJ("TRAFO_DATA")`: deletes every chain element or
+    /// every transformation record (effective at the next activation).
+    pub fn delete_kin(&mut self, elements: bool, trafos: bool) {
+        if elements {
+            self.kin.clear_elements();
+        }
+        if trafos {
+            self.kin.clear_trafos();
+        }
     }
 
     /// Stored frame components by (family, frame, axis name, component).

@@ -176,6 +176,11 @@ pub static DEFS: &[Def] = &[
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
     def("MM_NUM_TOOL_CARRIER", 18088, N, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
     def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
+    // Kinematic chains (K12): root element name and the sizes of the $NK_/$NT_ data. The
+    // defaults are this product's choice (the manual names the data, not their defaults).
+    def("ROOT_KIN_ELEM_NAME", 16800, N, Kind::Str, 1, Default::Str("ROOT"), 0.0, 0.0),
+    def("MM_NUM_KIN_TRAFOS", 18866, N, Kind::Int, 1, Default::Int(10), 0.0, 64.0),
+    def("MM_MAXNUM_KIN_CHAIN_ELEM", 18880, N, Kind::Int, 1, Default::Int(64), 0.0, 256.0),
     def(
         "AXCONF_GEOAX_ASSIGN_TAB",
         20050,

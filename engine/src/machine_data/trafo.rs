@@ -121,6 +121,18 @@ pub struct TrafoDataSet {
     /// `TRAFO_INCLUDES_TOOL_n`: the tool length is handled inside the transformation.
     pub includes_tool: bool,
     pub params: TrafoParams,
+    /// Set for a transformation defined by kinematic chains (`$NT_…`), `None` for machine data.
+    pub chain: Option<ChainDef>,
+}
+
+/// What a transformation defined by kinematic chains adds to its data set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainDef {
+    /// `$NT_NAME`: what `TRAFOON("name")` selects.
+    pub name: String,
+    /// Tens and hundreds digits of `$NT_TRAFO_INDEX`: the conventional call (`TRAORI(n)`) this
+    /// transformation answers instead of the n-th machine-data set of its kind.
+    pub conventional: Option<usize>,
 }
 
 fn fail<T>(datum: &'static str, message: String) -> Result<T, ActivationError> {
@@ -327,7 +339,17 @@ pub(super) fn build(
                 TrafoParams::Tracon { members }
             }
         };
-        sets.push(TrafoDataSet { number: n, trafo_type, kind, kind_index, axes_in, geo_axes, includes_tool, params });
+        sets.push(TrafoDataSet {
+            number: n,
+            trafo_type,
+            kind,
+            kind_index,
+            axes_in,
+            geo_axes,
+            includes_tool,
+            params,
+            chain: None,
+        });
     }
     Ok(sets)
 }
