@@ -507,6 +507,15 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
 
 fn parse_address_value(cur: &mut Cursor) -> PResult<AddressValue> {
     let save = cur.pos;
+    // The common case `A3=0.5`: a plain number that ends the word needs no expression parse.
+    if let Some(value) = cur.number() {
+        let end = cur.pos;
+        if ends_word(cur) {
+            cur.pos = end;
+            return Ok(AddressValue { mode: None, expr: Expr::Number(value) });
+        }
+        cur.pos = save;
+    }
     if let Some(span) = cur.ident_span() {
         const MODES: [(&str, CoordMode); 5] = [
             ("AC", CoordMode::Ac),
@@ -529,6 +538,20 @@ fn parse_address_value(cur: &mut Cursor) -> PResult<AddressValue> {
     }
     cur.pos = save;
     Ok(AddressValue { mode: None, expr: parse_expr(cur)? })
+}
+
+/// True if nothing of an expression follows (end of block, comment, or the next word), so a
+/// number read so far is the whole value. Moves the cursor.
+fn ends_word(cur: &mut Cursor) -> bool {
+    const OPERATORS: [&str; 10] = ["DIV", "MOD", "AND", "OR", "XOR", "NOT", "B_AND", "B_OR", "B_XOR", "B_NOT"];
+    cur.skip_ws();
+    match cur.peek() {
+        None | Some(b';' | b'\n' | b'\r') => true,
+        Some(c) if c.is_ascii_alphabetic() || c == b'_' => {
+            cur.ident_span().is_some_and(|span| !OPERATORS.iter().any(|op| cur.span_is(span, op)))
+        }
+        _ => false,
+    }
 }
 
 fn parse_args(cur: &mut Cursor) -> PResult<Vec<Expr>> {

@@ -71,12 +71,14 @@ fn addresses_with_equals_take_expressions_and_coordinate_modes() {
             value: AddressValue { mode: Some(CoordMode::Ac), expr: Expr::Number(10.0) }
         }
     );
-    assert!(
-        matches!(&w[1], Word::Address { name, value, .. } if name == "CR" && value.expr == Expr::Unary(UnOp::Neg, Box::new(Expr::Number(5.0))))
-    );
+    assert!(matches!(&w[1], Word::Address { name, value, .. } if name == "CR" && value.expr == Expr::Number(-5.0)));
     assert!(
         matches!(&w[2], Word::Address { name, value: AddressValue { expr: Expr::Binary(BinOp::Mul, _, _), .. }, .. } if name == "F")
     );
+    // A number followed by an operator word is an expression, not a plain value.
+    let w = words("X=10 MOD 3 Y=-2*2");
+    assert!(matches!(&w[0], Word::Address { value: AddressValue { expr: Expr::Binary(BinOp::Mod, _, _), .. }, .. }));
+    assert!(matches!(&w[1], Word::Address { value: AddressValue { expr: Expr::Binary(BinOp::Mul, _, _), .. }, .. }));
 }
 
 #[test]
