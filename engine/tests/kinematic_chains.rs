@@ -485,3 +485,15 @@ fn the_presets_still_activate_with_chain_data_beside_them() {
             .unwrap_or_else(|e| panic!("{}: {e}", preset.id));
     }
 }
+
+#[test]
+fn delobj_deletes_the_chain_data_with_the_next_newconf() {
+    // With the transformation records deleted, TRAFOON no longer finds the head: 14401.
+    let s = run(HEAD_CHAIN, "DELOBJ(\"TRAFO_DATA\")\nNEWCONF\nTRAFOON(\"Fork head C-A\")\nM30");
+    assert_eq!(s.alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14401], "{:?}", s.alarms);
+    // Deleting the elements too leaves a valid (empty) configuration.
+    let s = run(HEAD_CHAIN, "DELOBJ(\"TRAFO_DATA\")\nDELOBJ(\"KIN_CHAIN_ELEM\")\nNEWCONF\nM30");
+    assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
+    let s = run(HEAD_CHAIN, "DELOBJ(\"TOOLS\")\nM30");
+    assert_eq!(s.status, Status::Alarm);
+}

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Item, NEWCONF, Prep, StopKind};
+use crate::interp::{DELOBJ, Item, NEWCONF, Prep, StopKind};
 use crate::motion::{AxisLimit, Move};
 
 impl Channel {
@@ -72,6 +72,10 @@ impl Channel {
             }
             self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
+            return Ok(());
+        }
+        if let Some(kind) = text.strip_prefix(DELOBJ) {
+            self.data.delete_kin(kind == "KIN_CHAIN_ELEM", kind == "TRAFO_DATA");
             return Ok(());
         }
         self.data.stage_text(text).map_err(|e| bad(format!("{text}: {}", e.message)))?;

@@ -117,6 +117,9 @@ pub enum Item {
 /// Marker in [`Interpreter::take_data_writes`]: activate the machine data written so far.
 pub const NEWCONF: &str = "NEWCONF";
 
+/// Prefix of the data-write entry of `DELOBJ("type")`, followed by the object type.
+pub const DELOBJ: &str = "DELOBJ:";
+
 /// What one call of [`Interpreter::prepare_next`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Prep {

@@ -1,5 +1,6 @@
 //! The modal state (G groups, feed) and the words of one block sorted by meaning.
 
+use super::DELOBJ;
 use super::StopKind;
 use super::calls::Programs;
 use super::corners::Corner;
@@ -454,6 +455,22 @@ pub(super) fn collect(
                     }
                 }
                 w.ori.reset = Some(values);
+            }
+            Word::Keyword { name, args } if name == "DELOBJ" => {
+                // DELOBJ("KIN_CHAIN_ELEM") / DELOBJ("TRAFO_DATA"): delete every kinematic chain
+                // element / transformation record (active with NEWCONF or reset). Ranges
+                // (start and end index) are not modelled.
+                let kind = match args.as_slice() {
+                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
+                    _ => return Err(Alarm::syntax(line, "DELOBJ takes one object type (ranges are not modelled)")),
+                };
+                if !matches!(kind.as_str(), "KIN_CHAIN_ELEM" | "TRAFO_DATA") {
+                    return Err(Alarm::value_out_of_range(
+                        line,
+                        &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM or TRAFO_DATA"),
+                    ));
+                }
+                w.data_writes.push(format!("{DELOBJ}{kind}"));
             }
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
