@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs what a fresh Debian machine (with Rust, Node/npm, Python and apt) lacks for the tests:
-# Debian's Chromium for the browser test, the HMI's npm packages (web/) and the browser test's
-# (tests/browser), and a Python venv (.venv, git-ignored) with schemathesis for the API
-# bad-input campaign (scripts/fuzz-api.sh). Idempotent.
+# Debian's Chromium for the browser test, Debian's postgresql for the PostgreSQL storage tests,
+# the HMI's npm packages (web/) and the browser test's (tests/browser), and a Python venv (.venv,
+# git-ignored) with schemathesis for the API bad-input campaign (scripts/fuzz-api.sh). Idempotent.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -15,6 +15,18 @@ if [ ! -x /usr/bin/chromium ]; then
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium
 else
   echo "==> chromium present: $(/usr/bin/chromium --version 2>/dev/null || echo /usr/bin/chromium)"
+fi
+
+# PostgreSQL server binaries (initdb, pg_ctl) for the PostgreSQL storage tests: scripts/test.sh
+# starts a throwaway cluster of its own; the package's default cluster is not used.
+if ! ls /usr/lib/postgresql/*/bin/initdb >/dev/null 2>&1 && ! command -v initdb >/dev/null 2>&1; then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "==> installing postgresql (apt)"
+  $SUDO apt-get update
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends postgresql
+else
+  echo "==> postgresql present: $(ls -d /usr/lib/postgresql/*/bin 2>/dev/null | head -n 1)"
 fi
 
 echo "==> npm ci (web)"

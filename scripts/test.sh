@@ -2,6 +2,8 @@
 # The one command that runs every NCTwin test:
 #   formatting, clippy, the Rust tests of the workspace, the HMI's type check and build, and the
 #   browser test of the HMI (headless Chromium against a freshly started server).
+#   `cargo test` runs with a throwaway PostgreSQL server (scripts/postgres.sh) when Debian's
+#   postgresql package is installed, for the PostgreSQL storage tests.
 #
 #   scripts/test.sh            everything
 #   scripts/test.sh rust       only fmt, clippy and cargo test
@@ -38,8 +40,14 @@ if [ "$WHAT" = all ] || [ "$WHAT" = rust ]; then
   section "cargo clippy"
   cargo clippy --workspace --all-targets -- -D warnings
 
-  section "cargo test"
+  section "cargo test (with a throwaway PostgreSQL server for the storage tests)"
+  # shellcheck source=scripts/postgres.sh
+  source "$ROOT/scripts/postgres.sh"
+  trap pg_test_stop EXIT
+  pg_test_start
   cargo test --workspace
+  pg_test_stop
+  trap - EXIT
 
   section "benchmarks: build and run every case once on small programs (no timing)"
   cargo test -p nctwin-engine --bench engine

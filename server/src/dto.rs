@@ -40,7 +40,7 @@ pub struct Health {
 /// Whether the storage works.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct StorageStatus {
-    /// `sqlite` (the embedded default under `--data-dir`) or `memory`.
+    /// `sqlite` (the embedded default under `--data-dir`), `postgres` (`--database`) or `memory`.
     pub backend: String,
     /// `"ok"` or `"error"`.
     pub status: String,

@@ -26,6 +26,11 @@ struct Args {
     /// Where data that must survive a restart is kept (created if missing).
     #[arg(long, default_value = "./nctwin-data")]
     data_dir: PathBuf,
+    /// Keep sessions in this database instead of the SQLite file under `--data-dir`:
+    /// `postgres://user@host:port/dbname` (PostgreSQL, for several server nodes; a password may
+    /// come from the PGPASSWORD environment variable instead of the URL).
+    #[arg(long, value_name = "URL")]
+    database: Option<String>,
     /// Folder of the browser HMI's static files.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web/dist"))]
     web_dir: PathBuf,
@@ -67,6 +72,7 @@ async fn serve(args: Args) -> Result<(), String> {
     let config = Config {
         limits: args.limits.apply(Limits::default()),
         auth: args.auth,
+        database: args.database,
         ..Config::new(args.data_dir, args.web_dir)
     };
     let state = AppState::open(config).await.map_err(|e| format!("cannot open the storage: {e}"))?;

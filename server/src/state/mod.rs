@@ -28,6 +28,9 @@ use crate::storage::{self, MemoryStorage, SessionRecord, Storage, StorageError};
 pub struct Config {
     /// Where persistent data lives (`--data-dir`).
     pub data_dir: PathBuf,
+    /// A database URL (`--database postgres://...`) to keep sessions in instead of the
+    /// embedded SQLite file under `data_dir`.
+    pub database: Option<String>,
     /// The HMI's static files, served at `/`.
     pub web_dir: PathBuf,
     pub limits: Limits,
@@ -37,7 +40,13 @@ pub struct Config {
 impl Config {
     /// Default limits, auth off.
     pub fn new(data_dir: impl Into<PathBuf>, web_dir: impl Into<PathBuf>) -> Config {
-        Config { data_dir: data_dir.into(), web_dir: web_dir.into(), limits: Limits::default(), auth: AuthMode::Off }
+        Config {
+            data_dir: data_dir.into(),
+            database: None,
+            web_dir: web_dir.into(),
+            limits: Limits::default(),
+            auth: AuthMode::Off,
+        }
     }
 }
 
@@ -102,14 +111,16 @@ impl AppState {
         }
     }
 
-    /// Opens the embedded SQLite storage under `config.data_dir` (creating it) and restores
-    /// every saved session. Needs a Tokio runtime (the sessions' actors start on it).
+    /// Opens the storage (the database of `config.database` if set, else the embedded SQLite
+    /// file under `config.data_dir`, creating it) and restores every saved session. Needs a
+    /// Tokio runtime (the sessions' actors start on it).
     pub async fn open(config: Config) -> Result<AppState, StorageError> {
         let dir = config.data_dir.clone();
-        let storage = tokio::task::spawn_blocking(move || storage::open_default(&dir))
+        let database = config.database.clone();
+        let storage = tokio::task::spawn_blocking(move || storage::open(database.as_deref(), &dir))
             .await
             .map_err(|e| StorageError(format!("opening the storage failed: {e}")))??;
-        let state = AppState::with_storage(config, Arc::new(storage));
+        let state = AppState::with_storage(config, storage);
         let restored = state.restore().await?;
         tracing::info!(storage = %state.shared.storage.describe(), sessions = restored, "storage opened");
         Ok(state)

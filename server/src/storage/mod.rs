@@ -12,16 +12,24 @@
 //! Durability: every method returns only after the change is on disk (see [`sqlite`]). Callers
 //! acknowledge a client's write only after the storage call returned `Ok`.
 //!
-//! The trait is synchronous (SQLite is); async callers run it on a blocking worker
-//! ([`crate::state::AppState`] does that in one place).
+//! The trait is synchronous (SQLite is, and the PostgreSQL client used is); async callers run it
+//! on a blocking worker ([`crate::state::AppState`] does that in one place).
+//!
+//! Backends: [`SqliteStorage`] (the embedded default under `--data-dir`), [`PostgresStorage`]
+//! (`--database postgres://...`, for several server nodes on one database) and
+//! [`MemoryStorage`] (tests). The conformance test every backend passes is
+//! `server/tests/storage.rs`.
 
 mod memory;
+mod postgres;
 mod sqlite;
 
 use std::fmt::Debug;
 use std::path::Path;
+use std::sync::Arc;
 
 pub use memory::MemoryStorage;
+pub use postgres::PostgresStorage;
 pub use sqlite::SqliteStorage;
 
 /// File name of the embedded database inside `--data-dir`.
@@ -82,7 +90,7 @@ pub struct SavedSession {
 pub trait Storage: Send + Sync + Debug {
     /// A short description for logs and `GET /health`, e.g. `sqlite:/var/lib/nctwin/nctwin.sqlite3`.
     fn describe(&self) -> String;
-    /// Kind of backend: `sqlite` or `memory`.
+    /// Kind of backend: `sqlite`, `postgres` or `memory`.
     fn backend(&self) -> &'static str;
     /// Checks that the storage answers (a trivial read).
     fn check(&self) -> Result<(), StorageError>;
@@ -112,54 +120,17 @@ pub fn open_default(data_dir: &Path) -> Result<SqliteStorage, StorageError> {
     SqliteStorage::open(&data_dir.join(SQLITE_FILE))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// One behaviour check run against every backend.
-    pub(crate) fn exercise(storage: &dyn Storage) {
-        let record = |id: &str, number: u64| SessionRecord {
-            id: id.into(),
-            number,
-            machine: "mill-3axis".into(),
-            client_ip: Some("127.0.0.1".into()),
-            tokens: TokenHashes { owner: "o".into(), operator: "p".into(), observer: "v".into() },
-            checkpoint: Checkpoint {
-                machine_data: "$MN_X=1\n".into(),
-                positions: vec![1.5, -0.1, 0.0],
-                mode: "AUTO".into(),
-            },
-        };
-        storage.check().expect("check");
-        assert!(storage.load().expect("load").is_empty());
-        storage.create_session(&record("s2", 2)).expect("create s2");
-        storage.create_session(&record("s1", 1)).expect("create s1");
-        storage.put_program("s1", "MAIN", "G0 X1\nM30").expect("put");
-        storage.put_program("s1", "MAIN", "G0 X2\nM30").expect("replace");
-        storage.put_program("s1", "AUX", "M17").expect("put aux");
-        storage.delete_program("s1", "AUX").expect("delete aux");
-        storage.delete_program("s1", "NONE").expect("deleting a missing program is fine");
-        let moved =
-            Checkpoint { machine_data: "".into(), positions: vec![0.1 + 0.2, 1e-300, -7.0], mode: "JOG".into() };
-        storage.save_checkpoint("s1", &moved).expect("checkpoint");
-        let both = [("s2".to_string(), record("s2", 2).checkpoint), ("gone".to_string(), moved.clone())];
-        storage.save_checkpoints(&both).expect("a batch, with a missing session in it");
-
-        let all = storage.load().expect("load");
-        assert_eq!(all.iter().map(|s| s.record.id.as_str()).collect::<Vec<_>>(), ["s1", "s2"], "creation order");
-        assert_eq!(all[0].record.checkpoint, moved, "positions round-trip bit for bit");
-        assert_eq!(all[0].programs, vec![("MAIN".to_string(), "G0 X2\nM30".to_string())]);
-        assert_eq!(all[1].record, record("s2", 2));
-
-        storage.delete_session("s1").expect("delete");
-        storage.save_checkpoint("s1", &moved).expect("a late checkpoint of a deleted session is ignored");
-        let all = storage.load().expect("load");
-        assert_eq!(all.len(), 1);
-        assert!(all[0].programs.is_empty());
-    }
-
-    #[test]
-    fn memory_storage_behaves_like_a_storage() {
-        exercise(&MemoryStorage::default());
+/// Opens the storage `nctwin` runs on: the database at `database` when given (a
+/// `postgres://` or `postgresql://` URL), else the embedded default in `data_dir`. Blocks.
+pub fn open(database: Option<&str>, data_dir: &Path) -> Result<Arc<dyn Storage>, StorageError> {
+    match database {
+        None => Ok(Arc::new(open_default(data_dir)?)),
+        Some(url) if url.starts_with("postgres://") || url.starts_with("postgresql://") => {
+            Ok(Arc::new(PostgresStorage::open(url)?))
+        }
+        Some(other) => {
+            let scheme = other.split_once(':').map_or(other, |(scheme, _)| scheme);
+            Err(StorageError(format!("unsupported database `{scheme}:`: expected a postgres:// URL")))
+        }
     }
 }

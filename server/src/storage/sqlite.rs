@@ -225,13 +225,6 @@ mod tests {
     }
 
     #[test]
-    fn sqlite_storage_behaves_like_a_storage() {
-        let path = temp_db("behaves");
-        super::super::tests::exercise(&SqliteStorage::open(&path).expect("open"));
-        let _ = std::fs::remove_dir_all(path.parent().expect("dir"));
-    }
-
-    #[test]
     fn data_survives_reopening_and_the_database_is_in_wal_mode_with_full_sync() {
         let path = temp_db("reopen");
         {

@@ -1,0 +1,273 @@
+//! Storage conformance: one test body per behaviour, run against every backend: memory, SQLite
+//! and PostgreSQL.
+//!
+//! PostgreSQL needs a server: `NCTWIN_TEST_POSTGRES_URL` (scripts/test.sh starts a throwaway
+//! one and sets it). Each test gets a database of its own on it. Without the variable the
+//! PostgreSQL cases print a note and pass without running.
+
+mod common;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use common::Server;
+use nctwin_server::storage::{
+    self, Checkpoint, MemoryStorage, PostgresStorage, SessionRecord, SqliteStorage, Storage, TokenHashes,
+};
+use nctwin_server::{AppState, Config};
+use reqwest::StatusCode;
+use serde_json::json;
+
+const POSTGRES_URL_VAR: &str = "NCTWIN_TEST_POSTGRES_URL";
+
+fn record(id: &str, number: u64) -> SessionRecord {
+    SessionRecord {
+        id: id.into(),
+        number,
+        machine: "mill-3axis".into(),
+        client_ip: Some("127.0.0.1".into()),
+        tokens: TokenHashes { owner: "o".into(), operator: "p".into(), observer: "v".into() },
+        checkpoint: Checkpoint {
+            machine_data: "$MN_X=1\n".into(),
+            positions: vec![1.5, -0.1, 0.0],
+            mode: "AUTO".into(),
+        },
+    }
+}
+
+// ---- the shared test bodies ------------------------------------------------------------------
+
+/// The trait's contract, on an empty storage.
+fn exercise(storage: &dyn Storage) {
+    storage.check().expect("check");
+    assert!(storage.load().expect("load").is_empty());
+    storage.create_session(&record("s2", 2)).expect("create s2");
+    storage.create_session(&record("s1", 1)).expect("create s1");
+    storage.put_program("s1", "MAIN", "G0 X1\nM30").expect("put");
+    storage.put_program("s1", "MAIN", "G0 X2\nM30").expect("replace");
+    storage.put_program("s1", "AUX", "M17").expect("put aux");
+    storage.put_program("s1", "ZZ", "M17").expect("put zz");
+    storage.put_program("s1", "Ab", "M17").expect("put Ab");
+    storage.delete_program("s1", "AUX").expect("delete aux");
+    storage.delete_program("s1", "NONE").expect("deleting a missing program is fine");
+    storage.delete_program("nobody", "NONE").expect("deleting a program of a missing session is fine");
+    assert!(storage.put_program("nobody", "P", "M30").is_err(), "a program of an unknown session is refused");
+    let moved = Checkpoint {
+        machine_data: "".into(),
+        positions: vec![0.1 + 0.2, 1e-300, -7.0, -0.0, f64::MAX, 5e-324],
+        mode: "JOG".into(),
+    };
+    storage.save_checkpoint("s1", &moved).expect("checkpoint");
+    let both = [("s2".to_string(), record("s2", 2).checkpoint), ("gone".to_string(), moved.clone())];
+    storage.save_checkpoints(&both).expect("a batch, with a missing session in it");
+
+    let all = storage.load().expect("load");
+    assert_eq!(all.iter().map(|s| s.record.id.as_str()).collect::<Vec<_>>(), ["s1", "s2"], "creation order");
+    let bits = |c: &Checkpoint| c.positions.iter().map(|p| p.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&all[0].record.checkpoint), bits(&moved), "positions round-trip bit for bit");
+    assert_eq!(all[0].record.checkpoint, moved);
+    let names = all[0].programs.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>();
+    assert_eq!(names, ["Ab", "MAIN", "ZZ"], "programs by name, byte order");
+    assert_eq!(all[0].programs[1].1, "G0 X2\nM30");
+    assert_eq!(all[1].record, record("s2", 2));
+    assert!(all[1].programs.is_empty());
+
+    // Creating a session again replaces it, and its programs go.
+    let mut again = record("s1", 1);
+    again.client_ip = None;
+    storage.create_session(&again).expect("replace s1");
+    let all = storage.load().expect("load");
+    assert_eq!(all[0].record, again);
+    assert!(all[0].programs.is_empty(), "a replaced session starts without programs");
+
+    storage.delete_session("s1").expect("delete");
+    storage.delete_session("s1").expect("deleting a missing session is fine");
+    storage.save_checkpoint("s1", &moved).expect("a late checkpoint of a deleted session is ignored");
+    let all = storage.load().expect("load");
+    assert_eq!(all.len(), 1);
+    assert_eq!(all[0].record.id, "s2");
+}
+
+/// What one opening wrote, the next opening reads (a restart).
+fn survives_reopening(open: &dyn Fn() -> Box<dyn Storage>) {
+    {
+        let storage = open();
+        storage.create_session(&record("s7", 7)).expect("create");
+        storage.put_program("s7", "P", "M30").expect("program");
+        let checkpoint = Checkpoint { machine_data: "$MN_Y=2\n".into(), positions: vec![3.25], mode: "MDA".into() };
+        storage.save_checkpoint("s7", &checkpoint).expect("checkpoint");
+    }
+    let storage = open();
+    let all = storage.load().expect("load");
+    assert_eq!(all.len(), 1);
+    assert_eq!(all[0].record.checkpoint.positions, vec![3.25]);
+    assert_eq!(all[0].record.checkpoint.mode, "MDA");
+    assert_eq!(all[0].programs, vec![("P".to_string(), "M30".to_string())]);
+}
+
+/// Several threads writing at once (the server's blocking workers) lose nothing.
+fn concurrent_writers(storage: &(dyn Storage + Sync)) {
+    std::thread::scope(|scope| {
+        for t in 0..4u64 {
+            scope.spawn(move || {
+                for i in 0..10u64 {
+                    let id = format!("t{t}-{i}");
+                    storage.create_session(&record(&id, t * 100 + i)).expect("create");
+                    storage.put_program(&id, "P", &format!("; {id}")).expect("program");
+                }
+            });
+        }
+    });
+    let all = storage.load().expect("load");
+    assert_eq!(all.len(), 40);
+    assert!(all.windows(2).all(|w| w[0].record.number < w[1].record.number), "creation order");
+    assert!(all.iter().all(|s| s.programs == [("P".to_string(), format!("; {}", s.record.id))]));
+}
+
+// ---- backends --------------------------------------------------------------------------------
+
+fn temp_dir(name: &str) -> PathBuf {
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("nctwin-storage-{name}-{}-{n}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+/// A URL of a new, empty database on the test PostgreSQL server, or `None` (with a note) when
+/// there is none. Blocks.
+fn postgres_database(test: &str) -> Option<String> {
+    let Ok(base) = std::env::var(POSTGRES_URL_VAR) else {
+        eprintln!("note: {POSTGRES_URL_VAR} is not set: PostgreSQL part of `{test}` skipped (scripts/test.sh sets it)");
+        return None;
+    };
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    let name = format!("nctwin_{}_{}_{test}", std::process::id(), NEXT.fetch_add(1, Ordering::Relaxed));
+    let mut admin = postgres::Client::connect(&base, postgres::NoTls).expect("connect to the test PostgreSQL");
+    admin.batch_execute(&format!("CREATE DATABASE {name}")).expect("create a test database");
+    let separator = if base.contains('?') { '&' } else { '?' };
+    Some(format!("{base}{separator}dbname={name}"))
+}
+
+#[test]
+fn memory_conforms() {
+    exercise(&MemoryStorage::default());
+    concurrent_writers(&MemoryStorage::default());
+}
+
+#[test]
+fn sqlite_conforms() {
+    let dir = temp_dir("sqlite");
+    exercise(&SqliteStorage::open(&dir.join("a.sqlite3")).expect("open"));
+    survives_reopening(&|| Box::new(SqliteStorage::open(&dir.join("b.sqlite3")).expect("open")));
+    concurrent_writers(&SqliteStorage::open(&dir.join("c.sqlite3")).expect("open"));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn postgres_conforms() {
+    let Some(url) = postgres_database("conforms") else { return };
+    let storage = PostgresStorage::open(&url).expect("open");
+    assert_eq!(storage.backend(), "postgres");
+    assert!(storage.describe().starts_with("postgres:"), "{}", storage.describe());
+    exercise(&storage);
+    let url = postgres_database("reopen").expect("database");
+    survives_reopening(&|| Box::new(PostgresStorage::open(&url).expect("open")));
+    let url = postgres_database("concurrent").expect("database");
+    concurrent_writers(&PostgresStorage::open(&url).expect("open"));
+}
+
+#[test]
+fn postgres_nodes_share_one_database_and_the_schema_is_versioned() {
+    let Some(url) = postgres_database("nodes") else { return };
+    // Two nodes opening at once: the schema is created once.
+    let (a, b) = std::thread::scope(|scope| {
+        let a = scope.spawn(|| PostgresStorage::open(&url).expect("open a"));
+        let b = scope.spawn(|| PostgresStorage::open(&url).expect("open b"));
+        (a.join().expect("a"), b.join().expect("b"))
+    });
+    a.create_session(&record("s1", 1)).expect("create on a");
+    b.put_program("s1", "P", "M30").expect("program on b");
+    let seen = a.load().expect("load on a");
+    assert_eq!(seen[0].programs, vec![("P".to_string(), "M30".to_string())], "a sees what b wrote");
+
+    let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+    let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
+    assert_eq!(version, 1);
+    let sync: String = admin.query_one("SHOW synchronous_commit", &[]).expect("show").get(0);
+    assert!(!sync.is_empty());
+    admin.execute("INSERT INTO nctwin_schema (version) VALUES (99)", &[]).expect("a newer schema");
+    let refused = PostgresStorage::open(&url).expect_err("a newer schema is refused");
+    assert!(refused.0.contains("newer"), "{refused}");
+}
+
+#[test]
+fn postgres_reconnects_after_the_connection_broke() {
+    let Some(url) = postgres_database("reconnect") else { return };
+    let storage = PostgresStorage::open(&url).expect("open");
+    storage.create_session(&record("s1", 1)).expect("create");
+    // Kill every other connection to this database: the storage's connection breaks.
+    let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+    admin
+        .execute(
+            "SELECT pg_terminate_backend(pid) FROM pg_stat_activity
+             WHERE datname = current_database() AND pid <> pg_backend_pid()",
+            &[],
+        )
+        .expect("terminate");
+    // The call that meets the broken connection may fail (and is then not acknowledged); the
+    // next one runs on a new connection.
+    let _ = storage.check();
+    storage.check().expect("reconnected");
+    assert_eq!(storage.load().expect("load").len(), 1);
+}
+
+#[test]
+fn an_unknown_database_scheme_is_refused() {
+    let error = storage::open(Some("mysql://u@h/db"), &temp_dir("scheme")).expect_err("refused");
+    assert!(error.0.contains("mysql"), "{error}");
+    assert!(storage::open(Some("postgres://u@[bad"), &temp_dir("bad")).is_err(), "invalid URL");
+}
+
+/// The whole server on PostgreSQL: sessions and programs survive a restart, and health says
+/// which backend answers.
+#[tokio::test]
+async fn the_server_restarts_on_postgres() {
+    let Some(url) = tokio::task::spawn_blocking(|| postgres_database("server")).await.expect("task") else {
+        return;
+    };
+    let config = || Config { database: Some(url.clone()), ..Config::new(common::temp_data_dir(), common::WEB_DIR) };
+    let server = Server::start_config(config()).await;
+    let health = server.get("/health").await.body;
+    assert_eq!(health["storage"], json!({"backend": "postgres", "status": "ok"}));
+    let id = server.session("mill-3axis").await;
+    let reply = server.put(&format!("/sessions/{id}/programs/main"), json!({"text": "G0 X1\nM30"})).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let reply = server
+        .post(&format!("/sessions/{id}/mda"), json!({"program": "G0 X12.5 Y-3.25", "pace": "fast", "wait": true}))
+        .await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let before = server.get(&format!("/sessions/{id}/state")).await.body;
+    let dir = server.stop().await;
+    let _ = std::fs::remove_dir_all(dir);
+
+    let server = Server::start_config(config()).await;
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!(state["positions"], before["positions"]);
+    let program = server.get(&format!("/sessions/{id}/programs/MAIN")).await.body;
+    assert_eq!(program["text"], "G0 X1\nM30");
+    // The last `AppState` (and with it the PostgreSQL client) is dropped on an async thread.
+    drop(server);
+}
+
+#[tokio::test]
+async fn health_reports_the_backend() {
+    let state = AppState::with_storage(
+        Config::new(common::temp_data_dir(), common::WEB_DIR),
+        Arc::new(MemoryStorage::default()),
+    );
+    let server = Server::start_state(state).await;
+    assert_eq!(server.get("/health").await.body["storage"]["backend"], "memory");
+}
