@@ -258,19 +258,23 @@ mod channel_step {
     #[divan::bench(sample_size = 2000, sample_count = 200)]
     fn mill3(bencher: Bencher) {
         let text = super::mill3(size(20_000));
-        let mut ch = channel("mill-3axis");
-        ch.run_program(&text).expect("program loads");
-        bencher.bench_local(|| {
-            if !ch.is_busy() {
-                ch.reset();
-                ch.run_program(&text).expect("program loads");
-            }
-            ch.step();
-            if ch.ticks().is_multiple_of(1024) {
-                black_box(ch.take_events());
-            }
-        });
+        bench_steps(bencher, channel("mill-3axis"), &text);
     }
+}
+
+/// Benches one `Channel::step` of `text` on `ch`, restarting the program whenever it ends.
+fn bench_steps(bencher: Bencher, mut ch: nctwin_engine::Channel, text: &str) {
+    ch.run_program(text).expect("program loads");
+    bencher.bench_local(|| {
+        if !ch.is_busy() {
+            ch.reset();
+            ch.run_program(text).expect("program loads");
+        }
+        ch.step();
+        if ch.ticks().is_multiple_of(1024) {
+            black_box(ch.take_events());
+        }
+    });
 }
 
 mod transform {
@@ -316,17 +320,7 @@ mod transform {
         }
         assert!(ch.alarms().is_empty(), "{family}: {:?}", ch.alarms());
         ch.reset();
-        ch.run_program(&text).expect("program loads");
-        bencher.bench_local(|| {
-            if !ch.is_busy() {
-                ch.reset();
-                ch.run_program(&text).expect("program loads");
-            }
-            ch.step();
-            if ch.ticks().is_multiple_of(1024) {
-                black_box(ch.take_events());
-            }
-        });
+        bench_steps(bencher, ch, &text);
     }
 }
 
