@@ -70,6 +70,11 @@ impl Channel {
         let Some(t) = self.trafo.clone().filter(|t| t.trafo.orientation_slots().iter().any(Option::is_some)) else {
             return Err(CommandError::Invalid("orientation JOG needs an active orientation transformation".into()));
         };
+        // As for any JOG: in an interrupted program the program's motion is put aside (REPOS).
+        let resume = if self.status == Status::Stopped { Status::Stopped } else { Status::Idle };
+        if resume == Status::Stopped {
+            self.interrupt_for_jog();
+        }
         let o = t.trafo.orientation(&self.machine).expect("orientation transformation");
         let axis = match system {
             JogSystem::Machine | JogSystem::Basic => std::array::from_fn(|i| if i == about { 1.0 } else { 0.0 }),
@@ -117,12 +122,9 @@ impl Channel {
             .flatten()
             .map(|&k| self.cfg.axis(k).jog_velocity.min(self.cfg.axis(k).max_velocity))
             .fold(f64::INFINITY, f64::min);
-        let mut mv =
-            Move::new(path, turned, Feed::Path(velocity), &AxisLimit::for_channel(&self.cfg), true, self.next_tag);
-        mv.machine_space = false;
+        let mv = Move::new(path, turned, Feed::Path(velocity), &AxisLimit::for_channel(&self.cfg), true, self.next_tag);
         self.push_bcs_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space: false, feed: 0.0 });
         self.jog_serial = self.jog_serial.wrapping_add(1);
-        let resume = if self.status == Status::Stopped { Status::Stopped } else { Status::Idle };
         let k = t.trafo.orientation_slots()[0].expect("an orientation axis");
         self.jog = Some(ActiveJog::orientation(k, end, resume));
         self.status = Status::Running;

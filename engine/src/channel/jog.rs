@@ -96,10 +96,6 @@ impl Channel {
             None => None,
         };
         if let Some(about) = super::cartesian_jog::orientation_axis(&req.axis) {
-            let resume_stopped = self.status == Status::Stopped;
-            if resume_stopped {
-                self.interrupt_for_jog();
-            }
             return self.start_orientation_jog(about, f64::from(req.direction), distance, system);
         }
         let k = self.jog_axis_index(&req.axis)?;
