@@ -468,3 +468,18 @@ fn toframex_and_toframey_make_the_tool_the_new_x_or_y() {
     assert_axes(&ch, &[("X", 0.0), ("Y", -10.0), ("Z", 0.0)]);
     assert_eq!(ch.r_param(1), 1.0);
 }
+
+#[test]
+fn hirth_teeth_round_the_tcofr_angles_to_their_pitch() {
+    // ROT X32 would need A 32 (or −32); a 5° Hirth pitch on the 2nd holder axis (A,
+    // $TC_CARR29) takes the nearest tooth, 30 (or −30).
+    let ch = run(
+        "mill5-head-ca",
+        "$TC_CARR29[1]=5",
+        "T1 D1\nROT X32\nTCARR=1 TCOFR\nR1=$P_TCANG[1] R2=$P_TCANG[2] R3=$P_TCANG[3] R4=$P_TCANG[4]\nM30",
+    );
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let r: Vec<f64> = (1..=4).map(|n| ch.r_param(n)).collect();
+    assert!(r[0].abs() < 1e-9 && (r[1] - 30.0).abs() < 1e-9, "{r:?}");
+    assert!((r[3] + 30.0).abs() < 1e-9, "{r:?}");
+}
