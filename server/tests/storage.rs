@@ -217,6 +217,20 @@ fn postgres_reconnects_after_the_connection_broke() {
             &[],
         )
         .expect("terminate");
+    // Termination is asynchronous: wait until the storage's backend is gone.
+    for _ in 0..500 {
+        let others: i64 = admin
+            .query_one(
+                "SELECT count(*) FROM pg_stat_activity WHERE datname = current_database() AND pid <> pg_backend_pid()",
+                &[],
+            )
+            .expect("count")
+            .get(0);
+        if others == 0 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
     // The call that meets the broken connection may fail (and is then not acknowledged); the
     // next one runs on a new connection.
     let _ = storage.check();

@@ -109,8 +109,10 @@ impl PostgresStorage {
         Ok(PostgresStorage { config, description, client: Mutex::new(Some(client)) })
     }
 
-    /// Runs `f` on the connection, connecting first if there is none. A call that fails because
-    /// the connection broke drops it, so the next call starts on a new one.
+    /// Runs `f` on the connection, connecting first if there is none. A call that fails for any
+    /// reason other than an error the server reported for the statement (one with an SQLSTATE
+    /// code) drops the connection, so the next call starts on a new one: the client does not
+    /// always know yet that its connection was closed when the failed call returns.
     fn with<R>(&self, f: impl FnOnce(&mut Client) -> Result<R, postgres::Error>) -> Result<R, StorageError> {
         // A panic inside a transaction rolls it back when the transaction is dropped, so the
         // connection behind a poisoned lock is still consistent.
@@ -123,7 +125,7 @@ impl PostgresStorage {
         }
         let client = guard.as_mut().ok_or_else(|| StorageError("postgres: no connection".into()))?;
         let result = f(client);
-        if result.is_err() && client.is_closed() {
+        if result.as_ref().is_err_and(|e| e.code().is_none() || client.is_closed()) {
             drop_client(guard.take());
         }
         result.map_err(pg_error)
