@@ -7,6 +7,7 @@
 use super::jog::{ActiveJog, JogSystem};
 use super::{Channel, CommandError, MoveMeta, Status};
 use crate::alarm::Alarm;
+use crate::kinematics::orient::vec3::cross;
 use crate::kinematics::{Transformation, Vec3};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, OriPath, Path, rotate};
@@ -26,10 +27,6 @@ pub(super) fn orientation_axis(name: &str) -> Option<usize> {
     }
 }
 
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
 fn unit(v: Vec3) -> Option<Vec3> {
     let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     (n > 1e-9).then(|| v.map(|x| x / n))
@@ -41,9 +38,9 @@ impl Channel {
     /// system. Without an orientation transformation the tool stands along Z.
     pub(super) fn tool_axes(&self) -> [Vec3; 3] {
         let z = self.trafo.as_ref().and_then(|t| t.trafo.orientation(&self.machine)).unwrap_or([0.0, 0.0, 1.0]);
-        let x = unit(cross([0.0, 1.0, 0.0], z))
-            .unwrap_or_else(|| unit(cross(z, [0.0, 0.0, 1.0])).unwrap_or([1.0, 0.0, 0.0]));
-        [x, cross(z, x), z]
+        let x = unit(cross(&[0.0, 1.0, 0.0], &z))
+            .unwrap_or_else(|| unit(cross(&z, &[0.0, 0.0, 1.0])).unwrap_or([1.0, 0.0, 0.0]));
+        [x, cross(&z, &x), z]
     }
 
     /// The direction in the BCS slots of geometry axis `g` of the TCS.

@@ -15,6 +15,7 @@ use super::Interpreter;
 use super::frame::Frame;
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::orient::ChainKind;
+use crate::kinematics::orient::vec3::{cross, dot, neg, normalize, scale, sub};
 use crate::kinematics::orient::{angles, cone_sweep};
 use crate::kinematics::{AnyTrafo, Transformation, Traori, Vec3};
 use crate::machine_data::MachineConfig;
@@ -99,7 +100,7 @@ impl OriModal {
             self.tilt = t;
         }
         if let Some(n) =
-            normalized(w.normal_end.map(|c| c.unwrap_or(0.0))).filter(|_| w.normal_end.iter().any(Option::is_some))
+            normalize(&w.normal_end.map(|c| c.unwrap_or(0.0))).filter(|_| w.normal_end.iter().any(Option::is_some))
         {
             self.normal = n;
         }
@@ -248,10 +249,8 @@ fn angle_too_large(line: u32, lead: bool, value: f64, max: f64) -> Alarm {
 /// the direction of travel, a positive TILT turns it right-handed about the tangent (this
 /// product's sign conventions; the manual leaves them open). `None` when T ∥ N.
 fn lead_and_tilt(t: Vec3, n: Vec3, lead: f64, tilt: f64) -> Option<Vec3> {
-    let d = n[0] * t[0] + n[1] * t[1] + n[2] * t[2];
-    let np = normalized([n[0] - d * t[0], n[1] - d * t[1], n[2] - d * t[2]])?;
-    let s = [np[1] * t[2] - np[2] * t[1], np[2] * t[0] - np[0] * t[2], np[0] * t[1] - np[1] * t[0]];
-    let leaned = crate::motion::rotate(np, s, lead.to_radians());
+    let np = normalize(&sub(&n, &scale(&t, dot(&n, &t))))?;
+    let leaned = crate::motion::rotate(np, cross(&np, &t), lead.to_radians());
     Some(crate::motion::rotate(leaned, t, tilt.to_radians()))
 }
 
@@ -271,28 +270,20 @@ fn through_pole(t: &Traori, start: Vec3, end: Vec3) -> Option<Vec3> {
         ChainKind::Part | ChainKind::Mixed => chain.v[1],
     };
     let (non_pole_limit, pole_limit) = t.pole_limits();
-    let dot = |a: Vec3, b: Vec3| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let cross = |a: Vec3, b: Vec3| [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    // `v` without its component along the unit vector `k`, normalised.
+    let off = |v: &Vec3, k: &Vec3| normalize(&sub(v, &scale(k, dot(v, k))));
     // Closest approach of the great circle's arc to ±pole.
-    let normal = normalized(cross(start, end))?;
-    let p = if dot(pole, start) + dot(pole, end) >= 0.0 { pole } else { pole.map(|x| -x) };
-    let off_plane = dot(p, normal).abs().clamp(0.0, 1.0).asin().to_degrees();
-    let foot = normalized([
-        p[0] - dot(p, normal) * normal[0],
-        p[1] - dot(p, normal) * normal[1],
-        p[2] - dot(p, normal) * normal[2],
-    ])?;
-    let within = dot(cross(start, foot), normal) > 0.0 && dot(cross(foot, end), normal) > 0.0;
+    let normal = normalize(&cross(&start, &end))?;
+    let p = if dot(&pole, &start) + dot(&pole, &end) >= 0.0 { pole } else { neg(&pole) };
+    let off_plane = dot(&p, &normal).abs().clamp(0.0, 1.0).asin().to_degrees();
+    let foot = off(&p, &normal)?;
+    let within = dot(&cross(&start, &foot), &normal) > 0.0 && dot(&cross(&foot, &end), &normal) > 0.0;
     if !within || off_plane >= non_pole_limit || off_plane < 1e-9 || t.pole_angle(&start) < 1e-6 {
         return None;
     }
-    let meridian = normalized(cross(p, start))?;
-    let moved = normalized([
-        end[0] - dot(end, meridian) * meridian[0],
-        end[1] - dot(end, meridian) * meridian[1],
-        end[2] - dot(end, meridian) * meridian[2],
-    ])?;
-    let change = dot(moved, end).clamp(-1.0, 1.0).acos().to_degrees();
+    let meridian = normalize(&cross(&p, &start))?;
+    let moved = off(&end, &meridian)?;
+    let change = dot(&moved, &end).clamp(-1.0, 1.0).acos().to_degrees();
     (change <= pole_limit).then_some(moved)
 }
 
@@ -316,11 +307,6 @@ fn from_angles(def: AngleDefinition, [a, b, c]: [f64; 3], cfg: &MachineConfig) -
         AngleDefinition::Virtual1 => angles::virt_to_vector(cfg.ori.turn_tab[0], [a, b, c]),
         AngleDefinition::Virtual2 => angles::virt_to_vector(cfg.ori.turn_tab[1], [a, b, c]),
     }
-}
-
-fn normalized(v: Vec3) -> Option<Vec3> {
-    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    (n > 1e-12).then(|| v.map(|x| x / n))
 }
 
 impl Interpreter {
@@ -385,7 +371,7 @@ impl Interpreter {
             Some(bcs)
         } else if ori.programmed() {
             let wcs = if ori.vector.iter().any(Option::is_some) {
-                normalized(ori.vector.map(|c| c.unwrap_or(0.0)))
+                normalize(&ori.vector.map(|c| c.unwrap_or(0.0)))
                     .ok_or_else(|| Alarm::value_out_of_range(line, "orientation vector A3/B3/C3 of length 0"))?
             } else {
                 let def = if cfg.ori.ori_def_with_g_code {
@@ -456,7 +442,7 @@ impl Interpreter {
             }
             OriInterpolation::Cone { clockwise } => {
                 let given = ori.cone_axis.map(|c| c.unwrap_or(0.0));
-                let k = normalized(given).ok_or_else(|| {
+                let k = normalize(&given).ok_or_else(|| {
                     Alarm::value_out_of_range(line, "cone interpolation needs the cone axis A6/B6/C6")
                 })?;
                 let k = if modal.reference == OriReference::Workpiece { frame.rotate_direction(k) } else { k };
