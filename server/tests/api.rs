@@ -36,6 +36,9 @@ async fn machines_lists_the_presets_including_the_3_axis_mill() {
     let mill = list.iter().find(|m| m["id"] == "mill-3axis").expect("mill-3axis listed");
     assert!(mill["name"].is_string() && mill["description"].is_string());
     assert_eq!(mill.as_object().map(|o| o.len()), Some(3), "{mill}");
+    // Every engine preset is offered, the 6-axis head among them.
+    assert_eq!(list.len(), nctwin_engine::machine_data::presets::PRESETS.len());
+    assert!(list.iter().any(|m| m["id"] == "mill6-generic"), "{list:?}");
 }
 
 #[tokio::test]

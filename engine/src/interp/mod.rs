@@ -14,6 +14,7 @@ pub mod frame;
 pub mod gcodes;
 mod modal;
 mod orient;
+mod orient_rot;
 mod scope;
 mod statements;
 mod swivel;
@@ -755,6 +756,9 @@ impl Interpreter {
         }
         let tangent = end_tangent(&current, &target, geo, (pa, po, papp), circle.as_ref());
         let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, tangent, line)?;
+        if let Some(theta) = self.tool_rotation(words, &frame, &start, &mut end, tangent, line)? {
+            self.modal.ori.theta = theta;
+        }
 
         let mut path = Path::line(start, end);
         path.ori = ori.map(Box::new);

@@ -538,6 +538,7 @@ pub(super) fn collect(
                     // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
                     "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
                     "P" => w.repeat = Some(whole("P")?),
+                    "THETA" => w.ori.theta = Some((v, value.mode == Some(CoordMode::Ic))),
                     _ if orient::is_address(name) => {
                         w.ori.address(name, v);
                     }
@@ -736,7 +737,7 @@ fn data_write(
 fn is_nc_address(name: &str) -> bool {
     const ADDRESSES: &[&str] = &[
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "SPOS", "TCARR",
+        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "SPOS", "TCARR", "THETA",
     ];
     ADDRESSES.contains(&name) || orient::is_address(name)
 }

@@ -13,6 +13,7 @@
 
 use super::Interpreter;
 use super::frame::Frame;
+pub use super::orient_rot::RotReference;
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::orient::ChainKind;
 use crate::kinematics::orient::vec3::{cross, dot, neg, normalize, scale, sub};
@@ -67,6 +68,10 @@ pub struct OriModal {
     pub tilt: f64,
     /// The last surface normal (A5/B5/C5 of the last block that gave one; +Z at reset).
     pub normal: Vec3,
+    /// G group 54: the reference of the tool rotation THETA (6-axis).
+    pub rotation: RotReference,
+    /// The last THETA in force (degrees).
+    pub theta: f64,
 }
 
 impl OriModal {
@@ -79,6 +84,8 @@ impl OriModal {
             lead: 0.0,
             tilt: 0.0,
             normal: [0.0, 0.0, 1.0],
+            rotation: RotReference::Absolute,
+            theta: 0.0,
         }
     }
 
@@ -92,6 +99,9 @@ impl OriModal {
         }
         if let Some(i) = w.interpolation {
             self.interpolation = i;
+        }
+        if let Some(r) = w.rotation {
+            self.rotation = r;
         }
         if let Some(l) = w.lead {
             self.lead = l;
@@ -127,6 +137,10 @@ pub struct OriWords {
     pub reference: Option<OriReference>,
     pub angles_def: Option<AngleDefinition>,
     pub interpolation: Option<OriInterpolation>,
+    /// G group 54 (ORIROTA, ORIROTR, ORIROTT, ORIROTC).
+    pub rotation: Option<RotReference>,
+    /// THETA= (degrees) and whether it was given incrementally (`THETA=IC(..)`).
+    pub theta: Option<(f64, bool)>,
 }
 
 impl OriWords {
@@ -140,14 +154,19 @@ impl OriWords {
         self.lead.is_some() || self.tilt.is_some()
     }
 
-    /// True if the block moves the orientation (programmed, path-relative, or ORIRESET).
+    /// True if the block moves the orientation (programmed, path-relative, ORIRESET, or the
+    /// tool rotation THETA).
     pub fn moves(&self) -> bool {
-        self.programmed() || self.path_relative() || self.reset.is_some()
+        self.programmed() || self.path_relative() || self.reset.is_some() || self.theta.is_some()
     }
 
     /// Takes an orientation G function (`ORIWKS`, ...); false if `name` is none.
     pub fn keyword(&mut self, name: &str) -> bool {
         use OriInterpolation as I;
+        if let Some(r) = RotReference::keyword(name) {
+            self.rotation = Some(r);
+            return true;
+        }
         match name {
             "ORIWKS" => self.reference = Some(OriReference::Workpiece),
             "ORIMKS" => self.reference = Some(OriReference::Machine),

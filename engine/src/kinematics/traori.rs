@@ -13,6 +13,7 @@
 //! The tool vector from the holder reference to the tip is `t_c = −L` (L = tool length vector
 //! by geometry axis, tip → holder).
 
+use super::orient::rotation::zero_normal;
 use super::orient::solve::Turn;
 use super::orient::vec3::{dot, normalize, scale};
 use super::orient::{Chain, ChainKind};
@@ -76,6 +77,9 @@ pub struct Traori {
     /// `TRAFO5_NON_POLE_LIMIT`, `TRAFO5_POLE_LIMIT` (degrees).
     non_pole_limit: f64,
     pole_limit: f64,
+    /// Tool normal at the zero position (perpendicular to the basic orientation): the
+    /// rotation vector of THETA = 0 in the basic orientation (6-axis).
+    normal: Vec3,
 }
 
 impl Traori {
@@ -113,6 +117,7 @@ impl Traori {
             OriMachine::Part => (ChainKind::Part, zero, p.base_tool, p.joint_offset, p.part_offset),
             OriMachine::Mixed => (ChainKind::Mixed, p.joint_offset, p.base_tool, p.joint_offset_part, p.part_offset),
         };
+        let normal = zero_normal(&base, &p.base_orient_normal);
         let chain = Chain { kind, axes: n, v, l1, l2, l3, l4, l23: p.joint_offset_2_3, base };
         Ok(Traori {
             trafo_type: set.trafo_type,
@@ -124,6 +129,7 @@ impl Traori {
             role_to_chain,
             non_pole_limit: p.non_pole_limit,
             pole_limit: p.pole_limit,
+            normal,
         })
     }
 
@@ -195,6 +201,39 @@ impl Traori {
     /// kinematic zero position, `TRAFO5_ROT_AX_OFFSET`: where ORIRESET without values goes.
     pub fn rest_positions(&self) -> [f64; 3] {
         self.by_role(&[0.0; 3], |r, _| r.offset)
+    }
+
+    /// The channel axis of the 3rd rotary axis (role [5]) of a generic 6-axis kinematics,
+    /// which turns the tool about its own axis; `None` for 3- to 5-axis kinematics.
+    pub fn third_slot(&self) -> Option<usize> {
+        self.role_to_chain[2].and_then(|i| self.rot[i]).map(|r| r.slot)
+    }
+
+    /// The tool normal in the zero position (`TRAFO6_BASE_ORIENT_NORMAL` made perpendicular
+    /// to the basic orientation): the basic rotation vector THETA refers to under ORIROTA.
+    pub fn base_normal(&self) -> Vec3 {
+        self.normal
+    }
+
+    /// The tool's rotation vector in the BCS at machine position `machine` (6-axis).
+    pub fn rotation_vector(&self, machine: &AxisVec) -> Vec3 {
+        self.chain.rotation_vector(&self.chain.pose(&self.angles(machine)), &self.normal)
+    }
+
+    /// The positions of all three rotary axes (6-axis) that give orientation `o` and rotation
+    /// vector `r` (unit, perpendicular), of the two solutions the one within the limits with
+    /// the least weighted travel from `prev`, written into `axes`.
+    pub fn rotated_axes(&self, o: &Vec3, r: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        let o = normalize(o).ok_or(Unreachable)?;
+        let sols = self.chain.solve_rotated(&o, r, &self.normal, &self.hint(Some(prev))).ok_or(Unreachable)?;
+        let best =
+            sols.iter().filter_map(|s| self.placed(s, prev)).fold(None::<(f64, [f64; 3])>, |best, (c, p)| match best {
+                Some((bc, _)) if bc <= c + 1e-12 => best,
+                _ => Some((c, p)),
+            });
+        let (_, pos) = best.ok_or(Unreachable)?;
+        self.write_rotary(&pos, axes);
+        Ok(())
     }
 
     /// Effective angles (radians) of the rotary axes at `axes` (zero without).
@@ -347,8 +386,18 @@ impl Transformation for Traori {
     /// One pass instead of [`Traori::orientation_axes`] then [`Traori::inverse`]: the pose for
     /// the linear axes is built from the chosen solution's own cosines and sines, so the rotary
     /// positions are not turned back into angles and no `sin_cos` is needed.
+    /// The 3rd rotary axis of a 6-axis kinematics (tool rotation) is not part of the vector
+    /// interpolation: it keeps its interpolated BCS value in `axes`, which goes linearly from
+    /// the block start to the position the block's THETA demands.
     fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let (pos, turns) = self.nearest_solution(o, prev)?;
+        let (pos, turns) = match self.third_slot() {
+            None => self.nearest_solution(o, prev)?,
+            Some(k) => {
+                let mut p = *prev;
+                p[k] = axes[k];
+                self.nearest_solution(o, &p)?
+            }
+        };
         let pose = self.chain.pose_turns(&turns);
         let m = self.chain.linear(&self.point(axes), &pose, &scale(tool, -1.0));
         self.write_rotary(&pos, axes);

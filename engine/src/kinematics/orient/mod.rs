@@ -7,10 +7,12 @@
 //! - [`chain`]: the vector chain of tool, part and mixed kinematics, forward and inverse.
 //! - [`angles`]: ORIEULER, ORIRPY, ORIRPY2 and ORIVIRT1/2 angles ↔ orientation vector.
 //! - [`interp`]: great-circle and cone interpolation of the orientation.
+//! - [`rotation`]: the tool's rotation about its own axis (6-axis, THETA).
 
 pub mod angles;
 pub mod chain;
 pub mod interp;
+pub mod rotation;
 pub mod solve;
 pub mod vec3;
 
