@@ -169,3 +169,55 @@ fn the_tool_axis_follows_linearly_while_the_tip_holds_under_vector_interpolation
         assert!((m[3] / 90.0 - m[4] / 45.0).abs() < 1e-6, "{m:?}");
     }
 }
+
+#[test]
+fn the_orientation_variables_read_the_tool_and_rotation_vectors() {
+    // After C = 60, B = 30 and THETA = 30 (ORIROTA): o = (cos60·sin30, sin60·sin30, cos30) =
+    // (0.25, 0.4330, 0.8660); r = cos A·e1 + sin A·e2 with A = −63.4349 + 30 (see above).
+    let o = orientation(30.0, 60.0);
+    let prog = format!(
+        "{START}ORIROTA\nX10 A3={} B3={} C3={} THETA=30\n\
+         R1=$AC_TOOLO_ACT[1] R2=$AC_TOOLO_ACT[2] R3=$AC_TOOLO_ACT[3]\n\
+         R4=$P_TOOLO[1] R5=$VC_TOOLO[3] R6=$AC_TOOLO_END[2]\n\
+         R7=$AC_TOOLR_ACT[1] R8=$AC_TOOLR_ACT[2] R9=$P_TOOLROT[3]\nM30",
+        o[0], o[1], o[2]
+    );
+    let (ch, _) = run(&prog);
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
+    let a = (-63.434_948_822_922 + 30.0f64).to_radians();
+    let (sb, cb) = 30f64.to_radians().sin_cos();
+    let (sc, cc) = 60f64.to_radians().sin_cos();
+    let r = [a.cos() * cc * cb - a.sin() * sc, a.cos() * sc * cb + a.sin() * cc, -a.cos() * sb];
+    let expected = [
+        (1, 0.25),
+        (2, 0.75f64.sqrt() / 2.0),
+        (3, 0.75f64.sqrt()),
+        (4, 0.25),
+        (5, 0.75f64.sqrt()),
+        (6, 0.75f64.sqrt() / 2.0),
+        (7, r[0]),
+        (8, r[1]),
+        (9, r[2]),
+    ];
+    for (n, v) in expected {
+        assert!((ch.r_param(n) - v).abs() < 1e-9, "R{n} = {} vs {v}", ch.r_param(n));
+    }
+}
+
+#[test]
+fn without_a_transformation_the_tool_points_along_the_plane_applicate() {
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program("G18\nR1=$AC_TOOLO_ACT[2] R2=$P_TOOLO[3]\nR3=$AC_TOOLO_ACT[4]\nM30").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (1.0, 0.0));
+    assert!(ch.snapshot().alarms.iter().any(|a| a.line == Some(3)), "{:?}", ch.snapshot().alarms);
+    // A rotation vector needs the 6-axis kinematics.
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program("R1=$AC_TOOLR_ACT[1]\nM30").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert!(ch.snapshot().alarms.iter().any(|a| a.line == Some(1)), "{:?}", ch.snapshot().alarms);
+}

@@ -15,6 +15,7 @@ pub mod gcodes;
 mod modal;
 mod orient;
 mod orient_rot;
+mod orient_vars;
 mod scope;
 mod statements;
 mod swivel;

@@ -58,7 +58,7 @@ pub(crate) struct Ctx<'a> {
 /// Main-run variables: reading them makes preparation wait until the main run has caught up
 /// (the control's implicit preprocessing stop), because their value is only known there.
 pub fn is_main_run_variable(name: &str) -> bool {
-    ["$AA_", "$AC_", "$VA_"].iter().any(|p| name.starts_with(p))
+    ["$AA_", "$AC_", "$VA_", "$VC_"].iter().any(|p| name.starts_with(p))
 }
 
 impl Scope for Ctx<'_> {
@@ -95,6 +95,9 @@ impl Scope for Ctx<'_> {
             }
             sys.offsets.frame.unapply(&sys.cfg.geo_axes, &basic).map_or(f64::NAN, |w| w[k])
         };
+        if let Some(v) = super::orient_vars::read(sys, name, indices, line) {
+            return v;
+        }
         Ok(match name {
             "$P_TOOLNO" => Value::Int(sys.offsets.t.into()),
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),

@@ -15,7 +15,7 @@ use super::modal::PtpMode;
 use super::{Interpreter, Item};
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::plan::{PlanError, plan_block};
-use crate::kinematics::{self, ActiveTrafo, AnyTrafo, SelectArgs, Transformation};
+use crate::kinematics::{self, ActiveTrafo, AnyTrafo, SelectArgs, Transformation, Vec3};
 use crate::lang::{Block, Expr, Word};
 use crate::machine_data::{ChannelAxis, MachineAxis, MachineConfig, TrafoKind, TrafoParams};
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path};
@@ -230,6 +230,18 @@ impl TrafoState {
             AnyTrafo::Tracon(t) => Some(t.intermediate(&a.machine)),
             _ => None,
         }
+    }
+
+    /// The tool orientation (unit, BCS) and, on a 6-axis kinematics, the rotation vector at the
+    /// end of what was prepared; `None` without an orientation transformation.
+    pub fn tool_vectors(&self) -> Option<(Vec3, Option<Vec3>)> {
+        let a = self.active.as_ref()?;
+        let o = a.trafo.trafo.orientation(&a.machine)?;
+        let r = match &a.trafo.trafo {
+            AnyTrafo::Traori(t) if t.third_slot().is_some() => Some(t.rotation_vector(&a.machine)),
+            _ => None,
+        };
+        Some((o, r))
     }
 
     /// The configuration blocks are read with while a transformation is active.
