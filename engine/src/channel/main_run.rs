@@ -30,7 +30,10 @@ impl Channel {
             && budget > 0
         {
             budget -= 1;
-            let main_run_idle = self.pending.is_empty() && self.planner.is_empty() && self.dwell_ticks == 0;
+            let main_run_idle = self.pending.is_empty()
+                && self.planner.is_empty()
+                && self.dwell_ticks == 0
+                && self.toff.settled(&self.offsets.toff);
             out.clear();
             let generation = self.interp.transformation_generation();
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
@@ -186,6 +189,10 @@ impl Channel {
             return;
         }
         while self.status == Status::Running {
+            // Like motion, a change of the online tool offset finishes before the next action.
+            if !self.toff.settled(&self.offsets.toff) {
+                return;
+            }
             // Single block: the block is done once the items of its line are; then stop.
             if let Some(line) = self.sbl_done
                 && self.planner.is_empty()

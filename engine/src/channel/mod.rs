@@ -18,6 +18,7 @@ mod repos;
 mod search;
 mod snapshot;
 mod spindle;
+mod toff;
 mod trafo;
 
 use std::collections::VecDeque;
@@ -226,6 +227,8 @@ pub struct Channel {
     /// The move whose transformation the main run has taken over (checked once per move, not
     /// every cycle).
     trafo_tag: Option<u32>,
+    /// The online tool length offset reached by the main run (`$AA_TOFF`).
+    toff: toff::OnlineOffset,
 }
 
 impl Channel {
@@ -286,6 +289,7 @@ impl Channel {
             trafo: None,
             prep_waits_for_trafo: false,
             trafo_tag: None,
+            toff: Default::default(),
             referenced,
         };
         // Power on acts like a reset: the reset transformation (if configured) is active.

@@ -18,15 +18,27 @@ impl Channel {
             }
         }
         let machine_space = meta.is_some_and(|(_, m)| m.machine_space);
+        let ori = &self.cfg.ori;
+        self.toff.step(&self.offsets.toff, ori.toff_velocity, ori.toff_accel, self.cfg.ipo_cycle);
+        let toff = self.toff.current;
         match self.trafo.as_ref().filter(|_| !machine_space) {
-            None => self.machine = *self.planner.position(),
+            None => {
+                self.machine = *self.planner.position();
+                // Without a transformation the tool directions are the geometry axes.
+                for (g, k) in self.cfg.geo_axes.iter().enumerate() {
+                    if let Some(k) = k {
+                        self.machine[*k] += toff[g];
+                    }
+                }
+            }
             Some(t) => {
                 // Mapped in place in a copy of the BCS position (the transformation writes only
                 // its own slots); the last machine position stays the continuity reference.
                 let mut m = *self.planner.position();
+                let tool = [t.tool[0] + toff[0], t.tool[1] + toff[1], t.tool[2] + toff[2]];
                 let mapped = match self.planner.orientation() {
-                    Some(o) => t.trafo.inverse_oriented(o, &self.machine, &t.tool, &mut m),
-                    None => t.trafo.inverse(self.planner.position(), &self.machine, &t.tool, &mut m),
+                    Some(o) => t.trafo.inverse_oriented(o, &self.machine, &tool, &mut m),
+                    None => t.trafo.inverse(self.planner.position(), &self.machine, &tool, &mut m),
                 };
                 if mapped.is_ok() {
                     self.machine = m;
@@ -60,10 +72,7 @@ impl Channel {
             }
         }
         self.trafo = new;
-        let space = match &self.trafo {
-            Some(t) => t.forward(&self.machine),
-            None => self.machine,
-        };
+        let space = self.space_of_machine();
         self.planner.set_position(space);
         if self.prep_waits_for_trafo {
             self.prep_waits_for_trafo = false;
@@ -76,10 +85,7 @@ impl Channel {
     /// chose (none, the one that stays, or the reset data set); the axes stay where they are.
     pub(super) fn adopt_transformation(&mut self) {
         self.trafo = self.interp.offsets().trafo;
-        let space = match &self.trafo {
-            Some(t) => t.forward(&self.machine),
-            None => self.machine,
-        };
+        let space = self.space_of_machine();
         self.planner.set_position(space);
     }
 }

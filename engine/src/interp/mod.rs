@@ -19,6 +19,7 @@ mod orient_vars;
 mod scope;
 mod statements;
 mod swivel;
+mod toff;
 pub mod toolholder;
 mod trafo;
 pub mod trc;
@@ -58,6 +59,8 @@ pub struct Offsets {
     pub trafo: Option<crate::kinematics::ActiveTrafo>,
     /// The block's active G functions, for the display.
     pub gcodes: gcodes::GCodes,
+    /// Online tool length offset in the tool directions X, Y, Z (`$AA_TOFF`, see `toff.rs`).
+    pub toff: [f64; 3],
 }
 
 /// Why the main run stops.
@@ -377,6 +380,7 @@ impl Interpreter {
         self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         self.absorb_tool_into_transformation();
+        self.online_tool_offset(&words.toff, cfg);
 
         // Spindle before motion.
         let old_direction = self.direction;

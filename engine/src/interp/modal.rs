@@ -291,6 +291,8 @@ pub(super) struct Words {
     pub rp: Option<f64>,
     /// Tool, frame and machine data written by the block, as NC data text lines.
     pub data_writes: Vec<String>,
+    /// Online tool length offset instructions (`$AA_TOFF[..]=`, TOFFON, TOFFOF).
+    pub toff: Vec<super::toff::ToffOp>,
     /// NEWCONF: activate machine data written by the program.
     pub newconf: bool,
     /// MSG: text for the operator (empty clears it).
@@ -456,6 +458,29 @@ pub(super) fn collect(
                 }
                 w.ori.reset = Some(values);
             }
+            Word::Keyword { name, args } if name == "TOFFON" || name == "TOFFOF" => {
+                use super::toff::{ToffOp, direction};
+                let dir = |e: &Expr| -> Result<usize, Alarm> {
+                    let v = eval(e, &Ctx { vars, sys }, line)?;
+                    direction(cfg, &v.as_text().to_ascii_uppercase(), line)
+                };
+                let value = |e: &Expr| eval_f64(e, &Ctx { vars, sys }, line);
+                w.toff.push(match (name.as_str(), args.as_slice()) {
+                    ("TOFFON", [d]) => ToffOp::On { dir: dir(d)?, value: None },
+                    ("TOFFON", [d, v]) => ToffOp::On { dir: dir(d)?, value: Some(value(v)?) },
+                    ("TOFFOF", []) => ToffOp::Off { dir: None },
+                    ("TOFFOF", [d]) => ToffOp::Off { dir: Some(dir(d)?) },
+                    _ => {
+                        return Err(Alarm::syntax(
+                            line,
+                            &format!(
+                                "{name} takes a tool direction (X, Y, Z){}",
+                                if name == "TOFFON" { " and an offset" } else { "" }
+                            ),
+                        ));
+                    }
+                });
+            }
             Word::Keyword { name, args } if name == "DELOBJ" => {
                 // DELOBJ("KIN_CHAIN_ELEM") / DELOBJ("TRAFO_DATA"): delete every kinematic chain
                 // element / transformation record (active with NEWCONF or reset). Ranges
@@ -490,6 +515,10 @@ pub(super) fn collect(
                     }
                     Assigned::ProgramFrame(f) => {
                         w.program_frame = Some(*f);
+                        continue;
+                    }
+                    Assigned::OnlineToolOffset(op) => {
+                        w.toff.push(op);
                         continue;
                     }
                     Assigned::Address => {}
@@ -576,6 +605,8 @@ pub(super) enum Assigned {
     Data(String),
     /// A new programmable frame (`$P_PFRAME=...`).
     ProgramFrame(Box<Frame>),
+    /// `$AA_TOFF[dir] = value`: the online tool length offset.
+    OnlineToolOffset(super::toff::ToffOp),
 }
 
 pub(super) fn assign(
@@ -602,6 +633,17 @@ pub(super) fn assign(
             .ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?;
         *slot = v;
         return Ok(Assigned::Variable);
+    }
+    if name == "$AA_TOFF" {
+        let dir = match indices {
+            [i] => {
+                let v = eval(i, &Ctx { vars, sys }, line)?;
+                super::toff::direction(cfg, &v.as_text().to_ascii_uppercase(), line)?
+            }
+            _ => return Err(Alarm::index_error(line, name, "needs one tool direction X, Y or Z")),
+        };
+        let value = eval_f64(expr, &Ctx { vars, sys }, line)?;
+        return Ok(Assigned::OnlineToolOffset(super::toff::ToffOp::Write { dir, value }));
     }
     if name == "$P_PFRAME" {
         return program_frame(indices, expr, vars, sys, line).map(|f| Assigned::ProgramFrame(Box::new(f)));

@@ -131,6 +131,13 @@ impl Scope for Ctx<'_> {
                 Value::Real(sys.pos[k] - sys.offsets.tool[k])
             }
             "$AA_IW" => Value::Real(wcs(axis()?)),
+            "$AA_TOFF" => {
+                let k = axis()?;
+                let dir = sys.cfg.geo_axes.iter().position(|g| *g == Some(k)).ok_or_else(|| {
+                    Alarm::index_error(line, name, "needs a tool direction X, Y or Z (a geometry axis)")
+                })?;
+                Value::Real(sys.offsets.toff[dir])
+            }
             // Seconds since the start of the block: preparation after a preprocessing stop
             // reads it at the block's start.
             "$AC_TIME" => Value::Real(0.0),

@@ -224,6 +224,11 @@ pub static DEFS: &[Def] = &[
     def("ORIENTATION_IS_EULER", 21100, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     def("ORI_DEF_WITH_G_CODE", 21102, C, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("ORI_IPO_WITH_G_CODE", 21104, C, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    // Online tool length offset $AA_TOFF (F2 §3.12): mode 0 absolute, 1 integrating; velocity
+    // in mm/min and acceleration in m/s² of the compensating motion (defaults chosen here).
+    def("TOFF_MODE", 21190, C, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
+    def("TOFF_VELO", 21194, C, Kind::Real, 1, Default::Real(1000.0), 0.001, 1e6),
+    def("TOFF_ACCEL", 21196, C, Kind::Real, 1, Default::Real(1.0), 0.001, 1e3),
     def("POLE_ORI_MODE", 21108, C, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
     def("X_AXIS_IN_OLD_X_Z_PLANE", 21110, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     def("ORIAX_TURN_TAB_1", 21120, C, Kind::Int, 3, Default::Indexed(default_turn_tab_1), 0.0, 3.0),

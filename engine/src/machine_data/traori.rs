@@ -89,6 +89,11 @@ pub struct OriSettings {
     pub x_axis_in_old_x_z_plane: bool,
     /// MD21120 / MD21130 `ORIAX_TURN_TAB_1/2` (1 = X, 2 = Y, 3 = Z) for ORIVIRT1/2.
     pub turn_tab: [[u8; 3]; 2],
+    /// MD21190 `TOFF_MODE`: `$AA_TOFF` writes are integrated (added) instead of absolute.
+    pub toff_integrating: bool,
+    /// MD21194 `TOFF_VELO` (mm/s) and MD21196 `TOFF_ACCEL` (mm/s²) of the online tool offset.
+    pub toff_velocity: f64,
+    pub toff_accel: f64,
 }
 
 impl OriSettings {
@@ -107,6 +112,9 @@ impl OriSettings {
                 std::array::from_fn(|i| n("ORIAX_TURN_TAB_1", i) as u8),
                 std::array::from_fn(|i| n("ORIAX_TURN_TAB_2", i) as u8),
             ],
+            toff_integrating: n("TOFF_MODE", 0) != 0.0,
+            toff_velocity: n("TOFF_VELO", 0) / 60.0,
+            toff_accel: n("TOFF_ACCEL", 0) * 1000.0,
         }
     }
 }
