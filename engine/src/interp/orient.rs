@@ -306,6 +306,26 @@ fn through_pole(t: &Traori, start: Vec3, end: Vec3) -> Option<Vec3> {
     (change <= pole_limit).then_some(moved)
 }
 
+/// MD21108 `POLE_ORI_MODE` for a great circle starting at `start`: the units digit applies
+/// when the start orientation is the pole, the tens digit when it lies within
+/// `TRAFO5_NON_POLE_LIMIT` of it (F2 §3.2 "Behavior at pole"). This product's reading of the
+/// digit values (the manual excerpt names only the digits' roles): 0 = the great circle as
+/// programmed (the pole axis turns to its end position at the start of the block, the path
+/// slowing down as the axis limits demand); 1 = the block is interpolated with the rotary axes
+/// linearly (ORIAXES), like the pole tolerance of kinematic chains ($NT_POLE_LIMIT), so the
+/// pole axis turns together with the tilt axis. Other values act like 0.
+fn pole_start_as_axes(t: &Traori, cfg: &MachineConfig, start: &Vec3) -> bool {
+    let angle = t.pole_angle(start);
+    let digit = if angle < 1e-6 {
+        cfg.ori.pole_ori_mode % 10
+    } else if angle < t.pole_limits().0 {
+        cfg.ori.pole_ori_mode / 10 % 10
+    } else {
+        return false;
+    };
+    digit == 1
+}
+
 /// 14120: great-circle interpolation between antiparallel orientations.
 fn antiparallel(line: u32) -> Alarm {
     Alarm {
@@ -436,6 +456,14 @@ impl Interpreter {
             m_start[*k] = start[*k];
         }
         let Some(o_start) = active.trafo.orientation(&m_start) else { return Ok(None) };
+        let interpolation = match &active.trafo {
+            AnyTrafo::Traori(t)
+                if interpolation == OriInterpolation::Vector && pole_start_as_axes(t, cfg, &o_start) =>
+            {
+                OriInterpolation::Axes
+            }
+            _ => interpolation,
+        };
         let vector = matches!(interpolation, OriInterpolation::Vector | OriInterpolation::Path);
         let o_end = match (&active.trafo, vector) {
             (AnyTrafo::Traori(t), true) => match through_pole(t, o_start, o_end) {
