@@ -16,8 +16,8 @@ use super::frame::Frame;
 pub use super::orient_rot::RotReference;
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::orient::ChainKind;
-use crate::kinematics::orient::vec3::{cross, dot, neg, normalize, scale, sub};
-use crate::kinematics::orient::{angles, cone_sweep};
+use crate::kinematics::orient::vec3::{cross, dot, neg, norm, normalize, scale, sub};
+use crate::kinematics::orient::{angles, cone_sweep, cone_through};
 use crate::kinematics::{AnyTrafo, Transformation, Traori, Vec3};
 use crate::machine_data::MachineConfig;
 use crate::motion::{AxisVec, OriPath};
@@ -53,7 +53,10 @@ pub enum OriInterpolation {
     /// ORIPATH: every motion block ends with the orientation LEAD/TILT give relative to its
     /// path tangent and the surface normal; in between a great circle.
     Path,
-    /// ORICONIO, ORICONTO, ORICURVE, ORIPATHS: not modelled (alarm when used).
+    /// ORICONIO: on the cone through the start, the intermediate orientation A7/B7/C7 and the
+    /// end.
+    ConeIntermediate,
+    /// ORICONTO, ORICURVE, ORIPATHS: not modelled (alarm when used).
     Unmodelled(&'static str),
 }
 
@@ -126,6 +129,8 @@ pub struct OriWords {
     pub angles: [Option<f64>; 3],
     /// A6, B6, C6: cone axis.
     pub cone_axis: [Option<f64>; 3],
+    /// A7, B7, C7: intermediate orientation of ORICONIO.
+    pub intermediate: [Option<f64>; 3],
     /// ORIRESET(a, b, c): the orientation axes to these positions (omitted: the rest position).
     pub reset: Option<[Option<f64>; 3]>,
     /// LEAD=, TILT= (degrees).
@@ -181,7 +186,7 @@ impl OriWords {
             "ORICONCCW" => self.interpolation = Some(I::Cone { clockwise: false }),
             "ORIPATH" => self.interpolation = Some(I::Path),
             "ORIPATHS" => self.interpolation = Some(I::Unmodelled("ORIPATHS")),
-            "ORICONIO" => self.interpolation = Some(I::Unmodelled("ORICONIO")),
+            "ORICONIO" => self.interpolation = Some(I::ConeIntermediate),
             "ORICONTO" => self.interpolation = Some(I::Unmodelled("ORICONTO")),
             "ORICURVE" => self.interpolation = Some(I::Unmodelled("ORICURVE")),
             _ => return false,
@@ -205,6 +210,7 @@ impl OriWords {
             "A4" | "B4" | "C4" => &mut self.normal_start,
             "A5" | "B5" | "C5" => &mut self.normal_end,
             "A6" | "B6" | "C6" => &mut self.cone_axis,
+            "A7" | "B7" | "C7" => &mut self.intermediate,
             _ => return false,
         };
         slot[(name.as_bytes()[0] - b'A') as usize] = Some(value);
@@ -230,6 +236,9 @@ pub fn is_address(name: &str) -> bool {
             | "A6"
             | "B6"
             | "C6"
+            | "A7"
+            | "B7"
+            | "C7"
             | "LEAD"
             | "TILT"
     )
@@ -495,6 +504,23 @@ impl Interpreter {
                 let k = if modal.reference == OriReference::Workpiece { frame.rotate_direction(k) } else { k };
                 let sweep = cone_sweep(&k, &o_start, &o_end, !clockwise).ok_or_else(|| {
                     Alarm::value_out_of_range(line, "cone interpolation: an orientation lies on the cone axis")
+                })?;
+                Ok(OriPath::cone(o_start, k, sweep))
+            }
+            OriInterpolation::ConeIntermediate => {
+                // All three must differ; an intermediate parallel to the start or the end
+                // orientation makes it a great circle (F2 §3.11.3).
+                let given = ori.intermediate.map(|c| c.unwrap_or(0.0));
+                let oi = normalize(&given).ok_or_else(|| {
+                    Alarm::value_out_of_range(line, "ORICONIO needs the intermediate orientation A7/B7/C7")
+                })?;
+                let oi = if modal.reference == OriReference::Workpiece { frame.rotate_direction(oi) } else { oi };
+                let parallel = |a: &Vec3, b: &Vec3| norm(&cross(a, b)) < 1e-9;
+                if parallel(&oi, &o_start) || parallel(&oi, &o_end) {
+                    return OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line));
+                }
+                let (k, sweep) = cone_through(&o_start, &oi, &o_end).ok_or_else(|| {
+                    Alarm::value_out_of_range(line, "ORICONIO: start and end orientation must differ")
                 })?;
                 Ok(OriPath::cone(o_start, k, sweep))
             }

@@ -53,9 +53,34 @@ pub fn cone_sweep(k: &Vec3, os: &Vec3, oe: &Vec3, counter_clockwise: bool) -> Op
     Some(if counter_clockwise { a.rem_euclid(tau) } else { a.rem_euclid(tau) - tau })
 }
 
+/// ORICONIO: the cone whose surface carries the unit orientations `os`, `oi` and `oe`, as its
+/// axis and the sweep (radians, 0..2π, right-handed about the axis) from `os` to `oe` that
+/// passes `oi`. The tips of three unit vectors lie on one circle of the unit sphere; its plane's
+/// normal `(oi − os) × (oe − os)` is the cone axis, oriented so that the circle runs
+/// os → oi → oe counter-clockwise. `None` when two of them coincide (no cone is defined).
+pub fn cone_through(os: &Vec3, oi: &Vec3, oe: &Vec3) -> Option<(Vec3, f64)> {
+    use super::vec3::{cross, sub};
+    let k = normalize(&cross(&sub(oi, os), &sub(oe, os)))?;
+    let a = super::solve::angle_about(&k, os, oe)?;
+    Some((k, a.rem_euclid(std::f64::consts::TAU)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_cone_through_three_points_30_degrees_off_z_is_the_cone_about_z() {
+        // os, oi, oe all 30° from Z at azimuths 0°, 90°, 180°: axis Z, sweep 180°.
+        let (s, c) = (0.5, 0.75f64.sqrt());
+        let (k, sweep) = cone_through(&[s, 0.0, c], &[0.0, s, c], &[-s, 0.0, c]).unwrap();
+        assert!(k[0].abs() < 1e-12 && k[1].abs() < 1e-12 && (k[2] - 1.0).abs() < 1e-12, "{k:?}");
+        assert!((sweep - std::f64::consts::PI).abs() < 1e-12);
+        // Through azimuth 270° instead: the other way round, 180° about −Z.
+        let (k, sweep) = cone_through(&[s, 0.0, c], &[0.0, -s, c], &[-s, 0.0, c]).unwrap();
+        assert!((k[2] + 1.0).abs() < 1e-12 && (sweep - std::f64::consts::PI).abs() < 1e-12);
+        assert!(cone_through(&[s, 0.0, c], &[s, 0.0, c], &[-s, 0.0, c]).is_none());
+    }
 
     #[test]
     fn slerp_halfway_between_z_and_x_is_the_diagonal() {
