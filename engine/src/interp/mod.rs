@@ -14,6 +14,7 @@ pub mod frame;
 pub mod gcodes;
 mod modal;
 mod orient;
+mod orient_poly;
 mod orient_rot;
 mod orient_vars;
 mod scope;

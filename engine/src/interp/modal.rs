@@ -645,6 +645,11 @@ pub(super) fn assign(
         let value = eval_f64(expr, &Ctx { vars, sys }, line)?;
         return Ok(Assigned::OnlineToolOffset(super::toff::ToffOp::Write { dir, value }));
     }
+    if name == "PO"
+        && let Some(alarm) = super::orient_poly::refused(indices, sys.trafo.tool_vectors().is_some(), line)
+    {
+        return Err(alarm);
+    }
     if name == "$P_PFRAME" {
         return program_frame(indices, expr, vars, sys, line).map(|f| Assigned::ProgramFrame(Box::new(f)));
     }

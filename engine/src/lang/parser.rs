@@ -537,7 +537,37 @@ fn parse_address_value(cur: &mut Cursor) -> PResult<AddressValue> {
         }
     }
     cur.pos = save;
+    if let Some(list) = parse_coefficients(cur)? {
+        return Ok(AddressValue { mode: None, expr: list });
+    }
+    cur.pos = save;
     Ok(AddressValue { mode: None, expr: parse_expr(cur)? })
+}
+
+/// Name of the call that holds a coefficient list `(a, b, ...)`, the value of a polynomial
+/// address such as `PO[PHI]=(a2, a3)`.
+pub const COEFFICIENTS: &str = "_COEFFICIENTS";
+
+/// `(a, b, ...)` with at least one comma: the coefficient list of a polynomial address, as
+/// [`COEFFICIENTS`]`(a, b, ...)`. `None` (cursor moved) if the value is anything else.
+fn parse_coefficients(cur: &mut Cursor) -> PResult<Option<Expr>> {
+    cur.skip_ws();
+    if !cur.eat(b'(') {
+        return Ok(None);
+    }
+    let mut items = vec![parse_expr(cur)?];
+    cur.skip_ws();
+    if cur.peek() != Some(b',') {
+        return Ok(None);
+    }
+    while cur.eat(b',') {
+        items.push(parse_expr(cur)?);
+        cur.skip_ws();
+    }
+    if !cur.eat(b')') {
+        return Err((cur.pos, "missing `)` after the coefficient list".into()));
+    }
+    Ok(Some(Expr::Call(COEFFICIENTS.into(), items)))
 }
 
 /// True if nothing of an expression follows (end of block, comment, or the next word), so a
