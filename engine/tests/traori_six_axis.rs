@@ -221,3 +221,46 @@ fn without_a_transformation_the_tool_points_along_the_plane_applicate() {
     }
     assert!(ch.snapshot().alarms.iter().any(|a| a.line == Some(1)), "{:?}", ch.snapshot().alarms);
 }
+
+/// Tool T2: an angle head whose tool points along +X in the zero position ($TC_DPV3..5).
+const ANGLE_HEAD: &str = "$TC_DP1[2,1]=120\n$TC_DP3[2,1]=100.\n$TC_DPV3[2,1]=1.\n$TC_DPV4[2,1]=0.\n$TC_DPV5[2,1]=0.";
+
+fn run_md(md: &str, program: &str) -> Channel {
+    let mut ch = Channel::from_preset("mill6-generic", md).unwrap();
+    ch.run_program(program).unwrap();
+    let mut n = 0;
+    while ch.is_busy() {
+        ch.step();
+        n += 1;
+        assert!(n < 1_000_000);
+    }
+    ch
+}
+
+#[test]
+fn the_active_tools_own_orientation_is_the_basic_orientation() {
+    // Basic orientation +X: with A = 0, C·B·A turn X into (cos C·cos B, sin C·cos B, −sin B);
+    // the wanted +Z needs B = −90 (C stays in its pole position 0).
+    let ch = run_md(ANGLE_HEAD, "T2 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 A3=0 B3=0 C3=1\nR1=$TC_DPV3[2,1]\nM30");
+    let s = ch.snapshot();
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    assert!(
+        (machine(&s, "B") + 90.0).abs() < 1e-6 && machine(&s, "C").abs() < 1e-6 && machine(&s, "A").abs() < 1e-6,
+        "{:?}",
+        s.machine
+    );
+    assert_eq!(ch.r_param(1), 1.0);
+    // A vector passed with TRAORI(1, x, y, z) comes first: the basic orientation is +Z again.
+    let ch = run_md(ANGLE_HEAD, "T2 D1\nG0 X0 Y0 Z50\nTRAORI(1, 0, 0, 1)\nG1 F3000 A3=0 B3=0 C3=1\nM30");
+    assert!(machine(&ch.snapshot(), "B").abs() < 1e-6, "{:?}", ch.snapshot().machine);
+}
+
+#[test]
+fn the_tools_orientation_normal_replaces_the_machine_datas() {
+    // $TC_DPVN4 = 1: the tool normal (the rotation vector at A = 0) is +Y instead of the
+    // machine data's +X. Under ORIROTC with THETA = 0 along +X the rotation vector must be +X:
+    // Rz(A)·Y = (−sin A, cos A, 0) = X ⇒ A = −90 (with the machine data's +X it is A = 0).
+    let md = "$TC_DP1[3,1]=120\n$TC_DP3[3,1]=100.\n$TC_DPVN4[3,1]=1.";
+    let ch = run_md(md, "T3 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 ORIROTC THETA=0\nX100\nM30");
+    assert_pose(&ch.snapshot(), [100.0, 0.0, 50.0], [-90.0, 0.0, 0.0]);
+}

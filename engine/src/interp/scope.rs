@@ -263,13 +263,12 @@ fn carrier_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) 
 }
 
 fn tool_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
-    let p: usize =
-        name[6..].parse().ok().filter(|p| (1..=25).contains(p)).ok_or_else(|| Alarm::unknown_name(line, name))?;
+    let p = crate::machine_data::tool_orient::slot(&name[6..]).ok_or_else(|| Alarm::unknown_name(line, name))?;
     let [t, d] = indices else { return Err(Alarm::index_error(line, name, "needs [tool, edge]")) };
     let t = t.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
     let d = d.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
     let edge = u32::try_from(t).ok().zip(u32::try_from(d).ok()).and_then(|k| cfg.tools.get(&k));
-    Ok(Value::Real(edge.map_or(0.0, |e| e[p - 1])))
+    Ok(Value::Real(edge.map_or(0.0, |e| e[p])))
 }
 
 /// Position of the active G function within its group, numbered as `$P_GG` reports it.

@@ -386,6 +386,13 @@ impl Interpreter {
             .iter()
             .find(|s| s.number == number)
             .ok_or_else(|| not_available(line, &format!("data set {number}")))?;
+        // The active cutting edge's own orientation ($TC_DPV3..5, $TC_DPVN3..5).
+        let (tool_orient, tool_normal) = cfg
+            .tools
+            .get(&(self.offsets.t, self.offsets.d))
+            .filter(|_| self.offsets.d != 0)
+            .map_or((None, None), |e| crate::machine_data::tool_orient::vectors(e, plane_number(self.modal.plane)));
+        let args = &SelectArgs { tool_orient, tool_normal, ..*args };
         let trafo = kinematics::build(set, cfg, args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
         if let Some(k) = trafo.rotary_slot().filter(|&k| cfg.master_spindle == Some(k) && self.direction != 0) {
             return Err(wrong_axis_type(line, &cfg.channel_axes[k].name));
@@ -655,4 +662,13 @@ fn point_to_point(a: &mut Active, mv: &Move, block: PtpBlock, line: u32) -> Resu
     a.machine = machine;
     a.bcs = Some(a.trafo.forward(&machine));
     Ok(m)
+}
+
+/// 17, 18 or 19 for G17, G18, G19.
+fn plane_number(p: super::modal::Plane) -> u32 {
+    match p {
+        super::modal::Plane::G17 => 17,
+        super::modal::Plane::G18 => 18,
+        super::modal::Plane::G19 => 19,
+    }
 }

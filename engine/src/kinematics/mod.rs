@@ -189,6 +189,11 @@ pub struct SelectArgs {
     /// TRAORI(n, x, y, z): basic tool orientation given with the selection (generic types);
     /// `None` = the tool's or `$MC_TRAFO5_BASE_ORIENT_n`.
     pub base_orient: Option<Vec3>,
+    /// The active cutting edge's orientation `$TC_DPV3..5` and normal `$TC_DPVN3..5` by
+    /// geometry axis, at the selection: the basic orientation of a generic TRAORI when no
+    /// vector is passed (F2 §3.9.1).
+    pub tool_orient: Option<Vec3>,
+    pub tool_normal: Option<Vec3>,
     /// TRACON(n, p1, p2, ...): the parameters for the chain's members, first member first
     /// (TRACYL: the diameter, TRAANG: the angle; TRANSMIT and TRAORI take none).
     pub chain: [Option<f64>; 3],

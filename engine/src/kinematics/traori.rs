@@ -87,11 +87,18 @@ impl Traori {
     /// `args.base_orient` (TRAORI(n, x, y, z)) replaces the basic orientation of generic types.
     pub fn new(set: &TrafoDataSet, cfg: &MachineConfig, args: &SelectArgs) -> Result<Traori, BuildError> {
         let TrafoParams::Traori(p) = &set.params else { unreachable!("a TRAORI data set has TRAORI parameters") };
-        let base = match args.base_orient {
-            Some(b) if p.generic => {
+        // Priority of the basic orientation of generic types (F2 §3.9.1): the vector of the
+        // call, then the active tool's orientation, then TRAFO5_BASE_ORIENT.
+        let base = match (args.base_orient, args.tool_orient) {
+            (Some(b), _) if p.generic => {
                 normalize(&b).ok_or_else(|| BuildError::Value("TRAORI basic orientation is the zero vector".into()))?
             }
+            (None, Some(t)) if p.generic => normalize(&t).unwrap_or(p.base_orient),
             _ => p.base_orient,
+        };
+        let normal_in = match args.tool_normal {
+            Some(n) if p.generic && args.base_orient.is_none() => n,
+            _ => p.base_orient_normal,
         };
         let mut rot = [None; 3];
         let mut v = [[0.0; 3]; 3];
@@ -117,7 +124,7 @@ impl Traori {
             OriMachine::Part => (ChainKind::Part, zero, p.base_tool, p.joint_offset, p.part_offset),
             OriMachine::Mixed => (ChainKind::Mixed, p.joint_offset, p.base_tool, p.joint_offset_part, p.part_offset),
         };
-        let normal = zero_normal(&base, &p.base_orient_normal);
+        let normal = zero_normal(&base, &normal_in);
         let chain = Chain { kind, axes: n, v, l1, l2, l3, l4, l23: p.joint_offset_2_3, base };
         Ok(Traori {
             trafo_type: set.trafo_type,

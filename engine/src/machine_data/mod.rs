@@ -11,6 +11,7 @@ mod config;
 pub mod presets;
 pub mod registry;
 pub mod text;
+pub mod tool_orient;
 pub mod trafo;
 pub mod traori;
 
@@ -71,8 +72,9 @@ pub const TOOL_PARAMS: usize = 25;
 pub const MAX_TOOL_NUMBER: i64 = 32000;
 pub const MAX_EDGE_NUMBER: i64 = 12;
 
-/// The offsets of one cutting edge: `$TC_DP1..$TC_DP25` (index 0 = DP1).
-pub type EdgeParams = [f64; TOOL_PARAMS];
+/// The offsets of one cutting edge: `$TC_DP1..$TC_DP25` (index 0 = DP1), then the
+/// orientation data `$TC_DPV3..5`, `$TC_DPVN3..5` (see `tool_orient.rs`).
+pub type EdgeParams = [f64; tool_orient::EDGE_SLOTS];
 
 /// One component of a stored frame `$P_UIFR[n, axis, TR|FI|RT|SC|MI]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -319,11 +321,9 @@ impl MachineData {
         value: &Literal,
     ) -> Result<(), MdError> {
         let err = |m: String| MdError::at(line, m);
-        let p: usize = param
-            .parse()
-            .ok()
-            .filter(|p| (1..=TOOL_PARAMS).contains(p))
-            .ok_or_else(|| err(format!("unknown name {name} (tool data is $TC_DP1..$TC_DP{TOOL_PARAMS})")))?;
+        let p = tool_orient::slot(param).ok_or_else(|| {
+            err(format!("unknown name {name} (tool data is $TC_DP1..$TC_DP{TOOL_PARAMS}, $TC_DPV3..5, $TC_DPVN3..5)"))
+        })?;
         let (t, d) = match indices {
             [IndexTok::Number(t), IndexTok::Number(d)] => (*t, *d),
             _ => return Err(err(format!("{name} needs [tool number, cutting edge], e.g. {name}[1,1]"))),
@@ -337,7 +337,7 @@ impl MachineData {
         let Literal::Number(v) = value else {
             return Err(err(format!("{name}: expected a number")));
         };
-        self.tools.entry((t as u32, d as u32)).or_insert([0.0; TOOL_PARAMS])[p - 1] = *v;
+        self.tools.entry((t as u32, d as u32)).or_insert([0.0; tool_orient::EDGE_SLOTS])[p] = *v;
         Ok(())
     }
 
@@ -432,7 +432,7 @@ impl MachineData {
         }
         for ((t, d), params) in &self.tools {
             for (p, v) in params.iter().enumerate().filter(|(_, v)| **v != 0.0) {
-                out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", p + 1);
+                out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", tool_orient::name(p));
             }
         }
         for ((m, n), v) in &self.carriers {
