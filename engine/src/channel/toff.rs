@@ -46,25 +46,25 @@ impl OnlineOffset {
     /// One IPO cycle `dt` towards `target`: accelerate with `accel` up to `velocity`, and brake
     /// so as to stop on the target (never overshooting it).
     pub fn step(&mut self, target: &[f64; 3], velocity: f64, accel: f64, dt: f64) {
-        for i in 0..3 {
-            let d = target[i] - self.current[i];
+        for ((cur, rate), goal) in self.current.iter_mut().zip(&mut self.rate).zip(target) {
+            let d = goal - *cur;
             if d.abs() < 1e-12 {
-                self.current[i] = target[i];
-                self.rate[i] = 0.0;
+                *cur = *goal;
+                *rate = 0.0;
                 continue;
             }
             let s = d.signum();
             // Speed towards the target.
-            let towards = self.rate[i] * s;
+            let towards = *rate * s;
             let brake = (2.0 * accel * d.abs()).sqrt();
             // Positive: at rest (or moving away) it is accel·dt, and brake > 0 while d ≠ 0.
             let v = (towards.max(0.0) + accel * dt).min(velocity).min(brake);
             if v * dt >= d.abs() {
-                self.current[i] = target[i];
-                self.rate[i] = 0.0;
+                *cur = *goal;
+                *rate = 0.0;
             } else {
-                self.current[i] += s * v * dt;
-                self.rate[i] = s * v;
+                *cur += s * v * dt;
+                *rate = s * v;
             }
         }
     }
