@@ -59,3 +59,27 @@ fn an_intermediate_parallel_to_the_start_gives_the_great_circle_and_a_missing_on
         samples("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 ORIAXES A30 C90\nORIWKS ORICONIO\nA3=-0.5 B3=0 C3=1\nM30");
     assert!(ch.snapshot().alarms.iter().any(|a| a.line == Some(6)), "{:?}", ch.snapshot().alarms);
 }
+
+#[test]
+fn oriconto_continues_the_previous_cone_tangentially() {
+    // Block 6: ORICONIO about Z from C 90 through C 135 to C 180 (A 30). There the orientation
+    // moves along Z × o = (−0.5, 0, 0). ORICONTO to (−0.5, 0, 0.866) continues on the same cone:
+    // A stays 30, C goes on upwards from 180 to 270.
+    let (h, c) = (0.5f64.sqrt() / 2.0, 0.75f64.sqrt());
+    let prog = format!(
+        "T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 ORIAXES A30 C90\nORIWKS ORICONIO\nA3=0 B3=0.5 C3={c} A7={h} B7={h} C7={c}\n\
+         ORICONTO\nA3=-0.5 B3=0 C3={c}\nM30"
+    );
+    let (ch, s) = samples(&prog);
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
+    let last: Vec<_> = s.iter().skip_while(|m| (m[4] - 180.0).abs() > 1e-6).collect();
+    assert!(last.len() > 10);
+    for m in &last {
+        assert!((m[3] - 30.0).abs() < 1e-6, "{m:?}");
+    }
+    assert!(last.windows(2).all(|w| w[1][4] >= w[0][4] - 1e-9));
+    assert!((last.last().unwrap()[4] - 270.0).abs() < 1e-6);
+    // After an ORIAXES block there is no orientation tangent to continue.
+    let (ch, _) = samples(&format!("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 ORIAXES A30 C90\nORIWKS ORICONTO\nA3=-0.5 B3=0 C3={c}\nM30"));
+    assert!(ch.snapshot().alarms.iter().any(|a| a.line == Some(6)), "{:?}", ch.snapshot().alarms);
+}

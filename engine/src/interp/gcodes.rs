@@ -26,7 +26,7 @@ const GROUPS: [(u8, &[&str]); 14] = [
     (25, &["ORIMKS", "ORIWKS"]),
     (49, &["CP", "PTP", "PTPG0", "PTPWOC"]),
     (50, &["ORIEULER", "ORIRPY", "ORIRPY2", "ORIVIRT1", "ORIVIRT2"]),
-    (51, &["ORIVECT", "ORIAXES", "ORICONCW", "ORICONCCW", "ORIPATH", "ORICONIO"]),
+    (51, &["ORIVECT", "ORIAXES", "ORICONCW", "ORICONCCW", "ORIPATH", "ORICONIO", "ORICONTO"]),
 ];
 
 impl GCodes {
@@ -87,6 +87,7 @@ impl GCodes {
                 OriInterpolation::Cone { clockwise: false } => 3,
                 OriInterpolation::Path | OriInterpolation::Unmodelled(_) => 4,
                 OriInterpolation::ConeIntermediate => 5,
+                OriInterpolation::ConeTangential => 6,
             },
         ])
     }

@@ -34,7 +34,7 @@ use crate::kinematics;
 use crate::lang::{Block, CoordMode};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
-use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
+use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, OriPath, Path};
 use calls::CallFrame;
 pub use calls::Programs;
 pub use corners::Corner;
@@ -762,6 +762,7 @@ impl Interpreter {
         }
         let tangent = end_tangent(&current, &target, geo, (pa, po, papp), circle.as_ref());
         let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, tangent, line)?;
+        self.modal.ori.last_change = ori.as_ref().and_then(OriPath::end_direction);
         if let Some(theta) = self.tool_rotation(words, &frame, &start, &mut end, tangent, line)? {
             self.modal.ori.theta = theta;
         }

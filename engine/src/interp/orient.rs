@@ -17,7 +17,7 @@ pub use super::orient_rot::RotReference;
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::orient::ChainKind;
 use crate::kinematics::orient::vec3::{cross, dot, neg, norm, normalize, scale, sub};
-use crate::kinematics::orient::{angles, cone_sweep, cone_through};
+use crate::kinematics::orient::{angles, cone_sweep, cone_tangent, cone_through};
 use crate::kinematics::{AnyTrafo, Transformation, Traori, Vec3};
 use crate::machine_data::MachineConfig;
 use crate::motion::{AxisVec, OriPath};
@@ -56,7 +56,9 @@ pub enum OriInterpolation {
     /// ORICONIO: on the cone through the start, the intermediate orientation A7/B7/C7 and the
     /// end.
     ConeIntermediate,
-    /// ORICONTO, ORICURVE, ORIPATHS: not modelled (alarm when used).
+    /// ORICONTO: on the cone tangential to the previous block's orientation motion.
+    ConeTangential,
+    /// ORICURVE, ORIPATHS: not modelled (alarm when used).
     Unmodelled(&'static str),
 }
 
@@ -71,6 +73,9 @@ pub struct OriModal {
     pub tilt: f64,
     /// The last surface normal (A5/B5/C5 of the last block that gave one; +Z at reset).
     pub normal: Vec3,
+    /// Direction in which the orientation moved at the end of the last motion block (BCS), if
+    /// it was interpolated as a vector: the tangent ORICONTO continues.
+    pub last_change: Option<Vec3>,
     /// G group 54: the reference of the tool rotation THETA (6-axis).
     pub rotation: RotReference,
     /// The last THETA in force (degrees).
@@ -87,6 +92,7 @@ impl OriModal {
             lead: 0.0,
             tilt: 0.0,
             normal: [0.0, 0.0, 1.0],
+            last_change: None,
             rotation: RotReference::Absolute,
             theta: 0.0,
         }
@@ -187,7 +193,7 @@ impl OriWords {
             "ORIPATH" => self.interpolation = Some(I::Path),
             "ORIPATHS" => self.interpolation = Some(I::Unmodelled("ORIPATHS")),
             "ORICONIO" => self.interpolation = Some(I::ConeIntermediate),
-            "ORICONTO" => self.interpolation = Some(I::Unmodelled("ORICONTO")),
+            "ORICONTO" => self.interpolation = Some(I::ConeTangential),
             "ORICURVE" => self.interpolation = Some(I::Unmodelled("ORICURVE")),
             _ => return false,
         }
@@ -523,6 +529,19 @@ impl Interpreter {
                     Alarm::value_out_of_range(line, "ORICONIO: start and end orientation must differ")
                 })?;
                 Ok(OriPath::cone(o_start, k, sweep))
+            }
+            OriInterpolation::ConeTangential => {
+                let t = modal.last_change.ok_or_else(|| {
+                    Alarm::value_out_of_range(
+                        line,
+                        "ORICONTO needs a preceding block whose orientation moved as a vector (the tangent)",
+                    )
+                })?;
+                match cone_tangent(&o_start, &t, &o_end) {
+                    Some((k, sweep)) => Ok(OriPath::cone(o_start, k, sweep)),
+                    // The end lies on the great circle the motion is heading along.
+                    None => OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line)),
+                }
             }
             OriInterpolation::Unmodelled(name) => Err(Alarm::unknown_name(line, name)),
         }

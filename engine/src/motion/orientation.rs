@@ -49,6 +49,14 @@ impl OriPath {
         rotate(self.start, self.axis, self.angle * u.clamp(0.0, 1.0))
     }
 
+    /// Unit direction in which the orientation moves at the block end (for ORICONTO's
+    /// tangential transition); `None` for a path that does not turn.
+    pub fn end_direction(&self) -> Option<Vec3> {
+        let d = scale(cross(self.axis, self.at(1.0)), self.angle.signum());
+        let n = norm(d);
+        (n > 1e-12 && self.angle != 0.0).then(|| scale(d, 1.0 / n))
+    }
+
     /// The part between parameters `u0` and `u1`.
     pub fn slice(&self, u0: f64, u1: f64) -> OriPath {
         OriPath { start: self.at(u0), angle: self.angle * (u1 - u0), ..*self }

@@ -65,9 +65,35 @@ pub fn cone_through(os: &Vec3, oi: &Vec3, oe: &Vec3) -> Option<(Vec3, f64)> {
     Some((k, a.rem_euclid(std::f64::consts::TAU)))
 }
 
+/// ORICONTO: the cone that leaves the unit orientation `os` in the direction `t` (the
+/// orientation's direction of motion at the end of the previous block, ⟂ `os`) and reaches `oe`,
+/// as its axis and sweep (0..2π). The circle on the sphere through `os` and `oe` tangent to `t`
+/// lies in the plane through `os` spanned by `t` and `oe − os`; the axis is that plane's normal,
+/// oriented so that turning about it moves `os` along `+t`. `None` when `t` ∥ `oe − os` or
+/// `oe` = `os`.
+pub fn cone_tangent(os: &Vec3, t: &Vec3, oe: &Vec3) -> Option<(Vec3, f64)> {
+    use super::vec3::{cross, dot, neg, sub};
+    let k = normalize(&cross(t, &sub(oe, os)))?;
+    let k = if dot(&cross(&k, os), t) < 0.0 { neg(&k) } else { k };
+    let a = super::solve::angle_about(&k, os, oe)?;
+    Some((k, a.rem_euclid(std::f64::consts::TAU)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_tangential_cone_continues_the_direction_of_motion() {
+        // From (0.5, 0, 0.866) moving towards +Y (the cone about Z at 30°) to (−0.5, 0, 0.866):
+        // the same cone about +Z, half a turn. Moving towards −Y instead: about −Z.
+        let (s, c) = (0.5, 0.75f64.sqrt());
+        let (k, sweep) = cone_tangent(&[s, 0.0, c], &[0.0, 1.0, 0.0], &[-s, 0.0, c]).unwrap();
+        assert!(k[0].abs() < 1e-12 && k[1].abs() < 1e-12 && (k[2] - 1.0).abs() < 1e-12, "{k:?}");
+        assert!((sweep - std::f64::consts::PI).abs() < 1e-12);
+        let (k, _) = cone_tangent(&[s, 0.0, c], &[0.0, -1.0, 0.0], &[-s, 0.0, c]).unwrap();
+        assert!((k[2] + 1.0).abs() < 1e-12);
+    }
 
     #[test]
     fn the_cone_through_three_points_30_degrees_off_z_is_the_cone_about_z() {

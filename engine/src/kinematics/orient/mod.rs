@@ -17,4 +17,4 @@ pub mod solve;
 pub mod vec3;
 
 pub use chain::{Chain, ChainKind, Pose};
-pub use interp::{OriPathError, angle_between, cone, cone_sweep, cone_through, slerp};
+pub use interp::{OriPathError, angle_between, cone, cone_sweep, cone_tangent, cone_through, slerp};
