@@ -80,6 +80,8 @@ fn oriconto_continues_the_previous_cone_tangentially() {
     assert!(last.windows(2).all(|w| w[1][4] >= w[0][4] - 1e-9));
     assert!((last.last().unwrap()[4] - 270.0).abs() < 1e-6);
     // After an ORIAXES block there is no orientation tangent to continue.
-    let (ch, _) = samples(&format!("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 ORIAXES A30 C90\nORIWKS ORICONTO\nA3=-0.5 B3=0 C3={c}\nM30"));
+    let (ch, _) = samples(&format!(
+        "T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 ORIAXES A30 C90\nORIWKS ORICONTO\nA3=-0.5 B3=0 C3={c}\nM30"
+    ));
     assert!(ch.snapshot().alarms.iter().any(|a| a.line == Some(6)), "{:?}", ch.snapshot().alarms);
 }
