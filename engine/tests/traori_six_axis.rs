@@ -264,3 +264,9 @@ fn the_tools_orientation_normal_replaces_the_machine_datas() {
     let ch = run_md(md, "T3 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 ORIROTC THETA=0\nX100\nM30");
     assert_pose(&ch.snapshot(), [100.0, 0.0, 50.0], [-90.0, 0.0, 0.0]);
 }
+
+#[test]
+fn p_gg_54_reports_the_rotation_reference() {
+    let ch = run_md("", "R1=$P_GG[54]\nORIROTR\nR2=$P_GG[54]\nORIROTT\nR3=$P_GG[54]\nORIROTC\nR4=$P_GG[54]\nM30");
+    assert_eq!([1, 2, 3, 4].map(|n| ch.r_param(n)), [1.0, 2.0, 3.0, 4.0]);
+}

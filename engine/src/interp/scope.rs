@@ -341,6 +341,16 @@ fn g_group_index(m: &Modal, h: &super::toolholder::Holder, group: i64) -> Option
                 2
             }
         }
+        // Group 54, the reference of the tool rotation: ORIROTA 1, ORIROTR 2, ORIROTT 3, ORIROTC 4.
+        54 => {
+            use super::orient_rot::RotReference as R;
+            match m.ori.rotation {
+                R::Absolute => 1,
+                R::Plane => 2,
+                R::OriChange => 3,
+                R::PathTangent => 4,
+            }
+        }
         _ => return None,
     })
 }
