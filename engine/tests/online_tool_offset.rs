@@ -43,9 +43,13 @@ const HEAD: &str = "T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 A30\n";
 
 #[test]
 fn the_offset_lengthens_the_tool_along_its_orientation() {
-    let (ch, _) = run("mill5-head-ca", "", &format!("{HEAD}$AA_TOFF[Z]=10\nR1=$AA_TOFF[Z]\nM30"));
-    assert_xyz(&ch.snapshot(), head_machine([0.0, 0.0, 50.0], 30.0, 0.0, 10.0));
+    let (ch, _) = run("mill5-head-ca", "", &format!("{HEAD}$AA_TOFF[Z]=10\nR1=$AA_TOFF[Z]\nM0\nM30"));
+    let s = ch.snapshot();
+    assert_xyz(&s, head_machine([0.0, 0.0, 50.0], 30.0, 0.0, 10.0));
     assert_eq!(ch.r_param(1), 10.0);
+    // The position display keeps the programmed tool tip (at M0, TRAORI still active).
+    let wcs = |n: &str| s.workpiece.iter().find(|(a, _)| a == n).unwrap().1;
+    assert!(wcs("X").abs() < 1e-6 && wcs("Y").abs() < 1e-6 && (wcs("Z") - 50.0).abs() < 1e-6, "{:?}", s.workpiece);
 }
 
 #[test]
@@ -100,6 +104,9 @@ fn without_a_transformation_the_offset_adds_to_the_geometry_axis() {
     let (ch, _) = run("mill-3axis", "", "T1 D1\nG0 X0 Y0 Z10\n$AA_TOFF[Z]=5\nM30");
     let (z0, z1) = (machine(&plain.snapshot(), "Z"), machine(&ch.snapshot(), "Z"));
     assert!((z1 - z0 - 5.0).abs() < 1e-9, "{z0} {z1}");
+    let s = ch.snapshot();
+    let wcs_z = s.workpiece.iter().find(|(a, _)| a == "Z").unwrap().1;
+    assert!((wcs_z - 10.0).abs() < 1e-9, "{:?}", s.workpiece);
 }
 
 #[test]

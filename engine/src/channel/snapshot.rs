@@ -5,6 +5,7 @@ use super::{Channel, Mode, Status};
 use crate::alarm::Alarm;
 use crate::kinematics::Transformation;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::AxisVec;
 
 /// The block shown as current.
 #[derive(Debug, Clone, PartialEq)]
@@ -91,9 +92,18 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         Some(t) => {
             let ori = t.trafo.orientation_slots();
             let driven = t.trafo.machine_slots().into_iter().filter(|k| !ori.contains(&Some(*k))).collect();
-            (t.trafo.geo_slots(), driven, t.forward(pos))
+            // With the tool lengthened by the online offset: the display keeps the tool tip.
+            (t.trafo.geo_slots(), driven, ch.space_of_machine())
         }
-        None => (cfg.geo_axes, Vec::new(), std::array::from_fn(value)),
+        None => {
+            let mut b: AxisVec = std::array::from_fn(value);
+            for (g, k) in cfg.geo_axes.iter().enumerate() {
+                if let Some(k) = k {
+                    b[*k] -= ch.toff.current[g];
+                }
+            }
+            (cfg.geo_axes, Vec::new(), b)
+        }
     };
     let geo: Vec<usize> = geo_axes.iter().flatten().copied().collect();
     let order: Vec<usize> =
