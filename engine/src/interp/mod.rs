@@ -20,6 +20,9 @@ mod swivel;
 pub mod toolholder;
 mod trafo;
 pub mod trc;
+pub mod trc_approach;
+mod trc_disc;
+mod trc_edge;
 pub mod value;
 pub mod vars;
 
@@ -298,10 +301,15 @@ impl Interpreter {
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
+        self.trc.begin_block(out);
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
             let limits = AxisLimit::for_channel(cfg);
-            // Whatever follows that is not a move ends a held compensated move first.
-            if self.trc.holds() && (prep != Prep::Prepared || out.iter().any(|i| !matches!(i, Item::Move { .. }))) {
+            // What a block without motion in the compensation plane produced waits behind the
+            // held compensated move (look-ahead across dummy blocks, MD20250); anything that
+            // cannot wait (a preprocessing stop, the program end, moves past the compensator)
+            // ends the held move first.
+            let deferred = prep == Prep::Prepared && self.trc.end_block(out)?;
+            if self.trc.holds() && !deferred {
                 let mut flushed = Vec::new();
                 self.trc.flush(&limits, &mut flushed)?;
                 let at = out.iter().rposition(|i| matches!(i, Item::Move { .. })).map_or(0, |i| i + 1);
@@ -388,8 +396,8 @@ impl Interpreter {
         let spindle_words = (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell;
         let changes = self.direction != old_direction || self.direction != 0;
         if let Some(axis) = cfg.master_spindle.filter(|_| spindle_words && changes) {
-            self.trc.flush(&AxisLimit::for_channel(cfg), out)?;
-            out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
+            // Before the block's motion, after the held compensated move.
+            self.trc.emit_or_defer(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line }, out);
         }
 
         if let Some(target) = words.spos {
@@ -397,7 +405,8 @@ impl Interpreter {
             let axis = cfg.master_spindle.expect("checked in spindle_position");
             out.push(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line });
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
-            self.trc.push(trc::Prepared { mv, feed, line, item }, None, &AxisLimit::for_channel(cfg), out)?;
+            let approach = self.modal.approach;
+            self.trc.push(trc::Prepared { mv, feed, line, item, approach }, None, &AxisLimit::for_channel(cfg), out)?;
         } else if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
@@ -420,7 +429,8 @@ impl Interpreter {
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let comp = self.compensation(cfg, &words, line)?;
-            self.trc.push(trc::Prepared { mv, feed, line, item }, comp, &AxisLimit::for_channel(cfg), out)?;
+            let approach = self.modal.approach;
+            self.trc.push(trc::Prepared { mv, feed, line, item, approach }, comp, &AxisLimit::for_channel(cfg), out)?;
         } else if self.offsets != offsets_before {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
         }
@@ -577,6 +587,7 @@ impl Interpreter {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
         let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
         let tool_radius = edge.map_or(0.0, |p| p[5] + p[14]);
+        let tip = edge.map_or((0.0, 0.0), |p| trc_edge::tip_offset(p[0], p[1], tool_radius));
         let groove_wall = self.groove_wall_axes();
         let offn = self.modal.offn;
         let radius = match groove_wall {
@@ -628,9 +639,12 @@ impl Interpreter {
             side,
             radius,
             corners: self.modal.trc_corners,
+            disc: self.modal.disc,
             arc_feed: self.modal.arc_feed,
             u: unit(u),
             v: unit(v),
+            tip: if groove_wall.is_some() { (0.0, 0.0) } else { tip },
+            max_dummy_blocks: cfg.cutcom_max_dummy_blocks,
             groove_wall,
         }))
     }

@@ -8,7 +8,8 @@
 //! their intersection; inner corners are cut at the intersection. A move is held back until
 //! its successor decides its end point.
 
-use super::Item;
+use super::trc_approach::{self, ApproachMode};
+use super::{Item, trc_disc};
 use crate::alarm::Alarm;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
@@ -58,10 +59,18 @@ pub struct Compensation {
     /// Tool radius plus OFFN.
     pub radius: f64,
     pub corners: CornerMode,
+    /// DISC (0..100): G450's transition circle pulled towards the intersection.
+    pub disc: f64,
     pub arc_feed: ArcFeed,
     /// The working plane's abscissa and ordinate in axis space (unit vectors).
     pub u: AxisVec,
     pub v: AxisVec,
+    /// Turning tools: the theoretical tip P relative to the cutting-edge centre S in plane
+    /// coordinates (cutting edge position, `trc_edge`); the centre runs on the equidistant
+    /// and the reference point follows P. Zero for milling tools and position 9.
+    pub tip: P2,
+    /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS.
+    pub max_dummy_blocks: usize,
     /// TRACYL groove-wall offset (513, 514 with k = 1): the channel slots of the unrolled
     /// peripheral coordinate and of the real Y axis. The part of the offset along the periphery
     /// is then travelled by the real Y axis, so the groove walls stay parallel.
@@ -70,7 +79,7 @@ pub struct Compensation {
 
 impl Compensation {
     /// Signed offset: positive to the left of the direction of travel.
-    fn offset(&self) -> f64 {
+    pub(super) fn offset(&self) -> f64 {
         match self.side {
             Side::Left => self.radius,
             Side::Right => -self.radius,
@@ -85,16 +94,18 @@ pub struct Prepared {
     pub feed: Feed,
     pub line: u32,
     pub item: Item,
+    /// G group 17 active in the block (approach with G41/G42, retract with G40).
+    pub approach: ApproachMode,
 }
 
 /// The contour element of a move in plane coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Elem {
+pub(super) enum Elem {
     Line { s: P2, e: P2 },
     Arc { c: P2, r: f64, a0: f64, sweep: f64 },
 }
 
-type P2 = (f64, f64);
+pub(super) type P2 = (f64, f64);
 
 /// A compensated move waiting for its successor.
 #[derive(Debug, Clone)]
@@ -107,21 +118,110 @@ struct Held {
     comp: Compensation,
 }
 
+/// What waits behind the held move: blocks without motion in the compensation plane. They
+/// run where the held move's equidistant ends, before the next corner's transition.
+#[derive(Debug, Clone)]
+enum Pending {
+    /// A move outside the plane (infeed), kept at the tool's plane position.
+    Move(Prepared, Compensation),
+    /// Anything else the block produced (M functions, dwell, messages, stops).
+    Item(Item),
+}
+
 /// State of the compensation between moves.
 #[derive(Debug, Clone, Default)]
 pub struct Compensator {
     held: Option<Held>,
     /// The selection move (G41/G42 switched on), waiting for the first compensated element.
-    approach: Option<Prepared>,
+    approach: Option<(Prepared, Compensation)>,
     /// Where the tool centre stands in plane coordinates after the last emitted move, while
     /// compensation is active.
     tool_at: Option<P2>,
+    /// Axis-space end of the last move handed out (the tool's position in the prepared stream).
+    last_end: Option<AxisVec>,
+    pending: Vec<Pending>,
+    /// Blocks without plane motion in a row behind the held move (MD20250).
+    dummy_blocks: usize,
+    /// Whether the current block reached the compensator with motion in the plane, with motion
+    /// outside it only, and how long `out` was after the compensator last wrote to it.
+    block_plane_move: bool,
+    block_dummy_move: bool,
+    mark: usize,
 }
 
 impl Compensator {
     /// True while a move is held back.
     pub fn holds(&self) -> bool {
-        self.held.is_some() || self.approach.is_some()
+        self.held.is_some() || self.approach.is_some() || !self.pending.is_empty()
+    }
+
+    /// Starts a block: `out` is where its items go.
+    pub fn begin_block(&mut self, out: &[Item]) {
+        self.block_plane_move = false;
+        self.block_dummy_move = false;
+        self.mark = out.len();
+    }
+
+    /// Ends a block: the items it added to `out` after the compensator's last output wait
+    /// behind the held move (they belong to the block, which has not run yet). A block without
+    /// motion in the plane counts towards MD20250; one too many is alarm 10762. Returns false
+    /// (and defers nothing) when the block produced moves past the compensator, which then
+    /// has to be flushed.
+    pub fn end_block(&mut self, out: &mut Vec<Item>) -> Result<bool, Alarm> {
+        if !self.holds() {
+            return Ok(true);
+        }
+        let mark = self.mark.min(out.len());
+        if out[mark..].iter().any(|i| matches!(i, Item::Move { .. })) {
+            return Ok(false);
+        }
+        let items: Vec<Item> = out.drain(mark..).collect();
+        if !self.block_plane_move && (self.block_dummy_move || !items.is_empty()) {
+            self.dummy_blocks += 1;
+            let max = self.max_dummy_blocks();
+            let line = items.iter().rev().find_map(Item::line).or_else(|| {
+                self.pending.iter().rev().find_map(|p| match p {
+                    Pending::Move(p, _) => Some(p.line),
+                    Pending::Item(i) => i.line(),
+                })
+            });
+            if self.dummy_blocks > max {
+                let line = line.unwrap_or(0);
+                return Err(Alarm::trc_dummy_blocks(line, max));
+            }
+        }
+        self.pending.extend(items.into_iter().map(Pending::Item));
+        Ok(true)
+    }
+
+    fn max_dummy_blocks(&self) -> usize {
+        self.held
+            .as_ref()
+            .map(|h| h.comp.max_dummy_blocks)
+            .or(self.approach.as_ref().map(|a| a.1.max_dummy_blocks))
+            .unwrap_or(usize::MAX)
+    }
+
+    /// Hands an item to the main run, or keeps it behind the held move.
+    pub fn emit_or_defer(&mut self, item: Item, out: &mut Vec<Item>) {
+        if self.holds() {
+            self.pending.push(Pending::Item(item));
+        } else {
+            self.emit(item, out);
+        }
+    }
+
+    fn emit(&mut self, item: Item, out: &mut Vec<Item>) {
+        if let Item::Move { mv, .. } = &item {
+            self.last_end = Some(mv.path.end);
+        }
+        out.push(item);
+        self.mark = out.len();
+    }
+
+    /// Where the next move starts: the end of the last move handed out, else `fallback`.
+    fn from(&self, fallback: AxisVec) -> AxisVec {
+        self.last_end.unwrap_or(fallback)
     }
 
     /// Feeds one move. `comp` is the compensation active for it (None: G40). Appends the moves
@@ -134,38 +234,55 @@ impl Compensator {
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
         let Some(comp) = comp else {
-            // Deselection (or no compensation): finish what is held, then this move goes
-            // uncompensated from where the tool stands to its programmed end.
-            let was_active = self.tool_at.is_some() || self.holds();
-            self.flush(limits, out)?;
-            self.tool_at = None;
-            let mut p = p;
-            if let Some(start) = last_end(out).filter(|_| was_active) {
-                p.mv = rebuild(&p, Path::line(start, p.mv.path.end), limits);
-            }
-            out.push(p.item_with(p.mv.clone()));
-            return Ok(());
+            return self.deselect(p, limits, out);
         };
         let line = p.line;
         let Some(contour) = element(&p.mv, &comp) else {
-            // No motion in the working plane: the tool stays on the equidistant.
+            // No motion in the working plane: wait behind the held move (look-ahead across
+            // dummy blocks), or run at the tool's plane position.
+            self.block_dummy_move = true;
+            if self.held.is_some() || self.approach.is_some() {
+                self.pending.push(Pending::Move(p, comp));
+                return Ok(());
+            }
             self.flush(limits, out)?;
             let mut p = p;
-            if let (Some(at), Some(start)) = (self.tool_at, last_end(out)) {
-                let end = with_plane(&p.mv.path.end, at, &comp);
-                p.mv = rebuild(&p, Path::line(start, end), limits);
+            if let Some(at) = self.tool_at {
+                let from = self.from(p.mv.path.start);
+                let end = place(&p.mv.path.end, at, &comp);
+                p.mv = rebuild(&p, Path::line(from, end), limits);
             }
-            out.push(p.item_with(p.mv.clone()));
+            self.emit(p.item_with(p.mv.clone()), out);
             return Ok(());
         };
+        self.block_plane_move = true;
+        self.dummy_blocks = 0;
         let d = comp.offset();
-        if let Some(approach) = self.approach.take() {
-            // The selection block ends where the first element's equidistant starts (NORM).
-            let start = offset_start(&contour, d);
-            let end = with_plane(&approach.mv.path.end, start, &comp);
-            let mv = rebuild(&approach, Path::line(approach.mv.path.start, end), limits);
-            out.push(approach.item_with(mv));
+        if let Some((approach, _)) = self.approach.take() {
+            // The selection block ends on the first element's equidistant (NORM) or goes round
+            // its start point (KONT) or joins it tangentially (KONTT).
+            let s0 = minus(to_plane(&approach.mv.path.start, &comp), comp.tip);
+            let (segments, start) = trc_approach::approach(approach.approach, s0, &contour, d, &comp, line)?;
+            let mut from3 = approach.mv.path.start;
+            if segments.is_empty() {
+                // Already on the equidistant: only the axes outside the plane move.
+                let end = place(&approach.mv.path.end, start, &comp);
+                let mv = rebuild(&approach, Path::line(from3, end), limits);
+                self.emit(approach.item_with(mv), out);
+            }
+            for (i, seg) in segments.into_iter().enumerate() {
+                let mut mv = plain(&approach, seg, i == 0, from3, approach.mv.path.end, &comp, limits);
+                if i == 0 {
+                    // The first piece starts where the tool stands (uncompensated).
+                    let mut path = mv.path.clone();
+                    path.start = from3;
+                    mv = rebuild(&approach, path, limits);
+                }
+                from3 = mv.path.end;
+                self.emit(approach.item_with(mv), out);
+            }
             self.tool_at = Some(start);
+            self.release_pending(limits, out);
             self.held = Some(Held { p, contour, start, comp });
             return Ok(());
         }
@@ -175,26 +292,33 @@ impl Compensator {
                 if matches!(contour, Elem::Arc { .. }) {
                     return Err(Alarm::trc_selection(line));
                 }
-                self.approach = Some(p);
+                self.approach = Some((p, comp));
             }
             None => {
                 // After moves outside the plane: link from where the tool stands.
                 let start = offset_start(&contour, d);
-                if let (Some(at), Some(from)) = (self.tool_at, last_end(out))
+                if let Some(at) = self.tool_at
                     && dist(at, start) > 1e-9
                 {
-                    let to = with_plane(&from, start, &comp);
-                    out.push(p.item_with(rebuild(&p, Path::line(from, to), limits)));
+                    let from = self.from(p.mv.path.start);
+                    let to = place(&from, start, &comp);
+                    self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
                 self.held = Some(Held { p, contour, start, comp });
             }
             Some(prev) => {
-                let (prev_end, transition, next_start) = corner(&prev.contour, &contour, d, comp.corners, prev.p.line)?;
+                let (prev_end, transition, next_start) = corner(&prev.contour, &contour, d, &comp, prev.p.line)?;
                 let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
-                out.push(prev.p.item_with(finish(&prev.p, eq, &prev.comp, limits, true)));
+                let mv = finish(&prev.p, eq, &prev.comp, limits, true);
+                self.emit(prev.p.item_with(mv), out);
+                self.tool_at = Some(prev_end);
+                self.release_pending(limits, out);
                 if let Some(arc) = transition {
-                    out.push(prev.p.item_with(finish(&prev.p, arc, &prev.comp, limits, false)));
+                    // The transition is travelled at the tool's height after the dummy blocks.
+                    let from = self.from(prev.p.mv.path.end);
+                    let mv = finish_transition(&prev.p, arc, from, &prev.comp, limits);
+                    self.emit(prev.p.item_with(mv), out);
                 }
                 self.tool_at = Some(next_start);
                 self.held = Some(Held { p, contour, start: next_start, comp });
@@ -203,19 +327,90 @@ impl Compensator {
         Ok(())
     }
 
+    /// G40 (or a move without compensation): the held move ends perpendicular to its contour
+    /// (NORM) or goes round its end point (KONT, KONTT), then this move travels uncompensated
+    /// to its programmed end.
+    fn deselect(&mut self, p: Prepared, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        let was_active = self.tool_at.is_some() || self.holds();
+        if was_active && p.mv.path.arc.is_some() {
+            return Err(Alarm::trc_deselection(p.line));
+        }
+        let retract = match &self.held {
+            Some(h) if p.approach != ApproachMode::Norm && self.pending.is_empty() => {
+                let to = minus(to_plane(&p.mv.path.end, &h.comp), h.comp.tip);
+                let from = to_plane(&p.mv.path.start, &h.comp);
+                (dist(from, to) > 1e-9).then_some((h.clone(), to))
+            }
+            _ => None,
+        };
+        if let Some((h, to)) = retract {
+            self.held = None;
+            let d = h.comp.offset();
+            let (end, segments) = trc_approach::retract(p.approach, &h.contour, d, to, &h.comp, p.line)?;
+            let eq = offset_elem(&h.contour, d, Some(h.start), Some(end), h.p.line)?;
+            let mv = finish(&h.p, eq, &h.comp, limits, true);
+            self.emit(h.p.item_with(mv), out);
+            let n = segments.len();
+            for (i, seg) in segments.into_iter().enumerate() {
+                let from = self.from(p.mv.path.start);
+                let mut mv = plain(&p, seg, i + 1 == n, from, p.mv.path.end, &h.comp, limits);
+                if i + 1 == n {
+                    // The last piece ends at the programmed end point (the uncompensated tip).
+                    let mut path = mv.path.clone();
+                    path.end = p.mv.path.end;
+                    mv = rebuild(&p, path, limits);
+                }
+                self.emit(p.item_with(mv), out);
+            }
+            self.tool_at = None;
+            return Ok(());
+        }
+        self.flush(limits, out)?;
+        self.tool_at = None;
+        let mut p = p;
+        if was_active {
+            let from = self.from(p.mv.path.start);
+            p.mv = rebuild(&p, Path::line(from, p.mv.path.end), limits);
+        }
+        self.emit(p.item_with(p.mv.clone()), out);
+        Ok(())
+    }
+
+    /// Hands out what waited behind the held move, at the tool's current plane position.
+    fn release_pending(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) {
+        self.dummy_blocks = 0;
+        for pending in std::mem::take(&mut self.pending) {
+            match pending {
+                Pending::Item(item) => self.emit(item, out),
+                Pending::Move(p, comp) => {
+                    let mut p = p;
+                    let from = self.from(p.mv.path.start);
+                    let end = match self.tool_at {
+                        Some(at) => place(&p.mv.path.end, at, &comp),
+                        None => p.mv.path.end,
+                    };
+                    p.mv = rebuild(&p, Path::line(from, end), limits);
+                    self.emit(p.item_with(p.mv.clone()), out);
+                }
+            }
+        }
+    }
+
     /// Ends the held move perpendicular to its contour end (before anything that is not a
     /// compensated move, and at the end of the program).
     pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
-        if let Some(approach) = self.approach.take() {
+        if let Some((approach, _)) = self.approach.take() {
             // A selection block without a following element stays uncompensated.
-            out.push(approach.item_with(approach.mv.clone()));
+            self.emit(approach.item_with(approach.mv.clone()), out);
             self.tool_at = None;
         }
         if let Some(h) = self.held.take() {
             let eq = offset_elem(&h.contour, h.comp.offset(), Some(h.start), None, h.p.line)?;
             self.tool_at = Some(elem_end(&eq));
-            out.push(h.p.item_with(finish(&h.p, eq, &h.comp, limits, true)));
+            let mv = finish(&h.p, eq, &h.comp, limits, true);
+            self.emit(h.p.item_with(mv), out);
         }
+        self.release_pending(limits, out);
         Ok(())
     }
 
@@ -225,14 +420,6 @@ impl Compensator {
     }
 }
 
-/// The end point of the last move in `out`.
-fn last_end(out: &[Item]) -> Option<AxisVec> {
-    out.iter().rev().find_map(|i| match i {
-        Item::Move { mv, .. } => Some(mv.path.end),
-        _ => None,
-    })
-}
-
 impl Prepared {
     fn item_with(&self, mv: Move) -> Item {
         match &self.item {
@@ -240,6 +427,33 @@ impl Prepared {
             other => other.clone(),
         }
     }
+}
+
+/// A move of the tool centre along `elem` at the programmed feed (approach and retract
+/// pieces). With `carries_axes` the axes outside the plane move from `from3` to `to3` on it,
+/// else they stay at `from3`.
+fn plain(
+    p: &Prepared,
+    elem: Elem,
+    carries_axes: bool,
+    from3: AxisVec,
+    to3: AxisVec,
+    comp: &Compensation,
+    limits: &[AxisLimit],
+) -> Move {
+    let to3 = if carries_axes { to3 } else { from3 };
+    let start3 = place(&from3, elem_start(&elem), comp);
+    let end3 = place(&to3, elem_end(&elem), comp);
+    let path = match elem {
+        Elem::Line { .. } => Path::line(start3, end3),
+        Elem::Arc { r, a0, sweep, .. } => Path {
+            start: start3,
+            end: end3,
+            arc: Some(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep }),
+            ori: None,
+        },
+    };
+    rebuild(p, path, limits)
 }
 
 /// The move rebuilt on a new path with the same feed and limits.
@@ -252,10 +466,26 @@ fn rebuild(p: &Prepared, path: Path, limits: &[AxisLimit]) -> Move {
 /// the programmed feed). Its axis-space start is the original start with the plane part
 /// replaced, its end likewise; axes outside the plane move as programmed.
 fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], contour_feed: bool) -> Move {
+    finish_between(p, elem, p.mv.path.start, p.mv.path.end, comp, limits, contour_feed)
+}
+
+/// A transition arc after `p`, starting at `from` (its axes outside the plane stay there).
+fn finish_transition(p: &Prepared, elem: Elem, from: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
+    finish_between(p, elem, from, from, comp, limits, false)
+}
+
+fn finish_between(
+    p: &Prepared,
+    elem: Elem,
+    from: AxisVec,
+    to: AxisVec,
+    comp: &Compensation,
+    limits: &[AxisLimit],
+    contour_feed: bool,
+) -> Move {
     let (s, e) = (elem_start(&elem), elem_end(&elem));
-    let (from, to) = if contour_feed { (p.mv.path.start, p.mv.path.end) } else { (p.mv.path.end, p.mv.path.end) };
-    let start3 = with_plane(&from, s, comp);
-    let end3 = with_plane(&to, e, comp);
+    let start3 = place(&from, s, comp);
+    let end3 = place(&to, e, comp);
     let (mut start3, mut end3) = (start3, end3);
     let (path, feed) = match elem {
         Elem::Line { s: ls, e: le } => {
@@ -341,6 +571,16 @@ fn to_plane(p: &AxisVec, comp: &Compensation) -> P2 {
     (dot(p, &comp.u), dot(p, &comp.v))
 }
 
+/// `p` with its working-plane part replaced by the tool-centre point `q` moved to the
+/// reference point (the theoretical tip of a turning tool).
+pub(super) fn place(p: &AxisVec, q: P2, comp: &Compensation) -> AxisVec {
+    with_plane(p, (q.0 + comp.tip.0, q.1 + comp.tip.1), comp)
+}
+
+pub(super) fn minus(a: P2, b: P2) -> P2 {
+    (a.0 - b.0, a.1 - b.1)
+}
+
 /// `p` with its working-plane part replaced by `q`.
 fn with_plane(p: &AxisVec, q: P2, comp: &Compensation) -> AxisVec {
     let (x, y) = to_plane(p, comp);
@@ -351,18 +591,18 @@ fn dot(a: &AxisVec, b: &AxisVec) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-fn dist(a: P2, b: P2) -> f64 {
+pub(super) fn dist(a: P2, b: P2) -> f64 {
     (a.0 - b.0).hypot(a.1 - b.1)
 }
 
-fn elem_start(e: &Elem) -> P2 {
+pub(super) fn elem_start(e: &Elem) -> P2 {
     match *e {
         Elem::Line { s, .. } => s,
         Elem::Arc { c, r, a0, .. } => (c.0 + r * a0.cos(), c.1 + r * a0.sin()),
     }
 }
 
-fn elem_end(e: &Elem) -> P2 {
+pub(super) fn elem_end(e: &Elem) -> P2 {
     match *e {
         Elem::Line { e, .. } => e,
         Elem::Arc { c, r, a0, sweep } => (c.0 + r * (a0 + sweep).cos(), c.1 + r * (a0 + sweep).sin()),
@@ -370,7 +610,7 @@ fn elem_end(e: &Elem) -> P2 {
 }
 
 /// Unit tangent at the start (`at_end` false) or end of an element.
-fn tangent(e: &Elem, at_end: bool) -> P2 {
+pub(super) fn tangent(e: &Elem, at_end: bool) -> P2 {
     match *e {
         Elem::Line { s, e } => {
             let l = dist(s, e);
@@ -385,12 +625,12 @@ fn tangent(e: &Elem, at_end: bool) -> P2 {
 }
 
 /// Left normal of a tangent.
-fn left(t: P2) -> P2 {
+pub(super) fn left(t: P2) -> P2 {
     (-t.1, t.0)
 }
 
 /// Start point of the equidistant at offset `d` (perpendicular at the contour start).
-fn offset_start(e: &Elem, d: f64) -> P2 {
+pub(super) fn offset_start(e: &Elem, d: f64) -> P2 {
     let p = elem_start(e);
     let n = left(tangent(e, false));
     (p.0 + d * n.0, p.1 + d * n.1)
@@ -430,7 +670,8 @@ fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) 
 
 /// The corner between two elements (already in contour coordinates) at offset `d`: the end of
 /// the first equidistant, a transition arc if one is needed, and the start of the second.
-fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2, Option<Elem>, P2), Alarm> {
+fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<(P2, Option<Elem>, P2), Alarm> {
+    let mode = comp.corners;
     let p = elem_end(a);
     let (ta, tb) = (tangent(a, true), tangent(b, false));
     let (na, nb) = (left(ta), left(tb));
@@ -448,6 +689,12 @@ fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2
             && let Some(x) = line_line(s1, e1, s2, e2)
         {
             return Ok((x, None, x));
+        }
+        if let (Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (oa, ob)
+            && comp.disc > 0.0
+            && let Some(x) = line_line(s1, e1, s2, e2)
+        {
+            return Ok(trc_disc::disc_corner(q1, q2, x, p, comp.disc));
         }
         // Transition circle about the contour corner, turning like the corner.
         let a0 = (q1.1 - p.1).atan2(q1.0 - p.0);
@@ -484,7 +731,7 @@ fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2
 }
 
 /// Intersection of two infinite lines through (s1, e1) and (s2, e2).
-fn line_line(s1: P2, e1: P2, s2: P2, e2: P2) -> Option<P2> {
+pub(super) fn line_line(s1: P2, e1: P2, s2: P2, e2: P2) -> Option<P2> {
     let (d1, d2) = ((e1.0 - s1.0, e1.1 - s1.1), (e2.0 - s2.0, e2.1 - s2.1));
     let den = d1.0 * d2.1 - d1.1 * d2.0;
     if den.abs() < 1e-12 {
