@@ -418,3 +418,211 @@ mod approach {
         assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
     }
 }
+
+mod turning {
+    //! lathe-2axis: T1 D1 is a turning tool (type 500) with cutting edge position 3 and nose
+    //! radius 0.8, lengths L1 = 40 (X) and L2 = 60 (Z) to the theoretical tip P. Channel axes:
+    //! X (radius), Z. Working plane G18: abscissa Z, ordinate X.
+    use super::*;
+
+    /// Tool carrier position → theoretical tip (X, Z).
+    fn tip(p: &[f64]) -> (f64, f64) {
+        (p[0] - 40.0, p[1] - 60.0)
+    }
+
+    fn at(samples: &[Vec<f64>], x: f64, z: f64) -> bool {
+        samples.iter().any(|p| {
+            let (tx, tz) = tip(p);
+            (tx - x).abs() < 1e-9 && (tz - z).abs() < 1e-9
+        })
+    }
+
+    /// The example of seeds/001 in this dialect: G0 X10 Z10, G42 G0 Z20, G1 X20, G40 G0 X30
+    /// Z30 (a face at Z20 cut upwards, material at Z < 20, so the tool is right of the
+    /// direction of travel). The nose centre S runs at Z20.8; with position 3 the tip is
+    /// P = S + 0.8·(−1, −1) in (Z, X): P = (X9.2, Z20) after the selection block and
+    /// (X19.2, Z20) at the end of the face, so the tip's Z stays on the programmed face.
+    #[test]
+    fn the_seed_example_moves_the_tip_with_the_nose_centre_on_the_equidistant() {
+        let (ch, samples) =
+            run_on("lathe-2axis", "", "T1 D1\nG18 G0 X10 Z10\nG42 G0 Z20\nG1 X20 F200\nG40 G0 X30 Z30\nM30");
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        assert!(at(&samples, 10.0, 10.0), "without compensation the tip is on the programmed point");
+        assert!(at(&samples, 9.2, 20.0) && at(&samples, 19.2, 20.0));
+        let face = between(&samples, |p| {
+            let (x, z) = tip(p);
+            ((x - 9.2).abs() < 1e-9 || (x - 19.2).abs() < 1e-9) && (z - 20.0).abs() < 1e-9
+        });
+        for p in face {
+            assert!((tip(p).1 - 20.0).abs() < 1e-9, "{p:?}");
+        }
+        assert_eq!(tip(ch.axis_positions()), (30.0, 30.0));
+    }
+
+    /// External turning of a shoulder: along X10 towards the chuck, then up the face Z−30.
+    /// G42 keeps the nose above the diameter and right of the face; at the inner corner the
+    /// nose centre stops at (X10.8, Z−29.2), which puts the tip exactly on the programmed
+    /// corner (X10, Z−30). While cutting, the tip stays on X10, then on Z−30.
+    #[test]
+    fn the_tip_of_a_position_3_tool_reproduces_a_shoulder() {
+        let program = "T1 D1\nG0 X15 Z5\nG42 G1 X10 Z0 F300\nZ-30\nX20\nG40 G0 X25 Z5\nM30";
+        let (ch, samples) = run_on("lathe-2axis", "", program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        // Selection (NORM): S at (X10.8, Z0), P = (X10, Z−0.8).
+        assert!(at(&samples, 10.0, -0.8));
+        assert!(at(&samples, 10.0, -30.0), "the tip reaches the programmed corner");
+        assert!(at(&samples, 19.2, -30.0), "the face ends perpendicular: S (X20, Z−29.2)");
+        let cut = between(&samples, |p| {
+            let (x, z) = tip(p);
+            (x - 10.0).abs() < 1e-9 && (z + 0.8).abs() < 1e-9 || (x - 19.2).abs() < 1e-9 && (z + 30.0).abs() < 1e-9
+        });
+        assert!(cut.len() > 50);
+        for p in cut {
+            let (x, z) = tip(p);
+            assert!((x - 10.0).abs() < 1e-9 || (z + 30.0).abs() < 1e-9, "tip ({x}, {z}) off the contour");
+        }
+    }
+
+    /// Cutting edge position 9 makes the nose centre the reference: the tool then behaves
+    /// like a milling cutter of radius 0.8 (reference on the equidistant).
+    #[test]
+    fn position_9_puts_the_reference_on_the_equidistant() {
+        let program = "T1 D1\nG0 X15 Z5\nG42 G1 X10 Z0 F300\nZ-30\nX20\nG40 G0 X25 Z5\nM30";
+        let (ch, samples) = run_on("lathe-2axis", "$TC_DP2[1,1]=9", program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        assert!(at(&samples, 10.8, 0.0) && at(&samples, 10.8, -29.2) && at(&samples, 20.0, -29.2));
+    }
+}
+
+mod planes {
+    use super::*;
+
+    /// The square of the G17 test in the Z-X plane (G18: abscissa Z, ordinate X) and the Y-Z
+    /// plane (G19: abscissa Y, ordinate Z), counter-clockwise in plane coordinates, G41:
+    /// the centre runs on the square shrunk by 5 in those axes. `a`, `o`: axis indices.
+    fn square_in(plane: &str, an: &str, on: &str, nn: &str, a: usize, o: usize) {
+        let program = format!(
+            "T1 D1\n{plane} G0 {an}-20 {on}-20 {nn}5\nG1 {nn}-1 F1000\nG41 G1 {an}0 {on}0\n{an}50\n{on}50\n{an}0\n{on}0\nG40 G1 {an}-20 {on}-20\nM30"
+        );
+        let (ch, samples) = run(&program);
+        assert_eq!(ch.status(), Status::Idle, "{plane}: {:?}", ch.alarms());
+        // The milling tool's length acts on the plane normal (Y in G18, X in G19), so the plane
+        // axes show the tool centre directly; the deselection ends on the programmed point.
+        let last = samples.last().unwrap();
+        assert_eq!((last[a], last[o]), (-20.0, -20.0), "{plane}");
+        let pt = |p: &Vec<f64>| (p[a], p[o]);
+        let cut = between(&samples, |p| {
+            let (x, y) = pt(p);
+            (x - 45.0).abs() < 1e-9 && (y - 5.0).abs() < 1e-9 || (x - 5.0).abs() < 1e-9 && (y - 45.0).abs() < 1e-9
+        });
+        assert!(cut.len() > 50, "{plane}");
+        for p in cut {
+            let (x, y) = pt(p);
+            assert!(off_square(x, y, 5.0, 45.0) < 1e-9, "{plane}: {p:?}");
+        }
+    }
+
+    #[test]
+    fn g18_and_g19_compensate_in_their_planes() {
+        square_in("G18", "Z", "X", "Y", 2, 0);
+        square_in("G19", "Y", "Z", "X", 1, 2);
+    }
+}
+
+mod arcs {
+    use super::*;
+
+    /// Path speed of the samples on a circle of radius `r` about (cx, cy) in mm/min (the
+    /// highest, i.e. the cruise feed).
+    fn cruise_on_circle(ch: &Channel, samples: &[Vec<f64>], r: f64, cx: f64, cy: f64) -> f64 {
+        let dt = ch.config().ipo_cycle;
+        let on = |p: &Vec<f64>| ((p[0] - cx).hypot(p[1] - cy) - r).abs() < 1e-9;
+        samples
+            .windows(2)
+            .filter(|w| on(&w[0]) && on(&w[1]))
+            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]) / dt * 60.0)
+            .fold(0.0, f64::max)
+    }
+
+    /// A boss of radius 20 milled outside (G42 on a counter-clockwise circle): the centre
+    /// runs on radius 25. CFC keeps F at the contour, so the centre runs at F·(20 + 5)/20;
+    /// CFIN corrects inner arcs only and leaves F on the centre path here.
+    #[test]
+    fn outer_arcs_run_faster_with_cfc_and_at_f_with_cfin() {
+        let program = |mode: &str| {
+            format!("T1 D1\nG0 X40 Y0 Z-1\n{mode} G42 G1 X20 Y0 F1200\nG3 X20 Y0 I-20 J0\nG40 G1 X40 Y0\nM30")
+        };
+        let (ch, samples) = run(&program("CFC"));
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let f = cruise_on_circle(&ch, &samples, 25.0, 0.0, 0.0);
+        assert!((f - 1200.0 * 25.0 / 20.0).abs() < 1.0, "CFC outer {f}");
+        let (_, samples) = run(&program("CFIN"));
+        let f = cruise_on_circle(&ch, &samples, 25.0, 0.0, 0.0);
+        assert!((f - 1200.0).abs() < 1.0, "CFIN outer {f}");
+    }
+
+    #[test]
+    fn inner_arcs_are_slowed_with_cfin() {
+        let program = "T1 D1\nG0 X0 Y0 Z-1\nCFIN G41 G1 X20 Y0 F1200\nG3 X20 Y0 I-20 J0\nG40 G1 X0 Y0\nM30";
+        let (ch, samples) = run(program);
+        let f = cruise_on_circle(&ch, &samples, 15.0, 0.0, 0.0);
+        assert!((f - 1200.0 * 15.0 / 20.0).abs() < 1.0, "{f}");
+    }
+
+    /// A helix (G3 with Z) in a pocket: the plane part is offset like the circle, Z descends
+    /// linearly with the angle (the helix axis is the plane normal).
+    #[test]
+    fn a_helix_is_compensated_in_the_plane_and_keeps_its_lead() {
+        let program = "T1 D1\nG0 X0 Y0 Z0\nG41 G1 X20 Y0 F1200\nG3 X20 Y0 Z-4 I-20 J0\nG40 G1 X0 Y0\nM30";
+        let (ch, samples) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let helix: Vec<_> = samples
+            .iter()
+            .filter(|p| (p[0].hypot(p[1]) - 15.0).abs() < 1e-9 && p[2] < 100.0 - 1e-9 && p[2] > 96.0 + 1e-9)
+            .collect();
+        assert!(helix.len() > 100);
+        for p in helix {
+            // Angle travelled from (15, 0) counter-clockwise, Z = 100 − 4·angle/2π.
+            let angle = p[1].atan2(p[0]).rem_euclid(std::f64::consts::TAU);
+            assert!((p[2] - (100.0 - 4.0 * angle / std::f64::consts::TAU)).abs() < 1e-6, "{p:?}");
+        }
+    }
+}
+
+mod pocket {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Distance from a point inside a rounded rectangle (half sizes hx, hy, corner radius rr,
+    /// centred at the origin) to its boundary: the signed-distance formula of a rounded box.
+    fn inside_distance(x: f64, y: f64, hx: f64, hy: f64, rr: f64) -> f64 {
+        let (qx, qy) = (x.abs() - (hx - rr), y.abs() - (hy - rr));
+        let outside = qx.max(0.0).hypot(qy.max(0.0));
+        let sd = outside + qx.max(qy).min(0.0) - rr;
+        -sd
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+
+        /// A pocket with inner arcs (rounded rectangle, corner radius ≥ the tool's 5): every
+        /// sample of the compensated path lies exactly one tool radius inside the contour.
+        #[test]
+        fn a_rounded_pocket_keeps_the_radius_everywhere(hx in 15.0f64..40.0, hy in 15.0f64..40.0, rr in 6.0f64..14.0) {
+            let program = format!(
+                "T1 D1\nG0 X0 Y0 Z-1\nG41 G1 X0 Y{my} F3000\nX{b}\nG3 X{hx} Y{c} CR={rr}\nG1 Y{d}\nG3 X{b} Y{hy} CR={rr}\nG1 X{mb}\nG3 X{mx} Y{d} CR={rr}\nG1 Y{c}\nG3 X{mb} Y{my} CR={rr}\nG1 X0\nG40 G1 X0 Y0\nM30",
+                b = hx - rr, mb = -(hx - rr), c = -(hy - rr), d = hy - rr, mx = -hx, my = -hy, hx = hx, hy = hy, rr = rr
+            );
+            let (ch, samples) = run(&program);
+            prop_assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+            let on: Vec<usize> = (0..samples.len())
+                .filter(|&i| (inside_distance(samples[i][0], samples[i][1], hx, hy, rr) - 5.0).abs() < 1e-6)
+                .collect();
+            prop_assert!(on.len() > 50);
+            for p in &samples[on[0]..=*on.last().unwrap()] {
+                let d = inside_distance(p[0], p[1], hx, hy, rr);
+                prop_assert!((d - 5.0).abs() < 1e-6, "{:?} is {} inside", p, d);
+            }
+        }
+    }
+}
