@@ -626,3 +626,11 @@ mod pocket {
         }
     }
 }
+
+/// KONTC (continuous curvature) needs a polynomial approach path, which this product does not
+/// interpolate: it is refused with 12550 instead of being run as another approach.
+#[test]
+fn kontc_is_refused_rather_than_replaced() {
+    let (ch, _) = run("T1 D1\nG0 X-20 Y-20 Z-1\nKONTC G41 G1 X0 Y0 F2000\nX50\nG40 G1 X50 Y20\nM30");
+    assert_eq!(alarm_of(&ch), Some(12550));
+}
