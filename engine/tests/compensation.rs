@@ -191,7 +191,7 @@ fn alarm_of(ch: &Channel) -> Option<u32> {
 }
 
 /// The samples from the first to the last one on which `on` holds.
-fn between<'a>(samples: &'a [Vec<f64>], on: impl Fn(&Vec<f64>) -> bool) -> &'a [Vec<f64>] {
+fn between(samples: &[Vec<f64>], on: impl Fn(&Vec<f64>) -> bool) -> &[Vec<f64>] {
     let first = samples.iter().position(&on).expect("reached");
     let last = samples.iter().rposition(&on).unwrap();
     &samples[first..=last]
@@ -633,4 +633,35 @@ mod pocket {
 fn kontc_is_refused_rather_than_replaced() {
     let (ch, _) = run("T1 D1\nG0 X-20 Y-20 Z-1\nKONTC G41 G1 X0 Y0 F2000\nX50\nG40 G1 X50 Y20\nM30");
     assert_eq!(alarm_of(&ch), Some(12550));
+}
+
+mod bottleneck {
+    use super::*;
+
+    /// Distance from a point to the polyline through `pts`.
+    fn polyline_distance(p: &[f64], pts: &[(f64, f64)]) -> f64 {
+        pts.windows(2).map(|w| seg_dist((p[0], p[1]), w[0], w[1])).fold(f64::MAX, f64::min)
+    }
+
+    /// A 2 mm step towards the tool (G41, radius 5): the equidistant of the step (x = 45)
+    /// ends below the intersection (45, 5) with the first one, so the step is bridged. The
+    /// tool leaves y = 5 where the circle of radius 5 about the step's top corner (50, 2)
+    /// meets it, x = 50 − √(25 − 9) = 46, follows that circle to (50, 7) and runs on y = 7.
+    #[test]
+    fn a_step_shorter_than_the_radius_is_bridged_round_its_corner() {
+        let contour = [(0.0, 0.0), (50.0, 0.0), (50.0, 2.0), (100.0, 2.0)];
+        let program = "T1 D1\nG0 X-20 Y20 Z-1\nG41 G1 X0 Y0 F2000\nX50\nY2\nX100\nG40 G1 X120 Y20\nM30";
+        let (ch, samples) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        assert!(passes(&samples, 46.0, 5.0) && passes(&samples, 50.0, 7.0) && passes(&samples, 100.0, 7.0));
+        let cut = between(&samples, |p| {
+            p[0].abs() < 1e-9 && (p[1] - 5.0).abs() < 1e-9 || (p[0] - 100.0).abs() < 1e-9 && (p[1] - 7.0).abs() < 1e-9
+        });
+        for p in cut {
+            assert!((polyline_distance(p, &contour) - 5.0).abs() < 1e-6, "{p:?}");
+        }
+        // With MD20240 = 1 no block beyond the next is examined: alarm 10751.
+        let (ch, _) = run_on("mill-3axis", "$MC_CUTCOM_MAXNUM_CHECK_BLOCKS=1", program);
+        assert_eq!(alarm_of(&ch), Some(10751));
+    }
 }

@@ -21,6 +21,7 @@ pub mod toolholder;
 mod trafo;
 pub mod trc;
 pub mod trc_approach;
+mod trc_bottleneck;
 mod trc_disc;
 mod trc_edge;
 pub mod value;
@@ -645,6 +646,7 @@ impl Interpreter {
             v: unit(v),
             tip: if groove_wall.is_some() { (0.0, 0.0) } else { tip },
             max_dummy_blocks: cfg.cutcom_max_dummy_blocks,
+            max_check_blocks: cfg.cutcom_max_check_blocks,
             groove_wall,
         }))
     }

@@ -9,7 +9,7 @@
 //! its successor decides its end point.
 
 use super::trc_approach::{self, ApproachMode};
-use super::{Item, trc_disc};
+use super::{Item, trc_bottleneck, trc_disc};
 use crate::alarm::Alarm;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
@@ -71,6 +71,8 @@ pub struct Compensation {
     pub tip: P2,
     /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS.
     pub max_dummy_blocks: usize,
+    /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks examined for a bottleneck.
+    pub max_check_blocks: usize,
     /// TRACYL groove-wall offset (513, 514 with k = 1): the channel slots of the unrolled
     /// peripheral coordinate and of the real Y axis. The part of the offset along the periphery
     /// is then travelled by the real Y axis, so the groove walls stay parallel.
@@ -110,6 +112,9 @@ pub(super) type P2 = (f64, f64);
 /// A compensated move waiting for its successor.
 #[derive(Debug, Clone)]
 struct Held {
+    /// Elements after it whose equidistants the tool cannot reach (bottleneck look-ahead,
+    /// MD20240): they are bridged when a later element meets this one.
+    skipped: Vec<(Prepared, Elem)>,
     p: Prepared,
     /// The programmed contour element.
     contour: Elem,
@@ -123,9 +128,9 @@ struct Held {
 #[derive(Debug, Clone)]
 enum Pending {
     /// A move outside the plane (infeed), kept at the tool's plane position.
-    Move(Prepared, Compensation),
+    Move(Box<(Prepared, Compensation)>),
     /// Anything else the block produced (M functions, dwell, messages, stops).
-    Item(Item),
+    Item(Box<Item>),
 }
 
 /// State of the compensation between moves.
@@ -181,7 +186,7 @@ impl Compensator {
             let max = self.max_dummy_blocks();
             let line = items.iter().rev().find_map(Item::line).or_else(|| {
                 self.pending.iter().rev().find_map(|p| match p {
-                    Pending::Move(p, _) => Some(p.line),
+                    Pending::Move(m) => Some(m.0.line),
                     Pending::Item(i) => i.line(),
                 })
             });
@@ -190,7 +195,7 @@ impl Compensator {
                 return Err(Alarm::trc_dummy_blocks(line, max));
             }
         }
-        self.pending.extend(items.into_iter().map(Pending::Item));
+        self.pending.extend(items.into_iter().map(|i| Pending::Item(Box::new(i))));
         Ok(true)
     }
 
@@ -205,7 +210,7 @@ impl Compensator {
     /// Hands an item to the main run, or keeps it behind the held move.
     pub fn emit_or_defer(&mut self, item: Item, out: &mut Vec<Item>) {
         if self.holds() {
-            self.pending.push(Pending::Item(item));
+            self.pending.push(Pending::Item(Box::new(item)));
         } else {
             self.emit(item, out);
         }
@@ -242,7 +247,7 @@ impl Compensator {
             // dummy blocks), or run at the tool's plane position.
             self.block_dummy_move = true;
             if self.held.is_some() || self.approach.is_some() {
-                self.pending.push(Pending::Move(p, comp));
+                self.pending.push(Pending::Move(Box::new((p, comp))));
                 return Ok(());
             }
             self.flush(limits, out)?;
@@ -283,7 +288,7 @@ impl Compensator {
             }
             self.tool_at = Some(start);
             self.release_pending(limits, out);
-            self.held = Some(Held { p, contour, start, comp });
+            self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
             return Ok(());
         }
         match self.held.take() {
@@ -305,14 +310,35 @@ impl Compensator {
                     self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
-                self.held = Some(Held { p, contour, start, comp });
+                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
             }
-            Some(prev) => {
-                let (prev_end, transition, next_start) = corner(&prev.contour, &contour, d, &comp, prev.p.line)?;
+            Some(mut prev) => {
+                let meet = match prev.skipped.last() {
+                    None => corner(&prev.contour, &contour, d, &comp, prev.p.line)?,
+                    Some((_, last)) => {
+                        let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), None, prev.p.line)?;
+                        trc_bottleneck::bridge(&eq, last, &contour, d)
+                    }
+                };
+                let Some((prev_end, transition, next_start)) = meet else {
+                    // Look further ahead for an element the tool can reach (MD20240).
+                    if prev.skipped.len() + 1 >= comp.max_check_blocks.max(1) {
+                        return Err(bottleneck(line));
+                    }
+                    prev.skipped.push((p, contour));
+                    self.held = Some(prev);
+                    return Ok(());
+                };
                 let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
                 let mv = finish(&prev.p, eq, &prev.comp, limits, true);
                 self.emit(prev.p.item_with(mv), out);
                 self.tool_at = Some(prev_end);
+                for (skipped, _) in std::mem::take(&mut prev.skipped) {
+                    // A bridged element leaves only its axes outside the plane to travel.
+                    let from = self.from(skipped.mv.path.start);
+                    let end = place(&skipped.mv.path.end, prev_end, &comp);
+                    self.emit(skipped.item_with(rebuild(&skipped, Path::line(from, end), limits)), out);
+                }
                 self.release_pending(limits, out);
                 if let Some(arc) = transition {
                     // The transition is travelled at the tool's height after the dummy blocks.
@@ -321,7 +347,7 @@ impl Compensator {
                     self.emit(prev.p.item_with(mv), out);
                 }
                 self.tool_at = Some(next_start);
-                self.held = Some(Held { p, contour, start: next_start, comp });
+                self.held = Some(Held { skipped: Vec::new(), p, contour, start: next_start, comp });
             }
         }
         Ok(())
@@ -336,7 +362,7 @@ impl Compensator {
             return Err(Alarm::trc_deselection(p.line));
         }
         let retract = match &self.held {
-            Some(h) if p.approach != ApproachMode::Norm && self.pending.is_empty() => {
+            Some(h) if p.approach != ApproachMode::Norm && self.pending.is_empty() && h.skipped.is_empty() => {
                 let to = minus(to_plane(&p.mv.path.end, &h.comp), h.comp.tip);
                 let from = to_plane(&p.mv.path.start, &h.comp);
                 (dist(from, to) > 1e-9).then_some((h.clone(), to))
@@ -381,9 +407,9 @@ impl Compensator {
         self.dummy_blocks = 0;
         for pending in std::mem::take(&mut self.pending) {
             match pending {
-                Pending::Item(item) => self.emit(item, out),
-                Pending::Move(p, comp) => {
-                    let mut p = p;
+                Pending::Item(item) => self.emit(*item, out),
+                Pending::Move(m) => {
+                    let (mut p, comp) = *m;
                     let from = self.from(p.mv.path.start);
                     let end = match self.tool_at {
                         Some(at) => place(&p.mv.path.end, at, &comp),
@@ -405,6 +431,10 @@ impl Compensator {
             self.tool_at = None;
         }
         if let Some(h) = self.held.take() {
+            if let Some((skipped, _)) = h.skipped.last() {
+                // The contour ends inside the bottleneck.
+                return Err(bottleneck(skipped.line));
+            }
             let eq = offset_elem(&h.contour, h.comp.offset(), Some(h.start), None, h.p.line)?;
             self.tool_at = Some(elem_end(&eq));
             let mv = finish(&h.p, eq, &h.comp, limits, true);
@@ -638,7 +668,7 @@ pub(super) fn offset_start(e: &Elem, d: f64) -> P2 {
 
 /// The element offset by `d`, with its start and end optionally moved to given points on the
 /// equidistant (corners decide them).
-fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) -> Result<Elem, Alarm> {
+pub(super) fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) -> Result<Elem, Alarm> {
     Ok(match *e {
         Elem::Line { s, e } => {
             let n = left(tangent(&Elem::Line { s, e }, false));
@@ -670,7 +700,10 @@ fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) 
 
 /// The corner between two elements (already in contour coordinates) at offset `d`: the end of
 /// the first equidistant, a transition arc if one is needed, and the start of the second.
-fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<(P2, Option<Elem>, P2), Alarm> {
+/// `Ok(None)`: an inner corner whose intersection lies beyond the end of the second
+/// equidistant; the second element is too short for the tool and may be bridged by the
+/// bottleneck look-ahead.
+fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<Option<Corner>, Alarm> {
     let mode = comp.corners;
     let p = elem_end(a);
     let (ta, tb) = (tangent(a, true), tangent(b, false));
@@ -678,7 +711,7 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
     let q1 = (p.0 + d * na.0, p.1 + d * na.1);
     let q2 = (p.0 + d * nb.0, p.1 + d * nb.1);
     if dist(q1, q2) < 1e-9 {
-        return Ok((q1, None, q1));
+        return Ok(Some((q1, None, q1)));
     }
     let cross = ta.0 * tb.1 - ta.1 * tb.0;
     let outer = cross * d < 0.0;
@@ -688,13 +721,13 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
         if let (CornerMode::Intersection, Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (mode, oa, ob)
             && let Some(x) = line_line(s1, e1, s2, e2)
         {
-            return Ok((x, None, x));
+            return Ok(Some((x, None, x)));
         }
         if let (Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (oa, ob)
             && comp.disc > 0.0
             && let Some(x) = line_line(s1, e1, s2, e2)
         {
-            return Ok(trc_disc::disc_corner(q1, q2, x, p, comp.disc));
+            return Ok(Some(trc_disc::disc_corner(q1, q2, x, p, comp.disc)));
         }
         // Transition circle about the contour corner, turning like the corner.
         let a0 = (q1.1 - p.1).atan2(q1.0 - p.0);
@@ -710,7 +743,7 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
                 sweep -= tau;
             }
         }
-        return Ok((q1, Some(Elem::Arc { c: p, r: d.abs(), a0, sweep }), q2));
+        return Ok(Some((q1, Some(Elem::Arc { c: p, r: d.abs(), a0, sweep }), q2)));
     }
     // Inner corner: cut both equidistants at their intersection nearest the corner.
     let x = intersection(&oa, &ob, p)
@@ -724,10 +757,20 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
         Elem::Line { s, e } => ((x.0 - e.0) * (s.0 - e.0) + (x.1 - e.1) * (s.1 - e.1)) < -1e-9,
         Elem::Arc { .. } => false,
     };
-    if behind_a || beyond_b {
-        return Err(Alarm::collision(line, "the tool does not fit between the contour elements (bottleneck)"));
+    if behind_a {
+        return Err(bottleneck(line));
     }
-    Ok((x, None, x))
+    if beyond_b {
+        return Ok(None);
+    }
+    Ok(Some((x, None, x)))
+}
+
+/// The end of the first equidistant, the transition (if any) and the start of the next.
+pub(super) type Corner = (P2, Option<Elem>, P2);
+
+pub(super) fn bottleneck(line: u32) -> Alarm {
+    Alarm::collision(line, "the tool does not fit between the contour elements (bottleneck)")
 }
 
 /// Intersection of two infinite lines through (s1, e1) and (s2, e2).
@@ -742,7 +785,7 @@ pub(super) fn line_line(s1: P2, e1: P2, s2: P2, e2: P2) -> Option<P2> {
 }
 
 /// Intersection of two offset elements nearest `near`.
-fn intersection(a: &Elem, b: &Elem, near: P2) -> Option<P2> {
+pub(super) fn intersection(a: &Elem, b: &Elem, near: P2) -> Option<P2> {
     let points: Vec<P2> = match (*a, *b) {
         (Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) => line_line(s1, e1, s2, e2).into_iter().collect(),
         (Elem::Line { s, e }, Elem::Arc { c, r, .. }) | (Elem::Arc { c, r, .. }, Elem::Line { s, e }) => {
@@ -753,7 +796,7 @@ fn intersection(a: &Elem, b: &Elem, near: P2) -> Option<P2> {
     points.into_iter().min_by(|p, q| dist(*p, near).total_cmp(&dist(*q, near)))
 }
 
-fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
+pub(super) fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
     let d = (e.0 - s.0, e.1 - s.1);
     let f = (s.0 - c.0, s.1 - c.1);
     let (a, b, cc) = (d.0 * d.0 + d.1 * d.1, 2.0 * (f.0 * d.0 + f.1 * d.1), f.0 * f.0 + f.1 * f.1 - r * r);
@@ -765,7 +808,7 @@ fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
     [(-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a)].iter().map(|t| (s.0 + t * d.0, s.1 + t * d.1)).collect()
 }
 
-fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64) -> Vec<P2> {
+pub(super) fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64) -> Vec<P2> {
     let d = dist(c1, c2);
     if d < 1e-12 || d > r1 + r2 || d < (r1 - r2).abs() {
         return Vec::new();
