@@ -665,3 +665,23 @@ mod bottleneck {
         assert_eq!(alarm_of(&ch), Some(10751));
     }
 }
+
+/// KONTT onto and off a circular pocket (radius 20, G41: the centre runs on radius 15) from
+/// and back to the pocket centre: the approach arc starts at (0, 0) and meets (15, 0) heading
+/// +Y, so its centre lies on the x axis midway, (7.5, 0), radius 7.5 (the classic half-circle
+/// approach, below the x axis); the retract mirrors it above the x axis.
+#[test]
+fn kontt_enters_and_leaves_a_circular_pocket_on_half_circles() {
+    let program = "T1 D1\nG0 X0 Y0 Z-1\nKONTT G41 G1 X20 Y0 F1200\nG3 X20 Y0 I-20 J0\nG40 G1 X0 Y0\nM30";
+    let (ch, samples) = run(program);
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    let start = samples.iter().position(|p| p[2] == 99.0).unwrap();
+    let moving: Vec<_> = samples[start..].iter().filter(|p| (p[0].hypot(p[1]) - 15.0).abs() > 1e-6).collect();
+    assert!(moving.len() > 20);
+    for p in &moving {
+        // Off the pocket circle the tool is on one of the half circles.
+        assert!(((p[0] - 7.5).hypot(p[1]) - 7.5).abs() < 1e-6, "{p:?}");
+    }
+    assert!(moving.iter().any(|p| p[1] < -7.0) && moving.iter().any(|p| p[1] > 7.0));
+    assert_eq!(&ch.axis_positions()[..2], &[0.0, 0.0]);
+}

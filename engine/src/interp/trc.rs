@@ -210,6 +210,7 @@ impl Compensator {
     /// Hands an item to the main run, or keeps it behind the held move.
     pub fn emit_or_defer(&mut self, item: Item, out: &mut Vec<Item>) {
         if self.holds() {
+            self.block_dummy_move = true;
             self.pending.push(Pending::Item(Box::new(item)));
         } else {
             self.emit(item, out);
