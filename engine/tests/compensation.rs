@@ -685,3 +685,27 @@ fn kontt_enters_and_leaves_a_circular_pocket_on_half_circles() {
     assert!(moving.iter().any(|p| p[1] < -7.0) && moving.iter().any(|p| p[1] > 7.0));
     assert_eq!(&ch.axis_positions()[..2], &[0.0, 0.0]);
 }
+
+/// G41 → G42 without G40: the left equidistant ends perpendicular at (50, 5), a straight line
+/// crosses to the right one's perpendicular start (50, −5), which runs on to (100, −5).
+#[test]
+fn changing_the_side_without_g40_ends_and_restarts_perpendicular() {
+    let (ch, samples) = run("T1 D1\nG0 X-20 Y20 Z-1\nG41 G1 X0 Y0 F2000\nX50\nG42 X100\nG40 X120 Y-20\nM30");
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    for (x, y) in [(0.0, 5.0), (50.0, 5.0), (50.0, -5.0), (100.0, -5.0)] {
+        assert!(passes(&samples, x, y), "({x}, {y})");
+    }
+    // Between (50, 5) and (50, −5) the tool moves on x = 50 only.
+    let cross = between(&samples, |p| (p[0] - 50.0).abs() < 1e-9 && (p[1].abs() - 5.0).abs() < 1e-9);
+    assert!(cross.iter().all(|p| (p[0] - 50.0).abs() < 1e-9), "{cross:?}");
+}
+
+/// The radius is geometry plus wear: $TC_DP15 = −0.5 makes T1 a 4.5 mm cutter.
+#[test]
+fn the_wear_value_adds_to_the_radius() {
+    let (ch, samples) = run_on("mill-3axis", "$TC_DP15[1,1]=-0.5", &SQUARE.replace("{sel}", "G41"));
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    for (x, y) in [(45.5, 4.5), (45.5, 45.5), (4.5, 45.5)] {
+        assert!(passes(&samples, x, y), "({x}, {y})");
+    }
+}

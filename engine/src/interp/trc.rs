@@ -313,6 +313,22 @@ impl Compensator {
                 self.tool_at = Some(start);
                 self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
             }
+            Some(prev)
+                if prev.skipped.is_empty() && (prev.comp.side != comp.side || prev.comp.radius != comp.radius) =>
+            {
+                // G41 ⇄ G42 (or another radius) without G40: the old side ends perpendicular at
+                // its end point, a straight line leads to the perpendicular start of the new.
+                self.held = Some(prev);
+                self.flush(limits, out)?;
+                let start = offset_start(&contour, d);
+                let from = self.from(p.mv.path.start);
+                if self.tool_at.is_some_and(|at| dist(at, start) > 1e-9) {
+                    let to = place(&from, start, &comp);
+                    self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
+                }
+                self.tool_at = Some(start);
+                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+            }
             Some(mut prev) => {
                 let meet = match prev.skipped.last() {
                     None => corner(&prev.contour, &contour, d, &comp, prev.p.line)?,
