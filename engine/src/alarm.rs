@@ -164,6 +164,15 @@ impl Alarm {
         )
     }
 
+    /// 10750: G41/G42 with no cutting edge active (D0).
+    pub fn trc_without_tool(line: u32) -> Alarm {
+        Alarm::new(
+            10750,
+            format!("Channel 1 block {line} tool radius compensation activated without tool number"),
+            Some(line),
+        )
+    }
+
     /// 10753: tool radius compensation selected in a block that is not a straight line.
     pub fn trc_selection(line: u32) -> Alarm {
         Alarm::new(

@@ -709,3 +709,9 @@ fn the_wear_value_adds_to_the_radius() {
         assert!(passes(&samples, x, y), "({x}, {y})");
     }
 }
+
+#[test]
+fn g41_without_a_cutting_edge_is_alarm_10750() {
+    let (ch, _) = run("T1 D0\nG0 X-20 Y-20 Z-1\nG41 G1 X0 Y0 F1000\nX50\nM30");
+    assert_eq!(alarm_of(&ch), Some(10750));
+}

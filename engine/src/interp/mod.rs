@@ -587,8 +587,9 @@ impl Interpreter {
     ) -> Result<Option<trc::Compensation>, Alarm> {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
         let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
-        let tool_radius = edge.map_or(0.0, |p| p[5] + p[14]);
-        let tip = edge.map_or((0.0, 0.0), |p| trc_edge::tip_offset(p[0], p[1], tool_radius));
+        let Some(edge) = edge else { return Err(Alarm::trc_without_tool(line)) };
+        let tool_radius = edge[5] + edge[14];
+        let tip = trc_edge::tip_offset(edge[0], edge[1], tool_radius);
         let groove_wall = self.groove_wall_axes();
         let offn = self.modal.offn;
         let radius = match groove_wall {
