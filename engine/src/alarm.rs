@@ -213,6 +213,15 @@ impl Alarm {
         )
     }
 
+    /// 10760: a circle (or helix) whose plane is not the compensation plane.
+    pub fn trc_helix_axis(line: u32) -> Alarm {
+        Alarm::new(
+            10760,
+            format!("Channel 1 block {line} helical axis is not parallel to tool orientation"),
+            Some(line),
+        )
+    }
+
     /// 10762: more blocks without motion in the compensation plane in a row than MD20250
     /// CUTCOM_MAXNUM_DUMMY_BLOCKS allows.
     pub fn trc_dummy_blocks(line: u32, max: usize) -> Alarm {

@@ -715,3 +715,27 @@ fn g41_without_a_cutting_edge_is_alarm_10750() {
     let (ch, _) = run("T1 D0\nG0 X-20 Y-20 Z-1\nG41 G1 X0 Y0 F1000\nX50\nM30");
     assert_eq!(alarm_of(&ch), Some(10750));
 }
+
+/// RND=10 at the inner corner (50, 0) of the G41 square: the rounding belongs to the contour
+/// (centre (40, 10), radius 10), so the tool centre runs on the concentric arc of radius 5
+/// from (40, 5) to (45, 10).
+#[test]
+fn a_rounding_is_part_of_the_compensated_contour() {
+    let program = "T1 D1\nG0 X-20 Y-20 Z-1\nG41 G1 X0 Y0 F3000\nX50 RND=10\nY50\nX0\nY0\nG40 X-20 Y-20\nM30";
+    let (ch, samples) = run(program);
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    // The rounding is travelled without a stop (G64 between it and its neighbours), so the
+    // samples pass its ends without landing on them; all of them stay on the equidistants.
+    let cut = between(&samples, |p| {
+        (p[0] - 20.0).abs() < 0.5 && (p[1] - 5.0).abs() < 1e-9
+            || (p[0] - 45.0).abs() < 1e-9 && (p[1] - 30.0).abs() < 0.5
+    });
+    assert!(cut.iter().all(|p| (p[1] - 5.0).abs() < 1e-9 && p[0] <= 40.0 + 1e-9
+        || (p[0] - 45.0).abs() < 1e-9 && p[1] >= 10.0 - 1e-9
+        || ((p[0] - 40.0).hypot(p[1] - 10.0) - 5.0).abs() < 1e-9));
+    let corner: Vec<_> = samples.iter().filter(|p| p[0] > 40.0 + 1e-6 && p[1] < 10.0 - 1e-6 && p[1] > 4.0).collect();
+    assert!(corner.len() > 5);
+    for p in corner {
+        assert!(((p[0] - 40.0).hypot(p[1] - 10.0) - 5.0).abs() < 1e-9, "{p:?}");
+    }
+}

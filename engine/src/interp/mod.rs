@@ -407,7 +407,8 @@ impl Interpreter {
             out.push(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line });
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let approach = self.modal.approach;
-            self.trc.push(trc::Prepared { mv, feed, line, item, approach }, None, &AxisLimit::for_channel(cfg), out)?;
+            let prepared = trc::Prepared { mv, feed, line, item, approach, corner: None };
+            self.trc.push(prepared, None, &AxisLimit::for_channel(cfg), out)?;
         } else if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
@@ -431,7 +432,10 @@ impl Interpreter {
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let comp = self.compensation(cfg, &words, line)?;
             let approach = self.modal.approach;
-            self.trc.push(trc::Prepared { mv, feed, line, item, approach }, comp, &AxisLimit::for_channel(cfg), out)?;
+            // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
+            let corner = if comp.is_some() { self.corner_request.take() } else { None };
+            let prepared = trc::Prepared { mv, feed, line, item, approach, corner };
+            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         } else if self.offsets != offsets_before {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
         }

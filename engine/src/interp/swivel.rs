@@ -719,7 +719,7 @@ impl Interpreter {
         self.pos = end;
         let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
         self.trc.push(
-            trc::Prepared { mv, feed: Feed::Rapid, line, item, approach: self.modal.approach },
+            trc::Prepared { mv, feed: Feed::Rapid, line, item, approach: self.modal.approach, corner: None },
             None,
             &AxisLimit::for_channel(cfg),
             out,

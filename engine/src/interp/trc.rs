@@ -8,6 +8,7 @@
 //! their intersection; inner corners are cut at the intersection. A move is held back until
 //! its successor decides its end point.
 
+use super::corners;
 use super::trc_approach::{self, ApproachMode};
 use super::{Item, trc_bottleneck, trc_disc};
 use crate::alarm::Alarm;
@@ -98,6 +99,8 @@ pub struct Prepared {
     pub item: Item,
     /// G group 17 active in the block (approach with G41/G42, retract with G40).
     pub approach: ApproachMode,
+    /// RND/CHF/CHR at its end: shaped into the programmed contour before the offset.
+    pub corner: Option<corners::Corner>,
 }
 
 /// The contour element of a move in plane coordinates.
@@ -243,6 +246,11 @@ impl Compensator {
             return self.deselect(p, limits, out);
         };
         let line = p.line;
+        if let Some(arc) = &p.mv.path.arc
+            && (arc_in_plane(arc, &comp).2.abs() - 1.0).abs() > 1e-6
+        {
+            return Err(Alarm::trc_helix_axis(line));
+        }
         let Some(contour) = element(&p.mv, &comp) else {
             // No motion in the working plane: wait behind the held move (look-ahead across
             // dummy blocks), or run at the tool's plane position.
@@ -263,6 +271,24 @@ impl Compensator {
         };
         self.block_plane_move = true;
         self.dummy_blocks = 0;
+        if let Some(h) = self.held.as_mut()
+            && h.skipped.is_empty()
+            && self.pending.is_empty()
+            && let Some(corner) = h.p.corner.take()
+        {
+            // The rounding or chamfer is part of the contour: insert it, then offset.
+            let mut next = p.clone();
+            if let Some((first, between)) = corners::split(&h.p.mv, corner, h.p.line, &mut next.mv, limits)?
+                && let (Some(shortened), Some(_)) = (element(&first, &h.comp), element(&next.mv, &comp))
+            {
+                h.p.mv = first;
+                h.contour = shortened;
+                let inserted = Prepared { mv: between, corner: None, ..h.p.clone() };
+                let prev_comp = h.comp;
+                self.push(inserted, Some(prev_comp), limits, out)?;
+                return self.push(next, Some(comp), limits, out);
+            }
+        }
         let d = comp.offset();
         if let Some((approach, _)) = self.approach.take() {
             // The selection block ends on the first element's equidistant (NORM) or goes round
@@ -606,12 +632,24 @@ fn element(mv: &Move, comp: &Compensation) -> Option<Elem> {
     let e = to_plane(&mv.path.end, comp);
     match &mv.path.arc {
         Some(arc) => {
-            let c = (s.0 - arc.radius * arc.start_angle.cos(), s.1 - arc.radius * arc.start_angle.sin());
-            Some(Elem::Arc { c, r: arc.radius, a0: arc.start_angle, sweep: arc.sweep })
+            // The arc's own axes (a rounding arc has its own) read in the plane.
+            let (ru, rv, orient) = arc_in_plane(arc, comp);
+            let (cs, sn) = (arc.start_angle.cos(), arc.start_angle.sin());
+            let a0 = (cs * ru.1 + sn * rv.1).atan2(cs * ru.0 + sn * rv.0);
+            let c = (s.0 - arc.radius * a0.cos(), s.1 - arc.radius * a0.sin());
+            Some(Elem::Arc { c, r: arc.radius, a0, sweep: arc.sweep * orient.signum() })
         }
         None if dist(s, e) > 1e-9 => Some(Elem::Line { s, e }),
         None => None,
     }
+}
+
+/// An arc's axes in plane coordinates and the sense of its plane against the working plane
+/// (±1 when the arc lies in it).
+fn arc_in_plane(arc: &Arc, comp: &Compensation) -> (P2, P2, f64) {
+    let ru = (dot(&arc.u, &comp.u), dot(&arc.u, &comp.v));
+    let rv = (dot(&arc.v, &comp.u), dot(&arc.v, &comp.v));
+    (ru, rv, ru.0 * rv.1 - ru.1 * rv.0)
 }
 
 fn to_plane(p: &AxisVec, comp: &Compensation) -> P2 {
@@ -720,7 +758,7 @@ pub(super) fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, 
 /// `Ok(None)`: an inner corner whose intersection lies beyond the end of the second
 /// equidistant; the second element is too short for the tool and may be bridged by the
 /// bottleneck look-ahead.
-fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<Option<Corner>, Alarm> {
+fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<Option<Meet>, Alarm> {
     let mode = comp.corners;
     let p = elem_end(a);
     let (ta, tb) = (tangent(a, true), tangent(b, false));
@@ -784,7 +822,7 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
 }
 
 /// The end of the first equidistant, the transition (if any) and the start of the next.
-pub(super) type Corner = (P2, Option<Elem>, P2);
+pub(super) type Meet = (P2, Option<Elem>, P2);
 
 pub(super) fn bottleneck(line: u32) -> Alarm {
     Alarm::collision(line, "the tool does not fit between the contour elements (bottleneck)")

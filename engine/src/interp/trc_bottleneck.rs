@@ -10,13 +10,13 @@
 //! start of `c`'s equidistant; an inner corner cuts the first equidistant with `c`'s.
 
 use super::trc::{
-    Corner, Elem, P2, circle_circle, elem_end, elem_start, intersection, left, line_circle, offset_elem, tangent,
+    Elem, Meet, P2, circle_circle, elem_end, elem_start, intersection, left, line_circle, offset_elem, tangent,
 };
 use std::f64::consts::TAU;
 
 /// The join of the equidistant `a_eq` (its start is where the tool is) with the element `c`,
 /// or None if they do not meet ahead of the tool.
-pub(super) fn bridge(a_eq: &Elem, last: &Elem, c: &Elem, d: f64) -> Option<Corner> {
+pub(super) fn bridge(a_eq: &Elem, last: &Elem, c: &Elem, d: f64) -> Option<Meet> {
     let p = elem_end(last);
     let (tl, tc) = (tangent(last, true), tangent(c, false));
     let cross = tl.0 * tc.1 - tl.1 * tc.0;
