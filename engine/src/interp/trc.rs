@@ -183,7 +183,7 @@ impl Compensator {
         if out[mark..].iter().any(|i| matches!(i, Item::Move { .. })) {
             return Ok(false);
         }
-        let items: Vec<Item> = out.drain(mark..).collect();
+        let items: Vec<Item> = if mark < out.len() { out.drain(mark..).collect() } else { Vec::new() };
         if !self.block_plane_move && (self.block_dummy_move || !items.is_empty()) {
             self.dummy_blocks += 1;
             let max = self.max_dummy_blocks();
@@ -384,10 +384,11 @@ impl Compensator {
                 }
                 self.release_pending(limits, out);
                 if let Some(arc) = transition {
-                    // The transition is travelled at the tool's height after the dummy blocks.
+                    // The transition belongs to the next block (its line and feed) and runs at
+                    // the tool's height after the dummy blocks.
                     let from = self.from(prev.p.mv.path.end);
-                    let mv = finish_transition(&prev.p, arc, from, &prev.comp, limits);
-                    self.emit(prev.p.item_with(mv), out);
+                    let mv = finish_transition(&p, arc, from, &comp, limits);
+                    self.emit(p.item_with(mv), out);
                 }
                 self.tool_at = Some(next_start);
                 self.held = Some(Held { skipped: Vec::new(), p, contour, start: next_start, comp });
