@@ -739,3 +739,28 @@ fn a_rounding_is_part_of_the_compensated_contour() {
         assert!(((p[0] - 40.0).hypot(p[1] - 10.0) - 5.0).abs() < 1e-9, "{p:?}");
     }
 }
+
+/// M0 between two contour elements is a block without plane motion: the program stops with
+/// the tool at the inner corner's intersection (45, 5), not at a perpendicular end, and NC
+/// start goes on along the second equidistant.
+#[test]
+fn m0_inside_the_contour_stops_at_the_corner_point() {
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program("T1 D1\nG0 X-20 Y-20 Z-1\nG41 G1 X0 Y0 F2000\nX50\nM0\nY50\nX0\nG40 X-20 Y-20\nM30").unwrap();
+    for _ in 0..200_000 {
+        if ch.status() == Status::Stopped {
+            break;
+        }
+        ch.step();
+    }
+    assert_eq!(ch.status(), Status::Stopped, "{:?}", ch.alarms());
+    assert_eq!(&ch.axis_positions()[..2], &[45.0, 5.0]);
+    ch.start().unwrap();
+    let mut samples = vec![];
+    while ch.is_busy() {
+        ch.step();
+        samples.push(ch.axis_positions().to_vec());
+    }
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    assert!(passes(&samples, 45.0, 45.0));
+}

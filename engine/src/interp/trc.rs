@@ -1,14 +1,18 @@
-//! Tool radius compensation (G40/G41/G42, G450/G451, OFFN): the tool centre runs on the
-//! equidistant of the programmed contour in the working plane.
+//! Tool radius compensation (G40/G41/G42, G450/G451, DISC, OFFN): the tool centre runs on
+//! the equidistant of the programmed contour in the working plane.
 //!
 //! Works on prepared moves: each move's working-plane part is read in plane coordinates (the
 //! frame's images of the plane axes, so mirroring and rotation need no special cases), offset
 //! to the left (G41) or right (G42) by the radius, and joined to its neighbour at the corner:
-//! G450 inserts a transition arc about the contour corner, G451 extends both equidistants to
-//! their intersection; inner corners are cut at the intersection. A move is held back until
-//! its successor decides its end point.
+//! G450 inserts a transition arc about the contour corner (DISC pulls it towards the
+//! intersection), G451 extends both equidistants to their intersection; inner corners are cut
+//! at the intersection. A move is held back until its successor decides its end point; blocks
+//! without motion in the plane wait behind it (at most MD20250 of them, else alarm 10762) and
+//! run at the corner point. Elements too short for the tool are bridged (`trc_bottleneck`),
+//! approach and retract follow G group 17 (`trc_approach`), RND/CHF are shaped on the
+//! programmed contour first, and a turning tool's reference is its theoretical tip
+//! (`trc_edge`).
 
-use super::corners;
 use super::trc_approach::{self, ApproachMode};
 use super::{Item, trc_bottleneck, trc_disc};
 use crate::alarm::Alarm;
