@@ -13,6 +13,7 @@
 //! programmed contour first, and a turning tool's reference is its theoretical tip
 //! (`trc_edge`).
 
+use super::corners;
 use super::trc_approach::{self, ApproachMode};
 use super::{Item, trc_bottleneck, trc_disc};
 use crate::alarm::Alarm;
