@@ -332,6 +332,27 @@ fn tracyl_groove_wall_offset_keeps_c_on_the_centre_line() {
     }
 }
 
+/// A radial infeed (X only) inside the groove is a block without motion in the compensation
+/// plane: it runs at the corner point with the real Y axis holding the wall offset (2), and the
+/// groove goes on to Z−60 on the same wall.
+#[test]
+fn tracyl_groove_wall_offset_holds_y_through_an_infeed() {
+    let program = format!("{GROOVE}X18\nZ-60\nM0\nM30");
+    let (ch, samples) = run("tracyl-xyzc", "", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    // XM ends where X18 puts the radial axis with the tool's length on it.
+    let (x, y, z) = (0, 1, 2);
+    let x_end = machine(&s, "XM");
+    assert!(x_end > 20.0 + 1e-6, "{x_end}");
+    let infeed: Vec<&Sample> = samples.iter().filter(|p| p.axes[x] > 20.0 + 1e-6 && p.axes[x] < x_end - 1e-6).collect();
+    assert!(!infeed.is_empty());
+    for p in infeed {
+        assert!(close(p.axes[y], 2.0, 1e-9) && close(p.axes[z], -30.0, 1e-9), "{:?}", p.axes);
+    }
+    assert!(close(machine(&s, "YM"), 2.0, 1e-9) && close(machine(&s, "ZM"), -60.0, 1e-9));
+}
+
 #[test]
 fn tracyl_groove_wall_offset_around_the_periphery_moves_z_and_hands_back_y() {
     // Around a quarter of the circumference on d = 40 (arc length 10π): the offset now lies

@@ -268,7 +268,7 @@ impl Compensator {
             let mut p = p;
             if let Some(at) = self.tool_at {
                 let from = self.from(p.mv.path.start);
-                let end = place(&p.mv.path.end, at, &comp);
+                let end = hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp);
                 p.mv = rebuild(&p, Path::line(from, end), limits);
             }
             self.emit(p.item_with(p.mv.clone()), out);
@@ -461,7 +461,7 @@ impl Compensator {
                     let (mut p, comp) = *m;
                     let from = self.from(p.mv.path.start);
                     let end = match self.tool_at {
-                        Some(at) => place(&p.mv.path.end, at, &comp),
+                        Some(at) => hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp),
                         None => p.mv.path.end,
                     };
                     p.mv = rebuild(&p, Path::line(from, end), limits);
@@ -670,6 +670,15 @@ pub(super) fn place(p: &AxisVec, q: P2, comp: &Compensation) -> AxisVec {
 
 pub(super) fn minus(a: P2, b: P2) -> P2 {
     (a.0 - b.0, a.1 - b.1)
+}
+
+/// A move at the tool's plane position keeps TRACYL's groove-wall share on the real Y axis
+/// where the tool stands.
+fn hold_groove_wall(mut end: AxisVec, from: &AxisVec, comp: &Compensation) -> AxisVec {
+    if let Some((_, extra)) = comp.groove_wall {
+        end[extra] = from[extra];
+    }
+    end
 }
 
 /// `p` with its working-plane part replaced by `q`.
