@@ -764,3 +764,26 @@ fn m0_inside_the_contour_stops_at_the_corner_point() {
     assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
     assert!(passes(&samples, 45.0, 45.0));
 }
+
+/// SPOS inside a compensated contour is a block without motion in the plane: it neither ends
+/// the compensation nor the look-ahead. The shoulder of `turning` with SPOS between the
+/// longitudinal cut and the face: the tip still reaches the programmed corner (X10, Z−30)
+/// (carrier X50, Z30 with the lengths 40 and 60), the spindle positions there.
+#[test]
+fn spos_inside_the_contour_keeps_the_compensation() {
+    let program = "T1 D1\nG0 X15 Z5\nS1000 M3\nG42 G1 X10 Z0 F300\nZ-30\nSPOS=90\nX20\nG40 G0 X25 Z5\nM30";
+    let mut ch = Channel::from_preset("lathe-2axis", "").unwrap();
+    ch.run_program(program).unwrap();
+    let mut at_corner = None;
+    while ch.is_busy() {
+        ch.step();
+        let p = ch.axis_positions();
+        if (p[0] - 50.0).abs() < 1e-9 && (p[1] - 30.0).abs() < 1e-9 {
+            at_corner = Some(p[2]);
+        }
+    }
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    // The last sample at the corner is where the spindle has reached 90° (modulo a turn).
+    let angle = at_corner.expect("the tip reaches the programmed corner");
+    assert!((angle.rem_euclid(360.0) - 90.0).abs() < 1e-9, "{angle}");
+}

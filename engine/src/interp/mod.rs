@@ -404,11 +404,13 @@ impl Interpreter {
         if let Some(target) = words.spos {
             let (mv, feed) = self.spindle_position(target, cfg, line)?;
             let axis = cfg.master_spindle.expect("checked in spindle_position");
-            out.push(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line });
+            // With compensation active SPOS is a block without motion in the plane.
+            self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let approach = self.modal.approach;
             let prepared = trc::Prepared { mv, feed, line, item, approach, corner: None };
-            self.trc.push(prepared, None, &AxisLimit::for_channel(cfg), out)?;
+            let comp = self.compensation(cfg, &words, line)?;
+            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         } else if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,

@@ -233,6 +233,18 @@ impl Compensator {
         self.mark = out.len();
     }
 
+    /// Where a move outside the plane starts: its own start with the plane part (and TRACYL's
+    /// groove-wall share) where the last move handed out ended. Spindle axes in position
+    /// control start where the block found them, not at a stale value of an earlier move.
+    fn start_at_tool(&self, own: AxisVec, comp: &Compensation) -> AxisVec {
+        let Some(last) = self.last_end else { return own };
+        let mut s = with_plane(&own, to_plane(&last, comp), comp);
+        if let Some((_, extra)) = comp.groove_wall {
+            s[extra] = last[extra];
+        }
+        s
+    }
+
     /// Where the next move starts: the end of the last move handed out, else `fallback`.
     fn from(&self, fallback: AxisVec) -> AxisVec {
         self.last_end.unwrap_or(fallback)
@@ -267,7 +279,7 @@ impl Compensator {
             self.flush(limits, out)?;
             let mut p = p;
             if let Some(at) = self.tool_at {
-                let from = self.from(p.mv.path.start);
+                let from = self.start_at_tool(p.mv.path.start, &comp);
                 let end = hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp);
                 p.mv = rebuild(&p, Path::line(from, end), limits);
             }
@@ -459,7 +471,7 @@ impl Compensator {
                 Pending::Item(item) => self.emit(*item, out),
                 Pending::Move(m) => {
                     let (mut p, comp) = *m;
-                    let from = self.from(p.mv.path.start);
+                    let from = self.start_at_tool(p.mv.path.start, &comp);
                     let end = match self.tool_at {
                         Some(at) => hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp),
                         None => p.mv.path.end,
