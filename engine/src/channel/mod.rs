@@ -11,6 +11,7 @@
 
 mod cartesian_jog;
 mod jog;
+mod jog_settings;
 mod main_run;
 mod programs;
 mod reference;
@@ -24,6 +25,7 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 
 pub use jog::{JOG_INCREMENTS, JogSystem};
+pub use jog_settings::OrientationJogKind;
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 

@@ -376,7 +376,13 @@ pub static DEFS: &[Def] = &[
     def("SPIND_ASSIGN_TO_MACHAX", 35000, A, Kind::Int, 1, Default::Int(0), 0.0, 20.0),
     def("POS_LIMIT_MINUS", 36100, A, Kind::Real, 1, Default::Real(-1e8), -INF, INF),
     def("POS_LIMIT_PLUS", 36110, A, Kind::Real, 1, Default::Real(1e8), -INF, INF),
-    // Setting data. SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
+    // Setting data. SD42650 CART_JOG_MODE: reference systems of Cartesian manual travel, bits
+    // 0/1/2 translation in BCS/WCS/TCS, bits 8/9/10 orientation in BCS/WCS/TCS (bit layout from
+    // memory, REFERENCE §9.4). SD42660 ORI_JOG_MODE: 0 = as the transformation defines, 1 Euler
+    // ZX'Z'', 2 RPY XY'Z'', 3 RPY ZY'X'', 4/5 ORIAX_TURN_TAB_1/2 (seed 003, F2 3.8).
+    sd("CART_JOG_MODE", 42650, C, Kind::Int, Default::Int(0), 0.0, 1799.0),
+    sd("ORI_JOG_MODE", 42660, C, Kind::Int, Default::Int(0), 0.0, 5.0),
+    // SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
     sd("TOCARR_FINE_CORRECTION", 42974, C, Kind::Bool, Default::Bool(false), 0.0, 1.0),
     // SD42980 TOFRAME_MODE: 0/1 as MD21110; 2000 X/Y compromise, 2001 new X in the old X-Z
     // plane, 2002 new Y in the old Y-Z plane (808D list manual p.360). Default 2000, the value

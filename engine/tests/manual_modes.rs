@@ -1,0 +1,164 @@
+//! Manual operation, the selectable parts: the reference systems and orientation kinds of
+//! Cartesian JOG from SD42650/SD42660, the JOG rapid traverse overlay, the REPOS target modes
+//! (RMI, RMB, RME, RMN) and the reference point approach of incremental encoders.
+//!
+//! Expected values are written out here from plain rotation matrices, path geometry and the
+//! machine data's velocities, independently of the engine.
+
+use nctwin_engine::channel::{JogSystem, OrientationJogKind};
+use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Snapshot};
+
+fn channel(preset: &str, md: &str) -> Channel {
+    Channel::from_preset(preset, md).expect("preset")
+}
+
+/// Steps until nothing moves; returns the channel-axis positions of every cycle.
+fn settle(ch: &mut Channel) -> Vec<Vec<f64>> {
+    let mut samples = Vec::new();
+    for _ in 0..2_000_000 {
+        if !ch.is_busy() {
+            return samples;
+        }
+        ch.step();
+        samples.push(ch.axis_positions().to_vec());
+    }
+    panic!("the channel never came to rest");
+}
+
+fn machine(s: &Snapshot, name: &str) -> f64 {
+    s.machine.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no axis {name}")).1
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+fn jog(axis: &str, direction: i8, increment: Option<f64>) -> JogRequest {
+    JogRequest { axis: axis.into(), direction, increment, rapid: false }
+}
+
+// --- Cartesian JOG from the setting data ---------------------------------------------------------
+
+/// The CA head of `mill5-head-ca`: tool direction `o = (sin C·sin A, −cos C·sin A, cos A)` and
+/// tool tip `P = M + (0, 0, 150) − 250·o` (pivot 150 above the nose, T1 100 long).
+fn head_tip(m: &[f64]) -> [f64; 3] {
+    let o = head_orientation(m);
+    [m[0] - 250.0 * o[0], m[1] - 250.0 * o[1], m[2] + 150.0 - 250.0 * o[2]]
+}
+
+fn head_orientation(m: &[f64]) -> [f64; 3] {
+    let (sa, ca) = m[3].to_radians().sin_cos();
+    let (sc, cc) = m[4].to_radians().sin_cos();
+    [sc * sa, -cc * sa, ca]
+}
+
+/// TRAORI active (kept over program end by RESET_MODE_MASK bit 7), head at A30 C0, tip at
+/// (0, 0, 50), JOG mode; `md` adds setting data.
+fn head_at_a30(md: &str) -> Channel {
+    let mut ch = channel("mill5-head-ca", &format!("$MC_RESET_MODE_MASK='H81'\n{md}"));
+    ch.run_program("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 A30\nM30").unwrap();
+    settle(&mut ch);
+    ch.set_mode(Mode::Jog).unwrap();
+    ch
+}
+
+/// Asserts the tool orientation reached `want` (unit vector) with the tip held at (0, 0, 50)
+/// in every sample.
+fn assert_orientation(ch: &Channel, samples: &[Vec<f64>], want: [f64; 3]) {
+    let o = head_orientation(ch.axis_positions());
+    assert!((0..3).all(|i| close(o[i], want[i], 1e-6)), "orientation {o:?}, want {want:?}");
+    assert!(samples.len() > 5);
+    for p in samples {
+        let tip = head_tip(p);
+        assert!(close(tip[0], 0.0, 1e-6) && close(tip[1], 0.0, 1e-6) && close(tip[2], 50.0, 1e-6), "tip {tip:?}");
+    }
+}
+
+#[test]
+fn sd42650_chooses_the_system_of_a_jog_that_names_none() {
+    // Bit 2: translation in the TCS. Z moves 10 along o = (0, −sin 30°, cos 30°).
+    let mut ch = head_at_a30("$SC_CART_JOG_MODE='H4'");
+    let before = ch.axis_positions().to_vec();
+    ch.jog_with(&jog("Z", 1, Some(10.0)), None, None).unwrap();
+    settle(&mut ch);
+    let after = ch.axis_positions();
+    assert!(close(after[0] - before[0], 0.0, 1e-9), "{after:?}");
+    assert!(close(after[1] - before[1], -5.0, 1e-9), "{after:?}");
+    assert!(close(after[2] - before[2], 10.0 * 30f64.to_radians().cos(), 1e-9), "{after:?}");
+    assert!(close(after[3], 30.0, 1e-9));
+    // 0 (the default): the machine axis Z alone.
+    let mut ch = head_at_a30("");
+    let before = ch.axis_positions().to_vec();
+    ch.jog_with(&jog("Z", 1, Some(10.0)), None, None).unwrap();
+    settle(&mut ch);
+    let after = ch.axis_positions();
+    assert!(close(after[2] - before[2], 10.0, 1e-9) && after[1] == before[1] && after[0] == before[0], "{after:?}");
+    // A named system wins over the setting.
+    let mut ch = head_at_a30("$SC_CART_JOG_MODE='H4'");
+    let before = ch.axis_positions().to_vec();
+    ch.jog_with(&jog("Z", 1, Some(10.0)), Some(JogSystem::Machine), None).unwrap();
+    settle(&mut ch);
+    assert!(close(ch.axis_positions()[2] - before[2], 10.0, 1e-9));
+}
+
+#[test]
+fn sd42650_orientation_bit_for_tcs_turns_about_the_tool_axes() {
+    // Bit 10: orientation in the TCS. The tool's X axis at A30 C0 is (1, 0, 0) (X in the old
+    // X-Z plane), so A2 turns about X like in the BCS, but C2 turns about the tool axis itself:
+    // nothing changes in the orientation vector, so the rotary axes stay (a 5-axis head).
+    let mut ch = head_at_a30("$SC_CART_JOG_MODE='H400'");
+    ch.jog_with(&jog("A2", 1, Some(10.0)), None, None).unwrap();
+    let samples = settle(&mut ch);
+    // Rx(10°)·(0, −sin 30°, cos 30°) = (0, −sin 40°, cos 40°).
+    let a40 = 40f64.to_radians();
+    assert_orientation(&ch, &samples, [0.0, -a40.sin(), a40.cos()]);
+}
+
+#[test]
+fn orientation_jog_with_euler_angles_changes_the_euler_angles() {
+    // SD42660 = 1 (ORIEULER, o = Rz(A2)·Rx(B2)·ez = (sin A2·sin B2, −cos A2·sin B2, cos B2)).
+    // At A30 C0: o = (0, −0.5, 0.866), so A2 = 0, B2 = 30.
+    let mut ch = head_at_a30("$SC_ORI_JOG_MODE=1");
+    ch.jog_with(&jog("A2", 1, Some(10.0)), None, None).unwrap();
+    let samples = settle(&mut ch);
+    // A2 = 10, B2 = 30: (sin 10°·sin 30°, −cos 10°·sin 30°, cos 30°), i.e. machine C10 A30
+    // (rotations about X would have given A40 C0).
+    let (s10, c10) = 10f64.to_radians().sin_cos();
+    assert_orientation(&ch, &samples, [s10 * 0.5, -c10 * 0.5, 30f64.to_radians().cos()]);
+    assert!(close(machine(&ch.snapshot(), "C"), 10.0, 1e-6) && close(machine(&ch.snapshot(), "A"), 30.0, 1e-6));
+    // B2 now turns about Rz(10°)·X: B2 = 45 gives (sin 10°·sin 45°, −cos 10°·sin 45°, cos 45°).
+    ch.jog_with(&jog("B2", 1, Some(15.0)), None, None).unwrap();
+    let samples = settle(&mut ch);
+    let (s45, c45) = 45f64.to_radians().sin_cos();
+    assert_orientation(&ch, &samples, [s10 * s45, -c10 * s45, c45]);
+    // C2 (the last Z turn) does not change the orientation vector of a 5-axis machine.
+    assert!(matches!(ch.jog_with(&jog("C2", 1, Some(5.0)), None, None), Err(CommandError::Invalid(_))));
+}
+
+#[test]
+fn orientation_jog_with_rpy_angles_turns_about_the_turned_axis() {
+    // ORIRPY: o = Rz(C2)·Ry(B2)·Rx(A2)·ez, C2 taken as 0: o = (sin B·cos A, −sin A, cos B·cos A).
+    // At A30 C0: A2 = 30, B2 = 0.
+    let mut ch = head_at_a30("");
+    ch.jog_with(&jog("B2", 1, Some(20.0)), Some(JogSystem::Basic), Some(OrientationJogKind::Rpy)).unwrap();
+    settle(&mut ch);
+    ch.jog_with(&jog("A2", 1, Some(10.0)), Some(JogSystem::Basic), Some(OrientationJogKind::Rpy)).unwrap();
+    let samples = settle(&mut ch);
+    // A2 = 40, B2 = 20: (sin 20°·cos 40°, −sin 40°, cos 20°·cos 40°). A turn about the fixed X
+    // axis would have given Rx(10°)·(sin 20°·cos 30°, −sin 30°, cos 20°·cos 30°) instead.
+    let (s20, c20) = 20f64.to_radians().sin_cos();
+    let (s40, c40) = 40f64.to_radians().sin_cos();
+    assert_orientation(&ch, &samples, [s20 * c40, -s40, c20 * c40]);
+}
+
+#[test]
+fn orientation_jog_with_orivirt1_follows_oriax_turn_tab_1() {
+    // ORIAX_TURN_TAB_1 = (X, Y, Z): o = Rx(A2)·Ry(B2)·Rz(C2)·ez = (sin B, −sin A·cos B,
+    // cos A·cos B). At A30 C0: A2 = 30, B2 = 0. B2 turns about Rx(30°)·Y.
+    let md = "$MC_ORIAX_TURN_TAB_1[0]=1\n$MC_ORIAX_TURN_TAB_1[1]=2\n$MC_ORIAX_TURN_TAB_1[2]=3\n$SC_ORI_JOG_MODE=4";
+    let mut ch = head_at_a30(md);
+    ch.jog_with(&jog("B2", 1, Some(20.0)), None, None).unwrap();
+    let samples = settle(&mut ch);
+    let (s20, c20) = 20f64.to_radians().sin_cos();
+    assert_orientation(&ch, &samples, [s20, -0.5 * c20, 30f64.to_radians().cos() * c20]);
+}
