@@ -6,7 +6,7 @@
 //! machine data's velocities, independently of the engine.
 
 use nctwin_engine::channel::{JogSystem, OrientationJogKind};
-use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Snapshot};
+use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Overrides, Snapshot};
 
 fn channel(preset: &str, md: &str) -> Channel {
     Channel::from_preset(preset, md).expect("preset")
@@ -161,4 +161,37 @@ fn orientation_jog_with_orivirt1_follows_oriax_turn_tab_1() {
     let samples = settle(&mut ch);
     let (s20, c20) = 20f64.to_radians().sin_cos();
     assert_orientation(&ch, &samples, [s20, -0.5 * c20, 30f64.to_radians().cos() * c20]);
+}
+
+// --- Rapid traverse overlay ----------------------------------------------------------------------
+
+/// Continuous JOG of X for 300 cycles; the speed of the last cycle, mm/s.
+fn steady_jog_speed(ch: &mut Channel, rapid: bool) -> f64 {
+    ch.jog(&JogRequest { axis: "X".into(), direction: 1, increment: None, rapid }).unwrap();
+    let dt = ch.config().ipo_cycle;
+    let mut last = ch.axis_positions()[0];
+    let mut v = 0.0;
+    for _ in 0..300 {
+        ch.step();
+        v = (ch.axis_positions()[0] - last) / dt;
+        last = ch.axis_positions()[0];
+    }
+    ch.jog_stop();
+    settle(ch);
+    v
+}
+
+#[test]
+fn rapid_overlay_runs_at_jog_velo_rapid_under_the_rapid_override() {
+    // MD32010 JOG_VELO_RAPID 6000 mm/min = 100 mm/s, MD32020 JOG_VELO 2000 mm/min = 33.33 mm/s.
+    let mut ch = channel("mill-3axis", "$MA_JOG_VELO_RAPID[X]=6000");
+    ch.set_mode(Mode::Jog).unwrap();
+    ch.set_overrides(Overrides { feed: 50.0, rapid: 30.0, spindle: 100.0 }).unwrap();
+    // Rapid key: 100 mm/s × 30 % = 30 mm/s; the feed override does not act.
+    assert!(close(steady_jog_speed(&mut ch, true), 30.0, 1e-6));
+    // Without it: 33.33 mm/s × 50 % = 16.67 mm/s; the rapid override does not act.
+    assert!(close(steady_jog_speed(&mut ch, false), 2000.0 / 60.0 * 0.5, 1e-6));
+    // Feed override 120 % leaves the rapid JOG at 30 mm/s.
+    ch.set_overrides(Overrides { feed: 120.0, rapid: 30.0, spindle: 100.0 }).unwrap();
+    assert!(close(steady_jog_speed(&mut ch, true), 30.0, 1e-6));
 }

@@ -250,6 +250,9 @@ impl Channel {
             self.next_tag,
         );
         let mut mv = mv;
+        if rapid {
+            rapid_overlay(&mut mv, velocity);
+        }
         mv.machine_space = machine_space;
         self.push_bcs_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space, feed: 0.0 });
         self.jog_serial = self.jog_serial.wrapping_add(1);
@@ -441,4 +444,12 @@ impl Channel {
     fn axis_label(&self, k: usize) -> String {
         self.cfg.program_axis_name(k).to_string()
     }
+}
+
+/// The rapid traverse overlay: the move runs at MD32010 JOG_VELO_RAPID (`velocity`) scaled by
+/// the rapid override, like G0, not by the feed override.
+fn rapid_overlay(mv: &mut Move, velocity: f64) {
+    mv.feed = f64::INFINITY;
+    mv.v_axes = mv.v_axes.min(velocity);
+    mv.v_max = mv.v_axes;
 }
