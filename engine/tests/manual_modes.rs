@@ -5,8 +5,8 @@
 //! Expected values are written out here from plain rotation matrices, path geometry and the
 //! machine data's velocities, independently of the engine.
 
-use nctwin_engine::channel::{JogSystem, OrientationJogKind};
-use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Overrides, Snapshot};
+use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReposMode};
+use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Overrides, Snapshot, Status};
 
 fn channel(preset: &str, md: &str) -> Channel {
     Channel::from_preset(preset, md).expect("preset")
@@ -194,4 +194,104 @@ fn rapid_overlay_runs_at_jog_velo_rapid_under_the_rapid_override() {
     // Feed override 120 % leaves the rapid JOG at 30 mm/s.
     ch.set_overrides(Overrides { feed: 120.0, rapid: 30.0, spindle: 100.0 }).unwrap();
     assert!(close(steady_jog_speed(&mut ch, true), 30.0, 1e-6));
+}
+
+// --- REPOS target modes --------------------------------------------------------------------------
+
+/// Runs `program` for `cycles`, stops, jogs X by `dx` and Y by `dy` (MCS) and changes back to
+/// AUTO; returns the interruption point and the point the axes were jogged to.
+fn interrupt_and_jog(ch: &mut Channel, program: &str, cycles: usize, dx: f64, dy: f64) -> ([f64; 3], [f64; 3]) {
+    ch.run_program(program).unwrap();
+    for _ in 0..cycles {
+        ch.step();
+    }
+    ch.stop();
+    settle(ch);
+    assert_eq!(ch.status(), Status::Stopped);
+    let p = ch.axis_positions();
+    let interrupted = [p[0], p[1], p[2]];
+    ch.set_mode(Mode::Jog).unwrap();
+    ch.jog(&jog("X", if dx > 0.0 { 1 } else { -1 }, Some(dx.abs()))).unwrap();
+    settle(ch);
+    ch.jog(&jog("Y", if dy > 0.0 { 1 } else { -1 }, Some(dy.abs()))).unwrap();
+    settle(ch);
+    ch.set_mode(Mode::Auto).unwrap();
+    let p = ch.axis_positions();
+    (interrupted, [p[0], p[1], p[2]])
+}
+
+/// NC start with `mode`; checks the return runs on the straight line from `from` to `target`
+/// and returns the samples from the arrival on.
+fn repos_to(ch: &mut Channel, mode: ReposMode, from: [f64; 3], target: [f64; 3]) -> Vec<Vec<f64>> {
+    ch.start_with_repos(mode).unwrap();
+    let samples = settle(ch);
+    let at = |s: &Vec<f64>| (0..3).all(|i| close(s[i], target[i], 1e-6));
+    let arrival = samples.iter().position(at).unwrap_or_else(|| panic!("{mode:?} never reached {target:?}"));
+    let d: Vec<f64> = (0..3).map(|i| target[i] - from[i]).collect();
+    let len = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+    for s in &samples[..arrival] {
+        // Distance of the sample from the line from → target: |(s − from) × d| / |d|.
+        let r: Vec<f64> = (0..3).map(|i| s[i] - from[i]).collect();
+        let c = [r[1] * d[2] - r[2] * d[1], r[2] * d[0] - r[0] * d[2], r[0] * d[1] - r[1] * d[0]];
+        let off = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() / len;
+        assert!(off < 1e-6, "{mode:?}: {s:?} is {off} off the straight return");
+    }
+    assert_eq!(ch.status(), Status::Idle, "the program ran to its end");
+    samples[arrival..].to_vec()
+}
+
+const LINE_THEN_Y: &str = "G1 X100 F6000\nG1 Y50\nM30";
+
+#[test]
+fn repos_rmi_rmb_rme_and_rmn_on_a_straight_block() {
+    // Interrupted on G1 X100 (from X0) at xi, jogged to (xi + 5, 10).
+    for mode in [ReposMode::Interruption, ReposMode::BlockStart, ReposMode::BlockEnd, ReposMode::Nearest] {
+        let mut ch = channel("mill-3axis", "");
+        let (p, here) = interrupt_and_jog(&mut ch, LINE_THEN_Y, 120, 5.0, 10.0);
+        assert!(p[0] > 10.0 && p[0] < 80.0 && p[1] == 0.0, "{p:?}");
+        let target = match mode {
+            ReposMode::Interruption => p,
+            ReposMode::BlockStart => [0.0, 0.0, 0.0],
+            ReposMode::BlockEnd => [100.0, 0.0, 0.0],
+            // The foot of the perpendicular from (xi + 5, 10) on the X axis.
+            ReposMode::Nearest => [p[0] + 5.0, 0.0, 0.0],
+        };
+        let rest = repos_to(&mut ch, mode, here, target);
+        // From the target on: the rest of G1 X100 (Y = 0, X rising to 100), then G1 Y50 at X100.
+        let turn = rest.iter().position(|s| s[0] == 100.0).expect("reaches X100");
+        for w in rest[..=turn].windows(2) {
+            assert!(w[1][1] == 0.0 && w[1][0] >= w[0][0], "{mode:?}: {w:?}");
+        }
+        assert!(rest[turn..].iter().all(|s| s[0] == 100.0), "{mode:?}");
+        if mode == ReposMode::BlockStart {
+            // The whole block again: X from 0.
+            assert!(rest[..turn].len() as f64 * 0.004 * 100.0 > 99.0, "{mode:?}: too few cycles for 100 mm");
+        }
+        assert_eq!(ch.axis_positions(), &[100.0, 50.0, 0.0], "{mode:?}");
+    }
+}
+
+#[test]
+fn repos_rmn_on_an_arc_returns_to_the_radial_foot_and_finishes_the_arc() {
+    // G2 from (0, 0) about (50, 0), R50, to (100, 0). Jogged by (+10, +10) from the
+    // interruption point; the nearest arc point is C + 50·(here − C)/|here − C|.
+    let mut ch = channel("mill-3axis", "");
+    let (p, here) = interrupt_and_jog(&mut ch, "G2 X100 Y0 I50 J0 F6000\nM30", 250, 10.0, 10.0);
+    assert!(((p[0] - 50.0).hypot(p[1]) - 50.0).abs() < 1e-6 && p[1] > 10.0, "on the arc: {p:?}");
+    let r = (here[0] - 50.0).hypot(here[1]);
+    let target = [50.0 + 50.0 * (here[0] - 50.0) / r, 50.0 * here[1] / r, 0.0];
+    let rest = repos_to(&mut ch, ReposMode::Nearest, here, target);
+    for s in &rest {
+        assert!(((s[0] - 50.0).hypot(s[1]) - 50.0).abs() < 1e-6, "off the arc: {s:?}");
+    }
+    let end = ch.axis_positions();
+    assert!(close(end[0], 100.0, 1e-9) && close(end[1], 0.0, 1e-9), "{end:?}");
+}
+
+#[test]
+fn repos_mode_names_are_the_g_functions_of_group_26() {
+    assert_eq!(ReposMode::from_name("rmb"), Some(ReposMode::BlockStart));
+    assert_eq!(ReposMode::from_name("RMN").map(ReposMode::name), Some("RMN"));
+    assert_eq!(ReposMode::from_name("RMX"), None);
+    assert_eq!(ReposMode::default(), ReposMode::Interruption);
 }

@@ -16,6 +16,7 @@ mod main_run;
 mod programs;
 mod reference;
 mod repos;
+mod repos_modes;
 mod search;
 mod snapshot;
 mod spindle;
@@ -26,6 +27,7 @@ use std::sync::Arc;
 
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use jog_settings::OrientationJogKind;
+pub use repos_modes::ReposMode;
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
@@ -434,8 +436,15 @@ impl Channel {
         Ok(())
     }
 
-    /// NC start: continues an interrupted program (M0, M1, NC stop).
+    /// NC start: continues an interrupted program (M0, M1, NC stop); after JOG it first returns
+    /// to the interruption point (REPOS, RMI).
     pub fn start(&mut self) -> Result<(), CommandError> {
+        self.start_with_repos(ReposMode::Interruption)
+    }
+
+    /// NC start as [`Channel::start`]; when it repositions after JOG, `repos` picks the point of
+    /// the interrupted block the program resumes at (RMI, RMB, RME, RMN).
+    pub fn start_with_repos(&mut self, repos: ReposMode) -> Result<(), CommandError> {
         match self.status {
             Status::Alarm => Err(CommandError::AlarmActive),
             Status::Running => Ok(()),
@@ -445,7 +454,7 @@ impl Channel {
                 }
                 self.check_start_lock()?;
                 if self.interrupted.is_some() || self.repos_returning {
-                    self.start_repos();
+                    self.start_repos(repos);
                 } else {
                     self.planner.set_hold(false);
                     self.status = Status::Running;
