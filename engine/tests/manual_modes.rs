@@ -5,7 +5,7 @@
 //! Expected values are written out here from plain rotation matrices, path geometry and the
 //! machine data's velocities, independently of the engine.
 
-use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReposMode};
+use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReferencePhase, ReposMode};
 use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Overrides, Snapshot, Status};
 
 fn channel(preset: &str, md: &str) -> Channel {
@@ -294,4 +294,123 @@ fn repos_mode_names_are_the_g_functions_of_group_26() {
     assert_eq!(ReposMode::from_name("RMN").map(ReposMode::name), Some("RMN"));
     assert_eq!(ReposMode::from_name("RMX"), None);
     assert_eq!(ReposMode::default(), ReposMode::Interruption);
+}
+
+// --- Reference point approach ------------------------------------------------------------------
+
+/// Steps until the approach leaves `phase` (or ends); returns the time and the X position of
+/// the first cycle in the next phase, and the highest X speed seen during `phase`.
+fn run_phase(ch: &mut Channel, phase: ReferencePhase) -> (f64, f64, f64) {
+    let dt = ch.config().ipo_cycle;
+    let mut peak: f64 = 0.0;
+    let mut last = ch.axis_positions()[0];
+    for _ in 0..100_000 {
+        ch.step();
+        let x = ch.axis_positions()[0];
+        if ch.snapshot().referencing.map(|(_, p)| p) != Some(phase) {
+            return (ch.time(), x, peak);
+        }
+        peak = peak.max((x - last).abs() / dt);
+        last = x;
+    }
+    panic!("phase {phase:?} never ended");
+}
+
+#[test]
+fn an_incremental_axis_travels_to_cam_zero_mark_and_reference_point() {
+    // X at 0, approach in plus: reference point REFP_SET_POS 100, zero mark 100 − (−2) = 102,
+    // cam edge 102 − 10 = 92. Cam search 5000 mm/min = 83.33 mm/s, zero mark search 300 mm/min
+    // = 5 mm/s, acceleration 1 m/s².
+    let md = "$MA_ENC_REFP_STATE[X]=0\n$MA_MAX_AX_ACCEL[X]=1\n$MA_REFP_SET_POS[0,X]=100";
+    let mut ch = channel("mill-3axis", md);
+    ch.set_mode(Mode::Jog).unwrap();
+    let (v, a, dt) = (5000.0 / 60.0, 1000.0, ch.config().ipo_cycle);
+    ch.reference_axes(Some("X")).unwrap();
+    assert_eq!(ch.snapshot().referencing, Some(("X".to_string(), ReferencePhase::Cam)));
+    assert_eq!(ch.status(), Status::Running);
+    assert!(ch.jog(&jog("Y", 1, Some(1.0))).is_err(), "no JOG while referencing");
+    // Phase 1: ramp up (v/a, v²/2a = 3.47 mm), cruise to the cam at 92, brake v²/2a past it.
+    let t0 = ch.time();
+    let (t1, x1, peak1) = run_phase(&mut ch, ReferencePhase::Cam);
+    let t_cam = v / a + (92.0 - v * v / (2.0 * a)) / v;
+    assert!(close(peak1, v, 1e-6), "cam search speed {peak1}");
+    assert!(
+        close(t1 - t0, t_cam + v / a, 4.0 * dt),
+        "cam found and braked after {} s, want {} s",
+        t1 - t0,
+        t_cam + v / a
+    );
+    // Braking in cycles from v covers v²/2a − v·dt/2; the cam is seen up to one cycle late.
+    let x_stop = 92.0 + v * v / (2.0 * a) - v * dt / 2.0;
+    assert!(x1 >= x_stop - 1e-9 && x1 <= x_stop + v * dt, "stood at {x1}, want {x_stop} + up to {}", v * dt);
+    // Phase 2: to the zero mark at 102 at 5 mm/s.
+    let (t2, x2, peak2) = run_phase(&mut ch, ReferencePhase::Marker);
+    assert!(close(peak2, 5.0, 1e-6), "zero mark search speed {peak2}");
+    assert!(close(x2, 102.0, 1e-9), "{x2}");
+    let t_marker = (102.0 - x1) / 5.0 + 5.0 / a;
+    assert!(close(t2 - t1, t_marker, 3.0 * dt), "zero mark after {} s, want {t_marker} s", t2 - t1);
+    // Phase 3: 2 mm back to the reference point: a triangle, 2·√(2/1000) s.
+    let (t3, _, peak3) = run_phase(&mut ch, ReferencePhase::Position);
+    assert!(peak3 <= (a * 2.0).sqrt() + 1e-6, "{peak3}");
+    assert!(close(t3 - t2, 2.0 * (2.0 / a).sqrt(), 3.0 * dt), "{}", t3 - t2);
+    settle(&mut ch);
+    assert_eq!(ch.axis_positions()[0], 100.0);
+    assert_eq!(ch.snapshot().referencing, None);
+    assert!(ch.snapshot().referenced[0].1);
+    assert_eq!(ch.status(), Status::Idle);
+}
+
+#[test]
+fn stop_and_reset_abort_the_approach_and_an_axis_on_the_cam_searches_the_zero_mark_at_once() {
+    let md = "$MA_ENC_REFP_STATE[X]=0\n$MA_REFP_SET_POS[0,X]=100";
+    let mut ch = channel("mill-3axis", md);
+    ch.set_mode(Mode::Jog).unwrap();
+    ch.reference_axes(Some("X")).unwrap();
+    for _ in 0..50 {
+        ch.step();
+    }
+    ch.stop();
+    settle(&mut ch);
+    assert_eq!(
+        (ch.status(), ch.snapshot().referencing.clone(), ch.snapshot().referenced[0].1),
+        (Status::Idle, None, false)
+    );
+    let x = ch.axis_positions()[0];
+    assert!(x > 0.0 && x < 92.0, "{x}");
+    ch.reference_axes(Some("X")).unwrap();
+    ch.step();
+    ch.reset();
+    assert_eq!((ch.status(), ch.snapshot().referencing, ch.snapshot().referenced[0].1), (Status::Idle, None, false));
+    // REFP_SET_POS 0 (default): zero mark at 2, cam edge at −8; X at 0 is already on the cam.
+    let mut ch = channel("mill-3axis", "$MA_ENC_REFP_STATE[X]=0");
+    ch.set_mode(Mode::Jog).unwrap();
+    ch.reference_axes(Some("X")).unwrap();
+    assert_eq!(ch.snapshot().referencing, Some(("X".to_string(), ReferencePhase::Marker)));
+    settle(&mut ch);
+    assert_eq!(ch.axis_positions()[0], 0.0);
+    assert!(ch.snapshot().referenced[0].1);
+}
+
+#[test]
+fn referencing_every_axis_follows_md34110_and_md34200_0_references_at_once() {
+    // Y (REFP_CYCLE_NR 1) before X (2); Z has no approach (ENC_REFP_MODE 0).
+    let md = "$MA_ENC_REFP_STATE[X]=0\n$MA_ENC_REFP_STATE[Y]=0\n$MA_ENC_REFP_STATE[Z]=0\n\
+              $MA_REFP_CYCLE_NR[X]=2\n$MA_REFP_CYCLE_NR[Y]=1\n$MA_ENC_REFP_MODE[Z]=0";
+    let mut ch = channel("mill-3axis", md);
+    ch.set_mode(Mode::Jog).unwrap();
+    ch.reference_axes(None).unwrap();
+    let s = ch.snapshot();
+    assert_eq!(s.referencing.map(|(a, _)| a), Some("Y".to_string()));
+    assert_eq!(s.referenced, vec![("X".into(), false), ("Y".into(), false), ("Z".into(), true)]);
+    let mut order = Vec::new();
+    while ch.is_busy() {
+        ch.step();
+        if let Some((axis, _)) = ch.snapshot().referencing
+            && order.last() != Some(&axis)
+        {
+            order.push(axis);
+        }
+    }
+    assert_eq!(order, ["Y", "X"]);
+    assert!(ch.snapshot().referenced.iter().all(|(_, r)| *r));
 }

@@ -15,6 +15,7 @@ mod jog_settings;
 mod main_run;
 mod programs;
 mod reference;
+mod referencing;
 mod repos;
 mod repos_modes;
 mod search;
@@ -27,6 +28,7 @@ use std::sync::Arc;
 
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use jog_settings::OrientationJogKind;
+pub use referencing::ReferencePhase;
 pub use repos_modes::ReposMode;
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
@@ -217,6 +219,8 @@ pub struct Channel {
     program_mode: Mode,
     /// Reference point state per channel axis (spindles count as referenced).
     referenced: Vec<bool>,
+    /// The reference point approach in progress.
+    referencing: Option<referencing::Referencing>,
     /// The last MSG text of the program.
     message: Option<String>,
     /// Machine position of every channel axis. Equals the planner's position without a
@@ -291,6 +295,7 @@ impl Channel {
             prep_waits_for_trafo: false,
             trafo_tag: None,
             referenced,
+            referencing: None,
         };
         // Power on acts like a reset: the reset transformation (if configured) is active.
         ch.place_axes([0.0; MAX_CHANNEL_AXES]);
@@ -473,6 +478,7 @@ impl Channel {
     pub fn stop(&mut self) {
         match self.status {
             Status::Running if self.jog.is_some() => self.jog_stop(),
+            Status::Running if self.referencing.is_some() => self.abort_referencing(),
             Status::Running if self.repos_returning => {
                 // The REPOS motion is dropped at standstill; NC start plans it anew.
                 self.planner.stop_and_flush();
@@ -498,6 +504,7 @@ impl Channel {
         self.prep_waits_for_trafo = false;
         self.dwell_ticks = 0;
         self.jog = None;
+        self.referencing = None;
         self.drop_interruption();
         self.search_approach = false;
         self.current_line = None;
@@ -563,7 +570,7 @@ impl Channel {
         for s in &mut self.spindles {
             s.step(self.cfg.ipo_cycle);
         }
-        if self.status == Status::Running && self.jog.is_none() && !self.repos_returning {
+        if self.status == Status::Running && self.jog.is_none() && !self.repos_returning && self.referencing.is_none() {
             self.prepare();
             self.feed_planner();
         }
@@ -572,6 +579,10 @@ impl Channel {
         self.retire_finished_moves();
         if self.jog.is_some() {
             self.finish_jog_if_done();
+            return;
+        }
+        if self.referencing.is_some() {
+            self.step_referencing();
             return;
         }
         if self.repos_returning {

@@ -368,8 +368,40 @@ pub static DEFS: &[Def] = &[
     def("JOG_VELO", 32020, A, Kind::Real, 1, Default::RealByAxisType { linear: 2000.0, rotary: 5.55 }, 0.0, 1e9),
     def("MAX_AX_ACCEL", 32300, A, Kind::Real, 1, Default::RealByAxisType { linear: 1.0, rotary: 2.77 }, 1e-6, 1e6),
     def("MAX_ACCEL_OVL_FACTOR", 32310, A, Kind::Real, 1, Default::Real(1.2), 1.0, 10.0),
+    // Reference point approach (incremental measuring system), see channel/referencing.rs.
+    // Velocities in mm/min (rotary rev/min) with the control's defaults.
+    def("REFP_CAM_DIR_IS_MINUS", 34010, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    def(
+        "REFP_VELO_SEARCH_CAM",
+        34020,
+        A,
+        Kind::Real,
+        1,
+        Default::RealByAxisType { linear: 5000.0, rotary: 13.89 },
+        0.0,
+        1e9,
+    ),
+    def(
+        "REFP_VELO_SEARCH_MARKER",
+        34040,
+        A,
+        Kind::Real,
+        1,
+        Default::RealByAxisType { linear: 300.0, rotary: 0.83 },
+        0.0,
+        1e9,
+    ),
+    def("REFP_VELO_POS", 34070, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 0.0, 1e9),
+    def("REFP_MOVE_DIST", 34080, A, Kind::Real, 1, Default::Real(-2.0), -1e9, 1e9),
+    def("REFP_MOVE_DIST_CORR", 34090, A, Kind::Real, 1, Default::Real(0.0), -1e9, 1e9),
+    // On the control a measured display value (cam to zero mark); the simulation places the cam
+    // edge this far before the zero mark. Default chosen: 10 mm (or degrees).
+    def("REFP_CAM_MARKER_DIST", 34093, A, Kind::Real, 1, Default::Real(10.0), 0.0, 1e9),
+    def("REFP_SET_POS", 34100, A, Kind::Real, 4, Default::Real(0.0), -1e9, 1e9),
     // Channel-specific referencing order; -1: the axis need not be referenced for NC start.
     def("REFP_CYCLE_NR", 34110, A, Kind::Int, 1, Default::Int(0), -1.0, 31.0),
+    // 1 (the control's default): reference cam and zero mark; 0: no approach, referenced at once.
+    def("ENC_REFP_MODE", 34200, A, Kind::Int, 1, Default::Int(1), 0.0, 8.0),
     // 2: absolute encoder adjusted, the axis is referenced from power on. The control's default
     // is 0 (not adjusted); the simulation starts referenced unless this is set below 2.
     def("ENC_REFP_STATE", 34210, A, Kind::Int, 1, Default::Int(2), 0.0, 2.0),
