@@ -44,8 +44,9 @@ pub async fn run(
 }
 
 /// NC start: continues a program stopped at M0/M1 or by NC stop (or restarts the loaded
-/// program from reset state in AUTO). Same `pace`/`wait` options and limits as `run`; the body
-/// may be empty.
+/// program from reset state in AUTO). After JOG in the interrupted program it first returns on
+/// a straight line (REPOS) to the point `repos` selects (RMI default, RMB, RME, RMN). Same
+/// `pace`/`wait` options and limits as `run`; the body may be empty.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/start",
@@ -65,7 +66,11 @@ pub async fn start(
     Path(id): Path<String>,
     OptionalJson(body): OptionalJson<StartRequest>,
 ) -> Result<StateReply, ApiError> {
-    command(&state, &id, Action::Start, Some(drive(body.pace, body.wait))).await
+    let action = match body.repos {
+        Some(target) => Action::StartRepos(target.into()),
+        None => Action::Start,
+    };
+    command(&state, &id, action, Some(drive(body.pace, body.wait))).await
 }
 
 /// NC stop: the axes brake on the path; `start` continues.
