@@ -104,7 +104,8 @@ pub(super) fn angle_rotation_axis(
     if norm(&cross(&axis, o)) < 1e-9 {
         let name = ["A2", "B2", "C2"][which];
         return Err(CommandError::Invalid(format!(
-            "{name} does not change the orientation vector in this position ({kind:?} angles {angles:?})"
+            "{name} does not change the orientation vector in this position ({kind:?} angles {:.3}, {:.3}, {:.3})",
+            angles[0], angles[1], angles[2]
         )));
     }
     Ok(axis)
