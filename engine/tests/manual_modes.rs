@@ -152,6 +152,30 @@ fn orientation_jog_with_rpy_angles_turns_about_the_turned_axis() {
 }
 
 #[test]
+fn orientation_jog_in_the_wcs_reckons_the_angles_in_the_rotated_frame() {
+    // ROT Z90 active (stopped at M0 after a move under it), SD42650 bit 9: orientation in the
+    // WCS, RPY angles. The frame maps WCS (x, y) to BCS (−y, x), so the tool
+    // o = (0, −0.5, cos 30°) is (−0.5, 0, cos 30°) in the WCS: RPY A2 = 0, B2 = −30.
+    let mut ch = channel("mill5-head-ca", "$SC_CART_JOG_MODE='H200'\n$SC_ORI_JOG_MODE=2");
+    ch.run_program("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 A30\nROT Z90\nG1 Z50.5\nM0\nM30").unwrap();
+    settle(&mut ch);
+    assert_eq!(ch.status(), nctwin_engine::Status::Stopped);
+    ch.set_mode(Mode::Jog).unwrap();
+    ch.jog_with(&jog("A2", 1, Some(10.0)), None, None).unwrap();
+    let samples = settle(&mut ch);
+    // A2 = 10 in the WCS: Ry(−30°)·Rx(10°)·ez = (−0.5·cos 10°, −sin 10°, cos 30°·cos 10°);
+    // in the BCS (−y, x, z): (sin 10°, −0.5·cos 10°, cos 30°·cos 10°).
+    let (s10, c10) = 10f64.to_radians().sin_cos();
+    let want = [s10, -0.5 * c10, 30f64.to_radians().cos() * c10];
+    let o = head_orientation(ch.axis_positions());
+    assert!((0..3).all(|i| close(o[i], want[i], 1e-6)), "orientation {o:?}, want {want:?}");
+    for p in &samples {
+        let tip = head_tip(p);
+        assert!(close(tip[0], 0.0, 1e-6) && close(tip[1], 0.0, 1e-6) && close(tip[2], 50.5, 1e-6), "tip {tip:?}");
+    }
+}
+
+#[test]
 fn orientation_jog_with_orivirt1_follows_oriax_turn_tab_1() {
     // ORIAX_TURN_TAB_1 = (X, Y, Z): o = Rx(A2)·Ry(B2)·Rz(C2)·ez = (sin B, −sin A·cos B,
     // cos A·cos B). At A30 C0: A2 = 30, B2 = 0. B2 turns about Rx(30°)·Y.
