@@ -5,7 +5,7 @@
 //! Expected values are written out here from plain rotation matrices, path geometry and the
 //! machine data's velocities, independently of the engine.
 
-use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReferencePhase, ReposMode};
+use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReferencePhase, ReposApproach, ReposMode};
 use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Overrides, Snapshot, Status};
 
 fn channel(preset: &str, md: &str) -> Channel {
@@ -437,4 +437,51 @@ fn referencing_every_axis_follows_md34110_and_md34200_0_references_at_once() {
     }
     assert_eq!(order, ["Y", "X"]);
     assert!(ch.snapshot().referenced.iter().all(|(_, r)| *r));
+}
+
+// --- REPOS approach shapes -----------------------------------------------------------------------
+
+/// Interrupted on G1 X100 at (xi, 0), jogged to (xi + 5, 10): the circle of REPOSQ/REPOSH ends
+/// in the interruption point running along +X, in the plane of X and the side the tool stands
+/// on (+Y): centre (xi, r). REPOSQ DISR=4 starts at (xi − 4, 4), REPOSH DISR=8 at (xi, 8).
+#[test]
+fn reposq_and_reposh_enter_the_contour_tangentially_on_a_circle() {
+    for (approach, r) in
+        [(ReposApproach::QuarterCircle { radius: 4.0 }, 4.0), (ReposApproach::SemiCircle { diameter: 8.0 }, 4.0)]
+    {
+        let mut ch = channel("mill-3axis", "");
+        let (p, here) = interrupt_and_jog(&mut ch, LINE_THEN_Y, 120, 5.0, 10.0);
+        let xi = p[0];
+        let circle_start = match approach {
+            ReposApproach::QuarterCircle { .. } => [xi - r, r],
+            _ => [xi, 2.0 * r],
+        };
+        ch.start_with_repos_approach(ReposMode::Interruption, approach).unwrap();
+        let samples = settle(&mut ch);
+        let at = |s: &Vec<f64>, q: [f64; 2]| close(s[0], q[0], 1e-9) && close(s[1], q[1], 1e-9);
+        let s_idx = samples.iter().position(|s| at(s, circle_start)).expect("reaches the circle start");
+        let t_idx = samples.iter().position(|s| at(s, [xi, 0.0])).expect("reaches the interruption point");
+        assert!(s_idx < t_idx);
+        // Straight to the circle start: collinear with here → start.
+        let d = [circle_start[0] - here[0], circle_start[1] - here[1]];
+        for s in &samples[..s_idx] {
+            let cross = (s[0] - here[0]) * d[1] - (s[1] - here[1]) * d[0];
+            assert!(cross.abs() < 1e-6, "{approach:?}: {s:?} off the straight line");
+        }
+        // On the circle about (xi, r), left of the interruption point.
+        for s in &samples[s_idx..=t_idx] {
+            assert!(close((s[0] - xi).hypot(s[1] - r), r, 1e-6), "{approach:?}: {s:?} off the circle");
+            assert!(s[0] <= xi + 1e-9 && s[1] >= -1e-9, "{approach:?}: {s:?}");
+        }
+        // Tangential entry: the last circle cycles move along +X.
+        let w = &samples[t_idx - 1];
+        assert!(w[1] < 0.05 && w[0] < xi, "{approach:?}: {w:?}");
+        // Then the rest of the block and the next one.
+        assert!(samples[t_idx..].iter().take_while(|s| s[0] < 100.0).all(|s| s[1] == 0.0));
+        assert_eq!(ch.axis_positions(), &[100.0, 50.0, 0.0]);
+    }
+    let mut ch = channel("mill-3axis", "");
+    interrupt_and_jog(&mut ch, LINE_THEN_Y, 120, 5.0, 10.0);
+    let bad = ch.start_with_repos_approach(ReposMode::Interruption, ReposApproach::QuarterCircle { radius: 0.0 });
+    assert!(matches!(bad, Err(CommandError::Invalid(_))));
 }

@@ -10,7 +10,7 @@ use serde::ser::SerializeMap;
 use serde::{Deserialize, Serialize, Serializer};
 use utoipa::ToSchema;
 
-use nctwin_engine::channel::{JOG_INCREMENTS, JogSystem, OrientationJogKind, ReposMode};
+use nctwin_engine::channel::{JOG_INCREMENTS, JogSystem, OrientationJogKind, ReposApproach, ReposMode};
 
 use crate::session::{Drive, Pace};
 
@@ -446,6 +446,13 @@ pub struct StartRequest {
     /// start (the block runs again), `RME` the block end (the next block follows), `RMN` the
     /// block's point nearest to the axes. The return is a straight line (REPOSL).
     pub repos: Option<ReposTarget>,
+    /// How that repositioning travels back: `REPOSL` (default) or `REPOSA` a straight line,
+    /// `REPOSQ` a quarter circle of radius `disr`, `REPOSH` a semicircle of diameter `disr`,
+    /// each ending tangentially in the path (in the plane of the path tangent and the side the
+    /// tool stands on).
+    pub approach: Option<ReposShape>,
+    /// DISR in mm for `REPOSQ`/`REPOSH` (required there, positive).
+    pub disr: Option<f64>,
     #[serde(default)]
     pub pace: PaceOption,
     /// As for `run`.
@@ -468,6 +475,35 @@ pub enum ReposTarget {
     /// The point of the interrupted block nearest to where the axes stand.
     #[serde(rename = "RMN")]
     Rmn,
+}
+
+/// The approach shape of REPOS.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, ToSchema)]
+pub enum ReposShape {
+    #[serde(rename = "REPOSL")]
+    Line,
+    #[serde(rename = "REPOSA")]
+    AllAxes,
+    #[serde(rename = "REPOSQ")]
+    QuarterCircle,
+    #[serde(rename = "REPOSH")]
+    SemiCircle,
+}
+
+impl StartRequest {
+    /// The approach the body asks for; `Err` names what is missing.
+    pub fn approach(&self) -> Result<ReposApproach, String> {
+        let disr = || match self.disr {
+            Some(d) if d.is_finite() && d > 0.0 => Ok(d),
+            Some(d) => Err(format!("disr must be a positive distance, not {d}")),
+            None => Err("REPOSQ and REPOSH need `disr` (mm)".to_string()),
+        };
+        Ok(match self.approach {
+            None | Some(ReposShape::Line) | Some(ReposShape::AllAxes) => ReposApproach::Line,
+            Some(ReposShape::QuarterCircle) => ReposApproach::QuarterCircle { radius: disr()? },
+            Some(ReposShape::SemiCircle) => ReposApproach::SemiCircle { diameter: disr()? },
+        })
+    }
 }
 
 impl From<ReposTarget> for ReposMode {

@@ -167,3 +167,22 @@ async fn referencing_shows_its_phase_stops_on_nc_stop_and_waits_when_asked() {
     assert_eq!(pos(&done.body, "machine", "X"), 100.0);
     assert!(done.body.get("referencing").is_none());
 }
+
+#[tokio::test]
+async fn nc_start_takes_the_reposq_approach_with_disr() {
+    let server = Server::start().await;
+    let (id, xi, t0) = interrupted_line(&server).await;
+    let missing = server.post(&format!("/sessions/{id}/start"), json!({"approach": "REPOSQ"})).await;
+    assert!(error_message(&missing, StatusCode::BAD_REQUEST).contains("disr"));
+    let negative = server.post(&format!("/sessions/{id}/start"), json!({"approach": "REPOSH", "disr": -1.0})).await;
+    assert!(error_message(&negative, StatusCode::BAD_REQUEST).contains("disr"));
+    // From (xi, 10) straight to the quarter circle's start (xi − 4, 4), then a quarter of a
+    // circle of radius 4 (2π mm) into (xi, 0), then the rest of the block, all at 10 mm/s.
+    let body = json!({"approach": "REPOSQ", "disr": 4.0, "pace": "fast", "wait": true});
+    let done = server.post(&format!("/sessions/{id}/start"), body).await;
+    assert_eq!(done.status, StatusCode::OK, "{}", done.body);
+    assert_eq!((pos(&done.body, "machine", "X"), pos(&done.body, "machine", "Y")), (100.0, 0.0));
+    let expected = (4f64.hypot(6.0) + 2.0 * std::f64::consts::PI + (100.0 - xi)) / 10.0;
+    let took = done.body["time"].as_f64().expect("time") - t0;
+    assert!(took > expected - 0.01 && took < expected + 0.1, "{took} s, expected {expected} s plus ramps");
+}

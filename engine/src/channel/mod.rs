@@ -17,6 +17,7 @@ mod programs;
 mod reference;
 mod referencing;
 mod repos;
+mod repos_approach;
 mod repos_modes;
 mod search;
 mod snapshot;
@@ -29,6 +30,7 @@ use std::sync::Arc;
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use jog_settings::OrientationJogKind;
 pub use referencing::ReferencePhase;
+pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
@@ -450,6 +452,20 @@ impl Channel {
     /// NC start as [`Channel::start`]; when it repositions after JOG, `repos` picks the point of
     /// the interrupted block the program resumes at (RMI, RMB, RME, RMN).
     pub fn start_with_repos(&mut self, repos: ReposMode) -> Result<(), CommandError> {
+        self.start_with_repos_approach(repos, ReposApproach::Line)
+    }
+
+    /// NC start as [`Channel::start_with_repos`], travelling back along `approach` (REPOSL,
+    /// REPOSQ, REPOSH).
+    pub fn start_with_repos_approach(&mut self, repos: ReposMode, approach: ReposApproach) -> Result<(), CommandError> {
+        match approach {
+            ReposApproach::QuarterCircle { radius: r } | ReposApproach::SemiCircle { diameter: r }
+                if !(r.is_finite() && r > 0.0) =>
+            {
+                return Err(CommandError::Invalid(format!("DISR must be a positive distance, not {r}")));
+            }
+            _ => {}
+        }
         match self.status {
             Status::Alarm => Err(CommandError::AlarmActive),
             Status::Running => Ok(()),
@@ -459,7 +475,7 @@ impl Channel {
                 }
                 self.check_start_lock()?;
                 if self.interrupted.is_some() || self.repos_returning {
-                    self.start_repos(repos);
+                    self.start_repos(repos, approach);
                 } else {
                     self.planner.set_hold(false);
                     self.status = Status::Running;

@@ -18,10 +18,12 @@
 
 use std::collections::VecDeque;
 
+use super::repos_approach::{self, ReposApproach};
 use super::repos_modes::{self, ReposMode, Resume};
 use super::{Channel, MoveMeta, Status};
 use crate::interp::Item;
 use crate::kinematics::{Transformation, plan};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
 
 /// The main run of an interrupted program, put aside while the operator jogs.
@@ -60,7 +62,7 @@ impl Channel {
 
     /// NC start in an interrupted program whose axes were moved by JOG; `mode` picks the point
     /// of the interrupted block the program resumes at (see `repos_modes.rs`).
-    pub(super) fn start_repos(&mut self, mode: ReposMode) {
+    pub(super) fn start_repos(&mut self, mode: ReposMode, approach: ReposApproach) {
         self.status = Status::Running;
         if !self.planner.is_empty() {
             // A REPOS motion stopped on its way (still braking): it goes on.
@@ -120,9 +122,35 @@ impl Channel {
             Some(f) if f > 0.0 => Feed::Path(f),
             _ => Feed::Path(self.repos_jog_velocity(&here, &target)),
         };
-        let mv = self.straight_move(here, target, feed);
+        let tangent = match (self.interrupted.as_ref().and_then(|i| i.planner.front()), resume) {
+            (Some(_), _) if machine_space => [0.0; MAX_CHANNEL_AXES],
+            (Some(front), Resume::AsInterrupted) => {
+                front.path.tangent(self.interrupted.as_ref().map_or(0.0, |i| i.planner.front_fraction()))
+            }
+            (Some(front), Resume::FrontAt(u)) => front.path.tangent(u),
+            (Some(front), Resume::SkipFront) => front.path.tangent(1.0),
+            (None, _) => [0.0; MAX_CHANNEL_AXES],
+        };
+        let geo = self.repos_distance_axes(false);
         let offsets = self.offsets.clone();
-        self.push_bcs_move(mv, MoveMeta { line: 0, offsets, machine_space: false, feed: 0.0 });
+        let meta = MoveMeta { line: 0, offsets, machine_space: false, feed: 0.0 };
+        match repos_approach::approach_arc(approach, &here, &target, &tangent, &geo) {
+            Some(arc) => {
+                // To the start of the circle on a straight line, then along the circle.
+                let start = arc.start;
+                if here.iter().zip(&start).any(|(a, b)| (a - b).abs() > 1e-9) {
+                    let mv = self.straight_move(here, start, feed);
+                    self.push_bcs_move(mv, meta.clone());
+                }
+                let length = arc.arc.map_or(0.0, |a| a.radius * a.sweep.abs());
+                let mv = Move::new(arc, length, feed, &AxisLimit::for_channel(&self.cfg), true, self.next_tag);
+                self.push_bcs_move(mv, meta);
+            }
+            None => {
+                let mv = self.straight_move(here, target, feed);
+                self.push_bcs_move(mv, meta);
+            }
+        }
         self.repos_returning = true;
     }
 

@@ -312,7 +312,7 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
         }
         Action::Mda { program } => channel.mda(&program),
         Action::Start => channel.start(),
-        Action::StartRepos(mode) => channel.start_with_repos(mode),
+        Action::StartRepos(mode, approach) => channel.start_with_repos_approach(mode, approach),
         Action::Stop => {
             channel.stop();
             Ok(())
