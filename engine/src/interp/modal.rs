@@ -6,6 +6,7 @@ use super::calls::Programs;
 use super::corners::Corner;
 use super::eval::{eval, eval_f64};
 use super::frame::Frame;
+use super::frame_vars::{ChainFrame, Suppress};
 use super::orient::{self, OriModal, OriWords};
 use super::scope::{Ctx, SysView};
 use super::toolholder::{CutMode, TcoMode, g53_code};
@@ -219,6 +220,8 @@ pub enum Oblique {
 pub enum FrameKind {
     Trans,
     Rot,
+    /// ROTS/AROTS: two solid angles.
+    Rots,
     Scale,
     Mirror,
 }
@@ -232,12 +235,13 @@ pub struct FrameOp {
 
 fn frame_op(name: &str) -> Option<FrameOp> {
     let (additive, base) = match name.strip_prefix('A') {
-        Some(rest) if matches!(rest, "TRANS" | "ROT" | "SCALE" | "MIRROR") => (true, rest),
+        Some(rest) if matches!(rest, "TRANS" | "ROT" | "ROTS" | "SCALE" | "MIRROR") => (true, rest),
         _ => (false, name),
     };
     let kind = match base {
         "TRANS" => FrameKind::Trans,
         "ROT" => FrameKind::Rot,
+        "ROTS" => FrameKind::Rots,
         "SCALE" => FrameKind::Scale,
         "MIRROR" => FrameKind::Mirror,
         _ => return None,
@@ -261,8 +265,8 @@ pub(super) struct Words {
     pub g9: bool,
     /// G07 (approach the start of an oblique plunge) or G05 (oblique plunge), TRAANG.
     pub oblique: Option<Oblique>,
-    /// G53/SUPA: work offsets suppressed for this block.
-    pub g53: bool,
+    /// G53, G153, SUPA: frames suppressed for this block.
+    pub suppress: Option<Suppress>,
     /// Channel axis, value, coordinate mode.
     pub axes: Vec<(usize, f64, Option<CoordMode>)>,
     /// I, J, K by geometry axis: value and whether it is absolute (`AC`).
@@ -307,8 +311,8 @@ pub(super) struct Words {
     pub arc_feed: Option<ArcFeed>,
     /// SPOS=: position the master spindle (it becomes a rotary axis).
     pub spos: Option<f64>,
-    /// `$P_PFRAME=...`: the new programmable frame.
-    pub program_frame: Option<Frame>,
+    /// `$P_PFRAME=...`, `$P_SETFRAME=...`: links of the frame chain the block assigns.
+    pub frame_writes: Vec<(ChainFrame, Frame)>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
     pub corner: Option<Corner>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
@@ -377,7 +381,7 @@ pub(super) fn collect(
                     && matches!(name.as_str(), "SUPA" | "STOPRE" | "NEWCONF" | "CFC" | "CFTCP" | "CFIN" | "NORM") =>
             {
                 match name.as_str() {
-                    "SUPA" => w.g53 = true,
+                    "SUPA" => w.suppress = Some(Suppress::All),
                     "NEWCONF" => w.newconf = true,
                     "CFC" => w.arc_feed = Some(ArcFeed::Contour),
                     "CFTCP" => w.arc_feed = Some(ArcFeed::CentrePath),
@@ -488,8 +492,8 @@ pub(super) fn collect(
                         w.data_writes.push(text);
                         continue;
                     }
-                    Assigned::ProgramFrame(f) => {
-                        w.program_frame = Some(*f);
+                    Assigned::ChainFrame(which, f) => {
+                        w.frame_writes.push((which, *f));
                         continue;
                     }
                     Assigned::Address => {}
@@ -573,8 +577,8 @@ pub(super) enum Assigned {
     Address,
     /// Tool data, frame data or machine data, as NC data text.
     Data(String),
-    /// A new programmable frame (`$P_PFRAME=...`).
-    ProgramFrame(Box<Frame>),
+    /// A new value of a link of the frame chain (`$P_PFRAME=...`, `$P_SETFRAME=...`).
+    ChainFrame(ChainFrame, Box<Frame>),
 }
 
 pub(super) fn assign(
@@ -602,8 +606,9 @@ pub(super) fn assign(
         *slot = v;
         return Ok(Assigned::Variable);
     }
-    if name == "$P_PFRAME" {
-        return program_frame(indices, expr, vars, sys, line).map(|f| Assigned::ProgramFrame(Box::new(f)));
+    if let Some(which) = ChainFrame::of(name).filter(|w| w.writable()) {
+        return chain_frame(which, name, indices, expr, vars, sys, line)
+            .map(|f| Assigned::ChainFrame(which, Box::new(f)));
     }
     if name.starts_with('$') {
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
@@ -626,25 +631,30 @@ pub(super) fn assign(
     Ok(Assigned::Variable)
 }
 
-/// `$P_PFRAME = <frame>` or `$P_PFRAME[axis, TR] = <value>`: the new programmable frame.
-fn program_frame(indices: &[Expr], expr: &Expr, vars: &Variables, sys: &SysView, line: u32) -> Result<Frame, Alarm> {
+/// `$P_PFRAME = <frame>` or `$P_PFRAME[axis, TR] = <value>` (the same for the other writable
+/// links of the chain): the link's new value.
+fn chain_frame(
+    which: ChainFrame,
+    name: &str,
+    indices: &[Expr],
+    expr: &Expr,
+    vars: &Variables,
+    sys: &SysView,
+    line: u32,
+) -> Result<Frame, Alarm> {
     let ctx = Ctx { vars, sys };
     match indices {
         [] => match eval(expr, &ctx, line)? {
             Value::Frame(f) => Ok(*f),
-            other => Err(Alarm::type_error(line, &format!("$P_PFRAME needs a frame, not {other:?}"))),
+            other => Err(Alarm::type_error(line, &format!("{name} needs a frame, not {other:?}"))),
         },
-        [Expr::Var { name: axis, .. }, Expr::Var { name: component, .. }] if component == "TR" => {
+        [Expr::Var { name: axis, .. }, Expr::Var { name: component, .. }] if component == "TR" || component == "FI" => {
             let k = sys.cfg.program_axis(axis).ok_or_else(|| Alarm::unknown_name(line, axis))?;
-            let mut f = sys.pframe.clone();
+            let mut f = sys.chain_frame(which);
             f.trans[k] = eval_f64(expr, &ctx, line)?;
             Ok(f)
         }
-        _ => Err(Alarm::index_error(
-            line,
-            "$P_PFRAME",
-            "components other than [axis, TR] are set with CROT/CSCALE/CMIRROR",
-        )),
+        _ => Err(Alarm::index_error(line, name, "components other than [axis, TR] are set with CROT/CSCALE/CMIRROR")),
     }
 }
 
@@ -666,7 +676,7 @@ fn stored_frame_lines(
     let cfg = sys.cfg;
     let count = cfg.channel_axes.len();
     let data = f
-        .to_data(&cfg.geo_axes, count)
+        .to_data(&cfg.geo_axes, count, cfg.frame_angles)
         .ok_or_else(|| Alarm::value_out_of_range(line, &format!("{var}[{n}]: the frame's rotation part is sheared")))?;
     let mut lines = Vec::new();
     for k in 0..count {
@@ -802,9 +812,10 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         17 => w.plane = Some(Plane::G17),
         18 => w.plane = Some(Plane::G18),
         19 => w.plane = Some(Plane::G19),
-        // G53 suppresses the settable and programmable frames for the block; G153 also the
-        // basic frames, which this product does not model separately.
-        53 | 153 => w.g53 = true,
+        // G53 suppresses the settable and programmable frames for the block (and the system
+        // frames above the basic frame); G153 also the basic frames (see `frame_vars.rs`).
+        53 => w.suppress = Some(Suppress::G53),
+        153 => w.suppress = Some(Suppress::All),
         40 => w.trc = Some(None),
         41 => w.trc = Some(Some(Side::Left)),
         42 => w.trc = Some(Some(Side::Right)),

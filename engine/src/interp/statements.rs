@@ -92,7 +92,7 @@ impl Interpreter {
             }
             Stmt::If { cond: c, goto: Some(goto) } => {
                 if cond(self, c)? {
-                    self.flow_mut().jump(goto)?;
+                    self.jump(goto, cfg, line)?;
                 }
             }
             Stmt::If { cond: c, goto: None } => {
@@ -190,12 +190,10 @@ impl Interpreter {
                     }
                 }
                 if let Some(goto) = target.cloned() {
-                    self.flow_mut().jump(&goto)?;
+                    self.jump(&goto, cfg, line)?;
                 }
             }
-            Stmt::Goto(goto) => {
-                self.flow_mut().jump(goto)?;
-            }
+            Stmt::Goto(goto) => self.jump(goto, cfg, line)?,
             // PROC lines are bound in `step_program`; EXTERN declarations need no action.
             Stmt::Proc { .. } | Stmt::Extern { .. } => {}
             Stmt::Ret => out.push(Item::Stop { kind: StopKind::End, line }),

@@ -95,6 +95,8 @@ pub enum GotoKind {
     Both,
     /// `GOTOC`: like GOTO, but a missing target is not an error.
     Continue,
+    /// `GOTOS`: back to the start of the program.
+    Start,
 }
 
 /// A jump and its target.
@@ -110,9 +112,12 @@ pub enum JumpTarget {
     Label(String),
     /// `N100` or `:100`.
     BlockNumber(u32),
-    /// A string variable holding the label: `GOTOF LBL_VAR` where the name is not a label is
-    /// resolved by the interpreter.
+    /// A computed target: a STRING expression holding a label or block number
+    /// (`GOTOF "N"<<R10`, `GOTOF DEST[2]`). A plain name (`GOTOF DEST`) is a [`JumpTarget::Label`]
+    /// that the interpreter reads from a STRING variable of that name if one is defined.
     Expr(Expr),
+    /// `GOTOS`: the first block of the program.
+    ProgramStart,
 }
 
 /// Statements that fill a block (declarations and control flow).

@@ -170,7 +170,7 @@ fn split_comment(text: &str) -> (&str, Option<&str>) {
 
 const STATEMENTS: &[&str] = &[
     "DEF", "IF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "UNTIL", "LOOP", "ENDLOOP", "CASE",
-    "GOTOF", "GOTOB", "GOTO", "GOTOC", "PROC", "RET", "EXTERN",
+    "GOTOF", "GOTOB", "GOTO", "GOTOC", "GOTOS", "PROC", "RET", "EXTERN",
 ];
 
 fn is_statement(id: &str) -> bool {
@@ -225,6 +225,7 @@ fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
         "GOTOB" => Stmt::Goto(parse_goto_target(GotoKind::Backward, cur)?),
         "GOTO" => Stmt::Goto(parse_goto_target(GotoKind::Both, cur)?),
         "GOTOC" => Stmt::Goto(parse_goto_target(GotoKind::Continue, cur)?),
+        "GOTOS" => Stmt::Goto(parse_goto_target(GotoKind::Start, cur)?),
         "PROC" => parse_proc(cur)?,
         "RET" => Stmt::Ret,
         "EXTERN" => {
@@ -257,6 +258,7 @@ fn goto_kind(cur: &Cursor, span: (usize, usize)) -> Option<GotoKind> {
             b'F' => Some(GotoKind::Forward),
             b'B' => Some(GotoKind::Backward),
             b'C' => Some(GotoKind::Continue),
+            b'S' => Some(GotoKind::Start),
             _ => None,
         },
         _ => None,
@@ -264,20 +266,39 @@ fn goto_kind(cur: &Cursor, span: (usize, usize)) -> Option<GotoKind> {
 }
 
 fn parse_goto_target(kind: GotoKind, cur: &mut Cursor) -> PResult<Goto> {
+    if kind == GotoKind::Start {
+        return Ok(Goto { kind, target: JumpTarget::ProgramStart });
+    }
     cur.skip_ws();
     let start = cur.pos;
     if cur.eat(b':') {
         let n = cur.digits().ok_or((start, "expected a block number after `:`".to_string()))?;
-        return Ok(Goto {
-            kind,
-            target: JumpTarget::BlockNumber(n.parse().map_err(|_| (start, "block number too large".to_string()))?),
-        });
+        return Ok(Goto { kind, target: JumpTarget::BlockNumber(block_number(n, start)?) });
     }
-    let id = cur.ident().ok_or((start, "jump needs a label or block number".to_string()))?;
-    if let Some(n) = id.strip_prefix('N').and_then(|n| n.parse::<u32>().ok()) {
-        return Ok(Goto { kind, target: JumpTarget::BlockNumber(n) });
+    if let Some(n) = cur.digits() {
+        return Ok(Goto { kind, target: JumpTarget::BlockNumber(block_number(n, start)?) });
     }
+    // A computed target: a string expression (`"N"<<R10`, `(LBL)`).
+    if matches!(cur.peek(), Some(b'"' | b'(')) {
+        return Ok(Goto { kind, target: JumpTarget::Expr(parse_expr(cur)?) });
+    }
+    let id = cur.ident().ok_or((start, "jump needs a label, a block number or a STRING expression".to_string()))?;
+    if let Some(n) = id.strip_prefix('N').filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit())) {
+        return Ok(Goto { kind, target: JumpTarget::BlockNumber(block_number(n, start)?) });
+    }
+    // `DEST[2]` or `DEST<<"X"`: an expression that starts with a name.
+    let after = cur.pos;
+    cur.skip_ws();
+    if cur.peek() == Some(b'[') || cur.starts_with_ignore_case("<<") {
+        cur.pos = start;
+        return Ok(Goto { kind, target: JumpTarget::Expr(parse_expr(cur)?) });
+    }
+    cur.pos = after;
     Ok(Goto { kind, target: JumpTarget::Label(id) })
+}
+
+fn block_number(digits: &str, at: usize) -> PResult<u32> {
+    digits.parse().map_err(|_| (at, "block number too large".to_string()))
 }
 
 fn parse_case(cur: &mut Cursor) -> PResult<Stmt> {

@@ -17,7 +17,7 @@ pub mod traori;
 use std::collections::BTreeMap;
 
 pub use carrier::{Carrier, CarrierKind};
-pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, ResetTrafo};
+pub use config::{ChannelAxis, FrameAngles, FrameData, MachineAxis, MachineConfig, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
 pub use trafo::{ChainDef, TrafoDataSet, TrafoKind, TrafoParams};
@@ -111,6 +111,8 @@ impl FrameComponent {
 /// The stored frames of the data management.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum FrameFamily {
+    /// NCU-global basic frames `$P_NCBFR[n]` (MD18602), chained before the channel basic frames.
+    NcuBase,
     /// Channel basic frames `$P_CHBFR[n]` (`$P_UBFR` is `$P_CHBFR[0]`), chained into `$P_ACTBFRAME`.
     Base,
     /// Settable frames `$P_UIFR[n]`, selected by G500/G54.../G505...
@@ -121,6 +123,7 @@ impl FrameFamily {
     /// The system variable and the machine datum that sizes it.
     fn names(self) -> (&'static str, &'static str) {
         match self {
+            FrameFamily::NcuBase => ("$P_NCBFR", "$MN_MM_NUM_GLOBAL_BASE_FRAMES"),
             FrameFamily::Base => ("$P_CHBFR", "$MC_MM_NUM_BASE_FRAMES"),
             FrameFamily::Settable => ("$P_UIFR", "$MC_MM_NUM_USER_FRAMES"),
         }
@@ -247,6 +250,7 @@ impl MachineData {
         let family = match name {
             "$P_UIFR" => Some((FrameFamily::Settable, indices.to_vec())),
             "$P_CHBFR" => Some((FrameFamily::Base, indices.to_vec())),
+            "$P_NCBFR" => Some((FrameFamily::NcuBase, indices.to_vec())),
             // The user basic frame is channel basic frame 0.
             "$P_UBFR" => Some((FrameFamily::Base, [&[IndexTok::Number(0)], indices].concat())),
             _ => None,
