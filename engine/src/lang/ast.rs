@@ -9,19 +9,39 @@ pub struct Program {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-/// A syntax error with the 1-based line it was found on.
+/// An error found before the program runs, as the NC alarm the control shows for it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Diagnostic {
+    /// 1-based line.
     pub line: u32,
+    /// 1-based column (byte) of the offending text within its line.
+    pub column: u32,
     /// Byte offset of the offending text within the whole program.
     pub offset: usize,
+    /// The alarm number: 12080 syntax error, 12640 invalid nesting of control structures,
+    /// 12641 nesting too deep.
+    pub alarm: u32,
     pub message: String,
 }
 
+/// Alarm 12080: syntax error.
+pub const SYNTAX_ERROR: u32 = 12080;
+
 impl Diagnostic {
-    /// 1-based column of the error within its line, given the line's start offset.
-    pub fn column(&self, line_start: usize) -> usize {
-        self.offset.saturating_sub(line_start) + 1
+    /// A syntax error (alarm 12080) at byte `col` of the line starting at `line_start`.
+    pub fn syntax(line: u32, line_start: usize, col: usize, message: String) -> Diagnostic {
+        Diagnostic::new(SYNTAX_ERROR, line, line_start, col, message)
+    }
+
+    /// An error with alarm `alarm` at byte `col` of the line starting at `line_start`.
+    pub fn new(alarm: u32, line: u32, line_start: usize, col: usize, message: String) -> Diagnostic {
+        Diagnostic {
+            line,
+            column: u32::try_from(col + 1).unwrap_or(u32::MAX),
+            offset: line_start + col,
+            alarm,
+            message,
+        }
     }
 }
 

@@ -3,6 +3,7 @@
 
 use super::ast::*;
 use super::cursor::Cursor;
+use super::structure::Structure;
 
 /// Parses a whole program into memory (tests, small programs).
 pub fn parse(source: &str) -> Program {
@@ -11,19 +12,28 @@ pub fn parse(source: &str) -> Program {
         match result {
             Ok(Some(block)) => program.blocks.push(block),
             Ok(None) => {}
-            Err((col, message)) => program.diagnostics.push(Diagnostic { line, offset: offset + col, message }),
+            Err((col, message)) => program.diagnostics.push(Diagnostic::syntax(line, offset, col, message)),
         }
     }
     program
 }
 
-/// Every syntax error of a program, found in one streaming pass that keeps no blocks.
+/// Every error of a program found before it runs, in one streaming pass that keeps no blocks:
+/// syntax errors (one per line, the first of the line) and control structures that do not nest
+/// (ENDIF without IF, a WHILE never closed, more than 16 levels), in line order.
 pub fn check(source: &str) -> Vec<Diagnostic> {
-    Lines { build: false, ..Lines::new(source, 0, 1) }
-        .filter_map(|(line, offset, r)| {
-            r.err().map(|(col, message)| Diagnostic { line, offset: offset + col, message })
-        })
-        .collect()
+    let mut structure = Structure::default();
+    let mut out = Vec::new();
+    for (line, offset, result) in (Lines { build: false, ..Lines::new(source, 0, 1) }) {
+        match result {
+            Err((col, message)) => out.push(Diagnostic::syntax(line, offset, col, message)),
+            Ok(Some(Block { stmt: Some(stmt), .. })) => out.extend(structure.feed(&stmt, line, offset)),
+            Ok(_) => {}
+        }
+    }
+    out.extend(structure.finish());
+    out.sort_by_key(|d| (d.line, d.column));
+    out
 }
 
 /// Reads the next non-empty block at or after byte `offset` (which starts line `line`).
@@ -38,7 +48,7 @@ pub fn read_block(source: &str, offset: usize, line: u32) -> Option<(Result<Bloc
             Ok(Some(block)) => return Some((Ok(block), after.0, after.1)),
             Ok(None) => {}
             Err((col, message)) => {
-                return Some((Err(Diagnostic { line: l, offset: off + col, message }), after.0, after.1));
+                return Some((Err(Diagnostic::syntax(l, off, col, message)), after.0, after.1));
             }
         }
     }
