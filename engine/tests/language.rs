@@ -5,6 +5,7 @@
 //! - `; expect VAR A=1.5`       user variable (`VAR M[5]=7`: flat element index; TRUE/FALSE for BOOL)
 //! - `; expect STR S=abc`       string variable
 //! - `; expect X=10`            WCS position of an axis at the end
+//! - `; expect TIME=1.1`         simulated seconds at the end (within two IPO cycles)
 //! - `; expect alarm 14080 line 4`
 //! - `; expect rejected 12640 line 3 column 1`  the program is refused before it runs, with
 //!   this error among those reported (column optional); nothing moves
@@ -112,6 +113,11 @@ fn run_fixture(path: &Path) -> Result<(), String> {
             };
             if !ok {
                 return fail(format!("{got:?}"));
+            }
+        } else if let Some(want) = e.strip_prefix("TIME=") {
+            let want: f64 = want.parse().map_err(|_| format!("bad number in {e}"))?;
+            if (snap.time - want).abs() > 0.0081 {
+                return fail(snap.time.to_string());
             }
         } else if let Some((lhs, want)) = e.split_once('=') {
             let want: f64 = want.parse().map_err(|_| format!("bad number in {e}"))?;

@@ -461,20 +461,7 @@ pub(super) fn collect(
                 w.ori.reset = Some(values);
             }
             Word::Keyword { name, args } if name == "DELOBJ" => {
-                // DELOBJ("KIN_CHAIN_ELEM") / DELOBJ("TRAFO_DATA"): delete every kinematic chain
-                // element / transformation record (active with NEWCONF or reset). Ranges
-                // (start and end index) are not modelled.
-                let kind = match args.as_slice() {
-                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
-                    _ => return Err(Alarm::syntax(line, "DELOBJ takes one object type (ranges are not modelled)")),
-                };
-                if !matches!(kind.as_str(), "KIN_CHAIN_ELEM" | "TRAFO_DATA") {
-                    return Err(Alarm::value_out_of_range(
-                        line,
-                        &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM or TRAFO_DATA"),
-                    ));
-                }
-                w.data_writes.push(format!("{DELOBJ}{kind}"));
+                w.data_writes.push(delete_objects(args, &Ctx { vars, sys }, line)?);
             }
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
@@ -707,13 +694,13 @@ fn data_write(
     let writable = name.starts_with("$TC_DP")
         || name.starts_with("$TC_CARR")
         || crate::machine_data::chains::is_chain_name(name)
-        || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_UBFR")
+        || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR" | "$P_UBFR")
         || ["$MN_", "$MC_", "$MA_", "$SN_", "$SC_", "$SA_"].iter().any(|p| name.starts_with(p));
     if !writable {
         return Err(Alarm::unknown_name(line, &format!("{name} (not writable from a program)")));
     }
     let ctx = Ctx { vars, sys };
-    if matches!(name, "$P_UIFR" | "$P_CHBFR") && indices.len() == 1 {
+    if matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR") && indices.len() == 1 {
         return stored_frame_lines(name, &indices[0], expr, &ctx, sys, line);
     }
     if name == "$P_UBFR" && indices.is_empty() {
@@ -740,6 +727,46 @@ fn data_write(
     }
     let index = if idx.is_empty() { String::new() } else { format!("[{}]", idx.join(",")) };
     Ok(format!("{name}{index}={value}"))
+}
+
+/// `DELOBJ(type[, start, end])` as its data-write entry `DELOBJ:type[:start:end]`. The types
+/// of the Job Planning manual this product holds: `KIN_CHAIN_ELEM` and `TRAFO_DATA` (deleted
+/// whole, active with NEWCONF or reset) and `TOOLCARRIER` (toolholders `start..=end`, by their
+/// number; acting at once like a `$TC_CARR` write).
+fn delete_objects(args: &[Expr], ctx: &Ctx, line: u32) -> Result<String, Alarm> {
+    let Some((kind, range)) = args.split_first() else {
+        return Err(Alarm::syntax(line, "DELOBJ needs the object type"));
+    };
+    let kind = eval(kind, ctx, line)?.as_text().to_ascii_uppercase();
+    let mut bounds = Vec::new();
+    for e in range {
+        if matches!(e, Expr::Call(n, a) if n == "_OMITTED" && a.is_empty()) {
+            bounds.push(None);
+            continue;
+        }
+        let v = eval(e, ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+        bounds.push(Some(v));
+    }
+    match kind.as_str() {
+        "KIN_CHAIN_ELEM" | "TRAFO_DATA" if bounds.iter().all(Option::is_none) => Ok(format!("{DELOBJ}{kind}")),
+        "KIN_CHAIN_ELEM" | "TRAFO_DATA" => Err(Alarm::value_out_of_range(
+            line,
+            &format!("DELOBJ(\"{kind}\", ...): index ranges of chain data are not modelled, only the whole type"),
+        )),
+        "TOOLCARRIER" if bounds.len() <= 2 => {
+            let start = bounds.first().copied().flatten().unwrap_or(1);
+            let end = bounds.get(1).copied().flatten().unwrap_or(i64::from(u32::MAX));
+            if start < 1 || end < start {
+                return Err(Alarm::value_out_of_range(line, &format!("DELOBJ(\"TOOLCARRIER\", {start}, {end})")));
+            }
+            Ok(format!("{DELOBJ}TOOLCARRIER:{start}:{}", end.min(i64::from(u32::MAX))))
+        }
+        "TOOLCARRIER" => Err(Alarm::syntax(line, "DELOBJ(\"TOOLCARRIER\", start, end): no initialization value")),
+        _ => Err(Alarm::value_out_of_range(
+            line,
+            &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM, TRAFO_DATA or TOOLCARRIER"),
+        )),
+    }
 }
 
 /// Addresses with a fixed meaning in a block.

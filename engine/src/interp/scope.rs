@@ -107,7 +107,15 @@ impl Scope for Ctx<'_> {
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),
             "$P_EP" => Value::Real(wcs(axis()?)),
             // Machine axes: through the active transformation, not the BCS.
-            "$AA_IM" => Value::Real(sys.trafo.machine().unwrap_or(sys.pos)[axis()?]),
+            "$AA_IM" => {
+                let k = axis()?;
+                let v = sys.trafo.machine().unwrap_or(sys.pos)[k];
+                // A modulo rotary axis reads within its modulo range, as the display shows it.
+                Value::Real(match sys.cfg.axis(k).modulo {
+                    Some((start, range)) => start + (v - start).rem_euclid(range),
+                    None => v,
+                })
+            }
             // Chained transformation: layer 1 is the output of the first member, the last layer
             // the machine axes; without a chain there is only the machine layer.
             "$AA_ITR" => {

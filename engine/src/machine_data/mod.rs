@@ -481,6 +481,12 @@ impl MachineData {
         }
     }
 
+    /// `DELOBJ("TOOLCARRIER", start, end)`: the data of the toolholders numbered `range` back
+    /// to the defaults (acting at once, like a `$TC_CARR` write).
+    pub fn delete_carriers(&mut self, range: std::ops::RangeInclusive<u32>) {
+        self.carriers.retain(|(m, _), _| !range.contains(m));
+    }
+
     /// Stored frame components by (family, frame, axis name, component).
     pub fn frames(&self) -> &BTreeMap<FrameKey, f64> {
         &self.frames
