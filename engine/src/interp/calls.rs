@@ -52,7 +52,7 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let text = programs.get(name).cloned().ok_or_else(|| Alarm::program_not_found(line, name))?;
         if self.calls.len() + 1 >= MAX_LEVELS {
-            return Err(Alarm::nesting(line, &format!("more than {MAX_LEVELS} program levels")));
+            return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }
         let sys = sys_view!(self, cfg);
         let ctx = Ctx { vars: &self.vars, sys: &sys };
@@ -91,7 +91,7 @@ impl Interpreter {
         let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) else { return Ok(()) };
         frame.bound = true;
         if frame.args.len() > params.len() {
-            return Err(Alarm::syntax(
+            return Err(Alarm::too_many_arguments(
                 line,
                 &format!("{} arguments for {} parameters", frame.args.len(), params.len()),
             ));
@@ -108,7 +108,7 @@ impl Interpreter {
                 match sources.get(i).cloned().flatten() {
                     Some(src) => by_reference.push((p.name.clone(), src)),
                     None if i < args.len() => {
-                        return Err(Alarm::type_error(line, &format!("VAR parameter {} needs a variable", p.name)));
+                        return Err(Alarm::not_a_variable(line, &p.name));
                     }
                     None => {}
                 }
@@ -127,7 +127,7 @@ impl Interpreter {
         if let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) {
             frame.bound = true;
             if !frame.args.is_empty() {
-                return Err(Alarm::syntax(line, "arguments passed to a program without PROC parameters"));
+                return Err(Alarm::too_many_arguments(line, "arguments passed to a program without PROC parameters"));
             }
         }
         Ok(())

@@ -93,7 +93,7 @@ impl Flow {
     /// Pushes a control structure, checking the nesting depth.
     pub fn open(&mut self, ctrl: Ctrl, line: u32) -> Result<(), Alarm> {
         if self.control.len() >= MAX_NESTING {
-            return Err(Alarm::nesting(line, &format!("more than {MAX_NESTING} levels")));
+            return Err(Alarm::nesting_too_deep(line, &format!("more than {MAX_NESTING} levels")));
         }
         self.control.push(ctrl);
         Ok(())

@@ -34,7 +34,11 @@ impl Interpreter {
             self.flow = None;
             return Ok(Prep::Done);
         };
-        let block = block.map_err(|d| Alarm::syntax(d.line, &d.message))?;
+        let block = block.map_err(|d| {
+            let mut alarm = Alarm::syntax(d.line, &format!("column {}: {}", d.column, d.message));
+            alarm.number = d.alarm;
+            alarm
+        })?;
         if !main_run_idle && reads_main_run(&block) {
             // The control's implicit preprocessing stop: wait for the main run, then read again.
             flow.next = next;
@@ -267,7 +271,7 @@ impl Interpreter {
             }
             values => {
                 if values.len() > var.data.len() {
-                    return Err(Alarm::index_error(line, &decl.name, "more initial values than elements"));
+                    return Err(Alarm::too_many_initial_values(line, &decl.name));
                 }
                 for (slot, e) in var.data.iter_mut().zip(values) {
                     *slot = convert(eval(e, &ctx, line)?)?;
