@@ -548,6 +548,21 @@ mod tests {
     }
 
     #[test]
+    fn ncu_basic_frames_are_sized_by_md18602_and_round_trip() {
+        let mut md = MachineData::default();
+        let e = md.apply_text("$P_NCBFR[0,X,TR]=1").unwrap_err();
+        assert!(e.message.contains("MM_NUM_GLOBAL_BASE_FRAMES"), "{}", e.message);
+        md.apply_text("$MN_MM_NUM_GLOBAL_BASE_FRAMES=2\n$P_NCBFR[1,Y,TR]=4.5\n$MN_FRAME_ANGLE_INPUT_MODE=2").unwrap();
+        let cfg = md.activate().unwrap();
+        assert_eq!(cfg.ncu_base_frames.len(), 2);
+        assert_eq!(cfg.ncu_base_frames[1].trans[1], 4.5);
+        assert_eq!(cfg.frame_angles, FrameAngles::Euler);
+        let mut again = MachineData::default();
+        again.apply_text(&md.to_text()).unwrap();
+        assert_eq!(again, md);
+    }
+
+    #[test]
     fn stored_frames_keep_every_component_and_round_trip_as_text() {
         let mut md = MachineData::default();
         let text = "$P_UIFR[1,X,TR]=10.0\n$P_UIFR[1,Z,RT]=30.0\n$P_UIFR[2,Y,SC]=2.0\n$P_UIFR[2,X,MI]=1.0\n$P_UBFR[Z,TR]=-5.0\n$P_CHBFR[0,X,FI]=0.25";
