@@ -30,6 +30,15 @@ impl Alarm {
         Alarm::new(10720, format!("Channel 1 block {line} axis {axis} software limit switch {sign}"), Some(line))
     }
 
+    /// 10910: near a pole the machine axes cannot follow the programmed path velocity; the
+    /// block runs at the velocity they allow. Information only: the program goes on.
+    pub fn irregular_velocity(line: u32) -> Alarm {
+        Alarm {
+            clear: Clear::Cancel,
+            ..Alarm::new(10910, format!("Channel 1 block {line} irregular velocity run in a path axis"), Some(line))
+        }
+    }
+
     /// 10621: a JOG motion stopped at a software limit switch.
     pub fn rests_on_software_limit(axis: &str, plus: bool) -> Alarm {
         let sign = if plus { '+' } else { '-' };

@@ -121,9 +121,30 @@ impl SysView<'_> {
                 Some(Suppress::G53) => l.kept_by_g53(),
                 Some(Suppress::All) => false,
             })
-            .map(|&l| self.chain_frame(l))
+            .map(|&l| {
+                let mut f = self.chain_frame(l);
+                if let Some(rot) = self.trafo.rotary_slot().filter(|_| self.stored(l)) {
+                    // TRANSMIT/TRACYL put a Cartesian axis into the rotary axis' slot: the
+                    // offsets the stored frames hold for the rotary axis stay out of it (frames
+                    // programmed while the transformation is active address the Cartesian axis).
+                    f.trans[rot] = 0.0;
+                }
+                f
+            })
             .collect();
         frame::chain(&links.iter().collect::<Vec<_>>(), &self.cfg.geo_axes)
+    }
+}
+
+impl SysView<'_> {
+    /// The link comes from stored data (toolholder, basic frames, `$P_UIFR`), not from a
+    /// program's assignment.
+    fn stored(&self, link: ChainFrame) -> bool {
+        match link {
+            ChainFrame::Part | ChainFrame::ActB => true,
+            ChainFrame::I => self.iframe.is_none(),
+            _ => false,
+        }
     }
 }
 

@@ -18,6 +18,7 @@ mod modal;
 mod orient;
 mod scope;
 mod solid_angles;
+mod spindles;
 mod statements;
 mod swivel;
 pub mod toolholder;
@@ -165,9 +166,8 @@ pub struct Interpreter {
     system: SystemFrames,
     /// `$P_IFRAME` as a program wrote it; `None`: the selected settable frame `$P_UIFR[n]`.
     iframe: Option<Frame>,
-    /// Programmed spindle speed (rev/min) and direction (+1 M3, -1 M4, 0 M5).
-    speed: f64,
-    direction: i8,
+    /// Master spindle and each spindle's programmed speed and direction.
+    spindles: spindles::Spindles,
     /// Read position in the active program level, if one runs.
     flow: Option<Flow>,
     /// Subprogram calls in progress, outermost first.
@@ -175,6 +175,8 @@ pub struct Interpreter {
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
     /// not applied yet.
     data_writes: Vec<(u32, String)>,
+    /// Alarms that only inform (10910): shown while the program goes on.
+    warnings: Vec<Alarm>,
     /// A move held back until the next block decides its corner (RND, CHF, CHR).
     held: Option<corners::Held>,
     /// The corner the block being prepared asks for.
@@ -201,11 +203,11 @@ impl Interpreter {
             pframe: Frame::identity(),
             system: SystemFrames::default(),
             iframe: None,
-            speed: 0.0,
-            direction: 0,
+            spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
             data_writes: Vec::new(),
+            warnings: Vec::new(),
             held: None,
             corner_request: None,
             trc: trc::Compensator::default(),
@@ -225,7 +227,7 @@ impl Interpreter {
         self.held = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
-        self.direction = 0;
+        self.spindles.reset(cfg, true);
         self.pframe = Frame::identity();
         self.iframe = None;
         self.offsets.frame = self.active_frame(cfg);
@@ -237,9 +239,10 @@ impl Interpreter {
     /// Program end acts like a reset of the modal state (the spindle keeps turning until M5 or reset).
     pub fn end_program(&mut self, cfg: &MachineConfig) {
         let machine = self.transformation_machine_position();
-        let direction = self.direction;
+        let spindles = self.spindles.clone();
         self.reset(cfg, &machine);
-        self.direction = direction;
+        self.spindles = spindles;
+        self.spindles.reset(cfg, false);
     }
 
     /// Starts preparing `text` from the machine's current position. Local variables of an
@@ -255,6 +258,12 @@ impl Interpreter {
     /// [`NEWCONF`]): the channel applies them before the next block is prepared.
     pub fn take_data_writes(&mut self) -> Vec<(u32, String)> {
         std::mem::take(&mut self.data_writes)
+    }
+
+    /// Alarms raised by the blocks prepared since the last call that do not stop the program
+    /// (the control's "alarm display" reaction).
+    pub fn take_warnings(&mut self) -> Vec<Alarm> {
+        std::mem::take(&mut self.warnings)
     }
 
     /// Tells preparation where a spindle in speed mode stands in the main run (SPOS starts
@@ -369,11 +378,14 @@ impl Interpreter {
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
             self.modal.feed = Some(f);
         }
+        if let Some(spindle) = words.set_master {
+            self.spindles.set_master(spindle, cfg, line)?;
+        }
         if let Some(s) = words.speed.filter(|_| !words.dwell) {
             if s < 0.0 {
                 return Err(Alarm::value_out_of_range(line, &format!("S{s}")));
             }
-            self.speed = s;
+            self.spindles.set_master_speed(s);
         }
         self.select_tool(&words, cfg, line)?;
         if let Some(op) = words.frame_op {
@@ -388,31 +400,36 @@ impl Interpreter {
         self.absorb_tool_into_transformation();
 
         // Spindle before motion.
-        let old_direction = self.direction;
+        let old_direction = self.spindles.master_direction();
         if let Some(dir) = words.spindle_dir {
-            self.direction = dir;
+            self.spindles.set_master_direction(dir);
             // M3/M4/M5 return a positioned spindle to speed control.
-            if let Some(axis) = cfg.master_spindle {
+            if let Some(axis) = self.spindles.master() {
                 self.positioned[axis] = false;
             }
         }
         let spindle_words = (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell;
-        let changes = self.direction != old_direction || self.direction != 0;
-        if let Some(axis) = cfg.master_spindle.filter(|_| spindle_words && changes) {
+        let direction = self.spindles.master_direction();
+        let changes = direction != old_direction || direction != 0;
+        if let Some(axis) = self.spindles.master().filter(|_| spindle_words && changes) {
             self.trc.flush(&AxisLimit::for_channel(cfg), out)?;
-            out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
+            out.push(Item::Spindle { axis, rpm: direction as f64 * self.spindles.master_speed(), line });
         }
 
+        // SPOS first; axis words of the same block then move the path (one after the other
+        // here, where the control runs the two side by side).
+        let positioned = words.spos.is_some();
         if let Some(target) = words.spos {
             let (mv, feed) = self.spindle_position(target, cfg, line)?;
-            let axis = cfg.master_spindle.expect("checked in spindle_position");
+            let axis = self.spindles.master().expect("checked in spindle_position");
             out.push(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line });
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             self.trc.push(trc::Prepared { mv, feed, line, item }, None, &AxisLimit::for_channel(cfg), out)?;
-        } else if words.dwell {
+        }
+        if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
-                (None, Some(revs)) if self.speed > 0.0 => revs * 60.0 / self.speed,
+                (None, Some(revs)) if self.spindles.master_speed() > 0.0 => revs * 60.0 / self.spindles.master_speed(),
                 (None, Some(_)) => return Err(Alarm::value_out_of_range(line, "G4 S (spindle stands)")),
                 _ => return Err(Alarm::syntax(line, "G4 needs F<seconds> or S<revolutions>")),
             };
@@ -432,7 +449,7 @@ impl Interpreter {
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let comp = self.compensation(cfg, &words, line)?;
             self.trc.push(trc::Prepared { mv, feed, line, item }, comp, &AxisLimit::for_channel(cfg), out)?;
-        } else if self.offsets != offsets_before {
+        } else if self.offsets != offsets_before && !positioned {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
         }
 
@@ -577,10 +594,10 @@ impl Interpreter {
     /// SPOS: stops the master spindle where it is, switches it to position control and moves it
     /// the short way to `target` degrees at its maximum velocity.
     fn spindle_position(&mut self, target: f64, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {
-        let axis = cfg.master_spindle.ok_or_else(|| Alarm::unknown_name(line, "SPOS (no master spindle)"))?;
+        let axis = self.spindles.master().ok_or_else(|| Alarm::unknown_name(line, "SPOS (no master spindle)"))?;
         let start_angle = self.spindle_angles[axis].rem_euclid(360.0);
         self.positioned[axis] = true;
-        self.direction = 0;
+        self.spindles.stop(axis);
         let mut start = self.pos;
         start[axis] = start_angle;
         let mut end = start;
@@ -813,7 +830,8 @@ impl Interpreter {
             MotionMode::Rapid => Feed::Rapid,
             _ => {
                 let f = self.modal.feed.ok_or_else(|| Alarm::no_feed(line))?;
-                let per_min = if self.modal.feed_per_rev { f * self.speed } else { f } * self.modal.feed_factor();
+                let per_min = if self.modal.feed_per_rev { f * self.spindles.master_speed() } else { f }
+                    * self.modal.feed_factor();
                 if per_min <= 0.0 {
                     return Err(Alarm::feed_not_positive(line));
                 }

@@ -277,6 +277,8 @@ pub(super) struct Words {
     pub tool: Option<u32>,
     pub edge: Option<u32>,
     pub spindle_dir: Option<i8>,
+    /// SETMS(n): spindle n becomes the master spindle (`Some(None)`: SETMS, back to MD20090).
+    pub set_master: Option<Option<u32>>,
     pub stop: Option<StopKind>,
     /// A jump at the end of the block (`... GOTOF LABEL`).
     pub goto: Option<Goto>,
@@ -462,6 +464,19 @@ pub(super) fn collect(
             }
             Word::Keyword { name, args } if name == "DELOBJ" => {
                 w.data_writes.push(delete_objects(args, &Ctx { vars, sys }, line)?);
+            }
+            Word::Keyword { name, args } if name == "SETMS" => {
+                let spindle = match args.as_slice() {
+                    [] => None,
+                    [e] => {
+                        Some(eval(e, &Ctx { vars, sys }, line)?.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?)
+                    }
+                    _ => return Err(Alarm::syntax(line, "SETMS takes one spindle number")),
+                };
+                if spindle.is_some_and(|n| !(1.0..=32.0).contains(&n) || n.fract() != 0.0) {
+                    return Err(Alarm::value_out_of_range(line, &format!("SETMS({})", spindle.unwrap_or_default())));
+                }
+                w.set_master = Some(spindle.map(|n| n as u32));
             }
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
