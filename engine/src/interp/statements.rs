@@ -46,7 +46,7 @@ impl Interpreter {
             return Ok(Prep::WaitForMainRun);
         }
         match &block.stmt {
-            Some(Stmt::Proc { params, .. }) => self.bind_params(params, block.line)?,
+            Some(Stmt::Proc { params, save, .. }) => self.bind_params(params, *save, block.line)?,
             Some(stmt) => {
                 self.check_unbound(block.line)?;
                 self.statement(stmt, &block, at, cfg, out)?;

@@ -177,10 +177,12 @@ pub enum Stmt {
     },
     /// `GOTOF L` alone.
     Goto(Goto),
-    /// `PROC NAME(type param, ...)`.
+    /// `PROC NAME(type param, ...) [SAVE ...]`.
     Proc {
         name: String,
         params: Vec<Param>,
+        /// `SAVE`: the caller's modal G functions and frames come back at the return.
+        save: bool,
     },
     /// `RET` (end of subprogram).
     Ret,

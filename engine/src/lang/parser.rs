@@ -439,9 +439,20 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
             }
         }
     }
-    // Attributes such as SAVE, DISPLOF, SBLOF need no parsing here.
-    cur.pos = cur.len();
-    Ok(Stmt::Proc { name, params })
+    // Attributes: SAVE matters to the interpreter; DISPLOF, SBLOF, ... need no action here.
+    let mut save = false;
+    loop {
+        cur.skip_ws();
+        if cur.eat(b',') {
+            continue;
+        }
+        match cur.ident_span() {
+            Some(span) => save |= cur.span_is(span, "SAVE"),
+            None if cur.at_end() => break,
+            None => cur.pos += 1,
+        }
+    }
+    Ok(Stmt::Proc { name, params, save })
 }
 
 fn parse_lvalue(cur: &mut Cursor) -> PResult<Lvalue> {
