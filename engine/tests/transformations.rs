@@ -332,6 +332,27 @@ fn tracyl_groove_wall_offset_keeps_c_on_the_centre_line() {
     }
 }
 
+/// A radial infeed (X only) inside the groove is a block without motion in the compensation
+/// plane: it runs at the corner point with the real Y axis holding the wall offset (2), and the
+/// groove goes on to Z−60 on the same wall.
+#[test]
+fn tracyl_groove_wall_offset_holds_y_through_an_infeed() {
+    let program = format!("{GROOVE}X18\nZ-60\nM0\nM30");
+    let (ch, samples) = run("tracyl-xyzc", "", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    // XM ends where X18 puts the radial axis with the tool's length on it.
+    let (x, y, z) = (0, 1, 2);
+    let x_end = machine(&s, "XM");
+    assert!(x_end > 20.0 + 1e-6, "{x_end}");
+    let infeed: Vec<&Sample> = samples.iter().filter(|p| p.axes[x] > 20.0 + 1e-6 && p.axes[x] < x_end - 1e-6).collect();
+    assert!(!infeed.is_empty());
+    for p in infeed {
+        assert!(close(p.axes[y], 2.0, 1e-9) && close(p.axes[z], -30.0, 1e-9), "{:?}", p.axes);
+    }
+    assert!(close(machine(&s, "YM"), 2.0, 1e-9) && close(machine(&s, "ZM"), -60.0, 1e-9));
+}
+
 #[test]
 fn tracyl_groove_wall_offset_around_the_periphery_moves_z_and_hands_back_y() {
     // Around a quarter of the circumference on d = 40 (arc length 10π): the offset now lies
@@ -985,9 +1006,12 @@ fn tracyl_on_the_xyzac_machine_unrolls_onto_c_with_the_groove_wall_on_xm() {
     ch.run_program(XYZAC_GROOVE).unwrap();
     // (C, XM, YM) at the two stops: along the cylinder (BCS −Z = −YM) the wall offset lies
     // across the periphery and is travelled by XM (left of −Z seen from +X is +Y_bcs, the
-    // supplementary axis' direction); after a quarter turn on d = 40 (arc 10π) it lies along
-    // the cylinder: YM = −30 + 1, XM back to 0, C = 90°.
-    for (c, xm, ym) in [(0.0, 1.0, -30.0), (90.0, 0.0, -29.0)] {
+    // supplementary axis' direction). The compensation looks across M0 to the next move, a
+    // left turn onto +Y: an inner corner, so the tool stops at the intersection of the two
+    // offset lines, 1 mm short of Z−30 (YM −29) with XM = 1 and C on the centre line.
+    // After a quarter turn on d = 40 (arc 10π) the offset lies along the cylinder: YM = −29,
+    // XM back to 0, C = 90°.
+    for (c, xm, ym) in [(0.0, 1.0, -29.0), (90.0, 0.0, -29.0)] {
         while ch.is_busy() {
             ch.step();
         }

@@ -24,6 +24,10 @@ mod swivel;
 pub mod toolholder;
 mod trafo;
 pub mod trc;
+pub mod trc_approach;
+mod trc_bottleneck;
+mod trc_disc;
+mod trc_edge;
 pub mod value;
 pub mod vars;
 
@@ -314,10 +318,15 @@ impl Interpreter {
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
+        self.trc.begin_block(out);
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
             let limits = AxisLimit::for_channel(cfg);
-            // Whatever follows that is not a move ends a held compensated move first.
-            if self.trc.holds() && (prep != Prep::Prepared || out.iter().any(|i| !matches!(i, Item::Move { .. }))) {
+            // What a block without motion in the compensation plane produced waits behind the
+            // held compensated move (look-ahead across dummy blocks, MD20250); anything that
+            // cannot wait (a preprocessing stop, the program end, moves past the compensator)
+            // ends the held move first.
+            let deferred = prep == Prep::Prepared && self.trc.end_block(out)?;
+            if self.trc.holds() && !deferred {
                 let mut flushed = Vec::new();
                 self.trc.flush(&limits, &mut flushed)?;
                 let at = out.iter().rposition(|i| matches!(i, Item::Move { .. })).map_or(0, |i| i + 1);
@@ -412,8 +421,9 @@ impl Interpreter {
         let direction = self.spindles.master_direction();
         let changes = direction != old_direction || direction != 0;
         if let Some(axis) = self.spindles.master().filter(|_| spindle_words && changes) {
-            self.trc.flush(&AxisLimit::for_channel(cfg), out)?;
-            out.push(Item::Spindle { axis, rpm: direction as f64 * self.spindles.master_speed(), line });
+            // Before the block's motion, after the held compensated move.
+            self.trc
+                .emit_or_defer(Item::Spindle { axis, rpm: direction as f64 * self.spindles.master_speed(), line }, out);
         }
 
         // SPOS first; axis words of the same block then move the path (one after the other
@@ -422,9 +432,13 @@ impl Interpreter {
         if let Some(target) = words.spos {
             let (mv, feed) = self.spindle_position(target, cfg, line)?;
             let axis = self.spindles.master().expect("checked in spindle_position");
-            out.push(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line });
+            // With compensation active SPOS is a block without motion in the plane.
+            self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
-            self.trc.push(trc::Prepared { mv, feed, line, item }, None, &AxisLimit::for_channel(cfg), out)?;
+            let approach = self.modal.approach;
+            let prepared = trc::Prepared { mv, feed, line, item, approach, corner: None };
+            let comp = self.compensation(cfg, &words, line)?;
+            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         }
         if words.dwell {
             let seconds = match (words.feed, words.speed) {
@@ -448,7 +462,11 @@ impl Interpreter {
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let comp = self.compensation(cfg, &words, line)?;
-            self.trc.push(trc::Prepared { mv, feed, line, item }, comp, &AxisLimit::for_channel(cfg), out)?;
+            let approach = self.modal.approach;
+            // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
+            let corner = if comp.is_some() { self.corner_request.take() } else { None };
+            let prepared = trc::Prepared { mv, feed, line, item, approach, corner };
+            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         } else if self.offsets != offsets_before && !positioned {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
         }
@@ -623,7 +641,9 @@ impl Interpreter {
     ) -> Result<Option<trc::Compensation>, Alarm> {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
         let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
-        let tool_radius = edge.map_or(0.0, |p| p[5] + p[14]);
+        let Some(edge) = edge else { return Err(Alarm::trc_without_tool(line)) };
+        let tool_radius = edge[5] + edge[14];
+        let tip = trc_edge::tip_offset(edge[0], edge[1], tool_radius);
         let groove_wall = self.groove_wall_axes();
         let offn = self.modal.offn;
         let radius = match groove_wall {
@@ -675,9 +695,13 @@ impl Interpreter {
             side,
             radius,
             corners: self.modal.trc_corners,
+            disc: self.modal.disc,
             arc_feed: self.modal.arc_feed,
             u: unit(u),
             v: unit(v),
+            tip: if groove_wall.is_some() { (0.0, 0.0) } else { tip },
+            max_dummy_blocks: cfg.cutcom_max_dummy_blocks,
+            max_check_blocks: cfg.cutcom_max_check_blocks,
             groove_wall,
         }))
     }

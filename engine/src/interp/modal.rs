@@ -11,6 +11,7 @@ use super::orient::{self, OriModal, OriWords};
 use super::scope::{Ctx, SysView};
 use super::toolholder::{CutMode, TcoMode, g53_code};
 use super::trc::{ArcFeed, CornerMode, Side};
+use super::trc_approach::ApproachMode;
 use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
@@ -76,6 +77,10 @@ pub struct Modal {
     pub trc_corners: CornerMode,
     /// OFFN contour offset.
     pub offn: f64,
+    /// G group 17: NORM, KONT, KONTT, KONTC (approach and retract).
+    pub approach: ApproachMode,
+    /// DISC: how far G450's transition circle is pulled towards the intersection (0..100).
+    pub disc: f64,
     /// Where the feed applies on compensated arcs (G group 16).
     pub arc_feed: ArcFeed,
     /// Last polar angle AP (degrees) and radius RP.
@@ -129,6 +134,8 @@ impl Modal {
             trc: None,
             trc_corners: CornerMode::Circle,
             offn: 0.0,
+            approach: ApproachMode::Norm,
+            disc: 0.0,
             arc_feed: ArcFeed::Contour,
             ori: OriModal::reset(),
             ptp: PtpMode::Cp,
@@ -151,6 +158,10 @@ impl Modal {
             self.motion = m;
         }
         if let Some(p) = w.plane {
+            // The compensation plane changes only with G40 (in this block or before).
+            if self.trc.is_some() && p != self.plane && w.trc != Some(None) {
+                return Err(Alarm::trc_plane_change(line));
+            }
             self.plane = p;
         }
         if let Some(a) = w.absolute {
@@ -174,6 +185,15 @@ impl Modal {
         }
         if let Some(o) = w.offn {
             self.offn = o;
+        }
+        if let Some(a) = w.approach {
+            self.approach = a;
+        }
+        if let Some(d) = w.disc {
+            if !(0.0..=100.0).contains(&d) {
+                return Err(Alarm::value_out_of_range(line, &format!("DISC={d} (0..100)")));
+            }
+            self.disc = d;
         }
         if let Some(f) = w.arc_feed {
             self.arc_feed = f;
@@ -309,6 +329,10 @@ pub(super) struct Words {
     pub trc_corners: Option<CornerMode>,
     /// OFFN=: contour offset added to the tool radius.
     pub offn: Option<f64>,
+    /// NORM, KONT, KONTT, KONTC.
+    pub approach: Option<ApproachMode>,
+    /// DISC=.
+    pub disc: Option<f64>,
     /// CFC, CFTCP, CFIN.
     pub arc_feed: Option<ArcFeed>,
     /// SPOS=: position the master spindle (it becomes a rotary axis).
@@ -380,7 +404,10 @@ pub(super) fn collect(
             Word::Goto(goto) => w.goto = Some(goto.clone()),
             Word::Keyword { name, args }
                 if args.is_empty()
-                    && matches!(name.as_str(), "SUPA" | "STOPRE" | "NEWCONF" | "CFC" | "CFTCP" | "CFIN" | "NORM") =>
+                    && matches!(
+                        name.as_str(),
+                        "SUPA" | "STOPRE" | "NEWCONF" | "CFC" | "CFTCP" | "CFIN" | "NORM" | "KONT" | "KONTT" | "KONTC"
+                    ) =>
             {
                 match name.as_str() {
                     "SUPA" => w.suppress = Some(Suppress::All),
@@ -388,8 +415,10 @@ pub(super) fn collect(
                     "CFC" => w.arc_feed = Some(ArcFeed::Contour),
                     "CFTCP" => w.arc_feed = Some(ArcFeed::CentrePath),
                     "CFIN" => w.arc_feed = Some(ArcFeed::InnerOnly),
-                    // NORM (straight approach perpendicular to the contour) is the only
-                    // approach mode modelled and therefore the standing one.
+                    "NORM" => w.approach = Some(ApproachMode::Norm),
+                    "KONT" => w.approach = Some(ApproachMode::Kont),
+                    "KONTT" => w.approach = Some(ApproachMode::Tangent),
+                    "KONTC" => w.approach = Some(ApproachMode::Curvature),
                     _ => {}
                 }
             }
@@ -529,6 +558,7 @@ pub(super) fn collect(
                     "RPL" => w.rpl = Some(v),
                     "SPOS" => w.spos = Some(v),
                     "OFFN" => w.offn = Some(v * sys.modal.length_factor()),
+                    "DISC" => w.disc = Some(v),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
                     "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
@@ -788,7 +818,7 @@ fn delete_objects(args: &[Expr], ctx: &Ctx, line: u32) -> Result<String, Alarm> 
 fn is_nc_address(name: &str) -> bool {
     const ADDRESSES: &[&str] = &[
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "SPOS", "TCARR",
+        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "DISC", "SPOS", "TCARR",
     ];
     ADDRESSES.contains(&name) || orient::is_address(name)
 }
