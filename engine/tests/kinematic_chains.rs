@@ -363,7 +363,7 @@ fn the_element_graph_is_checked_at_activation() {
 
 #[test]
 fn other_transformation_types_are_stored_but_not_built() {
-    let text = format!("{}$NT_NAME[4]=\"Face\"\n$NT_TRAFO_TYPE[4]=\"TRANSMIT_K\"\n", head_chain().0);
+    let text = format!("{}$NT_NAME[4]=\"Static\"\n$NT_TRAFO_TYPE[4]=\"TRAORI_STAT\"\n", head_chain().0);
     let cfg = config(&text);
     let chain: Vec<_> = cfg.trafos.iter().filter_map(|s| s.chain.as_ref().map(|c| c.name.as_str())).collect();
     assert_eq!(chain, ["Head"]);

@@ -30,6 +30,8 @@
 //! constant rotations that cancel by the end of each subchain (the BCS and the tool are not
 //! rotated against the world frame at the kinematic zero).
 
+mod classic;
+
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::config::{ActivationError, ChannelAxis, MachineAxis};
@@ -99,6 +101,19 @@ const VARS: &[Var] = &[
     var("$NT_BASE_ORIENT", T, Real, 3),
     var("$NT_BASE_ORIENT_NORMAL", T, Real, 3),
     var("$NT_CNTRL", T, Int, 1),
+    var("$NT_ROT_OFFSET_FROM_FRAME", T, Int, 1),
+    var("$NT_CLOSE_CHAIN_P", T, Str, 1),
+    var("$NT_CLOSE_CHAIN_T", T, Str, 1),
+    var("$NT_AUX_POS", T, Real, 3),
+    var("$NT_IDENT", T, Int, 3),
+    var("$NT_BASE_TOOL_COMP", T, Int, 1),
+    var("$NT_ROT_AX_POS", T, Real, 3),
+    var("$NT_POLE_LIMIT", T, Real, 1),
+    var("$NT_POLE_TOL", T, Real, 1),
+    var("$NT_IGNORE_TOOL_ORIENT", T, Int, 1),
+    var("$NT_CORR_ELEM_T", T, Str, 4),
+    var("$NT_CORR_ELEM_P", T, Str, 4),
+    var("$NT_POLE_SIDE_FIX", T, Int, 1),
 ];
 
 fn default(var: &Var, k: usize) -> Value {
@@ -515,12 +530,14 @@ fn along(dir: &Vec3, sign: f64) -> Option<usize> {
     (0..3).find(|&g| (0..3).all(|i| (dir[i] - if i == g { sign } else { 0.0 }).abs() < 1e-9))
 }
 
-/// The transformation types of `$NT_TRAFO_TYPE` the manual lists; only TRAORI_DYN is built.
+/// The transformation types of `$NT_TRAFO_TYPE` the manual lists; TRAORI_DYN, TRANSMIT_K,
+/// TRACYL_K and TRAANG_K are built.
 const KNOWN_TYPES: &[&str] = &["TRAORI_DYN", "TRAORI_STAT", "TRANSMIT_K", "TRACYL_K", "TRAANG_K", "TRACON_K", "TRAANG"];
 
-/// Checks the element graph and builds every TRAORI_DYN record into a data set numbered
-/// [`KIN_TRAFO_NUMBER_BASE`] + n. Records of the other listed types stay stored but are not
-/// built (not modelled yet); `pole` are the pole limits the orientation sets use by default.
+/// Checks the element graph and builds every TRAORI_DYN, TRANSMIT_K, TRACYL_K and TRAANG_K
+/// record into a data set numbered [`KIN_TRAFO_NUMBER_BASE`] + n. Records of the other listed
+/// types are checked and stay stored but are not built (not modelled); `pole` are the pole
+/// limits the orientation sets use unless `$NT_POLE_TOL` / `$NT_POLE_LIMIT` give them.
 pub(super) fn build(
     md: &MachineData,
     channel_axes: &[ChannelAxis],
@@ -550,10 +567,16 @@ pub(super) fn build(
                 KNOWN_TYPES.join(", ")
             )));
         }
-        if ty != "TRAORI_DYN" {
-            continue;
-        }
-        sets.push(traori_dyn(kin, &g, n, &what, name, pole)?);
+        check_common(kin, &g, n, &what)?;
+        let set = match ty.as_str() {
+            "TRAORI_DYN" => traori_dyn(kin, &g, n, &what, name, pole)?,
+            "TRANSMIT_K" => classic::rotary(kin, &g, n, &what, name, TrafoKind::Transmit)?,
+            "TRACYL_K" => classic::rotary(kin, &g, n, &what, name, TrafoKind::Tracyl)?,
+            "TRAANG_K" => classic::inclined(kin, &g, n, &what, name)?,
+            // TRAORI_STAT, TRACON_K and the OA type TRAANG stay stored, not built.
+            _ => continue,
+        };
+        sets.push(set);
     }
     Ok(sets)
 }
@@ -738,11 +761,68 @@ fn traori_dyn(
             tool_rot_ax_offset: zero,
             rot_offset,
             sign_plus: [true; 3],
-            non_pole_limit: pole.0,
-            pole_limit: pole.1,
+            non_pole_limit: positive_or(kin.num(f, n, "$NT_POLE_TOL", 0), pole.0),
+            pole_limit: positive_or(kin.num(f, n, "$NT_POLE_LIMIT", 0), pole.1),
             nutator_angle: 0.0,
             oriax_assign: [None; 3],
         })),
         chain: Some(ChainDef { name, conventional }),
     })
+}
+
+/// `value` if set (> 0), else the machine-data default.
+fn positive_or(value: f64, default: f64) -> f64 {
+    if value > 0.0 { value } else { default }
+}
+
+/// Checks the `$NT_` data every type shares: value ranges and element names that must lie on
+/// the subchains (`$NT_CLOSE_CHAIN_P/T`, `$NT_CORR_ELEM_P/T`).
+fn check_common(kin: &KinData, g: &Graph, n: usize, what: &str) -> Result<(), ActivationError> {
+    let f = Family::Trafo;
+    let fail = |m: String| Err(general(format!("{what}: {m}")));
+    for (var, max) in [("$NT_ROT_OFFSET_FROM_FRAME", 2), ("$NT_POLE_SIDE_FIX", 2), ("$NT_BASE_TOOL_COMP", 7)] {
+        let v = kin.num(f, n, var, 0);
+        if !(0.0..=f64::from(max)).contains(&v) {
+            return fail(format!("{var}[{n}]={v}: allowed are 0..{max}"));
+        }
+    }
+    let v = kin.num(f, n, "$NT_IGNORE_TOOL_ORIENT", 0);
+    if v != 0.0 && v != 1.0 {
+        return fail(format!("$NT_IGNORE_TOOL_ORIENT[{n}]={v}: FALSE or TRUE"));
+    }
+    for var in ["$NT_POLE_LIMIT", "$NT_POLE_TOL"] {
+        let v = kin.num(f, n, var, 0);
+        if !(0.0..=180.0).contains(&v) {
+            return fail(format!("{var}[{n}]={v}: an angle 0..180 degrees"));
+        }
+    }
+    // The subchain a name must lie on: the way from the root to the chain's last element.
+    let on_chain = |last_var: &str, name: &str| -> bool {
+        let last = kin.str(f, n, last_var, 0);
+        match (g.find(&last), g.find(name)) {
+            (Some(l), Some(e)) => g.path_to(l).is_ok_and(|p| p.contains(&e)),
+            _ => false,
+        }
+    };
+    for (var, last, k) in
+        [("$NT_CLOSE_CHAIN_P", "$NT_P_CHAIN_LAST_ELEM", 1), ("$NT_CLOSE_CHAIN_T", "$NT_T_CHAIN_LAST_ELEM", 1)]
+            .into_iter()
+            .chain([("$NT_CORR_ELEM_P", "$NT_P_CHAIN_LAST_ELEM", 4), ("$NT_CORR_ELEM_T", "$NT_T_CHAIN_LAST_ELEM", 4)])
+    {
+        for c in 0..k {
+            let name = kin.str(f, n, var, c);
+            if name.is_empty() {
+                continue;
+            }
+            let at = if k == 1 { format!("{var}[{n}]") } else { format!("{var}[{n},{c}]") };
+            if !on_chain(last, &name) {
+                return fail(format!("{at} \"{name}\" is no element of the subchain ending at {last}"));
+            }
+            let corr = k == 4;
+            if corr && g.find(&name).is_some_and(|e| g.elems[e].ty != ElemType::Offset) {
+                return fail(format!("{at} \"{name}\": a correction element must be of type OFFSET"));
+            }
+        }
+    }
+    Ok(())
 }
