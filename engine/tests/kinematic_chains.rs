@@ -497,3 +497,73 @@ fn delobj_deletes_the_chain_data_with_the_next_newconf() {
     let s = run(HEAD_CHAIN, "DELOBJ(\"TOOLS\")\nM30");
     assert_eq!(s.status, Status::Alarm);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The remaining $NT_ fields: stored, checked, effective where the manual says what they do
+// ---------------------------------------------------------------------------------------------
+
+/// Every further `$NT_` field of record 1 of the head chain, with values other than the defaults.
+const MORE_FIELDS: &str = "$NT_ROT_OFFSET_FROM_FRAME[1]=2\n$NT_CLOSE_CHAIN_P[1]=\"WP\"\n\
+    $NT_CLOSE_CHAIN_T[1]=\"B offset\"\n$NT_AUX_POS[1,1]=1.5\n$NT_IDENT[1,0]=1000\n$NT_IDENT[1,1]=100\n\
+    $NT_BASE_TOOL_COMP[1]=5\n$NT_ROT_AX_POS[1,2]=30.0\n$NT_POLE_LIMIT[1]=3.5\n$NT_POLE_TOL[1]=1.25\n\
+    $NT_IGNORE_TOOL_ORIENT[1]=1\n$NT_CORR_ELEM_T[1,2]=\"B offset\"\n$NT_CORR_ELEM_P[1,0]=\"WP\"\n\
+    $NT_POLE_SIDE_FIX[1]=1\n";
+
+#[test]
+fn the_further_nt_fields_round_trip_as_text() {
+    let mut md = MachineData::default();
+    md.apply_text(&format!("{SIX}{}{MORE_FIELDS}", head_chain().0)).unwrap();
+    let text = md.to_text();
+    for line in MORE_FIELDS.lines() {
+        assert!(text.contains(&format!("{line}\n")), "{line} missing in\n{text}");
+    }
+    let mut again = MachineData::default();
+    again.apply_text(&text).unwrap();
+    assert_eq!(again, md);
+}
+
+#[test]
+fn the_pole_limits_of_a_chain_record_reach_traori() {
+    let pole_limits = |extra: &str| {
+        let cfg = config(&format!("{}{extra}", head_chain().0));
+        let set = cfg.trafos.iter().find(|s| s.chain.is_some()).unwrap();
+        match kinematics::build(set, &cfg, &SelectArgs::default()).unwrap() {
+            kinematics::AnyTrafo::Traori(t) => t.pole_limits(),
+            other => panic!("{other:?}"),
+        }
+    };
+    // $NT_POLE_TOL is the tolerance circle about the pole (TRAFO5_NON_POLE_LIMIT), $NT_POLE_LIMIT
+    // the end angle tolerance through the pole (TRAFO5_POLE_LIMIT); unset: the MD defaults 2°.
+    assert_eq!(pole_limits(MORE_FIELDS), (1.25, 3.5));
+    assert_eq!(pole_limits(""), (2.0, 2.0));
+}
+
+#[test]
+fn the_further_nt_fields_are_checked_at_activation() {
+    let head = head_chain().0;
+    for (extra, needle) in [
+        ("$NT_CORR_ELEM_T[1,0]=\"B axis\"\n", "a correction element must be of type OFFSET"),
+        ("$NT_CORR_ELEM_P[1,3]=\"Tool\"\n", "\"Tool\" is no element of the subchain ending at $NT_P_CHAIN_LAST_ELEM"),
+        ("$NT_CLOSE_CHAIN_T[1]=\"Nowhere\"\n", "$NT_CLOSE_CHAIN_T[1] \"Nowhere\" is no element of the subchain"),
+        ("$NT_IGNORE_TOOL_ORIENT[1]=2\n", "FALSE or TRUE"),
+        ("$NT_POLE_LIMIT[1]=200\n", "an angle 0..180 degrees"),
+        ("$NT_ROT_OFFSET_FROM_FRAME[1]=3\n", "allowed are 0..2"),
+        ("$NT_BASE_TOOL_COMP[1]=8\n", "allowed are 0..7"),
+        (
+            "$NT_NAME[2]=\"S\"\n$NT_TRAFO_TYPE[2]=\"TRAORI_STAT\"\n$NT_T_CHAIN_LAST_ELEM[2]=\"Tool\"\n\
+             $NT_ROT_AX_NAME[2,0]=\"X axis\"\n",
+            "$NT_ROT_AX_NAME[2,0] \"X axis\" is no rotary axis element",
+        ),
+    ] {
+        let mut md = MachineData::default();
+        md.apply_text(SIX).unwrap();
+        let e = md.apply_text(&format!("{head}{extra}")).unwrap_err();
+        assert!(e.message.contains(needle), "{extra}→ {}", e.message);
+    }
+    // A complete TRAORI_STAT record is accepted (stored, not built).
+    let cfg = config(&format!(
+        "{head}$NT_NAME[2]=\"S\"\n$NT_TRAFO_TYPE[2]=\"TRAORI_STAT\"\n$NT_T_CHAIN_LAST_ELEM[2]=\"Tool\"\n\
+         $NT_ROT_AX_NAME[2,0]=\"C axis\"\n"
+    ));
+    assert_eq!(cfg.trafos.iter().filter(|s| s.chain.is_some()).count(), 1);
+}

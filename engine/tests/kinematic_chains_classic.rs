@@ -239,6 +239,27 @@ fn traang_k_gives_the_hand_computed_position() {
 }
 
 #[test]
+fn nt_pole_side_fix_keeps_transmit_k_on_one_side_of_the_pole() {
+    // $NT_POLE_SIDE_FIX[1] = 2 is TRANSMIT_POLE_SIDE_FIX_1 = 2: the radial axis stays negative,
+    // even where the positive side is nearer (previous position X = +40).
+    let (chain, md) = transmit();
+    let (chain, md) = (chain + "$NT_POLE_SIDE_FIX[1]=2\n", md + "$MC_TRANSMIT_POLE_SIDE_FIX_1=2\n");
+    let (ccfg, mcfg) = (config(&chain), config(&md));
+    let cset = ccfg.trafos.iter().find(|s| s.chain.is_some()).unwrap();
+    let build = |set, cfg| ActiveTrafo {
+        trafo: kinematics::build(set, cfg, &SelectArgs::default()).unwrap(),
+        tool: [0.0; 3],
+        number: 1,
+    };
+    let (ct, mt) = (build(cset, &ccfg), build(&mcfg.trafos[0], &mcfg));
+    let prev = axes(&[40.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let bcs = axes(&[30.0, 0.0, 0.0, 0.0, 0.0, 20.0]);
+    let (ic, im) = (ct.inverse(&bcs, &prev).unwrap(), mt.inverse(&bcs, &prev).unwrap());
+    // Radial position of the tool: X + 12 (base tool) < 0 on the negative side.
+    assert!(ic[0] + 12.0 < 0.0 && near(&ic[..6], &im[..6], 1e-9), "{:?} vs {:?}", &ic[..6], &im[..6]);
+}
+
+#[test]
 fn bad_classic_records_are_rejected_at_activation() {
     let (t, _) = transmit();
     let (a, _) = traang();

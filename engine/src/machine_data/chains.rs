@@ -573,7 +573,12 @@ pub(super) fn build(
             "TRANSMIT_K" => classic::rotary(kin, &g, n, &what, name, TrafoKind::Transmit)?,
             "TRACYL_K" => classic::rotary(kin, &g, n, &what, name, TrafoKind::Tracyl)?,
             "TRAANG_K" => classic::inclined(kin, &g, n, &what, name)?,
-            // TRAORI_STAT, TRACON_K and the OA type TRAANG stay stored, not built.
+            // TRAORI_STAT: its subchains and axis names are checked, the static transformation
+            // itself is not modelled. TRACON_K and the OA type TRAANG stay stored, not built.
+            "TRAORI_STAT" => {
+                check_static(kin, &g, n, &what)?;
+                continue;
+            }
             _ => continue,
         };
         sets.push(set);
@@ -821,6 +826,32 @@ fn check_common(kin: &KinData, g: &Graph, n: usize, what: &str) -> Result<(), Ac
             let corr = k == 4;
             if corr && g.find(&name).is_some_and(|e| g.elems[e].ty != ElemType::Offset) {
                 return fail(format!("{at} \"{name}\": a correction element must be of type OFFSET"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// TRAORI_STAT (K12 §4.1.7): the subchains must exist and every name in `$NT_GEO_AX_NAME` /
+/// `$NT_ROT_AX_NAME` must be an axis element on them, so a record that would fail on a real
+/// control fails here too, although the transformation is not built.
+fn check_static(kin: &KinData, g: &Graph, n: usize, what: &str) -> Result<(), ActivationError> {
+    let f = Family::Trafo;
+    let s = |var: &str| kin.str(f, n, var, 0);
+    let tool = walk(g, &format!("{what} tool chain"), &s("$NT_T_CHAIN_FIRST_ELEM"), &s("$NT_T_CHAIN_LAST_ELEM"))?;
+    let part = walk(g, &format!("{what} workpiece chain"), &s("$NT_P_CHAIN_FIRST_ELEM"), &s("$NT_P_CHAIN_LAST_ELEM"))?;
+    for (var, rotary) in [("$NT_GEO_AX_NAME", false), ("$NT_ROT_AX_NAME", true)] {
+        for k in 0..3 {
+            let named = kin.str(f, n, var, k);
+            if named.is_empty() {
+                continue;
+            }
+            let found = tool.axes.iter().chain(&part.axes).find(|a| g.elems[a.elem].name == named);
+            if found.is_none_or(|a| a.rotary != rotary) {
+                return Err(general(format!(
+                    "{what}: {var}[{n},{k}] \"{named}\" is no {} axis element on the tool or the workpiece chain",
+                    if rotary { "rotary" } else { "linear" }
+                )));
             }
         }
     }
