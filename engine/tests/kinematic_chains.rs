@@ -567,3 +567,31 @@ fn the_further_nt_fields_are_checked_at_activation() {
     ));
     assert_eq!(cfg.trafos.iter().filter(|s| s.chain.is_some()).count(), 1);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Reading chain data in programs; the reset transformation by name (MD20142)
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn a_program_reads_chain_data_including_its_own_writes() {
+    // $NK_OFF_DIR[4,2] = 150 (the C offset of HEAD_CHAIN); written 60 in the program, read back
+    // in the next block; the name comparison and a default ($NT_BASE_ORIENT[1,2] = 1) too.
+    let program = "G0 X=$NK_OFF_DIR[4,2]\n$NK_OFF_DIR[4,2]=60\nG0 Y=$NK_OFF_DIR[4,2]\n\
+                   IF $NT_NAME[1]==\"Fork head C-A\"\nG0 Z=$NT_BASE_ORIENT[1,2]\nENDIF\nM30";
+    let s = run(HEAD_CHAIN, program);
+    assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
+    assert!(near(&machine_axes(&s)[..3], &[150.0, 60.0, 1.0], 1e-9), "{:?}", s.machine);
+    let s = run(HEAD_CHAIN, "R1=$NK_OFF_DIR[64,0]\nM30");
+    assert_eq!(s.status, Status::Alarm);
+    assert!(s.alarms[0].message.contains("index out of range 0..63"), "{:?}", s.alarms);
+}
+
+#[test]
+fn trafo_reset_name_selects_the_chain_transformation_at_reset() {
+    let s = run(&format!("{HEAD_CHAIN}$MC_TRAFO_RESET_NAME=\"Fork head C-A\"\n"), "G0 X0\nM30");
+    assert_eq!(s.transformation.map(|t| t.trafo_type), Some(24), "the chain's generic head type after M30");
+    let e = Channel::from_preset("mill5-head-ca", &format!("{HEAD_CHAIN}$MC_TRAFO_RESET_NAME=\"Nope\"\n"))
+        .err()
+        .expect("an unknown reset name is rejected");
+    assert!(e.to_string().contains("$MC_TRAFO_RESET_NAME=\"Nope\" names no transformation"), "{e}");
+}

@@ -195,6 +195,28 @@ impl KinData {
         Ok(())
     }
 
+    /// The value of `name[indices]` as a program reads it (`R1=$NK_OFF_DIR[3,2]`): the stored
+    /// value or the default. `counts` are MD18880 and MD18866, which bound the first index.
+    pub fn read(&self, name: &str, indices: &[i64], counts: (usize, usize)) -> Result<Value, String> {
+        let pos = VARS.iter().position(|v| v.name == name).ok_or_else(|| format!("{name} is no kinematic chain datum"))?;
+        let v = &VARS[pos];
+        let count = match v.family {
+            Family::Element => counts.0,
+            Family::Trafo => counts.1,
+        };
+        let (i, k) = match (indices, v.len) {
+            ([i], 1) => (*i, 0),
+            ([i, k], len) if len > 1 && (0..len as i64).contains(k) => (*i, *k as usize),
+            ([_, k], len) if len > 1 => return Err(format!("{name}: component {k} out of range 0..{}", len - 1)),
+            (_, 1) => return Err(format!("{name} needs one index")),
+            _ => return Err(format!("{name} needs two indices")),
+        };
+        if !(0..count as i64).contains(&i) {
+            return Err(format!("{name}[{i}]: index out of range 0..{}", count as i64 - 1));
+        }
+        Ok(self.values.get(&(v.family, i as usize, pos, k)).cloned().unwrap_or_else(|| default(v, k)))
+    }
+
     /// The stored data as NC data text, record by record.
     pub(super) fn to_text(&self) -> String {
         let mut out = String::new();
