@@ -595,3 +595,47 @@ fn trafo_reset_name_selects_the_chain_transformation_at_reset() {
         .expect("an unknown reset name is rejected");
     assert!(e.to_string().contains("$MC_TRAFO_RESET_NAME=\"Nope\" names no transformation"), "{e}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Export and import of the chain data as a part program
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn the_chain_program_round_trips_and_runs_as_a_part_program() {
+    let source = Channel::from_preset("mill5-head-ca", HEAD_CHAIN).unwrap();
+    let program = source.export_kinematic_chains();
+    assert!(program.starts_with("; Kinematic chain elements"), "{program}");
+    assert!(program.contains("DELOBJ(\"TRAFO_DATA\")\nDELOBJ(\"KIN_CHAIN_ELEM\")\n$NK_NAME[0]=\"ROOT\"\n"));
+    assert!(program.ends_with("$NT_ROT_AX_NAME[1,1]=\"A axis\"\nNEWCONF\n"), "{program}");
+    // Imported into a session with other chain data: that data is gone, the head is there.
+    let stale = "$NK_NAME[0]=\"ROOT\"\n$NK_TYPE[0]=\"OFFSET\"\n$NK_PARALLEL[0]=\"Stale\"\n\
+                 $NK_NAME[9]=\"Stale\"\n$NK_TYPE[9]=\"OFFSET\"\n";
+    let mut target = Channel::from_preset("mill5-head-ca", stale).unwrap();
+    target.import_kinematic_chains(&program).unwrap();
+    assert_eq!(target.machine_data().kin(), source.machine_data().kin());
+    assert!(target.config().trafos.iter().any(|s| s.chain.as_ref().is_some_and(|c| c.name == "Fork head C-A")));
+    // The same text as a part program, then TRAFOON: the control accepts it unchanged.
+    let s = run("", &format!("{program}TRAFOON(\"Fork head C-A\")\nM0\nM30"));
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    assert_eq!(s.transformation.map(|t| t.trafo_type), Some(24));
+}
+
+#[test]
+fn a_bad_chain_program_names_its_line_and_changes_nothing() {
+    let mut ch = Channel::from_preset("mill5-head-ca", HEAD_CHAIN).unwrap();
+    let before = ch.machine_data().clone();
+    for (program, line, needle) in [
+        ("DELOBJ(\"TRAFO_DATA\")\n; comment\nG0 X10\n", Some(3), "holds only $NK_/$NT_ assignments"),
+        ("N10 DELOBJ(\"KIN_CHAIN_ELEM\")\nN20 $NK_FOO[0]=1\n", Some(2), "unknown name $NK_FOO"),
+        ("$MC_TRAFO_TYPE_1=0\n", Some(1), "holds only"),
+        // Deleting the elements but not the records leaves the records without their chain.
+        ("DELOBJ(\"KIN_CHAIN_ELEM\")\nNEWCONF\n", None, "is no element of the kinematic chain"),
+    ] {
+        let e = ch.import_kinematic_chains(program).unwrap_err().to_string();
+        assert!(e.contains(needle), "{program}→ {e}");
+        if let Some(line) = line {
+            assert!(e.contains(&format!("line {line}")), "{program}→ {e}");
+        }
+        assert_eq!(ch.machine_data(), &before);
+    }
+}

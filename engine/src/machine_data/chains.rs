@@ -31,6 +31,9 @@
 //! rotated against the world frame at the kinematic zero).
 
 mod classic;
+mod program;
+
+pub use program::export_program;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -198,7 +201,8 @@ impl KinData {
     /// The value of `name[indices]` as a program reads it (`R1=$NK_OFF_DIR[3,2]`): the stored
     /// value or the default. `counts` are MD18880 and MD18866, which bound the first index.
     pub fn read(&self, name: &str, indices: &[i64], counts: (usize, usize)) -> Result<Value, String> {
-        let pos = VARS.iter().position(|v| v.name == name).ok_or_else(|| format!("{name} is no kinematic chain datum"))?;
+        let pos =
+            VARS.iter().position(|v| v.name == name).ok_or_else(|| format!("{name} is no kinematic chain datum"))?;
         let v = &VARS[pos];
         let count = match v.family {
             Family::Element => counts.0,
