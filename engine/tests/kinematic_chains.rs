@@ -590,9 +590,9 @@ fn a_program_reads_chain_data_including_its_own_writes() {
 fn trafo_reset_name_selects_the_chain_transformation_at_reset() {
     let s = run(&format!("{HEAD_CHAIN}$MC_TRAFO_RESET_NAME=\"Fork head C-A\"\n"), "G0 X0\nM30");
     assert_eq!(s.transformation.map(|t| t.trafo_type), Some(24), "the chain's generic head type after M30");
-    let e = Channel::from_preset("mill5-head-ca", &format!("{HEAD_CHAIN}$MC_TRAFO_RESET_NAME=\"Nope\"\n"))
-        .err()
-        .expect("an unknown reset name is rejected");
+    let Err(e) = Channel::from_preset("mill5-head-ca", &format!("{HEAD_CHAIN}$MC_TRAFO_RESET_NAME=\"Nope\"\n")) else {
+        panic!("an unknown reset name is rejected")
+    };
     assert!(e.to_string().contains("$MC_TRAFO_RESET_NAME=\"Nope\" names no transformation"), "{e}");
 }
 
