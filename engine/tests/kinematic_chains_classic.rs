@@ -266,7 +266,12 @@ fn bad_classic_records_are_rejected_at_activation() {
     for (text, needle) in [
         (t.replace("$NT_ROT_AX_NAME[1,1]=\"C axis\"", ""), "$NT_ROT_AX_NAME[1,1] must name the rotary axis"),
         (t.replace("$NT_GEO_AX_NAME[1,1]=\"Y axis\"", ""), "needs $NT_GEO_AX_NAME[1,1]"),
-        (t.replace("$NT_GEO_AX_NAME[1,2]=\"Z axis\"", ""), "\"Z axis\" lies on a subchain but is no axis"),
+        (
+            a.replace("$NK_NEXT[3]=\"Wheel\"", "$NK_NEXT[3]=\"Dresser\"")
+                + "$NK_NAME[6]=\"Dresser\"\n$NK_TYPE[6]=\"AXIS_ROT\"\n$NK_OFF_DIR[6,2]=1\n$NK_AXIS[6]=\"C1\"\n\
+                   $NK_NEXT[6]=\"Wheel\"\n",
+            "rotary axis element \"Dresser\" lies on a subchain but is no axis",
+        ),
         (
             t.replace("$NT_GEO_AX_NAME[1,0]=\"X axis\"", "$NT_GEO_AX_NAME[1,0]=\"Z axis\"")
                 .replace("$NT_GEO_AX_NAME[1,2]=\"Z axis\"", "$NT_GEO_AX_NAME[1,2]=\"X axis\""),

@@ -128,13 +128,15 @@ impl<'a> Record<'a> {
         }
     }
 
-    /// Every axis element on the subchains must be one the record names: an unnamed one would
-    /// move the tool without the transformation knowing.
+    /// Every rotary axis element on the subchains must be one the record names: an unnamed one
+    /// would turn the tool or the workpiece without the transformation knowing. Unnamed linear
+    /// axes stay outside the transformation (as a machine's Y axis beside TRANSMIT 256), taken
+    /// at position 0 for the base tool.
     fn all_named(&self, named: &[Option<Eff>]) -> Result<(), ActivationError> {
-        for a in &self.axes {
+        for a in self.axes.iter().filter(|a| a.at.rotary) {
             if !named.iter().flatten().any(|b| b.at.elem == a.at.elem) {
                 return self.fail(format!(
-                    "axis element \"{}\" lies on a subchain but is no axis of the transformation ($NT_GEO_AX_NAME / $NT_ROT_AX_NAME)",
+                    "rotary axis element \"{}\" lies on a subchain but is no axis of the transformation ($NT_ROT_AX_NAME)",
                     self.name(a)
                 ));
             }
