@@ -639,3 +639,12 @@ fn a_bad_chain_program_names_its_line_and_changes_nothing() {
         assert_eq!(ch.machine_data(), &before);
     }
 }
+
+#[test]
+fn delobj_as_a_function_deletes_and_returns_zero() {
+    // The manual's form R2 = DELOBJ("TRAFO_DATA"): R2 becomes 0 (X = R2 + 7 = 7), the records
+    // are gone after NEWCONF.
+    let s = run(HEAD_CHAIN, "R2=5\nR2 = DELOBJ(\"TRAFO_DATA\")\nNEWCONF\nG0 X=R2+7\nTRAFOON(\"Fork head C-A\")\nM30");
+    assert_eq!(s.alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14401], "{:?}", s.alarms);
+    assert!((machine_axes(&s)[0] - 7.0).abs() < 1e-9, "{:?}", s.machine);
+}

@@ -457,20 +457,7 @@ pub(super) fn collect(
                 w.ori.reset = Some(values);
             }
             Word::Keyword { name, args } if name == "DELOBJ" => {
-                // DELOBJ("KIN_CHAIN_ELEM") / DELOBJ("TRAFO_DATA"): delete every kinematic chain
-                // element / transformation record (active with NEWCONF or reset). Ranges
-                // (start and end index) are not modelled.
-                let kind = match args.as_slice() {
-                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
-                    _ => return Err(Alarm::syntax(line, "DELOBJ takes one object type (ranges are not modelled)")),
-                };
-                if !matches!(kind.as_str(), "KIN_CHAIN_ELEM" | "TRAFO_DATA") {
-                    return Err(Alarm::value_out_of_range(
-                        line,
-                        &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM or TRAFO_DATA"),
-                    ));
-                }
-                w.data_writes.push(format!("{DELOBJ}{kind}"));
+                w.data_writes.push(delobj(args, vars, sys, line)?);
             }
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
@@ -481,6 +468,15 @@ pub(super) fn collect(
             }
             Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
+            // `R2 = DELOBJ("TRAFO_DATA")`: the function form returns 0 (done).
+            Word::Address { name, indices, value } if matches!(&value.expr, Expr::Call(f, _) if f == "DELOBJ") => {
+                let Expr::Call(_, args) = &value.expr else { unreachable!("matched above") };
+                let write = delobj(args, vars, sys, line)?;
+                match assign(name, indices, &Expr::Number(0.0), cfg, vars, sys, line)? {
+                    Assigned::Variable => w.data_writes.push(write),
+                    _ => return Err(Alarm::type_error(line, &format!("{name} cannot take the result of DELOBJ"))),
+                }
+            }
             Word::Address { name, indices, value } => {
                 match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,
@@ -680,6 +676,20 @@ fn stored_frame_lines(
         }
     }
     Ok(lines.join("\n"))
+}
+
+/// `DELOBJ("KIN_CHAIN_ELEM")` / `DELOBJ("TRAFO_DATA")`: deletes every kinematic chain element
+/// / transformation record (active with NEWCONF or reset), as a data write. Ranges (start and
+/// end index) are not modelled.
+fn delobj(args: &[Expr], vars: &Variables, sys: &SysView, line: u32) -> Result<String, Alarm> {
+    let kind = match args {
+        [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
+        _ => return Err(Alarm::syntax(line, "DELOBJ takes one object type (ranges are not modelled)")),
+    };
+    if !matches!(kind.as_str(), "KIN_CHAIN_ELEM" | "TRAFO_DATA") {
+        return Err(Alarm::value_out_of_range(line, &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM or TRAFO_DATA")));
+    }
+    Ok(format!("{DELOBJ}{kind}"))
 }
 
 /// A write to tool data (`$TC_DP..`), settable frames (`$P_UIFR`), kinematic chain data
