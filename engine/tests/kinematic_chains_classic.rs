@@ -373,8 +373,49 @@ fn trafoon_and_the_classic_command_select_tracyl_k_like_the_machine_data_tracyl(
 }
 
 #[test]
+fn tracyl_k_cannot_be_the_reset_transformation() {
+    // TRACYL needs its working diameter from the program, so a reset cannot select it.
+    let Err(e) = Channel::from_preset("tracyl-xyzc", &format!("{TRACYL_CHAIN}$MC_TRAFO_RESET_NAME=\"Surface\"\n"))
+    else {
+        panic!("TRACYL_K as reset transformation is rejected")
+    };
+    assert!(e.to_string().contains("$MC_TRAFO_RESET_NAME=\"Surface\": TRACYL needs a working diameter"), "{e}");
+}
+
+#[test]
 fn tracyl_k_needs_the_diameter_at_trafoon() {
     let s = run(TRACYL_CHAIN, "TRAFOON(\"Surface\")");
     assert_eq!(s.status, Status::Alarm);
     assert!(s.alarms.iter().any(|a| a.message.contains("TRACYL needs the working diameter")), "{:?}", s.alarms);
+}
+
+#[test]
+fn transmit_selects_transmit_k_through_its_trafo_index() {
+    // The TRANSMIT example machine (XM radial, CM, ZM) as a chain, linked to TRANSMIT(1) by
+    // $NT_TRAFO_INDEX = 12 (tens digit 1); the same face contour as with the machine data:
+    // X20 Y20 is the radial position √800 at C = 45°.
+    let chain = "$NK_NAME[0]=\"ROOT\"\n$NK_TYPE[0]=\"OFFSET\"\n$NK_NEXT[0]=\"X\"\n$NK_PARALLEL[0]=\"C\"\n\
+                 $NK_NAME[1]=\"X\"\n$NK_TYPE[1]=\"AXIS_LIN\"\n$NK_OFF_DIR[1,0]=1\n$NK_AXIS[1]=\"XM\"\n$NK_NEXT[1]=\"Z\"\n\
+                 $NK_NAME[2]=\"Z\"\n$NK_TYPE[2]=\"AXIS_LIN\"\n$NK_OFF_DIR[2,2]=1\n$NK_AXIS[2]=\"ZM\"\n\
+                 $NK_NAME[3]=\"C\"\n$NK_TYPE[3]=\"AXIS_ROT\"\n$NK_OFF_DIR[3,2]=-1\n$NK_AXIS[3]=\"CM\"\n\
+                 $NT_NAME[1]=\"Face\"\n$NT_TRAFO_TYPE[1]=\"TRANSMIT_K\"\n$NT_T_CHAIN_LAST_ELEM[1]=\"Z\"\n\
+                 $NT_P_CHAIN_LAST_ELEM[1]=\"C\"\n$NT_ROT_AX_NAME[1,1]=\"C\"\n$NT_GEO_AX_NAME[1,0]=\"X\"\n\
+                 $NT_GEO_AX_NAME[1,2]=\"Z\"\n";
+    let program = "G0 X40 Z10\nTRANSMIT\nG1 F1000 X20 Y20 Z5\nM0\nM30";
+    let run = |extra: &str| {
+        let mut ch = Channel::from_preset("transmit-example", extra).unwrap();
+        ch.run_program(program).unwrap();
+        while ch.is_busy() {
+            ch.step();
+        }
+        ch.snapshot()
+    };
+    let (md, indexed) = (run(chain), run(&format!("{chain}$NT_TRAFO_INDEX[1]=12\n")));
+    assert_eq!(indexed.transformation.as_ref().map(|t| t.index), Some(101), "the chain's data set");
+    assert_eq!(md.transformation.as_ref().map(|t| t.index), Some(1), "the machine data's");
+    let expected = [800f64.sqrt(), 45.0, 5.0];
+    for s in [&md, &indexed] {
+        assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+        assert!(near(&machine(s)[..3], &expected, 1e-6), "{:?}", s.machine);
+    }
 }

@@ -124,12 +124,11 @@ impl ResetTrafo {
                 return fail("TRAFO_RESET_VALUE", format!("$MC_TRAFO_RESET_VALUE={n}: data set {n} is not configured"));
             };
             if set.kind == TrafoKind::Tracyl {
-                return fail(
-                    "TRAFO_RESET_VALUE",
-                    format!(
-                        "$MC_TRAFO_RESET_VALUE={n}: TRACYL needs a working diameter and cannot be selected by reset"
-                    ),
-                );
+                let (datum, what) = match reset_name.is_empty() {
+                    true => ("TRAFO_RESET_VALUE", format!("$MC_TRAFO_RESET_VALUE={n}")),
+                    false => ("TRAFO_RESET_NAME", format!("$MC_TRAFO_RESET_NAME=\"{reset_name}\"")),
+                };
+                return fail(datum, format!("{what}: TRACYL needs a working diameter and cannot be selected by reset"));
             }
         }
         // Alarm 14404: the persistent transformation needs reset mode bit 0 = 1, bit 7 = 0 and
