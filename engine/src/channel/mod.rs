@@ -348,6 +348,30 @@ impl Channel {
         }
         let mut data = self.data.clone();
         let cfg = data.apply_text(text)?;
+        self.replace_data(data, cfg);
+        Ok(())
+    }
+
+    /// The session's kinematic chain data ($NK_/$NT_) as a part program (DELOBJ preamble,
+    /// assignments, NEWCONF) that [`Channel::import_kinematic_chains`] and a control accept.
+    pub fn export_kinematic_chains(&self) -> String {
+        crate::machine_data::chains::export_program(self.data.kin())
+    }
+
+    /// Runs such a program on the session's data, all-or-nothing, and activates the result as
+    /// [`Channel::apply_machine_data`] does; only in reset state.
+    pub fn import_kinematic_chains(&mut self, program: &str) -> Result<(), CommandError> {
+        if self.is_active() || self.status == Status::Stopped {
+            return Err(CommandError::Busy("kinematic chain data can only change in reset state"));
+        }
+        let mut data = self.data.clone();
+        let cfg = data.import_chain_program(program)?;
+        self.replace_data(data, cfg);
+        Ok(())
+    }
+
+    /// Becomes a channel on `data`/`cfg`, keeping axis positions where the axes still exist.
+    fn replace_data(&mut self, data: MachineData, cfg: MachineConfig) {
         let old_pos = *self.planner.position();
         let old_names: Vec<String> = self.cfg.machine_axes.iter().map(|a| a.name.clone()).collect();
         let mut next = Channel::with_config(data, cfg);
@@ -363,7 +387,6 @@ impl Channel {
         next.mode = self.mode;
         next.tick = self.tick;
         *self = next;
-        Ok(())
     }
 
     pub fn mode(&self) -> Mode {

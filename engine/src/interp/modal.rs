@@ -516,6 +516,15 @@ pub(super) fn collect(
             }
             Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
+            // `R2 = DELOBJ("TRAFO_DATA")`: the function form returns 0 (done).
+            Word::Address { name, indices, value } if matches!(&value.expr, Expr::Call(f, _) if f == "DELOBJ") => {
+                let Expr::Call(_, args) = &value.expr else { unreachable!("matched above") };
+                let write = delete_objects(args, &Ctx { vars, sys }, line)?;
+                match assign(name, indices, &Expr::Number(0.0), cfg, vars, sys, line)? {
+                    Assigned::Variable => w.data_writes.push(write),
+                    _ => return Err(Alarm::type_error(line, &format!("{name} cannot take the result of DELOBJ"))),
+                }
+            }
             Word::Address { name, indices, value } => {
                 match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,

@@ -157,6 +157,7 @@ impl Scope for Ctx<'_> {
                 )
             }
             _ if name.starts_with("$TC_DP") => tool_param(sys.cfg, name, indices, line)?,
+            _ if crate::machine_data::chains::is_chain_name(name) => chain_datum(sys.cfg, name, indices, line)?,
             _ if name.starts_with("$TC_CARR") => carrier_param(sys.cfg, name, indices, line)?,
             "$P_TCANG" => {
                 let n = match indices {
@@ -216,6 +217,23 @@ impl Scope for Ctx<'_> {
 /// The stored frames of the data management a program reads by number.
 fn stored_frames(name: &str) -> bool {
     matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR" | "$P_UBFR")
+}
+
+/// `$NK_…[i]` / `$NT_…[n, k]`: a kinematic chain datum as stored (written values are visible
+/// at once, like tool data; the transformations built from them change with NEWCONF).
+fn chain_datum(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    let indices =
+        indices.iter().map(|v| v.as_i64().map_err(|e| Alarm::type_error(line, &e.0))).collect::<Result<Vec<_>, _>>()?;
+    let value = cfg.kin.read(name, &indices, cfg.kin_counts).map_err(|e| match e {
+        _ if e.contains("no kinematic chain datum") => Alarm::unknown_name(line, name),
+        _ => Alarm::index_error(line, name, &e),
+    })?;
+    Ok(match value {
+        crate::machine_data::Value::Str(s) => Value::Str(s),
+        crate::machine_data::Value::Real(r) => Value::Real(r),
+        crate::machine_data::Value::Int(n) => Value::Int(n),
+        crate::machine_data::Value::Bool(b) => Value::Bool(b),
+    })
 }
 
 /// `$TC_CARRn[m]`: one toolholder parameter as stored (0 / "" for a holder without data).

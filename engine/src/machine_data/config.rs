@@ -82,6 +82,10 @@ pub struct MachineConfig {
     pub trafos: Vec<TrafoDataSet>,
     /// How orientations are programmed and interpolated (MD21090..21130).
     pub ori: OriSettings,
+    /// The kinematic chain data `$NK_`/`$NT_` as stored (programs read them; the built
+    /// transformations are in `trafos`), with MD18880 and MD18866 bounding their indices.
+    pub kin: super::chains::KinData,
+    pub kin_counts: (usize, usize),
     /// Which transformation is active after reset and program end.
     pub reset_trafo: ResetTrafo,
     /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS: blocks without motion in the compensation plane the
@@ -118,18 +122,32 @@ impl ResetTrafo {
         let mask = md.num("$MC_RESET_MODE_MASK", 0, 0) as u32;
         let value = md.num("$MC_TRAFO_RESET_VALUE", 0, 0) as usize;
         let persistent = md.num("$MC_TRAFO_MODE_MASK", 0, 0) as u32 & 1 != 0;
-        let data_set = (value != 0).then_some(value);
+        let reset_name = md.string("$MC_TRAFO_RESET_NAME", 0);
+        let data_set = if reset_name.is_empty() {
+            (value != 0).then_some(value)
+        } else {
+            // MD20142 names a transformation defined by kinematic chains; it wins over MD20140.
+            let named = trafos.iter().find(|s| s.chain.as_ref().is_some_and(|c| c.name == reset_name));
+            let Some(set) = named else {
+                return fail(
+                    "TRAFO_RESET_NAME",
+                    format!(
+                        "$MC_TRAFO_RESET_NAME=\"{reset_name}\" names no transformation defined by kinematic chains of a modelled type"
+                    ),
+                );
+            };
+            Some(set.number)
+        };
         if let Some(n) = data_set {
             let Some(set) = trafos.iter().find(|s| s.number == n) else {
                 return fail("TRAFO_RESET_VALUE", format!("$MC_TRAFO_RESET_VALUE={n}: data set {n} is not configured"));
             };
             if set.kind == TrafoKind::Tracyl {
-                return fail(
-                    "TRAFO_RESET_VALUE",
-                    format!(
-                        "$MC_TRAFO_RESET_VALUE={n}: TRACYL needs a working diameter and cannot be selected by reset"
-                    ),
-                );
+                let (datum, what) = match reset_name.is_empty() {
+                    true => ("TRAFO_RESET_VALUE", format!("$MC_TRAFO_RESET_VALUE={n}")),
+                    false => ("TRAFO_RESET_NAME", format!("$MC_TRAFO_RESET_NAME=\"{reset_name}\"")),
+                };
+                return fail(datum, format!("{what}: TRACYL needs a working diameter and cannot be selected by reset"));
             }
         }
         // Alarm 14404: the persistent transformation needs reset mode bit 0 = 1, bit 7 = 0 and
@@ -286,6 +304,11 @@ impl MachineConfig {
             reset_trafo: ResetTrafo::build(md, &trafos)?,
             trafos,
             ori: OriSettings::read(md),
+            kin: Default::default(),
+            kin_counts: (
+                md.num("$MN_MM_MAXNUM_KIN_CHAIN_ELEM", 0, 0) as usize,
+                md.num("$MN_MM_NUM_KIN_TRAFOS", 0, 0) as usize,
+            ),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
         };
@@ -296,6 +319,9 @@ impl MachineConfig {
     /// Takes over tool data, toolholders and settable frames from `md`, which act at once (unlike machine
     /// data, which waits for NEWCONF or a reset).
     pub fn refresh_data(&mut self, md: &MachineData) -> Result<(), ActivationError> {
+        if self.kin != *md.kin() {
+            self.kin = md.kin().clone();
+        }
         let n = self.channel_axes.len();
         let user = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
         let base = md.num("$MC_MM_NUM_BASE_FRAMES", 0, 0) as usize;

@@ -219,6 +219,8 @@ pub static DEFS: &[Def] = &[
     def("RESET_MODE_MASK", 20110, C, Kind::Int, 1, Default::Int(1), 0.0, 65535.0),
     def("GEOAX_CHANGE_RESET", 20118, C, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("TRAFO_RESET_VALUE", 20140, C, Kind::Int, 1, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
+    // With kinematic chains the reset transformation is named ($NT_NAME) instead (K12 §4.2.2.2).
+    def("TRAFO_RESET_NAME", 20142, C, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
     def("TRAFO_MODE_MASK", 20144, C, Kind::Int, 1, Default::Int(0), 0.0, 255.0),
     def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
     // Orientation programming (TRAORI), REFERENCE §6.2.

@@ -156,6 +156,7 @@ mod tests {
         assert_eq!(need(&Method::GET, &s("/state")), Some(Need::Read));
         assert_eq!(need(&Method::GET, &s("/stream")), Some(Need::Read));
         assert_eq!(need(&Method::GET, &s("/programs/{name}")), Some(Need::Read));
+        assert_eq!(need(&Method::GET, &s("/kinematic-chains")), Some(Need::Read));
         assert_eq!(need(&Method::POST, &s("/check")), Some(Need::Read));
         assert_eq!(need(&Method::POST, &s("/control/take")), Some(Need::Join));
         assert_eq!(need(&Method::DELETE, &s("")), Some(Need::Owner));
@@ -165,6 +166,7 @@ mod tests {
             (Method::POST, "/jog/stop"),
             (Method::PUT, "/mode"),
             (Method::PUT, "/machine-data"),
+            (Method::PUT, "/kinematic-chains"),
             (Method::PUT, "/programs/{name}"),
             (Method::DELETE, "/programs/{name}"),
         ] {

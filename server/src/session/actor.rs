@@ -372,6 +372,7 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
         }
         Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
+        Action::KinematicChains(text) => channel.import_kinematic_chains(&text),
     }
 }
 

@@ -118,6 +118,8 @@ pub enum Action {
     Reference(Option<String>),
     /// Apply NC data text in reset state.
     MachineData(String),
+    /// Run a kinematic chain program ($NK_/$NT_ assignments) on the data in reset state.
+    KinematicChains(String),
 }
 
 /// A server-side limit that ended a command early.
