@@ -8,6 +8,7 @@ pub mod jog;
 pub mod machine_data;
 pub mod machine_data_read;
 pub mod machines;
+pub mod preview;
 pub mod programs;
 pub mod roles;
 pub mod sessions;
@@ -73,6 +74,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))
         .routes(routes!(programs::list_programs))
         .routes(routes!(programs::check))
+        .routes(routes!(preview::preview))
         .routes(routes!(roles::get_control))
         .routes(routes!(roles::take_control))
         .routes(routes!(roles::release_control))

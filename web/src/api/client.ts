@@ -9,6 +9,8 @@ import type {
   MachineDetail,
   MachineSummary,
   OpMode,
+  PreviewRequest,
+  PreviewResponse,
   Overrides,
   Pace,
   ProgramOptions,
@@ -122,6 +124,7 @@ export const api = {
   takeControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/take`, {}),
   releaseControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/release`, {}),
 
+  preview: (id: string, body: PreviewRequest) => request<PreviewResponse>("POST", `${s(id)}/preview`, body),
   check: (id: string, program: string) =>
     request<{ diagnostics: Diagnostic[] }>("POST", `${s(id)}/check`, { program }),
 };
