@@ -301,3 +301,20 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
 }
 
 export { add as addVec, scale as scaleVec };
+
+/**
+ * Names of the rotary axes of a machine, both as machine axes (MCS) and as channel axes
+ * ($MC_AXCONF_CHANAX_NAME_TAB, for the WCS/BCS display), for showing degrees instead of mm.
+ */
+export function rotaryAxisNames(text: string, machineAxes: string[]): Set<string> {
+  const md = new Md(new NcData(text), machineAxes);
+  const out = new Set(machineAxes.filter((a) => md.axisFlag(a, "$MA_IS_ROT_AX")));
+  for (let k = 1; k <= 20; k++) {
+    const machine = md.machineOfChannel(k);
+    if (!machine || !out.has(machine)) continue;
+    const defaults = ["X", "Y", "Z", "A", "B", "C", "U", "V"];
+    const name = md.data.raw("$MC_AXCONF_CHANAX_NAME_TAB", String(k - 1))?.replace(/"/g, "") ?? defaults[k - 1];
+    if (name) out.add(name);
+  }
+  return out;
+}
