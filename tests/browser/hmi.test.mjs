@@ -460,6 +460,31 @@ async function main() {
       await page.waitForFunction(() => Math.abs(Number(document.querySelector('#positions [data-axis="C"]')?.textContent) - 45) < 1e-3);
       const error = await page.evaluate(() => window.__nctwin3d.tipError());
       if (!(typeof error === "number" && error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's`);
+    });
+
+    await step("orientation JOG: B2 key shown under TRAORI turns the tool, the tip stands, REPOS pending", async () => {
+      await page.click('[data-set-mode="JOG"]');
+      await page.selectOption("#jog-increment", "");
+      const key = page.locator('#jog-ori button[data-jog-axis="B2"][data-dir="1"]');
+      await key.waitFor();
+      const read = () =>
+        page.evaluate(() => Object.fromEntries(["X", "Y", "Z", "A"].map((a) => [a, Number(document.querySelector(`#positions [data-axis="${a}"]`)?.textContent)])));
+      const before = await read();
+      sentFrames.length = 0;
+      await key.hover();
+      await page.mouse.down();
+      await page.waitForTimeout(800);
+      await page.mouse.up();
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() !== "running");
+      const after = await read();
+      if (!(Math.abs(after.A - before.A) > 1)) throw new Error(`A did not turn: ${before.A} → ${after.A}`);
+      for (const a of ["X", "Y", "Z"]) {
+        if (Math.abs(after[a] - before[a]) > 1e-3) throw new Error(`tool tip ${a} moved: ${before[a]} → ${after[a]}`);
+      }
+      if (!sentFrames.some((f) => f.type === "jog" && f.axis === "B2")) throw new Error("no B2 jog message on the stream");
+      await page.waitForSelector("#jog-repos:not([hidden])");
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's after orientation JOG`);
       await page.click("#btn-reset");
     });
 
