@@ -57,7 +57,11 @@ class ToolSolid {
 
 /** The programmed path: a fixed polyline of WCS points placed at the work offset. */
 class ProgrammedPath {
-  readonly line = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: PROGRAMMED_COLOR }));
+  // Drawn over the solids: a path inside the workpiece or under the tool stays visible.
+  readonly line = new THREE.Line(
+    new THREE.BufferGeometry(),
+    new THREE.LineBasicMaterial({ color: PROGRAMMED_COLOR, depthTest: false, transparent: true, opacity: 0.9 }),
+  );
   count = 0;
 
   set(points: [number, number, number][], axes: string[], offset: THREE.Vector3): void {
@@ -205,7 +209,7 @@ export class MachineView {
     box.expandByPoint(world(this.holder.clone().addScaledVector(this.axis, 300)));
     box.expandByPoint(this.model.part.localToWorld(new THREE.Vector3()));
     box.union(this.programmed.bounds());
-    box.expandByScalar(150 + 0.2 * this.model.size);
+    box.expandByScalar(100 + 0.1 * this.model.size);
     return box;
   }
 
@@ -238,6 +242,8 @@ export class MachineView {
     this.model = buildMachine(s);
     const letters = s.kind === "lathe" ? ["X", "Z", ...(s.linear.some((a) => a.letter === "Y") ? ["Y"] : [])] : ["X", "Y", "Z"];
     this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
+    this.programmed.line.renderOrder = 2;
+    this.toolpath.line.renderOrder = 3;
     this.model.part.add(this.triad, this.toolpath.line, this.programmed.line);
     this.model.frame.add(this.tool.mesh);
     this.content.add(this.model.root);
