@@ -347,6 +347,20 @@ async function main() {
       await page.selectOption("#jog-increment", "");
     });
 
+    await step("JOG keyboard: holding the right arrow moves X+ over the stream, releasing stops it", async () => {
+      await page.click("#coords-title"); // focus off any field
+      sentFrames.length = 0;
+      const before = await wcsX(page);
+      await page.keyboard.down("ArrowRight");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "running");
+      await page.waitForTimeout(500);
+      await page.keyboard.up("ArrowRight");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      if (!((await wcsX(page)) > before)) throw new Error("X did not move");
+      const types = sentFrames.map((f) => f.type);
+      if (types[0] !== "jog" || sentFrames[0].axis !== "X" || types.at(-1) !== "jog_stop") throw new Error(`messages: ${types.join(",")}`);
+    });
+
     await step("JOG: MCS keys name the machine axes", async () => {
       await page.click('#jog-coords [data-jog-coords="MCS"]');
       await page.waitForSelector('#jog-axes button[data-jog-axis="X"]');

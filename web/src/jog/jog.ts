@@ -64,6 +64,8 @@ export class JogPanel {
       host.addEventListener("contextmenu", (ev) => ev.preventDefault());
     }
     window.addEventListener("blur", () => this.release());
+    window.addEventListener("keydown", (ev) => this.onKey(ev, true));
+    window.addEventListener("keyup", (ev) => this.onKey(ev, false));
     document.addEventListener("visibilitychange", () => document.hidden && this.release());
     session.on("reply", (r) => this.onReply(r));
     session.on("connection", (c) => c !== "online" && this.release());
@@ -129,12 +131,41 @@ export class JogPanel {
     const button = (ev.target as HTMLElement).closest<HTMLButtonElement>("button[data-jog-axis]");
     if (!button || button.disabled || ev.button !== 0 || !this.session.id) return;
     ev.preventDefault();
+    // Keep the pointer's events on this key even when it slides off (release stays reliable).
+    button.setPointerCapture?.(ev.pointerId);
+    this.pressKey(button);
+  }
+
+  /**
+   * Keyboard: in JOG mode, while the Machine area shows and no text field has the focus, the arrow keys
+   * are X−/X+ (left/right) and Y−/Y+ (down/up), Page Down/Up Z−/Z+; held like the JOG keys.
+   */
+  onKey(ev: KeyboardEvent, down: boolean): void {
+    const target = ev.target as HTMLElement | null;
+    if (target?.closest("input, textarea, select, [contenteditable]") || byId("area-machine").hidden) return;
+    if (this.session.latest?.mode !== "JOG") return;
+    const map: Record<string, [string, string]> = {
+      ArrowLeft: ["X", "-1"],
+      ArrowRight: ["X", "1"],
+      ArrowDown: ["Y", "-1"],
+      ArrowUp: ["Y", "1"],
+      PageDown: ["Z", "-1"],
+      PageUp: ["Z", "1"],
+    };
+    const hit = map[ev.key];
+    if (!hit) return;
+    const button = this.box.querySelector<HTMLButtonElement>(`button[data-jog-axis="${hit[0]}"][data-dir="${hit[1]}"]`);
+    if (!button) return;
+    ev.preventDefault();
+    if (!down) return this.release();
+    if (!ev.repeat) this.pressKey(button);
+  }
+
+  private pressKey(button: HTMLButtonElement): void {
     this.release();
     const jog = this.message(button);
     if (!jog) return;
     const continuous = jog.inc === undefined && jog.increment === undefined;
-    // Keep the pointer's events on this key even when it slides off (release stays reliable).
-    button.setPointerCapture?.(ev.pointerId);
     const onStream = this.session.send({ type: "jog", ...jog });
     if (!onStream) this.call = this.session.act((id) => api.jog(id, jog));
     if (!continuous) return;
