@@ -25,8 +25,14 @@ pub const MAX_POINTS: usize = 20_000;
 /// Default and largest simulated program time in seconds.
 pub const DEFAULT_TIME_S: f64 = 600.0;
 pub const MAX_TIME_S: f64 = 3600.0;
-/// Wall time a preview may take on its worker before it is cut short (`truncated`).
+/// Wall time a preview may take on its worker before it is cut short (outcome `limit`).
 const WALL_LIMIT: Duration = Duration::from_secs(10);
+/// Previews running at once on the whole server (each keeps a blocking worker busy); more
+/// wait up to `QUEUE_WAIT`, then get `429`. Any role may ask for a preview, so this bounds
+/// what observers can cost.
+const CONCURRENT: usize = 2;
+const QUEUE_WAIT: Duration = Duration::from_secs(5);
+static RUNNING: tokio::sync::Semaphore = tokio::sync::Semaphore::const_new(CONCURRENT);
 /// Sampling interval of the tool tip in simulated seconds (at least every IPO cycle).
 const SAMPLE_S: f64 = 0.008;
 /// A sample closer than this to the straight line between its neighbours is dropped (mm).
@@ -108,6 +114,7 @@ impl PreviewRequest {
         (status = 400, description = "Neither or both of `program` and `name`, bad limits, a syntax error (with `line`), or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session, or no stored program of that name", body = ErrorBody),
         (status = 409, description = "The copy cannot start the program (an alarm that a reset does not clear)", body = ErrorBody),
+        (status = 429, description = "As many previews run on the server as allowed", body = ErrorBody),
     )
 )]
 pub async fn preview(
@@ -117,6 +124,11 @@ pub async fn preview(
 ) -> Result<Json<PreviewResponse>, ApiError> {
     let (max_points, max_time) = body.limits()?;
     let session = find_session(&state, &id)?;
+    let busy = || ApiError::TooManyRequests {
+        message: format!("{CONCURRENT} previews have been running for {} s; try again shortly", QUEUE_WAIT.as_secs()),
+        retry_after: Some(Duration::from_secs(1)),
+    };
+    let _permit = tokio::time::timeout(QUEUE_WAIT, RUNNING.acquire()).await.map_err(|_| busy())?.map_err(|_| busy())?;
     let copy = session.with_channel(|ch| Box::new(ch.clone())).await.map_err(|e| ApiError::from_session(&id, e))?;
     let text = match (body.program, body.name) {
         (Some(text), None) => text,
