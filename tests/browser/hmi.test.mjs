@@ -510,6 +510,23 @@ async function main() {
       if (!stats || stats.colours < 20 || stats.variance < 50) throw new Error(`canvas looks empty: ${JSON.stringify(stats)}`);
     });
 
+    await step("3D view: under TRANSMIT the tool tip on the turned workpiece is the engine's Cartesian tip", async () => {
+      // C = atan2(15, -10) = 123.7°: the workpiece frame of the view must turn the way the
+      // engine's TRANSMIT does for the tip to land on (X-10, Y15); a sign error misses by 30 mm.
+      await page.goto(`${BASE}/?machine=transmit-example`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      const program = "T1 D1 G17\nG0 X40 Z50\nTRANSMIT\nG1 X20 Y10 Z40 F3000\nG1 X-10 Y15\nM0\nM30\n";
+      await page.evaluate(async (text) => {
+        const id = new URL(location.href).searchParams.get("session");
+        await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ program: text, pace: "fast" }) });
+      }, program);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped");
+      await page.waitForFunction(() => Math.abs(Number(document.querySelector('#positions [data-axis="Y"]')?.textContent) - 15) < 1e-3);
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(typeof error === "number" && error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's`);
+      await page.click("#btn-reset");
+    });
+
     await step("no error in the message bar", async () => {
       if (!(await page.locator("#message").isHidden())) {
         throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);

@@ -62,6 +62,11 @@ export interface Structure {
   toolDir: Vec3;
   /** Lathe: the machine axis that turns the workpiece (main spindle / C axis). */
   spindle: string | null;
+  /**
+   * The workpiece turns by `spindleSign` × the axis position about +Z: −1 as TRANSMIT/TRACYL
+   * map a point at angle C onto the tool (C = atan2(y, x)), +1 with ROT_SIGN_IS_PLUS = FALSE.
+   */
+  spindleSign: number;
   /** Machine axes named in $MA_IS_ROT_AX that no chain above uses. */
   otherRotary: string[];
   /** Data set number n of the orientation transformation the model follows, if any. */
@@ -223,6 +228,7 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
     partOffset: [0, 0, 0],
     toolDir: [0, 0, 1],
     spindle: null,
+    spindleSign: -1,
     otherRotary: [],
     traori: null,
     summary: "",
@@ -288,6 +294,12 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
     const fromTrafo = polar ? md.machineOfChannel(md.axesIn(polar[0], 1)) : null;
     const main = rotary.find((a) => md.axis(a, "$MA_SPIND_ASSIGN_TO_MACHAX") === 1);
     s.spindle = fromTrafo ?? main ?? rotary[0] ?? null;
+    if (polar) {
+      const kind = isTransmit(polar[1]) ? "TRANSMIT" : "TRACYL";
+      const k = md.ordinal(polar[0], isTransmit(polar[1]) ? isTransmit : isTracyl);
+      const raw = md.data.raw(`$MC_${kind}_ROT_SIGN_IS_PLUS_${k}`);
+      if (raw !== undefined && /^(FALSE|0)$/i.test(raw)) s.spindleSign = 1;
+    }
     if (s.spindle) used.add(s.spindle);
     const names = trafos
       .map(([, t]) => (isTransmit(t) ? "TRANSMIT" : isTracyl(t) ? "TRACYL" : isTraang(t) ? "TRAANG" : t === 8192 ? "TRACON" : ""))

@@ -294,7 +294,7 @@ function buildLathe(s: Structure): MachineModel {
       slide(Z, zSlide, mcs);
       slide(X, xSlide, mcs);
       slide(Y, ySlide, mcs);
-      const turn = THREE.MathUtils.degToRad(value(mcs, spindleAxis));
+      const turn = s.spindleSign * THREE.MathUtils.degToRad(value(mcs, spindleAxis));
       spindle.rotation.z = turn;
       // The paths turn with the workpiece only while TRANSMIT/TRACYL make C a path axis.
       part.rotation.z = partTurns ? 0 : -turn;

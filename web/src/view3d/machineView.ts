@@ -160,8 +160,10 @@ export class MachineView {
       model.toolAxis(this.axis);
       this.tip.copy(this.holder).addScaledVector(this.axis, -this.toolLength(st.tool.t, st.tool.d));
     } else {
-      // The BCS is the Cartesian tool tip without a transformation and under TRAANG.
+      // The BCS is the Cartesian tool tip without a transformation and under TRAANG: the tool
+      // offset is measured there; under TRANSMIT/TRACYL/TRACON it comes from the tool data.
       if (!trafo || trafo.type === 1024 || trafo.type === 1025) this.latheOffset.subVectors(this.holder, this.bcs);
+      else this.latheToolOffset(st, this.latheOffset);
       this.tip.subVectors(this.holder, this.latheOffset);
     }
     this.tool.place(this.tip, this.holder, this.toolRadius(st.tool.t, st.tool.d));
@@ -171,7 +173,10 @@ export class MachineView {
     this.tipPart.copy(this.tip);
     model.frame.localToWorld(this.tipPart);
     model.part.worldToLocal(this.tipPart);
-    const comparable = s.kind === "mill" && (!trafo || isOrientationTrafo(trafo.type));
+    // Comparable: the BCS is the Cartesian tool tip on the workpiece (a mill without or with
+    // TRAORI; a lathe under TRANSMIT, whose workpiece frame turns with C).
+    const transmit = trafo !== null && (trafo.type === 256 || trafo.type === 257);
+    const comparable = s.kind === "mill" ? !trafo || isOrientationTrafo(trafo.type) : transmit;
     this.tipError = comparable ? this.tipPart.distanceTo(this.bcs) : null;
 
     this.triad?.position.copy(this.workOffset);
@@ -262,6 +267,23 @@ export class MachineView {
   private toolLength(t: number, d: number): number {
     if (t === 0) return 0;
     return this.ncData.number("$TC_DP3", this.edge(t, d)) ?? 0;
+  }
+
+  /**
+   * Holder minus tip of a lathe's tool as the control compensates it: a turning tool (type
+   * 500..599) by length 1 in X and length 2 in Z; a milling or drilling tool by length 1 along
+   * the axis perpendicular to the working plane (G17 Z, G18 Y, G19 X).
+   */
+  private latheToolOffset(st: State, out: THREE.Vector3): THREE.Vector3 {
+    const { t, d } = st.tool;
+    out.set(0, 0, 0);
+    if (t === 0 || d === 0) return out;
+    const n = (k: number) => this.ncData.number(`$TC_DP${k}`, this.edge(t, d)) ?? 0;
+    const type = n(1);
+    if (type >= 500 && type < 600) return out.set(n(3), 0, n(4));
+    const plane = st.gcodes.find((g) => g === "G17" || g === "G18" || g === "G19") ?? "G17";
+    const l1 = n(3);
+    return plane === "G17" ? out.set(0, 0, l1) : plane === "G18" ? out.set(0, l1, 0) : out.set(l1, 0, 0);
   }
 
   private toolRadius(t: number, d: number): number {
