@@ -37,7 +37,11 @@ impl Channel {
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
             for warning in self.interp.take_warnings() {
-                self.notify_alarm(warning);
+                // One entry per alarm number until it is cancelled: a contour near a pole
+                // would otherwise list every block.
+                if !self.alarms.iter().any(|a| a.number == warning.number) {
+                    self.notify_alarm(warning);
+                }
             }
             for (line, text) in self.interp.take_data_writes() {
                 if let Err(alarm) = self.apply_program_data(line, &text) {

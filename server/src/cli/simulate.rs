@@ -13,6 +13,7 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Instant;
 
+use nctwin_engine::alarm::Clear;
 use nctwin_engine::interp::{Interpreter, Item, Prep, Programs};
 use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
 use nctwin_engine::{Channel, CommandError, Event, Status};
@@ -233,7 +234,8 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
 
     let outcome = if !loaded {
         Outcome::SyntaxError
-    } else if channel.status() == Status::Alarm || !channel.alarms().is_empty() {
+    // Alarms cleared by the cancel key only inform (10910): the run still ended or stopped.
+    } else if channel.status() == Status::Alarm || channel.alarms().iter().any(|a| a.clear == Clear::Reset) {
         Outcome::Alarm
     } else if run.limit_hit {
         Outcome::Limit
