@@ -485,6 +485,7 @@ async function main() {
         page.evaluate(() => Object.fromEntries(["X", "Y", "Z", "A"].map((a) => [a, Number(document.querySelector(`#positions [data-axis="${a}"]`)?.textContent)])));
       const before = await read();
       sentFrames.length = 0;
+      await page.selectOption("#jog-rotation", "AXES");
       await key.hover();
       await page.mouse.down();
       await page.waitForTimeout(800);
@@ -495,11 +496,29 @@ async function main() {
       for (const a of ["X", "Y", "Z"]) {
         if (Math.abs(after[a] - before[a]) > 1e-3) throw new Error(`tool tip ${a} moved: ${before[a]} → ${after[a]}`);
       }
-      if (!sentFrames.some((f) => f.type === "jog" && f.axis === "B2")) throw new Error("no B2 jog message on the stream");
+      if (!sentFrames.some((f) => f.type === "jog" && f.axis === "B2" && f.rotation === "AXES")) {
+        throw new Error(`no B2 jog message with rotation AXES: ${JSON.stringify(sentFrames.find((f) => f.type === "jog"))}`);
+      }
       await page.waitForSelector("#jog-repos:not([hidden])");
       const error = await page.evaluate(() => window.__nctwin3d.tipError());
       if (!(error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's after orientation JOG`);
-      await page.click("#btn-reset");
+    });
+
+    await step("REPOS: NC start in AUTO sends RMI/REPOSL, the program runs to its end, REPOS no longer pending", async () => {
+      await page.waitForSelector("#jog-repos-opts:not([hidden])");
+      await page.selectOption("#repos-mode", "RMI");
+      await page.selectOption("#repos-approach", "REPOSL");
+      await page.click('[data-set-mode="AUTO"]');
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="AUTO"]')?.classList.contains("active"));
+      const [request] = await Promise.all([
+        page.waitForRequest((r) => r.url().endsWith("/start") && r.method() === "POST"),
+        page.click("#btn-cycle-start"),
+      ]);
+      const body = JSON.parse(request.postData() || "{}");
+      if (body.repos !== "RMI" || body.approach !== "REPOSL") throw new Error(`start body: ${request.postData()}`);
+      // Back at the interruption point (A30) and through M30 to the end.
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle", null, { timeout: 30_000 });
+      await page.waitForSelector("#jog-repos", { state: "hidden" });
     });
 
     await step("3D view: a lathe shows spindle and turret (non-empty canvas)", async () => {

@@ -99,7 +99,9 @@ export const api = {
 
   state: (id: string) => request<State>("GET", `${s(id)}/state`),
   run: (id: string, program: string, pace: Pace) => request<State>("POST", `${s(id)}/run`, { program, pace }),
-  start: (id: string, pace: Pace) => request<State>("POST", `${s(id)}/start`, { pace }),
+  /** NC start; `repos`: where and how a repositioning after JOG returns (RMI.., REPOSL..). */
+  start: (id: string, pace: Pace, repos?: { repos: string; approach: string; disr?: number } | null) =>
+    request<State>("POST", `${s(id)}/start`, { pace, ...(repos ?? {}) }),
   stop: (id: string) => request<State>("POST", `${s(id)}/stop`, {}),
   reset: (id: string) => request<State>("POST", `${s(id)}/reset`, {}),
   cancel: (id: string) => request<State>("POST", `${s(id)}/cancel`, {}),

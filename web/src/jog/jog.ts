@@ -28,12 +28,26 @@ export interface JogMessage extends JogCommand {
 }
 
 /**
- * Hook for the fields the server branch `ops2` adds (ORI_JOG_MODE / CART_JOG_MODE, REPOS mode,
- * rapid overlay as its own field): the stream rejects unknown fields (`deny_unknown_fields`),
- * so nothing is added until the server knows them.
+ * Fields beyond axis, direction, increment and system: for the orientation keys the rotation
+ * kind when one is chosen (absent: the server takes SD42660 ORI_JOG_MODE). The stream rejects
+ * unknown fields, so only fields the server knows go here.
  */
-export function extraJogFields(): Record<string, unknown> {
-  return {};
+export function extraJogFields(axis: string): Record<string, unknown> {
+  if (!ORIENTATION_AXES.includes(axis)) return {};
+  const rotation = byId<HTMLSelectElement>("jog-rotation").value;
+  return rotation ? { rotation } : {};
+}
+
+/** The REPOS choice for NC start while `repos_pending` (body fields of `POST .../start`). */
+export function reposFields(): { repos: string; approach: string; disr?: number } | null {
+  if (byId("jog-repos-opts").hidden) return null;
+  const approach = byId<HTMLSelectElement>("repos-approach").value;
+  const fields: { repos: string; approach: string; disr?: number } = {
+    repos: byId<HTMLSelectElement>("repos-mode").value,
+    approach,
+  };
+  if (approach === "REPOSQ" || approach === "REPOSH") fields.disr = Number(byId<HTMLInputElement>("repos-disr").value);
+  return fields;
 }
 
 /** The increment selector's value as message fields: {} continuous, `inc` or `increment`. */
@@ -103,10 +117,12 @@ export class JogPanel {
     const key = `${this.coords}|${axes.join(",")}|${ori}`;
     setText(byId("jog-mode-hint"), st.mode === "JOG" ? "" : "select JOG mode to move the axes");
     byId("jog-repos").hidden = !st.repos_pending;
+    byId("jog-repos-opts").hidden = !st.repos_pending;
     if (key === this.axesKey) return;
     this.axesKey = key;
     this.box.replaceChildren(...axes.map((a) => keyRow(a)));
     this.oriBox.hidden = !ori;
+    byId("jog-rotation-label").hidden = !ori;
     this.oriBox.replaceChildren(...(ori ? ORIENTATION_AXES.map((a) => keyRow(a, this.coords === "MCS")) : []));
   }
 
@@ -124,7 +140,7 @@ export class JogPanel {
       ...step,
     };
     if (this.rapidKey.getAttribute("aria-pressed") === "true") jog.rapid = true;
-    return { ...jog, ...extraJogFields() };
+    return { ...jog, ...extraJogFields(jog.axis) };
   }
 
   private press(ev: PointerEvent): void {
