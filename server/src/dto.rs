@@ -21,6 +21,10 @@ pub struct ErrorBody {
     pub error: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub line: Option<u32>,
+    /// A program that cannot be prepared: every error found before it ran, as the NC alarms
+    /// the control shows (absent for other errors).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub errors: Vec<DiagnosticInfo>,
 }
 
 /// Liveness and size of the server.
@@ -1050,13 +1054,22 @@ pub struct CheckRequest {
 }
 
 /// One syntax error found by `check`.
-#[derive(Debug, Clone, Serialize, ToSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct DiagnosticInfo {
+    /// The NC alarm number: 12080 syntax error, 12640 invalid nesting of control structures,
+    /// 12641 nesting too deep.
+    pub alarm: u32,
     /// 1-based line.
     pub line: u32,
     /// 1-based column within the line.
     pub column: usize,
     pub message: String,
+}
+
+impl From<&nctwin_engine::lang::Diagnostic> for DiagnosticInfo {
+    fn from(d: &nctwin_engine::lang::Diagnostic) -> Self {
+        DiagnosticInfo { alarm: d.alarm, line: d.line, column: d.column as usize, message: d.message.clone() }
+    }
 }
 
 /// Every syntax error of a program, found without running it.

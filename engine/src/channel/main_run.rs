@@ -82,6 +82,13 @@ impl Channel {
             return Ok(());
         }
         if let Some(kind) = text.strip_prefix(DELOBJ) {
+            if let Some(range) = kind.strip_prefix("TOOLCARRIER:") {
+                let mut bounds = range.split(':').map(|n| n.parse::<u32>().unwrap_or(0));
+                let (start, end) = (bounds.next().unwrap_or(1), bounds.next().unwrap_or(u32::MAX));
+                self.data.delete_carriers(start..=end);
+                Arc::make_mut(&mut self.cfg).refresh_data(&self.data).map_err(|e| bad(e.message))?;
+                return Ok(());
+            }
             self.data.delete_kin(kind == "KIN_CHAIN_ELEM", kind == "TRAFO_DATA");
             return Ok(());
         }

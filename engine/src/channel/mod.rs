@@ -113,8 +113,10 @@ pub enum Event {
 /// A command the channel refuses in its current state.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CommandError {
+    /// The program cannot be prepared: every error found before it runs, first one in
+    /// `line`/`message`.
     #[error("program has syntax errors: line {line}: {message}")]
-    Syntax { line: u32, message: String },
+    Syntax { line: u32, message: String, errors: Vec<lang::Diagnostic> },
     #[error("the channel is busy ({0}); stop or reset it first")]
     Busy(&'static str),
     #[error("an alarm is active; reset the channel first")]
@@ -127,6 +129,21 @@ pub enum CommandError {
     Invalid(String),
     #[error("machine data: {0}")]
     MachineData(#[from] MdError),
+}
+
+impl CommandError {
+    /// `Ok` if `text` has no error found before it runs ([`lang::check`]), else
+    /// [`CommandError::Syntax`] with every error.
+    pub fn check(text: &str) -> Result<(), CommandError> {
+        let errors = lang::check(text);
+        let Some(first) = errors.first() else { return Ok(()) };
+        let more = match errors.len() {
+            1 => String::new(),
+            n => format!(" (and {} more)", n - 1),
+        };
+        let message = format!("alarm {} column {}: {}{more}", first.alarm, first.column, first.message);
+        Err(CommandError::Syntax { line: first.line, message, errors })
+    }
 }
 
 /// The operator's overrides in percent.
@@ -422,9 +439,7 @@ impl Channel {
     }
 
     fn load_and_start(&mut self, text: Arc<str>, mode: Mode) -> Result<(), CommandError> {
-        if let Some(d) = lang::check(&text).into_iter().next() {
-            return Err(CommandError::Syntax { line: d.line, message: d.message });
-        }
+        CommandError::check(&text)?;
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active"));
         }

@@ -173,6 +173,10 @@ pub static DEFS: &[Def] = &[
     ),
     def("SYSCLOCK_CYCLE_TIME", 10050, N, Kind::Real, 1, Default::Real(0.002), 0.000125, 0.031),
     def("IPO_SYSCLOCK_TIME_RATIO", 10070, N, Kind::Int, 1, Default::Int(2), 1.0, 100.0),
+    // Angles of frame rotations: 1 = RPY (Z, Y', X''), 2 = Euler (Z, X', Z'') (K2).
+    def("FRAME_ANGLE_INPUT_MODE", 10600, N, Kind::Int, 1, Default::Int(1), 1.0, 2.0),
+    // NCU-global basic frames $P_NCBFR[n] (K2; 0 = none, the control's default).
+    def("MM_NUM_GLOBAL_BASE_FRAMES", 18602, N, Kind::Int, 1, Default::Int(0), 0.0, 16.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
     def("MM_NUM_TOOL_CARRIER", 18088, N, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
     def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
