@@ -8,6 +8,7 @@ import { api } from "./api/client";
 import { rememberToken } from "./api/tokens";
 import { showMessage, wireMessageBar } from "./core/message";
 import { SessionController } from "./core/session";
+import { selection } from "./program/selected";
 import { mountJog } from "./jog/jog";
 import { mountSwivel } from "./swivel/swivel";
 import { Lobby } from "./lobby/lobby";
@@ -33,6 +34,8 @@ const DEFAULT_MACHINE = "mill-3axis";
 
 async function main(): Promise<void> {
   const session = new SessionController();
+  // First listener: the views that follow read the demo chosen for the session's machine.
+  session.on("session", (info) => selection.adoptDemo(info.machine.machine_data));
   wireMessageBar();
   wireAreas();
   mountHeader(session);
