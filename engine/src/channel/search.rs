@@ -21,7 +21,6 @@ use super::main_run::line_offset;
 use super::{Channel, CommandError, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Item, Offsets, Prep, StopKind};
-use crate::lang;
 use crate::motion::{Feed, Move};
 
 /// Most blocks a search prepares before it gives up (a program that loops without end).
@@ -47,9 +46,7 @@ impl Channel {
         }
         let text: Arc<str> = match text {
             Some(t) => {
-                if let Some(d) = lang::check(t).into_iter().next() {
-                    return Err(CommandError::Syntax { line: d.line, message: d.message });
-                }
+                CommandError::check(t)?;
                 Arc::from(t)
             }
             None => self

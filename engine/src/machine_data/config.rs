@@ -74,6 +74,10 @@ pub struct MachineConfig {
     pub work_offsets: Vec<FrameData>,
     /// Channel basic frames (`$P_CHBFR[n]`), chained in order into `$P_ACTBFRAME`.
     pub base_frames: Vec<FrameData>,
+    /// NCU-global basic frames (`$P_NCBFR[n]`, MD18602), chained before the channel ones.
+    pub ncu_base_frames: Vec<FrameData>,
+    /// MD10600 FRAME_ANGLE_INPUT_MODE: how frame rotation angles are written and read.
+    pub frame_angles: FrameAngles,
     /// Configured transformation data sets in data-set order (`$MC_TRAFO_TYPE_1..10`).
     pub trafos: Vec<TrafoDataSet>,
     /// How orientations are programmed and interpolated (MD21090..21130).
@@ -85,6 +89,16 @@ pub struct MachineConfig {
     pub cutcom_max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks the bottleneck detection examines.
     pub cutcom_max_check_blocks: usize,
+}
+
+/// MD10600 FRAME_ANGLE_INPUT_MODE: the convention of frame rotation angles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrameAngles {
+    /// 1: RPY, rotations about Z, then the new Y, then the new X.
+    #[default]
+    Rpy,
+    /// 2: Euler, rotations about Z, then the new X, then the new Z.
+    Euler,
 }
 
 /// The transformation after reset and program end (MD20110 RESET_MODE_MASK bits 0 and 7,
@@ -263,6 +277,12 @@ impl MachineConfig {
             swivel_alarm_mask: md.num("$MC_MILL_SWIVEL_ALARM_MASK", 0, 0) as i64,
             work_offsets: Vec::new(),
             base_frames: Vec::new(),
+            ncu_base_frames: Vec::new(),
+            frame_angles: if md.num("$MN_FRAME_ANGLE_INPUT_MODE", 0, 0) as i64 == 2 {
+                FrameAngles::Euler
+            } else {
+                FrameAngles::Rpy
+            },
             reset_trafo: ResetTrafo::build(md, &trafos)?,
             trafos,
             ori: OriSettings::read(md),
@@ -281,18 +301,22 @@ impl MachineConfig {
         let base = md.num("$MC_MM_NUM_BASE_FRAMES", 0, 0) as usize;
         let mut work_offsets = vec![FrameData::neutral(n); user];
         let mut base_frames = vec![FrameData::neutral(n); base];
+        let ncu = md.num("$MN_MM_NUM_GLOBAL_BASE_FRAMES", 0, 0) as usize;
+        let mut ncu_base_frames = vec![FrameData::neutral(n); ncu];
         for ((family, frame, axis, component), value) in md.frames() {
             let (list, var, count) = match family {
                 FrameFamily::Settable => (&mut work_offsets, "$P_UIFR", "MM_NUM_USER_FRAMES"),
                 FrameFamily::Base => (&mut base_frames, "$P_CHBFR", "MM_NUM_BASE_FRAMES"),
+                FrameFamily::NcuBase => (&mut ncu_base_frames, "$P_NCBFR", "MM_NUM_GLOBAL_BASE_FRAMES"),
             };
+            let scope = if *family == FrameFamily::NcuBase { "MN" } else { "MC" };
             let at = format!("{var}[{frame},{axis},{}]", component.code());
             let idx = self.program_axis(axis).ok_or_else(|| ActivationError {
                 datum: None,
                 message: format!("{at}: {axis} is not an axis of this channel"),
             })?;
             let Some(f) = list.get_mut(*frame) else {
-                return fail(count, format!("{at}: frame {frame} exceeds $MC_{count}={}", list.len()));
+                return fail(count, format!("{at}: frame {frame} exceeds ${scope}_{count}={}", list.len()));
             };
             match component {
                 FrameComponent::Translation | FrameComponent::Fine => f.trans[idx] += value,
@@ -309,6 +333,7 @@ impl MachineConfig {
         }
         self.work_offsets = work_offsets;
         self.base_frames = base_frames;
+        self.ncu_base_frames = ncu_base_frames;
         self.tools = md.tools().clone();
         self.carriers = md.carriers();
         Ok(())
