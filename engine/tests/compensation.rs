@@ -627,12 +627,190 @@ mod pocket {
     }
 }
 
-/// KONTC (continuous curvature) needs a polynomial approach path, which this product does not
-/// interpolate: it is refused with 12550 instead of being run as another approach.
-#[test]
-fn kontc_is_refused_rather_than_replaced() {
-    let (ch, _) = run("T1 D1\nG0 X-20 Y-20 Z-1\nKONTC G41 G1 X0 Y0 F2000\nX50\nG40 G1 X50 Y20\nM30");
-    assert_eq!(alarm_of(&ch), Some(12550));
+/// KONTC: approach and retract on a polynomial that joins the equidistant with continuous
+/// tangent and curvature, run as straight chords within 1 µm of the polynomial. The expected
+/// values come from the contour alone: the curve leaves the programmed start point and meets
+/// the equidistant at its first point Q with the equidistant's direction and curvature (0 on a
+/// line, 1/(R − r) inside a pocket of radius R). Near Q the samples are compared with the
+/// equidistant continued beyond Q: a path that arrives at Q with the same tangent and with a
+/// curvature within δκ of the contour's over the last s millimetres lies within δκ·s²/2 of that
+/// continuation, plus the chord tolerance. A tangent kink of α would show as α·s, KONTT's
+/// curvature jump (1/20.5 onto the line, 2/15 − 1/15 into the pocket) as about 0.006 and
+/// 0.008 mm at s = 0.5.
+mod kontc {
+    use super::*;
+
+    /// Chord tolerance of the approach polynomial (mm).
+    const CHORD: f64 = 1e-3;
+    /// Curvature agreement asserted at Q (1/mm).
+    const D_KAPPA: f64 = 0.02;
+    /// How far before (approach) or after (retract) Q the samples are compared (mm).
+    const WINDOW: f64 = 0.5;
+    /// T1 D1 of the preset is 100 long: Z−1 is machine Z 99.
+    const LENGTH: f64 = 100.0;
+
+    /// The samples from where the tool stands at the start point (x, y, z) of the program's
+    /// approach (the end of the exact-stop rapid before it).
+    fn from_start(samples: &[Vec<f64>], start: (f64, f64, f64)) -> &[Vec<f64>] {
+        let at = |p: &Vec<f64>| plane_dist(p, (start.0, start.1)) < 1e-9 && (p[2] - start.2 - LENGTH).abs() < 1e-9;
+        &samples[samples.iter().position(at).expect("stands at the start point")..]
+    }
+
+    fn plane_dist(p: &[f64], q: (f64, f64)) -> f64 {
+        (p[0] - q.0).hypot(p[1] - q.1)
+    }
+
+    /// The samples within WINDOW of `q` on the approach (up to the first sample that reaches
+    /// `q` within one cycle's travel `step`) or on the retract (from the last such sample on).
+    fn window(samples: &[Vec<f64>], q: (f64, f64), step: f64, approach: bool) -> Vec<Vec<f64>> {
+        let at = |p: &Vec<f64>| plane_dist(p, q) <= step;
+        let side = if approach {
+            &samples[..=samples.iter().position(at).expect("reaches Q")]
+        } else {
+            &samples[samples.iter().rposition(at).expect("leaves Q")..]
+        };
+        side.iter().filter(|p| plane_dist(p, q) <= WINDOW).cloned().collect()
+    }
+
+    /// Every sample near `q` lies within the chord tolerance plus δκ·s²/2 of the contour's
+    /// continuation (`off` is the distance from it).
+    fn joins(samples: &[Vec<f64>], q: (f64, f64), step: f64, approach: bool, off: impl Fn(&[f64]) -> f64) {
+        let near = window(samples, q, step, approach);
+        assert!(near.len() >= 3, "{} samples near {q:?}", near.len());
+        for p in &near {
+            let s = plane_dist(p, q);
+            let bound = CHORD + D_KAPPA * s * s / 2.0;
+            assert!(off(p) <= bound, "{p:?} is {} off the contour at {s} from {q:?} (bound {bound})", off(p));
+        }
+    }
+
+    /// No sample moves further than the feed allows in one cycle.
+    fn no_jumps(ch: &Channel, samples: &[Vec<f64>], feed: f64) {
+        let step = feed / 60.0 * ch.config().ipo_cycle;
+        for w in samples.windows(2) {
+            let d = (0..3).map(|k| (w[1][k] - w[0][k]).powi(2)).sum::<f64>().sqrt();
+            assert!(d <= step * (1.0 + 1e-9), "{:?} → {:?}: {d} > {step}", w[0], w[1]);
+        }
+    }
+
+    /// Contour (0,0) → (50,0) with G41 (tool at y = 5) in continuous-path mode. Approach from
+    /// (−20, −20) onto Q = (0, 5) heading +X, curvature 0; retract from Q' = (50, 5) to
+    /// (50, 20). The continuation of the equidistant is the line y = 5.
+    #[test]
+    fn a_line_is_approached_and_left_with_its_tangent_and_zero_curvature() {
+        let program = "T1 D1\nG0 X-20 Y-20 Z-1 G9\nG64 KONTC G41 G1 X0 Y0 F2000\nX50\nG40 G1 X50 Y20\nM30";
+        let (ch, samples) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let samples = from_start(&samples, (-20.0, -20.0, -1.0));
+        let step = 2000.0 / 60.0 * ch.config().ipo_cycle;
+        joins(samples, (0.0, 5.0), step, true, |p| (p[1] - 5.0).abs());
+        joins(samples, (50.0, 5.0), step, false, |p| (p[1] - 5.0).abs());
+        // Between the two, the tool runs on y = 5 exactly.
+        let on = between(samples, |p| (p[1] - 5.0).abs() < 1e-9 && (0.0..=50.0).contains(&p[0]));
+        assert!(on.iter().all(|p| (p[1] - 5.0).abs() < 1e-9));
+        assert_eq!(&ch.axis_positions()[..3], &[50.0, 20.0, -1.0 + LENGTH]);
+        no_jumps(&ch, samples, 2000.0);
+    }
+
+    /// A circular pocket of radius 20 about the origin, G3, G41 with radius 5: the centre runs
+    /// on radius 15 (curvature 1/15). KONTC from and back to the pocket centre: Q = (15, 0)
+    /// heading +Y both times. KONTC's curve stays inside radius 15 (no cut into the wall).
+    #[test]
+    fn a_pocket_is_approached_and_left_with_the_curvature_of_its_equidistant() {
+        let program = "T1 D1\nG0 X0 Y0 Z-1 G9\nG64 KONTC G41 G1 X20 Y0 F1200\nG3 X20 Y0 I-20 J0\nG40 G1 X0 Y0\nM30";
+        let (ch, samples) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let samples = from_start(&samples, (0.0, 0.0, -1.0));
+        let step = 1200.0 / 60.0 * ch.config().ipo_cycle;
+        let off = |p: &[f64]| (p[0].hypot(p[1]) - 15.0).abs();
+        joins(samples, (15.0, 0.0), step, true, off);
+        joins(samples, (15.0, 0.0), step, false, off);
+        assert!(samples.iter().all(|p| p[0].hypot(p[1]) <= 15.0 + CHORD), "the tool never passes radius 15");
+        // Approach and retract are real curves, not the half circles of KONTT (radius 7.5
+        // about (7.5, 0)): somewhere they leave that circle by more than a millimetre.
+        assert!(samples.iter().any(|p| ((p[0] - 7.5).hypot(p[1]) - 7.5).abs() > 1.0));
+        assert_eq!(&ch.axis_positions()[..2], &[0.0, 0.0]);
+        no_jumps(&ch, samples, 1200.0);
+    }
+
+    /// The same pocket with G42: the centre runs outside on radius 25, curvature still 1/25
+    /// turning left (G3). Approach from (40, 0) outside the pocket onto Q = (25, 0).
+    #[test]
+    fn an_outer_arc_is_joined_with_the_curvature_one_over_r_plus_the_radius() {
+        let program = "T1 D1\nG0 X40 Y0 Z-1 G9\nG64 KONTC G42 G1 X20 Y0 F1200\nG3 X20 Y0 I-20 J0\nG40 G1 X40 Y0\nM30";
+        let (ch, samples) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let samples = from_start(&samples, (40.0, 0.0, -1.0));
+        let step = 1200.0 / 60.0 * ch.config().ipo_cycle;
+        let off = |p: &[f64]| (p[0].hypot(p[1]) - 25.0).abs();
+        joins(samples, (25.0, 0.0), step, true, off);
+        joins(samples, (25.0, 0.0), step, false, off);
+        // CFC: the feed holds at the contour, the centre runs at F·25/20.
+        no_jumps(&ch, samples, 1200.0 * 25.0 / 20.0);
+    }
+
+    /// An infeed in Z during the approach: Z arrives at Q with zero velocity and
+    /// acceleration, so the path in space also meets the equidistant (y = 5, z = −1) with
+    /// continuous tangent and curvature.
+    #[test]
+    fn an_infeed_arrives_at_the_contour_tangentially() {
+        let program = "T1 D1\nG0 X-20 Y-20 Z5 G9\nG64 KONTC G41 G1 X0 Y0 Z-1 F2000\nX50\nG40 G1 X50 Y20 Z5\nM30";
+        let (ch, samples) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let samples = from_start(&samples, (-20.0, -20.0, 5.0));
+        let step = 2000.0 / 60.0 * ch.config().ipo_cycle;
+        let off = |p: &[f64]| (p[1] - 5.0).hypot(p[2] + 1.0 - LENGTH);
+        joins(samples, (0.0, 5.0), step, true, off);
+        joins(samples, (50.0, 5.0), step, false, off);
+        assert_eq!(&ch.axis_positions()[..3], &[50.0, 20.0, 5.0 + LENGTH]);
+        no_jumps(&ch, samples, 2000.0);
+    }
+
+    /// In exact-stop mode (G60) the chords of the polynomial still run without stopping: the
+    /// path velocity stays above zero from leaving the start point until Q.
+    #[test]
+    fn the_chords_do_not_stop_under_g60() {
+        let program = "T1 D1\nG0 X-20 Y-20 Z-1\nG60 KONTC G41 G1 X0 Y0 F2000\nX50\nG40 G1 X50 Y20\nM30";
+        let (ch, samples) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let samples = from_start(&samples, (-20.0, -20.0, -1.0));
+        let arrive = samples.iter().position(|p| plane_dist(p, (0.0, 5.0)) < 1e-9).expect("stops at Q");
+        for w in samples[..=arrive].windows(2) {
+            assert!(plane_dist(&w[0], (w[1][0], w[1][1])) > 1e-9, "standstill at {:?}", w[0]);
+        }
+    }
+
+    /// G450/G451 decide KONT's way round the contour start; KONTC does not go round a corner,
+    /// so the path is the same with either.
+    #[test]
+    fn g451_gives_the_same_curve() {
+        let program =
+            |g: &str| format!("T1 D1\nG0 X-20 Y-20 Z-1\n{g} KONTC G41 G1 X0 Y0 F2000\nX50\nG40 G1 X60 Y20\nM30");
+        let (a, with_450) = run(&program("G450"));
+        let (b, with_451) = run(&program("G451"));
+        assert_eq!(a.status(), Status::Idle, "{:?}", a.alarms());
+        assert_eq!(b.status(), Status::Idle, "{:?}", b.alarms());
+        assert_eq!(with_450, with_451);
+    }
+
+    /// The selection and the deselection block must be straight with KONTC too (10753, 10754).
+    #[test]
+    fn kontc_needs_a_straight_selection_and_deselection_block() {
+        let (ch, _) = run("T1 D1\nG0 X20 Y0 Z-1\nKONTC G41 G3 X-20 Y0 I-20 J0 F1000\nM30");
+        assert_eq!(alarm_of(&ch), Some(10753));
+        let (ch, _) = run("T1 D1\nG0 X-20 Y-20 Z-1\nKONTC G41 G1 X0 Y0 F1000\nX50\nG40 G3 X50 Y20 I0 J10\nM30");
+        assert_eq!(alarm_of(&ch), Some(10754));
+    }
+
+    /// A start point on the tangent ahead of Q leaves no curve that reaches Q in its
+    /// direction without a loop: like KONTT, KONTC then moves straight (NORM).
+    #[test]
+    fn a_start_point_on_the_tangent_ahead_moves_straight() {
+        let (ch, samples) = run("T1 D1\nG0 X30 Y5 Z-1\nKONTC G41 G1 X0 Y0 F2000\nX50\nG40 G1 X50 Y20\nM30");
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let to_q = between(&samples, |p| plane_dist(p, (30.0, 5.0)) < 1e-9 || plane_dist(p, (0.0, 5.0)) < 1e-9);
+        assert!(to_q.iter().all(|p| (p[1] - 5.0).abs() < 1e-9));
+    }
 }
 
 mod bottleneck {

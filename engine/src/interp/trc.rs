@@ -9,7 +9,7 @@
 //! at the intersection. A move is held back until its successor decides its end point; blocks
 //! without motion in the plane wait behind it (at most MD20250 of them, else alarm 10762) and
 //! run at the corner point. Elements too short for the tool are bridged (`trc_bottleneck`),
-//! approach and retract follow G group 17 (`trc_approach`), RND/CHF are shaped on the
+//! approach and retract follow G group 17 (`trc_approach`, KONTC in `trc_kontc`), RND/CHF are shaped on the
 //! programmed contour first, and a turning tool's reference is its theoretical tip
 //! (`trc_edge`).
 
@@ -309,24 +309,30 @@ impl Compensator {
         let d = comp.offset();
         if let Some((approach, _)) = self.approach.take() {
             // The selection block ends on the first element's equidistant (NORM) or goes round
-            // its start point (KONT) or joins it tangentially (KONTT).
+            // its start point (KONT) or joins it tangentially (KONTT) or with continuous
+            // curvature (KONTC).
             let s0 = minus(to_plane(&approach.mv.path.start, &comp), comp.tip);
-            let (segments, start) = trc_approach::approach(approach.approach, s0, &contour, d, &comp, line)?;
-            let mut from3 = approach.mv.path.start;
+            let (a3, b3) = (approach.mv.path.start, approach.mv.path.end);
+            let lift = outside_plane(&a3, &b3, &comp);
+            let (segments, start) = trc_approach::approach(approach.approach, s0, &contour, d, lift, &comp, line)?;
             if segments.is_empty() {
                 // Already on the equidistant: only the axes outside the plane move.
-                let end = place(&approach.mv.path.end, start, &comp);
-                let mv = rebuild(&approach, Path::line(from3, end), limits);
+                let end = place(&b3, start, &comp);
+                let mv = rebuild(&approach, Path::line(a3, end), limits);
                 self.emit(approach.item_with(mv), out);
             }
-            for (i, seg) in segments.into_iter().enumerate() {
-                let mut mv = plain(&approach, seg, i == 0, from3, approach.mv.path.end, &comp, limits);
+            let n = segments.len();
+            let mut from3 = a3;
+            for (i, (seg, share)) in segments.into_iter().enumerate() {
+                let mut mv = plain(&approach, seg, from3, mix(&a3, &b3, share), &comp, limits);
                 if i == 0 {
                     // The first piece starts where the tool stands (uncompensated).
                     let mut path = mv.path.clone();
-                    path.start = from3;
+                    path.start = a3;
                     mv = rebuild(&approach, path, limits);
                 }
+                // KONTC's chords are one polynomial block: no exact stop (G60) between them.
+                mv.exact_stop &= i + 1 == n || approach.approach != ApproachMode::Curvature;
                 from3 = mv.path.end;
                 self.emit(approach.item_with(mv), out);
             }
@@ -415,7 +421,7 @@ impl Compensator {
     }
 
     /// G40 (or a move without compensation): the held move ends perpendicular to its contour
-    /// (NORM) or goes round its end point (KONT, KONTT), then this move travels uncompensated
+    /// (NORM) or goes round its end point (KONT, KONTT, KONTC), then this move travels uncompensated
     /// to its programmed end.
     fn deselect(&mut self, p: Prepared, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
         let was_active = self.tool_at.is_some() || self.holds();
@@ -433,20 +439,24 @@ impl Compensator {
         if let Some((h, to)) = retract {
             self.held = None;
             let d = h.comp.offset();
-            let (end, segments) = trc_approach::retract(p.approach, &h.contour, d, to, &h.comp, p.line)?;
+            let b3 = p.mv.path.end;
+            let lift = outside_plane(&p.mv.path.start, &b3, &h.comp);
+            let (end, segments) = trc_approach::retract(p.approach, &h.contour, d, to, lift, &h.comp, p.line)?;
             let eq = offset_elem(&h.contour, d, Some(h.start), Some(end), h.p.line)?;
             let mv = finish(&h.p, eq, &h.comp, limits, true);
             self.emit(h.p.item_with(mv), out);
+            let a3 = self.from(p.mv.path.start);
             let n = segments.len();
-            for (i, seg) in segments.into_iter().enumerate() {
+            for (i, (seg, share)) in segments.into_iter().enumerate() {
                 let from = self.from(p.mv.path.start);
-                let mut mv = plain(&p, seg, i + 1 == n, from, p.mv.path.end, &h.comp, limits);
+                let mut mv = plain(&p, seg, from, mix(&a3, &b3, share), &h.comp, limits);
                 if i + 1 == n {
                     // The last piece ends at the programmed end point (the uncompensated tip).
                     let mut path = mv.path.clone();
-                    path.end = p.mv.path.end;
+                    path.end = b3;
                     mv = rebuild(&p, path, limits);
                 }
+                mv.exact_stop &= i + 1 == n || p.approach != ApproachMode::Curvature;
                 self.emit(p.item_with(mv), out);
             }
             self.tool_at = None;
@@ -521,18 +531,8 @@ impl Prepared {
 }
 
 /// A move of the tool centre along `elem` at the programmed feed (approach and retract
-/// pieces). With `carries_axes` the axes outside the plane move from `from3` to `to3` on it,
-/// else they stay at `from3`.
-fn plain(
-    p: &Prepared,
-    elem: Elem,
-    carries_axes: bool,
-    from3: AxisVec,
-    to3: AxisVec,
-    comp: &Compensation,
-    limits: &[AxisLimit],
-) -> Move {
-    let to3 = if carries_axes { to3 } else { from3 };
+/// pieces). The axes outside the plane move from `from3` to `to3` on it.
+fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
     let start3 = place(&from3, elem_start(&elem), comp);
     let end3 = place(&to3, elem_end(&elem), comp);
     let path = match elem {
@@ -545,6 +545,24 @@ fn plain(
         },
     };
     rebuild(p, path, limits)
+}
+
+/// `a` moved the share `s` of the way to `b` (exactly `a` or `b` at the ends).
+fn mix(a: &AxisVec, b: &AxisVec, s: f64) -> AxisVec {
+    if s <= 0.0 {
+        *a
+    } else if s >= 1.0 {
+        *b
+    } else {
+        std::array::from_fn(|k| a[k] + s * (b[k] - a[k]))
+    }
+}
+
+/// Length of the travel from `a` to `b` outside the working plane.
+fn outside_plane(a: &AxisVec, b: &AxisVec, comp: &Compensation) -> f64 {
+    let d: AxisVec = std::array::from_fn(|k| b[k] - a[k]);
+    let (du, dv) = (dot(&d, &comp.u), dot(&d, &comp.v));
+    (dot(&d, &d) - du * du - dv * dv).max(0.0).sqrt()
 }
 
 /// The move rebuilt on a new path with the same feed and limits.

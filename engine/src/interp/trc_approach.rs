@@ -11,10 +11,16 @@
 //! - KONTT: the approach is one circular arc from the start point that joins the first
 //!   equidistant tangentially (continuous tangent at the contour; the direction at the start
 //!   point is free, as with the control's approach polynomial).
+//! - KONTC: a polynomial that joins the first equidistant with continuous tangent and
+//!   curvature, run as short chords (`trc_kontc`).
 //!
 //! The retract is the approach of the reversed contour, reversed.
 
 use super::trc::{Compensation, CornerMode, Elem, P2, dist, elem_start, left, line_line, offset_start, tangent};
+
+// A child of this module so that the module list in `interp/mod.rs` stays untouched.
+#[path = "trc_kontc.rs"]
+mod trc_kontc;
 use crate::alarm::Alarm;
 use std::f64::consts::TAU;
 
@@ -27,21 +33,27 @@ pub enum ApproachMode {
     Kont,
     /// KONTT: with continuous tangent.
     Tangent,
-    /// KONTC: with continuous curvature (not modelled: alarm 12550 on selection).
+    /// KONTC: with continuous tangent and curvature (a polynomial, run as chords).
     Curvature,
 }
 
+/// A piece of an approach or retract path in plane coordinates, and the share (0..=1) of the
+/// block's travel outside the plane that is done at its end.
+pub(super) type Piece = (Elem, f64);
+
 /// The pieces from the tool centre `from` onto the equidistant (at signed offset `d`) of the
-/// first element, and the point where that equidistant then starts.
+/// first element, and the point where that equidistant then starts. `lift` is the length of
+/// the block's travel outside the plane (it refines KONTC's chords).
 pub(super) fn approach(
     mode: ApproachMode,
     from: P2,
     first: &Elem,
     d: f64,
+    lift: f64,
     comp: &Compensation,
     line: u32,
-) -> Result<(Vec<Elem>, P2), Alarm> {
-    onto(mode, from, first, d, comp.corners, line, false)
+) -> Result<(Vec<Piece>, P2), Alarm> {
+    onto(mode, from, first, d, lift, comp.corners, line, false)
 }
 
 /// The point where the equidistant of `last` ends and the pieces from there to `to`.
@@ -50,29 +62,41 @@ pub(super) fn retract(
     last: &Elem,
     d: f64,
     to: P2,
+    lift: f64,
     comp: &Compensation,
     line: u32,
-) -> Result<(P2, Vec<Elem>), Alarm> {
+) -> Result<(P2, Vec<Piece>), Alarm> {
     // Travelled backwards the contour has the tool on the other side.
-    let (pieces, end) = onto(mode, to, &reversed(last), -d, comp.corners, line, true)?;
-    Ok((end, pieces.iter().rev().map(reversed).collect()))
+    let (pieces, end) = onto(mode, to, &reversed(last), -d, lift, comp.corners, line, true)?;
+    // Reversed, a piece ends where it started: the share done there, counted from the contour.
+    let starts: Vec<f64> = std::iter::once(0.0).chain(pieces.iter().map(|p| p.1)).collect();
+    Ok((end, pieces.iter().enumerate().rev().map(|(i, (e, _))| (reversed(e), 1.0 - starts[i])).collect()))
 }
 
+/// Except for KONTC the first piece carries the whole travel outside the plane.
+#[allow(clippy::too_many_arguments, reason = "the approach's geometry and where an alarm points")]
 fn onto(
     mode: ApproachMode,
     from: P2,
     first: &Elem,
     d: f64,
+    lift: f64,
     corners: CornerMode,
     line: u32,
     retract: bool,
-) -> Result<(Vec<Elem>, P2), Alarm> {
+) -> Result<(Vec<Piece>, P2), Alarm> {
     let q = offset_start(first, d);
-    let norm = || if dist(from, q) < 1e-9 { (Vec::new(), q) } else { (vec![Elem::Line { s: from, e: q }], q) };
+    let norm = || if dist(from, q) < 1e-9 { (Vec::new(), q) } else { (vec![(Elem::Line { s: from, e: q }, 1.0)], q) };
+    let whole = |elems: Vec<Elem>| elems.into_iter().map(|e| (e, 1.0)).collect::<Vec<Piece>>();
     match mode {
         ApproachMode::Norm => Ok(norm()),
-        ApproachMode::Curvature => Err(Alarm::unknown_name(line, "KONTC (approach with continuous curvature)")),
-        ApproachMode::Tangent => Ok(tangential(from, q, tangent(first, false)).unwrap_or_else(norm)),
+        ApproachMode::Curvature => Ok(match trc_kontc::curve(from, first, d) {
+            Some(curve) => (trc_kontc::chords(&curve, lift), q),
+            None => norm(),
+        }),
+        ApproachMode::Tangent => {
+            Ok(tangential(from, q, tangent(first, false)).map(|(e, q)| (whole(e), q)).unwrap_or_else(norm))
+        }
         ApproachMode::Kont => {
             let p1 = elem_start(first);
             let tb = tangent(first, false);
@@ -111,12 +135,12 @@ fn onto(
                 && let Some(x) = line_line(from, touch, q, (q.0 + tb.0, q.1 + tb.1))
                 && (x.0 - q.0) * tb.0 + (x.1 - q.1) * tb.1 <= 1e-9
             {
-                return Ok((vec![Elem::Line { s: from, e: x }], x));
+                return Ok((whole(vec![Elem::Line { s: from, e: x }]), x));
             }
             let a0 = (touch.1 - p1.1).atan2(touch.0 - p1.0);
             let a1 = (q.1 - p1.1).atan2(q.0 - p1.0);
             let sweep = turning(a1 - a0, turn);
-            Ok((vec![Elem::Line { s: from, e: touch }, Elem::Arc { c: p1, r: rho, a0, sweep }], q))
+            Ok((whole(vec![Elem::Line { s: from, e: touch }, Elem::Arc { c: p1, r: rho, a0, sweep }]), q))
         }
     }
 }
