@@ -28,6 +28,7 @@ pub mod trc_approach;
 mod trc_bottleneck;
 mod trc_disc;
 mod trc_edge;
+mod trc_kontc;
 pub mod value;
 pub mod vars;
 

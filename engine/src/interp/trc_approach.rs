@@ -19,8 +19,7 @@
 use super::trc::{Compensation, CornerMode, Elem, P2, dist, elem_start, left, line_line, offset_start, tangent};
 
 // A child of this module so that the module list in `interp/mod.rs` stays untouched.
-#[path = "trc_kontc.rs"]
-mod trc_kontc;
+use super::trc_kontc;
 use crate::alarm::Alarm;
 use std::f64::consts::TAU;
 

@@ -32,7 +32,7 @@
 //! they arrive at Q with zero velocity and acceleration, so the path in space also joins the
 //! contour with continuous tangent and curvature.
 
-use super::Piece;
+use super::trc_approach::Piece;
 use crate::interp::trc::{Elem, P2, left, offset_start, tangent};
 
 /// Largest distance between a chord and the approach polynomial it stands for (1 µm in mm).
