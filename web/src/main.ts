@@ -8,6 +8,7 @@ import { api } from "./api/client";
 import { rememberToken } from "./api/tokens";
 import { showMessage, wireMessageBar } from "./core/message";
 import { SessionController } from "./core/session";
+import { selection } from "./program/selected";
 import { mountJog } from "./jog/jog";
 import { mountSwivel } from "./swivel/swivel";
 import { Lobby } from "./lobby/lobby";
@@ -27,11 +28,14 @@ import { ProgramManager } from "./program/manager";
 import { mountMachineData } from "./setup/machineData";
 import { showArea, wireAreas } from "./ui/areas";
 import { mountMachineView } from "./view3d/machineView";
+import { mountPreview } from "./view3d/preview";
 
 const DEFAULT_MACHINE = "mill-3axis";
 
 async function main(): Promise<void> {
   const session = new SessionController();
+  // First listener: the views that follow read the demo chosen for the session's machine.
+  session.on("session", (info) => selection.adoptDemo(info.machine.machine_data));
   wireMessageBar();
   wireAreas();
   mountHeader(session);
@@ -46,7 +50,7 @@ async function main(): Promise<void> {
   mountSwivel(session);
   mountAlarms(session);
   mountEvents(session);
-  mountMachineView(session);
+  mountPreview(session, mountMachineView(session));
   mountAxisPlot(session);
   const editor = new EditorArea(session);
   new ProgramManager(session, editor);

@@ -21,7 +21,6 @@ use super::main_run::line_offset;
 use super::{Channel, CommandError, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Item, Offsets, Prep, StopKind};
-use crate::lang;
 use crate::motion::{Feed, Move};
 
 /// Most blocks a search prepares before it gives up (a program that loops without end).
@@ -47,9 +46,7 @@ impl Channel {
         }
         let text: Arc<str> = match text {
             Some(t) => {
-                if let Some(d) = lang::check(t).into_iter().next() {
-                    return Err(CommandError::Syntax { line: d.line, message: d.message });
-                }
+                CommandError::check(t)?;
                 Arc::from(t)
             }
             None => self
@@ -106,6 +103,8 @@ impl Channel {
             let in_main_program = self.interp.call_depth() == 0;
             let prep = self.interp.prepare_next(&self.cfg, &self.programs, true, &mut out);
             let trafo_changed = self.interp.transformation_generation() != generation;
+            // Blocks passed by the search do not run: what they would report does not show.
+            self.interp.take_warnings();
             for (l, data) in self.interp.take_data_writes() {
                 self.apply_program_data(l, &data)?;
             }

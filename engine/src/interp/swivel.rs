@@ -377,10 +377,11 @@ impl Interpreter {
         self.below_tool_frame(cfg).unrotate_direction(bcs)
     }
 
-    /// $P_PARTFRAME : $P_ACTBFRAME : $P_IFRAME.
+    /// $P_PARTFRAME : $P_SETFRAME : $P_EXTFRAME : $P_ACTBFRAME : $P_IFRAME.
     fn below_tool_frame(&self, cfg: &MachineConfig) -> Frame {
-        let (base, settable) = (super::basic_frame(cfg), super::work_offset(cfg, self.modal.work_offset));
-        frame::chain(&[&self.system.part, &base, &settable], &cfg.geo_axes)
+        let (base, settable) = (super::basic_frame(cfg), self.iframe(cfg));
+        let s = &self.system;
+        frame::chain(&[&s.part, &s.set, &s.ext, &base, &settable], &cfg.geo_axes)
     }
 
     /// G group 53: TOROT/TOFRAME (codes 2..9) write `$P_TOOLFRAME`, TOROTOF (1) deletes it.
@@ -628,10 +629,12 @@ impl Interpreter {
         Ok(())
     }
 
-    /// $P_ACTBFRAME : $P_IFRAME (the frames between the part frame and the tool frame).
+    /// $P_SETFRAME : $P_EXTFRAME : $P_ACTBFRAME : $P_IFRAME (the frames between the part frame
+    /// and the tool frame).
     fn below_tool_frame_without_part(&self, cfg: &MachineConfig) -> Frame {
-        let (base, settable) = (super::basic_frame(cfg), super::work_offset(cfg, self.modal.work_offset));
-        frame::chain(&[&base, &settable], &cfg.geo_axes)
+        let (base, settable) = (super::basic_frame(cfg), self.iframe(cfg));
+        let s = &self.system;
+        frame::chain(&[&s.set, &s.ext, &base, &settable], &cfg.geo_axes)
     }
 
     /// The retraction of `_FR` as rapid moves in machine (channel axis) coordinates.
@@ -718,7 +721,12 @@ impl Interpreter {
         let mv = Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line);
         self.pos = end;
         let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
-        self.trc.push(trc::Prepared { mv, feed: Feed::Rapid, line, item }, None, &AxisLimit::for_channel(cfg), out)
+        self.trc.push(
+            trc::Prepared { mv, feed: Feed::Rapid, line, item, approach: self.modal.approach, corner: None },
+            None,
+            &AxisLimit::for_channel(cfg),
+            out,
+        )
     }
 }
 

@@ -7,6 +7,7 @@
 pub mod ast;
 mod cursor;
 mod parser;
+mod structure;
 
 pub use ast::*;
 pub use parser::{check, parse, parse_block, read_block};

@@ -29,6 +29,32 @@ export const DEMO_PROGRAM: SelectedProgram = {
   ].join("\n"),
 };
 
+/** The demo for machines without a Y geometry axis (lathes): a shaft turned with T1. */
+export const TURNING_DEMO: SelectedProgram = {
+  name: "DEMO",
+  text: [
+    "; Demo: face and turn a shaft (radius programming)",
+    "G18 G90 G54 T1 D1",
+    "G0 X30 Z5",
+    "G1 Z0 F300",
+    "X-0.8",
+    "G0 Z2",
+    "X25",
+    "G1 Z-40 F400",
+    "X30 Z-45",
+    "G0 X40",
+    "Z5",
+    "M30",
+    "",
+  ].join("\n"),
+};
+
+/** The demo that fits a machine's NC data: the turning demo when it has no Y geometry axis. */
+export function demoFor(machineData: string): SelectedProgram {
+  const withoutY = /\$MC_AXCONF_GEOAX_ASSIGN_TAB\[1\]\s*=\s*0\b/.test(machineData);
+  return withoutY ? TURNING_DEMO : DEMO_PROGRAM;
+}
+
 class Selection extends Emitter<{ change: SelectedProgram; mda: string }> {
   private program: SelectedProgram = DEMO_PROGRAM;
   /** The blocks last sent in MDA mode (block lines in MDA refer to them). */
@@ -41,6 +67,12 @@ class Selection extends Emitter<{ change: SelectedProgram; mda: string }> {
   select(program: SelectedProgram): void {
     this.program = { ...program };
     this.emit("change", this.program);
+  }
+
+  /** A new session: an untouched demo becomes the demo for its machine. */
+  adoptDemo(machineData: string): void {
+    const demo = demoFor(machineData);
+    if (this.program.name === "DEMO" && this.program.text !== demo.text) this.select(demo);
   }
 
   setMda(text: string): void {
