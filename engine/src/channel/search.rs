@@ -15,13 +15,11 @@
 //! with a transformation active in the BCS) and continues with the target block. Axes may be
 //! jogged between search and NC start; the approach starts from wherever they are.
 
-use std::sync::Arc;
-
 use super::main_run::line_offset;
 use super::{Channel, CommandError, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Item, Offsets, Prep, StopKind};
-use crate::lang;
+use crate::lang::{self, ProgramText};
 use crate::motion::{Feed, Move};
 
 /// Most blocks a search prepares before it gives up (a program that loops without end).
@@ -45,12 +43,12 @@ impl Channel {
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active; reset it before a block search"));
         }
-        let text: Arc<str> = match text {
+        let text: ProgramText = match text {
             Some(t) => {
                 if let Some(d) = lang::check(t).into_iter().next() {
                     return Err(CommandError::Syntax { line: d.line, message: d.message });
                 }
-                Arc::from(t)
+                ProgramText::from(t)
             }
             None => self
                 .program
