@@ -30,6 +30,15 @@ impl Alarm {
         Alarm::new(10720, format!("Channel 1 block {line} axis {axis} software limit switch {sign}"), Some(line))
     }
 
+    /// 10910: near a pole the machine axes cannot follow the programmed path velocity; the
+    /// block runs at the velocity they allow. Information only: the program goes on.
+    pub fn irregular_velocity(line: u32) -> Alarm {
+        Alarm {
+            clear: Clear::Cancel,
+            ..Alarm::new(10910, format!("Channel 1 block {line} irregular velocity run in a path axis"), Some(line))
+        }
+    }
+
     /// 10621: a JOG motion stopped at a software limit switch.
     pub fn rests_on_software_limit(axis: &str, plus: bool) -> Alarm {
         let sign = if plus { '+' } else { '-' };
@@ -164,11 +173,72 @@ impl Alarm {
         )
     }
 
-    /// 10744: tool radius compensation selected in a block that is not a straight line.
+    /// 10750: G41/G42 with no cutting edge active (D0).
+    pub fn trc_without_tool(line: u32) -> Alarm {
+        Alarm::new(
+            10750,
+            format!("Channel 1 block {line} tool radius compensation activated without tool number"),
+            Some(line),
+        )
+    }
+
+    /// 10753: tool radius compensation selected in a block that is not a straight line.
     pub fn trc_selection(line: u32) -> Alarm {
         Alarm::new(
-            10744,
-            format!("Channel 1 block {line} tool radius compensation must be selected in a linear block"),
+            10753,
+            format!("Channel 1 block {line} selection of tool radius compensation only possible in linear block"),
+            Some(line),
+        )
+    }
+
+    /// 10754: tool radius compensation deselected (G40) in a block that is not a straight line.
+    pub fn trc_deselection(line: u32) -> Alarm {
+        Alarm::new(
+            10754,
+            format!("Channel 1 block {line} deselection of tool radius compensation only possible in linear block"),
+            Some(line),
+        )
+    }
+
+    /// 10755 (approach) / 10756 (retract): KONT cannot go round the contour's start or end point
+    /// because the programmed start or end point lies within the tool radius of it.
+    pub fn trc_kont(line: u32, retract: bool) -> Alarm {
+        let (number, what) = if retract {
+            (10756, "deselection of tool radius compensation via KONT not possible at programmed end point")
+        } else {
+            (10755, "selection of tool radius compensation via KONT not possible at present starting point")
+        };
+        Alarm::new(number, format!("Channel 1 block {line} {what}"), Some(line))
+    }
+
+    /// 10757: G17/G18/G19 changed while tool radius compensation is active.
+    pub fn trc_plane_change(line: u32) -> Alarm {
+        Alarm::new(
+            10757,
+            format!(
+                "Channel 1 block {line} changing the compensation plane while tool radius compensation is active not possible"
+            ),
+            Some(line),
+        )
+    }
+
+    /// 10760: a circle (or helix) whose plane is not the compensation plane.
+    pub fn trc_helix_axis(line: u32) -> Alarm {
+        Alarm::new(
+            10760,
+            format!("Channel 1 block {line} helical axis is not parallel to tool orientation"),
+            Some(line),
+        )
+    }
+
+    /// 10762: more blocks without motion in the compensation plane in a row than MD20250
+    /// CUTCOM_MAXNUM_DUMMY_BLOCKS allows.
+    pub fn trc_dummy_blocks(line: u32, max: usize) -> Alarm {
+        Alarm::new(
+            10762,
+            format!(
+                "Channel 1 block {line} too many empty blocks between 2 traversing blocks with active tool radius compensation (MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS={max})"
+            ),
             Some(line),
         )
     }

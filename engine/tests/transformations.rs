@@ -332,6 +332,27 @@ fn tracyl_groove_wall_offset_keeps_c_on_the_centre_line() {
     }
 }
 
+/// A radial infeed (X only) inside the groove is a block without motion in the compensation
+/// plane: it runs at the corner point with the real Y axis holding the wall offset (2), and the
+/// groove goes on to Z−60 on the same wall.
+#[test]
+fn tracyl_groove_wall_offset_holds_y_through_an_infeed() {
+    let program = format!("{GROOVE}X18\nZ-60\nM0\nM30");
+    let (ch, samples) = run("tracyl-xyzc", "", &program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    // XM ends where X18 puts the radial axis with the tool's length on it.
+    let (x, y, z) = (0, 1, 2);
+    let x_end = machine(&s, "XM");
+    assert!(x_end > 20.0 + 1e-6, "{x_end}");
+    let infeed: Vec<&Sample> = samples.iter().filter(|p| p.axes[x] > 20.0 + 1e-6 && p.axes[x] < x_end - 1e-6).collect();
+    assert!(!infeed.is_empty());
+    for p in infeed {
+        assert!(close(p.axes[y], 2.0, 1e-9) && close(p.axes[z], -30.0, 1e-9), "{:?}", p.axes);
+    }
+    assert!(close(machine(&s, "YM"), 2.0, 1e-9) && close(machine(&s, "ZM"), -60.0, 1e-9));
+}
+
 #[test]
 fn tracyl_groove_wall_offset_around_the_periphery_moves_z_and_hands_back_y() {
     // Around a quarter of the circumference on d = 40 (arc length 10π): the offset now lies
@@ -833,4 +854,198 @@ fn transmit_with_radius_compensation_offsets_in_the_cartesian_plane() {
         let y = p.axes[0] * p.axes[1].to_radians().sin();
         assert!(close(x, 6.0, 1e-6) && y > -10.0 - 1e-6 && y < 6.0 + 1e-6, "({x}, {y})");
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The manual's TRANSMIT example as a whole, TRANSMIT pole-side and velocity alarms
+// ---------------------------------------------------------------------------------------------
+
+/// The manual's TRANSMIT example (Transformations FM, M1 §2.1.5): the milling spindle becomes
+/// the master (SETMS(2)), TRANSMIT, a frame rotated by −45° and shifted additively, then a
+/// square roughed with G41 and 1 mm allowance (OFFN=1) by T1 and finished by T2. The seed
+/// gives the program from the finishing pass on; the lines before follow the same manual page.
+/// T2 (radius 3, length 30) is added to the preset's tool data here.
+const TRANSMIT_EXAMPLE_PROGRAM: &str = "\
+N10 T1 D1 F400 G94 G54 G17
+N20 G0 X20 Z10 SPOS=45
+N30 SETMS(2)
+N40 M3 S1000
+N50 TRANSMIT
+N60 ROT RPL=-45
+N70 ATRANS X-2 Y10
+N80 G1 X10 Y-10 G41 OFFN=1
+N90 X-10
+N100 Y10
+N110 X10
+N120 Y-10
+N130 G0 Z20 G40 OFFN=0
+N140 T2 D1 X15 Y-15
+N150 Z10 G41
+N160 G1 X10 Y-10
+N170 X-10
+N180 Y10
+N190 X10
+N200 Y-10
+N210 Z20 G40
+N220 TRAFOOF
+N230 G0 X20 Z10 SPOS=45
+N240 M30";
+
+/// Distance of point (x, y) from the square −10..10 × −10..10 (outside points only).
+fn distance_from_square(x: f64, y: f64) -> f64 {
+    let dx = (x.abs() - 10.0).max(0.0);
+    let dy = (y.abs() - 10.0).max(0.0);
+    dx.hypot(dy)
+}
+
+#[test]
+fn the_manual_transmit_example_keeps_the_offset_square_in_the_rotated_frame() {
+    let md = "$TC_DP1[2,1]=120\n$TC_DP3[2,1]=30.\n$TC_DP6[2,1]=3.";
+    let (ch, samples) = run("transmit-example", md, TRANSMIT_EXAMPLE_PROGRAM);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    // TRAFOOF deselects the frame: X20, Z10 + T2's length 30 in the machine. SPOS acts on the
+    // master spindle, which SETMS(2) made the milling spindle ASM.
+    assert!(close(machine(&s, "XM"), 20.0, 1e-9) && close(machine(&s, "ZM"), 40.0, 1e-9), "{:?}", s.machine);
+    assert!(close(angle_diff(machine(&s, "ASM"), 45.0), 0.0, 1e-9), "{:?}", s.machine);
+
+    // Tool centre in the WCS from the machine axes: polar → face (BCS), then undo the frame
+    // BCS = Rot(−45°)·(WCS + (−2, 10)) by hand.
+    let wcs = |p: &Sample| -> (f64, f64) {
+        let (r, c) = (p.axes[0], p.axes[1].to_radians());
+        let (bx, by) = (r * c.cos(), r * c.sin());
+        let (sin, cos) = 45f64.to_radians().sin_cos();
+        (cos * bx - sin * by + 2.0, sin * bx + cos * by - 10.0)
+    };
+    // Roughing (text lines 9..12 = N90..N120): T1 radius 4 + OFFN 1 around the square; G450
+    // rounds the outer corners, so the distance from the square is 5 all the way round.
+    // Finishing (lines 17..20 = N170..N200): T2 radius 3, no allowance.
+    let mut checked = [0, 0];
+    for p in &samples {
+        let (want, pass) = match p.line {
+            Some(9..=12) => (5.0, 0),
+            Some(17..=20) => (3.0, 1),
+            _ => continue,
+        };
+        let (x, y) = wcs(p);
+        assert!(close(distance_from_square(x, y), want, 1e-6), "line {:?}: ({x}, {y})", p.line);
+        checked[pass] += 1;
+    }
+    assert!(checked.iter().all(|&n| n > 100), "{checked:?} samples checked");
+
+    // During the cut the milling spindle turns at S1000 (M3 after SETMS(2)); C does not.
+    let mut ch = Channel::from_preset("transmit-example", md).unwrap();
+    ch.run_program(TRANSMIT_EXAMPLE_PROGRAM).unwrap();
+    while ch.snapshot().block.map(|b| b.line) != Some(10) {
+        ch.step();
+    }
+    let spindles = ch.snapshot().spindles;
+    assert!(
+        spindles.contains(&("ASC".to_string(), 1000.0)) && spindles.contains(&("C".to_string(), 0.0)),
+        "{spindles:?}"
+    );
+}
+
+#[test]
+fn pole_side_fix_refuses_a_start_on_the_excluded_side_with_21617() {
+    // POLE_SIDE_FIX = 2 keeps the radial axis negative; the machine stands at XM = +20.
+    let md = "$MC_TRANSMIT_POLE_SIDE_FIX_1=2";
+    let (ch, _) = run("transmit-example", md, "G0 X20\nTRANSMIT\nG1 F1000 X10 Y0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(alarm_numbers(&s), [21617]);
+    assert_eq!(s.alarms[0].line, Some(2), "refused at its selection");
+    assert!(close(machine(&s, "XM"), 20.0, 1e-12), "nothing moved: {:?}", s.machine);
+
+    // From the negative side the same point is reached there: XM = −10 with C = 180°.
+    let (ch, _) = run("transmit-example", md, "G0 X-20\nTRANSMIT\nG1 F1000 X10 Y0\nM0\nM30");
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    assert!(close(machine(&s, "XM"), -10.0, 1e-9), "{:?}", s.machine);
+    assert!(close(angle_diff(machine(&s, "CM"), 180.0), 0.0, 1e-9), "{:?}", s.machine);
+}
+
+#[test]
+fn a_feed_cut_unevenly_near_the_pole_reports_10910_and_goes_on() {
+    // 0.5 mm past the centre at F6000: C limits the feed to a fraction near the pole.
+    let program = "G0 X20\nTRANSMIT\nG1 F6000 X20 Y0.5\nX-20 Y0.5\nM0\nM30";
+    let (ch, _) = run("transmit-example", "", program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "the program went on: {:?}", s.alarms);
+    assert_eq!(alarm_numbers(&s), [10910]);
+    assert_eq!(s.alarms[0].line, Some(4));
+
+    // Far from the pole (the square at radius 10..14) the same C allows the feed everywhere.
+    let (ch, _) = run("transmit-example", "", TRANSMIT_SQUARE);
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
+}
+
+// ---------------------------------------------------------------------------------------------
+// TRACYL on the X-Y-Z-A-C milling machine
+// ---------------------------------------------------------------------------------------------
+
+/// A groove along the cylinder and then around a quarter of it, on a cylinder clamped on the C
+/// table tilted by A = −90°. T1: radius 4, length 80 along ZM (radial). OFFN = 5: the tool
+/// centre runs 1 mm beside the centre line.
+const XYZAC_GROOVE: &str = "\
+T1 D1 G17 G90
+G0 A-90 C0
+G0 X0 Y10 Z30
+TRACYL(40)
+G19 G0 X20 Y0 Z10
+G1 F1000 G41 OFFN=5 Y0 Z0
+Z-30
+M0
+Y31.4159265358979
+M0
+M30";
+
+#[test]
+fn tracyl_on_the_xyzac_machine_unrolls_onto_c_with_the_groove_wall_on_xm() {
+    let mut ch = Channel::from_preset("tracyl-xyzac", "").unwrap();
+    ch.run_program(XYZAC_GROOVE).unwrap();
+    // (C, XM, YM) at the two stops: along the cylinder (BCS −Z = −YM) the wall offset lies
+    // across the periphery and is travelled by XM (left of −Z seen from +X is +Y_bcs, the
+    // supplementary axis' direction). The compensation looks across M0 to the next move, a
+    // left turn onto +Y: an inner corner, so the tool stops at the intersection of the two
+    // offset lines, 1 mm short of Z−30 (YM −29) with XM = 1 and C on the centre line.
+    // After a quarter turn on d = 40 (arc 10π) the offset lies along the cylinder: YM = −29,
+    // XM back to 0, C = 90°.
+    for (c, xm, ym) in [(0.0, 1.0, -29.0), (90.0, 0.0, -29.0)] {
+        while ch.is_busy() {
+            ch.step();
+        }
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+        assert!(close(angle_diff(machine(&s, "CM"), c), 0.0, 1e-6), "C {} vs {c}", machine(&s, "CM"));
+        assert!(close(machine(&s, "XM"), xm, 1e-9), "XM {}", machine(&s, "XM"));
+        assert!(close(machine(&s, "YM"), ym, 1e-9), "YM {}", machine(&s, "YM"));
+        // The radial infeed X20 is the tool tip; ZM carries the tool: 20 + 80.
+        assert!(close(machine(&s, "ZM"), 100.0, 1e-9), "ZM {}", machine(&s, "ZM"));
+        // The trunnion is not part of the transformation and stays where it was put.
+        assert!(close(machine(&s, "AM"), -90.0, 1e-9));
+        let t = s.transformation.clone().expect("TRACYL active");
+        assert_eq!((t.name.as_str(), t.trafo_type), ("TRACYL", 513));
+        ch.start().unwrap();
+    }
+}
+
+#[test]
+fn setms_needs_a_spindle_of_the_channel_and_program_end_restores_the_configured_master() {
+    let (ch, _) = run("transmit-example", "", "SETMS(3)\nM30");
+    let s = ch.snapshot();
+    assert_eq!(alarm_numbers(&s), [12560], "{:?}", s.alarms);
+    // SETMS(2) then M3: the milling spindle turns; after M30, S/M3 address spindle 1 again.
+    let (ch, _) = run("transmit-example", "", "SETMS(2)\nM3 S500\nG4 F10\nM30");
+    assert!(ch.snapshot().spindles.contains(&("ASC".to_string(), 500.0)), "{:?}", ch.snapshot().spindles);
+    let mut ch = ch;
+    ch.run_program("M4 S80\nG4 F10\nM30").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let spindles = ch.snapshot().spindles;
+    assert!(
+        spindles.contains(&("C".to_string(), -80.0)) && spindles.contains(&("ASC".to_string(), 500.0)),
+        "{spindles:?}"
+    );
 }

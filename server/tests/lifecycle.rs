@@ -2,6 +2,7 @@
 //! down gracefully (saves, closes streams with a close frame, exits in bounded time), and
 //! SIGKILL loses no acknowledged write.
 
+mod pg;
 mod process;
 
 use process::forward_lines;
@@ -33,7 +34,16 @@ impl Drop for Nctwin {
 impl Nctwin {
     /// Starts the binary on a free port with `data_dir` and waits for its address.
     fn start(data_dir: &Path) -> Nctwin {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_nctwin"))
+        Nctwin::start_with(data_dir, None)
+    }
+
+    /// [`Nctwin::start`], keeping the sessions in PostgreSQL database `database` if given.
+    fn start_with(data_dir: &Path, database: Option<&str>) -> Nctwin {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_nctwin"));
+        if let Some(url) = database {
+            command.args(["--database", url]);
+        }
+        let mut child = command
             .args(["--bind", "127.0.0.1:0", "--data-dir"])
             .arg(data_dir)
             .env("RUST_LOG", "info")
@@ -148,8 +158,23 @@ async fn sigterm_saves_closes_streams_with_a_close_frame_exits_and_a_restart_res
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 4)]
 async fn sigkill_during_writes_loses_no_acknowledged_write() {
-    let dir = data_dir("sigkill");
-    let server = Arc::new(Nctwin::start(&dir));
+    sigkill_during_writes(None).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn sigkill_during_writes_to_postgresql_loses_no_acknowledged_write() {
+    let Some(url) = tokio::task::spawn_blocking(|| pg::postgres_database("sigkill")).await.expect("create") else {
+        return;
+    };
+    sigkill_during_writes(Some(&url)).await;
+}
+
+/// Writers store programs while the server is killed with SIGKILL; after a restart on the same
+/// storage (the SQLite file under the data directory, or PostgreSQL database `database`) every
+/// acknowledged write is there.
+async fn sigkill_during_writes(database: Option<&str>) {
+    let dir = data_dir(if database.is_some() { "sigkill-pg" } else { "sigkill" });
+    let server = Arc::new(Nctwin::start_with(&dir, database));
     let (_, created) = server.send(reqwest::Method::POST, "/sessions", None).await;
     let id = created["id"].as_str().expect("id").to_string();
 
@@ -199,7 +224,7 @@ async fn sigkill_during_writes_loses_no_acknowledged_write() {
     assert!(acknowledged.len() >= 10, "enough writes to mean something: {}", acknowledged.len());
     drop(server);
 
-    let server = Nctwin::start(&dir);
+    let server = Nctwin::start_with(&dir, database);
     for (sid, name, text) in &acknowledged {
         let (status, program) =
             server.send(reqwest::Method::GET, &format!("/sessions/{sid}/programs/{name}"), None).await;

@@ -6,6 +6,7 @@
 //! PostgreSQL cases print a note and pass without running.
 
 mod common;
+mod pg;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -16,10 +17,9 @@ use nctwin_server::storage::{
     self, Checkpoint, MemoryStorage, PostgresStorage, SessionRecord, SqliteStorage, Storage, TokenHashes,
 };
 use nctwin_server::{AppState, Config};
+use pg::postgres_database;
 use reqwest::StatusCode;
 use serde_json::json;
-
-const POSTGRES_URL_VAR: &str = "NCTWIN_TEST_POSTGRES_URL";
 
 fn record(id: &str, number: u64) -> SessionRecord {
     SessionRecord {
@@ -134,21 +134,6 @@ fn temp_dir(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
-}
-
-/// A URL of a new, empty database on the test PostgreSQL server, or `None` (with a note) when
-/// there is none. Blocks.
-fn postgres_database(test: &str) -> Option<String> {
-    let Ok(base) = std::env::var(POSTGRES_URL_VAR) else {
-        eprintln!("note: {POSTGRES_URL_VAR} is not set: PostgreSQL part of `{test}` skipped (scripts/test.sh sets it)");
-        return None;
-    };
-    static NEXT: AtomicUsize = AtomicUsize::new(0);
-    let name = format!("nctwin_{}_{}_{test}", std::process::id(), NEXT.fetch_add(1, Ordering::Relaxed));
-    let mut admin = postgres::Client::connect(&base, postgres::NoTls).expect("connect to the test PostgreSQL");
-    admin.batch_execute(&format!("CREATE DATABASE {name}")).expect("create a test database");
-    let separator = if base.contains('?') { '&' } else { '?' };
-    Some(format!("{base}{separator}dbname={name}"))
 }
 
 #[test]

@@ -36,6 +36,9 @@ impl Channel {
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
+            for warning in self.interp.take_warnings() {
+                self.notify_alarm(warning);
+            }
             for (line, text) in self.interp.take_data_writes() {
                 if let Err(alarm) = self.apply_program_data(line, &text) {
                     out.push(Item::Alarm(alarm));

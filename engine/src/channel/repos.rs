@@ -116,7 +116,7 @@ impl Channel {
     pub(super) fn push_bcs_move(&mut self, mv: Move, meta: MoveMeta) {
         let planned = match &self.trafo {
             Some(t) if !mv.machine_space && self.planner.is_empty() => {
-                plan::plan_block(t, &mv, &self.machine, &self.cfg).ok().map(|(moves, _)| moves)
+                plan::plan_block(t, &mv, &self.machine, &self.cfg).ok().map(|planned| planned.moves)
             }
             _ => None,
         };

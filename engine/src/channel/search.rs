@@ -104,6 +104,8 @@ impl Channel {
             let in_main_program = self.interp.call_depth() == 0;
             let prep = self.interp.prepare_next(&self.cfg, &self.programs, true, &mut out);
             let trafo_changed = self.interp.transformation_generation() != generation;
+            // Blocks passed by the search do not run: what they would report does not show.
+            self.interp.take_warnings();
             for (l, data) in self.interp.take_data_writes() {
                 self.apply_program_data(l, &data)?;
             }

@@ -63,6 +63,23 @@ impl Interpreter {
     }
 }
 
+/// The corner between two programmed moves for the radius compensation, which shapes the
+/// contour before offsetting it: `first` shortened and the corner element, `next` shortened
+/// in place; None where the corner stays sharp (arcs, tangent blocks).
+pub(super) fn split(
+    first: &Move,
+    corner: Corner,
+    line: u32,
+    next: &mut Move,
+    limits: &[AxisLimit],
+) -> Result<Option<(Move, Move)>, Alarm> {
+    let held = Held { item: Item::Move { mv: first.clone(), line, offsets: Default::default() }, corner, line };
+    Ok(match corner_between(&held, next, limits)? {
+        (Item::Move { mv: a, .. }, Some(Item::Move { mv: b, .. })) => Some((a, b)),
+        _ => None,
+    })
+}
+
 /// The held move shortened to the corner, and the corner element, with `next` shortened too.
 fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<(Item, Option<Item>), Alarm> {
     let Item::Move { mv: first, line, offsets } = &held.item else { unreachable!("only moves are held") };

@@ -5,6 +5,7 @@
 use super::modal::{Modal, MotionMode, Plane, PtpMode};
 use super::orient::{AngleDefinition, OriInterpolation, OriReference};
 use super::trc::{ArcFeed, CornerMode, Side};
+use super::trc_approach::ApproachMode;
 
 /// One entry per displayed G group: the index of the active function in that group's list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -12,7 +13,7 @@ pub struct GCodes([u8; GROUPS.len()]);
 
 /// The displayed groups in Operate's order: (group number, names by index). Group 8 (settable
 /// frame) is named from its number instead.
-const GROUPS: [(u8, &[&str]); 14] = [
+const GROUPS: [(u8, &[&str]); 15] = [
     (1, &["G0", "G1", "G2", "G3"]),
     (6, &["G17", "G18", "G19"]),
     (7, &["G40", "G41", "G42"]),
@@ -22,6 +23,7 @@ const GROUPS: [(u8, &[&str]); 14] = [
     (14, &["G90", "G91"]),
     (15, &["G94", "G95"]),
     (16, &["CFC", "CFTCP", "CFIN"]),
+    (17, &["NORM", "KONT", "KONTT", "KONTC"]),
     (18, &["G450", "G451"]),
     (25, &["ORIMKS", "ORIWKS"]),
     (49, &["CP", "PTP", "PTPG0", "PTPWOC"]),
@@ -64,6 +66,12 @@ impl GCodes {
                 ArcFeed::Contour => 0,
                 ArcFeed::CentrePath => 1,
                 ArcFeed::InnerOnly => 2,
+            },
+            match m.approach {
+                ApproachMode::Norm => 0,
+                ApproachMode::Kont => 1,
+                ApproachMode::Tangent => 2,
+                ApproachMode::Curvature => 3,
             },
             u8::from(m.trc_corners == CornerMode::Intersection),
             u8::from(ori.reference == OriReference::Workpiece),

@@ -15,11 +15,16 @@ pub mod gcodes;
 mod modal;
 mod orient;
 mod scope;
+mod spindles;
 mod statements;
 mod swivel;
 pub mod toolholder;
 mod trafo;
 pub mod trc;
+pub mod trc_approach;
+mod trc_bottleneck;
+mod trc_disc;
+mod trc_edge;
 pub mod value;
 pub mod vars;
 
@@ -158,9 +163,8 @@ pub struct Interpreter {
     pframe: Frame,
     /// The system frames of the frame chain.
     system: SystemFrames,
-    /// Programmed spindle speed (rev/min) and direction (+1 M3, -1 M4, 0 M5).
-    speed: f64,
-    direction: i8,
+    /// Master spindle and each spindle's programmed speed and direction.
+    spindles: spindles::Spindles,
     /// Read position in the active program level, if one runs.
     flow: Option<Flow>,
     /// Subprogram calls in progress, outermost first.
@@ -168,6 +172,8 @@ pub struct Interpreter {
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
     /// not applied yet.
     data_writes: Vec<(u32, String)>,
+    /// Alarms that only inform (10910): shown while the program goes on.
+    warnings: Vec<Alarm>,
     /// A move held back until the next block decides its corner (RND, CHF, CHR).
     held: Option<corners::Held>,
     /// The corner the block being prepared asks for.
@@ -193,11 +199,11 @@ impl Interpreter {
             vars: Variables::default(),
             pframe: Frame::identity(),
             system: SystemFrames::default(),
-            speed: 0.0,
-            direction: 0,
+            spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
             data_writes: Vec::new(),
+            warnings: Vec::new(),
             held: None,
             corner_request: None,
             trc: trc::Compensator::default(),
@@ -217,7 +223,7 @@ impl Interpreter {
         self.held = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
-        self.direction = 0;
+        self.spindles.reset(cfg, true);
         self.pframe = Frame::identity();
         self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
@@ -228,9 +234,10 @@ impl Interpreter {
     /// Program end acts like a reset of the modal state (the spindle keeps turning until M5 or reset).
     pub fn end_program(&mut self, cfg: &MachineConfig) {
         let machine = self.transformation_machine_position();
-        let direction = self.direction;
+        let spindles = self.spindles.clone();
         self.reset(cfg, &machine);
-        self.direction = direction;
+        self.spindles = spindles;
+        self.spindles.reset(cfg, false);
     }
 
     /// Starts preparing `text` from the machine's current position. Local variables of an
@@ -246,6 +253,12 @@ impl Interpreter {
     /// [`NEWCONF`]): the channel applies them before the next block is prepared.
     pub fn take_data_writes(&mut self) -> Vec<(u32, String)> {
         std::mem::take(&mut self.data_writes)
+    }
+
+    /// Alarms raised by the blocks prepared since the last call that do not stop the program
+    /// (the control's "alarm display" reaction).
+    pub fn take_warnings(&mut self) -> Vec<Alarm> {
+        std::mem::take(&mut self.warnings)
     }
 
     /// Tells preparation where a spindle in speed mode stands in the main run (SPOS starts
@@ -296,10 +309,15 @@ impl Interpreter {
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
+        self.trc.begin_block(out);
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
             let limits = AxisLimit::for_channel(cfg);
-            // Whatever follows that is not a move ends a held compensated move first.
-            if self.trc.holds() && (prep != Prep::Prepared || out.iter().any(|i| !matches!(i, Item::Move { .. }))) {
+            // What a block without motion in the compensation plane produced waits behind the
+            // held compensated move (look-ahead across dummy blocks, MD20250); anything that
+            // cannot wait (a preprocessing stop, the program end, moves past the compensator)
+            // ends the held move first.
+            let deferred = prep == Prep::Prepared && self.trc.end_block(out)?;
+            if self.trc.holds() && !deferred {
                 let mut flushed = Vec::new();
                 self.trc.flush(&limits, &mut flushed)?;
                 let at = out.iter().rposition(|i| matches!(i, Item::Move { .. })).map_or(0, |i| i + 1);
@@ -356,11 +374,14 @@ impl Interpreter {
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
             self.modal.feed = Some(f);
         }
+        if let Some(spindle) = words.set_master {
+            self.spindles.set_master(spindle, cfg, line)?;
+        }
         if let Some(s) = words.speed.filter(|_| !words.dwell) {
             if s < 0.0 {
                 return Err(Alarm::value_out_of_range(line, &format!("S{s}")));
             }
-            self.speed = s;
+            self.spindles.set_master_speed(s);
         }
         self.select_tool(&words, cfg, line)?;
         if let Some(op) = words.frame_op {
@@ -375,31 +396,41 @@ impl Interpreter {
         self.absorb_tool_into_transformation();
 
         // Spindle before motion.
-        let old_direction = self.direction;
+        let old_direction = self.spindles.master_direction();
         if let Some(dir) = words.spindle_dir {
-            self.direction = dir;
+            self.spindles.set_master_direction(dir);
             // M3/M4/M5 return a positioned spindle to speed control.
-            if let Some(axis) = cfg.master_spindle {
+            if let Some(axis) = self.spindles.master() {
                 self.positioned[axis] = false;
             }
         }
         let spindle_words = (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell;
-        let changes = self.direction != old_direction || self.direction != 0;
-        if let Some(axis) = cfg.master_spindle.filter(|_| spindle_words && changes) {
-            self.trc.flush(&AxisLimit::for_channel(cfg), out)?;
-            out.push(Item::Spindle { axis, rpm: self.direction as f64 * self.speed, line });
+        let direction = self.spindles.master_direction();
+        let changes = direction != old_direction || direction != 0;
+        if let Some(axis) = self.spindles.master().filter(|_| spindle_words && changes) {
+            // Before the block's motion, after the held compensated move.
+            self.trc
+                .emit_or_defer(Item::Spindle { axis, rpm: direction as f64 * self.spindles.master_speed(), line }, out);
         }
 
+        // SPOS first; axis words of the same block then move the path (one after the other
+        // here, where the control runs the two side by side).
+        let positioned = words.spos.is_some();
         if let Some(target) = words.spos {
             let (mv, feed) = self.spindle_position(target, cfg, line)?;
-            let axis = cfg.master_spindle.expect("checked in spindle_position");
-            out.push(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line });
+            let axis = self.spindles.master().expect("checked in spindle_position");
+            // With compensation active SPOS is a block without motion in the plane.
+            self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
-            self.trc.push(trc::Prepared { mv, feed, line, item }, None, &AxisLimit::for_channel(cfg), out)?;
-        } else if words.dwell {
+            let approach = self.modal.approach;
+            let prepared = trc::Prepared { mv, feed, line, item, approach, corner: None };
+            let comp = self.compensation(cfg, &words, line)?;
+            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
+        }
+        if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
-                (None, Some(revs)) if self.speed > 0.0 => revs * 60.0 / self.speed,
+                (None, Some(revs)) if self.spindles.master_speed() > 0.0 => revs * 60.0 / self.spindles.master_speed(),
                 (None, Some(_)) => return Err(Alarm::value_out_of_range(line, "G4 S (spindle stands)")),
                 _ => return Err(Alarm::syntax(line, "G4 needs F<seconds> or S<revolutions>")),
             };
@@ -418,8 +449,12 @@ impl Interpreter {
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
             let comp = self.compensation(cfg, &words, line)?;
-            self.trc.push(trc::Prepared { mv, feed, line, item }, comp, &AxisLimit::for_channel(cfg), out)?;
-        } else if self.offsets != offsets_before {
+            let approach = self.modal.approach;
+            // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
+            let corner = if comp.is_some() { self.corner_request.take() } else { None };
+            let prepared = trc::Prepared { mv, feed, line, item, approach, corner };
+            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
+        } else if self.offsets != offsets_before && !positioned {
             out.push(Item::Offsets { line, offsets: self.offsets.clone() });
         }
 
@@ -545,10 +580,10 @@ impl Interpreter {
     /// SPOS: stops the master spindle where it is, switches it to position control and moves it
     /// the short way to `target` degrees at its maximum velocity.
     fn spindle_position(&mut self, target: f64, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {
-        let axis = cfg.master_spindle.ok_or_else(|| Alarm::unknown_name(line, "SPOS (no master spindle)"))?;
+        let axis = self.spindles.master().ok_or_else(|| Alarm::unknown_name(line, "SPOS (no master spindle)"))?;
         let start_angle = self.spindle_angles[axis].rem_euclid(360.0);
         self.positioned[axis] = true;
-        self.direction = 0;
+        self.spindles.stop(axis);
         let mut start = self.pos;
         start[axis] = start_angle;
         let mut end = start;
@@ -574,7 +609,9 @@ impl Interpreter {
     ) -> Result<Option<trc::Compensation>, Alarm> {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
         let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
-        let tool_radius = edge.map_or(0.0, |p| p[5] + p[14]);
+        let Some(edge) = edge else { return Err(Alarm::trc_without_tool(line)) };
+        let tool_radius = edge[5] + edge[14];
+        let tip = trc_edge::tip_offset(edge[0], edge[1], tool_radius);
         let groove_wall = self.groove_wall_axes();
         let offn = self.modal.offn;
         let radius = match groove_wall {
@@ -626,9 +663,13 @@ impl Interpreter {
             side,
             radius,
             corners: self.modal.trc_corners,
+            disc: self.modal.disc,
             arc_feed: self.modal.arc_feed,
             u: unit(u),
             v: unit(v),
+            tip: if groove_wall.is_some() { (0.0, 0.0) } else { tip },
+            max_dummy_blocks: cfg.cutcom_max_dummy_blocks,
+            max_check_blocks: cfg.cutcom_max_check_blocks,
             groove_wall,
         }))
     }
@@ -781,7 +822,8 @@ impl Interpreter {
             MotionMode::Rapid => Feed::Rapid,
             _ => {
                 let f = self.modal.feed.ok_or_else(|| Alarm::no_feed(line))?;
-                let per_min = if self.modal.feed_per_rev { f * self.speed } else { f } * self.modal.feed_factor();
+                let per_min = if self.modal.feed_per_rev { f * self.spindles.master_speed() } else { f }
+                    * self.modal.feed_factor();
                 if per_min <= 0.0 {
                     return Err(Alarm::feed_not_positive(line));
                 }
@@ -860,8 +902,18 @@ impl Interpreter {
     /// `$P_ACTFRAME`: $P_PARTFRAME : $P_ACTBFRAME : $P_IFRAME : $P_TOOLFRAME : $P_PFRAME :
     /// $P_CYCFRAME, from the BCS towards the WCS (the frames this product models).
     fn active_frame(&self, cfg: &MachineConfig) -> Frame {
-        let (base, settable) = (basic_frame(cfg), work_offset(cfg, self.modal.work_offset));
+        let (mut base, mut settable) = (basic_frame(cfg), work_offset(cfg, self.modal.work_offset));
         let s = &self.system;
+        if let Some(rot) = self.trafo.rotary_slot() {
+            // TRANSMIT/TRACYL put a Cartesian axis into the rotary axis' slot: the offsets the
+            // stored frames hold for the rotary axis stay out of it (frames programmed while
+            // the transformation is active address the Cartesian axis and act).
+            let mut part = s.part.clone();
+            for f in [&mut part, &mut base, &mut settable] {
+                f.trans[rot] = 0.0;
+            }
+            return frame::chain(&[&part, &base, &settable, &s.tool, &self.pframe, &s.cycle], &cfg.geo_axes);
+        }
         frame::chain(&[&s.part, &base, &settable, &s.tool, &self.pframe, &s.cycle], &cfg.geo_axes)
     }
 }

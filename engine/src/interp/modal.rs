@@ -10,6 +10,7 @@ use super::orient::{self, OriModal, OriWords};
 use super::scope::{Ctx, SysView};
 use super::toolholder::{CutMode, TcoMode, g53_code};
 use super::trc::{ArcFeed, CornerMode, Side};
+use super::trc_approach::ApproachMode;
 use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
@@ -75,6 +76,10 @@ pub struct Modal {
     pub trc_corners: CornerMode,
     /// OFFN contour offset.
     pub offn: f64,
+    /// G group 17: NORM, KONT, KONTT, KONTC (approach and retract).
+    pub approach: ApproachMode,
+    /// DISC: how far G450's transition circle is pulled towards the intersection (0..100).
+    pub disc: f64,
     /// Where the feed applies on compensated arcs (G group 16).
     pub arc_feed: ArcFeed,
     /// Last polar angle AP (degrees) and radius RP.
@@ -128,6 +133,8 @@ impl Modal {
             trc: None,
             trc_corners: CornerMode::Circle,
             offn: 0.0,
+            approach: ApproachMode::Norm,
+            disc: 0.0,
             arc_feed: ArcFeed::Contour,
             ori: OriModal::reset(),
             ptp: PtpMode::Cp,
@@ -150,6 +157,10 @@ impl Modal {
             self.motion = m;
         }
         if let Some(p) = w.plane {
+            // The compensation plane changes only with G40 (in this block or before).
+            if self.trc.is_some() && p != self.plane && w.trc != Some(None) {
+                return Err(Alarm::trc_plane_change(line));
+            }
             self.plane = p;
         }
         if let Some(a) = w.absolute {
@@ -173,6 +184,15 @@ impl Modal {
         }
         if let Some(o) = w.offn {
             self.offn = o;
+        }
+        if let Some(a) = w.approach {
+            self.approach = a;
+        }
+        if let Some(d) = w.disc {
+            if !(0.0..=100.0).contains(&d) {
+                return Err(Alarm::value_out_of_range(line, &format!("DISC={d} (0..100)")));
+            }
+            self.disc = d;
         }
         if let Some(f) = w.arc_feed {
             self.arc_feed = f;
@@ -273,6 +293,8 @@ pub(super) struct Words {
     pub tool: Option<u32>,
     pub edge: Option<u32>,
     pub spindle_dir: Option<i8>,
+    /// SETMS(n): spindle n becomes the master spindle (`Some(None)`: SETMS, back to MD20090).
+    pub set_master: Option<Option<u32>>,
     pub stop: Option<StopKind>,
     /// A jump at the end of the block (`... GOTOF LABEL`).
     pub goto: Option<Goto>,
@@ -303,6 +325,10 @@ pub(super) struct Words {
     pub trc_corners: Option<CornerMode>,
     /// OFFN=: contour offset added to the tool radius.
     pub offn: Option<f64>,
+    /// NORM, KONT, KONTT, KONTC.
+    pub approach: Option<ApproachMode>,
+    /// DISC=.
+    pub disc: Option<f64>,
     /// CFC, CFTCP, CFIN.
     pub arc_feed: Option<ArcFeed>,
     /// SPOS=: position the master spindle (it becomes a rotary axis).
@@ -374,7 +400,10 @@ pub(super) fn collect(
             Word::Goto(goto) => w.goto = Some(goto.clone()),
             Word::Keyword { name, args }
                 if args.is_empty()
-                    && matches!(name.as_str(), "SUPA" | "STOPRE" | "NEWCONF" | "CFC" | "CFTCP" | "CFIN" | "NORM") =>
+                    && matches!(
+                        name.as_str(),
+                        "SUPA" | "STOPRE" | "NEWCONF" | "CFC" | "CFTCP" | "CFIN" | "NORM" | "KONT" | "KONTT" | "KONTC"
+                    ) =>
             {
                 match name.as_str() {
                     "SUPA" => w.g53 = true,
@@ -382,8 +411,10 @@ pub(super) fn collect(
                     "CFC" => w.arc_feed = Some(ArcFeed::Contour),
                     "CFTCP" => w.arc_feed = Some(ArcFeed::CentrePath),
                     "CFIN" => w.arc_feed = Some(ArcFeed::InnerOnly),
-                    // NORM (straight approach perpendicular to the contour) is the only
-                    // approach mode modelled and therefore the standing one.
+                    "NORM" => w.approach = Some(ApproachMode::Norm),
+                    "KONT" => w.approach = Some(ApproachMode::Kont),
+                    "KONTT" => w.approach = Some(ApproachMode::Tangent),
+                    "KONTC" => w.approach = Some(ApproachMode::Curvature),
                     _ => {}
                 }
             }
@@ -472,6 +503,19 @@ pub(super) fn collect(
                 }
                 w.data_writes.push(format!("{DELOBJ}{kind}"));
             }
+            Word::Keyword { name, args } if name == "SETMS" => {
+                let spindle = match args.as_slice() {
+                    [] => None,
+                    [e] => {
+                        Some(eval(e, &Ctx { vars, sys }, line)?.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?)
+                    }
+                    _ => return Err(Alarm::syntax(line, "SETMS takes one spindle number")),
+                };
+                if spindle.is_some_and(|n| !(1.0..=32.0).contains(&n) || n.fract() != 0.0) {
+                    return Err(Alarm::value_out_of_range(line, &format!("SETMS({})", spindle.unwrap_or_default())));
+                }
+                w.set_master = Some(spindle.map(|n| n as u32));
+            }
             Word::Keyword { name, args } if name == "CALL" => {
                 let target = match args.as_slice() {
                     [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
@@ -523,6 +567,7 @@ pub(super) fn collect(
                     "RPL" => w.rpl = Some(v),
                     "SPOS" => w.spos = Some(v),
                     "OFFN" => w.offn = Some(v * sys.modal.length_factor()),
+                    "DISC" => w.disc = Some(v),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
                     "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
@@ -736,7 +781,7 @@ fn data_write(
 fn is_nc_address(name: &str) -> bool {
     const ADDRESSES: &[&str] = &[
         "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "SPOS", "TCARR",
+        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "DISC", "SPOS", "TCARR",
     ];
     ADDRESSES.contains(&name) || orient::is_address(name)
 }

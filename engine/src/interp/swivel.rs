@@ -718,7 +718,12 @@ impl Interpreter {
         let mv = Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line);
         self.pos = end;
         let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
-        self.trc.push(trc::Prepared { mv, feed: Feed::Rapid, line, item }, None, &AxisLimit::for_channel(cfg), out)
+        self.trc.push(
+            trc::Prepared { mv, feed: Feed::Rapid, line, item, approach: self.modal.approach, corner: None },
+            None,
+            &AxisLimit::for_channel(cfg),
+            out,
+        )
     }
 }
 

@@ -14,7 +14,7 @@ use std::sync::Arc;
 use super::modal::PtpMode;
 use super::{Interpreter, Item};
 use crate::alarm::{Alarm, Clear};
-use crate::kinematics::plan::{PlanError, plan_block};
+use crate::kinematics::plan::{self, PlanError, plan_block};
 use crate::kinematics::{self, ActiveTrafo, AnyTrafo, SelectArgs, Transformation};
 use crate::lang::{Block, Expr, Word};
 use crate::machine_data::{ChannelAxis, MachineAxis, MachineConfig, TrafoKind, TrafoParams};
@@ -151,6 +151,17 @@ fn not_available(line: u32, what: &str) -> Alarm {
     }
 }
 
+/// 21617: the machine stands on the side of the pole that `TRANSMIT_POLE_SIDE_FIX` excludes,
+/// so the block could only start by traversing the pole, which the transformation forbids.
+fn pole_side_fixed(line: u32) -> Alarm {
+    Alarm {
+        number: 21617,
+        message: format!("Channel 1 block {line} transformation does not allow to traverse the pole"),
+        line: Some(line),
+        clear: Clear::Reset,
+    }
+}
+
 /// 21619: a motion into the working-area limitation of TRANSMIT; the block is not executed.
 pub fn working_area(line: u32) -> Alarm {
     Alarm {
@@ -232,6 +243,11 @@ impl TrafoState {
         }
     }
 
+    /// The rotary axis whose channel slot a Cartesian axis uses while active (TRANSMIT, TRACYL).
+    pub fn rotary_slot(&self) -> Option<usize> {
+        self.active.as_ref().and_then(|a| a.trafo.trafo.rotary_slot())
+    }
+
     /// The configuration blocks are read with while a transformation is active.
     pub fn config(&self) -> Option<Arc<MachineConfig>> {
         self.active.as_ref().map(|a| a.derived.clone())
@@ -283,7 +299,7 @@ impl Interpreter {
         if let Some(a) = &self.trafo.active {
             let rot = a.trafo.trafo.rotary_slot();
             let turns = block.words.iter().any(|w| matches!(w, Word::M(3 | 4)));
-            if let Some(k) = rot.filter(|&k| turns && cfg.master_spindle == Some(k)) {
+            if let Some(k) = rot.filter(|&k| turns && self.spindles.master() == Some(k)) {
                 return Err(wrong_axis_type(line, &cfg.channel_axes[k].name));
             }
         }
@@ -309,6 +325,7 @@ impl Interpreter {
                 None => {
                     if self.trafo.active.take().is_some() {
                         self.pos = machine;
+                        self.deselect_current_frame();
                         self.trafo.generation = self.trafo.generation.wrapping_add(1);
                     }
                 }
@@ -375,13 +392,16 @@ impl Interpreter {
             .find(|s| s.number == number)
             .ok_or_else(|| not_available(line, &format!("data set {number}")))?;
         let trafo = kinematics::build(set, cfg, args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
-        if let Some(k) = trafo.rotary_slot().filter(|&k| cfg.master_spindle == Some(k) && self.direction != 0) {
+        if let Some(k) = trafo.rotary_slot().filter(|&k| self.spindles.turns(k)) {
             return Err(wrong_axis_type(line, &cfg.channel_axes[k].name));
         }
         let derived = Arc::new(derive(cfg, &trafo));
         let trafo = ActiveTrafo { trafo, tool: [0.0; 3], number: set.number };
+        if !plan::takes_over(&trafo, machine, cfg) {
+            return Err(pole_side_fixed(line));
+        }
         self.pos = trafo.forward(machine);
-        self.modal.work_offset = 0;
+        self.deselect_current_frame();
         self.trafo.active = Some(Box::new(Active {
             trafo,
             includes_tool: set.includes_tool,
@@ -393,6 +413,14 @@ impl Interpreter {
         }));
         self.trafo.generation = self.trafo.generation.wrapping_add(1);
         Ok(())
+    }
+
+    /// Selecting and deselecting a transformation deselects the current frame, as a programmed
+    /// G500 does, together with the programmable frame (TRANS, ROT ... of the program). A
+    /// program selects its frames again afterwards (the manual's TRACYL sequence).
+    fn deselect_current_frame(&mut self) {
+        self.modal.work_offset = 0;
+        self.pframe = crate::interp::frame::Frame::identity();
     }
 
     /// The transformation after reset and program end: the active one stays (RESET_MODE_MASK
@@ -417,8 +445,7 @@ impl Interpreter {
     }
 
     /// Moves the tool length of the geometry axes into the active transformation (when it
-    /// includes the tool) and keeps the rotary axis' work offset out of the Cartesian
-    /// coordinate in its slot. A new tool leaves the machine where it is, so the tip moves.
+    /// includes the tool). A new tool leaves the machine where it is, so the tip moves.
     pub(super) fn absorb_tool_into_transformation(&mut self) {
         let Some(a) = self.trafo.active.as_mut() else {
             self.offsets.trafo = None;
@@ -433,9 +460,6 @@ impl Interpreter {
                     self.offsets.tool[k] = 0.0;
                 }
             }
-        }
-        if let Some(rot) = a.trafo.trafo.rotary_slot() {
-            self.offsets.frame.trans[rot] = 0.0;
         }
         if tool != a.trafo.tool {
             a.trafo.tool = tool;
@@ -464,6 +488,7 @@ impl Interpreter {
                 plan_block(&a.trafo, mv, &a.machine, &a.base).map_err(|e| match e {
                     PlanError::Unreachable => working_area(line),
                     PlanError::SoftLimit { axis, plus } => Alarm::software_limit(line, &axis, plus),
+                    PlanError::PoleSide => pole_side_fixed(line),
                 })
             };
             if let Some(i) = a.ptp.iter().position(|p| p.tag == mv.tag) {
@@ -481,11 +506,15 @@ impl Interpreter {
                 let length = path.start.iter().zip(&path.end).map(|(x, y)| (y - x).powi(2)).sum::<f64>().sqrt();
                 let feed = if mv.is_rapid() { Feed::Rapid } else { Feed::Path(mv.feed) };
                 let link = Move::new(path, length, feed, &limits, true, mv.tag);
-                let (moves, end) = plan(a, &link)?;
-                a.machine = end;
-                result.extend(moves.into_iter().map(|mv| Item::Move { mv, line, offsets: offsets.clone() }));
+                let planned = plan(a, &link)?;
+                a.machine = planned.end;
+                result.extend(planned.moves.into_iter().map(|mv| Item::Move { mv, line, offsets: offsets.clone() }));
             }
-            let (moves, end) = plan(a, &mv)?;
+            let planned = plan(a, &mv)?;
+            if planned.irregular_velocity && !self.warnings.iter().any(|w| w.line == Some(line)) {
+                self.warnings.push(Alarm::irregular_velocity(line));
+            }
+            let (moves, end) = (planned.moves, planned.end);
             a.machine = end;
             // The orientation axes end where the machine's continuity put them (a vector
             // interpolation may pass a pole into the other solution).

@@ -1,14 +1,21 @@
-//! Tool radius compensation (G40/G41/G42, G450/G451, OFFN): the tool centre runs on the
-//! equidistant of the programmed contour in the working plane.
+//! Tool radius compensation (G40/G41/G42, G450/G451, DISC, OFFN): the tool centre runs on
+//! the equidistant of the programmed contour in the working plane.
 //!
 //! Works on prepared moves: each move's working-plane part is read in plane coordinates (the
 //! frame's images of the plane axes, so mirroring and rotation need no special cases), offset
 //! to the left (G41) or right (G42) by the radius, and joined to its neighbour at the corner:
-//! G450 inserts a transition arc about the contour corner, G451 extends both equidistants to
-//! their intersection; inner corners are cut at the intersection. A move is held back until
-//! its successor decides its end point.
+//! G450 inserts a transition arc about the contour corner (DISC pulls it towards the
+//! intersection), G451 extends both equidistants to their intersection; inner corners are cut
+//! at the intersection. A move is held back until its successor decides its end point; blocks
+//! without motion in the plane wait behind it (at most MD20250 of them, else alarm 10762) and
+//! run at the corner point. Elements too short for the tool are bridged (`trc_bottleneck`),
+//! approach and retract follow G group 17 (`trc_approach`), RND/CHF are shaped on the
+//! programmed contour first, and a turning tool's reference is its theoretical tip
+//! (`trc_edge`).
 
-use super::Item;
+use super::corners;
+use super::trc_approach::{self, ApproachMode};
+use super::{Item, trc_bottleneck, trc_disc};
 use crate::alarm::Alarm;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
@@ -58,10 +65,20 @@ pub struct Compensation {
     /// Tool radius plus OFFN.
     pub radius: f64,
     pub corners: CornerMode,
+    /// DISC (0..100): G450's transition circle pulled towards the intersection.
+    pub disc: f64,
     pub arc_feed: ArcFeed,
     /// The working plane's abscissa and ordinate in axis space (unit vectors).
     pub u: AxisVec,
     pub v: AxisVec,
+    /// Turning tools: the theoretical tip P relative to the cutting-edge centre S in plane
+    /// coordinates (cutting edge position, `trc_edge`); the centre runs on the equidistant
+    /// and the reference point follows P. Zero for milling tools and position 9.
+    pub tip: P2,
+    /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS.
+    pub max_dummy_blocks: usize,
+    /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks examined for a bottleneck.
+    pub max_check_blocks: usize,
     /// TRACYL groove-wall offset (513, 514 with k = 1): the channel slots of the unrolled
     /// peripheral coordinate and of the real Y axis. The part of the offset along the periphery
     /// is then travelled by the real Y axis, so the groove walls stay parallel.
@@ -70,7 +87,7 @@ pub struct Compensation {
 
 impl Compensation {
     /// Signed offset: positive to the left of the direction of travel.
-    fn offset(&self) -> f64 {
+    pub(super) fn offset(&self) -> f64 {
         match self.side {
             Side::Left => self.radius,
             Side::Right => -self.radius,
@@ -85,20 +102,27 @@ pub struct Prepared {
     pub feed: Feed,
     pub line: u32,
     pub item: Item,
+    /// G group 17 active in the block (approach with G41/G42, retract with G40).
+    pub approach: ApproachMode,
+    /// RND/CHF/CHR at its end: shaped into the programmed contour before the offset.
+    pub corner: Option<corners::Corner>,
 }
 
 /// The contour element of a move in plane coordinates.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Elem {
+pub(super) enum Elem {
     Line { s: P2, e: P2 },
     Arc { c: P2, r: f64, a0: f64, sweep: f64 },
 }
 
-type P2 = (f64, f64);
+pub(super) type P2 = (f64, f64);
 
 /// A compensated move waiting for its successor.
 #[derive(Debug, Clone)]
 struct Held {
+    /// Elements after it whose equidistants the tool cannot reach (bottleneck look-ahead,
+    /// MD20240): they are bridged when a later element meets this one.
+    skipped: Vec<(Prepared, Elem)>,
     p: Prepared,
     /// The programmed contour element.
     contour: Elem,
@@ -107,21 +131,123 @@ struct Held {
     comp: Compensation,
 }
 
+/// What waits behind the held move: blocks without motion in the compensation plane. They
+/// run where the held move's equidistant ends, before the next corner's transition.
+#[derive(Debug, Clone)]
+enum Pending {
+    /// A move outside the plane (infeed), kept at the tool's plane position.
+    Move(Box<(Prepared, Compensation)>),
+    /// Anything else the block produced (M functions, dwell, messages, stops).
+    Item(Box<Item>),
+}
+
 /// State of the compensation between moves.
 #[derive(Debug, Clone, Default)]
 pub struct Compensator {
     held: Option<Held>,
     /// The selection move (G41/G42 switched on), waiting for the first compensated element.
-    approach: Option<Prepared>,
+    approach: Option<(Prepared, Compensation)>,
     /// Where the tool centre stands in plane coordinates after the last emitted move, while
     /// compensation is active.
     tool_at: Option<P2>,
+    /// Axis-space end of the last move handed out (the tool's position in the prepared stream).
+    last_end: Option<AxisVec>,
+    pending: Vec<Pending>,
+    /// Blocks without plane motion in a row behind the held move (MD20250).
+    dummy_blocks: usize,
+    /// Whether the current block reached the compensator with motion in the plane, with motion
+    /// outside it only, and how long `out` was after the compensator last wrote to it.
+    block_plane_move: bool,
+    block_dummy_move: bool,
+    mark: usize,
 }
 
 impl Compensator {
     /// True while a move is held back.
     pub fn holds(&self) -> bool {
-        self.held.is_some() || self.approach.is_some()
+        self.held.is_some() || self.approach.is_some() || !self.pending.is_empty()
+    }
+
+    /// Starts a block: `out` is where its items go.
+    pub fn begin_block(&mut self, out: &[Item]) {
+        self.block_plane_move = false;
+        self.block_dummy_move = false;
+        self.mark = out.len();
+    }
+
+    /// Ends a block: the items it added to `out` after the compensator's last output wait
+    /// behind the held move (they belong to the block, which has not run yet). A block without
+    /// motion in the plane counts towards MD20250; one too many is alarm 10762. Returns false
+    /// (and defers nothing) when the block produced moves past the compensator, which then
+    /// has to be flushed.
+    pub fn end_block(&mut self, out: &mut Vec<Item>) -> Result<bool, Alarm> {
+        if !self.holds() {
+            return Ok(true);
+        }
+        let mark = self.mark.min(out.len());
+        if out[mark..].iter().any(|i| matches!(i, Item::Move { .. })) {
+            return Ok(false);
+        }
+        let items: Vec<Item> = if mark < out.len() { out.drain(mark..).collect() } else { Vec::new() };
+        if !self.block_plane_move && (self.block_dummy_move || !items.is_empty()) {
+            self.dummy_blocks += 1;
+            let max = self.max_dummy_blocks();
+            let line = items.iter().rev().find_map(Item::line).or_else(|| {
+                self.pending.iter().rev().find_map(|p| match p {
+                    Pending::Move(m) => Some(m.0.line),
+                    Pending::Item(i) => i.line(),
+                })
+            });
+            if self.dummy_blocks > max {
+                let line = line.unwrap_or(0);
+                return Err(Alarm::trc_dummy_blocks(line, max));
+            }
+        }
+        self.pending.extend(items.into_iter().map(|i| Pending::Item(Box::new(i))));
+        Ok(true)
+    }
+
+    fn max_dummy_blocks(&self) -> usize {
+        self.held
+            .as_ref()
+            .map(|h| h.comp.max_dummy_blocks)
+            .or(self.approach.as_ref().map(|a| a.1.max_dummy_blocks))
+            .unwrap_or(usize::MAX)
+    }
+
+    /// Hands an item to the main run, or keeps it behind the held move.
+    pub fn emit_or_defer(&mut self, item: Item, out: &mut Vec<Item>) {
+        if self.holds() {
+            self.block_dummy_move = true;
+            self.pending.push(Pending::Item(Box::new(item)));
+        } else {
+            self.emit(item, out);
+        }
+    }
+
+    fn emit(&mut self, item: Item, out: &mut Vec<Item>) {
+        if let Item::Move { mv, .. } = &item {
+            self.last_end = Some(mv.path.end);
+        }
+        out.push(item);
+        self.mark = out.len();
+    }
+
+    /// Where a move outside the plane starts: its own start with the plane part (and TRACYL's
+    /// groove-wall share) where the last move handed out ended. Spindle axes in position
+    /// control start where the block found them, not at a stale value of an earlier move.
+    fn start_at_tool(&self, own: AxisVec, comp: &Compensation) -> AxisVec {
+        let Some(last) = self.last_end else { return own };
+        let mut s = with_plane(&own, to_plane(&last, comp), comp);
+        if let Some((_, extra)) = comp.groove_wall {
+            s[extra] = last[extra];
+        }
+        s
+    }
+
+    /// Where the next move starts: the end of the last move handed out, else `fallback`.
+    fn from(&self, fallback: AxisVec) -> AxisVec {
+        self.last_end.unwrap_or(fallback)
     }
 
     /// Feeds one move. `comp` is the compensation active for it (None: G40). Appends the moves
@@ -134,39 +260,79 @@ impl Compensator {
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
         let Some(comp) = comp else {
-            // Deselection (or no compensation): finish what is held, then this move goes
-            // uncompensated from where the tool stands to its programmed end.
-            let was_active = self.tool_at.is_some() || self.holds();
-            self.flush(limits, out)?;
-            self.tool_at = None;
-            let mut p = p;
-            if let Some(start) = last_end(out).filter(|_| was_active) {
-                p.mv = rebuild(&p, Path::line(start, p.mv.path.end), limits);
-            }
-            out.push(p.item_with(p.mv.clone()));
-            return Ok(());
+            return self.deselect(p, limits, out);
         };
         let line = p.line;
+        if let Some(arc) = &p.mv.path.arc
+            && (arc_in_plane(arc, &comp).2.abs() - 1.0).abs() > 1e-6
+        {
+            return Err(Alarm::trc_helix_axis(line));
+        }
         let Some(contour) = element(&p.mv, &comp) else {
-            // No motion in the working plane: the tool stays on the equidistant.
+            // No motion in the working plane: wait behind the held move (look-ahead across
+            // dummy blocks), or run at the tool's plane position.
+            self.block_dummy_move = true;
+            if self.held.is_some() || self.approach.is_some() {
+                self.pending.push(Pending::Move(Box::new((p, comp))));
+                return Ok(());
+            }
             self.flush(limits, out)?;
             let mut p = p;
-            if let (Some(at), Some(start)) = (self.tool_at, last_end(out)) {
-                let end = with_plane(&p.mv.path.end, at, &comp);
-                p.mv = rebuild(&p, Path::line(start, end), limits);
+            if let Some(at) = self.tool_at {
+                let from = self.start_at_tool(p.mv.path.start, &comp);
+                let end = hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp);
+                p.mv = rebuild(&p, Path::line(from, end), limits);
             }
-            out.push(p.item_with(p.mv.clone()));
+            self.emit(p.item_with(p.mv.clone()), out);
             return Ok(());
         };
+        self.block_plane_move = true;
+        self.dummy_blocks = 0;
+        if let Some(h) = self.held.as_mut()
+            && h.skipped.is_empty()
+            && self.pending.is_empty()
+            && let Some(corner) = h.p.corner.take()
+        {
+            // The rounding or chamfer is part of the contour: insert it, then offset.
+            let mut next = p.clone();
+            if let Some((first, between)) = corners::split(&h.p.mv, corner, h.p.line, &mut next.mv, limits)?
+                && let (Some(shortened), Some(_)) = (element(&first, &h.comp), element(&next.mv, &comp))
+            {
+                h.p.mv = first;
+                h.contour = shortened;
+                let inserted = Prepared { mv: between, corner: None, ..h.p.clone() };
+                let prev_comp = h.comp;
+                self.push(inserted, Some(prev_comp), limits, out)?;
+                return self.push(next, Some(comp), limits, out);
+            }
+        }
         let d = comp.offset();
-        if let Some(approach) = self.approach.take() {
-            // The selection block ends where the first element's equidistant starts (NORM).
-            let start = offset_start(&contour, d);
-            let end = with_plane(&approach.mv.path.end, start, &comp);
-            let mv = rebuild(&approach, Path::line(approach.mv.path.start, end), limits);
-            out.push(approach.item_with(mv));
+        if let Some((approach, _)) = self.approach.take() {
+            // The selection block ends on the first element's equidistant (NORM) or goes round
+            // its start point (KONT) or joins it tangentially (KONTT).
+            let s0 = minus(to_plane(&approach.mv.path.start, &comp), comp.tip);
+            let (segments, start) = trc_approach::approach(approach.approach, s0, &contour, d, &comp, line)?;
+            let mut from3 = approach.mv.path.start;
+            if segments.is_empty() {
+                // Already on the equidistant: only the axes outside the plane move.
+                let end = place(&approach.mv.path.end, start, &comp);
+                let mv = rebuild(&approach, Path::line(from3, end), limits);
+                self.emit(approach.item_with(mv), out);
+            }
+            for (i, seg) in segments.into_iter().enumerate() {
+                let mut mv = plain(&approach, seg, i == 0, from3, approach.mv.path.end, &comp, limits);
+                if i == 0 {
+                    // The first piece starts where the tool stands (uncompensated).
+                    let mut path = mv.path.clone();
+                    path.start = from3;
+                    mv = rebuild(&approach, path, limits);
+                }
+                from3 = mv.path.end;
+                self.emit(approach.item_with(mv), out);
+            }
             self.tool_at = Some(start);
-            self.held = Some(Held { p, contour, start, comp });
+            self.release_pending(limits, out);
+            self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
             return Ok(());
         }
         match self.held.take() {
@@ -175,47 +341,167 @@ impl Compensator {
                 if matches!(contour, Elem::Arc { .. }) {
                     return Err(Alarm::trc_selection(line));
                 }
-                self.approach = Some(p);
+                self.approach = Some((p, comp));
             }
             None => {
                 // After moves outside the plane: link from where the tool stands.
                 let start = offset_start(&contour, d);
-                if let (Some(at), Some(from)) = (self.tool_at, last_end(out))
+                if let Some(at) = self.tool_at
                     && dist(at, start) > 1e-9
                 {
-                    let to = with_plane(&from, start, &comp);
-                    out.push(p.item_with(rebuild(&p, Path::line(from, to), limits)));
+                    let from = self.from(p.mv.path.start);
+                    let to = place(&from, start, &comp);
+                    self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
-                self.held = Some(Held { p, contour, start, comp });
+                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
             }
-            Some(prev) => {
-                let (prev_end, transition, next_start) = corner(&prev.contour, &contour, d, comp.corners, prev.p.line)?;
+            Some(prev)
+                if prev.skipped.is_empty() && (prev.comp.side != comp.side || prev.comp.radius != comp.radius) =>
+            {
+                // G41 ⇄ G42 (or another radius) without G40: the old side ends perpendicular at
+                // its end point, a straight line leads to the perpendicular start of the new.
+                self.held = Some(prev);
+                self.flush(limits, out)?;
+                let start = offset_start(&contour, d);
+                let from = self.from(p.mv.path.start);
+                if self.tool_at.is_some_and(|at| dist(at, start) > 1e-9) {
+                    let to = place(&from, start, &comp);
+                    self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
+                }
+                self.tool_at = Some(start);
+                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+            }
+            Some(mut prev) => {
+                let meet = match prev.skipped.last() {
+                    None => corner(&prev.contour, &contour, d, &comp, prev.p.line)?,
+                    Some((_, last)) => {
+                        let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), None, prev.p.line)?;
+                        trc_bottleneck::bridge(&eq, last, &contour, d)
+                    }
+                };
+                let Some((prev_end, transition, next_start)) = meet else {
+                    // Look further ahead for an element the tool can reach (MD20240).
+                    if prev.skipped.len() + 1 >= comp.max_check_blocks.max(1) {
+                        return Err(bottleneck(line));
+                    }
+                    prev.skipped.push((p, contour));
+                    self.held = Some(prev);
+                    return Ok(());
+                };
                 let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
-                out.push(prev.p.item_with(finish(&prev.p, eq, &prev.comp, limits, true)));
+                let mv = finish(&prev.p, eq, &prev.comp, limits, true);
+                self.emit(prev.p.item_with(mv), out);
+                self.tool_at = Some(prev_end);
+                for (skipped, _) in std::mem::take(&mut prev.skipped) {
+                    // A bridged element leaves only its axes outside the plane to travel.
+                    let from = self.from(skipped.mv.path.start);
+                    let end = place(&skipped.mv.path.end, prev_end, &comp);
+                    self.emit(skipped.item_with(rebuild(&skipped, Path::line(from, end), limits)), out);
+                }
+                self.release_pending(limits, out);
                 if let Some(arc) = transition {
-                    out.push(prev.p.item_with(finish(&prev.p, arc, &prev.comp, limits, false)));
+                    // The transition belongs to the next block (its line and feed) and runs at
+                    // the tool's height after the dummy blocks.
+                    let from = self.from(prev.p.mv.path.end);
+                    let mv = finish_transition(&p, arc, from, &comp, limits);
+                    self.emit(p.item_with(mv), out);
                 }
                 self.tool_at = Some(next_start);
-                self.held = Some(Held { p, contour, start: next_start, comp });
+                self.held = Some(Held { skipped: Vec::new(), p, contour, start: next_start, comp });
             }
         }
         Ok(())
     }
 
+    /// G40 (or a move without compensation): the held move ends perpendicular to its contour
+    /// (NORM) or goes round its end point (KONT, KONTT), then this move travels uncompensated
+    /// to its programmed end.
+    fn deselect(&mut self, p: Prepared, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        let was_active = self.tool_at.is_some() || self.holds();
+        if was_active && p.mv.path.arc.is_some() {
+            return Err(Alarm::trc_deselection(p.line));
+        }
+        let retract = match &self.held {
+            Some(h) if p.approach != ApproachMode::Norm && self.pending.is_empty() && h.skipped.is_empty() => {
+                let to = minus(to_plane(&p.mv.path.end, &h.comp), h.comp.tip);
+                let from = to_plane(&p.mv.path.start, &h.comp);
+                (dist(from, to) > 1e-9).then_some((h.clone(), to))
+            }
+            _ => None,
+        };
+        if let Some((h, to)) = retract {
+            self.held = None;
+            let d = h.comp.offset();
+            let (end, segments) = trc_approach::retract(p.approach, &h.contour, d, to, &h.comp, p.line)?;
+            let eq = offset_elem(&h.contour, d, Some(h.start), Some(end), h.p.line)?;
+            let mv = finish(&h.p, eq, &h.comp, limits, true);
+            self.emit(h.p.item_with(mv), out);
+            let n = segments.len();
+            for (i, seg) in segments.into_iter().enumerate() {
+                let from = self.from(p.mv.path.start);
+                let mut mv = plain(&p, seg, i + 1 == n, from, p.mv.path.end, &h.comp, limits);
+                if i + 1 == n {
+                    // The last piece ends at the programmed end point (the uncompensated tip).
+                    let mut path = mv.path.clone();
+                    path.end = p.mv.path.end;
+                    mv = rebuild(&p, path, limits);
+                }
+                self.emit(p.item_with(mv), out);
+            }
+            self.tool_at = None;
+            return Ok(());
+        }
+        self.flush(limits, out)?;
+        self.tool_at = None;
+        let mut p = p;
+        if was_active {
+            let from = self.from(p.mv.path.start);
+            p.mv = rebuild(&p, Path::line(from, p.mv.path.end), limits);
+        }
+        self.emit(p.item_with(p.mv.clone()), out);
+        Ok(())
+    }
+
+    /// Hands out what waited behind the held move, at the tool's current plane position.
+    fn release_pending(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) {
+        self.dummy_blocks = 0;
+        for pending in std::mem::take(&mut self.pending) {
+            match pending {
+                Pending::Item(item) => self.emit(*item, out),
+                Pending::Move(m) => {
+                    let (mut p, comp) = *m;
+                    let from = self.start_at_tool(p.mv.path.start, &comp);
+                    let end = match self.tool_at {
+                        Some(at) => hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp),
+                        None => p.mv.path.end,
+                    };
+                    p.mv = rebuild(&p, Path::line(from, end), limits);
+                    self.emit(p.item_with(p.mv.clone()), out);
+                }
+            }
+        }
+    }
+
     /// Ends the held move perpendicular to its contour end (before anything that is not a
     /// compensated move, and at the end of the program).
     pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
-        if let Some(approach) = self.approach.take() {
+        if let Some((approach, _)) = self.approach.take() {
             // A selection block without a following element stays uncompensated.
-            out.push(approach.item_with(approach.mv.clone()));
+            self.emit(approach.item_with(approach.mv.clone()), out);
             self.tool_at = None;
         }
         if let Some(h) = self.held.take() {
+            if let Some((skipped, _)) = h.skipped.last() {
+                // The contour ends inside the bottleneck.
+                return Err(bottleneck(skipped.line));
+            }
             let eq = offset_elem(&h.contour, h.comp.offset(), Some(h.start), None, h.p.line)?;
             self.tool_at = Some(elem_end(&eq));
-            out.push(h.p.item_with(finish(&h.p, eq, &h.comp, limits, true)));
+            let mv = finish(&h.p, eq, &h.comp, limits, true);
+            self.emit(h.p.item_with(mv), out);
         }
+        self.release_pending(limits, out);
         Ok(())
     }
 
@@ -225,14 +511,6 @@ impl Compensator {
     }
 }
 
-/// The end point of the last move in `out`.
-fn last_end(out: &[Item]) -> Option<AxisVec> {
-    out.iter().rev().find_map(|i| match i {
-        Item::Move { mv, .. } => Some(mv.path.end),
-        _ => None,
-    })
-}
-
 impl Prepared {
     fn item_with(&self, mv: Move) -> Item {
         match &self.item {
@@ -240,6 +518,33 @@ impl Prepared {
             other => other.clone(),
         }
     }
+}
+
+/// A move of the tool centre along `elem` at the programmed feed (approach and retract
+/// pieces). With `carries_axes` the axes outside the plane move from `from3` to `to3` on it,
+/// else they stay at `from3`.
+fn plain(
+    p: &Prepared,
+    elem: Elem,
+    carries_axes: bool,
+    from3: AxisVec,
+    to3: AxisVec,
+    comp: &Compensation,
+    limits: &[AxisLimit],
+) -> Move {
+    let to3 = if carries_axes { to3 } else { from3 };
+    let start3 = place(&from3, elem_start(&elem), comp);
+    let end3 = place(&to3, elem_end(&elem), comp);
+    let path = match elem {
+        Elem::Line { .. } => Path::line(start3, end3),
+        Elem::Arc { r, a0, sweep, .. } => Path {
+            start: start3,
+            end: end3,
+            arc: Some(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep }),
+            ori: None,
+        },
+    };
+    rebuild(p, path, limits)
 }
 
 /// The move rebuilt on a new path with the same feed and limits.
@@ -252,10 +557,26 @@ fn rebuild(p: &Prepared, path: Path, limits: &[AxisLimit]) -> Move {
 /// the programmed feed). Its axis-space start is the original start with the plane part
 /// replaced, its end likewise; axes outside the plane move as programmed.
 fn finish(p: &Prepared, elem: Elem, comp: &Compensation, limits: &[AxisLimit], contour_feed: bool) -> Move {
+    finish_between(p, elem, p.mv.path.start, p.mv.path.end, comp, limits, contour_feed)
+}
+
+/// A transition arc after `p`, starting at `from` (its axes outside the plane stay there).
+fn finish_transition(p: &Prepared, elem: Elem, from: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
+    finish_between(p, elem, from, from, comp, limits, false)
+}
+
+fn finish_between(
+    p: &Prepared,
+    elem: Elem,
+    from: AxisVec,
+    to: AxisVec,
+    comp: &Compensation,
+    limits: &[AxisLimit],
+    contour_feed: bool,
+) -> Move {
     let (s, e) = (elem_start(&elem), elem_end(&elem));
-    let (from, to) = if contour_feed { (p.mv.path.start, p.mv.path.end) } else { (p.mv.path.end, p.mv.path.end) };
-    let start3 = with_plane(&from, s, comp);
-    let end3 = with_plane(&to, e, comp);
+    let start3 = place(&from, s, comp);
+    let end3 = place(&to, e, comp);
     let (mut start3, mut end3) = (start3, end3);
     let (path, feed) = match elem {
         Elem::Line { s: ls, e: le } => {
@@ -329,16 +650,47 @@ fn element(mv: &Move, comp: &Compensation) -> Option<Elem> {
     let e = to_plane(&mv.path.end, comp);
     match &mv.path.arc {
         Some(arc) => {
-            let c = (s.0 - arc.radius * arc.start_angle.cos(), s.1 - arc.radius * arc.start_angle.sin());
-            Some(Elem::Arc { c, r: arc.radius, a0: arc.start_angle, sweep: arc.sweep })
+            // The arc's own axes (a rounding arc has its own) read in the plane.
+            let (ru, rv, orient) = arc_in_plane(arc, comp);
+            let (cs, sn) = (arc.start_angle.cos(), arc.start_angle.sin());
+            let a0 = (cs * ru.1 + sn * rv.1).atan2(cs * ru.0 + sn * rv.0);
+            let c = (s.0 - arc.radius * a0.cos(), s.1 - arc.radius * a0.sin());
+            Some(Elem::Arc { c, r: arc.radius, a0, sweep: arc.sweep * orient.signum() })
         }
         None if dist(s, e) > 1e-9 => Some(Elem::Line { s, e }),
         None => None,
     }
 }
 
+/// An arc's axes in plane coordinates and the sense of its plane against the working plane
+/// (±1 when the arc lies in it).
+fn arc_in_plane(arc: &Arc, comp: &Compensation) -> (P2, P2, f64) {
+    let ru = (dot(&arc.u, &comp.u), dot(&arc.u, &comp.v));
+    let rv = (dot(&arc.v, &comp.u), dot(&arc.v, &comp.v));
+    (ru, rv, ru.0 * rv.1 - ru.1 * rv.0)
+}
+
 fn to_plane(p: &AxisVec, comp: &Compensation) -> P2 {
     (dot(p, &comp.u), dot(p, &comp.v))
+}
+
+/// `p` with its working-plane part replaced by the tool-centre point `q` moved to the
+/// reference point (the theoretical tip of a turning tool).
+pub(super) fn place(p: &AxisVec, q: P2, comp: &Compensation) -> AxisVec {
+    with_plane(p, (q.0 + comp.tip.0, q.1 + comp.tip.1), comp)
+}
+
+pub(super) fn minus(a: P2, b: P2) -> P2 {
+    (a.0 - b.0, a.1 - b.1)
+}
+
+/// A move at the tool's plane position keeps TRACYL's groove-wall share on the real Y axis
+/// where the tool stands.
+fn hold_groove_wall(mut end: AxisVec, from: &AxisVec, comp: &Compensation) -> AxisVec {
+    if let Some((_, extra)) = comp.groove_wall {
+        end[extra] = from[extra];
+    }
+    end
 }
 
 /// `p` with its working-plane part replaced by `q`.
@@ -351,18 +703,18 @@ fn dot(a: &AxisVec, b: &AxisVec) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-fn dist(a: P2, b: P2) -> f64 {
+pub(super) fn dist(a: P2, b: P2) -> f64 {
     (a.0 - b.0).hypot(a.1 - b.1)
 }
 
-fn elem_start(e: &Elem) -> P2 {
+pub(super) fn elem_start(e: &Elem) -> P2 {
     match *e {
         Elem::Line { s, .. } => s,
         Elem::Arc { c, r, a0, .. } => (c.0 + r * a0.cos(), c.1 + r * a0.sin()),
     }
 }
 
-fn elem_end(e: &Elem) -> P2 {
+pub(super) fn elem_end(e: &Elem) -> P2 {
     match *e {
         Elem::Line { e, .. } => e,
         Elem::Arc { c, r, a0, sweep } => (c.0 + r * (a0 + sweep).cos(), c.1 + r * (a0 + sweep).sin()),
@@ -370,7 +722,7 @@ fn elem_end(e: &Elem) -> P2 {
 }
 
 /// Unit tangent at the start (`at_end` false) or end of an element.
-fn tangent(e: &Elem, at_end: bool) -> P2 {
+pub(super) fn tangent(e: &Elem, at_end: bool) -> P2 {
     match *e {
         Elem::Line { s, e } => {
             let l = dist(s, e);
@@ -385,12 +737,12 @@ fn tangent(e: &Elem, at_end: bool) -> P2 {
 }
 
 /// Left normal of a tangent.
-fn left(t: P2) -> P2 {
+pub(super) fn left(t: P2) -> P2 {
     (-t.1, t.0)
 }
 
 /// Start point of the equidistant at offset `d` (perpendicular at the contour start).
-fn offset_start(e: &Elem, d: f64) -> P2 {
+pub(super) fn offset_start(e: &Elem, d: f64) -> P2 {
     let p = elem_start(e);
     let n = left(tangent(e, false));
     (p.0 + d * n.0, p.1 + d * n.1)
@@ -398,7 +750,7 @@ fn offset_start(e: &Elem, d: f64) -> P2 {
 
 /// The element offset by `d`, with its start and end optionally moved to given points on the
 /// equidistant (corners decide them).
-fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) -> Result<Elem, Alarm> {
+pub(super) fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) -> Result<Elem, Alarm> {
     Ok(match *e {
         Elem::Line { s, e } => {
             let n = left(tangent(&Elem::Line { s, e }, false));
@@ -430,14 +782,18 @@ fn offset_elem(e: &Elem, d: f64, start: Option<P2>, end: Option<P2>, line: u32) 
 
 /// The corner between two elements (already in contour coordinates) at offset `d`: the end of
 /// the first equidistant, a transition arc if one is needed, and the start of the second.
-fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2, Option<Elem>, P2), Alarm> {
+/// `Ok(None)`: an inner corner whose intersection lies beyond the end of the second
+/// equidistant; the second element is too short for the tool and may be bridged by the
+/// bottleneck look-ahead.
+fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<Option<Meet>, Alarm> {
+    let mode = comp.corners;
     let p = elem_end(a);
     let (ta, tb) = (tangent(a, true), tangent(b, false));
     let (na, nb) = (left(ta), left(tb));
     let q1 = (p.0 + d * na.0, p.1 + d * na.1);
     let q2 = (p.0 + d * nb.0, p.1 + d * nb.1);
     if dist(q1, q2) < 1e-9 {
-        return Ok((q1, None, q1));
+        return Ok(Some((q1, None, q1)));
     }
     let cross = ta.0 * tb.1 - ta.1 * tb.0;
     let outer = cross * d < 0.0;
@@ -447,7 +803,13 @@ fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2
         if let (CornerMode::Intersection, Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (mode, oa, ob)
             && let Some(x) = line_line(s1, e1, s2, e2)
         {
-            return Ok((x, None, x));
+            return Ok(Some((x, None, x)));
+        }
+        if let (Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (oa, ob)
+            && comp.disc > 0.0
+            && let Some(x) = line_line(s1, e1, s2, e2)
+        {
+            return Ok(Some(trc_disc::disc_corner(q1, q2, x, p, comp.disc)));
         }
         // Transition circle about the contour corner, turning like the corner.
         let a0 = (q1.1 - p.1).atan2(q1.0 - p.0);
@@ -463,7 +825,7 @@ fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2
                 sweep -= tau;
             }
         }
-        return Ok((q1, Some(Elem::Arc { c: p, r: d.abs(), a0, sweep }), q2));
+        return Ok(Some((q1, Some(Elem::Arc { c: p, r: d.abs(), a0, sweep }), q2)));
     }
     // Inner corner: cut both equidistants at their intersection nearest the corner.
     let x = intersection(&oa, &ob, p)
@@ -477,14 +839,24 @@ fn corner(a: &Elem, b: &Elem, d: f64, mode: CornerMode, line: u32) -> Result<(P2
         Elem::Line { s, e } => ((x.0 - e.0) * (s.0 - e.0) + (x.1 - e.1) * (s.1 - e.1)) < -1e-9,
         Elem::Arc { .. } => false,
     };
-    if behind_a || beyond_b {
-        return Err(Alarm::collision(line, "the tool does not fit between the contour elements (bottleneck)"));
+    if behind_a {
+        return Err(bottleneck(line));
     }
-    Ok((x, None, x))
+    if beyond_b {
+        return Ok(None);
+    }
+    Ok(Some((x, None, x)))
+}
+
+/// The end of the first equidistant, the transition (if any) and the start of the next.
+pub(super) type Meet = (P2, Option<Elem>, P2);
+
+pub(super) fn bottleneck(line: u32) -> Alarm {
+    Alarm::collision(line, "the tool does not fit between the contour elements (bottleneck)")
 }
 
 /// Intersection of two infinite lines through (s1, e1) and (s2, e2).
-fn line_line(s1: P2, e1: P2, s2: P2, e2: P2) -> Option<P2> {
+pub(super) fn line_line(s1: P2, e1: P2, s2: P2, e2: P2) -> Option<P2> {
     let (d1, d2) = ((e1.0 - s1.0, e1.1 - s1.1), (e2.0 - s2.0, e2.1 - s2.1));
     let den = d1.0 * d2.1 - d1.1 * d2.0;
     if den.abs() < 1e-12 {
@@ -495,7 +867,7 @@ fn line_line(s1: P2, e1: P2, s2: P2, e2: P2) -> Option<P2> {
 }
 
 /// Intersection of two offset elements nearest `near`.
-fn intersection(a: &Elem, b: &Elem, near: P2) -> Option<P2> {
+pub(super) fn intersection(a: &Elem, b: &Elem, near: P2) -> Option<P2> {
     let points: Vec<P2> = match (*a, *b) {
         (Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) => line_line(s1, e1, s2, e2).into_iter().collect(),
         (Elem::Line { s, e }, Elem::Arc { c, r, .. }) | (Elem::Arc { c, r, .. }, Elem::Line { s, e }) => {
@@ -506,7 +878,7 @@ fn intersection(a: &Elem, b: &Elem, near: P2) -> Option<P2> {
     points.into_iter().min_by(|p, q| dist(*p, near).total_cmp(&dist(*q, near)))
 }
 
-fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
+pub(super) fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
     let d = (e.0 - s.0, e.1 - s.1);
     let f = (s.0 - c.0, s.1 - c.1);
     let (a, b, cc) = (d.0 * d.0 + d.1 * d.1, 2.0 * (f.0 * d.0 + f.1 * d.1), f.0 * f.0 + f.1 * f.1 - r * r);
@@ -518,7 +890,7 @@ fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
     [(-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a)].iter().map(|t| (s.0 + t * d.0, s.1 + t * d.1)).collect()
 }
 
-fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64) -> Vec<P2> {
+pub(super) fn circle_circle(c1: P2, r1: f64, c2: P2, r2: f64) -> Vec<P2> {
     let d = dist(c1, c2);
     if d < 1e-12 || d > r1 + r2 || d < (r1 - r2).abs() {
         return Vec::new();

@@ -33,6 +33,9 @@ pub enum PlanError {
     Unreachable,
     /// A machine axis would pass a software limit switch (alarm 10720).
     SoftLimit { axis: String, plus: bool },
+    /// The block would have to start on the other side of the pole than the machine stands
+    /// (TRANSMIT_POLE_SIDE_FIX forbids the side it is on): alarm 21617.
+    PoleSide,
 }
 
 impl From<Unreachable> for PlanError {
@@ -41,14 +44,26 @@ impl From<Unreachable> for PlanError {
     }
 }
 
-/// Plans BCS move `mv` starting at machine position `start`. Returns the moves for the
-/// planner and the machine position at the end of the block.
+/// A BCS block planned for the machine axes.
+#[derive(Debug, Clone)]
+pub struct PlannedBlock {
+    /// The moves for the planner, pole positioning moves included.
+    pub moves: Vec<Move>,
+    /// The machine position at the end of the block.
+    pub end: AxisVec,
+    /// The machine axes force the path velocity below the programmed one, and unevenly along
+    /// the block (near a pole): the control reports this with alarm 10910 and goes on at the
+    /// reduced velocity.
+    pub irregular_velocity: bool,
+}
+
+/// Plans BCS move `mv` starting at machine position `start`.
 pub fn plan_block(
     active: &ActiveTrafo,
     mv: &Move,
     start: &AxisVec,
     cfg: &MachineConfig,
-) -> Result<(Vec<Move>, AxisVec), PlanError> {
+) -> Result<PlannedBlock, PlanError> {
     let t = &active.trafo;
     let tool = &active.tool;
     let path = &mv.path;
@@ -62,6 +77,7 @@ pub fn plan_block(
 
     let mut machine = *start;
     let mut out: Vec<Move> = Vec::new();
+    let mut irregular_velocity = false;
     for w in cuts.windows(2) {
         let (u0, u1) = (w[0], w[1]);
         let len = mv.length * (u1 - u0);
@@ -85,14 +101,33 @@ pub fn plan_block(
             }
         }
         let local: Vec<f64> = critical.iter().filter(|&&c| c > u0 && c < u1).map(|&c| (c - u0) / (u1 - u0)).collect();
-        let (moves, end) = plan_piece(active, mv, &sub, len, &local, &machine, &slots, cfg)?;
-        out.extend(moves);
-        machine = end;
+        let piece = plan_piece(active, mv, &sub, len, &local, &machine, &slots, cfg)?;
+        out.extend(piece.moves);
+        machine = piece.end;
+        irregular_velocity |= piece.irregular_velocity;
     }
     if let Some(last) = out.last_mut() {
         last.exact_stop |= mv.exact_stop;
     }
-    Ok((out, machine))
+    Ok(PlannedBlock { moves: out, end: machine, irregular_velocity })
+}
+
+/// Whether transformation `active` can take over the machine where it stands: mapping the
+/// position to the BCS and back leaves the linear axes in place. A fixed pole side
+/// (`TRANSMIT_POLE_SIDE_FIX`) cannot take over a radial axis standing on the other side.
+pub fn takes_over(active: &ActiveTrafo, machine: &AxisVec, cfg: &MachineConfig) -> bool {
+    match active.inverse(&active.forward(machine), machine) {
+        Ok(m) => !leaves_by_a_jump(machine, &m, &active.trafo.machine_slots(), cfg),
+        // Unreachable regions are the blocks' business (21619).
+        Err(Unreachable) => true,
+    }
+}
+
+/// The machine solution at the start of a piece lies away from where the machine stands:
+/// the continuity rule could not keep the linear axes where they are, because the
+/// transformation allows only the other branch (a fixed pole side).
+fn leaves_by_a_jump(start: &AxisVec, first: &AxisVec, slots: &[usize], cfg: &MachineConfig) -> bool {
+    slots.iter().any(|&k| !cfg.axis(k).rotary && (first[k] - start[k]).abs() > 1e-3)
 }
 
 /// A positioning move of the rotary axis alone, in machine space, at its own limits.
@@ -125,7 +160,7 @@ fn plan_piece(
     start: &AxisVec,
     slots: &[usize],
     cfg: &MachineConfig,
-) -> Result<(Vec<Move>, AxisVec), PlanError> {
+) -> Result<PlannedBlock, PlanError> {
     let t = &active.trafo;
     let n = ((len / 0.25).ceil() as usize).clamp(8, 400);
     let mut us: Vec<f64> = (0..=n).map(|i| i as f64 / n as f64).collect();
@@ -141,12 +176,15 @@ fn plan_piece(
     let mut ms: Vec<f64> = Vec::with_capacity(us.len() * ns);
     let mut prev = *start;
     let mut p = [0.0; MAX_CHANNEL_AXES];
-    for &u in &us {
+    for (i, &u) in us.iter().enumerate() {
         sub.at(u, &mut p);
         let m = match sub.orientation_at(u) {
             Some(o) => active.inverse_oriented(&p, &o, &prev)?,
             None => active.inverse(&p, &prev)?,
         };
+        if i == 0 && leaves_by_a_jump(start, &m, slots, cfg) {
+            return Err(PlanError::PoleSide);
+        }
         for &k in slots {
             let ax = cfg.axis(k);
             if ax.modulo.is_some() || ax.spindle.is_some() {
@@ -196,7 +234,8 @@ fn plan_piece(
         .collect();
     let lo = v_allowed.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = v_allowed.iter().copied().fold(0.0, f64::max);
-    let parts = if hi > 2.0 * lo { 16 } else { 1 };
+    let uneven = hi > 2.0 * lo;
+    let parts = if uneven { 16 } else { 1 };
 
     let mut moves = Vec::with_capacity(parts);
     for part in 0..parts {
@@ -239,5 +278,8 @@ fn plan_piece(
             axis_tangents,
         });
     }
-    Ok((moves, prev))
+    // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the
+    // block; a feed that is simply too high for an axis everywhere is an ordinary limitation.
+    let irregular_velocity = uneven && lo < mv.feed.min(mv.v_axes);
+    Ok(PlannedBlock { moves, end: prev, irregular_velocity })
 }

@@ -80,6 +80,11 @@ pub struct MachineConfig {
     pub ori: OriSettings,
     /// Which transformation is active after reset and program end.
     pub reset_trafo: ResetTrafo,
+    /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS: blocks without motion in the compensation plane the
+    /// radius compensation looks across before alarm 10762.
+    pub cutcom_max_dummy_blocks: usize,
+    /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks the bottleneck detection examines.
+    pub cutcom_max_check_blocks: usize,
 }
 
 /// The transformation after reset and program end (MD20110 RESET_MODE_MASK bits 0 and 7,
@@ -261,6 +266,8 @@ impl MachineConfig {
             reset_trafo: ResetTrafo::build(md, &trafos)?,
             trafos,
             ori: OriSettings::read(md),
+            cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
+            cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

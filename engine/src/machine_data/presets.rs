@@ -44,6 +44,12 @@ pub static PRESETS: &[Preset] = &[
         text: TRACYL_XYZC,
     },
     Preset {
+        id: "tracyl-xyzac",
+        name: "5-axis mill with trunnion table A/C (TRACYL X-Y-Z-A-C example)",
+        description: "Milling machine XM, YM, ZM with tool spindle SPM and a trunnion table: A about X carries the rotary table C. With A at −90° the C axis lies along +Y and grooves are milled on the periphery of a cylinder clamped on C: TRACYL data set 1 of type 513 (radial axis ZM, rotary axis CM, axial axis YM, groove-wall offset by XM).",
+        text: TRACYL_XYZAC,
+    },
+    Preset {
         id: "traang-grinder",
         name: "Grinding machine with inclined infeed axis (TRAANG example)",
         description: "Inclined infeed axis MU at 45° and longitudinal axis MZ, work spindle C; TRAANG data set 1 (type 1024) with 20 % velocity and acceleration reserve on the parallel axis.",
@@ -326,6 +332,76 @@ $MC_TRACYL_ROT_SIGN_IS_PLUS_1=TRUE
 $MC_TRACYL_BASE_TOOL_1[0]=0
 $MC_TRACYL_BASE_TOOL_1[1]=0
 $MC_TRACYL_BASE_TOOL_1[2]=0
+"#;
+
+const TRACYL_XYZAC: &str = r#"; TRACYL on an X-Y-Z-A-C milling machine (Transformations FM, M1 TRACYL examples): the
+; trunnion A (about X) carries the rotary table C. The TRACYL data assume A = -90°, which turns
+; the C axis onto +Y: the vertical tool then stands radial to the cylinder clamped on C.
+$MN_AXCONF_MACHAX_NAME_TAB[0]="XM"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="YM"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="ZM"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="SPM"
+$MN_AXCONF_MACHAX_NAME_TAB[4]="AM"
+$MN_AXCONF_MACHAX_NAME_TAB[5]="CM"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=5
+$MC_AXCONF_MACHAX_USED[5]=6
+$MC_AXCONF_MACHAX_USED[6]=0
+$MC_AXCONF_CHANAX_NAME_TAB[0]="XC"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="YC"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="ZC"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="SP"
+$MC_AXCONF_CHANAX_NAME_TAB[4]="A"
+$MC_AXCONF_CHANAX_NAME_TAB[5]="C"
+$MC_AXCONF_GEOAX_NAME_TAB[0]="X"
+$MC_AXCONF_GEOAX_NAME_TAB[1]="Y"
+$MC_AXCONF_GEOAX_NAME_TAB[2]="Z"
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MA_MAX_AX_VELO[XM]=30000.
+$MA_MAX_AX_VELO[YM]=30000.
+$MA_MAX_AX_VELO[ZM]=30000.
+$MA_MAX_AX_ACCEL[XM]=3.
+$MA_MAX_AX_ACCEL[YM]=3.
+$MA_MAX_AX_ACCEL[ZM]=3.
+$MA_POS_LIMIT_MINUS[XM]=-400.
+$MA_POS_LIMIT_PLUS[XM]=400.
+$MA_POS_LIMIT_MINUS[YM]=-300.
+$MA_POS_LIMIT_PLUS[YM]=300.
+$MA_POS_LIMIT_MINUS[ZM]=-100.
+$MA_POS_LIMIT_PLUS[ZM]=400.
+$MA_IS_ROT_AX[SPM]=TRUE
+$MA_ROT_IS_MODULO[SPM]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SPM]=1
+$MA_MAX_AX_VELO[SPM]=12000.
+$MA_IS_ROT_AX[AM]=TRUE
+$MA_MAX_AX_VELO[AM]=10800.
+$MA_MAX_AX_ACCEL[AM]=1.5
+$MA_POS_LIMIT_MINUS[AM]=-120.
+$MA_POS_LIMIT_PLUS[AM]=120.
+$MA_IS_ROT_AX[CM]=TRUE
+$MA_ROT_IS_MODULO[CM]=TRUE
+$MA_MAX_AX_VELO[CM]=18000.
+$MA_MAX_AX_ACCEL[CM]=3.
+; T1 D1: slot mill, length 80 (along ZM), radius 4
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=80.
+$TC_DP6[1,1]=4.
+; TRACYL data set 1: type 513, groove-wall offset travelled by XM
+$MC_TRAFO_TYPE_1=513
+$MC_TRAFO_AXES_IN_1[0]=3      ; ZC: radial to the rotary axis (the tool's infeed)
+$MC_TRAFO_AXES_IN_1[1]=6      ; C: rotary axis
+$MC_TRAFO_AXES_IN_1[2]=2      ; YC: parallel to the rotary axis
+$MC_TRAFO_AXES_IN_1[3]=1      ; XC: perpendicular to both, for the groove-wall offset
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=3   ; X: radial, on ZC
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=6   ; Y: unrolled surface, on the rotary axis' channel slot
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=2   ; Z: along the cylinder, on YC
+$MC_TRACYL_ROT_AX_OFFSET_1=0
+$MC_TRACYL_ROT_SIGN_IS_PLUS_1=TRUE
 "#;
 
 const TRAANG_GRINDER: &str = r#"; Grinding machine with an inclined infeed axis (Transformations FM, M1 TRAANG)

@@ -229,6 +229,8 @@ pub static DEFS: &[Def] = &[
     def("ORIAX_TURN_TAB_1", 21120, C, Kind::Int, 3, Default::Indexed(default_turn_tab_1), 0.0, 3.0),
     def("ORIAX_TURN_TAB_2", 21130, C, Kind::Int, 3, Default::Indexed(default_turn_tab_2), 0.0, 3.0),
     // NC start refused while an axis is not referenced (alarm 16905).
+    def("CUTCOM_MAXNUM_CHECK_BLOCKS", 20240, C, Kind::Int, 1, Default::Int(3), 1.0, 100.0),
+    def("CUTCOM_MAXNUM_DUMMY_BLOCKS", 20250, C, Kind::Int, 1, Default::Int(3), 0.0, 100.0),
     def("REFP_NC_START_LOCK", 20700, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     // Transformation data sets 1..10: type, axes, geometry axes, tool handling (M1 data lists).
     def("TRAFO_TYPE_1", 24100, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
