@@ -39,9 +39,22 @@ impl AsRef<str> for Utf8Map {
 
 /// The thread that gives the mapped pages back; stops (and joins) when dropped.
 pub struct PageRelease {
+    map: Arc<Mmap>,
     stop: Arc<AtomicBool>,
     thread: Option<JoinHandle<()>>,
 }
+
+impl PageRelease {
+    /// Gives the mapped pages back at once: for a caller that reads the text faster than the
+    /// thread's period (a scan of the whole file), every few MiB.
+    pub fn now(&self) {
+        // SAFETY: see the thread in `map`.
+        let _ = unsafe { self.map.unchecked_advise(UncheckedAdvice::DontNeed) };
+    }
+}
+
+/// How much text a whole-file scan reads between two [`PageRelease::now`].
+pub const SCAN_CHUNK_BYTES: usize = 4 << 20;
 
 impl Drop for PageRelease {
     fn drop(&mut self) {
@@ -73,11 +86,23 @@ pub fn map(file: &File, path: &Path) -> Result<(ProgramText, PageRelease), Strin
             })
             .map_err(|e| format!("cannot start the page-release thread: {e}"))?
     };
-    let release = PageRelease { stop, thread: Some(thread) };
-    // The UTF-8 check reads the whole file: with the release thread running already, its pages
-    // do not pile up either.
-    if let Err(e) = std::str::from_utf8(&map) {
-        return Err(format!("cannot read program {}: not UTF-8 ({e})", path.display()));
+    let release = PageRelease { map: map.clone(), stop, thread: Some(thread) };
+    // The UTF-8 check reads the whole file, faster than the thread gives pages back: in
+    // chunks that end at a line end (an ASCII byte, so no character is split), each released.
+    let mut from = 0;
+    while from < map.len() {
+        let mut to = (from + SCAN_CHUNK_BYTES).min(map.len());
+        if let Some(nl) = map[to..].iter().position(|&b| b == b'\n') {
+            to += nl + 1;
+        } else {
+            to = map.len();
+        }
+        if let Err(e) = std::str::from_utf8(&map[from..to]) {
+            let at = from + e.valid_up_to();
+            return Err(format!("cannot read program {}: not UTF-8 (invalid byte at offset {at})", path.display()));
+        }
+        release.now();
+        from = to;
     }
     Ok((ProgramText::from_owner(Utf8Map(map)), release))
 }

@@ -194,6 +194,21 @@ fn read_shared_text(path: &Path) -> Result<(ProgramText, Option<mapped::PageRele
     Ok((ProgramText::from(text), None))
 }
 
+/// Non-empty lines of the program. A mapped program gives its pages back every few MiB of the
+/// scan (the scan is faster than the release thread).
+fn count_blocks(text: &str, release: Option<&mapped::PageRelease>) -> u64 {
+    let (mut blocks, mut bytes) = (0u64, 0usize);
+    for line in text.lines() {
+        blocks += u64::from(!line.trim().is_empty());
+        bytes += line.len() + 1;
+        if let Some(r) = release.filter(|_| bytes >= mapped::SCAN_CHUNK_BYTES) {
+            r.now();
+            bytes = 0;
+        }
+    }
+    blocks
+}
+
 fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     if let Some(t) = args.max_sim_time
         && !(t.is_finite() && t > 0.0)
@@ -214,9 +229,9 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         store_programs(&mut channel, dir, &mut syntax_errors)?;
     }
     // Pages of a mapped program are given back until the run is over.
-    let (text, _release) = read_shared_text(&args.program)?;
+    let (text, release) = read_shared_text(&args.program)?;
     let program_bytes = text.len();
-    let blocks = text.lines().filter(|l| !l.trim().is_empty()).count() as u64;
+    let blocks = count_blocks(&text, release.as_ref());
     let program = args.program.display().to_string();
 
     if args.interpret_only {
