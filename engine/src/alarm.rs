@@ -243,3 +243,38 @@ impl Alarm {
         )
     }
 }
+
+impl Alarm {
+    /// 12641: more control structures open at once than the control allows.
+    pub fn nesting_too_deep(line: u32, what: &str) -> Alarm {
+        Alarm::new(
+            12641,
+            format!("Channel 1 block {line} nesting depth of control structures too large: {what}"),
+            Some(line),
+        )
+    }
+
+    /// 14012: more nested subprogram calls than program levels.
+    pub fn too_many_levels(line: u32, levels: usize) -> Alarm {
+        Alarm::new(14012, format!("Channel 1 block {line} maximum subprogram level ({levels}) exceeded"), Some(line))
+    }
+
+    /// 12340: more arguments in a call than the called PROC has parameters.
+    pub fn too_many_arguments(line: u32, what: &str) -> Alarm {
+        Alarm::new(12340, format!("Channel 1 block {line} number of parameters too high: {what}"), Some(line))
+    }
+
+    /// 12320: a call-by-reference (VAR) parameter given something that is not a variable.
+    pub fn not_a_variable(line: u32, param: &str) -> Alarm {
+        Alarm::new(12320, format!("Channel 1 block {line} parameter {param} is not a variable"), Some(line))
+    }
+
+    /// 12260: more initial values than the array has elements.
+    pub fn too_many_initial_values(line: u32, name: &str) -> Alarm {
+        Alarm::new(
+            12260,
+            format!("Channel 1 block {line} too many initialization values specified for {name}"),
+            Some(line),
+        )
+    }
+}

@@ -363,7 +363,7 @@ fn the_element_graph_is_checked_at_activation() {
 
 #[test]
 fn other_transformation_types_are_stored_but_not_built() {
-    let text = format!("{}$NT_NAME[4]=\"Face\"\n$NT_TRAFO_TYPE[4]=\"TRANSMIT_K\"\n", head_chain().0);
+    let text = format!("{}$NT_NAME[4]=\"Static\"\n$NT_TRAFO_TYPE[4]=\"TRAORI_STAT\"\n", head_chain().0);
     let cfg = config(&text);
     let chain: Vec<_> = cfg.trafos.iter().filter_map(|s| s.chain.as_ref().map(|c| c.name.as_str())).collect();
     assert_eq!(chain, ["Head"]);
@@ -496,4 +496,155 @@ fn delobj_deletes_the_chain_data_with_the_next_newconf() {
     assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
     let s = run(HEAD_CHAIN, "DELOBJ(\"TOOLS\")\nM30");
     assert_eq!(s.status, Status::Alarm);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The remaining $NT_ fields: stored, checked, effective where the manual says what they do
+// ---------------------------------------------------------------------------------------------
+
+/// Every further `$NT_` field of record 1 of the head chain, with values other than the defaults.
+const MORE_FIELDS: &str = "$NT_ROT_OFFSET_FROM_FRAME[1]=2\n$NT_CLOSE_CHAIN_P[1]=\"WP\"\n\
+    $NT_CLOSE_CHAIN_T[1]=\"B offset\"\n$NT_AUX_POS[1,1]=1.5\n$NT_IDENT[1,0]=1000\n$NT_IDENT[1,1]=100\n\
+    $NT_BASE_TOOL_COMP[1]=5\n$NT_ROT_AX_POS[1,2]=30.0\n$NT_POLE_LIMIT[1]=3.5\n$NT_POLE_TOL[1]=1.25\n\
+    $NT_IGNORE_TOOL_ORIENT[1]=1\n$NT_CORR_ELEM_T[1,2]=\"B offset\"\n$NT_CORR_ELEM_P[1,0]=\"WP\"\n\
+    $NT_POLE_SIDE_FIX[1]=1\n";
+
+#[test]
+fn the_further_nt_fields_round_trip_as_text() {
+    let mut md = MachineData::default();
+    md.apply_text(&format!("{SIX}{}{MORE_FIELDS}", head_chain().0)).unwrap();
+    let text = md.to_text();
+    for line in MORE_FIELDS.lines() {
+        assert!(text.contains(&format!("{line}\n")), "{line} missing in\n{text}");
+    }
+    let mut again = MachineData::default();
+    again.apply_text(&text).unwrap();
+    assert_eq!(again, md);
+}
+
+#[test]
+fn the_pole_limits_of_a_chain_record_reach_traori() {
+    let pole_limits = |extra: &str| {
+        let cfg = config(&format!("{}{extra}", head_chain().0));
+        let set = cfg.trafos.iter().find(|s| s.chain.is_some()).unwrap();
+        match kinematics::build(set, &cfg, &SelectArgs::default()).unwrap() {
+            kinematics::AnyTrafo::Traori(t) => t.pole_limits(),
+            other => panic!("{other:?}"),
+        }
+    };
+    // $NT_POLE_TOL is the tolerance circle about the pole (TRAFO5_NON_POLE_LIMIT), $NT_POLE_LIMIT
+    // the end angle tolerance through the pole (TRAFO5_POLE_LIMIT); unset: the MD defaults 2°.
+    assert_eq!(pole_limits(MORE_FIELDS), (1.25, 3.5));
+    assert_eq!(pole_limits(""), (2.0, 2.0));
+}
+
+#[test]
+fn the_further_nt_fields_are_checked_at_activation() {
+    let head = head_chain().0;
+    for (extra, needle) in [
+        ("$NT_CORR_ELEM_T[1,0]=\"B axis\"\n", "a correction element must be of type OFFSET"),
+        ("$NT_CORR_ELEM_P[1,3]=\"Tool\"\n", "\"Tool\" is no element of the subchain ending at $NT_P_CHAIN_LAST_ELEM"),
+        ("$NT_CLOSE_CHAIN_T[1]=\"Nowhere\"\n", "$NT_CLOSE_CHAIN_T[1] \"Nowhere\" is no element of the subchain"),
+        ("$NT_IGNORE_TOOL_ORIENT[1]=2\n", "FALSE or TRUE"),
+        ("$NT_POLE_LIMIT[1]=200\n", "an angle 0..180 degrees"),
+        ("$NT_ROT_OFFSET_FROM_FRAME[1]=3\n", "allowed are 0..2"),
+        ("$NT_BASE_TOOL_COMP[1]=8\n", "allowed are 0..7"),
+        (
+            "$NT_NAME[2]=\"S\"\n$NT_TRAFO_TYPE[2]=\"TRAORI_STAT\"\n$NT_T_CHAIN_LAST_ELEM[2]=\"Tool\"\n\
+             $NT_ROT_AX_NAME[2,0]=\"X axis\"\n",
+            "$NT_ROT_AX_NAME[2,0] \"X axis\" is no rotary axis element",
+        ),
+    ] {
+        let mut md = MachineData::default();
+        md.apply_text(SIX).unwrap();
+        let e = md.apply_text(&format!("{head}{extra}")).unwrap_err();
+        assert!(e.message.contains(needle), "{extra}→ {}", e.message);
+    }
+    // A complete TRAORI_STAT record is accepted (stored, not built).
+    let cfg = config(&format!(
+        "{head}$NT_NAME[2]=\"S\"\n$NT_TRAFO_TYPE[2]=\"TRAORI_STAT\"\n$NT_T_CHAIN_LAST_ELEM[2]=\"Tool\"\n\
+         $NT_ROT_AX_NAME[2,0]=\"C axis\"\n"
+    ));
+    assert_eq!(cfg.trafos.iter().filter(|s| s.chain.is_some()).count(), 1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading chain data in programs; the reset transformation by name (MD20142)
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn a_program_reads_chain_data_including_its_own_writes() {
+    // $NK_OFF_DIR[4,2] = 150 (the C offset of HEAD_CHAIN); written 60 in the program, read back
+    // in the next block; the name comparison and a default ($NT_BASE_ORIENT[1,2] = 1) too.
+    let program = "G0 X=$NK_OFF_DIR[4,2]\n$NK_OFF_DIR[4,2]=60\nG0 Y=$NK_OFF_DIR[4,2]\n\
+                   IF $NT_NAME[1]==\"Fork head C-A\"\nG0 Z=$NT_BASE_ORIENT[1,2]\nENDIF\nM30";
+    let s = run(HEAD_CHAIN, program);
+    assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
+    assert!(near(&machine_axes(&s)[..3], &[150.0, 60.0, 1.0], 1e-9), "{:?}", s.machine);
+    let s = run(HEAD_CHAIN, "R1=$NK_OFF_DIR[64,0]\nM30");
+    assert_eq!(s.status, Status::Alarm);
+    assert!(s.alarms[0].message.contains("index out of range 0..63"), "{:?}", s.alarms);
+}
+
+#[test]
+fn trafo_reset_name_selects_the_chain_transformation_at_reset() {
+    let s = run(&format!("{HEAD_CHAIN}$MC_TRAFO_RESET_NAME=\"Fork head C-A\"\n"), "G0 X0\nM30");
+    assert_eq!(s.transformation.map(|t| t.trafo_type), Some(24), "the chain's generic head type after M30");
+    let Err(e) = Channel::from_preset("mill5-head-ca", &format!("{HEAD_CHAIN}$MC_TRAFO_RESET_NAME=\"Nope\"\n")) else {
+        panic!("an unknown reset name is rejected")
+    };
+    assert!(e.to_string().contains("$MC_TRAFO_RESET_NAME=\"Nope\" names no transformation"), "{e}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Export and import of the chain data as a part program
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn the_chain_program_round_trips_and_runs_as_a_part_program() {
+    let source = Channel::from_preset("mill5-head-ca", HEAD_CHAIN).unwrap();
+    let program = source.export_kinematic_chains();
+    assert!(program.starts_with("; Kinematic chain elements"), "{program}");
+    assert!(program.contains("DELOBJ(\"TRAFO_DATA\")\nDELOBJ(\"KIN_CHAIN_ELEM\")\n$NK_NAME[0]=\"ROOT\"\n"));
+    assert!(program.ends_with("$NT_ROT_AX_NAME[1,1]=\"A axis\"\nNEWCONF\n"), "{program}");
+    // Imported into a session with other chain data: that data is gone, the head is there.
+    let stale = "$NK_NAME[0]=\"ROOT\"\n$NK_TYPE[0]=\"OFFSET\"\n$NK_PARALLEL[0]=\"Stale\"\n\
+                 $NK_NAME[9]=\"Stale\"\n$NK_TYPE[9]=\"OFFSET\"\n";
+    let mut target = Channel::from_preset("mill5-head-ca", stale).unwrap();
+    target.import_kinematic_chains(&program).unwrap();
+    assert_eq!(target.machine_data().kin(), source.machine_data().kin());
+    assert!(target.config().trafos.iter().any(|s| s.chain.as_ref().is_some_and(|c| c.name == "Fork head C-A")));
+    // The same text as a part program, then TRAFOON: the control accepts it unchanged.
+    let s = run("", &format!("{program}TRAFOON(\"Fork head C-A\")\nM0\nM30"));
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    assert_eq!(s.transformation.map(|t| t.trafo_type), Some(24));
+}
+
+#[test]
+fn a_bad_chain_program_names_its_line_and_changes_nothing() {
+    let mut ch = Channel::from_preset("mill5-head-ca", HEAD_CHAIN).unwrap();
+    let before = ch.machine_data().clone();
+    for (program, line, needle) in [
+        ("DELOBJ(\"TRAFO_DATA\")\n; comment\nG0 X10\n", Some(3), "holds only $NK_/$NT_ assignments"),
+        ("N10 DELOBJ(\"KIN_CHAIN_ELEM\")\nN20 $NK_FOO[0]=1\n", Some(2), "unknown name $NK_FOO"),
+        ("$MC_TRAFO_TYPE_1=0\n", Some(1), "holds only"),
+        // Deleting the elements but not the records leaves the records without their chain.
+        ("DELOBJ(\"KIN_CHAIN_ELEM\")\nNEWCONF\n", None, "is no element of the kinematic chain"),
+    ] {
+        let e = ch.import_kinematic_chains(program).unwrap_err().to_string();
+        assert!(e.contains(needle), "{program}→ {e}");
+        if let Some(line) = line {
+            assert!(e.contains(&format!("line {line}")), "{program}→ {e}");
+        }
+        assert_eq!(ch.machine_data(), &before);
+    }
+}
+
+#[test]
+fn delobj_as_a_function_deletes_and_returns_zero() {
+    // The manual's form R2 = DELOBJ("TRAFO_DATA"): R2 becomes 0 (X = R2 + 7 = 7), the records
+    // are gone after NEWCONF.
+    let s = run(HEAD_CHAIN, "R2=5\nR2 = DELOBJ(\"TRAFO_DATA\")\nNEWCONF\nG0 X=R2+7\nTRAFOON(\"Fork head C-A\")\nM30");
+    assert_eq!(s.alarms.iter().map(|a| a.number).collect::<Vec<_>>(), [14401], "{:?}", s.alarms);
+    assert!((machine_axes(&s)[0] - 7.0).abs() < 1e-9, "{:?}", s.machine);
 }

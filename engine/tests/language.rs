@@ -5,7 +5,10 @@
 //! - `; expect VAR A=1.5`       user variable (`VAR M[5]=7`: flat element index; TRUE/FALSE for BOOL)
 //! - `; expect STR S=abc`       string variable
 //! - `; expect X=10`            WCS position of an axis at the end
+//! - `; expect TIME=1.1`         simulated seconds at the end (within two IPO cycles)
 //! - `; expect alarm 14080 line 4`
+//! - `; expect rejected 12640 line 3 column 1`  the program is refused before it runs, with
+//!   this error among those reported (column optional); nothing moves
 //! - `; expect status alarm`    final channel status (idle unless an alarm is expected)
 //! - `; expect MSG text`        the last MSG text
 //! - `; machine lathe-2axis`    preset (default mill-3axis)
@@ -16,7 +19,7 @@
 use std::path::Path;
 
 use nctwin_engine::interp::value::Value;
-use nctwin_engine::{Channel, Status};
+use nctwin_engine::{Channel, CommandError, Status};
 
 const TOLERANCE: f64 = 1e-9;
 const MAX_TICKS: usize = 5_000_000;
@@ -35,6 +38,31 @@ fn run_fixture(path: &Path) -> Result<(), String> {
     for part in parts {
         let (name, body) = part.split_once('\n').unwrap_or((part, ""));
         ch.store_program(name.trim(), body).map_err(|e| format!("subprogram {name}: {e}"))?;
+    }
+    let rejected: Vec<&str> = expectations.iter().filter_map(|e| e.strip_prefix("rejected ")).collect();
+    if !rejected.is_empty() {
+        let before = ch.snapshot().machine;
+        let Err(CommandError::Syntax { errors, .. }) = ch.run_program(main) else {
+            return Err("expected the program to be refused".into());
+        };
+        for want in rejected {
+            let nums: Vec<u32> = want.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+            let hit = errors.iter().any(|d| {
+                d.alarm == nums[0]
+                    && nums.get(1).is_none_or(|l| d.line == *l)
+                    && nums.get(2).is_none_or(|c| d.column == *c)
+            });
+            if !hit {
+                return Err(format!("expected rejected {want}, got {errors:?}"));
+            }
+        }
+        for _ in 0..100 {
+            ch.step();
+        }
+        if ch.snapshot().machine != before || ch.is_busy() {
+            return Err("a refused program moved the machine".into());
+        }
+        return Ok(());
     }
     ch.run_program(main).map_err(|e| format!("not started: {e}"))?;
     let mut ticks = 0;
@@ -85,6 +113,11 @@ fn run_fixture(path: &Path) -> Result<(), String> {
             };
             if !ok {
                 return fail(format!("{got:?}"));
+            }
+        } else if let Some(want) = e.strip_prefix("TIME=") {
+            let want: f64 = want.parse().map_err(|_| format!("bad number in {e}"))?;
+            if (snap.time - want).abs() > 0.0081 {
+                return fail(snap.time.to_string());
             }
         } else if let Some((lhs, want)) = e.split_once('=') {
             let want: f64 = want.parse().map_err(|_| format!("bad number in {e}"))?;

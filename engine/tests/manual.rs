@@ -304,12 +304,14 @@ fn an_unreferenced_axis_locks_nc_start_until_it_is_referenced() {
     settle(&mut ch);
     assert!(matches!(ch.reference_axes(Some("Q")), Err(CommandError::UnknownAxis(_))));
     ch.reference_axes(Some("Y")).unwrap();
+    // An incremental encoder (MD34200 = 1): the reference point approach ends at REFP_SET_POS 0.
+    settle(&mut ch);
     assert!(ch.snapshot().referenced.iter().all(|(_, r)| *r));
     ch.cancel_alarms();
     ch.set_mode(Mode::Auto).unwrap();
     ch.run_program("G0 X1\nM30").unwrap();
     settle(&mut ch);
-    assert_eq!(ch.axis_positions(), &[1.0, 1.0, 0.0]);
+    assert_eq!(ch.axis_positions(), &[1.0, 0.0, 0.0]);
 }
 
 #[test]
@@ -330,6 +332,7 @@ fn new_machine_data_keeps_referenced_axes_referenced() {
     let mut ch = channel("mill-3axis", "$MA_ENC_REFP_STATE[X]=0\n$MA_ENC_REFP_STATE[Y]=0");
     ch.set_mode(Mode::Jog).unwrap();
     ch.reference_axes(Some("X")).unwrap();
+    settle(&mut ch);
     ch.apply_machine_data("$MA_JOG_VELO[X]=1000.").unwrap();
     let r = ch.snapshot().referenced;
     assert_eq!((r[0].1, r[1].1), (true, false));

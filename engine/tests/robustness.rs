@@ -18,6 +18,14 @@ proptest! {
     }
 
     #[test]
+    fn arbitrary_bytes_never_panic_the_check(bytes in proptest::collection::vec(any::<u8>(), 0..300)) {
+        let text = String::from_utf8_lossy(&bytes);
+        for d in lang::check(&text) {
+            prop_assert!(d.line >= 1 && d.column >= 1 && d.offset <= text.len() + 1);
+        }
+    }
+
+    #[test]
     fn the_parser_accepts_or_reports_any_text(text in nc_text()) {
         let p = lang::parse(&text);
         for d in &p.diagnostics {
@@ -48,6 +56,60 @@ proptest! {
             }
         }
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 120, .. ProptestConfig::default() })]
+
+    #[test]
+    fn programs_of_control_statements_run_or_are_refused(lines in proptest::collection::vec(statement_line(), 0..25)) {
+        let text = lines.join("\n");
+        let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+        if ch.run_program(&text).is_ok() {
+            let mut ticks = 0;
+            while ch.is_busy() && ticks < 5_000 {
+                ch.step();
+                ticks += 1;
+            }
+        }
+    }
+}
+
+/// One line of a program made of control statements, jumps (literal and computed) and
+/// assignments, nested or not, well-formed or not.
+fn statement_line() -> impl Strategy<Value = String> {
+    proptest::sample::select(vec![
+        "IF R1<3",
+        "ELSE",
+        "ENDIF",
+        "WHILE R1<5",
+        "ENDWHILE",
+        "FOR R2=1 TO 3",
+        "ENDFOR",
+        "REPEAT",
+        "UNTIL R1>2",
+        "LOOP",
+        "ENDLOOP",
+        "R1=R1+1",
+        "GOTOF L1",
+        "GOTOB L1",
+        "GOTOC NOWHERE",
+        "GOTOF \"N\"<<R1",
+        "GOTOB \"L1\"",
+        "L1: R3=R3+1",
+        "N1 R4=1",
+        "N2 G0 X=R1",
+        "GOTOS",
+        "IF R3>4 GOTOF END",
+        "END: M30",
+        "CASE(R1) OF 1 GOTOF L1 DEFAULT GOTOF END",
+        "DEF STRING[8] S=\"L1\"",
+        "GOTOF S",
+        "M17",
+        "RET",
+        "R1=1/R5",
+    ])
+    .prop_map(str::to_string)
 }
 
 /// An arithmetic expression tree for the reference evaluator.

@@ -10,7 +10,7 @@ use serde::ser::SerializeMap;
 use serde::{Deserialize, Serialize, Serializer};
 use utoipa::ToSchema;
 
-use nctwin_engine::channel::{JOG_INCREMENTS, JogSystem};
+use nctwin_engine::channel::{JOG_INCREMENTS, JogSystem, OrientationJogKind, ReposApproach, ReposMode};
 
 use crate::session::{Drive, Pace};
 
@@ -21,6 +21,10 @@ pub struct ErrorBody {
     pub error: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub line: Option<u32>,
+    /// A program that cannot be prepared: every error found before it ran, as the NC alarms
+    /// the control shows (absent for other errors).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub errors: Vec<DiagnosticInfo>,
 }
 
 /// Liveness and size of the server.
@@ -250,6 +254,21 @@ pub struct State {
     /// interruption point (REPOS).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub repos_pending: Option<bool>,
+    /// The reference point approach in progress (absent when none runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub referencing: Option<ReferencingInfo>,
+}
+
+/// A reference point approach in progress (JOG REF, axes with an incremental encoder).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct ReferencingInfo {
+    /// Machine axis name.
+    #[schema(example = "X")]
+    pub axis: String,
+    /// `cam` (travelling to the reference cam at MD34020 and braking on it), `marker`
+    /// (to the zero mark at MD34040) or `position` (to the reference point at MD34070).
+    #[schema(example = "cam")]
+    pub phase: String,
 }
 
 /// Axis positions in the three coordinate systems (mm or degrees), as objects name -> value in
@@ -358,6 +377,10 @@ impl From<&Snapshot> for State {
             gcodes: s.gcodes.clone(),
             referenced: Some(AxisFlags(s.referenced.clone())),
             repos_pending: Some(s.repos_pending),
+            referencing: s
+                .referencing
+                .as_ref()
+                .map(|(axis, phase)| ReferencingInfo { axis: axis.clone(), phase: phase.as_str().into() }),
         }
     }
 }
@@ -422,11 +445,80 @@ pub struct RunRequest {
 #[derive(Debug, Clone, Default, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StartRequest {
+    /// When NC start repositions after JOG in the interrupted program (REPOS): where on the
+    /// interrupted block it resumes. `RMI` (default) the interruption point, `RMB` the block
+    /// start (the block runs again), `RME` the block end (the next block follows), `RMN` the
+    /// block's point nearest to the axes. The return is a straight line (REPOSL).
+    pub repos: Option<ReposTarget>,
+    /// How that repositioning travels back: `REPOSL` (default) or `REPOSA` a straight line,
+    /// `REPOSQ` a quarter circle of radius `disr`, `REPOSH` a semicircle of diameter `disr`,
+    /// each ending tangentially in the path (in the plane of the path tangent and the side the
+    /// tool stands on).
+    pub approach: Option<ReposShape>,
+    /// DISR in mm for `REPOSQ`/`REPOSH` (required there, positive).
+    pub disr: Option<f64>,
     #[serde(default)]
     pub pace: PaceOption,
     /// As for `run`.
     #[serde(default)]
     pub wait: bool,
+}
+
+/// The REPOS target mode (G group 26).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, ToSchema)]
+pub enum ReposTarget {
+    /// The interruption point.
+    #[serde(rename = "RMI")]
+    Rmi,
+    /// The start of the interrupted block.
+    #[serde(rename = "RMB")]
+    Rmb,
+    /// The end of the interrupted block.
+    #[serde(rename = "RME")]
+    Rme,
+    /// The point of the interrupted block nearest to where the axes stand.
+    #[serde(rename = "RMN")]
+    Rmn,
+}
+
+/// The approach shape of REPOS.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, ToSchema)]
+pub enum ReposShape {
+    #[serde(rename = "REPOSL")]
+    Line,
+    #[serde(rename = "REPOSA")]
+    AllAxes,
+    #[serde(rename = "REPOSQ")]
+    QuarterCircle,
+    #[serde(rename = "REPOSH")]
+    SemiCircle,
+}
+
+impl StartRequest {
+    /// The approach the body asks for; `Err` names what is missing.
+    pub fn approach(&self) -> Result<ReposApproach, String> {
+        let disr = || match self.disr {
+            Some(d) if d.is_finite() && d > 0.0 => Ok(d),
+            Some(d) => Err(format!("disr must be a positive distance, not {d}")),
+            None => Err("REPOSQ and REPOSH need `disr` (mm)".to_string()),
+        };
+        Ok(match self.approach {
+            None | Some(ReposShape::Line) | Some(ReposShape::AllAxes) => ReposApproach::Line,
+            Some(ReposShape::QuarterCircle) => ReposApproach::QuarterCircle { radius: disr()? },
+            Some(ReposShape::SemiCircle) => ReposApproach::SemiCircle { diameter: disr()? },
+        })
+    }
+}
+
+impl From<ReposTarget> for ReposMode {
+    fn from(t: ReposTarget) -> ReposMode {
+        match t {
+            ReposTarget::Rmi => ReposMode::Interruption,
+            ReposTarget::Rmb => ReposMode::BlockStart,
+            ReposTarget::Rme => ReposMode::BlockEnd,
+            ReposTarget::Rmn => ReposMode::Nearest,
+        }
+    }
 }
 
 /// Body of `POST /sessions/{id}/mda`.
@@ -589,6 +681,42 @@ pub enum JogCoordinates {
     Tcs,
 }
 
+/// How orientation JOG changes the tool orientation (SD42660 `$SC_ORI_JOG_MODE`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, ToSchema)]
+pub enum OrientationRotation {
+    /// A2, B2, C2 turn about X, Y, Z of the reference system (SD42660 = 0).
+    #[serde(rename = "AXES")]
+    Axes,
+    /// A2, B2, C2 change the Euler angles ZX'Z'' (1).
+    #[serde(rename = "ORIEULER")]
+    Euler,
+    /// A2, B2, C2 change the RPY angles XY'Z'' (2).
+    #[serde(rename = "ORIRPY")]
+    Rpy,
+    /// A2, B2, C2 change the RPY angles ZY'X'' (3).
+    #[serde(rename = "ORIRPY2")]
+    Rpy2,
+    /// A2, B2, C2 change the angles of MD21120 ORIAX_TURN_TAB_1 (4).
+    #[serde(rename = "ORIVIRT1")]
+    Virtual1,
+    /// A2, B2, C2 change the angles of MD21130 ORIAX_TURN_TAB_2 (5).
+    #[serde(rename = "ORIVIRT2")]
+    Virtual2,
+}
+
+impl From<OrientationRotation> for OrientationJogKind {
+    fn from(r: OrientationRotation) -> OrientationJogKind {
+        match r {
+            OrientationRotation::Axes => OrientationJogKind::Axes,
+            OrientationRotation::Euler => OrientationJogKind::Euler,
+            OrientationRotation::Rpy => OrientationJogKind::Rpy,
+            OrientationRotation::Rpy2 => OrientationJogKind::Rpy2,
+            OrientationRotation::Virtual1 => OrientationJogKind::Virtual1,
+            OrientationRotation::Virtual2 => OrientationJogKind::Virtual2,
+        }
+    }
+}
+
 impl From<JogCoordinates> for JogSystem {
     fn from(c: JogCoordinates) -> JogSystem {
         match c {
@@ -617,10 +745,15 @@ pub struct JogBody {
     /// JOG_INCR_WEIGHT (0.001 mm or 0.001° by default). Not together with `increment`.
     #[schema(example = 100)]
     pub inc: Option<u32>,
-    /// `MCS` (default), `BCS` or `WCS`.
-    #[serde(default)]
-    pub coordinates: JogCoordinates,
-    /// Rapid traverse override.
+    /// `MCS`, `BCS`, `WCS` or `TCS`. Absent: as SD42650 `$SC_CART_JOG_MODE` selects (bits
+    /// 0/1/2 BCS/WCS/TCS for translation while a transformation is active, else MCS; bits
+    /// 8/9/10 for orientation JOG A2/B2/C2, else BCS).
+    pub coordinates: Option<JogCoordinates>,
+    /// How orientation JOG (A2, B2, C2) turns the tool. Absent: as SD42660 `$SC_ORI_JOG_MODE`
+    /// selects (0 = `AXES`).
+    pub rotation: Option<OrientationRotation>,
+    /// Rapid traverse overlay: MD32010 JOG_VELO_RAPID under the rapid override (else MD32020
+    /// JOG_VELO under the feed override).
     #[serde(default)]
     pub rapid: bool,
     #[serde(default)]
@@ -694,9 +827,15 @@ pub struct SearchRequest {
 #[derive(Debug, Clone, Default, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ReferenceRequest {
-    /// The axis to reference (machine, geometry or channel axis name); absent: every axis.
+    /// The axis to reference (machine, geometry or channel axis name); absent: every
+    /// unreferenced axis.
     #[schema(example = "X")]
     pub axis: Option<String>,
+    #[serde(default)]
+    pub pace: PaceOption,
+    /// As for `run`: answer when the reference point approach has ended.
+    #[serde(default)]
+    pub wait: bool,
 }
 
 /// Body of `PUT /sessions/{id}/machine-data`.
@@ -753,8 +892,10 @@ pub enum ClientMessage {
         direction: i8,
         increment: Option<f64>,
         inc: Option<u32>,
-        #[serde(default)]
-        coordinates: JogCoordinates,
+        /// As for `POST .../jog`: absent = SD42650.
+        coordinates: Option<JogCoordinates>,
+        /// As for `POST .../jog`: absent = SD42660.
+        rotation: Option<OrientationRotation>,
         #[serde(default)]
         rapid: bool,
     },
@@ -840,6 +981,7 @@ mod tests {
             gcodes: vec!["G1".into(), "G17".into()],
             referenced: None,
             repos_pending: None,
+            referencing: None,
         }
     }
 
@@ -912,13 +1054,22 @@ pub struct CheckRequest {
 }
 
 /// One syntax error found by `check`.
-#[derive(Debug, Clone, Serialize, ToSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct DiagnosticInfo {
+    /// The NC alarm number: 12080 syntax error, 12640 invalid nesting of control structures,
+    /// 12641 nesting too deep.
+    pub alarm: u32,
     /// 1-based line.
     pub line: u32,
     /// 1-based column within the line.
     pub column: usize,
     pub message: String,
+}
+
+impl From<&nctwin_engine::lang::Diagnostic> for DiagnosticInfo {
+    fn from(d: &nctwin_engine::lang::Diagnostic) -> Self {
+        DiagnosticInfo { alarm: d.alarm, line: d.line, column: d.column as usize, message: d.message.clone() }
+    }
 }
 
 /// Every syntax error of a program, found without running it.

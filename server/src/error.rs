@@ -19,6 +19,9 @@ pub enum ApiError {
     /// machine data, an unknown preset or axis, ...
     #[error("{message}")]
     BadRequest { message: String, line: Option<u32> },
+    /// A program that cannot be prepared (400): every error found before it ran.
+    #[error("{message}")]
+    Program { message: String, line: u32, errors: Vec<crate::dto::DiagnosticInfo> },
     /// The channel refuses the command in its current state (busy, alarm, wrong mode).
     #[error("{0}")]
     Conflict(String),
@@ -59,7 +62,7 @@ impl ApiError {
     /// The HTTP status this error is sent with.
     pub fn status(&self) -> StatusCode {
         match self {
-            ApiError::BadRequest { .. } => StatusCode::BAD_REQUEST,
+            ApiError::BadRequest { .. } | ApiError::Program { .. } => StatusCode::BAD_REQUEST,
             ApiError::Conflict(_) => StatusCode::CONFLICT,
             ApiError::SessionNotFound(_)
             | ApiError::SessionEnded(_)
@@ -75,11 +78,12 @@ impl ApiError {
 
     /// The JSON body sent to the client.
     pub fn body(&self) -> ErrorBody {
-        let line = match self {
-            ApiError::BadRequest { line, .. } => *line,
-            _ => None,
+        let (line, errors) = match self {
+            ApiError::BadRequest { line, .. } => (*line, Vec::new()),
+            ApiError::Program { line, errors, .. } => (Some(*line), errors.clone()),
+            _ => (None, Vec::new()),
         };
-        ErrorBody { error: self.to_string(), line }
+        ErrorBody { error: self.to_string(), line, errors }
     }
 
     /// Maps a session's reply error; `id` names the session in the message.
@@ -94,7 +98,11 @@ impl ApiError {
 impl From<CommandError> for ApiError {
     fn from(e: CommandError) -> ApiError {
         match &e {
-            CommandError::Syntax { line, .. } => ApiError::BadRequest { message: e.to_string(), line: Some(*line) },
+            CommandError::Syntax { line, errors, .. } => ApiError::Program {
+                message: e.to_string(),
+                line: *line,
+                errors: errors.iter().map(Into::into).collect(),
+            },
             CommandError::MachineData(md) => md.clone().into(),
             CommandError::UnknownAxis(_) | CommandError::Invalid(_) => ApiError::bad_request(e.to_string()),
             CommandError::Busy(_) | CommandError::AlarmActive | CommandError::WrongMode(..) => {
@@ -141,9 +149,13 @@ mod tests {
 
     #[test]
     fn syntax_errors_are_400_with_their_line() {
-        let e: ApiError = CommandError::Syntax { line: 3, message: "bad".into() }.into();
+        let e: ApiError = CommandError::check("G1 X1\nX=(\nENDIF").unwrap_err().into();
         assert_eq!(e.status(), StatusCode::BAD_REQUEST);
-        assert_eq!(e.body().line, Some(3));
+        let body = e.body();
+        assert_eq!(body.line, Some(2));
+        // Both errors, with their alarms: the unclosed parenthesis, then ENDIF without IF.
+        let found: Vec<(u32, u32)> = body.errors.iter().map(|e| (e.alarm, e.line)).collect();
+        assert_eq!(found, [(12080, 2), (12640, 3)]);
     }
 
     #[test]

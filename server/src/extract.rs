@@ -72,6 +72,21 @@ where
     }
 }
 
+/// A plain-text body (any content type), UTF-8; empty is the empty string.
+#[derive(Debug, Clone)]
+pub struct ApiText(pub String);
+
+impl<S: Send + Sync> FromRequest<S> for ApiText {
+    type Rejection = ApiError;
+
+    async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
+        let Some((bytes, _)) = read_body(req, state).await? else { return Ok(ApiText(String::new())) };
+        String::from_utf8(bytes.to_vec())
+            .map(ApiText)
+            .map_err(|e| ApiError::bad_request(format!("the body is not UTF-8 text: {e}")))
+    }
+}
+
 /// The body, or `None` when it is empty or only white space, with a hint for error messages
 /// when the content type says it is not JSON.
 async fn read_body<S: Send + Sync>(req: Request, state: &S) -> Result<Option<(Bytes, Option<String>)>, ApiError> {

@@ -83,10 +83,10 @@ async fn json_errors(response: Response) -> Response {
         return response;
     }
     let body = if status == StatusCode::PAYLOAD_TOO_LARGE {
-        ErrorBody { error: "request body is larger than the limit".into(), line: None }
+        ErrorBody { error: "request body is larger than the limit".into(), line: None, errors: Vec::new() }
     } else {
         let reason = status.canonical_reason().unwrap_or("error").to_lowercase();
-        ErrorBody { error: reason, line: None }
+        ErrorBody { error: reason, line: None, errors: Vec::new() }
     };
     let (mut parts, _) = response.into_parts();
     parts.headers.remove(CONTENT_TYPE);

@@ -232,11 +232,20 @@ async fn a_syntax_error_is_400_with_its_line_and_nothing_moves() {
     let reply = server
         .post(
             &format!("/sessions/{id}/run"),
-            json!({"program": "G1 X10 F1000\nG1 X=\nM30", "pace": "fast", "wait": true}),
+            json!({"program": "G1 X10 F1000\nG1 X=\nWHILE R1<2\nM30", "pace": "fast", "wait": true}),
         )
         .await;
     error_message(&reply, StatusCode::BAD_REQUEST);
     assert_eq!(reply.body["line"], 2, "{}", reply.body);
+    // Every error, as the NC alarm: the missing value of line 2 (12080, column 6) and the
+    // WHILE of line 3 that is never closed (12640).
+    let errors: Vec<(u64, u64, u64)> = reply.body["errors"]
+        .as_array()
+        .expect("errors")
+        .iter()
+        .map(|e| (e["alarm"].as_u64().unwrap(), e["line"].as_u64().unwrap(), e["column"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(errors, [(12080, 2, 6), (12640, 3, 1)], "{}", reply.body);
     let after = server.get(&format!("/sessions/{id}/state")).await.body;
     assert_eq!(after["positions"], before["positions"]);
     assert_eq!(after["status"], "idle");

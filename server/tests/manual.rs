@@ -171,7 +171,8 @@ async fn unreferenced_axes_refuse_nc_start_until_referenced() {
     jog_mode(&server, &id).await;
     let unknown = server.post(&format!("/sessions/{id}/reference"), json!({"axis": "Q"})).await;
     error_message(&unknown, StatusCode::BAD_REQUEST);
-    let referenced = server.post_empty(&format!("/sessions/{id}/reference")).await;
+    // Z has an incremental encoder (MD34200 = 1): the approach runs to its end with `wait`.
+    let referenced = server.post(&format!("/sessions/{id}/reference"), json!({"pace": "fast", "wait": true})).await;
     assert_eq!(referenced.status, StatusCode::OK, "{}", referenced.body);
     assert_eq!(referenced.body["referenced"], json!({"X": true, "Y": true, "Z": true}));
     server.post_empty(&format!("/sessions/{id}/cancel")).await;

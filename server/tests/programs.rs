@@ -65,8 +65,9 @@ async fn check_reports_every_syntax_error_with_line_and_column() {
     let d = reply.body["diagnostics"].as_array().expect("diagnostics").clone();
     assert_eq!(d.len(), 2);
     assert_eq!((d[0]["line"].as_u64(), d[1]["line"].as_u64()), (Some(2), Some(3)));
-    // `#` is the 8th character of `N10 G1 #`.
+    // `#` is the 8th character of `N10 G1 #`; both are syntax errors (alarm 12080).
     assert_eq!(d[1]["column"], 8);
+    assert_eq!((d[0]["alarm"].as_u64(), d[1]["alarm"].as_u64()), (Some(12080), Some(12080)));
     let clean = server.post(&format!("/sessions/{id}/check"), json!({"program": "G0 X1"})).await.body;
     assert_eq!(clean, json!({"diagnostics": []}));
 }

@@ -27,6 +27,8 @@ const EDITOR = "#editor textarea";
 
 const results = [];
 const pageErrors = [];
+/** Client messages the page sent on its session streams (parsed JSON). */
+const sentFrames = [];
 let expectedBadRequests = 0;
 
 async function step(name, fn) {
@@ -78,16 +80,18 @@ async function canvasStats(page) {
     ctx.drawImage(gl, 0, 0, c.width, c.height); // needs preserveDrawingBuffer
     const { data } = ctx.getImageData(0, 0, c.width, c.height);
     const colours = new Set();
+    let programmed = 0; // pixels near the programmed path's colour #39c5cf
     let sum = 0;
     let sumSq = 0;
     for (let i = 0; i < data.length; i += 4) {
       const v = data[i] + data[i + 1] + data[i + 2];
       colours.add((data[i] << 16) | (data[i + 1] << 8) | data[i + 2]);
+      if (Math.abs(data[i] - 0x39) < 30 && Math.abs(data[i + 1] - 0xc5) < 30 && Math.abs(data[i + 2] - 0xcf) < 30) programmed++;
       sum += v;
       sumSq += v * v;
     }
     const n = data.length / 4;
-    return { colours: colours.size, variance: sumSq / n - (sum / n) ** 2, width: gl.width, height: gl.height };
+    return { colours: colours.size, variance: sumSq / n - (sum / n) ** 2, programmed, width: gl.width, height: gl.height };
   });
 }
 
@@ -110,6 +114,15 @@ async function main() {
     page = context.pages()[0] || (await context.newPage());
     page.setDefaultTimeout(20_000);
     page.on("pageerror", (err) => pageErrors.push(`pageerror: ${err.message}`));
+    page.on("websocket", (ws) =>
+      ws.on("framesent", (frame) => {
+        try {
+          sentFrames.push(JSON.parse(frame.payload));
+        } catch {
+          // not JSON: not ours
+        }
+      }),
+    );
     page.on("console", (msg) => {
       if (msg.type() !== "error") return;
       // The browser logs the refused machine data the test sends on purpose: that one only.
@@ -283,16 +296,23 @@ async function main() {
       }
     });
 
-    await step("JOG: holding X+ moves X, release stops it", async () => {
+    await step("JOG over the WebSocket: holding X+ moves X past the dead-man time, release stops it", async () => {
       await page.click('[data-set-mode="JOG"]');
       await page.waitForFunction(() => document.querySelector('[data-set-mode="JOG"]')?.classList.contains("active"));
       await page.selectOption("#jog-increment", "");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      sentFrames.length = 0;
       const before = await wcsX(page);
       const key = page.locator('#jog-axes button[data-jog-axis="X"][data-dir="1"]');
       await key.hover();
       await page.mouse.down();
-      await page.waitForFunction((sel) => document.getElementById("status")?.textContent?.trim() === "running", WCS_X);
-      await page.waitForTimeout(500);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "running");
+      await page.waitForTimeout(300);
+      const early = await wcsX(page);
+      // Longer than the server's 400 ms dead-man: only the keep-alives keep it moving.
+      await page.waitForTimeout(700);
+      const late = await wcsX(page);
+      if (!(late > early)) throw new Error(`X stopped while the key was held: ${early} then ${late}`);
       await page.mouse.up();
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
       const after = await wcsX(page);
@@ -300,13 +320,52 @@ async function main() {
       const settled = await wcsX(page);
       await page.waitForTimeout(300);
       if ((await wcsX(page)) !== settled) throw new Error("X still moves after release");
+      const types = sentFrames.map((f) => f.type);
+      const jog = sentFrames.find((f) => f.type === "jog");
+      if (!jog || jog.axis !== "X" || jog.direction !== 1 || jog.coordinates !== "WCS" || "inc" in jog || "increment" in jog) {
+        throw new Error(`no continuous jog message for X+ in WCS: ${JSON.stringify(sentFrames.slice(0, 3))}`);
+      }
+      // About one keep-alive per 100 ms over the 1 s hold.
+      const keepalives = types.filter((t) => t === "jog_keepalive").length;
+      if (keepalives < 5) throw new Error(`only ${keepalives} keep-alives in about 1 s: ${types.join(",")}`);
+      if (types.at(-1) !== "jog_stop") throw new Error(`the last message is ${types.at(-1)}, not jog_stop`);
     });
 
-    await step("JOG: one press with increment 1 moves X by -1", async () => {
-      await page.selectOption("#jog-increment", "1");
+    await step("JOG: INC1000 moves X by +1 (1000 × 0.001 mm), INCvar 0.5 by -0.5, both over the stream", async () => {
+      sentFrames.length = 0;
+      await page.selectOption("#jog-increment", "1000");
       const before = await wcsX(page);
+      await page.click('#jog-axes button[data-jog-axis="X"][data-dir="1"]');
+      await page.waitForFunction((want) => Math.abs(Number(document.querySelector('#positions [data-frame="workpiece"][data-axis="X"]')?.textContent) - want) < 1e-3, before + 1);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      await page.selectOption("#jog-increment", "var");
+      await page.fill("#jog-var", "0.5");
       await page.click('#jog-axes button[data-jog-axis="X"][data-dir="-1"]');
-      await page.waitForFunction((want) => Math.abs(Number(document.querySelector('#positions [data-frame="workpiece"][data-axis="X"]')?.textContent) - want) < 1e-3, before - 1);
+      await page.waitForFunction((want) => Math.abs(Number(document.querySelector('#positions [data-frame="workpiece"][data-axis="X"]')?.textContent) - want) < 1e-3, before + 0.5);
+      const jogs = sentFrames.filter((f) => f.type === "jog");
+      if (jogs[0]?.inc !== 1000 || jogs[1]?.increment !== 0.5) throw new Error(`jog messages: ${JSON.stringify(jogs)}`);
+      await page.selectOption("#jog-increment", "");
+    });
+
+    await step("JOG keyboard: holding the right arrow moves X+ over the stream, releasing stops it", async () => {
+      await page.click("#coords-title"); // focus off any field
+      sentFrames.length = 0;
+      const before = await wcsX(page);
+      await page.keyboard.down("ArrowRight");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "running");
+      await page.waitForTimeout(500);
+      await page.keyboard.up("ArrowRight");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      if (!((await wcsX(page)) > before)) throw new Error("X did not move");
+      const types = sentFrames.map((f) => f.type);
+      if (types[0] !== "jog" || sentFrames[0].axis !== "X" || types.at(-1) !== "jog_stop") throw new Error(`messages: ${types.join(",")}`);
+    });
+
+    await step("JOG: MCS keys name the machine axes", async () => {
+      await page.click('#jog-coords [data-jog-coords="MCS"]');
+      await page.waitForSelector('#jog-axes button[data-jog-axis="X"]');
+      if (await page.locator("#jog-ori").isVisible()) throw new Error("orientation keys shown without TRAORI");
+      await page.click('#jog-coords [data-jog-coords="WCS"]');
     });
 
     await step("machine data: a bad value is refused with the error at its field", async () => {
@@ -380,6 +439,111 @@ async function main() {
       await page.waitForFunction(
         () => Math.abs(Number(document.querySelector('#positions [data-frame="machine"][data-axis="A"]')?.textContent) - 30) < 1e-3,
       );
+    });
+
+    await step("3D view: a 5-axis head is drawn with its two rotary axes (non-empty canvas)", async () => {
+      await page.waitForFunction(() => document.getElementById("view3d-caption")?.dataset.head === "2");
+      const caption = await page.textContent("#view3d-caption");
+      if (!/swivel head/.test(caption)) throw new Error(`caption: ${caption}`);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-5axis.png") });
+      const stats = await canvasStats(page);
+      if (!stats || stats.colours < 20 || stats.variance < 50) throw new Error(`canvas looks empty: ${JSON.stringify(stats)}`);
+    });
+
+    await step("programmed path preview appears in its own colour", async () => {
+      await page.waitForFunction(() => Number(document.getElementById("view3d-preview")?.dataset.points) > 10, null, { timeout: 30_000 });
+      if (!((await page.evaluate(() => window.__nctwin3d.programmedPoints())) > 10)) throw new Error("no programmed points in the scene");
+      await page.click("#btn-view-path");
+      await page.waitForTimeout(300);
+      const stats = await canvasStats(page);
+      if (!(stats.programmed > 30)) throw new Error(`programmed path not visible: ${JSON.stringify(stats)}`);
+    });
+
+    await step("3D view: the model's tool tip is the engine's TRAORI tool tip at A30 C45", async () => {
+      // Two separate implementations: the view's scene graph from the TRAFO5 data, and the
+      // engine's forward transformation (the BCS of the state). Under TRAORI they must agree.
+      // A fresh session: the swivel above left a toolholder and frames the view does not model.
+      await page.goto(`${BASE}/?machine=mill5-head-ca`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      const program = "T1 D1\nTRAORI\nG1 X10 Y20 Z50 A30 C45 F8000\nM0\nM30\n";
+      await page.evaluate(async (text) => {
+        const id = new URL(location.href).searchParams.get("session");
+        await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ program: text, pace: "fast" }) });
+      }, program);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped");
+      await page.waitForFunction(() => Math.abs(Number(document.querySelector('#positions [data-axis="C"]')?.textContent) - 45) < 1e-3);
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(typeof error === "number" && error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's`);
+    });
+
+    await step("orientation JOG: B2 key shown under TRAORI turns the tool, the tip stands, REPOS pending", async () => {
+      await page.click('[data-set-mode="JOG"]');
+      await page.selectOption("#jog-increment", "");
+      const key = page.locator('#jog-ori button[data-jog-axis="B2"][data-dir="1"]');
+      await key.waitFor();
+      const read = () =>
+        page.evaluate(() => Object.fromEntries(["X", "Y", "Z", "A"].map((a) => [a, Number(document.querySelector(`#positions [data-axis="${a}"]`)?.textContent)])));
+      const before = await read();
+      sentFrames.length = 0;
+      await page.selectOption("#jog-rotation", "AXES");
+      await key.hover();
+      await page.mouse.down();
+      await page.waitForTimeout(800);
+      await page.mouse.up();
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() !== "running");
+      const after = await read();
+      if (!(Math.abs(after.A - before.A) > 1)) throw new Error(`A did not turn: ${before.A} → ${after.A}`);
+      for (const a of ["X", "Y", "Z"]) {
+        if (Math.abs(after[a] - before[a]) > 1e-3) throw new Error(`tool tip ${a} moved: ${before[a]} → ${after[a]}`);
+      }
+      if (!sentFrames.some((f) => f.type === "jog" && f.axis === "B2" && f.rotation === "AXES")) {
+        throw new Error(`no B2 jog message with rotation AXES: ${JSON.stringify(sentFrames.find((f) => f.type === "jog"))}`);
+      }
+      await page.waitForSelector("#jog-repos:not([hidden])");
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's after orientation JOG`);
+    });
+
+    await step("REPOS: NC start in AUTO sends RMI/REPOSL, the program runs to its end, REPOS no longer pending", async () => {
+      await page.waitForSelector("#jog-repos-opts:not([hidden])");
+      await page.selectOption("#repos-mode", "RMI");
+      await page.selectOption("#repos-approach", "REPOSL");
+      await page.click('[data-set-mode="AUTO"]');
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="AUTO"]')?.classList.contains("active"));
+      const [request] = await Promise.all([
+        page.waitForRequest((r) => r.url().endsWith("/start") && r.method() === "POST"),
+        page.click("#btn-cycle-start"),
+      ]);
+      const body = JSON.parse(request.postData() || "{}");
+      if (body.repos !== "RMI" || body.approach !== "REPOSL") throw new Error(`start body: ${request.postData()}`);
+      // Back at the interruption point (A30) and through M30 to the end.
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle", null, { timeout: 30_000 });
+      await page.waitForSelector("#jog-repos", { state: "hidden" });
+    });
+
+    await step("3D view: a lathe shows spindle and turret (non-empty canvas)", async () => {
+      await page.goto(`${BASE}/?machine=lathe-2axis`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("view3d-caption")?.dataset.kind === "lathe");
+      await page.waitForTimeout(300);
+      const stats = await canvasStats(page);
+      if (!stats || stats.colours < 20 || stats.variance < 50) throw new Error(`canvas looks empty: ${JSON.stringify(stats)}`);
+    });
+
+    await step("3D view: under TRANSMIT the tool tip on the turned workpiece is the engine's Cartesian tip", async () => {
+      // C = atan2(15, -10) = 123.7°: the workpiece frame of the view must turn the way the
+      // engine's TRANSMIT does for the tip to land on (X-10, Y15); a sign error misses by 30 mm.
+      await page.goto(`${BASE}/?machine=transmit-example`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      const program = "T1 D1 G17\nG0 X40 Z50\nTRANSMIT\nG1 X20 Y10 Z40 F3000\nG1 X-10 Y15\nM0\nM30\n";
+      await page.evaluate(async (text) => {
+        const id = new URL(location.href).searchParams.get("session");
+        await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ program: text, pace: "fast" }) });
+      }, program);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped");
+      await page.waitForFunction(() => Math.abs(Number(document.querySelector('#positions [data-axis="Y"]')?.textContent) - 15) < 1e-3);
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(typeof error === "number" && error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's`);
+      await page.click("#btn-reset");
     });
 
     await step("no error in the message bar", async () => {

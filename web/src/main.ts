@@ -27,6 +27,7 @@ import { ProgramManager } from "./program/manager";
 import { mountMachineData } from "./setup/machineData";
 import { showArea, wireAreas } from "./ui/areas";
 import { mountMachineView } from "./view3d/machineView";
+import { mountPreview } from "./view3d/preview";
 
 const DEFAULT_MACHINE = "mill-3axis";
 
@@ -46,7 +47,7 @@ async function main(): Promise<void> {
   mountSwivel(session);
   mountAlarms(session);
   mountEvents(session);
-  mountMachineView(session);
+  mountPreview(session, mountMachineView(session));
   mountAxisPlot(session);
   const editor = new EditorArea(session);
   new ProgramManager(session, editor);

@@ -5,6 +5,7 @@
 //! of MD10620 EULER_ANGLE_NAME_TAB): rotations about X, Y and Z of the chosen system.
 
 use super::jog::{ActiveJog, JogSystem};
+use super::jog_settings::{OrientationJogKind, angle_rotation_axis};
 use super::{Channel, CommandError, MoveMeta, Status};
 use crate::alarm::Alarm;
 use crate::kinematics::orient::vec3::cross;
@@ -55,6 +56,31 @@ impl Channel {
         d
     }
 
+    /// The BCS axis orientation JOG of `about` (0..2 = A2, B2, C2) turns `o` about: an axis of the
+    /// reference system (kind `Axes`, and always in the TCS, whose axes move with the tool), or
+    /// the axis about which that angle of `kind` turns, reckoned in the BCS or the WCS.
+    fn orientation_jog_axis(
+        &self,
+        about: usize,
+        o: Vec3,
+        system: JogSystem,
+        kind: OrientationJogKind,
+    ) -> Result<Vec3, CommandError> {
+        let e: Vec3 = std::array::from_fn(|i| if i == about { 1.0 } else { 0.0 });
+        let wcs = system == JogSystem::Workpiece;
+        Ok(match (system, kind) {
+            (JogSystem::Tool, _) => self.tool_axes()[about],
+            (_, OrientationJogKind::Axes) if wcs => self.offsets.frame.rotate_direction(e),
+            (_, OrientationJogKind::Axes) => e,
+            _ => {
+                let tab = self.turn_tab(kind);
+                let o_ref = if wcs { self.offsets.frame.unrotate_direction(o) } else { o };
+                let axis = angle_rotation_axis(kind, tab, &o_ref, about)?;
+                if wcs { self.offsets.frame.rotate_direction(axis) } else { axis }
+            }
+        })
+    }
+
     /// Orientation JOG: turns the tool about axis `about` (0..2) of `system` by `distance`
     /// degrees (continuous: until released or until the axes cannot follow), the tool tip held.
     pub(super) fn start_orientation_jog(
@@ -63,24 +89,18 @@ impl Channel {
         dir: f64,
         distance: Option<f64>,
         system: JogSystem,
+        kind: OrientationJogKind,
     ) -> Result<(), CommandError> {
         let Some(t) = self.trafo.clone().filter(|t| t.trafo.orientation_slots().iter().any(Option::is_some)) else {
             return Err(CommandError::Invalid("orientation JOG needs an active orientation transformation".into()));
         };
+        let o = t.trafo.orientation(&self.machine).expect("orientation transformation");
+        let axis = self.orientation_jog_axis(about, o, system, kind)?;
         // As for any JOG: in an interrupted program the program's motion is put aside (REPOS).
         let resume = if self.status == Status::Stopped { Status::Stopped } else { Status::Idle };
         if resume == Status::Stopped {
             self.interrupt_for_jog();
         }
-        let o = t.trafo.orientation(&self.machine).expect("orientation transformation");
-        let axis = match system {
-            JogSystem::Machine | JogSystem::Basic => std::array::from_fn(|i| if i == about { 1.0 } else { 0.0 }),
-            JogSystem::Workpiece => {
-                let e = std::array::from_fn(|i| if i == about { 1.0 } else { 0.0 });
-                self.offsets.frame.rotate_direction(e)
-            }
-            JogSystem::Tool => self.tool_axes()[about],
-        };
         // Walk the rotation to where the rotary axes can still follow (limits, reachability).
         let wanted = distance.unwrap_or(MAX_ORIENTATION_JOG).min(MAX_ORIENTATION_JOG);
         let start = t.forward(&self.machine);

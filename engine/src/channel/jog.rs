@@ -6,6 +6,7 @@
 //! With a program interrupted (NC stop, M0) JOG runs on a planner of its own and the program's
 //! main run waits (see `repos.rs`).
 
+use super::jog_settings::OrientationJogKind;
 use super::{Channel, CommandError, JogRequest, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::Transformation;
@@ -86,6 +87,18 @@ impl Channel {
     /// Starts a JOG motion of one axis in `system` (JOG mode only). `req.axis` is a machine axis
     /// name, a geometry axis name or a channel axis name.
     pub fn jog_in(&mut self, req: &JogRequest, system: JogSystem) -> Result<(), CommandError> {
+        self.jog_with(req, Some(system), None)
+    }
+
+    /// Starts a JOG motion; what the request leaves open comes from the setting data: the
+    /// coordinate system from SD42650 `$SC_CART_JOG_MODE`, the orientation JOG kind (A2/B2/C2)
+    /// from SD42660 `$SC_ORI_JOG_MODE` (see `jog_settings.rs`).
+    pub fn jog_with(
+        &mut self,
+        req: &JogRequest,
+        system: Option<JogSystem>,
+        rotation: Option<OrientationJogKind>,
+    ) -> Result<(), CommandError> {
         self.check_jog_allowed()?;
         if req.direction != 1 && req.direction != -1 {
             return Err(CommandError::Invalid(format!("direction must be 1 or -1, not {}", req.direction)));
@@ -96,8 +109,11 @@ impl Channel {
             None => None,
         };
         if let Some(about) = super::cartesian_jog::orientation_axis(&req.axis) {
-            return self.start_orientation_jog(about, f64::from(req.direction), distance, system);
+            let system = system.unwrap_or_else(|| self.default_orientation_system());
+            let kind = rotation.unwrap_or_else(|| self.default_orientation_kind());
+            return self.start_orientation_jog(about, f64::from(req.direction), distance, system, kind);
         }
+        let system = system.unwrap_or_else(|| self.default_translation_system());
         let k = self.jog_axis_index(&req.axis)?;
         self.start_jog(k, f64::from(req.direction), distance, req.rapid, system, false)
     }
@@ -234,6 +250,9 @@ impl Channel {
             self.next_tag,
         );
         let mut mv = mv;
+        if rapid {
+            rapid_overlay(&mut mv, velocity);
+        }
         mv.machine_space = machine_space;
         self.push_bcs_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space, feed: 0.0 });
         self.jog_serial = self.jog_serial.wrapping_add(1);
@@ -425,4 +444,12 @@ impl Channel {
     fn axis_label(&self, k: usize) -> String {
         self.cfg.program_axis_name(k).to_string()
     }
+}
+
+/// The rapid traverse overlay: the move runs at MD32010 JOG_VELO_RAPID (`velocity`) scaled by
+/// the rapid override, like G0, not by the feed override.
+fn rapid_overlay(mv: &mut Move, velocity: f64) {
+    mv.feed = f64::INFINITY;
+    mv.v_axes = mv.v_axes.min(velocity);
+    mv.v_max = mv.v_axes;
 }

@@ -37,7 +37,11 @@ impl Channel {
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
             for warning in self.interp.take_warnings() {
-                self.notify_alarm(warning);
+                // One entry per alarm number until it is cancelled: a contour near a pole
+                // would otherwise list every block.
+                if !self.alarms.iter().any(|a| a.number == warning.number) {
+                    self.notify_alarm(warning);
+                }
             }
             for (line, text) in self.interp.take_data_writes() {
                 if let Err(alarm) = self.apply_program_data(line, &text) {
@@ -78,6 +82,13 @@ impl Channel {
             return Ok(());
         }
         if let Some(kind) = text.strip_prefix(DELOBJ) {
+            if let Some(range) = kind.strip_prefix("TOOLCARRIER:") {
+                let mut bounds = range.split(':').map(|n| n.parse::<u32>().unwrap_or(0));
+                let (start, end) = (bounds.next().unwrap_or(1), bounds.next().unwrap_or(u32::MAX));
+                self.data.delete_carriers(start..=end);
+                Arc::make_mut(&mut self.cfg).refresh_data(&self.data).map_err(|e| bad(e.message))?;
+                return Ok(());
+            }
             self.data.delete_kin(kind == "KIN_CHAIN_ELEM", kind == "TRAFO_DATA");
             return Ok(());
         }

@@ -11,10 +11,14 @@
 
 mod cartesian_jog;
 mod jog;
+mod jog_settings;
 mod main_run;
 mod programs;
 mod reference;
+mod referencing;
 mod repos;
+mod repos_approach;
+mod repos_modes;
 mod search;
 mod snapshot;
 mod spindle;
@@ -24,6 +28,10 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 
 pub use jog::{JOG_INCREMENTS, JogSystem};
+pub use jog_settings::OrientationJogKind;
+pub use referencing::ReferencePhase;
+pub use repos_approach::ReposApproach;
+pub use repos_modes::ReposMode;
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
@@ -105,8 +113,10 @@ pub enum Event {
 /// A command the channel refuses in its current state.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CommandError {
+    /// The program cannot be prepared: every error found before it runs, first one in
+    /// `line`/`message`.
     #[error("program has syntax errors: line {line}: {message}")]
-    Syntax { line: u32, message: String },
+    Syntax { line: u32, message: String, errors: Vec<lang::Diagnostic> },
     #[error("the channel is busy ({0}); stop or reset it first")]
     Busy(&'static str),
     #[error("an alarm is active; reset the channel first")]
@@ -119,6 +129,21 @@ pub enum CommandError {
     Invalid(String),
     #[error("machine data: {0}")]
     MachineData(#[from] MdError),
+}
+
+impl CommandError {
+    /// `Ok` if `text` has no error found before it runs ([`lang::check`]), else
+    /// [`CommandError::Syntax`] with every error.
+    pub fn check(text: &str) -> Result<(), CommandError> {
+        let errors = lang::check(text);
+        let Some(first) = errors.first() else { return Ok(()) };
+        let more = match errors.len() {
+            1 => String::new(),
+            n => format!(" (and {} more)", n - 1),
+        };
+        let message = format!("alarm {} column {}: {}{more}", first.alarm, first.column, first.message);
+        Err(CommandError::Syntax { line: first.line, message, errors })
+    }
 }
 
 /// The operator's overrides in percent.
@@ -213,6 +238,8 @@ pub struct Channel {
     program_mode: Mode,
     /// Reference point state per channel axis (spindles count as referenced).
     referenced: Vec<bool>,
+    /// The reference point approach in progress.
+    referencing: Option<referencing::Referencing>,
     /// The last MSG text of the program.
     message: Option<String>,
     /// Machine position of every channel axis. Equals the planner's position without a
@@ -287,6 +314,7 @@ impl Channel {
             prep_waits_for_trafo: false,
             trafo_tag: None,
             referenced,
+            referencing: None,
         };
         // Power on acts like a reset: the reset transformation (if configured) is active.
         ch.place_axes([0.0; MAX_CHANNEL_AXES]);
@@ -320,6 +348,30 @@ impl Channel {
         }
         let mut data = self.data.clone();
         let cfg = data.apply_text(text)?;
+        self.replace_data(data, cfg);
+        Ok(())
+    }
+
+    /// The session's kinematic chain data ($NK_/$NT_) as a part program (DELOBJ preamble,
+    /// assignments, NEWCONF) that [`Channel::import_kinematic_chains`] and a control accept.
+    pub fn export_kinematic_chains(&self) -> String {
+        crate::machine_data::chains::export_program(self.data.kin())
+    }
+
+    /// Runs such a program on the session's data, all-or-nothing, and activates the result as
+    /// [`Channel::apply_machine_data`] does; only in reset state.
+    pub fn import_kinematic_chains(&mut self, program: &str) -> Result<(), CommandError> {
+        if self.is_active() || self.status == Status::Stopped {
+            return Err(CommandError::Busy("kinematic chain data can only change in reset state"));
+        }
+        let mut data = self.data.clone();
+        let cfg = data.import_chain_program(program)?;
+        self.replace_data(data, cfg);
+        Ok(())
+    }
+
+    /// Becomes a channel on `data`/`cfg`, keeping axis positions where the axes still exist.
+    fn replace_data(&mut self, data: MachineData, cfg: MachineConfig) {
         let old_pos = *self.planner.position();
         let old_names: Vec<String> = self.cfg.machine_axes.iter().map(|a| a.name.clone()).collect();
         let mut next = Channel::with_config(data, cfg);
@@ -335,7 +387,6 @@ impl Channel {
         next.mode = self.mode;
         next.tick = self.tick;
         *self = next;
-        Ok(())
     }
 
     pub fn mode(&self) -> Mode {
@@ -411,9 +462,7 @@ impl Channel {
     }
 
     fn load_and_start(&mut self, text: ProgramText, mode: Mode) -> Result<(), CommandError> {
-        if let Some(d) = lang::check(&text).into_iter().next() {
-            return Err(CommandError::Syntax { line: d.line, message: d.message });
-        }
+        CommandError::check(&text)?;
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active"));
         }
@@ -432,8 +481,29 @@ impl Channel {
         Ok(())
     }
 
-    /// NC start: continues an interrupted program (M0, M1, NC stop).
+    /// NC start: continues an interrupted program (M0, M1, NC stop); after JOG it first returns
+    /// to the interruption point (REPOS, RMI).
     pub fn start(&mut self) -> Result<(), CommandError> {
+        self.start_with_repos(ReposMode::Interruption)
+    }
+
+    /// NC start as [`Channel::start`]; when it repositions after JOG, `repos` picks the point of
+    /// the interrupted block the program resumes at (RMI, RMB, RME, RMN).
+    pub fn start_with_repos(&mut self, repos: ReposMode) -> Result<(), CommandError> {
+        self.start_with_repos_approach(repos, ReposApproach::Line)
+    }
+
+    /// NC start as [`Channel::start_with_repos`], travelling back along `approach` (REPOSL,
+    /// REPOSQ, REPOSH).
+    pub fn start_with_repos_approach(&mut self, repos: ReposMode, approach: ReposApproach) -> Result<(), CommandError> {
+        match approach {
+            ReposApproach::QuarterCircle { radius: r } | ReposApproach::SemiCircle { diameter: r }
+                if !(r.is_finite() && r > 0.0) =>
+            {
+                return Err(CommandError::Invalid(format!("DISR must be a positive distance, not {r}")));
+            }
+            _ => {}
+        }
         match self.status {
             Status::Alarm => Err(CommandError::AlarmActive),
             Status::Running => Ok(()),
@@ -443,7 +513,7 @@ impl Channel {
                 }
                 self.check_start_lock()?;
                 if self.interrupted.is_some() || self.repos_returning {
-                    self.start_repos();
+                    self.start_repos(repos, approach);
                 } else {
                     self.planner.set_hold(false);
                     self.status = Status::Running;
@@ -462,6 +532,7 @@ impl Channel {
     pub fn stop(&mut self) {
         match self.status {
             Status::Running if self.jog.is_some() => self.jog_stop(),
+            Status::Running if self.referencing.is_some() => self.abort_referencing(),
             Status::Running if self.repos_returning => {
                 // The REPOS motion is dropped at standstill; NC start plans it anew.
                 self.planner.stop_and_flush();
@@ -487,6 +558,7 @@ impl Channel {
         self.prep_waits_for_trafo = false;
         self.dwell_ticks = 0;
         self.jog = None;
+        self.referencing = None;
         self.drop_interruption();
         self.search_approach = false;
         self.current_line = None;
@@ -552,7 +624,7 @@ impl Channel {
         for s in &mut self.spindles {
             s.step(self.cfg.ipo_cycle);
         }
-        if self.status == Status::Running && self.jog.is_none() && !self.repos_returning {
+        if self.status == Status::Running && self.jog.is_none() && !self.repos_returning && self.referencing.is_none() {
             self.prepare();
             self.feed_planner();
         }
@@ -561,6 +633,10 @@ impl Channel {
         self.retire_finished_moves();
         if self.jog.is_some() {
             self.finish_jog_if_done();
+            return;
+        }
+        if self.referencing.is_some() {
+            self.step_referencing();
             return;
         }
         if self.repos_returning {

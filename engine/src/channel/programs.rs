@@ -3,16 +3,13 @@
 use std::sync::Arc;
 
 use super::{Channel, CommandError};
-use crate::lang;
 
 impl Channel {
     /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
     /// calls by name. The text is checked first: a program with syntax errors is refused.
     pub fn store_program(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
         let name = program_name(name)?;
-        if let Some(d) = lang::check(text).into_iter().next() {
-            return Err(CommandError::Syntax { line: d.line, message: d.message });
-        }
+        CommandError::check(text)?;
         self.programs.insert(name.clone(), Arc::from(text));
         Ok(name)
     }

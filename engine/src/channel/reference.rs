@@ -9,12 +9,12 @@
 //! - MD34110 `$MA_REFP_CYCLE_NR`: -1 = the axis need not be referenced for NC start; 0 and
 //!   1..15 (the order of channel-specific referencing) = it must be.
 //!
-//! Referencing (`reference_axes`) happens in JOG mode with nothing moving and sets the state at
-//! once where the axis stands: the simulated reference point approach finds the position it
-//! already shows (no motion). Spindles count as referenced. JOG of unreferenced axes is
-//! allowed, as on the control.
+//! Referencing (`reference_axes`) happens in JOG mode in reset state: axes with an incremental
+//! measuring system (MD34200 ENC_REFP_MODE = 1) travel the reference point approach
+//! (`referencing.rs`), the others are referenced at once. Spindles count as referenced. JOG of
+//! unreferenced axes is allowed, as on the control.
 
-use super::{Channel, CommandError, Mode};
+use super::{Channel, CommandError, Mode, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::machine_data::{MachineConfig, MachineData};
 
@@ -50,8 +50,10 @@ impl Channel {
         axes.into_iter().map(|(_, a)| a).collect()
     }
 
-    /// References the named axis (machine, geometry or channel axis name), or every axis when
-    /// `axis` is `None`. JOG mode, nothing moving.
+    /// References the named axis (machine, geometry or channel axis name), or every
+    /// unreferenced axis when `axis` is `None`. JOG mode, reset state. Axes with an incremental
+    /// measuring system travel the reference point approach (`referencing.rs`); the others are
+    /// referenced at once.
     pub fn reference_axes(&mut self, axis: Option<&str>) -> Result<(), CommandError> {
         if self.mode != Mode::Jog {
             return Err(CommandError::WrongMode(self.mode.as_str(), "referencing is a JOG function (REF)"));
@@ -59,17 +61,33 @@ impl Channel {
         if self.is_busy() {
             return Err(CommandError::Busy("an axis is moving"));
         }
-        match axis {
-            None => self.referenced.iter_mut().for_each(|r| *r = true),
+        if self.status != Status::Idle {
+            return Err(CommandError::Busy(
+                "referencing needs the reset state (a program is interrupted or an alarm is active)",
+            ));
+        }
+        let axes: Vec<usize> = match axis {
+            None => {
+                let mut axes: Vec<usize> = (0..self.cfg.channel_axes.len()).filter(|&k| !self.referenced[k]).collect();
+                let order =
+                    |k: &usize| self.data.num("$MA_REFP_CYCLE_NR", self.cfg.channel_axes[*k].machine_axis, 0) as i64;
+                axes.sort_by_key(|k| (order(k), *k));
+                axes
+            }
             Some(name) => {
                 let cfg = &self.cfg;
                 let k = (0..cfg.channel_axes.len())
                     .find(|&k| cfg.axis(k).name.eq_ignore_ascii_case(name))
                     .or_else(|| cfg.program_axis(name))
                     .ok_or_else(|| CommandError::UnknownAxis(name.to_string()))?;
-                self.referenced[k] = true;
+                vec![k]
             }
+        };
+        let (approach, at_once): (Vec<usize>, Vec<usize>) = axes.into_iter().partition(|&k| self.needs_approach(k));
+        for k in at_once {
+            self.referenced[k] = true;
         }
+        self.start_referencing(approach);
         Ok(())
     }
 

@@ -18,9 +18,12 @@
 
 use std::collections::VecDeque;
 
+use super::repos_approach::{self, ReposApproach};
+use super::repos_modes::{self, ReposMode, Resume};
 use super::{Channel, MoveMeta, Status};
 use crate::interp::Item;
 use crate::kinematics::{Transformation, plan};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
 
 /// The main run of an interrupted program, put aside while the operator jogs.
@@ -28,6 +31,8 @@ use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
 pub(super) struct Interrupted {
     planner: Planner,
     in_planner: VecDeque<(u32, MoveMeta)>,
+    /// Where the main run takes over once the REPOS motion has arrived (RMI/RMB/RME/RMN).
+    resume: Resume,
 }
 
 impl Channel {
@@ -40,7 +45,7 @@ impl Channel {
         fresh.set_overrides(self.overrides.feed, self.overrides.rapid);
         let planner = std::mem::replace(&mut self.planner, fresh);
         let in_planner = std::mem::take(&mut self.in_planner);
-        self.interrupted = Some(Box::new(Interrupted { planner, in_planner }));
+        self.interrupted = Some(Box::new(Interrupted { planner, in_planner, resume: Resume::AsInterrupted }));
     }
 
     /// Forgets an interrupted program's main run (reset, alarm).
@@ -55,8 +60,9 @@ impl Channel {
         self.interrupted.is_some() || self.repos_returning
     }
 
-    /// NC start in an interrupted program whose axes were moved by JOG.
-    pub(super) fn start_repos(&mut self) {
+    /// NC start in an interrupted program whose axes were moved by JOG; `mode` picks the point
+    /// of the interrupted block the program resumes at (see `repos_modes.rs`).
+    pub(super) fn start_repos(&mut self, mode: ReposMode, approach: ReposApproach) {
         self.status = Status::Running;
         if !self.planner.is_empty() {
             // A REPOS motion stopped on its way (still braking): it goes on.
@@ -74,14 +80,27 @@ impl Channel {
             self.planner.set_hold(false);
             return;
         }
-        let meta = int.planner.position_tag().and_then(|t| int.in_planner.iter().find(|(tag, _)| *tag == t));
-        let mut target = *int.planner.position();
-        if let (Some((_, m)), Some(t)) = (meta, &self.trafo)
-            && m.machine_space
-        {
-            // Interrupted in a machine-axis motion (the TRANSMIT pole): return to its BCS point.
+        // The space of the target: the interrupted position's move, or the front move's path.
+        let at_position = int
+            .planner
+            .position_tag()
+            .and_then(|t| int.in_planner.iter().find(|(tag, _)| *tag == t))
+            .is_some_and(|(_, m)| m.machine_space);
+        let machine_space = match int.planner.front() {
+            Some(front) if mode != ReposMode::Interruption => front.machine_space,
+            _ => at_position,
+        };
+        let here_in_space = if machine_space { self.machine } else { *self.planner.position() };
+        let axes = self.repos_distance_axes(machine_space);
+        let (mut target, resume) = repos_modes::target(&int.planner, mode, &here_in_space, &axes);
+        if let (true, Some(t)) = (machine_space, &self.trafo) {
+            // A machine-axis motion (the TRANSMIT pole): return to its BCS point.
             target = t.forward(&target);
         }
+        if let Some(int) = &mut self.interrupted {
+            int.resume = resume;
+        }
+        let Some(int) = &self.interrupted else { return };
         let feed = int
             .planner
             .current_tag()
@@ -103,9 +122,35 @@ impl Channel {
             Some(f) if f > 0.0 => Feed::Path(f),
             _ => Feed::Path(self.repos_jog_velocity(&here, &target)),
         };
-        let mv = self.straight_move(here, target, feed);
+        let tangent = match (self.interrupted.as_ref().and_then(|i| i.planner.front()), resume) {
+            (Some(_), _) if machine_space => [0.0; MAX_CHANNEL_AXES],
+            (Some(front), Resume::AsInterrupted) => {
+                front.path.tangent(self.interrupted.as_ref().map_or(0.0, |i| i.planner.front_fraction()))
+            }
+            (Some(front), Resume::FrontAt(u)) => front.path.tangent(u),
+            (Some(front), Resume::SkipFront) => front.path.tangent(1.0),
+            (None, _) => [0.0; MAX_CHANNEL_AXES],
+        };
+        let geo = self.repos_distance_axes(false);
         let offsets = self.offsets.clone();
-        self.push_bcs_move(mv, MoveMeta { line: 0, offsets, machine_space: false, feed: 0.0 });
+        let meta = MoveMeta { line: 0, offsets, machine_space: false, feed: 0.0 };
+        match repos_approach::approach_arc(approach, &here, &target, &tangent, &geo) {
+            Some(arc) => {
+                // To the start of the circle on a straight line, then along the circle.
+                let start = arc.start;
+                if here.iter().zip(&start).any(|(a, b)| (a - b).abs() > 1e-9) {
+                    let mv = self.straight_move(here, start, feed);
+                    self.push_bcs_move(mv, meta.clone());
+                }
+                let length = arc.arc.map_or(0.0, |a| a.radius * a.sweep.abs());
+                let mv = Move::new(arc, length, feed, &AxisLimit::for_channel(&self.cfg), true, self.next_tag);
+                self.push_bcs_move(mv, meta);
+            }
+            None => {
+                let mv = self.straight_move(here, target, feed);
+                self.push_bcs_move(mv, meta);
+            }
+        }
         self.repos_returning = true;
     }
 
@@ -141,7 +186,12 @@ impl Channel {
     fn resume_interrupted(&mut self) {
         self.repos_returning = false;
         if let Some(int) = self.interrupted.take() {
-            let Interrupted { planner, in_planner } = *int;
+            let Interrupted { mut planner, in_planner, resume } = *int;
+            match resume {
+                Resume::AsInterrupted => {}
+                Resume::FrontAt(u) => planner.restart_front_at(u),
+                Resume::SkipFront => planner.skip_front(),
+            }
             self.planner = planner;
             self.in_planner = in_planner;
             self.planner.set_overrides(self.overrides.feed, self.overrides.rapid);

@@ -19,7 +19,7 @@ use super::main_run::line_offset;
 use super::{Channel, CommandError, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Item, Offsets, Prep, StopKind};
-use crate::lang::{self, ProgramText};
+use crate::lang::ProgramText;
 use crate::motion::{Feed, Move};
 
 /// Most blocks a search prepares before it gives up (a program that loops without end).
@@ -45,9 +45,7 @@ impl Channel {
         }
         let text: ProgramText = match text {
             Some(t) => {
-                if let Some(d) = lang::check(t).into_iter().next() {
-                    return Err(CommandError::Syntax { line: d.line, message: d.message });
-                }
+                CommandError::check(t)?;
                 ProgramText::from(t)
             }
             None => self

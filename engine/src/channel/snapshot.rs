@@ -58,6 +58,8 @@ pub struct Snapshot {
     pub gcodes: Vec<String>,
     /// Reference point state by machine axis name, in machine axis order.
     pub referenced: Vec<(String, bool)>,
+    /// The axis whose reference point approach is in progress, and its phase.
+    pub referencing: Option<(String, super::ReferencePhase)>,
     /// Number of the last JOG motion started (see `Channel::jog_stop_if`).
     pub jog_serial: u64,
     /// The program was interrupted and axes moved by JOG: NC start repositions first (REPOS).
@@ -146,6 +148,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         optional_stop: ch.optional_stop,
         gcodes: ch.offsets.gcodes.names(),
         referenced: ch.reference_state(),
+        referencing: ch.referencing(),
         jog_serial: ch.jog_serial,
         repos_pending: ch.repos_pending(),
     }

@@ -37,6 +37,10 @@ pub(super) struct CallFrame {
     repeats_left: u32,
     /// Parameters are bound (the PROC line has been passed).
     bound: bool,
+    /// The caller's modal state, programmable and settable frame at the call; restored at each
+    /// return when the PROC line says SAVE.
+    saved: Box<(super::Modal, super::Frame, Option<super::Frame>)>,
+    save: bool,
 }
 
 impl Interpreter {
@@ -53,7 +57,7 @@ impl Interpreter {
         let text =
             programs.get(name).cloned().map(ProgramText::from).ok_or_else(|| Alarm::program_not_found(line, name))?;
         if self.calls.len() + 1 >= MAX_LEVELS {
-            return Err(Alarm::nesting(line, &format!("more than {MAX_LEVELS} program levels")));
+            return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }
         let sys = sys_view!(self, cfg);
         let ctx = Ctx { vars: &self.vars, sys: &sys };
@@ -81,6 +85,8 @@ impl Interpreter {
             by_reference: Vec::new(),
             repeats_left: repeat.max(1) - 1,
             bound: false,
+            saved: Box::new((self.modal.clone(), self.pframe.clone(), self.iframe.clone())),
+            save: false,
         });
         self.vars.push_frame();
         self.flow = Some(Flow::new(text));
@@ -88,11 +94,12 @@ impl Interpreter {
     }
 
     /// Binds the call's arguments to the parameters of the subprogram's PROC line.
-    pub(super) fn bind_params(&mut self, params: &[Param], line: u32) -> Result<(), Alarm> {
+    pub(super) fn bind_params(&mut self, params: &[Param], save: bool, line: u32) -> Result<(), Alarm> {
         let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) else { return Ok(()) };
         frame.bound = true;
+        frame.save = save;
         if frame.args.len() > params.len() {
-            return Err(Alarm::syntax(
+            return Err(Alarm::too_many_arguments(
                 line,
                 &format!("{} arguments for {} parameters", frame.args.len(), params.len()),
             ));
@@ -109,7 +116,7 @@ impl Interpreter {
                 match sources.get(i).cloned().flatten() {
                     Some(src) => by_reference.push((p.name.clone(), src)),
                     None if i < args.len() => {
-                        return Err(Alarm::type_error(line, &format!("VAR parameter {} needs a variable", p.name)));
+                        return Err(Alarm::not_a_variable(line, &p.name));
                     }
                     None => {}
                 }
@@ -128,7 +135,7 @@ impl Interpreter {
         if let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) {
             frame.bound = true;
             if !frame.args.is_empty() {
-                return Err(Alarm::syntax(line, "arguments passed to a program without PROC parameters"));
+                return Err(Alarm::too_many_arguments(line, "arguments passed to a program without PROC parameters"));
             }
         }
         Ok(())
@@ -143,6 +150,16 @@ impl Interpreter {
             .iter()
             .filter_map(|(param, src)| self.vars.get(param).map(|v| (src.clone(), v.data[0].clone())))
             .collect();
+        if frame.save {
+            // PROC ... SAVE: the G functions and frames of the caller come back (the feed the
+            // subprogram programmed stays, as F is no G function).
+            let (modal, pframe, iframe) = (*frame.saved).clone();
+            let feed = self.modal.feed;
+            self.modal = super::Modal { feed, ..modal };
+            self.pframe = pframe;
+            self.iframe = iframe;
+        }
+        let frame = self.calls.last_mut().expect("checked above");
         if frame.repeats_left > 0 {
             frame.repeats_left -= 1;
             frame.bound = false;

@@ -6,6 +6,7 @@ use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
 use crate::lang::{BinOp, Expr, UnOp};
+use crate::machine_data::FrameAngles;
 
 /// What an expression can read besides its literals.
 pub trait Scope {
@@ -23,6 +24,10 @@ pub trait Scope {
     /// The geometry axis perpendicular to the working plane (G17: Z).
     fn applicate(&self) -> usize {
         2
+    }
+    /// How frame rotation angles are written (MD10600).
+    fn frame_angles(&self) -> FrameAngles {
+        FrameAngles::Rpy
     }
 }
 
@@ -265,9 +270,9 @@ fn call(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value
 }
 
 /// Functions that build frames from (axis, value) pairs.
-const FRAME_FUNCTIONS: &[&str] = &["CTRANS", "CFINE", "CROT", "CSCALE", "CMIRROR", "CRPL"];
+const FRAME_FUNCTIONS: &[&str] = &["CTRANS", "CFINE", "CROT", "CROTS", "CSCALE", "CMIRROR", "CRPL"];
 
-/// `CTRANS(X,10,Y,20)`, `CFINE(...)`, `CROT(Z,45)`, `CSCALE(X,2)`, `CMIRROR(X)`, `CRPL(axis, angle)`:
+/// `CTRANS(X,10,Y,20)`, `CFINE(...)`, `CROT(Z,45)`, `CROTS(X,10,Y,20)`, `CSCALE(X,2)`, `CMIRROR(X)`, `CRPL(axis, angle)`:
 /// a frame with only that component (no arguments: the neutral frame).
 fn frame_function(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
     let geo = scope.geo_axes();
@@ -302,7 +307,20 @@ fn frame_function(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Re
                     .ok_or_else(|| Alarm::type_error(line, "CROT rotates geometry axes only"))?;
                 angles[g] = v;
             }
-            Frame::rotation(frame::rpy(angles[0], angles[1], angles[2]))
+            Frame::rotation(frame::rotation_of(scope.frame_angles(), angles))
+        }
+        "CROTS" => {
+            let mut angles = Vec::new();
+            for (k, v) in pairs()? {
+                let g = geo
+                    .iter()
+                    .position(|a| *a == Some(k))
+                    .ok_or_else(|| Alarm::type_error(line, "CROTS rotates geometry axes only"))?;
+                angles.push((g, v));
+            }
+            let r = super::solid_angles::rotation(&angles)
+                .map_err(|what| Alarm::value_out_of_range(line, &format!("CROTS: {what}")))?;
+            Frame::rotation(r)
         }
         "CSCALE" => Frame::scaling(&geo, &pairs()?),
         "CMIRROR" => {

@@ -91,7 +91,7 @@ impl Flow {
     /// Pushes a control structure, checking the nesting depth.
     pub fn open(&mut self, ctrl: Ctrl, line: u32) -> Result<(), Alarm> {
         if self.control.len() >= MAX_NESTING {
-            return Err(Alarm::nesting(line, &format!("more than {MAX_NESTING} levels")));
+            return Err(Alarm::nesting_too_deep(line, &format!("more than {MAX_NESTING} levels")));
         }
         self.control.push(ctrl);
         Ok(())
@@ -104,9 +104,10 @@ impl Flow {
         let forward = || self.find(goto, from, false);
         let backward = || self.find(goto, Pos { offset: 0, line: 1 }, true);
         let found = match goto.kind {
+            _ if goto.target == JumpTarget::ProgramStart => Some(Pos { offset: 0, line: 1 }),
             GotoKind::Forward => forward(),
             GotoKind::Backward => backward(),
-            GotoKind::Both | GotoKind::Continue => forward().or_else(backward),
+            GotoKind::Both | GotoKind::Continue | GotoKind::Start => forward().or_else(backward),
         };
         let Some(target) = found else {
             if goto.kind == GotoKind::Continue {
@@ -115,7 +116,7 @@ impl Flow {
             let name = match &goto.target {
                 JumpTarget::Label(l) => l.clone(),
                 JumpTarget::BlockNumber(n) => format!("N{n}"),
-                JumpTarget::Expr(_) => "(expression)".into(),
+                JumpTarget::Expr(_) | JumpTarget::ProgramStart => "(expression)".into(),
             };
             return Err(Alarm::jump_not_found(from.line, &name));
         };
@@ -155,7 +156,7 @@ impl Flow {
             let hit = match &goto.target {
                 JumpTarget::Label(l) => block.label.as_deref() == Some(l.as_str()),
                 JumpTarget::BlockNumber(n) => block.number == Some(*n),
-                JumpTarget::Expr(_) => false,
+                JumpTarget::Expr(_) | JumpTarget::ProgramStart => false,
             };
             if hit {
                 found = Some(at);

@@ -6,8 +6,8 @@
 //! frame is the settable frame (G54 ...) followed by the programmable frame (TRANS, ROT, SCALE,
 //! MIRROR and their additive forms).
 
-use crate::machine_data::FrameData;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::machine_data::{FrameAngles, FrameData};
 use crate::motion::AxisVec;
 
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
@@ -44,7 +44,7 @@ impl Frame {
     }
 
     /// A stored frame of the data management (settable or basic frame) on this channel's axes.
-    pub fn from_data(data: &FrameData, geo: &GeoAxes) -> Frame {
+    pub fn from_data(data: &FrameData, geo: &GeoAxes, angles: FrameAngles) -> Frame {
         let mut f = Frame::identity();
         if data.is_neutral() {
             return f;
@@ -57,7 +57,7 @@ impl Frame {
             f.factor[k] = factor(k);
         }
         // Rotation of the scaled and mirrored child axes: R · diag(factors).
-        let r = rpy(data.rot[0], data.rot[1], data.rot[2]);
+        let r = rotation_of(angles, data.rot);
         for (c, axis) in geo.iter().enumerate() {
             let s = axis.map_or(1.0, factor);
             for (row, r_row) in f.lin.iter_mut().zip(&r) {
@@ -68,9 +68,9 @@ impl Frame {
     }
 
     /// The frame as stored frame data for `n` channel axes: the rotation of the geometry axes
-    /// as RPY angles, scale and mirror per axis. `None` when the linear part is no rotation with
-    /// per-axis scale and mirror (a shear), which stored frames cannot hold.
-    pub fn to_data(&self, geo: &GeoAxes, n: usize) -> Option<FrameData> {
+    /// as RPY or Euler angles (MD10600), scale and mirror per axis. `None` when the linear part is
+    /// no rotation with per-axis scale and mirror (a shear), which stored frames cannot hold.
+    pub fn to_data(&self, geo: &GeoAxes, n: usize, angles: FrameAngles) -> Option<FrameData> {
         let mut data = FrameData::neutral(n);
         data.trans.copy_from_slice(&self.trans[..n]);
         for k in 0..n {
@@ -100,15 +100,14 @@ impl Frame {
                 row[c] = -row[c];
             }
         }
-        data.rot =
-            [q[2][1].atan2(q[2][2]), (-q[2][0]).clamp(-1.0, 1.0).asin(), q[1][0].atan2(q[0][0])].map(f64::to_degrees);
+        data.rot = angles_of(angles, &q);
         for (g, axis) in geo.iter().enumerate() {
             if let Some(k) = *axis {
                 data.scale[k] = d[g].abs();
                 data.mirror[k] = d[g] < 0.0;
             }
         }
-        let back = Frame::from_data(&data, geo);
+        let back = Frame::from_data(&data, geo, angles);
         let same = (0..3).all(|r| (0..3).all(|c| (back.lin[r][c] - self.lin[r][c]).abs() < 1e-9));
         same.then_some(data)
     }
@@ -243,6 +242,14 @@ impl Frame {
 pub struct SystemFrames {
     /// `$P_PARTFRAME`: TCARR table offset and PAROT rotation (nearest to the BCS).
     pub part: Frame,
+    /// `$P_SETFRAME`: actual value setting (written by programs here).
+    pub set: Frame,
+    /// `$P_EXTFRAME`: external work offset (written by programs here).
+    pub ext: Frame,
+    /// `$P_WPFRAME`: workpiece reference points (written by programs here).
+    pub wp: Frame,
+    /// `$P_TRAFRAME`: transformation frame (written by programs here).
+    pub tra: Frame,
     /// `$P_TOOLFRAME`: TOROT / TOFRAME.
     pub tool: Frame,
     /// `$P_CYCFRAME`: the swivel cycle (nearest to the WCS).
@@ -272,6 +279,44 @@ pub fn rpy(x: f64, y: f64, z: f64) -> [[f64; 3]; 3] {
         [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
         [-sy, cy * sx, cy * cx],
     ]
+}
+
+/// `Rz(z)·Rx(x)·Rz(y)`: the Euler rotation of ROT X.. Y.. Z.. with MD10600 = 2 (K2: "in the
+/// order Z, X', Z''"; the X angle is the middle one, 0 ≤ x < 180, so the Z angle turns first and
+/// the Y angle last, about the new Z).
+pub fn euler(x: f64, y: f64, z: f64) -> [[f64; 3]; 3] {
+    let m = |a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+    };
+    m(&m(&about_axis(2, z), &about_axis(0, x)), &about_axis(2, y))
+}
+
+/// The rotation for the angles about X, Y, Z as written in a frame, per MD10600.
+pub fn rotation_of(angles: FrameAngles, [x, y, z]: [f64; 3]) -> [[f64; 3]; 3] {
+    match angles {
+        FrameAngles::Rpy => rpy(x, y, z),
+        FrameAngles::Euler => euler(x, y, z),
+    }
+}
+
+/// The angles [x, y, z] of a rotation matrix in the ranges the control reads them back in:
+/// RPY −180 ≤ x ≤ 180, −90 ≤ y ≤ 90, −180 ≤ z ≤ 180; Euler 0 ≤ x ≤ 180, y and z ±180 (at x = 0
+/// or 180 only z + y or z − y is defined; y reads 0 then).
+pub fn angles_of(angles: FrameAngles, q: &[[f64; 3]; 3]) -> [f64; 3] {
+    match angles {
+        FrameAngles::Rpy => {
+            [q[2][1].atan2(q[2][2]), (-q[2][0]).clamp(-1.0, 1.0).asin(), q[1][0].atan2(q[0][0])].map(f64::to_degrees)
+        }
+        FrameAngles::Euler => {
+            let x = q[2][2].clamp(-1.0, 1.0).acos();
+            let (y, z) = if x.sin().abs() > 1e-12 {
+                (q[2][0].atan2(q[2][1]), q[0][2].atan2(-q[1][2]))
+            } else {
+                (0.0, q[1][0].atan2(q[0][0]))
+            };
+            [x, y, z].map(f64::to_degrees)
+        }
+    }
 }
 
 /// Rotation about geometry axis `g` (0 = X, 1 = Y, 2 = Z) by `angle` degrees.
@@ -333,6 +378,31 @@ mod tests {
         let rot = Frame::rotation(rpy(0.0, 0.0, 90.0));
         let f = rot.then(&Frame::translation(p(10.0, 0.0, 0.0)), &GEO);
         assert!(close(&f.apply(&GEO, &p(0.0, 0.0, 0.0)), &p(0.0, 10.0, 0.0)));
+    }
+
+    #[test]
+    fn euler_turns_about_z_then_the_new_x_then_the_new_z() {
+        // z = 90 takes X to Y; x = 90 then turns about that new X (= old Y): the new Z (old Z)
+        // goes to the old -X... worked by hand: Rz(90)·Rx(90)·ez = Rz(90)·(0,-1,0) = (1,0,0).
+        let r = euler(90.0, 0.0, 90.0);
+        let f = Frame::rotation(r);
+        assert!(close(&f.apply(&GEO, &p(0.0, 0.0, 1.0)), &p(1.0, 0.0, 0.0)));
+        // y alone turns about Z like z alone.
+        assert!(close(&Frame::rotation(euler(0.0, 30.0, 0.0)).apply(&GEO, &p(1.0, 0.0, 0.0)), &{
+            let a = 30f64.to_radians();
+            p(a.cos(), a.sin(), 0.0)
+        }));
+    }
+
+    #[test]
+    fn angles_read_back_in_both_conventions() {
+        for (mode, a) in [(FrameAngles::Rpy, [10.0, -20.0, 30.0]), (FrameAngles::Euler, [40.0, -120.0, 75.0])] {
+            let back = angles_of(mode, &rotation_of(mode, a));
+            assert!(back.iter().zip(&a).all(|(x, y)| (x - y).abs() < 1e-9), "{mode:?}: {back:?}");
+        }
+        // Euler with x = 0: only z + y is defined, read back as z.
+        let back = angles_of(FrameAngles::Euler, &euler(0.0, 20.0, 15.0));
+        assert!((back[2] - 35.0).abs() < 1e-9 && back[0].abs() < 1e-9, "{back:?}");
     }
 
     #[test]

@@ -11,10 +11,13 @@ mod corners;
 mod eval;
 mod flow;
 pub mod frame;
+mod frame_vars;
 pub mod gcodes;
+mod jump_target;
 mod modal;
 mod orient;
 mod scope;
+mod solid_angles;
 mod spindles;
 mod statements;
 mod swivel;
@@ -163,6 +166,8 @@ pub struct Interpreter {
     pframe: Frame,
     /// The system frames of the frame chain.
     system: SystemFrames,
+    /// `$P_IFRAME` as a program wrote it; `None`: the selected settable frame `$P_UIFR[n]`.
+    iframe: Option<Frame>,
     /// Master spindle and each spindle's programmed speed and direction.
     spindles: spindles::Spindles,
     /// Read position in the active program level, if one runs.
@@ -199,6 +204,7 @@ impl Interpreter {
             vars: Variables::default(),
             pframe: Frame::identity(),
             system: SystemFrames::default(),
+            iframe: None,
             spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
@@ -225,6 +231,7 @@ impl Interpreter {
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
         self.pframe = Frame::identity();
+        self.iframe = None;
         self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
@@ -370,6 +377,10 @@ impl Interpreter {
         let derived = self.trafo.config();
         let cfg = derived.as_deref().unwrap_or(base_cfg);
         self.modal.apply(&words, cfg, line)?;
+        if words.work_offset.is_some() {
+            // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
+            self.iframe = None;
+        }
         self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
             self.modal.feed = Some(f);
@@ -387,8 +398,8 @@ impl Interpreter {
         if let Some(op) = words.frame_op {
             self.frame_instruction(op, &words, cfg, line)?;
         }
-        if let Some(f) = &words.program_frame {
-            self.pframe = f.clone();
+        for (which, f) in &words.frame_writes {
+            self.write_chain_frame(*which, f.clone());
         }
         self.holder_block(&words, cfg, line, out)?;
         self.offsets.frame = self.active_frame(cfg);
@@ -467,8 +478,8 @@ impl Interpreter {
         if let Some(kind) = words.stop {
             out.push(Item::Stop { kind, line });
         }
-        if let (Some(goto), Some(flow)) = (&words.goto, &mut self.flow) {
-            flow.jump(goto)?;
+        if let Some(goto) = &words.goto {
+            self.jump(goto, cfg, line)?;
         }
         if let Some((name, args)) = &words.call {
             self.call(name, args, words.repeat.unwrap_or(1), programs, cfg, line)?;
@@ -529,7 +540,26 @@ impl Interpreter {
                         })?;
                         angles[g] = v;
                     }
-                    Frame::rotation(frame::rpy(angles[0], angles[1], angles[2]))
+                    Frame::rotation(frame::rotation_of(cfg.frame_angles, angles))
+                }
+            }
+            FrameKind::Rots => {
+                let mut angles = Vec::new();
+                for &(k, v, _) in &words.axes {
+                    let g = geo_index(k).ok_or_else(|| {
+                        Alarm::value_out_of_range(
+                            line,
+                            &format!("ROTS about {}: only geometry axes rotate", cfg.program_axis_name(k)),
+                        )
+                    })?;
+                    angles.push((g, v));
+                }
+                if angles.is_empty() {
+                    Frame::identity()
+                } else {
+                    let r = solid_angles::rotation(&angles)
+                        .map_err(|what| Alarm::value_out_of_range(line, &format!("ROTS: {what}")))?;
+                    Frame::rotation(r)
                 }
             }
             FrameKind::Scale => {
@@ -629,7 +659,7 @@ impl Interpreter {
                 offn.abs() - tool_radius
             }
         };
-        let frame = if words.g53 { Frame::identity() } else { self.offsets.frame.clone() };
+        let frame = self.block_frame(words, cfg);
         let (pa, po, _) = self.modal.plane.axes();
         let unit = |v: AxisVec| {
             let n = norm(&v);
@@ -679,8 +709,8 @@ impl Interpreter {
         let geo = &cfg.geo_axes;
         let start = self.pos;
         let tool = self.offsets.tool;
-        // G53/SUPA: settable and programmable frames suppressed for this block.
-        let frame = if words.g53 { Frame::identity() } else { self.offsets.frame.clone() };
+        // G53/G153/SUPA: frames suppressed for this block.
+        let frame = self.block_frame(words, cfg);
         let mut basic = start;
         for k in 0..n {
             basic[k] -= tool[k];
@@ -899,35 +929,38 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
 }
 
 impl Interpreter {
-    /// `$P_ACTFRAME`: $P_PARTFRAME : $P_ACTBFRAME : $P_IFRAME : $P_TOOLFRAME : $P_PFRAME :
-    /// $P_CYCFRAME, from the BCS towards the WCS (the frames this product models).
+    /// `$P_ACTFRAME`: the whole frame chain (see `frame_vars.rs`), from the BCS towards the WCS.
     fn active_frame(&self, cfg: &MachineConfig) -> Frame {
-        let (mut base, mut settable) = (basic_frame(cfg), work_offset(cfg, self.modal.work_offset));
-        let s = &self.system;
-        if let Some(rot) = self.trafo.rotary_slot() {
-            // TRANSMIT/TRACYL put a Cartesian axis into the rotary axis' slot: the offsets the
-            // stored frames hold for the rotary axis stay out of it (frames programmed while
-            // the transformation is active address the Cartesian axis and act).
-            let mut part = s.part.clone();
-            for f in [&mut part, &mut base, &mut settable] {
-                f.trans[rot] = 0.0;
-            }
-            return frame::chain(&[&part, &base, &settable, &s.tool, &self.pframe, &s.cycle], &cfg.geo_axes);
+        sys_view!(self, cfg).chain(None)
+    }
+
+    /// The frame a block's positions go through: the active frame, or what G53 (settable,
+    /// programmable and the system frames above the basic frame suppressed) or G153/SUPA (every
+    /// frame suppressed) leave of it.
+    fn block_frame(&self, words: &modal::Words, cfg: &MachineConfig) -> Frame {
+        match words.suppress {
+            None => self.offsets.frame.clone(),
+            some => sys_view!(self, cfg).chain(some),
         }
-        frame::chain(&[&s.part, &base, &settable, &s.tool, &self.pframe, &s.cycle], &cfg.geo_axes)
     }
 }
 
 /// Settable frame `frame` (0 = G500).
 pub(super) fn work_offset(cfg: &MachineConfig, frame: usize) -> Frame {
-    cfg.work_offsets.get(frame).map_or_else(Frame::identity, |f| Frame::from_data(f, &cfg.geo_axes))
+    cfg.work_offsets.get(frame).map_or_else(Frame::identity, |f| Frame::from_data(f, &cfg.geo_axes, cfg.frame_angles))
 }
 
-/// The total basic frame `$P_ACTBFRAME`: every channel basic frame chained in order.
+/// The total basic frame `$P_ACTBFRAME`: the NCU-global basic frames, then the channel basic
+/// frames, each chained in order.
 pub(super) fn basic_frame(cfg: &MachineConfig) -> Frame {
     // Neutral basic frames (the usual case) add nothing to the chain: skipped unbuilt.
-    let frames: Vec<Frame> =
-        cfg.base_frames.iter().filter(|f| !f.is_neutral()).map(|f| Frame::from_data(f, &cfg.geo_axes)).collect();
+    let frames: Vec<Frame> = cfg
+        .ncu_base_frames
+        .iter()
+        .chain(&cfg.base_frames)
+        .filter(|f| !f.is_neutral())
+        .map(|f| Frame::from_data(f, &cfg.geo_axes, cfg.frame_angles))
+        .collect();
     frame::chain(&frames.iter().collect::<Vec<_>>(), &cfg.geo_axes)
 }
 

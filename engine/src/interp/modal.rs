@@ -6,6 +6,7 @@ use super::calls::Programs;
 use super::corners::Corner;
 use super::eval::{eval, eval_f64};
 use super::frame::Frame;
+use super::frame_vars::{ChainFrame, Suppress};
 use super::orient::{self, OriModal, OriWords};
 use super::scope::{Ctx, SysView};
 use super::toolholder::{CutMode, TcoMode, g53_code};
@@ -239,6 +240,8 @@ pub enum Oblique {
 pub enum FrameKind {
     Trans,
     Rot,
+    /// ROTS/AROTS: two solid angles.
+    Rots,
     Scale,
     Mirror,
 }
@@ -252,12 +255,13 @@ pub struct FrameOp {
 
 fn frame_op(name: &str) -> Option<FrameOp> {
     let (additive, base) = match name.strip_prefix('A') {
-        Some(rest) if matches!(rest, "TRANS" | "ROT" | "SCALE" | "MIRROR") => (true, rest),
+        Some(rest) if matches!(rest, "TRANS" | "ROT" | "ROTS" | "SCALE" | "MIRROR") => (true, rest),
         _ => (false, name),
     };
     let kind = match base {
         "TRANS" => FrameKind::Trans,
         "ROT" => FrameKind::Rot,
+        "ROTS" => FrameKind::Rots,
         "SCALE" => FrameKind::Scale,
         "MIRROR" => FrameKind::Mirror,
         _ => return None,
@@ -281,8 +285,8 @@ pub(super) struct Words {
     pub g9: bool,
     /// G07 (approach the start of an oblique plunge) or G05 (oblique plunge), TRAANG.
     pub oblique: Option<Oblique>,
-    /// G53/SUPA: work offsets suppressed for this block.
-    pub g53: bool,
+    /// G53, G153, SUPA: frames suppressed for this block.
+    pub suppress: Option<Suppress>,
     /// Channel axis, value, coordinate mode.
     pub axes: Vec<(usize, f64, Option<CoordMode>)>,
     /// I, J, K by geometry axis: value and whether it is absolute (`AC`).
@@ -333,8 +337,8 @@ pub(super) struct Words {
     pub arc_feed: Option<ArcFeed>,
     /// SPOS=: position the master spindle (it becomes a rotary axis).
     pub spos: Option<f64>,
-    /// `$P_PFRAME=...`: the new programmable frame.
-    pub program_frame: Option<Frame>,
+    /// `$P_PFRAME=...`, `$P_SETFRAME=...`: links of the frame chain the block assigns.
+    pub frame_writes: Vec<(ChainFrame, Frame)>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
     pub corner: Option<Corner>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
@@ -406,7 +410,7 @@ pub(super) fn collect(
                     ) =>
             {
                 match name.as_str() {
-                    "SUPA" => w.g53 = true,
+                    "SUPA" => w.suppress = Some(Suppress::All),
                     "NEWCONF" => w.newconf = true,
                     "CFC" => w.arc_feed = Some(ArcFeed::Contour),
                     "CFTCP" => w.arc_feed = Some(ArcFeed::CentrePath),
@@ -488,20 +492,7 @@ pub(super) fn collect(
                 w.ori.reset = Some(values);
             }
             Word::Keyword { name, args } if name == "DELOBJ" => {
-                // DELOBJ("KIN_CHAIN_ELEM") / DELOBJ("TRAFO_DATA"): delete every kinematic chain
-                // element / transformation record (active with NEWCONF or reset). Ranges
-                // (start and end index) are not modelled.
-                let kind = match args.as_slice() {
-                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
-                    _ => return Err(Alarm::syntax(line, "DELOBJ takes one object type (ranges are not modelled)")),
-                };
-                if !matches!(kind.as_str(), "KIN_CHAIN_ELEM" | "TRAFO_DATA") {
-                    return Err(Alarm::value_out_of_range(
-                        line,
-                        &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM or TRAFO_DATA"),
-                    ));
-                }
-                w.data_writes.push(format!("{DELOBJ}{kind}"));
+                w.data_writes.push(delete_objects(args, &Ctx { vars, sys }, line)?);
             }
             Word::Keyword { name, args } if name == "SETMS" => {
                 let spindle = match args.as_slice() {
@@ -525,6 +516,15 @@ pub(super) fn collect(
             }
             Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
+            // `R2 = DELOBJ("TRAFO_DATA")`: the function form returns 0 (done).
+            Word::Address { name, indices, value } if matches!(&value.expr, Expr::Call(f, _) if f == "DELOBJ") => {
+                let Expr::Call(_, args) = &value.expr else { unreachable!("matched above") };
+                let write = delete_objects(args, &Ctx { vars, sys }, line)?;
+                match assign(name, indices, &Expr::Number(0.0), cfg, vars, sys, line)? {
+                    Assigned::Variable => w.data_writes.push(write),
+                    _ => return Err(Alarm::type_error(line, &format!("{name} cannot take the result of DELOBJ"))),
+                }
+            }
             Word::Address { name, indices, value } => {
                 match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,
@@ -532,8 +532,8 @@ pub(super) fn collect(
                         w.data_writes.push(text);
                         continue;
                     }
-                    Assigned::ProgramFrame(f) => {
-                        w.program_frame = Some(*f);
+                    Assigned::ChainFrame(which, f) => {
+                        w.frame_writes.push((which, *f));
                         continue;
                     }
                     Assigned::Address => {}
@@ -618,8 +618,8 @@ pub(super) enum Assigned {
     Address,
     /// Tool data, frame data or machine data, as NC data text.
     Data(String),
-    /// A new programmable frame (`$P_PFRAME=...`).
-    ProgramFrame(Box<Frame>),
+    /// A new value of a link of the frame chain (`$P_PFRAME=...`, `$P_SETFRAME=...`).
+    ChainFrame(ChainFrame, Box<Frame>),
 }
 
 pub(super) fn assign(
@@ -647,8 +647,9 @@ pub(super) fn assign(
         *slot = v;
         return Ok(Assigned::Variable);
     }
-    if name == "$P_PFRAME" {
-        return program_frame(indices, expr, vars, sys, line).map(|f| Assigned::ProgramFrame(Box::new(f)));
+    if let Some(which) = ChainFrame::of(name).filter(|w| w.writable()) {
+        return chain_frame(which, name, indices, expr, vars, sys, line)
+            .map(|f| Assigned::ChainFrame(which, Box::new(f)));
     }
     if name.starts_with('$') {
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
@@ -671,25 +672,30 @@ pub(super) fn assign(
     Ok(Assigned::Variable)
 }
 
-/// `$P_PFRAME = <frame>` or `$P_PFRAME[axis, TR] = <value>`: the new programmable frame.
-fn program_frame(indices: &[Expr], expr: &Expr, vars: &Variables, sys: &SysView, line: u32) -> Result<Frame, Alarm> {
+/// `$P_PFRAME = <frame>` or `$P_PFRAME[axis, TR] = <value>` (the same for the other writable
+/// links of the chain): the link's new value.
+fn chain_frame(
+    which: ChainFrame,
+    name: &str,
+    indices: &[Expr],
+    expr: &Expr,
+    vars: &Variables,
+    sys: &SysView,
+    line: u32,
+) -> Result<Frame, Alarm> {
     let ctx = Ctx { vars, sys };
     match indices {
         [] => match eval(expr, &ctx, line)? {
             Value::Frame(f) => Ok(*f),
-            other => Err(Alarm::type_error(line, &format!("$P_PFRAME needs a frame, not {other:?}"))),
+            other => Err(Alarm::type_error(line, &format!("{name} needs a frame, not {other:?}"))),
         },
-        [Expr::Var { name: axis, .. }, Expr::Var { name: component, .. }] if component == "TR" => {
+        [Expr::Var { name: axis, .. }, Expr::Var { name: component, .. }] if component == "TR" || component == "FI" => {
             let k = sys.cfg.program_axis(axis).ok_or_else(|| Alarm::unknown_name(line, axis))?;
-            let mut f = sys.pframe.clone();
+            let mut f = sys.chain_frame(which);
             f.trans[k] = eval_f64(expr, &ctx, line)?;
             Ok(f)
         }
-        _ => Err(Alarm::index_error(
-            line,
-            "$P_PFRAME",
-            "components other than [axis, TR] are set with CROT/CSCALE/CMIRROR",
-        )),
+        _ => Err(Alarm::index_error(line, name, "components other than [axis, TR] are set with CROT/CSCALE/CMIRROR")),
     }
 }
 
@@ -711,7 +717,7 @@ fn stored_frame_lines(
     let cfg = sys.cfg;
     let count = cfg.channel_axes.len();
     let data = f
-        .to_data(&cfg.geo_axes, count)
+        .to_data(&cfg.geo_axes, count, cfg.frame_angles)
         .ok_or_else(|| Alarm::value_out_of_range(line, &format!("{var}[{n}]: the frame's rotation part is sheared")))?;
     let mut lines = Vec::new();
     for k in 0..count {
@@ -742,13 +748,13 @@ fn data_write(
     let writable = name.starts_with("$TC_DP")
         || name.starts_with("$TC_CARR")
         || crate::machine_data::chains::is_chain_name(name)
-        || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_UBFR")
+        || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR" | "$P_UBFR")
         || ["$MN_", "$MC_", "$MA_", "$SN_", "$SC_", "$SA_"].iter().any(|p| name.starts_with(p));
     if !writable {
         return Err(Alarm::unknown_name(line, &format!("{name} (not writable from a program)")));
     }
     let ctx = Ctx { vars, sys };
-    if matches!(name, "$P_UIFR" | "$P_CHBFR") && indices.len() == 1 {
+    if matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR") && indices.len() == 1 {
         return stored_frame_lines(name, &indices[0], expr, &ctx, sys, line);
     }
     if name == "$P_UBFR" && indices.is_empty() {
@@ -775,6 +781,46 @@ fn data_write(
     }
     let index = if idx.is_empty() { String::new() } else { format!("[{}]", idx.join(",")) };
     Ok(format!("{name}{index}={value}"))
+}
+
+/// `DELOBJ(type[, start, end])` as its data-write entry `DELOBJ:type[:start:end]`. The types
+/// of the Job Planning manual this product holds: `KIN_CHAIN_ELEM` and `TRAFO_DATA` (deleted
+/// whole, active with NEWCONF or reset) and `TOOLCARRIER` (toolholders `start..=end`, by their
+/// number; acting at once like a `$TC_CARR` write).
+fn delete_objects(args: &[Expr], ctx: &Ctx, line: u32) -> Result<String, Alarm> {
+    let Some((kind, range)) = args.split_first() else {
+        return Err(Alarm::syntax(line, "DELOBJ needs the object type"));
+    };
+    let kind = eval(kind, ctx, line)?.as_text().to_ascii_uppercase();
+    let mut bounds = Vec::new();
+    for e in range {
+        if matches!(e, Expr::Call(n, a) if n == "_OMITTED" && a.is_empty()) {
+            bounds.push(None);
+            continue;
+        }
+        let v = eval(e, ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+        bounds.push(Some(v));
+    }
+    match kind.as_str() {
+        "KIN_CHAIN_ELEM" | "TRAFO_DATA" if bounds.iter().all(Option::is_none) => Ok(format!("{DELOBJ}{kind}")),
+        "KIN_CHAIN_ELEM" | "TRAFO_DATA" => Err(Alarm::value_out_of_range(
+            line,
+            &format!("DELOBJ(\"{kind}\", ...): index ranges of chain data are not modelled, only the whole type"),
+        )),
+        "TOOLCARRIER" if bounds.len() <= 2 => {
+            let start = bounds.first().copied().flatten().unwrap_or(1);
+            let end = bounds.get(1).copied().flatten().unwrap_or(i64::from(u32::MAX));
+            if start < 1 || end < start {
+                return Err(Alarm::value_out_of_range(line, &format!("DELOBJ(\"TOOLCARRIER\", {start}, {end})")));
+            }
+            Ok(format!("{DELOBJ}TOOLCARRIER:{start}:{}", end.min(i64::from(u32::MAX))))
+        }
+        "TOOLCARRIER" => Err(Alarm::syntax(line, "DELOBJ(\"TOOLCARRIER\", start, end): no initialization value")),
+        _ => Err(Alarm::value_out_of_range(
+            line,
+            &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM, TRAFO_DATA or TOOLCARRIER"),
+        )),
+    }
 }
 
 /// Addresses with a fixed meaning in a block.
@@ -847,9 +893,10 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         17 => w.plane = Some(Plane::G17),
         18 => w.plane = Some(Plane::G18),
         19 => w.plane = Some(Plane::G19),
-        // G53 suppresses the settable and programmable frames for the block; G153 also the
-        // basic frames, which this product does not model separately.
-        53 | 153 => w.g53 = true,
+        // G53 suppresses the settable and programmable frames for the block (and the system
+        // frames above the basic frame); G153 also the basic frames (see `frame_vars.rs`).
+        53 => w.suppress = Some(Suppress::G53),
+        153 => w.suppress = Some(Suppress::All),
         40 => w.trc = Some(None),
         41 => w.trc = Some(Some(Side::Left)),
         42 => w.trc = Some(Some(Side::Right)),

@@ -22,6 +22,8 @@ pub(crate) struct SysView<'a> {
     pub pframe: &'a Frame,
     /// The system frames.
     pub system: &'a super::frame::SystemFrames,
+    /// `$P_IFRAME` as a program wrote it.
+    pub iframe: &'a Option<Frame>,
     /// Spindles switched to position control (SPOS): programmable as rotary axes.
     pub positioned: &'a [bool; MAX_CHANNEL_AXES],
     /// The active transformation's view (machine positions, chain layers).
@@ -41,6 +43,7 @@ macro_rules! sys_view {
             offsets: &$interp.offsets,
             pframe: &$interp.pframe,
             system: &$interp.system,
+            iframe: &$interp.iframe,
             positioned: &$interp.positioned,
             trafo: &$interp.trafo,
             holder: &$interp.holder,
@@ -78,6 +81,10 @@ impl Scope for Ctx<'_> {
         self.sys.modal.plane.axes().2
     }
 
+    fn frame_angles(&self) -> crate::machine_data::FrameAngles {
+        self.sys.cfg.frame_angles
+    }
+
     fn system(&self, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
         let sys = self.sys;
         let axis = || -> Result<usize, Alarm> {
@@ -100,7 +107,15 @@ impl Scope for Ctx<'_> {
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),
             "$P_EP" => Value::Real(wcs(axis()?)),
             // Machine axes: through the active transformation, not the BCS.
-            "$AA_IM" => Value::Real(sys.trafo.machine().unwrap_or(sys.pos)[axis()?]),
+            "$AA_IM" => {
+                let k = axis()?;
+                let v = sys.trafo.machine().unwrap_or(sys.pos)[k];
+                // A modulo rotary axis reads within its modulo range, as the display shows it.
+                Value::Real(match sys.cfg.axis(k).modulo {
+                    Some((start, range)) => start + (v - start).rem_euclid(range),
+                    None => v,
+                })
+            }
             // Chained transformation: layer 1 is the output of the first member, the last layer
             // the machine axes; without a chain there is only the machine layer.
             "$AA_ITR" => {
@@ -142,6 +157,7 @@ impl Scope for Ctx<'_> {
                 )
             }
             _ if name.starts_with("$TC_DP") => tool_param(sys.cfg, name, indices, line)?,
+            _ if crate::machine_data::chains::is_chain_name(name) => chain_datum(sys.cfg, name, indices, line)?,
             _ if name.starts_with("$TC_CARR") => carrier_param(sys.cfg, name, indices, line)?,
             "$P_TCANG" => {
                 let n = match indices {
@@ -159,8 +175,7 @@ impl Scope for Ctx<'_> {
             }
             "$P_TCSOL" => Value::Int(if sys.holder.number != 0 { sys.holder.solutions.into() } else { 0 }),
             "$P_TCNUM" => Value::Int(sys.holder.number.into()),
-            "$P_PFRAME" | "$P_ACTFRAME" | "$P_IFRAME" | "$P_ACTBFRAME" | "$P_PARTFRAME" | "$P_TOOLFRAME"
-            | "$P_CYCFRAME" | "$P_UIFR" | "$P_CHBFR" | "$P_UBFR" => {
+            _ if name == "$P_ACTFRAME" || super::frame_vars::ChainFrame::of(name).is_some() || stored_frames(name) => {
                 let stored = |list: &[crate::machine_data::FrameData]| {
                     let (n, rest) = indices
                         .split_first()
@@ -170,25 +185,23 @@ impl Scope for Ctx<'_> {
                         .ok()
                         .and_then(|n| list.get(n))
                         .ok_or_else(|| Alarm::index_error(line, name, &format!("frame {n} does not exist")))?;
-                    Ok::<_, Alarm>((Frame::from_data(data, &sys.cfg.geo_axes), rest))
+                    Ok::<_, Alarm>((Frame::from_data(data, &sys.cfg.geo_axes, sys.cfg.frame_angles), rest))
                 };
                 let (frame, rest) = match name {
-                    "$P_PFRAME" => (sys.pframe.clone(), indices),
                     "$P_ACTFRAME" => (sys.offsets.frame.clone(), indices),
-                    "$P_IFRAME" => (super::work_offset(sys.cfg, sys.modal.work_offset), indices),
-                    "$P_ACTBFRAME" => (super::basic_frame(sys.cfg), indices),
-                    "$P_PARTFRAME" => (sys.system.part.clone(), indices),
-                    "$P_TOOLFRAME" => (sys.system.tool.clone(), indices),
-                    "$P_CYCFRAME" => (sys.system.cycle.clone(), indices),
                     "$P_UIFR" => stored(&sys.cfg.work_offsets)?,
                     "$P_CHBFR" => stored(&sys.cfg.base_frames)?,
-                    _ => (
-                        sys.cfg
-                            .base_frames
-                            .first()
-                            .map_or_else(Frame::identity, |f| Frame::from_data(f, &sys.cfg.geo_axes)),
+                    "$P_NCBFR" => stored(&sys.cfg.ncu_base_frames)?,
+                    "$P_UBFR" => (
+                        sys.cfg.base_frames.first().map_or_else(Frame::identity, |f| {
+                            Frame::from_data(f, &sys.cfg.geo_axes, sys.cfg.frame_angles)
+                        }),
                         indices,
                     ),
+                    _ => {
+                        let which = super::frame_vars::ChainFrame::of(name).expect("checked above");
+                        (sys.chain_frame(which), indices)
+                    }
                 };
                 match rest {
                     [] => Value::Frame(Box::new(frame)),
@@ -199,6 +212,28 @@ impl Scope for Ctx<'_> {
             _ => return Err(Alarm::unknown_name(line, name)),
         })
     }
+}
+
+/// The stored frames of the data management a program reads by number.
+fn stored_frames(name: &str) -> bool {
+    matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR" | "$P_UBFR")
+}
+
+/// `$NK_…[i]` / `$NT_…[n, k]`: a kinematic chain datum as stored (written values are visible
+/// at once, like tool data; the transformations built from them change with NEWCONF).
+fn chain_datum(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    let indices =
+        indices.iter().map(|v| v.as_i64().map_err(|e| Alarm::type_error(line, &e.0))).collect::<Result<Vec<_>, _>>()?;
+    let value = cfg.kin.read(name, &indices, cfg.kin_counts).map_err(|e| match e {
+        _ if e.contains("no kinematic chain datum") => Alarm::unknown_name(line, name),
+        _ => Alarm::index_error(line, name, &e),
+    })?;
+    Ok(match value {
+        crate::machine_data::Value::Str(s) => Value::Str(s),
+        crate::machine_data::Value::Real(r) => Value::Real(r),
+        crate::machine_data::Value::Int(n) => Value::Int(n),
+        crate::machine_data::Value::Bool(b) => Value::Bool(b),
+    })
 }
 
 /// `$TC_CARRn[m]`: one toolholder parameter as stored (0 / "" for a holder without data).
@@ -357,14 +392,10 @@ fn frame_component(
         ("TR", _) => frame.trans[k],
         ("FI", _) => 0.0,
         ("RT", Some(g)) => {
-            // R = Rz(z)·Ry(y)·Rx(x) of the unscaled rotation.
+            // The unscaled rotation, read back in the convention of MD10600.
             let s = [scale(0), scale(1), scale(2)];
-            let m = |r: usize, c: usize| frame.lin[r][c] / s[c];
-            match g {
-                0 => m(2, 1).atan2(m(2, 2)).to_degrees(),
-                1 => (-m(2, 0)).clamp(-1.0, 1.0).asin().to_degrees(),
-                _ => m(1, 0).atan2(m(0, 0)).to_degrees(),
-            }
+            let m: [[f64; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|c| frame.lin[r][c] / s[c]));
+            super::frame::angles_of(sys.cfg.frame_angles, &m)[g]
         }
         ("RT", None) => 0.0,
         ("SC", Some(g)) => scale(g),

@@ -34,7 +34,11 @@ impl Interpreter {
             self.flow = None;
             return Ok(Prep::Done);
         };
-        let block = block.map_err(|d| Alarm::syntax(d.line, &d.message))?;
+        let block = block.map_err(|d| {
+            let mut alarm = Alarm::syntax(d.line, &format!("column {}: {}", d.column, d.message));
+            alarm.number = d.alarm;
+            alarm
+        })?;
         if !main_run_idle && reads_main_run(&block) {
             // The control's implicit preprocessing stop: wait for the main run, then read again.
             flow.next = next;
@@ -42,7 +46,7 @@ impl Interpreter {
             return Ok(Prep::WaitForMainRun);
         }
         match &block.stmt {
-            Some(Stmt::Proc { params, .. }) => self.bind_params(params, block.line)?,
+            Some(Stmt::Proc { params, save, .. }) => self.bind_params(params, *save, block.line)?,
             Some(stmt) => {
                 self.check_unbound(block.line)?;
                 self.statement(stmt, &block, at, cfg, out)?;
@@ -92,7 +96,7 @@ impl Interpreter {
             }
             Stmt::If { cond: c, goto: Some(goto) } => {
                 if cond(self, c)? {
-                    self.flow_mut().jump(goto)?;
+                    self.jump(goto, cfg, line)?;
                 }
             }
             Stmt::If { cond: c, goto: None } => {
@@ -190,12 +194,10 @@ impl Interpreter {
                     }
                 }
                 if let Some(goto) = target.cloned() {
-                    self.flow_mut().jump(&goto)?;
+                    self.jump(&goto, cfg, line)?;
                 }
             }
-            Stmt::Goto(goto) => {
-                self.flow_mut().jump(goto)?;
-            }
+            Stmt::Goto(goto) => self.jump(goto, cfg, line)?,
             // PROC lines are bound in `step_program`; EXTERN declarations need no action.
             Stmt::Proc { .. } | Stmt::Extern { .. } => {}
             Stmt::Ret => out.push(Item::Stop { kind: StopKind::End, line }),
@@ -269,7 +271,7 @@ impl Interpreter {
             }
             values => {
                 if values.len() > var.data.len() {
-                    return Err(Alarm::index_error(line, &decl.name, "more initial values than elements"));
+                    return Err(Alarm::too_many_initial_values(line, &decl.name));
                 }
                 for (slot, e) in var.data.iter_mut().zip(values) {
                     *slot = convert(eval(e, &ctx, line)?)?;

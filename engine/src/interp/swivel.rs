@@ -377,10 +377,11 @@ impl Interpreter {
         self.below_tool_frame(cfg).unrotate_direction(bcs)
     }
 
-    /// $P_PARTFRAME : $P_ACTBFRAME : $P_IFRAME.
+    /// $P_PARTFRAME : $P_SETFRAME : $P_EXTFRAME : $P_ACTBFRAME : $P_IFRAME.
     fn below_tool_frame(&self, cfg: &MachineConfig) -> Frame {
-        let (base, settable) = (super::basic_frame(cfg), super::work_offset(cfg, self.modal.work_offset));
-        frame::chain(&[&self.system.part, &base, &settable], &cfg.geo_axes)
+        let (base, settable) = (super::basic_frame(cfg), self.iframe(cfg));
+        let s = &self.system;
+        frame::chain(&[&s.part, &s.set, &s.ext, &base, &settable], &cfg.geo_axes)
     }
 
     /// G group 53: TOROT/TOFRAME (codes 2..9) write `$P_TOOLFRAME`, TOROTOF (1) deletes it.
@@ -628,10 +629,12 @@ impl Interpreter {
         Ok(())
     }
 
-    /// $P_ACTBFRAME : $P_IFRAME (the frames between the part frame and the tool frame).
+    /// $P_SETFRAME : $P_EXTFRAME : $P_ACTBFRAME : $P_IFRAME (the frames between the part frame
+    /// and the tool frame).
     fn below_tool_frame_without_part(&self, cfg: &MachineConfig) -> Frame {
-        let (base, settable) = (super::basic_frame(cfg), super::work_offset(cfg, self.modal.work_offset));
-        frame::chain(&[&base, &settable], &cfg.geo_axes)
+        let (base, settable) = (super::basic_frame(cfg), self.iframe(cfg));
+        let s = &self.system;
+        frame::chain(&[&s.set, &s.ext, &base, &settable], &cfg.geo_axes)
     }
 
     /// The retraction of `_FR` as rapid moves in machine (channel axis) coordinates.

@@ -9,19 +9,39 @@ pub struct Program {
     pub diagnostics: Vec<Diagnostic>,
 }
 
-/// A syntax error with the 1-based line it was found on.
+/// An error found before the program runs, as the NC alarm the control shows for it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Diagnostic {
+    /// 1-based line.
     pub line: u32,
+    /// 1-based column (byte) of the offending text within its line.
+    pub column: u32,
     /// Byte offset of the offending text within the whole program.
     pub offset: usize,
+    /// The alarm number: 12080 syntax error, 12640 invalid nesting of control structures,
+    /// 12641 nesting too deep.
+    pub alarm: u32,
     pub message: String,
 }
 
+/// Alarm 12080: syntax error.
+pub const SYNTAX_ERROR: u32 = 12080;
+
 impl Diagnostic {
-    /// 1-based column of the error within its line, given the line's start offset.
-    pub fn column(&self, line_start: usize) -> usize {
-        self.offset.saturating_sub(line_start) + 1
+    /// A syntax error (alarm 12080) at byte `col` of the line starting at `line_start`.
+    pub fn syntax(line: u32, line_start: usize, col: usize, message: String) -> Diagnostic {
+        Diagnostic::new(SYNTAX_ERROR, line, line_start, col, message)
+    }
+
+    /// An error with alarm `alarm` at byte `col` of the line starting at `line_start`.
+    pub fn new(alarm: u32, line: u32, line_start: usize, col: usize, message: String) -> Diagnostic {
+        Diagnostic {
+            line,
+            column: u32::try_from(col + 1).unwrap_or(u32::MAX),
+            offset: line_start + col,
+            alarm,
+            message,
+        }
     }
 }
 
@@ -95,6 +115,8 @@ pub enum GotoKind {
     Both,
     /// `GOTOC`: like GOTO, but a missing target is not an error.
     Continue,
+    /// `GOTOS`: back to the start of the program.
+    Start,
 }
 
 /// A jump and its target.
@@ -110,9 +132,12 @@ pub enum JumpTarget {
     Label(String),
     /// `N100` or `:100`.
     BlockNumber(u32),
-    /// A string variable holding the label: `GOTOF LBL_VAR` where the name is not a label is
-    /// resolved by the interpreter.
+    /// A computed target: a STRING expression holding a label or block number
+    /// (`GOTOF "N"<<R10`, `GOTOF DEST[2]`). A plain name (`GOTOF DEST`) is a [`JumpTarget::Label`]
+    /// that the interpreter reads from a STRING variable of that name if one is defined.
     Expr(Expr),
+    /// `GOTOS`: the first block of the program.
+    ProgramStart,
 }
 
 /// Statements that fill a block (declarations and control flow).
@@ -152,10 +177,12 @@ pub enum Stmt {
     },
     /// `GOTOF L` alone.
     Goto(Goto),
-    /// `PROC NAME(type param, ...)`.
+    /// `PROC NAME(type param, ...) [SAVE ...]`.
     Proc {
         name: String,
         params: Vec<Param>,
+        /// `SAVE`: the caller's modal G functions and frames come back at the return.
+        save: bool,
     },
     /// `RET` (end of subprogram).
     Ret,

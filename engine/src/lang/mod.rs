@@ -7,6 +7,7 @@
 pub mod ast;
 mod cursor;
 mod parser;
+mod structure;
 mod text;
 
 pub use ast::*;

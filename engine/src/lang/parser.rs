@@ -3,6 +3,7 @@
 
 use super::ast::*;
 use super::cursor::Cursor;
+use super::structure::Structure;
 
 /// Parses a whole program into memory (tests, small programs).
 pub fn parse(source: &str) -> Program {
@@ -11,19 +12,28 @@ pub fn parse(source: &str) -> Program {
         match result {
             Ok(Some(block)) => program.blocks.push(block),
             Ok(None) => {}
-            Err((col, message)) => program.diagnostics.push(Diagnostic { line, offset: offset + col, message }),
+            Err((col, message)) => program.diagnostics.push(Diagnostic::syntax(line, offset, col, message)),
         }
     }
     program
 }
 
-/// Every syntax error of a program, found in one streaming pass that keeps no blocks.
+/// Every error of a program found before it runs, in one streaming pass that keeps no blocks:
+/// syntax errors (one per line, the first of the line) and control structures that do not nest
+/// (ENDIF without IF, a WHILE never closed, more than 16 levels), in line order.
 pub fn check(source: &str) -> Vec<Diagnostic> {
-    Lines { build: false, ..Lines::new(source, 0, 1) }
-        .filter_map(|(line, offset, r)| {
-            r.err().map(|(col, message)| Diagnostic { line, offset: offset + col, message })
-        })
-        .collect()
+    let mut structure = Structure::default();
+    let mut out = Vec::new();
+    for (line, offset, result) in (Lines { build: false, ..Lines::new(source, 0, 1) }) {
+        match result {
+            Err((col, message)) => out.push(Diagnostic::syntax(line, offset, col, message)),
+            Ok(Some(Block { stmt: Some(stmt), .. })) => out.extend(structure.feed(&stmt, line, offset)),
+            Ok(_) => {}
+        }
+    }
+    out.extend(structure.finish());
+    out.sort_by_key(|d| (d.line, d.column));
+    out
 }
 
 /// Reads the next non-empty block at or after byte `offset` (which starts line `line`).
@@ -38,7 +48,7 @@ pub fn read_block(source: &str, offset: usize, line: u32) -> Option<(Result<Bloc
             Ok(Some(block)) => return Some((Ok(block), after.0, after.1)),
             Ok(None) => {}
             Err((col, message)) => {
-                return Some((Err(Diagnostic { line: l, offset: off + col, message }), after.0, after.1));
+                return Some((Err(Diagnostic::syntax(l, off, col, message)), after.0, after.1));
             }
         }
     }
@@ -170,7 +180,7 @@ fn split_comment(text: &str) -> (&str, Option<&str>) {
 
 const STATEMENTS: &[&str] = &[
     "DEF", "IF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "UNTIL", "LOOP", "ENDLOOP", "CASE",
-    "GOTOF", "GOTOB", "GOTO", "GOTOC", "PROC", "RET", "EXTERN",
+    "GOTOF", "GOTOB", "GOTO", "GOTOC", "GOTOS", "PROC", "RET", "EXTERN",
 ];
 
 fn is_statement(id: &str) -> bool {
@@ -225,6 +235,7 @@ fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
         "GOTOB" => Stmt::Goto(parse_goto_target(GotoKind::Backward, cur)?),
         "GOTO" => Stmt::Goto(parse_goto_target(GotoKind::Both, cur)?),
         "GOTOC" => Stmt::Goto(parse_goto_target(GotoKind::Continue, cur)?),
+        "GOTOS" => Stmt::Goto(parse_goto_target(GotoKind::Start, cur)?),
         "PROC" => parse_proc(cur)?,
         "RET" => Stmt::Ret,
         "EXTERN" => {
@@ -257,6 +268,7 @@ fn goto_kind(cur: &Cursor, span: (usize, usize)) -> Option<GotoKind> {
             b'F' => Some(GotoKind::Forward),
             b'B' => Some(GotoKind::Backward),
             b'C' => Some(GotoKind::Continue),
+            b'S' => Some(GotoKind::Start),
             _ => None,
         },
         _ => None,
@@ -264,20 +276,39 @@ fn goto_kind(cur: &Cursor, span: (usize, usize)) -> Option<GotoKind> {
 }
 
 fn parse_goto_target(kind: GotoKind, cur: &mut Cursor) -> PResult<Goto> {
+    if kind == GotoKind::Start {
+        return Ok(Goto { kind, target: JumpTarget::ProgramStart });
+    }
     cur.skip_ws();
     let start = cur.pos;
     if cur.eat(b':') {
         let n = cur.digits().ok_or((start, "expected a block number after `:`".to_string()))?;
-        return Ok(Goto {
-            kind,
-            target: JumpTarget::BlockNumber(n.parse().map_err(|_| (start, "block number too large".to_string()))?),
-        });
+        return Ok(Goto { kind, target: JumpTarget::BlockNumber(block_number(n, start)?) });
     }
-    let id = cur.ident().ok_or((start, "jump needs a label or block number".to_string()))?;
-    if let Some(n) = id.strip_prefix('N').and_then(|n| n.parse::<u32>().ok()) {
-        return Ok(Goto { kind, target: JumpTarget::BlockNumber(n) });
+    if let Some(n) = cur.digits() {
+        return Ok(Goto { kind, target: JumpTarget::BlockNumber(block_number(n, start)?) });
     }
+    // A computed target: a string expression (`"N"<<R10`, `(LBL)`).
+    if matches!(cur.peek(), Some(b'"' | b'(')) {
+        return Ok(Goto { kind, target: JumpTarget::Expr(parse_expr(cur)?) });
+    }
+    let id = cur.ident().ok_or((start, "jump needs a label, a block number or a STRING expression".to_string()))?;
+    if let Some(n) = id.strip_prefix('N').filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit())) {
+        return Ok(Goto { kind, target: JumpTarget::BlockNumber(block_number(n, start)?) });
+    }
+    // `DEST[2]` or `DEST<<"X"`: an expression that starts with a name.
+    let after = cur.pos;
+    cur.skip_ws();
+    if cur.peek() == Some(b'[') || cur.starts_with_ignore_case("<<") {
+        cur.pos = start;
+        return Ok(Goto { kind, target: JumpTarget::Expr(parse_expr(cur)?) });
+    }
+    cur.pos = after;
     Ok(Goto { kind, target: JumpTarget::Label(id) })
+}
+
+fn block_number(digits: &str, at: usize) -> PResult<u32> {
+    digits.parse().map_err(|_| (at, "block number too large".to_string()))
 }
 
 fn parse_case(cur: &mut Cursor) -> PResult<Stmt> {
@@ -408,9 +439,20 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
             }
         }
     }
-    // Attributes such as SAVE, DISPLOF, SBLOF need no parsing here.
-    cur.pos = cur.len();
-    Ok(Stmt::Proc { name, params })
+    // Attributes: SAVE matters to the interpreter; DISPLOF, SBLOF, ... need no action here.
+    let mut save = false;
+    loop {
+        cur.skip_ws();
+        if cur.eat(b',') {
+            continue;
+        }
+        match cur.ident_span() {
+            Some(span) => save |= cur.span_is(span, "SAVE"),
+            None if cur.at_end() => break,
+            None => cur.pos += 1,
+        }
+    }
+    Ok(Stmt::Proc { name, params, save })
 }
 
 fn parse_lvalue(cur: &mut Cursor) -> PResult<Lvalue> {

@@ -29,6 +29,22 @@
 //! on the workpiece side, three on the tool side, one on each for mixed kinematics, and
 //! constant rotations that cancel by the end of each subchain (the BCS and the tool are not
 //! rotated against the world frame at the kinematic zero).
+//!
+//! TRANSMIT_K, TRACYL_K and TRAANG_K become the machine data's TRANSMIT/TRACYL/TRAANG data sets
+//! ([`classic`]). TRAORI_STAT and TRACON_K records are checked and stored, not built. Of the
+//! further `$NT_` fields, `$NT_POLE_LIMIT`/`$NT_POLE_TOL` reach TRAORI and `$NT_POLE_SIDE_FIX`
+//! TRANSMIT; `$NT_ROT_OFFSET_FROM_FRAME` is carried like `TRANSMIT/TRACYL_ROT_AX_FRAME` (which
+//! the kinematics do not evaluate either); `$NT_CLOSE_CHAIN_P/T` and `$NT_CORR_ELEM_P/T` are
+//! checked to name elements of their subchain (OFFSET elements for the latter) but not applied
+//! (the work offset of a closed chain and CORRTRAFO are not modelled); `$NT_AUX_POS` and
+//! `$NT_IDENT` are not evaluated by the control (manual); `$NT_BASE_TOOL_COMP` ($P_TRAFRAME),
+//! `$NT_ROT_AX_POS` (constant rotations as orientation axes) and `$NT_IGNORE_TOOL_ORIENT` (the
+//! tool's own orientation is not modelled) are stored and range-checked only.
+
+mod classic;
+mod program;
+
+pub use program::export_program;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -99,6 +115,19 @@ const VARS: &[Var] = &[
     var("$NT_BASE_ORIENT", T, Real, 3),
     var("$NT_BASE_ORIENT_NORMAL", T, Real, 3),
     var("$NT_CNTRL", T, Int, 1),
+    var("$NT_ROT_OFFSET_FROM_FRAME", T, Int, 1),
+    var("$NT_CLOSE_CHAIN_P", T, Str, 1),
+    var("$NT_CLOSE_CHAIN_T", T, Str, 1),
+    var("$NT_AUX_POS", T, Real, 3),
+    var("$NT_IDENT", T, Int, 3),
+    var("$NT_BASE_TOOL_COMP", T, Int, 1),
+    var("$NT_ROT_AX_POS", T, Real, 3),
+    var("$NT_POLE_LIMIT", T, Real, 1),
+    var("$NT_POLE_TOL", T, Real, 1),
+    var("$NT_IGNORE_TOOL_ORIENT", T, Int, 1),
+    var("$NT_CORR_ELEM_T", T, Str, 4),
+    var("$NT_CORR_ELEM_P", T, Str, 4),
+    var("$NT_POLE_SIDE_FIX", T, Int, 1),
 ];
 
 fn default(var: &Var, k: usize) -> Value {
@@ -178,6 +207,29 @@ impl KinData {
             self.values.insert(key, value);
         }
         Ok(())
+    }
+
+    /// The value of `name[indices]` as a program reads it (`R1=$NK_OFF_DIR[3,2]`): the stored
+    /// value or the default. `counts` are MD18880 and MD18866, which bound the first index.
+    pub fn read(&self, name: &str, indices: &[i64], counts: (usize, usize)) -> Result<Value, String> {
+        let pos =
+            VARS.iter().position(|v| v.name == name).ok_or_else(|| format!("{name} is no kinematic chain datum"))?;
+        let v = &VARS[pos];
+        let count = match v.family {
+            Family::Element => counts.0,
+            Family::Trafo => counts.1,
+        };
+        let (i, k) = match (indices, v.len) {
+            ([i], 1) => (*i, 0),
+            ([i, k], len) if len > 1 && (0..len as i64).contains(k) => (*i, *k as usize),
+            ([_, k], len) if len > 1 => return Err(format!("{name}: component {k} out of range 0..{}", len - 1)),
+            (_, 1) => return Err(format!("{name} needs one index")),
+            _ => return Err(format!("{name} needs two indices")),
+        };
+        if !(0..count as i64).contains(&i) {
+            return Err(format!("{name}[{i}]: index out of range 0..{}", count as i64 - 1));
+        }
+        Ok(self.values.get(&(v.family, i as usize, pos, k)).cloned().unwrap_or_else(|| default(v, k)))
     }
 
     /// The stored data as NC data text, record by record.
@@ -515,12 +567,14 @@ fn along(dir: &Vec3, sign: f64) -> Option<usize> {
     (0..3).find(|&g| (0..3).all(|i| (dir[i] - if i == g { sign } else { 0.0 }).abs() < 1e-9))
 }
 
-/// The transformation types of `$NT_TRAFO_TYPE` the manual lists; only TRAORI_DYN is built.
+/// The transformation types of `$NT_TRAFO_TYPE` the manual lists; TRAORI_DYN, TRANSMIT_K,
+/// TRACYL_K and TRAANG_K are built.
 const KNOWN_TYPES: &[&str] = &["TRAORI_DYN", "TRAORI_STAT", "TRANSMIT_K", "TRACYL_K", "TRAANG_K", "TRACON_K", "TRAANG"];
 
-/// Checks the element graph and builds every TRAORI_DYN record into a data set numbered
-/// [`KIN_TRAFO_NUMBER_BASE`] + n. Records of the other listed types stay stored but are not
-/// built (not modelled yet); `pole` are the pole limits the orientation sets use by default.
+/// Checks the element graph and builds every TRAORI_DYN, TRANSMIT_K, TRACYL_K and TRAANG_K
+/// record into a data set numbered [`KIN_TRAFO_NUMBER_BASE`] + n. Records of the other listed
+/// types are checked and stay stored but are not built (not modelled); `pole` are the pole
+/// limits the orientation sets use unless `$NT_POLE_TOL` / `$NT_POLE_LIMIT` give them.
 pub(super) fn build(
     md: &MachineData,
     channel_axes: &[ChannelAxis],
@@ -550,10 +604,21 @@ pub(super) fn build(
                 KNOWN_TYPES.join(", ")
             )));
         }
-        if ty != "TRAORI_DYN" {
-            continue;
-        }
-        sets.push(traori_dyn(kin, &g, n, &what, name, pole)?);
+        check_common(kin, &g, n, &what)?;
+        let set = match ty.as_str() {
+            "TRAORI_DYN" => traori_dyn(kin, &g, n, &what, name, pole)?,
+            "TRANSMIT_K" => classic::rotary(kin, &g, n, &what, name, TrafoKind::Transmit)?,
+            "TRACYL_K" => classic::rotary(kin, &g, n, &what, name, TrafoKind::Tracyl)?,
+            "TRAANG_K" => classic::inclined(kin, &g, n, &what, name)?,
+            // TRAORI_STAT: its subchains and axis names are checked, the static transformation
+            // itself is not modelled. TRACON_K and the OA type TRAANG stay stored, not built.
+            "TRAORI_STAT" => {
+                check_static(kin, &g, n, &what)?;
+                continue;
+            }
+            _ => continue,
+        };
+        sets.push(set);
     }
     Ok(sets)
 }
@@ -738,11 +803,94 @@ fn traori_dyn(
             tool_rot_ax_offset: zero,
             rot_offset,
             sign_plus: [true; 3],
-            non_pole_limit: pole.0,
-            pole_limit: pole.1,
+            non_pole_limit: positive_or(kin.num(f, n, "$NT_POLE_TOL", 0), pole.0),
+            pole_limit: positive_or(kin.num(f, n, "$NT_POLE_LIMIT", 0), pole.1),
             nutator_angle: 0.0,
             oriax_assign: [None; 3],
         })),
         chain: Some(ChainDef { name, conventional }),
     })
+}
+
+/// `value` if set (> 0), else the machine-data default.
+fn positive_or(value: f64, default: f64) -> f64 {
+    if value > 0.0 { value } else { default }
+}
+
+/// Checks the `$NT_` data every type shares: value ranges and element names that must lie on
+/// the subchains (`$NT_CLOSE_CHAIN_P/T`, `$NT_CORR_ELEM_P/T`).
+fn check_common(kin: &KinData, g: &Graph, n: usize, what: &str) -> Result<(), ActivationError> {
+    let f = Family::Trafo;
+    let fail = |m: String| Err(general(format!("{what}: {m}")));
+    for (var, max) in [("$NT_ROT_OFFSET_FROM_FRAME", 2), ("$NT_POLE_SIDE_FIX", 2), ("$NT_BASE_TOOL_COMP", 7)] {
+        let v = kin.num(f, n, var, 0);
+        if !(0.0..=f64::from(max)).contains(&v) {
+            return fail(format!("{var}[{n}]={v}: allowed are 0..{max}"));
+        }
+    }
+    let v = kin.num(f, n, "$NT_IGNORE_TOOL_ORIENT", 0);
+    if v != 0.0 && v != 1.0 {
+        return fail(format!("$NT_IGNORE_TOOL_ORIENT[{n}]={v}: FALSE or TRUE"));
+    }
+    for var in ["$NT_POLE_LIMIT", "$NT_POLE_TOL"] {
+        let v = kin.num(f, n, var, 0);
+        if !(0.0..=180.0).contains(&v) {
+            return fail(format!("{var}[{n}]={v}: an angle 0..180 degrees"));
+        }
+    }
+    // The subchain a name must lie on: the way from the root to the chain's last element.
+    let on_chain = |last_var: &str, name: &str| -> bool {
+        let last = kin.str(f, n, last_var, 0);
+        match (g.find(&last), g.find(name)) {
+            (Some(l), Some(e)) => g.path_to(l).is_ok_and(|p| p.contains(&e)),
+            _ => false,
+        }
+    };
+    for (var, last, k) in
+        [("$NT_CLOSE_CHAIN_P", "$NT_P_CHAIN_LAST_ELEM", 1), ("$NT_CLOSE_CHAIN_T", "$NT_T_CHAIN_LAST_ELEM", 1)]
+            .into_iter()
+            .chain([("$NT_CORR_ELEM_P", "$NT_P_CHAIN_LAST_ELEM", 4), ("$NT_CORR_ELEM_T", "$NT_T_CHAIN_LAST_ELEM", 4)])
+    {
+        for c in 0..k {
+            let name = kin.str(f, n, var, c);
+            if name.is_empty() {
+                continue;
+            }
+            let at = if k == 1 { format!("{var}[{n}]") } else { format!("{var}[{n},{c}]") };
+            if !on_chain(last, &name) {
+                return fail(format!("{at} \"{name}\" is no element of the subchain ending at {last}"));
+            }
+            let corr = k == 4;
+            if corr && g.find(&name).is_some_and(|e| g.elems[e].ty != ElemType::Offset) {
+                return fail(format!("{at} \"{name}\": a correction element must be of type OFFSET"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// TRAORI_STAT (K12 §4.1.7): the subchains must exist and every name in `$NT_GEO_AX_NAME` /
+/// `$NT_ROT_AX_NAME` must be an axis element on them, so a record that would fail on a real
+/// control fails here too, although the transformation is not built.
+fn check_static(kin: &KinData, g: &Graph, n: usize, what: &str) -> Result<(), ActivationError> {
+    let f = Family::Trafo;
+    let s = |var: &str| kin.str(f, n, var, 0);
+    let tool = walk(g, &format!("{what} tool chain"), &s("$NT_T_CHAIN_FIRST_ELEM"), &s("$NT_T_CHAIN_LAST_ELEM"))?;
+    let part = walk(g, &format!("{what} workpiece chain"), &s("$NT_P_CHAIN_FIRST_ELEM"), &s("$NT_P_CHAIN_LAST_ELEM"))?;
+    for (var, rotary) in [("$NT_GEO_AX_NAME", false), ("$NT_ROT_AX_NAME", true)] {
+        for k in 0..3 {
+            let named = kin.str(f, n, var, k);
+            if named.is_empty() {
+                continue;
+            }
+            let found = tool.axes.iter().chain(&part.axes).find(|a| g.elems[a.elem].name == named);
+            if found.is_none_or(|a| a.rotary != rotary) {
+                return Err(general(format!(
+                    "{what}: {var}[{n},{k}] \"{named}\" is no {} axis element on the tool or the workpiece chain",
+                    if rotary { "rotary" } else { "linear" }
+                )));
+            }
+        }
+    }
+    Ok(())
 }

@@ -74,10 +74,18 @@ pub struct MachineConfig {
     pub work_offsets: Vec<FrameData>,
     /// Channel basic frames (`$P_CHBFR[n]`), chained in order into `$P_ACTBFRAME`.
     pub base_frames: Vec<FrameData>,
+    /// NCU-global basic frames (`$P_NCBFR[n]`, MD18602), chained before the channel ones.
+    pub ncu_base_frames: Vec<FrameData>,
+    /// MD10600 FRAME_ANGLE_INPUT_MODE: how frame rotation angles are written and read.
+    pub frame_angles: FrameAngles,
     /// Configured transformation data sets in data-set order (`$MC_TRAFO_TYPE_1..10`).
     pub trafos: Vec<TrafoDataSet>,
     /// How orientations are programmed and interpolated (MD21090..21130).
     pub ori: OriSettings,
+    /// The kinematic chain data `$NK_`/`$NT_` as stored (programs read them; the built
+    /// transformations are in `trafos`), with MD18880 and MD18866 bounding their indices.
+    pub kin: super::chains::KinData,
+    pub kin_counts: (usize, usize),
     /// Which transformation is active after reset and program end.
     pub reset_trafo: ResetTrafo,
     /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS: blocks without motion in the compensation plane the
@@ -85,6 +93,16 @@ pub struct MachineConfig {
     pub cutcom_max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks the bottleneck detection examines.
     pub cutcom_max_check_blocks: usize,
+}
+
+/// MD10600 FRAME_ANGLE_INPUT_MODE: the convention of frame rotation angles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrameAngles {
+    /// 1: RPY, rotations about Z, then the new Y, then the new X.
+    #[default]
+    Rpy,
+    /// 2: Euler, rotations about Z, then the new X, then the new Z.
+    Euler,
 }
 
 /// The transformation after reset and program end (MD20110 RESET_MODE_MASK bits 0 and 7,
@@ -104,18 +122,32 @@ impl ResetTrafo {
         let mask = md.num("$MC_RESET_MODE_MASK", 0, 0) as u32;
         let value = md.num("$MC_TRAFO_RESET_VALUE", 0, 0) as usize;
         let persistent = md.num("$MC_TRAFO_MODE_MASK", 0, 0) as u32 & 1 != 0;
-        let data_set = (value != 0).then_some(value);
+        let reset_name = md.string("$MC_TRAFO_RESET_NAME", 0);
+        let data_set = if reset_name.is_empty() {
+            (value != 0).then_some(value)
+        } else {
+            // MD20142 names a transformation defined by kinematic chains; it wins over MD20140.
+            let named = trafos.iter().find(|s| s.chain.as_ref().is_some_and(|c| c.name == reset_name));
+            let Some(set) = named else {
+                return fail(
+                    "TRAFO_RESET_NAME",
+                    format!(
+                        "$MC_TRAFO_RESET_NAME=\"{reset_name}\" names no transformation defined by kinematic chains of a modelled type"
+                    ),
+                );
+            };
+            Some(set.number)
+        };
         if let Some(n) = data_set {
             let Some(set) = trafos.iter().find(|s| s.number == n) else {
                 return fail("TRAFO_RESET_VALUE", format!("$MC_TRAFO_RESET_VALUE={n}: data set {n} is not configured"));
             };
             if set.kind == TrafoKind::Tracyl {
-                return fail(
-                    "TRAFO_RESET_VALUE",
-                    format!(
-                        "$MC_TRAFO_RESET_VALUE={n}: TRACYL needs a working diameter and cannot be selected by reset"
-                    ),
-                );
+                let (datum, what) = match reset_name.is_empty() {
+                    true => ("TRAFO_RESET_VALUE", format!("$MC_TRAFO_RESET_VALUE={n}")),
+                    false => ("TRAFO_RESET_NAME", format!("$MC_TRAFO_RESET_NAME=\"{reset_name}\"")),
+                };
+                return fail(datum, format!("{what}: TRACYL needs a working diameter and cannot be selected by reset"));
             }
         }
         // Alarm 14404: the persistent transformation needs reset mode bit 0 = 1, bit 7 = 0 and
@@ -263,9 +295,20 @@ impl MachineConfig {
             swivel_alarm_mask: md.num("$MC_MILL_SWIVEL_ALARM_MASK", 0, 0) as i64,
             work_offsets: Vec::new(),
             base_frames: Vec::new(),
+            ncu_base_frames: Vec::new(),
+            frame_angles: if md.num("$MN_FRAME_ANGLE_INPUT_MODE", 0, 0) as i64 == 2 {
+                FrameAngles::Euler
+            } else {
+                FrameAngles::Rpy
+            },
             reset_trafo: ResetTrafo::build(md, &trafos)?,
             trafos,
             ori: OriSettings::read(md),
+            kin: Default::default(),
+            kin_counts: (
+                md.num("$MN_MM_MAXNUM_KIN_CHAIN_ELEM", 0, 0) as usize,
+                md.num("$MN_MM_NUM_KIN_TRAFOS", 0, 0) as usize,
+            ),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
         };
@@ -276,23 +319,30 @@ impl MachineConfig {
     /// Takes over tool data, toolholders and settable frames from `md`, which act at once (unlike machine
     /// data, which waits for NEWCONF or a reset).
     pub fn refresh_data(&mut self, md: &MachineData) -> Result<(), ActivationError> {
+        if self.kin != *md.kin() {
+            self.kin = md.kin().clone();
+        }
         let n = self.channel_axes.len();
         let user = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
         let base = md.num("$MC_MM_NUM_BASE_FRAMES", 0, 0) as usize;
         let mut work_offsets = vec![FrameData::neutral(n); user];
         let mut base_frames = vec![FrameData::neutral(n); base];
+        let ncu = md.num("$MN_MM_NUM_GLOBAL_BASE_FRAMES", 0, 0) as usize;
+        let mut ncu_base_frames = vec![FrameData::neutral(n); ncu];
         for ((family, frame, axis, component), value) in md.frames() {
             let (list, var, count) = match family {
                 FrameFamily::Settable => (&mut work_offsets, "$P_UIFR", "MM_NUM_USER_FRAMES"),
                 FrameFamily::Base => (&mut base_frames, "$P_CHBFR", "MM_NUM_BASE_FRAMES"),
+                FrameFamily::NcuBase => (&mut ncu_base_frames, "$P_NCBFR", "MM_NUM_GLOBAL_BASE_FRAMES"),
             };
+            let scope = if *family == FrameFamily::NcuBase { "MN" } else { "MC" };
             let at = format!("{var}[{frame},{axis},{}]", component.code());
             let idx = self.program_axis(axis).ok_or_else(|| ActivationError {
                 datum: None,
                 message: format!("{at}: {axis} is not an axis of this channel"),
             })?;
             let Some(f) = list.get_mut(*frame) else {
-                return fail(count, format!("{at}: frame {frame} exceeds $MC_{count}={}", list.len()));
+                return fail(count, format!("{at}: frame {frame} exceeds ${scope}_{count}={}", list.len()));
             };
             match component {
                 FrameComponent::Translation | FrameComponent::Fine => f.trans[idx] += value,
@@ -309,6 +359,7 @@ impl MachineConfig {
         }
         self.work_offsets = work_offsets;
         self.base_frames = base_frames;
+        self.ncu_base_frames = ncu_base_frames;
         self.tools = md.tools().clone();
         self.carriers = md.carriers();
         Ok(())

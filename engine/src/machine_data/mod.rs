@@ -17,7 +17,7 @@ pub mod traori;
 use std::collections::BTreeMap;
 
 pub use carrier::{Carrier, CarrierKind};
-pub use config::{ChannelAxis, FrameData, MachineAxis, MachineConfig, ResetTrafo};
+pub use config::{ChannelAxis, FrameAngles, FrameData, MachineAxis, MachineConfig, ResetTrafo};
 use registry::{Def, Kind, Scope};
 use text::{IndexTok, Line, Literal};
 pub use trafo::{ChainDef, TrafoDataSet, TrafoKind, TrafoParams};
@@ -111,6 +111,8 @@ impl FrameComponent {
 /// The stored frames of the data management.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum FrameFamily {
+    /// NCU-global basic frames `$P_NCBFR[n]` (MD18602), chained before the channel basic frames.
+    NcuBase,
     /// Channel basic frames `$P_CHBFR[n]` (`$P_UBFR` is `$P_CHBFR[0]`), chained into `$P_ACTBFRAME`.
     Base,
     /// Settable frames `$P_UIFR[n]`, selected by G500/G54.../G505...
@@ -121,6 +123,7 @@ impl FrameFamily {
     /// The system variable and the machine datum that sizes it.
     fn names(self) -> (&'static str, &'static str) {
         match self {
+            FrameFamily::NcuBase => ("$P_NCBFR", "$MN_MM_NUM_GLOBAL_BASE_FRAMES"),
             FrameFamily::Base => ("$P_CHBFR", "$MC_MM_NUM_BASE_FRAMES"),
             FrameFamily::Settable => ("$P_UIFR", "$MC_MM_NUM_USER_FRAMES"),
         }
@@ -247,6 +250,7 @@ impl MachineData {
         let family = match name {
             "$P_UIFR" => Some((FrameFamily::Settable, indices.to_vec())),
             "$P_CHBFR" => Some((FrameFamily::Base, indices.to_vec())),
+            "$P_NCBFR" => Some((FrameFamily::NcuBase, indices.to_vec())),
             // The user basic frame is channel basic frame 0.
             "$P_UBFR" => Some((FrameFamily::Base, [&[IndexTok::Number(0)], indices].concat())),
             _ => None,
@@ -477,6 +481,12 @@ impl MachineData {
         }
     }
 
+    /// `DELOBJ("TOOLCARRIER", start, end)`: the data of the toolholders numbered `range` back
+    /// to the defaults (acting at once, like a `$TC_CARR` write).
+    pub fn delete_carriers(&mut self, range: std::ops::RangeInclusive<u32>) {
+        self.carriers.retain(|(m, _), _| !range.contains(m));
+    }
+
     /// Stored frame components by (family, frame, axis name, component).
     pub fn frames(&self) -> &BTreeMap<FrameKey, f64> {
         &self.frames
@@ -535,6 +545,21 @@ mod tests {
         assert_eq!(e.line, Some(2));
         assert!(e.message.contains("$MA_NO_SUCH"));
         assert_eq!(md, before);
+    }
+
+    #[test]
+    fn ncu_basic_frames_are_sized_by_md18602_and_round_trip() {
+        let mut md = MachineData::default();
+        let e = md.apply_text("$P_NCBFR[0,X,TR]=1").unwrap_err();
+        assert!(e.message.contains("MM_NUM_GLOBAL_BASE_FRAMES"), "{}", e.message);
+        md.apply_text("$MN_MM_NUM_GLOBAL_BASE_FRAMES=2\n$P_NCBFR[1,Y,TR]=4.5\n$MN_FRAME_ANGLE_INPUT_MODE=2").unwrap();
+        let cfg = md.activate().unwrap();
+        assert_eq!(cfg.ncu_base_frames.len(), 2);
+        assert_eq!(cfg.ncu_base_frames[1].trans[1], 4.5);
+        assert_eq!(cfg.frame_angles, FrameAngles::Euler);
+        let mut again = MachineData::default();
+        again.apply_text(&md.to_text()).unwrap();
+        assert_eq!(again, md);
     }
 
     #[test]

@@ -173,6 +173,10 @@ pub static DEFS: &[Def] = &[
     ),
     def("SYSCLOCK_CYCLE_TIME", 10050, N, Kind::Real, 1, Default::Real(0.002), 0.000125, 0.031),
     def("IPO_SYSCLOCK_TIME_RATIO", 10070, N, Kind::Int, 1, Default::Int(2), 1.0, 100.0),
+    // Angles of frame rotations: 1 = RPY (Z, Y', X''), 2 = Euler (Z, X', Z'') (K2).
+    def("FRAME_ANGLE_INPUT_MODE", 10600, N, Kind::Int, 1, Default::Int(1), 1.0, 2.0),
+    // NCU-global basic frames $P_NCBFR[n] (K2; 0 = none, the control's default).
+    def("MM_NUM_GLOBAL_BASE_FRAMES", 18602, N, Kind::Int, 1, Default::Int(0), 0.0, 16.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
     def("MM_NUM_TOOL_CARRIER", 18088, N, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
     def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
@@ -215,6 +219,8 @@ pub static DEFS: &[Def] = &[
     def("RESET_MODE_MASK", 20110, C, Kind::Int, 1, Default::Int(1), 0.0, 65535.0),
     def("GEOAX_CHANGE_RESET", 20118, C, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("TRAFO_RESET_VALUE", 20140, C, Kind::Int, 1, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
+    // With kinematic chains the reset transformation is named ($NT_NAME) instead (K12 §4.2.2.2).
+    def("TRAFO_RESET_NAME", 20142, C, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
     def("TRAFO_MODE_MASK", 20144, C, Kind::Int, 1, Default::Int(0), 0.0, 255.0),
     def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
     // Orientation programming (TRAORI), REFERENCE §6.2.
@@ -370,15 +376,53 @@ pub static DEFS: &[Def] = &[
     def("JOG_VELO", 32020, A, Kind::Real, 1, Default::RealByAxisType { linear: 2000.0, rotary: 5.55 }, 0.0, 1e9),
     def("MAX_AX_ACCEL", 32300, A, Kind::Real, 1, Default::RealByAxisType { linear: 1.0, rotary: 2.77 }, 1e-6, 1e6),
     def("MAX_ACCEL_OVL_FACTOR", 32310, A, Kind::Real, 1, Default::Real(1.2), 1.0, 10.0),
+    // Reference point approach (incremental measuring system), see channel/referencing.rs.
+    // Velocities in mm/min (rotary rev/min) with the control's defaults.
+    def("REFP_CAM_DIR_IS_MINUS", 34010, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    def(
+        "REFP_VELO_SEARCH_CAM",
+        34020,
+        A,
+        Kind::Real,
+        1,
+        Default::RealByAxisType { linear: 5000.0, rotary: 13.89 },
+        0.0,
+        1e9,
+    ),
+    def(
+        "REFP_VELO_SEARCH_MARKER",
+        34040,
+        A,
+        Kind::Real,
+        1,
+        Default::RealByAxisType { linear: 300.0, rotary: 0.83 },
+        0.0,
+        1e9,
+    ),
+    def("REFP_VELO_POS", 34070, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 0.0, 1e9),
+    def("REFP_MOVE_DIST", 34080, A, Kind::Real, 1, Default::Real(-2.0), -1e9, 1e9),
+    def("REFP_MOVE_DIST_CORR", 34090, A, Kind::Real, 1, Default::Real(0.0), -1e9, 1e9),
+    // On the control a measured display value (cam to zero mark); the simulation places the cam
+    // edge this far before the zero mark. Default chosen: 10 mm (or degrees).
+    def("REFP_CAM_MARKER_DIST", 34093, A, Kind::Real, 1, Default::Real(10.0), 0.0, 1e9),
+    def("REFP_SET_POS", 34100, A, Kind::Real, 4, Default::Real(0.0), -1e9, 1e9),
     // Channel-specific referencing order; -1: the axis need not be referenced for NC start.
     def("REFP_CYCLE_NR", 34110, A, Kind::Int, 1, Default::Int(0), -1.0, 31.0),
+    // 1 (the control's default): reference cam and zero mark; 0: no approach, referenced at once.
+    def("ENC_REFP_MODE", 34200, A, Kind::Int, 1, Default::Int(1), 0.0, 8.0),
     // 2: absolute encoder adjusted, the axis is referenced from power on. The control's default
     // is 0 (not adjusted); the simulation starts referenced unless this is set below 2.
     def("ENC_REFP_STATE", 34210, A, Kind::Int, 1, Default::Int(2), 0.0, 2.0),
     def("SPIND_ASSIGN_TO_MACHAX", 35000, A, Kind::Int, 1, Default::Int(0), 0.0, 20.0),
     def("POS_LIMIT_MINUS", 36100, A, Kind::Real, 1, Default::Real(-1e8), -INF, INF),
     def("POS_LIMIT_PLUS", 36110, A, Kind::Real, 1, Default::Real(1e8), -INF, INF),
-    // Setting data. SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
+    // Setting data. SD42650 CART_JOG_MODE: reference systems of Cartesian manual travel, bits
+    // 0/1/2 translation in BCS/WCS/TCS, bits 8/9/10 orientation in BCS/WCS/TCS (bit layout from
+    // memory, REFERENCE §9.4). SD42660 ORI_JOG_MODE: 0 = as the transformation defines, 1 Euler
+    // ZX'Z'', 2 RPY XY'Z'', 3 RPY ZY'X'', 4/5 ORIAX_TURN_TAB_1/2 (seed 003, F2 3.8).
+    sd("CART_JOG_MODE", 42650, C, Kind::Int, Default::Int(0), 0.0, 1799.0),
+    sd("ORI_JOG_MODE", 42660, C, Kind::Int, Default::Int(0), 0.0, 5.0),
+    // SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
     sd("TOCARR_FINE_CORRECTION", 42974, C, Kind::Bool, Default::Bool(false), 0.0, 1.0),
     // SD42980 TOFRAME_MODE: 0/1 as MD21110; 2000 X/Y compromise, 2001 new X in the old X-Z
     // plane, 2002 new Y in the old Y-Z plane (808D list manual p.360). Default 2000, the value

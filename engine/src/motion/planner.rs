@@ -343,6 +343,43 @@ impl Planner {
         self.orientation = None;
     }
 
+    /// The move being executed (or next to execute), if any.
+    pub fn front(&self) -> Option<&Move> {
+        self.queue.front()
+    }
+
+    /// How far along the front move the interpolation is, as a fraction of its length.
+    pub fn front_fraction(&self) -> f64 {
+        self.queue.front().map_or(0.0, |m| self.s / m.length)
+    }
+
+    /// Puts the interpolation point of a stationary planner at fraction `u` (0..=1) of the front
+    /// move, so the rest of the move is travelled from there (REPOS RMB, RMN).
+    pub fn restart_front_at(&mut self, u: f64) {
+        debug_assert!(self.v == 0.0);
+        let Some(front) = self.queue.front() else { return };
+        let u = u.clamp(0.0, 1.0);
+        self.s = u * front.length;
+        front.path.at(u, &mut self.position);
+        self.orientation = front.path.orientation_at(u);
+        self.position_tag = Some(front.tag);
+    }
+
+    /// Drops the front move of a stationary planner as if it had been travelled: the position is
+    /// its end and its tag is reported finished (REPOS RME).
+    pub fn skip_front(&mut self) {
+        debug_assert!(self.v == 0.0);
+        let Some(done) = self.queue.pop_front() else { return };
+        self.v_end.pop_front();
+        self.front_arc_ends = None;
+        self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
+        self.position = done.path.end;
+        self.orientation = done.path.orientation_at(1.0);
+        self.position_tag = Some(done.tag);
+        self.s = 0.0;
+        self.finished.push(done.tag);
+    }
+
     /// Advances one IPO cycle.
     pub fn step(&mut self) {
         let dt = self.dt;

@@ -1,6 +1,7 @@
 //! Program control of a session's channel: run, start, stop, reset, cancel, MDA and the mode.
 
 use axum::extract::{Path, State};
+use nctwin_engine::channel::{ReposApproach, ReposMode};
 
 use super::{StateReply, command};
 use crate::dto::{
@@ -44,8 +45,10 @@ pub async fn run(
 }
 
 /// NC start: continues a program stopped at M0/M1 or by NC stop (or restarts the loaded
-/// program from reset state in AUTO). Same `pace`/`wait` options and limits as `run`; the body
-/// may be empty.
+/// program from reset state in AUTO). After JOG in the interrupted program it first returns on
+/// a straight line (REPOS) to the point `repos` selects (RMI default, RMB, RME, RMN), or on a
+/// quarter circle or semicircle (`approach` `REPOSQ`/`REPOSH` with `disr`). Same
+/// `pace`/`wait` options and limits as `run`; the body may be empty.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/start",
@@ -55,7 +58,7 @@ pub async fn run(
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
             headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
-        (status = 400, description = "No program loaded, or a malformed body", body = ErrorBody),
+        (status = 400, description = "No program loaded, REPOSQ/REPOSH without a positive `disr`, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "An alarm needs a reset, or JOG mode", body = ErrorBody),
     )
@@ -65,7 +68,12 @@ pub async fn start(
     Path(id): Path<String>,
     OptionalJson(body): OptionalJson<StartRequest>,
 ) -> Result<StateReply, ApiError> {
-    command(&state, &id, Action::Start, Some(drive(body.pace, body.wait))).await
+    let approach = body.approach().map_err(ApiError::bad_request)?;
+    let action = match (body.repos, approach) {
+        (None, ReposApproach::Line) => Action::Start,
+        (target, approach) => Action::StartRepos(target.map_or(ReposMode::Interruption, Into::into), approach),
+    };
+    command(&state, &id, action, Some(drive(body.pace, body.wait))).await
 }
 
 /// NC stop: the axes brake on the path; `start` continues.

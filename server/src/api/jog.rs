@@ -40,7 +40,12 @@ pub async fn jog(
     body.validate().map_err(ApiError::bad_request)?;
     let request =
         JogRequest { axis: body.axis, direction: body.direction, increment: body.increment, rapid: body.rapid };
-    let action = Action::Jog { request, system: body.coordinates.into(), inc: body.inc };
+    let action = Action::Jog {
+        request,
+        system: body.coordinates.map(Into::into),
+        rotation: body.rotation.map(Into::into),
+        inc: body.inc,
+    };
     command(&state, &id, action, Some(drive(body.pace, body.wait))).await
 }
 
@@ -70,11 +75,15 @@ pub async fn handwheel(
     command(&state, &id, action, Some(drive(dto::PaceOption::Realtime, false))).await
 }
 
-/// References one axis (or every axis when the body is empty): the JOG function REF. The
-/// simulated reference point approach ends where the axis stands (no motion). Unreferenced
-/// axes (MD34210 ENC_REFP_STATE below 2; presets start referenced) refuse NC start in AUTO and
-/// MDA with alarm 16905 while MD20700 REFP_NC_START_LOCK is set, unless MD34110 REFP_CYCLE_NR
-/// is -1. JOG mode, nothing moving.
+/// References one axis (or every unreferenced axis when the body is empty): the JOG function
+/// REF, in JOG mode and reset state. An axis with an incremental encoder (MD34200
+/// ENC_REFP_MODE = 1) travels the reference point approach: to the cam (MD34010 direction,
+/// MD34020 velocity), to the zero mark (MD34040) and to the reference point (MD34080 + MD34090
+/// at MD34070), where it takes MD34100 REFP_SET_POS; `referencing` in the state shows the axis
+/// and phase, NC stop or reset abort it. With MD34200 = 0 the axis is referenced at once.
+/// Unreferenced axes (MD34210 ENC_REFP_STATE below 2; presets start referenced) refuse NC
+/// start in AUTO and MDA with alarm 16905 while MD20700 REFP_NC_START_LOCK is set, unless
+/// MD34110 REFP_CYCLE_NR is -1. `pace`/`wait` as for `run`.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/reference",
@@ -82,10 +91,11 @@ pub async fn handwheel(
     params(("id" = String, Path, description = "Session id")),
     request_body(content = Option<ReferenceRequest>, description = "Optional; empty references every axis"),
     responses(
-        (status = 200, description = "The state with the axis referenced", body = dto::State),
+        (status = 200, description = "The state after the start of the approach, or at the end of the wait", body = dto::State,
+            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
         (status = 400, description = "Unknown axis, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
-        (status = 409, description = "Not in JOG mode, or an axis moves", body = ErrorBody),
+        (status = 409, description = "Not in JOG mode, not in reset state, or an axis moves", body = ErrorBody),
     )
 )]
 pub async fn reference(
@@ -93,7 +103,7 @@ pub async fn reference(
     Path(id): Path<String>,
     OptionalJson(body): OptionalJson<ReferenceRequest>,
 ) -> Result<StateReply, ApiError> {
-    command(&state, &id, Action::Reference(body.axis), None).await
+    command(&state, &id, Action::Reference(body.axis), Some(drive(body.pace, body.wait))).await
 }
 
 /// Releases the JOG key: the axis brakes to standstill.

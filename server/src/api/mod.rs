@@ -5,9 +5,11 @@
 pub mod control;
 pub mod health;
 pub mod jog;
+pub mod kinematic_chains;
 pub mod machine_data;
 pub mod machine_data_read;
 pub mod machines;
+pub mod preview;
 pub mod programs;
 pub mod roles;
 pub mod sessions;
@@ -71,8 +73,10 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(jog::reference))
         .routes(routes!(control::search))
         .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))
+        .routes(routes!(kinematic_chains::get_kinematic_chains, kinematic_chains::put_kinematic_chains))
         .routes(routes!(programs::list_programs))
         .routes(routes!(programs::check))
+        .routes(routes!(preview::preview))
         .routes(routes!(roles::get_control))
         .routes(routes!(roles::take_control))
         .routes(routes!(roles::release_control))

@@ -127,12 +127,6 @@ pub async fn check(
 ) -> Result<Json<CheckResponse>, ApiError> {
     find_session(&state, &id)?;
     let text = &body.program;
-    let diagnostics = nctwin_engine::lang::check(text)
-        .into_iter()
-        .map(|d| {
-            let line_start = text[..d.offset.min(text.len())].rfind('\n').map_or(0, |i| i + 1);
-            DiagnosticInfo { line: d.line, column: d.column(line_start), message: d.message }
-        })
-        .collect();
+    let diagnostics = nctwin_engine::lang::check(text).iter().map(DiagnosticInfo::from).collect();
     Ok(Json(CheckResponse { diagnostics }))
 }

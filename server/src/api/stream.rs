@@ -91,7 +91,8 @@ impl StreamParams {
 /// Client messages (JSON text, see `ClientMessage`) drive JOG with the control's dead-man
 /// safety; they need control of the session like REST commands (observers: `error` 403):
 /// - `{"type": "jog", "axis": "X", "direction": 1}` (optional `inc`, `increment`,
-///   `coordinates` `MCS`/`BCS`/`WCS`, `rapid`, as for `POST .../jog`): continuous without `inc` and
+///   `coordinates` `MCS`/`BCS`/`WCS`/`TCS` (absent: SD42650), `rotation` `AXES`/`ORIEULER`/
+///   `ORIRPY`/`ORIRPY2`/`ORIVIRT1`/`ORIVIRT2` (absent: SD42660), `rapid`, as for `POST .../jog`): continuous without `inc` and
 ///   `increment`. A continuous JOG runs while the client sends `{"type": "jog_keepalive"}` (or
 ///   the same `jog`) at least every 400 ms (`JOG_DEADMAN`); it stops on `{"type": "jog_stop"}`,
 ///   on a missed keep-alive and when the socket closes. An incremental JOG runs to its
@@ -346,7 +347,7 @@ async fn handle_client_message(text: &str, commander: &Commander, own: &mut OwnJ
             own.stop().await;
             ("jog_stop", Ok(()))
         }
-        ClientMessage::Jog { axis, direction, increment, inc, coordinates, rapid } => {
+        ClientMessage::Jog { axis, direction, increment, inc, coordinates, rotation, rapid } => {
             let continuous = increment.is_none() && inc.is_none();
             if own.deadline.is_some() {
                 if continuous && own.key.as_ref().is_some_and(|(a, d)| a.eq_ignore_ascii_case(&axis) && *d == direction)
@@ -365,6 +366,7 @@ async fn handle_client_message(text: &str, commander: &Commander, own: &mut OwnJ
                 increment,
                 inc,
                 coordinates,
+                rotation,
                 rapid,
                 pace: dto::PaceOption::Realtime,
                 wait: false,
@@ -373,7 +375,12 @@ async fn handle_client_message(text: &str, commander: &Commander, own: &mut OwnJ
                 commander.authorize(true)?;
                 body.validate().map_err(ApiError::bad_request)?;
                 let request = JogRequest { axis: body.axis, direction, increment, rapid };
-                let action = Action::Jog { request, system: coordinates.into(), inc };
+                let action = Action::Jog {
+                    request,
+                    system: coordinates.map(Into::into),
+                    rotation: rotation.map(Into::into),
+                    inc,
+                };
                 start_own(commander, own, action, continuous).await
             }
             .await;

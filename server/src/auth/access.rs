@@ -1,12 +1,12 @@
 //! Who may call what: the one table of the access policy and the middleware that applies it
 //! (with the command rate limit) to every request to a session.
 //!
-//! | request                                        | needs                                    |
-//! |------------------------------------------------|------------------------------------------|
-//! | any `GET` (state, programs, stream, control)   | any role ([`Need::Read`])                |
-//! | `POST .../check` (changes nothing)             | any role                                 |
-//! | `POST .../control/take`, `.../control/release` | operator or owner ([`Need::Join`])       |
-//! | `DELETE /sessions/{id}`                        | owner ([`Need::Owner`])                  |
+//! | request                                          | needs                                    |
+//! |--------------------------------------------------|------------------------------------------|
+//! | any `GET` (state, programs, stream, control)     | any role ([`Need::Read`])                |
+//! | `POST .../check`, `.../preview` (change nothing) | any role                                 |
+//! | `POST .../control/take`, `.../control/release`   | operator or owner ([`Need::Join`])       |
+//! | `DELETE /sessions/{id}`                          | owner ([`Need::Owner`])                  |
 //! | every other request to a session               | operator or owner holding control ([`Need::Command`]) |
 //!
 //! Observers get `403` for everything beyond reading; an operator without control gets `409`.
@@ -45,7 +45,7 @@ pub fn need(method: &Method, route: &str) -> Option<Need> {
     }
     Some(match (method, rest) {
         (&Method::GET | &Method::HEAD, _) => Need::Read,
-        (&Method::POST, "/check") => Need::Read,
+        (&Method::POST, "/check" | "/preview") => Need::Read,
         (&Method::POST, "/control/take" | "/control/release") => Need::Join,
         (&Method::DELETE, "") => Need::Owner,
         _ => Need::Command,
@@ -156,7 +156,9 @@ mod tests {
         assert_eq!(need(&Method::GET, &s("/state")), Some(Need::Read));
         assert_eq!(need(&Method::GET, &s("/stream")), Some(Need::Read));
         assert_eq!(need(&Method::GET, &s("/programs/{name}")), Some(Need::Read));
+        assert_eq!(need(&Method::GET, &s("/kinematic-chains")), Some(Need::Read));
         assert_eq!(need(&Method::POST, &s("/check")), Some(Need::Read));
+        assert_eq!(need(&Method::POST, &s("/preview")), Some(Need::Read));
         assert_eq!(need(&Method::POST, &s("/control/take")), Some(Need::Join));
         assert_eq!(need(&Method::DELETE, &s("")), Some(Need::Owner));
         for (method, rest) in [
@@ -165,6 +167,7 @@ mod tests {
             (Method::POST, "/jog/stop"),
             (Method::PUT, "/mode"),
             (Method::PUT, "/machine-data"),
+            (Method::PUT, "/kinematic-chains"),
             (Method::PUT, "/programs/{name}"),
             (Method::DELETE, "/programs/{name}"),
         ] {

@@ -13,6 +13,7 @@ use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Instant;
 
+use nctwin_engine::alarm::Clear;
 use nctwin_engine::interp::{Interpreter, Item, Prep, Programs};
 use nctwin_engine::lang::ProgramText;
 use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
@@ -80,13 +81,29 @@ pub enum Outcome {
     SyntaxError,
 }
 
-/// A syntax error found before the run.
+/// An error found before the run (syntax, nesting of control structures).
 #[derive(Debug, Clone, Serialize)]
 pub struct SyntaxError {
     /// Program file the error is in.
     pub program: String,
+    /// The NC alarm number (12080 syntax error, 12640 invalid nesting, ...).
+    pub alarm: u32,
     pub line: u32,
+    pub column: u32,
     pub message: String,
+}
+
+impl SyntaxError {
+    /// One entry per error of `program`.
+    fn all(program: &str, errors: Vec<nctwin_engine::lang::Diagnostic>) -> impl Iterator<Item = SyntaxError> + '_ {
+        errors.into_iter().map(move |d| SyntaxError {
+            program: program.to_string(),
+            alarm: d.alarm,
+            line: d.line,
+            column: d.column,
+            message: d.message,
+        })
+    }
 }
 
 /// What `nctwin simulate` prints.
@@ -242,8 +259,8 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     let loaded = if syntax_errors.is_empty() {
         match channel.run_program_shared(text.clone()) {
             Ok(()) => true,
-            Err(CommandError::Syntax { line, message }) => {
-                syntax_errors.push(SyntaxError { program: program.clone(), line, message });
+            Err(CommandError::Syntax { errors, .. }) => {
+                syntax_errors.extend(SyntaxError::all(&program, errors));
                 false
             }
             Err(e) => return Err(UsageError(e.to_string())),
@@ -259,7 +276,8 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
 
     let outcome = if !loaded {
         Outcome::SyntaxError
-    } else if channel.status() == Status::Alarm || !channel.alarms().is_empty() {
+    // Alarms cleared by the cancel key only inform (10910): the run still ended or stopped.
+    } else if channel.status() == Status::Alarm || channel.alarms().iter().any(|a| a.clear == Clear::Reset) {
         Outcome::Alarm
     } else if run.limit_hit {
         Outcome::Limit
@@ -309,10 +327,8 @@ fn interpret_only(
     let program_bytes = text.len();
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
-    if syntax_errors.is_empty()
-        && let Some(d) = nctwin_engine::lang::check(&text).into_iter().next()
-    {
-        syntax_errors.push(SyntaxError { program: program.clone(), line: d.line, message: d.message });
+    if syntax_errors.is_empty() {
+        syntax_errors.extend(SyntaxError::all(&program, nctwin_engine::lang::check(&text)));
     }
     let load_time_s = started.elapsed().as_secs_f64();
     let (mut moves, mut alarm, mut limit_hit) = (0u64, None, false);
@@ -406,8 +422,8 @@ fn store_programs(channel: &mut Channel, dir: &Path, errors: &mut Vec<SyntaxErro
         let text = read_text(&path, "program")?;
         match channel.store_program(&name, &text) {
             Ok(_) => {}
-            Err(CommandError::Syntax { line, message }) => {
-                errors.push(SyntaxError { program: path.display().to_string(), line, message });
+            Err(CommandError::Syntax { errors: found, .. }) => {
+                errors.extend(SyntaxError::all(&path.display().to_string(), found));
             }
             Err(e) => return Err(UsageError(format!("{}: {e}", path.display()))),
         }

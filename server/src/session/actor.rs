@@ -312,6 +312,7 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
         }
         Action::Mda { program } => channel.mda(&program),
         Action::Start => channel.start(),
+        Action::StartRepos(mode, approach) => channel.start_with_repos_approach(mode, approach),
         Action::Stop => {
             channel.stop();
             Ok(())
@@ -342,11 +343,11 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
             }
             Ok(())
         }
-        Action::Jog { mut request, system, inc } => {
+        Action::Jog { mut request, system, rotation, inc } => {
             if let Some(steps) = inc {
                 request.increment = Some(channel.increment_distance(&request.axis, steps)?);
             }
-            channel.jog_in(&request, system)
+            channel.jog_with(&request, system, rotation)
         }
         Action::Handwheel { axis, pulses, inc, system } => channel.handwheel(&axis, pulses, inc, system),
         Action::JogStop => {
@@ -371,6 +372,7 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
         }
         Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
+        Action::KinematicChains(text) => channel.import_kinematic_chains(&text),
     }
 }
 

@@ -18,7 +18,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
-use nctwin_engine::channel::JogSystem;
+use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReposApproach, ReposMode};
 use nctwin_engine::{Channel, CommandError, Event, JogRequest, Mode, Snapshot};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 
@@ -67,6 +67,9 @@ pub enum Action {
     },
     /// NC start: continue after M0/M1/NC stop.
     Start,
+    /// NC start whose repositioning after JOG resumes at the given point (RMI/RMB/RME/RMN)
+    /// along the given approach (REPOSL/REPOSQ/REPOSH).
+    StartRepos(ReposMode, ReposApproach),
     /// NC stop.
     Stop,
     /// Channel reset.
@@ -88,7 +91,10 @@ pub enum Action {
     /// Start a JOG motion; `inc` (INC steps of MD31090) replaces `request.increment`.
     Jog {
         request: JogRequest,
-        system: JogSystem,
+        /// `None`: SD42650 decides.
+        system: Option<JogSystem>,
+        /// `None`: SD42660 decides.
+        rotation: Option<OrientationJogKind>,
         inc: Option<u32>,
     },
     /// Handwheel pulses on one axis, `inc` steps per pulse.
@@ -112,6 +118,8 @@ pub enum Action {
     Reference(Option<String>),
     /// Apply NC data text in reset state.
     MachineData(String),
+    /// Run a kinematic chain program ($NK_/$NT_ assignments) on the data in reset state.
+    KinematicChains(String),
 }
 
 /// A server-side limit that ended a command early.

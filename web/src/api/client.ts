@@ -9,6 +9,8 @@ import type {
   MachineDetail,
   MachineSummary,
   OpMode,
+  PreviewRequest,
+  PreviewResponse,
   Overrides,
   Pace,
   ProgramOptions,
@@ -97,7 +99,9 @@ export const api = {
 
   state: (id: string) => request<State>("GET", `${s(id)}/state`),
   run: (id: string, program: string, pace: Pace) => request<State>("POST", `${s(id)}/run`, { program, pace }),
-  start: (id: string, pace: Pace) => request<State>("POST", `${s(id)}/start`, { pace }),
+  /** NC start; `repos`: where and how a repositioning after JOG returns (RMI.., REPOSL..). */
+  start: (id: string, pace: Pace, repos?: { repos: string; approach: string; disr?: number } | null) =>
+    request<State>("POST", `${s(id)}/start`, { pace, ...(repos ?? {}) }),
   stop: (id: string) => request<State>("POST", `${s(id)}/stop`, {}),
   reset: (id: string) => request<State>("POST", `${s(id)}/reset`, {}),
   cancel: (id: string) => request<State>("POST", `${s(id)}/cancel`, {}),
@@ -122,6 +126,7 @@ export const api = {
   takeControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/take`, {}),
   releaseControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/release`, {}),
 
+  preview: (id: string, body: PreviewRequest) => request<PreviewResponse>("POST", `${s(id)}/preview`, body),
   check: (id: string, program: string) =>
     request<{ diagnostics: Diagnostic[] }>("POST", `${s(id)}/check`, { program }),
 };

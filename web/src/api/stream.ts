@@ -7,10 +7,19 @@ const MAX_DELAY_MS = 5000;
 
 export type Connection = "connecting" | "online" | "offline";
 
+/** The server's answer to a client message: `ack`, or `error` with the REST status. */
+export interface StreamReply {
+  type: "ack" | "error";
+  request?: string | null;
+  error?: string;
+  status?: number;
+}
+
 export interface StreamHandlers {
   onState(state: State): void;
   onEvent(event: StreamEvent): void;
   onConnection(conn: Connection): void;
+  onReply?(reply: StreamReply): void;
 }
 
 export class StateStream {
@@ -44,6 +53,7 @@ export class StateStream {
       }
       if (msg.type === "state") this.handlers.onState(msg as unknown as State);
       else if (msg.type === "event") this.handlers.onEvent(msg as StreamEvent);
+      else if (msg.type === "ack" || msg.type === "error") this.handlers.onReply?.(msg as StreamReply);
     };
     ws.onclose = () => {
       if (this.ws !== ws) return;
@@ -55,6 +65,18 @@ export class StateStream {
     };
     // An error is always followed by close, which schedules the reconnect.
     ws.onerror = () => {};
+  }
+
+  /** Whether the socket is open (client messages can be sent). */
+  get online(): boolean {
+    return this.ws?.readyState === WebSocket.OPEN;
+  }
+
+  /** Sends one client message (JSON); false when the socket is not open. */
+  send(message: object): boolean {
+    if (!this.ws || this.ws.readyState !== WebSocket.OPEN) return false;
+    this.ws.send(JSON.stringify(message));
+    return true;
   }
 
   close(): void {

@@ -50,6 +50,10 @@ export interface State {
   optional_stop: boolean;
   /** Active G functions of the block in execution, one per displayed G group. */
   gcodes: string[];
+  /** Reference point state by machine axis name. */
+  referenced?: Record<string, boolean>;
+  /** The program was interrupted and axes moved by JOG: NC start repositions first (REPOS). */
+  repos_pending?: boolean;
 }
 
 /** Override switches in percent. */
@@ -151,4 +155,24 @@ export interface ControlState {
   role: "owner" | "operator" | "observer"; // the caller's
   holder?: "owner" | "operator" | "observer" | null;
   you_hold_control: boolean;
+}
+
+/** Body of POST .../preview: a program text or a stored program's name. */
+export interface PreviewRequest {
+  program?: string;
+  name?: string;
+  max_points?: number;
+  max_time?: number;
+}
+
+/** The programmed toolpath of a preview run (throwaway copy of the channel, fast pace). */
+export interface PreviewResponse {
+  axes: [string, string, string];
+  points: [number, number, number][]; // WCS
+  basic: [number, number, number][]; // BCS
+  lines: number[];
+  outcome: "ended" | "alarm" | "limit";
+  alarm?: Alarm | null;
+  time: number;
+  samples: number;
 }

@@ -2,7 +2,7 @@
 // Views subscribe to its events instead of talking to the stream themselves.
 
 import { api, streamUrl } from "../api/client";
-import { StateStream, type Connection } from "../api/stream";
+import { StateStream, type Connection, type StreamReply } from "../api/stream";
 import type { MachineDetail, State, StreamEvent } from "../api/types";
 import { Emitter } from "./emitter";
 import { clearMessage, showMessage } from "./message";
@@ -23,6 +23,8 @@ type SessionEvents = {
   connection: Connection;
   /** The session's NC data changed (new text in `info.machine.machine_data`). */
   machine: SessionInfo;
+  /** The server's `ack`/`error` to a message this page sent on the stream. */
+  reply: StreamReply;
 };
 
 export class SessionController extends Emitter<SessionEvents> {
@@ -57,12 +59,23 @@ export class SessionController extends Emitter<SessionEvents> {
     this.stream = new StateStream(streamUrl(id), {
       onState: (st) => this.accept(st),
       onEvent: (ev) => this.emit("event", ev),
+      onReply: (reply) => this.emit("reply", reply),
       onConnection: (conn) => {
         this.emit("connection", conn);
         if (conn === "offline") void this.checkAlive(id);
       },
     });
     this.accept(await api.state(id));
+  }
+
+  /** Whether client messages can go over the live stream now. */
+  get streamOnline(): boolean {
+    return this.stream?.online ?? false;
+  }
+
+  /** Sends a client message on the live stream (JOG keys); false when it is not connected. */
+  send(message: object): boolean {
+    return this.stream?.send(message) ?? false;
   }
 
   /** Takes the session's NC data text as read after a change, for the views that use it. */

@@ -4,6 +4,7 @@ import { api } from "../api/client";
 import type { Pace } from "../api/types";
 import { byId } from "../core/dom";
 import type { SessionController } from "../core/session";
+import { reposFields } from "../jog/jog";
 import { selection } from "../program/selected";
 
 function pace(): Pace {
@@ -14,7 +15,9 @@ function pace(): Pace {
 function cycleStart(session: SessionController): void {
   const st = session.latest;
   if (st && st.status === "stopped" && st.mode === "AUTO") {
-    void session.act((id) => api.start(id, pace()));
+    // After JOG in the interrupted program: the REPOS choice of the JOG panel.
+    const repos = st.repos_pending ? reposFields() : null;
+    void session.act((id) => api.start(id, pace(), repos));
   } else if (st && st.mode === "MDA") {
     void session.act((id) => api.mda(id, selection.mdaText, pace()));
   } else {

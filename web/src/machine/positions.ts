@@ -4,6 +4,7 @@
 import type { AxisValues, State } from "../api/types";
 import { byId, el, fmt, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
+import { rotaryAxisNames } from "../view3d/machineData";
 
 export type Frame = "machine" | "workpiece" | "basic";
 
@@ -18,6 +19,9 @@ export class PositionsView {
   private rowsKey = "";
   private cells = new Map<string, HTMLElement>();
   private latest: State | null = null;
+  /** NC data text of the machine (which axes are rotary). */
+  private machineData = "";
+  private rotary = new Set<string>();
 
   constructor() {
     for (const b of document.querySelectorAll<HTMLButtonElement>("#coords-toggle [data-frame]")) {
@@ -37,8 +41,15 @@ export class PositionsView {
     if (this.latest) this.render(this.latest);
   }
 
+  setMachineData(text: string): void {
+    this.machineData = text;
+    this.rotary.clear();
+    this.rowsKey = "";
+  }
+
   render(st: State): void {
     this.latest = st;
+    if (!this.rotary.size && this.machineData) this.rotary = rotaryAxisNames(this.machineData, Object.keys(st.positions.machine));
     const values: AxisValues = st.positions[this.frame] ?? {};
     const axes = Object.keys(values);
     const key = `${this.frame}:${axes.join(",")}`;
@@ -49,7 +60,7 @@ export class PositionsView {
     }
   }
 
-  /** Spindles (by channel axis name) count in degrees, everything else here in mm. */
+  /** Rotary axes and spindles count in degrees, everything else in mm. */
   private buildRows(axes: string[], key: string, spindles: Record<string, number>): void {
     this.rowsKey = key;
     this.cells.clear();
@@ -57,7 +68,7 @@ export class PositionsView {
       const value = el("td", { class: "num value", "data-frame": this.frame, "data-axis": axis });
       this.cells.set(axis, value);
       const tr = el("tr");
-      tr.append(el("th", { class: "axis" }, axis), value, el("td", { class: "unit" }, axis in spindles ? "°" : "mm"));
+      tr.append(el("th", { class: "axis" }, axis), value, el("td", { class: "unit" }, axis in spindles || this.rotary.has(axis) ? "°" : "mm"));
       return tr;
     });
     byId<HTMLTableElement>("positions").tBodies[0]!.replaceChildren(...rows);
@@ -66,6 +77,8 @@ export class PositionsView {
 
 export function mountPositions(session: SessionController): PositionsView {
   const view = new PositionsView();
+  session.on("session", (info) => view.setMachineData(info.machine.machine_data));
+  session.on("machine", (info) => view.setMachineData(info.machine.machine_data));
   session.on("state", (st) => view.render(st));
   return view;
 }

@@ -1,27 +1,38 @@
-// The live 3D view: the machine structure moving with the MCS stream, the tool between the
-// spindle (tool holder) and the tool tip, the WCS origin, the executed toolpath.
+// The live 3D view: the machine's kinematic structure (from the session's machine data) moving
+// with the MCS of the stream, the tool with its length from the tool data of the active T/D,
+// the WCS at the active work offset, the executed toolpath (the tool tip traced on the
+// workpiece) and the programmed path (POST .../preview), orbit and zoom.
 
 import * as THREE from "three";
-import type { State } from "../api/types";
-import { byId } from "../core/dom";
+import type { AxisValues, State } from "../api/types";
+import { byId, setText } from "../core/dom";
 import { NcData } from "../core/ncdata";
 import type { SessionController, SessionInfo } from "../core/session";
-import { Kinematics } from "./kinematics";
+import { isOrientationTrafo, readStructure, type Structure } from "./machineData";
 import { buildMachine, type MachineModel } from "./machineModel";
 import { Toolpath } from "./toolpath";
 import { Viewport, type ViewName } from "./viewport";
 
 const AXIS_COLORS = { X: 0xe5534b, Y: 0x57ab5a, Z: 0x539bf5 } as const;
 const DEFAULT_TOOL_RADIUS = 5;
+export const EXECUTED_COLOR = 0xffb02e;
+export const PROGRAMMED_COLOR = 0x39c5cf;
 
-/** Three arrows at the WCS origin along the geometry axes. */
-function wcsTriad(k: Kinematics, size: number): THREE.Group {
+/** Three arrows at the WCS origin along the geometry axes (machine frame directions). */
+function wcsTriad(size: number, letters: string[]): THREE.Group {
   const triad = new THREE.Group();
+  const dirs = { X: new THREE.Vector3(1, 0, 0), Y: new THREE.Vector3(0, 1, 0), Z: new THREE.Vector3(0, 0, 1) };
   for (const letter of ["X", "Y", "Z"] as const) {
-    if (!k.linear.has(letter)) continue;
-    triad.add(new THREE.ArrowHelper(k.dir(letter), new THREE.Vector3(), size, AXIS_COLORS[letter], size * 0.2, size * 0.1));
+    if (!letters.includes(letter)) continue;
+    triad.add(new THREE.ArrowHelper(dirs[letter], new THREE.Vector3(), size, AXIS_COLORS[letter], size * 0.2, size * 0.1));
   }
   return triad;
+}
+
+/** Geometry axis values (X, Y, Z by name) as a point of the machine's Cartesian frame. */
+function geometryPoint(values: AxisValues, out = new THREE.Vector3()): THREE.Vector3 {
+  const v = (k: string) => (typeof values[k] === "number" ? values[k] : 0);
+  return out.set(v("X"), v("Y"), v("Z"));
 }
 
 /** The tool as a cylinder from the tool tip to the tool holder point. */
@@ -44,25 +55,76 @@ class ToolSolid {
   }
 }
 
+/** The programmed path: a fixed polyline of WCS points placed at the work offset. */
+class ProgrammedPath {
+  // Drawn over the solids: a path inside the workpiece or under the tool stays visible.
+  readonly line = new THREE.Line(
+    new THREE.BufferGeometry(),
+    new THREE.LineBasicMaterial({ color: PROGRAMMED_COLOR, depthTest: false, transparent: true, opacity: 0.9 }),
+  );
+  count = 0;
+
+  set(points: [number, number, number][], axes: string[], offset: THREE.Vector3): void {
+    const slot = (name: string) => ({ X: 0, Y: 1, Z: 2 })[name as "X" | "Y" | "Z"] ?? -1;
+    const map = axes.map(slot);
+    const data = new Float32Array(points.length * 3);
+    points.forEach((p, i) => {
+      const q = [0, 0, 0];
+      map.forEach((s, k) => s >= 0 && (q[s] = p[k] ?? 0));
+      data.set([q[0]! + offset.x, q[1]! + offset.y, q[2]! + offset.z], i * 3);
+    });
+    this.line.geometry.dispose();
+    this.line.geometry = new THREE.BufferGeometry();
+    this.line.geometry.setAttribute("position", new THREE.BufferAttribute(data, 3));
+    this.line.geometry.computeBoundingSphere();
+    this.count = points.length;
+  }
+
+  clear(): void {
+    this.line.geometry.dispose();
+    this.line.geometry = new THREE.BufferGeometry();
+    this.count = 0;
+  }
+
+  bounds(): THREE.Box3 {
+    return this.count ? new THREE.Box3().setFromObject(this.line) : new THREE.Box3();
+  }
+}
+
 export class MachineView {
   private readonly viewport: Viewport;
-  private readonly toolpath = new Toolpath();
+  private readonly toolpath = new Toolpath(EXECUTED_COLOR);
+  readonly programmed = new ProgrammedPath();
   private readonly tool = new ToolSolid();
   private readonly content = new THREE.Group(); // what belongs to the attached machine
-  private kinematics: Kinematics | null = null;
+  private structure: Structure | null = null;
   private model: MachineModel | null = null;
   private triad: THREE.Group | null = null;
   private ncData = new NcData("");
-  private machineAxesKey = "";
+  private buildKey = "";
   private info: SessionInfo | null = null;
-  /** Tool holder minus tool tip in the scene, measured while no transformation is active. */
-  private readonly toolOffset = new THREE.Vector3();
+  /** Lathe: tool holder minus tool tip, measured while the BCS is Cartesian and untransformed. */
+  private readonly latheOffset = new THREE.Vector3();
   private readonly holder = new THREE.Vector3();
+  private readonly axis = new THREE.Vector3();
   private readonly tip = new THREE.Vector3();
-  private readonly wcs = new THREE.Vector3();
+  private readonly tipPart = new THREE.Vector3();
   private readonly bcs = new THREE.Vector3();
+  private readonly wcs = new THREE.Vector3();
+  /** Work offset (BCS − WCS of the geometry axes) of the latest state. */
+  readonly workOffset = new THREE.Vector3();
+  /**
+   * Distance between the model's tool tip (on the workpiece) and the engine's BCS tool tip
+   * while they are comparable (orientation transformation or none), for the browser test.
+   */
+  tipError: number | null = null;
+  /** Frame the working zone once the first state has placed the tool. */
+  private framePending = false;
 
-  constructor(host: HTMLElement) {
+  constructor(
+    host: HTMLElement,
+    private readonly caption: HTMLElement,
+  ) {
     this.viewport = new Viewport(host);
     this.viewport.scene.add(this.content);
   }
@@ -70,39 +132,101 @@ export class MachineView {
   attach(info: SessionInfo, opts: { keepPath?: boolean } = {}): void {
     this.info = info;
     this.ncData = new NcData(info.machine.machine_data);
-    this.machineAxesKey = ""; // rebuilt from the first state (it names the machine axes)
-    if (!opts.keepPath) this.toolpath.clear();
+    this.buildKey = ""; // rebuilt from the first state (it names the machine axes)
+    if (!opts.keepPath) {
+      this.toolpath.clear();
+      this.programmed.clear();
+    }
   }
 
   show(st: State): void {
     const axes = Object.keys(st.positions.machine);
-    if (axes.join(",") !== this.machineAxesKey) this.build(axes);
-    const k = this.kinematics;
-    if (!k || !this.model) return;
+    const trafo = st.transformation ?? null;
+    const oriSet = trafo && isOrientationTrafo(trafo.type) ? trafo.index : null;
+    const key = `${axes.join(",")}|${oriSet ?? ""}`;
+    if (key !== this.buildKey) this.build(axes, oriSet);
+    const s = this.structure;
+    const model = this.model;
+    if (!s || !model) return;
 
-    this.model.update(st.positions.machine);
-    k.machinePoint(st.positions.machine, this.holder);
-    k.geometryPoint(st.positions.basic, this.bcs);
-    if (!st.transformation) this.toolOffset.subVectors(this.holder, this.bcs);
-    this.tip.subVectors(this.holder, this.toolOffset);
+    const polar = trafo !== null && trafo.type >= 256 && trafo.type <= 514; // TRANSMIT, TRACYL
+    model.update(st.positions.machine, polar);
+    model.holder(this.holder);
+    geometryPoint(st.positions.basic, this.bcs);
+    geometryPoint(st.positions.workpiece, this.wcs);
+    this.workOffset.subVectors(this.bcs, this.wcs);
+
+    if (s.kind === "mill") {
+      model.toolAxis(this.axis);
+      this.tip.copy(this.holder).addScaledVector(this.axis, -this.toolLength(st.tool.t, st.tool.d));
+    } else {
+      // The BCS is the Cartesian tool tip without a transformation and under TRAANG: the tool
+      // offset is measured there; under TRANSMIT/TRACYL/TRACON it comes from the tool data.
+      if (!trafo || trafo.type === 1024 || trafo.type === 1025) this.latheOffset.subVectors(this.holder, this.bcs);
+      else this.latheToolOffset(st, this.latheOffset);
+      this.tip.subVectors(this.holder, this.latheOffset);
+    }
     this.tool.place(this.tip, this.holder, this.toolRadius(st.tool.t, st.tool.d));
 
-    // WCS origin: where WCS zero lies in the BCS (translation only).
-    k.geometryPoint(st.positions.workpiece, this.wcs);
-    this.triad?.position.subVectors(this.bcs, this.wcs);
+    // The tip on the workpiece (the part frame turns with a rotary table or a C axis).
+    this.content.updateMatrixWorld(true);
+    this.tipPart.copy(this.tip);
+    model.frame.localToWorld(this.tipPart);
+    model.part.worldToLocal(this.tipPart);
+    // Comparable: the BCS is the Cartesian tool tip on the workpiece (a mill without or with
+    // TRAORI; a lathe under TRANSMIT, whose workpiece frame turns with C).
+    const transmit = trafo !== null && (trafo.type === 256 || trafo.type === 257);
+    const comparable = s.kind === "mill" ? !trafo || isOrientationTrafo(trafo.type) : transmit;
+    this.tipError = comparable ? this.tipPart.distanceTo(this.bcs) : null;
 
-    this.toolpath.add(this.tip);
+    this.triad?.position.copy(this.workOffset);
+    this.toolpath.add(this.tipPart);
+    if (this.framePending) {
+      this.framePending = false;
+      this.setView("iso");
+    }
     this.viewport.invalidate();
   }
 
+  /** Shows a programmed path (WCS points of the preview) at the current work offset. */
+  setProgrammed(points: [number, number, number][], axes: string[]): void {
+    const first = this.programmed.count === 0;
+    // The points are BCS: the part frame is the BCS, no offset to add.
+    this.programmed.set(points, axes, new THREE.Vector3());
+    if (first && points.length) this.setView("iso");
+    this.viewport.invalidate();
+  }
+
+  /** Looks at the working zone (tool, workpiece, paths) from a standard direction. */
   setView(view: ViewName): void {
-    const box = new THREE.Box3().setFromObject(this.content);
+    const box = this.workZone();
     if (!box.isEmpty()) this.viewport.frameBox(box, view);
   }
 
-  /** Zooms to the executed toolpath (keeps the viewing direction). */
+  /** The tool, the workpiece zero and the paths, with room for the axes around them. */
+  private workZone(): THREE.Box3 {
+    const box = new THREE.Box3();
+    if (!this.model) return box;
+    this.content.updateMatrixWorld(true);
+    const world = (p: THREE.Vector3) => this.model!.frame.localToWorld(p.clone());
+    box.expandByPoint(world(this.tip)).expandByPoint(world(this.holder));
+    // The head above the holder (a mill's rotary axes sit there).
+    box.expandByPoint(world(this.holder.clone().addScaledVector(this.axis, 300)));
+    box.expandByPoint(this.model.part.localToWorld(new THREE.Vector3()));
+    box.union(this.programmed.bounds());
+    box.expandByScalar(100 + 0.1 * this.model.size);
+    return box;
+  }
+
+  /** Zooms to the toolpaths (keeps the viewing direction). */
   zoomToPath(): void {
-    const box = this.toolpath.bounds();
+    const box = new THREE.Box3();
+    const exec = this.toolpath.bounds();
+    if (!exec.isEmpty() && this.model) {
+      this.content.updateMatrixWorld(true);
+      box.union(exec.applyMatrix4(this.model.part.matrixWorld));
+    }
+    box.union(this.programmed.bounds());
     if (box.isEmpty()) return;
     box.expandByScalar(20);
     const dir = this.viewport.camera.position.clone().sub(this.viewport.controls.target).normalize();
@@ -111,30 +235,65 @@ export class MachineView {
 
   clearPath(): void {
     this.toolpath.clear();
+    this.programmed.clear();
     this.viewport.invalidate();
   }
 
-  private build(machineAxes: string[]): void {
-    this.machineAxesKey = machineAxes.join(",");
+  private build(machineAxes: string[], oriSet: number | null): void {
+    this.buildKey = `${machineAxes.join(",")}|${oriSet ?? ""}`;
     this.content.clear();
-    const k = new Kinematics(machineAxes, this.info?.machine.machine_data ?? "");
-    this.kinematics = k;
-    this.model = buildMachine(k);
-    const spans = [...k.linear.values()].map((a) => a.max - a.min);
-    this.triad = wcsTriad(k, Math.max(40, Math.max(...spans, 0) * 0.08));
-    this.content.add(this.model.root, this.triad, this.tool.mesh, this.toolpath.line);
-    this.model.update({});
-    this.setView("iso");
+    const s = readStructure(this.info?.machine.machine_data ?? "", machineAxes, oriSet);
+    this.structure = s;
+    this.model = buildMachine(s);
+    const letters = s.kind === "lathe" ? ["X", "Z", ...(s.linear.some((a) => a.letter === "Y") ? ["Y"] : [])] : ["X", "Y", "Z"];
+    this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
+    this.programmed.line.renderOrder = 2;
+    this.toolpath.line.renderOrder = 3;
+    this.model.part.add(this.triad, this.toolpath.line, this.programmed.line);
+    this.model.frame.add(this.tool.mesh);
+    this.content.add(this.model.root);
+    this.model.update({}, false);
+    this.caption.textContent = s.summary;
+    this.caption.dataset.kind = s.kind;
+    this.caption.dataset.head = String(s.head.length);
+    this.caption.dataset.table = String(s.table.length);
+    this.framePending = true;
+  }
+
+  private edge(t: number, d: number): string {
+    return `${t},${d || 1}`;
+  }
+
+  private toolLength(t: number, d: number): number {
+    if (t === 0) return 0;
+    return this.ncData.number("$TC_DP3", this.edge(t, d)) ?? 0;
+  }
+
+  /**
+   * Holder minus tip of a lathe's tool as the control compensates it: a turning tool (type
+   * 500..599) by length 1 in X and length 2 in Z; a milling or drilling tool by length 1 along
+   * the axis perpendicular to the working plane (G17 Z, G18 Y, G19 X).
+   */
+  private latheToolOffset(st: State, out: THREE.Vector3): THREE.Vector3 {
+    const { t, d } = st.tool;
+    out.set(0, 0, 0);
+    if (t === 0 || d === 0) return out;
+    const n = (k: number) => this.ncData.number(`$TC_DP${k}`, this.edge(t, d)) ?? 0;
+    const type = n(1);
+    if (type >= 500 && type < 600) return out.set(n(3), 0, n(4));
+    const plane = st.gcodes.find((g) => g === "G17" || g === "G18" || g === "G19") ?? "G17";
+    const l1 = n(3);
+    return plane === "G17" ? out.set(0, 0, l1) : plane === "G18" ? out.set(0, l1, 0) : out.set(l1, 0, 0);
   }
 
   private toolRadius(t: number, d: number): number {
-    if (t === 0 || d === 0) return DEFAULT_TOOL_RADIUS;
-    return Math.max(3, this.ncData.number("$TC_DP6", `${t},${d}`) || DEFAULT_TOOL_RADIUS);
+    if (t === 0) return DEFAULT_TOOL_RADIUS;
+    return Math.max(3, this.ncData.number("$TC_DP6", this.edge(t, d)) || DEFAULT_TOOL_RADIUS);
   }
 }
 
 export function mountMachineView(session: SessionController): MachineView {
-  const view = new MachineView(byId("view3d"));
+  const view = new MachineView(byId("view3d"), byId("view3d-caption"));
   session.on("session", (info) => view.attach(info));
   session.on("sample", (st) => view.show(st));
   // New machine data (travel, tools): rebuild the model, keep the toolpath.
@@ -146,5 +305,11 @@ export function mountMachineView(session: SessionController): MachineView {
   for (const [id, name] of Object.entries(views)) byId(id).addEventListener("click", () => view.setView(name));
   byId("btn-view-path").addEventListener("click", () => view.zoomToPath());
   byId("btn-path-clear").addEventListener("click", () => view.clearPath());
+  // For the browser test and the curious: the model's tool tip against the engine's.
+  (window as unknown as { __nctwin3d: unknown }).__nctwin3d = {
+    tipError: () => view.tipError,
+    programmedPoints: () => view.programmed.count,
+  };
+  setText(byId("view3d-caption"), "");
   return view;
 }

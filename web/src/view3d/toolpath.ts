@@ -17,7 +17,8 @@ export class Toolpath {
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute("position", this.attribute);
     geometry.setDrawRange(0, 0);
-    this.line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color }));
+    // Drawn over the solids (the tool tip is often inside the workpiece or under the tool).
+    this.line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color, depthTest: false, transparent: true }));
     this.line.frustumCulled = false; // the bounding sphere would need recomputing on every point
   }
 

@@ -199,13 +199,15 @@ fn control_flow_statements_are_recognised() {
     assert!(matches!(stmt("WHILE R1<10"), Stmt::While(_)));
     assert!(matches!(stmt("UNTIL R1>=3"), Stmt::Until(_)));
     assert_eq!(stmt("GOTOB N100"), Stmt::Goto(Goto { kind: GotoKind::Backward, target: JumpTarget::BlockNumber(100) }));
+    assert!(matches!(stmt("PROC P DISPLOF SBLOF"), Stmt::Proc { save: false, .. }));
+    assert!(matches!(stmt("PROC P(INT A) DISPLOF, SAVE"), Stmt::Proc { save: true, .. }));
     let Stmt::Case { arms, default, .. } = stmt("CASE(R1) OF 1 GOTOF ONE 2 GOTOF TWO DEFAULT GOTOF OTHER") else {
         panic!()
     };
     assert_eq!(arms.len(), 2);
     assert!(default.is_some());
     assert!(
-        matches!(stmt("PROC CONTOUR(REAL X1, VAR REAL RES) SAVE"), Stmt::Proc { params, .. } if params.len() == 2 && params[1].by_reference)
+        matches!(stmt("PROC CONTOUR(REAL X1, VAR REAL RES) SAVE"), Stmt::Proc { params, save: true, .. } if params.len() == 2 && params[1].by_reference)
     );
 }
 
@@ -231,4 +233,42 @@ fn reading_block_by_block_gives_the_same_blocks_as_parsing_at_once() {
 fn check_reports_what_parse_reports() {
     let src = "G1 X=\nG0 X1\nG1 #";
     assert_eq!(check(src), parse(src).diagnostics);
+}
+
+#[test]
+fn jump_targets_are_labels_block_numbers_or_string_expressions() {
+    let target = |src: &str| match stmt(src) {
+        Stmt::Goto(g) => g.target,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(target("GOTOF MARKE"), JumpTarget::Label("MARKE".into()));
+    assert_eq!(target("GOTOF 200"), JumpTarget::BlockNumber(200));
+    assert_eq!(target("GOTOF :30"), JumpTarget::BlockNumber(30));
+    assert_eq!(
+        target("GOTOF \"N\"<<R10"),
+        JumpTarget::Expr(bin(BinOp::Concat, Expr::Str("N".into()), Expr::RParam(Box::new(Expr::Number(10.0)))))
+    );
+    assert!(matches!(target("GOTOB DEST[1]"), JumpTarget::Expr(Expr::Var { .. })));
+    assert_eq!(stmt("GOTOS"), Stmt::Goto(Goto { kind: GotoKind::Start, target: JumpTarget::ProgramStart }));
+    // In a block, after other words, and behind IF.
+    assert!(matches!(words("X10 GOTOF \"L\"<<R1").last(), Some(Word::Goto(Goto { target: JumpTarget::Expr(_), .. }))));
+    assert!(matches!(
+        stmt("IF R1 GOTOB \"N10\""),
+        Stmt::If { goto: Some(Goto { target: JumpTarget::Expr(_), .. }), .. }
+    ));
+}
+
+#[test]
+fn check_finds_nesting_errors_beside_syntax_errors_with_alarms_and_columns() {
+    let d = check("WHILE R1<1\n  X=(\nENDIF\nENDWHILE\nIF R1\n");
+    let found: Vec<(u32, u32, u32)> = d.iter().map(|d| (d.alarm, d.line, d.column)).collect();
+    // Line 2: `(` never closed, reported at the end of the line (column 6). Line 3: ENDIF
+    // without IF. Line 5: the IF is never closed. The WHILE of line 1 is closed in line 4.
+    assert_eq!(found, [(12080, 2, 6), (12640, 3, 1), (12640, 5, 1)]);
+    // A closer that belongs to an outer structure ends the inner ones with one error.
+    let d = check("WHILE 1\nIF 1\nENDWHILE\n");
+    assert_eq!(d.len(), 1);
+    assert!(d[0].message.contains("IF of line 2"), "{}", d[0].message);
+    assert!(check("IF 1\nELSE\nELSE\nENDIF").iter().any(|d| d.line == 3 && d.alarm == 12640));
+    assert!(check("REPEAT\nLOOP\nENDLOOP\nUNTIL 1\nFOR I=1 TO 2\nENDFOR").is_empty());
 }
