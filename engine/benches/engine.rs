@@ -229,7 +229,7 @@ mod interpolate {
             })
             .collect();
         assert!(moves.len() > 100, "{kind}: {} moves", moves.len());
-        (moves, AxisLimit::for_channel(&cfg), cfg.ipo_cycle)
+        (moves, AxisLimit::for_channel(&cfg).to_vec(), cfg.ipo_cycle)
     }
 
     /// One IPO cycle: the planner keeps `LOOKAHEAD` moves queued, as the channel does, so the

@@ -39,7 +39,7 @@ use spindle::Spindle;
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, Offsets, Programs};
 use crate::kinematics::ActiveTrafo;
-use crate::lang;
+use crate::lang::{self, ProgramText};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::machine_data::{MachineConfig, MachineData, MdError};
 use crate::motion::{AxisLimit, AxisVec, Planner};
@@ -197,7 +197,7 @@ pub struct Channel {
     status: Status,
     tick: u64,
     /// The active program's text; blocks are read from it one at a time.
-    program: Option<Arc<str>>,
+    program: Option<ProgramText>,
     /// Stored programs (main programs and subprograms) by upper-case name.
     programs: Programs,
     /// Line and byte offset of the prepared blocks whose items are still queued (for display).
@@ -451,21 +451,21 @@ impl Channel {
 
     /// Loads `text` as the active program and starts it in AUTO mode.
     pub fn run_program(&mut self, text: &str) -> Result<(), CommandError> {
-        self.load_and_start(Arc::from(text), Mode::Auto)
+        self.load_and_start(ProgramText::from(text), Mode::Auto)
     }
 
     /// [`Channel::run_program`] for text the caller already holds shared: the channel keeps
     /// this one copy instead of its own (a long program is in memory once).
-    pub fn run_program_shared(&mut self, text: Arc<str>) -> Result<(), CommandError> {
-        self.load_and_start(text, Mode::Auto)
+    pub fn run_program_shared(&mut self, text: impl Into<ProgramText>) -> Result<(), CommandError> {
+        self.load_and_start(text.into(), Mode::Auto)
     }
 
     /// Executes `text` (one or more blocks) in MDA mode.
     pub fn mda(&mut self, text: &str) -> Result<(), CommandError> {
-        self.load_and_start(Arc::from(text), Mode::Mda)
+        self.load_and_start(ProgramText::from(text), Mode::Mda)
     }
 
-    fn load_and_start(&mut self, text: Arc<str>, mode: Mode) -> Result<(), CommandError> {
+    fn load_and_start(&mut self, text: ProgramText, mode: Mode) -> Result<(), CommandError> {
         CommandError::check(&text)?;
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active"));

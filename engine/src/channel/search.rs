@@ -15,12 +15,11 @@
 //! with a transformation active in the BCS) and continues with the target block. Axes may be
 //! jogged between search and NC start; the approach starts from wherever they are.
 
-use std::sync::Arc;
-
 use super::main_run::line_offset;
 use super::{Channel, CommandError, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Item, Offsets, Prep, StopKind};
+use crate::lang::ProgramText;
 use crate::motion::{Feed, Move};
 
 /// Most blocks a search prepares before it gives up (a program that loops without end).
@@ -44,10 +43,10 @@ impl Channel {
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active; reset it before a block search"));
         }
-        let text: Arc<str> = match text {
+        let text: ProgramText = match text {
             Some(t) => {
                 CommandError::check(t)?;
-                Arc::from(t)
+                ProgramText::from(t)
             }
             None => self
                 .program

@@ -12,7 +12,7 @@ use super::scope::{Ctx, sys_view};
 use super::value::Value;
 use super::vars::Variable;
 use crate::alarm::Alarm;
-use crate::lang::{Expr, Lvalue, Param};
+use crate::lang::{Expr, Lvalue, Param, ProgramText};
 use crate::machine_data::MachineConfig;
 
 /// Stored programs by upper-case name.
@@ -26,7 +26,7 @@ pub const MAX_LEVELS: usize = 16;
 pub(super) struct CallFrame {
     /// Where the caller goes on.
     caller: Flow,
-    text: Arc<str>,
+    text: ProgramText,
     /// Argument values, bound to the PROC parameters when the subprogram starts.
     args: Vec<Value>,
     /// For each argument, the caller's variable it came from (for VAR parameters).
@@ -54,7 +54,8 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
-        let text = programs.get(name).cloned().ok_or_else(|| Alarm::program_not_found(line, name))?;
+        let text =
+            programs.get(name).cloned().map(ProgramText::from).ok_or_else(|| Alarm::program_not_found(line, name))?;
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }

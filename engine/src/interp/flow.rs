@@ -5,10 +5,8 @@
 //! reached, and jumps and skipped branches scan the text for their target. Memory stays
 //! bounded for programs of any length.
 
-use std::sync::Arc;
-
 use crate::alarm::Alarm;
-use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, Stmt};
+use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, ProgramText, Stmt};
 
 /// A position in the program text: byte offset of a line start and its 1-based line number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,7 +43,7 @@ pub const MAX_NESTING: usize = 16;
 /// The read position of one program level and its open control structures.
 #[derive(Debug, Clone)]
 pub(super) struct Flow {
-    pub text: Arc<str>,
+    pub text: ProgramText,
     /// Next block to read.
     pub next: Pos,
     /// The block read last (the one being prepared).
@@ -54,7 +52,7 @@ pub(super) struct Flow {
 }
 
 impl Flow {
-    pub fn new(text: Arc<str>) -> Flow {
+    pub fn new(text: ProgramText) -> Flow {
         let start = Pos { offset: 0, line: 1 };
         Flow { text, next: start, current: start, control: Vec::new() }
     }

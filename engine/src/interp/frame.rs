@@ -142,7 +142,10 @@ impl Frame {
 
     /// True if the frame is the identity.
     pub fn is_identity(&self) -> bool {
-        *self == Frame::identity()
+        // Field by field, stopping at the first difference (no identity frame is built).
+        self.trans.iter().all(|&t| t == 0.0)
+            && self.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            && self.factor.iter().all(|&f| f == 1.0)
     }
 
     /// `self ∘ child`: first `child`, then `self`.

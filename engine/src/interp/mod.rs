@@ -36,11 +36,9 @@ mod trc_kontc;
 pub mod value;
 pub mod vars;
 
-use std::sync::Arc as Shared;
-
 use crate::alarm::Alarm;
 use crate::kinematics;
-use crate::lang::{Block, CoordMode};
+use crate::lang::{Block, CoordMode, ProgramText};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, OriPath, Path};
@@ -258,11 +256,11 @@ impl Interpreter {
 
     /// Starts preparing `text` from the machine's current position. Local variables of an
     /// earlier program are dropped; R parameters and global user data stay.
-    pub fn begin_program(&mut self, text: Shared<str>, pos: &AxisVec) {
+    pub fn begin_program(&mut self, text: impl Into<ProgramText>, pos: &AxisVec) {
         self.pos = *pos;
         self.vars.reset_locals();
         self.calls.clear();
-        self.flow = Some(Flow::new(text));
+        self.flow = Some(Flow::new(text.into()));
     }
 
     /// Data written by the blocks prepared since the last call (line, NC data text, or
@@ -967,9 +965,15 @@ pub(super) fn work_offset(cfg: &MachineConfig, frame: usize) -> Frame {
 /// The total basic frame `$P_ACTBFRAME`: the NCU-global basic frames, then the channel basic
 /// frames, each chained in order.
 pub(super) fn basic_frame(cfg: &MachineConfig) -> Frame {
-    cfg.ncu_base_frames.iter().chain(&cfg.base_frames).fold(Frame::identity(), |acc, f| {
-        acc.then(&Frame::from_data(f, &cfg.geo_axes, cfg.frame_angles), &cfg.geo_axes)
-    })
+    // Neutral basic frames (the usual case) add nothing to the chain: skipped unbuilt.
+    let frames: Vec<Frame> = cfg
+        .ncu_base_frames
+        .iter()
+        .chain(&cfg.base_frames)
+        .filter(|f| !f.is_neutral())
+        .map(|f| Frame::from_data(f, &cfg.geo_axes, cfg.frame_angles))
+        .collect();
+    frame::chain(&frames.iter().collect::<Vec<_>>(), &cfg.geo_axes)
 }
 
 /// Tool length vector per channel axis: lengths L1..L3 (geometry + wear + adapter) mapped to the

@@ -8,6 +8,8 @@ pub mod ast;
 mod cursor;
 mod parser;
 mod structure;
+mod text;
 
 pub use ast::*;
 pub use parser::{check, parse, parse_block, read_block};
+pub use text::ProgramText;

@@ -10,4 +10,4 @@ mod planner;
 
 pub use orientation::{Antiparallel, OriPath, rotate};
 pub use path::{Arc, AxisVec, Path};
-pub use planner::{AxisLimit, Feed, Move, Planner, brake_speed};
+pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed};

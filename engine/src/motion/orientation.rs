@@ -66,6 +66,11 @@ impl OriPath {
 /// `v` rotated about unit axis `k` by `angle` radians (Rodrigues).
 pub fn rotate(v: Vec3, k: Vec3, angle: f64) -> Vec3 {
     let (s, c) = angle.sin_cos();
+    rotate_by(v, k, s, c)
+}
+
+/// [`rotate`] with the angle given by its sine and cosine.
+pub(super) fn rotate_by(v: Vec3, k: Vec3, s: f64, c: f64) -> Vec3 {
     let kxv = cross(k, v);
     let kv = dot(k, v) * (1.0 - c);
     std::array::from_fn(|i| v[i] * c + kxv[i] * s + k[i] * kv)

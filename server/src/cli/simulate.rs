@@ -15,9 +15,12 @@ use std::time::Instant;
 
 use nctwin_engine::alarm::Clear;
 use nctwin_engine::interp::{Interpreter, Item, Prep, Programs};
+use nctwin_engine::lang::ProgramText;
 use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
 use nctwin_engine::{Channel, CommandError, Event, Status};
 use nctwin_server::dto;
+
+use super::mapped;
 use serde::Serialize;
 
 /// Exit code: the program ended in an alarm or did not pass the syntax check.
@@ -181,12 +184,18 @@ fn read_text(path: &Path, what: &str) -> Result<String, UsageError> {
     std::fs::read_to_string(path).map_err(|e| UsageError(format!("cannot read {what} {}: {e}", path.display())))
 }
 
-/// Reads a program straight into the shared text the channel keeps, so that a long program is
-/// in memory once (reading into a `String` and converting would hold it twice at the peak).
-fn read_shared_text(path: &Path) -> Result<Arc<str>, UsageError> {
+/// Reads a program into the shared text the channel keeps. A long one (from
+/// [`mapped::MAP_FROM_BYTES`]) is mapped instead, with a [`mapped::PageRelease`] that keeps its
+/// pages out of the resident set while it lives; a short one is read straight into memory, once
+/// (reading into a `String` and converting would hold it twice at the peak).
+fn read_shared_text(path: &Path) -> Result<(ProgramText, Option<mapped::PageRelease>), UsageError> {
     let error = |e: std::io::Error| UsageError(format!("cannot read program {}: {e}", path.display()));
     let mut file = std::fs::File::open(path).map_err(error)?;
     let len = file.metadata().map_err(error)?.len();
+    if len >= mapped::MAP_FROM_BYTES {
+        let (text, release) = mapped::map(&file, path).map_err(UsageError)?;
+        return Ok((text, Some(release)));
+    }
     let len = usize::try_from(len).map_err(|_| UsageError(format!("program {} is too large", path.display())))?;
     let mut bytes: Arc<[u8]> = std::iter::repeat_n(0u8, len).collect();
     file.read_exact(Arc::get_mut(&mut bytes).expect("not shared yet")).map_err(error)?;
@@ -198,7 +207,23 @@ fn read_shared_text(path: &Path) -> Result<Arc<str>, UsageError> {
     }
     // SAFETY: the bytes were checked to be UTF-8 just above, and `str` has the layout of `[u8]`,
     // so the allocation is a valid `Arc<str>` (this is how std converts `Arc<[u8]>` itself).
-    Ok(unsafe { Arc::from_raw(Arc::into_raw(bytes) as *const str) })
+    let text: Arc<str> = unsafe { Arc::from_raw(Arc::into_raw(bytes) as *const str) };
+    Ok((ProgramText::from(text), None))
+}
+
+/// Non-empty lines of the program. A mapped program gives its pages back every few MiB of the
+/// scan (the scan is faster than the release thread).
+fn count_blocks(text: &str, release: Option<&mapped::PageRelease>) -> u64 {
+    let (mut blocks, mut bytes) = (0u64, 0usize);
+    for line in text.lines() {
+        blocks += u64::from(!line.trim().is_empty());
+        bytes += line.len() + 1;
+        if let Some(r) = release.filter(|_| bytes >= mapped::SCAN_CHUNK_BYTES) {
+            r.now();
+            bytes = 0;
+        }
+    }
+    blocks
 }
 
 fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
@@ -220,9 +245,10 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     if let Some(dir) = &args.program_dir {
         store_programs(&mut channel, dir, &mut syntax_errors)?;
     }
-    let text = read_shared_text(&args.program)?;
+    // Pages of a mapped program are given back until the run is over.
+    let (text, release) = read_shared_text(&args.program)?;
     let program_bytes = text.len();
-    let blocks = text.lines().filter(|l| !l.trim().is_empty()).count() as u64;
+    let blocks = count_blocks(&text, release.as_ref());
     let program = args.program.display().to_string();
 
     if args.interpret_only {
@@ -293,7 +319,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
 fn interpret_only(
     channel: &Channel,
     args: &SimulateArgs,
-    text: Arc<str>,
+    text: ProgramText,
     mut syntax_errors: Vec<SyntaxError>,
     program: String,
     blocks: u64,

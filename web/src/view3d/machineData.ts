@@ -216,7 +216,13 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
 
   const rotary = machineAxes.filter((a) => md.axisFlag(a, "$MA_IS_ROT_AX"));
   const hasY = linear.some((a) => a.letter === "Y");
-  const turning = trafos.some(([, t]) => isTransmit(t) || isTracyl(t) || isTraang(t) || t === 8192);
+  // A lathe turns the workpiece with a spindle; TRACYL on a milling machine's rotary table
+  // (X-Y-Z-A-C) does not make it one.
+  const spindleTurnsPart = (n: number) =>
+    (md.axis(md.machineOfChannel(md.axesIn(n, 1)) ?? "", "$MA_SPIND_ASSIGN_TO_MACHAX") ?? 0) > 0;
+  const turning = trafos.some(
+    ([n, t]) => ((isTransmit(t) || isTracyl(t)) && spindleTurnsPart(n)) || isTraang(t) || t === 8192,
+  );
   const kind: Structure["kind"] = !hasY || (turning && !trafos.some(([, t]) => isOrientationTrafo(t))) ? "lathe" : "mill";
 
   const s: Structure = {
