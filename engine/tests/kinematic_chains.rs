@@ -8,6 +8,9 @@ use nctwin_engine::machine_data::{MachineConfig, MachineData, presets};
 use nctwin_engine::{Channel, Snapshot, Status};
 use proptest::prelude::*;
 
+mod chain_text;
+use chain_text::elements;
+
 type Axes = [f64; 20];
 
 fn axes(values: &[f64]) -> Axes {
@@ -36,30 +39,6 @@ fn md_traori(t: u32, rot: [u32; 2], md: &str) -> String {
 
 fn vec_md(name: &str, v: [f64; 3]) -> String {
     (0..3).map(|i| format!("{name}[{i}]={:?}\n", v[i])).collect()
-}
-
-/// Chain elements as NC data text: (name, type, next, parallel, off_dir, axis, a_off).
-type El<'a> = (&'a str, &'a str, &'a str, &'a str, [f64; 3], &'a str, f64);
-
-fn elements(els: &[El]) -> String {
-    let mut out = String::new();
-    for (i, (name, ty, next, par, dir, axis, a_off)) in els.iter().enumerate() {
-        out += &format!("$NK_NAME[{i}]=\"{name}\"\n$NK_TYPE[{i}]=\"{ty}\"\n");
-        if !next.is_empty() {
-            out += &format!("$NK_NEXT[{i}]=\"{next}\"\n");
-        }
-        if !par.is_empty() {
-            out += &format!("$NK_PARALLEL[{i}]=\"{par}\"\n");
-        }
-        out += &(0..3).map(|k| format!("$NK_OFF_DIR[{i},{k}]={:?}\n", dir[k])).collect::<String>();
-        if !axis.is_empty() {
-            out += &format!("$NK_AXIS[{i}]=\"{axis}\"\n");
-        }
-        if *a_off != 0.0 {
-            out += &format!("$NK_A_OFF[{i}]={a_off:?}\n");
-        }
-    }
-    out
 }
 
 /// A TRAORI_DYN record n with the given subchains, rotary and geometry element names.

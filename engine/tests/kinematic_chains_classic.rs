@@ -10,6 +10,9 @@ use nctwin_engine::machine_data::{MachineConfig, MachineData};
 use nctwin_engine::{Channel, Snapshot, Status};
 use proptest::prelude::*;
 
+mod chain_text;
+use chain_text::elements;
+
 type Axes = [f64; 20];
 
 fn axes(values: &[f64]) -> Axes {
@@ -25,30 +28,6 @@ fn near(a: &[f64], b: &[f64], tol: f64) -> bool {
 /// Channel axes X, Y, Z, A, B, C (machine axes X1..C1), C a modulo rotary axis.
 const SIX: &str =
     "$MA_IS_ROT_AX[A1]=TRUE\n$MA_IS_ROT_AX[B1]=TRUE\n$MA_IS_ROT_AX[C1]=TRUE\n$MA_ROT_IS_MODULO[C1]=TRUE\n";
-
-/// (name, type, next, parallel, off_dir, axis, a_off).
-type El<'a> = (&'a str, &'a str, &'a str, &'a str, [f64; 3], &'a str, f64);
-
-fn elements(els: &[El]) -> String {
-    let mut out = String::new();
-    for (i, (name, ty, next, par, dir, axis, a_off)) in els.iter().enumerate() {
-        out += &format!("$NK_NAME[{i}]=\"{name}\"\n$NK_TYPE[{i}]=\"{ty}\"\n");
-        if !next.is_empty() {
-            out += &format!("$NK_NEXT[{i}]=\"{next}\"\n");
-        }
-        if !par.is_empty() {
-            out += &format!("$NK_PARALLEL[{i}]=\"{par}\"\n");
-        }
-        out += &(0..3).map(|k| format!("$NK_OFF_DIR[{i},{k}]={:?}\n", dir[k])).collect::<String>();
-        if !axis.is_empty() {
-            out += &format!("$NK_AXIS[{i}]=\"{axis}\"\n");
-        }
-        if *a_off != 0.0 {
-            out += &format!("$NK_A_OFF[{i}]={a_off:?}\n");
-        }
-    }
-    out
-}
 
 /// Record n: name, type, tool and workpiece chain ends, rotary axis [n,1], geometry axes.
 fn record(n: usize, name: &str, ty: &str, ends: [&str; 2], rot: &str, geo: [&str; 3], extra: &str) -> String {

@@ -5,22 +5,8 @@
 use nctwin_engine::channel::JogSystem;
 use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Snapshot, Status};
 
-fn channel(preset: &str, md: &str) -> Channel {
-    Channel::from_preset(preset, md).expect("preset")
-}
-
-/// Steps until nothing moves; returns the channel-axis positions of every cycle.
-fn settle(ch: &mut Channel) -> Vec<Vec<f64>> {
-    let mut samples = Vec::new();
-    for _ in 0..2_000_000 {
-        if !ch.is_busy() {
-            return samples;
-        }
-        ch.step();
-        samples.push(ch.axis_positions().to_vec());
-    }
-    panic!("the channel never came to rest");
-}
+mod settle;
+use settle::{channel, settle};
 
 fn pos(list: &[(String, f64)], name: &str) -> f64 {
     list.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no axis {name} in {list:?}")).1
