@@ -8,24 +8,8 @@ use nctwin_engine::machine_data::{MachineConfig, MachineData, presets};
 use nctwin_engine::{Channel, Snapshot, Status};
 use proptest::prelude::*;
 
-mod chain_text;
-use chain_text::elements;
-
-type Axes = [f64; 20];
-
-fn axes(values: &[f64]) -> Axes {
-    let mut v = [0.0; 20];
-    v[..values.len()].copy_from_slice(values);
-    v
-}
-
-fn near(a: &[f64], b: &[f64], tol: f64) -> bool {
-    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
-}
-
-/// Machine with channel axes X, Y, Z, A, B, C (machine axes X1..C1), no transformation.
-const SIX: &str =
-    "$MA_IS_ROT_AX[A1]=TRUE\n$MA_IS_ROT_AX[B1]=TRUE\n$MA_IS_ROT_AX[C1]=TRUE\n$MA_ROT_IS_MODULO[C1]=TRUE\n";
+mod chain_support;
+use chain_support::{SIX, axes, elements, near};
 
 /// Machine-data TRAORI set 1 of type `t` with rotary roles `rot` on the SIX machine.
 fn md_traori(t: u32, rot: [u32; 2], md: &str) -> String {

@@ -1,4 +1,25 @@
-//! Kinematic chain elements as NC data text, for the tests of chain-defined transformations.
+//! What the tests of chain-defined transformations share: the six-axis test machine, chain
+//! elements as NC data text, and axis vectors compared with a tolerance.
+
+/// Machine with channel axes X, Y, Z, A, B, C (machine axes X1..C1), C a modulo rotary axis, no
+/// transformation.
+pub const SIX: &str =
+    "$MA_IS_ROT_AX[A1]=TRUE\n$MA_IS_ROT_AX[B1]=TRUE\n$MA_IS_ROT_AX[C1]=TRUE\n$MA_ROT_IS_MODULO[C1]=TRUE\n";
+
+/// A channel axis vector.
+pub type Axes = [f64; 20];
+
+/// `values` in the first channel axes, 0 in the others.
+pub fn axes(values: &[f64]) -> Axes {
+    let mut v = [0.0; 20];
+    v[..values.len()].copy_from_slice(values);
+    v
+}
+
+/// Same length and every component within `tol`.
+pub fn near(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
+}
 
 /// Chain elements: (name, type, next, parallel, off_dir, axis, a_off).
 pub type El<'a> = (&'a str, &'a str, &'a str, &'a str, [f64; 3], &'a str, f64);
