@@ -853,8 +853,9 @@ impl Interpreter {
             // No geometry axis moves: the feed applies to the other axes together, or to the
             // angle the orientation turns through (degrees) when it is interpolated as a vector.
             length = match &path.ori {
-                Some(o) => o.angle.abs().to_degrees(),
-                None => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
+                Some(o) if o.angle.abs() > 1e-12 => o.angle.abs().to_degrees(),
+                // Also a constant orientation held on the workpiece the 7th axis turns.
+                _ => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
             };
         }
 

@@ -385,6 +385,20 @@ impl Interpreter {
         };
         let slots = active.trafo.orientation_slots();
         let rotary_words = words.axes.iter().any(|(k, ..)| slots.contains(&Some(*k)));
+        // The 7th axis of a generic 7-axis transformation turns the workpiece: orientations are
+        // relative to it, at its block-end position for the end orientation.
+        let seventh = match &active.trafo {
+            AnyTrafo::Traori(t) => t.seventh_slot(),
+            _ => None,
+        };
+        let seventh_moves = seventh.is_some_and(|k| (end[k] - start[k]).abs() > 1e-9);
+        let modal_interpolation = if cfg.ori.ori_ipo_with_g_code {
+            self.modal.ori.interpolation
+        } else if self.modal.ori.reference == OriReference::Workpiece {
+            OriInterpolation::Vector
+        } else {
+            OriInterpolation::Axes
+        };
         if (ori.moves() && rotary_words) || (ori.programmed() && ori.reset.is_some()) {
             return Err(Alarm::conflicting_functions(line, "orientation axes, A2..C3 and ORIRESET together"));
         }
@@ -449,23 +463,28 @@ impl Interpreter {
             Some(bcs)
         } else if rotary_words {
             let mut m = *machine;
-            for k in slots.iter().flatten() {
+            for k in slots.iter().flatten().chain(&seventh) {
                 m[*k] = end[*k];
             }
             active.trafo.orientation(&m)
+        } else if seventh_moves && modal_interpolation != OriInterpolation::Axes {
+            // Vector interpolation keeps the orientation relative to the workpiece while the
+            // 7th axis turns it (F2 §3.7.6: only ORIMKS/ORIAXES leave the tool axes alone).
+            let o = active.trafo.orientation(machine);
+            if let Some(o) = o {
+                active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
+                    Alarm::value_out_of_range(
+                        line,
+                        "orientation not reachable by the rotary axes of the transformation",
+                    )
+                })?;
+            }
+            o
         } else {
             return Ok(None);
         };
         let Some(o_end) = target else { return Ok(None) };
-        let interpolation = if path_relative {
-            OriInterpolation::Vector
-        } else if cfg.ori.ori_ipo_with_g_code {
-            modal.interpolation
-        } else if modal.reference == OriReference::Workpiece {
-            OriInterpolation::Vector
-        } else {
-            OriInterpolation::Axes
-        };
+        let interpolation = if path_relative { OriInterpolation::Vector } else { modal_interpolation };
         let mut m_start = *machine;
         for k in slots.iter().flatten() {
             m_start[*k] = start[*k];
@@ -500,7 +519,12 @@ impl Interpreter {
         match interpolation {
             OriInterpolation::Axes => Ok(None),
             OriInterpolation::Vector | OriInterpolation::Path => {
-                OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line))
+                match OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line))? {
+                    // A constant orientation on a turning workpiece still needs the tool axes
+                    // solved at every point.
+                    None if seventh_moves => Ok(OriPath::cone(o_start, o_start, 0.0)),
+                    p => Ok(p),
+                }
             }
             OriInterpolation::Cone { clockwise } => {
                 let given = ori.cone_axis.map(|c| c.unwrap_or(0.0));

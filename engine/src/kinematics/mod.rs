@@ -14,6 +14,7 @@
 
 pub mod orient;
 pub mod plan;
+mod seventh;
 mod traang;
 mod tracon;
 mod tracyl;
