@@ -15,6 +15,7 @@ mod frame_vars;
 pub mod gcodes;
 mod jump_target;
 mod modal;
+mod ori_curve;
 mod orient;
 mod orient_poly;
 mod orient_rot;
@@ -833,6 +834,7 @@ impl Interpreter {
         let tangent = end_tangent(&current, &target, geo, (pa, po, papp), circle.as_ref());
         let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, tangent, line)?;
         self.modal.ori.last_change = ori.as_ref().and_then(OriPath::end_direction);
+        self.modal.ori.upper = ori.as_ref().and_then(|o| o.curve).map(|c| c.upper[1]);
         if let Some(theta) = self.tool_rotation(words, &frame, &start, &mut end, tangent, line)? {
             self.modal.ori.theta = theta;
         }

@@ -13,6 +13,7 @@
 
 use super::Interpreter;
 use super::frame::Frame;
+use super::modal::MotionMode;
 pub use super::orient_rot::RotReference;
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::orient::ChainKind;
@@ -58,7 +59,9 @@ pub enum OriInterpolation {
     ConeIntermediate,
     /// ORICONTO: on the cone tangential to the previous block's orientation motion.
     ConeTangential,
-    /// ORICURVE, ORIPATHS: not modelled (alarm when used).
+    /// ORICURVE: from the tool tip towards a second curve through XH/YH/ZH.
+    Curve,
+    /// ORIPATHS: not modelled (alarm when used).
     Unmodelled(&'static str),
 }
 
@@ -80,6 +83,9 @@ pub struct OriModal {
     pub rotation: RotReference,
     /// The last THETA in force (degrees).
     pub theta: f64,
+    /// ORICURVE: where the upper curve of the previous block ended (BCS), when the previous
+    /// motion block was an ORICURVE block with XH/YH/ZH.
+    pub upper: Option<Vec3>,
 }
 
 impl OriModal {
@@ -95,6 +101,7 @@ impl OriModal {
             last_change: None,
             rotation: RotReference::Absolute,
             theta: 0.0,
+            upper: None,
         }
     }
 
@@ -152,6 +159,8 @@ pub struct OriWords {
     pub rotation: Option<RotReference>,
     /// THETA= (degrees) and whether it was given incrementally (`THETA=IC(..)`).
     pub theta: Option<(f64, bool)>,
+    /// XH=, YH=, ZH=: end point of the upper curve of ORICURVE (WCS).
+    pub upper: [Option<f64>; 3],
 }
 
 impl OriWords {
@@ -168,7 +177,11 @@ impl OriWords {
     /// True if the block moves the orientation (programmed, path-relative, ORIRESET, or the
     /// tool rotation THETA).
     pub fn moves(&self) -> bool {
-        self.programmed() || self.path_relative() || self.reset.is_some() || self.theta.is_some()
+        self.programmed()
+            || self.path_relative()
+            || self.reset.is_some()
+            || self.theta.is_some()
+            || self.upper.iter().any(Option::is_some)
     }
 
     /// Takes an orientation G function (`ORIWKS`, ...); false if `name` is none.
@@ -194,7 +207,7 @@ impl OriWords {
             "ORIPATHS" => self.interpolation = Some(I::Unmodelled("ORIPATHS")),
             "ORICONIO" => self.interpolation = Some(I::ConeIntermediate),
             "ORICONTO" => self.interpolation = Some(I::ConeTangential),
-            "ORICURVE" => self.interpolation = Some(I::Unmodelled("ORICURVE")),
+            "ORICURVE" => self.interpolation = Some(I::Curve),
             _ => return false,
         }
         true
@@ -208,6 +221,10 @@ impl OriWords {
             _ => {}
         }
         if matches!(name, "LEAD" | "TILT") {
+            return true;
+        }
+        if let Some(g) = ["XH", "YH", "ZH"].iter().position(|n| *n == name) {
+            self.upper[g] = Some(value);
             return true;
         }
         let slot = match name {
@@ -247,6 +264,9 @@ pub fn is_address(name: &str) -> bool {
             | "C7"
             | "LEAD"
             | "TILT"
+            | "XH"
+            | "YH"
+            | "ZH"
     )
 }
 
@@ -417,6 +437,16 @@ impl Interpreter {
         if ori.programmed() && path_relative && ori.path_relative() {
             return Err(Alarm::conflicting_functions(line, "LEAD/TILT together with A2..C3"));
         }
+        if ori.upper.iter().any(Option::is_some) {
+            if modal_interpolation != OriInterpolation::Curve {
+                return Err(Alarm::value_out_of_range(line, "XH/YH/ZH need ORICURVE (and MD21104 = 1)"));
+            }
+            if ori.programmed() || ori.path_relative() || rotary_words {
+                return Err(Alarm::conflicting_functions(line, "XH/YH/ZH together with another orientation"));
+            }
+            let circle = matches!(words.motion.unwrap_or(self.modal.motion), MotionMode::Cw | MotionMode::Ccw);
+            return self.curve_orientation(ori, cfg, frame, start, end, active, machine, circle, line);
+        }
         let target = if path_relative && !ori.programmed() && !rotary_words {
             if modal.lead.abs() > cfg.ori.max_lead_angle {
                 return Err(angle_too_large(line, true, modal.lead, cfg.ori.max_lead_angle));
@@ -498,7 +528,8 @@ impl Interpreter {
             }
             _ => interpolation,
         };
-        let vector = matches!(interpolation, OriInterpolation::Vector | OriInterpolation::Path);
+        let vector =
+            matches!(interpolation, OriInterpolation::Vector | OriInterpolation::Path | OriInterpolation::Curve);
         let o_end = match (&active.trafo, vector) {
             (AnyTrafo::Traori(t), true) => match through_pole(t, o_start, o_end) {
                 Some(o) => {
@@ -518,7 +549,8 @@ impl Interpreter {
         };
         match interpolation {
             OriInterpolation::Axes => Ok(None),
-            OriInterpolation::Vector | OriInterpolation::Path => {
+            // ORICURVE without XH/YH/ZH: the end orientation by a great circle.
+            OriInterpolation::Vector | OriInterpolation::Path | OriInterpolation::Curve => {
                 match OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line))? {
                     // A constant orientation on a turning workpiece still needs the tool axes
                     // solved at every point.
