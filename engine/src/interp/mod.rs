@@ -16,6 +16,7 @@ pub mod gcodes;
 mod jump_target;
 mod modal;
 mod ori_curve;
+mod ori_direct;
 mod orient;
 mod orient_poly;
 mod orient_rot;

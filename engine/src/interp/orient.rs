@@ -389,7 +389,7 @@ impl Interpreter {
     /// block's BCS end point with any directly programmed rotary axes; `tangent` is the unit
     /// path direction at the block end in the WCS (for LEAD/TILT), if the tool tip moves.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn orientation_block(
+    pub(super) fn orientation_block_unchecked(
         &self,
         words: &super::modal::Words,
         cfg: &MachineConfig,
