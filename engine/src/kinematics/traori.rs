@@ -154,13 +154,13 @@ impl Traori {
     /// `v` (a BCS vector: workpiece-fixed) in the frame of the tool chain for the 7th axis
     /// at `axes`; unchanged without a 7th axis.
     #[inline]
-    fn to_chain(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+    fn workpiece_to_chain(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
         self.seventh.map_or(*v, |s| s.rotation(axes).apply(v))
     }
 
-    /// [`Traori::to_chain`] backwards: a chain-frame vector in workpiece (BCS) coordinates.
+    /// [`Traori::workpiece_to_chain`] backwards: a chain-frame vector in workpiece (BCS) coordinates.
     #[inline]
-    fn from_chain(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+    fn chain_to_workpiece(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
         self.seventh.map_or(*v, |s| s.rotation(axes).apply_t(v))
     }
 
@@ -249,7 +249,7 @@ impl Traori {
     /// The tool's rotation vector in the BCS at machine position `machine` (6-axis).
     pub fn rotation_vector(&self, machine: &AxisVec) -> Vec3 {
         let r = self.chain.rotation_vector(&self.chain.pose(&self.angles(machine)), &self.normal);
-        self.from_chain(&r, machine)
+        self.chain_to_workpiece(&r, machine)
     }
 
     /// The positions of all three rotary axes (6-axis) that give orientation `o` and rotation
@@ -257,8 +257,8 @@ impl Traori {
     /// the least weighted travel from `prev`, written into `axes`. With a 7th axis `o` and `r`
     /// are relative to the workpiece at the 7th axis position in `axes`.
     pub fn rotated_axes(&self, o: &Vec3, r: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let o = self.to_chain(&normalize(o).ok_or(Unreachable)?, axes);
-        let r = &self.to_chain(r, axes);
+        let o = self.workpiece_to_chain(&normalize(o).ok_or(Unreachable)?, axes);
+        let r = &self.workpiece_to_chain(r, axes);
         let sols = self.chain.solve_rotated(&o, r, &self.normal, &self.hint(Some(prev))).ok_or(Unreachable)?;
         let best =
             sols.iter().filter_map(|s| self.placed(s, prev)).fold(None::<(f64, [f64; 3])>, |best, (c, p)| match best {
@@ -380,7 +380,7 @@ impl Transformation for Traori {
     fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
         let pose = self.chain.pose(&self.angles(machine));
         let p = self.chain.tip(&self.linear(machine), &pose, &scale(tool, -1.0));
-        let p = self.from_chain(&p, machine);
+        let p = self.chain_to_workpiece(&p, machine);
         for (g, slot) in self.geo.iter().enumerate() {
             if let Some(k) = slot {
                 bcs[*k] = p[g];
@@ -393,7 +393,7 @@ impl Transformation for Traori {
 
     fn inverse(&self, bcs: &AxisVec, _prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
         let pose = self.chain.pose(&self.angles(bcs));
-        let m = self.chain.linear(&self.to_chain(&self.point(bcs), bcs), &pose, &scale(tool, -1.0));
+        let m = self.chain.linear(&self.workpiece_to_chain(&self.point(bcs), bcs), &pose, &scale(tool, -1.0));
         self.write_linear(&m, machine);
         for k in self.rot.iter().flatten().map(|r| r.slot).chain(self.seventh_slot()) {
             machine[k] = bcs[k];
@@ -406,7 +406,7 @@ impl Transformation for Traori {
     }
 
     fn orientation(&self, machine: &AxisVec) -> Option<Vec3> {
-        Some(self.from_chain(&self.chain.orientation(&self.chain.pose(&self.angles(machine))), machine))
+        Some(self.chain_to_workpiece(&self.chain.orientation(&self.chain.pose(&self.angles(machine))), machine))
     }
 
     /// Of the (up to) two solutions the one whose axes all fit their software limits (after
@@ -415,7 +415,7 @@ impl Transformation for Traori {
     /// fits the limits.
     /// With a 7th axis `o` is relative to the workpiece at the 7th axis position in `axes`.
     fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let (pos, _) = self.nearest_solution(&self.to_chain(o, axes), prev)?;
+        let (pos, _) = self.nearest_solution(&self.workpiece_to_chain(o, axes), prev)?;
         self.write_rotary(&pos, axes);
         Ok(())
     }
