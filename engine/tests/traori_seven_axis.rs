@@ -84,6 +84,8 @@ fn the_tip_stays_on_the_workpiece_point_while_the_table_turns() {
     assert!((machine(&end, "B") - 45.0).abs() < 1e-6 && (machine(&end, "C") - 90.0).abs() < 1e-6, "{:?}", end.machine);
     let want = [0.0, 100.0 + 300.0 * H, 50.0 - 200.0 + 300.0 * H];
     assert!(near(["X", "Y", "Z"].map(|n| machine(&end, n)), want, 1e-6), "{:?}", end.machine);
+    let c1 = end.workpiece.iter().find(|(n, _)| n == "C1").expect("C1 in the WCS display").1;
+    assert!((c1 - 90.0).abs() < 1e-9, "{:?}", end.workpiece);
     let o = end.orientation.expect("orientation in the WCS");
     assert!(near(o, [H, 0.0, H], 1e-9), "displayed orientation {o:?}");
 }

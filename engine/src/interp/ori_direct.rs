@@ -9,7 +9,7 @@
 use super::Interpreter;
 use super::frame::Frame;
 use crate::alarm::Alarm;
-use crate::kinematics::Transformation;
+use crate::kinematics::{AnyTrafo, Transformation};
 use crate::machine_data::MachineConfig;
 use crate::motion::{AxisVec, OriPath};
 
@@ -44,9 +44,18 @@ impl Interpreter {
         for k in slots.iter().flatten() {
             prev[*k] = start[*k];
         }
+        // The 7th axis of a 7-axis TRAORI turns with the path parameter like the tip.
+        let seventh = match &active.trafo {
+            AnyTrafo::Traori(t) => t.seventh_slot(),
+            _ => None,
+        };
         let mut next = prev;
         for i in 1..=FOLLOW_SAMPLES {
-            if active.trafo.orientation_axes(&p.at(i as f64 / FOLLOW_SAMPLES as f64), &prev, &mut next).is_err() {
+            let u = i as f64 / FOLLOW_SAMPLES as f64;
+            if let Some(k) = seventh {
+                next[k] = start[k] + u * (programmed[k] - start[k]);
+            }
+            if active.trafo.orientation_axes(&p.at(u), &prev, &mut next).is_err() {
                 break;
             }
             prev = next;
