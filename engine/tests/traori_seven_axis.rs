@@ -200,3 +200,20 @@ fn a_seventh_axis_needs_the_generic_tool_type_and_a_direction() {
         .unwrap_err();
     assert!(err.to_string().contains("TRAFO_AXES_IN[6]"), "{err}");
 }
+
+#[test]
+fn a_table_move_under_a_cone_interpolation_also_holds_the_orientation() {
+    // MD21104 = 1, ORICONCW modal, ORIWKS: a block moving only C1 needs no cone axis; the
+    // orientation stays (1, 0, 1)/√2 on the workpiece.
+    let (ch, samples) = run_on(
+        "$MC_ORI_IPO_WITH_G_CODE=1\n",
+        &format!("{START}ORIWKS\nX100 Y0 Z50 A3=1 B3=0 C3=1\nORICONCW\nC1=45\nM0\nM30"),
+    );
+    assert_eq!(ch.snapshot().status, Status::Stopped, "{:?}", ch.snapshot().alarms);
+    let turning: Vec<&Snapshot> = samples.iter().filter(|s| machine(s, "C1") > 1e-6).collect();
+    assert!(turning.len() > 10);
+    for s in turning {
+        let (p, o) = workpiece_pose(s);
+        assert!(near(p, [100.0, 0.0, 50.0], 1e-6) && near(o, [H, 0.0, H], 1e-9), "{p:?} {o:?}");
+    }
+}

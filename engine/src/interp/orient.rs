@@ -500,16 +500,12 @@ impl Interpreter {
         } else if seventh_moves && modal_interpolation != OriInterpolation::Axes {
             // Vector interpolation keeps the orientation relative to the workpiece while the
             // 7th axis turns it (F2 §3.7.6: only ORIMKS/ORIAXES leave the tool axes alone).
-            let o = active.trafo.orientation(machine);
-            if let Some(o) = o {
-                active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
-                    Alarm::value_out_of_range(
-                        line,
-                        "orientation not reachable by the rotary axes of the transformation",
-                    )
-                })?;
-            }
-            o
+            // Whatever the interpolation type, a constant orientation is the path.
+            let Some(o) = active.trafo.orientation(machine) else { return Ok(None) };
+            active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
+                Alarm::value_out_of_range(line, "orientation not reachable by the rotary axes of the transformation")
+            })?;
+            return Ok(OriPath::cone(o, o, 0.0));
         } else {
             return Ok(None);
         };
