@@ -217,3 +217,21 @@ fn a_table_move_under_a_cone_interpolation_also_holds_the_orientation() {
         assert!(near(p, [100.0, 0.0, 50.0], 1e-6) && near(o, [H, 0.0, H], 1e-9), "{p:?} {o:?}");
     }
 }
+
+#[test]
+fn ptp_stat_picks_among_the_solutions_of_the_turned_workpiece() {
+    // With C1 = 90 the workpiece orientation (1, 0, 1)/√2 is (0, 1, 1)/√2 in the machine frame:
+    // C90 B45 or C−90 (= 270) B−45; STAT bit 0 picks the lower (0) or higher (1) position of
+    // the first axis C within ±180°. Either way the tip lands on workpiece point (100, 0, 50)
+    // with that orientation. (Without the 7th axis in the choice, the solutions would be those
+    // of (1, 0, 1)/√2 in the machine frame: C0 B45 / C180 B−45.)
+    for (stat, b, c) in [(0, -45.0, 270.0), (1, 45.0, 90.0)] {
+        let (ch, _) = run(&format!("{START}C1=90\nPTP\nG0 X100 Y0 Z50 A3=1 B3=0 C3=1 STAT={stat}\nM0\nM30"));
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+        let dc = (machine(&s, "C") - c + 180.0).rem_euclid(360.0) - 180.0;
+        assert!((machine(&s, "B") - b).abs() < 1e-6 && dc.abs() < 1e-6, "STAT={stat}: {:?}", s.machine);
+        let (p, o) = workpiece_pose(&s);
+        assert!(near(p, [100.0, 0.0, 50.0], 1e-6) && near(o, [H, 0.0, H], 1e-9), "STAT={stat}: {p:?} {o:?}");
+    }
+}

@@ -672,7 +672,7 @@ fn point_to_point(a: &mut Active, mv: &Move, block: PtpBlock, line: u32) -> Resu
     let slots = a.trafo.trafo.orientation_slots();
     if let (Some(stat), AnyTrafo::Traori(t)) = (block.stat, &a.trafo.trafo) {
         let o = t.orientation(&end).expect("TRAORI orients the tool");
-        let pick = t.solutions(&o).map_err(|_| working_area(line))?[(stat & 1) as usize];
+        let pick = t.solutions_at(&o, &end).map_err(|_| working_area(line))?[(stat & 1) as usize];
         for (role, slot) in slots.iter().enumerate() {
             if let Some(k) = slot {
                 end[*k] = pick[role];

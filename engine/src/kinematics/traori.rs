@@ -220,6 +220,12 @@ impl Traori {
         Ok(s)
     }
 
+    /// [`Traori::solutions`] for an orientation `o` relative to the workpiece with the 7th axis
+    /// (if any) at its position in `axes`.
+    pub fn solutions_at(&self, o: &Vec3, axes: &AxisVec) -> Result<[[f64; 3]; 2], Unreachable> {
+        self.solutions(&self.workpiece_to_chain(o, axes))
+    }
+
     /// Both solutions as [`Traori::solutions`], but each axis shifted by whole turns to lie
     /// closest to its position in `prev` and the free axis of a pole kept at `prev`; not
     /// sorted, not checked against the limits.
