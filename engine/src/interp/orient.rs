@@ -518,7 +518,8 @@ impl Interpreter {
         let Some(o_start) = active.trafo.orientation(&m_start) else { return Ok(None) };
         let interpolation = match &active.trafo {
             AnyTrafo::Traori(t)
-                if interpolation == OriInterpolation::Vector && pole_start_as_axes(t, cfg, &o_start) =>
+                if interpolation == OriInterpolation::Vector
+                    && pole_start_as_axes(t, cfg, &t.in_chain_frame(&o_start, machine)) =>
             {
                 OriInterpolation::Axes
             }
@@ -527,20 +528,26 @@ impl Interpreter {
         let vector =
             matches!(interpolation, OriInterpolation::Vector | OriInterpolation::Path | OriInterpolation::Curve);
         let o_end = match (&active.trafo, vector) {
-            (AnyTrafo::Traori(t), true) => match through_pole(t, o_start, o_end) {
-                Some(o) => {
-                    // Through the pole: the end moves onto the start's meridian, which the
-                    // rotary axes reach with the pole axis where it stands.
-                    active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
-                        Alarm::value_out_of_range(
-                            line,
-                            "orientation not reachable by the rotary axes of the transformation",
-                        )
-                    })?;
-                    o
+            // The pole is a direction of the tool kinematics: tested in its frame (7-axis: with
+            // the table where the block starts).
+            (AnyTrafo::Traori(t), true) => {
+                match through_pole(t, t.in_chain_frame(&o_start, machine), t.in_chain_frame(&o_end, machine))
+                    .map(|o| t.in_workpiece_frame(&o, machine))
+                {
+                    Some(o) => {
+                        // Through the pole: the end moves onto the start's meridian, which the
+                        // rotary axes reach with the pole axis where it stands.
+                        active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
+                            Alarm::value_out_of_range(
+                                line,
+                                "orientation not reachable by the rotary axes of the transformation",
+                            )
+                        })?;
+                        o
+                    }
+                    None => o_end,
                 }
-                None => o_end,
-            },
+            }
             _ => o_end,
         };
         match interpolation {

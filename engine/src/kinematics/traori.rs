@@ -145,6 +145,18 @@ impl Traori {
         })
     }
 
+    /// A BCS (workpiece) direction `v` in the frame of the tool chain for the 7th axis at
+    /// `axes` (unchanged without a 7th axis): where the pole tests of the orientation
+    /// interpolation look, since the pole is a direction of the tool kinematics.
+    pub fn in_chain_frame(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+        self.workpiece_to_chain(v, axes)
+    }
+
+    /// [`Traori::in_chain_frame`] backwards.
+    pub fn in_workpiece_frame(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+        self.chain_to_workpiece(v, axes)
+    }
+
     /// The channel axis of the 7th axis (`TRAFO_AXES_IN_n[6]`), which turns the workpiece; its
     /// BCS value is its own position.
     pub fn seventh_slot(&self) -> Option<usize> {
