@@ -45,6 +45,13 @@ impl Interpreter {
             flow.current = current;
             return Ok(Prep::WaitForMainRun);
         }
+        // DELOBJ/CORRTRAFO as functions and CORRTRAFO as a statement run once, here, after
+        // any wait for the main run.
+        let mut block = block;
+        if super::effect_calls::present(&block) {
+            self.check_unbound(block.line)?;
+            self.run_effect_calls(&mut block, cfg, out)?;
+        }
         match &block.stmt {
             Some(Stmt::Proc { params, save, .. }) => self.bind_params(params, *save, block.line)?,
             Some(stmt) => {
