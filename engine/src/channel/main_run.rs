@@ -98,7 +98,9 @@ impl Channel {
         if let Some(n) = text.strip_prefix(CORRTRAFO) {
             // The corrected $NK_OFF_DIR came just before: the record's data set follows it.
             let n = n.parse().map_err(|_| bad(text.to_string()))?;
-            Arc::make_mut(&mut self.cfg).rebuild_chain_trafo(n).map_err(|e| bad(format!("CORRTRAFO: {}", e.message)))?;
+            Arc::make_mut(&mut self.cfg)
+                .rebuild_chain_trafo(n)
+                .map_err(|e| bad(format!("CORRTRAFO: {}", e.message)))?;
             return Ok(());
         }
         self.data.stage_text(text).map_err(|e| bad(format!("{text}: {}", e.message)))?;

@@ -60,7 +60,10 @@ impl Interpreter {
         out: &mut Vec<Item>,
     ) -> Result<i64, Alarm> {
         let usage = || {
-            Alarm::syntax(line, "CORRTRAFO(Corr_Elem, Corr_Mode, Corr_Vect[, Corr_Chain][, No_Alarm]), Corr_Vect a REAL[3] array")
+            Alarm::syntax(
+                line,
+                "CORRTRAFO(Corr_Elem, Corr_Mode, Corr_Vect[, Corr_Chain][, No_Alarm]), Corr_Vect a REAL[3] array",
+            )
         };
         if !(3..=5).contains(&args.len()) || args[..3].iter().any(omitted) {
             return Err(usage());
@@ -101,7 +104,13 @@ impl Interpreter {
     }
 
     /// Corrects the active transformation; `Err` is the status.
-    fn correct_active(&mut self, req: &Request, cfg: &MachineConfig, line: u32, out: &mut Vec<Item>) -> Result<(), i64> {
+    fn correct_active(
+        &mut self,
+        req: &Request,
+        cfg: &MachineConfig,
+        line: u32,
+        out: &mut Vec<Item>,
+    ) -> Result<(), i64> {
         let number = self.active_data_set().ok_or(status::NO_TRAFO)?;
         let set = cfg.trafos.iter().find(|s| s.number == number).ok_or(status::NO_TRAFO)?;
         if set.kind != TrafoKind::Traori {

@@ -51,7 +51,9 @@ fn entry(args: &[Expr], ctx: &Ctx, line: u32) -> Result<Result<String, Refusal>,
             }
             Ok(format!("{DELOBJ}TOOLCARRIER:{start}:{}", end.min(i64::from(u32::MAX))))
         }
-        "TOOLCARRIER" => return Err(Alarm::syntax(line, "DELOBJ(\"TOOLCARRIER\", start, end): no initialization value")),
+        "TOOLCARRIER" => {
+            return Err(Alarm::syntax(line, "DELOBJ(\"TOOLCARRIER\", start, end): no initialization value"));
+        }
         _ => Err(Refusal::UnknownType(format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM, TRAFO_DATA or TOOLCARRIER"))),
     })
 }

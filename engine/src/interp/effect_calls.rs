@@ -87,7 +87,13 @@ impl Interpreter {
         Ok(())
     }
 
-    fn resolve_calls(&mut self, e: &mut Expr, cfg: &MachineConfig, line: u32, out: &mut Vec<Item>) -> Result<(), Alarm> {
+    fn resolve_calls(
+        &mut self,
+        e: &mut Expr,
+        cfg: &MachineConfig,
+        line: u32,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
         match e {
             Expr::Call(name, args) => {
                 for a in args.iter_mut() {

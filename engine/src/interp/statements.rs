@@ -20,6 +20,7 @@ impl Interpreter {
         main_run_idle: bool,
         out: &mut Vec<Item>,
     ) -> Result<Prep, Alarm> {
+        self.refresh_derived_chain_data(cfg);
         let Some(flow) = self.flow.as_mut() else { return Ok(Prep::Done) };
         let (next, current) = (flow.next, flow.current);
         let Some((block, at)) = flow.read() else {

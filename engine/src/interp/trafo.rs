@@ -281,6 +281,11 @@ impl TrafoState {
         self.active.as_ref().and_then(|a| a.trafo.trafo.rotary_slot())
     }
 
+    /// The real configuration (machine axes as configured) while a transformation is active.
+    pub fn base_config(&self) -> Option<&MachineConfig> {
+        self.active.as_ref().map(|a| &*a.base)
+    }
+
     /// The configuration blocks are read with while a transformation is active.
     pub fn config(&self) -> Option<Arc<MachineConfig>> {
         self.active.as_ref().map(|a| a.derived.clone())
@@ -454,6 +459,18 @@ impl Interpreter {
         Ok(())
     }
 
+    /// Keeps the chain data and CORRTRAFO's limits of the configuration blocks are read with
+    /// while a transformation is active (a copy made at selection) equal to the channel's, so
+    /// `$NK_`/`$NT_` writes and CORRTRAFO corrections read back at once.
+    pub(super) fn refresh_derived_chain_data(&mut self, cfg: &MachineConfig) {
+        let Some(a) = self.trafo.active.as_mut() else { return };
+        if a.derived.kin != cfg.kin || a.derived.corr_limits != cfg.corr_limits {
+            let d = Arc::make_mut(&mut a.derived);
+            d.kin = cfg.kin.clone();
+            d.corr_limits = cfg.corr_limits;
+        }
+    }
+
     /// The data-set number of the active transformation.
     pub(super) fn active_data_set(&self) -> Option<usize> {
         self.trafo.active.as_ref().map(|a| a.trafo.number)
@@ -470,7 +487,8 @@ impl Interpreter {
         line: u32,
     ) -> Result<(), Alarm> {
         let Some(a) = self.trafo.active.as_mut() else { return Ok(()) };
-        let trafo = kinematics::build(set, cfg, &a.args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
+        let trafo =
+            kinematics::build(set, cfg, &a.args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
         a.trafo = ActiveTrafo { trafo, tool: a.trafo.tool, number: set.number };
         a.bcs = None;
         self.pos = a.trafo.forward(&a.machine);

@@ -31,12 +31,15 @@
 //! rotated against the world frame at the kinematic zero).
 //!
 //! TRANSMIT_K, TRACYL_K and TRAANG_K become the machine data's TRANSMIT/TRACYL/TRAANG data sets
-//! ([`classic`]). TRAORI_STAT and TRACON_K records are checked and stored, not built. Of the
+//! ([`classic`]). TRAORI_STAT and TRACON_K records are checked and stored, not built (TRAFOON of
+//! one raises 14401 saying why: TRACON_K chains an Open Architecture transformation, which the
+//! consulted sources do not describe and this product does not model). Of the
 //! further `$NT_` fields, `$NT_POLE_LIMIT`/`$NT_POLE_TOL` reach TRAORI and `$NT_POLE_SIDE_FIX`
 //! TRANSMIT; `$NT_ROT_OFFSET_FROM_FRAME` is carried like `TRANSMIT/TRACYL_ROT_AX_FRAME` (which
 //! the kinematics do not evaluate either); `$NT_CLOSE_CHAIN_P/T` and `$NT_CORR_ELEM_P/T` are
-//! checked to name elements of their subchain (OFFSET elements for the latter) but not applied
-//! (the work offset of a closed chain and CORRTRAFO are not modelled); `$NT_AUX_POS` and
+//! checked to name elements of their subchain (OFFSET elements for the latter); the work offset
+//! of a closed chain is not modelled, the correction elements are what CORRTRAFO writes
+//! ([`correct`]); `$NT_AUX_POS` and
 //! `$NT_IDENT` are not evaluated by the control (manual); `$NT_BASE_TOOL_COMP` ($P_TRAFRAME),
 //! `$NT_ROT_AX_POS` (constant rotations as orientation axes) and `$NT_IGNORE_TOOL_ORIENT` (the
 //! tool's own orientation is not modelled) are stored and range-checked only.

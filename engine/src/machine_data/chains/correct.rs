@@ -94,7 +94,12 @@ fn decode(mode: i64) -> Option<Mode> {
         && digit(2) <= 1
         && digit(3) <= 1
         && !(digit(0) == 1 && digit(1) == 2);
-    valid.then(|| Mode { direction: digit(0) == 1, reference: digit(1), incremental: digit(2) == 1, monitored: digit(3) == 0 })
+    valid.then(|| Mode {
+        direction: digit(0) == 1,
+        reference: digit(1),
+        incremental: digit(2) == 1,
+        monitored: digit(3) == 0,
+    })
 }
 
 /// One element acting on a subchain at the kinematic zero: how its input frame is turned
@@ -168,7 +173,8 @@ pub fn correct(
     limits: Limits,
 ) -> Result<Correction, i64> {
     let mode = decode(req.mode).ok_or(status::BAD_MODE)?;
-    let g = build_graph(kin, &ctx.root, channel_axes, machine_axes).map_err(|_: ActivationError| status::NOT_BUILDABLE)?;
+    let g =
+        build_graph(kin, &ctx.root, channel_axes, machine_axes).map_err(|_: ActivationError| status::NOT_BUILDABLE)?;
     let f = Family::Trafo;
     let s = |var: &str, k: usize| kin.str(f, n, var, k);
     let chain_of = |chain: Chain| match chain {
@@ -192,7 +198,11 @@ pub fn correct(
         .filter_map(chain_of)
         .find_map(|c| c.steps.iter().find(|st| st.elem == e).map(|st| (st.rot, st.section)).map(|(r, s)| (c, r, s)))
         .ok_or(status::BAD_ELEM)?;
-    let old = if mode.direction { unit(&kin.vec3(Family::Element, g.elems[e].record, "$NK_OFF_DIR")).ok_or(status::NOT_BUILDABLE)? } else { g.elems[e].dir };
+    let old = if mode.direction {
+        unit(&kin.vec3(Family::Element, g.elems[e].record, "$NK_OFF_DIR")).ok_or(status::NOT_BUILDABLE)?
+    } else {
+        g.elems[e].dir
+    };
     let to_world = |v: &Vec3| mat_vec(&rot, v);
     let to_local = |v: &Vec3| mat_vec(&transpose(&rot), v);
     let new = match mode.reference {
