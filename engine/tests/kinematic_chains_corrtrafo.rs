@@ -271,3 +271,28 @@ fn tracon_k_is_refused_with_the_reason() {
     let alarm = s.alarms.iter().find(|a| a.number == 14401).unwrap_or_else(|| panic!("{:?}", s.alarms));
     assert!(alarm.message.contains("Open Architecture"), "{}", alarm.message);
 }
+
+#[test]
+fn the_workpiece_chain_is_corrected_with_corr_chain_1() {
+    // A workpiece chain beside the head: ROOT ∥ WP base (5, 0, 0) → Corr WP. It has no rotary
+    // axis, so its only section 0 is the whole chain: absolute section (5.3, 0, 0) leaves
+    // Corr WP = (0.3, 0, 0), and the workpiece reference (the BCS origin) moves to (5.3, 0, 0):
+    // the tip programmed at (0, 0, 50) is at (5.3, 0, 50) in the world.
+    let wp = "$NK_PARALLEL[0]=\"WP base\"\n$NK_NAME[12]=\"WP base\"\n$NK_TYPE[12]=\"OFFSET\"\n\
+              $NK_NEXT[12]=\"Corr WP\"\n$NK_OFF_DIR[12,0]=5\n$NK_NAME[13]=\"Corr WP\"\n$NK_TYPE[13]=\"OFFSET\"\n\
+              $NT_P_CHAIN_LAST_ELEM[1]=\"Corr WP\"\n$NT_CORR_ELEM_P[1,0]=\"Corr WP\"\n";
+    let mut ch = channel(wp);
+    let program = format!(
+        "{}R1=CORRTRAFO(0, 20, V, 1)\nR2=$NK_OFF_DIR[13,0]\nG1 F3000 X0 Y0 Z50 A30 C40\nM30",
+        start([5.3, 0.0, 0.0])
+    );
+    let s = run_on(&mut ch, &program);
+    assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
+    assert_eq!(r(&s, 1), 0.0);
+    assert!((r(&s, 2) - 0.3).abs() < 1e-9, "{}", r(&s, 2));
+    let want = expected([5.3, 0.0, 50.0], 30.0, 40.0, [0.0; 3], 0.0);
+    assert!(near(&machine(&s), &want, 1e-6), "{:?} vs {want:?}", machine(&s));
+    // The same element is no tool-chain correction element: Corr_Chain 0 finds nothing at 0.
+    let s = run_on(&mut ch, &format!("{}R1=CORRTRAFO(0, 20, V, 0, TRUE)\nM30", start([5.3, 0.0, 0.0])));
+    assert_eq!(r(&s, 1), 5.0, "{:?}", s.alarms);
+}
