@@ -265,11 +265,14 @@ fn delobj_works_as_a_function_in_expressions() {
 
 #[test]
 fn tracon_k_is_refused_with_the_reason() {
-    let tracon = "$NT_NAME[2]=\"Chain\"\n$NT_TRAFO_TYPE[2]=\"TRACON_K\"\n";
+    let tracon = "$NT_NAME[2]=\"Chain\"\n$NT_TRAFO_TYPE[2]=\"TRACON_K\"\n\
+                  $NT_TRACON_CHAIN[2,0]=\"OA\"\n$NT_TRACON_CHAIN[2,1]=\"Head\"\n";
     let mut ch = channel(tracon);
     let s = run_on(&mut ch, "TRAFOON(\"Chain\")\nM30");
     let alarm = s.alarms.iter().find(|a| a.number == 14401).unwrap_or_else(|| panic!("{:?}", s.alarms));
     assert!(alarm.message.contains("Open Architecture"), "{}", alarm.message);
+    // The member names are stored and go out with the chain data.
+    assert!(ch.export_kinematic_chains().contains("$NT_TRACON_CHAIN[2,1]=\"Head\"\n"));
 }
 
 #[test]

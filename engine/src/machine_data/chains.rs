@@ -132,6 +132,9 @@ const VARS: &[Var] = &[
     var("$NT_CORR_ELEM_T", T, Str, 4),
     var("$NT_CORR_ELEM_P", T, Str, 4),
     var("$NT_POLE_SIDE_FIX", T, Int, 1),
+    // TRACON_K: the member transformations in BCS → MCS order (stored only; four entries like
+    // MD24995 TRACON_CHAIN is this product's choice, the seed gives no count).
+    var("$NT_TRACON_CHAIN", T, Str, 4),
 ];
 
 fn default(var: &Var, k: usize) -> Value {
