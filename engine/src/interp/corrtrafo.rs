@@ -79,20 +79,17 @@ impl Interpreter {
             for (k, v) in vect.iter_mut().enumerate() {
                 *v = var.data[k].as_f64().map_err(|e| Alarm::type_error(line, &e.0))?;
             }
+            let (elem, mode) = (int(&args[0])?, int(&args[1])?);
             let chain = match args.get(3).filter(|e| !omitted(e)).map(int).transpose()? {
-                None | Some(0) => Some(Chain::Tool),
-                Some(1) => Some(Chain::Part),
-                Some(_) => None,
+                None | Some(0) => Ok(Chain::Tool),
+                Some(1) => Ok(Chain::Part),
+                Some(_) => Err(status::BAD_ELEM),
             };
             let no_alarm = match args.get(4).filter(|e| !omitted(e)) {
                 Some(e) => eval(e, &ctx, line)?.as_bool().map_err(|e| Alarm::type_error(line, &e.0))?,
                 None => false,
             };
-            let req = chain.map(|chain| Request { elem: 0, mode: 0, vect, chain });
-            let req = match req {
-                Some(r) => Ok(Request { elem: int(&args[0])?, mode: int(&args[1])?, ..r }),
-                None => Err(status::BAD_ELEM),
-            };
+            let req = chain.map(|chain| Request { elem, mode, vect, chain });
             (req, no_alarm)
         };
         let result = req.and_then(|req| self.correct_active(&req, cfg, line, out));
