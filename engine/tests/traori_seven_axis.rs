@@ -235,3 +235,25 @@ fn ptp_stat_picks_among_the_solutions_of_the_turned_workpiece() {
         assert!(near(p, [100.0, 0.0, 50.0], 1e-6) && near(o, [H, 0.0, H], 1e-9), "STAT={stat}: {p:?} {o:?}");
     }
 }
+
+#[test]
+fn the_pole_is_found_in_the_frame_of_the_head_when_the_table_is_turned() {
+    // Table axis along +X (TRAFO7_EXT_AXIS1 = X) at C1 = 90: the workpiece direction +Y is the
+    // machine's +Z, the pole of the head's C. With POLE_ORI_MODE = 1 a great circle that starts
+    // in the pole runs as rotary-axis interpolation, so B and C move in proportion. The end
+    // (0.25, 0.866, −0.433) on the workpiece is Rx(90)·that = (0.25, 0.433, 0.866) =
+    // (cos 60·sin 30, sin 60·sin 30, cos 30) for the head: B30 C60 (the nearer solution).
+    let md = "$MC_TRAFO7_EXT_AXIS1_1[0]=1.\n$MC_TRAFO7_EXT_AXIS1_1[2]=0.\n$MC_POLE_ORI_MODE=1\n";
+    let o = [0.25, 0.75f64.sqrt(), -0.75f64.sqrt() / 2.0];
+    let program = format!("{START}C1=90\nORIWKS\nA3={} B3={} C3={}\nM0\nM30", o[0], o[1], o[2]);
+    let (ch, samples) = run_on(md, &program);
+    let end = ch.snapshot();
+    assert_eq!(end.status, Status::Stopped, "{:?}", end.alarms);
+    assert!((machine(&end, "B") - 30.0).abs() < 1e-6 && (machine(&end, "C") - 60.0).abs() < 1e-6, "{:?}", end.machine);
+    let block: Vec<&Snapshot> = samples.iter().filter(|s| s.block.as_ref().is_some_and(|b| b.line == 7)).collect();
+    assert!(block.len() > 10);
+    for s in block {
+        let (b, c) = (machine(s, "B"), machine(s, "C"));
+        assert!((c - 2.0 * b).abs() < 1e-6, "B {b} and C {c} do not move in proportion");
+    }
+}
