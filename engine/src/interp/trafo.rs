@@ -195,6 +195,9 @@ pub(super) struct TrafoState {
 #[derive(Debug, Clone)]
 struct Active {
     trafo: ActiveTrafo,
+    /// The selection's parameters as programmed (before the tool's orientation is added), so
+    /// a checkpoint can select the same transformation again after a restart.
+    args: SelectArgs,
     includes_tool: bool,
     /// The real configuration (machine axes, limits) and the derived one the words are read with.
     base: Arc<MachineConfig>,
@@ -403,6 +406,7 @@ impl Interpreter {
             .iter()
             .find(|s| s.number == number)
             .ok_or_else(|| not_available(line, &format!("data set {number}")))?;
+        let programmed = *args;
         // The active cutting edge's own orientation ($TC_DPV3..5, $TC_DPVN3..5).
         let (tool_orient, tool_normal) = cfg
             .tools
@@ -423,6 +427,7 @@ impl Interpreter {
         self.deselect_current_frame();
         self.trafo.active = Some(Box::new(Active {
             trafo,
+            args: programmed,
             includes_tool: set.includes_tool,
             base: Arc::new(cfg.clone()),
             derived,
@@ -440,6 +445,27 @@ impl Interpreter {
     fn deselect_current_frame(&mut self) {
         self.modal.work_offset = 0;
         self.pframe = crate::interp::frame::Frame::identity();
+    }
+
+    /// The active transformation's data set number and selection parameters, if one is active.
+    pub(super) fn active_selection(&self) -> Option<(usize, SelectArgs)> {
+        self.trafo.active.as_ref().map(|a| (a.trafo.number, a.args))
+    }
+
+    /// Selects data set `number` with `args` again, the machine standing at `machine` (restart
+    /// of a checkpoint whose transformation stays over reset), with the tool taken into it.
+    pub(super) fn reselect_transformation(
+        &mut self,
+        number: usize,
+        args: &SelectArgs,
+        cfg: &MachineConfig,
+        machine: &AxisVec,
+    ) -> Result<(), Alarm> {
+        self.clear_transformation();
+        self.pos = *machine;
+        self.select_data_set(number, args, cfg, machine, 0)?;
+        self.absorb_tool_into_transformation();
+        Ok(())
     }
 
     /// The transformation after reset and program end: the active one stays (RESET_MODE_MASK
