@@ -69,3 +69,67 @@ impl Channel {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn settle(ch: &mut Channel) {
+        for _ in 0..1_000_000 {
+            if !ch.is_busy() {
+                return;
+            }
+            ch.step();
+        }
+        panic!("still busy");
+    }
+
+    /// The saved channel's machine position and state on a new channel of the same data.
+    fn restart(ch: &Channel, extra: &str) -> Channel {
+        let mut new = Channel::from_preset("mill5-head-ca", extra).expect("preset");
+        new.restore_positions(ch.axis_positions()).expect("positions");
+        new.restore_resume_state(&ch.resume_state()).expect("restore");
+        new
+    }
+
+    fn wcs(ch: &Channel, axis: &str) -> f64 {
+        ch.snapshot().workpiece.iter().find(|(n, _)| n == axis).map(|(_, v)| *v).expect("axis")
+    }
+
+    #[test]
+    fn a_transformation_kept_over_reset_comes_back_with_the_tool_tip_where_it_was() {
+        // RESET_MODE_MASK bit 7: TRAORI stays after M30; the CA head at A30 with the tool tip at
+        // WCS (0, 0, 50), as programmed.
+        let md = "$MC_RESET_MODE_MASK='H81'";
+        let mut ch = Channel::from_preset("mill5-head-ca", md).expect("preset");
+        ch.run_program("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 A30\nM30").expect("run");
+        settle(&mut ch);
+        let new = restart(&ch, md);
+        assert_eq!(new.snapshot().transformation.map(|t| t.name), Some("TRAORI".to_string()));
+        assert_eq!(new.snapshot().tool, (1, 1));
+        for (axis, want) in [("X", 0.0), ("Y", 0.0), ("Z", 50.0)] {
+            assert!((wcs(&new, axis) - want).abs() < 1e-9, "{axis}: {}", wcs(&new, axis));
+        }
+        // Without bit 7 the transformation is not taken back (a reset would not keep it).
+        let mut plain = ch.resume_state();
+        plain.retained.transformation = None;
+        let mut other = Channel::from_preset("mill5-head-ca", md).expect("preset");
+        other.restore_resume_state(&plain).expect("restore");
+        assert_eq!(other.snapshot().transformation, None);
+    }
+
+    #[test]
+    fn a_state_that_no_longer_fits_the_machine_data_changes_nothing() {
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        let mut state = ch.resume_state();
+        state.retained.tool = 1;
+        state.retained.edge = 1;
+        state.retained.holder.number = 7;
+        let error = ch.restore_resume_state(&state).expect_err("no holder 7");
+        assert!(error.to_string().contains("toolholder 7"), "{error}");
+        assert_eq!(ch.snapshot().tool, (0, 0), "the tool was not taken either");
+        state.retained.holder.number = 0;
+        state.retained.r = vec![f64::NAN];
+        assert!(ch.restore_resume_state(&state).is_err(), "R parameters must be finite");
+    }
+}
