@@ -31,9 +31,9 @@ struct Args {
     /// come from the PGPASSWORD environment variable instead of the URL).
     #[arg(long, value_name = "URL")]
     database: Option<String>,
-    /// With `--database`: this node's name, unique among the nodes sharing the database. A
-    /// node restarted under the same name takes its sessions back at once; without it the
-    /// name is the host name with a random suffix.
+    /// With `--database`: this node's name, unique among the nodes sharing the database
+    /// (default: `HOST:PORT`, the host name and the bound port). A node restarted under the
+    /// same name takes its sessions back at once.
     #[arg(long, value_name = "NAME")]
     node_id: Option<String>,
     /// With `--database`: seconds a node's session lease lasts without renewal (renewed three
@@ -82,7 +82,9 @@ async fn serve(args: Args) -> Result<(), String> {
         limits: args.limits.apply(Limits::default()),
         auth: args.auth,
         database: args.database,
-        node_id: args.node_id,
+        node_id: Some(
+            args.node_id.unwrap_or_else(|| format!("{}:{}", nctwin_server::storage::host_name(), addr.port())),
+        ),
         lease_period: std::time::Duration::from_secs(args.lease_seconds),
         ..Config::new(args.data_dir, args.web_dir)
     };

@@ -103,16 +103,21 @@ pub struct Lease {
 /// Default lease period: a node that died frees its sessions after this long.
 pub const DEFAULT_LEASE_PERIOD: Duration = Duration::from_secs(15);
 
+/// This host's name (`node` if unknown).
+pub fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .ok()
+        .or_else(|| std::env::var("HOSTNAME").ok())
+        .map(|h| h.trim().to_string())
+        .filter(|h| !h.is_empty())
+        .unwrap_or_else(|| "node".into())
+}
+
 impl Default for Lease {
-    /// This host's name and a random suffix (unique, but not kept over a restart: name nodes
-    /// with `--node-id` so that a restarted node takes its own sessions back at once).
+    /// This host's name and a random suffix: unique, but not kept over a restart (`nctwin`
+    /// names a node after its host and port unless `--node-id` names it).
     fn default() -> Lease {
-        let host = std::fs::read_to_string("/proc/sys/kernel/hostname")
-            .ok()
-            .or_else(|| std::env::var("HOSTNAME").ok())
-            .map(|h| h.trim().to_string())
-            .filter(|h| !h.is_empty())
-            .unwrap_or_else(|| "node".into());
+        let host = host_name();
         let mut suffix = [0u8; 4];
         let _ = getrandom::fill(&mut suffix);
         let suffix: String = suffix.iter().map(|b| format!("{b:02x}")).collect();
