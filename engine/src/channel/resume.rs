@@ -11,6 +11,7 @@
 
 use super::{Channel, CommandError, Mode, Status};
 use crate::interp::retained::Retained;
+use crate::interp::{Item, StopKind};
 use crate::lang::ProgramText;
 
 /// The AUTO program of a checkpoint.
@@ -20,6 +21,10 @@ pub struct ResumeProgram {
     pub text: String,
     /// The main run's block (1-based line) when the program was active; `None`: only loaded.
     pub line: Option<u32>,
+    /// The program stood at a programmed stop (M0, M1) of that block, already executed: NC
+    /// start after the restart goes on behind it instead of stopping there again.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub after_stop: bool,
 }
 
 /// A channel's resumable state.
@@ -34,11 +39,18 @@ impl Channel {
     /// The resumable state now (for a checkpoint).
     pub fn resume_state(&self) -> ResumeState {
         let active = matches!(self.status, Status::Running | Status::Stopped);
-        let program = self
-            .program
-            .as_ref()
-            .filter(|_| self.program_mode == Mode::Auto)
-            .map(|text| ResumeProgram { text: text.to_string(), line: self.current_line.filter(|_| active) });
+        // Stopped without feed hold, interruption or a pending search: at a programmed stop
+        // (or a single-block stop, whose block has no stop to skip).
+        let after_stop = self.status == Status::Stopped
+            && !self.planner.is_held()
+            && self.interrupted.is_none()
+            && !self.repos_returning
+            && !self.search_approach;
+        let program = self.program.as_ref().filter(|_| self.program_mode == Mode::Auto).map(|text| ResumeProgram {
+            text: text.to_string(),
+            line: self.current_line.filter(|_| active),
+            after_stop,
+        });
         ResumeState { retained: self.interp.retained(), program }
     }
 
@@ -64,7 +76,16 @@ impl Channel {
             }
             Some(line) => {
                 self.set_mode(Mode::Auto)?;
-                self.block_search(Some(&program.text), line)
+                self.block_search(Some(&program.text), line)?;
+                if program.after_stop && self.status == Status::Stopped {
+                    let stop = self.pending.iter().position(
+                        |item| matches!(item, Item::Stop { kind: StopKind::M0 | StopKind::M1, line: l } if *l == line),
+                    );
+                    if let Some(i) = stop {
+                        self.pending.remove(i);
+                    }
+                }
+                Ok(())
             }
         }
     }
@@ -116,6 +137,23 @@ mod tests {
         let mut other = Channel::from_preset("mill5-head-ca", md).expect("preset");
         other.restore_resume_state(&plain).expect("restore");
         assert_eq!(other.snapshot().transformation, None);
+    }
+
+    #[test]
+    fn a_program_stopped_at_m0_goes_on_behind_it_after_the_restart() {
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.run_program("G0 X1\nM0\nG0 X2\nM30").expect("run");
+        settle(&mut ch);
+        assert_eq!((ch.status(), ch.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
+        let saved = ch.resume_state();
+        assert!(saved.program.as_ref().is_some_and(|p| p.after_stop && p.line == Some(2)), "{saved:?}");
+        let mut new = restart(&ch, "");
+        assert_eq!((new.status(), new.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
+        new.start().expect("NC start");
+        settle(&mut new);
+        // One NC start: no second stop at M0, the program ends at X2.
+        assert_eq!(new.status(), Status::Idle);
+        assert_eq!(new.snapshot().machine[0], ("X".to_string(), 2.0));
     }
 
     #[test]
