@@ -360,6 +360,9 @@ fn an_unknown_database_scheme_is_refused() {
     let error = storage::open(Some("mysql://u@h/db"), &temp_dir("scheme"), Lease::default()).expect_err("refused");
     assert!(error.0.contains("mysql"), "{error}");
     assert!(storage::open(Some("postgres://u@[bad"), &temp_dir("bad"), Lease::default()).is_err(), "invalid URL");
+    // No TLS in this build: a URL that requires it is refused before any connection is tried.
+    let tls = PostgresStorage::open("postgres://u@127.0.0.1:1/db?sslmode=require").expect_err("refused");
+    assert!(tls.0.contains("sslmode=require") && tls.0.contains("no TLS"), "{tls}");
 }
 
 /// The whole server on PostgreSQL: sessions and programs survive a restart, and health says

@@ -16,13 +16,14 @@
 //! [`crate::state::AppState`]), never on the server's async threads, where the client's
 //! `block_on` would panic. A connection that broke (server restart, network) is replaced by a
 //! new one on the next call; the call that saw it break fails (and is not acknowledged). No TLS:
-//! use a Unix socket, a trusted network or a TLS-terminating proxy. A password may come in the
+//! use a Unix socket, a trusted network or a TLS-terminating proxy; `sslmode=require` in the URL
+//! is refused at start, `prefer` and `disable` connect without TLS. A password may come in the
 //! URL or, to keep it out of the process list, in the `PGPASSWORD` environment variable.
 
 use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
-use postgres::config::Host;
+use postgres::config::{Host, SslMode};
 use std::collections::HashMap;
 
 use postgres::{Client, Config, NoTls, Transaction};
@@ -117,6 +118,13 @@ impl PostgresStorage {
             return Err(StorageError("a node needs a name and a lease period above zero".into()));
         }
         let mut config: Config = url.parse().map_err(|e| StorageError(format!("invalid database URL: {e}")))?;
+        // No TLS in this build: refuse what asks for it rather than connect in the clear.
+        // `prefer` (the default) and `disable` connect without TLS.
+        if config.get_ssl_mode() == SslMode::Require {
+            return Err(StorageError(
+                "sslmode=require: this server has no TLS for PostgreSQL; use a Unix socket, a trusted network or a TLS-terminating proxy (sslmode=disable)".into(),
+            ));
+        }
         if config.get_password().is_none()
             && let Ok(password) = std::env::var("PGPASSWORD")
         {
