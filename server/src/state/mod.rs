@@ -215,6 +215,10 @@ impl AppState {
                 tick.tick().await;
                 let Some(shared) = shared.upgrade() else { return };
                 let state = AppState { shared };
+                // No creation or takeover between the renewal and the comparison: a session
+                // leased after the renewal's snapshot would look lost.
+                let _creating = state.shared.create_lock.lock().await;
+                let _claiming = state.shared.claim_lock.lock().await;
                 match state.storage_call(|s| s.renew_leases()).await {
                     Ok(Some(held)) => state.drop_lost_sessions(&held).await,
                     Ok(None) => return,
