@@ -405,3 +405,49 @@ async fn health_reports_the_backend() {
     let server = Server::start_state(state).await;
     assert_eq!(server.get("/health").await.body["storage"]["backend"], "memory");
 }
+
+/// A node whose session was taken by another node (here: the row's lease rewritten, as after
+/// a network partition longer than the lease) stops serving it at its next heartbeat, answers
+/// 421 naming the new holder, and cannot write it any more.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_node_that_lost_a_lease_stops_serving_the_session() {
+    let Some(url) = tokio::task::spawn_blocking(|| postgres_database("lost")).await.expect("task") else {
+        return;
+    };
+    let config = Config {
+        database: Some(url.clone()),
+        node_id: Some("a".into()),
+        lease_period: Duration::from_secs(1),
+        ..Config::new(common::temp_data_dir(), common::WEB_DIR)
+    };
+    let server = Server::start_config(config).await;
+    let id = server.session("mill-3axis").await;
+    let key = id.clone();
+    tokio::task::spawn_blocking(move || {
+        let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+        let n = admin
+            .execute(
+                "UPDATE nctwin_sessions SET lease_node = 'b', lease_expires = now() + interval '1 hour' WHERE id = $1",
+                &[&key],
+            )
+            .expect("take over");
+        assert_eq!(n, 1);
+    })
+    .await
+    .expect("task");
+    // The heartbeat runs three times per second here.
+    let mut reply = server.get(&format!("/sessions/{id}/state")).await;
+    for _ in 0..100 {
+        if reply.status != StatusCode::OK {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+        reply = server.get(&format!("/sessions/{id}/state")).await;
+    }
+    assert_eq!(reply.status, StatusCode::MISDIRECTED_REQUEST, "{}", reply.body);
+    assert!(reply.body["error"].as_str().expect("message").contains("node `b`"), "{}", reply.body);
+    assert_eq!(server.get("/sessions").await.body, json!([]), "no longer listed here");
+    let write = server.put(&format!("/sessions/{id}/programs/P"), json!({"text": "M30"})).await;
+    assert_eq!(write.status, StatusCode::MISDIRECTED_REQUEST, "{}", write.body);
+    drop(server);
+}
