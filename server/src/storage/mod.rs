@@ -144,7 +144,8 @@ pub trait Storage: Send + Sync + Debug {
     fn backend(&self) -> &'static str;
     /// Checks that the storage answers (a trivial read).
     fn check(&self) -> Result<(), StorageError>;
-    /// Every stored session with its programs, in creation order.
+    /// Every stored session with its programs, in creation order (with leases: every session
+    /// this node may serve, now leased to it).
     fn load(&self) -> Result<Vec<SavedSession>, StorageError>;
     /// Stores a new session (replacing one with the same id, with its programs).
     fn create_session(&self, record: &SessionRecord) -> Result<(), StorageError>;

@@ -3,8 +3,16 @@
 //!
 //! Schema: tables `nctwin_sessions` and `nctwin_programs` (prefixed, so the database may hold
 //! other things) and `nctwin_schema` with the schema version; created on open if missing, under
-//! an advisory lock so that nodes starting together do not race. Positions are a
-//! `double precision[]`, sent in binary: they round-trip bit for bit.
+//! an advisory lock so that nodes starting together do not race, and migrated in place from
+//! older versions (columns added, rows kept). Positions are a `double precision[]`, sent in
+//! binary: they round-trip bit for bit.
+//!
+//! Several nodes: each storage is opened for one node ([`Lease`]). A session row carries its
+//! lease (`lease_node`, `lease_expires`, on the database's clock): `load` and `claim_session`
+//! take the sessions that are free, expired or already this node's; `renew_leases` extends this
+//! node's; `release_leases` frees them. Every write to a session first locks its row and checks
+//! that this node holds it (`fence`), so a node that lost a session can no longer change it.
+//! Session numbers come from the sequence `nctwin_session_numbers`.
 //!
 //! Durability: each trait method is one transaction (or one statement, which PostgreSQL runs as
 //! one), and the connection sets `synchronous_commit = on`, so a method returns only after the
