@@ -24,6 +24,7 @@ mod orient;
 mod orient_poly;
 mod orient_rot;
 mod orient_vars;
+pub mod retained;
 mod scope;
 mod solid_angles;
 mod spindles;

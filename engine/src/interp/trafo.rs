@@ -214,7 +214,9 @@ pub(super) struct TrafoState {
 #[derive(Debug, Clone)]
 struct Active {
     trafo: ActiveTrafo,
-    /// The selection's arguments, kept to rebuild the transformation after CORRTRAFO.
+    /// The selection's arguments, kept to rebuild the transformation after CORRTRAFO and to
+    /// select it again after a restart (the tool's orientation in them is replaced by the
+    /// active cutting edge's at every selection).
     args: SelectArgs,
     includes_tool: bool,
     /// The real configuration (machine axes, limits) and the derived one the words are read with.
@@ -503,6 +505,27 @@ impl Interpreter {
     fn deselect_current_frame(&mut self) {
         self.modal.work_offset = 0;
         self.pframe = crate::interp::frame::Frame::identity();
+    }
+
+    /// The active transformation's data set number and selection parameters, if one is active.
+    pub(super) fn active_selection(&self) -> Option<(usize, SelectArgs)> {
+        self.trafo.active.as_ref().map(|a| (a.trafo.number, a.args))
+    }
+
+    /// Selects data set `number` with `args` again, the machine standing at `machine` (restart
+    /// of a checkpoint whose transformation stays over reset), with the tool taken into it.
+    pub(super) fn reselect_transformation(
+        &mut self,
+        number: usize,
+        args: &SelectArgs,
+        cfg: &MachineConfig,
+        machine: &AxisVec,
+    ) -> Result<(), Alarm> {
+        self.clear_transformation();
+        self.pos = *machine;
+        self.select_data_set(number, args, cfg, machine, 0)?;
+        self.absorb_tool_into_transformation();
+        Ok(())
     }
 
     /// The transformation after reset and program end: the active one stays (RESET_MODE_MASK
