@@ -48,7 +48,13 @@ fn main() {
             }
             drop(channel.take_events());
         }
-        assert!(channel.alarms().is_empty(), "alarms: {:?}", channel.alarms());
+        // Information-only alarms (10910 near a pole) leave the run going; any other one fails it.
+        let stopping: Vec<_> =
+            channel.alarms().iter().filter(|a| a.clear != nctwin_engine::alarm::Clear::Cancel).collect();
+        assert!(stopping.is_empty(), "alarms: {stopping:?}");
+        for alarm in channel.alarms() {
+            eprintln!("alarm (information) {} line {:?}", alarm.number, alarm.line);
+        }
         println!("ipo cycles {}", channel.ticks());
     }
 }

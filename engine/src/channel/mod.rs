@@ -256,6 +256,9 @@ pub struct Channel {
     /// The move whose transformation the main run has taken over (checked once per move, not
     /// every cycle).
     trafo_tag: Option<u32>,
+    /// The last IPO cycle's orientation solve, from which TRAORI steps the next one (cleared
+    /// at every new move, so each move starts from a direct solve).
+    ori_memo: crate::kinematics::AngleMemo,
     /// The online tool length offset reached by the main run (`$AA_TOFF`).
     toff: toff::OnlineOffset,
 }
@@ -318,6 +321,7 @@ impl Channel {
             trafo: None,
             prep_waits_for_trafo: false,
             trafo_tag: None,
+            ori_memo: Default::default(),
             toff: Default::default(),
             referenced,
             referencing: None,

@@ -12,6 +12,7 @@ impl Channel {
         let meta = tag.and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t));
         if tag != self.trafo_tag {
             self.trafo_tag = tag;
+            self.ori_memo.clear();
             if let Some((_, m)) = meta.filter(|(_, m)| !m.machine_space && m.offsets.trafo != self.trafo) {
                 // A tool change inside a motion block reaches the main run with the move.
                 self.trafo = m.offsets.trafo.clone();
@@ -40,7 +41,7 @@ impl Channel {
                 let mut m = *self.planner.position();
                 let tool = [t.tool[0] + toff[0], t.tool[1] + toff[1], t.tool[2] + toff[2]];
                 let mapped = match self.planner.orientation() {
-                    Some(o) => t.trafo.inverse_oriented(o, &self.machine, &tool, &mut m),
+                    Some(o) => t.trafo.inverse_oriented_stepped(o, &self.machine, &tool, &mut m, &mut self.ori_memo),
                     None => t.trafo.inverse(self.planner.position(), &self.machine, &tool, &mut m),
                 };
                 if mapped.is_ok() {

@@ -21,6 +21,7 @@ mod tracyl;
 mod transmit;
 mod traori;
 
+pub use orient::stepped::AngleMemo;
 pub use traang::Traang;
 pub use tracon::Tracon;
 pub use tracyl::Tracyl;
@@ -105,6 +106,19 @@ pub trait Transformation {
         let bcs = *axes;
         self.inverse(&bcs, prev, tool, axes)
     }
+    /// [`Transformation::inverse_oriented`] for consecutive IPO cycles: `memo` carries the
+    /// last cycle's solve so TRAORI steps its angles instead of computing them afresh (same
+    /// result within 1e-12 rad). Others ignore it.
+    fn inverse_oriented_stepped(
+        &self,
+        o: &Vec3,
+        prev: &AxisVec,
+        tool: &Vec3,
+        axes: &mut AxisVec,
+        _memo: &mut AngleMemo,
+    ) -> Result<(), Unreachable> {
+        self.inverse_oriented(o, prev, tool, axes)
+    }
 }
 
 /// Any of the modelled transformations, as a plain value (cheap to clone and compare).
@@ -175,6 +189,16 @@ impl Transformation for AnyTrafo {
     }
     fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
         dispatch!(self, t => t.inverse_oriented(o, prev, tool, axes))
+    }
+    fn inverse_oriented_stepped(
+        &self,
+        o: &Vec3,
+        prev: &AxisVec,
+        tool: &Vec3,
+        axes: &mut AxisVec,
+        memo: &mut AngleMemo,
+    ) -> Result<(), Unreachable> {
+        dispatch!(self, t => t.inverse_oriented_stepped(o, prev, tool, axes, memo))
     }
 }
 
@@ -272,6 +296,20 @@ impl ActiveTrafo {
     pub fn inverse_oriented(&self, bcs: &AxisVec, o: &Vec3, prev: &AxisVec) -> Result<AxisVec, Unreachable> {
         let mut out = *bcs;
         self.trafo.inverse_oriented(o, prev, &self.tool, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`ActiveTrafo::inverse_oriented`] for consecutive points of one path, the solve stepped
+    /// from the last point's in `memo` (see [`Transformation::inverse_oriented_stepped`]).
+    pub fn inverse_oriented_stepped(
+        &self,
+        bcs: &AxisVec,
+        o: &Vec3,
+        prev: &AxisVec,
+        memo: &mut AngleMemo,
+    ) -> Result<AxisVec, Unreachable> {
+        let mut out = *bcs;
+        self.trafo.inverse_oriented_stepped(o, prev, &self.tool, &mut out, memo)?;
         Ok(out)
     }
 }

@@ -21,7 +21,7 @@
 //! Conservative by construction between samples only to the sampling density; the property
 //! tests check the resulting IPO samples against every machine axis' limits.
 
-use super::{ActiveTrafo, Transformation, Unreachable};
+use super::{ActiveTrafo, AngleMemo, Transformation, Unreachable};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{AxisVec, Move, Path};
@@ -176,10 +176,12 @@ fn plan_piece(
     let mut ms: Vec<f64> = Vec::with_capacity(us.len() * ns);
     let mut prev = *start;
     let mut p = [0.0; MAX_CHANNEL_AXES];
+    // The samples follow each other closely: the orientation solve steps from the last one.
+    let mut memo = AngleMemo::default();
     for (i, &u) in us.iter().enumerate() {
         sub.at(u, &mut p);
         let m = match sub.orientation_at(u) {
-            Some(o) => active.inverse_oriented(&p, &o, &prev)?,
+            Some(o) => active.inverse_oriented_stepped(&p, &o, &prev, &mut memo)?,
             None => active.inverse(&p, &prev)?,
         };
         if i == 0 && leaves_by_a_jump(start, &m, slots, cfg) {

@@ -16,6 +16,7 @@
 
 use super::orient::rotation::zero_normal;
 use super::orient::solve::Turn;
+use super::orient::stepped::AngleMemo;
 use super::orient::vec3::{dot, normalize, scale};
 use super::orient::{Chain, ChainKind};
 use super::seventh::Seventh;
@@ -302,8 +303,18 @@ impl Traori {
 
     #[inline]
     fn raw_turns(&self, o: &Vec3, hint: &[f64; 3]) -> Result<[[Turn; 3]; 2], Unreachable> {
+        self.raw_turns_stepped(o, hint, &mut AngleMemo::default())
+    }
+
+    #[inline]
+    fn raw_turns_stepped(
+        &self,
+        o: &Vec3,
+        hint: &[f64; 3],
+        memo: &mut AngleMemo,
+    ) -> Result<[[Turn; 3]; 2], Unreachable> {
         let o = normalize(o).ok_or(Unreachable)?;
-        self.chain.solve_turns(&o, hint).ok_or(Unreachable)
+        self.chain.solve_turns_stepped(&o, hint, memo).ok_or(Unreachable)
     }
 
     /// Chain-ordered angles → role-ordered values via `f`.
@@ -347,9 +358,15 @@ impl Traori {
     /// Of the (up to) two solutions for orientation `o` the one whose axes all fit their
     /// software limits (after shifting by whole turns) with the least weighted travel from
     /// `prev`: its positions and its effective angles (with cosine and sine), in chain order.
+    /// The angles are stepped from the last cycle's in `memo` (an empty one: direct).
     #[inline]
-    fn nearest_solution(&self, o: &Vec3, prev: &AxisVec) -> Result<([f64; 3], [Turn; 3]), Unreachable> {
-        let sols = self.raw_turns(o, &self.hint(Some(prev)))?;
+    fn nearest_solution(
+        &self,
+        o: &Vec3,
+        prev: &AxisVec,
+        memo: &mut AngleMemo,
+    ) -> Result<([f64; 3], [Turn; 3]), Unreachable> {
+        let sols = self.raw_turns_stepped(o, &self.hint(Some(prev)), memo)?;
         let mut best: Option<(f64, usize, [f64; 3])> = None;
         for (k, s) in sols.iter().enumerate() {
             let Some((cost, pos)) = self.placed(s, prev) else { continue };
@@ -433,7 +450,7 @@ impl Transformation for Traori {
     /// fits the limits.
     /// With a 7th axis `o` is relative to the workpiece at the 7th axis position in `axes`.
     fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let (pos, _) = self.nearest_solution(&self.workpiece_to_chain(o, axes), prev)?;
+        let (pos, _) = self.nearest_solution(&self.workpiece_to_chain(o, axes), prev, &mut AngleMemo::default())?;
         self.write_rotary(&pos, axes);
         Ok(())
     }
@@ -447,6 +464,20 @@ impl Transformation for Traori {
     /// With a 7th axis `o` and the tip are relative to the workpiece, which the 7th axis (its
     /// interpolated value in `axes`) has turned.
     fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        self.inverse_oriented_stepped(o, prev, tool, axes, &mut AngleMemo::default())
+    }
+
+    /// [`Traori::inverse_oriented`] with the solve's angles stepped from the last cycle's in
+    /// `memo` instead of `atan2` (within 1e-12 rad of the direct solve, see
+    /// [`super::orient::stepped`]).
+    fn inverse_oriented_stepped(
+        &self,
+        o: &Vec3,
+        prev: &AxisVec,
+        tool: &Vec3,
+        axes: &mut AxisVec,
+        memo: &mut AngleMemo,
+    ) -> Result<(), Unreachable> {
         let (o, tip) = match self.seventh {
             None => (*o, self.point(axes)),
             Some(s) => {
@@ -455,11 +486,11 @@ impl Transformation for Traori {
             }
         };
         let (pos, turns) = match self.third_slot() {
-            None => self.nearest_solution(&o, prev)?,
+            None => self.nearest_solution(&o, prev, memo)?,
             Some(k) => {
                 let mut p = *prev;
                 p[k] = axes[k];
-                self.nearest_solution(&o, &p)?
+                self.nearest_solution(&o, &p, memo)?
             }
         };
         let pose = self.chain.pose_turns(&turns);

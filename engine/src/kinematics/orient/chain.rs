@@ -13,7 +13,8 @@
 //! Missing axes (3-/4-axis variants) are the identity rotation; a third axis (6-axis, T only)
 //! sits between axis 2 and the tool with the offset `l23` before it.
 
-use super::solve::{Turn, angle_about, two_axes_turns};
+use super::solve::{Turn, angle_about, two_axes_turns_stepped};
+use super::stepped::AngleMemo;
 use super::vec3::{Rot, add, sub};
 use crate::kinematics::Vec3;
 
@@ -128,6 +129,13 @@ impl Chain {
     /// 3rd turn is `hint[2]` with a 3rd axis and no rotation without.
     #[inline]
     pub fn solve_turns(&self, o: &Vec3, hint: &[f64; 3]) -> Option<[[Turn; 3]; 2]> {
+        self.solve_turns_stepped(o, hint, &mut AngleMemo::default())
+    }
+
+    /// [`Chain::solve_turns`] once per IPO cycle, the angles stepped from the last cycle's in
+    /// `memo` (see [`super::stepped`]).
+    #[inline]
+    pub fn solve_turns_stepped(&self, o: &Vec3, hint: &[f64; 3], memo: &mut AngleMemo) -> Option<[[Turn; 3]; 2]> {
         let [v1, v2, v3] = &self.v;
         let third = if self.axes == 3 { Turn::new(hint[2]) } else { Turn::ZERO };
         if self.axes == 1 {
@@ -143,12 +151,12 @@ impl Chain {
             ChainKind::Tool => {
                 let p =
                     if self.axes == 3 { Rot::about_cs(v3, third.cos, third.sin).apply(&self.base) } else { self.base };
-                two_axes_turns(v1, v2, &p, o, [hint[0], hint[1]])?
+                two_axes_turns_stepped(v1, v2, &p, o, [hint[0], hint[1]], memo)?
             }
-            ChainKind::Part => two_axes_turns(v1, v2, o, &self.base, [hint[0], hint[1]])?,
+            ChainKind::Part => two_axes_turns_stepped(v1, v2, o, &self.base, [hint[0], hint[1]], memo)?,
             ChainKind::Mixed => {
                 // R(v2, −α2)·R(v1, α1)·b = o: subproblem 2 with the axes swapped.
-                let s = two_axes_turns(v2, v1, &self.base, o, [-hint[1], hint[0]])?;
+                let s = two_axes_turns_stepped(v2, v1, &self.base, o, [-hint[1], hint[0]], memo)?;
                 s.map(|[t1, t2]| [t2, t1.reversed()])
             }
         };

@@ -4,6 +4,7 @@
 //!
 //! - [`vec3`]: vector helpers and rotation matrices on `[f64; 3]`.
 //! - [`solve`]: Paden–Kahan subproblems 1 and 2 (which angles turn one vector into another).
+//! - [`stepped`]: the angles of [`solve`] stepped from one IPO cycle to the next without `atan2`.
 //! - [`chain`]: the vector chain of tool, part and mixed kinematics, forward and inverse.
 //! - [`angles`]: ORIEULER, ORIRPY, ORIRPY2 and ORIVIRT1/2 angles ↔ orientation vector.
 //! - [`interp`]: great-circle and cone interpolation of the orientation.
@@ -14,6 +15,7 @@ pub mod chain;
 pub mod interp;
 pub mod rotation;
 pub mod solve;
+pub mod stepped;
 pub mod vec3;
 
 pub use chain::{Chain, ChainKind, Pose};

@@ -7,6 +7,7 @@
 //! the in-plane coordinates of `p`, `c` and `q` (four `atan2`, two of them exact constants for
 //! the usual perpendicular axes), see [`two_axes`].
 
+use super::stepped::AngleMemo;
 use super::vec3::{cross, dot, scale, sub};
 use crate::kinematics::Vec3;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -78,12 +79,6 @@ impl Turn {
         Turn { angle, cos, sin }
     }
 
-    /// The direction of the plane vector (x, y), not both zero.
-    fn of(y: f64, x: f64) -> Turn {
-        let r = (x * x + y * y).sqrt();
-        Turn { angle: atan2(y, x), cos: x / r, sin: y / r }
-    }
-
     /// The opposite rotation.
     pub fn reversed(self) -> Turn {
         Turn { angle: -self.angle, cos: self.cos, sin: -self.sin }
@@ -122,6 +117,21 @@ pub fn two_axes(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) -> Opt
 /// [`two_axes`] with the cosine and sine of every angle.
 #[inline]
 pub fn two_axes_turns(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) -> Option<[[Turn; 2]; 2]> {
+    two_axes_turns_stepped(w1, w2, p, q, hint, &mut AngleMemo::default())
+}
+
+/// [`two_axes_turns`] once per IPO cycle: the four angles are stepped from the last cycle's
+/// in `memo` (see [`super::stepped`]) instead of four `atan2`. An empty memo gives the direct
+/// result bit for bit.
+#[inline]
+pub fn two_axes_turns_stepped(
+    w1: &Vec3,
+    w2: &Vec3,
+    p: &Vec3,
+    q: &Vec3,
+    hint: [f64; 2],
+    memo: &mut AngleMemo,
+) -> Option<[[Turn; 2]; 2]> {
     let tol2 = POLE_TOL * POLE_TOL;
     // |p × w2|² and |q × w1|²: the pole tests, and below the terms of γ².
     let (pw2, qw1) = (cross(p, w2), cross(q, w1));
@@ -161,11 +171,11 @@ pub fn two_axes_turns(w1: &Vec3, w2: &Vec3, p: &Vec3, q: &Vec3, hint: [f64; 2]) 
     }
     let g = g2.max(0.0).sqrt();
     // q and p are off the axes here (the pole tests above): their in-plane parts are not zero.
-    let phi_q = Turn::of(dot(q, &n), w2q - c12 * w1q);
-    let phi_p = Turn::of(-dot(p, &n), w1p - c12 * w2p);
+    let phi_q = memo.of(0, dot(q, &n), w2q - c12 * w1q);
+    let phi_p = memo.of(1, -dot(p, &n), w1p - c12 * w2p);
     // c lies on w1 (w2) when both its in-plane coordinates vanish: θ1 (θ2) is free.
-    let chi = (n2 * (beta * beta + g * g) >= tol2).then(|| Turn::of(g, beta));
-    let psi = (n2 * (alpha * alpha + g * g) >= tol2).then(|| Turn::of(g, alpha));
+    let chi = (n2 * (beta * beta + g * g) >= tol2).then(|| memo.of(2, g, beta));
+    let psi = (n2 * (alpha * alpha + g * g) >= tol2).then(|| memo.of(3, g, alpha));
     let t1 = |chi: Turn| phi_q.minus(chi);
     let t2 = |psi: Turn| psi.minus(phi_p);
     let (free1, free2) = (|| Turn::new(hint[0]), || Turn::new(hint[1]));
