@@ -257,7 +257,7 @@ pub struct Channel {
     /// every cycle).
     trafo_tag: Option<u32>,
     /// The last IPO cycle's orientation solve, from which TRAORI steps the next one (cleared
-    /// at every new move, so each move starts from a direct solve).
+    /// at every new move and at rest, so those positions are solved directly).
     ori_memo: crate::kinematics::AngleMemo,
     /// The online tool length offset reached by the main run (`$AA_TOFF`).
     toff: toff::OnlineOffset,

@@ -10,9 +10,14 @@ impl Channel {
     pub(super) fn update_machine_position(&mut self) {
         let tag = self.planner.position_tag();
         let meta = tag.and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t));
+        // A new move, and every position at rest (a block end with a stop, a hold), is solved
+        // directly: stepped angles differ from it in the last digits, which a modulo axis at
+        // rest would show (−1e-14° displays as 360°).
+        if tag != self.trafo_tag || self.planner.velocity() == 0.0 {
+            self.ori_memo.clear();
+        }
         if tag != self.trafo_tag {
             self.trafo_tag = tag;
-            self.ori_memo.clear();
             if let Some((_, m)) = meta.filter(|(_, m)| !m.machine_space && m.offsets.trafo != self.trafo) {
                 // A tool change inside a motion block reaches the main run with the move.
                 self.trafo = m.offsets.trafo.clone();
