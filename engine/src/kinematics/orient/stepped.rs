@@ -56,11 +56,12 @@ impl AngleMemo {
         let slot = &mut self.slots[k];
         let next = match *slot {
             Some(last) if last.stepped < EXACT_EVERY => {
-                // (cos δ, sin δ) of the turn from the last direction to this one.
-                let cd = cos * last.turn.cos + sin * last.turn.sin;
-                let sd = sin * last.turn.cos - cos * last.turn.sin;
-                if cd > 0.0 && sd.abs() <= MAX_STEP * cd {
-                    let angle = wrap(last.turn.angle + atan_small(sd / cd));
+                // (x, y) turned back by the last angle: r·(cos δ, sin δ) of the turn since. Read
+                // off (x, y) itself, not the quotients, so it runs beside the square root.
+                let xr = x * last.turn.cos + y * last.turn.sin;
+                let yr = y * last.turn.cos - x * last.turn.sin;
+                if xr > 0.0 && yr.abs() <= MAX_STEP * xr {
+                    let angle = wrap(last.turn.angle + atan_small(yr / xr));
                     Slot { turn: Turn { angle, cos, sin }, stepped: last.stepped + 1 }
                 } else {
                     Slot { turn: Turn { angle: atan2(y, x), cos, sin }, stepped: 0 }
