@@ -252,6 +252,9 @@ where
                 }
             }
         }
+        if !pending && states.has_changed().unwrap_or(false) {
+            pending = true;
+        }
         let now = Instant::now();
         if pending && gate.is_open(now) {
             pending = false;
@@ -526,6 +529,71 @@ mod tests {
 
         h.client_gone.take().map(|tx| tx.send(()));
         assert_eq!(h.task.await.expect("pump"), StreamEnd::ClientGone);
+    }
+
+    /// A sink that records what each flush wrote.
+    struct Recorder {
+        writes: Arc<std::sync::Mutex<Vec<Vec<String>>>>,
+        buffer: Vec<String>,
+    }
+
+    impl Sink<Utf8Bytes> for Recorder {
+        type Error = ();
+        fn poll_ready(
+            self: std::pin::Pin<&mut Self>,
+            _: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            std::task::Poll::Ready(Ok(()))
+        }
+        fn start_send(self: std::pin::Pin<&mut Self>, item: Utf8Bytes) -> Result<(), ()> {
+            self.get_mut().buffer.push(item.to_string());
+            Ok(())
+        }
+        fn poll_flush(
+            self: std::pin::Pin<&mut Self>,
+            _: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            let this = self.get_mut();
+            if !this.buffer.is_empty() {
+                this.writes.lock().expect("writes").push(std::mem::take(&mut this.buffer));
+            }
+            std::task::Poll::Ready(Ok(()))
+        }
+        fn poll_close(
+            self: std::pin::Pin<&mut Self>,
+            cx: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            self.poll_flush(cx)
+        }
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn an_event_and_a_due_state_go_out_in_one_write() {
+        let mut channel = Channel::from_preset("mill-3axis", "").expect("preset");
+        let (states, state_rx) = watch::channel(Arc::new(channel.snapshot()));
+        let (events, event_rx) = broadcast::channel(16);
+        let writes = Arc::new(std::sync::Mutex::new(Vec::new()));
+        let sink = Recorder { writes: writes.clone(), buffer: Vec::new() };
+        let (_replies_tx, replies) = mpsc::channel(1);
+        let task = tokio::spawn(async move {
+            let frames = FrameCache::default();
+            pump(sink, std::future::pending(), state_rx, event_rx, replies, Duration::from_millis(50), &frames).await
+        });
+        // The first state goes out at once; the next slot (50 ms) opens at 37.5 ms.
+        tokio::time::sleep(Duration::from_millis(45)).await;
+        assert_eq!(writes.lock().expect("writes").len(), 1);
+
+        channel.run_program("G1 X10 F600\nM30").expect("program");
+        channel.step();
+        events.send(Event::ProgramEnded).expect("a subscriber");
+        states.send_replace(Arc::new(channel.snapshot()));
+        tokio::time::sleep(Duration::from_millis(1)).await;
+        let writes = writes.lock().expect("writes").clone();
+        assert_eq!(writes.len(), 2, "{writes:?}");
+        assert_eq!(writes[1].len(), 2, "the event and the state in one write: {writes:?}");
+        assert!(writes[1][0].starts_with("{\"type\":\"event\""), "{writes:?}");
+        assert!(writes[1][1].starts_with("{\"type\":\"state\""), "{writes:?}");
+        task.abort();
     }
 
     #[tokio::test(start_paused = true)]
