@@ -8,6 +8,9 @@
 pub mod arc;
 mod calls;
 mod corners;
+mod corrtrafo;
+mod delobj;
+mod effect_calls;
 mod eval;
 mod flow;
 pub mod frame;
@@ -15,10 +18,13 @@ mod frame_vars;
 pub mod gcodes;
 mod jump_target;
 mod modal;
+mod ori_curve;
+mod ori_direct;
 mod orient;
 mod orient_poly;
 mod orient_rot;
 mod orient_vars;
+pub mod retained;
 mod scope;
 mod solid_angles;
 mod spindles;
@@ -132,6 +138,10 @@ pub const NEWCONF: &str = "NEWCONF";
 
 /// Prefix of the data-write entry of `DELOBJ("type")`, followed by the object type.
 pub const DELOBJ: &str = "DELOBJ:";
+
+/// Prefix of the data-write entry that rebuilds the channel's data set of chain record n
+/// (followed by n) after CORRTRAFO corrected its `$NK_OFF_DIR`.
+pub const CORRTRAFO: &str = "CORRTRAFO:";
 
 /// What one call of [`Interpreter::prepare_next`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -833,6 +843,7 @@ impl Interpreter {
         let tangent = end_tangent(&current, &target, geo, (pa, po, papp), circle.as_ref());
         let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, tangent, line)?;
         self.modal.ori.last_change = ori.as_ref().and_then(OriPath::end_direction);
+        self.modal.ori.upper = ori.as_ref().and_then(|o| o.curve).map(|c| c.upper[1]);
         if let Some(theta) = self.tool_rotation(words, &frame, &start, &mut end, tangent, line)? {
             self.modal.ori.theta = theta;
         }
@@ -853,8 +864,9 @@ impl Interpreter {
             // No geometry axis moves: the feed applies to the other axes together, or to the
             // angle the orientation turns through (degrees) when it is interpolated as a vector.
             length = match &path.ori {
-                Some(o) => o.angle.abs().to_degrees(),
-                None => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
+                Some(o) if o.angle.abs() > 1e-12 => o.angle.abs().to_degrees(),
+                // Also a constant orientation held on the workpiece the 7th axis turns.
+                _ => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
             };
         }
 

@@ -303,6 +303,10 @@ pub static DEFS: &[Def] = &[
     def("TRAFO6_BASE_ORIENT_NORMAL_1", 24576, C, Kind::Real, 3, Default::Indexed(default_unit_x), -INF, INF),
     def("TRAFO5_TCARR_NO_1", 24582, C, Kind::Int, 1, Default::Int(0), 0.0, 9999.0),
     def("TRAFO5_ORIAX_ASSIGN_TAB_1", 24585, C, Kind::Int, 3, Default::Int(0), 0.0, MAX_CHANNEL_AXES as f64),
+    // 7th axis of the generic 7-axis transformation: angle offset and direction. The data list
+    // names set 4 as 25394/25395; sets 1 and 2 follow the 245xx/246xx pattern of TRAFO5_.
+    def("TRAFO7_EXT_ROT_AX_OFFSET_1", 24594, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRAFO7_EXT_AXIS1_1", 24595, C, Kind::Real, 3, Default::Indexed(default_unit_z), -INF, INF),
     // Orientation transformation data set 2 (TRAFO5_/TRAFO6_, REFERENCE §6.2; set 2 = set 1 + 100).
     def("TRAFO5_PART_OFFSET_2", 24600, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
     def("TRAFO5_ROT_AX_OFFSET_2", 24610, C, Kind::Real, 3, Default::Real(0.0), -360.0, 360.0),
@@ -322,6 +326,8 @@ pub static DEFS: &[Def] = &[
     def("TRAFO6_BASE_ORIENT_NORMAL_2", 24676, C, Kind::Real, 3, Default::Indexed(default_unit_x), -INF, INF),
     def("TRAFO5_TCARR_NO_2", 24682, C, Kind::Int, 1, Default::Int(0), 0.0, 9999.0),
     def("TRAFO5_ORIAX_ASSIGN_TAB_2", 24685, C, Kind::Int, 3, Default::Int(0), 0.0, MAX_CHANNEL_AXES as f64),
+    def("TRAFO7_EXT_ROT_AX_OFFSET_2", 24694, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRAFO7_EXT_AXIS1_2", 24695, C, Kind::Real, 3, Default::Indexed(default_unit_z), -INF, INF),
     // TRAANG data sets 1 and 2 (angle of the inclined axis, base tool, reserves of the parallel axis).
     def("TRAANG_ANGLE_1", 24700, C, Kind::Real, 1, Default::Real(0.0), -90.0, 90.0),
     def("TRAANG_BASE_TOOL_1", 24710, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
@@ -427,6 +433,12 @@ pub static DEFS: &[Def] = &[
     // ZX'Z'', 2 RPY XY'Z'', 3 RPY ZY'X'', 4/5 ORIAX_TURN_TAB_1/2 (seed 003, F2 3.8).
     sd("CART_JOG_MODE", 42650, C, Kind::Int, Default::Int(0), 0.0, 1799.0),
     sd("ORI_JOG_MODE", 42660, C, Kind::Int, Default::Int(0), 0.0, 5.0),
+    // SD41610/SD41611: the largest change CORRTRAFO makes to an offset vector (mm) / turns a
+    // direction (degrees) unless Corr_Mode's thousands digit suppresses the check. SD41611 and
+    // its meaning are the manual's (K12 §4.3.2); SD41610's number and both defaults are this
+    // product's choice (from memory / not in the consulted sources).
+    sd("CORR_TRAFO_LIN_MAX", 41610, N, Kind::Real, Default::Real(1.0), 0.0, INF),
+    sd("CORR_TRAFO_DIR_MAX", 41611, N, Kind::Real, Default::Real(1.0), 0.0, 180.0),
     // SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
     sd("TOCARR_FINE_CORRECTION", 42974, C, Kind::Bool, Default::Bool(false), 0.0, 1.0),
     // SD42980 TOFRAME_MODE: 0/1 as MD21110; 2000 X/Y compromise, 2001 new X in the old X-Z
