@@ -11,6 +11,7 @@ mod corners;
 mod eval;
 mod flow;
 pub mod frame;
+mod frame_cache;
 mod frame_vars;
 pub mod gcodes;
 mod jump_target;
@@ -48,6 +49,7 @@ pub use corners::Corner;
 use flow::Flow;
 pub use frame::Frame;
 use frame::SystemFrames;
+use frame_cache::{FrameCache, Tracked};
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
 use scope::sys_view;
@@ -170,11 +172,13 @@ pub struct Interpreter {
     /// R parameters and user variables.
     vars: Variables,
     /// The programmable frame ($P_PFRAME: TRANS, ROT, SCALE, MIRROR ...).
-    pframe: Frame,
+    pframe: Tracked<Frame>,
     /// The system frames of the frame chain.
-    system: SystemFrames,
+    system: Tracked<SystemFrames>,
     /// `$P_IFRAME` as a program wrote it; `None`: the selected settable frame `$P_UIFR[n]`.
-    iframe: Option<Frame>,
+    iframe: Tracked<Option<Frame>>,
+    /// The active frame as last built from the links above and the machine data.
+    frame_cache: FrameCache,
     /// Master spindle and each spindle's programmed speed and direction.
     spindles: spindles::Spindles,
     /// Read position in the active program level, if one runs.
@@ -209,9 +213,10 @@ impl Interpreter {
             pos: [0.0; MAX_CHANNEL_AXES],
             offsets: Offsets::default(),
             vars: Variables::default(),
-            pframe: Frame::identity(),
-            system: SystemFrames::default(),
-            iframe: None,
+            pframe: Tracked::new(Frame::identity()),
+            system: Tracked::new(SystemFrames::default()),
+            iframe: Tracked::new(None),
+            frame_cache: FrameCache::default(),
             spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
@@ -237,8 +242,8 @@ impl Interpreter {
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
-        self.pframe = Frame::identity();
-        self.iframe = None;
+        *self.pframe = Frame::identity();
+        *self.iframe = None;
         self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
@@ -386,7 +391,7 @@ impl Interpreter {
         self.modal.apply(&words, cfg, line)?;
         if words.work_offset.is_some() {
             // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
-            self.iframe = None;
+            *self.iframe = None;
         }
         self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
@@ -582,7 +587,7 @@ impl Interpreter {
                 Frame::scaling(geo, &factors)
             }
         };
-        self.pframe = if op.additive { self.pframe.then(&g, geo) } else { g };
+        *self.pframe = if op.additive { self.pframe.then(&g, geo) } else { g };
         Ok(())
     }
 
@@ -941,9 +946,15 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
 }
 
 impl Interpreter {
-    /// `$P_ACTFRAME`: the whole frame chain (see `frame_vars.rs`), from the BCS towards the WCS.
-    fn active_frame(&self, cfg: &MachineConfig) -> Frame {
-        sys_view!(self, cfg).chain(None)
+    /// `$P_ACTFRAME`: the whole frame chain (see `frame_vars.rs`), from the BCS towards the WCS;
+    /// rebuilt only when an input changed (see `frame_cache.rs`).
+    fn active_frame(&mut self, cfg: &MachineConfig) -> Frame {
+        // Each mark is taken (not short-circuited) so that all three are cleared.
+        let changed = [self.pframe.take_changed(), self.system.take_changed(), self.iframe.take_changed()];
+        let (work_offset, rotary_slot) = (self.modal.work_offset, self.trafo.rotary_slot());
+        self.frame_cache
+            .get(cfg, work_offset, rotary_slot, changed.contains(&true), || sys_view!(self, cfg).chain(None))
+            .clone()
     }
 
     /// The frame a block's positions go through: the active frame, or what G53 (settable,

@@ -439,7 +439,7 @@ impl Interpreter {
     /// program selects its frames again afterwards (the manual's TRACYL sequence).
     fn deselect_current_frame(&mut self) {
         self.modal.work_offset = 0;
-        self.pframe = crate::interp::frame::Frame::identity();
+        *self.pframe = crate::interp::frame::Frame::identity();
     }
 
     /// The transformation after reset and program end: the active one stays (RESET_MODE_MASK
