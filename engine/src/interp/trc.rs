@@ -283,7 +283,7 @@ impl Compensator {
                 let end = hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp);
                 p.mv = rebuild(&p, Path::line(from, end), limits);
             }
-            self.emit(p.item_with(p.mv.clone()), out);
+            self.emit(p.into_item(), out);
             return Ok(());
         };
         self.block_plane_move = true;
@@ -469,7 +469,7 @@ impl Compensator {
             let from = self.from(p.mv.path.start);
             p.mv = rebuild(&p, Path::line(from, p.mv.path.end), limits);
         }
-        self.emit(p.item_with(p.mv.clone()), out);
+        self.emit(p.into_item(), out);
         Ok(())
     }
 
@@ -487,7 +487,7 @@ impl Compensator {
                         None => p.mv.path.end,
                     };
                     p.mv = rebuild(&p, Path::line(from, end), limits);
-                    self.emit(p.item_with(p.mv.clone()), out);
+                    self.emit(p.into_item(), out);
                 }
             }
         }
@@ -522,6 +522,14 @@ impl Compensator {
 }
 
 impl Prepared {
+    /// The item with the prepared move moved into it (no copy of the move or the offsets).
+    fn into_item(self) -> Item {
+        match self.item {
+            Item::Move { line, offsets, .. } => Item::Move { mv: self.mv, line, offsets },
+            other => other,
+        }
+    }
+
     fn item_with(&self, mv: Move) -> Item {
         match &self.item {
             Item::Move { line, offsets, .. } => Item::Move { mv, line: *line, offsets: offsets.clone() },
