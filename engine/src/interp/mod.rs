@@ -73,6 +73,10 @@ pub struct Offsets {
     pub toff: [f64; 3],
 }
 
+/// The offsets an item carries: shared, because consecutive blocks mostly have the same
+/// offsets and items are moved several times on their way to the main run.
+pub type SharedOffsets = std::sync::Arc<Offsets>;
+
 /// Why the main run stops.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StopKind {
@@ -94,12 +98,12 @@ pub enum Item {
     Move {
         mv: Move,
         line: u32,
-        offsets: Offsets,
+        offsets: SharedOffsets,
     },
     /// A block without motion that changes the offsets shown (T, D, G54, ...).
     Offsets {
         line: u32,
-        offsets: Offsets,
+        offsets: SharedOffsets,
     },
     Dwell {
         seconds: f64,
@@ -168,7 +172,10 @@ pub struct Interpreter {
     modal: Modal,
     /// Programmed end position of the last block in channel-axis (machine) coordinates.
     pos: AxisVec,
-    offsets: Offsets,
+    /// Offsets in effect; tracked, so that items share them while no block changes them.
+    offsets: Tracked<Offsets>,
+    /// `offsets` as last handed out with an item (see [`Interpreter::shared_offsets`]).
+    published: SharedOffsets,
     /// R parameters and user variables.
     vars: Variables,
     /// The programmable frame ($P_PFRAME: TRANS, ROT, SCALE, MIRROR ...).
@@ -211,7 +218,8 @@ impl Interpreter {
         Interpreter {
             modal: Modal::reset(cfg),
             pos: [0.0; MAX_CHANNEL_AXES],
-            offsets: Offsets::default(),
+            offsets: Tracked::new(Offsets::default()),
+            published: SharedOffsets::default(),
             vars: Variables::default(),
             pframe: Tracked::new(Frame::identity()),
             system: Tracked::new(SystemFrames::default()),
@@ -302,8 +310,37 @@ impl Interpreter {
     }
 
     /// Offsets currently selected by preprocessing.
-    pub fn offsets(&self) -> Offsets {
-        self.offsets.clone()
+    pub fn offsets(&self) -> SharedOffsets {
+        SharedOffsets::new((*self.offsets).clone())
+    }
+
+    /// The current offsets for an item: the ones handed out last while they are unchanged.
+    fn shared_offsets(&mut self) -> SharedOffsets {
+        if self.offsets.take_changed() && *self.published != *self.offsets {
+            self.published = SharedOffsets::new((*self.offsets).clone());
+        }
+        self.published.clone()
+    }
+
+    /// Sets the block's frame, tool vector and G functions, touching the offsets only where
+    /// they change (most blocks change none of them).
+    fn refresh_offsets(&mut self, cfg: &MachineConfig) {
+        let frame = self.active_frame(cfg);
+        if self.offsets.frame != frame {
+            self.offsets.frame = frame;
+        }
+        let tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
+        if self.offsets.tool != tool {
+            self.offsets.tool = tool;
+        }
+        self.refresh_gcodes();
+    }
+
+    fn refresh_gcodes(&mut self) {
+        let gcodes = gcodes::GCodes::of(&self.modal);
+        if self.offsets.gcodes != gcodes {
+            self.offsets.gcodes = gcodes;
+        }
     }
 
     pub fn modal(&self) -> &Modal {
@@ -380,7 +417,7 @@ impl Interpreter {
         if words.newconf {
             self.data_writes.push((line, NEWCONF.to_string()));
         }
-        let offsets_before = self.offsets.clone();
+        let offsets_before = self.shared_offsets();
         let selection = {
             let sys = sys_view!(self, cfg);
             trafo::selection(block, |e| eval::eval_f64(e, &scope::Ctx { vars: &self.vars, sys: &sys }, line))?
@@ -393,7 +430,7 @@ impl Interpreter {
             // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
             *self.iframe = None;
         }
-        self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
+        self.refresh_gcodes();
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
             self.modal.feed = Some(f);
         }
@@ -414,8 +451,7 @@ impl Interpreter {
             self.write_chain_frame(*which, f.clone());
         }
         self.holder_block(&words, cfg, line, out)?;
-        self.offsets.frame = self.active_frame(cfg);
-        self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
+        self.refresh_offsets(cfg);
         self.absorb_tool_into_transformation();
         self.online_tool_offset(&words.toff, cfg);
 
@@ -445,7 +481,7 @@ impl Interpreter {
             let axis = self.spindles.master().expect("checked in spindle_position");
             // With compensation active SPOS is a block without motion in the plane.
             self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
-            let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
+            let item = Item::Move { mv: mv.clone(), line, offsets: self.shared_offsets() };
             let approach = self.modal.approach;
             let prepared = trc::Prepared { mv, feed, line, item, approach, corner: None };
             let comp = self.compensation(cfg, &words, line)?;
@@ -471,15 +507,16 @@ impl Interpreter {
         {
             let (mv, feed) = self.motion(&words, cfg, line)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
-            let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
+            let item = Item::Move { mv: mv.clone(), line, offsets: self.shared_offsets() };
             let comp = self.compensation(cfg, &words, line)?;
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
             let prepared = trc::Prepared { mv, feed, line, item, approach, corner };
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
-        } else if self.offsets != offsets_before && !positioned {
-            out.push(Item::Offsets { line, offsets: self.offsets.clone() });
+        } else if !positioned && !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
+            // A new shared value is made only when the offsets differ from the last one.
+            out.push(Item::Offsets { line, offsets: self.shared_offsets() });
         }
 
         if let Some(text) = &words.message {
@@ -925,20 +962,37 @@ fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>)
 
 /// Alarm 10720 when any point of the path lies beyond a software limit switch.
 fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<(), Alarm> {
-    let (lo, hi) = path.extent();
+    // The exact extremes of an arc (trigonometry per axis) only for axes near a limit.
+    let mut exact: Option<(AxisVec, AxisVec)> = None;
     for k in 0..cfg.channel_axes.len() {
         let ax = cfg.axis(k);
         if ax.modulo.is_some() || ax.spindle.is_some() {
             continue;
         }
-        let moves = (path.end[k] - path.start[k]).abs() > 1e-12 || path.arc.is_some_and(|a| a.moves_axis(k));
+        let (s, e) = (path.start[k], path.end[k]);
+        let moves = (e - s).abs() > 1e-12 || path.arc.is_some_and(|a| a.moves_axis(k));
         if !moves {
             continue;
         }
-        if hi[k] > ax.limit_plus + 1e-9 {
+        let (lo, hi) = match &path.arc {
+            None => (s.min(e), s.max(e)),
+            Some(a) => {
+                // Every point of the arc lies within |e − s| + 4·r·ρ of its start (ρ: the
+                // circle's share in this axis): the linear part is at most |e − s| plus a
+                // chord, and the circle adds at most a diameter.
+                let rho = (a.u[k] * a.u[k] + a.v[k] * a.v[k]).sqrt();
+                let reach = (e - s).abs() + 4.0 * a.radius.abs() * rho;
+                if s + reach <= ax.limit_plus + 1e-9 && s - reach >= ax.limit_minus - 1e-9 {
+                    continue;
+                }
+                let (lo, hi) = exact.get_or_insert_with(|| path.extent());
+                (lo[k], hi[k])
+            }
+        };
+        if hi > ax.limit_plus + 1e-9 {
             return Err(Alarm::software_limit(line, &ax.name, true));
         }
-        if lo[k] < ax.limit_minus - 1e-9 {
+        if lo < ax.limit_minus - 1e-9 {
             return Err(Alarm::software_limit(line, &ax.name, false));
         }
     }
