@@ -27,6 +27,11 @@ pub enum ApiError {
     Conflict(String),
     #[error("session `{0}` does not exist")]
     SessionNotFound(String),
+    /// Several nodes on one database: another node holds the session's lease (421).
+    #[error(
+        "session `{session}` is served by node `{node}` (its lease runs for another {seconds_left:.0} s unless renewed); send the request to that node"
+    )]
+    WrongNode { session: String, node: String, seconds_left: f64 },
     /// The session was deleted (or the server shut down) while the request waited for it.
     #[error("session `{0}` has ended")]
     SessionEnded(String),
@@ -72,6 +77,7 @@ impl ApiError {
             ApiError::Unauthorized(_) => StatusCode::UNAUTHORIZED,
             ApiError::Forbidden(_) => StatusCode::FORBIDDEN,
             ApiError::TooManyRequests { .. } => StatusCode::TOO_MANY_REQUESTS,
+            ApiError::WrongNode { .. } => StatusCode::MISDIRECTED_REQUEST,
             ApiError::StorageUnavailable(_) => StatusCode::SERVICE_UNAVAILABLE,
         }
     }

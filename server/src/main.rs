@@ -31,6 +31,15 @@ struct Args {
     /// come from the PGPASSWORD environment variable instead of the URL).
     #[arg(long, value_name = "URL")]
     database: Option<String>,
+    /// With `--database`: this node's name, unique among the nodes sharing the database
+    /// (default: `HOST:PORT`, the host name and the bound port). A node restarted under the
+    /// same name takes its sessions back at once.
+    #[arg(long, value_name = "NAME")]
+    node_id: Option<String>,
+    /// With `--database`: seconds a node's session lease lasts without renewal (renewed three
+    /// times per period). A node that died frees its sessions for other nodes after this long.
+    #[arg(long, value_name = "SECONDS", default_value_t = 15, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    lease_seconds: u64,
     /// Folder of the browser HMI's static files.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web/dist"))]
     web_dir: PathBuf,
@@ -73,6 +82,10 @@ async fn serve(args: Args) -> Result<(), String> {
         limits: args.limits.apply(Limits::default()),
         auth: args.auth,
         database: args.database,
+        node_id: Some(
+            args.node_id.unwrap_or_else(|| format!("{}:{}", nctwin_server::storage::host_name(), addr.port())),
+        ),
+        lease_period: std::time::Duration::from_secs(args.lease_seconds),
         ..Config::new(args.data_dir, args.web_dir)
     };
     let state = AppState::open(config).await.map_err(|e| format!("cannot open the storage: {e}"))?;

@@ -26,7 +26,7 @@ pub const COMMITTED_PATH: &str = "openapi/openapi.json";
 #[openapi(
     info(
         title = "NCTwin",
-        description = "Simulated SINUMERIK 840D sl-style NC channels: sessions, part programs, JOG, MDA, machine data and live state streams.\n\nUnits: lengths mm, angles degrees, feed mm/min, time s.\n\nServer-side limits: a `pace: \"fast\"` command runs at most 3600 s of simulated time or 10 s of wall time (then NC stop); a `wait: true` request is answered after at most 600 s of wall time; request bodies are limited to 1 MiB, except program uploads (`PUT .../programs/{name}`: 16 MiB of program text, 64 MiB per session). A reply cut short by a limit carries the header `nctwin-limit`. Counts and rates (defaults, each a flag of `nctwin`): 1000 sessions, 100 per client address, 64 stream clients per session, 50 commands per second per session in bursts of 100; a refusal is `429` (with `Retry-After` for the rate).\n\nAuthentication: creating a session returns an owner token and two tokens to share (operator, observer). By default (`nctwin --auth off`) no token is needed. With `nctwin --auth required` every request to a session needs `Authorization: Bearer <token>` (the WebSocket stream may pass `?token=`): `401` without a valid token; observers read but every command is `403`; commands need control (`POST .../control/take`; the owner holds it first and can always take it back), otherwise `409`.\n\nErrors are JSON `{\"error\": \"...\", \"line\": n}` (`line` only when the error belongs to one line).",
+        description = "Simulated SINUMERIK 840D sl-style NC channels: sessions, part programs, JOG, MDA, machine data and live state streams.\n\nUnits: lengths mm, angles degrees, feed mm/min, time s.\n\nServer-side limits: a `pace: \"fast\"` command runs at most 3600 s of simulated time or 10 s of wall time (then NC stop); a `wait: true` request is answered after at most 600 s of wall time; request bodies are limited to 1 MiB, except program uploads (`PUT .../programs/{name}`: 16 MiB of program text, 64 MiB per session). A reply cut short by a limit carries the header `nctwin-limit`. Counts and rates (defaults, each a flag of `nctwin`): 1000 sessions, 100 per client address, 64 stream clients per session, 50 commands per second per session in bursts of 100; a refusal is `429` (with `Retry-After` for the rate).\n\nAuthentication: creating a session returns an owner token and two tokens to share (operator, observer). By default (`nctwin --auth off`) no token is needed. With `nctwin --auth required` every request to a session needs `Authorization: Bearer <token>` (the WebSocket stream may pass `?token=`): `401` without a valid token; observers read but every command is `403`; commands need control (`POST .../control/take`; the owner holds it first and can always take it back), otherwise `409`.\n\nSeveral nodes (`nctwin --database postgres://... --node-id NAME`): each node serves the sessions it holds a lease on (renewed while it runs, given up at shutdown). A request for a session another node holds is `421 Misdirected Request` naming that node; a session whose node stopped renewing is taken over by the next node it is asked of. `GET /sessions` lists the sessions of the node asked.\n\nErrors are JSON `{\"error\": \"...\", \"line\": n}` (`line` only when the error belongs to one line).",
         license(name = "MIT"),
     ),
     // What a client may send on the stream (not a request body of any path).
@@ -56,8 +56,8 @@ pub fn document() -> utoipa::openapi::OpenApi {
 
 /// Adds what follows from the access policy ([`access::need`]) to every operation on a
 /// session, so the document and the middleware cannot disagree: the optional bearer security
-/// scheme, `401`, `403` where a role can be refused, and for commands `409` (not holding
-/// control) and `429` (rate limit, with `Retry-After`).
+/// scheme, `401`, `403` where a role can be refused, `421` (another node holds the session),
+/// and for commands `409` (not holding control) and `429` (rate limit, with `Retry-After`).
 pub fn finish(document: utoipa::openapi::OpenApi) -> utoipa::openapi::OpenApi {
     let mut doc = match serde_json::to_value(&document) {
         Ok(doc) => doc,
@@ -88,6 +88,13 @@ pub fn finish(document: utoipa::openapi::OpenApi) -> utoipa::openapi::OpenApi {
                     }
                 };
                 add("401", error("No token, or a token not of this session (auth required only)"));
+                // Every operation on a session passes `AppState::find_entry`, as the middleware does.
+                add(
+                    "421",
+                    error(
+                        "Several nodes on one database (`--database`): another node holds the session's lease; the message names it",
+                    ),
+                );
                 if need != Need::Read {
                     add(
                         "403",
@@ -155,7 +162,7 @@ mod tests {
         let json = serde_json::to_value(document()).expect("serializable");
         assert_eq!(json["components"]["securitySchemes"]["bearer"]["scheme"], "bearer");
         let run = &json["paths"]["/api/v1/sessions/{id}/run"]["post"];
-        for status in ["401", "403", "409", "429"] {
+        for status in ["401", "403", "409", "421", "429"] {
             assert!(run["responses"].get(status).is_some(), "run documents {status}");
         }
         assert!(run["responses"]["429"]["headers"].get("retry-after").is_some());

@@ -114,3 +114,19 @@ async fn a_bad_chain_program_is_a_400_naming_its_line_and_changes_nothing() {
     let message = error_message(&put_text(&server, "nope", CHAIN).await, StatusCode::NOT_FOUND);
     assert!(message.contains("nope"), "{message}");
 }
+
+#[tokio::test]
+async fn a_corrtrafo_correction_is_in_the_export() {
+    let server = Server::start().await;
+    let id = server.session("mill5-head-ca").await;
+    assert_eq!(put_text(&server, &id, CHAIN).await.status, StatusCode::OK);
+    // A's direction (element 5, orientation axis 1) corrected to (1, 0.01, 0): 0.57°, inside
+    // SD41611's 1°. The program's correction is what the archive carries afterwards.
+    let program = "DEF REAL V[3]\nV[0]=1\nV[1]=0.01\nTRAFOON(\"Fork head\")\nR1=CORRTRAFO(1, 1, V)\nTRAFOOF\nM30";
+    let body = serde_json::json!({"program": program, "pace": "fast", "wait": true});
+    let reply = server.post(&format!("/sessions/{id}/run"), body).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["status"], "idle", "{}", reply.body);
+    let (_, _, exported) = get_text(&server, &id).await;
+    assert!(exported.contains("$NK_OFF_DIR[5,0]=1.0\n$NK_OFF_DIR[5,1]=0.01\n"), "{exported}");
+}

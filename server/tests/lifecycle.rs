@@ -37,12 +37,19 @@ impl Nctwin {
         Nctwin::start_with(data_dir, None)
     }
 
-    /// [`Nctwin::start`], keeping the sessions in PostgreSQL database `database` if given.
+    /// [`Nctwin::start`], keeping the sessions in PostgreSQL database `database` if given (as
+    /// node `test-node`, so that a restart is the same node).
     fn start_with(data_dir: &Path, database: Option<&str>) -> Nctwin {
-        let mut command = Command::new(env!("CARGO_BIN_EXE_nctwin"));
-        if let Some(url) = database {
-            command.args(["--database", url]);
+        match database {
+            Some(url) => Nctwin::start_args(data_dir, &["--database", url, "--node-id", "test-node"]),
+            None => Nctwin::start_args(data_dir, &[]),
         }
+    }
+
+    /// [`Nctwin::start`] with more arguments.
+    fn start_args(data_dir: &Path, args: &[&str]) -> Nctwin {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_nctwin"));
+        command.args(args);
         let mut child = command
             .args(["--bind", "127.0.0.1:0", "--data-dir"])
             .arg(data_dir)
@@ -147,7 +154,8 @@ async fn sigterm_saves_closes_streams_with_a_close_frame_exits_and_a_restart_res
     let server = Nctwin::start(&dir);
     let (status, state) = server.send(reqwest::Method::GET, &format!("/sessions/{id}/state"), None).await;
     assert_eq!(status, StatusCode::OK, "the session is back");
-    assert_eq!(state["status"], "idle");
+    // The program comes back stopped at its block (NC start would continue it).
+    assert_eq!((state["status"].as_str(), &state["block"]["line"]), (Some("stopped"), &json!(1)), "{state}");
     let x_after = state["positions"]["machine"]["X"].as_f64().expect("X");
     assert!(x_after >= x_before && x_after < 200.0, "saved where it stopped: {x_before} .. {x_after}");
     let (status, program) = server.send(reqwest::Method::GET, &format!("/sessions/{id}/programs/SUB"), None).await;
@@ -238,4 +246,92 @@ async fn sigkill_during_writes(database: Option<&str>) {
     assert_eq!(state["status"], "alarm", "{state}");
     drop(server);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Two nodes on one PostgreSQL database: each serves the sessions it holds a lease on and
+/// answers 421 naming the holder for the others; a node killed with SIGKILL loses its leases
+/// when they expire and the other node takes its sessions over (with their saved state); a
+/// node stopped with SIGTERM hands its sessions over at once.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn two_nodes_share_one_postgresql_and_take_over_each_others_sessions() {
+    let Some(url) = tokio::task::spawn_blocking(|| pg::postgres_database("nodes")).await.expect("create") else {
+        return;
+    };
+    let node = |name: &str, dir: &Path| {
+        Nctwin::start_args(dir, &["--database", &url, "--node-id", name, "--lease-seconds", "2"])
+    };
+    let (dir_a, dir_b) = (data_dir("node-a"), data_dir("node-b"));
+    let a = node("a", &dir_a);
+    let mut b = node("b", &dir_b);
+    let on_a = create_session(&a).await;
+    let on_b = create_session(&b).await;
+    assert_ne!(on_a, on_b, "the database numbers sessions for every node");
+
+    // The wrong node: 421 naming the holder; nothing happens to the session.
+    let (status, body) = b.send(reqwest::Method::GET, &format!("/sessions/{on_a}/state"), None).await;
+    assert_eq!(status, StatusCode::MISDIRECTED_REQUEST, "{body}");
+    assert!(body["error"].as_str().expect("message").contains("node `a`"), "{body}");
+    let mda = json!({"program": "G0 X7 Y-2", "pace": "fast", "wait": true});
+    let (status, _) = b.send(reqwest::Method::POST, &format!("/sessions/{on_a}/mda"), Some(mda.clone())).await;
+    assert_eq!(status, StatusCode::MISDIRECTED_REQUEST);
+    let (status, state) = a.send(reqwest::Method::POST, &format!("/sessions/{on_a}/mda"), Some(mda)).await;
+    assert_eq!((status, state["positions"]["machine"]["X"].as_f64()), (StatusCode::OK, Some(7.0)), "{state}");
+    // The checkpoint is written in the background once the channel has come to rest.
+    let (db, id) = (url.clone(), on_a.clone());
+    tokio::task::spawn_blocking(move || {
+        let mut client = postgres::Client::connect(&db, postgres::NoTls).expect("connect");
+        for _ in 0..500 {
+            let row = client.query_one("SELECT positions FROM nctwin_sessions WHERE id = $1", &[&id]).expect("row");
+            if row.get::<_, Vec<f64>>(0) == [7.0, -2.0, 0.0] {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        panic!("the checkpoint was never written");
+    })
+    .await
+    .expect("poll");
+
+    // Node a dies: until its 2 s lease runs out b still refers to it, then b takes over.
+    a.signal("-KILL");
+    drop(a);
+    let (status, _) = b.send(reqwest::Method::GET, &format!("/sessions/{on_a}/state"), None).await;
+    assert_eq!(status, StatusCode::MISDIRECTED_REQUEST, "a's lease has not expired yet");
+    let deadline = Instant::now() + Duration::from_secs(20);
+    let state = loop {
+        let (status, state) = b.send(reqwest::Method::GET, &format!("/sessions/{on_a}/state"), None).await;
+        if status == StatusCode::OK {
+            break state;
+        }
+        assert_eq!(status, StatusCode::MISDIRECTED_REQUEST, "{state}");
+        assert!(Instant::now() < deadline, "b never took the session over");
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    };
+    assert_eq!(
+        (state["positions"]["machine"]["X"].as_f64(), state["positions"]["machine"]["Y"].as_f64()),
+        (Some(7.0), Some(-2.0))
+    );
+
+    // Node a comes back under its name: b renews the session it took, so a refers to b.
+    let a = node("a", &dir_a);
+    let (status, body) = a.send(reqwest::Method::GET, &format!("/sessions/{on_a}/state"), None).await;
+    assert_eq!(status, StatusCode::MISDIRECTED_REQUEST, "{body}");
+    assert!(body["error"].as_str().expect("message").contains("node `b`"), "{body}");
+
+    // SIGTERM: b saves and releases its leases; a takes both sessions over at once.
+    b.signal("-TERM");
+    assert!(b.wait_exit(Duration::from_secs(15)));
+    for id in [&on_a, &on_b] {
+        let (status, body) = a.send(reqwest::Method::GET, &format!("/sessions/{id}/state"), None).await;
+        assert_eq!(status, StatusCode::OK, "{id}: {body}");
+    }
+    drop(a);
+    let _ = std::fs::remove_dir_all(&dir_a);
+    let _ = std::fs::remove_dir_all(&dir_b);
+}
+
+async fn create_session(node: &Nctwin) -> String {
+    let (status, body) = node.send(reqwest::Method::POST, "/sessions", Some(json!({"machine": "mill-3axis"}))).await;
+    assert_eq!(status, StatusCode::CREATED, "{body}");
+    body["id"].as_str().expect("id").to_string()
 }

@@ -81,7 +81,7 @@ async fn deleted_sessions_and_programs_stay_deleted() {
 }
 
 #[tokio::test]
-async fn a_running_program_comes_back_reset_where_the_axes_were_at_shutdown() {
+async fn a_running_program_comes_back_stopped_at_its_block_where_the_axes_were_at_shutdown() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;
     let reply = server.post(&format!("/sessions/{id}/run"), json!({"program": "G1 X100 F600\nM30"})).await;
@@ -90,11 +90,12 @@ async fn a_running_program_comes_back_reset_where_the_axes_were_at_shutdown() {
 
     let server = restart(server).await;
     let state = server.get(&format!("/sessions/{id}/state")).await.body;
-    assert_eq!(state["status"], "idle", "{state}");
-    assert!(state["block"].is_null() && state["alarms"] == json!([]), "{state}");
+    assert_eq!(state["status"], "stopped", "{state}");
+    assert!(state["block"]["line"] == 1 && state["alarms"] == json!([]), "{state}");
     let x = pos(&state, "machine", "X");
     assert!(x > 0.5 && x < 100.0, "stopped between start and target: {x}");
-    // It is a usable session: it runs a program from there.
+    // It is a usable session: after a reset it runs a program from there.
+    assert_eq!(server.post_empty(&format!("/sessions/{id}/reset")).await.body["status"], "idle");
     let reply = server
         .post(&format!("/sessions/{id}/run"), json!({"program": "G1 X0 F5000\nM30", "pace": "fast", "wait": true}))
         .await;
@@ -198,4 +199,82 @@ async fn a_failing_storage_is_503_nothing_is_acknowledged_and_health_says_so() {
     storage.broken.store(false, Ordering::Relaxed);
     assert_eq!(server.get("/health").await.body["status"], "ok");
     assert_eq!(server.delete(&format!("/sessions/{id}")).await.status, StatusCode::NO_CONTENT);
+}
+
+/// W1 p.4-3 (REFERENCE §7.3): a table toolholder (kind P) about +Y at 45° with l4 = (0, 0, 15)
+/// and a 13 mm tool: WCS (0, 10, 0) is machine (15·sin 45°, 10, −15·(1 − cos 45°) + 13) =
+/// (10.607, 10, 8.607). Holder 1 with this data comes with the session's machine data.
+const W1_TABLE: &str = "$MN_MM_NUM_TOOL_CARRIER=1\n$TC_CARR8[1]=1\n$TC_CARR20[1]=15\n$TC_CARR13[1]=45\n\
+                        $TC_CARR23[1]=\"P\"\n$TC_DP3[1,1]=13";
+
+fn near(got: f64, want: f64, what: &str) {
+    assert!((got - want).abs() < 1e-9, "{what}: {got}, expected {want}");
+}
+
+#[tokio::test]
+async fn tool_toolholder_system_frame_and_r_parameters_survive_a_restart() {
+    let server = Server::start().await;
+    let reply = server.post("/sessions", json!({"machine": "mill-3axis", "machine_data": W1_TABLE})).await;
+    assert_eq!(reply.status, StatusCode::CREATED, "{}", reply.body);
+    let id = reply.body["id"].as_str().expect("id").to_string();
+    // T1 D1, holder 1 ($P_PARTFRAME: the table offset), $P_SETFRAME shifting Y by 2, R7; the
+    // MDA ends with a reset, which keeps all four (the modal G groups go to their reset values).
+    let mda = "T1 D1\nTCARR=1\n$P_SETFRAME=CTRANS(Y,2)\nR7=2.5\nG0 X0 Y10 Z0";
+    let reply =
+        server.post(&format!("/sessions/{id}/mda"), json!({"program": mda, "pace": "fast", "wait": true})).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["status"], "idle", "{}", reply.body);
+    let s = 45f64.to_radians().sin();
+    let (x0, z0) = (15.0 * s, -15.0 * (1.0 - s) + 13.0);
+    near(pos(&reply.body, "machine", "X"), x0, "X before");
+    near(pos(&reply.body, "machine", "Y"), 12.0, "Y before: 10 + the set frame's 2");
+    near(pos(&reply.body, "machine", "Z"), z0, "Z before");
+
+    let server = restart(server).await;
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!(state["tool"], json!({"t": 1, "d": 1}), "{state}");
+    // The machine stands where it stood; seen through the restored tool, holder and set frame
+    // it is WCS (0, 10, 0) again (without them it would read (10.607, 12, 8.607)).
+    near(pos(&state, "machine", "X"), x0, "X after");
+    near(pos(&state, "workpiece", "X"), 0.0, "WCS X after");
+    near(pos(&state, "workpiece", "Y"), 10.0, "WCS Y after");
+    near(pos(&state, "workpiece", "Z"), 0.0, "WCS Z after");
+    // A move after the restart uses all four: X = R7 + 15·sin 45°, Y = 5 + 2, Z = 1 + table + tool.
+    let reply = server
+        .post(&format!("/sessions/{id}/mda"), json!({"program": "G0 X=R7 Y5 Z1", "pace": "fast", "wait": true}))
+        .await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    near(pos(&reply.body, "machine", "X"), 2.5 + x0, "X moved");
+    near(pos(&reply.body, "machine", "Y"), 7.0, "Y moved");
+    near(pos(&reply.body, "machine", "Z"), 1.0 + z0, "Z moved");
+}
+
+#[tokio::test]
+async fn a_program_interrupted_by_the_shutdown_comes_back_stopped_at_its_block() {
+    let server = Server::start().await;
+    let data = "$P_UIFR[1,X,TR]=100\n$TC_DP3[1,1]=13";
+    let reply = server.post("/sessions", json!({"machine": "mill-3axis", "machine_data": data})).await;
+    assert_eq!(reply.status, StatusCode::CREATED, "{}", reply.body);
+    let id = reply.body["id"].as_str().expect("id").to_string();
+    // Line 4 takes 30 s at F100: the shutdown comes while it runs.
+    let program = "G54 G90 T1 D1\nG0 X0 Y0 Z10\nG91\nG1 X50 F100\nY5\nM30";
+    let reply = server
+        .post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "realtime", "wait": false}))
+        .await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    server.state_until(&id, "line 4 running", |s| s["block"]["line"] == 4 && pos(s, "machine", "X") > 100.5).await;
+
+    let server = restart(server).await;
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!(state["status"], "stopped", "{state}");
+    assert_eq!(state["mode"], "AUTO");
+    assert_eq!(state["block"]["line"], 4, "{state}");
+    // NC start: the approach to the start of line 4, line 4 and 5 with G54 (X + 100), G91 and
+    // the 13 mm tool re-established by the search: WCS (50, 5, 10) = machine (150, 5, 23).
+    let reply = server.post(&format!("/sessions/{id}/start"), json!({"pace": "fast", "wait": true})).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["status"], "idle", "{}", reply.body);
+    near(pos(&reply.body, "machine", "X"), 150.0, "X");
+    near(pos(&reply.body, "machine", "Y"), 5.0, "Y");
+    near(pos(&reply.body, "machine", "Z"), 23.0, "Z");
 }

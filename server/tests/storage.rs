@@ -11,10 +11,11 @@ mod pg;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
 
 use common::Server;
 use nctwin_server::storage::{
-    self, Checkpoint, MemoryStorage, PostgresStorage, SessionRecord, SqliteStorage, Storage, TokenHashes,
+    self, Checkpoint, Claim, Lease, MemoryStorage, PostgresStorage, SessionRecord, SqliteStorage, Storage, TokenHashes,
 };
 use nctwin_server::{AppState, Config};
 use pg::postgres_database;
@@ -32,6 +33,7 @@ fn record(id: &str, number: u64) -> SessionRecord {
             machine_data: "$MN_X=1\n".into(),
             positions: vec![1.5, -0.1, 0.0],
             mode: "AUTO".into(),
+            channel_state: Some(r#"{"retained":{"tool":3}}"#.into()),
         },
     }
 }
@@ -57,6 +59,7 @@ fn exercise(storage: &dyn Storage) {
         machine_data: "".into(),
         positions: vec![0.1 + 0.2, 1e-300, -7.0, -0.0, f64::MAX, 5e-324],
         mode: "JOG".into(),
+        channel_state: None,
     };
     storage.save_checkpoint("s1", &moved).expect("checkpoint");
     let both = [("s2".to_string(), record("s2", 2).checkpoint), ("gone".to_string(), moved.clone())];
@@ -95,7 +98,12 @@ fn survives_reopening(open: &dyn Fn() -> Box<dyn Storage>) {
         let storage = open();
         storage.create_session(&record("s7", 7)).expect("create");
         storage.put_program("s7", "P", "M30").expect("program");
-        let checkpoint = Checkpoint { machine_data: "$MN_Y=2\n".into(), positions: vec![3.25], mode: "MDA".into() };
+        let checkpoint = Checkpoint {
+            machine_data: "$MN_Y=2\n".into(),
+            positions: vec![3.25],
+            mode: "MDA".into(),
+            channel_state: Some("{}".into()),
+        };
         storage.save_checkpoint("s7", &checkpoint).expect("checkpoint");
     }
     let storage = open();
@@ -103,6 +111,7 @@ fn survives_reopening(open: &dyn Fn() -> Box<dyn Storage>) {
     assert_eq!(all.len(), 1);
     assert_eq!(all[0].record.checkpoint.positions, vec![3.25]);
     assert_eq!(all[0].record.checkpoint.mode, "MDA");
+    assert_eq!(all[0].record.checkpoint.channel_state.as_deref(), Some("{}"));
     assert_eq!(all[0].programs, vec![("P".to_string(), "M30".to_string())]);
 }
 
@@ -159,9 +168,14 @@ fn postgres_conforms() {
     assert!(storage.describe().starts_with("postgres:"), "{}", storage.describe());
     exercise(&storage);
     let url = postgres_database("reopen").expect("database");
-    survives_reopening(&|| Box::new(PostgresStorage::open(&url).expect("open")));
+    // The same node again (a restart under its `--node-id`): its sessions are its own at once.
+    survives_reopening(&|| Box::new(PostgresStorage::open_as(&url, node("n1", 60)).expect("open")));
     let url = postgres_database("concurrent").expect("database");
     concurrent_writers(&PostgresStorage::open(&url).expect("open"));
+}
+
+fn node(name: &str, seconds: u64) -> Lease {
+    Lease { node: name.into(), period: Duration::from_secs(seconds) }
 }
 
 #[test]
@@ -169,23 +183,141 @@ fn postgres_nodes_share_one_database_and_the_schema_is_versioned() {
     let Some(url) = postgres_database("nodes") else { return };
     // Two nodes opening at once: the schema is created once.
     let (a, b) = std::thread::scope(|scope| {
-        let a = scope.spawn(|| PostgresStorage::open(&url).expect("open a"));
-        let b = scope.spawn(|| PostgresStorage::open(&url).expect("open b"));
+        let a = scope.spawn(|| PostgresStorage::open_as(&url, node("a", 60)).expect("open a"));
+        let b = scope.spawn(|| PostgresStorage::open_as(&url, node("b", 60)).expect("open b"));
         (a.join().expect("a"), b.join().expect("b"))
     });
+    // Session numbers come from one sequence: no two nodes make the same id.
+    let numbers = [a.next_session_number(), b.next_session_number(), a.next_session_number()]
+        .map(|n| n.expect("number").expect("the database numbers"));
+    assert_eq!(numbers, [1, 2, 3]);
     a.create_session(&record("s1", 1)).expect("create on a");
-    b.put_program("s1", "P", "M30").expect("program on b");
+    a.put_program("s1", "P", "M30").expect("program on a");
+    let refused = b.put_program("s1", "Q", "M30").expect_err("b does not hold s1");
+    assert!(refused.0.contains("node `a`"), "{refused}");
+    assert!(b.save_checkpoint("s1", &record("s1", 1).checkpoint).is_err(), "nor may b save its checkpoint");
+    assert!(b.delete_session("s1").is_err(), "nor delete it");
+    assert!(b.load().expect("load on b").is_empty(), "b loads only what it may serve");
     let seen = a.load().expect("load on a");
-    assert_eq!(seen[0].programs, vec![("P".to_string(), "M30".to_string())], "a sees what b wrote");
+    assert_eq!(seen[0].programs, vec![("P".to_string(), "M30".to_string())]);
 
     let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
     let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
-    assert_eq!(version, 1);
+    assert_eq!(version, 2);
     let sync: String = admin.query_one("SHOW synchronous_commit", &[]).expect("show").get(0);
     assert!(!sync.is_empty());
     admin.execute("INSERT INTO nctwin_schema (version) VALUES (99)", &[]).expect("a newer schema");
     let refused = PostgresStorage::open(&url).expect_err("a newer schema is refused");
     assert!(refused.0.contains("newer"), "{refused}");
+}
+
+#[test]
+fn a_lease_that_is_not_renewed_expires_and_another_node_takes_the_session_over() {
+    let Some(url) = postgres_database("lease") else { return };
+    let a = PostgresStorage::open_as(&url, node("a", 1)).expect("open a");
+    let b = PostgresStorage::open_as(&url, node("b", 1)).expect("open b");
+    a.create_session(&record("s1", 1)).expect("create on a");
+    a.create_session(&record("s2", 2)).expect("create on a");
+    match b.claim_session("s1").expect("claim") {
+        Claim::HeldBy { node, seconds_left } => {
+            assert_eq!(node, "a");
+            assert!(seconds_left > 0.0 && seconds_left <= 1.0, "{seconds_left}");
+        }
+        other => panic!("s1 is a's: {other:?}"),
+    }
+    assert_eq!(b.claim_session("s9").expect("claim"), Claim::Missing);
+    // a renews; then a stops renewing (it "died") and its leases run out after 1 s.
+    assert_eq!(a.renew_leases().expect("renew").map(sorted), Some(vec!["s1".to_string(), "s2".to_string()]));
+    std::thread::sleep(Duration::from_millis(1_300));
+    let Claim::Claimed(saved) = b.claim_session("s1").expect("claim") else { panic!("expired: b takes s1") };
+    assert_eq!(saved.record, record("s1", 1));
+    // a's late writes are refused; its renewal reports that s1 is gone, s2 (not taken) is kept.
+    let late = a.save_checkpoint("s1", &record("s1", 1).checkpoint).expect_err("fenced");
+    assert!(late.0.contains("node `b`"), "{late}");
+    assert_eq!(a.renew_leases().expect("renew").map(sorted), Some(vec!["s2".to_string()]));
+    // b gives its leases up (shutdown): a may take s1 back at once.
+    b.release_leases().expect("release");
+    assert!(matches!(a.claim_session("s1").expect("claim"), Claim::Claimed(_)));
+}
+
+fn sorted(mut v: Vec<String>) -> Vec<String> {
+    v.sort();
+    v
+}
+
+/// A database of schema version 1 (before checkpoints held the channel state and sessions had
+/// leases) is migrated in place: every row stays, the new columns are empty, numbering
+/// continues above the stored sessions.
+#[test]
+fn postgres_schema_1_is_migrated_without_losing_data() {
+    let Some(url) = postgres_database("migrate") else { return };
+    let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+    admin
+        .batch_execute(
+            "CREATE TABLE nctwin_schema (version INTEGER NOT NULL);
+             INSERT INTO nctwin_schema VALUES (1);
+             CREATE TABLE nctwin_sessions (
+                 id TEXT PRIMARY KEY, number BIGINT NOT NULL, machine TEXT NOT NULL, client_ip TEXT,
+                 owner_hash TEXT NOT NULL, operator_hash TEXT NOT NULL, observer_hash TEXT NOT NULL,
+                 machine_data TEXT NOT NULL, positions DOUBLE PRECISION[] NOT NULL, mode TEXT NOT NULL);
+             CREATE TABLE nctwin_programs (
+                 session TEXT NOT NULL REFERENCES nctwin_sessions(id) ON DELETE CASCADE,
+                 name TEXT NOT NULL, text TEXT NOT NULL, PRIMARY KEY (session, name));
+             INSERT INTO nctwin_sessions VALUES
+                 ('s7', 7, 'mill-3axis', NULL, 'o', 'p', 'v', '$MN_X=1', '{1.5,-0.1,0}', 'JOG');
+             INSERT INTO nctwin_programs VALUES ('s7', 'MAIN', 'G0 X1\nM30');",
+        )
+        .expect("a version 1 database");
+    let storage = PostgresStorage::open_as(&url, node("a", 60)).expect("migrated");
+    let all = storage.load().expect("load");
+    assert_eq!(all.len(), 1);
+    let c = &all[0].record.checkpoint;
+    assert_eq!(
+        (c.machine_data.as_str(), c.positions.as_slice(), c.mode.as_str()),
+        ("$MN_X=1", &[1.5, -0.1, 0.0][..], "JOG")
+    );
+    assert_eq!(c.channel_state, None);
+    assert_eq!(all[0].programs, vec![("MAIN".to_string(), "G0 X1\nM30".to_string())]);
+    assert_eq!(storage.next_session_number().expect("number"), Some(8), "above the stored s7");
+    let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
+    assert_eq!(version, 2);
+}
+
+#[test]
+fn sqlite_schema_1_is_migrated_without_losing_data() {
+    let path = temp_dir("migrate").join("v1.sqlite3");
+    {
+        let c = rusqlite::Connection::open(&path).expect("create");
+        c.execute_batch(
+            "CREATE TABLE sessions (
+                 id TEXT PRIMARY KEY, number INTEGER NOT NULL, machine TEXT NOT NULL, client_ip TEXT,
+                 owner_hash TEXT NOT NULL, operator_hash TEXT NOT NULL, observer_hash TEXT NOT NULL,
+                 machine_data TEXT NOT NULL, positions TEXT NOT NULL, mode TEXT NOT NULL);
+             CREATE TABLE programs (
+                 session TEXT NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+                 name TEXT NOT NULL, text TEXT NOT NULL, PRIMARY KEY (session, name));
+             INSERT INTO sessions VALUES ('s7', 7, 'mill-3axis', NULL, 'o', 'p', 'v', '$MN_X=1', '[1.5,-0.1,0.0]', 'JOG');
+             INSERT INTO programs VALUES ('s7', 'MAIN', 'M30');
+             PRAGMA user_version = 1;",
+        )
+        .expect("a version 1 file");
+    }
+    let storage = SqliteStorage::open(&path).expect("migrated");
+    let all = storage.load().expect("load");
+    assert_eq!(all.len(), 1);
+    assert_eq!(all[0].record.checkpoint.positions, vec![1.5, -0.1, 0.0]);
+    assert_eq!(all[0].record.checkpoint.channel_state, None);
+    assert_eq!(all[0].programs, vec![("MAIN".to_string(), "M30".to_string())]);
+    let mut checkpoint = all[0].record.checkpoint.clone();
+    checkpoint.channel_state = Some("{}".into());
+    storage.save_checkpoint("s7", &checkpoint).expect("the new column is written");
+    drop(storage);
+    let version: i64 = rusqlite::Connection::open(&path)
+        .expect("open")
+        .query_row("PRAGMA user_version", [], |r| r.get(0))
+        .expect("version");
+    assert_eq!(version, 2);
+    assert_eq!(SqliteStorage::open(&path).expect("reopen").load().expect("load")[0].record.checkpoint, checkpoint);
 }
 
 #[test]
@@ -225,9 +357,12 @@ fn postgres_reconnects_after_the_connection_broke() {
 
 #[test]
 fn an_unknown_database_scheme_is_refused() {
-    let error = storage::open(Some("mysql://u@h/db"), &temp_dir("scheme")).expect_err("refused");
+    let error = storage::open(Some("mysql://u@h/db"), &temp_dir("scheme"), Lease::default()).expect_err("refused");
     assert!(error.0.contains("mysql"), "{error}");
-    assert!(storage::open(Some("postgres://u@[bad"), &temp_dir("bad")).is_err(), "invalid URL");
+    assert!(storage::open(Some("postgres://u@[bad"), &temp_dir("bad"), Lease::default()).is_err(), "invalid URL");
+    // No TLS in this build: a URL that requires it is refused before any connection is tried.
+    let tls = PostgresStorage::open("postgres://u@127.0.0.1:1/db?sslmode=require").expect_err("refused");
+    assert!(tls.0.contains("sslmode=require") && tls.0.contains("no TLS"), "{tls}");
 }
 
 /// The whole server on PostgreSQL: sessions and programs survive a restart, and health says
@@ -269,4 +404,50 @@ async fn health_reports_the_backend() {
     );
     let server = Server::start_state(state).await;
     assert_eq!(server.get("/health").await.body["storage"]["backend"], "memory");
+}
+
+/// A node whose session was taken by another node (here: the row's lease rewritten, as after
+/// a network partition longer than the lease) stops serving it at its next heartbeat, answers
+/// 421 naming the new holder, and cannot write it any more.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_node_that_lost_a_lease_stops_serving_the_session() {
+    let Some(url) = tokio::task::spawn_blocking(|| postgres_database("lost")).await.expect("task") else {
+        return;
+    };
+    let config = Config {
+        database: Some(url.clone()),
+        node_id: Some("a".into()),
+        lease_period: Duration::from_secs(1),
+        ..Config::new(common::temp_data_dir(), common::WEB_DIR)
+    };
+    let server = Server::start_config(config).await;
+    let id = server.session("mill-3axis").await;
+    let key = id.clone();
+    tokio::task::spawn_blocking(move || {
+        let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+        let n = admin
+            .execute(
+                "UPDATE nctwin_sessions SET lease_node = 'b', lease_expires = now() + interval '1 hour' WHERE id = $1",
+                &[&key],
+            )
+            .expect("take over");
+        assert_eq!(n, 1);
+    })
+    .await
+    .expect("task");
+    // The heartbeat runs three times per second here.
+    let mut reply = server.get(&format!("/sessions/{id}/state")).await;
+    for _ in 0..100 {
+        if reply.status != StatusCode::OK {
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+        reply = server.get(&format!("/sessions/{id}/state")).await;
+    }
+    assert_eq!(reply.status, StatusCode::MISDIRECTED_REQUEST, "{}", reply.body);
+    assert!(reply.body["error"].as_str().expect("message").contains("node `b`"), "{}", reply.body);
+    assert_eq!(server.get("/sessions").await.body, json!([]), "no longer listed here");
+    let write = server.put(&format!("/sessions/{id}/programs/P"), json!({"text": "M30"})).await;
+    assert_eq!(write.status, StatusCode::MISDIRECTED_REQUEST, "{}", write.body);
+    drop(server);
 }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{DELOBJ, Item, NEWCONF, Prep, StopKind};
+use crate::interp::{CORRTRAFO, DELOBJ, Item, NEWCONF, Prep, StopKind};
 use crate::motion::{AxisLimit, Move};
 
 impl Channel {
@@ -95,8 +95,17 @@ impl Channel {
             self.data.delete_kin(kind == "KIN_CHAIN_ELEM", kind == "TRAFO_DATA");
             return Ok(());
         }
+        if let Some(n) = text.strip_prefix(CORRTRAFO) {
+            // The corrected $NK_OFF_DIR came just before: the record's data set follows it.
+            let n = n.parse().map_err(|_| bad(text.to_string()))?;
+            Arc::make_mut(&mut self.cfg)
+                .rebuild_chain_trafo(n)
+                .map_err(|e| bad(format!("CORRTRAFO: {}", e.message)))?;
+            return Ok(());
+        }
         self.data.stage_text(text).map_err(|e| bad(format!("{text}: {}", e.message)))?;
-        if !text.starts_with("$M") && !text.starts_with("$S") {
+        // Setting data CORRTRAFO monitors act at once.
+        if !text.starts_with("$M") && !text.starts_with("$S") || text.starts_with("$SN_CORR_TRAFO_") {
             Arc::make_mut(&mut self.cfg).refresh_data(&self.data).map_err(|e| bad(e.message))?;
         }
         Ok(())

@@ -19,6 +19,7 @@ mod referencing;
 mod repos;
 mod repos_approach;
 mod repos_modes;
+mod resume;
 mod search;
 mod snapshot;
 mod spindle;
@@ -33,6 +34,7 @@ pub use jog_settings::OrientationJogKind;
 pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
+pub use resume::{ResumeProgram, ResumeState};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 

@@ -19,6 +19,7 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
 pub type GeoAxes = [Option<usize>; 3];
 
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Frame {
     /// Translation per channel axis (coarse plus fine).
     pub trans: AxisVec,
@@ -239,6 +240,7 @@ impl Frame {
 /// link of the frame chain. Like the control's system frames they survive a reset; the
 /// function that wrote one deletes it (TOROTOF, PAROTOF, CYCLE800 deselection).
 #[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SystemFrames {
     /// `$P_PARTFRAME`: TCARR table offset and PAROT rotation (nearest to the BCS).
     pub part: Frame,

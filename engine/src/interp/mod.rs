@@ -8,6 +8,9 @@
 pub mod arc;
 mod calls;
 mod corners;
+mod corrtrafo;
+mod delobj;
+mod effect_calls;
 mod eval;
 mod flow;
 pub mod frame;
@@ -20,6 +23,7 @@ mod orient;
 mod orient_poly;
 mod orient_rot;
 mod orient_vars;
+pub mod retained;
 mod scope;
 mod solid_angles;
 mod spindles;
@@ -138,6 +142,10 @@ pub const NEWCONF: &str = "NEWCONF";
 
 /// Prefix of the data-write entry of `DELOBJ("type")`, followed by the object type.
 pub const DELOBJ: &str = "DELOBJ:";
+
+/// Prefix of the data-write entry that rebuilds the channel's data set of chain record n
+/// (followed by n) after CORRTRAFO corrected its `$NK_OFF_DIR`.
+pub const CORRTRAFO: &str = "CORRTRAFO:";
 
 /// What one call of [`Interpreter::prepare_next`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,6 +1,5 @@
 //! The modal state (G groups, feed) and the words of one block sorted by meaning.
 
-use super::DELOBJ;
 use super::StopKind;
 use super::calls::Programs;
 use super::corners::Corner;
@@ -517,7 +516,7 @@ pub(super) fn collect(
                 });
             }
             Word::Keyword { name, args } if name == "DELOBJ" => {
-                w.data_writes.push(delete_objects(args, &Ctx { vars, sys }, line)?);
+                w.data_writes.push(super::delobj::statement(args, &Ctx { vars, sys }, line)?);
             }
             Word::Keyword { name, args } if name == "SETMS" => {
                 let spindle = match args.as_slice() {
@@ -541,15 +540,6 @@ pub(super) fn collect(
             }
             Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
-            // `R2 = DELOBJ("TRAFO_DATA")`: the function form returns 0 (done).
-            Word::Address { name, indices, value } if matches!(&value.expr, Expr::Call(f, _) if f == "DELOBJ") => {
-                let Expr::Call(_, args) = &value.expr else { unreachable!("matched above") };
-                let write = delete_objects(args, &Ctx { vars, sys }, line)?;
-                match assign(name, indices, &Expr::Number(0.0), cfg, vars, sys, line)? {
-                    Assigned::Variable => w.data_writes.push(write),
-                    _ => return Err(Alarm::type_error(line, &format!("{name} cannot take the result of DELOBJ"))),
-                }
-            }
             Word::Address { name, indices, value } => {
                 match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,
@@ -798,7 +788,7 @@ fn data_write(
         || crate::machine_data::chains::is_chain_name(name)
         || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR" | "$P_UBFR")
         || ["$MN_", "$MC_", "$MA_", "$SN_", "$SC_", "$SA_"].iter().any(|p| name.starts_with(p));
-    if !writable {
+    if !writable || name == "$NT_ROT_AX_CNT" {
         return Err(Alarm::unknown_name(line, &format!("{name} (not writable from a program)")));
     }
     let ctx = Ctx { vars, sys };
@@ -829,46 +819,6 @@ fn data_write(
     }
     let index = if idx.is_empty() { String::new() } else { format!("[{}]", idx.join(",")) };
     Ok(format!("{name}{index}={value}"))
-}
-
-/// `DELOBJ(type[, start, end])` as its data-write entry `DELOBJ:type[:start:end]`. The types
-/// of the Job Planning manual this product holds: `KIN_CHAIN_ELEM` and `TRAFO_DATA` (deleted
-/// whole, active with NEWCONF or reset) and `TOOLCARRIER` (toolholders `start..=end`, by their
-/// number; acting at once like a `$TC_CARR` write).
-fn delete_objects(args: &[Expr], ctx: &Ctx, line: u32) -> Result<String, Alarm> {
-    let Some((kind, range)) = args.split_first() else {
-        return Err(Alarm::syntax(line, "DELOBJ needs the object type"));
-    };
-    let kind = eval(kind, ctx, line)?.as_text().to_ascii_uppercase();
-    let mut bounds = Vec::new();
-    for e in range {
-        if matches!(e, Expr::Call(n, a) if n == "_OMITTED" && a.is_empty()) {
-            bounds.push(None);
-            continue;
-        }
-        let v = eval(e, ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
-        bounds.push(Some(v));
-    }
-    match kind.as_str() {
-        "KIN_CHAIN_ELEM" | "TRAFO_DATA" if bounds.iter().all(Option::is_none) => Ok(format!("{DELOBJ}{kind}")),
-        "KIN_CHAIN_ELEM" | "TRAFO_DATA" => Err(Alarm::value_out_of_range(
-            line,
-            &format!("DELOBJ(\"{kind}\", ...): index ranges of chain data are not modelled, only the whole type"),
-        )),
-        "TOOLCARRIER" if bounds.len() <= 2 => {
-            let start = bounds.first().copied().flatten().unwrap_or(1);
-            let end = bounds.get(1).copied().flatten().unwrap_or(i64::from(u32::MAX));
-            if start < 1 || end < start {
-                return Err(Alarm::value_out_of_range(line, &format!("DELOBJ(\"TOOLCARRIER\", {start}, {end})")));
-            }
-            Ok(format!("{DELOBJ}TOOLCARRIER:{start}:{}", end.min(i64::from(u32::MAX))))
-        }
-        "TOOLCARRIER" => Err(Alarm::syntax(line, "DELOBJ(\"TOOLCARRIER\", start, end): no initialization value")),
-        _ => Err(Alarm::value_out_of_range(
-            line,
-            &format!("DELOBJ(\"{kind}\"): KIN_CHAIN_ELEM, TRAFO_DATA or TOOLCARRIER"),
-        )),
-    }
 }
 
 /// Addresses with a fixed meaning in a block.

@@ -167,7 +167,11 @@ impl Scope for Ctx<'_> {
                 )
             }
             _ if name.starts_with("$TC_DP") => tool_param(sys.cfg, name, indices, line)?,
-            _ if crate::machine_data::chains::is_chain_name(name) => chain_datum(sys.cfg, name, indices, line)?,
+            _ if crate::machine_data::chains::is_chain_name(name) => {
+                // The axes of the chain elements are the real ones, not the transformation's.
+                let axes = sys.trafo.base_config().unwrap_or(sys.cfg);
+                chain_datum(sys.cfg, axes, name, indices, line)?
+            }
             _ if name.starts_with("$TC_CARR") => carrier_param(sys.cfg, name, indices, line)?,
             "$P_TCANG" => {
                 let n = match indices {
@@ -231,9 +235,35 @@ fn stored_frames(name: &str) -> bool {
 
 /// `$NK_…[i]` / `$NT_…[n, k]`: a kinematic chain datum as stored (written values are visible
 /// at once, like tool data; the transformations built from them change with NEWCONF).
-fn chain_datum(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+fn chain_datum(
+    cfg: &MachineConfig,
+    axes: &MachineConfig,
+    name: &str,
+    indices: &[Value],
+    line: u32,
+) -> Result<Value, Alarm> {
     let indices =
         indices.iter().map(|v| v.as_i64().map_err(|e| Alarm::type_error(line, &e.0))).collect::<Result<Vec<_>, _>>()?;
+    if name == "$NT_ROT_AX_CNT" {
+        // Read only: the rotary axes of the workpiece (k = 0) or the tool (k = 1) subchain.
+        let [n, k] = indices[..] else { return Err(Alarm::index_error(line, name, "needs [n, k]")) };
+        if !(0..cfg.kin_counts.1 as i64).contains(&n) || !(0..=1).contains(&k) {
+            return Err(Alarm::index_error(
+                line,
+                name,
+                &format!("[{n},{k}]: n 0..{}, k 0..1", cfg.kin_counts.1 as i64 - 1),
+            ));
+        }
+        let count = crate::machine_data::chains::rot_ax_cnt(
+            &cfg.kin,
+            &cfg.kin_build,
+            &axes.channel_axes,
+            &axes.machine_axes,
+            n as usize,
+            k as usize,
+        );
+        return Ok(Value::Int(count as i64));
+    }
     let value = cfg.kin.read(name, &indices, cfg.kin_counts).map_err(|e| match e {
         _ if e.contains("no kinematic chain datum") => Alarm::unknown_name(line, name),
         _ => Alarm::index_error(line, name, &e),

@@ -20,6 +20,7 @@ impl Interpreter {
         main_run_idle: bool,
         out: &mut Vec<Item>,
     ) -> Result<Prep, Alarm> {
+        self.refresh_derived_chain_data(cfg);
         let Some(flow) = self.flow.as_mut() else { return Ok(Prep::Done) };
         let (next, current) = (flow.next, flow.current);
         let Some((block, at)) = flow.read() else {
@@ -44,6 +45,13 @@ impl Interpreter {
             flow.next = next;
             flow.current = current;
             return Ok(Prep::WaitForMainRun);
+        }
+        // DELOBJ/CORRTRAFO as functions and CORRTRAFO as a statement run once, here, after
+        // any wait for the main run.
+        let mut block = block;
+        if super::effect_calls::present(&block) {
+            self.check_unbound(block.line)?;
+            self.run_effect_calls(&mut block, cfg, out)?;
         }
         match &block.stmt {
             Some(Stmt::Proc { params, save, .. }) => self.bind_params(params, *save, block.line)?,

@@ -26,6 +26,7 @@ use crate::machine_data::{Carrier, CarrierKind};
 
 /// G group 42: where the holder's angles come from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum TcoMode {
     /// TCOABS: the stored angles $TC_CARR13/14, or the axis positions if 21/22 name axes.
     #[default]
@@ -37,6 +38,7 @@ pub enum TcoMode {
 
 /// G group 22: the tool compensation type.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CutMode {
     /// CUT2D: the compensation plane follows the holder's tool orientation (default).
     #[default]
@@ -74,6 +76,7 @@ pub fn g53_code(name: &str) -> Option<i64> {
 
 /// The toolholder state of block preparation.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Holder {
     /// Active toolholder number (0 = none).
     pub number: u32,

@@ -151,6 +151,25 @@ fn not_available(line: u32, what: &str) -> Alarm {
     }
 }
 
+/// Why `TRAFOON("name")` finds no data set: no record has the name, or its type is one this
+/// product stores but does not build.
+fn unbuilt_reason(cfg: &MachineConfig, name: &str) -> String {
+    match crate::machine_data::chains::type_of(&cfg.kin, name).as_deref() {
+        None => format!("\"{name}\" is no transformation defined by kinematic chains"),
+        Some("TRACON_K") => format!(
+            "\"{name}\" is TRACON_K, which chains an Open Architecture (OA) transformation with a standard one; \
+             OA transformations are not modelled, so the chain cannot be selected"
+        ),
+        Some("TRAORI_STAT") => {
+            format!("\"{name}\" is TRAORI_STAT, whose static orientation transformation is not modelled")
+        }
+        Some("TRAORI_DYN" | "TRANSMIT_K" | "TRACYL_K" | "TRAANG_K") => {
+            format!("\"{name}\" is not active yet: NEWCONF or a reset activates written chain data")
+        }
+        Some(ty) => format!("\"{name}\" ({ty}) is a type of transformation that is not modelled"),
+    }
+}
+
 /// 21617: the machine stands on the side of the pole that `TRANSMIT_POLE_SIDE_FIX` excludes,
 /// so the block could only start by traversing the pole, which the transformation forbids.
 fn pole_side_fixed(line: u32) -> Alarm {
@@ -195,6 +214,10 @@ pub(super) struct TrafoState {
 #[derive(Debug, Clone)]
 struct Active {
     trafo: ActiveTrafo,
+    /// The selection's arguments, kept to rebuild the transformation after CORRTRAFO and to
+    /// select it again after a restart (the tool's orientation in them is replaced by the
+    /// active cutting edge's at every selection).
+    args: SelectArgs,
     includes_tool: bool,
     /// The real configuration (machine axes, limits) and the derived one the words are read with.
     base: Arc<MachineConfig>,
@@ -258,6 +281,11 @@ impl TrafoState {
     /// The rotary axis whose channel slot a Cartesian axis uses while active (TRANSMIT, TRACYL).
     pub fn rotary_slot(&self) -> Option<usize> {
         self.active.as_ref().and_then(|a| a.trafo.trafo.rotary_slot())
+    }
+
+    /// The real configuration (machine axes as configured) while a transformation is active.
+    pub fn base_config(&self) -> Option<&MachineConfig> {
+        self.active.as_ref().map(|a| &*a.base)
     }
 
     /// The configuration blocks are read with while a transformation is active.
@@ -343,13 +371,11 @@ impl Interpreter {
                 }
             },
             Selection::Named { name, args } => {
-                let set =
-                    cfg.trafos.iter().find(|s| s.chain.as_ref().is_some_and(|c| c.name == name)).ok_or_else(|| {
-                        not_available(
-                            line,
-                            &format!("\"{name}\" is no transformation defined by kinematic chains of a modelled type"),
-                        )
-                    })?;
+                let set = cfg
+                    .trafos
+                    .iter()
+                    .find(|s| s.chain.as_ref().is_some_and(|c| c.name == name))
+                    .ok_or_else(|| not_available(line, &unbuilt_reason(cfg, &name)))?;
                 self.select_data_set(set.number, &args, cfg, &machine, line)?;
             }
             Selection::On { kind, n, args } => {
@@ -423,6 +449,7 @@ impl Interpreter {
         self.deselect_current_frame();
         self.trafo.active = Some(Box::new(Active {
             trafo,
+            args: *args,
             includes_tool: set.includes_tool,
             base: Arc::new(cfg.clone()),
             derived,
@@ -434,12 +461,71 @@ impl Interpreter {
         Ok(())
     }
 
+    /// Keeps the chain data and CORRTRAFO's limits of the configuration blocks are read with
+    /// while a transformation is active (a copy made at selection) equal to the channel's, so
+    /// `$NK_`/`$NT_` writes and CORRTRAFO corrections read back at once.
+    pub(super) fn refresh_derived_chain_data(&mut self, cfg: &MachineConfig) {
+        let Some(a) = self.trafo.active.as_mut() else { return };
+        if a.derived.kin != cfg.kin || a.derived.corr_limits != cfg.corr_limits {
+            let d = Arc::make_mut(&mut a.derived);
+            d.kin = cfg.kin.clone();
+            d.corr_limits = cfg.corr_limits;
+        }
+    }
+
+    /// The data-set number of the active transformation.
+    pub(super) fn active_data_set(&self) -> Option<usize> {
+        self.trafo.active.as_ref().map(|a| a.trafo.number)
+    }
+
+    /// Puts `set` (the active data set, rebuilt after CORRTRAFO) in place of the active
+    /// transformation at once: the machine stays where it is, the tool length taken into the
+    /// transformation stays, the BCS position follows through the corrected model. The channel
+    /// switches over at standstill, as for a selection.
+    pub(super) fn replace_active_set(
+        &mut self,
+        set: &crate::machine_data::TrafoDataSet,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        let Some(a) = self.trafo.active.as_mut() else { return Ok(()) };
+        let trafo =
+            kinematics::build(set, cfg, &a.args).map_err(|e| Alarm::value_out_of_range(line, &e.to_string()))?;
+        a.trafo = ActiveTrafo { trafo, tool: a.trafo.tool, number: set.number };
+        a.bcs = None;
+        self.pos = a.trafo.forward(&a.machine);
+        self.offsets.trafo = Some(a.trafo.clone());
+        self.trafo.generation = self.trafo.generation.wrapping_add(1);
+        Ok(())
+    }
+
     /// Selecting and deselecting a transformation deselects the current frame, as a programmed
     /// G500 does, together with the programmable frame (TRANS, ROT ... of the program). A
     /// program selects its frames again afterwards (the manual's TRACYL sequence).
     fn deselect_current_frame(&mut self) {
         self.modal.work_offset = 0;
         *self.pframe = crate::interp::frame::Frame::identity();
+    }
+
+    /// The active transformation's data set number and selection parameters, if one is active.
+    pub(super) fn active_selection(&self) -> Option<(usize, SelectArgs)> {
+        self.trafo.active.as_ref().map(|a| (a.trafo.number, a.args))
+    }
+
+    /// Selects data set `number` with `args` again, the machine standing at `machine` (restart
+    /// of a checkpoint whose transformation stays over reset), with the tool taken into it.
+    pub(super) fn reselect_transformation(
+        &mut self,
+        number: usize,
+        args: &SelectArgs,
+        cfg: &MachineConfig,
+        machine: &AxisVec,
+    ) -> Result<(), Alarm> {
+        self.clear_transformation();
+        self.pos = *machine;
+        self.select_data_set(number, args, cfg, machine, 0)?;
+        self.absorb_tool_into_transformation();
+        Ok(())
     }
 
     /// The transformation after reset and program end: the active one stays (RESET_MODE_MASK

@@ -179,6 +179,7 @@ impl Transformation for AnyTrafo {
 
 /// Parameters given with the selection in the program.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SelectArgs {
     /// TRACYL working diameter d.
     pub diameter: Option<f64>,

@@ -31,17 +31,21 @@
 //! rotated against the world frame at the kinematic zero).
 //!
 //! TRANSMIT_K, TRACYL_K and TRAANG_K become the machine data's TRANSMIT/TRACYL/TRAANG data sets
-//! ([`classic`]). TRAORI_STAT and TRACON_K records are checked and stored, not built. Of the
+//! ([`classic`]). TRAORI_STAT and TRACON_K records are checked and stored, not built (TRAFOON of
+//! one raises 14401 saying why: TRACON_K chains an Open Architecture transformation, which the
+//! consulted sources do not describe and this product does not model). Of the
 //! further `$NT_` fields, `$NT_POLE_LIMIT`/`$NT_POLE_TOL` reach TRAORI and `$NT_POLE_SIDE_FIX`
 //! TRANSMIT; `$NT_ROT_OFFSET_FROM_FRAME` is carried like `TRANSMIT/TRACYL_ROT_AX_FRAME` (which
 //! the kinematics do not evaluate either); `$NT_CLOSE_CHAIN_P/T` and `$NT_CORR_ELEM_P/T` are
-//! checked to name elements of their subchain (OFFSET elements for the latter) but not applied
-//! (the work offset of a closed chain and CORRTRAFO are not modelled); `$NT_AUX_POS` and
+//! checked to name elements of their subchain (OFFSET elements for the latter); the work offset
+//! of a closed chain is not modelled, the correction elements are what CORRTRAFO writes
+//! ([`correct`]); `$NT_AUX_POS` and
 //! `$NT_IDENT` are not evaluated by the control (manual); `$NT_BASE_TOOL_COMP` ($P_TRAFRAME),
 //! `$NT_ROT_AX_POS` (constant rotations as orientation axes) and `$NT_IGNORE_TOOL_ORIENT` (the
 //! tool's own orientation is not modelled) are stored and range-checked only.
 
 mod classic;
+pub mod correct;
 mod program;
 
 pub use program::export_program;
@@ -128,6 +132,9 @@ const VARS: &[Var] = &[
     var("$NT_CORR_ELEM_T", T, Str, 4),
     var("$NT_CORR_ELEM_P", T, Str, 4),
     var("$NT_POLE_SIDE_FIX", T, Int, 1),
+    // TRACON_K: the member transformations in BCS → MCS order (stored only; four entries like
+    // MD24995 TRACON_CHAIN is this product's choice, the seed gives no count).
+    var("$NT_TRACON_CHAIN", T, Str, 4),
 ];
 
 fn default(var: &Var, k: usize) -> Value {
@@ -258,6 +265,19 @@ impl KinData {
         self.values.retain(|k, _| k.0 != Family::Trafo);
     }
 
+    /// Sets `$NK_OFF_DIR[record, 0..2]` (what CORRTRAFO writes).
+    pub fn set_off_dir(&mut self, record: usize, v: [f64; 3]) {
+        let pos = VARS.iter().position(|v| v.name == "$NK_OFF_DIR").expect("a known variable");
+        for (k, x) in v.iter().enumerate() {
+            let key = (Family::Element, record, pos, k);
+            if *x == 0.0 {
+                self.values.remove(&key);
+            } else {
+                self.values.insert(key, Value::Real(*x));
+            }
+        }
+    }
+
     fn get(&self, family: Family, i: usize, name: &str, k: usize) -> Value {
         let pos = VARS.iter().position(|v| v.name == name).expect("a known variable");
         self.values.get(&(family, i, pos, k)).cloned().unwrap_or_else(|| default(&VARS[pos], k))
@@ -342,6 +362,8 @@ impl ElemType {
 /// One checked chain element.
 #[derive(Debug, Clone)]
 struct Elem {
+    /// The `$NK_…[i]` record index.
+    record: usize,
     name: String,
     ty: ElemType,
     /// Offset vector (OFFSET) or unit direction (axes, constant rotations).
@@ -439,7 +461,7 @@ fn build_graph(
             }
             _ => None,
         };
-        elems.push((i, Elem { name, ty, dir, axis, a_off: kin.num(f, i, "$NK_A_OFF", 0), parent: None }));
+        elems.push((i, Elem { record: i, name, ty, dir, axis, a_off: kin.num(f, i, "$NK_A_OFF", 0), parent: None }));
     }
     // Links: every element follows at most one other (the chains form a tree).
     let names: Vec<String> = elems.iter().map(|(_, e)| e.name.clone()).collect();
@@ -621,6 +643,63 @@ pub(super) fn build(
         sets.push(set);
     }
     Ok(sets)
+}
+
+/// What building a chain record needs besides the chain data: the root element's name
+/// (MD16800) and the pole limits of MD24530/MD24540 that apply unless the record sets its own.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BuildContext {
+    pub root: String,
+    pub pole: (f64, f64),
+}
+
+/// Builds TRAORI_DYN record `n` of `kin` alone (the data set CORRTRAFO corrects), exactly as
+/// activation builds it.
+pub fn rebuild_traori(
+    kin: &KinData,
+    ctx: &BuildContext,
+    channel_axes: &[ChannelAxis],
+    machine_axes: &[MachineAxis],
+    n: usize,
+) -> Result<TrafoDataSet, ActivationError> {
+    let g = build_graph(kin, &ctx.root, channel_axes, machine_axes)?;
+    let name = kin.str(Family::Trafo, n, "$NT_NAME", 0);
+    let what = format!("$NT_…[{n}] \"{name}\"");
+    if !kin.str(Family::Trafo, n, "$NT_TRAFO_TYPE", 0).eq_ignore_ascii_case("TRAORI_DYN") {
+        return Err(general(format!("{what}: not a TRAORI_DYN record")));
+    }
+    check_common(kin, &g, n, &what)?;
+    traori_dyn(kin, &g, n, &what, name, ctx.pole)
+}
+
+/// `$NT_ROT_AX_CNT[n, k]` (read only): the rotary axis elements on the workpiece (k = 0) or the
+/// tool (k = 1) subchain of record `n`; 0 where the chain cannot be walked.
+pub fn rot_ax_cnt(
+    kin: &KinData,
+    ctx: &BuildContext,
+    channel_axes: &[ChannelAxis],
+    machine_axes: &[MachineAxis],
+    n: usize,
+    k: usize,
+) -> usize {
+    let Ok(g) = build_graph(kin, &ctx.root, channel_axes, machine_axes) else { return 0 };
+    let f = Family::Trafo;
+    let (first, last) = if k == 0 {
+        ("$NT_P_CHAIN_FIRST_ELEM", "$NT_P_CHAIN_LAST_ELEM")
+    } else {
+        ("$NT_T_CHAIN_FIRST_ELEM", "$NT_T_CHAIN_LAST_ELEM")
+    };
+    walk(&g, "", &kin.str(f, n, first, 0), &kin.str(f, n, last, 0))
+        .map_or(0, |w| w.axes.iter().filter(|a| a.rotary).count())
+}
+
+/// The `$NT_TRAFO_TYPE` of the record named `name`, if one is.
+pub fn type_of(kin: &KinData, name: &str) -> Option<String> {
+    let f = Family::Trafo;
+    kin.records(f)
+        .into_iter()
+        .find(|&n| kin.str(f, n, "$NT_NAME", 0) == name)
+        .map(|n| kin.str(f, n, "$NT_TRAFO_TYPE", 0).to_ascii_uppercase())
 }
 
 fn traori_dyn(

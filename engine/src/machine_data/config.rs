@@ -86,6 +86,10 @@ pub struct MachineConfig {
     /// transformations are in `trafos`), with MD18880 and MD18866 bounding their indices.
     pub kin: super::chains::KinData,
     pub kin_counts: (usize, usize),
+    /// What rebuilding one chain record needs (CORRTRAFO): root name and pole defaults.
+    pub kin_build: super::chains::BuildContext,
+    /// SD41610/SD41611: the limits CORRTRAFO monitors (setting data, acting at once).
+    pub corr_limits: super::chains::correct::Limits,
     /// Which transformation is active after reset and program end.
     pub reset_trafo: ResetTrafo,
     /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS: blocks without motion in the compensation plane the
@@ -281,6 +285,7 @@ impl MachineConfig {
             |name: &str| registry::lookup(name).and_then(|d| d.default_value(0, false).as_f64()).unwrap_or(2.0);
         let pole = (default_of("$MC_TRAFO5_NON_POLE_LIMIT_1"), default_of("$MC_TRAFO5_POLE_LIMIT_1"));
         trafos.extend(super::chains::build(md, &channel_axes, &machine_axes, pole)?);
+        let kin_build = super::chains::BuildContext { root: md.string("$MN_ROOT_KIN_ELEM_NAME", 0), pole };
 
         let mut cfg = MachineConfig {
             ipo_cycle,
@@ -309,6 +314,8 @@ impl MachineConfig {
                 md.num("$MN_MM_MAXNUM_KIN_CHAIN_ELEM", 0, 0) as usize,
                 md.num("$MN_MM_NUM_KIN_TRAFOS", 0, 0) as usize,
             ),
+            kin_build,
+            corr_limits: Default::default(),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
         };
@@ -322,6 +329,10 @@ impl MachineConfig {
         if self.kin != *md.kin() {
             self.kin = md.kin().clone();
         }
+        self.corr_limits = super::chains::correct::Limits {
+            lin_max: md.num("$SN_CORR_TRAFO_LIN_MAX", 0, 0),
+            dir_max: md.num("$SN_CORR_TRAFO_DIR_MAX", 0, 0),
+        };
         let n = self.channel_axes.len();
         let user = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
         let base = md.num("$MC_MM_NUM_BASE_FRAMES", 0, 0) as usize;
@@ -450,4 +461,17 @@ fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationEr
         limit_minus: minus,
         limit_plus: plus,
     })
+}
+
+impl MachineConfig {
+    /// Replaces the data set of TRAORI_DYN record `n` by one built from the chain data as it
+    /// is now (after CORRTRAFO wrote `$NK_OFF_DIR`), leaving every other data set as activated.
+    pub fn rebuild_chain_trafo(&mut self, n: usize) -> Result<(), ActivationError> {
+        let set = super::chains::rebuild_traori(&self.kin, &self.kin_build, &self.channel_axes, &self.machine_axes, n)?;
+        match self.trafos.iter_mut().find(|s| s.number == set.number) {
+            Some(slot) => *slot = set,
+            None => self.trafos.push(set),
+        }
+        Ok(())
+    }
 }

@@ -427,6 +427,12 @@ pub static DEFS: &[Def] = &[
     // ZX'Z'', 2 RPY XY'Z'', 3 RPY ZY'X'', 4/5 ORIAX_TURN_TAB_1/2 (seed 003, F2 3.8).
     sd("CART_JOG_MODE", 42650, C, Kind::Int, Default::Int(0), 0.0, 1799.0),
     sd("ORI_JOG_MODE", 42660, C, Kind::Int, Default::Int(0), 0.0, 5.0),
+    // SD41610/SD41611: the largest change CORRTRAFO makes to an offset vector (mm) / turns a
+    // direction (degrees) unless Corr_Mode's thousands digit suppresses the check. SD41611 and
+    // its meaning are the manual's (K12 §4.3.2); SD41610's number and both defaults are this
+    // product's choice (from memory / not in the consulted sources).
+    sd("CORR_TRAFO_LIN_MAX", 41610, N, Kind::Real, Default::Real(1.0), 0.0, INF),
+    sd("CORR_TRAFO_DIR_MAX", 41611, N, Kind::Real, Default::Real(1.0), 0.0, 180.0),
     // SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
     sd("TOCARR_FINE_CORRECTION", 42974, C, Kind::Bool, Default::Bool(false), 0.0, 1.0),
     // SD42980 TOFRAME_MODE: 0/1 as MD21110; 2000 X/Y compromise, 2001 new X in the old X-Z

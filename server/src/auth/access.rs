@@ -108,7 +108,7 @@ async fn authorize(state: &AppState, request: Request) -> Result<Request, ApiErr
         .map_err(|e| ApiError::bad_request(e.body_text()))?;
     let mut request = Request::from_parts(parts, body);
     let id = params.get("id").cloned().unwrap_or_default();
-    let entry = state.entry(&id).ok_or_else(|| ApiError::SessionNotFound(id.clone()))?;
+    let entry = state.find_entry(&id).await?;
 
     let role = match state.auth() {
         AuthMode::Off => Role::Owner,

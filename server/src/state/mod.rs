@@ -21,7 +21,7 @@ use crate::error::ApiError;
 pub use crate::limits::Limits;
 use crate::metrics::Metrics;
 use crate::session::SessionHandle;
-use crate::storage::{self, MemoryStorage, SessionRecord, Storage, StorageError};
+use crate::storage::{self, Claim, Lease, MemoryStorage, SessionRecord, Storage, StorageError};
 
 /// How the server is set up (from `nctwin`'s flags, or by tests).
 #[derive(Debug, Clone)]
@@ -35,6 +35,11 @@ pub struct Config {
     pub web_dir: PathBuf,
     pub limits: Limits,
     pub auth: AuthMode,
+    /// This node's name on a shared database (`--node-id`); `None`: the host name with a random
+    /// suffix. Only a PostgreSQL storage uses it.
+    pub node_id: Option<String>,
+    /// How long this node's session leases last without renewal (`--lease-seconds`).
+    pub lease_period: std::time::Duration,
 }
 
 impl Config {
@@ -46,6 +51,8 @@ impl Config {
             web_dir: web_dir.into(),
             limits: Limits::default(),
             auth: AuthMode::Off,
+            node_id: None,
+            lease_period: storage::DEFAULT_LEASE_PERIOD,
         }
     }
 }
@@ -68,6 +75,9 @@ struct Shared {
     /// Serialises session creation from the limit check to the registration, so concurrent
     /// creations cannot together pass the session limits.
     create_lock: tokio::sync::Mutex<()>,
+    /// Serialises taking over sessions from the shared database, so two requests for the same
+    /// session cannot start it twice.
+    claim_lock: tokio::sync::Mutex<()>,
     config: Config,
     storage: Arc<dyn Storage>,
     metrics: Metrics,
@@ -103,6 +113,7 @@ impl AppState {
                 sessions: Mutex::new(HashMap::new()),
                 next_session: AtomicU64::new(1),
                 create_lock: tokio::sync::Mutex::new(()),
+                claim_lock: tokio::sync::Mutex::new(()),
                 config,
                 storage,
                 metrics: Metrics::default(),
@@ -117,35 +128,117 @@ impl AppState {
     pub async fn open(config: Config) -> Result<AppState, StorageError> {
         let dir = config.data_dir.clone();
         let database = config.database.clone();
-        let storage = tokio::task::spawn_blocking(move || storage::open(database.as_deref(), &dir))
+        let mut lease = Lease::default();
+        if let Some(node) = &config.node_id {
+            lease.node = node.clone();
+        }
+        lease.period = config.lease_period;
+        let storage = tokio::task::spawn_blocking(move || storage::open(database.as_deref(), &dir, lease))
             .await
             .map_err(|e| StorageError(format!("opening the storage failed: {e}")))??;
         let state = AppState::with_storage(config, storage);
         let restored = state.restore().await?;
-        tracing::info!(storage = %state.shared.storage.describe(), sessions = restored, "storage opened");
+        let node = state.shared.storage.lease().map(|l| l.node.clone());
+        tracing::info!(storage = %state.shared.storage.describe(), node = ?node, sessions = restored, "storage opened");
+        state.start_heartbeat();
         Ok(state)
     }
 
-    /// Starts every session the storage holds (see [`persist`] for what a restored session
-    /// looks like) and continues numbering above them. Returns how many were restored.
+    /// Starts every session the storage holds for this node (see [`persist`] for what a
+    /// restored session looks like) and continues numbering above them. Returns how many were
+    /// restored.
     pub async fn restore(&self) -> Result<usize, StorageError> {
         let saved = self.storage_call(|s| s.load()).await?;
         let mut restored = 0;
         for session in saved {
-            let record = &session.record;
-            self.shared.next_session.fetch_max(record.number.saturating_add(1), Ordering::Relaxed);
-            let channel = match persist::rebuild(&session) {
-                Ok(channel) => channel,
-                Err(e) => {
-                    tracing::error!(session = %record.id, error = %e, "saved session not restored (kept in storage)");
-                    continue;
-                }
-            };
-            let client_ip = record.client_ip.as_deref().and_then(|ip| ip.parse().ok());
-            self.start_session(&record.id, record.number, &record.machine, channel, client_ip, record.tokens.clone());
-            restored += 1;
+            restored += usize::from(self.start_saved(&session).is_some());
         }
         Ok(restored)
+    }
+
+    /// Rebuilds and starts a saved session; `None` (logged, the record stays in storage) if it
+    /// no longer applies.
+    fn start_saved(&self, session: &storage::SavedSession) -> Option<Arc<SessionEntry>> {
+        let record = &session.record;
+        self.shared.next_session.fetch_max(record.number.saturating_add(1), Ordering::Relaxed);
+        let channel = match persist::rebuild(session) {
+            Ok(channel) => channel,
+            Err(e) => {
+                tracing::error!(session = %record.id, error = %e, "saved session not restored (kept in storage)");
+                return None;
+            }
+        };
+        let client_ip = record.client_ip.as_deref().and_then(|ip| ip.parse().ok());
+        Some(self.start_session(&record.id, record.number, &record.machine, channel, client_ip, record.tokens.clone()))
+    }
+
+    /// The session `id` this node serves: a live one, or, on a shared database, one this node
+    /// takes over because its lease is free or expired. `421` names the node that holds it;
+    /// `404` if there is none.
+    pub async fn find_entry(&self, id: &str) -> Result<Arc<SessionEntry>, ApiError> {
+        if let Some(entry) = self.entry(id) {
+            return Ok(entry);
+        }
+        if self.shared.storage.lease().is_none() {
+            return Err(ApiError::SessionNotFound(id.to_string()));
+        }
+        let _claiming = self.shared.claim_lock.lock().await;
+        if let Some(entry) = self.entry(id) {
+            return Ok(entry);
+        }
+        let key = id.to_string();
+        match self.storage_call(move |s| s.claim_session(&key)).await? {
+            Claim::Claimed(saved) => {
+                tracing::info!(session = %id, "session taken over from the shared database");
+                self.start_saved(&saved).ok_or_else(|| {
+                    ApiError::StorageUnavailable(format!("session `{id}` is stored but cannot be restored here"))
+                })
+            }
+            Claim::HeldBy { node, seconds_left } => {
+                Err(ApiError::WrongNode { session: id.to_string(), node, seconds_left })
+            }
+            Claim::Missing => Err(ApiError::SessionNotFound(id.to_string())),
+        }
+    }
+
+    /// With leases (a shared database): renews this node's leases three times per lease
+    /// period, and stops serving (without saving) every session whose lease another node has
+    /// taken over meanwhile. Ends with the state.
+    fn start_heartbeat(&self) {
+        let Some(period) = self.shared.storage.lease().map(|l| l.period) else { return };
+        let shared = Arc::downgrade(&self.shared);
+        tokio::spawn(async move {
+            let mut tick = tokio::time::interval(period / 3);
+            tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Delay);
+            tick.tick().await;
+            loop {
+                tick.tick().await;
+                let Some(shared) = shared.upgrade() else { return };
+                let state = AppState { shared };
+                // No creation or takeover between the renewal and the comparison: a session
+                // leased after the renewal's snapshot would look lost.
+                let _creating = state.shared.create_lock.lock().await;
+                let _claiming = state.shared.claim_lock.lock().await;
+                match state.storage_call(|s| s.renew_leases()).await {
+                    Ok(Some(held)) => state.drop_lost_sessions(&held).await,
+                    Ok(None) => return,
+                    Err(e) => tracing::warn!(error = %e, "session leases not renewed"),
+                }
+            }
+        });
+    }
+
+    /// Stops the live sessions not in `held` (their lease went to another node).
+    async fn drop_lost_sessions(&self, held: &[String]) {
+        let lost: Vec<Arc<SessionEntry>> = {
+            let mut sessions = self.sessions();
+            let ids: Vec<String> = sessions.keys().filter(|id| !held.contains(id)).cloned().collect();
+            ids.iter().filter_map(|id| sessions.remove(id)).collect()
+        };
+        for entry in lost {
+            tracing::warn!(session = %entry.id(), "lease lost to another node: session no longer served here");
+            entry.handle.shutdown().await;
+        }
     }
 
     pub fn data_dir(&self) -> &Path {
@@ -194,7 +287,8 @@ impl AppState {
     }
 
     /// Creates a session for `channel`: checks the session limits, makes its tokens, saves it
-    /// (durably) and starts its actor. Ids are `s1`, `s2`, ... (base 36).
+    /// (durably) and starts its actor. Ids are `s1`, `s2`, ... (base 36), numbered by the
+    /// database when nodes share one.
     pub async fn create_session(
         &self,
         machine: &str,
@@ -225,7 +319,11 @@ impl AppState {
         }
         let tokens = TokenSet::generate()
             .map_err(|e| ApiError::StorageUnavailable(format!("no random numbers for tokens: {e}")))?;
-        let number = self.shared.next_session.fetch_add(1, Ordering::Relaxed);
+        // On a shared database the database hands out numbers, so nodes never make the same id.
+        let number = match self.storage_call(|s| s.next_session_number()).await? {
+            Some(n) => n,
+            None => self.shared.next_session.fetch_add(1, Ordering::Relaxed),
+        };
         let id = format!("s{}", base36(number));
         let record = SessionRecord {
             id: id.clone(),
@@ -428,7 +526,13 @@ impl AppState {
         }
         let saved = checkpoints.len();
         match self.storage_call(move |s| s.save_checkpoints(&checkpoints)).await {
-            Ok(()) => tracing::info!(sessions = saved, "every session saved"),
+            Ok(()) => {
+                tracing::info!(sessions = saved, "every session saved");
+                // Saved: other nodes may take the sessions over at once.
+                if let Err(e) = self.storage_call(|s| s.release_leases()).await {
+                    tracing::warn!(error = %e, "session leases not released (they expire)");
+                }
+            }
             Err(e) => tracing::error!(error = %e, "sessions not saved at shutdown"),
         }
         drop(guards);

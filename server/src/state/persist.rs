@@ -1,11 +1,15 @@
 //! Between a `Channel` and the storage records: what a checkpoint holds and how a saved
 //! session becomes a channel again.
 //!
-//! A restored session is in reset state (status idle, no program loaded, no alarms, simulated
-//! time 0) with its machine data, stored programs, axis positions and operating mode as saved.
-//! A program that was running or stopped when the server went down is not continued: the
-//! channel comes back reset at the positions of the last checkpoint.
+//! A restored session has its machine data, stored programs, axis positions and operating
+//! mode as saved, and the channel state a reset keeps: tool and cutting edge, toolholder,
+//! system frames, R parameters, a transformation kept over reset
+//! ([`nctwin_engine::channel::ResumeState`], stored as JSON). A program that was running or
+//! stopped in AUTO when the checkpoint was taken comes back stopped at its block (block search
+//! with calculation to it: NC start approaches the block and continues); one only loaded comes
+//! back loaded. Alarms, spindle speeds and simulated time start afresh.
 
+use nctwin_engine::channel::ResumeState;
 use nctwin_engine::{Channel, MachineData, Mode};
 
 use crate::storage::{Checkpoint, SavedSession};
@@ -16,6 +20,7 @@ pub fn checkpoint(channel: &Channel) -> Checkpoint {
         machine_data: channel.machine_data().to_text(),
         positions: channel.axis_positions().to_vec(),
         mode: mode_name(channel.mode()).into(),
+        channel_state: serde_json::to_string(&channel.resume_state()).ok(),
     }
 }
 
@@ -48,14 +53,23 @@ pub fn rebuild(saved: &SavedSession) -> Result<Channel, String> {
     if let Err(e) = channel.restore_positions(&record.checkpoint.positions) {
         tracing::warn!(session = %record.id, error = %e, "saved positions not restored");
     }
-    match mode_from(&record.checkpoint.mode).map(|m| channel.set_mode(m)) {
-        Some(Ok(())) => {}
-        _ => tracing::warn!(session = %record.id, mode = %record.checkpoint.mode, "saved mode not restored"),
-    }
     for (name, text) in &saved.programs {
         if let Err(e) = channel.store_program(name, text) {
             tracing::warn!(session = %record.id, program = %name, error = %e, "saved program not restored");
         }
+    }
+    // After the stored programs: the block search of an active program may call them.
+    if let Some(json) = &record.checkpoint.channel_state {
+        let restored = serde_json::from_str::<ResumeState>(json)
+            .map_err(|e| e.to_string())
+            .and_then(|state| channel.restore_resume_state(&state).map_err(|e| e.to_string()));
+        if let Err(e) = restored {
+            tracing::warn!(session = %record.id, error = %e, "saved channel state not restored");
+        }
+    }
+    match mode_from(&record.checkpoint.mode).map(|m| channel.set_mode(m)) {
+        Some(Ok(())) => {}
+        _ => tracing::warn!(session = %record.id, mode = %record.checkpoint.mode, "saved mode not restored"),
     }
     // Restoring is not news to anyone: no mode-change event for the first stream client.
     channel.take_events();

@@ -5,8 +5,8 @@
 //! came from, the client address that created it (for the per-client session limit), the
 //! SHA-256 hashes of its three tokens (never the tokens themselves), and a [`Checkpoint`] of
 //! the channel: the whole machine data as NC data text (machine data, tool data, settable
-//! frames; applying it to default data rebuilds the same data), the axis positions and the
-//! operating mode. Stored programs are kept one row per program, so a large program is written
+//! frames; applying it to default data rebuilds the same data), the axis positions, the
+//! operating mode and the resumable channel state (JSON, see [`crate::state::persist`]). Stored programs are kept one row per program, so a large program is written
 //! once, not with every checkpoint.
 //!
 //! Durability: every method returns only after the change is on disk (see [`sqlite`]). Callers
@@ -27,6 +27,7 @@ mod sqlite;
 use std::fmt::Debug;
 use std::path::Path;
 use std::sync::Arc;
+use std::time::Duration;
 
 pub use memory::MemoryStorage;
 pub use postgres::PostgresStorage;
@@ -55,6 +56,10 @@ pub struct Checkpoint {
     pub positions: Vec<f64>,
     /// Operating mode: `JOG`, `MDA` or `AUTO`.
     pub mode: String,
+    /// The rest of the channel state a restart takes back (tool and cutting edge, toolholder,
+    /// system frames, R parameters, a transformation kept over reset, the AUTO program and its
+    /// block) as JSON; `None` in rows written before schema version 2.
+    pub channel_state: Option<String>,
 }
 
 /// SHA-256 hashes (lowercase hex) of a session's tokens.
@@ -86,6 +91,51 @@ pub struct SavedSession {
     pub programs: Vec<(String, String)>,
 }
 
+/// The lease a node holds on the sessions it serves, when several nodes share one database.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Lease {
+    /// The node's name, unique among the nodes on the database (`--node-id`).
+    pub node: String,
+    /// How long a lease lasts without renewal; a node renews its leases three times per period.
+    pub period: Duration,
+}
+
+/// Default lease period: a node that died frees its sessions after this long.
+pub const DEFAULT_LEASE_PERIOD: Duration = Duration::from_secs(15);
+
+/// This host's name (`node` if unknown).
+pub fn host_name() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .ok()
+        .or_else(|| std::env::var("HOSTNAME").ok())
+        .map(|h| h.trim().to_string())
+        .filter(|h| !h.is_empty())
+        .unwrap_or_else(|| "node".into())
+}
+
+impl Default for Lease {
+    /// This host's name and a random suffix: unique, but not kept over a restart (`nctwin`
+    /// names a node after its host and port unless `--node-id` names it).
+    fn default() -> Lease {
+        let host = host_name();
+        let mut suffix = [0u8; 4];
+        let _ = getrandom::fill(&mut suffix);
+        let suffix: String = suffix.iter().map(|b| format!("{b:02x}")).collect();
+        Lease { node: format!("{host}-{suffix}"), period: DEFAULT_LEASE_PERIOD }
+    }
+}
+
+/// What [`Storage::claim_session`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Claim {
+    /// The session is now leased to this node; here it is, to start.
+    Claimed(Box<SavedSession>),
+    /// Another node holds a lease that has not expired.
+    HeldBy { node: String, seconds_left: f64 },
+    /// No such session.
+    Missing,
+}
+
 /// Where sessions are kept. Every method is durable when it returns `Ok`.
 pub trait Storage: Send + Sync + Debug {
     /// A short description for logs and `GET /health`, e.g. `sqlite:/var/lib/nctwin/nctwin.sqlite3`.
@@ -94,7 +144,8 @@ pub trait Storage: Send + Sync + Debug {
     fn backend(&self) -> &'static str;
     /// Checks that the storage answers (a trivial read).
     fn check(&self) -> Result<(), StorageError>;
-    /// Every stored session with its programs, in creation order.
+    /// Every stored session with its programs, in creation order (with leases: every session
+    /// this node may serve, now leased to it).
     fn load(&self) -> Result<Vec<SavedSession>, StorageError>;
     /// Stores a new session (replacing one with the same id, with its programs).
     fn create_session(&self, record: &SessionRecord) -> Result<(), StorageError>;
@@ -111,6 +162,31 @@ pub trait Storage: Send + Sync + Debug {
     fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError>;
     /// Deletes program `name` of session `id`; a missing program is no error.
     fn delete_program(&self, id: &str, name: &str) -> Result<(), StorageError>;
+
+    // ---- several nodes on one database (PostgreSQL); a storage of one node keeps the defaults.
+    // With leases, `load` returns (and leases) only the sessions this node may serve, and every
+    // write to a session another node holds fails.
+
+    /// The number of a new session, unique among all nodes; `None`: the caller counts.
+    fn next_session_number(&self) -> Result<Option<u64>, StorageError> {
+        Ok(None)
+    }
+    /// Leases session `id` to this node if it is free, expired or already this node's.
+    fn claim_session(&self, _id: &str) -> Result<Claim, StorageError> {
+        Ok(Claim::Missing)
+    }
+    /// Renews this node's leases; the ids still held (`None`: no leases).
+    fn renew_leases(&self) -> Result<Option<Vec<String>>, StorageError> {
+        Ok(None)
+    }
+    /// Gives every lease of this node up (shutdown), so other nodes may take over at once.
+    fn release_leases(&self) -> Result<(), StorageError> {
+        Ok(())
+    }
+    /// This node's lease, if the storage has leases.
+    fn lease(&self) -> Option<&Lease> {
+        None
+    }
 }
 
 /// Opens (creating if needed) the embedded default storage in `data_dir`.
@@ -121,12 +197,13 @@ pub fn open_default(data_dir: &Path) -> Result<SqliteStorage, StorageError> {
 }
 
 /// Opens the storage `nctwin` runs on: the database at `database` when given (a
-/// `postgres://` or `postgresql://` URL), else the embedded default in `data_dir`. Blocks.
-pub fn open(database: Option<&str>, data_dir: &Path) -> Result<Arc<dyn Storage>, StorageError> {
+/// `postgres://` or `postgresql://` URL, used as node `lease`), else the embedded default in
+/// `data_dir`. Blocks.
+pub fn open(database: Option<&str>, data_dir: &Path, lease: Lease) -> Result<Arc<dyn Storage>, StorageError> {
     match database {
         None => Ok(Arc::new(open_default(data_dir)?)),
         Some(url) if url.starts_with("postgres://") || url.starts_with("postgresql://") => {
-            Ok(Arc::new(PostgresStorage::open(url)?))
+            Ok(Arc::new(PostgresStorage::open_as(url, lease)?))
         }
         Some(other) => {
             let scheme = other.split_once(':').map_or(other, |(scheme, _)| scheme);

@@ -3,8 +3,16 @@
 //!
 //! Schema: tables `nctwin_sessions` and `nctwin_programs` (prefixed, so the database may hold
 //! other things) and `nctwin_schema` with the schema version; created on open if missing, under
-//! an advisory lock so that nodes starting together do not race. Positions are a
-//! `double precision[]`, sent in binary: they round-trip bit for bit.
+//! an advisory lock so that nodes starting together do not race, and migrated in place from
+//! older versions (columns added, rows kept). Positions are a `double precision[]`, sent in
+//! binary: they round-trip bit for bit.
+//!
+//! Several nodes: each storage is opened for one node ([`Lease`]). A session row carries its
+//! lease (`lease_node`, `lease_expires`, on the database's clock): `load` and `claim_session`
+//! take the sessions that are free, expired or already this node's; `renew_leases` extends this
+//! node's; `release_leases` frees them. Every write to a session first locks its row and checks
+//! that this node holds it (`fence`), so a node that lost a session can no longer change it.
+//! Session numbers come from the sequence `nctwin_session_numbers`.
 //!
 //! Durability: each trait method is one transaction (or one statement, which PostgreSQL runs as
 //! one), and the connection sets `synchronous_commit = on`, so a method returns only after the
@@ -16,19 +24,22 @@
 //! [`crate::state::AppState`]), never on the server's async threads, where the client's
 //! `block_on` would panic. A connection that broke (server restart, network) is replaced by a
 //! new one on the next call; the call that saw it break fails (and is not acknowledged). No TLS:
-//! use a Unix socket, a trusted network or a TLS-terminating proxy. A password may come in the
+//! use a Unix socket, a trusted network or a TLS-terminating proxy; `sslmode=require` in the URL
+//! is refused at start, `prefer` and `disable` connect without TLS. A password may come in the
 //! URL or, to keep it out of the process list, in the `PGPASSWORD` environment variable.
 
 use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
-use postgres::config::Host;
-use postgres::{Client, Config, NoTls};
+use postgres::config::{Host, SslMode};
+use std::collections::HashMap;
 
-use super::{Checkpoint, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
+use postgres::{Client, Config, NoTls, Transaction};
+
+use super::{Checkpoint, Claim, Lease, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
 
 /// Version in `nctwin_schema`; migrations go from each version to the next.
-const SCHEMA_VERSION: i32 = 1;
+const SCHEMA_VERSION: i32 = 2;
 
 /// Key of the advisory lock held while the schema is created or migrated.
 const SCHEMA_LOCK: i64 = 0x6e63_7477_696e; // "nctwin"
@@ -54,11 +65,26 @@ CREATE TABLE nctwin_programs (
 );
 ";
 
-const UPDATE_CHECKPOINT: &str = "UPDATE nctwin_sessions SET machine_data = $2, positions = $3, mode = $4 WHERE id = $1";
+/// Version 2: the resumable channel state of a checkpoint (NULL in rows of version 1), the
+/// session lease (node and expiry; NULL: free, so rows of version 1 go to the first node that
+/// asks) and the sequence session numbers come from, so that nodes never make the same id.
+const MIGRATE_V2: &str = "
+ALTER TABLE nctwin_sessions
+    ADD COLUMN channel_state TEXT,
+    ADD COLUMN lease_node    TEXT,
+    ADD COLUMN lease_expires TIMESTAMPTZ;
+CREATE SEQUENCE nctwin_session_numbers;
+SELECT setval('nctwin_session_numbers', COALESCE((SELECT max(number) FROM nctwin_sessions), 0) + 1, false);
+";
 
-/// A PostgreSQL database.
+const UPDATE_CHECKPOINT: &str =
+    "UPDATE nctwin_sessions SET machine_data = $2, positions = $3, mode = $4, channel_state = $5 WHERE id = $1";
+
+/// A PostgreSQL database, used by one server node.
 pub struct PostgresStorage {
     config: Config,
+    /// This node's name and lease period (see [`Lease`]).
+    lease: Lease,
     /// `postgres:user@host:port/dbname`, without the password.
     description: String,
     /// `None` after a connection broke, until the next call reconnects.
@@ -90,7 +116,23 @@ impl PostgresStorage {
     ///
     /// Blocks: call it from a blocking worker or a plain thread, not from async code.
     pub fn open(url: &str) -> Result<PostgresStorage, StorageError> {
+        PostgresStorage::open_as(url, Lease::default())
+    }
+
+    /// [`PostgresStorage::open`] for the node `lease` names: the sessions it loads, creates and
+    /// writes are leased to that node.
+    pub fn open_as(url: &str, lease: Lease) -> Result<PostgresStorage, StorageError> {
+        if lease.node.is_empty() || lease.period.is_zero() {
+            return Err(StorageError("a node needs a name and a lease period above zero".into()));
+        }
         let mut config: Config = url.parse().map_err(|e| StorageError(format!("invalid database URL: {e}")))?;
+        // No TLS in this build: refuse what asks for it rather than connect in the clear.
+        // `prefer` (the default) and `disable` connect without TLS.
+        if config.get_ssl_mode() == SslMode::Require {
+            return Err(StorageError(
+                "sslmode=require: this server has no TLS for PostgreSQL; use a Unix socket, a trusted network or a TLS-terminating proxy (sslmode=disable)".into(),
+            ));
+        }
         if config.get_password().is_none()
             && let Ok(password) = std::env::var("PGPASSWORD")
         {
@@ -106,7 +148,7 @@ impl PostgresStorage {
         if fsync != "on" {
             tracing::warn!(database = %description, "the PostgreSQL server runs with fsync={fsync}: saved data may be lost in a crash");
         }
-        Ok(PostgresStorage { config, description, client: Mutex::new(Some(client)) })
+        Ok(PostgresStorage { config, lease, description, client: Mutex::new(Some(client)) })
     }
 
     /// Runs `f` on the connection, connecting first if there is none. A call that fails for any
@@ -173,10 +215,16 @@ fn migrate(client: &mut Client) -> Result<(), StorageError> {
     tx.execute("SELECT pg_advisory_xact_lock($1)", &[&SCHEMA_LOCK])?;
     tx.batch_execute("CREATE TABLE IF NOT EXISTS nctwin_schema (version INTEGER NOT NULL)")?;
     let version: Option<i32> = tx.query_opt("SELECT max(version) FROM nctwin_schema", &[])?.and_then(|r| r.get(0));
+    // Each step adds to the tables, so every stored row is kept; all steps in one transaction.
     match version {
         None => {
             tx.batch_execute(SCHEMA_V1)?;
+            tx.batch_execute(MIGRATE_V2)?;
             tx.execute("INSERT INTO nctwin_schema (version) VALUES ($1)", &[&SCHEMA_VERSION])?;
+        }
+        Some(1) => {
+            tx.batch_execute(MIGRATE_V2)?;
+            tx.execute("UPDATE nctwin_schema SET version = $1", &[&SCHEMA_VERSION])?;
         }
         Some(SCHEMA_VERSION) => {}
         Some(other) => {
@@ -189,6 +237,9 @@ fn migrate(client: &mut Client) -> Result<(), StorageError> {
     Ok(())
 }
 
+const SESSION_COLUMNS: &str = "id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
+     machine_data, positions, mode, channel_state";
+
 fn record_from_row(r: &postgres::Row) -> SessionRecord {
     SessionRecord {
         id: r.get(0),
@@ -196,8 +247,56 @@ fn record_from_row(r: &postgres::Row) -> SessionRecord {
         machine: r.get(2),
         client_ip: r.get(3),
         tokens: TokenHashes { owner: r.get(4), operator: r.get(5), observer: r.get(6) },
-        checkpoint: Checkpoint { machine_data: r.get(7), positions: r.get(8), mode: r.get(9) },
+        checkpoint: Checkpoint {
+            machine_data: r.get(7),
+            positions: r.get(8),
+            mode: r.get(9),
+            channel_state: r.get(10),
+        },
     }
+}
+
+/// Who holds session `id`, locking its row until the transaction ends (so the lease cannot
+/// change between this check and the write that follows): `Ok(Ok(true))` this node,
+/// `Ok(Ok(false))` no such session, `Ok(Err(..))` naming the node that holds it otherwise.
+fn fence(tx: &mut Transaction<'_>, id: &str, node: &str) -> Result<Result<bool, String>, postgres::Error> {
+    let row = tx.query_opt("SELECT lease_node FROM nctwin_sessions WHERE id = $1 FOR UPDATE", &[&id])?;
+    Ok(match row.map(|r| r.get::<_, Option<String>>(0)) {
+        None => Ok(false),
+        Some(Some(holder)) if holder == node => Ok(true),
+        Some(holder) => Err(format!(
+            "session `{id}` is held by node `{}`, not by this node `{node}`",
+            holder.as_deref().unwrap_or("(none)")
+        )),
+    })
+}
+
+/// Sessions and programs of the rows `sessions` selected, in one snapshot.
+fn saved_sessions(
+    tx: &mut Transaction<'_>,
+    sessions: Vec<postgres::Row>,
+) -> Result<Vec<SavedSession>, postgres::Error> {
+    let ids: Vec<String> = sessions.iter().map(|r| r.get(0)).collect();
+    let programs = tx.query(
+        "SELECT session, name, text FROM nctwin_programs WHERE session = ANY($1) ORDER BY session, name COLLATE \"C\"",
+        &[&ids],
+    )?;
+    let mut by_session: HashMap<String, Vec<(String, String)>> = HashMap::new();
+    for row in &programs {
+        by_session.entry(row.get(0)).or_default().push((row.get(1), row.get(2)));
+    }
+    Ok(sessions
+        .iter()
+        .map(|row| {
+            let record = record_from_row(row);
+            let programs = by_session.remove(&record.id).unwrap_or_default();
+            SavedSession { record, programs }
+        })
+        .collect())
+}
+
+fn flatten<R>(result: Result<Result<R, String>, StorageError>) -> Result<R, StorageError> {
+    result?.map_err(StorageError)
 }
 
 impl Storage for PostgresStorage {
@@ -214,43 +313,43 @@ impl Storage for PostgresStorage {
     }
 
     fn load(&self) -> Result<Vec<SavedSession>, StorageError> {
+        let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
         self.with(|c| {
-            // One snapshot for both reads, so sessions and programs agree.
-            let mut tx = c.build_transaction().isolation_level(postgres::IsolationLevel::RepeatableRead).start()?;
+            // Read committed is enough: the rows this statement leases stay locked until the
+            // commit, and every other node's write to them checks the lease first (`fence`).
+            let mut tx = c.transaction()?;
+            // This node's own sessions (a restart under the same name), the free ones and those
+            // whose holder stopped renewing.
             let sessions = tx.query(
-                "SELECT id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
-                        machine_data, positions, mode
-                 FROM nctwin_sessions ORDER BY number, id",
-                &[],
+                &format!(
+                    "UPDATE nctwin_sessions SET lease_node = $1, lease_expires = now() + make_interval(secs => $2)
+                     WHERE lease_node IS NULL OR lease_node = $1 OR lease_expires < now()
+                     RETURNING {SESSION_COLUMNS}"
+                ),
+                &[&node, &period],
             )?;
-            let programs =
-                tx.query("SELECT session, name, text FROM nctwin_programs ORDER BY session, name COLLATE \"C\"", &[])?;
+            let mut sessions = sessions;
+            sessions.sort_by_key(|r| (r.get::<_, i64>(1), r.get::<_, String>(0)));
+            let saved = saved_sessions(&mut tx, sessions)?;
             tx.commit()?;
-            let mut by_session: std::collections::HashMap<String, Vec<(String, String)>> =
-                std::collections::HashMap::new();
-            for row in &programs {
-                by_session.entry(row.get(0)).or_default().push((row.get(1), row.get(2)));
-            }
-            Ok(sessions
-                .iter()
-                .map(|row| {
-                    let record = record_from_row(row);
-                    let programs = by_session.remove(&record.id).unwrap_or_default();
-                    SavedSession { record, programs }
-                })
-                .collect())
+            Ok(saved)
         })
     }
 
     fn create_session(&self, record: &SessionRecord) -> Result<(), StorageError> {
-        self.with(|c| {
+        let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
+        flatten(self.with(|c| {
             let mut tx = c.transaction()?;
+            if let Err(held) = fence(&mut tx, &record.id, node)? {
+                return Ok(Err(held));
+            }
             // Replacing a session replaces its programs too (ON DELETE CASCADE).
             tx.execute("DELETE FROM nctwin_sessions WHERE id = $1", &[&record.id])?;
             tx.execute(
                 "INSERT INTO nctwin_sessions (id, number, machine, client_ip, owner_hash, operator_hash,
-                                              observer_hash, machine_data, positions, mode)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10)",
+                                              observer_hash, machine_data, positions, mode, channel_state,
+                                              lease_node, lease_expires)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, now() + make_interval(secs => $13))",
                 &[
                     &record.id,
                     &(record.number.min(i64::MAX as u64) as i64),
@@ -262,55 +361,154 @@ impl Storage for PostgresStorage {
                     &record.checkpoint.machine_data,
                     &record.checkpoint.positions,
                     &record.checkpoint.mode,
+                    &record.checkpoint.channel_state,
+                    &node,
+                    &period,
                 ],
             )?;
-            tx.commit()
-        })
+            tx.commit().map(Ok)
+        }))
     }
 
     fn save_checkpoint(&self, id: &str, checkpoint: &Checkpoint) -> Result<(), StorageError> {
-        self.with(|c| {
-            c.execute(UPDATE_CHECKPOINT, &[&id, &checkpoint.machine_data, &checkpoint.positions, &checkpoint.mode])
-                .map(|_| ())
-        })
+        let node = self.lease.node.as_str();
+        flatten(self.with(|c| {
+            let mut tx = c.transaction()?;
+            if let Err(held) = fence(&mut tx, id, node)? {
+                return Ok(Err(held));
+            }
+            let cp = checkpoint;
+            tx.execute(UPDATE_CHECKPOINT, &[&id, &cp.machine_data, &cp.positions, &cp.mode, &cp.channel_state])?;
+            tx.commit().map(Ok)
+        }))
     }
 
     fn save_checkpoints(&self, checkpoints: &[(String, Checkpoint)]) -> Result<(), StorageError> {
-        // One transaction, one WAL flush, however many sessions shut down.
-        self.with(|c| {
+        // One transaction, one WAL flush, however many sessions shut down. A session another
+        // node has taken over is not written (its lease decides).
+        let node = self.lease.node.as_str();
+        let skipped = self.with(|c| {
             let mut tx = c.transaction()?;
-            let update = tx.prepare(UPDATE_CHECKPOINT)?;
+            let update = tx.prepare(&format!("{UPDATE_CHECKPOINT} AND lease_node = $6"))?;
+            let mut skipped = 0;
             for (id, cp) in checkpoints {
-                tx.execute(&update, &[id, &cp.machine_data, &cp.positions, &cp.mode])?;
+                let n =
+                    tx.execute(&update, &[id, &cp.machine_data, &cp.positions, &cp.mode, &cp.channel_state, &node])?;
+                skipped += usize::from(n == 0);
             }
-            tx.commit()
-        })
-    }
-
-    fn delete_session(&self, id: &str) -> Result<(), StorageError> {
-        // Programs go with their session (ON DELETE CASCADE), in the same statement.
-        self.with(|c| c.execute("DELETE FROM nctwin_sessions WHERE id = $1", &[&id]).map(|_| ()))
-    }
-
-    fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError> {
-        // One statement; the foreign key refuses a session deleted concurrently.
-        let stored = self.with(|c| {
-            c.execute(
-                "INSERT INTO nctwin_programs (session, name, text)
-                 SELECT $1, $2, $3 WHERE EXISTS (SELECT 1 FROM nctwin_sessions WHERE id = $1)
-                 ON CONFLICT (session, name) DO UPDATE SET text = excluded.text",
-                &[&id, &name, &text],
-            )
+            tx.commit().map(|()| skipped)
         })?;
-        if stored == 0 {
-            return Err(StorageError(format!("session `{id}` is not stored")));
+        if skipped > 0 {
+            tracing::warn!(sessions = skipped, "checkpoints of sessions deleted or held by another node not written");
         }
         Ok(())
     }
 
+    fn delete_session(&self, id: &str) -> Result<(), StorageError> {
+        // Programs go with their session (ON DELETE CASCADE), in the same transaction.
+        let node = self.lease.node.as_str();
+        flatten(self.with(|c| {
+            let mut tx = c.transaction()?;
+            if let Err(held) = fence(&mut tx, id, node)? {
+                return Ok(Err(held));
+            }
+            tx.execute("DELETE FROM nctwin_sessions WHERE id = $1", &[&id])?;
+            tx.commit().map(Ok)
+        }))
+    }
+
+    fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError> {
+        let node = self.lease.node.as_str();
+        flatten(self.with(|c| {
+            let mut tx = c.transaction()?;
+            match fence(&mut tx, id, node)? {
+                Err(held) => return Ok(Err(held)),
+                Ok(false) => return Ok(Err(format!("session `{id}` is not stored"))),
+                Ok(true) => {}
+            }
+            tx.execute(
+                "INSERT INTO nctwin_programs (session, name, text) VALUES ($1, $2, $3)
+                 ON CONFLICT (session, name) DO UPDATE SET text = excluded.text",
+                &[&id, &name, &text],
+            )?;
+            tx.commit().map(Ok)
+        }))
+    }
+
     fn delete_program(&self, id: &str, name: &str) -> Result<(), StorageError> {
+        let node = self.lease.node.as_str();
+        flatten(self.with(|c| {
+            let mut tx = c.transaction()?;
+            if let Err(held) = fence(&mut tx, id, node)? {
+                return Ok(Err(held));
+            }
+            tx.execute("DELETE FROM nctwin_programs WHERE session = $1 AND name = $2", &[&id, &name])?;
+            tx.commit().map(Ok)
+        }))
+    }
+
+    fn next_session_number(&self) -> Result<Option<u64>, StorageError> {
+        let n: i64 = self.with(|c| c.query_one("SELECT nextval('nctwin_session_numbers')", &[]).map(|r| r.get(0)))?;
+        Ok(Some(n.max(0) as u64))
+    }
+
+    fn claim_session(&self, id: &str) -> Result<Claim, StorageError> {
+        let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
         self.with(|c| {
-            c.execute("DELETE FROM nctwin_programs WHERE session = $1 AND name = $2", &[&id, &name]).map(|_| ())
+            let mut tx = c.transaction()?;
+            let claimed = tx.query(
+                &format!(
+                    "UPDATE nctwin_sessions SET lease_node = $2, lease_expires = now() + make_interval(secs => $3)
+                     WHERE id = $1 AND (lease_node IS NULL OR lease_node = $2 OR lease_expires < now())
+                     RETURNING {SESSION_COLUMNS}"
+                ),
+                &[&id, &node, &period],
+            )?;
+            if !claimed.is_empty() {
+                let saved = saved_sessions(&mut tx, claimed)?;
+                tx.commit()?;
+                return Ok(saved.into_iter().next().map_or(Claim::Missing, |s| Claim::Claimed(Box::new(s))));
+            }
+            let holder = tx.query_opt(
+                "SELECT lease_node, GREATEST(EXTRACT(EPOCH FROM lease_expires - now()), 0)::float8
+                 FROM nctwin_sessions WHERE id = $1",
+                &[&id],
+            )?;
+            tx.commit()?;
+            Ok(match holder {
+                None => Claim::Missing,
+                Some(row) => Claim::HeldBy {
+                    node: row.get::<_, Option<String>>(0).unwrap_or_default(),
+                    seconds_left: row.get::<_, Option<f64>>(1).unwrap_or(0.0),
+                },
+            })
         })
+    }
+
+    fn renew_leases(&self) -> Result<Option<Vec<String>>, StorageError> {
+        let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
+        let rows = self.with(|c| {
+            c.query(
+                "UPDATE nctwin_sessions SET lease_expires = now() + make_interval(secs => $2)
+                 WHERE lease_node = $1 RETURNING id",
+                &[&node, &period],
+            )
+        })?;
+        Ok(Some(rows.iter().map(|r| r.get(0)).collect()))
+    }
+
+    fn release_leases(&self) -> Result<(), StorageError> {
+        let node = self.lease.node.as_str();
+        self.with(|c| {
+            c.execute(
+                "UPDATE nctwin_sessions SET lease_node = NULL, lease_expires = NULL WHERE lease_node = $1",
+                &[&node],
+            )
+            .map(|_| ())
+        })
+    }
+
+    fn lease(&self) -> Option<&Lease> {
+        Some(&self.lease)
     }
 }

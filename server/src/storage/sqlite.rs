@@ -17,7 +17,7 @@ use rusqlite::{Connection, OptionalExtension, params};
 use super::{Checkpoint, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
 
 /// Schema version written to `PRAGMA user_version`; migrations go from each version to the next.
-const SCHEMA_VERSION: i64 = 1;
+const SCHEMA_VERSION: i64 = 2;
 
 const SCHEMA_V1: &str = "
 CREATE TABLE sessions (
@@ -39,6 +39,9 @@ CREATE TABLE programs (
     PRIMARY KEY (session, name)
 );
 ";
+
+/// Version 2: the resumable channel state of a checkpoint (NULL in rows of version 1).
+const MIGRATE_V2: &str = "ALTER TABLE sessions ADD COLUMN channel_state TEXT;";
 
 /// A SQLite database file.
 #[derive(Debug)]
@@ -70,19 +73,26 @@ impl SqliteStorage {
     }
 }
 
+/// Brings the schema from the file's version to [`SCHEMA_VERSION`] in one transaction: each
+/// step adds to the tables, so every stored row is kept.
 fn migrate(connection: &Connection) -> Result<(), StorageError> {
     let version: i64 = connection.query_row("PRAGMA user_version", [], |r| r.get(0))?;
-    match version {
-        0 => {
-            connection.execute_batch(&format!("BEGIN; {SCHEMA_V1} PRAGMA user_version = {SCHEMA_VERSION}; COMMIT;"))?;
-            Ok(())
+    let steps = match version {
+        0 => format!("{SCHEMA_V1} {MIGRATE_V2}"),
+        1 => MIGRATE_V2.to_string(),
+        SCHEMA_VERSION => return Ok(()),
+        other => {
+            return Err(StorageError(format!(
+                "database schema version {other} is newer than this server understands ({SCHEMA_VERSION})"
+            )));
         }
-        SCHEMA_VERSION => Ok(()),
-        other => Err(StorageError(format!(
-            "database schema version {other} is newer than this server understands ({SCHEMA_VERSION})"
-        ))),
-    }
+    };
+    connection.execute_batch(&format!("BEGIN; {steps} PRAGMA user_version = {SCHEMA_VERSION}; COMMIT;"))?;
+    Ok(())
 }
+
+const UPDATE_CHECKPOINT: &str =
+    "UPDATE sessions SET machine_data = ?2, positions = ?3, mode = ?4, channel_state = ?5 WHERE id = ?1";
 
 fn positions_text(positions: &[f64]) -> String {
     // serde_json writes the shortest text that reads back as the same f64.
@@ -108,7 +118,7 @@ impl Storage for SqliteStorage {
         let connection = self.connection();
         let mut sessions = connection.prepare(
             "SELECT id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
-                    machine_data, positions, mode
+                    machine_data, positions, mode, channel_state
              FROM sessions ORDER BY number",
         )?;
         let rows = sessions.query_map([], |r| {
@@ -123,6 +133,7 @@ impl Storage for SqliteStorage {
                     machine_data: r.get(7)?,
                     positions: serde_json::from_str(&positions).unwrap_or_default(),
                     mode: r.get(9)?,
+                    channel_state: r.get(10)?,
                 },
             })
         })?;
@@ -144,8 +155,8 @@ impl Storage for SqliteStorage {
         tx.execute("DELETE FROM sessions WHERE id = ?1", [&record.id])?;
         tx.execute(
             "INSERT INTO sessions (id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
-                                   machine_data, positions, mode)
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
+                                   machine_data, positions, mode, channel_state)
+             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
             params![
                 record.id,
                 record.number as i64,
@@ -157,6 +168,7 @@ impl Storage for SqliteStorage {
                 record.checkpoint.machine_data,
                 positions_text(&record.checkpoint.positions),
                 record.checkpoint.mode,
+                record.checkpoint.channel_state,
             ],
         )?;
         tx.commit()?;
@@ -165,8 +177,14 @@ impl Storage for SqliteStorage {
 
     fn save_checkpoint(&self, id: &str, checkpoint: &Checkpoint) -> Result<(), StorageError> {
         self.connection().execute(
-            "UPDATE sessions SET machine_data = ?2, positions = ?3, mode = ?4 WHERE id = ?1",
-            params![id, checkpoint.machine_data, positions_text(&checkpoint.positions), checkpoint.mode],
+            UPDATE_CHECKPOINT,
+            params![
+                id,
+                checkpoint.machine_data,
+                positions_text(&checkpoint.positions),
+                checkpoint.mode,
+                checkpoint.channel_state
+            ],
         )?;
         Ok(())
     }
@@ -176,10 +194,9 @@ impl Storage for SqliteStorage {
         let mut connection = self.connection();
         let tx = connection.transaction()?;
         {
-            let mut update =
-                tx.prepare("UPDATE sessions SET machine_data = ?2, positions = ?3, mode = ?4 WHERE id = ?1")?;
+            let mut update = tx.prepare(UPDATE_CHECKPOINT)?;
             for (id, c) in checkpoints {
-                update.execute(params![id, c.machine_data, positions_text(&c.positions), c.mode])?;
+                update.execute(params![id, c.machine_data, positions_text(&c.positions), c.mode, c.channel_state])?;
             }
         }
         tx.commit()?;
@@ -235,7 +252,12 @@ mod tests {
                 machine: "mill-3axis".into(),
                 client_ip: None,
                 tokens: TokenHashes { owner: "a".into(), operator: "b".into(), observer: "c".into() },
-                checkpoint: Checkpoint { machine_data: String::new(), positions: vec![3.25], mode: "MDA".into() },
+                checkpoint: Checkpoint {
+                    machine_data: String::new(),
+                    positions: vec![3.25],
+                    mode: "MDA".into(),
+                    channel_state: Some("{}".into()),
+                },
             };
             storage.create_session(&record).expect("create");
             storage.put_program("s1", "P", "M30").expect("program");

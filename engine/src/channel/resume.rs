@@ -1,0 +1,173 @@
+//! What a checkpoint of a channel holds beyond its machine data, axis positions and mode, and
+//! how a restarted channel takes it back: the state a reset keeps (see
+//! [`crate::interp::retained`]) and the program in AUTO mode with the block the main run was
+//! at.
+//!
+//! A program that was running or stopped comes back stopped at its block, the way an operator
+//! resumes after a power failure: block search with calculation to that block (the modal
+//! state, frames, tool and transformation of the target are re-established by preparing the
+//! program up to it), then NC start approaches the block and continues. A program that was
+//! only loaded comes back loaded. MDA blocks are not resumed.
+
+use super::{Channel, CommandError, Mode, Status};
+use crate::interp::retained::Retained;
+use crate::interp::{Item, StopKind};
+use crate::lang::ProgramText;
+
+/// The AUTO program of a checkpoint.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ResumeProgram {
+    pub text: String,
+    /// The main run's block (1-based line) when the program was active; `None`: only loaded.
+    pub line: Option<u32>,
+    /// The program stood at a programmed stop (M0, M1) of that block, already executed: NC
+    /// start after the restart goes on behind it instead of stopping there again.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub after_stop: bool,
+}
+
+/// A channel's resumable state.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ResumeState {
+    pub retained: Retained,
+    pub program: Option<ResumeProgram>,
+}
+
+impl Channel {
+    /// The resumable state now (for a checkpoint).
+    pub fn resume_state(&self) -> ResumeState {
+        let active = matches!(self.status, Status::Running | Status::Stopped);
+        // Stopped without feed hold, interruption or a pending search: at a programmed stop
+        // (or a single-block stop, whose block has no stop to skip).
+        let after_stop = self.status == Status::Stopped
+            && !self.planner.is_held()
+            && self.interrupted.is_none()
+            && !self.repos_returning
+            && !self.search_approach;
+        let program = self.program.as_ref().filter(|_| self.program_mode == Mode::Auto).map(|text| ResumeProgram {
+            text: text.to_string(),
+            line: self.current_line.filter(|_| active),
+            after_stop,
+        });
+        ResumeState { retained: self.interp.retained(), program }
+    }
+
+    /// Takes back a saved resumable state; only in reset state with nothing moving. The
+    /// retained state is all or nothing (an error names what no longer fits and changes
+    /// nothing). A program comes back loaded; one that was active is then searched to its block
+    /// in AUTO mode, and an alarm of that search is raised as in any block search.
+    pub fn restore_resume_state(&mut self, state: &ResumeState) -> Result<(), CommandError> {
+        if self.is_busy() || self.status != Status::Idle {
+            return Err(CommandError::Busy("a saved state can only be restored in reset state"));
+        }
+        let machine = self.machine;
+        self.interp.restore_retained(&state.retained, &self.cfg, &machine).map_err(CommandError::Invalid)?;
+        self.offsets = self.interp.offsets();
+        self.adopt_transformation();
+        let Some(program) = &state.program else { return Ok(()) };
+        CommandError::check(&program.text)?;
+        match program.line {
+            None => {
+                self.program = Some(ProgramText::from(program.text.as_str()));
+                self.program_mode = Mode::Auto;
+                Ok(())
+            }
+            Some(line) => {
+                self.set_mode(Mode::Auto)?;
+                self.block_search(Some(&program.text), line)?;
+                if program.after_stop && self.status == Status::Stopped {
+                    let stop = self.pending.iter().position(
+                        |item| matches!(item, Item::Stop { kind: StopKind::M0 | StopKind::M1, line: l } if *l == line),
+                    );
+                    if let Some(i) = stop {
+                        self.pending.remove(i);
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn settle(ch: &mut Channel) {
+        for _ in 0..1_000_000 {
+            if !ch.is_busy() {
+                return;
+            }
+            ch.step();
+        }
+        panic!("still busy");
+    }
+
+    /// The saved channel's machine position and state on a new channel of the same data.
+    fn restart(ch: &Channel, extra: &str) -> Channel {
+        let mut new = Channel::from_preset("mill5-head-ca", extra).expect("preset");
+        new.restore_positions(ch.axis_positions()).expect("positions");
+        new.restore_resume_state(&ch.resume_state()).expect("restore");
+        new
+    }
+
+    fn wcs(ch: &Channel, axis: &str) -> f64 {
+        ch.snapshot().workpiece.iter().find(|(n, _)| n == axis).map(|(_, v)| *v).expect("axis")
+    }
+
+    #[test]
+    fn a_transformation_kept_over_reset_comes_back_with_the_tool_tip_where_it_was() {
+        // RESET_MODE_MASK bit 7: TRAORI stays after M30; the CA head at A30 with the tool tip at
+        // WCS (0, 0, 50), as programmed.
+        let md = "$MC_RESET_MODE_MASK='H81'";
+        let mut ch = Channel::from_preset("mill5-head-ca", md).expect("preset");
+        ch.run_program("T1 D1\nG0 X0 Y0 Z50\nTRAORI\nG1 F3000 A30\nM30").expect("run");
+        settle(&mut ch);
+        let new = restart(&ch, md);
+        assert_eq!(new.snapshot().transformation.map(|t| t.name), Some("TRAORI".to_string()));
+        assert_eq!(new.snapshot().tool, (1, 1));
+        for (axis, want) in [("X", 0.0), ("Y", 0.0), ("Z", 50.0)] {
+            assert!((wcs(&new, axis) - want).abs() < 1e-9, "{axis}: {}", wcs(&new, axis));
+        }
+        // Without bit 7 the transformation is not taken back (a reset would not keep it).
+        let mut plain = ch.resume_state();
+        plain.retained.transformation = None;
+        let mut other = Channel::from_preset("mill5-head-ca", md).expect("preset");
+        other.restore_resume_state(&plain).expect("restore");
+        assert_eq!(other.snapshot().transformation, None);
+    }
+
+    #[test]
+    fn a_program_stopped_at_m0_goes_on_behind_it_after_the_restart() {
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.run_program("G0 X1\nM0\nG0 X2\nM30").expect("run");
+        settle(&mut ch);
+        assert_eq!((ch.status(), ch.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
+        let saved = ch.resume_state();
+        assert!(saved.program.as_ref().is_some_and(|p| p.after_stop && p.line == Some(2)), "{saved:?}");
+        let mut new = restart(&ch, "");
+        assert_eq!((new.status(), new.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
+        new.start().expect("NC start");
+        settle(&mut new);
+        // One NC start: no second stop at M0, the program ends at X2.
+        assert_eq!(new.status(), Status::Idle);
+        assert_eq!(new.snapshot().machine[0], ("X".to_string(), 2.0));
+    }
+
+    #[test]
+    fn a_state_that_no_longer_fits_the_machine_data_changes_nothing() {
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        let mut state = ch.resume_state();
+        state.retained.tool = 1;
+        state.retained.edge = 1;
+        state.retained.holder.number = 7;
+        let error = ch.restore_resume_state(&state).expect_err("no holder 7");
+        assert!(error.to_string().contains("toolholder 7"), "{error}");
+        assert_eq!(ch.snapshot().tool, (0, 0), "the tool was not taken either");
+        state.retained.holder.number = 0;
+        state.retained.r = vec![f64::NAN];
+        assert!(ch.restore_resume_state(&state).is_err(), "R parameters must be finite");
+    }
+}
