@@ -13,10 +13,17 @@ use super::frame::{Frame, GeoAxes};
 use crate::machine_data::{FrameAngles, FrameData, MachineConfig};
 
 /// A value that remembers whether it was borrowed mutably since the last [`Tracked::take_changed`].
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 pub(super) struct Tracked<T> {
     value: T,
     changed: bool,
+}
+
+/// A copy counts as changed: it may be put back later (`x = saved`), after caches moved on.
+impl<T: Clone> Clone for Tracked<T> {
+    fn clone(&self) -> Self {
+        Tracked { value: self.value.clone(), changed: true }
+    }
 }
 
 impl<T> Tracked<T> {
@@ -108,5 +115,26 @@ impl FrameCache {
             debug_assert!(fresh == self.frame, "stale active frame: cached {:?}, built {fresh:?}", self.frame);
         }
         &self.frame
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Tracked;
+
+    #[test]
+    fn every_write_and_every_copy_counts_as_a_change() {
+        let mut t = Tracked::new(1.0);
+        assert!(t.take_changed(), "a new value is unknown to every cache");
+        assert!(!t.take_changed(), "taking the mark clears it");
+        assert_eq!(*t + 1.0, 2.0);
+        assert!(!t.take_changed(), "reading is no change");
+        *t = 3.0;
+        assert!(t.take_changed());
+        let saved = t.clone();
+        assert!(!t.take_changed());
+        t = saved;
+        assert!(t.take_changed(), "a copy put back must be looked at again");
+        assert_eq!(*t, 3.0);
     }
 }
