@@ -489,9 +489,9 @@ impl Interpreter {
             let axis = self.spindles.master().expect("checked in spindle_position");
             // With compensation active SPOS is a block without motion in the plane.
             self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
-            let item = Item::Move { mv: mv.clone(), line, offsets: self.shared_offsets() };
+            let offsets = self.shared_offsets();
             let approach = self.modal.approach;
-            let prepared = trc::Prepared { mv, feed, line, item, approach, corner: None };
+            let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner: None };
             let comp = self.compensation(cfg, &words, line)?;
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         }
@@ -515,12 +515,12 @@ impl Interpreter {
         {
             let (mv, feed) = self.motion(&words, cfg, line)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
-            let item = Item::Move { mv: mv.clone(), line, offsets: self.shared_offsets() };
+            let offsets = self.shared_offsets();
             let comp = self.compensation(cfg, &words, line)?;
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
-            let prepared = trc::Prepared { mv, feed, line, item, approach, corner };
+            let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         } else if !positioned && !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
             // A new shared value is made only when the offsets differ from the last one.

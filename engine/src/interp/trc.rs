@@ -15,7 +15,7 @@
 
 use super::corners;
 use super::trc_approach::{self, ApproachMode};
-use super::{Item, trc_bottleneck, trc_disc};
+use super::{Item, SharedOffsets, trc_bottleneck, trc_disc};
 use crate::alarm::Alarm;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
@@ -101,7 +101,8 @@ pub struct Prepared {
     pub mv: Move,
     pub feed: Feed,
     pub line: u32,
-    pub item: Item,
+    /// The offsets the move's item carries.
+    pub offsets: SharedOffsets,
     /// G group 17 active in the block (approach with G41/G42, retract with G40).
     pub approach: ApproachMode,
     /// RND/CHF/CHR at its end: shaped into the programmed contour before the offset.
@@ -524,17 +525,11 @@ impl Compensator {
 impl Prepared {
     /// The item with the prepared move moved into it (no copy of the move or the offsets).
     fn into_item(self) -> Item {
-        match self.item {
-            Item::Move { line, offsets, .. } => Item::Move { mv: self.mv, line, offsets },
-            other => other,
-        }
+        Item::Move { mv: self.mv, line: self.line, offsets: self.offsets }
     }
 
     fn item_with(&self, mv: Move) -> Item {
-        match &self.item {
-            Item::Move { line, offsets, .. } => Item::Move { mv, line: *line, offsets: offsets.clone() },
-            other => other.clone(),
-        }
+        Item::Move { mv, line: self.line, offsets: self.offsets.clone() }
     }
 }
 
