@@ -270,3 +270,13 @@ fn p_gg_54_reports_the_rotation_reference() {
     let ch = run_md("", "R1=$P_GG[54]\nORIROTR\nR2=$P_GG[54]\nORIROTT\nR3=$P_GG[54]\nORIROTC\nR4=$P_GG[54]\nM30");
     assert_eq!([1, 2, 3, 4].map(|n| ch.r_param(n)), [1.0, 2.0, 3.0, 4.0]);
 }
+
+#[test]
+fn the_g_code_display_lists_group_54() {
+    // Reset value ORIROTA; after ORIROTT the display of the executing block shows it.
+    let (ch, _) = run(&format!("{START}ORIROTT\nX10\nM0\nM30"));
+    let g = ch.snapshot().gcodes;
+    assert!(g.contains(&"ORIROTT".to_string()) && !g.contains(&"ORIROTA".to_string()), "{g:?}");
+    let (ch, _) = run(&format!("{START}X10\nM0\nM30"));
+    assert!(ch.snapshot().gcodes.contains(&"ORIROTA".to_string()), "{:?}", ch.snapshot().gcodes);
+}

@@ -91,7 +91,7 @@ impl Channel {
         system: JogSystem,
         kind: OrientationJogKind,
     ) -> Result<(), CommandError> {
-        let Some(t) = self.trafo.clone().filter(|t| t.trafo.orientation_slots().iter().any(Option::is_some)) else {
+        let Some(t) = self.trafo_in_force().filter(|t| t.trafo.orientation_slots().iter().any(Option::is_some)) else {
             return Err(CommandError::Invalid("orientation JOG needs an active orientation transformation".into()));
         };
         let o = t.trafo.orientation(&self.machine).expect("orientation transformation");

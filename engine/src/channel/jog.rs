@@ -315,7 +315,7 @@ impl Channel {
     /// cannot follow).
     fn reachable_length(&self, start: &AxisVec, direction: &AxisVec, machine_space: bool) -> f64 {
         let n = self.cfg.channel_axes.len();
-        match self.trafo.as_ref().filter(|_| !machine_space) {
+        match self.trafo_in_force().filter(|_| !machine_space) {
             None => {
                 let mut reach = f64::INFINITY;
                 for i in 0..n {
@@ -425,7 +425,7 @@ impl Channel {
     /// After motion in machine axes with a transformation active, the planner goes back to the
     /// BCS position of the machine.
     fn restore_planner_space(&mut self, machine_space: bool) {
-        if machine_space && let Some(t) = &self.trafo {
+        if machine_space && let Some(t) = self.trafo_in_force() {
             let bcs = t.forward(&self.machine);
             self.planner.set_position(bcs);
         }

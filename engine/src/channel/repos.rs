@@ -93,7 +93,7 @@ impl Channel {
         let here_in_space = if machine_space { self.machine } else { *self.planner.position() };
         let axes = self.repos_distance_axes(machine_space);
         let (mut target, resume) = repos_modes::target(&int.planner, mode, &here_in_space, &axes);
-        if let (true, Some(t)) = (machine_space, &self.trafo) {
+        if let (true, Some(t)) = (machine_space, self.trafo_in_force()) {
             // A machine-axis motion (the TRANSMIT pole): return to its BCS point.
             target = t.forward(&target);
         }
@@ -159,9 +159,9 @@ impl Channel {
     /// path velocity keeps every machine axis within its limits, pole passages get their
     /// positioning moves. A move the transformation cannot plan is queued as it is.
     pub(super) fn push_bcs_move(&mut self, mv: Move, meta: MoveMeta) {
-        let planned = match &self.trafo {
+        let planned = match self.trafo_in_force() {
             Some(t) if !mv.machine_space && self.planner.is_empty() => {
-                plan::plan_block(t, &mv, &self.machine, &self.cfg).ok().map(|planned| planned.moves)
+                plan::plan_block(&t, &mv, &self.machine, &self.cfg).ok().map(|planned| planned.moves)
             }
             _ => None,
         };

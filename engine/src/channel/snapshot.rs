@@ -93,7 +93,17 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         // An orientation transformation's rotary axes keep their own value in the BCS.
         Some(t) => {
             let ori = t.trafo.orientation_slots();
-            let driven = t.trafo.machine_slots().into_iter().filter(|k| !ori.contains(&Some(*k))).collect();
+            // So does the 7th axis of a 7-axis TRAORI (it turns the workpiece).
+            let seventh = match &t.trafo {
+                crate::kinematics::AnyTrafo::Traori(t) => t.seventh_slot(),
+                _ => None,
+            };
+            let driven = t
+                .trafo
+                .machine_slots()
+                .into_iter()
+                .filter(|k| !ori.contains(&Some(*k)) && Some(*k) != seventh)
+                .collect();
             // With the tool lengthened by the online offset: the display keeps the tool tip.
             (t.trafo.geo_slots(), driven, ch.space_of_machine())
         }

@@ -4,22 +4,24 @@
 //! path with the tool lengthened by it.
 
 use super::Channel;
+use crate::kinematics::ActiveTrafo;
 use crate::motion::AxisVec;
 
 impl Channel {
+    /// The active transformation as the main run maps with it: the tool lengthened by the
+    /// online offset reached so far (JOG and REPOS plan with it, so they start where the
+    /// machine stands).
+    pub(super) fn trafo_in_force(&self) -> Option<ActiveTrafo> {
+        self.trafo.as_ref().map(|t| t.lengthened(&self.toff.current))
+    }
+
     /// The planner's (BCS) position of the machine position, through the active
     /// transformation with the tool lengthened by the online offset reached so far.
     pub(super) fn space_of_machine(&self) -> AxisVec {
         let toff = self.toff.current;
         match &self.trafo {
             Some(t) if toff == [0.0; 3] => t.forward(&self.machine),
-            Some(t) => {
-                let mut t = t.clone();
-                for (l, o) in t.tool.iter_mut().zip(toff) {
-                    *l += o;
-                }
-                t.forward(&self.machine)
-            }
+            Some(t) => t.lengthened(&toff).forward(&self.machine),
             None => {
                 let mut m = self.machine;
                 for (g, k) in self.cfg.geo_axes.iter().enumerate() {

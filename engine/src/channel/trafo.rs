@@ -22,6 +22,9 @@ impl Channel {
         self.toff.step(&self.offsets.toff, ori.toff_velocity, ori.toff_accel, self.cfg.ipo_cycle);
         let toff = self.toff.current;
         match self.trafo.as_ref().filter(|_| !machine_space) {
+            // A machine-axis motion under a transformation (MCS JOG, the pole's positioning
+            // moves) already holds machine positions, the offset included.
+            None if machine_space => self.machine = *self.planner.position(),
             None => {
                 self.machine = *self.planner.position();
                 // Without a transformation the tool directions are the geometry axes.

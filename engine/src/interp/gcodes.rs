@@ -4,6 +4,7 @@
 
 use super::modal::{Modal, MotionMode, Plane, PtpMode};
 use super::orient::{AngleDefinition, OriInterpolation, OriReference};
+use super::orient_rot::RotReference;
 use super::trc::{ArcFeed, CornerMode, Side};
 use super::trc_approach::ApproachMode;
 
@@ -13,7 +14,7 @@ pub struct GCodes([u8; GROUPS.len()]);
 
 /// The displayed groups in Operate's order: (group number, names by index). Group 8 (settable
 /// frame) is named from its number instead.
-const GROUPS: [(u8, &[&str]); 15] = [
+const GROUPS: [(u8, &[&str]); 16] = [
     (1, &["G0", "G1", "G2", "G3"]),
     (6, &["G17", "G18", "G19"]),
     (7, &["G40", "G41", "G42"]),
@@ -28,7 +29,8 @@ const GROUPS: [(u8, &[&str]); 15] = [
     (25, &["ORIMKS", "ORIWKS"]),
     (49, &["CP", "PTP", "PTPG0", "PTPWOC"]),
     (50, &["ORIEULER", "ORIRPY", "ORIRPY2", "ORIVIRT1", "ORIVIRT2"]),
-    (51, &["ORIVECT", "ORIAXES", "ORICONCW", "ORICONCCW", "ORIPATH", "ORICONIO", "ORICONTO"]),
+    (51, &["ORIVECT", "ORIAXES", "ORICONCW", "ORICONCCW", "ORIPATH", "ORICONIO", "ORICONTO", "ORICURVE", "ORIPATHS"]),
+    (54, &["ORIROTA", "ORIROTR", "ORIROTT", "ORIROTC"]),
 ];
 
 impl GCodes {
@@ -93,9 +95,17 @@ impl GCodes {
                 OriInterpolation::Axes => 1,
                 OriInterpolation::Cone { clockwise: true } => 2,
                 OriInterpolation::Cone { clockwise: false } => 3,
-                OriInterpolation::Path | OriInterpolation::Unmodelled(_) => 4,
+                OriInterpolation::Path => 4,
                 OriInterpolation::ConeIntermediate => 5,
                 OriInterpolation::ConeTangential => 6,
+                OriInterpolation::Curve => 7,
+                OriInterpolation::Unmodelled(_) => 8,
+            },
+            match ori.rotation {
+                RotReference::Absolute => 0,
+                RotReference::Plane => 1,
+                RotReference::OriChange => 2,
+                RotReference::PathTangent => 3,
             },
         ])
     }

@@ -19,6 +19,8 @@ mod frame_vars;
 pub mod gcodes;
 mod jump_target;
 mod modal;
+mod ori_curve;
+mod ori_direct;
 mod orient;
 mod orient_poly;
 mod orient_rot;
@@ -883,6 +885,7 @@ impl Interpreter {
         let tangent = end_tangent(&current, &target, geo, (pa, po, papp), circle.as_ref());
         let ori = self.orientation_block(words, cfg, &frame, &start, &mut end, tangent, line)?;
         self.modal.ori.last_change = ori.as_ref().and_then(OriPath::end_direction);
+        self.modal.ori.upper = ori.as_ref().and_then(|o| o.curve).map(|c| c.upper[1]);
         if let Some(theta) = self.tool_rotation(words, &frame, &start, &mut end, tangent, line)? {
             self.modal.ori.theta = theta;
         }
@@ -903,8 +906,9 @@ impl Interpreter {
             // No geometry axis moves: the feed applies to the other axes together, or to the
             // angle the orientation turns through (degrees) when it is interpolated as a vector.
             length = match &path.ori {
-                Some(o) => o.angle.abs().to_degrees(),
-                None => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
+                Some(o) if o.angle.abs() > 1e-12 => o.angle.abs().to_degrees(),
+                // Also a constant orientation held on the workpiece the 7th axis turns.
+                _ => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
             };
         }
 

@@ -13,6 +13,7 @@
 
 use super::Interpreter;
 use super::frame::Frame;
+use super::modal::MotionMode;
 pub use super::orient_rot::RotReference;
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::orient::ChainKind;
@@ -58,7 +59,9 @@ pub enum OriInterpolation {
     ConeIntermediate,
     /// ORICONTO: on the cone tangential to the previous block's orientation motion.
     ConeTangential,
-    /// ORICURVE, ORIPATHS: not modelled (alarm when used).
+    /// ORICURVE: from the tool tip towards a second curve through XH/YH/ZH.
+    Curve,
+    /// ORIPATHS: not modelled (alarm when used).
     Unmodelled(&'static str),
 }
 
@@ -80,6 +83,9 @@ pub struct OriModal {
     pub rotation: RotReference,
     /// The last THETA in force (degrees).
     pub theta: f64,
+    /// ORICURVE: where the upper curve of the previous block ended (BCS), when the previous
+    /// motion block was an ORICURVE block with XH/YH/ZH.
+    pub upper: Option<Vec3>,
 }
 
 impl OriModal {
@@ -95,6 +101,7 @@ impl OriModal {
             last_change: None,
             rotation: RotReference::Absolute,
             theta: 0.0,
+            upper: None,
         }
     }
 
@@ -152,6 +159,8 @@ pub struct OriWords {
     pub rotation: Option<RotReference>,
     /// THETA= (degrees) and whether it was given incrementally (`THETA=IC(..)`).
     pub theta: Option<(f64, bool)>,
+    /// XH=, YH=, ZH=: end point of the upper curve of ORICURVE (WCS).
+    pub upper: [Option<f64>; 3],
 }
 
 impl OriWords {
@@ -168,7 +177,11 @@ impl OriWords {
     /// True if the block moves the orientation (programmed, path-relative, ORIRESET, or the
     /// tool rotation THETA).
     pub fn moves(&self) -> bool {
-        self.programmed() || self.path_relative() || self.reset.is_some() || self.theta.is_some()
+        self.programmed()
+            || self.path_relative()
+            || self.reset.is_some()
+            || self.theta.is_some()
+            || self.upper.iter().any(Option::is_some)
     }
 
     /// Takes an orientation G function (`ORIWKS`, ...); false if `name` is none.
@@ -194,7 +207,7 @@ impl OriWords {
             "ORIPATHS" => self.interpolation = Some(I::Unmodelled("ORIPATHS")),
             "ORICONIO" => self.interpolation = Some(I::ConeIntermediate),
             "ORICONTO" => self.interpolation = Some(I::ConeTangential),
-            "ORICURVE" => self.interpolation = Some(I::Unmodelled("ORICURVE")),
+            "ORICURVE" => self.interpolation = Some(I::Curve),
             _ => return false,
         }
         true
@@ -208,6 +221,10 @@ impl OriWords {
             _ => {}
         }
         if matches!(name, "LEAD" | "TILT") {
+            return true;
+        }
+        if let Some(g) = ["XH", "YH", "ZH"].iter().position(|n| *n == name) {
+            self.upper[g] = Some(value);
             return true;
         }
         let slot = match name {
@@ -247,6 +264,9 @@ pub fn is_address(name: &str) -> bool {
             | "C7"
             | "LEAD"
             | "TILT"
+            | "XH"
+            | "YH"
+            | "ZH"
     )
 }
 
@@ -369,7 +389,7 @@ impl Interpreter {
     /// block's BCS end point with any directly programmed rotary axes; `tangent` is the unit
     /// path direction at the block end in the WCS (for LEAD/TILT), if the tool tip moves.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn orientation_block(
+    pub(super) fn orientation_block_unchecked(
         &self,
         words: &super::modal::Words,
         cfg: &MachineConfig,
@@ -385,6 +405,20 @@ impl Interpreter {
         };
         let slots = active.trafo.orientation_slots();
         let rotary_words = words.axes.iter().any(|(k, ..)| slots.contains(&Some(*k)));
+        // The 7th axis of a generic 7-axis transformation turns the workpiece: orientations are
+        // relative to it, at its block-end position for the end orientation.
+        let seventh = match &active.trafo {
+            AnyTrafo::Traori(t) => t.seventh_slot(),
+            _ => None,
+        };
+        let seventh_moves = seventh.is_some_and(|k| (end[k] - start[k]).abs() > 1e-9);
+        let modal_interpolation = if cfg.ori.ori_ipo_with_g_code {
+            self.modal.ori.interpolation
+        } else if self.modal.ori.reference == OriReference::Workpiece {
+            OriInterpolation::Vector
+        } else {
+            OriInterpolation::Axes
+        };
         if (ori.moves() && rotary_words) || (ori.programmed() && ori.reset.is_some()) {
             return Err(Alarm::conflicting_functions(line, "orientation axes, A2..C3 and ORIRESET together"));
         }
@@ -402,6 +436,16 @@ impl Interpreter {
         let path_relative = ori.path_relative() || (modal.interpolation == OriInterpolation::Path && tangent.is_some());
         if ori.programmed() && path_relative && ori.path_relative() {
             return Err(Alarm::conflicting_functions(line, "LEAD/TILT together with A2..C3"));
+        }
+        if ori.upper.iter().any(Option::is_some) {
+            if modal_interpolation != OriInterpolation::Curve {
+                return Err(Alarm::value_out_of_range(line, "XH/YH/ZH need ORICURVE (and MD21104 = 1)"));
+            }
+            if ori.programmed() || ori.path_relative() || rotary_words {
+                return Err(Alarm::conflicting_functions(line, "XH/YH/ZH together with another orientation"));
+            }
+            let circle = matches!(words.motion.unwrap_or(self.modal.motion), MotionMode::Cw | MotionMode::Ccw);
+            return self.curve_orientation(ori, cfg, frame, start, end, active, machine, circle, line);
         }
         let target = if path_relative && !ori.programmed() && !rotary_words {
             if modal.lead.abs() > cfg.ori.max_lead_angle {
@@ -449,23 +493,24 @@ impl Interpreter {
             Some(bcs)
         } else if rotary_words {
             let mut m = *machine;
-            for k in slots.iter().flatten() {
+            for k in slots.iter().flatten().chain(&seventh) {
                 m[*k] = end[*k];
             }
             active.trafo.orientation(&m)
+        } else if seventh_moves && modal_interpolation != OriInterpolation::Axes {
+            // Vector interpolation keeps the orientation relative to the workpiece while the
+            // 7th axis turns it (F2 §3.7.6: only ORIMKS/ORIAXES leave the tool axes alone).
+            // Whatever the interpolation type, a constant orientation is the path.
+            let Some(o) = active.trafo.orientation(machine) else { return Ok(None) };
+            active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
+                Alarm::value_out_of_range(line, "orientation not reachable by the rotary axes of the transformation")
+            })?;
+            return Ok(OriPath::cone(o, o, 0.0));
         } else {
             return Ok(None);
         };
         let Some(o_end) = target else { return Ok(None) };
-        let interpolation = if path_relative {
-            OriInterpolation::Vector
-        } else if cfg.ori.ori_ipo_with_g_code {
-            modal.interpolation
-        } else if modal.reference == OriReference::Workpiece {
-            OriInterpolation::Vector
-        } else {
-            OriInterpolation::Axes
-        };
+        let interpolation = if path_relative { OriInterpolation::Vector } else { modal_interpolation };
         let mut m_start = *machine;
         for k in slots.iter().flatten() {
             m_start[*k] = start[*k];
@@ -473,34 +518,48 @@ impl Interpreter {
         let Some(o_start) = active.trafo.orientation(&m_start) else { return Ok(None) };
         let interpolation = match &active.trafo {
             AnyTrafo::Traori(t)
-                if interpolation == OriInterpolation::Vector && pole_start_as_axes(t, cfg, &o_start) =>
+                if interpolation == OriInterpolation::Vector
+                    && pole_start_as_axes(t, cfg, &t.in_chain_frame(&o_start, machine)) =>
             {
                 OriInterpolation::Axes
             }
             _ => interpolation,
         };
-        let vector = matches!(interpolation, OriInterpolation::Vector | OriInterpolation::Path);
+        let vector =
+            matches!(interpolation, OriInterpolation::Vector | OriInterpolation::Path | OriInterpolation::Curve);
         let o_end = match (&active.trafo, vector) {
-            (AnyTrafo::Traori(t), true) => match through_pole(t, o_start, o_end) {
-                Some(o) => {
-                    // Through the pole: the end moves onto the start's meridian, which the
-                    // rotary axes reach with the pole axis where it stands.
-                    active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
-                        Alarm::value_out_of_range(
-                            line,
-                            "orientation not reachable by the rotary axes of the transformation",
-                        )
-                    })?;
-                    o
+            // The pole is a direction of the tool kinematics: tested in its frame (7-axis: with
+            // the table where the block starts).
+            (AnyTrafo::Traori(t), true) => {
+                match through_pole(t, t.in_chain_frame(&o_start, machine), t.in_chain_frame(&o_end, machine))
+                    .map(|o| t.in_workpiece_frame(&o, machine))
+                {
+                    Some(o) => {
+                        // Through the pole: the end moves onto the start's meridian, which the
+                        // rotary axes reach with the pole axis where it stands.
+                        active.trafo.orientation_axes(&o, machine, end).map_err(|_| {
+                            Alarm::value_out_of_range(
+                                line,
+                                "orientation not reachable by the rotary axes of the transformation",
+                            )
+                        })?;
+                        o
+                    }
+                    None => o_end,
                 }
-                None => o_end,
-            },
+            }
             _ => o_end,
         };
         match interpolation {
             OriInterpolation::Axes => Ok(None),
-            OriInterpolation::Vector | OriInterpolation::Path => {
-                OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line))
+            // ORICURVE without XH/YH/ZH: the end orientation by a great circle.
+            OriInterpolation::Vector | OriInterpolation::Path | OriInterpolation::Curve => {
+                match OriPath::great_circle(o_start, o_end).map_err(|_| antiparallel(line))? {
+                    // A constant orientation on a turning workpiece still needs the tool axes
+                    // solved at every point.
+                    None if seventh_moves => Ok(OriPath::cone(o_start, o_start, 0.0)),
+                    p => Ok(p),
+                }
             }
             OriInterpolation::Cone { clockwise } => {
                 let given = ori.cone_axis.map(|c| c.unwrap_or(0.0));

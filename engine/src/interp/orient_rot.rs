@@ -134,7 +134,7 @@ impl Interpreter {
         }
         let at = |src: &AxisVec| {
             let mut m = *machine;
-            for s in t.orientation_slots().iter().flatten() {
+            for s in t.orientation_slots().iter().flatten().chain(&t.seventh_slot()) {
                 m[*s] = src[*s];
             }
             m

@@ -112,7 +112,13 @@ impl Scope for Ctx<'_> {
             // Machine axes: through the active transformation, not the BCS.
             "$AA_IM" => {
                 let k = axis()?;
-                let v = sys.trafo.machine().unwrap_or(sys.pos)[k];
+                let v = super::toff::machine_in_force(
+                    sys.offsets.trafo.as_ref(),
+                    sys.trafo.machine(),
+                    sys.pos,
+                    &sys.offsets.toff,
+                    &sys.cfg.geo_axes,
+                )[k];
                 // A modulo rotary axis reads within its modulo range, as the display shows it.
                 Value::Real(match sys.cfg.axis(k).modulo {
                     Some((start, range)) => start + (v - start).rem_euclid(range),

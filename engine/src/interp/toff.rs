@@ -17,8 +17,37 @@
 //!   main run has reached.
 
 use super::Interpreter;
+use super::frame::GeoAxes;
 use crate::alarm::Alarm;
+use crate::kinematics::ActiveTrafo;
 use crate::machine_data::MachineConfig;
+use crate::motion::AxisVec;
+
+/// The machine position the main run reaches for the prepared position with the online offset
+/// `toff` in force (what `$AA_IM` reads): with a transformation the BCS point of `machine`
+/// (prepared without the offset) mapped back with the lengthened tool; without one the
+/// programmed position `pos` plus the offset on the geometry axes.
+pub(super) fn machine_in_force(
+    trafo: Option<&ActiveTrafo>,
+    machine: Option<&AxisVec>,
+    pos: &AxisVec,
+    toff: &[f64; 3],
+    geo: &GeoAxes,
+) -> AxisVec {
+    match (trafo, machine) {
+        (Some(t), Some(m)) if *toff != [0.0; 3] => t.lengthened(toff).inverse(&t.forward(m), m).unwrap_or(*m),
+        (_, Some(m)) => *m,
+        (_, None) => {
+            let mut out = *pos;
+            for (g, k) in geo.iter().enumerate() {
+                if let Some(k) = k {
+                    out[*k] += toff[g];
+                }
+            }
+            out
+        }
+    }
+}
 
 /// One online-offset instruction of a block.
 #[derive(Debug, Clone, Copy, PartialEq)]

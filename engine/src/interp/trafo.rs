@@ -723,8 +723,17 @@ impl Interpreter {
 
     /// Takes over the machine position from the main run (after a selection executed, or at
     /// reset and program end); the programmed position follows through the active transformation.
+    /// With an online tool offset in force the machine stands lengthened by it: the programmed
+    /// position is taken back through the lengthened tool (and the prepared machine position
+    /// is kept without the offset, as the blocks are prepared).
     pub fn sync_transformation(&mut self, machine: &AxisVec) {
+        let toff = self.offsets.toff;
         match self.trafo.active.as_mut() {
+            Some(a) if toff != [0.0; 3] => {
+                self.pos = a.trafo.lengthened(&toff).forward(machine);
+                a.machine = a.trafo.inverse(&self.pos, machine).unwrap_or(*machine);
+                a.bcs = None;
+            }
             Some(a) => {
                 a.machine = *machine;
                 a.bcs = None;
@@ -756,7 +765,7 @@ fn point_to_point(a: &mut Active, mv: &Move, block: PtpBlock, line: u32) -> Resu
     let slots = a.trafo.trafo.orientation_slots();
     if let (Some(stat), AnyTrafo::Traori(t)) = (block.stat, &a.trafo.trafo) {
         let o = t.orientation(&end).expect("TRAORI orients the tool");
-        let pick = t.solutions(&o).map_err(|_| working_area(line))?[(stat & 1) as usize];
+        let pick = t.solutions_at(&o, &end).map_err(|_| working_area(line))?[(stat & 1) as usize];
         for (role, slot) in slots.iter().enumerate() {
             if let Some(k) = slot {
                 end[*k] = pick[role];

@@ -14,6 +14,7 @@
 
 pub mod orient;
 pub mod plan;
+mod seventh;
 mod traang;
 mod tracon;
 mod tracyl;
@@ -244,6 +245,16 @@ pub struct ActiveTrafo {
 }
 
 impl ActiveTrafo {
+    /// This transformation with the tool lengthened by the online tool offset `toff` (tool
+    /// directions X, Y, Z, `$AA_TOFF`): how the main run maps positions while it is in force.
+    pub fn lengthened(&self, toff: &Vec3) -> ActiveTrafo {
+        let mut t = self.clone();
+        for (l, o) in t.tool.iter_mut().zip(toff) {
+            *l += o;
+        }
+        t
+    }
+
     pub fn forward(&self, machine: &AxisVec) -> AxisVec {
         let mut out = *machine;
         self.trafo.forward(machine, &self.tool, &mut out);

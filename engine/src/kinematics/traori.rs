@@ -5,7 +5,8 @@
 //! positions.
 //!
 //! Roles of `TRAFO_AXES_IN_n`: [0..2] the linear axes along X, Y, Z of the chain, [3] the 1st,
-//! [4] the 2nd, [5] the 3rd rotary axis (6-axis). A 0 entry leaves the role out (3-/4-axis).
+//! [4] the 2nd, [5] the 3rd rotary axis (6-axis), [6] the 7th axis (7-axis, see
+//! [`super::seventh`]). A 0 entry leaves the role out (3-/4-axis).
 //! On the BCS side the geometry slots hold the TCP, the rotary slots their own positions.
 //!
 //! Math: the vector chain of [`super::orient::chain`], with effective angles
@@ -17,6 +18,7 @@ use super::orient::rotation::zero_normal;
 use super::orient::solve::Turn;
 use super::orient::vec3::{dot, normalize, scale};
 use super::orient::{Chain, ChainKind};
+use super::seventh::Seventh;
 use super::{BuildError, SelectArgs, Transformation, Unreachable, Vec3, unwrap_near};
 use crate::machine_data::{MachineConfig, OriMachine, TrafoDataSet, TrafoParams};
 use crate::motion::AxisVec;
@@ -80,6 +82,8 @@ pub struct Traori {
     /// Tool normal at the zero position (perpendicular to the basic orientation): the
     /// rotation vector of THETA = 0 in the basic orientation (6-axis).
     normal: Vec3,
+    /// The 7th axis turning the workpiece (generic 7-axis transformation).
+    seventh: Option<Seventh>,
 }
 
 impl Traori {
@@ -104,7 +108,7 @@ impl Traori {
         let mut v = [[0.0; 3]; 3];
         let mut role_to_chain = [None; 3];
         let mut n = 0;
-        for (role, entry) in set.axes_in[3..].iter().enumerate() {
+        for (role, entry) in set.axes_in[3..6].iter().enumerate() {
             let Some(slot) = *entry else { continue };
             let axis = cfg.axis(slot);
             rot[n] = Some(Rotary {
@@ -137,7 +141,39 @@ impl Traori {
             non_pole_limit: p.non_pole_limit,
             pole_limit: p.pole_limit,
             normal,
+            seventh: set.axes_in[6].map(|slot| Seventh { slot, offset: p.ext_offset, axis: p.ext_axis }),
         })
+    }
+
+    /// A BCS (workpiece) direction `v` in the frame of the tool chain for the 7th axis at
+    /// `axes` (unchanged without a 7th axis): where the pole tests of the orientation
+    /// interpolation look, since the pole is a direction of the tool kinematics.
+    pub fn in_chain_frame(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+        self.workpiece_to_chain(v, axes)
+    }
+
+    /// [`Traori::in_chain_frame`] backwards.
+    pub fn in_workpiece_frame(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+        self.chain_to_workpiece(v, axes)
+    }
+
+    /// The channel axis of the 7th axis (`TRAFO_AXES_IN_n[6]`), which turns the workpiece; its
+    /// BCS value is its own position.
+    pub fn seventh_slot(&self) -> Option<usize> {
+        self.seventh.map(|s| s.slot)
+    }
+
+    /// `v` (a BCS vector: workpiece-fixed) in the frame of the tool chain for the 7th axis
+    /// at `axes`; unchanged without a 7th axis.
+    #[inline]
+    fn workpiece_to_chain(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+        self.seventh.map_or(*v, |s| s.rotation(axes).apply(v))
+    }
+
+    /// [`Traori::workpiece_to_chain`] backwards: a chain-frame vector in workpiece (BCS) coordinates.
+    #[inline]
+    fn chain_to_workpiece(&self, v: &Vec3, axes: &AxisVec) -> Vec3 {
+        self.seventh.map_or(*v, |s| s.rotation(axes).apply_t(v))
     }
 
     /// The vector chain (for the toolholder and for tests).
@@ -196,6 +232,12 @@ impl Traori {
         Ok(s)
     }
 
+    /// [`Traori::solutions`] for an orientation `o` relative to the workpiece with the 7th axis
+    /// (if any) at its position in `axes`.
+    pub fn solutions_at(&self, o: &Vec3, axes: &AxisVec) -> Result<[[f64; 3]; 2], Unreachable> {
+        self.solutions(&self.workpiece_to_chain(o, axes))
+    }
+
     /// Both solutions as [`Traori::solutions`], but each axis shifted by whole turns to lie
     /// closest to its position in `prev` and the free axis of a pole kept at `prev`; not
     /// sorted, not checked against the limits.
@@ -224,14 +266,17 @@ impl Traori {
 
     /// The tool's rotation vector in the BCS at machine position `machine` (6-axis).
     pub fn rotation_vector(&self, machine: &AxisVec) -> Vec3 {
-        self.chain.rotation_vector(&self.chain.pose(&self.angles(machine)), &self.normal)
+        let r = self.chain.rotation_vector(&self.chain.pose(&self.angles(machine)), &self.normal);
+        self.chain_to_workpiece(&r, machine)
     }
 
     /// The positions of all three rotary axes (6-axis) that give orientation `o` and rotation
     /// vector `r` (unit, perpendicular), of the two solutions the one within the limits with
-    /// the least weighted travel from `prev`, written into `axes`.
+    /// the least weighted travel from `prev`, written into `axes`. With a 7th axis `o` and `r`
+    /// are relative to the workpiece at the 7th axis position in `axes`.
     pub fn rotated_axes(&self, o: &Vec3, r: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let o = normalize(o).ok_or(Unreachable)?;
+        let o = self.workpiece_to_chain(&normalize(o).ok_or(Unreachable)?, axes);
+        let r = &self.workpiece_to_chain(r, axes);
         let sols = self.chain.solve_rotated(&o, r, &self.normal, &self.hint(Some(prev))).ok_or(Unreachable)?;
         let best =
             sols.iter().filter_map(|s| self.placed(s, prev)).fold(None::<(f64, [f64; 3])>, |best, (c, p)| match best {
@@ -346,28 +391,30 @@ impl Transformation for Traori {
     }
 
     fn machine_slots(&self) -> Vec<usize> {
-        self.lin.iter().flatten().copied().chain(self.rot.iter().flatten().map(|r| r.slot)).collect()
+        let rotary = self.rot.iter().flatten().map(|r| r.slot).chain(self.seventh_slot());
+        self.lin.iter().flatten().copied().chain(rotary).collect()
     }
 
     fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
         let pose = self.chain.pose(&self.angles(machine));
         let p = self.chain.tip(&self.linear(machine), &pose, &scale(tool, -1.0));
+        let p = self.chain_to_workpiece(&p, machine);
         for (g, slot) in self.geo.iter().enumerate() {
             if let Some(k) = slot {
                 bcs[*k] = p[g];
             }
         }
-        for r in self.rot.iter().flatten() {
-            bcs[r.slot] = machine[r.slot];
+        for k in self.rot.iter().flatten().map(|r| r.slot).chain(self.seventh_slot()) {
+            bcs[k] = machine[k];
         }
     }
 
     fn inverse(&self, bcs: &AxisVec, _prev: &AxisVec, tool: &Vec3, machine: &mut AxisVec) -> Result<(), Unreachable> {
         let pose = self.chain.pose(&self.angles(bcs));
-        let m = self.chain.linear(&self.point(bcs), &pose, &scale(tool, -1.0));
+        let m = self.chain.linear(&self.workpiece_to_chain(&self.point(bcs), bcs), &pose, &scale(tool, -1.0));
         self.write_linear(&m, machine);
-        for r in self.rot.iter().flatten() {
-            machine[r.slot] = bcs[r.slot];
+        for k in self.rot.iter().flatten().map(|r| r.slot).chain(self.seventh_slot()) {
+            machine[k] = bcs[k];
         }
         Ok(())
     }
@@ -377,15 +424,16 @@ impl Transformation for Traori {
     }
 
     fn orientation(&self, machine: &AxisVec) -> Option<Vec3> {
-        Some(self.chain.orientation(&self.chain.pose(&self.angles(machine))))
+        Some(self.chain_to_workpiece(&self.chain.orientation(&self.chain.pose(&self.angles(machine))), machine))
     }
 
     /// Of the (up to) two solutions the one whose axes all fit their software limits (after
     /// shifting by whole turns) with the least weighted travel from `prev`; in a pole the free
     /// axis keeps its `prev` position. `Unreachable` if `o` cannot be reached or no solution
     /// fits the limits.
+    /// With a 7th axis `o` is relative to the workpiece at the 7th axis position in `axes`.
     fn orientation_axes(&self, o: &Vec3, prev: &AxisVec, axes: &mut AxisVec) -> Result<(), Unreachable> {
-        let (pos, _) = self.nearest_solution(o, prev)?;
+        let (pos, _) = self.nearest_solution(&self.workpiece_to_chain(o, axes), prev)?;
         self.write_rotary(&pos, axes);
         Ok(())
     }
@@ -396,17 +444,26 @@ impl Transformation for Traori {
     /// The 3rd rotary axis of a 6-axis kinematics (tool rotation) is not part of the vector
     /// interpolation: it keeps its interpolated BCS value in `axes`, which goes linearly from
     /// the block start to the position the block's THETA demands.
+    /// With a 7th axis `o` and the tip are relative to the workpiece, which the 7th axis (its
+    /// interpolated value in `axes`) has turned.
     fn inverse_oriented(&self, o: &Vec3, prev: &AxisVec, tool: &Vec3, axes: &mut AxisVec) -> Result<(), Unreachable> {
+        let (o, tip) = match self.seventh {
+            None => (*o, self.point(axes)),
+            Some(s) => {
+                let r = s.rotation(axes);
+                (r.apply(o), r.apply(&self.point(axes)))
+            }
+        };
         let (pos, turns) = match self.third_slot() {
-            None => self.nearest_solution(o, prev)?,
+            None => self.nearest_solution(&o, prev)?,
             Some(k) => {
                 let mut p = *prev;
                 p[k] = axes[k];
-                self.nearest_solution(o, &p)?
+                self.nearest_solution(&o, &p)?
             }
         };
         let pose = self.chain.pose_turns(&turns);
-        let m = self.chain.linear(&self.point(axes), &pose, &scale(tool, -1.0));
+        let m = self.chain.linear(&tip, &pose, &scale(tool, -1.0));
         self.write_rotary(&pos, axes);
         self.write_linear(&m, axes);
         Ok(())

@@ -841,7 +841,7 @@ fn traori_dyn(
     };
     let mut axis = [[0.0; 3]; 3];
     let mut rot_offset = [0.0; 3];
-    let mut axes_in = [lin[0], lin[1], lin[2], None, None, None];
+    let mut axes_in = [lin[0], lin[1], lin[2], None, None, None, None];
     for (k, a) in order.iter().enumerate() {
         axis[k] = a.dir;
         rot_offset[k] = kin.num(f, n, "$NT_ROT_AX_OFFSET", k) - g.elems[a.elem].a_off;
@@ -886,6 +886,8 @@ fn traori_dyn(
             pole_limit: positive_or(kin.num(f, n, "$NT_POLE_LIMIT", 0), pole.1),
             nutator_angle: 0.0,
             oriax_assign: [None; 3],
+            ext_axis: [0.0, 0.0, 1.0],
+            ext_offset: 0.0,
         })),
         chain: Some(ChainDef { name, conventional }),
     })

@@ -79,6 +79,12 @@ pub static PRESETS: &[Preset] = &[
         description: "Linear axes X, Y, Z (40 m/min, 4 m/s²); head with C about Z (modulo, 14400°/min) carrying B about Y (−100..+100°, 10800°/min) carrying A, which turns the tool about its own axis (−200..+200°, 18000°/min); B pivot 200 mm above the spindle nose; generic 6-axis TRAORI data set 1 (type 24, tool normal +X for THETA); tool T1 (end mill L100 R5).",
         text: MILL6_GENERIC,
     },
+    Preset {
+        id: "mill7-generic",
+        name: "7-axis mill: three-axis head C/B/A and rotary table C1 (generic TRAORI type 24 + 7th axis)",
+        description: "The 6-axis head of mill6-generic (X, Y, Z 40 m/min, 4 m/s²; C about Z, B about Y, A turning the tool) plus a rotary table C1 about Z through the BCS zero point (modulo, 10800°/min, 1.5 rev/s²) as 7th axis: programmed positions and orientations are relative to the workpiece on C1 (program C1=…); generic 7-axis TRAORI data set 1 (type 24, TRAFO_AXES_IN_1[6] = C1, TRAFO7_EXT_AXIS1_1 = +Z); tool T1 (end mill L100 R5).",
+        text: MILL7_GENERIC,
+    },
 ];
 
 /// Looks a preset up by id.
@@ -804,6 +810,100 @@ $MC_TRAFO5_NON_POLE_LIMIT_1=2.
 $MC_TRAFO5_POLE_LIMIT_1=2.
 "#;
 
+const MILL7_GENERIC: &str = r#"; 7-axis mill: the three-axis head of mill6-generic (C about Z carries B about Y, which carries
+; A, the tool's own rotation) and a rotary table C1 about Z that turns the workpiece: the 7th axis
+; of the generic 7-axis transformation (F2 §3.7.6).
+$MN_AXCONF_MACHAX_NAME_TAB[0]="X"
+$MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
+$MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="A"
+$MN_AXCONF_MACHAX_NAME_TAB[4]="B"
+$MN_AXCONF_MACHAX_NAME_TAB[5]="C"
+$MN_AXCONF_MACHAX_NAME_TAB[6]="C1"
+$MC_AXCONF_MACHAX_USED[0]=1
+$MC_AXCONF_MACHAX_USED[1]=2
+$MC_AXCONF_MACHAX_USED[2]=3
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=5
+$MC_AXCONF_MACHAX_USED[5]=6
+$MC_AXCONF_MACHAX_USED[6]=7
+$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
+$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
+$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
+$MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
+$MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
+$MC_AXCONF_CHANAX_NAME_TAB[3]="A"
+$MC_AXCONF_CHANAX_NAME_TAB[4]="B"
+$MC_AXCONF_CHANAX_NAME_TAB[5]="C"
+$MC_AXCONF_CHANAX_NAME_TAB[6]="C1"
+$MA_MAX_AX_VELO[X]=40000.
+$MA_MAX_AX_ACCEL[X]=4.
+$MA_POS_LIMIT_MINUS[X]=-800.
+$MA_POS_LIMIT_PLUS[X]=800.
+$MA_MAX_AX_VELO[Y]=40000.
+$MA_MAX_AX_ACCEL[Y]=4.
+$MA_POS_LIMIT_MINUS[Y]=-600.
+$MA_POS_LIMIT_PLUS[Y]=600.
+$MA_MAX_AX_VELO[Z]=40000.
+$MA_MAX_AX_ACCEL[Z]=4.
+$MA_POS_LIMIT_MINUS[Z]=-400.
+$MA_POS_LIMIT_PLUS[Z]=300.
+$MA_IS_ROT_AX[A]=TRUE
+$MA_MAX_AX_VELO[A]=50.
+$MA_MAX_AX_ACCEL[A]=3.
+$MA_POS_LIMIT_MINUS[A]=-200.
+$MA_POS_LIMIT_PLUS[A]=200.
+$MA_IS_ROT_AX[B]=TRUE
+$MA_MAX_AX_VELO[B]=30.
+$MA_MAX_AX_ACCEL[B]=2.
+$MA_POS_LIMIT_MINUS[B]=-100.
+$MA_POS_LIMIT_PLUS[B]=100.
+$MA_IS_ROT_AX[C]=TRUE
+$MA_ROT_IS_MODULO[C]=TRUE
+$MA_MAX_AX_VELO[C]=40.
+$MA_MAX_AX_ACCEL[C]=2.
+$MA_IS_ROT_AX[C1]=TRUE
+$MA_ROT_IS_MODULO[C1]=TRUE
+$MA_MAX_AX_VELO[C1]=30.
+$MA_MAX_AX_ACCEL[C1]=1.5
+; T1 D1: end mill, length 100, radius 5
+$TC_DP1[1,1]=120
+$TC_DP3[1,1]=100.
+$TC_DP6[1,1]=5.
+; TRAORI data set 1: generic 7-axis: three rotary axes turn the tool, the 7th (C1) the workpiece.
+$MC_TRAFO_TYPE_1=24
+$MC_TRAFO_AXES_IN_1[0]=1      ; X
+$MC_TRAFO_AXES_IN_1[1]=2      ; Y
+$MC_TRAFO_AXES_IN_1[2]=3      ; Z
+$MC_TRAFO_AXES_IN_1[3]=6      ; C: 1st rotary axis (about Z)
+$MC_TRAFO_AXES_IN_1[4]=5      ; B: 2nd rotary axis (about Y)
+$MC_TRAFO_AXES_IN_1[5]=4      ; A: 3rd rotary axis (about the tool axis)
+$MC_TRAFO_AXES_IN_1[6]=7      ; C1: 7th axis (rotary table)
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=2
+$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3
+$MC_TRAFO5_AXIS1_1[2]=1.
+$MC_TRAFO5_AXIS2_1[1]=1.
+$MC_TRAFO5_AXIS3_1[2]=1.
+$MC_TRAFO5_BASE_ORIENT_1[2]=1.
+$MC_TRAFO6_BASE_ORIENT_NORMAL_1[0]=1.
+; C and B intersect; the B pivot lies 80 mm above the A bearing, which lies 120 mm above the
+; spindle nose: l2 = JOINT_OFFSET = 0, l23 = JOINT_OFFSET_2_3, l3 = BASE_TOOL, and the machine
+; position is the spindle nose at A = B = C = 0 (l1 = PART_OFFSET = −(l2 + l23 + l3)).
+$MC_TRAFO6_JOINT_OFFSET_2_3_1[2]=-80.
+$MC_TRAFO5_BASE_TOOL_1[2]=-120.
+$MC_TRAFO5_PART_OFFSET_1[2]=200.
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
+$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[2]=TRUE
+$MC_TRAFO5_NON_POLE_LIMIT_1=2.
+$MC_TRAFO5_POLE_LIMIT_1=2.
+; The table axis runs through the BCS zero point (machine X0 Y0) along +Z.
+$MC_TRAFO7_EXT_AXIS1_1[2]=1.
+$MC_TRAFO7_EXT_ROT_AX_OFFSET_1=0.
+"#;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -843,7 +943,7 @@ mod tests {
         let cfg = MachineData::default().apply_text(find("mill6-generic").unwrap().text).unwrap();
         assert_eq!((cfg.trafos.len(), cfg.trafos[0].trafo_type), (1, 24));
         let [a, b, c] = ["A", "B", "C"].map(|n| cfg.program_axis(n).unwrap());
-        assert_eq!(cfg.trafos[0].axes_in[3..], [Some(c), Some(b), Some(a)]);
+        assert_eq!(cfg.trafos[0].axes_in[3..6], [Some(c), Some(b), Some(a)]);
         assert_eq!(cfg.axis(c).modulo, Some((0.0, 360.0)));
         assert_eq!((cfg.axis(a).limit_minus, cfg.axis(a).limit_plus), (-200.0, 200.0));
     }

@@ -303,6 +303,10 @@ pub static DEFS: &[Def] = &[
     def("TRAFO6_BASE_ORIENT_NORMAL_1", 24576, C, Kind::Real, 3, Default::Indexed(default_unit_x), -INF, INF),
     def("TRAFO5_TCARR_NO_1", 24582, C, Kind::Int, 1, Default::Int(0), 0.0, 9999.0),
     def("TRAFO5_ORIAX_ASSIGN_TAB_1", 24585, C, Kind::Int, 3, Default::Int(0), 0.0, MAX_CHANNEL_AXES as f64),
+    // 7th axis of the generic 7-axis transformation: angle offset and direction. The data list
+    // names set 4 as 25394/25395; sets 1 and 2 follow the 245xx/246xx pattern of TRAFO5_.
+    def("TRAFO7_EXT_ROT_AX_OFFSET_1", 24594, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRAFO7_EXT_AXIS1_1", 24595, C, Kind::Real, 3, Default::Indexed(default_unit_z), -INF, INF),
     // Orientation transformation data set 2 (TRAFO5_/TRAFO6_, REFERENCE §6.2; set 2 = set 1 + 100).
     def("TRAFO5_PART_OFFSET_2", 24600, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),
     def("TRAFO5_ROT_AX_OFFSET_2", 24610, C, Kind::Real, 3, Default::Real(0.0), -360.0, 360.0),
@@ -322,6 +326,8 @@ pub static DEFS: &[Def] = &[
     def("TRAFO6_BASE_ORIENT_NORMAL_2", 24676, C, Kind::Real, 3, Default::Indexed(default_unit_x), -INF, INF),
     def("TRAFO5_TCARR_NO_2", 24682, C, Kind::Int, 1, Default::Int(0), 0.0, 9999.0),
     def("TRAFO5_ORIAX_ASSIGN_TAB_2", 24685, C, Kind::Int, 3, Default::Int(0), 0.0, MAX_CHANNEL_AXES as f64),
+    def("TRAFO7_EXT_ROT_AX_OFFSET_2", 24694, C, Kind::Real, 1, Default::Real(0.0), -360.0, 360.0),
+    def("TRAFO7_EXT_AXIS1_2", 24695, C, Kind::Real, 3, Default::Indexed(default_unit_z), -INF, INF),
     // TRAANG data sets 1 and 2 (angle of the inclined axis, base tool, reserves of the parallel axis).
     def("TRAANG_ANGLE_1", 24700, C, Kind::Real, 1, Default::Real(0.0), -90.0, 90.0),
     def("TRAANG_BASE_TOOL_1", 24710, C, Kind::Real, 3, Default::Real(0.0), -INF, INF),

@@ -114,8 +114,9 @@ pub struct TrafoDataSet {
     pub kind_index: usize,
     /// Channel axis (0-based index into `MachineConfig::channel_axes`) per role of
     /// `TRAFO_AXES_IN_n`; `None` for a 0 entry. Roles are described per kind in `kinematics`
-    /// (TRAORI: [0..2] linear axes, [3] 1st, [4] 2nd, [5] 3rd rotary axis).
-    pub axes_in: [Option<usize>; 6],
+    /// (TRAORI: [0..2] linear axes, [3] 1st, [4] 2nd, [5] 3rd rotary axis, [6] the 7th axis
+    /// that turns the workpiece).
+    pub axes_in: [Option<usize>; 7],
     /// Channel axis of the 1st/2nd/3rd geometry axis while the transformation is active.
     pub geo_axes: [Option<usize>; 3],
     /// `TRAFO_INCLUDES_TOOL_n`: the tool length is handled inside the transformation.
@@ -226,12 +227,13 @@ pub(super) fn build(
                 (3, true, false),
                 (4, true, false),
                 (5, true, false),
+                (6, true, false),
             ],
             // A chain's axes and geometry axes are those of its members.
             (TrafoKind::Tracon, _) => &[],
         };
         let rotary = |k: usize| machine_axes[channel_axes[k].machine_axis].rotary;
-        let mut axes_in = [None; 6];
+        let mut axes_in = [None; 7];
         // Only the entries of the roles this type has are read (the default lists axes 1..5).
         for (i, a) in axes_in.iter_mut().enumerate().take(roles.len()) {
             let k = md.num(&format!("$MC_{axes_datum}"), 0, i) as usize;

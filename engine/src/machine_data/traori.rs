@@ -67,6 +67,12 @@ pub struct TraoriParams {
     pub nutator_angle: f64,
     /// `TRAFO5_ORIAX_ASSIGN_TAB_t`: channel axes of the (virtual) orientation axes.
     pub oriax_assign: [Option<usize>; 3],
+    /// `TRAFO7_EXT_AXIS1_t` (unit): direction of the 7th axis (`TRAFO_AXES_IN_n[6]`), which
+    /// turns the workpiece right-handedly about it when it moves positive.
+    pub ext_axis: [f64; 3],
+    /// `TRAFO7_EXT_ROT_AX_OFFSET_t`: position of the 7th axis at which the workpiece
+    /// coordinates coincide with the BCS (degrees).
+    pub ext_offset: f64,
 }
 
 /// Channel data of orientation programming (MD21090..21130), read at activation.
@@ -200,7 +206,9 @@ fn datum(name: &str, k: usize) -> &'static str {
         ("NORMAL", 1) => "TRAFO6_BASE_ORIENT_NORMAL_1",
         ("NORMAL", _) => "TRAFO6_BASE_ORIENT_NORMAL_2",
         ("ORIAX", 1) => "TRAFO5_ORIAX_ASSIGN_TAB_1",
-        _ => "TRAFO5_ORIAX_ASSIGN_TAB_2",
+        ("ORIAX", _) => "TRAFO5_ORIAX_ASSIGN_TAB_2",
+        ("EXT_AXIS", 1) => "TRAFO7_EXT_AXIS1_1",
+        _ => "TRAFO7_EXT_AXIS1_2",
     }
 }
 
@@ -223,7 +231,7 @@ pub(super) fn params(
     md: &MachineData,
     t: u32,
     k: usize,
-    axes_in: &[Option<usize>; 6],
+    axes_in: &[Option<usize>; 7],
     type_datum: &'static str,
     axes_datum: &'static str,
     resolve: &dyn Fn(usize) -> Option<usize>,
@@ -273,6 +281,23 @@ pub(super) fn params(
             ),
         );
     }
+    // The 7th axis (F2 §3.7.6) extends only the generic tool kinematics (type 24).
+    let ext_axis = if axes_in[6].is_some() {
+        if !(d.generic && d.machine == OriMachine::Tool) {
+            return fail(
+                axes_datum,
+                format!("$MC_{type_datum}={t}: a 7th axis (TRAFO_AXES_IN[6]) needs the generic type 24"),
+            );
+        }
+        match unit(v3("TRAFO7_EXT_AXIS1")) {
+            Some(u) => u,
+            None => {
+                return alarm(datum("EXT_AXIS", k), 9, &format!("$MC_TRAFO7_EXT_AXIS1_{k} is the zero vector"));
+            }
+        }
+    } else {
+        [0.0, 0.0, 1.0]
+    };
     let nutator_angle = s("TRAFO5_NUTATOR_AX_ANGLE");
     let base_orient_normal_raw = v3("TRAFO6_BASE_ORIENT_NORMAL");
     let (axis, base_orient) = if d.generic {
@@ -354,6 +379,8 @@ pub(super) fn params(
         pole_limit: s("TRAFO5_POLE_LIMIT"),
         nutator_angle,
         oriax_assign,
+        ext_axis,
+        ext_offset: s("TRAFO7_EXT_ROT_AX_OFFSET"),
     })
 }
 

@@ -4,10 +4,12 @@
 //! Input: [`Move`]s (a [`Path`] in channel-axis space plus feed and exact-stop flag) and the
 //! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
 
+mod ori_curve;
 mod orientation;
 mod path;
 mod planner;
 
+pub use ori_curve::TwoCurves;
 pub use orientation::{Antiparallel, OriPath, rotate};
 pub use path::{Arc, AxisVec, Path};
 pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed};

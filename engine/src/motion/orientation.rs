@@ -4,7 +4,9 @@
 //! Both kinds are a rotation of the start orientation about a fixed axis by an angle that grows
 //! uniformly with the path parameter: the great circle turns about `start × end`, the cone about
 //! its programmed axis. So one representation serves both, slices exactly, and costs one
-//! `sin_cos` per IPO point.
+//! `sin_cos` per IPO point. ORICURVE instead follows a second curve ([`TwoCurves`]).
+
+use super::ori_curve::TwoCurves;
 
 /// A 3-vector in the BCS (X, Y, Z of the geometry axes).
 pub type Vec3 = [f64; 3];
@@ -16,8 +18,12 @@ pub struct OriPath {
     pub start: Vec3,
     /// Unit rotation axis.
     pub axis: Vec3,
-    /// Total rotation in radians (signed, right-handed about `axis`).
+    /// Total rotation in radians (signed, right-handed about `axis`). For ORICURVE the angle
+    /// between start and end orientation (the feed base of a block without tip motion).
     pub angle: f64,
+    /// ORICURVE: the orientation follows the direction from the tip line to the upper line
+    /// instead of the rotation.
+    pub curve: Option<TwoCurves>,
 }
 
 /// Start and end orientation point in opposite directions: the plane of the great circle is
@@ -35,23 +41,38 @@ impl OriPath {
         if sin < 1e-9 {
             return if cos > 0.0 { Ok(None) } else { Err(Antiparallel) };
         }
-        Ok(Some(OriPath { start, axis: scale(c, 1.0 / sin), angle: sin.atan2(cos) }))
+        Ok(Some(OriPath { start, axis: scale(c, 1.0 / sin), angle: sin.atan2(cos), curve: None }))
     }
 
     /// A rotation of `start` about `axis` (any length) by `angle` radians: the cone.
     pub fn cone(start: Vec3, axis: Vec3, angle: f64) -> Option<OriPath> {
         let n = norm(axis);
-        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle })
+        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle, curve: None })
+    }
+
+    /// ORICURVE: the orientation from the tip line to the upper line of `curves`.
+    pub fn two_curves(curves: TwoCurves) -> OriPath {
+        let (start, end) = (curves.at(0.0), curves.at(1.0));
+        let c = cross(start, end);
+        let n = norm(c);
+        let axis = if n > 1e-12 { scale(c, 1.0 / n) } else { [0.0, 0.0, 1.0] };
+        OriPath { start, axis, angle: n.atan2(dot(start, end)), curve: Some(curves) }
     }
 
     /// Orientation at path parameter `u` in 0..=1.
     pub fn at(&self, u: f64) -> Vec3 {
-        rotate(self.start, self.axis, self.angle * u.clamp(0.0, 1.0))
+        match &self.curve {
+            Some(c) => c.at(u),
+            None => rotate(self.start, self.axis, self.angle * u.clamp(0.0, 1.0)),
+        }
     }
 
     /// Unit direction in which the orientation moves at the block end (for ORICONTO's
     /// tangential transition); `None` for a path that does not turn.
     pub fn end_direction(&self) -> Option<Vec3> {
+        if let Some(c) = &self.curve {
+            return c.end_direction();
+        }
         let d = scale(cross(self.axis, self.at(1.0)), self.angle.signum());
         let n = norm(d);
         (n > 1e-12 && self.angle != 0.0).then(|| scale(d, 1.0 / n))
@@ -59,7 +80,10 @@ impl OriPath {
 
     /// The part between parameters `u0` and `u1`.
     pub fn slice(&self, u0: f64, u1: f64) -> OriPath {
-        OriPath { start: self.at(u0), angle: self.angle * (u1 - u0), ..*self }
+        match &self.curve {
+            Some(c) => OriPath::two_curves(c.slice(u0, u1)),
+            None => OriPath { start: self.at(u0), angle: self.angle * (u1 - u0), ..*self },
+        }
     }
 }
 

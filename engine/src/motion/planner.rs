@@ -564,6 +564,9 @@ const ORI_EXACT_EVERY: u32 = 64;
 /// 1e-21 for |d| < 0.05 rad). A larger step and every [`ORI_EXACT_EVERY`]th cycle use
 /// `sin_cos`; the block end is the exact end orientation (the caller takes it from the path).
 fn orientation_on(ori: &OriPath, u: f64, state: &mut Option<OriStep>) -> Vec3 {
+    if let Some(c) = &ori.curve {
+        return c.at(u);
+    }
     let angle = ori.angle * u.clamp(0.0, 1.0);
     let next = match *state {
         Some(last) if last.stepped < ORI_EXACT_EVERY && (angle - last.angle).abs() < 0.05 => {
@@ -648,7 +651,7 @@ mod tests {
         // A great circle of 1.2 rad run in uneven steps (accelerating, then cruising): every
         // stepped orientation agrees with the direct Rodrigues rotation within 1e-13 (64 steps of
         // rounding at most).
-        let ori = OriPath { start: [0.0, 0.0, 1.0], axis: [0.0, -1.0, 0.0], angle: 1.2 };
+        let ori = OriPath { start: [0.0, 0.0, 1.0], axis: [0.0, -1.0, 0.0], angle: 1.2, curve: None };
         let mut state = None;
         let (mut u, mut du) = (0.0f64, 0.0f64);
         let mut cycles = 0;

@@ -169,7 +169,7 @@ impl<'a> Record<'a> {
         name: String,
         kind: TrafoKind,
         trafo_type: u32,
-        axes_in: [Option<usize>; 6],
+        axes_in: [Option<usize>; 7],
         geo_axes: [Option<usize>; 3],
         params: TrafoParams,
     ) -> TrafoDataSet {
@@ -287,6 +287,7 @@ pub(super) fn rotary(
         extra.filter(|_| supplementary).map(|a| r.channel(&a)),
         None,
         None,
+        None,
     ];
     let mut geo_axes = [None; 3];
     for role in 0..3 {
@@ -361,8 +362,15 @@ pub(super) fn inclined(
     let mut base_tool = [0.0; 3];
     base_tool[order[0]] = dot(&v, &e_x);
     base_tool[order[2]] = dot(&v, &e_z);
-    let axes_in =
-        [Some(r.channel(&infeed)), Some(r.channel(&longitudinal)), other.map(|a| r.channel(&a)), None, None, None];
+    let axes_in = [
+        Some(r.channel(&infeed)),
+        Some(r.channel(&longitudinal)),
+        other.map(|a| r.channel(&a)),
+        None,
+        None,
+        None,
+        None,
+    ];
     let mut geo_axes = [None; 3];
     geo_axes[order[0]] = axes_in[0];
     geo_axes[order[1]] = axes_in[2];
