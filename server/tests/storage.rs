@@ -136,13 +136,28 @@ fn concurrent_writers(storage: &(dyn Storage + Sync)) {
 
 // ---- backends --------------------------------------------------------------------------------
 
-fn temp_dir(name: &str) -> PathBuf {
-    static NEXT: AtomicUsize = AtomicUsize::new(0);
-    let n = NEXT.fetch_add(1, Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("nctwin-storage-{name}-{}-{n}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+/// A scratch directory of one test, removed again when the test ends (also when it fails).
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> Self {
+        static NEXT: AtomicUsize = AtomicUsize::new(0);
+        let n = NEXT.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("nctwin-storage-{name}-{}-{n}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        Self(dir)
+    }
+
+    fn join(&self, file: &str) -> PathBuf {
+        self.0.join(file)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }
 
 #[test]
@@ -153,11 +168,10 @@ fn memory_conforms() {
 
 #[test]
 fn sqlite_conforms() {
-    let dir = temp_dir("sqlite");
+    let dir = TempDir::new("sqlite");
     exercise(&SqliteStorage::open(&dir.join("a.sqlite3")).expect("open"));
     survives_reopening(&|| Box::new(SqliteStorage::open(&dir.join("b.sqlite3")).expect("open")));
     concurrent_writers(&SqliteStorage::open(&dir.join("c.sqlite3")).expect("open"));
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
@@ -285,7 +299,8 @@ fn postgres_schema_1_is_migrated_without_losing_data() {
 
 #[test]
 fn sqlite_schema_1_is_migrated_without_losing_data() {
-    let path = temp_dir("migrate").join("v1.sqlite3");
+    let dir = TempDir::new("migrate");
+    let path = dir.join("v1.sqlite3");
     {
         let c = rusqlite::Connection::open(&path).expect("create");
         c.execute_batch(
@@ -357,9 +372,10 @@ fn postgres_reconnects_after_the_connection_broke() {
 
 #[test]
 fn an_unknown_database_scheme_is_refused() {
-    let error = storage::open(Some("mysql://u@h/db"), &temp_dir("scheme"), Lease::default()).expect_err("refused");
+    let error =
+        storage::open(Some("mysql://u@h/db"), &TempDir::new("scheme").0, Lease::default()).expect_err("refused");
     assert!(error.0.contains("mysql"), "{error}");
-    assert!(storage::open(Some("postgres://u@[bad"), &temp_dir("bad"), Lease::default()).is_err(), "invalid URL");
+    assert!(storage::open(Some("postgres://u@[bad"), &TempDir::new("bad").0, Lease::default()).is_err(), "invalid URL");
     // No TLS in this build: a URL that requires it is refused before any connection is tried.
     let tls = PostgresStorage::open("postgres://u@127.0.0.1:1/db?sslmode=require").expect_err("refused");
     assert!(tls.0.contains("sslmode=require") && tls.0.contains("no TLS"), "{tls}");
