@@ -558,7 +558,7 @@ pub(super) fn collect(
                     Assigned::Address => {}
                 }
                 if name == "TCARR" {
-                    if seen.contains(&name.as_str()) {
+                    if seen.contains(&&**name) {
                         return Err(Alarm::repeated_address(line, name));
                     }
                     seen.push(name);
@@ -573,11 +573,11 @@ pub(super) fn collect(
                         Ok(v as u32)
                     }
                 };
-                if seen.contains(&name.as_str()) {
+                if seen.contains(&&**name) {
                     return Err(Alarm::repeated_address(line, name));
                 }
                 seen.push(name);
-                match name.as_str() {
+                match &**name {
                     "F" => w.feed = Some(v),
                     "S" => w.speed = Some(v),
                     "T" => w.tool = Some(whole("T")?),
