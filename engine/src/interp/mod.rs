@@ -897,7 +897,13 @@ impl Interpreter {
             // The circle is defined in the WCS plane and mapped through the frame.
             let u = frame.geo_direction(geo, pa);
             let v = frame.geo_direction(geo, po);
-            path.arc = Some(Arc { u, v, radius: circle.radius, start_angle: circle.start_angle, sweep: circle.sweep });
+            path.arc = Some(Box::new(Arc {
+                u,
+                v,
+                radius: circle.radius,
+                start_angle: circle.start_angle,
+                sweep: circle.sweep,
+            }));
             let scale = (norm(&u) + norm(&v)) / 2.0;
             let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
             length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
@@ -982,7 +988,7 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
             continue;
         }
         let (s, e) = (path.start[k], path.end[k]);
-        let moves = (e - s).abs() > 1e-12 || path.arc.is_some_and(|a| a.moves_axis(k));
+        let moves = (e - s).abs() > 1e-12 || path.arc.as_ref().is_some_and(|a| a.moves_axis(k));
         if !moves {
             continue;
         }
