@@ -515,7 +515,9 @@ impl Interpreter {
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
-            let (mv, feed) = self.motion(&words, cfg, line)?;
+            // One set of limits for the move and its compensation (same configuration).
+            let limits = AxisLimit::for_channel(cfg);
+            let (mv, feed) = self.motion(&words, cfg, &limits, line)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
             let comp = self.compensation(cfg, &words, line)?;
@@ -523,7 +525,7 @@ impl Interpreter {
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
             let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
-            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
+            self.trc.push(prepared, comp, &limits, out)?;
         } else if !positioned && !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
             // A new shared value is made only when the offsets differ from the last one.
             out.push(Item::Offsets { line, offsets: self.shared_offsets() });
@@ -764,7 +766,13 @@ impl Interpreter {
         }))
     }
 
-    fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {
+    fn motion(
+        &mut self,
+        words: &modal::Words,
+        cfg: &MachineConfig,
+        limits: &[AxisLimit],
+        line: u32,
+    ) -> Result<(Move, Feed), Alarm> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
         let start = self.pos;
@@ -934,7 +942,7 @@ impl Interpreter {
         };
         let exact_stop = self.modal.exact_stop || words.g9;
         self.pos = end;
-        Ok((Move::new(path, length, feed, &AxisLimit::for_channel(cfg), exact_stop, line), feed))
+        Ok((Move::new(path, length, feed, limits, exact_stop, line), feed))
     }
 }
 

@@ -82,7 +82,10 @@ impl Path {
         let mut end = [0.0; MAX_CHANNEL_AXES];
         self.at(u0, &mut start);
         self.at(u1, &mut end);
-        let arc = self.arc.as_ref().map(|a| Box::new(Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..**a }));
+        let arc = self
+            .arc
+            .as_ref()
+            .map(|a| Box::new(Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..**a }));
         let ori = self.ori.as_ref().map(|o| Box::new(o.slice(u0, u1)));
         Path { start, end, arc, ori }
     }
@@ -127,7 +130,11 @@ impl Path {
             Some(arc) => {
                 let (linear, _) = self.arc_parts(arc);
                 for (k, rk) in r.iter_mut().enumerate() {
-                    let circle = arc.radius * arc.sweep.abs() * arc.u[k].hypot(arc.v[k]);
+                    // Most axes are outside the circle's plane: skip libm's hypot for them
+                    // (hypot(0, 0) is 0 as well).
+                    let (u, v) = (arc.u[k], arc.v[k]);
+                    let span = if u == 0.0 && v == 0.0 { 0.0 } else { u.hypot(v) };
+                    let circle = arc.radius * arc.sweep.abs() * span;
                     *rk = linear[k].abs() + circle;
                 }
             }
