@@ -335,9 +335,14 @@ impl Interpreter {
     /// Sets the block's frame, tool vector and G functions, touching the offsets only where
     /// they change (most blocks change none of them).
     fn refresh_offsets(&mut self, cfg: &MachineConfig) {
-        let frame = self.active_frame(cfg);
-        if self.offsets.frame != frame {
-            self.offsets.frame = frame;
+        // As `active_frame`, but the cached frame is copied only when it differs.
+        let changed = [self.pframe.take_changed(), self.system.take_changed(), self.iframe.take_changed()];
+        let (work_offset, rotary_slot) = (self.modal.work_offset, self.trafo.rotary_slot());
+        let frame = self
+            .frame_cache
+            .get(cfg, work_offset, rotary_slot, changed.contains(&true), || sys_view!(self, cfg).chain(None));
+        if self.offsets.frame != *frame {
+            self.offsets.frame = frame.clone();
         }
         let tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         if self.offsets.tool != tool {

@@ -175,10 +175,11 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool) -> PResult<Opti
 
 fn split_comment(text: &str) -> (&str, Option<&str>) {
     let mut in_str = false;
-    for (i, c) in text.char_indices() {
+    // Bytes, not chars: `"` and `;` are ASCII, so every index found is a char boundary.
+    for (i, c) in text.bytes().enumerate() {
         match c {
-            '"' => in_str = !in_str,
-            ';' if !in_str => return (&text[..i], Some(&text[i + 1..])),
+            b'"' => in_str = !in_str,
+            b';' if !in_str => return (&text[..i], Some(&text[i + 1..])),
             _ => {}
         }
     }
