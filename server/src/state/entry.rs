@@ -7,6 +7,7 @@ use std::sync::{Arc, Mutex};
 
 use tokio::time::Instant;
 
+use super::persist::ProgramHashCache;
 use crate::auth::Role;
 use crate::error::ApiError;
 use crate::limits::{Limits, RateLimiter};
@@ -32,6 +33,8 @@ pub struct SessionEntry {
     /// Serialises "change the channel, then write the change" sequences of this session, so
     /// that storage never ends up older than what a client was told was saved.
     pub save_lock: tokio::sync::Mutex<()>,
+    /// The hash of the AUTO program last checkpointed (see [`super::persist`]).
+    pub program_hash: Arc<ProgramHashCache>,
 }
 
 impl SessionEntry {
@@ -51,6 +54,7 @@ impl SessionEntry {
             rate: Mutex::new(RateLimiter::new(limits.commands_per_second, limits.command_burst, Instant::now())),
             stream_clients: Arc::new(AtomicUsize::new(0)),
             save_lock: tokio::sync::Mutex::new(()),
+            program_hash: Arc::default(),
         }
     }
 
