@@ -79,6 +79,8 @@ impl Channel {
         let machine = self.machine;
         self.interp.restore_retained(&state.retained, &self.cfg, &machine).map_err(CommandError::Invalid)?;
         self.offsets = self.interp.offsets();
+        // The online offset is in force at once, without a ramp: no axis moves.
+        self.toff = super::toff::OnlineOffset::at(self.offsets.toff);
         self.adopt_transformation();
         let Some(program) = &state.program else { return Ok(()) };
         CommandError::check(&program.text)?;
@@ -204,6 +206,24 @@ mod tests {
         new.start().expect("NC start");
         settle(&mut new);
         assert_eq!((new.status(), new.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
+    }
+
+    #[test]
+    fn the_online_tool_offset_comes_back_in_force_without_moving_an_axis() {
+        // No tool, no transformation: TOFFON(Z, 5) adds 5 mm to the Z axis, so WCS Z10 is
+        // machine Z15; after the restart WCS Z still reads 10 and G0 Z20 goes to machine Z25.
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.run_program("G0 X0 Y0 Z10\nTOFFON(Z, 5)\nG0 Z10\nM30").expect("run");
+        settle(&mut ch);
+        let z = |c: &Channel| c.snapshot().machine.iter().find(|(n, _)| n == "Z").map(|(_, v)| *v).expect("Z");
+        assert!((z(&ch) - 15.0).abs() < 1e-9, "machine Z {}", z(&ch));
+        assert_eq!(ch.resume_state().retained.toff, [0.0, 0.0, 5.0]);
+        let mut new = restart(&ch, "");
+        assert!((wcs(&new, "Z") - 10.0).abs() < 1e-9, "WCS Z {}", wcs(&new, "Z"));
+        assert!(!new.is_busy(), "nothing moves");
+        new.run_program("G0 Z20\nM30").expect("run");
+        settle(&mut new);
+        assert!((z(&new) - 25.0).abs() < 1e-9, "machine Z {}", z(&new));
     }
 
     #[test]

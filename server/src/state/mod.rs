@@ -391,7 +391,7 @@ impl AppState {
         let id = entry.id().to_string();
         let hashes = entry.program_hash.clone();
         self.storage_call(move |s| {
-            checkpoint.active_program = text.map(|t| hashes.active_program(t));
+            checkpoint.active_program = hashes.checkpointed(text);
             s.save_checkpoint(&id, &checkpoint)
         })
         .await?;
@@ -539,7 +539,7 @@ impl AppState {
             match entry.handle.with_channel(|ch| persist::checkpoint_unhashed(ch)).await {
                 Ok((mut checkpoint, text)) => {
                     // Cached: hashed when the program was checkpointed last, unless it changed.
-                    checkpoint.active_program = text.map(|t| entry.program_hash.active_program(t));
+                    checkpoint.active_program = entry.program_hash.checkpointed(text);
                     checkpoints.push((entry.id().to_string(), checkpoint));
                 }
                 Err(e) => tracing::warn!(session = %entry.id(), error = %e, "no checkpoint at shutdown"),

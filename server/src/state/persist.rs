@@ -3,11 +3,17 @@
 //!
 //! A restored session has its machine data, stored programs, axis positions and operating
 //! mode as saved, and the channel state a reset keeps: tool and cutting edge, toolholder,
-//! system frames, R parameters, a transformation kept over reset
+//! system frames, R parameters, the online tool offset `$AA_TOFF`, a transformation kept over reset
 //! ([`nctwin_engine::channel::ResumeState`], stored as JSON). A program that was running or
 //! stopped in AUTO when the checkpoint was taken comes back stopped at its block (block search
 //! with calculation to it: NC start approaches the block and continues); one only loaded comes
 //! back loaded. Alarms, spindle speeds and simulated time start afresh.
+//!
+//! What a restart does not bring back, as a real control's power on would not: a turning
+//! spindle (spindles never start by themselves; a resumed program's block search outputs its
+//! S/M3/M4 at NC start, an idle channel's spindles stand with their power-on speed and the
+//! master spindle of MD20090), alarms (power on clears every alarm; a cause that persists
+//! raises its alarm again when it is met) and simulated time.
 //!
 //! The AUTO program's text is not part of the channel state's JSON: it travels beside it as the
 //! checkpoint's [`ActiveProgram`], which storage rewrites only when its hash changed. Reading a
@@ -49,6 +55,18 @@ pub fn checkpoint_unhashed(channel: &Channel) -> (Checkpoint, Option<ProgramText
 pub struct ProgramHashCache(Mutex<Option<ActiveProgram>>);
 
 impl ProgramHashCache {
+    /// The active program of a checkpoint whose AUTO program is `text`; without one the cache
+    /// lets the old text go.
+    pub fn checkpointed(&self, text: Option<ProgramText>) -> Option<ActiveProgram> {
+        match text {
+            Some(text) => Some(self.active_program(text)),
+            None => {
+                *self.0.lock().unwrap_or_else(|e| e.into_inner()) = None;
+                None
+            }
+        }
+    }
+
     /// `text` with its hash, from the cache when it is the text hashed last.
     pub fn active_program(&self, text: ProgramText) -> ActiveProgram {
         let mut cached = self.0.lock().unwrap_or_else(|e| e.into_inner());
