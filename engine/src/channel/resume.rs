@@ -227,6 +227,23 @@ mod tests {
     }
 
     #[test]
+    fn a_search_in_a_stored_program_shares_its_text() {
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.store_program("PART", "G0 X1\nG0 X2\nM30").expect("store");
+        ch.set_mode(Mode::Auto).expect("auto");
+        assert!(ch.block_search_stored("nope", 2).is_err(), "an unknown name is refused");
+        ch.block_search_stored("part.mpf", 2).expect("search");
+        let (_, text) = ch.resume_state_shared();
+        let stored = ch.programs.get("PART").cloned().map(ProgramText::from).expect("stored");
+        assert_eq!(text.as_deref(), Some("G0 X1\nG0 X2\nM30"));
+        // One allocation: the stored Arc<str> is what both point into.
+        assert_eq!(text.map(|t| t.as_ptr()), Some(stored.as_ptr()));
+        ch.start().expect("NC start");
+        settle(&mut ch);
+        assert_eq!(ch.snapshot().machine[0], ("X".to_string(), 2.0));
+    }
+
+    #[test]
     fn a_state_that_no_longer_fits_the_machine_data_changes_nothing() {
         let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
         let mut state = ch.resume_state();
