@@ -241,6 +241,31 @@ mod tests {
     }
 
     #[test]
+    fn a_restart_is_a_power_on_for_spindles_and_alarms() {
+        // Before: the lathe's main spindle turning at 1000 rev/min (M3 in MDA), then alarm 10860
+        // (a feed motion without a feedrate) waiting for a reset.
+        let settle = |c: &mut Channel| {
+            for _ in 0..100_000 {
+                if !c.is_busy() {
+                    break;
+                }
+                c.step();
+            }
+        };
+        let mut channel = Channel::from_preset("lathe-2axis", "").expect("preset");
+        channel.mda("M3 S1000").expect("mda");
+        settle(&mut channel);
+        let _ = channel.mda("G1 X10");
+        settle(&mut channel);
+        assert_eq!(channel.alarms().iter().map(|a| a.number).collect::<Vec<_>>(), [10860]);
+        let turning = |c: &Channel| c.snapshot().spindles.iter().any(|(_, speed)| *speed != 0.0);
+        assert!(turning(&channel), "{:?}", channel.snapshot().spindles);
+        let restored = rebuild(&saved(&channel, vec![])).expect("rebuild");
+        assert!(!turning(&restored), "no spindle starts by itself: {:?}", restored.snapshot().spindles);
+        assert!(restored.alarms().is_empty());
+    }
+
+    #[test]
     fn machine_data_that_no_longer_applies_is_an_error_not_a_wrong_session() {
         let channel = Channel::from_preset("mill-3axis", "").expect("preset");
         let mut bad = saved(&channel, vec![]);
