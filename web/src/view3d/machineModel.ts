@@ -159,6 +159,11 @@ function buildMill(s: Structure): MachineModel {
         return slot;
       });
       j.turn.add(disk, mark, ...slots);
+      if (i === 0 && Math.abs(up.z) > 0.9) {
+        // A table standing alone (the 7th axis of a generic 7-axis machine): a pedestal on the bed.
+        const bottom = pivotsWorld[0]!.clone().add(axisPoint).addScaledVector(up, -50);
+        tableRoot.add(cylinder(MATERIALS.frame, 160, new THREE.Vector3(bottom.x, bottom.y, tableTop), bottom, 48));
+      }
     } else {
       // Cradle: a plate under the next axis and two cheeks on this axis.
       const next = v3(tableJoints[i + 1]!.axis.offset);

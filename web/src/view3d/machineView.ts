@@ -8,7 +8,10 @@ import type { AxisValues, State } from "../api/types";
 import { byId, setText } from "../core/dom";
 import { NcData } from "../core/ncdata";
 import type { SessionController, SessionInfo } from "../core/session";
-import { isOrientationTrafo, readStructure, type Structure } from "./machineData";
+import { api } from "../api/client";
+import { buildChainMachine, chainRecordFor } from "./chainModel";
+import { parseChains } from "./kinChains";
+import { axisLookup, isOrientationTrafo, readStructure, type Structure } from "./machineData";
 import { buildMachine, type MachineModel } from "./machineModel";
 import { Toolpath } from "./toolpath";
 import { Viewport, type ViewName } from "./viewport";
@@ -103,6 +106,10 @@ export class MachineView {
   private ncData = new NcData("");
   private buildKey = "";
   private info: SessionInfo | null = null;
+  /** The session's kinematic chain program (GET .../kinematic-chains), "" until fetched. */
+  private chainText = "";
+  private chainSerial = 0;
+  private latest: State | null = null;
   /** Lathe: tool holder minus tool tip, measured while the BCS is Cartesian and untransformed. */
   private readonly latheOffset = new THREE.Vector3();
   private readonly holder = new THREE.Vector3();
@@ -133,6 +140,8 @@ export class MachineView {
     this.info = info;
     this.ncData = new NcData(info.machine.machine_data);
     this.buildKey = ""; // rebuilt from the first state (it names the machine axes)
+    if (!opts.keepPath) this.chainText = "";
+    void this.fetchChains();
     if (!opts.keepPath) {
       this.toolpath.clear();
       this.programmed.clear();
@@ -144,7 +153,12 @@ export class MachineView {
     const trafo = st.transformation ?? null;
     const oriSet = trafo && isOrientationTrafo(trafo.type) ? trafo.index : null;
     const key = `${axes.join(",")}|${oriSet ?? ""}`;
-    if (key !== this.buildKey) this.build(axes, oriSet);
+    this.latest = st;
+    if (key !== this.buildKey) {
+      this.build(axes, oriSet);
+      // A chain transformation selected: its chains may be new (a program wrote $NK_ data).
+      if (oriSet !== null && oriSet >= 100) void this.fetchChains();
+    }
     const s = this.structure;
     const model = this.model;
     if (!s || !model) return;
@@ -239,12 +253,41 @@ export class MachineView {
     this.viewport.invalidate();
   }
 
+  /** Fetches the session's chain data; rebuilds the model when it changed. */
+  private async fetchChains(): Promise<void> {
+    const id = this.info?.id;
+    if (!id) return;
+    const mine = ++this.chainSerial;
+    let text = "";
+    try {
+      text = await api.kinematicChains(id);
+    } catch {
+      return; // no chains to draw: the machine data model stays
+    }
+    if (mine !== this.chainSerial || id !== this.info?.id || typeof text !== "string" || text === this.chainText) return;
+    this.chainText = text;
+    this.buildKey = "";
+    if (this.latest) this.show(this.latest);
+  }
+
   private build(machineAxes: string[], oriSet: number | null): void {
     this.buildKey = `${machineAxes.join(",")}|${oriSet ?? ""}`;
     this.content.clear();
-    const s = readStructure(this.info?.machine.machine_data ?? "", machineAxes, oriSet);
+    const text = this.info?.machine.machine_data ?? "";
+    let s = readStructure(text, machineAxes, oriSet);
+    // A transformation defined by kinematic chains: the model follows its elements.
+    const lookup = axisLookup(text, machineAxes);
+    const chains = parseChains(this.chainText);
+    const record = chainRecordFor(chains, oriSet, lookup);
+    const chain = record ? buildChainMachine(chains, record, lookup) : null;
+    if (chain) {
+      s = { ...s, kind: "mill", head: [], table: [], summary: chain.summary };
+      this.caption.dataset.chain = record!.name;
+    } else {
+      delete this.caption.dataset.chain;
+    }
     this.structure = s;
-    this.model = buildMachine(s);
+    this.model = chain?.model ?? buildMachine(s);
     const letters = s.kind === "lathe" ? ["X", "Z", ...(s.linear.some((a) => a.letter === "Y") ? ["Y"] : [])] : ["X", "Y", "Z"];
     this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
     this.programmed.line.renderOrder = 2;
@@ -255,8 +298,8 @@ export class MachineView {
     this.model.update({}, false);
     this.caption.textContent = s.summary;
     this.caption.dataset.kind = s.kind;
-    this.caption.dataset.head = String(s.head.length);
-    this.caption.dataset.table = String(s.table.length);
+    this.caption.dataset.head = String(chain ? chain.toolRotary : s.head.length);
+    this.caption.dataset.table = String(chain ? chain.partRotary : s.table.length);
     this.framePending = true;
   }
 
