@@ -316,6 +316,24 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
     }
   }
 
+  // TRACYL on a milling machine (no orientation transformation holds the rotary axis): the
+  // rotary axis turns the cylinder about the axis parallel to it (TRAFO_AXES_IN_n[2]), through
+  // the machine zero, the way the lathe's spindle turns it (see `spindleSign`).
+  const tracyl = trafos.find(([, t]) => isTracyl(t));
+  if (kind === "mill" && !s.table.length && !s.head.length && tracyl) {
+    const [n] = tracyl;
+    const k = md.ordinal(n, isTracyl);
+    const rot = md.machineOfChannel(md.axesIn(n, 1));
+    const parallel = linear.find((a) => a.name === md.machineOfChannel(md.axesIn(n, 2)));
+    const raw = md.data.raw(`$MC_TRACYL_ROT_SIGN_IS_PLUS_${k}`);
+    const sign = raw !== undefined && /^(FALSE|0)$/i.test(raw) ? 1 : -1;
+    if (rot && parallel) {
+      s.table = [{ name: rot, dir: scale(parallel.dir, sign), offset: [0, 0, 0], zero: md.num(`$MC_TRACYL_ROT_AX_OFFSET_${k}`) }];
+      used.add(rot);
+      s.summary = `${linear.length}-axis mill, cylinder on ${rot} about ${parallel.letter} (TRACYL, data set ${n})`;
+    }
+  }
+
   if (kind === "lathe") {
     // The axis that turns the workpiece: the rotary axis of TRANSMIT/TRACYL, else the first
     // spindle ($MA_SPIND_ASSIGN_TO_MACHAX = 1), else the first rotary axis.

@@ -199,7 +199,9 @@ function buildMill(s: Structure): MachineModel {
     const housing = cylinder(MATERIALS.rotary, 75, j.dir.clone().multiplyScalar(-85), j.dir.clone().multiplyScalar(85));
     // Arm from this pivot to the next (or to the nose), offset sideways for a fork.
     const arm = cylinder(MATERIALS.head, 45, new THREE.Vector3(), next);
-    j.turn.add(housing, arm);
+    // A mark on the housing shows the turn (an axis about the tool's own axis turns nothing else).
+    const mark = cylinder(MATERIALS.mark, 12, new THREE.Vector3(), perpendicular(j.dir).multiplyScalar(110), 8);
+    j.turn.add(housing, arm, mark);
     parent = j.turn;
   });
   const nose = group();

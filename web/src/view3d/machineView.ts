@@ -247,6 +247,27 @@ export class MachineView {
     this.viewport.frameBox(box, dir);
   }
 
+  pathPoints(n: number): [number, number, number][] {
+    return this.toolpath.lastPoints(n);
+  }
+
+  /**
+   * How far the workpiece frame is turned about the unit machine direction `about` (degrees,
+   * right-handed): the turn of a perpendicular vector, for the browser test.
+   */
+  partTurn(about: [number, number, number]): number | null {
+    if (!this.model) return null;
+    this.content.updateMatrixWorld(true);
+    const axis = new THREE.Vector3(...about).normalize();
+    const q = this.model.part.getWorldQuaternion(new THREE.Quaternion());
+    const frame = this.model.frame.getWorldQuaternion(new THREE.Quaternion());
+    q.premultiply(frame.invert()); // the part's turn in the machine frame
+    const ref = Math.abs(axis.z) < 0.9 ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(1, 0, 0);
+    ref.sub(axis.clone().multiplyScalar(ref.dot(axis))).normalize();
+    const turned = ref.clone().applyQuaternion(q);
+    return THREE.MathUtils.radToDeg(Math.atan2(axis.dot(ref.clone().cross(turned)), ref.dot(turned)));
+  }
+
   clearPath(): void {
     this.toolpath.clear();
     this.programmed.clear();
@@ -351,6 +372,10 @@ export function mountMachineView(session: SessionController): MachineView {
   // For the browser test and the curious: the model's tool tip against the engine's.
   (window as unknown as { __nctwin3d: unknown }).__nctwin3d = {
     tipError: () => view.tipError,
+    /** The last `n` points of the executed path in the workpiece frame (machine directions). */
+    pathPoints: (n: number) => view.pathPoints(n),
+    /** The angle (degrees) the workpiece frame is turned about the machine axis `about`. */
+    partTurn: (about: [number, number, number]) => view.partTurn(about),
     programmedPoints: () => view.programmed.count,
   };
   setText(byId("view3d-caption"), "");
