@@ -7,6 +7,7 @@
 
 use std::sync::Arc;
 
+use nctwin_engine::alarm::Clear;
 use nctwin_engine::interp::{Interpreter, Item, Prep, Programs};
 use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
 use nctwin_engine::{Channel, Status};
@@ -48,7 +49,9 @@ fn main() {
             }
             drop(channel.take_events());
         }
-        assert!(channel.alarms().is_empty(), "alarms: {:?}", channel.alarms());
+        // Alarms the cancel key clears only inform (10910 feed reduced): the run went on.
+        let stopping: Vec<_> = channel.alarms().iter().filter(|a| a.clear == Clear::Reset).collect();
+        assert!(stopping.is_empty(), "alarms: {stopping:?}");
         println!("ipo cycles {}", channel.ticks());
     }
 }

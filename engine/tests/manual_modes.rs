@@ -8,6 +8,7 @@
 use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReferencePhase, ReposApproach, ReposMode};
 use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Overrides, Snapshot, Status};
 
+#[allow(dead_code)] // the shared helpers this file does not use
 mod settle;
 use settle::{channel, settle};
 

@@ -7,6 +7,7 @@
 use nctwin_engine::channel::JogSystem;
 use nctwin_engine::{Channel, JogRequest, Mode};
 
+#[allow(dead_code)] // the shared helpers this file does not use
 mod settle;
 use settle::{channel, settle};
 

@@ -190,6 +190,17 @@ fn an_arc_bulging_past_the_limit_is_caught_even_if_its_end_points_are_inside() {
 }
 
 #[test]
+fn an_arc_close_to_the_limit_but_inside_runs() {
+    // Counter-clockwise half circle from (30, 250) about (0, 250), radius 30: its top is at
+    // Y 280, 20 mm inside the Y limit of 300 (the quick bound |e − s| + 4·r = 120 does not
+    // decide it, so the exact extremes are checked).
+    let (ch, _) = run("mill-3axis", "", "G0 X30 Y250\nG3 X-30 Y250 I-30 F1000\nM30");
+    let s = ch.snapshot();
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    assert!((machine(&s, "X") + 30.0).abs() < 1e-9 && (machine(&s, "Y") - 250.0).abs() < 1e-9);
+}
+
+#[test]
 fn a_feed_motion_without_f_raises_10860() {
     let (ch, _) = run("mill-3axis", "", "G1 X10\nM30");
     assert_eq!(ch.snapshot().alarms[0].number, 10860);

@@ -3,22 +3,16 @@
 //! circle, followed continuously, would end on the other of the two solutions
 //! (A, C) ≡ (−A, C + 180°) of the CA head (o = (sin C·sin A, −cos C·sin A, cos A)).
 
-use nctwin_engine::{Channel, Snapshot, Status};
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
+use nctwin_engine::{Snapshot, Status};
 
 fn run(program: &str) -> (Snapshot, Vec<Snapshot>) {
-    let mut ch = Channel::from_preset("mill5-head-ca", "$MC_ORI_IPO_WITH_G_CODE=1\n").unwrap();
-    ch.run_program(program).unwrap();
-    let mut samples = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        samples.push(ch.snapshot());
-    }
+    let (ch, samples) = settle::run_snapshots("mill5-head-ca", "$MC_ORI_IPO_WITH_G_CODE=1\n", program);
     (ch.snapshot(), samples)
 }
 
-fn axis(s: &Snapshot, name: &str) -> f64 {
-    s.machine.iter().find(|(n, _)| n == name).unwrap().1
-}
+use settle::machine_axis as axis;
 
 #[test]
 fn a_direct_a_c_block_ends_on_the_programmed_solution() {

@@ -4,18 +4,12 @@
 //! type 20: o = (sin C·sin A, −cos C·sin A, cos A)) and `normalize(upper(t) − tip(t))` computed
 //! here.
 
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
 use nctwin_engine::{Channel, Snapshot, Status};
 
 fn run(program: &str) -> (Channel, Vec<Snapshot>) {
-    let mut ch = Channel::from_preset("mill5-head-ca", "$MC_ORI_IPO_WITH_G_CODE=1\n").unwrap();
-    ch.run_program(program).unwrap();
-    let mut samples = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        samples.push(ch.snapshot());
-        assert!(samples.len() < 1_000_000, "program does not end");
-    }
-    (ch, samples)
+    settle::run_snapshots("mill5-head-ca", "$MC_ORI_IPO_WITH_G_CODE=1\n", program)
 }
 
 fn value(list: &[(String, f64)], name: &str) -> f64 {

@@ -14,27 +14,18 @@ use nctwin_engine::machine_data::{MachineData, presets};
 use nctwin_engine::{Channel, Snapshot, Status};
 use proptest::prelude::*;
 
-const MAX_TICKS: usize = 1_000_000;
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
 
 fn run_on(md: &str, program: &str) -> (Channel, Vec<Snapshot>) {
-    let mut ch = Channel::from_preset("mill7-generic", md).unwrap();
-    ch.run_program(program).unwrap();
-    let mut samples = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        samples.push(ch.snapshot());
-        assert!(samples.len() < MAX_TICKS, "program does not end");
-    }
-    (ch, samples)
+    settle::run_snapshots("mill7-generic", md, program)
 }
 
 fn run(program: &str) -> (Channel, Vec<Snapshot>) {
     run_on("", program)
 }
 
-fn machine(s: &Snapshot, name: &str) -> f64 {
-    s.machine.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no axis {name}")).1
-}
+use settle::machine_axis as machine;
 
 fn rz(deg: f64, v: [f64; 3]) -> [f64; 3] {
     let (s, c) = deg.to_radians().sin_cos();

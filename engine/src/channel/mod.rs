@@ -39,7 +39,7 @@ pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Interpreter, Item, Offsets, Programs};
+use crate::interp::{Interpreter, Item, Programs, SharedOffsets};
 use crate::kinematics::ActiveTrafo;
 use crate::lang::{self, ProgramText};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -183,7 +183,7 @@ pub struct JogRequest {
 #[derive(Debug, Clone)]
 struct MoveMeta {
     line: u32,
-    offsets: Offsets,
+    offsets: SharedOffsets,
     /// The path is in machine axes although a transformation is active.
     machine_space: bool,
     /// The move's programmed feed (infinite for rapid traverse), for REPOS.
@@ -214,7 +214,7 @@ pub struct Channel {
     in_planner: VecDeque<(u32, MoveMeta)>,
     next_tag: u32,
     /// Offsets of the block in the main run (for BCS and WCS display).
-    offsets: Offsets,
+    offsets: SharedOffsets,
     dwell_ticks: u64,
     current_line: Option<u32>,
     spindles: Vec<Spindle>,
@@ -284,7 +284,7 @@ impl Channel {
         let referenced = reference::initial_state(&data, &cfg);
         let mut ch = Channel {
             interp: Interpreter::new(&cfg),
-            offsets: Offsets::default(),
+            offsets: SharedOffsets::default(),
             data,
             cfg,
             mode: Mode::Auto,

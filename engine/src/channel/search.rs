@@ -18,7 +18,7 @@
 use super::main_run::line_offset;
 use super::{Channel, CommandError, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Item, Offsets, Prep, StopKind};
+use crate::interp::{Item, Prep, SharedOffsets, StopKind};
 use crate::lang::ProgramText;
 use crate::motion::{Feed, Move};
 
@@ -90,7 +90,7 @@ impl Channel {
     fn search_to(&mut self, line: u32) -> Result<(), Alarm> {
         let mut trafo = self.trafo.clone();
         let mut machine = self.machine;
-        let mut offsets: Option<Offsets> = None;
+        let mut offsets: Option<SharedOffsets> = None;
         let mut spindles: Vec<Item> = Vec::new();
         let mut message: Option<Item> = None;
         let mut out = Vec::new();
@@ -152,7 +152,7 @@ impl Channel {
                 }
             }
             if found.is_some() {
-                let line_of = |o: Offsets| Item::Offsets { line, offsets: o };
+                let line_of = |o: SharedOffsets| Item::Offsets { line, offsets: o };
                 self.pending.extend(offsets.map(line_of));
                 self.pending.extend(spindles.into_iter().map(|mut s| {
                     set_line(&mut s, line);
@@ -175,7 +175,7 @@ impl Channel {
 
     /// The approach after a block search: from where the axes stand to the start of the target's
     /// first move, moving like that move.
-    pub(super) fn push_approach(&mut self, target: &Move, line: u32, offsets: &Offsets) {
+    pub(super) fn push_approach(&mut self, target: &Move, line: u32, offsets: &SharedOffsets) {
         let start = if target.machine_space { self.machine } else { *self.planner.position() };
         let feed = if target.is_rapid() { Feed::Rapid } else { Feed::Path(target.feed) };
         let mut mv = self.straight_move(start, target.path.start, feed);

@@ -87,7 +87,7 @@ impl Channel {
     /// After reset and program end: takes over the transformation the interpreter's reset
     /// chose (none, the one that stays, or the reset data set); the axes stay where they are.
     pub(super) fn adopt_transformation(&mut self) {
-        self.trafo = self.interp.offsets().trafo;
+        self.trafo = self.interp.offsets().trafo.clone();
         let space = self.space_of_machine();
         self.planner.set_position(space);
     }

@@ -85,7 +85,7 @@ impl Interpreter {
             by_reference: Vec::new(),
             repeats_left: repeat.max(1) - 1,
             bound: false,
-            saved: Box::new((self.modal.clone(), self.pframe.clone(), self.iframe.clone())),
+            saved: Box::new((self.modal.clone(), (*self.pframe).clone(), (*self.iframe).clone())),
             save: false,
         });
         self.vars.push_frame();
@@ -156,8 +156,8 @@ impl Interpreter {
             let (modal, pframe, iframe) = (*frame.saved).clone();
             let feed = self.modal.feed;
             self.modal = super::Modal { feed, ..modal };
-            self.pframe = pframe;
-            self.iframe = iframe;
+            *self.pframe = pframe;
+            *self.iframe = iframe;
         }
         let frame = self.calls.last_mut().expect("checked above");
         if frame.repeats_left > 0 {

@@ -128,7 +128,7 @@ impl Interpreter {
             self.data_writes.push((line, format!("$NK_OFF_DIR[{},{k}]={v:?}", c.record)));
         }
         self.data_writes.push((line, format!("{CORRTRAFO}{n}")));
-        out.push(Item::Offsets { line, offsets: self.offsets.clone() });
+        out.push(Item::Offsets { line, offsets: self.shared_offsets() });
         Ok(())
     }
 }

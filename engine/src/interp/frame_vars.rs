@@ -153,8 +153,8 @@ impl Interpreter {
     pub(super) fn write_chain_frame(&mut self, which: ChainFrame, f: Frame) {
         let s = &mut self.system;
         match which {
-            ChainFrame::P => self.pframe = f,
-            ChainFrame::I => self.iframe = Some(f),
+            ChainFrame::P => *self.pframe = f,
+            ChainFrame::I => *self.iframe = Some(f),
             ChainFrame::Set => s.set = f,
             ChainFrame::Ext => s.ext = f,
             ChainFrame::Wp => s.wp = f,
@@ -165,6 +165,6 @@ impl Interpreter {
 
     /// The active settable frame `$P_IFRAME`.
     pub(super) fn iframe(&self, cfg: &MachineConfig) -> Frame {
-        self.iframe.clone().unwrap_or_else(|| super::work_offset(cfg, self.modal.work_offset))
+        (*self.iframe).clone().unwrap_or_else(|| super::work_offset(cfg, self.modal.work_offset))
     }
 }

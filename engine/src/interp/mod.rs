@@ -14,6 +14,7 @@ mod effect_calls;
 mod eval;
 mod flow;
 pub mod frame;
+mod frame_cache;
 mod frame_vars;
 pub mod gcodes;
 mod jump_target;
@@ -54,6 +55,7 @@ pub use corners::Corner;
 use flow::Flow;
 pub use frame::Frame;
 use frame::SystemFrames;
+use frame_cache::{FrameCache, Tracked};
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
 use scope::sys_view;
@@ -77,6 +79,10 @@ pub struct Offsets {
     pub toff: [f64; 3],
 }
 
+/// The offsets an item carries: shared, because consecutive blocks mostly have the same
+/// offsets and items are moved several times on their way to the main run.
+pub type SharedOffsets = std::sync::Arc<Offsets>;
+
 /// Why the main run stops.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StopKind {
@@ -98,12 +104,12 @@ pub enum Item {
     Move {
         mv: Move,
         line: u32,
-        offsets: Offsets,
+        offsets: SharedOffsets,
     },
     /// A block without motion that changes the offsets shown (T, D, G54, ...).
     Offsets {
         line: u32,
-        offsets: Offsets,
+        offsets: SharedOffsets,
     },
     Dwell {
         seconds: f64,
@@ -176,15 +182,20 @@ pub struct Interpreter {
     modal: Modal,
     /// Programmed end position of the last block in channel-axis (machine) coordinates.
     pos: AxisVec,
-    offsets: Offsets,
+    /// Offsets in effect; tracked, so that items share them while no block changes them.
+    offsets: Tracked<Offsets>,
+    /// `offsets` as last handed out with an item (see [`Interpreter::shared_offsets`]).
+    published: SharedOffsets,
     /// R parameters and user variables.
     vars: Variables,
     /// The programmable frame ($P_PFRAME: TRANS, ROT, SCALE, MIRROR ...).
-    pframe: Frame,
+    pframe: Tracked<Frame>,
     /// The system frames of the frame chain.
-    system: SystemFrames,
+    system: Tracked<SystemFrames>,
     /// `$P_IFRAME` as a program wrote it; `None`: the selected settable frame `$P_UIFR[n]`.
-    iframe: Option<Frame>,
+    iframe: Tracked<Option<Frame>>,
+    /// The active frame as last built from the links above and the machine data.
+    frame_cache: FrameCache,
     /// Master spindle and each spindle's programmed speed and direction.
     spindles: spindles::Spindles,
     /// Read position in the active program level, if one runs.
@@ -217,11 +228,13 @@ impl Interpreter {
         Interpreter {
             modal: Modal::reset(cfg),
             pos: [0.0; MAX_CHANNEL_AXES],
-            offsets: Offsets::default(),
+            offsets: Tracked::new(Offsets::default()),
+            published: SharedOffsets::default(),
             vars: Variables::default(),
-            pframe: Frame::identity(),
-            system: SystemFrames::default(),
-            iframe: None,
+            pframe: Tracked::new(Frame::identity()),
+            system: Tracked::new(SystemFrames::default()),
+            iframe: Tracked::new(None),
+            frame_cache: FrameCache::default(),
             spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
@@ -247,8 +260,8 @@ impl Interpreter {
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
-        self.pframe = Frame::identity();
-        self.iframe = None;
+        *self.pframe = Frame::identity();
+        *self.iframe = None;
         self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
@@ -307,8 +320,37 @@ impl Interpreter {
     }
 
     /// Offsets currently selected by preprocessing.
-    pub fn offsets(&self) -> Offsets {
-        self.offsets.clone()
+    pub fn offsets(&self) -> SharedOffsets {
+        SharedOffsets::new((*self.offsets).clone())
+    }
+
+    /// The current offsets for an item: the ones handed out last while they are unchanged.
+    fn shared_offsets(&mut self) -> SharedOffsets {
+        if self.offsets.take_changed() && *self.published != *self.offsets {
+            self.published = SharedOffsets::new((*self.offsets).clone());
+        }
+        self.published.clone()
+    }
+
+    /// Sets the block's frame, tool vector and G functions, touching the offsets only where
+    /// they change (most blocks change none of them).
+    fn refresh_offsets(&mut self, cfg: &MachineConfig) {
+        let frame = self.active_frame(cfg);
+        if self.offsets.frame != frame {
+            self.offsets.frame = frame;
+        }
+        let tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
+        if self.offsets.tool != tool {
+            self.offsets.tool = tool;
+        }
+        self.refresh_gcodes();
+    }
+
+    fn refresh_gcodes(&mut self) {
+        let gcodes = gcodes::GCodes::of(&self.modal);
+        if self.offsets.gcodes != gcodes {
+            self.offsets.gcodes = gcodes;
+        }
     }
 
     pub fn modal(&self) -> &Modal {
@@ -385,7 +427,7 @@ impl Interpreter {
         if words.newconf {
             self.data_writes.push((line, NEWCONF.to_string()));
         }
-        let offsets_before = self.offsets.clone();
+        let offsets_before = self.shared_offsets();
         let selection = {
             let sys = sys_view!(self, cfg);
             trafo::selection(block, |e| eval::eval_f64(e, &scope::Ctx { vars: &self.vars, sys: &sys }, line))?
@@ -396,9 +438,9 @@ impl Interpreter {
         self.modal.apply(&words, cfg, line)?;
         if words.work_offset.is_some() {
             // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
-            self.iframe = None;
+            *self.iframe = None;
         }
-        self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
+        self.refresh_gcodes();
         if let Some(f) = words.feed.filter(|_| !words.dwell) {
             self.modal.feed = Some(f);
         }
@@ -419,8 +461,7 @@ impl Interpreter {
             self.write_chain_frame(*which, f.clone());
         }
         self.holder_block(&words, cfg, line, out)?;
-        self.offsets.frame = self.active_frame(cfg);
-        self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
+        self.refresh_offsets(cfg);
         self.absorb_tool_into_transformation();
         self.online_tool_offset(&words.toff, cfg);
 
@@ -450,9 +491,9 @@ impl Interpreter {
             let axis = self.spindles.master().expect("checked in spindle_position");
             // With compensation active SPOS is a block without motion in the plane.
             self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
-            let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
+            let offsets = self.shared_offsets();
             let approach = self.modal.approach;
-            let prepared = trc::Prepared { mv, feed, line, item, approach, corner: None };
+            let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner: None };
             let comp = self.compensation(cfg, &words, line)?;
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         }
@@ -476,15 +517,16 @@ impl Interpreter {
         {
             let (mv, feed) = self.motion(&words, cfg, line)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
-            let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
+            let offsets = self.shared_offsets();
             let comp = self.compensation(cfg, &words, line)?;
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
-            let prepared = trc::Prepared { mv, feed, line, item, approach, corner };
+            let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
-        } else if self.offsets != offsets_before && !positioned {
-            out.push(Item::Offsets { line, offsets: self.offsets.clone() });
+        } else if !positioned && !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
+            // A new shared value is made only when the offsets differ from the last one.
+            out.push(Item::Offsets { line, offsets: self.shared_offsets() });
         }
 
         if let Some(text) = &words.message {
@@ -592,7 +634,7 @@ impl Interpreter {
                 Frame::scaling(geo, &factors)
             }
         };
-        self.pframe = if op.additive { self.pframe.then(&g, geo) } else { g };
+        *self.pframe = if op.additive { self.pframe.then(&g, geo) } else { g };
         Ok(())
     }
 
@@ -932,20 +974,37 @@ fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>)
 
 /// Alarm 10720 when any point of the path lies beyond a software limit switch.
 fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<(), Alarm> {
-    let (lo, hi) = path.extent();
+    // The exact extremes of an arc (trigonometry per axis) only for axes near a limit.
+    let mut exact: Option<(AxisVec, AxisVec)> = None;
     for k in 0..cfg.channel_axes.len() {
         let ax = cfg.axis(k);
         if ax.modulo.is_some() || ax.spindle.is_some() {
             continue;
         }
-        let moves = (path.end[k] - path.start[k]).abs() > 1e-12 || path.arc.is_some_and(|a| a.moves_axis(k));
+        let (s, e) = (path.start[k], path.end[k]);
+        let moves = (e - s).abs() > 1e-12 || path.arc.is_some_and(|a| a.moves_axis(k));
         if !moves {
             continue;
         }
-        if hi[k] > ax.limit_plus + 1e-9 {
+        let (lo, hi) = match &path.arc {
+            None => (s.min(e), s.max(e)),
+            Some(a) => {
+                // Every point of the arc lies within |e − s| + 4·r·ρ of its start (ρ: the
+                // circle's share in this axis): the linear part is at most |e − s| plus a
+                // chord, and the circle adds at most a diameter.
+                let rho = (a.u[k] * a.u[k] + a.v[k] * a.v[k]).sqrt();
+                let reach = (e - s).abs() + 4.0 * a.radius.abs() * rho;
+                if s + reach <= ax.limit_plus + 1e-9 && s - reach >= ax.limit_minus - 1e-9 {
+                    continue;
+                }
+                let (lo, hi) = exact.get_or_insert_with(|| path.extent());
+                (lo[k], hi[k])
+            }
+        };
+        if hi > ax.limit_plus + 1e-9 {
             return Err(Alarm::software_limit(line, &ax.name, true));
         }
-        if lo[k] < ax.limit_minus - 1e-9 {
+        if lo < ax.limit_minus - 1e-9 {
             return Err(Alarm::software_limit(line, &ax.name, false));
         }
     }
@@ -953,9 +1012,15 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
 }
 
 impl Interpreter {
-    /// `$P_ACTFRAME`: the whole frame chain (see `frame_vars.rs`), from the BCS towards the WCS.
-    fn active_frame(&self, cfg: &MachineConfig) -> Frame {
-        sys_view!(self, cfg).chain(None)
+    /// `$P_ACTFRAME`: the whole frame chain (see `frame_vars.rs`), from the BCS towards the WCS;
+    /// rebuilt only when an input changed (see `frame_cache.rs`).
+    fn active_frame(&mut self, cfg: &MachineConfig) -> Frame {
+        // Each mark is taken (not short-circuited) so that all three are cleared.
+        let changed = [self.pframe.take_changed(), self.system.take_changed(), self.iframe.take_changed()];
+        let (work_offset, rotary_slot) = (self.modal.work_offset, self.trafo.rotary_slot());
+        self.frame_cache
+            .get(cfg, work_offset, rotary_slot, changed.contains(&true), || sys_view!(self, cfg).chain(None))
+            .clone()
     }
 
     /// The frame a block's positions go through: the active frame, or what G53 (settable,

@@ -49,7 +49,7 @@ impl Interpreter {
             tool: self.offsets.t,
             edge: self.offsets.d,
             holder: self.holder.clone(),
-            frames: self.system.clone(),
+            frames: (*self.system).clone(),
             r: self.vars.r[..used].to_vec(),
             transformation: self.active_selection().map(|(data_set, args)| RetainedTransformation { data_set, args }),
         }
@@ -64,7 +64,7 @@ impl Interpreter {
         self.offsets.t = saved.tool;
         self.offsets.d = saved.edge;
         self.holder = saved.holder.clone();
-        self.system = saved.frames.clone();
+        *self.system = saved.frames.clone();
         self.vars.r[..saved.r.len()].copy_from_slice(&saved.r);
         self.vars.r[saved.r.len()..].fill(0.0);
         self.reset(cfg, machine);

@@ -720,9 +720,9 @@ impl Interpreter {
         check_software_limits(cfg, &path, line)?;
         let mv = Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line);
         self.pos = end;
-        let item = Item::Move { mv: mv.clone(), line, offsets: self.offsets.clone() };
+        let offsets = self.shared_offsets();
         self.trc.push(
-            trc::Prepared { mv, feed: Feed::Rapid, line, item, approach: self.modal.approach, corner: None },
+            trc::Prepared { mv, feed: Feed::Rapid, line, offsets, approach: self.modal.approach, corner: None },
             None,
             &AxisLimit::for_channel(cfg),
             out,

@@ -504,7 +504,7 @@ impl Interpreter {
     /// program selects its frames again afterwards (the manual's TRACYL sequence).
     fn deselect_current_frame(&mut self) {
         self.modal.work_offset = 0;
-        self.pframe = crate::interp::frame::Frame::identity();
+        *self.pframe = crate::interp::frame::Frame::identity();
     }
 
     /// The active transformation's data set number and selection parameters, if one is active.
@@ -552,8 +552,11 @@ impl Interpreter {
     /// Moves the tool length of the geometry axes into the active transformation (when it
     /// includes the tool). A new tool leaves the machine where it is, so the tip moves.
     pub(super) fn absorb_tool_into_transformation(&mut self) {
+        // The offsets are written only where they change (see `Interpreter::shared_offsets`).
         let Some(a) = self.trafo.active.as_mut() else {
-            self.offsets.trafo = None;
+            if self.offsets.trafo.is_some() {
+                self.offsets.trafo = None;
+            }
             return;
         };
         let geo = a.trafo.trafo.geo_slots();
@@ -562,7 +565,9 @@ impl Interpreter {
             for (g, slot) in geo.iter().enumerate() {
                 if let Some(k) = *slot {
                     tool[g] = self.offsets.tool[k];
-                    self.offsets.tool[k] = 0.0;
+                    if tool[g] != 0.0 {
+                        self.offsets.tool[k] = 0.0;
+                    }
                 }
             }
         }
@@ -571,7 +576,9 @@ impl Interpreter {
             a.bcs = None;
             self.pos = a.trafo.forward(&a.machine);
         }
-        self.offsets.trafo = Some(a.trafo.clone());
+        if self.offsets.trafo.as_ref() != Some(&a.trafo) {
+            self.offsets.trafo = Some(a.trafo.clone());
+        }
     }
 
     /// With a transformation, replaces the prepared BCS moves of `out` (after radius

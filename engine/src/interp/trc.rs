@@ -15,7 +15,7 @@
 
 use super::corners;
 use super::trc_approach::{self, ApproachMode};
-use super::{Item, trc_bottleneck, trc_disc};
+use super::{Item, SharedOffsets, trc_bottleneck, trc_disc};
 use crate::alarm::Alarm;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
@@ -101,7 +101,8 @@ pub struct Prepared {
     pub mv: Move,
     pub feed: Feed,
     pub line: u32,
-    pub item: Item,
+    /// The offsets the move's item carries.
+    pub offsets: SharedOffsets,
     /// G group 17 active in the block (approach with G41/G42, retract with G40).
     pub approach: ApproachMode,
     /// RND/CHF/CHR at its end: shaped into the programmed contour before the offset.
@@ -283,7 +284,7 @@ impl Compensator {
                 let end = hold_groove_wall(place(&p.mv.path.end, at, &comp), &from, &comp);
                 p.mv = rebuild(&p, Path::line(from, end), limits);
             }
-            self.emit(p.item_with(p.mv.clone()), out);
+            self.emit(p.into_item(), out);
             return Ok(());
         };
         self.block_plane_move = true;
@@ -469,7 +470,7 @@ impl Compensator {
             let from = self.from(p.mv.path.start);
             p.mv = rebuild(&p, Path::line(from, p.mv.path.end), limits);
         }
-        self.emit(p.item_with(p.mv.clone()), out);
+        self.emit(p.into_item(), out);
         Ok(())
     }
 
@@ -487,7 +488,7 @@ impl Compensator {
                         None => p.mv.path.end,
                     };
                     p.mv = rebuild(&p, Path::line(from, end), limits);
-                    self.emit(p.item_with(p.mv.clone()), out);
+                    self.emit(p.into_item(), out);
                 }
             }
         }
@@ -522,11 +523,13 @@ impl Compensator {
 }
 
 impl Prepared {
+    /// The item with the prepared move moved into it (no copy of the move or the offsets).
+    fn into_item(self) -> Item {
+        Item::Move { mv: self.mv, line: self.line, offsets: self.offsets }
+    }
+
     fn item_with(&self, mv: Move) -> Item {
-        match &self.item {
-            Item::Move { line, offsets, .. } => Item::Move { mv, line: *line, offsets: offsets.clone() },
-            other => other.clone(),
-        }
+        Item::Move { mv, line: self.line, offsets: self.offsets.clone() }
     }
 }
 

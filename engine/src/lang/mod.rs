@@ -7,6 +7,7 @@
 pub mod ast;
 mod cursor;
 mod parser;
+mod plain_line;
 mod structure;
 mod text;
 

@@ -1,7 +1,7 @@
 //! Running a channel in the tests of manual operation: create it from a preset, step it until
 //! nothing moves.
 
-use nctwin_engine::Channel;
+use nctwin_engine::{Channel, Snapshot};
 
 pub fn channel(preset: &str, md: &str) -> Channel {
     Channel::from_preset(preset, md).expect("preset")
@@ -18,4 +18,25 @@ pub fn settle(ch: &mut Channel) -> Vec<Vec<f64>> {
         samples.push(ch.axis_positions().to_vec());
     }
     panic!("the channel never came to rest");
+}
+
+/// Creates a channel from a preset, starts `program` and steps it until nothing moves; returns
+/// the channel and the snapshot of every cycle.
+pub fn run_snapshots(preset: &str, md: &str, program: &str) -> (Channel, Vec<Snapshot>) {
+    let mut ch = channel(preset, md);
+    ch.run_program(program).expect("program starts");
+    let mut samples = Vec::new();
+    for _ in 0..2_000_000 {
+        if !ch.is_busy() {
+            return (ch, samples);
+        }
+        ch.step();
+        samples.push(ch.snapshot());
+    }
+    panic!("the program never came to rest");
+}
+
+/// The machine position of the channel axis `name` in a snapshot.
+pub fn machine_axis(s: &Snapshot, name: &str) -> f64 {
+    s.machine.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no axis {name}")).1
 }

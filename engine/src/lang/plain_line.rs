@@ -1,0 +1,178 @@
+//! The syntax check before a run reads every line of a program once more. Most lines of
+//! generated toolpaths are only address letters with plain numbers (`G1 X10.5 Y-2 F900`); this
+//! recognises such lines in one byte scan, so the check needs the full parser only for the rest.
+//!
+//! The scan is conservative: it answers true only for lines the parser accepts without a
+//! statement (and so without anything for the structure check); anything unusual (a block
+//! number that is not all digits, `=`, a string, an exponent, a name longer than one letter) goes to the parser.
+
+/// The most digits of a number the scan accepts (the parser's exact fast path for numbers).
+const MAX_DIGITS: usize = 15;
+
+/// The most digits of a G or M number the scan accepts (it must fit a `u32`).
+const MAX_FUNCTION_DIGITS: usize = 9;
+
+/// True if `text` (one line without its line end) is blanks, address words made of one letter
+/// and a plain number, and an optional comment: a line without syntax errors or statements.
+pub(super) fn is_plain_line(text: &str) -> bool {
+    let b = text.as_bytes();
+    let mut i = 0;
+    loop {
+        while i < b.len() && matches!(b[i], b' ' | b'\t') {
+            i += 1;
+        }
+        if i == b.len() || b[i] == b';' {
+            return true;
+        }
+        let letter = b[i].to_ascii_uppercase();
+        if !letter.is_ascii_uppercase() {
+            return false;
+        }
+        i += 1;
+        // G and M need whole numbers; N at the start of a line is a block number. Both only
+        // with digits here.
+        let whole = matches!(letter, b'G' | b'M' | b'N');
+        let Some(end) = plain_number(b, i, whole) else { return false };
+        i = end;
+        // After the number: a blank, the end, a comment or the next letter (not E: `EX` is
+        // the exponent of a number).
+        match b.get(i) {
+            None | Some(b' ' | b'\t' | b';') => {}
+            Some(c) if c.is_ascii_alphabetic() && !c.eq_ignore_ascii_case(&b'E') => {}
+            Some(_) => return false,
+        }
+    }
+}
+
+/// The end of a plain number at `i`: `[+-]digits[.digits]`, `[+-].digits` or `[+-]digits.`
+/// with at least one digit; only digits if `whole`.
+fn plain_number(b: &[u8], mut i: usize, whole: bool) -> Option<usize> {
+    let count_digits = |i: &mut usize| {
+        let start = *i;
+        while *i < b.len() && b[*i].is_ascii_digit() {
+            *i += 1;
+        }
+        *i - start
+    };
+    if whole {
+        let n = count_digits(&mut i);
+        return (1..=MAX_FUNCTION_DIGITS).contains(&n).then_some(i);
+    }
+    if matches!(b.get(i), Some(b'+' | b'-')) {
+        i += 1;
+    }
+    let mut n = count_digits(&mut i);
+    if b.get(i) == Some(&b'.') {
+        i += 1;
+        n += count_digits(&mut i);
+    }
+    (1..=MAX_DIGITS).contains(&n).then_some(i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_plain_line;
+    use crate::lang::parser::parse_block;
+
+    #[test]
+    fn toolpath_lines_are_plain() {
+        for line in [
+            "G3 X75.9329 Y20 Z-0.5 I-1 J0 F600",
+            "  G1 X78.9329 Y20\t; comment with = and \"quotes\"",
+            "x-.5 y+2. g01 M30",
+            "G0X1Y2",
+            "N10 G1 X1",
+            "",
+            "; only a comment",
+        ] {
+            assert!(is_plain_line(line), "{line}");
+        }
+    }
+
+    #[test]
+    fn anything_else_goes_to_the_parser() {
+        for line in [
+            "N1.5 G1",
+            "G1.5 X1",
+            "G-1",
+            "X1.5EX3",
+            "X=10",
+            "R1=5",
+            "X1..2",
+            "X1-2",
+            "X",
+            "GOTOF END",
+            "IF R1>0",
+            "MSG(\"x\")",
+            "LABEL: G1",
+            "/G1 X1",
+            "$P_UIFR[1]=CTRANS()",
+            "X1234567890123456",
+            "G1234567890",
+            "G1 X1 ä",
+        ] {
+            assert!(!is_plain_line(line), "{line}");
+        }
+    }
+
+    /// Every line the scan calls plain, the parser accepts without a statement: random lines
+    /// from the characters and fragments where the two could disagree.
+    #[test]
+    fn plain_lines_are_lines_the_parser_accepts() {
+        const PIECES: [&str; 32] = [
+            "G",
+            "M",
+            "N",
+            "X",
+            "y",
+            "E",
+            "e",
+            "I",
+            "1",
+            "0",
+            "9",
+            "12",
+            ".",
+            "-",
+            "+",
+            " ",
+            "\t",
+            ";",
+            "=",
+            "\"",
+            ":",
+            "$",
+            "_",
+            "[",
+            "(",
+            "IF",
+            "GOTOF",
+            "EX",
+            "/",
+            "4294967295",
+            "4294967296",
+            "123456789012345",
+        ];
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mut plain = 0;
+        for _ in 0..200_000 {
+            let len = (next() % 8) as usize + 1;
+            let line: String = (0..len).map(|_| PIECES[(next() % PIECES.len() as u64) as usize]).collect();
+            if is_plain_line(&line) {
+                plain += 1;
+                match parse_block(&line, 1, 0) {
+                    Ok(block) => assert!(block.is_none_or(|b| b.stmt.is_none()), "{line}: statement"),
+                    Err(e) => panic!("{line:?} is plain but the parser says {e:?}"),
+                }
+            }
+        }
+        // The test would prove nothing if hardly any random line were plain.
+        assert!(plain > 1_000, "only {plain} plain lines");
+    }
+}
