@@ -662,6 +662,36 @@ async function main() {
       await page.click("#btn-reset");
     });
 
+    await step("3D view: the programmed TRACYL groove is drawn on the cylinder too (preview)", async () => {
+      // The same groove, selected for AUTO in a new session (C at 0, as the run above started):
+      // the preview marks its TRACYL points with d = 40 and the view wraps them: radius 20, up
+      // to 60 / 20 rad = 171.89°, as an arc of steps of at most 2°. Unwrapped, the groove would
+      // be a straight line up to √(20² + 60²) = 63 mm from the axis.
+      await page.goto(`${BASE}/?machine=tracyl-xyzc`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "GROOVE");
+      await page.fill(EDITOR, "T1 D1 G19\nG0 X60 Z-20\nTRACYL(40)\nG1 X20 Y0 Z-20 F3000\nG1 Y60\nTRAFOOF\nG0 X60\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /programmed GROOVE/.test(document.getElementById("view3d-preview")?.textContent || ""));
+      const groove = await page.evaluate(() =>
+        window.__nctwin3d
+          .programmedPath()
+          .map(([x, y, z]) => ({ z, r: Math.hypot(x, y), a: (Math.atan2(y, x) * 180) / Math.PI }))
+          .filter((p) => Math.abs(p.z + 20) < 0.01 && Math.abs(p.a) > 1),
+      );
+      if (groove.length < 80) throw new Error(`only ${groove.length} points on the programmed groove`);
+      const off = groove.find((p) => Math.abs(p.r - 20) > 0.01);
+      if (off) throw new Error(`programmed groove point ${off.r} mm from the axis, not 20`);
+      const end = Math.max(...groove.map((p) => p.a));
+      // The preview samples every 8 ms: its last groove point may lie up to 3000 / 60 · 0.008 =
+      // 0.4 mm of arc (0.4 / 20 rad = 1.15°) before the end.
+      if (!(Math.abs(end - (60 / 20) * (180 / Math.PI)) < 1.2)) throw new Error(`programmed groove ends at ${end}°`);
+      const steps = groove.slice(1).map((p, i) => Math.abs(p.a - groove[i].a));
+      if (Math.max(...steps) > 2.001) throw new Error(`programmed groove turns ${Math.max(...steps)}° in one step`);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-tracyl.png") });
+    });
+
     await step("no error in the message bar", async () => {
       if (!(await page.locator("#message").isHidden())) {
         throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);

@@ -69,6 +69,12 @@ export interface Structure {
   spindleSign: number;
   /** Machine axes named in $MA_IS_ROT_AX that no chain above uses. */
   otherRotary: string[];
+  /**
+   * TRACYL: the machine directions of the radial axis (TRAFO_AXES_IN_n[0]) and of the axis
+   * parallel to the rotary axis ([2]) in the workpiece frame; the cylinder axis runs through
+   * the workpiece frame's origin along `parallel`. Null without TRACYL data.
+   */
+  cylinder: { radial: Vec3; parallel: Vec3 } | null;
   /** Data set number n of the orientation transformation the model follows, if any. */
   traori: number | null;
   /** A one-line summary for the view's caption. */
@@ -236,6 +242,7 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
     spindle: null,
     spindleSign: -1,
     otherRotary: [],
+    cylinder: null,
     traori: null,
     summary: "",
   };
@@ -320,6 +327,11 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
   // rotary axis turns the cylinder about the axis parallel to it (TRAFO_AXES_IN_n[2]), through
   // the machine zero, the way the lathe's spindle turns it (see `spindleSign`).
   const tracyl = trafos.find(([, t]) => isTracyl(t));
+  if (tracyl) {
+    const role = (i: number) => linear.find((a) => a.name === md.machineOfChannel(md.axesIn(tracyl[0], i)));
+    const [radial, parallel] = [role(0), role(2)];
+    if (radial && parallel) s.cylinder = { radial: radial.dir, parallel: parallel.dir };
+  }
   if (kind === "mill" && !s.table.length && !s.head.length && tracyl) {
     const [n] = tracyl;
     const k = md.ordinal(n, isTracyl);
@@ -355,6 +367,11 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
   } else if (!s.summary) {
     s.summary = `${linear.length}-axis mill`;
   }
+  // The unrolled path is wrapped in the workpiece frame only where that frame turns with the
+  // TRACYL rotary axis: a lathe's spindle, or the cylinder axis built above on a mill.
+  const tracylRot = tracyl ? md.machineOfChannel(md.axesIn(tracyl[0], 1)) : null;
+  const turnsWithTracyl = kind === "lathe" ? s.spindle === tracylRot : s.table.length === 1 && s.table[0]!.name === tracylRot;
+  if (!turnsWithTracyl) s.cylinder = null;
   s.otherRotary = rotary.filter((a) => !used.has(a));
   return s;
 }

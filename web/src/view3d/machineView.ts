@@ -58,6 +58,19 @@ class ToolSolid {
   }
 }
 
+/**
+ * A TRACYL point (X radial, Y arc length on diameter d, Z axial) on the cylinder: at X from
+ * the axis, turned by Y / (d/2) from the radial direction towards parallel × radial (the way
+ * the engine's TRACYL turns the workpiece under the tool), Z along the axis.
+ */
+export function wrapOnCylinder(p: [number, number, number], d: number, c: NonNullable<Structure["cylinder"]>): [number, number, number] {
+  const [r, u] = [c.radial, c.parallel];
+  const perp = [u[1] * r[2] - u[2] * r[1], u[2] * r[0] - u[0] * r[2], u[0] * r[1] - u[1] * r[0]];
+  const theta = p[1] / (d / 2);
+  const [cos, sin] = [Math.cos(theta), Math.sin(theta)];
+  return [0, 1, 2].map((i) => r[i]! * p[0] * cos + perp[i]! * p[0] * sin + u[i]! * p[2]) as [number, number, number];
+}
+
 /** The programmed path: a fixed polyline of WCS points placed at the work offset. */
 class ProgrammedPath {
   // Drawn over the solids: a path inside the workpiece or under the tool stays visible.
@@ -67,20 +80,57 @@ class ProgrammedPath {
   );
   count = 0;
 
-  set(points: [number, number, number][], axes: string[], offset: THREE.Vector3): void {
+  /**
+   * `diameters[i]`: the TRACYL working diameter at point i (its X is radial, Y the arc length,
+   * Z axial), wrapped onto the cylinder of `cylinder` when the model has one.
+   */
+  set(
+    points: [number, number, number][],
+    axes: string[],
+    offset: THREE.Vector3,
+    diameters: (number | null)[] = [],
+    cylinder: Structure["cylinder"] = null,
+  ): void {
     const slot = (name: string) => ({ X: 0, Y: 1, Z: 2 })[name as "X" | "Y" | "Z"] ?? -1;
     const map = axes.map(slot);
-    const data = new Float32Array(points.length * 3);
-    points.forEach((p, i) => {
+    const cartesian = (p: [number, number, number]) => {
       const q = [0, 0, 0];
       map.forEach((s, k) => s >= 0 && (q[s] = p[k] ?? 0));
-      data.set([q[0]! + offset.x, q[1]! + offset.y, q[2]! + offset.z], i * 3);
+      return q as [number, number, number];
+    };
+    const out: number[] = [];
+    points.forEach((p, i) => {
+      const q = cartesian(p);
+      const d = diameters[i];
+      if (!cylinder || typeof d !== "number" || !(d > 0)) {
+        out.push(q[0] + offset.x, q[1] + offset.y, q[2] + offset.z);
+        return;
+      }
+      // A straight segment on the unrolled surface is a helix on the cylinder: subdivide it
+      // so that no step turns more than 2°.
+      const prev = i > 0 && diameters[i - 1] === d ? cartesian(points[i - 1]!) : null;
+      const turn = prev ? Math.abs(q[1] - prev[1]) / (d / 2) : 0;
+      const steps = prev ? Math.min(720, Math.max(1, Math.ceil(turn / ((2 * Math.PI) / 180)))) : 1;
+      for (let k = prev ? 1 : steps; k <= steps; k++) {
+        const t = k / steps;
+        const at = prev ? ([0, 1, 2].map((c) => prev[c]! + (q[c]! - prev[c]!) * t) as [number, number, number]) : q;
+        out.push(...wrapOnCylinder(at, d, cylinder));
+      }
     });
+    const data = new Float32Array(out);
     this.line.geometry.dispose();
     this.line.geometry = new THREE.BufferGeometry();
     this.line.geometry.setAttribute("position", new THREE.BufferAttribute(data, 3));
     this.line.geometry.computeBoundingSphere();
-    this.count = points.length;
+    this.count = data.length / 3;
+  }
+
+  /** The drawn points (part frame), for the browser test. */
+  points(): [number, number, number][] {
+    const a = this.line.geometry.getAttribute("position");
+    const out: [number, number, number][] = [];
+    for (let i = 0; a && i < a.count; i++) out.push([a.getX(i), a.getY(i), a.getZ(i)]);
+    return out;
   }
 
   clear(): void {
@@ -203,10 +253,10 @@ export class MachineView {
   }
 
   /** Shows a programmed path (WCS points of the preview) at the current work offset. */
-  setProgrammed(points: [number, number, number][], axes: string[]): void {
+  setProgrammed(points: [number, number, number][], axes: string[], tracylDiameter: (number | null)[] = []): void {
     const first = this.programmed.count === 0;
     // The points are BCS: the part frame is the BCS, no offset to add.
-    this.programmed.set(points, axes, new THREE.Vector3());
+    this.programmed.set(points, axes, new THREE.Vector3(), tracylDiameter, this.structure?.cylinder ?? null);
     if (first && points.length) this.setView("iso");
     this.viewport.invalidate();
   }
@@ -377,6 +427,8 @@ export function mountMachineView(session: SessionController): MachineView {
     /** The angle (degrees) the workpiece frame is turned about the machine axis `about`. */
     partTurn: (about: [number, number, number]) => view.partTurn(about),
     programmedPoints: () => view.programmed.count,
+    /** The programmed path as drawn (workpiece frame, TRACYL parts wrapped). */
+    programmedPath: () => view.programmed.points(),
   };
   setText(byId("view3d-caption"), "");
   return view;
