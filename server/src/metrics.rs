@@ -17,6 +17,7 @@ use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 use nctwin_engine::Status;
 
+use crate::session::{LATENESS_BUCKETS, WakeCounts, wake_stats};
 use crate::state::AppState;
 
 /// Upper bounds (seconds) of the request latency histogram: quick answers up to the longest
@@ -80,6 +81,7 @@ impl Metrics {
             "Largest lateness of the last real-time wake-up over all sessions (0 when none is stepped in real time).",
             lag.as_secs_f64(),
         );
+        wake_histogram(&mut out, &wake_stats().counts());
         let _ = writeln!(out, "# HELP nctwin_storage_operations_total Storage calls by result.");
         let _ = writeln!(out, "# TYPE nctwin_storage_operations_total counter");
         let _ = writeln!(
@@ -133,6 +135,29 @@ fn gauge(out: &mut String, name: &str, help: &str, value: f64) {
     let _ = writeln!(out, "{name} {value}");
 }
 
+/// The lateness of real-time wake-ups (the server-side IPO lag) and the cycles dropped by the
+/// catch-up cap.
+fn wake_histogram(out: &mut String, counts: &WakeCounts) {
+    let name = "nctwin_ipo_wake_lateness_seconds";
+    let _ = writeln!(out, "# HELP {name} How late real-time wake-ups of sessions came against their schedule.");
+    let _ = writeln!(out, "# TYPE {name} histogram");
+    let mut cumulative = 0;
+    for (bound, n) in LATENESS_BUCKETS.iter().zip(&counts.buckets) {
+        cumulative += n;
+        let _ = writeln!(out, "{name}_bucket{{le=\"{bound}\"}} {cumulative}");
+    }
+    let _ = writeln!(out, "{name}_bucket{{le=\"+Inf\"}} {}", counts.count());
+    let _ = writeln!(out, "{name}_sum {}", counts.sum.as_secs_f64());
+    let _ = writeln!(out, "{name}_count {}", counts.count());
+    let dropped = "nctwin_ipo_cycles_dropped_total";
+    let _ = writeln!(
+        out,
+        "# HELP {dropped} IPO cycles not stepped because a wake-up came later than the catch-up cap (1 s): simulated time lost against wall time."
+    );
+    let _ = writeln!(out, "# TYPE {dropped} counter");
+    let _ = writeln!(out, "{dropped} {}", counts.dropped_cycles);
+}
+
 /// Escapes a label value (backslash, double quote, newline).
 fn escape(value: &str) -> String {
     value.replace('\\', "\\\\").replace('"', "\\\"").replace('\n', "\\n")
@@ -175,6 +200,28 @@ mod tests {
         assert!(text.contains("route=\"/api/v1/sessions/{id}/run\",le=\"600\"} 0\n"), "{text}");
         assert!(text.contains("route=\"/api/v1/sessions/{id}/run\",le=\"+Inf\"} 1\n"), "{text}");
         assert!(text.contains("nctwin_sessions 0\n"), "{text}");
+        assert!(text.contains("# TYPE nctwin_ipo_wake_lateness_seconds histogram\n"), "{text}");
+        assert!(text.contains("nctwin_ipo_cycles_dropped_total "), "{text}");
+    }
+
+    #[test]
+    fn the_wake_histogram_is_cumulative() {
+        let mut counts = WakeCounts { buckets: vec![0; LATENESS_BUCKETS.len() + 1], ..WakeCounts::default() };
+        counts.buckets[0] = 3; // ≤ 1 ms
+        counts.buckets[7] = 1; // ≤ 250 ms
+        counts.buckets[10] = 2; // +Inf
+        counts.sum = Duration::from_millis(2_500);
+        counts.dropped_cycles = 40;
+        let mut out = String::new();
+        wake_histogram(&mut out, &counts);
+        assert!(out.contains("nctwin_ipo_wake_lateness_seconds_bucket{le=\"0.001\"} 3\n"), "{out}");
+        assert!(out.contains("nctwin_ipo_wake_lateness_seconds_bucket{le=\"0.1\"} 3\n"), "{out}");
+        assert!(out.contains("nctwin_ipo_wake_lateness_seconds_bucket{le=\"0.25\"} 4\n"), "{out}");
+        assert!(out.contains("nctwin_ipo_wake_lateness_seconds_bucket{le=\"1\"} 4\n"), "{out}");
+        assert!(out.contains("nctwin_ipo_wake_lateness_seconds_bucket{le=\"+Inf\"} 6\n"), "{out}");
+        assert!(out.contains("nctwin_ipo_wake_lateness_seconds_count 6\n"), "{out}");
+        assert!(out.contains("nctwin_ipo_wake_lateness_seconds_sum 2.5\n"), "{out}");
+        assert!(out.contains("nctwin_ipo_cycles_dropped_total 40\n"), "{out}");
     }
 
     #[test]

@@ -14,6 +14,8 @@ pub mod programs;
 pub mod roles;
 pub mod sessions;
 pub mod stream;
+pub mod stream_frame;
+pub mod stream_gate;
 pub mod swivel;
 pub mod viewers;
 

@@ -15,7 +15,7 @@ use std::time::Duration;
 
 use axum::extract::rejection::QueryRejection;
 use axum::extract::ws::rejection::WebSocketUpgradeRejection;
-use axum::extract::ws::{CloseFrame, Message, WebSocket, WebSocketUpgrade, close_code};
+use axum::extract::ws::{CloseFrame, Message, Utf8Bytes, WebSocket, WebSocketUpgrade, close_code};
 use axum::extract::{Extension, Path, Query, State};
 use axum::response::Response;
 use futures_util::{Sink, SinkExt, Stream, StreamExt};
@@ -27,6 +27,8 @@ use tokio::time::{Instant, sleep_until};
 use utoipa::IntoParams;
 
 use super::find_entry;
+use super::stream_frame::{FrameCache, encode};
+use super::stream_gate::FrameGate;
 use crate::auth::access::{Caller, Need, check};
 use crate::auth::{AuthMode, Role};
 use crate::dto::{self, ClientMessage, ErrorBody, EventMessage, StreamMessage};
@@ -80,8 +82,9 @@ impl StreamParams {
 
 /// WebSocket stream of a session (JSON text messages, see `StreamMessage`).
 ///
-/// The current state is sent at once as `{"type": "state", ...}`; then at most one state
-/// message per period while the state changes (intermediate states are skipped), and every
+/// The current state is sent at once as `{"type": "state", ...}`; then one state message per
+/// period while the state changes (on a fixed grid of the period, at most one per grid slot, up
+/// to a quarter period early; intermediate states are skipped), and every
 /// event as it happens (`{"type": "event", "event": "alarm_raised" | "alarm_cleared" |
 /// "block_changed" | "program_ended" | "program_stopped" | "mode_changed", ...}`). A client that
 /// falls more than 256 events behind skips the oldest. The server closes the socket when the
@@ -146,6 +149,10 @@ pub async fn stream(
 }
 
 /// Runs [`pump`] on an axum WebSocket and closes it when the session has ended.
+///
+/// The client's messages are read by a task of its own ([`client_loop`]), so the socket's read
+/// half is polled only when the client sent something: polled from the pump, it was tried (and
+/// its read buffer cleared) at every state message.
 async fn serve_socket(
     socket: WebSocket,
     states: watch::Receiver<Arc<Snapshot>>,
@@ -153,11 +160,18 @@ async fn serve_socket(
     period: Duration,
     commander: Commander,
 ) {
+    let entry = commander.entry.clone();
     let (tx, rx) = socket.split();
-    let mut sink = tx.with(|text: String| std::future::ready(Ok::<_, axum::Error>(Message::Text(text.into()))));
+    let mut sink = tx.with(|text: Utf8Bytes| std::future::ready(Ok::<_, axum::Error>(Message::Text(text))));
     let (replies_tx, replies) = mpsc::channel(16);
-    let client = client_loop(rx, commander, replies_tx);
-    let end = pump(&mut sink, client, states, events, replies, period).await;
+    let reader = tokio::spawn(client_loop(rx, commander, replies_tx));
+    // Dropping the reader (it owns the socket's JOG) stops a JOG this client started.
+    let stop_reader = reader.abort_handle();
+    let client_gone = async move {
+        let _ = reader.await;
+    };
+    let end = pump(&mut sink, client_gone, states, events, replies, period, &entry.frames).await;
+    stop_reader.abort();
     if end == StreamEnd::SessionEnded {
         let frame = CloseFrame { code: close_code::AWAY, reason: "session ended".into() };
         let _ = sink.into_inner().send(Message::Close(Some(frame))).await;
@@ -175,8 +189,11 @@ pub enum StreamEnd {
     SendFailed,
 }
 
-/// Sends the current state, then state changes (at most one per `period`, newest only) and
-/// events, until the client goes, the session ends or a send fails.
+/// Sends the current state, then state changes (one per `period` on a fixed grid, newest only,
+/// see [`FrameGate`]) and events, until the client goes, the session ends or a send fails.
+///
+/// Whatever is ready at one wake-up (replies, events, the state) goes out in one write. State
+/// messages come from `frames`, encoded once per snapshot for every client of the session.
 pub async fn pump<S>(
     mut sink: S,
     client_gone: impl Future<Output = ()>,
@@ -184,27 +201,26 @@ pub async fn pump<S>(
     mut events: broadcast::Receiver<Event>,
     mut replies: mpsc::Receiver<StreamMessage>,
     period: Duration,
+    frames: &FrameCache,
 ) -> StreamEnd
 where
-    S: Sink<String> + Unpin,
+    S: Sink<Utf8Bytes> + Unpin,
 {
     tokio::pin!(client_gone);
     let first = states.borrow_and_update().clone();
-    if send(&mut sink, StreamMessage::State(Box::new(dto::State::from(first.as_ref())))).await.is_err() {
+    if sink.send(frames.state(&first)).await.is_err() {
         return StreamEnd::SendFailed;
     }
-    let mut next_state_at = Instant::now() + period;
+    let mut gate = FrameGate::new(Instant::now(), period);
     let mut pending = false;
     let mut replies_open = true;
+    let mut batch: Vec<Utf8Bytes> = Vec::new();
     loop {
+        let mut ended = false;
         tokio::select! {
             () = &mut client_gone => return StreamEnd::ClientGone,
             reply = replies.recv(), if replies_open => match reply {
-                Some(message) => {
-                    if send(&mut sink, message).await.is_err() {
-                        return StreamEnd::SendFailed;
-                    }
-                }
+                Some(message) => batch.push(encode(&message)),
                 None => replies_open = false,
             },
             changed = states.changed(), if !pending => {
@@ -213,26 +229,54 @@ where
                 }
                 pending = true;
             }
-            () = sleep_until(next_state_at), if pending => {
-                pending = false;
-                let latest = states.borrow_and_update().clone();
-                if send(&mut sink, StreamMessage::State(Box::new(dto::State::from(latest.as_ref())))).await.is_err() {
-                    return StreamEnd::SendFailed;
-                }
-                next_state_at = Instant::now() + period;
-            }
+            () = sleep_until(gate.opens_at()), if pending => {}
             event = events.recv() => match event {
-                Ok(event) => {
-                    if send(&mut sink, StreamMessage::Event(EventMessage::from(&event))).await.is_err() {
-                        return StreamEnd::SendFailed;
-                    }
-                }
+                Ok(event) => batch.push(encode(&StreamMessage::Event(EventMessage::from(&event)))),
                 // Lagged: the skipped events are lost for this client only; go on with the rest.
                 Err(RecvError::Lagged(_)) => {}
-                Err(RecvError::Closed) => return StreamEnd::SessionEnded,
+                Err(RecvError::Closed) => ended = true,
             },
         }
+        // Take along whatever else is ready now.
+        while replies_open && let Ok(message) = replies.try_recv() {
+            batch.push(encode(&message));
+        }
+        loop {
+            match events.try_recv() {
+                Ok(event) => batch.push(encode(&StreamMessage::Event(EventMessage::from(&event)))),
+                Err(broadcast::error::TryRecvError::Lagged(_)) => {}
+                Err(broadcast::error::TryRecvError::Empty) => break,
+                Err(broadcast::error::TryRecvError::Closed) => {
+                    ended = true;
+                    break;
+                }
+            }
+        }
+        if !pending && states.has_changed().unwrap_or(false) {
+            pending = true;
+        }
+        let now = Instant::now();
+        if pending && gate.is_open(now) {
+            pending = false;
+            gate.sent(now);
+            let latest = states.borrow_and_update().clone();
+            batch.push(frames.state(&latest));
+        }
+        if !batch.is_empty() && send_all(&mut sink, &mut batch).await.is_err() {
+            return StreamEnd::SendFailed;
+        }
+        if ended {
+            return StreamEnd::SessionEnded;
+        }
     }
+}
+
+/// Writes every message of `batch` and then flushes once (one system call for all of them).
+async fn send_all<S: Sink<Utf8Bytes> + Unpin>(sink: &mut S, batch: &mut Vec<Utf8Bytes>) -> Result<(), S::Error> {
+    for text in batch.drain(..) {
+        sink.feed(text).await?;
+    }
+    sink.flush().await
 }
 
 /// The client of one socket as a commander of its session.
@@ -419,12 +463,6 @@ async fn start_own(commander: &Commander, own: &mut OwnJog, action: Action, cont
     Ok(())
 }
 
-async fn send<S: Sink<String> + Unpin>(sink: &mut S, message: StreamMessage) -> Result<(), S::Error> {
-    // Serializing plain data with string keys cannot fail; an empty object would be harmless.
-    let text = serde_json::to_string(&message).unwrap_or_else(|_| "{}".into());
-    sink.send(text).await
-}
-
 #[cfg(test)]
 mod tests {
     use futures_util::sink;
@@ -448,8 +486,8 @@ mod tests {
         let (states, state_rx) = watch::channel(Arc::new(channel.snapshot()));
         let (events, event_rx) = broadcast::channel(16);
         let (out_tx, out) = mpsc::unbounded_channel::<String>();
-        let sink = Box::pin(sink::unfold(out_tx, |tx, text: String| async move {
-            tx.send(text).map_err(|_| ())?;
+        let sink = Box::pin(sink::unfold(out_tx, |tx, text: Utf8Bytes| async move {
+            tx.send(text.to_string()).map_err(|_| ())?;
             Ok::<_, ()>(tx)
         }));
         let (gone_tx, gone_rx) = oneshot::channel::<()>();
@@ -457,7 +495,10 @@ mod tests {
             let _ = gone_rx.await;
         };
         let (_replies_tx, replies) = mpsc::channel(1);
-        let task = tokio::spawn(pump(sink, gone, state_rx, event_rx, replies, period));
+        let task = tokio::spawn(async move {
+            let frames = FrameCache::default();
+            pump(sink, gone, state_rx, event_rx, replies, period, &frames).await
+        });
         Harness { states, events, out, client_gone: Some(gone_tx), task, channel }
     }
 
@@ -488,6 +529,71 @@ mod tests {
 
         h.client_gone.take().map(|tx| tx.send(()));
         assert_eq!(h.task.await.expect("pump"), StreamEnd::ClientGone);
+    }
+
+    /// A sink that records what each flush wrote.
+    struct Recorder {
+        writes: Arc<std::sync::Mutex<Vec<Vec<String>>>>,
+        buffer: Vec<String>,
+    }
+
+    impl Sink<Utf8Bytes> for Recorder {
+        type Error = ();
+        fn poll_ready(
+            self: std::pin::Pin<&mut Self>,
+            _: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            std::task::Poll::Ready(Ok(()))
+        }
+        fn start_send(self: std::pin::Pin<&mut Self>, item: Utf8Bytes) -> Result<(), ()> {
+            self.get_mut().buffer.push(item.to_string());
+            Ok(())
+        }
+        fn poll_flush(
+            self: std::pin::Pin<&mut Self>,
+            _: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            let this = self.get_mut();
+            if !this.buffer.is_empty() {
+                this.writes.lock().expect("writes").push(std::mem::take(&mut this.buffer));
+            }
+            std::task::Poll::Ready(Ok(()))
+        }
+        fn poll_close(
+            self: std::pin::Pin<&mut Self>,
+            cx: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            self.poll_flush(cx)
+        }
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn an_event_and_a_due_state_go_out_in_one_write() {
+        let mut channel = Channel::from_preset("mill-3axis", "").expect("preset");
+        let (states, state_rx) = watch::channel(Arc::new(channel.snapshot()));
+        let (events, event_rx) = broadcast::channel(16);
+        let writes = Arc::new(std::sync::Mutex::new(Vec::new()));
+        let sink = Recorder { writes: writes.clone(), buffer: Vec::new() };
+        let (_replies_tx, replies) = mpsc::channel(1);
+        let task = tokio::spawn(async move {
+            let frames = FrameCache::default();
+            pump(sink, std::future::pending(), state_rx, event_rx, replies, Duration::from_millis(50), &frames).await
+        });
+        // The first state goes out at once; the next slot (50 ms) opens at 37.5 ms.
+        tokio::time::sleep(Duration::from_millis(45)).await;
+        assert_eq!(writes.lock().expect("writes").len(), 1);
+
+        channel.run_program("G1 X10 F600\nM30").expect("program");
+        channel.step();
+        events.send(Event::ProgramEnded).expect("a subscriber");
+        states.send_replace(Arc::new(channel.snapshot()));
+        tokio::time::sleep(Duration::from_millis(1)).await;
+        let writes = writes.lock().expect("writes").clone();
+        assert_eq!(writes.len(), 2, "{writes:?}");
+        assert_eq!(writes[1].len(), 2, "the event and the state in one write: {writes:?}");
+        assert!(writes[1][0].starts_with("{\"type\":\"event\""), "{writes:?}");
+        assert!(writes[1][1].starts_with("{\"type\":\"state\""), "{writes:?}");
+        task.abort();
     }
 
     #[tokio::test(start_paused = true)]

@@ -17,6 +17,7 @@ use nctwin_engine::{Channel, CommandError, Event, Overrides, Snapshot, Status};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 use tokio::time::{Instant, sleep_until};
 
+use super::wake_stats::wake_stats;
 use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
 
 /// Wall time a fast-paced command may compute before it is stopped like at the simulated-time
@@ -197,7 +198,8 @@ impl Actor {
         let now = Instant::now();
         let late = now.saturating_duration_since(self.next_wake);
         self.lag_micros.store(u64::try_from(late.as_micros()).unwrap_or(u64::MAX), Ordering::Relaxed);
-        let owed = self.pacer.as_mut().map_or(0, |p| p.owed(now));
+        let (owed, dropped) = self.pacer.as_mut().map_or((0, 0), |p| (p.owed(now), p.take_dropped()));
+        wake_stats().record(late, dropped);
         for _ in 0..owed {
             if !channel.is_active() {
                 break;

@@ -13,6 +13,7 @@
 
 mod actor;
 mod pacer;
+mod wake_stats;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -23,6 +24,7 @@ use nctwin_engine::{Channel, CommandError, Event, JogRequest, Mode, Snapshot};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 
 pub use pacer::Pacer;
+pub use wake_stats::{LATENESS_BUCKETS, WakeCounts, wake_stats};
 
 /// Capacity of a session's event channel. A subscriber that falls more than this many events
 /// behind does not slow the session down: its next `recv` reports the lag and it continues with

@@ -18,6 +18,8 @@ pub struct Pacer {
     last: Instant,
     /// Wall time owed but not yet stepped, in seconds; always below one IPO cycle after a call.
     debt: f64,
+    /// Cycles given up by the catch-up cap since the last [`Pacer::take_dropped`].
+    dropped: u64,
 }
 
 impl Pacer {
@@ -26,7 +28,7 @@ impl Pacer {
 
     /// Starts pacing at `now` with nothing owed. `ipo_cycle` is in seconds and positive.
     pub fn new(ipo_cycle: f64, now: Instant) -> Pacer {
-        Pacer { ipo_cycle, last: now, debt: 0.0 }
+        Pacer { ipo_cycle, last: now, debt: 0.0, dropped: 0 }
     }
 
     /// IPO cycles owed for the wall time since the previous call (or since [`Pacer::new`]).
@@ -39,10 +41,17 @@ impl Pacer {
         let cycles = (self.debt / self.ipo_cycle + 1e-9).floor() as u64;
         if cycles > cap {
             self.debt = 0.0;
+            self.dropped += cycles - cap;
             return cap;
         }
         self.debt = (self.debt - cycles as f64 * self.ipo_cycle).max(0.0);
         cycles
+    }
+
+    /// Cycles the catch-up cap gave up since the last call: simulated time lost against wall
+    /// time for good.
+    pub fn take_dropped(&mut self) -> u64 {
+        std::mem::take(&mut self.dropped)
     }
 }
 
@@ -71,7 +80,10 @@ mod tests {
         let t0 = Instant::now();
         let mut pacer = Pacer::new(0.004, t0);
         assert_eq!(pacer.owed(t0 + Duration::from_secs(30)), 250);
+        // 30 s of 4 ms cycles are 7,500; 250 were stepped.
+        assert_eq!(pacer.take_dropped(), 7_250);
         assert_eq!(pacer.owed(t0 + Duration::from_millis(30_050)), 12);
+        assert_eq!(pacer.take_dropped(), 0);
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! [`SessionEntry`]: what the server keeps per session besides the actor: tokens, who holds
-//! control, the command rate limiter, the stream client count and the save lock.
+//! control, the command rate limiter, the stream client count, the shared encoded state
+//! message of its streams and the save lock.
 
 use std::net::IpAddr;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -7,6 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use tokio::time::Instant;
 
+use crate::api::stream_frame::FrameCache;
 use crate::auth::Role;
 use crate::error::ApiError;
 use crate::limits::{Limits, RateLimiter};
@@ -29,6 +31,8 @@ pub struct SessionEntry {
     control: Mutex<Option<Role>>,
     rate: Mutex<RateLimiter>,
     stream_clients: Arc<AtomicUsize>,
+    /// The last state message, encoded once for all stream clients.
+    pub frames: FrameCache,
     /// Serialises "change the channel, then write the change" sequences of this session, so
     /// that storage never ends up older than what a client was told was saved.
     pub save_lock: tokio::sync::Mutex<()>,
@@ -50,6 +54,7 @@ impl SessionEntry {
             control: Mutex::new(Some(Role::Owner)),
             rate: Mutex::new(RateLimiter::new(limits.commands_per_second, limits.command_burst, Instant::now())),
             stream_clients: Arc::new(AtomicUsize::new(0)),
+            frames: FrameCache::default(),
             save_lock: tokio::sync::Mutex::new(()),
         }
     }

@@ -2,13 +2,22 @@
 //!
 //! Creates N sessions on a running NCTwin server, attaches one WebSocket viewer to each, starts
 //! a long program in real-time pace on every one, and measures over a window:
-//! - IPO lag: per session, how far simulated time fell behind wall time since the first frame
-//!   of the window (`(t − t₀) − (time − time₀)` over the state frames; staleness of a frame,
-//!   up to one stream period, is part of it);
+//! - IPO lag as the client sees it: per session, how far simulated time fell behind wall time
+//!   since the first frame of the window (`(t − t₀) − (time − time₀)` over the state frames).
+//!   This includes how late each frame arrived (server scheduling, the socket, this client's
+//!   own scheduling), so on a busy machine it mostly measures delivery jitter;
+//! - drift: the same offset, but per second of the window only its smallest value (the frame
+//!   that arrived most promptly), compared with the first second's. Delivery delays do not add
+//!   to it; a session whose simulation really falls behind wall time shows a growing drift.
+//!   A session counts as behind when its drift exceeds `--behind`;
+//! - the server's own IPO lag (`--server-pid` not needed): how late the real-time wake-ups of
+//!   all sessions came, from the `nctwin_ipo_wake_lateness_seconds` histogram of `/metrics`,
+//!   and the cycles dropped by the catch-up cap;
 //! - state frames received per session and second (20 Hz expected at the default period);
 //! - command-to-frame latency: on `--probes` sessions, NC stop and NC start alternate; the time
 //!   from sending the REST command to the first stream frame showing its status;
-//! - CPU of the server process (`--server-pid`, from /proc) and of this client.
+//! - CPU of the server process (`--server-pid`, from /proc; user and system, per session and
+//!   second, and the time its threads waited for a CPU on the run queue) and of this client.
 //!
 //! Prints a readable summary and, with `--json`, one JSON line for scripts.
 
@@ -59,7 +68,7 @@ struct Args {
     /// Concurrent requests while setting up.
     #[arg(long, default_value_t = 32)]
     concurrency: usize,
-    /// A session counts as behind when its lag exceeds this, seconds.
+    /// A session counts as behind when its drift exceeds this, seconds.
     #[arg(long, default_value_t = 0.25)]
     behind: f64,
     /// Print one JSON line with every figure at the end.
@@ -84,6 +93,8 @@ struct View {
     frames_in_window: u64,
     max_lag: f64,
     last_lag: f64,
+    /// Per whole second of the window: the smallest `(t − window start) − time` of its frames.
+    min_offset: Vec<f64>,
     /// Status awaited by a probe: (status, when the command was sent, reply).
     pending: Option<(&'static str, Instant, oneshot::Sender<f64>)>,
 }
@@ -95,6 +106,7 @@ struct Session {
 
 struct Shared {
     window_open: AtomicBool,
+    window_start: std::sync::OnceLock<Instant>,
     closed: AtomicBool,
     ws_errors: AtomicU64,
     frames_total: AtomicU64,
@@ -108,13 +120,28 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
     sorted[i.min(sorted.len() - 1)]
 }
 
-/// utime + stime of a process in seconds, and its VmRSS / VmHWM in KiB.
-fn proc_usage(pid: &str) -> Option<(f64, u64, u64)> {
+/// CPU use of a process at one moment.
+#[derive(Debug, Clone, Copy)]
+struct Usage {
+    /// utime + stime, seconds.
+    cpu: f64,
+    /// stime, seconds.
+    sys: f64,
+    rss_kib: u64,
+    peak_rss_kib: u64,
+    /// Time its threads waited on a run queue for a CPU, seconds (0 where schedstat is missing).
+    wait: f64,
+}
+
+/// utime and stime of a process in seconds, its VmRSS / VmHWM in KiB and its threads' run
+/// queue wait.
+fn proc_usage(pid: &str) -> Option<Usage> {
     let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
     let rest = &stat[stat.rfind(')')? + 2..];
     let fields: Vec<&str> = rest.split_whitespace().collect();
     // After "pid (comm) ", field 3 (state) is index 0: utime is field 14, stime 15.
-    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    let user: f64 = fields.get(11)?.parse::<f64>().ok()?;
+    let sys: f64 = fields.get(12)?.parse::<f64>().ok()?;
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
     let kib = |key: &str| -> u64 {
         status
@@ -123,8 +150,61 @@ fn proc_usage(pid: &str) -> Option<(f64, u64, u64)> {
             .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
             .unwrap_or(0)
     };
+    // schedstat: time on a CPU, time waiting on a run queue (ns), timeslices; per thread.
+    let mut wait_ns = 0u64;
+    if let Ok(tasks) = std::fs::read_dir(format!("/proc/{pid}/task")) {
+        for task in tasks.flatten() {
+            if let Ok(text) = std::fs::read_to_string(task.path().join("schedstat")) {
+                wait_ns += text.split_whitespace().nth(1).and_then(|v| v.parse::<u64>().ok()).unwrap_or(0);
+            }
+        }
+    }
     // USER_HZ is 100 on Linux.
-    Some((ticks / 100.0, kib("VmRSS:"), kib("VmHWM:")))
+    Some(Usage {
+        cpu: (user + sys) / 100.0,
+        sys: sys / 100.0,
+        rss_kib: kib("VmRSS:"),
+        peak_rss_kib: kib("VmHWM:"),
+        wait: wait_ns as f64 * 1e-9,
+    })
+}
+
+/// The wake-up lateness histogram and dropped cycles of the server's `/metrics`: (upper bound
+/// in seconds, cumulative count) per bucket, +Inf as infinity, and the dropped cycles.
+async fn wake_metrics(client: &reqwest::Client, base: &str) -> Option<(Vec<(f64, u64)>, u64)> {
+    let text = client.get(format!("{base}/metrics")).send().await.ok()?.text().await.ok()?;
+    let mut buckets = Vec::new();
+    let mut dropped = 0;
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix("nctwin_ipo_wake_lateness_seconds_bucket{le=\"") {
+            let (bound, count) = rest.split_once("\"} ")?;
+            let bound = if bound == "+Inf" { f64::INFINITY } else { bound.parse().ok()? };
+            buckets.push((bound, count.trim().parse().ok()?));
+        } else if let Some(rest) = line.strip_prefix("nctwin_ipo_cycles_dropped_total ") {
+            dropped = rest.trim().parse().ok()?;
+        }
+    }
+    (!buckets.is_empty()).then_some((buckets, dropped))
+}
+
+/// Figures of the wake-ups between two scrapes: count, the bucket bound at p50 and p99, how
+/// many came later than `behind` seconds (by bucket bounds), dropped cycles.
+fn wake_window(before: &(Vec<(f64, u64)>, u64), after: &(Vec<(f64, u64)>, u64), behind: f64) -> serde_json::Value {
+    let delta: Vec<(f64, u64)> =
+        after.0.iter().zip(&before.0).map(|((bound, a), (_, b))| (*bound, a.saturating_sub(*b))).collect();
+    let total = delta.last().map_or(0, |d| d.1);
+    let at = |p: f64| -> Option<f64> {
+        let want = (total as f64 * p).ceil() as u64;
+        delta.iter().find(|d| d.1 >= want.max(1)).map(|d| d.0).filter(|b| b.is_finite())
+    };
+    let within = delta.iter().rev().find(|d| d.0 <= behind).map_or(0, |d| d.1);
+    json!({
+        "wakes": total,
+        "p50_le_s": at(0.5),
+        "p99_le_s": at(0.99),
+        "later_than_behind": total - within,
+        "dropped_cycles": after.1.saturating_sub(before.1),
+    })
 }
 
 #[tokio::main]
@@ -150,6 +230,7 @@ async fn run(args: Args) -> Result<(), String> {
         .map_err(|e| e.to_string())?;
     let shared = Arc::new(Shared {
         window_open: AtomicBool::new(false),
+        window_start: std::sync::OnceLock::new(),
         closed: AtomicBool::new(false),
         ws_errors: AtomicU64::new(0),
         frames_total: AtomicU64::new(0),
@@ -245,8 +326,11 @@ async fn run(args: Args) -> Result<(), String> {
     let server_before = pid.as_deref().and_then(proc_usage);
     let client_before = proc_usage("self");
     let frames_before = shared.frames_total.load(Ordering::Relaxed);
-    shared.window_open.store(true, Ordering::Relaxed);
+    let base = args.url.trim_end_matches('/').to_string();
+    let wakes_before = wake_metrics(&client, &base).await;
     let window_start = Instant::now();
+    let _ = shared.window_start.set(window_start);
+    shared.window_open.store(true, Ordering::Relaxed);
     let end = window_start + Duration::from_secs_f64(args.duration);
     let n_probes = args.probes.unwrap_or(50).min(sessions.len());
     let interval = Duration::from_millis(args.probe_interval_ms);
@@ -274,11 +358,18 @@ async fn run(args: Args) -> Result<(), String> {
     let server_after = pid.as_deref().and_then(proc_usage);
     let client_after = proc_usage("self");
     let frames_window = shared.frames_total.load(Ordering::Relaxed) - frames_before;
+    let wakes_after = wake_metrics(&client, &base).await;
+    let server_wakes = match (&wakes_before, &wakes_after) {
+        (Some(b), Some(a)) => wake_window(b, a, args.behind),
+        _ => serde_json::Value::Null,
+    };
 
     // 5. Figures.
     let mut lags = Vec::new();
     let mut last_lags = Vec::new();
     let mut frame_rates = Vec::new();
+    let mut drifts = Vec::new();
+    let mut final_drifts = Vec::new();
     let mut no_anchor = 0;
     for s in &sessions[n_probes..] {
         let v = s.view.lock().expect("view lock");
@@ -287,6 +378,12 @@ async fn run(args: Args) -> Result<(), String> {
         }
         lags.push(v.max_lag);
         last_lags.push(v.last_lag);
+        // Only whole seconds with frames count; the first is the reference.
+        let seconds: Vec<f64> = v.min_offset.iter().copied().filter(|m| m.is_finite()).collect();
+        if let Some(first) = seconds.first() {
+            drifts.push(seconds.iter().map(|m| m - first).fold(0.0, f64::max));
+            final_drifts.push(seconds.last().map_or(0.0, |m| m - first));
+        }
         frame_rates.push(v.frames_in_window as f64 / window_s);
     }
     for s in &sessions[..n_probes] {
@@ -297,9 +394,19 @@ async fn run(args: Args) -> Result<(), String> {
     sort(&mut last_lags);
     sort(&mut frame_rates);
     sort(&mut latencies);
-    let behind = lags.iter().filter(|&&l| l > args.behind).count();
-    let cpu = |before: Option<(f64, u64, u64)>, after: Option<(f64, u64, u64)>| match (before, after) {
-        (Some(b), Some(a)) => Some(((a.0 - b.0) / window_s * 100.0, a.1, a.2)),
+    sort(&mut drifts);
+    sort(&mut final_drifts);
+    let behind = drifts.iter().filter(|&&d| d > args.behind).count();
+    let lag_over = lags.iter().filter(|&&l| l > args.behind).count();
+    // (CPU %, RSS KiB, peak RSS KiB, system CPU %, run queue wait %), all % of one core.
+    let cpu = |before: Option<Usage>, after: Option<Usage>| match (before, after) {
+        (Some(b), Some(a)) => Some((
+            (a.cpu - b.cpu) / window_s * 100.0,
+            a.rss_kib,
+            a.peak_rss_kib,
+            (a.sys - b.sys) / window_s * 100.0,
+            (a.wait - b.wait) / window_s * 100.0,
+        )),
         _ => None,
     };
     let server = cpu(server_before, server_after);
@@ -312,6 +419,10 @@ async fn run(args: Args) -> Result<(), String> {
         "setup_s": { "create": create_s, "connect": connect_s, "start": start_s },
         "window_s": window_s,
         "server_cpu_percent": server.map(|s| s.0),
+        "server_sys_cpu_percent": server.map(|s| s.3),
+        "server_cpu_ms_per_session_s": server.map(|s| s.0 * 10.0 / sessions.len().max(1) as f64),
+        "server_runqueue_wait_percent": server.map(|s| s.4),
+        "load_avg_1m": std::fs::read_to_string("/proc/loadavg").ok().and_then(|l| l.split_whitespace().next().and_then(|v| v.parse::<f64>().ok())),
         "server_rss_mib": server.map(|s| s.1 as f64 / 1024.0),
         "server_peak_rss_mib": server.map(|s| s.2 as f64 / 1024.0),
         "client_cpu_percent": client_cpu.map(|s| s.0),
@@ -324,7 +435,16 @@ async fn run(args: Args) -> Result<(), String> {
             "max_max": ms(percentile(&lags, 1.0)),
             "final_p50": ms(percentile(&last_lags, 0.5)),
             "final_max": ms(percentile(&last_lags, 1.0)),
+            "over_threshold": lag_over,
         },
+        "drift_ms": {
+            "max_p50": ms(percentile(&drifts, 0.5)),
+            "max_p99": ms(percentile(&drifts, 0.99)),
+            "max_max": ms(percentile(&drifts, 1.0)),
+            "final_p50": ms(percentile(&final_drifts, 0.5)),
+            "final_max": ms(percentile(&final_drifts, 1.0)),
+        },
+        "server_wakes": server_wakes,
         "behind": behind,
         "behind_threshold_ms": ms(args.behind),
         "no_running_frame": no_anchor,
@@ -387,6 +507,16 @@ where
         }
         v.frames_in_window += 1;
         let Some(time) = frame.time else { continue };
+        if status == "running"
+            && let Some(&start) = shared.window_start.get()
+        {
+            let since = now.duration_since(start).as_secs_f64();
+            let second = since as usize;
+            if v.min_offset.len() <= second {
+                v.min_offset.resize(second + 1, f64::INFINITY);
+            }
+            v.min_offset[second] = v.min_offset[second].min(since - time);
+        }
         match v.anchor {
             None if status == "running" => v.anchor = Some((now, time)),
             None => {}
