@@ -692,6 +692,37 @@ async function main() {
       await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-tracyl.png") });
     });
 
+    await step("3D view: TRACYL on a mill (tracyl-xyzac): programmed and executed groove on the cylinder about Y", async () => {
+      // The cylinder on CM turns about the axial YC (machine +Y) through the machine zero; G19
+      // puts the tool length on the radial X. X30 Y60 under TRACYL(60): radius 30, an arc of
+      // 60 / 30 rad = 114.59° at machine Y = Z = −20, drawn by the preview and by the run.
+      await page.goto(`${BASE}/?machine=tracyl-xyzac`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "GROOVE");
+      await page.fill(EDITOR, "T1 D1 G17\nG0 X0 Y-20 Z150\nG19 TRACYL(60)\nG1 X30 Y0 Z-20 F3000\nG1 Y60\nM0\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /programmed GROOVE/.test(document.getElementById("view3d-preview")?.textContent || ""));
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped", null, { timeout: 30_000 });
+      const arcs = await page.evaluate(() => {
+        const groove = (points) =>
+          points
+            .map(([x, y, z]) => ({ y, r: Math.hypot(x, z), a: (Math.atan2(x, z) * 180) / Math.PI }))
+            .filter((p) => Math.abs(p.y + 20) < 0.01 && p.r < 40 && Math.abs(p.a) > 1);
+        return { executed: groove(window.__nctwin3d.pathPoints(100000)), programmed: groove(window.__nctwin3d.programmedPath()) };
+      });
+      for (const [name, arc] of Object.entries(arcs)) {
+        if (arc.length < 10) throw new Error(`${name}: only ${arc.length} groove points`);
+        const off = arc.find((p) => Math.abs(p.r - 30) > 0.01);
+        if (off) throw new Error(`${name} groove point ${off.r} mm from the cylinder axis, not 30`);
+        const end = Math.max(...arc.map((p) => p.a));
+        // One 8 ms preview sample at F3000 is 0.4 mm of arc = 0.76° on radius 30.
+        if (!(Math.abs(end - (60 / 30) * (180 / Math.PI)) < 0.8)) throw new Error(`${name} groove ends at ${end}°`);
+      }
+      await page.click("#btn-reset");
+    });
+
     await step("no error in the message bar", async () => {
       if (!(await page.locator("#message").isHidden())) {
         throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);
