@@ -142,7 +142,7 @@ impl Channel {
                     let mv = self.straight_move(here, start, feed);
                     self.push_bcs_move(mv, meta.clone());
                 }
-                let length = arc.arc.map_or(0.0, |a| a.radius * a.sweep.abs());
+                let length = arc.arc.as_ref().map_or(0.0, |a| a.radius * a.sweep.abs());
                 let mv = Move::new(arc, length, feed, &AxisLimit::for_channel(&self.cfg), true, self.next_tag);
                 self.push_bcs_move(mv, meta);
             }

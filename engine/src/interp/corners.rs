@@ -128,7 +128,12 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
             // Centre on the inner side: perpendicular to d1 in the plane of the corner.
             let inward = unit(&add(&d2, &scale(&d1, -cos_phi))).expect("the blocks are not parallel");
             let u = scale(&inward, -1.0);
-            Path { start: a, end: b, arc: Some(Arc { u, v: d1, radius: r, start_angle: 0.0, sweep: phi }), ori: None }
+            Path {
+                start: a,
+                end: b,
+                arc: Some(Box::new(Arc { u, v: d1, radius: r, start_angle: 0.0, sweep: phi })),
+                ori: None,
+            }
         }
         _ => Path::line(a, b),
     };

@@ -107,6 +107,13 @@ pub fn eval(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
 
 /// Evaluates to a number (the common case for addresses).
 pub fn eval_f64(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<f64, Alarm> {
+    // The common case, a literal (`X10.5`): the value `eval` and `as_f64` would give (`+ 0.0`
+    // turns -0 into 0 like the INT round trip of a whole number does).
+    if let Expr::Number(n) = expr
+        && n.is_finite()
+    {
+        return Ok(*n + 0.0);
+    }
     let v = eval(expr, scope, line)?;
     let x = v.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?;
     if x.is_finite() { Ok(x) } else { Err(Alarm::arithmetic(line, "result is not a finite number")) }

@@ -335,9 +335,14 @@ impl Interpreter {
     /// Sets the block's frame, tool vector and G functions, touching the offsets only where
     /// they change (most blocks change none of them).
     fn refresh_offsets(&mut self, cfg: &MachineConfig) {
-        let frame = self.active_frame(cfg);
-        if self.offsets.frame != frame {
-            self.offsets.frame = frame;
+        // As `active_frame`, but the cached frame is copied only when it differs.
+        let changed = [self.pframe.take_changed(), self.system.take_changed(), self.iframe.take_changed()];
+        let (work_offset, rotary_slot) = (self.modal.work_offset, self.trafo.rotary_slot());
+        let frame = self
+            .frame_cache
+            .get(cfg, work_offset, rotary_slot, changed.contains(&true), || sys_view!(self, cfg).chain(None));
+        if self.offsets.frame != *frame {
+            self.offsets.frame = frame.clone();
         }
         let tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         if self.offsets.tool != tool {
@@ -515,7 +520,9 @@ impl Interpreter {
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
-            let (mv, feed) = self.motion(&words, cfg, line)?;
+            // One set of limits for the move and its compensation (same configuration).
+            let limits = AxisLimit::for_channel(cfg);
+            let (mv, feed) = self.motion(&words, cfg, &limits, line)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
             let comp = self.compensation(cfg, &words, line)?;
@@ -523,7 +530,7 @@ impl Interpreter {
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
             let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
-            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
+            self.trc.push(prepared, comp, &limits, out)?;
         } else if !positioned && !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
             // A new shared value is made only when the offsets differ from the last one.
             out.push(Item::Offsets { line, offsets: self.shared_offsets() });
@@ -764,7 +771,13 @@ impl Interpreter {
         }))
     }
 
-    fn motion(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {
+    fn motion(
+        &mut self,
+        words: &modal::Words,
+        cfg: &MachineConfig,
+        limits: &[AxisLimit],
+        line: u32,
+    ) -> Result<(Move, Feed), Alarm> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
         let start = self.pos;
@@ -897,7 +910,13 @@ impl Interpreter {
             // The circle is defined in the WCS plane and mapped through the frame.
             let u = frame.geo_direction(geo, pa);
             let v = frame.geo_direction(geo, po);
-            path.arc = Some(Arc { u, v, radius: circle.radius, start_angle: circle.start_angle, sweep: circle.sweep });
+            path.arc = Some(Box::new(Arc {
+                u,
+                v,
+                radius: circle.radius,
+                start_angle: circle.start_angle,
+                sweep: circle.sweep,
+            }));
             let scale = (norm(&u) + norm(&v)) / 2.0;
             let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
             length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
@@ -928,7 +947,7 @@ impl Interpreter {
         };
         let exact_stop = self.modal.exact_stop || words.g9;
         self.pos = end;
-        Ok((Move::new(path, length, feed, &AxisLimit::for_channel(cfg), exact_stop, line), feed))
+        Ok((Move::new(path, length, feed, limits, exact_stop, line), feed))
     }
 }
 
@@ -982,7 +1001,7 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
             continue;
         }
         let (s, e) = (path.start[k], path.end[k]);
-        let moves = (e - s).abs() > 1e-12 || path.arc.is_some_and(|a| a.moves_axis(k));
+        let moves = (e - s).abs() > 1e-12 || path.arc.as_ref().is_some_and(|a| a.moves_axis(k));
         if !moves {
             continue;
         }

@@ -397,7 +397,7 @@ pub(super) fn collect(
     let line = block.line;
     let mut w = Words::default();
     // Addresses seen so far (each may appear once per block).
-    let mut seen: Vec<&str> = Vec::new();
+    let mut seen = Seen::default();
     for word in &block.words {
         match word {
             Word::G(code) => g_function(&mut w, *code, line)?,
@@ -541,7 +541,7 @@ pub(super) fn collect(
             Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
             Word::Address { name, indices, value } => {
-                match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
+                let axis = match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,
                     Assigned::Data(text) => {
                         w.data_writes.push(text);
@@ -555,13 +555,12 @@ pub(super) fn collect(
                         w.toff.push(op);
                         continue;
                     }
-                    Assigned::Address => {}
-                }
+                    Assigned::Address(axis) => axis,
+                };
                 if name == "TCARR" {
-                    if seen.contains(&name.as_str()) {
+                    if !seen.insert(name) {
                         return Err(Alarm::repeated_address(line, name));
                     }
-                    seen.push(name);
                     w.tcarr = Some(eval(&value.expr, &Ctx { vars, sys }, line)?);
                     continue;
                 }
@@ -573,11 +572,10 @@ pub(super) fn collect(
                         Ok(v as u32)
                     }
                 };
-                if seen.contains(&name.as_str()) {
+                if !seen.insert(name) {
                     return Err(Alarm::repeated_address(line, name));
                 }
-                seen.push(name);
-                match name.as_str() {
+                match &**name {
                     "F" => w.feed = Some(v),
                     "S" => w.speed = Some(v),
                     "T" => w.tool = Some(whole("T")?),
@@ -611,7 +609,7 @@ pub(super) fn collect(
                         w.ijk[g] = Some((v, value.mode == Some(CoordMode::Ac)));
                     }
                     _ => {
-                        let k = cfg.program_axis(name).ok_or_else(|| Alarm::unknown_name(line, name))?;
+                        let k = axis.ok_or_else(|| Alarm::unknown_name(line, name))?;
                         if cfg.axis(k).spindle.is_some() && !sys.positioned[k] {
                             return Err(Alarm::unknown_name(
                                 line,
@@ -629,13 +627,39 @@ pub(super) fn collect(
 
 /// Performs `name[indices] = expr` if `name` is an R parameter or a variable; returns false
 /// for addresses (axes, F, S, ...), which the caller handles.
+/// The addresses of a block seen so far (each may appear once): the first few on the stack,
+/// so a plain block allocates nothing for the check.
+#[derive(Default)]
+struct Seen<'a> {
+    first: [&'a str; 8],
+    len: usize,
+    more: Vec<&'a str>,
+}
+
+impl<'a> Seen<'a> {
+    /// Notes `name`; false if it was seen before.
+    fn insert(&mut self, name: &'a str) -> bool {
+        if self.first[..self.len].contains(&name) || self.more.contains(&name) {
+            return false;
+        }
+        if self.len < self.first.len() {
+            self.first[self.len] = name;
+            self.len += 1;
+        } else {
+            self.more.push(name);
+        }
+        true
+    }
+}
+
 /// What an assignment-shaped word turned out to be.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) enum Assigned {
     /// A variable or R parameter was written.
     Variable,
-    /// An NC address (axis, F, S, ...): the caller handles it.
-    Address,
+    /// An NC address (axis, F, S, ...): the caller handles it. Carries the channel axis the
+    /// name resolves to, if any, so the caller need not look it up a second time.
+    Address(Option<usize>),
     /// Tool data, frame data or machine data, as NC data text.
     Data(String),
     /// A new value of a link of the frame chain (`$P_PFRAME=...`, `$P_SETFRAME=...`).
@@ -693,10 +717,11 @@ pub(super) fn assign(
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
     }
     if vars.get(name).is_none() {
-        if !indices.is_empty() || cfg.program_axis(name).is_none() && !is_nc_address(name) {
+        let axis = cfg.program_axis(name);
+        if !indices.is_empty() || axis.is_none() && !is_nc_address(name) {
             return Err(Alarm::unknown_name(line, name));
         }
-        return Ok(Assigned::Address);
+        return Ok(Assigned::Address(axis));
     }
     let ctx = Ctx { vars, sys };
     let value = eval(expr, &ctx, line)?;
@@ -948,4 +973,23 @@ fn m_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
     }
     // Other M functions go to the PLC and need no NC reaction here.
     Ok(())
+}
+
+#[cfg(test)]
+mod seen_tests {
+    use super::Seen;
+
+    #[test]
+    fn a_name_is_seen_once_on_the_stack_and_beyond() {
+        let names = ["X", "Y", "Z", "F", "S", "T", "D", "I", "J", "K", "CR"];
+        let mut seen = Seen::default();
+        for n in names {
+            assert!(seen.insert(n), "{n} is new");
+        }
+        // "X" sits in the fixed part, "K" and "CR" (9th and 11th) in the overflow.
+        for n in ["X", "K", "CR"] {
+            assert!(!seen.insert(n), "{n} is repeated");
+        }
+        assert!(seen.insert("A"));
+    }
 }

@@ -348,7 +348,7 @@ impl Interpreter {
         let moving = block.words.iter().any(|w| match w {
             Word::Address { name, .. } => {
                 derived.as_deref().unwrap_or(cfg).program_axis(name).is_some()
-                    || matches!(name.as_str(), "I" | "J" | "K" | "CR")
+                    || matches!(&**name, "I" | "J" | "K" | "CR")
             }
             _ => false,
         });

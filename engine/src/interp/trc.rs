@@ -543,7 +543,7 @@ fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensa
         Elem::Arc { r, a0, sweep, .. } => Path {
             start: start3,
             end: end3,
-            arc: Some(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep }),
+            arc: Some(Box::new(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep })),
             ori: None,
         },
     };
@@ -641,7 +641,7 @@ fn finish_between(
                 arc.u[extra] += k * comp.u[rot];
                 arc.v[extra] += k * comp.v[rot];
             }
-            (Path { start: start3, end: end3, arc: Some(arc), ori: None }, feed)
+            (Path { start: start3, end: end3, arc: Some(Box::new(arc)), ori: None }, feed)
         }
     };
     let length = path_length(&path);

@@ -75,7 +75,7 @@ pub enum Word {
     M(u32),
     /// An address or assignment: `X10`, `F=100`, `CR=5`, `X=AC(10)`, `R1=2`, `ABC[2]=R1`,
     /// `$TC_DP1[1,1]=120`.
-    Address { name: String, indices: Vec<Expr>, value: AddressValue },
+    Address { name: super::name::Name, indices: Vec<Expr>, value: AddressValue },
     /// A bare keyword or call: `SUPA`, `TRAFOOF`, `TRANSMIT(1)`, `MSG("x")`, `L100`-style calls.
     Keyword { name: String, args: Vec<Expr> },
     /// `GOTOF LABEL` and its kin at the end of a block.

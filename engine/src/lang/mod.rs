@@ -6,6 +6,7 @@
 
 pub mod ast;
 mod cursor;
+pub mod name;
 mod parser;
 mod plain_line;
 mod structure;

@@ -45,7 +45,7 @@ pub struct Path {
     pub start: AxisVec,
     pub end: AxisVec,
     /// `None`: linear interpolation of every axis.
-    pub arc: Option<Arc>,
+    pub arc: Option<Box<Arc>>,
     /// The tool orientation when it is interpolated as a vector (an orientation
     /// transformation's rotary axes then follow it); `None`: the axes interpolate.
     pub ori: Option<Box<OriPath>>,
@@ -82,7 +82,10 @@ impl Path {
         let mut end = [0.0; MAX_CHANNEL_AXES];
         self.at(u0, &mut start);
         self.at(u1, &mut end);
-        let arc = self.arc.map(|a| Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..a });
+        let arc = self
+            .arc
+            .as_ref()
+            .map(|a| Box::new(Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..**a }));
         let ori = self.ori.as_ref().map(|o| Box::new(o.slice(u0, u1)));
         Path { start, end, arc, ori }
     }
@@ -127,7 +130,11 @@ impl Path {
             Some(arc) => {
                 let (linear, _) = self.arc_parts(arc);
                 for (k, rk) in r.iter_mut().enumerate() {
-                    let circle = arc.radius * arc.sweep.abs() * arc.u[k].hypot(arc.v[k]);
+                    // Most axes are outside the circle's plane: skip libm's hypot for them
+                    // (hypot(0, 0) is 0 as well).
+                    let (u, v) = (arc.u[k], arc.v[k]);
+                    let span = if u == 0.0 && v == 0.0 { 0.0 } else { u.hypot(v) };
+                    let circle = arc.radius * arc.sweep.abs() * span;
                     *rk = linear[k].abs() + circle;
                 }
             }
@@ -201,7 +208,7 @@ mod tests {
         start[0] = 10.0;
         end[0] = -10.0;
         end[2] = 4.0;
-        Path { start, end, arc: Some(Arc::in_plane(0, 1, 10.0, 0.0, PI)), ori: None }
+        Path { start, end, arc: Some(Box::new(Arc::in_plane(0, 1, 10.0, 0.0, PI))), ori: None }
     }
 
     #[test]
@@ -245,7 +252,7 @@ mod tests {
         let mut end = [0.0; MAX_CHANNEL_AXES];
         start[0] = 5.0;
         end[0] = -5.0;
-        let p = Path { start, end, arc: Some(arc), ori: None };
+        let p = Path { start, end, arc: Some(Box::new(arc)), ori: None };
         let mut q = [0.0; MAX_CHANNEL_AXES];
         for i in 0..=20 {
             p.at(i as f64 / 20.0, &mut q);

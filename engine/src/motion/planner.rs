@@ -634,7 +634,7 @@ mod tests {
         (start[0], start[1], start[2]) = (10.0, -3.5, 1.25);
         (end[0], end[1], end[2]) = (-2.0, 7.0, -4.0);
         for arc in [None, Some(Arc::in_plane(0, 1, 6.3, 0.7, -2.9)), Some(Arc::in_plane(2, 0, 1.1, -1.3, 5.5))] {
-            let path = Path { start, end, arc, ori: None };
+            let path = Path { start, end, arc: arc.map(Box::new), ori: None };
             let mut ends = None;
             for i in 0..=1000 {
                 let u = f64::from(i) / 1000.0;

@@ -21,7 +21,11 @@ fn expr(src: &str) -> Expr {
 }
 
 fn num(name: &str, v: f64) -> Word {
-    Word::Address { name: name.into(), indices: vec![], value: AddressValue { mode: None, expr: Expr::Number(v) } }
+    Word::Address {
+        name: name.to_string().into(),
+        indices: vec![],
+        value: AddressValue { mode: None, expr: Expr::Number(v) },
+    }
 }
 
 fn bin(op: BinOp, a: Expr, b: Expr) -> Expr {
