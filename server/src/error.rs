@@ -126,6 +126,11 @@ impl From<MdError> for ApiError {
 
 impl From<crate::storage::StorageError> for ApiError {
     fn from(e: crate::storage::StorageError) -> ApiError {
+        if let Some(held) = e.held_by {
+            // Not a storage failure: another node took the session between this node's routing
+            // check and the write (the write was refused, nothing changed).
+            return ApiError::WrongNode { session: held.session, node: held.node, seconds_left: held.seconds_left };
+        }
         tracing::error!(error = %e, "storage failed; the change was not saved");
         ApiError::StorageUnavailable(format!("not saved: {e}"))
     }

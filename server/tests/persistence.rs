@@ -135,7 +135,7 @@ struct BreakableStorage {
 
 impl BreakableStorage {
     fn ok(&self) -> Result<(), StorageError> {
-        if self.broken.load(Ordering::Relaxed) { Err(StorageError("disk full".into())) } else { Ok(()) }
+        if self.broken.load(Ordering::Relaxed) { Err(StorageError::new("disk full")) } else { Ok(()) }
     }
 }
 

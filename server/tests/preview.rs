@@ -129,3 +129,33 @@ async fn points_come_in_the_wcs_and_the_bcs_apart_by_the_work_offset() {
     let (w, b) = (*wcs.last().unwrap(), *bcs.last().unwrap());
     assert!(near(w, [10.0, 20.0, 30.0]) && near(b, [110.0, 70.0, 10.0]), "WCS {w:?} BCS {b:?}");
 }
+
+#[tokio::test]
+async fn points_under_tracyl_carry_the_working_diameter_and_the_others_none() {
+    let server = Server::start().await;
+    let id = server.session("tracyl-xyzc").await;
+    // Line 3 selects TRACYL with d = 40; lines 4 and 5 run on the unrolled surface (Y up to 60
+    // of arc length), line 6 deselects it and line 7 moves Cartesian again.
+    let program = "T1 D1 G19\nG0 X60 Z-20\nTRACYL(40)\nG1 X20 Y0 Z-20 F3000\nG1 Y60\nTRAFOOF\nG0 X60\nM30\n";
+    let reply = server.post(&format!("/sessions/{id}/preview"), json!({ "program": program })).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["outcome"], "ended", "{}", reply.body);
+    let lines: Vec<u64> = reply.body["lines"].as_array().unwrap().iter().map(|l| l.as_u64().unwrap()).collect();
+    let diameters = reply.body["tracyl_diameter"].as_array().expect("tracyl_diameter").clone();
+    assert_eq!(diameters.len(), lines.len());
+    let basic = list(&reply.body, "basic");
+    for ((line, d), p) in lines.iter().zip(&diameters).zip(&basic) {
+        match line {
+            1 | 2 | 7 => assert!(d.is_null(), "line {line} ran without TRACYL: {d}"),
+            4 | 5 => assert_eq!(d.as_f64(), Some(40.0), "line {line} at {p:?}"),
+            _ => {}
+        }
+    }
+    // Line 5 runs on the unrolled surface up to Y = 60 mm of arc, under d = 40: its last sample
+    // lies within one sampling step of the end (8 ms at F3000 = 3000 / 60 * 0.008 = 0.4 mm).
+    let end = lines.iter().zip(&diameters).zip(&basic).rfind(|((l, _), _)| **l == 5).expect("line 5 sampled");
+    assert!(
+        (end.1[1] - 60.0).abs() < 0.4 && (end.1[0] - 20.0).abs() < 1e-9 && end.0.1.as_f64() == Some(40.0),
+        "{end:?}"
+    );
+}

@@ -14,8 +14,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
 use common::Server;
+use nctwin_engine::lang::ProgramText;
 use nctwin_server::storage::{
-    self, Checkpoint, Claim, Lease, MemoryStorage, PostgresStorage, SessionRecord, SqliteStorage, Storage, TokenHashes,
+    self, ActiveProgram, Checkpoint, Claim, Lease, MemoryStorage, PostgresStorage, SessionRecord, SqliteStorage,
+    Storage, TokenHashes,
 };
 use nctwin_server::{AppState, Config};
 use pg::postgres_database;
@@ -34,8 +36,32 @@ fn record(id: &str, number: u64) -> SessionRecord {
             positions: vec![1.5, -0.1, 0.0],
             mode: "AUTO".into(),
             channel_state: Some(r#"{"retained":{"tool":3}}"#.into()),
+            active_program: None,
         },
     }
+}
+
+/// SHA-256 in hex, by the `sha2` crate directly (what the storage keys the text by).
+fn sha256_hex(text: &str) -> String {
+    use sha2::{Digest, Sha256};
+    Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// A program of `bytes` bytes that no compressor shrinks much (random digits in comments).
+fn incompressible_program(bytes: usize, seed: u64) -> String {
+    let mut state = seed;
+    let mut text = String::with_capacity(bytes + 80);
+    while text.len() < bytes {
+        text.push_str("; ");
+        for _ in 0..60 {
+            // A 64-bit LCG (Knuth's MMIX constants); the high bits are the random ones.
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            text.push(char::from(b'0' + (state >> 60) as u8 % 10));
+        }
+        text.push('\n');
+    }
+    text.push_str("M30\n");
+    text
 }
 
 // ---- the shared test bodies ------------------------------------------------------------------
@@ -60,6 +86,7 @@ fn exercise(storage: &dyn Storage) {
         positions: vec![0.1 + 0.2, 1e-300, -7.0, -0.0, f64::MAX, 5e-324],
         mode: "JOG".into(),
         channel_state: None,
+        active_program: Some(ActiveProgram::hashed(ProgramText::from("G0 X1\nM0\nM30"))),
     };
     storage.save_checkpoint("s1", &moved).expect("checkpoint");
     let both = [("s2".to_string(), record("s2", 2).checkpoint), ("gone".to_string(), moved.clone())];
@@ -75,6 +102,14 @@ fn exercise(storage: &dyn Storage) {
     assert_eq!(all[0].programs[1].1, "G0 X2\nM30");
     assert_eq!(all[1].record, record("s2", 2));
     assert!(all[1].programs.is_empty());
+
+    // A checkpoint without an AUTO program drops the stored one; a new one replaces it.
+    let mut plain = moved.clone();
+    plain.active_program = None;
+    storage.save_checkpoint("s1", &plain).expect("checkpoint without a program");
+    assert_eq!(storage.load().expect("load")[0].record.checkpoint.active_program, None);
+    storage.save_checkpoint("s1", &moved).expect("checkpoint with it again");
+    assert_eq!(storage.load().expect("load")[0].record.checkpoint, moved);
 
     // Creating a session again replaces it, and its programs go.
     let mut again = record("s1", 1);
@@ -103,6 +138,7 @@ fn survives_reopening(open: &dyn Fn() -> Box<dyn Storage>) {
             positions: vec![3.25],
             mode: "MDA".into(),
             channel_state: Some("{}".into()),
+            active_program: Some(ActiveProgram::hashed(ProgramText::from("G0 X1\nM30"))),
         };
         storage.save_checkpoint("s7", &checkpoint).expect("checkpoint");
     }
@@ -112,6 +148,8 @@ fn survives_reopening(open: &dyn Fn() -> Box<dyn Storage>) {
     assert_eq!(all[0].record.checkpoint.positions, vec![3.25]);
     assert_eq!(all[0].record.checkpoint.mode, "MDA");
     assert_eq!(all[0].record.checkpoint.channel_state.as_deref(), Some("{}"));
+    let active = all[0].record.checkpoint.active_program.as_ref().expect("the active program");
+    assert_eq!((&*active.text, active.sha256.as_str()), ("G0 X1\nM30", sha256_hex("G0 X1\nM30").as_str()));
     assert_eq!(all[0].programs, vec![("P".to_string(), "M30".to_string())]);
 }
 
@@ -208,7 +246,7 @@ fn postgres_nodes_share_one_database_and_the_schema_is_versioned() {
     a.create_session(&record("s1", 1)).expect("create on a");
     a.put_program("s1", "P", "M30").expect("program on a");
     let refused = b.put_program("s1", "Q", "M30").expect_err("b does not hold s1");
-    assert!(refused.0.contains("node `a`"), "{refused}");
+    assert!(refused.message.contains("node `a`"), "{refused}");
     assert!(b.save_checkpoint("s1", &record("s1", 1).checkpoint).is_err(), "nor may b save its checkpoint");
     assert!(b.delete_session("s1").is_err(), "nor delete it");
     assert!(b.load().expect("load on b").is_empty(), "b loads only what it may serve");
@@ -217,12 +255,48 @@ fn postgres_nodes_share_one_database_and_the_schema_is_versioned() {
 
     let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
     let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
-    assert_eq!(version, 2);
+    assert_eq!(version, 3);
     let sync: String = admin.query_one("SHOW synchronous_commit", &[]).expect("show").get(0);
     assert!(!sync.is_empty());
     admin.execute("INSERT INTO nctwin_schema (version) VALUES (99)", &[]).expect("a newer schema");
     let refused = PostgresStorage::open(&url).expect_err("a newer schema is refused");
-    assert!(refused.0.contains("newer"), "{refused}");
+    assert!(refused.message.contains("newer"), "{refused}");
+}
+
+/// The AUTO program's text is written with the first checkpoint that refers to it and not
+/// again while it is unchanged: its row keeps the transaction id (`xmin`) of that first write,
+/// while the session row is rewritten by every checkpoint. A changed program is written.
+#[test]
+fn postgres_writes_the_active_program_only_when_it_changed() {
+    let Some(url) = postgres_database("active") else { return };
+    let storage = PostgresStorage::open_as(&url, node("a", 60)).expect("open");
+    let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+    let xmin = |admin: &mut postgres::Client, table: &str, column: &str| -> String {
+        let sql = format!("SELECT xmin::text FROM {table} WHERE {column} = 's1'");
+        admin.query_one(sql.as_str(), &[]).expect("row").get(0)
+    };
+    storage.create_session(&record("s1", 1)).expect("create");
+    let first = incompressible_program(1 << 20, 1);
+    let mut checkpoint = record("s1", 1).checkpoint;
+    checkpoint.active_program = Some(ActiveProgram::hashed(ProgramText::from(first.as_str())));
+    storage.save_checkpoint("s1", &checkpoint).expect("first checkpoint");
+    let written = xmin(&mut admin, "nctwin_active_programs", "session");
+    let session = xmin(&mut admin, "nctwin_sessions", "id");
+
+    checkpoint.positions[0] = 2.5;
+    storage.save_checkpoint("s1", &checkpoint).expect("second checkpoint");
+    storage.save_checkpoints(&[("s1".to_string(), checkpoint.clone())]).expect("shutdown checkpoint");
+    assert_ne!(xmin(&mut admin, "nctwin_sessions", "id"), session, "the session row was written");
+    assert_eq!(xmin(&mut admin, "nctwin_active_programs", "session"), written, "the text was not");
+
+    let second = incompressible_program(1 << 20, 2);
+    checkpoint.active_program = Some(ActiveProgram::hashed(ProgramText::from(second.as_str())));
+    storage.save_checkpoint("s1", &checkpoint).expect("a new program");
+    assert_ne!(xmin(&mut admin, "nctwin_active_programs", "session"), written, "a changed text is written");
+    let loaded = storage.load().expect("load");
+    let active = loaded[0].record.checkpoint.active_program.as_ref().expect("active program");
+    assert!(*active.text == *second && active.sha256 == sha256_hex(&second));
+    assert_eq!(loaded[0].record.checkpoint.positions[0], 2.5);
 }
 
 #[test]
@@ -247,7 +321,7 @@ fn a_lease_that_is_not_renewed_expires_and_another_node_takes_the_session_over()
     assert_eq!(saved.record, record("s1", 1));
     // a's late writes are refused; its renewal reports that s1 is gone, s2 (not taken) is kept.
     let late = a.save_checkpoint("s1", &record("s1", 1).checkpoint).expect_err("fenced");
-    assert!(late.0.contains("node `b`"), "{late}");
+    assert!(late.message.contains("node `b`"), "{late}");
     assert_eq!(a.renew_leases().expect("renew").map(sorted), Some(vec!["s2".to_string()]));
     // b gives its leases up (shutdown): a may take s1 back at once.
     b.release_leases().expect("release");
@@ -294,7 +368,7 @@ fn postgres_schema_1_is_migrated_without_losing_data() {
     assert_eq!(all[0].programs, vec![("MAIN".to_string(), "G0 X1\nM30".to_string())]);
     assert_eq!(storage.next_session_number().expect("number"), Some(8), "above the stored s7");
     let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
-    assert_eq!(version, 2);
+    assert_eq!(version, 3);
 }
 
 #[test]
@@ -331,8 +405,61 @@ fn sqlite_schema_1_is_migrated_without_losing_data() {
         .expect("open")
         .query_row("PRAGMA user_version", [], |r| r.get(0))
         .expect("version");
-    assert_eq!(version, 2);
+    assert_eq!(version, 3);
     assert_eq!(SqliteStorage::open(&path).expect("reopen").load().expect("load")[0].record.checkpoint, checkpoint);
+}
+
+/// A session saved by schema version 2 (the AUTO program's text inline in the channel state)
+/// is migrated and restored: the program stopped at its M0 comes back stopped there, and its
+/// next checkpoint moves the text into the active program's row.
+#[tokio::test]
+async fn a_sqlite_session_of_schema_2_with_its_program_inline_is_restored() {
+    let dir = common::temp_data_dir();
+    std::fs::create_dir_all(&dir).expect("data dir");
+    let mut channel = nctwin_engine::Channel::from_preset("mill-3axis", "").expect("preset");
+    channel.run_program("G0 X1\nM0\nG0 X2\nM30").expect("run");
+    for _ in 0..100_000 {
+        if !channel.is_busy() {
+            break;
+        }
+        channel.step();
+    }
+    // What schema version 2 wrote: the full state, text included.
+    let state = serde_json::to_string(&channel.resume_state()).expect("json");
+    assert!(state.contains("G0 X2"), "{state}");
+    {
+        let c = rusqlite::Connection::open(dir.join(storage::SQLITE_FILE)).expect("create");
+        c.execute_batch(
+            "CREATE TABLE sessions (
+                 id TEXT PRIMARY KEY, number INTEGER NOT NULL, machine TEXT NOT NULL, client_ip TEXT,
+                 owner_hash TEXT NOT NULL, operator_hash TEXT NOT NULL, observer_hash TEXT NOT NULL,
+                 machine_data TEXT NOT NULL, positions TEXT NOT NULL, mode TEXT NOT NULL, channel_state TEXT);
+             CREATE TABLE programs (
+                 session TEXT NOT NULL REFERENCES sessions(id) ON DELETE CASCADE,
+                 name TEXT NOT NULL, text TEXT NOT NULL, PRIMARY KEY (session, name));
+             PRAGMA user_version = 2;",
+        )
+        .expect("a version 2 file");
+        let positions = serde_json::to_string(channel.axis_positions()).expect("json");
+        c.execute(
+            "INSERT INTO sessions VALUES ('s7', 7, 'mill-3axis', NULL, 'o', 'p', 'v', ?1, ?2, 'AUTO', ?3)",
+            rusqlite::params![channel.machine_data().to_text(), positions, state],
+        )
+        .expect("a version 2 row");
+    }
+    let server = Server::start_config(Config::new(dir.clone(), common::WEB_DIR)).await;
+    let state = server.get("/sessions/s7/state").await.body;
+    assert_eq!((state["status"].as_str(), state["block"]["line"].as_i64()), (Some("stopped"), Some(2)), "{state}");
+    // The shutdown's checkpoint writes the text to its own row and leaves it out of the state.
+    let dir = server.stop().await;
+    let all = SqliteStorage::open(&dir.join(storage::SQLITE_FILE)).expect("reopen").load().expect("load");
+    let checkpoint = &all[0].record.checkpoint;
+    assert_eq!(checkpoint.active_program.as_ref().map(|p| &*p.text), Some("G0 X1\nM0\nG0 X2\nM30"));
+    assert!(!checkpoint.channel_state.as_deref().unwrap_or("").contains("G0 X2"), "{checkpoint:?}");
+    let server = Server::start_config(Config::new(dir.clone(), common::WEB_DIR)).await;
+    let reply = server.post("/sessions/s7/start", json!({"pace": "fast", "wait": true})).await;
+    assert_eq!((reply.body["status"].as_str(), common::pos(&reply.body, "machine", "X")), (Some("idle"), 2.0));
+    let _ = std::fs::remove_dir_all(server.stop().await);
 }
 
 #[test]
@@ -374,11 +501,11 @@ fn postgres_reconnects_after_the_connection_broke() {
 fn an_unknown_database_scheme_is_refused() {
     let error =
         storage::open(Some("mysql://u@h/db"), &TempDir::new("scheme").0, Lease::default()).expect_err("refused");
-    assert!(error.0.contains("mysql"), "{error}");
+    assert!(error.message.contains("mysql"), "{error}");
     assert!(storage::open(Some("postgres://u@[bad"), &TempDir::new("bad").0, Lease::default()).is_err(), "invalid URL");
     // No TLS in this build: a URL that requires it is refused before any connection is tried.
     let tls = PostgresStorage::open("postgres://u@127.0.0.1:1/db?sslmode=require").expect_err("refused");
-    assert!(tls.0.contains("sslmode=require") && tls.0.contains("no TLS"), "{tls}");
+    assert!(tls.message.contains("sslmode=require") && tls.message.contains("no TLS"), "{tls}");
 }
 
 /// The whole server on PostgreSQL: sessions and programs survive a restart, and health says
@@ -408,6 +535,24 @@ async fn the_server_restarts_on_postgres() {
     assert_eq!(state["positions"], before["positions"]);
     let program = server.get(&format!("/sessions/{id}/programs/MAIN")).await.body;
     assert_eq!(program["text"], "G0 X1\nM30");
+    // An AUTO program stopped at its M0 comes back stopped there (its text from the active
+    // program's row), and NC start goes on behind the M0.
+    let reply = server
+        .post(&format!("/sessions/{id}/run"), json!({"program": "G0 X1\nM0\nG0 X2\nM30", "pace": "fast", "wait": true}))
+        .await;
+    assert_eq!(
+        (reply.body["status"].as_str(), reply.body["block"]["line"].as_i64()),
+        (Some("stopped"), Some(2)),
+        "{}",
+        reply.body
+    );
+    let dir = server.stop().await;
+    let _ = std::fs::remove_dir_all(dir);
+    let server = Server::start_config(config()).await;
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!((state["status"].as_str(), state["block"]["line"].as_i64()), (Some("stopped"), Some(2)), "{state}");
+    let reply = server.post(&format!("/sessions/{id}/start"), json!({"pace": "fast", "wait": true})).await;
+    assert_eq!((reply.body["status"].as_str(), common::pos(&reply.body, "machine", "X")), (Some("idle"), 2.0));
     // The last `AppState` (and with it the PostgreSQL client) is dropped on an async thread.
     drop(server);
 }
@@ -465,5 +610,48 @@ async fn a_node_that_lost_a_lease_stops_serving_the_session() {
     assert_eq!(server.get("/sessions").await.body, json!([]), "no longer listed here");
     let write = server.put(&format!("/sessions/{id}/programs/P"), json!({"text": "M30"})).await;
     assert_eq!(write.status, StatusCode::MISDIRECTED_REQUEST, "{}", write.body);
+    drop(server);
+}
+
+/// A write that finds the session's lease taken after this node routed the request to itself
+/// (here: before any heartbeat noticed, the lease period being a minute) is refused with 421
+/// naming the holder, not 503, and this node stops serving the session at once.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_write_that_finds_the_lease_taken_answers_421_naming_the_holder() {
+    let Some(url) = tokio::task::spawn_blocking(|| postgres_database("taken")).await.expect("task") else {
+        return;
+    };
+    let config = Config {
+        database: Some(url.clone()),
+        node_id: Some("a".into()),
+        lease_period: Duration::from_secs(60),
+        ..Config::new(common::temp_data_dir(), common::WEB_DIR)
+    };
+    let server = Server::start_config(config).await;
+    let id = server.session("mill-3axis").await;
+    let key = id.clone();
+    tokio::task::spawn_blocking(move || {
+        let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+        admin
+            .execute(
+                "UPDATE nctwin_sessions SET lease_node = 'b', lease_expires = now() + interval '30 seconds' WHERE id = $1",
+                &[&key],
+            )
+            .expect("take over");
+    })
+    .await
+    .expect("task");
+    // Still served here (no heartbeat yet): the write reaches the database and is fenced.
+    assert_eq!(server.get(&format!("/sessions/{id}/state")).await.status, StatusCode::OK);
+    let write = server.put(&format!("/sessions/{id}/programs/P"), json!({"text": "M30"})).await;
+    assert_eq!(write.status, StatusCode::MISDIRECTED_REQUEST, "{}", write.body);
+    let message = write.body["error"].as_str().expect("message");
+    assert!(message.contains("node `b`") && message.contains(&format!("`{id}`")), "{message}");
+    // The lease runs 30 s: the message says so, rounded (29 or 30 by the time it is read).
+    assert!(message.contains("another 30 s") || message.contains("another 29 s"), "{message}");
+    // Not served here any more: 421 from the routing check too, and not listed.
+    let reply = server.get(&format!("/sessions/{id}/state")).await;
+    assert_eq!(reply.status, StatusCode::MISDIRECTED_REQUEST, "{}", reply.body);
+    assert_eq!(server.get("/sessions").await.body, json!([]));
     drop(server);
 }

@@ -546,6 +546,183 @@ async function main() {
       await page.click("#btn-reset");
     });
 
+    /** Opens a new session of `machine`, runs `program` in `pace` and waits for its M0. */
+    const runOn = async (machine, program, pace = "fast") => {
+      await page.goto(`${BASE}/?machine=${machine}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.evaluate(async ([text, pace]) => {
+        const id = new URL(location.href).searchParams.get("session");
+        const res = await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ program: text, pace }) });
+        if (!res.ok) throw new Error(`run: ${res.status} ${await res.text()}`);
+      }, [program, pace]);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped", null, { timeout: 30_000 });
+    };
+    const axisShows = (axis, value) =>
+      page.waitForFunction(([a, v]) => Math.abs(Number(document.querySelector(`#positions [data-axis="${a}"]`)?.textContent) - v) < 1e-3, [axis, value]);
+
+    await step("3D view: mill6-generic draws three head axes; the model's tip is the engine's at A20 B30 C45", async () => {
+      // The tip depends on the 3rd axis' offset l23 (JOINT_OFFSET_2_3 = −80 from the B pivot
+      // to the A bearing): a model without it puts the tool 80 mm further up along its axis.
+      await runOn("mill6-generic", "T1 D1\nTRAORI\nG1 X10 Y20 Z50 A20 B30 C45 F8000\nM0\nM30\n");
+      await axisShows("B", 30);
+      const caption = await page.evaluate(() => ({ ...document.getElementById("view3d-caption")?.dataset }));
+      if (caption.head !== "3" || caption.table !== "0") throw new Error(`caption data: ${JSON.stringify(caption)}`);
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(typeof error === "number" && error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's`);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-mill6.png") });
+    });
+
+    await step("3D view: mill7-generic has the 7th-axis table; it turns with C1 and carries the workpiece", async () => {
+      // TRAFO7_EXT_AXIS1 = +Z, offset 0: C1 = 60 turns the workpiece right-handedly by 60°
+      // about +Z. The engine's BCS tip is on that turned workpiece: a model whose table stood
+      // still would miss (10, 20) by 2·|(10, 20)|·sin(30°) = 22.4 mm.
+      await runOn("mill7-generic", "T1 D1\nTRAORI\nG1 X10 Y20 Z50 A20 B30 C45 C1=60 F8000\nM0\nM30\n");
+      await axisShows("C1", 60);
+      const caption = await page.evaluate(() => ({ ...document.getElementById("view3d-caption")?.dataset }));
+      if (caption.head !== "3" || caption.table !== "1") throw new Error(`caption data: ${JSON.stringify(caption)}`);
+      const turn = await page.evaluate(() => window.__nctwin3d.partTurn([0, 0, 1]));
+      if (!(Math.abs(turn - 60) < 1e-6)) throw new Error(`workpiece turned by ${turn}°, not 60°`);
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(typeof error === "number" && error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's`);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-mill7.png") });
+    });
+
+    await step("3D view: a TRAORI_DYN chain (K12) builds the model from its elements; its tip is the engine's", async () => {
+      // The K12 C-A fork head: C 200 mm beside and 300 mm above the Z slide, A 100 below C,
+      // the tool reference 50 below A. The machine data's own TRAORI (A pivot 150 above the
+      // nose, no side offset) would miss by more than 200 mm, so only the chain model passes.
+      const chain = [
+        ["ROOT", "OFFSET", "X axis"],
+        ["X axis", "AXIS_LIN", "Y axis", [1, 0, 0], "X"],
+        ["Y axis", "AXIS_LIN", "Z axis", [0, 1, 0], "Y"],
+        ["Z axis", "AXIS_LIN", "C axis offset", [0, 0, 1], "Z"],
+        ["C axis offset", "OFFSET", "C axis", [200, 0, 300]],
+        ["C axis", "AXIS_ROT", "A axis offset", [0, 0, 1], "C"],
+        ["A axis offset", "OFFSET", "A axis", [0, 0, -100]],
+        ["A axis", "AXIS_ROT", "Spindle", [1, 0, 0], "A"],
+        ["Spindle", "OFFSET", "", [0, 0, -50]],
+      ]
+        .flatMap(([name, type, next, dir, axis], i) => [
+          `$NK_NAME[${i}]="${name}"`,
+          `$NK_TYPE[${i}]="${type}"`,
+          ...(next ? [`$NK_NEXT[${i}]="${next}"`] : []),
+          ...(dir ? dir.map((v, k) => `$NK_OFF_DIR[${i},${k}]=${v}`) : []),
+          ...(axis ? [`$NK_AXIS[${i}]="${axis}"`] : []),
+        ])
+        .concat([
+          '$NT_NAME[1]="Fork head"',
+          '$NT_TRAFO_TYPE[1]="TRAORI_DYN"',
+          '$NT_T_CHAIN_LAST_ELEM[1]="Spindle"',
+          '$NT_ROT_AX_NAME[1,0]="C axis"',
+          '$NT_ROT_AX_NAME[1,1]="A axis"',
+          ...["X", "Y", "Z"].map((g, k) => `$NT_GEO_AX_NAME[1,${k}]="${g} axis"`),
+          "NEWCONF",
+        ])
+        .join("\n");
+      const id = await page.evaluate(async (text) => {
+        const res = await fetch("/api/v1/sessions", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ machine: "mill5-head-ca" }) });
+        const id = (await res.json()).id;
+        const put = await fetch(`/api/v1/sessions/${id}/kinematic-chains`, { method: "PUT", headers: { "content-type": "text/plain" }, body: text });
+        if (!put.ok) throw new Error(`PUT kinematic-chains: ${put.status} ${await put.text()}`);
+        return id;
+      }, chain);
+      await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.evaluate(async (id) => {
+        const program = 'T1 D1\nTRAFOON("Fork head")\nG1 X10 Y20 Z50 A30 C45 F8000\nM0\nM30\n';
+        await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ program, pace: "fast" }) });
+      }, id);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped");
+      await axisShows("C", 45);
+      await page.waitForFunction(() => document.getElementById("view3d-caption")?.dataset.chain === "Fork head");
+      const caption = await page.evaluate(() => ({ ...document.getElementById("view3d-caption")?.dataset }));
+      if (caption.head !== "2" || caption.table !== "0") throw new Error(`caption data: ${JSON.stringify(caption)}`);
+      const error = await page.evaluate(() => window.__nctwin3d.tipError());
+      if (!(typeof error === "number" && error < 1e-3)) throw new Error(`model tip is ${error} mm from the engine's`);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-chain.png") });
+    });
+
+    await step("3D view: under TRACYL the executed path lies on the cylinder, Y as arc length", async () => {
+      // TRACYL(40) on tracyl-xyzc: X20 is the working radius, Y60 an arc of 60/20 rad =
+      // 171.89° about the spindle axis (machine Z). Drawn unrolled, the groove would be a
+      // straight line 60 mm long and its points up to √(20² + 60²) = 63 mm from the axis.
+      await runOn("tracyl-xyzc", "T1 D1 G19\nG0 X60 Z-20\nTRACYL(40)\nG1 X20 Y0 Z-20 F3000\nG1 Y60\nM0\nM30\n", "realtime");
+      await axisShows("Y", 60);
+      const groove = await page.evaluate(() =>
+        window.__nctwin3d
+          .pathPoints(100000)
+          .map(([x, y, z]) => ({ z, r: Math.hypot(x, y), a: (Math.atan2(y, x) * 180) / Math.PI }))
+          .filter((p) => Math.abs(p.z + 20) < 0.01 && Math.abs(p.a) > 1),
+      );
+      if (groove.length < 10) throw new Error(`only ${groove.length} groove points`);
+      const off = groove.find((p) => Math.abs(p.r - 20) > 0.01);
+      if (off) throw new Error(`groove point ${off.r} mm from the axis, not 20`);
+      const end = Math.max(...groove.map((p) => p.a));
+      if (!(Math.abs(end - (60 / 20) * (180 / Math.PI)) < 0.01)) throw new Error(`groove ends at ${end}°`);
+      await page.click("#btn-reset");
+    });
+
+    await step("3D view: the programmed TRACYL groove is drawn on the cylinder too (preview)", async () => {
+      // The same groove, selected for AUTO in a new session (C at 0, as the run above started):
+      // the preview marks its TRACYL points with d = 40 and the view wraps them: radius 20, up
+      // to 60 / 20 rad = 171.89°, as an arc of steps of at most 2°. Unwrapped, the groove would
+      // be a straight line up to √(20² + 60²) = 63 mm from the axis.
+      await page.goto(`${BASE}/?machine=tracyl-xyzc`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "GROOVE");
+      await page.fill(EDITOR, "T1 D1 G19\nG0 X60 Z-20\nTRACYL(40)\nG1 X20 Y0 Z-20 F3000\nG1 Y60\nTRAFOOF\nG0 X60\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /programmed GROOVE/.test(document.getElementById("view3d-preview")?.textContent || ""));
+      const groove = await page.evaluate(() =>
+        window.__nctwin3d
+          .programmedPath()
+          .map(([x, y, z]) => ({ z, r: Math.hypot(x, y), a: (Math.atan2(y, x) * 180) / Math.PI }))
+          .filter((p) => Math.abs(p.z + 20) < 0.01 && Math.abs(p.a) > 1),
+      );
+      if (groove.length < 80) throw new Error(`only ${groove.length} points on the programmed groove`);
+      const off = groove.find((p) => Math.abs(p.r - 20) > 0.01);
+      if (off) throw new Error(`programmed groove point ${off.r} mm from the axis, not 20`);
+      const end = Math.max(...groove.map((p) => p.a));
+      // The preview samples every 8 ms: its last groove point may lie up to 3000 / 60 · 0.008 =
+      // 0.4 mm of arc (0.4 / 20 rad = 1.15°) before the end.
+      if (!(Math.abs(end - (60 / 20) * (180 / Math.PI)) < 1.2)) throw new Error(`programmed groove ends at ${end}°`);
+      const steps = groove.slice(1).map((p, i) => Math.abs(p.a - groove[i].a));
+      if (Math.max(...steps) > 2.001) throw new Error(`programmed groove turns ${Math.max(...steps)}° in one step`);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-tracyl.png") });
+    });
+
+    await step("3D view: TRACYL on a mill (tracyl-xyzac): programmed and executed groove on the cylinder about Y", async () => {
+      // The cylinder on CM turns about the axial YC (machine +Y) through the machine zero; G19
+      // puts the tool length on the radial X. X30 Y60 under TRACYL(60): radius 30, an arc of
+      // 60 / 30 rad = 114.59° at machine Y = Z = −20, drawn by the preview and by the run.
+      await page.goto(`${BASE}/?machine=tracyl-xyzac`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "GROOVE");
+      await page.fill(EDITOR, "T1 D1 G17\nG0 X0 Y-20 Z150\nG19 TRACYL(60)\nG1 X30 Y0 Z-20 F3000\nG1 Y60\nM0\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /programmed GROOVE/.test(document.getElementById("view3d-preview")?.textContent || ""));
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped", null, { timeout: 30_000 });
+      const arcs = await page.evaluate(() => {
+        const groove = (points) =>
+          points
+            .map(([x, y, z]) => ({ y, r: Math.hypot(x, z), a: (Math.atan2(x, z) * 180) / Math.PI }))
+            .filter((p) => Math.abs(p.y + 20) < 0.01 && p.r < 40 && Math.abs(p.a) > 1);
+        return { executed: groove(window.__nctwin3d.pathPoints(100000)), programmed: groove(window.__nctwin3d.programmedPath()) };
+      });
+      for (const [name, arc] of Object.entries(arcs)) {
+        if (arc.length < 10) throw new Error(`${name}: only ${arc.length} groove points`);
+        const off = arc.find((p) => Math.abs(p.r - 30) > 0.01);
+        if (off) throw new Error(`${name} groove point ${off.r} mm from the cylinder axis, not 30`);
+        const end = Math.max(...arc.map((p) => p.a));
+        // One 8 ms preview sample at F3000 is 0.4 mm of arc = 0.76° on radius 30.
+        if (!(Math.abs(end - (60 / 30) * (180 / Math.PI)) < 0.8)) throw new Error(`${name} groove ends at ${end}°`);
+      }
+      await page.click("#btn-reset");
+    });
+
     await step("no error in the message bar", async () => {
       if (!(await page.locator("#message").isHidden())) {
         throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);

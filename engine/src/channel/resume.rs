@@ -18,6 +18,8 @@ use crate::lang::ProgramText;
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ResumeProgram {
+    /// The program text; empty in the state of [`Channel::resume_state_shared`], whose caller
+    /// stores the text elsewhere and puts it back before [`Channel::restore_resume_state`].
     pub text: String,
     /// The main run's block (1-based line) when the program was active; `None`: only loaded.
     pub line: Option<u32>,
@@ -38,20 +40,32 @@ pub struct ResumeState {
 impl Channel {
     /// The resumable state now (for a checkpoint).
     pub fn resume_state(&self) -> ResumeState {
+        let (mut state, text) = self.resume_state_shared();
+        if let (Some(program), Some(text)) = (state.program.as_mut(), text) {
+            program.text = text.to_string();
+        }
+        state
+    }
+
+    /// The resumable state without a copy of the AUTO program's text (up to the program size
+    /// limit, unchanged from one checkpoint to the next): its `program.text` is empty, and the
+    /// shared text comes beside it.
+    pub fn resume_state_shared(&self) -> (ResumeState, Option<ProgramText>) {
         let active = matches!(self.status, Status::Running | Status::Stopped);
         // Stopped without feed hold, interruption or a pending search: at a programmed stop
         // (or a single-block stop, whose block has no stop to skip).
+        // After a block search (a restart resumed here, say) the block's M0/M1 is still to come
+        // unless the restore took it away: then it stays done for the next restart too.
+        let stop_done = !self.search_approach || !self.pending.iter().any(|item| matches!(item, Item::Stop { kind: StopKind::M0 | StopKind::M1, line } if Some(*line) == self.current_line));
         let after_stop = self.status == Status::Stopped
             && !self.planner.is_held()
             && self.interrupted.is_none()
             && !self.repos_returning
-            && !self.search_approach;
-        let program = self.program.as_ref().filter(|_| self.program_mode == Mode::Auto).map(|text| ResumeProgram {
-            text: text.to_string(),
-            line: self.current_line.filter(|_| active),
-            after_stop,
-        });
-        ResumeState { retained: self.interp.retained(), program }
+            && stop_done;
+        let text = self.program.as_ref().filter(|_| self.program_mode == Mode::Auto);
+        let program =
+            text.map(|_| ResumeProgram { text: String::new(), line: self.current_line.filter(|_| active), after_stop });
+        (ResumeState { retained: self.interp.retained(), program }, text.cloned())
     }
 
     /// Takes back a saved resumable state; only in reset state with nothing moving. The
@@ -65,6 +79,8 @@ impl Channel {
         let machine = self.machine;
         self.interp.restore_retained(&state.retained, &self.cfg, &machine).map_err(CommandError::Invalid)?;
         self.offsets = self.interp.offsets();
+        // The online offset is in force at once, without a ramp: no axis moves.
+        self.toff = super::toff::OnlineOffset::at(self.offsets.toff);
         self.adopt_transformation();
         let Some(program) = &state.program else { return Ok(()) };
         CommandError::check(&program.text)?;
@@ -147,13 +163,84 @@ mod tests {
         assert_eq!((ch.status(), ch.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
         let saved = ch.resume_state();
         assert!(saved.program.as_ref().is_some_and(|p| p.after_stop && p.line == Some(2)), "{saved:?}");
-        let mut new = restart(&ch, "");
+        let new = restart(&ch, "");
+        assert_eq!((new.status(), new.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
+        // A second restart before NC start still knows the M0 is done.
+        let mut new = restart(&new, "");
         assert_eq!((new.status(), new.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
         new.start().expect("NC start");
         settle(&mut new);
         // One NC start: no second stop at M0, the program ends at X2.
         assert_eq!(new.status(), Status::Idle);
         assert_eq!(new.snapshot().machine[0], ("X".to_string(), 2.0));
+    }
+
+    #[test]
+    fn the_shared_state_hands_out_the_loaded_text_itself_not_a_copy() {
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.run_program("G0 X1\nM0\nG0 X2\nM30").expect("run");
+        settle(&mut ch);
+        let (state, text) = ch.resume_state_shared();
+        let (_, again) = ch.resume_state_shared();
+        let (text, again) = (text.expect("a program"), again.expect("a program"));
+        assert!(text.shares_text_with(&again), "two checkpoints share one text");
+        assert_eq!(&*text, "G0 X1\nM0\nG0 X2\nM30");
+        assert_eq!(state.program.as_ref().map(|p| (p.text.as_str(), p.line)), Some(("", Some(2))));
+        // The full state carries the text, and is the shared state with it put back.
+        let mut full = state.clone();
+        if let Some(p) = full.program.as_mut() {
+            p.text = text.to_string();
+        }
+        assert_eq!(ch.resume_state(), full);
+    }
+
+    #[test]
+    fn a_block_search_to_an_m0_keeps_the_stop_to_come_over_a_restart() {
+        // The operator searched to line 2 (M0) and has not started: NC start stops at the M0,
+        // before and after a restart.
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.set_mode(Mode::Auto).expect("auto");
+        ch.block_search(Some("G0 X1\nM0\nG0 X2\nM30"), 2).expect("search");
+        assert!(ch.resume_state().program.is_some_and(|p| !p.after_stop && p.line == Some(2)));
+        let mut new = restart(&ch, "");
+        new.start().expect("NC start");
+        settle(&mut new);
+        assert_eq!((new.status(), new.snapshot().block.map(|b| b.line)), (Status::Stopped, Some(2)));
+    }
+
+    #[test]
+    fn the_online_tool_offset_comes_back_in_force_without_moving_an_axis() {
+        // No tool, no transformation: TOFFON(Z, 5) adds 5 mm to the Z axis, so WCS Z10 is
+        // machine Z15; after the restart WCS Z still reads 10 and G0 Z20 goes to machine Z25.
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.run_program("G0 X0 Y0 Z10\nTOFFON(Z, 5)\nG0 Z10\nM30").expect("run");
+        settle(&mut ch);
+        let z = |c: &Channel| c.snapshot().machine.iter().find(|(n, _)| n == "Z").map(|(_, v)| *v).expect("Z");
+        assert!((z(&ch) - 15.0).abs() < 1e-9, "machine Z {}", z(&ch));
+        assert_eq!(ch.resume_state().retained.toff, [0.0, 0.0, 5.0]);
+        let mut new = restart(&ch, "");
+        assert!((wcs(&new, "Z") - 10.0).abs() < 1e-9, "WCS Z {}", wcs(&new, "Z"));
+        assert!(!new.is_busy(), "nothing moves");
+        new.run_program("G0 Z20\nM30").expect("run");
+        settle(&mut new);
+        assert!((z(&new) - 25.0).abs() < 1e-9, "machine Z {}", z(&new));
+    }
+
+    #[test]
+    fn a_search_in_a_stored_program_shares_its_text() {
+        let mut ch = Channel::from_preset("mill5-head-ca", "").expect("preset");
+        ch.store_program("PART", "G0 X1\nG0 X2\nM30").expect("store");
+        ch.set_mode(Mode::Auto).expect("auto");
+        assert!(ch.block_search_stored("nope", 2).is_err(), "an unknown name is refused");
+        ch.block_search_stored("part.mpf", 2).expect("search");
+        let (_, text) = ch.resume_state_shared();
+        let stored = ch.programs.get("PART").cloned().map(ProgramText::from).expect("stored");
+        assert_eq!(text.as_deref(), Some("G0 X1\nG0 X2\nM30"));
+        // One allocation: the stored Arc<str> is what both point into.
+        assert_eq!(text.map(|t| t.as_ptr()), Some(stored.as_ptr()));
+        ch.start().expect("NC start");
+        settle(&mut ch);
+        assert_eq!(ch.snapshot().machine[0], ("X".to_string(), 2.0));
     }
 
     #[test]

@@ -34,6 +34,30 @@ impl Channel {
     /// [`SEARCH_BLOCK_BUDGET`] blocks) raises alarm 15370; an alarm of a block before the target
     /// is raised as in a run.
     pub fn block_search(&mut self, text: Option<&str>, line: u32) -> Result<(), CommandError> {
+        self.search_allowed()?;
+        let text = match text {
+            Some(t) => {
+                CommandError::check(t)?;
+                Some(ProgramText::from(t))
+            }
+            None => None,
+        };
+        self.block_search_text(text, line)
+    }
+
+    /// [`Channel::block_search`] in stored program `name`, sharing its text (no copy of up to
+    /// the program size limit; it was checked when it was stored).
+    pub fn block_search_stored(&mut self, name: &str, line: u32) -> Result<(), CommandError> {
+        let text = self
+            .programs
+            .get(&super::programs::program_name(name)?)
+            .cloned()
+            .ok_or_else(|| CommandError::Invalid(format!("no stored program `{name}`")))?;
+        self.block_search_text(Some(ProgramText::from(text)), line)
+    }
+
+    /// Whether a block search may start now: AUTO mode, reset state, no alarm.
+    fn search_allowed(&self) -> Result<(), CommandError> {
         if self.mode != Mode::Auto {
             return Err(CommandError::WrongMode(self.mode.as_str(), "block search needs AUTO mode"));
         }
@@ -43,11 +67,13 @@ impl Channel {
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active; reset it before a block search"));
         }
+        Ok(())
+    }
+
+    fn block_search_text(&mut self, text: Option<ProgramText>, line: u32) -> Result<(), CommandError> {
+        self.search_allowed()?;
         let text: ProgramText = match text {
-            Some(t) => {
-                CommandError::check(t)?;
-                ProgramText::from(t)
-            }
+            Some(t) => t,
             None => self
                 .program
                 .clone()

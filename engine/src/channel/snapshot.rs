@@ -3,7 +3,7 @@
 
 use super::{Channel, Mode, Status};
 use crate::alarm::Alarm;
-use crate::kinematics::Transformation;
+use crate::kinematics::{AnyTrafo, Transformation};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::AxisVec;
 
@@ -21,6 +21,9 @@ pub struct TransformationInfo {
     pub name: String,
     pub trafo_type: u32,
     pub index: u32,
+    /// TRACYL: the working diameter of the selection (programmed Y is the arc length on it), so
+    /// a view can wrap the unrolled path onto the cylinder.
+    pub diameter: Option<f64>,
 }
 
 /// A consistent view of one channel at one IPO cycle.
@@ -146,6 +149,10 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         name: t.trafo.name().to_string(),
         trafo_type: t.trafo.trafo_type(),
         index: t.number as u32,
+        diameter: match &t.trafo {
+            AnyTrafo::Tracyl(c) => Some(c.diameter()),
+            _ => None,
+        },
     });
     Snapshot {
         status: ch.status,

@@ -45,6 +45,11 @@ pub(super) struct OnlineOffset {
 }
 
 impl OnlineOffset {
+    /// Standing at `current` (a restored channel: the machine position already includes it).
+    pub fn at(current: [f64; 3]) -> OnlineOffset {
+        OnlineOffset { current, rate: [0.0; 3] }
+    }
+
     /// One IPO cycle `dt` towards `target`: accelerate with `accel` up to `velocity`, and brake
     /// so as to stop on the target (never overshooting it).
     pub fn step(&mut self, target: &[f64; 3], velocity: f64, accel: f64, dt: f64) {

@@ -1,6 +1,6 @@
 //! What block preparation keeps over a channel reset (the active tool and cutting edge, the
-//! toolholder with its G groups, the system frames, the R parameters and a transformation that
-//! stays over reset): read out for a server checkpoint and put back after a restart, so a
+//! toolholder with its G groups, the system frames, the R parameters, a transformation that
+//! stays over reset and the online tool offset `$AA_TOFF`): read out for a server checkpoint and put back after a restart, so a
 //! restored channel in reset state is the channel that was saved.
 //!
 //! The modal G groups are not part of it: in reset state they are at their reset values
@@ -39,6 +39,10 @@ pub struct Retained {
     pub r: Vec<f64>,
     /// The active transformation; restored only where it stays over reset (MD20110 bit 7).
     pub transformation: Option<RetainedTransformation>,
+    /// The online tool length offset `$AA_TOFF` in the tool directions X, Y, Z: it stays over
+    /// reset here (see `toff.rs`), and the saved machine position already includes it.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub toff: [f64; 3],
 }
 
 impl Interpreter {
@@ -52,6 +56,7 @@ impl Interpreter {
             frames: (*self.system).clone(),
             r: self.vars.r[..used].to_vec(),
             transformation: self.active_selection().map(|(data_set, args)| RetainedTransformation { data_set, args }),
+            toff: self.offsets.toff,
         }
     }
 
@@ -63,6 +68,7 @@ impl Interpreter {
         let before = (self.offsets.clone(), self.holder.clone(), self.system.clone(), self.vars.r.clone());
         self.offsets.t = saved.tool;
         self.offsets.d = saved.edge;
+        self.offsets.toff = saved.toff;
         self.holder = saved.holder.clone();
         *self.system = saved.frames.clone();
         self.vars.r[..saved.r.len()].copy_from_slice(&saved.r);
@@ -97,8 +103,8 @@ fn check(saved: &Retained, cfg: &MachineConfig) -> Result<(), String> {
     let frames = [&f.part, &f.set, &f.ext, &f.wp, &f.tra, &f.tool, &f.cycle];
     let frame_values =
         frames.iter().flat_map(|fr| fr.trans.iter().chain(fr.lin.iter().flatten()).chain(fr.factor.iter()));
-    if angles.chain(frame_values).any(|v| !v.is_finite()) {
-        return Err("a toolholder angle or system frame value is not finite".into());
+    if angles.chain(frame_values).chain(saved.toff.iter()).any(|v| !v.is_finite()) {
+        return Err("a toolholder angle, system frame value or online tool offset is not finite".into());
     }
     Ok(())
 }

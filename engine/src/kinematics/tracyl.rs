@@ -56,6 +56,11 @@ impl Tracyl {
 }
 
 impl Tracyl {
+    /// The working diameter d of the selection: the unrolled Y is the arc length on it.
+    pub fn diameter(&self) -> f64 {
+        2.0 * self.radius
+    }
+
     /// With the groove-wall offset selected: the channel slots of the unrolled peripheral
     /// coordinate and of the real Y axis that travels the offset along the periphery.
     pub fn groove_wall_axes(&self) -> Option<(usize, usize)> {

@@ -16,6 +16,12 @@ impl ProgramText {
     pub fn from_owner(owner: impl AsRef<str> + Send + Sync + 'static) -> ProgramText {
         ProgramText(Arc::new(owner))
     }
+
+    /// Whether both share the same text (one allocation), without comparing it: a cheap
+    /// "unchanged" test for callers that cache something derived from a text (a hash, say).
+    pub fn shares_text_with(&self, other: &ProgramText) -> bool {
+        std::ptr::addr_eq(Arc::as_ptr(&self.0), Arc::as_ptr(&other.0))
+    }
 }
 
 impl Deref for ProgramText {
@@ -74,5 +80,7 @@ mod tests {
         assert_eq!(a, b);
         assert_eq!(b, c);
         assert_eq!(a.clone().lines().count(), 2);
+        assert!(a.shares_text_with(&a.clone()), "a clone shares the text");
+        assert!(!a.shares_text_with(&b), "an equal text elsewhere is not shared");
     }
 }

@@ -77,6 +77,10 @@ pub struct PreviewResponse {
     pub basic: Vec<[f64; 3]>,
     /// Program line (1-based) being executed at each point, 0 before the first block.
     pub lines: Vec<u32>,
+    /// At each point: the working diameter (mm) while TRACYL was active, else null. Such points
+    /// are on the unrolled surface (X radial, Y the arc length on this diameter, Z axial); a
+    /// view wraps them onto the cylinder.
+    pub tracyl_diameter: Vec<Option<f64>>,
     pub outcome: PreviewOutcome,
     /// The alarm that ended the run, when `outcome` is `alarm`.
     pub alarm: Option<AlarmInfo>,
@@ -209,6 +213,7 @@ pub fn trace(
         points: kept.iter().map(|s| s.wcs).collect(),
         basic: kept.iter().map(|s| s.bcs).collect(),
         lines: kept.iter().map(|s| s.line).collect(),
+        tracyl_diameter: kept.iter().map(|s| s.tracyl_diameter).collect(),
         outcome,
         alarm,
         time: channel.time(),
@@ -222,6 +227,8 @@ pub struct Sample {
     pub wcs: [f64; 3],
     pub bcs: [f64; 3],
     pub line: u32,
+    /// The TRACYL working diameter while TRACYL is active.
+    pub tracyl_diameter: Option<f64>,
 }
 
 /// The tool tip in the WCS and the BCS (geometry axes by name) and the current line.
@@ -236,7 +243,12 @@ fn tip(channel: &Channel, axes: &[String; 3]) -> Sample {
         }
         p
     };
-    Sample { wcs: pick(&snap.workpiece), bcs: pick(&snap.basic), line: snap.block.map_or(0, |b| b.line) }
+    Sample {
+        wcs: pick(&snap.workpiece),
+        bcs: pick(&snap.basic),
+        line: snap.block.map_or(0, |b| b.line),
+        tracyl_diameter: snap.transformation.and_then(|t| t.diameter),
+    }
 }
 
 /// Drops repeated and collinear samples, then keeps every n-th so that at most `max` remain
@@ -250,7 +262,8 @@ pub fn thin(samples: Vec<Sample>, max: usize) -> Vec<Sample> {
         // The previous point lies on the line from the one before it to this one: not needed.
         if kept.len() >= 2 {
             let (a, b) = (&kept[kept.len() - 2].wcs, &kept[kept.len() - 1].wcs);
-            if kept[kept.len() - 1].line == s.line && off_line(a, &s.wcs, b) < COLLINEAR_TOL {
+            let same = |k: &Sample| k.line == s.line && k.tracyl_diameter == s.tracyl_diameter;
+            if same(&kept[kept.len() - 1]) && off_line(a, &s.wcs, b) < COLLINEAR_TOL {
                 kept.pop();
             }
         }
@@ -284,7 +297,7 @@ mod tests {
     #[test]
     fn collinear_samples_collapse_to_the_corners() {
         // A straight line in 11 samples, then a right-angle turn: only the ends and the corner stay.
-        let at = |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1 };
+        let at = |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None };
         let mut s: Vec<Sample> = (0..=10).map(|i| at([f64::from(i), 0.0, 0.0])).collect();
         s.extend((1..=5).map(|i| at([10.0, f64::from(i), 0.0])));
         let kept: Vec<[f64; 3]> = thin(s, 100).into_iter().map(|k| k.wcs).collect();
@@ -297,7 +310,7 @@ mod tests {
         let s: Vec<Sample> = (0..1000)
             .map(|i| {
                 let p = [f64::from(i), f64::from(i % 2), 0.0];
-                Sample { wcs: p, bcs: p, line: 1 }
+                Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None }
             })
             .collect();
         let kept = thin(s, 100);

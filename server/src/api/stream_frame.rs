@@ -186,7 +186,8 @@ mod tests {
 
         // Every optional part present, and texts that need escaping.
         let mut full = running.clone();
-        full.transformation = Some(TransformationInfo { name: "TRANSMIT".into(), trafo_type: 256, index: 1 });
+        full.transformation =
+            Some(TransformationInfo { name: "TRANSMIT".into(), trafo_type: 256, index: 1, diameter: None });
         full.alarms = vec![Alarm::syntax(7, "column 3: \"bad\" word")];
         full.spindles = vec![("S1".into(), -1200.5)];
         full.message = Some("tab\tand \"quotes\"".into());

@@ -360,18 +360,9 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
             channel.jog_stop_if(serial);
             Ok(())
         }
-        Action::Search { program, name, line } => {
-            let text = match name {
-                Some(name) => Some(
-                    channel
-                        .stored_program(&name)
-                        .ok_or_else(|| CommandError::Invalid(format!("no stored program `{name}`")))?
-                        .to_string(),
-                ),
-                None => program,
-            };
-            channel.block_search(text.as_deref(), line)
-        }
+        // A stored program is searched in place: the channel shares its text, no copy.
+        Action::Search { name: Some(name), line, .. } => channel.block_search_stored(&name, line),
+        Action::Search { program, name: None, line } => channel.block_search(program.as_deref(), line),
         Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
         Action::KinematicChains(text) => channel.import_kinematic_chains(&text),

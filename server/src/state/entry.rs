@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use tokio::time::Instant;
 
+use super::persist::ProgramHashCache;
 use crate::api::stream_frame::FrameCache;
 use crate::auth::Role;
 use crate::error::ApiError;
@@ -36,6 +37,8 @@ pub struct SessionEntry {
     /// Serialises "change the channel, then write the change" sequences of this session, so
     /// that storage never ends up older than what a client was told was saved.
     pub save_lock: tokio::sync::Mutex<()>,
+    /// The hash of the AUTO program last checkpointed (see [`super::persist`]).
+    pub program_hash: Arc<ProgramHashCache>,
 }
 
 impl SessionEntry {
@@ -56,6 +59,7 @@ impl SessionEntry {
             stream_clients: Arc::new(AtomicUsize::new(0)),
             frames: FrameCache::default(),
             save_lock: tokio::sync::Mutex::new(()),
+            program_hash: Arc::default(),
         }
     }
 

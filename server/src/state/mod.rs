@@ -135,7 +135,7 @@ impl AppState {
         lease.period = config.lease_period;
         let storage = tokio::task::spawn_blocking(move || storage::open(database.as_deref(), &dir, lease))
             .await
-            .map_err(|e| StorageError(format!("opening the storage failed: {e}")))??;
+            .map_err(|e| StorageError::new(format!("opening the storage failed: {e}")))??;
         let state = AppState::with_storage(config, storage);
         let restored = state.restore().await?;
         let node = state.shared.storage.lease().map(|l| l.node.clone());
@@ -275,15 +275,27 @@ impl AppState {
         let storage = self.shared.storage.clone();
         let result = tokio::task::spawn_blocking(move || call(storage.as_ref()))
             .await
-            .unwrap_or_else(|e| Err(StorageError(format!("storage call failed: {e}"))));
+            .unwrap_or_else(|e| Err(StorageError::new(format!("storage call failed: {e}"))));
         self.shared.metrics.storage_call(result.is_ok());
+        if let Err(StorageError { held_by: Some(held), .. }) = &result {
+            self.stop_serving(&held.session);
+        }
         result
+    }
+
+    /// Stops serving session `id` at once, without saving: a write found that another node took
+    /// its lease (the heartbeat would find out at its next tick). The request that saw it is
+    /// answered `421` naming that node (see [`ApiError`]'s `From<StorageError>`).
+    fn stop_serving(&self, id: &str) {
+        let Some(entry) = self.sessions().remove(id) else { return };
+        tracing::warn!(session = %id, "lease lost to another node: session no longer served here");
+        tokio::spawn(async move { entry.handle.shutdown().await });
     }
 
     /// Whether the storage answers, for `GET /health`.
     pub async fn storage_health(&self) -> StorageHealth {
         let backend = self.shared.storage.backend();
-        StorageHealth { backend, error: self.storage_call(|s| s.check()).await.err().map(|e| e.0) }
+        StorageHealth { backend, error: self.storage_call(|s| s.check()).await.err().map(|e| e.message) }
     }
 
     /// Creates a session for `channel`: checks the session limits, makes its tokens, saves it
@@ -371,13 +383,18 @@ impl AppState {
     /// the last write is always of the newest state.
     pub async fn persist_checkpoint(&self, entry: &SessionEntry) -> Result<(), ApiError> {
         let _guard = entry.save_lock.lock().await;
-        let checkpoint = entry
+        let (mut checkpoint, text) = entry
             .handle
-            .with_channel(|ch| persist::checkpoint(ch))
+            .with_channel(|ch| persist::checkpoint_unhashed(ch))
             .await
             .map_err(|e| ApiError::from_session(entry.id(), e))?;
         let id = entry.id().to_string();
-        self.storage_call(move |s| s.save_checkpoint(&id, &checkpoint)).await?;
+        let hashes = entry.program_hash.clone();
+        self.storage_call(move |s| {
+            checkpoint.active_program = hashes.checkpointed(text);
+            s.save_checkpoint(&id, &checkpoint)
+        })
+        .await?;
         Ok(())
     }
 
@@ -519,8 +536,12 @@ impl AppState {
         let mut checkpoints = Vec::with_capacity(all.len());
         for entry in &all {
             guards.push(entry.save_lock.lock().await);
-            match entry.handle.with_channel(|ch| persist::checkpoint(ch)).await {
-                Ok(checkpoint) => checkpoints.push((entry.id().to_string(), checkpoint)),
+            match entry.handle.with_channel(|ch| persist::checkpoint_unhashed(ch)).await {
+                Ok((mut checkpoint, text)) => {
+                    // Cached: hashed when the program was checkpointed last, unless it changed.
+                    checkpoint.active_program = entry.program_hash.checkpointed(text);
+                    checkpoints.push((entry.id().to_string(), checkpoint));
+                }
                 Err(e) => tracing::warn!(session = %entry.id(), error = %e, "no checkpoint at shutdown"),
             }
         }

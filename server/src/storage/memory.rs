@@ -61,7 +61,7 @@ impl Storage for MemoryStorage {
 
     fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError> {
         self.with(|m| {
-            let s = m.get_mut(id).ok_or_else(|| StorageError(format!("session `{id}` is not stored")))?;
+            let s = m.get_mut(id).ok_or_else(|| StorageError::new(format!("session `{id}` is not stored")))?;
             match s.programs.binary_search_by(|(n, _)| n.as_str().cmp(name)) {
                 Ok(i) => s.programs[i].1 = text.to_string(),
                 Err(i) => s.programs.insert(i, (name.to_string(), text.to_string())),

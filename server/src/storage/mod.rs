@@ -7,7 +7,8 @@
 //! the channel: the whole machine data as NC data text (machine data, tool data, settable
 //! frames; applying it to default data rebuilds the same data), the axis positions, the
 //! operating mode and the resumable channel state (JSON, see [`crate::state::persist`]). Stored programs are kept one row per program, so a large program is written
-//! once, not with every checkpoint.
+//! once, not with every checkpoint; so is the AUTO program a checkpoint refers to
+//! ([`ActiveProgram`]: one row per session, rewritten only when its SHA-256 changes).
 //!
 //! Durability: every method returns only after the change is on disk (see [`sqlite`]). Callers
 //! acknowledge a client's write only after the storage call returned `Ok`.
@@ -29,6 +30,8 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
 
+use nctwin_engine::lang::ProgramText;
+
 pub use memory::MemoryStorage;
 pub use postgres::PostgresStorage;
 pub use sqlite::SqliteStorage;
@@ -36,14 +39,62 @@ pub use sqlite::SqliteStorage;
 /// File name of the embedded database inside `--data-dir`.
 pub const SQLITE_FILE: &str = "nctwin.sqlite3";
 
-/// A storage failure (disk full, database locked by another process, corrupt file, ...).
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("storage: {0}")]
-pub struct StorageError(pub String);
+/// A storage failure (disk full, database locked by another process, corrupt file, ...), or a
+/// write refused because another node holds the session's lease.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("storage: {message}")]
+pub struct StorageError {
+    pub message: String,
+    /// Set when the write was refused because another node holds the session (several nodes
+    /// on one database): the client is sent there (`421`), not told the storage failed.
+    pub held_by: Option<HeldBy>,
+}
+
+/// The node holding a session's lease, when a write of this node was refused for it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldBy {
+    pub session: String,
+    pub node: String,
+    /// How long the lease runs without renewal.
+    pub seconds_left: f64,
+}
+
+impl StorageError {
+    /// A failure of the storage itself.
+    pub fn new(message: impl Into<String>) -> StorageError {
+        StorageError { message: message.into(), held_by: None }
+    }
+
+    /// A write refused because node `held.node` holds session `held.session`.
+    pub fn held(held: HeldBy) -> StorageError {
+        let message = format!("session `{}` is held by node `{}`, not by this node", held.session, held.node);
+        StorageError { message, held_by: Some(held) }
+    }
+}
 
 impl From<rusqlite::Error> for StorageError {
     fn from(e: rusqlite::Error) -> StorageError {
-        StorageError(e.to_string())
+        StorageError::new(e.to_string())
+    }
+}
+
+/// The text of the AUTO program a checkpoint's channel state refers to (its `program.text` is
+/// left empty). A backend keeps it once per session, beside the checkpoint, and writes it only
+/// when `sha256` differs from the stored one: a program of up to 16 MiB is not rewritten with
+/// every checkpoint.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActiveProgram {
+    /// SHA-256 of the text, lowercase hex: what "changed" is decided by.
+    pub sha256: String,
+    pub text: ProgramText,
+}
+
+impl ActiveProgram {
+    /// `text` with its hash computed (reads the whole text: callers cache it per session).
+    pub fn hashed(text: ProgramText) -> ActiveProgram {
+        use sha2::{Digest, Sha256};
+        let digest = Sha256::digest(text.as_bytes());
+        ActiveProgram { sha256: digest.iter().map(|b| format!("{b:02x}")).collect(), text }
     }
 }
 
@@ -58,8 +109,11 @@ pub struct Checkpoint {
     pub mode: String,
     /// The rest of the channel state a restart takes back (tool and cutting edge, toolholder,
     /// system frames, R parameters, a transformation kept over reset, the AUTO program and its
-    /// block) as JSON; `None` in rows written before schema version 2.
+    /// block) as JSON; `None` in rows written before schema version 2. Since schema version 3
+    /// the AUTO program's text is not in it but in `active_program`; older rows carry it inline.
     pub channel_state: Option<String>,
+    /// The AUTO program the channel state refers to, if any.
+    pub active_program: Option<ActiveProgram>,
 }
 
 /// SHA-256 hashes (lowercase hex) of a session's tokens.
@@ -149,7 +203,8 @@ pub trait Storage: Send + Sync + Debug {
     fn load(&self) -> Result<Vec<SavedSession>, StorageError>;
     /// Stores a new session (replacing one with the same id, with its programs).
     fn create_session(&self, record: &SessionRecord) -> Result<(), StorageError>;
-    /// Replaces the checkpoint of session `id`; a deleted session stays deleted (no error).
+    /// Replaces the checkpoint of session `id` (its active program only if the hash differs
+    /// from the stored one); a deleted session stays deleted (no error).
     fn save_checkpoint(&self, id: &str, checkpoint: &Checkpoint) -> Result<(), StorageError>;
     /// Replaces the checkpoints of many sessions at once (shutdown); the default saves them one
     /// by one, a backend may do it in one transaction.
@@ -192,7 +247,7 @@ pub trait Storage: Send + Sync + Debug {
 /// Opens (creating if needed) the embedded default storage in `data_dir`.
 pub fn open_default(data_dir: &Path) -> Result<SqliteStorage, StorageError> {
     std::fs::create_dir_all(data_dir)
-        .map_err(|e| StorageError(format!("cannot create data directory {}: {e}", data_dir.display())))?;
+        .map_err(|e| StorageError::new(format!("cannot create data directory {}: {e}", data_dir.display())))?;
     SqliteStorage::open(&data_dir.join(SQLITE_FILE))
 }
 
@@ -207,7 +262,7 @@ pub fn open(database: Option<&str>, data_dir: &Path, lease: Lease) -> Result<Arc
         }
         Some(other) => {
             let scheme = other.split_once(':').map_or(other, |(scheme, _)| scheme);
-            Err(StorageError(format!("unsupported database `{scheme}:`: expected a postgres:// URL")))
+            Err(StorageError::new(format!("unsupported database `{scheme}:`: expected a postgres:// URL")))
         }
     }
 }

@@ -36,10 +36,14 @@ use std::collections::HashMap;
 
 use postgres::{Client, Config, NoTls, Transaction};
 
-use super::{Checkpoint, Claim, Lease, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
+use nctwin_engine::lang::ProgramText;
+
+use super::{
+    ActiveProgram, Checkpoint, Claim, HeldBy, Lease, SavedSession, SessionRecord, Storage, StorageError, TokenHashes,
+};
 
 /// Version in `nctwin_schema`; migrations go from each version to the next.
-const SCHEMA_VERSION: i32 = 2;
+const SCHEMA_VERSION: i32 = 3;
 
 /// Key of the advisory lock held while the schema is created or migrated.
 const SCHEMA_LOCK: i64 = 0x6e63_7477_696e; // "nctwin"
@@ -77,6 +81,16 @@ CREATE SEQUENCE nctwin_session_numbers;
 SELECT setval('nctwin_session_numbers', COALESCE((SELECT max(number) FROM nctwin_sessions), 0) + 1, false);
 ";
 
+/// Version 3: the AUTO program a checkpoint refers to, one row per session, rewritten only
+/// when its hash changes. Rows of version 2 keep the text inline in `channel_state`.
+const MIGRATE_V3: &str = "
+CREATE TABLE nctwin_active_programs (
+    session TEXT PRIMARY KEY REFERENCES nctwin_sessions(id) ON DELETE CASCADE,
+    sha256  TEXT NOT NULL,
+    text    TEXT NOT NULL
+);
+";
+
 const UPDATE_CHECKPOINT: &str =
     "UPDATE nctwin_sessions SET machine_data = $2, positions = $3, mode = $4, channel_state = $5 WHERE id = $1";
 
@@ -99,8 +113,8 @@ impl std::fmt::Debug for PostgresStorage {
 
 fn pg_error(e: postgres::Error) -> StorageError {
     match e.as_db_error() {
-        Some(db) => StorageError(format!("postgres: {} ({})", db.message(), db.code().code())),
-        None => StorageError(format!("postgres: {e}")),
+        Some(db) => StorageError::new(format!("postgres: {} ({})", db.message(), db.code().code())),
+        None => StorageError::new(format!("postgres: {e}")),
     }
 }
 
@@ -123,14 +137,14 @@ impl PostgresStorage {
     /// writes are leased to that node.
     pub fn open_as(url: &str, lease: Lease) -> Result<PostgresStorage, StorageError> {
         if lease.node.is_empty() || lease.period.is_zero() {
-            return Err(StorageError("a node needs a name and a lease period above zero".into()));
+            return Err(StorageError::new("a node needs a name and a lease period above zero"));
         }
-        let mut config: Config = url.parse().map_err(|e| StorageError(format!("invalid database URL: {e}")))?;
+        let mut config: Config = url.parse().map_err(|e| StorageError::new(format!("invalid database URL: {e}")))?;
         // No TLS in this build: refuse what asks for it rather than connect in the clear.
         // `prefer` (the default) and `disable` connect without TLS.
         if config.get_ssl_mode() == SslMode::Require {
-            return Err(StorageError(
-                "sslmode=require: this server has no TLS for PostgreSQL; use a Unix socket, a trusted network or a TLS-terminating proxy (sslmode=disable)".into(),
+            return Err(StorageError::new(
+                "sslmode=require: this server has no TLS for PostgreSQL; use a Unix socket, a trusted network or a TLS-terminating proxy (sslmode=disable)",
             ));
         }
         if config.get_password().is_none()
@@ -165,7 +179,7 @@ impl PostgresStorage {
         if guard.is_none() {
             *guard = Some(connect(&self.config, &self.description)?);
         }
-        let client = guard.as_mut().ok_or_else(|| StorageError("postgres: no connection".into()))?;
+        let client = guard.as_mut().ok_or_else(|| StorageError::new("postgres: no connection"))?;
         let result = f(client);
         if result.as_ref().is_err_and(|e| e.code().is_none() || client.is_closed()) {
             drop_client(guard.take());
@@ -204,7 +218,7 @@ fn describe(config: &Config) -> String {
 fn connect(config: &Config, description: &str) -> Result<Client, StorageError> {
     let mut client = config
         .connect(NoTls)
-        .map_err(|e| StorageError(format!("cannot connect to {description}: {}", pg_error(e).0)))?;
+        .map_err(|e| StorageError::new(format!("cannot connect to {description}: {}", pg_error(e).message)))?;
     // Durable on return even if the server's default says otherwise (see the module doc).
     client.batch_execute("SET synchronous_commit = on")?;
     Ok(client)
@@ -220,15 +234,19 @@ fn migrate(client: &mut Client) -> Result<(), StorageError> {
         None => {
             tx.batch_execute(SCHEMA_V1)?;
             tx.batch_execute(MIGRATE_V2)?;
+            tx.batch_execute(MIGRATE_V3)?;
             tx.execute("INSERT INTO nctwin_schema (version) VALUES ($1)", &[&SCHEMA_VERSION])?;
         }
-        Some(1) => {
-            tx.batch_execute(MIGRATE_V2)?;
+        Some(version @ (1 | 2)) => {
+            if version == 1 {
+                tx.batch_execute(MIGRATE_V2)?;
+            }
+            tx.batch_execute(MIGRATE_V3)?;
             tx.execute("UPDATE nctwin_schema SET version = $1", &[&SCHEMA_VERSION])?;
         }
         Some(SCHEMA_VERSION) => {}
         Some(other) => {
-            return Err(StorageError(format!(
+            return Err(StorageError::new(format!(
                 "database schema version {other} is newer than this server understands ({SCHEMA_VERSION})"
             )));
         }
@@ -239,6 +257,31 @@ fn migrate(client: &mut Client) -> Result<(), StorageError> {
 
 const SESSION_COLUMNS: &str = "id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
      machine_data, positions, mode, channel_state";
+
+/// Writes the active program of session `id` where its hash differs from the stored one (or
+/// removes it); an unchanged program costs one indexed read: no text is sent or written.
+fn write_active_program(
+    tx: &mut Transaction<'_>,
+    id: &str,
+    program: Option<&ActiveProgram>,
+) -> Result<(), postgres::Error> {
+    let stored: Option<String> =
+        tx.query_opt("SELECT sha256 FROM nctwin_active_programs WHERE session = $1", &[&id])?.map(|r| r.get(0));
+    match program {
+        None if stored.is_some() => {
+            tx.execute("DELETE FROM nctwin_active_programs WHERE session = $1", &[&id])?;
+        }
+        Some(p) if stored.as_deref() != Some(p.sha256.as_str()) => {
+            tx.execute(
+                "INSERT INTO nctwin_active_programs (session, sha256, text) VALUES ($1, $2, $3)
+                 ON CONFLICT (session) DO UPDATE SET sha256 = excluded.sha256, text = excluded.text",
+                &[&id, &p.sha256, &&*p.text],
+            )?;
+        }
+        _ => {}
+    }
+    Ok(())
+}
 
 fn record_from_row(r: &postgres::Row) -> SessionRecord {
     SessionRecord {
@@ -252,22 +295,31 @@ fn record_from_row(r: &postgres::Row) -> SessionRecord {
             positions: r.get(8),
             mode: r.get(9),
             channel_state: r.get(10),
+            active_program: None,
         },
     }
 }
 
 /// Who holds session `id`, locking its row until the transaction ends (so the lease cannot
 /// change between this check and the write that follows): `Ok(Ok(true))` this node,
-/// `Ok(Ok(false))` no such session, `Ok(Err(..))` naming the node that holds it otherwise.
-fn fence(tx: &mut Transaction<'_>, id: &str, node: &str) -> Result<Result<bool, String>, postgres::Error> {
-    let row = tx.query_opt("SELECT lease_node FROM nctwin_sessions WHERE id = $1 FOR UPDATE", &[&id])?;
-    Ok(match row.map(|r| r.get::<_, Option<String>>(0)) {
-        None => Ok(false),
-        Some(Some(holder)) if holder == node => Ok(true),
-        Some(holder) => Err(format!(
-            "session `{id}` is held by node `{}`, not by this node `{node}`",
-            holder.as_deref().unwrap_or("(none)")
-        )),
+/// `Ok(Ok(false))` no such session, `Ok(Err(..))` otherwise: [`StorageError::held`] naming the
+/// node that holds it, or a plain error when no node does (released; this node must claim it
+/// again first).
+fn fence(tx: &mut Transaction<'_>, id: &str, node: &str) -> Result<Result<bool, StorageError>, postgres::Error> {
+    let row = tx.query_opt(
+        "SELECT lease_node, GREATEST(EXTRACT(EPOCH FROM lease_expires - now()), 0)::float8
+         FROM nctwin_sessions WHERE id = $1 FOR UPDATE",
+        &[&id],
+    )?;
+    let Some(row) = row else { return Ok(Ok(false)) };
+    Ok(match row.get::<_, Option<String>>(0) {
+        Some(holder) if holder == node => Ok(true),
+        Some(holder) => Err(StorageError::held(HeldBy {
+            session: id.to_string(),
+            node: holder,
+            seconds_left: row.get::<_, Option<f64>>(1).unwrap_or(0.0),
+        })),
+        None => Err(StorageError::new(format!("session `{id}` is held by no node, not by this node `{node}`"))),
     })
 }
 
@@ -285,18 +337,25 @@ fn saved_sessions(
     for row in &programs {
         by_session.entry(row.get(0)).or_default().push((row.get(1), row.get(2)));
     }
+    let active =
+        tx.query("SELECT session, sha256, text FROM nctwin_active_programs WHERE session = ANY($1)", &[&ids])?;
+    let mut active: HashMap<String, ActiveProgram> = active
+        .iter()
+        .map(|row| (row.get(0), ActiveProgram { sha256: row.get(1), text: ProgramText::from(row.get::<_, String>(2)) }))
+        .collect();
     Ok(sessions
         .iter()
         .map(|row| {
-            let record = record_from_row(row);
+            let mut record = record_from_row(row);
+            record.checkpoint.active_program = active.remove(&record.id);
             let programs = by_session.remove(&record.id).unwrap_or_default();
             SavedSession { record, programs }
         })
         .collect())
 }
 
-fn flatten<R>(result: Result<Result<R, String>, StorageError>) -> Result<R, StorageError> {
-    result?.map_err(StorageError)
+fn flatten<R>(result: Result<Result<R, StorageError>, StorageError>) -> Result<R, StorageError> {
+    result?
 }
 
 impl Storage for PostgresStorage {
@@ -366,6 +425,7 @@ impl Storage for PostgresStorage {
                     &period,
                 ],
             )?;
+            write_active_program(&mut tx, &record.id, record.checkpoint.active_program.as_ref())?;
             tx.commit().map(Ok)
         }))
     }
@@ -378,7 +438,10 @@ impl Storage for PostgresStorage {
                 return Ok(Err(held));
             }
             let cp = checkpoint;
-            tx.execute(UPDATE_CHECKPOINT, &[&id, &cp.machine_data, &cp.positions, &cp.mode, &cp.channel_state])?;
+            if tx.execute(UPDATE_CHECKPOINT, &[&id, &cp.machine_data, &cp.positions, &cp.mode, &cp.channel_state])? == 1
+            {
+                write_active_program(&mut tx, id, cp.active_program.as_ref())?;
+            }
             tx.commit().map(Ok)
         }))
     }
@@ -394,6 +457,9 @@ impl Storage for PostgresStorage {
             for (id, cp) in checkpoints {
                 let n =
                     tx.execute(&update, &[id, &cp.machine_data, &cp.positions, &cp.mode, &cp.channel_state, &node])?;
+                if n == 1 {
+                    write_active_program(&mut tx, id, cp.active_program.as_ref())?;
+                }
                 skipped += usize::from(n == 0);
             }
             tx.commit().map(|()| skipped)
@@ -423,7 +489,7 @@ impl Storage for PostgresStorage {
             let mut tx = c.transaction()?;
             match fence(&mut tx, id, node)? {
                 Err(held) => return Ok(Err(held)),
-                Ok(false) => return Ok(Err(format!("session `{id}` is not stored"))),
+                Ok(false) => return Ok(Err(StorageError::new(format!("session `{id}` is not stored")))),
                 Ok(true) => {}
             }
             tx.execute(

@@ -14,10 +14,12 @@ use std::sync::{Mutex, MutexGuard};
 
 use rusqlite::{Connection, OptionalExtension, params};
 
-use super::{Checkpoint, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
+use nctwin_engine::lang::ProgramText;
+
+use super::{ActiveProgram, Checkpoint, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
 
 /// Schema version written to `PRAGMA user_version`; migrations go from each version to the next.
-const SCHEMA_VERSION: i64 = 2;
+const SCHEMA_VERSION: i64 = 3;
 
 const SCHEMA_V1: &str = "
 CREATE TABLE sessions (
@@ -43,6 +45,16 @@ CREATE TABLE programs (
 /// Version 2: the resumable channel state of a checkpoint (NULL in rows of version 1).
 const MIGRATE_V2: &str = "ALTER TABLE sessions ADD COLUMN channel_state TEXT;";
 
+/// Version 3: the AUTO program a checkpoint refers to, one row per session, rewritten only
+/// when its hash changes. Rows of version 2 keep the text inline in `channel_state`.
+const MIGRATE_V3: &str = "
+CREATE TABLE active_programs (
+    session TEXT PRIMARY KEY REFERENCES sessions(id) ON DELETE CASCADE,
+    sha256  TEXT NOT NULL,
+    text    TEXT NOT NULL
+);
+";
+
 /// A SQLite database file.
 #[derive(Debug)]
 pub struct SqliteStorage {
@@ -54,12 +66,12 @@ impl SqliteStorage {
     /// Opens or creates the database at `path` and brings its schema up to date.
     pub fn open(path: &Path) -> Result<SqliteStorage, StorageError> {
         let connection = Connection::open(path)
-            .map_err(|e| StorageError(format!("cannot open database {}: {e}", path.display())))?;
+            .map_err(|e| StorageError::new(format!("cannot open database {}: {e}", path.display())))?;
         // WAL + FULL: a commit is durable when it returns (see the module doc). The busy timeout
         // covers a second process (a backup tool) holding the lock briefly.
         let mode: String = connection.query_row("PRAGMA journal_mode=WAL", [], |r| r.get(0))?;
         if !mode.eq_ignore_ascii_case("wal") {
-            return Err(StorageError(format!("{} cannot use WAL journaling (got {mode})", path.display())));
+            return Err(StorageError::new(format!("{} cannot use WAL journaling (got {mode})", path.display())));
         }
         connection.execute_batch("PRAGMA synchronous=FULL; PRAGMA foreign_keys=ON; PRAGMA busy_timeout=5000;")?;
         migrate(&connection)?;
@@ -78,11 +90,12 @@ impl SqliteStorage {
 fn migrate(connection: &Connection) -> Result<(), StorageError> {
     let version: i64 = connection.query_row("PRAGMA user_version", [], |r| r.get(0))?;
     let steps = match version {
-        0 => format!("{SCHEMA_V1} {MIGRATE_V2}"),
-        1 => MIGRATE_V2.to_string(),
+        0 => format!("{SCHEMA_V1} {MIGRATE_V2} {MIGRATE_V3}"),
+        1 => format!("{MIGRATE_V2} {MIGRATE_V3}"),
+        2 => MIGRATE_V3.to_string(),
         SCHEMA_VERSION => return Ok(()),
         other => {
-            return Err(StorageError(format!(
+            return Err(StorageError::new(format!(
                 "database schema version {other} is newer than this server understands ({SCHEMA_VERSION})"
             )));
         }
@@ -93,6 +106,43 @@ fn migrate(connection: &Connection) -> Result<(), StorageError> {
 
 const UPDATE_CHECKPOINT: &str =
     "UPDATE sessions SET machine_data = ?2, positions = ?3, mode = ?4, channel_state = ?5 WHERE id = ?1";
+
+/// Writes the active program of session `id` where its hash differs from the stored one (or
+/// removes it); an unchanged program costs one indexed read and no write.
+fn write_active_program(
+    connection: &Connection,
+    id: &str,
+    program: Option<&ActiveProgram>,
+) -> Result<(), StorageError> {
+    let stored: Option<String> =
+        connection.query_row("SELECT sha256 FROM active_programs WHERE session = ?1", [id], |r| r.get(0)).optional()?;
+    match program {
+        None if stored.is_some() => {
+            connection.execute("DELETE FROM active_programs WHERE session = ?1", [id])?;
+        }
+        Some(p) if stored.as_deref() != Some(p.sha256.as_str()) => {
+            connection.execute(
+                "INSERT INTO active_programs (session, sha256, text) VALUES (?1, ?2, ?3)
+                 ON CONFLICT (session) DO UPDATE SET sha256 = excluded.sha256, text = excluded.text",
+                params![id, p.sha256, &*p.text],
+            )?;
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Replaces the checkpoint of session `id`, if it is stored.
+fn write_checkpoint(connection: &Connection, id: &str, c: &Checkpoint) -> Result<(), StorageError> {
+    let updated = connection.execute(
+        UPDATE_CHECKPOINT,
+        params![id, c.machine_data, positions_text(&c.positions), c.mode, c.channel_state],
+    )?;
+    if updated == 1 {
+        write_active_program(connection, id, c.active_program.as_ref())?;
+    }
+    Ok(())
+}
 
 fn positions_text(positions: &[f64]) -> String {
     // serde_json writes the shortest text that reads back as the same f64.
@@ -118,8 +168,8 @@ impl Storage for SqliteStorage {
         let connection = self.connection();
         let mut sessions = connection.prepare(
             "SELECT id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
-                    machine_data, positions, mode, channel_state
-             FROM sessions ORDER BY number",
+                    machine_data, positions, mode, channel_state, a.sha256, a.text
+             FROM sessions LEFT JOIN active_programs a ON a.session = sessions.id ORDER BY number",
         )?;
         let rows = sessions.query_map([], |r| {
             let positions: String = r.get(8)?;
@@ -134,6 +184,10 @@ impl Storage for SqliteStorage {
                     positions: serde_json::from_str(&positions).unwrap_or_default(),
                     mode: r.get(9)?,
                     channel_state: r.get(10)?,
+                    active_program: match (r.get::<_, Option<String>>(11)?, r.get::<_, Option<String>>(12)?) {
+                        (Some(sha256), Some(text)) => Some(ActiveProgram { sha256, text: ProgramText::from(text) }),
+                        _ => None,
+                    },
                 },
             })
         })?;
@@ -171,21 +225,16 @@ impl Storage for SqliteStorage {
                 record.checkpoint.channel_state,
             ],
         )?;
+        write_active_program(&tx, &record.id, record.checkpoint.active_program.as_ref())?;
         tx.commit()?;
         Ok(())
     }
 
     fn save_checkpoint(&self, id: &str, checkpoint: &Checkpoint) -> Result<(), StorageError> {
-        self.connection().execute(
-            UPDATE_CHECKPOINT,
-            params![
-                id,
-                checkpoint.machine_data,
-                positions_text(&checkpoint.positions),
-                checkpoint.mode,
-                checkpoint.channel_state
-            ],
-        )?;
+        let mut connection = self.connection();
+        let tx = connection.transaction()?;
+        write_checkpoint(&tx, id, checkpoint)?;
+        tx.commit()?;
         Ok(())
     }
 
@@ -193,11 +242,8 @@ impl Storage for SqliteStorage {
         // One transaction, one fsync, however many sessions shut down.
         let mut connection = self.connection();
         let tx = connection.transaction()?;
-        {
-            let mut update = tx.prepare(UPDATE_CHECKPOINT)?;
-            for (id, c) in checkpoints {
-                update.execute(params![id, c.machine_data, positions_text(&c.positions), c.mode, c.channel_state])?;
-            }
+        for (id, c) in checkpoints {
+            write_checkpoint(&tx, id, c)?;
         }
         tx.commit()?;
         Ok(())
@@ -214,7 +260,7 @@ impl Storage for SqliteStorage {
         let exists =
             connection.query_row("SELECT 1 FROM sessions WHERE id = ?1", [id], |_| Ok(())).optional()?.is_some();
         if !exists {
-            return Err(StorageError(format!("session `{id}` is not stored")));
+            return Err(StorageError::new(format!("session `{id}` is not stored")));
         }
         connection.execute(
             "INSERT INTO programs (session, name, text) VALUES (?1, ?2, ?3)
@@ -257,6 +303,7 @@ mod tests {
                     positions: vec![3.25],
                     mode: "MDA".into(),
                     channel_state: Some("{}".into()),
+                    active_program: None,
                 },
             };
             storage.create_session(&record).expect("create");
@@ -270,6 +317,71 @@ mod tests {
         assert_eq!(all.len(), 1);
         assert_eq!(all[0].record.checkpoint.positions, vec![3.25]);
         assert_eq!(all[0].programs, vec![("P".to_string(), "M30".to_string())]);
+        let _ = std::fs::remove_dir_all(path.parent().expect("dir"));
+    }
+
+    /// What `write` writes: the pages it appends to the write-ahead log (the log is emptied
+    /// first by a TRUNCATE checkpoint; a passive checkpoint after the write reports how many
+    /// frames it holds) and the rows it inserts, updates or deletes (SQLite's change counter).
+    /// SQLite skips pages whose bytes an update leaves as they were, so the rows tell what the
+    /// storage chose to write even where the pages do not.
+    fn written(storage: &SqliteStorage, write: impl FnOnce()) -> (i64, u64) {
+        let truncate = |c: &Connection| c.query_row("PRAGMA wal_checkpoint(TRUNCATE)", [], |r| r.get::<_, i64>(1));
+        assert_eq!(truncate(&storage.connection()).expect("truncate"), 0, "an empty log");
+        let rows = storage.connection().total_changes();
+        write();
+        let connection = storage.connection();
+        let frames = connection
+            .query_row("PRAGMA wal_checkpoint(PASSIVE)", [], |r| r.get::<_, i64>(1))
+            .expect("passive checkpoint");
+        (frames, connection.total_changes() - rows)
+    }
+
+    #[test]
+    fn a_checkpoint_writes_the_active_program_only_when_it_changed() {
+        let path = temp_db("active");
+        let storage = SqliteStorage::open(&path).expect("open");
+        let page: i64 = storage.connection().query_row("PRAGMA page_size", [], |r| r.get(0)).expect("page size");
+        let record = SessionRecord {
+            id: "s1".into(),
+            number: 1,
+            machine: "mill-3axis".into(),
+            client_ip: None,
+            tokens: TokenHashes { owner: "a".into(), operator: "b".into(), observer: "c".into() },
+            checkpoint: Checkpoint {
+                machine_data: String::new(),
+                positions: vec![0.0],
+                mode: "AUTO".into(),
+                channel_state: Some("{}".into()),
+                active_program: None,
+            },
+        };
+        storage.create_session(&record).expect("create");
+        // 1 MiB of distinct lines: at least 1 MiB / page size pages wherever it is written.
+        let text = |seed: u32| (0..60_000).map(|i| format!("N{i} G1 X{seed}.{i:06} F{seed}\n")).collect::<String>();
+        let (first, second) = (text(1), text(2));
+        assert!(first.len() >= 1 << 20 && second.len() >= 1 << 20);
+        let text_pages = (1 << 20) / page;
+        let mut checkpoint = record.checkpoint.clone();
+        checkpoint.active_program = Some(ActiveProgram::hashed(ProgramText::from(first.as_str())));
+
+        let (pages, rows) = written(&storage, || storage.save_checkpoint("s1", &checkpoint).expect("first"));
+        assert!(pages >= text_pages && rows == 2, "the first checkpoint writes the text: {pages} pages, {rows} rows");
+        checkpoint.positions = vec![1.5];
+        let (pages, rows) = written(&storage, || storage.save_checkpoint("s1", &checkpoint).expect("second"));
+        // The session row only: its page (and the b-tree above it at most), no text.
+        assert!((1..=4).contains(&pages) && rows == 1, "the second checkpoint writes {pages} pages, {rows} rows");
+        checkpoint.positions = vec![2.5];
+        let batch = [("s1".to_string(), checkpoint.clone())];
+        let (pages, rows) = written(&storage, || storage.save_checkpoints(&batch).expect("shutdown"));
+        assert!((1..=4).contains(&pages) && rows == 1, "the shutdown's checkpoint writes {pages} pages, {rows} rows");
+        checkpoint.active_program = Some(ActiveProgram::hashed(ProgramText::from(second.as_str())));
+        let (pages, rows) = written(&storage, || storage.save_checkpoint("s1", &checkpoint).expect("changed"));
+        assert!(pages >= text_pages && rows == 2, "a changed program is written: {pages} pages, {rows} rows");
+
+        drop(storage);
+        let loaded = SqliteStorage::open(&path).expect("reopen").load().expect("load");
+        assert_eq!(loaded[0].record.checkpoint, checkpoint, "the changed program and the positions");
         let _ = std::fs::remove_dir_all(path.parent().expect("dir"));
     }
 

@@ -114,6 +114,8 @@ export const api = {
   setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),
 
   machineData: (id: string) => request<{ text: string }>("GET", `${s(id)}/machine-data`),
+  /** The chain data ($NK_/$NT_) as a part program (plain text). */
+  kinematicChains: (id: string) => request<string>("GET", `${s(id)}/kinematic-chains`),
   putMachineData: (id: string, text: string) => request<State>("PUT", `${s(id)}/machine-data`, { text }),
   machineDataDefinitions: () => request<MachineDatumDef[]>("GET", "/machine-data/definitions"),
 

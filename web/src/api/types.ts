@@ -171,6 +171,8 @@ export interface PreviewResponse {
   points: [number, number, number][]; // WCS
   basic: [number, number, number][]; // BCS
   lines: number[];
+  /** Per point: the TRACYL working diameter while TRACYL was active (unrolled Y), else null. */
+  tracyl_diameter?: (number | null)[];
   outcome: "ended" | "alarm" | "limit";
   alarm?: Alarm | null;
   time: number;

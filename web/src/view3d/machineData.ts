@@ -69,6 +69,12 @@ export interface Structure {
   spindleSign: number;
   /** Machine axes named in $MA_IS_ROT_AX that no chain above uses. */
   otherRotary: string[];
+  /**
+   * TRACYL: the machine directions of the radial axis (TRAFO_AXES_IN_n[0]) and of the axis
+   * parallel to the rotary axis ([2]) in the workpiece frame; the cylinder axis runs through
+   * the workpiece frame's origin along `parallel`. Null without TRACYL data.
+   */
+  cylinder: { radial: Vec3; parallel: Vec3 } | null;
   /** Data set number n of the orientation transformation the model follows, if any. */
   traori: number | null;
   /** A one-line summary for the view's caption. */
@@ -236,6 +242,7 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
     spindle: null,
     spindleSign: -1,
     otherRotary: [],
+    cylinder: null,
     traori: null,
     summary: "",
   };
@@ -249,6 +256,12 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
     const d = decodeOri(t);
     const k = md.ordinal(n, isOrientationTrafo) === 2 ? 2 : 1;
     const names = [md.machineOfChannel(md.axesIn(n, 3)), md.machineOfChannel(md.axesIn(n, 4))];
+    // Generic 6-/7-axis head (type 24): a 3rd rotary axis turns the tool about its own axis
+    // (TRAFO_AXES_IN_n[5]), a 7th axis turns the workpiece (TRAFO_AXES_IN_n[6]).
+    const genericHead = d?.generic === true && d.machine === "tool";
+    const third = genericHead ? md.machineOfChannel(md.axesIn(n, 5)) : null;
+    const seventh = genericHead ? md.machineOfChannel(md.axesIn(n, 6)) : null;
+    if (third) names.push(third);
     if (d && names[0] && names[1]) {
       s.traori = n;
       const sign = (i: number) => {
@@ -258,7 +271,7 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
       const onPart = (i: number) => d.machine === "part" || (d.machine === "mixed" && i === 1);
       const dir = (i: number): Vec3 => {
         const base = d.generic
-          ? unit(md.vec(`$MC_TRAFO5_AXIS${i + 1}_${k}`, i === 0 ? [0, 0, 1] : [1, 0, 0]), [0, 0, 1])
+          ? unit(md.vec(`$MC_TRAFO5_AXIS${i + 1}_${k}`, i === 0 || i === 2 ? [0, 0, 1] : [1, 0, 0]), [0, 0, 1])
           : onPart(i)
             ? scale(UNIT[d.letters[i]!]!, -1) // DIN: a table axis turns the part the other way
             : UNIT[d.letters[i]!]!;
@@ -274,8 +287,23 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
       // JOINT_OFFSET, l3 = BASE_TOOL; part l2 = BASE_TOOL, l3 = JOINT_OFFSET, l4 = PART_OFFSET;
       // mixed l1 = JOINT_OFFSET, l2 = BASE_TOOL, l3 = JOINT_OFFSET_PART, l4 = PART_OFFSET.
       if (d.machine === "tool") {
-        s.head = [axis(0, part), axis(1, joint)];
+        // 6-axis: l23 = JOINT_OFFSET_2_3 leads from axis 2 to axis 3 (engine orient/chain.rs).
+        s.head = [axis(0, part), axis(1, joint), ...(third ? [axis(2, md.vec(`$MC_TRAFO6_JOINT_OFFSET_2_3_${k}`))] : [])];
         s.toolOffset = base;
+        if (seventh) {
+          // The 7th axis runs through the BCS zero point (the machine zero of a tool chain)
+          // and turns the workpiece right-handedly about TRAFO7_EXT_AXIS1 by the position
+          // minus TRAFO7_EXT_ROT_AX_OFFSET (engine kinematics/seventh.rs).
+          s.table = [
+            {
+              name: seventh,
+              dir: unit(md.vec(`$MC_TRAFO7_EXT_AXIS1_${k}`, [0, 0, 1]), [0, 0, 1]),
+              offset: [0, 0, 0],
+              zero: md.num(`$MC_TRAFO7_EXT_ROT_AX_OFFSET_${k}`),
+            },
+          ];
+          used.add(seventh);
+        }
       } else if (d.machine === "part") {
         s.table = [axis(0, base), axis(1, joint)];
         s.partOffset = part;
@@ -289,7 +317,32 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
       names.forEach((a) => a && used.add(a));
       const where = { tool: "swivel head", part: "rotary table", mixed: "head + table" }[d.machine];
       const seq = d.generic ? "" : ` ${AXIS_NAMES[d.letters[0]]}${AXIS_NAMES[d.letters[1]]}`;
-      s.summary = `5-axis ${where}${seq} (TRAORI type ${t}, data set ${n})`;
+      const count = 5 + (third ? 1 : 0) + (s.table.length && seventh ? 1 : 0);
+      const extra = seventh ? ` + rotary table ${seventh}` : "";
+      s.summary = `${count}-axis ${where}${seq}${extra} (TRAORI type ${t}, data set ${n})`;
+    }
+  }
+
+  // TRACYL on a milling machine (no orientation transformation holds the rotary axis): the
+  // rotary axis turns the cylinder about the axis parallel to it (TRAFO_AXES_IN_n[2]), through
+  // the machine zero, the way the lathe's spindle turns it (see `spindleSign`).
+  const tracyl = trafos.find(([, t]) => isTracyl(t));
+  if (tracyl) {
+    const role = (i: number) => linear.find((a) => a.name === md.machineOfChannel(md.axesIn(tracyl[0], i)));
+    const [radial, parallel] = [role(0), role(2)];
+    if (radial && parallel) s.cylinder = { radial: radial.dir, parallel: parallel.dir };
+  }
+  if (kind === "mill" && !s.table.length && !s.head.length && tracyl) {
+    const [n] = tracyl;
+    const k = md.ordinal(n, isTracyl);
+    const rot = md.machineOfChannel(md.axesIn(n, 1));
+    const parallel = linear.find((a) => a.name === md.machineOfChannel(md.axesIn(n, 2)));
+    const raw = md.data.raw(`$MC_TRACYL_ROT_SIGN_IS_PLUS_${k}`);
+    const sign = raw !== undefined && /^(FALSE|0)$/i.test(raw) ? 1 : -1;
+    if (rot && parallel) {
+      s.table = [{ name: rot, dir: scale(parallel.dir, sign), offset: [0, 0, 0], zero: md.num(`$MC_TRACYL_ROT_AX_OFFSET_${k}`) }];
+      used.add(rot);
+      s.summary = `${linear.length}-axis mill, cylinder on ${rot} about ${parallel.letter} (TRACYL, data set ${n})`;
     }
   }
 
@@ -314,6 +367,11 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
   } else if (!s.summary) {
     s.summary = `${linear.length}-axis mill`;
   }
+  // The unrolled path is wrapped in the workpiece frame only where that frame turns with the
+  // TRACYL rotary axis: a lathe's spindle, or the cylinder axis built above on a mill.
+  const tracylRot = tracyl ? md.machineOfChannel(md.axesIn(tracyl[0], 1)) : null;
+  const turnsWithTracyl = kind === "lathe" ? s.spindle === tracylRot : s.table.length === 1 && s.table[0]!.name === tracylRot;
+  if (!turnsWithTracyl) s.cylinder = null;
   s.otherRotary = rotary.filter((a) => !used.has(a));
   return s;
 }
@@ -335,4 +393,38 @@ export function rotaryAxisNames(text: string, machineAxes: string[]): Set<string
     if (name) out.add(name);
   }
   return out;
+}
+
+/** What the chain model needs of the machine data: axis names resolved, travel, the root name. */
+export interface AxisLookup {
+  /** The machine axis (MCS name) a `$NK_AXIS` entry follows: a machine or a channel axis name. */
+  machineAxis(name: string): string | null;
+  /** Software limits of a machine axis (a default span when none are set). */
+  travel(machineAxis: string): [number, number];
+  /** `$MN_ROOT_KIN_ELEM_NAME` (default "ROOT"). */
+  rootName: string;
+  /** Whether the machine data defines an orientation transformation of its own. */
+  hasOrientationTrafo: boolean;
+}
+
+export function axisLookup(text: string, machineAxes: string[]): AxisLookup {
+  const md = new Md(new NcData(text), machineAxes);
+  const defaults = ["X", "Y", "Z", "A", "B", "C", "U", "V"];
+  return {
+    machineAxis(name) {
+      if (machineAxes.includes(name)) return name;
+      for (let k = 1; k <= 20; k++) {
+        const chan = md.data.raw("$MC_AXCONF_CHANAX_NAME_TAB", String(k - 1))?.replace(/"/g, "") ?? defaults[k - 1];
+        if (chan === name) return md.machineOfChannel(k);
+      }
+      return null;
+    },
+    travel(axis) {
+      const lo = travel(md.axis(axis, "$MA_POS_LIMIT_MINUS"), -DEFAULT_TRAVEL);
+      const hi = travel(md.axis(axis, "$MA_POS_LIMIT_PLUS"), DEFAULT_TRAVEL);
+      return [Math.min(lo, hi), Math.max(lo, hi)];
+    },
+    rootName: md.data.raw("$MN_ROOT_KIN_ELEM_NAME")?.replace(/"/g, "") || "ROOT",
+    hasOrientationTrafo: md.trafos().some(([, t]) => isOrientationTrafo(t)),
+  };
 }

@@ -159,6 +159,11 @@ function buildMill(s: Structure): MachineModel {
         return slot;
       });
       j.turn.add(disk, mark, ...slots);
+      if (i === 0 && Math.abs(up.z) > 0.9) {
+        // A table standing alone (the 7th axis of a generic 7-axis machine): a pedestal on the bed.
+        const bottom = pivotsWorld[0]!.clone().add(axisPoint).addScaledVector(up, -50);
+        tableRoot.add(cylinder(MATERIALS.frame, 160, new THREE.Vector3(bottom.x, bottom.y, tableTop), bottom, 48));
+      }
     } else {
       // Cradle: a plate under the next axis and two cheeks on this axis.
       const next = v3(tableJoints[i + 1]!.axis.offset);
@@ -194,7 +199,9 @@ function buildMill(s: Structure): MachineModel {
     const housing = cylinder(MATERIALS.rotary, 75, j.dir.clone().multiplyScalar(-85), j.dir.clone().multiplyScalar(85));
     // Arm from this pivot to the next (or to the nose), offset sideways for a fork.
     const arm = cylinder(MATERIALS.head, 45, new THREE.Vector3(), next);
-    j.turn.add(housing, arm);
+    // A mark on the housing shows the turn (an axis about the tool's own axis turns nothing else).
+    const mark = cylinder(MATERIALS.mark, 12, new THREE.Vector3(), perpendicular(j.dir).multiplyScalar(110), 8);
+    j.turn.add(housing, arm, mark);
     parent = j.turn;
   });
   const nose = group();

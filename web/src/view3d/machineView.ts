@@ -8,7 +8,10 @@ import type { AxisValues, State } from "../api/types";
 import { byId, setText } from "../core/dom";
 import { NcData } from "../core/ncdata";
 import type { SessionController, SessionInfo } from "../core/session";
-import { isOrientationTrafo, readStructure, type Structure } from "./machineData";
+import { api } from "../api/client";
+import { buildChainMachine, chainRecordFor } from "./chainModel";
+import { parseChains } from "./kinChains";
+import { axisLookup, isOrientationTrafo, readStructure, type Structure } from "./machineData";
 import { buildMachine, type MachineModel } from "./machineModel";
 import { Toolpath } from "./toolpath";
 import { Viewport, type ViewName } from "./viewport";
@@ -55,6 +58,19 @@ class ToolSolid {
   }
 }
 
+/**
+ * A TRACYL point (X radial, Y arc length on diameter d, Z axial) on the cylinder: at X from
+ * the axis, turned by Y / (d/2) from the radial direction towards parallel × radial (the way
+ * the engine's TRACYL turns the workpiece under the tool), Z along the axis.
+ */
+export function wrapOnCylinder(p: [number, number, number], d: number, c: NonNullable<Structure["cylinder"]>): [number, number, number] {
+  const [r, u] = [c.radial, c.parallel];
+  const perp = [u[1] * r[2] - u[2] * r[1], u[2] * r[0] - u[0] * r[2], u[0] * r[1] - u[1] * r[0]];
+  const theta = p[1] / (d / 2);
+  const [cos, sin] = [Math.cos(theta), Math.sin(theta)];
+  return [0, 1, 2].map((i) => r[i]! * p[0] * cos + perp[i]! * p[0] * sin + u[i]! * p[2]) as [number, number, number];
+}
+
 /** The programmed path: a fixed polyline of WCS points placed at the work offset. */
 class ProgrammedPath {
   // Drawn over the solids: a path inside the workpiece or under the tool stays visible.
@@ -64,20 +80,57 @@ class ProgrammedPath {
   );
   count = 0;
 
-  set(points: [number, number, number][], axes: string[], offset: THREE.Vector3): void {
+  /**
+   * `diameters[i]`: the TRACYL working diameter at point i (its X is radial, Y the arc length,
+   * Z axial), wrapped onto the cylinder of `cylinder` when the model has one.
+   */
+  set(
+    points: [number, number, number][],
+    axes: string[],
+    offset: THREE.Vector3,
+    diameters: (number | null)[] = [],
+    cylinder: Structure["cylinder"] = null,
+  ): void {
     const slot = (name: string) => ({ X: 0, Y: 1, Z: 2 })[name as "X" | "Y" | "Z"] ?? -1;
     const map = axes.map(slot);
-    const data = new Float32Array(points.length * 3);
-    points.forEach((p, i) => {
+    const cartesian = (p: [number, number, number]) => {
       const q = [0, 0, 0];
       map.forEach((s, k) => s >= 0 && (q[s] = p[k] ?? 0));
-      data.set([q[0]! + offset.x, q[1]! + offset.y, q[2]! + offset.z], i * 3);
+      return q as [number, number, number];
+    };
+    const out: number[] = [];
+    points.forEach((p, i) => {
+      const q = cartesian(p);
+      const d = diameters[i];
+      if (!cylinder || typeof d !== "number" || !(d > 0)) {
+        out.push(q[0] + offset.x, q[1] + offset.y, q[2] + offset.z);
+        return;
+      }
+      // A straight segment on the unrolled surface is a helix on the cylinder: subdivide it
+      // so that no step turns more than 2°.
+      const prev = i > 0 && diameters[i - 1] === d ? cartesian(points[i - 1]!) : null;
+      const turn = prev ? Math.abs(q[1] - prev[1]) / (d / 2) : 0;
+      const steps = prev ? Math.min(720, Math.max(1, Math.ceil(turn / ((2 * Math.PI) / 180)))) : 1;
+      for (let k = prev ? 1 : steps; k <= steps; k++) {
+        const t = k / steps;
+        const at = prev ? ([0, 1, 2].map((c) => prev[c]! + (q[c]! - prev[c]!) * t) as [number, number, number]) : q;
+        out.push(...wrapOnCylinder(at, d, cylinder));
+      }
     });
+    const data = new Float32Array(out);
     this.line.geometry.dispose();
     this.line.geometry = new THREE.BufferGeometry();
     this.line.geometry.setAttribute("position", new THREE.BufferAttribute(data, 3));
     this.line.geometry.computeBoundingSphere();
-    this.count = points.length;
+    this.count = data.length / 3;
+  }
+
+  /** The drawn points (part frame), for the browser test. */
+  points(): [number, number, number][] {
+    const a = this.line.geometry.getAttribute("position");
+    const out: [number, number, number][] = [];
+    for (let i = 0; a && i < a.count; i++) out.push([a.getX(i), a.getY(i), a.getZ(i)]);
+    return out;
   }
 
   clear(): void {
@@ -103,6 +156,10 @@ export class MachineView {
   private ncData = new NcData("");
   private buildKey = "";
   private info: SessionInfo | null = null;
+  /** The session's kinematic chain program (GET .../kinematic-chains), "" until fetched. */
+  private chainText = "";
+  private chainSerial = 0;
+  private latest: State | null = null;
   /** Lathe: tool holder minus tool tip, measured while the BCS is Cartesian and untransformed. */
   private readonly latheOffset = new THREE.Vector3();
   private readonly holder = new THREE.Vector3();
@@ -133,6 +190,8 @@ export class MachineView {
     this.info = info;
     this.ncData = new NcData(info.machine.machine_data);
     this.buildKey = ""; // rebuilt from the first state (it names the machine axes)
+    if (!opts.keepPath) this.chainText = "";
+    void this.fetchChains();
     if (!opts.keepPath) {
       this.toolpath.clear();
       this.programmed.clear();
@@ -144,7 +203,12 @@ export class MachineView {
     const trafo = st.transformation ?? null;
     const oriSet = trafo && isOrientationTrafo(trafo.type) ? trafo.index : null;
     const key = `${axes.join(",")}|${oriSet ?? ""}`;
-    if (key !== this.buildKey) this.build(axes, oriSet);
+    this.latest = st;
+    if (key !== this.buildKey) {
+      this.build(axes, oriSet);
+      // A chain transformation selected: its chains may be new (a program wrote $NK_ data).
+      if (oriSet !== null && oriSet >= 100) void this.fetchChains();
+    }
     const s = this.structure;
     const model = this.model;
     if (!s || !model) return;
@@ -189,10 +253,10 @@ export class MachineView {
   }
 
   /** Shows a programmed path (WCS points of the preview) at the current work offset. */
-  setProgrammed(points: [number, number, number][], axes: string[]): void {
+  setProgrammed(points: [number, number, number][], axes: string[], tracylDiameter: (number | null)[] = []): void {
     const first = this.programmed.count === 0;
     // The points are BCS: the part frame is the BCS, no offset to add.
-    this.programmed.set(points, axes, new THREE.Vector3());
+    this.programmed.set(points, axes, new THREE.Vector3(), tracylDiameter, this.structure?.cylinder ?? null);
     if (first && points.length) this.setView("iso");
     this.viewport.invalidate();
   }
@@ -233,18 +297,68 @@ export class MachineView {
     this.viewport.frameBox(box, dir);
   }
 
+  pathPoints(n: number): [number, number, number][] {
+    return this.toolpath.lastPoints(n);
+  }
+
+  /**
+   * How far the workpiece frame is turned about the unit machine direction `about` (degrees,
+   * right-handed): the turn of a perpendicular vector, for the browser test.
+   */
+  partTurn(about: [number, number, number]): number | null {
+    if (!this.model) return null;
+    this.content.updateMatrixWorld(true);
+    const axis = new THREE.Vector3(...about).normalize();
+    const q = this.model.part.getWorldQuaternion(new THREE.Quaternion());
+    const frame = this.model.frame.getWorldQuaternion(new THREE.Quaternion());
+    q.premultiply(frame.invert()); // the part's turn in the machine frame
+    const ref = Math.abs(axis.z) < 0.9 ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(1, 0, 0);
+    ref.sub(axis.clone().multiplyScalar(ref.dot(axis))).normalize();
+    const turned = ref.clone().applyQuaternion(q);
+    return THREE.MathUtils.radToDeg(Math.atan2(axis.dot(ref.clone().cross(turned)), ref.dot(turned)));
+  }
+
   clearPath(): void {
     this.toolpath.clear();
     this.programmed.clear();
     this.viewport.invalidate();
   }
 
+  /** Fetches the session's chain data; rebuilds the model when it changed. */
+  private async fetchChains(): Promise<void> {
+    const id = this.info?.id;
+    if (!id) return;
+    const mine = ++this.chainSerial;
+    let text = "";
+    try {
+      text = await api.kinematicChains(id);
+    } catch {
+      return; // no chains to draw: the machine data model stays
+    }
+    if (mine !== this.chainSerial || id !== this.info?.id || typeof text !== "string" || text === this.chainText) return;
+    this.chainText = text;
+    this.buildKey = "";
+    if (this.latest) this.show(this.latest);
+  }
+
   private build(machineAxes: string[], oriSet: number | null): void {
     this.buildKey = `${machineAxes.join(",")}|${oriSet ?? ""}`;
     this.content.clear();
-    const s = readStructure(this.info?.machine.machine_data ?? "", machineAxes, oriSet);
+    const text = this.info?.machine.machine_data ?? "";
+    let s = readStructure(text, machineAxes, oriSet);
+    // A transformation defined by kinematic chains: the model follows its elements.
+    const lookup = axisLookup(text, machineAxes);
+    const chains = parseChains(this.chainText);
+    const record = chainRecordFor(chains, oriSet, lookup);
+    const chain = record ? buildChainMachine(chains, record, lookup) : null;
+    if (chain) {
+      s = { ...s, kind: "mill", head: [], table: [], summary: chain.summary };
+      this.caption.dataset.chain = record!.name;
+    } else {
+      delete this.caption.dataset.chain;
+    }
     this.structure = s;
-    this.model = buildMachine(s);
+    this.model = chain?.model ?? buildMachine(s);
     const letters = s.kind === "lathe" ? ["X", "Z", ...(s.linear.some((a) => a.letter === "Y") ? ["Y"] : [])] : ["X", "Y", "Z"];
     this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
     this.programmed.line.renderOrder = 2;
@@ -255,8 +369,8 @@ export class MachineView {
     this.model.update({}, false);
     this.caption.textContent = s.summary;
     this.caption.dataset.kind = s.kind;
-    this.caption.dataset.head = String(s.head.length);
-    this.caption.dataset.table = String(s.table.length);
+    this.caption.dataset.head = String(chain ? chain.toolRotary : s.head.length);
+    this.caption.dataset.table = String(chain ? chain.partRotary : s.table.length);
     this.framePending = true;
   }
 
@@ -308,7 +422,13 @@ export function mountMachineView(session: SessionController): MachineView {
   // For the browser test and the curious: the model's tool tip against the engine's.
   (window as unknown as { __nctwin3d: unknown }).__nctwin3d = {
     tipError: () => view.tipError,
+    /** The last `n` points of the executed path in the workpiece frame (machine directions). */
+    pathPoints: (n: number) => view.pathPoints(n),
+    /** The angle (degrees) the workpiece frame is turned about the machine axis `about`. */
+    partTurn: (about: [number, number, number]) => view.partTurn(about),
     programmedPoints: () => view.programmed.count,
+    /** The programmed path as drawn (workpiece frame, TRACYL parts wrapped). */
+    programmedPath: () => view.programmed.points(),
   };
   setText(byId("view3d-caption"), "");
   return view;

@@ -23,7 +23,7 @@ export function mountPreview(session: SessionController, view: MachineView): voi
     try {
       const r = await api.preview(id, { program: program.text, max_points: MAX_POINTS });
       if (mine !== serial || id !== session.id) return;
-      view.setProgrammed(r.basic, r.axes);
+      view.setProgrammed(r.basic, r.axes, r.tracyl_diameter);
       const end =
         r.outcome === "alarm" && r.alarm ? ` – alarm ${r.alarm.number}${r.alarm.line ? ` in line ${r.alarm.line}` : ""}` : r.outcome === "limit" ? " – cut short" : "";
       setText(note, `programmed ${program.name}: ${r.time.toFixed(1)} s${end}`);

@@ -49,6 +49,15 @@ export class Toolpath {
     return box;
   }
 
+  /** The last `n` stored points, oldest first. */
+  lastPoints(n: number): [number, number, number][] {
+    const out: [number, number, number][] = [];
+    for (let i = Math.max(0, this.count - n); i < this.count; i++) {
+      out.push([this.positions[i * 3]!, this.positions[i * 3 + 1]!, this.positions[i * 3 + 2]!]);
+    }
+    return out;
+  }
+
   clear(): void {
     this.count = 0;
     this.line.geometry.setDrawRange(0, 0);
