@@ -567,18 +567,19 @@ async fn health_reports_the_backend() {
     assert_eq!(server.get("/health").await.body["storage"]["backend"], "memory");
 }
 
-/// A node whose session was taken by another node (here: the row's lease rewritten, as after
-/// a network partition longer than the lease) stops serving it at its next heartbeat, answers
-/// 421 naming the new holder, and cannot write it any more.
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_node_that_lost_a_lease_stops_serving_the_session() {
-    let Some(url) = tokio::task::spawn_blocking(|| postgres_database("lost")).await.expect("task") else {
-        return;
-    };
+/// Node `a` (lease period `lease_s`) on a fresh test database with one session, whose row's
+/// lease is then rewritten to node `b` for `b_interval` (a PostgreSQL interval), as another
+/// node taking it over would. `None` without a test PostgreSQL server.
+async fn session_of_node_a_taken_by_b(
+    database: &'static str,
+    lease_s: u64,
+    b_interval: &'static str,
+) -> Option<(Server, String)> {
+    let url = tokio::task::spawn_blocking(move || postgres_database(database)).await.expect("task")?;
     let config = Config {
         database: Some(url.clone()),
         node_id: Some("a".into()),
-        lease_period: Duration::from_secs(1),
+        lease_period: Duration::from_secs(lease_s),
         ..Config::new(common::temp_data_dir(), common::WEB_DIR)
     };
     let server = Server::start_config(config).await;
@@ -586,16 +587,23 @@ async fn a_node_that_lost_a_lease_stops_serving_the_session() {
     let key = id.clone();
     tokio::task::spawn_blocking(move || {
         let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
-        let n = admin
-            .execute(
-                "UPDATE nctwin_sessions SET lease_node = 'b', lease_expires = now() + interval '1 hour' WHERE id = $1",
-                &[&key],
-            )
-            .expect("take over");
+        let statement = format!(
+            "UPDATE nctwin_sessions SET lease_node = 'b', lease_expires = now() + interval '{b_interval}' WHERE id = $1"
+        );
+        let n = admin.execute(statement.as_str(), &[&key]).expect("take over");
         assert_eq!(n, 1);
     })
     .await
     .expect("task");
+    Some((server, id))
+}
+
+/// A node whose session was taken by another node (here: the row's lease rewritten, as after
+/// a network partition longer than the lease) stops serving it at its next heartbeat, answers
+/// 421 naming the new holder, and cannot write it any more.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_node_that_lost_a_lease_stops_serving_the_session() {
+    let Some((server, id)) = session_of_node_a_taken_by_b("lost", 1, "1 hour").await else { return };
     // The heartbeat runs three times per second here.
     let mut reply = server.get(&format!("/sessions/{id}/state")).await;
     for _ in 0..100 {
@@ -618,29 +626,7 @@ async fn a_node_that_lost_a_lease_stops_serving_the_session() {
 /// naming the holder, not 503, and this node stops serving the session at once.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_write_that_finds_the_lease_taken_answers_421_naming_the_holder() {
-    let Some(url) = tokio::task::spawn_blocking(|| postgres_database("taken")).await.expect("task") else {
-        return;
-    };
-    let config = Config {
-        database: Some(url.clone()),
-        node_id: Some("a".into()),
-        lease_period: Duration::from_secs(60),
-        ..Config::new(common::temp_data_dir(), common::WEB_DIR)
-    };
-    let server = Server::start_config(config).await;
-    let id = server.session("mill-3axis").await;
-    let key = id.clone();
-    tokio::task::spawn_blocking(move || {
-        let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
-        admin
-            .execute(
-                "UPDATE nctwin_sessions SET lease_node = 'b', lease_expires = now() + interval '30 seconds' WHERE id = $1",
-                &[&key],
-            )
-            .expect("take over");
-    })
-    .await
-    .expect("task");
+    let Some((server, id)) = session_of_node_a_taken_by_b("taken", 60, "30 seconds").await else { return };
     // Still served here (no heartbeat yet): the write reaches the database and is fenced.
     assert_eq!(server.get(&format!("/sessions/{id}/state")).await.status, StatusCode::OK);
     let write = server.put(&format!("/sessions/{id}/programs/P"), json!({"text": "M30"})).await;

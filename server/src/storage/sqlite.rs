@@ -287,25 +287,30 @@ mod tests {
         dir.join("test.sqlite3")
     }
 
+    /// Session `s1` on mill-3axis, its one axis at `position`, in `mode`.
+    fn session_s1(position: f64, mode: &str) -> SessionRecord {
+        SessionRecord {
+            id: "s1".into(),
+            number: 1,
+            machine: "mill-3axis".into(),
+            client_ip: None,
+            tokens: TokenHashes { owner: "a".into(), operator: "b".into(), observer: "c".into() },
+            checkpoint: Checkpoint {
+                machine_data: String::new(),
+                positions: vec![position],
+                mode: mode.into(),
+                channel_state: Some("{}".into()),
+                active_program: None,
+            },
+        }
+    }
+
     #[test]
     fn data_survives_reopening_and_the_database_is_in_wal_mode_with_full_sync() {
         let path = temp_db("reopen");
         {
             let storage = SqliteStorage::open(&path).expect("open");
-            let record = SessionRecord {
-                id: "s1".into(),
-                number: 1,
-                machine: "mill-3axis".into(),
-                client_ip: None,
-                tokens: TokenHashes { owner: "a".into(), operator: "b".into(), observer: "c".into() },
-                checkpoint: Checkpoint {
-                    machine_data: String::new(),
-                    positions: vec![3.25],
-                    mode: "MDA".into(),
-                    channel_state: Some("{}".into()),
-                    active_program: None,
-                },
-            };
+            let record = session_s1(3.25, "MDA");
             storage.create_session(&record).expect("create");
             storage.put_program("s1", "P", "M30").expect("program");
             let connection = storage.connection();
@@ -342,20 +347,7 @@ mod tests {
         let path = temp_db("active");
         let storage = SqliteStorage::open(&path).expect("open");
         let page: i64 = storage.connection().query_row("PRAGMA page_size", [], |r| r.get(0)).expect("page size");
-        let record = SessionRecord {
-            id: "s1".into(),
-            number: 1,
-            machine: "mill-3axis".into(),
-            client_ip: None,
-            tokens: TokenHashes { owner: "a".into(), operator: "b".into(), observer: "c".into() },
-            checkpoint: Checkpoint {
-                machine_data: String::new(),
-                positions: vec![0.0],
-                mode: "AUTO".into(),
-                channel_state: Some("{}".into()),
-                active_program: None,
-            },
-        };
+        let record = session_s1(0.0, "AUTO");
         storage.create_session(&record).expect("create");
         // 1 MiB of distinct lines: at least 1 MiB / page size pages wherever it is written.
         let text = |seed: u32| (0..60_000).map(|i| format!("N{i} G1 X{seed}.{i:06} F{seed}\n")).collect::<String>();
