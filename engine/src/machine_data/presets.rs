@@ -728,7 +728,10 @@ $TC_CARR37[1]=1005            ; all swivel modes; direction reference: rotary ax
 $TC_CARR40[1]=350.            ; retraction position Z (machine)
 "#;
 
-const MILL6_GENERIC: &str = r#"; 6-axis mill with a three-axis head: C turns about Z and carries B (about Y), which carries
+/// The text of `mill6-generic`, a macro so that `mill7-generic` can be built on it with `concat!`.
+macro_rules! mill6_generic_text {
+    () => {
+        r#"; 6-axis mill with a three-axis head: C turns about Z and carries B (about Y), which carries
 ; A, the rotation of the tool about its own axis (generic 6-axis transformation, F2 §3.7.5).
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
@@ -808,101 +811,29 @@ $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
 $MC_TRAFO5_ROT_SIGN_IS_PLUS_1[2]=TRUE
 $MC_TRAFO5_NON_POLE_LIMIT_1=2.
 $MC_TRAFO5_POLE_LIMIT_1=2.
-"#;
+"#
+    };
+}
 
-const MILL7_GENERIC: &str = r#"; 7-axis mill: the three-axis head of mill6-generic (C about Z carries B about Y, which carries
-; A, the tool's own rotation) and a rotary table C1 about Z that turns the workpiece: the 7th axis
-; of the generic 7-axis transformation (F2 §3.7.6).
-$MN_AXCONF_MACHAX_NAME_TAB[0]="X"
-$MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
-$MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
-$MN_AXCONF_MACHAX_NAME_TAB[3]="A"
-$MN_AXCONF_MACHAX_NAME_TAB[4]="B"
-$MN_AXCONF_MACHAX_NAME_TAB[5]="C"
+const MILL6_GENERIC: &str = mill6_generic_text!();
+
+const MILL7_GENERIC: &str = concat!(
+    mill6_generic_text!(),
+    r#"; 7-axis mill: the head of mill6-generic (above) and a rotary table C1 about Z that turns the
+; workpiece: the 7th axis of the generic 7-axis transformation (F2 §3.7.6).
 $MN_AXCONF_MACHAX_NAME_TAB[6]="C1"
-$MC_AXCONF_MACHAX_USED[0]=1
-$MC_AXCONF_MACHAX_USED[1]=2
-$MC_AXCONF_MACHAX_USED[2]=3
-$MC_AXCONF_MACHAX_USED[3]=4
-$MC_AXCONF_MACHAX_USED[4]=5
-$MC_AXCONF_MACHAX_USED[5]=6
 $MC_AXCONF_MACHAX_USED[6]=7
-$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
-$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
-$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
-$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
-$MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
-$MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
-$MC_AXCONF_CHANAX_NAME_TAB[3]="A"
-$MC_AXCONF_CHANAX_NAME_TAB[4]="B"
-$MC_AXCONF_CHANAX_NAME_TAB[5]="C"
 $MC_AXCONF_CHANAX_NAME_TAB[6]="C1"
-$MA_MAX_AX_VELO[X]=40000.
-$MA_MAX_AX_ACCEL[X]=4.
-$MA_POS_LIMIT_MINUS[X]=-800.
-$MA_POS_LIMIT_PLUS[X]=800.
-$MA_MAX_AX_VELO[Y]=40000.
-$MA_MAX_AX_ACCEL[Y]=4.
-$MA_POS_LIMIT_MINUS[Y]=-600.
-$MA_POS_LIMIT_PLUS[Y]=600.
-$MA_MAX_AX_VELO[Z]=40000.
-$MA_MAX_AX_ACCEL[Z]=4.
-$MA_POS_LIMIT_MINUS[Z]=-400.
-$MA_POS_LIMIT_PLUS[Z]=300.
-$MA_IS_ROT_AX[A]=TRUE
-$MA_MAX_AX_VELO[A]=50.
-$MA_MAX_AX_ACCEL[A]=3.
-$MA_POS_LIMIT_MINUS[A]=-200.
-$MA_POS_LIMIT_PLUS[A]=200.
-$MA_IS_ROT_AX[B]=TRUE
-$MA_MAX_AX_VELO[B]=30.
-$MA_MAX_AX_ACCEL[B]=2.
-$MA_POS_LIMIT_MINUS[B]=-100.
-$MA_POS_LIMIT_PLUS[B]=100.
-$MA_IS_ROT_AX[C]=TRUE
-$MA_ROT_IS_MODULO[C]=TRUE
-$MA_MAX_AX_VELO[C]=40.
-$MA_MAX_AX_ACCEL[C]=2.
 $MA_IS_ROT_AX[C1]=TRUE
 $MA_ROT_IS_MODULO[C1]=TRUE
 $MA_MAX_AX_VELO[C1]=30.
 $MA_MAX_AX_ACCEL[C1]=1.5
-; T1 D1: end mill, length 100, radius 5
-$TC_DP1[1,1]=120
-$TC_DP3[1,1]=100.
-$TC_DP6[1,1]=5.
-; TRAORI data set 1: generic 7-axis: three rotary axes turn the tool, the 7th (C1) the workpiece.
-$MC_TRAFO_TYPE_1=24
-$MC_TRAFO_AXES_IN_1[0]=1      ; X
-$MC_TRAFO_AXES_IN_1[1]=2      ; Y
-$MC_TRAFO_AXES_IN_1[2]=3      ; Z
-$MC_TRAFO_AXES_IN_1[3]=6      ; C: 1st rotary axis (about Z)
-$MC_TRAFO_AXES_IN_1[4]=5      ; B: 2nd rotary axis (about Y)
-$MC_TRAFO_AXES_IN_1[5]=4      ; A: 3rd rotary axis (about the tool axis)
 $MC_TRAFO_AXES_IN_1[6]=7      ; C1: 7th axis (rotary table)
-$MC_TRAFO_GEOAX_ASSIGN_TAB_1[0]=1
-$MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=2
-$MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=3
-$MC_TRAFO5_AXIS1_1[2]=1.
-$MC_TRAFO5_AXIS2_1[1]=1.
-$MC_TRAFO5_AXIS3_1[2]=1.
-$MC_TRAFO5_BASE_ORIENT_1[2]=1.
-$MC_TRAFO6_BASE_ORIENT_NORMAL_1[0]=1.
-; C and B intersect; the B pivot lies 80 mm above the A bearing, which lies 120 mm above the
-; spindle nose: l2 = JOINT_OFFSET = 0, l23 = JOINT_OFFSET_2_3, l3 = BASE_TOOL, and the machine
-; position is the spindle nose at A = B = C = 0 (l1 = PART_OFFSET = −(l2 + l23 + l3)).
-$MC_TRAFO6_JOINT_OFFSET_2_3_1[2]=-80.
-$MC_TRAFO5_BASE_TOOL_1[2]=-120.
-$MC_TRAFO5_PART_OFFSET_1[2]=200.
-$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[0]=TRUE
-$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[1]=TRUE
-$MC_TRAFO5_ROT_SIGN_IS_PLUS_1[2]=TRUE
-$MC_TRAFO5_NON_POLE_LIMIT_1=2.
-$MC_TRAFO5_POLE_LIMIT_1=2.
 ; The table axis runs through the BCS zero point (machine X0 Y0) along +Z.
 $MC_TRAFO7_EXT_AXIS1_1[2]=1.
 $MC_TRAFO7_EXT_ROT_AX_OFFSET_1=0.
-"#;
+"#
+);
 
 #[cfg(test)]
 mod tests {
