@@ -6,7 +6,7 @@
 //! bounded for programs of any length.
 
 use crate::alarm::Alarm;
-use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, ProgramText, Stmt};
+use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, ProgramText, Stmt, Word};
 
 /// A position in the program text: byte offset of a line start and its 1-based line number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,17 +49,35 @@ pub(super) struct Flow {
     /// The block read last (the one being prepared).
     pub current: Pos,
     pub control: Vec<Ctrl>,
+    /// The word list of a block done with (see [`Flow::recycle`]): the next block read is
+    /// parsed into its allocation.
+    spare: Vec<Word>,
 }
 
 impl Flow {
     pub fn new(text: ProgramText) -> Flow {
-        let start = Pos { offset: 0, line: 1 };
-        Flow { text, next: start, current: start, control: Vec::new() }
+        Flow::at(text, Pos { offset: 0, line: 1 })
+    }
+
+    /// A reader of `text` positioned at `pos`.
+    fn at(text: ProgramText, pos: Pos) -> Flow {
+        Flow { text, next: pos, current: pos, control: Vec::new(), spare: Vec::new() }
+    }
+
+    /// Takes back a block that was read and is done with: its word list's allocation serves
+    /// the next block.
+    pub fn recycle(&mut self, block: Block) {
+        let mut words = block.words;
+        if words.capacity() > self.spare.capacity() {
+            words.clear();
+            self.spare = words;
+        }
     }
 
     /// Reads the block at the read position; returns it with its own position.
     pub fn read(&mut self) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
-        let (block, offset, line) = lang::read_block(&self.text, self.next.offset, self.next.line)?;
+        let (block, offset, line) =
+            lang::read_block_reusing(&self.text, self.next.offset, self.next.line, &mut self.spare)?;
         let at = match &block {
             Ok(b) => Pos { offset: b.offset, line: b.line },
             Err(d) => Pos { offset: self.next.offset, line: d.line },
@@ -75,7 +93,12 @@ impl Flow {
     pub fn skip(&mut self, from_line: u32, stop: impl Fn(&Stmt) -> bool) -> Result<Stmt, Alarm> {
         let mut depth = 0usize;
         while let Some((block, _)) = self.read() {
-            let Ok(Block { stmt: Some(stmt), .. }) = block else { continue };
+            let Ok(mut block) = block else { continue };
+            let Some(stmt) = block.stmt.take() else {
+                self.recycle(block);
+                continue;
+            };
+            self.recycle(block);
             if depth == 0 && stop(&stmt) {
                 return Ok(stmt);
             }
@@ -124,7 +147,7 @@ impl Flow {
         // jumps) and those whose end lies before the target (forward jumps).
         self.control.retain(|c| c.at().offset < target.offset);
         while let Some(c) = self.control.last() {
-            let mut probe = Flow { text: self.text.clone(), next: c.at(), current: c.at(), control: Vec::new() };
+            let mut probe = Flow::at(self.text.clone(), c.at());
             probe.read();
             let closer = probe.skip(from.line, closes);
             if closer.is_ok() && probe.next.offset <= target.offset {
@@ -142,7 +165,7 @@ impl Flow {
     /// `self.jumping`. The target block itself is executed (a label may share its block).
     fn find(&self, goto: &Goto, from: Pos, backward: bool) -> Option<Pos> {
         let end = self.current.offset;
-        let mut probe = Flow { text: self.text.clone(), next: from, control: Vec::new(), current: from };
+        let mut probe = Flow::at(self.text.clone(), from);
         if !backward {
             // A forward search starts after the jumping block.
             probe.read();
@@ -158,6 +181,7 @@ impl Flow {
                 JumpTarget::BlockNumber(n) => block.number == Some(*n),
                 JumpTarget::Expr(_) | JumpTarget::ProgramStart => false,
             };
+            probe.recycle(block);
             if hit {
                 found = Some(at);
                 if !last {

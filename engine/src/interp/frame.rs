@@ -210,10 +210,14 @@ impl Frame {
         let inv = invert3(&self.lin)?;
         let mut out = *p;
         for k in 0..MAX_CHANNEL_AXES {
-            if self.factor[k] == 0.0 {
+            let (t, f) = (self.trans[k], self.factor[k]);
+            if f == 0.0 {
                 return None;
             }
-            out[k] = (p[k] - self.trans[k]) / self.factor[k];
+            // Most axes have neither offset nor factor: `(p − 0) / 1` is `p`, bit for bit.
+            if f != 1.0 || t.to_bits() != 0 {
+                out[k] = (p[k] - t) / f;
+            }
         }
         let d = geo.map(|a| a.map_or(0.0, |k| p[k] - self.trans[k]));
         for (g, axis) in geo.iter().enumerate() {
@@ -331,6 +335,13 @@ pub fn about_axis(g: usize, angle: f64) -> [[f64; 3]; 3] {
 }
 
 fn invert3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    // The identity (no rotation or scale, most frames): the formula's result below, with the
+    // signs of its zeros, without the arithmetic.
+    const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    const IDENTITY_INVERSE: [[f64; 3]; 3] = [[1.0, -0.0, 0.0], [-0.0, 1.0, -0.0], [0.0, -0.0, 1.0]];
+    if m.as_flattened().iter().zip(IDENTITY.as_flattened()).all(|(a, b)| a.to_bits() == b.to_bits()) {
+        return Some(IDENTITY_INVERSE);
+    }
     let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     if det.abs() < 1e-15 {
@@ -349,6 +360,25 @@ mod tests {
     use super::*;
 
     const GEO: GeoAxes = [Some(0), Some(1), Some(2)];
+
+    #[test]
+    fn the_identity_shortcut_of_the_inverse_is_the_formula_bit_for_bit() {
+        // The cofactor formula for the identity, written out: -(0·1 − 0·0) is −0.
+        let m = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0f64]];
+        let det = 1.0f64;
+        let c = |r0: usize, c0: usize, r1: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
+        let formula = [
+            [c(1, 1, 2, 2) / det, -c(0, 1, 2, 2) / det, c(0, 1, 1, 2) / det],
+            [-c(1, 0, 2, 2) / det, c(0, 0, 2, 2) / det, -c(0, 0, 1, 2) / det],
+            [c(1, 0, 2, 1) / det, -c(0, 0, 2, 1) / det, c(0, 0, 1, 1) / det],
+        ];
+        let shortcut = invert3(&m).expect("regular");
+        let bits = |a: &[[f64; 3]; 3]| a.as_flattened().iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&shortcut), bits(&formula));
+        // A negative zero in the matrix is no identity for the shortcut: the formula runs.
+        let signed = [[1.0, -0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert_eq!(invert3(&signed).expect("regular")[0][1].to_bits(), (0.0f64).to_bits());
+    }
 
     fn p(x: f64, y: f64, z: f64) -> AxisVec {
         let mut v = [0.0; MAX_CHANNEL_AXES];

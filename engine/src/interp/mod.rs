@@ -221,6 +221,8 @@ pub struct Interpreter {
     trafo: trafo::TrafoState,
     /// The orientable toolholder and G groups 22, 42, 52, 53 (see `swivel.rs`).
     holder: toolholder::Holder,
+    /// The words of the last block, kept for the next one's (no allocation per block).
+    spare_words: Option<Box<modal::Words>>,
 }
 
 impl Interpreter {
@@ -247,6 +249,7 @@ impl Interpreter {
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
             holder: toolholder::Holder { g53: 1, ..Default::default() },
+            spare_words: None,
         }
     }
 
@@ -420,13 +423,30 @@ impl Interpreter {
         programs: &Programs,
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
+        // One `Words` is reused block after block (see `Words::clear`).
+        let mut words = self.spare_words.take().unwrap_or_default();
+        let result = self.prepare_words(&mut words, block, cfg, programs, out);
+        self.spare_words = Some(words);
+        result
+    }
+
+    /// [`Interpreter::prepare_block`] with the block's words collected into `words`.
+    fn prepare_words(
+        &mut self,
+        words: &mut modal::Words,
+        block: &Block,
+        cfg: &MachineConfig,
+        programs: &Programs,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
         let line = block.line;
         let (base_cfg, derived) = (cfg, self.trafo.config());
         let cfg = derived.as_deref().unwrap_or(base_cfg);
-        let words = {
+        {
             let sys = sys_view!(self, cfg);
-            modal::collect(block, cfg, &mut self.vars, &sys, programs)?
-        };
+            modal::collect(words, block, cfg, &mut self.vars, &sys, programs)?;
+        }
+        let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
         self.corner_request = words.corner;
         if words.newconf {
@@ -529,8 +549,13 @@ impl Interpreter {
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
-            let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
-            self.trc.push(prepared, comp, &limits, out)?;
+            if comp.is_none() && self.trc.idle() {
+                // Nothing to compensate and nothing held: the move goes straight out.
+                self.trc.emit_uncompensated(Item::Move { mv, line, offsets }, out);
+            } else {
+                let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
+                self.trc.push(prepared, comp, &limits, out)?;
+            }
         } else if !positioned && !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
             // A new shared value is made only when the offsets differ from the last one.
             out.push(Item::Offsets { line, offsets: self.shared_offsets() });

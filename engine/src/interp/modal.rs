@@ -385,23 +385,41 @@ impl Words {
     }
 }
 
-/// Sorts and evaluates the words of `block`. Assignments (`R1=5`, `A[2]=R1`) take effect in
-/// block order, so a later word of the same block sees the new value.
+impl Words {
+    /// Empties the words for the next block, keeping the lists' allocations: one `Words` is
+    /// reused block after block, so a plain block allocates nothing and the large struct is
+    /// not moved out of `collect`.
+    pub fn clear(&mut self) {
+        let mut axes = std::mem::take(&mut self.axes);
+        let mut data_writes = std::mem::take(&mut self.data_writes);
+        let mut toff = std::mem::take(&mut self.toff);
+        let mut frame_writes = std::mem::take(&mut self.frame_writes);
+        axes.clear();
+        data_writes.clear();
+        toff.clear();
+        frame_writes.clear();
+        *self = Words { axes, data_writes, toff, frame_writes, ..Words::default() };
+    }
+}
+
+/// Sorts and evaluates the words of `block` into `w` (cleared first). Assignments (`R1=5`,
+/// `A[2]=R1`) take effect in block order, so a later word of the same block sees the new value.
 pub(super) fn collect(
+    w: &mut Words,
     block: &Block,
     cfg: &MachineConfig,
     vars: &mut Variables,
     sys: &SysView,
     programs: &Programs,
-) -> Result<Words, Alarm> {
+) -> Result<(), Alarm> {
     let line = block.line;
-    let mut w = Words::default();
+    w.clear();
     // Addresses seen so far (each may appear once per block).
     let mut seen = Seen::default();
     for word in &block.words {
         match word {
-            Word::G(code) => g_function(&mut w, *code, line)?,
-            Word::M(code) => m_function(&mut w, *code, line)?,
+            Word::G(code) => g_function(w, *code, line)?,
+            Word::M(code) => m_function(w, *code, line)?,
             Word::Goto(goto) => w.goto = Some(goto.clone()),
             Word::Keyword { name, args }
                 if args.is_empty()
@@ -434,7 +452,7 @@ pub(super) fn collect(
                     _ => PtpMode::PtpWoc,
                 });
             }
-            Word::Keyword { name, args } if args.is_empty() && holder_keyword(&mut w, name, line)? => {}
+            Word::Keyword { name, args } if args.is_empty() && holder_keyword(w, name, line)? => {}
             Word::Keyword { name, args } if name == "CYCLE800" => {
                 if w.swivel.is_some() {
                     return Err(Alarm::syntax(line, "one CYCLE800 per block"));
@@ -622,7 +640,7 @@ pub(super) fn collect(
             }
         }
     }
-    Ok(w)
+    Ok(())
 }
 
 /// Performs `name[indices] = expr` if `name` is an R parameter or a variable; returns false

@@ -64,6 +64,10 @@ impl Interpreter {
                 self.prepare_block(&block, cfg, programs, out)?;
             }
         }
+        let line = block.line;
+        if let Some(flow) = self.flow.as_mut() {
+            flow.recycle(block);
+        }
         if out.iter().any(|i| matches!(i, Item::Alarm(_))) {
             // A programmed alarm (SETAL) ends preparation like any other.
             self.flow = None;
@@ -74,7 +78,7 @@ impl Interpreter {
             // M17, M2, M30 and RET end a subprogram run; in the main program they end it.
             if !self.calls.is_empty() {
                 out.remove(i);
-                self.return_from_call(cfg, block.line)?;
+                self.return_from_call(cfg, line)?;
                 return Ok(Prep::Prepared);
             }
             self.flow = None;

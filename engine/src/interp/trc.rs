@@ -216,6 +216,20 @@ impl Compensator {
             .unwrap_or(usize::MAX)
     }
 
+    /// True when compensation holds nothing and the tool runs uncompensated: a move without
+    /// compensation then goes straight to the main run ([`Compensator::emit_uncompensated`]).
+    pub fn idle(&self) -> bool {
+        self.tool_at.is_none() && !self.holds()
+    }
+
+    /// What [`Compensator::push`] does with an uncompensated move while [`Compensator::idle`]
+    /// (deselection with nothing to end), without moving the prepared move through its stages.
+    pub fn emit_uncompensated(&mut self, item: Item, out: &mut Vec<Item>) {
+        debug_assert!(self.idle(), "only for an idle compensator");
+        self.dummy_blocks = 0;
+        self.emit(item, out);
+    }
+
     /// Hands an item to the main run, or keeps it behind the held move.
     pub fn emit_or_defer(&mut self, item: Item, out: &mut Vec<Item>) {
         if self.holds() {

@@ -13,5 +13,5 @@ mod structure;
 mod text;
 
 pub use ast::*;
-pub use parser::{check, parse, parse_block, read_block};
+pub use parser::{check, parse, parse_block, read_block, read_block_reusing};
 pub use text::ProgramText;

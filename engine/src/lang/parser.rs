@@ -41,18 +41,33 @@ pub fn check(source: &str) -> Vec<Diagnostic> {
 /// Returns the block (or its syntax error) and the offset and line number after it; `None` at
 /// the end of the text. Lets a channel walk a program of any length without holding its blocks.
 pub fn read_block(source: &str, offset: usize, line: u32) -> Option<(Result<Block, Diagnostic>, usize, u32)> {
+    read_block_reusing(source, offset, line, &mut Vec::new())
+}
+
+/// [`read_block`] with the block's words built in `spare`'s allocation (taken from it, left
+/// empty when a block is returned): a reader that hands each block's emptied word list back
+/// (see `interp::flow`) parses block after block without allocating.
+pub fn read_block_reusing(
+    source: &str,
+    offset: usize,
+    line: u32,
+    spare: &mut Vec<Word>,
+) -> Option<(Result<Block, Diagnostic>, usize, u32)> {
     let mut lines = Lines::new(source, offset, line);
-    loop {
-        let (l, off, result) = lines.next()?;
+    lines.spare = std::mem::take(spare);
+    let found = loop {
+        let Some((l, off, result)) = lines.next() else { break None };
         let after = (lines.offset, lines.line);
         match result {
-            Ok(Some(block)) => return Some((Ok(block), after.0, after.1)),
+            Ok(Some(block)) => break Some((Ok(block), after.0, after.1)),
             Ok(None) => {}
             Err((col, message)) => {
-                return Some((Err(Diagnostic::syntax(l, off, col, message)), after.0, after.1));
+                break Some((Err(Diagnostic::syntax(l, off, col, message)), after.0, after.1));
             }
         }
-    }
+    };
+    *spare = lines.spare;
+    found
 }
 
 /// Iterator over the lines of a source: (line, offset of line start, parse result).
@@ -62,11 +77,13 @@ struct Lines<'a> {
     line: u32,
     /// Build the blocks; without, only the syntax is checked (no words are kept).
     build: bool,
+    /// An empty word list whose allocation the next block's words take.
+    spare: Vec<Word>,
 }
 
 impl<'a> Lines<'a> {
     fn new(source: &'a str, offset: usize, line: u32) -> Self {
-        Lines { source, offset, line, build: true }
+        Lines { source, offset, line, build: true, spare: Vec::new() }
     }
 }
 
@@ -88,7 +105,7 @@ impl Iterator for Lines<'_> {
         if !self.build && is_plain_line(text) {
             return Some((line, offset, Ok(None)));
         }
-        Some((line, offset, parse_line(text, line, offset, self.build)))
+        Some((line, offset, parse_line(text, line, offset, self.build, &mut self.spare)))
     }
 }
 
@@ -97,12 +114,13 @@ type PResult<T> = Result<T, (usize, String)>;
 
 /// Parses one line; `Ok(None)` for an empty line.
 pub fn parse_block(text: &str, line: u32, offset: usize) -> PResult<Option<Block>> {
-    parse_line(text, line, offset, true)
+    parse_line(text, line, offset, true, &mut Vec::new())
 }
 
 /// Parses one line. Without `build` the line is only checked: the block comes back without
-/// its words, label and comment, and nothing is copied for them.
-fn parse_line(text: &str, line: u32, offset: usize, build: bool) -> PResult<Option<Block>> {
+/// its words, label and comment, and nothing is copied for them. A block's words take
+/// `spare`'s allocation (an empty line leaves it there).
+fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec<Word>) -> PResult<Option<Block>> {
     let (code, comment) = split_comment(text);
     let mut cur = Cursor::new(code);
     let mut block = Block {
@@ -112,8 +130,13 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool) -> PResult<Opti
         number: None,
         label: None,
         stmt: None,
-        // Room for a typical block's words: one allocation instead of growing 1, 4, 8.
-        words: if build && !code.is_empty() { Vec::with_capacity(8) } else { Vec::new() },
+        // The spare list's room, else room for a typical block's words: one allocation
+        // instead of growing 1, 4, 8.
+        words: match build && !code.is_empty() {
+            true if spare.capacity() > 0 => std::mem::take(spare),
+            true => Vec::with_capacity(8),
+            false => Vec::new(),
+        },
         comment: comment.filter(|_| build).map(|c| c.trim().to_string()),
     };
     cur.skip_ws();
@@ -170,7 +193,14 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool) -> PResult<Opti
         && block.number.is_none()
         && block.label.is_none()
         && !block.skip;
-    Ok(if empty && block.comment.is_none() { None } else { Some(block) })
+    if empty && block.comment.is_none() {
+        // Nothing to hand out: the (empty) word list goes back for the next line.
+        if block.words.capacity() > spare.capacity() {
+            *spare = block.words;
+        }
+        return Ok(None);
+    }
+    Ok(Some(block))
 }
 
 fn split_comment(text: &str) -> (&str, Option<&str>) {
