@@ -34,6 +34,31 @@ proptest! {
     }
 
     #[test]
+    fn blocks_read_into_recycled_word_lists_are_the_blocks_read_fresh(text in nc_text()) {
+        // The interpreter parses each block into the emptied word list of the one before;
+        // what it reads must not depend on that (lines, offsets, words, errors alike).
+        let (mut fresh, mut reused) = ((0usize, 1u32), (0usize, 1u32));
+        let mut spare = Vec::new();
+        loop {
+            let a = lang::read_block(&text, fresh.0, fresh.1);
+            let b = lang::read_block_reusing(&text, reused.0, reused.1, &mut spare);
+            let ((a, ao, al), (b, bo, bl)) = match (a, b) {
+                (Some(a), Some(b)) => (a, b),
+                (None, None) => break,
+                (a, b) => return Err(TestCaseError::fail(format!("one reader ended: {a:?} / {b:?}"))),
+            };
+            prop_assert_eq!(&a, &b);
+            prop_assert_eq!((ao, al), (bo, bl));
+            if let Ok(block) = b {
+                let mut words = block.words;
+                words.clear();
+                spare = words;
+            }
+            (fresh, reused) = ((ao, al), (bo, bl));
+        }
+    }
+
+    #[test]
     fn machine_data_text_is_applied_whole_or_not_at_all(text in nc_text()) {
         let mut md = MachineData::default();
         let before = md.clone();

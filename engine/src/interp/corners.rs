@@ -7,6 +7,7 @@
 
 use super::{Interpreter, Item, Prep};
 use crate::alarm::Alarm;
+use crate::machine_data::MachineConfig;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 
 /// A corner requested at the end of a block.
@@ -35,12 +36,12 @@ impl Interpreter {
         out: &mut Vec<Item>,
         prep: Prep,
         request: Option<Corner>,
-        limits: &[AxisLimit],
+        cfg: &MachineConfig,
     ) -> Result<(), Alarm> {
         if let Some(held) = self.held.take() {
             match out.first_mut() {
                 Some(Item::Move { mv, .. }) if prep != Prep::WaitForMainRun => {
-                    let (first, insert) = corner_between(&held, mv, limits)?;
+                    let (first, insert) = corner_between(&held, mv, &AxisLimit::for_channel(cfg))?;
                     out.splice(0..0, std::iter::once(first).chain(insert));
                 }
                 _ => out.insert(0, held.item),

@@ -165,6 +165,17 @@ impl Frame {
         out
     }
 
+    /// Whether `other` holds the same numbers bit for bit: what a copy of a frame is compared
+    /// with to see whether it needs refreshing (cheaper than `==` on 49 floats, which cannot
+    /// be vectorised; a `0.0` against a `-0.0` only counts as a difference).
+    pub fn same_bits(&self, other: &Frame) -> bool {
+        let bits = |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0u64, |acc, (x, y)| acc | (x.to_bits() ^ y.to_bits()));
+        bits(&self.trans, &other.trans)
+            | bits(self.lin.as_flattened(), other.lin.as_flattened())
+            | bits(&self.factor, &other.factor)
+            == 0
+    }
+
     /// Maps a point from child to parent coordinates.
     pub fn apply(&self, geo: &GeoAxes, p: &AxisVec) -> AxisVec {
         let mut out = self.apply_vector(geo, p);

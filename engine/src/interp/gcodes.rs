@@ -9,8 +9,16 @@ use super::trc::{ArcFeed, CornerMode, Side};
 use super::trc_approach::ApproachMode;
 
 /// One entry per displayed G group: the index of the active function in that group's list.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, Eq, Default)]
 pub struct GCodes([u8; GROUPS.len()]);
+
+/// Compared once or twice per block: as one 128-bit number (the 16 groups fit exactly)
+/// rather than byte by byte.
+impl PartialEq for GCodes {
+    fn eq(&self, other: &GCodes) -> bool {
+        u128::from_ne_bytes(self.0) == u128::from_ne_bytes(other.0)
+    }
+}
 
 /// The displayed groups in Operate's order: (group number, names by index). Group 8 (settable
 /// frame) is named from its number instead.

@@ -344,7 +344,7 @@ impl Interpreter {
         let frame = self
             .frame_cache
             .get(cfg, work_offset, rotary_slot, changed.contains(&true), || sys_view!(self, cfg).chain(None));
-        if self.offsets.frame != *frame {
+        if !self.offsets.frame.same_bits(frame) {
             self.offsets.frame = frame.clone();
         }
         let tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
@@ -385,7 +385,6 @@ impl Interpreter {
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
         self.trc.begin_block(out);
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
-            let limits = AxisLimit::for_channel(cfg);
             // What a block without motion in the compensation plane produced waits behind the
             // held compensated move (look-ahead across dummy blocks, MD20250); anything that
             // cannot wait (a preprocessing stop, the program end, moves past the compensator)
@@ -393,12 +392,12 @@ impl Interpreter {
             let deferred = prep == Prep::Prepared && self.trc.end_block(out)?;
             if self.trc.holds() && !deferred {
                 let mut flushed = Vec::new();
-                self.trc.flush(&limits, &mut flushed)?;
+                self.trc.flush(&AxisLimit::for_channel(cfg), &mut flushed)?;
                 let at = out.iter().rposition(|i| matches!(i, Item::Move { .. })).map_or(0, |i| i + 1);
                 out.splice(at..at, flushed);
             }
             let request = self.corner_request.take();
-            self.shape_corners(out, prep, request, &limits)?;
+            self.shape_corners(out, prep, request, cfg)?;
             self.transform_moves(out)?;
             Ok(prep)
         });

@@ -657,7 +657,14 @@ struct Seen<'a> {
 impl<'a> Seen<'a> {
     /// Notes `name`; false if it was seen before.
     fn insert(&mut self, name: &'a str) -> bool {
-        if self.first[..self.len].contains(&name) || self.more.contains(&name) {
+        // Mostly one-letter names from the parser's static table: a differing first byte or
+        // length settles nearly every comparison without a call to `memcmp`.
+        let same = |seen: &&str| {
+            seen.len() == name.len()
+                && seen.as_bytes().first() == name.as_bytes().first()
+                && (seen.as_ptr() == name.as_ptr() || *seen == name)
+        };
+        if self.first[..self.len].iter().any(same) || self.more.iter().any(same) {
             return false;
         }
         if self.len < self.first.len() {
@@ -866,11 +873,37 @@ fn data_write(
 
 /// Addresses with a fixed meaning in a block.
 fn is_nc_address(name: &str) -> bool {
-    const ADDRESSES: &[&str] = &[
-        "F", "S", "T", "D", "CR", "H", "I", "J", "K", "L", "P", "RPL", "AP", "RP", "AR", "TURN", "RND", "CHF", "CHR",
-        "ADIS", "ADISPOS", "STAT", "TU", "OFFN", "DISC", "SPOS", "TCARR", "THETA",
-    ];
-    ADDRESSES.contains(&name) || orient::is_address(name)
+    // A `match` compares by length first: no string comparison for most names.
+    matches!(
+        name,
+        "F" | "S"
+            | "T"
+            | "D"
+            | "CR"
+            | "H"
+            | "I"
+            | "J"
+            | "K"
+            | "L"
+            | "P"
+            | "RPL"
+            | "AP"
+            | "RP"
+            | "AR"
+            | "TURN"
+            | "RND"
+            | "CHF"
+            | "CHR"
+            | "ADIS"
+            | "ADISPOS"
+            | "STAT"
+            | "TU"
+            | "OFFN"
+            | "DISC"
+            | "SPOS"
+            | "TCARR"
+            | "THETA"
+    ) || orient::is_address(name)
 }
 
 /// The keywords of G groups 22, 42, 52 and 53; false for any other word.

@@ -740,6 +740,13 @@ fn parse_level(cur: &mut Cursor, level: usize) -> PResult<Expr> {
 fn peek_operator(cur: &mut Cursor, ops: &[(&str, BinOp)]) -> Option<BinOp> {
     let save = cur.pos;
     cur.skip_ws();
+    // Every primary asks each of the ten levels: most answers are settled by the first byte
+    // (the end of the line, `)`, `,` or an operator of another level).
+    let first = cur.peek().map(|c| c.to_ascii_uppercase());
+    if !ops.iter().any(|(text, _)| Some(text.as_bytes()[0]) == first) {
+        cur.pos = save;
+        return None;
+    }
     for (text, op) in ops {
         if cur.starts_with_ignore_case(text) {
             let after = cur.peek_at(text.len());

@@ -155,6 +155,12 @@ fn word_operators_need_word_boundaries() {
 #[test]
 fn less_than_is_not_confused_with_concatenation_or_not_equal() {
     assert!(matches!(expr("A<<B"), Expr::Binary(BinOp::Concat, _, _)));
+    // Word operators in any case (the first-byte check before the operator lists compares
+    // upper case).
+    assert_eq!(expr("a or b"), expr("A OR B"));
+    assert_eq!(expr("8 div 4 mod 3"), expr("8 DIV 4 MOD 3"));
+    assert_eq!(expr("x b_xor 2 xor y"), expr("X B_XOR 2 XOR Y"));
+    assert_eq!(expr("a and b b_or c"), expr("A AND B B_OR C"));
     assert!(matches!(expr("A<>B"), Expr::Binary(BinOp::Ne, _, _)));
     assert!(matches!(expr("A<=B"), Expr::Binary(BinOp::Le, _, _)));
     assert!(matches!(expr("A<B"), Expr::Binary(BinOp::Lt, _, _)));
