@@ -39,16 +39,26 @@ proptest! {
         // what it reads must not depend on that (lines, offsets, words, errors alike).
         let (mut fresh, mut reused) = ((0usize, 1u32), (0usize, 1u32));
         let mut spare = Vec::new();
+        // And both read what the whole-program parser finds, block for block.
+        let whole = lang::parse(&text);
+        let (mut blocks, mut errors) = (whole.blocks.iter(), whole.diagnostics.iter());
         loop {
             let a = lang::read_block(&text, fresh.0, fresh.1);
             let b = lang::read_block_reusing(&text, reused.0, reused.1, &mut spare);
             let ((a, ao, al), (b, bo, bl)) = match (a, b) {
                 (Some(a), Some(b)) => (a, b),
-                (None, None) => break,
+                (None, None) => {
+                    prop_assert!(blocks.next().is_none() && errors.next().is_none(), "blocks left unread");
+                    break;
+                }
                 (a, b) => return Err(TestCaseError::fail(format!("one reader ended: {a:?} / {b:?}"))),
             };
             prop_assert_eq!(&a, &b);
             prop_assert_eq!((ao, al), (bo, bl));
+            match &b {
+                Ok(block) => prop_assert_eq!(Some(block), blocks.next()),
+                Err(d) => prop_assert_eq!(Some(d), errors.next()),
+            }
             if let Ok(block) = b {
                 let mut words = block.words;
                 words.clear();

@@ -806,8 +806,11 @@ impl Interpreter {
         let geo = &cfg.geo_axes;
         let start = self.pos;
         let tool = self.offsets.tool;
-        // G53/G153/SUPA: frames suppressed for this block.
-        let frame = self.block_frame(words, cfg);
+        // G53/G153/SUPA: frames suppressed for this block (borrowed, not copied, without).
+        let frame = match words.suppress {
+            None => std::borrow::Cow::Borrowed(&self.offsets.frame),
+            some => std::borrow::Cow::Owned(sys_view!(self, cfg).chain(some)),
+        };
         let mut basic = start;
         for k in 0..n {
             basic[k] -= tool[k];

@@ -49,25 +49,33 @@ pub fn read_block(source: &str, offset: usize, line: u32) -> Option<(Result<Bloc
 /// (see `interp::flow`) parses block after block without allocating.
 pub fn read_block_reusing(
     source: &str,
-    offset: usize,
-    line: u32,
+    mut offset: usize,
+    mut line: u32,
     spare: &mut Vec<Word>,
 ) -> Option<(Result<Block, Diagnostic>, usize, u32)> {
-    let mut lines = Lines::new(source, offset, line);
-    lines.spare = std::mem::take(spare);
-    let found = loop {
-        let Some((l, off, result)) = lines.next() else { break None };
-        let after = (lines.offset, lines.line);
-        match result {
-            Ok(Some(block)) => break Some((Ok(block), after.0, after.1)),
+    // The line loop of `Lines::next`, without the iterator's tuples: the block is built once
+    // and moved out once.
+    loop {
+        let (text, next) = next_line(source, offset)?;
+        let (l, off) = (line, offset);
+        (offset, line) = (next, line + 1);
+        match parse_line(text, l, off, true, spare) {
+            Ok(Some(block)) => return Some((Ok(block), offset, line)),
             Ok(None) => {}
-            Err((col, message)) => {
-                break Some((Err(Diagnostic::syntax(l, off, col, message)), after.0, after.1));
-            }
+            Err((col, message)) => return Some((Err(Diagnostic::syntax(l, off, col, message)), offset, line)),
         }
-    };
-    *spare = lines.spare;
-    found
+    }
+}
+
+/// The line starting at byte `offset` (without its line end) and the offset after it; `None`
+/// past the end of the text.
+fn next_line(source: &str, offset: usize) -> Option<(&str, usize)> {
+    if offset > source.len() || (offset == source.len() && offset > 0) {
+        return None;
+    }
+    let rest = &source[offset..];
+    let raw = rest.split('\n').next().unwrap_or("");
+    Some((raw.strip_suffix('\r').unwrap_or(raw), offset + raw.len() + 1))
 }
 
 /// Iterator over the lines of a source: (line, offset of line start, parse result).
@@ -77,13 +85,11 @@ struct Lines<'a> {
     line: u32,
     /// Build the blocks; without, only the syntax is checked (no words are kept).
     build: bool,
-    /// An empty word list whose allocation the next block's words take.
-    spare: Vec<Word>,
 }
 
 impl<'a> Lines<'a> {
     fn new(source: &'a str, offset: usize, line: u32) -> Self {
-        Lines { source, offset, line, build: true, spare: Vec::new() }
+        Lines { source, offset, line, build: true }
     }
 }
 
@@ -91,21 +97,16 @@ impl Iterator for Lines<'_> {
     type Item = (u32, usize, Result<Option<Block>, (usize, String)>);
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.offset > self.source.len() || (self.offset == self.source.len() && self.offset > 0) {
-            return None;
-        }
-        let rest = &self.source[self.offset..];
-        let raw = rest.split('\n').next().unwrap_or("");
-        let text = raw.strip_suffix('\r').unwrap_or(raw);
+        let (text, next) = next_line(self.source, self.offset)?;
         let (line, offset) = (self.line, self.offset);
-        self.offset += raw.len() + 1;
+        self.offset = next;
         self.line += 1;
         // The check needs no block: a line of plain address words has neither errors nor
         // statements, which a byte scan finds faster than the parser.
         if !self.build && is_plain_line(text) {
             return Some((line, offset, Ok(None)));
         }
-        Some((line, offset, parse_line(text, line, offset, self.build, &mut self.spare)))
+        Some((line, offset, parse_line(text, line, offset, self.build, &mut Vec::new())))
     }
 }
 
