@@ -76,8 +76,19 @@ impl Flow {
 
     /// Reads the block at the read position; returns it with its own position.
     pub fn read(&mut self) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
-        let (block, offset, line) =
-            lang::read_block_reusing(&self.text, self.next.offset, self.next.line, &mut self.spare)?;
+        self.read_with(lang::read_block_reusing)
+    }
+
+    /// As [`Flow::read`], passing over lines that cannot hold a statement (skipped branches).
+    fn read_statement(&mut self) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
+        self.read_with(lang::read_statement_block)
+    }
+
+    fn read_with(
+        &mut self,
+        reader: fn(&str, usize, u32, &mut Vec<Word>) -> Option<(Result<Block, lang::Diagnostic>, usize, u32)>,
+    ) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
+        let (block, offset, line) = reader(&self.text, self.next.offset, self.next.line, &mut self.spare)?;
         let at = match &block {
             Ok(b) => Pos { offset: b.offset, line: b.line },
             Err(d) => Pos { offset: self.next.offset, line: d.line },
@@ -92,7 +103,8 @@ impl Flow {
     /// statement found is returned (the read position is after it).
     pub fn skip(&mut self, from_line: u32, stop: impl Fn(&Stmt) -> bool) -> Result<Stmt, Alarm> {
         let mut depth = 0usize;
-        while let Some((block, _)) = self.read() {
+        // Only statements open, close or end the skipped part.
+        while let Some((block, _)) = self.read_statement() {
             let Ok(mut block) = block else { continue };
             let Some(stmt) = block.stmt.take() else {
                 self.recycle(block);

@@ -9,9 +9,10 @@ mod cursor;
 pub mod name;
 mod parser;
 mod plain_line;
+mod statement_scan;
 mod structure;
 mod text;
 
 pub use ast::*;
-pub use parser::{check, parse, parse_block, read_block, read_block_reusing};
+pub use parser::{check, parse, parse_block, read_block, read_block_reusing, read_statement_block};
 pub use text::ProgramText;

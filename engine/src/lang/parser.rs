@@ -4,6 +4,7 @@
 use super::ast::*;
 use super::cursor::Cursor;
 use super::plain_line::is_plain_line;
+use super::statement_scan::may_hold_statement;
 use super::structure::Structure;
 
 /// Parses a whole program into memory (tests, small programs).
@@ -49,16 +50,41 @@ pub fn read_block(source: &str, offset: usize, line: u32) -> Option<(Result<Bloc
 /// (see `interp::flow`) parses block after block without allocating.
 pub fn read_block_reusing(
     source: &str,
+    offset: usize,
+    line: u32,
+    spare: &mut Vec<Word>,
+) -> Option<(Result<Block, Diagnostic>, usize, u32)> {
+    read_lines(source, offset, line, spare, false)
+}
+
+/// [`read_block_reusing`] for a reader that skips a branch and looks only at statements: lines
+/// that cannot hold one are passed over unparsed (see `statement_scan.rs`), so the block
+/// returned is the next one that may hold a statement (or its syntax error).
+pub fn read_statement_block(
+    source: &str,
+    offset: usize,
+    line: u32,
+    spare: &mut Vec<Word>,
+) -> Option<(Result<Block, Diagnostic>, usize, u32)> {
+    read_lines(source, offset, line, spare, true)
+}
+
+/// The line loop of `Lines::next`, without the iterator's tuples: the block is built once and
+/// moved out once.
+fn read_lines(
+    source: &str,
     mut offset: usize,
     mut line: u32,
     spare: &mut Vec<Word>,
+    statements_only: bool,
 ) -> Option<(Result<Block, Diagnostic>, usize, u32)> {
-    // The line loop of `Lines::next`, without the iterator's tuples: the block is built once
-    // and moved out once.
     loop {
         let (text, next) = next_line(source, offset)?;
         let (l, off) = (line, offset);
         (offset, line) = (next, line + 1);
+        if statements_only && !may_hold_statement(text) {
+            continue;
+        }
         match parse_line(text, l, off, true, spare) {
             Ok(Some(block)) => return Some((Ok(block), offset, line)),
             Ok(None) => {}
