@@ -37,6 +37,9 @@ impl Ctrl {
     }
 }
 
+/// `lang::read_block_reusing` or `lang::read_statement_block`.
+type BlockReader = fn(&str, usize, u32, &mut Vec<Word>) -> Option<(Result<Block, lang::Diagnostic>, usize, u32)>;
+
 /// The most control structures open at once (the control allows 16 levels per program level).
 pub const MAX_NESTING: usize = 16;
 
@@ -84,10 +87,7 @@ impl Flow {
         self.read_with(lang::read_statement_block)
     }
 
-    fn read_with(
-        &mut self,
-        reader: fn(&str, usize, u32, &mut Vec<Word>) -> Option<(Result<Block, lang::Diagnostic>, usize, u32)>,
-    ) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
+    fn read_with(&mut self, reader: BlockReader) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
         let (block, offset, line) = reader(&self.text, self.next.offset, self.next.line, &mut self.spare)?;
         let at = match &block {
             Ok(b) => Pos { offset: b.offset, line: b.line },

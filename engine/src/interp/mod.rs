@@ -459,7 +459,7 @@ impl Interpreter {
         self.apply_transformation(selection, block, base_cfg, line)?;
         let derived = self.trafo.config();
         let cfg = derived.as_deref().unwrap_or(base_cfg);
-        self.modal.apply(&words, cfg, line)?;
+        self.modal.apply(words, cfg, line)?;
         if words.work_offset.is_some() {
             // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
             *self.iframe = None;
@@ -477,14 +477,14 @@ impl Interpreter {
             }
             self.spindles.set_master_speed(s);
         }
-        self.select_tool(&words, cfg, line)?;
+        self.select_tool(words, cfg, line)?;
         if let Some(op) = words.frame_op {
-            self.frame_instruction(op, &words, cfg, line)?;
+            self.frame_instruction(op, words, cfg, line)?;
         }
         for (which, f) in &words.frame_writes {
             self.write_chain_frame(*which, f.clone());
         }
-        self.holder_block(&words, cfg, line, out)?;
+        self.holder_block(words, cfg, line, out)?;
         self.refresh_offsets(cfg);
         self.absorb_tool_into_transformation();
         self.online_tool_offset(&words.toff, cfg);
@@ -518,7 +518,7 @@ impl Interpreter {
             let offsets = self.shared_offsets();
             let approach = self.modal.approach;
             let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner: None };
-            let comp = self.compensation(cfg, &words, line)?;
+            let comp = self.compensation(cfg, words, line)?;
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         }
         if words.dwell {
@@ -533,7 +533,7 @@ impl Interpreter {
             }
             out.push(Item::Dwell { seconds, line });
         } else if let Some(reference) = words.pole {
-            self.define_pole(reference, &words, cfg, line)?;
+            self.define_pole(reference, words, cfg, line)?;
         } else if words.frame_op.is_none() && !words.axes.is_empty()
             || words.ori.moves()
             || words.polar()
@@ -541,10 +541,10 @@ impl Interpreter {
         {
             // One set of limits for the move and its compensation (same configuration).
             let limits = AxisLimit::for_channel(cfg);
-            let (mv, feed) = self.motion(&words, cfg, &limits, line)?;
+            let (mv, feed) = self.motion(words, cfg, &limits, line)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
-            let comp = self.compensation(cfg, &words, line)?;
+            let comp = self.compensation(cfg, words, line)?;
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
