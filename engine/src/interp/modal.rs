@@ -398,7 +398,8 @@ impl Words {
         data_writes.clear();
         toff.clear();
         frame_writes.clear();
-        *self = Words { axes, data_writes, toff, frame_writes, ..Words::default() };
+        *self = Words::default();
+        (self.axes, self.data_writes, self.toff, self.frame_writes) = (axes, data_writes, toff, frame_writes);
     }
 }
 
