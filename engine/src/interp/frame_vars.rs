@@ -5,8 +5,10 @@
 //!
 //! which of them a program reads and writes, and what G53, G153 and SUPA leave of the chain.
 
+use std::borrow::Cow;
+
 use super::Interpreter;
-use super::frame::{self, Frame};
+use super::frame::Frame;
 use super::scope::SysView;
 use crate::machine_data::MachineConfig;
 
@@ -96,43 +98,56 @@ pub enum Suppress {
 impl SysView<'_> {
     /// The current value of one link.
     pub fn chain_frame(&self, which: ChainFrame) -> Frame {
+        self.chain_link(which).into_owned()
+    }
+
+    /// [`SysView::chain_frame`] borrowed where the link is stored as a frame (no copy).
+    fn chain_link(&self, which: ChainFrame) -> Cow<'_, Frame> {
         let cfg = self.cfg;
         let s = self.system;
         match which {
-            ChainFrame::Part => s.part.clone(),
-            ChainFrame::Set => s.set.clone(),
-            ChainFrame::Ext => s.ext.clone(),
-            ChainFrame::ActB => super::basic_frame(cfg),
-            ChainFrame::I => self.iframe.clone().unwrap_or_else(|| super::work_offset(cfg, self.modal.work_offset)),
-            ChainFrame::Tool => s.tool.clone(),
-            ChainFrame::Wp => s.wp.clone(),
-            ChainFrame::Tra => s.tra.clone(),
-            ChainFrame::P => self.pframe.clone(),
-            ChainFrame::Cyc => s.cycle.clone(),
+            ChainFrame::Part => Cow::Borrowed(&s.part),
+            ChainFrame::Set => Cow::Borrowed(&s.set),
+            ChainFrame::Ext => Cow::Borrowed(&s.ext),
+            ChainFrame::ActB => Cow::Owned(super::basic_frame(cfg)),
+            ChainFrame::I => match self.iframe {
+                Some(f) => Cow::Borrowed(f),
+                None => Cow::Owned(super::work_offset(cfg, self.modal.work_offset)),
+            },
+            ChainFrame::Tool => Cow::Borrowed(&s.tool),
+            ChainFrame::Wp => Cow::Borrowed(&s.wp),
+            ChainFrame::Tra => Cow::Borrowed(&s.tra),
+            ChainFrame::P => Cow::Borrowed(self.pframe),
+            ChainFrame::Cyc => Cow::Borrowed(&s.cycle),
         }
     }
 
     /// `$P_ACTFRAME`, or what a block's frame suppression leaves of it.
     pub fn chain(&self, suppress: Option<Suppress>) -> Frame {
-        let links: Vec<Frame> = ChainFrame::ORDER
-            .iter()
-            .filter(|l| match suppress {
-                None => true,
-                Some(Suppress::G53) => l.kept_by_g53(),
-                Some(Suppress::All) => false,
-            })
-            .map(|&l| {
-                let mut f = self.chain_frame(l);
-                if let Some(rot) = self.trafo.rotary_slot().filter(|_| self.stored(l)) {
-                    // TRANSMIT/TRACYL put a Cartesian axis into the rotary axis' slot: the
-                    // offsets the stored frames hold for the rotary axis stay out of it (frames
-                    // programmed while the transformation is active address the Cartesian axis).
-                    f.trans[rot] = 0.0;
-                }
-                f
-            })
-            .collect();
-        frame::chain(&links.iter().collect::<Vec<_>>(), &self.cfg.geo_axes)
+        // `frame::chain` over the links, folded as they come: no list of copied links.
+        let mut out: Option<Frame> = None;
+        let kept = ChainFrame::ORDER.iter().filter(|l| match suppress {
+            None => true,
+            Some(Suppress::G53) => l.kept_by_g53(),
+            Some(Suppress::All) => false,
+        });
+        for &l in kept {
+            let mut f = self.chain_link(l);
+            if let Some(rot) = self.trafo.rotary_slot().filter(|_| self.stored(l)) {
+                // TRANSMIT/TRACYL put a Cartesian axis into the rotary axis' slot: the
+                // offsets the stored frames hold for the rotary axis stay out of it (frames
+                // programmed while the transformation is active address the Cartesian axis).
+                f.to_mut().trans[rot] = 0.0;
+            }
+            if f.is_identity() {
+                continue;
+            }
+            out = Some(match out {
+                None => f.into_owned(),
+                Some(parent) => parent.then(&f, &self.cfg.geo_axes),
+            });
+        }
+        out.unwrap_or_default()
     }
 }
 
