@@ -221,14 +221,10 @@ impl Frame {
         let inv = invert3(&self.lin)?;
         let mut out = *p;
         for k in 0..MAX_CHANNEL_AXES {
-            let (t, f) = (self.trans[k], self.factor[k]);
-            if f == 0.0 {
+            if self.factor[k] == 0.0 {
                 return None;
             }
-            // Most axes have neither offset nor factor: `(p − 0) / 1` is `p`, bit for bit.
-            if f != 1.0 || t.to_bits() != 0 {
-                out[k] = (p[k] - t) / f;
-            }
+            out[k] = (p[k] - self.trans[k]) / self.factor[k];
         }
         let d = geo.map(|a| a.map_or(0.0, |k| p[k] - self.trans[k]));
         for (g, axis) in geo.iter().enumerate() {
