@@ -95,6 +95,7 @@ fn read_lines(
 
 /// The line starting at byte `offset` (without its line end) and the offset after it; `None`
 /// past the end of the text.
+#[inline]
 fn next_line(source: &str, offset: usize) -> Option<(&str, usize)> {
     if offset > source.len() || (offset == source.len() && offset > 0) {
         return None;
