@@ -53,6 +53,11 @@ impl OnlineOffset {
     /// One IPO cycle `dt` towards `target`: accelerate with `accel` up to `velocity`, and brake
     /// so as to stop on the target (never overshooting it).
     pub fn step(&mut self, target: &[f64; 3], velocity: f64, accel: f64, dt: f64) {
+        // Standing on the target, the usual case: nothing changes (bits compared, so a −0.0
+        // target still replaces a +0.0 offset below).
+        if self.rate == [0.0; 3] && self.current.map(f64::to_bits) == target.map(f64::to_bits) {
+            return;
+        }
         for ((cur, rate), goal) in self.current.iter_mut().zip(&mut self.rate).zip(target) {
             let d = goal - *cur;
             if d.abs() < 1e-12 {
