@@ -55,7 +55,8 @@ impl OnlineOffset {
     pub fn step(&mut self, target: &[f64; 3], velocity: f64, accel: f64, dt: f64) {
         // Standing on the target, the usual case: nothing changes (bits compared, so a −0.0
         // target still replaces a +0.0 offset below).
-        if self.rate == [0.0; 3] && self.current.map(f64::to_bits) == target.map(f64::to_bits) {
+        let still = |k: usize| self.rate[k] == 0.0 && self.current[k].to_bits() == target[k].to_bits();
+        if still(0) && still(1) && still(2) {
             return;
         }
         for ((cur, rate), goal) in self.current.iter_mut().zip(&mut self.rate).zip(target) {

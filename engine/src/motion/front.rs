@@ -38,8 +38,14 @@ impl SinCosStep {
             Some(last) if last.stepped < EXACT_EVERY && (angle - last.angle).abs() < MAX_STEP => {
                 let d = angle - last.angle;
                 let d2 = d * d;
-                let sin_d = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0 * (1.0 - d2 / 42.0 * (1.0 - d2 / 72.0))));
-                let cos_d = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0 * (1.0 - d2 / 56.0)));
+                // Reciprocals, not divisions (the terms are < 1e-3 of the result: their rounding
+                // stays far below the last place).
+                let sin_d = d
+                    * (1.0
+                        - d2 * (1.0 / 6.0)
+                            * (1.0 - d2 * (1.0 / 20.0) * (1.0 - d2 * (1.0 / 42.0) * (1.0 - d2 * (1.0 / 72.0)))));
+                let cos_d =
+                    1.0 - d2 * 0.5 * (1.0 - d2 * (1.0 / 12.0) * (1.0 - d2 * (1.0 / 30.0) * (1.0 - d2 * (1.0 / 56.0))));
                 SinCosStep {
                     angle,
                     sin: last.sin * cos_d + last.cos * sin_d,

@@ -187,10 +187,14 @@ impl Path {
     /// and the chord.
     fn arc_parts(&self, arc: &Arc) -> (AxisVec, AxisVec) {
         let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
+        // The same for every axis: computed once, not per axis (libm calls are not hoisted).
+        let (sin0, cos0) = a0.sin_cos();
+        let (sin1, cos1) = a1.sin_cos();
+        let (dcos, dsin) = (cos1 - cos0, sin1 - sin0);
         let mut linear = [0.0; MAX_CHANNEL_AXES];
         let mut chord = [0.0; MAX_CHANNEL_AXES];
         for k in 0..MAX_CHANNEL_AXES {
-            chord[k] = arc.radius * ((a1.cos() - a0.cos()) * arc.u[k] + (a1.sin() - a0.sin()) * arc.v[k]);
+            chord[k] = arc.radius * (dcos * arc.u[k] + dsin * arc.v[k]);
             linear[k] = self.end[k] - self.start[k] - chord[k];
         }
         (linear, chord)
