@@ -105,12 +105,12 @@ impl FrontMove {
             arc_v: [0.0; MAX_CHANNEL_AXES],
             len: 0,
         };
-        for k in 0..MAX_CHANNEL_AXES {
+        for (k, standing) in position.iter_mut().enumerate() {
             let (a, b) = (path.start[k], path.end[k]);
             let in_arc = path.arc.as_ref().is_some_and(|arc| arc.moves_axis(k));
             // `a == b` holds for ±0 too; NaN never reaches a path (a move's length is finite).
             if a == b && !in_arc {
-                position[k] = a + 0.0;
+                *standing = a + 0.0;
                 continue;
             }
             let n = moving.len;
@@ -218,9 +218,7 @@ mod tests {
                 let mut expected = [0.0; MAX_CHANNEL_AXES];
                 p.at(u, &mut expected);
                 front.position(u, &mut got);
-                for k in 0..MAX_CHANNEL_AXES {
-                    worst = worst.max((expected[k] - got[k]).abs());
-                }
+                worst = expected.iter().zip(&got).fold(worst, |w, (e, g)| w.max((e - g).abs()));
                 assert_eq!(got[7].to_bits(), 3.0f64.to_bits());
                 assert_eq!(got[4].to_bits(), 0.0f64.to_bits());
             }

@@ -428,7 +428,7 @@ fn prepare_all(channel: &Channel, text: ProgramText, blocks: u64, verdict: &Verd
             }
         }
         steps += 1;
-        if prep == Prep::Done || found.alarm.is_some() || steps % PREP_CHUNK == 0 && verdict.failed() {
+        if prep == Prep::Done || found.alarm.is_some() || steps.is_multiple_of(PREP_CHUNK) && verdict.failed() {
             break;
         }
         if steps >= budget {
