@@ -111,7 +111,7 @@ impl Move {
     /// Builds a move, deriving its velocity and acceleration limits from the axes.
     /// `length` is the path length the feed refers to (geometry axes, or all axes if none moves).
     pub fn new(path: Path, length: f64, feed: Feed, limits: &[AxisLimit], exact_stop: bool, tag: u32) -> Move {
-        let rate = path.max_rate();
+        let rate = path.max_rate_of_first(limits.len());
         let feed = match feed {
             Feed::Rapid => f64::INFINITY,
             Feed::Path(f) => f,
