@@ -169,6 +169,12 @@ impl Compensator {
         self.held.is_some() || self.approach.is_some() || !self.pending.is_empty()
     }
 
+    /// True when nothing is held and the tool has no compensated position of its own: a move
+    /// without compensation passes through unchanged (block preparation's fast lane needs this).
+    pub fn idle(&self) -> bool {
+        !self.holds() && self.tool_at.is_none()
+    }
+
     /// Starts a block: `out` is where its items go.
     pub fn begin_block(&mut self, out: &[Item]) {
         self.block_plane_move = false;
