@@ -5,8 +5,9 @@
 //! The lane gives exactly the items and the interpreter state the general path gives: it
 //! computes the move with the same building blocks (`Frame::unapply/apply`, [`block_end`],
 //! [`block_path`], `arc::from_center`, `check_software_limits`, `path_feed`, `Move::new`,
-//! `trc::Compensator::push`) and falls back to the general path, which is always right, for
-//! anything it does not take, including every error (the general path then raises the alarm).
+//! `trc::Compensator::pass`, the idle case of `push`) and falls back to the general path,
+//! which is always right, for anything it does not take, including every error (the general
+//! path then raises the alarm).
 //! In debug builds every block the lane prepares is prepared once more by the general path on
 //! a copy of the interpreter, and items and state must be equal ([`cross_check`]).
 //!
@@ -39,8 +40,8 @@
 //!   orientation path and no THETA, so `last_change`/`upper` become `None` as they do there);
 //!   G9 (not taken).
 //! - after `motion`: `request_point_to_point` (no transformation); `compensation` (G40 only:
-//!   refused with G41/G42 selected); `trc.push` without compensation (called; the lane requires
-//!   the compensator idle, so the move passes through); `trc.end_block`, `flush` (nothing
+//!   refused with G41/G42 selected); `trc.push` without compensation (the lane requires the
+//!   compensator idle, where `push` only hands the move on: `Compensator::pass` does that); `trc.end_block`, `flush` (nothing
 //!   held); `shape_corners` (nothing held, no RND/CHF/CHR); `transform_moves` (none active).
 
 use super::flow::Pos;
@@ -48,9 +49,9 @@ use super::modal::MotionMode;
 use super::orient::RotReference;
 use super::{
     AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end, block_path,
-    check_software_limits, feed_length, trc,
+    check_software_limits, feed_length,
 };
-use crate::lang::{plain_value, plain_words};
+use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
@@ -79,7 +80,8 @@ const LETTERS: [&str; 26] = [
 fn scan(text: &str, cfg: &MachineConfig, vars: &super::vars::Variables) -> Option<PlainBlock> {
     let mut block = PlainBlock::default();
     let mut seen = 0u32;
-    let plain = plain_words(text, |letter, number| {
+    let no_user_names = vars.no_user_names();
+    let plain = plain_words(text, |letter, number, value| {
         let first = !block.words;
         block.words = true;
         if letter == b'N' {
@@ -87,7 +89,6 @@ fn scan(text: &str, cfg: &MachineConfig, vars: &super::vars::Variables) -> Optio
             let end = number.as_ptr() as usize - text.as_ptr() as usize + number.len();
             return first && matches!(text.as_bytes().get(end), None | Some(b' ' | b'\t' | b';'));
         }
-        let Some(value) = plain_value(number) else { return false };
         if letter == b'G' {
             // Whole numbers only (the scan's digits), one function per group.
             return match value as u32 {
@@ -104,7 +105,7 @@ fn scan(text: &str, cfg: &MachineConfig, vars: &super::vars::Variables) -> Optio
             };
         }
         let bit = 1u32 << (letter - b'A');
-        if seen & bit != 0 || vars.get(LETTERS[usize::from(letter - b'A')]).is_some() {
+        if seen & bit != 0 || !no_user_names && vars.get(LETTERS[usize::from(letter - b'A')]).is_some() {
             return false;
         }
         seen |= bit;
@@ -158,7 +159,9 @@ impl Interpreter {
         let flow = self.flow.as_ref()?;
         let at = flow.next;
         let rest = flow.text.get(at.offset..).filter(|r| !r.is_empty())?;
-        let raw = rest.find('\n').map_or(rest, |i| &rest[..i]);
+        // A byte loop: lines are short, where `find` pays for a vectorised search's set-up.
+        let end = rest.bytes().position(|b| b == b'\n').unwrap_or(rest.len());
+        let raw = &rest[..end];
         let block = scan(raw.strip_suffix('\r').unwrap_or(raw), cfg, &self.vars)?;
         let next = Pos { offset: at.offset + raw.len() + 1, line: at.line + 1 };
         let line = at.line;
@@ -179,44 +182,40 @@ impl Interpreter {
         self.refresh_offsets(cfg);
         let circle_mode = matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw);
         let moves = block.axes.iter().any(Option::is_some) || (circle_mode && block.ijk.iter().any(Option::is_some));
-        let limits = AxisLimit::for_channel(cfg);
-        let prepared = if moves { Some(self.plain_move(&block, cfg, &limits, line)?) } else { None };
-
-        let flow = self.flow.as_mut().expect("checked above");
-        flow.current = at;
-        flow.next = next;
-        self.trc.begin_block(out);
-        let Some((mv, feed)) = prepared else {
+        if !moves {
+            self.commit_position(at, next, out);
             if !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
                 out.push(Item::Offsets { line, offsets: self.shared_offsets() });
             }
             return Some(Prep::Prepared);
-        };
+        }
+        let mv = self.plain_move(&block, cfg, line)?;
+        self.commit_position(at, next, out);
         self.pos = mv.path.end;
         self.modal.ori.last_change = None;
         self.modal.ori.upper = None;
         let offsets = self.shared_offsets();
-        let approach = self.modal.approach;
-        let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner: None };
-        Some(match self.trc.push(prepared, None, &limits, out) {
-            Ok(()) => Prep::Prepared,
-            Err(alarm) => self.fail(alarm, out),
-        })
+        self.trc.pass(Item::Move { mv, line, offsets }, out);
+        Some(Prep::Prepared)
+    }
+
+    /// The read position after the line `at` (ending before `next`), and the compensator's
+    /// start of the block, as `step_program` and `prepare_next` set them.
+    fn commit_position(&mut self, at: Pos, next: Pos, out: &[Item]) {
+        if let Some(flow) = self.flow.as_mut() {
+            flow.current = at;
+            flow.next = next;
+        }
+        self.trc.begin_block(out);
     }
 
     /// The move of a plain block (as `motion` computes it for such a block), or `None` where
     /// `motion` would raise an alarm.
-    fn plain_move(
-        &self,
-        block: &PlainBlock,
-        cfg: &MachineConfig,
-        limits: &[AxisLimit],
-        line: u32,
-    ) -> Option<(Move, crate::motion::Feed)> {
+    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, line: u32) -> Option<Move> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
-        let (start, tool, frame) = (self.pos, self.offsets.tool, &self.offsets.frame);
-        let mut basic = start;
+        let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
+        let mut basic = *start;
         for k in 0..n {
             basic[k] -= tool[k];
         }
@@ -247,12 +246,12 @@ impl Interpreter {
             }
             _ => None,
         };
-        let end = block_end(frame, geo, n, &start, &tool, &target, &mut programmed);
-        let (path, length) = block_path(frame, geo, (pa, po, papp), &start, &end, &current, &target, circle.as_ref());
+        let end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
+        let (path, length) = block_path(frame, geo, (pa, po, papp), start, &end, &current, &target, circle.as_ref());
         let length = feed_length(&path, length, n);
         check_software_limits(cfg, &path, line).ok()?;
         let feed = self.path_feed(line).ok()?;
-        Some((Move::new(path, length, feed, limits, self.modal.exact_stop, line), feed))
+        Some(Move::new(path, length, feed, &AxisLimit::for_channel(cfg), self.modal.exact_stop, line))
     }
 }
 

@@ -15,14 +15,15 @@ const MAX_FUNCTION_DIGITS: usize = 9;
 /// True if `text` (one line without its line end) is blanks, address words made of one letter
 /// and a plain number, and an optional comment: a line without syntax errors or statements.
 pub(super) fn is_plain_line(text: &str) -> bool {
-    plain_words(text, |_, _| true)
+    plain_words(text, |_, _, _| true)
 }
 
 /// The one scan behind [`is_plain_line`], handing each address word to `word` as its
-/// upper-case letter and the text of its number (block preparation's fast lane reads plain
-/// lines with it, so it accepts exactly the syntax the check lets past the parser). True if
-/// the line is plain and `word` accepted every word; stops at the first word it refuses.
-pub(crate) fn plain_words(text: &str, mut word: impl FnMut(u8, &str) -> bool) -> bool {
+/// upper-case letter, the text of its number and its value exactly as the parser reads it
+/// (block preparation's fast lane reads plain lines with it, so it accepts exactly the syntax
+/// the check lets past the parser). True if the line is plain and `word` accepted every word;
+/// stops at the first word it refuses.
+pub(crate) fn plain_words(text: &str, mut word: impl FnMut(u8, &str, f64) -> bool) -> bool {
     let b = text.as_bytes();
     let mut i = 0;
     loop {
@@ -40,7 +41,7 @@ pub(crate) fn plain_words(text: &str, mut word: impl FnMut(u8, &str) -> bool) ->
         // G and M need whole numbers; N at the start of a line is a block number. Both only
         // with digits here.
         let whole = matches!(letter, b'G' | b'M' | b'N');
-        let Some(end) = plain_number(b, i, whole) else { return false };
+        let Some((end, value)) = plain_number(b, i, whole) else { return false };
         // After the number: a blank, the end, a comment or the next letter (not E: `EX` is
         // the exponent of a number).
         match b.get(end) {
@@ -49,42 +50,42 @@ pub(crate) fn plain_words(text: &str, mut word: impl FnMut(u8, &str) -> bool) ->
             Some(_) => return false,
         }
         // The number is ASCII: `i..end` lies on character boundaries.
-        if !word(letter, &text[i..end]) {
+        if !word(letter, &text[i..end], value) {
             return false;
         }
         i = end;
     }
 }
 
-/// The value of a number [`plain_words`] handed out, exactly as the parser reads it.
-pub(crate) fn plain_value(number: &str) -> Option<f64> {
-    let mut cur = super::cursor::Cursor::new(number);
-    cur.number().filter(|_| cur.at_end())
-}
-
-/// The end of a plain number at `i`: `[+-]digits[.digits]`, `[+-].digits` or `[+-]digits.`
-/// with at least one digit; only digits if `whole`.
-fn plain_number(b: &[u8], mut i: usize, whole: bool) -> Option<usize> {
-    let count_digits = |i: &mut usize| {
+/// The end and value of a plain number at `i`: `[+-]digits[.digits]`, `[+-].digits` or
+/// `[+-]digits.` with at least one digit; only digits if `whole`.
+fn plain_number(b: &[u8], mut i: usize, whole: bool) -> Option<(usize, f64)> {
+    let mut mantissa = 0u64;
+    let mut count_digits = |i: &mut usize| {
         let start = *i;
         while *i < b.len() && b[*i].is_ascii_digit() {
+            // At most 15 digits are accepted, so an overflow only happens to a refused number.
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b[*i] - b'0'));
             *i += 1;
         }
         *i - start
     };
     if whole {
         let n = count_digits(&mut i);
-        return (1..=MAX_FUNCTION_DIGITS).contains(&n).then_some(i);
+        return (1..=MAX_FUNCTION_DIGITS).contains(&n).then(|| (i, mantissa as f64));
     }
+    let negative = b.get(i) == Some(&b'-');
     if matches!(b.get(i), Some(b'+' | b'-')) {
         i += 1;
     }
     let mut n = count_digits(&mut i);
+    let mut frac = 0;
     if b.get(i) == Some(&b'.') {
         i += 1;
-        n += count_digits(&mut i);
+        frac = count_digits(&mut i);
+        n += frac;
     }
-    (1..=MAX_DIGITS).contains(&n).then_some(i)
+    (1..=MAX_DIGITS).contains(&n).then(|| (i, super::cursor::exact_decimal(mantissa, frac, negative)))
 }
 
 #[cfg(test)]
@@ -137,8 +138,7 @@ mod tests {
     /// digits only is the block number, which the parser keeps apart from the words).
     fn scanned_words(line: &str) -> Vec<(char, u64)> {
         let mut words = Vec::new();
-        assert!(super::plain_words(line, |letter, number| {
-            let value = super::plain_value(number).expect("a plain number has a value");
+        assert!(super::plain_words(line, |letter, _, value| {
             words.push((char::from(letter), value.to_bits()));
             true
         }));
