@@ -72,7 +72,7 @@ fn plain_number(b: &[u8], mut i: usize, whole: bool) -> Option<(usize, f64)> {
     };
     if whole {
         let n = count_digits(&mut i);
-        return (1..=MAX_FUNCTION_DIGITS).contains(&n).then(|| (i, mantissa as f64));
+        return (1..=MAX_FUNCTION_DIGITS).contains(&n).then_some((i, mantissa as f64));
     }
     let negative = b.get(i) == Some(&b'-');
     if matches!(b.get(i), Some(b'+' | b'-')) {
