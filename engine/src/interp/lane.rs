@@ -54,6 +54,7 @@ use super::{
 use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::AxisLimits;
 
 /// The words of a plain motion line, by meaning.
 #[derive(Debug, Default)]
@@ -75,9 +76,65 @@ const LETTERS: [&str; 26] = [
     "X", "Y", "Z",
 ];
 
+/// What the lane keeps between its blocks for one machine configuration, so that a plain
+/// block reads nothing twice from it. Cleared whenever the general path prepares a block or
+/// the interpreter is reset, begun, restored or synchronised: the configuration changes only
+/// through the data writes of general blocks (the channel applies them before the next block)
+/// and at a reset, and every other input of the block's offsets (frames, work offset, tool,
+/// plane, toolholder) only through general blocks.
+#[derive(Clone, Default)]
+pub(super) struct LaneMemo(Option<Box<Memo>>);
+
+#[derive(Clone)]
+struct Memo {
+    /// The configuration the memo belongs to (its address).
+    cfg: usize,
+    /// `AxisLimit::for_channel(cfg)`.
+    limits: AxisLimits,
+    /// The geometry axis (0 = 1st) each letter A..Z addresses, see [`geometry_axis`].
+    letters: [Option<usize>; 26],
+    /// `refresh_offsets` ran for this configuration and nothing but lane blocks ran since:
+    /// the tool, the frame and the G codes of the offsets are what it would make them.
+    offsets_fresh: bool,
+}
+
+/// The memo is a cache: it is no state of block preparation (the debug cross-check compares
+/// the lane's state with the general path's, which keeps no memo).
+impl std::fmt::Debug for LaneMemo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("LaneMemo")
+    }
+}
+
+impl LaneMemo {
+    /// The memo `for_config` made for the block being prepared.
+    fn for_config_ref(&self) -> &Memo {
+        self.0.as_ref().expect("made at the start of the block")
+    }
+
+    /// Forgets everything (see the type's doc for when).
+    pub(super) fn clear(&mut self) {
+        self.0 = None;
+    }
+
+    /// The memo for `cfg`, made afresh if it belonged to another configuration or none.
+    fn for_config(&mut self, cfg: &MachineConfig) -> &mut Memo {
+        let id = std::ptr::from_ref(cfg) as usize;
+        if self.0.as_ref().is_none_or(|m| m.cfg != id) {
+            self.0 = Some(Box::new(Memo {
+                cfg: id,
+                limits: AxisLimit::for_channel(cfg),
+                letters: std::array::from_fn(|i| geometry_axis(cfg, b'A' + i as u8)),
+                offsets_fresh: false,
+            }));
+        }
+        self.0.as_mut().expect("made above")
+    }
+}
+
 /// Reads `text` (one line without its line end) as a plain motion line; `None` for anything
-/// else.
-fn scan(text: &str, cfg: &MachineConfig, vars: &super::vars::Variables) -> Option<PlainBlock> {
+/// else. `letters`: the geometry axis each letter addresses.
+fn scan(text: &str, letters: &[Option<usize>; 26], vars: &super::vars::Variables) -> Option<PlainBlock> {
     let mut block = PlainBlock::default();
     let mut seen = 0u32;
     let no_user_names = vars.no_user_names();
@@ -113,7 +170,7 @@ fn scan(text: &str, cfg: &MachineConfig, vars: &super::vars::Variables) -> Optio
             b'F' => block.feed = Some(value),
             b'I' | b'J' | b'K' => block.ijk[usize::from(letter - b'I')] = Some(value),
             _ => {
-                let Some(g) = geometry_axis(cfg, letter) else { return false };
+                let Some(g) = letters[usize::from(letter - b'A')] else { return false };
                 block.axes[g] = Some(value);
             }
         }
@@ -162,7 +219,8 @@ impl Interpreter {
         // A byte loop: lines are short, where `find` pays for a vectorised search's set-up.
         let end = rest.bytes().position(|b| b == b'\n').unwrap_or(rest.len());
         let raw = &rest[..end];
-        let block = scan(raw.strip_suffix('\r').unwrap_or(raw), cfg, &self.vars)?;
+        let memo = self.lane_memo.for_config(cfg);
+        let block = scan(raw.strip_suffix('\r').unwrap_or(raw), &memo.letters, &self.vars)?;
         let next = Pos { offset: at.offset + raw.len() + 1, line: at.line + 1 };
         let line = at.line;
 
@@ -170,6 +228,7 @@ impl Interpreter {
         // harmlessly if the lane falls back (only on an error, which the general path raises).
         self.corner_request = None;
         let offsets_before = self.shared_offsets();
+        let g_codes = (self.modal.motion, self.modal.absolute);
         if let Some(m) = block.motion {
             self.modal.motion = m;
         }
@@ -179,7 +238,13 @@ impl Interpreter {
         if let Some(f) = block.feed {
             self.modal.feed = Some(f);
         }
-        self.refresh_offsets(cfg);
+        if !self.lane_memo.for_config(cfg).offsets_fresh {
+            self.refresh_offsets(cfg);
+            self.lane_memo.for_config(cfg).offsets_fresh = true;
+        } else if g_codes != (self.modal.motion, self.modal.absolute) {
+            // Tool and frame are as the last refresh left them; only the G codes changed.
+            self.refresh_gcodes();
+        }
         let circle_mode = matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw);
         let moves = block.axes.iter().any(Option::is_some) || (circle_mode && block.ijk.iter().any(Option::is_some));
         if !moves {
@@ -189,7 +254,7 @@ impl Interpreter {
             }
             return Some(Prep::Prepared);
         }
-        let mv = self.plain_move(&block, cfg, line)?;
+        let mv = self.plain_move(&block, cfg, &self.lane_memo.for_config_ref().limits, line)?;
         self.commit_position(at, next, out);
         self.pos = mv.path.end;
         self.modal.ori.last_change = None;
@@ -211,7 +276,7 @@ impl Interpreter {
 
     /// The move of a plain block (as `motion` computes it for such a block), or `None` where
     /// `motion` would raise an alarm.
-    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, line: u32) -> Option<Move> {
+    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, limits: &[AxisLimit], line: u32) -> Option<Move> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
         let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
@@ -251,7 +316,7 @@ impl Interpreter {
         let length = feed_length(&path, length, n);
         check_software_limits(cfg, &path, line).ok()?;
         let feed = self.path_feed(line).ok()?;
-        Some(Move::new(path, length, feed, &AxisLimit::for_channel(cfg), self.modal.exact_stop, line))
+        Some(Move::new(path, length, feed, limits, self.modal.exact_stop, line))
     }
 }
 

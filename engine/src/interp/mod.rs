@@ -224,6 +224,8 @@ pub struct Interpreter {
     holder: toolholder::Holder,
     /// Plain motion lines take the fast lane (`lane.rs`).
     fast_lane: bool,
+    /// What the lane keeps between its blocks (a cache, cleared by the general path).
+    lane_memo: lane::LaneMemo,
 }
 
 impl Interpreter {
@@ -251,12 +253,14 @@ impl Interpreter {
             trafo: Default::default(),
             holder: toolholder::Holder { g53: 1, ..Default::default() },
             fast_lane: true,
+            lane_memo: Default::default(),
         }
     }
 
     /// Channel reset with the machine standing at `machine`: modal state to reset values, the
     /// reset transformation (if any); the tool stays selected.
     pub fn reset(&mut self, cfg: &MachineConfig, machine: &AxisVec) {
+        self.lane_memo.clear();
         self.modal = Modal::reset(cfg);
         self.flow = None;
         self.calls.clear();
@@ -284,6 +288,7 @@ impl Interpreter {
     /// Starts preparing `text` from the machine's current position. Local variables of an
     /// earlier program are dropped; R parameters and global user data stay.
     pub fn begin_program(&mut self, text: impl Into<ProgramText>, pos: &AxisVec) {
+        self.lane_memo.clear();
         self.pos = *pos;
         self.vars.reset_locals();
         self.calls.clear();
@@ -390,6 +395,8 @@ impl Interpreter {
                 return prep;
             }
         }
+        // Any block may change what the lane remembers (see `lane::LaneMemo`).
+        self.lane_memo.clear();
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
