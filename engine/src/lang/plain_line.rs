@@ -15,7 +15,7 @@ const MAX_FUNCTION_DIGITS: usize = 9;
 /// True if `text` (one line without its line end) is blanks, address words made of one letter
 /// and a plain number, and an optional comment: a line without syntax errors or statements.
 pub(super) fn is_plain_line(text: &str) -> bool {
-    plain_words(text, |_, _, _| true)
+    scan::<false>(text, |_, _, _| true)
 }
 
 /// The one scan behind [`is_plain_line`], handing each address word to `word` as its
@@ -23,7 +23,12 @@ pub(super) fn is_plain_line(text: &str) -> bool {
 /// (block preparation's fast lane reads plain lines with it, so it accepts exactly the syntax
 /// the check lets past the parser). True if the line is plain and `word` accepted every word;
 /// stops at the first word it refuses.
-pub(crate) fn plain_words(text: &str, mut word: impl FnMut(u8, &str, f64) -> bool) -> bool {
+pub(crate) fn plain_words(text: &str, word: impl FnMut(u8, &str, f64) -> bool) -> bool {
+    scan::<true>(text, word)
+}
+
+/// [`plain_words`], with the values only if `VALUES` (the check needs none: 0 then).
+fn scan<const VALUES: bool>(text: &str, mut word: impl FnMut(u8, &str, f64) -> bool) -> bool {
     let b = text.as_bytes();
     let mut i = 0;
     loop {
@@ -41,7 +46,7 @@ pub(crate) fn plain_words(text: &str, mut word: impl FnMut(u8, &str, f64) -> boo
         // G and M need whole numbers; N at the start of a line is a block number. Both only
         // with digits here.
         let whole = matches!(letter, b'G' | b'M' | b'N');
-        let Some((end, value)) = plain_number(b, i, whole) else { return false };
+        let Some((end, value)) = plain_number::<VALUES>(b, i, whole) else { return false };
         // After the number: a blank, the end, a comment or the next letter (not E: `EX` is
         // the exponent of a number).
         match b.get(end) {
@@ -57,15 +62,17 @@ pub(crate) fn plain_words(text: &str, mut word: impl FnMut(u8, &str, f64) -> boo
     }
 }
 
-/// The end and value of a plain number at `i`: `[+-]digits[.digits]`, `[+-].digits` or
+/// The end and (if `VALUES`) value of a plain number at `i`: `[+-]digits[.digits]`, `[+-].digits` or
 /// `[+-]digits.` with at least one digit; only digits if `whole`.
-fn plain_number(b: &[u8], mut i: usize, whole: bool) -> Option<(usize, f64)> {
+fn plain_number<const VALUES: bool>(b: &[u8], mut i: usize, whole: bool) -> Option<(usize, f64)> {
     let mut mantissa = 0u64;
     let mut count_digits = |i: &mut usize| {
         let start = *i;
         while *i < b.len() && b[*i].is_ascii_digit() {
-            // At most 15 digits are accepted, so an overflow only happens to a refused number.
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b[*i] - b'0'));
+            if VALUES {
+                // At most 15 digits are accepted: an overflow only happens to a refused number.
+                mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b[*i] - b'0'));
+            }
             *i += 1;
         }
         *i - start
@@ -85,7 +92,8 @@ fn plain_number(b: &[u8], mut i: usize, whole: bool) -> Option<(usize, f64)> {
         frac = count_digits(&mut i);
         n += frac;
     }
-    (1..=MAX_DIGITS).contains(&n).then(|| (i, super::cursor::exact_decimal(mantissa, frac, negative)))
+    let value = || if VALUES { super::cursor::exact_decimal(mantissa, frac, negative) } else { 0.0 };
+    (1..=MAX_DIGITS).contains(&n).then(|| (i, value()))
 }
 
 #[cfg(test)]
