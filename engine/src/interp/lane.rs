@@ -87,7 +87,7 @@ pub(super) struct LaneMemo(Option<Box<Memo>>);
 
 #[derive(Clone)]
 struct Memo {
-    /// The configuration the memo belongs to (its address).
+    /// The configuration the memo belongs to (its address; 0: none, the memo is cleared).
     cfg: usize,
     /// `AxisLimit::for_channel(cfg)`.
     limits: AxisLimits,
@@ -112,21 +112,27 @@ impl LaneMemo {
         self.0.as_ref().expect("made at the start of the block")
     }
 
-    /// Forgets everything (see the type's doc for when).
+    /// Forgets everything (see the type's doc for when); the allocation stays for the next.
     pub(super) fn clear(&mut self) {
-        self.0 = None;
+        if let Some(m) = self.0.as_mut() {
+            m.cfg = 0;
+        }
     }
 
     /// The memo for `cfg`, made afresh if it belonged to another configuration or none.
     fn for_config(&mut self, cfg: &MachineConfig) -> &mut Memo {
         let id = std::ptr::from_ref(cfg) as usize;
         if self.0.as_ref().is_none_or(|m| m.cfg != id) {
-            self.0 = Some(Box::new(Memo {
+            let memo = Memo {
                 cfg: id,
                 limits: AxisLimit::for_channel(cfg),
                 letters: std::array::from_fn(|i| geometry_axis(cfg, b'A' + i as u8)),
                 offsets_fresh: false,
-            }));
+            };
+            match self.0.as_mut() {
+                Some(m) => **m = memo,
+                None => self.0 = Some(Box::new(memo)),
+            }
         }
         self.0.as_mut().expect("made above")
     }
