@@ -20,8 +20,8 @@
 //! - `prepare_next`: `corner_request` cleared (the lane clears it); held-move check for the
 //!   main-run wait (plain lines never wait); `trc.begin_block` (called).
 //! - `step_program`: `refresh_derived_chain_data` (only with a transformation: refused);
-//!   `flow.read` (the lane reads the same line and sets `next`/`current` as it does; empty and
-//!   comment-only lines fall back); syntax errors (a plain line has none); `reads_main_run`
+//!   `flow.read` (the lane reads the same line and sets `next`/`current` as it does; empty
+//!   lines, which it skips, fall back; a comment-only line is a block without words); syntax errors (a plain line has none); `reads_main_run`
 //!   and effect calls (no variables, no functions); `check_unbound` (refused while a call's
 //!   arguments are unbound); alarm/end items afterwards (the lane makes none).
 //! - `prepare_block`: `modal::collect` (replaced by the scan; data writes, NEWCONF, corners,
@@ -66,7 +66,7 @@ struct PlainBlock {
     /// I, J, K (program units), by geometry axis.
     ijk: [Option<f64>; 3],
     feed: Option<f64>,
-    /// Any word at all (a line of blanks and a comment goes the general way).
+    /// Any word at all.
     words: bool,
 }
 
@@ -182,7 +182,9 @@ fn scan(text: &str, letters: &[Option<usize>; 26], vars: &super::vars::Variables
         }
         true
     });
-    (plain && block.words).then_some(block)
+    // A line of blanks is no block (`read_block` skips it); one with a comment is a block
+    // without words, which the lane prepares like a plain line without motion.
+    (plain && (block.words || text.contains(';'))).then_some(block)
 }
 
 /// The geometry axis (0 = 1st) a single-letter name addresses, if it is a linear axis the
@@ -408,6 +410,8 @@ mod tests {
             "N40",
             "F200",
             "G1",
+            "; only a comment",
+            "N50 ; numbered comment",
         ] {
             assert!(takes("", line), "{line}");
         }
@@ -419,7 +423,7 @@ mod tests {
     fn anything_else_takes_the_general_path() {
         for line in [
             "",
-            "; only a comment",
+            "  \t",
             "X=10",
             "X1 X2",
             "G1 G2 X1",
