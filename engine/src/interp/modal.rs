@@ -385,6 +385,17 @@ impl Words {
     }
 }
 
+/// The `Words` of the last block, kept so that the next block's reuse its room: scratch
+/// space, not state (its `Debug` shows nothing, so states compare equal whatever it holds).
+#[derive(Clone, Default)]
+pub(super) struct SpareWords(pub Option<Box<Words>>);
+
+impl std::fmt::Debug for SpareWords {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SpareWords")
+    }
+}
+
 impl Words {
     /// Empties the words for the next block, keeping the lists' allocations: one `Words` is
     /// reused block after block, so a plain block allocates nothing and the large struct is

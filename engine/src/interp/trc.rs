@@ -169,6 +169,21 @@ impl Compensator {
         self.held.is_some() || self.approach.is_some() || !self.pending.is_empty()
     }
 
+    /// True when nothing is held and the tool has no compensated position of its own: a move
+    /// without compensation passes through unchanged (block preparation's fast lane needs this).
+    pub fn idle(&self) -> bool {
+        !self.holds() && self.tool_at.is_none()
+    }
+
+    /// Hands a move without compensation to the main run while the compensator is
+    /// [`idle`](Self::idle): what [`push`](Self::push) does for it then, without the way
+    /// through `deselect` (block preparation's fast lane and general path).
+    pub fn pass(&mut self, item: Item, out: &mut Vec<Item>) {
+        debug_assert!(self.idle(), "only an idle compensator lets a move pass");
+        self.dummy_blocks = 0;
+        self.emit(item, out);
+    }
+
     /// Starts a block: `out` is where its items go.
     pub fn begin_block(&mut self, out: &[Item]) {
         self.block_plane_move = false;
@@ -214,20 +229,6 @@ impl Compensator {
             .map(|h| h.comp.max_dummy_blocks)
             .or(self.approach.as_ref().map(|a| a.1.max_dummy_blocks))
             .unwrap_or(usize::MAX)
-    }
-
-    /// True when compensation holds nothing and the tool runs uncompensated: a move without
-    /// compensation then goes straight to the main run ([`Compensator::emit_uncompensated`]).
-    pub fn idle(&self) -> bool {
-        self.tool_at.is_none() && !self.holds()
-    }
-
-    /// What [`Compensator::push`] does with an uncompensated move while [`Compensator::idle`]
-    /// (deselection with nothing to end), without moving the prepared move through its stages.
-    pub fn emit_uncompensated(&mut self, item: Item, out: &mut Vec<Item>) {
-        debug_assert!(self.idle(), "only for an idle compensator");
-        self.dummy_blocks = 0;
-        self.emit(item, out);
     }
 
     /// Hands an item to the main run, or keeps it behind the held move.

@@ -15,4 +15,5 @@ mod text;
 
 pub use ast::*;
 pub use parser::{check, parse, parse_block, read_block, read_block_reusing, read_statement_block};
+pub(crate) use plain_line::plain_words;
 pub use text::ProgramText;
