@@ -9,16 +9,73 @@
 
 use axum::extract::ws::Utf8Bytes;
 use nctwin_engine::channel::ReferencePhase;
-use nctwin_engine::{Mode, Snapshot, Status};
+use nctwin_engine::{Mode, Overrides, Snapshot, Status};
 
 /// Room for a whole state message of a 7-axis machine, so the buffer is allocated once.
 const BUFFER_CAPACITY: usize = 2048;
 
 /// Encodes state messages into one reused buffer; each message is then copied out once into
 /// its own shared bytes (one allocation of the exact size).
+///
+/// The message's tail (`message` to the end: MSG text, overrides, options, G codes, reference
+/// state) rarely changes while a program runs; its text is kept with the values it was written
+/// from and reused while they are equal.
 #[derive(Debug, Default)]
 pub struct StateEncoder {
-    buf: Vec<u8>,
+    buf: String,
+    tail: Option<Tail>,
+    tail_text: String,
+}
+
+/// The values of the message's tail as last written.
+#[derive(Debug)]
+struct Tail {
+    message: Option<String>,
+    overrides: Overrides,
+    single_block: bool,
+    optional_stop: bool,
+    gcodes: Vec<String>,
+    referenced: Vec<(String, bool)>,
+    repos_pending: bool,
+    referencing: Option<(String, ReferencePhase)>,
+}
+
+impl Tail {
+    fn of(s: &Snapshot) -> Tail {
+        Tail {
+            message: s.message.clone(),
+            overrides: s.overrides,
+            single_block: s.single_block,
+            optional_stop: s.optional_stop,
+            gcodes: s.gcodes.clone(),
+            referenced: s.referenced.clone(),
+            repos_pending: s.repos_pending,
+            referencing: s.referencing.clone(),
+        }
+    }
+
+    /// Takes over the tail of `s`, reusing the strings already held.
+    fn store(&mut self, s: &Snapshot) {
+        self.message.clone_from(&s.message);
+        self.overrides = s.overrides;
+        self.single_block = s.single_block;
+        self.optional_stop = s.optional_stop;
+        self.gcodes.clone_from(&s.gcodes);
+        self.referenced.clone_from(&s.referenced);
+        self.repos_pending = s.repos_pending;
+        self.referencing.clone_from(&s.referencing);
+    }
+
+    fn matches(&self, s: &Snapshot) -> bool {
+        self.message == s.message
+            && self.overrides == s.overrides
+            && self.single_block == s.single_block
+            && self.optional_stop == s.optional_stop
+            && self.gcodes == s.gcodes
+            && self.referenced == s.referenced
+            && self.repos_pending == s.repos_pending
+            && self.referencing == s.referencing
+    }
 }
 
 impl StateEncoder {
@@ -26,126 +83,145 @@ impl StateEncoder {
     pub fn encode(&mut self, s: &Snapshot) -> Utf8Bytes {
         self.buf.clear();
         self.buf.reserve(BUFFER_CAPACITY);
-        write_state(&mut self.buf, s);
-        // Only `str` pieces and ASCII are written, so the buffer is UTF-8.
-        match std::str::from_utf8(&self.buf) {
-            Ok(text) => Utf8Bytes::from(text.to_owned()),
-            Err(_) => Utf8Bytes::from_static("{}"),
+        write_head(&mut self.buf, s);
+        match &self.tail {
+            Some(tail) if tail.matches(s) => self.buf.push_str(&self.tail_text),
+            _ => {
+                let start = self.buf.len();
+                write_tail(&mut self.buf, s);
+                self.tail_text.clear();
+                self.tail_text.push_str(&self.buf[start..]);
+                match &mut self.tail {
+                    Some(tail) => tail.store(s),
+                    none => *none = Some(Tail::of(s)),
+                }
+            }
         }
+        Utf8Bytes::from(self.buf.as_str().to_owned())
     }
 }
 
 /// Appends the state message of `s` to `out`.
-pub fn write_state(out: &mut Vec<u8>, s: &Snapshot) {
-    out.extend_from_slice(b"{\"type\":\"state\",\"status\":\"");
-    out.extend_from_slice(status_name(s.status).as_bytes());
-    out.extend_from_slice(b"\",\"mode\":\"");
-    out.extend_from_slice(mode_name(s.mode).as_bytes());
-    out.extend_from_slice(b"\",\"time\":");
+pub fn write_state(out: &mut String, s: &Snapshot) {
+    write_head(out, s);
+    write_tail(out, s);
+}
+
+/// The message from its start to `spindles`.
+fn write_head(out: &mut String, s: &Snapshot) {
+    out.push_str("{\"type\":\"state\",\"status\":\"");
+    out.push_str(status_name(s.status));
+    out.push_str("\",\"mode\":\"");
+    out.push_str(mode_name(s.mode));
+    out.push_str("\",\"time\":");
     write_f64(out, s.time);
-    out.extend_from_slice(b",\"tick\":");
+    out.push_str(",\"tick\":");
     write_int(out, s.tick);
-    out.extend_from_slice(b",\"positions\":{\"machine\":");
+    out.push_str(",\"positions\":{\"machine\":");
     write_named(out, &s.machine, write_f64);
-    out.extend_from_slice(b",\"basic\":");
+    out.push_str(",\"basic\":");
     write_named(out, &s.basic, write_f64);
-    out.extend_from_slice(b",\"workpiece\":");
+    out.push_str(",\"workpiece\":");
     write_named(out, &s.workpiece, write_f64);
-    out.extend_from_slice(b"},\"orientation\":");
+    out.push_str("},\"orientation\":");
     match s.orientation {
-        None => out.extend_from_slice(b"null"),
+        None => out.push_str("null"),
         Some([x, y, z]) => {
-            out.push(b'[');
+            out.push('[');
             write_f64(out, x);
-            out.push(b',');
+            out.push(',');
             write_f64(out, y);
-            out.push(b',');
+            out.push(',');
             write_f64(out, z);
-            out.push(b']');
+            out.push(']');
         }
     }
-    out.extend_from_slice(b",\"transformation\":");
+    out.push_str(",\"transformation\":");
     match &s.transformation {
-        None => out.extend_from_slice(b"null"),
+        None => out.push_str("null"),
         Some(t) => {
-            out.extend_from_slice(b"{\"name\":");
+            out.push_str("{\"name\":");
             write_str(out, &t.name);
-            out.extend_from_slice(b",\"type\":");
+            out.push_str(",\"type\":");
             write_int(out, t.trafo_type);
-            out.extend_from_slice(b",\"index\":");
+            out.push_str(",\"index\":");
             write_int(out, t.index);
-            out.push(b'}');
+            out.push('}');
         }
     }
-    out.extend_from_slice(b",\"block\":");
+    out.push_str(",\"block\":");
     match &s.block {
-        None => out.extend_from_slice(b"null"),
+        None => out.push_str("null"),
         Some(b) => {
-            out.extend_from_slice(b"{\"line\":");
+            out.push_str("{\"line\":");
             write_int(out, b.line);
-            out.extend_from_slice(b",\"text\":");
+            out.push_str(",\"text\":");
             write_str(out, &b.text);
-            out.push(b'}');
+            out.push('}');
         }
     }
-    out.extend_from_slice(b",\"alarms\":[");
+    out.push_str(",\"alarms\":[");
     for (i, a) in s.alarms.iter().enumerate() {
         if i > 0 {
-            out.push(b',');
+            out.push(',');
         }
-        out.extend_from_slice(b"{\"number\":");
+        out.push_str("{\"number\":");
         write_int(out, a.number);
-        out.extend_from_slice(b",\"message\":");
+        out.push_str(",\"message\":");
         write_str(out, &a.message);
-        out.extend_from_slice(b",\"line\":");
+        out.push_str(",\"line\":");
         match a.line {
-            None => out.extend_from_slice(b"null"),
+            None => out.push_str("null"),
             Some(line) => write_int(out, line),
         }
-        out.push(b'}');
+        out.push('}');
     }
-    out.extend_from_slice(b"],\"tool\":{\"t\":");
+    out.push_str("],\"tool\":{\"t\":");
     write_int(out, s.tool.0);
-    out.extend_from_slice(b",\"d\":");
+    out.push_str(",\"d\":");
     write_int(out, s.tool.1);
-    out.extend_from_slice(b"},\"path_velocity\":");
+    out.push_str("},\"path_velocity\":");
     write_f64(out, s.path_velocity);
-    out.extend_from_slice(b",\"spindles\":");
+    out.push_str(",\"spindles\":");
     write_named(out, &s.spindles, write_f64);
-    out.extend_from_slice(b",\"message\":");
+}
+
+/// The message from `message` to its end.
+fn write_tail(out: &mut String, s: &Snapshot) {
+    out.push_str(",\"message\":");
     match &s.message {
-        None => out.extend_from_slice(b"null"),
+        None => out.push_str("null"),
         Some(m) => write_str(out, m),
     }
-    out.extend_from_slice(b",\"overrides\":{\"feed\":");
+    out.push_str(",\"overrides\":{\"feed\":");
     write_f64(out, s.overrides.feed);
-    out.extend_from_slice(b",\"rapid\":");
+    out.push_str(",\"rapid\":");
     write_f64(out, s.overrides.rapid);
-    out.extend_from_slice(b",\"spindle\":");
+    out.push_str(",\"spindle\":");
     write_f64(out, s.overrides.spindle);
-    out.extend_from_slice(b"},\"single_block\":");
+    out.push_str("},\"single_block\":");
     write_bool(out, s.single_block);
-    out.extend_from_slice(b",\"optional_stop\":");
+    out.push_str(",\"optional_stop\":");
     write_bool(out, s.optional_stop);
-    out.extend_from_slice(b",\"gcodes\":[");
+    out.push_str(",\"gcodes\":[");
     for (i, g) in s.gcodes.iter().enumerate() {
         if i > 0 {
-            out.push(b',');
+            out.push(',');
         }
         write_str(out, g);
     }
-    out.extend_from_slice(b"],\"referenced\":");
+    out.push_str("],\"referenced\":");
     write_named(out, &s.referenced, write_bool);
-    out.extend_from_slice(b",\"repos_pending\":");
+    out.push_str(",\"repos_pending\":");
     write_bool(out, s.repos_pending);
     if let Some((axis, phase)) = &s.referencing {
-        out.extend_from_slice(b",\"referencing\":{\"axis\":");
+        out.push_str(",\"referencing\":{\"axis\":");
         write_str(out, axis);
-        out.extend_from_slice(b",\"phase\":");
+        out.push_str(",\"phase\":");
         write_str(out, phase_name(*phase));
-        out.push(b'}');
+        out.push('}');
     }
-    out.push(b'}');
+    out.push('}');
 }
 
 /// `dto::ChannelStatus` as serde names it (lowercase).
@@ -172,66 +248,68 @@ fn phase_name(p: ReferencePhase) -> &'static str {
 }
 
 /// Named values as a JSON object in their order.
-fn write_named<T: Copy>(out: &mut Vec<u8>, list: &[(String, T)], value: fn(&mut Vec<u8>, T)) {
-    out.push(b'{');
+fn write_named<T: Copy>(out: &mut String, list: &[(String, T)], value: fn(&mut String, T)) {
+    out.push('{');
     for (i, (name, v)) in list.iter().enumerate() {
         if i > 0 {
-            out.push(b',');
+            out.push(',');
         }
         write_str(out, name);
-        out.push(b':');
+        out.push(':');
         value(out, *v);
     }
-    out.push(b'}');
+    out.push('}');
 }
 
 /// A float as serde_json writes it: the shortest text that reads back the same (`zmij`, as serde_json 1.0.15x), `null`
 /// for NaN and infinities.
-fn write_f64(out: &mut Vec<u8>, v: f64) {
+fn write_f64(out: &mut String, v: f64) {
     if v.is_finite() {
-        out.extend_from_slice(zmij::Buffer::new().format_finite(v).as_bytes());
+        out.push_str(zmij::Buffer::new().format_finite(v));
     } else {
-        out.extend_from_slice(b"null");
+        out.push_str("null");
     }
 }
 
-fn write_int(out: &mut Vec<u8>, v: impl itoa::Integer) {
-    out.extend_from_slice(itoa::Buffer::new().format(v).as_bytes());
+fn write_int(out: &mut String, v: impl itoa::Integer) {
+    out.push_str(itoa::Buffer::new().format(v));
 }
 
-fn write_bool(out: &mut Vec<u8>, v: bool) {
-    out.extend_from_slice(if v { b"true" } else { b"false" });
+fn write_bool(out: &mut String, v: bool) {
+    out.push_str(if v { "true" } else { "false" });
 }
 
 /// A JSON string, escaped as serde_json escapes: `"` and `\`, the short forms `\b \t \n \f
 /// \r`, every other control character as `\u00xx` (lowercase hex).
-fn write_str(out: &mut Vec<u8>, s: &str) {
-    out.push(b'"');
-    let bytes = s.as_bytes();
+fn write_str(out: &mut String, s: &str) {
+    out.push('"');
     let mut start = 0;
-    for (i, &b) in bytes.iter().enumerate() {
-        let escape: &[u8] = match b {
-            b'"' => b"\\\"",
-            b'\\' => b"\\\\",
-            0x08 => b"\\b",
-            b'\t' => b"\\t",
-            b'\n' => b"\\n",
-            0x0c => b"\\f",
-            b'\r' => b"\\r",
-            0x00..=0x1f => b"",
+    for (i, b) in s.bytes().enumerate() {
+        let escape = match b {
+            b'"' => "\\\"",
+            b'\\' => "\\\\",
+            0x08 => "\\b",
+            b'\t' => "\\t",
+            b'\n' => "\\n",
+            0x0c => "\\f",
+            b'\r' => "\\r",
+            0x00..=0x1f => "",
             _ => continue,
         };
-        out.extend_from_slice(&bytes[start..i]);
+        // `i` is at an ASCII byte, so both slices end on character boundaries.
+        out.push_str(&s[start..i]);
         if escape.is_empty() {
             const HEX: &[u8; 16] = b"0123456789abcdef";
-            out.extend_from_slice(&[b'\\', b'u', b'0', b'0', HEX[usize::from(b >> 4)], HEX[usize::from(b & 0xf)]]);
+            out.push_str("\\u00");
+            out.push(char::from(HEX[usize::from(b >> 4)]));
+            out.push(char::from(HEX[usize::from(b & 0xf)]));
         } else {
-            out.extend_from_slice(escape);
+            out.push_str(escape);
         }
         start = i + 1;
     }
-    out.extend_from_slice(&bytes[start..]);
-    out.push(b'"');
+    out.push_str(&s[start..]);
+    out.push('"');
 }
 
 #[cfg(test)]
@@ -322,6 +400,37 @@ mod tests {
         s.message = None;
         s.alarms.clear();
         s.spindles.clear();
+        s.referencing = None;
+        check(&mut encoder, &s);
+    }
+
+    #[test]
+    fn a_change_in_any_part_of_the_kept_tail_is_written() {
+        let mut channel = Channel::from_preset("lathe-2axis", "").expect("preset");
+        channel.run_program("G1 X10 F600\nM30").expect("program");
+        channel.step();
+        let mut s = channel.snapshot();
+        let mut encoder = StateEncoder::default();
+        check(&mut encoder, &s);
+        let changes: [&dyn Fn(&mut Snapshot); 9] = [
+            &|s| s.message = Some("MSG 1".into()),
+            &|s| s.message = Some("MSG 2".into()),
+            &|s| s.overrides.feed = 50.0,
+            &|s| s.single_block = true,
+            &|s| s.optional_stop = true,
+            &|s| s.gcodes[0] = "G3".into(),
+            &|s| s.referenced[0].1 = false,
+            &|s| s.repos_pending = true,
+            &|s| s.referencing = Some(("X1".into(), ReferencePhase::Cam)),
+        ];
+        for change in changes {
+            change(&mut s);
+            check(&mut encoder, &s);
+            // The same tail again, with a new position: the kept text is reused.
+            s.machine[0].1 += 1.0;
+            check(&mut encoder, &s);
+        }
+        s.message = None;
         s.referencing = None;
         check(&mut encoder, &s);
     }
