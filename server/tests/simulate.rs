@@ -188,3 +188,61 @@ fn interpret_only_prepares_every_block_without_ipo_cycles() {
     assert_eq!(code, 2, "{r:#}");
     assert_eq!(r["alarm"]["number"], 10720);
 }
+
+/// A long program of short moves with `bad` lines put in just before its end.
+fn long_program_with(bad: &[&str]) -> String {
+    let mut text = String::from("G54 G90 F3000\n");
+    for i in 0..20_000 {
+        text += &format!("G1 X{} Y{}\n", i % 50, (i / 50) % 50);
+    }
+    for line in bad {
+        text += line;
+        text += "\n";
+    }
+    text + "M30\n"
+}
+
+#[test]
+fn a_syntax_error_late_in_a_long_program_discards_the_run() {
+    // The check runs beside the run; its errors (line 1 is G54, moves on 2..=20001) come in
+    // line order and the report is the one of a program that never ran.
+    let dir = folder("late_syntax");
+    let program = write(&dir, "late.mpf", &long_program_with(&["G1 X=", "G1 Y10", "G1 Y="]));
+    for interpret_only in [false, true] {
+        let mut args = vec!["--machine", "mill-3axis", program.to_str().unwrap()];
+        if interpret_only {
+            args.insert(0, "--interpret-only");
+        }
+        let (code, r) = simulate(&args);
+        assert_eq!(code, 2, "{r:#}");
+        assert_eq!(r["outcome"], "syntax_error");
+        let lines: Vec<u64> =
+            r["syntax_errors"].as_array().unwrap().iter().map(|e| e["line"].as_u64().unwrap()).collect();
+        assert_eq!(lines, [20_002, 20_004], "{r:#}");
+        // 12080 syntax error, at column 6: where the value of `G1 X=` is missing.
+        assert_eq!(
+            (&r["syntax_errors"][0]["alarm"], &r["syntax_errors"][0]["column"]),
+            (&Value::from(12080), &Value::from(6))
+        );
+        assert_eq!(r["ipo_cycles"], 0);
+        assert_eq!(r["blocks"], 20_005);
+        if interpret_only {
+            assert_eq!(r["moves"], 0, "{r:#}");
+        } else {
+            assert_eq!(r["block_changes"], 0);
+            assert_eq!(r["state"]["status"], "idle", "{r:#}");
+            approx(&r["state"]["positions"]["machine"]["X"], 0.0);
+            approx(&r["state"]["time"], 0.0);
+        }
+    }
+}
+
+#[test]
+fn a_syntax_error_after_an_endless_loop_still_ends_the_run() {
+    // Without the check the loop would run forever: the run gives up once the check failed.
+    let dir = folder("loop_syntax");
+    let program = write(&dir, "loop.mpf", "F3000\nLOOP\nG1 X10\nG1 X0\nENDLOOP\nG1 X=\nM30\n");
+    let (code, r) = simulate(&["--machine", "mill-3axis", "--compact", program.to_str().unwrap()]);
+    assert_eq!((code, &r["outcome"]), (2, &Value::from("syntax_error")), "{r:#}");
+    assert_eq!(r["syntax_errors"][0]["line"], 6);
+}

@@ -467,6 +467,14 @@ impl Channel {
         self.load_and_start(text.into(), Mode::Auto)
     }
 
+    /// [`Channel::run_program_shared`] without the syntax check, for a caller that runs
+    /// [`lang::check`] itself (on another thread, alongside the run): the caller guarantees the
+    /// check passes or discards the run and everything it produced. Without the check an error
+    /// surfaces only when preparation reaches its line, as an alarm.
+    pub fn run_program_prechecked(&mut self, text: impl Into<ProgramText>) -> Result<(), CommandError> {
+        self.start_loaded(text.into(), Mode::Auto)
+    }
+
     /// Executes `text` (one or more blocks) in MDA mode.
     pub fn mda(&mut self, text: &str) -> Result<(), CommandError> {
         self.load_and_start(ProgramText::from(text), Mode::Mda)
@@ -474,6 +482,11 @@ impl Channel {
 
     fn load_and_start(&mut self, text: ProgramText, mode: Mode) -> Result<(), CommandError> {
         CommandError::check(&text)?;
+        self.start_loaded(text, mode)
+    }
+
+    /// Loads `text`, which passed the syntax check, and starts it in `mode`.
+    fn start_loaded(&mut self, text: ProgramText, mode: Mode) -> Result<(), CommandError> {
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("a program is active"));
         }

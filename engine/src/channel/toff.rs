@@ -52,7 +52,19 @@ impl OnlineOffset {
 
     /// One IPO cycle `dt` towards `target`: accelerate with `accel` up to `velocity`, and brake
     /// so as to stop on the target (never overshooting it).
+    #[inline]
     pub fn step(&mut self, target: &[f64; 3], velocity: f64, accel: f64, dt: f64) {
+        // Standing on the target, the usual case: nothing changes (bits compared, so a −0.0
+        // target still replaces a +0.0 offset below). Inlined into the caller's cycle.
+        let still = |k: usize| self.rate[k] == 0.0 && self.current[k].to_bits() == target[k].to_bits();
+        if !(still(0) && still(1) && still(2)) {
+            self.ramp(target, velocity, accel, dt);
+        }
+    }
+
+    /// [`OnlineOffset::step`] while the offset moves.
+    #[inline(never)]
+    fn ramp(&mut self, target: &[f64; 3], velocity: f64, accel: f64, dt: f64) {
         for ((cur, rate), goal) in self.current.iter_mut().zip(&mut self.rate).zip(target) {
             let d = goal - *cur;
             if d.abs() < 1e-12 {

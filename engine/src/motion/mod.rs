@@ -4,6 +4,7 @@
 //! Input: [`Move`]s (a [`Path`] in channel-axis space plus feed and exact-stop flag) and the
 //! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
 
+mod front;
 mod ori_curve;
 mod orientation;
 mod path;

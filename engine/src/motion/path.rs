@@ -120,16 +120,23 @@ impl Path {
 
     /// Upper bound of `|dp_k/ds|` over the whole block, per axis.
     pub fn max_rate(&self) -> AxisVec {
+        self.max_rate_of_first(MAX_CHANNEL_AXES)
+    }
+
+    /// [`Path::max_rate`] of the first `n` axes (a channel's), the rest left 0: a block's
+    /// limits need no more, and they are worked out for every block.
+    pub fn max_rate_of_first(&self, n: usize) -> AxisVec {
         let mut r = [0.0; MAX_CHANNEL_AXES];
+        let n = n.min(MAX_CHANNEL_AXES);
         match &self.arc {
             None => {
-                for (k, rk) in r.iter_mut().enumerate() {
+                for (k, rk) in r[..n].iter_mut().enumerate() {
                     *rk = (self.end[k] - self.start[k]).abs();
                 }
             }
             Some(arc) => {
                 let (linear, _) = self.arc_parts(arc);
-                for (k, rk) in r.iter_mut().enumerate() {
+                for (k, rk) in r[..n].iter_mut().enumerate() {
                     // Most axes are outside the circle's plane: skip libm's hypot for them
                     // (hypot(0, 0) is 0 as well).
                     let (u, v) = (arc.u[k], arc.v[k]);
@@ -187,10 +194,14 @@ impl Path {
     /// and the chord.
     fn arc_parts(&self, arc: &Arc) -> (AxisVec, AxisVec) {
         let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
+        // The same for every axis: computed once, not per axis (libm calls are not hoisted).
+        let (sin0, cos0) = a0.sin_cos();
+        let (sin1, cos1) = a1.sin_cos();
+        let (dcos, dsin) = (cos1 - cos0, sin1 - sin0);
         let mut linear = [0.0; MAX_CHANNEL_AXES];
         let mut chord = [0.0; MAX_CHANNEL_AXES];
         for k in 0..MAX_CHANNEL_AXES {
-            chord[k] = arc.radius * ((a1.cos() - a0.cos()) * arc.u[k] + (a1.sin() - a0.sin()) * arc.v[k]);
+            chord[k] = arc.radius * (dcos * arc.u[k] + dsin * arc.v[k]);
             linear[k] = self.end[k] - self.start[k] - chord[k];
         }
         (linear, chord)
@@ -229,6 +240,17 @@ mod tests {
             p.at(0.25 + 0.5 * u, &mut b);
             assert!(a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-12), "{u}");
         }
+    }
+
+    #[test]
+    fn the_rates_of_the_first_axes_are_those_of_all_axes() {
+        // Half circle of radius 10 in X/Y with Z rising 4: |dX/ds| ≤ linear 0 + circle 10·π,
+        // |dZ/ds| = 4; the first two axes only leave Z at 0.
+        let p = half_circle();
+        let (all, first) = (p.max_rate(), p.max_rate_of_first(2));
+        assert!((all[0] - 10.0 * PI).abs() < 1e-12 && (all[2] - 4.0).abs() < 1e-12, "{all:?}");
+        assert_eq!(&first[..2], &all[..2]);
+        assert_eq!(first[2], 0.0);
     }
 
     #[test]

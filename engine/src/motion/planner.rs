@@ -7,7 +7,8 @@
 
 use std::collections::VecDeque;
 
-use super::orientation::{OriPath, Vec3, rotate_by};
+use super::front::FrontMove;
+use super::orientation::Vec3;
 use super::path::{AxisVec, Path};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -110,7 +111,7 @@ impl Move {
     /// Builds a move, deriving its velocity and acceleration limits from the axes.
     /// `length` is the path length the feed refers to (geometry axes, or all axes if none moves).
     pub fn new(path: Path, length: f64, feed: Feed, limits: &[AxisLimit], exact_stop: bool, tag: u32) -> Move {
-        let rate = path.max_rate();
+        let rate = path.max_rate_of_first(limits.len());
         let feed = match feed {
             Feed::Rapid => f64::INFINITY,
             Feed::Path(f) => f,
@@ -197,16 +198,10 @@ pub struct Planner {
     /// Tool orientation at `position` when that move interpolates it as a vector.
     orientation: Option<Vec3>,
     finished: Vec<u32>,
-    /// Sine and cosine of the front move's arc at its start and end angle: the same for every
-    /// cycle of the move, so computed once (`None` until needed, and again when the front changes).
-    front_arc_ends: Option<ArcEnds>,
-    /// The front move's orientation angle at the last cycle with its sine and cosine, from which
-    /// the next cycle's is stepped (`None` until needed, and again when the front changes).
-    front_ori: Option<OriStep>,
+    /// What every cycle of the front move needs (its moving axes, the arc's constants, the
+    /// stepped angles): built on its first cycle, dropped whenever the front changes.
+    front_move: Option<FrontMove>,
 }
-
-/// `(sin, cos)` of an arc's start and end angle.
-type ArcEnds = [(f64, f64); 2];
 
 impl Planner {
     pub fn new(dt: f64, limits: impl Into<AxisLimits>, position: AxisVec) -> Planner {
@@ -226,8 +221,7 @@ impl Planner {
             position_tag: None,
             orientation: None,
             finished: Vec::new(),
-            front_arc_ends: None,
-            front_ori: None,
+            front_move: None,
         }
     }
 
@@ -239,8 +233,7 @@ impl Planner {
         }
         self.a_min = self.a_min.min(mv.a_max);
         if self.queue.is_empty() {
-            self.front_arc_ends = None;
-            self.front_ori = None;
+            self.front_move = None;
         }
         self.queue.push_back(mv);
         self.v_end.push_back(0.0);
@@ -325,8 +318,7 @@ impl Planner {
     /// Drops everything at once (reset): the axes stay where they are.
     pub fn abort(&mut self) {
         self.queue.clear();
-        self.front_arc_ends = None;
-        self.front_ori = None;
+        self.front_move = None;
         self.a_min = f64::INFINITY;
         self.v_end.clear();
         self.s = 0.0;
@@ -371,7 +363,7 @@ impl Planner {
         debug_assert!(self.v == 0.0);
         let Some(done) = self.queue.pop_front() else { return };
         self.v_end.pop_front();
-        self.front_arc_ends = None;
+        self.front_move = None;
         self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
         self.position = done.path.end;
         self.orientation = done.path.orientation_at(1.0);
@@ -388,7 +380,6 @@ impl Planner {
             return;
         };
         let a = front.a_max;
-        let brake = self.brake_limit();
         let cap = front.capped(self.feed_override, self.rapid_override);
         // Above the cap (override lowered) the path brakes at the axes' deceleration.
         let mut v_new = if self.hold {
@@ -398,7 +389,7 @@ impl Planner {
         } else {
             (self.v + a * dt).min(cap)
         };
-        v_new = v_new.min(brake);
+        v_new = self.brake_limited(v_new);
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
         let remaining = front.length - self.s;
@@ -419,8 +410,9 @@ impl Planner {
             if d < remaining - 1e-12 {
                 self.s += d;
                 let u = self.s / front.length;
-                position_on(&front.path, u, &mut self.front_arc_ends, &mut self.position);
-                self.orientation = front.path.ori.as_ref().map(|o| orientation_on(o, u, &mut self.front_ori));
+                let cycles = self.front_move.get_or_insert_with(|| FrontMove::new(&front.path, &mut self.position));
+                cycles.position(u, &mut self.position);
+                self.orientation = front.path.ori.as_ref().map(|o| cycles.orientation(o, u));
                 self.position_tag = Some(front.tag);
                 break;
             }
@@ -431,8 +423,7 @@ impl Planner {
             self.position_tag = Some(front.tag);
             let stop_here = self.v_end[0] == 0.0;
             let done = self.queue.pop_front().expect("front exists");
-            self.front_arc_ends = None;
-            self.front_ori = None;
+            self.front_move = None;
             if done.a_max <= self.a_min {
                 self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
             }
@@ -446,22 +437,30 @@ impl Planner {
         }
     }
 
-    /// The highest speed from which every planned transition ahead can still be met. Looks
-    /// past the front move so that a cycle which crosses into the next move cannot arrive too fast.
-    fn brake_limit(&self) -> f64 {
+    /// `v`, lowered to the highest speed from which every planned transition ahead can still be
+    /// met. Looks past the front move so that a cycle which crosses into the next move cannot
+    /// arrive too fast. A transition that `v` can meet is recognised without the square root of
+    /// [`brake_speed`] (`brake_speed(d, v_end, a) ≥ v ⇔ v·(v + a·dt) ≤ 2·a·d + v_end²`), so a
+    /// cycle far from any braking point takes none.
+    fn brake_limited(&self, v: f64) -> f64 {
+        let dt = self.dt;
         let mut distance = -self.s;
         let mut a = f64::INFINITY;
-        let mut limit = f64::INFINITY;
+        let mut limit = v;
         // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
         // (moves split by a kinematic transformation may decelerate very differently).
         let a_min = self.a_min;
-        for (k, mv) in self.queue.iter().enumerate() {
+        let n = self.queue.len();
+        for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate() {
             distance += mv.length;
             a = a.min(mv.a_max);
             // One cycle at the transition speed is kept in reserve for the crossing cycle.
-            let reserve = if k + 1 < self.queue.len() { self.v_end[k] * self.dt } else { 0.0 };
-            limit = limit.min(brake_speed(distance - reserve, self.v_end[k], a, self.dt));
-            if self.v_end[k] == 0.0 || distance > limit * limit / a_min {
+            let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
+            let d = distance - reserve;
+            if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
+                limit = limit.min(brake_speed(d, v_end, a, dt));
+            }
+            if v_end == 0.0 || distance > limit * limit / a_min {
                 break;
             }
         }
@@ -524,72 +523,6 @@ impl Planner {
     }
 }
 
-/// [`Path::at`] for the cycles of one move: the same arithmetic, with the sines and cosines of the
-/// arc's end angles taken from `ends` (filled on first use) instead of computed every cycle.
-fn position_on(path: &Path, u: f64, ends: &mut Option<ArcEnds>, out: &mut AxisVec) {
-    let arc = match &path.arc {
-        Some(arc) if u < 1.0 => arc,
-        _ => return path.at(u, out),
-    };
-    let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
-    let [(sin0, cos0), (sin1, cos1)] = *ends.get_or_insert_with(|| [a0.sin_cos(), a1.sin_cos()]);
-    for (o, (a, b)) in out.iter_mut().zip(path.start.iter().zip(&path.end)) {
-        *o = a + (b - a) * u;
-    }
-    let (sin, cos) = (a0 + arc.sweep * u).sin_cos();
-    let cu = arc.radius * (cos - cos0 - u * (cos1 - cos0));
-    let cv = arc.radius * (sin - sin0 - u * (sin1 - sin0));
-    for (k, o) in out.iter_mut().enumerate() {
-        *o += cu * arc.u[k] + cv * arc.v[k];
-    }
-}
-
-/// The orientation angle, its sine and cosine at one cycle, and the cycles since they were
-/// computed with `sin_cos`.
-#[derive(Debug, Clone, Copy)]
-struct OriStep {
-    angle: f64,
-    sin: f64,
-    cos: f64,
-    stepped: u32,
-}
-
-/// Cycles after which the orientation's sine and cosine are computed afresh (the rounding of the
-/// stepped ones grows by about one unit in the last place per cycle).
-const ORI_EXACT_EVERY: u32 = 64;
-
-/// [`OriPath::at`] for the cycles of one move without a `sin_cos` per cycle: the angle moves by
-/// a small `d` from one cycle to the next, so its sine and cosine follow from the last ones by
-/// the addition theorem with `sin d` and `cos d` from their Taylor series (to d⁹ and d⁸: below
-/// 1e-21 for |d| < 0.05 rad). A larger step and every [`ORI_EXACT_EVERY`]th cycle use
-/// `sin_cos`; the block end is the exact end orientation (the caller takes it from the path).
-fn orientation_on(ori: &OriPath, u: f64, state: &mut Option<OriStep>) -> Vec3 {
-    if let Some(c) = &ori.curve {
-        return c.at(u);
-    }
-    let angle = ori.angle * u.clamp(0.0, 1.0);
-    let next = match *state {
-        Some(last) if last.stepped < ORI_EXACT_EVERY && (angle - last.angle).abs() < 0.05 => {
-            let d = angle - last.angle;
-            let d2 = d * d;
-            let sin_d = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0 * (1.0 - d2 / 42.0 * (1.0 - d2 / 72.0))));
-            let cos_d = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0 * (1.0 - d2 / 56.0)));
-            OriStep {
-                angle,
-                sin: last.sin * cos_d + last.cos * sin_d,
-                cos: last.cos * cos_d - last.sin * sin_d,
-                stepped: last.stepped + 1,
-            }
-        }
-        _ => {
-            let (sin, cos) = angle.sin_cos();
-            OriStep { angle, sin, cos, stepped: 0 }
-        }
-    };
-    *state = Some(next);
-    rotate_by(ori.start, ori.axis, next.sin, next.cos)
-}
-
 /// The highest speed at a point `distance` before a boundary from which cycle-wise braking
 /// with deceleration `a` reaches `v_end` at the boundary. Accounts for the cycle discretisation:
 /// braking from `v` in steps of `a·dt` covers `v²/(2a) + v·dt/2`.
@@ -627,45 +560,39 @@ mod tests {
     }
 
     #[test]
-    fn positions_on_a_move_are_those_of_its_path_bit_for_bit() {
-        use super::super::path::Arc;
-        let mut start = [0.0; MAX_CHANNEL_AXES];
-        let mut end = [0.0; MAX_CHANNEL_AXES];
-        (start[0], start[1], start[2]) = (10.0, -3.5, 1.25);
-        (end[0], end[1], end[2]) = (-2.0, 7.0, -4.0);
-        for arc in [None, Some(Arc::in_plane(0, 1, 6.3, 0.7, -2.9)), Some(Arc::in_plane(2, 0, 1.1, -1.3, 5.5))] {
-            let path = Path { start, end, arc: arc.map(Box::new), ori: None };
-            let mut ends = None;
-            for i in 0..=1000 {
-                let u = f64::from(i) / 1000.0;
-                let (mut expected, mut got) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
-                path.at(u, &mut expected);
-                super::position_on(&path, u, &mut ends, &mut got);
-                assert_eq!(expected.map(f64::to_bits), got.map(f64::to_bits), "u = {u}");
+    fn the_brake_limit_without_square_roots_is_the_smallest_brake_speed_ahead() {
+        // A queue of short and long moves with corners (planned transition speeds > 0): at
+        // many points of the front move and candidate speeds, `brake_limited(v)` is
+        // min(v, every transition's brake speed), the latter written out here for all moves
+        // (no early stop), with the one-cycle reserve before each transition but the last.
+        let lim = limits(1000.0, 500.0);
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        let pts: [[f64; 3]; 6] =
+            [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.5, 1.0, 0.0], [40.0, 1.5, 0.0], [41.0, 9.0, 0.0], [90.0, 9.0, 0.0]];
+        for (i, w) in pts.windows(2).enumerate() {
+            let len = (0..3).map(|k| (w[1][k] - w[0][k]).powi(2)).sum::<f64>().sqrt();
+            p.push(Move::new(line(w[0], w[1]), len, Feed::Path(400.0), &lim, false, i as u32));
+        }
+        let reference = |p: &Planner, v: f64| {
+            let (mut distance, mut a, mut out) = (-p.s, f64::INFINITY, v);
+            for (k, mv) in p.queue.iter().enumerate() {
+                distance += mv.length;
+                a = a.min(mv.a_max);
+                let reserve = if k + 1 < p.queue.len() { p.v_end[k] * DT } else { 0.0 };
+                out = out.min(brake_speed(distance - reserve, p.v_end[k], a, DT));
+            }
+            out
+        };
+        let mut checked = 0;
+        for i in 0..=20 {
+            p.s = p.queue[0].length * f64::from(i) / 20.0;
+            for v in [0.0, 1.0, 10.0, 37.5, 80.0, 150.0, 400.0, f64::INFINITY] {
+                let (got, want) = (p.brake_limited(v), reference(&p, v));
+                assert!((got - want).abs() <= 1e-12 * want.max(1.0), "s {} v {v}: {got} vs {want}", p.s);
+                checked += usize::from(want < v);
             }
         }
-    }
-
-    #[test]
-    fn stepped_orientations_stay_on_the_exact_rotation() {
-        // A great circle of 1.2 rad run in uneven steps (accelerating, then cruising): every
-        // stepped orientation agrees with the direct Rodrigues rotation within 1e-13 (64 steps of
-        // rounding at most).
-        let ori = OriPath { start: [0.0, 0.0, 1.0], axis: [0.0, -1.0, 0.0], angle: 1.2, curve: None };
-        let mut state = None;
-        let (mut u, mut du) = (0.0f64, 0.0f64);
-        let mut cycles = 0;
-        while u < 1.0 {
-            du = (du + 1e-5).min(2e-3);
-            u += du;
-            let got = super::orientation_on(&ori, u, &mut state);
-            let want = ori.at(u);
-            for k in 0..3 {
-                assert!((got[k] - want[k]).abs() < 1e-13, "u = {u}: {got:?} vs {want:?}");
-            }
-            cycles += 1;
-        }
-        assert!(cycles > 2 * super::ORI_EXACT_EVERY, "the test covers fresh starts: {cycles} cycles");
+        assert!(checked > 20, "the brake limit binds in {checked} of the cases");
     }
 
     #[test]

@@ -20,6 +20,7 @@ use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
 use nctwin_engine::{Channel, CommandError, Event, Status};
 use nctwin_server::dto;
 
+use super::check_beside::{Checked, Verdict, check_beside, thread_cpu_time_s};
 use super::mapped;
 use serde::Serialize;
 
@@ -28,8 +29,11 @@ pub const EXIT_ALARM: u8 = 2;
 /// Exit code: `--max-sim-time` stopped the program.
 pub const EXIT_LIMIT: u8 = 3;
 
-/// How many IPO cycles run between two looks at the events and the time limit.
+/// How many IPO cycles run between two looks at the events, the time limit and the syntax check.
 const CHUNK: u64 = 4096;
+
+/// How many preparation steps of `--interpret-only` run between two looks at the syntax check.
+const PREP_CHUNK: u64 = 1024;
 
 /// Arguments of `nctwin simulate`.
 #[derive(Debug, clap::Args)]
@@ -137,10 +141,12 @@ pub struct Report {
     pub simulated_time_s: f64,
     /// Wall time of loading (syntax check) and running the program.
     pub wall_time_s: f64,
-    /// Wall time of the syntax check and loading alone (part of `wall_time_s`).
+    /// Wall time of the syntax check (part of `wall_time_s`): it runs on a second thread
+    /// beside the run, which starts at once and is discarded if the check finds errors.
     pub load_time_s: f64,
-    /// CPU time of the simulating thread over `wall_time_s` (from /proc/thread-self/schedstat;
-    /// `null` where missing): on a busy machine `blocks / cpu_time_s` is the steadier figure.
+    /// CPU time of the simulating thread plus the syntax check's thread over `wall_time_s`
+    /// (from /proc/thread-self/schedstat; `null` where missing): on a busy machine
+    /// `blocks / cpu_time_s` is the steadier figure.
     pub cpu_time_s: Option<f64>,
     pub blocks_per_s: f64,
     pub cycles_per_s: f64,
@@ -254,25 +260,29 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     if args.interpret_only {
         return Ok(interpret_only(&channel, args, text, syntax_errors, program, blocks));
     }
+    // The state a program with syntax errors leaves: nothing ran.
+    let (idle_state, idle_ticks, idle_time) = (dto::State::from(&channel.snapshot()), channel.ticks(), channel.time());
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
-    let loaded = if syntax_errors.is_empty() {
-        match channel.run_program_shared(text.clone()) {
-            Ok(()) => true,
-            Err(CommandError::Syntax { errors, .. }) => {
-                syntax_errors.extend(SyntaxError::all(&program, errors));
-                false
-            }
-            Err(e) => return Err(UsageError(e.to_string())),
+    let (mut run, mut load_time_s, mut check_cpu_s) = (Run::default(), 0.0, Some(0.0));
+    if syntax_errors.is_empty() {
+        // The main program's check runs beside the run; stored programs were checked above.
+        let (started_run, checked) = check_beside(&text, |verdict| {
+            channel.run_program_prechecked(text.clone()).map(|()| run_to_end(&mut channel, args, verdict))
+        });
+        let Checked { errors, wall_s, cpu_s } = checked;
+        syntax_errors.extend(SyntaxError::all(&program, errors));
+        (load_time_s, check_cpu_s) = (wall_s, cpu_s);
+        // An error found by the check wins over whatever the discarded run ran into.
+        if syntax_errors.is_empty() {
+            run = started_run.map_err(|e| UsageError(e.to_string()))?;
         }
-    } else {
-        false
-    };
+    }
     drop(text);
-    let load_time_s = started.elapsed().as_secs_f64();
-    let run = if loaded { run(&mut channel, args) } else { Run::default() };
+    let loaded = syntax_errors.is_empty();
     let wall_time_s = started.elapsed().as_secs_f64();
-    let cpu_time_s = thread_cpu_time_s().zip(cpu_started).map(|(end, start)| end - start);
+    let cpu_time_s =
+        thread_cpu_time_s().zip(cpu_started).zip(check_cpu_s).map(|((end, start), check)| end - start + check);
 
     let outcome = if !loaded {
         Outcome::SyntaxError
@@ -286,14 +296,17 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     } else {
         Outcome::Ended
     };
-    let ipo_cycles = channel.ticks();
-    let simulated_time_s = channel.time();
+    let (ipo_cycles, simulated_time_s, state) = if loaded {
+        (channel.ticks(), channel.time(), dto::State::from(&channel.snapshot()))
+    } else {
+        (idle_ticks, idle_time, idle_state)
+    };
     let per_s = |n: f64| if wall_time_s > 0.0 { n / wall_time_s } else { 0.0 };
     Ok(Report {
         outcome,
         program,
         machine: args.machine.clone(),
-        state: Some(dto::State::from(&channel.snapshot())),
+        state: Some(state),
         moves: None,
         alarm: None,
         syntax_errors,
@@ -314,8 +327,9 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     })
 }
 
-/// `--interpret-only`: the syntax check, then block preparation of the whole program (as if
-/// the main run had executed everything prepared so far), counting the moves.
+/// `--interpret-only`: block preparation of the whole program (as if the main run had executed
+/// everything prepared so far), counting the moves, with the syntax check beside it (a program
+/// with errors reports them and nothing else).
 fn interpret_only(
     channel: &Channel,
     args: &SimulateArgs,
@@ -327,49 +341,20 @@ fn interpret_only(
     let program_bytes = text.len();
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
+    let (mut prepared, mut load_time_s, mut check_cpu_s) = (Prepared::default(), 0.0, Some(0.0));
     if syntax_errors.is_empty() {
-        syntax_errors.extend(SyntaxError::all(&program, nctwin_engine::lang::check(&text)));
-    }
-    let load_time_s = started.elapsed().as_secs_f64();
-    let (mut moves, mut alarm, mut limit_hit) = (0u64, None, false);
-    if syntax_errors.is_empty() {
-        let cfg = channel.config();
-        let programs: Programs = channel
-            .stored_programs()
-            .into_iter()
-            .filter_map(|(name, _)| Some((name.clone(), Arc::from(channel.stored_program(&name)?))))
-            .collect();
-        let mut position = [0.0; MAX_CHANNEL_AXES];
-        position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
-        let mut interp = Interpreter::new(cfg);
-        interp.begin_program(text, &position);
-        // Loops without end would never finish: stop after this many preparation steps.
-        let budget = blocks.saturating_mul(100).saturating_add(1_000_000);
-        let mut out = Vec::new();
-        let mut steps = 0u64;
-        loop {
-            out.clear();
-            let prep = interp.prepare_next(cfg, &programs, true, &mut out);
-            drop(interp.take_data_writes());
-            for item in out.drain(..) {
-                match item {
-                    Item::Move { .. } => moves += 1,
-                    Item::Alarm(a) => alarm = Some(dto::AlarmInfo::from(&a)),
-                    _ => {}
-                }
-            }
-            steps += 1;
-            if prep == Prep::Done || alarm.is_some() {
-                break;
-            }
-            if steps >= budget {
-                limit_hit = true;
-                break;
-            }
+        let (found, checked) = check_beside(&text, |verdict| prepare_all(channel, text.clone(), blocks, verdict));
+        let Checked { errors, wall_s, cpu_s } = checked;
+        syntax_errors.extend(SyntaxError::all(&program, errors));
+        (load_time_s, check_cpu_s) = (wall_s, cpu_s);
+        if syntax_errors.is_empty() {
+            prepared = found;
         }
     }
+    let Prepared { moves, alarm, limit_hit } = prepared;
     let wall_time_s = started.elapsed().as_secs_f64();
-    let cpu_time_s = thread_cpu_time_s().zip(cpu_started).map(|(end, start)| end - start);
+    let cpu_time_s =
+        thread_cpu_time_s().zip(cpu_started).zip(check_cpu_s).map(|((end, start), check)| end - start + check);
     let outcome = if !syntax_errors.is_empty() {
         Outcome::SyntaxError
     } else if alarm.is_some() {
@@ -402,6 +387,56 @@ fn interpret_only(
         real_time_factor: 0.0,
         peak_rss_kib: peak_rss_kib(),
     }
+}
+
+/// What `--interpret-only`'s preparation found.
+#[derive(Debug, Default)]
+struct Prepared {
+    moves: u64,
+    alarm: Option<dto::AlarmInfo>,
+    limit_hit: bool,
+}
+
+/// Prepares every block of `text` on a fresh interpreter, counting the moves, until the end,
+/// an alarm, the step budget, or the syntax check beside it failing (the result is then
+/// discarded).
+fn prepare_all(channel: &Channel, text: ProgramText, blocks: u64, verdict: &Verdict) -> Prepared {
+    let cfg = channel.config();
+    let programs: Programs = channel
+        .stored_programs()
+        .into_iter()
+        .filter_map(|(name, _)| Some((name.clone(), Arc::from(channel.stored_program(&name)?))))
+        .collect();
+    let mut position = [0.0; MAX_CHANNEL_AXES];
+    position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
+    let mut interp = Interpreter::new(cfg);
+    interp.begin_program(text, &position);
+    // Loops without end would never finish: stop after this many preparation steps.
+    let budget = blocks.saturating_mul(100).saturating_add(1_000_000);
+    let mut out = Vec::new();
+    let mut found = Prepared::default();
+    let mut steps = 0u64;
+    loop {
+        out.clear();
+        let prep = interp.prepare_next(cfg, &programs, true, &mut out);
+        drop(interp.take_data_writes());
+        for item in out.drain(..) {
+            match item {
+                Item::Move { .. } => found.moves += 1,
+                Item::Alarm(a) => found.alarm = Some(dto::AlarmInfo::from(&a)),
+                _ => {}
+            }
+        }
+        steps += 1;
+        if prep == Prep::Done || found.alarm.is_some() || steps.is_multiple_of(PREP_CHUNK) && verdict.failed() {
+            break;
+        }
+        if steps >= budget {
+            found.limit_hit = true;
+            break;
+        }
+    }
+    found
 }
 
 /// Stores every *.SPF / *.MPF file of `dir` in the channel; syntax errors are collected.
@@ -439,12 +474,17 @@ struct Run {
 }
 
 /// Steps the channel until the program is over (or stopped at M0 with `--stop-at-m0`, or by
-/// the time limit). Events are drained every [`CHUNK`] cycles so memory stays flat.
-fn run(channel: &mut Channel, args: &SimulateArgs) -> Run {
+/// the time limit, or the syntax check beside it failed). Events are drained every [`CHUNK`]
+/// cycles so memory stays flat.
+fn run_to_end(channel: &mut Channel, args: &SimulateArgs, verdict: &Verdict) -> Run {
     let mut run = Run::default();
     let limit_tick = args.max_sim_time.map(|t| channel.ticks() + (t / channel.config().ipo_cycle).ceil() as u64);
     loop {
         while channel.is_busy() {
+            if verdict.failed() {
+                // The run is discarded: no need to finish it.
+                return run;
+            }
             let mut steps = CHUNK;
             if let Some(limit) = limit_tick.filter(|_| !run.limit_hit) {
                 if channel.ticks() >= limit {
@@ -481,13 +521,6 @@ fn count_events(channel: &mut Channel, run: &mut Run) {
             run.block_changes += 1;
         }
     }
-}
-
-/// CPU time of the calling thread in seconds (first field of /proc/thread-self/schedstat, ns).
-fn thread_cpu_time_s() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    let ns: u64 = stat.split_whitespace().next()?.parse().ok()?;
-    Some(ns as f64 * 1e-9)
 }
 
 /// Peak resident set size of this process in KiB (`VmHWM` of /proc/self/status).
