@@ -45,6 +45,7 @@
 //!   held); `shape_corners` (nothing held, no RND/CHF/CHR); `transform_moves` (none active).
 
 use super::flow::Pos;
+use super::frame::{Frame, GeoAxes};
 use super::modal::MotionMode;
 use super::orient::RotReference;
 use super::{
@@ -54,7 +55,7 @@ use super::{
 use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
-use crate::motion::AxisLimits;
+use crate::motion::{AxisLimits, AxisVec};
 
 /// The words of a plain motion line, by meaning.
 #[derive(Debug, Default)]
@@ -96,6 +97,8 @@ struct Memo {
     /// `refresh_offsets` ran for this configuration and nothing but lane blocks ran since:
     /// the tool, the frame and the G codes of the offsets are what it would make them.
     offsets_fresh: bool,
+    /// The offsets' frame only translates (set with `offsets_fresh`), see [`translated_end`].
+    translation_only: bool,
 }
 
 /// The memo is a cache: it is no state of block preparation (the debug cross-check compares
@@ -128,6 +131,7 @@ impl LaneMemo {
                 limits: AxisLimit::for_channel(cfg),
                 letters: std::array::from_fn(|i| geometry_axis(cfg, b'A' + i as u8)),
                 offsets_fresh: false,
+                translation_only: false,
             };
             match self.0.as_mut() {
                 Some(m) => **m = memo,
@@ -248,7 +252,10 @@ impl Interpreter {
         }
         if !self.lane_memo.for_config(cfg).offsets_fresh {
             self.refresh_offsets(cfg);
-            self.lane_memo.for_config(cfg).offsets_fresh = true;
+            let translation_only = only_translates(&self.offsets.frame);
+            let memo = self.lane_memo.for_config(cfg);
+            memo.offsets_fresh = true;
+            memo.translation_only = translation_only;
         } else if g_codes != (self.modal.motion, self.modal.absolute) {
             // Tool and frame are as the last refresh left them; only the G codes changed.
             self.refresh_gcodes();
@@ -262,7 +269,7 @@ impl Interpreter {
             }
             return Some(Prep::Prepared);
         }
-        let mv = self.plain_move(&block, cfg, &self.lane_memo.for_config_ref().limits, line)?;
+        let mv = self.plain_move(&block, cfg, self.lane_memo.for_config_ref(), line)?;
         self.commit_position(at, next, out);
         self.pos = mv.path.end;
         self.modal.ori.last_change = None;
@@ -284,15 +291,21 @@ impl Interpreter {
 
     /// The move of a plain block (as `motion` computes it for such a block), or `None` where
     /// `motion` would raise an alarm.
-    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, limits: &[AxisLimit], line: u32) -> Option<Move> {
+    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, memo: &Memo, line: u32) -> Option<Move> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
         let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
-        let mut basic = *start;
-        for k in 0..n {
-            basic[k] -= tool[k];
-        }
-        let current = frame.unapply(geo, &basic)?;
+        let translated = if memo.translation_only { translated_current(frame, geo, n, start, tool) } else { None };
+        let current = match translated {
+            Some(c) => c,
+            None => {
+                let mut basic = *start;
+                for k in 0..n {
+                    basic[k] -= tool[k];
+                }
+                frame.unapply(geo, &basic)?
+            }
+        };
         let mut target = current;
         let mut programmed = [false; MAX_CHANNEL_AXES];
         let f = self.modal.length_factor();
@@ -319,13 +332,62 @@ impl Interpreter {
             }
             _ => None,
         };
-        let end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
+        let end = match translated.and_then(|_| translated_end(frame, geo, n, start, tool, &target, &programmed)) {
+            Some(end) => end,
+            None => block_end(frame, geo, n, start, tool, &target, &mut programmed),
+        };
         let (path, length) = block_path(frame, geo, (pa, po, papp), start, &end, &current, &target, circle.as_ref());
         let length = feed_length(&path, length, n);
         check_software_limits(cfg, &path, line).ok()?;
         let feed = self.path_feed(line).ok()?;
-        Some(Move::new(path, length, feed, limits, self.modal.exact_stop, line))
+        Some(Move::new(path, length, feed, &memo.limits, self.modal.exact_stop, line))
     }
+}
+
+/// True when `frame` only translates: no rotation, scale or mirror on any axis. Its
+/// `unapply`/`apply` then subtract/add the translation, which [`translated_current`] and
+/// [`translated_end`] do for the configured axes only.
+fn only_translates(frame: &Frame) -> bool {
+    frame.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] && frame.factor.iter().all(|&f| f == 1.0)
+}
+
+/// `frame.unapply(start − tool)` on the first `n` axes for a frame that [`only_translates`]
+/// (the others are not read for a plain block). Bit for bit: `unapply` divides by the factor
+/// 1 and sums the identity row times the point, where adding the zero terms leaves a
+/// non-zero coordinate exact; a zero geometry coordinate (whose sign the sum may flip) gives
+/// `None`, and the caller takes `unapply` itself.
+fn translated_current(frame: &Frame, geo: &GeoAxes, n: usize, start: &AxisVec, tool: &AxisVec) -> Option<AxisVec> {
+    let mut current = [0.0; MAX_CHANNEL_AXES];
+    for k in 0..n {
+        current[k] = (start[k] - tool[k]) - frame.trans[k];
+    }
+    geo.iter().flatten().all(|&k| current[k] != 0.0).then_some(current)
+}
+
+/// [`block_end`] for a frame that [`only_translates`]: `frame.apply(target) + tool` on the
+/// programmed axes (the frame couples none), exact by the argument of [`translated_current`].
+/// A zero geometry coordinate comes out of `apply`'s sum as a zero of either sign, which
+/// adding a translation other than zero (or +0) makes exact again; on a zero translation
+/// `None`, and the caller takes `block_end`.
+fn translated_end(
+    frame: &Frame,
+    geo: &GeoAxes,
+    n: usize,
+    start: &AxisVec,
+    tool: &AxisVec,
+    target: &AxisVec,
+    programmed: &[bool; MAX_CHANNEL_AXES],
+) -> Option<AxisVec> {
+    if geo.iter().flatten().any(|&k| programmed[k] && target[k] == 0.0 && frame.trans[k] == 0.0) {
+        return None;
+    }
+    let mut end = *start;
+    for k in 0..n {
+        if programmed[k] {
+            end[k] = (target[k] + frame.trans[k]) + tool[k];
+        }
+    }
+    Some(end)
 }
 
 /// Debug builds: prepares the block the lane just prepared once more on `reference` (the
