@@ -49,13 +49,13 @@ use super::frame::{Frame, GeoAxes};
 use super::modal::MotionMode;
 use super::orient::RotReference;
 use super::{
-    AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end, block_path,
-    check_software_limits, feed_length,
+    AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end,
+    check_software_limits, feed_length, shape_path,
 };
 use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
-use crate::motion::{AxisLimits, AxisVec};
+use crate::motion::{AxisLimits, AxisVec, Path};
 
 /// The words of a plain motion line, by meaning.
 #[derive(Debug, Default)]
@@ -269,13 +269,7 @@ impl Interpreter {
             }
             return Some(Prep::Prepared);
         }
-        let mv = self.plain_move(&block, cfg, self.lane_memo.for_config_ref(), line)?;
-        self.commit_position(at, next, out);
-        self.pos = mv.path.end;
-        self.modal.ori.last_change = None;
-        self.modal.ori.upper = None;
-        let offsets = self.shared_offsets();
-        self.trc.pass(Item::Move { mv, line, offsets }, out);
+        self.plain_move(&block, cfg, (at, next), out)?;
         Some(Prep::Prepared)
     }
 
@@ -289,23 +283,30 @@ impl Interpreter {
         self.trc.begin_block(out);
     }
 
-    /// The move of a plain block (as `motion` computes it for such a block), or `None` where
-    /// `motion` would raise an alarm.
-    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, memo: &Memo, line: u32) -> Option<Move> {
+    /// Prepares the move of a plain block (as `motion` computes it for such a block) straight
+    /// into `out`, with the bookkeeping of `step_program` and `trc.push` for the line from
+    /// `at` to `next`; `None` (and nothing changed) where `motion` would raise an alarm.
+    fn plain_move(
+        &mut self,
+        block: &PlainBlock,
+        cfg: &MachineConfig,
+        (at, next): (Pos, Pos),
+        out: &mut Vec<Item>,
+    ) -> Option<()> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
+        let line = at.line;
+        let memo = self.lane_memo.for_config_ref();
         let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
-        let translated = if memo.translation_only { translated_current(frame, geo, n, start, tool) } else { None };
-        let current = match translated {
-            Some(c) => c,
-            None => {
-                let mut basic = *start;
-                for k in 0..n {
-                    basic[k] -= tool[k];
-                }
-                frame.unapply(geo, &basic)?
+        let mut current = [0.0; MAX_CHANNEL_AXES];
+        let translated = memo.translation_only && translated_current(frame, geo, n, start, tool, &mut current);
+        if !translated {
+            let mut basic = *start;
+            for k in 0..n {
+                basic[k] -= tool[k];
             }
-        };
+            current = frame.unapply(geo, &basic)?;
+        }
         let mut target = current;
         let mut programmed = [false; MAX_CHANNEL_AXES];
         let f = self.modal.length_factor();
@@ -316,7 +317,8 @@ impl Interpreter {
                 programmed[k] = true;
             }
         }
-        let (pa, po, papp) = self.modal.plane.axes();
+        let planes = self.modal.plane.axes();
+        let (pa, po, _) = planes;
         let circle = match self.modal.motion {
             MotionMode::Cw | MotionMode::Ccw => {
                 let (Some(ka), Some(ko)) = (geo[pa], geo[po]) else { return None };
@@ -332,15 +334,25 @@ impl Interpreter {
             }
             _ => None,
         };
-        let end = match translated.and_then(|_| translated_end(frame, geo, n, start, tool, &target, &programmed)) {
-            Some(end) => end,
-            None => block_end(frame, geo, n, start, tool, &target, &mut programmed),
-        };
-        let (path, length) = block_path(frame, geo, (pa, po, papp), start, &end, &current, &target, circle.as_ref());
+        let mut path = Path::line(*start, *start);
+        if !(translated && translated_end(frame, geo, n, tool, &target, &programmed, &mut path.end)) {
+            path.end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
+        }
+        let length = shape_path(&mut path, frame, geo, planes, &current, &target, circle.as_ref());
         let length = feed_length(&path, length, n);
         check_software_limits(cfg, &path, line).ok()?;
         let feed = self.path_feed(line).ok()?;
-        Some(Move::new(path, length, feed, &memo.limits, self.modal.exact_stop, line))
+
+        self.commit_position(at, next, out);
+        // The axes past the channel's keep their start (block_end leaves them).
+        self.pos[..n].copy_from_slice(&path.end[..n]);
+        self.modal.ori.last_change = None;
+        self.modal.ori.upper = None;
+        let offsets = self.shared_offsets();
+        let limits = &self.lane_memo.for_config_ref().limits;
+        out.push(Item::Move { mv: Move::new(path, length, feed, limits, self.modal.exact_stop, line), line, offsets });
+        self.trc.passed(out);
+        Some(())
     }
 }
 
@@ -352,42 +364,47 @@ fn only_translates(frame: &Frame) -> bool {
 }
 
 /// `frame.unapply(start − tool)` on the first `n` axes for a frame that [`only_translates`]
-/// (the others are not read for a plain block). Bit for bit: `unapply` divides by the factor
-/// 1 and sums the identity row times the point, where adding the zero terms leaves a
-/// non-zero coordinate exact; a zero geometry coordinate (whose sign the sum may flip) gives
-/// `None`, and the caller takes `unapply` itself.
-fn translated_current(frame: &Frame, geo: &GeoAxes, n: usize, start: &AxisVec, tool: &AxisVec) -> Option<AxisVec> {
-    let mut current = [0.0; MAX_CHANNEL_AXES];
-    for k in 0..n {
-        current[k] = (start[k] - tool[k]) - frame.trans[k];
-    }
-    geo.iter().flatten().all(|&k| current[k] != 0.0).then_some(current)
-}
-
-/// [`block_end`] for a frame that [`only_translates`]: `frame.apply(target) + tool` on the
-/// programmed axes (the frame couples none), exact by the argument of [`translated_current`].
-/// A zero geometry coordinate comes out of `apply`'s sum as a zero of either sign, which
-/// adding a translation other than zero (or +0) makes exact again; on a zero translation
-/// `None`, and the caller takes `block_end`.
-fn translated_end(
+/// (the others are not read for a plain block), into `current`. Bit for bit: `unapply`
+/// divides by the factor 1 and sums the identity row times the point, where adding the zero
+/// terms leaves a non-zero coordinate exact; a zero geometry coordinate (whose sign the sum
+/// may flip) gives false, and the caller takes `unapply` itself.
+fn translated_current(
     frame: &Frame,
     geo: &GeoAxes,
     n: usize,
     start: &AxisVec,
     tool: &AxisVec,
+    current: &mut AxisVec,
+) -> bool {
+    for k in 0..n {
+        current[k] = (start[k] - tool[k]) - frame.trans[k];
+    }
+    geo.iter().flatten().all(|&k| current[k] != 0.0)
+}
+
+/// [`block_end`] for a frame that [`only_translates`]: `frame.apply(target) + tool` on the
+/// programmed axes (the frame couples none) into `end`, which holds the start; exact by the
+/// argument of [`translated_current`]. A zero geometry coordinate comes out of `apply`'s sum
+/// as a zero of either sign, which adding a translation other than zero makes exact again; on
+/// a zero translation false (and `end` untouched), and the caller takes `block_end`.
+fn translated_end(
+    frame: &Frame,
+    geo: &GeoAxes,
+    n: usize,
+    tool: &AxisVec,
     target: &AxisVec,
     programmed: &[bool; MAX_CHANNEL_AXES],
-) -> Option<AxisVec> {
+    end: &mut AxisVec,
+) -> bool {
     if geo.iter().flatten().any(|&k| programmed[k] && target[k] == 0.0 && frame.trans[k] == 0.0) {
-        return None;
+        return false;
     }
-    let mut end = *start;
     for k in 0..n {
         if programmed[k] {
             end[k] = (target[k] + frame.trans[k]) + tool[k];
         }
     }
-    Some(end)
+    true
 }
 
 /// Debug builds: prepares the block the lane just prepared once more on `reference` (the

@@ -993,6 +993,22 @@ fn block_path(
     circle: Option<&arc::Circle>,
 ) -> (Path, f64) {
     let mut path = Path::line(*start, *end);
+    let length = shape_path(&mut path, frame, geo, (pa, po, papp), current, target, circle);
+    (path, length)
+}
+
+/// [`block_path`] on a line `path` already made from start to end (the fast lane builds it in
+/// place): adds the circle and returns the length the feed refers to.
+fn shape_path(
+    path: &mut Path,
+    frame: &Frame,
+    geo: &[Option<usize>; 3],
+    (pa, po, papp): (usize, usize, usize),
+    current: &AxisVec,
+    target: &AxisVec,
+    circle: Option<&arc::Circle>,
+) -> f64 {
+    let (start, end) = (&path.start, &path.end);
     let mut length = geo.iter().flatten().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
     if let Some(circle) = circle {
         // The circle is defined in the WCS plane and mapped through the frame.
@@ -1004,7 +1020,7 @@ fn block_path(
         let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
         length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
     }
-    (path, length)
+    length
 }
 
 /// The length the feed refers to: the geometry axes' `length`, or when no geometry axis
