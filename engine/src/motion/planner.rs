@@ -111,7 +111,8 @@ impl Move {
     /// Builds a move, deriving its velocity and acceleration limits from the axes.
     /// `length` is the path length the feed refers to (geometry axes, or all axes if none moves).
     pub fn new(path: Path, length: f64, feed: Feed, limits: &[AxisLimit], exact_stop: bool, tag: u32) -> Move {
-        let rate = path.max_rate_of_first(limits.len());
+        // A line's rate per axis is its span, read in the loop (no array built and copied).
+        let rate = path.arc.as_ref().map(|_| path.max_rate_of_first(limits.len()));
         let feed = match feed {
             Feed::Rapid => f64::INFINITY,
             Feed::Path(f) => f,
@@ -119,7 +120,8 @@ impl Move {
         let mut v_max = f64::INFINITY;
         let mut a_max = f64::INFINITY;
         for (i, lim) in limits.iter().enumerate() {
-            let d = rate[i] / length;
+            let rate_i = rate.as_ref().map_or_else(|| (path.end[i] - path.start[i]).abs(), |r| r[i]);
+            let d = rate_i / length;
             if d > 1e-12 {
                 v_max = v_max.min(lim.max_velocity / d);
                 a_max = a_max.min(lim.max_accel / d);
