@@ -148,12 +148,11 @@ fn scan(text: &str, letters: &[Option<usize>; 26], vars: &super::vars::Variables
     let mut block = PlainBlock::default();
     let mut seen = 0u32;
     let no_user_names = vars.no_user_names();
-    let plain = plain_words(text, |letter, number, value| {
+    let plain = plain_words(text, |letter, end, value| {
         let first = !block.words;
         block.words = true;
         if letter == b'N' {
             // A block number only at the start and standing alone (`N10X5` is the address N).
-            let end = number.as_ptr() as usize - text.as_ptr() as usize + number.len();
             return first && matches!(text.as_bytes().get(end), None | Some(b' ' | b'\t' | b';'));
         }
         if letter == b'G' {
