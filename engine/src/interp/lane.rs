@@ -4,10 +4,14 @@
 //!
 //! The lane gives exactly the items and the interpreter state the general path gives: it
 //! computes the move with the same building blocks (`Frame::unapply/apply`, [`block_end`],
-//! [`block_path`], `arc::from_center`, `check_software_limits`, `path_feed`, `Move::new`,
-//! `trc::Compensator::pass`, the idle case of `push`) and falls back to the general path,
+//! [`shape_path`], `arc::from_center`, `check_software_limits`, `path_feed`, `Move::new`,
+//! `trc::Compensator::passed`, the idle case of `push`) and falls back to the general path,
 //! which is always right, for anything it does not take, including every error (the general
 //! path then raises the alarm).
+//! For a frame that only translates (G54 and TRANS, the usual case) the lane maps start and
+//! end on the channel's axes itself ([`translated_current`], [`translated_end`]: the same
+//! values bit for bit, zero coordinates whose sign the frame's sums could flip go to
+//! `unapply`/`block_end`), and it builds the move in its place in the output.
 //! In debug builds every block the lane prepares is prepared once more by the general path on
 //! a copy of the interpreter, and items and state must be equal ([`cross_check`]).
 //!
@@ -41,7 +45,7 @@
 //!   G9 (not taken).
 //! - after `motion`: `request_point_to_point` (no transformation); `compensation` (G40 only:
 //!   refused with G41/G42 selected); `trc.push` without compensation (the lane requires the
-//!   compensator idle, where `push` only hands the move on: `Compensator::pass` does that); `trc.end_block`, `flush` (nothing
+//!   compensator idle, where `push` only hands the move on: `Compensator::passed` notes the move the lane pushed); `trc.end_block`, `flush` (nothing
 //!   held); `shape_corners` (nothing held, no RND/CHF/CHR); `transform_moves` (none active).
 
 use super::flow::Pos;
@@ -231,6 +235,7 @@ impl Interpreter {
         let end = rest.bytes().position(|b| b == b'\n').unwrap_or(rest.len());
         let raw = &rest[..end];
         let memo = self.lane_memo.for_config(cfg);
+        let offsets_fresh = memo.offsets_fresh;
         let block = scan(raw.strip_suffix('\r').unwrap_or(raw), &memo.letters, &self.vars)?;
         let next = Pos { offset: at.offset + raw.len() + 1, line: at.line + 1 };
         let line = at.line;
@@ -249,7 +254,7 @@ impl Interpreter {
         if let Some(f) = block.feed {
             self.modal.feed = Some(f);
         }
-        if !self.lane_memo.for_config(cfg).offsets_fresh {
+        if !offsets_fresh {
             self.refresh_offsets(cfg);
             let translation_only = only_translates(&self.offsets.frame);
             let memo = self.lane_memo.for_config(cfg);
@@ -416,13 +421,15 @@ pub(super) fn cross_check(
     cfg: &MachineConfig,
     programs: &super::Programs,
     main_run_idle: bool,
-    (lane_prep, lane_items): (Prep, &[Item]),
+    (lane_prep, lane_out, mark): (Prep, &[Item], usize),
 ) {
     let published_before = reference.published.clone();
     reference.fast_lane = false;
-    let mut items = Vec::new();
+    // The same output before the block as the lane had: the compensator's mark counts it.
+    let mut items = lane_out[..mark].to_vec();
     let prep = reference.prepare_next(cfg, programs, main_run_idle, &mut items);
     reference.fast_lane = lane.fast_lane;
+    let (items, lane_items) = (&items[mark..], &lane_out[mark..]);
     let sharing = |it: &Interpreter, items: &[Item]| -> Vec<(bool, bool)> {
         let offsets = items.iter().filter_map(|i| match i {
             Item::Move { offsets, .. } | Item::Offsets { offsets, .. } => Some(offsets),
@@ -433,7 +440,7 @@ pub(super) fn cross_check(
             .collect()
     };
     assert!(
-        prep == lane_prep && items == lane_items && sharing(&reference, &items) == sharing(lane, lane_items),
+        prep == lane_prep && items == lane_items && sharing(&reference, items) == sharing(lane, lane_items),
         "fast lane: items differ from the general path\nlane {lane_prep:?} {lane_items:#?}\ngeneral {prep:?} {items:#?}"
     );
     let (general_state, lane_state) = (format!("{reference:#?}"), format!("{lane:#?}"));
@@ -526,5 +533,35 @@ mod tests {
         assert!(!takes("G1 X10 Y0 F100 RND=2\n", "X20 Y10"));
         assert!(!takes("T1 D1\nG41 G1 X10 Y0 F100\nG40\n", "X20"));
         assert!(!takes("DEF REAL F\n", "X10 F100"));
+    }
+
+    /// The items of `program` from a start at the machine zero, lane on or off.
+    fn items(program: &str, lane: bool) -> Vec<Item> {
+        let cfg = mill();
+        let mut interp = Interpreter::new(&cfg);
+        interp.set_fast_lane(lane);
+        interp.begin_program(program.to_string(), &[0.0; MAX_CHANNEL_AXES]);
+        let mut out = Vec::new();
+        while interp.prepare_next(&cfg, &super::super::Programs::new(), true, &mut out) != Prep::Done {}
+        out
+    }
+
+    #[test]
+    fn translations_map_zero_and_signed_zero_coordinates_exactly() {
+        // Machine end = WCS value + translation, worked out by hand per block:
+        // X0 Y0 → (10, −5); X−0 Y5 Z0 → (10, 0, 0); G91 X−10 Y−0 from WCS (0, 5) → WCS
+        // (−10, 5) → (0, 0); G3 back to WCS X0 Y5 around I5 (centre WCS (−5, 5)) → (10, 0).
+        let program = "TRANS X10 Y-5\nG1 X0 Y0 F100\nX-0 Y5 Z0\nG91 X-10 Y-0\nG90 G3 X0 Y5 I5 J0\nM30\n";
+        let lane = items(program, true);
+        let ends: Vec<[f64; 3]> = lane
+            .iter()
+            .filter_map(|i| match i {
+                Item::Move { mv, .. } => Some([mv.path.end[0], mv.path.end[1], mv.path.end[2]]),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(ends, [[10.0, -5.0, 0.0], [10.0, 0.0, 0.0], [0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]);
+        // `Debug` tells −0.0 from 0.0, which `PartialEq` does not.
+        assert_eq!(format!("{lane:?}"), format!("{:?}", items(program, false)));
     }
 }

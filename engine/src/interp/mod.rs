@@ -391,7 +391,7 @@ impl Interpreter {
             let (reference, mark) = (self.clone(), out.len());
             if let Some(prep) = self.prepare_plain(cfg, out) {
                 #[cfg(debug_assertions)]
-                lane::cross_check(reference, self, cfg, programs, main_run_idle, (prep, &out[mark..]));
+                lane::cross_check(reference, self, cfg, programs, main_run_idle, (prep, out, mark));
                 return prep;
             }
         }

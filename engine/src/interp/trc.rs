@@ -183,7 +183,11 @@ impl Compensator {
         debug_assert!(self.idle(), "only an idle compensator lets a move pass");
         self.dummy_blocks = 0;
         if let Some(Item::Move { mv, .. }) = out.last() {
-            self.last_end = Some(mv.path.end);
+            // Into the value already there: one copy, no `Option` built on the way.
+            match &mut self.last_end {
+                Some(end) => *end = mv.path.end,
+                none => *none = Some(mv.path.end),
+            }
         }
         self.mark = out.len();
     }
