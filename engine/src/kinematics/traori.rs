@@ -408,8 +408,12 @@ impl Transformation for Traori {
     }
 
     fn machine_slots(&self) -> Vec<usize> {
-        let rotary = self.rot.iter().flatten().map(|r| r.slot).chain(self.seventh_slot());
-        self.lin.iter().flatten().copied().chain(rotary).collect()
+        // Sized up front: a chained iterator's collect would grow the vector step by step.
+        let mut slots = Vec::with_capacity(7);
+        slots.extend(self.lin.iter().flatten());
+        slots.extend(self.rot.iter().flatten().map(|r| r.slot));
+        slots.extend(self.seventh_slot());
+        slots
     }
 
     fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
