@@ -15,7 +15,7 @@
 //! by geometry axis, tip → holder).
 
 use super::orient::rotation::zero_normal;
-use super::orient::solve::Turn;
+use super::orient::solve::{AxisPair, Turn};
 use super::orient::stepped::AngleMemo;
 use super::orient::vec3::{dot, normalize, scale};
 use super::orient::{Chain, ChainKind};
@@ -68,6 +68,8 @@ impl Rotary {
 pub struct Traori {
     trafo_type: u32,
     chain: Chain,
+    /// The chain's [`Chain::axis_pair`], built once: the per-cycle solve reuses its terms.
+    pair: AxisPair,
     /// Channel axes of the linear roles [0..2].
     lin: [Option<usize>; 3],
     geo: [Option<usize>; 3],
@@ -133,6 +135,7 @@ impl Traori {
         let chain = Chain { kind, axes: n, v, l1, l2, l3, l4, l23: p.joint_offset_2_3, base };
         Ok(Traori {
             trafo_type: set.trafo_type,
+            pair: chain.axis_pair(),
             chain,
             lin: [set.axes_in[0], set.axes_in[1], set.axes_in[2]],
             geo: set.geo_axes,
@@ -314,7 +317,7 @@ impl Traori {
         memo: &mut AngleMemo,
     ) -> Result<[[Turn; 3]; 2], Unreachable> {
         let o = normalize(o).ok_or(Unreachable)?;
-        self.chain.solve_turns_stepped(&o, hint, memo).ok_or(Unreachable)
+        self.chain.solve_turns_paired(&self.pair, &o, hint, memo).ok_or(Unreachable)
     }
 
     /// Chain-ordered angles → role-ordered values via `f`.
@@ -381,7 +384,7 @@ impl Traori {
 
     /// The positions of solution `s` (chain order) nearest `prev` within the limits, with
     /// their weighted travel from `prev`; `None` if an axis cannot reach its angle.
-    #[inline]
+    #[inline(always)]
     fn placed(&self, s: &[Turn; 3], prev: &AxisVec) -> Option<(f64, [f64; 3])> {
         let mut pos = [0.0; 3];
         let mut cost = 0.0;
