@@ -309,7 +309,7 @@ impl Traori {
         self.raw_turns_stepped(o, hint, &mut AngleMemo::default())
     }
 
-    #[inline]
+    #[inline(always)]
     fn raw_turns_stepped(
         &self,
         o: &Vec3,

@@ -181,6 +181,11 @@ pub struct Planner {
     a_min: f64,
     /// Planned velocity at the end of each queued move.
     v_end: VecDeque<f64>,
+    /// The corner speed at the end of each queued move but the last ([`Planner::corner_speed`]):
+    /// it depends on that move, the next and the limits only, so a push computes one.
+    corner: VecDeque<f64>,
+    /// The limits changed: the next replan recomputes every corner and end velocity.
+    replan_all: bool,
     /// Distance travelled within the front move.
     s: f64,
     /// Current path velocity.
@@ -211,6 +216,8 @@ impl Planner {
             queue: VecDeque::new(),
             a_min: f64::INFINITY,
             v_end: VecDeque::new(),
+            corner: VecDeque::new(),
+            replan_all: false,
             s: 0.0,
             v: 0.0,
             hold: false,
@@ -237,6 +244,15 @@ impl Planner {
         }
         self.queue.push_back(mv);
         self.v_end.push_back(0.0);
+        self.corner.push_back(0.0);
+        let n = self.queue.len();
+        if self.replan_all {
+            for k in 0..n - 1 {
+                self.corner[k] = self.corner_speed(k);
+            }
+        } else if n > 1 {
+            self.corner[n - 2] = self.corner_speed(n - 2);
+        }
         self.replan();
     }
 
@@ -244,6 +260,7 @@ impl Planner {
     /// planned with.
     pub fn set_limits(&mut self, limits: impl Into<AxisLimits>) {
         self.limits = limits.into();
+        self.replan_all = true;
     }
 
     /// Number of queued moves.
@@ -321,6 +338,7 @@ impl Planner {
         self.front_move = None;
         self.a_min = f64::INFINITY;
         self.v_end.clear();
+        self.corner.clear();
         self.s = 0.0;
         self.v = 0.0;
         self.hold = false;
@@ -363,6 +381,7 @@ impl Planner {
         debug_assert!(self.v == 0.0);
         let Some(done) = self.queue.pop_front() else { return };
         self.v_end.pop_front();
+        self.corner.pop_front();
         self.front_move = None;
         self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
         self.position = done.path.end;
@@ -428,6 +447,7 @@ impl Planner {
                 self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
             }
             self.v_end.pop_front();
+            self.corner.pop_front();
             self.finished.push(done.tag);
             self.s = 0.0;
             if stop_here || self.queue.is_empty() {
@@ -472,17 +492,20 @@ impl Planner {
     fn replan(&mut self) {
         let n = self.queue.len();
         let mut next_v_end = 0.0;
-        for k in (0..n).rev() {
-            let v = if k + 1 == n {
-                0.0
-            } else {
-                let next = &self.queue[k + 1];
-                let reach = brake_speed(next.length, next_v_end, next.a_max, self.dt);
-                self.corner_speed(k).min(reach)
-            };
+        self.v_end[n - 1] = 0.0;
+        for k in (0..n - 1).rev() {
+            let next = &self.queue[k + 1];
+            let reach = brake_speed(next.length, next_v_end, next.a_max, self.dt);
+            let v = self.corner[k].min(reach);
+            // v_end[k] depends only on the moves from k on: where it comes out as before the
+            // push, every earlier one does too.
+            if v.to_bits() == self.v_end[k].to_bits() && !self.replan_all {
+                return;
+            }
             self.v_end[k] = v;
             next_v_end = v;
         }
+        self.replan_all = false;
     }
 
     /// The highest speed at the transition from move `k` to `k+1`. Within the transition

@@ -150,7 +150,7 @@ impl Chain {
     }
 
     /// [`Chain::solve_turns_stepped`] with `pair`, this chain's [`Chain::axis_pair`].
-    #[inline]
+    #[inline(always)]
     pub fn solve_turns_paired(
         &self,
         pair: &AxisPair,
