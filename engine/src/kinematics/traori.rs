@@ -370,6 +370,13 @@ impl Traori {
         memo: &mut AngleMemo,
     ) -> Result<([f64; 3], [Turn; 3]), Unreachable> {
         let sols = self.raw_turns_stepped(o, &self.hint(Some(prev)), memo)?;
+        let (k, pos) = self.nearest_of(&sols, prev)?;
+        Ok((pos, sols[k]))
+    }
+
+    /// Which of `sols` [`Traori::nearest_solution`] takes, with its positions.
+    #[inline(always)]
+    fn nearest_of(&self, sols: &[[Turn; 3]; 2], prev: &AxisVec) -> Result<(usize, [f64; 3]), Unreachable> {
         let mut best: Option<(f64, usize, [f64; 3])> = None;
         for (k, s) in sols.iter().enumerate() {
             let Some((cost, pos)) = self.placed(s, prev) else { continue };
@@ -379,7 +386,7 @@ impl Traori {
             }
         }
         let (_, k, pos) = best.ok_or(Unreachable)?;
-        Ok((pos, sols[k]))
+        Ok((k, pos))
     }
 
     /// The positions of solution `s` (chain order) nearest `prev` within the limits, with
@@ -492,15 +499,22 @@ impl Transformation for Traori {
                 (r.apply(o), r.apply(&self.point(axes)))
             }
         };
-        let (pos, turns) = match self.third_slot() {
-            None => self.nearest_solution(&o, prev, memo)?,
+        // The solutions are chosen in place: the chosen one's turns build the pose uncopied.
+        let (sols, (k, pos)) = match self.third_slot() {
+            None => {
+                let sols = self.raw_turns_stepped(&o, &self.hint(Some(prev)), memo)?;
+                let chosen = self.nearest_of(&sols, prev)?;
+                (sols, chosen)
+            }
             Some(k) => {
                 let mut p = *prev;
                 p[k] = axes[k];
-                self.nearest_solution(&o, &p, memo)?
+                let sols = self.raw_turns_stepped(&o, &self.hint(Some(&p)), memo)?;
+                let chosen = self.nearest_of(&sols, &p)?;
+                (sols, chosen)
             }
         };
-        let pose = self.chain.pose_turns(&turns);
+        let pose = self.chain.pose_turns(&sols[k]);
         let m = self.chain.linear(&tip, &pose, &scale(tool, -1.0));
         self.write_rotary(&pos, axes);
         self.write_linear(&m, axes);
