@@ -618,6 +618,56 @@ mod tests {
         assert!(checked > 20, "the brake limit binds in {checked} of the cases");
     }
 
+    /// The backward pass from scratch over the whole queue, as it was before the corner speeds
+    /// were kept: every transition's corner speed recomputed, no early stop.
+    fn full_backward_pass(p: &Planner) -> Vec<f64> {
+        let n = p.queue.len();
+        let mut v_end = vec![0.0; n];
+        for k in (0..n.saturating_sub(1)).rev() {
+            let next = &p.queue[k + 1];
+            let reach = brake_speed(next.length, v_end[k + 1], next.a_max, DT);
+            v_end[k] = p.corner_speed(k).min(reach);
+        }
+        v_end
+    }
+
+    #[test]
+    fn the_kept_corner_speeds_give_the_end_velocities_of_a_full_backward_pass() {
+        // A zigzag of short and long moves, some exact stop, pushed while the front runs and
+        // is popped; halfway the limits change (lower acceleration: every corner gets slower).
+        // After every push the end velocities equal, bit for bit, those of the full pass.
+        let lim = limits(1000.0, 500.0);
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        let mut at = [0.0; 3];
+        let mut compared = 0;
+        let mut corner_binds = 0;
+        for i in 0..120u32 {
+            let len = if i % 7 == 3 { 25.0 } else { 0.5 + f64::from(i % 5) * 0.3 };
+            let (dx, dy) = if i % 2 == 0 { (len * 0.8, len * 0.6) } else { (len, 0.0) };
+            let next = [at[0] + dx, at[1] + dy, 0.0];
+            p.push(Move::new(line(at, next), len, Feed::Path(300.0), &lim, i % 11 == 10, i));
+            at = next;
+            let want = full_backward_pass(&p);
+            let got: Vec<f64> = p.v_end.iter().copied().collect();
+            assert_eq!(
+                got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                want.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                "push {i}: {got:?} vs {want:?}"
+            );
+            compared += 1;
+            corner_binds +=
+                (0..p.queue.len().saturating_sub(1)).filter(|&k| p.v_end[k] > 0.0 && p.v_end[k] == p.corner[k]).count();
+            if i == 60 {
+                p.set_limits(limits(1000.0, 120.0));
+            }
+            for _ in 0..(i % 4) * 10 {
+                p.step();
+            }
+        }
+        assert_eq!(compared, 120);
+        assert!(corner_binds > 50, "the corner speed decides {corner_binds} transitions");
+    }
+
     #[test]
     fn a_long_move_takes_the_trapezoid_time() {
         // 100 mm at 50 mm/s with 500 mm/s²: ramp 0.1 s and 2.5 mm each way,
