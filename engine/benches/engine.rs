@@ -153,10 +153,12 @@ fn non_empty_lines(text: &str) -> usize {
     text.lines().filter(|l| !l.trim().is_empty()).count()
 }
 
-/// Prepares `text` completely (as if the main run were always idle) and returns the items.
-fn prepare_all(cfg: &MachineConfig, text: &str, keep: &mut Vec<Item>) -> usize {
+/// Prepares `text` completely (as if the main run were always idle) and returns the items;
+/// `lane`: plain motion lines take the fast lane (the default).
+fn prepare_all(cfg: &MachineConfig, text: &str, keep: &mut Vec<Item>, lane: bool) -> usize {
     let programs = Programs::new();
     let mut interp = Interpreter::new(cfg);
+    interp.set_fast_lane(lane);
     interp.begin_program(Arc::from(text), &[0.0; nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES]);
     let mut out = Vec::new();
     let mut prepared = 0;
@@ -200,14 +202,24 @@ mod parse {
 mod prepare {
     use super::*;
 
-    /// Blocks → items (moves with their offsets), the interpreter alone.
+    /// Blocks → items (moves with their offsets), the interpreter alone: plain motion lines
+    /// on the fast lane (`mill3`) and every block the general way (`mill3_general`).
     #[divan::bench(args = [20_000])]
     fn mill3(bencher: Bencher, blocks: usize) {
+        prepare_mill3(bencher, blocks, true);
+    }
+
+    #[divan::bench(args = [20_000])]
+    fn mill3_general(bencher: Bencher, blocks: usize) {
+        prepare_mill3(bencher, blocks, false);
+    }
+
+    fn prepare_mill3(bencher: Bencher, blocks: usize, lane: bool) {
         let text = super::mill3(size(blocks));
         let cfg = config();
         bencher.counter(ItemsCount::new(non_empty_lines(&text))).bench(|| {
             let mut items = Vec::new();
-            let n = prepare_all(&cfg, black_box(&text), &mut items);
+            let n = prepare_all(&cfg, black_box(&text), &mut items, lane);
             (n, items.len())
         });
     }
@@ -220,7 +232,7 @@ mod interpolate {
     fn moves(kind: &str) -> (Vec<Move>, Vec<AxisLimit>, f64) {
         let cfg = config();
         let mut items = Vec::new();
-        prepare_all(&cfg, &family(kind, 400), &mut items);
+        prepare_all(&cfg, &family(kind, 400), &mut items, true);
         let moves: Vec<Move> = items
             .into_iter()
             .filter_map(|i| match i {

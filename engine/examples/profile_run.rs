@@ -1,8 +1,9 @@
 //! A whole program straight on the engine, for instruction-count profiling
 //! (`valgrind --tool=callgrind`): builds in a fraction of the server binary's time.
 //!
-//! `cargo run --release -p nctwin-engine --example profile_run -- PRESET FILE [--interpret-only]`
-//! prints the blocks prepared (moves) or the IPO cycles run. `nctwin simulate` is the measuring
+//! `cargo run --release -p nctwin-engine --example profile_run -- PRESET FILE [--interpret-only]
+//! [--no-fast-lane]` prints the blocks prepared (moves) or the IPO cycles run; `--no-fast-lane`
+//! sends every block the general way (the figure before the lane). `nctwin simulate` is the measuring
 //! tool with timing and RSS; this one only drives the same engine calls.
 
 use std::sync::Arc;
@@ -23,6 +24,7 @@ fn main() {
     if args.iter().any(|a| a == "--interpret-only") {
         let cfg = channel.config();
         let mut interp = Interpreter::new(cfg);
+        interp.set_fast_lane(!args.iter().any(|a| a == "--no-fast-lane"));
         let mut position = [0.0; MAX_CHANNEL_AXES];
         position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
         assert!(nctwin_engine::lang::check(&text).is_empty(), "syntax errors");

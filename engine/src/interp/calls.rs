@@ -131,6 +131,12 @@ impl Interpreter {
 
     /// Checks, at the first block of a subprogram that is not its PROC line, that no
     /// arguments were passed to a program without parameters.
+    /// True while the running subprogram has not reached its first block yet (the block
+    /// that binds or refuses the call's arguments).
+    pub(super) fn call_unbound(&self) -> bool {
+        self.calls.last().is_some_and(|f| !f.bound)
+    }
+
     pub(super) fn check_unbound(&mut self, line: u32) -> Result<(), Alarm> {
         if let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) {
             frame.bound = true;

@@ -18,6 +18,7 @@ mod frame_cache;
 mod frame_vars;
 pub mod gcodes;
 mod jump_target;
+mod lane;
 mod modal;
 mod ori_curve;
 mod ori_direct;
@@ -221,6 +222,10 @@ pub struct Interpreter {
     trafo: trafo::TrafoState,
     /// The orientable toolholder and G groups 22, 42, 52, 53 (see `swivel.rs`).
     holder: toolholder::Holder,
+    /// Plain motion lines take the fast lane (`lane.rs`).
+    fast_lane: bool,
+    /// What the lane keeps between its blocks (a cache, cleared by the general path).
+    lane_memo: lane::LaneMemo,
 }
 
 impl Interpreter {
@@ -247,12 +252,15 @@ impl Interpreter {
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
             holder: toolholder::Holder { g53: 1, ..Default::default() },
+            fast_lane: true,
+            lane_memo: Default::default(),
         }
     }
 
     /// Channel reset with the machine standing at `machine`: modal state to reset values, the
     /// reset transformation (if any); the tool stays selected.
     pub fn reset(&mut self, cfg: &MachineConfig, machine: &AxisVec) {
+        self.lane_memo.clear();
         self.modal = Modal::reset(cfg);
         self.flow = None;
         self.calls.clear();
@@ -280,6 +288,7 @@ impl Interpreter {
     /// Starts preparing `text` from the machine's current position. Local variables of an
     /// earlier program are dropped; R parameters and global user data stay.
     pub fn begin_program(&mut self, text: impl Into<ProgramText>, pos: &AxisVec) {
+        self.lane_memo.clear();
         self.pos = *pos;
         self.vars.reset_locals();
         self.calls.clear();
@@ -377,6 +386,17 @@ impl Interpreter {
         main_run_idle: bool,
         out: &mut Vec<Item>,
     ) -> Prep {
+        if self.fast_lane {
+            #[cfg(debug_assertions)]
+            let (reference, mark) = (self.clone(), out.len());
+            if let Some(prep) = self.prepare_plain(cfg, out) {
+                #[cfg(debug_assertions)]
+                lane::cross_check(reference, self, cfg, programs, main_run_idle, (prep, &out[mark..]));
+                return prep;
+            }
+        }
+        // Any block may change what the lane remembers (see `lane::LaneMemo`).
+        self.lane_memo.clear();
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
@@ -401,15 +421,18 @@ impl Interpreter {
         });
         match result {
             Ok(prep) => prep,
-            Err(alarm) => {
-                out.clear();
-                out.push(Item::Alarm(alarm));
-                self.flow = None;
-                self.calls.clear();
-                self.held = None;
-                Prep::Done
-            }
+            Err(alarm) => self.fail(alarm, out),
         }
+    }
+
+    /// Ends preparation with `alarm`: it replaces what the block produced.
+    fn fail(&mut self, alarm: Alarm, out: &mut Vec<Item>) -> Prep {
+        out.clear();
+        out.push(Item::Alarm(alarm));
+        self.flow = None;
+        self.calls.clear();
+        self.held = None;
+        Prep::Done
     }
 
     /// Prepares one block: a statement (control flow, declaration) or NC words.
@@ -843,17 +866,11 @@ impl Interpreter {
                 let (Some(ka), Some(ko)) = plane else {
                     return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
                 };
-                let turn = if self.modal.motion == MotionMode::Cw {
-                    arc::Turn::Clockwise
-                } else {
-                    arc::Turn::CounterClockwise
-                };
+                let turn = arc_turn(self.modal.motion);
                 let f = self.modal.length_factor();
                 let s = (current[ka], current[ko]);
                 let e = (target[ka], target[ko]);
-                let center = words.center(pa, po).map(|((ia, abs_a), (io, abs_o))| {
-                    (if abs_a { ia * f } else { s.0 + ia * f }, if abs_o { io * f } else { s.1 + io * f })
-                });
+                let center = words.center(pa, po).map(|(i, j)| arc_center(s, i, j, f));
                 let end_given = programmed[ka] || programmed[ko];
                 let c = match (words.cr, words.ar, center) {
                     _ if words.polar() => arc::from_center(s, e, self.modal.pole, turn),
@@ -877,20 +894,7 @@ impl Interpreter {
             _ => None,
         };
 
-        // With a rotation in the frame, a programmed geometry axis moves the others too.
-        let any_geo = geo.iter().flatten().any(|&k| programmed[k]);
-        if any_geo && frame.couples_axes() {
-            for &k in geo.iter().flatten() {
-                programmed[k] = true;
-            }
-        }
-        let target_basic = frame.apply(geo, &target);
-        let mut end = start;
-        for k in 0..n {
-            if programmed[k] {
-                end[k] = target_basic[k] + tool[k];
-            }
-        }
+        let mut end = block_end(&frame, geo, n, &start, &tool, &target, &mut programmed);
 
         if let Some(kind) = words.oblique {
             self.oblique_plunge(kind, &start, &mut end, line)?;
@@ -903,37 +907,25 @@ impl Interpreter {
             self.modal.ori.theta = theta;
         }
 
-        let mut path = Path::line(start, end);
+        let (mut path, length) =
+            block_path(&frame, geo, (pa, po, papp), &start, &end, &current, &target, circle.as_ref());
         path.ori = ori.map(Box::new);
-        let mut length = geo.iter().flatten().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
-        if let Some(circle) = circle {
-            // The circle is defined in the WCS plane and mapped through the frame.
-            let u = frame.geo_direction(geo, pa);
-            let v = frame.geo_direction(geo, po);
-            path.arc = Some(Box::new(Arc {
-                u,
-                v,
-                radius: circle.radius,
-                start_angle: circle.start_angle,
-                sweep: circle.sweep,
-            }));
-            let scale = (norm(&u) + norm(&v)) / 2.0;
-            let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
-            length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
-        }
-        if length < 1e-9 {
-            // No geometry axis moves: the feed applies to the other axes together, or to the
-            // angle the orientation turns through (degrees) when it is interpolated as a vector.
-            length = match &path.ori {
-                Some(o) if o.angle.abs() > 1e-12 => o.angle.abs().to_degrees(),
-                // Also a constant orientation held on the workpiece the 7th axis turns.
-                _ => (0..n).map(|k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt(),
-            };
-        }
+        let length = feed_length(&path, length, n);
 
         check_software_limits(cfg, &path, line)?;
 
-        let feed = match self.modal.motion {
+        let feed = self.path_feed(line)?;
+        let exact_stop = self.modal.exact_stop || words.g9;
+        self.pos = end;
+        Ok((Move::new(path, length, feed, limits, exact_stop, line), feed))
+    }
+}
+
+impl Interpreter {
+    /// The feed of a block's move from the modal state: rapid traverse under G0, else F in
+    /// mm/s (alarm 10860 without F, 14800 for a feed that is not positive).
+    fn path_feed(&self, line: u32) -> Result<Feed, Alarm> {
+        Ok(match self.modal.motion {
             MotionMode::Rapid => Feed::Rapid,
             _ => {
                 let f = self.modal.feed.ok_or_else(|| Alarm::no_feed(line))?;
@@ -944,10 +936,89 @@ impl Interpreter {
                 }
                 Feed::Path(per_min / 60.0)
             }
-        };
-        let exact_stop = self.modal.exact_stop || words.g9;
-        self.pos = end;
-        Ok((Move::new(path, length, feed, limits, exact_stop, line), feed))
+        })
+    }
+}
+
+/// G2 turns clockwise, G3 counter-clockwise (seen from the applicate's positive side).
+fn arc_turn(motion: MotionMode) -> arc::Turn {
+    if motion == MotionMode::Cw { arc::Turn::Clockwise } else { arc::Turn::CounterClockwise }
+}
+
+/// The circle centre from I/J/K (`(value, absolute)` per plane axis, in program units times
+/// `f`): incremental from the start point `s`, or absolute with `=AC(..)`.
+fn arc_center(s: (f64, f64), (ia, abs_a): (f64, bool), (io, abs_o): (f64, bool), f: f64) -> (f64, f64) {
+    (if abs_a { ia * f } else { s.0 + ia * f }, if abs_o { io * f } else { s.1 + io * f })
+}
+
+/// The block's end point in channel axes: the WCS `target` through the frame plus the tool
+/// length for the axes the block programs, `start` for the others. With a rotation in the
+/// frame a programmed geometry axis moves the others too (`programmed` is widened to say so).
+fn block_end(
+    frame: &Frame,
+    geo: &[Option<usize>; 3],
+    n: usize,
+    start: &AxisVec,
+    tool: &AxisVec,
+    target: &AxisVec,
+    programmed: &mut [bool; MAX_CHANNEL_AXES],
+) -> AxisVec {
+    let any_geo = geo.iter().flatten().any(|&k| programmed[k]);
+    if any_geo && frame.couples_axes() {
+        for &k in geo.iter().flatten() {
+            programmed[k] = true;
+        }
+    }
+    let target_basic = frame.apply(geo, target);
+    let mut end = *start;
+    for k in 0..n {
+        if programmed[k] {
+            end[k] = target_basic[k] + tool[k];
+        }
+    }
+    end
+}
+
+/// The block's path from `start` to `end` (a line, or the WCS `circle` mapped through the
+/// frame) and the length of its geometry-axis part, which the feed refers to.
+#[allow(clippy::too_many_arguments)]
+fn block_path(
+    frame: &Frame,
+    geo: &[Option<usize>; 3],
+    (pa, po, papp): (usize, usize, usize),
+    start: &AxisVec,
+    end: &AxisVec,
+    current: &AxisVec,
+    target: &AxisVec,
+    circle: Option<&arc::Circle>,
+) -> (Path, f64) {
+    let mut path = Path::line(*start, *end);
+    let mut length = geo.iter().flatten().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
+    if let Some(circle) = circle {
+        // The circle is defined in the WCS plane and mapped through the frame.
+        let u = frame.geo_direction(geo, pa);
+        let v = frame.geo_direction(geo, po);
+        path.arc =
+            Some(Box::new(Arc { u, v, radius: circle.radius, start_angle: circle.start_angle, sweep: circle.sweep }));
+        let scale = (norm(&u) + norm(&v)) / 2.0;
+        let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
+        length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
+    }
+    (path, length)
+}
+
+/// The length the feed refers to: the geometry axes' `length`, or when no geometry axis
+/// moves the other axes together, or the angle the orientation turns through (degrees) when
+/// it is interpolated as a vector.
+fn feed_length(path: &Path, length: f64, n: usize) -> f64 {
+    if length < 1e-9 {
+        match &path.ori {
+            Some(o) if o.angle.abs() > 1e-12 => o.angle.abs().to_degrees(),
+            // Also a constant orientation held on the workpiece the 7th axis turns.
+            _ => (0..n).map(|k| (path.end[k] - path.start[k]).powi(2)).sum::<f64>().sqrt(),
+        }
+    } else {
+        length
     }
 }
 

@@ -169,6 +169,21 @@ impl Compensator {
         self.held.is_some() || self.approach.is_some() || !self.pending.is_empty()
     }
 
+    /// True when nothing is held and the tool has no compensated position of its own: a move
+    /// without compensation passes through unchanged (block preparation's fast lane needs this).
+    pub fn idle(&self) -> bool {
+        !self.holds() && self.tool_at.is_none()
+    }
+
+    /// Hands a move without compensation to the main run while the compensator is
+    /// [`idle`](Self::idle): what [`push`](Self::push) does for it then, without the way
+    /// through `deselect` (block preparation's fast lane).
+    pub fn pass(&mut self, item: Item, out: &mut Vec<Item>) {
+        debug_assert!(self.idle(), "only an idle compensator lets a move pass");
+        self.dummy_blocks = 0;
+        self.emit(item, out);
+    }
+
     /// Starts a block: `out` is where its items go.
     pub fn begin_block(&mut self, out: &[Item]) {
         self.block_plane_move = false;

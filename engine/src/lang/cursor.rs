@@ -15,6 +15,15 @@ const EXACT_POWERS_OF_TEN: [f64; 23] = [
     1e21, 1e22,
 ];
 
+/// `mantissa / 10^frac_digits`, negated if `negative`: the fast path of [`Cursor::number`].
+/// With at most 15 digits in all, mantissa and power of ten are exact, so the one division
+/// rounds correctly and gives exactly what `str::parse` gives.
+pub(crate) fn exact_decimal(mantissa: u64, frac_digits: usize, negative: bool) -> f64 {
+    debug_assert!(mantissa < 1_000_000_000_000_000 && frac_digits <= 15);
+    let value = mantissa as f64 / EXACT_POWERS_OF_TEN[frac_digits];
+    if negative { -value } else { value }
+}
+
 impl<'a> Cursor<'a> {
     pub fn new(code: &'a str) -> Self {
         Cursor { text: code, src: code.as_bytes(), pos: 0 }
@@ -152,9 +161,8 @@ impl<'a> Cursor<'a> {
         if !general {
             // The common case: with at most 15 digits, mantissa and power of ten are exact, so
             // one division rounds correctly and gives exactly what `str::parse` gives.
-            if digits + frac_digits <= 15 && frac_digits < EXACT_POWERS_OF_TEN.len() {
-                let value = mantissa as f64 / EXACT_POWERS_OF_TEN[frac_digits];
-                return Some(if negative { -value } else { value });
+            if digits + frac_digits <= 15 {
+                return Some(exact_decimal(mantissa, frac_digits, negative));
             }
             return plain.parse::<f64>().ok().filter(|v| v.is_finite());
         }

@@ -14,4 +14,5 @@ mod text;
 
 pub use ast::*;
 pub use parser::{check, parse, parse_block, read_block};
+pub(crate) use plain_line::plain_words;
 pub use text::ProgramText;

@@ -1,0 +1,452 @@
+//! The fast lane of block preparation: plain motion lines (`X.. Y.. Z..`, `G1 X.. F..`,
+//! `G3 X.. Y.. I.. J..`), 95 % of generated toolpaths, prepared straight from the line's bytes
+//! without the syntax tree, `modal::collect` and the twenty stages a general block passes.
+//!
+//! The lane gives exactly the items and the interpreter state the general path gives: it
+//! computes the move with the same building blocks (`Frame::unapply/apply`, [`block_end`],
+//! [`block_path`], `arc::from_center`, `check_software_limits`, `path_feed`, `Move::new`,
+//! `trc::Compensator::pass`, the idle case of `push`) and falls back to the general path,
+//! which is always right, for anything it does not take, including every error (the general
+//! path then raises the alarm).
+//! In debug builds every block the lane prepares is prepared once more by the general path on
+//! a copy of the interpreter, and items and state must be equal ([`cross_check`]).
+//!
+//! A line is plain when [`crate::lang::plain_words`] (the scan the syntax check uses) accepts it
+//! and it holds only: a leading `N` block number, G0..G3 and G90/G91 (one per group), the
+//! geometry axes by their single-letter names (linear axes), I/J/K (incremental centre) and F;
+//! each address once, none of them shadowed by a user variable of that name.
+//!
+//! The stages of the general path and why the lane may skip them, in the order they run:
+//! - `prepare_next`: `corner_request` cleared (the lane clears it); held-move check for the
+//!   main-run wait (plain lines never wait); `trc.begin_block` (called).
+//! - `step_program`: `refresh_derived_chain_data` (only with a transformation: refused);
+//!   `flow.read` (the lane reads the same line and sets `next`/`current` as it does; empty
+//!   lines, which it skips, fall back; a comment-only line is a block without words); syntax errors (a plain line has none); `reads_main_run`
+//!   and effect calls (no variables, no functions); `check_unbound` (refused while a call's
+//!   arguments are unbound); alarm/end items afterwards (the lane makes none).
+//! - `prepare_block`: `modal::collect` (replaced by the scan; data writes, NEWCONF, corners,
+//!   messages, stops, jumps, calls need words the lane refuses); `trafo::selection` and
+//!   `apply_transformation` (no keyword; no active transformation, refused); `modal.apply`
+//!   (only motion and G90/G91 change, the lane sets them); work offset, S, SETMS, T/D, frame
+//!   instructions and frame writes, `holder_block` (no such words); `refresh_offsets` (called,
+//!   so tool, frame and G codes are exactly as the general path leaves them);
+//!   `absorb_tool_into_transformation` (no transformation and no transformation offsets:
+//!   refused otherwise); `online_tool_offset` (no TOFF words); spindle items, SPOS, G4, poles
+//!   (no such words); the `Offsets` item of a block without motion (the same test).
+//! - `motion`: frame suppression (no G53/G153/SUPA); axis targets (linear axes, G90/G91 only,
+//!   no AC/IC/DC/ACP/ACN); polar coordinates (no AP/RP); circles only from I/J/K without
+//!   CR/AR/TURN; `oblique_plunge` (no G05/G07); `orientation_block` and `tool_rotation` (no
+//!   orientation words and no orientation transformation, and ORIROTC refused: both give no
+//!   orientation path and no THETA, so `last_change`/`upper` become `None` as they do there);
+//!   G9 (not taken).
+//! - after `motion`: `request_point_to_point` (no transformation); `compensation` (G40 only:
+//!   refused with G41/G42 selected); `trc.push` without compensation (the lane requires the
+//!   compensator idle, where `push` only hands the move on: `Compensator::pass` does that); `trc.end_block`, `flush` (nothing
+//!   held); `shape_corners` (nothing held, no RND/CHF/CHR); `transform_moves` (none active).
+
+use super::flow::Pos;
+use super::modal::MotionMode;
+use super::orient::RotReference;
+use super::{
+    AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end, block_path,
+    check_software_limits, feed_length,
+};
+use crate::lang::plain_words;
+use crate::machine_data::MachineConfig;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::AxisLimits;
+
+/// The words of a plain motion line, by meaning.
+#[derive(Debug, Default)]
+struct PlainBlock {
+    motion: Option<MotionMode>,
+    absolute: Option<bool>,
+    /// Value of each geometry axis word (program units), by geometry axis (0 = 1st).
+    axes: [Option<f64>; 3],
+    /// I, J, K (program units), by geometry axis.
+    ijk: [Option<f64>; 3],
+    feed: Option<f64>,
+    /// Any word at all.
+    words: bool,
+}
+
+/// The address letters as names, for the look-up of user variables that shadow them.
+const LETTERS: [&str; 26] = [
+    "A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N", "O", "P", "Q", "R", "S", "T", "U", "V", "W",
+    "X", "Y", "Z",
+];
+
+/// What the lane keeps between its blocks for one machine configuration, so that a plain
+/// block reads nothing twice from it. Cleared whenever the general path prepares a block or
+/// the interpreter is reset, begun, restored or synchronised: the configuration changes only
+/// through the data writes of general blocks (the channel applies them before the next block)
+/// and at a reset, and every other input of the block's offsets (frames, work offset, tool,
+/// plane, toolholder) only through general blocks.
+#[derive(Clone, Default)]
+pub(super) struct LaneMemo(Option<Box<Memo>>);
+
+#[derive(Clone)]
+struct Memo {
+    /// The configuration the memo belongs to (its address; 0: none, the memo is cleared).
+    cfg: usize,
+    /// `AxisLimit::for_channel(cfg)`.
+    limits: AxisLimits,
+    /// The geometry axis (0 = 1st) each letter A..Z addresses, see [`geometry_axis`].
+    letters: [Option<usize>; 26],
+    /// `refresh_offsets` ran for this configuration and nothing but lane blocks ran since:
+    /// the tool, the frame and the G codes of the offsets are what it would make them.
+    offsets_fresh: bool,
+}
+
+/// The memo is a cache: it is no state of block preparation (the debug cross-check compares
+/// the lane's state with the general path's, which keeps no memo).
+impl std::fmt::Debug for LaneMemo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("LaneMemo")
+    }
+}
+
+impl LaneMemo {
+    /// The memo `for_config` made for the block being prepared.
+    fn for_config_ref(&self) -> &Memo {
+        self.0.as_ref().expect("made at the start of the block")
+    }
+
+    /// Forgets everything (see the type's doc for when); the allocation stays for the next.
+    pub(super) fn clear(&mut self) {
+        if let Some(m) = self.0.as_mut() {
+            m.cfg = 0;
+        }
+    }
+
+    /// The memo for `cfg`, made afresh if it belonged to another configuration or none.
+    fn for_config(&mut self, cfg: &MachineConfig) -> &mut Memo {
+        let id = std::ptr::from_ref(cfg) as usize;
+        if self.0.as_ref().is_none_or(|m| m.cfg != id) {
+            let memo = Memo {
+                cfg: id,
+                limits: AxisLimit::for_channel(cfg),
+                letters: std::array::from_fn(|i| geometry_axis(cfg, b'A' + i as u8)),
+                offsets_fresh: false,
+            };
+            match self.0.as_mut() {
+                Some(m) => **m = memo,
+                None => self.0 = Some(Box::new(memo)),
+            }
+        }
+        self.0.as_mut().expect("made above")
+    }
+}
+
+/// Reads `text` (one line without its line end) as a plain motion line; `None` for anything
+/// else. `letters`: the geometry axis each letter addresses.
+fn scan(text: &str, letters: &[Option<usize>; 26], vars: &super::vars::Variables) -> Option<PlainBlock> {
+    let mut block = PlainBlock::default();
+    let mut seen = 0u32;
+    let no_user_names = vars.no_user_names();
+    let plain = plain_words(text, |letter, number, value| {
+        let first = !block.words;
+        block.words = true;
+        if letter == b'N' {
+            // A block number only at the start and standing alone (`N10X5` is the address N).
+            let end = number.as_ptr() as usize - text.as_ptr() as usize + number.len();
+            return first && matches!(text.as_bytes().get(end), None | Some(b' ' | b'\t' | b';'));
+        }
+        if letter == b'G' {
+            // Whole numbers only (the scan's digits), one function per group.
+            return match value as u32 {
+                0..=3 if block.motion.is_none() => {
+                    block.motion =
+                        Some([MotionMode::Rapid, MotionMode::Linear, MotionMode::Cw, MotionMode::Ccw][value as usize]);
+                    true
+                }
+                90 | 91 if block.absolute.is_none() => {
+                    block.absolute = Some(value == 90.0);
+                    true
+                }
+                _ => false,
+            };
+        }
+        let bit = 1u32 << (letter - b'A');
+        if seen & bit != 0 || !no_user_names && vars.get(LETTERS[usize::from(letter - b'A')]).is_some() {
+            return false;
+        }
+        seen |= bit;
+        match letter {
+            b'F' => block.feed = Some(value),
+            b'I' | b'J' | b'K' => block.ijk[usize::from(letter - b'I')] = Some(value),
+            _ => {
+                let Some(g) = letters[usize::from(letter - b'A')] else { return false };
+                block.axes[g] = Some(value);
+            }
+        }
+        true
+    });
+    // A line of blanks is no block (`read_block` skips it); one with a comment is a block
+    // without words, which the lane prepares like a plain line without motion.
+    (plain && (block.words || text.contains(';'))).then_some(block)
+}
+
+/// The geometry axis (0 = 1st) a single-letter name addresses, if it is a linear axis the
+/// lane can move (geometry names come first, as in `MachineConfig::program_axis`).
+fn geometry_axis(cfg: &MachineConfig, letter: u8) -> Option<usize> {
+    let g = cfg.geo_names.iter().position(|n| n.len() == 1 && n.as_bytes()[0].eq_ignore_ascii_case(&letter))?;
+    let k = cfg.geo_axes[g]?;
+    let ax = cfg.axis(k);
+    (!ax.rotary && ax.modulo.is_none() && ax.spindle.is_none()).then_some(g)
+}
+
+impl Interpreter {
+    /// Turns the fast lane for plain motion lines on or off (on by default). Off, every block
+    /// takes the general path: for comparisons and measurements.
+    pub fn set_fast_lane(&mut self, on: bool) {
+        self.fast_lane = on;
+    }
+
+    /// True when the state leaves nothing for the stages the lane skips (see the module doc).
+    fn lane_open(&self) -> bool {
+        self.flow.is_some()
+            && self.held.is_none()
+            && self.modal.trc.is_none()
+            && self.trc.idle()
+            && self.active_data_set().is_none()
+            && self.offsets.trafo.is_none()
+            && self.modal.ori.rotation != RotReference::PathTangent
+            && !self.call_unbound()
+    }
+
+    /// Prepares the next block if it is a plain motion line and the state is simple; `None`
+    /// (and nothing changed that the general path would not change the same way) otherwise.
+    pub(super) fn prepare_plain(&mut self, cfg: &MachineConfig, out: &mut Vec<Item>) -> Option<Prep> {
+        if !self.lane_open() {
+            return None;
+        }
+        let flow = self.flow.as_ref()?;
+        let at = flow.next;
+        let rest = flow.text.get(at.offset..).filter(|r| !r.is_empty())?;
+        // A byte loop: lines are short, where `find` pays for a vectorised search's set-up.
+        let end = rest.bytes().position(|b| b == b'\n').unwrap_or(rest.len());
+        let raw = &rest[..end];
+        let memo = self.lane_memo.for_config(cfg);
+        let block = scan(raw.strip_suffix('\r').unwrap_or(raw), &memo.letters, &self.vars)?;
+        let next = Pos { offset: at.offset + raw.len() + 1, line: at.line + 1 };
+        let line = at.line;
+
+        // From here on every step is one the general path takes the same way, and repeats
+        // harmlessly if the lane falls back (only on an error, which the general path raises).
+        self.corner_request = None;
+        let offsets_before = self.shared_offsets();
+        let g_codes = (self.modal.motion, self.modal.absolute);
+        if let Some(m) = block.motion {
+            self.modal.motion = m;
+        }
+        if let Some(a) = block.absolute {
+            self.modal.absolute = a;
+        }
+        if let Some(f) = block.feed {
+            self.modal.feed = Some(f);
+        }
+        if !self.lane_memo.for_config(cfg).offsets_fresh {
+            self.refresh_offsets(cfg);
+            self.lane_memo.for_config(cfg).offsets_fresh = true;
+        } else if g_codes != (self.modal.motion, self.modal.absolute) {
+            // Tool and frame are as the last refresh left them; only the G codes changed.
+            self.refresh_gcodes();
+        }
+        let circle_mode = matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw);
+        let moves = block.axes.iter().any(Option::is_some) || (circle_mode && block.ijk.iter().any(Option::is_some));
+        if !moves {
+            self.commit_position(at, next, out);
+            if !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
+                out.push(Item::Offsets { line, offsets: self.shared_offsets() });
+            }
+            return Some(Prep::Prepared);
+        }
+        let mv = self.plain_move(&block, cfg, &self.lane_memo.for_config_ref().limits, line)?;
+        self.commit_position(at, next, out);
+        self.pos = mv.path.end;
+        self.modal.ori.last_change = None;
+        self.modal.ori.upper = None;
+        let offsets = self.shared_offsets();
+        self.trc.pass(Item::Move { mv, line, offsets }, out);
+        Some(Prep::Prepared)
+    }
+
+    /// The read position after the line `at` (ending before `next`), and the compensator's
+    /// start of the block, as `step_program` and `prepare_next` set them.
+    fn commit_position(&mut self, at: Pos, next: Pos, out: &[Item]) {
+        if let Some(flow) = self.flow.as_mut() {
+            flow.current = at;
+            flow.next = next;
+        }
+        self.trc.begin_block(out);
+    }
+
+    /// The move of a plain block (as `motion` computes it for such a block), or `None` where
+    /// `motion` would raise an alarm.
+    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, limits: &[AxisLimit], line: u32) -> Option<Move> {
+        let n = cfg.channel_axes.len();
+        let geo = &cfg.geo_axes;
+        let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
+        let mut basic = *start;
+        for k in 0..n {
+            basic[k] -= tool[k];
+        }
+        let current = frame.unapply(geo, &basic)?;
+        let mut target = current;
+        let mut programmed = [false; MAX_CHANNEL_AXES];
+        let f = self.modal.length_factor();
+        for (value, k) in block.axes.iter().zip(geo) {
+            if let (Some(v), Some(k)) = (value, *k) {
+                let v = v * f;
+                target[k] = if self.modal.absolute { v } else { current[k] + v };
+                programmed[k] = true;
+            }
+        }
+        let (pa, po, papp) = self.modal.plane.axes();
+        let circle = match self.modal.motion {
+            MotionMode::Cw | MotionMode::Ccw => {
+                let (Some(ka), Some(ko)) = (geo[pa], geo[po]) else { return None };
+                if block.ijk[pa].is_none() && block.ijk[po].is_none() {
+                    return None;
+                }
+                let s = (current[ka], current[ko]);
+                let e = (target[ka], target[ko]);
+                let incremental = |g: usize| (block.ijk[g].unwrap_or(0.0), false);
+                let center = arc_center(s, incremental(pa), incremental(po), f);
+                let c = arc::from_center(s, e, center, arc_turn(self.modal.motion)).ok()?;
+                Some(arc::with_turns(c, 0))
+            }
+            _ => None,
+        };
+        let end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
+        let (path, length) = block_path(frame, geo, (pa, po, papp), start, &end, &current, &target, circle.as_ref());
+        let length = feed_length(&path, length, n);
+        check_software_limits(cfg, &path, line).ok()?;
+        let feed = self.path_feed(line).ok()?;
+        Some(Move::new(path, length, feed, limits, self.modal.exact_stop, line))
+    }
+}
+
+/// Debug builds: prepares the block the lane just prepared once more on `reference` (the
+/// interpreter before the lane ran) by the general path, and panics with both versions unless
+/// the items (values and the sharing of the offsets) and the whole state are equal.
+#[cfg(debug_assertions)]
+pub(super) fn cross_check(
+    mut reference: Interpreter,
+    lane: &Interpreter,
+    cfg: &MachineConfig,
+    programs: &super::Programs,
+    main_run_idle: bool,
+    (lane_prep, lane_items): (Prep, &[Item]),
+) {
+    let published_before = reference.published.clone();
+    reference.fast_lane = false;
+    let mut items = Vec::new();
+    let prep = reference.prepare_next(cfg, programs, main_run_idle, &mut items);
+    reference.fast_lane = lane.fast_lane;
+    let sharing = |it: &Interpreter, items: &[Item]| -> Vec<(bool, bool)> {
+        let offsets = items.iter().filter_map(|i| match i {
+            Item::Move { offsets, .. } | Item::Offsets { offsets, .. } => Some(offsets),
+            _ => None,
+        });
+        offsets
+            .map(|o| (SharedOffsets::ptr_eq(o, &it.published), SharedOffsets::ptr_eq(o, &published_before)))
+            .collect()
+    };
+    assert!(
+        prep == lane_prep && items == lane_items && sharing(&reference, &items) == sharing(lane, lane_items),
+        "fast lane: items differ from the general path\nlane {lane_prep:?} {lane_items:#?}\ngeneral {prep:?} {items:#?}"
+    );
+    let (general_state, lane_state) = (format!("{reference:#?}"), format!("{lane:#?}"));
+    if general_state != lane_state {
+        let diff: Vec<String> = general_state
+            .lines()
+            .zip(lane_state.lines())
+            .enumerate()
+            .filter(|(_, (g, l))| g != l)
+            .take(20)
+            .map(|(i, (g, l))| format!("line {i}: general {g} | lane {l}"))
+            .collect();
+        panic!("fast lane: state differs from the general path:\n{}", diff.join("\n"));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Channel;
+
+    fn mill() -> MachineConfig {
+        Channel::from_preset("mill-3axis", "").unwrap().config().clone()
+    }
+
+    /// Whether the lane takes the first line of `program` (after `setup`, prepared the general way).
+    fn takes(setup: &str, line: &str) -> bool {
+        let cfg = mill();
+        let mut interp = Interpreter::new(&cfg);
+        let lines = setup.lines().filter(|l| !l.is_empty()).count();
+        interp.begin_program(format!("{setup}{line}\nM30\n"), &[0.0; MAX_CHANNEL_AXES]);
+        interp.set_fast_lane(false);
+        let mut out = Vec::new();
+        for _ in 0..lines {
+            assert_eq!(interp.prepare_next(&cfg, &super::super::Programs::new(), true, &mut out), Prep::Prepared);
+        }
+        assert!(!out.iter().any(|i| matches!(i, Item::Alarm(_))), "{out:?}");
+        out.clear();
+        let taken = interp.prepare_plain(&cfg, &mut out);
+        assert!(taken.is_none_or(|p| p == Prep::Prepared) && out.iter().all(|i| !matches!(i, Item::Alarm(_))));
+        taken.is_some()
+    }
+
+    #[test]
+    fn plain_motion_lines_take_the_lane() {
+        for line in [
+            "G0 X10 Y5 Z2",
+            "G1 X20 F100",
+            "N30 G3 X0 Y0 I-5 J0 F100",
+            "  g91 g0 x1 y-.5 ; comment",
+            "G90 G2 I5 J5 F1",
+            "N40",
+            "F200",
+            "G1",
+            "; only a comment",
+            "N50 ; numbered comment",
+        ] {
+            assert!(takes("", line), "{line}");
+        }
+        // States the lane takes: a frame, a tool, inch units, G64.
+        assert!(takes("TRANS X5\nT1 D1\nG70 G64 F10\n", "G2 J1"));
+    }
+
+    #[test]
+    fn anything_else_takes_the_general_path() {
+        for line in [
+            "",
+            "  \t",
+            "X=10",
+            "X1 X2",
+            "G1 G2 X1",
+            "G17 X1",
+            "N10X5",
+            "X1 N10",
+            "T1",
+            "G4 F1",
+            "G9 X1",
+            "X1 RND=2",
+            "G2 X1 Y1 CR=5",
+            "X1 M3",
+            "/X1",
+            "A10",
+            "X1EX2",
+        ] {
+            assert!(!takes("", line), "{line:?}");
+        }
+        // States the lane refuses: compensation, a corner held, a user variable named like an
+        // address.
+        assert!(!takes("T1 D1\nG41 G1 X10 Y0 F100\n", "X20"));
+        assert!(!takes("G1 X10 Y0 F100 RND=2\n", "X20 Y10"));
+        assert!(!takes("T1 D1\nG41 G1 X10 Y0 F100\nG40\n", "X20"));
+        assert!(!takes("DEF REAL F\n", "X10 F100"));
+    }
+}
