@@ -217,7 +217,7 @@ fn plan_piece(
     let mut memo = AngleMemo::default();
     for (i, &u) in us.iter().enumerate() {
         let [a, b] = &mut bufs;
-        let (prev, m) = if i % 2 == 0 { (&*a, b) } else { (&*b, a) };
+        let (prev, m) = if i.is_multiple_of(2) { (&*a, b) } else { (&*b, a) };
         sub.at(u, m);
         match sub.orientation_at(u) {
             Some(o) => t.inverse_oriented_stepped(&o, prev, &active.tool, m, &mut memo)?,
@@ -227,16 +227,15 @@ fn plan_piece(
             return Err(PlanError::PoleSide);
         }
         for (s, &k) in slots.iter().enumerate() {
-            if let Some((lo, hi)) = soft[s] {
-                if m[k] > hi + 1e-9 || m[k] < lo - 1e-9 {
-                    let ax = cfg.axis(k);
-                    return Err(PlanError::SoftLimit { axis: ax.name.clone(), plus: m[k] > hi });
-                }
+            if let Some((lo, hi)) = soft[s]
+                && (m[k] > hi + 1e-9 || m[k] < lo - 1e-9)
+            {
+                return Err(PlanError::SoftLimit { axis: cfg.axis(k).name.clone(), plus: m[k] > hi });
             }
             ms[i * ns + s] = m[k];
         }
     }
-    let end = bufs[if intervals % 2 == 0 { 1 } else { 0 }];
+    let end = bufs[if intervals.is_multiple_of(2) { 1 } else { 0 }];
 
     for j in 0..intervals {
         ds[j] = (us[j + 1] - us[j]) * len;
@@ -271,7 +270,7 @@ fn plan_piece(
         // The intervals overlapping the part: consecutive, as the samples ascend.
         let mut js = (0..intervals).filter(|&j| us[j + 1] > a + 1e-12 && us[j] < b - 1e-12);
         let first = js.next().expect("every part has samples");
-        let last = js.last().unwrap_or(first);
+        let last = js.next_back().unwrap_or(first);
         let js = first..=last;
         let v_axes = js.clone().fold(mv.v_axes, |v, j| v.min(v_allowed[j]));
         let v_max = v_axes.min(mv.feed);
