@@ -51,6 +51,7 @@ if [ "$WHAT" = all ] || [ "$WHAT" = rust ]; then
 
   section "benchmarks: build and run every case once on small programs (no timing)"
   cargo test -p nctwin-engine --bench engine
+  cargo test -p nctwin-server --bench stream_frame
 fi
 
 if [ "$WHAT" = all ] || [ "$WHAT" = fuzz ]; then

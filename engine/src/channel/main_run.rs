@@ -199,10 +199,7 @@ impl Channel {
     }
 
     pub(super) fn block_ref(&self, line: u32) -> Option<BlockRef> {
-        let program = self.program.as_ref()?;
-        let &(_, offset) = self.queued_blocks.iter().rev().find(|b| b.0 == line)?;
-        let raw = program[offset..].split('\n').next().unwrap_or("");
-        Some(BlockRef { line, text: raw.strip_suffix('\r').unwrap_or(raw).to_string() })
+        Some(BlockRef { line, text: self.block_text(line)?.to_string() })
     }
 
     /// Executes non-motion items at the head of the queue once all motion before them is done.

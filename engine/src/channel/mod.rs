@@ -22,6 +22,7 @@ mod repos_modes;
 mod resume;
 mod search;
 mod snapshot;
+mod snapshot_refresh;
 mod spindle;
 mod toff;
 mod trafo;

@@ -112,15 +112,25 @@ impl GCodes {
 
     /// The names of the active functions, one per displayed group (`G1`, `G17`, `G54`, ...).
     pub fn names(&self) -> Vec<String> {
-        GROUPS
-            .iter()
-            .zip(self.0)
-            .map(|((group, names), i)| match (group, i) {
-                (8, 0) => "G500".to_string(),
-                (8, n @ 1..=4) => format!("G{}", 53 + n),
-                (8, n) => format!("G{}", 500 + u32::from(n)),
-                (_, i) => names.get(usize::from(i)).copied().unwrap_or("?").to_string(),
-            })
-            .collect()
+        let mut names = Vec::new();
+        self.write_names(&mut names);
+        names
+    }
+
+    /// [`GCodes::names`] written over `names`, reusing its strings (the state display refreshes
+    /// them many times a second).
+    pub fn write_names(&self, names: &mut Vec<String>) {
+        use std::fmt::Write as _;
+        names.resize_with(GROUPS.len(), String::new);
+        for (((group, list), i), name) in GROUPS.iter().zip(self.0).zip(names.iter_mut()) {
+            name.clear();
+            // Writing into a String cannot fail.
+            let _ = match (group, i) {
+                (8, 0) => name.write_str("G500"),
+                (8, n @ 1..=4) => write!(name, "G{}", 53 + n),
+                (8, n) => write!(name, "G{}", 500 + u32::from(n)),
+                (_, i) => name.write_str(list.get(usize::from(i)).copied().unwrap_or("?")),
+            };
+        }
     }
 }

@@ -13,6 +13,7 @@ pub mod preview;
 pub mod programs;
 pub mod roles;
 pub mod sessions;
+pub mod state_json;
 pub mod stream;
 pub mod stream_frame;
 pub mod stream_gate;

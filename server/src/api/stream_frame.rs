@@ -3,8 +3,9 @@
 //! A state message is JSON of about 800 bytes; encoding it cost more than stepping the 12 IPO
 //! cycles of a 50 ms frame. So a session watched by a class of 30 viewers encodes it once per
 //! published state, and every client sends the same bytes (`Utf8Bytes` is reference counted);
-//! and it is written straight from the engine's snapshot ([`StateMessage`], the same JSON as
-//! the `State` DTO) instead of copying every name and text into a DTO first.
+//! and it is written straight from the engine's snapshot by [`StateEncoder`] (the same JSON as
+//! the `State` DTO through serde, [`encode_state`]) into a buffer reused from one message to
+//! the next, instead of copying every name and text into a DTO first.
 
 use std::sync::{Arc, Mutex};
 
@@ -13,32 +14,40 @@ use nctwin_engine::Snapshot;
 use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
 
+pub use super::state_json::StateEncoder;
 use crate::dto::{
     AlarmInfo, ChannelStatus, OpMode, OverridesInfo, ReferencingInfo, StreamMessage, Tool, Transformation,
 };
 
-/// Room for a whole state message, so encoding does not grow the buffer.
-const STATE_MESSAGE_CAPACITY: usize = 1536;
-
 /// The last state message of one session, keyed by the snapshot it was made from.
 #[derive(Debug, Default)]
 pub struct FrameCache {
-    /// Held for one look-up or one encoding, never across an await. Keeping the snapshot's
-    /// `Arc` makes the pointer comparison sound (its address cannot be reused meanwhile).
-    last: Mutex<Option<(Arc<Snapshot>, Utf8Bytes)>>,
+    /// Held for one look-up or one encoding, never across an await.
+    inner: Mutex<Cached>,
+}
+
+#[derive(Debug, Default)]
+struct Cached {
+    /// Keeping the snapshot's `Arc` makes the pointer comparison sound (its address cannot be
+    /// reused meanwhile).
+    last: Option<(Arc<Snapshot>, Utf8Bytes)>,
+    /// Its buffer is reused from one message to the next.
+    encoder: StateEncoder,
 }
 
 impl FrameCache {
     /// The `{"type": "state", ...}` message of `snapshot`, encoded once per snapshot.
     pub fn state(&self, snapshot: &Arc<Snapshot>) -> Utf8Bytes {
-        let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((cached, text)) = last.as_ref()
-            && Arc::ptr_eq(cached, snapshot)
+        let mut cached = self.inner.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((last, text)) = cached.last.as_ref()
+            && Arc::ptr_eq(last, snapshot)
         {
             return text.clone();
         }
-        let text = encode_state(snapshot);
-        *last = Some((snapshot.clone(), text.clone()));
+        // Let go of the previous snapshot first, so the actor can refresh it in place again.
+        cached.last = None;
+        let text = cached.encoder.encode(snapshot);
+        cached.last = Some((snapshot.clone(), text.clone()));
         text
     }
 }
@@ -49,7 +58,11 @@ pub fn encode(message: &StreamMessage) -> Utf8Bytes {
     Utf8Bytes::from(serde_json::to_string(message).unwrap_or_else(|_| "{}".into()))
 }
 
-/// The `{"type": "state", ...}` message of a snapshot as JSON text.
+/// Room for a whole state message, so encoding does not grow the buffer.
+const STATE_MESSAGE_CAPACITY: usize = 1536;
+
+/// The `{"type": "state", ...}` message of a snapshot as JSON text, through serde (the
+/// reference for [`StateEncoder`], and its fallback nowhere: kept for tests and benches).
 pub fn encode_state(snapshot: &Snapshot) -> Utf8Bytes {
     let mut out = Vec::with_capacity(STATE_MESSAGE_CAPACITY);
     if serde_json::to_writer(&mut out, &StateMessage(snapshot)).is_err() {

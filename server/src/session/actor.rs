@@ -17,6 +17,7 @@ use nctwin_engine::{Channel, CommandError, Event, Overrides, Snapshot, Status};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 use tokio::time::{Instant, sleep_until};
 
+use super::snapshot_pool::SnapshotPool;
 use super::wake_stats::wake_stats;
 use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
 
@@ -47,6 +48,8 @@ enum Flow {
 pub(super) struct Actor {
     config: ActorConfig,
     state: watch::Sender<Arc<Snapshot>>,
+    /// Retired snapshots, refreshed in place as the next state.
+    snapshots: SnapshotPool,
     events: broadcast::Sender<Event>,
     pace: Pace,
     /// Tick at which the current fast-paced command is stopped.
@@ -80,6 +83,7 @@ impl Actor {
         Actor {
             config,
             state,
+            snapshots: SnapshotPool::default(),
             events,
             pace: Pace::Realtime,
             fast_limit_tick: 0,
@@ -262,15 +266,7 @@ impl Actor {
             // No subscribers is not an error: events are for whoever listens right now.
             let _ = self.events.send(event);
         }
-        let snapshot = channel.snapshot();
-        self.state.send_if_modified(|current| {
-            if **current == snapshot {
-                false
-            } else {
-                *current = Arc::new(snapshot);
-                true
-            }
-        });
+        self.snapshots.publish(channel, &self.state);
     }
 
     /// Answers waiting requests whose motion is over or whose wall-time limit has come.

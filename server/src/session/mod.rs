@@ -13,6 +13,7 @@
 
 mod actor;
 mod pacer;
+mod snapshot_pool;
 mod wake_stats;
 
 use std::sync::Arc;
