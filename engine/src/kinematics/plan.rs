@@ -249,12 +249,18 @@ fn plan_piece(
             bends[j * ns + s] = (rates[j * ns + s] - rates[(j - 1) * ns + s]).abs() / h;
         }
     }
-    let (rates, bends) = (&*rates, &*bends);
+    // The curvature of interval j: the larger change at its two ends, in place (each entry
+    // reads the next one before that is overwritten).
+    for i in 0..intervals * ns {
+        bends[i] = bends[i].max(bends[i + ns]);
+    }
+    let (rates, curvatures) = (&*rates, &bends[..intervals * ns]);
     let rate = |j: usize, s: usize| rates[j * ns + s];
-    let curvature = |j: usize, s: usize| bends[j * ns + s].max(bends[(j + 1) * ns + s]);
+    let curvature = |j: usize, s: usize| curvatures[j * ns + s];
     for (j, v_j) in v_allowed.iter_mut().enumerate() {
-        *v_j = limits.iter().enumerate().fold(f64::INFINITY, |v, (s, &(vmax, amax))| {
-            let (r, c) = (rate(j, s).abs(), curvature(j, s));
+        let (r_j, c_j) = (&rates[j * ns..(j + 1) * ns], &curvatures[j * ns..(j + 1) * ns]);
+        *v_j = limits.iter().zip(r_j.iter().zip(c_j)).fold(f64::INFINITY, |v, (&(vmax, amax), (&r, &c))| {
+            let r = r.abs();
             let v = if r > 1e-12 { v.min(vmax / r) } else { v };
             if c > 1e-12 { v.min((0.5 * amax / c).sqrt()) } else { v }
         });
