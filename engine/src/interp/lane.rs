@@ -4,10 +4,14 @@
 //!
 //! The lane gives exactly the items and the interpreter state the general path gives: it
 //! computes the move with the same building blocks (`Frame::unapply/apply`, [`block_end`],
-//! [`block_path`], `arc::from_center`, `check_software_limits`, `path_feed`, `Move::new`,
-//! `trc::Compensator::pass`, the idle case of `push`) and falls back to the general path,
+//! [`shape_path`], `arc::from_center`, `check_software_limits`, `path_feed`, `Move::new`,
+//! `trc::Compensator::passed`, the idle case of `push`) and falls back to the general path,
 //! which is always right, for anything it does not take, including every error (the general
 //! path then raises the alarm).
+//! For a frame that only translates (G54 and TRANS, the usual case) the lane maps start and
+//! end on the channel's axes itself ([`translated_current`], [`translated_end`]: the same
+//! values bit for bit, zero coordinates whose sign the frame's sums could flip go to
+//! `unapply`/`block_end`), and it builds the move in its place in the output.
 //! In debug builds every block the lane prepares is prepared once more by the general path on
 //! a copy of the interpreter, and items and state must be equal ([`cross_check`]).
 //!
@@ -41,20 +45,21 @@
 //!   G9 (not taken).
 //! - after `motion`: `request_point_to_point` (no transformation); `compensation` (G40 only:
 //!   refused with G41/G42 selected); `trc.push` without compensation (the lane requires the
-//!   compensator idle, where `push` only hands the move on: `Compensator::pass` does that); `trc.end_block`, `flush` (nothing
+//!   compensator idle, where `push` only hands the move on: `Compensator::passed` notes the move the lane pushed); `trc.end_block`, `flush` (nothing
 //!   held); `shape_corners` (nothing held, no RND/CHF/CHR); `transform_moves` (none active).
 
 use super::flow::Pos;
+use super::frame::{Frame, GeoAxes};
 use super::modal::MotionMode;
 use super::orient::RotReference;
 use super::{
-    AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end, block_path,
-    check_software_limits, feed_length,
+    AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end,
+    check_software_limits, feed_length, shape_path,
 };
 use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
-use crate::motion::AxisLimits;
+use crate::motion::{AxisLimits, AxisVec, Path};
 
 /// The words of a plain motion line, by meaning.
 #[derive(Debug, Default)]
@@ -96,6 +101,8 @@ struct Memo {
     /// `refresh_offsets` ran for this configuration and nothing but lane blocks ran since:
     /// the tool, the frame and the G codes of the offsets are what it would make them.
     offsets_fresh: bool,
+    /// The offsets' frame only translates (set with `offsets_fresh`), see [`translated_end`].
+    translation_only: bool,
 }
 
 /// The memo is a cache: it is no state of block preparation (the debug cross-check compares
@@ -128,6 +135,7 @@ impl LaneMemo {
                 limits: AxisLimit::for_channel(cfg),
                 letters: std::array::from_fn(|i| geometry_axis(cfg, b'A' + i as u8)),
                 offsets_fresh: false,
+                translation_only: false,
             };
             match self.0.as_mut() {
                 Some(m) => **m = memo,
@@ -144,12 +152,11 @@ fn scan(text: &str, letters: &[Option<usize>; 26], vars: &super::vars::Variables
     let mut block = PlainBlock::default();
     let mut seen = 0u32;
     let no_user_names = vars.no_user_names();
-    let plain = plain_words(text, |letter, number, value| {
+    let plain = plain_words(text, |letter, end, value| {
         let first = !block.words;
         block.words = true;
         if letter == b'N' {
             // A block number only at the start and standing alone (`N10X5` is the address N).
-            let end = number.as_ptr() as usize - text.as_ptr() as usize + number.len();
             return first && matches!(text.as_bytes().get(end), None | Some(b' ' | b'\t' | b';'));
         }
         if letter == b'G' {
@@ -228,6 +235,7 @@ impl Interpreter {
         let end = rest.bytes().position(|b| b == b'\n').unwrap_or(rest.len());
         let raw = &rest[..end];
         let memo = self.lane_memo.for_config(cfg);
+        let offsets_fresh = memo.offsets_fresh;
         let block = scan(raw.strip_suffix('\r').unwrap_or(raw), &memo.letters, &self.vars)?;
         let next = Pos { offset: at.offset + raw.len() + 1, line: at.line + 1 };
         let line = at.line;
@@ -246,9 +254,12 @@ impl Interpreter {
         if let Some(f) = block.feed {
             self.modal.feed = Some(f);
         }
-        if !self.lane_memo.for_config(cfg).offsets_fresh {
+        if !offsets_fresh {
             self.refresh_offsets(cfg);
-            self.lane_memo.for_config(cfg).offsets_fresh = true;
+            let translation_only = only_translates(&self.offsets.frame);
+            let memo = self.lane_memo.for_config(cfg);
+            memo.offsets_fresh = true;
+            memo.translation_only = translation_only;
         } else if g_codes != (self.modal.motion, self.modal.absolute) {
             // Tool and frame are as the last refresh left them; only the G codes changed.
             self.refresh_gcodes();
@@ -262,13 +273,7 @@ impl Interpreter {
             }
             return Some(Prep::Prepared);
         }
-        let mv = self.plain_move(&block, cfg, &self.lane_memo.for_config_ref().limits, line)?;
-        self.commit_position(at, next, out);
-        self.pos = mv.path.end;
-        self.modal.ori.last_change = None;
-        self.modal.ori.upper = None;
-        let offsets = self.shared_offsets();
-        self.trc.pass(Item::Move { mv, line, offsets }, out);
+        self.plain_move(&block, cfg, (at, next), out)?;
         Some(Prep::Prepared)
     }
 
@@ -282,17 +287,30 @@ impl Interpreter {
         self.trc.begin_block(out);
     }
 
-    /// The move of a plain block (as `motion` computes it for such a block), or `None` where
-    /// `motion` would raise an alarm.
-    fn plain_move(&self, block: &PlainBlock, cfg: &MachineConfig, limits: &[AxisLimit], line: u32) -> Option<Move> {
+    /// Prepares the move of a plain block (as `motion` computes it for such a block) straight
+    /// into `out`, with the bookkeeping of `step_program` and `trc.push` for the line from
+    /// `at` to `next`; `None` (and nothing changed) where `motion` would raise an alarm.
+    fn plain_move(
+        &mut self,
+        block: &PlainBlock,
+        cfg: &MachineConfig,
+        (at, next): (Pos, Pos),
+        out: &mut Vec<Item>,
+    ) -> Option<()> {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
+        let line = at.line;
+        let memo = self.lane_memo.for_config_ref();
         let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
-        let mut basic = *start;
-        for k in 0..n {
-            basic[k] -= tool[k];
+        let mut current = [0.0; MAX_CHANNEL_AXES];
+        let translated = memo.translation_only && translated_current(frame, geo, n, start, tool, &mut current);
+        if !translated {
+            let mut basic = *start;
+            for k in 0..n {
+                basic[k] -= tool[k];
+            }
+            current = frame.unapply(geo, &basic)?;
         }
-        let current = frame.unapply(geo, &basic)?;
         let mut target = current;
         let mut programmed = [false; MAX_CHANNEL_AXES];
         let f = self.modal.length_factor();
@@ -303,7 +321,8 @@ impl Interpreter {
                 programmed[k] = true;
             }
         }
-        let (pa, po, papp) = self.modal.plane.axes();
+        let planes = self.modal.plane.axes();
+        let (pa, po, _) = planes;
         let circle = match self.modal.motion {
             MotionMode::Cw | MotionMode::Ccw => {
                 let (Some(ka), Some(ko)) = (geo[pa], geo[po]) else { return None };
@@ -319,13 +338,77 @@ impl Interpreter {
             }
             _ => None,
         };
-        let end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
-        let (path, length) = block_path(frame, geo, (pa, po, papp), start, &end, &current, &target, circle.as_ref());
+        let mut path = Path::line(*start, *start);
+        if !(translated && translated_end(frame, geo, n, tool, &target, &programmed, &mut path.end)) {
+            path.end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
+        }
+        let length = shape_path(&mut path, frame, geo, planes, &current, &target, circle.as_ref());
         let length = feed_length(&path, length, n);
         check_software_limits(cfg, &path, line).ok()?;
         let feed = self.path_feed(line).ok()?;
-        Some(Move::new(path, length, feed, limits, self.modal.exact_stop, line))
+
+        self.commit_position(at, next, out);
+        // The axes past the channel's keep their start (block_end leaves them).
+        self.pos[..n].copy_from_slice(&path.end[..n]);
+        self.modal.ori.last_change = None;
+        self.modal.ori.upper = None;
+        let offsets = self.shared_offsets();
+        let limits = &self.lane_memo.for_config_ref().limits;
+        out.push(Item::Move { mv: Move::new(path, length, feed, limits, self.modal.exact_stop, line), line, offsets });
+        self.trc.passed(out);
+        Some(())
     }
+}
+
+/// True when `frame` only translates: no rotation, scale or mirror on any axis. Its
+/// `unapply`/`apply` then subtract/add the translation, which [`translated_current`] and
+/// [`translated_end`] do for the configured axes only.
+fn only_translates(frame: &Frame) -> bool {
+    frame.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] && frame.factor.iter().all(|&f| f == 1.0)
+}
+
+/// `frame.unapply(start − tool)` on the first `n` axes for a frame that [`only_translates`]
+/// (the others are not read for a plain block), into `current`. Bit for bit: `unapply`
+/// divides by the factor 1 and sums the identity row times the point, where adding the zero
+/// terms leaves a non-zero coordinate exact; a zero geometry coordinate (whose sign the sum
+/// may flip) gives false, and the caller takes `unapply` itself.
+fn translated_current(
+    frame: &Frame,
+    geo: &GeoAxes,
+    n: usize,
+    start: &AxisVec,
+    tool: &AxisVec,
+    current: &mut AxisVec,
+) -> bool {
+    for k in 0..n {
+        current[k] = (start[k] - tool[k]) - frame.trans[k];
+    }
+    geo.iter().flatten().all(|&k| current[k] != 0.0)
+}
+
+/// [`block_end`] for a frame that [`only_translates`]: `frame.apply(target) + tool` on the
+/// programmed axes (the frame couples none) into `end`, which holds the start; exact by the
+/// argument of [`translated_current`]. A zero geometry coordinate comes out of `apply`'s sum
+/// as a zero of either sign, which adding a translation other than zero makes exact again; on
+/// a zero translation false (and `end` untouched), and the caller takes `block_end`.
+fn translated_end(
+    frame: &Frame,
+    geo: &GeoAxes,
+    n: usize,
+    tool: &AxisVec,
+    target: &AxisVec,
+    programmed: &[bool; MAX_CHANNEL_AXES],
+    end: &mut AxisVec,
+) -> bool {
+    if geo.iter().flatten().any(|&k| programmed[k] && target[k] == 0.0 && frame.trans[k] == 0.0) {
+        return false;
+    }
+    for k in 0..n {
+        if programmed[k] {
+            end[k] = (target[k] + frame.trans[k]) + tool[k];
+        }
+    }
+    true
 }
 
 /// Debug builds: prepares the block the lane just prepared once more on `reference` (the
@@ -338,13 +421,15 @@ pub(super) fn cross_check(
     cfg: &MachineConfig,
     programs: &super::Programs,
     main_run_idle: bool,
-    (lane_prep, lane_items): (Prep, &[Item]),
+    (lane_prep, lane_out, mark): (Prep, &[Item], usize),
 ) {
     let published_before = reference.published.clone();
     reference.fast_lane = false;
-    let mut items = Vec::new();
+    // The same output before the block as the lane had: the compensator's mark counts it.
+    let mut items = lane_out[..mark].to_vec();
     let prep = reference.prepare_next(cfg, programs, main_run_idle, &mut items);
     reference.fast_lane = lane.fast_lane;
+    let (items, lane_items) = (&items[mark..], &lane_out[mark..]);
     let sharing = |it: &Interpreter, items: &[Item]| -> Vec<(bool, bool)> {
         let offsets = items.iter().filter_map(|i| match i {
             Item::Move { offsets, .. } | Item::Offsets { offsets, .. } => Some(offsets),
@@ -355,7 +440,7 @@ pub(super) fn cross_check(
             .collect()
     };
     assert!(
-        prep == lane_prep && items == lane_items && sharing(&reference, &items) == sharing(lane, lane_items),
+        prep == lane_prep && items == lane_items && sharing(&reference, items) == sharing(lane, lane_items),
         "fast lane: items differ from the general path\nlane {lane_prep:?} {lane_items:#?}\ngeneral {prep:?} {items:#?}"
     );
     let (general_state, lane_state) = (format!("{reference:#?}"), format!("{lane:#?}"));
@@ -448,5 +533,35 @@ mod tests {
         assert!(!takes("G1 X10 Y0 F100 RND=2\n", "X20 Y10"));
         assert!(!takes("T1 D1\nG41 G1 X10 Y0 F100\nG40\n", "X20"));
         assert!(!takes("DEF REAL F\n", "X10 F100"));
+    }
+
+    /// The items of `program` from a start at the machine zero, lane on or off.
+    fn items(program: &str, lane: bool) -> Vec<Item> {
+        let cfg = mill();
+        let mut interp = Interpreter::new(&cfg);
+        interp.set_fast_lane(lane);
+        interp.begin_program(program.to_string(), &[0.0; MAX_CHANNEL_AXES]);
+        let mut out = Vec::new();
+        while interp.prepare_next(&cfg, &super::super::Programs::new(), true, &mut out) != Prep::Done {}
+        out
+    }
+
+    #[test]
+    fn translations_map_zero_and_signed_zero_coordinates_exactly() {
+        // Machine end = WCS value + translation, worked out by hand per block:
+        // X0 Y0 → (10, −5); X−0 Y5 Z0 → (10, 0, 0); G91 X−10 Y−0 from WCS (0, 5) → WCS
+        // (−10, 5) → (0, 0); G3 back to WCS X0 Y5 around I5 (centre WCS (−5, 5)) → (10, 0).
+        let program = "TRANS X10 Y-5\nG1 X0 Y0 F100\nX-0 Y5 Z0\nG91 X-10 Y-0\nG90 G3 X0 Y5 I5 J0\nM30\n";
+        let lane = items(program, true);
+        let ends: Vec<[f64; 3]> = lane
+            .iter()
+            .filter_map(|i| match i {
+                Item::Move { mv, .. } => Some([mv.path.end[0], mv.path.end[1], mv.path.end[2]]),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(ends, [[10.0, -5.0, 0.0], [10.0, 0.0, 0.0], [0.0, 0.0, 0.0], [10.0, 0.0, 0.0]]);
+        // `Debug` tells −0.0 from 0.0, which `PartialEq` does not.
+        assert_eq!(format!("{lane:?}"), format!("{:?}", items(program, false)));
     }
 }

@@ -394,7 +394,7 @@ impl Interpreter {
             let (reference, mark) = (self.clone(), out.len());
             if let Some(prep) = self.prepare_plain(cfg, out) {
                 #[cfg(debug_assertions)]
-                lane::cross_check(reference, self, cfg, programs, main_run_idle, (prep, &out[mark..]));
+                lane::cross_check(reference, self, cfg, programs, main_run_idle, (prep, out, mark));
                 return prep;
             }
         }
@@ -573,7 +573,8 @@ impl Interpreter {
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
             if comp.is_none() && self.trc.idle() {
                 // Nothing to compensate and nothing held: the move goes straight out.
-                self.trc.pass(Item::Move { mv, line, offsets }, out);
+                out.push(Item::Move { mv, line, offsets });
+                self.trc.passed(out);
             } else {
                 let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
                 self.trc.push(prepared, comp, &limits, out)?;
@@ -1020,6 +1021,22 @@ fn block_path(
     circle: Option<&arc::Circle>,
 ) -> (Path, f64) {
     let mut path = Path::line(*start, *end);
+    let length = shape_path(&mut path, frame, geo, (pa, po, papp), current, target, circle);
+    (path, length)
+}
+
+/// [`block_path`] on a line `path` already made from start to end (the fast lane builds it in
+/// place): adds the circle and returns the length the feed refers to.
+fn shape_path(
+    path: &mut Path,
+    frame: &Frame,
+    geo: &[Option<usize>; 3],
+    (pa, po, papp): (usize, usize, usize),
+    current: &AxisVec,
+    target: &AxisVec,
+    circle: Option<&arc::Circle>,
+) -> f64 {
+    let (start, end) = (&path.start, &path.end);
     let mut length = geo.iter().flatten().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
     if let Some(circle) = circle {
         // The circle is defined in the WCS plane and mapped through the frame.
@@ -1031,7 +1048,7 @@ fn block_path(
         let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
         length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
     }
-    (path, length)
+    length
 }
 
 /// The length the feed refers to: the geometry axes' `length`, or when no geometry axis

@@ -175,13 +175,21 @@ impl Compensator {
         !self.holds() && self.tool_at.is_none()
     }
 
-    /// Hands a move without compensation to the main run while the compensator is
-    /// [`idle`](Self::idle): what [`push`](Self::push) does for it then, without the way
-    /// through `deselect` (block preparation's fast lane and general path).
-    pub fn pass(&mut self, item: Item, out: &mut Vec<Item>) {
+    /// Takes note of a move without compensation that the caller has just pushed onto `out`
+    /// while the compensator is [`idle`](Self::idle): what [`push`](Self::push) does for it
+    /// then, without the way through `deselect` and without moving the item again (block
+    /// preparation's fast lane and general path).
+    pub fn passed(&mut self, out: &[Item]) {
         debug_assert!(self.idle(), "only an idle compensator lets a move pass");
         self.dummy_blocks = 0;
-        self.emit(item, out);
+        if let Some(Item::Move { mv, .. }) = out.last() {
+            // Into the value already there: one copy, no `Option` built on the way.
+            match &mut self.last_end {
+                Some(end) => *end = mv.path.end,
+                none => *none = Some(mv.path.end),
+            }
+        }
+        self.mark = out.len();
     }
 
     /// Starts a block: `out` is where its items go.

@@ -69,11 +69,21 @@ pub fn plan_block(
     let path = &mv.path;
     t.check_path(path, tool)?;
     let poles = t.poles(path, tool);
+    let mut critical = t.critical_params(path, tool);
+    let slots = t.machine_slots();
+    // Without a pole inside the block (every block of an orientation transformation) the
+    // whole path is one piece: planned straight from the path, no slice and no copy.
+    if !poles.iter().any(|&u| u <= 1.0 - 1e-9) && mv.length >= 1e-9 {
+        critical.retain(|&c| c > 0.0 && c < 1.0);
+        let mut piece = plan_piece(active, mv, path, mv.length, &critical, start, &slots, cfg)?;
+        if let Some(last) = piece.moves.last_mut() {
+            last.exact_stop |= mv.exact_stop;
+        }
+        return Ok(piece);
+    }
     let mut cuts = vec![0.0, 1.0];
     cuts.extend(poles.iter().copied().filter(|&u| u > 1e-9 && u < 1.0 - 1e-9));
     cuts.sort_by(f64::total_cmp);
-    let critical = t.critical_params(path, tool);
-    let slots = t.machine_slots();
 
     let mut machine = *start;
     let mut out: Vec<Move> = Vec::new();
@@ -163,77 +173,98 @@ fn plan_piece(
 ) -> Result<PlannedBlock, PlanError> {
     let t = &active.trafo;
     let n = ((len / 0.25).ceil() as usize).clamp(8, 400);
-    let mut us: Vec<f64> = (0..=n).map(|i| i as f64 / n as f64).collect();
-    for &c in critical {
-        us.extend([c - 1e-4, c, c + 1e-4].into_iter().filter(|u| *u > 0.0 && *u < 1.0));
+    let mut us: Vec<f64> = Vec::with_capacity(n + 1 + 3 * critical.len());
+    us.extend((0..=n).map(|i| i as f64 / n as f64));
+    if !critical.is_empty() {
+        for &c in critical {
+            us.extend([c - 1e-4, c, c + 1e-4].into_iter().filter(|u| *u > 0.0 && *u < 1.0));
+        }
+        us.sort_by(f64::total_cmp);
+        us.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
     }
-    us.sort_by(f64::total_cmp);
-    us.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
 
-    // Machine positions of the slots along the piece (sample-major), each sample continuous
-    // with the one before.
+    // Per slot index s (not channel axis): the software limits (none for a modulo axis or a
+    // spindle) and the velocity and acceleration the planning may use.
     let ns = slots.len();
-    let mut ms: Vec<f64> = Vec::with_capacity(us.len() * ns);
-    let mut prev = *start;
-    let mut p = [0.0; MAX_CHANNEL_AXES];
+    let mut soft = [None::<(f64, f64)>; MAX_CHANNEL_AXES];
+    let mut limits = [(0.0, 0.0); MAX_CHANNEL_AXES];
+    for (s, &k) in slots.iter().enumerate() {
+        let ax = cfg.axis(k);
+        if ax.modulo.is_none() && ax.spindle.is_none() {
+            soft[s] = Some((ax.limit_minus, ax.limit_plus));
+        }
+        let share = t.limit_share(k);
+        limits[s] = (ax.max_velocity * share, ax.max_accel * share);
+    }
+    let (soft, limits) = (&soft[..ns], &limits[..ns]);
+
+    // One buffer for the numbers below, by sample or interval j and slot index s (j * ns + s):
+    // machine positions `ms` per sample; interval lengths `ds`; rates dm/ds per interval;
+    // their change per unit length `bends` at the samples (zero at the ends); the velocity
+    // each interval allows.
+    let samples = us.len();
+    let intervals = samples - 1;
+    let mut work = vec![0.0; samples * ns + intervals + intervals * ns + samples * ns + intervals];
+    let (ms, rest) = work.split_at_mut(samples * ns);
+    let (ds, rest) = rest.split_at_mut(intervals);
+    let (rates, rest) = rest.split_at_mut(intervals * ns);
+    let (bends, v_allowed) = rest.split_at_mut(samples * ns);
+
+    // Machine positions of the slots along the piece, each sample continuous with the one
+    // before: mapped in place in one of two buffers, the other holding the last sample.
+    let mut bufs = [*start, [0.0; MAX_CHANNEL_AXES]];
     // The samples follow each other closely: the orientation solve steps from the last one.
     let mut memo = AngleMemo::default();
     for (i, &u) in us.iter().enumerate() {
-        sub.at(u, &mut p);
-        let m = match sub.orientation_at(u) {
-            Some(o) => active.inverse_oriented_stepped(&p, &o, &prev, &mut memo)?,
-            None => active.inverse(&p, &prev)?,
-        };
-        if i == 0 && leaves_by_a_jump(start, &m, slots, cfg) {
+        let [a, b] = &mut bufs;
+        let (prev, m) = if i.is_multiple_of(2) { (&*a, b) } else { (&*b, a) };
+        sub.at(u, m);
+        match sub.orientation_at(u) {
+            Some(o) => t.inverse_oriented_stepped(&o, prev, &active.tool, m, &mut memo)?,
+            None => *m = active.inverse(m, prev)?,
+        }
+        if i == 0 && leaves_by_a_jump(start, m, slots, cfg) {
             return Err(PlanError::PoleSide);
         }
-        for &k in slots {
-            let ax = cfg.axis(k);
-            if ax.modulo.is_some() || ax.spindle.is_some() {
-                continue;
+        for (s, &k) in slots.iter().enumerate() {
+            if let Some((lo, hi)) = soft[s]
+                && (m[k] > hi + 1e-9 || m[k] < lo - 1e-9)
+            {
+                return Err(PlanError::SoftLimit { axis: cfg.axis(k).name.clone(), plus: m[k] > hi });
             }
-            if m[k] > ax.limit_plus + 1e-9 || m[k] < ax.limit_minus - 1e-9 {
-                return Err(PlanError::SoftLimit { axis: ax.name.clone(), plus: m[k] > ax.limit_plus });
-            }
+            ms[i * ns + s] = m[k];
         }
-        ms.extend(slots.iter().map(|&k| m[k]));
-        prev = m;
     }
+    let end = bufs[if intervals.is_multiple_of(2) { 1 } else { 0 }];
 
-    // Rates dm/ds per interval, and their change per unit length at the samples (zero at the
-    // ends), each computed once: the limits below read them several times per interval.
-    let intervals = us.len() - 1;
-    let ds: Vec<f64> = us.windows(2).map(|w| (w[1] - w[0]) * len).collect();
-    let rates: Vec<f64> = (0..intervals * ns).map(|i| (ms[i + ns] - ms[i]) / ds[i / ns]).collect();
-    let bends: Vec<f64> = (0..(intervals + 1) * ns)
-        .map(|i| {
-            let (j, s) = (i / ns, i % ns);
-            if j == 0 || j >= intervals {
-                return 0.0;
-            }
-            (rates[j * ns + s] - rates[(j - 1) * ns + s]).abs() / (0.5 * (ds[j] + ds[j - 1]))
-        })
-        .collect();
-    // By interval j and slot index s (not channel axis).
+    for j in 0..intervals {
+        ds[j] = (us[j + 1] - us[j]) * len;
+        for s in 0..ns {
+            rates[j * ns + s] = (ms[(j + 1) * ns + s] - ms[j * ns + s]) / ds[j];
+        }
+    }
+    for j in 1..intervals {
+        let h = 0.5 * (ds[j] + ds[j - 1]);
+        for s in 0..ns {
+            bends[j * ns + s] = (rates[j * ns + s] - rates[(j - 1) * ns + s]).abs() / h;
+        }
+    }
+    // The curvature of interval j: the larger change at its two ends, in place (each entry
+    // reads the next one before that is overwritten).
+    for i in 0..intervals * ns {
+        bends[i] = bends[i].max(bends[i + ns]);
+    }
+    let (rates, curvatures) = (&*rates, &bends[..intervals * ns]);
     let rate = |j: usize, s: usize| rates[j * ns + s];
-    let curvature = |j: usize, s: usize| bends[j * ns + s].max(bends[(j + 1) * ns + s]);
-    let limits: Vec<(f64, f64)> = slots
-        .iter()
-        .map(|&k| {
-            let ax = cfg.axis(k);
-            let share = t.limit_share(k);
-            (ax.max_velocity * share, ax.max_accel * share)
-        })
-        .collect();
-    let v_allowed: Vec<f64> = (0..intervals)
-        .map(|j| {
-            limits.iter().enumerate().fold(f64::INFINITY, |v, (s, &(vmax, amax))| {
-                let (r, c) = (rate(j, s).abs(), curvature(j, s));
-                let v = if r > 1e-12 { v.min(vmax / r) } else { v };
-                if c > 1e-12 { v.min((0.5 * amax / c).sqrt()) } else { v }
-            })
-        })
-        .collect();
+    let curvature = |j: usize, s: usize| curvatures[j * ns + s];
+    for (j, v_j) in v_allowed.iter_mut().enumerate() {
+        let (r_j, c_j) = (&rates[j * ns..(j + 1) * ns], &curvatures[j * ns..(j + 1) * ns]);
+        *v_j = limits.iter().zip(r_j.iter().zip(c_j)).fold(f64::INFINITY, |v, (&(vmax, amax), (&r, &c))| {
+            let r = r.abs();
+            let v = if r > 1e-12 { v.min(vmax / r) } else { v };
+            if c > 1e-12 { v.min((0.5 * amax / c).sqrt()) } else { v }
+        });
+    }
     let lo = v_allowed.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = v_allowed.iter().copied().fold(0.0, f64::max);
     let uneven = hi > 2.0 * lo;
@@ -242,11 +273,15 @@ fn plan_piece(
     let mut moves = Vec::with_capacity(parts);
     for part in 0..parts {
         let (a, b) = (part as f64 / parts as f64, (part + 1) as f64 / parts as f64);
-        let js: Vec<usize> = (0..intervals).filter(|&j| us[j + 1] > a + 1e-12 && us[j] < b - 1e-12).collect();
-        let v_axes = js.iter().fold(mv.v_axes, |v, &j| v.min(v_allowed[j]));
+        // The intervals overlapping the part: consecutive, as the samples ascend.
+        let mut js = (0..intervals).filter(|&j| us[j + 1] > a + 1e-12 && us[j] < b - 1e-12);
+        let first = js.next().expect("every part has samples");
+        let last = js.next_back().unwrap_or(first);
+        let js = first..=last;
+        let v_axes = js.clone().fold(mv.v_axes, |v, j| v.min(v_allowed[j]));
         let v_max = v_axes.min(mv.feed);
         let mut a_max = mv.a_max;
-        for &j in &js {
+        for j in js {
             for (s, &(_, amax)) in limits.iter().enumerate() {
                 let r = rate(j, s).abs();
                 if r > 1e-12 {
@@ -255,7 +290,8 @@ fn plan_piece(
                 }
             }
         }
-        let piece = sub.slice(a, b);
+        // The whole piece is the path itself, not a re-interpolated copy of it.
+        let piece = if parts == 1 { sub.clone() } else { sub.slice(a, b) };
         let plen = len * (b - a);
         let tangent = |j: usize, u: f64| -> AxisVec {
             let mut tv = piece.tangent(u).map(|x| x / plen);
@@ -264,8 +300,6 @@ fn plan_piece(
             }
             tv
         };
-        let first = *js.first().expect("every part has samples");
-        let last = *js.last().expect("every part has samples");
         let axis_tangents = Some(Box::new((tangent(first, 0.0), tangent(last, 1.0))));
         moves.push(Move {
             path: piece,
@@ -283,5 +317,5 @@ fn plan_piece(
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the
     // block; a feed that is simply too high for an axis everywhere is an ordinary limitation.
     let irregular_velocity = uneven && lo < mv.feed.min(mv.v_axes);
-    Ok(PlannedBlock { moves, end: prev, irregular_velocity })
+    Ok(PlannedBlock { moves, end, irregular_velocity })
 }

@@ -15,7 +15,7 @@
 //! by geometry axis, tip → holder).
 
 use super::orient::rotation::zero_normal;
-use super::orient::solve::Turn;
+use super::orient::solve::{AxisPair, Turn};
 use super::orient::stepped::AngleMemo;
 use super::orient::vec3::{dot, normalize, scale};
 use super::orient::{Chain, ChainKind};
@@ -68,6 +68,8 @@ impl Rotary {
 pub struct Traori {
     trafo_type: u32,
     chain: Chain,
+    /// The chain's [`Chain::axis_pair`], built once: the per-cycle solve reuses its terms.
+    pair: AxisPair,
     /// Channel axes of the linear roles [0..2].
     lin: [Option<usize>; 3],
     geo: [Option<usize>; 3],
@@ -133,6 +135,7 @@ impl Traori {
         let chain = Chain { kind, axes: n, v, l1, l2, l3, l4, l23: p.joint_offset_2_3, base };
         Ok(Traori {
             trafo_type: set.trafo_type,
+            pair: chain.axis_pair(),
             chain,
             lin: [set.axes_in[0], set.axes_in[1], set.axes_in[2]],
             geo: set.geo_axes,
@@ -306,7 +309,7 @@ impl Traori {
         self.raw_turns_stepped(o, hint, &mut AngleMemo::default())
     }
 
-    #[inline]
+    #[inline(always)]
     fn raw_turns_stepped(
         &self,
         o: &Vec3,
@@ -314,7 +317,7 @@ impl Traori {
         memo: &mut AngleMemo,
     ) -> Result<[[Turn; 3]; 2], Unreachable> {
         let o = normalize(o).ok_or(Unreachable)?;
-        self.chain.solve_turns_stepped(&o, hint, memo).ok_or(Unreachable)
+        self.chain.solve_turns_paired(&self.pair, &o, hint, memo).ok_or(Unreachable)
     }
 
     /// Chain-ordered angles → role-ordered values via `f`.
@@ -367,6 +370,13 @@ impl Traori {
         memo: &mut AngleMemo,
     ) -> Result<([f64; 3], [Turn; 3]), Unreachable> {
         let sols = self.raw_turns_stepped(o, &self.hint(Some(prev)), memo)?;
+        let (k, pos) = self.nearest_of(&sols, prev)?;
+        Ok((pos, sols[k]))
+    }
+
+    /// Which of `sols` [`Traori::nearest_solution`] takes, with its positions.
+    #[inline(always)]
+    fn nearest_of(&self, sols: &[[Turn; 3]; 2], prev: &AxisVec) -> Result<(usize, [f64; 3]), Unreachable> {
         let mut best: Option<(f64, usize, [f64; 3])> = None;
         for (k, s) in sols.iter().enumerate() {
             let Some((cost, pos)) = self.placed(s, prev) else { continue };
@@ -376,12 +386,12 @@ impl Traori {
             }
         }
         let (_, k, pos) = best.ok_or(Unreachable)?;
-        Ok((pos, sols[k]))
+        Ok((k, pos))
     }
 
     /// The positions of solution `s` (chain order) nearest `prev` within the limits, with
     /// their weighted travel from `prev`; `None` if an axis cannot reach its angle.
-    #[inline]
+    #[inline(always)]
     fn placed(&self, s: &[Turn; 3], prev: &AxisVec) -> Option<(f64, [f64; 3])> {
         let mut pos = [0.0; 3];
         let mut cost = 0.0;
@@ -408,8 +418,12 @@ impl Transformation for Traori {
     }
 
     fn machine_slots(&self) -> Vec<usize> {
-        let rotary = self.rot.iter().flatten().map(|r| r.slot).chain(self.seventh_slot());
-        self.lin.iter().flatten().copied().chain(rotary).collect()
+        // Sized up front: a chained iterator's collect would grow the vector step by step.
+        let mut slots = Vec::with_capacity(7);
+        slots.extend(self.lin.iter().flatten());
+        slots.extend(self.rot.iter().flatten().map(|r| r.slot));
+        slots.extend(self.seventh_slot());
+        slots
     }
 
     fn forward(&self, machine: &AxisVec, tool: &Vec3, bcs: &mut AxisVec) {
@@ -485,15 +499,22 @@ impl Transformation for Traori {
                 (r.apply(o), r.apply(&self.point(axes)))
             }
         };
-        let (pos, turns) = match self.third_slot() {
-            None => self.nearest_solution(&o, prev, memo)?,
+        // The solutions are chosen in place: the chosen one's turns build the pose uncopied.
+        let (sols, (k, pos)) = match self.third_slot() {
+            None => {
+                let sols = self.raw_turns_stepped(&o, &self.hint(Some(prev)), memo)?;
+                let chosen = self.nearest_of(&sols, prev)?;
+                (sols, chosen)
+            }
             Some(k) => {
                 let mut p = *prev;
                 p[k] = axes[k];
-                self.nearest_solution(&o, &p, memo)?
+                let sols = self.raw_turns_stepped(&o, &self.hint(Some(&p)), memo)?;
+                let chosen = self.nearest_of(&sols, &p)?;
+                (sols, chosen)
             }
         };
-        let pose = self.chain.pose_turns(&turns);
+        let pose = self.chain.pose_turns(&sols[k]);
         let m = self.chain.linear(&tip, &pose, &scale(tool, -1.0));
         self.write_rotary(&pos, axes);
         self.write_linear(&m, axes);

@@ -19,16 +19,17 @@ pub(super) fn is_plain_line(text: &str) -> bool {
 }
 
 /// The one scan behind [`is_plain_line`], handing each address word to `word` as its
-/// upper-case letter, the text of its number and its value exactly as the parser reads it
+/// upper-case letter, the end of its number (a byte offset in `text`) and its value exactly
+/// as the parser reads it
 /// (block preparation's fast lane reads plain lines with it, so it accepts exactly the syntax
 /// the check lets past the parser). True if the line is plain and `word` accepted every word;
 /// stops at the first word it refuses.
-pub(crate) fn plain_words(text: &str, word: impl FnMut(u8, &str, f64) -> bool) -> bool {
+pub(crate) fn plain_words(text: &str, word: impl FnMut(u8, usize, f64) -> bool) -> bool {
     scan::<true>(text, word)
 }
 
 /// [`plain_words`], with the values only if `VALUES` (the check needs none: 0 then).
-fn scan<const VALUES: bool>(text: &str, mut word: impl FnMut(u8, &str, f64) -> bool) -> bool {
+fn scan<const VALUES: bool>(text: &str, mut word: impl FnMut(u8, usize, f64) -> bool) -> bool {
     let b = text.as_bytes();
     let mut i = 0;
     loop {
@@ -54,8 +55,7 @@ fn scan<const VALUES: bool>(text: &str, mut word: impl FnMut(u8, &str, f64) -> b
             Some(c) if c.is_ascii_alphabetic() && !c.eq_ignore_ascii_case(&b'E') => {}
             Some(_) => return false,
         }
-        // The number is ASCII: `i..end` lies on character boundaries.
-        if !word(letter, &text[i..end], value) {
+        if !word(letter, end, value) {
             return false;
         }
         i = end;
@@ -68,10 +68,11 @@ fn plain_number<const VALUES: bool>(b: &[u8], mut i: usize, whole: bool) -> Opti
     let mut mantissa = 0u64;
     let mut count_digits = |i: &mut usize| {
         let start = *i;
-        while *i < b.len() && b[*i].is_ascii_digit() {
+        // A digit is a byte whose distance from `0` is at most 9 (one compare, no second bound).
+        while let Some(digit) = b.get(*i).map(|c| c.wrapping_sub(b'0')).filter(|d| *d <= 9) {
             if VALUES {
                 // At most 15 digits are accepted: an overflow only happens to a refused number.
-                mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(b[*i] - b'0'));
+                mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(digit));
             }
             *i += 1;
         }

@@ -135,14 +135,16 @@ impl Path {
                 }
             }
             Some(arc) => {
-                let (linear, _) = self.arc_parts(arc);
+                // `arc_parts`' linear part, for the first `n` axes only.
+                let turn = arc_turn(arc);
                 for (k, rk) in r[..n].iter_mut().enumerate() {
+                    let linear_k = self.end[k] - self.start[k] - chord(arc, turn, k);
                     // Most axes are outside the circle's plane: skip libm's hypot for them
                     // (hypot(0, 0) is 0 as well).
                     let (u, v) = (arc.u[k], arc.v[k]);
                     let span = if u == 0.0 && v == 0.0 { 0.0 } else { u.hypot(v) };
                     let circle = arc.radius * arc.sweep.abs() * span;
-                    *rk = linear[k].abs() + circle;
+                    *rk = linear_k.abs() + circle;
                 }
             }
         }
@@ -193,19 +195,30 @@ impl Path {
     /// The linear part of an arc path per axis (end − start without the chord of the circle),
     /// and the chord.
     fn arc_parts(&self, arc: &Arc) -> (AxisVec, AxisVec) {
-        let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
         // The same for every axis: computed once, not per axis (libm calls are not hoisted).
-        let (sin0, cos0) = a0.sin_cos();
-        let (sin1, cos1) = a1.sin_cos();
-        let (dcos, dsin) = (cos1 - cos0, sin1 - sin0);
+        let turn = arc_turn(arc);
         let mut linear = [0.0; MAX_CHANNEL_AXES];
-        let mut chord = [0.0; MAX_CHANNEL_AXES];
+        let mut chord_of = [0.0; MAX_CHANNEL_AXES];
         for k in 0..MAX_CHANNEL_AXES {
-            chord[k] = arc.radius * (dcos * arc.u[k] + dsin * arc.v[k]);
-            linear[k] = self.end[k] - self.start[k] - chord[k];
+            chord_of[k] = chord(arc, turn, k);
+            linear[k] = self.end[k] - self.start[k] - chord_of[k];
         }
-        (linear, chord)
+        (linear, chord_of)
     }
+}
+
+/// `(cos a1 − cos a0, sin a1 − sin a0)` of an arc from its start angle a0 to its end a1: the
+/// chord of the unit circle, the same for every axis.
+fn arc_turn(arc: &Arc) -> (f64, f64) {
+    let (a0, a1) = (arc.start_angle, arc.start_angle + arc.sweep);
+    let (sin0, cos0) = a0.sin_cos();
+    let (sin1, cos1) = a1.sin_cos();
+    (cos1 - cos0, sin1 - sin0)
+}
+
+/// The share of axis `k` in the chord of `arc` (`turn` from [`arc_turn`]).
+fn chord(arc: &Arc, (dcos, dsin): (f64, f64), k: usize) -> f64 {
+    arc.radius * (dcos * arc.u[k] + dsin * arc.v[k])
 }
 
 #[cfg(test)]

@@ -111,7 +111,8 @@ impl Move {
     /// Builds a move, deriving its velocity and acceleration limits from the axes.
     /// `length` is the path length the feed refers to (geometry axes, or all axes if none moves).
     pub fn new(path: Path, length: f64, feed: Feed, limits: &[AxisLimit], exact_stop: bool, tag: u32) -> Move {
-        let rate = path.max_rate_of_first(limits.len());
+        // A line's rate per axis is its span, read in the loop (no array built and copied).
+        let rate = path.arc.as_ref().map(|_| path.max_rate_of_first(limits.len()));
         let feed = match feed {
             Feed::Rapid => f64::INFINITY,
             Feed::Path(f) => f,
@@ -119,7 +120,8 @@ impl Move {
         let mut v_max = f64::INFINITY;
         let mut a_max = f64::INFINITY;
         for (i, lim) in limits.iter().enumerate() {
-            let d = rate[i] / length;
+            let rate_i = rate.as_ref().map_or_else(|| (path.end[i] - path.start[i]).abs(), |r| r[i]);
+            let d = rate_i / length;
             if d > 1e-12 {
                 v_max = v_max.min(lim.max_velocity / d);
                 a_max = a_max.min(lim.max_accel / d);
@@ -181,6 +183,11 @@ pub struct Planner {
     a_min: f64,
     /// Planned velocity at the end of each queued move.
     v_end: VecDeque<f64>,
+    /// The corner speed at the end of each queued move but the last ([`Planner::corner_speed`]):
+    /// it depends on that move, the next and the limits only, so a push computes one.
+    corner: VecDeque<f64>,
+    /// The limits changed: the next replan recomputes every corner and end velocity.
+    replan_all: bool,
     /// Distance travelled within the front move.
     s: f64,
     /// Current path velocity.
@@ -211,6 +218,8 @@ impl Planner {
             queue: VecDeque::new(),
             a_min: f64::INFINITY,
             v_end: VecDeque::new(),
+            corner: VecDeque::new(),
+            replan_all: false,
             s: 0.0,
             v: 0.0,
             hold: false,
@@ -237,6 +246,15 @@ impl Planner {
         }
         self.queue.push_back(mv);
         self.v_end.push_back(0.0);
+        self.corner.push_back(0.0);
+        let n = self.queue.len();
+        if self.replan_all {
+            for k in 0..n - 1 {
+                self.corner[k] = self.corner_speed(k);
+            }
+        } else if n > 1 {
+            self.corner[n - 2] = self.corner_speed(n - 2);
+        }
         self.replan();
     }
 
@@ -244,6 +262,7 @@ impl Planner {
     /// planned with.
     pub fn set_limits(&mut self, limits: impl Into<AxisLimits>) {
         self.limits = limits.into();
+        self.replan_all = true;
     }
 
     /// Number of queued moves.
@@ -321,6 +340,7 @@ impl Planner {
         self.front_move = None;
         self.a_min = f64::INFINITY;
         self.v_end.clear();
+        self.corner.clear();
         self.s = 0.0;
         self.v = 0.0;
         self.hold = false;
@@ -363,6 +383,7 @@ impl Planner {
         debug_assert!(self.v == 0.0);
         let Some(done) = self.queue.pop_front() else { return };
         self.v_end.pop_front();
+        self.corner.pop_front();
         self.front_move = None;
         self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
         self.position = done.path.end;
@@ -428,6 +449,7 @@ impl Planner {
                 self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
             }
             self.v_end.pop_front();
+            self.corner.pop_front();
             self.finished.push(done.tag);
             self.s = 0.0;
             if stop_here || self.queue.is_empty() {
@@ -472,17 +494,20 @@ impl Planner {
     fn replan(&mut self) {
         let n = self.queue.len();
         let mut next_v_end = 0.0;
-        for k in (0..n).rev() {
-            let v = if k + 1 == n {
-                0.0
-            } else {
-                let next = &self.queue[k + 1];
-                let reach = brake_speed(next.length, next_v_end, next.a_max, self.dt);
-                self.corner_speed(k).min(reach)
-            };
+        self.v_end[n - 1] = 0.0;
+        for k in (0..n - 1).rev() {
+            let next = &self.queue[k + 1];
+            let reach = brake_speed(next.length, next_v_end, next.a_max, self.dt);
+            let v = self.corner[k].min(reach);
+            // v_end[k] depends only on the moves from k on: where it comes out as before the
+            // push, every earlier one does too.
+            if v.to_bits() == self.v_end[k].to_bits() && !self.replan_all {
+                return;
+            }
             self.v_end[k] = v;
             next_v_end = v;
         }
+        self.replan_all = false;
     }
 
     /// The highest speed at the transition from move `k` to `k+1`. Within the transition
@@ -593,6 +618,56 @@ mod tests {
             }
         }
         assert!(checked > 20, "the brake limit binds in {checked} of the cases");
+    }
+
+    /// The backward pass from scratch over the whole queue, as it was before the corner speeds
+    /// were kept: every transition's corner speed recomputed, no early stop.
+    fn full_backward_pass(p: &Planner) -> Vec<f64> {
+        let n = p.queue.len();
+        let mut v_end = vec![0.0; n];
+        for k in (0..n.saturating_sub(1)).rev() {
+            let next = &p.queue[k + 1];
+            let reach = brake_speed(next.length, v_end[k + 1], next.a_max, DT);
+            v_end[k] = p.corner_speed(k).min(reach);
+        }
+        v_end
+    }
+
+    #[test]
+    fn the_kept_corner_speeds_give_the_end_velocities_of_a_full_backward_pass() {
+        // A zigzag of short and long moves, some exact stop, pushed while the front runs and
+        // is popped; halfway the limits change (lower acceleration: every corner gets slower).
+        // After every push the end velocities equal, bit for bit, those of the full pass.
+        let lim = limits(1000.0, 500.0);
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        let mut at = [0.0; 3];
+        let mut compared = 0;
+        let mut corner_binds = 0;
+        for i in 0..120u32 {
+            let len = if i % 7 == 3 { 25.0 } else { 0.5 + f64::from(i % 5) * 0.3 };
+            let (dx, dy) = if i % 2 == 0 { (len * 0.8, len * 0.6) } else { (len, 0.0) };
+            let next = [at[0] + dx, at[1] + dy, 0.0];
+            p.push(Move::new(line(at, next), len, Feed::Path(300.0), &lim, i % 11 == 10, i));
+            at = next;
+            let want = full_backward_pass(&p);
+            let got: Vec<f64> = p.v_end.iter().copied().collect();
+            assert_eq!(
+                got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                want.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                "push {i}: {got:?} vs {want:?}"
+            );
+            compared += 1;
+            corner_binds +=
+                (0..p.queue.len().saturating_sub(1)).filter(|&k| p.v_end[k] > 0.0 && p.v_end[k] == p.corner[k]).count();
+            if i == 60 {
+                p.set_limits(limits(1000.0, 120.0));
+            }
+            for _ in 0..(i % 4) * 10 {
+                p.step();
+            }
+        }
+        assert_eq!(compared, 120);
+        assert!(corner_binds > 50, "the corner speed decides {corner_binds} transitions");
     }
 
     #[test]

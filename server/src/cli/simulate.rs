@@ -217,16 +217,28 @@ fn read_shared_text(path: &Path) -> Result<(ProgramText, Option<mapped::PageRele
     Ok((ProgramText::from(text), None))
 }
 
-/// Non-empty lines of the program. A mapped program gives its pages back every few MiB of the
-/// scan (the scan is faster than the release thread).
+/// Non-empty lines of the program (lines with a character that is not white space, as
+/// `str::trim` sees it). A mapped program gives its pages back every few MiB of the scan (the
+/// scan is faster than the release thread).
+///
+/// A byte loop rather than `str::lines`: the lines are short, and this pass is on the critical
+/// path of `--interpret-only` (≈ a tenth of its instructions with `lines`).
 fn count_blocks(text: &str, release: Option<&mapped::PageRelease>) -> u64 {
-    let (mut blocks, mut bytes) = (0u64, 0usize);
-    for line in text.lines() {
-        blocks += u64::from(!line.trim().is_empty());
-        bytes += line.len() + 1;
-        if let Some(r) = release.filter(|_| bytes >= mapped::SCAN_CHUNK_BYTES) {
+    let bytes = text.as_bytes();
+    let (mut blocks, mut start, mut released_at) = (0u64, 0usize, 0usize);
+    while start < bytes.len() {
+        let end = bytes[start..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |i| start + i);
+        let first_visible = bytes[start..end].iter().find(|b| !matches!(b, b' ' | b'\t' | b'\r' | 0x0b | 0x0c));
+        blocks += u64::from(match first_visible {
+            None => false,
+            Some(b) if b.is_ascii() => true,
+            // Unicode white space (NBSP, ...) counts as blank, as `trim` has it.
+            Some(_) => !text[start..end].trim().is_empty(),
+        });
+        start = end + 1;
+        if let Some(r) = release.filter(|_| start - released_at >= mapped::SCAN_CHUNK_BYTES) {
             r.now();
-            bytes = 0;
+            released_at = start;
         }
     }
     blocks
@@ -420,10 +432,11 @@ fn prepare_all(channel: &Channel, text: ProgramText, blocks: u64, verdict: &Verd
         out.clear();
         let prep = interp.prepare_next(cfg, &programs, true, &mut out);
         drop(interp.take_data_writes());
-        for item in out.drain(..) {
+        // Read in place: moving each item out would copy every move once more.
+        for item in &out {
             match item {
                 Item::Move { .. } => found.moves += 1,
-                Item::Alarm(a) => found.alarm = Some(dto::AlarmInfo::from(&a)),
+                Item::Alarm(a) => found.alarm = Some(dto::AlarmInfo::from(a)),
                 _ => {}
             }
         }
@@ -530,4 +543,32 @@ pub fn peak_rss_kib() -> Option<u64> {
         .lines()
         .find_map(|l| l.strip_prefix("VmHWM:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::count_blocks;
+    use proptest::prelude::*;
+
+    /// The definition: lines that `trim` leaves non-empty.
+    fn by_definition(text: &str) -> u64 {
+        text.lines().filter(|l| !l.trim().is_empty()).count() as u64
+    }
+
+    #[test]
+    fn blank_lines_do_not_count() {
+        // Three blocks: X1, the comment and Y2; blank, tab-only, CR-only and NBSP-only lines are
+        // not blocks, nor is the empty piece after the last line end.
+        let text = "X1\n\n \t\r\n; note\n\u{a0}\r\n\x0b\x0c\nY2\r\n";
+        assert_eq!(count_blocks(text, None), 3);
+        assert_eq!(count_blocks("", None), 0);
+        assert_eq!(count_blocks("M30", None), 1);
+    }
+
+    proptest! {
+        #[test]
+        fn counts_as_trim_does(text in "([ \\t\\r\\n\\x0b\\x0c]|\u{a0}|\u{2003}|é|X|;){0,40}") {
+            prop_assert_eq!(count_blocks(&text, None), by_definition(&text));
+        }
+    }
 }

@@ -13,7 +13,7 @@
 //! Missing axes (3-/4-axis variants) are the identity rotation; a third axis (6-axis, T only)
 //! sits between axis 2 and the tool with the offset `l23` before it.
 
-use super::solve::{Turn, angle_about, two_axes_turns_stepped};
+use super::solve::{AxisPair, Turn, angle_about};
 use super::stepped::AngleMemo;
 use super::vec3::{Rot, add, sub};
 use crate::kinematics::Vec3;
@@ -136,7 +136,29 @@ impl Chain {
     /// `memo` (see [`super::stepped`]).
     #[inline]
     pub fn solve_turns_stepped(&self, o: &Vec3, hint: &[f64; 3], memo: &mut AngleMemo) -> Option<[[Turn; 3]; 2]> {
-        let [v1, v2, v3] = &self.v;
+        self.solve_turns_paired(&self.axis_pair(), o, hint, memo)
+    }
+
+    /// The first two axes in the order the solve of this kind of chain passes them to
+    /// subproblem 2, with their constant terms: built once per transformation.
+    pub fn axis_pair(&self) -> AxisPair {
+        let [v1, v2, _] = &self.v;
+        match self.kind {
+            ChainKind::Tool | ChainKind::Part => AxisPair::new(v1, v2),
+            ChainKind::Mixed => AxisPair::new(v2, v1),
+        }
+    }
+
+    /// [`Chain::solve_turns_stepped`] with `pair`, this chain's [`Chain::axis_pair`].
+    #[inline(always)]
+    pub fn solve_turns_paired(
+        &self,
+        pair: &AxisPair,
+        o: &Vec3,
+        hint: &[f64; 3],
+        memo: &mut AngleMemo,
+    ) -> Option<[[Turn; 3]; 2]> {
+        let [v1, _, v3] = &self.v;
         let third = if self.axes == 3 { Turn::new(hint[2]) } else { Turn::ZERO };
         if self.axes == 1 {
             let a = match self.kind {
@@ -151,12 +173,12 @@ impl Chain {
             ChainKind::Tool => {
                 let p =
                     if self.axes == 3 { Rot::about_cs(v3, third.cos, third.sin).apply(&self.base) } else { self.base };
-                two_axes_turns_stepped(v1, v2, &p, o, [hint[0], hint[1]], memo)?
+                pair.turns_stepped(&p, o, [hint[0], hint[1]], memo)?
             }
-            ChainKind::Part => two_axes_turns_stepped(v1, v2, o, &self.base, [hint[0], hint[1]], memo)?,
+            ChainKind::Part => pair.turns_stepped(o, &self.base, [hint[0], hint[1]], memo)?,
             ChainKind::Mixed => {
                 // R(v2, −α2)·R(v1, α1)·b = o: subproblem 2 with the axes swapped.
-                let s = two_axes_turns_stepped(v2, v1, &self.base, o, [-hint[1], hint[0]], memo)?;
+                let s = pair.turns_stepped(&self.base, o, [-hint[1], hint[0]], memo)?;
                 s.map(|[t1, t2]| [t2, t1.reversed()])
             }
         };

@@ -132,57 +132,85 @@ pub fn two_axes_turns_stepped(
     hint: [f64; 2],
     memo: &mut AngleMemo,
 ) -> Option<[[Turn; 2]; 2]> {
-    let tol2 = POLE_TOL * POLE_TOL;
-    // |p × w2|² and |q × w1|²: the pole tests, and below the terms of γ².
-    let (pw2, qw1) = (cross(p, w2), cross(q, w1));
-    let (sp2, sq2) = (dot(&pw2, &pw2), dot(&qw1, &qw1));
-    // Pole of the inner axis: R2 leaves p alone, only θ1 matters.
-    if sp2 < tol2 {
-        if (dot(w1, p) - dot(w1, q)).abs() > REACH_TOL {
+    AxisPair::new(w1, w2).turns_stepped(p, q, hint, memo)
+}
+
+/// The two axes of subproblem 2 with the terms that depend on them alone, worked out once per
+/// kinematic chain instead of once per IPO cycle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxisPair {
+    w1: Vec3,
+    w2: Vec3,
+    /// w1 · w2.
+    c12: f64,
+    /// c12² − 1.
+    d: f64,
+    /// w1 × w2 and its squared length.
+    n: Vec3,
+    n2: f64,
+}
+
+impl AxisPair {
+    /// The unit axes `w1` (outer) and `w2` (inner), not parallel.
+    pub fn new(w1: &Vec3, w2: &Vec3) -> AxisPair {
+        let c12 = dot(w1, w2);
+        let n = cross(w1, w2);
+        AxisPair { w1: *w1, w2: *w2, c12, d: c12 * c12 - 1.0, n, n2: dot(&n, &n) }
+    }
+
+    /// [`two_axes_turns_stepped`] about these axes.
+    #[inline]
+    pub fn turns_stepped(&self, p: &Vec3, q: &Vec3, hint: [f64; 2], memo: &mut AngleMemo) -> Option<[[Turn; 2]; 2]> {
+        let (w1, w2) = (&self.w1, &self.w2);
+        let tol2 = POLE_TOL * POLE_TOL;
+        // |p × w2|² and |q × w1|²: the pole tests, and below the terms of γ².
+        let (pw2, qw1) = (cross(p, w2), cross(q, w1));
+        let (sp2, sq2) = (dot(&pw2, &pw2), dot(&qw1, &qw1));
+        // Pole of the inner axis: R2 leaves p alone, only θ1 matters.
+        if sp2 < tol2 {
+            if (dot(w1, p) - dot(w1, q)).abs() > REACH_TOL {
+                return None;
+            }
+            let t1 = Turn::new(angle_about(w1, p, q).unwrap_or(hint[0]));
+            let t2 = Turn::new(hint[1]);
+            return Some([[t1, t2], [t1, t2]]);
+        }
+        // Pole of the outer axis: q lies on w1, so the intermediate vector is q itself.
+        if sq2 < tol2 {
+            if (dot(w2, p) - dot(w2, q)).abs() > REACH_TOL {
+                return None;
+            }
+            let t1 = Turn::new(hint[0]);
+            let t2 = Turn::new(angle_about(w2, p, q).unwrap_or(hint[1]));
+            return Some([[t1, t2], [t1, t2]]);
+        }
+        let (c12, d, n, n2) = (self.c12, self.d, &self.n, self.n2);
+        let (w1p, w2p, w1q, w2q) = (dot(w1, p), dot(w2, p), dot(w1, q), dot(w2, q));
+        let alpha = (c12 * w2p - w1q) / d;
+        let beta = (c12 * w1q - w2p) / d;
+        // γ² = (|p|² − α² − β² − 2αβ·c12)/|n|² cancels badly next to a pole. The same value is
+        // |w1 × q|²/|n|² − β² = |w2 × p|²/|n|² − α² (the distance of c from each axis is kept by
+        // the rotations); taking the form with the smaller subtrahend keeps the tilt accurate to
+        // the last digits of the orientation's own components.
+        let g2 = if beta.abs() <= alpha.abs() { sq2 / n2 - beta * beta } else { sp2 / n2 - alpha * alpha };
+        if g2 < -REACH_TOL {
             return None;
         }
-        let t1 = Turn::new(angle_about(w1, p, q).unwrap_or(hint[0]));
-        let t2 = Turn::new(hint[1]);
-        return Some([[t1, t2], [t1, t2]]);
+        let g = g2.max(0.0).sqrt();
+        // q and p are off the axes here (the pole tests above): their in-plane parts are not zero.
+        let phi_q = memo.of(0, dot(q, n), w2q - c12 * w1q);
+        let phi_p = memo.of(1, -dot(p, n), w1p - c12 * w2p);
+        // c lies on w1 (w2) when both its in-plane coordinates vanish: θ1 (θ2) is free.
+        let chi = (n2 * (beta * beta + g * g) >= tol2).then(|| memo.of(2, g, beta));
+        let psi = (n2 * (alpha * alpha + g * g) >= tol2).then(|| memo.of(3, g, alpha));
+        let t1 = |chi: Turn| phi_q.minus(chi);
+        let t2 = |psi: Turn| psi.minus(phi_p);
+        let (free1, free2) = (|| Turn::new(hint[0]), || Turn::new(hint[1]));
+        Some([
+            [chi.map_or_else(free1, t1), psi.map_or_else(free2, |psi| t2(psi.reversed()))],
+            [chi.map_or_else(free1, |chi| t1(chi.reversed())), psi.map_or_else(free2, t2)],
+        ])
     }
-    // Pole of the outer axis: q lies on w1, so the intermediate vector is q itself.
-    if sq2 < tol2 {
-        if (dot(w2, p) - dot(w2, q)).abs() > REACH_TOL {
-            return None;
-        }
-        let t1 = Turn::new(hint[0]);
-        let t2 = Turn::new(angle_about(w2, p, q).unwrap_or(hint[1]));
-        return Some([[t1, t2], [t1, t2]]);
-    }
-    let c12 = dot(w1, w2);
-    let d = c12 * c12 - 1.0;
-    let (w1p, w2p, w1q, w2q) = (dot(w1, p), dot(w2, p), dot(w1, q), dot(w2, q));
-    let alpha = (c12 * w2p - w1q) / d;
-    let beta = (c12 * w1q - w2p) / d;
-    let n = cross(w1, w2);
-    let n2 = dot(&n, &n);
-    // γ² = (|p|² − α² − β² − 2αβ·c12)/|n|² cancels badly next to a pole. The same value is
-    // |w1 × q|²/|n|² − β² = |w2 × p|²/|n|² − α² (the distance of c from each axis is kept by
-    // the rotations); taking the form with the smaller subtrahend keeps the tilt accurate to
-    // the last digits of the orientation's own components.
-    let g2 = if beta.abs() <= alpha.abs() { sq2 / n2 - beta * beta } else { sp2 / n2 - alpha * alpha };
-    if g2 < -REACH_TOL {
-        return None;
-    }
-    let g = g2.max(0.0).sqrt();
-    // q and p are off the axes here (the pole tests above): their in-plane parts are not zero.
-    let phi_q = memo.of(0, dot(q, &n), w2q - c12 * w1q);
-    let phi_p = memo.of(1, -dot(p, &n), w1p - c12 * w2p);
-    // c lies on w1 (w2) when both its in-plane coordinates vanish: θ1 (θ2) is free.
-    let chi = (n2 * (beta * beta + g * g) >= tol2).then(|| memo.of(2, g, beta));
-    let psi = (n2 * (alpha * alpha + g * g) >= tol2).then(|| memo.of(3, g, alpha));
-    let t1 = |chi: Turn| phi_q.minus(chi);
-    let t2 = |psi: Turn| psi.minus(phi_p);
-    let (free1, free2) = (|| Turn::new(hint[0]), || Turn::new(hint[1]));
-    Some([
-        [chi.map_or_else(free1, t1), psi.map_or_else(free2, |psi| t2(psi.reversed()))],
-        [chi.map_or_else(free1, |chi| t1(chi.reversed())), psi.map_or_else(free2, t2)],
-    ])
 }
 
 #[cfg(test)]
