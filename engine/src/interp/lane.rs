@@ -82,11 +82,13 @@ const LETTERS: [&str; 26] = [
 ];
 
 /// What the lane keeps between its blocks for one machine configuration, so that a plain
-/// block reads nothing twice from it. Cleared whenever the general path prepares a block or
-/// the interpreter is reset, begun, restored or synchronised: the configuration changes only
-/// through the data writes of general blocks (the channel applies them before the next block)
-/// and at a reset, and every other input of the block's offsets (frames, work offset, tool,
-/// plane, toolholder) only through general blocks.
+/// block reads nothing twice from it. What it knows of the offsets goes stale whenever the
+/// general path prepares a block: every input of the block's offsets (frames, work offset,
+/// tool, plane, toolholder) changes only through general blocks. The whole memo is forgotten
+/// when the interpreter is reset, begun, restored or synchronised, and after a general block
+/// that wrote data: the configuration changes only through such data writes (the channel
+/// applies them before the next block) and at a reset. So a statement-heavy program, where
+/// general and lane blocks alternate, does not rebuild the limits and the letter table per block.
 #[derive(Clone, Default)]
 pub(super) struct LaneMemo(Option<Box<Memo>>);
 
@@ -120,9 +122,16 @@ impl LaneMemo {
     }
 
     /// Forgets everything (see the type's doc for when); the allocation stays for the next.
-    pub(super) fn clear(&mut self) {
+    pub(super) fn forget(&mut self) {
         if let Some(m) = self.0.as_mut() {
             m.cfg = 0;
+        }
+    }
+
+    /// Forgets what the memo knows of the offsets (a general block may have changed them).
+    pub(super) fn stale_offsets(&mut self) {
+        if let Some(m) = self.0.as_mut() {
+            m.offsets_fresh = false;
         }
     }
 

@@ -263,7 +263,7 @@ impl Interpreter {
     /// Channel reset with the machine standing at `machine`: modal state to reset values, the
     /// reset transformation (if any); the tool stays selected.
     pub fn reset(&mut self, cfg: &MachineConfig, machine: &AxisVec) {
-        self.lane_memo.clear();
+        self.lane_memo.forget();
         self.modal = Modal::reset(cfg);
         self.flow = None;
         self.calls.clear();
@@ -291,7 +291,7 @@ impl Interpreter {
     /// Starts preparing `text` from the machine's current position. Local variables of an
     /// earlier program are dropped; R parameters and global user data stay.
     pub fn begin_program(&mut self, text: impl Into<ProgramText>, pos: &AxisVec) {
-        self.lane_memo.clear();
+        self.lane_memo.forget();
         self.pos = *pos;
         self.vars.reset_locals();
         self.calls.clear();
@@ -398,8 +398,8 @@ impl Interpreter {
                 return prep;
             }
         }
-        // Any block may change what the lane remembers (see `lane::LaneMemo`).
-        self.lane_memo.clear();
+        // Any block may change the offsets the lane remembers (see `lane::LaneMemo`).
+        self.lane_memo.stale_offsets();
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
@@ -421,6 +421,10 @@ impl Interpreter {
             self.transform_moves(out)?;
             Ok(prep)
         });
+        // Data written may change the configuration before the next block.
+        if !self.data_writes.is_empty() {
+            self.lane_memo.forget();
+        }
         match result {
             Ok(prep) => prep,
             Err(alarm) => self.fail(alarm, out),

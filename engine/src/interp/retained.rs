@@ -64,7 +64,7 @@ impl Interpreter {
     /// cutting edge, toolholder or transformation the machine data no longer has, or a value
     /// that is not finite, leaves the interpreter as it was and names the problem.
     pub fn restore_retained(&mut self, saved: &Retained, cfg: &MachineConfig, machine: &AxisVec) -> Result<(), String> {
-        self.lane_memo.clear();
+        self.lane_memo.forget();
         check(saved, cfg)?;
         let before = (self.offsets.clone(), self.holder.clone(), self.system.clone(), self.vars.r.clone());
         self.offsets.t = saved.tool;

@@ -727,7 +727,7 @@ impl Interpreter {
     /// position is taken back through the lengthened tool (and the prepared machine position
     /// is kept without the offset, as the blocks are prepared).
     pub fn sync_transformation(&mut self, machine: &AxisVec) {
-        self.lane_memo.clear();
+        self.lane_memo.forget();
         let toff = self.offsets.toff;
         match self.trafo.active.as_mut() {
             Some(a) if toff != [0.0; 3] => {
