@@ -195,13 +195,7 @@ mod tests {
     /// The fast path of `number` agrees bit for bit with the standard library's parser.
     #[test]
     fn numbers_parse_exactly_like_the_standard_library() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::lang::test_rng::xorshift(0x9e37_79b9_7f4a_7c15u64);
         let mut cases: Vec<String> =
             ["0", "-0", "+7", ".5", "-.25", "0.1", "123456789012345", "1.000000000000001", "0.0000000000000000000001"]
                 .iter()

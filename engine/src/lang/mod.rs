@@ -11,6 +11,8 @@ mod parser;
 mod plain_line;
 mod statement_scan;
 mod structure;
+#[cfg(test)]
+mod test_rng;
 mod text;
 
 pub use ast::*;

@@ -211,13 +211,7 @@ mod tests {
             "4294967296",
             "123456789012345",
         ];
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::lang::test_rng::xorshift(0x2545_f491_4f6c_dd1du64);
         let mut plain = 0;
         for _ in 0..200_000 {
             let len = (next() % 8) as usize + 1;

@@ -75,13 +75,7 @@ mod tests {
             "DEF REAL A",
         ];
         const TAILS: [&str; 5] = ["", "", " ", " ;x", " X1"];
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::lang::test_rng::xorshift(0x9e37_79b9_7f4a_7c15u64);
         let (mut passed, mut statements) = (0, 0);
         for _ in 0..100_000 {
             let len = (next() % 3) as usize + 1;
