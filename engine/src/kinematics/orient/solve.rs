@@ -49,8 +49,9 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     }
 }
 
-/// `a` shifted by a whole turn into −π..π (for a sum or difference of two `atan2`).
-fn wrap(a: f64) -> f64 {
+/// `a` shifted by a whole turn into −π..π, as `atan2` answers (for a sum or difference of two
+/// `atan2`, or a stepped angle).
+pub(super) fn wrap(a: f64) -> f64 {
     if a > PI {
         a - TAU
     } else if a < -PI {

@@ -8,8 +8,8 @@
 //! of more than [`MAX_STEP`]) and never a wrong angle. The rounding of the sum grows by about
 //! one unit in the last place per cycle; every [`EXACT_EVERY`]th cycle takes `atan2` afresh.
 
-use super::solve::{Turn, atan2};
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use super::solve::{Turn, atan2, wrap};
+use std::f64::consts::FRAC_PI_2;
 
 /// Cycles after which an angle is computed afresh with `atan2` (drift stays below 1e-13 rad).
 pub const EXACT_EVERY: u32 = 64;
@@ -81,21 +81,11 @@ fn atan_small(t: f64) -> f64 {
     t * (1.0 - t2 * (1.0 / 3.0 - t2 * (1.0 / 5.0 - t2 * (1.0 / 7.0 - t2 / 9.0))))
 }
 
-/// `a` shifted by a whole turn into −π..π, as `atan2` answers.
-fn wrap(a: f64) -> f64 {
-    if a > PI {
-        a - TAU
-    } else if a < -PI {
-        a + TAU
-    } else {
-        a
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+    use std::f64::consts::{PI, TAU};
 
     /// Angle difference modulo a whole turn (±π are the same direction).
     fn diff(a: f64, b: f64) -> f64 {
