@@ -276,25 +276,15 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     let (idle_state, idle_ticks, idle_time) = (dto::State::from(&channel.snapshot()), channel.ticks(), channel.time());
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
-    let (mut run, mut load_time_s, mut check_cpu_s) = (Run::default(), 0.0, Some(0.0));
-    if syntax_errors.is_empty() {
-        // The main program's check runs beside the run; stored programs were checked above.
-        let (started_run, checked) = check_beside(&text, |verdict| {
-            channel.run_program_prechecked(text.clone()).map(|()| run_to_end(&mut channel, args, verdict))
-        });
-        let Checked { errors, wall_s, cpu_s } = checked;
-        syntax_errors.extend(SyntaxError::all(&program, errors));
-        (load_time_s, check_cpu_s) = (wall_s, cpu_s);
-        // An error found by the check wins over whatever the discarded run ran into.
-        if syntax_errors.is_empty() {
-            run = started_run.map_err(|e| UsageError(e.to_string()))?;
-        }
-    }
+    // The main program's check runs beside the run; stored programs were checked above.
+    let (started_run, load_time_s, check_cpu_s) = run_beside_check(&text, &program, &mut syntax_errors, |verdict| {
+        channel.run_program_prechecked(text.clone()).map(|()| run_to_end(&mut channel, args, verdict))
+    });
+    let run = started_run.transpose().map_err(|e| UsageError(e.to_string()))?.unwrap_or_default();
     drop(text);
     let loaded = syntax_errors.is_empty();
     let wall_time_s = started.elapsed().as_secs_f64();
-    let cpu_time_s =
-        thread_cpu_time_s().zip(cpu_started).zip(check_cpu_s).map(|((end, start), check)| end - start + check);
+    let cpu_time_s = cpu_since(cpu_started, check_cpu_s);
 
     let outcome = if !loaded {
         Outcome::SyntaxError
@@ -339,6 +329,29 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     })
 }
 
+/// Runs `work` with the main program's syntax check beside it, unless `syntax_errors` already
+/// holds some (then nothing runs). The check's errors join `syntax_errors`; `work`'s result is
+/// kept only when there are none (an error found by the check wins over whatever the discarded
+/// run ran into). Returns the result, the check's wall time and its thread's CPU time.
+fn run_beside_check<T>(
+    text: &str,
+    program: &str,
+    syntax_errors: &mut Vec<SyntaxError>,
+    work: impl FnOnce(&Verdict) -> T,
+) -> (Option<T>, f64, Option<f64>) {
+    if !syntax_errors.is_empty() {
+        return (None, 0.0, Some(0.0));
+    }
+    let (result, Checked { errors, wall_s, cpu_s }) = check_beside(text, work);
+    syntax_errors.extend(SyntaxError::all(program, errors));
+    (syntax_errors.is_empty().then_some(result), wall_s, cpu_s)
+}
+
+/// CPU time of this thread since `started` plus the check thread's (`None` where /proc is missing).
+fn cpu_since(started: Option<f64>, check_cpu_s: Option<f64>) -> Option<f64> {
+    thread_cpu_time_s().zip(started).zip(check_cpu_s).map(|((end, start), check)| end - start + check)
+}
+
 /// `--interpret-only`: block preparation of the whole program (as if the main run had executed
 /// everything prepared so far), counting the moves, with the syntax check beside it (a program
 /// with errors reports them and nothing else).
@@ -353,20 +366,12 @@ fn interpret_only(
     let program_bytes = text.len();
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
-    let (mut prepared, mut load_time_s, mut check_cpu_s) = (Prepared::default(), 0.0, Some(0.0));
-    if syntax_errors.is_empty() {
-        let (found, checked) = check_beside(&text, |verdict| prepare_all(channel, text.clone(), blocks, verdict));
-        let Checked { errors, wall_s, cpu_s } = checked;
-        syntax_errors.extend(SyntaxError::all(&program, errors));
-        (load_time_s, check_cpu_s) = (wall_s, cpu_s);
-        if syntax_errors.is_empty() {
-            prepared = found;
-        }
-    }
-    let Prepared { moves, alarm, limit_hit } = prepared;
+    let (prepared, load_time_s, check_cpu_s) = run_beside_check(&text, &program, &mut syntax_errors, |verdict| {
+        prepare_all(channel, text.clone(), blocks, verdict)
+    });
+    let Prepared { moves, alarm, limit_hit } = prepared.unwrap_or_default();
     let wall_time_s = started.elapsed().as_secs_f64();
-    let cpu_time_s =
-        thread_cpu_time_s().zip(cpu_started).zip(check_cpu_s).map(|((end, start), check)| end - start + check);
+    let cpu_time_s = cpu_since(cpu_started, check_cpu_s);
     let outcome = if !syntax_errors.is_empty() {
         Outcome::SyntaxError
     } else if alarm.is_some() {
