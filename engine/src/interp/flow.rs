@@ -5,8 +5,14 @@
 //! reached, and jumps and skipped branches scan the text for their target. Memory stays
 //! bounded for programs of any length.
 
+mod block_cache;
+
+use std::sync::Arc;
+
 use crate::alarm::Alarm;
 use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, ProgramText, Stmt, Word};
+use block_cache::BlockCache;
+pub(crate) use block_cache::ReadBlock;
 
 /// A position in the program text: byte offset of a line start and its 1-based line number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,7 +50,7 @@ type BlockReader = fn(&str, usize, u32, &mut Vec<Word>) -> Option<(Result<Block,
 pub const MAX_NESTING: usize = 16;
 
 /// The read position of one program level and its open control structures.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub(super) struct Flow {
     pub text: ProgramText,
     /// Next block to read.
@@ -55,6 +61,24 @@ pub(super) struct Flow {
     /// The word list of a block done with (see [`Flow::recycle`]): the next block read is
     /// parsed into its allocation.
     spare: Vec<Word>,
+    /// The furthest read position reached: a read before it reads a line again (a loop).
+    furthest: usize,
+    /// Blocks of lines read again, kept parsed for the next pass; made at the first such read.
+    cache: Option<BlockCache>,
+}
+
+/// The state of the read, without what only saves work (`furthest`, the cache): the debug
+/// cross-check of the fast lane compares this, and the lane reads lines past both.
+impl std::fmt::Debug for Flow {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Flow")
+            .field("text", &self.text)
+            .field("next", &self.next)
+            .field("current", &self.current)
+            .field("control", &self.control)
+            .field("spare", &self.spare)
+            .finish_non_exhaustive()
+    }
 }
 
 impl Flow {
@@ -64,12 +88,19 @@ impl Flow {
 
     /// A reader of `text` positioned at `pos`.
     fn at(text: ProgramText, pos: Pos) -> Flow {
-        Flow { text, next: pos, current: pos, control: Vec::new(), spare: Vec::new() }
+        Flow { text, next: pos, current: pos, control: Vec::new(), spare: Vec::new(), furthest: 0, cache: None }
     }
 
-    /// Takes back a block that was read and is done with: its word list's allocation serves
-    /// the next block.
-    pub fn recycle(&mut self, block: Block) {
+    /// Takes back a block that was read and is done with: a parsed block's word list serves
+    /// the next block parsed.
+    pub fn recycle(&mut self, block: ReadBlock) {
+        match block {
+            ReadBlock::Parsed(block) => self.recycle_parsed(block),
+            ReadBlock::Cached(_) => {}
+        }
+    }
+
+    fn recycle_parsed(&mut self, block: Block) {
         let mut words = block.words;
         if words.capacity() > self.spare.capacity() {
             words.clear();
@@ -77,14 +108,39 @@ impl Flow {
         }
     }
 
-    /// Reads the block at the read position; returns it with its own position.
-    pub fn read(&mut self) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
-        self.read_with(lang::read_block_reusing)
+    /// Reads the block at the read position; returns it with its own position. A line read a
+    /// second time (a loop body) is kept parsed and later passes take it from the cache.
+    pub fn read(&mut self) -> Option<(Result<ReadBlock, lang::Diagnostic>, Pos)> {
+        let from = self.next;
+        if let Some((block, next)) = self.cache.as_ref().and_then(|c| c.get(from)) {
+            let at = Pos { offset: block.offset, line: block.line };
+            (self.next, self.current) = (next, at);
+            return Some((Ok(ReadBlock::Cached(block)), at));
+        }
+        let again = from.offset < self.furthest;
+        let (block, at) = self.read_with(lang::read_block_reusing)?;
+        Some((
+            match block {
+                Ok(block) if again => {
+                    let block = Arc::new(block);
+                    self.cache.get_or_insert_default().put(from, Arc::clone(&block), self.next);
+                    Ok(ReadBlock::Cached(block))
+                }
+                other => other.map(ReadBlock::Parsed),
+            },
+            at,
+        ))
     }
 
     /// As [`Flow::read`], passing over lines that cannot hold a statement (skipped branches).
-    fn read_statement(&mut self) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
-        self.read_with(lang::read_statement_block)
+    /// Lines read again (a branch skipped on every pass of a loop) are read whole instead, so
+    /// the cache keeps them and later passes skip them without the parser.
+    fn read_statement(&mut self) -> Option<(Result<ReadBlock, lang::Diagnostic>, Pos)> {
+        if self.next.offset < self.furthest {
+            return self.read();
+        }
+        let (block, at) = self.read_with(lang::read_statement_block)?;
+        Some((block.map(ReadBlock::Parsed), at))
     }
 
     fn read_with(&mut self, reader: BlockReader) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
@@ -95,6 +151,7 @@ impl Flow {
         };
         self.next = Pos { offset, line };
         self.current = at;
+        self.furthest = self.furthest.max(offset);
         Some((block, at))
     }
 
@@ -105,18 +162,27 @@ impl Flow {
         let mut depth = 0usize;
         // Only statements open, close or end the skipped part.
         while let Some((block, _)) = self.read_statement() {
-            let Ok(mut block) = block else { continue };
-            let Some(stmt) = block.stmt.take() else {
+            let Ok(block) = block else { continue };
+            let Some(stmt) = block.stmt.as_ref() else {
                 self.recycle(block);
                 continue;
             };
-            self.recycle(block);
-            if depth == 0 && stop(&stmt) {
-                return Ok(stmt);
+            let (found, opened, closed) = (depth == 0 && stop(stmt), opens(stmt), closes(stmt));
+            if found {
+                let stmt = match block {
+                    ReadBlock::Parsed(mut block) => {
+                        let stmt = block.stmt.take();
+                        self.recycle_parsed(block);
+                        stmt
+                    }
+                    ReadBlock::Cached(block) => block.stmt.clone(),
+                };
+                return Ok(stmt.expect("looked at above"));
             }
-            if opens(&stmt) {
+            self.recycle(block);
+            if opened {
                 depth += 1;
-            } else if closes(&stmt) {
+            } else if closed {
                 depth = depth.saturating_sub(1);
             }
         }

@@ -51,7 +51,7 @@ impl Interpreter {
         let mut block = block;
         if super::effect_calls::present(&block) {
             self.check_unbound(block.line)?;
-            self.run_effect_calls(&mut block, cfg, out)?;
+            self.run_effect_calls(block.to_mut(), cfg, out)?;
         }
         match &block.stmt {
             Some(Stmt::Proc { params, save, .. }) => self.bind_params(params, *save, block.line)?,
@@ -320,27 +320,26 @@ fn equal(a: &Value, b: &Value) -> bool {
 
 /// True if any expression of the block reads a main-run variable.
 fn reads_main_run(block: &Block) -> bool {
-    let mut exprs: Vec<&Expr> = Vec::new();
-    for w in &block.words {
-        match w {
-            Word::Address { indices, value, .. } => {
-                exprs.push(&value.expr);
-                exprs.extend(indices);
-            }
-            Word::Keyword { args, .. } => exprs.extend(args),
-            _ => {}
+    // Asked of every block while the main run is busy: no list of the expressions is made.
+    let words = block.words.iter().any(|w| match w {
+        // SPOS starts from where the spindle stands in the main run.
+        Word::Address { name, .. } if name == "SPOS" => true,
+        Word::Address { indices, value, .. } => {
+            expr_reads_main_run(&value.expr) || indices.iter().any(expr_reads_main_run)
         }
-    }
-    match &block.stmt {
-        Some(Stmt::If { cond, .. } | Stmt::While(cond) | Stmt::Until(cond)) => exprs.push(cond),
-        Some(Stmt::For { start, end, .. }) => exprs.extend([start, end]),
-        Some(Stmt::Case { expr, .. }) => exprs.push(expr),
-        Some(Stmt::Def { vars, .. }) => exprs.extend(vars.iter().flat_map(|v| v.init.iter().chain(&v.dims))),
-        _ => {}
-    }
-    // SPOS starts from where the spindle stands in the main run.
-    let spos = block.words.iter().any(|w| matches!(w, Word::Address { name, .. } if name == "SPOS"));
-    spos || exprs.into_iter().any(expr_reads_main_run)
+        Word::Keyword { args, .. } => args.iter().any(expr_reads_main_run),
+        _ => false,
+    });
+    words
+        || match &block.stmt {
+            Some(Stmt::If { cond, .. } | Stmt::While(cond) | Stmt::Until(cond)) => expr_reads_main_run(cond),
+            Some(Stmt::For { start, end, .. }) => expr_reads_main_run(start) || expr_reads_main_run(end),
+            Some(Stmt::Case { expr, .. }) => expr_reads_main_run(expr),
+            Some(Stmt::Def { vars, .. }) => {
+                vars.iter().flat_map(|v| v.init.iter().chain(&v.dims)).any(expr_reads_main_run)
+            }
+            _ => false,
+        }
 }
 
 fn expr_reads_main_run(e: &Expr) -> bool {
