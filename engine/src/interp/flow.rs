@@ -279,3 +279,91 @@ pub(super) fn opens(s: &Stmt) -> bool {
 pub(super) fn closes(s: &Stmt) -> bool {
     matches!(s, Stmt::EndIf | Stmt::EndWhile | Stmt::EndFor | Stmt::Until(_) | Stmt::EndLoop)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reads blocks from `from` until (and with) the block at line `last`.
+    fn pass(flow: &mut Flow, from: Pos, last: u32) -> Vec<(ReadBlock, Pos, Pos)> {
+        flow.next = from;
+        let mut out = Vec::new();
+        loop {
+            let (block, at) = flow.read().expect("a block");
+            let block = block.expect("no syntax error");
+            let done = block.line == last;
+            out.push((block, at, flow.next));
+            if done {
+                return out;
+            }
+        }
+    }
+
+    /// The start of 1-based line `n` of `text`, worked out by counting line breaks.
+    fn line_start(text: &str, n: u32) -> Pos {
+        let offset = text.split_inclusive('\n').take(n as usize - 1).map(str::len).sum();
+        Pos { offset, line: n }
+    }
+
+    #[test]
+    fn a_loop_body_read_again_is_the_parse_of_its_text_and_parsed_only_once() {
+        let text = "R1=0\nWHILE R1<3\n  R2=R1*2+SIN(30) ; half\n\n  X=R2 Y10\nENDWHILE\nM30\n";
+        let expected = lang::parse(text).blocks;
+        let mut flow = Flow::new(ProgramText::from_owner(text.to_string()));
+        let first = pass(&mut flow, Pos { offset: 0, line: 1 }, 6);
+        let while_at = line_start(text, 2);
+        let second = pass(&mut flow, while_at, 6);
+        let third = pass(&mut flow, while_at, 6);
+        // The first pass reads new text; the loop's next passes read it again.
+        assert!(first.iter().all(|(b, ..)| matches!(b, ReadBlock::Parsed(_))));
+        assert!(second.iter().chain(&third).all(|(b, ..)| matches!(b, ReadBlock::Cached(_))));
+        for run in [&first[1..], &second[..], &third[..]] {
+            let blocks: Vec<&Block> = run.iter().map(|(b, ..)| &**b).collect();
+            assert_eq!(blocks, expected[1..5].iter().collect::<Vec<_>>());
+            // Each block stands where its line starts; the empty line 4 is passed over.
+            let starts: Vec<Pos> = run.iter().map(|(_, at, _)| *at).collect();
+            assert_eq!(starts, [2, 3, 5, 6].map(|n| line_start(text, n)));
+            assert_eq!(run.last().map(|(.., next)| *next), Some(line_start(text, 7)));
+        }
+        // The third pass takes the second pass's blocks: the same allocations, no new parse.
+        for ((b2, ..), (b3, ..)) in second.iter().zip(&third) {
+            let (ReadBlock::Cached(b2), ReadBlock::Cached(b3)) = (b2, b3) else { unreachable!("checked above") };
+            assert!(Arc::ptr_eq(b2, b3));
+        }
+    }
+
+    #[test]
+    fn a_branch_skipped_on_every_pass_stops_at_its_own_else() {
+        let text =
+            "WHILE R1<2\nIF R1>5\n  IF R2>1\n    R3=1\n  ELSE\n    R3=2\n  ENDIF\nELSE\n  R3=3\nENDIF\nENDWHILE\n";
+        let mut flow = Flow::new(ProgramText::from_owner(text.to_string()));
+        for _ in 0..4 {
+            // WHILE, then the IF whose condition is false: skip to its ELSE (line 8), not to
+            // the nested IF's ELSE (line 5).
+            pass(&mut flow, Pos { offset: 0, line: 1 }, 2);
+            let found = flow.skip(2, |s| matches!(s, Stmt::Else | Stmt::EndIf)).expect("closed");
+            assert_eq!(found, Stmt::Else);
+            assert_eq!(flow.next, line_start(text, 9));
+            assert_eq!(flow.current, line_start(text, 8));
+        }
+        assert!(flow.cache.is_some(), "the passes after the first read the branch again");
+    }
+
+    #[test]
+    fn a_body_longer_than_the_cache_still_reads_every_line_right() {
+        let lines = 2 * block_cache::SLOTS + 7;
+        let mut text = String::from("LOOP\n");
+        for i in 0..lines {
+            text.push_str(&format!("R{}=R{}+{i}\n", i % 90, (i + 1) % 90));
+        }
+        text.push_str("ENDLOOP\n");
+        let expected = lang::parse(&text).blocks;
+        let last = lines as u32 + 2;
+        let mut flow = Flow::new(ProgramText::from_owner(text.clone()));
+        for _ in 0..3 {
+            let run = pass(&mut flow, line_start(&text, 2), last);
+            assert_eq!(run.len(), lines + 1);
+            assert!(run.iter().zip(&expected[1..]).all(|((b, ..), e)| **b == *e));
+        }
+    }
+}
