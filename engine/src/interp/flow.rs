@@ -11,8 +11,8 @@ use std::sync::Arc;
 
 use crate::alarm::Alarm;
 use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, ProgramText, Stmt, Word};
-use block_cache::BlockCache;
 pub(crate) use block_cache::ReadBlock;
+use block_cache::{BlockCache, CachedBlock};
 
 /// A position in the program text: byte offset of a line start and its 1-based line number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -113,16 +113,17 @@ impl Flow {
     pub fn read(&mut self) -> Option<(Result<ReadBlock, lang::Diagnostic>, Pos)> {
         let from = self.next;
         if let Some((block, next)) = self.cache.as_ref().and_then(|c| c.get(from)) {
-            let at = Pos { offset: block.offset, line: block.line };
+            let read = ReadBlock::Cached(block);
+            let at = Pos { offset: read.offset, line: read.line };
             (self.next, self.current) = (next, at);
-            return Some((Ok(ReadBlock::Cached(block)), at));
+            return Some((Ok(read), at));
         }
         let again = from.offset < self.furthest;
         let (block, at) = self.read_with(lang::read_block_reusing)?;
         Some((
             match block {
                 Ok(block) if again => {
-                    let block = Arc::new(block);
+                    let block = Arc::new(CachedBlock::new(block));
                     self.cache.get_or_insert_default().put(from, Arc::clone(&block), self.next);
                     Ok(ReadBlock::Cached(block))
                 }
@@ -175,7 +176,7 @@ impl Flow {
                         self.recycle_parsed(block);
                         stmt
                     }
-                    ReadBlock::Cached(block) => block.stmt.clone(),
+                    ReadBlock::Cached(_) => block.stmt.clone(),
                 };
                 return Ok(stmt.expect("looked at above"));
             }

@@ -40,7 +40,7 @@ impl Interpreter {
             alarm.number = d.alarm;
             alarm
         })?;
-        if !main_run_idle && reads_main_run(&block) {
+        if !main_run_idle && block.reads_main_run() {
             // The control's implicit preprocessing stop: wait for the main run, then read again.
             flow.next = next;
             flow.current = current;
@@ -49,7 +49,7 @@ impl Interpreter {
         // DELOBJ/CORRTRAFO as functions and CORRTRAFO as a statement run once, here, after
         // any wait for the main run.
         let mut block = block;
-        if super::effect_calls::present(&block) {
+        if block.has_effect_calls() {
             self.check_unbound(block.line)?;
             self.run_effect_calls(block.to_mut(), cfg, out)?;
         }
@@ -319,7 +319,7 @@ fn equal(a: &Value, b: &Value) -> bool {
 }
 
 /// True if any expression of the block reads a main-run variable.
-fn reads_main_run(block: &Block) -> bool {
+pub(super) fn reads_main_run(block: &Block) -> bool {
     // Asked of every block while the main run is busy: no list of the expressions is made.
     let words = block.words.iter().any(|w| match w {
         // SPOS starts from where the spindle stands in the main run.

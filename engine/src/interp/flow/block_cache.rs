@@ -8,7 +8,7 @@
 //! [`super::Flow`], whose program text never changes, so an entry never goes stale.
 
 use std::ops::Deref;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use super::Pos;
 use crate::lang::Block;
@@ -21,7 +21,22 @@ pub(super) const SLOTS: usize = 128;
 #[derive(Debug)]
 pub(crate) enum ReadBlock {
     Parsed(Block),
-    Cached(Arc<Block>),
+    Cached(Arc<CachedBlock>),
+}
+
+/// A kept block and what preparation asks of every block before it runs, worked out at the
+/// first pass that asks (both depend on the block's text only).
+#[derive(Debug)]
+pub(crate) struct CachedBlock {
+    block: Block,
+    effect_calls: OnceLock<bool>,
+    reads_main_run: OnceLock<bool>,
+}
+
+impl CachedBlock {
+    pub fn new(block: Block) -> CachedBlock {
+        CachedBlock { block, effect_calls: OnceLock::new(), reads_main_run: OnceLock::new() }
+    }
 }
 
 impl Deref for ReadBlock {
@@ -29,7 +44,7 @@ impl Deref for ReadBlock {
     fn deref(&self) -> &Block {
         match self {
             ReadBlock::Parsed(b) => b,
-            ReadBlock::Cached(b) => b,
+            ReadBlock::Cached(b) => &b.block,
         }
     }
 }
@@ -39,11 +54,29 @@ impl ReadBlock {
     /// first, so the cache keeps the text's block.
     pub fn to_mut(&mut self) -> &mut Block {
         if let ReadBlock::Cached(shared) = self {
-            *self = ReadBlock::Parsed(Block::clone(shared));
+            *self = ReadBlock::Parsed(shared.block.clone());
         }
         match self {
             ReadBlock::Parsed(b) => b,
             ReadBlock::Cached(_) => unreachable!("copied above"),
+        }
+    }
+
+    /// `effect_calls::present`: the block calls DELOBJ or CORRTRAFO.
+    pub fn has_effect_calls(&self) -> bool {
+        let find = crate::interp::effect_calls::present;
+        match self {
+            ReadBlock::Parsed(b) => find(b),
+            ReadBlock::Cached(c) => *c.effect_calls.get_or_init(|| find(&c.block)),
+        }
+    }
+
+    /// `statements::reads_main_run`: the block waits for the main run before it is prepared.
+    pub fn reads_main_run(&self) -> bool {
+        let find = crate::interp::statements::reads_main_run;
+        match self {
+            ReadBlock::Parsed(b) => find(b),
+            ReadBlock::Cached(c) => *c.reads_main_run.get_or_init(|| find(&c.block)),
         }
     }
 }
@@ -52,7 +85,7 @@ impl ReadBlock {
 #[derive(Debug, Clone)]
 struct Entry {
     from: usize,
-    block: Arc<Block>,
+    block: Arc<CachedBlock>,
     next: Pos,
 }
 
@@ -74,13 +107,13 @@ impl BlockCache {
     }
 
     /// The block a read from `from` found before, and the read position after it.
-    pub fn get(&self, from: Pos) -> Option<(Arc<Block>, Pos)> {
+    pub fn get(&self, from: Pos) -> Option<(Arc<CachedBlock>, Pos)> {
         let entry = self.slots[Self::slot(from)].as_ref().filter(|e| e.from == from.offset)?;
         Some((Arc::clone(&entry.block), entry.next))
     }
 
     /// Keeps the block a read from `from` found (replacing the slot's older line).
-    pub fn put(&mut self, from: Pos, block: Arc<Block>, next: Pos) {
+    pub fn put(&mut self, from: Pos, block: Arc<CachedBlock>, next: Pos) {
         self.slots[Self::slot(from)] = Some(Entry { from: from.offset, block, next });
     }
 }
@@ -90,8 +123,8 @@ mod tests {
     use super::*;
     use crate::lang::parse_block;
 
-    fn block(text: &str, line: u32, offset: usize) -> Arc<Block> {
-        Arc::new(parse_block(text, line, offset).expect("valid").expect("not empty"))
+    fn block(text: &str, line: u32, offset: usize) -> Arc<CachedBlock> {
+        Arc::new(CachedBlock::new(parse_block(text, line, offset).expect("valid").expect("not empty")))
     }
 
     #[test]
@@ -101,14 +134,14 @@ mod tests {
         let next = Pos { offset: 52, line: 4 };
         cache.put(from, block("R1=R1+1", 3, 40), next);
         let (found, after) = cache.get(from).expect("kept");
-        assert_eq!((found.line, found.offset, after), (3, 40, next));
+        assert_eq!((found.block.line, found.block.offset, after), (3, 40, next));
         // Same slot (line + SLOTS), other text position: a different line, not this block.
         let other = Pos { offset: 4000, line: 3 + SLOTS as u32 };
         assert!(cache.get(other).is_none());
         // It replaces the slot's entry.
         cache.put(other, block("R2=1", other.line, other.offset), Pos { offset: 4005, line: other.line + 1 });
         assert!(cache.get(from).is_none());
-        assert_eq!(cache.get(other).map(|(b, _)| b.line), Some(3 + SLOTS as u32));
+        assert_eq!(cache.get(other).map(|(b, _)| b.block.line), Some(3 + SLOTS as u32));
     }
 
     #[test]
@@ -119,7 +152,8 @@ mod tests {
             cache.put(pos(i), block("G1 X1", pos(i).line, pos(i).offset), pos(i + 1));
         }
         assert!(
-            (0..SLOTS as u32).all(|i| cache.get(pos(i)).is_some_and(|(b, n)| b.line == 100 + i && n == pos(i + 1)))
+            (0..SLOTS as u32)
+                .all(|i| cache.get(pos(i)).is_some_and(|(b, n)| b.block.line == 100 + i && n == pos(i + 1)))
         );
     }
 
@@ -129,6 +163,20 @@ mod tests {
         let mut read = ReadBlock::Cached(Arc::clone(&shared));
         read.to_mut().words.clear();
         assert!(read.words.is_empty());
-        assert_eq!(shared.words.len(), 2, "the cached block still holds the line's words");
+        assert_eq!(shared.block.words.len(), 2, "the cached block still holds the line's words");
+    }
+
+    #[test]
+    fn what_is_asked_of_a_cached_block_is_what_its_text_says() {
+        // SPOS reads where the spindle stands in the main run; DELOBJ as a function has effects.
+        for (text, effects, main_run) in
+            [("X10", false, false), ("SPOS=90", false, true), ("R1=DELOBJ(\"K\") X=$AA_IM[X]", true, true)]
+        {
+            let parsed = ReadBlock::Parsed(parse_block(text, 1, 0).expect("valid").expect("not empty"));
+            let cached = ReadBlock::Cached(block(text, 1, 0));
+            for read in [&parsed, &cached, &cached] {
+                assert_eq!((read.has_effect_calls(), read.reads_main_run()), (effects, main_run), "{text}");
+            }
+        }
     }
 }
