@@ -76,7 +76,8 @@ impl Interpreter {
                 _ => None,
             });
         }
-        let caller = self.flow.take().expect("a call happens inside a program");
+        let mut caller = self.flow.take().expect("a call happens inside a program");
+        let flow = Flow::for_call(text.clone(), &mut caller);
         self.calls.push(CallFrame {
             caller,
             text: text.clone(),
@@ -89,7 +90,7 @@ impl Interpreter {
             save: false,
         });
         self.vars.push_frame();
-        self.flow = Some(Flow::new(text));
+        self.flow = Some(flow);
         Ok(())
     }
 
@@ -173,12 +174,20 @@ impl Interpreter {
             self.vars.pop_frame();
             self.write_back(&results, cfg, line)?;
             self.vars.push_frame();
-            self.flow = Some(Flow::new(text));
+            self.flow = Some(match self.flow.take() {
+                // The repetition reruns the text of the run that ends.
+                Some(run) => run.rerun(),
+                None => Flow::new(text),
+            });
             return Ok(true);
         }
         let frame = self.calls.pop().expect("checked above");
         self.vars.pop_frame();
-        self.flow = Some(frame.caller);
+        let mut caller = frame.caller;
+        if let Some(run) = self.flow.take() {
+            run.return_to(&mut caller);
+        }
+        self.flow = Some(caller);
         self.write_back(&results, cfg, line)?;
         Ok(true)
     }

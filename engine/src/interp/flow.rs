@@ -65,6 +65,18 @@ pub(super) struct Flow {
     furthest: usize,
     /// Blocks of lines read again, kept parsed for the next pass; made at the first such read.
     cache: Option<BlockCache>,
+    /// What the last run of a subprogram called from here learned of its text, for the next
+    /// call of the same text (a cycle called at every position).
+    callee: Option<Box<Learned>>,
+}
+
+/// A finished run's `furthest` and cache, with the text they belong to (kept alive with them,
+/// so another text can never pass for it).
+#[derive(Clone)]
+struct Learned {
+    text: ProgramText,
+    furthest: usize,
+    cache: Option<BlockCache>,
 }
 
 /// The state of the read, without what only saves work (`furthest`, the cache): the debug
@@ -88,7 +100,38 @@ impl Flow {
 
     /// A reader of `text` positioned at `pos`.
     fn at(text: ProgramText, pos: Pos) -> Flow {
-        Flow { text, next: pos, current: pos, control: Vec::new(), spare: Vec::new(), furthest: 0, cache: None }
+        Flow {
+            text,
+            next: pos,
+            current: pos,
+            control: Vec::new(),
+            spare: Vec::new(),
+            furthest: 0,
+            cache: None,
+            callee: None,
+        }
+    }
+
+    /// A reader of the subprogram `text` called from `caller`: when the caller's last call ran
+    /// the same text, its lines are known (read before, cached) from the start.
+    pub fn for_call(text: ProgramText, caller: &mut Flow) -> Flow {
+        let mut flow = Flow::new(text);
+        if let Some(learned) = caller.callee.take().filter(|l| same_text(&l.text, &flow.text)) {
+            (flow.furthest, flow.cache) = (learned.furthest, learned.cache);
+        }
+        flow
+    }
+
+    /// The next run of the same program (a call with repetitions), with what this run learned.
+    pub fn rerun(self) -> Flow {
+        let mut flow = Flow::new(self.text);
+        (flow.furthest, flow.cache) = (self.furthest, self.cache);
+        flow
+    }
+
+    /// Hands what this finished subprogram run learned to the `caller` it returns to.
+    pub fn return_to(self, caller: &mut Flow) {
+        caller.callee = Some(Box::new(Learned { text: self.text, furthest: self.furthest, cache: self.cache }));
     }
 
     /// Takes back a block that was read and is done with: a parsed block's word list serves
@@ -272,6 +315,13 @@ impl Flow {
     }
 }
 
+/// Whether both read the same bytes in memory. Each call wraps the stored program anew, so the
+/// wrappers differ; the bytes do not. `Learned` keeps its text alive, so no other text can
+/// have been put at its address.
+fn same_text(a: &ProgramText, b: &ProgramText) -> bool {
+    std::ptr::eq(a.as_ptr(), b.as_ptr()) && a.len() == b.len()
+}
+
 /// Statements that open a structure closed by a later statement.
 pub(super) fn opens(s: &Stmt) -> bool {
     matches!(s, Stmt::If { goto: None, .. } | Stmt::While(_) | Stmt::For { .. } | Stmt::Repeat | Stmt::Loop)
@@ -366,5 +416,32 @@ mod tests {
             assert_eq!(run.len(), lines + 1);
             assert!(run.iter().zip(&expected[1..]).all(|((b, ..), e)| **b == *e));
         }
+    }
+
+    #[test]
+    fn a_subprogram_called_again_reads_its_blocks_from_the_last_runs_cache() {
+        // As `Interpreter::call` does: the stored program wrapped anew at every call.
+        let stored: Arc<str> = Arc::from("PROC CYC\nR1=R1+1\nG1 X=R1\nM17\n");
+        let mut caller = Flow::new(ProgramText::from_owner("CYC\nCYC\nCYC\nM30\n".to_string()));
+        let run = |callee: &mut Flow| -> Vec<ReadBlock> {
+            std::iter::from_fn(|| callee.read().map(|(b, _)| b.expect("no syntax error"))).collect()
+        };
+        let mut kinds = Vec::new();
+        for _ in 0..3 {
+            let mut callee = Flow::for_call(ProgramText::from(Arc::clone(&stored)), &mut caller);
+            let blocks = run(&mut callee);
+            assert_eq!(blocks.iter().map(|b| b.line).collect::<Vec<_>>(), [1, 2, 3, 4]);
+            kinds.push(blocks.iter().all(|b| matches!(b, ReadBlock::Cached(_))));
+            callee.return_to(&mut caller);
+        }
+        // The first call reads new text, the second fills the cache, the third uses it.
+        assert_eq!(kinds, [false, true, true]);
+        // The same lines in another text (a program loaded anew) are parsed from that text.
+        let reloaded = ProgramText::from_owner("PROC CYC\nR1=R1+1\nG1 X=R1\nM17\n".to_string());
+        let mut callee = Flow::for_call(reloaded, &mut caller);
+        assert!(run(&mut callee).iter().all(|b| matches!(b, ReadBlock::Parsed(_))));
+        // A repeated call (`CYC P3`) reruns with what its last run learned.
+        let mut again = callee.rerun();
+        assert!(run(&mut again).iter().all(|b| matches!(b, ReadBlock::Cached(_))));
     }
 }
