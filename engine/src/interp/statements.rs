@@ -12,7 +12,9 @@ use crate::lang::{Block, Expr, Stmt, VarDecl, VarType, Word};
 use crate::machine_data::MachineConfig;
 
 impl Interpreter {
-    /// Reads and prepares the next block of the program.
+    /// Reads and prepares the next block of the program. Kept out of `prepare_next`, so that
+    /// the fast lane's code there is compiled the same whatever the general path holds.
+    #[inline(never)]
     pub(super) fn step_program(
         &mut self,
         cfg: &MachineConfig,
