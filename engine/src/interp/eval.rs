@@ -1,6 +1,8 @@
 //! Evaluation of expressions: operators with the control's semantics, the predefined
 //! functions, variables and system variables.
 
+pub(super) mod numeric;
+
 use super::frame::{self, Frame, GeoAxes};
 use super::value::Value;
 use super::vars::Variables;
@@ -113,6 +115,12 @@ pub fn eval_f64(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<f64, Alarm>
         && n.is_finite()
     {
         return Ok(*n + 0.0);
+    }
+    // Plain arithmetic (`R1*0.5+SIN(R2)`) without the general evaluator's values.
+    if let Some(x) = numeric::numeric(expr, &scope.vars().r).map(numeric::Num::as_f64)
+        && x.is_finite()
+    {
+        return Ok(x);
     }
     let v = eval(expr, scope, line)?;
     let x = v.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?;

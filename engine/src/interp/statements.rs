@@ -99,6 +99,10 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let line = block.line;
         let cond = |this: &Self, e: &Expr| -> Result<bool, Alarm> {
+            // A comparison of plain arithmetic (`R1<R10`) needs no system view.
+            if let Some(truth) = super::eval::numeric::condition(e, &this.vars.r) {
+                return Ok(truth);
+            }
             let sys = sys_view!(this, cfg);
             eval(e, &Ctx { vars: &this.vars, sys: &sys }, line)?.as_bool().map_err(|e| Alarm::type_error(line, &e.0))
         };
