@@ -6,6 +6,7 @@
 //! bounded for programs of any length.
 
 mod block_cache;
+mod jump_memo;
 
 use std::sync::Arc;
 
@@ -13,6 +14,7 @@ use crate::alarm::Alarm;
 use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, ProgramText, Stmt, Word};
 pub(crate) use block_cache::ReadBlock;
 use block_cache::{BlockCache, CachedBlock};
+use jump_memo::JumpMemo;
 
 /// A position in the program text: byte offset of a line start and its 1-based line number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,6 +67,8 @@ pub(super) struct Flow {
     furthest: usize,
     /// Blocks of lines read again, kept parsed for the next pass; made at the first such read.
     cache: Option<BlockCache>,
+    /// The answers of the last jump searches; made at the first jump.
+    jumps: Option<Box<JumpMemo>>,
     /// What the last run of a subprogram called from here learned of its text, for the next
     /// call of the same text (a cycle called at every position).
     callee: Option<Box<Learned>>,
@@ -77,6 +81,7 @@ struct Learned {
     text: ProgramText,
     furthest: usize,
     cache: Option<BlockCache>,
+    jumps: Option<Box<JumpMemo>>,
 }
 
 /// The state of the read, without what only saves work (`furthest`, the cache): the debug
@@ -108,6 +113,7 @@ impl Flow {
             spare: Vec::new(),
             furthest: 0,
             cache: None,
+            jumps: None,
             callee: None,
         }
     }
@@ -117,7 +123,7 @@ impl Flow {
     pub fn for_call(text: ProgramText, caller: &mut Flow) -> Flow {
         let mut flow = Flow::new(text);
         if let Some(learned) = caller.callee.take().filter(|l| same_text(&l.text, &flow.text)) {
-            (flow.furthest, flow.cache) = (learned.furthest, learned.cache);
+            (flow.furthest, flow.cache, flow.jumps) = (learned.furthest, learned.cache, learned.jumps);
         }
         flow
     }
@@ -125,13 +131,14 @@ impl Flow {
     /// The next run of the same program (a call with repetitions), with what this run learned.
     pub fn rerun(self) -> Flow {
         let mut flow = Flow::new(self.text);
-        (flow.furthest, flow.cache) = (self.furthest, self.cache);
+        (flow.furthest, flow.cache, flow.jumps) = (self.furthest, self.cache, self.jumps);
         flow
     }
 
     /// Hands what this finished subprogram run learned to the `caller` it returns to.
     pub fn return_to(self, caller: &mut Flow) {
-        caller.callee = Some(Box::new(Learned { text: self.text, furthest: self.furthest, cache: self.cache }));
+        let Flow { text, furthest, cache, jumps, .. } = self;
+        caller.callee = Some(Box::new(Learned { text, furthest, cache, jumps }));
     }
 
     /// Takes back a block that was read and is done with: a parsed block's word list serves
@@ -246,13 +253,13 @@ impl Flow {
     /// not exist (the program goes on with the next block).
     pub fn jump(&mut self, goto: &Goto) -> Result<bool, Alarm> {
         let from = self.current;
-        let forward = || self.find(goto, from, false);
-        let backward = || self.find(goto, Pos { offset: 0, line: 1 }, true);
         let found = match goto.kind {
             _ if goto.target == JumpTarget::ProgramStart => Some(Pos { offset: 0, line: 1 }),
-            GotoKind::Forward => forward(),
-            GotoKind::Backward => backward(),
-            GotoKind::Both | GotoKind::Continue | GotoKind::Start => forward().or_else(backward),
+            GotoKind::Forward => self.search(goto, false),
+            GotoKind::Backward => self.search(goto, true),
+            GotoKind::Both | GotoKind::Continue | GotoKind::Start => {
+                self.search(goto, false).or_else(|| self.search(goto, true))
+            }
         };
         let Some(target) = found else {
             if goto.kind == GotoKind::Continue {
@@ -280,6 +287,20 @@ impl Flow {
         }
         self.next = target;
         Ok(true)
+    }
+
+    /// [`Flow::find`] from the jumping block (forward) or the program start (backward), answered
+    /// from the memo when the same search ran before.
+    fn search(&mut self, goto: &Goto, backward: bool) -> Option<Pos> {
+        // A backward search ends before the jumping block: that is where it depends on.
+        let from = self.current.offset;
+        if let Some(found) = self.jumps.as_ref().and_then(|m| m.get(&goto.target, backward, from)) {
+            return found;
+        }
+        let start = if backward { Pos { offset: 0, line: 1 } } else { self.current };
+        let found = self.find(goto, start, backward);
+        self.jumps.get_or_insert_default().put(&goto.target, backward, from, found);
+        found
     }
 
     /// The block carrying the jump target: searching forward, the first one after `from`;
@@ -443,5 +464,35 @@ mod tests {
         // A repeated call (`CYC P3`) reruns with what its last run learned.
         let mut again = callee.rerun();
         assert!(run(&mut again).iter().all(|b| matches!(b, ReadBlock::Cached(_))));
+    }
+
+    #[test]
+    fn a_jump_made_again_lands_where_the_first_search_found_its_target() {
+        let text = "R1=0\nN10 R2=1\nSTART: R1=R1+1\nG1 X=R1\nIF R1<3 GOTOB START\nGOTOF N10\nGOTOC NOWHERE\nM30\n";
+        let mut flow = Flow::new(ProgramText::from_owner(text.to_string()));
+        let goto = |kind, target| Goto { kind, target };
+        let back = goto(GotoKind::Backward, JumpTarget::Label("START".into()));
+        for _ in 0..3 {
+            pass(&mut flow, line_start(text, 3), 5);
+            assert_eq!(flow.jump(&back), Ok(true));
+            assert_eq!(flow.next, line_start(text, 3), "the label's block runs again");
+        }
+        // N10 lies behind GOTOF: not found, every time (alarm 14080).
+        for _ in 0..2 {
+            pass(&mut flow, line_start(text, 6), 6);
+            assert!(flow.jump(&goto(GotoKind::Forward, JumpTarget::BlockNumber(10))).is_err());
+        }
+        // GOTOC to a missing label goes on with the next block, every time.
+        for _ in 0..2 {
+            pass(&mut flow, line_start(text, 7), 7);
+            assert_eq!(flow.jump(&goto(GotoKind::Continue, JumpTarget::Label("NOWHERE".into()))), Ok(false));
+            assert_eq!(flow.next, line_start(text, 8));
+        }
+        // GOTO (forward, then backward) from line 6 finds N10 behind it.
+        for _ in 0..2 {
+            pass(&mut flow, line_start(text, 6), 6);
+            assert_eq!(flow.jump(&goto(GotoKind::Both, JumpTarget::BlockNumber(10))), Ok(true));
+            assert_eq!(flow.next, line_start(text, 2));
+        }
     }
 }
