@@ -734,7 +734,7 @@ const LEVELS: &[&[(&str, BinOp)]] = &[
 /// Parses an expression with the control's operator priorities; equal priorities associate
 /// to the left.
 pub(crate) fn parse_expr(cur: &mut Cursor) -> PResult<Expr> {
-    let mut lhs = parse_level(cur, 0)?;
+    let mut lhs = parse_binary(cur, 0)?;
     // `F1:F2` chains frames; it stands apart from every other operator.
     loop {
         let save = cur.pos;
@@ -742,7 +742,7 @@ pub(crate) fn parse_expr(cur: &mut Cursor) -> PResult<Expr> {
         if cur.peek() == Some(b':') {
             cur.pos += 1;
             cur.skip_ws();
-            lhs = Expr::Binary(BinOp::Chain, Box::new(lhs), Box::new(parse_level(cur, 0)?));
+            lhs = Expr::Binary(BinOp::Chain, Box::new(lhs), Box::new(parse_binary(cur, 0)?));
         } else {
             cur.pos = save;
             return Ok(lhs);
@@ -750,17 +750,34 @@ pub(crate) fn parse_expr(cur: &mut Cursor) -> PResult<Expr> {
     }
 }
 
-fn parse_level(cur: &mut Cursor, level: usize) -> PResult<Expr> {
-    if level == LEVELS.len() {
-        return parse_unary(cur);
-    }
-    let mut lhs = parse_level(cur, level + 1)?;
-    while let Some(op) = peek_operator(cur, LEVELS[level]) {
+/// Binary operators of priority `min` and above (indices into [`LEVELS`]), by precedence
+/// climbing: one loop turn per operator instead of one call per priority level per operand.
+/// The operator found at a place is the one the levels give when asked from the highest
+/// priority down, as a descent through the levels would find it.
+fn parse_binary(cur: &mut Cursor, min: usize) -> PResult<Expr> {
+    let mut lhs = parse_unary(cur)?;
+    while let Some((op, level)) = next_operator(cur, min) {
         cur.skip_ws();
-        let rhs = parse_level(cur, level + 1)?;
+        let rhs = parse_binary(cur, level + 1)?;
         lhs = Expr::Binary(op, Box::new(lhs), Box::new(rhs));
     }
     Ok(lhs)
+}
+
+/// Consumes the operator that follows (after blanks) if its priority is `min` or above; the
+/// cursor stays put otherwise.
+fn next_operator(cur: &mut Cursor, min: usize) -> Option<(BinOp, usize)> {
+    let save = cur.pos;
+    cur.skip_ws();
+    // Most operands end at `)`, `,`, the end of the line or the next word: one byte settles it.
+    let first = cur.peek().map(|c| c.to_ascii_uppercase());
+    if !matches!(first, Some(b'*' | b'/' | b'+' | b'-' | b'=' | b'<' | b'>' | b'D' | b'M' | b'O' | b'X' | b'A' | b'B'))
+    {
+        cur.pos = save;
+        return None;
+    }
+    cur.pos = save;
+    (min..LEVELS.len()).rev().find_map(|level| peek_operator(cur, LEVELS[level]).map(|op| (op, level)))
 }
 
 /// Consumes an operator of `ops` if one follows (after blanks); word operators must stand

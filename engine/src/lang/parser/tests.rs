@@ -282,3 +282,41 @@ fn check_finds_nesting_errors_beside_syntax_errors_with_alarms_and_columns() {
     assert!(check("IF 1\nELSE\nELSE\nENDIF").iter().any(|d| d.line == 3 && d.alarm == 12640));
     assert!(check("REPEAT\nLOOP\nENDLOOP\nUNTIL 1\nFOR I=1 TO 2\nENDFOR").is_empty());
 }
+
+/// The former descent, one call per priority level: the reference `parse_binary` must agree
+/// with (tree, error and where the cursor stops).
+fn reference_level(cur: &mut Cursor, level: usize) -> PResult<Expr> {
+    if level == LEVELS.len() {
+        return parse_unary(cur);
+    }
+    let mut lhs = reference_level(cur, level + 1)?;
+    while let Some(op) = peek_operator(cur, LEVELS[level]) {
+        cur.skip_ws();
+        let rhs = reference_level(cur, level + 1)?;
+        lhs = Expr::Binary(op, Box::new(lhs), Box::new(rhs));
+    }
+    Ok(lhs)
+}
+
+#[test]
+fn precedence_climbing_parses_as_the_descent_through_the_levels() {
+    // Operands, every operator of every level (with the look-alikes `<<`/`<`, `B_OR`/`OR`,
+    // glued word operators), spacing and stray bytes that end or break an expression.
+    const PIECES: [&str; 44] = [
+        "R1", "2", "0.5", "(R2)", "A", "SIN(30)", "\"S\"", "TRUE", "-", "NOT ", "+", "*", "/", " DIV ", " MOD ", "-",
+        "+", "==", "<>", ">=", "<=", ">", "<", "<<", " OR ", " XOR ", " AND ", " B_OR ", " B_XOR ", " B_AND ", "ORX",
+        " ", " ", "X1", ")", ",", ":", "=", "DIVA", " B_NOT ", "R[1]", "'H1F'", "==", "<",
+    ];
+    let mut next = crate::lang::test_rng::xorshift(0x51ce_57a7);
+    let mut agreed = 0;
+    for _ in 0..30000 {
+        let n = 1 + (next() % 9) as usize;
+        let text: String = (0..n).map(|_| PIECES[(next() % PIECES.len() as u64) as usize]).collect();
+        let (mut a, mut b) = (Cursor::new(&text), Cursor::new(&text));
+        let (climbed, descended) = (parse_binary(&mut a, 0), reference_level(&mut b, 0));
+        assert_eq!(climbed, descended, "{text:?}");
+        assert_eq!(a.pos, b.pos, "{text:?}: the cursor stops at the same place");
+        agreed += usize::from(climbed.is_ok());
+    }
+    assert!(agreed > 3000, "only {agreed} texts parsed: the pieces make too few expressions");
+}
