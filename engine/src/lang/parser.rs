@@ -877,15 +877,19 @@ fn parse_primary(cur: &mut Cursor) -> PResult<Expr> {
             cur.number().map(Expr::Number).ok_or_else(|| (start, "bad number".into()))
         }
         Some(c) if c.is_ascii_alphabetic() || c == b'_' || c == b'$' => {
-            let id = cur.ident().ok_or((start, "bad name".to_string()))?;
-            match id.as_str() {
-                "TRUE" => return Ok(Expr::Bool(true)),
-                "FALSE" => return Ok(Expr::Bool(false)),
-                _ => {}
+            let span = cur.ident_span().ok_or((start, "bad name".to_string()))?;
+            if cur.span_is(span, "TRUE") {
+                return Ok(Expr::Bool(true));
             }
-            if let Some(n) = id.strip_prefix('R').and_then(|n| n.parse::<u32>().ok()) {
+            if cur.span_is(span, "FALSE") {
+                return Ok(Expr::Bool(false));
+            }
+            // `R1`, the most frequent name of all: no upper-cased copy of it is made.
+            let text = cur.slice(span.0, span.1);
+            if let Some(n) = text.strip_prefix(['R', 'r']).and_then(|n| n.parse::<u32>().ok()) {
                 return Ok(Expr::RParam(Box::new(Expr::Number(n as f64))));
             }
+            let id = cur.upper(span);
             let save = cur.pos;
             cur.skip_ws();
             if cur.eat(b'(') && !id.starts_with('$') {

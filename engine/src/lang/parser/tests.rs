@@ -320,3 +320,15 @@ fn precedence_climbing_parses_as_the_descent_through_the_levels() {
     }
     assert!(agreed > 3000, "only {agreed} texts parsed: the pieces make too few expressions");
 }
+
+#[test]
+fn r_parameters_by_number_in_any_case_and_names_that_only_start_like_them() {
+    let r = |n: f64| Expr::RParam(Box::new(Expr::Number(n)));
+    assert_eq!(expr("r12*R0"), bin(BinOp::Mul, r(12.0), r(0.0)));
+    assert_eq!(expr("R[r1]"), Expr::RParam(Box::new(r(1.0))));
+    // Not an R parameter by number: names that only start with R and digits.
+    assert_eq!(expr("RX"), var("RX"));
+    assert_eq!(expr("r1x"), var("R1X"));
+    assert_eq!(expr("R"), var("R"));
+    assert_eq!(expr("true AND False"), bin(BinOp::And, Expr::Bool(true), Expr::Bool(false)));
+}
