@@ -286,7 +286,7 @@ mod tests {
             // Comparisons of such expressions.
             let cond = expr(&format!("({text})<=R2"));
             if let Some(c) = condition(&cond, r) {
-                assert_eq!(eval(&cond, &s, 1).and_then(|v| Ok(v.as_bool().expect("BOOL"))), Ok(c), "{text}");
+                assert_eq!(eval(&cond, &s, 1).map(|v| v.as_bool().expect("BOOL")), Ok(c), "{text}");
             }
         }
         // The generator reaches both sides.

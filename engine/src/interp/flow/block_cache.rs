@@ -17,8 +17,10 @@ use crate::lang::Block;
 pub(super) const SLOTS: usize = 128;
 
 /// A block read from the program: parsed just now (its own to change and recycle), or shared
-/// with the cache.
+/// with the cache. A parsed block stays unboxed: a box would cost an allocation per block read
+/// on the way of every line that is read once.
 #[derive(Debug)]
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum ReadBlock {
     Parsed(Block),
     Cached(Arc<CachedBlock>),
