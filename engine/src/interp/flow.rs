@@ -84,8 +84,9 @@ struct Learned {
     jumps: Option<Box<JumpMemo>>,
 }
 
-/// The state of the read, without what only saves work (`furthest`, the cache): the debug
-/// cross-check of the fast lane compares this, and the lane reads lines past both.
+/// The state of the read, without what only saves work (`furthest`, the cache, the jump memo,
+/// what a callee learned): the debug cross-check of the fast lane compares this, and the lane
+/// reads lines past them.
 impl std::fmt::Debug for Flow {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Flow")
