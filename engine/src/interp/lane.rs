@@ -53,8 +53,8 @@ use super::frame::{Frame, GeoAxes};
 use super::modal::MotionMode;
 use super::orient::RotReference;
 use super::{
-    AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end,
-    check_software_limits, feed_length, shape_path,
+    AxisLimit, Interpreter, Item, Move, Prep, arc, arc_center, arc_turn, block_end, check_software_limits, feed_length,
+    shape_path,
 };
 use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
@@ -252,7 +252,7 @@ impl Interpreter {
         // From here on every step is one the general path takes the same way, and repeats
         // harmlessly if the lane falls back (only on an error, which the general path raises).
         self.corner_request = None;
-        let offsets_before = self.shared_offsets();
+        let offsets_before = self.offsets_mark();
         let g_codes = (self.modal.motion, self.modal.absolute);
         if let Some(m) = block.motion {
             self.modal.motion = m;
@@ -277,7 +277,7 @@ impl Interpreter {
         let moves = block.axes.iter().any(Option::is_some) || (circle_mode && block.ijk.iter().any(Option::is_some));
         if !moves {
             self.commit_position(at, next, out);
-            if !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
+            if self.offsets_mark() != offsets_before {
                 out.push(Item::Offsets { line, offsets: self.shared_offsets() });
             }
             return Some(Prep::Prepared);
@@ -432,7 +432,7 @@ pub(super) fn cross_check(
     main_run_idle: bool,
     (lane_prep, lane_out, mark): (Prep, &[Item], usize),
 ) {
-    let published_before = reference.published.clone();
+    let published_before = reference.published.current().clone();
     reference.fast_lane = false;
     // The same output before the block as the lane had: the compensator's mark counts it.
     let mut items = lane_out[..mark].to_vec();
@@ -445,7 +445,10 @@ pub(super) fn cross_check(
             _ => None,
         });
         offsets
-            .map(|o| (SharedOffsets::ptr_eq(o, &it.published), SharedOffsets::ptr_eq(o, &published_before)))
+            .map(|o| {
+                let shared = |with: &super::SharedOffsets| super::SharedOffsets::ptr_eq(o, with);
+                (shared(it.published.current()), shared(&published_before))
+            })
             .collect()
     };
     assert!(
