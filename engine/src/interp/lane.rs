@@ -298,7 +298,8 @@ impl Interpreter {
 
     /// Prepares the move of a plain block (as `motion` computes it for such a block) straight
     /// into `out`, with the bookkeeping of `step_program` and `trc.push` for the line from
-    /// `at` to `next`; `None` (and nothing changed) where `motion` would raise an alarm.
+    /// `at` to `next`; `None` (and nothing changed but the published offsets, which the general
+    /// path publishes the same) where `motion` would raise an alarm.
     fn plain_move(
         &mut self,
         block: &PlainBlock,
@@ -309,6 +310,7 @@ impl Interpreter {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
         let line = at.line;
+        let offsets = self.shared_offsets();
         let memo = self.lane_memo.for_config_ref();
         let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
         let mut current = [0.0; MAX_CHANNEL_AXES];
@@ -347,23 +349,30 @@ impl Interpreter {
             }
             _ => None,
         };
-        let mut path = Path::line(*start, *start);
+        let feed = self.path_feed(line).ok()?;
+        // The move is made in its place in `out` (see `Move::unlimited`) and leaves again if
+        // the software limits refuse it.
+        let mark = out.len();
+        let rest = Path::line(*start, *start);
+        out.push(Item::Move { mv: Move::unlimited(rest, self.modal.exact_stop, line), line, offsets });
+        let Some(Item::Move { mv, .. }) = out.last_mut() else { unreachable!("pushed just above") };
+        let path = &mut mv.path;
         if !(translated && translated_end(frame, geo, n, tool, &target, &programmed, &mut path.end)) {
             path.end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
         }
-        let length = shape_path(&mut path, frame, geo, planes, &current, &target, circle.as_ref());
-        let length = feed_length(&path, length, n);
-        check_software_limits(cfg, &path, line).ok()?;
-        let feed = self.path_feed(line).ok()?;
-
-        self.commit_position(at, next, out);
+        let length = shape_path(path, frame, geo, planes, &current, &target, circle.as_ref());
+        let length = feed_length(path, length, n);
+        if check_software_limits(cfg, path, line).is_err() {
+            out.pop();
+            return None;
+        }
+        mv.set_limits(length, feed, &self.lane_memo.for_config_ref().limits);
         // The axes past the channel's keep their start (block_end leaves them).
-        self.pos[..n].copy_from_slice(&path.end[..n]);
+        self.pos[..n].copy_from_slice(&mv.path.end[..n]);
+
+        self.commit_position(at, next, &out[..mark]);
         self.modal.ori.last_change = None;
         self.modal.ori.upper = None;
-        let offsets = self.shared_offsets();
-        let limits = &self.lane_memo.for_config_ref().limits;
-        out.push(Item::Move { mv: Move::new(path, length, feed, limits, self.modal.exact_stop, line), line, offsets });
         self.trc.passed(out);
         Some(())
     }

@@ -1057,10 +1057,17 @@ fn shape_path(
         // The circle is defined in the WCS plane and mapped through the frame.
         let u = frame.geo_direction(geo, pa);
         let v = frame.geo_direction(geo, po);
+        // Without rotation, scale or mirror the image of a configured geometry axis' unit
+        // vector is that unit vector: its norm is 1 exactly, no square root needed.
+        let unmoved = frame.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let norm_of = |g: usize, image: &AxisVec| if unmoved && geo[g].is_some() { 1.0 } else { norm(image) };
+        let scale = (norm_of(pa, &u) + norm_of(po, &v)) / 2.0;
+        let helix = geo[papp].map_or(0.0, |k| {
+            let lead = target[k] - current[k];
+            if unmoved { lead } else { lead * norm(&frame.geo_direction(geo, papp)) }
+        });
         path.arc =
             Some(Box::new(Arc { u, v, radius: circle.radius, start_angle: circle.start_angle, sweep: circle.sweep }));
-        let scale = (norm(&u) + norm(&v)) / 2.0;
-        let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
         length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
     }
     length
