@@ -51,8 +51,10 @@ struct Args {
     limits: LimitFlags,
 }
 
-#[tokio::main]
-async fn main() -> ExitCode {
+/// Subcommands run on the calling thread; only the server starts the async runtime (a
+/// `nctwin simulate` of a short program would otherwise spend a good part of its time
+/// starting and stopping worker threads it never uses).
+fn main() -> ExitCode {
     tracing_subscriber::fmt()
         .with_env_filter(EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new("info")))
         .with_ansi(std::io::stdout().is_terminal())
@@ -61,7 +63,12 @@ async fn main() -> ExitCode {
     if let Some(command) = &args.command {
         return cli::run(command);
     }
-    match serve(args).await {
+    let served = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .map_err(|e| format!("cannot start the async runtime: {e}"))
+        .and_then(|runtime| runtime.block_on(serve(args)));
+    match served {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             tracing::error!("{message}");

@@ -53,8 +53,8 @@ use super::frame::{Frame, GeoAxes};
 use super::modal::MotionMode;
 use super::orient::RotReference;
 use super::{
-    AxisLimit, Interpreter, Item, Move, Prep, SharedOffsets, arc, arc_center, arc_turn, block_end,
-    check_software_limits, feed_length, shape_path,
+    AxisLimit, Interpreter, Item, Move, Prep, arc, arc_center, arc_turn, block_end, check_software_limits, feed_length,
+    shape_path,
 };
 use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
@@ -252,7 +252,7 @@ impl Interpreter {
         // From here on every step is one the general path takes the same way, and repeats
         // harmlessly if the lane falls back (only on an error, which the general path raises).
         self.corner_request = None;
-        let offsets_before = self.shared_offsets();
+        let offsets_before = self.offsets_mark();
         let g_codes = (self.modal.motion, self.modal.absolute);
         if let Some(m) = block.motion {
             self.modal.motion = m;
@@ -277,7 +277,7 @@ impl Interpreter {
         let moves = block.axes.iter().any(Option::is_some) || (circle_mode && block.ijk.iter().any(Option::is_some));
         if !moves {
             self.commit_position(at, next, out);
-            if !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
+            if self.offsets_mark() != offsets_before {
                 out.push(Item::Offsets { line, offsets: self.shared_offsets() });
             }
             return Some(Prep::Prepared);
@@ -298,7 +298,8 @@ impl Interpreter {
 
     /// Prepares the move of a plain block (as `motion` computes it for such a block) straight
     /// into `out`, with the bookkeeping of `step_program` and `trc.push` for the line from
-    /// `at` to `next`; `None` (and nothing changed) where `motion` would raise an alarm.
+    /// `at` to `next`; `None` (and nothing changed but the published offsets, which the general
+    /// path publishes the same) where `motion` would raise an alarm.
     fn plain_move(
         &mut self,
         block: &PlainBlock,
@@ -309,6 +310,7 @@ impl Interpreter {
         let n = cfg.channel_axes.len();
         let geo = &cfg.geo_axes;
         let line = at.line;
+        let offsets = self.shared_offsets();
         let memo = self.lane_memo.for_config_ref();
         let (start, tool, frame) = (&self.pos, &self.offsets.tool, &self.offsets.frame);
         let mut current = [0.0; MAX_CHANNEL_AXES];
@@ -347,23 +349,30 @@ impl Interpreter {
             }
             _ => None,
         };
-        let mut path = Path::line(*start, *start);
+        let feed = self.path_feed(line).ok()?;
+        // The move is made in its place in `out` (see `Move::unlimited`) and leaves again if
+        // the software limits refuse it.
+        let mark = out.len();
+        let rest = Path::line(*start, *start);
+        out.push(Item::Move { mv: Move::unlimited(rest, self.modal.exact_stop, line), line, offsets });
+        let Some(Item::Move { mv, .. }) = out.last_mut() else { unreachable!("pushed just above") };
+        let path = &mut mv.path;
         if !(translated && translated_end(frame, geo, n, tool, &target, &programmed, &mut path.end)) {
             path.end = block_end(frame, geo, n, start, tool, &target, &mut programmed);
         }
-        let length = shape_path(&mut path, frame, geo, planes, &current, &target, circle.as_ref());
-        let length = feed_length(&path, length, n);
-        check_software_limits(cfg, &path, line).ok()?;
-        let feed = self.path_feed(line).ok()?;
-
-        self.commit_position(at, next, out);
+        let length = shape_path(path, frame, geo, planes, &current, &target, circle.as_ref());
+        let length = feed_length(path, length, n);
+        if check_software_limits(cfg, path, line).is_err() {
+            out.pop();
+            return None;
+        }
+        mv.set_limits(length, feed, &self.lane_memo.for_config_ref().limits);
         // The axes past the channel's keep their start (block_end leaves them).
-        self.pos[..n].copy_from_slice(&path.end[..n]);
+        self.pos[..n].copy_from_slice(&mv.path.end[..n]);
+
+        self.commit_position(at, next, &out[..mark]);
         self.modal.ori.last_change = None;
         self.modal.ori.upper = None;
-        let offsets = self.shared_offsets();
-        let limits = &self.lane_memo.for_config_ref().limits;
-        out.push(Item::Move { mv: Move::new(path, length, feed, limits, self.modal.exact_stop, line), line, offsets });
         self.trc.passed(out);
         Some(())
     }
@@ -432,7 +441,7 @@ pub(super) fn cross_check(
     main_run_idle: bool,
     (lane_prep, lane_out, mark): (Prep, &[Item], usize),
 ) {
-    let published_before = reference.published.clone();
+    let published_before = reference.published.current().clone();
     reference.fast_lane = false;
     // The same output before the block as the lane had: the compensator's mark counts it.
     let mut items = lane_out[..mark].to_vec();
@@ -445,7 +454,10 @@ pub(super) fn cross_check(
             _ => None,
         });
         offsets
-            .map(|o| (SharedOffsets::ptr_eq(o, &it.published), SharedOffsets::ptr_eq(o, &published_before)))
+            .map(|o| {
+                let shared = |with: &super::SharedOffsets| super::SharedOffsets::ptr_eq(o, with);
+                (shared(it.published.current()), shared(&published_before))
+            })
             .collect()
     };
     assert!(

@@ -26,6 +26,7 @@ mod orient;
 mod orient_poly;
 mod orient_rot;
 mod orient_vars;
+mod published;
 pub mod retained;
 mod scope;
 mod solid_angles;
@@ -63,8 +64,13 @@ use scope::sys_view;
 use vars::Variables;
 
 /// Offsets in effect for a block, per channel axis, and the tool that causes them.
+///
+/// `gcodes` comes first: it is the field that changes most often (G1 ↔ G3 in every pocket), and
+/// the derived comparison stops at the first field that differs.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Offsets {
+    /// The block's active G functions, for the display.
+    pub gcodes: gcodes::GCodes,
     /// Tool length vector (MCS = BCS + tool).
     pub tool: AxisVec,
     /// The active frame, WCS → BCS: settable frame (G54 ...) then programmable frame.
@@ -74,8 +80,6 @@ pub struct Offsets {
     pub d: u32,
     /// The active kinematic transformation with the tool length it includes.
     pub trafo: Option<crate::kinematics::ActiveTrafo>,
-    /// The block's active G functions, for the display.
-    pub gcodes: gcodes::GCodes,
     /// Online tool length offset in the tool directions X, Y, Z (`$AA_TOFF`, see `toff.rs`).
     pub toff: [f64; 3],
 }
@@ -186,7 +190,7 @@ pub struct Interpreter {
     /// Offsets in effect; tracked, so that items share them while no block changes them.
     offsets: Tracked<Offsets>,
     /// `offsets` as last handed out with an item (see [`Interpreter::shared_offsets`]).
-    published: SharedOffsets,
+    published: published::Published,
     /// R parameters and user variables.
     vars: Variables,
     /// The programmable frame ($P_PFRAME: TRANS, ROT, SCALE, MIRROR ...).
@@ -236,7 +240,7 @@ impl Interpreter {
             modal: Modal::reset(cfg),
             pos: [0.0; MAX_CHANNEL_AXES],
             offsets: Tracked::new(Offsets::default()),
-            published: SharedOffsets::default(),
+            published: published::Published::default(),
             vars: Variables::default(),
             pframe: Tracked::new(Frame::identity()),
             system: Tracked::new(SystemFrames::default()),
@@ -338,10 +342,17 @@ impl Interpreter {
 
     /// The current offsets for an item: the ones handed out last while they are unchanged.
     fn shared_offsets(&mut self) -> SharedOffsets {
-        if self.offsets.take_changed() && *self.published != *self.offsets {
-            self.published = SharedOffsets::new((*self.offsets).clone());
+        self.offsets_mark();
+        self.published.current().clone()
+    }
+
+    /// Publishes the offsets' changes so far and returns how often the published offsets have
+    /// changed: equal marks before and after a block mean it leaves the offsets as they were.
+    fn offsets_mark(&mut self) -> u64 {
+        if self.offsets.take_changed() {
+            self.published.publish(&self.offsets);
         }
-        self.published.clone()
+        self.published.changes()
     }
 
     /// Sets the block's frame, tool vector and G functions, touching the offsets only where
@@ -478,7 +489,7 @@ impl Interpreter {
         if words.newconf {
             self.data_writes.push((line, NEWCONF.to_string()));
         }
-        let offsets_before = self.shared_offsets();
+        let offsets_before = self.offsets_mark();
         let selection = {
             let sys = sys_view!(self, cfg);
             trafo::selection(block, |e| eval::eval_f64(e, &scope::Ctx { vars: &self.vars, sys: &sys }, line))?
@@ -583,7 +594,7 @@ impl Interpreter {
                 let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
                 self.trc.push(prepared, comp, &limits, out)?;
             }
-        } else if !positioned && !SharedOffsets::ptr_eq(&self.shared_offsets(), &offsets_before) {
+        } else if !positioned && self.offsets_mark() != offsets_before {
             // A new shared value is made only when the offsets differ from the last one.
             out.push(Item::Offsets { line, offsets: self.shared_offsets() });
         }
@@ -1046,10 +1057,17 @@ fn shape_path(
         // The circle is defined in the WCS plane and mapped through the frame.
         let u = frame.geo_direction(geo, pa);
         let v = frame.geo_direction(geo, po);
+        // Without rotation, scale or mirror the image of a configured geometry axis' unit
+        // vector is that unit vector: its norm is 1 exactly, no square root needed.
+        let unmoved = frame.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let norm_of = |g: usize, image: &AxisVec| if unmoved && geo[g].is_some() { 1.0 } else { norm(image) };
+        let scale = (norm_of(pa, &u) + norm_of(po, &v)) / 2.0;
+        let helix = geo[papp].map_or(0.0, |k| {
+            let lead = target[k] - current[k];
+            if unmoved { lead } else { lead * norm(&frame.geo_direction(geo, papp)) }
+        });
         path.arc =
             Some(Box::new(Arc { u, v, radius: circle.radius, start_angle: circle.start_angle, sweep: circle.sweep }));
-        let scale = (norm(&u) + norm(&v)) / 2.0;
-        let helix = geo[papp].map_or(0.0, |k| (target[k] - current[k]) * norm(&frame.geo_direction(geo, papp)));
         length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
     }
     length

@@ -139,10 +139,16 @@ impl Path {
                 let turn = arc_turn(arc);
                 for (k, rk) in r[..n].iter_mut().enumerate() {
                     let linear_k = self.end[k] - self.start[k] - chord(arc, turn, k);
-                    // Most axes are outside the circle's plane: skip libm's hypot for them
-                    // (hypot(0, 0) is 0 as well).
+                    // Most axes are outside the circle's plane or along one of its directions:
+                    // skip libm's hypot for them (hypot(x, 0) is |x| exactly).
                     let (u, v) = (arc.u[k], arc.v[k]);
-                    let span = if u == 0.0 && v == 0.0 { 0.0 } else { u.hypot(v) };
+                    let span = if v == 0.0 {
+                        u.abs()
+                    } else if u == 0.0 {
+                        v.abs()
+                    } else {
+                        u.hypot(v)
+                    };
                     let circle = arc.radius * arc.sweep.abs() * span;
                     *rk = linear_k.abs() + circle;
                 }

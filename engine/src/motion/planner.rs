@@ -111,6 +111,32 @@ impl Move {
     /// Builds a move, deriving its velocity and acceleration limits from the axes.
     /// `length` is the path length the feed refers to (geometry axes, or all axes if none moves).
     pub fn new(path: Path, length: f64, feed: Feed, limits: &[AxisLimit], exact_stop: bool, tag: u32) -> Move {
+        let mut mv = Move::unlimited(path, exact_stop, tag);
+        mv.set_limits(length, feed, limits);
+        mv
+    }
+
+    /// A move along `path` without limits yet, for a caller that builds it in its place (a move
+    /// is ≈ 400 bytes, and each pass by value copies it) and then calls [`Move::set_limits`].
+    pub fn unlimited(path: Path, exact_stop: bool, tag: u32) -> Move {
+        Move {
+            path,
+            length: 0.0,
+            v_max: f64::INFINITY,
+            v_axes: f64::INFINITY,
+            feed: f64::INFINITY,
+            a_max: f64::INFINITY,
+            exact_stop,
+            tag,
+            machine_space: false,
+            axis_tangents: None,
+        }
+    }
+
+    /// Sets the path length the feed refers to, the feed and the velocity and acceleration
+    /// limits the axes allow along the path (see [`Move::new`]).
+    pub fn set_limits(&mut self, length: f64, feed: Feed, limits: &[AxisLimit]) {
+        let path = &self.path;
         // A line's rate per axis is its span, read in the loop (no array built and copied).
         let rate = path.arc.as_ref().map(|_| path.max_rate_of_first(limits.len()));
         let feed = match feed {
@@ -142,18 +168,11 @@ impl Move {
                 a_max = a_max.min(0.5 * a_plane / k);
             }
         }
-        Move {
-            path,
-            length,
-            v_max: v_max.min(feed),
-            v_axes: v_max,
-            feed,
-            a_max,
-            exact_stop,
-            tag,
-            machine_space: false,
-            axis_tangents: None,
-        }
+        self.length = length;
+        self.v_max = v_max.min(feed);
+        self.v_axes = v_max;
+        self.feed = feed;
+        self.a_max = a_max;
     }
 
     /// True for rapid traverse (G0).

@@ -60,6 +60,7 @@ impl Drop for PageRelease {
     fn drop(&mut self) {
         self.stop.store(true, Ordering::Relaxed);
         if let Some(t) = self.thread.take() {
+            t.thread().unpark();
             let _ = t.join();
         }
     }
@@ -81,7 +82,9 @@ pub fn map(file: &File, path: &Path) -> Result<(ProgramText, PageRelease), Strin
                     // SAFETY: the mapping is a read-only file mapping: dropped pages hold no
                     // private changes and are read from the file again on the next access.
                     let _ = unsafe { map.unchecked_advise(UncheckedAdvice::DontNeed) };
-                    std::thread::sleep(RELEASE_EVERY);
+                    // Parked rather than asleep: the drop wakes it at once (a sleep would keep
+                    // the process waiting for the rest of the period at its end).
+                    std::thread::park_timeout(RELEASE_EVERY);
                 }
             })
             .map_err(|e| format!("cannot start the page-release thread: {e}"))?

@@ -3,6 +3,7 @@
 //! - `nctwin simulate`: runs a program in fast pace and prints the final state and timing
 //!   figures as JSON ([`simulate`]).
 
+mod blocks;
 mod check_beside;
 mod mapped;
 pub mod simulate;

@@ -20,6 +20,7 @@ use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
 use nctwin_engine::{Channel, CommandError, Event, Status};
 use nctwin_server::dto;
 
+use super::blocks::count_blocks;
 use super::check_beside::{Checked, Verdict, check_beside, thread_cpu_time_s};
 use super::mapped;
 use serde::Serialize;
@@ -217,33 +218,6 @@ fn read_shared_text(path: &Path) -> Result<(ProgramText, Option<mapped::PageRele
     Ok((ProgramText::from(text), None))
 }
 
-/// Non-empty lines of the program (lines with a character that is not white space, as
-/// `str::trim` sees it). A mapped program gives its pages back every few MiB of the scan (the
-/// scan is faster than the release thread).
-///
-/// A byte loop rather than `str::lines`: the lines are short, and this pass is on the critical
-/// path of `--interpret-only` (≈ a tenth of its instructions with `lines`).
-fn count_blocks(text: &str, release: Option<&mapped::PageRelease>) -> u64 {
-    let bytes = text.as_bytes();
-    let (mut blocks, mut start, mut released_at) = (0u64, 0usize, 0usize);
-    while start < bytes.len() {
-        let end = bytes[start..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |i| start + i);
-        let first_visible = bytes[start..end].iter().find(|b| !matches!(b, b' ' | b'\t' | b'\r' | 0x0b | 0x0c));
-        blocks += u64::from(match first_visible {
-            None => false,
-            Some(b) if b.is_ascii() => true,
-            // Unicode white space (NBSP, ...) counts as blank, as `trim` has it.
-            Some(_) => !text[start..end].trim().is_empty(),
-        });
-        start = end + 1;
-        if let Some(r) = release.filter(|_| start - released_at >= mapped::SCAN_CHUNK_BYTES) {
-            r.now();
-            released_at = start;
-        }
-    }
-    blocks
-}
-
 fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     if let Some(t) = args.max_sim_time
         && !(t.is_finite() && t > 0.0)
@@ -266,20 +240,20 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     // Pages of a mapped program are given back until the run is over.
     let (text, release) = read_shared_text(&args.program)?;
     let program_bytes = text.len();
-    let blocks = count_blocks(&text, release.as_ref());
     let program = args.program.display().to_string();
 
     if args.interpret_only {
-        return Ok(interpret_only(&channel, args, text, syntax_errors, program, blocks));
+        return Ok(interpret_only(&channel, args, (text, release.as_ref()), syntax_errors, program));
     }
     // The state a program with syntax errors leaves: nothing ran.
     let (idle_state, idle_ticks, idle_time) = (dto::State::from(&channel.snapshot()), channel.ticks(), channel.time());
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
     // The main program's check runs beside the run; stored programs were checked above.
-    let (started_run, load_time_s, check_cpu_s) = run_beside_check(&text, &program, &mut syntax_errors, |verdict| {
-        channel.run_program_prechecked(text.clone()).map(|()| run_to_end(&mut channel, args, verdict))
-    });
+    let (started_run, Beside { blocks, load_time_s, check_cpu_s }) =
+        run_beside_check((&text, release.as_ref()), &program, &mut syntax_errors, |verdict| {
+            channel.run_program_prechecked(text.clone()).map(|()| run_to_end(&mut channel, args, verdict))
+        });
     let run = started_run.transpose().map_err(|e| UsageError(e.to_string()))?.unwrap_or_default();
     drop(text);
     let loaded = syntax_errors.is_empty();
@@ -329,22 +303,33 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     })
 }
 
-/// Runs `work` with the main program's syntax check beside it, unless `syntax_errors` already
-/// holds some (then nothing runs). The check's errors join `syntax_errors`; `work`'s result is
-/// kept only when there are none (an error found by the check wins over whatever the discarded
-/// run ran into). Returns the result, the check's wall time and its thread's CPU time.
+/// What the thread beside the run found besides the errors.
+struct Beside {
+    /// The program's blocks ([`count_blocks`]).
+    blocks: u64,
+    /// The check's wall time.
+    load_time_s: f64,
+    /// The thread's CPU time (`None` where /proc is missing).
+    check_cpu_s: Option<f64>,
+}
+
+/// Runs `work` with the main program's syntax check (and block count) beside it, unless
+/// `syntax_errors` already holds some (then nothing runs and the blocks are counted here). The
+/// check's errors join `syntax_errors`; `work`'s result is kept only when there are none (an
+/// error found by the check wins over whatever the discarded run ran into).
 fn run_beside_check<T>(
-    text: &str,
+    (text, release): (&str, Option<&mapped::PageRelease>),
     program: &str,
     syntax_errors: &mut Vec<SyntaxError>,
     work: impl FnOnce(&Verdict) -> T,
-) -> (Option<T>, f64, Option<f64>) {
+) -> (Option<T>, Beside) {
     if !syntax_errors.is_empty() {
-        return (None, 0.0, Some(0.0));
+        let blocks = count_blocks(text, release);
+        return (None, Beside { blocks, load_time_s: 0.0, check_cpu_s: Some(0.0) });
     }
-    let (result, Checked { errors, wall_s, cpu_s }) = check_beside(text, work);
+    let (result, Checked { errors, blocks, wall_s, cpu_s }) = check_beside(text, release, work);
     syntax_errors.extend(SyntaxError::all(program, errors));
-    (syntax_errors.is_empty().then_some(result), wall_s, cpu_s)
+    (syntax_errors.is_empty().then_some(result), Beside { blocks, load_time_s: wall_s, check_cpu_s: cpu_s })
 }
 
 /// CPU time of this thread since `started` plus the check thread's (`None` where /proc is missing).
@@ -358,17 +343,17 @@ fn cpu_since(started: Option<f64>, check_cpu_s: Option<f64>) -> Option<f64> {
 fn interpret_only(
     channel: &Channel,
     args: &SimulateArgs,
-    text: ProgramText,
+    (text, release): (ProgramText, Option<&mapped::PageRelease>),
     mut syntax_errors: Vec<SyntaxError>,
     program: String,
-    blocks: u64,
 ) -> Report {
     let program_bytes = text.len();
     let started = Instant::now();
     let cpu_started = thread_cpu_time_s();
-    let (prepared, load_time_s, check_cpu_s) = run_beside_check(&text, &program, &mut syntax_errors, |verdict| {
-        prepare_all(channel, text.clone(), blocks, verdict)
-    });
+    let (prepared, Beside { blocks, load_time_s, check_cpu_s }) =
+        run_beside_check((&text, release), &program, &mut syntax_errors, |verdict| {
+            prepare_all(channel, text.clone(), verdict)
+        });
     let Prepared { moves, alarm, limit_hit } = prepared.unwrap_or_default();
     let wall_time_s = started.elapsed().as_secs_f64();
     let cpu_time_s = cpu_since(cpu_started, check_cpu_s);
@@ -417,7 +402,7 @@ struct Prepared {
 /// Prepares every block of `text` on a fresh interpreter, counting the moves, until the end,
 /// an alarm, the step budget, or the syntax check beside it failing (the result is then
 /// discarded).
-fn prepare_all(channel: &Channel, text: ProgramText, blocks: u64, verdict: &Verdict) -> Prepared {
+fn prepare_all(channel: &Channel, text: ProgramText, verdict: &Verdict) -> Prepared {
     let cfg = channel.config();
     let programs: Programs = channel
         .stored_programs()
@@ -426,10 +411,13 @@ fn prepare_all(channel: &Channel, text: ProgramText, blocks: u64, verdict: &Verd
         .collect();
     let mut position = [0.0; MAX_CHANNEL_AXES];
     position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
+    // Loops without end would never finish: stop after 100 preparation steps per block plus a
+    // million. Until the thread beside has counted the blocks, the program's bytes (at least
+    // one per block) stand in for them.
+    let bytes = text.len() as u64;
+    let budget = || verdict.blocks().unwrap_or(bytes).saturating_mul(100).saturating_add(1_000_000);
     let mut interp = Interpreter::new(cfg);
     interp.begin_program(text, &position);
-    // Loops without end would never finish: stop after this many preparation steps.
-    let budget = blocks.saturating_mul(100).saturating_add(1_000_000);
     let mut out = Vec::new();
     let mut found = Prepared::default();
     let mut steps = 0u64;
@@ -449,7 +437,7 @@ fn prepare_all(channel: &Channel, text: ProgramText, blocks: u64, verdict: &Verd
         if prep == Prep::Done || found.alarm.is_some() || steps.is_multiple_of(PREP_CHUNK) && verdict.failed() {
             break;
         }
-        if steps >= budget {
+        if steps >= budget() {
             found.limit_hit = true;
             break;
         }
@@ -548,32 +536,4 @@ pub fn peak_rss_kib() -> Option<u64> {
         .lines()
         .find_map(|l| l.strip_prefix("VmHWM:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::count_blocks;
-    use proptest::prelude::*;
-
-    /// The definition: lines that `trim` leaves non-empty.
-    fn by_definition(text: &str) -> u64 {
-        text.lines().filter(|l| !l.trim().is_empty()).count() as u64
-    }
-
-    #[test]
-    fn blank_lines_do_not_count() {
-        // Three blocks: X1, the comment and Y2; blank, tab-only, CR-only and NBSP-only lines are
-        // not blocks, nor is the empty piece after the last line end.
-        let text = "X1\n\n \t\r\n; note\n\u{a0}\r\n\x0b\x0c\nY2\r\n";
-        assert_eq!(count_blocks(text, None), 3);
-        assert_eq!(count_blocks("", None), 0);
-        assert_eq!(count_blocks("M30", None), 1);
-    }
-
-    proptest! {
-        #[test]
-        fn counts_as_trim_does(text in "([ \\t\\r\\n\\x0b\\x0c]|\u{a0}|\u{2003}|é|X|;){0,40}") {
-            prop_assert_eq!(count_blocks(&text, None), by_definition(&text));
-        }
-    }
 }
