@@ -3,6 +3,8 @@
 
 pub(super) mod numeric;
 
+use std::cmp::Ordering;
+
 use super::frame::{self, Frame, GeoAxes};
 use super::value::Value;
 use super::vars::Variables;
@@ -144,22 +146,7 @@ fn binary(op: BinOp, a: Value, b: Value, line: u32) -> Result<Value, Alarm> {
         BinOp::BOr => Value::Int(int(&a)? | int(&b)?),
         BinOp::BXor => Value::Int(int(&a)? ^ int(&b)?),
         BinOp::BAnd => Value::Int(int(&a)? & int(&b)?),
-        BinOp::Add | BinOp::Sub | BinOp::Mul if both_int => {
-            let (x, y) = (int(&a)?, int(&b)?);
-            let r = match op {
-                BinOp::Add => x.checked_add(y),
-                BinOp::Sub => x.checked_sub(y),
-                _ => x.checked_mul(y),
-            };
-            match r.filter(|r| r.abs() <= 2_147_483_647) {
-                Some(r) => Value::Int(r),
-                None => Value::Real(match op {
-                    BinOp::Add => x as f64 + y as f64,
-                    BinOp::Sub => x as f64 - y as f64,
-                    _ => x as f64 * y as f64,
-                }),
-            }
-        }
+        BinOp::Add | BinOp::Sub | BinOp::Mul if both_int => numeric::int_arithmetic(op, int(&a)?, int(&b)?).into(),
         BinOp::Add => Value::Real(num(&a)? + num(&b)?),
         BinOp::Sub => Value::Real(num(&a)? - num(&b)?),
         BinOp::Mul => Value::Real(num(&a)? * num(&b)?),
@@ -181,30 +168,36 @@ fn binary(op: BinOp, a: Value, b: Value, line: u32) -> Result<Value, Alarm> {
 }
 
 fn compare(op: BinOp, a: &Value, b: &Value, line: u32) -> Result<bool, Alarm> {
-    use std::cmp::Ordering;
     let ord = match (a, b) {
         (Value::Str(x), Value::Str(y)) => x.cmp(y),
         (Value::Axis(x), Value::Axis(y)) => x.cmp(y),
         (Value::Str(_) | Value::Axis(_), _) | (_, Value::Str(_) | Value::Axis(_)) => {
             return Err(Alarm::type_error(line, "cannot compare a string with a number"));
         }
-        _ => {
-            let (x, y) = (a.as_f64().unwrap_or(0.0), b.as_f64().unwrap_or(0.0));
-            if (x - y).abs() <= REL_EQ * x.abs().max(y.abs()) {
-                Ordering::Equal
-            } else {
-                x.partial_cmp(&y).unwrap_or(Ordering::Equal)
-            }
-        }
+        _ => numeric_order(a.as_f64().unwrap_or(0.0), b.as_f64().unwrap_or(0.0)),
     };
-    Ok(match op {
+    Ok(holds(op, ord))
+}
+
+/// The order of two numbers as the control compares them: equal within [`REL_EQ`].
+fn numeric_order(x: f64, y: f64) -> Ordering {
+    if (x - y).abs() <= REL_EQ * x.abs().max(y.abs()) {
+        Ordering::Equal
+    } else {
+        x.partial_cmp(&y).unwrap_or(Ordering::Equal)
+    }
+}
+
+/// Whether the comparison `op` (one of `== <> > < >= <=`) holds for operands in order `ord`.
+fn holds(op: BinOp, ord: Ordering) -> bool {
+    match op {
         BinOp::Eq => ord == Ordering::Equal,
         BinOp::Ne => ord != Ordering::Equal,
         BinOp::Gt => ord == Ordering::Greater,
         BinOp::Lt => ord == Ordering::Less,
         BinOp::Ge => ord != Ordering::Less,
         _ => ord != Ordering::Greater,
-    })
+    }
 }
 
 fn call(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {

@@ -9,9 +9,6 @@
 
 use crate::lang::{BinOp, Expr, UnOp};
 
-/// Relative precision of comparisons, as `eval`'s.
-const REL_EQ: f64 = 1e-12;
-
 /// A numeric value: `Value::Int` or `Value::Real`, without the other types' drop glue.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(in crate::interp) enum Num {
@@ -32,13 +29,13 @@ impl Num {
         let v = self.as_f64();
         (v.abs() <= 2_147_483_647.0).then(|| v.round() as i64)
     }
+}
 
-    #[cfg(test)]
-    fn value(self) -> crate::interp::value::Value {
-        use crate::interp::value::Value;
-        match self {
-            Num::Int(i) => Value::Int(i),
-            Num::Real(x) => Value::Real(x),
+impl From<Num> for crate::interp::value::Value {
+    fn from(n: Num) -> Self {
+        match n {
+            Num::Int(i) => Self::Int(i),
+            Num::Real(x) => Self::Real(x),
         }
     }
 }
@@ -76,24 +73,11 @@ pub(in crate::interp) fn numeric(expr: &Expr, r: &[f64]) -> Option<Num> {
 /// The truth of a comparison of two numeric expressions (`R1<R10`), as `eval` and
 /// `Value::as_bool` give it.
 pub(in crate::interp) fn condition(expr: &Expr, r: &[f64]) -> Option<bool> {
-    use std::cmp::Ordering;
     let Expr::Binary(op @ (BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Lt | BinOp::Ge | BinOp::Le), a, b) = expr else {
         return None;
     };
     let (x, y) = (numeric(a, r)?.as_f64(), numeric(b, r)?.as_f64());
-    let ord = if (x - y).abs() <= REL_EQ * x.abs().max(y.abs()) {
-        Ordering::Equal
-    } else {
-        x.partial_cmp(&y).unwrap_or(Ordering::Equal)
-    };
-    Some(match op {
-        BinOp::Eq => ord == Ordering::Equal,
-        BinOp::Ne => ord != Ordering::Equal,
-        BinOp::Gt => ord == Ordering::Greater,
-        BinOp::Lt => ord == Ordering::Less,
-        BinOp::Ge => ord != Ordering::Less,
-        _ => ord != Ordering::Greater,
-    })
+    Some(super::holds(*op, super::numeric_order(x, y)))
 }
 
 /// `eval::binary` for `+ - * /` on numbers; `None` for a division by zero (an alarm).
@@ -101,19 +85,7 @@ fn arithmetic(op: BinOp, a: Num, b: Num) -> Option<Num> {
     if let (Num::Int(x), Num::Int(y)) = (a, b)
         && op != BinOp::Div
     {
-        let r = match op {
-            BinOp::Add => x.checked_add(y),
-            BinOp::Sub => x.checked_sub(y),
-            _ => x.checked_mul(y),
-        };
-        return Some(match r.filter(|r| r.abs() <= 2_147_483_647) {
-            Some(r) => Num::Int(r),
-            None => Num::Real(match op {
-                BinOp::Add => x as f64 + y as f64,
-                BinOp::Sub => x as f64 - y as f64,
-                _ => x as f64 * y as f64,
-            }),
-        });
+        return Some(int_arithmetic(op, x, y));
     }
     let (x, y) = (a.as_f64(), b.as_f64());
     Some(Num::Real(match op {
@@ -123,6 +95,23 @@ fn arithmetic(op: BinOp, a: Num, b: Num) -> Option<Num> {
         _ if y == 0.0 => return None,
         _ => x / y,
     }))
+}
+
+/// `+ - *` of two INT values: INT while the result fits the INT range, else REAL.
+pub(in crate::interp) fn int_arithmetic(op: BinOp, x: i64, y: i64) -> Num {
+    let r = match op {
+        BinOp::Add => x.checked_add(y),
+        BinOp::Sub => x.checked_sub(y),
+        _ => x.checked_mul(y),
+    };
+    match r.filter(|r| r.abs() <= 2_147_483_647) {
+        Some(r) => Num::Int(r),
+        None => Num::Real(match op {
+            BinOp::Add => x as f64 + y as f64,
+            BinOp::Sub => x as f64 - y as f64,
+            _ => x as f64 * y as f64,
+        }),
+    }
 }
 
 /// `eval::call` for the one-argument functions of plain arithmetic; `None` for any other
@@ -274,7 +263,7 @@ mod tests {
             if let Some(n) = numeric(&e, r) {
                 fast += 1;
                 let general = general.unwrap_or_else(|a| panic!("{text}: fast {n:?}, general alarm {a:?}"));
-                assert!(same(&n.value(), &general), "{text}: fast {n:?}, general {general:?}");
+                assert!(same(&Value::from(n), &general), "{text}: fast {n:?}, general {general:?}");
             }
             // eval_f64 (which takes this way) gives what the general evaluator's value is.
             match eval(&e, &s, 1).map(|v| v.as_f64().expect("a number")) {
