@@ -43,13 +43,7 @@ const REL_EQ: f64 = 1e-12;
 pub fn eval(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
     let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
     Ok(match expr {
-        Expr::Number(n) => {
-            if n.fract() == 0.0 && n.abs() <= 2_147_483_647.0 {
-                Value::Int(*n as i64)
-            } else {
-                Value::Real(*n)
-            }
-        }
+        Expr::Number(n) => numeric::number(*n).into(),
         Expr::Str(s) => Value::Str(s.clone()),
         Expr::Bool(b) => Value::Bool(*b),
         Expr::RParam(index) => {

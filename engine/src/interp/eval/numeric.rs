@@ -44,13 +44,7 @@ impl From<Num> for crate::interp::value::Value {
 /// without an error.
 pub(in crate::interp) fn numeric(expr: &Expr, r: &[f64]) -> Option<Num> {
     Some(match expr {
-        Expr::Number(n) => {
-            if n.fract() == 0.0 && n.abs() <= 2_147_483_647.0 {
-                Num::Int(*n as i64)
-            } else {
-                Num::Real(*n)
-            }
-        }
+        Expr::Number(n) => number(*n),
         Expr::RParam(index) => {
             let n = numeric(index, r)?.as_i64()?;
             Num::Real(*usize::try_from(n).ok().and_then(|i| r.get(i))?)
@@ -95,6 +89,11 @@ fn arithmetic(op: BinOp, a: Num, b: Num) -> Option<Num> {
         _ if y == 0.0 => return None,
         _ => x / y,
     }))
+}
+
+/// A number written in the program: INT when it is whole and within the INT range, else REAL.
+pub(in crate::interp) fn number(n: f64) -> Num {
+    if n.fract() == 0.0 && n.abs() <= 2_147_483_647.0 { Num::Int(n as i64) } else { Num::Real(n) }
 }
 
 /// `+ - *` of two INT values: INT while the result fits the INT range, else REAL.
