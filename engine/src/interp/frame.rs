@@ -144,9 +144,12 @@ impl Frame {
     /// True if the frame is the identity.
     pub fn is_identity(&self) -> bool {
         // Field by field, stopping at the first difference (no identity frame is built).
-        self.trans.iter().all(|&t| t == 0.0)
-            && self.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-            && self.factor.iter().all(|&f| f == 1.0)
+        self.trans.iter().all(|&t| t == 0.0) && self.linear_is_identity() && self.factor.iter().all(|&f| f == 1.0)
+    }
+
+    /// True if the geometry axes are neither rotated, scaled nor mirrored.
+    pub fn linear_is_identity(&self) -> bool {
+        self.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     }
 
     /// `self ∘ child`: first `child`, then `self`.

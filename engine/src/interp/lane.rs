@@ -382,7 +382,7 @@ impl Interpreter {
 /// `unapply`/`apply` then subtract/add the translation, which [`translated_current`] and
 /// [`translated_end`] do for the configured axes only.
 fn only_translates(frame: &Frame) -> bool {
-    frame.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] && frame.factor.iter().all(|&f| f == 1.0)
+    frame.linear_is_identity() && frame.factor.iter().all(|&f| f == 1.0)
 }
 
 /// `frame.unapply(start − tool)` on the first `n` axes for a frame that [`only_translates`]

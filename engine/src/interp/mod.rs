@@ -1059,7 +1059,7 @@ fn shape_path(
         let v = frame.geo_direction(geo, po);
         // Without rotation, scale or mirror the image of a configured geometry axis' unit
         // vector is that unit vector: its norm is 1 exactly, no square root needed.
-        let unmoved = frame.lin == [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let unmoved = frame.linear_is_identity();
         let norm_of = |g: usize, image: &AxisVec| if unmoved && geo[g].is_some() { 1.0 } else { norm(image) };
         let scale = (norm_of(pa, &u) + norm_of(po, &v)) / 2.0;
         let helix = geo[papp].map_or(0.0, |k| {
