@@ -246,3 +246,23 @@ fn a_syntax_error_after_an_endless_loop_still_ends_the_run() {
     assert_eq!((code, &r["outcome"]), (2, &Value::from("syntax_error")), "{r:#}");
     assert_eq!(r["syntax_errors"][0]["line"], 6);
 }
+
+#[test]
+fn a_reader_that_went_away_ends_the_run_quietly() {
+    // `nctwin simulate ... | head -c 100`: the report's write fails with a broken pipe. The
+    // process says nothing more and exits with 1 (I/O error), without a panic. The pipe is
+    // closed long before the report is written (20,000 blocks run first).
+    let dir = folder("broken_pipe");
+    let program = write(&dir, "long.mpf", &long_program_with(&[]));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_nctwin"))
+        .args(["simulate", "--machine", "mill-3axis", program.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("nctwin runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("nctwin ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -7,7 +7,7 @@
 //! Exit codes: 0 the program ended normally; 2 it ended in an alarm or has syntax errors;
 //! 3 it was stopped by `--max-sim-time`; 1 usage or I/O error (message on stderr).
 
-use std::io::Read;
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -167,8 +167,14 @@ pub fn main(args: &SimulateArgs) -> ExitCode {
         Ok(report) => {
             let json =
                 if args.compact { serde_json::to_string(&report) } else { serde_json::to_string_pretty(&report) };
-            match json {
-                Ok(json) => println!("{json}"),
+            let written = json.map_err(std::io::Error::from).and_then(|json| {
+                let mut stdout = std::io::stdout().lock();
+                writeln!(stdout, "{json}").and_then(|()| stdout.flush())
+            });
+            match written {
+                Ok(()) => {}
+                // The reader went away (`| head`): nothing to tell it, and no panic either.
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return ExitCode::FAILURE,
                 Err(e) => {
                     eprintln!("nctwin simulate: cannot write the report: {e}");
                     return ExitCode::FAILURE;
