@@ -12,7 +12,7 @@ mod plain_line;
 mod statement_scan;
 mod structure;
 #[cfg(test)]
-mod test_rng;
+pub(crate) mod test_rng;
 mod text;
 
 pub use ast::*;

@@ -205,32 +205,21 @@ mod tests {
         assert_eq!(condition(&expr("R1>1 AND R2<0"), r), None);
     }
 
-    /// A random expression of plain arithmetic, with some nodes outside it (MOD, ATAN2, names).
-    fn random_expr(rng: &mut u64, depth: u32) -> String {
-        let mut next = |n: u64| {
-            *rng ^= *rng << 13;
-            *rng ^= *rng >> 7;
-            *rng ^= *rng << 17;
-            *rng % n
-        };
+    /// A random expression of plain arithmetic, with some nodes outside it (MOD, ATAN2, names),
+    /// drawn from `rng`.
+    fn random_expr(rng: &mut impl FnMut() -> u64, depth: u32) -> String {
         const NUMBERS: [&str; 12] =
             ["0", "1", "2", "7", "0.5", "1500", "2147483647", "2147483648", "999999999999", "0.1", "3", "1000000"];
-        if depth == 0 || next(4) == 0 {
-            return match next(3) {
-                0 => NUMBERS[next(NUMBERS.len() as u64) as usize].to_string(),
-                1 => format!("R{}", next(6)),
-                _ => format!("R[{}]", next(8) as i64 - 1),
+        if depth == 0 || rng().is_multiple_of(4) {
+            return match rng() % 3 {
+                0 => NUMBERS[(rng() % NUMBERS.len() as u64) as usize].to_string(),
+                1 => format!("R{}", rng() % 6),
+                _ => format!("R[{}]", (rng() % 8) as i64 - 1),
             };
         }
         let a = random_expr(rng, depth - 1);
         let b = random_expr(rng, depth - 1);
-        let mut next = |n: u64| {
-            *rng ^= *rng << 13;
-            *rng ^= *rng >> 7;
-            *rng ^= *rng << 17;
-            *rng % n
-        };
-        match next(14) {
+        match rng() % 14 {
             0 => format!("({a})+({b})"),
             1 => format!("({a})-({b})"),
             2 => format!("({a})*({b})"),
@@ -244,7 +233,7 @@ mod tests {
             10 => format!("({a}) MOD ({b})"),
             11 => format!("ATAN2({a},{b})"),
             12 => format!("R[{a}]"),
-            _ => format!("({a})*R{}", next(6)),
+            _ => format!("({a})*R{}", rng() % 6),
         }
     }
 
@@ -252,7 +241,7 @@ mod tests {
     fn random_arithmetic_evaluates_as_the_general_evaluator_does() {
         let s = scope(&[0.0, -0.0, 3.25, -1e9, 1e300, 2147483647.0]);
         let r = &s.0.r;
-        let mut rng = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut rng = crate::lang::test_rng::xorshift(0x9e37_79b9_7f4a_7c15);
         let (mut fast, mut total) = (0, 0);
         for _ in 0..20000 {
             let text = random_expr(&mut rng, 4);
