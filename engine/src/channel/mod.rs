@@ -268,7 +268,7 @@ impl Channel {
     /// A channel for the given machine data (applied on top of the defaults).
     pub fn new(data: MachineData) -> Result<Channel, MdError> {
         let cfg = data.activate().map_err(|e| MdError { line: None, message: e.message })?;
-        Ok(Channel::with_config(data, cfg))
+        Ok(Channel::with_config(data, cfg, Programs::new()))
     }
 
     /// A channel for a built-in preset plus extra NC data text.
@@ -278,10 +278,14 @@ impl Channel {
         let mut data = MachineData::default();
         data.apply_text(preset.text)?;
         let cfg = data.apply_text(extra)?;
-        Ok(Channel::with_config(data, cfg))
+        Ok(Channel::with_config(data, cfg, Programs::new()))
     }
 
-    fn with_config(data: MachineData, cfg: MachineConfig) -> Channel {
+    /// A channel at power on for `data`/`cfg` holding the stored programs `programs`. The
+    /// program store is an argument, not a default: the session's programs are data of the
+    /// session, not of the machine data, so whatever builds a channel anew (a change of machine
+    /// data or chain data) has to say which programs it keeps.
+    fn with_config(data: MachineData, cfg: MachineConfig, programs: Programs) -> Channel {
         let cfg = Arc::new(cfg);
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg);
@@ -296,7 +300,7 @@ impl Channel {
             tick: 0,
             program: None,
             queued_blocks: VecDeque::new(),
-            programs: Programs::new(),
+            programs,
             prep_done: true,
             pending: VecDeque::new(),
             planner,
@@ -381,11 +385,12 @@ impl Channel {
         Ok(())
     }
 
-    /// Becomes a channel on `data`/`cfg`, keeping axis positions where the axes still exist.
+    /// Becomes a channel on `data`/`cfg`, keeping the stored programs and the axis positions
+    /// where the axes still exist.
     fn replace_data(&mut self, data: MachineData, cfg: MachineConfig) {
         let old_pos = *self.planner.position();
         let old_names: Vec<String> = self.cfg.machine_axes.iter().map(|a| a.name.clone()).collect();
-        let mut next = Channel::with_config(data, cfg);
+        let mut next = Channel::with_config(data, cfg, std::mem::take(&mut self.programs));
         let mut pos = [0.0; MAX_CHANNEL_AXES];
         for (k, ch) in next.cfg.channel_axes.iter().enumerate() {
             let name = &next.cfg.machine_axes[ch.machine_axis].name;

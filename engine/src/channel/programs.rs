@@ -46,3 +46,19 @@ pub(super) fn program_name(name: &str) -> Result<String, CommandError> {
         )))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Channel;
+
+    #[test]
+    fn stored_programs_survive_new_machine_data_and_new_chain_data() {
+        let mut ch = Channel::from_preset("mill-3axis", "").expect("preset");
+        ch.store_program("SUB", "G0 X1\nM17").expect("store");
+        ch.apply_machine_data("$MA_POS_LIMIT_PLUS[AX1]=50.").expect("machine data");
+        assert_eq!(ch.stored_programs(), [("SUB".to_string(), 9)]);
+        let chains = ch.export_kinematic_chains();
+        ch.import_kinematic_chains(&chains).expect("chain data");
+        assert_eq!(ch.stored_program("SUB"), Some("G0 X1\nM17"));
+    }
+}
