@@ -86,6 +86,8 @@ pub struct CreatedSession {
     pub machine: String,
     pub state: State,
     pub tokens: Tokens,
+    /// Whether the session is persistent: it never expires when idle.
+    pub persistent: bool,
 }
 
 /// A built-in machine preset.
@@ -133,6 +135,18 @@ pub struct CreateSession {
     /// NC data text applied on top of the preset, as if written and activated by a reset.
     #[schema(example = "$MA_POS_LIMIT_PLUS[X]=400.")]
     pub machine_data: Option<String>,
+    /// `true`: the session never expires when idle (see `--session-idle-timeout`); default
+    /// `false`. `PATCH /sessions/{id}` changes it later.
+    pub persistent: Option<bool>,
+}
+
+/// Body of `PATCH /sessions/{id}`: the fields to change.
+#[derive(Debug, Clone, Default, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SessionPatch {
+    /// `true`: the session never expires when idle; `false`: it expires after the server's
+    /// idle timeout without use.
+    pub persistent: Option<bool>,
 }
 
 /// A session with its full state.
@@ -142,6 +156,8 @@ pub struct Session {
     /// The preset the session was created from.
     pub machine: String,
     pub state: State,
+    /// Whether the session is persistent: it never expires when idle.
+    pub persistent: bool,
 }
 
 /// A session in the list.

@@ -47,6 +47,16 @@ pub struct Limits {
     /// Longest a graceful shutdown waits for open connections after every session is saved
     /// and closed: 5 s. The process then exits anyway.
     pub shutdown_grace: Duration,
+    /// A session no client has used for this long is deleted, from storage too: 24 h. Zero:
+    /// sessions never expire. Use is any request to the session that passes the access check
+    /// (reads too), an open stream or a running program; a session the owner marked
+    /// persistent never expires. The idle time counts across restarts (the last activity is
+    /// saved, see `state::expiry`).
+    pub session_idle: Duration,
+    /// Bytes of stored programs on the whole server, all sessions together: 2 GiB (`413`
+    /// naming the budget). With [`Limits::session_program_bytes`] per session and
+    /// [`Limits::sessions`] this caps the memory programs hold.
+    pub program_budget_bytes: usize,
 }
 
 impl Default for Limits {
@@ -65,6 +75,8 @@ impl Default for Limits {
             commands_per_second: 50.0,
             command_burst: 100.0,
             shutdown_grace: Duration::from_secs(5),
+            session_idle: Duration::from_secs(24 * 3600),
+            program_budget_bytes: 2 << 30,
         }
     }
 }
@@ -107,6 +119,14 @@ pub struct LimitFlags {
     /// Largest stored program in bytes [default: 16777216 = 16 MiB].
     #[arg(long, value_name = "BYTES")]
     pub max_program_bytes: Option<usize>,
+    /// Seconds a session may stay unused before it is deleted (also from storage); 0: never.
+    /// Sessions marked persistent never expire [default: 86400 = 24 h].
+    #[arg(long, value_name = "SECONDS")]
+    pub session_idle_timeout: Option<u64>,
+    /// Bytes of stored programs on the whole server, all sessions together
+    /// [default: 2147483648 = 2 GiB].
+    #[arg(long, value_name = "BYTES")]
+    pub program_budget_bytes: Option<usize>,
 }
 
 impl LimitFlags {
@@ -119,6 +139,8 @@ impl LimitFlags {
             commands_per_second: self.commands_per_second.unwrap_or(limits.commands_per_second),
             command_burst: self.command_burst.unwrap_or(limits.command_burst),
             program_bytes: self.max_program_bytes.unwrap_or(limits.program_bytes),
+            session_idle: self.session_idle_timeout.map_or(limits.session_idle, Duration::from_secs),
+            program_budget_bytes: self.program_budget_bytes.unwrap_or(limits.program_budget_bytes),
             ..limits
         }
     }

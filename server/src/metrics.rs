@@ -1,5 +1,6 @@
 //! Metrics in the Prometheus text format (`GET /metrics`): sessions, stream clients, IPO lag,
-//! request counts and latencies per route, storage calls.
+//! request counts and latencies per route, storage calls, bytes of stored programs (per
+//! session: a label per live session, bounded by the session limit).
 //!
 //! Counters are plain atomics and one small map per route template (not per URL: the label
 //! set stays bounded however many sessions exist); gauges are read from the registry when
@@ -81,6 +82,7 @@ impl Metrics {
             "Largest lateness of the last real-time wake-up over all sessions (0 when none is stepped in real time).",
             lag.as_secs_f64(),
         );
+        program_bytes(&mut out, &entries, state.limits().program_budget_bytes);
         wake_histogram(&mut out, &wake_stats().counts());
         let _ = writeln!(out, "# HELP nctwin_storage_operations_total Storage calls by result.");
         let _ = writeln!(out, "# TYPE nctwin_storage_operations_total counter");
@@ -133,6 +135,24 @@ fn gauge(out: &mut String, name: &str, help: &str, value: f64) {
     let _ = writeln!(out, "# HELP {name} {help}");
     let _ = writeln!(out, "# TYPE {name} gauge");
     let _ = writeln!(out, "{name} {value}");
+}
+
+/// Bytes of stored programs: per session, on the whole server, and the server's budget.
+fn program_bytes(out: &mut String, entries: &[std::sync::Arc<crate::state::SessionEntry>], budget: usize) {
+    let name = "nctwin_session_program_bytes";
+    let _ = writeln!(out, "# HELP {name} Bytes of stored programs held by each live session.");
+    let _ = writeln!(out, "# TYPE {name} gauge");
+    for entry in entries {
+        let _ = writeln!(out, "{name}{{session=\"{}\"}} {}", escape(entry.id()), entry.program_bytes());
+    }
+    let total: usize = entries.iter().map(|e| e.program_bytes()).sum();
+    gauge(out, "nctwin_program_bytes", "Bytes of stored programs held by all live sessions.", total as f64);
+    gauge(
+        out,
+        "nctwin_program_budget_bytes",
+        "The server's budget of stored program bytes, all sessions together (--program-budget-bytes).",
+        budget as f64,
+    );
 }
 
 /// The lateness of real-time wake-ups (the server-side IPO lag) and the cycles dropped by the

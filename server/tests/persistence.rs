@@ -173,6 +173,14 @@ impl Storage for BreakableStorage {
         self.ok()?;
         self.inner.delete_program(id, name)
     }
+    fn set_persistent(&self, id: &str, persistent: bool) -> Result<(), StorageError> {
+        self.ok()?;
+        self.inner.set_persistent(id, persistent)
+    }
+    fn save_activity(&self, activity: &[(String, u64)]) -> Result<(), StorageError> {
+        self.ok()?;
+        self.inner.save_activity(activity)
+    }
 }
 
 #[tokio::test]

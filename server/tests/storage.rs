@@ -38,6 +38,8 @@ fn record(id: &str, number: u64) -> SessionRecord {
             channel_state: Some(r#"{"retained":{"tool":3}}"#.into()),
             active_program: None,
         },
+        persistent: false,
+        last_active_ms: None,
     }
 }
 
@@ -255,7 +257,7 @@ fn postgres_nodes_share_one_database_and_the_schema_is_versioned() {
 
     let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
     let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
-    assert_eq!(version, 3);
+    assert_eq!(version, 4);
     let sync: String = admin.query_one("SHOW synchronous_commit", &[]).expect("show").get(0);
     assert!(!sync.is_empty());
     admin.execute("INSERT INTO nctwin_schema (version) VALUES (99)", &[]).expect("a newer schema");
@@ -368,7 +370,7 @@ fn postgres_schema_1_is_migrated_without_losing_data() {
     assert_eq!(all[0].programs, vec![("MAIN".to_string(), "G0 X1\nM30".to_string())]);
     assert_eq!(storage.next_session_number().expect("number"), Some(8), "above the stored s7");
     let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
-    assert_eq!(version, 3);
+    assert_eq!(version, 4);
 }
 
 #[test]
@@ -405,7 +407,7 @@ fn sqlite_schema_1_is_migrated_without_losing_data() {
         .expect("open")
         .query_row("PRAGMA user_version", [], |r| r.get(0))
         .expect("version");
-    assert_eq!(version, 3);
+    assert_eq!(version, 4);
     assert_eq!(SqliteStorage::open(&path).expect("reopen").load().expect("load")[0].record.checkpoint, checkpoint);
 }
 

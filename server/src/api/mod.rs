@@ -63,7 +63,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(machines::get_machine))
         .routes(routes!(machine_data_read::list_definitions))
         .routes(routes!(sessions::list_sessions, sessions::create_session))
-        .routes(routes!(sessions::get_session, sessions::delete_session))
+        .routes(routes!(sessions::get_session, sessions::delete_session, sessions::patch_session))
         .routes(routes!(sessions::get_state))
         .routes(routes!(control::stop))
         .routes(routes!(control::reset))

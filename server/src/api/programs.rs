@@ -58,7 +58,8 @@ pub async fn get_program(
 
 /// Stores (creates or replaces) a program under `name`, for calls by name from other
 /// programs. A text with syntax errors is refused with the first error's line. The program is
-/// saved before the reply. Limits: 16 MiB per program, 64 MiB per session (`413`); this is the
+/// saved before the reply. Limits: 16 MiB per program, 64 MiB per session and 2 GiB on the
+/// whole server, all sessions together (`413` naming the limit); this is the
 /// one endpoint whose body may exceed 1 MiB, so large programs are stored here and called by
 /// name from a short `run`.
 #[utoipa::path(
@@ -71,7 +72,7 @@ pub async fn get_program(
         (status = 200, description = "Stored", body = ProgramInfo),
         (status = 400, description = "Bad name, syntax error (with its line) or malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
-        (status = 413, description = "The program or the session's programs exceed their size limit", body = ErrorBody),
+        (status = 413, description = "The program, the session's programs or the server's programs together exceed their size limit", body = ErrorBody),
         (status = 503, description = "The storage failed; the program was not saved", body = ErrorBody),
     )
 )]

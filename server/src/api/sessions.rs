@@ -9,12 +9,12 @@ use axum::response::{IntoResponse, Response};
 use nctwin_engine::Channel;
 use nctwin_engine::machine_data::presets;
 
-use super::{PREFIX, find_session};
+use super::{PREFIX, find_entry, find_session};
 use crate::auth::access;
-use crate::dto::{self, CreateSession, CreatedSession, ErrorBody, Session, SessionSummary, Tokens};
+use crate::dto::{self, CreateSession, CreatedSession, ErrorBody, Session, SessionPatch, SessionSummary, Tokens};
 use crate::error::ApiError;
-use crate::extract::OptionalJson;
-use crate::state::AppState;
+use crate::extract::{ApiJson, OptionalJson};
+use crate::state::{AppState, SessionEntry};
 
 /// Every live session, oldest first. With `--auth required`, the sessions the bearer token
 /// belongs to.
@@ -49,7 +49,8 @@ pub async fn list_sessions(State(state): State<AppState>, headers: HeaderMap) ->
 /// Creates a session: a simulated channel of a preset machine, plus optional NC data text.
 ///
 /// The body may be empty (all defaults: preset `mill-3axis`). The session is saved before the
-/// reply. The reply holds the session's three tokens (owner, operator, observer), shown only
+/// reply. Unless created `persistent`, a session no client uses for the server's idle timeout
+/// (`--session-idle-timeout`, default 24 h) is deleted. The reply holds the session's three tokens (owner, operator, observer), shown only
 /// here; with `--auth required` every request to the session needs one of them. Creating a
 /// session needs no token.
 #[utoipa::path(
@@ -81,13 +82,15 @@ pub async fn create_session(
     }
     let channel = Channel::from_preset(&machine, body.machine_data.as_deref().unwrap_or(""))?;
     let client_ip = peer.map(|Extension(ConnectInfo(addr))| addr.ip());
-    let (entry, tokens) = state.create_session(&machine, channel, client_ip).await?;
+    let persistent = body.persistent.unwrap_or(false);
+    let (entry, tokens) = state.create_session(&machine, channel, client_ip, persistent).await?;
     let handle = &entry.handle;
     let body = CreatedSession {
         id: handle.id().into(),
         machine: machine.clone(),
         state: dto::State::from(handle.snapshot().as_ref()),
         tokens: Tokens { owner: tokens.owner, operator: tokens.operator, observer: tokens.observer },
+        persistent,
     };
     let mut response = (StatusCode::CREATED, Json(body)).into_response();
     if let Ok(location) = HeaderValue::from_str(&format!("{PREFIX}/sessions/{}", handle.id())) {
@@ -108,12 +111,44 @@ pub async fn create_session(
     )
 )]
 pub async fn get_session(State(state): State<AppState>, Path(id): Path<String>) -> Result<Json<Session>, ApiError> {
-    let session = find_session(&state, &id)?;
-    Ok(Json(Session {
+    Ok(Json(session_body(&*find_entry(&state, &id)?)))
+}
+
+fn session_body(entry: &SessionEntry) -> Session {
+    let session = &entry.handle;
+    Session {
         id: session.id().into(),
         machine: session.machine().into(),
         state: dto::State::from(session.snapshot().as_ref()),
-    }))
+        persistent: entry.persistent(),
+    }
+}
+
+/// Changes a session's settings: `persistent` (`true`: it never expires when idle). Saved
+/// before the reply. Owner only.
+#[utoipa::path(
+    patch,
+    path = "/sessions/{id}",
+    tag = "sessions",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = SessionPatch,
+    responses(
+        (status = 200, description = "The session with the change", body = Session),
+        (status = 400, description = "A malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 503, description = "The storage failed; nothing changed", body = ErrorBody),
+    )
+)]
+pub async fn patch_session(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<SessionPatch>,
+) -> Result<Json<Session>, ApiError> {
+    let entry = find_entry(&state, &id)?;
+    if let Some(persistent) = body.persistent {
+        state.set_persistent(&entry, persistent).await?;
+    }
+    Ok(Json(session_body(&entry)))
 }
 
 /// Deletes a session: its channel stops, its streams close, requests waiting on it end and it

@@ -6,7 +6,7 @@
 //! | any `GET` (state, programs, stream, control)     | any role ([`Need::Read`])                |
 //! | `POST .../check`, `.../preview` (change nothing) | any role                                 |
 //! | `POST .../control/take`, `.../control/release`   | operator or owner ([`Need::Join`])       |
-//! | `DELETE /sessions/{id}`                          | owner ([`Need::Owner`])                  |
+//! | `DELETE /sessions/{id}`, `PATCH /sessions/{id}`   | owner ([`Need::Owner`])                  |
 //! | every other request to a session               | operator or owner holding control ([`Need::Command`]) |
 //!
 //! Observers get `403` for everything beyond reading; an operator without control gets `409`.
@@ -47,7 +47,7 @@ pub fn need(method: &Method, route: &str) -> Option<Need> {
         (&Method::GET | &Method::HEAD, _) => Need::Read,
         (&Method::POST, "/check" | "/preview") => Need::Read,
         (&Method::POST, "/control/take" | "/control/release") => Need::Join,
-        (&Method::DELETE, "") => Need::Owner,
+        (&Method::DELETE | &Method::PATCH, "") => Need::Owner,
         _ => Need::Command,
     })
 }
@@ -125,6 +125,8 @@ async fn authorize(state: &AppState, request: Request) -> Result<Request, ApiErr
     if need == Need::Command {
         entry.take_command(state.limits())?;
     }
+    // Any request that passed the checks is use of the session (idle expiry).
+    entry.touch();
     request.extensions_mut().insert(Caller(role));
     Ok(request)
 }
@@ -161,6 +163,7 @@ mod tests {
         assert_eq!(need(&Method::POST, &s("/preview")), Some(Need::Read));
         assert_eq!(need(&Method::POST, &s("/control/take")), Some(Need::Join));
         assert_eq!(need(&Method::DELETE, &s("")), Some(Need::Owner));
+        assert_eq!(need(&Method::PATCH, &s("")), Some(Need::Owner));
         for (method, rest) in [
             (Method::POST, "/run"),
             (Method::POST, "/stop"),

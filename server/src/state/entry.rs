@@ -1,9 +1,10 @@
 //! [`SessionEntry`]: what the server keeps per session besides the actor: tokens, who holds
 //! control, the command rate limiter, the stream client count, the shared encoded state
-//! message of its streams and the save lock.
+//! message of its streams, the save lock, and what idle expiry and the program budget count
+//! (last activity, the persistent mark, the bytes of stored programs).
 
 use std::net::IpAddr;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 use tokio::time::Instant;
@@ -39,6 +40,16 @@ pub struct SessionEntry {
     pub save_lock: tokio::sync::Mutex<()>,
     /// The hash of the AUTO program last checkpointed (see [`super::persist`]).
     pub program_hash: Arc<ProgramHashCache>,
+    /// The owner marked the session persistent: it never expires for being idle.
+    persistent: AtomicBool,
+    /// When a client last used the session (Unix time, ms): a request that passed the access
+    /// check, an open stream or a running program (see [`super::expiry`]).
+    last_active_ms: AtomicU64,
+    /// The last activity storage holds (written in batches by the expiry sweep).
+    saved_active_ms: AtomicU64,
+    /// Bytes of the session's stored programs (the server-wide budget and `/metrics`); set
+    /// from the channel's program store whenever it changes.
+    pub(super) program_bytes: Arc<AtomicUsize>,
 }
 
 impl SessionEntry {
@@ -60,7 +71,50 @@ impl SessionEntry {
             frames: FrameCache::default(),
             save_lock: tokio::sync::Mutex::new(()),
             program_hash: Arc::default(),
+            persistent: AtomicBool::new(false),
+            last_active_ms: AtomicU64::new(0),
+            saved_active_ms: AtomicU64::new(0),
+            program_bytes: Arc::new(AtomicUsize::new(0)),
         }
+    }
+
+    /// Whether the owner marked the session persistent (it never expires when idle).
+    pub fn persistent(&self) -> bool {
+        self.persistent.load(Ordering::Acquire)
+    }
+
+    pub(super) fn set_persistent(&self, persistent: bool) {
+        self.persistent.store(persistent, Ordering::Release);
+    }
+
+    /// Notes that a client used the session now.
+    pub fn touch(&self) {
+        self.touch_at(super::expiry::now_ms());
+    }
+
+    pub(super) fn touch_at(&self, now_ms: u64) {
+        self.last_active_ms.fetch_max(now_ms, Ordering::AcqRel);
+    }
+
+    /// When a client last used the session (Unix time, ms).
+    pub fn last_active_ms(&self) -> u64 {
+        self.last_active_ms.load(Ordering::Acquire)
+    }
+
+    /// Sets the activity as storage holds it (at start: a restored or created session).
+    pub(super) fn set_saved_activity(&self, ms: u64) {
+        self.last_active_ms.fetch_max(ms, Ordering::AcqRel);
+        self.saved_active_ms.store(ms, Ordering::Release);
+    }
+
+    /// The activity storage holds, as far as this server wrote or read it.
+    pub(super) fn saved_active_ms(&self) -> u64 {
+        self.saved_active_ms.load(Ordering::Acquire)
+    }
+
+    /// Bytes of the session's stored programs.
+    pub fn program_bytes(&self) -> usize {
+        self.program_bytes.load(Ordering::Acquire)
     }
 
     pub fn id(&self) -> &str {

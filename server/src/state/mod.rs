@@ -5,6 +5,7 @@
 //! worker, so the storage's disk waits never block the async runtime.
 
 mod entry;
+pub mod expiry;
 pub mod persist;
 
 use std::collections::HashMap;
@@ -78,6 +79,10 @@ struct Shared {
     /// Serialises taking over sessions from the shared database, so two requests for the same
     /// session cannot start it twice.
     claim_lock: tokio::sync::Mutex<()>,
+    /// Serialises the server-wide program budget's check and the session's new count (a std
+    /// `Mutex` held for a sum over the registry, never across an await), so concurrent uploads
+    /// to different sessions cannot together pass the budget.
+    budget_lock: Mutex<()>,
     config: Config,
     storage: Arc<dyn Storage>,
     metrics: Metrics,
@@ -114,6 +119,7 @@ impl AppState {
                 next_session: AtomicU64::new(1),
                 create_lock: tokio::sync::Mutex::new(()),
                 claim_lock: tokio::sync::Mutex::new(()),
+                budget_lock: Mutex::new(()),
                 config,
                 storage,
                 metrics: Metrics::default(),
@@ -141,6 +147,7 @@ impl AppState {
         let node = state.shared.storage.lease().map(|l| l.node.clone());
         tracing::info!(storage = %state.shared.storage.describe(), node = ?node, sessions = restored, "storage opened");
         state.start_heartbeat();
+        state.start_expiry();
         Ok(state)
     }
 
@@ -169,7 +176,12 @@ impl AppState {
             }
         };
         let client_ip = record.client_ip.as_deref().and_then(|ip| ip.parse().ok());
-        Some(self.start_session(&record.id, record.number, &record.machine, channel, client_ip, record.tokens.clone()))
+        let entry =
+            self.start_session(&record.id, record.number, &record.machine, channel, client_ip, record.tokens.clone());
+        entry.set_persistent(record.persistent);
+        // A row without activity (saved before schema version 4): the restart counts as use.
+        entry.set_saved_activity(record.last_active_ms.unwrap_or_else(expiry::now_ms));
+        Some(entry)
     }
 
     /// The session `id` this node serves: a live one, or, on a shared database, one this node
@@ -300,12 +312,14 @@ impl AppState {
 
     /// Creates a session for `channel`: checks the session limits, makes its tokens, saves it
     /// (durably) and starts its actor. Ids are `s1`, `s2`, ... (base 36), numbered by the
-    /// database when nodes share one.
+    /// storage, which never hands a number out twice (not after a delete and a restart either,
+    /// nor on another node of a shared database). `persistent`: never expires when idle.
     pub async fn create_session(
         &self,
         machine: &str,
         channel: Channel,
         client_ip: Option<IpAddr>,
+        persistent: bool,
     ) -> Result<(Arc<SessionEntry>, TokenSet), ApiError> {
         let limits = *self.limits();
         let _creating = self.shared.create_lock.lock().await;
@@ -331,7 +345,8 @@ impl AppState {
         }
         let tokens = TokenSet::generate()
             .map_err(|e| ApiError::StorageUnavailable(format!("no random numbers for tokens: {e}")))?;
-        // On a shared database the database hands out numbers, so nodes never make the same id.
+        // The storage hands out numbers (durably, so ids never repeat; on a shared database
+        // nodes never make the same id); only a storage that keeps nothing leaves it to us.
         let number = match self.storage_call(|s| s.next_session_number()).await? {
             Some(n) => n,
             None => self.shared.next_session.fetch_add(1, Ordering::Relaxed),
@@ -344,10 +359,15 @@ impl AppState {
             client_ip: client_ip.map(|ip| ip.to_string()),
             tokens: tokens.hashes(),
             checkpoint: persist::checkpoint(&channel),
+            persistent,
+            last_active_ms: Some(expiry::now_ms()),
         };
+        let created_ms = record.last_active_ms.unwrap_or_default();
         // Saved before it is started: a session the client hears of is on disk.
         self.storage_call(move |s| s.create_session(&record)).await?;
         let entry = self.start_session(&id, number, machine, channel, client_ip, tokens.hashes());
+        entry.set_persistent(persistent);
+        entry.set_saved_activity(created_ms);
         Ok((entry, tokens))
     }
 
@@ -362,8 +382,10 @@ impl AppState {
         client_ip: Option<IpAddr>,
         tokens: storage::TokenHashes,
     ) -> Arc<SessionEntry> {
+        let program_bytes = stored_bytes(&channel);
         let handle = SessionHandle::spawn(id, machine, channel, self.limits().actor_config());
         let entry = Arc::new(SessionEntry::new(handle.clone(), number, client_ip, tokens, self.limits()));
+        entry.program_bytes.store(program_bytes, Ordering::Release);
         self.sessions().insert(id.to_string(), entry.clone());
         let state = self.clone();
         let mut settled = handle.watch_settled();
@@ -412,20 +434,27 @@ impl AppState {
         let id = entry.id().to_string();
         let text = Arc::<str>::from(text);
         let for_channel = text.clone();
+        let state = self.clone();
+        let counter = entry.program_bytes.clone();
         let (stored, previous) = entry
             .handle
             .with_channel(move |ch| {
                 let previous = ch.stored_program(&name).map(str::to_string);
-                let total: usize = ch.stored_programs().iter().map(|(_, size)| size).sum();
+                let total = stored_bytes(ch);
                 let replaced = previous.as_ref().map_or(0, String::len);
-                if total - replaced + for_channel.len() > limits.session_program_bytes {
+                let after = total - replaced + for_channel.len();
+                if after > limits.session_program_bytes {
                     return Err(ApiError::TooLarge(format!(
                         "the session's programs would exceed the limit of {} bytes in total; delete some first",
                         limits.session_program_bytes
                     )));
                 }
-                let stored = ch.store_program(&name, &for_channel).map_err(ApiError::from)?;
-                Ok((stored, previous))
+                state.reserve_program_bytes(&counter, after)?;
+                let stored = ch.store_program(&name, &for_channel).map_err(ApiError::from);
+                if stored.is_err() {
+                    counter.store(total, Ordering::Release);
+                }
+                Ok((stored?, previous))
             })
             .await
             .map_err(|e| ApiError::from_session(&id, e))??;
@@ -434,11 +463,15 @@ impl AppState {
         if let Err(e) = written {
             // Not saved, so not applied either: the channel gets its previous program back.
             let name = stored.clone();
+            let counter = entry.program_bytes.clone();
             let _ = entry
                 .handle
-                .with_channel(move |ch| match previous {
-                    Some(text) => drop(ch.store_program(&name, &text)),
-                    None => drop(ch.delete_program(&name)),
+                .with_channel(move |ch| {
+                    match previous {
+                        Some(text) => drop(ch.store_program(&name, &text)),
+                        None => drop(ch.delete_program(&name)),
+                    }
+                    counter.store(stored_bytes(ch), Ordering::Release);
                 })
                 .await;
             return Err(e.into());
@@ -452,6 +485,7 @@ impl AppState {
         let id = entry.id().to_string();
         // The engine normalises names (upper case, no .MPF/.SPF); the one that disappeared is
         // the stored name.
+        let counter = entry.program_bytes.clone();
         let removed = entry
             .handle
             .with_channel(move |ch| {
@@ -461,6 +495,7 @@ impl AppState {
                     return None;
                 }
                 let after = ch.stored_programs();
+                counter.store(after.iter().map(|(_, size)| size).sum(), Ordering::Release);
                 let canonical = before.into_iter().map(|(n, _)| n).find(|n| !after.iter().any(|(a, _)| a == n))?;
                 Some((canonical, text))
             })
@@ -470,10 +505,49 @@ impl AppState {
         let name = canonical.clone();
         if let Err(e) = self.storage_call(move |s| s.delete_program(&id, &name)).await {
             // Not saved, so not applied either: the program is put back.
-            let _ = entry.handle.with_channel(move |ch| drop(ch.store_program(&canonical, &text))).await;
+            let counter = entry.program_bytes.clone();
+            let _ = entry
+                .handle
+                .with_channel(move |ch| {
+                    drop(ch.store_program(&canonical, &text));
+                    counter.store(stored_bytes(ch), Ordering::Release);
+                })
+                .await;
             return Err(e.into());
         }
         Ok(true)
+    }
+
+    /// Sets a session's count of stored program bytes to `after` if the server's budget allows
+    /// it (a count that shrinks always may); `413` naming the budget otherwise.
+    fn reserve_program_bytes(&self, counter: &AtomicUsize, after: usize) -> Result<(), ApiError> {
+        let budget = self.limits().program_budget_bytes;
+        let _budget = self.shared.budget_lock.lock().unwrap_or_else(|e| e.into_inner());
+        let before = counter.load(Ordering::Acquire);
+        if after > before {
+            let used = self.program_bytes_total();
+            if used - before.min(used) + after > budget {
+                return Err(ApiError::TooLarge(format!(
+                    "the server's budget of {budget} bytes for stored programs (all sessions together) would be exceeded ({used} bytes held); delete programs or sessions first"
+                )));
+            }
+        }
+        counter.store(after, Ordering::Release);
+        Ok(())
+    }
+
+    /// Bytes of stored programs in every live session.
+    pub fn program_bytes_total(&self) -> usize {
+        self.sessions().values().map(|e| e.program_bytes()).sum()
+    }
+
+    /// Marks a session persistent (it never expires when idle) or not; saved before the reply.
+    pub async fn set_persistent(&self, entry: &SessionEntry, persistent: bool) -> Result<(), ApiError> {
+        let _guard = entry.save_lock.lock().await;
+        let id = entry.id().to_string();
+        self.storage_call(move |s| s.set_persistent(&id, persistent)).await?;
+        entry.set_persistent(persistent);
+        Ok(())
     }
 
     /// The live session `id`, if any; the handle stays usable after the lock is released.
@@ -530,6 +604,8 @@ impl AppState {
     /// Server shutdown: saves every session's checkpoint in one write, then stops every actor
     /// (which closes every stream and answers every waiting request).
     pub async fn shutdown_sessions(&self) {
+        // The idle clocks go on from here after the restart.
+        self.save_activity().await;
         let all = self.list_entries();
         // Every save lock is held from the read to the write, so no later write is overtaken.
         let mut guards = Vec::with_capacity(all.len());
@@ -562,6 +638,11 @@ impl AppState {
             entry.handle.shutdown().await;
         }
     }
+}
+
+/// Bytes of a channel's stored programs.
+fn stored_bytes(channel: &Channel) -> usize {
+    channel.stored_programs().iter().map(|(_, size)| size).sum()
 }
 
 /// `n` in base 36 with digits `0-9a-z`.

@@ -156,6 +156,8 @@ mod tests {
                 client_ip: None,
                 tokens: TokenHashes { owner: "a".into(), operator: "b".into(), observer: "c".into() },
                 checkpoint: checkpoint(channel),
+                persistent: false,
+                last_active_ms: None,
             },
             programs,
         }

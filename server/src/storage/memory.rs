@@ -70,6 +70,26 @@ impl Storage for MemoryStorage {
         })
     }
 
+    fn set_persistent(&self, id: &str, persistent: bool) -> Result<(), StorageError> {
+        self.with(|m| {
+            if let Some(s) = m.get_mut(id) {
+                s.record.persistent = persistent;
+            }
+        });
+        Ok(())
+    }
+
+    fn save_activity(&self, activity: &[(String, u64)]) -> Result<(), StorageError> {
+        self.with(|m| {
+            for (id, ms) in activity {
+                if let Some(s) = m.get_mut(id) {
+                    s.record.last_active_ms = Some(*ms);
+                }
+            }
+        });
+        Ok(())
+    }
+
     fn delete_program(&self, id: &str, name: &str) -> Result<(), StorageError> {
         self.with(|m| {
             if let Some(s) = m.get_mut(id) {

@@ -136,6 +136,11 @@ pub struct SessionRecord {
     pub client_ip: Option<String>,
     pub tokens: TokenHashes,
     pub checkpoint: Checkpoint,
+    /// The owner marked the session persistent: it never expires for being idle.
+    pub persistent: bool,
+    /// When a client last used the session (Unix time, milliseconds), as last saved; `None`
+    /// in rows written before schema version 4 (a restart then counts as activity).
+    pub last_active_ms: Option<u64>,
 }
 
 /// A stored session with its stored programs (name, text), by name.
@@ -217,12 +222,21 @@ pub trait Storage: Send + Sync + Debug {
     fn put_program(&self, id: &str, name: &str, text: &str) -> Result<(), StorageError>;
     /// Deletes program `name` of session `id`; a missing program is no error.
     fn delete_program(&self, id: &str, name: &str) -> Result<(), StorageError>;
+    /// Marks session `id` persistent (never expires when idle) or not; a missing session is no
+    /// error.
+    fn set_persistent(&self, id: &str, persistent: bool) -> Result<(), StorageError>;
+    /// Records when sessions were last used (id, Unix time in milliseconds), all in one write;
+    /// missing sessions (and, with leases, those another node holds) are skipped.
+    fn save_activity(&self, activity: &[(String, u64)]) -> Result<(), StorageError>;
 
-    // ---- several nodes on one database (PostgreSQL); a storage of one node keeps the defaults.
+    // ---- several nodes on one database (PostgreSQL); a storage of one node keeps the defaults
+    // (except `next_session_number`, which every storage that outlives the process implements).
     // With leases, `load` returns (and leases) only the sessions this node may serve, and every
     // write to a session another node holds fails.
 
-    /// The number of a new session, unique among all nodes; `None`: the caller counts.
+    /// The number of a new session: never handed out before by this storage, also not after
+    /// the session that had it was deleted and the server restarted (ids never repeat). `None`:
+    /// the caller counts (a storage that keeps nothing over a restart).
     fn next_session_number(&self) -> Result<Option<u64>, StorageError> {
         Ok(None)
     }

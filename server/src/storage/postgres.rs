@@ -43,7 +43,7 @@ use super::{
 };
 
 /// Version in `nctwin_schema`; migrations go from each version to the next.
-const SCHEMA_VERSION: i32 = 3;
+const SCHEMA_VERSION: i32 = 4;
 
 /// Key of the advisory lock held while the schema is created or migrated.
 const SCHEMA_LOCK: i64 = 0x6e63_7477_696e; // "nctwin"
@@ -89,6 +89,15 @@ CREATE TABLE nctwin_active_programs (
     sha256  TEXT NOT NULL,
     text    TEXT NOT NULL
 );
+";
+
+/// Version 4: the owner's persistent mark and the last activity (NULL in older rows: a restart
+/// counts as activity for them). Session numbers already come from a sequence (version 2),
+/// which never hands a number out twice.
+const MIGRATE_V4: &str = "
+ALTER TABLE nctwin_sessions
+    ADD COLUMN persistent     BOOLEAN NOT NULL DEFAULT FALSE,
+    ADD COLUMN last_active_ms BIGINT;
 ";
 
 const UPDATE_CHECKPOINT: &str =
@@ -235,13 +244,17 @@ fn migrate(client: &mut Client) -> Result<(), StorageError> {
             tx.batch_execute(SCHEMA_V1)?;
             tx.batch_execute(MIGRATE_V2)?;
             tx.batch_execute(MIGRATE_V3)?;
+            tx.batch_execute(MIGRATE_V4)?;
             tx.execute("INSERT INTO nctwin_schema (version) VALUES ($1)", &[&SCHEMA_VERSION])?;
         }
-        Some(version @ (1 | 2)) => {
+        Some(version @ (1..=3)) => {
             if version == 1 {
                 tx.batch_execute(MIGRATE_V2)?;
             }
-            tx.batch_execute(MIGRATE_V3)?;
+            if version <= 2 {
+                tx.batch_execute(MIGRATE_V3)?;
+            }
+            tx.batch_execute(MIGRATE_V4)?;
             tx.execute("UPDATE nctwin_schema SET version = $1", &[&SCHEMA_VERSION])?;
         }
         Some(SCHEMA_VERSION) => {}
@@ -256,7 +269,7 @@ fn migrate(client: &mut Client) -> Result<(), StorageError> {
 }
 
 const SESSION_COLUMNS: &str = "id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
-     machine_data, positions, mode, channel_state";
+     machine_data, positions, mode, channel_state, persistent, last_active_ms";
 
 /// Writes the active program of session `id` where its hash differs from the stored one (or
 /// removes it); an unchanged program costs one indexed read: no text is sent or written.
@@ -297,6 +310,8 @@ fn record_from_row(r: &postgres::Row) -> SessionRecord {
             channel_state: r.get(10),
             active_program: None,
         },
+        persistent: r.get(11),
+        last_active_ms: r.get::<_, Option<i64>>(12).map(|ms| ms.max(0) as u64),
     }
 }
 
@@ -407,8 +422,9 @@ impl Storage for PostgresStorage {
             tx.execute(
                 "INSERT INTO nctwin_sessions (id, number, machine, client_ip, owner_hash, operator_hash,
                                               observer_hash, machine_data, positions, mode, channel_state,
-                                              lease_node, lease_expires)
-                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, now() + make_interval(secs => $13))",
+                                              lease_node, lease_expires, persistent, last_active_ms)
+                 VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, now() + make_interval(secs => $13),
+                         $14, $15)",
                 &[
                     &record.id,
                     &(record.number.min(i64::MAX as u64) as i64),
@@ -423,6 +439,8 @@ impl Storage for PostgresStorage {
                     &record.checkpoint.channel_state,
                     &node,
                     &period,
+                    &record.persistent,
+                    &record.last_active_ms.map(|ms| ms.min(i64::MAX as u64) as i64),
                 ],
             )?;
             write_active_program(&mut tx, &record.id, record.checkpoint.active_program.as_ref())?;
@@ -511,6 +529,33 @@ impl Storage for PostgresStorage {
             tx.execute("DELETE FROM nctwin_programs WHERE session = $1 AND name = $2", &[&id, &name])?;
             tx.commit().map(Ok)
         }))
+    }
+
+    fn set_persistent(&self, id: &str, persistent: bool) -> Result<(), StorageError> {
+        let node = self.lease.node.as_str();
+        flatten(self.with(|c| {
+            let mut tx = c.transaction()?;
+            if let Err(held) = fence(&mut tx, id, node)? {
+                return Ok(Err(held));
+            }
+            tx.execute("UPDATE nctwin_sessions SET persistent = $2 WHERE id = $1", &[&id, &persistent])?;
+            tx.commit().map(Ok)
+        }))
+    }
+
+    fn save_activity(&self, activity: &[(String, u64)]) -> Result<(), StorageError> {
+        // One transaction; sessions another node holds now are skipped (its node keeps their
+        // activity).
+        let node = self.lease.node.as_str();
+        self.with(|c| {
+            let mut tx = c.transaction()?;
+            let update =
+                tx.prepare("UPDATE nctwin_sessions SET last_active_ms = $2 WHERE id = $1 AND lease_node = $3")?;
+            for (id, ms) in activity {
+                tx.execute(&update, &[id, &((*ms).min(i64::MAX as u64) as i64), &node])?;
+            }
+            tx.commit()
+        })
     }
 
     fn next_session_number(&self) -> Result<Option<u64>, StorageError> {

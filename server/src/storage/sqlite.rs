@@ -19,7 +19,7 @@ use nctwin_engine::lang::ProgramText;
 use super::{ActiveProgram, Checkpoint, SavedSession, SessionRecord, Storage, StorageError, TokenHashes};
 
 /// Schema version written to `PRAGMA user_version`; migrations go from each version to the next.
-const SCHEMA_VERSION: i64 = 3;
+const SCHEMA_VERSION: i64 = 4;
 
 const SCHEMA_V1: &str = "
 CREATE TABLE sessions (
@@ -53,6 +53,20 @@ CREATE TABLE active_programs (
     sha256  TEXT NOT NULL,
     text    TEXT NOT NULL
 );
+";
+
+/// Version 4: the session number counter (it only grows, so an id is never handed out twice,
+/// also not after the highest-numbered session was deleted; a file of version 3 starts it above
+/// its highest stored session), the owner's persistent mark and the last activity (NULL in
+/// older rows: a restart counts as activity for them).
+const MIGRATE_V4: &str = "
+CREATE TABLE counters (
+    name  TEXT PRIMARY KEY,
+    value INTEGER NOT NULL
+);
+INSERT INTO counters (name, value) VALUES ('next_session', COALESCE((SELECT max(number) FROM sessions), 0) + 1);
+ALTER TABLE sessions ADD COLUMN persistent INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE sessions ADD COLUMN last_active_ms INTEGER;
 ";
 
 /// A SQLite database file.
@@ -90,9 +104,10 @@ impl SqliteStorage {
 fn migrate(connection: &Connection) -> Result<(), StorageError> {
     let version: i64 = connection.query_row("PRAGMA user_version", [], |r| r.get(0))?;
     let steps = match version {
-        0 => format!("{SCHEMA_V1} {MIGRATE_V2} {MIGRATE_V3}"),
-        1 => format!("{MIGRATE_V2} {MIGRATE_V3}"),
-        2 => MIGRATE_V3.to_string(),
+        0 => format!("{SCHEMA_V1} {MIGRATE_V2} {MIGRATE_V3} {MIGRATE_V4}"),
+        1 => format!("{MIGRATE_V2} {MIGRATE_V3} {MIGRATE_V4}"),
+        2 => format!("{MIGRATE_V3} {MIGRATE_V4}"),
+        3 => MIGRATE_V4.to_string(),
         SCHEMA_VERSION => return Ok(()),
         other => {
             return Err(StorageError::new(format!(
@@ -168,7 +183,7 @@ impl Storage for SqliteStorage {
         let connection = self.connection();
         let mut sessions = connection.prepare(
             "SELECT id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
-                    machine_data, positions, mode, channel_state, a.sha256, a.text
+                    machine_data, positions, mode, channel_state, a.sha256, a.text, persistent, last_active_ms
              FROM sessions LEFT JOIN active_programs a ON a.session = sessions.id ORDER BY number",
         )?;
         let rows = sessions.query_map([], |r| {
@@ -189,6 +204,8 @@ impl Storage for SqliteStorage {
                         _ => None,
                     },
                 },
+                persistent: r.get::<_, i64>(13)? != 0,
+                last_active_ms: r.get::<_, Option<i64>>(14)?.map(|ms| ms.max(0) as u64),
             })
         })?;
         let records = rows.collect::<Result<Vec<_>, _>>()?;
@@ -209,8 +226,8 @@ impl Storage for SqliteStorage {
         tx.execute("DELETE FROM sessions WHERE id = ?1", [&record.id])?;
         tx.execute(
             "INSERT INTO sessions (id, number, machine, client_ip, owner_hash, operator_hash, observer_hash,
-                                   machine_data, positions, mode, channel_state)
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
+                                   machine_data, positions, mode, channel_state, persistent, last_active_ms)
+             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)",
             params![
                 record.id,
                 record.number as i64,
@@ -223,7 +240,14 @@ impl Storage for SqliteStorage {
                 positions_text(&record.checkpoint.positions),
                 record.checkpoint.mode,
                 record.checkpoint.channel_state,
+                record.persistent,
+                record.last_active_ms.map(|ms| ms.min(i64::MAX as u64) as i64),
             ],
+        )?;
+        // A number stored is a number used: the counter stays above it.
+        tx.execute(
+            "UPDATE counters SET value = max(value, ?1 + 1) WHERE name = 'next_session'",
+            [record.number.min(i64::MAX as u64 - 1) as i64],
         )?;
         write_active_program(&tx, &record.id, record.checkpoint.active_program.as_ref())?;
         tx.commit()?;
@@ -274,6 +298,34 @@ impl Storage for SqliteStorage {
         self.connection().execute("DELETE FROM programs WHERE session = ?1 AND name = ?2", [id, name])?;
         Ok(())
     }
+
+    fn set_persistent(&self, id: &str, persistent: bool) -> Result<(), StorageError> {
+        self.connection().execute("UPDATE sessions SET persistent = ?2 WHERE id = ?1", params![id, persistent])?;
+        Ok(())
+    }
+
+    fn save_activity(&self, activity: &[(String, u64)]) -> Result<(), StorageError> {
+        let mut connection = self.connection();
+        let tx = connection.transaction()?;
+        {
+            let mut update = tx.prepare_cached("UPDATE sessions SET last_active_ms = ?2 WHERE id = ?1")?;
+            for (id, ms) in activity {
+                update.execute(params![id, (*ms).min(i64::MAX as u64) as i64])?;
+            }
+        }
+        tx.commit()?;
+        Ok(())
+    }
+
+    fn next_session_number(&self) -> Result<Option<u64>, StorageError> {
+        // One statement, one transaction: durable before the number is used.
+        let n: i64 = self.connection().query_row(
+            "UPDATE counters SET value = value + 1 WHERE name = 'next_session' RETURNING value - 1",
+            [],
+            |r| r.get(0),
+        )?;
+        Ok(Some(n.max(0) as u64))
+    }
 }
 
 #[cfg(test)]
@@ -302,6 +354,8 @@ mod tests {
                 channel_state: Some("{}".into()),
                 active_program: None,
             },
+            persistent: false,
+            last_active_ms: None,
         }
     }
 
