@@ -7,6 +7,7 @@
 //! nothing asserts how fast the sweep is.
 
 mod common;
+mod pg;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
@@ -175,4 +176,54 @@ async fn the_server_wide_program_budget_holds_and_metrics_count_bytes_per_sessio
     // A deleted session gives its bytes back.
     assert_eq!(server.delete(&format!("/sessions/{a}")).await.status, StatusCode::NO_CONTENT);
     assert_eq!(server.put(&format!("/sessions/{b}/programs/P"), json!({ "text": text })).await.status, StatusCode::OK);
+}
+
+/// Every backend keeps the persistent mark and the last activity, and hands out session numbers
+/// that never repeat.
+#[test]
+fn every_storage_keeps_the_mark_and_the_activity() {
+    use nctwin_server::storage::{
+        Checkpoint, MemoryStorage, PostgresStorage, SessionRecord, SqliteStorage, Storage, TokenHashes,
+    };
+    let record = |id: &str, number: u64| SessionRecord {
+        id: id.into(),
+        number,
+        machine: "mill-3axis".into(),
+        client_ip: None,
+        tokens: TokenHashes { owner: "o".into(), operator: "p".into(), observer: "v".into() },
+        checkpoint: Checkpoint {
+            machine_data: String::new(),
+            positions: vec![0.0],
+            mode: "AUTO".into(),
+            channel_state: None,
+            active_program: None,
+        },
+        persistent: true,
+        last_active_ms: Some(5),
+    };
+    let check = |storage: &dyn Storage| {
+        storage.create_session(&record("s1", 1)).expect("create");
+        storage.create_session(&SessionRecord { persistent: false, ..record("s2", 2) }).expect("create");
+        storage.set_persistent("s1", false).expect("unmark");
+        storage.set_persistent("s2", true).expect("mark");
+        storage.set_persistent("gone", true).expect("a missing session is no error");
+        storage.save_activity(&[("s1".into(), 1_000), ("gone".into(), 7)]).expect("activity");
+        let all = storage.load().expect("load");
+        let seen: Vec<(bool, Option<u64>)> =
+            all.iter().map(|s| (s.record.persistent, s.record.last_active_ms)).collect();
+        assert_eq!(seen, [(false, Some(1_000)), (true, Some(5))], "{}", storage.describe());
+        if let Some(n) = storage.next_session_number().expect("number") {
+            storage.delete_session("s2").expect("delete");
+            let next = storage.next_session_number().expect("number").expect("still numbered");
+            assert!(n > 2 && next > n, "{}: {n} then {next}", storage.describe());
+        }
+    };
+    check(&MemoryStorage::default());
+    let dir = common::temp_data_dir();
+    std::fs::create_dir_all(&dir).expect("dir");
+    check(&SqliteStorage::open(&dir.join(SQLITE_FILE)).expect("open"));
+    let _ = std::fs::remove_dir_all(&dir);
+    if let Some(url) = pg::postgres_database("expiry") {
+        check(&PostgresStorage::open(&url).expect("open"));
+    }
 }

@@ -443,6 +443,14 @@ impl Storage for PostgresStorage {
                     &record.last_active_ms.map(|ms| ms.min(i64::MAX as u64) as i64),
                 ],
             )?;
+            // A number stored is a number used: the sequence stays above it (a no-op for the
+            // numbers the sequence handed out itself).
+            tx.execute(
+                "SELECT setval('nctwin_session_numbers', $1)
+                 WHERE $1 >= (SELECT CASE WHEN is_called THEN last_value + 1 ELSE last_value END
+                              FROM nctwin_session_numbers)",
+                &[&(record.number.min(i64::MAX as u64) as i64)],
+            )?;
             write_active_program(&mut tx, &record.id, record.checkpoint.active_program.as_ref())?;
             tx.commit().map(Ok)
         }))
