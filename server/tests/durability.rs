@@ -210,7 +210,7 @@ async fn sigkill_rounds(database: Option<&str>) {
     let chains = server.client.get(server.url(&format!("/sessions/{}/kinematic-chains", sessions[0].0))).send().await;
     let chains = Arc::new(chains.expect("chains").text().await.expect("text"));
 
-    let mut next_n = vec![0usize; WRITERS];
+    let mut next_n = [0usize; WRITERS];
     for round in 0..3 {
         let mut writers = Vec::new();
         for (w, (sid, model)) in sessions.iter().cloned().enumerate() {
