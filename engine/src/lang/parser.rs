@@ -753,10 +753,11 @@ const LEVELS: &[&[(&str, BinOp)]] = &[
 /// scans, `Drop`, `Clone`) stays within this many nested calls. The flat `1+1+...+1` is covered
 /// too: it is a left-deep tree, one level per operator.
 ///
-/// Why 256: a real program nests a handful of levels, and the longest chain of operators
-/// written on one line of the control's 512 characters is about 250 (`1+1+...`). 256 such
-/// levels take well under half of a 2 MiB thread stack (a tokio worker's, `std::thread`'s) in
-/// a debug build in every pass (`engine/tests/deep_expressions.rs` runs them on such a thread).
+/// Why 128: a real program nests a handful of levels and chains a few dozen operators at most
+/// (a 50-way `OR` of comparisons is about 50 levels). In a debug build the deepest pass, the parser on
+/// nested calls, takes about 5 KiB a level: 128 levels stay within half of a 2 MiB thread stack
+/// (a tokio worker's, `std::thread`'s), the other half left to the server's frames above it
+/// (`engine/tests/deep_expressions.rs` runs every pass on a 1 MiB thread).
 pub const MAX_EXPR_DEPTH: u32 = 128;
 
 /// The syntax error of an expression deeper than [`MAX_EXPR_DEPTH`], at byte `at`.
