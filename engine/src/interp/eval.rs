@@ -349,7 +349,7 @@ fn frame_function(name: &str, vals: &[Value], scope: &dyn Scope, line: u32) -> R
     };
     let number = |v: &Value| v.as_f64().map_err(|e| Alarm::type_error(line, &e.0));
     let pairs = || -> Result<Vec<(usize, f64)>, Alarm> {
-        if vals.len() % 2 != 0 {
+        if !vals.len().is_multiple_of(2) {
             return Err(Alarm::syntax(line, &format!("{name} takes axis, value pairs")));
         }
         vals.chunks(2).map(|p| Ok((axis(&p[0])?, number(&p[1])?))).collect()
