@@ -40,67 +40,130 @@ pub trait Scope {
 const REL_EQ: f64 = 1e-12;
 
 /// Evaluates `expr`; errors become alarms of `line`.
+///
+/// Recursive, one call per level of the tree (at most [`crate::lang::MAX_EXPR_DEPTH`]): only
+/// the small frames of this function and of [`eval_all`] stay on the stack while operands are
+/// evaluated; the work on the values (operators, functions, variables) is done in functions
+/// called after, whose larger frames never pile up.
 pub fn eval(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
-    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
-    Ok(match expr {
+    match expr {
+        Expr::RParam(index) => r_param(eval(index, scope, line)?, scope, line),
+        Expr::Var { name, indices } => variable(name, &eval_indices(name, indices, scope, line)?, scope, line),
+        Expr::Unary(op, e) => unary(*op, eval(e, scope, line)?, line),
+        Expr::Binary(op, a, b) => operate(*op, eval(a, scope, line)?, eval(b, scope, line)?, scope, line),
+        Expr::Call(name, args) => apply(name, &eval_all(args, scope, line)?, scope, line),
+        Expr::Number(_) | Expr::Str(_) | Expr::Bool(_) => Ok(literal(expr)),
+    }
+}
+
+/// The value of a number, string or BOOL literal.
+fn literal(expr: &Expr) -> Value {
+    match expr {
         Expr::Number(n) => numeric::number(*n).into(),
         Expr::Str(s) => Value::Str(s.clone()),
         Expr::Bool(b) => Value::Bool(*b),
-        Expr::RParam(index) => {
-            let n = eval(index, scope, line)?.as_i64().map_err(type_err)?;
-            let r = &scope.vars().r;
-            let v = usize::try_from(n)
-                .ok()
-                .and_then(|i| r.get(i))
-                .ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?;
-            Value::Real(*v)
+        _ => unreachable!("not a literal: {expr:?}"),
+    }
+}
+
+/// A binary operator (frame chain included) on evaluated operands.
+fn operate(op: BinOp, a: Value, b: Value, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    match op {
+        BinOp::Chain => chain(a, b, scope, line),
+        op => binary(op, a, b, line),
+    }
+}
+
+/// A predefined function on evaluated arguments.
+fn apply(name: &str, vals: &[Value], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    match FRAME_FUNCTIONS.contains(&name) {
+        true => frame_function(name, vals, scope, line),
+        false => call(name, vals, line),
+    }
+}
+
+/// The values of `exprs` in order (a loop, not iterator adapters: fewer frames in the
+/// recursion of debug builds).
+fn eval_all(exprs: &[Expr], scope: &dyn Scope, line: u32) -> Result<Vec<Value>, Alarm> {
+    let mut out = Vec::with_capacity(exprs.len());
+    for e in exprs {
+        out.push(eval(e, scope, line)?);
+    }
+    Ok(out)
+}
+
+/// The values of a variable's indices; a system variable's bare names among them are keywords
+/// (`$P_UIFR[1,X,TR]`).
+fn eval_indices(name: &str, indices: &[Expr], scope: &dyn Scope, line: u32) -> Result<Vec<Value>, Alarm> {
+    if !name.starts_with('$') {
+        return eval_all(indices, scope, line);
+    }
+    let mut out = Vec::with_capacity(indices.len());
+    for e in indices {
+        out.push(match keyword(e, scope) {
+            Some(name) => Value::Str(name.to_string()),
+            None => eval(e, scope, line)?,
+        });
+    }
+    Ok(out)
+}
+
+/// The name of a bare name that is neither a variable nor an axis.
+fn keyword<'e>(e: &'e Expr, scope: &dyn Scope) -> Option<&'e str> {
+    match e {
+        Expr::Var { name, indices }
+            if indices.is_empty() && scope.vars().get(name).is_none() && !scope.is_axis(name) =>
+        {
+            Some(name)
         }
-        Expr::Var { name, indices } if name.starts_with('$') => {
-            // Bare names among a system variable's indices are keywords (`$P_UIFR[1,X,TR]`).
-            let idx = indices
-                .iter()
-                .map(|e| match e {
-                    Expr::Var { name, indices }
-                        if indices.is_empty() && scope.vars().get(name).is_none() && !scope.is_axis(name) =>
-                    {
-                        Ok(Value::Str(name.clone()))
-                    }
-                    e => eval(e, scope, line),
-                })
-                .collect::<Result<Vec<_>, _>>()?;
-            return scope.system(name, &idx, line);
-        }
-        Expr::Var { name, indices } => {
-            let idx = indices.iter().map(|e| eval(e, scope, line)).collect::<Result<Vec<_>, _>>()?;
-            if let Some(var) = scope.vars().get(name) {
-                let ints = idx.iter().map(|v| v.as_i64()).collect::<Result<Vec<_>, _>>().map_err(type_err)?;
-                let i = var.index(&ints).map_err(|e| Alarm::index_error(line, name, &e.0))?;
-                return Ok(var.data[i].clone());
-            }
-            if idx.is_empty() && scope.is_axis(name) {
-                return Ok(Value::Axis(name.clone()));
-            }
-            return Err(Alarm::unknown_name(line, name));
-        }
-        Expr::Unary(op, e) => {
-            let v = eval(e, scope, line)?;
-            match op {
-                UnOp::Neg => match v {
-                    Value::Int(i) => Value::Int(-i),
-                    other => Value::Real(-other.as_f64().map_err(type_err)?),
-                },
-                UnOp::Not => Value::Bool(!v.as_bool().map_err(type_err)?),
-                UnOp::BNot => Value::Int(!v.as_i64().map_err(type_err)?),
-            }
-        }
-        Expr::Binary(BinOp::Chain, a, b) => match (eval(a, scope, line)?, eval(b, scope, line)?) {
-            (Value::Frame(f1), Value::Frame(f2)) => Value::Frame(Box::new(f1.then(&f2, &scope.geo_axes()))),
-            _ => return Err(Alarm::type_error(line, "`:` chains frames only")),
+        _ => None,
+    }
+}
+
+/// `R[n]`.
+fn r_param(n: Value, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    let n = n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    let r = &scope.vars().r;
+    let v =
+        usize::try_from(n).ok().and_then(|i| r.get(i)).ok_or_else(|| Alarm::unknown_name(line, &format!("R{n}")))?;
+    Ok(Value::Real(*v))
+}
+
+/// A system variable, user variable or axis name with evaluated indices.
+fn variable(name: &str, idx: &[Value], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    if name.starts_with('$') {
+        return scope.system(name, idx, line);
+    }
+    if let Some(var) = scope.vars().get(name) {
+        let ints =
+            idx.iter().map(|v| v.as_i64()).collect::<Result<Vec<_>, _>>().map_err(|e| Alarm::type_error(line, &e.0))?;
+        let i = var.index(&ints).map_err(|e| Alarm::index_error(line, name, &e.0))?;
+        return Ok(var.data[i].clone());
+    }
+    if idx.is_empty() && scope.is_axis(name) {
+        return Ok(Value::Axis(name.to_string()));
+    }
+    Err(Alarm::unknown_name(line, name))
+}
+
+fn unary(op: UnOp, v: Value, line: u32) -> Result<Value, Alarm> {
+    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
+    Ok(match op {
+        UnOp::Neg => match v {
+            Value::Int(i) => Value::Int(-i),
+            other => Value::Real(-other.as_f64().map_err(type_err)?),
         },
-        Expr::Binary(op, a, b) => binary(*op, eval(a, scope, line)?, eval(b, scope, line)?, line)?,
-        Expr::Call(name, args) if FRAME_FUNCTIONS.contains(&name.as_str()) => frame_function(name, args, scope, line)?,
-        Expr::Call(name, args) => call(name, args, scope, line)?,
+        UnOp::Not => Value::Bool(!v.as_bool().map_err(type_err)?),
+        UnOp::BNot => Value::Int(!v.as_i64().map_err(type_err)?),
     })
+}
+
+/// `F1:F2`.
+fn chain(a: Value, b: Value, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+    match (a, b) {
+        (Value::Frame(f1), Value::Frame(f2)) => Ok(Value::Frame(Box::new(f1.then(&f2, &scope.geo_axes())))),
+        _ => Err(Alarm::type_error(line, "`:` chains frames only")),
+    }
 }
 
 /// Evaluates to a number (the common case for addresses).
@@ -129,7 +192,7 @@ fn binary(op: BinOp, a: Value, b: Value, line: u32) -> Result<Value, Alarm> {
     let int = |v: &Value| v.as_i64().map_err(type_err);
     let both_int = matches!((&a, &b), (Value::Int(_), Value::Int(_)));
     Ok(match op {
-        BinOp::Chain => unreachable!("chains are evaluated by `eval`"),
+        BinOp::Chain => unreachable!("chains are evaluated by `chain`"),
         BinOp::Concat => Value::Str(a.as_text() + &b.as_text()),
         BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Lt | BinOp::Ge | BinOp::Le => {
             Value::Bool(compare(op, &a, &b, line)?)
@@ -194,8 +257,8 @@ fn holds(op: BinOp, ord: Ordering) -> bool {
     }
 }
 
-fn call(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
-    let vals = args.iter().map(|a| eval(a, scope, line)).collect::<Result<Vec<_>, _>>()?;
+/// A predefined function of evaluated arguments.
+fn call(name: &str, vals: &[Value], line: u32) -> Result<Value, Alarm> {
     let arity = |n: usize| -> Result<(), Alarm> {
         if vals.len() == n { Ok(()) } else { Err(Alarm::syntax(line, &format!("{name} takes {n} argument(s)"))) }
     };
@@ -276,9 +339,8 @@ const FRAME_FUNCTIONS: &[&str] = &["CTRANS", "CFINE", "CROT", "CROTS", "CSCALE",
 
 /// `CTRANS(X,10,Y,20)`, `CFINE(...)`, `CROT(Z,45)`, `CROTS(X,10,Y,20)`, `CSCALE(X,2)`, `CMIRROR(X)`, `CRPL(axis, angle)`:
 /// a frame with only that component (no arguments: the neutral frame).
-fn frame_function(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
+fn frame_function(name: &str, vals: &[Value], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
     let geo = scope.geo_axes();
-    let vals = args.iter().map(|a| eval(a, scope, line)).collect::<Result<Vec<_>, _>>()?;
     let axis = |v: &Value| -> Result<usize, Alarm> {
         match v {
             Value::Axis(a) | Value::Str(a) => scope.axis_index(a).ok_or_else(|| Alarm::unknown_name(line, a)),
@@ -287,7 +349,7 @@ fn frame_function(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Re
     };
     let number = |v: &Value| v.as_f64().map_err(|e| Alarm::type_error(line, &e.0));
     let pairs = || -> Result<Vec<(usize, f64)>, Alarm> {
-        if vals.len() % 2 != 0 {
+        if !vals.len().is_multiple_of(2) {
             return Err(Alarm::syntax(line, &format!("{name} takes axis, value pairs")));
         }
         vals.chunks(2).map(|p| Ok((axis(&p[0])?, number(&p[1])?))).collect()
@@ -331,7 +393,7 @@ fn frame_function(name: &str, args: &[Expr], scope: &dyn Scope, line: u32) -> Re
         }
         // CRPL(rotation axis: 0 = applicate of the plane, 1..3 = Z, Y, X; angle)
         _ => {
-            let [which, angle] = vals.as_slice() else {
+            let [which, angle] = vals else {
                 return Err(Alarm::syntax(line, "CRPL takes (axis code, angle)"));
             };
             let g = match number(which)? as i64 {

@@ -396,7 +396,7 @@ fn parse_case(cur: &mut Cursor) -> PResult<Stmt> {
             default = Some(parse_goto_target(kind, cur)?);
             continue;
         }
-        let value = parse_unary(cur)?;
+        let (value, _) = parse_unary(cur, MAX_EXPR_DEPTH)?;
         cur.skip_ws();
         let kind = goto_kind_at(cur).ok_or((cur.pos, "CASE value needs GOTOF/GOTOB".to_string()))?;
         arms.push((value, parse_goto_target(kind, cur)?));
@@ -446,7 +446,7 @@ fn parse_def(cur: &mut Cursor) -> PResult<Stmt> {
         if name.starts_with('$') || is_statement(&name) {
             return Err((start, format!("{name} cannot be a variable name")));
         }
-        let dims = parse_indices(cur)?;
+        let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
         cur.skip_ws();
         let init = if cur.eat(b'=') {
             cur.skip_ws();
@@ -469,10 +469,10 @@ fn parse_init(cur: &mut Cursor) -> PResult<Vec<Expr>> {
     if let Some(id) = cur.ident() {
         cur.skip_ws();
         if id == "SET" && cur.eat(b'(') {
-            return parse_args(cur);
+            return Ok(parse_args(cur, MAX_EXPR_DEPTH)?.0);
         }
         if id == "REP" && cur.eat(b'(') {
-            return Ok(vec![Expr::Call("REP".into(), parse_args(cur)?)]);
+            return Ok(vec![Expr::Call("REP".into(), parse_args(cur, MAX_EXPR_DEPTH - 1)?.0)]);
         }
     }
     cur.pos = save;
@@ -493,7 +493,7 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
                 let ty = parse_type(cur)?;
                 cur.skip_ws();
                 let pname = cur.ident().ok_or((cur.pos, "parameter needs a name".to_string()))?;
-                let dims = parse_indices(cur)?;
+                let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
                 params.push(Param { by_reference, ty, name: pname, dims });
                 cur.skip_ws();
                 if cur.eat(b')') {
@@ -524,21 +524,24 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
 fn parse_lvalue(cur: &mut Cursor) -> PResult<Lvalue> {
     let start = cur.pos;
     let name = cur.ident().ok_or((start, "expected a variable".to_string()))?;
-    Ok(Lvalue { name, indices: parse_indices(cur)? })
+    Ok(Lvalue { name, indices: parse_indices(cur, MAX_EXPR_DEPTH)?.0 })
 }
 
-/// `[e1, e2, ...]` after a name, or nothing.
-fn parse_indices(cur: &mut Cursor) -> PResult<Vec<Expr>> {
+/// `[e1, e2, ...]` after a name, or nothing; each index at most `room` levels deep. Returns
+/// the indices and the levels of the deepest (0 without indices).
+fn parse_indices(cur: &mut Cursor, room: u32) -> PResult<(Vec<Expr>, u32)> {
     if !cur.eat(b'[') {
-        return Ok(Vec::new());
+        return Ok((Vec::new(), 0));
     }
-    let mut out = Vec::new();
+    let (mut out, mut depth) = (Vec::new(), 0);
     loop {
         cur.skip_ws();
-        out.push(parse_expr(cur)?);
+        let (index, d) = expr_within(cur, room)?;
+        out.push(index);
+        depth = depth.max(d);
         cur.skip_ws();
         if cur.eat(b']') {
-            return Ok(out);
+            return Ok((out, depth));
         }
         if !cur.eat(b',') {
             return Err((cur.pos, "expected `,` or `]`".into()));
@@ -559,7 +562,7 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
         if let Some(kind) = goto_kind(cur, span) {
             return Ok(Word::Goto(parse_goto_target(kind, cur)?));
         }
-        let indices = parse_indices(cur)?;
+        let (indices, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
         cur.skip_ws();
         if cur.peek() == Some(b'=') && cur.peek_at(1) != Some(b'=') {
             let name = super::name::of(cur.slice(span.0, span.1));
@@ -605,10 +608,10 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
     let mut args = Vec::new();
     cur.skip_ws();
     if cur.eat(b'(') {
-        args = parse_args(cur)?;
+        args = parse_args(cur, MAX_EXPR_DEPTH)?.0;
     } else if cur.peek() == Some(b'"') {
         // `CALL "NAME"`: a keyword with a string operand.
-        args.push(parse_primary(cur)?);
+        args.push(parse_literal(cur)?);
     }
     Ok(Word::Keyword { name, args })
 }
@@ -663,13 +666,14 @@ fn parse_coefficients(cur: &mut Cursor) -> PResult<Option<Expr>> {
     if !cur.eat(b'(') {
         return Ok(None);
     }
-    let mut items = vec![parse_expr(cur)?];
+    // The list is a call: its items are one level below the value.
+    let mut items = vec![expr_within(cur, MAX_EXPR_DEPTH - 1)?.0];
     cur.skip_ws();
     if cur.peek() != Some(b',') {
         return Ok(None);
     }
     while cur.eat(b',') {
-        items.push(parse_expr(cur)?);
+        items.push(expr_within(cur, MAX_EXPR_DEPTH - 1)?.0);
         cur.skip_ws();
     }
     if !cur.eat(b')') {
@@ -692,23 +696,31 @@ fn ends_word(cur: &mut Cursor) -> bool {
     }
 }
 
-fn parse_args(cur: &mut Cursor) -> PResult<Vec<Expr>> {
-    let mut args = Vec::new();
+/// The arguments after `(` up to `)`, each at most `room` levels deep. Returns them and the
+/// levels of the deepest (0 without arguments).
+fn parse_args(cur: &mut Cursor, room: u32) -> PResult<(Vec<Expr>, u32)> {
+    let (mut args, mut depth) = (Vec::new(), 0);
     cur.skip_ws();
     if cur.eat(b')') {
-        return Ok(args);
+        return Ok((args, depth));
     }
     loop {
         cur.skip_ws();
         // An omitted argument (`TRAANG(,2)`) is kept as an empty string marker.
         if matches!(cur.peek(), Some(b',' | b')')) {
+            if room == 0 {
+                return Err(too_deep(cur.pos));
+            }
             args.push(Expr::Call("_OMITTED".into(), Vec::new()));
+            depth = depth.max(1);
         } else {
-            args.push(parse_expr(cur)?);
+            let (arg, d) = expr_within(cur, room)?;
+            args.push(arg);
+            depth = depth.max(d);
         }
         cur.skip_ws();
         if cur.eat(b')') {
-            return Ok(args);
+            return Ok((args, depth));
         }
         if !cur.eat(b',') {
             return Err((cur.pos, "expected `,` or `)` in argument list".into()));
@@ -719,6 +731,8 @@ fn parse_args(cur: &mut Cursor) -> PResult<Vec<Expr>> {
 /// Binary operators by priority level, lowest first (Programming Manual, "Priority of the
 /// operations"): comparison < `<<` < OR < XOR < AND < B_OR < B_XOR < B_AND < `+ -` < `* / DIV MOD`.
 const LEVELS: &[&[(&str, BinOp)]] = &[
+    // `F1:F2` chains frames; it stands below (apart from) every other operator.
+    &[(":", BinOp::Chain)],
     &[("==", BinOp::Eq), ("<>", BinOp::Ne), (">=", BinOp::Ge), ("<=", BinOp::Le), (">", BinOp::Gt), ("<", BinOp::Lt)],
     &[("<<", BinOp::Concat)],
     &[("OR", BinOp::Or)],
@@ -731,53 +745,78 @@ const LEVELS: &[&[(&str, BinOp)]] = &[
     &[("*", BinOp::Mul), ("/", BinOp::Div), ("DIV", BinOp::IntDiv), ("MOD", BinOp::Mod)],
 ];
 
+/// The most levels an expression may have: its syntax tree's depth (a number or name is one
+/// level, every operator, call and index one more), with a pair of parentheses and a unary `+`
+/// counting as a level too. The parser refuses anything deeper (alarm 12080, "nested too
+/// deeply", at the token one level too deep), so every pass that walks an expression
+/// recursively (the parser itself, `eval`, the numeric fast path, the effect-call and main-run
+/// scans, `Drop`, `Clone`) stays within this many nested calls. The flat `1+1+...+1` is covered
+/// too: it is a left-deep tree, one level per operator.
+///
+/// Why 128: a real program nests a handful of levels and chains a few dozen operators at most
+/// (a 50-way `OR` of comparisons is about 50 levels). In a debug build the deepest pass, the parser on
+/// nested calls, takes about 5 KiB a level: 128 levels stay within half of a 2 MiB thread stack
+/// (a tokio worker's, `std::thread`'s), the other half left to the server's frames above it
+/// (`engine/tests/deep_expressions.rs` runs every pass on a 1 MiB thread).
+pub const MAX_EXPR_DEPTH: u32 = 128;
+
+/// The syntax error of an expression deeper than [`MAX_EXPR_DEPTH`], at byte `at`.
+fn too_deep(at: usize) -> (usize, String) {
+    (at, format!("expression nested too deeply (more than {MAX_EXPR_DEPTH} levels)"))
+}
+
+/// An expression and the levels of its tree (1 for a number).
+type Deep = (Expr, u32);
+
 /// Parses an expression with the control's operator priorities; equal priorities associate
-/// to the left.
+/// to the left. At most [`MAX_EXPR_DEPTH`] levels.
 pub(crate) fn parse_expr(cur: &mut Cursor) -> PResult<Expr> {
-    let mut lhs = parse_binary(cur, 0)?;
-    // `F1:F2` chains frames; it stands apart from every other operator.
-    loop {
-        let save = cur.pos;
-        cur.skip_ws();
-        if cur.peek() == Some(b':') {
-            cur.pos += 1;
-            cur.skip_ws();
-            lhs = Expr::Binary(BinOp::Chain, Box::new(lhs), Box::new(parse_binary(cur, 0)?));
-        } else {
-            cur.pos = save;
-            return Ok(lhs);
-        }
-    }
+    Ok(expr_within(cur, MAX_EXPR_DEPTH)?.0)
+}
+
+/// An expression of at most `room` levels (a syntax error if deeper) and its levels. Every
+/// parse function below takes the room left to it: each level it builds, or parenthesis it
+/// opens, passes one less on, so the parser's own recursion is bounded as well.
+fn expr_within(cur: &mut Cursor, room: u32) -> PResult<Deep> {
+    parse_binary(cur, 0, room)
 }
 
 /// Binary operators of priority `min` and above (indices into [`LEVELS`]), by precedence
 /// climbing: one loop turn per operator instead of one call per priority level per operand.
 /// The operator found at a place is the one the levels give when asked from the highest
-/// priority down, as a descent through the levels would find it.
-fn parse_binary(cur: &mut Cursor, min: usize) -> PResult<Expr> {
-    let mut lhs = parse_unary(cur)?;
-    while let Some((op, level)) = next_operator(cur, min) {
+/// priority down, as a descent through the levels would find it. A chain of operators is a
+/// left-deep tree: each one adds a level.
+fn parse_binary(cur: &mut Cursor, min: usize, room: u32) -> PResult<Deep> {
+    let (mut lhs, mut depth) = parse_unary(cur, room)?;
+    while let Some((op, level, at)) = next_operator(cur, min) {
+        if depth >= room {
+            return Err(too_deep(at));
+        }
         cur.skip_ws();
-        let rhs = parse_binary(cur, level + 1)?;
+        let (rhs, d) = parse_binary(cur, level + 1, room - 1)?;
         lhs = Expr::Binary(op, Box::new(lhs), Box::new(rhs));
+        depth = 1 + depth.max(d);
     }
-    Ok(lhs)
+    Ok((lhs, depth))
 }
 
-/// Consumes the operator that follows (after blanks) if its priority is `min` or above; the
-/// cursor stays put otherwise.
-fn next_operator(cur: &mut Cursor, min: usize) -> Option<(BinOp, usize)> {
+/// Consumes the operator that follows (after blanks) if its priority is `min` or above, and
+/// says where it starts; the cursor stays put otherwise.
+fn next_operator(cur: &mut Cursor, min: usize) -> Option<(BinOp, usize, usize)> {
     let save = cur.pos;
     cur.skip_ws();
+    let at = cur.pos;
     // Most operands end at `)`, `,`, the end of the line or the next word: one byte settles it.
     let first = cur.peek().map(|c| c.to_ascii_uppercase());
-    if !matches!(first, Some(b'*' | b'/' | b'+' | b'-' | b'=' | b'<' | b'>' | b'D' | b'M' | b'O' | b'X' | b'A' | b'B'))
-    {
+    if !matches!(
+        first,
+        Some(b'*' | b'/' | b'+' | b'-' | b'=' | b'<' | b'>' | b'D' | b'M' | b'O' | b'X' | b'A' | b'B' | b':')
+    ) {
         cur.pos = save;
         return None;
     }
     cur.pos = save;
-    (min..LEVELS.len()).rev().find_map(|level| peek_operator(cur, LEVELS[level]).map(|op| (op, level)))
+    (min..LEVELS.len()).rev().find_map(|level| peek_operator(cur, LEVELS[level]).map(|op| (op, level, at)))
 }
 
 /// Consumes an operator of `ops` if one follows (after blanks); word operators must stand
@@ -810,35 +849,109 @@ fn peek_operator(cur: &mut Cursor, ops: &[(&str, BinOp)]) -> Option<BinOp> {
     None
 }
 
-fn parse_unary(cur: &mut Cursor) -> PResult<Expr> {
+/// A unary operator and its operand, or a primary (a parenthesised expression, a name or a
+/// literal); at most `room` levels. The recursive cases stay in small functions (their frames
+/// pile up, one set per level); literals are read in [`parse_literal`], which returns before
+/// anything nests.
+fn parse_unary(cur: &mut Cursor, room: u32) -> PResult<Deep> {
     cur.skip_ws();
-    if cur.eat(b'-') {
-        return Ok(Expr::Unary(UnOp::Neg, Box::new(parse_unary(cur)?)));
+    if room == 0 {
+        return Err(too_deep(cur.pos));
     }
-    if cur.eat(b'+') {
-        return parse_unary(cur);
-    }
-    if cur.eat_word("NOT") {
-        return Ok(Expr::Unary(UnOp::Not, Box::new(parse_unary(cur)?)));
-    }
-    if cur.eat_word("B_NOT") {
-        return Ok(Expr::Unary(UnOp::BNot, Box::new(parse_unary(cur)?)));
-    }
-    parse_primary(cur)
+    let op = if cur.eat(b'-') {
+        UnOp::Neg
+    } else if cur.eat(b'+') {
+        // No node, but a level of the parser's recursion.
+        return parse_unary(cur, room - 1);
+    } else if cur.eat_word("NOT") {
+        UnOp::Not
+    } else if cur.eat_word("B_NOT") {
+        UnOp::BNot
+    } else {
+        return match cur.peek() {
+            // `(`, names and literals straight from here: one frame less per level.
+            Some(b'(') => parenthesised(cur, room),
+            Some(c) if c.is_ascii_alphabetic() || c == b'_' || c == b'$' => parse_name(cur, room),
+            _ => Ok((parse_literal(cur)?, 1)),
+        };
+    };
+    let (e, d) = parse_unary(cur, room - 1)?;
+    Ok((Expr::Unary(op, Box::new(e)), d + 1))
 }
 
-fn parse_primary(cur: &mut Cursor) -> PResult<Expr> {
+/// `(expr)` at the cursor; the parenthesis takes a level of `room`.
+fn parenthesised(cur: &mut Cursor, room: u32) -> PResult<Deep> {
+    cur.pos += 1;
+    let e = parse_binary(cur, 0, room - 1)?;
+    cur.skip_ws();
+    if !cur.eat(b')') {
+        return Err((cur.pos, "missing `)`".into()));
+    }
+    Ok(e)
+}
+
+/// A name: TRUE/FALSE, an R parameter, a call with its arguments or a variable with its
+/// indices; at most `room` levels (at least 1).
+fn parse_name(cur: &mut Cursor, room: u32) -> PResult<Deep> {
+    // The name is read in `name_head`, whose frame is gone before the arguments nest.
+    match name_head(cur, room)? {
+        NameHead::Done(e) => Ok(e),
+        NameHead::Call(id) => {
+            let (args, d) = parse_args(cur, room - 1)?;
+            Ok((Expr::Call(id, args), 1 + d))
+        }
+        NameHead::Indexed(id) => {
+            let (indices, d) = parse_indices(cur, room - 1)?;
+            if (id == "$R" || id == "R") && indices.len() == 1 {
+                return Ok((Expr::RParam(Box::new(indices.into_iter().next().expect("one index"))), 1 + d));
+            }
+            Ok((Expr::Var { name: id, indices }, 1 + d))
+        }
+    }
+}
+
+/// A name read up to what may follow it.
+enum NameHead {
+    /// The whole expression: TRUE, FALSE, `R1`.
+    Done(Deep),
+    /// A call: the cursor is after `(`.
+    Call(String),
+    /// A variable, with indices (`[`) or without.
+    Indexed(String),
+}
+
+fn name_head(cur: &mut Cursor, room: u32) -> PResult<NameHead> {
+    let start = cur.pos;
+    let span = cur.ident_span().ok_or((start, "bad name".to_string()))?;
+    if cur.span_is(span, "TRUE") {
+        return Ok(NameHead::Done((Expr::Bool(true), 1)));
+    }
+    if cur.span_is(span, "FALSE") {
+        return Ok(NameHead::Done((Expr::Bool(false), 1)));
+    }
+    // `R1`, the most frequent name of all: no upper-cased copy of it is made.
+    let text = cur.slice(span.0, span.1);
+    if let Some(n) = text.strip_prefix(['R', 'r']).and_then(|n| n.parse::<u32>().ok()) {
+        // Two levels: the parameter and its number.
+        if room < 2 {
+            return Err(too_deep(start));
+        }
+        return Ok(NameHead::Done((Expr::RParam(Box::new(Expr::Number(n as f64))), 2)));
+    }
+    let id = cur.upper(span);
+    let save = cur.pos;
+    cur.skip_ws();
+    if cur.eat(b'(') && !id.starts_with('$') {
+        return Ok(NameHead::Call(id));
+    }
+    cur.pos = save;
+    Ok(NameHead::Indexed(id))
+}
+
+/// A string, a `'H..'`/`'B..'`/character literal or a number (or the error at the next byte).
+fn parse_literal(cur: &mut Cursor) -> PResult<Expr> {
     let start = cur.pos;
     match cur.peek() {
-        Some(b'(') => {
-            cur.pos += 1;
-            let e = parse_expr(cur)?;
-            cur.skip_ws();
-            if !cur.eat(b')') {
-                return Err((cur.pos, "missing `)`".into()));
-            }
-            Ok(e)
-        }
         Some(b'"') => {
             cur.pos += 1;
             let s = cur.pos;
@@ -875,32 +988,6 @@ fn parse_primary(cur: &mut Cursor) -> PResult<Expr> {
         }
         Some(c) if c.is_ascii_digit() || c == b'.' => {
             cur.number().map(Expr::Number).ok_or_else(|| (start, "bad number".into()))
-        }
-        Some(c) if c.is_ascii_alphabetic() || c == b'_' || c == b'$' => {
-            let span = cur.ident_span().ok_or((start, "bad name".to_string()))?;
-            if cur.span_is(span, "TRUE") {
-                return Ok(Expr::Bool(true));
-            }
-            if cur.span_is(span, "FALSE") {
-                return Ok(Expr::Bool(false));
-            }
-            // `R1`, the most frequent name of all: no upper-cased copy of it is made.
-            let text = cur.slice(span.0, span.1);
-            if let Some(n) = text.strip_prefix(['R', 'r']).and_then(|n| n.parse::<u32>().ok()) {
-                return Ok(Expr::RParam(Box::new(Expr::Number(n as f64))));
-            }
-            let id = cur.upper(span);
-            let save = cur.pos;
-            cur.skip_ws();
-            if cur.eat(b'(') && !id.starts_with('$') {
-                return Ok(Expr::Call(id, parse_args(cur)?));
-            }
-            cur.pos = save;
-            let indices = parse_indices(cur)?;
-            if (id == "$R" || id == "R") && indices.len() == 1 {
-                return Ok(Expr::RParam(Box::new(indices.into_iter().next().expect("one index"))));
-            }
-            Ok(Expr::Var { name: id, indices })
         }
         Some(c) => Err((start, format!("unexpected character `{}` in expression", c as char))),
         None => Err((start, "missing value".into())),
