@@ -4,6 +4,7 @@
 use nctwin_engine::channel::PathStep;
 use nctwin_engine::{Channel, CommandError, Status};
 
+#[allow(dead_code)] // the shared helpers this file does not use
 mod settle;
 use settle::{channel, settle};
 

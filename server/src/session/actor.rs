@@ -357,8 +357,8 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
             Ok(())
         }
         // A stored program is searched in place: the channel shares its text, no copy.
-        Action::Search { name: Some(name), line, .. } => channel.block_search_stored(&name, line),
-        Action::Search { program, name: None, line } => channel.block_search(program.as_deref(), line),
+        Action::Search { name: Some(name), line, path, .. } => channel.block_search_stored_at(&name, line, &path),
+        Action::Search { program, name: None, line, path } => channel.block_search_at(program.as_deref(), line, &path),
         Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
         Action::KinematicChains(text) => channel.import_kinematic_chains(&text),
