@@ -233,3 +233,20 @@ fn a_program_stopped_after_more_than_200000_blocks_resumes_after_a_restart() {
     settle(&mut new);
     assert_eq!(new.axis_positions(), &[5.0, 5.0, 0.0]);
 }
+
+#[test]
+fn a_search_that_never_reaches_its_target_ends_where_its_caller_says_with_15370() {
+    use nctwin_engine::channel::SEARCH_ASK_EVERY;
+    let mut ch = channel("mill-3axis", "");
+    let mut asked = Vec::new();
+    let mut go_on = |blocks: usize| {
+        asked.push(blocks);
+        blocks < 2 * SEARCH_ASK_EVERY
+    };
+    ch.block_search_with(Some("LOOP\nR1=R1+1\nENDLOOP\nM30"), None, 4, &[], &mut go_on).unwrap();
+    assert_eq!(asked, [SEARCH_ASK_EVERY, 2 * SEARCH_ASK_EVERY]);
+    assert_eq!(ch.status(), Status::Alarm);
+    let alarm = &ch.alarms()[0];
+    assert_eq!(alarm.number, 15370);
+    assert!(alarm.message.contains(&format!("after {} blocks", 2 * SEARCH_ASK_EVERY)), "{}", alarm.message);
+}

@@ -36,7 +36,7 @@ pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
 pub use resume::{ResumeProgram, ResumeState};
-pub use search::{PathStep, SEARCH_BLOCK_BUDGET};
+pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 

@@ -24,10 +24,14 @@ use crate::lang::ProgramText;
 use crate::motion::{Feed, Move};
 
 /// Most blocks a search prepares before it gives up with alarm 15370 (a program that loops
-/// without end must not hold the channel). A real control searches any length; this is far
-/// beyond any program the target is reached in (a release build prepares a few million blocks a
-/// second, so a search that runs into it takes seconds, not minutes).
-pub const SEARCH_BLOCK_BUDGET: usize = 50_000_000;
+/// without end must not hold the channel), unless the caller decides with
+/// [`Channel::block_search_with`]. A real control searches any length; this is far beyond any
+/// program whose target is reached at all (a release build prepares two to three million
+/// blocks a second: a search that runs into the limit takes seconds).
+pub const SEARCH_BLOCK_BUDGET: usize = 20_000_000;
+
+/// How often (in blocks) a search asks its caller whether to go on.
+pub const SEARCH_ASK_EVERY: usize = 65_536;
 
 /// One step of a block search target into a subprogram: the program the line of the level
 /// above calls, and the line (1-based) in it.
@@ -75,7 +79,31 @@ impl Channel {
     /// path is the main program's `line`. Each step must name a stored program and a line of
     /// it holding a block.
     pub fn block_search_at(&mut self, text: Option<&str>, line: u32, path: &[PathStep]) -> Result<(), CommandError> {
+        self.block_search_with(text, None, line, path, &mut |blocks| blocks < SEARCH_BLOCK_BUDGET)
+    }
+
+    /// [`Channel::block_search_at`] in `text`, or in stored program `name`, or in the active
+    /// program, asking `go_on` every [`SEARCH_ASK_EVERY`] blocks (with the number of blocks
+    /// prepared so far) whether to go on instead of stopping at [`SEARCH_BLOCK_BUDGET`]: the
+    /// server bounds a search by wall time this way (the engine knows no clock). A search
+    /// `go_on` ends raises alarm 15370 naming how many blocks it prepared.
+    pub fn block_search_with(
+        &mut self,
+        text: Option<&str>,
+        name: Option<&str>,
+        line: u32,
+        path: &[PathStep],
+        go_on: &mut dyn FnMut(usize) -> bool,
+    ) -> Result<(), CommandError> {
         self.search_allowed()?;
+        if let Some(name) = name {
+            let text = self
+                .programs
+                .get(&super::programs::program_name(name)?)
+                .cloned()
+                .ok_or_else(|| CommandError::Invalid(format!("no stored program `{name}`")))?;
+            return self.block_search_text(Some(ProgramText::from(text)), line, path, go_on);
+        }
         let text = match text {
             Some(t) => {
                 CommandError::check(t)?;
@@ -83,7 +111,7 @@ impl Channel {
             }
             None => None,
         };
-        self.block_search_text(text, line, path)
+        self.block_search_text(text, line, path, go_on)
     }
 
     /// [`Channel::block_search`] in stored program `name`, sharing its text (no copy of up to
@@ -95,12 +123,7 @@ impl Channel {
     /// [`Channel::block_search_at`] in stored program `name` (see
     /// [`Channel::block_search_stored`]).
     pub fn block_search_stored_at(&mut self, name: &str, line: u32, path: &[PathStep]) -> Result<(), CommandError> {
-        let text = self
-            .programs
-            .get(&super::programs::program_name(name)?)
-            .cloned()
-            .ok_or_else(|| CommandError::Invalid(format!("no stored program `{name}`")))?;
-        self.block_search_text(Some(ProgramText::from(text)), line, path)
+        self.block_search_with(None, Some(name), line, path, &mut |blocks| blocks < SEARCH_BLOCK_BUDGET)
     }
 
     /// Whether a block search may start now: AUTO mode, reset state, no alarm.
@@ -122,6 +145,7 @@ impl Channel {
         text: Option<ProgramText>,
         line: u32,
         path: &[PathStep],
+        go_on: &mut dyn FnMut(usize) -> bool,
     ) -> Result<(), CommandError> {
         self.search_allowed()?;
         let text: ProgramText = match text {
@@ -154,7 +178,7 @@ impl Channel {
         self.prep_waits_for_trafo = false;
         self.search_approach = false;
         self.interp.begin_program(text.clone(), &self.machine);
-        match self.search_to(target, &chain) {
+        match self.search_to(target, &chain, go_on) {
             Ok(level) => {
                 self.queued_blocks.clear();
                 self.queue_block(target, level);
@@ -171,14 +195,24 @@ impl Channel {
     /// Prepares blocks until the block at `line` of the program level reached through the
     /// calls `chain` (empty: the main program); leaves the collected output and the target's
     /// items in `pending` and returns the target's level.
-    fn search_to(&mut self, line: u32, chain: &[(u32, String)]) -> Result<Option<Arc<Level>>, Alarm> {
+    fn search_to(
+        &mut self,
+        line: u32,
+        chain: &[(u32, String)],
+        go_on: &mut dyn FnMut(usize) -> bool,
+    ) -> Result<Option<Arc<Level>>, Alarm> {
         let mut trafo = self.trafo.clone();
         let mut machine = self.machine;
         let mut offsets: Option<SharedOffsets> = None;
         let mut spindles: Vec<Item> = Vec::new();
         let mut message: Option<Item> = None;
         let mut out = Vec::new();
-        for _ in 0..SEARCH_BLOCK_BUDGET {
+        let mut blocks = 0usize;
+        loop {
+            if blocks > 0 && blocks % SEARCH_ASK_EVERY == 0 && !go_on(blocks) {
+                return Err(search_given_up(line, blocks));
+            }
+            blocks += 1;
             out.clear();
             let generation = self.interp.transformation_generation();
             // The target is a line of one program level: a block of another level (a
@@ -263,7 +297,6 @@ impl Channel {
                 return Err(target_not_found(line));
             }
         }
-        Err(search_budget_spent(line))
     }
 
     /// The approach after a block search: from where the axes stand to the start of the target's
@@ -303,12 +336,12 @@ fn check_target_line(text: &str, line: u32, program: Option<&str>) -> Result<(),
     Ok(())
 }
 
-/// 15370 when the search gave up after [`SEARCH_BLOCK_BUDGET`] blocks.
-fn search_budget_spent(line: u32) -> Alarm {
+/// 15370 when the search gave up after `blocks` blocks (see [`Channel::block_search_with`]).
+fn search_given_up(line: u32, blocks: usize) -> Alarm {
     Alarm {
         number: 15370,
         message: format!(
-            "Channel 1 search target not found in block search (line {line}): not reached within {SEARCH_BLOCK_BUDGET} blocks"
+            "Channel 1 search target not found in block search (line {line}): search limit reached after {blocks} blocks"
         ),
         line: Some(line),
         clear: Clear::Reset,
