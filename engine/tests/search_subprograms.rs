@@ -170,7 +170,10 @@ fn a_search_follows_two_levels_of_calls_and_a_restart_resumes_there() {
     programs(&mut new);
     new.restore_positions(ch.axis_positions()).unwrap();
     new.restore_resume_state(&saved).unwrap();
-    assert_eq!((new.status(), block_in(&new)), (Status::Stopped, Some((3, "M0".to_string(), Some("INNER".to_string())))));
+    assert_eq!(
+        (new.status(), block_in(&new)),
+        (Status::Stopped, Some((3, "M0".to_string(), Some("INNER".to_string()))))
+    );
     new.start().unwrap();
     settle(&mut new);
     assert_eq!(new.status(), Status::Idle);

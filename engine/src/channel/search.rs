@@ -14,6 +14,18 @@
 //! move of the target block on a straight line (with that move's feed, rapid traverse for G0;
 //! with a transformation active in the BCS) and continues with the target block. Axes may be
 //! jogged between search and NC start; the approach starts from wherever they are.
+//!
+//! The target is a position in the call chain, as on the control: a main program line, then for
+//! each subprogram level the program its caller's line calls and the line in it
+//! ([`PathStep`]). A block is the target when it is read at that line in a level reached through
+//! exactly those calls (the interpreter's [`Level`]); the subprograms' blocks before it are
+//! prepared like the main program's. The target block is found when it is read, even if it puts
+//! out nothing: a target line that calls a subprogram stops before the subprogram runs.
+//!
+//! A search is not limited by the blocks a real program needs before its target: it asks its
+//! caller every [`SEARCH_ASK_EVERY`] blocks whether to go on ([`Channel::block_search_with`];
+//! the server bounds it by wall time) and otherwise stops at [`SEARCH_BLOCK_BUDGET`] blocks, a
+//! program that loops without end, with alarm 15370.
 
 use std::sync::Arc;
 
@@ -55,7 +67,8 @@ pub(super) fn chain_of(line: u32, path: &[PathStep]) -> Vec<(u32, String)> {
 pub(super) fn path_of(line: u32, level: Option<&Level>) -> (u32, Vec<PathStep>) {
     let Some(level) = level.filter(|l| !l.calls.is_empty()) else { return (line, Vec::new()) };
     let lines = level.calls.iter().skip(1).map(|(l, _)| *l).chain(std::iter::once(line));
-    let path = level.calls.iter().zip(lines).map(|((_, name), line)| PathStep { program: name.clone(), line }).collect();
+    let path =
+        level.calls.iter().zip(lines).map(|((_, name), line)| PathStep { program: name.clone(), line }).collect();
     (level.calls[0].0, path)
 }
 
@@ -209,7 +222,7 @@ impl Channel {
         let mut out = Vec::new();
         let mut blocks = 0usize;
         loop {
-            if blocks > 0 && blocks % SEARCH_ASK_EVERY == 0 && !go_on(blocks) {
+            if blocks > 0 && blocks.is_multiple_of(SEARCH_ASK_EVERY) && !go_on(blocks) {
                 return Err(search_given_up(line, blocks));
             }
             blocks += 1;

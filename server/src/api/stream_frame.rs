@@ -88,7 +88,10 @@ impl Serialize for StateMessage<'_> {
         m.serialize_field("positions", &Positions(s))?;
         m.serialize_field("orientation", &s.orientation)?;
         m.serialize_field("transformation", &s.transformation.as_ref().map(Transformation::from))?;
-        m.serialize_field("block", &s.block.as_ref().map(|b| Block { line: b.line, text: &b.text, program: b.program.as_deref() }))?;
+        m.serialize_field(
+            "block",
+            &s.block.as_ref().map(|b| Block { line: b.line, text: &b.text, program: b.program.as_deref() }),
+        )?;
         m.serialize_field("alarms", &s.alarms.iter().map(AlarmInfo::from).collect::<Vec<_>>())?;
         m.serialize_field("tool", &Tool { t: s.tool.0, d: s.tool.1 })?;
         m.serialize_field("path_velocity", &s.path_velocity)?;

@@ -9,6 +9,9 @@
 //!   starved. Between chunks the state is published and queued requests are handled, so an NC
 //!   stop or reset acts at once. Fast pace ends with the motion (`is_busy()` false); whatever
 //!   still turns (a spindle) then goes on in real time.
+//!
+//! A block search may prepare millions of blocks: it, too, runs on a blocking worker, bounded
+//! by `SEARCH_WALL_LIMIT` (alarm 15370 when it is spent); requests wait for it.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
