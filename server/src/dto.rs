@@ -346,9 +346,11 @@ pub struct Transformation {
 /// A program block.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct Block {
-    /// 1-based line in the program text.
+    /// 1-based line in the text of the program the block is in.
     pub line: u32,
     pub text: String,
+    /// The subprogram the block is in (its stored name); `null`: the main program.
+    pub program: Option<String>,
 }
 
 /// An active NC alarm.
@@ -409,7 +411,7 @@ impl From<&TransformationInfo> for Transformation {
 
 impl From<&BlockRef> for Block {
     fn from(b: &BlockRef) -> Block {
-        Block { line: b.line, text: b.text.clone() }
+        Block { line: b.line, text: b.text.clone(), program: b.program.clone() }
     }
 }
 
@@ -837,6 +839,28 @@ pub struct SearchRequest {
     pub program: Option<String>,
     /// A stored program (`PUT .../programs/{name}`) to search in, instead of `program`.
     pub name: Option<String>,
+    /// A target inside subprograms: `line` of the main program calls `path[0].program`, whose
+    /// line `path[0].line` is the target or calls `path[1].program`, and so on; the last step's
+    /// line is the target. The search stops the first time preparation reaches that block
+    /// through these calls (the subprograms' blocks before it are computed like the main
+    /// program's). Absent or empty: `line` of the main program. Each program must be stored
+    /// and hold a block at its line (else `400`).
+    #[serde(default)]
+    #[schema(example = json!([{"program": "HOLE", "line": 2}]))]
+    pub path: Vec<SearchStep>,
+}
+
+/// One level of a block search target inside subprograms (see [`SearchRequest::path`]); also
+/// a level of the current block's place in the state.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SearchStep {
+    /// The stored program the line of the level above calls (`HOLE`, `hole.spf`).
+    #[schema(example = "HOLE")]
+    pub program: String,
+    /// The 1-based line in it.
+    #[schema(example = 2)]
+    pub line: u32,
 }
 
 /// Body of `POST /sessions/{id}/reference`; may be empty.

@@ -117,7 +117,7 @@ async fn block_search_stops_at_the_target_and_start_approaches_and_continues() {
     let search = server.post(&format!("/sessions/{id}/search"), json!({"line": 4, "program": program})).await;
     assert_eq!(search.status, StatusCode::OK, "{}", search.body);
     assert_eq!(search.body["status"], "stopped");
-    assert_eq!(search.body["block"], json!({"line": 4, "text": "X30 Y25"}));
+    assert_eq!(search.body["block"], json!({"line": 4, "text": "X30 Y25", "program": null}));
     assert_eq!(pos(&search.body, "machine", "X"), 0.0);
     let done = server.post(&format!("/sessions/{id}/start"), json!({"pace": "fast", "wait": true})).await;
     assert_eq!(done.body["status"], "idle", "{}", done.body);
@@ -134,7 +134,7 @@ async fn block_search_stops_at_the_target_and_start_approaches_and_continues() {
     let stored = server.put(&format!("/sessions/{id}/programs/PART1"), json!({"text": program})).await;
     assert_eq!(stored.status, StatusCode::OK, "{}", stored.body);
     let named = server.post(&format!("/sessions/{id}/search"), json!({"line": 2, "name": "PART1"})).await;
-    assert_eq!(named.body["block"], json!({"line": 2, "text": "G1 X10 F1000"}), "{}", named.body);
+    assert_eq!(named.body["block"], json!({"line": 2, "text": "G1 X10 F1000", "program": null}), "{}", named.body);
     server.post_empty(&format!("/sessions/{id}/reset")).await;
 
     let missing = server.post(&format!("/sessions/{id}/search"), json!({"line": 99})).await;

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{CORRTRAFO, DELOBJ, Item, NEWCONF, Prep, StopKind};
+use crate::interp::{CORRTRAFO, DELOBJ, Item, Level, NEWCONF, Prep, StopKind};
 use crate::motion::{AxisLimit, Move};
 
 impl Channel {
@@ -36,6 +36,8 @@ impl Channel {
                 && self.toff.settled(&self.offsets.toff);
             out.clear();
             let generation = self.interp.transformation_generation();
+            // The level the block is read in (a call or return changes it after the read).
+            let level = self.interp.level().cloned();
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
@@ -53,13 +55,18 @@ impl Channel {
                     break;
                 }
             }
-            if let (Some(line), Some(program)) = (out.iter().find_map(Item::line), &self.program) {
-                // Remember where the block is, for showing it while its items execute.
-                self.queued_blocks.push_back((line, line_offset(program, line, self.queued_blocks.back())));
-                if self.queued_blocks.len() > 2 * LOOKAHEAD {
-                    self.queued_blocks.pop_front();
+            // Remember where each block is, for showing it while its items execute: the block
+            // just read is in `level`; a move held back from the block before in that one's.
+            let read = (self.interp.read_line(), level);
+            let mut last = None;
+            for line in out.iter().filter_map(Item::line) {
+                if last != Some(line) {
+                    last = Some(line);
+                    let level = if line != read.0 && line == self.prev_read.0 { &self.prev_read.1 } else { &read.1 };
+                    self.queue_block(line, level.clone());
                 }
             }
+            self.prev_read = read;
             self.pending.extend(out.drain(..));
             match prep {
                 Prep::Prepared => {}
@@ -189,9 +196,31 @@ impl Channel {
         }
     }
 
+    /// Remembers where the text of a prepared block of `line` in `level` is (the main program
+    /// when `None`).
+    pub(super) fn queue_block(&mut self, line: u32, level: Option<Arc<Level>>) {
+        let Some(text) = level.as_ref().map(|l| &l.text).or(self.program.as_ref()) else { return };
+        let hint = self.queued_blocks.back().filter(|b| same_level(&b.level, &level)).map(|b| (b.line, b.offset));
+        let offset = line_offset(text, line, hint.as_ref());
+        self.queued_blocks.push_back(QueuedBlock { line, offset, level });
+        if self.queued_blocks.len() > 2 * LOOKAHEAD {
+            self.queued_blocks.pop_front();
+        }
+    }
+
+    /// The main run enters the block at `line`: the first queued block of that line is it (the
+    /// main run executes blocks in the order they were prepared); the blocks queued before it
+    /// are done with.
     pub(super) fn enter_block(&mut self, line: u32) {
         if self.current_line != Some(line) {
             self.current_line = Some(line);
+            self.current_block = match self.queued_blocks.iter().position(|b| b.line == line) {
+                Some(i) => {
+                    self.queued_blocks.drain(..i);
+                    self.queued_blocks.front().cloned()
+                }
+                None => None,
+            };
             if let Some(b) = self.block_ref(line) {
                 self.events.push(Event::BlockChanged(b));
             }
@@ -199,7 +228,8 @@ impl Channel {
     }
 
     pub(super) fn block_ref(&self, line: u32) -> Option<BlockRef> {
-        Some(BlockRef { line, text: self.block_text(line)?.to_string() })
+        let (text, program) = self.block_text(line)?;
+        Some(BlockRef { line, text: text.to_string(), program: program.map(str::to_string) })
     }
 
     /// Executes non-motion items at the head of the queue once all motion before them is done.
@@ -319,6 +349,24 @@ impl Channel {
         }
         self.events.push(Event::AlarmRaised(alarm.clone()));
         self.alarms.push(alarm);
+    }
+}
+
+/// A prepared block whose items are queued: its line in its program level, where the line
+/// starts in that level's text, and the level (`None`: the main program).
+#[derive(Debug, Clone)]
+pub(super) struct QueuedBlock {
+    pub line: u32,
+    pub offset: usize,
+    pub level: Option<Arc<Level>>,
+}
+
+/// Whether two blocks were prepared in the same program level (the same call).
+pub(super) fn same_level(a: &Option<Arc<Level>>, b: &Option<Arc<Level>>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+        _ => false,
     }
 }
 

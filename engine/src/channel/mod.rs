@@ -36,6 +36,7 @@ pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
 pub use resume::{ResumeProgram, ResumeState};
+pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 
@@ -203,8 +204,8 @@ pub struct Channel {
     program: Option<ProgramText>,
     /// Stored programs (main programs and subprograms) by upper-case name.
     programs: Programs,
-    /// Line and byte offset of the prepared blocks whose items are still queued (for display).
-    queued_blocks: VecDeque<(u32, usize)>,
+    /// The prepared blocks whose items are still queued, with where their text is (for display).
+    queued_blocks: VecDeque<main_run::QueuedBlock>,
     /// Block preparation has reached the end of the program or stopped on an alarm.
     prep_done: bool,
     interp: Interpreter,
@@ -218,6 +219,11 @@ pub struct Channel {
     offsets: SharedOffsets,
     dwell_ticks: u64,
     current_line: Option<u32>,
+    /// The block shown as current: its program level and where its text is.
+    current_block: Option<main_run::QueuedBlock>,
+    /// The line and program level of the block prepared before the last one (a move it held
+    /// back comes out with the next block's items).
+    prev_read: (u32, Option<Arc<crate::interp::Level>>),
     spindles: Vec<Spindle>,
     alarms: Vec<Alarm>,
     events: Vec<Event>,
@@ -308,6 +314,8 @@ impl Channel {
             next_tag: 0,
             dwell_ticks: 0,
             current_line: None,
+            current_block: None,
+            prev_read: (0, None),
             spindles,
             alarms: Vec::new(),
             events: Vec::new(),
@@ -504,6 +512,7 @@ impl Channel {
         self.search_approach = false;
         self.program = Some(text.clone());
         self.queued_blocks.clear();
+        self.current_block = None;
         self.prep_done = false;
         self.interp.begin_program(text, &self.machine);
         self.status = Status::Running;
@@ -591,6 +600,7 @@ impl Channel {
         self.drop_interruption();
         self.search_approach = false;
         self.current_line = None;
+        self.current_block = None;
         self.message = None;
         let pos = *self.planner.position();
         for s in &mut self.spindles {

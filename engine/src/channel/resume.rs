@@ -9,6 +9,7 @@
 //! program up to it), then NC start approaches the block and continues. A program that was
 //! only loaded comes back loaded. MDA blocks are not resumed.
 
+use super::search::{PathStep, path_of};
 use super::{Channel, CommandError, Mode, Status};
 use crate::interp::retained::Retained;
 use crate::interp::{Item, StopKind};
@@ -22,7 +23,14 @@ pub struct ResumeProgram {
     /// stores the text elsewhere and puts it back before [`Channel::restore_resume_state`].
     pub text: String,
     /// The main run's block (1-based line) when the program was active; `None`: only loaded.
+    /// Inside a subprogram: the line of the main program whose call leads there, and `path`
+    /// goes on from it.
     pub line: Option<u32>,
+    /// Inside a subprogram: the steps from `line` to the block, one per program level (see
+    /// [`Channel::block_search_at`]); empty in the main program (and in checkpoints written
+    /// before subprogram levels were recorded).
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Vec::is_empty"))]
+    pub path: Vec<PathStep>,
     /// The program stood at a programmed stop (M0, M1) of that block, already executed: NC
     /// start after the restart goes on behind it instead of stopping there again.
     #[cfg_attr(feature = "serde", serde(default))]
@@ -63,8 +71,15 @@ impl Channel {
             && !self.repos_returning
             && stop_done;
         let text = self.program.as_ref().filter(|_| self.program_mode == Mode::Auto);
-        let program =
-            text.map(|_| ResumeProgram { text: String::new(), line: self.current_line.filter(|_| active), after_stop });
+        let level = self.current_block.as_ref().and_then(|b| b.level.as_deref());
+        let (line, path) = match self.current_line.filter(|_| active) {
+            Some(line) => {
+                let (line, path) = path_of(line, level);
+                (Some(line), path)
+            }
+            None => (None, Vec::new()),
+        };
+        let program = text.map(|_| ResumeProgram { text: String::new(), line, path, after_stop });
         (ResumeState { retained: self.interp.retained(), program }, text.cloned())
     }
 
@@ -90,9 +105,10 @@ impl Channel {
                 self.program_mode = Mode::Auto;
                 Ok(())
             }
-            Some(line) => {
+            Some(main_line) => {
                 self.set_mode(Mode::Auto)?;
-                self.block_search(Some(&program.text), line)?;
+                self.block_search_at(Some(&program.text), main_line, &program.path)?;
+                let line = program.path.last().map_or(main_line, |s| s.line);
                 if program.after_stop && self.status == Status::Stopped {
                     let stop = self.pending.iter().position(
                         |item| matches!(item, Item::Stop { kind: StopKind::M0 | StopKind::M1, line: l } if *l == line),

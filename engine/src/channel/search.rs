@@ -14,16 +14,63 @@
 //! move of the target block on a straight line (with that move's feed, rapid traverse for G0;
 //! with a transformation active in the BCS) and continues with the target block. Axes may be
 //! jogged between search and NC start; the approach starts from wherever they are.
+//!
+//! The target is a position in the call chain, as on the control: a main program line, then for
+//! each subprogram level the program its caller's line calls and the line in it
+//! ([`PathStep`]). A block is the target when it is read at that line in a level reached through
+//! exactly those calls (the interpreter's [`Level`]); the subprograms' blocks before it are
+//! prepared like the main program's. The target block is found when it is read, even if it puts
+//! out nothing: a target line that calls a subprogram stops before the subprogram runs.
+//!
+//! A search is not limited by the blocks a real program needs before its target: it asks its
+//! caller every [`SEARCH_ASK_EVERY`] blocks whether to go on ([`Channel::block_search_with`];
+//! the server bounds it by wall time) and otherwise stops at [`SEARCH_BLOCK_BUDGET`] blocks, a
+//! program that loops without end, with alarm 15370.
 
-use super::main_run::line_offset;
+use std::sync::Arc;
+
 use super::{Channel, CommandError, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Item, Prep, SharedOffsets, StopKind};
+use crate::interp::{Item, Level, Prep, SharedOffsets, StopKind};
 use crate::lang::ProgramText;
 use crate::motion::{Feed, Move};
 
-/// Most blocks a search prepares before it gives up (a program that loops without end).
-pub const SEARCH_BLOCK_BUDGET: usize = 200_000;
+/// Most blocks a search prepares before it gives up with alarm 15370 (a program that loops
+/// without end must not hold the channel), unless the caller decides with
+/// [`Channel::block_search_with`]. A real control searches any length; this is far beyond any
+/// program whose target is reached at all (a release build prepares two to three million
+/// blocks a second: a search that runs into the limit takes seconds).
+pub const SEARCH_BLOCK_BUDGET: usize = 20_000_000;
+
+/// How often (in blocks) a search asks its caller whether to go on.
+pub const SEARCH_ASK_EVERY: usize = 65_536;
+
+/// One step of a block search target into a subprogram: the program the line of the level
+/// above calls, and the line (1-based) in it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PathStep {
+    /// The called program's stored name (`HOLE`, `hole.spf`: upper-cased, the ending dropped).
+    pub program: String,
+    pub line: u32,
+}
+
+/// The position of a block in the call chain, as [`Channel::block_search_at`] takes it: its
+/// main program line, then one step per subprogram level.
+pub(super) fn chain_of(line: u32, path: &[PathStep]) -> Vec<(u32, String)> {
+    let callers = std::iter::once(line).chain(path.iter().map(|s| s.line));
+    callers.zip(path).map(|(l, s)| (l, s.program.clone())).collect()
+}
+
+/// A block's position as a main program line and the steps into subprograms (the inverse of
+/// [`chain_of`]): `line` in `level`.
+pub(super) fn path_of(line: u32, level: Option<&Level>) -> (u32, Vec<PathStep>) {
+    let Some(level) = level.filter(|l| !l.calls.is_empty()) else { return (line, Vec::new()) };
+    let lines = level.calls.iter().skip(1).map(|(l, _)| *l).chain(std::iter::once(line));
+    let path =
+        level.calls.iter().zip(lines).map(|((_, name), line)| PathStep { program: name.clone(), line }).collect();
+    (level.calls[0].0, path)
+}
 
 impl Channel {
     /// Block search with calculation to `line` (1-based) of `text`, or of the active program
@@ -34,7 +81,42 @@ impl Channel {
     /// [`SEARCH_BLOCK_BUDGET`] blocks) raises alarm 15370; an alarm of a block before the target
     /// is raised as in a run.
     pub fn block_search(&mut self, text: Option<&str>, line: u32) -> Result<(), CommandError> {
+        self.block_search_at(text, line, &[])
+    }
+
+    /// [`Channel::block_search`] to a block inside subprograms: `line` of the main program
+    /// calls `path[0].program`, whose line `path[0].line` is the target or calls
+    /// `path[1].program`, and so on; the last step's line is the target. The search stops at
+    /// the first time preparation reaches that block through that chain of calls (the blocks
+    /// of the subprograms before the target are computed like the main program's). An empty
+    /// path is the main program's `line`. Each step must name a stored program and a line of
+    /// it holding a block.
+    pub fn block_search_at(&mut self, text: Option<&str>, line: u32, path: &[PathStep]) -> Result<(), CommandError> {
+        self.block_search_with(text, None, line, path, &mut |blocks| blocks < SEARCH_BLOCK_BUDGET)
+    }
+
+    /// [`Channel::block_search_at`] in `text`, or in stored program `name`, or in the active
+    /// program, asking `go_on` every [`SEARCH_ASK_EVERY`] blocks (with the number of blocks
+    /// prepared so far) whether to go on instead of stopping at [`SEARCH_BLOCK_BUDGET`]: the
+    /// server bounds a search by wall time this way (the engine knows no clock). A search
+    /// `go_on` ends raises alarm 15370 naming how many blocks it prepared.
+    pub fn block_search_with(
+        &mut self,
+        text: Option<&str>,
+        name: Option<&str>,
+        line: u32,
+        path: &[PathStep],
+        go_on: &mut dyn FnMut(usize) -> bool,
+    ) -> Result<(), CommandError> {
         self.search_allowed()?;
+        if let Some(name) = name {
+            let text = self
+                .programs
+                .get(&super::programs::program_name(name)?)
+                .cloned()
+                .ok_or_else(|| CommandError::Invalid(format!("no stored program `{name}`")))?;
+            return self.block_search_text(Some(ProgramText::from(text)), line, path, go_on);
+        }
         let text = match text {
             Some(t) => {
                 CommandError::check(t)?;
@@ -42,18 +124,19 @@ impl Channel {
             }
             None => None,
         };
-        self.block_search_text(text, line)
+        self.block_search_text(text, line, path, go_on)
     }
 
     /// [`Channel::block_search`] in stored program `name`, sharing its text (no copy of up to
     /// the program size limit; it was checked when it was stored).
     pub fn block_search_stored(&mut self, name: &str, line: u32) -> Result<(), CommandError> {
-        let text = self
-            .programs
-            .get(&super::programs::program_name(name)?)
-            .cloned()
-            .ok_or_else(|| CommandError::Invalid(format!("no stored program `{name}`")))?;
-        self.block_search_text(Some(ProgramText::from(text)), line)
+        self.block_search_stored_at(name, line, &[])
+    }
+
+    /// [`Channel::block_search_at`] in stored program `name` (see
+    /// [`Channel::block_search_stored`]).
+    pub fn block_search_stored_at(&mut self, name: &str, line: u32, path: &[PathStep]) -> Result<(), CommandError> {
+        self.block_search_with(None, Some(name), line, path, &mut |blocks| blocks < SEARCH_BLOCK_BUDGET)
     }
 
     /// Whether a block search may start now: AUTO mode, reset state, no alarm.
@@ -70,7 +153,13 @@ impl Channel {
         Ok(())
     }
 
-    fn block_search_text(&mut self, text: Option<ProgramText>, line: u32) -> Result<(), CommandError> {
+    fn block_search_text(
+        &mut self,
+        text: Option<ProgramText>,
+        line: u32,
+        path: &[PathStep],
+        go_on: &mut dyn FnMut(usize) -> bool,
+    ) -> Result<(), CommandError> {
         self.search_allowed()?;
         let text: ProgramText = match text {
             Some(t) => t,
@@ -79,62 +168,87 @@ impl Channel {
                 .clone()
                 .ok_or_else(|| CommandError::Invalid("no program loaded: give the program text to search in".into()))?,
         };
-        let lines = text.lines().count();
-        if line == 0 || line as usize > lines {
-            return Err(CommandError::Invalid(format!(
-                "line {line} does not exist: the program has {lines} line{}",
-                if lines == 1 { "" } else { "s" }
-            )));
+        check_target_line(&text, line, None)?;
+        let mut steps = Vec::with_capacity(path.len());
+        for step in path {
+            let name = super::programs::program_name(&step.program)?;
+            let sub = self
+                .programs
+                .get(&name)
+                .ok_or_else(|| CommandError::Invalid(format!("no stored program `{}` to search in", step.program)))?;
+            check_target_line(sub, step.line, Some(&name))?;
+            steps.push(PathStep { program: name, line: step.line });
         }
-        let source = text.lines().nth(line as usize - 1).unwrap_or("").trim();
-        if source.is_empty() || source.starts_with(';') {
-            return Err(CommandError::Invalid(format!("line {line} holds no block (empty or a comment)")));
-        }
+        let chain = chain_of(line, &steps);
+        let target = steps.last().map_or(line, |s| s.line);
 
         self.program = Some(text.clone());
         self.program_mode = Mode::Auto;
         self.queued_blocks.clear();
+        self.current_block = None;
         self.pending.clear();
         self.prep_done = false;
         self.prep_waits_for_trafo = false;
         self.search_approach = false;
         self.interp.begin_program(text.clone(), &self.machine);
-        match self.search_to(line) {
-            Ok(()) => {
-                self.queued_blocks.push_back((line, line_offset(&text, line, None)));
+        match self.search_to(target, &chain, go_on) {
+            Ok(level) => {
+                self.queued_blocks.clear();
+                self.queue_block(target, level);
+                self.prev_read = (0, None);
                 self.search_approach = true;
                 self.status = Status::Stopped;
-                self.enter_block(line);
+                self.enter_block(target);
             }
             Err(alarm) => self.raise(alarm),
         }
         Ok(())
     }
 
-    /// Prepares blocks until the first item of `line`; leaves the collected output and the
-    /// target's items in `pending`.
-    fn search_to(&mut self, line: u32) -> Result<(), Alarm> {
+    /// Prepares blocks until the block at `line` of the program level reached through the
+    /// calls `chain` (empty: the main program); leaves the collected output and the target's
+    /// items in `pending` and returns the target's level.
+    fn search_to(
+        &mut self,
+        line: u32,
+        chain: &[(u32, String)],
+        go_on: &mut dyn FnMut(usize) -> bool,
+    ) -> Result<Option<Arc<Level>>, Alarm> {
         let mut trafo = self.trafo.clone();
         let mut machine = self.machine;
         let mut offsets: Option<SharedOffsets> = None;
         let mut spindles: Vec<Item> = Vec::new();
         let mut message: Option<Item> = None;
         let mut out = Vec::new();
-        for _ in 0..SEARCH_BLOCK_BUDGET {
+        let mut blocks = 0usize;
+        loop {
+            if blocks > 0 && blocks.is_multiple_of(SEARCH_ASK_EVERY) && !go_on(blocks) {
+                return Err(search_given_up(line, blocks));
+            }
+            blocks += 1;
             out.clear();
             let generation = self.interp.transformation_generation();
-            // The target is a line of the main program: a block of a subprogram with the same
-            // line number is not it.
-            let in_main_program = self.interp.call_depth() == 0;
+            // The target is a line of one program level: a block of another level (a
+            // subprogram, or the same one called from elsewhere) with that line is not it.
+            let at_level = match self.interp.level() {
+                None => chain.is_empty(),
+                Some(level) => level.calls == chain,
+            };
+            let level = if at_level { self.interp.level().cloned() } else { None };
             let prep = self.interp.prepare_next(&self.cfg, &self.programs, true, &mut out);
+            // The block read is the target even when it puts out nothing (a call: the search
+            // stops before the subprogram runs; an R parameter assignment).
+            let read_target = at_level && self.interp.read_line() == line;
             let trafo_changed = self.interp.transformation_generation() != generation;
             // Blocks passed by the search do not run: what they would report does not show.
             self.interp.take_warnings();
             for (l, data) in self.interp.take_data_writes() {
                 self.apply_program_data(l, &data)?;
             }
-            let found =
-                out.iter().position(|i| in_main_program && i.line() == Some(line) && !matches!(i, Item::Alarm(_)));
+            let found = out
+                .iter()
+                .position(|i| at_level && i.line() == Some(line) && !matches!(i, Item::Alarm(_)))
+                .or_else(|| read_target.then_some(out.len()));
             let rest = out.split_off(found.unwrap_or(out.len()));
             let mut trafo_switched = false;
             for item in out.drain(..) {
@@ -190,13 +304,12 @@ impl Channel {
                 }));
                 self.pending.extend(rest);
                 self.prep_done = prep == Prep::Done;
-                return Ok(());
+                return Ok(level);
             }
             if prep == Prep::Done {
                 return Err(target_not_found(line));
             }
         }
-        Err(target_not_found(line))
     }
 
     /// The approach after a block search: from where the axes stand to the start of the target's
@@ -215,6 +328,36 @@ fn set_line(item: &mut Item, to: u32) {
     match item {
         Item::Spindle { line, .. } | Item::SpindleToAxis { line, .. } | Item::Message { line, .. } => *line = to,
         _ => {}
+    }
+}
+
+/// Refuses a search target line that is not in `text` or holds no block; `program` names a
+/// subprogram's text in the message.
+fn check_target_line(text: &str, line: u32, program: Option<&str>) -> Result<(), CommandError> {
+    let of = program.map(|p| format!(" of {p}")).unwrap_or_default();
+    let lines = text.lines().count();
+    if line == 0 || line as usize > lines {
+        return Err(CommandError::Invalid(format!(
+            "line {line}{of} does not exist: the program has {lines} line{}",
+            if lines == 1 { "" } else { "s" }
+        )));
+    }
+    let source = text.lines().nth(line as usize - 1).unwrap_or("").trim();
+    if source.is_empty() || source.starts_with(';') {
+        return Err(CommandError::Invalid(format!("line {line}{of} holds no block (empty or a comment)")));
+    }
+    Ok(())
+}
+
+/// 15370 when the search gave up after `blocks` blocks (see [`Channel::block_search_with`]).
+fn search_given_up(line: u32, blocks: usize) -> Alarm {
+    Alarm {
+        number: 15370,
+        message: format!(
+            "Channel 1 search target not found in block search (line {line}): search limit reached after {blocks} blocks"
+        ),
+        line: Some(line),
+        clear: Clear::Reset,
     }
 }
 

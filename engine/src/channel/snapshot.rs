@@ -8,9 +8,11 @@ use crate::interp::gcodes::GCodes;
 /// The block shown as current.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockRef {
-    /// 1-based line in the program text.
+    /// 1-based line in the text of the program the block is in.
     pub line: u32,
     pub text: String,
+    /// The subprogram the block is in (its stored name); `None`: the main program.
+    pub program: Option<String>,
 }
 
 /// The active kinematic transformation.

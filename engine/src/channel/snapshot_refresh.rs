@@ -20,13 +20,21 @@ impl Channel {
         refresh(self, out);
     }
 
-    /// The text of program line `line` (without its line end) while that block is in the main
-    /// run's queue.
-    pub(super) fn block_text(&self, line: u32) -> Option<&str> {
-        let program = self.program.as_ref()?;
-        let &(_, offset) = self.queued_blocks.iter().rev().find(|b| b.0 == line)?;
-        let raw = program[offset..].split('\n').next().unwrap_or("");
-        Some(raw.strip_suffix('\r').unwrap_or(raw))
+    /// The text of program line `line` (without its line end) while that block is current or
+    /// in the main run's queue, and the name of the subprogram it is in (`None`: the main
+    /// program).
+    pub(super) fn block_text(&self, line: u32) -> Option<(&str, Option<&str>)> {
+        let block = self
+            .current_block
+            .as_ref()
+            .filter(|b| b.line == line)
+            .or_else(|| self.queued_blocks.iter().rev().find(|b| b.line == line))?;
+        let program = match &block.level {
+            Some(level) => &level.text,
+            None => self.program.as_ref()?,
+        };
+        let raw = program.get(block.offset..)?.split('\n').next().unwrap_or("");
+        Some((raw.strip_suffix('\r').unwrap_or(raw), block.level.as_deref().map(|l| l.name())))
     }
 }
 
@@ -151,10 +159,14 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     }
     match ch.current_line.and_then(|line| Some((line, ch.block_text(line)?))) {
         None => s.block = None,
-        Some((line, text)) => {
-            let block = s.block.get_or_insert_with(|| BlockRef { line, text: String::new() });
+        Some((line, (text, program))) => {
+            let block = s.block.get_or_insert_with(|| BlockRef { line, text: String::new(), program: None });
             block.line = line;
             set_text(&mut block.text, text);
+            match program {
+                None => block.program = None,
+                Some(name) => set_text(block.program.get_or_insert_with(String::new), name),
+            }
         }
     }
     // Alarms are few and rarely change: compare first, so the texts are not copied per frame.

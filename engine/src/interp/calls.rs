@@ -21,9 +21,32 @@ pub type Programs = BTreeMap<String, Arc<str>>;
 /// Program levels: the main program plus up to 15 nested subprogram calls.
 pub const MAX_LEVELS: usize = 16;
 
+/// Where a subprogram level runs: the calls that lead to it from the main program, and its
+/// text. Made once per call and shared by every block prepared in it (the channel shows a
+/// block's text and name from it, and a checkpoint records the block's place in the call
+/// chain).
+#[derive(Debug, PartialEq)]
+pub struct Level {
+    /// The calls from the main program down to this level, outermost first: the line of the
+    /// calling block in its program and the (stored, upper-case) name of the program it calls.
+    /// The last entry names this level's program.
+    pub calls: Vec<(u32, String)>,
+    /// This level's program text.
+    pub text: ProgramText,
+}
+
+impl Level {
+    /// The name of this level's program.
+    pub fn name(&self) -> &str {
+        self.calls.last().map_or("", |(_, name)| name.as_str())
+    }
+}
+
 /// A subprogram call in progress.
 #[derive(Debug, Clone)]
 pub(super) struct CallFrame {
+    /// Which program runs at this level, called from where.
+    level: Arc<Level>,
     /// Where the caller goes on.
     caller: Flow,
     text: ProgramText,
@@ -78,7 +101,10 @@ impl Interpreter {
         }
         let mut caller = self.flow.take().expect("a call happens inside a program");
         let flow = Flow::for_call(text.clone(), &mut caller);
+        let mut chain = self.calls.last().map(|f| f.level.calls.clone()).unwrap_or_default();
+        chain.push((line, name.to_string()));
         self.calls.push(CallFrame {
+            level: Arc::new(Level { calls: chain, text: text.clone() }),
             caller,
             text: text.clone(),
             args: values,
@@ -92,6 +118,11 @@ impl Interpreter {
         self.vars.push_frame();
         self.flow = Some(flow);
         Ok(())
+    }
+
+    /// The subprogram level being prepared; `None` in the main program.
+    pub fn level(&self) -> Option<&Arc<Level>> {
+        self.calls.last().map(|f| &f.level)
     }
 
     /// Binds the call's arguments to the parameters of the subprogram's PROC line.

@@ -52,7 +52,7 @@ use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, OriPath, Path};
 use calls::CallFrame;
-pub use calls::Programs;
+pub use calls::{Level, Programs};
 pub use corners::Corner;
 use flow::Flow;
 pub use frame::Frame;
@@ -207,6 +207,8 @@ pub struct Interpreter {
     flow: Option<Flow>,
     /// Subprogram calls in progress, outermost first.
     calls: Vec<CallFrame>,
+    /// The line of the block read last, in the program level it was read in.
+    read_line: u32,
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
     /// not applied yet.
     data_writes: Vec<(u32, String)>,
@@ -249,6 +251,7 @@ impl Interpreter {
             spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
+            read_line: 0,
             data_writes: Vec::new(),
             warnings: Vec::new(),
             held: None,
@@ -333,6 +336,13 @@ impl Interpreter {
     /// Number of subprogram levels below the main program being prepared (0: the main program).
     pub fn call_depth(&self) -> usize {
         self.calls.len()
+    }
+
+    /// The line of the block the last [`Interpreter::prepare_next`] read, in the program level
+    /// it was read in (that level is [`Interpreter::level`] before the call: a block that
+    /// calls or returns changes the level only after it was read).
+    pub fn read_line(&self) -> u32 {
+        self.read_line
     }
 
     /// Offsets currently selected by preprocessing.

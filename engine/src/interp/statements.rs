@@ -37,6 +37,7 @@ impl Interpreter {
             self.flow = None;
             return Ok(Prep::Done);
         };
+        self.read_line = at.line;
         let block = block.map_err(|d| {
             let mut alarm = Alarm::syntax(d.line, &format!("column {}: {}", d.column, d.message));
             alarm.number = d.alarm;

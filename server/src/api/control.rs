@@ -1,7 +1,7 @@
 //! Program control of a session's channel: run, start, stop, reset, cancel, MDA and the mode.
 
 use axum::extract::{Path, State};
-use nctwin_engine::channel::{ReposApproach, ReposMode};
+use nctwin_engine::channel::{PathStep, ReposApproach, ReposMode};
 
 use super::{StateReply, command};
 use crate::dto::{
@@ -218,7 +218,10 @@ pub async fn set_options(
 /// start (`start`) outputs the collected spindle commands and offsets, approaches the start of
 /// the target block on a straight line (with its feed; rapid for G0) and continues there.
 /// AUTO mode in reset state. A line that does not exist or holds no block is `400`; a target
-/// the program never reaches (skipped, after M30) raises alarm 15370.
+/// the program never reaches (skipped, after M30, not within 50,000,000 blocks) raises alarm
+/// 15370. The search follows subprogram calls: `path` names a target inside subprograms, level
+/// by level (`{"line": 2, "path": [{"program": "HOLE", "line": 3}]}`: line 3 of HOLE as called
+/// by line 2); a target line that calls a subprogram stops before the call.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/search",
@@ -240,6 +243,7 @@ pub async fn search(
     if body.program.is_some() && body.name.is_some() {
         return Err(ApiError::bad_request("give either `program` (text) or `name` (a stored program), not both"));
     }
-    let action = Action::Search { program: body.program, name: body.name, line: body.line };
+    let path = body.path.into_iter().map(|s| PathStep { program: s.program, line: s.line }).collect();
+    let action = Action::Search { program: body.program, name: body.name, line: body.line, path };
     command(&state, &id, action, None).await
 }

@@ -157,6 +157,11 @@ fn write_head(out: &mut String, s: &Snapshot) {
             write_int(out, b.line);
             out.push_str(",\"text\":");
             write_str(out, &b.text);
+            out.push_str(",\"program\":");
+            match &b.program {
+                None => out.push_str("null"),
+                Some(p) => write_str(out, p),
+            }
             out.push('}');
         }
     }
@@ -387,7 +392,7 @@ mod tests {
         s.single_block = true;
         s.optional_stop = true;
         s.repos_pending = true;
-        s.block = Some(nctwin_engine::channel::BlockRef { line: 3, text: String::new() });
+        s.block = Some(nctwin_engine::channel::BlockRef { line: 3, text: String::new(), program: Some("HOLE".into()) });
         let mut encoder = StateEncoder::default();
         check(&mut encoder, &s);
         for phase in [ReferencePhase::Cam, ReferencePhase::Position] {

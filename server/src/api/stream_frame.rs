@@ -88,7 +88,10 @@ impl Serialize for StateMessage<'_> {
         m.serialize_field("positions", &Positions(s))?;
         m.serialize_field("orientation", &s.orientation)?;
         m.serialize_field("transformation", &s.transformation.as_ref().map(Transformation::from))?;
-        m.serialize_field("block", &s.block.as_ref().map(|b| Block { line: b.line, text: &b.text }))?;
+        m.serialize_field(
+            "block",
+            &s.block.as_ref().map(|b| Block { line: b.line, text: &b.text, program: b.program.as_deref() }),
+        )?;
         m.serialize_field("alarms", &s.alarms.iter().map(AlarmInfo::from).collect::<Vec<_>>())?;
         m.serialize_field("tool", &Tool { t: s.tool.0, d: s.tool.1 })?;
         m.serialize_field("path_velocity", &s.path_velocity)?;
@@ -127,6 +130,7 @@ impl Serialize for Positions<'_> {
 struct Block<'a> {
     line: u32,
     text: &'a str,
+    program: Option<&'a str>,
 }
 
 /// Named values as a JSON object in their given order (as `dto::AxisValues`/`AxisFlags`).
@@ -207,6 +211,9 @@ mod tests {
         full.referencing = Some(("Y".into(), ReferencePhase::Marker));
         full.orientation = None;
         full.repos_pending = true;
+        if let Some(b) = full.block.as_mut() {
+            b.program = Some("HOLE".into());
+        }
         let text = encode_state(&full);
         assert_eq!(text.as_str(), via_dto(&full));
         let json: Value = serde_json::from_str(text.as_str()).expect("JSON");

@@ -9,6 +9,9 @@
 //!   starved. Between chunks the state is published and queued requests are handled, so an NC
 //!   stop or reset acts at once. Fast pace ends with the motion (`is_busy()` false); whatever
 //!   still turns (a spindle) then goes on in real time.
+//!
+//! A block search may prepare millions of blocks: it, too, runs on a blocking worker, bounded
+//! by `SEARCH_WALL_LIMIT` (alarm 15370 when it is spent); requests wait for it.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -24,6 +27,11 @@ use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
 /// Wall time a fast-paced command may compute before it is stopped like at the simulated-time
 /// limit.
 const FAST_WALL_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// Wall time a block search may compute before it gives up with alarm 15370 (a program that
+/// never reaches its target, a LOOP without end); the engine's own limit is
+/// `SEARCH_BLOCK_BUDGET` blocks.
+const SEARCH_WALL_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
 
 /// Extra simulated seconds a fast run stopped by its limit may take to brake before the actor
 /// resets the channel.
@@ -111,9 +119,10 @@ impl Actor {
                 // Requests that queued up during the last chunk act before the next one.
                 loop {
                     match requests.try_recv() {
-                        Ok(request) => match self.handle(&mut channel, request) {
-                            Flow::Continue => {}
-                            Flow::Stop(reply) => return self.finish(reply),
+                        Ok(request) => match self.dispatch(channel, request).await {
+                            Some((c, Flow::Continue)) => channel = c,
+                            Some((_, Flow::Stop(reply))) => return self.finish(reply),
+                            None => return,
                         },
                         Err(mpsc::error::TryRecvError::Empty) => break,
                         Err(mpsc::error::TryRecvError::Disconnected) => return,
@@ -140,9 +149,10 @@ impl Actor {
             tokio::select! {
                 request = requests.recv() => match request {
                     None => return,
-                    Some(request) => match self.handle(&mut channel, request) {
-                        Flow::Continue => {}
-                        Flow::Stop(reply) => return self.finish(reply),
+                    Some(request) => match self.dispatch(channel, request).await {
+                        Some((c, Flow::Continue)) => channel = c,
+                        Some((_, Flow::Stop(reply))) => return self.finish(reply),
+                        None => return,
                     },
                 },
                 () = sleep_until(self.next_wake), if stepping => self.realtime_wake(&mut channel),
@@ -156,6 +166,31 @@ impl Actor {
         let _ = reply.send(());
     }
 
+    /// Handles one request. A block search computes on a blocking worker (it may prepare
+    /// millions of blocks: the async runtime must not wait for it), the channel moved there and
+    /// back as in fast pace. `None` if the engine panicked there (the session has ended).
+    async fn dispatch(&mut self, mut channel: Box<Channel>, request: Request) -> Option<(Box<Channel>, Flow)> {
+        let Request::Command { action: action @ Action::Search { .. }, drive, reply } = request else {
+            let flow = self.handle(&mut channel, request);
+            return Some((channel, flow));
+        };
+        let joined = tokio::task::spawn_blocking(move || {
+            let result = apply(&mut channel, action);
+            (channel, result)
+        })
+        .await;
+        match joined {
+            Ok((mut channel, result)) => {
+                let flow = self.command_applied(&mut channel, result, drive, reply);
+                Some((channel, flow))
+            }
+            Err(e) => {
+                tracing::error!(error = %e, "session engine failed during a block search; the session has ended");
+                None
+            }
+        }
+    }
+
     fn handle(&mut self, channel: &mut Channel, request: Request) -> Flow {
         let (action, drive, reply) = match request {
             Request::Shutdown { reply } => return Flow::Stop(reply),
@@ -167,6 +202,17 @@ impl Actor {
             Request::Command { action, drive, reply } => (action, drive, reply),
         };
         let result = apply(channel, action);
+        self.command_applied(channel, result, drive, reply)
+    }
+
+    /// Publishes what a command did and answers it (now, or once its motion is over).
+    fn command_applied(
+        &mut self,
+        channel: &mut Channel,
+        result: Result<(), CommandError>,
+        drive: Option<super::Drive>,
+        reply: oneshot::Sender<Result<Outcome, CommandError>>,
+    ) -> Flow {
         self.dirty |= result.is_ok();
         self.publish(channel);
         if let Err(e) = result {
@@ -356,9 +402,13 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
             channel.jog_stop_if(serial);
             Ok(())
         }
-        // A stored program is searched in place: the channel shares its text, no copy.
-        Action::Search { name: Some(name), line, .. } => channel.block_search_stored(&name, line),
-        Action::Search { program, name: None, line } => channel.block_search(program.as_deref(), line),
+        // A stored program is searched in place: the channel shares its text, no copy. The
+        // search gives up with alarm 15370 after SEARCH_WALL_LIMIT of wall time.
+        Action::Search { program, name, line, path } => {
+            let deadline = std::time::Instant::now() + SEARCH_WALL_LIMIT;
+            let mut go_on = |_| std::time::Instant::now() < deadline;
+            channel.block_search_with(program.as_deref(), name.as_deref(), line, &path, &mut go_on)
+        }
         Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
         Action::KinematicChains(text) => channel.import_kinematic_chains(&text),

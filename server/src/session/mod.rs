@@ -116,6 +116,8 @@ pub enum Action {
         /// A stored program's name to search in.
         name: Option<String>,
         line: u32,
+        /// Steps into subprograms from `line` (see `SearchRequest::path`).
+        path: Vec<nctwin_engine::channel::PathStep>,
     },
     /// Reference one axis, or all.
     Reference(Option<String>),

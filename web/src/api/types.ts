@@ -20,8 +20,9 @@ export interface Alarm {
 }
 
 export interface Block {
-  line: number; // 1-based line in the program text
+  line: number; // 1-based line in the text of the program the block is in
   text: string;
+  program?: string | null; // the subprogram the block is in; null: the main program
 }
 
 export interface Transformation {

@@ -44,7 +44,8 @@ class BlocksView {
       this.shownMda = mda;
       this.refresh();
     }
-    this.highlight(st.block?.line ?? null);
+    // The list shows the main program: a block inside a subprogram has a line of another text.
+    this.highlight(st.block && !st.block.program ? st.block.line : null);
   }
 
   private highlight(line: number | null): void {
