@@ -142,11 +142,15 @@ impl Metrics {
             self.connections.load(Ordering::Relaxed) as f64,
         );
         let refused = "nctwin_connections_refused_total";
-        let _ = writeln!(out, "# HELP {refused} Connections refused (429) because their address held as many as allowed.");
+        let _ =
+            writeln!(out, "# HELP {refused} Connections refused (429) because their address held as many as allowed.");
         let _ = writeln!(out, "# TYPE {refused} counter");
         let _ = writeln!(out, "{refused} {}", self.connections_refused.load(Ordering::Relaxed));
         let closes = "nctwin_stream_closes_total";
-        let _ = writeln!(out, "# HELP {closes} WebSocket streams the server closed on a client that misbehaved, by reason.");
+        let _ = writeln!(
+            out,
+            "# HELP {closes} WebSocket streams the server closed on a client that misbehaved, by reason."
+        );
         let _ = writeln!(out, "# TYPE {closes} counter");
         for (why, n) in StreamClose::ALL.iter().zip(&self.stream_closes) {
             let _ = writeln!(out, "{closes}{{reason=\"{}\"}} {}", why.label(), n.load(Ordering::Relaxed));

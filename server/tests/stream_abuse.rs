@@ -98,10 +98,7 @@ async fn a_client_that_floods_pings_and_never_reads_is_disconnected() {
         }
         tokio::time::sleep(Duration::from_millis(10)).await;
     };
-    assert!(
-        matches!(closed.kind(), std::io::ErrorKind::ConnectionReset | std::io::ErrorKind::BrokenPipe),
-        "{closed}"
-    );
+    assert!(matches!(closed.kind(), std::io::ErrorKind::ConnectionReset | std::io::ErrorKind::BrokenPipe), "{closed}");
     // The server is unharmed and counts the stream as gone.
     let viewers = server.get(&format!("/sessions/{id}/viewers")).await;
     assert_eq!(viewers.status, StatusCode::OK);
@@ -123,7 +120,10 @@ async fn a_stalled_dead_man_client_cannot_keep_a_jog_moving() {
     let reply = server.put(&format!("/sessions/{id}/mode"), json!({"mode": "JOG"})).await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
     let mut socket = small_buffer_client(&server, &format!("/sessions/{id}/stream")).await;
-    socket.send(Message::Text(json!({"type": "jog", "axis": "X", "direction": 1}).to_string().into())).await.expect("sent");
+    socket
+        .send(Message::Text(json!({"type": "jog", "axis": "X", "direction": 1}).to_string().into()))
+        .await
+        .expect("sent");
     server.state_until(&id, "the JOG moves", |s| pos(s, "machine", "X") > 0.0).await;
     // Keep-alives, each followed by messages that are answered with an error, never reading the
     // answers, until the socket takes no more: the server's replies have nowhere to go.

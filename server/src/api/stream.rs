@@ -24,11 +24,11 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
+use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::ws::rejection::WebSocketUpgradeRejection;
 use axum::extract::ws::{CloseFrame, Message, WebSocket, WebSocketUpgrade, close_code};
 use axum::extract::{Extension, Path, Query, State};
-use axum::body::Bytes;
 use axum::response::Response;
 use futures_util::{Sink, SinkExt, Stream, StreamExt};
 use nctwin_engine::{Event, JogRequest, Snapshot};
@@ -522,8 +522,12 @@ where
 fn close_for(error: axum::Error) -> Option<CloseFrame> {
     let error = error.into_inner();
     match error.downcast_ref::<tungstenite::Error>()? {
-        tungstenite::Error::Capacity(_) => Some(CloseFrame { code: close_code::SIZE, reason: "message too big".into() }),
-        tungstenite::Error::Protocol(_) => Some(CloseFrame { code: close_code::PROTOCOL, reason: "protocol error".into() }),
+        tungstenite::Error::Capacity(_) => {
+            Some(CloseFrame { code: close_code::SIZE, reason: "message too big".into() })
+        }
+        tungstenite::Error::Protocol(_) => {
+            Some(CloseFrame { code: close_code::PROTOCOL, reason: "protocol error".into() })
+        }
         _ => None,
     }
 }
@@ -811,7 +815,7 @@ mod tests {
             }
         }
         assert_eq!(task.await.expect("pump"), StreamEnd::PongsMissed);
-        assert_eq!(pings, [Bytes::from_static(&1u64.to_be_bytes()), Bytes::from_static(&2u64.to_be_bytes())]);
+        assert_eq!(pings, [Bytes::copy_from_slice(&1u64.to_be_bytes()), Bytes::copy_from_slice(&2u64.to_be_bytes())]);
         assert_eq!(started.elapsed(), Duration::from_millis(300), "closed at the third ping's time");
     }
 
@@ -869,9 +873,17 @@ mod tests {
         let (_replies_tx, replies) = mpsc::channel(1);
         let frames = FrameCache::default();
         let started = Instant::now();
-        let end =
-            pump(Stuck, std::future::pending(), state_rx, events, replies, Duration::from_millis(50), &frames, liveness(100, 3))
-                .await;
+        let end = pump(
+            Stuck,
+            std::future::pending(),
+            state_rx,
+            events,
+            replies,
+            Duration::from_millis(50),
+            &frames,
+            liveness(100, 3),
+        )
+        .await;
         assert_eq!(end, StreamEnd::Stalled);
         assert_eq!(started.elapsed(), Duration::from_millis(300), "interval × missed pongs");
     }
