@@ -50,6 +50,7 @@ HELP="$("$NCTWIN_BIN" --help)"
 limit_flags=()
 if grep -q -- '--max-sessions ' <<<"$HELP"; then limit_flags+=(--max-sessions 100000); fi
 if grep -q -- '--max-sessions-per-ip' <<<"$HELP"; then limit_flags+=(--max-sessions-per-ip 100000); fi
+if grep -q -- '--max-connections-per-ip' <<<"$HELP"; then limit_flags+=(--max-connections-per-ip 100000); fi
 
 SERVER_PID=""
 DATA_DIR=""

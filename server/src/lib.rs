@@ -21,11 +21,14 @@
 //! - [`extract`]: the JSON body extractors that turn every malformed request into a `400`.
 //! - [`error`]: [`ApiError`], the one error type, mapped to an HTTP status and `{"error", "line"}`.
 //! - [`openapi`]: the OpenAPI 3.1 document generated from the handlers, and Swagger UI.
+//! - [`conn`]: the accept loop: one hyper HTTP/1.1 task per connection, the per-IP connection
+//!   cap and the header-read timeout.
 //! - [`http`]: the tower-http layers (tracing, CORS, compression, body limit, timeouts), the
 //!   static HMI files and the JSON shape of errors produced outside the handlers.
 
 pub mod api;
 pub mod auth;
+mod conn;
 pub mod dto;
 pub mod error;
 pub mod extract;
@@ -37,8 +40,7 @@ pub mod session;
 pub mod state;
 pub mod storage;
 
-use std::future::{Future, IntoFuture};
-use std::net::SocketAddr;
+use std::future::Future;
 use std::time::Duration;
 
 use axum::Router;
@@ -61,6 +63,9 @@ pub fn app(state: AppState) -> Router {
 
 /// Serves [`app`] on `listener` until `shutdown` completes, then shuts down gracefully:
 ///
+/// Each connection is served by hyper's HTTP/1.1 with upgrades, with the header-read timeout and
+/// the per-IP connection cap of [`Limits`]; handlers can extract `ConnectInfo<SocketAddr>`.
+///
 /// 1. stop accepting connections (the listener is closed at once);
 /// 2. save every session's checkpoint, then stop every session, which answers waiting requests
 ///    and closes every WebSocket stream with a close frame (1001, "session ended");
@@ -80,12 +85,11 @@ pub async fn run(
     let stop_tx = std::sync::Arc::new(stop_tx);
     let (saved_tx, mut saved_rx) = watch::channel(false);
     let signal = stop_tx.clone();
-    let serve = axum::serve(listener, router.into_make_service_with_connect_info::<SocketAddr>())
-        .with_graceful_shutdown(async move {
-            shutdown.await;
-            tracing::info!("shutting down: no new connections; saving and closing every session");
-            let _ = signal.send(true);
-        });
+    let serve = conn::serve(listener, router, state.clone(), async move {
+        shutdown.await;
+        tracing::info!("shutting down: no new connections; saving and closing every session");
+        let _ = signal.send(true);
+    });
     let closer_state = state.clone();
     tokio::spawn(async move {
         if stop_rx.wait_for(|stop| *stop).await.is_ok() {
@@ -105,7 +109,7 @@ pub async fn run(
         }
     };
     let result = tokio::select! {
-        result = serve.into_future() => result,
+        result = serve => result,
         () = deadline => {
             tracing::warn!("connections still open {grace:?} after every session was closed; stopping anyway");
             Ok(())

@@ -57,6 +57,27 @@ pub struct Limits {
     /// naming the budget). With [`Limits::session_program_bytes`] per session and
     /// [`Limits::sessions`] this caps the memory programs hold.
     pub program_budget_bytes: usize,
+    /// Open TCP connections from one client IP address: 256. A WebSocket stream is a connection
+    /// of its own (HTTP/1.1 upgrade) and counts until it closes. The connection over the cap is
+    /// answered `429` and closed. Enough for a class behind one NAT address (a browser holds
+    /// about six connections and one stream per open session).
+    pub connections_per_ip: usize,
+    /// Time a connection has to deliver a complete request head: 15 s, counted from its opening
+    /// and, on a kept-alive connection, from the end of the previous response (hyper's HTTP/1
+    /// header timer), so it is also the keep-alive idle time. The connection is closed.
+    pub header_read_timeout: Duration,
+    /// Period of the server's pings on a WebSocket stream: 15 s.
+    pub stream_ping_interval: Duration,
+    /// Pings a stream client may leave unanswered before the server closes the stream (1008):
+    /// 2, so a silent client is closed 30 to 45 s after its last pong. A write to the client
+    /// that cannot complete for `stream_ping_interval × stream_missed_pongs` closes it as well.
+    pub stream_missed_pongs: u32,
+    /// Largest WebSocket frame and message a stream client may send: 4 KiB (its messages are
+    /// JSON of a few hundred bytes). A larger frame is refused when its header arrives (1009).
+    pub stream_message_bytes: usize,
+    /// Most bytes queued for one stream client (replies, states, events, pongs) that the socket
+    /// does not take: 1 MiB. A client that fills it is disconnected.
+    pub stream_write_buffer_bytes: usize,
 }
 
 impl Default for Limits {
@@ -77,6 +98,12 @@ impl Default for Limits {
             shutdown_grace: Duration::from_secs(5),
             session_idle: Duration::from_secs(24 * 3600),
             program_budget_bytes: 2 << 30,
+            connections_per_ip: 256,
+            header_read_timeout: Duration::from_secs(15),
+            stream_ping_interval: Duration::from_secs(15),
+            stream_missed_pongs: 2,
+            stream_message_bytes: 4 << 10,
+            stream_write_buffer_bytes: 1 << 20,
         }
     }
 }
@@ -127,6 +154,17 @@ pub struct LimitFlags {
     /// [default: 2147483648 = 2 GiB].
     #[arg(long, value_name = "BYTES")]
     pub program_budget_bytes: Option<usize>,
+    /// Open connections (WebSocket streams included) from one client IP address [default: 256].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_connections_per_ip: Option<u64>,
+    /// Seconds a connection has to send a complete request head, after opening or after its
+    /// previous response (the keep-alive idle time) [default: 15].
+    #[arg(long, value_name = "SECONDS", value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub header_read_timeout: Option<u64>,
+    /// Seconds between two server pings on a WebSocket stream; a stream that leaves two pings
+    /// unanswered is closed [default: 15].
+    #[arg(long, value_name = "SECONDS", value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub stream_ping_interval: Option<u64>,
 }
 
 impl LimitFlags {
@@ -141,6 +179,11 @@ impl LimitFlags {
             program_bytes: self.max_program_bytes.unwrap_or(limits.program_bytes),
             session_idle: self.session_idle_timeout.map_or(limits.session_idle, Duration::from_secs),
             program_budget_bytes: self.program_budget_bytes.unwrap_or(limits.program_budget_bytes),
+            connections_per_ip: self
+                .max_connections_per_ip
+                .map_or(limits.connections_per_ip, |n| usize::try_from(n).unwrap_or(usize::MAX)),
+            header_read_timeout: self.header_read_timeout.map_or(limits.header_read_timeout, Duration::from_secs),
+            stream_ping_interval: self.stream_ping_interval.map_or(limits.stream_ping_interval, Duration::from_secs),
             ..limits
         }
     }

@@ -1,6 +1,7 @@
 //! Metrics in the Prometheus text format (`GET /metrics`): sessions, stream clients, IPO lag,
 //! request counts and latencies per route, storage calls, bytes of stored programs (per
-//! session: a label per live session, bounded by the session limit).
+//! session: a label per live session, bounded by the session limit), open and refused
+//! connections, streams the server closed on a misbehaving client.
 //!
 //! Counters are plain atomics and one small map per route template (not per URL: the label
 //! set stays bounded however many sessions exist); gauges are read from the registry when
@@ -35,6 +36,39 @@ pub struct Metrics {
     routes: Mutex<BTreeMap<(String, String), RouteStats>>,
     storage_ok: AtomicU64,
     storage_failed: AtomicU64,
+    /// Open TCP connections (WebSocket streams included).
+    connections: AtomicU64,
+    /// Connections refused by the per-IP cap.
+    connections_refused: AtomicU64,
+    /// Streams the server closed, by [`StreamClose`].
+    stream_closes: [AtomicU64; StreamClose::ALL.len()],
+}
+
+/// Why the server closed a WebSocket stream on its client.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StreamClose {
+    /// Pings went unanswered (1008).
+    PongsMissed,
+    /// A write did not complete in time: the client does not read.
+    Stalled,
+    /// A write failed: the connection broke or the write buffer is full.
+    SendFailed,
+    /// The client sent a frame or message over the size limit (1009).
+    TooBig,
+}
+
+impl StreamClose {
+    const ALL: [StreamClose; 4] =
+        [StreamClose::PongsMissed, StreamClose::Stalled, StreamClose::SendFailed, StreamClose::TooBig];
+
+    fn label(self) -> &'static str {
+        match self {
+            StreamClose::PongsMissed => "pongs_missed",
+            StreamClose::Stalled => "write_stalled",
+            StreamClose::SendFailed => "write_failed",
+            StreamClose::TooBig => "message_too_big",
+        }
+    }
 }
 
 #[derive(Debug, Default, Clone)]
@@ -65,6 +99,26 @@ impl Metrics {
         counter.fetch_add(1, Ordering::Relaxed);
     }
 
+    /// Counts a connection opened (`true`) or closed.
+    pub fn connection(&self, opened: bool) {
+        if opened {
+            self.connections.fetch_add(1, Ordering::Relaxed);
+        } else {
+            self.connections.fetch_sub(1, Ordering::Relaxed);
+        }
+    }
+
+    /// Counts a connection refused by the per-IP cap.
+    pub fn connection_refused(&self) {
+        self.connections_refused.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// Counts a stream the server closed on its client.
+    pub fn stream_closed(&self, why: StreamClose) {
+        let i = StreamClose::ALL.iter().position(|w| *w == why).unwrap_or_default();
+        self.stream_closes[i].fetch_add(1, Ordering::Relaxed);
+    }
+
     /// The text exposition of every metric, with the registry's gauges read now.
     pub fn render(&self, state: &AppState) -> String {
         let entries = state.list_entries();
@@ -83,6 +137,26 @@ impl Metrics {
             lag.as_secs_f64(),
         );
         program_bytes(&mut out, &entries, state.limits().program_budget_bytes);
+        gauge(
+            &mut out,
+            "nctwin_connections",
+            "Open TCP connections, WebSocket streams included.",
+            self.connections.load(Ordering::Relaxed) as f64,
+        );
+        let refused = "nctwin_connections_refused_total";
+        let _ =
+            writeln!(out, "# HELP {refused} Connections refused (429) because their address held as many as allowed.");
+        let _ = writeln!(out, "# TYPE {refused} counter");
+        let _ = writeln!(out, "{refused} {}", self.connections_refused.load(Ordering::Relaxed));
+        let closes = "nctwin_stream_closes_total";
+        let _ = writeln!(
+            out,
+            "# HELP {closes} WebSocket streams the server closed on a client that misbehaved, by reason."
+        );
+        let _ = writeln!(out, "# TYPE {closes} counter");
+        for (why, n) in StreamClose::ALL.iter().zip(&self.stream_closes) {
+            let _ = writeln!(out, "{closes}{{reason=\"{}\"}} {}", why.label(), n.load(Ordering::Relaxed));
+        }
         wake_histogram(&mut out, &wake_stats().counts());
         let _ = writeln!(out, "# HELP nctwin_storage_operations_total Storage calls by result.");
         let _ = writeln!(out, "# TYPE nctwin_storage_operations_total counter");
@@ -222,6 +296,24 @@ mod tests {
         assert!(text.contains("nctwin_sessions 0\n"), "{text}");
         assert!(text.contains("# TYPE nctwin_ipo_wake_lateness_seconds histogram\n"), "{text}");
         assert!(text.contains("nctwin_ipo_cycles_dropped_total "), "{text}");
+        assert!(text.contains("nctwin_connections 0\n"), "{text}");
+        assert!(text.contains("nctwin_stream_closes_total{reason=\"pongs_missed\"} 0\n"), "{text}");
+    }
+
+    #[test]
+    fn connections_and_stream_closes_are_counted() {
+        let metrics = Metrics::default();
+        let state = AppState::new("unused", "unused");
+        metrics.connection(true);
+        metrics.connection(true);
+        metrics.connection(false);
+        metrics.connection_refused();
+        metrics.stream_closed(StreamClose::TooBig);
+        let text = metrics.render(&state);
+        assert!(text.contains("nctwin_connections 1\n"), "{text}");
+        assert!(text.contains("nctwin_connections_refused_total 1\n"), "{text}");
+        assert!(text.contains("nctwin_stream_closes_total{reason=\"message_too_big\"} 1\n"), "{text}");
+        assert!(text.contains("nctwin_stream_closes_total{reason=\"write_stalled\"} 0\n"), "{text}");
     }
 
     #[test]

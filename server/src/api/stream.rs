@@ -7,23 +7,35 @@
 //! Dead-man JOG: a continuous JOG started by a client message moves only while that client
 //! keeps saying so: it is stopped when the client sends `jog_stop`, when no `jog_keepalive` (or
 //! repeated `jog`) came for [`JOG_DEADMAN`], and when the socket closes or breaks. Only the
-//! motion this socket started is stopped (a later motion started by someone else goes on).
+//! motion this socket started is stopped (a later motion started by someone else goes on). The
+//! deadline never waits on the socket: a reply that cannot be sent holds up reading the client's
+//! next message, never the stop.
+//!
+//! A client that does not keep up is let go, not buffered for: its replies wait in a queue of
+//! 16, the socket's write buffer holds at most [`Limits::stream_write_buffer_bytes`] (pongs
+//! included), the server pings every [`Limits::stream_ping_interval`] and closes the stream
+//! (1008) when [`Limits::stream_missed_pongs`] pings in a row went unanswered, and a write that
+//! cannot complete for as long is given up. Frames and messages larger than
+//! [`Limits::stream_message_bytes`] are refused as soon as their header arrives (1009).
 
+use std::collections::VecDeque;
 use std::future::Future;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 
+use axum::body::Bytes;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::ws::rejection::WebSocketUpgradeRejection;
-use axum::extract::ws::{CloseFrame, Message, Utf8Bytes, WebSocket, WebSocketUpgrade, close_code};
+use axum::extract::ws::{CloseFrame, Message, WebSocket, WebSocketUpgrade, close_code};
 use axum::extract::{Extension, Path, Query, State};
 use axum::response::Response;
 use futures_util::{Sink, SinkExt, Stream, StreamExt};
 use nctwin_engine::{Event, JogRequest, Snapshot};
 use serde::Deserialize;
 use tokio::sync::broadcast::error::RecvError;
-use tokio::sync::{broadcast, mpsc, watch};
-use tokio::time::{Instant, sleep_until};
+use tokio::sync::{broadcast, mpsc, oneshot, watch};
+use tokio::time::{Instant, sleep_until, timeout};
 use utoipa::IntoParams;
 
 use super::find_entry;
@@ -33,6 +45,8 @@ use crate::auth::access::{Caller, Need, check};
 use crate::auth::{AuthMode, Role};
 use crate::dto::{self, ClientMessage, ErrorBody, EventMessage, StreamMessage};
 use crate::error::ApiError;
+use crate::limits::Limits;
+use crate::metrics::StreamClose;
 use crate::session::{Action, Drive, Pace, SessionHandle};
 use crate::state::{AppState, SessionEntry};
 
@@ -40,9 +54,6 @@ use crate::state::{AppState, SessionEntry};
 /// (`jog_keepalive`, or the same `jog` again) for this long: a client should send one about every
 /// 100 ms while the key is held.
 pub const JOG_DEADMAN: Duration = Duration::from_millis(400);
-
-/// Largest client message accepted (the JOG messages are a few dozen bytes).
-const MAX_CLIENT_MESSAGE_BYTES: usize = 16 * 1024;
 
 /// Default stream period: 50 ms (20 Hz).
 pub const DEFAULT_PERIOD_MS: u64 = 50;
@@ -55,6 +66,16 @@ pub const MAX_PERIOD_MS: u64 = 5000;
 /// the whole read buffer (default 128 KiB) on every read attempt, and the pump polls the read
 /// half at every wake-up: with 1000 viewers that memset was a fifth of the server's CPU.
 const READ_BUFFER_BYTES: usize = 4096;
+
+/// The write buffer size at which tungstenite starts writing to the socket (its default); the
+/// pump flushes after every batch anyway.
+const WRITE_BUFFER_BYTES: usize = 128 * 1024;
+
+/// Longest the server waits to send a close frame to a client that may not be reading.
+const CLOSE_WAIT: Duration = Duration::from_secs(1);
+
+/// Replies to client messages waiting for the pump.
+const REPLY_QUEUE: usize = 16;
 
 /// Query parameters of the stream.
 #[derive(Debug, Clone, Default, Deserialize, IntoParams)]
@@ -90,6 +111,10 @@ impl StreamParams {
 /// falls more than 256 events behind skips the oldest. The server closes the socket when the
 /// session is deleted or the server shuts down (close code 1001). At most 64 clients per
 /// session (`429`).
+///
+/// The server pings every 15 s and closes the stream (1008) when two pings in a row went
+/// unanswered (browsers and WebSocket libraries answer by themselves while they read). A
+/// client message larger than 4 KiB is refused with close code 1009.
 ///
 /// Client messages (JSON text, see `ClientMessage`) drive JOG with the control's dead-man
 /// safety; they need control of the session like REST commands (observers: `error` 403):
@@ -129,10 +154,16 @@ pub async fn stream(
     let session = &entry.handle;
     let Query(params) = query.map_err(|e| ApiError::bad_request(e.body_text()))?;
     let period = params.period()?;
+    let limits = *state.limits();
+    // tungstenite requires the most it buffers to exceed the size at which it starts writing.
+    let max_write_buffer = limits.stream_write_buffer_bytes.max(2);
     let upgrade = upgrade
         .map_err(|e| ApiError::bad_request(format!("not a WebSocket request: {}", e.body_text())))?
         .read_buffer_size(READ_BUFFER_BYTES)
-        .max_message_size(MAX_CLIENT_MESSAGE_BYTES);
+        .write_buffer_size(WRITE_BUFFER_BYTES.min(max_write_buffer / 2))
+        .max_write_buffer_size(max_write_buffer)
+        .max_frame_size(limits.stream_message_bytes)
+        .max_message_size(limits.stream_message_bytes);
     // Counted from before the upgrade until the socket is done (a failed upgrade drops the
     // closure and with it the guard).
     let client = state.add_stream_client(&entry)?;
@@ -148,7 +179,8 @@ pub async fn stream(
     }))
 }
 
-/// Runs [`pump`] on an axum WebSocket and closes it when the session has ended.
+/// Runs [`pump`] on an axum WebSocket and closes it with a close frame saying why, when there
+/// is a reason to give (the session ended, pongs missed, a message too big).
 ///
 /// The client's messages are read by a task of its own ([`client_loop`]), so the socket's read
 /// half is polled only when the client sent something: polled from the pump, it was tried (and
@@ -161,20 +193,78 @@ async fn serve_socket(
     commander: Commander,
 ) {
     let entry = commander.entry.clone();
-    let (tx, rx) = socket.split();
-    let mut sink = tx.with(|text: Utf8Bytes| std::future::ready(Ok::<_, axum::Error>(Message::Text(text))));
-    let (replies_tx, replies) = mpsc::channel(16);
-    let reader = tokio::spawn(client_loop(rx, commander, replies_tx));
+    let state = commander.state.clone();
+    let liveness = Liveness::new(state.limits());
+    let (mut sink, rx) = socket.split();
+    let (replies_tx, replies) = mpsc::channel(REPLY_QUEUE);
+    let reader = tokio::spawn(client_loop(rx, commander, replies_tx, liveness.pongs.clone()));
     // Dropping the reader (it owns the socket's JOG) stops a JOG this client started.
     let stop_reader = reader.abort_handle();
+    let (close_tx, mut close_rx) = oneshot::channel();
     let client_gone = async move {
-        let _ = reader.await;
+        let close = reader.await.ok().flatten();
+        let _ = close_tx.send(close);
     };
-    let end = pump(&mut sink, client_gone, states, events, replies, period, &entry.frames).await;
+    let end = pump(&mut sink, client_gone, states, events, replies, period, &entry.frames, liveness).await;
     stop_reader.abort();
-    if end == StreamEnd::SessionEnded {
-        let frame = CloseFrame { code: close_code::AWAY, reason: "session ended".into() };
-        let _ = sink.into_inner().send(Message::Close(Some(frame))).await;
+    let close = match end {
+        StreamEnd::SessionEnded => Some(CloseFrame { code: close_code::AWAY, reason: "session ended".into() }),
+        StreamEnd::PongsMissed => {
+            state.metrics().stream_closed(StreamClose::PongsMissed);
+            Some(CloseFrame { code: close_code::POLICY, reason: "pings not answered".into() })
+        }
+        StreamEnd::ClientGone => close_rx.try_recv().ok().flatten().inspect(|frame| {
+            if frame.code == close_code::SIZE {
+                state.metrics().stream_closed(StreamClose::TooBig);
+            }
+        }),
+        StreamEnd::SendFailed => {
+            state.metrics().stream_closed(StreamClose::SendFailed);
+            None
+        }
+        StreamEnd::Stalled => {
+            state.metrics().stream_closed(StreamClose::Stalled);
+            None
+        }
+    };
+    if let Some(frame) = close {
+        let _ = timeout(CLOSE_WAIT, sink.send(Message::Close(Some(frame)))).await;
+    }
+}
+
+/// The server's pings on a stream and the pongs that answer them.
+#[derive(Debug, Clone)]
+pub struct Liveness {
+    /// Time between two pings.
+    pub interval: Duration,
+    /// Pings in a row that may go unanswered; at this many the stream is closed. Also, a write
+    /// that cannot complete within `interval × missed` is given up.
+    pub missed: u32,
+    /// The highest ping number a pong answered (pings carry their number, 8 bytes big-endian);
+    /// written by the reader of the socket.
+    pub pongs: Arc<AtomicU64>,
+}
+
+impl Liveness {
+    /// The stream limits of `limits`, no pong seen yet.
+    pub fn new(limits: &Limits) -> Liveness {
+        Liveness {
+            interval: limits.stream_ping_interval,
+            missed: limits.stream_missed_pongs.max(1),
+            pongs: Arc::new(AtomicU64::new(0)),
+        }
+    }
+
+    /// The longest a write to the client may take.
+    fn stall(&self) -> Duration {
+        self.interval.saturating_mul(self.missed)
+    }
+
+    /// Notes a pong from the client.
+    fn pong(pongs: &AtomicU64, payload: &[u8]) {
+        if let Ok(number) = <[u8; 8]>::try_from(payload) {
+            pongs.fetch_max(u64::from_be_bytes(number), Ordering::Relaxed);
+        }
     }
 }
 
@@ -185,15 +275,21 @@ pub enum StreamEnd {
     ClientGone,
     /// The session was deleted (its state channel closed).
     SessionEnded,
-    /// Sending failed (the connection broke).
+    /// Sending failed (the connection broke, or the write buffer is full).
     SendFailed,
+    /// A write did not complete within the time a client may stay silent: it does not read.
+    Stalled,
+    /// The client left as many pings in a row unanswered as allowed.
+    PongsMissed,
 }
 
 /// Sends the current state, then state changes (one per `period` on a fixed grid, newest only,
-/// see [`FrameGate`]) and events, until the client goes, the session ends or a send fails.
+/// see [`FrameGate`]) and events, and pings (see [`Liveness`]), until the client goes, the
+/// session ends, a send fails or stalls, or pongs stop.
 ///
 /// Whatever is ready at one wake-up (replies, events, the state) goes out in one write. State
 /// messages come from `frames`, encoded once per snapshot for every client of the session.
+#[allow(clippy::too_many_arguments)]
 pub async fn pump<S>(
     mut sink: S,
     client_gone: impl Future<Output = ()>,
@@ -202,27 +298,45 @@ pub async fn pump<S>(
     mut replies: mpsc::Receiver<StreamMessage>,
     period: Duration,
     frames: &FrameCache,
+    liveness: Liveness,
 ) -> StreamEnd
 where
-    S: Sink<Utf8Bytes> + Unpin,
+    S: Sink<Message> + Unpin,
 {
     tokio::pin!(client_gone);
+    let stall = liveness.stall();
     let first = states.borrow_and_update().clone();
-    if sink.send(frames.state(&first)).await.is_err() {
-        return StreamEnd::SendFailed;
+    let mut batch: Vec<Message> = vec![Message::Text(frames.state(&first))];
+    if let Err(end) = send_all(&mut sink, &mut batch, stall).await {
+        return end;
     }
     let mut gate = FrameGate::new(Instant::now(), period);
     let mut pending = false;
     let mut replies_open = true;
-    let mut batch: Vec<Utf8Bytes> = Vec::new();
+    let mut next_ping = Instant::now() + liveness.interval;
+    let mut pings: u64 = 0;
+    let mut unanswered: u32 = 0;
     loop {
         let mut ended = false;
         tokio::select! {
             () = &mut client_gone => return StreamEnd::ClientGone,
             reply = replies.recv(), if replies_open => match reply {
-                Some(message) => batch.push(encode(&message)),
+                Some(message) => batch.push(text(&message)),
                 None => replies_open = false,
             },
+            () = sleep_until(next_ping) => {
+                if liveness.pongs.load(Ordering::Relaxed) < pings {
+                    unanswered += 1;
+                    if unanswered >= liveness.missed {
+                        return StreamEnd::PongsMissed;
+                    }
+                } else {
+                    unanswered = 0;
+                }
+                pings += 1;
+                batch.push(Message::Ping(Bytes::copy_from_slice(&pings.to_be_bytes())));
+                next_ping = Instant::now() + liveness.interval;
+            }
             changed = states.changed(), if !pending => {
                 if changed.is_err() {
                     return StreamEnd::SessionEnded;
@@ -231,7 +345,7 @@ where
             }
             () = sleep_until(gate.opens_at()), if pending => {}
             event = events.recv() => match event {
-                Ok(event) => batch.push(encode(&StreamMessage::Event(EventMessage::from(&event)))),
+                Ok(event) => batch.push(text(&StreamMessage::Event(EventMessage::from(&event)))),
                 // Lagged: the skipped events are lost for this client only; go on with the rest.
                 Err(RecvError::Lagged(_)) => {}
                 Err(RecvError::Closed) => ended = true,
@@ -239,11 +353,11 @@ where
         }
         // Take along whatever else is ready now.
         while replies_open && let Ok(message) = replies.try_recv() {
-            batch.push(encode(&message));
+            batch.push(text(&message));
         }
         loop {
             match events.try_recv() {
-                Ok(event) => batch.push(encode(&StreamMessage::Event(EventMessage::from(&event)))),
+                Ok(event) => batch.push(text(&StreamMessage::Event(EventMessage::from(&event)))),
                 Err(broadcast::error::TryRecvError::Lagged(_)) => {}
                 Err(broadcast::error::TryRecvError::Empty) => break,
                 Err(broadcast::error::TryRecvError::Closed) => {
@@ -260,10 +374,12 @@ where
             pending = false;
             gate.sent(now);
             let latest = states.borrow_and_update().clone();
-            batch.push(frames.state(&latest));
+            batch.push(Message::Text(frames.state(&latest)));
         }
-        if !batch.is_empty() && send_all(&mut sink, &mut batch).await.is_err() {
-            return StreamEnd::SendFailed;
+        if !batch.is_empty()
+            && let Err(end) = send_all(&mut sink, &mut batch, stall).await
+        {
+            return end;
         }
         if ended {
             return StreamEnd::SessionEnded;
@@ -271,12 +387,29 @@ where
     }
 }
 
-/// Writes every message of `batch` and then flushes once (one system call for all of them).
-async fn send_all<S: Sink<Utf8Bytes> + Unpin>(sink: &mut S, batch: &mut Vec<Utf8Bytes>) -> Result<(), S::Error> {
-    for text in batch.drain(..) {
-        sink.feed(text).await?;
+/// A stream message as a WebSocket text message.
+fn text(message: &StreamMessage) -> Message {
+    Message::Text(encode(message))
+}
+
+/// Writes every message of `batch` and then flushes once (one system call for all of them);
+/// gives up when that takes longer than `stall`.
+async fn send_all<S: Sink<Message> + Unpin>(
+    sink: &mut S,
+    batch: &mut Vec<Message>,
+    stall: Duration,
+) -> Result<(), StreamEnd> {
+    let write = async {
+        for message in batch.drain(..) {
+            sink.feed(message).await?;
+        }
+        sink.flush().await
+    };
+    match timeout(stall, write).await {
+        Ok(Ok(())) => Ok(()),
+        Ok(Err(_)) => Err(StreamEnd::SendFailed),
+        Err(_) => Err(StreamEnd::Stalled),
     }
-    sink.flush().await
 }
 
 /// The client of one socket as a commander of its session.
@@ -339,35 +472,64 @@ impl Drop for OwnJog {
     }
 }
 
-/// Reads the client's messages until it goes: carries out its JOG commands and watches the
-/// dead man. Reading also answers pings; the client is gone on a close frame, an error or the
-/// end of the stream.
-async fn client_loop<R>(mut rx: R, commander: Commander, replies: mpsc::Sender<StreamMessage>)
+/// Reads the client's messages until it goes: carries out its JOG commands, watches the dead
+/// man and notes pongs in `pongs`. Reading also answers the client's pings; the client is gone
+/// on a close frame, an error or the end of the stream. Returns the close frame to send, if
+/// the client broke the protocol or its limits.
+///
+/// A reply waits until the reply queue has room, and the client's next message is not read
+/// meanwhile (the socket holds it), so at most a reply and a dead-man notice wait. The dead man
+/// is watched all the while: a client whose replies pile up cannot hold a JOG.
+async fn client_loop<R>(
+    mut rx: R,
+    commander: Commander,
+    replies: mpsc::Sender<StreamMessage>,
+    pongs: Arc<AtomicU64>,
+) -> Option<CloseFrame>
 where
     R: Stream<Item = Result<Message, axum::Error>> + Unpin,
 {
     let mut own = OwnJog { session: commander.session().clone(), serial: None, deadline: None, key: None };
+    let mut waiting: VecDeque<StreamMessage> = VecDeque::new();
+    // `own` drops when this returns and stops a motion that may still run.
     loop {
         let deadline = own.deadline;
         tokio::select! {
-            message = rx.next() => match message {
+            permit = replies.reserve(), if !waiting.is_empty() => match (permit, waiting.pop_front()) {
+                (Ok(permit), Some(reply)) => permit.send(reply),
+                _ => return None,
+            },
+            message = rx.next(), if waiting.is_empty() => match message {
                 Some(Ok(Message::Text(text))) => {
-                    let reply = handle_client_message(text.as_str(), &commander, &mut own).await;
-                    if let Some(reply) = reply && replies.send(reply).await.is_err() {
-                        break;
-                    }
+                    waiting.extend(handle_client_message(text.as_str(), &commander, &mut own).await);
                 }
-                Some(Ok(Message::Close(_))) | Some(Err(_)) | None => break,
+                Some(Ok(Message::Pong(payload))) => Liveness::pong(&pongs, &payload),
+                Some(Ok(Message::Close(_))) | None => return None,
+                Some(Err(e)) => return close_for(e),
                 Some(Ok(_)) => {}
             },
             () = sleep_until(deadline.unwrap_or_else(Instant::now)), if deadline.is_some() => {
                 own.stop().await;
                 let error = format!("no keep-alive within {} ms: the JOG was stopped (dead man)", JOG_DEADMAN.as_millis());
-                let _ = replies.send(StreamMessage::Error { request: Some("jog".into()), error, status: 408 }).await;
+                waiting.push_back(StreamMessage::Error { request: Some("jog".into()), error, status: 408 });
             }
         }
     }
-    // `own` drops here and stops a motion that may still run.
+}
+
+/// The close frame for a read error: 1009 for a frame or message over the size limit, 1002
+/// for a protocol error; none when the connection broke.
+fn close_for(error: axum::Error) -> Option<CloseFrame> {
+    let error = error.into_inner();
+    match error.downcast_ref::<tungstenite::Error>()? {
+        tungstenite::Error::Capacity(_) => {
+            Some(CloseFrame { code: close_code::SIZE, reason: "message too big".into() })
+        }
+        tungstenite::Error::Protocol(_) => {
+            Some(CloseFrame { code: close_code::PROTOCOL, reason: "protocol error".into() })
+        }
+        _ => None,
+    }
 }
 
 /// Carries out one client message; the reply to send, if any.
@@ -465,6 +627,7 @@ async fn start_own(commander: &Commander, own: &mut OwnJog, action: Action, cont
 
 #[cfg(test)]
 mod tests {
+    use axum::extract::ws::Utf8Bytes;
     use futures_util::sink;
     use nctwin_engine::Channel;
     use serde_json::Value;
@@ -486,8 +649,13 @@ mod tests {
         let (states, state_rx) = watch::channel(Arc::new(channel.snapshot()));
         let (events, event_rx) = broadcast::channel(16);
         let (out_tx, out) = mpsc::unbounded_channel::<String>();
-        let sink = Box::pin(sink::unfold(out_tx, |tx, text: Utf8Bytes| async move {
-            tx.send(text.to_string()).map_err(|_| ())?;
+        let sink = Box::pin(sink::unfold(out_tx, |tx, message: Message| async move {
+            let text = match message {
+                Message::Text(text) => text.to_string(),
+                Message::Ping(payload) => format!("ping {payload:?}"),
+                other => format!("{other:?}"),
+            };
+            tx.send(text).map_err(|_| ())?;
             Ok::<_, ()>(tx)
         }));
         let (gone_tx, gone_rx) = oneshot::channel::<()>();
@@ -497,9 +665,15 @@ mod tests {
         let (_replies_tx, replies) = mpsc::channel(1);
         let task = tokio::spawn(async move {
             let frames = FrameCache::default();
-            pump(sink, gone, state_rx, event_rx, replies, period, &frames).await
+            pump(sink, gone, state_rx, event_rx, replies, period, &frames, quiet()).await
         });
         Harness { states, events, out, client_gone: Some(gone_tx), task, channel }
+    }
+
+    /// Pings so rare that no test sees one.
+    fn quiet() -> Liveness {
+        let limits = Limits { stream_ping_interval: Duration::from_secs(86_400), ..Limits::default() };
+        Liveness::new(&limits)
     }
 
     async fn next(h: &mut Harness) -> Value {
@@ -537,7 +711,7 @@ mod tests {
         buffer: Vec<String>,
     }
 
-    impl Sink<Utf8Bytes> for Recorder {
+    impl Sink<Message> for Recorder {
         type Error = ();
         fn poll_ready(
             self: std::pin::Pin<&mut Self>,
@@ -545,8 +719,9 @@ mod tests {
         ) -> std::task::Poll<Result<(), ()>> {
             std::task::Poll::Ready(Ok(()))
         }
-        fn start_send(self: std::pin::Pin<&mut Self>, item: Utf8Bytes) -> Result<(), ()> {
-            self.get_mut().buffer.push(item.to_string());
+        fn start_send(self: std::pin::Pin<&mut Self>, item: Message) -> Result<(), ()> {
+            let item = item.into_text().map_or_else(|_| String::new(), |text: Utf8Bytes| text.to_string());
+            self.get_mut().buffer.push(item);
             Ok(())
         }
         fn poll_flush(
@@ -577,7 +752,8 @@ mod tests {
         let (_replies_tx, replies) = mpsc::channel(1);
         let task = tokio::spawn(async move {
             let frames = FrameCache::default();
-            pump(sink, std::future::pending(), state_rx, event_rx, replies, Duration::from_millis(50), &frames).await
+            let period = Duration::from_millis(50);
+            pump(sink, std::future::pending(), state_rx, event_rx, replies, period, &frames, quiet()).await
         });
         // The first state goes out at once; the next slot (50 ms) opens at 37.5 ms.
         tokio::time::sleep(Duration::from_millis(45)).await;
@@ -594,6 +770,122 @@ mod tests {
         assert!(writes[1][0].starts_with("{\"type\":\"event\""), "{writes:?}");
         assert!(writes[1][1].starts_with("{\"type\":\"state\""), "{writes:?}");
         task.abort();
+    }
+
+    fn liveness(interval_ms: u64, missed: u32) -> Liveness {
+        let limits = Limits {
+            stream_ping_interval: Duration::from_millis(interval_ms),
+            stream_missed_pongs: missed,
+            ..Limits::default()
+        };
+        Liveness::new(&limits)
+    }
+
+    /// Runs the pump on an idle session with `liveness`, recording what it writes.
+    fn idle_pump(
+        liveness: Liveness,
+    ) -> (mpsc::UnboundedReceiver<Message>, tokio::task::JoinHandle<StreamEnd>, watch::Sender<Arc<Snapshot>>) {
+        let channel = Channel::from_preset("mill-3axis", "").expect("preset");
+        let (states, state_rx) = watch::channel(Arc::new(channel.snapshot()));
+        let (out_tx, out) = mpsc::unbounded_channel::<Message>();
+        let sink = Box::pin(sink::unfold(out_tx, |tx, message: Message| async move {
+            tx.send(message).map_err(|_| ())?;
+            Ok::<_, ()>(tx)
+        }));
+        let task = tokio::spawn(async move {
+            let (_events_tx, events) = broadcast::channel(1);
+            let (_replies_tx, replies) = mpsc::channel(1);
+            let frames = FrameCache::default();
+            let period = Duration::from_millis(50);
+            pump(sink, std::future::pending(), state_rx, events, replies, period, &frames, liveness).await
+        });
+        (out, task, states)
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn an_idle_stream_is_pinged_and_closed_after_the_missed_pongs() {
+        let (mut out, task, _states) = idle_pump(liveness(100, 2));
+        let started = Instant::now();
+        assert!(matches!(out.recv().await, Some(Message::Text(_))), "the first state");
+        let mut pings = Vec::new();
+        while let Some(message) = out.recv().await {
+            match message {
+                Message::Ping(payload) => pings.push(payload),
+                other => panic!("{other:?}"),
+            }
+        }
+        assert_eq!(task.await.expect("pump"), StreamEnd::PongsMissed);
+        assert_eq!(pings, [Bytes::copy_from_slice(&1u64.to_be_bytes()), Bytes::copy_from_slice(&2u64.to_be_bytes())]);
+        assert_eq!(started.elapsed(), Duration::from_millis(300), "closed at the third ping's time");
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn answered_pings_keep_a_stream_open() {
+        let liveness = liveness(100, 2);
+        let pongs = liveness.pongs.clone();
+        let (mut out, task, _states) = idle_pump(liveness);
+        let mut pings = 0;
+        while pings < 20 {
+            if let Some(Message::Ping(payload)) = out.recv().await {
+                Liveness::pong(&pongs, &payload);
+                pings += 1;
+            }
+        }
+        // A pong of another shape counts for nothing.
+        Liveness::pong(&pongs, b"pong");
+        assert!(!task.is_finished());
+        task.abort();
+    }
+
+    /// A sink whose socket never takes anything.
+    struct Stuck;
+
+    impl Sink<Message> for Stuck {
+        type Error = ();
+        fn poll_ready(
+            self: std::pin::Pin<&mut Self>,
+            _: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            std::task::Poll::Pending
+        }
+        fn start_send(self: std::pin::Pin<&mut Self>, _: Message) -> Result<(), ()> {
+            Ok(())
+        }
+        fn poll_flush(
+            self: std::pin::Pin<&mut Self>,
+            _: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            std::task::Poll::Pending
+        }
+        fn poll_close(
+            self: std::pin::Pin<&mut Self>,
+            _: &mut std::task::Context<'_>,
+        ) -> std::task::Poll<Result<(), ()>> {
+            std::task::Poll::Pending
+        }
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn a_write_the_client_never_takes_is_given_up() {
+        let channel = Channel::from_preset("mill-3axis", "").expect("preset");
+        let (_states, state_rx) = watch::channel(Arc::new(channel.snapshot()));
+        let (_events_tx, events) = broadcast::channel(1);
+        let (_replies_tx, replies) = mpsc::channel(1);
+        let frames = FrameCache::default();
+        let started = Instant::now();
+        let end = pump(
+            Stuck,
+            std::future::pending(),
+            state_rx,
+            events,
+            replies,
+            Duration::from_millis(50),
+            &frames,
+            liveness(100, 3),
+        )
+        .await;
+        assert_eq!(end, StreamEnd::Stalled);
+        assert_eq!(started.elapsed(), Duration::from_millis(300), "interval × missed pongs");
     }
 
     #[tokio::test(start_paused = true)]
