@@ -47,6 +47,16 @@ pub struct Limits {
     /// Longest a graceful shutdown waits for open connections after every session is saved
     /// and closed: 5 s. The process then exits anyway.
     pub shutdown_grace: Duration,
+    /// Wall time one fast-paced command may run before the channel is stopped: 10 s (the
+    /// reply says `nctwin-limit: fast-wall-time`). Keeps a program that the engine computes
+    /// slowly from holding a worker thread for its whole simulated hour.
+    pub fast_wall_time: Duration,
+    /// Program text per second a session may have syntax-checked (`POST .../check`): 4 MiB/s
+    /// (`429` with `Retry-After`). A check's cost grows with its text, so the budget is in
+    /// bytes: an HMI checking as the operator types stays far below it.
+    pub check_bytes_per_second: usize,
+    /// Program text a session may have checked in a burst above the sustained rate: 8 MiB.
+    pub check_burst_bytes: usize,
 }
 
 impl Default for Limits {
@@ -65,6 +75,9 @@ impl Default for Limits {
             commands_per_second: 50.0,
             command_burst: 100.0,
             shutdown_grace: Duration::from_secs(5),
+            fast_wall_time: Duration::from_secs(10),
+            check_bytes_per_second: 4 << 20,
+            check_burst_bytes: 8 << 20,
         }
     }
 }
@@ -76,6 +89,7 @@ impl Limits {
             fast_sim_time: self.fast_sim_time,
             wait_wall_time: self.wait_wall_time,
             fast_chunk: self.fast_chunk,
+            fast_wall_time: self.fast_wall_time,
         }
     }
 
@@ -144,14 +158,22 @@ impl RateLimiter {
 
     /// Takes one token; `Err(wait)` when none is left, with the time until one is.
     pub fn take(&mut self, now: Instant) -> Result<(), Duration> {
+        self.take_n(1.0, now)
+    }
+
+    /// Takes `cost` tokens (at most the burst, so any single request can pass when the bucket
+    /// is full); `Err(wait)` when fewer are left, with the time until there are. A refusal
+    /// takes nothing.
+    pub fn take_n(&mut self, cost: f64, now: Instant) -> Result<(), Duration> {
+        let cost = cost.clamp(0.0, self.burst);
         let elapsed = now.saturating_duration_since(self.last).as_secs_f64();
         self.last = now;
         self.tokens = (self.tokens + elapsed * self.rate).min(self.burst);
-        if self.tokens >= 1.0 {
-            self.tokens -= 1.0;
+        if self.tokens >= cost {
+            self.tokens -= cost;
             Ok(())
         } else {
-            Err(Duration::from_secs_f64(((1.0 - self.tokens) / self.rate).min(3600.0)))
+            Err(Duration::from_secs_f64(((cost - self.tokens) / self.rate).min(3600.0)))
         }
     }
 }
@@ -178,6 +200,17 @@ mod tests {
         let later = t0 + Duration::from_secs(60);
         assert!(bucket.take(later).is_ok() && bucket.take(later).is_ok());
         assert!(bucket.take(later).is_err());
+    }
+
+    #[test]
+    fn a_costly_request_takes_its_cost_and_waits_for_it() {
+        let t0 = Instant::now();
+        let mut bucket = RateLimiter::new(100.0, 300.0, t0);
+        assert!(bucket.take_n(250.0, t0).is_ok());
+        let wait = bucket.take_n(100.0, t0).expect_err("50 left");
+        assert!((wait.as_secs_f64() - 0.5).abs() < 1e-9, "{wait:?}");
+        assert!(bucket.take_n(50.0, t0).is_ok(), "the refusal took nothing");
+        assert!(bucket.take_n(1e9, t0 + Duration::from_secs(3)).is_ok(), "capped at the burst");
     }
 
     #[test]

@@ -39,6 +39,8 @@ pub struct SessionEntry {
     pub save_lock: tokio::sync::Mutex<()>,
     /// The hash of the AUTO program last checkpointed (see [`super::persist`]).
     pub program_hash: Arc<ProgramHashCache>,
+    /// Bytes of program text syntax-checked (`POST .../check`), a std mutex like `rate`.
+    check_rate: Mutex<RateLimiter>,
 }
 
 impl SessionEntry {
@@ -60,6 +62,11 @@ impl SessionEntry {
             frames: FrameCache::default(),
             save_lock: tokio::sync::Mutex::new(()),
             program_hash: Arc::default(),
+            check_rate: Mutex::new(RateLimiter::new(
+                limits.check_bytes_per_second as f64,
+                limits.check_burst_bytes as f64,
+                Instant::now(),
+            )),
         }
     }
 
@@ -109,6 +116,20 @@ impl SessionEntry {
                 self.id(),
                 limits.commands_per_second,
                 limits.command_burst
+            ),
+            retry_after: Some(wait),
+        })
+    }
+
+    /// Counts a syntax check of `bytes` of program text against the session's check budget.
+    pub fn take_check(&self, bytes: usize, limits: &Limits) -> Result<(), ApiError> {
+        let result = self.check_rate.lock().unwrap_or_else(|e| e.into_inner()).take_n(bytes as f64, Instant::now());
+        result.map_err(|wait| ApiError::TooManyRequests {
+            message: format!(
+                "session `{}` has at most {} bytes of program text per second syntax-checked (bursts of {}); retry the check later",
+                self.id(),
+                limits.check_bytes_per_second,
+                limits.check_burst_bytes
             ),
             retry_after: Some(wait),
         })
