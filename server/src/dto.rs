@@ -1095,7 +1095,8 @@ impl From<&nctwin_engine::lang::Diagnostic> for DiagnosticInfo {
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct CheckResponse {
     pub diagnostics: Vec<DiagnosticInfo>,
-    /// Errors found beyond the first 1000 ([`MAX_DIAGNOSTICS`]), not listed; 0 when every
-    /// error is listed.
+    /// Errors found beyond the first 1000 ([`MAX_DIAGNOSTICS`]), not listed (absent when
+    /// every error is listed).
+    #[serde(skip_serializing_if = "is_zero")]
     pub omitted: usize,
 }

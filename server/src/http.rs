@@ -22,10 +22,10 @@ use std::sync::Arc;
 use crate::auth::access;
 use crate::dto::ErrorBody;
 use crate::error::ApiError;
+use crate::extract;
 use crate::metrics;
 use crate::openapi;
 use crate::site::{self, SitePolicy};
-use crate::extract;
 use crate::state::AppState;
 
 /// Where the Prometheus metrics are served (outside `/api/v1`, where scrapers look).
@@ -92,7 +92,12 @@ async fn json_errors(response: Response) -> Response {
         return response;
     }
     let body = if status == StatusCode::PAYLOAD_TOO_LARGE {
-        ErrorBody { error: "request body is larger than the limit".into(), line: None, errors: Vec::new(), errors_omitted: 0 }
+        ErrorBody {
+            error: "request body is larger than the limit".into(),
+            line: None,
+            errors: Vec::new(),
+            errors_omitted: 0,
+        }
     } else {
         let reason = status.canonical_reason().unwrap_or("error").to_lowercase();
         ErrorBody { error: reason, line: None, errors: Vec::new(), errors_omitted: 0 }

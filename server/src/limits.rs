@@ -121,6 +121,12 @@ pub struct LimitFlags {
     /// Largest stored program in bytes [default: 16777216 = 16 MiB].
     #[arg(long, value_name = "BYTES")]
     pub max_program_bytes: Option<usize>,
+    /// Program text per second a session may have syntax-checked [default: 4194304 = 4 MiB].
+    #[arg(long, value_name = "BYTES")]
+    pub check_bytes_per_second: Option<usize>,
+    /// Program text a session may have checked in a burst [default: 8388608 = 8 MiB].
+    #[arg(long, value_name = "BYTES")]
+    pub check_burst_bytes: Option<usize>,
 }
 
 impl LimitFlags {
@@ -133,6 +139,8 @@ impl LimitFlags {
             commands_per_second: self.commands_per_second.unwrap_or(limits.commands_per_second),
             command_burst: self.command_burst.unwrap_or(limits.command_burst),
             program_bytes: self.max_program_bytes.unwrap_or(limits.program_bytes),
+            check_bytes_per_second: self.check_bytes_per_second.unwrap_or(limits.check_bytes_per_second),
+            check_burst_bytes: self.check_burst_bytes.unwrap_or(limits.check_burst_bytes),
             ..limits
         }
     }

@@ -113,7 +113,8 @@ impl SitePolicy {
         let Some(authority) = authority else { return false };
         let Some((scheme, rest)) = origin.split_once("://") else { return false };
         let default_port = if scheme == "https" { 443 } else { 80 };
-        let (Some((origin_name, origin_port)), Some((name, port))) = (split_authority(rest), split_authority(authority))
+        let (Some((origin_name, origin_port)), Some((name, port))) =
+            (split_authority(rest), split_authority(authority))
         else {
             return false;
         };
@@ -275,7 +276,8 @@ mod tests {
     #[test]
     fn every_interface_answers_address_literals_and_listed_names() {
         let p = policy("0.0.0.0:8080", &["nctwin.lan", "cell:9000"], &[]);
-        for host in ["192.168.1.5:8080", "[fd00::1]:8080", "localhost:8080", "NCTWIN.LAN", "nctwin.lan:1", "cell:9000"] {
+        for host in ["192.168.1.5:8080", "[fd00::1]:8080", "localhost:8080", "NCTWIN.LAN", "nctwin.lan:1", "cell:9000"]
+        {
             assert!(p.host_allowed(host), "{host}");
         }
         for host in ["192.168.1.5:8081", "pc.lan:8080", "cell:8080", "cell"] {

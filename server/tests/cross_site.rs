@@ -31,7 +31,8 @@ async fn a_json_body_needs_a_json_content_type() {
     let id = server.session("mill-3axis").await;
     let run = r#"{"program": "G1 X10 F1000\nM30", "pace": "fast", "wait": true}"#;
     // What an HTML form or a `no-cors` fetch of another site can send without a preflight.
-    for content_type in [Some("text/plain"), Some("application/x-www-form-urlencoded"), Some("multipart/form-data"), None]
+    for content_type in
+        [Some("text/plain"), Some("application/x-www-form-urlencoded"), Some("multipart/form-data"), None]
     {
         let mut request = server.client.post(server.url(&format!("/sessions/{id}/run"))).body(run);
         if let Some(content_type) = content_type {
@@ -56,10 +57,12 @@ async fn a_json_body_needs_a_json_content_type() {
     assert_eq!(server.post_empty(&format!("/sessions/{id}/start")).await.status, StatusCode::OK);
     assert_eq!(server.post_empty("/sessions").await.status, StatusCode::CREATED);
     // An empty body with a form content type is no body (curl -X POST -d '').
-    let request = server.client.post(server.url("/sessions")).header("content-type", "application/x-www-form-urlencoded");
+    let request =
+        server.client.post(server.url("/sessions")).header("content-type", "application/x-www-form-urlencoded");
     assert_eq!(server.send(request).await.status, StatusCode::CREATED);
     // The one text endpoint takes text.
-    let chains = server.client.put(server.url(&format!("/sessions/{id}/kinematic-chains"))).header("content-type", "text/plain");
+    let chains =
+        server.client.put(server.url(&format!("/sessions/{id}/kinematic-chains"))).header("content-type", "text/plain");
     assert_ne!(server.send(chains.body("")).await.status, StatusCode::UNSUPPORTED_MEDIA_TYPE);
 }
 
@@ -187,7 +190,11 @@ async fn names_the_operator_lists_are_served() {
     let port = server.addr.port();
     let machines = format!("http://{}/api/v1/machines", server.addr);
     for host in [format!("nctwin.lan:{port}"), "NCTWIN.lan".to_string(), "cell-7:8443".to_string()] {
-        assert_eq!(server.send(server.client.get(&machines).header("host", &host)).await.status, StatusCode::OK, "{host}");
+        assert_eq!(
+            server.send(server.client.get(&machines).header("host", &host)).await.status,
+            StatusCode::OK,
+            "{host}"
+        );
     }
     for host in [format!("cell-7:{port}"), format!("other.lan:{port}")] {
         error_message(&server.send(server.client.get(&machines).header("host", &host)).await, StatusCode::FORBIDDEN);

@@ -59,9 +59,7 @@ pub fn need(method: &Method, route: &str) -> Option<Need> {
 /// does.
 pub fn rate_limited(method: &Method, route: &str) -> bool {
     let stops = method == Method::POST
-        && route
-            .strip_prefix(SESSION_ROUTE)
-            .is_some_and(|rest| matches!(rest, "/stop" | "/reset" | "/jog/stop"));
+        && route.strip_prefix(SESSION_ROUTE).is_some_and(|rest| matches!(rest, "/stop" | "/reset" | "/jog/stop"));
     need(method, route) == Some(Need::Command) && !stops
 }
 
