@@ -1,6 +1,9 @@
 //! The HTTP application: API routes, OpenAPI/Swagger UI, the static HMI and the tower-http
 //! layers that do the cross-cutting work.
 
+use std::net::SocketAddr;
+use std::sync::Arc;
+
 use axum::Json;
 use axum::Router;
 use axum::extract::Request;
@@ -15,9 +18,6 @@ use tower_http::compression::predicate::{DefaultPredicate, Predicate};
 use tower_http::services::ServeDir;
 use tower_http::trace::TraceLayer;
 use utoipa_swagger_ui::SwaggerUi;
-
-use std::net::SocketAddr;
-use std::sync::Arc;
 
 use crate::auth::access;
 use crate::dto::ErrorBody;
