@@ -212,7 +212,9 @@ async fn names_the_operator_lists_are_served() {
 async fn a_server_bound_to_every_interface_answers_its_addresses_and_listed_names() {
     let listener = TcpListener::bind("0.0.0.0:0").await.expect("bind 0.0.0.0:0");
     let port = listener.local_addr().expect("address").port();
-    let state = AppState::open(config(&[], &["nctwin.lan"])).await.expect("storage opens");
+    let config = config(&[], &["nctwin.lan"]);
+    let data_dir = config.data_dir.clone();
+    let state = AppState::open(config).await.expect("storage opens");
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let task = tokio::spawn(nctwin_server::run(listener, state, async {
         let _ = stopped.await;
@@ -230,4 +232,5 @@ async fn a_server_bound_to_every_interface_answers_its_addresses_and_listed_name
     }
     let _ = stop.send(());
     task.await.expect("server task").expect("server ran");
+    let _ = std::fs::remove_dir_all(data_dir);
 }

@@ -169,7 +169,8 @@ async fn a_request_waiting_at_shutdown_is_told_to_retry() {
     assert!(response.headers().get("retry-after").is_some(), "{:?}", response.headers());
     let body: serde_json::Value = response.json().await.expect("JSON");
     assert!(body["error"].as_str().is_some_and(|e| e.contains("shutting down")), "{body}");
-    stopped.await.expect("stopped");
+    let data_dir = stopped.await.expect("stopped");
+    let _ = std::fs::remove_dir_all(data_dir);
 }
 
 #[tokio::test]
