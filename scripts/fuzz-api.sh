@@ -113,6 +113,28 @@ if ! python3 "$ROOT/scripts/fuzz_deep_expressions.py" "$URL"; then
   tail -n 40 "$LOG" >&2
   exit 1
 fi
+# 4. Cross-site requests (issue 20): a page of another site, a rebound host name and a body
+#    sent as a form must be refused before they reach a session.
+expect_status() {
+  local want="$1" what="$2"
+  shift 2
+  local got
+  got="$(curl -s -o /dev/null -w '%{http_code}' "$@")"
+  if [ "$got" != "$want" ]; then
+    echo "error: $what: expected $want, got $got" >&2
+    exit 1
+  fi
+}
+PORT="${URL##*:}"
+expect_status 403 "POST from another origin" -X POST -H 'origin: http://evil.example' "$URL/api/v1/sessions/$SESSION/reset"
+expect_status 403 "WebSocket from another origin" -H 'origin: http://evil.example' -H 'connection: upgrade' \
+  -H 'upgrade: websocket' -H 'sec-websocket-version: 13' -H 'sec-websocket-key: dGhlIHNhbXBsZSBub25jZQ==' \
+  "$URL/api/v1/sessions/$SESSION/stream"
+expect_status 403 "a rebound host name" -H "host: evil.example:$PORT" "$URL/api/v1/machines"
+expect_status 415 "a JSON body sent as text/plain" -X POST -H 'content-type: text/plain' \
+  -d '{"program":"M30"}' "$URL/api/v1/sessions/$SESSION/run"
+expect_status 200 "the server's own origin" -X POST -H "origin: $URL" "$URL/api/v1/sessions/$SESSION/reset"
+echo "==> cross-site requests refused"
 
 if ! kill -0 "$SERVER_PID" 2>/dev/null; then
   echo "error: the server died during the campaign" >&2

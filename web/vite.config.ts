@@ -15,7 +15,27 @@ export default defineConfig({
   },
   server: {
     proxy: {
-      "/api": { target: server, ws: true },
+      // The server answers only to its own Host and to pages of its own origin (README,
+      // "Cross-site requests"): the proxy sends the target's Host, and a request from this dev
+      // server's own page goes on as one of the target's own origin. Pages of other origins
+      // keep theirs and are refused.
+      "/api": {
+        target: server,
+        ws: true,
+        changeOrigin: true,
+        configure: (proxy) => {
+          const ownOrigin = (req: { headers: Record<string, string | string[] | undefined> }) =>
+            req.headers.origin !== undefined && req.headers.origin === `http://${req.headers.host}`;
+          const rewrite = (
+            proxyReq: { setHeader(name: string, value: string): void },
+            req: { headers: Record<string, string | string[] | undefined> },
+          ) => {
+            if (ownOrigin(req)) proxyReq.setHeader("origin", new URL(server).origin);
+          };
+          proxy.on("proxyReq", rewrite);
+          proxy.on("proxyReqWs", rewrite);
+        },
+      },
     },
   },
 });

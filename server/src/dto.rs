@@ -25,6 +25,24 @@ pub struct ErrorBody {
     /// the control shows (absent for other errors).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub errors: Vec<DiagnosticInfo>,
+    /// Errors found beyond the first [`MAX_DIAGNOSTICS`] (1000), not listed in `errors`
+    /// (absent when none were left out).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub errors_omitted: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// Most syntax errors a reply lists (`POST .../check`, a program refused with `400`); the
+/// count of the others is given instead. A program of errors answered a list 20 times its size.
+pub const MAX_DIAGNOSTICS: usize = 1000;
+
+/// The first [`MAX_DIAGNOSTICS`] of `all`, and how many were left out.
+pub fn first_diagnostics(all: &[nctwin_engine::lang::Diagnostic]) -> (Vec<DiagnosticInfo>, usize) {
+    let listed = all.iter().take(MAX_DIAGNOSTICS).map(DiagnosticInfo::from).collect();
+    (listed, all.len().saturating_sub(MAX_DIAGNOSTICS))
 }
 
 /// Liveness and size of the server.
@@ -1112,8 +1130,13 @@ impl From<&nctwin_engine::lang::Diagnostic> for DiagnosticInfo {
     }
 }
 
-/// Every syntax error of a program, found without running it.
+/// The syntax errors of a program, found without running it: the first 1000 in program
+/// order, and the count of the others.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct CheckResponse {
     pub diagnostics: Vec<DiagnosticInfo>,
+    /// Errors found beyond the first 1000 ([`MAX_DIAGNOSTICS`]), not listed (absent when
+    /// every error is listed).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub omitted: usize,
 }

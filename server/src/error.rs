@@ -11,6 +11,10 @@ use nctwin_engine::{CommandError, MdError};
 use crate::dto::ErrorBody;
 use crate::session::SessionError;
 
+/// `Retry-After` of a request answered at shutdown: a supervisor (systemd, a container
+/// runtime) typically has the server back within seconds.
+pub const SHUTDOWN_RETRY_AFTER_S: u64 = 5;
+
 /// A failed request. Client mistakes are 4xx with a message that names the problem; nothing
 /// a client sends produces a 5xx.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -21,7 +25,8 @@ pub enum ApiError {
     BadRequest { message: String, line: Option<u32> },
     /// A program that cannot be prepared (400): every error found before it ran.
     #[error("{message}")]
-    Program { message: String, line: u32, errors: Vec<crate::dto::DiagnosticInfo> },
+    /// At most [`crate::dto::MAX_DIAGNOSTICS`] are listed; `omitted` counts the others.
+    Program { message: String, line: u32, errors: Vec<crate::dto::DiagnosticInfo>, omitted: usize },
     /// The channel refuses the command in its current state (busy, alarm, wrong mode).
     #[error("{0}")]
     Conflict(String),
@@ -56,6 +61,13 @@ pub enum ApiError {
     /// The storage failed: the change was not saved (and not acknowledged).
     #[error("{0}")]
     StorageUnavailable(String),
+    /// The server is shutting down: the request's session was saved and closed before it
+    /// was answered (503 with `Retry-After`: a restarted server has the session back).
+    #[error("the server is shutting down; session `{0}` was saved: retry once it is back")]
+    ShuttingDown(String),
+    /// A request body that is not of the content type the endpoint takes (415).
+    #[error("{0}")]
+    UnsupportedMediaType(String),
 }
 
 impl ApiError {
@@ -78,18 +90,19 @@ impl ApiError {
             ApiError::Forbidden(_) => StatusCode::FORBIDDEN,
             ApiError::TooManyRequests { .. } => StatusCode::TOO_MANY_REQUESTS,
             ApiError::WrongNode { .. } => StatusCode::MISDIRECTED_REQUEST,
-            ApiError::StorageUnavailable(_) => StatusCode::SERVICE_UNAVAILABLE,
+            ApiError::StorageUnavailable(_) | ApiError::ShuttingDown(_) => StatusCode::SERVICE_UNAVAILABLE,
+            ApiError::UnsupportedMediaType(_) => StatusCode::UNSUPPORTED_MEDIA_TYPE,
         }
     }
 
     /// The JSON body sent to the client.
     pub fn body(&self) -> ErrorBody {
-        let (line, errors) = match self {
-            ApiError::BadRequest { line, .. } => (*line, Vec::new()),
-            ApiError::Program { line, errors, .. } => (Some(*line), errors.clone()),
-            _ => (None, Vec::new()),
+        let (line, errors, errors_omitted) = match self {
+            ApiError::BadRequest { line, .. } => (*line, Vec::new(), 0),
+            ApiError::Program { line, errors, omitted, .. } => (Some(*line), errors.clone(), *omitted),
+            _ => (None, Vec::new(), 0),
         };
-        ErrorBody { error: self.to_string(), line, errors }
+        ErrorBody { error: self.to_string(), line, errors, errors_omitted }
     }
 
     /// Maps a session's reply error; `id` names the session in the message.
@@ -97,6 +110,7 @@ impl ApiError {
         match e {
             SessionError::Command(e) => e.into(),
             SessionError::Ended => ApiError::SessionEnded(id.to_string()),
+            SessionError::ServerStopping => ApiError::ShuttingDown(id.to_string()),
         }
     }
 }
@@ -104,11 +118,10 @@ impl ApiError {
 impl From<CommandError> for ApiError {
     fn from(e: CommandError) -> ApiError {
         match &e {
-            CommandError::Syntax { line, errors, .. } => ApiError::Program {
-                message: e.to_string(),
-                line: *line,
-                errors: errors.iter().map(Into::into).collect(),
-            },
+            CommandError::Syntax { line, errors, .. } => {
+                let (errors, omitted) = crate::dto::first_diagnostics(errors);
+                ApiError::Program { message: e.to_string(), line: *line, errors, omitted }
+            }
             CommandError::MachineData(md) => md.clone().into(),
             CommandError::UnknownAxis(_) | CommandError::Invalid(_) => ApiError::bad_request(e.to_string()),
             CommandError::Busy(_) | CommandError::AlarmActive | CommandError::WrongMode(..) => {
@@ -147,6 +160,9 @@ impl IntoResponse for ApiError {
             }
             ApiError::Unauthorized(_) => {
                 response.headers_mut().insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
+            }
+            ApiError::ShuttingDown(_) => {
+                response.headers_mut().insert(header::RETRY_AFTER, HeaderValue::from(SHUTDOWN_RETRY_AFTER_S));
             }
             _ => {}
         }

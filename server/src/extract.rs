@@ -2,14 +2,24 @@
 //! unknown or missing fields are `400` with a message naming the field (axum's own `Json` would
 //! answer `422` in plain text), an oversized body is `413`.
 //!
-//! The content type is not enforced: any non-empty body is parsed as JSON, so `curl -d '{...}'`
-//! (which sends `application/x-www-form-urlencoded`) works. A body that is not JSON is a `400`
-//! that mentions a non-JSON content type when there was one.
+//! A non-empty JSON body needs a JSON content type (`application/json`, or
+//! `application/<...>+json`), else `415` naming it: a web page of another site can send
+//! `text/plain`, form or untyped bodies anywhere without the browser asking the server first
+//! (a CORS "simple" request), but not JSON (see [`crate::site`]). An empty body (or only white
+//! space) is no body, whatever its content type, so body-less POSTs keep working.
+//!
+//! [`close_unread`] makes every reply sent before the request body was read say
+//! `Connection: close`.
 
-use axum::body::Bytes;
+use std::pin::Pin;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::task::{Context, Poll};
+
+use axum::body::{Bytes, HttpBody};
 use axum::extract::{FromRequest, Request, State};
-use axum::http::StatusCode;
-use axum::http::header::{CONTENT_LENGTH, CONTENT_TYPE};
+use axum::http::header::{CONNECTION, CONTENT_LENGTH, CONTENT_TYPE};
+use axum::http::{HeaderValue, StatusCode};
 use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 use serde::de::DeserializeOwned;
@@ -50,8 +60,8 @@ where
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
-        match read_body(req, state).await? {
-            Some((bytes, hint)) => parse_with_hint(&bytes, hint).map(ApiJson),
+        match read_json(req, state).await? {
+            Some(bytes) => parse(&bytes).map(ApiJson),
             None => Err(ApiError::bad_request("request body is empty: expected a JSON object")),
         }
     }
@@ -65,8 +75,8 @@ where
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
-        match read_body(req, state).await? {
-            Some((bytes, hint)) => parse_with_hint(&bytes, hint).map(OptionalJson),
+        match read_json(req, state).await? {
+            Some(bytes) => parse(&bytes).map(OptionalJson),
             None => Ok(OptionalJson(T::default())),
         }
     }
@@ -80,17 +90,30 @@ impl<S: Send + Sync> FromRequest<S> for ApiText {
     type Rejection = ApiError;
 
     async fn from_request(req: Request, state: &S) -> Result<Self, ApiError> {
-        let Some((bytes, _)) = read_body(req, state).await? else { return Ok(ApiText(String::new())) };
+        let Some(bytes) = read_body(req, state).await? else { return Ok(ApiText(String::new())) };
         String::from_utf8(bytes.to_vec())
             .map(ApiText)
             .map_err(|e| ApiError::bad_request(format!("the body is not UTF-8 text: {e}")))
     }
 }
 
-/// The body, or `None` when it is empty or only white space, with a hint for error messages
-/// when the content type says it is not JSON.
-async fn read_body<S: Send + Sync>(req: Request, state: &S) -> Result<Option<(Bytes, Option<String>)>, ApiError> {
+/// A JSON body: as [`read_body`], `415` when a non-empty body has no JSON content type.
+async fn read_json<S: Send + Sync>(req: Request, state: &S) -> Result<Option<Bytes>, ApiError> {
     let content_type = req.headers().get(CONTENT_TYPE).map(|v| String::from_utf8_lossy(v.as_bytes()).into_owned());
+    let Some(bytes) = read_body(req, state).await? else { return Ok(None) };
+    match content_type {
+        Some(ct) if is_json(&ct) => Ok(Some(bytes)),
+        Some(ct) => Err(ApiError::UnsupportedMediaType(format!(
+            "the body must be JSON sent with `Content-Type: application/json`; its content type was `{ct}`"
+        ))),
+        None => Err(ApiError::UnsupportedMediaType(
+            "the body must be JSON sent with `Content-Type: application/json`; it had no content type".into(),
+        )),
+    }
+}
+
+/// The body, or `None` when it is empty or only white space.
+async fn read_body<S: Send + Sync>(req: Request, state: &S) -> Result<Option<Bytes>, ApiError> {
     let limit = req.extensions().get::<BodyLimit>().map_or(Limits::default().body_bytes, |l| l.0);
     let bytes = Bytes::from_request(req, state).await.map_err(|rejection| {
         if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
@@ -99,13 +122,7 @@ async fn read_body<S: Send + Sync>(req: Request, state: &S) -> Result<Option<(By
             ApiError::bad_request(format!("could not read the request body: {}", rejection.body_text()))
         }
     })?;
-    if bytes.iter().all(u8::is_ascii_whitespace) {
-        return Ok(None);
-    }
-    let hint = content_type
-        .filter(|ct| !is_json(ct))
-        .map(|ct| format!(" (the body must be JSON; its content type was `{ct}`)"));
-    Ok(Some((bytes, hint)))
+    Ok(if bytes.iter().all(u8::is_ascii_whitespace) { None } else { Some(bytes) })
 }
 
 /// `application/json` or `application/<something>+json`, any parameters.
@@ -116,29 +133,67 @@ fn is_json(content_type: &str) -> bool {
 
 /// Deserializes a whole JSON document; errors name the path of the offending field.
 pub fn parse<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
-    parse_with_hint(bytes, None)
-}
-
-/// As [`parse`]; `hint` is appended when the body is not JSON at all.
-fn parse_with_hint<T: DeserializeOwned>(bytes: &[u8], hint: Option<String>) -> Result<T, ApiError> {
-    let not_json = |e: &serde_json::Error| -> String {
-        match (&hint, e.classify()) {
-            (Some(hint), serde_json::error::Category::Syntax | serde_json::error::Category::Eof) => hint.clone(),
-            _ => String::new(),
-        }
-    };
     let mut de = serde_json::Deserializer::from_slice(bytes);
     let value = serde_path_to_error::deserialize(&mut de).map_err(|e| {
         let path = e.path().to_string();
-        let hint = not_json(e.inner());
         if path == "." {
-            ApiError::bad_request(format!("invalid JSON body: {}{hint}", e.inner()))
+            ApiError::bad_request(format!("invalid JSON body: {}", e.inner()))
         } else {
-            ApiError::bad_request(format!("invalid JSON body at `{path}`: {}{hint}", e.inner()))
+            ApiError::bad_request(format!("invalid JSON body at `{path}`: {}", e.inner()))
         }
     })?;
-    de.end().map_err(|e| ApiError::bad_request(format!("invalid JSON body: {e}{}", not_json(&e))))?;
+    de.end().map_err(|e| ApiError::bad_request(format!("invalid JSON body: {e}")))?;
     Ok(value)
+}
+
+/// Middleware: a reply sent before the request body was read to its end says
+/// `Connection: close`. The server closes such a connection after the reply (the unread rest
+/// of the body would be taken for the next request); without the header a keep-alive client
+/// sends its next request into the closing connection and sees it fail. Refusals before the
+/// body is read are the access check (`401`/`403`/`409`/`429`), a `Content-Length` over the
+/// limit (`413`), a refused host or origin (`403`, [`crate::site`]) and routing (`404`/`405`).
+pub async fn close_unread(request: Request, next: Next) -> Response {
+    if request.version() > axum::http::Version::HTTP_11 || request.body().is_end_stream() {
+        return next.run(request).await;
+    }
+    let read = Arc::new(AtomicBool::new(false));
+    let flag = read.clone();
+    let request = request.map(|body| axum::body::Body::new(ReadToEnd { inner: body, read: flag }));
+    let mut response = next.run(request).await;
+    if !read.load(Ordering::Acquire) {
+        response.headers_mut().insert(CONNECTION, HeaderValue::from_static("close"));
+    }
+    response
+}
+
+/// A request body that notes when it has been read to its end.
+struct ReadToEnd {
+    inner: axum::body::Body,
+    read: Arc<AtomicBool>,
+}
+
+impl http_body::Body for ReadToEnd {
+    type Data = Bytes;
+    type Error = axum::Error;
+
+    fn poll_frame(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+    ) -> Poll<Option<Result<http_body::Frame<Bytes>, axum::Error>>> {
+        let polled = Pin::new(&mut self.inner).poll_frame(cx);
+        if matches!(polled, Poll::Ready(None)) || self.inner.is_end_stream() {
+            self.read.store(true, Ordering::Release);
+        }
+        polled
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.inner.is_end_stream()
+    }
+
+    fn size_hint(&self) -> http_body::SizeHint {
+        self.inner.size_hint()
+    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,9 @@
 //! The HTTP application: API routes, OpenAPI/Swagger UI, the static HMI and the tower-http
 //! layers that do the cross-cutting work.
 
+use std::net::SocketAddr;
+use std::sync::Arc;
+
 use axum::Json;
 use axum::Router;
 use axum::extract::Request;
@@ -12,7 +15,6 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use tower_http::compression::CompressionLayer;
 use tower_http::compression::predicate::{DefaultPredicate, Predicate};
-use tower_http::cors::CorsLayer;
 use tower_http::services::ServeDir;
 use tower_http::trace::TraceLayer;
 use utoipa_swagger_ui::SwaggerUi;
@@ -20,15 +22,20 @@ use utoipa_swagger_ui::SwaggerUi;
 use crate::auth::access;
 use crate::dto::ErrorBody;
 use crate::error::ApiError;
+use crate::extract;
 use crate::metrics;
 use crate::openapi;
+use crate::site::{self, SitePolicy};
 use crate::state::AppState;
 
 /// Where the Prometheus metrics are served (outside `/api/v1`, where scrapers look).
 pub const METRICS_PATH: &str = "/metrics";
 
 /// See [`crate::app`]. Body limits are per route group (see [`crate::api::router`]).
-pub fn app(state: AppState) -> Router {
+/// `bound` is the listener's address (the `Host` check needs its port; without it any port
+/// of the loopback names and address literals passes, see [`site`]).
+pub fn app(state: AppState, bound: Option<SocketAddr>) -> Router {
+    let site = Arc::new(SitePolicy::new(bound, &state.config().allow_hosts, &state.config().allow_origins));
     let (api, document) = openapi::router(state.limits()).split_for_parts();
     let document = openapi::finish(document);
     // Route layers run after routing, so they see the route template (`MatchedPath`): the
@@ -58,7 +65,9 @@ pub fn app(state: AppState) -> Router {
         .fallback_service(hmi)
         .layer(middleware::map_response(json_errors))
         .layer(CompressionLayer::new().compress_when(compress))
-        .layer(CorsLayer::permissive())
+        .layer(site.cors())
+        .layer(middleware::from_fn_with_state(site, site::guard))
+        .layer(middleware::from_fn(extract::close_unread))
         .layer(trace)
 }
 
@@ -83,10 +92,15 @@ async fn json_errors(response: Response) -> Response {
         return response;
     }
     let body = if status == StatusCode::PAYLOAD_TOO_LARGE {
-        ErrorBody { error: "request body is larger than the limit".into(), line: None, errors: Vec::new() }
+        ErrorBody {
+            error: "request body is larger than the limit".into(),
+            line: None,
+            errors: Vec::new(),
+            errors_omitted: 0,
+        }
     } else {
         let reason = status.canonical_reason().unwrap_or("error").to_lowercase();
-        ErrorBody { error: reason, line: None, errors: Vec::new() }
+        ErrorBody { error: reason, line: None, errors: Vec::new(), errors_omitted: 0 }
     };
     let (mut parts, _) = response.into_parts();
     parts.headers.remove(CONTENT_TYPE);

@@ -25,6 +25,8 @@
 //!   cap and the header-read timeout.
 //! - [`http`]: the tower-http layers (tracing, CORS, compression, body limit, timeouts), the
 //!   static HMI files and the JSON shape of errors produced outside the handlers.
+//! - [`site`]: which `Host` the server answers to and which web page origins may call it
+//!   (DNS rebinding, cross-site requests).
 
 pub mod api;
 pub mod auth;
@@ -37,6 +39,7 @@ pub mod limits;
 pub mod metrics;
 pub mod openapi;
 pub mod session;
+pub mod site;
 pub mod state;
 pub mod storage;
 
@@ -56,9 +59,10 @@ pub use state::{AppState, Config};
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// The complete application: REST API, WebSocket streams, OpenAPI document, Swagger UI and the
-/// static HMI. Tests can drive it without a socket, or serve it with [`run`].
+/// static HMI. Tests can drive it without a socket (the `Host` check then knows no port: see
+/// [`site`]), or serve it with [`run`].
 pub fn app(state: AppState) -> Router {
-    http::app(state)
+    http::app(state, None)
 }
 
 /// Serves [`app`] on `listener` until `shutdown` completes, then shuts down gracefully:
@@ -79,7 +83,8 @@ pub async fn run(
     state: AppState,
     shutdown: impl Future<Output = ()> + Send + 'static,
 ) -> std::io::Result<()> {
-    let router = app(state.clone());
+    // The `Host` check needs the port actually bound (tests bind port 0).
+    let router = http::app(state.clone(), listener.local_addr().ok());
     let grace = state.limits().shutdown_grace;
     let (stop_tx, mut stop_rx) = watch::channel(false);
     let stop_tx = std::sync::Arc::new(stop_tx);

@@ -78,6 +78,16 @@ pub struct Limits {
     /// Most bytes queued for one stream client (replies, states, events, pongs) that the socket
     /// does not take: 1 MiB. A client that fills it is disconnected.
     pub stream_write_buffer_bytes: usize,
+    /// Wall time one fast-paced command may run before the channel is stopped: 10 s (the
+    /// reply says `nctwin-limit: fast-wall-time`). Keeps a program that the engine computes
+    /// slowly from holding a worker thread for its whole simulated hour.
+    pub fast_wall_time: Duration,
+    /// Program text per second a session may have syntax-checked (`POST .../check`): 4 MiB/s
+    /// (`429` with `Retry-After`). A check's cost grows with its text, so the budget is in
+    /// bytes: an HMI checking as the operator types stays far below it.
+    pub check_bytes_per_second: usize,
+    /// Program text a session may have checked in a burst above the sustained rate: 8 MiB.
+    pub check_burst_bytes: usize,
 }
 
 impl Default for Limits {
@@ -104,6 +114,9 @@ impl Default for Limits {
             stream_missed_pongs: 2,
             stream_message_bytes: 4 << 10,
             stream_write_buffer_bytes: 1 << 20,
+            fast_wall_time: Duration::from_secs(10),
+            check_bytes_per_second: 4 << 20,
+            check_burst_bytes: 8 << 20,
         }
     }
 }
@@ -115,6 +128,7 @@ impl Limits {
             fast_sim_time: self.fast_sim_time,
             wait_wall_time: self.wait_wall_time,
             fast_chunk: self.fast_chunk,
+            fast_wall_time: self.fast_wall_time,
         }
     }
 
@@ -165,6 +179,12 @@ pub struct LimitFlags {
     /// unanswered is closed [default: 15].
     #[arg(long, value_name = "SECONDS", value_parser = clap::value_parser!(u64).range(1..=3600))]
     pub stream_ping_interval: Option<u64>,
+    /// Program text per second a session may have syntax-checked [default: 4194304 = 4 MiB].
+    #[arg(long, value_name = "BYTES")]
+    pub check_bytes_per_second: Option<usize>,
+    /// Program text a session may have checked in a burst [default: 8388608 = 8 MiB].
+    #[arg(long, value_name = "BYTES")]
+    pub check_burst_bytes: Option<usize>,
 }
 
 impl LimitFlags {
@@ -184,6 +204,8 @@ impl LimitFlags {
                 .map_or(limits.connections_per_ip, |n| usize::try_from(n).unwrap_or(usize::MAX)),
             header_read_timeout: self.header_read_timeout.map_or(limits.header_read_timeout, Duration::from_secs),
             stream_ping_interval: self.stream_ping_interval.map_or(limits.stream_ping_interval, Duration::from_secs),
+            check_bytes_per_second: self.check_bytes_per_second.unwrap_or(limits.check_bytes_per_second),
+            check_burst_bytes: self.check_burst_bytes.unwrap_or(limits.check_burst_bytes),
             ..limits
         }
     }
@@ -209,14 +231,22 @@ impl RateLimiter {
 
     /// Takes one token; `Err(wait)` when none is left, with the time until one is.
     pub fn take(&mut self, now: Instant) -> Result<(), Duration> {
+        self.take_n(1.0, now)
+    }
+
+    /// Takes `cost` tokens (at most the burst, so any single request can pass when the bucket
+    /// is full); `Err(wait)` when fewer are left, with the time until there are. A refusal
+    /// takes nothing.
+    pub fn take_n(&mut self, cost: f64, now: Instant) -> Result<(), Duration> {
+        let cost = cost.clamp(0.0, self.burst);
         let elapsed = now.saturating_duration_since(self.last).as_secs_f64();
         self.last = now;
         self.tokens = (self.tokens + elapsed * self.rate).min(self.burst);
-        if self.tokens >= 1.0 {
-            self.tokens -= 1.0;
+        if self.tokens >= cost {
+            self.tokens -= cost;
             Ok(())
         } else {
-            Err(Duration::from_secs_f64(((1.0 - self.tokens) / self.rate).min(3600.0)))
+            Err(Duration::from_secs_f64(((cost - self.tokens) / self.rate).min(3600.0)))
         }
     }
 }
@@ -243,6 +273,17 @@ mod tests {
         let later = t0 + Duration::from_secs(60);
         assert!(bucket.take(later).is_ok() && bucket.take(later).is_ok());
         assert!(bucket.take(later).is_err());
+    }
+
+    #[test]
+    fn a_costly_request_takes_its_cost_and_waits_for_it() {
+        let t0 = Instant::now();
+        let mut bucket = RateLimiter::new(100.0, 300.0, t0);
+        assert!(bucket.take_n(250.0, t0).is_ok());
+        let wait = bucket.take_n(100.0, t0).expect_err("50 left");
+        assert!((wait.as_secs_f64() - 0.5).abs() < 1e-9, "{wait:?}");
+        assert!(bucket.take_n(50.0, t0).is_ok(), "the refusal took nothing");
+        assert!(bucket.take_n(1e9, t0 + Duration::from_secs(3)).is_ok(), "capped at the burst");
     }
 
     #[test]

@@ -47,6 +47,16 @@ struct Args {
     /// one of its tokens (owner, operator, observer), see README.
     #[arg(long, value_enum, default_value_t = AuthMode::Off)]
     auth: AuthMode,
+    /// A web page origin (`http://HOST:PORT`) besides the server's own that may call the API
+    /// and open streams from a browser (CORS). Repeatable. None by default: a page of another
+    /// site is refused (`403`).
+    #[arg(long = "allow-origin", value_name = "ORIGIN", value_parser = nctwin_server::site::parse_origin)]
+    allow_origins: Vec<String>,
+    /// A host name clients use for this server besides its address and localhost, `NAME` (any
+    /// port) or `NAME:PORT`: e.g. the machine's LAN name when bound to 0.0.0.0. Repeatable.
+    /// Requests for other names are refused (`403`, against DNS rebinding).
+    #[arg(long = "allow-host", value_name = "NAME", value_parser = nctwin_server::site::parse_host)]
+    allow_hosts: Vec<String>,
     #[command(flatten)]
     limits: LimitFlags,
 }
@@ -93,6 +103,8 @@ async fn serve(args: Args) -> Result<(), String> {
             args.node_id.unwrap_or_else(|| format!("{}:{}", nctwin_server::storage::host_name(), addr.port())),
         ),
         lease_period: std::time::Duration::from_secs(args.lease_seconds),
+        allow_origins: args.allow_origins,
+        allow_hosts: args.allow_hosts,
         ..Config::new(args.data_dir, args.web_dir)
     };
     let state = AppState::open(config).await.map_err(|e| format!("cannot open the storage: {e}"))?;

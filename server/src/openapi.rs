@@ -26,7 +26,7 @@ pub const COMMITTED_PATH: &str = "openapi/openapi.json";
 #[openapi(
     info(
         title = "NCTwin",
-        description = "Simulated SINUMERIK 840D sl-style NC channels: sessions, part programs, JOG, MDA, machine data and live state streams.\n\nUnits: lengths mm, angles degrees, feed mm/min, time s.\n\nServer-side limits: a `pace: \"fast\"` command runs at most 3600 s of simulated time or 10 s of wall time (then NC stop); a `wait: true` request is answered after at most 600 s of wall time; request bodies are limited to 1 MiB, except program uploads (`PUT .../programs/{name}`: 16 MiB of program text, 64 MiB per session). A reply cut short by a limit carries the header `nctwin-limit`. Counts and rates (defaults, each a flag of `nctwin`): 1000 sessions, 100 per client address, 64 stream clients per session, 50 commands per second per session in bursts of 100; a refusal is `429` (with `Retry-After` for the rate).\n\nAuthentication: creating a session returns an owner token and two tokens to share (operator, observer). By default (`nctwin --auth off`) no token is needed. With `nctwin --auth required` every request to a session needs `Authorization: Bearer <token>` (the WebSocket stream may pass `?token=`): `401` without a valid token; observers read but every command is `403`; commands need control (`POST .../control/take`; the owner holds it first and can always take it back), otherwise `409`.\n\nSeveral nodes (`nctwin --database postgres://... --node-id NAME`): each node serves the sessions it holds a lease on (renewed while it runs, given up at shutdown). A request for a session another node holds is `421 Misdirected Request` naming that node; a session whose node stopped renewing is taken over by the next node it is asked of. `GET /sessions` lists the sessions of the node asked.\n\nErrors are JSON `{\"error\": \"...\", \"line\": n}` (`line` only when the error belongs to one line).",
+        description = "Simulated SINUMERIK 840D sl-style NC channels: sessions, part programs, JOG, MDA, machine data and live state streams.\n\nUnits: lengths mm, angles degrees, feed mm/min, time s.\n\nServer-side limits: a `pace: \"fast\"` command runs at most 3600 s of simulated time or 10 s of wall time (then NC stop); a `wait: true` request is answered after at most 600 s of wall time; request bodies are limited to 1 MiB, except program uploads (`PUT .../programs/{name}`: 16 MiB of program text, 64 MiB per session). A reply cut short by a limit carries the header `nctwin-limit`. Counts and rates (defaults, each a flag of `nctwin`): 1000 sessions, 100 per client address, 64 stream clients per session, 50 commands per second per session in bursts of 100 (NC stop, reset and JOG stop are never refused), 4 MiB of program text per second per session syntax-checked in bursts of 8 MiB; a refusal is `429` (with `Retry-After` for the rates). A fast run stopped by its simulated-time limit says `nctwin-limit: fast-sim-time`, by its wall-time limit `fast-wall-time`; a `wait: true` request ended by its wall time `wait-wall-time`. A request answered because the server is shutting down is `503` with `Retry-After`.\n\nCross-site requests: JSON bodies need `Content-Type: application/json` (else `415`). The server answers only requests for its own address, `localhost`, `127.0.0.1` and `[::1]` with its port, and the names given with `nctwin --allow-host`; a request from a web page (its `Origin`, WebSocket upgrades included) only from the server's own origin and those given with `nctwin --allow-origin`; others are `403`.\n\nAuthentication: creating a session returns an owner token and two tokens to share (operator, observer). By default (`nctwin --auth off`) no token is needed. With `nctwin --auth required` every request to a session needs `Authorization: Bearer <token>` (the WebSocket stream may pass `?token=`): `401` without a valid token; observers read but every command is `403`; commands need control (`POST .../control/take`; the owner holds it first and can always take it back), otherwise `409`.\n\nSeveral nodes (`nctwin --database postgres://... --node-id NAME`): each node serves the sessions it holds a lease on (renewed while it runs, given up at shutdown). A request for a session another node holds is `421 Misdirected Request` naming that node; a session whose node stopped renewing is taken over by the next node it is asked of. `GET /sessions` lists the sessions of the node asked.\n\nErrors are JSON `{\"error\": \"...\", \"line\": n}` (`line` only when the error belongs to one line).",
         license(name = "MIT"),
     ),
     // What a client may send on the stream (not a request body of any path).
@@ -57,7 +57,9 @@ pub fn document() -> utoipa::openapi::OpenApi {
 /// Adds what follows from the access policy ([`access::need`]) to every operation on a
 /// session, so the document and the middleware cannot disagree: the optional bearer security
 /// scheme, `401`, `403` where a role can be refused, `421` (another node holds the session),
-/// and for commands `409` (not holding control) and `429` (rate limit, with `Retry-After`).
+/// `503` (the server is shutting down), for commands `409` (not holding control) and, unless
+/// they stop motion ([`access::rate_limited`]), `429` (rate limit, with `Retry-After`). Every
+/// operation with a JSON request body gets `415` (not sent as JSON).
 pub fn finish(document: utoipa::openapi::OpenApi) -> utoipa::openapi::OpenApi {
     let mut doc = match serde_json::to_value(&document) {
         Ok(doc) => doc,
@@ -79,6 +81,12 @@ pub fn finish(document: utoipa::openapi::OpenApi) -> utoipa::openapi::OpenApi {
             let Some(item) = item.as_object_mut() else { continue };
             for (method, operation) in item.iter_mut() {
                 let Ok(method) = method.to_ascii_uppercase().parse::<Method>() else { continue };
+                if operation["requestBody"]["content"].get("application/json").is_some()
+                    && operation["responses"].get("415").is_none()
+                {
+                    operation["responses"]["415"] =
+                        error("A body that is not sent as JSON (`Content-Type: application/json`)");
+                }
                 let Some(need) = access::need(&method, path) else { continue };
                 operation["security"] = json!([{}, {"bearer": []}]);
                 let responses = &mut operation["responses"];
@@ -103,8 +111,16 @@ pub fn finish(document: utoipa::openapi::OpenApi) -> utoipa::openapi::OpenApi {
                         ),
                     );
                 }
+                let mut shutting_down = error("The server is shutting down; retry once it is back");
+                shutting_down["headers"] = json!({"retry-after": {
+                    "description": "Seconds after which to retry",
+                    "schema": {"type": "integer", "minimum": 1}
+                }});
+                add("503", shutting_down);
                 if need == Need::Command {
                     add("409", error("The caller does not hold control (auth required only)"));
+                }
+                if access::rate_limited(&method, path) {
                     let mut too_many = error("More commands per second than the session allows");
                     too_many["headers"] = json!({"retry-after": {
                         "description": "Seconds until a command is accepted again",
@@ -166,6 +182,10 @@ mod tests {
             assert!(run["responses"].get(status).is_some(), "run documents {status}");
         }
         assert!(run["responses"]["429"]["headers"].get("retry-after").is_some());
+        assert!(run["responses"].get("415").is_some(), "a JSON body");
+        let stop = &json["paths"]["/api/v1/sessions/{id}/stop"]["post"];
+        assert!(stop["responses"].get("429").is_none(), "stops are never rate-limited");
+        assert!(stop["responses"].get("415").is_none(), "no body");
         let state = &json["paths"]["/api/v1/sessions/{id}/state"]["get"];
         assert!(state["responses"].get("401").is_some() && state["responses"].get("403").is_none());
         assert_eq!(state["security"], serde_json::json!([{}, {"bearer": []}]));

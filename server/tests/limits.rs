@@ -32,9 +32,9 @@ async fn commands_beyond_the_rate_are_429_with_retry_after_and_reads_are_not_cou
     let server = Server::start_with(Limits { commands_per_second: 0.5, command_burst: 2.0, ..Limits::default() }).await;
     let id = server.session("mill-3axis").await;
     for _ in 0..2 {
-        assert_eq!(server.post_empty(&format!("/sessions/{id}/reset")).await.status, StatusCode::OK);
+        assert_eq!(server.post_empty(&format!("/sessions/{id}/cancel")).await.status, StatusCode::OK);
     }
-    let reply = server.post_empty(&format!("/sessions/{id}/reset")).await;
+    let reply = server.post_empty(&format!("/sessions/{id}/cancel")).await;
     let message = error_message(&reply, StatusCode::TOO_MANY_REQUESTS);
     assert!(message.contains("commands per second"), "{message}");
     assert_eq!(reply.headers["retry-after"], "2");
@@ -42,7 +42,7 @@ async fn commands_beyond_the_rate_are_429_with_retry_after_and_reads_are_not_cou
         assert_eq!(server.get(&format!("/sessions/{id}/state")).await.status, StatusCode::OK);
     }
     let other = server.session("mill-3axis").await;
-    assert_eq!(server.post_empty(&format!("/sessions/{other}/reset")).await.status, StatusCode::OK, "per session");
+    assert_eq!(server.post_empty(&format!("/sessions/{other}/cancel")).await.status, StatusCode::OK, "per session");
 }
 
 #[tokio::test]

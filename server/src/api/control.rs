@@ -18,7 +18,8 @@ use crate::state::AppState;
 /// A program with syntax errors is not started (`400` with the line) and nothing moves.
 /// `pace: "fast"` computes as fast as possible (simulated time unaffected) for at most 3600 s of
 /// simulated time per command; then the channel is stopped (NC stop) and the reply carries
-/// the header `nctwin-limit: fast-sim-time`. With `wait: true` the reply comes when the program
+/// the header `nctwin-limit: fast-sim-time` (`fast-wall-time` when it computed for 10 s of wall
+/// time first). With `wait: true` the reply comes when the program
 /// has ended, stopped (M0, M1 with optional stop, alarm) or a limit was hit; a wait lasts at
 /// most 600 s of wall time (then the current state with `nctwin-limit: wait-wall-time`).
 #[utoipa::path(
@@ -29,7 +30,7 @@ use crate::state::AppState;
     request_body = RunRequest,
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
-            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+            headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
         (status = 400, description = "Syntax error (with its line) or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "A program is active or an alarm needs a reset", body = ErrorBody),
@@ -57,7 +58,7 @@ pub async fn run(
     request_body(content = Option<StartRequest>, description = "Optional; empty means realtime, no wait"),
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
-            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+            headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
         (status = 400, description = "No program loaded, REPOSQ/REPOSH without a positive `disr`, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "An alarm needs a reset, or JOG mode", body = ErrorBody),
@@ -76,7 +77,8 @@ pub async fn start(
     command(&state, &id, action, Some(drive(body.pace, body.wait))).await
 }
 
-/// NC stop: the axes brake on the path; `start` continues.
+/// NC stop: the axes brake on the path; `start` continues. Never refused by the command rate
+/// limit.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/stop",
@@ -92,7 +94,7 @@ pub async fn stop(State(state): State<AppState>, Path(id): Path<String>) -> Resu
 }
 
 /// Channel reset: ends the program, stops every axis and spindle at once and clears the alarms
-/// a reset clears.
+/// a reset clears. Never refused by the command rate limit.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/reset",
@@ -132,7 +134,7 @@ pub async fn cancel(State(state): State<AppState>, Path(id): Path<String>) -> Re
     request_body = MdaRequest,
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
-            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+            headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
         (status = 400, description = "Syntax error (with its line) or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "A program is active or an alarm needs a reset", body = ErrorBody),

@@ -26,7 +26,7 @@ use crate::state::AppState;
     request_body = JogBody,
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
-            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+            headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
         (status = 400, description = "Unknown axis, bad direction, increment or inc, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "Not in JOG mode, an axis moves, or an alarm needs a reset", body = ErrorBody),
@@ -92,7 +92,7 @@ pub async fn handwheel(
     request_body(content = Option<ReferenceRequest>, description = "Optional; empty references every axis"),
     responses(
         (status = 200, description = "The state after the start of the approach, or at the end of the wait", body = dto::State,
-            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+            headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
         (status = 400, description = "Unknown axis, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "Not in JOG mode, not in reset state, or an axis moves", body = ErrorBody),
@@ -106,7 +106,8 @@ pub async fn reference(
     command(&state, &id, Action::Reference(body.axis), Some(drive(body.pace, body.wait))).await
 }
 
-/// Releases the JOG key: the axis brakes to standstill.
+/// Releases the JOG key: the axis brakes to standstill. Never refused by the command rate
+/// limit.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/jog/stop",

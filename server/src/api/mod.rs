@@ -49,7 +49,8 @@ pub const QUICK_TIMEOUT: Duration = Duration::from_secs(30);
 pub const WAIT_TIMEOUT: Duration = Duration::from_secs(660);
 
 /// Response header set when a server-side limit ended a command or its wait early:
-/// `fast-sim-time` (a fast run reached 3600 s of simulated time and was stopped) or
+/// `fast-sim-time` (a fast run reached 3600 s of simulated time and was stopped),
+/// `fast-wall-time` (a fast run computed for 10 s of wall time and was stopped) or
 /// `wait-wall-time` (the request waited 600 s of wall time).
 pub const LIMIT_HEADER: &str = "nctwin-limit";
 
@@ -137,6 +138,7 @@ impl IntoResponse for StateReply {
         if let Some(limit) = self.0.limit {
             let value = match limit {
                 Limit::FastSimTime => "fast-sim-time",
+                Limit::FastWallTime => "fast-wall-time",
                 Limit::WaitWallTime => "wait-wall-time",
             };
             response.headers_mut().insert(LIMIT_HEADER, HeaderValue::from_static(value));

@@ -6,7 +6,7 @@ use axum::extract::{Path, State};
 use axum::http::StatusCode;
 
 use super::{find_entry, find_session};
-use crate::dto::{CheckRequest, CheckResponse, DiagnosticInfo, ErrorBody, ProgramBody, ProgramInfo, ProgramText};
+use crate::dto::{CheckRequest, CheckResponse, ErrorBody, ProgramBody, ProgramInfo, ProgramText, first_diagnostics};
 use crate::error::ApiError;
 use crate::extract::ApiJson;
 use crate::state::AppState;
@@ -108,7 +108,10 @@ pub async fn delete_program(
     if deleted { Ok(StatusCode::NO_CONTENT) } else { Err(ApiError::NotFound(format!("program `{name}`"))) }
 }
 
-/// Checks a program's syntax without running it: every error with its line and column.
+/// Checks a program's syntax without running it: every error with its line and column (the
+/// first 1000 listed, `omitted` counts the others). A check costs in proportion to its text, so
+/// each session may have 4 MiB of text per second checked, in bursts of 8 MiB (`429` with
+/// `Retry-After` beyond).
 #[utoipa::path(
     post,
     path = "/sessions/{id}/check",
@@ -119,6 +122,8 @@ pub async fn delete_program(
         (status = 200, description = "The syntax errors (empty when the program parses)", body = CheckResponse),
         (status = 400, description = "Malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
+        (status = 429, description = "More program text checked per second than the session allows", body = ErrorBody,
+            headers(("retry-after" = u64, description = "Seconds until the check would be accepted"))),
     )
 )]
 pub async fn check(
@@ -126,8 +131,15 @@ pub async fn check(
     Path(id): Path<String>,
     ApiJson(body): ApiJson<CheckRequest>,
 ) -> Result<Json<CheckResponse>, ApiError> {
-    find_session(&state, &id)?;
-    let text = &body.program;
-    let diagnostics = nctwin_engine::lang::check(text).iter().map(DiagnosticInfo::from).collect();
-    Ok(Json(CheckResponse { diagnostics }))
+    let entry = find_entry(&state, &id)?;
+    entry.take_check(body.program.len(), state.limits())?;
+    // On a blocking worker: a check of a large program takes milliseconds of CPU.
+    let checked = tokio::task::spawn_blocking(move || first_diagnostics(&nctwin_engine::lang::check(&body.program)))
+        .await
+        .map_err(|e| {
+            tracing::error!(error = %e, "the syntax check failed");
+            ApiError::bad_request("the syntax check of this program failed")
+        })?;
+    let (diagnostics, omitted) = checked;
+    Ok(Json(CheckResponse { diagnostics, omitted }))
 }

@@ -89,7 +89,7 @@ pub fn cycle800(r: &SwivelRequest) -> Result<String, String> {
     request_body = SwivelRequest,
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
-            headers(("nctwin-limit" = String, description = "`fast-sim-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
+            headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
         (status = 400, description = "Parameters that do not fit together, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "A program is active or an alarm needs a reset", body = ErrorBody),

@@ -10,7 +10,8 @@
 //! | every other request to a session               | operator or owner holding control ([`Need::Command`]) |
 //!
 //! Observers get `403` for everything beyond reading; an operator without control gets `409`.
-//! With `--auth off` nothing is checked but the command rate limit.
+//! With `--auth off` nothing is checked but the command rate limit, which never refuses the
+//! commands that stop motion ([`rate_limited`]).
 
 use std::collections::HashMap;
 
@@ -50,6 +51,16 @@ pub fn need(method: &Method, route: &str) -> Option<Need> {
         (&Method::DELETE | &Method::PATCH, "") => Need::Owner,
         _ => Need::Command,
     })
+}
+
+/// Whether a command is counted against the session's command rate limit. Commands that stop
+/// motion (NC stop, reset, JOG stop) are not: a client flooding the session with commands must
+/// never keep another client from stopping the machine. They cost the server about what a read
+/// does.
+pub fn rate_limited(method: &Method, route: &str) -> bool {
+    let stops = method == Method::POST
+        && route.strip_prefix(SESSION_ROUTE).is_some_and(|rest| matches!(rest, "/stop" | "/reset" | "/jog/stop"));
+    need(method, route) == Some(Need::Command) && !stops
 }
 
 /// The caller's role in the session a request addresses, for handlers that need it (the
@@ -122,7 +133,7 @@ async fn authorize(state: &AppState, request: Request) -> Result<Request, ApiErr
             role
         }
     };
-    if need == Need::Command {
+    if rate_limited(request.method(), &route) {
         entry.take_command(state.limits())?;
     }
     // Any request that passed the checks is use of the session (idle expiry).
@@ -178,6 +189,21 @@ mod tests {
         }
         assert_eq!(need(&Method::POST, "/api/v1/sessions"), None);
         assert_eq!(need(&Method::GET, "/api/v1/health"), None);
+    }
+
+    #[test]
+    fn commands_that_stop_motion_are_not_rate_limited() {
+        let s = |rest: &str| format!("{SESSION_ROUTE}{rest}");
+        for rest in ["/stop", "/reset", "/jog/stop"] {
+            assert_eq!(need(&Method::POST, &s(rest)), Some(Need::Command), "{rest} still needs control");
+            assert!(!rate_limited(&Method::POST, &s(rest)), "{rest}");
+        }
+        for rest in ["/run", "/start", "/jog", "/cancel", "/mda"] {
+            assert!(rate_limited(&Method::POST, &s(rest)), "{rest}");
+        }
+        assert!(rate_limited(&Method::PUT, &s("/overrides")));
+        assert!(!rate_limited(&Method::GET, &s("/state")));
+        assert!(!rate_limited(&Method::POST, &s("/check")), "reads have their own limits");
     }
 
     #[test]

@@ -24,10 +24,6 @@ use super::snapshot_pool::SnapshotPool;
 use super::wake_stats::wake_stats;
 use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
 
-/// Wall time a fast-paced command may compute before it is stopped like at the simulated-time
-/// limit.
-const FAST_WALL_LIMIT: std::time::Duration = std::time::Duration::from_secs(10);
-
 /// Wall time a block search may compute before it gives up with alarm 15370 (a program that
 /// never reaches its target, a LOOP without end); the engine's own limit is
 /// `SEARCH_BLOCK_BUDGET` blocks.
@@ -65,8 +61,9 @@ pub(super) struct Actor {
     /// Wall time at which the current fast-paced command is stopped (a program that computes
     /// without end, e.g. a LOOP without motion, must not hold a worker for long).
     fast_deadline: Instant,
-    /// The fast limit stopped the channel; replies report it until the next driving command.
-    limit_hit: bool,
+    /// The fast limit (simulated or wall time) that stopped the channel; replies report it
+    /// until the next driving command.
+    limit_hit: Option<Limit>,
     /// Present while the channel is stepped in real time.
     pacer: Option<Pacer>,
     next_wake: Instant,
@@ -96,7 +93,7 @@ impl Actor {
             pace: Pace::Realtime,
             fast_limit_tick: 0,
             fast_deadline: Instant::now(),
-            limit_hit: false,
+            limit_hit: None,
             pacer: None,
             next_wake: Instant::now(),
             waiters: Vec::new(),
@@ -223,11 +220,11 @@ impl Actor {
         match drive {
             Some(drive) => {
                 self.pace = drive.pace;
-                self.limit_hit = false;
+                self.limit_hit = None;
                 if drive.pace == Pace::Fast {
                     let cycles = (self.config.fast_sim_time / channel.config().ipo_cycle).ceil() as u64;
                     self.fast_limit_tick = channel.ticks().saturating_add(cycles);
-                    self.fast_deadline = now + FAST_WALL_LIMIT;
+                    self.fast_deadline = now + self.config.fast_wall_time;
                 }
                 if drive.wait {
                     self.waiters.push(Waiter { reply, deadline: now + self.config.wait_wall_time });
@@ -282,15 +279,17 @@ impl Actor {
         };
         let out_of_time = Instant::now() >= self.fast_deadline;
         if channel.is_busy() && (channel.ticks() >= self.fast_limit_tick || out_of_time) {
-            if self.limit_hit {
+            if self.limit_hit.is_some() {
                 // Still moving after the grace period: a reset stops everything at once.
                 channel.reset();
             } else {
                 channel.stop();
-                self.limit_hit = true;
+                // Which limit came first: the simulated time reached, or the wall time.
+                let sim_time_reached = channel.ticks() >= self.fast_limit_tick;
+                self.limit_hit = Some(if sim_time_reached { Limit::FastSimTime } else { Limit::FastWallTime });
                 let grace = (BRAKE_GRACE / channel.config().ipo_cycle).ceil() as u64;
                 self.fast_limit_tick = channel.ticks().max(self.fast_limit_tick).saturating_add(grace);
-                self.fast_deadline = Instant::now() + FAST_WALL_LIMIT;
+                self.fast_deadline = Instant::now() + self.config.fast_wall_time;
             }
         }
         if !channel.is_busy() {
@@ -321,7 +320,7 @@ impl Actor {
             return;
         }
         let done = channel.status() != Status::Running && !channel.is_busy();
-        let limit = self.limit_hit.then_some(Limit::FastSimTime);
+        let limit = self.limit_hit;
         let mut keep = Vec::new();
         for waiter in std::mem::take(&mut self.waiters) {
             if done {

@@ -17,7 +17,7 @@ mod snapshot_pool;
 mod wake_stats;
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
 
 use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReposApproach, ReposMode};
@@ -132,6 +132,8 @@ pub enum Action {
 pub enum Limit {
     /// A fast run reached [`crate::Limits::fast_sim_time`] of simulated time and was stopped.
     FastSimTime,
+    /// A fast run reached [`crate::Limits::fast_wall_time`] of wall time and was stopped.
+    FastWallTime,
     /// A waiting request reached [`crate::Limits::wait_wall_time`] of wall time.
     WaitWallTime,
 }
@@ -150,9 +152,14 @@ pub enum SessionError {
     /// The channel refused the command.
     #[error(transparent)]
     Command(#[from] CommandError),
-    /// The actor has ended (the session was deleted or the server is shutting down).
+    /// The actor has ended (the session was deleted, or stopped serving here).
     #[error("the session has ended")]
     Ended,
+    /// The actor was ended because the server is shutting down (see
+    /// [`SessionHandle::shutdown_for_server_stop`]): the session is saved and comes back with
+    /// the server.
+    #[error("the server is shutting down")]
+    ServerStopping,
 }
 
 /// Tunables of every session actor; see [`crate::Limits`] for the values and their meaning.
@@ -166,6 +173,8 @@ pub struct ActorConfig {
     pub wait_wall_time: Duration,
     /// IPO cycles per blocking chunk in fast pace.
     pub fast_chunk: u64,
+    /// Wall time a fast-paced command may run before it is stopped.
+    pub fast_wall_time: Duration,
 }
 
 /// A request to the actor with the channel for its reply.
@@ -204,6 +213,9 @@ pub struct SessionHandle {
     events: broadcast::Sender<Event>,
     settled: watch::Receiver<u64>,
     lag_micros: Arc<AtomicU64>,
+    /// Set before the actor is ended for a server shutdown, so requests that lose their reply
+    /// are told [`SessionError::ServerStopping`] rather than [`SessionError::Ended`].
+    server_stopping: Arc<AtomicBool>,
 }
 
 impl SessionHandle {
@@ -216,7 +228,16 @@ impl SessionHandle {
         let lag_micros = Arc::new(AtomicU64::new(0));
         let actor = actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone());
         tokio::spawn(actor.run(Box::new(channel), rx));
-        SessionHandle { id: id.into(), machine: machine.into(), requests, state, events, settled, lag_micros }
+        SessionHandle {
+            id: id.into(),
+            machine: machine.into(),
+            requests,
+            state,
+            events,
+            settled,
+            lag_micros,
+            server_stopping: Arc::default(),
+        }
     }
 
     /// The id the registry knows the session by.
@@ -260,8 +281,8 @@ impl SessionHandle {
     /// Sends a command and waits for its reply (with `drive.wait`, until the motion is over).
     pub async fn command(&self, action: Action, drive: Option<Drive>) -> Result<Outcome, SessionError> {
         let (reply, rx) = oneshot::channel();
-        self.requests.send(Request::Command { action, drive, reply }).await.map_err(|_| SessionError::Ended)?;
-        Ok(rx.await.map_err(|_| SessionError::Ended)??)
+        self.requests.send(Request::Command { action, drive, reply }).await.map_err(|_| self.ended())?;
+        Ok(rx.await.map_err(|_| self.ended())??)
     }
 
     /// Runs `query` on the channel inside the actor (between IPO cycles) and returns its result.
@@ -273,8 +294,13 @@ impl SessionHandle {
         let job = Box::new(move |channel: &mut Channel| {
             let _ = reply.send(query(channel));
         });
-        self.requests.send(Request::Query(Query(job))).await.map_err(|_| SessionError::Ended)?;
-        rx.await.map_err(|_| SessionError::Ended)
+        self.requests.send(Request::Query(Query(job))).await.map_err(|_| self.ended())?;
+        rx.await.map_err(|_| self.ended())
+    }
+
+    /// Why a request got no reply from the ended actor.
+    fn ended(&self) -> SessionError {
+        if self.server_stopping.load(Ordering::Acquire) { SessionError::ServerStopping } else { SessionError::Ended }
     }
 
     /// Ends the actor and waits until it has stopped. Waiting requests get
@@ -284,6 +310,13 @@ impl SessionHandle {
         if self.requests.send(Request::Shutdown { reply }).await.is_ok() {
             let _ = rx.await;
         }
+    }
+
+    /// As [`SessionHandle::shutdown`], for a server shutdown: waiting and later requests get
+    /// [`SessionError::ServerStopping`] (the session is saved and comes back with the server).
+    pub async fn shutdown_for_server_stop(&self) {
+        self.server_stopping.store(true, Ordering::Release);
+        self.shutdown().await;
     }
 }
 
@@ -302,6 +335,7 @@ mod tests {
             fast_sim_time: 3600.0,
             wait_wall_time: Duration::from_secs(600),
             fast_chunk: 1000,
+            fast_wall_time: Duration::from_secs(10),
         }
     }
 

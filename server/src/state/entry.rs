@@ -50,6 +50,8 @@ pub struct SessionEntry {
     /// Bytes of the session's stored programs (the server-wide budget and `/metrics`); set
     /// from the channel's program store whenever it changes.
     pub(super) program_bytes: Arc<AtomicUsize>,
+    /// Bytes of program text syntax-checked (`POST .../check`), a std mutex like `rate`.
+    check_rate: Mutex<RateLimiter>,
 }
 
 impl SessionEntry {
@@ -75,6 +77,11 @@ impl SessionEntry {
             last_active_ms: AtomicU64::new(0),
             saved_active_ms: AtomicU64::new(0),
             program_bytes: Arc::new(AtomicUsize::new(0)),
+            check_rate: Mutex::new(RateLimiter::new(
+                limits.check_bytes_per_second as f64,
+                limits.check_burst_bytes as f64,
+                Instant::now(),
+            )),
         }
     }
 
@@ -163,6 +170,20 @@ impl SessionEntry {
                 self.id(),
                 limits.commands_per_second,
                 limits.command_burst
+            ),
+            retry_after: Some(wait),
+        })
+    }
+
+    /// Counts a syntax check of `bytes` of program text against the session's check budget.
+    pub fn take_check(&self, bytes: usize, limits: &Limits) -> Result<(), ApiError> {
+        let result = self.check_rate.lock().unwrap_or_else(|e| e.into_inner()).take_n(bytes as f64, Instant::now());
+        result.map_err(|wait| ApiError::TooManyRequests {
+            message: format!(
+                "session `{}` has at most {} bytes of program text per second syntax-checked (bursts of {}); retry the check later",
+                self.id(),
+                limits.check_bytes_per_second,
+                limits.check_burst_bytes
             ),
             retry_after: Some(wait),
         })

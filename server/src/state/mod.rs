@@ -41,6 +41,12 @@ pub struct Config {
     pub node_id: Option<String>,
     /// How long this node's session leases last without renewal (`--lease-seconds`).
     pub lease_period: std::time::Duration,
+    /// Web page origins (`http://host:port`) besides the server's own that may call the API
+    /// from a browser (`--allow-origin`); see [`crate::site`].
+    pub allow_origins: Vec<String>,
+    /// Host names besides the bound address and localhost that the server answers to
+    /// (`--allow-host`, `NAME` or `NAME:PORT`); see [`crate::site`].
+    pub allow_hosts: Vec<String>,
 }
 
 impl Config {
@@ -54,6 +60,8 @@ impl Config {
             auth: AuthMode::Off,
             node_id: None,
             lease_period: storage::DEFAULT_LEASE_PERIOD,
+            allow_origins: Vec::new(),
+            allow_hosts: Vec::new(),
         }
     }
 }
@@ -263,6 +271,11 @@ impl AppState {
 
     pub fn limits(&self) -> &Limits {
         &self.shared.config.limits
+    }
+
+    /// How the server was set up.
+    pub fn config(&self) -> &Config {
+        &self.shared.config
     }
 
     pub fn auth(&self) -> AuthMode {
@@ -635,7 +648,7 @@ impl AppState {
         drop(guards);
         let all: Vec<Arc<SessionEntry>> = self.sessions().drain().map(|(_, e)| e).collect();
         for entry in all {
-            entry.handle.shutdown().await;
+            entry.handle.shutdown_for_server_stop().await;
         }
     }
 }
