@@ -62,7 +62,10 @@ impl Interpreter {
                 self.statement(stmt, &block, at, cfg, out)?;
             }
             None => {
-                self.check_unbound(block.line)?;
+                // Comment lines before a subprogram's PROC line leave its call unbound.
+                if !block.words.is_empty() || block.number.is_some() || block.label.is_some() {
+                    self.check_unbound(block.line)?;
+                }
                 self.prepare_block(&block, cfg, programs, out)?;
             }
         }

@@ -1,6 +1,7 @@
 //! Line-by-line parser for the Sinumerik block syntax. Errors are collected per line and the
 //! parser goes on, so one run reports every syntax error of a program.
 
+use super::archive;
 use super::ast::*;
 use super::cursor::Cursor;
 use super::plain_line::is_plain_line;
@@ -26,11 +27,28 @@ pub fn parse(source: &str) -> Program {
 pub fn check(source: &str) -> Vec<Diagnostic> {
     let mut structure = Structure::default();
     let mut out = Vec::new();
+    // An NC block was seen: an archive header after it starts a second program.
+    let mut blocks = false;
     for (line, offset, result) in (Lines { build: false, ..Lines::new(source, 0, 1) }) {
         match result {
             Err((col, message)) => out.push(Diagnostic::syntax(line, offset, col, message)),
-            Ok(Some(Block { stmt: Some(stmt), .. })) => out.extend(structure.feed(&stmt, line, offset)),
-            Ok(_) => {}
+            Ok(None) if blocks && archive::is_header_line(&source[offset..]) => out.push(Diagnostic::syntax(
+                line,
+                offset,
+                0,
+                "a second archive header: an archive of several programs is stored program by program".into(),
+            )),
+            Ok(Some(Block { stmt: Some(stmt), .. })) => {
+                blocks = true;
+                out.extend(structure.feed(&stmt, line, offset));
+            }
+            Ok(Some(_)) => blocks = true,
+            // A plain line is passed unparsed; blank, comment and header lines are no blocks.
+            Ok(None) if !blocks => {
+                let text = source[offset..].split('\n').next().unwrap_or("").trim_start();
+                blocks = !(text.is_empty() || text.starts_with(';') || archive::is_header_line(text));
+            }
+            Ok(None) => {}
         }
     }
     out.extend(structure.finish());
@@ -149,6 +167,10 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> PResult<Option<Block
 /// its words, label and comment, and nothing is copied for them. A block's words take
 /// `spare`'s allocation (an empty line leaves it there).
 fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec<Word>) -> PResult<Option<Block>> {
+    if archive::is_header_line(text) {
+        // `%_N_NAME_MPF`: the archive header names the program; it is no block.
+        return archive::header(text).map(|_| None).map_err(|e| (0, e));
+    }
     let (code, comment) = split_comment(text);
     let mut cur = Cursor::new(code);
     let mut block = Block {
