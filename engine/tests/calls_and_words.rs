@@ -97,3 +97,189 @@ fn an_archive_is_stored_program_by_program_under_its_headers() {
     assert!(ch.store_archive("%_N_OK_MPF\nM30\n%_N_BAD\n").is_err());
     assert!(ch.stored_program("OK").is_none());
 }
+
+// --- 2. Subprogram calls ------------------------------------------------------------------
+
+/// A subprogram that moves 10 in X incrementally and counts its runs in R1.
+const STEP10: &str = "G91 G1 X10 F2000\nG90\nR1=R1+1\nM17\n";
+
+#[test]
+fn l_p_runs_the_subprogram_p_times() {
+    // L10 P3: three passes of G91 X10 from X0 end at X30 (R1 counts 3).
+    let ch = run("G90 G0 X0\nL10 P3\nM30\n", &[("L10", STEP10)]);
+    ok(&ch);
+    assert_eq!((wcs(&ch, "X"), ch.r_param(1)), (30.0, 3.0));
+}
+
+#[test]
+fn l_numbers_keep_their_leading_zeros() {
+    // L010 and L10 are two programs (the Programming Manual: leading zeros count).
+    let ch = run("L010\nL10\nM30\n", &[("L10", "R1=R1+1\nM17\n"), ("L010", "R2=5\nM17\n")]);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (1.0, 5.0));
+    assert_eq!(alarm(&run("L0999\nM30\n", &[])), (14011, Some(1)));
+}
+
+#[test]
+fn l_with_arguments_binds_the_proc_parameters() {
+    // PROC L140(REAL A, REAL B): R1 = A*10 + B = 21; an omitted argument keeps 0.
+    let sub = "PROC L140(REAL A, REAL B)\nR1=A*10+B\nR2=R2+1\nM17\n";
+    let ch = run("L140(2, 1)\nR3=R1\nL140(, 4)\nM30\n", &[("L140", sub)]);
+    ok(&ch);
+    assert_eq!((ch.r_param(3), ch.r_param(1), ch.r_param(2)), (21.0, 4.0, 2.0));
+}
+
+#[test]
+fn named_calls_with_passes_call_pcall_and_extcall_reach_the_stored_program() {
+    // Each call adds one run: CONTOUR P2 (2), CALL (1), PCALL with path (1), EXTCALL (1),
+    // CALL of a name held in a STRING variable (1): 6 runs, X = 60.
+    let main = "DEF STRING[16] PRG=\"CONTOUR\"\nG0 X0\nCONTOUR P2\nCALL \"CONTOUR\"\n\
+                PCALL /_N_WKS_DIR/_N_PLATE_WPD/_N_CONTOUR_SPF\nEXTCALL \"/_N_SPF_DIR/_N_CONTOUR_SPF\"\n\
+                CALL PRG\nM30\n";
+    let ch = run(main, &[("CONTOUR", STEP10)]);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), wcs(&ch, "X")), (6.0, 60.0));
+}
+
+#[test]
+fn pcall_passes_its_arguments() {
+    let sub = "PROC SHAFT(REAL D, INT N)\nR1=D*N\nRET\n";
+    let ch = run("PCALL /_N_WKS_DIR/_N_SHAFT_WPD/SHAFT_SPF(2.5, 4)\nM30\n", &[("SHAFT", sub)]);
+    ok(&ch);
+    assert_eq!(ch.r_param(1), 10.0);
+}
+
+#[test]
+fn extern_declarations_check_the_arguments_of_a_call() {
+    let sub = "PROC POCKET(REAL DEPTH, VAR REAL DONE)\nDONE=DONE+DEPTH\nRET\n";
+    // Declared and called right: the VAR parameter writes back (0 + 3, then + 4).
+    let ch =
+        run("EXTERN POCKET(REAL, VAR REAL)\nDEF REAL D\nPOCKET(3, D)\nPOCKET(4, D)\nR1=D\nM30\n", &[("POCKET", sub)]);
+    ok(&ch);
+    assert_eq!(ch.r_param(1), 7.0);
+    // More arguments than declared: 12340 at the call, before the subprogram runs.
+    let ch = run("EXTERN POCKET(REAL, VAR REAL)\nDEF REAL D\nPOCKET(3, D, 1)\nM30\n", &[("POCKET", sub)]);
+    assert_eq!(alarm(&ch), (12340, Some(3)));
+    // A value for a VAR parameter: 12320.
+    let ch = run("EXTERN POCKET(REAL, VAR REAL)\nPOCKET(3, 4)\nM30\n", &[("POCKET", sub)]);
+    assert_eq!(alarm(&ch), (12320, Some(2)));
+}
+
+#[test]
+fn ret_m17_m2_and_m30_return_from_a_subprogram() {
+    // (Names like A1 would be axis words: the subprograms are called RA, RB, RC, RD.)
+    let subs = [("RA", "R1=R1+1\nRET\n"), ("RB", "R1=R1+1\nM17\n"), ("RC", "R1=R1+1\nM2\n"), ("RD", "R1=R1+1\nM30\n")];
+    let ch = run("RA\nRB\nRC\nRD\nR2=R1\nM30\nR2=99\n", &subs);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (4.0, 4.0));
+}
+
+#[test]
+fn call_block_runs_a_section_of_the_current_or_another_program() {
+    // CALL BLOCK A TO B in this program: R1 += 1 + 10; the section of SUB: R2 = 0 + 10 + 100.
+    let main = "GOTOF GO\nA: R1=R1+1\nB: R1=R1+10\nGO: CALL BLOCK A TO B\nCALL \"SUB\" BLOCK S1 TO S2\nM30\n";
+    let sub = "PROC SUB\nR2=1000\nS1: R2=R2+10\nS2: R2=R2+100\nR2=R2+5\nM17\n";
+    let ch = run(main, &[("SUB", sub)]);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (11.0, 110.0));
+    assert_eq!(alarm(&run("CALL BLOCK NOWHERE TO B\nB: M30\n", &[])), (14080, Some(1)));
+}
+
+// --- 3. MCALL -----------------------------------------------------------------------------
+
+#[test]
+fn mcall_calls_after_every_block_with_path_motion_until_mcall_alone() {
+    // Modal DRILL(2): called after X10 and X20 Y5 (R1 = 2 + 2), not after R5=1 (no motion) nor
+    // after X30 (MCALL ended it). Inside DRILL, its own Z moves call nothing (R2 counts 2 runs).
+    let drill = "PROC DRILL(REAL INC)\nR1=R1+INC\nR2=R2+1\nG0 Z-1\nG0 Z0\nM17\n";
+    let main = "G0 X0 Y0\nMCALL DRILL(R10)\nX10\nX20 Y5\nR5=1\nMCALL\nX30\nM30\n";
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.store_program("DRILL", drill).unwrap();
+    ch.run_program(&format!("R10=2\n{main}")).unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2), wcs(&ch, "X")), (4.0, 2.0, 30.0));
+}
+
+#[test]
+fn mcall_arguments_are_taken_once_and_an_l_program_can_be_modal() {
+    // R10 changes after the MCALL: each call still gets 1. MCALL L30 replaces the modal call.
+    let subs = [("HOLE", "PROC HOLE(REAL V)\nR1=R1+V\nM17\n"), ("L30", "R2=R2+1\nM17\n")];
+    let ch = run("R10=1\nMCALL HOLE(R10)\nR10=50\nG0 X1\nX2\nMCALL L30\nX3\nX4\nX5\nM30\n", &subs);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (2.0, 3.0));
+}
+
+#[test]
+fn mcall_of_a_missing_program_is_14011_and_the_modal_call_ends_with_the_program() {
+    assert_eq!(alarm(&run("MCALL L77\nM30\n", &[])), (14011, Some(1)));
+    // After M30 the next program starts without a modal call.
+    let mut ch = run("MCALL L1\nM30\n", &[("L1", "R1=R1+1\nM17\n")]);
+    ch.run_program("G0 X1\nM30\n").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    ok(&ch);
+    assert_eq!(ch.r_param(1), 0.0);
+}
+
+#[test]
+fn mcall_in_a_subprogram_ends_with_its_level() {
+    // SUB sets MCALL L1 and moves once (R1 = 1); back in the main program X5 calls nothing.
+    let subs = [("SUB", "MCALL L1\nG0 X2\nM17\n"), ("L1", "R1=R1+1\nM17\n")];
+    let ch = run("SUB\nG0 X5\nM30\n", &subs);
+    ok(&ch);
+    assert_eq!(ch.r_param(1), 1.0);
+}
+
+// --- 4. Program section repetition --------------------------------------------------------
+
+#[test]
+fn repeat_label_runs_the_section_up_to_the_repeat_p_more_times() {
+    // BEGIN..the block before REPEAT passes once, then P=3 more: X 4 × 1 incremental = 4.
+    let ch = run("G0 X0\nBEGIN: G91 X1\nR1=R1+1\nREPEAT BEGIN P=3\nG90\nM30\n", &[]);
+    ok(&ch);
+    assert_eq!((wcs(&ch, "X"), ch.r_param(1)), (4.0, 4.0));
+}
+
+#[test]
+fn repeat_between_two_labels_and_repeatb_repeat_their_blocks() {
+    // START..FIN (both included) 1 + 2 runs: 3 × 111 = 333; REPEATB MIDDLE P=4: + 40.
+    // With block numbers: N20..N30 once more: + 11.
+    let main = "START: R1=R1+1\nMIDDLE: R1=R1+10\nFIN: R1=R1+100\nREPEAT START FIN P=2\nREPEATB MIDDLE P=4\n\
+                N20 R2=R2+1\nN30 R2=R2+10\nREPEAT N20 N30\nM30\n";
+    let ch = run(main, &[]);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (373.0, 22.0));
+}
+
+#[test]
+fn repeat_with_endlabel_ends_the_section_there() {
+    // The section SEC..ENDLABEL (2 blocks, + 1 each) runs twice from the REPEAT after DONE;
+    // the first pass was jumped over: R1 = 4. REPEATB of a label after it searches forward.
+    let main = "GOTOF DONE\nSEC: R1=R1+1\nENDLABEL: R1=R1+1\nR1=R1+100\nDONE: REPEAT SEC P=2\n\
+                REPEATB LATER P=2\nM30\nLATER: R2=R2+1\n";
+    let ch = run(main, &[]);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (4.0, 2.0));
+}
+
+#[test]
+fn repeat_sections_nest_and_may_hold_calls() {
+    // Inner: A..B (R1 += 1) 1 + 1 runs per outer run; outer: OUT..the REPEAT of the outer
+    // section, 1 + 2 runs, each with one L10 (X + 10): R1 = 3 × 2 = 6, X = 30.
+    let main = "G0 X0\nOUT: L10\nA: R1=R1+1\nB: REPEAT A P=1\nREPEAT OUT P=2\nM30\n";
+    let ch = run(main, &[("L10", "G91 G0 X10\nG90\nM17\n")]);
+    ok(&ch);
+    assert_eq!((ch.r_param(1), wcs(&ch, "X")), (6.0, 30.0));
+}
+
+#[test]
+fn repeat_errors_name_their_block() {
+    assert_eq!(alarm(&run("R1=1\nREPEAT NOWHERE P=2\nM30\n", &[])), (14080, Some(2)));
+    assert_eq!(alarm(&run("A: R1=1\nREPEAT A P=0\nM30\n", &[])).1, Some(2));
+    // A label after the REPEAT without ENDLABEL.
+    assert_eq!(alarm(&run("REPEAT LATER P=2\nM30\nLATER: R1=1\n", &[])), (14080, Some(1)));
+}

@@ -207,6 +207,8 @@ pub struct Interpreter {
     flow: Option<Flow>,
     /// Subprogram calls in progress, outermost first.
     calls: Vec<CallFrame>,
+    /// The modal call (MCALL) and EXTERN declarations.
+    call_state: calls::CallState,
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
     /// not applied yet.
     data_writes: Vec<(u32, String)>,
@@ -249,6 +251,7 @@ impl Interpreter {
             spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
+            call_state: Default::default(),
             data_writes: Vec::new(),
             warnings: Vec::new(),
             held: None,
@@ -271,6 +274,7 @@ impl Interpreter {
         self.modal = Modal::reset(cfg);
         self.flow = None;
         self.calls.clear();
+        self.call_state = Default::default();
         self.held = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
@@ -299,6 +303,7 @@ impl Interpreter {
         self.pos = *pos;
         self.vars.reset_locals();
         self.calls.clear();
+        self.call_state = Default::default();
         self.flow = Some(Flow::new(text.into()));
     }
 
@@ -559,6 +564,8 @@ impl Interpreter {
             let comp = self.compensation(cfg, words, line)?;
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         }
+        // The block moves on the path: a modal call (MCALL) follows it.
+        let mut path_motion = false;
         if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
@@ -577,6 +584,7 @@ impl Interpreter {
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
+            path_motion = true;
             // One set of limits for the move and its compensation (same configuration).
             let limits = AxisLimit::for_channel(cfg);
             let (mv, feed) = self.motion(words, cfg, &limits, line)?;
@@ -611,10 +619,7 @@ impl Interpreter {
         if let Some(goto) = &words.goto {
             self.jump(goto, cfg, line)?;
         }
-        if let Some((name, args)) = &words.call {
-            self.call(name, args, words.repeat.unwrap_or(1), programs, cfg, line)?;
-        }
-        Ok(())
+        self.block_calls(words, path_motion, programs, cfg, line)
     }
 
     fn select_tool(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
