@@ -283,3 +283,66 @@ fn repeat_errors_name_their_block() {
     // A label after the REPEAT without ENDLABEL.
     assert_eq!(alarm(&run("REPEAT LATER P=2\nM30\nLATER: R1=1\n", &[])), (14080, Some(1)));
 }
+
+// --- 5. Everyday words --------------------------------------------------------------------
+
+#[test]
+fn feed_profiles_drf_single_block_display_and_group_markers_are_accepted() {
+    // FLIN/FCUB run as FNORM's constant feed: 100 mm at F3000 take 2 s plus one ramp (50/3000 s)
+    // as with FNORM.
+    for profile in ["FNORM", "FLIN", "FCUB"] {
+        let main = format!(
+            "{profile}\nDRFOF\nSBLOF\nDISPLOF\nGROUP_BEGIN(0,\"Contour\",0,0)\nG1 X100 F3000\nGROUP_END(0,0)\nSBLON\nDISPLON\nM30\n"
+        );
+        let ch = run(&main, &[]);
+        ok(&ch);
+        assert_eq!(wcs(&ch, "X"), 100.0);
+        assert!((ch.time() - (2.0 + 50.0 / 3000.0)).abs() < 0.01, "{profile}: {}", ch.time());
+    }
+}
+
+#[test]
+fn operate_markers_are_comments() {
+    let ch = run(";#SM Z:1\n;*RO*\n;*HD*\nG0 X3\n;#End contour definition\nM30\n", &[]);
+    ok(&ch);
+    assert_eq!(wcs(&ch, "X"), 3.0);
+}
+
+#[test]
+fn h_functions_and_m_functions_with_address_extension_are_read() {
+    let ch = run("H7\nH=5\nH2=1.5\nM1=8\nM2=77\nG0 X1\nM30\n", &[]);
+    ok(&ch);
+    // On the lathe, spindle 1 is the master spindle: M1=3 turns it like M3, M1=5 stops it.
+    let mut lathe = Channel::from_preset("lathe-2axis", "").unwrap();
+    lathe.run_program("M1=3 S500\nG4 F0.5\nM1=5\nM30\n").unwrap();
+    while lathe.is_busy() {
+        lathe.step();
+    }
+    ok(&lathe);
+    // Spindle 2 is not the master spindle (the only one commanded); M1=30 is no program end.
+    let mut lathe = Channel::from_preset("lathe-2axis", "").unwrap();
+    lathe.run_program("M2=3 S500\nM30\n").unwrap();
+    while lathe.is_busy() {
+        lathe.step();
+    }
+    assert_eq!(alarm(&lathe), (12550, Some(1)));
+    assert_eq!(alarm(&run("G0 X1\nM1=30\n", &[])), (12550, Some(2)));
+}
+
+// --- 6. Names the control reserves and NCTwin does not model ------------------------------
+
+#[test]
+fn an_unmodelled_reserved_name_is_12550_naming_it_and_its_line() {
+    for (word, name) in [
+        ("WORKPIECE(,\"\",,\"BOX\",112,0,-50,-80,0,0,100,100)", "WORKPIECE"),
+        ("CYCLE832(0.01,3,1)", "CYCLE832"),
+        ("R1=$MN_INTERPOLATOR_CYCLE", "$MN_INTERPOLATOR_CYCLE"),
+        ("ACTBLOCNO", "ACTBLOCNO"),
+    ] {
+        let ch = run(&format!("G0 X2\n{word}\nG0 X3\nM30\n"), &[]);
+        let s = ch.snapshot();
+        assert_eq!(alarm(&ch), (12550, Some(2)), "{word}");
+        assert!(s.alarms[0].message.contains(name), "{word}: {}", s.alarms[0].message);
+        assert_eq!(wcs(&ch, "X"), 2.0);
+    }
+}

@@ -12,6 +12,7 @@ mod corrtrafo;
 mod delobj;
 mod effect_calls;
 mod eval;
+mod everyday;
 mod flow;
 pub mod frame;
 mod frame_cache;
@@ -534,6 +535,13 @@ impl Interpreter {
 
         // Spindle before motion.
         let old_direction = self.spindles.master_direction();
+        if let Some(n) = words.spindle_ext {
+            let master = self.spindles.master().and_then(|k| cfg.axis(k).spindle);
+            // Without a master spindle M3 does nothing, and so does M<n>=3.
+            if master.is_some_and(|m| m != n) {
+                return Err(Alarm::unknown_name(line, &format!("M{n}= (spindle {n} is not the master spindle)")));
+            }
+        }
         if let Some(dir) = words.spindle_dir {
             self.spindles.set_master_direction(dir);
             // M3/M4/M5 return a positioned spindle to speed control.

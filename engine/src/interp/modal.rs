@@ -296,6 +296,8 @@ pub(super) struct Words {
     pub tool: Option<u32>,
     pub edge: Option<u32>,
     pub spindle_dir: Option<i8>,
+    /// The spindle number of an `M<n>=3/4/5` (address extension).
+    pub spindle_ext: Option<u32>,
     /// SETMS(n): spindle n becomes the master spindle (`Some(None)`: SETMS, back to MD20090).
     pub set_master: Option<Option<u32>>,
     pub stop: Option<StopKind>,
@@ -492,6 +494,7 @@ pub(super) fn collect(
                 set_call(w, name.clone(), args.clone(), line)?
             }
             Word::Keyword { name, args } if name == "MCALL" && args.is_empty() => w.mcall = true,
+            Word::Keyword { name, args } if super::everyday::is_inert_keyword(name, !args.is_empty()) => {}
             Word::Keyword { name, args } if name == "PCALL" => {
                 let Some(Expr::Str(path)) = args.first() else {
                     return Err(Alarm::syntax(line, "PCALL needs a program path"));
@@ -662,6 +665,17 @@ pub(super) fn collect(
                     "TU" => w.tu = Some(whole("TU=")?),
                     // `P3`: three runs of the block's subprogram call.
                     "P" => w.repeat = Some(whole("P")?),
+                    _ if super::everyday::extended_address(name).is_some() => {
+                        let Some((letter, ext)) = super::everyday::extended_address(name) else { continue };
+                        if letter == b'M' {
+                            if let Some(dir) = super::everyday::extended_m(ext, v, line)? {
+                                if w.spindle_dir.is_some() {
+                                    return Err(Alarm::conflicting_functions(line, "M3/M4/M5"));
+                                }
+                                (w.spindle_dir, w.spindle_ext) = (Some(dir), Some(ext));
+                            }
+                        }
+                    }
                     "THETA" => w.ori.theta = Some((v, value.mode == Some(CoordMode::Ic))),
                     _ if orient::is_address(name) => {
                         w.ori.address(name, v);
@@ -787,7 +801,8 @@ pub(super) fn assign(
     }
     if vars.get(name).is_none() {
         let axis = cfg.program_axis(name);
-        if !indices.is_empty() || axis.is_none() && !is_nc_address(name) {
+        let extended = || super::everyday::extended_address(name).is_some();
+        if !indices.is_empty() || axis.is_none() && !is_nc_address(name) && !extended() {
             return Err(Alarm::unknown_name(line, name));
         }
         return Ok(Assigned::Address(axis));
