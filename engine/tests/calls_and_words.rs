@@ -62,7 +62,8 @@ fn a_bad_header_and_a_second_program_are_refused_before_the_run() {
     let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
     let Err(CommandError::Syntax { errors, .. }) = ch.run_program("%_N_PART1_TXT\nG0 X1\n") else { panic!() };
     assert_eq!((errors[0].alarm, errors[0].line), (12080, 1));
-    // A second header after NC blocks starts another program of an archive.
+    // A second header after NC blocks starts another program of an archive (a text in
+    // archive form is searched for one).
     let Err(CommandError::Syntax { errors, .. }) = ch.run_program("%_N_A_MPF\nG0 X1\nM30\n%_N_B_MPF\nG0 X2\n") else {
         panic!()
     };

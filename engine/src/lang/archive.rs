@@ -64,6 +64,28 @@ pub fn header(line: &str) -> Result<ArchiveHeader, String> {
     Err(bad())
 }
 
+/// The first header line (1-based line, offset) that follows an NC block in a text in archive
+/// form (its first line that is not blank or a comment is a header): the start of a second
+/// program, which a program text may not hold. A text that does not start with a header is
+/// not searched (generated programs of any length pay nothing).
+pub fn second_header(text: &str) -> Option<(u32, usize)> {
+    let lead = text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with(';'))?;
+    if !is_header_line(lead) {
+        return None;
+    }
+    let mut blocks = false;
+    let mut offset = 0;
+    for (i, line) in text.split_inclusive('\n').enumerate() {
+        if blocks && is_header_line(line) {
+            return Some((i as u32 + 1, offset));
+        }
+        let code = line.trim();
+        blocks |= !(code.is_empty() || code.starts_with(';') || is_header_line(code));
+        offset += line.len();
+    }
+    None
+}
+
 /// Splits an archive text into its programs: each header with the text up to the next header
 /// (lines before the first header, comments, belong to the first program). `None` if the text
 /// has no header line at all; `Err` names the first bad header line (1-based line, message).
@@ -119,6 +141,9 @@ mod tests {
         assert!(parts[0].1.starts_with("; archive\n%_N_MAIN_MPF") && parts[0].1.ends_with("M30\n"));
         assert_eq!(parts[1].1, "%_N_L10_SPF\n;$PATH=/_N_SPF_DIR\nR1=1\nM17\n");
         assert!(split("G0 X1\n").is_none());
+        assert_eq!(second_header(text), Some((6, 50)));
+        assert_eq!(second_header("; c\n%_N_A_MPF\n;$PATH=/_N_MPF_DIR\nM30\n"), None);
+        assert_eq!(second_header("G0 X1\n%_N_B_MPF\n"), None);
         assert_eq!(split("%_N_A_MPF\n%BAD\n").unwrap().unwrap_err().0, 2);
     }
 }

@@ -27,29 +27,17 @@ pub fn parse(source: &str) -> Program {
 pub fn check(source: &str) -> Vec<Diagnostic> {
     let mut structure = Structure::default();
     let mut out = Vec::new();
-    // An NC block was seen: an archive header after it starts a second program.
-    let mut blocks = false;
     for (line, offset, result) in (Lines { build: false, ..Lines::new(source, 0, 1) }) {
         match result {
             Err((col, message)) => out.push(Diagnostic::syntax(line, offset, col, message)),
-            Ok(None) if blocks && archive::is_header_line(&source[offset..]) => out.push(Diagnostic::syntax(
-                line,
-                offset,
-                0,
-                "a second archive header: an archive of several programs is stored program by program".into(),
-            )),
-            Ok(Some(Block { stmt: Some(stmt), .. })) => {
-                blocks = true;
-                out.extend(structure.feed(&stmt, line, offset));
-            }
-            Ok(Some(_)) => blocks = true,
-            // A plain line is passed unparsed; blank, comment and header lines are no blocks.
-            Ok(None) if !blocks => {
-                let text = source[offset..].split('\n').next().unwrap_or("").trim_start();
-                blocks = !(text.is_empty() || text.starts_with(';') || archive::is_header_line(text));
-            }
-            Ok(None) => {}
+            Ok(Some(Block { stmt: Some(stmt), .. })) => out.extend(structure.feed(&stmt, line, offset)),
+            Ok(_) => {}
         }
+    }
+    // Apart from the line loop, which stays as lean as it was: only texts in archive form.
+    if let Some((line, offset)) = archive::second_header(source) {
+        let message = "a second archive header: an archive of several programs is stored program by program";
+        out.push(Diagnostic::syntax(line, offset, 0, message.into()));
     }
     out.extend(structure.finish());
     out.sort_by_key(|d| (d.line, d.column));
