@@ -667,13 +667,13 @@ pub(super) fn collect(
                     "P" => w.repeat = Some(whole("P")?),
                     _ if super::everyday::extended_address(name).is_some() => {
                         let Some((letter, ext)) = super::everyday::extended_address(name) else { continue };
-                        if letter == b'M' {
-                            if let Some(dir) = super::everyday::extended_m(ext, v, line)? {
-                                if w.spindle_dir.is_some() {
-                                    return Err(Alarm::conflicting_functions(line, "M3/M4/M5"));
-                                }
-                                (w.spindle_dir, w.spindle_ext) = (Some(dir), Some(ext));
+                        if letter == b'M'
+                            && let Some(dir) = super::everyday::extended_m(ext, v, line)?
+                        {
+                            if w.spindle_dir.is_some() {
+                                return Err(Alarm::conflicting_functions(line, "M3/M4/M5"));
                             }
+                            (w.spindle_dir, w.spindle_ext) = (Some(dir), Some(ext));
                         }
                     }
                     "THETA" => w.ori.theta = Some((v, value.mode == Some(CoordMode::Ic))),

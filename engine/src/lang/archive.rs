@@ -55,10 +55,11 @@ pub fn header(line: &str) -> Result<ArchiveHeader, String> {
         return if valid_name(name) { Ok(ArchiveHeader { name: name.to_string(), kind }) } else { Err(bad()) };
     }
     for (prefix, kind) in [("MPF", ProgramKind::Main), ("SPF", ProgramKind::Sub)] {
-        if let Some(n) = body.strip_prefix(prefix).map(str::trim_start) {
-            if !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) {
-                return Ok(ArchiveHeader { name: format!("{prefix}{n}"), kind });
-            }
+        if let Some(n) = body.strip_prefix(prefix).map(str::trim_start)
+            && !n.is_empty()
+            && n.bytes().all(|b| b.is_ascii_digit())
+        {
+            return Ok(ArchiveHeader { name: format!("{prefix}{n}"), kind });
         }
     }
     Err(bad())
@@ -86,10 +87,13 @@ pub fn second_header(text: &str) -> Option<(u32, usize)> {
     None
 }
 
+/// One program of an archive: its header and its text (header line included).
+pub type Archived<'a> = (ArchiveHeader, &'a str);
+
 /// Splits an archive text into its programs: each header with the text up to the next header
 /// (lines before the first header, comments, belong to the first program). `None` if the text
 /// has no header line at all; `Err` names the first bad header line (1-based line, message).
-pub fn split(text: &str) -> Option<Result<Vec<(ArchiveHeader, &str)>, (u32, String)>> {
+pub fn split(text: &str) -> Option<Result<Vec<Archived<'_>>, (u32, String)>> {
     let mut starts = Vec::new();
     let mut offset = 0;
     for (i, line) in text.split_inclusive('\n').enumerate() {
