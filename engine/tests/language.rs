@@ -1,4 +1,4 @@
-//! Fixture programs under `tests/programs/lang/`, each carrying its expected results in
+//! Fixture programs under `tests/programs/lang/` and `tests/programs/shop/`, each carrying its expected results in
 //! `; expect ...` comments worked out by hand:
 //!
 //! - `; expect R1=5`            R parameter value
@@ -140,10 +140,21 @@ fn run_fixture(path: &Path) -> Result<(), String> {
 
 #[test]
 fn every_language_fixture_gives_its_expected_results() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/programs/lang");
+    run_folder("tests/programs/lang", 40);
+}
+
+/// The shop corpus: programs in the style of CAM posts and shop floors (archive headers,
+/// L subprograms, MCALL, section repetition, EXTERN, PCALL/EXTCALL, H and M functions).
+#[test]
+fn every_shop_program_gives_its_expected_end_state() {
+    run_folder("tests/programs/shop", 10);
+}
+
+fn run_folder(folder: &str, at_least: usize) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
     let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
     files.sort();
-    assert!(files.len() >= 40, "only {} fixtures", files.len());
+    assert!(files.len() >= at_least, "only {} fixtures", files.len());
     let failures: Vec<String> = files
         .iter()
         .filter_map(|f| run_fixture(f).err().map(|e| format!("{}: {e}", f.file_name().unwrap().to_string_lossy())))

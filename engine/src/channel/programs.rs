@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use super::{Channel, CommandError};
+use crate::lang;
 
 impl Channel {
     /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
@@ -12,6 +13,31 @@ impl Channel {
         CommandError::check(text)?;
         self.programs.insert(name.clone(), Arc::from(text));
         Ok(name)
+    }
+
+    /// Stores every program of an archive text (`%_N_NAME_MPF` / `_SPF` / `_INI` headers, each
+    /// program up to the next header) under the name of its header, header line included;
+    /// returns the names in order. All or nothing: a text without a header, a bad header or a
+    /// program with syntax errors stores none of them.
+    pub fn store_archive(&mut self, text: &str) -> Result<Vec<String>, CommandError> {
+        let parts = match lang::archive::split(text) {
+            None => return Err(CommandError::Invalid("no archive header (%_N_NAME_MPF) in the text".into())),
+            Some(Err((line, message))) => return Err(CommandError::Invalid(format!("line {line}: {message}"))),
+            Some(Ok(parts)) => parts,
+        };
+        let mut checked = Vec::with_capacity(parts.len());
+        for (header, body) in parts {
+            let name = program_name(&header.name)?;
+            CommandError::check(body)?;
+            checked.push((name, body));
+        }
+        Ok(checked
+            .into_iter()
+            .map(|(name, body)| {
+                self.programs.insert(name.clone(), Arc::from(body));
+                name
+            })
+            .collect())
     }
 
     /// A stored program's text.

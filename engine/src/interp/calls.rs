@@ -1,5 +1,11 @@
 //! Subprogram calls: program levels, parameters by value (`REAL A`) and by reference
 //! (`VAR REAL A`), repetitions (`P=3`), and the return (RET, M17, M2/M30 or the end of text).
+//! `targets.rs`: the program a call word names and the EXTERN checks; `modal_call.rs`: MCALL;
+//! `section.rs`: REPEAT/REPEATB and CALL BLOCK.
+
+mod modal_call;
+mod section;
+pub(super) mod targets;
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -17,6 +23,14 @@ use crate::machine_data::MachineConfig;
 
 /// Stored programs by upper-case name.
 pub type Programs = BTreeMap<String, Arc<str>>;
+
+/// What calls keep beside the program levels: the modal call (MCALL) and the EXTERN
+/// declarations met so far. Both end with the program.
+#[derive(Debug, Clone, Default)]
+pub(super) struct CallState {
+    pub mcall: Option<modal_call::ModalCall>,
+    pub externs: targets::Externs,
+}
 
 /// Program levels: the main program plus up to 15 nested subprogram calls.
 pub const MAX_LEVELS: usize = 16;
@@ -50,8 +64,9 @@ pub(super) struct CallFrame {
     /// Where the caller goes on.
     caller: Flow,
     text: ProgramText,
-    /// Argument values, bound to the PROC parameters when the subprogram starts.
-    args: Vec<Value>,
+    /// Argument values, bound to the PROC parameters when the subprogram starts (`None`: left
+    /// out, the parameter keeps its type's initial value).
+    args: Vec<Option<Value>>,
     /// For each argument, the caller's variable it came from (for VAR parameters).
     sources: Vec<Option<Lvalue>>,
     /// (parameter, caller variable) pairs written back on return.
@@ -82,12 +97,18 @@ impl Interpreter {
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }
+        self.call_state.externs.check(name, args, line)?;
         let sys = sys_view!(self, cfg);
         let ctx = Ctx { vars: &self.vars, sys: &sys };
         let mut values = Vec::new();
         let mut sources = Vec::new();
         for a in args {
-            values.push(eval(a, &ctx, line)?);
+            if targets::is_omitted(a) {
+                values.push(None);
+                sources.push(None);
+                continue;
+            }
+            values.push(Some(eval(a, &ctx, line)?));
             sources.push(match a {
                 Expr::Var { name, indices } if !name.starts_with('$') => {
                     Some(Lvalue { name: name.clone(), indices: evaluated(indices, &ctx, line)? })
@@ -141,13 +162,13 @@ impl Interpreter {
         let mut by_reference = Vec::new();
         for (i, p) in params.iter().enumerate() {
             let mut var = Variable::new(p.ty, Vec::new());
-            if let Some(v) = args.get(i) {
+            if let Some(Some(v)) = args.get(i) {
                 var.data[0] = v.clone().convert(p.ty).map_err(|e| Alarm::type_error(line, &e.0))?;
             }
             if p.by_reference {
                 match sources.get(i).cloned().flatten() {
                     Some(src) => by_reference.push((p.name.clone(), src)),
-                    None if i < args.len() => {
+                    None if args.get(i).is_some_and(Option::is_some) => {
                         return Err(Alarm::not_a_variable(line, &p.name));
                     }
                     None => {}
@@ -219,6 +240,7 @@ impl Interpreter {
             run.return_to(&mut caller);
         }
         self.flow = Some(caller);
+        self.end_level_modal_call();
         self.write_back(&results, cfg, line)?;
         Ok(true)
     }
@@ -239,4 +261,33 @@ impl Interpreter {
 
 fn evaluated(indices: &[Expr], ctx: &Ctx, line: u32) -> Result<Vec<Expr>, Alarm> {
     indices.iter().map(|e| Ok(Expr::Number(eval(e, ctx, line)?.as_f64().unwrap_or(0.0)))).collect()
+}
+
+impl Interpreter {
+    /// The calls at the end of a block: MCALL selects or ends the modal call, CALL BLOCK runs a
+    /// section, a call word calls its subprogram; a block with path motion and no call of its
+    /// own calls the active modal subprogram.
+    pub(super) fn block_calls(
+        &mut self,
+        words: &super::modal::Words,
+        path_motion: bool,
+        programs: &Programs,
+        cfg: &MachineConfig,
+        line: u32,
+    ) -> Result<(), Alarm> {
+        if words.mcall {
+            return self.set_modal_call(words.call.as_ref(), programs, cfg, line);
+        }
+        if let Some(section) = &words.section_call {
+            let (program, start, end) = &**section;
+            return self.call_section(program.as_deref(), start, end, programs, cfg, line);
+        }
+        if let Some((name, args)) = &words.call {
+            return self.call(name, args, words.repeat.unwrap_or(1), programs, cfg, line);
+        }
+        if path_motion && self.call_state.mcall.is_some() {
+            self.run_modal_call(programs, cfg, line)?;
+        }
+        Ok(())
+    }
 }

@@ -7,6 +7,7 @@
 
 mod block_cache;
 mod jump_memo;
+mod sections;
 
 use std::sync::Arc;
 
@@ -15,6 +16,7 @@ use crate::lang::{self, Block, Goto, GotoKind, JumpTarget, Lvalue, ProgramText, 
 pub(crate) use block_cache::ReadBlock;
 use block_cache::{BlockCache, CachedBlock};
 use jump_memo::JumpMemo;
+pub(super) use sections::{Section, SectionEnd};
 
 /// A position in the program text: byte offset of a line start and its 1-based line number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -60,6 +62,8 @@ pub(super) struct Flow {
     /// The block read last (the one being prepared).
     pub current: Pos,
     pub control: Vec<Ctrl>,
+    /// Program sections being repeated or called (REPEAT, CALL BLOCK), innermost last.
+    pub sections: Vec<Section>,
     /// The word list of a block done with (see [`Flow::recycle`]): the next block read is
     /// parsed into its allocation.
     spare: Vec<Word>,
@@ -94,6 +98,7 @@ impl std::fmt::Debug for Flow {
             .field("next", &self.next)
             .field("current", &self.current)
             .field("control", &self.control)
+            .field("sections", &self.sections)
             .field("spare", &self.spare)
             .finish_non_exhaustive()
     }
@@ -111,6 +116,7 @@ impl Flow {
             next: pos,
             current: pos,
             control: Vec::new(),
+            sections: Vec::new(),
             spare: Vec::new(),
             furthest: 0,
             cache: None,

@@ -221,7 +221,8 @@ impl Interpreter {
 
     /// True when the state leaves nothing for the stages the lane skips (see the module doc).
     fn lane_open(&self) -> bool {
-        self.flow.is_some()
+        self.flow.as_ref().is_some_and(|f| f.sections.is_empty())
+            && self.call_state.mcall.is_none()
             && self.held.is_none()
             && self.modal.trc.is_none()
             && self.trc.idle()

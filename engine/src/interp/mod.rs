@@ -12,6 +12,7 @@ mod corrtrafo;
 mod delobj;
 mod effect_calls;
 mod eval;
+mod everyday;
 mod flow;
 pub mod frame;
 mod frame_cache;
@@ -209,6 +210,8 @@ pub struct Interpreter {
     calls: Vec<CallFrame>,
     /// The line of the block read last, in the program level it was read in.
     read_line: u32,
+    /// The modal call (MCALL) and EXTERN declarations.
+    call_state: calls::CallState,
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
     /// not applied yet.
     data_writes: Vec<(u32, String)>,
@@ -252,6 +255,7 @@ impl Interpreter {
             flow: None,
             calls: Vec::new(),
             read_line: 0,
+            call_state: Default::default(),
             data_writes: Vec::new(),
             warnings: Vec::new(),
             held: None,
@@ -274,6 +278,7 @@ impl Interpreter {
         self.modal = Modal::reset(cfg);
         self.flow = None;
         self.calls.clear();
+        self.call_state = Default::default();
         self.held = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
@@ -302,6 +307,7 @@ impl Interpreter {
         self.pos = *pos;
         self.vars.reset_locals();
         self.calls.clear();
+        self.call_state = Default::default();
         self.flow = Some(Flow::new(text.into()));
     }
 
@@ -539,6 +545,13 @@ impl Interpreter {
 
         // Spindle before motion.
         let old_direction = self.spindles.master_direction();
+        if let Some(n) = words.spindle_ext {
+            let master = self.spindles.master().and_then(|k| cfg.axis(k).spindle);
+            // Without a master spindle M3 does nothing, and so does M<n>=3.
+            if master.is_some_and(|m| m != n) {
+                return Err(Alarm::unknown_name(line, &format!("M{n}= (spindle {n} is not the master spindle)")));
+            }
+        }
         if let Some(dir) = words.spindle_dir {
             self.spindles.set_master_direction(dir);
             // M3/M4/M5 return a positioned spindle to speed control.
@@ -569,6 +582,8 @@ impl Interpreter {
             let comp = self.compensation(cfg, words, line)?;
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         }
+        // The block moves on the path: a modal call (MCALL) follows it.
+        let mut path_motion = false;
         if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
@@ -587,6 +602,7 @@ impl Interpreter {
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
         {
+            path_motion = true;
             // One set of limits for the move and its compensation (same configuration).
             let limits = AxisLimit::for_channel(cfg);
             let (mv, feed) = self.motion(words, cfg, &limits, line)?;
@@ -621,10 +637,7 @@ impl Interpreter {
         if let Some(goto) = &words.goto {
             self.jump(goto, cfg, line)?;
         }
-        if let Some((name, args)) = &words.call {
-            self.call(name, args, words.repeat.unwrap_or(1), programs, cfg, line)?;
-        }
-        Ok(())
+        self.block_calls(words, path_motion, programs, cfg, line)
     }
 
     fn select_tool(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {

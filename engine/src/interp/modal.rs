@@ -1,7 +1,7 @@
 //! The modal state (G groups, feed) and the words of one block sorted by meaning.
 
 use super::StopKind;
-use super::calls::Programs;
+use super::calls::{Programs, targets};
 use super::corners::Corner;
 use super::eval::{eval, eval_f64};
 use super::frame::Frame;
@@ -14,7 +14,7 @@ use super::trc_approach::ApproachMode;
 use super::value::Value;
 use super::vars::Variables;
 use crate::alarm::Alarm;
-use crate::lang::{Block, CoordMode, Expr, Goto, Word};
+use crate::lang::{Block, CoordMode, Expr, Goto, JumpTarget, Word};
 use crate::machine_data::MachineConfig;
 
 /// G group 1: motion type.
@@ -296,6 +296,8 @@ pub(super) struct Words {
     pub tool: Option<u32>,
     pub edge: Option<u32>,
     pub spindle_dir: Option<i8>,
+    /// The spindle number of an `M<n>=3/4/5` (address extension).
+    pub spindle_ext: Option<u32>,
     /// SETMS(n): spindle n becomes the master spindle (`Some(None)`: SETMS, back to MD20090).
     pub set_master: Option<Option<u32>>,
     pub stop: Option<StopKind>,
@@ -305,6 +307,10 @@ pub(super) struct Words {
     pub call: Option<(String, Vec<Expr>)>,
     /// `P`: number of runs of the call.
     pub repeat: Option<u32>,
+    /// MCALL: the block's call becomes the modal call (without one, the modal call ends).
+    pub mcall: bool,
+    /// `CALL [NAME] BLOCK START TO END`: program, first and last block of the section.
+    pub section_call: Option<Box<(Option<String>, JumpTarget, JumpTarget)>>,
     /// A frame instruction; the block's axis words are its values.
     pub frame_op: Option<FrameOp>,
     /// `RPL=`: rotation angle in the working plane (with ROT/AROT).
@@ -484,7 +490,24 @@ pub(super) fn collect(
                 }
                 w.frame_op = frame_op(name);
             }
-            Word::Keyword { name, args } if programs.contains_key(name) => w.call = Some((name.clone(), args.clone())),
+            Word::Keyword { name, args } if programs.contains_key(name) || targets::is_l_call(name) => {
+                set_call(w, name.clone(), args.clone(), line)?
+            }
+            Word::Keyword { name, args } if name == "MCALL" && args.is_empty() => w.mcall = true,
+            Word::Keyword { name, args } if super::everyday::is_inert_keyword(name, !args.is_empty()) => {}
+            Word::Keyword { name, args } if name == "PCALL" => {
+                let Some(Expr::Str(path)) = args.first() else {
+                    return Err(Alarm::syntax(line, "PCALL needs a program path"));
+                };
+                set_call(w, targets::program_of_path(path), args[1..].to_vec(), line)?;
+            }
+            Word::Keyword { name, args } if name == "EXTCALL" => {
+                let target = match args.as_slice() {
+                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text(),
+                    _ => return Err(Alarm::syntax(line, "EXTCALL needs one program name")),
+                };
+                set_call(w, targets::program_of_path(&target), Vec::new(), line)?;
+            }
             Word::Keyword { name, args } if name == "MSG" => {
                 w.message = Some(match args.as_slice() {
                     [] => String::new(),
@@ -562,11 +585,24 @@ pub(super) fn collect(
                 w.set_master = Some(spindle.map(|n| n as u32));
             }
             Word::Keyword { name, args } if name == "CALL" => {
-                let target = match args.as_slice() {
-                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase(),
-                    _ => return Err(Alarm::syntax(line, "CALL needs one program name")),
+                let program = match args.first() {
+                    Some(e) if !targets::is_omitted(e) => {
+                        Some(targets::program_of_path(&eval(e, &Ctx { vars, sys }, line)?.as_text()))
+                    }
+                    Some(_) => None,
+                    None => return Err(Alarm::syntax(line, "CALL needs a program name or BLOCK")),
                 };
-                w.call = Some((target, Vec::new()));
+                match (program, &args[1..]) {
+                    (Some(program), []) => set_call(w, program, Vec::new(), line)?,
+                    (program, [Expr::Str(start), Expr::Str(end)]) => {
+                        let target = |t: &str| match t.strip_prefix('N').and_then(|n| n.parse().ok()) {
+                            Some(n) => JumpTarget::BlockNumber(n),
+                            None => JumpTarget::Label(t.to_string()),
+                        };
+                        w.section_call = Some(Box::new((program, target(start), target(end))));
+                    }
+                    _ => return Err(Alarm::syntax(line, "CALL needs a program name or BLOCK")),
+                }
             }
             Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
@@ -627,9 +663,19 @@ pub(super) fn collect(
                     "H" | "ADIS" | "ADISPOS" => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
-                    // `L10`: call of subprogram L10; `P3`: three runs of the call in this block.
-                    "L" => w.call = Some((format!("L{}", whole("L")?), Vec::new())),
+                    // `P3`: three runs of the block's subprogram call.
                     "P" => w.repeat = Some(whole("P")?),
+                    _ if super::everyday::extended_address(name).is_some() => {
+                        let Some((letter, ext)) = super::everyday::extended_address(name) else { continue };
+                        if letter == b'M'
+                            && let Some(dir) = super::everyday::extended_m(ext, v, line)?
+                        {
+                            if w.spindle_dir.is_some() {
+                                return Err(Alarm::conflicting_functions(line, "M3/M4/M5"));
+                            }
+                            (w.spindle_dir, w.spindle_ext) = (Some(dir), Some(ext));
+                        }
+                    }
                     "THETA" => w.ori.theta = Some((v, value.mode == Some(CoordMode::Ic))),
                     _ if orient::is_address(name) => {
                         w.ori.address(name, v);
@@ -755,7 +801,8 @@ pub(super) fn assign(
     }
     if vars.get(name).is_none() {
         let axis = cfg.program_axis(name);
-        if !indices.is_empty() || axis.is_none() && !is_nc_address(name) {
+        let extended = || super::everyday::extended_address(name).is_some();
+        if !indices.is_empty() || axis.is_none() && !is_nc_address(name) && !extended() {
             return Err(Alarm::unknown_name(line, name));
         }
         return Ok(Assigned::Address(axis));
@@ -1006,6 +1053,15 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         95 => w.feed_per_rev = Some(true),
         _ => return Err(Alarm::unknown_g(line, code)),
     }
+    Ok(())
+}
+
+/// The block's subprogram call (one per block).
+fn set_call(w: &mut Words, name: String, args: Vec<Expr>, line: u32) -> Result<(), Alarm> {
+    if w.call.is_some() {
+        return Err(Alarm::syntax(line, "one subprogram call per block"));
+    }
+    w.call = Some((name, args));
     Ok(())
 }
 

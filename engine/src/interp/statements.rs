@@ -1,7 +1,7 @@
 //! Statements: declarations (DEF) and control flow, executed during block preparation.
 
 use super::eval::{eval, eval_f64};
-use super::flow::{Ctrl, Pos};
+use super::flow::{Ctrl, Pos, SectionEnd};
 use super::modal::{Assigned, assign};
 use super::scope::{Ctx, SysView, is_main_run_variable, sys_view};
 use super::value::Value;
@@ -24,6 +24,12 @@ impl Interpreter {
     ) -> Result<Prep, Alarm> {
         self.refresh_derived_chain_data(cfg);
         let Some(flow) = self.flow.as_mut() else { return Ok(Prep::Done) };
+        if !flow.sections.is_empty() && flow.pass_section_ends() == Some(SectionEnd::Return) {
+            // The section called from another program (CALL "NAME" BLOCK ..) is done.
+            let line = flow.current.line;
+            self.return_from_call(cfg, line)?;
+            return Ok(Prep::Prepared);
+        }
         let (next, current) = (flow.next, flow.current);
         let Some((block, at)) = flow.read() else {
             if let Some(open) = flow.control.last() {
@@ -63,7 +69,10 @@ impl Interpreter {
                 self.statement(stmt, &block, at, cfg, out)?;
             }
             None => {
-                self.check_unbound(block.line)?;
+                // Comment lines before a subprogram's PROC line leave its call unbound.
+                if !block.words.is_empty() || block.number.is_some() || block.label.is_some() {
+                    self.check_unbound(block.line)?;
+                }
                 self.prepare_block(&block, cfg, programs, out)?;
             }
         }
@@ -217,8 +226,15 @@ impl Interpreter {
                 }
             }
             Stmt::Goto(goto) => self.jump(goto, cfg, line)?,
-            // PROC lines are bound in `step_program`; EXTERN declarations need no action.
-            Stmt::Proc { .. } | Stmt::Extern { .. } => {}
+            // PROC lines are bound in `step_program`.
+            Stmt::Proc { .. } => {}
+            Stmt::Extern { name, params } => self.call_state.externs.declare(name, params),
+            Stmt::RepeatSection { start, end, count } => {
+                self.repeat_section(start, end.as_ref(), count.as_ref(), false, cfg, line)?
+            }
+            Stmt::RepeatBlock { target, count } => {
+                self.repeat_section(target, None, count.as_ref(), true, cfg, line)?
+            }
             Stmt::Ret => out.push(Item::Stop { kind: StopKind::End, line }),
         }
         Ok(())

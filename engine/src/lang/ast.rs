@@ -166,6 +166,19 @@ pub enum Stmt {
     },
     EndFor,
     Repeat,
+    /// `REPEAT START P=n` (from START to the block before the REPEAT, or to an `ENDLABEL:`
+    /// between them) and `REPEAT START END P=n` (START to END, both included): program section
+    /// repetition, `count` runs (one if `None`).
+    RepeatSection {
+        start: JumpTarget,
+        end: Option<JumpTarget>,
+        count: Option<Expr>,
+    },
+    /// `REPEATB LABEL P=n`: the block carrying LABEL, `count` times (once if `None`).
+    RepeatBlock {
+        target: JumpTarget,
+        count: Option<Expr>,
+    },
     Until(Expr),
     Loop,
     EndLoop,
@@ -186,9 +199,10 @@ pub enum Stmt {
     },
     /// `RET` (end of subprogram).
     Ret,
-    /// `EXTERN NAME(types)`.
+    /// `EXTERN NAME(types)`: the subprogram's parameters as (by reference, type).
     Extern {
         name: String,
+        params: Vec<(bool, VarType)>,
     },
 }
 

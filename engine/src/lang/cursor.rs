@@ -32,9 +32,6 @@ impl<'a> Cursor<'a> {
     pub fn new(code: &'a str) -> Self {
         Cursor { text: code, src: code.as_bytes(), pos: 0 }
     }
-    pub fn len(&self) -> usize {
-        self.src.len()
-    }
     pub fn peek(&self) -> Option<u8> {
         self.src.get(self.pos).copied()
     }

@@ -4,6 +4,7 @@
 //! offsets, plus every syntax error found ([`Diagnostic`]). What a word means (modal groups,
 //! units, valid combinations) is decided by [`crate::interp`].
 
+pub mod archive;
 pub mod ast;
 mod cursor;
 pub mod name;

@@ -1,6 +1,7 @@
 //! Line-by-line parser for the Sinumerik block syntax. Errors are collected per line and the
 //! parser goes on, so one run reports every syntax error of a program.
 
+use super::archive;
 use super::ast::*;
 use super::cursor::Cursor;
 use super::plain_line::is_plain_line;
@@ -32,6 +33,11 @@ pub fn check(source: &str) -> Vec<Diagnostic> {
             Ok(Some(Block { stmt: Some(stmt), .. })) => out.extend(structure.feed(&stmt, line, offset)),
             Ok(_) => {}
         }
+    }
+    // Apart from the line loop, which stays as lean as it was: only texts in archive form.
+    if let Some((line, offset)) = archive::second_header(source) {
+        let message = "a second archive header: an archive of several programs is stored program by program";
+        out.push(Diagnostic::syntax(line, offset, 0, message.into()));
     }
     out.extend(structure.finish());
     out.sort_by_key(|d| (d.line, d.column));
@@ -149,6 +155,10 @@ pub fn parse_block(text: &str, line: u32, offset: usize) -> PResult<Option<Block
 /// its words, label and comment, and nothing is copied for them. A block's words take
 /// `spare`'s allocation (an empty line leaves it there).
 fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec<Word>) -> PResult<Option<Block>> {
+    if archive::is_header_line(text) {
+        // `%_N_NAME_MPF`: the archive header names the program; it is no block.
+        return archive::header(text).map(|_| None).map_err(|e| (0, e));
+    }
     let (code, comment) = split_comment(text);
     let mut cur = Cursor::new(code);
     let mut block = Block {
@@ -245,8 +255,8 @@ fn split_comment(text: &str) -> (&str, Option<&str>) {
 }
 
 const STATEMENTS: &[&str] = &[
-    "DEF", "IF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "UNTIL", "LOOP", "ENDLOOP", "CASE",
-    "GOTOF", "GOTOB", "GOTO", "GOTOC", "GOTOS", "PROC", "RET", "EXTERN",
+    "DEF", "IF", "ELSE", "ENDIF", "WHILE", "ENDWHILE", "FOR", "ENDFOR", "REPEAT", "REPEATB", "UNTIL", "LOOP",
+    "ENDLOOP", "CASE", "GOTOF", "GOTOB", "GOTO", "GOTOC", "GOTOS", "PROC", "RET", "EXTERN",
 ];
 
 fn is_statement(id: &str) -> bool {
@@ -292,7 +302,8 @@ fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
             Stmt::For { var, start, end: parse_expr(cur)? }
         }
         "ENDFOR" => Stmt::EndFor,
-        "REPEAT" => Stmt::Repeat,
+        "REPEAT" if cur.at_end() => Stmt::Repeat,
+        "REPEAT" | "REPEATB" => parse_section_repeat(id == "REPEATB", cur)?,
         "UNTIL" => Stmt::Until(parse_expr(cur)?),
         "LOOP" => Stmt::Loop,
         "ENDLOOP" => Stmt::EndLoop,
@@ -304,12 +315,7 @@ fn parse_statement(id: &str, cur: &mut Cursor) -> PResult<Stmt> {
         "GOTOS" => Stmt::Goto(parse_goto_target(GotoKind::Start, cur)?),
         "PROC" => parse_proc(cur)?,
         "RET" => Stmt::Ret,
-        "EXTERN" => {
-            let name = cur.ident().ok_or((cur.pos, "EXTERN needs a name".to_string()))?;
-            // The parameter types are for the caller's checks; the text is not needed here.
-            cur.pos = cur.len();
-            Stmt::Extern { name }
-        }
+        "EXTERN" => parse_extern(cur)?,
         _ => unreachable!("not a statement: {id}"),
     })
 }
@@ -521,6 +527,73 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
     Ok(Stmt::Proc { name, params, save })
 }
 
+/// `REPEAT START P=n`, `REPEAT START END P=n`, `REPEATB LABEL P=n`: program section
+/// repetition (labels or `N..` block numbers; without `P` the section runs once more).
+fn parse_section_repeat(single: bool, cur: &mut Cursor) -> PResult<Stmt> {
+    let mut targets = Vec::new();
+    let mut count = None;
+    loop {
+        cur.skip_ws();
+        if cur.at_end() {
+            break;
+        }
+        let at = cur.pos;
+        let id = cur.ident().ok_or((at, "REPEAT needs jump labels and `P=` repetitions".to_string()))?;
+        cur.skip_ws();
+        if id == "P" && cur.eat(b'=') {
+            cur.skip_ws();
+            count = Some(parse_expr(cur)?);
+            continue;
+        }
+        if count.is_some() || targets.len() == if single { 1 } else { 2 } {
+            return Err((at, format!("unexpected {id} in {}", if single { "REPEATB" } else { "REPEAT" })));
+        }
+        targets.push(match id.strip_prefix('N').filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit())) {
+            Some(n) => JumpTarget::BlockNumber(block_number(n, at)?),
+            None => JumpTarget::Label(id),
+        });
+    }
+    let mut targets = targets.into_iter();
+    let start = targets.next().ok_or((cur.pos, "REPEAT needs a jump label".to_string()))?;
+    Ok(match single {
+        true => Stmt::RepeatBlock { target: start, count },
+        false => Stmt::RepeatSection { start, end: targets.next(), count },
+    })
+}
+
+/// `EXTERN NAME(REAL, VAR INT, STRING[8])`: the parameter types of a subprogram, for the checks
+/// of its calls.
+fn parse_extern(cur: &mut Cursor) -> PResult<Stmt> {
+    let name = cur.ident().ok_or((cur.pos, "EXTERN needs a name".to_string()))?;
+    let mut params = Vec::new();
+    cur.skip_ws();
+    if cur.eat(b'(') {
+        cur.skip_ws();
+        if !cur.eat(b')') {
+            loop {
+                cur.skip_ws();
+                let by_reference = cur.eat_word("VAR");
+                cur.skip_ws();
+                let ty = parse_type(cur)?;
+                // An array parameter's dimensions (`REAL[3]`) need no check here.
+                cur.skip_ws();
+                if cur.peek() == Some(b'[') {
+                    parse_indices(cur)?;
+                }
+                params.push((by_reference, ty));
+                cur.skip_ws();
+                if cur.eat(b')') {
+                    break;
+                }
+                if !cur.eat(b',') {
+                    return Err((cur.pos, "expected `,` or `)` in EXTERN parameter types".into()));
+                }
+            }
+        }
+    }
+    Ok(Stmt::Extern { name, params })
+}
+
 fn parse_lvalue(cur: &mut Cursor) -> PResult<Lvalue> {
     let start = cur.pos;
     let name = cur.ident().ok_or((start, "expected a variable".to_string()))?;
@@ -582,6 +655,9 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
     // One address letter followed directly by a number: `X10`, `G01`, `M30`, `X-5.5`. Longer
     // names with digits (`SUB1`, `L_PART2`) are identifiers: subprogram calls or keywords.
     let (from, to) = cur.letters();
+    if to - from == 1 && c.eq_ignore_ascii_case(&b'L') && cur.peek().is_some_and(|c| c.is_ascii_digit()) {
+        return parse_l_call(cur, from);
+    }
     if to - from == 1 && cur.peek().is_some_and(|c| c.is_ascii_digit() || matches!(c, b'.' | b'-' | b'+')) {
         let letter = char::from(c.to_ascii_uppercase());
         let num_start = cur.pos;
@@ -605,6 +681,11 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
         cur.pos += 1;
     }
     let name = cur.upper((from, cur.pos));
+    match name.as_str() {
+        "CALL" => return parse_call(cur, name),
+        "PCALL" => return parse_pcall(cur, name),
+        _ => {}
+    }
     let mut args = Vec::new();
     cur.skip_ws();
     if cur.eat(b'(') {
@@ -613,6 +694,79 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
         // `CALL "NAME"`: a keyword with a string operand.
         args.push(parse_literal(cur)?);
     }
+    Ok(Word::Keyword { name, args })
+}
+
+/// `CALL "NAME"`, `CALL NAME_VAR`, `CALL BLOCK START TO END`, `CALL "NAME" BLOCK START TO END`:
+/// a keyword `CALL` whose first argument is the program name (omitted: the current program)
+/// and, for a section call, the start and end label (or `N..` block number) as strings.
+fn parse_call(cur: &mut Cursor, name: String) -> PResult<Word> {
+    cur.skip_ws();
+    let mut args = Vec::new();
+    if cur.at_end() {
+        return Ok(Word::Keyword { name, args });
+    }
+    let save = cur.pos;
+    let section = cur.eat_word("BLOCK");
+    if section {
+        args.push(Expr::Call("_OMITTED".into(), Vec::new()));
+    } else {
+        cur.pos = save;
+        args.push(parse_expr(cur)?);
+        cur.skip_ws();
+    }
+    if section || cur.eat_word("BLOCK") {
+        for keyword in ["", "TO"] {
+            cur.skip_ws();
+            if !keyword.is_empty() && !cur.eat_word(keyword) {
+                return Err((cur.pos, "CALL BLOCK needs `start TO end`".into()));
+            }
+            cur.skip_ws();
+            let at = cur.pos;
+            let label = cur.ident().ok_or((at, "CALL BLOCK needs a label or block number".to_string()))?;
+            args.push(Expr::Str(label));
+        }
+    }
+    Ok(Word::Keyword { name, args })
+}
+
+/// `PCALL /_N_WKS_DIR/_N_SHAFT_WPD/_N_SHAFT_SPF(1, 2)` or `PCALL NAME(1, 2)`: the path as a
+/// string, then the arguments.
+fn parse_pcall(cur: &mut Cursor, name: String) -> PResult<Word> {
+    cur.skip_ws();
+    let start = cur.pos;
+    while cur.peek().is_some_and(|c| c.is_ascii_alphanumeric() || matches!(c, b'_' | b'/' | b'.')) {
+        cur.pos += 1;
+    }
+    if cur.pos == start {
+        return Err((start, "PCALL needs a program path".into()));
+    }
+    let mut args = vec![Expr::Str(cur.slice(start, cur.pos).to_ascii_uppercase())];
+    cur.skip_ws();
+    if cur.eat(b'(') {
+        args.extend(parse_args(cur)?);
+    }
+    Ok(Word::Keyword { name, args })
+}
+
+/// `L123` or `L123(1, 2)`: the call of subprogram `L123`, named by its digits as written
+/// (leading zeros count: `L0123` is another program than `L123`).
+fn parse_l_call(cur: &mut Cursor, from: usize) -> PResult<Word> {
+    while cur.peek().is_some_and(|c| c.is_ascii_digit()) {
+        cur.pos += 1;
+    }
+    if cur.peek().is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_' || c == b'.') {
+        return Err((cur.pos, "a subprogram number L.. is whole digits".into()));
+    }
+    let name = cur.upper((from, cur.pos));
+    let save = cur.pos;
+    cur.skip_ws();
+    let args = if cur.eat(b'(') {
+        parse_args(cur)?
+    } else {
+        cur.pos = save;
+        Vec::new()
+    };
     Ok(Word::Keyword { name, args })
 }
 

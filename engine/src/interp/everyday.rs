@@ -1,0 +1,70 @@
+//! The everyday words of shop and CAM programs that change nothing NCTwin models, or change it
+//! in a simple way, sorted out of a block's words before the general keyword handling:
+//!
+//! - `FNORM`, `FLIN`, `FCUB` (G group 37, feed profile): FNORM, the reset value, is the constant
+//!   programmed feed NCTwin runs; FLIN and FCUB (feed ramped linearly or as a spline over the
+//!   block) are accepted and run as FNORM's constant feed for now.
+//! - `DRFOF`: clears the handwheel (DRF) offsets; NCTwin applies none, so there is nothing to clear.
+//! - `SBLOF`/`SBLON` (single-block suppression) and `DISPLOF`/`DISPLON` (block display of a
+//!   cycle) in a block: accepted; the single-block stop and the block display are not
+//!   suppressed.
+//! - `GROUP_BEGIN(..)`/`GROUP_END(..)`: the program editor's structure markers; no effect.
+//! - `H5`, `H=5`, `H2=5`: auxiliary functions for the PLC (with address extension); `M2=3`-style
+//!   M functions with an address extension. The H functions and M functions other than spindle
+//!   and program control reach no simulated PLC yet (no event); `M<n>=3/4/5` act on spindle n,
+//!   which must be the master spindle (the only spindle the interpreter commands).
+
+use crate::alarm::Alarm;
+
+/// True for a keyword without arguments that needs no action (see the module doc).
+pub(super) fn is_inert_keyword(name: &str, has_args: bool) -> bool {
+    match name {
+        "FNORM" | "FLIN" | "FCUB" | "DRFOF" | "SBLOF" | "SBLON" | "DISPLOF" | "DISPLON" => !has_args,
+        "GROUP_BEGIN" | "GROUP_END" => true,
+        _ => false,
+    }
+}
+
+/// An address with an extension, `H2`, `M1`: the letter and the extension number.
+pub(super) fn extended_address(name: &str) -> Option<(u8, u32)> {
+    let (letter, digits) = name.split_at_checked(1)?;
+    let letter = letter.as_bytes()[0];
+    if !matches!(letter, b'H' | b'M') || digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    Some((letter, digits.parse().ok()?))
+}
+
+/// The value of an M function with address extension `M<ext>=<value>`: the spindle direction
+/// it sets (M3, M4, M5 of spindle `ext`), if any.
+pub(super) fn extended_m(ext: u32, value: f64, line: u32) -> Result<Option<i8>, Alarm> {
+    if value < 0.0 || value.fract() != 0.0 || value > 99_999.0 {
+        return Err(Alarm::value_out_of_range(line, &format!("M{ext}={value}")));
+    }
+    Ok(match value as u32 {
+        3 => Some(1),
+        4 => Some(-1),
+        5 => Some(0),
+        0 | 1 | 2 | 17 | 30 => {
+            return Err(Alarm::unknown_name(
+                line,
+                &format!("M{ext}={value} (program control has no address extension)"),
+            ));
+        }
+        _ => None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn extended_addresses_are_h_or_m_with_digits() {
+        assert_eq!(extended_address("H2"), Some((b'H', 2)));
+        assert_eq!(extended_address("M12"), Some((b'M', 12)));
+        assert_eq!(extended_address("H"), None);
+        assert_eq!(extended_address("MA"), None);
+        assert_eq!(extended_address("X1"), None);
+    }
+}
