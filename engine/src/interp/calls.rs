@@ -1,9 +1,6 @@
 //! Subprogram calls: program levels, parameters by value (`REAL A`) and by reference
 //! (`VAR REAL A`), repetitions (`P=3`), and the return (RET, M17, M2/M30 or the end of text).
 
-use std::collections::BTreeMap;
-use std::sync::Arc;
-
 use super::Interpreter;
 use super::eval::eval;
 use super::flow::Flow;
@@ -15,8 +12,8 @@ use crate::alarm::Alarm;
 use crate::lang::{Expr, Lvalue, Param, ProgramText};
 use crate::machine_data::MachineConfig;
 
-/// Stored programs by upper-case name.
-pub type Programs = BTreeMap<String, Arc<str>>;
+/// The stored programs calls are resolved in (by name and directory).
+pub use crate::programs::Programs;
 
 /// Program levels: the main program plus up to 15 nested subprogram calls.
 pub const MAX_LEVELS: usize = 16;
@@ -27,6 +24,8 @@ pub(super) struct CallFrame {
     /// Where the caller goes on.
     caller: Flow,
     text: ProgramText,
+    /// The called program's directory, where its own calls are searched first.
+    dir: Option<crate::programs::Dir>,
     /// Argument values, bound to the PROC parameters when the subprogram starts.
     args: Vec<Value>,
     /// For each argument, the caller's variable it came from (for VAR parameters).
@@ -54,8 +53,8 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
-        let text =
-            programs.get(name).cloned().map(ProgramText::from).ok_or_else(|| Alarm::program_not_found(line, name))?;
+        let caller_dir = self.calls.last().map_or(programs.main_dir(), |f| f.dir.as_ref());
+        let (text, dir) = programs.resolve(name, caller_dir, line)?;
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }
@@ -81,6 +80,7 @@ impl Interpreter {
         self.calls.push(CallFrame {
             caller,
             text: text.clone(),
+            dir,
             args: values,
             sources,
             by_reference: Vec::new(),

@@ -410,11 +410,7 @@ struct Prepared {
 /// discarded).
 fn prepare_all(channel: &Channel, text: ProgramText, verdict: &Verdict) -> Prepared {
     let cfg = channel.config();
-    let programs: Programs = channel
-        .stored_programs()
-        .into_iter()
-        .filter_map(|(name, _)| Some((name.clone(), Arc::from(channel.stored_program(&name)?))))
-        .collect();
+    let programs: &Programs = channel.program_store();
     let mut position = [0.0; MAX_CHANNEL_AXES];
     position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
     // Loops without end would never finish: stop after 100 preparation steps per block plus a
@@ -429,7 +425,7 @@ fn prepare_all(channel: &Channel, text: ProgramText, verdict: &Verdict) -> Prepa
     let mut steps = 0u64;
     loop {
         out.clear();
-        let prep = interp.prepare_next(cfg, &programs, true, &mut out);
+        let prep = interp.prepare_next(cfg, programs, true, &mut out);
         drop(interp.take_data_writes());
         // Read in place: moving each item out would copy every move once more.
         for item in &out {
