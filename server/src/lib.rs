@@ -21,6 +21,7 @@
 //! - [`extract`]: the JSON body extractors that turn every malformed request into a `400`.
 //! - [`error`]: [`ApiError`], the one error type, mapped to an HTTP status and `{"error", "line"}`.
 //! - [`openapi`]: the OpenAPI 3.1 document generated from the handlers, and Swagger UI.
+//! - [`text_decode`]: file bytes → text (UTF-8, UTF-16 with BOM, legacy code pages guessed).
 //! - [`http`]: the tower-http layers (tracing, CORS, compression, body limit, timeouts), the
 //!   static HMI files and the JSON shape of errors produced outside the handlers.
 
@@ -36,6 +37,7 @@ pub mod openapi;
 pub mod session;
 pub mod state;
 pub mod storage;
+pub mod text_decode;
 
 use std::future::{Future, IntoFuture};
 use std::net::SocketAddr;
