@@ -7,6 +7,7 @@
 //! ([`StoredProgram::lazy`]), so a broken, undecodable or oddly named file only ever concerns
 //! the run that calls it. A file that is skipped is a [`Note`], never an error of the folder.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -43,6 +44,8 @@ pub struct Folder {
     /// Each folder read (canonical path) with the control directory it stands for.
     pub dirs: Vec<(PathBuf, Option<Dir>)>,
     pub notes: Vec<Note>,
+    /// Index in `programs` by (name, directory): a later file of the same program replaces it.
+    index: HashMap<(String, Option<Dir>), usize>,
 }
 
 impl Folder {
@@ -205,13 +208,18 @@ fn add_file(folder: &mut Folder, path: &Path, dir: Option<Dir>) {
 }
 
 fn add(folder: &mut Folder, program: StoredProgram, origin: Origin) {
-    let shadowed = folder.programs.iter().position(|(p, _)| p.name() == program.name() && p.dir() == program.dir());
-    if let Some(i) = shadowed {
-        let (_, old) = folder.programs.remove(i);
-        let message = format!("{} in the same directory is called instead", origin.path.display());
-        note(folder, &old.path, None, &message);
+    let key = (program.name().to_string(), program.dir().cloned());
+    match folder.index.get(&key) {
+        Some(&i) => {
+            let (_, old) = std::mem::replace(&mut folder.programs[i], (program, origin));
+            let message = format!("{} in the same directory is called instead", folder.programs[i].1.path.display());
+            note(folder, &old.path, None, &message);
+        }
+        None => {
+            folder.index.insert(key, folder.programs.len());
+            folder.programs.push((program, origin));
+        }
     }
-    folder.programs.push((program, origin));
 }
 
 /// Any other file: an archive of programs is split into them (each in the directory of its
