@@ -107,7 +107,10 @@ async fn a_failed_store_half_way_puts_the_programs_back() {
     let limits = nctwin_server::Limits { session_program_bytes: 100, ..Default::default() };
     let server = Server::start_with(limits).await;
     let id = server.session("mill-3axis").await;
-    assert_eq!(server.put(&format!("/sessions/{id}/programs/A"), json!({"text": "G0 X1"})).await.status, StatusCode::OK);
+    assert_eq!(
+        server.put(&format!("/sessions/{id}/programs/A"), json!({"text": "G0 X1"})).await.status,
+        StatusCode::OK
+    );
     let archive = format!("%_N_A_MPF\nG0 X2\n%_N_B_MPF\n;{}\nM30\n", "x".repeat(120));
     let reply = import(&server, &id, archive).await;
     assert_eq!(reply.status, StatusCode::PAYLOAD_TOO_LARGE, "{}", reply.body);

@@ -138,8 +138,9 @@ fn an_archive_in_the_folder_and_lines_counted_as_in_the_file() {
 #[test]
 fn legacy_encoded_programs_run_with_their_messages_decoded() {
     let dir = folder("encodings");
-    let (cyrillic, _, _) = encoding_rs::WINDOWS_1251
-        .encode("; Программа: фрезерование фланца\r\nG0 X10\r\nMSG(\"Проверьте инструмент и заготовку\")\r\nM0\r\nM30\r\n");
+    let (cyrillic, _, _) = encoding_rs::WINDOWS_1251.encode(
+        "; Программа: фрезерование фланца\r\nG0 X10\r\nMSG(\"Проверьте инструмент и заготовку\")\r\nM0\r\nM30\r\n",
+    );
     std::fs::write(dir.join("FLANSCH.MPF"), &cyrillic).unwrap();
     let (chinese, _, _) =
         encoding_rs::GBK.encode("; 子程序 检查刀具长度\nPROC CN_SUB\nG0 Y7\nMSG(\"请检查刀具长度\")\nM17\n");

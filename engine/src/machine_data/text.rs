@@ -48,7 +48,12 @@ pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
         let upper = src.to_ascii_uppercase();
         // Archives end with M17/M30; they carry no data. Their header line (`%_N_TOA_INI`)
         // names the file; `METRIC` says the values are in mm, as NCTwin reads them anyway.
-        if upper == "M17" || upper == "M30" || upper == "M02" || upper == "M2" || upper == "METRIC" || src.starts_with('%')
+        if upper == "M17"
+            || upper == "M30"
+            || upper == "M02"
+            || upper == "M2"
+            || upper == "METRIC"
+            || src.starts_with('%')
         {
             continue;
         }
@@ -118,7 +123,11 @@ fn frame_constructors(line: u32, src: &str) -> Result<Option<Vec<Line>>, MdError
             out.push(Line::Assign {
                 line,
                 name: (*name).to_string(),
-                indices: vec![IndexTok::Number(frame), IndexTok::Name(axis.to_string()), IndexTok::Name(component.into())],
+                indices: vec![
+                    IndexTok::Number(frame),
+                    IndexTok::Name(axis.to_string()),
+                    IndexTok::Name(component.into()),
+                ],
                 value: Literal::Number(value),
             });
         };
@@ -126,7 +135,7 @@ fn frame_constructors(line: u32, src: &str) -> Result<Option<Vec<Line>>, MdError
             args.iter().for_each(|axis| assign(axis, 1.0));
             continue;
         }
-        if args.len() % 2 != 0 {
+        if !args.len().is_multiple_of(2) {
             return Err(err(format!("{function}: axis and value pairs expected")));
         }
         for pair in args.chunks(2) {
@@ -141,8 +150,8 @@ fn frame_constructors(line: u32, src: &str) -> Result<Option<Vec<Line>>, MdError
 /// the control keeps them; NCTwin models only the cutting edges (`$TC_DP`, `$TC_DPV`) and the
 /// toolholders (`$TC_CARR`).
 const UNMODELLED_TC: &[&str] = &[
-    "TP", "TPC", "TPG", "TPH", "TPCS", "MOP", "MOPC", "MAMP", "MAP", "MAPC", "MPP", "MPPC", "MDP", "MLSR", "MPTH", "DPC",
-    "DPCE", "DPCS", "DPE", "DPH", "DPNT", "ADPT", "SCP", "ECP", "SCPR", "ECPR", "TPM", "MDPC",
+    "TP", "TPC", "TPG", "TPH", "TPCS", "MOP", "MOPC", "MAMP", "MAP", "MAPC", "MPP", "MPPC", "MDP", "MLSR", "MPTH",
+    "DPC", "DPCE", "DPCS", "DPE", "DPH", "DPNT", "ADPT", "SCP", "ECP", "SCPR", "ECPR", "TPM", "MDPC",
 ];
 
 /// What a datum NCTwin knows but does not model is (for its warning): tool-management `$TC_`
@@ -358,7 +367,10 @@ mod tests {
         };
         assert_eq!(lines[0], Line::ChanData { line: 3, channel: 1 });
         assert!(matches!(&lines[1], Line::Assign { name, .. } if name == "$TC_TP2"));
-        assert_eq!(lines[2..], [frame("X", "TR", 10.5), frame("Y", "TR", -2.0), frame("Z", "RT", 45.0), frame("Y", "MI", 1.0)]);
+        assert_eq!(
+            lines[2..],
+            [frame("X", "TR", 10.5), frame("Y", "TR", -2.0), frame("Z", "RT", 45.0), frame("Y", "MI", 1.0)]
+        );
         assert_eq!(parse("INCH\n").unwrap_err().line, Some(1));
     }
 

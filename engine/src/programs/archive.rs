@@ -61,6 +61,10 @@ pub struct Archive<'a> {
     pub problems: Vec<Problem>,
 }
 
+/// The program being read: its header's line number, the byte offset of the header line, and
+/// the header's name and kind (`None` for a header that could not be read).
+type Open = (u32, usize, Option<(String, Kind)>);
+
 /// Whether `text` is in archive format: its first line that is not blank starts with `%`
 /// (a UTF-8 byte order mark before it is allowed).
 pub fn is_archive(text: &str) -> bool {
@@ -72,7 +76,7 @@ pub fn is_archive(text: &str) -> bool {
 pub fn split(text: &str) -> Archive<'_> {
     let mut archive = Archive::default();
     // (header line number, byte offset of the header line, parsed header) of the open entry.
-    let mut open: Option<(u32, usize, Option<(String, Kind)>)> = None;
+    let mut open: Option<Open> = None;
     let mut stray_reported = false;
     let mut offset = 0;
     for (i, raw) in text.split_inclusive('\n').enumerate() {
@@ -105,7 +109,7 @@ pub fn split(text: &str) -> Archive<'_> {
 }
 
 /// Ends the open entry at byte `end`.
-fn close<'a>(text: &'a str, open: Option<(u32, usize, Option<(String, Kind)>)>, end: usize, archive: &mut Archive<'a>) {
+fn close<'a>(text: &'a str, open: Option<Open>, end: usize, archive: &mut Archive<'a>) {
     let Some((line, start, Some((name, kind)))) = open else { return };
     let text = &text[start..end];
     // The header line, then a `;$PATH=` line right after it.

@@ -51,7 +51,10 @@ pub async fn import_archive(
     }
     let split = archive::split(&text);
     if let Some(p) = split.problems.first() {
-        return Err(ApiError::BadRequest { message: format!("archive line {}: {}", p.line, p.message), line: Some(p.line) });
+        return Err(ApiError::BadRequest {
+            message: format!("archive line {}: {}", p.line, p.message),
+            line: Some(p.line),
+        });
     }
     let mut programs: Vec<(ArchiveProgram, String)> = Vec::new();
     let mut skipped = Vec::new();

@@ -87,7 +87,12 @@ pub fn open(root: &Path) -> Result<Folder, String> {
         };
         match dir {
             Some(dir) => read_dir(&mut folder, &sub, dir),
-            None => note(&mut folder, &sub, None, "not a program directory of the control (MPF, SPF, WKS, *.WPD, CUS, CMA, CST): skipped"),
+            None => note(
+                &mut folder,
+                &sub,
+                None,
+                "not a program directory of the control (MPF, SPF, WKS, *.WPD, CUS, CMA, CST): skipped",
+            ),
         }
     }
     Ok(folder)
@@ -248,8 +253,12 @@ fn read_archive(folder: &mut Folder, path: &Path, dir: Option<Dir>) {
             finding(folder, path, Some(entry.line), "not a program name: skipped");
             continue;
         };
-        let program =
-            StoredProgram::unchecked(name, entry.dir.clone().or(dir.clone()), Some(entry.kind.clone()), Arc::from(entry.numbered_text()));
+        let program = StoredProgram::unchecked(
+            name,
+            entry.dir.clone().or(dir.clone()),
+            Some(entry.kind.clone()),
+            Arc::from(entry.numbered_text()),
+        );
         add(folder, program, Origin { path: path.to_path_buf(), first_line: entry.line });
     }
 }
@@ -263,5 +272,9 @@ pub fn read_program(path: &Path) -> Result<String, String> {
         return Ok(text);
     }
     let split = archive::split(&text);
-    split.entries.first().map(archive::Entry::numbered_text).ok_or_else(|| format!("{}: no program in the archive", path.display()))
+    split
+        .entries
+        .first()
+        .map(archive::Entry::numbered_text)
+        .ok_or_else(|| format!("{}: no program in the archive", path.display()))
 }

@@ -243,7 +243,12 @@ fn read_shared_text(path: &Path) -> Result<(ProgramText, Option<mapped::PageRele
 /// A main program file in archive format: its first main program (or first program) runs, with
 /// its header lines as comments; the file's other programs join the store, in the directory of
 /// their `;$PATH=` line or the main program's.
-fn main_from_archive(channel: &mut Channel, path: &Path, text: &str, notes: &mut Vec<Note>) -> Result<ProgramText, UsageError> {
+fn main_from_archive(
+    channel: &mut Channel,
+    path: &Path,
+    text: &str,
+    notes: &mut Vec<Note>,
+) -> Result<ProgramText, UsageError> {
     let split = archive::split(text);
     for problem in &split.problems {
         let message = problem.message.clone();
@@ -290,7 +295,10 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     })?;
     channel.optional_stop = args.optional_stop;
     let mut syntax_errors = Vec::new();
-    let mut notes = warnings.into_iter().map(|message| Note { path: md_path.clone(), line: None, message, finding: false }).collect();
+    let mut notes = warnings
+        .into_iter()
+        .map(|message| Note { path: md_path.clone(), line: None, message, finding: false })
+        .collect();
     if let Some(dir) = &args.program_dir {
         store_programs(&mut channel, dir, &args.program, &mut notes)?;
     }
