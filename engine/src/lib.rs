@@ -11,6 +11,7 @@
 //! - [`kinematics`]: TRANSMIT, TRACYL, TRAANG: BCS ↔ machine axes, poles, working areas.
 //! - [`motion`]: look-ahead planning and IPO-cycle interpolation within every axis' limits.
 //! - [`channel`]: modes, program control, JOG, MDA, alarms, and the [`Snapshot`] of the state.
+//! - [`programs`]: program names, directories and archive files; the store calls are resolved in.
 
 pub mod alarm;
 pub mod channel;
@@ -19,6 +20,7 @@ pub mod kinematics;
 pub mod lang;
 pub mod machine_data;
 pub mod motion;
+pub mod programs;
 
 pub use alarm::Alarm;
 pub use channel::{Channel, CommandError, Event, JogRequest, Mode, Overrides, Snapshot, Status};

@@ -1140,3 +1140,36 @@ pub struct CheckResponse {
     #[serde(skip_serializing_if = "is_zero")]
     pub omitted: usize,
 }
+
+/// `POST /sessions/{id}/program-archive`: what an archive held and what was stored.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ArchiveImport {
+    /// The programs stored, in archive order.
+    pub programs: Vec<ArchiveProgram>,
+    /// Sections of the archive that are no programs (INI data, ...), not stored.
+    pub skipped: Vec<ArchiveSkipped>,
+}
+
+/// A program of an archive, stored under `name`.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ArchiveProgram {
+    pub name: String,
+    /// `MPF` (main program) or `SPF` (subprogram), from its header.
+    #[serde(rename = "type")]
+    pub kind: String,
+    /// The directory of its `;$PATH=` line (else `_N_MPF_DIR`/`_N_SPF_DIR` by type). The
+    /// session keeps one program per name; the directory is not kept.
+    pub directory: String,
+    /// Size of the program text (without its header lines) in bytes.
+    pub size: usize,
+}
+
+/// A section of an archive that was not stored.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ArchiveSkipped {
+    /// Name and type as the header writes them, e.g. `TOA_INI`.
+    pub name: String,
+    /// Line of its header in the archive.
+    pub line: u32,
+    pub reason: String,
+}

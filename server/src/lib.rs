@@ -23,6 +23,7 @@
 //! - [`openapi`]: the OpenAPI 3.1 document generated from the handlers, and Swagger UI.
 //! - [`conn`]: the accept loop: one hyper HTTP/1.1 task per connection, the per-IP connection
 //!   cap and the header-read timeout.
+//! - [`text_decode`]: file bytes → text (UTF-8, UTF-16 with BOM, legacy code pages guessed).
 //! - [`http`]: the tower-http layers (tracing, CORS, compression, body limit, timeouts), the
 //!   static HMI files and the JSON shape of errors produced outside the handlers.
 //! - [`site`]: which `Host` the server answers to and which web page origins may call it
@@ -42,6 +43,7 @@ pub mod session;
 pub mod site;
 pub mod state;
 pub mod storage;
+pub mod text_decode;
 
 use std::future::Future;
 use std::time::Duration;

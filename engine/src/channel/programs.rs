@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use super::{Channel, CommandError};
+use crate::interp::Programs;
 use crate::lang;
 
 impl Channel {
@@ -47,30 +48,34 @@ impl Channel {
 
     /// Removes a stored program; false if there was none.
     pub fn delete_program(&mut self, name: &str) -> bool {
-        program_name(name).is_ok_and(|n| self.programs.remove(&n).is_some())
+        program_name(name).is_ok_and(|n| self.programs.remove(&n))
     }
 
-    /// Names and sizes (bytes) of the stored programs, by name.
+    /// The program store (directories, programs read when first called).
+    pub fn program_store(&self) -> &Programs {
+        &self.programs
+    }
+
+    /// The program store to add to: [`crate::programs::StoredProgram`]s in directories, read
+    /// and checked when first called (a program run from a folder of the control's layout).
+    pub fn program_store_mut(&mut self) -> &mut Programs {
+        &mut self.programs
+    }
+
+    /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet).
     pub fn stored_programs(&self) -> Vec<(String, usize)> {
-        self.programs.iter().map(|(n, t)| (n.clone(), t.len())).collect()
+        self.programs.iter().map(|p| (p.name().to_string(), p.text().map_or(0, |t| t.len()))).collect()
     }
 }
 
 /// The canonical name of a stored program: letters, digits and `_`, starting with a letter,
 /// at most 32 characters, upper-cased; a `.MPF` or `.SPF` ending is dropped.
 pub(super) fn program_name(name: &str) -> Result<String, CommandError> {
-    let upper = name.trim().to_ascii_uppercase();
-    let base = upper.strip_suffix(".MPF").or_else(|| upper.strip_suffix(".SPF")).unwrap_or(&upper);
-    let valid = base.len() <= 32
-        && base.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
-        && base.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
-    if valid {
-        Ok(base.to_string())
-    } else {
-        Err(CommandError::Invalid(format!(
+    crate::programs::canonical_name(name).ok_or_else(|| {
+        CommandError::Invalid(format!(
             "bad program name `{name}`: letters, digits and _, starting with a letter, at most 32"
-        )))
-    }
+        ))
+    })
 }
 
 #[cfg(test)]

@@ -7,7 +7,6 @@ mod modal_call;
 mod section;
 pub(super) mod targets;
 
-use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use super::Interpreter;
@@ -21,8 +20,8 @@ use crate::alarm::Alarm;
 use crate::lang::{Expr, Lvalue, Param, ProgramText};
 use crate::machine_data::MachineConfig;
 
-/// Stored programs by upper-case name.
-pub type Programs = BTreeMap<String, Arc<str>>;
+/// The stored programs calls are resolved in (by name and directory).
+pub use crate::programs::Programs;
 
 /// What calls keep beside the program levels: the modal call (MCALL) and the EXTERN
 /// declarations met so far. Both end with the program.
@@ -64,6 +63,8 @@ pub(super) struct CallFrame {
     /// Where the caller goes on.
     caller: Flow,
     text: ProgramText,
+    /// The called program's directory, where its own calls are searched first.
+    dir: Option<crate::programs::Dir>,
     /// Argument values, bound to the PROC parameters when the subprogram starts (`None`: left
     /// out, the parameter keeps its type's initial value).
     args: Vec<Option<Value>>,
@@ -92,8 +93,8 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
-        let text =
-            programs.get(name).cloned().map(ProgramText::from).ok_or_else(|| Alarm::program_not_found(line, name))?;
+        let caller_dir = self.calls.last().map_or(programs.main_dir(), |f| f.dir.as_ref());
+        let (text, dir) = programs.resolve(name, caller_dir, line)?;
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }
@@ -128,6 +129,7 @@ impl Interpreter {
             level: Arc::new(Level { calls: chain, text: text.clone() }),
             caller,
             text: text.clone(),
+            dir,
             args: values,
             sources,
             by_reference: Vec::new(),

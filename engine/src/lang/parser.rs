@@ -578,7 +578,7 @@ fn parse_extern(cur: &mut Cursor) -> PResult<Stmt> {
                 // An array parameter's dimensions (`REAL[3]`) need no check here.
                 cur.skip_ws();
                 if cur.peek() == Some(b'[') {
-                    parse_indices(cur)?;
+                    parse_indices(cur, MAX_EXPR_DEPTH)?;
                 }
                 params.push((by_reference, ty));
                 cur.skip_ws();
@@ -744,7 +744,7 @@ fn parse_pcall(cur: &mut Cursor, name: String) -> PResult<Word> {
     let mut args = vec![Expr::Str(cur.slice(start, cur.pos).to_ascii_uppercase())];
     cur.skip_ws();
     if cur.eat(b'(') {
-        args.extend(parse_args(cur)?);
+        args.extend(parse_args(cur, MAX_EXPR_DEPTH)?.0);
     }
     Ok(Word::Keyword { name, args })
 }
@@ -762,7 +762,7 @@ fn parse_l_call(cur: &mut Cursor, from: usize) -> PResult<Word> {
     let save = cur.pos;
     cur.skip_ws();
     let args = if cur.eat(b'(') {
-        parse_args(cur)?
+        parse_args(cur, MAX_EXPR_DEPTH)?.0
     } else {
         cur.pos = save;
         Vec::new()

@@ -233,6 +233,11 @@ impl MachineData {
         value: &Literal,
     ) -> Result<Option<&'static str>, MdError> {
         let err = |m: String| MdError::at(line, m);
+        // Tool management and setting data NCTwin does not model: accepted, ignored, warned
+        // about (`text::warnings`).
+        if text::unmodelled(name).is_some() {
+            return Ok(None);
+        }
         if chains::is_chain_name(name) {
             let counts = (
                 self.num("$MN_MM_MAXNUM_KIN_CHAIN_ELEM", 0, 0) as usize,

@@ -46,8 +46,25 @@ pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
             continue;
         }
         let upper = src.to_ascii_uppercase();
-        // Archives end with M17/M30; they carry no data.
-        if upper == "M17" || upper == "M30" || upper == "M02" || upper == "M2" {
+        // Archives end with M17/M30; they carry no data. Their header line (`%_N_TOA_INI`)
+        // names the file; `METRIC` says the values are in mm, as NCTwin reads them anyway.
+        if upper == "M17"
+            || upper == "M30"
+            || upper == "M02"
+            || upper == "M2"
+            || upper == "METRIC"
+            || src.starts_with('%')
+        {
+            continue;
+        }
+        if upper == "INCH" {
+            return Err(MdError::at(
+                line,
+                "INCH: NC data in inch are not converted; NCTwin reads NC data in mm (METRIC)".to_string(),
+            ));
+        }
+        if let Some(frames) = frame_constructors(line, src)? {
+            out.extend(frames);
             continue;
         }
         if let Some(rest) = upper.strip_prefix("CHANDATA") {
@@ -64,6 +81,111 @@ pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
         out.push(parse_assignment(line, src)?);
     }
     Ok(out)
+}
+
+/// The frame variables a data file may assign as a whole.
+const FRAME_NAMES: [&str; 4] = ["$P_UIFR", "$P_CHBFR", "$P_NCBFR", "$P_UBFR"];
+
+/// `$P_UIFR[1]=CTRANS(X,10,Y,0):CROT(Z,45):CSCALE(X,2):CMIRROR(Y)`, as `_N_UFR_INI` files write
+/// whole frames: one component assignment (`$P_UIFR[1,X,TR]=10`) per axis value. `None` for
+/// any other line.
+fn frame_constructors(line: u32, src: &str) -> Result<Option<Vec<Line>>, MdError> {
+    let err = |m: String| MdError::at(line, m);
+    let Some(eq) = find_top_level_eq(src) else { return Ok(None) };
+    let (lhs, rhs) = (src[..eq].trim(), src[eq + 1..].trim());
+    let upper = lhs.to_ascii_uppercase();
+    let Some(name) = FRAME_NAMES.iter().find(|n| upper.starts_with(**n) && upper[n.len()..].starts_with('[')) else {
+        return Ok(None);
+    };
+    let rhs_upper = rhs.to_ascii_uppercase();
+    if !rhs_upper.starts_with('C') || !rhs_upper.contains('(') {
+        return Ok(None);
+    }
+    let index = upper[name.len()..].trim_start_matches('[').trim_end_matches(']').trim();
+    let frame = index.parse::<i64>().map_err(|_| err(format!("{name}[{index}]: a frame number is needed")))?;
+    let mut out = Vec::new();
+    for part in rhs_upper.split(':') {
+        let part = part.trim();
+        let (function, args) = part
+            .strip_suffix(')')
+            .and_then(|p| p.split_once('('))
+            .ok_or_else(|| err(format!("bad frame value `{part}` (CTRANS(X,10,...), CROT, CSCALE, CMIRROR, CFINE)")))?;
+        let component = match function.trim() {
+            "CTRANS" => "TR",
+            "CFINE" => "FI",
+            "CROT" => "RT",
+            "CSCALE" => "SC",
+            "CMIRROR" => "MI",
+            other => return Err(err(format!("unknown frame function {other} (CTRANS, CFINE, CROT, CSCALE, CMIRROR)"))),
+        };
+        let args: Vec<&str> = args.split(',').map(str::trim).filter(|a| !a.is_empty()).collect();
+        let mut assign = |axis: &str, value: f64| {
+            out.push(Line::Assign {
+                line,
+                name: (*name).to_string(),
+                indices: vec![
+                    IndexTok::Number(frame),
+                    IndexTok::Name(axis.to_string()),
+                    IndexTok::Name(component.into()),
+                ],
+                value: Literal::Number(value),
+            });
+        };
+        if component == "MI" {
+            args.iter().for_each(|axis| assign(axis, 1.0));
+            continue;
+        }
+        if !args.len().is_multiple_of(2) {
+            return Err(err(format!("{function}: axis and value pairs expected")));
+        }
+        for pair in args.chunks(2) {
+            let value = parse_number(pair[1]).ok_or_else(|| err(format!("bad value `{}` in {function}", pair[1])))?;
+            assign(pair[0], value);
+        }
+    }
+    Ok(Some(out))
+}
+
+/// Tool-management families of `$TC_` data (tool, magazine, location, monitoring, user data):
+/// the control keeps them; NCTwin models only the cutting edges (`$TC_DP`, `$TC_DPV`) and the
+/// toolholders (`$TC_CARR`).
+const UNMODELLED_TC: &[&str] = &[
+    "TP", "TPC", "TPG", "TPH", "TPCS", "MOP", "MOPC", "MAMP", "MAP", "MAPC", "MPP", "MPPC", "MDP", "MLSR", "MPTH",
+    "DPC", "DPCE", "DPCS", "DPE", "DPH", "DPNT", "ADPT", "SCP", "ECP", "SCPR", "ECPR", "TPM", "MDPC",
+];
+
+/// What a datum NCTwin knows but does not model is (for its warning): tool-management `$TC_`
+/// data, and setting data `$SN_`/`$SC_`/`$SA_` not in the registry. Such lines are accepted and
+/// ignored. `None` for everything else (modelled, or an unknown name, which is an error).
+pub fn unmodelled(name: &str) -> Option<String> {
+    let upper = name.to_ascii_uppercase();
+    if let Some(rest) = upper.strip_prefix("$TC_") {
+        let family = rest.trim_end_matches(|c: char| c.is_ascii_digit());
+        return UNMODELLED_TC.contains(&family).then(|| format!("$TC_{family}"));
+    }
+    let setting = ["$SN_", "$SC_", "$SA_"].iter().find(|p| upper.starts_with(**p))?;
+    super::registry::lookup(&upper).is_none().then(|| format!("{setting} setting data ({upper})"))
+}
+
+/// One warning per family of lines in `text` that are accepted and ignored ([`unmodelled`]),
+/// in the order they first appear; empty when the text does not parse.
+pub fn warnings(text: &str) -> Vec<String> {
+    let Ok(lines) = parse(text) else { return Vec::new() };
+    let mut families: Vec<(String, u32, usize)> = Vec::new();
+    for line in lines {
+        let Line::Assign { line, name, .. } = line else { continue };
+        let Some(family) = unmodelled(&name) else { continue };
+        match families.iter_mut().find(|(f, _, _)| *f == family) {
+            Some((_, _, count)) => *count += 1,
+            None => families.push((family, line, 1)),
+        }
+    }
+    families
+        .into_iter()
+        .map(|(family, first, count)| {
+            format!("{family}: {count} line(s) from line {first} not modelled by NCTwin: accepted and ignored")
+        })
+        .collect()
 }
 
 fn strip_comment(raw: &str) -> &str {
@@ -230,6 +352,45 @@ mod tests {
         );
         let l = assign("$MA_IS_ROT_AX[AX4]=TRUE");
         assert!(matches!(l, Line::Assign { value: Literal::Bool(true), .. }));
+    }
+
+    #[test]
+    fn tool_data_files_read_their_header_units_and_whole_frames() {
+        let text = "%_N_TOA_INI\r\n;$PATH=/_N_TOA_DIR\r\nCHANDATA(1)\r\nMETRIC\r\n$TC_TP2[1]=\"DRILL\"\r\n\
+                    $P_UIFR[1]=CTRANS(X,10.5,Y,-2):CROT(Z,45):CMIRROR(Y)\r\nM17\r\n";
+        let lines = parse(text).unwrap();
+        let frame = |axis: &str, comp: &str, v: f64| Line::Assign {
+            line: 6,
+            name: "$P_UIFR".into(),
+            indices: vec![IndexTok::Number(1), IndexTok::Name(axis.into()), IndexTok::Name(comp.into())],
+            value: Literal::Number(v),
+        };
+        assert_eq!(lines[0], Line::ChanData { line: 3, channel: 1 });
+        assert!(matches!(&lines[1], Line::Assign { name, .. } if name == "$TC_TP2"));
+        assert_eq!(
+            lines[2..],
+            [frame("X", "TR", 10.5), frame("Y", "TR", -2.0), frame("Z", "RT", 45.0), frame("Y", "MI", 1.0)]
+        );
+        assert_eq!(parse("INCH\n").unwrap_err().line, Some(1));
+    }
+
+    #[test]
+    fn unmodelled_tool_management_and_setting_data_are_named_in_warnings() {
+        assert_eq!(unmodelled("$TC_TP8").as_deref(), Some("$TC_TP"));
+        assert_eq!(unmodelled("$TC_MPP1").as_deref(), Some("$TC_MPP"));
+        assert_eq!(unmodelled("$TC_DP3"), None);
+        assert_eq!(unmodelled("$TC_XYZ1"), None);
+        assert_eq!(unmodelled("$SC_TOFRAME_MODE"), None, "modelled");
+        assert!(unmodelled("$SN_JOG_CONT_MODE_LEVELTRIGGRD").is_some());
+        assert_eq!(unmodelled("$MN_NO_SUCH_DATUM"), None);
+        let w = warnings("$TC_TP1[1]=1\n$TC_TP2[1]=\"A\"\n$TC_DP1[1,1]=120\n$TC_MPP1[1,1]=1\n");
+        assert_eq!(
+            w,
+            [
+                "$TC_TP: 2 line(s) from line 1 not modelled by NCTwin: accepted and ignored",
+                "$TC_MPP: 1 line(s) from line 4 not modelled by NCTwin: accepted and ignored",
+            ]
+        );
     }
 
     #[test]

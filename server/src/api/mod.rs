@@ -10,6 +10,7 @@ pub mod machine_data;
 pub mod machine_data_read;
 pub mod machines;
 pub mod preview;
+pub mod program_archive;
 pub mod programs;
 pub mod roles;
 pub mod sessions;
@@ -85,8 +86,9 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(roles::take_control))
         .routes(routes!(roles::release_control))
         .routes(routes!(viewers::get_viewers));
-    let uploads =
-        OpenApiRouter::new().routes(routes!(programs::get_program, programs::put_program, programs::delete_program));
+    let uploads = OpenApiRouter::new()
+        .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
+        .routes(routes!(program_archive::import_archive, program_archive::export_archive));
     let quick = with_body_limit(quick, limits.body_bytes)
         .merge(with_body_limit(uploads, limits.program_body_bytes()))
         .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, QUICK_TIMEOUT));

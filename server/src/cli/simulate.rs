@@ -17,11 +17,14 @@ use nctwin_engine::alarm::Clear;
 use nctwin_engine::interp::{Interpreter, Item, Prep, Programs};
 use nctwin_engine::lang::ProgramText;
 use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
-use nctwin_engine::{Channel, CommandError, Event, Status};
+use nctwin_engine::programs::{Kind, StoredProgram, archive, canonical_name};
+use nctwin_engine::{Channel, Event, Status};
 use nctwin_server::dto;
+use nctwin_server::text_decode::decode;
 
 use super::blocks::count_blocks;
 use super::check_beside::{Checked, Verdict, check_beside, thread_cpu_time_s};
+use super::folder::{self, Note};
 use super::mapped;
 use serde::Serialize;
 
@@ -45,7 +48,9 @@ pub struct SimulateArgs {
     /// NC data text applied on top of the preset ($MN_/$MC_/$MA_, $TC_DP, $P_UIFR).
     #[arg(long, value_name = "FILE")]
     pub machine_data: Option<PathBuf>,
-    /// Folder of subprograms (*.SPF, *.MPF, any case) stored for calls by name.
+    /// Folder of programs for calls by name: *.SPF/*.MPF files (any case) and archives, loose or
+    /// in the control's directories (MPF, SPF, WKS/<NAME>.WPD, CUS, CMA, CST). Each program is
+    /// read and checked when it is first called.
     #[arg(long, value_name = "DIR")]
     pub program_dir: Option<PathBuf>,
     /// Stop (NC stop, then braking) after this many simulated seconds; exit code 3.
@@ -128,6 +133,10 @@ pub struct Report {
     pub alarm: Option<dto::AlarmInfo>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub syntax_errors: Vec<SyntaxError>,
+    /// Files of `--program-dir` (and lines of archives) that were skipped, and NC data lines
+    /// of `--machine-data` stored but not modelled: why, one entry each.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<Note>,
     /// Program size in bytes.
     pub program_bytes: usize,
     /// Non-empty lines of the program (one block each, comment lines included), the count the
@@ -193,21 +202,27 @@ pub fn main(args: &SimulateArgs) -> ExitCode {
     }
 }
 
+/// Reads a text file in any encoding [`decode`] knows.
 fn read_text(path: &Path, what: &str) -> Result<String, UsageError> {
-    std::fs::read_to_string(path).map_err(|e| UsageError(format!("cannot read {what} {}: {e}", path.display())))
+    let bytes = std::fs::read(path).map_err(|e| UsageError(format!("cannot read {what} {}: {e}", path.display())))?;
+    decode(&bytes).map(|d| d.text).map_err(|e| UsageError(format!("cannot read {what} {}: {e}", path.display())))
 }
 
 /// Reads a program into the shared text the channel keeps. A long one (from
 /// [`mapped::MAP_FROM_BYTES`]) is mapped instead, with a [`mapped::PageRelease`] that keeps its
 /// pages out of the resident set while it lives; a short one is read straight into memory, once
-/// (reading into a `String` and converting would hold it twice at the peak).
+/// (reading into a `String` and converting would hold it twice at the peak). A file that is not
+/// UTF-8 is decoded into memory ([`decode`]: legacy code pages).
 fn read_shared_text(path: &Path) -> Result<(ProgramText, Option<mapped::PageRelease>), UsageError> {
     let error = |e: std::io::Error| UsageError(format!("cannot read program {}: {e}", path.display()));
     let mut file = std::fs::File::open(path).map_err(error)?;
     let len = file.metadata().map_err(error)?.len();
     if len >= mapped::MAP_FROM_BYTES {
-        let (text, release) = mapped::map(&file, path).map_err(UsageError)?;
-        return Ok((text, Some(release)));
+        return match mapped::map(&file, path) {
+            Ok((text, release)) => Ok((text, Some(release))),
+            Err(e) if e.contains("not UTF-8") => Ok((ProgramText::from(read_text(path, "program")?), None)),
+            Err(e) => Err(UsageError(e)),
+        };
     }
     let len = usize::try_from(len).map_err(|_| UsageError(format!("program {} is too large", path.display())))?;
     let mut bytes: Arc<[u8]> = std::iter::repeat_n(0u8, len).collect();
@@ -215,13 +230,51 @@ fn read_shared_text(path: &Path) -> Result<(ProgramText, Option<mapped::PageRele
     if file.read(&mut [0u8]).map_err(error)? != 0 {
         return Err(UsageError(format!("program {} changed while it was read", path.display())));
     }
-    if let Err(e) = std::str::from_utf8(&bytes) {
-        return Err(UsageError(format!("cannot read program {}: not UTF-8 ({e})", path.display())));
+    if std::str::from_utf8(&bytes).is_err() || bytes.starts_with(b"\xEF\xBB\xBF") {
+        let decoded = decode(&bytes).map_err(|e| UsageError(format!("cannot read program {}: {e}", path.display())))?;
+        return Ok((ProgramText::from(decoded.text), None));
     }
     // SAFETY: the bytes were checked to be UTF-8 just above, and `str` has the layout of `[u8]`,
     // so the allocation is a valid `Arc<str>` (this is how std converts `Arc<[u8]>` itself).
     let text: Arc<str> = unsafe { Arc::from_raw(Arc::into_raw(bytes) as *const str) };
     Ok((ProgramText::from(text), None))
+}
+
+/// A main program file in archive format: its first main program (or first program) runs, with
+/// its header lines as comments; the file's other programs join the store, in the directory of
+/// their `;$PATH=` line or the main program's.
+fn main_from_archive(
+    channel: &mut Channel,
+    path: &Path,
+    text: &str,
+    notes: &mut Vec<Note>,
+) -> Result<ProgramText, UsageError> {
+    let split = archive::split(text);
+    for problem in &split.problems {
+        let message = problem.message.clone();
+        notes.push(Note { path: path.display().to_string(), line: Some(problem.line), message, finding: true });
+    }
+    let programs: Vec<_> = split.entries.iter().filter(|e| e.kind.is_program()).collect();
+    let main = programs
+        .iter()
+        .position(|e| e.kind == Kind::Main)
+        .or((!programs.is_empty()).then_some(0))
+        .ok_or_else(|| UsageError(format!("{}: no program in the archive", path.display())))?;
+    let main_dir = channel.program_store().main_dir().cloned();
+    for entry in programs.iter().enumerate().filter(|(i, _)| *i != main).map(|(_, e)| e) {
+        let Some(name) = canonical_name(&entry.name) else {
+            let message = "not a program name: skipped".to_string();
+            notes.push(Note { path: path.display().to_string(), line: Some(entry.line), message, finding: true });
+            continue;
+        };
+        let dir = entry.dir.clone().or(main_dir.clone());
+        let text = Arc::from(entry.numbered_text());
+        channel.program_store_mut().add(StoredProgram::unchecked(name, dir, Some(entry.kind.clone()), text));
+    }
+    if let Some(dir) = &programs[main].dir {
+        channel.program_store_mut().set_main_dir(Some(dir.clone()));
+    }
+    Ok(ProgramText::from(programs[main].numbered_text()))
 }
 
 fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
@@ -234,22 +287,31 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         Some(path) => read_text(path, "machine data")?,
         None => String::new(),
     };
+    let md_path = args.machine_data.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
+    let warnings = nctwin_engine::machine_data::text::warnings(&extra);
     let mut channel = Channel::from_preset(&args.machine, &extra).map_err(|e| match e.line {
         Some(line) => UsageError(format!("machine data line {line}: {}", e.message)),
         None => UsageError(e.message),
     })?;
     channel.optional_stop = args.optional_stop;
     let mut syntax_errors = Vec::new();
+    let mut notes = warnings
+        .into_iter()
+        .map(|message| Note { path: md_path.clone(), line: None, message, finding: false })
+        .collect();
     if let Some(dir) = &args.program_dir {
-        store_programs(&mut channel, dir, &mut syntax_errors)?;
+        store_programs(&mut channel, dir, &args.program, &mut notes)?;
     }
     // Pages of a mapped program are given back until the run is over.
-    let (text, release) = read_shared_text(&args.program)?;
+    let (mut text, release) = read_shared_text(&args.program)?;
+    if archive::is_archive(&text) {
+        text = main_from_archive(&mut channel, &args.program, &text, &mut notes)?;
+    }
     let program_bytes = text.len();
     let program = args.program.display().to_string();
 
     if args.interpret_only {
-        return Ok(interpret_only(&channel, args, (text, release.as_ref()), syntax_errors, program));
+        return Ok(interpret_only(&channel, args, (text, release.as_ref()), (syntax_errors, notes), program));
     }
     // The state a program with syntax errors leaves: nothing ran.
     let (idle_state, idle_ticks, idle_time) = (dto::State::from(&channel.snapshot()), channel.ticks(), channel.time());
@@ -292,6 +354,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         moves: None,
         alarm: None,
         syntax_errors,
+        notes,
         program_bytes,
         blocks,
         block_changes: run.block_changes,
@@ -350,7 +413,7 @@ fn interpret_only(
     channel: &Channel,
     args: &SimulateArgs,
     (text, release): (ProgramText, Option<&mapped::PageRelease>),
-    mut syntax_errors: Vec<SyntaxError>,
+    (mut syntax_errors, notes): (Vec<SyntaxError>, Vec<Note>),
     program: String,
 ) -> Report {
     let program_bytes = text.len();
@@ -380,6 +443,7 @@ fn interpret_only(
         moves: Some(moves),
         alarm,
         syntax_errors,
+        notes,
         program_bytes,
         blocks,
         block_changes: 0,
@@ -410,11 +474,7 @@ struct Prepared {
 /// discarded).
 fn prepare_all(channel: &Channel, text: ProgramText, verdict: &Verdict) -> Prepared {
     let cfg = channel.config();
-    let programs: Programs = channel
-        .stored_programs()
-        .into_iter()
-        .filter_map(|(name, _)| Some((name.clone(), Arc::from(channel.stored_program(&name)?))))
-        .collect();
+    let programs: &Programs = channel.program_store();
     let mut position = [0.0; MAX_CHANNEL_AXES];
     position[..channel.axis_positions().len()].copy_from_slice(channel.axis_positions());
     // Loops without end would never finish: stop after 100 preparation steps per block plus a
@@ -429,7 +489,7 @@ fn prepare_all(channel: &Channel, text: ProgramText, verdict: &Verdict) -> Prepa
     let mut steps = 0u64;
     loop {
         out.clear();
-        let prep = interp.prepare_next(cfg, &programs, true, &mut out);
+        let prep = interp.prepare_next(cfg, programs, true, &mut out);
         drop(interp.take_data_writes());
         // Read in place: moving each item out would copy every move once more.
         for item in &out {
@@ -451,30 +511,18 @@ fn prepare_all(channel: &Channel, text: ProgramText, verdict: &Verdict) -> Prepa
     found
 }
 
-/// Stores every *.SPF / *.MPF file of `dir` in the channel; syntax errors are collected.
-fn store_programs(channel: &mut Channel, dir: &Path, errors: &mut Vec<SyntaxError>) -> Result<(), UsageError> {
-    let entries =
-        std::fs::read_dir(dir).map_err(|e| UsageError(format!("cannot read program folder {}: {e}", dir.display())))?;
-    let mut paths = Vec::new();
-    for entry in entries {
-        let path = entry.map_err(|e| UsageError(format!("cannot read program folder {}: {e}", dir.display())))?.path();
-        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_uppercase);
-        if path.is_file() && matches!(ext.as_deref(), Some("SPF" | "MPF")) {
-            paths.push(path);
-        }
+/// Opens the program folder `dir` ([`folder::open`]): every program is read and checked when
+/// it is first called, so a broken or undecodable file stops only a run that calls it; skipped
+/// files become notes. The main program runs from the directory of the folder holding it.
+fn store_programs(channel: &mut Channel, dir: &Path, main: &Path, notes: &mut Vec<Note>) -> Result<(), UsageError> {
+    let opened = folder::open(dir).map_err(UsageError)?;
+    let main_dir = opened.dir_of(main).flatten();
+    let store = channel.program_store_mut();
+    for (program, _) in opened.programs {
+        store.add(program);
     }
-    paths.sort();
-    for path in paths {
-        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default().to_string();
-        let text = read_text(&path, "program")?;
-        match channel.store_program(&name, &text) {
-            Ok(_) => {}
-            Err(CommandError::Syntax { errors: found, .. }) => {
-                errors.extend(SyntaxError::all(&path.display().to_string(), found));
-            }
-            Err(e) => return Err(UsageError(format!("{}: {e}", path.display()))),
-        }
-    }
+    store.set_main_dir(main_dir);
+    notes.extend(opened.notes);
     Ok(())
 }
 

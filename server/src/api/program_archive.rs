@@ -1,0 +1,176 @@
+//! `POST/GET /sessions/{id}/program-archive`: the session's programs as one archive file in the
+//! control's punch-tape format (`%_N_NAME_MPF`, `;$PATH=/_N_MPF_DIR`, the program, the next
+//! header ...), the form machines and Operate export.
+//!
+//! Import stores every main program and subprogram of the archive under its name through
+//! [`AppState::put_program`] (its size limits and its save before the reply), all or nothing:
+//! the archive is checked whole first (headers, names, syntax, one program per name), and a
+//! store that fails half-way puts the programs already replaced back. The session's store is
+//! flat (one program per name): the directory of each program is reported, not kept; export
+//! files a program in `_N_SPF_DIR` when it is a subprogram (it starts with `PROC` or ends with
+//! `M17`/`RET`), else in `_N_MPF_DIR`.
+
+use axum::body::Bytes;
+use axum::extract::{Path, State};
+use axum::http::header::CONTENT_TYPE;
+use axum::response::{IntoResponse, Response};
+use nctwin_engine::lang;
+use nctwin_engine::programs::{Dir, Kind, archive, canonical_name};
+
+use super::{find_entry, find_session};
+use crate::dto::{ArchiveImport, ArchiveProgram, ArchiveSkipped, ErrorBody};
+use crate::error::ApiError;
+use crate::state::AppState;
+use crate::text_decode::decode;
+
+/// Stores the programs of an archive file (the body: the file's bytes, UTF-8 or a legacy code
+/// page, LF or CRLF). INI and other data sections are listed as skipped.
+#[utoipa::path(
+    post,
+    path = "/sessions/{id}/program-archive",
+    tag = "programs",
+    params(("id" = String, Path, description = "Session id")),
+    request_body(content = String, content_type = "text/plain", description = "The archive file: `%_N_NAME_MPF` / `%_N_NAME_SPF` headers, optional `;$PATH=` lines, the programs"),
+    responses(
+        (status = 200, description = "Every program stored", body = ArchiveImport),
+        (status = 400, description = "Not an archive, an unreadable header, a bad name, a name twice, a syntax error (program and line named) or undecodable bytes; nothing stored", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 413, description = "A program or the session's programs exceed their size limit; nothing stored", body = ErrorBody),
+        (status = 503, description = "The storage failed; nothing stored", body = ErrorBody),
+    )
+)]
+pub async fn import_archive(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    body: Bytes,
+) -> Result<axum::Json<ArchiveImport>, ApiError> {
+    let entry = find_entry(&state, &id)?;
+    let text = decode(&body).map_err(|e| ApiError::bad_request(format!("archive: {e}")))?.text;
+    if !archive::is_archive(&text) {
+        return Err(ApiError::bad_request("not an archive: its first line must be a header such as %_N_PART1_MPF"));
+    }
+    let split = archive::split(&text);
+    if let Some(p) = split.problems.first() {
+        return Err(ApiError::BadRequest {
+            message: format!("archive line {}: {}", p.line, p.message),
+            line: Some(p.line),
+        });
+    }
+    let mut programs: Vec<(ArchiveProgram, String)> = Vec::new();
+    let mut skipped = Vec::new();
+    for e in &split.entries {
+        if !e.kind.is_program() {
+            let reason = match e.kind {
+                Kind::Ini => "NC data (INI): load it with PUT .../machine-data".to_string(),
+                _ => format!("_{} files are not programs", e.kind.suffix()),
+            };
+            skipped.push(ArchiveSkipped { name: format!("{}_{}", e.name, e.kind.suffix()), line: e.line, reason });
+            continue;
+        }
+        let bad = |message: String| ApiError::BadRequest { message, line: Some(e.line) };
+        let name = canonical_name(&e.name).ok_or_else(|| {
+            bad(format!(
+                "archive line {}: `{}` is not a program name (letters, digits, _; starts with a letter; at most 32)",
+                e.line, e.name
+            ))
+        })?;
+        if programs.iter().any(|(p, _)| p.name == name) {
+            return Err(bad(format!(
+                "archive line {}: a second program {name}: the session keeps one program per name",
+                e.line
+            )));
+        }
+        let errors = lang::check(e.body());
+        if let Some(first) = errors.first() {
+            let line = first.line + e.body_line() - 1;
+            let (listed, omitted) = crate::dto::first_diagnostics(&errors);
+            return Err(ApiError::Program {
+                message: format!(
+                    "program {name} line {} (archive line {line}) column {}: {}",
+                    first.line, first.column, first.message
+                ),
+                line,
+                errors: listed,
+                omitted,
+            });
+        }
+        let info = ArchiveProgram {
+            name,
+            kind: e.kind.suffix().to_string(),
+            directory: e.dir.as_ref().unwrap_or(&Dir::default_for(&e.kind)).path(),
+            size: e.body().len(),
+        };
+        programs.push((info, e.body().to_string()));
+    }
+    // What each name held before, to put back if a store fails half-way.
+    let names: Vec<String> = programs.iter().map(|(p, _)| p.name.clone()).collect();
+    let previous: Vec<Option<String>> = find_session(&state, &id)?
+        .with_channel(move |ch| names.iter().map(|n| ch.stored_program(n).map(str::to_string)).collect())
+        .await
+        .map_err(|e| ApiError::from_session(&id, e))?;
+    for (i, (info, text)) in programs.iter().enumerate() {
+        if let Err(e) = state.put_program(&entry, info.name.clone(), text.clone()).await {
+            for ((done, _), before) in programs[..i].iter().zip(&previous).rev() {
+                let _ = match before {
+                    Some(text) => state.put_program(&entry, done.name.clone(), text.clone()).await.map(drop),
+                    None => state.delete_program(&entry, done.name.clone()).await.map(drop),
+                };
+            }
+            return Err(e);
+        }
+    }
+    Ok(axum::Json(ArchiveImport { programs: programs.into_iter().map(|(p, _)| p).collect(), skipped }))
+}
+
+/// Every stored program as one archive file (LF line ends), by name.
+#[utoipa::path(
+    get,
+    path = "/sessions/{id}/program-archive",
+    tag = "programs",
+    params(("id" = String, Path, description = "Session id")),
+    responses(
+        (status = 200, description = "The archive file", body = String, content_type = "text/plain"),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn export_archive(State(state): State<AppState>, Path(id): Path<String>) -> Result<Response, ApiError> {
+    let session = find_session(&state, &id)?;
+    let text = session
+        .with_channel(|ch| {
+            let mut out = String::new();
+            for (name, _) in ch.stored_programs() {
+                let Some(text) = ch.stored_program(&name) else { continue };
+                let kind = if is_subprogram(text) { Kind::Sub } else { Kind::Main };
+                archive::write(&mut out, &name, &kind, Some(&Dir::default_for(&kind)), text);
+            }
+            out
+        })
+        .await
+        .map_err(|e| ApiError::from_session(&id, e))?;
+    Ok(([(CONTENT_TYPE, "text/plain; charset=utf-8")], text).into_response())
+}
+
+/// A subprogram starts with `PROC` (after comments and blank lines) or ends with `M17`/`RET`.
+fn is_subprogram(text: &str) -> bool {
+    let code = |l: &&str| {
+        let l = l.split(';').next().unwrap_or("").trim();
+        !l.is_empty()
+    };
+    let first = text.lines().find(code).map(|l| l.trim().to_ascii_uppercase());
+    let last = text.lines().rev().find(code).map(|l| l.split(';').next().unwrap_or("").trim().to_ascii_uppercase());
+    let ends = |l: &str| l.split_whitespace().any(|w| w == "M17" || w == "RET");
+    first.is_some_and(|f| f.starts_with("PROC ") || f == "PROC") || last.is_some_and(|l| ends(&l))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_subprogram;
+
+    #[test]
+    fn subprograms_are_told_by_proc_or_their_return() {
+        assert!(is_subprogram("; cycle\n\nPROC DRILL(REAL D)\nG1 X=D\nRET\n"));
+        assert!(is_subprogram("G0 X1\nN20 M17 ; back\n"));
+        assert!(!is_subprogram("G0 X1\nM30\n"));
+        assert!(!is_subprogram("; PROC in a comment\nG0 X1\n"));
+    }
+}
