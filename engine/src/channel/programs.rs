@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use super::{Channel, CommandError};
 use crate::interp::Programs;
-use crate::lang;
+use crate::programs::Kind;
 
 impl Channel {
     /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
@@ -21,16 +21,24 @@ impl Channel {
     /// returns the names in order. All or nothing: a text without a header, a bad header or a
     /// program with syntax errors stores none of them.
     pub fn store_archive(&mut self, text: &str) -> Result<Vec<String>, CommandError> {
-        let parts = match lang::archive::split(text) {
-            None => return Err(CommandError::Invalid("no archive header (%_N_NAME_MPF) in the text".into())),
-            Some(Err((line, message))) => return Err(CommandError::Invalid(format!("line {line}: {message}"))),
-            Some(Ok(parts)) => parts,
-        };
-        let mut checked = Vec::with_capacity(parts.len());
-        for (header, body) in parts {
-            let name = program_name(&header.name)?;
-            CommandError::check(body)?;
-            checked.push((name, body));
+        let archive = crate::programs::archive::split(text);
+        if let Some(problem) = archive.problems.first() {
+            return Err(CommandError::Invalid(format!("line {}: {}", problem.line, problem.message)));
+        }
+        if archive.entries.is_empty() {
+            return Err(CommandError::Invalid("no archive header (%_N_NAME_MPF) in the text".into()));
+        }
+        let mut checked = Vec::with_capacity(archive.entries.len());
+        for entry in &archive.entries {
+            if let Kind::Other(suffix) = &entry.kind {
+                return Err(CommandError::Invalid(format!(
+                    "line {}: a _{suffix} file is no program (_MPF, _SPF or _INI)",
+                    entry.line
+                )));
+            }
+            let name = program_name(&entry.name)?;
+            CommandError::check(entry.text)?;
+            checked.push((name, entry.text));
         }
         Ok(checked
             .into_iter()

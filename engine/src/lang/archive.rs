@@ -5,7 +5,7 @@
 //!
 //! Inside a program text the header is no block: the parser passes over it like an empty line
 //! (see `parser.rs`), and [`super::check`] refuses one that follows an NC block (the start of a
-//! second program: such a text is split with [`split`] and stored program by program).
+//! second program: such a text is an archive file, which `crate::programs::archive` splits).
 
 /// The kind of program a header names.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -87,36 +87,6 @@ pub fn second_header(text: &str) -> Option<(u32, usize)> {
     None
 }
 
-/// One program of an archive: its header and its text (header line included).
-pub type Archived<'a> = (ArchiveHeader, &'a str);
-
-/// Splits an archive text into its programs: each header with the text up to the next header
-/// (lines before the first header, comments, belong to the first program). `None` if the text
-/// has no header line at all; `Err` names the first bad header line (1-based line, message).
-pub fn split(text: &str) -> Option<Result<Vec<Archived<'_>>, (u32, String)>> {
-    let mut starts = Vec::new();
-    let mut offset = 0;
-    for (i, line) in text.split_inclusive('\n').enumerate() {
-        if is_header_line(line) {
-            match header(line.trim_end_matches(['\r', '\n'])) {
-                Ok(h) => starts.push((h, offset)),
-                Err(e) => return Some(Err((i as u32 + 1, e))),
-            }
-        }
-        offset += line.len();
-    }
-    if starts.is_empty() {
-        return None;
-    }
-    let mut out = Vec::with_capacity(starts.len());
-    for (i, (h, start)) in starts.iter().enumerate() {
-        let from = if i == 0 { 0 } else { *start };
-        let to = starts.get(i + 1).map_or(text.len(), |(_, s)| *s);
-        out.push((h.clone(), &text[from..to]));
-    }
-    Some(Ok(out))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -136,18 +106,11 @@ mod tests {
     }
 
     #[test]
-    fn an_archive_splits_into_its_programs() {
+    fn a_second_header_after_blocks_starts_another_program() {
         let text =
             "; archive\n%_N_MAIN_MPF\n;$PATH=/_N_MPF_DIR\nL10\nM30\n%_N_L10_SPF\n;$PATH=/_N_SPF_DIR\nR1=1\nM17\n";
-        let parts = split(text).unwrap().unwrap();
-        assert_eq!(parts.len(), 2);
-        assert_eq!(parts[0].0.name, "MAIN");
-        assert!(parts[0].1.starts_with("; archive\n%_N_MAIN_MPF") && parts[0].1.ends_with("M30\n"));
-        assert_eq!(parts[1].1, "%_N_L10_SPF\n;$PATH=/_N_SPF_DIR\nR1=1\nM17\n");
-        assert!(split("G0 X1\n").is_none());
         assert_eq!(second_header(text), Some((6, 50)));
         assert_eq!(second_header("; c\n%_N_A_MPF\n;$PATH=/_N_MPF_DIR\nM30\n"), None);
         assert_eq!(second_header("G0 X1\n%_N_B_MPF\n"), None);
-        assert_eq!(split("%_N_A_MPF\n%BAD\n").unwrap().unwrap_err().0, 2);
     }
 }

@@ -126,8 +126,18 @@ fn close<'a>(text: &'a str, open: Option<Open>, end: usize, archive: &mut Archiv
     archive.entries.push(Entry { name, kind, dir, line, text, body_start });
 }
 
-/// `%_N_NAME_MPF` or `%NAME_MPF` → (`NAME`, [`Kind::Main`]).
+/// `%_N_NAME_MPF`, `%_N_NAME_SPF`, `%_N_NAME_INI` (read by the language's own header reader,
+/// which also knows `%MPF123`), or another file type of the control's archives (`%_N_X_DEF`,
+/// kept as [`Kind::Other`] so it can be skipped by name).
 fn parse_header(line: &str) -> Option<(String, Kind)> {
+    if let Ok(header) = crate::lang::archive::header(line) {
+        let kind = match header.kind {
+            crate::lang::archive::ProgramKind::Main => Kind::Main,
+            crate::lang::archive::ProgramKind::Sub => Kind::Sub,
+            crate::lang::archive::ProgramKind::Ini => Kind::Ini,
+        };
+        return Some((header.name, kind));
+    }
     let rest = line.strip_prefix('%')?;
     let rest = match rest.get(..3) {
         Some(p) if p.eq_ignore_ascii_case("_N_") => &rest[3..],

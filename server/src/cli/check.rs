@@ -19,7 +19,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use nctwin_engine::interp::{Interpreter, Item, Prep, Programs};
-use nctwin_engine::lang::{self, AddressValue, Expr, Word};
+use nctwin_engine::lang::{self, Expr, Word};
 use nctwin_engine::machine_data::registry::MAX_CHANNEL_AXES;
 use nctwin_engine::programs::{CallError, Dir, StoredProgram};
 use nctwin_engine::{Channel, MachineConfig};
@@ -117,10 +117,11 @@ fn check_calls(
         for word in &block.words {
             // (name, called explicitly: L or CALL)
             let called = match word {
-                Word::Address { name, value: AddressValue { expr: Expr::Number(n), .. }, .. }
-                    if name == "L" && n.fract() == 0.0 && *n >= 0.0 =>
+                // `L123`: the parser names the call by its digits as written.
+                Word::Keyword { name, .. }
+                    if name.len() > 1 && name.starts_with('L') && name[1..].bytes().all(|b| b.is_ascii_digit()) =>
                 {
-                    Some((format!("L{}", *n as u64), true))
+                    Some((name.clone(), true))
                 }
                 Word::Keyword { name, args } if name == "CALL" => match args.as_slice() {
                     [Expr::Str(s)] => Some((s.to_ascii_uppercase(), true)),
