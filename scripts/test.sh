@@ -45,7 +45,7 @@ if [ "$WHAT" = all ] || [ "$WHAT" = rust ]; then
   source "$ROOT/scripts/postgres.sh"
   trap pg_test_stop EXIT
   pg_test_start
-  cargo test --workspace
+  cargo test --workspace --no-fail-fast
   pg_test_stop
   trap - EXIT
 

@@ -213,11 +213,15 @@ async fn connect(addr: SocketAddr) -> TcpStream {
     TcpStream::connect(addr).await.expect("connect")
 }
 
-const HEALTH: &[u8] = b"GET /api/v1/health HTTP/1.1\r\nhost: localhost\r\n\r\n";
+/// `GET /api/v1/health` with the `Host` the server answers to (its own address and port).
+fn health_request(tcp: &TcpStream) -> Vec<u8> {
+    let server = tcp.peer_addr().expect("connected");
+    format!("GET /api/v1/health HTTP/1.1\r\nhost: {server}\r\n\r\n").into_bytes()
+}
 
 /// Sends a health request on a kept-alive connection and reads its answer's head.
 async fn health_head(tcp: &mut TcpStream) -> String {
-    tcp.write_all(HEALTH).await.expect("request sent");
+    tcp.write_all(&health_request(tcp)).await.expect("request sent");
     let mut head = Vec::new();
     let mut byte = [0u8; 1];
     while !head.ends_with(b"\r\n\r\n") {
@@ -258,7 +262,8 @@ async fn a_connection_over_the_per_ip_cap_is_answered_429_and_closed() {
     let mut make = connect(server.addr).await;
     let body = json!({"machine": "mill-3axis"}).to_string();
     let request = format!(
-        "POST /api/v1/sessions HTTP/1.1\r\nhost: localhost\r\ncontent-type: application/json\r\ncontent-length: {}\r\nconnection: close\r\n\r\n{body}",
+        "POST /api/v1/sessions HTTP/1.1\r\nhost: {}\r\ncontent-type: application/json\r\ncontent-length: {}\r\nconnection: close\r\n\r\n{body}",
+        server.addr,
         body.len()
     );
     make.write_all(request.as_bytes()).await.expect("sent");
@@ -277,7 +282,7 @@ async fn a_connection_over_the_per_ip_cap_is_answered_429_and_closed() {
     timeout(GUARD, stream.next()).await.expect("the first state").expect("open").expect("a message");
 
     let mut extra = connect(server.addr).await;
-    extra.write_all(HEALTH).await.expect("sent");
+    extra.write_all(&health_request(&extra)).await.expect("sent");
     let answer = String::from_utf8_lossy(&read_to_close(&mut extra, GUARD).await).into_owned();
     assert!(answer.starts_with("HTTP/1.1 429"), "{answer}");
     assert!(answer.to_ascii_lowercase().contains("connection: close"), "{answer}");
@@ -288,7 +293,7 @@ async fn a_connection_over_the_per_ip_cap_is_answered_429_and_closed() {
     let started = Instant::now();
     loop {
         let mut next = connect(server.addr).await;
-        next.write_all(HEALTH).await.expect("sent");
+        next.write_all(&health_request(&next)).await.expect("sent");
         let answer = String::from_utf8_lossy(&read_to_close_or_head(&mut next).await).into_owned();
         if answer.starts_with("HTTP/1.1 200") {
             break;
