@@ -485,32 +485,47 @@ fn parse_init(cur: &mut Cursor) -> PResult<Vec<Expr>> {
     Ok(vec![parse_expr(cur)?])
 }
 
-fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
-    let name = cur.ident().ok_or((cur.pos, "PROC needs a name".to_string()))?;
+/// An optional parameter list `(VAR REAL A, INT B[3])` of PROC or EXTERN: `(`, then for each
+/// entry an optional `VAR` and a type, the rest of the entry read by `entry`, entries
+/// separated by `,` up to `)`. No list at all is an empty one.
+fn parse_param_list<T>(
+    cur: &mut Cursor,
+    what: &str,
+    mut entry: impl FnMut(&mut Cursor, bool, VarType) -> PResult<T>,
+) -> PResult<Vec<T>> {
     let mut params = Vec::new();
     cur.skip_ws();
-    if cur.eat(b'(') {
+    if !cur.eat(b'(') {
+        return Ok(params);
+    }
+    cur.skip_ws();
+    if cur.eat(b')') {
+        return Ok(params);
+    }
+    loop {
         cur.skip_ws();
-        if !cur.eat(b')') {
-            loop {
-                cur.skip_ws();
-                let by_reference = cur.eat_word("VAR");
-                cur.skip_ws();
-                let ty = parse_type(cur)?;
-                cur.skip_ws();
-                let pname = cur.ident().ok_or((cur.pos, "parameter needs a name".to_string()))?;
-                let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
-                params.push(Param { by_reference, ty, name: pname, dims });
-                cur.skip_ws();
-                if cur.eat(b')') {
-                    break;
-                }
-                if !cur.eat(b',') {
-                    return Err((cur.pos, "expected `,` or `)` in PROC parameters".into()));
-                }
-            }
+        let by_reference = cur.eat_word("VAR");
+        cur.skip_ws();
+        let ty = parse_type(cur)?;
+        params.push(entry(cur, by_reference, ty)?);
+        cur.skip_ws();
+        if cur.eat(b')') {
+            return Ok(params);
+        }
+        if !cur.eat(b',') {
+            return Err((cur.pos, format!("expected `,` or `)` in {what}")));
         }
     }
+}
+
+fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
+    let name = cur.ident().ok_or((cur.pos, "PROC needs a name".to_string()))?;
+    let params = parse_param_list(cur, "PROC parameters", |cur, by_reference, ty| {
+        cur.skip_ws();
+        let pname = cur.ident().ok_or((cur.pos, "parameter needs a name".to_string()))?;
+        let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
+        Ok(Param { by_reference, ty, name: pname, dims })
+    })?;
     // Attributes: SAVE matters to the interpreter; DISPLOF, SBLOF, ... need no action here.
     let mut save = false;
     loop {
@@ -565,32 +580,14 @@ fn parse_section_repeat(single: bool, cur: &mut Cursor) -> PResult<Stmt> {
 /// of its calls.
 fn parse_extern(cur: &mut Cursor) -> PResult<Stmt> {
     let name = cur.ident().ok_or((cur.pos, "EXTERN needs a name".to_string()))?;
-    let mut params = Vec::new();
-    cur.skip_ws();
-    if cur.eat(b'(') {
+    let params = parse_param_list(cur, "EXTERN parameter types", |cur, by_reference, ty| {
+        // An array parameter's dimensions (`REAL[3]`) need no check here.
         cur.skip_ws();
-        if !cur.eat(b')') {
-            loop {
-                cur.skip_ws();
-                let by_reference = cur.eat_word("VAR");
-                cur.skip_ws();
-                let ty = parse_type(cur)?;
-                // An array parameter's dimensions (`REAL[3]`) need no check here.
-                cur.skip_ws();
-                if cur.peek() == Some(b'[') {
-                    parse_indices(cur, MAX_EXPR_DEPTH)?;
-                }
-                params.push((by_reference, ty));
-                cur.skip_ws();
-                if cur.eat(b')') {
-                    break;
-                }
-                if !cur.eat(b',') {
-                    return Err((cur.pos, "expected `,` or `)` in EXTERN parameter types".into()));
-                }
-            }
+        if cur.peek() == Some(b'[') {
+            parse_indices(cur, MAX_EXPR_DEPTH)?;
         }
-    }
+        Ok((by_reference, ty))
+    })?;
     Ok(Stmt::Extern { name, params })
 }
 
