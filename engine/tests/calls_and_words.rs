@@ -339,6 +339,12 @@ fn an_unmodelled_reserved_name_is_12550_naming_it_and_its_line() {
         ("CYCLE832(0.01,3,1)", "CYCLE832"),
         ("R1=$MN_INTERPOLATOR_CYCLE", "$MN_INTERPOLATOR_CYCLE"),
         ("ACTBLOCNO", "ACTBLOCNO"),
+        // Synchronized actions: refused by their opening word, not as a syntax error of the
+        // condition that follows it.
+        ("WHEN $AA_IM[X]>5 DO M8", "WHEN"),
+        ("N10 WHENEVER $AA_IW[Z]<-2 DO $AC_OVR=50", "WHENEVER"),
+        ("EVERY $A_IN[1]==1 DO M9", "EVERY"),
+        ("FROM $AA_IM[X]>1 DO $R1=1", "FROM"),
     ] {
         let ch = run(&format!("G0 X2\n{word}\nG0 X3\nM30\n"), &[]);
         let s = ch.snapshot();

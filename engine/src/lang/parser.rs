@@ -221,6 +221,15 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
         if cur.at_end() {
             break;
         }
+        if let Some(name) = synchronized_action(&mut cur) {
+            // NCTwin does not model synchronized actions: the block carries the opening word
+            // alone, which the interpreter refuses with 12550 naming it (the rest of the line,
+            // condition and actions, is of a syntax of its own).
+            if build {
+                block.words.push(Word::Keyword { name: name.to_string(), args: Vec::new() });
+            }
+            break;
+        }
         let word = parse_word(&mut cur, build)?;
         if build {
             block.words.push(word);
@@ -239,6 +248,25 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
         return Ok(None);
     }
     Ok(Some(block))
+}
+
+/// The word that opens a synchronized action (`WHEN`, `WHENEVER`, `FROM`, `EVERY`, also after
+/// `ID=n`/`IDS=n`, which are read as words before it); the cursor is left at the end of the line.
+fn synchronized_action(cur: &mut Cursor) -> Option<&'static str> {
+    // Most words start with another letter: one byte settles them.
+    if !matches!(cur.peek().map(|c| c.to_ascii_uppercase()), Some(b'W' | b'F' | b'E')) {
+        return None;
+    }
+    let save = cur.pos;
+    let span = cur.ident_span()?;
+    let Some(name) = ["WHENEVER", "WHEN", "FROM", "EVERY"].into_iter().find(|n| cur.span_is(span, n)) else {
+        cur.pos = save;
+        return None;
+    };
+    while !cur.at_end() {
+        cur.pos += 1;
+    }
+    Some(name)
 }
 
 fn split_comment(text: &str) -> (&str, Option<&str>) {
