@@ -3,7 +3,7 @@
 
 mod process;
 
-use process::forward_lines;
+use process::{forward_lines, listening_address};
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::process::{Child, Command, Stdio};
@@ -45,14 +45,7 @@ fn the_binary_logs_its_address_serves_health_and_stops_on_sigint() {
     let mut server = Running(child);
     let lines = forward_lines(&mut server.0);
 
-    let deadline = Instant::now() + Duration::from_secs(60);
-    let addr = loop {
-        let left = deadline.saturating_duration_since(Instant::now());
-        let line = lines.recv_timeout(left).expect("a `listening on http://` line");
-        if let Some((_, rest)) = line.split_once("listening on http://") {
-            break rest.split_whitespace().next().expect("address").to_string();
-        }
-    };
+    let addr = listening_address(&lines);
     assert!(addr.starts_with("127.0.0.1:") && !addr.ends_with(":0"), "the real bound address: {addr}");
 
     let response = http_get(&addr, "/api/v1/health");

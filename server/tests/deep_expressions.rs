@@ -7,10 +7,9 @@ mod process;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
-use std::time::{Duration, Instant};
 
 use nctwin_engine::lang::MAX_EXPR_DEPTH;
-use process::forward_lines;
+use process::{forward_lines, listening_address};
 use serde_json::{Value, json};
 
 const M: usize = MAX_EXPR_DEPTH as usize;
@@ -76,13 +75,7 @@ fn start(dir: &Path) -> (Running, String) {
         .expect("start nctwin");
     let mut server = Running(child);
     let lines = forward_lines(&mut server.0);
-    let deadline = Instant::now() + Duration::from_secs(60);
-    let addr = loop {
-        let line = lines.recv_timeout(deadline.saturating_duration_since(Instant::now())).expect("listening line");
-        if let Some((_, rest)) = line.split_once("listening on http://") {
-            break rest.split_whitespace().next().expect("address").to_string();
-        }
-    };
+    let addr = listening_address(&lines);
     (server, addr)
 }
 

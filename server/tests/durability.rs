@@ -14,9 +14,9 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use process::forward_lines;
+use process::{forward_lines, listening_address};
 use reqwest::StatusCode;
 use serde_json::{Value, json};
 
@@ -53,14 +53,7 @@ impl Nctwin {
             .spawn()
             .expect("start nctwin");
         let lines = forward_lines(&mut child);
-        let deadline = Instant::now() + Duration::from_secs(60);
-        let addr = loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            let line = lines.recv_timeout(left).expect("a `listening on http://` line");
-            if let Some((_, rest)) = line.split_once("listening on http://") {
-                break rest.split_whitespace().next().expect("address").to_string();
-            }
-        };
+        let addr = listening_address(&lines);
         std::thread::spawn(move || while lines.recv().is_ok() {});
         Nctwin { child, base: format!("http://{addr}/api/v1"), client: reqwest::Client::new() }
     }

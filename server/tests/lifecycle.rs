@@ -5,7 +5,7 @@
 mod pg;
 mod process;
 
-use process::forward_lines;
+use process::{forward_lines, listening_address};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::sync::Arc;
@@ -61,14 +61,7 @@ impl Nctwin {
             .spawn()
             .expect("start nctwin");
         let lines = forward_lines(&mut child);
-        let deadline = Instant::now() + Duration::from_secs(60);
-        let addr = loop {
-            let left = deadline.saturating_duration_since(Instant::now());
-            let line = lines.recv_timeout(left).expect("a `listening on http://` line");
-            if let Some((_, rest)) = line.split_once("listening on http://") {
-                break rest.split_whitespace().next().expect("address").to_string();
-            }
-        };
+        let addr = listening_address(&lines);
         // Keep draining the output so the server never blocks on a full pipe.
         std::thread::spawn(move || while lines.recv().is_ok() {});
         Nctwin { child, base: format!("http://{addr}/api/v1"), client: reqwest::Client::new() }

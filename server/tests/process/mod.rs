@@ -3,6 +3,7 @@
 use std::io::{BufRead, BufReader, Read};
 use std::process::Child;
 use std::sync::mpsc;
+use std::time::{Duration, Instant};
 
 /// Sends every line of stdout and stderr to one channel.
 pub fn forward_lines(child: &mut Child) -> mpsc::Receiver<String> {
@@ -20,4 +21,17 @@ pub fn forward_lines(child: &mut Child) -> mpsc::Receiver<String> {
         });
     }
     rx
+}
+
+/// The address (`IP:PORT`) from the server's `listening on http://...` line, waiting up to a
+/// minute for it; the lines before it are dropped.
+pub fn listening_address(lines: &mpsc::Receiver<String>) -> String {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        let line = lines.recv_timeout(left).expect("a `listening on http://` line");
+        if let Some((_, rest)) = line.split_once("listening on http://") {
+            return rest.split_whitespace().next().expect("address").to_string();
+        }
+    }
 }
