@@ -11,68 +11,13 @@ mod pg;
 mod process;
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
 
-use process::{forward_lines, listening_address};
+use process::Nctwin;
 use reqwest::StatusCode;
 use serde_json::{Value, json};
-
-/// A running `nctwin`; killed if the test fails before it stops it.
-struct Nctwin {
-    child: Child,
-    base: String,
-    client: reqwest::Client,
-}
-
-impl Drop for Nctwin {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-impl Nctwin {
-    /// Starts the binary on a free port with `data_dir` (and PostgreSQL database `database` if
-    /// given, as one node) and waits for its address.
-    fn start(data_dir: &Path, database: Option<&str>) -> Nctwin {
-        let mut command = Command::new(env!("CARGO_BIN_EXE_nctwin"));
-        if let Some(url) = database {
-            command.args(["--database", url, "--node-id", "durability-node"]);
-        }
-        let mut child = command
-            .args(["--bind", "127.0.0.1:0", "--data-dir"])
-            .arg(data_dir)
-            .env("RUST_LOG", "info")
-            .env("NO_COLOR", "1")
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("start nctwin");
-        let lines = forward_lines(&mut child);
-        let addr = listening_address(&lines);
-        std::thread::spawn(move || while lines.recv().is_ok() {});
-        Nctwin { child, base: format!("http://{addr}/api/v1"), client: reqwest::Client::new() }
-    }
-
-    fn url(&self, path: &str) -> String {
-        format!("{}{path}", self.base)
-    }
-
-    async fn get(&self, path: &str) -> (StatusCode, Value) {
-        let response = self.client.get(self.url(path)).send().await.expect("request");
-        let status = response.status();
-        (status, response.json().await.unwrap_or(Value::Null))
-    }
-
-    fn kill(&self) {
-        let status = Command::new("kill").args(["-KILL", &self.child.id().to_string()]).status().expect("kill");
-        assert!(status.success());
-    }
-}
 
 /// What a session holds, as far as the writers were told.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -190,7 +135,7 @@ async fn sigkill_during_program_and_machine_data_writes_to_postgresql_loses_and_
 async fn sigkill_rounds(database: Option<&str>) {
     const WRITERS: usize = 3;
     let dir = data_dir(if database.is_some() { "pg" } else { "sqlite" });
-    let mut server = Arc::new(Nctwin::start(&dir, database));
+    let mut server = Arc::new(Nctwin::start_with(&dir, database));
     let mut sessions = Vec::new();
     for _ in 0..WRITERS {
         let response = server.client.post(server.url("/sessions")).send().await.expect("create");
@@ -226,14 +171,14 @@ async fn sigkill_rounds(database: Option<&str>) {
         }
         // Kill at a different moment each round.
         tokio::time::sleep(Duration::from_millis(500 + 250 * round)).await;
-        server.kill();
+        server.signal("-KILL");
         let mut outcomes = Vec::new();
         for writer in writers {
             outcomes.push(writer.await.expect("writer"));
         }
         drop(server);
 
-        server = Arc::new(Nctwin::start(&dir, database));
+        server = Arc::new(Nctwin::start_with(&dir, database));
         let mut acknowledged = 0;
         for (w, (model, in_doubt, n)) in outcomes.into_iter().enumerate() {
             let sid = sessions[w].0.clone();

@@ -5,96 +5,16 @@
 mod pg;
 mod process;
 
-use process::{forward_lines, listening_address};
+use process::Nctwin;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use futures_util::StreamExt;
 use reqwest::StatusCode;
-use serde_json::{Value, json};
+use serde_json::json;
 use tokio_tungstenite::connect_async;
 use tokio_tungstenite::tungstenite::Message;
-
-/// A running `nctwin`; killed if the test fails before it stops it.
-struct Nctwin {
-    child: Child,
-    base: String,
-    client: reqwest::Client,
-}
-
-impl Drop for Nctwin {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-impl Nctwin {
-    /// Starts the binary on a free port with `data_dir` and waits for its address.
-    fn start(data_dir: &Path) -> Nctwin {
-        Nctwin::start_with(data_dir, None)
-    }
-
-    /// [`Nctwin::start`], keeping the sessions in PostgreSQL database `database` if given (as
-    /// node `test-node`, so that a restart is the same node).
-    fn start_with(data_dir: &Path, database: Option<&str>) -> Nctwin {
-        match database {
-            Some(url) => Nctwin::start_args(data_dir, &["--database", url, "--node-id", "test-node"]),
-            None => Nctwin::start_args(data_dir, &[]),
-        }
-    }
-
-    /// [`Nctwin::start`] with more arguments.
-    fn start_args(data_dir: &Path, args: &[&str]) -> Nctwin {
-        let mut command = Command::new(env!("CARGO_BIN_EXE_nctwin"));
-        command.args(args);
-        let mut child = command
-            .args(["--bind", "127.0.0.1:0", "--data-dir"])
-            .arg(data_dir)
-            .env("RUST_LOG", "info")
-            .env("NO_COLOR", "1")
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("start nctwin");
-        let lines = forward_lines(&mut child);
-        let addr = listening_address(&lines);
-        // Keep draining the output so the server never blocks on a full pipe.
-        std::thread::spawn(move || while lines.recv().is_ok() {});
-        Nctwin { child, base: format!("http://{addr}/api/v1"), client: reqwest::Client::new() }
-    }
-
-    async fn send(&self, method: reqwest::Method, path: &str, body: Option<Value>) -> (StatusCode, Value) {
-        let mut request = self.client.request(method, format!("{}{path}", self.base));
-        if let Some(body) = body {
-            request = request.json(&body);
-        }
-        let response = request.send().await.expect("request");
-        let status = response.status();
-        let bytes = response.bytes().await.expect("body");
-        (status, if bytes.is_empty() { Value::Null } else { serde_json::from_slice(&bytes).expect("JSON") })
-    }
-
-    fn signal(&self, name: &str) {
-        let status = Command::new("kill").args([name, &self.child.id().to_string()]).status().expect("kill");
-        assert!(status.success());
-    }
-
-    /// Waits for the process to end (at most `limit`), returning whether it exited with 0.
-    fn wait_exit(&mut self, limit: Duration) -> bool {
-        let deadline = Instant::now() + limit;
-        loop {
-            if let Some(exit) = self.child.try_wait().expect("wait") {
-                return exit.success();
-            }
-            assert!(Instant::now() < deadline, "the server did not exit within {limit:?}");
-            std::thread::sleep(Duration::from_millis(10));
-        }
-    }
-}
 
 fn data_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("nctwin-lifecycle-{name}-{}", std::process::id()));
