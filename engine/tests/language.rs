@@ -18,7 +18,7 @@
 
 use std::path::Path;
 
-use nctwin_engine::interp::value::Value;
+use nctwin_engine::interp::eval::value::Value;
 use nctwin_engine::{Channel, CommandError, Status};
 
 const TOLERANCE: f64 = 1e-9;

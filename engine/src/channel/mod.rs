@@ -719,7 +719,7 @@ impl Channel {
 
     /// A user variable's element (flat index for arrays), if it is declared in the program
     /// level being prepared or globally.
-    pub fn variable(&self, name: &str, index: usize) -> Option<crate::interp::value::Value> {
+    pub fn variable(&self, name: &str, index: usize) -> Option<crate::interp::eval::value::Value> {
         self.interp.variables().get(&name.to_ascii_uppercase()).and_then(|v| v.data.get(index).cloned())
     }
 

@@ -3,6 +3,8 @@
 //! `targets.rs`: the program a call word names and the EXTERN checks; `modal_call.rs`: MCALL;
 //! `section.rs`: REPEAT/REPEATB and CALL BLOCK.
 
+pub(super) mod delobj;
+pub(super) mod effects;
 mod modal_call;
 mod section;
 pub(super) mod targets;
@@ -11,11 +13,11 @@ use std::sync::Arc;
 
 use super::Interpreter;
 use super::eval::eval;
+use super::eval::scope::{Ctx, sys_view};
+use super::eval::value::Value;
+use super::eval::vars::Variable;
 use super::flow::Flow;
 use super::modal::assign;
-use super::scope::{Ctx, sys_view};
-use super::value::Value;
-use super::vars::Variable;
 use crate::alarm::Alarm;
 use crate::lang::{Expr, Lvalue, Param, ProgramText};
 use crate::machine_data::MachineConfig;

@@ -2,12 +2,15 @@
 //! functions, variables and system variables.
 
 pub(super) mod numeric;
+pub(super) mod scope;
+pub mod value;
+pub mod vars;
 
 use std::cmp::Ordering;
 
-use super::frame::{self, Frame, GeoAxes};
-use super::value::Value;
-use super::vars::Variables;
+use super::eval::value::Value;
+use super::eval::vars::Variables;
+use super::frames::frame::{self, Frame, GeoAxes};
 use crate::alarm::Alarm;
 use crate::lang::{BinOp, Expr, UnOp};
 use crate::machine_data::FrameAngles;
@@ -147,7 +150,7 @@ fn variable(name: &str, idx: &[Value], scope: &dyn Scope, line: u32) -> Result<V
 }
 
 fn unary(op: UnOp, v: Value, line: u32) -> Result<Value, Alarm> {
-    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
+    let type_err = |e: super::eval::value::TypeError| Alarm::type_error(line, &e.0);
     Ok(match op {
         UnOp::Neg => match v {
             Value::Int(i) => Value::Int(-i),
@@ -187,7 +190,7 @@ pub fn eval_f64(expr: &Expr, scope: &dyn Scope, line: u32) -> Result<f64, Alarm>
 }
 
 fn binary(op: BinOp, a: Value, b: Value, line: u32) -> Result<Value, Alarm> {
-    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
+    let type_err = |e: super::eval::value::TypeError| Alarm::type_error(line, &e.0);
     let num = |v: &Value| v.as_f64().map_err(type_err);
     let int = |v: &Value| v.as_i64().map_err(type_err);
     let both_int = matches!((&a, &b), (Value::Int(_), Value::Int(_)));
@@ -262,7 +265,7 @@ fn call(name: &str, vals: &[Value], line: u32) -> Result<Value, Alarm> {
     let arity = |n: usize| -> Result<(), Alarm> {
         if vals.len() == n { Ok(()) } else { Err(Alarm::syntax(line, &format!("{name} takes {n} argument(s)"))) }
     };
-    let type_err = |e: super::value::TypeError| Alarm::type_error(line, &e.0);
+    let type_err = |e: super::eval::value::TypeError| Alarm::type_error(line, &e.0);
     let f = |i: usize| vals[i].as_f64().map_err(type_err);
     let text = |i: usize| match &vals[i] {
         Value::Str(s) => Ok(s.clone()),
@@ -382,7 +385,7 @@ fn frame_function(name: &str, vals: &[Value], scope: &dyn Scope, line: u32) -> R
                     .ok_or_else(|| Alarm::type_error(line, "CROTS rotates geometry axes only"))?;
                 angles.push((g, v));
             }
-            let r = super::solid_angles::rotation(&angles)
+            let r = super::frames::solid_angles::rotation(&angles)
                 .map_err(|what| Alarm::value_out_of_range(line, &format!("CROTS: {what}")))?;
             Frame::rotation(r)
         }

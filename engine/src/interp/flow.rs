@@ -7,6 +7,7 @@
 
 mod block_cache;
 mod jump_memo;
+pub(super) mod jump_target;
 mod sections;
 
 use std::sync::Arc;

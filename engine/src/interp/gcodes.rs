@@ -2,11 +2,11 @@
 //! main run, so the display shows the G codes of the block being executed rather than of the
 //! block being prepared.
 
+use super::compensation::approach::ApproachMode;
+use super::compensation::trc::{ArcFeed, CornerMode, Side};
 use super::modal::{Modal, MotionMode, Plane, PtpMode};
-use super::orient::{AngleDefinition, OriInterpolation, OriReference};
-use super::orient_rot::RotReference;
-use super::trc::{ArcFeed, CornerMode, Side};
-use super::trc_approach::ApproachMode;
+use super::orientation::rotation::RotReference;
+use super::orientation::words::{AngleDefinition, OriInterpolation, OriReference};
 
 /// One entry per displayed G group: the index of the active function in that group's list.
 #[derive(Debug, Clone, Copy, Eq, Default)]

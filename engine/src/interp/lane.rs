@@ -29,7 +29,7 @@
 //!   and effect calls (no variables, no functions); `check_unbound` (refused while a call's
 //!   arguments are unbound); alarm/end items afterwards (the lane makes none).
 //! - `prepare_block`: `modal::collect` (replaced by the scan; data writes, NEWCONF, corners,
-//!   messages, stops, jumps, calls need words the lane refuses); `trafo::selection` and
+//!   messages, stops, jumps, calls need words the lane refuses); `transform::selection::selection` and
 //!   `apply_transformation` (no keyword; no active transformation, refused); `modal.apply`
 //!   (only motion and G90/G91 change, the lane sets them); work offset, S, SETMS, T/D, frame
 //!   instructions and frame writes, `holder_block` (no such words); `refresh_offsets` (called,
@@ -49,12 +49,12 @@
 //!   held); `shape_corners` (nothing held, no RND/CHF/CHR); `transform_moves` (none active).
 
 use super::flow::Pos;
-use super::frame::{Frame, GeoAxes};
+use super::frames::frame::{Frame, GeoAxes};
 use super::modal::MotionMode;
-use super::orient::RotReference;
+use super::orientation::words::RotReference;
 use super::{
-    AxisLimit, Interpreter, Item, Move, Prep, arc, arc_center, arc_turn, block_end, check_software_limits, feed_length,
-    shape_path,
+    AxisLimit, Interpreter, Item, Move, Prep, arc_center, arc_turn, block_end, check_software_limits, contour::arc,
+    feed_length, shape_path,
 };
 use crate::lang::plain_words;
 use crate::machine_data::MachineConfig;
@@ -157,7 +157,7 @@ impl LaneMemo {
 
 /// Reads `text` (one line without its line end) as a plain motion line; `None` for anything
 /// else. `letters`: the geometry axis each letter addresses.
-fn scan(text: &str, letters: &[Option<usize>; 26], vars: &super::vars::Variables) -> Option<PlainBlock> {
+fn scan(text: &str, letters: &[Option<usize>; 26], vars: &super::eval::vars::Variables) -> Option<PlainBlock> {
     let mut block = PlainBlock::default();
     let mut seen = 0u32;
     let no_user_names = vars.no_user_names();

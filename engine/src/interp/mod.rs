@@ -5,46 +5,23 @@
 //! programmed stops and alarms. The interpreter runs ahead of the main run and keeps its own
 //! programmed position, as the control's preprocessing does.
 
-pub mod arc;
 mod calls;
-mod corners;
-mod corrtrafo;
-mod delobj;
-mod effect_calls;
-mod eval;
+mod compensation;
+mod contour;
+pub mod eval;
 mod everyday;
 mod flow;
-pub mod frame;
-mod frame_cache;
-mod frame_vars;
+mod frames;
 pub mod gcodes;
-mod jump_target;
 mod lane;
 mod modal;
-mod ori_curve;
-mod ori_direct;
-mod orient;
-mod orient_poly;
-mod orient_rot;
-mod orient_vars;
+mod orientation;
 mod published;
 pub mod retained;
-mod scope;
-mod solid_angles;
 mod spindles;
 mod statements;
-mod swivel;
-mod toff;
-pub mod toolholder;
-mod trafo;
-pub mod trc;
-pub mod trc_approach;
-mod trc_bottleneck;
-mod trc_disc;
-mod trc_edge;
-mod trc_kontc;
-pub mod value;
-pub mod vars;
+mod tools;
+mod transform;
 
 use crate::alarm::Alarm;
 use crate::kinematics;
@@ -54,15 +31,15 @@ use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, OriPath, Path};
 use calls::CallFrame;
 pub use calls::{Level, Programs};
-pub use corners::Corner;
+pub use contour::corners::Corner;
+use eval::scope::sys_view;
+use eval::vars::Variables;
 use flow::Flow;
-pub use frame::Frame;
-use frame::SystemFrames;
-use frame_cache::{FrameCache, Tracked};
+use frames::cache::{FrameCache, Tracked};
+pub use frames::frame::Frame;
+use frames::frame::SystemFrames;
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
-use scope::sys_view;
-use vars::Variables;
 
 /// Offsets in effect for a block, per channel axis, and the tool that causes them.
 ///
@@ -218,19 +195,19 @@ pub struct Interpreter {
     /// Alarms that only inform (10910): shown while the program goes on.
     warnings: Vec<Alarm>,
     /// A move held back until the next block decides its corner (RND, CHF, CHR).
-    held: Option<corners::Held>,
+    held: Option<contour::corners::Held>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
     /// Tool radius compensation: moves held until their successor decides their end.
-    trc: trc::Compensator,
+    trc: compensation::trc::Compensator,
     /// Spindles in position control (after SPOS), by channel axis.
     positioned: [bool; MAX_CHANNEL_AXES],
     /// The spindles' angles in the main run, as last observed (for SPOS).
     spindle_angles: AxisVec,
     /// The active kinematic transformation, if any (see `trafo.rs`).
-    trafo: trafo::TrafoState,
+    trafo: transform::selection::TrafoState,
     /// The orientable toolholder and G groups 22, 42, 52, 53 (see `swivel.rs`).
-    holder: toolholder::Holder,
+    holder: tools::toolholder::Holder,
     /// The words of the last block, kept for the next one's (no allocation per block).
     spare_words: modal::SpareWords,
     /// Plain motion lines take the fast lane (`lane.rs`).
@@ -260,11 +237,11 @@ impl Interpreter {
             warnings: Vec::new(),
             held: None,
             corner_request: None,
-            trc: trc::Compensator::default(),
+            trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
-            holder: toolholder::Holder { g53: 1, ..Default::default() },
+            holder: tools::toolholder::Holder { g53: 1, ..Default::default() },
             spare_words: modal::SpareWords::default(),
             fast_lane: true,
             lane_memo: Default::default(),
@@ -508,7 +485,9 @@ impl Interpreter {
         let offsets_before = self.offsets_mark();
         let selection = {
             let sys = sys_view!(self, cfg);
-            trafo::selection(block, |e| eval::eval_f64(e, &scope::Ctx { vars: &self.vars, sys: &sys }, line))?
+            transform::selection::selection(block, |e| {
+                eval::eval_f64(e, &eval::scope::Ctx { vars: &self.vars, sys: &sys }, line)
+            })?
         };
         self.apply_transformation(selection, block, base_cfg, line)?;
         let derived = self.trafo.config();
@@ -578,7 +557,7 @@ impl Interpreter {
             self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
             let offsets = self.shared_offsets();
             let approach = self.modal.approach;
-            let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner: None };
+            let prepared = compensation::trc::Prepared { mv, feed, line, offsets, approach, corner: None };
             let comp = self.compensation(cfg, words, line)?;
             self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
         }
@@ -617,7 +596,7 @@ impl Interpreter {
                 out.push(Item::Move { mv, line, offsets });
                 self.trc.passed(out);
             } else {
-                let prepared = trc::Prepared { mv, feed, line, offsets, approach, corner };
+                let prepared = compensation::trc::Prepared { mv, feed, line, offsets, approach, corner };
                 self.trc.push(prepared, comp, &limits, out)?;
             }
         } else if !positioned && self.offsets_mark() != offsets_before {
@@ -681,7 +660,7 @@ impl Interpreter {
             FrameKind::Rot => {
                 if let Some(angle) = words.rpl {
                     let (_, _, applicate) = self.modal.plane.axes();
-                    Frame::rotation(frame::about_axis(applicate, angle))
+                    Frame::rotation(frames::frame::about_axis(applicate, angle))
                 } else {
                     let mut angles = [0.0; 3];
                     for &(k, v, _) in &words.axes {
@@ -693,7 +672,7 @@ impl Interpreter {
                         })?;
                         angles[g] = v;
                     }
-                    Frame::rotation(frame::rotation_of(cfg.frame_angles, angles))
+                    Frame::rotation(frames::frame::rotation_of(cfg.frame_angles, angles))
                 }
             }
             FrameKind::Rots => {
@@ -710,7 +689,7 @@ impl Interpreter {
                 if angles.is_empty() {
                     Frame::identity()
                 } else {
-                    let r = solid_angles::rotation(&angles)
+                    let r = frames::solid_angles::rotation(&angles)
                         .map_err(|what| Alarm::value_out_of_range(line, &format!("ROTS: {what}")))?;
                     Frame::rotation(r)
                 }
@@ -789,12 +768,12 @@ impl Interpreter {
         cfg: &MachineConfig,
         words: &modal::Words,
         line: u32,
-    ) -> Result<Option<trc::Compensation>, Alarm> {
+    ) -> Result<Option<compensation::trc::Compensation>, Alarm> {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
         let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
         let Some(edge) = edge else { return Err(Alarm::trc_without_tool(line)) };
         let tool_radius = edge[5] + edge[14];
-        let tip = trc_edge::tip_offset(edge[0], edge[1], tool_radius);
+        let tip = compensation::cutting_edge::tip_offset(edge[0], edge[1], tool_radius);
         let groove_wall = self.groove_wall_axes();
         let offn = self.modal.offn;
         let radius = match groove_wall {
@@ -826,7 +805,7 @@ impl Interpreter {
         {
             let turned = |g: usize| {
                 let e = kinematics::orient::vec3::unit(g);
-                let d = toolholder::machine_orientation(c, self.holder.angles, e);
+                let d = tools::toolholder::machine_orientation(c, self.holder.angles, e);
                 let mut out = [0.0; MAX_CHANNEL_AXES];
                 for (i, k) in cfg.geo_axes.iter().enumerate() {
                     if let Some(k) = k {
@@ -836,13 +815,13 @@ impl Interpreter {
                 out
             };
             if (0..3).any(|g| {
-                toolholder::machine_orientation(c, self.holder.angles, kinematics::orient::vec3::unit(g))
+                tools::toolholder::machine_orientation(c, self.holder.angles, kinematics::orient::vec3::unit(g))
                     != kinematics::orient::vec3::unit(g)
             }) {
                 (u, v) = (turned(pa), turned(po));
             }
         }
-        Ok(Some(trc::Compensation {
+        Ok(Some(compensation::trc::Compensation {
             side,
             radius,
             corners: self.modal.trc_corners,
@@ -939,10 +918,10 @@ impl Interpreter {
                 let center = words.center(pa, po).map(|(i, j)| arc_center(s, i, j, f));
                 let end_given = programmed[ka] || programmed[ko];
                 let c = match (words.cr, words.ar, center) {
-                    _ if words.polar() => arc::from_center(s, e, self.modal.pole, turn),
-                    (Some(cr), _, _) => arc::from_radius(s, e, cr * f, turn),
+                    _ if words.polar() => contour::arc::from_center(s, e, self.modal.pole, turn),
+                    (Some(cr), _, _) => contour::arc::from_radius(s, e, cr * f, turn),
                     (None, Some(ar), Some(c)) if !end_given => {
-                        arc::from_center_and_angle(s, c, ar, turn).map(|(circle, end)| {
+                        contour::arc::from_center_and_angle(s, c, ar, turn).map(|(circle, end)| {
                             target[ka] = end.0;
                             target[ko] = end.1;
                             programmed[ka] = true;
@@ -950,12 +929,12 @@ impl Interpreter {
                             circle
                         })
                     }
-                    (None, Some(ar), _) => arc::from_end_and_angle(s, e, ar, turn),
-                    (None, None, Some(c)) => arc::from_center(s, e, c, turn),
+                    (None, Some(ar), _) => contour::arc::from_end_and_angle(s, e, ar, turn),
+                    (None, None, Some(c)) => contour::arc::from_center(s, e, c, turn),
                     (None, None, None) => return Err(Alarm::circle_end_point(line)),
                 }
                 .map_err(|_| Alarm::circle_end_point(line))?;
-                Some(arc::with_turns(c, words.turn.unwrap_or(0)))
+                Some(contour::arc::with_turns(c, words.turn.unwrap_or(0)))
             }
             _ => None,
         };
@@ -1007,8 +986,8 @@ impl Interpreter {
 }
 
 /// G2 turns clockwise, G3 counter-clockwise (seen from the applicate's positive side).
-fn arc_turn(motion: MotionMode) -> arc::Turn {
-    if motion == MotionMode::Cw { arc::Turn::Clockwise } else { arc::Turn::CounterClockwise }
+fn arc_turn(motion: MotionMode) -> contour::arc::Turn {
+    if motion == MotionMode::Cw { contour::arc::Turn::Clockwise } else { contour::arc::Turn::CounterClockwise }
 }
 
 /// The circle centre from I/J/K (`(value, absolute)` per plane axis, in program units times
@@ -1056,7 +1035,7 @@ fn block_path(
     end: &AxisVec,
     current: &AxisVec,
     target: &AxisVec,
-    circle: Option<&arc::Circle>,
+    circle: Option<&contour::arc::Circle>,
 ) -> (Path, f64) {
     let mut path = Path::line(*start, *end);
     let length = shape_path(&mut path, frame, geo, (pa, po, papp), current, target, circle);
@@ -1072,7 +1051,7 @@ fn shape_path(
     (pa, po, papp): (usize, usize, usize),
     current: &AxisVec,
     target: &AxisVec,
-    circle: Option<&arc::Circle>,
+    circle: Option<&contour::arc::Circle>,
 ) -> f64 {
     let (start, end) = (&path.start, &path.end);
     let mut length = geo.iter().flatten().map(|&k| (end[k] - start[k]).powi(2)).sum::<f64>().sqrt();
@@ -1119,7 +1098,7 @@ fn end_tangent(
     target: &AxisVec,
     geo: &[Option<usize>; 3],
     (pa, po, papp): (usize, usize, usize),
-    circle: Option<&arc::Circle>,
+    circle: Option<&contour::arc::Circle>,
 ) -> Option<[f64; 3]> {
     let delta = |g: usize| geo[g].map_or(0.0, |k| target[k] - current[k]);
     let mut t = [0.0; 3];
@@ -1229,7 +1208,7 @@ pub(super) fn basic_frame(cfg: &MachineConfig) -> Frame {
         .filter(|f| !f.is_neutral())
         .map(|f| Frame::from_data(f, &cfg.geo_axes, cfg.frame_angles))
         .collect();
-    frame::chain(&frames.iter().collect::<Vec<_>>(), &cfg.geo_axes)
+    frames::frame::chain(&frames.iter().collect::<Vec<_>>(), &cfg.geo_axes)
 }
 
 /// Tool length vector per channel axis: lengths L1..L3 (geometry + wear + adapter) mapped to the

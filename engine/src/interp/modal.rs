@@ -2,17 +2,17 @@
 
 use super::StopKind;
 use super::calls::{Programs, targets};
-use super::corners::Corner;
+use super::compensation::approach::ApproachMode;
+use super::compensation::trc::{ArcFeed, CornerMode, Side};
+use super::contour::corners::Corner;
+use super::eval::scope::{Ctx, SysView};
+use super::eval::value::Value;
+use super::eval::vars::Variables;
 use super::eval::{eval, eval_f64};
-use super::frame::Frame;
-use super::frame_vars::{ChainFrame, Suppress};
-use super::orient::{self, OriModal, OriWords};
-use super::scope::{Ctx, SysView};
-use super::toolholder::{CutMode, TcoMode, g53_code};
-use super::trc::{ArcFeed, CornerMode, Side};
-use super::trc_approach::ApproachMode;
-use super::value::Value;
-use super::vars::Variables;
+use super::frames::frame::Frame;
+use super::frames::vars::{ChainFrame, Suppress};
+use super::orientation::words::{self, OriModal, OriWords};
+use super::tools::toolholder::{CutMode, TcoMode, g53_code};
 use crate::alarm::Alarm;
 use crate::lang::{Block, CoordMode, Expr, Goto, JumpTarget, Word};
 use crate::machine_data::MachineConfig;
@@ -323,7 +323,7 @@ pub(super) struct Words {
     /// Tool, frame and machine data written by the block, as NC data text lines.
     pub data_writes: Vec<String>,
     /// Online tool length offset instructions (`$AA_TOFF[..]=`, TOFFON, TOFFOF).
-    pub toff: Vec<super::toff::ToffOp>,
+    pub toff: Vec<super::compensation::toff::ToffOp>,
     /// NEWCONF: activate machine data written by the program.
     pub newconf: bool,
     /// MSG: text for the operator (empty clears it).
@@ -546,7 +546,7 @@ pub(super) fn collect(
                 w.ori.reset = Some(values);
             }
             Word::Keyword { name, args } if name == "TOFFON" || name == "TOFFOF" => {
-                use super::toff::{ToffOp, direction};
+                use super::compensation::toff::{ToffOp, direction};
                 let dir = |e: &Expr| -> Result<usize, Alarm> {
                     let v = eval(e, &Ctx { vars, sys }, line)?;
                     direction(cfg, &v.as_text().to_ascii_uppercase(), line)
@@ -569,7 +569,7 @@ pub(super) fn collect(
                 });
             }
             Word::Keyword { name, args } if name == "DELOBJ" => {
-                w.data_writes.push(super::delobj::statement(args, &Ctx { vars, sys }, line)?);
+                w.data_writes.push(super::calls::delobj::statement(args, &Ctx { vars, sys }, line)?);
             }
             Word::Keyword { name, args } if name == "SETMS" => {
                 let spindle = match args.as_slice() {
@@ -604,7 +604,7 @@ pub(super) fn collect(
                     _ => return Err(Alarm::syntax(line, "CALL needs a program name or BLOCK")),
                 }
             }
-            Word::Keyword { name, .. } if super::trafo::is_keyword(name) => {}
+            Word::Keyword { name, .. } if super::transform::selection::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
             Word::Address { name, indices, value } => {
                 let axis = match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
@@ -677,7 +677,7 @@ pub(super) fn collect(
                         }
                     }
                     "THETA" => w.ori.theta = Some((v, value.mode == Some(CoordMode::Ic))),
-                    _ if orient::is_address(name) => {
+                    _ if words::is_address(name) => {
                         w.ori.address(name, v);
                     }
                     "I" | "J" | "K" => {
@@ -748,7 +748,7 @@ pub(super) enum Assigned {
     /// A new value of a link of the frame chain (`$P_PFRAME=...`, `$P_SETFRAME=...`).
     ChainFrame(ChainFrame, Box<Frame>),
     /// `$AA_TOFF[dir] = value`: the online tool length offset.
-    OnlineToolOffset(super::toff::ToffOp),
+    OnlineToolOffset(super::compensation::toff::ToffOp),
 }
 
 pub(super) fn assign(
@@ -780,15 +780,15 @@ pub(super) fn assign(
         let dir = match indices {
             [i] => {
                 let v = eval(i, &Ctx { vars, sys }, line)?;
-                super::toff::direction(cfg, &v.as_text().to_ascii_uppercase(), line)?
+                super::compensation::toff::direction(cfg, &v.as_text().to_ascii_uppercase(), line)?
             }
             _ => return Err(Alarm::index_error(line, name, "needs one tool direction X, Y or Z")),
         };
         let value = eval_f64(expr, &Ctx { vars, sys }, line)?;
-        return Ok(Assigned::OnlineToolOffset(super::toff::ToffOp::Write { dir, value }));
+        return Ok(Assigned::OnlineToolOffset(super::compensation::toff::ToffOp::Write { dir, value }));
     }
     if name == "PO"
-        && let Some(alarm) = super::orient_poly::refused(indices, sys.trafo.tool_vectors().is_some(), line)
+        && let Some(alarm) = super::orientation::poly::refused(indices, sys.trafo.tool_vectors().is_some(), line)
     {
         return Err(alarm);
     }
@@ -924,7 +924,7 @@ fn data_write(
         v => format!("{:?}", v.as_f64().map_err(|e| Alarm::type_error(line, &e.0))?),
     };
     if name == "$TC_CARR23" && !matches!(value.trim_matches('"').to_ascii_uppercase().as_str(), "T" | "P" | "M") {
-        return Err(super::swivel::invalid_kind(line, &value));
+        return Err(super::tools::swivel::invalid_kind(line, &value));
     }
     let index = if idx.is_empty() { String::new() } else { format!("[{}]", idx.join(",")) };
     Ok(format!("{name}{index}={value}"))
@@ -962,7 +962,7 @@ fn is_nc_address(name: &str) -> bool {
             | "SPOS"
             | "TCARR"
             | "THETA"
-    ) || orient::is_address(name)
+    ) || words::is_address(name)
 }
 
 /// The keywords of G groups 22, 42, 52 and 53; false for any other word.

@@ -6,9 +6,9 @@
 //! The modal G groups are not part of it: in reset state they are at their reset values
 //! anyway (MD20150), and a program that was active is re-established by a block search.
 
-use super::frame::SystemFrames;
-use super::toolholder::Holder;
-use super::vars::R_PARAMS;
+use super::eval::vars::R_PARAMS;
+use super::frames::frame::SystemFrames;
+use super::tools::toolholder::Holder;
 use super::{Interpreter, tool_vector};
 use crate::kinematics::SelectArgs;
 use crate::machine_data::MachineConfig;

@@ -1,11 +1,11 @@
 //! Statements: declarations (DEF) and control flow, executed during block preparation.
 
+use super::eval::scope::{Ctx, SysView, is_main_run_variable, sys_view};
+use super::eval::value::Value;
+use super::eval::vars::Variable;
 use super::eval::{eval, eval_f64};
 use super::flow::{Ctrl, Pos, SectionEnd};
 use super::modal::{Assigned, assign};
-use super::scope::{Ctx, SysView, is_main_run_variable, sys_view};
-use super::value::Value;
-use super::vars::Variable;
 use super::{Interpreter, Item, Prep, Programs, StopKind};
 use crate::alarm::Alarm;
 use crate::lang::{Block, Expr, Stmt, VarDecl, VarType, Word};

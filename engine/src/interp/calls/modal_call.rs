@@ -7,8 +7,8 @@
 use super::{Interpreter, Programs};
 use crate::alarm::Alarm;
 use crate::interp::eval::eval;
-use crate::interp::scope::{Ctx, sys_view};
-use crate::interp::value::Value;
+use crate::interp::eval::scope::{Ctx, sys_view};
+use crate::interp::eval::value::Value;
 use crate::lang::Expr;
 use crate::machine_data::MachineConfig;
 

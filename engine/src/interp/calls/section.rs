@@ -19,8 +19,8 @@
 use super::{Interpreter, Programs};
 use crate::alarm::Alarm;
 use crate::interp::eval::eval_f64;
+use crate::interp::eval::scope::{Ctx, sys_view};
 use crate::interp::flow::{Pos, Section};
-use crate::interp::scope::{Ctx, sys_view};
 use crate::lang::{Expr, JumpTarget};
 use crate::machine_data::MachineConfig;
 

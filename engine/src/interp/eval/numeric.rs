@@ -31,7 +31,7 @@ impl Num {
     }
 }
 
-impl From<Num> for crate::interp::value::Value {
+impl From<Num> for crate::interp::eval::value::Value {
     fn from(n: Num) -> Self {
         match n {
             Num::Int(i) => Self::Int(i),
@@ -133,10 +133,10 @@ fn function(name: &str, x: Num) -> Option<Num> {
 mod tests {
     use super::*;
     use crate::alarm::Alarm;
+    use crate::interp::eval::value::Value;
+    use crate::interp::eval::vars::Variables;
     use crate::interp::eval::{Scope, eval, eval_f64};
-    use crate::interp::frame::GeoAxes;
-    use crate::interp::value::Value;
-    use crate::interp::vars::Variables;
+    use crate::interp::frames::frame::GeoAxes;
     use crate::lang::parse_block;
 
     /// R parameters and nothing else: what plain arithmetic reads.

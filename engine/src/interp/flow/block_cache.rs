@@ -64,9 +64,9 @@ impl ReadBlock {
         }
     }
 
-    /// `effect_calls::present`: the block calls DELOBJ or CORRTRAFO.
+    /// `effects::present`: the block calls DELOBJ or CORRTRAFO.
     pub fn has_effect_calls(&self) -> bool {
-        let find = crate::interp::effect_calls::present;
+        let find = crate::interp::calls::effects::present;
         match self {
             ReadBlock::Parsed(b) => find(b),
             ReadBlock::Cached(c) => *c.effect_calls.get_or_init(|| find(&c.block)),

@@ -1,0 +1,131 @@
+//! Predefined functions with side effects inside a block: `DELOBJ(...)` and `CORRTRAFO(...)`
+//! in any expression (`IF (DELOBJ("TRAFO_DATA") < 0)`, `R1=CORRTRAFO(...)`) and CORRTRAFO as
+//! a statement. They run once, innermost and left to right, before the block is prepared, and
+//! are replaced by their values, so conditions and assignments then read plain numbers.
+
+use crate::alarm::Alarm;
+use crate::interp::eval::scope::{Ctx, sys_view};
+use crate::interp::{Interpreter, Item, calls::delobj};
+use crate::lang::{Block, Expr, Stmt, Word};
+use crate::machine_data::MachineConfig;
+
+const FUNCTIONS: &[&str] = &["DELOBJ", "CORRTRAFO"];
+
+fn calls_any(e: &Expr) -> bool {
+    match e {
+        Expr::Call(name, args) => FUNCTIONS.contains(&name.as_str()) || args.iter().any(calls_any),
+        Expr::Var { indices, .. } => indices.iter().any(calls_any),
+        Expr::RParam(i) | Expr::Unary(_, i) => calls_any(i),
+        Expr::Binary(_, a, b) => calls_any(a) || calls_any(b),
+        Expr::Number(_) | Expr::Str(_) | Expr::Bool(_) => false,
+    }
+}
+
+/// Every expression of `block` that may hold a call (mutable, in reading order).
+fn expressions(block: &mut Block) -> Vec<&mut Expr> {
+    let mut out: Vec<&mut Expr> = Vec::new();
+    match &mut block.stmt {
+        Some(Stmt::If { cond, .. } | Stmt::While(cond) | Stmt::Until(cond)) => out.push(cond),
+        Some(Stmt::For { start, end, .. }) => out.extend([start, end]),
+        Some(Stmt::Case { expr, .. }) => out.push(expr),
+        Some(Stmt::Def { vars, .. }) => out.extend(vars.iter_mut().flat_map(|v| v.dims.iter_mut().chain(&mut v.init))),
+        _ => {}
+    }
+    for w in &mut block.words {
+        match w {
+            Word::Address { indices, value, .. } => {
+                out.extend(indices.iter_mut());
+                out.push(&mut value.expr);
+            }
+            Word::Keyword { args, .. } => out.extend(args.iter_mut()),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// True if `block` calls DELOBJ or CORRTRAFO as a function, or CORRTRAFO as a statement.
+pub(in crate::interp) fn present(block: &Block) -> bool {
+    let stmt = match &block.stmt {
+        Some(Stmt::If { cond, .. } | Stmt::While(cond) | Stmt::Until(cond)) => calls_any(cond),
+        Some(Stmt::For { start, end, .. }) => calls_any(start) || calls_any(end),
+        Some(Stmt::Case { expr, .. }) => calls_any(expr),
+        Some(Stmt::Def { vars, .. }) => vars.iter().flat_map(|v| v.dims.iter().chain(&v.init)).any(calls_any),
+        _ => false,
+    };
+    stmt || block.words.iter().any(|w| match w {
+        Word::Address { indices, value, .. } => indices.iter().any(calls_any) || calls_any(&value.expr),
+        Word::Keyword { name, args } => name == "CORRTRAFO" || args.iter().any(calls_any),
+        _ => false,
+    })
+}
+
+impl Interpreter {
+    /// Runs the block's DELOBJ/CORRTRAFO calls and puts their values in their place; a
+    /// CORRTRAFO statement runs and leaves the block. `cfg` is the channel's configuration.
+    pub(in crate::interp) fn run_effect_calls(
+        &mut self,
+        block: &mut Block,
+        cfg: &MachineConfig,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
+        let line = block.line;
+        for e in expressions(block) {
+            self.resolve_calls(e, cfg, line, out)?;
+        }
+        let mut words = std::mem::take(&mut block.words);
+        let mut kept = Vec::with_capacity(words.len());
+        for w in words.drain(..) {
+            match w {
+                Word::Keyword { name, args } if name == "CORRTRAFO" => {
+                    self.corrtrafo(&args, cfg, line, out)?;
+                }
+                w => kept.push(w),
+            }
+        }
+        block.words = kept;
+        Ok(())
+    }
+
+    fn resolve_calls(
+        &mut self,
+        e: &mut Expr,
+        cfg: &MachineConfig,
+        line: u32,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
+        match e {
+            Expr::Call(name, args) => {
+                for a in args.iter_mut() {
+                    self.resolve_calls(a, cfg, line, out)?;
+                }
+                let value = match name.as_str() {
+                    "DELOBJ" => {
+                        let derived = self.trafo.config();
+                        let sys = sys_view!(self, derived.as_deref().unwrap_or(cfg));
+                        let (value, write) = delobj::function(args, &Ctx { vars: &self.vars, sys: &sys }, line)?;
+                        if let Some(write) = write {
+                            self.data_writes.push((line, write));
+                        }
+                        value
+                    }
+                    "CORRTRAFO" => self.corrtrafo(args, cfg, line, out)?,
+                    _ => return Ok(()),
+                };
+                *e = Expr::Number(value as f64);
+            }
+            Expr::Var { indices, .. } => {
+                for i in indices.iter_mut() {
+                    self.resolve_calls(i, cfg, line, out)?;
+                }
+            }
+            Expr::RParam(i) | Expr::Unary(_, i) => self.resolve_calls(i, cfg, line, out)?,
+            Expr::Binary(_, a, b) => {
+                self.resolve_calls(a, cfg, line, out)?;
+                self.resolve_calls(b, cfg, line, out)?;
+            }
+            Expr::Number(_) | Expr::Str(_) | Expr::Bool(_) => {}
+        }
+        Ok(())
+    }
+}

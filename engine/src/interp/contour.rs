@@ -1,0 +1,5 @@
+//! The programmed contour's geometry: circles (G2/G3, CIP, CT, CR=) and the corner elements
+//! RND, CHF and CHR inserted between two blocks.
+
+pub mod arc;
+pub mod corners;

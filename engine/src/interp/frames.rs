@@ -1,0 +1,7 @@
+//! Coordinate frames between workpiece and basic coordinate system: the frame type and chain,
+//! the cached active frame, the frame system variables and rotations by solid angles.
+
+pub(super) mod cache;
+pub mod frame;
+pub(super) mod solid_angles;
+pub(super) mod vars;
