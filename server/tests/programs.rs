@@ -71,3 +71,22 @@ async fn check_reports_every_syntax_error_with_line_and_column() {
     let clean = server.post(&format!("/sessions/{id}/check"), json!({"program": "G0 X1"})).await.body;
     assert_eq!(clean, json!({"diagnostics": []}));
 }
+
+#[tokio::test]
+async fn the_standard_cycle_library_is_listed_readable_and_callable() {
+    let server = Server::start().await;
+    let list = server.get("/cycles").await.body;
+    assert!(list.as_array().unwrap().iter().any(|c| c["name"] == "CYCLE81"), "{list}");
+    let cycle = server.get("/cycles/cycle81").await;
+    assert_eq!(cycle.status, StatusCode::OK);
+    assert!(cycle.body["text"].as_str().unwrap().contains("PROC CYCLE81("), "{}", cycle.body);
+    assert_eq!(server.get("/cycles/NO_SUCH_CYCLE").await.status, StatusCode::NOT_FOUND);
+    // Called from a program of a session: RTP 10, RFP 0, SDIS 2, DP -5 ends at the retraction plane.
+    let id = server.session("mill-3axis").await;
+    let run = json!({"program": "G17 G90 F500\nG0 X3 Y4 Z20\nCYCLE81(10,0,2,-5)\nM30", "pace": "fast", "wait": true});
+    let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
+    assert_eq!(state["status"], "idle", "{state}");
+    assert_eq!((pos(&state, "machine", "X"), pos(&state, "machine", "Z")), (3.0, 10.0));
+    // The library is not one of the session's stored programs.
+    assert_eq!(server.get(&format!("/sessions/{id}/programs")).await.body, json!([]));
+}

@@ -8,6 +8,7 @@
 //! Reading files is not done here: the shell hands in a [`Loader`] per program.
 
 pub mod archive;
+pub mod cycles;
 mod store;
 
 pub use store::{CallError, Loader, Programs, StoredProgram};

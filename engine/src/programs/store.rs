@@ -134,9 +134,10 @@ impl Programs {
         same.push(program);
     }
 
-    /// Whether some directory holds a program `name` (upper case).
+    /// Whether some directory, or the standard cycle library, holds a program `name` (upper
+    /// case).
     pub fn contains_key(&self, name: &str) -> bool {
-        self.by_name.contains_key(name)
+        self.by_name.contains_key(name) || super::cycles::find(name).is_some()
     }
 
     /// The text of program `name` as the main program would find it, if it is in memory.
@@ -164,11 +165,14 @@ impl Programs {
     }
 
     /// The program `name` a program in directory `caller` calls: the caller's directory, then
-    /// `_N_SPF_DIR`, then the cycle directories CUS, CMA and CST, then the flat store.
+    /// `_N_SPF_DIR`, then the cycle directories CUS, CMA and CST, then the flat store, then the
+    /// standard cycle library shipped with NCTwin.
     pub fn find(&self, name: &str, caller: Option<&Dir>) -> Option<&StoredProgram> {
-        let candidates = self.by_name.get(name)?;
-        let order = [caller, Some(&Dir::Spf), Some(&Dir::Cus), Some(&Dir::Cma), Some(&Dir::Cst), None];
-        order.iter().find_map(|dir| candidates.iter().find(|p| p.dir() == *dir))
+        let stored = self.by_name.get(name).and_then(|candidates| {
+            let order = [caller, Some(&Dir::Spf), Some(&Dir::Cus), Some(&Dir::Cma), Some(&Dir::Cst), None];
+            order.iter().find_map(|dir| candidates.iter().find(|p| p.dir() == *dir))
+        });
+        stored.or_else(|| super::cycles::find(name))
     }
 
     /// The checked text and directory of the program `name` called at `line` from a program in

@@ -3,6 +3,7 @@
 //! Handlers are thin: parse the request, send one command to the session, map the reply.
 
 pub mod control;
+pub mod cycles;
 pub mod health;
 pub mod jog;
 pub mod kinematic_chains;
@@ -80,6 +81,8 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))
         .routes(routes!(kinematic_chains::get_kinematic_chains, kinematic_chains::put_kinematic_chains))
         .routes(routes!(programs::list_programs))
+        .routes(routes!(cycles::list_cycles))
+        .routes(routes!(cycles::get_cycle))
         .routes(routes!(programs::check))
         .routes(routes!(preview::preview))
         .routes(routes!(roles::get_control))
