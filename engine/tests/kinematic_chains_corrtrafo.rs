@@ -212,7 +212,7 @@ fn the_status_codes_and_alarm_14103() {
     // and with the setting datum raised to 10 mm too.
     assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 0, V, , TRUE)\nM30")), 41.0);
     assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 1000, V, , TRUE)\nM30")), 0.0);
-    assert_eq!(status(&format!("$SN_CORR_TRAFO_LIN_MAX=10\n{v}R1=CORRTRAFO(2, 0, V, , TRUE)\nM30")), 0.0);
+    assert_eq!(status(&format!("{v}$SN_CORR_TRAFO_LIN_MAX=10\nR1=CORRTRAFO(2, 0, V, , TRUE)\nM30")), 0.0);
     // 42: A's direction turned by atan(0.05) = 2.86° > SD41611's 1°.
     let tilt = start([1.0, 0.05, 0.0]);
     assert_eq!(status(&format!("{tilt}R1=CORRTRAFO(1, 1, V, , TRUE)\nM30")), 42.0);

@@ -7,6 +7,7 @@
 pub mod archive;
 pub mod ast;
 mod cursor;
+mod definitions;
 pub mod name;
 mod parser;
 mod plain_line;

@@ -4,6 +4,7 @@
 use super::archive;
 use super::ast::*;
 use super::cursor::Cursor;
+use super::definitions::DefinitionPart;
 use super::plain_line::is_plain_line;
 use super::statement_scan::may_hold_statement;
 use super::structure::Structure;
@@ -26,11 +27,21 @@ pub fn parse(source: &str) -> Program {
 /// (ENDIF without IF, a WHILE never closed, more than 16 levels), in line order.
 pub fn check(source: &str) -> Vec<Diagnostic> {
     let mut structure = Structure::default();
+    let mut definitions = DefinitionPart::default();
+    let code = |offset: usize| next_line(source, offset).map_or("", |(text, _)| split_comment(text).0);
     let mut out = Vec::new();
     for (line, offset, result) in (Lines { build: false, ..Lines::new(source, 0, 1) }) {
         match result {
             Err((col, message)) => out.push(Diagnostic::syntax(line, offset, col, message)),
-            Ok(Some(Block { stmt: Some(stmt), .. })) => out.extend(structure.feed(&stmt, line, offset)),
+            Ok(Some(Block { stmt: Some(stmt), .. })) => {
+                out.extend(structure.feed(&stmt, line, offset));
+                if definitions.is_open() || matches!(stmt, Stmt::Def { .. } | Stmt::Proc { .. }) {
+                    out.extend(definitions.feed(&stmt, code(offset), line, offset));
+                }
+            }
+            Ok(_) if definitions.is_open() && !archive::is_header_line(code(offset)) => {
+                definitions.close_if_executable(code(offset), line)
+            }
             Ok(_) => {}
         }
     }
