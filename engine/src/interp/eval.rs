@@ -4,6 +4,7 @@
 pub(super) mod numeric;
 pub(super) mod scope;
 pub mod value;
+pub(super) mod value_lists;
 pub mod vars;
 
 use std::cmp::Ordering;
@@ -279,6 +280,10 @@ fn call(name: &str, vals: &[Value], line: u32) -> Result<Value, Alarm> {
         | "STRLEN" | "TOUPPER" | "TOLOWER" | "NUMBER" | "ISNUMBER" | "AXNAME" | "AXSTRING" => arity(1)?,
         "ATAN2" | "MINVAL" | "MAXVAL" | "INDEX" | "RINDEX" => arity(2)?,
         "BOUND" | "SUBSTR" => arity(3)?,
+        "_OMITTED" => return Err(Alarm::syntax(line, "a value is missing: an empty argument where one is needed")),
+        "SET" | "REP" => {
+            return Err(Alarm::syntax(line, &format!("{name}(..) only as the value of a DEF or of an array element")));
+        }
         _ => return Err(Alarm::unknown_name(line, name)),
     }
     match name {

@@ -7,6 +7,7 @@ use super::compensation::trc::{ArcFeed, CornerMode, Side};
 use super::contour::corners::Corner;
 use super::eval::scope::{Ctx, SysView};
 use super::eval::value::Value;
+use super::eval::value_lists::List;
 use super::eval::vars::Variables;
 use super::eval::{eval, eval_f64};
 use super::frames::frame::Frame;
@@ -808,11 +809,19 @@ pub(super) fn assign(
         return Ok(Assigned::Address(axis));
     }
     let ctx = Ctx { vars, sys };
-    let value = eval(expr, &ctx, line)?;
     let idx = indices
         .iter()
         .map(|e| eval(e, &ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0)))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(list) = List::of_expr(expr).filter(|_| !indices.is_empty()) {
+        // The values are worked out before the array changes: `A[0]=SET(A[1], A[0])` swaps.
+        let mut var = vars.get(name).expect("checked above").clone();
+        let start = var.index(&idx).map_err(|e| Alarm::index_error(line, name, &e.0))?;
+        list.write(&mut var, start, name, line, |e| eval(e, &Ctx { vars, sys }, line))?;
+        *vars.get_mut(name).expect("checked above") = var;
+        return Ok(Assigned::Variable);
+    }
+    let value = eval(expr, &ctx, line)?;
     let var = vars.get_mut(name).expect("checked above");
     let i = var.index(&idx).map_err(|e| Alarm::index_error(line, name, &e.0))?;
     var.data[i] = value.convert(var.ty).map_err(|e| Alarm::type_error(line, &e.0))?;

@@ -2,6 +2,7 @@
 
 use super::eval::scope::{Ctx, SysView, is_main_run_variable, sys_view};
 use super::eval::value::Value;
+use super::eval::value_lists::List;
 use super::eval::vars::Variable;
 use super::eval::{eval, eval_f64};
 use super::flow::{Ctrl, Pos, SectionEnd};
@@ -298,20 +299,8 @@ impl Interpreter {
         if var.data.len() > 1_000_000 {
             return Err(Alarm::index_error(line, &decl.name, "array larger than 1,000,000 elements"));
         }
-        let convert = |v: Value| v.convert(ty).map_err(|e| Alarm::type_error(line, &e.0));
-        match decl.init.as_slice() {
-            [Expr::Call(f, args)] if f == "REP" && args.len() == 1 => {
-                let v = convert(eval(&args[0], &ctx, line)?)?;
-                var.data.iter_mut().for_each(|d| *d = v.clone());
-            }
-            values => {
-                if values.len() > var.data.len() {
-                    return Err(Alarm::too_many_initial_values(line, &decl.name));
-                }
-                for (slot, e) in var.data.iter_mut().zip(values) {
-                    *slot = convert(eval(e, &ctx, line)?)?;
-                }
-            }
+        if !decl.init.is_empty() {
+            List::of_init(&decl.init).write(&mut var, 0, &decl.name, line, |e| eval(e, &ctx, line))?;
         }
         self.vars.declare(&decl.name, var, global).map_err(|_| Alarm::defined_twice(line, &decl.name))
     }

@@ -59,10 +59,11 @@ fn only_number_and_label(code: &str) -> bool {
             rest = after[digits..].trim_start();
         }
     }
-    if let Some((label, after)) = rest.split_once(':') {
-        if !label.is_empty() && label.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-            rest = after;
-        }
+    if let Some((label, after)) = rest.split_once(':')
+        && !label.is_empty()
+        && label.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    {
+        rest = after;
     }
     rest.trim().is_empty()
 }
