@@ -3,5 +3,6 @@
 
 pub(super) mod cache;
 pub mod frame;
+pub(super) mod incremental;
 pub(super) mod solid_angles;
 pub(super) mod vars;

@@ -228,6 +228,7 @@ impl Interpreter {
             && self.trc.idle()
             && self.active_data_set().is_none()
             && self.offsets.trafo.is_none()
+            && self.before_change.is_none()
             && self.modal.ori.rotation != RotReference::PathTangent
             && !self.call_unbound()
     }
@@ -276,6 +277,10 @@ impl Interpreter {
         }
         let circle_mode = matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw);
         let moves = block.axes.iter().any(Option::is_some) || (circle_mode && block.ijk.iter().any(Option::is_some));
+        if moves && self.before_change.is_some() {
+            // The first move after a change of offsets (SD42440/SD42442): the general path.
+            return None;
+        }
         if !moves {
             self.commit_position(at, next, out);
             if self.offsets_mark() != offsets_before {
@@ -523,8 +528,11 @@ mod tests {
         ] {
             assert!(takes("", line), "{line}");
         }
-        // States the lane takes: a frame, a tool, inch units, G64.
-        assert!(takes("TRANS X5\nT1 D1\nG70 G64 F10\n", "G2 J1"));
+        // States the lane takes: a frame, a tool, inch units, G64, once a move followed them.
+        assert!(takes("TRANS X5\nT1 D1\nG70 G64 F10\nG0 X1\n", "G2 J1"));
+        // The first move after a change of offsets travels it (SD42440/SD42442): not the lane's.
+        assert!(!takes("TRANS X5\n", "G91 X1"));
+        assert!(!takes("T1 D1\n", "G0 X1"));
     }
 
     #[test]

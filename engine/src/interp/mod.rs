@@ -167,6 +167,9 @@ pub struct Interpreter {
     pos: AxisVec,
     /// Offsets in effect; tracked, so that items share them while no block changes them.
     offsets: Tracked<Offsets>,
+    /// The offsets of the last motion block, noted at the first change after it (SD42440,
+    /// SD42442: the next incremental move travels the change).
+    before_change: Option<Box<frames::incremental::BeforeChange>>,
     /// `offsets` as last handed out with an item (see [`Interpreter::shared_offsets`]).
     published: published::Published,
     /// R parameters and user variables.
@@ -222,6 +225,7 @@ impl Interpreter {
             modal: Modal::reset(cfg),
             pos: [0.0; MAX_CHANNEL_AXES],
             offsets: Tracked::new(Offsets::default()),
+            before_change: None,
             published: published::Published::default(),
             vars: Variables::default(),
             pframe: Tracked::new(Frame::identity()),
@@ -262,6 +266,7 @@ impl Interpreter {
         self.spindles.reset(cfg, true);
         *self.pframe = Frame::identity();
         *self.iframe = None;
+        self.before_change = None;
         self.offsets.frame = self.active_frame(cfg);
         self.offsets.tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         self.offsets.gcodes = gcodes::GCodes::of(&self.modal);
@@ -282,6 +287,7 @@ impl Interpreter {
     pub fn begin_program(&mut self, text: impl Into<ProgramText>, pos: &AxisVec) {
         self.lane_memo.forget();
         self.pos = *pos;
+        self.before_change = None;
         self.vars.reset_locals();
         self.calls.clear();
         self.call_state = Default::default();
@@ -314,6 +320,7 @@ impl Interpreter {
     /// Sets the programmed position after motion outside programs (JOG).
     pub fn sync_position(&mut self, pos: &AxisVec) {
         self.pos = *pos;
+        self.before_change = None;
     }
 
     /// Number of subprogram levels below the main program being prepared (0: the main program).
@@ -358,10 +365,13 @@ impl Interpreter {
             .frame_cache
             .get(cfg, work_offset, rotary_slot, changed.contains(&true), || sys_view!(self, cfg).chain(None));
         if !self.offsets.frame.same_bits(frame) {
-            self.offsets.frame = frame.clone();
+            let frame = frame.clone();
+            self.note_offsets_before_change();
+            self.offsets.frame = frame;
         }
         let tool = self.holder_tool(cfg, tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d));
         if self.offsets.tool != tool {
+            self.note_offsets_before_change();
             self.offsets.tool = tool;
         }
         self.refresh_gcodes();
@@ -858,6 +868,11 @@ impl Interpreter {
         }
         let current =
             frame.unapply(geo, &basic).ok_or_else(|| Alarm::value_out_of_range(line, "frame with scale 0"))?;
+        // After a change of frame or tool offset, increments count from the position programmed
+        // before it (SD42440/SD42442).
+        let incremental_from =
+            frames::incremental::incremental_start(self.before_change.take(), cfg, &frame, &tool, &start)
+                .unwrap_or(current);
         let mut target = current;
         let mut programmed = [false; MAX_CHANNEL_AXES];
         for &(k, value, mode) in &words.axes {
@@ -881,7 +896,7 @@ impl Interpreter {
                     modulo_target(current[k], wrapped, range, mode)
                 }
                 (_, true) => v,
-                (_, false) => current[k] + v,
+                (_, false) => incremental_from[k] + v,
             };
             programmed[k] = true;
         }

@@ -90,6 +90,9 @@ pub struct MachineConfig {
     pub kin_build: super::chains::BuildContext,
     /// SD41610/SD41611: the limits CORRTRAFO monitors (setting data, acting at once).
     pub corr_limits: super::chains::correct::Limits,
+    /// SD42440/SD42442: whether the first incremental move after a change of frame (work
+    /// offset) or tool offset also travels that change (setting data, acting at once).
+    pub incremental_travels: IncrementalTravels,
     /// Which transformation is active after reset and program end.
     pub reset_trafo: ResetTrafo,
     /// MD20250 CUTCOM_MAXNUM_DUMMY_BLOCKS: blocks without motion in the compensation plane the
@@ -316,6 +319,7 @@ impl MachineConfig {
             ),
             kin_build,
             corr_limits: Default::default(),
+            incremental_travels: IncrementalTravels::default(),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
         };
@@ -332,6 +336,10 @@ impl MachineConfig {
         self.corr_limits = super::chains::correct::Limits {
             lin_max: md.num("$SN_CORR_TRAFO_LIN_MAX", 0, 0),
             dir_max: md.num("$SN_CORR_TRAFO_DIR_MAX", 0, 0),
+        };
+        self.incremental_travels = IncrementalTravels {
+            frame: md.num("$SC_FRAME_OFFSET_INCR_PROG", 0, 0) != 0.0,
+            tool: md.num("$SC_TOOL_OFFSET_INCR_PROG", 0, 0) != 0.0,
         };
         let n = self.channel_axes.len();
         let user = md.num("$MC_MM_NUM_USER_FRAMES", 0, 0) as usize;
@@ -473,5 +481,21 @@ impl MachineConfig {
             None => self.trafos.push(set),
         }
         Ok(())
+    }
+}
+
+/// SD42440 `$SC_FRAME_OFFSET_INCR_PROG` and SD42442 `$SC_TOOL_OFFSET_INCR_PROG`: an incremental
+/// move after a change of the frame or of the tool offset ends where the programmed increment
+/// says from the position programmed before the change (the change is travelled, `true`, the
+/// control's default), or from the old machine position seen through the new offsets (`false`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IncrementalTravels {
+    pub frame: bool,
+    pub tool: bool,
+}
+
+impl Default for IncrementalTravels {
+    fn default() -> Self {
+        IncrementalTravels { frame: true, tool: true }
     }
 }

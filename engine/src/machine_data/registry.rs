@@ -437,6 +437,8 @@ pub static DEFS: &[Def] = &[
     // direction (degrees) unless Corr_Mode's thousands digit suppresses the check. SD41611 and
     // its meaning are the manual's (K12 §4.3.2); SD41610's number and both defaults are this
     // product's choice (from memory / not in the consulted sources).
+    sd("FRAME_OFFSET_INCR_PROG", 42440, C, Kind::Bool, Default::Bool(true), 0.0, 1.0),
+    sd("TOOL_OFFSET_INCR_PROG", 42442, C, Kind::Bool, Default::Bool(true), 0.0, 1.0),
     sd("CORR_TRAFO_LIN_MAX", 41610, N, Kind::Real, Default::Real(1.0), 0.0, INF),
     sd("CORR_TRAFO_DIR_MAX", 41611, N, Kind::Real, Default::Real(1.0), 0.0, 180.0),
     // SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.

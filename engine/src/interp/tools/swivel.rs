@@ -595,6 +595,7 @@ impl Interpreter {
         if let Some(c) = self.carrier(cfg).cloned() {
             self.system.part = toolholder::part_frame(&c, self.holder.angles, self.holder.parot, &geo);
         }
+        self.note_offsets_before_change();
         self.offsets.frame = self.active_frame(cfg);
         let plain = crate::interp::tool_vector(cfg, &self.modal, self.offsets.t, self.offsets.d);
         self.offsets.tool = self.holder_tool(cfg, plain);
