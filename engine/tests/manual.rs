@@ -138,7 +138,7 @@ fn repos_returns_on_a_straight_line_with_the_interrupted_feed_and_finishes_the_b
     assert!(peak > 2000.0 / 60.0 + 1.0, "the interrupted block's feed, not the JOG velocity: {peak}");
     // Then the rest of the block: X only.
     assert!(samples[back..].iter().all(|s| s[1] == 0.0 && s[2] == 0.0));
-    assert_eq!(ch.axis_positions(), &[100.0, 0.0, 0.0, 0.0]);
+    assert_eq!(ch.axis_positions(), &[100.0, 0.0, 0.0]);
     assert_eq!(ch.status(), Status::Idle);
 }
 
@@ -164,7 +164,7 @@ fn nc_stop_during_repos_and_start_again_still_return() {
     ch.start().unwrap();
     settle(&mut ch);
     assert_eq!(ch.status(), Status::Idle);
-    assert_eq!(ch.axis_positions(), &[50.0, 5.0, 0.0, 0.0]);
+    assert_eq!(ch.axis_positions(), &[50.0, 5.0, 0.0]);
 }
 
 #[test]
@@ -215,7 +215,7 @@ fn block_search_collects_the_state_and_approaches_the_target_block() {
     let s = ch.snapshot();
     assert_eq!(s.status, Status::Stopped);
     assert_eq!(s.block.as_ref().map(|b| (b.line, b.text.as_str())), Some((5, "X30 Y25")));
-    assert_eq!(ch.axis_positions(), &[0.0, 0.0, 0.0, 0.0], "a search does not move");
+    assert_eq!(ch.axis_positions(), &[0.0, 0.0, 0.0], "a search does not move");
     assert!(s.spindles.iter().all(|(_, rpm)| *rpm == 0.0), "M3 is output at NC start");
     ch.start().unwrap();
     let samples = settle(&mut ch);
@@ -226,7 +226,7 @@ fn block_search_collects_the_state_and_approaches_the_target_block() {
         let v = ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt() / 0.004;
         assert!(v <= 1000.0 / 60.0 + 1e-6, "{v}");
     }
-    assert_eq!(ch.axis_positions(), &[30.0, 25.0, 0.0, 0.0]);
+    assert_eq!(ch.axis_positions(), &[30.0, 25.0, 0.0]);
     assert_eq!(ch.status(), Status::Idle);
     let rpm = ch.snapshot().spindles.first().map(|s| s.1);
     assert!(rpm.is_none() || rpm == Some(1000.0), "{rpm:?}");
@@ -261,7 +261,7 @@ fn block_search_keeps_incremental_positions_and_frames_of_skipped_blocks() {
     // Line 4 ends at WCS (2, 0) = BCS (2, 10); the approach goes there straight from (0, 0).
     assert!(samples.iter().any(|s| s[0] == 2.0 && s[1] == 10.0));
     assert!(samples.iter().all(|s| s[0] <= 4.0), "X10 of the skipped blocks is never travelled");
-    assert_eq!(ch.axis_positions(), &[4.0, 10.0, 0.0, 0.0]);
+    assert_eq!(ch.axis_positions(), &[4.0, 10.0, 0.0]);
 }
 
 // --- Reference point state --------------------------------------------------------------------
@@ -270,16 +270,13 @@ fn block_search_keeps_incremental_positions_and_frames_of_skipped_blocks() {
 fn presets_start_referenced() {
     let ch = channel("mill-3axis", "");
     assert!(ch.snapshot().referenced.iter().all(|(_, r)| *r));
-    assert_eq!(ch.snapshot().referenced.len(), 4, "X, Y, Z and the spindle SP1");
+    assert_eq!(ch.snapshot().referenced.len(), 3);
 }
 
 #[test]
 fn an_unreferenced_axis_locks_nc_start_until_it_is_referenced() {
     let mut ch = channel("mill-3axis", "$MA_ENC_REFP_STATE[Y]=0");
-    assert_eq!(
-        ch.snapshot().referenced,
-        vec![("X".into(), true), ("Y".into(), false), ("Z".into(), true), ("SP1".into(), true)]
-    );
+    assert_eq!(ch.snapshot().referenced, vec![("X".into(), true), ("Y".into(), false), ("Z".into(), true)]);
     let err = ch.run_program("G0 X1\nM30").unwrap_err();
     assert!(err.to_string().contains("16905"), "{err}");
     assert_eq!(ch.alarms()[0].number, 16905);
@@ -301,7 +298,7 @@ fn an_unreferenced_axis_locks_nc_start_until_it_is_referenced() {
     ch.set_mode(Mode::Auto).unwrap();
     ch.run_program("G0 X1\nM30").unwrap();
     settle(&mut ch);
-    assert_eq!(ch.axis_positions(), &[1.0, 0.0, 0.0, 0.0]);
+    assert_eq!(ch.axis_positions(), &[1.0, 0.0, 0.0]);
 }
 
 #[test]
@@ -470,5 +467,5 @@ fn block_search_finds_the_main_program_line_not_the_same_line_of_a_subprogram() 
     ch.start().unwrap();
     settle(&mut ch);
     // The subprogram ran during the search (Y1 collected), the target block ends at X30.
-    assert_eq!(ch.axis_positions(), &[30.0, 1.0, 0.0, 0.0]);
+    assert_eq!(ch.axis_positions(), &[30.0, 1.0, 0.0]);
 }

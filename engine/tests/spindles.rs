@@ -22,10 +22,10 @@ fn ipo(ch: &Channel) -> f64 {
 }
 
 #[test]
-fn the_mill_has_a_master_spindle_that_ramps_to_s_in_s_over_its_acceleration() {
-    // Mill preset: MD35200 = 20 rev/s² = 1200 rev/min per second, so 0 → 1000 rev/min takes
-    // 1000/1200 s = 0.8333 s.
-    let mut ch = channel("mill-3axis", "SETMS(1)\nS1000 M3\nG4 F2\nM30\n");
+fn the_spindle_ramps_to_s_in_s_over_its_acceleration() {
+    // Lathe preset: MD35200 = 30 rev/s² = 1800 rev/min per second, so 0 → 1000 rev/min takes
+    // 1000/1800 s = 0.5556 s.
+    let mut ch = channel("lathe-2axis", "SETMS(1)\nS1000 M3\nG4 F2\nM30\n");
     // Counted from the cycle before the spindle first turns.
     while speed(&ch) == 0.0 {
         ch.step();
@@ -37,7 +37,7 @@ fn the_mill_has_a_master_spindle_that_ramps_to_s_in_s_over_its_acceleration() {
         assert!(cycles < 10_000, "speed {}", speed(&ch));
     }
     let t = cycles as f64 * ipo(&ch);
-    assert!((t - 1000.0 / 1200.0).abs() <= ipo(&ch) + 1e-9, "ramp took {t} s");
+    assert!((t - 1000.0 / 1800.0).abs() <= ipo(&ch) + 1e-9, "ramp took {t} s");
 }
 
 #[test]
@@ -123,7 +123,7 @@ fn g94_after_g96_keeps_the_speed_reached_at_the_block_start() {
 fn g331_turns_the_spindle_by_the_travel_over_the_lead() {
     // G331 Z-20 K1.5 S500: 20/1.5 = 13.33 revolutions = 4800° with the axis, at 500·1.5 =
     // 750 mm/min on Z.
-    let mut ch = channel("mill-3axis", "SPOS=0\nG331 Z-20 K1.5 S500\nM30\n");
+    let mut ch = channel("lathe-2axis", "SPOS=0\nG331 Z-20 K1.5 S500\nM30\n");
     let mut vmax: f64 = 0.0;
     for _ in 0..100_000 {
         ch.step();
@@ -133,8 +133,8 @@ fn g331_turns_the_spindle_by_the_travel_over_the_lead() {
         }
     }
     let p = ch.axis_positions();
-    assert!((p[2] + 20.0).abs() < 1e-9, "Z {}", p[2]);
-    assert!((p[3] - 4800.0).abs() < 1e-6, "spindle {}", p[3]);
+    assert!((p[1] + 20.0).abs() < 1e-9, "Z {}", p[1]);
+    assert!((p[2] - 4800.0).abs() < 1e-6, "spindle {}", p[2]);
     assert!((vmax - 750.0).abs() < 1e-6, "{vmax}");
 }
 

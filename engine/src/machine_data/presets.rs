@@ -16,7 +16,7 @@ pub static PRESETS: &[Preset] = &[
     Preset {
         id: "mill-3axis",
         name: "3-axis vertical mill",
-        description: "Linear axes X, Y, Z (no transformation), 30 m/min rapid, 3 m/s²; master spindle SP (S1, 8000 rev/min, 20 rev/s²); tools T1 (end mill R5), T2 (drill R4).",
+        description: "Linear axes X, Y, Z (no transformation), 30 m/min rapid, 3 m/s²; tools T1 (end mill R5), T2 (drill R4).",
         text: MILL_3AXIS,
     },
     Preset {
@@ -96,16 +96,13 @@ const MILL_3AXIS: &str = r#"; 3-axis vertical milling machine
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
-$MN_AXCONF_MACHAX_NAME_TAB[3]="SP1"
 $MC_AXCONF_MACHAX_USED[0]=1
 $MC_AXCONF_MACHAX_USED[1]=2
 $MC_AXCONF_MACHAX_USED[2]=3
-$MC_AXCONF_MACHAX_USED[3]=4
-$MC_AXCONF_MACHAX_USED[4]=0
+$MC_AXCONF_MACHAX_USED[3]=0
 $MC_AXCONF_CHANAX_NAME_TAB[0]="X"
 $MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
 $MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
-$MC_AXCONF_CHANAX_NAME_TAB[3]="SP"
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -121,16 +118,6 @@ $MA_POS_LIMIT_MINUS[Y]=-300.
 $MA_POS_LIMIT_PLUS[Y]=300.
 $MA_POS_LIMIT_MINUS[Z]=-400.
 $MA_POS_LIMIT_PLUS[Z]=300.
-; Master spindle S1: 8000 rev/min, 20 rev/s² in speed control; as an axis (SPOS, G331)
-; 8000 rev/min = 2880000 °/min.
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-$MA_SPIND_VELO_LIMIT[SP1]=8000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=8000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=20.
-$MA_MAX_AX_VELO[SP1]=2880000.
-$MA_MAX_AX_ACCEL[SP1]=20.
 ; T1 D1: end mill, length 100, radius 5
 $TC_DP1[1,1]=120
 $TC_DP3[1,1]=100.
