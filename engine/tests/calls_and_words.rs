@@ -320,13 +320,14 @@ fn h_functions_and_m_functions_with_address_extension_are_read() {
         lathe.step();
     }
     ok(&lathe);
-    // Spindle 2 is not the master spindle (the only one commanded); M1=30 is no program end.
+    // The 2-axis lathe has no spindle 2: M2=3 names a spindle outside the channel (12560, the
+    // programmed value out of range); M1=30 is no program end.
     let mut lathe = Channel::from_preset("lathe-2axis", "").unwrap();
     lathe.run_program("M2=3 S500\nM30\n").unwrap();
     while lathe.is_busy() {
         lathe.step();
     }
-    assert_eq!(alarm(&lathe), (12550, Some(1)));
+    assert_eq!(alarm(&lathe), (12560, Some(1)));
     assert_eq!(alarm(&run("G0 X1\nM1=30\n", &[])), (12550, Some(2)));
 }
 

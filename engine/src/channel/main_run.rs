@@ -288,6 +288,14 @@ impl Channel {
                         s.set_speed(rpm);
                     }
                 }
+                Item::SpindleControl { ctl, line } => {
+                    self.enter_block(line);
+                    if !self.spindle_control(&ctl) {
+                        // A thread waits for its start angle.
+                        self.pending.push_front(Item::SpindleControl { ctl, line });
+                        return;
+                    }
+                }
                 Item::SpindleToAxis { axis, angle, line } => {
                     self.enter_block(line);
                     if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {

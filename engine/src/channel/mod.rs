@@ -294,7 +294,7 @@ impl Channel {
     fn with_config(data: MachineData, cfg: MachineConfig, programs: Programs) -> Channel {
         let cfg = Arc::new(cfg);
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
-        let spindles = spindle::for_config(&cfg);
+        let spindles = spindle::for_config(&cfg, &data);
         let referenced = reference::initial_state(&data, &cfg);
         let mut ch = Channel {
             interp: Interpreter::new(&cfg),
@@ -660,9 +660,7 @@ impl Channel {
     /// Advances exactly one IPO cycle.
     pub fn step(&mut self) {
         self.tick += 1;
-        for s in &mut self.spindles {
-            s.step(self.cfg.ipo_cycle);
-        }
+        self.step_spindles();
         if self.status == Status::Running && self.jog.is_none() && !self.repos_returning && self.referencing.is_none() {
             self.prepare();
             self.feed_planner();

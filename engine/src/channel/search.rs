@@ -271,6 +271,8 @@ impl Channel {
                         }
                         offsets = Some(o);
                     }
+                    Item::SpindleControl { ctl: crate::interp::spindles::Control::ThreadStart { .. }, .. } => {}
+                    Item::SpindleControl { .. } => spindles.push(item),
                     Item::Spindle { axis, .. } | Item::SpindleToAxis { axis, .. } => {
                         spindles.retain(|s| !matches!(s, Item::Spindle { axis: a, .. } | Item::SpindleToAxis { axis: a, .. } if *a == axis));
                         spindles.push(item);
@@ -326,7 +328,10 @@ impl Channel {
 
 fn set_line(item: &mut Item, to: u32) {
     match item {
-        Item::Spindle { line, .. } | Item::SpindleToAxis { line, .. } | Item::Message { line, .. } => *line = to,
+        Item::Spindle { line, .. }
+        | Item::SpindleControl { line, .. }
+        | Item::SpindleToAxis { line, .. }
+        | Item::Message { line, .. } => *line = to,
         _ => {}
     }
 }

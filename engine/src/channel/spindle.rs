@@ -1,7 +1,29 @@
-//! Spindles in speed mode: S and M3/M4/M5 set a target speed; the spindle ramps to it with its
-//! axis' acceleration and its position turns with it (shown modulo 360°).
+//! The spindles in the main run, one IPO cycle at a time (Function Manual S1).
+//!
+//! In speed control S and M3/M4/M5 set a target speed; the actual speed ramps to it with the
+//! acceleration of MD35200 `$MA_GEAR_STEP_SPEEDCTRL_ACCEL` (rev/s², gear stage 1) and the
+//! angle turns with it (trapezoidal integration). The target is limited by the spindle's
+//! highest speed (MD35100 `$MA_SPIND_VELO_LIMIT`, MD35130 `$MA_GEAR_STEP_MAX_VELO_LIMIT[1]`),
+//! the programmed limits G25/G26 and, under constant cutting speed (G96/G961), by `LIMS`.
+//! Under G96/G961 the target follows the transverse axis each cycle: n = v_c·1000/(π·D), D the
+//! workpiece diameter at the tool tip. In position control (SPOS, M19, G331) the spindle is a
+//! rotary axis moved by the planner and this model only keeps its angle.
 
-use crate::machine_data::MachineConfig;
+use crate::interp::spindles::Control;
+use crate::machine_data::{MachineConfig, MachineData};
+
+/// Constant cutting speed as the main run evaluates it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Css {
+    /// Cutting speed in m/min.
+    pub cutting_speed: f64,
+    /// +1 M3, −1 M4, 0 stopped.
+    pub direction: f64,
+    /// Channel axis of the transverse axis.
+    pub transverse: usize,
+    /// Machine position of the turning centre on the transverse axis (workpiece X0).
+    pub centre: f64,
+}
 
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Spindle {
@@ -12,14 +34,23 @@ pub(super) struct Spindle {
     target: f64,
     /// Acceleration in rev/min per second.
     accel: f64,
+    /// Highest speed of the spindle (machine data), rev/min.
     max_speed: f64,
     /// Angle in degrees (not wrapped).
     pub position: f64,
+    /// Angle in the cycle before (for the thread start angle).
+    previous: f64,
     /// Position control after SPOS: the spindle is a rotary axis moved by the planner.
     pub axis_mode: bool,
-    /// Programmed speed before the override.
+    /// Programmed speed before the override (signed).
     programmed: f64,
     override_factor: f64,
+    /// G25 lower and G26 upper speed limit (rev/min).
+    lower: f64,
+    upper: f64,
+    /// LIMS: upper limit under constant cutting speed.
+    lims: f64,
+    pub css: Option<Css>,
 }
 
 impl Spindle {
@@ -29,7 +60,23 @@ impl Spindle {
 
     pub fn set_speed(&mut self, rpm: f64) {
         self.programmed = rpm;
-        self.target = (rpm * self.override_factor).clamp(-self.max_speed, self.max_speed);
+        self.css = None;
+        self.retarget(rpm.abs());
+    }
+
+    /// The target from an unsigned speed `n`: override, then the limits.
+    fn retarget(&mut self, n: f64) {
+        let sign = if self.css.is_some() { self.css.map_or(0.0, |c| c.direction) } else { self.programmed.signum() };
+        if n == 0.0 || sign == 0.0 {
+            self.target = 0.0;
+            return;
+        }
+        let mut upper = self.max_speed.min(self.upper);
+        if self.css.is_some() {
+            upper = upper.min(self.lims);
+        }
+        let n = (n * self.override_factor).min(upper).max(self.lower.min(upper));
+        self.target = sign * n;
     }
 
     /// SPOS: stops where it is; from now on the planner moves it.
@@ -43,24 +90,62 @@ impl Spindle {
         if self.axis_mode {
             self.axis_mode = false;
             self.position = angle;
+            self.previous = angle;
         }
     }
 
     /// Spindle override (1.0 = 100 %): the speed follows at once, within the acceleration.
     pub fn set_override(&mut self, factor: f64) {
         self.override_factor = factor;
-        self.set_speed(self.programmed);
+        if self.css.is_none() {
+            self.retarget(self.programmed.abs());
+        }
     }
 
     pub fn stop_now(&mut self) {
         self.speed = 0.0;
         self.target = 0.0;
         self.programmed = 0.0;
+        self.css = None;
     }
 
-    pub fn step(&mut self, dt: f64) {
+    /// A spindle command of the program other than a plain speed (see [`Control`]).
+    pub fn control(&mut self, c: &Control) {
+        match *c {
+            Control::Limits { lower, upper, lims, .. } => {
+                self.lower = lower;
+                self.upper = upper;
+                self.lims = lims;
+                if self.css.is_none() {
+                    self.retarget(self.programmed.abs());
+                }
+            }
+            Control::Css { cutting_speed, direction, transverse, centre, .. } => {
+                self.css = Some(Css { cutting_speed, direction: f64::from(direction), transverse, centre });
+                self.programmed = f64::from(direction);
+            }
+            Control::ThreadStart { .. } => {}
+        }
+    }
+
+    /// Whether the spindle's angle passed `angle` (degrees, modulo 360) in the last cycle.
+    pub fn passed(&self, angle: f64) -> bool {
+        let turns = |p: f64| ((p - angle) / 360.0).floor();
+        let (now, before) = (turns(self.position), turns(self.previous));
+        (self.speed > 0.0 && now > before) || (self.speed < 0.0 && now < before)
+    }
+
+    /// One IPO cycle: under constant cutting speed the target from the transverse axis'
+    /// machine position `machine`, then the ramp and the angle.
+    pub fn step(&mut self, dt: f64, machine: &[f64]) {
         if self.axis_mode {
             return;
+        }
+        if let Some(c) = self.css {
+            let diameter = 2.0 * (machine[c.transverse] - c.centre).abs();
+            let n =
+                if diameter > 1e-9 { c.cutting_speed * 1000.0 / (std::f64::consts::PI * diameter) } else { f64::MAX };
+            self.retarget(n);
         }
         let dv = self.accel * dt;
         let before = self.speed;
@@ -69,32 +154,71 @@ impl Spindle {
         } else {
             (self.speed - dv).max(self.target)
         };
+        self.previous = self.position;
         // Trapezoidal integration of the angle: rev/min → deg/s is ×6.
         self.position += (before + self.speed) * 0.5 * 6.0 * dt;
         if self.position.abs() > 3.6e9 {
-            self.position = self.position.rem_euclid(360.0);
+            let wrap = self.position - self.position.rem_euclid(360.0);
+            self.position -= wrap;
+            self.previous -= wrap;
         }
     }
 }
 
-/// One spindle per channel axis whose machine axis is a spindle.
-pub(super) fn for_config(cfg: &MachineConfig) -> Vec<Spindle> {
+/// One spindle per channel axis whose machine axis is a spindle, with its machine data.
+pub(super) fn for_config(cfg: &MachineConfig, data: &MachineData) -> Vec<Spindle> {
     (0..cfg.channel_axes.len())
         .filter(|&k| cfg.axis(k).spindle.is_some())
         .map(|k| {
-            let ax = cfg.axis(k);
+            let m = cfg.channel_axes[k].machine_axis;
+            let max_speed = data.num("$MA_SPIND_VELO_LIMIT", m, 0).min(data.num("$MA_GEAR_STEP_MAX_VELO_LIMIT", m, 1));
             Spindle {
                 axis: k,
                 speed: 0.0,
                 target: 0.0,
-                // deg/s² → rev/min per s: /360 · 60.
-                accel: ax.max_accel / 6.0,
-                max_speed: ax.max_velocity / 6.0,
+                // rev/s² → rev/min per s.
+                accel: data.num("$MA_GEAR_STEP_SPEEDCTRL_ACCEL", m, 1) * 60.0,
+                max_speed,
                 position: 0.0,
+                previous: 0.0,
                 axis_mode: false,
                 programmed: 0.0,
                 override_factor: 1.0,
+                lower: 0.0,
+                upper: f64::INFINITY,
+                lims: f64::INFINITY,
+                css: None,
             }
         })
         .collect()
+}
+
+impl super::Channel {
+    /// One IPO cycle of every spindle; the master spindle's actual speed is what moves with a
+    /// feed per revolution follow.
+    pub(super) fn step_spindles(&mut self) {
+        let dt = self.cfg.ipo_cycle;
+        let mut rate = 0.0;
+        for s in &mut self.spindles {
+            s.step(dt, &self.machine);
+            if Some(s.axis) == self.cfg.master_spindle {
+                rate = s.speed.abs() / 60.0;
+            }
+        }
+        self.planner.set_spindle_rate(rate);
+    }
+
+    /// A spindle command of the program; false while it has to wait (a thread's start angle).
+    pub(super) fn spindle_control(&mut self, c: &Control) -> bool {
+        let Some(s) = self.spindles.iter_mut().find(|s| s.axis == c.axis()) else { return true };
+        match *c {
+            Control::ThreadStart { angle, .. } => s.passed(angle),
+            _ => {
+                let angle = self.planner.position()[s.axis];
+                s.leave_axis_mode(angle);
+                s.control(c);
+                true
+            }
+        }
+    }
 }

@@ -25,11 +25,11 @@ pub(super) fn is_inert_keyword(name: &str, has_args: bool) -> bool {
     }
 }
 
-/// An address with an extension, `H2`, `M1`: the letter and the extension number.
+/// An address with an extension, `H2`, `M1`, `S2`: the letter and the extension number.
 pub(super) fn extended_address(name: &str) -> Option<(u8, u32)> {
     let (letter, digits) = name.split_at_checked(1)?;
     let letter = letter.as_bytes()[0];
-    if !matches!(letter, b'H' | b'M') || digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+    if !matches!(letter, b'H' | b'M' | b'S') || digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
     }
     Some((letter, digits.parse().ok()?))

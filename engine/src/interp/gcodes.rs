@@ -30,7 +30,7 @@ const GROUPS: [(u8, &[&str]); 16] = [
     (10, &["G60", "G64"]),
     (13, &["G70", "G71", "G700", "G710"]),
     (14, &["G90", "G91"]),
-    (15, &["G94", "G95"]),
+    (15, &["G94", "G95", "G93", "G96", "G961", "G97", "G971"]),
     (16, &["CFC", "CFTCP", "CFIN"]),
     (17, &["NORM", "KONT", "KONTT", "KONTC"]),
     (18, &["G450", "G451"]),
@@ -71,7 +71,7 @@ impl GCodes {
                 (false, true) => 3,
             },
             u8::from(!m.absolute),
-            u8::from(m.feed_per_rev),
+            if m.feed_type_index != 0 { m.feed_type_index } else { u8::from(m.feed_per_rev) },
             match m.arc_feed {
                 ArcFeed::Contour => 0,
                 ArcFeed::CentrePath => 1,

@@ -231,6 +231,7 @@ impl Interpreter {
             && self.before_change.is_none()
             && self.modal.ori.rotation != RotReference::PathTangent
             && !self.call_unbound()
+            && self.spindles_plain()
     }
 
     /// Prepares the next block if it is a plain motion line and the state is simple; `None`

@@ -18,7 +18,7 @@ mod modal;
 mod orientation;
 mod published;
 pub mod retained;
-mod spindles;
+pub mod spindles;
 mod statements;
 mod tools;
 mod transform;
@@ -108,6 +108,11 @@ pub enum Item {
         kind: StopKind,
         line: u32,
     },
+    /// A spindle command beyond a speed: limits, constant cutting speed, thread start.
+    SpindleControl {
+        ctl: spindles::Control,
+        line: u32,
+    },
     /// SPOS: the spindle stops at `angle` and becomes a rotary axis in position control.
     SpindleToAxis {
         axis: usize,
@@ -151,6 +156,7 @@ impl Item {
             | Item::Offsets { line, .. }
             | Item::Dwell { line, .. }
             | Item::Spindle { line, .. }
+            | Item::SpindleControl { line, .. }
             | Item::Stop { line, .. }
             | Item::Message { line, .. }
             | Item::SpindleToAxis { line, .. } => Some(*line),
@@ -514,12 +520,6 @@ impl Interpreter {
         if let Some(spindle) = words.set_master {
             self.spindles.set_master(spindle, cfg, line)?;
         }
-        if let Some(s) = words.speed.filter(|_| !words.dwell) {
-            if s < 0.0 {
-                return Err(Alarm::value_out_of_range(line, &format!("S{s}")));
-            }
-            self.spindles.set_master_speed(s);
-        }
         self.select_tool(words, cfg, line)?;
         if let Some(op) = words.frame_op {
             self.frame_instruction(op, words, cfg, line)?;
@@ -532,45 +532,8 @@ impl Interpreter {
         self.absorb_tool_into_transformation();
         self.online_tool_offset(&words.toff, cfg);
 
-        // Spindle before motion.
-        let old_direction = self.spindles.master_direction();
-        if let Some(n) = words.spindle_ext {
-            let master = self.spindles.master().and_then(|k| cfg.axis(k).spindle);
-            // Without a master spindle M3 does nothing, and so does M<n>=3.
-            if master.is_some_and(|m| m != n) {
-                return Err(Alarm::unknown_name(line, &format!("M{n}= (spindle {n} is not the master spindle)")));
-            }
-        }
-        if let Some(dir) = words.spindle_dir {
-            self.spindles.set_master_direction(dir);
-            // M3/M4/M5 return a positioned spindle to speed control.
-            if let Some(axis) = self.spindles.master() {
-                self.positioned[axis] = false;
-            }
-        }
-        let spindle_words = (words.spindle_dir.is_some() || words.speed.is_some()) && !words.dwell;
-        let direction = self.spindles.master_direction();
-        let changes = direction != old_direction || direction != 0;
-        if let Some(axis) = self.spindles.master().filter(|_| spindle_words && changes) {
-            // Before the block's motion, after the held compensated move.
-            self.trc
-                .emit_or_defer(Item::Spindle { axis, rpm: direction as f64 * self.spindles.master_speed(), line }, out);
-        }
-
-        // SPOS first; axis words of the same block then move the path (one after the other
-        // here, where the control runs the two side by side).
-        let positioned = words.spos.is_some();
-        if let Some(target) = words.spos {
-            let (mv, feed) = self.spindle_position(target, cfg, line)?;
-            let axis = self.spindles.master().expect("checked in spindle_position");
-            // With compensation active SPOS is a block without motion in the plane.
-            self.trc.emit_or_defer(Item::SpindleToAxis { axis, angle: mv.path.start[axis], line }, out);
-            let offsets = self.shared_offsets();
-            let approach = self.modal.approach;
-            let prepared = compensation::trc::Prepared { mv, feed, line, offsets, approach, corner: None };
-            let comp = self.compensation(cfg, words, line)?;
-            self.trc.push(prepared, comp, &AxisLimit::for_channel(cfg), out)?;
-        }
+        // Spindle before motion (feed type, speeds, directions, SPOS).
+        let positioned = self.spindle_block(words, cfg, line, out)?;
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;
         if words.dwell {
@@ -594,7 +557,8 @@ impl Interpreter {
             path_motion = true;
             // One set of limits for the move and its compensation (same configuration).
             let limits = AxisLimit::for_channel(cfg);
-            let (mv, feed) = self.motion(words, cfg, &limits, line)?;
+            let (mut mv, feed) = self.motion(words, cfg, &limits, line)?;
+            self.spindle_motion(&mut mv, words, cfg, &limits, line, out)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
             let comp = self.compensation(cfg, words, line)?;
@@ -747,23 +711,6 @@ impl Interpreter {
         let value = |k: usize| words.axes.iter().find(|(a, _, _)| *a == k).map_or(0.0, |(_, v, _)| v * f);
         self.modal.pole = (base.0 + value(ka), base.1 + value(ko));
         Ok(())
-    }
-
-    /// SPOS: stops the master spindle where it is, switches it to position control and moves it
-    /// the short way to `target` degrees at its maximum velocity.
-    fn spindle_position(&mut self, target: f64, cfg: &MachineConfig, line: u32) -> Result<(Move, Feed), Alarm> {
-        let axis = self.spindles.master().ok_or_else(|| Alarm::unknown_name(line, "SPOS (no master spindle)"))?;
-        let start_angle = self.spindle_angles[axis].rem_euclid(360.0);
-        self.positioned[axis] = true;
-        self.spindles.stop(axis);
-        let mut start = self.pos;
-        start[axis] = start_angle;
-        let mut end = start;
-        end[axis] = modulo_target(start_angle, target.rem_euclid(360.0), 360.0, None);
-        self.pos = end;
-        let length = (end[axis] - start[axis]).abs();
-        let path = Path::line(start, end);
-        Ok((Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line), Feed::Rapid))
     }
 
     /// The radius compensation for the block's move: side and corner mode from G41/G42 and
@@ -987,9 +934,11 @@ impl Interpreter {
     fn path_feed(&self, line: u32) -> Result<Feed, Alarm> {
         Ok(match self.modal.motion {
             MotionMode::Rapid => Feed::Rapid,
+            // A thread's feed comes from its lead (`spindles/motion.rs`).
+            _ if self.spindles.thread.is_some() => Feed::Path(1.0),
             _ => {
                 let f = self.modal.feed.ok_or_else(|| Alarm::no_feed(line))?;
-                let per_min = if self.modal.feed_per_rev { f * self.spindles.master_speed() } else { f }
+                let per_min = if self.modal.feed_per_rev { f * self.spindles.reference_speed() } else { f }
                     * self.modal.feed_factor();
                 if per_min <= 0.0 {
                     return Err(Alarm::feed_not_positive(line));

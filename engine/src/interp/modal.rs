@@ -63,6 +63,9 @@ pub struct Modal {
     pub inch_feed: bool,
     /// G95 (feed per spindle revolution) instead of G94.
     pub feed_per_rev: bool,
+    /// G group 15 beyond G94/G95 for the display: index into its names (0: from
+    /// `feed_per_rev`), set by `spindles/block.rs`.
+    pub feed_type_index: u8,
     /// G60 (true) or G64.
     pub exact_stop: bool,
     /// Active settable frame: 0 = G500, 1..4 = G54..G57, 5.. = G505...
@@ -126,6 +129,7 @@ impl Modal {
             inch: false,
             inch_feed: false,
             feed_per_rev: false,
+            feed_type_index: 0,
             exact_stop: true,
             work_offset: 0,
             feed: None,
@@ -344,7 +348,8 @@ pub(super) struct Words {
     /// CFC, CFTCP, CFIN.
     pub arc_feed: Option<ArcFeed>,
     /// SPOS=: position the master spindle (it becomes a rotary axis).
-    pub spos: Option<f64>,
+    /// Spindle words beyond S and M3/M4/M5 (see `spindles/words.rs`).
+    pub spindle: super::spindles::words::SpindleWords,
     /// `$P_PFRAME=...`, `$P_SETFRAME=...`: links of the frame chain the block assigns.
     pub frame_writes: Vec<(ChainFrame, Frame)>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
@@ -642,14 +647,18 @@ pub(super) fn collect(
                 if !seen.insert(name) {
                     return Err(Alarm::repeated_address(line, name));
                 }
+                let index = match indices.first() {
+                    Some(e) if super::spindles::words::indexed(name) => Some(eval_f64(e, &Ctx { vars, sys }, line)?),
+                    _ => None,
+                };
                 match &**name {
+                    _ if super::spindles::words::address(&mut w.spindle, name, index, v, value.mode, line)? => {}
                     "F" => w.feed = Some(v),
                     "S" => w.speed = Some(v),
                     "T" => w.tool = Some(whole("T")?),
                     "D" => w.edge = Some(whole("D")?),
                     "CR" => w.cr = Some(v),
                     "RPL" => w.rpl = Some(v),
-                    "SPOS" => w.spos = Some(v),
                     "OFFN" => w.offn = Some(v * sys.modal.length_factor()),
                     "DISC" => w.disc = Some(v),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
@@ -803,7 +812,9 @@ pub(super) fn assign(
     if vars.get(name).is_none() {
         let axis = cfg.program_axis(name);
         let extended = || super::everyday::extended_address(name).is_some();
-        if !indices.is_empty() || axis.is_none() && !is_nc_address(name) && !extended() {
+        if !indices.is_empty() && !super::spindles::words::indexed(name)
+            || axis.is_none() && !is_nc_address(name) && !extended()
+        {
             return Err(Alarm::unknown_name(line, name));
         }
         return Ok(Assigned::Address(axis));
@@ -968,10 +979,10 @@ fn is_nc_address(name: &str) -> bool {
             | "TU"
             | "OFFN"
             | "DISC"
-            | "SPOS"
             | "TCARR"
             | "THETA"
     ) || words::is_address(name)
+        || super::spindles::words::is_address(name)
 }
 
 /// The keywords of G groups 22, 42, 52 and 53; false for any other word.
@@ -1060,6 +1071,7 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         91 => w.absolute = Some(false),
         94 => w.feed_per_rev = Some(false),
         95 => w.feed_per_rev = Some(true),
+        _ if super::spindles::words::g_code(&mut w.spindle, code, line)? => {}
         _ => return Err(Alarm::unknown_g(line, code)),
     }
     Ok(())
@@ -1099,6 +1111,7 @@ fn m_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         }
         w.spindle_dir = Some(d);
     }
+    super::spindles::words::m_code(&mut w.spindle, code);
     // Other M functions go to the PLC and need no NC reaction here.
     Ok(())
 }

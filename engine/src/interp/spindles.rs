@@ -1,13 +1,99 @@
-//! The spindles as block preparation sees them: which one is the master spindle (MD20090,
-//! changed by SETMS), and each spindle's programmed speed and direction.
+//! The spindles as block preparation sees them (Function Manual S1, Programming Manual
+//! "Fundamentals": feed types, threads, tapping).
 //!
-//! S, M3/M4/M5, SPOS, G95 and G4 S act on the master spindle; a lathe that mills with a driven
-//! tool makes the tool spindle the master with `SETMS(2)` while the main spindle stands as
-//! the TRANSMIT rotary axis.
+//! - which spindle is the master spindle (MD20090, changed by SETMS), each spindle's
+//!   programmed speed and direction (`S`, `S<n>=`, `M3`/`M4`/`M5`, `M<n>=3/4/5`);
+//! - the feed type of G group 15 (`G93`, `G94`, `G95`, `G96`, `G961`, `G97`, `G971`) and the
+//!   speed limits `G25`/`G26`/`LIMS`;
+//! - thread cutting `G33` (with `SF=`) and rigid tapping `G331`/`G332`, `G63`.
+//!
+//! `words.rs` sorts a block's spindle words out, `block.rs` turns them into main-run items,
+//! `motion.rs` gives a block's move its feed per revolution, inverse-time feed, thread start
+//! or the interpolated spindle of rigid tapping. The main run's model is
+//! `channel/spindle.rs`: it receives [`Control`] items for what is more than a speed.
+
+mod block;
+mod motion;
+pub(super) mod words;
 
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
+
+/// A spindle command for the main run beyond a plain speed ([`super::Item::Spindle`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Control {
+    /// G25/G26 lower and upper speed limit and LIMS (rev/min; infinite: none).
+    Limits { axis: usize, lower: f64, upper: f64, lims: f64 },
+    /// G96/G961: constant cutting speed `cutting_speed` (m/min) in `direction` (+1 M3, −1 M4),
+    /// the diameter measured on channel axis `transverse` from machine position `centre`.
+    Css { axis: usize, cutting_speed: f64, direction: i8, transverse: usize, centre: f64 },
+    /// G33: the thread's move starts when the spindle passes `angle` degrees (SF).
+    ThreadStart { axis: usize, angle: f64 },
+}
+
+impl Control {
+    /// The channel axis of the spindle the command is for.
+    pub fn axis(&self) -> usize {
+        match *self {
+            Control::Limits { axis, .. } | Control::Css { axis, .. } | Control::ThreadStart { axis, .. } => axis,
+        }
+    }
+}
+
+/// G group 15: how F is read and whether S is a speed or a cutting speed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FeedType {
+    /// Inverse time: F is 1/min, the block takes 1/F minutes.
+    G93,
+    /// mm/min.
+    #[default]
+    G94,
+    /// mm per master spindle revolution.
+    G95,
+    /// Constant cutting speed (S in m/min), feed per revolution.
+    G96,
+    /// Constant cutting speed, feed per minute.
+    G961,
+    /// Constant cutting speed off (speed frozen), feed per revolution.
+    G97,
+    /// Constant cutting speed off, feed per minute.
+    G971,
+}
+
+impl FeedType {
+    pub fn per_rev(self) -> bool {
+        matches!(self, FeedType::G95 | FeedType::G96 | FeedType::G97)
+    }
+
+    pub fn css(self) -> bool {
+        matches!(self, FeedType::G96 | FeedType::G961)
+    }
+
+    /// The name shown in the G-code display.
+    pub fn name(self) -> &'static str {
+        match self {
+            FeedType::G93 => "G93",
+            FeedType::G94 => "G94",
+            FeedType::G95 => "G95",
+            FeedType::G96 => "G96",
+            FeedType::G961 => "G961",
+            FeedType::G97 => "G97",
+            FeedType::G971 => "G971",
+        }
+    }
+}
+
+/// Thread and tapping functions of G group 1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Thread {
+    /// G33: thread with constant lead, the path follows the spindle.
+    G33,
+    /// G331: rigid tapping in, the spindle interpolates with the axis.
+    G331,
+    /// G332: rigid tapping out (the spindle reversed).
+    G332,
+}
 
 #[derive(Debug, Clone)]
 pub(super) struct Spindles {
@@ -17,17 +103,48 @@ pub(super) struct Spindles {
     speed: [f64; MAX_CHANNEL_AXES],
     /// Programmed direction by channel axis: +1 M3, −1 M4, 0 M5 or positioned.
     direction: [i8; MAX_CHANNEL_AXES],
+    /// G group 15.
+    pub feed_type: FeedType,
+    /// The cutting speed of G96/G961 (m/min).
+    pub cutting_speed: f64,
+    /// G25, G26, LIMS (rev/min).
+    pub lower: f64,
+    pub upper: f64,
+    pub lims: f64,
+    /// The thread function of G group 1 while one is active.
+    pub thread: Option<Thread>,
+    /// SF: start angle offset of G33 threads (degrees).
+    pub start_angle: f64,
+    /// The block before was a G33 block: a chained thread block starts without a new sync.
+    pub thread_chained: bool,
 }
 
 impl Spindles {
     pub fn new(cfg: &MachineConfig) -> Spindles {
-        Spindles { master: cfg.master_spindle, speed: [0.0; MAX_CHANNEL_AXES], direction: [0; MAX_CHANNEL_AXES] }
+        Spindles {
+            master: cfg.master_spindle,
+            speed: [0.0; MAX_CHANNEL_AXES],
+            direction: [0; MAX_CHANNEL_AXES],
+            feed_type: FeedType::G94,
+            cutting_speed: 0.0,
+            lower: 0.0,
+            upper: f64::INFINITY,
+            lims: f64::INFINITY,
+            thread: None,
+            start_angle: 0.0,
+            thread_chained: false,
+        }
     }
 
-    /// Reset: the configured master spindle again; with `stop`, every spindle stopped (a
-    /// reset), else the directions stay (program end: spindles turn on until M5 or reset).
+    /// Reset: the configured master spindle again and the reset feed type; with `stop`,
+    /// every spindle stopped (a reset), else the directions stay (program end: spindles turn
+    /// on until M5 or reset).
     pub fn reset(&mut self, cfg: &MachineConfig, stop: bool) {
         self.master = cfg.master_spindle;
+        self.feed_type = FeedType::G94;
+        self.thread = None;
+        self.thread_chained = false;
+        self.start_angle = 0.0;
         if stop {
             self.direction = [0; MAX_CHANNEL_AXES];
         }
@@ -41,11 +158,7 @@ impl Spindles {
     pub fn set_master(&mut self, spindle: Option<u32>, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
         self.master = match spindle {
             None => cfg.master_spindle,
-            Some(n) => Some(
-                cfg.channel_axes.iter().position(|c| cfg.machine_axes[c.machine_axis].spindle == Some(n)).ok_or_else(
-                    || Alarm::value_out_of_range(line, &format!("SETMS({n}): no spindle {n} in the channel")),
-                )?,
-            ),
+            Some(n) => Some(axis_of(cfg, n, line, "SETMS")?),
         };
         Ok(())
     }
@@ -55,19 +168,14 @@ impl Spindles {
         self.master.map_or(0.0, |k| self.speed[k])
     }
 
-    pub fn master_direction(&self) -> i8 {
-        self.master.map_or(0, |k| self.direction[k])
-    }
-
-    pub fn set_master_speed(&mut self, rpm: f64) {
-        if let Some(k) = self.master {
-            self.speed[k] = rpm;
-        }
-    }
-
-    pub fn set_master_direction(&mut self, direction: i8) {
-        if let Some(k) = self.master {
-            self.direction[k] = direction;
+    /// The speed a feed per revolution refers to in the look-ahead: the programmed speed, or
+    /// under constant cutting speed the highest the limits allow (the main run follows the
+    /// actual speed; this only bounds the planned velocity).
+    pub fn reference_speed(&self) -> f64 {
+        if self.feed_type.css() || self.feed_type == FeedType::G97 {
+            self.lims.min(self.upper).min(100_000.0)
+        } else {
+            self.master_speed()
         }
     }
 
@@ -80,4 +188,12 @@ impl Spindles {
     pub fn stop(&mut self, axis: usize) {
         self.direction[axis] = 0;
     }
+}
+
+/// The channel axis of spindle number `n`, or alarm 14060-style "no spindle n" for `what`.
+pub(super) fn axis_of(cfg: &MachineConfig, n: u32, line: u32, what: &str) -> Result<usize, Alarm> {
+    cfg.channel_axes
+        .iter()
+        .position(|c| cfg.machine_axes[c.machine_axis].spindle == Some(n))
+        .ok_or_else(|| Alarm::value_out_of_range(line, &format!("{what}: no spindle {n} in the channel")))
 }

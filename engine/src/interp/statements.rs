@@ -335,7 +335,9 @@ pub(super) fn reads_main_run(block: &Block) -> bool {
     // Asked of every block while the main run is busy: no list of the expressions is made.
     let words = block.words.iter().any(|w| match w {
         // SPOS starts from where the spindle stands in the main run.
-        Word::Address { name, .. } if name == "SPOS" => true,
+        Word::Address { name, .. } if name == "SPOS" || name == "SPOSA" => true,
+        // M19/M70 and rigid tapping start from the spindle's angle, too.
+        Word::M(19 | 70) | Word::G(331 | 332) => true,
         Word::Address { indices, value, .. } => {
             expr_reads_main_run(&value.expr) || indices.iter().any(expr_reads_main_run)
         }

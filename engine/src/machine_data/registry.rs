@@ -223,6 +223,8 @@ pub static DEFS: &[Def] = &[
     def("TRAFO_RESET_NAME", 20142, C, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
     def("TRAFO_MODE_MASK", 20144, C, Kind::Int, 1, Default::Int(0), 0.0, 255.0),
     def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
+    // MD20100: the transverse axis for DIAMON/G96 ("": the first geometry axis, X).
+    def("DIAMETER_AX_DEF", 20100, C, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
     // Orientation programming (TRAORI), REFERENCE §6.2.
     def("MAX_LEAD_ANGLE", 21090, C, Kind::Real, 1, Default::Real(60.0), 0.0, 89.999),
     def("MAX_TILT_ANGLE", 21092, C, Kind::Real, 1, Default::Real(60.0), 0.0, 89.999),
@@ -425,6 +427,14 @@ pub static DEFS: &[Def] = &[
     // is 0 (not adjusted); the simulation starts referenced unless this is set below 2.
     def("ENC_REFP_STATE", 34210, A, Kind::Int, 1, Default::Int(2), 0.0, 2.0),
     def("SPIND_ASSIGN_TO_MACHAX", 35000, A, Kind::Int, 1, Default::Int(0), 0.0, 20.0),
+    // Spindle data (S1). Defaults from memory of the control's lists (not in the seeds):
+    // MD35100 highest spindle speed (rev/min); MD35130 highest speed per gear stage 0..5
+    // (stage 1 is the one NCTwin runs: no gear stages are modelled); MD35200 acceleration in
+    // speed control per gear stage (rev/s²); MD35300 speed of SPOS/M19 positioning (rev/min).
+    def("SPIND_VELO_LIMIT", 35100, A, Kind::Real, 1, Default::Real(10000.0), 0.0, 1e6),
+    def("GEAR_STEP_MAX_VELO_LIMIT", 35130, A, Kind::Real, 6, Default::Real(10000.0), 0.0, 1e6),
+    def("GEAR_STEP_SPEEDCTRL_ACCEL", 35200, A, Kind::Real, 6, Default::Real(30.0), 1e-3, 1e6),
+    def("SPIND_POSCTRL_VELO", 35300, A, Kind::Real, 1, Default::Real(500.0), 1e-3, 1e6),
     def("POS_LIMIT_MINUS", 36100, A, Kind::Real, 1, Default::Real(-1e8), -INF, INF),
     def("POS_LIMIT_PLUS", 36110, A, Kind::Real, 1, Default::Real(1e8), -INF, INF),
     // Setting data. SD42650 CART_JOG_MODE: reference systems of Cartesian manual travel, bits

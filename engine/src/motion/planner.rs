@@ -105,6 +105,10 @@ pub struct Move {
     /// the move, when the path is not in machine axes. Used for the velocity jump at block
     /// transitions instead of the path's own tangent.
     pub axis_tangents: Option<Box<(AxisVec, AxisVec)>>,
+    /// Feed per revolution of the master spindle (G95, G96, G33) in path length per
+    /// revolution; 0 for a feed per time. The path speed then follows the spindle's actual
+    /// speed each cycle ([`Planner::set_spindle_rate`]); `feed` is only the look-ahead's bound.
+    pub per_rev: f64,
 }
 
 impl Move {
@@ -130,6 +134,7 @@ impl Move {
             tag,
             machine_space: false,
             axis_tangents: None,
+            per_rev: 0.0,
         }
     }
 
@@ -182,9 +187,11 @@ impl Move {
 
     /// The velocity cap under the overrides: the feed override scales the programmed feed (up to
     /// the axes' limit), the rapid override scales rapid traverse.
-    fn capped(&self, feed_override: f64, rapid_override: f64) -> f64 {
+    fn capped(&self, feed_override: f64, rapid_override: f64, spindle_rate: f64) -> f64 {
         if self.is_rapid() {
             self.v_axes * rapid_override.min(1.0)
+        } else if self.per_rev > 0.0 {
+            (self.per_rev * spindle_rate * feed_override).min(self.v_axes)
         } else {
             (self.feed * feed_override).min(self.v_axes)
         }
@@ -216,6 +223,8 @@ pub struct Planner {
     /// Feed override and rapid traverse override as factors (1.0 = 100 %).
     feed_override: f64,
     rapid_override: f64,
+    /// Actual speed of the master spindle in rev/s (for moves with a feed per revolution).
+    spindle_rate: f64,
     /// Drop the queue once standstill is reached under hold (JOG key released).
     flush_at_standstill: bool,
     position: AxisVec,
@@ -244,6 +253,7 @@ impl Planner {
             hold: false,
             feed_override: 1.0,
             rapid_override: 1.0,
+            spindle_rate: 0.0,
             flush_at_standstill: false,
             position,
             position_tag: None,
@@ -335,6 +345,12 @@ impl Planner {
         self.rapid_override = rapid_percent.clamp(0.0, 120.0) / 100.0;
     }
 
+    /// The master spindle's actual speed in rev/s (unsigned), which moves with a feed per
+    /// revolution follow (see [`Move::per_rev`]); set by the channel every IPO cycle.
+    pub fn set_spindle_rate(&mut self, rev_per_s: f64) {
+        self.spindle_rate = rev_per_s;
+    }
+
     /// Feed hold on/off (NC stop / NC start). The path is kept.
     pub fn set_hold(&mut self, hold: bool) {
         self.hold = hold;
@@ -420,7 +436,7 @@ impl Planner {
             return;
         };
         let a = front.a_max;
-        let cap = front.capped(self.feed_override, self.rapid_override);
+        let cap = front.capped(self.feed_override, self.rapid_override, self.spindle_rate);
         // Above the cap (override lowered) the path brakes at the axes' deceleration.
         let mut v_new = if self.hold {
             (self.v - a * dt).max(0.0)

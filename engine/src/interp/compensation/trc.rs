@@ -551,7 +551,9 @@ impl Prepared {
         Item::Move { mv: self.mv, line: self.line, offsets: self.offsets }
     }
 
-    fn item_with(&self, mv: Move) -> Item {
+    fn item_with(&self, mut mv: Move) -> Item {
+        // A feed per spindle revolution stays one on the offset path.
+        mv.per_rev = self.mv.per_rev;
         Item::Move { mv, line: self.line, offsets: self.offsets.clone() }
     }
 }

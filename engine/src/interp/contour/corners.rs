@@ -200,6 +200,7 @@ mod tests {
                 tag: 0,
                 machine_space: false,
                 axis_tangents: None,
+                per_rev: 0.0,
             }
         };
         let held = Held {
