@@ -288,6 +288,20 @@ fn dwell_g4_waits_the_programmed_seconds() {
 }
 
 #[test]
+fn the_move_after_a_dwell_starts_when_the_dwell_has_run_out() {
+    // G0 X10 ends at once on the mill's scale of things; G4 F1 holds X at 10 for 1 s; only
+    // then does G1 X20 F600 (10 mm/s) start. Before, the move ran during the dwell and the
+    // standstill came after it.
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("G0 X10\nG4 F1\nG1 X20 F600\nM30").unwrap();
+    let samples = settle(&mut ch);
+    let arrived = samples.iter().position(|p| p[0] == 10.0).expect("reaches X10");
+    let leaves = samples[arrived..].iter().position(|p| p[0] > 10.0).expect("moves on") + arrived;
+    let still = (leaves - arrived) as f64 * 0.004;
+    assert!(close(still, 1.0, 0.009), "X stands still at 10 for {still} s");
+}
+
+#[test]
 fn feed_per_revolution_follows_the_spindle_speed_on_the_lathe() {
     // S1000 with F0.1 mm/rev = 100 mm/min: 10 mm take 6 s at speed. The feed follows the
     // actual speed, which ramps 0 → 1000 rev/min in 1000/(30·60) = 0.556 s (MD35200 30 rev/s²)
