@@ -121,6 +121,10 @@ impl Channel {
     /// Hands consecutive moves from the front of the prepared items to the planner. A move
     /// followed by anything else ends with an exact stop.
     pub(super) fn feed_planner(&mut self) {
+        // A dwell (G4) in progress holds the moves after it.
+        if self.dwell_ticks > 0 {
+            return;
+        }
         // Single block: one block's moves at a time, and only once the last one is done.
         let single = self.single_block.then(|| self.pending.front().and_then(Item::line));
         if single.is_some() && (!self.planner.is_empty() || self.sbl_done.is_some()) {
