@@ -7,11 +7,14 @@ use nctwin_engine::alarm::Alarm;
 
 const MAX_TICKS: usize = 5_000_000;
 
-/// One IPO cycle: simulated time and the WCS positions X, Y, Z.
+/// One IPO cycle: simulated time, the WCS positions X, Y, Z (in the frame in force, which
+/// inside a cycle may be the cycle's own) and the BCS positions (the caller's WCS while it has
+/// no frame).
 #[derive(Clone, Copy, Debug)]
 pub struct Sample {
     pub t: f64,
     pub p: [f64; 3],
+    pub b: [f64; 3],
 }
 
 /// What a run leaves: the channel at rest, every cycle's sample and the alarms raised.
@@ -52,8 +55,10 @@ pub fn run_clean(main: &str) -> Trace {
 
 fn sample(ch: &Channel) -> Sample {
     let s = ch.snapshot();
-    let get = |n: &str| s.workpiece.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
-    Sample { t: s.time, p: [get("X"), get("Y"), get("Z")] }
+    let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
+    let w = |n| get(&s.workpiece, n);
+    let b = |n| get(&s.basic, n);
+    Sample { t: s.time, p: [w("X"), w("Y"), w("Z")], b: [b("X"), b("Y"), b("Z")] }
 }
 
 impl Trace {

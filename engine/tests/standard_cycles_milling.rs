@@ -1,0 +1,123 @@
+//! The milling cycles (POCKET3) checked on every sampled point of their path: inside the pocket
+//! minus the tool radius (and the finishing allowance when roughing), the floor at depth, and
+//! the allowance roughing leaves. The pocket geometry is worked out by hand from the documented
+//! parameters (_LENG, _WID, _CRAD, _PA, _PO, _STA, _DP, _MID, _FAL, _FALD). The tool is T1 D1 of
+//! the 3-axis mill: radius 5.
+
+mod cycles_support;
+use cycles_support::*;
+
+const Z: usize = 2;
+
+/// The samples below `rfp`, in the pocket's own coordinates (centre `c`, turned by `sta`°).
+fn local(t: &Trace, c: (f64, f64), sta: f64, rfp: f64) -> Vec<[f64; 3]> {
+    let (s, co) = sta.to_radians().sin_cos();
+    // From the first arrival at the start height Z50 on (before it the tool's length offset
+    // puts the tip below the part).
+    let from = t.samples.iter().position(|p| p.b[Z] >= 50.0).unwrap();
+    t.samples[from..]
+        .iter()
+        .filter(|p| p.b[Z] < rfp - 1e-9)
+        .map(|p| {
+            let (dx, dy) = (p.b[0] - c.0, p.b[1] - c.1);
+            [dx * co + dy * s, -dx * s + dy * co, p.b[Z]]
+        })
+        .collect()
+}
+
+/// Whether (u, v) lies in the rectangle of half sizes hx, hy with corner radius rc (+ tol).
+fn inside(u: f64, v: f64, hx: f64, hy: f64, rc: f64, tol: f64) -> bool {
+    let (u, v) = (u.abs(), v.abs());
+    if u > hx + tol || v > hy + tol {
+        return false;
+    }
+    if u > hx - rc && v > hy - rc {
+        return ((u - hx + rc).powi(2) + (v - hy + rc).powi(2)).sqrt() <= rc + tol;
+    }
+    true
+}
+
+#[test]
+fn pocket3_roughing_stays_inside_the_pocket_minus_radius_and_allowance() {
+    // 60 x 40 pocket, corner radius 8, centre (50, 30), depth -10 from RFP 0, MID 4, FAL 1,
+    // FALD 0.5. Tool centre: |u| <= 30 - 5 - 1 = 24, |v| <= 20 - 6 = 14, corner radius 8 - 6 = 2.
+    // Depth levels: 9.5 mm in ceil(9.5 / 4) = 3 equal infeeds: -3.1667, -6.3333, -9.5.
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET3(10,0,2,-10,60,40,8,50,30,0,4,1,0.5,500,150,0,1,6)\nM30",
+    );
+    let pts = local(&t, (50.0, 30.0), 0.0, 0.0);
+    assert!(pts.len() > 100);
+    for p in &pts {
+        assert!(inside(p[0], p[1], 24.0, 14.0, 2.0, 1e-6), "outside the roughing region: {p:?}");
+    }
+    let floor = pts.iter().map(|p| p[2]).fold(f64::MAX, f64::min);
+    assert!(close(floor, -9.5, 1e-9), "floor {floor}: FALD 0.5 left");
+    let reach_u = pts.iter().map(|p| p[0].abs()).fold(0.0, f64::max);
+    let reach_v = pts.iter().map(|p| p[1].abs()).fold(0.0, f64::max);
+    assert!(close(reach_u, 24.0, 1e-6) && close(reach_v, 14.0, 1e-6), "the wall pass leaves exactly FAL: {reach_u} {reach_v}");
+    // The heights at which the tool moves in the plane below RFP.
+    let mut levels: Vec<f64> = pts
+        .windows(2)
+        .filter(|w| w[0][2] == w[1][2] && (w[0][0] != w[1][0] || w[0][1] != w[1][1]))
+        .map(|w| w[0][2])
+        .collect();
+    levels.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    for (got, want) in levels.iter().zip([-9.5 / 3.0, -19.0 / 3.0, -9.5]) {
+        assert!(close(*got, want, 1e-6), "{levels:?}");
+    }
+    assert_eq!(levels.len(), 3, "{levels:?}");
+    // Lines of the meander no more than _MIDA = 6 apart: every v in [-14, 14] lies within 3 of
+    // a sample on each level's floor (checked on the last level).
+    let last: Vec<_> = pts.iter().filter(|p| close(p[2], -9.5, 1e-9)).collect();
+    for k in 0..=28 {
+        let v = -14.0 + k as f64;
+        assert!(last.iter().any(|p| (p[1] - v).abs() <= 3.0 + 1e-6 && p[0].abs() < 1.0), "gap at v {v}");
+    }
+    assert!(close(t.end()[Z], 10.0, 1e-9));
+}
+
+#[test]
+fn pocket3_finishing_reaches_the_walls_and_floor_of_a_turned_pocket() {
+    // Turned by 30°, centre (20, -10), 50 x 30, corner radius 6, depth -4 in one infeed (MID 0),
+    // finishing (VARI 2) with FALD 0.2: the floor at -4 (meander), walls at 25 - 5 = 20 and
+    // 15 - 5 = 10, corner radius 6 - 5 = 1; climb milling (CDIR 0).
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET3(10,0,2,-4,50,30,6,20,-10,30,0,0.5,0.2,500,150,0,2)\nM30",
+    );
+    let pts = local(&t, (20.0, -10.0), 30.0, 0.0);
+    for p in &pts {
+        assert!(inside(p[0], p[1], 20.0, 10.0, 1.0, 1e-6), "outside the pocket minus radius: {p:?}");
+    }
+    let floor = pts.iter().map(|p| p[2]).fold(f64::MAX, f64::min);
+    assert!(close(floor, -4.0, 1e-9), "{floor}");
+    assert!(pts.iter().any(|p| close(p[0], 20.0, 1e-6) && p[1].abs() < 8.0), "right wall");
+    assert!(pts.iter().any(|p| close(p[1], -10.0, 1e-6) && p[0].abs() < 18.0), "near wall");
+}
+
+#[test]
+fn pocket3_in_g18_mills_in_the_zx_plane() {
+    // G18: abscissa Z, ordinate X, depth along Y. 30 x 20 pocket at (Z 0, X 0), depth -3.
+    let t = run_clean("G18 G90 T1 D1\nG0 X0 Y50 Z0\nPOCKET3(10,0,2,-3,30,20,0,0,0,0,0,0,0,500,150,0,1,8)\nM30");
+    let from = t.samples.iter().position(|p| p.b[1] >= 50.0).unwrap();
+    let below: Vec<_> = t.samples[from..].iter().filter(|s| s.b[1] < -1e-9).collect();
+    assert!(!below.is_empty());
+    for s in &below {
+        assert!(s.b[2].abs() <= 10.0 + 1e-6 && s.b[0].abs() <= 5.0 + 1e-6, "{s:?}");
+    }
+    assert!(close(below.iter().map(|s| s.b[1]).fold(f64::MAX, f64::min), -3.0, 1e-9));
+}
+
+#[test]
+fn pocket3_alarms_for_a_tool_too_large_or_no_tool() {
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-4,10,30,0,0,0,0,0,1,0,500,150,0,1)\nM30");
+    assert_eq!(t.alarms.iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), vec![(61105, Some(3))]);
+    let t = run("G17 G90\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-4,40,30,0,0,0,0,0,1,0,500,150,0,1)\nM30");
+    assert_eq!(t.alarms.iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), vec![(61000, Some(3))]);
+}
+
+#[test]
+fn pocket3_gives_the_caller_its_frame_back() {
+    // The cycle shifts and turns its own frame; afterwards X10 is X10 of the caller.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-2,40,30,0,50,50,45,0,0,0,500,150,0,1)\nG0 X10 Y10\nM30");
+    assert_eq!(t.end(), [10.0, 10.0, 10.0]);
+}
