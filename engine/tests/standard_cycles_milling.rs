@@ -121,3 +121,27 @@ fn pocket3_gives_the_caller_its_frame_back() {
     let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-2,40,30,0,50,50,45,0,0,0,500,150,0,1)\nG0 X10 Y10\nM30");
     assert_eq!(t.end(), [10.0, 10.0, 10.0]);
 }
+
+#[test]
+fn pocket4_roughs_in_rings_inside_the_circle_minus_radius_and_allowance() {
+    // R 25 pocket at (10, 10), depth -6 in MID 3 steps (FALD 0: -3, -6), FAL 0.5, MIDA 8:
+    // tool centre within 25 - 5 - 0.5 = 19.5; ceil(19.5 / 8) = 3 rings at 6.5, 13, 19.5.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET4(10,0,2,-6,25,10,10,3,0.5,0,500,150,0,1,8)\nM30");
+    let pts = local(&t, (10.0, 10.0), 0.0, 0.0);
+    let radius = |p: &[f64; 3]| p[0].hypot(p[1]);
+    assert!(pts.iter().all(|p| radius(p) <= 19.5 + 1e-6), "inside the pocket minus radius and FAL");
+    assert!(close(pts.iter().map(radius).fold(0.0, f64::max), 19.5, 1e-6));
+    assert!(close(pts.iter().map(|p| p[2]).fold(f64::MAX, f64::min), -6.0, 1e-9));
+    for ring in [6.5, 13.0] {
+        assert!(pts.iter().any(|p| close(radius(p), ring, 1e-6) && p[1].abs() > 1.0), "ring {ring}");
+    }
+}
+
+#[test]
+fn pocket4_finishing_mills_the_wall_at_the_tool_radius() {
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET4(10,0,2,-6,25,10,10,0,0.5,0,500,150,1,2)\nM30");
+    let pts = local(&t, (10.0, 10.0), 0.0, 0.0);
+    let radius = |p: &[f64; 3]| p[0].hypot(p[1]);
+    assert!(pts.iter().all(|p| radius(p) <= 20.0 + 1e-6));
+    assert!(pts.iter().filter(|p| close(radius(p), 20.0, 1e-6)).count() > 50, "the wall at 25 - 5");
+}
