@@ -59,6 +59,8 @@ fn cycle83_at_1000_positions_gives_the_written_out_path() {
     assert!((t_cycle - t_hand).abs() < 1e-9, "simulated time {t_cycle} vs {t_hand}");
     if std::env::var_os("NCTWIN_CYCLE_RATIO").is_some() {
         let ratio = cpu_cycle.as_secs_f64() / cpu_hand.as_secs_f64();
-        println!("CYCLE83 x{HOLES}: {cpu_cycle:?}; written out: {cpu_hand:?}; ratio {ratio:.2} (simulated {t_cycle:.1} s)");
+        println!(
+            "CYCLE83 x{HOLES}: {cpu_cycle:?}; written out: {cpu_hand:?}; ratio {ratio:.2} (simulated {t_cycle:.1} s)"
+        );
     }
 }

@@ -47,7 +47,11 @@ fn cycle83_chip_removal_pecks_with_degression_and_leaves_the_hole_each_time() {
     // feed (200 mm/min = 3.33 mm/s) to -13.
     let to13 = t.samples.iter().position(|s| s.p[Z] <= -13.0 + 1e-9).unwrap();
     let from2 = t.samples[..to13].iter().rposition(|s| s.p[Z] >= 2.0 - 1e-9).unwrap();
-    let plunge = Trace { ch: nctwin_engine::Channel::from_preset("mill-3axis", "").unwrap(), samples: t.samples[from2..=to13].to_vec(), alarms: vec![] };
+    let plunge = Trace {
+        ch: nctwin_engine::Channel::from_preset("mill-3axis", "").unwrap(),
+        samples: t.samples[from2..=to13].to_vec(),
+        alarms: vec![],
+    };
     let feed = 200.0 / 60.0;
     let v = top_speed(&plunge, Z, -12.9, -7.45, true);
     assert!(v <= feed * 1.001, "feed after the anticipation point: {v}");
@@ -145,7 +149,11 @@ fn cycle89_dwells_and_feeds_back_out() {
 fn cycle86_stops_the_spindle_oriented_and_lifts_off_before_leaving() {
     // RPA 1, RPO -0.5, RPAP 0.2: from the bottom (10, 20, -10) to (11, 19.5, -9.8), out to
     // RFP+SDIS = 2 with the offset kept, back over the centre, then up to RTP 30.
-    let t = run_on("tracyl-xyzac", "G17 G90 F200 M3 S500\nG0 X10 Y20 Z50\nCYCLE86(30,0,2,-10,,0,3,1,-0.5,0.2,90)\nM30", &[]);
+    let t = run_on(
+        "tracyl-xyzac",
+        "G17 G90 F200 M3 S500\nG0 X10 Y20 Z50\nCYCLE86(30,0,2,-10,,0,3,1,-0.5,0.2,90)\nM30",
+        &[],
+    );
     assert!(t.alarms.is_empty(), "{:?}", t.alarms);
     assert_points(&t.turning_points(Z)[1..], &[50.0, -10.0, 30.0]);
     let lifted = |s: &Sample| close(s.p[0], 11.0, 1e-6) && close(s.p[1], 19.5, 1e-6);

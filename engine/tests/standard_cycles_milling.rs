@@ -54,7 +54,10 @@ fn pocket3_roughing_stays_inside_the_pocket_minus_radius_and_allowance() {
     assert!(close(floor, -9.5, 1e-9), "floor {floor}: FALD 0.5 left");
     let reach_u = pts.iter().map(|p| p[0].abs()).fold(0.0, f64::max);
     let reach_v = pts.iter().map(|p| p[1].abs()).fold(0.0, f64::max);
-    assert!(close(reach_u, 24.0, 1e-6) && close(reach_v, 14.0, 1e-6), "the wall pass leaves exactly FAL: {reach_u} {reach_v}");
+    assert!(
+        close(reach_u, 24.0, 1e-6) && close(reach_v, 14.0, 1e-6),
+        "the wall pass leaves exactly FAL: {reach_u} {reach_v}"
+    );
     // The heights at which the tool moves in the plane below RFP.
     let mut levels: Vec<f64> = pts
         .windows(2)
@@ -118,7 +121,9 @@ fn pocket3_alarms_for_a_tool_too_large_or_no_tool() {
 #[test]
 fn pocket3_gives_the_caller_its_frame_back() {
     // The cycle shifts and turns its own frame; afterwards X10 is X10 of the caller.
-    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-2,40,30,0,50,50,45,0,0,0,500,150,0,1)\nG0 X10 Y10\nM30");
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-2,40,30,0,50,50,45,0,0,0,500,150,0,1)\nG0 X10 Y10\nM30",
+    );
     assert_eq!(t.end(), [10.0, 10.0, 10.0]);
 }
 

@@ -32,7 +32,11 @@ fn holes2_drills_a_circle_and_divides_it_evenly_without_inda() {
     // Centre (50, 40), R 20, first hole at 45°, INDA 0 and 4 holes: every 90°.
     let main = "G17 G90 F300\nG0 X0 Y0 Z50\nMCALL CYCLE82(10,0,2,-3,,0.2)\nHOLES2(50,40,20,45,0,4)\nMCALL\nM30";
     let r = 20.0 / 2f64.sqrt();
-    assert_holes(&holes(main), &[(50.0 + r, 40.0 + r), (50.0 - r, 40.0 + r), (50.0 - r, 40.0 - r), (50.0 + r, 40.0 - r)], -3.0);
+    assert_holes(
+        &holes(main),
+        &[(50.0 + r, 40.0 + r), (50.0 - r, 40.0 + r), (50.0 - r, 40.0 - r), (50.0 + r, 40.0 - r)],
+        -3.0,
+    );
     // INDA -30: 3 holes at 0°, -30°, -60°.
     let main = "G17 G90 F300\nG0 X0 Y0 Z50\nMCALL CYCLE81(10,0,2,-3)\nHOLES2(0,0,10,0,-30,3)\nMCALL\nM30";
     let (s, c) = (0.5, 3f64.sqrt() / 2.0);
@@ -57,7 +61,8 @@ fn cycle801_drills_a_grid_in_a_meander_and_a_frame_only_on_its_border() {
 #[test]
 fn cycle802_drills_the_chosen_positions() {
     // _ROW 101000000: positions 0 and 2 only.
-    let main = "G17 G90 F300\nG0 X0 Y0 Z50\nMCALL CYCLE81(10,0,2,-2)\nCYCLE802(111111111,101000000,5,6,7,8,9,10)\nMCALL\nM30";
+    let main =
+        "G17 G90 F300\nG0 X0 Y0 Z50\nMCALL CYCLE81(10,0,2,-2)\nCYCLE802(111111111,101000000,5,6,7,8,9,10)\nMCALL\nM30";
     assert_holes(&holes(main), &[(5.0, 6.0), (9.0, 10.0)], -2.0);
     // Without _ROW: every position up to the last one given.
     let main = "G17 G90 F300\nG0 X0 Y0 Z50\nMCALL CYCLE81(10,0,2,-2)\nCYCLE802(,,5,6,7,8,9,10)\nMCALL\nM30";
@@ -73,7 +78,9 @@ fn a_pattern_without_mcall_only_positions() {
 
 #[test]
 fn patterns_with_no_holes_raise_61103_or_61106_at_the_call() {
-    for (call, number) in [("HOLES1(0,0,0,10,10,0)", 61103), ("HOLES2(0,0,10,0,90,5)", 61106), ("CYCLE801(0,0,0,5,5,0,2)", 61106)] {
+    for (call, number) in
+        [("HOLES1(0,0,0,10,10,0)", 61103), ("HOLES2(0,0,10,0,90,5)", 61106), ("CYCLE801(0,0,0,5,5,0,2)", 61106)]
+    {
         let t = run(&format!("G17 G90 F300\nG0 X0 Y0 Z50\nMCALL CYCLE81(10,0,2,-2)\n{call}\nM30"));
         assert_eq!(t.alarms.iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), vec![(number, Some(4))], "{call}");
     }

@@ -74,9 +74,7 @@ impl Trace {
         }
         let mut out = Vec::new();
         for (i, &x) in v.iter().enumerate() {
-            let turn = i == 0
-                || i + 1 == v.len()
-                || (x - v[i - 1]).signum() != (v[i + 1] - x).signum();
+            let turn = i == 0 || i + 1 == v.len() || (x - v[i - 1]).signum() != (v[i + 1] - x).signum();
             if turn {
                 out.push(x);
             }

@@ -47,7 +47,11 @@ pub(in crate::interp) fn at_call(alarm: &Alarm, calls: &[CallFrame]) -> Alarm {
     }
     let generic = out.message.ends_with(" cycle alarm");
     if let (true, Some((_, text))) = (generic, TEXTS.iter().find(|(n, _)| *n == alarm.number)) {
-        out = Alarm::user(out.line.unwrap_or(0), alarm.number, &format!("Channel 1 block {} {text}", out.line.unwrap_or(0)));
+        out = Alarm::user(
+            out.line.unwrap_or(0),
+            alarm.number,
+            &format!("Channel 1 block {} {text}", out.line.unwrap_or(0)),
+        );
     } else if generic {
         out = Alarm::user(out.line.unwrap_or(0), alarm.number, "");
     }

@@ -67,8 +67,11 @@ impl Interpreter {
         line: u32,
     ) -> Result<bool, Alarm> {
         let here = self.calls.len();
-        let Some(mc) =
-            self.call_state.mcall.as_ref().filter(|m| m.level == here || m.level + 1 == here && self.in_pattern_cycle(m))
+        let Some(mc) = self
+            .call_state
+            .mcall
+            .as_ref()
+            .filter(|m| m.level == here || m.level + 1 == here && self.in_pattern_cycle(m))
         else {
             return Ok(false);
         };

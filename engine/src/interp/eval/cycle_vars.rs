@@ -27,9 +27,7 @@ pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line
             let (t, d) = (sys.offsets.t, sys.offsets.d);
             let edge = if d == 0 { None } else { sys.cfg.tools.get(&(t, d)) };
             let slot = |n: &str| crate::machine_data::tool_orient::slot(n);
-            let radius = edge.map_or(0.0, |e| {
-                slot("6").map_or(0.0, |i| e[i]) + slot("15").map_or(0.0, |i| e[i])
-            });
+            let radius = edge.map_or(0.0, |e| slot("6").map_or(0.0, |i| e[i]) + slot("15").map_or(0.0, |i| e[i]));
             Value::Real(radius)
         }
         // The feed in force (0 before any F), in the unit the program wrote it.
