@@ -150,3 +150,47 @@ fn pocket4_finishing_mills_the_wall_at_the_tool_radius() {
     assert!(pts.iter().all(|p| radius(p) <= 20.0 + 1e-6));
     assert!(pts.iter().filter(|p| close(radius(p), 20.0, 1e-6)).count() > 50, "the wall at 25 - 5");
 }
+
+#[test]
+fn longhole_mills_radial_holes_in_a_pendulum_infeed() {
+    // 3 holes 20 long on R 40 around (0, 0), first at 90°, 120° apart; tool R5: the tool centre
+    // runs from radius 40 - (10 - 5) = 35 to 45 along each radius. Depth -6 in MID 2.5 steps:
+    // ceil(6 / 2.5) = 3 infeeds of 2: -2 at the inner end, -4 at the outer, -6 at the inner.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nLONGHOLE(5,0,1,-6,,3,20,0,0,40,90,120,100,400,2.5)\nM30");
+    let from = t.samples.iter().position(|p| p.b[Z] >= 50.0).unwrap();
+    let cut: Vec<_> = t.samples[from..].iter().filter(|s| s.b[Z] < -1e-9).collect();
+    for s in &cut {
+        let (r, w) = (s.b[0].hypot(s.b[1]), s.b[1].atan2(s.b[0]).to_degrees().rem_euclid(360.0));
+        assert!((35.0 - 1e-6..=45.0 + 1e-6).contains(&r), "{s:?}");
+        assert!([90.0, 210.0, 330.0].iter().any(|a| close(w, *a, 1e-6)), "on a radius: {w} {s:?}");
+    }
+    for a in [90.0f64, 210.0, 330.0] {
+        let (sn, cs) = a.to_radians().sin_cos();
+        let at = |r: f64, z: f64| {
+            cut.iter().any(|s| close(s.b[0], r * cs, 1e-6) && close(s.b[1], r * sn, 1e-6) && close(s.b[Z], z, 1e-6))
+        };
+        assert!(
+            at(35.0, -2.0) && at(45.0, -2.0) && at(45.0, -4.0) && at(35.0, -4.0) && at(35.0, -6.0) && at(45.0, -6.0),
+            "hole at {a}°"
+        );
+    }
+    assert!(close(cut.iter().map(|s| s.b[Z]).fold(f64::MAX, f64::min), -6.0, 1e-9));
+}
+
+#[test]
+fn slot1_rough_and_finish_stay_inside_each_slot() {
+    // 2 slots 30 x 14 on R 30 around (10, 0) at 0° and 180°: each a pocket with corner radius 7.
+    // Finishing reaches the walls: tool centre |u| <= 15 - 5 = 10, |v| <= 7 - 5 = 2, corners 2.
+    let t =
+        run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nSLOT1(5,0,1,-4,,2,30,14,10,0,30,0,0,100,400,2,0,0.5,0)\nM30");
+    for (cx, sta) in [(40.0, 0.0), (-20.0, 180.0)] {
+        let pts: Vec<_> =
+            local(&t, (cx, 0.0), sta, 0.0).into_iter().filter(|p| p[0].abs() < 20.0 && p[1].abs() < 20.0).collect();
+        assert!(pts.len() > 50, "slot at {cx}");
+        for p in &pts {
+            assert!(inside(p[0], p[1], 10.0, 2.0, 2.0, 1e-6), "outside the slot at {cx}: {p:?}");
+        }
+        assert!(pts.iter().any(|p| close(p[0].abs(), 10.0, 1e-6)), "finished to the end of the slot at {cx}");
+        assert!(close(pts.iter().map(|p| p[2]).fold(f64::MAX, f64::min), -4.0, 1e-9));
+    }
+}
