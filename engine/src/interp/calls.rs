@@ -3,6 +3,7 @@
 //! `targets.rs`: the program a call word names and the EXTERN checks; `modal_call.rs`: MCALL;
 //! `section.rs`: REPEAT/REPEATB and CALL BLOCK.
 
+pub(super) mod cycle_alarm;
 pub(super) mod delobj;
 pub(super) mod effects;
 mod modal_call;

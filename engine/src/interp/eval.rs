@@ -1,6 +1,8 @@
 //! Evaluation of expressions: operators with the control's semantics, the predefined
 //! functions, variables and system variables.
 
+pub(super) mod cycle_vars;
+pub(super) mod indirect_axis;
 pub(super) mod numeric;
 pub(super) mod scope;
 pub mod value;
@@ -116,7 +118,8 @@ fn eval_indices(name: &str, indices: &[Expr], scope: &dyn Scope, line: u32) -> R
 fn keyword<'e>(e: &'e Expr, scope: &dyn Scope) -> Option<&'e str> {
     match e {
         Expr::Var { name, indices }
-            if indices.is_empty() && scope.vars().get(name).is_none() && !scope.is_axis(name) =>
+            // A `$` name is a system variable read (`$TC_DP6[$P_TOOLNO,$P_TOOL]`), not a keyword.
+            if indices.is_empty() && !name.starts_with('$') && scope.vars().get(name).is_none() && !scope.is_axis(name) =>
         {
             Some(name)
         }

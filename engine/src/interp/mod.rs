@@ -582,7 +582,7 @@ impl Interpreter {
             out.push(Item::Message { text: text.clone(), line });
         }
         if let Some(alarm) = &words.user_alarm {
-            out.push(Item::Alarm(alarm.clone()));
+            out.push(Item::Alarm(calls::cycle_alarm::at_call(alarm, &self.calls)));
         }
         if let Some(kind) = words.stop {
             out.push(Item::Stop { kind, line });

@@ -644,7 +644,8 @@ pub(super) fn collect(
                         Ok(v as u32)
                     }
                 };
-                if !seen.insert(name) {
+                // AX[...] words are told apart by the axis they name (below), not by "AX".
+                if &**name != "AX" && !seen.insert(name) {
                     return Err(Alarm::repeated_address(line, name));
                 }
                 let index = match indices.first() {
@@ -701,6 +702,9 @@ pub(super) fn collect(
                                 line,
                                 &format!("{name} (spindle positioning comes with SPOS)"),
                             ));
+                        }
+                        if &**name == "AX" && w.axes.iter().any(|a| a.0 == k) {
+                            return Err(Alarm::repeated_address(line, cfg.program_axis_name(k)));
                         }
                         w.axes.push((k, v, value.mode));
                     }
@@ -808,6 +812,9 @@ pub(super) fn assign(
     }
     if name.starts_with('$') {
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
+    }
+    if name == "AX" && indices.len() == 1 && vars.get(name).is_none() {
+        return super::eval::indirect_axis::resolve(&indices[0], vars, sys, line).map(|k| Assigned::Address(Some(k)));
     }
     if vars.get(name).is_none() {
         let axis = cfg.program_axis(name);

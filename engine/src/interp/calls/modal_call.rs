@@ -2,7 +2,9 @@
 //! on the program level that programmed it, the subprogram runs as if called there; `MCALL`
 //! without a name (or the end of that program level, or of the program) ends it. Blocks of the
 //! called subprogram itself (and of deeper levels) do not call it again. The arguments are
-//! evaluated once, at the MCALL block; only one modal call is active at a time.
+//! evaluated once, at the MCALL block; only one modal call is active at a time. A hole pattern
+//! cycle of the cycle directories called from that level triggers it at each of its positioning
+//! blocks (see `in_pattern_cycle`).
 
 use super::{Interpreter, Programs};
 use crate::alarm::Alarm;
@@ -64,12 +66,29 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<bool, Alarm> {
-        let Some(mc) = self.call_state.mcall.as_ref().filter(|m| m.level == self.calls.len()) else {
+        let here = self.calls.len();
+        let Some(mc) = self
+            .call_state
+            .mcall
+            .as_ref()
+            .filter(|m| m.level == here || m.level + 1 == here && self.in_pattern_cycle(m))
+        else {
             return Ok(false);
         };
         let (name, args) = (mc.name.clone(), mc.args.clone());
         self.call(&name, &args, 1, programs, cfg, line)?;
         Ok(true)
+    }
+
+    /// A cycle of the cycle directories (CST, CMA, CUS) called straight from the level that
+    /// programmed `mc`, and not `mc`'s own subprogram: the hole pattern cycles (HOLES1, HOLES2,
+    /// CYCLE801, CYCLE802) position the tool and the modal call runs at each position, as on
+    /// the control.
+    fn in_pattern_cycle(&self, mc: &ModalCall) -> bool {
+        use crate::programs::Dir;
+        self.calls.last().is_some_and(|f| {
+            matches!(f.dir, Some(Dir::Cst | Dir::Cma | Dir::Cus)) && f.level.name() != mc.name.as_str()
+        })
     }
 
     /// A program level ends: a modal call it programmed ends with it.

@@ -105,6 +105,9 @@ impl Scope for Ctx<'_> {
         if let Some(v) = crate::interp::orientation::vars::read(sys, name, indices, line) {
             return v;
         }
+        if let Some(v) = super::cycle_vars::read(sys, name, indices, line) {
+            return v;
+        }
         Ok(match name {
             "$P_TOOLNO" => Value::Int(sys.offsets.t.into()),
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),

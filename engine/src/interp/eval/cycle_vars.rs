@@ -1,0 +1,45 @@
+//! System variables the standard cycles read in preparation: the active tool's radius
+//! (`$P_TOOLR`), the programmed feed (`$P_F`) and the names of the working plane's axes
+//! (`$P_AXN1` abscissa, `$P_AXN2` ordinate, `$P_AXN3` applicate). With these a cycle written once
+//! works in G17, G18 and G19 through indirect axis addressing (`AX[$P_AXN3]=...`) and keeps the
+//! pocket walls clear of the tool's radius.
+
+use crate::alarm::Alarm;
+use crate::interp::eval::scope::SysView;
+use crate::interp::eval::value::Value;
+
+/// The value of cycle variable `name`, or `None` if `name` is not one of them.
+pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line: u32) -> Option<Result<Value, Alarm>> {
+    let k = match name {
+        "$P_TOOLR" | "$P_F" => None,
+        "$P_AXN1" => Some(0),
+        "$P_AXN2" => Some(1),
+        "$P_AXN3" => Some(2),
+        _ => return None,
+    };
+    if !indices.is_empty() {
+        return Some(Err(Alarm::index_error(line, name, "takes no index")));
+    }
+    Some(Ok(match (name, k) {
+        // The radius of the active cutting edge (T, D); 0 with D0 or without tool data,
+        // as on the control. Wear ($TC_DP15) is added as the control adds it.
+        ("$P_TOOLR", _) => {
+            let (t, d) = (sys.offsets.t, sys.offsets.d);
+            let edge = if d == 0 { None } else { sys.cfg.tools.get(&(t, d)) };
+            let slot = |n: &str| crate::machine_data::tool_orient::slot(n);
+            let radius = edge.map_or(0.0, |e| slot("6").map_or(0.0, |i| e[i]) + slot("15").map_or(0.0, |i| e[i]));
+            Value::Real(radius)
+        }
+        // The feed in force (0 before any F), in the unit the program wrote it.
+        ("$P_F", _) => Value::Real(sys.modal.feed.unwrap_or(0.0)),
+        (_, Some(k)) => {
+            let (a, o, p) = sys.modal.plane.axes();
+            let g = [a, o, p][k];
+            match sys.cfg.geo_axes[g] {
+                Some(idx) => Value::Axis(sys.cfg.program_axis_name(idx).to_string()),
+                None => Value::Axis(sys.cfg.geo_names[g].clone()),
+            }
+        }
+        _ => unreachable!("matched above"),
+    }))
+}
