@@ -15,6 +15,9 @@ fn main() {
         .filter(|path| path.extension().is_some_and(|ext| ext.eq_ignore_ascii_case("spf")))
         .collect();
     files.sort();
+    for path in &files {
+        println!("cargo:rerun-if-changed={}", path.display());
+    }
     let mut code = String::from(
         "/// The cycle files: name (the file stem, upper case) and text.\npub static FILES: &[(&str, &str)] = &[\n",
     );
