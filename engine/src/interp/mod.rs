@@ -53,9 +53,11 @@ pub struct Offsets {
     pub tool: AxisVec,
     /// The active frame, WCS → BCS: settable frame (G54 ...) then programmable frame.
     pub frame: Frame,
-    /// Active tool number and cutting edge.
+    /// Active tool number (the tool in the spindle) and cutting edge.
     pub t: u32,
     pub d: u32,
+    /// The programmed tool (`$P_TOOLP`): prepared for the next change under MD22550 = 1.
+    pub prepared: u32,
     /// The active kinematic transformation with the tool length it includes.
     pub trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Online tool length offset in the tool directions X, Y, Z (`$AA_TOFF`, see `toff.rs`).
@@ -510,7 +512,7 @@ impl Interpreter {
             }
             self.spindles.set_master_speed(s);
         }
-        self.select_tool(words, cfg, line)?;
+        self.select_tool(words, cfg, line, out)?;
         if let Some(op) = words.frame_op {
             self.frame_instruction(op, words, cfg, line)?;
         }
@@ -617,24 +619,6 @@ impl Interpreter {
             self.jump(goto, cfg, line)?;
         }
         self.block_calls(words, path_motion, programs, cfg, line)
-    }
-
-    fn select_tool(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
-        if let Some(t) = words.tool {
-            if t != 0 && !cfg.tools.keys().any(|(tt, _)| *tt == t) {
-                return Err(Alarm::illegal_t(line, t));
-            }
-            self.offsets.t = t;
-            // MD20270 CUTTING_EDGE_DEFAULT = 1: a new tool brings its first cutting edge.
-            self.offsets.d = if t == 0 { 0 } else { 1 };
-        }
-        if let Some(d) = words.edge {
-            if d != 0 && !cfg.tools.contains_key(&(self.offsets.t, d)) {
-                return Err(Alarm::illegal_d(line, d));
-            }
-            self.offsets.d = d;
-        }
-        Ok(())
     }
 
     /// TRANS/ROT/SCALE/MIRROR replace the programmable frame; ATRANS/AROT/ASCALE/AMIRROR add
