@@ -128,6 +128,7 @@ $TC_DP3[2,1]=120.
 $TC_DP6[2,1]=4.
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
+$MC_TOOL_CHANGE_TIME=2.
 $TC_MAP1[1]=1
 $TC_MAP2[1]="CHAIN"
 $TC_MAP7[1]=12
