@@ -48,7 +48,7 @@ fn t_by_name_and_m6_change_the_tool_take_the_change_time_and_apply_its_length() 
     assert!((machine(&s, "Z") - 130.0).abs() < 1e-9, "{:?}", s.machine);
     // The change took the 4 s of $MC_TOOL_CHANGE_TIME: the same as a change without a time
     // followed by a 4 s dwell.
-    let no_time = "$MC_TOOL_CHANGE_MODE=1\n";
+    let no_time = "$MC_TOOL_CHANGE_MODE=1\n$MC_TOOL_CHANGE_TIME=0\n";
     let with_dwell = prog.replace("M6\n", "M6\nG4 F4\n");
     let dwell = run(no_time, &with_dwell).snapshot().time;
     // Within one IPO cycle (4 ms): the new offsets are taken over in the cycle after the wait.
@@ -138,4 +138,30 @@ fn t1_d1_programs_without_tool_management_data_keep_working() {
     assert!((machine(&s, "Z") - 50.0).abs() < 1e-9);
     let a = run("", "T99\nM30").snapshot().alarms;
     assert_eq!((a[0].number, a[0].line), (17190, Some(1)));
+}
+
+#[test]
+fn tools_are_unloaded_to_the_loading_magazine_and_loaded_into_free_places() {
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    let place = |ch: &Channel, t: u32| ch.config().tool_list.tools[&t].place;
+    assert_eq!(place(&ch, 2), Some((1, 2)));
+    ch.unload_tool(2).unwrap();
+    assert_eq!(place(&ch, 2), Some((9999, 1)));
+    ch.load_tool(2, 1, 5).unwrap();
+    assert_eq!(place(&ch, 2), Some((1, 5)));
+    let e = ch.load_tool(1, 1, 5).unwrap_err().to_string();
+    assert!(e.contains("place 5 holds tool 2"), "{e}");
+    let e = ch.load_tool(1, 1, 13).unwrap_err().to_string();
+    assert!(e.contains("has no place 13"), "{e}");
+    // The data keep the new place over a text round trip (persistence).
+    let mut again = nctwin_engine::machine_data::MachineData::default();
+    let cfg = again.apply_text(&ch.machine_data().to_text()).unwrap();
+    assert_eq!(cfg.tool_list.tools[&2].place, Some((1, 5)));
+    // The tool in the spindle stays where it is.
+    ch.run_program("T1\nM30").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let e = ch.unload_tool(1).unwrap_err().to_string();
+    assert!(e.contains("in the spindle"), "{e}");
 }

@@ -473,15 +473,17 @@ impl MachineData {
         &self.tm
     }
 
-    /// Deletes tool `t`: its cutting edges, tool and monitoring data and its place entry.
-    pub fn delete_tool(&mut self, t: u32) {
-        self.tools.retain(|(tt, _), _| *tt != t);
-        self.tm.remove_tool(t);
+    /// Deletes every cutting edge and every tool-management datum (a tool list replaced as a
+    /// whole).
+    pub fn clear_tool_data(&mut self) {
+        self.tools.clear();
+        self.tm = Default::default();
     }
 
-    /// Loads tool `t` into place (m, p) or unloads the place (`None`).
-    pub fn set_place_tool(&mut self, m: u32, p: u32, t: Option<u32>) {
-        self.tm.set_place_tool(m, p, t);
+    /// Moves tool `t` into place (m, p): its old place entry is removed.
+    pub fn move_tool(&mut self, t: u32, m: u32, p: u32) {
+        self.tm.clear_places_of(t);
+        self.tm.set_place_tool(m, p, Some(t));
     }
 
     /// Every toolholder 1..MD18088 MM_NUM_TOOL_CARRIER, typed (defaults where nothing is stored).

@@ -138,7 +138,12 @@ impl ToolList {
         }
         let mut magazines = Vec::new();
         for (m, (kind, name, count)) in sizes {
-            let kind = if kind == 0 && m == BUFFER_MAGAZINE { 7 } else { kind };
+            // Internal magazines: 9998 the buffer (type 7), 9999 the loading magazine (type 9).
+            let kind = match (kind, m) {
+                (0, BUFFER_MAGAZINE) => 7,
+                (0, 9999) => 9,
+                _ => kind,
+            };
             let default_kind = if m == BUFFER_MAGAZINE { KIND_SPINDLE } else { KIND_MAGAZINE_PLACE };
             let places = (1..=count)
                 .map(|p| Place {

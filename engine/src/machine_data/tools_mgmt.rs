@@ -183,14 +183,9 @@ impl ToolMgmtData {
         self.values.iter().filter(move |((f, ..), _)| *f == family).map(|((_, a, b, n), v)| ((*a, *b), *n, v))
     }
 
-    /// Removes every datum of tool `t` (tool data and its monitoring data) and the place
-    /// entries that hold it.
-    pub fn remove_tool(&mut self, t: u32) {
-        self.values.retain(|(f, a, _, n), v| match f {
-            Family::Tool | Family::Monitoring => *a != t,
-            Family::Place => !(*n == 6 && *v == Value::Int(t.into())),
-            Family::Magazine => true,
-        });
+    /// Empties the place entries (`$TC_MPP6`) that hold tool `t`.
+    pub fn clear_places_of(&mut self, t: u32) {
+        self.values.retain(|(f, _, _, n), v| !(*f == Family::Place && *n == 6 && *v == Value::Int(t.into())));
     }
 
     /// Puts tool `t` into place (m, p), or empties the place for `None` (loading/unloading).
