@@ -85,6 +85,25 @@ impl Channel {
         self.take_tool_data(data)
     }
 
+    /// The number of the tool named `name` (with `duplo`, or the only tool of that name); a
+    /// name of digits that no tool has is taken as a tool number.
+    pub fn find_tool(&self, name: &str, duplo: Option<i64>) -> Result<u32, CommandError> {
+        let list = &self.cfg.tool_list;
+        let named: Vec<_> =
+            list.tools.values().filter(|e| e.name == name && duplo.is_none_or(|d| e.duplo == d)).collect();
+        match named.as_slice() {
+            [one] => Ok(one.number),
+            [] => match name.parse::<u32>() {
+                Ok(t) if list.tools.contains_key(&t) && duplo.is_none() => Ok(t),
+                _ => Err(CommandError::Invalid(format!("no tool named {name}{}", match duplo {
+                    Some(d) => format!(" with duplo number {d}"),
+                    None => String::new(),
+                }))),
+            },
+            _ => Err(CommandError::Invalid(format!("{} tools are named {name}: give the duplo number", named.len()))),
+        }
+    }
+
     fn require_reset(&self, why: &'static str) -> Result<(), CommandError> {
         if self.is_active() || self.status == Status::Stopped {
             return Err(CommandError::Busy(why));
