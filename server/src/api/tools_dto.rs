@@ -218,6 +218,7 @@ impl ToolList {
     pub fn to_text(&self) -> Result<(String, Vec<String>), String> {
         let mut out = Text::default();
         let mut numbers = BTreeMap::new();
+        let mut places = BTreeMap::new();
         for (i, t) in self.tools.iter().enumerate() {
             let at = format!("tools[{i}]");
             if !(1..=MAX_TOOL_NUMBER as u32).contains(&t.number) {
@@ -239,6 +240,12 @@ impl ToolList {
                 }
             }
             if let Some(PlaceRef { magazine, place }) = t.place {
+                if let Some(j) = places.insert((magazine, place), i) {
+                    return Err(format!(
+                        "{at}.place: magazine {magazine} place {place} already holds tool {} (tools[{j}])",
+                        self.tools[j].number
+                    ));
+                }
                 out.line(format!("$TC_MPP6[{magazine},{place}]={n}"), format!("{at}.place"));
             }
             let mut ds = BTreeMap::new();
