@@ -165,3 +165,25 @@ fn tools_are_unloaded_to_the_loading_magazine_and_loaded_into_free_places() {
     let e = ch.unload_tool(1).unwrap_err().to_string();
     assert!(e.contains("in the spindle"), "{e}");
 }
+
+#[test]
+fn m6_calls_the_change_cycle_of_md10715_and_its_own_m6_changes() {
+    let md = "$MC_TOOL_CHANGE_MODE=1\n$MC_TOOL_CHANGE_TIME=0\n$MN_M_NO_FCT_CYCLE[0]=6\n\
+              $MN_M_NO_FCT_CYCLE_NAME[0]=\"TC_CYCLE\"\n";
+    let main = "T=\"DRILL_8\"\nM6\nR11=$P_TOOLNO\nG0 X0 Y0 Z0\nM30";
+    let mut ch = Channel::from_preset("mill-3axis", md).unwrap();
+    ch.store_program("TC_CYCLE.SPF", "PROC TC_CYCLE\nR10=R10+1 R12=$P_TOOLNO\nM6\nRET\n").unwrap();
+    ch.run_program(main).unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let s = ch.snapshot();
+    no_alarms(&s);
+    // The cycle ran once, before its M6 the spindle was still empty; after it T2 is in.
+    assert_eq!((ch.r_param(10), ch.r_param(12), ch.r_param(11)), (1.0, 0.0, 2.0));
+    assert!((machine(&s, "Z") - 120.0).abs() < 1e-9);
+    // Without the cycle in the program store M6 changes directly.
+    let ch = run(md, main);
+    no_alarms(&ch.snapshot());
+    assert_eq!((ch.r_param(10), ch.r_param(11)), (0.0, 2.0));
+}

@@ -210,6 +210,8 @@ pub struct Interpreter {
     trafo: transform::selection::TrafoState,
     /// The orientable toolholder and G groups 22, 42, 52, 53 (see `swivel.rs`).
     holder: tools::toolholder::Holder,
+    /// The tool-change cycle (MD10715/10716) a block's M6 calls after it, instead of changing.
+    tool_cycle: Option<String>,
     /// The words of the last block, kept for the next one's (no allocation per block).
     spare_words: modal::SpareWords,
     /// Plain motion lines take the fast lane (`lane.rs`).
@@ -244,6 +246,7 @@ impl Interpreter {
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
             holder: tools::toolholder::Holder { g53: 1, ..Default::default() },
+            tool_cycle: None,
             spare_words: modal::SpareWords::default(),
             fast_lane: true,
             lane_memo: Default::default(),
@@ -512,7 +515,7 @@ impl Interpreter {
             }
             self.spindles.set_master_speed(s);
         }
-        self.select_tool(words, cfg, line, out)?;
+        self.select_tool(words, cfg, programs, line, out)?;
         if let Some(op) = words.frame_op {
             self.frame_instruction(op, words, cfg, line)?;
         }

@@ -105,7 +105,7 @@ pub struct MachineConfig {
 }
 
 /// How a tool change is triggered and how long it takes.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct ToolChange {
     /// MD22550 TOOL_CHANGE_MODE = 1: T prepares, the M function of MD22560 changes.
     pub with_m: bool,
@@ -113,6 +113,8 @@ pub struct ToolChange {
     pub m_code: u32,
     /// `$MC_TOOL_CHANGE_TIME` (this product's datum): seconds the change takes.
     pub seconds: f64,
+    /// The subprogram MD10715/MD10716 have the change M function call instead (upper case).
+    pub m_cycle: Option<String>,
 }
 
 /// MD10600 FRAME_ANGLE_INPUT_MODE: the convention of frame rotation angles.
@@ -316,6 +318,13 @@ impl MachineConfig {
                 with_m: md.num("$MC_TOOL_CHANGE_MODE", 0, 0) as i64 == 1,
                 m_code: md.num("$MC_TOOL_CHANGE_M_CODE", 0, 0) as u32,
                 seconds: md.num("$MC_TOOL_CHANGE_TIME", 0, 0),
+                m_cycle: {
+                    let m = md.num("$MC_TOOL_CHANGE_M_CODE", 0, 0);
+                    (0..10)
+                        .find(|&i| md.num("$MN_M_NO_FCT_CYCLE", 0, i) == m)
+                        .map(|i| md.string("$MN_M_NO_FCT_CYCLE_NAME", i).to_ascii_uppercase())
+                        .filter(|n| !n.is_empty())
+                },
             },
             carriers: BTreeMap::new(),
             toframe_mode: md.num("$SC_TOFRAME_MODE", 0, 0) as i64,

@@ -18,6 +18,7 @@ use super::super::eval::scope::Ctx;
 use super::super::eval::value::Value;
 use super::super::{Interpreter, Item};
 use crate::alarm::Alarm;
+use crate::interp::calls::Programs;
 use crate::lang::Expr;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::tools_list::NameError;
@@ -117,6 +118,7 @@ impl Interpreter {
         &mut self,
         words: &super::super::modal::Words,
         cfg: &MachineConfig,
+        programs: &Programs,
         line: u32,
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
@@ -138,7 +140,11 @@ impl Interpreter {
                 self.change_tool(t, cfg, line, out)?;
             }
         }
-        if words.tool_change && cfg.tool_change.with_m {
+        if words.tool_change && let Some(cycle) = self.replacing_cycle(cfg, programs) {
+            // MD10715/10716: the M function calls the change cycle after the block; its own M6
+            // (at any level below it) changes.
+            self.tool_cycle = Some(cycle);
+        } else if words.tool_change && cfg.tool_change.with_m {
             self.change_tool(self.offsets.prepared, cfg, line, out)?;
         }
         if let Some(d) = words.edge {
@@ -148,6 +154,19 @@ impl Interpreter {
             self.offsets.d = d;
         }
         Ok(())
+    }
+
+    /// The change cycle the M function calls: configured, in the program store, and not
+    /// already running (its own M6 changes).
+    fn replacing_cycle(&self, cfg: &MachineConfig, programs: &Programs) -> Option<String> {
+        let cycle = cfg.tool_change.m_cycle.as_ref()?;
+        let inside = self.level().is_some_and(|l| l.within(cycle));
+        (!inside && programs.contains_key(cycle)).then(|| cycle.clone())
+    }
+
+    /// The change cycle a block's M6 asked for (taken once, by the block's calls).
+    pub(in crate::interp) fn take_tool_cycle(&mut self) -> Option<String> {
+        self.tool_cycle.take()
     }
 
     /// Puts tool `t` into the spindle with its first cutting edge; a different tool takes the
