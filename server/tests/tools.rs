@@ -46,7 +46,10 @@ async fn a_put_tool_without_a_place_lands_in_a_free_place_and_a_program_selects_
 
     // T="TAP_M6" changes at once (MD22550 = 0); Z5 with its length 80: machine Z 85.
     let reply = server
-        .post(&format!("/sessions/{id}/run"), json!({"program": "T=\"TAP_M6\"\nG0 X0 Y0 Z5\nM30", "pace": "fast", "wait": true}))
+        .post(
+            &format!("/sessions/{id}/run"),
+            json!({"program": "T=\"TAP_M6\"\nG0 X0 Y0 Z5\nM30", "pace": "fast", "wait": true}),
+        )
         .await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
     assert_eq!(reply.body["alarms"], json!([]));
@@ -100,8 +103,10 @@ async fn tools_are_unloaded_and_loaded_and_the_list_survives_a_restart() {
         StatusCode::BAD_REQUEST,
     );
     assert!(message.contains("holds tool 2"), "{message}");
-    let message =
-        error_message(&server.post_empty(&format!("/sessions/{id}/tools/NO_SUCH/unload")).await, StatusCode::BAD_REQUEST);
+    let message = error_message(
+        &server.post_empty(&format!("/sessions/{id}/tools/NO_SUCH/unload")).await,
+        StatusCode::BAD_REQUEST,
+    );
     assert!(message.contains("no tool named NO_SUCH"), "{message}");
 
     let dir = server.stop().await;

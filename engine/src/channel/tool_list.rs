@@ -49,7 +49,9 @@ impl Channel {
             .get((place as usize).wrapping_sub(1))
             .ok_or_else(|| CommandError::Invalid(format!("magazine {magazine} has no place {place}")))?;
         if p.kind != KIND_MAGAZINE_PLACE || p.state & 1 != 0 {
-            return Err(CommandError::Invalid(format!("magazine {magazine} place {place} is disabled or no tool place")));
+            return Err(CommandError::Invalid(format!(
+                "magazine {magazine} place {place} is disabled or no tool place"
+            )));
         }
         if let Some(other) = p.tool.filter(|o| *o != t) {
             return Err(CommandError::Invalid(format!("magazine {magazine} place {place} holds tool {other}")));
@@ -95,10 +97,13 @@ impl Channel {
             [one] => Ok(one.number),
             [] => match name.parse::<u32>() {
                 Ok(t) if list.tools.contains_key(&t) && duplo.is_none() => Ok(t),
-                _ => Err(CommandError::Invalid(format!("no tool named {name}{}", match duplo {
-                    Some(d) => format!(" with duplo number {d}"),
-                    None => String::new(),
-                }))),
+                _ => Err(CommandError::Invalid(format!(
+                    "no tool named {name}{}",
+                    match duplo {
+                        Some(d) => format!(" with duplo number {d}"),
+                        None => String::new(),
+                    }
+                ))),
             },
             _ => Err(CommandError::Invalid(format!("{} tools are named {name}: give the duplo number", named.len()))),
         }

@@ -151,8 +151,8 @@ fn frame_constructors(line: u32, src: &str) -> Result<Option<Vec<Line>>, MdError
 /// toolholders (`$TC_CARR`) and tool, magazine, place and monitoring data (`$TC_TP`, `$TC_MAP`,
 /// `$TC_MPP`, `$TC_MOP`, see `tools_mgmt.rs`), not the user and other data listed here.
 const UNMODELLED_TC: &[&str] = &[
-    "TPC", "TPG", "TPH", "TPCS", "MOPC", "MAMP", "MAPC", "MPPC", "MDP", "MLSR", "MPTH",
-    "DPC", "DPCE", "DPCS", "DPE", "DPH", "DPNT", "ADPT", "SCP", "ECP", "SCPR", "ECPR", "TPM", "MDPC",
+    "TPC", "TPG", "TPH", "TPCS", "MOPC", "MAMP", "MAPC", "MPPC", "MDP", "MLSR", "MPTH", "DPC", "DPCE", "DPCS", "DPE",
+    "DPH", "DPNT", "ADPT", "SCP", "ECP", "SCPR", "ECPR", "TPM", "MDPC",
 ];
 
 /// What a datum NCTwin knows but does not model is (for its warning): tool-management `$TC_`

@@ -223,7 +223,8 @@ impl ToolList {
     /// included), the default 0 or "" where nothing is stored. `None` for another name.
     pub fn read(&self, name: &str, a: u32, b: u32) -> Option<Value> {
         let (family, n) = Family::of(name)?;
-        let place = || self.magazines.iter().find(|g| g.number == a).and_then(|g| g.places.get((b as usize).wrapping_sub(1)));
+        let place =
+            || self.magazines.iter().find(|g| g.number == a).and_then(|g| g.places.get((b as usize).wrapping_sub(1)));
         Some(match (family, n) {
             (Family::Tool, 2) => Value::Str(self.tools.get(&a).map(|e| e.name.clone()).unwrap_or_default()),
             (Family::Magazine, 2) => Value::Str(match self.raw.get(family, a, 0, 2) {
@@ -232,7 +233,9 @@ impl ToolList {
             }),
             (Family::Place, 1) => Value::Int(place().map_or(0, |p| p.kind)),
             (Family::Place, 6) => Value::Int(place().and_then(|p| p.tool).map_or(0, i64::from)),
-            (Family::Monitoring, _) => Value::Real(self.raw.get(family, a, b, n).and_then(Value::as_f64).unwrap_or(0.0)),
+            (Family::Monitoring, _) => {
+                Value::Real(self.raw.get(family, a, b, n).and_then(Value::as_f64).unwrap_or(0.0))
+            }
             _ => Value::Int(self.raw.int(family, a, b, n)),
         })
     }

@@ -276,7 +276,9 @@ impl ToolList {
                     if !v.is_finite() {
                         return Err(format!("{at}.{field}: {v} is not a finite number"));
                     }
-                    if field.starts_with("more") && (NAMED_DP.contains(&(p as usize).wrapping_sub(1)) || !(1..=25).contains(&p)) {
+                    if field.starts_with("more")
+                        && (NAMED_DP.contains(&(p as usize).wrapping_sub(1)) || !(1..=25).contains(&p))
+                    {
                         return Err(format!("{at}.{field}: more holds $TC_DP7..11 and 16..25 only"));
                     }
                     if v != 0.0 {
@@ -304,7 +306,10 @@ impl ToolList {
             out.line(format!("$TC_MAP7[{m}]={}", g.places.len()), format!("{at}.places"));
             for (k, p) in g.places.iter().enumerate() {
                 if p.number as usize != k + 1 {
-                    return Err(format!("{at}.places[{k}].number: places are numbered 1..n in order, expected {}", k + 1));
+                    return Err(format!(
+                        "{at}.places[{k}].number: places are numbered 1..n in order, expected {}",
+                        k + 1
+                    ));
                 }
                 out.line(format!("$TC_MPP1[{m},{}]={}", p.number, p.kind), format!("{at}.places[{k}].kind"));
                 if p.state != 0 {

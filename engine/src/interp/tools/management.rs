@@ -55,7 +55,6 @@ pub(in crate::interp) fn tca(args: &[Expr], ctx: &Ctx, line: u32) -> Result<Name
     Ok(NamedTool { name, duplo: Some(duplo) })
 }
 
-
 /// The tool number a name stands for.
 fn resolve(named: &NamedTool, cfg: &MachineConfig, line: u32) -> Result<u32, Alarm> {
     let list = &cfg.tool_list;
@@ -140,7 +139,9 @@ impl Interpreter {
                 self.change_tool(t, cfg, line, out)?;
             }
         }
-        if words.tool_change && let Some(cycle) = self.replacing_cycle(cfg, programs) {
+        if words.tool_change
+            && let Some(cycle) = self.replacing_cycle(cfg, programs)
+        {
             // MD10715/10716: the M function calls the change cycle after the block; its own M6
             // (at any level below it) changes.
             self.tool_cycle = Some(cycle);
