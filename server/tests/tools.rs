@@ -8,7 +8,7 @@ use nctwin_server::Config;
 use reqwest::StatusCode;
 use serde_json::{Value, json};
 
-fn tool<'a>(list: &'a Value, number: u64) -> &'a Value {
+fn tool(list: &Value, number: u64) -> &Value {
     list["tools"].as_array().unwrap().iter().find(|t| t["number"] == number).unwrap_or_else(|| panic!("no T{number}"))
 }
 

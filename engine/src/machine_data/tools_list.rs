@@ -98,7 +98,7 @@ impl ToolList {
             auto_placed: false,
             edges: Vec::new(),
         };
-        for ((t, d), _) in edges {
+        for (t, d) in edges.keys() {
             tools.entry(*t).or_insert_with(|| entry(*t)).edges.push(*d);
         }
         for ((t, _), n, v) in tm.of_family(Family::Tool) {
@@ -265,7 +265,7 @@ mod tests {
         );
         let t7 = &l.tools[&7];
         assert_eq!((t7.place, t7.auto_placed), (Some((1, 3)), true));
-        assert_eq!(l.tools[&1].auto_placed, false);
+        assert!(!l.tools[&1].auto_placed);
         assert_eq!(l.magazines[0].places[2].tool, Some(7));
         assert_eq!(t7.edges, vec![1]);
     }
