@@ -101,6 +101,16 @@ impl Alarm {
         Alarm::new(17190, format!("Channel 1 block {line} illegal T number T{t}"), Some(line))
     }
 
+    /// 17191: no tool has the programmed name (`T="name"`, `TCA`).
+    pub fn unknown_tool_name(line: u32, name: &str) -> Alarm {
+        Alarm::new(17191, format!("Channel 1 block {line} T= {name} not existing"), Some(line))
+    }
+
+    /// 17192: every tool of the programmed name is disabled (no usable duplo).
+    pub fn no_usable_tool(line: u32, name: &str) -> Alarm {
+        Alarm::new(17192, format!("Channel 1 block {line} T= {name}: no enabled tool of this name"), Some(line))
+    }
+
     /// 14760: the same auxiliary function group programmed twice (M3 with M5, M0 with M30, ...).
     pub fn conflicting_functions(line: u32, what: &str) -> Alarm {
         Alarm::new(

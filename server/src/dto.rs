@@ -381,10 +381,14 @@ pub struct AlarmInfo {
 }
 
 /// Active tool number T and cutting edge D (D0 = no offset).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct Tool {
     pub t: u32,
     pub d: u32,
+    /// The name of the tool in the spindle (`$TC_TP2`; empty for a tool known by number only).
+    pub name: String,
+    /// The programmed tool `$P_TOOLP`: under MD22550 = 1 the one the next M6 changes to.
+    pub prepared: u32,
 }
 
 impl From<&Snapshot> for State {
@@ -403,7 +407,7 @@ impl From<&Snapshot> for State {
             transformation: s.transformation.as_ref().map(Transformation::from),
             block: s.block.as_ref().map(Block::from),
             alarms: s.alarms.iter().map(AlarmInfo::from).collect(),
-            tool: Tool { t: s.tool.0, d: s.tool.1 },
+            tool: Tool { t: s.tool.0, d: s.tool.1, name: s.tool_name.clone(), prepared: s.prepared_tool },
             path_velocity: s.path_velocity,
             spindles: AxisValues(s.spindles.clone()),
             message: s.message.clone(),
@@ -1029,7 +1033,7 @@ mod tests {
             transformation: None,
             block: None,
             alarms: vec![],
-            tool: Tool { t: 0, d: 0 },
+            tool: Tool { t: 0, d: 0, name: String::new(), prepared: 0 },
             path_velocity: 0.0,
             spindles: AxisValues::default(),
             message: None,

@@ -240,7 +240,7 @@ async fn tool_toolholder_system_frame_and_r_parameters_survive_a_restart() {
 
     let server = restart(server).await;
     let state = server.get(&format!("/sessions/{id}/state")).await.body;
-    assert_eq!(state["tool"], json!({"t": 1, "d": 1}), "{state}");
+    assert_eq!(state["tool"], json!({"t": 1, "d": 1, "name": "MILL_D10", "prepared": 1}), "{state}");
     // The machine stands where it stood; seen through the restored tool, holder and set frame
     // it is WCS (0, 10, 0) again (without them it would read (10.607, 12, 8.607)).
     near(pos(&state, "machine", "X"), x0, "X after");

@@ -173,8 +173,7 @@ fn a_tool_data_ini_file_loads_through_machine_data_with_its_ignored_lines_noted(
     assert_eq!(
         notes,
         [
-            "$TC_TP: 3 line(s) from line 6 not modelled by NCTwin: accepted and ignored",
-            "$TC_MPP: 1 line(s) from line 12 not modelled by NCTwin: accepted and ignored",
+            // $TC_TP and $TC_MPP lines are tool management data NCTwin keeps.
             "$SN_ setting data ($SN_JOG_CONT_MODE_LEVELTRIGGRD): 1 line(s) from line 17 not modelled by NCTwin: accepted and ignored",
         ]
     );

@@ -25,6 +25,7 @@ mod snapshot;
 mod snapshot_refresh;
 mod spindle;
 mod toff;
+pub mod tool_list;
 mod trafo;
 
 use std::collections::VecDeque;

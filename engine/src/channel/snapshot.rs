@@ -47,6 +47,10 @@ pub struct Snapshot {
     pub alarms: Vec<Alarm>,
     /// Active tool and cutting edge (T, D); D0 = no offset.
     pub tool: (u32, u32),
+    /// The tool in the spindle by name (`$TC_TP2`; empty for a tool without one).
+    pub tool_name: String,
+    /// The programmed tool (`$P_TOOLP`): under MD22550 = 1 the one the next M6 changes to.
+    pub prepared_tool: u32,
     /// Path velocity in mm/min.
     pub path_velocity: f64,
     /// Spindles: (channel axis name, speed in rev/min, signed: + = M3).
@@ -98,6 +102,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         block: None,
         alarms: Vec::new(),
         tool: (0, 0),
+        tool_name: String::new(),
+        prepared_tool: 0,
         path_velocity: 0.0,
         spindles: Vec::new(),
         message: None,

@@ -174,6 +174,8 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
         s.alarms.clone_from(&ch.alarms);
     }
     s.tool = ch.interp.tool_in_main_run(&ch.offsets);
+    s.prepared_tool = ch.offsets.prepared;
+    set_text(&mut s.tool_name, cfg.tool_list.tools.get(&s.tool.0).map_or("", |e| e.name.as_str()));
     s.path_velocity = ch.planner.velocity() * 60.0;
     fill_named(&mut s.spindles, ch.spindles.iter().map(|sp| (cfg.program_axis_name(sp.axis), sp.speed)));
     match &ch.message {

@@ -52,6 +52,11 @@ pub struct Level {
 }
 
 impl Level {
+    /// Whether `name` (upper case) runs at this level or calls down to it.
+    pub(in crate::interp) fn within(&self, name: &str) -> bool {
+        self.calls.iter().any(|(_, n)| n == name)
+    }
+
     /// The name of this level's program.
     pub fn name(&self) -> &str {
         self.calls.last().map_or("", |(_, name)| name.as_str())
@@ -289,6 +294,9 @@ impl Interpreter {
         }
         if let Some((name, args)) = &words.call {
             return self.call(name, args, words.repeat.unwrap_or(1), programs, cfg, line);
+        }
+        if let Some(cycle) = self.take_tool_cycle() {
+            return self.call(&cycle, &[], 1, programs, cfg, line);
         }
         if path_motion && self.call_state.mcall.is_some() {
             self.run_modal_call(programs, cfg, line)?;

@@ -53,9 +53,11 @@ pub struct Offsets {
     pub tool: AxisVec,
     /// The active frame, WCS → BCS: settable frame (G54 ...) then programmable frame.
     pub frame: Frame,
-    /// Active tool number and cutting edge.
+    /// Active tool number (the tool in the spindle) and cutting edge.
     pub t: u32,
     pub d: u32,
+    /// The programmed tool (`$P_TOOLP`): prepared for the next change under MD22550 = 1.
+    pub prepared: u32,
     /// The active kinematic transformation with the tool length it includes.
     pub trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Online tool length offset in the tool directions X, Y, Z (`$AA_TOFF`, see `toff.rs`).
@@ -217,6 +219,8 @@ pub struct Interpreter {
     trafo: transform::selection::TrafoState,
     /// The orientable toolholder and G groups 22, 42, 52, 53 (see `swivel.rs`).
     holder: tools::toolholder::Holder,
+    /// The tool-change cycle (MD10715/10716) a block's M6 calls after it, instead of changing.
+    tool_cycle: Option<String>,
     /// The words of the last block, kept for the next one's (no allocation per block).
     spare_words: modal::SpareWords,
     /// Plain motion lines take the fast lane (`lane.rs`).
@@ -252,6 +256,7 @@ impl Interpreter {
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
             holder: tools::toolholder::Holder { g53: 1, ..Default::default() },
+            tool_cycle: None,
             spare_words: modal::SpareWords::default(),
             fast_lane: true,
             lane_memo: Default::default(),
@@ -520,7 +525,7 @@ impl Interpreter {
         if let Some(spindle) = words.set_master {
             self.spindles.set_master(spindle, cfg, line)?;
         }
-        self.select_tool(words, cfg, line)?;
+        self.select_tool(words, cfg, programs, line, out)?;
         if let Some(op) = words.frame_op {
             self.frame_instruction(op, words, cfg, line)?;
         }
@@ -591,24 +596,6 @@ impl Interpreter {
             self.jump(goto, cfg, line)?;
         }
         self.block_calls(words, path_motion, programs, cfg, line)
-    }
-
-    fn select_tool(&mut self, words: &modal::Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
-        if let Some(t) = words.tool {
-            if t != 0 && !cfg.tools.keys().any(|(tt, _)| *tt == t) {
-                return Err(Alarm::illegal_t(line, t));
-            }
-            self.offsets.t = t;
-            // MD20270 CUTTING_EDGE_DEFAULT = 1: a new tool brings its first cutting edge.
-            self.offsets.d = if t == 0 { 0 } else { 1 };
-        }
-        if let Some(d) = words.edge {
-            if d != 0 && !cfg.tools.contains_key(&(self.offsets.t, d)) {
-                return Err(Alarm::illegal_d(line, d));
-            }
-            self.offsets.d = d;
-        }
-        Ok(())
     }
 
     /// TRANS/ROT/SCALE/MIRROR replace the programmable frame; ATRANS/AROT/ASCALE/AMIRROR add

@@ -299,6 +299,10 @@ pub(super) struct Words {
     pub feed: Option<f64>,
     pub speed: Option<f64>,
     pub tool: Option<u32>,
+    /// `T="name"`: a tool by its name (`$TC_TP2`); `TCA("name", duplo)` adds the duplo number.
+    pub tool_name: Option<super::tools::management::NamedTool>,
+    /// The tool-change M function (MD22560, M6).
+    pub tool_change: bool,
     pub edge: Option<u32>,
     pub spindle_dir: Option<i8>,
     /// The spindle number of an `M<n>=3/4/5` (address extension).
@@ -443,7 +447,10 @@ pub(super) fn collect(
     for word in &block.words {
         match word {
             Word::G(code) => g_function(w, *code, line)?,
-            Word::M(code) => m_function(w, *code, line)?,
+            Word::M(code) => {
+                m_function(w, *code, line)?;
+                w.tool_change |= *code == cfg.tool_change.m_code;
+            }
             Word::Goto(goto) => w.goto = Some(goto.clone()),
             Word::Keyword { name, args }
                 if args.is_empty()
@@ -574,6 +581,9 @@ pub(super) fn collect(
                     }
                 });
             }
+            Word::Keyword { name, args } if name == "TCA" => {
+                w.tool_name = Some(super::tools::management::tca(args, &Ctx { vars, sys }, line)?);
+            }
             Word::Keyword { name, args } if name == "DELOBJ" => {
                 w.data_writes.push(super::calls::delobj::statement(args, &Ctx { vars, sys }, line)?);
             }
@@ -629,6 +639,15 @@ pub(super) fn collect(
                     }
                     Assigned::Address(axis) => axis,
                 };
+                if name == "T"
+                    && let Some(named) = super::tools::management::named_t(&value.expr, &Ctx { vars, sys }, line)?
+                {
+                    if !seen.insert(name) {
+                        return Err(Alarm::repeated_address(line, name));
+                    }
+                    w.tool_name = Some(named);
+                    continue;
+                }
                 if name == "TCARR" {
                     if !seen.insert(name) {
                         return Err(Alarm::repeated_address(line, name));
@@ -920,6 +939,7 @@ fn data_write(
     line: u32,
 ) -> Result<String, Alarm> {
     let writable = name.starts_with("$TC_DP")
+        || crate::machine_data::tools_mgmt::ToolMgmtData::handles(name)
         || name.starts_with("$TC_CARR")
         || crate::machine_data::chains::is_chain_name(name)
         || matches!(name, "$P_UIFR" | "$P_CHBFR" | "$P_NCBFR" | "$P_UBFR")

@@ -30,6 +30,10 @@ pub struct Retained {
     /// Active tool T and cutting edge D (D0: no offset).
     pub tool: u32,
     pub edge: u32,
+    /// The programmed (prepared) tool `$P_TOOLP`; `None` in checkpoints from before tool
+    /// management: the tool in the spindle.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub prepared: Option<u32>,
     /// The orientable toolholder (TCARR) and G groups 22, 42, 52, 53.
     pub holder: Holder,
     /// `$P_PARTFRAME`, `$P_SETFRAME`, `$P_EXTFRAME`, `$P_WPFRAME`, `$P_TRAFRAME`,
@@ -52,6 +56,7 @@ impl Interpreter {
         Retained {
             tool: self.offsets.t,
             edge: self.offsets.d,
+            prepared: Some(self.offsets.prepared),
             holder: self.holder.clone(),
             frames: (*self.system).clone(),
             r: self.vars.r[..used].to_vec(),
@@ -69,6 +74,7 @@ impl Interpreter {
         let before = (self.offsets.clone(), self.holder.clone(), self.system.clone(), self.vars.r.clone());
         self.offsets.t = saved.tool;
         self.offsets.d = saved.edge;
+        self.offsets.prepared = saved.prepared.unwrap_or(saved.tool);
         self.offsets.toff = saved.toff;
         self.holder = saved.holder.clone();
         *self.system = saved.frames.clone();

@@ -64,6 +64,11 @@ pub struct MachineConfig {
     pub master_spindle: Option<usize>,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
     pub tools: BTreeMap<(u32, u32), EdgeParams>,
+    /// The tool list: names, duplo numbers, states, magazines and places.
+    pub tool_list: std::sync::Arc<super::tools_list::ToolList>,
+    /// Tool change: MD22550 TOOL_CHANGE_MODE (0 T changes, 1 M6 changes), MD22560
+    /// TOOL_CHANGE_M_CODE and the time a change takes.
+    pub tool_change: ToolChange,
     /// Orientable toolholders `$TC_CARR..[m]` by number m.
     pub carriers: BTreeMap<u32, super::Carrier>,
     /// SD42980 TOFRAME_MODE.
@@ -100,6 +105,19 @@ pub struct MachineConfig {
     pub cutcom_max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks the bottleneck detection examines.
     pub cutcom_max_check_blocks: usize,
+}
+
+/// How a tool change is triggered and how long it takes.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ToolChange {
+    /// MD22550 TOOL_CHANGE_MODE = 1: T prepares, the M function of MD22560 changes.
+    pub with_m: bool,
+    /// MD22560 TOOL_CHANGE_M_CODE (6).
+    pub m_code: u32,
+    /// `$MC_TOOL_CHANGE_TIME` (this product's datum): seconds the change takes.
+    pub seconds: f64,
+    /// The subprogram MD10715/MD10716 have the change M function call instead (upper case).
+    pub m_cycle: Option<String>,
 }
 
 /// MD10600 FRAME_ANGLE_INPUT_MODE: the convention of frame rotation angles.
@@ -298,6 +316,19 @@ impl MachineConfig {
             geo_names,
             master_spindle,
             tools: BTreeMap::new(),
+            tool_list: Default::default(),
+            tool_change: ToolChange {
+                with_m: md.num("$MC_TOOL_CHANGE_MODE", 0, 0) as i64 == 1,
+                m_code: md.num("$MC_TOOL_CHANGE_M_CODE", 0, 0) as u32,
+                seconds: md.num("$MC_TOOL_CHANGE_TIME", 0, 0),
+                m_cycle: {
+                    let m = md.num("$MC_TOOL_CHANGE_M_CODE", 0, 0);
+                    (0..10)
+                        .find(|&i| md.num("$MN_M_NO_FCT_CYCLE", 0, i) == m)
+                        .map(|i| md.string("$MN_M_NO_FCT_CYCLE_NAME", i).to_ascii_uppercase())
+                        .filter(|n| !n.is_empty())
+                },
+            },
             carriers: BTreeMap::new(),
             toframe_mode: md.num("$SC_TOFRAME_MODE", 0, 0) as i64,
             swivel_alarm_mask: md.num("$MC_MILL_SWIVEL_ALARM_MASK", 0, 0) as i64,
@@ -380,6 +411,10 @@ impl MachineConfig {
         self.base_frames = base_frames;
         self.ncu_base_frames = ncu_base_frames;
         self.tools = md.tools().clone();
+        let list = super::tools_list::ToolList::build(md.tool_mgmt(), md.tools())?;
+        if *self.tool_list != list {
+            self.tool_list = std::sync::Arc::new(list);
+        }
         self.carriers = md.carriers();
         Ok(())
     }

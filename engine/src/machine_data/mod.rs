@@ -12,6 +12,8 @@ pub mod presets;
 pub mod registry;
 pub mod text;
 pub mod tool_orient;
+pub mod tools_list;
+pub mod tools_mgmt;
 pub mod trafo;
 pub mod traori;
 
@@ -146,6 +148,8 @@ pub struct MachineData {
     carriers: BTreeMap<(u32, u32), Value>,
     /// Kinematic chain elements and transformation records (`$NK_`, `$NT_`).
     kin: chains::KinData,
+    /// Tool-management data `$TC_TP`, `$TC_MAP`, `$TC_MPP`, `$TC_MOP`.
+    tm: tools_mgmt::ToolMgmtData,
 }
 
 impl MachineData {
@@ -248,6 +252,10 @@ impl MachineData {
         }
         if let Some(n) = name.strip_prefix("$TC_DP") {
             self.assign_tool(line, name, n, indices, value)?;
+            return Ok(None);
+        }
+        if tools_mgmt::ToolMgmtData::handles(name) {
+            self.tm.assign(line, name, indices, value)?;
             return Ok(None);
         }
         if let Some(n) = name.strip_prefix("$TC_CARR") {
@@ -444,6 +452,7 @@ impl MachineData {
                 out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", tool_orient::name(p));
             }
         }
+        out += &self.tm.to_text();
         for ((m, n), v) in &self.carriers {
             out += &format!("$TC_CARR{n}[{m}]={}\n", carrier::show(*n, v));
         }
@@ -457,6 +466,24 @@ impl MachineData {
     /// Cutting edges with their parameters, ordered by (tool, edge).
     pub fn tools(&self) -> &BTreeMap<(u32, u32), EdgeParams> {
         &self.tools
+    }
+
+    /// The raw tool-management data (`$TC_TP`, `$TC_MAP`, `$TC_MPP`, `$TC_MOP`).
+    pub fn tool_mgmt(&self) -> &tools_mgmt::ToolMgmtData {
+        &self.tm
+    }
+
+    /// Deletes every cutting edge and every tool-management datum (a tool list replaced as a
+    /// whole).
+    pub fn clear_tool_data(&mut self) {
+        self.tools.clear();
+        self.tm = Default::default();
+    }
+
+    /// Moves tool `t` into place (m, p): its old place entry is removed.
+    pub fn move_tool(&mut self, t: u32, m: u32, p: u32) {
+        self.tm.clear_places_of(t);
+        self.tm.set_place_tool(m, p, Some(t));
     }
 
     /// Every toolholder 1..MD18088 MM_NUM_TOOL_CARRIER, typed (defaults where nothing is stored).

@@ -126,6 +126,22 @@ $TC_DP6[1,1]=5.
 $TC_DP1[2,1]=200
 $TC_DP3[2,1]=120.
 $TC_DP6[2,1]=4.
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$MC_TOOL_CHANGE_TIME=2.
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D10"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
+$TC_TP1[2]=1
+$TC_TP2[2]="DRILL_8"
+$TC_TP8[2]=2
+$TC_MPP6[1,2]=2
 "#;
 
 const LATHE_2AXIS: &str = r#"; 2-axis lathe: X radial, Z along the spindle, main spindle as channel axis SP
@@ -171,6 +187,21 @@ $TC_DP2[2,1]=3
 $TC_DP3[2,1]=42.
 $TC_DP4[2,1]=58.
 $TC_DP6[2,1]=0.4
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="ROUGH_R0_8"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
+$TC_TP1[2]=1
+$TC_TP2[2]="FINISH_R0_4"
+$TC_TP8[2]=2
+$TC_MPP6[1,2]=2
 "#;
 
 const TRANSMIT_EXAMPLE: &str = r#"; Axis configuration of the TRANSMIT example (Transformations Function Manual, M1)
@@ -225,6 +256,17 @@ $MC_TRANSMIT_ROT_SIGN_IS_PLUS_1=TRUE
 $MC_TRANSMIT_BASE_TOOL_1[0]=0
 $MC_TRANSMIT_BASE_TOOL_1[1]=0
 $MC_TRANSMIT_BASE_TOOL_1[2]=0
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D8"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 const SLANT_LATHE_TRACON: &str = r#"; Slant-bed lathe with driven tools: the X slide MU is inclined by 30° towards Z, so a
@@ -295,6 +337,17 @@ $MC_TRAFO_MODE_MASK=1
 $MC_TRAFO_RESET_VALUE=2
 $MC_RESET_MODE_MASK=1
 $MC_GEOAX_CHANGE_RESET=TRUE
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D8"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 const TRACYL_XYZC: &str = r#"; TRACYL example machine X-Y-Z-C (Transformations FM, M1 TRACYL examples)
@@ -348,6 +401,17 @@ $MC_TRACYL_ROT_SIGN_IS_PLUS_1=TRUE
 $MC_TRACYL_BASE_TOOL_1[0]=0
 $MC_TRACYL_BASE_TOOL_1[1]=0
 $MC_TRACYL_BASE_TOOL_1[2]=0
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D12"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 const TRACYL_XYZAC: &str = r#"; TRACYL on an X-Y-Z-A-C milling machine (Transformations FM, M1 TRACYL examples): the
@@ -418,6 +482,17 @@ $MC_TRAFO_GEOAX_ASSIGN_TAB_1[1]=6   ; Y: unrolled surface, on the rotary axis' c
 $MC_TRAFO_GEOAX_ASSIGN_TAB_1[2]=2   ; Z: along the cylinder, on YC
 $MC_TRACYL_ROT_AX_OFFSET_1=0
 $MC_TRACYL_ROT_SIGN_IS_PLUS_1=TRUE
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D8"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 const TRAANG_GRINDER: &str = r#"; Grinding machine with an inclined infeed axis (Transformations FM, M1 TRAANG)
@@ -467,6 +542,17 @@ $MC_TRAANG_PARALLEL_ACCEL_RES_1=0.2
 $MC_TRAANG_BASE_TOOL_1[0]=0
 $MC_TRAANG_BASE_TOOL_1[1]=0
 $MC_TRAANG_BASE_TOOL_1[2]=0
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="WHEEL_D400"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 const MILL5_HEAD_CA: &str = r#"; 5-axis vertical mill with a fork head: C turns about Z and carries A, which turns about X.
@@ -553,6 +639,17 @@ $TC_CARR37[1]=2005            ; all swivel modes; direction reference: rotary ax
 $TC_CARR38[1]=0.
 $TC_CARR39[1]=0.
 $TC_CARR40[1]=250.            ; retraction position Z (machine)
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D10"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 const MILL5_TABLE_AC: &str = r#"; 5-axis mill with a trunnion table: A tilts about X and carries the rotary table C.
@@ -643,6 +740,17 @@ $TC_CARR35[1]="A"
 $TC_CARR36[1]="C"
 $TC_CARR37[1]=1005            ; all swivel modes; direction reference: rotary axis 1 (A)
 $TC_CARR40[1]=350.            ; retraction position Z (machine)
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D10"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 const MILL5_MIXED_BC: &str = r#"; 5-axis mill with a swivel head B (about Y) and a rotary table C (about Z).
@@ -730,6 +838,17 @@ $TC_CARR35[1]="B"
 $TC_CARR36[1]="C"
 $TC_CARR37[1]=1005            ; all swivel modes; direction reference: rotary axis 1 (B)
 $TC_CARR40[1]=350.            ; retraction position Z (machine)
+; Tool management: a chain magazine with 12 places holding the tools, the spindle
+; place in the buffer magazine 9998
+$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+$TC_TP1[1]=1
+$TC_TP2[1]="MILL_D10"
+$TC_TP8[1]=2
+$TC_MPP6[1,1]=1
 "#;
 
 /// The text of `mill6-generic`, a macro so that `mill7-generic` can be built on it with `concat!`.

@@ -175,6 +175,11 @@ pub static DEFS: &[Def] = &[
     def("IPO_SYSCLOCK_TIME_RATIO", 10070, N, Kind::Int, 1, Default::Int(2), 1.0, 100.0),
     // Angles of frame rotations: 1 = RPY (Z, Y', X''), 2 = Euler (Z, X', Z'') (K2).
     def("FRAME_ANGLE_INPUT_MODE", 10600, N, Kind::Int, 1, Default::Int(1), 1.0, 2.0),
+    // Subprograms called instead of M functions (MD10715 the M numbers, -1 = none, MD10716 the
+    // names) and instead of T (MD10717), K1/W1; ten pairs, as on the control.
+    def("M_NO_FCT_CYCLE", 10715, N, Kind::Int, 10, Default::Int(-1), -1.0, 2147483647.0),
+    def("M_NO_FCT_CYCLE_NAME", 10716, N, Kind::Str, 10, Default::Str(""), 0.0, 0.0),
+    def("T_NO_FCT_CYCLE_NAME", 10717, N, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
     // NCU-global basic frames $P_NCBFR[n] (K2; 0 = none, the control's default).
     def("MM_NUM_GLOBAL_BASE_FRAMES", 18602, N, Kind::Int, 1, Default::Int(0), 0.0, 16.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
@@ -246,6 +251,12 @@ pub static DEFS: &[Def] = &[
     def("CUTCOM_MAXNUM_DUMMY_BLOCKS", 20250, C, Kind::Int, 1, Default::Int(3), 0.0, 100.0),
     def("REFP_NC_START_LOCK", 20700, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     // Transformation data sets 1..10: type, axes, geometry axes, tool handling (M1 data lists).
+    // Tool change (W1): 0 = T changes at once, 1 = T prepares and the M function of MD22560
+    // changes. TOOL_CHANGE_TIME is this product's datum (no number; on a machine the PLC's
+    // change takes this long): seconds the program waits at each change.
+    def("TOOL_CHANGE_MODE", 22550, C, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
+    def("TOOL_CHANGE_M_CODE", 22560, C, Kind::Int, 1, Default::Int(6), 0.0, 99999.0),
+    def("TOOL_CHANGE_TIME", 0, C, Kind::Real, 1, Default::Real(0.0), 0.0, 3600.0),
     def("TRAFO_TYPE_1", 24100, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("TRAFO_AXES_IN_1", 24110, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
     def("TRAFO_GEOAX_ASSIGN_TAB_1", 24120, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),

@@ -147,11 +147,12 @@ fn frame_constructors(line: u32, src: &str) -> Result<Option<Vec<Line>>, MdError
 }
 
 /// Tool-management families of `$TC_` data (tool, magazine, location, monitoring, user data):
-/// the control keeps them; NCTwin models only the cutting edges (`$TC_DP`, `$TC_DPV`) and the
-/// toolholders (`$TC_CARR`).
+/// the control keeps them; NCTwin models the cutting edges (`$TC_DP`, `$TC_DPV`), the
+/// toolholders (`$TC_CARR`) and tool, magazine, place and monitoring data (`$TC_TP`, `$TC_MAP`,
+/// `$TC_MPP`, `$TC_MOP`, see `tools_mgmt.rs`), not the user and other data listed here.
 const UNMODELLED_TC: &[&str] = &[
-    "TP", "TPC", "TPG", "TPH", "TPCS", "MOP", "MOPC", "MAMP", "MAP", "MAPC", "MPP", "MPPC", "MDP", "MLSR", "MPTH",
-    "DPC", "DPCE", "DPCS", "DPE", "DPH", "DPNT", "ADPT", "SCP", "ECP", "SCPR", "ECPR", "TPM", "MDPC",
+    "TPC", "TPG", "TPH", "TPCS", "MOPC", "MAMP", "MAPC", "MPPC", "MDP", "MLSR", "MPTH", "DPC", "DPCE", "DPCS", "DPE",
+    "DPH", "DPNT", "ADPT", "SCP", "ECP", "SCPR", "ECPR", "TPM", "MDPC",
 ];
 
 /// What a datum NCTwin knows but does not model is (for its warning): tool-management `$TC_`
@@ -376,19 +377,22 @@ mod tests {
 
     #[test]
     fn unmodelled_tool_management_and_setting_data_are_named_in_warnings() {
-        assert_eq!(unmodelled("$TC_TP8").as_deref(), Some("$TC_TP"));
-        assert_eq!(unmodelled("$TC_MPP1").as_deref(), Some("$TC_MPP"));
+        // Tool, magazine, place and monitoring data are modelled (tools_mgmt.rs); user data not.
+        assert_eq!(unmodelled("$TC_TP8"), None);
+        assert_eq!(unmodelled("$TC_MPP1"), None);
+        assert_eq!(unmodelled("$TC_TPC1").as_deref(), Some("$TC_TPC"));
+        assert_eq!(unmodelled("$TC_MPPC1").as_deref(), Some("$TC_MPPC"));
         assert_eq!(unmodelled("$TC_DP3"), None);
         assert_eq!(unmodelled("$TC_XYZ1"), None);
         assert_eq!(unmodelled("$SC_TOFRAME_MODE"), None, "modelled");
         assert!(unmodelled("$SN_JOG_CONT_MODE_LEVELTRIGGRD").is_some());
         assert_eq!(unmodelled("$MN_NO_SUCH_DATUM"), None);
-        let w = warnings("$TC_TP1[1]=1\n$TC_TP2[1]=\"A\"\n$TC_DP1[1,1]=120\n$TC_MPP1[1,1]=1\n");
+        let w = warnings("$TC_TPC1[1]=1\n$TC_TPC2[1]=2\n$TC_TP2[1]=\"A\"\n$TC_MPPC1[1,1]=1\n");
         assert_eq!(
             w,
             [
-                "$TC_TP: 2 line(s) from line 1 not modelled by NCTwin: accepted and ignored",
-                "$TC_MPP: 1 line(s) from line 4 not modelled by NCTwin: accepted and ignored",
+                "$TC_TPC: 2 line(s) from line 1 not modelled by NCTwin: accepted and ignored",
+                "$TC_MPPC: 1 line(s) from line 4 not modelled by NCTwin: accepted and ignored",
             ]
         );
     }

@@ -15,8 +15,8 @@ use crate::state::AppState;
 /// it as a reset would; only in reset state. Axis positions are kept where the axes still exist.
 /// The new machine data is saved before the reply. Tool-data and settings files load as they
 /// are (`%_N_TOA_INI` header, `CHANDATA(1)`, `METRIC`, `$P_UIFR[n]=CTRANS(...):CROT(...)`,
-/// `M17`); tool-management data (`$TC_TP`, `$TC_MPP`, ...) and setting data NCTwin does not
-/// model are accepted and ignored, each family named in a `nctwin-nc-data-ignored` header.
+/// `M17`); tool-management data NCTwin does not model (`$TC_TPC`, `$TC_MPPC`, ...) and setting data it does not
+/// know are accepted and ignored, each family named in a `nctwin-nc-data-ignored` header.
 #[utoipa::path(
     put,
     path = "/sessions/{id}/machine-data",
@@ -25,7 +25,7 @@ use crate::state::AppState;
     request_body = MachineDataRequest,
     responses(
         (status = 200, description = "The state with the new data active", body = dto::State,
-            headers(("nctwin-nc-data-ignored" = String, description = "One per family of lines accepted but not modelled (e.g. `$TC_TP: 12 line(s) from line 3 ...`)"))),
+            headers(("nctwin-nc-data-ignored" = String, description = "One per family of lines accepted but not modelled (e.g. `$TC_TPC: 12 line(s) from line 3 ...`)"))),
         (status = 400, description = "Bad NC data (with its line; nothing applied) or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "Not in reset state", body = ErrorBody),

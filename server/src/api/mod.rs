@@ -20,6 +20,8 @@ pub mod stream;
 pub mod stream_frame;
 pub mod stream_gate;
 pub mod swivel;
+pub mod tools;
+pub mod tools_dto;
 pub mod viewers;
 
 use std::time::Duration;
@@ -80,6 +82,9 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(control::search))
         .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))
         .routes(routes!(kinematic_chains::get_kinematic_chains, kinematic_chains::put_kinematic_chains))
+        .routes(routes!(tools::get_tools, tools::put_tools))
+        .routes(routes!(tools::load_tool))
+        .routes(routes!(tools::unload_tool))
         .routes(routes!(programs::list_programs))
         .routes(routes!(cycles::list_cycles))
         .routes(routes!(cycles::get_cycle))

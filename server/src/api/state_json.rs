@@ -185,6 +185,10 @@ fn write_head(out: &mut String, s: &Snapshot) {
     write_int(out, s.tool.0);
     out.push_str(",\"d\":");
     write_int(out, s.tool.1);
+    out.push_str(",\"name\":");
+    write_str(out, &s.tool_name);
+    out.push_str(",\"prepared\":");
+    write_int(out, s.prepared_tool);
     out.push_str("},\"path_velocity\":");
     write_f64(out, s.path_velocity);
     out.push_str(",\"spindles\":");
@@ -389,6 +393,7 @@ mod tests {
         s.time = 1e16;
         s.tick = u64::MAX;
         s.tool = (u32::MAX, 0);
+        (s.tool_name, s.prepared_tool) = ("DRILL_\"8\"".into(), 7);
         s.single_block = true;
         s.optional_stop = true;
         s.repos_pending = true;

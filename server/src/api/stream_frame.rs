@@ -93,7 +93,8 @@ impl Serialize for StateMessage<'_> {
             &s.block.as_ref().map(|b| Block { line: b.line, text: &b.text, program: b.program.as_deref() }),
         )?;
         m.serialize_field("alarms", &s.alarms.iter().map(AlarmInfo::from).collect::<Vec<_>>())?;
-        m.serialize_field("tool", &Tool { t: s.tool.0, d: s.tool.1 })?;
+        let tool = Tool { t: s.tool.0, d: s.tool.1, name: s.tool_name.clone(), prepared: s.prepared_tool };
+        m.serialize_field("tool", &tool)?;
         m.serialize_field("path_velocity", &s.path_velocity)?;
         m.serialize_field("spindles", &Named(&s.spindles))?;
         m.serialize_field("message", &s.message)?;

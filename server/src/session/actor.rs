@@ -411,6 +411,11 @@ fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
         Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
         Action::KinematicChains(text) => channel.import_kinematic_chains(&text),
+        Action::ToolData(text) => channel.replace_tool_data(&text),
+        Action::LoadTool { name, duplo, magazine, place } => {
+            channel.find_tool(&name, duplo).and_then(|t| channel.load_tool(t, magazine, place))
+        }
+        Action::UnloadTool { name, duplo } => channel.find_tool(&name, duplo).and_then(|t| channel.unload_tool(t)),
     }
 }
 

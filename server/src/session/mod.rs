@@ -125,6 +125,20 @@ pub enum Action {
     MachineData(String),
     /// Run a kinematic chain program ($NK_/$NT_ assignments) on the data in reset state.
     KinematicChains(String),
+    /// Replace the tool data ($TC_DP/$TC_TP/$TC_MAP/$TC_MPP/$TC_MOP lines) in reset state.
+    ToolData(String),
+    /// Load the tool `name` (with its duplo number if several share the name) into a place.
+    LoadTool {
+        name: String,
+        duplo: Option<i64>,
+        magazine: u32,
+        place: u32,
+    },
+    /// Unload the tool `name` to the loading magazine.
+    UnloadTool {
+        name: String,
+        duplo: Option<i64>,
+    },
 }
 
 /// A server-side limit that ended a command early.

@@ -41,7 +41,8 @@ export interface State {
   transformation?: Transformation | null;
   block?: Block | null;
   alarms: Alarm[];
-  tool: { t: number; d: number };
+  /** Tool in the spindle (T, D, its $TC_TP2 name) and the programmed (prepared) tool. */
+  tool: { t: number; d: number; name: string; prepared: number };
   path_velocity: number;
   spindles: Record<string, number>;
   /** The program's last MSG text. */

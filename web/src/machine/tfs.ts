@@ -11,7 +11,9 @@ function spindleText(name: string, rpm: number): string {
 }
 
 function render(st: State): void {
-  setText(byId("tool"), `T${st.tool.t}  D${st.tool.d}`);
+  const named = st.tool.name ? `T="${st.tool.name}"` : `T${st.tool.t}`;
+  const prepared = st.tool.prepared !== st.tool.t ? `  (prepared T${st.tool.prepared})` : "";
+  setText(byId("tool"), `${named}  D${st.tool.d}${prepared}`);
   setText(byId("path-feed"), fmt(st.path_velocity, 1));
   const spindles = Object.entries(st.spindles);
   setText(byId("spindles"), spindles.length ? spindles.map(([n, rpm]) => spindleText(n, rpm)).join("   ") : "–");
