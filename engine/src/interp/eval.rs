@@ -1,6 +1,7 @@
 //! Evaluation of expressions: operators with the control's semantics, the predefined
 //! functions, variables and system variables.
 
+pub(crate) mod machine_data;
 pub(super) mod numeric;
 pub(super) mod scope;
 pub mod value;
