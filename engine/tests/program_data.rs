@@ -212,3 +212,20 @@ fn inputs_are_write_protected_and_signals_bounded() {
     assert!(ch.set_signals(&[(1, true)], &[(0, true)]).is_err());
     assert_eq!(ch.digital_io().input(1), Some(false), "all or nothing");
 }
+
+// --- Words accepted without effect on motion ------------------------------------------------
+
+#[test]
+fn workpiece_and_actblocno_are_accepted_without_effect_on_motion() {
+    // The blank of a ShopMill-style header (empty arguments included) and ACTBLOCNO in a block.
+    let mut ch = channel();
+    run_on(
+        &mut ch,
+        "WORKPIECE(,\"\",,\"RECTANGLE\",0,0,-20,-80,0,0,120,80)\nACTBLOCNO\nG0 X12 Y7\nM30",
+    );
+    ok(&ch);
+    let s = ch.snapshot();
+    let x = s.workpiece.iter().find(|(n, _)| n == "X").unwrap().1;
+    let y = s.workpiece.iter().find(|(n, _)| n == "Y").unwrap().1;
+    assert_eq!((x, y), (12.0, 7.0));
+}
