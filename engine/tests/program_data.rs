@@ -229,3 +229,44 @@ fn workpiece_and_actblocno_are_accepted_without_effect_on_motion() {
     let y = s.workpiece.iter().find(|(n, _)| n == "Y").unwrap().1;
     assert_eq!((x, y), (12.0, 7.0));
 }
+
+// --- CALLPATH -------------------------------------------------------------------------------
+
+/// A channel holding HOLE in the workpiece folder FIXTURE and in the manufacturer cycles
+/// (CMA), each moving to a different X, and SLOT only in FIXTURE.
+fn with_fixture_programs() -> Channel {
+    use nctwin_engine::programs::{Dir, StoredProgram};
+    let mut ch = channel();
+    let fixture = || Some(Dir::Workpiece("FIXTURE".into()));
+    let store = ch.program_store_mut();
+    store.add(StoredProgram::checked("HOLE".into(), fixture(), None, "G0 X1\nM17\n".into()));
+    store.add(StoredProgram::checked("SLOT".into(), fixture(), None, "G0 Y2\nM17\n".into()));
+    store.add(StoredProgram::checked("HOLE".into(), Some(Dir::Cma), None, "G0 X9\nM17\n".into()));
+    ch
+}
+
+#[test]
+fn callpath_searches_its_directory_after_spf_and_before_the_cycle_directories() {
+    // Without CALLPATH the main program (flat store) finds HOLE only in CMA (X9) and no SLOT
+    // (14011). With CALLPATH to the workpiece folder, HOLE comes from there (X1) and SLOT too.
+    let mut ch = with_fixture_programs();
+    run_on(&mut ch, "HOLE\nM30");
+    ok(&ch);
+    assert_eq!(ch.snapshot().workpiece[0].1, 9.0);
+    let mut ch = with_fixture_programs();
+    run_on(&mut ch, "G0 X0\nSLOT\nM30");
+    assert_eq!(alarm(&ch), (14011, Some(2)));
+    let mut ch = with_fixture_programs();
+    run_on(&mut ch, "CALLPATH(\"/_N_WKS_DIR/_N_FIXTURE_WPD\")\nHOLE\nSLOT\nM30");
+    ok(&ch);
+    let s = ch.snapshot();
+    assert_eq!((s.workpiece[0].1, s.workpiece[1].1), (1.0, 2.0));
+}
+
+#[test]
+fn callpath_without_a_path_ends_the_extension() {
+    let mut ch = with_fixture_programs();
+    run_on(&mut ch, "CALLPATH(\"/_N_WKS_DIR/_N_FIXTURE_WPD\")\nCALLPATH()\nHOLE\nM30");
+    ok(&ch);
+    assert_eq!(ch.snapshot().workpiece[0].1, 9.0);
+}

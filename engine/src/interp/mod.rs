@@ -512,6 +512,9 @@ impl Interpreter {
         let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
         self.corner_request = words.corner;
+        if let Some(path) = &words.callpath {
+            self.call_state.callpath = calls::callpath(path);
+        }
         if words.newconf {
             self.data_writes.push((line, NEWCONF.to_string()));
         }

@@ -374,6 +374,8 @@ pub(super) struct Words {
     pub aux: Vec<super::auxiliary::AuxFunction>,
     /// `$A_OUT[n]=..`: digital outputs the block sets (signal, level).
     pub digital_outputs: Vec<(usize, bool)>,
+    /// CALLPATH: `Some(path)` extends the call search path, `Some("")` ends the extension.
+    pub callpath: Option<String>,
 }
 
 impl Words {
@@ -507,6 +509,13 @@ pub(super) fn collect(
                     return Err(Alarm::syntax(line, "PCALL needs a program path"));
                 };
                 set_call(w, targets::program_of_path(path), args[1..].to_vec(), line)?;
+            }
+            Word::Keyword { name, args } if name == "CALLPATH" => {
+                w.callpath = Some(match args.as_slice() {
+                    [] => String::new(),
+                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text(),
+                    _ => return Err(Alarm::syntax(line, "CALLPATH takes one path")),
+                });
             }
             Word::Keyword { name, args } if name == "EXTCALL" => {
                 let target = match args.as_slice() {

@@ -166,9 +166,20 @@ impl Programs {
     /// The program `name` a program in directory `caller` calls: the caller's directory, then
     /// `_N_SPF_DIR`, then the cycle directories CUS, CMA and CST, then the flat store.
     pub fn find(&self, name: &str, caller: Option<&Dir>) -> Option<&StoredProgram> {
+        self.find_with_path(name, caller, None)
+    }
+
+    /// [`Programs::find`] with the search path extension of CALLPATH (`callpath`), searched
+    /// after `_N_SPF_DIR` and before the cycle directories, as the Programming Manual orders
+    /// the search (Job planning, "Search path for subprogram call").
+    pub fn find_with_path(&self, name: &str, caller: Option<&Dir>, callpath: Option<&Dir>) -> Option<&StoredProgram> {
         let candidates = self.by_name.get(name)?;
-        let order = [caller, Some(&Dir::Spf), Some(&Dir::Cus), Some(&Dir::Cma), Some(&Dir::Cst), None];
-        order.iter().find_map(|dir| candidates.iter().find(|p| p.dir() == *dir))
+        let in_dir = |dir: Option<&Dir>| candidates.iter().find(|p| p.dir() == dir);
+        in_dir(caller)
+            .or_else(|| in_dir(Some(&Dir::Spf)))
+            .or_else(|| callpath.and_then(|c| in_dir(Some(c))))
+            .or_else(|| [Dir::Cus, Dir::Cma, Dir::Cst].iter().find_map(|d| in_dir(Some(d))))
+            .or_else(|| in_dir(None))
     }
 
     /// The checked text and directory of the program `name` called at `line` from a program in
@@ -176,7 +187,18 @@ impl Programs {
     /// cannot be read, its own first error (naming it, its line and column) when it does not
     /// pass the check.
     pub fn resolve(&self, name: &str, caller: Option<&Dir>, line: u32) -> Result<(ProgramText, Option<Dir>), Alarm> {
-        let program = self.find(name, caller).ok_or_else(|| Alarm::program_not_found(line, name))?;
+        self.resolve_with_path(name, caller, None, line)
+    }
+
+    /// [`Programs::resolve`] with the CALLPATH extension (see [`Programs::find_with_path`]).
+    pub fn resolve_with_path(
+        &self,
+        name: &str,
+        caller: Option<&Dir>,
+        callpath: Option<&Dir>,
+        line: u32,
+    ) -> Result<(ProgramText, Option<Dir>), Alarm> {
+        let program = self.find_with_path(name, caller, callpath).ok_or_else(|| Alarm::program_not_found(line, name))?;
         match program.ready() {
             Ok(text) => Ok((ProgramText::from(text.clone()), program.dir().cloned())),
             Err(CallError::Unreadable(reason)) => Err(Alarm {
