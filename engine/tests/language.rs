@@ -36,8 +36,11 @@ fn run_fixture(path: &Path) -> Result<(), String> {
     let machine = text.lines().find_map(|l| l.trim().strip_prefix("; machine ")).unwrap_or("mill-3axis");
     let md: Vec<&str> = text.lines().filter_map(|l| l.trim().strip_prefix("; md ")).collect();
     let mut ch = Channel::from_preset(machine, &md.join("\n")).map_err(|e| e.to_string())?;
-    let inputs: Vec<(usize, bool)> =
-        text.lines().filter_map(|l| l.trim().strip_prefix("; input ")?.trim().parse().ok()).map(|n| (n, true)).collect();
+    let inputs: Vec<(usize, bool)> = text
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("; input ")?.trim().parse().ok())
+        .map(|n| (n, true))
+        .collect();
     ch.set_signals(&inputs, &[]).map_err(|e| e.to_string())?;
     let mut parts = text.split("\n;;; ");
     let main = parts.next().unwrap_or_default();

@@ -219,10 +219,7 @@ fn inputs_are_write_protected_and_signals_bounded() {
 fn workpiece_and_actblocno_are_accepted_without_effect_on_motion() {
     // The blank of a ShopMill-style header (empty arguments included) and ACTBLOCNO in a block.
     let mut ch = channel();
-    run_on(
-        &mut ch,
-        "WORKPIECE(,\"\",,\"RECTANGLE\",0,0,-20,-80,0,0,120,80)\nACTBLOCNO\nG0 X12 Y7\nM30",
-    );
+    run_on(&mut ch, "WORKPIECE(,\"\",,\"RECTANGLE\",0,0,-20,-80,0,0,120,80)\nACTBLOCNO\nG0 X12 Y7\nM30");
     ok(&ch);
     let s = ch.snapshot();
     let x = s.workpiece.iter().find(|(n, _)| n == "X").unwrap().1;

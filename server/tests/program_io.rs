@@ -25,7 +25,8 @@ async fn inputs_set_over_rest_steer_a_program_whose_outputs_read_back() {
     assert_eq!(reply.body["inputs"][2], true, "signal 3 is element 2");
 
     let program = "IF $A_IN[3] GOTOF CLAMPED\nSETAL(65000)\nCLAMPED: $A_OUT[7]=1\nG0 X5\nM30";
-    let state = server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    let state =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
     assert_eq!(state.body["status"], "idle", "{}", state.body);
     let io = server.get(&format!("/sessions/{id}/io")).await.body;
     assert_eq!((io["outputs"][6].as_bool(), io["outputs"][5].as_bool()), (Some(true), Some(false)));
@@ -66,9 +67,14 @@ async fn m_and_h_functions_and_outputs_are_streamed_as_events() {
         .collect();
     assert_eq!(aux, [("M8".to_string(), 1), ("H2=1.5".to_string(), 2), ("M30".to_string(), 4)]);
     let m8 = events.iter().find(|e| e["event"] == "aux_function").unwrap();
-    assert_eq!((m8["letter"].as_str(), m8["extension"].as_u64(), m8["value"].as_f64()), (Some("M"), Some(0), Some(8.0)));
+    assert_eq!(
+        (m8["letter"].as_str(), m8["extension"].as_u64(), m8["value"].as_f64()),
+        (Some("M"), Some(0), Some(8.0))
+    );
     assert!(
-        events.iter().any(|e| e["event"] == "digital_output" && e["signal"] == 1 && e["value"] == true && e["line"] == 3),
+        events
+            .iter()
+            .any(|e| e["event"] == "digital_output" && e["signal"] == 1 && e["value"] == true && e["line"] == 3),
         "{events:?}"
     );
 }

@@ -688,7 +688,8 @@ pub(super) fn collect(
                     "P" => w.repeat = Some(whole("P")?),
                     _ if super::everyday::extended_address(name).is_some() => {
                         let Some((letter, ext)) = super::everyday::extended_address(name) else { continue };
-                        let function = super::auxiliary::AuxFunction { letter: letter as char, extension: ext, value: v };
+                        let function =
+                            super::auxiliary::AuxFunction { letter: letter as char, extension: ext, value: v };
                         w.aux.push(function);
                         if letter == b'M'
                             && let Some(dir) = super::everyday::extended_m(ext, v, line)?

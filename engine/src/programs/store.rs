@@ -198,7 +198,8 @@ impl Programs {
         callpath: Option<&Dir>,
         line: u32,
     ) -> Result<(ProgramText, Option<Dir>), Alarm> {
-        let program = self.find_with_path(name, caller, callpath).ok_or_else(|| Alarm::program_not_found(line, name))?;
+        let program =
+            self.find_with_path(name, caller, callpath).ok_or_else(|| Alarm::program_not_found(line, name))?;
         match program.ready() {
             Ok(text) => Ok((ProgramText::from(text.clone()), program.dir().cloned())),
             Err(CallError::Unreadable(reason)) => Err(Alarm {

@@ -92,7 +92,8 @@ fn machine_axis(stored: &MachineData, cfg: &MachineConfig, id: &str) -> Option<u
     if let Some(n) = id.get(..2).filter(|p| p.eq_ignore_ascii_case("AX")).and_then(|_| id[2..].parse::<usize>().ok()) {
         return (1..=registry::MAX_MACHINE_AXES).contains(&n).then(|| n - 1);
     }
-    let named = |wanted: &str| (0..registry::MAX_MACHINE_AXES).find(|&i| machine_name(stored, i).eq_ignore_ascii_case(wanted));
+    let named =
+        |wanted: &str| (0..registry::MAX_MACHINE_AXES).find(|&i| machine_name(stored, i).eq_ignore_ascii_case(wanted));
     named(id).or_else(|| {
         let k = cfg.program_axis(id)?;
         named(&cfg.axis(k).name)
@@ -126,7 +127,8 @@ mod tests {
 
     fn mill() -> (MachineData, MachineConfig) {
         let mut data = MachineData::default();
-        let cfg = data.apply_text(crate::machine_data::presets::find("mill-3axis").expect("preset").text).expect("valid");
+        let cfg =
+            data.apply_text(crate::machine_data::presets::find("mill-3axis").expect("preset").text).expect("valid");
         (data, cfg)
     }
 
