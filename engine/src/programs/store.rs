@@ -265,6 +265,20 @@ mod tests {
     }
 
     #[test]
+    fn the_callpath_directory_comes_after_spf_and_before_the_cycle_directories() {
+        let mut p = store();
+        let fixture = Dir::Workpiece("A".into());
+        let text = |p: &Programs, callpath: Option<&Dir>| {
+            p.find_with_path("SUB", Some(&Dir::Mpf), callpath).and_then(StoredProgram::text).map(|t| t.to_string())
+        };
+        // SPF first, then the CALLPATH directory, then CUS.
+        assert_eq!(text(&p, Some(&fixture)).as_deref(), Some("G0 X2\nM17"));
+        p.by_name.get_mut("SUB").unwrap().retain(|s| s.dir() != Some(&Dir::Spf));
+        assert_eq!(text(&p, Some(&fixture)).as_deref(), Some("G0 X1\nM17"));
+        assert_eq!(text(&p, None).as_deref(), Some("G0 X3\nM17"), "without CALLPATH: CUS");
+    }
+
+    #[test]
     fn a_broken_program_raises_its_own_error_at_the_call_and_loads_once() {
         let loads = Arc::new(std::sync::atomic::AtomicU32::new(0));
         let counter = loads.clone();
