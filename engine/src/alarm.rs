@@ -72,6 +72,11 @@ impl Alarm {
         )
     }
 
+    /// 17070: a program wrote a datum that is write-protected (a read-only system variable).
+    pub fn write_protected(line: u32, name: &str) -> Alarm {
+        Alarm::new(17070, format!("Channel 1 block {line} data write-protected: {name}"), Some(line))
+    }
+
     /// 12000: address programmed more than once.
     pub fn repeated_address(line: u32, address: &str) -> Alarm {
         Alarm::new(12000, format!("Channel 1 block {line} address {address} programmed repeatedly"), Some(line))

@@ -13,13 +13,16 @@
 //! - `; expect MSG text`        the last MSG text
 //! - `; machine lathe-2axis`    preset (default mill-3axis)
 //! - `; md $P_UIFR[1,X,TR]=100` machine data applied on top of the preset
+//! - `; input 3`                digital input 3 (`$A_IN[3]`) is on when the program starts
+//! - `; expect OUT 2=1`         digital output 2 (`$A_OUT[2]`) at the end
+//! - `; expect AUX M8 H2=1.5 M30` the M and H functions put out, in order, as written
 //!
 //! A line `;;; NAME` starts a subprogram stored under NAME; the main program is what comes first.
 
 use std::path::Path;
 
 use nctwin_engine::interp::eval::value::Value;
-use nctwin_engine::{Channel, CommandError, Status};
+use nctwin_engine::{Channel, CommandError, Event, Status};
 
 const TOLERANCE: f64 = 1e-9;
 const MAX_TICKS: usize = 5_000_000;
@@ -33,6 +36,12 @@ fn run_fixture(path: &Path) -> Result<(), String> {
     let machine = text.lines().find_map(|l| l.trim().strip_prefix("; machine ")).unwrap_or("mill-3axis");
     let md: Vec<&str> = text.lines().filter_map(|l| l.trim().strip_prefix("; md ")).collect();
     let mut ch = Channel::from_preset(machine, &md.join("\n")).map_err(|e| e.to_string())?;
+    let inputs: Vec<(usize, bool)> = text
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("; input ")?.trim().parse().ok())
+        .map(|n| (n, true))
+        .collect();
+    ch.set_signals(&inputs, &[]).map_err(|e| e.to_string())?;
     let mut parts = text.split("\n;;; ");
     let main = parts.next().unwrap_or_default();
     for part in parts {
@@ -74,6 +83,14 @@ fn run_fixture(path: &Path) -> Result<(), String> {
         }
     }
     let snap = ch.snapshot();
+    let aux: Vec<String> = ch
+        .take_events()
+        .iter()
+        .filter_map(|e| match e {
+            Event::AuxFunction { function, .. } => Some(function.text()),
+            _ => None,
+        })
+        .collect();
     let mut expected_status = Status::Idle;
     for e in expectations {
         let fail = |got: String| Err(format!("expected {e}, got {got}"));
@@ -86,6 +103,17 @@ fn run_fixture(path: &Path) -> Result<(), String> {
             let hit = snap.alarms.iter().any(|a| a.number == number && (line.is_none() || a.line == line));
             if !hit {
                 return fail(format!("{:?}", snap.alarms));
+            }
+        } else if let Some(want) = e.strip_prefix("AUX ") {
+            if aux.join(" ") != want.trim() {
+                return fail(aux.join(" "));
+            }
+        } else if let Some(out) = e.strip_prefix("OUT ") {
+            let (n, want) = out.split_once('=').ok_or("bad OUT expectation")?;
+            let n: usize = n.trim().parse().map_err(|_| "bad OUT signal")?;
+            let got = ch.digital_io().output(n).ok_or("no such output")?;
+            if got != (want.trim() == "1") {
+                return fail(format!("{}", u8::from(got)));
             }
         } else if let Some(text) = e.strip_prefix("MSG ") {
             if snap.message.as_deref() != Some(text) {
@@ -147,7 +175,7 @@ fn every_language_fixture_gives_its_expected_results() {
 /// L subprograms, MCALL, section repetition, EXTERN, PCALL/EXTCALL, H and M functions).
 #[test]
 fn every_shop_program_gives_its_expected_end_state() {
-    run_folder("tests/programs/shop", 10);
+    run_folder("tests/programs/shop", 40);
 }
 
 fn run_folder(folder: &str, at_least: usize) {

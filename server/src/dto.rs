@@ -998,6 +998,27 @@ pub enum EventMessage {
     ModeChanged {
         mode: OpMode,
     },
+    /// An M or H function reached the main run: what the PLC receives. M functions are output
+    /// before the block's motion, M0/M1/M2/M17/M30 with their stop after it.
+    AuxFunction {
+        /// `M` or `H`.
+        #[schema(example = "M")]
+        letter: String,
+        /// The address extension (`M2=5`: 2; plain `M8`: 0).
+        extension: u32,
+        /// The function's value (`M8`: 8; `H2=1.5`: 1.5).
+        value: f64,
+        /// As written: `M8`, `M2=5`, `H2=1.5`.
+        #[schema(example = "M8")]
+        text: String,
+        line: u32,
+    },
+    /// A program set or cleared digital output `signal` (`$A_OUT[signal]`).
+    DigitalOutput {
+        signal: usize,
+        value: bool,
+        line: u32,
+    },
 }
 
 impl From<&Event> for EventMessage {
@@ -1009,6 +1030,16 @@ impl From<&Event> for EventMessage {
             Event::ProgramEnded => EventMessage::ProgramEnded,
             Event::ProgramStopped { line } => EventMessage::ProgramStopped { line: *line },
             Event::ModeChanged(m) => EventMessage::ModeChanged { mode: (*m).into() },
+            Event::AuxFunction { function, line } => EventMessage::AuxFunction {
+                letter: function.letter.to_string(),
+                extension: function.extension,
+                value: function.value,
+                text: function.text(),
+                line: *line,
+            },
+            Event::DigitalOutput { signal, on, line } => {
+                EventMessage::DigitalOutput { signal: *signal, value: *on, line: *line }
+            }
         }
     }
 }

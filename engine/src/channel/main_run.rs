@@ -48,12 +48,16 @@ impl Channel {
                     self.notify_alarm(warning);
                 }
             }
-            for (line, text) in self.interp.take_data_writes() {
-                if let Err(alarm) = self.apply_program_data(line, &text) {
-                    out.push(Item::Alarm(alarm));
-                    prep = Prep::Done;
-                    break;
+            let writes = self.interp.take_data_writes();
+            if !writes.is_empty() {
+                for (line, text) in writes {
+                    if let Err(alarm) = self.apply_program_data(line, &text) {
+                        out.push(Item::Alarm(alarm));
+                        prep = Prep::Done;
+                        break;
+                    }
                 }
+                self.publish_stored_data();
             }
             // Remember where each block is, for showing it while its items execute: the block
             // just read is in `level`; a move held back from the block before in that one's.
@@ -111,8 +115,9 @@ impl Channel {
             return Ok(());
         }
         self.data.stage_text(text).map_err(|e| bad(format!("{text}: {}", e.message)))?;
-        // Setting data CORRTRAFO monitors act at once.
-        if !text.starts_with("$M") && !text.starts_with("$S") || text.starts_with("$SN_CORR_TRAFO_") {
+        // Everything but machine data acts at once: tool data, frames, setting data (those the
+        // typed configuration holds, e.g. SD42980, SD41610; the rest is read where it is used).
+        if !text.starts_with("$M") {
             Arc::make_mut(&mut self.cfg).refresh_data(&self.data).map_err(|e| bad(e.message))?;
         }
         Ok(())
@@ -324,6 +329,14 @@ impl Channel {
                         self.enter_block(line);
                     }
                     self.raise(alarm);
+                }
+                Item::Aux { function, line } => {
+                    self.enter_block(line);
+                    self.events.push(Event::AuxFunction { function, line });
+                }
+                Item::DigitalOutput { signal, on, line } => {
+                    self.enter_block(line);
+                    self.execute_digital_output(signal, on, line);
                 }
             }
         }

@@ -10,6 +10,7 @@
 //! `spindle`, `trafo` (the active transformation per IPO cycle), `snapshot`.
 
 mod cartesian_jog;
+mod io;
 mod jog;
 mod jog_settings;
 mod main_run;
@@ -114,6 +115,17 @@ pub enum Event {
         line: u32,
     },
     ModeChanged(Mode),
+    /// An M or H function reached the main run (the simulated PLC's input).
+    AuxFunction {
+        function: crate::interp::auxiliary::AuxFunction,
+        line: u32,
+    },
+    /// A program set (`on`) or cleared digital output `signal` (`$A_OUT`).
+    DigitalOutput {
+        signal: usize,
+        on: bool,
+        line: u32,
+    },
 }
 
 /// A command the channel refuses in its current state.
@@ -269,6 +281,8 @@ pub struct Channel {
     ori_memo: crate::kinematics::AngleMemo,
     /// The online tool length offset reached by the main run (`$AA_TOFF`).
     toff: toff::OnlineOffset,
+    /// The digital inputs and outputs (`$A_IN`, `$A_OUT`; see `io.rs`).
+    io: crate::interp::io::DigitalIo,
 }
 
 impl Channel {
@@ -337,9 +351,11 @@ impl Channel {
             trafo_tag: None,
             ori_memo: Default::default(),
             toff: Default::default(),
+            io: Default::default(),
             referenced,
             referencing: None,
         };
+        ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
         ch.place_axes([0.0; MAX_CHANNEL_AXES]);
         ch
@@ -411,6 +427,7 @@ impl Channel {
         next.keep_reference_state(self);
         next.mode = self.mode;
         next.tick = self.tick;
+        next.set_digital_io(self.io);
         *self = next;
     }
 

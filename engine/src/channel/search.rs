@@ -242,8 +242,12 @@ impl Channel {
             let trafo_changed = self.interp.transformation_generation() != generation;
             // Blocks passed by the search do not run: what they would report does not show.
             self.interp.take_warnings();
-            for (l, data) in self.interp.take_data_writes() {
-                self.apply_program_data(l, &data)?;
+            let writes = self.interp.take_data_writes();
+            if !writes.is_empty() {
+                for (l, data) in writes {
+                    self.apply_program_data(l, &data)?;
+                }
+                self.publish_stored_data();
             }
             let found = out
                 .iter()
@@ -278,7 +282,11 @@ impl Channel {
                         spindles.push(item);
                     }
                     Item::Message { .. } => message = Some(item),
-                    Item::Dwell { .. } | Item::Stop { kind: StopKind::M0 | StopKind::M1, .. } => {}
+                    // Auxiliary functions and outputs of skipped blocks are not put out.
+                    Item::Dwell { .. }
+                    | Item::Stop { kind: StopKind::M0 | StopKind::M1, .. }
+                    | Item::Aux { .. }
+                    | Item::DigitalOutput { .. } => {}
                     Item::Stop { kind: StopKind::End, .. } => return Err(target_not_found(line)),
                     Item::Alarm(alarm) => return Err(alarm),
                 }

@@ -32,6 +32,15 @@ pub use crate::programs::Programs;
 pub(super) struct CallState {
     pub mcall: Option<modal_call::ModalCall>,
     pub externs: targets::Externs,
+    /// CALLPATH: the directory searched after `_N_SPF_DIR` for called programs.
+    pub callpath: Option<crate::programs::Dir>,
+}
+
+/// The directory of `CALLPATH("path")`; an empty path ends the extension. Called programs are
+/// searched there after `_N_SPF_DIR` until the program ends or the channel is reset.
+pub(super) fn callpath(path: &str) -> Option<crate::programs::Dir> {
+    let path = path.trim();
+    (!path.is_empty()).then(|| crate::programs::Dir::parse_path(path))
 }
 
 /// Program levels: the main program plus up to 15 nested subprogram calls.
@@ -102,7 +111,7 @@ impl Interpreter {
         line: u32,
     ) -> Result<(), Alarm> {
         let caller_dir = self.calls.last().map_or(programs.main_dir(), |f| f.dir.as_ref());
-        let (text, dir) = programs.resolve(name, caller_dir, line)?;
+        let (text, dir) = programs.resolve_with_path(name, caller_dir, self.call_state.callpath.as_ref(), line)?;
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }

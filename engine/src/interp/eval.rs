@@ -3,6 +3,7 @@
 
 pub(super) mod cycle_vars;
 pub(super) mod indirect_axis;
+pub(crate) mod machine_data;
 pub(super) mod numeric;
 pub(super) mod scope;
 pub mod value;

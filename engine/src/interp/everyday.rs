@@ -9,18 +9,22 @@
 //!   cycle) in a block: accepted; the single-block stop and the block display are not
 //!   suppressed.
 //! - `GROUP_BEGIN(..)`/`GROUP_END(..)`: the program editor's structure markers; no effect.
+//! - `ACTBLOCNO` (alarms of a cycle show the cycle's own block: what NCTwin does anyway, with
+//!   or without DISPLOF).
+//! - `WORKPIECE(..)`: the blank ShopMill/ShopTurn and CAM posts describe for the simulation's
+//!   display; accepted with any arguments, no effect on motion (the blank is not kept yet).
 //! - `H5`, `H=5`, `H2=5`: auxiliary functions for the PLC (with address extension); `M2=3`-style
-//!   M functions with an address extension. The H functions and M functions other than spindle
-//!   and program control reach no simulated PLC yet (no event); `M<n>=3/4/5` act on spindle n,
-//!   which must be the master spindle (the only spindle the interpreter commands).
+//!   M functions with an address extension. They go to the main run as `Item::Aux` and are
+//!   published there (`auxiliary.rs`); `M<n>=3/4/5` also act on spindle n, which must be the
+//!   master spindle (the only spindle the interpreter commands).
 
 use crate::alarm::Alarm;
 
 /// True for a keyword without arguments that needs no action (see the module doc).
 pub(super) fn is_inert_keyword(name: &str, has_args: bool) -> bool {
     match name {
-        "FNORM" | "FLIN" | "FCUB" | "DRFOF" | "SBLOF" | "SBLON" | "DISPLOF" | "DISPLON" => !has_args,
-        "GROUP_BEGIN" | "GROUP_END" => true,
+        "FNORM" | "FLIN" | "FCUB" | "DRFOF" | "SBLOF" | "SBLON" | "DISPLOF" | "DISPLON" | "ACTBLOCNO" => !has_args,
+        "GROUP_BEGIN" | "GROUP_END" | "WORKPIECE" => true,
         _ => false,
     }
 }

@@ -5,6 +5,7 @@
 //! programmed stops and alarms. The interpreter runs ahead of the main run and keeps its own
 //! programmed position, as the control's preprocessing does.
 
+pub mod auxiliary;
 mod calls;
 mod compensation;
 mod contour;
@@ -13,6 +14,7 @@ mod everyday;
 mod flow;
 mod frames;
 pub mod gcodes;
+pub mod io;
 mod lane;
 mod modal;
 mod orientation;
@@ -127,6 +129,17 @@ pub enum Item {
         line: u32,
     },
     Alarm(Alarm),
+    /// An M or H function for the PLC (see `auxiliary.rs`).
+    Aux {
+        function: auxiliary::AuxFunction,
+        line: u32,
+    },
+    /// `$A_OUT[signal]=..`: a digital output set or cleared in the main run.
+    DigitalOutput {
+        signal: usize,
+        on: bool,
+        line: u32,
+    },
 }
 
 /// Marker in [`Interpreter::take_data_writes`]: activate the machine data written so far.
@@ -161,7 +174,9 @@ impl Item {
             | Item::SpindleControl { line, .. }
             | Item::Stop { line, .. }
             | Item::Message { line, .. }
-            | Item::SpindleToAxis { line, .. } => Some(*line),
+            | Item::SpindleToAxis { line, .. }
+            | Item::Aux { line, .. }
+            | Item::DigitalOutput { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -227,6 +242,11 @@ pub struct Interpreter {
     fast_lane: bool,
     /// What the lane keeps between its blocks (a cache, cleared by the general path).
     lane_memo: lane::LaneMemo,
+    /// The session's machine and setting data as stored, for programs' `$MN_`... reads
+    /// (the channel hands over each new state, [`Interpreter::set_stored_data`]).
+    stored: std::sync::Arc<crate::machine_data::MachineData>,
+    /// The digital inputs and outputs as the main run last reported them.
+    io: io::DigitalIo,
 }
 
 impl Interpreter {
@@ -260,6 +280,8 @@ impl Interpreter {
             spare_words: modal::SpareWords::default(),
             fast_lane: true,
             lane_memo: Default::default(),
+            stored: Default::default(),
+            io: io::DigitalIo::default(),
         }
     }
 
@@ -303,6 +325,17 @@ impl Interpreter {
         self.calls.clear();
         self.call_state = Default::default();
         self.flow = Some(Flow::new(text.into()));
+    }
+
+    /// The machine and setting data programs read from now on (after every change the
+    /// channel made to its stored data).
+    pub fn set_stored_data(&mut self, stored: std::sync::Arc<crate::machine_data::MachineData>) {
+        self.stored = stored;
+    }
+
+    /// The digital I/O image as the main run holds it (read by blocks that waited for it).
+    pub fn set_io(&mut self, io: io::DigitalIo) {
+        self.io = io;
     }
 
     /// Data written by the blocks prepared since the last call (line, NC data text, or
@@ -500,6 +533,9 @@ impl Interpreter {
         let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
         self.corner_request = words.corner;
+        if let Some(path) = &words.callpath {
+            self.call_state.callpath = calls::callpath(path);
+        }
         if words.newconf {
             self.data_writes.push((line, NEWCONF.to_string()));
         }
@@ -539,6 +575,14 @@ impl Interpreter {
 
         // Spindle before motion (feed type, speeds, directions, SPOS).
         let positioned = self.spindle_block(words, cfg, line, out)?;
+
+        // M and H functions and digital outputs before the motion (see `auxiliary.rs`).
+        for function in words.aux.iter().filter(|f| !f.is_program_control()) {
+            self.trc.emit_or_defer(Item::Aux { function: *function, line }, out);
+        }
+        for &(signal, on) in &words.digital_outputs {
+            self.trc.emit_or_defer(Item::DigitalOutput { signal, on, line }, out);
+        }
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;
         if words.dwell {
@@ -590,6 +634,10 @@ impl Interpreter {
             out.push(Item::Alarm(calls::cycle_alarm::at_call(alarm, &self.calls)));
         }
         if let Some(kind) = words.stop {
+            // M0/M1/M2/M17/M30 reach the PLC with their stop, after the motion.
+            for function in words.aux.iter().filter(|f| f.is_program_control()) {
+                out.push(Item::Aux { function: *function, line });
+            }
             out.push(Item::Stop { kind, line });
         }
         if let Some(goto) = &words.goto {

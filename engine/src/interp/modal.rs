@@ -380,6 +380,12 @@ pub(super) struct Words {
     pub cut: Option<CutMode>,
     /// `CYCLE800(...)`: the evaluated arguments (`None` = omitted).
     pub swivel: Option<Vec<Option<Value>>>,
+    /// M and H functions for the PLC, in the order written.
+    pub aux: Vec<super::auxiliary::AuxFunction>,
+    /// `$A_OUT[n]=..`: digital outputs the block sets (signal, level).
+    pub digital_outputs: Vec<(usize, bool)>,
+    /// CALLPATH: `Some(path)` extends the call search path, `Some("")` ends the extension.
+    pub callpath: Option<String>,
 }
 
 impl Words {
@@ -421,12 +427,15 @@ impl Words {
         let mut data_writes = std::mem::take(&mut self.data_writes);
         let mut toff = std::mem::take(&mut self.toff);
         let mut frame_writes = std::mem::take(&mut self.frame_writes);
+        let mut aux = std::mem::take(&mut self.aux);
+        aux.clear();
         axes.clear();
         data_writes.clear();
         toff.clear();
         frame_writes.clear();
         *self = Words::default();
-        (self.axes, self.data_writes, self.toff, self.frame_writes) = (axes, data_writes, toff, frame_writes);
+        (self.axes, self.data_writes, self.toff, self.frame_writes, self.aux) =
+            (axes, data_writes, toff, frame_writes, aux);
     }
 }
 
@@ -513,6 +522,13 @@ pub(super) fn collect(
                     return Err(Alarm::syntax(line, "PCALL needs a program path"));
                 };
                 set_call(w, targets::program_of_path(path), args[1..].to_vec(), line)?;
+            }
+            Word::Keyword { name, args } if name == "CALLPATH" => {
+                w.callpath = Some(match args.as_slice() {
+                    [] => String::new(),
+                    [e] => eval(e, &Ctx { vars, sys }, line)?.as_text(),
+                    _ => return Err(Alarm::syntax(line, "CALLPATH takes one path")),
+                });
             }
             Word::Keyword { name, args } if name == "EXTCALL" => {
                 let target = match args.as_slice() {
@@ -637,6 +653,10 @@ pub(super) fn collect(
                         w.toff.push(op);
                         continue;
                     }
+                    Assigned::DigitalOutput(signal, on) => {
+                        w.digital_outputs.push((signal, on));
+                        continue;
+                    }
                     Assigned::Address(axis) => axis,
                 };
                 if name == "T"
@@ -690,13 +710,17 @@ pub(super) fn collect(
                     "TURN" => w.turn = Some(whole("TURN=")?),
                     // H: auxiliary function for the PLC. ADIS/ADISPOS: smoothing distances of
                     // G641, which this product does not model (blocks meet at G64 corners).
-                    "H" | "ADIS" | "ADISPOS" => {}
+                    "H" => w.aux.push(super::auxiliary::AuxFunction { letter: 'H', extension: 0, value: v }),
+                    "ADIS" | "ADISPOS" => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
                     // `P3`: three runs of the block's subprogram call.
                     "P" => w.repeat = Some(whole("P")?),
                     _ if super::everyday::extended_address(name).is_some() => {
                         let Some((letter, ext)) = super::everyday::extended_address(name) else { continue };
+                        let function =
+                            super::auxiliary::AuxFunction { letter: letter as char, extension: ext, value: v };
+                        w.aux.push(function);
                         if letter == b'M'
                             && let Some(dir) = super::everyday::extended_m(ext, v, line)?
                         {
@@ -782,6 +806,8 @@ pub(super) enum Assigned {
     ChainFrame(ChainFrame, Box<Frame>),
     /// `$AA_TOFF[dir] = value`: the online tool length offset.
     OnlineToolOffset(super::compensation::toff::ToffOp),
+    /// `$A_OUT[n] = value`: digital output n set (true) or cleared.
+    DigitalOutput(usize, bool),
 }
 
 pub(super) fn assign(
@@ -828,6 +854,15 @@ pub(super) fn assign(
     if let Some(which) = ChainFrame::of(name).filter(|w| w.writable()) {
         return chain_frame(which, name, indices, expr, vars, sys, line)
             .map(|f| Assigned::ChainFrame(which, Box::new(f)));
+    }
+    if super::io::is_io_name(name) {
+        let ctx = Ctx { vars, sys };
+        let idx = indices.iter().map(|e| eval(e, &ctx, line)).collect::<Result<Vec<_>, _>>()?;
+        if name == "$A_IN" {
+            return Err(Alarm::write_protected(line, name));
+        }
+        let signal = super::io::signal(name, &idx, line)?;
+        return Ok(Assigned::DigitalOutput(signal, super::io::level(&eval(expr, &ctx, line)?, line)?));
     }
     if name.starts_with('$') {
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
@@ -963,6 +998,11 @@ fn data_write(
                 v => v.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?.to_string(),
             },
         });
+    }
+    if super::eval::machine_data::is_data_name(name)
+        && let Some(axis) = idx.pop()
+    {
+        idx.push(super::eval::machine_data::axis_index_for_text(sys.stored, sys.cfg, name, axis));
     }
     let value = match eval(expr, &ctx, line)? {
         Value::Bool(b) => if b { "TRUE" } else { "FALSE" }.to_string(),
@@ -1114,6 +1154,7 @@ fn set_call(w: &mut Words, name: String, args: Vec<Expr>, line: u32) -> Result<(
 }
 
 fn m_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
+    w.aux.push(super::auxiliary::AuxFunction { letter: 'M', extension: 0, value: f64::from(code) });
     let stop = match code {
         0 => Some(StopKind::M0),
         1 => Some(StopKind::M1),

@@ -364,6 +364,7 @@ impl MachineConfig {
         if self.kin != *md.kin() {
             self.kin = md.kin().clone();
         }
+        self.toframe_mode = md.num("$SC_TOFRAME_MODE", 0, 0) as i64;
         self.corr_limits = super::chains::correct::Limits {
             lin_max: md.num("$SN_CORR_TRAFO_LIN_MAX", 0, 0),
             dir_max: md.num("$SN_CORR_TRAFO_DIR_MAX", 0, 0),

@@ -168,9 +168,21 @@ impl Programs {
     /// `_N_SPF_DIR`, then the cycle directories CUS, CMA and CST, then the flat store, then the
     /// standard cycle library shipped with NCTwin.
     pub fn find(&self, name: &str, caller: Option<&Dir>) -> Option<&StoredProgram> {
+        self.find_with_path(name, caller, None)
+    }
+
+    /// [`Programs::find`] with the search path extension of CALLPATH (`callpath`), searched
+    /// after `_N_SPF_DIR` and before the cycle directories, as the Programming Manual orders
+    /// the search (Job planning, "Search path for subprogram call"); the standard cycle library
+    /// comes last.
+    pub fn find_with_path(&self, name: &str, caller: Option<&Dir>, callpath: Option<&Dir>) -> Option<&StoredProgram> {
         let stored = self.by_name.get(name).and_then(|candidates| {
-            let order = [caller, Some(&Dir::Spf), Some(&Dir::Cus), Some(&Dir::Cma), Some(&Dir::Cst), None];
-            order.iter().find_map(|dir| candidates.iter().find(|p| p.dir() == *dir))
+            let in_dir = |dir: Option<&Dir>| candidates.iter().find(|p| p.dir() == dir);
+            in_dir(caller)
+                .or_else(|| in_dir(Some(&Dir::Spf)))
+                .or_else(|| callpath.and_then(|c| in_dir(Some(c))))
+                .or_else(|| [Dir::Cus, Dir::Cma, Dir::Cst].iter().find_map(|d| in_dir(Some(d))))
+                .or_else(|| in_dir(None))
         });
         stored.or_else(|| super::cycles::find(name))
     }
@@ -180,7 +192,19 @@ impl Programs {
     /// cannot be read, its own first error (naming it, its line and column) when it does not
     /// pass the check.
     pub fn resolve(&self, name: &str, caller: Option<&Dir>, line: u32) -> Result<(ProgramText, Option<Dir>), Alarm> {
-        let program = self.find(name, caller).ok_or_else(|| Alarm::program_not_found(line, name))?;
+        self.resolve_with_path(name, caller, None, line)
+    }
+
+    /// [`Programs::resolve`] with the CALLPATH extension (see [`Programs::find_with_path`]).
+    pub fn resolve_with_path(
+        &self,
+        name: &str,
+        caller: Option<&Dir>,
+        callpath: Option<&Dir>,
+        line: u32,
+    ) -> Result<(ProgramText, Option<Dir>), Alarm> {
+        let program =
+            self.find_with_path(name, caller, callpath).ok_or_else(|| Alarm::program_not_found(line, name))?;
         match program.ready() {
             Ok(text) => Ok((ProgramText::from(text.clone()), program.dir().cloned())),
             Err(CallError::Unreadable(reason)) => Err(Alarm {
@@ -243,6 +267,20 @@ mod tests {
         p.by_name.get_mut("SUB").unwrap().retain(|s| s.dir() != Some(&Dir::Cst));
         // Only in workpiece A: not reachable from elsewhere.
         assert_eq!(found(&p, None), "Channel 1 block 7 program SUB not available");
+    }
+
+    #[test]
+    fn the_callpath_directory_comes_after_spf_and_before_the_cycle_directories() {
+        let mut p = store();
+        let fixture = Dir::Workpiece("A".into());
+        let text = |p: &Programs, callpath: Option<&Dir>| {
+            p.find_with_path("SUB", Some(&Dir::Mpf), callpath).and_then(StoredProgram::text).map(|t| t.to_string())
+        };
+        // SPF first, then the CALLPATH directory, then CUS.
+        assert_eq!(text(&p, Some(&fixture)).as_deref(), Some("G0 X2\nM17"));
+        p.by_name.get_mut("SUB").unwrap().retain(|s| s.dir() != Some(&Dir::Spf));
+        assert_eq!(text(&p, Some(&fixture)).as_deref(), Some("G0 X1\nM17"));
+        assert_eq!(text(&p, None).as_deref(), Some("G0 X3\nM17"), "without CALLPATH: CUS");
     }
 
     #[test]

@@ -5,6 +5,7 @@
 pub mod control;
 pub mod cycles;
 pub mod health;
+pub mod io;
 pub mod jog;
 pub mod kinematic_chains;
 pub mod machine_data;
@@ -93,7 +94,8 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(roles::get_control))
         .routes(routes!(roles::take_control))
         .routes(routes!(roles::release_control))
-        .routes(routes!(viewers::get_viewers));
+        .routes(routes!(viewers::get_viewers))
+        .routes(routes!(io::get_io, io::put_io));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
         .routes(routes!(program_archive::import_archive, program_archive::export_archive));

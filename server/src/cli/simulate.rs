@@ -483,6 +483,9 @@ fn prepare_all(channel: &Channel, text: ProgramText, verdict: &Verdict) -> Prepa
     let bytes = text.len() as u64;
     let budget = || verdict.blocks().unwrap_or(bytes).saturating_mul(100).saturating_add(1_000_000);
     let mut interp = Interpreter::new(cfg);
+    // Programs read the session's machine data and I/O image, as on the channel.
+    interp.set_stored_data(std::sync::Arc::new(channel.machine_data().clone()));
+    interp.set_io(channel.digital_io());
     interp.begin_program(text, &position);
     let mut out = Vec::new();
     let mut found = Prepared::default();

@@ -30,6 +30,10 @@ pub(crate) struct SysView<'a> {
     pub trafo: &'a crate::interp::transform::selection::TrafoState,
     /// The orientable toolholder state.
     pub holder: &'a crate::interp::tools::toolholder::Holder,
+    /// The session's machine and setting data as stored (`$MN_`... reads).
+    pub stored: &'a crate::machine_data::MachineData,
+    /// The digital inputs and outputs (`$A_IN`, `$A_OUT`).
+    pub io: &'a crate::interp::io::DigitalIo,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -47,6 +51,8 @@ macro_rules! sys_view {
             positioned: &$interp.positioned,
             trafo: &$interp.trafo,
             holder: &$interp.holder,
+            stored: &$interp.stored,
+            io: &$interp.io,
         }
     };
 }
@@ -61,7 +67,7 @@ pub(crate) struct Ctx<'a> {
 /// Main-run variables: reading them makes preparation wait until the main run has caught up
 /// (the control's implicit preprocessing stop), because their value is only known there.
 pub fn is_main_run_variable(name: &str) -> bool {
-    ["$AA_", "$AC_", "$VA_", "$VC_"].iter().any(|p| name.starts_with(p))
+    ["$AA_", "$AC_", "$VA_", "$VC_"].iter().any(|p| name.starts_with(p)) || crate::interp::io::is_io_name(name)
 }
 
 impl Scope for Ctx<'_> {
@@ -106,6 +112,12 @@ impl Scope for Ctx<'_> {
             return v;
         }
         if let Some(v) = super::cycle_vars::read(sys, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = crate::interp::eval::machine_data::read(sys.stored, sys.cfg, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = sys.io.read(name, indices, line) {
             return v;
         }
         Ok(match name {

@@ -1,0 +1,52 @@
+//! The channel's side of the digital I/O image and of the machine data programs read: the
+//! main run executes `$A_OUT` writes, the shell sets inputs (`set_inputs`), and the interpreter
+//! is handed each new state of both.
+
+use std::sync::Arc;
+
+use super::{Channel, CommandError, Event};
+use crate::interp::io::{DIGITAL_IO, DigitalIo};
+
+impl Channel {
+    /// The digital inputs and outputs as the main run holds them.
+    pub fn digital_io(&self) -> DigitalIo {
+        self.io
+    }
+
+    /// Sets digital inputs and outputs from outside (the machine's wiring, a test bench),
+    /// each `(signal, level)` with signal 1..[`DIGITAL_IO`]. All or nothing: a signal out of
+    /// range changes nothing.
+    pub fn set_signals(&mut self, inputs: &[(usize, bool)], outputs: &[(usize, bool)]) -> Result<(), CommandError> {
+        if let Some((n, _)) = inputs.iter().chain(outputs).find(|(n, _)| !(1..=DIGITAL_IO).contains(n)) {
+            return Err(CommandError::Invalid(format!("signal {n} does not exist (1..{DIGITAL_IO})")));
+        }
+        let mut io = self.io;
+        for &(n, on) in inputs {
+            io.set_input(n, on);
+        }
+        for &(n, on) in outputs {
+            io.set_output(n, on);
+        }
+        self.set_digital_io(io);
+        Ok(())
+    }
+
+    /// Main run: a program's `$A_OUT[signal]` write takes effect (and is published).
+    pub(super) fn execute_digital_output(&mut self, signal: usize, on: bool, line: u32) {
+        let mut io = self.io;
+        io.set_output(signal, on);
+        self.set_digital_io(io);
+        self.events.push(Event::DigitalOutput { signal, on, line });
+    }
+
+    pub(super) fn set_digital_io(&mut self, io: DigitalIo) {
+        self.io = io;
+        self.interp.set_io(io);
+    }
+
+    /// Hands the stored machine data to the interpreter, after every change of it, for the
+    /// programs' `$MN_`... reads.
+    pub(super) fn publish_stored_data(&mut self) {
+        self.interp.set_stored_data(Arc::new(self.data.clone()));
+    }
+}
