@@ -124,10 +124,6 @@ impl Scope for Ctx<'_> {
             "$P_TOOLNO" => Value::Int(sys.offsets.t.into()),
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),
             "$P_TOOLP" => Value::Int(sys.offsets.prepared.into()),
-            "$P_TOOLR" => {
-                let edge = sys.cfg.tools.get(&(sys.offsets.t, sys.offsets.d)).filter(|_| sys.offsets.d != 0);
-                Value::Real(edge.map_or(0.0, |e| e[5] + e[14]))
-            }
             "GETT" => crate::interp::tools::management::gett(sys.cfg, indices, line)?,
             _ if crate::machine_data::tools_mgmt::ToolMgmtData::handles(name) => {
                 crate::interp::tools::management::read(sys.cfg, name, indices, line)?
