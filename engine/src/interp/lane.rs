@@ -229,6 +229,7 @@ impl Interpreter {
             && self.active_data_set().is_none()
             && self.offsets.trafo.is_none()
             && self.modal.ori.rotation != RotReference::PathTangent
+            && !self.modal.dynamics.shapes_moves()
             && !self.call_unbound()
     }
 

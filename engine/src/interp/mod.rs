@@ -8,6 +8,7 @@
 mod calls;
 mod compensation;
 mod contour;
+pub mod dynamics;
 pub mod eval;
 mod everyday;
 mod flow;
@@ -387,6 +388,22 @@ impl Interpreter {
     /// everything prepared so far has been executed (needed by blocks that read main-run
     /// values). On an error the last item is an [`Item::Alarm`] and preparation is done.
     pub fn prepare_next(
+        &mut self,
+        cfg: &MachineConfig,
+        programs: &Programs,
+        main_run_idle: bool,
+        out: &mut Vec<Item>,
+    ) -> Prep {
+        let first = out.len();
+        let prep = self.prepare_next_block(cfg, programs, main_run_idle, out);
+        if let Some(items) = out.get_mut(first..) {
+            dynamics::apply(&self.modal.dynamics, cfg, items);
+        }
+        prep
+    }
+
+    /// [`Interpreter::prepare_next`] before the dynamics words shape the moves.
+    fn prepare_next_block(
         &mut self,
         cfg: &MachineConfig,
         programs: &Programs,

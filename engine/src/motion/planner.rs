@@ -13,6 +13,9 @@ use super::path::{AxisVec, Path};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
+#[path = "soft.rs"]
+mod soft;
+
 /// Velocity requested for a move.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Feed {
@@ -105,6 +108,9 @@ pub struct Move {
     /// the move, when the path is not in machine axes. Used for the velocity jump at block
     /// transitions instead of the path's own tangent.
     pub axis_tangents: Option<Box<(AxisVec, AxisVec)>>,
+    /// Highest path jerk under SOFT (units per s³); infinite under BRISK, the
+    /// acceleration-limited profile (see `motion/soft.rs`).
+    pub jerk: f64,
 }
 
 impl Move {
@@ -130,6 +136,7 @@ impl Move {
             tag,
             machine_space: false,
             axis_tangents: None,
+            jerk: f64::INFINITY,
         }
     }
 
@@ -211,6 +218,8 @@ pub struct Planner {
     s: f64,
     /// Current path velocity.
     v: f64,
+    /// Path acceleration of the last cycle: the state of SOFT's jerk-limited profile.
+    acc: f64,
     /// Feed hold: brake to standstill on the path.
     hold: bool,
     /// Feed override and rapid traverse override as factors (1.0 = 100 %).
@@ -241,6 +250,7 @@ impl Planner {
             replan_all: false,
             s: 0.0,
             v: 0.0,
+            acc: 0.0,
             hold: false,
             feed_override: 1.0,
             rapid_override: 1.0,
@@ -362,6 +372,7 @@ impl Planner {
         self.corner.clear();
         self.s = 0.0;
         self.v = 0.0;
+        self.acc = 0.0;
         self.hold = false;
         self.flush_at_standstill = false;
     }
@@ -422,14 +433,20 @@ impl Planner {
         let a = front.a_max;
         let cap = front.capped(self.feed_override, self.rapid_override);
         // Above the cap (override lowered) the path brakes at the axes' deceleration.
-        let mut v_new = if self.hold {
-            (self.v - a * dt).max(0.0)
-        } else if self.v > cap {
-            (self.v - a * dt).max(cap)
+        let mut v_new = if front.jerk.is_finite() {
+            self.soft_velocity(cap)
         } else {
-            (self.v + a * dt).min(cap)
+            let v_new = if self.hold {
+                (self.v - a * dt).max(0.0)
+            } else if self.v > cap {
+                (self.v - a * dt).max(cap)
+            } else {
+                (self.v + a * dt).min(cap)
+            };
+            self.acc = 0.0;
+            self.brake_limited(v_new)
         };
-        v_new = self.brake_limited(v_new);
+        let front = &self.queue[0];
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
         let remaining = front.length - self.s;
@@ -473,6 +490,7 @@ impl Planner {
             self.s = 0.0;
             if stop_here || self.queue.is_empty() {
                 self.v = 0.0;
+                self.acc = 0.0;
                 break;
             }
         }
@@ -556,11 +574,18 @@ impl Planner {
         };
         let (ta, tb) = (rates(a, true), rates(b, false));
         let mut v = a.v_max.min(b.v_max);
+        // SOFT: the jump lasts one cycle, so it is an acceleration pulse; its jerk
+        // `jump·v/dt²` stays within the axis jerk, of which the moves' path jerks give a lower
+        // bound (`soft::corner_jerk`).
+        let jerk = a.jerk.min(b.jerk);
         for i in 0..MAX_CHANNEL_AXES.min(self.limits.len()) {
             let jump = (tb[i] - ta[i]).abs();
             if jump > 1e-12 {
                 let lim = &self.limits[i];
                 v = v.min((lim.accel_overload - 1.0) * lim.max_accel * self.dt / jump);
+                if jerk.is_finite() {
+                    v = v.min(soft::corner_jerk(jerk, ta[i], tb[i]) * self.dt * self.dt / jump);
+                }
             }
         }
         v

@@ -200,6 +200,7 @@ mod tests {
                 tag: 0,
                 machine_space: false,
                 axis_tangents: None,
+                jerk: f64::INFINITY,
             }
         };
         let held = Held {

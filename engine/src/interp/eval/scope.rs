@@ -369,6 +369,11 @@ fn g_group_index(m: &Modal, h: &crate::interp::tools::toolholder::Holder, group:
             });
         }
         52 => return Some(if h.parot { 1 } else { 2 }),
+        // Group 21: BRISK 1, SOFT 2, DRIVE 3. Group 24: FFWOF 1, FFWON 2. Group 59: DYNNORM 1,
+        // DYNPOS 2, DYNROUGH 3, DYNSEMIFIN 4, DYNFINISH 5.
+        21 => return Some(m.dynamics.profile as i64 + 1),
+        24 => return Some(i64::from(m.dynamics.ffw) + 1),
+        59 => return Some(m.dynamics.mode as i64 + 1),
         53 => return Some(h.g53),
         _ => {}
     }
