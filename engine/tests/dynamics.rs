@@ -76,3 +76,95 @@ fn brisk_has_the_acceleration_steps_soft_removes() {
     assert!((extra - 0.1081).abs() <= 3.0 * DT, "SOFT took {extra} s more");
 }
 
+
+/// Runs `program` and returns the channel with the setpoint and the actual value (the servo
+/// model) of X and Y in every IPO cycle, stepping on for 0.4 s after the end so the actual
+/// value settles.
+fn run_servo(md: &str, program: &str) -> (Channel, Vec<[f64; 2]>, Vec<[f64; 2]>) {
+    let mut ch = Channel::from_preset("mill-3axis", md).unwrap();
+    ch.run_program(program).unwrap();
+    let (mut set, mut act) = (Vec::new(), Vec::new());
+    let mut after = 0;
+    while after < 100 {
+        ch.step();
+        if !ch.is_busy() {
+            after += 1;
+        }
+        let p = ch.axis_positions();
+        set.push([p[0], p[1]]);
+        act.push([ch.servo().actual(0), ch.servo().actual(1)]);
+        assert!(set.len() < 100_000);
+    }
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
+    (ch, set, act)
+}
+
+/// The smallest distance of point `c` from the polyline through `pts`.
+fn distance_to_polyline(c: [f64; 2], pts: &[[f64; 2]]) -> f64 {
+    pts.windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let len2 = dx * dx + dy * dy;
+            let t = if len2 > 0.0 { (((c[0] - a[0]) * dx + (c[1] - a[1]) * dy) / len2).clamp(0.0, 1.0) } else { 0.0 };
+            ((a[0] + t * dx - c[0]).powi(2) + (a[1] + t * dy - c[1]).powi(2)).sqrt()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The corner at full speed: MD32310 = 10 lets X stop and Y start within one cycle (the jump
+/// of 83.3 mm/s per axis needs (10 − 1)·3000 mm/s²·4 ms = 108 mm/s ≥ 83.3), so the setpoint
+/// turns the corner at F5000 without slowing down.
+const CORNER_MD: &str = "$MA_MAX_ACCEL_OVL_FACTOR[X]=10\n$MA_MAX_ACCEL_OVL_FACTOR[Y]=10\n";
+const CORNER: &str = "G64 G1 X100 F5000\nY100\nM30";
+
+#[test]
+fn without_feed_forward_the_actual_path_cuts_the_corner_as_a_first_order_lag_does() {
+    // The 3-axis preset: Kv = 1 (m/min)/mm (MD32200 default), i.e. Kv = 1000/60 = 16.67 1/s.
+    // At F5000 = 83.33 mm/s the steady following error is v/Kv = 5 mm (5 m/min at 1 m/min
+    // per mm). Put the corner at the origin and t = 0 where the setpoint passes it: X actual
+    // is -5 mm then and decays, x(t) = -d·e^(-Kv·t) with d = v/Kv = 5 mm; Y follows a ramp
+    // from rest, y(t) = v·t − d·(1 − e^(-Kv·t)). With u = e^(-Kv·t): x = -d·u,
+    // y = d·(u − 1 − ln u). The squared distance from the corner, d²·(u² + (u − 1 − ln u)²),
+    // is smallest where 2u + 2(u − 1 − ln u)(1 − 1/u) = 0: u = 0.4150 (t = 52.8 ms), where
+    // it is d·0.50886 = 2.5443 mm. The actual path passes the corner at that distance.
+    let (ch, set, act) = run_servo(CORNER_MD, &format!("FFWOF\n{CORNER}"));
+    assert!((ch.config().axis(0).dynamics.kv - 1000.0 / 60.0).abs() < 1e-12);
+    // Steady state before the corner: setpoint minus actual is 5 mm.
+    // (At X95, 1.1 s or 18 time constants after the start, within 1e-6 mm of it.)
+    let mid = set.iter().position(|p| p[0] >= 95.0).unwrap();
+    assert!((set[mid][0] - act[mid][0] - 5.0).abs() < 1e-6, "{}", set[mid][0] - act[mid][0]);
+    // Sampling shortens it a little: the setpoint's cycle across the corner is a chord
+    // (≈ 0.1 mm inside the corner for 4 ms, of which the loop passes on Kv·dt = 7 %), and the
+    // chords between the actual samples (0.33 mm on a curve of ≈ 2.5 mm radius, sagitta
+    // 0.33²/(8·2.5) = 0.005 mm) lie inside the curve: 0.02 mm allowed.
+    let cut = distance_to_polyline([100.0, 0.0], &act);
+    assert!((cut - 2.5443).abs() < 0.02, "the actual path passes the corner at {cut} mm");
+    // The setpoint's samples cut the corner only by the chord of the cycle that crosses it
+    // (0.33 mm long): far less. The actual value ends on the end point.
+    assert!(distance_to_polyline([100.0, 0.0], &set) < 0.2);
+    assert!((act.last().unwrap()[1] - 100.0).abs() < 1e-3);
+}
+
+#[test]
+fn with_feed_forward_the_actual_value_follows_the_setpoint() {
+    // FFWON (the presets' reset value, G group 24): the speed feed-forward cancels the
+    // position loop's lag, so the model's following error is zero and the corner is kept.
+    let (ch, set, act) = run_servo(CORNER_MD, CORNER);
+    assert_eq!(set, act);
+    assert!(ch.snapshot().gcodes.contains(&"FFWON".to_string()));
+}
+
+#[test]
+fn aa_im_reads_the_actual_value_and_aa_ipo_the_setpoint() {
+    // At the end of a block under FFWOF the setpoint has stopped at X100 while the actual
+    // value still creeps towards it: $AA_IM < $AA_IPO = 100 by less than the 5 mm of full
+    // speed. After a dwell of 2 s (33 time constants of 60 ms: e^-33 of a few mm is far
+    // below the model's 1 nm settling bound) both read 100.
+    let (ch, ..) =
+        run_servo("", "FFWOF G1 X100 F5000\nR1=$AA_IM[X] R2=$AA_IPO[X]\nG4 F2\nR3=$AA_IM[X] R4=$VA_IM[X]\nM30");
+    let (r1, r2, r3, r4) = (ch.r_param(1), ch.r_param(2), ch.r_param(3), ch.r_param(4));
+    assert_eq!(r2, 100.0);
+    assert!(r1 < 100.0 && r1 > 95.0, "$AA_IM {r1}");
+    assert!(r3 == 100.0 && r4 == r3, "{r3} {r4}");
+}

@@ -21,6 +21,7 @@ mod repos_approach;
 mod repos_modes;
 mod resume;
 mod search;
+pub mod servo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
@@ -268,6 +269,8 @@ pub struct Channel {
     ori_memo: crate::kinematics::AngleMemo,
     /// The online tool length offset reached by the main run (`$AA_TOFF`).
     toff: toff::OnlineOffset,
+    /// The axes' position loops: actual values and following errors.
+    servo: servo::Servo,
 }
 
 impl Channel {
@@ -295,6 +298,7 @@ impl Channel {
         let cfg = Arc::new(cfg);
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg);
+        let servo = servo::Servo::new(&cfg, &[0.0; MAX_CHANNEL_AXES]);
         let referenced = reference::initial_state(&data, &cfg);
         let mut ch = Channel {
             interp: Interpreter::new(&cfg),
@@ -336,6 +340,7 @@ impl Channel {
             trafo_tag: None,
             ori_memo: Default::default(),
             toff: Default::default(),
+            servo,
             referenced,
             referencing: None,
         };
@@ -348,6 +353,7 @@ impl Channel {
     /// displayed offsets and the transformation in line with it (power on, restore, new data).
     fn place_axes(&mut self, pos: AxisVec) {
         self.machine = pos;
+        self.servo.place(&pos);
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();
         self.adopt_transformation();
@@ -617,6 +623,7 @@ impl Channel {
             self.cfg = Arc::new(cfg);
         }
         let pos = self.machine;
+        self.servo = servo::Servo::new(&self.cfg, &pos);
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();
         self.adopt_transformation();
@@ -669,6 +676,10 @@ impl Channel {
         }
         self.planner.step();
         self.update_machine_position();
+        self.servo.step(&self.machine, self.offsets.gcodes.ffw_on());
+        if let Some(lag) = self.servo.take_changed() {
+            self.interp.observe_following_error(lag);
+        }
         self.retire_finished_moves();
         if self.jog.is_some() {
             self.finish_jog_if_done();
@@ -721,6 +732,11 @@ impl Channel {
     /// level being prepared or globally.
     pub fn variable(&self, name: &str, index: usize) -> Option<crate::interp::eval::value::Value> {
         self.interp.variables().get(&name.to_ascii_uppercase()).and_then(|v| v.data.get(index).cloned())
+    }
+
+    /// The position loops of the channel axes: actual values and following errors.
+    pub fn servo(&self) -> &servo::Servo {
+        &self.servo
     }
 
     /// Interpolated positions of the channel axes (machine coordinates, channel order); cheap

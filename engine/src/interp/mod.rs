@@ -166,6 +166,8 @@ pub struct Interpreter {
     modal: Modal,
     /// Programmed end position of the last block in channel-axis (machine) coordinates.
     pos: AxisVec,
+    /// The main run's following errors per channel axis (`$AA_IM` = setpoint − error).
+    lag: AxisVec,
     /// Offsets in effect; tracked, so that items share them while no block changes them.
     offsets: Tracked<Offsets>,
     /// `offsets` as last handed out with an item (see [`Interpreter::shared_offsets`]).
@@ -222,6 +224,7 @@ impl Interpreter {
         Interpreter {
             modal: Modal::reset(cfg),
             pos: [0.0; MAX_CHANNEL_AXES],
+            lag: [0.0; MAX_CHANNEL_AXES],
             offsets: Tracked::new(Offsets::default()),
             published: published::Published::default(),
             vars: Variables::default(),
@@ -315,6 +318,12 @@ impl Interpreter {
     /// Sets the programmed position after motion outside programs (JOG).
     pub fn sync_position(&mut self, pos: &AxisVec) {
         self.pos = *pos;
+    }
+
+    /// The main run's following errors (setpoint − actual per channel axis), which `$AA_IM`
+    /// subtracts from the setpoint.
+    pub fn observe_following_error(&mut self, lag: &AxisVec) {
+        self.lag = *lag;
     }
 
     /// Number of subprogram levels below the main program being prepared (0: the main program).
