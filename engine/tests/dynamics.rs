@@ -85,7 +85,7 @@ fn run_servo(md: &str, program: &str) -> (Channel, Vec<[f64; 2]>, Vec<[f64; 2]>)
     ch.run_program(program).unwrap();
     let (mut set, mut act) = (Vec::new(), Vec::new());
     let mut after = 0;
-    while after < 100 {
+    while after < 500 {
         ch.step();
         if !ch.is_busy() {
             after += 1;
