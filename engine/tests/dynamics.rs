@@ -168,3 +168,87 @@ fn aa_im_reads_the_actual_value_and_aa_ipo_the_setpoint() {
     assert!(r1 < 100.0 && r1 > 95.0, "$AA_IM {r1}");
     assert!(r3 == 100.0 && r4 == r3, "{r3} {r4}");
 }
+
+/// Cycles of a 100 mm X move at F6000 (100 mm/s) after `words`, and the largest sampled
+/// acceleration of X while it speeds up (the first half; the cycle that ends the move at its
+/// end point stops short of a whole cycle's travel).
+fn line_time(md: &str, words: &str) -> (f64, f64) {
+    let (_, s) = run(md, &format!("{words}\nG1 X100 F6000\nM30"));
+    ((s.len() - 1) as f64 * DT, max_abs(&diff(&s[..s.len() / 2], 2), 0))
+}
+
+/// X: DYNNORM 3 m/s² (the preset), DYNROUGH 2 m/s², DYNFINISH 0.5 m/s².
+const DYN_MD: &str = "$MA_MAX_AX_ACCEL[2,X]=2\n$MA_MAX_AX_ACCEL[4,AX1]=0.5\n";
+
+#[test]
+fn the_dynamic_response_modes_pick_their_accelerations() {
+    // BRISK trapezoid: t = L/v + v/a. DYNNORM (a = 3000 mm/s²): 1 + 100/3000 = 1.0333 s;
+    // DYNROUGH (2000): 1 + 0.05 = 1.05 s; DYNFINISH (500): 1 + 0.2 = 1.2 s. The sampled
+    // acceleration is a itself (each ramp cycle adds a·dt to the velocity).
+    for (words, t, a) in [("DYNNORM", 1.0333, 3000.0), ("DYNROUGH", 1.05, 2000.0), ("DYNFINISH", 1.2, 500.0)] {
+        let (time, acc) = line_time(DYN_MD, words);
+        assert!((time - t).abs() <= 2.0 * DT, "{words}: {time} s");
+        assert!((acc - a).abs() <= 1e-6 * a, "{words}: {acc} mm/s²");
+    }
+    // DYNPOS and DYNSEMIFIN keep the registry default of 1 m/s² (not set here).
+    let (time, acc) = line_time(DYN_MD, "DYNSEMIFIN");
+    assert!((time - 1.1).abs() <= 2.0 * DT && (acc - 1000.0).abs() < 1e-6, "{time} {acc}");
+}
+
+#[test]
+fn acc_and_velolim_scale_the_axis_limits_and_zero_restores_them() {
+    // ACC[X]=50: 1500 mm/s², 1 + 100/1500 = 1.0667 s. ACC[X]=0 is 100 % again.
+    let (time, acc) = line_time("", "ACC[X]=50");
+    assert!((time - 1.0667).abs() <= 2.0 * DT && (acc - 1500.0).abs() < 1e-6, "{time} {acc}");
+    let (time, _) = line_time("", "ACC[X]=50\nACC[X]=0");
+    assert!((time - 1.0333).abs() <= 2.0 * DT, "{time}");
+    // VELOLIM[X]=10 on the preset's 30 m/min: G0 runs at 3 m/min = 50 mm/s: 100 mm in
+    // 2 s + 50/3000 s of ramp.
+    let (_, s) = run("", "VELOLIM[X]=10\nG0 X100\nM30");
+    let t = (s.len() - 1) as f64 * DT;
+    assert!((t - 2.0167).abs() <= 2.0 * DT, "{t}");
+    assert!(max_abs(&diff(&s, 1), 0) <= 50.0 + 1e-9);
+}
+
+#[test]
+fn the_dynamics_g_groups_read_in_p_gg_and_show_in_the_state() {
+    // Group 21: BRISK 1, SOFT 2, DRIVE 3; group 24: FFWOF 1, FFWON 2; group 59: DYNNORM 1 ..
+    // DYNFINISH 5. The presets reset to BRISK, FFWON, DYNNORM.
+    let (ch, _) = run("", "R1=$P_GG[21] R2=$P_GG[24] R3=$P_GG[59]\nSOFT FFWOF DYNFINISH\nR4=$P_GG[21] R5=$P_GG[24] R6=$P_GG[59]\nDRIVE DYNSEMIFIN\nR7=$P_GG[21] R8=$P_GG[59]\nG1 X1 F100\nM0\nM30");
+    let r: Vec<f64> = (1..=8).map(|n| ch.r_param(n)).collect();
+    assert_eq!(r, [1.0, 2.0, 1.0, 2.0, 1.0, 5.0, 3.0, 4.0]);
+    let g = ch.snapshot().gcodes;
+    for name in ["DRIVE", "FFWOF", "DYNSEMIFIN"] {
+        assert!(g.contains(&name.to_string()), "{g:?}");
+    }
+}
+
+#[test]
+fn bad_dynamics_words_give_alarms_with_their_line() {
+    for (program, number) in [
+        ("G1 X1 F100\nACC[X]=250\nM30", 12560),
+        ("VELOLIM[X]=101\nM30", 12560),
+        ("ACC[Q]=50\nM30", 12550),
+        ("JERKLIM[X,Y]=50\nM30", 17020),
+    ] {
+        let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+        ch.run_program(program).unwrap();
+        while ch.is_busy() {
+            ch.step();
+        }
+        let alarms = ch.snapshot().alarms;
+        let line = if program.starts_with("G1") { 2 } else { 1 };
+        assert!(alarms.iter().any(|a| a.number == number && a.line == Some(line)), "{program}: {alarms:?}");
+    }
+}
+
+#[test]
+fn per_mode_machine_data_takes_a_mode_index_and_the_axis() {
+    // `$MA_MAX_AX_ACCEL[X]` is element 0 (DYNNORM); element 5 does not exist.
+    let ch = Channel::from_preset("mill-3axis", "$MA_MAX_AX_ACCEL[1,X]=2\n$MA_MAX_AX_JERK[3,Y]=50").unwrap();
+    let d = &ch.config().axis(0).dynamics;
+    assert_eq!(d.accel, [3000.0, 2000.0, 1000.0, 1000.0, 1000.0]);
+    assert_eq!(ch.config().axis(1).dynamics.jerk[3], 50_000.0);
+    let err = Channel::from_preset("mill-3axis", "\n$MA_MAX_AX_ACCEL[5,X]=2").err().unwrap();
+    assert_eq!(err.line, Some(2), "{err:?}");
+}

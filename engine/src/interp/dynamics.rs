@@ -153,27 +153,21 @@ pub struct DynWords {
 }
 
 impl DynWords {
-    /// Takes a keyword of groups 21, 24, 59; false if `name` is none of them. A second
-    /// function of the same group in one block is alarm 12070 (conflicting functions).
-    pub(super) fn keyword(&mut self, name: &str, line: u32) -> Result<bool, Alarm> {
-        fn set<T>(slot: &mut Option<T>, v: T, line: u32, group: &str) -> Result<bool, Alarm> {
-            if slot.is_some() {
-                return Err(Alarm::conflicting_functions(line, group));
-            }
-            *slot = Some(v);
-            Ok(true)
-        }
+    /// Takes a keyword of groups 21, 24, 59; false if `name` is none of them. Of two
+    /// functions of one group in a block the last one holds, as for every G group here.
+    pub(super) fn keyword(&mut self, name: &str) -> bool {
         match name {
-            "BRISK" => set(&mut self.profile, Profile::Brisk, line, "BRISK/SOFT/DRIVE"),
-            "SOFT" => set(&mut self.profile, Profile::Soft, line, "BRISK/SOFT/DRIVE"),
-            "DRIVE" => set(&mut self.profile, Profile::Drive, line, "BRISK/SOFT/DRIVE"),
-            "FFWON" => set(&mut self.ffw, true, line, "FFWON/FFWOF"),
-            "FFWOF" => set(&mut self.ffw, false, line, "FFWON/FFWOF"),
+            "BRISK" => self.profile = Some(Profile::Brisk),
+            "SOFT" => self.profile = Some(Profile::Soft),
+            "DRIVE" => self.profile = Some(Profile::Drive),
+            "FFWON" => self.ffw = Some(true),
+            "FFWOF" => self.ffw = Some(false),
             _ => match DYN_MODE_NAMES.iter().position(|n| *n == name) {
-                Some(m) => set(&mut self.mode, m, line, "DYNNORM..DYNFINISH"),
-                None => Ok(false),
+                Some(m) => self.mode = Some(m),
+                None => return false,
             },
         }
+        true
     }
 
     /// `ACC[axis]=value` and its kin: checks the axis and the range (alarm 12560 outside

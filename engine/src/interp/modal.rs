@@ -476,7 +476,7 @@ pub(super) fn collect(
                     _ => PtpMode::PtpWoc,
                 });
             }
-            Word::Keyword { name, args } if args.is_empty() && w.dynamics.keyword(name, line)? => {}
+            Word::Keyword { name, args } if args.is_empty() && w.dynamics.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && holder_keyword(w, name, line)? => {}
             Word::Keyword { name, args } if name == "CYCLE800" => {
                 if w.swivel.is_some() {
