@@ -252,3 +252,54 @@ fn per_mode_machine_data_takes_a_mode_index_and_the_axis() {
     let err = Channel::from_preset("mill-3axis", "\n$MA_MAX_AX_ACCEL[5,X]=2").err().unwrap();
     assert_eq!(err.line, Some(2), "{err:?}");
 }
+
+const UNCHANGED_PROGRAMS: [(&str, &str); 3] = [
+    ("mill-3axis", "G0 X10 Y10 Z5\nG64 G1 Z-1 F500\nG2 X30 Y10 CR=10 F1200\nG3 X10 Y10 I-10 J0\nG1 X0 Y0 Z2\nG60 X50 Y-20\nTRANS X5 Y5\nAROT Z30\nG64 G1 X20 Y0 F3000\nX21 Y0.5\nX22 Y0.7\nX23 Y0.6\nX40 Y20\nG0 Z50\nM30"),
+    ("mill-3axis", "G91 G64 F8000\nG1 X1 Y0.2\nX1 Y0.3\nX1 Y0.1\nX1 Y-0.2\nX1 Y-0.4\nX1 Y0\nX0.5 Y0.5\nG90 G0 X0 Y0\nM30"),
+    ("mill5-table-ac", "TRAORI\nG0 X10 Y10 Z50 A0 C0\nG1 X20 A10 C45 F2000\nG64 X30 Y5 A20 C90\nTRAFOOF\nM30"),
+];
+
+fn fingerprint(preset: &str, program: &str) -> (usize, u64, Vec<f64>) {
+    let mut ch = Channel::from_preset(preset, "").unwrap();
+    ch.run_program(program).unwrap();
+    let mut hash: u64 = 0xcbf29ce484222325;
+    let mut n = 0;
+    let mut picks = Vec::new();
+    loop {
+        for p in ch.axis_positions() {
+            for b in p.to_bits().to_le_bytes() {
+                hash = (hash ^ u64::from(b)).wrapping_mul(0x100000001b3);
+            }
+        }
+        if n % 97 == 13 && picks.len() < 6 {
+            picks.push(ch.axis_positions()[0]);
+        }
+        n += 1;
+        if !ch.is_busy() {
+            break;
+        }
+        ch.step();
+    }
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
+    (n, hash, picks)
+}
+
+/// Programs without any dynamics word, and what commit f728866 (before G groups 21, 24 and
+/// 59 existed) gave for them: the number of IPO samples, the FNV-1a hash of every channel
+/// axis' setpoint bits in every cycle, and X of a few samples.
+#[allow(clippy::type_complexity, reason = "a table of literal expectations")]
+const UNCHANGED_TRACES: [(usize, u64, &[f64]); 3] = [
+    (2321, 0x257c45cc40d7dd47, &[4.367999999999999, 10.0, 10.0, 12.63570671352037, 19.482460893713807, 26.625536270009462]),
+    (85, 0x7fa099fbd27cdc7a, &[1.7315852079504221]),
+    (276, 0xafddf6c862afd738, &[1.2479999998293931, 18.39289957750375, 18.27827082332505]),
+];
+
+#[test]
+fn programs_without_dynamics_words_run_bit_for_bit_as_before() {
+    // The presets reset to BRISK, DYNNORM with MD32300[0] and FFWON: the moves keep their
+    // limits and the fast lane, the trapezoid profile is untouched.
+    for ((preset, program), (n, hash, picks)) in UNCHANGED_PROGRAMS.iter().zip(UNCHANGED_TRACES) {
+        let (got_n, got_hash, got_picks) = fingerprint(preset, program);
+        assert_eq!((got_n, got_hash, got_picks.as_slice()), (n, hash, picks), "{preset}: {program}");
+    }
+}
