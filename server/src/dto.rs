@@ -1049,6 +1049,11 @@ mod tests {
                 basic: AxisValues::default(),
                 workpiece: AxisValues::default(),
             },
+            servo: ServoInfo {
+                setpoint: AxisValues(vec![("Z".into(), 3.0), ("A".into(), 1.0)]),
+                actual: AxisValues(vec![("Z".into(), 2.5), ("A".into(), 1.0)]),
+                following_error: AxisValues(vec![("Z".into(), 0.5), ("A".into(), 0.0)]),
+            },
             orientation: None,
             transformation: None,
             block: None,
@@ -1080,6 +1085,7 @@ mod tests {
         assert_eq!(v["status"], "idle");
         assert_eq!(v["mode"], "AUTO");
         assert_eq!(v["positions"]["machine"]["Z"], 3.0);
+        assert_eq!(v["servo"]["following_error"]["Z"], 0.5);
     }
 
     #[test]

@@ -26,7 +26,8 @@ const REFINE: usize = 12;
 pub(super) fn stop_distance(v: f64, acc: f64, v_to: f64, a: f64, j: f64) -> f64 {
     // Velocity to lose plus what the acceleration adds while it is ramped down to zero.
     let excess = v - v_to + acc * acc.abs() / (2.0 * j);
-    let mut p = (j * excess.max(0.0)).sqrt();
+    // (An infinite jerk, a BRISK move ahead, gives the trapezoid's distance.)
+    let mut p = if excess > 0.0 { (j * excess).sqrt() } else { 0.0 };
     let mut hold = 0.0;
     if p > a {
         p = a;
@@ -76,15 +77,20 @@ impl Planner {
         let (lo, hi) = ((self.acc - j * dt).max(-a), (self.acc + j * dt).min(a));
         // Above the jerk's reach of ±a (a lowered acceleration): back within it at once.
         let (lo, hi) = if lo > hi { (hi.min(a).max(-a), hi.min(a).max(-a)) } else { (lo, hi) };
-        let acc = if self.soft_safe(hi, target) {
+        // No transition farther than the longest stop any candidate needs (with the smallest
+        // acceleration and jerk queued) can bind: the checks look no farther.
+        let (a_min, j_min) = self.queue.iter().fold((f64::INFINITY, f64::INFINITY), |(a, j), m| (a.min(m.a_max), j.min(m.jerk)));
+        let v_hi = self.v + hi.max(0.0) * dt;
+        let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, a_min, j_min) + v_hi * dt;
+        let acc = if self.soft_safe(hi, target, horizon) {
             hi
-        } else if !self.soft_safe(lo, target) {
+        } else if !self.soft_safe(lo, target, horizon) {
             lo
         } else {
             let (mut ok, mut bad) = (lo, hi);
             for _ in 0..REFINE {
                 let mid = 0.5 * (ok + bad);
-                if self.soft_safe(mid, target) {
+                if self.soft_safe(mid, target, horizon) {
                     ok = mid;
                 } else {
                     bad = mid;
@@ -116,8 +122,9 @@ impl Planner {
     }
 
     /// True when the path, accelerating with `acc` this cycle, can still keep the velocity
-    /// target and brake to every planned transition speed ahead with its jerk.
-    fn soft_safe(&self, acc: f64, target: f64) -> bool {
+    /// target and brake to every planned transition speed ahead with its jerk (those within
+    /// `horizon` of the position after this cycle: no stop is longer).
+    fn soft_safe(&self, acc: f64, target: f64, horizon: f64) -> bool {
         let dt = self.dt;
         let front = &self.queue[0];
         let j_front = front.jerk;
@@ -147,7 +154,7 @@ impl Planner {
             {
                 return false;
             }
-            if v_end == 0.0 {
+            if v_end == 0.0 || distance - reserve > horizon {
                 break;
             }
         }
