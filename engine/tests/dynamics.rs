@@ -76,7 +76,6 @@ fn brisk_has_the_acceleration_steps_soft_removes() {
     assert!((extra - 0.1081).abs() <= 3.0 * DT, "SOFT took {extra} s more");
 }
 
-
 /// Runs `program` and returns the channel with the setpoint and the actual value (the servo
 /// model) of X and Y in every IPO cycle, stepping on for 0.4 s after the end so the actual
 /// value settles.
@@ -214,7 +213,10 @@ fn acc_and_velolim_scale_the_axis_limits_and_zero_restores_them() {
 fn the_dynamics_g_groups_read_in_p_gg_and_show_in_the_state() {
     // Group 21: BRISK 1, SOFT 2, DRIVE 3; group 24: FFWOF 1, FFWON 2; group 59: DYNNORM 1 ..
     // DYNFINISH 5. The presets reset to BRISK, FFWON, DYNNORM.
-    let (ch, _) = run("", "R1=$P_GG[21] R2=$P_GG[24] R3=$P_GG[59]\nSOFT FFWOF DYNFINISH\nR4=$P_GG[21] R5=$P_GG[24] R6=$P_GG[59]\nDRIVE DYNSEMIFIN\nR7=$P_GG[21] R8=$P_GG[59]\nG1 X1 F100\nM0\nM30");
+    let (ch, _) = run(
+        "",
+        "R1=$P_GG[21] R2=$P_GG[24] R3=$P_GG[59]\nSOFT FFWOF DYNFINISH\nR4=$P_GG[21] R5=$P_GG[24] R6=$P_GG[59]\nDRIVE DYNSEMIFIN\nR7=$P_GG[21] R8=$P_GG[59]\nG1 X1 F100\nM0\nM30",
+    );
     let r: Vec<f64> = (1..=8).map(|n| ch.r_param(n)).collect();
     assert_eq!(r, [1.0, 2.0, 1.0, 2.0, 1.0, 5.0, 3.0, 4.0]);
     let g = ch.snapshot().gcodes;
@@ -254,8 +256,14 @@ fn per_mode_machine_data_takes_a_mode_index_and_the_axis() {
 }
 
 const UNCHANGED_PROGRAMS: [(&str, &str); 3] = [
-    ("mill-3axis", "G0 X10 Y10 Z5\nG64 G1 Z-1 F500\nG2 X30 Y10 CR=10 F1200\nG3 X10 Y10 I-10 J0\nG1 X0 Y0 Z2\nG60 X50 Y-20\nTRANS X5 Y5\nAROT Z30\nG64 G1 X20 Y0 F3000\nX21 Y0.5\nX22 Y0.7\nX23 Y0.6\nX40 Y20\nG0 Z50\nM30"),
-    ("mill-3axis", "G91 G64 F8000\nG1 X1 Y0.2\nX1 Y0.3\nX1 Y0.1\nX1 Y-0.2\nX1 Y-0.4\nX1 Y0\nX0.5 Y0.5\nG90 G0 X0 Y0\nM30"),
+    (
+        "mill-3axis",
+        "G0 X10 Y10 Z5\nG64 G1 Z-1 F500\nG2 X30 Y10 CR=10 F1200\nG3 X10 Y10 I-10 J0\nG1 X0 Y0 Z2\nG60 X50 Y-20\nTRANS X5 Y5\nAROT Z30\nG64 G1 X20 Y0 F3000\nX21 Y0.5\nX22 Y0.7\nX23 Y0.6\nX40 Y20\nG0 Z50\nM30",
+    ),
+    (
+        "mill-3axis",
+        "G91 G64 F8000\nG1 X1 Y0.2\nX1 Y0.3\nX1 Y0.1\nX1 Y-0.2\nX1 Y-0.4\nX1 Y0\nX0.5 Y0.5\nG90 G0 X0 Y0\nM30",
+    ),
     ("mill5-table-ac", "TRAORI\nG0 X10 Y10 Z50 A0 C0\nG1 X20 A10 C45 F2000\nG64 X30 Y5 A20 C90\nTRAFOOF\nM30"),
 ];
 
@@ -289,7 +297,11 @@ fn fingerprint(preset: &str, program: &str) -> (usize, u64, Vec<f64>) {
 /// axis' setpoint bits in every cycle, and X of a few samples.
 #[allow(clippy::type_complexity, reason = "a table of literal expectations")]
 const UNCHANGED_TRACES: [(usize, u64, &[f64]); 3] = [
-    (2321, 0x257c45cc40d7dd47, &[4.367999999999999, 10.0, 10.0, 12.63570671352037, 19.482460893713807, 26.625536270009462]),
+    (
+        2321,
+        0x257c45cc40d7dd47,
+        &[4.367999999999999, 10.0, 10.0, 12.63570671352037, 19.482460893713807, 26.625536270009462],
+    ),
     (85, 0x7fa099fbd27cdc7a, &[1.7315852079504221]),
     (276, 0xafddf6c862afd738, &[1.2479999998293931, 18.39289957750375, 18.27827082332505]),
 ];

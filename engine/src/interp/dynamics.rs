@@ -188,9 +188,8 @@ impl DynWords {
             return Err(Alarm::index_error(line, name, "needs one axis name"));
         };
         let axis_name = eval(index, &Ctx { vars, sys }, line)?.as_text().to_ascii_uppercase();
-        let k = cfg
-            .program_axis(&axis_name)
-            .ok_or_else(|| Alarm::unknown_name(line, &format!("{name}[{axis_name}]")))?;
+        let k =
+            cfg.program_axis(&axis_name).ok_or_else(|| Alarm::unknown_name(line, &format!("{name}[{axis_name}]")))?;
         let v = eval_f64(value, &Ctx { vars, sys }, line)?;
         if !(0.0..=which.max()).contains(&v) {
             return Err(Alarm::value_out_of_range(line, &format!("{name}[{axis_name}]={v} (0..{})", which.max())));

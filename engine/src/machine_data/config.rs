@@ -322,10 +322,8 @@ impl MachineConfig {
             corr_limits: Default::default(),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
-            dynamics: super::dynamics::ChannelDynamics::read(md).map_err(|m| ActivationError {
-                datum: Some("GCODE_RESET_VALUES"),
-                message: m,
-            })?,
+            dynamics: super::dynamics::ChannelDynamics::read(md)
+                .map_err(|m| ActivationError { datum: Some("GCODE_RESET_VALUES"), message: m })?,
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

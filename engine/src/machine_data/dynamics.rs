@@ -45,9 +45,8 @@ impl AxisDynamics {
     /// Reads the data of machine axis `ax`; `accel_unit`/`jerk_unit` convert the control's
     /// m/s² and m/s³ (rev/s², rev/s³ for rotary axes) into engine units.
     pub(super) fn read(md: &MachineData, ax: usize, accel_unit: f64) -> AxisDynamics {
-        let per_mode = |name: &str, unit: f64| -> [f64; DYN_MODES] {
-            std::array::from_fn(|n| md.num(name, ax, n) * unit)
-        };
+        let per_mode =
+            |name: &str, unit: f64| -> [f64; DYN_MODES] { std::array::from_fn(|n| md.num(name, ax, n) * unit) };
         AxisDynamics {
             accel: per_mode("$MA_MAX_AX_ACCEL", accel_unit),
             overload: per_mode("$MA_MAX_ACCEL_OVL_FACTOR", 1.0),
