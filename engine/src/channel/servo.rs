@@ -89,8 +89,8 @@ impl Servo {
     /// One IPO cycle: the axes' new setpoints and the executing block's FFWON/FFWOF.
     pub fn step(&mut self, setpoint: &AxisVec, ffw_program: bool) {
         let mut settled = true;
-        for k in 0..self.axes {
-            let step = setpoint[k] - self.setpoint[k];
+        for (k, (&to, &from)) in setpoint.iter().zip(&self.setpoint).enumerate().take(self.axes) {
+            let step = to - from;
             let wanted = self.ffw_wanted(k, ffw_program);
             if wanted != self.ffw[k] && (self.ffw_activation[k] != 2 || step == 0.0) {
                 self.ffw[k] = wanted;
