@@ -91,7 +91,7 @@ fn run_servo(md: &str, program: &str) -> (Channel, Vec<[f64; 2]>, Vec<[f64; 2]>)
         }
         let p = ch.axis_positions();
         set.push([p[0], p[1]]);
-        act.push([ch.servo().actual(0), ch.servo().actual(1)]);
+        act.push([ch.actual_position(0), ch.actual_position(1)]);
         assert!(set.len() < 100_000);
     }
     assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);

@@ -734,9 +734,15 @@ impl Channel {
         self.interp.variables().get(&name.to_ascii_uppercase()).and_then(|v| v.data.get(index).cloned())
     }
 
-    /// The position loops of the channel axes: actual values and following errors.
+    /// The position loops of the channel axes: following errors.
     pub fn servo(&self) -> &servo::Servo {
         &self.servo
+    }
+
+    /// Actual value of channel axis `k` (machine coordinates): the setpoint of
+    /// [`Channel::axis_positions`] less the following error.
+    pub fn actual_position(&self, k: usize) -> f64 {
+        self.machine[k] - self.servo.following_error(k)
     }
 
     /// Interpolated positions of the channel axes (machine coordinates, channel order); cheap

@@ -432,6 +432,7 @@ impl Planner {
         };
         let a = front.a_max;
         let cap = front.capped(self.feed_override, self.rapid_override);
+        let remaining = front.length - self.s;
         // Above the cap (override lowered) the path brakes at the axes' deceleration.
         let mut v_new = if front.jerk.is_finite() {
             self.soft_velocity(cap)
@@ -443,13 +444,14 @@ impl Planner {
             } else {
                 (self.v + a * dt).min(cap)
             };
-            self.acc = 0.0;
+            if self.acc != 0.0 {
+                // SOFT's state: a later SOFT move starts from constant velocity.
+                self.acc = 0.0;
+            }
             self.brake_limited(v_new)
         };
-        let front = &self.queue[0];
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
-        let remaining = front.length - self.s;
         if self.queue.len() > 1 && v_new * dt >= remaining && v_new > self.v_end[0] {
             v_new = self.v_end[0].max(self.v - a * dt).max(remaining / dt).min(v_new);
         }
