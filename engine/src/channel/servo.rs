@@ -159,7 +159,6 @@ impl Servo {
         &self.error
     }
 
-
     /// True when every following error is zero.
     pub fn is_settled(&self) -> bool {
         self.settled
