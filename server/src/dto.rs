@@ -251,6 +251,8 @@ pub struct State {
     /// IPO cycles since the session started.
     pub tick: u64,
     pub positions: Positions,
+    /// The position loop of every machine axis (the servo model).
+    pub servo: ServoInfo,
     /// Unit tool direction in the WCS, when known.
     pub orientation: Option<[f64; 3]>,
     /// The active kinematic transformation, if any.
@@ -318,6 +320,23 @@ pub struct Positions {
     /// WCS: as `basic`, after work offsets.
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub workpiece: AxisValues,
+}
+
+/// Setpoint, actual value and following error of every machine axis by machine axis name. The
+/// actual value follows the setpoint through a first-order position loop (Kv, MD32200): with
+/// FFWON (the presets' reset value) it equals the setpoint; with FFWOF it lags by the
+/// velocity over Kv. `positions.machine` keeps showing the setpoint.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct ServoInfo {
+    /// The interpolator's setpoint (`$AA_IPO`), the same values as `positions.machine`.
+    #[schema(value_type = std::collections::HashMap<String, f64>)]
+    pub setpoint: AxisValues,
+    /// The actual value (`$AA_IM`).
+    #[schema(value_type = std::collections::HashMap<String, f64>)]
+    pub actual: AxisValues,
+    /// Setpoint minus actual value.
+    #[schema(value_type = std::collections::HashMap<String, f64>)]
+    pub following_error: AxisValues,
 }
 
 /// Named values that serialize as a JSON object in their given order (the engine's axis order),
@@ -402,6 +421,11 @@ impl From<&Snapshot> for State {
                 machine: AxisValues(s.machine.clone()),
                 basic: AxisValues(s.basic.clone()),
                 workpiece: AxisValues(s.workpiece.clone()),
+            },
+            servo: ServoInfo {
+                setpoint: AxisValues(s.machine.clone()),
+                actual: AxisValues(s.actual.clone()),
+                following_error: AxisValues(s.following_error.clone()),
             },
             orientation: s.orientation,
             transformation: s.transformation.as_ref().map(Transformation::from),
@@ -1060,6 +1084,11 @@ mod tests {
                 basic: AxisValues::default(),
                 workpiece: AxisValues::default(),
             },
+            servo: ServoInfo {
+                setpoint: AxisValues(vec![("Z".into(), 3.0), ("A".into(), 1.0)]),
+                actual: AxisValues(vec![("Z".into(), 2.5), ("A".into(), 1.0)]),
+                following_error: AxisValues(vec![("Z".into(), 0.5), ("A".into(), 0.0)]),
+            },
             orientation: None,
             transformation: None,
             block: None,
@@ -1091,6 +1120,7 @@ mod tests {
         assert_eq!(v["status"], "idle");
         assert_eq!(v["mode"], "AUTO");
         assert_eq!(v["positions"]["machine"]["Z"], 3.0);
+        assert_eq!(v["servo"]["following_error"]["Z"], 0.5);
     }
 
     #[test]

@@ -176,13 +176,14 @@ mod tests {
 
     #[test]
     fn syntax_errors_are_400_with_their_line() {
-        let e: ApiError = CommandError::check("G1 X1\nX=(\nENDIF").unwrap_err().into();
+        let e: ApiError = CommandError::check("G1 X1\nX=(\nWHILE 1\nENDIF\nENDWHILE").unwrap_err().into();
         assert_eq!(e.status(), StatusCode::BAD_REQUEST);
         let body = e.body();
         assert_eq!(body.line, Some(2));
-        // Both errors, with their alarms: the unclosed parenthesis, then ENDIF without IF.
+        // Both errors, with their alarms: the unclosed parenthesis, then an ENDIF inside a WHILE
+        // without an IF (line 4).
         let found: Vec<(u32, u32)> = body.errors.iter().map(|e| (e.alarm, e.line)).collect();
-        assert_eq!(found, [(12080, 2), (12640, 3)]);
+        assert_eq!(found, [(12080, 2), (12640, 4)]);
     }
 
     #[test]

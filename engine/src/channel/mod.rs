@@ -22,6 +22,7 @@ mod repos_approach;
 mod repos_modes;
 mod resume;
 mod search;
+pub mod servo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
@@ -283,6 +284,8 @@ pub struct Channel {
     toff: toff::OnlineOffset,
     /// The digital inputs and outputs (`$A_IN`, `$A_OUT`; see `io.rs`).
     io: crate::interp::io::DigitalIo,
+    /// The axes' position loops: actual values and following errors.
+    servo: servo::Servo,
 }
 
 impl Channel {
@@ -310,6 +313,7 @@ impl Channel {
         let cfg = Arc::new(cfg);
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg, &data);
+        let servo = servo::Servo::new(&cfg, &[0.0; MAX_CHANNEL_AXES]);
         let referenced = reference::initial_state(&data, &cfg);
         let mut ch = Channel {
             interp: Interpreter::new(&cfg),
@@ -352,6 +356,7 @@ impl Channel {
             ori_memo: Default::default(),
             toff: Default::default(),
             io: Default::default(),
+            servo,
             referenced,
             referencing: None,
         };
@@ -365,6 +370,7 @@ impl Channel {
     /// displayed offsets and the transformation in line with it (power on, restore, new data).
     fn place_axes(&mut self, pos: AxisVec) {
         self.machine = pos;
+        self.servo.place(&pos);
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();
         self.adopt_transformation();
@@ -635,6 +641,7 @@ impl Channel {
             self.cfg = Arc::new(cfg);
         }
         let pos = self.machine;
+        self.servo = servo::Servo::new(&self.cfg, &pos);
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();
         self.adopt_transformation();
@@ -685,6 +692,10 @@ impl Channel {
         }
         self.planner.step();
         self.update_machine_position();
+        self.servo.step(&self.machine, self.offsets.gcodes.ffw_on());
+        if let Some(lag) = self.servo.take_changed() {
+            self.interp.observe_following_error(lag);
+        }
         self.retire_finished_moves();
         if self.jog.is_some() {
             self.finish_jog_if_done();
@@ -737,6 +748,17 @@ impl Channel {
     /// level being prepared or globally.
     pub fn variable(&self, name: &str, index: usize) -> Option<crate::interp::eval::value::Value> {
         self.interp.variables().get(&name.to_ascii_uppercase()).and_then(|v| v.data.get(index).cloned())
+    }
+
+    /// The position loops of the channel axes: following errors.
+    pub fn servo(&self) -> &servo::Servo {
+        &self.servo
+    }
+
+    /// Actual value of channel axis `k` (machine coordinates): the setpoint of
+    /// [`Channel::axis_positions`] less the following error.
+    pub fn actual_position(&self, k: usize) -> f64 {
+        self.machine[k] - self.servo.following_error(k)
     }
 
     /// Interpolated positions of the channel axes (machine coordinates, channel order); cheap

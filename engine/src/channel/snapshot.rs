@@ -34,8 +34,13 @@ pub struct Snapshot {
     /// Simulated seconds since the channel was created.
     pub time: f64,
     pub tick: u64,
-    /// MCS: every machine axis of the channel, by machine axis name.
+    /// MCS: every machine axis of the channel, by machine axis name: the interpolator's
+    /// setpoint (`$AA_IPO`).
     pub machine: Vec<(String, f64)>,
+    /// MCS actual values of the servo model (`$AA_IM`), as `machine`.
+    pub actual: Vec<(String, f64)>,
+    /// Following errors (setpoint − actual), as `machine`.
+    pub following_error: Vec<(String, f64)>,
     /// BCS: channel axes by program name (geometry axes first by their geometry names).
     pub basic: Vec<(String, f64)>,
     /// WCS: as `basic`, after work offsets.
@@ -95,6 +100,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         time: 0.0,
         tick: 0,
         machine: Vec::new(),
+        actual: Vec::new(),
+        following_error: Vec::new(),
         basic: Vec::new(),
         workpiece: Vec::new(),
         orientation: None,

@@ -66,6 +66,9 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     let by_machine = &mut by_machine[..n];
     by_machine.sort_unstable_by_key(|&k| (cfg.channel_axes[k].machine_axis, k));
     fill_named(&mut s.machine, by_machine.iter().map(|&k| (cfg.axis(k).name.as_str(), display(k, value(k)))));
+    let error = |k: usize| ch.servo.following_error(k);
+    fill_named(&mut s.actual, by_machine.iter().map(|&k| (cfg.axis(k).name.as_str(), display(k, value(k) - error(k)))));
+    fill_named(&mut s.following_error, by_machine.iter().map(|&k| (cfg.axis(k).name.as_str(), error(k))));
     fill_named(&mut s.referenced, by_machine.iter().map(|&k| (cfg.axis(k).name.as_str(), ch.referenced[k])));
 
     // BCS: with a transformation the forward map of the machine position (the tool tip), the

@@ -12,17 +12,18 @@ use super::orientation::words::{AngleDefinition, OriInterpolation, OriReference}
 #[derive(Debug, Clone, Copy, Eq, Default)]
 pub struct GCodes([u8; GROUPS.len()]);
 
-/// Compared once or twice per block: as one 128-bit number (the 16 groups fit exactly)
-/// rather than byte by byte.
+/// Compared once or twice per block: the first 16 groups as one 128-bit number, the rest
+/// byte by byte.
 impl PartialEq for GCodes {
     fn eq(&self, other: &GCodes) -> bool {
-        u128::from_ne_bytes(self.0) == u128::from_ne_bytes(other.0)
+        let wide = |g: &GCodes| u128::from_ne_bytes(g.0[..16].try_into().expect("16 groups"));
+        wide(self) == wide(other) && self.0[16..] == other.0[16..]
     }
 }
 
 /// The displayed groups in Operate's order: (group number, names by index). Group 8 (settable
 /// frame) is named from its number instead.
-const GROUPS: [(u8, &[&str]); 16] = [
+const GROUPS: [(u8, &[&str]); 19] = [
     (1, &["G0", "G1", "G2", "G3"]),
     (6, &["G17", "G18", "G19"]),
     (7, &["G40", "G41", "G42"]),
@@ -39,7 +40,13 @@ const GROUPS: [(u8, &[&str]); 16] = [
     (50, &["ORIEULER", "ORIRPY", "ORIRPY2", "ORIVIRT1", "ORIVIRT2"]),
     (51, &["ORIVECT", "ORIAXES", "ORICONCW", "ORICONCCW", "ORIPATH", "ORICONIO", "ORICONTO", "ORICURVE", "ORIPATHS"]),
     (54, &["ORIROTA", "ORIROTR", "ORIROTT", "ORIROTC"]),
+    (21, &["BRISK", "SOFT", "DRIVE"]),
+    (24, &["FFWOF", "FFWON"]),
+    (59, &["DYNNORM", "DYNPOS", "DYNROUGH", "DYNSEMIFIN", "DYNFINISH"]),
 ];
+
+/// Position of G group 24 (feed-forward) in [`GROUPS`].
+const FFW_SLOT: usize = 17;
 
 impl GCodes {
     /// The G functions of the modal state `m`.
@@ -115,7 +122,15 @@ impl GCodes {
                 RotReference::OriChange => 2,
                 RotReference::PathTangent => 3,
             },
+            m.dynamics.profile as u8,
+            u8::from(m.dynamics.ffw),
+            m.dynamics.mode as u8,
         ])
+    }
+
+    /// FFWON (G group 24) is active in the block: the main run's servo model reads it.
+    pub fn ffw_on(&self) -> bool {
+        self.0[FFW_SLOT] == 1
     }
 
     /// The names of the active functions, one per displayed group (`G1`, `G17`, `G54`, ...).

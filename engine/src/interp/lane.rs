@@ -230,6 +230,7 @@ impl Interpreter {
             && self.offsets.trafo.is_none()
             && self.before_change.is_none()
             && self.modal.ori.rotation != RotReference::PathTangent
+            && !self.modal.dynamics.shapes_moves()
             && !self.call_unbound()
             && self.spindles_plain()
     }

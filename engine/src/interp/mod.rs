@@ -9,6 +9,7 @@ pub mod auxiliary;
 mod calls;
 mod compensation;
 mod contour;
+pub mod dynamics;
 pub mod eval;
 mod everyday;
 mod flow;
@@ -188,6 +189,8 @@ pub struct Interpreter {
     modal: Modal,
     /// Programmed end position of the last block in channel-axis (machine) coordinates.
     pos: AxisVec,
+    /// The main run's following errors per channel axis (`$AA_IM` = setpoint − error).
+    lag: AxisVec,
     /// Offsets in effect; tracked, so that items share them while no block changes them.
     offsets: Tracked<Offsets>,
     /// The offsets of the last motion block, noted at the first change after it (SD42440,
@@ -254,6 +257,7 @@ impl Interpreter {
         Interpreter {
             modal: Modal::reset(cfg),
             pos: [0.0; MAX_CHANNEL_AXES],
+            lag: [0.0; MAX_CHANNEL_AXES],
             offsets: Tracked::new(Offsets::default()),
             before_change: None,
             published: published::Published::default(),
@@ -367,6 +371,12 @@ impl Interpreter {
         self.before_change = None;
     }
 
+    /// The main run's following errors (setpoint − actual per channel axis), which `$AA_IM`
+    /// subtracts from the setpoint.
+    pub fn observe_following_error(&mut self, lag: &AxisVec) {
+        self.lag = *lag;
+    }
+
     /// Number of subprogram levels below the main program being prepared (0: the main program).
     pub fn call_depth(&self) -> usize {
         self.calls.len()
@@ -441,6 +451,22 @@ impl Interpreter {
     /// everything prepared so far has been executed (needed by blocks that read main-run
     /// values). On an error the last item is an [`Item::Alarm`] and preparation is done.
     pub fn prepare_next(
+        &mut self,
+        cfg: &MachineConfig,
+        programs: &Programs,
+        main_run_idle: bool,
+        out: &mut Vec<Item>,
+    ) -> Prep {
+        let first = out.len();
+        let prep = self.prepare_next_block(cfg, programs, main_run_idle, out);
+        if let Some(items) = out.get_mut(first..) {
+            dynamics::apply(&self.modal.dynamics, cfg, items);
+        }
+        prep
+    }
+
+    /// [`Interpreter::prepare_next`] before the dynamics words shape the moves.
+    fn prepare_next_block(
         &mut self,
         cfg: &MachineConfig,
         programs: &Programs,

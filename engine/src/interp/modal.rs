@@ -92,6 +92,8 @@ pub struct Modal {
     pub ori: OriModal,
     /// G group 49: Cartesian path (CP) or point-to-point travel.
     pub ptp: PtpMode,
+    /// G groups 21, 24, 59 and ACC/JERKLIM/VELOLIM.
+    pub dynamics: super::dynamics::DynModal,
 }
 
 /// G group 49: how a transformation's machine axes travel between the block end points.
@@ -143,6 +145,7 @@ impl Modal {
             arc_feed: ArcFeed::Contour,
             ori: OriModal::reset(),
             ptp: PtpMode::Cp,
+            dynamics: super::dynamics::DynModal::reset(cfg),
         }
     }
 
@@ -206,6 +209,7 @@ impl Modal {
         if let Some(p) = w.ptp {
             self.ptp = p;
         }
+        self.dynamics.apply(&w.dynamics);
         if let Some(frame) = w.work_offset {
             if frame >= cfg.work_offsets.len() {
                 return Err(Alarm::value_out_of_range(
@@ -365,6 +369,8 @@ pub(super) struct Words {
     pub ori: OriWords,
     /// CP, PTP, PTPG0, PTPWOC.
     pub ptp: Option<PtpMode>,
+    /// BRISK/SOFT/DRIVE, FFWON/FFWOF, DYNNORM.., ACC[..]=, JERKLIM[..]=, VELOLIM[..]=.
+    pub dynamics: super::dynamics::DynWords,
     /// `STAT=`: joint configuration for PTP; `TU=`: turn direction of the rotary axes.
     pub stat: Option<u32>,
     pub tu: Option<u32>,
@@ -492,6 +498,7 @@ pub(super) fn collect(
                     _ => PtpMode::PtpWoc,
                 });
             }
+            Word::Keyword { name, args } if args.is_empty() && w.dynamics.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && holder_keyword(w, name, line)? => {}
             Word::Keyword { name, args } if name == "CYCLE800" => {
                 if w.swivel.is_some() {
@@ -638,6 +645,13 @@ pub(super) fn collect(
             }
             Word::Keyword { name, .. } if super::transform::selection::is_keyword(name) => {}
             Word::Keyword { name, .. } => return Err(Alarm::unknown_name(line, name)),
+            Word::Address { name, indices, value }
+                if !indices.is_empty()
+                    && let Some(which) = super::dynamics::Percent::of(name)
+                    && vars.get(name).is_none() =>
+            {
+                w.dynamics.percent(which, indices, &value.expr, cfg, vars, sys, line)?;
+            }
             Word::Address { name, indices, value } => {
                 let axis = match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,

@@ -156,6 +156,7 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
         machine_space: true,
         axis_tangents: None,
         per_rev: 0.0,
+        jerk: f64::INFINITY,
     }
 }
 
@@ -314,6 +315,7 @@ fn plan_piece(
             machine_space: false,
             axis_tangents,
             per_rev: mv.per_rev,
+            jerk: mv.jerk,
         });
     }
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the

@@ -33,6 +33,8 @@ pub struct MachineAxis {
     pub max_accel: f64,
     /// Factor by which a velocity jump at a block transition may exceed `max_accel` for one cycle.
     pub accel_overload: f64,
+    /// Per dynamic response mode acceleration and jerk, position loop and feed-forward.
+    pub dynamics: super::dynamics::AxisDynamics,
     /// JOG velocities in mm/s or deg/s.
     pub jog_velocity: f64,
     pub jog_rapid_velocity: f64,
@@ -105,6 +107,8 @@ pub struct MachineConfig {
     pub cutcom_max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks the bottleneck detection examines.
     pub cutcom_max_check_blocks: usize,
+    /// Path jerk and the reset values of the dynamics G groups 21, 24, 59.
+    pub dynamics: super::dynamics::ChannelDynamics,
 }
 
 /// How a tool change is triggered and how long it takes.
@@ -353,6 +357,8 @@ impl MachineConfig {
             incremental_travels: IncrementalTravels::default(),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
+            dynamics: super::dynamics::ChannelDynamics::read(md)
+                .map_err(|m| ActivationError { datum: Some("GCODE_RESET_VALUES"), message: m })?,
         };
         cfg.refresh_data(md)?;
         Ok(cfg)
@@ -500,6 +506,7 @@ fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationEr
         max_velocity: num("$MA_MAX_AX_VELO") * velo,
         max_accel: num("$MA_MAX_AX_ACCEL") * accel,
         accel_overload: num("$MA_MAX_ACCEL_OVL_FACTOR"),
+        dynamics: super::dynamics::AxisDynamics::read(md, ax, accel),
         jog_velocity: num("$MA_JOG_VELO") * velo,
         jog_rapid_velocity: num("$MA_JOG_VELO_RAPID") * velo,
         limit_minus: minus,

@@ -8,6 +8,7 @@
 pub mod carrier;
 pub mod chains;
 mod config;
+pub mod dynamics;
 pub mod presets;
 pub mod registry;
 pub mod text;
@@ -295,7 +296,9 @@ impl MachineData {
         match def.scope {
             Scope::Axis => {
                 let (arr, ax) = match indices {
-                    [ax] => (None, ax),
+                    // An axial array named without its element is element 0, as on the control
+                    // (`$MA_MAX_AX_ACCEL[X]` is `$MA_MAX_AX_ACCEL[0,X]`, the DYNNORM value).
+                    [ax] => (Some(&IndexTok::Number(0)), ax),
                     [i, ax] => (Some(i), ax),
                     _ => return Err(err(format!("{name} is axial data: index it by AXn or a machine axis name"))),
                 };

@@ -133,6 +133,18 @@ fn default_machax_used(i: usize) -> Value {
     Value::Int(if i < 6 { i as i64 + 1 } else { 0 })
 }
 
+/// G group reset values: the first function of each group, except group 24, whose reset value
+/// is FFWON (2) here where the control's factory value is FFWOF: NCTwin's presets model a
+/// machine that runs with feed-forward, as CAM programs expect, so the actual value follows the
+/// setpoint unless a program or the machine data says FFWOF.
+fn default_gcode_reset(i: usize) -> Value {
+    Value::Int(if i + 1 == 24 { 2 } else { 1 })
+}
+
+/// Number of dynamic response modes (G group 59, DYNNORM..DYNFINISH): the size of the per-mode
+/// axial data MD32300, MD32310, MD32431.
+pub const DYN_MODES: usize = 5;
+
 /// Number of transformation data sets per channel (`$MC_TRAFO_TYPE_1` .. `_10`).
 pub const MAX_TRAFO_SETS: usize = 10;
 
@@ -227,6 +239,11 @@ pub static DEFS: &[Def] = &[
     // With kinematic chains the reset transformation is named ($NT_NAME) instead (K12 §4.2.2.2).
     def("TRAFO_RESET_NAME", 20142, C, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
     def("TRAFO_MODE_MASK", 20144, C, Kind::Int, 1, Default::Int(0), 0.0, 255.0),
+    // Reset values of the G groups, [group - 1] = position in the group (1 = first). NCTwin
+    // reads the groups of the dynamics (21, 24, 59); see `default_gcode_reset`.
+    def("GCODE_RESET_VALUES", 20150, C, Kind::Int, 60, Default::Indexed(default_gcode_reset), 1.0, 99.0),
+    // Path jerk under SOFT in m/s³ (on top of each axis' MD32431).
+    def("MAX_PATH_JERK", 20600, C, Kind::Real, 1, Default::Real(100_000.0), 1e-6, 1e9),
     def("SPIND_DEF_MASTER_SPIND", 20090, C, Kind::Int, 1, Default::Int(1), 1.0, 20.0),
     // MD20100: the transverse axis for DIAMON/G96 ("": the first geometry axis, X).
     def("DIAMETER_AX_DEF", 20100, C, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
@@ -398,8 +415,37 @@ pub static DEFS: &[Def] = &[
         1e9,
     ),
     def("JOG_VELO", 32020, A, Kind::Real, 1, Default::RealByAxisType { linear: 2000.0, rotary: 5.55 }, 0.0, 1e9),
-    def("MAX_AX_ACCEL", 32300, A, Kind::Real, 1, Default::RealByAxisType { linear: 1.0, rotary: 2.77 }, 1e-6, 1e6),
-    def("MAX_ACCEL_OVL_FACTOR", 32310, A, Kind::Real, 1, Default::Real(1.2), 1.0, 10.0),
+    // Servo: position control gain Kv in (m/min)/mm per parameter set (set 0 is the one in
+    // use); Kv = 1 means a following error of 1 mm at 1 m/min without feed-forward.
+    def("POSCTRL_GAIN", 32200, A, Kind::Real, 6, Default::Real(1.0), 1e-3, 2000.0),
+    // Per dynamic response mode (G group 59): [0] DYNNORM, [1] DYNPOS, [2] DYNROUGH,
+    // [3] DYNSEMIFIN, [4] DYNFINISH. `$MA_MAX_AX_ACCEL[X]` names [0].
+    def(
+        "MAX_AX_ACCEL",
+        32300,
+        A,
+        Kind::Real,
+        DYN_MODES,
+        Default::RealByAxisType { linear: 1.0, rotary: 2.77 },
+        1e-6,
+        1e6,
+    ),
+    def("MAX_ACCEL_OVL_FACTOR", 32310, A, Kind::Real, DYN_MODES, Default::Real(1.2), 1.0, 10.0),
+    // Axial jerk under SOFT: m/s³ (rotary rev/s³), per dynamic response mode as MAX_AX_ACCEL.
+    def(
+        "MAX_AX_JERK",
+        32431,
+        A,
+        Kind::Real,
+        DYN_MODES,
+        Default::RealByAxisType { linear: 1000.0, rotary: 2777.0 },
+        1e-6,
+        1e9,
+    ),
+    // Feed-forward: 0 none, 1/3 speed, 2/4 torque feed-forward (the model treats 1..4 alike);
+    // activation 0: MD32620 always, 1: FFWON/FFWOF at once, 2: FFWON/FFWOF at the next standstill.
+    def("FFW_MODE", 32620, A, Kind::Int, 1, Default::Int(1), 0.0, 4.0),
+    def("FFW_ACTIVATION_MODE", 32630, A, Kind::Int, 1, Default::Int(1), 0.0, 2.0),
     // Reference point approach (incremental measuring system), see channel/referencing.rs.
     // Velocities in mm/min (rotary rev/min) with the control's defaults.
     def("REFP_CAM_DIR_IS_MINUS", 34010, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),

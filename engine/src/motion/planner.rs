@@ -13,6 +13,9 @@ use super::path::{AxisVec, Path};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
+#[path = "soft.rs"]
+mod soft;
+
 /// Velocity requested for a move.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Feed {
@@ -109,6 +112,9 @@ pub struct Move {
     /// revolution; 0 for a feed per time. The path speed then follows the spindle's actual
     /// speed each cycle ([`Planner::set_spindle_rate`]); `feed` is only the look-ahead's bound.
     pub per_rev: f64,
+    /// Highest path jerk under SOFT (units per s³); infinite under BRISK, the
+    /// acceleration-limited profile (see `motion/soft.rs`).
+    pub jerk: f64,
 }
 
 impl Move {
@@ -135,6 +141,7 @@ impl Move {
             machine_space: false,
             axis_tangents: None,
             per_rev: 0.0,
+            jerk: f64::INFINITY,
         }
     }
 
@@ -218,6 +225,8 @@ pub struct Planner {
     s: f64,
     /// Current path velocity.
     v: f64,
+    /// Path acceleration of the last cycle: the state of SOFT's jerk-limited profile.
+    acc: f64,
     /// Feed hold: brake to standstill on the path.
     hold: bool,
     /// Feed override and rapid traverse override as factors (1.0 = 100 %).
@@ -250,6 +259,7 @@ impl Planner {
             replan_all: false,
             s: 0.0,
             v: 0.0,
+            acc: 0.0,
             hold: false,
             feed_override: 1.0,
             rapid_override: 1.0,
@@ -378,6 +388,7 @@ impl Planner {
         self.corner.clear();
         self.s = 0.0;
         self.v = 0.0;
+        self.acc = 0.0;
         self.hold = false;
         self.flush_at_standstill = false;
     }
@@ -437,18 +448,26 @@ impl Planner {
         };
         let a = front.a_max;
         let cap = front.capped(self.feed_override, self.rapid_override, self.spindle_rate);
+        let remaining = front.length - self.s;
         // Above the cap (override lowered) the path brakes at the axes' deceleration.
-        let mut v_new = if self.hold {
-            (self.v - a * dt).max(0.0)
-        } else if self.v > cap {
-            (self.v - a * dt).max(cap)
+        let mut v_new = if front.jerk.is_finite() {
+            self.soft_velocity(cap)
         } else {
-            (self.v + a * dt).min(cap)
+            let v_new = if self.hold {
+                (self.v - a * dt).max(0.0)
+            } else if self.v > cap {
+                (self.v - a * dt).max(cap)
+            } else {
+                (self.v + a * dt).min(cap)
+            };
+            if self.acc != 0.0 {
+                // SOFT's state: a later SOFT move starts from constant velocity.
+                self.acc = 0.0;
+            }
+            self.brake_limited(v_new)
         };
-        v_new = self.brake_limited(v_new);
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
-        let remaining = front.length - self.s;
         if self.queue.len() > 1 && v_new * dt >= remaining && v_new > self.v_end[0] {
             v_new = self.v_end[0].max(self.v - a * dt).max(remaining / dt).min(v_new);
         }
@@ -489,6 +508,7 @@ impl Planner {
             self.s = 0.0;
             if stop_here || self.queue.is_empty() {
                 self.v = 0.0;
+                self.acc = 0.0;
                 break;
             }
         }
@@ -572,11 +592,18 @@ impl Planner {
         };
         let (ta, tb) = (rates(a, true), rates(b, false));
         let mut v = a.v_max.min(b.v_max);
+        // SOFT: the jump lasts one cycle, so it is an acceleration pulse; its jerk
+        // `jump·v/dt²` stays within the axis jerk, of which the moves' path jerks give a lower
+        // bound (`soft::corner_jerk`).
+        let jerk = a.jerk.min(b.jerk);
         for i in 0..MAX_CHANNEL_AXES.min(self.limits.len()) {
             let jump = (tb[i] - ta[i]).abs();
             if jump > 1e-12 {
                 let lim = &self.limits[i];
                 v = v.min((lim.accel_overload - 1.0) * lim.max_accel * self.dt / jump);
+                if jerk.is_finite() {
+                    v = v.min(soft::corner_jerk(jerk, ta[i], tb[i]) * self.dt * self.dt / jump);
+                }
             }
         }
         v

@@ -12,7 +12,7 @@ use nctwin_engine::channel::ReferencePhase;
 use nctwin_engine::{Mode, Overrides, Snapshot, Status};
 
 /// Room for a whole state message of a 7-axis machine, so the buffer is allocated once.
-const BUFFER_CAPACITY: usize = 2048;
+const BUFFER_CAPACITY: usize = 3072;
 
 /// Encodes state messages into one reused buffer; each message is then copied out once into
 /// its own shared bytes (one allocation of the exact size).
@@ -123,6 +123,12 @@ fn write_head(out: &mut String, s: &Snapshot) {
     write_named(out, &s.basic, write_f64);
     out.push_str(",\"workpiece\":");
     write_named(out, &s.workpiece, write_f64);
+    out.push_str("},\"servo\":{\"setpoint\":");
+    write_named(out, &s.machine, write_f64);
+    out.push_str(",\"actual\":");
+    write_named(out, &s.actual, write_f64);
+    out.push_str(",\"following_error\":");
+    write_named(out, &s.following_error, write_f64);
     out.push_str("},\"orientation\":");
     match s.orientation {
         None => out.push_str("null"),

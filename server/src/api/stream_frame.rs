@@ -59,7 +59,7 @@ pub fn encode(message: &StreamMessage) -> Utf8Bytes {
 }
 
 /// Room for a whole state message, so encoding does not grow the buffer.
-const STATE_MESSAGE_CAPACITY: usize = 1536;
+const STATE_MESSAGE_CAPACITY: usize = 2048;
 
 /// The `{"type": "state", ...}` message of a snapshot as JSON text, through serde (the
 /// reference for [`StateEncoder`], and its fallback nowhere: kept for tests and benches).
@@ -79,13 +79,14 @@ struct StateMessage<'a>(&'a Snapshot);
 impl Serialize for StateMessage<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let s = self.0;
-        let mut m = serializer.serialize_struct("State", 22)?;
+        let mut m = serializer.serialize_struct("State", 23)?;
         m.serialize_field("type", "state")?;
         m.serialize_field("status", &ChannelStatus::from(s.status))?;
         m.serialize_field("mode", &OpMode::from(s.mode))?;
         m.serialize_field("time", &s.time)?;
         m.serialize_field("tick", &s.tick)?;
         m.serialize_field("positions", &Positions(s))?;
+        m.serialize_field("servo", &Servo(s))?;
         m.serialize_field("orientation", &s.orientation)?;
         m.serialize_field("transformation", &s.transformation.as_ref().map(Transformation::from))?;
         m.serialize_field(
@@ -122,6 +123,19 @@ impl Serialize for Positions<'_> {
         m.serialize_field("machine", &Named(&self.0.machine))?;
         m.serialize_field("basic", &Named(&self.0.basic))?;
         m.serialize_field("workpiece", &Named(&self.0.workpiece))?;
+        m.end()
+    }
+}
+
+/// The `servo` object.
+struct Servo<'a>(&'a Snapshot);
+
+impl Serialize for Servo<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut m = serializer.serialize_struct("ServoInfo", 3)?;
+        m.serialize_field("setpoint", &Named(&self.0.machine))?;
+        m.serialize_field("actual", &Named(&self.0.actual))?;
+        m.serialize_field("following_error", &Named(&self.0.following_error))?;
         m.end()
     }
 }

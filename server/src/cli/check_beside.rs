@@ -101,9 +101,9 @@ mod tests {
 
     #[test]
     fn the_check_beside_reports_every_error_in_order_and_flags_the_run() {
-        // Line 2 has an address without value (12080 family), line 4 an ENDIF without IF
-        // (nesting): both in line order, whatever the work does meanwhile.
-        let text = "G0 X10\nG1 X=\nG1 X20\nENDIF\nM30\n";
+        // Line 2 has an address without value (12080 family), line 4 an ENDIF inside the WHILE
+        // of line 3 without an IF (nesting): both in line order, whatever the work does meanwhile.
+        let text = "G0 X10\nG1 X=\nWHILE 1\nENDIF\nENDWHILE\nM30\n";
         let (seen_failed, checked) = check_beside(text, None, |verdict| {
             // Wait (bounded) for the verdict, as the run looks at it between chunks.
             let until = Instant::now() + std::time::Duration::from_secs(10);
@@ -117,7 +117,7 @@ mod tests {
         assert_eq!(lines, lang::check(text).iter().map(|d| d.line).collect::<Vec<_>>());
         assert_eq!(lines, [2, 4]);
         assert!(checked.wall_s >= 0.0);
-        assert_eq!(checked.blocks, 5);
+        assert_eq!(checked.blocks, 6);
     }
 
     #[test]

@@ -201,6 +201,7 @@ mod tests {
                 machine_space: false,
                 axis_tangents: None,
                 per_rev: 0.0,
+                jerk: f64::INFINITY,
             }
         };
         let held = Held {

@@ -57,7 +57,12 @@ fn read_datum(
         (_, [i]) => (Some(i), None),
         _ => return Err(Alarm::index_error(line, name, "takes at most one index")),
     };
-    let index = array_index(def, name, array, line)?;
+    // `[AXn]` alone on axial array data means entry 0, as in machine data text
+    // (`$MA_MAX_AX_ACCEL[X]` is the entry of the first dynamic response mode).
+    let index = match (def.scope, array) {
+        (Scope::Axis, None) => 0,
+        _ => array_index(def, name, array, line)?,
+    };
     let axis = match axis {
         Some(ax) => machine_axis(stored, cfg, &ax.as_text())
             .ok_or_else(|| Alarm::index_error(line, name, &format!("{} is no machine axis", ax.as_text())))?,

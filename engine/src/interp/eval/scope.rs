@@ -17,6 +17,8 @@ pub(crate) struct SysView<'a> {
     pub modal: &'a Modal,
     /// Programmed end position in machine coordinates per channel axis.
     pub pos: &'a AxisVec,
+    /// The main run's following error per channel axis (what `$AA_IM` lacks of the setpoint).
+    pub lag: &'a AxisVec,
     pub offsets: &'a Offsets,
     /// The programmable frame.
     pub pframe: &'a Frame,
@@ -44,6 +46,7 @@ macro_rules! sys_view {
             cfg: $cfg,
             modal: &$interp.modal,
             pos: &$interp.pos,
+            lag: &$interp.lag,
             offsets: &$interp.offsets,
             pframe: &$interp.pframe,
             system: &$interp.system,
@@ -129,16 +132,19 @@ impl Scope for Ctx<'_> {
                 crate::interp::tools::management::read(sys.cfg, name, indices, line)?
             }
             "$P_EP" => Value::Real(wcs(axis()?)),
-            // Machine axes: through the active transformation, not the BCS.
-            "$AA_IM" => {
+            // Machine axes: through the active transformation, not the BCS. `$AA_IM` (and the
+            // encoder's `$VA_IM`) is the actual value, the setpoint less the following error of
+            // the servo model (channel/servo.rs); `$AA_IPO` the interpolator's setpoint.
+            "$AA_IM" | "$VA_IM" | "$AA_IPO" => {
                 let k = axis()?;
-                let v = crate::interp::compensation::toff::machine_in_force(
+                let setpoint = crate::interp::compensation::toff::machine_in_force(
                     sys.offsets.trafo.as_ref(),
                     sys.trafo.machine(),
                     sys.pos,
                     &sys.offsets.toff,
                     &sys.cfg.geo_axes,
                 )[k];
+                let v = if name == "$AA_IPO" { setpoint } else { setpoint - sys.lag[k] };
                 // A modulo rotary axis reads within its modulo range, as the display shows it.
                 Value::Real(match sys.cfg.axis(k).modulo {
                     Some((start, range)) => start + (v - start).rem_euclid(range),
@@ -389,6 +395,11 @@ fn g_group_index(m: &Modal, h: &crate::interp::tools::toolholder::Holder, group:
             });
         }
         52 => return Some(if h.parot { 1 } else { 2 }),
+        // Group 21: BRISK 1, SOFT 2, DRIVE 3. Group 24: FFWOF 1, FFWON 2. Group 59: DYNNORM 1,
+        // DYNPOS 2, DYNROUGH 3, DYNSEMIFIN 4, DYNFINISH 5.
+        21 => return Some(m.dynamics.profile as i64 + 1),
+        24 => return Some(i64::from(m.dynamics.ffw) + 1),
+        59 => return Some(m.dynamics.mode as i64 + 1),
         53 => return Some(h.g53),
         _ => {}
     }

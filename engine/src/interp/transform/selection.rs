@@ -316,6 +316,7 @@ fn derive(cfg: &MachineConfig, trafo: &AnyTrafo) -> MachineConfig {
             max_velocity: f64::INFINITY,
             max_accel: f64::INFINITY,
             accel_overload: real.accel_overload,
+            dynamics: crate::machine_data::dynamics::AxisDynamics::UNLIMITED,
             jog_velocity: real.jog_velocity,
             jog_rapid_velocity: real.jog_rapid_velocity,
             limit_minus: f64::NEG_INFINITY,

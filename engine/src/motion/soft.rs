@@ -1,0 +1,189 @@
+//! SOFT: the jerk-limited velocity profile of the path (G group 21).
+//!
+//! BRISK changes the path velocity by up to `a·dt` per cycle. Under SOFT the path acceleration
+//! itself is a state that changes by at most `j·dt` per cycle (the move's path jerk, from
+//! MD32431 per axis and MD20600, see `interp/dynamics.rs`), so the velocity follows S curves:
+//! the third difference of the sampled positions over `dt³` stays within the jerk.
+//!
+//! Each cycle takes the highest acceleration in `[acc − j·dt, acc + j·dt]` (and within `±a`)
+//! from which the path can still (1) ramp its acceleration to zero without passing the feed,
+//! and (2) brake with the jerk limit to every planned transition speed ahead
+//! ([`stop_distance`], exact for the continuous profile, plus one cycle of margin). When no
+//! acceleration in that range is safe (a transition planned while the path was already
+//! faster), the BRISK brake limit takes over for that cycle, so transition speeds and block
+//! ends are always met; only then can the jerk be exceeded.
+
+use super::Planner;
+
+/// Bisection steps between the lowest and the highest acceleration of a cycle.
+const REFINE: usize = 12;
+
+/// The distance the path needs to go from velocity `v` and acceleration `acc` to velocity
+/// `v_to` with zero acceleration, decelerating with at most `a` and jerk `j`: acceleration
+/// ramped down to a peak deceleration, held, and ramped back to zero. When even ramping the
+/// acceleration straight to zero ends below `v_to`, that ramp's distance.
+pub(super) fn stop_distance(v: f64, acc: f64, v_to: f64, a: f64, j: f64) -> f64 {
+    // Velocity to lose plus what the acceleration adds while it is ramped down to zero.
+    let excess = v - v_to + acc * acc.abs() / (2.0 * j);
+    // (An infinite jerk, a BRISK move ahead, gives the trapezoid's distance.)
+    let mut p = if excess > 0.0 { (j * excess).sqrt() } else { 0.0 };
+    let mut hold = 0.0;
+    if p > a {
+        p = a;
+        hold = (excess - a * a / j) / a;
+    }
+    // Already decelerating harder than the peak: the acceleration only ramps back to zero.
+    let p = p.max(-acc);
+    let mut d = 0.0;
+    let (mut v0, mut a0) = (v, acc);
+    let mut phase = |t: f64, jerk: f64| {
+        if t > 0.0 {
+            d += v0 * t + a0 * t * t / 2.0 + jerk * t * t * t / 6.0;
+            v0 += a0 * t + jerk * t * t / 2.0;
+            a0 += jerk * t;
+        }
+    };
+    phase((acc + p) / j, -j);
+    phase(hold, 0.0);
+    phase(p / j, j);
+    d
+}
+
+/// The velocity gained after a cycle with acceleration `acc > 0` while the acceleration is
+/// ramped down by `j·dt` per cycle until it is not positive: `dt · Σ (acc − m·j·dt)` over the
+/// cycles where that is positive.
+fn ramp_gain(acc: f64, j: f64, dt: f64) -> f64 {
+    let step = j * dt;
+    let m = (acc / step).floor();
+    dt * (m * acc - step * m * (m + 1.0) / 2.0)
+}
+
+/// A lower bound of an axis' jerk at a transition between moves with path jerk `j` (the
+/// smaller of the two) whose rates of the axis per unit path length are `ra` and `rb`: each
+/// move's path jerk keeps `rate · j` within the axis jerk.
+pub(super) fn corner_jerk(j: f64, ra: f64, rb: f64) -> f64 {
+    j * ra.abs().max(rb.abs())
+}
+
+impl Planner {
+    /// The path velocity of the next cycle under SOFT (the front move has a finite jerk);
+    /// updates the path acceleration.
+    pub(super) fn soft_velocity(&mut self, cap: f64) -> f64 {
+        let dt = self.dt;
+        let front = &self.queue[0];
+        let (a, j) = (front.a_max, front.jerk);
+        let target = if self.hold { 0.0 } else { cap };
+        let (lo, hi) = ((self.acc - j * dt).max(-a), (self.acc + j * dt).min(a));
+        // Above the jerk's reach of ±a (a lowered acceleration): back within it at once.
+        let (lo, hi) = if lo > hi { (hi.min(a).max(-a), hi.min(a).max(-a)) } else { (lo, hi) };
+        // No transition farther than the longest stop any candidate needs (with the smallest
+        // acceleration and jerk queued) can bind: the checks look no farther.
+        let (a_min, j_min) =
+            self.queue.iter().fold((f64::INFINITY, f64::INFINITY), |(a, j), m| (a.min(m.a_max), j.min(m.jerk)));
+        let v_hi = self.v + hi.max(0.0) * dt;
+        let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, a_min, j_min) + v_hi * dt;
+        let acc = if self.soft_safe(hi, target, horizon) {
+            hi
+        } else if !self.soft_safe(lo, target, horizon) {
+            lo
+        } else {
+            let (mut ok, mut bad) = (lo, hi);
+            for _ in 0..REFINE {
+                let mid = 0.5 * (ok + bad);
+                if self.soft_safe(mid, target, horizon) {
+                    ok = mid;
+                } else {
+                    bad = mid;
+                }
+            }
+            ok
+        };
+        let mut v_new = self.v + acc * dt;
+        // The last bit of a move that ends at standstill, shorter than a cycle's jerk-limited
+        // step from rest: travelled in this cycle.
+        let remaining = front.length - self.s;
+        if self.v_end[0] == 0.0 && !self.hold && self.v <= j * dt * dt && remaining <= j * dt * dt * dt {
+            self.acc = 0.0;
+            return remaining / dt;
+        }
+        if v_new <= 0.0 {
+            // Standstill (a hold, or a transition reached early): from here the acceleration
+            // ramps up again from zero.
+            self.acc = 0.0;
+            return 0.0;
+        }
+        // The BRISK limit keeps every transition speed when the S curve cannot (see the doc).
+        let hard = self.brake_limited(v_new);
+        if hard < v_new {
+            v_new = hard;
+        }
+        self.acc = (v_new - self.v) / dt;
+        v_new
+    }
+
+    /// True when the path, accelerating with `acc` this cycle, can still keep the velocity
+    /// target and brake to every planned transition speed ahead with its jerk (those within
+    /// `horizon` of the position after this cycle: no stop is longer).
+    fn soft_safe(&self, acc: f64, target: f64, horizon: f64) -> bool {
+        let dt = self.dt;
+        let front = &self.queue[0];
+        let j_front = front.jerk;
+        let v1 = self.v + acc * dt;
+        if v1 < 0.0 {
+            return true;
+        }
+        if acc > 0.0 {
+            // Ramping the acceleration down to zero, `j·dt` per cycle, adds what it leaves.
+            if v1 + ramp_gain(acc, j_front, dt) > target * (1.0 + 1e-12) {
+                return false;
+            }
+        } else if v1 > target && acc > (self.acc - j_front * dt).max(-front.a_max) {
+            // Above the target: only the hardest braking the jerk allows.
+            return false;
+        }
+        let n = self.queue.len();
+        let mut distance = -self.s - v1 * dt;
+        let (mut a, mut j) = (f64::INFINITY, f64::INFINITY);
+        for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate() {
+            distance += mv.length;
+            a = a.min(mv.a_max);
+            j = j.min(mv.jerk);
+            let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
+            if v_end < v1 + acc.max(0.0) * acc.max(0.0) / (2.0 * j)
+                && stop_distance(v1, acc, v_end, a, j) - (v1 - v_end) * dt / 2.0 > distance - reserve
+            {
+                return false;
+            }
+            if v_end == 0.0 || distance - reserve > horizon {
+                break;
+            }
+        }
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stop_distance;
+
+    #[test]
+    fn the_stop_distance_of_a_full_s_curve_is_the_mean_velocity_times_its_time() {
+        // From 100 mm/s at rest acceleration to 0 with a = 1000 mm/s², j = 10000 mm/s³: the
+        // ramps take a/j = 0.1 s each and lose a²/j = 100 mm/s together, so no hold: the
+        // peak is sqrt(j·Δv) = 1000 = a exactly; time 0.2 s, the mean velocity 50 mm/s by
+        // symmetry: 10 mm.
+        assert!((stop_distance(100.0, 0.0, 0.0, 1000.0, 10_000.0) - 10.0).abs() < 1e-9);
+        // 300 mm/s: a hold of (300 − 100)/1000 = 0.2 s; time 0.4 s, mean 150: 60 mm.
+        assert!((stop_distance(300.0, 0.0, 0.0, 1000.0, 10_000.0) - 60.0).abs() < 1e-9);
+        // Braking from 300 to 100 mm/s: the same shape as 200 → 0 (peak sqrt(2e6) > a, hold
+        // 0.1 s, time 0.3 s) shifted by 100 mm/s: mean 200 mm/s · 0.3 s = 60 mm.
+        assert!((stop_distance(300.0, 0.0, 100.0, 1000.0, 10_000.0) - 60.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn an_acceleration_in_progress_lengthens_the_stop() {
+        let rest = stop_distance(100.0, 0.0, 0.0, 1000.0, 10_000.0);
+        assert!(stop_distance(100.0, 500.0, 0.0, 1000.0, 10_000.0) > rest);
+        assert!(stop_distance(100.0, -500.0, 0.0, 1000.0, 10_000.0) < rest);
+    }
+}
