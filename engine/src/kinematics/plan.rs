@@ -155,6 +155,7 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
         tag,
         machine_space: true,
         axis_tangents: None,
+        blend: None,
     }
 }
 
@@ -312,6 +313,7 @@ fn plan_piece(
             tag: mv.tag,
             machine_space: false,
             axis_tangents,
+            blend: None,
         });
     }
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the

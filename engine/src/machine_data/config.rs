@@ -97,6 +97,8 @@ pub struct MachineConfig {
     pub cutcom_max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks the bottleneck detection examines.
     pub cutcom_max_check_blocks: usize,
+    /// Tolerances of continuous-path mode, exact-stop windows and compressor limits.
+    pub path_control: super::path_control::PathControlData,
 }
 
 /// MD10600 FRAME_ANGLE_INPUT_MODE: the convention of frame rotation angles.
@@ -318,6 +320,7 @@ impl MachineConfig {
             corr_limits: Default::default(),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
+            path_control: super::path_control::PathControlData::read(md, &machine_numbers),
         };
         cfg.refresh_data(md)?;
         Ok(cfg)
@@ -329,6 +332,7 @@ impl MachineConfig {
         if self.kin != *md.kin() {
             self.kin = md.kin().clone();
         }
+        self.path_control.refresh_settings(md);
         self.corr_limits = super::chains::correct::Limits {
             lin_max: md.num("$SN_CORR_TRAFO_LIN_MAX", 0, 0),
             dir_max: md.num("$SN_CORR_TRAFO_DIR_MAX", 0, 0),

@@ -8,6 +8,7 @@
 pub mod carrier;
 pub mod chains;
 mod config;
+pub mod path_control;
 pub mod presets;
 pub mod registry;
 pub mod text;

@@ -105,6 +105,9 @@ pub struct Move {
     /// the move, when the path is not in machine axes. Used for the velocity jump at block
     /// transitions instead of the path's own tangent.
     pub axis_tangents: Option<Box<(AxisVec, AxisVec)>>,
+    /// Continuous-path rounding at the end of this move (G641..G645), from the block's modal
+    /// state; the channel inserts the rounding element when the next move is known.
+    pub blend: Option<super::blend::Blend>,
 }
 
 impl Move {
@@ -130,6 +133,7 @@ impl Move {
             tag,
             machine_space: false,
             axis_tangents: None,
+            blend: None,
         }
     }
 
@@ -138,7 +142,7 @@ impl Move {
     pub fn set_limits(&mut self, length: f64, feed: Feed, limits: &[AxisLimit]) {
         let path = &self.path;
         // A line's rate per axis is its span, read in the loop (no array built and copied).
-        let rate = path.arc.as_ref().map(|_| path.max_rate_of_first(limits.len()));
+        let rate = (path.arc.is_some() || path.curve.is_some()).then(|| path.max_rate_of_first(limits.len()));
         let feed = match feed {
             Feed::Rapid => f64::INFINITY,
             Feed::Path(f) => f,
@@ -167,6 +171,9 @@ impl Move {
                 v_max = v_max.min((0.5 * a_plane * arc.radius).sqrt() / k);
                 a_max = a_max.min(0.5 * a_plane / k);
             }
+        }
+        if let Some(curve) = &path.curve {
+            (v_max, a_max) = super::blend::curve_limits(curve, limits, v_max, a_max);
         }
         self.length = length;
         self.v_max = v_max.min(feed);

@@ -568,6 +568,7 @@ fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensa
             end: end3,
             arc: Some(Box::new(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep })),
             ori: None,
+            curve: None,
         },
     };
     rebuild(p, path, limits)
@@ -664,7 +665,7 @@ fn finish_between(
                 arc.u[extra] += k * comp.u[rot];
                 arc.v[extra] += k * comp.v[rot];
             }
-            (Path { start: start3, end: end3, arc: Some(Box::new(arc)), ori: None }, feed)
+            (Path { start: start3, end: end3, arc: Some(Box::new(arc)), ori: None, curve: None }, feed)
         }
     };
     let length = path_length(&path);

@@ -134,6 +134,7 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
                 end: b,
                 arc: Some(Box::new(Arc { u, v: d1, radius: r, start_angle: 0.0, sweep: phi })),
                 ori: None,
+                curve: None,
             }
         }
         _ => Path::line(a, b),
@@ -200,6 +201,7 @@ mod tests {
                 tag: 0,
                 machine_space: false,
                 axis_tangents: None,
+                blend: None,
             }
         };
         let held = Held {
