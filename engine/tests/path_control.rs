@@ -188,3 +188,47 @@ fn a_negative_adis_is_refused_with_its_line() {
     assert_eq!(alarm.line, Some(2), "{alarm:?}");
 }
 
+
+/// A CAM-style finishing program of a curved surface: 100 raster rows of 200 chords of
+/// 0.5 mm in X (back and forth, 0.5 mm apart in Y) on z = 8·sin(x/8)·cos(y/20), 20,000 G1
+/// chords in all after `header`, at F10000. The chords' directions turn by up to
+/// 8/8²·0.5 ≈ 3.6° at each point; a chord leaves the surface by at most 0.5²·κ/8 ≈ 4 µm.
+fn surface_program(header: &str) -> String {
+    let z = |x: f64, y: f64| 8.0 * (x / 8.0).sin() * (y / 20.0).cos();
+    let mut text = format!("G0 X0 Y0 Z{:.4}\n{header}\nG1 F10000\n", z(0.0, 0.0));
+    for row in 0..100 {
+        let y = 0.5 * f64::from(row);
+        for i in 1..=200 {
+            let i = if row % 2 == 0 { i } else { 200 - i };
+            let x = 0.5 * f64::from(i);
+            // The first chord of a row after the first is the step in Y.
+            text.push_str(&format!("X{x:.4} Y{y:.4} Z{:.4}\n", z(x, y)));
+        }
+    }
+    text.push_str("M30\n");
+    text
+}
+
+#[test]
+fn a_cam_surface_of_20000_chords_runs_fastest_with_g642_and_compcad() {
+    let cycles = |header: &str| {
+        let samples = run(&surface_program(header));
+        // The dynamics of the rounded and compressed path (G60's and G64's are the
+        // planner's own, tested there).
+        if header.starts_with("G642") {
+            assert_dynamics(&samples);
+        }
+        samples.len() - 1
+    };
+    let (g60, g64, g642) = (cycles("G60"), cycles("G64"), cycles("G642 COMPCAD CTOL=0.01"));
+    let g642_only = cycles("G642 CTOL=0.01");
+    eprintln!(
+        "surface program, 20,000 chords: G60 {:.1} s, G64 {:.1} s, G642 {:.1} s, G642+COMPCAD {:.1} s",
+        g60 as f64 * DT,
+        g64 as f64 * DT,
+        g642_only as f64 * DT,
+        g642 as f64 * DT
+    );
+    assert!(g642 < g64 && 2 * g64 < g60, "G642+COMPCAD {g642}, G64 {g64}, G60 {g60} cycles");
+    assert!(g642 <= g642_only, "the compressor helps: {g642} vs {g642_only}");
+}

@@ -1,12 +1,15 @@
-//! Corner rounding in the main run's feed: a move whose block asks for rounding
-//! (`Move::blend`, G641..G645) waits in the prepared items until the next item is known; if
-//! that is a move too (nothing that needs a stop in between, the same transformation), the
-//! corner between them is rounded (`motion::blend`) and the shortened move, the rounding
-//! element and (still waiting) the shortened next move go on.
+//! Continuous-path smoothing in the main run's feed: a move whose block asks for corner
+//! rounding (`Move::blend`, G641..G645) or compression (`Move::compress`, COMPON ...) waits
+//! in the prepared items until the next item is known. If that is a move too (nothing that
+//! needs a stop in between, the same transformation), the compressor first makes a smooth
+//! passage through the point between them (`motion::compress`); where it does not, the
+//! corner is rounded (`motion::blend`): the shortened move and the rounding element go on,
+//! the shortened next move waits for its own successor.
 
 use super::Channel;
 use crate::interp::Item;
 use crate::motion::blend::{self, Rounded};
+use crate::motion::compress::{self, Junction};
 use crate::motion::{AxisLimit, AxisVec, Move};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
@@ -16,6 +19,8 @@ pub(super) struct Blending {
     /// The first prepared move was shortened at its start by the corner before it: its
     /// length now (bits) and its programmed length (the 36 % rule refers to that).
     trimmed: Option<(u64, f64)>,
+    /// The compressor's passage through the start point of the first prepared move.
+    junction: Option<Junction>,
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
     /// waiting move is handed on without its successor.
     pub(super) prep_waits_for_main_run: bool,
@@ -29,7 +34,8 @@ impl Channel {
             && !self.prep_done
             && !self.prep_waits_for_trafo
             && !self.blending.prep_waits_for_main_run
-            && matches!(self.pending.front(), Some(Item::Move { mv, .. }) if mv.blend.is_some() && !mv.exact_stop)
+            && matches!(self.pending.front(), Some(Item::Move { mv, .. })
+                if (mv.blend.is_some() || mv.compress.is_some()) && !mv.exact_stop)
     }
 
     /// Rounds the corner between `mv` (just taken from the prepared items) and the next
@@ -41,16 +47,40 @@ impl Channel {
             Some((bits, full)) if bits == mv.length.to_bits() => full,
             _ => mv.length,
         };
-        mv.blend?;
-        let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
+        let start = self.blending.junction.take();
+        if mv.blend.is_none() && mv.compress.is_none() {
+            return None;
+        }
         let mut metric: AxisVec = [0.0; MAX_CHANNEL_AXES];
         for &k in self.cfg.geo_axes.iter().flatten() {
             metric[k] = 1.0;
         }
+        let limits = AxisLimit::for_channel(&self.cfg);
+        let next = match self.pending.front() {
+            Some(Item::Move { mv: next, .. }) => Some(next),
+            _ => None,
+        };
+        if compress::compressible(mv) {
+            let start = start.filter(|j| j.point == mv.path.start);
+            let end = next.and_then(|next| compress::junction(mv, next, &metric));
+            match compress::smooth(mv, start.as_ref(), end.as_ref(), &metric, &limits) {
+                Some(smooth) => {
+                    *mv = smooth;
+                    if end.is_some() {
+                        // A smooth passage: no corner to round.
+                        self.blending.junction = end;
+                        return None;
+                    }
+                }
+                // The curve would leave the chord: the line stays, and so does its corner.
+                None => {}
+            }
+        }
+        mv.blend?;
+        let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
         if !(geo_moves(mv, &metric) && geo_moves(next, &metric)) {
             return None;
         }
-        let limits = AxisLimit::for_channel(&self.cfg);
         let next_full = next.length;
         let Rounded { first, corner, second } = blend::round_corner(mv, next, full, &metric, &limits)?;
         *mv = first;

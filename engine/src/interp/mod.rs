@@ -966,6 +966,7 @@ impl Interpreter {
         let mut mv = Move::new(path, length, feed, limits, exact_stop, line);
         if !exact_stop {
             mv.blend = self.modal.path.blend(false, matches!(feed, Feed::Rapid), cfg);
+            mv.compress = self.modal.path.compress(cfg);
         }
         Ok((mv, feed))
     }

@@ -29,6 +29,7 @@
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
 use crate::motion::blend::Blend;
+use crate::motion::compress::Compress;
 
 /// G group 10 in continuous-path mode (G60 is `Modal::exact_stop`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -206,6 +207,20 @@ impl PathControl {
                 Some(Blend::Tolerance(self.tolerance(cfg)))
             }
         }
+    }
+
+    /// The compressor's limits for a move of this block (`None` under COMPOF).
+    pub fn compress(&self, cfg: &MachineConfig) -> Option<Compress> {
+        if self.compressor == Compressor::Off {
+            return None;
+        }
+        let data = &cfg.path_control;
+        let axial = cfg.geo_axes.iter().flatten().filter_map(|&k| data.axis_tol.get(k).copied());
+        Some(Compress {
+            tol: self.ctol.or(self.atol).unwrap_or_else(|| axial.fold(f64::INFINITY, f64::min)),
+            block_limit: data.block_path_limit,
+            velo_tol: data.velo_tol / 60.0,
+        })
     }
 
     /// The path tolerance of G642..G645 (see the module doc).

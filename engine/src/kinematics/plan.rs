@@ -156,6 +156,7 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
         machine_space: true,
         axis_tangents: None,
         blend: None,
+        compress: None,
     }
 }
 
@@ -314,6 +315,7 @@ fn plan_piece(
             machine_space: false,
             axis_tangents,
             blend: None,
+            compress: None,
         });
     }
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the

@@ -65,7 +65,6 @@ pub fn round_corner(
         || b.axis_tangents.is_some()
         || a.path.ori.is_some()
         || b.path.ori.is_some()
-        || a.path.curve.is_some()
         || b.path.curve.is_some()
         || !(a.length > 0.0 && b.length > 0.0)
     {
@@ -157,8 +156,12 @@ fn element(a: &Move, b: &Move, d: f64, metric: &AxisVec) -> Option<Curve> {
     Some(Curve::hermite_untabled([(q0, t0, k0), (q1, t1, k1)], *metric))
 }
 
-/// `d²p/du²` of a line (zero) or an arc (the circle's part; the helix's lift is linear).
+/// `d²p/du²` of a line (zero), an arc (the circle's part; the helix's lift is linear) or a
+/// compressed curve.
 fn second_derivative(path: &Path, u: f64) -> AxisVec {
+    if let Some(c) = &path.curve {
+        return c.second(u);
+    }
     let mut out = [0.0; MAX_CHANNEL_AXES];
     if let Some(arc) = &path.arc {
         let (sin, cos) = (arc.start_angle + arc.sweep * u).sin_cos();

@@ -194,6 +194,21 @@ impl Curve {
         d.map(|x| x * scale)
     }
 
+    /// `d²p/du²` at fraction `u` of the run: the length of the run squared times `d²p/ds²`
+    /// (the curvature vector, the path speed being uniform in `u`).
+    pub fn second(&self, u: f64) -> AxisVec {
+        let t = self.param(u);
+        let (d1, d2) = (self.d1(t), self.d2(t));
+        let v2 = self.norm(&d1).powi(2).max(1e-300);
+        let along = self.axes.iter().map(|&k| d1[k] * d2[k] * self.metric[k]).sum::<f64>() / v2;
+        let l2 = self.length() * self.length();
+        let mut out = [0.0; MAX_CHANNEL_AXES];
+        for &k in &self.axes {
+            out[k] = (d2[k] - along * d1[k]) / v2 * l2;
+        }
+        out
+    }
+
     /// Per axis: the largest `|dp_k/ds|` and `|d²p_k/ds²|` over the run (sampled at 33
     /// points with 2 % margin, the element being smooth and short).
     pub fn rates(&self) -> (AxisVec, AxisVec) {

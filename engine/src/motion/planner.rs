@@ -108,6 +108,8 @@ pub struct Move {
     /// Continuous-path rounding at the end of this move (G641..G645), from the block's modal
     /// state; the channel inserts the rounding element when the next move is known.
     pub blend: Option<super::blend::Blend>,
+    /// The compressor (COMPON, COMPCAD ...) is on for this move's block: its limits.
+    pub compress: Option<super::compress::Compress>,
 }
 
 impl Move {
@@ -134,6 +136,7 @@ impl Move {
             machine_space: false,
             axis_tangents: None,
             blend: None,
+            compress: None,
         }
     }
 

@@ -202,6 +202,7 @@ mod tests {
                 machine_space: false,
                 axis_tangents: None,
                 blend: None,
+                compress: None,
             }
         };
         let held = Held {
