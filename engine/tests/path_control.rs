@@ -232,3 +232,29 @@ fn a_cam_surface_of_20000_chords_runs_fastest_with_g642_and_compcad() {
     assert!(g642 < g64 && 2 * g64 < g60, "G642+COMPCAD {g642}, G64 {g64}, G60 {g60} cycles");
     assert!(g642 <= g642_only, "the compressor helps: {g642} vs {g642_only}");
 }
+
+#[test]
+fn a_dwell_or_g9_between_two_blocks_keeps_the_corner_sharp() {
+    // G642 with CTOL=0.05; the corner at X20 has a dwell after its block (the axes stop), the
+    // one at X20 Y20 an exact stop G9 in its block: both are met exactly. The third corner
+    // (X0 Y20) is rounded.
+    let text = "G0 X0 Y0 Z0\nG642 CTOL=0.05\nG1 F6000 X20\nG4 F0.1\nY20 G9\nX0\nY0\nM30\n";
+    let contour = [[0.0, 0.0, 0.0], [20.0, 0.0, 0.0], [20.0, 20.0, 0.0], [0.0, 20.0, 0.0], [0.0, 0.0, 0.0]];
+    let samples = run(text);
+    for c in &contour[1..3] {
+        assert!(samples.iter().any(|p| dist(p, c) < 1e-9), "the path passes {c:?}");
+    }
+    assert!(corner_deviation(&samples, &contour, &contour[3], 1.0) > 0.005);
+    assert!(samples.iter().all(|p| to_contour(p, &contour) <= 0.05 * (1.0 + 1e-9)));
+    assert_dynamics(&samples);
+}
+
+#[test]
+fn programs_without_continuous_path_words_are_not_changed() {
+    // The same square under G64 with the compressor off and ADIS programmed but G641 not
+    // selected: every sample lies on the programmed contour (no rounding element), as before
+    // these words.
+    let (text, contour) = program("G64 ADIS=0.5 COMPOF", [0.0, 0.0], &square(), 6000.0);
+    let samples = run(&text);
+    assert!(samples.iter().all(|p| to_contour(p, &contour) < 1e-9));
+}

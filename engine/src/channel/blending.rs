@@ -47,10 +47,11 @@ impl Channel {
             Some((bits, full)) if bits == mv.length.to_bits() => full,
             _ => mv.length,
         };
-        let start = self.blending.junction.take();
         if mv.blend.is_none() && mv.compress.is_none() {
+            self.blending.junction = None;
             return None;
         }
+        let start = self.blending.junction.take();
         let mut metric: AxisVec = [0.0; MAX_CHANNEL_AXES];
         for &k in self.cfg.geo_axes.iter().flatten() {
             metric[k] = 1.0;

@@ -155,7 +155,7 @@ impl Channel {
             if matches!(self.pending.front(), Some(Item::Move { offsets: next, .. }) if next.trafo != offsets.trafo) {
                 mv.exact_stop = true;
             }
-            let corner = if mv.exact_stop || single.is_some() { None } else { self.round_corner(&mut mv) };
+            let corner = if single.is_some() { None } else { self.round_corner(&mut mv) };
             let machine_space = mv.machine_space;
             match corner {
                 Some(corner) => {
