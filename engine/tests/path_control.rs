@@ -258,3 +258,29 @@ fn programs_without_continuous_path_words_are_not_changed() {
     let samples = run(&text);
     assert!(samples.iter().all(|p| to_contour(p, &contour) < 1e-9));
 }
+
+#[test]
+fn g642_rounds_the_corners_of_a_radius_compensated_contour_within_the_tolerance() {
+    // T1 D1 (radius 5) G41 on the square run counter-clockwise: the tool centre runs on the
+    // equidistant 5 mm inside (at Z100, the tool length), the square from (5, 5) to
+    // (15, 15) (entered from the approach point (0, 5), left towards (5, 0)), whose inner
+    // corners are
+    // the intersections of the offset lines. G642 rounds them within CTOL=0.02: every
+    // sample inside that square's band lies within 0.02 of it, and its corners (15, 5),
+    // (15, 15), (5, 15) are really left.
+    let text = "T1 D1\nG0 X-10 Y-10 Z0\nG642 CTOL=0.02\nG1 F3000 G41 X0 Y0\nX20\nY20\nX0\nY0\nG40 X-10 Y-10\nM30\n";
+    let samples = run(text);
+    let offset = [[0.0, 5.0, 100.0], [15.0, 5.0, 100.0], [15.0, 15.0, 100.0], [5.0, 15.0, 100.0], [5.0, 0.0, 100.0]];
+    let inside: Vec<[f64; 3]> =
+        samples.iter().copied().filter(|p| (4.9..=15.1).contains(&p[0]) && (4.9..=15.1).contains(&p[1])).collect();
+    assert!(inside.len() > 100, "{} samples on the offset square", inside.len());
+    for p in &inside {
+        let d = to_contour(p, &offset);
+        assert!(d <= 0.02 * (1.0 + 1e-9), "{p:?} is {d} from the offset contour");
+    }
+    for c in &offset[1..4] {
+        let dev = corner_deviation(&inside, &offset, c, 1.0);
+        assert!(dev > 0.003, "corner {c:?}: deviation {dev}");
+    }
+    assert_dynamics(&samples);
+}

@@ -595,7 +595,13 @@ fn outside_plane(a: &AxisVec, b: &AxisVec, comp: &Compensation) -> f64 {
 /// The move rebuilt on a new path with the same feed and limits.
 fn rebuild(p: &Prepared, path: Path, limits: &[AxisLimit]) -> Move {
     let length = path_length(&path);
-    Move::new(path, length, p.feed, limits, p.mv.exact_stop, p.mv.tag)
+    continuous_path(p, Move::new(path, length, p.feed, limits, p.mv.exact_stop, p.mv.tag))
+}
+
+/// The programmed block's corner rounding and compressor limits on a move made from it.
+fn continuous_path(p: &Prepared, mut mv: Move) -> Move {
+    (mv.blend, mv.compress) = (p.mv.blend, p.mv.compress);
+    mv
 }
 
 /// The move of an equidistant element (or, with `contour_feed` false, a transition arc at
@@ -669,7 +675,7 @@ fn finish_between(
         }
     };
     let length = path_length(&path);
-    Move::new(path, length, feed, limits, p.mv.exact_stop, p.mv.tag)
+    continuous_path(p, Move::new(path, length, feed, limits, p.mv.exact_stop, p.mv.tag))
 }
 
 fn path_length(path: &Path) -> f64 {
