@@ -64,13 +64,13 @@ fn corner_deviation(samples: &[[f64; 3]], contour: &[[f64; 3]], c: &[f64; 3], ra
 fn assert_dynamics(samples: &[[f64; 3]]) {
     let vel: Vec<[f64; 3]> = samples.windows(2).map(|w| std::array::from_fn(|k| (w[1][k] - w[0][k]) / DT)).collect();
     for (i, v) in vel.iter().enumerate() {
-        for k in 0..3 {
-            assert!(v[k].abs() <= V_MAX * (1.0 + 1e-9), "axis {k} velocity {} in cycle {i}", v[k]);
+        for (k, vk) in v.iter().enumerate() {
+            assert!(vk.abs() <= V_MAX * (1.0 + 1e-9), "axis {k} velocity {vk} in cycle {i}");
         }
     }
     for (i, w) in vel.windows(2).enumerate() {
-        for k in 0..3 {
-            let acc = (w[1][k] - w[0][k]).abs() / DT;
+        for (k, (v0, v1)) in w[0].iter().zip(&w[1]).enumerate() {
+            let acc = (v1 - v0).abs() / DT;
             assert!(acc <= A_MAX * OVERLOAD * (1.0 + 1e-6), "axis {k} acceleration {acc} in cycle {i}");
         }
     }
@@ -187,7 +187,6 @@ fn a_negative_adis_is_refused_with_its_line() {
     let alarm = ch.alarms().first().expect("an alarm");
     assert_eq!(alarm.line, Some(2), "{alarm:?}");
 }
-
 
 /// A CAM-style finishing program of a curved surface: 100 raster rows of 200 chords of
 /// 0.5 mm in X (back and forth, 0.5 mm apart in Y) on z = 8·sin(x/8)·cos(y/20), 20,000 G1

@@ -8,10 +8,10 @@
 
 use super::Channel;
 use crate::interp::Item;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::blend::{self, Rounded};
 use crate::motion::compress::{self, Junction};
 use crate::motion::{AxisLimit, AxisVec, Move};
-use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// What the rounding remembers between two corners.
 #[derive(Debug, Clone, Default)]
@@ -64,17 +64,14 @@ impl Channel {
         if compress::compressible(mv) {
             let start = start.filter(|j| j.point == mv.path.start);
             let end = next.and_then(|next| compress::junction(mv, next, &metric));
-            match compress::smooth(mv, start.as_ref(), end.as_ref(), &metric, &limits) {
-                Some(smooth) => {
-                    *mv = smooth;
-                    if end.is_some() {
-                        // A smooth passage: no corner to round.
-                        self.blending.junction = end;
-                        return None;
-                    }
+            // Where the curve would leave the chord, the line stays, and so does its corner.
+            if let Some(smooth) = compress::smooth(mv, start.as_ref(), end.as_ref(), &metric, &limits) {
+                *mv = smooth;
+                if end.is_some() {
+                    // A smooth passage: no corner to round.
+                    self.blending.junction = end;
+                    return None;
                 }
-                // The curve would leave the chord: the line stays, and so does its corner.
-                None => {}
             }
         }
         mv.blend?;

@@ -50,13 +50,7 @@ pub struct Rounded {
 /// distance is the path length (the geometry axes). `None` leaves the corner as it is: no
 /// rounding requested, exact stop, a move in machine axes or with an orientation path, a
 /// tangential transition, a reversal, or a rounding too short to matter.
-pub fn round_corner(
-    a: &Move,
-    b: &Move,
-    a_full_length: f64,
-    metric: &AxisVec,
-    limits: &[AxisLimit],
-) -> Option<Rounded> {
+pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, limits: &[AxisLimit]) -> Option<Rounded> {
     let spec = a.blend?;
     if a.exact_stop
         || a.machine_space
@@ -73,7 +67,7 @@ pub fn round_corner(
     let ta = unit(&a.path.tangent(1.0), metric)?;
     let tb = unit(&b.path.tangent(0.0), metric)?;
     let cos = dot(&ta, &tb, metric);
-    if cos > 1.0 - 1e-9 || cos < -0.9995 {
+    if !(-0.9995..=1.0 - 1e-9).contains(&cos) {
         return None;
     }
     let d_max = (MAX_SHARE * a_full_length.max(a.length).min(b.length)).min(0.9 * a.length);
@@ -99,7 +93,7 @@ pub fn round_corner(
         }
         Blend::Tolerance(_) => 0.0,
     };
-    if !(d >= MIN_DISTANCE) {
+    if d.is_nan() || d < MIN_DISTANCE {
         return None;
     }
     let (ua, ub) = (1.0 - d / a.length, d / b.length);
@@ -114,7 +108,8 @@ pub fn round_corner(
     let mut curve = curve;
     curve.finish();
     let length = curve.length();
-    let path = Path { start: first.path.end, end: second.path.start, arc: None, ori: None, curve: Some(Box::new(curve)) };
+    let path =
+        Path { start: first.path.end, end: second.path.start, arc: None, ori: None, curve: Some(Box::new(curve)) };
     let mut corner = Move::unlimited(path, false, a.tag);
     corner.set_limits(length, feed_of(a.feed.min(b.feed)), limits);
     Some(Rounded { first, corner, second })
@@ -146,7 +141,7 @@ fn element(a: &Move, b: &Move, d: f64, metric: &AxisVec) -> Option<Curve> {
     b.path.at(ub, &mut q1);
     let chord: AxisVec = std::array::from_fn(|k| q1[k] - q0[k]);
     let l = dot(&chord, &chord, metric).sqrt();
-    if !(l > 1e-12) {
+    if l.is_nan() || l <= 1e-12 {
         return None;
     }
     let t0 = a.path.tangent(ua).map(|x| x / a.length * l);
@@ -257,4 +252,3 @@ mod tests {
         assert!(v < 50.0 && v * v * second[0] <= 2000.0 * CENTRIPETAL * 1.0001, "v {v}");
     }
 }
-

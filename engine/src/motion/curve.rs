@@ -248,7 +248,10 @@ mod tests {
     fn a_straight_hermite_quintic_is_the_line_run_at_uniform_speed() {
         // p0 = 0, p1 = (3, 4), tangents (3, 4) at both ends, no second derivative: the line
         // p(t) = t·(3, 4), length 5; fraction u lies at 5u along it.
-        let c = Curve::hermite([(v(0.0, 0.0), v(3.0, 4.0), v(0.0, 0.0)), (v(3.0, 4.0), v(3.0, 4.0), v(0.0, 0.0))], metric());
+        let c = Curve::hermite(
+            [(v(0.0, 0.0), v(3.0, 4.0), v(0.0, 0.0)), (v(3.0, 4.0), v(3.0, 4.0), v(0.0, 0.0))],
+            metric(),
+        );
         assert!((c.length() - 5.0).abs() < 1e-12);
         let mut p = [0.0; MAX_CHANNEL_AXES];
         c.at(0.3, &mut p);
@@ -259,7 +262,10 @@ mod tests {
     fn the_length_table_gives_uniform_speed_on_a_bent_element() {
         // A 90° rounding from direction X to Y: equal steps of u give equal chord lengths
         // within 1e-6 of the step (the path speed the planner sets is kept).
-        let c = Curve::hermite([(v(0.0, 0.0), v(1.0, 0.0), v(0.0, 0.0)), (v(1.0, 1.0), v(0.0, 1.0), v(0.0, 0.0))], metric());
+        let c = Curve::hermite(
+            [(v(0.0, 0.0), v(1.0, 0.0), v(0.0, 0.0)), (v(1.0, 1.0), v(0.0, 1.0), v(0.0, 0.0))],
+            metric(),
+        );
         let n = 1000;
         let step = c.length() / n as f64;
         let (mut a, mut b) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
