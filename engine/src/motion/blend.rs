@@ -242,6 +242,26 @@ mod tests {
     }
 
     #[test]
+    fn a_corner_from_a_line_into_an_arc_is_rounded_within_the_tolerance_on_the_arc() {
+        // X0→10, then clockwise half circle about (5, 0) from (10, 0) to (0, 0): it leaves
+        // (10, 0) heading −Y, a 90° corner. With 0.03 the element passes the corner within
+        // 2 % below the tolerance (the search iterates: an arc's cut is not proportional to
+        // d), and its end lies on the circle.
+        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance(0.03)));
+        let (mut s, mut e) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
+        (s[0], e[0]) = (10.0, 0.0);
+        let arc = crate::motion::Arc::in_plane(0, 1, 5.0, 0.0, -std::f64::consts::PI);
+        let path = Path { start: s, end: e, arc: Some(Box::new(arc)), ori: None, curve: None };
+        let b = Move::new(path, 5.0 * std::f64::consts::PI, Feed::Path(50.0), &limits(), false, 2);
+        let r = round_corner(&a, &b, 10.0, &metric(), &limits()).expect("rounded");
+        let cut = r.corner.path.curve.as_ref().unwrap().distance_to(&a.path.end);
+        assert!(cut <= 0.03 && cut >= 0.98 * 0.03 * 0.999, "cut {cut}");
+        let q = r.second.path.start;
+        assert!((((q[0] - 5.0).powi(2) + q[1] * q[1]).sqrt() - 5.0).abs() < 1e-9, "{:?}", &q[..2]);
+        assert!(q[1] < 0.0);
+    }
+
+    #[test]
     fn the_element_limits_its_speed_by_its_curvature() {
         // Tolerance 0.01 at 90°: a tight element; v²·|p''| stays within its share of 2000 mm/s².
         let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance(0.01)));
