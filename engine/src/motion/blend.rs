@@ -108,8 +108,13 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     let mut curve = curve;
     curve.finish();
     let length = curve.length();
-    let path =
-        Path { start: first.path.end, end: second.path.start, arc: None, ori: None, curve: Some(Box::new(curve)) };
+    let path = Path {
+        start: first.path.end,
+        end: second.path.start,
+        arc: None,
+        ori: None,
+        curve: Some(std::sync::Arc::new(curve)),
+    };
     let mut corner = Move::unlimited(path, false, a.tag);
     corner.set_limits(length, feed_of(a.feed.min(b.feed)), limits);
     Some(Rounded { first, corner, second })

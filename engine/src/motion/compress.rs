@@ -130,7 +130,7 @@ pub fn smooth(
     curve.finish();
     let length = curve.length();
     let mut out = Move::unlimited(
-        Path { start: p0, end: p1, arc: None, ori: None, curve: Some(Box::new(curve)) },
+        Path { start: p0, end: p1, arc: None, ori: None, curve: Some(std::sync::Arc::new(curve)) },
         mv.exact_stop,
         mv.tag,
     );

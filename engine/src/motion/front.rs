@@ -93,7 +93,7 @@ pub(super) struct FrontMove {
     /// The orientation's rotation angle at the last cycle.
     ori_angle: Option<SinCosStep>,
     /// A corner rounding element, evaluated directly each cycle.
-    curve: Option<Box<Curve>>,
+    curve: Option<std::sync::Arc<Curve>>,
 }
 
 impl FrontMove {

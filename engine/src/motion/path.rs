@@ -52,7 +52,8 @@ pub struct Path {
     pub ori: Option<Box<OriPath>>,
     /// A free-form element (a corner rounding of continuous-path mode): when set, it is the
     /// path from `start` to `end` and `arc` is `None`.
-    pub curve: Option<Box<Curve>>,
+    /// Shared (`Arc`): the front move's cycles hold it too, and it is a kilobyte.
+    pub curve: Option<std::sync::Arc<Curve>>,
 }
 
 impl Path {
@@ -96,7 +97,7 @@ impl Path {
             .as_ref()
             .map(|a| Box::new(Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..**a }));
         let ori = self.ori.as_ref().map(|o| Box::new(o.slice(u0, u1)));
-        let curve = self.curve.as_ref().map(|c| Box::new(c.slice(u0, u1)));
+        let curve = self.curve.as_ref().map(|c| std::sync::Arc::new(c.slice(u0, u1)));
         Path { start, end, arc, ori, curve }
     }
 
