@@ -260,7 +260,7 @@ mod tests {
         let b = Move::new(path, 5.0 * std::f64::consts::PI, Feed::Path(50.0), &limits(), false, 2);
         let r = round_corner(&a, &b, 10.0, &metric(), &limits()).expect("rounded");
         let cut = r.corner.path.curve.as_ref().unwrap().distance_to(&a.path.end);
-        assert!(cut <= 0.03 && cut >= 0.98 * 0.03 * 0.999, "cut {cut}");
+        assert!((0.98 * 0.03 * 0.999..=0.03).contains(&cut), "cut {cut}");
         let q = r.second.path.start;
         assert!((((q[0] - 5.0).powi(2) + q[1] * q[1]).sqrt() - 5.0).abs() < 1e-9, "{:?}", &q[..2]);
         assert!(q[1] < 0.0);
