@@ -39,6 +39,7 @@ impl Channel {
             // The level the block is read in (a call or return changes it after the read).
             let level = self.interp.level().cloned();
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
+            self.blending.prep_waits_for_main_run = prep == Prep::WaitForMainRun;
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
             for warning in self.interp.take_warnings() {
@@ -141,6 +142,10 @@ impl Channel {
             {
                 break;
             }
+            // Continuous-path rounding: the corner needs the next move.
+            if single.is_none() && self.waits_for_corner() {
+                break;
+            }
             let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
             if self.search_approach {
                 // Block search: approach the start of the first move of the target, like that move.
@@ -159,8 +164,15 @@ impl Channel {
             if matches!(self.pending.front(), Some(Item::Move { offsets: next, .. }) if next.trafo != offsets.trafo) {
                 mv.exact_stop = true;
             }
+            let corner = if single.is_some() { None } else { self.round_corner(&mut mv) };
             let machine_space = mv.machine_space;
-            self.push_move(mv, MoveMeta { line, offsets, machine_space, feed: 0.0 });
+            match corner {
+                Some(corner) => {
+                    self.push_move(mv, MoveMeta { line, offsets: offsets.clone(), machine_space, feed: 0.0 });
+                    self.push_move(corner, MoveMeta { line, offsets, machine_space, feed: 0.0 });
+                }
+                None => self.push_move(mv, MoveMeta { line, offsets, machine_space, feed: 0.0 }),
+            }
         }
     }
 

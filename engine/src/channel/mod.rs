@@ -9,6 +9,7 @@
 //! calculation), `reference` (reference point state per axis), `programs` (stored programs),
 //! `spindle`, `trafo` (the active transformation per IPO cycle), `snapshot`.
 
+mod blending;
 mod cartesian_jog;
 mod io;
 mod jog;
@@ -274,6 +275,8 @@ pub struct Channel {
     /// Preparation waits until a transformation change it prepared has been executed, then
     /// continues from the machine position the main run reached.
     prep_waits_for_trafo: bool,
+    /// Corner rounding of continuous-path mode between prepared moves (`blending.rs`).
+    blending: blending::Blending,
     /// The move whose transformation the main run has taken over (checked once per move, not
     /// every cycle).
     trafo_tag: Option<u32>,
@@ -352,6 +355,7 @@ impl Channel {
             machine: [0.0; MAX_CHANNEL_AXES],
             trafo: None,
             prep_waits_for_trafo: false,
+            blending: Default::default(),
             trafo_tag: None,
             ori_memo: Default::default(),
             toff: Default::default(),

@@ -67,5 +67,11 @@ pub(super) fn approach_arc(
     let a0 = -sweep;
     // Outside the geometry axes u, t and n are 0: the other axes stand at their target.
     let start: AxisVec = std::array::from_fn(|k| centre[k] + radius * (a0.cos() * u[k] + a0.sin() * t[k]));
-    Some(Path { start, end: *target, arc: Some(Box::new(Arc { u, v: t, radius, start_angle: a0, sweep })), ori: None })
+    Some(Path {
+        start,
+        end: *target,
+        arc: Some(Box::new(Arc { u, v: t, radius, start_angle: a0, sweep })),
+        ori: None,
+        curve: None,
+    })
 }

@@ -28,7 +28,7 @@ const GROUPS: [(u8, &[&str]); 19] = [
     (6, &["G17", "G18", "G19"]),
     (7, &["G40", "G41", "G42"]),
     (8, &[]),
-    (10, &["G60", "G64"]),
+    (10, &["G60", "G64", "G641", "G642", "G643", "G644", "G645"]),
     (13, &["G70", "G71", "G700", "G710"]),
     (14, &["G90", "G91"]),
     (15, &["G94", "G95", "G93", "G96", "G961", "G97", "G971"]),
@@ -70,7 +70,7 @@ impl GCodes {
                 Some(Side::Right) => 2,
             },
             u8::try_from(m.work_offset).unwrap_or(u8::MAX),
-            u8::from(!m.exact_stop),
+            if m.exact_stop { 0 } else { m.path.group10() as u8 - 1 },
             match (m.inch, m.inch_feed) {
                 (true, false) => 0,
                 (false, false) => 1,

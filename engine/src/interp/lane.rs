@@ -376,6 +376,10 @@ impl Interpreter {
             return None;
         }
         mv.set_limits(length, feed, &self.lane_memo.for_config_ref().limits);
+        if !mv.exact_stop {
+            mv.blend = self.modal.path.blend(false, matches!(feed, crate::motion::Feed::Rapid), cfg);
+            mv.compress = self.modal.path.compress(cfg);
+        }
         // The axes past the channel's keep their start (block_end leaves them).
         self.pos[..n].copy_from_slice(&mv.path.end[..n]);
 

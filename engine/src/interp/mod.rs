@@ -19,6 +19,7 @@ pub mod io;
 mod lane;
 mod modal;
 mod orientation;
+mod path_control;
 mod published;
 pub mod retained;
 pub mod spindles;
@@ -985,7 +986,12 @@ impl Interpreter {
         let feed = self.path_feed(line)?;
         let exact_stop = self.modal.exact_stop || words.g9;
         self.pos = end;
-        Ok((Move::new(path, length, feed, limits, exact_stop, line), feed))
+        let mut mv = Move::new(path, length, feed, limits, exact_stop, line);
+        if !exact_stop {
+            mv.blend = self.modal.path.blend(false, matches!(feed, Feed::Rapid), cfg);
+            mv.compress = self.modal.path.compress(cfg);
+        }
+        Ok((mv, feed))
     }
 }
 

@@ -94,6 +94,8 @@ pub struct Modal {
     pub ptp: PtpMode,
     /// G groups 21, 24, 59 and ACC/JERKLIM/VELOLIM.
     pub dynamics: super::dynamics::DynModal,
+    /// G groups 10 (G64x), 12 and 30, ADIS and the tolerances (`path_control.rs`).
+    pub path: super::path_control::PathControl,
 }
 
 /// G group 49: how a transformation's machine axes travel between the block end points.
@@ -146,6 +148,7 @@ impl Modal {
             ori: OriModal::reset(),
             ptp: PtpMode::Cp,
             dynamics: super::dynamics::DynModal::reset(cfg),
+            path: Default::default(),
         }
     }
 
@@ -184,6 +187,7 @@ impl Modal {
         if let Some(e) = w.exact_stop {
             self.exact_stop = e;
         }
+        self.path.apply(&w.path, self.length_factor());
         if let Some(side) = w.trc {
             self.trc = side;
         }
@@ -286,6 +290,8 @@ pub(super) struct Words {
     pub units: Option<(bool, bool)>,
     pub feed_per_rev: Option<bool>,
     pub exact_stop: Option<bool>,
+    /// G641..G645, G601..G603, ADIS, CTOL ... (`path_control.rs`).
+    pub path: super::path_control::PathWords,
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
@@ -488,6 +494,7 @@ pub(super) fn collect(
                 }
             }
             Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
+            Word::Keyword { name, args } if args.is_empty() && w.path.keyword(name) => {}
             Word::Keyword { name, args }
                 if args.is_empty() && matches!(name.as_str(), "CP" | "PTP" | "PTPG0" | "PTPWOC") =>
             {
@@ -722,10 +729,9 @@ pub(super) fn collect(
                     "RP" => w.rp = Some(v),
                     "AR" => w.ar = Some(v),
                     "TURN" => w.turn = Some(whole("TURN=")?),
-                    // H: auxiliary function for the PLC. ADIS/ADISPOS: smoothing distances of
-                    // G641, which this product does not model (blocks meet at G64 corners).
+                    // H: auxiliary function for the PLC.
                     "H" => w.aux.push(super::auxiliary::AuxFunction { letter: 'H', extension: 0, value: v }),
-                    "ADIS" | "ADISPOS" => {}
+                    _ if w.path.address(name, v, line)? => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
                     // `P3`: three runs of the block's subprogram call.
@@ -1054,8 +1060,6 @@ fn is_nc_address(name: &str) -> bool {
             | "RND"
             | "CHF"
             | "CHR"
-            | "ADIS"
-            | "ADISPOS"
             | "STAT"
             | "TU"
             | "OFFN"
@@ -1064,6 +1068,7 @@ fn is_nc_address(name: &str) -> bool {
             | "THETA"
     ) || words::is_address(name)
         || super::spindles::words::is_address(name)
+        || super::path_control::is_address(name)
 }
 
 /// The keywords of G groups 22, 42, 52 and 53; false for any other word.
@@ -1143,7 +1148,6 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         111 => w.pole = Some(PoleRef::WorkpieceZero),
         112 => w.pole = Some(PoleRef::LastPole),
         60 => w.exact_stop = Some(true),
-        64 => w.exact_stop = Some(false),
         70 => w.units = Some((true, false)),
         71 => w.units = Some((false, false)),
         700 => w.units = Some((true, true)),
@@ -1153,6 +1157,7 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         94 => w.feed_per_rev = Some(false),
         95 => w.feed_per_rev = Some(true),
         _ if super::spindles::words::g_code(&mut w.spindle, code, line)? => {}
+        _ if w.path.g_function(code, &mut w.exact_stop) => {}
         _ => return Err(Alarm::unknown_g(line, code)),
     }
     Ok(())

@@ -157,6 +157,8 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
         axis_tangents: None,
         per_rev: 0.0,
         jerk: f64::INFINITY,
+        blend: None,
+        compress: None,
     }
 }
 
@@ -316,6 +318,8 @@ fn plan_piece(
             axis_tangents,
             per_rev: mv.per_rev,
             jerk: mv.jerk,
+            blend: None,
+            compress: None,
         });
     }
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the

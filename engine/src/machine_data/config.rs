@@ -109,6 +109,8 @@ pub struct MachineConfig {
     pub cutcom_max_check_blocks: usize,
     /// Path jerk and the reset values of the dynamics G groups 21, 24, 59.
     pub dynamics: super::dynamics::ChannelDynamics,
+    /// Tolerances of continuous-path mode, exact-stop windows and compressor limits.
+    pub path_control: super::path_control::PathControlData,
 }
 
 /// How a tool change is triggered and how long it takes.
@@ -359,6 +361,7 @@ impl MachineConfig {
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
             dynamics: super::dynamics::ChannelDynamics::read(md)
                 .map_err(|m| ActivationError { datum: Some("GCODE_RESET_VALUES"), message: m })?,
+            path_control: super::path_control::PathControlData::read(md, &machine_numbers),
         };
         cfg.refresh_data(md)?;
         Ok(cfg)
@@ -371,6 +374,7 @@ impl MachineConfig {
             self.kin = md.kin().clone();
         }
         self.toframe_mode = md.num("$SC_TOFRAME_MODE", 0, 0) as i64;
+        self.path_control.refresh_settings(md);
         self.corr_limits = super::chains::correct::Limits {
             lin_max: md.num("$SN_CORR_TRAFO_LIN_MAX", 0, 0),
             dir_max: md.num("$SN_CORR_TRAFO_DIR_MAX", 0, 0),

@@ -266,6 +266,13 @@ pub static DEFS: &[Def] = &[
     // NC start refused while an axis is not referenced (alarm 16905).
     def("CUTCOM_MAXNUM_CHECK_BLOCKS", 20240, C, Kind::Int, 1, Default::Int(3), 1.0, 100.0),
     def("CUTCOM_MAXNUM_DUMMY_BLOCKS", 20250, C, Kind::Int, 1, Default::Int(3), 0.0, 100.0),
+    // Continuous-path mode and compressor (Function Manual B1): MD20170 the longest block the
+    // compressor joins (mm), MD20172 the feed change it tolerates (mm/min), MD20480 which
+    // tolerances G642..G645 use (units digit: 0 axial MD33100, 1 contour SD42465 for the
+    // geometry axes, 2 orientation SD42466, 3 both); defaults as in the lists.
+    def("COMPRESS_BLOCK_PATH_LIMIT", 20170, C, Kind::Real, 1, Default::Real(20.0), 0.0, 1e9),
+    def("COMPRESS_VELO_TOL", 20172, C, Kind::Real, 1, Default::Real(60000.0), 0.0, 1e9),
+    def("SMOOTHING_MODE", 20480, C, Kind::Int, 1, Default::Int(0), 0.0, 99999.0),
     def("REFP_NC_START_LOCK", 20700, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     // Transformation data sets 1..10: type, axes, geometry axes, tool handling (M1 data lists).
     // Tool change (W1): 0 = T changes at once, 1 = T prepares and the M function of MD22560
@@ -446,6 +453,9 @@ pub static DEFS: &[Def] = &[
     // activation 0: MD32620 always, 1: FFWON/FFWOF at once, 2: FFWON/FFWOF at the next standstill.
     def("FFW_MODE", 32620, A, Kind::Int, 1, Default::Int(1), 0.0, 4.0),
     def("FFW_ACTIVATION_MODE", 32630, A, Kind::Int, 1, Default::Int(1), 0.0, 2.0),
+    // MD33100 COMPRESS_POS_TOL: how far an axis may leave the programmed path under G642..G645
+    // and the compressors (mm or degrees).
+    def("COMPRESS_POS_TOL", 33100, A, Kind::Real, 1, Default::Real(0.1), 1e-9, 1e9),
     // Reference point approach (incremental measuring system), see channel/referencing.rs.
     // Velocities in mm/min (rotary rev/min) with the control's defaults.
     def("REFP_CAM_DIR_IS_MINUS", 34010, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
@@ -492,12 +502,19 @@ pub static DEFS: &[Def] = &[
     def("GEAR_STEP_MAX_VELO_LIMIT", 35130, A, Kind::Real, 6, Default::Real(10000.0), 0.0, 1e6),
     def("GEAR_STEP_SPEEDCTRL_ACCEL", 35200, A, Kind::Real, 6, Default::Real(30.0), 1e-3, 1e6),
     def("SPIND_POSCTRL_VELO", 35300, A, Kind::Real, 1, Default::Real(500.0), 1e-3, 1e6),
+    // Exact-stop windows of G602 (coarse, MD36000) and G601 (fine, MD36010), mm or degrees.
+    def("STOP_LIMIT_COARSE", 36000, A, Kind::Real, 1, Default::Real(0.04), 0.0, 1e9),
+    def("STOP_LIMIT_FINE", 36010, A, Kind::Real, 1, Default::Real(0.01), 0.0, 1e9),
     def("POS_LIMIT_MINUS", 36100, A, Kind::Real, 1, Default::Real(-1e8), -INF, INF),
     def("POS_LIMIT_PLUS", 36110, A, Kind::Real, 1, Default::Real(1e8), -INF, INF),
     // Setting data. SD42650 CART_JOG_MODE: reference systems of Cartesian manual travel, bits
     // 0/1/2 translation in BCS/WCS/TCS, bits 8/9/10 orientation in BCS/WCS/TCS (bit layout from
     // memory, REFERENCE §9.4). SD42660 ORI_JOG_MODE: 0 = as the transformation defines, 1 Euler
     // ZX'Z'', 2 RPY XY'Z'', 3 RPY ZY'X'', 4/5 ORIAX_TURN_TAB_1/2 (seed 003, F2 3.8).
+    // SD42465/SD42466: contour (mm) and orientation (degrees) tolerance of G642..G645 when
+    // MD20480 SMOOTHING_MODE selects them; CTOL=/OTOL= override them in a program.
+    sd("SMOOTH_CONTUR_TOL", 42465, C, Kind::Real, Default::Real(0.05), 0.0, 1e9),
+    sd("SMOOTH_ORI_TOL", 42466, C, Kind::Real, Default::Real(0.05), 0.0, 360.0),
     sd("CART_JOG_MODE", 42650, C, Kind::Int, Default::Int(0), 0.0, 1799.0),
     sd("ORI_JOG_MODE", 42660, C, Kind::Int, Default::Int(0), 0.0, 5.0),
     // SD41610/SD41611: the largest change CORRTRAFO makes to an offset vector (mm) / turns a

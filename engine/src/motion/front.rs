@@ -7,6 +7,7 @@
 //! angle is stepped from the last cycle's with the addition theorem ([`SinCosStep`]) instead
 //! of a `sin_cos`; every [`EXACT_EVERY`]th cycle and the block end are exact.
 
+use super::curve::Curve;
 use super::orientation::{OriPath, Vec3, rotate_by};
 use super::path::{AxisVec, Path};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -91,6 +92,8 @@ pub(super) struct FrontMove {
     arc_angle: Option<SinCosStep>,
     /// The orientation's rotation angle at the last cycle.
     ori_angle: Option<SinCosStep>,
+    /// A corner rounding element, evaluated directly each cycle.
+    curve: Option<std::sync::Arc<Curve>>,
 }
 
 impl FrontMove {
@@ -107,7 +110,8 @@ impl FrontMove {
         };
         for (k, standing) in position.iter_mut().enumerate() {
             let (a, b) = (path.start[k], path.end[k]);
-            let in_arc = path.arc.as_ref().is_some_and(|arc| arc.moves_axis(k));
+            let in_arc = path.arc.as_ref().is_some_and(|arc| arc.moves_axis(k))
+                || path.curve.as_ref().is_some_and(|c| c.moves_axis(k));
             // `a == b` holds for ±0 too; NaN never reaches a path (a move's length is finite).
             if a == b && !in_arc {
                 *standing = a + 0.0;
@@ -129,7 +133,7 @@ impl FrontMove {
             radius: arc.radius,
             ends: [arc.start_angle.sin_cos(), (arc.start_angle + arc.sweep).sin_cos()],
         });
-        FrontMove { moving, arc, arc_angle: None, ori_angle: None }
+        FrontMove { moving, arc, arc_angle: None, ori_angle: None, curve: path.curve.clone() }
     }
 
     /// The moving axes' positions at parameter `u` (0 ≤ u < 1) into `out`: [`Path::at`]'s
@@ -137,6 +141,14 @@ impl FrontMove {
     pub(super) fn position(&mut self, u: f64, out: &mut AxisVec) {
         let m = &self.moving;
         let n = m.len;
+        if let Some(c) = &self.curve {
+            let mut p = [0.0; MAX_CHANNEL_AXES];
+            c.at(u, &mut p);
+            for i in 0..n {
+                out[m.slot[i]] = p[m.slot[i]];
+            }
+            return;
+        }
         match &self.arc {
             None => {
                 for i in 0..n {
@@ -180,7 +192,7 @@ mod tests {
         (start[0], start[1], start[2], start[4]) = (10.0, -3.5, 1.25, -0.0);
         (end[0], end[1], end[2], end[4]) = (-2.0, 7.0, -4.0, -0.0);
         (start[7], end[7]) = (3.0, 3.0);
-        Path { start, end, arc: arc.map(Box::new), ori: None }
+        Path { start, end, arc: arc.map(Box::new), ori: None, curve: None }
     }
 
     #[test]

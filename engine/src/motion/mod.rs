@@ -4,12 +4,16 @@
 //! Input: [`Move`]s (a [`Path`] in channel-axis space plus feed and exact-stop flag) and the
 //! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
 
+pub mod blend;
+pub mod compress;
+mod curve;
 mod front;
 mod ori_curve;
 mod orientation;
 mod path;
 mod planner;
 
+pub use curve::Curve;
 pub use ori_curve::TwoCurves;
 pub use orientation::{Antiparallel, OriPath, rotate};
 pub use path::{Arc, AxisVec, Path};

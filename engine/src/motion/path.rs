@@ -1,6 +1,7 @@
 //! Geometry of one motion block in axis space: a straight line, or a circular arc (helix) in
 //! any plane of the geometry axes with every other axis moving linearly along.
 
+use super::curve::Curve;
 use super::orientation::{OriPath, Vec3};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
@@ -49,6 +50,10 @@ pub struct Path {
     /// The tool orientation when it is interpolated as a vector (an orientation
     /// transformation's rotary axes then follow it); `None`: the axes interpolate.
     pub ori: Option<Box<OriPath>>,
+    /// A free-form element (a corner rounding of continuous-path mode): when set, it is the
+    /// path from `start` to `end` and `arc` is `None`.
+    /// Shared (`Arc`): the front move's cycles hold it too, and it is a kilobyte.
+    pub curve: Option<std::sync::Arc<Curve>>,
 }
 
 impl Path {
@@ -56,6 +61,11 @@ impl Path {
     pub fn at(&self, s: f64, out: &mut AxisVec) {
         if s >= 1.0 {
             *out = self.end;
+            return;
+        }
+        if let Some(c) = &self.curve {
+            *out = self.start;
+            c.at(s, out);
             return;
         }
         for (o, (a, b)) in out.iter_mut().zip(self.start.iter().zip(&self.end)) {
@@ -87,12 +97,13 @@ impl Path {
             .as_ref()
             .map(|a| Box::new(Arc { start_angle: a.start_angle + a.sweep * u0, sweep: a.sweep * (u1 - u0), ..**a }));
         let ori = self.ori.as_ref().map(|o| Box::new(o.slice(u0, u1)));
-        Path { start, end, arc, ori }
+        let curve = self.curve.as_ref().map(|c| std::sync::Arc::new(c.slice(u0, u1)));
+        Path { start, end, arc, ori, curve }
     }
 
     /// A straight line from `start` to `end`.
     pub fn line(start: AxisVec, end: AxisVec) -> Path {
-        Path { start, end, arc: None, ori: None }
+        Path { start, end, arc: None, ori: None, curve: None }
     }
 
     /// Tool orientation at parameter `s` when the path carries one.
@@ -102,6 +113,9 @@ impl Path {
 
     /// Tangent `dp/ds` at `s` (not normalised).
     pub fn tangent(&self, s: f64) -> AxisVec {
+        if let Some(c) = &self.curve {
+            return c.tangent(s);
+        }
         let mut t = [0.0; MAX_CHANNEL_AXES];
         for (k, tk) in t.iter_mut().enumerate() {
             *tk = self.end[k] - self.start[k];
@@ -128,6 +142,14 @@ impl Path {
     pub fn max_rate_of_first(&self, n: usize) -> AxisVec {
         let mut r = [0.0; MAX_CHANNEL_AXES];
         let n = n.min(MAX_CHANNEL_AXES);
+        if let Some(c) = &self.curve {
+            let (rate, _) = c.rates();
+            let length = c.length();
+            for (rk, q) in r[..n].iter_mut().zip(rate) {
+                *rk = q * length;
+            }
+            return r;
+        }
         match &self.arc {
             None => {
                 for (k, rk) in r[..n].iter_mut().enumerate() {
@@ -164,6 +186,18 @@ impl Path {
         for k in 0..MAX_CHANNEL_AXES {
             lo[k] = self.start[k].min(self.end[k]);
             hi[k] = self.start[k].max(self.end[k]);
+        }
+        if self.curve.is_some() {
+            // A short rounding element: its extent sampled finely enough for limit checks.
+            let mut p = [0.0; MAX_CHANNEL_AXES];
+            for i in 1..64 {
+                self.at(f64::from(i) / 64.0, &mut p);
+                for k in 0..MAX_CHANNEL_AXES {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
+            return (lo, hi);
         }
         let Some(arc) = &self.arc else { return (lo, hi) };
         // Axis k follows f(s) = c + b·s + ρ·cos(a0 + sweep·s − φ): its extremes lie where
@@ -238,7 +272,7 @@ mod tests {
         start[0] = 10.0;
         end[0] = -10.0;
         end[2] = 4.0;
-        Path { start, end, arc: Some(Box::new(Arc::in_plane(0, 1, 10.0, 0.0, PI))), ori: None }
+        Path { start, end, arc: Some(Box::new(Arc::in_plane(0, 1, 10.0, 0.0, PI))), ori: None, curve: None }
     }
 
     #[test]
@@ -293,7 +327,7 @@ mod tests {
         let mut end = [0.0; MAX_CHANNEL_AXES];
         start[0] = 5.0;
         end[0] = -5.0;
-        let p = Path { start, end, arc: Some(Box::new(arc)), ori: None };
+        let p = Path { start, end, arc: Some(Box::new(arc)), ori: None, curve: None };
         let mut q = [0.0; MAX_CHANNEL_AXES];
         for i in 0..=20 {
             p.at(i as f64 / 20.0, &mut q);

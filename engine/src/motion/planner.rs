@@ -115,6 +115,11 @@ pub struct Move {
     /// Highest path jerk under SOFT (units per s³); infinite under BRISK, the
     /// acceleration-limited profile (see `motion/soft.rs`).
     pub jerk: f64,
+    /// Continuous-path rounding at the end of this move (G641..G645), from the block's modal
+    /// state; the channel inserts the rounding element when the next move is known.
+    pub blend: Option<super::blend::Blend>,
+    /// The compressor (COMPON, COMPCAD ...) is on for this move's block: its limits.
+    pub compress: Option<super::compress::Compress>,
 }
 
 impl Move {
@@ -142,6 +147,8 @@ impl Move {
             axis_tangents: None,
             per_rev: 0.0,
             jerk: f64::INFINITY,
+            blend: None,
+            compress: None,
         }
     }
 
@@ -150,7 +157,7 @@ impl Move {
     pub fn set_limits(&mut self, length: f64, feed: Feed, limits: &[AxisLimit]) {
         let path = &self.path;
         // A line's rate per axis is its span, read in the loop (no array built and copied).
-        let rate = path.arc.as_ref().map(|_| path.max_rate_of_first(limits.len()));
+        let rate = (path.arc.is_some() || path.curve.is_some()).then(|| path.max_rate_of_first(limits.len()));
         let feed = match feed {
             Feed::Rapid => f64::INFINITY,
             Feed::Path(f) => f,
@@ -179,6 +186,9 @@ impl Move {
                 v_max = v_max.min((0.5 * a_plane * arc.radius).sqrt() / k);
                 a_max = a_max.min(0.5 * a_plane / k);
             }
+        }
+        if let Some(curve) = &path.curve {
+            (v_max, a_max) = super::blend::curve_limits(curve, limits, v_max, a_max);
         }
         self.length = length;
         self.v_max = v_max.min(feed);

@@ -570,6 +570,7 @@ fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensa
             end: end3,
             arc: Some(Box::new(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep })),
             ori: None,
+            curve: None,
         },
     };
     rebuild(p, path, limits)
@@ -596,7 +597,13 @@ fn outside_plane(a: &AxisVec, b: &AxisVec, comp: &Compensation) -> f64 {
 /// The move rebuilt on a new path with the same feed and limits.
 fn rebuild(p: &Prepared, path: Path, limits: &[AxisLimit]) -> Move {
     let length = path_length(&path);
-    Move::new(path, length, p.feed, limits, p.mv.exact_stop, p.mv.tag)
+    continuous_path(p, Move::new(path, length, p.feed, limits, p.mv.exact_stop, p.mv.tag))
+}
+
+/// The programmed block's corner rounding and compressor limits on a move made from it.
+fn continuous_path(p: &Prepared, mut mv: Move) -> Move {
+    (mv.blend, mv.compress) = (p.mv.blend, p.mv.compress);
+    mv
 }
 
 /// The move of an equidistant element (or, with `contour_feed` false, a transition arc at
@@ -666,11 +673,11 @@ fn finish_between(
                 arc.u[extra] += k * comp.u[rot];
                 arc.v[extra] += k * comp.v[rot];
             }
-            (Path { start: start3, end: end3, arc: Some(Box::new(arc)), ori: None }, feed)
+            (Path { start: start3, end: end3, arc: Some(Box::new(arc)), ori: None, curve: None }, feed)
         }
     };
     let length = path_length(&path);
-    Move::new(path, length, feed, limits, p.mv.exact_stop, p.mv.tag)
+    continuous_path(p, Move::new(path, length, feed, limits, p.mv.exact_stop, p.mv.tag))
 }
 
 fn path_length(path: &Path) -> f64 {

@@ -134,6 +134,7 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
                 end: b,
                 arc: Some(Box::new(Arc { u, v: d1, radius: r, start_angle: 0.0, sweep: phi })),
                 ori: None,
+                curve: None,
             }
         }
         _ => Path::line(a, b),
@@ -202,6 +203,8 @@ mod tests {
                 axis_tangents: None,
                 per_rev: 0.0,
                 jerk: f64::INFINITY,
+                blend: None,
+                compress: None,
             }
         };
         let held = Held {

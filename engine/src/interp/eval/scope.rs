@@ -423,9 +423,10 @@ fn g_group_index(m: &Modal, h: &crate::interp::tools::toolholder::Holder, group:
             if m.exact_stop {
                 1
             } else {
-                2
+                m.path.group10()
             }
         }
+        12 => m.path.group12(),
         13 => match (m.inch, m.inch_feed) {
             (true, false) => 1,
             (false, false) => 2,

@@ -1,0 +1,99 @@
+//! Continuous-path smoothing in the main run's feed: a move whose block asks for corner
+//! rounding (`Move::blend`, G641..G645) or compression (`Move::compress`, COMPON ...) waits
+//! in the prepared items until the next item is known. If that is a move too (nothing that
+//! needs a stop in between, the same transformation), the compressor first makes a smooth
+//! passage through the point between them (`motion::compress`); where it does not, the
+//! corner is rounded (`motion::blend`): the shortened move and the rounding element go on,
+//! the shortened next move waits for its own successor.
+
+use super::Channel;
+use crate::interp::Item;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::blend::{self, Rounded};
+use crate::motion::compress::{self, Junction};
+use crate::motion::{AxisLimit, AxisVec, Move};
+
+/// What the rounding remembers between two corners.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Blending {
+    /// The first prepared move was shortened at its start by the corner before it: its
+    /// length now (bits) and its programmed length (the 36 % rule refers to that).
+    trimmed: Option<(u64, f64)>,
+    /// The compressor's passage through the start point of the first prepared move.
+    junction: Option<Junction>,
+    /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
+    /// waiting move is handed on without its successor.
+    pub(super) prep_waits_for_main_run: bool,
+}
+
+impl Channel {
+    /// True if the move at the front of the prepared items waits for its successor to round
+    /// the corner between them.
+    pub(super) fn waits_for_corner(&self) -> bool {
+        self.pending.len() == 1
+            && !self.prep_done
+            && !self.prep_waits_for_trafo
+            && !self.blending.prep_waits_for_main_run
+            && matches!(self.pending.front(), Some(Item::Move { mv, .. })
+                if (mv.blend.is_some() || mv.compress.is_some()) && !mv.exact_stop)
+    }
+
+    /// Rounds the corner between `mv` (just taken from the prepared items) and the next
+    /// prepared move, if `mv` asks for it: `mv` becomes the shortened move, the next prepared
+    /// move is shortened at its start, and the rounding element is returned to be planned
+    /// right after `mv`.
+    pub(super) fn round_corner(&mut self, mv: &mut Move) -> Option<Move> {
+        let full = match self.blending.trimmed.take() {
+            Some((bits, full)) if bits == mv.length.to_bits() => full,
+            _ => mv.length,
+        };
+        if mv.blend.is_none() && mv.compress.is_none() {
+            self.blending.junction = None;
+            return None;
+        }
+        let start = self.blending.junction.take();
+        let mut metric: AxisVec = [0.0; MAX_CHANNEL_AXES];
+        for &k in self.cfg.geo_axes.iter().flatten() {
+            metric[k] = 1.0;
+        }
+        let limits = AxisLimit::for_channel(&self.cfg);
+        let next = match self.pending.front() {
+            Some(Item::Move { mv: next, .. }) => Some(next),
+            _ => None,
+        };
+        if compress::compressible(mv) {
+            let start = start.filter(|j| j.point == mv.path.start);
+            let end = next.and_then(|next| compress::junction(mv, next, &metric));
+            // Where the curve would leave the chord, the line stays, and so does its corner.
+            if let Some(smooth) = compress::smooth(mv, start.as_ref(), end.as_ref(), &metric, &limits) {
+                *mv = smooth;
+                if end.is_some() {
+                    // A smooth passage: no corner to round.
+                    self.blending.junction = end;
+                    return None;
+                }
+            }
+        }
+        mv.blend?;
+        let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
+        if !(geo_moves(mv, &metric) && geo_moves(next, &metric)) {
+            return None;
+        }
+        let next_full = next.length;
+        let Rounded { first, corner, second } = blend::round_corner(mv, next, full, &metric, &limits)?;
+        *mv = first;
+        *next = second;
+        self.blending.trimmed = Some((next.length.to_bits(), next_full));
+        Some(corner)
+    }
+}
+
+/// True if `mv` moves channel axis `k`.
+fn moves_axis(mv: &Move, k: usize) -> bool {
+    mv.path.start[k] != mv.path.end[k] || mv.path.arc.as_ref().is_some_and(|a| a.moves_axis(k))
+}
+
+/// True if `mv` moves a geometry axis (the feed's length is theirs).
+fn geo_moves(mv: &Move, metric: &AxisVec) -> bool {
+    (0..MAX_CHANNEL_AXES).any(|k| metric[k] > 0.0 && moves_axis(mv, k))
+}

@@ -1,0 +1,250 @@
+//! The NC words of continuous-path control (Function Manual B1, Programming Manual "Job
+//! planning"): G group 10 beyond G60/G64 (`G641` with `ADIS`/`ADISPOS`, `G642`..`G645`), G group
+//! 12 (`G601`/`G602`/`G603`), the programmable tolerances `CTOL`/`OTOL`/`ATOL`, the compressors
+//! `COMPON`/`COMPCURV`/`COMPCAD`/`COMPSURF`/`COMPOF` and `UPATH`/`SPATH`.
+//!
+//! What the words turn into: each move of a block in continuous-path mode carries a
+//! [`Blend`] (read from the machine data at block preparation) that tells the channel how to
+//! round the corner at its end (`motion::blend`).
+//!
+//! Modelled as follows where the manuals leave room:
+//! - `G643` (block-internal rounding) and `G644` (rounding with the greatest possible
+//!   dynamics) round like `G642`, with the axial tolerance MD33100 (or `ATOL`): the rounded
+//!   path is the same kind of element, inserted between the blocks.
+//! - `G645` rounds corners like `G642` (same tolerance rule); tangential transitions with a
+//!   jump in curvature are left as they are.
+//! - The tolerance of G642..G645 is one distance for the geometry axes: `CTOL` when
+//!   programmed, else SD42465 when MD20480's units digit is 1 or 3, else the smallest MD33100
+//!   of the geometry axes (or `ATOL`). A negative `CTOL`/`OTOL`/`ATOL` returns to the data.
+//! - `G601`/`G602`/`G603`: the simulated axes follow their setpoint exactly, so the fine and
+//!   coarse exact-stop windows (MD36010/MD36000) and the interpolator end are reached in the
+//!   same IPO cycle; the words are kept (and read back through `$P_GG[12]`) but change no
+//!   timing.
+//! - `ADIS`/`ADISPOS` are modal and 0 after reset: G641 without them rounds nothing.
+//! - `OTOL` and the orientation: moves with a vector-interpolated orientation (TRAORI with
+//!   ORIVECT ...) and moves split for a transformation are not rounded.
+//! - `UPATH`/`SPATH` (the path parameter of FGROUP axes) are accepted; every path here is
+//!   parametrised by the geometry axes' length (SPATH), so UPATH changes nothing.
+
+use crate::alarm::Alarm;
+use crate::machine_data::MachineConfig;
+use crate::motion::blend::Blend;
+use crate::motion::compress::Compress;
+
+/// G group 10 in continuous-path mode (G60 is `Modal::exact_stop`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Smoothing {
+    #[default]
+    G64,
+    G641,
+    G642,
+    G643,
+    G644,
+    G645,
+}
+
+/// G group 12: when an exact stop counts as reached.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StopWindow {
+    /// G601: within MD36010 STOP_LIMIT_FINE (reset value).
+    #[default]
+    Fine,
+    /// G602: within MD36000 STOP_LIMIT_COARSE.
+    Coarse,
+    /// G603: at the interpolator's end.
+    IpoEnd,
+}
+
+/// G group 30: the compressor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Compressor {
+    #[default]
+    Off,
+    On,
+    Curv,
+    Cad,
+    Surf,
+}
+
+/// The modal state of continuous-path control.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PathControl {
+    pub smoothing: Smoothing,
+    pub window: StopWindow,
+    /// ADIS (G1, G2, G3 ...) and ADISPOS (G0): G641's rounding distances.
+    pub adis: f64,
+    pub adispos: f64,
+    /// Programmed contour, orientation and axial tolerances (`None`: the machine data's).
+    pub ctol: Option<f64>,
+    pub otol: Option<f64>,
+    pub atol: Option<f64>,
+    pub compressor: Compressor,
+    /// UPATH (true) or SPATH.
+    pub upath: bool,
+}
+
+/// The words of one block that change [`PathControl`].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PathWords {
+    smoothing: Option<Smoothing>,
+    window: Option<StopWindow>,
+    adis: Option<f64>,
+    adispos: Option<f64>,
+    ctol: Option<f64>,
+    otol: Option<f64>,
+    atol: Option<f64>,
+    compressor: Option<Compressor>,
+    upath: Option<bool>,
+}
+
+impl PathWords {
+    /// G641..G645 and G601..G603; false for any other G function. G641..G645 also select
+    /// continuous-path mode: `exact_stop` is set to `Some(false)` for the caller's group 10.
+    pub fn g_function(&mut self, code: u32, exact_stop: &mut Option<bool>) -> bool {
+        let smoothing = match code {
+            64 => Smoothing::G64,
+            641 => Smoothing::G641,
+            642 => Smoothing::G642,
+            643 => Smoothing::G643,
+            644 => Smoothing::G644,
+            645 => Smoothing::G645,
+            601..=603 => {
+                self.window = Some([StopWindow::Fine, StopWindow::Coarse, StopWindow::IpoEnd][code as usize - 601]);
+                return true;
+            }
+            _ => return false,
+        };
+        self.smoothing = Some(smoothing);
+        *exact_stop = Some(false);
+        true
+    }
+
+    /// `ADIS=`, `ADISPOS=`, `CTOL=`, `OTOL=`, `ATOL=`; false for any other address.
+    pub fn address(&mut self, name: &str, value: f64, line: u32) -> Result<bool, Alarm> {
+        let slot = match name {
+            "ADIS" => &mut self.adis,
+            "ADISPOS" => &mut self.adispos,
+            "CTOL" => &mut self.ctol,
+            "OTOL" => &mut self.otol,
+            "ATOL" => &mut self.atol,
+            _ => return Ok(false),
+        };
+        if !value.is_finite() || name.starts_with("ADIS") && value < 0.0 {
+            return Err(Alarm::value_out_of_range(line, &format!("{name}={value}")));
+        }
+        *slot = Some(value);
+        Ok(true)
+    }
+
+    /// COMPON, COMPCURV, COMPCAD, COMPSURF, COMPOF, UPATH, SPATH; false for any other keyword.
+    pub fn keyword(&mut self, name: &str) -> bool {
+        let compressor = match name {
+            "COMPOF" => Compressor::Off,
+            "COMPON" => Compressor::On,
+            "COMPCURV" => Compressor::Curv,
+            "COMPCAD" => Compressor::Cad,
+            "COMPSURF" => Compressor::Surf,
+            "UPATH" | "SPATH" => {
+                self.upath = Some(name == "UPATH");
+                return true;
+            }
+            _ => return false,
+        };
+        self.compressor = Some(compressor);
+        true
+    }
+}
+
+/// True for the addresses of this module (so an assignment `CTOL=0.01` is an NC address).
+pub fn is_address(name: &str) -> bool {
+    matches!(name, "ADIS" | "ADISPOS" | "CTOL" | "OTOL" | "ATOL")
+}
+
+impl PathControl {
+    /// Takes over the block's words; programmed scaled lengths (`factor`: inch) in mm.
+    pub fn apply(&mut self, w: &PathWords, factor: f64) {
+        if let Some(s) = w.smoothing {
+            self.smoothing = s;
+        }
+        if let Some(s) = w.window {
+            self.window = s;
+        }
+        if let Some(v) = w.adis {
+            self.adis = v * factor;
+        }
+        if let Some(v) = w.adispos {
+            self.adispos = v * factor;
+        }
+        // A negative tolerance switches back to the machine data's.
+        let tol = |v: Option<f64>, old: Option<f64>, f: f64| match v {
+            Some(v) if v < 0.0 => None,
+            Some(v) => Some(v * f),
+            None => old,
+        };
+        self.ctol = tol(w.ctol, self.ctol, factor);
+        self.otol = tol(w.otol, self.otol, 1.0);
+        self.atol = tol(w.atol, self.atol, factor);
+        if let Some(c) = w.compressor {
+            self.compressor = c;
+        }
+        if let Some(u) = w.upath {
+            self.upath = u;
+        }
+    }
+
+    /// The rounding at the end of a move of this block (`None` under G60/G9 and G64).
+    pub fn blend(&self, exact_stop: bool, rapid: bool, cfg: &MachineConfig) -> Option<Blend> {
+        if exact_stop {
+            return None;
+        }
+        match self.smoothing {
+            Smoothing::G64 => None,
+            Smoothing::G641 => {
+                let d = if rapid { self.adispos } else { self.adis };
+                (d > 0.0).then_some(Blend::Distance(d))
+            }
+            Smoothing::G642 | Smoothing::G643 | Smoothing::G644 | Smoothing::G645 => {
+                Some(Blend::Tolerance(self.tolerance(cfg)))
+            }
+        }
+    }
+
+    /// The compressor's limits for a move of this block (`None` under COMPOF).
+    pub fn compress(&self, cfg: &MachineConfig) -> Option<Compress> {
+        if self.compressor == Compressor::Off {
+            return None;
+        }
+        let data = &cfg.path_control;
+        let axial = cfg.geo_axes.iter().flatten().filter_map(|&k| data.axis_tol.get(k).copied());
+        Some(Compress {
+            tol: self.ctol.or(self.atol).unwrap_or_else(|| axial.fold(f64::INFINITY, f64::min)),
+            block_limit: data.block_path_limit,
+            velo_tol: data.velo_tol / 60.0,
+        })
+    }
+
+    /// The path tolerance of G642..G645 (see the module doc).
+    pub fn tolerance(&self, cfg: &MachineConfig) -> f64 {
+        let data = &cfg.path_control;
+        if let Some(c) = self.ctol {
+            return c;
+        }
+        if matches!(data.smoothing_mode % 10, 1 | 3) {
+            return data.contour_tol;
+        }
+        if let Some(a) = self.atol {
+            return a;
+        }
+        cfg.geo_axes.iter().flatten().filter_map(|&k| data.axis_tol.get(k).copied()).fold(f64::INFINITY, f64::min)
+    }
+
+    /// `$P_GG[10]`'s number in G group 10 when not under G60.
+    pub fn group10(&self) -> i64 {
+        self.smoothing as i64 + 2
+    }
+
+    /// `$P_GG[12]`.
+    pub fn group12(&self) -> i64 {
+        self.window as i64 + 1
+    }
+}
