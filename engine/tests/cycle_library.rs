@@ -90,3 +90,57 @@ fn a_session_program_of_the_same_name_overrides_the_library() {
     let (_, holes) = run_holes("G17 G90 F200\nG0 X0 Y0 Z50\nCYCLE81(10,0,2,-5)\nM30", &[("CYCLE81", own)], "Z", 0.0);
     assert!(close(holes[0], -6.0), "the session's CYCLE81 ran: {holes:?}");
 }
+
+// --- CYCLE832: high-speed settings -----------------------------------------------------------
+
+/// Runs `program` on the 3-axis mill; returns the channel and every sampled WCS (X, Y).
+fn run_xy(program: &str) -> (Channel, Vec<(f64, f64)>) {
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program(program).unwrap_or_else(|e| panic!("not started: {e}"));
+    let mut samples = Vec::new();
+    while ch.is_busy() {
+        ch.step();
+        samples.push((wcs(&ch, "X"), wcs(&ch, "Y")));
+        assert!(samples.len() < MAX_TICKS, "program does not end");
+    }
+    let s = ch.snapshot();
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    (ch, samples)
+}
+
+/// How close the sampled path comes to the corner (10, 0).
+fn corner_gap(samples: &[(f64, f64)]) -> f64 {
+    samples.iter().map(|(x, y)| ((x - 10.0).powi(2) + y.powi(2)).sqrt()).fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn cycle832_sets_the_functions_of_each_machining_type() {
+    // $P_GG positions in their G groups (Programming Manual's lists): group 10 G60 1, G64 2,
+    // G641 3, G642 4; group 21 BRISK 1, SOFT 2; group 24 FFWOF 1, FFWON 2; group 59 DYNNORM 1,
+    // DYNPOS 2, DYNROUGH 3, DYNSEMIFIN 4, DYNFINISH 5.
+    let program = "G17 G90 F2000\nG0 X0 Y0 Z0\n\
+        CYCLE832(0.01,_FINISH,1)\nR1=$P_GG[10] R2=$P_GG[21] R3=$P_GG[24] R4=$P_GG[59]\n\
+        CYCLE832(0.05,_SEMIFIN,1)\nR5=$P_GG[59]\n\
+        CYCLE832(0.1,3,1)\nR6=$P_GG[59]\n\
+        CYCLE832(0.01,_OFF)\nR7=$P_GG[10] R8=$P_GG[59] R9=$P_GG[21]\nM30";
+    let (ch, _) = run_xy(program);
+    let r: Vec<f64> = (1..=9).map(|n| ch.r_param(n)).collect();
+    assert_eq!(r, [4.0, 2.0, 2.0, 5.0, 4.0, 3.0, 2.0, 1.0, 2.0], "R1..R9");
+}
+
+#[test]
+fn cycle832_tolerance_bounds_the_rounded_corner() {
+    // A square corner at (10, 0) under the settings of each type: the path passes the corner
+    // within the tolerance, and really cuts it (more than a tenth of it away). At F60 the IPO
+    // samples lie 0.004 mm apart, fine enough to see the rounding of a 0.01 mm tolerance.
+    let square = |settings: &str| format!("G17 G90 G0 X0 Y0 Z0\n{settings}\nG1 X10 F60\nY10\nM30");
+    let (_, fine) = run_xy(&square("CYCLE832(0.01,_FINISH,1)"));
+    let (_, rough) = run_xy(&square("CYCLE832(0.1,_ROUGH,1)"));
+    let (_, off) = run_xy(&square("CYCLE832(0.1,_OFF)"));
+    let (f, r, o) = (corner_gap(&fine), corner_gap(&rough), corner_gap(&off));
+    assert!(f <= 0.01 + 1e-9 && f > 0.001, "finishing: {f}");
+    assert!(r <= 0.1 + 1e-9 && r > 0.01, "roughing: {r}");
+    // Deselected: G64 without rounding runs into the corner point (the last IPO sample before
+    // the standstill may stop a few µm short of it under SOFT).
+    assert!(o < 0.0005, "deselected: {o}");
+}

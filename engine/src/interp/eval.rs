@@ -1,6 +1,7 @@
 //! Evaluation of expressions: operators with the control's semantics, the predefined
 //! functions, variables and system variables.
 
+pub(super) mod cycle_constants;
 pub(super) mod cycle_vars;
 pub(super) mod indirect_axis;
 pub(crate) mod machine_data;
@@ -152,6 +153,9 @@ fn variable(name: &str, idx: &[Value], scope: &dyn Scope, line: u32) -> Result<V
     }
     if idx.is_empty() && scope.is_axis(name) {
         return Ok(Value::Axis(name.to_string()));
+    }
+    if let Some(v) = cycle_constants::constant(name).filter(|_| idx.is_empty()) {
+        return Ok(v);
     }
     Err(Alarm::unknown_name(line, name))
 }
