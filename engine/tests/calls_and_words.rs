@@ -339,7 +339,7 @@ fn an_unmodelled_reserved_name_is_12550_naming_it_and_its_line() {
         // WORKPIECE and ACTBLOCNO are accepted now (program_data.rs); probing and the file
         // functions are not modelled.
         ("MEAS=1 G1 X10 F100", "MEAS"),
-        ("CYCLE832(0.01,3,1)", "CYCLE832"),
+        ("CYCLE61(10,0,2,0,0,0,80,60,5,80,0,100,31,0)", "CYCLE61"),
         ("R1=$MN_INTERPOLATOR_CYCLE", "$MN_INTERPOLATOR_CYCLE"),
         ("WRITE(R1,\"LOG\",\"done\")", "WRITE"),
         // Synchronized actions: refused by their opening word, not as a syntax error of the

@@ -177,11 +177,13 @@ fn feed_of(feed: f64) -> Feed {
     if feed.is_infinite() { Feed::Rapid } else { Feed::Path(feed) }
 }
 
-fn dot(a: &AxisVec, b: &AxisVec, metric: &AxisVec) -> f64 {
+/// Scalar product in axis space, each axis weighted by `metric` (0 for axes outside the path).
+pub(super) fn dot(a: &AxisVec, b: &AxisVec, metric: &AxisVec) -> f64 {
     a.iter().zip(b).zip(metric).map(|((x, y), m)| x * y * m).sum()
 }
 
-fn unit(v: &AxisVec, metric: &AxisVec) -> Option<AxisVec> {
+/// `v` scaled to length 1 in the `metric`, `None` for a vector of no length.
+pub(super) fn unit(v: &AxisVec, metric: &AxisVec) -> Option<AxisVec> {
     let n = dot(v, v, metric).sqrt();
     (n > 1e-12).then(|| v.map(|x| x / n))
 }

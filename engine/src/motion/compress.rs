@@ -11,6 +11,7 @@
 //! point. A quintic that would leave its chord by more than the tolerance stays the
 //! programmed line. The four compressor words select the same curve here.
 
+use super::blend::{dot, unit};
 use super::curve::Curve;
 use super::path::{AxisVec, Path};
 use super::planner::{AxisLimit, Feed, Move};
@@ -138,15 +139,6 @@ pub fn smooth(
     out.blend = mv.blend;
     out.compress = mv.compress;
     Some(out)
-}
-
-fn dot(a: &AxisVec, b: &AxisVec, metric: &AxisVec) -> f64 {
-    a.iter().zip(b).zip(metric).map(|((x, y), m)| x * y * m).sum()
-}
-
-fn unit(v: &AxisVec, metric: &AxisVec) -> Option<AxisVec> {
-    let n = dot(v, v, metric).sqrt();
-    (n > 1e-12).then(|| v.map(|x| x / n))
 }
 
 #[cfg(test)]

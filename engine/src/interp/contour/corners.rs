@@ -191,20 +191,12 @@ mod tests {
             e[..2].copy_from_slice(&to);
             let len = ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2)).sqrt();
             Move {
-                path: Path::line(s, e),
                 length: len,
                 v_max: 10.0,
                 v_axes: 10.0,
                 feed: 10.0,
                 a_max: 100.0,
-                exact_stop: false,
-                tag: 0,
-                machine_space: false,
-                axis_tangents: None,
-                per_rev: 0.0,
-                jerk: f64::INFINITY,
-                blend: None,
-                compress: None,
+                ..Move::unlimited(Path::line(s, e), false, 0)
             }
         };
         let held = Held {
