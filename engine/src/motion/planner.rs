@@ -529,6 +529,7 @@ impl Planner {
     /// arrive too fast. A transition that `v` can meet is recognised without the square root of
     /// [`brake_speed`] (`brake_speed(d, v_end, a) ≥ v ⇔ v·(v + a·dt) ≤ 2·a·d + v_end²`), so a
     /// cycle far from any braking point takes none.
+    #[inline(always)]
     fn brake_limited(&self, v: f64) -> f64 {
         let dt = self.dt;
         let mut distance = -self.s;

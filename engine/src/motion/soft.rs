@@ -68,6 +68,7 @@ pub(super) fn corner_jerk(j: f64, ra: f64, rb: f64) -> f64 {
 impl Planner {
     /// The path velocity of the next cycle under SOFT (the front move has a finite jerk);
     /// updates the path acceleration.
+    #[inline(never)]
     pub(super) fn soft_velocity(&mut self, cap: f64) -> f64 {
         let dt = self.dt;
         let front = &self.queue[0];
