@@ -20,7 +20,7 @@ pub struct ToolList {
     /// Read-only: the programmed tool `$P_TOOLP` (under MD22550 = 1 the one M6 changes to).
     #[serde(default)]
     pub prepared: u32,
-    pub tools: Vec<Tool>,
+    pub tools: Vec<ToolEntry>,
     #[serde(default)]
     pub magazines: Vec<Magazine>,
 }
@@ -28,7 +28,7 @@ pub struct ToolList {
 /// One tool (`$TC_TP..[number]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct Tool {
+pub struct ToolEntry {
     /// Tool number T (1..32000).
     pub number: u32,
     /// `$TC_TP2`, the name `T="name"` selects (empty: selected by number only).
@@ -157,7 +157,7 @@ impl ToolList {
         let tools = list
             .tools
             .values()
-            .map(|e| Tool {
+            .map(|e| ToolEntry {
                 number: e.number,
                 name: e.name.clone(),
                 duplo: e.duplo,
