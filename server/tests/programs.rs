@@ -90,3 +90,22 @@ async fn the_standard_cycle_library_is_listed_readable_and_callable() {
     // The library is not one of the session's stored programs.
     assert_eq!(server.get(&format!("/sessions/{id}/programs")).await.body, json!([]));
 }
+
+#[tokio::test]
+async fn a_session_program_may_take_the_name_of_a_library_cycle() {
+    // Before, the library's text counted as the replaced program of the same name, and the
+    // byte accounting underflowed (a panic in the session's task).
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    assert_eq!(server.get(&format!("/sessions/{id}/programs/CYCLE81")).await.status, StatusCode::NOT_FOUND);
+    let own = "PROC CYCLE81(REAL RTP, REAL RFP, REAL SDIS, REAL DP)\nG0 Z=RTP+1\nM17";
+    let reply = server.put(&format!("/sessions/{id}/programs/CYCLE81"), json!({ "text": own })).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(
+        server.get(&format!("/sessions/{id}/programs")).await.body,
+        json!([{"name": "CYCLE81", "size": own.len()}])
+    );
+    let run = json!({"program": "G0 X0 Y0 Z50\nCYCLE81(10,0,2,-5)\nM30", "pace": "fast", "wait": true});
+    let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
+    assert_eq!(pos(&state, "machine", "Z"), 11.0, "the session's CYCLE81 ran: {state}");
+}

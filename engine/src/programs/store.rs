@@ -140,9 +140,10 @@ impl Programs {
         self.by_name.contains_key(name) || super::cycles::find(name).is_some()
     }
 
-    /// The text of program `name` as the main program would find it, if it is in memory.
+    /// The text of the session's own program `name` as the main program would find it, if it
+    /// is in memory; never one of the standard cycle library, which is no program of the session.
     pub fn get(&self, name: &str) -> Option<&Arc<str>> {
-        self.find(name, self.main_dir.as_ref()).and_then(StoredProgram::text)
+        self.find_stored(name, self.main_dir.as_ref(), None).and_then(StoredProgram::text)
     }
 
     /// Removes program `name` from every directory; false if there was none.
@@ -176,15 +177,18 @@ impl Programs {
     /// the search (Job planning, "Search path for subprogram call"); the standard cycle library
     /// comes last.
     pub fn find_with_path(&self, name: &str, caller: Option<&Dir>, callpath: Option<&Dir>) -> Option<&StoredProgram> {
-        let stored = self.by_name.get(name).and_then(|candidates| {
-            let in_dir = |dir: Option<&Dir>| candidates.iter().find(|p| p.dir() == dir);
-            in_dir(caller)
-                .or_else(|| in_dir(Some(&Dir::Spf)))
-                .or_else(|| callpath.and_then(|c| in_dir(Some(c))))
-                .or_else(|| [Dir::Cus, Dir::Cma, Dir::Cst].iter().find_map(|d| in_dir(Some(d))))
-                .or_else(|| in_dir(None))
-        });
-        stored.or_else(|| super::cycles::find(name))
+        self.find_stored(name, caller, callpath).or_else(|| super::cycles::find(name))
+    }
+
+    /// [`Programs::find_with_path`] among the session's own programs only.
+    fn find_stored(&self, name: &str, caller: Option<&Dir>, callpath: Option<&Dir>) -> Option<&StoredProgram> {
+        let candidates = self.by_name.get(name)?;
+        let in_dir = |dir: Option<&Dir>| candidates.iter().find(|p| p.dir() == dir);
+        in_dir(caller)
+            .or_else(|| in_dir(Some(&Dir::Spf)))
+            .or_else(|| callpath.and_then(|c| in_dir(Some(c))))
+            .or_else(|| [Dir::Cus, Dir::Cma, Dir::Cst].iter().find_map(|d| in_dir(Some(d))))
+            .or_else(|| in_dir(None))
     }
 
     /// The checked text and directory of the program `name` called at `line` from a program in
