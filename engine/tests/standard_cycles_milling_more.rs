@@ -128,3 +128,97 @@ fn cycle76_alarms_at_the_calling_line() {
     let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nCYCLE77(10,0,2,-5,,40,0,0,0,1,0,500,150,0,3)\nM30");
     assert_eq!(alarms(&t), vec![(61002, Some(3))]);
 }
+
+/// The points of the face `[x0, x1] x [y0, y1]` (every `step` mm) farther than the tool radius
+/// 5 (+ `tol`) from the path at height `z` (the straight pieces between consecutive samples
+/// both at `z`).
+fn uncovered(pts: &[[f64; 3]], z: f64, (x0, x1, y0, y1): (f64, f64, f64, f64), step: f64, tol: f64) -> Vec<(f64, f64)> {
+    let segs: Vec<_> = pts.windows(2).filter(|w| close(w[0][2], z, 1e-9) && close(w[1][2], z, 1e-9)).collect();
+    let dist = |w: &[[f64; 3]], x: f64, y: f64| {
+        let (ax, ay, bx, by) = (w[0][0], w[0][1], w[1][0], w[1][1]);
+        let (dx, dy) = (bx - ax, by - ay);
+        let l2 = dx * dx + dy * dy;
+        let s = if l2 > 0.0 { (((x - ax) * dx + (y - ay) * dy) / l2).clamp(0.0, 1.0) } else { 0.0 };
+        (ax + s * dx - x).hypot(ay + s * dy - y)
+    };
+    let mut out = Vec::new();
+    let (nx, ny) = (((x1 - x0) / step).round() as usize, ((y1 - y0) / step).round() as usize);
+    for i in 0..=nx {
+        for j in 0..=ny {
+            let (x, y) = (x0 + i as f64 * step, y0 + j as f64 * step);
+            if !segs.iter().any(|w| dist(w, x, y) <= 5.0 + tol) {
+                out.push((x, y));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn cycle61_roughing_meander_covers_the_face_and_stops_at_the_allowance() {
+    // Face 0..100 x 0..60 at Z0 0, finished height -3, DZ 2, width of cut 8, UZ 0.5, SC 1,
+    // VARI 31 (roughing, along the abscissa alternating), no limits. Depth -2.5 in
+    // ceil(2.5 / 2) = 2 levels: -1.25, -2.5. Lines from 0 + 5 - 8 = -3 to 60 - 5 + 8 = 63: 66 in
+    // ceil(66 / 8) = 9 steps of 7.333; each line from -5 - 1 = -6 to 100 + 5 = 105.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE61(10,0,1,-3,0,0,100,60,2,8,0.5,1000,31,0)\nM30");
+    let pts = local(&t, (0.0, 0.0), 0.0, 0.0);
+    let floor = min_of(pts.iter().map(|p| p[2]));
+    assert!(close(floor, -2.5, 1e-9), "never below -3 + UZ: {floor}");
+    assert!(pts.iter().any(|p| close(p[2], -1.25, 1e-9)), "first level");
+    for z in [-1.25, -2.5] {
+        let gaps = uncovered(&pts, z, (0.0, 100.0, 0.0, 60.0), 2.0, 0.0);
+        assert!(gaps.is_empty(), "not milled at {z}: {gaps:?}");
+    }
+    let deep: Vec<_> = pts.iter().filter(|p| close(p[2], -2.5, 1e-9)).collect();
+    let (lo, hi) = (min_of(deep.iter().map(|p| p[0])), -min_of(deep.iter().map(|p| -p[0])));
+    assert!(close(lo, -6.0, 1e-6) && close(hi, 105.0, 1e-6), "lines run out of the face: {lo} {hi}");
+    for k in 0..=9 {
+        let v = -3.0 + k as f64 * 66.0 / 9.0;
+        assert!(deep.iter().any(|p| close(p[1], v, 1e-6) && close(p[0], 50.0, 0.5)), "line at {v}");
+    }
+    // Alternating: the step-overs run at depth, at the line ends outside the face.
+    assert!(deep.iter().any(|p| close(p[0], 105.0, 1e-6) && close(p[1], -3.0 + 33.0 / 9.0, 1.0)));
+    assert!(close(t.end()[Z], 10.0, 1e-9));
+}
+
+#[test]
+fn cycle61_finishing_one_direction_against_a_wall() {
+    // Finishing (VARI 22: along the ordinate, one way) of 0..100 x 0..60 to -3 with a wall at X0
+    // (LIM 1): the tool centre keeps 5 from X0, lines at X = 5 .. 100 - 5 + 8 = 103 in
+    // ceil(98 / 8) = 13 steps, each from Y -6 to 65, all in +Y; the face still fully covered.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE61(10,0,1,-3,0,0,100,60,2,8,0.5,1000,22,1)\nM30");
+    let pts = local(&t, (0.0, 0.0), 0.0, 0.0);
+    let at: Vec<_> = pts.iter().filter(|p| close(p[2], -3.0, 1e-9)).collect();
+    assert!(close(min_of(pts.iter().map(|p| p[2])), -3.0, 1e-9), "exactly the finished height");
+    assert!(close(min_of(at.iter().map(|p| p[0])), 5.0, 1e-6), "the wall at X0 is not touched");
+    assert!(uncovered(&pts, -3.0, (0.0, 100.0, 0.0, 60.0), 2.0, 1e-6).is_empty());
+    for w in at.windows(2) {
+        assert!(w[1][1] >= w[0][1] - 1e-9 || !close(w[0][0], w[1][0], 1e-9), "one way: {w:?}");
+    }
+    for k in 0..=13 {
+        let x = 5.0 + k as f64 * 98.0 / 13.0;
+        assert!(at.iter().any(|p| close(p[0], x, 1e-6) && close(p[1], 65.0, 1e-6)), "line at {x}");
+    }
+}
+
+#[test]
+fn cycle71_older_list_mills_a_turned_face_from_its_corner() {
+    // Corner (10, 20), 50 x 30 turned by 30°, depth -1 from RFP 0 in one level, width 80 % of
+    // Ø10 = 8, VARI 41 (roughing along the ordinate, alternating), FALD 0: in the face's own
+    // coordinates every point of 0..50 x 0..30 lies within 5 of the path at -1.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE71(10,0,2,-1,10,20,50,30,30,0,0,5,0,800,41,5)\nM30");
+    let pts = local(&t, (10.0, 20.0), 30.0, 0.0);
+    assert!(close(min_of(pts.iter().map(|p| p[2])), -1.0, 1e-9));
+    let gaps = uncovered(&pts, -1.0, (0.0, 50.0, 0.0, 30.0), 2.0, 0.0);
+    assert!(gaps.is_empty(), "{gaps:?}");
+    assert_eq!(t.end(), [t.end()[0], t.end()[1], 10.0]);
+}
+
+#[test]
+fn cycle61_alarms_at_the_calling_line() {
+    // Width of cut 12 > Ø10; finished height above the face.
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nCYCLE61(10,0,1,-3,0,0,100,60,2,12,0,1000,31,0)\nM30");
+    assert_eq!(alarms(&t), vec![(61111, Some(3))]);
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nN7 CYCLE71(10,0,2,1,0,0,50,30,0,0,0,5,0,800,11,5)\nM30");
+    assert_eq!(alarms(&t), vec![(61101, Some(3))]);
+}
