@@ -222,3 +222,68 @@ fn cycle61_alarms_at_the_calling_line() {
     let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nN7 CYCLE71(10,0,2,1,0,0,50,30,0,0,0,5,0,800,11,5)\nM30");
     assert_eq!(alarms(&t), vec![(61101, Some(3))]);
 }
+
+/// Distance of (x, y) from the arc of radius `rad` around the origin from `a0`° through `len`°.
+fn arc_distance(x: f64, y: f64, rad: f64, a0: f64, len: f64) -> f64 {
+    let w = (y.atan2(x).to_degrees() - a0).rem_euclid(360.0);
+    if w <= len {
+        return (x.hypot(y) - rad).abs();
+    }
+    let end = |a: f64| {
+        let (s, c) = a.to_radians().sin_cos();
+        (x - rad * c).hypot(y - rad * s)
+    };
+    end(a0).min(end(a0 + len))
+}
+
+#[test]
+fn slot2_slots_lie_on_the_circle_and_end_at_their_angles() {
+    // 3 slots Ø16 wide, 60° long, on R40 around (10, 0), the first from 30°, 120° apart; depth
+    // -4 in MID 2 steps; FAL 0.5; complete machining (VARI 0), CDIR 3. Tool R5: the tool centre
+    // stays within 8 - 5 = 3 of each slot's middle arc (roughing within 2.5) and the finishing
+    // contour reaches exactly 3: along the circle beyond each end by 3, i.e. the slot's end half
+    // circle of radius 8 around the end at 30 + 60 = 90° (then 210°, 330°).
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nSLOT2(10,0,2,-4,,3,60,16,10,0,40,30,120,100,500,2,3,0.5,0,0,400)\nM30",
+    );
+    let pts = local(&t, (10.0, 0.0), 0.0, 0.0);
+    assert!(pts.len() > 100);
+    let starts = [30.0, 150.0, 270.0];
+    for p in &pts {
+        let d = starts.iter().map(|a| arc_distance(p[0], p[1], 40.0, *a, 60.0)).fold(f64::MAX, f64::min);
+        assert!(d <= 3.0 + 1e-6, "outside every slot minus the tool radius: {p:?}");
+    }
+    assert!(close(min_of(pts.iter().map(|p| p[2])), -4.0, 1e-9));
+    for a0 in starts {
+        for (end, sign) in [(a0 + 60.0, 1.0), (a0, -1.0)] {
+            // Reach along the circle's tangent beyond the end, at the end's middle.
+            let (s, c) = f64::to_radians(end).sin_cos();
+            let reach = pts
+                .iter()
+                .filter(|p| (p[0] - 40.0 * c).hypot(p[1] - 40.0 * s) < 8.0)
+                .map(|p| sign * (-(p[0] - 40.0 * c) * s + (p[1] - 40.0 * s) * c))
+                .fold(f64::MIN, f64::max);
+            // The apex of the end half circle lies between two IPO samples: within 1e-4.
+            assert!(close(reach, 3.0, 1e-4), "slot from {a0}: the end at {end}° reached {reach}");
+            assert!(
+                pts.iter().any(|p| close(p[0], 40.0 * c, 1e-6) && close(p[1], 40.0 * s, 1e-6) && close(p[2], -4.0, 1e-9)),
+                "the middle of the end at {end}° at depth"
+            );
+        }
+        // Roughing arcs leave FAL: some arc at 40 + 2.5 and 40 - 2.5 in the slot's middle.
+        let mid = (a0 + 30.0f64).to_radians();
+        for r in [42.5, 37.5, 43.0, 37.0] {
+            assert!(
+                pts.iter().any(|p| close(p[0].hypot(p[1]), r, 1e-6) && (p[1].atan2(p[0]) - mid).sin().abs() < 0.05),
+                "arc at R{r} in the slot from {a0}"
+            );
+        }
+    }
+}
+
+#[test]
+fn slot2_alarms_for_overlapping_slots() {
+    // 4 slots of 80° (plus the ends) on a full circle overlap: 61104 at the calling line.
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nSLOT2(10,0,2,-4,,4,80,16,0,0,40,0,0,100,500,2,3,0.5,0)\nM30");
+    assert_eq!(alarms(&t), vec![(61104, Some(3))]);
+}
