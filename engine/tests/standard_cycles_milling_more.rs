@@ -287,3 +287,83 @@ fn slot2_alarms_for_overlapping_slots() {
     let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nSLOT2(10,0,2,-4,,4,80,16,0,0,40,0,0,100,500,2,3,0.5,0)\nM30");
     assert_eq!(alarms(&t), vec![(61104, Some(3))]);
 }
+
+/// The samples of the first descent from `from` (exclusive) to `to`: from the first sample
+/// below `from` up to and including the first one at `to`.
+fn descent(pts: &[[f64; 3]], from: f64, to: f64) -> Vec<[f64; 3]> {
+    let start = pts.iter().position(|p| p[2] < from - 1e-9).unwrap();
+    let end = start + pts[start..].iter().position(|p| close(p[2], to, 1e-9)).unwrap();
+    pts[start..=end].to_vec()
+}
+
+/// The angle (degrees) turned counter-clockwise round the origin along `pts`, unwrapped.
+fn unwrapped(pts: &[[f64; 3]]) -> Vec<f64> {
+    let mut out = vec![pts[0][1].atan2(pts[0][0]).to_degrees()];
+    for w in pts.windows(2) {
+        let d = (w[1][1].atan2(w[1][0]) - w[0][1].atan2(w[0][0])).to_degrees();
+        out.push(out.last().unwrap() + (d + 180.0).rem_euclid(360.0) - 180.0);
+    }
+    out
+}
+
+#[test]
+fn pocket4_helical_insertion_descends_on_a_helix_of_rad1_and_dp1() {
+    // R25 pocket at (10, 10), depth -6 in MID 3 levels (-3, -6), VARI 11 (roughing, helical
+    // insertion), climb (G3: counter-clockwise), _RAD1 4, _DP1 2, SDIS 2. First level: from
+    // RFP + SDIS = 2 round the centre at radius 4, Z = 2 - 2 * turns, 5 / 2 = 2.5 turns down to
+    // -3, then one full circle at -3. Second level: from -3, 1.5 turns down to -6.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET4(10,0,2,-6,25,10,10,3,0.5,0,500,150,0,11,8,0,0,4,2)\nM30");
+    let pts = local(&t, (10.0, 10.0), 0.0, 2.0 + 2e-9);
+    for (top, bottom, turns) in [(2.0, -3.0, 2.5), (-3.0, -6.0, 1.5)] {
+        let helix = descent(&pts, top, bottom);
+        assert!(helix.len() > 50);
+        let w = unwrapped(&helix);
+        for (p, a) in helix.iter().zip(&w) {
+            assert!(close(p[0].hypot(p[1]), 4.0, 1e-6), "radius _RAD1: {p:?}");
+            // Each helix starts at (_RAD1, 0): angle 0.
+            let turned = a / 360.0;
+            assert!(close(p[2], top - 2.0 * turned, 1e-6), "Z per turn _DP1 2: {p:?} after {turned} turns");
+        }
+        let total = w.last().unwrap() / 360.0;
+        assert!(close(total, turns, 1e-6), "{total} turns from {top} to {bottom}");
+    }
+    // The full circle at -3 after the helix: the samples at -3 and radius 4 turn a whole turn.
+    let at = pts.iter().position(|p| close(p[2], -3.0, 1e-9)).unwrap();
+    let ring: Vec<_> = pts[at..].iter().take_while(|p| close(p[0].hypot(p[1]), 4.0, 1e-6)).copied().collect();
+    let w = unwrapped(&ring);
+    assert!(close(w.last().unwrap() - w[0], 360.0, 0.5), "one circle at depth");
+    assert!(close(min_of(pts.iter().map(|p| p[2])), -6.0, 1e-9));
+    assert!(pts.iter().all(|p| p[0].hypot(p[1]) <= 19.5 + 1e-6), "still inside the pocket");
+}
+
+#[test]
+fn pocket3_oscillating_insertion_stays_on_the_axis_within_the_angle() {
+    // 60 x 40 pocket at (50, 30), depth -4 in one level, VARI 21 (roughing, oscillating), _RAD1
+    // 5°: along the pocket's length between u = ±(30 - 5) = ±25, from Z 2, at most tan 5° =
+    // 0.08749 steep: 25 * 0.08749 = 2.187 down to u 25 (Z -0.187), then the 3.813 left to -4
+    // need 3.813 / 0.08749 = 43.58 back: the bottom -4 at u 25 - 43.58 = -18.58.
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET3(10,0,2,-4,60,40,0,50,30,0,0,0,0,500,150,0,21,6,0,0,0,5,0)\nM30",
+    );
+    let pts = local(&t, (50.0, 30.0), 0.0, 2.0 + 2e-9);
+    let ins = descent(&pts, 2.0, -4.0);
+    assert!(ins.len() > 50);
+    let tan = 5f64.to_radians().tan();
+    for p in &ins {
+        assert!(p[1].abs() < 1e-9 && p[0].abs() <= 25.0 + 1e-6, "on the central axis: {p:?}");
+    }
+    for w in ins.windows(2) {
+        let (du, dz) = ((w[1][0] - w[0][0]).abs(), (w[1][2] - w[0][2]).abs());
+        assert!(dz <= du * tan + 1e-9, "steeper than 5°: {w:?}");
+    }
+    assert!(ins.iter().any(|p| close(p[0], 25.0, 1e-6)), "turns at the end of the axis");
+    let last = ins.last().unwrap();
+    assert!(close(last[0], 25.0 - (6.0 - 25.0 * tan) / tan, 1e-6) && close(last[0], -18.58, 0.01), "{last:?}");
+}
+
+#[test]
+fn helical_insertion_alarms_for_a_helix_wider_than_the_pocket() {
+    // _RAD1 20 in a 60 x 40 pocket: the tool centre travels only 20 - 5 = 15 across.
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-4,60,40,0,0,0,0,0,0,0,500,150,0,11,6,0,0,0,20,2)\nM30");
+    assert_eq!(alarms(&t), vec![(61108, Some(3))]);
+}
