@@ -367,3 +367,32 @@ fn helical_insertion_alarms_for_a_helix_wider_than_the_pocket() {
     let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nPOCKET3(10,0,2,-4,60,40,0,0,0,0,0,0,0,500,150,0,11,6,0,0,0,20,2)\nM30");
     assert_eq!(alarms(&t), vec![(61108, Some(3))]);
 }
+
+#[test]
+fn cycle77_in_g18_mills_round_the_y_axis() {
+    // G18: abscissa Z, ordinate X, depth along Y. Ø20 spigot finished at (Z 0, X 0), depth -3
+    // from RFP 0: the tool centre keeps 10 + 5 = 15 from the Y axis, at Y -3.
+    let t = run_clean("G18 G90 T1 D1\nG0 X0 Y50 Z0\nCYCLE77(10,0,2,-3,,20,0,0,0,0,0,500,150,0,2)\nM30");
+    let from = t.samples.iter().position(|p| p.b[1] >= 50.0).unwrap();
+    let below: Vec<_> = t.samples[from..].iter().filter(|s| s.b[1] < -1e-9).collect();
+    assert!(below.len() > 50);
+    let r = |s: &&Sample| s.b[2].hypot(s.b[0]);
+    assert!(close(below.iter().map(r).fold(f64::MAX, f64::min), 15.0, 1e-6));
+    assert!(close(below.iter().map(|s| s.b[1]).fold(f64::MAX, f64::min), -3.0, 1e-9));
+}
+
+#[test]
+fn spigot_cycles_give_the_caller_its_frame_and_g91_back() {
+    // CYCLE76 shifts and turns its own frame; afterwards X10 Y10 is the caller's.
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50\nCYCLE76(10,0,2,-2,,40,30,0,50,50,45,0,0,0,500,150,0,2)\nG0 X10 Y10\nM30",
+    );
+    assert_eq!(t.end(), [10.0, 10.0, 10.0]);
+    // The caller's G91 survives the cycle's G90. CYCLE77 (finishing Ø40 at (10, 20), climb)
+    // ends at its own (25, 25 + SDIS 2) at RTP 10. With SD42440 = 1 (the default: offsets are
+    // traversed by the first incremental move after a frame change) G91 X5 Y5 adds to that
+    // programmed position in the caller's frame: (30, 32); under G90 it would end at (5, 5).
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50\nG91\nCYCLE77(10,0,2,-6,,40,10,20,0,0,0,500,150,0,2)\nG0 X5 Y5\nM30");
+    let e = t.end();
+    assert!(close(e[0], 30.0, 1e-9) && close(e[1], 32.0, 1e-9) && close(e[2], 10.0, 1e-9), "{e:?}");
+}
