@@ -396,3 +396,44 @@ fn spigot_cycles_give_the_caller_its_frame_and_g91_back() {
     let e = t.end();
     assert!(close(e[0], 30.0, 1e-9) && close(e[1], 32.0, 1e-9) && close(e[2], 10.0, 1e-9), "{e:?}");
 }
+
+#[test]
+fn cycle90_internal_thread_climbs_a_helix_of_the_pitch() {
+    // M20 x 2.5 internal (core 17.294), 10 deep from RFP 0, G3 (right-hand), at (30, 30), tool
+    // R5: the helix radius 10 - 5 = 5, from -10 up to 0 in 10 / 2.5 = 4 turns, Z = -10 + 2.5 per
+    // turn; in on a half circle from the centre and out again to it.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE90(10,0,2,-10,,20,17.294,2.5,300,3,0,30,30)\nM30");
+    // The samples up to RFP 0 included (the helix ends there).
+    let pts = local(&t, (30.0, 30.0), 0.0, 1e-3);
+    assert!(close(min_of(pts.iter().map(|p| p[2])), -10.0, 1e-9));
+    assert!(pts.iter().all(|p| p[0].hypot(p[1]) <= 5.0 + 1e-6), "never beyond the major diameter");
+    // The helix: from the first sample above -10 after the bottom, while on radius 5.
+    let bottom = pts.iter().position(|p| close(p[2], -10.0, 1e-9)).unwrap();
+    let start = bottom + pts[bottom..].iter().position(|p| p[2] > -10.0 + 1e-9).unwrap();
+    let helix: Vec<_> = pts[start..].iter().take_while(|p| close(p[0].hypot(p[1]), 5.0, 1e-6)).copied().collect();
+    assert!(helix.len() > 100);
+    let w = unwrapped(&helix);
+    for (p, a) in helix.iter().zip(&w) {
+        assert!(close(p[2], -10.0 + 2.5 * a / 360.0, 1e-6), "pitch 2.5: {p:?}");
+    }
+    assert!(close(w.last().unwrap() / 360.0, 4.0, 1e-6), "4 turns counter-clockwise");
+    assert!(close(helix.last().unwrap()[2], 0.0, 1e-9));
+    let e = t.end();
+    assert!(close(e[0], 30.0, 1e-9) && close(e[1], 30.0, 1e-9) && close(e[2], 10.0, 1e-9), "{e:?}");
+}
+
+#[test]
+fn cycle90_external_thread_stays_outside_the_core() {
+    // M30 x 2 external (core 27.546), 6 deep, G2 (left-hand bottom up), at (0, 0): the helix
+    // radius 13.773 + 5 = 18.773, 3 turns clockwise; no point nearer the axis.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE90(10,0,2,-6,,30,27.546,2,300,2,1,0,0)\nM30");
+    let pts = local(&t, (0.0, 0.0), 0.0, 1e-3);
+    let r = |p: &[f64; 3]| p[0].hypot(p[1]);
+    assert!(close(min_of(pts.iter().map(r)), 18.773, 1e-6));
+    let helix: Vec<_> = pts.iter().filter(|p| close(r(p), 18.773, 1e-6) && p[2] > -6.0 + 1e-9).copied().collect();
+    let w = unwrapped(&helix);
+    for (p, a) in helix.iter().zip(&w) {
+        assert!(close(p[2], -6.0 - 2.0 * a / 360.0, 1e-6), "pitch 2, clockwise: {p:?}");
+    }
+    assert!(close(-w.last().unwrap() / 360.0, 3.0, 1e-6));
+}
