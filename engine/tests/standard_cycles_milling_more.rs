@@ -221,6 +221,18 @@ fn cycle61_alarms_at_the_calling_line() {
     assert_eq!(alarms(&t), vec![(61111, Some(3))]);
     let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nN7 CYCLE71(10,0,2,1,0,0,50,30,0,0,0,5,0,800,11,5)\nM30");
     assert_eq!(alarms(&t), vec![(61101, Some(3))]);
+    // No feed: 61003.
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nCYCLE61(10,0,1,-3,0,0,100,60,2,8,0,0,31,0)\nM30");
+    assert_eq!(alarms(&t), vec![(61003, Some(3))]);
+}
+
+#[test]
+fn cycle90_alarms_for_no_pitch_and_a_tool_too_large_for_the_core() {
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nCYCLE90(10,0,2,-10,,20,17.294,0,300,3,0,0,0)\nM30");
+    assert_eq!(alarms(&t), vec![(61001, Some(3))]);
+    // M8 internal: core 6.647 < the tool's Ø10.
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nCYCLE90(10,0,2,-10,,8,6.647,1.25,300,3,0,0,0)\nM30");
+    assert_eq!(alarms(&t), vec![(61105, Some(3))]);
 }
 
 /// Distance of (x, y) from the arc of radius `rad` around the origin from `a0`° through `len`°.
@@ -285,6 +297,9 @@ fn slot2_slots_lie_on_the_circle_and_end_at_their_angles() {
 fn slot2_alarms_for_overlapping_slots() {
     // 4 slots of 80° (plus the ends) on a full circle overlap: 61104 at the calling line.
     let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nSLOT2(10,0,2,-4,,4,80,16,0,0,40,0,0,100,500,2,3,0.5,0)\nM30");
+    assert_eq!(alarms(&t), vec![(61104, Some(3))]);
+    // A circle of radius 0: no division by it, the same alarm.
+    let t = run("G17 G90 T1 D1\nG0 X0 Y0 Z50\nSLOT2(10,0,2,-4,,1,80,16,0,0,0,0,0,100,500,2,3,0.5,0)\nM30");
     assert_eq!(alarms(&t), vec![(61104, Some(3))]);
 }
 
