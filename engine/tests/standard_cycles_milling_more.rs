@@ -46,7 +46,8 @@ fn cycle77_roughing_circles_in_from_the_blank_and_leaves_the_allowance() {
     // Last circle of the tool centre: 20 + 5 + 0.5 = 25.5. The blank stands 30 - 20 - 0.5 = 9.5
     // over it: ceil(9.5 / 8) = 2 circles, at 25.5 + 4.75 = 30.25 and 25.5. Depth to -6 + 0.2 =
     // -5.8 in ceil(5.8 / 3) = 2 levels: -2.9 and -5.8.
-    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE77(10,0,2,-6,,40,10,20,3,0.5,0.2,500,150,0,1,60)\nM30");
+    let t =
+        run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE77(10,0,2,-6,,40,10,20,3,0.5,0.2,500,150,0,1,60)\nM30");
     let pts = local(&t, (10.0, 20.0), 0.0, 0.0);
     assert!(pts.len() > 100);
     let r = |p: &[f64; 3]| p[0].hypot(p[1]);
@@ -67,7 +68,8 @@ fn cycle77_roughing_circles_in_from_the_blank_and_leaves_the_allowance() {
 fn cycle77_finishing_leaves_exactly_the_programmed_diameter() {
     // Ø40 finished (VARI 2), conventional (CDIR 1: G3), depth DPR 6 from RFP 0 in one level:
     // the tool centre comes no nearer than 20 + 5 = 25 and runs a circle at exactly 25, -6.
-    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE77(10,0,2,,6,40,10,20,0,0.5,0.2,500,150,1,2,60)\nM30");
+    let t =
+        run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE77(10,0,2,,6,40,10,20,0,0.5,0.2,500,150,1,2,60)\nM30");
     let pts = local(&t, (10.0, 20.0), 0.0, 0.0);
     let r = |p: &[f64; 3]| p[0].hypot(p[1]);
     assert!(close(min_of(pts.iter().map(r)), 25.0, 1e-6));
@@ -278,7 +280,8 @@ fn slot2_slots_lie_on_the_circle_and_end_at_their_angles() {
             // The apex of the end half circle lies between two IPO samples: within 1e-4.
             assert!(close(reach, 3.0, 1e-4), "slot from {a0}: the end at {end}° reached {reach}");
             assert!(
-                pts.iter().any(|p| close(p[0], 40.0 * c, 1e-6) && close(p[1], 40.0 * s, 1e-6) && close(p[2], -4.0, 1e-9)),
+                pts.iter()
+                    .any(|p| close(p[0], 40.0 * c, 1e-6) && close(p[1], 40.0 * s, 1e-6) && close(p[2], -4.0, 1e-9)),
                 "the middle of the end at {end}° at depth"
             );
         }
@@ -327,7 +330,9 @@ fn pocket4_helical_insertion_descends_on_a_helix_of_rad1_and_dp1() {
     // insertion), climb (G3: counter-clockwise), _RAD1 4, _DP1 2, SDIS 2. First level: from
     // RFP + SDIS = 2 round the centre at radius 4, Z = 2 - 2 * turns, 5 / 2 = 2.5 turns down to
     // -3, then one full circle at -3. Second level: from -3, 1.5 turns down to -6.
-    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET4(10,0,2,-6,25,10,10,3,0.5,0,500,150,0,11,8,0,0,4,2)\nM30");
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET4(10,0,2,-6,25,10,10,3,0.5,0,500,150,0,11,8,0,0,4,2)\nM30",
+    );
     let pts = local(&t, (10.0, 10.0), 0.0, 2.0 + 2e-9);
     for (top, bottom, turns) in [(2.0, -3.0, 2.5), (-3.0, -6.0, 1.5)] {
         let helix = descent(&pts, top, bottom);
@@ -407,7 +412,8 @@ fn spigot_cycles_give_the_caller_its_frame_and_g91_back() {
     // ends at its own (25, 25 + SDIS 2) at RTP 10. With SD42440 = 1 (the default: offsets are
     // traversed by the first incremental move after a frame change) G91 X5 Y5 adds to that
     // programmed position in the caller's frame: (30, 32); under G90 it would end at (5, 5).
-    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50\nG91\nCYCLE77(10,0,2,-6,,40,10,20,0,0,0,500,150,0,2)\nG0 X5 Y5\nM30");
+    let t =
+        run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50\nG91\nCYCLE77(10,0,2,-6,,40,10,20,0,0,0,500,150,0,2)\nG0 X5 Y5\nM30");
     let e = t.end();
     assert!(close(e[0], 30.0, 1e-9) && close(e[1], 32.0, 1e-9) && close(e[2], 10.0, 1e-9), "{e:?}");
 }
