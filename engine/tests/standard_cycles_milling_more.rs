@@ -458,3 +458,33 @@ fn cycle90_external_thread_stays_outside_the_core() {
     }
     assert!(close(-w.last().unwrap() / 360.0, 3.0, 1e-6));
 }
+
+#[test]
+fn pocket3_helical_insertion_conventional_turns_clockwise() {
+    // 60 x 40 pocket at (0, 0), depth -3 in one level, VARI 11 (roughing, helical), CDIR 1
+    // (conventional: G2), _RAD1 6, _DP1 2.5, SDIS 2: from Z 2 clockwise at radius 6, 5 / 2.5 =
+    // 2 turns down to -3 (the tool centre travels 25 x 15 across: 6 fits).
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nPOCKET3(10,0,2,-3,60,40,0,0,0,0,0,0,0,500,150,1,11,6,0,0,0,6,2.5)\nM30",
+    );
+    let pts = local(&t, (0.0, 0.0), 0.0, 2.0 + 2e-9);
+    let helix = descent(&pts, 2.0, -3.0);
+    let w = unwrapped(&helix);
+    for (p, a) in helix.iter().zip(&w) {
+        assert!(close(p[0].hypot(p[1]), 6.0, 1e-6), "{p:?}");
+        assert!(close(p[2], 2.0 + 2.5 * a / 360.0, 1e-6), "clockwise, 2.5 per turn: {p:?}");
+    }
+    assert!(close(w.last().unwrap() / 360.0, -2.0, 1e-6));
+}
+
+#[test]
+fn cycle61_in_g18_faces_the_zx_plane() {
+    // G18: abscissa Z, ordinate X, depth along Y. Face Z 0..40 x X 0..30 from Y 0 to -1 in one
+    // level (DZ 0), width 8, meander along Z: every point within 5 of the path at Y -1.
+    let t = run_clean("G18 G90 T1 D1\nG0 X0 Y50 Z0\nCYCLE61(10,0,1,-1,0,0,40,30,0,8,0,1000,31,0)\nM30");
+    let from = t.samples.iter().position(|p| p.b[1] >= 50.0).unwrap();
+    let pts: Vec<[f64; 3]> =
+        t.samples[from..].iter().filter(|s| s.b[1] < -1e-9).map(|s| [s.b[2], s.b[0], s.b[1]]).collect();
+    assert!(close(min_of(pts.iter().map(|p| p[2])), -1.0, 1e-9));
+    assert!(uncovered(&pts, -1.0, (0.0, 40.0, 0.0, 30.0), 2.0, 0.0).is_empty());
+}
