@@ -488,3 +488,58 @@ fn cycle61_in_g18_faces_the_zx_plane() {
     assert!(close(min_of(pts.iter().map(|p| p[2])), -1.0, 1e-9));
     assert!(uncovered(&pts, -1.0, (0.0, 40.0, 0.0, 30.0), 2.0, 0.0).is_empty());
 }
+
+/// The longest run of consecutive samples for which `pred` holds.
+fn longest_run(pts: &[[f64; 3]], pred: impl Fn(&[f64; 3]) -> bool) -> Vec<[f64; 3]> {
+    let mut best: &[[f64; 3]] = &[];
+    let mut i = 0;
+    while i < pts.len() {
+        let n = pts[i..].iter().take_while(|p| pred(p)).count();
+        if n > best.len() {
+            best = &pts[i..i + n];
+        }
+        i += n.max(1);
+    }
+    best.to_vec()
+}
+
+#[test]
+fn slot2_finishing_a_long_slot_clockwise() {
+    // One slot 12 wide from -10° through 200° on R30 around (0, 0), finishing only (VARI 2),
+    // CDIR 2 (G2), depth -2 in one level: the tool centre within 6 - 5 = 1 of the middle arc;
+    // the arcs of more than 180° run clockwise round the slot: the outer arc (R31) backwards.
+    let t = run_clean(
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nSLOT2(10,0,2,-2,,1,200,12,0,0,30,-10,0,100,500,0,2,0.5,2)\nM30",
+    );
+    let pts = local(&t, (0.0, 0.0), 0.0, 0.0);
+    for p in &pts {
+        assert!(arc_distance(p[0], p[1], 30.0, -10.0, 200.0) <= 1.0 + 1e-6, "{p:?}");
+    }
+    let outer = longest_run(&pts, |p| close(p[0].hypot(p[1]), 31.0, 1e-6));
+    let w = unwrapped(&outer);
+    assert!(
+        close(w[0] - w.last().unwrap(), 200.0, 0.5),
+        "the outer arc backwards through 200°: {}",
+        w[0] - w.last().unwrap()
+    );
+    let inner = longest_run(&pts, |p| close(p[0].hypot(p[1]), 29.0, 1e-6));
+    let w = unwrapped(&inner);
+    assert!(close(w.last().unwrap() - w[0], 200.0, 0.5), "the inner arc forwards");
+    assert!(close(min_of(pts.iter().map(|p| p[2])), -2.0, 1e-9));
+}
+
+#[test]
+fn cycle61_one_way_along_the_abscissa_stops_short_of_a_wall_at_x1() {
+    // Roughing (VARI 11: along the abscissa, one way) of 0..80 x 0..40 from Z0 0 to -2 + UZ 0
+    // in one level, wall at X1 (LIM 10): lines from -5 - 1 = -6 to 80 - 5 = 75, all in +X. The
+    // round tool leaves cusps at the wall between the lines: the face is covered up to X 75.
+    let t = run_clean("G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\nCYCLE61(10,0,1,-2,0,0,80,40,0,8,0,1000,11,10)\nM30");
+    let pts = local(&t, (0.0, 0.0), 0.0, 0.0);
+    let at: Vec<_> = pts.iter().filter(|p| close(p[2], -2.0, 1e-9)).collect();
+    assert!(close(-min_of(at.iter().map(|p| -p[0])), 75.0, 1e-6), "the wall at X80 keeps the tool radius");
+    assert!(close(min_of(at.iter().map(|p| p[0])), -6.0, 1e-6));
+    for w in at.windows(2) {
+        assert!(w[1][0] >= w[0][0] - 1e-9 || !close(w[0][1], w[1][1], 1e-9), "one way: {w:?}");
+    }
+    assert!(uncovered(&pts, -2.0, (0.0, 74.0, 0.0, 40.0), 2.0, 1e-6).is_empty());
+}
