@@ -12,6 +12,7 @@ const MAX_TICKS: usize = 5_000_000;
 /// the block in force.
 #[derive(Clone, Copy, Debug)]
 struct Sample {
+    t: f64,
     x: f64,
     z: f64,
     sp: f64,
@@ -61,6 +62,7 @@ fn sample(ch: &Channel) -> Sample {
     let s = ch.snapshot();
     let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
     Sample {
+        t: s.time,
         x: get(&s.workpiece, "X"),
         z: get(&s.workpiece, "Z"),
         sp: get(&s.machine, "SP1"),
@@ -200,5 +202,126 @@ fn cycle93_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
         assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(4)), "{call}");
         let end = t.samples.last().unwrap();
         assert!(close(end.x, 30.0, 1e-9) && close(end.z, 10.0, 1e-9), "{call}: nothing moved");
+    }
+}
+
+/// One G33 pass of a thread: the samples while the tool stands below the surface radius
+/// `surface` and within `(lo, hi)` along Z, consecutive.
+fn passes(t: &Trace, surface: f64, lo: f64, hi: f64) -> Vec<Vec<Sample>> {
+    let mut out: Vec<Vec<Sample>> = Vec::new();
+    let mut open = false;
+    for s in &t.samples {
+        let cutting = s.x < surface - 1e-6 && s.z > lo && s.z < hi;
+        if cutting && !open {
+            out.push(Vec::new());
+        }
+        if cutting {
+            out.last_mut().unwrap().push(*s);
+        }
+        open = cutting;
+    }
+    out
+}
+
+/// The spindle's angle unwrapped along the samples (SP1 is a modulo axis turning forward).
+fn unwrapped(samples: &[Sample]) -> Vec<f64> {
+    let mut turns = 0.0;
+    let mut out: Vec<f64> = Vec::new();
+    for (i, s) in samples.iter().enumerate() {
+        if i > 0 && s.sp < samples[i - 1].sp - 180.0 {
+            turns += 360.0;
+        }
+        out.push(s.sp + turns);
+    }
+    out
+}
+
+const THREAD: &str = "G18 G90 G95 F0.2\nT1 D1\nS300 M3\nG4 F1\nG0 X20 Z10\n";
+
+#[test]
+fn cycle97_degressive_radial_infeed_cuts_at_the_pitch_from_the_same_spindle_angle() {
+    // M20x2 outside, SPL 0 to FPL -30, APP 4, ROP 2: every cut runs from Z4 to Z-32. TDEP 1.23,
+    // FAL 0.05, NRC 4, VARI 3 (constant cross-section): cut i reaches 1.18 * SQRT(i / 4) =
+    // 0.59, 0.834386, 1.021909, 1.18; then the finishing cut to 1.23 and NID 2 idle passes
+    // there: radii 10 - depth.
+    let t = run_clean_cycle("", &format!("{THREAD}CYCLE97(2,,0,-30,20,20,4,2,1.23,0.05,0,0,4,2,3,1,0)\nM30"));
+    let cuts = passes(&t, 10.0, -31.9, 3.9);
+    let radii: Vec<f64> = cuts.iter().map(|c| c[c.len() / 2].x).collect();
+    let q = |i: f64| 10.0 - 1.18 * (i / 4.0).sqrt();
+    assert_points(&radii, &[q(1.0), q(2.0), q(3.0), q(4.0), 8.77, 8.77, 8.77]);
+    for c in &cuts {
+        assert!(c.iter().all(|s| close(s.x, c[0].x, 1e-9)), "each cut at one depth");
+    }
+    let min_x = t.samples.iter().map(|s| s.x).fold(f64::INFINITY, f64::min);
+    assert!(close(min_x, 8.77, 1e-9), "final depth {min_x}");
+    // Pitch: 2 mm of Z per spindle revolution between any two samples in the steady part.
+    let step = 300.0 * 6.0 * (t.samples[1].t - t.samples[0].t);
+    let mut starts = Vec::new();
+    for c in &cuts {
+        let a = unwrapped(c);
+        for i in 1..c.len() {
+            if c[i - 1].z < -5.0 && c[i].z > -25.0 && c[i].t > c[i - 1].t {
+                let pitch = (c[i - 1].z - c[i].z) / (a[i] - a[i - 1]) * 360.0;
+                assert!(close(pitch, 2.0, 1e-6), "pitch {pitch}");
+            }
+        }
+        starts.push(c[0].sp);
+    }
+    // Every cut starts at the same spindle angle (within one IPO cycle's turn, 300 rev/min).
+    for s in &starts {
+        let d = (s - starts[0] + 180.0).rem_euclid(360.0) - 180.0;
+        assert!(d.abs() <= step + 1e-6, "start angles {starts:?}");
+    }
+}
+
+#[test]
+fn cycle97_flank_and_alternating_infeed_move_the_start_along_the_flank() {
+    // Constant infeed (VARI 1) NRC 3 of TDEP 0.9: depths 0.3, 0.6, 0.9. IANG 30: each start
+    // moves back (towards +Z, against the cut along -Z) by depth * TAN(30) = 0.173205,
+    // 0.346410, 0.519615. IANG -30 alternates: +0.173205, -0.346410, +0.519615.
+    let tan = 30f64.to_radians().tan();
+    for (iang, signs) in [(30.0, [1.0, 1.0, 1.0]), (-30.0, [1.0, -1.0, 1.0])] {
+        let t = run_clean_cycle("", &format!("{THREAD}CYCLE97(2,,0,-30,20,20,4,2,0.9,0,{iang},0,3,0,1,1,0)\nM30"));
+        // A cut's start: the highest Z while the tool stands at its depth.
+        let cuts = passes(&t, 10.0, -31.9, 5.0);
+        let got: Vec<f64> = cuts.iter().map(|c| c.iter().map(|s| s.z).fold(f64::NEG_INFINITY, f64::max)).collect();
+        let want: Vec<f64> = (1..=3).map(|i| 4.0 + signs[i - 1] * 0.3 * i as f64 * tan).collect();
+        assert_points(&got, &want);
+        let radii: Vec<f64> = cuts.iter().map(|c| c.iter().map(|s| s.x).fold(f64::INFINITY, f64::min)).collect();
+        assert_points(&radii, &[9.7, 9.4, 9.1]);
+    }
+}
+
+#[test]
+fn cycle97_multi_start_threads_start_half_a_turn_apart_and_mpit_gives_the_pitch() {
+    // NUMT 2 from NSP 0: the second turn's cuts start 180 degrees after the first's. MPIT 10
+    // (PIT 0): pitch 1.5 mm. NRC 2, no allowance, no idle pass: 2 cuts per turn.
+    let t = run_clean_cycle("", &format!("{THREAD}CYCLE97(0,10,0,-30,20,20,4,2,0.9,0,0,0,2,0,1,2,0)\nM30"));
+    let cuts = passes(&t, 10.0, -31.9, 3.9);
+    assert_eq!(cuts.len(), 4);
+    let step = 300.0 * 6.0 * (t.samples[1].t - t.samples[0].t);
+    let turn = |i: usize| (cuts[i][0].sp - cuts[0][0].sp).rem_euclid(360.0);
+    for (i, want) in [(1, 0.0), (2, 180.0), (3, 180.0)] {
+        let d = (turn(i) - want + 180.0).rem_euclid(360.0) - 180.0;
+        assert!(d.abs() <= step + 1e-6, "cut {i}: {}", turn(i));
+    }
+    let c = &cuts[0];
+    let a = unwrapped(c);
+    let (i, j) = (c.iter().position(|s| s.z < -5.0).unwrap(), c.iter().position(|s| s.z < -25.0).unwrap());
+    let pitch = (c[i].z - c[j].z) / (a[j] - a[i]) * 360.0;
+    assert!(close(pitch, 1.5, 1e-6), "pitch {pitch}");
+}
+
+#[test]
+fn cycle97_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
+    // PIT 2 disagrees with M10's 1.5: 61001; no pitch at all: 61001; VARI 5: 61002.
+    for (call, number) in [
+        ("CYCLE97(2,10,0,-30,20,20,4,2,0.9,0,0,0,2,0,1,1,0)", 61001),
+        ("CYCLE97(0,0,0,-30,20,20,4,2,0.9,0,0,0,2,0,1,1,0)", 61001),
+        ("CYCLE97(2,,0,-30,20,20,4,2,0.9,0,0,0,2,0,5,1,0)", 61002),
+    ] {
+        let t = run("", &format!("{THREAD}{call}\nM30"));
+        assert_eq!(t.alarms.len(), 1, "{call}: {:?}", t.alarms);
+        assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(6)), "{call}");
     }
 }
