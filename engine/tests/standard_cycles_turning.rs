@@ -44,18 +44,20 @@ fn run_clean(md: &str, main: &str) -> Trace {
     t
 }
 
-/// The samples of the cycle's own blocks: the snapshot shows the line of the cycle's block in
-/// force, and every cycle's blocks stand after its header comment (past line `from`), while the
-/// test programs are a few lines long.
-fn cycle(t: &Trace, from: u32) -> Trace {
-    let samples: Vec<Sample> = t.samples.iter().filter(|s| s.line.is_some_and(|l| l > from)).copied().collect();
-    assert!(!samples.is_empty(), "the cycle never ran");
-    Trace { samples, alarms: t.alarms.clone() }
+/// The samples from the tool's arrival at the approach point on: the program's last
+/// `G0 X.. Z..` block before the cycle's call (the snapshot's block line runs ahead of the
+/// motion, so the samples are cut by position).
+fn cycle(t: &Trace, main: &str) -> Trace {
+    let approach = main.lines().filter(|l| l.starts_with("G0 X")).last().expect("an approach block");
+    let words: Vec<f64> = approach[3..].split(' ').map(|w| w[1..].parse().unwrap()).collect();
+    let from = t.samples.iter().position(|s| close(s.x, words[0], 1e-9) && close(s.z, words[1], 1e-9));
+    let from = from.expect("reaches the approach point");
+    Trace { samples: t.samples[from..].to_vec(), alarms: t.alarms.clone() }
 }
 
-/// Runs `main` (at most 20 lines) without alarms and keeps the samples of the cycle's blocks.
+/// Runs `main` without alarms and keeps the samples of the cycle.
 fn run_clean_cycle(md: &str, main: &str) -> Trace {
-    cycle(&run_clean(md, main), 20)
+    cycle(&run_clean(md, main), main)
 }
 
 fn sample(ch: &Channel) -> Sample {
@@ -323,5 +325,121 @@ fn cycle97_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
         let t = run("", &format!("{THREAD}{call}\nM30"));
         assert_eq!(t.alarms.len(), 1, "{call}: {:?}", t.alarms);
         assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(6)), "{call}");
+    }
+}
+
+/// Distance from `p` to the segment `a`-`b`.
+fn to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let k = (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+    (p[0] - a[0] - k * dx).hypot(p[1] - a[1] - k * dy)
+}
+
+/// A DIN 509 undercut's profile in local coordinates: u from the shoulder's face along the
+/// cylinder, v above the cylinder. Depth `t1`, radius `r`, face depth `t2` (0: form E).
+struct Undercut {
+    t1: f64,
+    r: f64,
+    t2: f64,
+}
+
+impl Undercut {
+    /// Distance from `p` to the profile: face, (form F: the 8 degree line), the radius, the
+    /// 15 degree run-out and the cylinder. Worked out from DIN 509: the radius's centre lies r
+    /// above the depth t1 and r - t2 from the face; the 8 and 15 degree lines are tangent to it.
+    fn distance(&self, p: [f64; 2]) -> f64 {
+        let c = [self.r - self.t2, self.r - self.t1];
+        let (s15, c15) = (15f64.to_radians().sin(), 15f64.to_radians().cos());
+        let p15 = [c[0] + self.r * s15, c[1] - self.r * c15];
+        let end = [p15[0] - p15[1] / 15f64.to_radians().tan(), 0.0];
+        let (start_angle, mut best) = if self.t2 == 0.0 {
+            (180f64, to_segment(p, [0.0, 10.0], [0.0, c[1]]))
+        } else {
+            let (s8, c8) = (8f64.to_radians().sin(), 8f64.to_radians().cos());
+            let t = [c[0] - self.r * c8, c[1] + self.r * s8];
+            let vm = t[1] - t[0] / 8f64.to_radians().tan();
+            (172.0, to_segment(p, [0.0, 10.0], [0.0, vm]).min(to_segment(p, [0.0, vm], t)))
+        };
+        let a = (p[1] - c[1]).atan2(p[0] - c[0]).to_degrees().rem_euclid(360.0);
+        let on_arc = if a >= start_angle && a <= 285.0 {
+            ((p[0] - c[0]).hypot(p[1] - c[1]) - self.r).abs()
+        } else {
+            f64::INFINITY
+        };
+        let ends = |deg: f64| {
+            let q = [c[0] + self.r * deg.to_radians().cos(), c[1] + self.r * deg.to_radians().sin()];
+            (p[0] - q[0]).hypot(p[1] - q[1])
+        };
+        best = best.min(on_arc).min(ends(start_angle)).min(ends(285.0));
+        best.min(to_segment(p, p15, end)).min(to_segment(p, end, [10.0, 0.0]))
+    }
+}
+
+#[test]
+fn cycle94_form_e_profile_is_the_din_form_offset_by_the_nose_radius() {
+    // SPD 40 (18 < d <= 80): DIN 509 E 0.6 x 0.3. T2 (nose radius 0.4, edge position 3): the
+    // shoulder's face at Z-30, the cylinder towards +Z. The nose centre lies 0.4 above and 0.4
+    // to +Z of the theoretical tip; it never comes nearer than 0.4 to the profile and runs at
+    // exactly 0.4 while cutting, reaching the base (tip at X 20 - 0.3) and the run-out's end.
+    let t = run_clean_cycle("", "G18 G90 G95 F0.1\nT2 D1\nS800 M3\nG0 X30 Z10\nCYCLE94(40,-30,\"E\",3)\nM30");
+    let form = Undercut { t1: 0.3, r: 0.6, t2: 0.0 };
+    let centre = |s: &Sample| [s.z + 0.4 + 30.0, s.x + 0.4 - 20.0];
+    let mut on = 0;
+    for s in &t.samples {
+        let d = form.distance(centre(s));
+        assert!(d >= 0.4 - 1e-6, "gouges at {s:?}: {d}");
+        if d < 0.4 + 1e-6 {
+            on += 1;
+        }
+    }
+    assert!(on > 20, "cuts along the profile: {on}");
+    // The base lies mid-arc: the samples (5.3 µm apart at 80 mm/min) come within 6 µm of it.
+    let min_x = t.samples.iter().map(|s| s.x).fold(f64::INFINITY, f64::min);
+    assert!(min_x >= 19.7 - 1e-9 && close(min_x, 19.7, 1e-5), "base {min_x}");
+    // The run-out ends on the cylinder 0.6 + 0.6 sin 15 + (0.3 - 0.6 (1 - cos 15)) / tan 15 from
+    // the face; the nose centre there stands 0.4 off the 15 degree line.
+    let (s15, c15) = (15f64.to_radians().sin(), 15f64.to_radians().cos());
+    let end = 0.6 + 0.6 * s15 + (0.3 - 0.6 * (1.0 - c15)) / 15f64.to_radians().tan();
+    let want = [end - 0.4 * s15, 0.4 * c15];
+    assert!(t.samples.iter().any(|s| {
+        let c = centre(s);
+        close(c[0], want[0], 1e-6) && close(c[1], want[1], 1e-6)
+    }));
+}
+
+#[test]
+fn cycle94_form_f_recesses_the_face_and_mirrors_for_edge_position_4() {
+    // A tool without nose radius: the tip runs on the profile. SPD 16 (10 < d <= 18): F 0.6 x
+    // 0.2 with t2 0.1. Edge position 4: the cylinder lies towards -Z of the face at Z-10, so
+    // u = -10 - Z. The tip reaches 0.1 behind the face (Z -9.9) and the base at X 8 - 0.2.
+    let md = "$TC_DP6[1,1]=0\n$TC_DP2[1,1]=4\n";
+    let t = run_clean_cycle(md, "G18 G90 G95 F0.1\nT1 D1\nS800 M3\nG0 X30 Z-40\nCYCLE94(16,-10,\"F\",0)\nM30");
+    let form = Undercut { t1: 0.2, r: 0.6, t2: 0.1 };
+    // Every sample behind the face or below the cylinder lies on the profile (within 1 µm).
+    let mut on = 0;
+    for s in &t.samples {
+        let p = [-10.0 - s.z, s.x - 8.0];
+        if p[0] < 0.0 || p[1] < 0.0 {
+            assert!(form.distance(p) < 1e-6, "off the profile at {s:?}: {}", form.distance(p));
+            on += 1;
+        }
+    }
+    assert!(on > 20, "cuts along the profile: {on}");
+    // The deepest points lie mid-arc: the samples come within 6 µm of them.
+    let zmax = t.samples.iter().map(|s| s.z).fold(f64::NEG_INFINITY, f64::max);
+    let min_x = t.samples.iter().map(|s| s.x).fold(f64::INFINITY, f64::min);
+    assert!(zmax <= -9.9 + 1e-9 && close(zmax, -9.9, 1e-5), "face depth {zmax}");
+    assert!(min_x >= 7.8 - 1e-9 && close(min_x, 7.8, 1e-5), "base {min_x}");
+}
+
+#[test]
+fn cycle94_refuses_an_edge_position_without_undercut_and_a_nose_larger_than_the_radius() {
+    // Edge position 8 (axis-parallel): 61608. T1's nose radius 0.8 in an E 0.6 x 0.3: 61105.
+    for (md, call, number) in
+        [("", "CYCLE94(40,-30,\"E\",8)", 61608), ("", "CYCLE94(40,-30,\"E\",3)", 61105), ("", "CYCLE94(40,-30,\"G\",3)", 61002)]
+    {
+        let t = run(md, &format!("G18 G90 G95 F0.1\nT1 D1\nG0 X30 Z10\n{call}\nM30"));
+        assert_eq!(t.alarms.len(), 1, "{call}: {:?}", t.alarms);
+        assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(4)), "{call}");
     }
 }

@@ -39,6 +39,7 @@ const TEXTS: &[(u32, &str)] = &[
     (61603, "groove form defined incorrectly"),
     (61605, "contour defined incorrectly"),
     (61607, "starting point defined incorrectly"),
+    (61608, "wrong cutting edge position programmed"),
 ];
 
 /// `alarm` as the control reports it: a cycle alarm set in a cycle directory's program moves to
