@@ -443,3 +443,53 @@ fn cycle94_refuses_an_edge_position_without_undercut_and_a_nose_larger_than_the_
         assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(4)), "{call}");
     }
 }
+
+#[test]
+fn cycle93_chamfers_at_the_edges_and_radii_at_the_base() {
+    // The groove of the first test without allowances, RCO1 = RCO2 = -1 with VARI 11 (chamfer
+    // legs of 1: the edge at Z-20 is cut from (Z-21, X20) to (Z-20, X19), the one at Z-10 from
+    // (Z-10, X19) to (Z-9, X20)), RCI1 = RCI2 = 0.5 (radii at the base: centres (Z-19.5,
+    // X15.5) and (Z-10.5, X15.5)). The D1 tip follows the low side, the tip + 3 the high side.
+    let t = run_clean_cycle(
+        GROOVER,
+        "G18 G90 G94 F200\nT1 D1\nG0 X30 Z10\nCYCLE93(40,-20,10,5,0,0,0,-1,-1,0.5,0.5,0,0,0,0,11,0)\nM30",
+    );
+    let (mut chamfer, mut radius) = (0, 0);
+    for s in t.samples.iter().filter(|s| s.x < 20.0 - 1e-6) {
+        // Outside the chamfers' reach nothing lies beyond the flanks.
+        let lo = if s.x > 19.0 { -20.0 - (s.x - 19.0) } else { -20.0 };
+        let hi = if s.x > 19.0 { -10.0 + (s.x - 19.0) } else { -10.0 };
+        assert!(s.z >= lo - 1e-6 && s.z + 3.0 <= hi + 1e-6, "{s:?}");
+        if s.x > 19.0 && (close(s.z, lo, 1e-6) || close(s.z + 3.0, hi, 1e-6)) {
+            chamfer += 1;
+        }
+        // In the base's corners the tool stays on or inside the radius.
+        for (cz, zc) in [(-19.5, s.z), (-10.5, s.z + 3.0)] {
+            let beyond = if cz < -15.0 { zc < cz } else { zc > cz };
+            if s.x < 15.5 && beyond {
+                let d = (zc - cz).hypot(s.x - 15.5);
+                assert!(d <= 0.5 + 1e-6, "cuts into the radius at {s:?}: {d}");
+                if close(d, 0.5, 1e-6) {
+                    radius += 1;
+                }
+            }
+        }
+    }
+    assert!(chamfer > 10 && radius > 10, "chamfer {chamfer}, radius {radius}");
+    let min_x = t.samples.iter().map(|s| s.x).fold(f64::INFINITY, f64::min);
+    assert!(close(min_x, 15.0, 1e-6));
+}
+
+#[test]
+fn a_rounding_waits_for_the_next_motion_across_statements() {
+    // The cycles write RND= in one branch of an IF: the ELSE/ENDIF lines between the two
+    // straight blocks make no motion, and the corner (Z-20 X15, RND 0.5) is still rounded:
+    // the tool leaves X to the arc at X15.5 and never passes Z-20 X15.
+    let t = run_clean(
+        "",
+        "G18 G90 G94 F200\nG0 X20 Z-20\nIF 1 == 1\nG1 X15 RND=0.5\nELSE\nG1 X15\nENDIF\nR1=2\nG1 Z-13\nM30",
+    );
+    assert!(!t.samples.iter().any(|s| close(s.z, -20.0, 1e-9) && s.x < 15.5 - 1e-6), "sharp corner");
+    let on_arc = t.samples.iter().filter(|s| close((s.z + 19.5).hypot(s.x - 15.5), 0.5, 1e-6) && s.x < 15.5).count();
+    assert!(on_arc > 5, "{on_arc}");
+}
