@@ -22,12 +22,22 @@ struct Sample {
 struct Trace {
     samples: Vec<Sample>,
     alarms: Vec<Alarm>,
+    /// R1..R6 at the end.
+    r: Vec<f64>,
 }
 
 /// Runs `main` on the 2-axis lathe with the machine data `md` added (tool data) and records
 /// every IPO cycle until the channel rests.
 fn run(md: &str, main: &str) -> Trace {
+    run_with(md, main, &[])
+}
+
+/// [`run`] with subprograms `subs` (name, text) stored first.
+fn run_with(md: &str, main: &str, subs: &[(&str, &str)]) -> Trace {
     let mut ch = Channel::from_preset("lathe-2axis", md).unwrap();
+    for (name, text) in subs {
+        ch.store_program(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
     ch.run_program(main).unwrap_or_else(|e| panic!("not started: {e}"));
     let mut samples = vec![sample(&ch)];
     while ch.is_busy() {
@@ -35,7 +45,8 @@ fn run(md: &str, main: &str) -> Trace {
         samples.push(sample(&ch));
         assert!(samples.len() < MAX_TICKS, "program does not end");
     }
-    Trace { samples, alarms: ch.snapshot().alarms }
+    let r = (1..=6).map(|i| ch.r_param(i)).collect();
+    Trace { samples, alarms: ch.snapshot().alarms, r }
 }
 
 fn run_clean(md: &str, main: &str) -> Trace {
@@ -52,7 +63,7 @@ fn cycle(t: &Trace, main: &str) -> Trace {
     let words: Vec<f64> = approach[3..].split(' ').map(|w| w[1..].parse().unwrap()).collect();
     let from = t.samples.iter().position(|s| close(s.x, words[0], 1e-9) && close(s.z, words[1], 1e-9));
     let from = from.expect("reaches the approach point");
-    Trace { samples: t.samples[from..].to_vec(), alarms: t.alarms.clone() }
+    Trace { samples: t.samples[from..].to_vec(), alarms: t.alarms.clone(), r: t.r.clone() }
 }
 
 /// Runs `main` without alarms and keeps the samples of the cycle.
@@ -137,7 +148,7 @@ fn cycle93_longitudinal_outside_groove_has_its_base_and_width_and_the_tool_stays
     assert_points(&plunges, &[-19.8, -17.6, -15.4, -13.2]);
     let first = t.samples.iter().position(|s| close(s.x, 21.0, 1e-9) && close(s.z, -19.8, 1e-9)).unwrap();
     let out = t.samples[first..].iter().position(|s| close(s.z, -17.6, 1e-9)).unwrap() + first;
-    let sub = Trace { samples: t.samples[first..out].to_vec(), alarms: vec![] };
+    let sub = Trace { samples: t.samples[first..out].to_vec(), alarms: vec![], r: vec![] };
     assert_points(&turning_points(&sub, |s| s.x), &[21.0, 18.0, 19.0, 16.0, 17.0, 15.2, 21.0]);
 }
 
@@ -492,4 +503,28 @@ fn a_rounding_waits_for_the_next_motion_across_statements() {
     assert!(!t.samples.iter().any(|s| close(s.z, -20.0, 1e-9) && s.x < 15.5 - 1e-6), "sharp corner");
     let on_arc = t.samples.iter().filter(|s| close((s.z + 19.5).hypot(s.x - 15.5), 0.5, 1e-6) && s.x < 15.5).count();
     assert!(on_arc > 5, "{on_arc}");
+}
+
+/// A shaft's contour as a subprogram: from the face at diameter 20 along Z, a CW arc R5, a
+/// shoulder and a taper (X a radius).
+const SHAFT: &str = "G18 G90\nG1 X10 Z0\nG1 Z-20\nG2 X15 Z-25 CR=5\nG1 X20\nG1 X25 Z-40\nM17\n";
+
+#[test]
+fn contour_capture_records_the_elements_in_the_plane_and_nothing_moves() {
+    // Five elements from the start X30 Z10 (G18: abscissa Z, ordinate X): the G1 to X10 Z0,
+    // the line to Z-20, the CW arc to X15 Z-25 (radius 5 from both ends: centre Z-20 X15 or
+    // Z-25 X10; clockwise with Z to the right and X up, from below the centre to its left, is
+    // the first: a fillet into the shoulder), the shoulder to X20, the taper to X25 Z-40.
+    let t = run_with(
+        "",
+        "DEF REAL TAB[8,7]\nDEF INT NN\nG18 G90 G94 F200\nG0 X30 Z10\nCONTCAPON(TAB, NN)\nCALL \"SHAFT\"\n\
+         CONTCAPOF\nR1=NN R2=TAB[2,0] R3=TAB[2,5] R4=TAB[2,6] R5=TAB[4,3] R6=TAB[0,1]\nG1 X31\nM30",
+        &[("SHAFT", SHAFT)],
+    );
+    assert!(t.alarms.is_empty(), "{:?}", t.alarms);
+    assert_eq!(t.r, vec![5.0, 2.0, -20.0, 15.0, -40.0, 10.0]);
+    // The machine went from X30 Z10 straight to X31: Z never left 10 after the approach.
+    let from = t.samples.iter().position(|s| close(s.x, 30.0, 1e-9) && close(s.z, 10.0, 1e-9)).unwrap();
+    assert!(t.samples[from..].iter().all(|s| close(s.z, 10.0, 1e-9) && s.x >= 30.0 - 1e-9));
+    assert!(close(t.samples.last().unwrap().x, 31.0, 1e-9));
 }

@@ -228,6 +228,8 @@ pub struct Interpreter {
     held: Option<contour::corners::Held>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
+    /// CONTCAPON..CONTCAPOF: motions recorded, not run (`contour/capture.rs`).
+    capture: Option<Box<contour::capture::Capture>>,
     /// Tool radius compensation: moves held until their successor decides their end.
     trc: compensation::trc::Compensator,
     /// Spindles in position control (after SPOS), by channel axis.
@@ -275,6 +277,7 @@ impl Interpreter {
             data_writes: Vec::new(),
             warnings: Vec::new(),
             held: None,
+            capture: None,
             corner_request: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
@@ -299,6 +302,7 @@ impl Interpreter {
         self.calls.clear();
         self.call_state = Default::default();
         self.held = None;
+        self.capture = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
@@ -474,7 +478,7 @@ impl Interpreter {
         main_run_idle: bool,
         out: &mut Vec<Item>,
     ) -> Prep {
-        if self.fast_lane {
+        if self.fast_lane && self.capture.is_none() {
             #[cfg(debug_assertions)]
             let (reference, mark) = (self.clone(), out.len());
             if let Some(prep) = self.prepare_plain(cfg, out) {
@@ -490,6 +494,10 @@ impl Interpreter {
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
         self.trc.begin_block(out);
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
+            if self.capture.is_some() {
+                // A contour being captured: its motions were recorded, none runs.
+                out.retain(|item| !matches!(item, Item::Move { .. }));
+            }
             // What a block without motion in the compensation plane produced waits behind the
             // held compensated move (look-ahead across dummy blocks, MD20250); anything that
             // cannot wait (a preprocessing stop, the program end, moves past the compensator)
@@ -577,6 +585,9 @@ impl Interpreter {
         let derived = self.trafo.config();
         let cfg = derived.as_deref().unwrap_or(base_cfg);
         self.modal.apply(words, cfg, line)?;
+        if let Some(op) = &words.capture {
+            self.capture_op(op, line)?;
+        }
         if words.work_offset.is_some() {
             // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
             *self.iframe = None;
@@ -963,6 +974,10 @@ impl Interpreter {
             _ => None,
         };
 
+        if let (Some(capture), (Some(ka), Some(ko))) = (self.capture.as_mut(), plane) {
+            let center = circle.as_ref().map(|c| c.center);
+            capture.record(self.modal.motion, (current[ka], current[ko]), (target[ka], target[ko]), center);
+        }
         let mut end = block_end(&frame, geo, n, &start, &tool, &target, &mut programmed);
 
         if let Some(kind) = words.oblique {
