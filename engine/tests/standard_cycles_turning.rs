@@ -528,3 +528,62 @@ fn contour_capture_records_the_elements_in_the_plane_and_nothing_moves() {
     assert!(t.samples[from..].iter().all(|s| close(s.z, 10.0, 1e-9) && s.x >= 30.0 - 1e-9));
     assert!(close(t.samples.last().unwrap().x, 31.0, 1e-9));
 }
+
+/// The finished shaft of [`SHAFT`]: its radius at `z` (0 >= z >= -40), worked out from the
+/// blocks: X10 to Z-20, the fillet R5 about Z-20 X15 to Z-25, the shoulder to X20 at Z-25,
+/// the taper to X25 at Z-40. At the shoulder the lower value (the face is reached from +Z).
+fn shaft_radius(z: f64) -> f64 {
+    if z >= -20.0 {
+        10.0
+    } else if z >= -25.0 {
+        15.0 - (25.0 - (z + 20.0) * (z + 20.0)).max(0.0).sqrt()
+    } else {
+        20.0 + (-25.0 - z) / 15.0 * 5.0
+    }
+}
+
+#[test]
+fn cycle95_roughs_in_cuts_of_at_most_mid_leaving_the_allowance_and_finishes_on_the_contour() {
+    // VARI 9: longitudinal outside, complete. A tool without nose radius. MID 2, FALZ 0.2,
+    // FALX 0.1: the roughing boundary is the contour moved by +0.2 in Z and +0.1 in X. Levels
+    // from the top X25 down to 10.1: 14.9 / 2 gives 8 cuts of 1.8625. Roughing never enters
+    // the boundary; finishing (from Z1 X10 on) runs on the contour within 1 µm to Z-40 X25.
+    let md = "$TC_DP6[1,1]=0\n";
+    let t = run_with(
+        md,
+        "G18 G90 G94\nT1 D1\nS800 M3\nG0 X30 Z10\nCYCLE95(\"SHAFT\",2,0.2,0.1,0,300,0,100,9,0,0,0)\nM30",
+        &[("SHAFT", SHAFT)],
+    );
+    assert!(t.alarms.is_empty(), "{:?}", t.alarms);
+    let t = cycle(&t, "G0 X30 Z10\n");
+    let finish = t.samples.iter().rposition(|s| close(s.x, 10.0, 1e-9) && close(s.z, 1.0, 1e-9)).expect("finishing");
+    let (rough, fin) = t.samples.split_at(finish);
+    let boundary = |z: f64| if z > 0.2 { f64::NEG_INFINITY } else { shaft_radius((z - 0.2).max(-40.0)) + 0.1 };
+    for s in rough {
+        assert!(s.z < -40.0 + 0.2 - 1e-9 || s.x >= boundary(s.z) - 1e-6, "roughing enters the allowance at {s:?}");
+    }
+    // The cuts follow the boundary up the taper and the fillet (no residual corners left).
+    let touching = |lo: f64, hi: f64| rough.iter().filter(|s| s.z > lo && s.z < hi && close(s.x, boundary(s.z), 1e-6)).count();
+    assert!(touching(-39.8, -24.8) > 20 && touching(-24.8, -19.8) > 5, "{} {}", touching(-39.8, -24.8), touching(-24.8, -19.8));
+    // The roughing cuts: X levels of the feed moves along Z.
+    let mut levels: Vec<f64> = Vec::new();
+    for w in rough.windows(2) {
+        if close(w[0].x, w[1].x, 1e-12) && w[1].z < w[0].z - 1e-9 && w[0].z > 0.0 && w[0].z < 1.2 + 1e-9 {
+            if levels.last().is_none_or(|l| !close(*l, w[0].x, 1e-9)) {
+                levels.push(w[0].x);
+            }
+        }
+    }
+    let want: Vec<f64> = (1..=8).map(|k| 25.0 - k as f64 * 1.8625).collect();
+    assert_points(&levels, &want);
+    // Finishing: on the contour from Z0 to Z-40.
+    let mut on = 0;
+    for s in fin.iter().filter(|s| s.z <= 0.0 && s.z >= -40.0 && s.x <= 25.0 + 1e-9) {
+        let r = shaft_radius(s.z);
+        let on_shoulder = close(s.z, -25.0, 1e-6) && s.x >= 15.0 - 1e-6 && s.x <= 20.0 + 1e-6;
+        assert!(on_shoulder || close(s.x, r, 1e-6), "off the contour at {s:?}: {r}");
+        on += 1;
+    }
+    assert!(on > 100);
+    assert!(fin.iter().any(|s| close(s.z, -40.0, 1e-9) && close(s.x, 25.0, 1e-9)), "reaches the end");
+}

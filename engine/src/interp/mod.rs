@@ -998,7 +998,8 @@ impl Interpreter {
 
         check_software_limits(cfg, &path, line)?;
 
-        let feed = self.path_feed(line)?;
+        // A captured contour's move does not run: it needs no feed.
+        let feed = if self.capture.is_some() { Feed::Rapid } else { self.path_feed(line)? };
         let exact_stop = self.modal.exact_stop || words.g9;
         self.pos = end;
         let mut mv = Move::new(path, length, feed, limits, exact_stop, line);
