@@ -587,3 +587,52 @@ fn cycle95_roughs_in_cuts_of_at_most_mid_leaving_the_allowance_and_finishes_on_t
     assert!(on > 100);
     assert!(fin.iter().any(|s| close(s.z, -40.0, 1e-9) && close(s.x, 25.0, 1e-9)), "reaches the end");
 }
+
+#[test]
+fn cycle95_face_roughing_cuts_along_x_in_levels_of_z() {
+    // VARI 2 (face, outside, roughing) without allowances on a stepped face: Z-6 from X25 to
+    // X15, up to Z-3, a slope to X5 Z0, then Z0 to the axis. The blank reaches Z0: 6 / MID 1.5
+    // gives cuts at Z-1.5, -3, -4.5, -6 along -X; the tool never enters the part.
+    let face = "G18 G90\nG1 X25 Z-6\nG1 X15\nG1 Z-3\nG1 X5 Z0\nG1 X0\nM17\n";
+    let part = |x: f64| if x >= 15.0 { -6.0 } else if x >= 5.0 { -3.0 + (15.0 - x) / 10.0 * 3.0 } else { 0.0 };
+    let t = run_with(
+        "$TC_DP6[1,1]=0\n",
+        "G18 G90 G94\nT1 D1\nG0 X40 Z10\nCYCLE95(\"FACE\",1.5,0,0,0,300,0,100,2,0,0,0)\nM30",
+        &[("FACE", face)],
+    );
+    assert!(t.alarms.is_empty(), "{:?}", t.alarms);
+    let t = cycle(&t, "G0 X40 Z10\n");
+    for s in t.samples.iter().filter(|s| s.x <= 25.0 && s.x >= 0.0) {
+        // At the step X15 the part's face is the segment Z-6..-3.
+        let floor = if close(s.x, 15.0, 1e-9) { -6.0 } else { part(s.x) };
+        assert!(s.z >= floor - 1e-6, "inside the part at {s:?}");
+    }
+    let mut levels: Vec<f64> = Vec::new();
+    for w in t.samples.windows(2) {
+        if close(w[0].z, w[1].z, 1e-12) && w[1].x < w[0].x - 1e-9 && w[0].x > 25.0 && w[0].x <= 26.0 + 1e-9 {
+            if levels.last().is_none_or(|l| !close(*l, w[0].z, 1e-9)) {
+                levels.push(w[0].z);
+            }
+        }
+    }
+    assert_points(&levels, &[-1.5, -3.0, -4.5, -6.0]);
+    // The last cut ends at the step (X15) and climbs it.
+    assert!(t.samples.iter().any(|s| close(s.x, 15.0, 1e-9) && close(s.z, -4.5, 1e-9)));
+}
+
+#[test]
+fn cycle95_refuses_relief_cuts_sections_and_missing_feeds() {
+    // A contour that dips (X10 to X8 on the way) is a relief cut: 61605. "A:B" (a labelled
+    // section): 61605. VARI 13: 61002. Roughing without FF1: 61003.
+    let relief = "G18 G90\nG1 X10 Z0\nG1 Z-10\nG1 X8 Z-15\nG1 X20\nM17\n";
+    for (call, number) in [
+        ("CYCLE95(\"RELIEF\",2,0,0,0,300,0,100,9,0,0,0)", 61605),
+        ("CYCLE95(\"A:B\",2,0,0,0,300,0,100,9,0,0,0)", 61605),
+        ("CYCLE95(\"RELIEF\",2,0,0,0,300,0,100,13,0,0,0)", 61002),
+        ("CYCLE95(\"RELIEF\",2,0,0,0,0,0,100,1,0,0,0)", 61003),
+    ] {
+        let t = run_with("", &format!("G18 G90 G94\nT1 D1\nG0 X30 Z10\n{call}\nM30"), &[("RELIEF", relief)]);
+        assert_eq!(t.alarms.len(), 1, "{call}: {:?}", t.alarms);
+        assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(4)), "{call}");
+    }
+}
