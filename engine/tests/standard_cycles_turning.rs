@@ -8,15 +8,14 @@ use nctwin_engine::alarm::Alarm;
 
 const MAX_TICKS: usize = 5_000_000;
 
-/// One IPO cycle: WCS X (radius), WCS Z, the spindle's machine angle (degrees) and the line of
-/// the block in force.
+/// One IPO cycle: simulated time, WCS X (radius), WCS Z and the spindle's machine angle
+/// (degrees).
 #[derive(Clone, Copy, Debug)]
 struct Sample {
     t: f64,
     x: f64,
     z: f64,
     sp: f64,
-    line: Option<u32>,
 }
 
 struct Trace {
@@ -59,7 +58,7 @@ fn run_clean(md: &str, main: &str) -> Trace {
 /// `G0 X.. Z..` block before the cycle's call (the snapshot's block line runs ahead of the
 /// motion, so the samples are cut by position).
 fn cycle(t: &Trace, main: &str) -> Trace {
-    let approach = main.lines().filter(|l| l.starts_with("G0 X")).last().expect("an approach block");
+    let approach = main.lines().rfind(|l| l.starts_with("G0 X")).expect("an approach block");
     let words: Vec<f64> = approach[3..].split(' ').map(|w| w[1..].parse().unwrap()).collect();
     let from = t.samples.iter().position(|s| close(s.x, words[0], 1e-9) && close(s.z, words[1], 1e-9));
     let from = from.expect("reaches the approach point");
@@ -74,13 +73,7 @@ fn run_clean_cycle(md: &str, main: &str) -> Trace {
 fn sample(ch: &Channel) -> Sample {
     let s = ch.snapshot();
     let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
-    Sample {
-        t: s.time,
-        x: get(&s.workpiece, "X"),
-        z: get(&s.workpiece, "Z"),
-        sp: get(&s.machine, "SP1"),
-        line: s.block.map(|b| b.line),
-    }
+    Sample { t: s.time, x: get(&s.workpiece, "X"), z: get(&s.workpiece, "Z"), sp: get(&s.machine, "SP1") }
 }
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
@@ -446,9 +439,11 @@ fn cycle94_form_f_recesses_the_face_and_mirrors_for_edge_position_4() {
 #[test]
 fn cycle94_refuses_an_edge_position_without_undercut_and_a_nose_larger_than_the_radius() {
     // Edge position 8 (axis-parallel): 61608. T1's nose radius 0.8 in an E 0.6 x 0.3: 61105.
-    for (md, call, number) in
-        [("", "CYCLE94(40,-30,\"E\",8)", 61608), ("", "CYCLE94(40,-30,\"E\",3)", 61105), ("", "CYCLE94(40,-30,\"G\",3)", 61002)]
-    {
+    for (md, call, number) in [
+        ("", "CYCLE94(40,-30,\"E\",8)", 61608),
+        ("", "CYCLE94(40,-30,\"E\",3)", 61105),
+        ("", "CYCLE94(40,-30,\"G\",3)", 61002),
+    ] {
         let t = run(md, &format!("G18 G90 G95 F0.1\nT1 D1\nG0 X30 Z10\n{call}\nM30"));
         assert_eq!(t.alarms.len(), 1, "{call}: {:?}", t.alarms);
         assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(4)), "{call}");
@@ -563,15 +558,20 @@ fn cycle95_roughs_in_cuts_of_at_most_mid_leaving_the_allowance_and_finishes_on_t
         assert!(s.z < -40.0 + 0.2 - 1e-9 || s.x >= boundary(s.z) - 1e-6, "roughing enters the allowance at {s:?}");
     }
     // The cuts follow the boundary up the taper and the fillet (no residual corners left).
-    let touching = |lo: f64, hi: f64| rough.iter().filter(|s| s.z > lo && s.z < hi && close(s.x, boundary(s.z), 1e-6)).count();
-    assert!(touching(-39.8, -24.8) > 20 && touching(-24.8, -19.8) > 5, "{} {}", touching(-39.8, -24.8), touching(-24.8, -19.8));
+    let touching =
+        |lo: f64, hi: f64| rough.iter().filter(|s| s.z > lo && s.z < hi && close(s.x, boundary(s.z), 1e-6)).count();
+    assert!(
+        touching(-39.8, -24.8) > 20 && touching(-24.8, -19.8) > 5,
+        "{} {}",
+        touching(-39.8, -24.8),
+        touching(-24.8, -19.8)
+    );
     // The roughing cuts: X levels of the feed moves along Z.
     let mut levels: Vec<f64> = Vec::new();
     for w in rough.windows(2) {
-        if close(w[0].x, w[1].x, 1e-12) && w[1].z < w[0].z - 1e-9 && w[0].z > 0.0 && w[0].z < 1.2 + 1e-9 {
-            if levels.last().is_none_or(|l| !close(*l, w[0].x, 1e-9)) {
-                levels.push(w[0].x);
-            }
+        let cut = close(w[0].x, w[1].x, 1e-12) && w[1].z < w[0].z - 1e-9 && w[0].z > 0.0 && w[0].z < 1.2 + 1e-9;
+        if cut && levels.last().is_none_or(|l| !close(*l, w[0].x, 1e-9)) {
+            levels.push(w[0].x);
         }
     }
     let want: Vec<f64> = (1..=8).map(|k| 25.0 - k as f64 * 1.8625).collect();
@@ -594,7 +594,15 @@ fn cycle95_face_roughing_cuts_along_x_in_levels_of_z() {
     // X15, up to Z-3, a slope to X5 Z0, then Z0 to the axis. The blank reaches Z0: 6 / MID 1.5
     // gives cuts at Z-1.5, -3, -4.5, -6 along -X; the tool never enters the part.
     let face = "G18 G90\nG1 X25 Z-6\nG1 X15\nG1 Z-3\nG1 X5 Z0\nG1 X0\nM17\n";
-    let part = |x: f64| if x >= 15.0 { -6.0 } else if x >= 5.0 { -3.0 + (15.0 - x) / 10.0 * 3.0 } else { 0.0 };
+    let part = |x: f64| {
+        if x >= 15.0 {
+            -6.0
+        } else if x >= 5.0 {
+            -3.0 + (15.0 - x) / 10.0 * 3.0
+        } else {
+            0.0
+        }
+    };
     let t = run_with(
         "$TC_DP6[1,1]=0\n",
         "G18 G90 G94\nT1 D1\nG0 X40 Z10\nCYCLE95(\"FACE\",1.5,0,0,0,300,0,100,2,0,0,0)\nM30",
@@ -609,10 +617,9 @@ fn cycle95_face_roughing_cuts_along_x_in_levels_of_z() {
     }
     let mut levels: Vec<f64> = Vec::new();
     for w in t.samples.windows(2) {
-        if close(w[0].z, w[1].z, 1e-12) && w[1].x < w[0].x - 1e-9 && w[0].x > 25.0 && w[0].x <= 26.0 + 1e-9 {
-            if levels.last().is_none_or(|l| !close(*l, w[0].z, 1e-9)) {
-                levels.push(w[0].z);
-            }
+        let cut = close(w[0].z, w[1].z, 1e-12) && w[1].x < w[0].x - 1e-9 && w[0].x > 25.0 && w[0].x <= 26.0 + 1e-9;
+        if cut && levels.last().is_none_or(|l| !close(*l, w[0].z, 1e-9)) {
+            levels.push(w[0].z);
         }
     }
     assert_points(&levels, &[-1.5, -3.0, -4.5, -6.0]);

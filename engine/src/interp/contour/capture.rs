@@ -102,7 +102,8 @@ impl Interpreter {
                     }
                 }
                 let n = capture.rows.len() as i64;
-                let count = self.vars.get_mut(&capture.count).ok_or_else(|| Alarm::unknown_name(line, &capture.count))?;
+                let count =
+                    self.vars.get_mut(&capture.count).ok_or_else(|| Alarm::unknown_name(line, &capture.count))?;
                 count.data[0] = Value::Int(n);
             }
         }
