@@ -643,3 +643,42 @@ fn cycle95_refuses_relief_cuts_sections_and_missing_feeds() {
         assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(4)), "{call}");
     }
 }
+
+#[test]
+fn cycle95_finishing_compensates_the_nose_radius() {
+    // VARI 5 (finishing only) with T2: nose radius 0.4, edge position 3, so the nose's centre
+    // lies 0.4 above and 0.4 towards +Z of the theoretical tip. Along the contour the centre
+    // keeps exactly 0.4 from it (the compensated path), and never comes nearer.
+    let t = run_with(
+        "",
+        "G18 G90 G94\nT2 D1\nS800 M3\nG0 X30 Z10\nCYCLE95(\"SHAFT\",2,0,0,0,300,0,100,5,0,0,0)\nM30",
+        &[("SHAFT", SHAFT)],
+    );
+    assert!(t.alarms.is_empty(), "{:?}", t.alarms);
+    let t = cycle(&t, "G0 X30 Z10\n");
+    // Distance from a point to the shaft's outline (the face Z0 below X10 excluded: the tool
+    // comes from +Z there).
+    let dist = |z: f64, x: f64| {
+        let mut d = f64::INFINITY;
+        let seg = |a: [f64; 2], b: [f64; 2]| to_segment([z, x], a, b);
+        d = d.min(seg([0.0, 10.0], [-20.0, 10.0]));
+        let a = (x - 15.0).atan2(z + 20.0).to_degrees();
+        if (-180.0..=-90.0).contains(&a) {
+            d = d.min(((z + 20.0).hypot(x - 15.0) - 5.0).abs());
+        }
+        d = d.min(seg([-25.0, 15.0], [-25.0, 20.0])).min(seg([-25.0, 20.0], [-40.0, 25.0]));
+        d
+    };
+    let mut on = 0;
+    for s in &t.samples {
+        let (cz, cx) = (s.z + 0.4, s.x + 0.4);
+        if cz <= 0.0 && cz >= -40.0 {
+            let d = dist(cz, cx);
+            assert!(d >= 0.4 - 1e-6, "the nose cuts into the part at {s:?}: {d}");
+            if d < 0.4 + 1e-6 {
+                on += 1;
+            }
+        }
+    }
+    assert!(on > 200, "finishes along the contour: {on}");
+}
