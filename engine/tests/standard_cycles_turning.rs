@@ -682,3 +682,53 @@ fn cycle95_finishing_compensates_the_nose_radius() {
     }
     assert!(on > 200, "finishes along the contour: {on}");
 }
+
+#[test]
+fn cycle97_taper_and_face_threads_keep_depth_and_pitch_along_their_lead_axis() {
+    // Taper: DM1 20 at Z0 to DM2 24 at Z-30 (radius +2 over 30 mm), APP 4, ROP 2: the cut runs
+    // from Z4 to Z-32 on the taper extended, one cut to the full depth 1 (NRC 1, FAL 0): X =
+    // 10 - Z * 2 / 30 - 1; the lead 2 mm along Z per revolution.
+    let t = run_clean_cycle("", &format!("{THREAD}CYCLE97(2,,0,-30,20,24,4,2,1,0,0,0,1,0,1,1,0)\nM30"));
+    let cut: Vec<Sample> =
+        t.samples.iter().filter(|s| s.z < 3.9 && s.z > -31.9 && s.x < 10.0 - s.z * 2.0 / 30.0 - 0.5).copied().collect();
+    assert!(cut.len() > 100);
+    for s in &cut {
+        assert!(close(s.x, 10.0 - s.z * 2.0 / 30.0 - 1.0, 1e-6), "off the taper at {s:?}");
+    }
+    let a = unwrapped(&cut);
+    let (i, j) = (cut.iter().position(|s| s.z < -5.0).unwrap(), cut.iter().position(|s| s.z < -25.0).unwrap());
+    assert!(close((cut[i].z - cut[j].z) / (a[j] - a[i]) * 360.0, 2.0, 1e-6));
+    // Face thread: SPL = FPL = Z0, DM1 40 to DM2 10 (steeper than 45 degrees): the lead runs
+    // along X from radius 20 + APP 2 to 5 - ROP 2 = 3, the depth 1 into the face (Z-1), 2 mm
+    // of X per revolution.
+    let t = run_clean_cycle("", &format!("{THREAD}CYCLE97(2,,0,0,40,10,2,2,1,0,0,0,1,0,1,1,0)\nM30"));
+    let cut: Vec<Sample> =
+        t.samples.iter().filter(|s| close(s.z, -1.0, 1e-9) && s.x < 21.9 && s.x > 3.1).copied().collect();
+    assert!(cut.len() > 100);
+    let a = unwrapped(&cut);
+    let (i, j) = (cut.iter().position(|s| s.x < 18.0).unwrap(), cut.iter().position(|s| s.x < 6.0).unwrap());
+    assert!(close((cut[i].x - cut[j].x) / (a[j] - a[i]) * 360.0, 2.0, 1e-6), "face pitch");
+    assert!(t.samples.iter().all(|s| s.z >= -1.0 - 1e-9), "no deeper than the thread");
+}
+
+#[test]
+fn cycle94_inside_undercut_lies_beyond_the_bore() {
+    // Edge position 2 (inside, the bore towards +Z of the face at Z-15), SPD 30 (d 18..80:
+    // E 0.6 x 0.3), a tool without nose radius: the undercut goes 0.3 deep into the bore wall
+    // (radius 15 to 15.3) and never past its face (Z >= -15).
+    let md = "$TC_DP6[1,1]=0\n$TC_DP2[1,1]=2\n";
+    let t = run_clean_cycle(md, "G18 G90 G95 F0.1\nT1 D1\nS800 M3\nG0 X5 Z10\nCYCLE94(30,-15,\"E\",0)\nM30");
+    let form = Undercut { t1: 0.3, r: 0.6, t2: 0.0 };
+    let mut on = 0;
+    for s in &t.samples {
+        let p = [s.z + 15.0, 15.0 - s.x];
+        assert!(p[0] >= -1e-9, "behind the face at {s:?}");
+        if p[1] < 0.0 {
+            assert!(form.distance(p) < 1e-6, "off the profile at {s:?}");
+            on += 1;
+        }
+    }
+    assert!(on > 20);
+    let max_x = t.samples.iter().map(|s| s.x).fold(f64::NEG_INFINITY, f64::max);
+    assert!(max_x <= 15.3 + 1e-9 && close(max_x, 15.3, 1e-5), "{max_x}");
+}
