@@ -522,6 +522,18 @@ fn contour_capture_records_the_elements_in_the_plane_and_nothing_moves() {
     let from = t.samples.iter().position(|s| close(s.x, 30.0, 1e-9) && close(s.z, 10.0, 1e-9)).unwrap();
     assert!(t.samples[from..].iter().all(|s| close(s.z, 10.0, 1e-9) && s.x >= 30.0 - 1e-9));
     assert!(close(t.samples.last().unwrap().x, 31.0, 1e-9));
+    // With G42 selected in the contour (T1 has a nose radius) the elements stay as programmed
+    // and nothing moves either.
+    let t = run_with(
+        "",
+        "DEF REAL TAB[8,7]\nDEF INT NN\nG18 G90 G94 F200\nT1 D1\nG0 X30 Z10\nCONTCAPON(TAB, NN)\nCALL \"SHAFTC\"\n\
+         CONTCAPOF\nR1=NN R2=TAB[2,0] R3=TAB[2,5] R4=TAB[2,6] R5=TAB[4,3] R6=TAB[0,1]\nG1 X31\nM30",
+        &[("SHAFTC", &SHAFT.replace("G18 G90\n", "G18 G90 G42\n"))],
+    );
+    assert!(t.alarms.is_empty(), "{:?}", t.alarms);
+    assert_eq!(t.r, vec![5.0, 2.0, -20.0, 15.0, -40.0, 10.0]);
+    let from = t.samples.iter().position(|s| close(s.x, 30.0, 1e-9) && close(s.z, 10.0, 1e-9)).unwrap();
+    assert!(t.samples[from..].iter().all(|s| close(s.z, 10.0, 1e-9) && s.x >= 30.0 - 1e-9));
 }
 
 /// The finished shaft of [`SHAFT`]: its radius at `z` (0 >= z >= -40), worked out from the

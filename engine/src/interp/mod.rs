@@ -648,7 +648,8 @@ impl Interpreter {
             self.spindle_motion(&mut mv, words, cfg, &limits, line, out)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
-            let comp = self.compensation(cfg, words, line)?;
+            // A captured contour is recorded as programmed: no compensation selected or held.
+            let comp = if self.capture.is_some() { None } else { self.compensation(cfg, words, line)? };
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };

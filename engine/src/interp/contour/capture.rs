@@ -8,8 +8,9 @@
 //! table layout the manuals at hand do not give; NCTwin's own names keep the two apart. A cycle
 //! calls the contour's subprogram (`CALL name`) between the two; the interpreter's position
 //! follows the contour while it is recorded and returns to where it was at `CONTCAPOF`, so the
-//! machine never moves. Corners (RND, CHF, CHR) and radius compensation inside the contour are
-//! not applied to the recorded elements.
+//! machine never moves. Corners (RND, CHF, CHR) and radius compensation (G41/G42) inside the
+//! contour are neither applied to the recorded elements nor selected; the block's other words
+//! (M functions, variables) act as usual.
 //!
 //! `TABLE` is a `REAL` array `[n, 7]`; row i holds element i: `[i,0]` its motion (0 G0, 1 G1,
 //! 2 G2, 3 G3), `[i,1]`/`[i,2]` the start point's abscissa/ordinate (G18: Z/X), `[i,3]`/`[i,4]`
