@@ -684,7 +684,7 @@ fn cycle95_finishing_compensates_the_nose_radius() {
     let mut on = 0;
     for s in &t.samples {
         let (cz, cx) = (s.z + 0.4, s.x + 0.4);
-        if cz <= 0.0 && cz >= -40.0 {
+        if (-40.0..=0.0).contains(&cz) {
             let d = dist(cz, cx);
             assert!(d >= 0.4 - 1e-6, "the nose cuts into the part at {s:?}: {d}");
             if d < 0.4 + 1e-6 {
