@@ -2,4 +2,5 @@
 //! RND, CHF and CHR inserted between two blocks.
 
 pub mod arc;
+pub mod capture;
 pub mod corners;

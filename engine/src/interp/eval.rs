@@ -242,6 +242,10 @@ fn compare(op: BinOp, a: &Value, b: &Value, line: u32) -> Result<bool, Alarm> {
     let ord = match (a, b) {
         (Value::Str(x), Value::Str(y)) => x.cmp(y),
         (Value::Axis(x), Value::Axis(y)) => x.cmp(y),
+        // A CHAR compares with a one-character string as that character (`FORM == "E"` with
+        // `CHAR FORM`, as the turning cycles' parameters are declared).
+        (Value::Char(c), Value::Str(s)) if s.len() == 1 => c.cmp(&s.as_bytes()[0]),
+        (Value::Str(s), Value::Char(c)) if s.len() == 1 => s.as_bytes()[0].cmp(c),
         (Value::Str(_) | Value::Axis(_), _) | (_, Value::Str(_) | Value::Axis(_)) => {
             return Err(Alarm::type_error(line, "cannot compare a string with a number"));
         }

@@ -228,6 +228,8 @@ pub struct Interpreter {
     held: Option<contour::corners::Held>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
+    /// CONTCAPON..CONTCAPOF: motions recorded, not run (`contour/capture.rs`).
+    capture: Option<Box<contour::capture::Capture>>,
     /// Tool radius compensation: moves held until their successor decides their end.
     trc: compensation::trc::Compensator,
     /// Spindles in position control (after SPOS), by channel axis.
@@ -275,6 +277,7 @@ impl Interpreter {
             data_writes: Vec::new(),
             warnings: Vec::new(),
             held: None,
+            capture: None,
             corner_request: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
@@ -299,6 +302,7 @@ impl Interpreter {
         self.calls.clear();
         self.call_state = Default::default();
         self.held = None;
+        self.capture = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
@@ -474,7 +478,7 @@ impl Interpreter {
         main_run_idle: bool,
         out: &mut Vec<Item>,
     ) -> Prep {
-        if self.fast_lane {
+        if self.fast_lane && self.capture.is_none() {
             #[cfg(debug_assertions)]
             let (reference, mark) = (self.clone(), out.len());
             if let Some(prep) = self.prepare_plain(cfg, out) {
@@ -490,6 +494,10 @@ impl Interpreter {
         let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
         self.trc.begin_block(out);
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
+            if self.capture.is_some() {
+                // A contour being captured: its motions were recorded, none runs.
+                out.retain(|item| !matches!(item, Item::Move { .. }));
+            }
             // What a block without motion in the compensation plane produced waits behind the
             // held compensated move (look-ahead across dummy blocks, MD20250); anything that
             // cannot wait (a preprocessing stop, the program end, moves past the compensator)
@@ -577,6 +585,9 @@ impl Interpreter {
         let derived = self.trafo.config();
         let cfg = derived.as_deref().unwrap_or(base_cfg);
         self.modal.apply(words, cfg, line)?;
+        if let Some(op) = &words.capture {
+            self.capture_op(op, line)?;
+        }
         if words.work_offset.is_some() {
             // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
             *self.iframe = None;
@@ -637,7 +648,8 @@ impl Interpreter {
             self.spindle_motion(&mut mv, words, cfg, &limits, line, out)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
-            let comp = self.compensation(cfg, words, line)?;
+            // A captured contour is recorded as programmed: no compensation selected or held.
+            let comp = if self.capture.is_some() { None } else { self.compensation(cfg, words, line)? };
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
@@ -963,6 +975,10 @@ impl Interpreter {
             _ => None,
         };
 
+        if let (Some(capture), (Some(ka), Some(ko))) = (self.capture.as_mut(), plane) {
+            let center = circle.as_ref().map(|c| c.center);
+            capture.record(self.modal.motion, (current[ka], current[ko]), (target[ka], target[ko]), center);
+        }
         let mut end = block_end(&frame, geo, n, &start, &tool, &target, &mut programmed);
 
         if let Some(kind) = words.oblique {
@@ -983,7 +999,8 @@ impl Interpreter {
 
         check_software_limits(cfg, &path, line)?;
 
-        let feed = self.path_feed(line)?;
+        // A captured contour's move does not run: it needs no feed.
+        let feed = if self.capture.is_some() { Feed::Rapid } else { self.path_feed(line)? };
         let exact_stop = self.modal.exact_stop || words.g9;
         self.pos = end;
         let mut mv = Move::new(path, length, feed, limits, exact_stop, line);

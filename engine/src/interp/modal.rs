@@ -368,6 +368,8 @@ pub(super) struct Words {
     pub frame_writes: Vec<(ChainFrame, Frame)>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
     pub corner: Option<Corner>,
+    /// CONTCAPON(table, count) / CONTCAPOF: contour capture (`contour/capture.rs`).
+    pub capture: Option<super::contour::capture::CaptureOp>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
     pub ar: Option<f64>,
     pub turn: Option<u32>,
@@ -556,6 +558,18 @@ pub(super) fn collect(
                     [] => String::new(),
                     [e] => eval(e, &Ctx { vars, sys }, line)?.as_text(),
                     _ => return Err(Alarm::syntax(line, "MSG takes one text")),
+                });
+            }
+            Word::Keyword { name, args } if name == "CONTCAPON" || name == "CONTCAPOF" => {
+                use super::contour::capture::CaptureOp;
+                w.capture = Some(match (name.as_str(), args.as_slice()) {
+                    ("CONTCAPON", [Expr::Var { name: table, indices: t }, Expr::Var { name: count, indices: c }])
+                        if t.is_empty() && c.is_empty() =>
+                    {
+                        CaptureOp::On { table: table.clone(), count: count.clone() }
+                    }
+                    ("CONTCAPOF", []) => CaptureOp::Off,
+                    _ => return Err(Alarm::syntax(line, "CONTCAPON(table, count) or CONTCAPOF")),
                 });
             }
             Word::Keyword { name, args } if name == "SETAL" => {

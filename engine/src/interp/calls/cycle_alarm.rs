@@ -34,6 +34,12 @@ const TEXTS: &[(u32, &str)] = &[
     (61116, "approach or retraction path = 0"),
     (61117, "active tool radius <= 0"),
     (61118, "length or width = 0"),
+    (61601, "finished part diameter too small"),
+    (61602, "tool width defined incorrectly"),
+    (61603, "groove form defined incorrectly"),
+    (61605, "contour defined incorrectly"),
+    (61607, "starting point defined incorrectly"),
+    (61608, "wrong cutting edge position programmed"),
 ];
 
 /// `alarm` as the control reports it: a cycle alarm set in a cycle directory's program moves to

@@ -44,6 +44,13 @@ impl Interpreter {
                     let (first, insert) = corner_between(&held, mv, &AxisLimit::for_channel(cfg))?;
                     out.splice(0..0, std::iter::once(first).chain(insert));
                 }
+                // A statement between the two blocks (IF, ELSE, ENDIF, an assignment) makes
+                // nothing: the corner waits for the next motion, as the control's does across
+                // blocks without motion (MD20200 $MC_CHFRND_MAXNUM_DUMMY_BLOCKS).
+                None if prep == Prep::Prepared => {
+                    self.held = Some(held);
+                    return Ok(());
+                }
                 _ => out.insert(0, held.item),
             }
         }
