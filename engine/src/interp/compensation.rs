@@ -8,4 +8,6 @@ pub(super) mod cutting_edge;
 pub(super) mod disc;
 pub(super) mod kontc;
 pub(super) mod toff;
+pub mod sar;
+mod sar_block;
 pub mod trc;

@@ -576,6 +576,8 @@ impl Interpreter {
         self.apply_transformation(selection, block, base_cfg, line)?;
         let derived = self.trafo.config();
         let cfg = derived.as_deref().unwrap_or(base_cfg);
+        // Smooth approach runs its fast infeed at the velocity before the block.
+        let sar_before = words.sar.contour.and_then(|_| self.path_feed(line).ok());
         self.modal.apply(words, cfg, line)?;
         if words.work_offset.is_some() {
             // G500/G54...: the stored settable frame replaces one a program wrote to $P_IFRAME.
@@ -638,15 +640,17 @@ impl Interpreter {
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
             let comp = self.compensation(cfg, words, line)?;
+            let sar = self.sar_request(words, cfg, &mv, comp.as_ref(), sar_before, line)?;
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
-            if comp.is_none() && self.trc.idle() {
+            if comp.is_none() && self.trc.idle() && sar.is_none() {
                 // Nothing to compensate and nothing held: the move goes straight out.
                 out.push(Item::Move { mv, line, offsets });
                 self.trc.passed(out);
             } else {
                 let prepared = compensation::trc::Prepared { mv, feed, line, offsets, approach, corner };
+                self.trc.arm(sar);
                 self.trc.push(prepared, comp, &limits, out)?;
             }
         } else if !positioned && self.offsets_mark() != offsets_before {

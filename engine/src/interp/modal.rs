@@ -78,6 +78,8 @@ pub struct Modal {
     pub trc: Option<Side>,
     /// G450 (transition circle) or G451 (intersection) at outer corners.
     pub trc_corners: CornerMode,
+    /// G groups 43 and 44 of smooth approach and retract (`compensation/sar.rs`).
+    pub sar: super::compensation::sar::SarModal,
     /// OFFN contour offset.
     pub offn: f64,
     /// G group 17: NORM, KONT, KONTT, KONTC (approach and retract).
@@ -141,6 +143,7 @@ impl Modal {
             polar: (0.0, 0.0),
             trc: None,
             trc_corners: CornerMode::Circle,
+            sar: Default::default(),
             offn: 0.0,
             approach: ApproachMode::Norm,
             disc: 0.0,
@@ -194,6 +197,7 @@ impl Modal {
         if let Some(c) = w.trc_corners {
             self.trc_corners = c;
         }
+        self.sar.apply(&w.sar);
         if let Some(o) = w.offn {
             self.offn = o;
         }
@@ -292,6 +296,8 @@ pub(super) struct Words {
     pub exact_stop: Option<bool>,
     /// G641..G645, G601..G603, ADIS, CTOL ... (`path_control.rs`).
     pub path: super::path_control::PathWords,
+    /// G140..G143, G147..G348, G340/G341, DISR, DISCL, FAD (`compensation/sar.rs`).
+    pub sar: super::compensation::sar::SarWords,
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
@@ -689,6 +695,14 @@ pub(super) fn collect(
                     w.tool_name = Some(named);
                     continue;
                 }
+                if name == "FAD" {
+                    if !seen.insert(name) {
+                        return Err(Alarm::repeated_address(line, name));
+                    }
+                    let (e, per_rev) = super::compensation::sar::SarWords::fad_form(&value.expr);
+                    w.sar.fad = Some((eval_f64(e, &Ctx { vars, sys }, line)?, per_rev));
+                    continue;
+                }
                 if name == "TCARR" {
                     if !seen.insert(name) {
                         return Err(Alarm::repeated_address(line, name));
@@ -732,6 +746,7 @@ pub(super) fn collect(
                     // H: auxiliary function for the PLC.
                     "H" => w.aux.push(super::auxiliary::AuxFunction { letter: 'H', extension: 0, value: v }),
                     _ if w.path.address(name, v, line)? => {}
+                    _ if w.sar.address(name, v, value.mode, sys.modal.length_factor(), line)? => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
                     // `P3`: three runs of the block's subprogram call.
@@ -1069,6 +1084,7 @@ fn is_nc_address(name: &str) -> bool {
     ) || words::is_address(name)
         || super::spindles::words::is_address(name)
         || super::path_control::is_address(name)
+        || super::compensation::sar::is_address(name)
 }
 
 /// The keywords of G groups 22, 42, 52 and 53; false for any other word.
@@ -1158,6 +1174,7 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         95 => w.feed_per_rev = Some(true),
         _ if super::spindles::words::g_code(&mut w.spindle, code, line)? => {}
         _ if w.path.g_function(code, &mut w.exact_stop) => {}
+        _ if w.sar.g_function(code, line)? => {}
         _ => return Err(Alarm::unknown_g(line, code)),
     }
     Ok(())

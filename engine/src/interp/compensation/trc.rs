@@ -20,6 +20,10 @@ use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation:
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 
+// Smooth approach and retract's moves: a child module, so it reaches the compensator's state.
+#[path = "sar_run.rs"]
+mod sar_run;
+
 /// Compensation side.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Side {
@@ -161,6 +165,8 @@ pub struct Compensator {
     block_plane_move: bool,
     block_dummy_move: bool,
     mark: usize,
+    /// Smooth approach (from the selection block until the first element) or retract.
+    sar: Option<Box<super::sar::Sar>>,
 }
 
 impl Compensator {
@@ -190,6 +196,13 @@ impl Compensator {
             }
         }
         self.mark = out.len();
+    }
+
+    /// Takes the SAR request of the block about to be pushed (kept until it is run).
+    pub fn arm(&mut self, sar: Option<Box<super::sar::Sar>>) {
+        if sar.is_some() {
+            self.sar = sar;
+        }
     }
 
     /// Starts a block: `out` is where its items go.
@@ -332,6 +345,9 @@ impl Compensator {
         }
         let d = comp.offset();
         if let Some((approach, _)) = self.approach.take() {
+            if let Some(sar) = self.sar.take() {
+                return self.sar_approach(approach, *sar, p, contour, comp, limits, out);
+            }
             // The selection block ends on the first element's equidistant (NORM) or goes round
             // its start point (KONT) or joins it tangentially (KONTT) or with continuous
             // curvature (KONTC).
@@ -448,6 +464,9 @@ impl Compensator {
     /// (NORM) or goes round its end point (KONT, KONTT, KONTC), then this move travels uncompensated
     /// to its programmed end.
     fn deselect(&mut self, p: Prepared, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        if let Some(sar) = self.sar.take() {
+            return self.sar_retract(p, *sar, limits, out);
+        }
         let was_active = self.tool_at.is_some() || self.holds();
         if was_active && p.mv.path.arc.is_some() {
             return Err(Alarm::trc_deselection(p.line));
@@ -522,6 +541,7 @@ impl Compensator {
     pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
         if let Some((approach, _)) = self.approach.take() {
             // A selection block without a following element stays uncompensated.
+            self.sar = None;
             self.emit(approach.item_with(approach.mv.clone()), out);
             self.tool_at = None;
         }
