@@ -257,3 +257,51 @@ fn a_retract_without_plane_end_point_ends_above_p3() {
     must(&s, 60.0, 7.0, 0.0);
     assert_eq!(&s.last().unwrap()[..3], &[60.0, 7.0, 30.0]);
 }
+
+/// Without TRC the tool centre joins the contour point itself, and G140 decides like G143:
+/// the start (0, 0) lies left of the tangent at (40, −10) heading +X, so the quadrant of
+/// radius DISR=10 has its centre at (40, 0) and starts at P3 = (30, 0). The contour goes on
+/// uncompensated, an arc included.
+#[test]
+fn without_trc_the_quadrant_ends_on_the_contour_point() {
+    let program = "T1 D1\nG0 X0 Y0 Z20\nG1 G341 G247 DISR=10 X40 Y-10 Z0 F1000\nX60\nG3 X60 Y10 CR=10\nM30";
+    let (ch, s) = run(program);
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    let (p3, p4) = (must(&s, 30.0, 0.0, 0.0), must(&s, 40.0, -10.0, 0.0));
+    for p in &s[p3..=p4] {
+        assert!(((p[0] - 40.0).hypot(p[1]) - 10.0).abs() < 1e-9, "{p:?}");
+    }
+    let p5 = must(&s, 60.0, -10.0, 0.0);
+    assert!(s[p4..=p5].iter().all(|p| (p[1] + 10.0).abs() < 1e-9));
+    assert_eq!(&s.last().unwrap()[..3], &[60.0, 10.0, 0.0]);
+    assert!(s[p5..].iter().all(|p| ((p[0] - 60.0).hypot(p[1]) - 10.0).abs() < 1e-9));
+}
+
+/// A retract needs the contour's last element: without TRC there is none held (10744).
+#[test]
+fn a_retract_without_trc_is_refused() {
+    let program = "T1 D1\nG0 X0 Y-10 Z0\nG1 X60 F1000\nG148 DISR=5 X80 Y0 Z30\nM30";
+    assert_eq!(first_alarm(program), Some((10744, Some(4))));
+}
+
+/// The manual's example of P4 from the next block: `N30 G41 G147 DISCL=3 DISR=13 Z=0 F1000`
+/// then `N40 G1 X40 Y-10` runs as `N30 G41 G147 DISCL=3 DISR=13 X40 Y-10 Z0 F1000`. With the
+/// tool radius 5: P4c = (40, −5), the line 13 + 5 = 18 long from P3 = (22, −5); G340: P1 =
+/// (22, −5, 30), P3 at the DISCL height 3, then the line down to Z0 at F1000.
+#[test]
+fn p4_from_the_next_block_gives_the_same_approach() {
+    let split = "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 Z=0 F1000\nG1 X40 Y-10\nG1 X50\nG40 X60 Y-30\nM30";
+    let joined = "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 X40 Y-10 Z0 F1000\nG1 X50\nG40 X60 Y-30\nM30";
+    for program in [split, joined] {
+        let (ch, s) = run(program);
+        assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+        let (p0, p1, p3, p4) =
+            (must(&s, 10.0, 0.0, 30.0), must(&s, 22.0, -5.0, 30.0), must(&s, 22.0, -5.0, 3.0), must(&s, 40.0, -5.0, 0.0));
+        assert!(p0 < p1 && p1 < p3 && p3 < p4, "{program}");
+        for p in &s[p3..=p4] {
+            assert!((p[1] + 5.0).abs() < 1e-9 && (p[2] - 3.0 * (40.0 - p[0]) / 18.0).abs() < 1e-9, "{p:?}");
+        }
+        assert!((top_speed(&ch, &s, p3, p4) - 1000.0).abs() < 0.5);
+        must(&s, 50.0, -5.0, 0.0);
+    }
+}

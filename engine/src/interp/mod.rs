@@ -641,16 +641,18 @@ impl Interpreter {
             let offsets = self.shared_offsets();
             let comp = self.compensation(cfg, words, line)?;
             let sar = self.sar_request(words, cfg, &mv, comp.as_ref(), sar_before, line)?;
+            self.trc.arm(sar);
+            // A smooth approach without TRC runs with a compensation of radius 0.
+            let comp = comp.or_else(|| self.trc.sar_compensation());
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
-            if comp.is_none() && self.trc.idle() && sar.is_none() {
+            if comp.is_none() && self.trc.idle() {
                 // Nothing to compensate and nothing held: the move goes straight out.
                 out.push(Item::Move { mv, line, offsets });
                 self.trc.passed(out);
             } else {
                 let prepared = compensation::trc::Prepared { mv, feed, line, offsets, approach, corner };
-                self.trc.arm(sar);
                 self.trc.push(prepared, comp, &limits, out)?;
             }
         } else if !positioned && self.offsets_mark() != offsets_before {

@@ -33,9 +33,12 @@
 //!   clearance plane and the contour) is alarm 10741;
 //! - axes outside the working plane other than its normal (rotary axes) move in the first
 //!   sub-move of an approach and in the last of a retract, as the manual places other actions;
-//! - SAR is modelled with tool radius compensation selected (approach) or deselected (retract)
-//!   in the SAR block, which holds the end point; P4 taken from a later block and SAR without
-//!   TRC are refused with alarm 10744 rather than run differently.
+//! - the approach is modelled with tool radius compensation selected in the SAR block or with
+//!   none active (then the tool centre is the contour's point, G140 acts as G143); the retract
+//!   with TRC deselected in the SAR block. A SAR approach block without an end point in the
+//!   plane takes P4 from the next motion block (its height from the SAR block), and the
+//!   sub-moves carry that block's number. A retract without TRC is refused with alarm 10744
+//!   (the contour's last element is not known without a held element).
 
 use crate::alarm::Alarm;
 use crate::interp::compensation::trc::{Elem, P2, left};
@@ -187,6 +190,9 @@ pub struct Sar {
     pub feed: Option<Feed>,
     /// Whether the block's end point lies in the plane (retract with G143 needs it).
     pub end_in_plane: bool,
+    /// Approach without TRC: the compensation of radius 0 its block and the next element run
+    /// with (the contour's tangent decides the approach as with TRC).
+    pub zero: Option<crate::interp::compensation::trc::Compensation>,
     pub line: u32,
 }
 

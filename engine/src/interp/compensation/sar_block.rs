@@ -5,7 +5,7 @@
 
 use crate::alarm::Alarm;
 use crate::interp::compensation::sar::{Clearance, Sar, Shape};
-use crate::interp::compensation::trc::Compensation;
+use crate::interp::compensation::trc::{Compensation, Side};
 use crate::interp::{Interpreter, modal};
 use crate::machine_data::MachineConfig;
 use crate::motion::{AxisVec, Feed, Move};
@@ -25,8 +25,9 @@ impl Interpreter {
         let Some((shape, retract)) = words.sar.contour else { return Ok(None) };
         // Approach: TRC selected in this block; retract: deselected in it (see sar.rs).
         let selects = comp.is_some() && self.trc.idle();
+        let without = comp.is_none() && self.trc.idle() && self.modal.trc.is_none();
         let deselects = comp.is_none() && !self.trc.idle();
-        if (!retract && !selects) || (retract && !deselects) {
+        if (!retract && !selects && !without) || (retract && !deselects) {
             return Err(Alarm::sar_direction(line));
         }
         let disr = words.sar.disr.ok_or_else(|| Alarm::sar_distance(line))?;
@@ -36,14 +37,8 @@ impl Interpreter {
         let (pa, po, papp) = self.modal.plane.axes();
         let geo = &cfg.geo_axes;
         let plane_programmed = words.axes.iter().any(|&(k, _, _)| Some(k) == geo[pa] || Some(k) == geo[po]);
-        if !retract && !plane_programmed {
-            // P4 from a later block: not modelled (sar.rs).
-            return Err(Alarm::sar_direction(line));
-        }
         let frame = self.block_frame(words, cfg);
-        let raw = frame.geo_direction(geo, papp);
-        let len = raw.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let normal: AxisVec = if len > 0.0 { raw.map(|x| x / len) } else { raw };
+        let normal = unit(frame.geo_direction(geo, papp));
         // The machining plane goes through P4: the block's end on approach, its start (the
         // contour's end) on retract.
         let p4 = if retract { mv.path.start } else { mv.path.end };
@@ -85,7 +80,26 @@ impl Interpreter {
             before: before.unwrap_or(Feed::Rapid),
             feed,
             end_in_plane: plane_programmed,
+            zero: (!retract && without).then(|| Compensation {
+                side: Side::Left,
+                radius: 0.0,
+                corners: self.modal.trc_corners,
+                disc: self.modal.disc,
+                arc_feed: self.modal.arc_feed,
+                u: unit(frame.geo_direction(geo, pa)),
+                v: unit(frame.geo_direction(geo, po)),
+                tip: (0.0, 0.0),
+                max_dummy_blocks: cfg.cutcom_max_dummy_blocks,
+                max_check_blocks: cfg.cutcom_max_check_blocks,
+                groove_wall: None,
+            }),
             line,
         })))
     }
+}
+
+/// `v` scaled to length 1 (unchanged when it is zero).
+fn unit(v: AxisVec) -> AxisVec {
+    let len = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if len > 0.0 { v.map(|x| x / len) } else { v }
 }

@@ -29,7 +29,9 @@ impl Compensator {
         let line = a.line;
         let d = comp.offset();
         let (p4, t, p4c) = (super::elem_start(&contour), tangent(&contour, false), offset_start(&contour, d));
-        let (a3, b3) = (a.mv.path.start, a.mv.path.end);
+        // With P4 from the block after the SAR block, the approach starts where that one did.
+        let a3 = self.sar_head.take().map_or(a.mv.path.start, |h| h.mv.path.start);
+        let b3 = a.mv.path.end;
         let s0 = minus(to_plane(&a3, &comp), comp.tip);
         let side = sar::side(sar.side, d, Some(s0), p4, t, false, line)?;
         let (p3, elem) = sar::approach_contour(sar.shape, sar.disr, comp.radius, p4c, t, side);
@@ -52,6 +54,7 @@ impl Compensator {
         self.tool_at = Some(p4c);
         self.release_pending(limits, out);
         self.held = Some(Held { skipped: Vec::new(), p, contour, start: p4c, comp });
+        self.sar_virtual = sar.zero.is_some();
         Ok(())
     }
 

@@ -167,12 +167,17 @@ pub struct Compensator {
     mark: usize,
     /// Smooth approach (from the selection block until the first element) or retract.
     sar: Option<Box<super::sar::Sar>>,
+    /// The held element runs with the radius-0 compensation of a smooth approach without TRC:
+    /// the next uncompensated move just follows it.
+    sar_virtual: bool,
+    /// A SAR approach block without an end point in the plane: P4 comes from the next block.
+    sar_head: Option<Box<Prepared>>,
 }
 
 impl Compensator {
     /// True while a move is held back.
     pub fn holds(&self) -> bool {
-        self.held.is_some() || self.approach.is_some() || !self.pending.is_empty()
+        self.held.is_some() || self.approach.is_some() || !self.pending.is_empty() || self.sar_head.is_some()
     }
 
     /// True when nothing is held and the tool has no compensated position of its own: a move
@@ -203,6 +208,12 @@ impl Compensator {
         if sar.is_some() {
             self.sar = sar;
         }
+    }
+
+    /// The compensation of radius 0 that a smooth approach without TRC runs its block and the
+    /// contour's first element with; None otherwise.
+    pub fn sar_compensation(&self) -> Option<Compensation> {
+        self.sar.as_ref().and_then(|s| s.zero)
     }
 
     /// Starts a block: `out` is where its items go.
@@ -306,6 +317,15 @@ impl Compensator {
             return Err(Alarm::trc_helix_axis(line));
         }
         let Some(contour) = element(&p.mv, &comp) else {
+            if self.sar.as_ref().is_some_and(|s| !s.retract)
+                && self.held.is_none()
+                && self.approach.is_none()
+                && self.sar_head.is_none()
+            {
+                // The SAR block's end point in the plane is the next block's.
+                self.sar_head = Some(Box::new(p));
+                return Ok(());
+            }
             // No motion in the working plane: wait behind the held move (look-ahead across
             // dummy blocks), or run at the tool's plane position.
             self.block_dummy_move = true;
@@ -467,6 +487,12 @@ impl Compensator {
         if let Some(sar) = self.sar.take() {
             return self.sar_retract(p, *sar, limits, out);
         }
+        if std::mem::take(&mut self.sar_virtual) {
+            self.flush(limits, out)?;
+            self.tool_at = None;
+            self.emit(p.into_item(), out);
+            return Ok(());
+        }
         let was_active = self.tool_at.is_some() || self.holds();
         if was_active && p.mv.path.arc.is_some() {
             return Err(Alarm::trc_deselection(p.line));
@@ -539,6 +565,11 @@ impl Compensator {
     /// Ends the held move perpendicular to its contour end (before anything that is not a
     /// compensated move, and at the end of the program).
     pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.sar_virtual = false;
+        if let Some(head) = self.sar_head.take() {
+            self.sar = None;
+            self.emit(head.into_item(), out);
+        }
         if let Some((approach, _)) = self.approach.take() {
             // A selection block without a following element stays uncompensated.
             self.sar = None;
