@@ -226,6 +226,8 @@ pub struct Interpreter {
     warnings: Vec<Alarm>,
     /// A move held back until the next block decides its corner (RND, CHF, CHR).
     held: Option<contour::corners::Held>,
+    /// The spline sequence being collected (`path_control/spline.rs`).
+    splines: Option<Box<path_control::spline::SplineRun>>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
     /// Tool radius compensation: moves held until their successor decides their end.
@@ -275,6 +277,7 @@ impl Interpreter {
             data_writes: Vec::new(),
             warnings: Vec::new(),
             held: None,
+            splines: None,
             corner_request: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
@@ -299,6 +302,7 @@ impl Interpreter {
         self.calls.clear();
         self.call_state = Default::default();
         self.held = None;
+        self.splines = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
@@ -487,8 +491,9 @@ impl Interpreter {
         self.lane_memo.stale_offsets();
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
-        let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
+        let idle = main_run_idle && !self.holds_move() && !self.trc.holds() && self.splines.is_none();
         self.trc.begin_block(out);
+        let mark = out.len();
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
             // What a block without motion in the compensation plane produced waits behind the
             // held compensated move (look-ahead across dummy blocks, MD20250); anything that
@@ -501,6 +506,7 @@ impl Interpreter {
                 let at = out.iter().rposition(|i| matches!(i, Item::Move { .. })).map_or(0, |i| i + 1);
                 out.splice(at..at, flushed);
             }
+            self.settle_spline(out, mark, prep, cfg);
             let request = self.corner_request.take();
             self.shape_corners(out, prep, request, cfg)?;
             self.transform_moves(out)?;
@@ -523,6 +529,7 @@ impl Interpreter {
         self.flow = None;
         self.calls.clear();
         self.held = None;
+        self.splines = None;
         Prep::Done
     }
 
@@ -636,6 +643,9 @@ impl Interpreter {
             // One set of limits for the move and its compensation (same configuration).
             let limits = AxisLimit::for_channel(cfg);
             let (mut mv, feed) = self.motion(words, cfg, &limits, line)?;
+            if self.modal.spline.kind == Some(path_control::spline::Kind::Poly) {
+                self.poly_move(&mut mv, words, cfg, &limits);
+            }
             self.spindle_motion(&mut mv, words, cfg, &limits, line, out)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
@@ -647,7 +657,12 @@ impl Interpreter {
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
-            if comp.is_none() && self.trc.idle() {
+            if self.modal.spline.kind.is_some_and(|k| k != path_control::spline::Kind::Poly) {
+                if comp.is_some() || self.offsets.trafo.is_some() {
+                    return Err(Alarm::unknown_name(line, "spline with TRC or a transformation"));
+                }
+                self.spline_point(mv, words, line, offsets, cfg, out);
+            } else if comp.is_none() && self.trc.idle() {
                 // Nothing to compensate and nothing held: the move goes straight out.
                 out.push(Item::Move { mv, line, offsets });
                 self.trc.passed(out);

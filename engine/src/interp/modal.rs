@@ -80,6 +80,8 @@ pub struct Modal {
     pub trc_corners: CornerMode,
     /// G groups 43 and 44 of smooth approach and retract (`compensation/sar.rs`).
     pub sar: super::compensation::sar::SarModal,
+    /// Spline type (G group 1 beside G1), G groups 19/20 and SD (`path_control/spline.rs`).
+    pub spline: super::path_control::spline::SplineModal,
     /// OFFN contour offset.
     pub offn: f64,
     /// G group 17: NORM, KONT, KONTT, KONTC (approach and retract).
@@ -144,6 +146,7 @@ impl Modal {
             trc: None,
             trc_corners: CornerMode::Circle,
             sar: Default::default(),
+            spline: Default::default(),
             offn: 0.0,
             approach: ApproachMode::Norm,
             disc: 0.0,
@@ -169,6 +172,11 @@ impl Modal {
     pub(super) fn apply(&mut self, w: &Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
         if let Some(m) = w.motion {
             self.motion = m;
+        }
+        self.spline.apply(&w.spline, w.motion.is_some());
+        if w.spline.kind.is_some() {
+            // A spline block is prepared like a G1 block (`path_control/spline.rs`).
+            self.motion = MotionMode::Linear;
         }
         if let Some(p) = w.plane {
             // The compensation plane changes only with G40 (in this block or before).
@@ -298,6 +306,8 @@ pub(super) struct Words {
     pub path: super::path_control::PathWords,
     /// G140..G143, G147..G348, G340/G341, DISR, DISCL, FAD (`compensation/sar.rs`).
     pub sar: super::compensation::sar::SarWords,
+    /// ASPLINE/BSPLINE/CSPLINE/POLY, PW, SD, PL, PO[..] (`path_control/spline.rs`).
+    pub spline: super::path_control::spline::SplineWords,
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
@@ -501,6 +511,7 @@ pub(super) fn collect(
             }
             Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.path.keyword(name) => {}
+            Word::Keyword { name, args } if args.is_empty() && w.spline.keyword(name) => {}
             Word::Keyword { name, args }
                 if args.is_empty() && matches!(name.as_str(), "CP" | "PTP" | "PTPG0" | "PTPWOC") =>
             {
@@ -665,6 +676,28 @@ pub(super) fn collect(
             {
                 w.dynamics.percent(which, indices, &value.expr, cfg, vars, sys, line)?;
             }
+            Word::Address { name, indices, value } if name == "PO" => {
+                // POLY: PO[axis]=(end, a2, a3, a4, a5); the end is the axis word of the block.
+                let axis = match indices.as_slice() {
+                    [Expr::Var { name: a, indices: i }] if i.is_empty() => cfg.program_axis(a),
+                    _ => None,
+                };
+                let Some(axis) = axis else { return Err(Alarm::syntax(line, "PO[axis]=(end, a2, ..)")) };
+                let ctx = Ctx { vars, sys };
+                let list = match &value.expr {
+                    Expr::Call(n, args) if n == crate::lang::COEFFICIENTS => {
+                        args.iter().map(|e| eval_f64(e, &ctx, line)).collect::<Result<Vec<_>, _>>()?
+                    }
+                    e => vec![eval_f64(e, &ctx, line)?],
+                };
+                if list.is_empty() || list.len() > 5 || w.axes.iter().any(|a| a.0 == axis) {
+                    return Err(Alarm::syntax(line, "PO[axis]=(end, a2, a3, a4, a5) once per axis"));
+                }
+                let mut a = [0.0; 4];
+                a[..list.len() - 1].copy_from_slice(&list[1..]);
+                w.axes.push((axis, list[0], None));
+                w.spline.po.push((axis, a));
+            }
             Word::Address { name, indices, value } => {
                 let axis = match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,
@@ -747,6 +780,7 @@ pub(super) fn collect(
                     "H" => w.aux.push(super::auxiliary::AuxFunction { letter: 'H', extension: 0, value: v }),
                     _ if w.path.address(name, v, line)? => {}
                     _ if w.sar.address(name, v, value.mode, sys.modal.length_factor(), line)? => {}
+                    _ if w.spline.address(name, v, line)? => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
                     // `P3`: three runs of the block's subprogram call.
@@ -1085,6 +1119,7 @@ fn is_nc_address(name: &str) -> bool {
         || super::spindles::words::is_address(name)
         || super::path_control::is_address(name)
         || super::compensation::sar::is_address(name)
+        || super::path_control::spline::is_address(name)
 }
 
 /// The keywords of G groups 22, 42, 52 and 53; false for any other word.

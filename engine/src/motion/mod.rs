@@ -6,6 +6,7 @@
 
 pub mod blend;
 pub mod compress;
+pub mod spline;
 mod curve;
 mod front;
 mod ori_curve;
