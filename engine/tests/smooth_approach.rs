@@ -305,3 +305,12 @@ fn p4_from_the_next_block_gives_the_same_approach() {
         must(&s, 50.0, -5.0, 0.0);
     }
 }
+
+/// `$P_GG[43]` (G140..G143 → 1..4, G140 the reset value) and `$P_GG[44]` (G340 1, G341 2).
+#[test]
+fn p_gg_reads_the_sar_groups() {
+    let program = "IF ($P_GG[43]<>1) OR ($P_GG[44]<>1)\nSETAL(65000)\nENDIF\nG143 G341\nIF ($P_GG[43]<>4) OR ($P_GG[44]<>2)\nSETAL(65000)\nENDIF\nG142\nIF $P_GG[43]<>3\nSETAL(65000)\nENDIF\nM30";
+    let (ch, _) = run(program);
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.alarms());
+}

@@ -259,3 +259,13 @@ fn every_spline_type_keeps_the_axis_limits_in_every_ipo_cycle() {
     assert_dynamics(&s);
     assert_eq!(&s.last().unwrap()[..2], &[20.0, 0.0]);
 }
+
+/// `$P_GG` reads the spline types in G group 1 (ASPLINE 6, BSPLINE 7, CSPLINE 8, POLY 9) and
+/// G groups 19/20 (BNAT/ENAT 1, BTAN/ETAN 2 = reset value, BAUTO/EAUTO 3); a wrong value
+/// raises the cycle alarm 65000 through SETAL.
+#[test]
+fn p_gg_reads_the_spline_groups() {
+    let program = "G0 X0 Y0 Z0\nIF ($P_GG[19]<>2) OR ($P_GG[20]<>2)\nSETAL(65000)\nENDIF\nG1 F3000\nCSPLINE BNAT EAUTO X10 Y5\nIF ($P_GG[1]<>8) OR ($P_GG[19]<>1) OR ($P_GG[20]<>3)\nSETAL(65000)\nENDIF\nX20 Y0\nBSPLINE X30\nIF $P_GG[1]<>7\nSETAL(65000)\nENDIF\nASPLINE X40\nIF $P_GG[1]<>6\nSETAL(65000)\nENDIF\nPOLY X50\nIF $P_GG[1]<>9\nSETAL(65000)\nENDIF\nG1 X60\nIF $P_GG[1]<>2\nSETAL(65000)\nENDIF\nM30";
+    let s = run(program);
+    assert_eq!(&s.last().unwrap()[..2], &[60.0, 0.0]);
+}
