@@ -46,7 +46,9 @@ fn top_speed(ch: &Channel, samples: &[Vec<f64>], a: usize, b: usize) -> f64 {
     let dt = ch.config().ipo_cycle;
     samples[a..=b]
         .windows(2)
-        .map(|w| ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2) + (w[1][2] - w[0][2]).powi(2)).sqrt() / dt * 60.0)
+        .map(|w| {
+            ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2) + (w[1][2] - w[0][2]).powi(2)).sqrt() / dt * 60.0
+        })
         .fold(0.0, f64::max)
 }
 
@@ -57,13 +59,15 @@ fn top_speed(ch: &Channel, samples: &[Vec<f64>], a: usize, b: usize) -> f64 {
 /// along the tangent: P3 = C − 13·(1, 0) = (27, 8). G341: P1 = (27, 8, 20) at the start
 /// height, P2 = (27, 8, 5) on the DISCL plane (both at the velocity before: G0), P3 = (27, 8,
 /// 0) at FAD, then the quadrant in the plane at F.
-const QUADRANT_IN_PLANE: &str = "T1 D1\nG0 X0 Y0 Z20\nG1 G41 G341 G247 DISCL=AC(5) DISR=13 FAD=500 X40 Y-10 Z0 F200\nX60\nG40 X70 Y-30\nM30";
+const QUADRANT_IN_PLANE: &str =
+    "T1 D1\nG0 X0 Y0 Z20\nG1 G41 G341 G247 DISCL=AC(5) DISR=13 FAD=500 X40 Y-10 Z0 F200\nX60\nG40 X70 Y-30\nM30";
 
 #[test]
 fn g247_g341_runs_p1_p2_p3_then_the_quadrant_of_radius_disr_about_its_centre() {
     let (ch, s) = run(QUADRANT_IN_PLANE);
     assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
-    let (p1, p2, p3, p4) = (must(&s, 27.0, 8.0, 20.0), must(&s, 27.0, 8.0, 5.0), must(&s, 27.0, 8.0, 0.0), must(&s, 40.0, -5.0, 0.0));
+    let (p1, p2, p3, p4) =
+        (must(&s, 27.0, 8.0, 20.0), must(&s, 27.0, 8.0, 5.0), must(&s, 27.0, 8.0, 0.0), must(&s, 40.0, -5.0, 0.0));
     assert!(p1 < p2 && p2 < p3 && p3 < p4);
     // From P0 to P1 the tool stays at Z20 (parallel to the plane), then only Z moves.
     let p0 = must(&s, 0.0, 0.0, 20.0);
@@ -290,13 +294,18 @@ fn a_retract_without_trc_is_refused() {
 /// (22, −5, 30), P3 at the DISCL height 3, then the line down to Z0 at F1000.
 #[test]
 fn p4_from_the_next_block_gives_the_same_approach() {
-    let split = "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 Z=0 F1000\nG1 X40 Y-10\nG1 X50\nG40 X60 Y-30\nM30";
+    let split =
+        "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 Z=0 F1000\nG1 X40 Y-10\nG1 X50\nG40 X60 Y-30\nM30";
     let joined = "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 X40 Y-10 Z0 F1000\nG1 X50\nG40 X60 Y-30\nM30";
     for program in [split, joined] {
         let (ch, s) = run(program);
         assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
-        let (p0, p1, p3, p4) =
-            (must(&s, 10.0, 0.0, 30.0), must(&s, 22.0, -5.0, 30.0), must(&s, 22.0, -5.0, 3.0), must(&s, 40.0, -5.0, 0.0));
+        let (p0, p1, p3, p4) = (
+            must(&s, 10.0, 0.0, 30.0),
+            must(&s, 22.0, -5.0, 30.0),
+            must(&s, 22.0, -5.0, 3.0),
+            must(&s, 40.0, -5.0, 0.0),
+        );
         assert!(p0 < p1 && p1 < p3 && p3 < p4, "{program}");
         for p in &s[p3..=p4] {
             assert!((p[1] + 5.0).abs() < 1e-9 && (p[2] - 3.0 * (40.0 - p[0]) / 18.0).abs() < 1e-9, "{p:?}");

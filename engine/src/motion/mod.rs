@@ -6,13 +6,13 @@
 
 pub mod blend;
 pub mod compress;
-pub mod spline;
 mod curve;
 mod front;
 mod ori_curve;
 mod orientation;
 mod path;
 mod planner;
+pub mod spline;
 
 pub use curve::Curve;
 pub use ori_curve::TwoCurves;

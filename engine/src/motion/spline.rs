@@ -125,7 +125,11 @@ pub fn akima(points: &[AxisVec], h: &[f64], begin: EndCondition, end: EndConditi
         if (0..=last).contains(&i) {
             return m[i as usize];
         }
-        let (a, b) = if i < 0 { (m[0], m.get(1).copied().unwrap_or(m[0])) } else { (m[n - 1], if n >= 2 { m[n - 2] } else { m[n - 1] }) };
+        let (a, b) = if i < 0 {
+            (m[0], m.get(1).copied().unwrap_or(m[0]))
+        } else {
+            (m[n - 1], if n >= 2 { m[n - 2] } else { m[n - 1] })
+        };
         let e1 = lin(2.0, &a, -1.0, &b);
         if i == -1 || i == last + 1 { e1 } else { lin(2.0, &e1, -1.0, &a) }
     };
@@ -147,7 +151,9 @@ pub fn akima(points: &[AxisVec], h: &[f64], begin: EndCondition, end: EndConditi
         EndCondition::Tangent(t) => d[n] = t.map(|x| x * norm(&m[n - 1])),
         _ => {}
     }
-    (0..n).map(|i| cubic_piece(&points[i], &points[i + 1], d[i].map(|x| x * h[i]), d[i + 1].map(|x| x * h[i]))).collect()
+    (0..n)
+        .map(|i| cubic_piece(&points[i], &points[i + 1], d[i].map(|x| x * h[i]), d[i + 1].map(|x| x * h[i])))
+        .collect()
 }
 
 /// A clamped B spline: control points, their weights, the degree (already at most the
@@ -201,7 +207,9 @@ impl BSpline<'_> {
                 let (t0, t1) = (knots[s + p], knots[s + p + 1]);
                 // The span's homogeneous polynomial, from p+1 samples (Newton's forward
                 // differences), as value, first and second derivative in u = 0..1.
-                let poly = SpanPolynomial::new((0..=p).map(|i| self.homogeneous(&knots, s, t0 + (t1 - t0) * i as f64 / p as f64)).collect());
+                let poly = SpanPolynomial::new(
+                    (0..=p).map(|i| self.homogeneous(&knots, s, t0 + (t1 - t0) * i as f64 / p as f64)).collect(),
+                );
                 let rational = (s..=s + p).any(|i| (self.weights[i] - self.weights[s]).abs() > 1e-12);
                 let mut out = Vec::new();
                 split_rational(&poly, 0.0, 1.0, rational, 0, &mut out);
@@ -237,7 +245,7 @@ impl SpanPolynomial {
             let x = level as f64 / p.max(1) as f64;
             let mut next: Vec<(AxisVec, f64)> = vec![(zero(), 0.0); p + 1];
             for j in 0..=p {
-                if j + 1 <= p {
+                if j < p {
                     next[j + 1].0 = lin(1.0, &next[j + 1].0, 1.0, &coef[j].0);
                     next[j + 1].1 += coef[j].1;
                 }
@@ -256,7 +264,8 @@ impl SpanPolynomial {
         let mut out = [(zero(), 0.0); 3];
         for (j, (c, w)) in self.coef.iter().enumerate() {
             let j = j as i32;
-            let (f0, f1, f2) = (u.powi(j), f64::from(j) * u.powi((j - 1).max(0)), f64::from(j * (j - 1)) * u.powi((j - 2).max(0)));
+            let (f0, f1, f2) =
+                (u.powi(j), f64::from(j) * u.powi((j - 1).max(0)), f64::from(j * (j - 1)) * u.powi((j - 2).max(0)));
             for (o, f) in out.iter_mut().zip([f0, f1, f2]) {
                 o.0 = lin(1.0, &o.0, f, c);
                 o.1 += f * w;

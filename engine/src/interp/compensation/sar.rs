@@ -110,7 +110,9 @@ impl SarWords {
             347 => (Shape::Semicircle, false),
             348 => (Shape::Semicircle, true),
             140..=143 => {
-                self.side = Some([SideRule::Compensation, SideRule::Left, SideRule::Right, SideRule::Auto][code as usize - 140]);
+                self.side = Some(
+                    [SideRule::Compensation, SideRule::Left, SideRule::Right, SideRule::Auto][code as usize - 140],
+                );
                 return Ok(true);
             }
             340 | 341 => {
@@ -146,7 +148,9 @@ impl SarWords {
     /// FAD=value, FAD=PM(value) or FAD=PR(value): the expression to evaluate and the feed type.
     pub fn fad_form(expr: &Expr) -> (&Expr, Option<bool>) {
         match expr {
-            Expr::Call(name, args) if args.len() == 1 && (name == "PM" || name == "PR") => (&args[0], Some(name == "PR")),
+            Expr::Call(name, args) if args.len() == 1 && (name == "PM" || name == "PR") => {
+                (&args[0], Some(name == "PR"))
+            }
             e => (e, None),
         }
     }
@@ -201,7 +205,14 @@ pub struct Sar {
 /// `s0` is where the start point lies (G143), `p4` the programmed contour point, `radius`
 /// the compensation radius (tool radius plus OFFN, 0 without TRC), `side` +1 for approach
 /// from the left, −1 from the right.
-pub(in crate::interp) fn approach_contour(shape: Shape, disr: f64, radius: f64, p4c: P2, t: P2, side: f64) -> (P2, Elem) {
+pub(in crate::interp) fn approach_contour(
+    shape: Shape,
+    disr: f64,
+    radius: f64,
+    p4c: P2,
+    t: P2,
+    side: f64,
+) -> (P2, Elem) {
     let n = left(t);
     match shape {
         Shape::Line => {
@@ -226,7 +237,15 @@ pub(in crate::interp) fn approach_contour(shape: Shape, disr: f64, radius: f64, 
 /// G41), `p` the start (approach) or end (retract) point, `p4` the contour point, `t` the
 /// contour's tangent there. G143 with `p` on the tangent, or with no point (`p` None), is
 /// alarm 10744 (10747 on retract).
-pub(in crate::interp) fn side(rule: SideRule, offset: f64, p: Option<P2>, p4: P2, t: P2, retract: bool, line: u32) -> Result<f64, Alarm> {
+pub(in crate::interp) fn side(
+    rule: SideRule,
+    offset: f64,
+    p: Option<P2>,
+    p4: P2,
+    t: P2,
+    retract: bool,
+    line: u32,
+) -> Result<f64, Alarm> {
     match rule {
         SideRule::Left => Ok(1.0),
         SideRule::Right => Ok(-1.0),
@@ -243,7 +262,14 @@ pub(in crate::interp) fn side(rule: SideRule, offset: f64, p: Option<P2>, p4: P2
 
 /// The retract contour from P4c (on the equidistant, leaving with tangent `t`) to P3: the
 /// approach contour of the reversed direction, reversed.
-pub(in crate::interp) fn retract_contour(shape: Shape, disr: f64, radius: f64, p4c: P2, t: P2, side: f64) -> (P2, Elem) {
+pub(in crate::interp) fn retract_contour(
+    shape: Shape,
+    disr: f64,
+    radius: f64,
+    p4c: P2,
+    t: P2,
+    side: f64,
+) -> (P2, Elem) {
     // Backwards the contour arrives at P4c with −t, the side mirrored.
     let (p3, e) = approach_contour(shape, disr, radius, p4c, (-t.0, -t.1), -side);
     let back = match e {

@@ -48,7 +48,8 @@ impl Interpreter {
             Some(Clearance::Absolute(z)) => {
                 let tool = self.offsets.tool;
                 let basic: AxisVec = std::array::from_fn(|k| p4[k] - tool[k]);
-                let wcs = frame.unapply(geo, &basic).ok_or_else(|| Alarm::value_out_of_range(line, "frame with scale 0"))?;
+                let wcs =
+                    frame.unapply(geo, &basic).ok_or_else(|| Alarm::value_out_of_range(line, "frame with scale 0"))?;
                 let Some(k) = geo[papp] else { return Err(Alarm::sar_direction(line)) };
                 z - wcs[k]
             }

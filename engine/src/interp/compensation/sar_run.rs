@@ -2,7 +2,10 @@
 //! (P0, P1, P2, P3, P4 of `compensation/sar.rs`) handed to the main run in place of the
 //! selection's or deselection's straight line.
 
-use super::{Compensator, Held, Prepared, elem_end, finish, left, minus, offset_elem, offset_start, place, plain, tangent, to_plane};
+use super::{
+    Compensator, Held, Prepared, elem_end, finish, left, minus, offset_elem, offset_start, place, plain, tangent,
+    to_plane,
+};
 use crate::alarm::Alarm;
 use crate::interp::Item;
 use crate::interp::compensation::sar::{self, Sar};
@@ -111,7 +114,14 @@ impl Compensator {
     }
 
     /// Hands out the legs that move (as moves of block `b` with their own feeds).
-    fn emit_legs(&mut self, b: &Prepared, legs: Vec<Leg>, comp: &Compensation, limits: &[AxisLimit], out: &mut Vec<Item>) {
+    fn emit_legs(
+        &mut self,
+        b: &Prepared,
+        legs: Vec<Leg>,
+        comp: &Compensation,
+        limits: &[AxisLimit],
+        out: &mut Vec<Item>,
+    ) {
         for (elem, from3, to3, feed) in legs {
             let (s, e) = (place(&from3, super::elem_start(&elem), comp), place(&to3, elem_end(&elem), comp));
             let still = matches!(elem, Elem::Line { .. }) && (0..s.len()).all(|k| (s[k] - e[k]).abs() < 1e-9);

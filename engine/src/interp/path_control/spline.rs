@@ -181,7 +181,7 @@ fn chord(a: &AxisVec, b: &AxisVec, metric: &AxisVec) -> f64 {
 fn curve_move(piece: Piece, like: &Move, metric: &AxisVec, limits: &[AxisLimit]) -> Move {
     let curve = Curve::hermite(piece, *metric);
     let length = curve.length();
-    if !(length > 1e-9) {
+    if length.is_nan() || length <= 1e-9 {
         // No motion of the geometry axes: the block's straight move (rotary axes only).
         let mut mv = like.clone();
         mv.path = Path::line(piece[0].0, piece[1].0);
@@ -291,7 +291,13 @@ impl Interpreter {
 
     /// After a block: hands out the spline sequence when it ends here (see the module doc).
     /// `mark` is where the block's items begin in `out`.
-    pub(in crate::interp) fn settle_spline(&mut self, out: &mut Vec<Item>, mark: usize, prep: Prep, cfg: &MachineConfig) {
+    pub(in crate::interp) fn settle_spline(
+        &mut self,
+        out: &mut Vec<Item>,
+        mark: usize,
+        prep: Prep,
+        cfg: &MachineConfig,
+    ) {
         let Some(run) = &self.splines else { return };
         let mark = mark.min(out.len());
         if prep == Prep::Prepared && out.len() == mark && self.modal.spline.kind == Some(run.kind) {
@@ -317,7 +323,13 @@ impl Interpreter {
 
     /// A POLY block's move as the programmed polynomial: `PO[axis]=(end, a2..a5)` over the
     /// parameter 0..PL (PL=1 if not programmed); axes written without PO move linearly.
-    pub(in crate::interp) fn poly_move(&self, mv: &mut Move, words: &modal::Words, cfg: &MachineConfig, limits: &[AxisLimit]) {
+    pub(in crate::interp) fn poly_move(
+        &self,
+        mv: &mut Move,
+        words: &modal::Words,
+        cfg: &MachineConfig,
+        limits: &[AxisLimit],
+    ) {
         if words.spline.po.iter().all(|(_, a)| a.iter().all(|x| *x == 0.0)) {
             return;
         }
