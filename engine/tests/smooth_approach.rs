@@ -323,3 +323,33 @@ fn p_gg_reads_the_sar_groups() {
     assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
     assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.alarms());
 }
+
+/// Under TRANSMIT the approach runs in the face's Cartesian plane like any compensated path:
+/// tool radius 5 (written in the program), contour from X10 Y−10 heading −X, G41: the tool
+/// centre joins it at P4c = (10, −15); G140 approaches from the left of −X (towards −Y), so the
+/// quadrant of radius DISR=5 has its centre at (10, −20) and starts at P3 = (15, −20). Every
+/// sample of the SAR block after P3, turned from (radial X, C) into the face's X/Y, lies on
+/// that circle.
+#[test]
+fn under_transmit_the_quadrant_lies_in_the_face_plane() {
+    let program = "$TC_DP6[1,1]=5\nT1 D1 G17 G90 F3000 G94\nG0 X40 Z10\nTRANSMIT\nG0 X20 Y-20\nG1 G41 G341 G247 DISR=5 X10 Y-10\nX-10\nY10\nG40 X-20 Y20\nTRAFOOF\nM30";
+    let mut ch = Channel::from_preset("transmit-example", "").unwrap();
+    ch.run_program(program).unwrap();
+    let mut on_arc = 0;
+    let mut seen_p3 = false;
+    while ch.is_busy() {
+        ch.step();
+        let s = ch.snapshot();
+        let (r, c) = (ch.axis_positions()[0], ch.axis_positions()[1].to_radians());
+        let (x, y) = (r * c.cos(), r * c.sin());
+        if s.block.map(|b| b.line) == Some(6) {
+            seen_p3 |= (x - 15.0).hypot(y + 20.0) < 1e-6;
+            if seen_p3 {
+                assert!(((x - 10.0).hypot(y + 20.0) - 5.0).abs() < 1e-6, "({x}, {y})");
+                on_arc += 1;
+            }
+        }
+    }
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    assert!(seen_p3 && on_arc > 5, "{on_arc}");
+}
