@@ -246,6 +246,8 @@ fn invalid_sar_blocks_are_alarms_with_their_numbers() {
     // G143 with the start point on the tangent line Y=−10: no side, 10744.
     let on_tangent = "T1 D1\nG0 X0 Y-10 Z20\nG1 G41 G143 G247 DISR=5 X40 Y-10 Z0 F200\nX60\nM30";
     assert_eq!(first_alarm(on_tangent), Some((10744, Some(3))));
+    // SAR words in a block without motion and without TRC: 10744.
+    assert_eq!(case("G247 DISR=5 F200"), Some((10744, Some(3))));
     // Retract with G143 and no end point in the plane: 10747.
     let implicit = "T1 D1\nG0 X0 Y-10 Z0\nG1 G41 X40 F200\nX60\nG40 G143 G248 DISR=5 Z30\nM30";
     assert_eq!(first_alarm(implicit), Some((10747, Some(5))));
@@ -289,7 +291,8 @@ fn a_retract_without_trc_is_refused() {
 }
 
 /// The manual's example of P4 from the next block: `N30 G41 G147 DISCL=3 DISR=13 Z=0 F1000`
-/// then `N40 G1 X40 Y-10` runs as `N30 G41 G147 DISCL=3 DISR=13 X40 Y-10 Z0 F1000`. With the
+/// then `N40 G1 X40 Y-10`, or `N30 G41 G147 DISCL=3 DISR=13 F1000` then `N40 G1 X40 Y-10 Z0`,
+/// run as `N30 G41 G147 DISCL=3 DISR=13 X40 Y-10 Z0 F1000`. With the
 /// tool radius 5: P4c = (40, −5), the line 13 + 5 = 18 long from P3 = (22, −5); G340: P1 =
 /// (22, −5, 30), P3 at the DISCL height 3, then the line down to Z0 at F1000.
 #[test]
@@ -297,7 +300,10 @@ fn p4_from_the_next_block_gives_the_same_approach() {
     let split =
         "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 Z=0 F1000\nG1 X40 Y-10\nG1 X50\nG40 X60 Y-30\nM30";
     let joined = "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 X40 Y-10 Z0 F1000\nG1 X50\nG40 X60 Y-30\nM30";
-    for program in [split, joined] {
+    // The third form of the manual: the SAR block without any motion, the next block with P4.
+    let words_only =
+        "G90 G0 X0 Y0 Z30 D1 T1\nX10\nG41 G147 DISCL=3 DISR=13 F1000\nG1 X40 Y-10 Z0\nG1 X50\nG40 X60 Y-30\nM30";
+    for program in [split, joined, words_only] {
         let (ch, s) = run(program);
         assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
         let (p0, p1, p3, p4) = (

@@ -691,6 +691,14 @@ impl Interpreter {
         if let Some(goto) = &words.goto {
             self.jump(goto, cfg, line)?;
         }
+        if !path_motion && words.sar.contour.is_some() {
+            // A SAR approach block without motion: the next motion block ends at P4 (with TRC
+            // selected, which keeps that block off the fast lane); anything else: 10744.
+            if self.modal.trc.is_none() || words.sar.contour.is_some_and(|c| c.1) {
+                return Err(Alarm::sar_direction(line));
+            }
+            self.trc.defer_sar(words.sar, sar_before);
+        }
         self.block_calls(words, path_motion, programs, cfg, line)
     }
 

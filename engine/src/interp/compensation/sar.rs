@@ -37,7 +37,8 @@
 //!   none active (then the tool centre is the contour's point, G140 acts as G143); the retract
 //!   with TRC deselected in the SAR block. A SAR approach block without an end point in the
 //!   plane takes P4 from the next motion block (its height from the SAR block), and the
-//!   sub-moves carry that block's number. A retract without TRC is refused with alarm 10744
+//!   sub-moves carry that block's number; one without any motion leaves its words to the next
+//!   motion block (with TRC selected; without TRC, 10744). A retract without TRC is refused with alarm 10744
 //!   (the contour's last element is not known without a held element).
 
 use crate::alarm::Alarm;

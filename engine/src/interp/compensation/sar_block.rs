@@ -14,7 +14,7 @@ impl Interpreter {
     /// The SAR request of a motion block, None without G147..G348. `before` is the path feed
     /// that was active before the block (rapid after G0).
     pub(in crate::interp) fn sar_request(
-        &self,
+        &mut self,
         words: &modal::Words,
         cfg: &MachineConfig,
         mv: &Move,
@@ -22,7 +22,14 @@ impl Interpreter {
         before: Option<Feed>,
         line: u32,
     ) -> Result<Option<Box<Sar>>, Alarm> {
-        let Some((shape, retract)) = words.sar.contour else { return Ok(None) };
+        let (sw, before) = match words.sar.contour {
+            Some(_) => (words.sar, before),
+            None => match self.trc.take_deferred_sar() {
+                Some(deferred) => deferred,
+                None => return Ok(None),
+            },
+        };
+        let Some((shape, retract)) = sw.contour else { return Ok(None) };
         // Approach: TRC selected in this block; retract: deselected in it (see sar.rs).
         let selects = comp.is_some() && self.trc.idle();
         let without = comp.is_none() && self.trc.idle() && self.modal.trc.is_none();
@@ -30,7 +37,7 @@ impl Interpreter {
         if (!retract && !selects && !without) || (retract && !deselects) {
             return Err(Alarm::sar_direction(line));
         }
-        let disr = words.sar.disr.ok_or_else(|| Alarm::sar_distance(line))?;
+        let disr = sw.disr.ok_or_else(|| Alarm::sar_distance(line))?;
         if disr < 0.0 || (shape != Shape::Line && disr <= 0.0) {
             return Err(Alarm::sar_distance(line));
         }
@@ -42,7 +49,7 @@ impl Interpreter {
         // The machining plane goes through P4: the block's end on approach, its start (the
         // contour's end) on retract.
         let p4 = if retract { mv.path.start } else { mv.path.end };
-        let clearance = match words.sar.discl {
+        let clearance = match sw.discl {
             None => 0.0,
             Some(Clearance::Distance(d)) => d,
             Some(Clearance::Absolute(z)) => {
@@ -61,7 +68,7 @@ impl Interpreter {
             }
             Ok(Feed::Path(per_min / 60.0))
         };
-        let fad = match words.sar.fad {
+        let fad = match sw.fad {
             None => None,
             Some((v, per_rev)) => Some(path_feed(v, per_rev.unwrap_or(self.modal.feed_per_rev))?),
         };

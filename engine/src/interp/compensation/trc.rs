@@ -172,6 +172,9 @@ pub struct Compensator {
     sar_virtual: bool,
     /// A SAR approach block without an end point in the plane: P4 comes from the next block.
     sar_head: Option<Box<Prepared>>,
+    /// The SAR words of an approach block without any motion and the feed before it: the next
+    /// motion block runs them.
+    sar_deferred: Option<(super::sar::SarWords, Option<Feed>)>,
 }
 
 impl Compensator {
@@ -208,6 +211,16 @@ impl Compensator {
         if sar.is_some() {
             self.sar = sar;
         }
+    }
+
+    /// Keeps the SAR words of an approach block without motion for the next motion block.
+    pub fn defer_sar(&mut self, words: super::sar::SarWords, before: Option<Feed>) {
+        self.sar_deferred = Some((words, before));
+    }
+
+    /// The SAR words a block without motion left for this one.
+    pub fn take_deferred_sar(&mut self) -> Option<(super::sar::SarWords, Option<Feed>)> {
+        self.sar_deferred.take()
     }
 
     /// The compensation of radius 0 that a smooth approach without TRC runs its block and the
