@@ -676,13 +676,12 @@ pub(super) fn collect(
             {
                 w.dynamics.percent(which, indices, &value.expr, cfg, vars, sys, line)?;
             }
-            Word::Address { name, indices, value } if name == "PO" => {
+            Word::Address { name, indices, value }
+                if name == "PO"
+                    && let Some(axis) = po_axis(indices, cfg) =>
+            {
                 // POLY: PO[axis]=(end, a2, a3, a4, a5); the end is the axis word of the block.
-                let axis = match indices.as_slice() {
-                    [Expr::Var { name: a, indices: i }] if i.is_empty() => cfg.program_axis(a),
-                    _ => None,
-                };
-                let Some(axis) = axis else { return Err(Alarm::syntax(line, "PO[axis]=(end, a2, ..)")) };
+                // (PO[PHI], PO[XH].. are the orientation polynomials, handled by `assign`.)
                 let ctx = Ctx { vars, sys };
                 let list = match &value.expr {
                     Expr::Call(n, args) if n == crate::lang::COEFFICIENTS => {
@@ -1213,6 +1212,14 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         _ => return Err(Alarm::unknown_g(line, code)),
     }
     Ok(())
+}
+
+/// The channel axis `PO[axis]` names, if it names one.
+fn po_axis(indices: &[Expr], cfg: &MachineConfig) -> Option<usize> {
+    match indices {
+        [Expr::Var { name, indices }] if indices.is_empty() => cfg.program_axis(name),
+        _ => None,
+    }
 }
 
 /// The block's subprogram call (one per block).

@@ -27,6 +27,8 @@
 //!
 //! Chosen where the manuals are silent:
 //! - the straight line's length adds the compensation radius (tool radius plus OFFN);
+//! - `FAD=PR(..)` (and FAD under G95) is turned into a feed per minute with the spindle speed
+//!   at block preparation; rapid and FAD legs do not follow the spindle under G95;
 //! - `DISCL` without a value is 0 (P2 lies in the machining plane: the fast infeed goes down
 //!   to the contour's height); a positive `DISCL` points along the plane normal's positive
 //!   direction (+Z under G17); an infeed that would have to turn back (start point between the

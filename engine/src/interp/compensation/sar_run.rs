@@ -129,8 +129,11 @@ impl Compensator {
                 continue;
             }
             let q = Prepared { feed, ..b.clone() };
-            let mv = plain(&q, elem, from3, to3, comp, limits);
-            self.emit(b.item_with(mv), out);
+            let mut mv = plain(&q, elem, from3, to3, comp, limits);
+            // Only a leg at the block's own feed follows the spindle under G95; rapid and FAD
+            // legs keep their feed per minute.
+            mv.per_rev = if feed == b.feed { b.mv.per_rev } else { 0.0 };
+            self.emit(Item::Move { mv, line: b.line, offsets: b.offsets.clone() }, out);
         }
     }
 }
