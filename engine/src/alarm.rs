@@ -280,6 +280,11 @@ impl Alarm {
         Alarm::new(10744, format!("Channel 1 block {line} no valid SAR direction defined"), Some(line))
     }
 
+    /// 10748: DISRP's retraction plane between the DISCL plane and the contour.
+    pub fn sar_retraction_plane(line: u32) -> Alarm {
+        Alarm::new(10748, format!("Channel 1 block {line} illegal retraction plane with SAR"), Some(line))
+    }
+
     /// 10747: retract with G143 without an end point in the plane (its side is undefined).
     pub fn sar_retract_direction(line: u32) -> Alarm {
         Alarm::new(10747, format!("Channel 1 block {line} retraction direction for SAR not defined"), Some(line))

@@ -359,3 +359,21 @@ fn under_transmit_the_quadrant_lies_in_the_face_plane() {
     assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
     assert!(seen_p3 && on_arc > 5, "{on_arc}");
 }
+
+/// DISRP puts P1 on the retraction plane: with DISRP=10 the approach of the manual's example
+/// goes from P0 (0, 0, 20) in a straight line down to P1 = (27, 8, 10) (not parallel to the
+/// plane), then on as before to P2 = (27, 8, 5). A DISRP below the DISCL plane is 10748.
+#[test]
+fn disrp_sets_the_height_of_p1() {
+    let (ch, s) = run(&QUADRANT_IN_PLANE.replace("DISR=13", "DISR=13 DISRP=10"));
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    let (p0, p1, p2) = (must(&s, 0.0, 0.0, 20.0), must(&s, 27.0, 8.0, 10.0), must(&s, 27.0, 8.0, 5.0));
+    assert!(p0 < p1 && p1 < p2);
+    for p in &s[p0..=p1] {
+        // On the line from (0, 0, 20) to (27, 8, 10): X/27 = Y/8 = (20 − Z)/10.
+        let u = p[0] / 27.0;
+        assert!((p[1] - 8.0 * u).abs() < 1e-9 && (p[2] - (20.0 - 10.0 * u)).abs() < 1e-9, "{p:?}");
+    }
+    assert!(at(&s, 27.0, 8.0, 20.0).is_none());
+    assert_eq!(first_alarm(&QUADRANT_IN_PLANE.replace("DISR=13", "DISR=13 DISRP=3")), Some((10748, Some(3))));
+}

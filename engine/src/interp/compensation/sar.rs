@@ -14,6 +14,9 @@
 //!   contour from there to P4 (a helix when the heights differ); `G341` in the plane: P1, the
 //!   infeed to `DISCL` (P2), the slow infeed to the contour's height (P3) and the approach
 //!   contour in the plane;
+//! - `DISRP`: the height of P1 above the machining plane (`DISRP=AC(..)`: absolute), so that
+//!   P0–P1 is no longer parallel to the plane; it may not lie between DISCL and the contour
+//!   (10748);
 //! - `DISR`: the straight line's distance from the cutter edge to the contour (its length is
 //!   DISR plus the tool radius), or the radius of the tool centre path of the circle;
 //!   `DISCL`: the safety clearance above the machining plane through P4 (`DISCL=AC(..)`: the
@@ -98,6 +101,8 @@ pub struct SarWords {
     pub side: Option<SideRule>,
     pub disr: Option<f64>,
     pub discl: Option<Clearance>,
+    /// DISRP: the retraction plane of P1 (default: the start point's height).
+    pub disrp: Option<Clearance>,
     /// FAD's value and its feed type (None: the active G94/G95; Some(true): PR).
     pub fad: Option<(f64, Option<bool>)>,
 }
@@ -136,12 +141,17 @@ impl SarWords {
     pub fn address(&mut self, name: &str, v: f64, mode: Option<CoordMode>, f: f64, line: u32) -> Result<bool, Alarm> {
         match name {
             "DISR" => self.disr = Some(v * f),
-            "DISCL" => {
-                self.discl = Some(match mode {
+            "DISCL" | "DISRP" => {
+                let c = match mode {
                     Some(CoordMode::Ac) => Clearance::Absolute(v * f),
                     None | Some(CoordMode::Ic) => Clearance::Distance(v * f),
-                    Some(_) => return Err(Alarm::value_out_of_range(line, "DISCL: only AC(..) or IC(..)")),
-                });
+                    Some(_) => return Err(Alarm::value_out_of_range(line, &format!("{name}: only AC(..) or IC(..)"))),
+                };
+                if name == "DISCL" {
+                    self.discl = Some(c);
+                } else {
+                    self.disrp = Some(c);
+                }
             }
             _ => return Ok(false),
         }
@@ -161,7 +171,7 @@ impl SarWords {
 
 /// True for the addresses of SAR.
 pub fn is_address(name: &str) -> bool {
-    matches!(name, "DISR" | "DISCL" | "FAD")
+    matches!(name, "DISR" | "DISCL" | "DISRP" | "FAD")
 }
 
 impl SarModal {
@@ -187,6 +197,8 @@ pub struct Sar {
     pub disr: f64,
     /// Height of the clearance plane (P2) above the machining plane through P4, along `normal`.
     pub clearance: f64,
+    /// Height of the retraction plane (P1, DISRP) likewise; None: P1 at the start (end) height.
+    pub retract_plane: Option<f64>,
     /// Unit plane normal in axis space (its positive direction as in the WCS).
     pub normal: AxisVec,
     /// FAD as a path feed.
@@ -290,6 +302,15 @@ pub(in crate::interp) fn height(p: &AxisVec, base: &AxisVec, normal: &AxisVec) -
 /// `base` raised by `h` along the normal.
 pub(in crate::interp) fn raised(base: &AxisVec, normal: &AxisVec, h: f64) -> AxisVec {
     std::array::from_fn(|k| base[k] + h * normal[k])
+}
+
+/// Alarm 10748 when the retraction plane `h1` (DISRP) lies between the clearance plane `hd`
+/// and the contour (or beyond the contour).
+pub(in crate::interp) fn check_retraction_plane(h1: f64, hd: f64, line: u32) -> Result<(), Alarm> {
+    if (h1 - hd) * hd < -1e-9 || (hd.abs() <= 1e-9 && h1 < -1e-9) {
+        return Err(Alarm::sar_retraction_plane(line));
+    }
+    Ok(())
 }
 
 /// Alarm 10741 when the infeed from height `h0` over the clearance `hd` to the contour's

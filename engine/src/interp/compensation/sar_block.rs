@@ -49,18 +49,22 @@ impl Interpreter {
         // The machining plane goes through P4: the block's end on approach, its start (the
         // contour's end) on retract.
         let p4 = if retract { mv.path.start } else { mv.path.end };
-        let clearance = match sw.discl {
-            None => 0.0,
-            Some(Clearance::Distance(d)) => d,
-            Some(Clearance::Absolute(z)) => {
-                let tool = self.offsets.tool;
-                let basic: AxisVec = std::array::from_fn(|k| p4[k] - tool[k]);
-                let wcs =
-                    frame.unapply(geo, &basic).ok_or_else(|| Alarm::value_out_of_range(line, "frame with scale 0"))?;
-                let Some(k) = geo[papp] else { return Err(Alarm::sar_direction(line)) };
-                z - wcs[k]
+        let height = |c: Clearance| -> Result<f64, Alarm> {
+            match c {
+                Clearance::Distance(d) => Ok(d),
+                Clearance::Absolute(z) => {
+                    let tool = self.offsets.tool;
+                    let basic: AxisVec = std::array::from_fn(|k| p4[k] - tool[k]);
+                    let wcs = frame
+                        .unapply(geo, &basic)
+                        .ok_or_else(|| Alarm::value_out_of_range(line, "frame with scale 0"))?;
+                    let Some(k) = geo[papp] else { return Err(Alarm::sar_direction(line)) };
+                    Ok(z - wcs[k])
+                }
             }
         };
+        let clearance = sw.discl.map_or(Ok(0.0), height)?;
+        let retract_plane = sw.disrp.map(height).transpose()?;
         let path_feed = |v: f64, per_rev: bool| -> Result<Feed, Alarm> {
             let per_min = if per_rev { v * self.spindles.reference_speed() } else { v } * self.modal.feed_factor();
             if per_min <= 0.0 {
@@ -83,6 +87,7 @@ impl Interpreter {
             side: self.modal.sar.side,
             disr,
             clearance,
+            retract_plane,
             normal,
             fad,
             before: before.unwrap_or(Feed::Rapid),

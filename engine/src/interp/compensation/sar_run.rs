@@ -44,7 +44,9 @@ impl Compensator {
         let at = |h: f64, q: P2| place(&sar::raised(&b3, &sar.normal, h), q, &comp);
         let f = sar.feed.unwrap_or(a.feed);
         let slow = sar.fad.unwrap_or(f);
-        let (p1, p2) = (at(h0, p3), at(hd, p3));
+        let h1 = sar.retract_plane.unwrap_or(h0);
+        sar::check_retraction_plane(h1, hd, line)?;
+        let (p1, p2) = (at(h1, p3), at(hd, p3));
         let line_to = |s: P2, e: P2| Elem::Line { s, e };
         let mut legs: Vec<Leg> = vec![(line_to(s0, p3), a3, p1, sar.before), (line_to(p3, p3), p1, p2, sar.before)];
         if sar.in_plane {
@@ -98,7 +100,9 @@ impl Compensator {
         // the block's own feed (G0 or F) from P2 to P0.
         let slow = sar.fad.unwrap_or(sar.before);
         let line_to = |s: P2, e: P2| Elem::Line { s, e };
-        let (p2, p1) = (at(hd, p3), at(h0, p3));
+        let h1 = sar.retract_plane.unwrap_or(h0);
+        sar::check_retraction_plane(h1, hd, line)?;
+        let (p2, p1) = (at(hd, p3), at(h1, p3));
         let mut legs: Vec<Leg> = Vec::new();
         if sar.in_plane {
             legs.push((elem, a3, at(0.0, p3), sar.before));
