@@ -257,6 +257,38 @@ impl Alarm {
             Some(line),
         )
     }
+
+    /// 10741: the infeed of a smooth approach or retract would reverse its direction (the start
+    /// point lies between the DISCL plane and the contour).
+    pub fn sar_direction_reversal(line: u32) -> Alarm {
+        Alarm::new(10741, format!("Channel 1 block {line} direction reversal with infeed movement"), Some(line))
+    }
+
+    /// 10742: DISR missing or invalid for smooth approach or retract.
+    pub fn sar_distance(line: u32) -> Alarm {
+        Alarm::new(10742, format!("Channel 1 block {line} invalid distance or distance not programmed"), Some(line))
+    }
+
+    /// 10743: two approach or retract contours (G147..G348) in one block.
+    pub fn sar_repeated(line: u32) -> Alarm {
+        Alarm::new(10743, format!("Channel 1 block {line} SAR programmed more than once"), Some(line))
+    }
+
+    /// 10744: no approach direction: G143 with the start point on the contour's tangent, or a
+    /// SAR form this model does not run (see `compensation/sar.rs`).
+    pub fn sar_direction(line: u32) -> Alarm {
+        Alarm::new(10744, format!("Channel 1 block {line} no valid SAR direction defined"), Some(line))
+    }
+
+    /// 10748: DISRP's retraction plane between the DISCL plane and the contour.
+    pub fn sar_retraction_plane(line: u32) -> Alarm {
+        Alarm::new(10748, format!("Channel 1 block {line} illegal retraction plane with SAR"), Some(line))
+    }
+
+    /// 10747: retract with G143 without an end point in the plane (its side is undefined).
+    pub fn sar_retract_direction(line: u32) -> Alarm {
+        Alarm::new(10747, format!("Channel 1 block {line} retraction direction for SAR not defined"), Some(line))
+    }
 }
 
 impl Alarm {

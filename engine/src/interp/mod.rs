@@ -226,6 +226,8 @@ pub struct Interpreter {
     warnings: Vec<Alarm>,
     /// A move held back until the next block decides its corner (RND, CHF, CHR).
     held: Option<contour::corners::Held>,
+    /// The spline sequence being collected (`path_control/spline.rs`).
+    splines: Option<Box<path_control::spline::SplineRun>>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
     /// CONTCAPON..CONTCAPOF: motions recorded, not run (`contour/capture.rs`).
@@ -278,6 +280,7 @@ impl Interpreter {
             warnings: Vec::new(),
             held: None,
             capture: None,
+            splines: None,
             corner_request: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
@@ -303,6 +306,7 @@ impl Interpreter {
         self.call_state = Default::default();
         self.held = None;
         self.capture = None;
+        self.splines = None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
@@ -491,8 +495,9 @@ impl Interpreter {
         self.lane_memo.stale_offsets();
         self.corner_request = None;
         // A held move is not in the main run yet: blocks that read main-run values wait for it.
-        let idle = main_run_idle && !self.holds_move() && !self.trc.holds();
+        let idle = main_run_idle && !self.holds_move() && !self.trc.holds() && self.splines.is_none();
         self.trc.begin_block(out);
+        let mark = out.len();
         let result = self.step_program(cfg, programs, idle, out).and_then(|prep| {
             if self.capture.is_some() {
                 // A contour being captured: its motions were recorded, none runs.
@@ -509,6 +514,7 @@ impl Interpreter {
                 let at = out.iter().rposition(|i| matches!(i, Item::Move { .. })).map_or(0, |i| i + 1);
                 out.splice(at..at, flushed);
             }
+            self.settle_spline(out, mark, prep, cfg);
             let request = self.corner_request.take();
             self.shape_corners(out, prep, request, cfg)?;
             self.transform_moves(out)?;
@@ -531,6 +537,7 @@ impl Interpreter {
         self.flow = None;
         self.calls.clear();
         self.held = None;
+        self.splines = None;
         Prep::Done
     }
 
@@ -584,6 +591,8 @@ impl Interpreter {
         self.apply_transformation(selection, block, base_cfg, line)?;
         let derived = self.trafo.config();
         let cfg = derived.as_deref().unwrap_or(base_cfg);
+        // Smooth approach runs its fast infeed at the velocity before the block.
+        let sar_before = words.sar.contour.and_then(|_| self.path_feed(line).ok());
         self.modal.apply(words, cfg, line)?;
         if let Some(op) = &words.capture {
             self.capture_op(op, line)?;
@@ -645,15 +654,27 @@ impl Interpreter {
             // One set of limits for the move and its compensation (same configuration).
             let limits = AxisLimit::for_channel(cfg);
             let (mut mv, feed) = self.motion(words, cfg, &limits, line)?;
+            if self.modal.spline.kind == Some(path_control::spline::Kind::Poly) {
+                self.poly_move(&mut mv, words, cfg, &limits);
+            }
             self.spindle_motion(&mut mv, words, cfg, &limits, line, out)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
             let offsets = self.shared_offsets();
             // A captured contour is recorded as programmed: no compensation selected or held.
             let comp = if self.capture.is_some() { None } else { self.compensation(cfg, words, line)? };
+            let sar = self.sar_request(words, cfg, &mv, comp.as_ref(), sar_before, line)?;
+            self.trc.arm(sar);
+            // A smooth approach without TRC runs with a compensation of radius 0.
+            let comp = comp.or_else(|| self.trc.sar_compensation());
             let approach = self.modal.approach;
             // With compensation active a corner (RND, CHF) is shaped on the programmed contour.
             let corner = if comp.is_some() { self.corner_request.take() } else { None };
-            if comp.is_none() && self.trc.idle() {
+            if self.modal.spline.kind.is_some_and(|k| k != path_control::spline::Kind::Poly) {
+                if comp.is_some() || self.offsets.trafo.is_some() {
+                    return Err(Alarm::unknown_name(line, "spline with TRC or a transformation"));
+                }
+                self.spline_point(mv, words, line, offsets, cfg, out);
+            } else if comp.is_none() && self.trc.idle() {
                 // Nothing to compensate and nothing held: the move goes straight out.
                 out.push(Item::Move { mv, line, offsets });
                 self.trc.passed(out);
@@ -681,6 +702,14 @@ impl Interpreter {
         }
         if let Some(goto) = &words.goto {
             self.jump(goto, cfg, line)?;
+        }
+        if !path_motion && words.sar.contour.is_some() {
+            // A SAR approach block without motion: the next motion block ends at P4 (with TRC
+            // selected, which keeps that block off the fast lane); anything else: 10744.
+            if self.modal.trc.is_none() || words.sar.contour.is_some_and(|c| c.1) {
+                return Err(Alarm::sar_direction(line));
+            }
+            self.trc.defer_sar(words.sar, sar_before);
         }
         self.block_calls(words, path_motion, programs, cfg, line)
     }

@@ -78,6 +78,10 @@ pub struct Modal {
     pub trc: Option<Side>,
     /// G450 (transition circle) or G451 (intersection) at outer corners.
     pub trc_corners: CornerMode,
+    /// G groups 43 and 44 of smooth approach and retract (`compensation/sar.rs`).
+    pub sar: super::compensation::sar::SarModal,
+    /// Spline type (G group 1 beside G1), G groups 19/20 and SD (`path_control/spline.rs`).
+    pub spline: super::path_control::spline::SplineModal,
     /// OFFN contour offset.
     pub offn: f64,
     /// G group 17: NORM, KONT, KONTT, KONTC (approach and retract).
@@ -141,6 +145,8 @@ impl Modal {
             polar: (0.0, 0.0),
             trc: None,
             trc_corners: CornerMode::Circle,
+            sar: Default::default(),
+            spline: Default::default(),
             offn: 0.0,
             approach: ApproachMode::Norm,
             disc: 0.0,
@@ -166,6 +172,11 @@ impl Modal {
     pub(super) fn apply(&mut self, w: &Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
         if let Some(m) = w.motion {
             self.motion = m;
+        }
+        self.spline.apply(&w.spline, w.motion.is_some());
+        if w.spline.kind.is_some() {
+            // A spline block is prepared like a G1 block (`path_control/spline.rs`).
+            self.motion = MotionMode::Linear;
         }
         if let Some(p) = w.plane {
             // The compensation plane changes only with G40 (in this block or before).
@@ -194,6 +205,7 @@ impl Modal {
         if let Some(c) = w.trc_corners {
             self.trc_corners = c;
         }
+        self.sar.apply(&w.sar);
         if let Some(o) = w.offn {
             self.offn = o;
         }
@@ -292,6 +304,10 @@ pub(super) struct Words {
     pub exact_stop: Option<bool>,
     /// G641..G645, G601..G603, ADIS, CTOL ... (`path_control.rs`).
     pub path: super::path_control::PathWords,
+    /// G140..G143, G147..G348, G340/G341, DISR, DISCL, FAD (`compensation/sar.rs`).
+    pub sar: super::compensation::sar::SarWords,
+    /// ASPLINE/BSPLINE/CSPLINE/POLY, PW, SD, PL, PO[..] (`path_control/spline.rs`).
+    pub spline: super::path_control::spline::SplineWords,
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
@@ -497,6 +513,7 @@ pub(super) fn collect(
             }
             Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.path.keyword(name) => {}
+            Word::Keyword { name, args } if args.is_empty() && w.spline.keyword(name) => {}
             Word::Keyword { name, args }
                 if args.is_empty() && matches!(name.as_str(), "CP" | "PTP" | "PTPG0" | "PTPWOC") =>
             {
@@ -673,6 +690,27 @@ pub(super) fn collect(
             {
                 w.dynamics.percent(which, indices, &value.expr, cfg, vars, sys, line)?;
             }
+            Word::Address { name, indices, value }
+                if name == "PO"
+                    && let Some(axis) = po_axis(indices, cfg) =>
+            {
+                // POLY: PO[axis]=(end, a2, a3, a4, a5); the end is the axis word of the block.
+                // (PO[PHI], PO[XH].. are the orientation polynomials, handled by `assign`.)
+                let ctx = Ctx { vars, sys };
+                let list = match &value.expr {
+                    Expr::Call(n, args) if n == crate::lang::COEFFICIENTS => {
+                        args.iter().map(|e| eval_f64(e, &ctx, line)).collect::<Result<Vec<_>, _>>()?
+                    }
+                    e => vec![eval_f64(e, &ctx, line)?],
+                };
+                if list.is_empty() || list.len() > 5 || w.axes.iter().any(|a| a.0 == axis) {
+                    return Err(Alarm::syntax(line, "PO[axis]=(end, a2, a3, a4, a5) once per axis"));
+                }
+                let mut a = [0.0; 4];
+                a[..list.len() - 1].copy_from_slice(&list[1..]);
+                w.axes.push((axis, list[0], None));
+                w.spline.po.push((axis, a));
+            }
             Word::Address { name, indices, value } => {
                 let axis = match assign(name, indices, &value.expr, cfg, vars, sys, line)? {
                     Assigned::Variable => continue,
@@ -701,6 +739,14 @@ pub(super) fn collect(
                         return Err(Alarm::repeated_address(line, name));
                     }
                     w.tool_name = Some(named);
+                    continue;
+                }
+                if name == "FAD" {
+                    if !seen.insert(name) {
+                        return Err(Alarm::repeated_address(line, name));
+                    }
+                    let (e, per_rev) = super::compensation::sar::SarWords::fad_form(&value.expr);
+                    w.sar.fad = Some((eval_f64(e, &Ctx { vars, sys }, line)?, per_rev));
                     continue;
                 }
                 if name == "TCARR" {
@@ -746,6 +792,8 @@ pub(super) fn collect(
                     // H: auxiliary function for the PLC.
                     "H" => w.aux.push(super::auxiliary::AuxFunction { letter: 'H', extension: 0, value: v }),
                     _ if w.path.address(name, v, line)? => {}
+                    _ if w.sar.address(name, v, value.mode, sys.modal.length_factor(), line)? => {}
+                    _ if w.spline.address(name, v, line)? => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
                     // `P3`: three runs of the block's subprogram call.
@@ -1083,6 +1131,8 @@ fn is_nc_address(name: &str) -> bool {
     ) || words::is_address(name)
         || super::spindles::words::is_address(name)
         || super::path_control::is_address(name)
+        || super::compensation::sar::is_address(name)
+        || super::path_control::spline::is_address(name)
 }
 
 /// The keywords of G groups 22, 42, 52 and 53; false for any other word.
@@ -1172,9 +1222,18 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         95 => w.feed_per_rev = Some(true),
         _ if super::spindles::words::g_code(&mut w.spindle, code, line)? => {}
         _ if w.path.g_function(code, &mut w.exact_stop) => {}
+        _ if w.sar.g_function(code, line)? => {}
         _ => return Err(Alarm::unknown_g(line, code)),
     }
     Ok(())
+}
+
+/// The channel axis `PO[axis]` names, if it names one.
+fn po_axis(indices: &[Expr], cfg: &MachineConfig) -> Option<usize> {
+    match indices {
+        [Expr::Var { name, indices }] if indices.is_empty() => cfg.program_axis(name),
+        _ => None,
+    }
 }
 
 /// The block's subprogram call (one per block).

@@ -18,6 +18,8 @@ pub(crate) mod test_rng;
 mod text;
 
 pub use ast::*;
-pub use parser::{MAX_EXPR_DEPTH, check, parse, parse_block, read_block, read_block_reusing, read_statement_block};
+pub use parser::{
+    COEFFICIENTS, MAX_EXPR_DEPTH, check, parse, parse_block, read_block, read_block_reusing, read_statement_block,
+};
 pub(crate) use plain_line::plain_words;
 pub use text::ProgramText;

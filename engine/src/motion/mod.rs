@@ -12,6 +12,7 @@ mod ori_curve;
 mod orientation;
 mod path;
 mod planner;
+pub mod spline;
 
 pub use curve::Curve;
 pub use ori_curve::TwoCurves;

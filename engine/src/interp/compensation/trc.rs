@@ -20,6 +20,10 @@ use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation:
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 
+// Smooth approach and retract's moves: a child module, so it reaches the compensator's state.
+#[path = "sar_run.rs"]
+mod sar_run;
+
 /// Compensation side.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Side {
@@ -161,12 +165,22 @@ pub struct Compensator {
     block_plane_move: bool,
     block_dummy_move: bool,
     mark: usize,
+    /// Smooth approach (from the selection block until the first element) or retract.
+    sar: Option<Box<super::sar::Sar>>,
+    /// The held element runs with the radius-0 compensation of a smooth approach without TRC:
+    /// the next uncompensated move just follows it.
+    sar_virtual: bool,
+    /// A SAR approach block without an end point in the plane: P4 comes from the next block.
+    sar_head: Option<Box<Prepared>>,
+    /// The SAR words of an approach block without any motion and the feed before it: the next
+    /// motion block runs them.
+    sar_deferred: Option<(super::sar::SarWords, Option<Feed>)>,
 }
 
 impl Compensator {
     /// True while a move is held back.
     pub fn holds(&self) -> bool {
-        self.held.is_some() || self.approach.is_some() || !self.pending.is_empty()
+        self.held.is_some() || self.approach.is_some() || !self.pending.is_empty() || self.sar_head.is_some()
     }
 
     /// True when nothing is held and the tool has no compensated position of its own: a move
@@ -190,6 +204,29 @@ impl Compensator {
             }
         }
         self.mark = out.len();
+    }
+
+    /// Takes the SAR request of the block about to be pushed (kept until it is run).
+    pub fn arm(&mut self, sar: Option<Box<super::sar::Sar>>) {
+        if sar.is_some() {
+            self.sar = sar;
+        }
+    }
+
+    /// Keeps the SAR words of an approach block without motion for the next motion block.
+    pub fn defer_sar(&mut self, words: super::sar::SarWords, before: Option<Feed>) {
+        self.sar_deferred = Some((words, before));
+    }
+
+    /// The SAR words a block without motion left for this one.
+    pub fn take_deferred_sar(&mut self) -> Option<(super::sar::SarWords, Option<Feed>)> {
+        self.sar_deferred.take()
+    }
+
+    /// The compensation of radius 0 that a smooth approach without TRC runs its block and the
+    /// contour's first element with; None otherwise.
+    pub fn sar_compensation(&self) -> Option<Compensation> {
+        self.sar.as_ref().and_then(|s| s.zero)
     }
 
     /// Starts a block: `out` is where its items go.
@@ -293,6 +330,15 @@ impl Compensator {
             return Err(Alarm::trc_helix_axis(line));
         }
         let Some(contour) = element(&p.mv, &comp) else {
+            if self.sar.as_ref().is_some_and(|s| !s.retract)
+                && self.held.is_none()
+                && self.approach.is_none()
+                && self.sar_head.is_none()
+            {
+                // The SAR block's end point in the plane is the next block's.
+                self.sar_head = Some(Box::new(p));
+                return Ok(());
+            }
             // No motion in the working plane: wait behind the held move (look-ahead across
             // dummy blocks), or run at the tool's plane position.
             self.block_dummy_move = true;
@@ -332,6 +378,9 @@ impl Compensator {
         }
         let d = comp.offset();
         if let Some((approach, _)) = self.approach.take() {
+            if let Some(sar) = self.sar.take() {
+                return self.sar_approach(approach, *sar, p, contour, comp, limits, out);
+            }
             // The selection block ends on the first element's equidistant (NORM) or goes round
             // its start point (KONT) or joins it tangentially (KONTT) or with continuous
             // curvature (KONTC).
@@ -448,6 +497,15 @@ impl Compensator {
     /// (NORM) or goes round its end point (KONT, KONTT, KONTC), then this move travels uncompensated
     /// to its programmed end.
     fn deselect(&mut self, p: Prepared, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        if let Some(sar) = self.sar.take() {
+            return self.sar_retract(p, *sar, limits, out);
+        }
+        if std::mem::take(&mut self.sar_virtual) {
+            self.flush(limits, out)?;
+            self.tool_at = None;
+            self.emit(p.into_item(), out);
+            return Ok(());
+        }
         let was_active = self.tool_at.is_some() || self.holds();
         if was_active && p.mv.path.arc.is_some() {
             return Err(Alarm::trc_deselection(p.line));
@@ -520,8 +578,14 @@ impl Compensator {
     /// Ends the held move perpendicular to its contour end (before anything that is not a
     /// compensated move, and at the end of the program).
     pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.sar_virtual = false;
+        if let Some(head) = self.sar_head.take() {
+            self.sar = None;
+            self.emit(head.into_item(), out);
+        }
         if let Some((approach, _)) = self.approach.take() {
             // A selection block without a following element stays uncompensated.
+            self.sar = None;
             self.emit(approach.item_with(approach.mv.clone()), out);
             self.tool_at = None;
         }

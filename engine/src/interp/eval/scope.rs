@@ -401,6 +401,28 @@ fn g_group_index(m: &Modal, h: &crate::interp::tools::toolholder::Holder, group:
         24 => return Some(i64::from(m.dynamics.ffw) + 1),
         59 => return Some(m.dynamics.mode as i64 + 1),
         53 => return Some(h.g53),
+        // Group 1's spline types: ASPLINE 6, BSPLINE 7, CSPLINE 8, POLY 9. Groups 19/20: BNAT/
+        // ENAT 1, BTAN/ETAN 2, BAUTO/EAUTO 3. Group 43: G140..G143 1..4. Group 44: G340 1, G341 2.
+        1 if m.spline.kind.is_some() => {
+            use crate::interp::path_control::spline::Kind;
+            return m.spline.kind.map(|k| match k {
+                Kind::Akima => 6,
+                Kind::BSpline => 7,
+                Kind::Cubic => 8,
+                Kind::Poly => 9,
+            });
+        }
+        19 | 20 => {
+            use crate::interp::path_control::spline::Transition;
+            let t = if group == 19 { m.spline.begin } else { m.spline.end };
+            return Some(match t {
+                Transition::Natural => 1,
+                Transition::Tangent => 2,
+                Transition::Auto => 3,
+            });
+        }
+        43 => return Some(m.sar.side as i64 + 1),
+        44 => return Some(i64::from(m.sar.in_plane) + 1),
         _ => {}
     }
     Some(match group {
