@@ -27,6 +27,7 @@ pub mod servo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
+pub mod sync_actions;
 mod toff;
 pub mod tool_list;
 mod trafo;
@@ -289,6 +290,8 @@ pub struct Channel {
     io: crate::interp::io::DigitalIo,
     /// The axes' position loops: actual values and following errors.
     servo: servo::Servo,
+    /// Motion-synchronous actions and their data (`sync_actions.rs`).
+    sync: sync_actions::SyncActions,
 }
 
 impl Channel {
@@ -363,6 +366,7 @@ impl Channel {
             servo,
             referenced,
             referencing: None,
+            sync: Default::default(),
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -542,6 +546,8 @@ impl Channel {
         self.queued_blocks.clear();
         self.current_block = None;
         self.prep_done = false;
+        // Modal synchronized actions of an earlier run (one ended by an alarm) end here.
+        self.sync.end_program();
         self.interp.begin_program(text, &self.machine);
         self.status = Status::Running;
         Ok(())
@@ -630,6 +636,7 @@ impl Channel {
         self.current_line = None;
         self.current_block = None;
         self.message = None;
+        self.sync.end_program();
         let pos = *self.planner.position();
         for s in &mut self.spindles {
             s.leave_axis_mode(pos[s.axis]);
@@ -694,6 +701,7 @@ impl Channel {
             self.prepare();
             self.feed_planner();
         }
+        self.step_sync_actions();
         self.planner.step();
         self.update_machine_position();
         self.servo.step(&self.machine, self.offsets.gcodes.ffw_on());
