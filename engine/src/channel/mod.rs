@@ -40,7 +40,7 @@ pub use jog_settings::OrientationJogKind;
 pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
-pub use resume::{ResumeProgram, ResumeState};
+pub use resume::{ResumeProgram, ResumeState, SavedInputs};
 pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
@@ -129,6 +129,10 @@ pub enum Event {
         on: bool,
         line: u32,
     },
+    /// Inputs set from outside ([`Channel::set_signals`], [`Channel::set_analog_inputs`]),
+    /// with the IPO cycle count they arrived at: they act from the next cycle on, so a run fed
+    /// the same inputs at the same counts is identical (see [`Channel::input_log`]).
+    InputsChanged(sync_actions::InputRecord),
 }
 
 /// A command the channel refuses in its current state.

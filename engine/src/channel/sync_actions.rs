@@ -31,6 +31,19 @@ pub const TIMERS: usize = 8;
 pub const ANALOG_IO: usize = 4;
 /// Active synchronized actions at most (MD28250 MM_NUM_SYNC_ELEMENTS bounds them on the control).
 pub const MAX_ACTIVE: usize = 64;
+/// Input changes kept in [`Channel::input_log`] (the oldest go first).
+pub const INPUT_LOG: usize = 4096;
+
+/// Signals set from outside at one IPO cycle count: they act from the next cycle on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InputRecord {
+    /// [`Channel::ticks`] when they arrived.
+    pub tick: u64,
+    /// Digital inputs and outputs `(signal, level)`, analog inputs `(signal, value)`.
+    pub inputs: Vec<(usize, bool)>,
+    pub outputs: Vec<(usize, bool)>,
+    pub analog: Vec<(usize, f64)>,
+}
 
 /// The synchronized actions and their data in the main run.
 #[derive(Debug, Clone)]
@@ -55,6 +68,8 @@ pub struct SyncActions {
     block_start: u64,
     /// The setpoints of the cycle before, for `$AA_VACTM`.
     prev_setpoint: [f64; MAX_CHANNEL_AXES],
+    /// Inputs set from outside, with their cycle counts.
+    log: std::collections::VecDeque<InputRecord>,
 }
 
 impl Default for SyncActions {
@@ -73,6 +88,7 @@ impl Default for SyncActions {
             block: None,
             block_start: 0,
             prev_setpoint: [0.0; MAX_CHANNEL_AXES],
+            log: Default::default(),
         }
     }
 }
@@ -116,6 +132,15 @@ impl SyncActions {
         self.active.retain(|a| matches!(a.def.id, Some(SyncId::Static(_))));
     }
 
+    /// Makes `out` the list of the active actions (nothing allocated while there are none).
+    pub(super) fn refresh_list(&self, out: &mut Vec<SyncActionInfo>) {
+        if self.active.is_empty() {
+            out.clear();
+        } else {
+            *out = self.list();
+        }
+    }
+
     /// The active actions, for the state.
     pub fn list(&self) -> Vec<SyncActionInfo> {
         self.active
@@ -154,7 +179,50 @@ impl Channel {
         for &(n, v) in inputs {
             self.sync.analog_in[n - 1] = v;
         }
+        self.log_inputs(InputRecord { tick: self.tick, inputs: vec![], outputs: vec![], analog: inputs.to_vec() });
         Ok(())
+    }
+
+    /// The analog inputs and outputs `$A_INA[1..]`, `$A_OUTA[1..]`.
+    pub fn analog_io(&self) -> ([f64; ANALOG_IO], [f64; ANALOG_IO]) {
+        (self.sync.analog_in, self.sync.analog_out)
+    }
+
+    /// The inputs set from outside, oldest first (at most [`INPUT_LOG`]), each with the cycle
+    /// count it arrived at: fed to a fresh channel at the same counts
+    /// ([`Channel::apply_inputs`]), they reproduce the run.
+    pub fn input_log(&self) -> impl Iterator<Item = &InputRecord> {
+        self.sync.log.iter()
+    }
+
+    /// Sets the signals of a logged record (a replay).
+    pub fn apply_inputs(&mut self, record: &InputRecord) -> Result<(), super::CommandError> {
+        if !record.inputs.is_empty() || !record.outputs.is_empty() {
+            self.set_signals(&record.inputs, &record.outputs)?;
+        }
+        if !record.analog.is_empty() {
+            self.set_analog_inputs(&record.analog)?;
+        }
+        Ok(())
+    }
+
+    /// Logs signals set from outside and publishes them as an event.
+    pub(super) fn log_inputs(&mut self, record: InputRecord) {
+        if self.sync.log.len() == INPUT_LOG {
+            self.sync.log.pop_front();
+        }
+        self.sync.log.push_back(record.clone());
+        self.events.push(Event::InputsChanged(record));
+    }
+
+    /// Takes back the inputs of a checkpoint (digital input bits, analog input values).
+    pub(super) fn restore_inputs(&mut self, digital: u64, analog: &[f64]) {
+        let mut io = self.io;
+        io.inputs = digital & ((1u64 << crate::interp::io::DIGITAL_IO) - 1);
+        self.set_digital_io(io);
+        for (to, v) in self.sync.analog_in.iter_mut().zip(analog) {
+            *to = if v.is_finite() { *v } else { 0.0 };
+        }
     }
 
     /// Main run: a synchronized action's block is reached.

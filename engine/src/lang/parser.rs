@@ -244,9 +244,9 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
             break;
         }
         if let Some(name) = synchronized_action(&mut cur) {
-            // NCTwin does not model synchronized actions: the block carries the opening word
-            // alone, which the interpreter refuses with 12550 naming it (the rest of the line,
-            // condition and actions, is of a syntax of its own).
+            // A synchronized action after other words of a block (a block's own words may not
+            // precede it): the block carries the opening word alone, which the interpreter
+            // refuses with 12550 naming it.
             if build {
                 block.words.push(Word::Keyword { name: name.to_string(), args: Vec::new() });
             }
