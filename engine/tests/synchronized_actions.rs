@@ -223,3 +223,51 @@ fn a_marker_index_out_of_range_raises_an_alarm_in_the_main_run() {
     run_to_end(&mut ch);
     assert_eq!(alarm(&ch), (17020, Some(1)));
 }
+
+#[test]
+fn inputs_replayed_at_their_logged_cycle_counts_give_the_same_run() {
+    let program = "WHEN $A_IN[1]==1 DO DELDTG\nG1 X100 F600\nG1 Y10\nID=2 WHENEVER $A_INA[1]>1 DO $AC_OVR=50\nG1 X0\nM30";
+    let mut first = channel();
+    first.run_program(program).unwrap();
+    steps(&mut first, 600);
+    first.set_signals(&[(1, true)], &[]).unwrap();
+    steps(&mut first, 400);
+    first.set_analog_inputs(&[(1, 2.0)]).unwrap();
+    run_to_end(&mut first);
+    let log: Vec<_> = first.input_log().cloned().collect();
+    assert_eq!(log.iter().map(|r| r.tick).collect::<Vec<_>>(), [600, 1000]);
+
+    let mut again = channel();
+    again.run_program(program).unwrap();
+    let mut next = log.iter().peekable();
+    while again.is_busy() {
+        while let Some(r) = next.next_if(|r| r.tick == again.ticks()) {
+            again.apply_inputs(r).unwrap();
+        }
+        again.step();
+    }
+    assert_eq!(again.ticks(), first.ticks(), "the same number of cycles");
+    assert_eq!(again.axis_positions(), first.axis_positions(), "bit for bit");
+    assert_eq!(again.sync_actions().deleted.to_bits(), first.sync_actions().deleted.to_bits());
+}
+
+#[test]
+fn the_checkpoint_keeps_the_inputs_and_not_the_outputs() {
+    let mut ch = channel();
+    ch.set_signals(&[(5, true)], &[(2, true)]).unwrap();
+    ch.set_analog_inputs(&[(3, -1.25)]).unwrap();
+    let state = ch.resume_state();
+    let mut restarted = channel();
+    restarted.restore_resume_state(&state).unwrap();
+    assert_eq!(restarted.digital_io().input(5), Some(true));
+    assert_eq!(restarted.digital_io().output(2), Some(false), "outputs are off after power on");
+    assert_eq!(restarted.analog_io().0, [0.0, 0.0, -1.25, 0.0]);
+}
+
+#[test]
+fn analog_inputs_are_bounded() {
+    let mut ch = channel();
+    assert!(ch.set_analog_inputs(&[(5, 1.0)]).is_err());
+    assert!(ch.set_analog_inputs(&[(1, f64::NAN)]).is_err());
+    assert_eq!(ch.analog_io().0, [0.0; 4]);
+}

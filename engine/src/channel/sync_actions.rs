@@ -267,11 +267,15 @@ impl Channel {
         }
     }
 
-    /// One IPO cycle of the synchronized actions.
+    /// One IPO cycle of the synchronized actions: one test when none is active.
+    #[inline]
     pub(super) fn step_sync_actions(&mut self) {
-        if self.sync.idle() {
-            return;
+        if !self.sync.idle() {
+            self.run_sync_cycle();
         }
+    }
+
+    fn run_sync_cycle(&mut self) {
         let dt = self.cfg.ipo_cycle;
         for t in self.sync.timers.iter_mut().flatten() {
             *t += dt;
