@@ -65,7 +65,7 @@ fn when_input_deletes_the_distance_to_go_and_keeps_it_in_ac_delt() {
     // The input arrives between two IPO cycles; the next cycle's action ends the block where the
     // path is at that moment: $AC_DELT = 100 − X. The next block starts from there.
     let mut ch = channel();
-    let program = "WHEN $A_IN[1]==1 DO DELDTG\nG1 X100 F600\nG1 Y10\nM30";
+    let program = "WHEN $A_IN[1]==1 DO DELDTG\nG1 X100 F600\nG1 Y10\nR1=$AC_DELT\nM30";
     ch.run_program(program).unwrap();
     steps(&mut ch, 750); // 3 s: X about 30, still moving
     let at = x(&ch);
@@ -79,6 +79,8 @@ fn when_input_deletes_the_distance_to_go_and_keeps_it_in_ac_delt() {
     // G1 Y10 went from (at, 0) to (at, 10): X was not moved on to 100.
     assert!((x(&ch) - at).abs() < 1e-9, "X = {}", x(&ch));
     assert!((ch.axis_positions()[1] - 10.0).abs() < 1e-9);
+    // The program reads $AC_DELT after the block (a main-run variable: it waits for it).
+    assert!((ch.r_param(1) - (100.0 - at)).abs() < 1e-9, "R1 = {}", ch.r_param(1));
 }
 
 #[test]
@@ -270,4 +272,25 @@ fn analog_inputs_are_bounded() {
     assert!(ch.set_analog_inputs(&[(5, 1.0)]).is_err());
     assert!(ch.set_analog_inputs(&[(1, f64::NAN)]).is_err());
     assert_eq!(ch.analog_io().0, [0.0; 4]);
+}
+
+#[test]
+fn programs_read_markers_timers_and_analog_inputs_of_the_main_run() {
+    // The timer starts in the cycle after its action's block and is read in the block after
+    // the 0.5 s dwell: 0.5 s within two IPO cycles. The marker counts EVERY's one edge.
+    let mut ch = channel();
+    ch.set_analog_inputs(&[(1, 2.5)]).unwrap();
+    let program = "ID=1 WHEN TRUE DO $AC_TIMER[1]=0 $AC_MARKER[4]=7 $A_OUTA[2]=$A_INA[1]+1\n\
+                   G4 F0.5\nR4=$AC_TIMER[1]\nR5=$AC_MARKER[4]\nR6=$A_INA[1]\nR7=$A_OUTA[2]\nM30";
+    ch.run_program(program).unwrap();
+    run_to_end(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let t = ch.r_param(4);
+    assert!((t - 0.5).abs() <= 2.0 * DT + 1e-9, "timer {t}");
+    assert_eq!([ch.r_param(5), ch.r_param(6), ch.r_param(7)], [7.0, 2.5, 3.5]);
+    // Program blocks may not write the analog inputs.
+    let mut ch = channel();
+    ch.run_program("G0 X1\n$A_INA[1]=1\nM30").unwrap();
+    run_to_end(&mut ch);
+    assert_eq!(alarm(&ch), (17070, Some(2)));
 }

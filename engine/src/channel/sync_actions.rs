@@ -17,7 +17,7 @@ use super::{Channel, Event};
 use crate::alarm::Alarm;
 use crate::interp::Item;
 use crate::interp::auxiliary::AuxFunction;
-use crate::interp::synchronized::{CExpr, Func, SyncAct, SyncControl, SyncDef, SyncVar};
+use crate::interp::synchronized::{CExpr, Func, MainRunData, SyncAct, SyncControl, SyncDef, SyncVar};
 use crate::lang::sync_action::{BinOp, SyncId, Trigger};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
@@ -70,6 +70,10 @@ pub struct SyncActions {
     prev_setpoint: [f64; MAX_CHANNEL_AXES],
     /// Inputs set from outside, with their cycle counts.
     log: std::collections::VecDeque<InputRecord>,
+    /// The data changed since it was last handed to block preparation.
+    dirty: bool,
+    /// The workpiece coordinates of this cycle, once an action read `$AA_IW`.
+    wcs: std::cell::Cell<Option<[f64; MAX_CHANNEL_AXES]>>,
 }
 
 impl Default for SyncActions {
@@ -89,6 +93,8 @@ impl Default for SyncActions {
             block_start: 0,
             prev_setpoint: [0.0; MAX_CHANNEL_AXES],
             log: Default::default(),
+            dirty: false,
+            wcs: Default::default(),
         }
     }
 }
@@ -124,7 +130,19 @@ pub struct SyncActionInfo {
 impl SyncActions {
     #[inline]
     fn idle(&self) -> bool {
-        self.active.is_empty() && !self.ovr_applied && self.timers.iter().all(Option::is_none)
+        self.active.is_empty() && !self.ovr_applied && !self.dirty && self.timers.iter().all(Option::is_none)
+    }
+
+    /// The data as block preparation reads it.
+    fn main_run_data(&self) -> MainRunData {
+        MainRunData {
+            markers: self.markers.to_vec(),
+            params: self.params.to_vec(),
+            timers: self.timers.to_vec(),
+            analog_in: self.analog_in.to_vec(),
+            analog_out: self.analog_out.to_vec(),
+            deleted: self.deleted,
+        }
     }
 
     /// Program end or reset: modal and block-modal actions end, static ones stay.
@@ -179,6 +197,8 @@ impl Channel {
         for &(n, v) in inputs {
             self.sync.analog_in[n - 1] = v;
         }
+        self.sync.dirty = true;
+        self.publish_sync_data();
         self.log_inputs(InputRecord { tick: self.tick, inputs: vec![], outputs: vec![], analog: inputs.to_vec() });
         Ok(())
     }
@@ -222,6 +242,22 @@ impl Channel {
         self.set_digital_io(io);
         for (to, v) in self.sync.analog_in.iter_mut().zip(analog) {
             *to = if v.is_finite() { *v } else { 0.0 };
+        }
+        self.sync.dirty = true;
+        self.publish_sync_data();
+    }
+
+    /// Hands the data to block preparation when it changed and preparation may read it: it
+    /// waits for the main run, or would not wait (nothing queued, no program running). While a
+    /// program's moves are queued no block that reads main-run data is prepared, so the copy
+    /// is not made in every cycle.
+    fn publish_sync_data(&mut self) {
+        let may_read = self.blending.prep_waits_for_main_run
+            || self.status != super::Status::Running
+            || self.pending.is_empty() && self.planner.is_empty();
+        if self.sync.dirty && may_read {
+            self.sync.dirty = false;
+            self.interp.set_sync_data(self.sync.main_run_data());
         }
     }
 
@@ -279,6 +315,7 @@ impl Channel {
         let dt = self.cfg.ipo_cycle;
         for t in self.sync.timers.iter_mut().flatten() {
             *t += dt;
+            self.sync.dirty = true;
         }
         if self.sync.block != self.current_line {
             self.sync.block = self.current_line;
@@ -286,6 +323,7 @@ impl Channel {
         }
         self.sync.ovr = 100.0;
         self.sync.axis_ovr = [100.0; MAX_CHANNEL_AXES];
+        self.sync.wcs.set(None);
         let running = self.in_planner.front().map(|(_, m)| m.line);
         let mut active = std::mem::take(&mut self.sync.active);
         // Block-modal actions: bound to the first motion block after them, gone after it.
@@ -309,7 +347,7 @@ impl Channel {
             match self.run_sync(a) {
                 Ok(()) => {}
                 Err(alarm) => {
-                    failed = Some(alarm);
+                    failed = Some(*alarm);
                     break;
                 }
             }
@@ -317,6 +355,7 @@ impl Channel {
         // Actions only change the data, never the list: put it back.
         self.sync.active = active;
         self.sync.prev_setpoint = self.machine;
+        self.publish_sync_data();
         if let Some(alarm) = failed {
             self.raise(alarm);
             return;
@@ -332,8 +371,9 @@ impl Channel {
     }
 
     /// Checks one action's condition and runs its actions as its trigger says.
-    fn run_sync(&mut self, a: &mut ActiveSync) -> Result<(), Alarm> {
-        let def = Arc::clone(&a.def);
+    fn run_sync(&mut self, a: &mut ActiveSync) -> Result<(), Fault> {
+        // The list is out of `self` while it runs: its definitions are borrowed, not cloned.
+        let def = &*a.def;
         if def.trigger == Trigger::When && a.fired {
             return Ok(());
         }
@@ -361,7 +401,7 @@ impl Channel {
         Ok(())
     }
 
-    fn sync_act(&mut self, act: &SyncAct, line: u32) -> Result<(), Alarm> {
+    fn sync_act(&mut self, act: &SyncAct, line: u32) -> Result<(), Fault> {
         match act {
             SyncAct::Set(var, e) => {
                 let v = self.sync_eval(e, line)?;
@@ -388,6 +428,7 @@ impl Channel {
         let line = meta.line;
         let left = self.planner.front().map_or(0.0, |m| m.length * (1.0 - self.planner.front_fraction()));
         self.sync.deleted = left;
+        self.sync.dirty = true;
         self.planner.abort();
         self.in_planner.clear();
         while matches!(self.pending.front(), Some(Item::Move { line: l, .. }) if *l == line) {
@@ -397,17 +438,25 @@ impl Channel {
         self.interp.sync_position(&pos);
     }
 
-    fn sync_index(&self, e: &CExpr, name: &str, size: usize, first: usize, line: u32) -> Result<usize, Alarm> {
-        let v = self.sync_eval(e, line)?;
-        let n = v.round();
+    fn sync_index(&self, e: &CExpr, name: &str, size: usize, first: usize, line: u32) -> Result<usize, Fault> {
+        // Most indices are written as whole numbers: no rounding call for them.
+        let v = match e {
+            CExpr::Num(v) => *v,
+            e => self.sync_eval(e, line)?,
+        };
+        let n = if v.fract() == 0.0 { v } else { v.round() };
         if v.is_finite() && n >= first as f64 && n < (size + first) as f64 {
             Ok(n as usize - first)
         } else {
-            Err(Alarm::index_error(line, name, &format!("{v} ({first}..{})", size + first - 1)))
+            Err(Box::new(Alarm::index_error(line, name, &format!("{v} ({first}..{})", size + first - 1))))
         }
     }
 
-    fn sync_write(&mut self, var: &SyncVar, v: f64, line: u32) -> Result<(), Alarm> {
+    fn sync_write(&mut self, var: &SyncVar, v: f64, line: u32) -> Result<(), Fault> {
+        self.sync.dirty |= matches!(
+            var,
+            SyncVar::AcTimer(_) | SyncVar::AcMarker(_) | SyncVar::AcParam(_) | SyncVar::AOuta(_)
+        );
         match var {
             SyncVar::AcOvr => self.sync.ovr = v.clamp(0.0, 200.0),
             SyncVar::AaOvr(k) => self.sync.axis_ovr[*k] = v.clamp(0.0, 200.0),
@@ -428,7 +477,7 @@ impl Channel {
             SyncVar::R(i) => {
                 let n = self.sync_eval(i, line)?;
                 if !(n >= 0.0 && self.interp.write_r_param(n.round() as usize, v)) {
-                    return Err(Alarm::index_error(line, "$R", &format!("{n}")));
+                    return Err(Box::new(Alarm::index_error(line, "$R", &format!("{n}"))));
                 }
             }
             SyncVar::AOut(i) => {
@@ -442,13 +491,13 @@ impl Channel {
                 let i = self.sync_index(i, "$A_OUTA", ANALOG_IO, 1, line)?;
                 self.sync.analog_out[i] = v;
             }
-            _ => return Err(Alarm::write_protected(line, "synchronized action variable")),
+            _ => return Err(Box::new(Alarm::write_protected(line, "synchronized action variable"))),
         }
         Ok(())
     }
 
     /// The value of a compiled expression in this cycle (booleans 1/0).
-    fn sync_eval(&self, e: &CExpr, line: u32) -> Result<f64, Alarm> {
+    fn sync_eval(&self, e: &CExpr, line: u32) -> Result<f64, Fault> {
         Ok(match e {
             CExpr::Num(v) => *v,
             CExpr::Var(v) => self.sync_read(v, line)?,
@@ -461,7 +510,7 @@ impl Channel {
                     BinOp::Sub => a - b,
                     BinOp::Mul => a * b,
                     BinOp::Div | BinOp::IntDiv | BinOp::Mod if b == 0.0 => {
-                        return Err(Alarm::arithmetic(line, "division by zero in a synchronized action"));
+                        return Err(Box::new(Alarm::arithmetic(line, "division by zero in a synchronized action")));
                     }
                     BinOp::Div => a / b,
                     BinOp::IntDiv => (a / b).trunc(),
@@ -499,24 +548,29 @@ impl Channel {
                     Func::MaxVal => x.max(y()?),
                 };
                 if !v.is_finite() {
-                    return Err(Alarm::arithmetic(line, "a function's argument outside its domain"));
+                    return Err(Box::new(Alarm::arithmetic(line, "a function's argument outside its domain")));
                 }
                 v
             }
         })
     }
 
-    fn sync_read(&self, var: &SyncVar, line: u32) -> Result<f64, Alarm> {
+    fn sync_read(&self, var: &SyncVar, line: u32) -> Result<f64, Fault> {
         let dt = self.cfg.ipo_cycle;
         Ok(match var {
             SyncVar::AaIm(k) => self.actual_position(*k),
             SyncVar::AaIpo(k) => self.machine[*k],
             SyncVar::AaIw(k) => {
+                if let Some(w) = self.sync.wcs.get() {
+                    return Ok(w[*k]);
+                }
                 let mut basic = [0.0; MAX_CHANNEL_AXES];
                 for (i, b) in basic.iter_mut().enumerate().take(self.cfg.channel_axes.len()) {
                     *b = self.actual_position(i) - self.offsets.tool[i];
                 }
-                self.offsets.frame.unapply(&self.cfg.geo_axes, &basic).map_or(f64::NAN, |w| w[*k])
+                let w = self.offsets.frame.unapply(&self.cfg.geo_axes, &basic).unwrap_or([f64::NAN; MAX_CHANNEL_AXES]);
+                self.sync.wcs.set(Some(w));
+                w[*k]
             }
             SyncVar::AaVactm(k) => (self.machine[*k] - self.sync.prev_setpoint[*k]) / dt * 60.0,
             SyncVar::AaOvr(k) => self.sync.axis_ovr[*k],
@@ -553,6 +607,10 @@ impl Channel {
         })
     }
 }
+
+/// An alarm of the main run's evaluation, boxed: the evaluator's results stay two words wide,
+/// which keeps the IPO cycle's recursion cheap.
+type Fault = Box<Alarm>;
 
 /// Equal within the control's relative tolerance for REAL comparisons.
 fn same(a: f64, b: f64) -> bool {

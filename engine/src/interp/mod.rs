@@ -267,6 +267,8 @@ pub struct Interpreter {
     io: io::DigitalIo,
     /// Preparation held back behind a block-modal DELDTG (`synchronized.rs`).
     sync_wait: synchronized::PrepWait,
+    /// The main run's `$AC_MARKER`, `$AC_PARAM`, `$AC_DELT` ... as last handed over.
+    sync_data: synchronized::MainRunData,
 }
 
 impl Interpreter {
@@ -304,6 +306,7 @@ impl Interpreter {
             stored: Default::default(),
             io: io::DigitalIo::default(),
             sync_wait: synchronized::PrepWait::None,
+            sync_data: Default::default(),
         }
     }
 

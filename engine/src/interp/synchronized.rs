@@ -15,10 +15,58 @@ pub use compile::{CExpr, Func, SyncAct, SyncDef, SyncVar};
 
 use super::{Interpreter, Item};
 use crate::alarm::Alarm;
+use crate::interp::eval::value::Value;
 use crate::lang::sync_action::{self, SYNC_ACTION_WORD};
 use crate::lang::{Block, Expr, Word};
 use crate::machine_data::MachineConfig;
 use crate::motion::AxisVec;
+
+/// The main-run data of synchronized actions as block preparation reads them (`R1=$AC_DELT`,
+/// `IF $AC_MARKER[1]==1 ...`): like every `$AC_` variable, a block reading them waits for the
+/// main run; the channel hands over each new state ([`Interpreter::set_sync_data`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MainRunData {
+    pub markers: Vec<f64>,
+    pub params: Vec<f64>,
+    /// Running timers' seconds (`None`: stopped, read as 0).
+    pub timers: Vec<Option<f64>>,
+    pub analog_in: Vec<f64>,
+    pub analog_out: Vec<f64>,
+    /// `$AC_DELT`.
+    pub deleted: f64,
+}
+
+impl MainRunData {
+    /// `$AC_MARKER[n]`, `$AC_PARAM[n]`, `$AC_TIMER[n]` (from 0), `$A_INA[n]`, `$A_OUTA[n]`
+    /// (from 1), `$AC_DELT`; `None` for any other name.
+    pub(crate) fn read(&self, name: &str, indices: &[Value], line: u32) -> Option<Result<Value, Alarm>> {
+        let (list, first): (&[f64], usize) = match name {
+            "$AC_DELT" => return Some(Ok(Value::Real(self.deleted))),
+            "$AC_MARKER" => (&self.markers, 0),
+            "$AC_PARAM" => (&self.params, 0),
+            "$A_INA" => (&self.analog_in, 1),
+            "$A_OUTA" => (&self.analog_out, 1),
+            "$AC_TIMER" => {
+                return Some(index(name, indices, self.timers.len(), 0, line).map(|i| Value::Real(self.timers[i].unwrap_or(0.0))));
+            }
+            _ => return None,
+        };
+        Some(index(name, indices, list.len(), first, line).map(|i| {
+            if name == "$AC_MARKER" { Value::Int(list[i] as i64) } else { Value::Real(list[i]) }
+        }))
+    }
+}
+
+/// The element of `name[n]` in a list of `len` numbered from `first` (17020 outside).
+fn index(name: &str, indices: &[Value], len: usize, first: usize, line: u32) -> Result<usize, Alarm> {
+    let [n] = indices else { return Err(Alarm::index_error(line, name, "needs one index")) };
+    let n = n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    usize::try_from(n)
+        .ok()
+        .filter(|n| (first..first + len).contains(n))
+        .map(|n| n - first)
+        .ok_or_else(|| Alarm::index_error(line, name, &format!("{n} ({first}..{})", first + len - 1)))
+}
 
 /// The commands on synchronized actions by ID.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -123,6 +171,11 @@ impl Interpreter {
     #[inline]
     pub(super) fn sync_wait_pending(&self) -> bool {
         self.sync_wait != PrepWait::None
+    }
+
+    /// The main run's data of synchronized actions, after each change.
+    pub fn set_sync_data(&mut self, data: MainRunData) {
+        self.sync_data = data;
     }
 
     /// A synchronized action writes R parameter `n` in the main run.
