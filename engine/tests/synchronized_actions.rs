@@ -171,8 +171,7 @@ fn g70_reads_the_condition_in_inch() {
 fn actions_write_r_parameters_and_outputs_and_put_out_m_functions() {
     let mut ch = channel();
     ch.take_events();
-    ch.run_program("ID=1 WHEN $AA_IM[X]>=5 DO $R10=$AA_IM[X]*2 $A_OUT[5]=1 M99 H2=1.5\nG1 X10 F600\nM30")
-        .unwrap();
+    ch.run_program("ID=1 WHEN $AA_IM[X]>=5 DO $R10=$AA_IM[X]*2 $A_OUT[5]=1 M99 H2=1.5\nG1 X10 F600\nM30").unwrap();
     let mut events = Vec::new();
     while ch.is_busy() {
         ch.step();
@@ -228,7 +227,8 @@ fn a_marker_index_out_of_range_raises_an_alarm_in_the_main_run() {
 
 #[test]
 fn inputs_replayed_at_their_logged_cycle_counts_give_the_same_run() {
-    let program = "WHEN $A_IN[1]==1 DO DELDTG\nG1 X100 F600\nG1 Y10\nID=2 WHENEVER $A_INA[1]>1 DO $AC_OVR=50\nG1 X0\nM30";
+    let program =
+        "WHEN $A_IN[1]==1 DO DELDTG\nG1 X100 F600\nG1 Y10\nID=2 WHENEVER $A_INA[1]>1 DO $AC_OVR=50\nG1 X0\nM30";
     let mut first = channel();
     first.run_program(program).unwrap();
     steps(&mut first, 600);

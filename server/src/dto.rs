@@ -1129,7 +1129,8 @@ impl From<&Event> for EventMessage {
                 EventMessage::DigitalOutput { signal: *signal, value: *on, line: *line }
             }
             Event::InputsChanged(r) => {
-                let levels = |l: &[(usize, bool)]| l.iter().map(|&(signal, value)| SignalLevel { signal, value }).collect();
+                let levels =
+                    |l: &[(usize, bool)]| l.iter().map(|&(signal, value)| SignalLevel { signal, value }).collect();
                 EventMessage::InputsChanged {
                     tick: r.tick,
                     inputs: levels(&r.inputs),

@@ -61,7 +61,8 @@ async fn analog_inputs_are_set_and_checked_all_or_nothing() {
     let id = server.session("mill-3axis").await;
     let io = server.get(&format!("/sessions/{id}/io")).await.body;
     assert_eq!(io["analog_inputs"], json!([0.0, 0.0, 0.0, 0.0]));
-    let reply = server.put(&format!("/sessions/{id}/io"), json!({"analog_inputs": [{"signal": 2, "value": 2.5}]})).await;
+    let reply =
+        server.put(&format!("/sessions/{id}/io"), json!({"analog_inputs": [{"signal": 2, "value": 2.5}]})).await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
     assert_eq!(reply.body["analog_inputs"][1], 2.5);
     // A synchronized action copies it to an analog output.

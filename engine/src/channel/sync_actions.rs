@@ -360,9 +360,7 @@ impl Channel {
             self.raise(alarm);
             return;
         }
-        let factor = self.sync.ovr / 100.0
-            * self.sync.axis_ovr.iter().copied().fold(100.0, f64::min)
-            / 100.0;
+        let factor = self.sync.ovr / 100.0 * self.sync.axis_ovr.iter().copied().fold(100.0, f64::min) / 100.0;
         if factor != 1.0 || self.sync.ovr_applied {
             let o = self.overrides;
             self.planner.set_overrides(o.feed * factor, o.rapid * factor);
@@ -453,10 +451,8 @@ impl Channel {
     }
 
     fn sync_write(&mut self, var: &SyncVar, v: f64, line: u32) -> Result<(), Fault> {
-        self.sync.dirty |= matches!(
-            var,
-            SyncVar::AcTimer(_) | SyncVar::AcMarker(_) | SyncVar::AcParam(_) | SyncVar::AOuta(_)
-        );
+        self.sync.dirty |=
+            matches!(var, SyncVar::AcTimer(_) | SyncVar::AcMarker(_) | SyncVar::AcParam(_) | SyncVar::AOuta(_));
         match var {
             SyncVar::AcOvr => self.sync.ovr = v.clamp(0.0, 200.0),
             SyncVar::AaOvr(k) => self.sync.axis_ovr[*k] = v.clamp(0.0, 200.0),

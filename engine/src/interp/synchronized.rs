@@ -47,13 +47,17 @@ impl MainRunData {
             "$A_INA" => (&self.analog_in, 1),
             "$A_OUTA" => (&self.analog_out, 1),
             "$AC_TIMER" => {
-                return Some(index(name, indices, self.timers.len(), 0, line).map(|i| Value::Real(self.timers[i].unwrap_or(0.0))));
+                return Some(
+                    index(name, indices, self.timers.len(), 0, line)
+                        .map(|i| Value::Real(self.timers[i].unwrap_or(0.0))),
+                );
             }
             _ => return None,
         };
-        Some(index(name, indices, list.len(), first, line).map(|i| {
-            if name == "$AC_MARKER" { Value::Int(list[i] as i64) } else { Value::Real(list[i]) }
-        }))
+        Some(
+            index(name, indices, list.len(), first, line)
+                .map(|i| if name == "$AC_MARKER" { Value::Int(list[i] as i64) } else { Value::Real(list[i]) }),
+        )
     }
 }
 

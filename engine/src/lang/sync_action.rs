@@ -420,7 +420,9 @@ impl P<'_> {
                 self.ws();
                 if !self.eat(b'(') {
                     self.pos = at;
-                    return self.err(&format!("{name}: only system variables ($...) and functions are read in synchronized actions"));
+                    return self.err(&format!(
+                        "{name}: only system variables ($...) and functions are read in synchronized actions"
+                    ));
                 }
                 let args = self.args()?;
                 Ok(SExpr::Call(name, args))

@@ -150,7 +150,12 @@ impl Compiler<'_> {
                 let var = self.var(v)?;
                 let length = matches!(
                     var,
-                    SyncVar::AaIm(_) | SyncVar::AaIw(_) | SyncVar::AaIpo(_) | SyncVar::AcPath | SyncVar::AcDteb | SyncVar::AcDelt
+                    SyncVar::AaIm(_)
+                        | SyncVar::AaIw(_)
+                        | SyncVar::AaIpo(_)
+                        | SyncVar::AcPath
+                        | SyncVar::AcDteb
+                        | SyncVar::AcDelt
                 );
                 if inch && length {
                     CExpr::Bin(BinOp::Div, Box::new(CExpr::Var(var)), Box::new(CExpr::Num(25.4)))
@@ -270,7 +275,9 @@ impl Compiler<'_> {
             SAction::AxisCommand { word, axis, .. } => {
                 return Err(not_admissible(
                     self.line,
-                    &format!("{word}[{axis}] (command axes are not modelled: the channel has no independent axis motion)"),
+                    &format!(
+                        "{word}[{axis}] (command axes are not modelled: the channel has no independent axis motion)"
+                    ),
                 ));
             }
             SAction::Word(w) | SAction::Call(w, _) => {
