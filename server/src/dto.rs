@@ -293,6 +293,10 @@ pub struct State {
     /// The reference point approach in progress (absent when none runs).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub referencing: Option<ReferencingInfo>,
+    /// The active synchronized actions in the order the main run checks them: by ID, then the
+    /// block-modal ones (absent when none is active).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub synchronized_actions: Vec<SyncActionState>,
 }
 
 /// A reference point approach in progress (JOG REF, axes with an incremental encoder).
@@ -445,6 +449,7 @@ impl From<&Snapshot> for State {
                 .referencing
                 .as_ref()
                 .map(|(axis, phase)| ReferencingInfo { axis: axis.clone(), phase: phase.as_str().into() }),
+            synchronized_actions: s.sync_actions.iter().map(SyncActionState::from).collect(),
         }
     }
 }
@@ -1043,6 +1048,65 @@ pub enum EventMessage {
         value: bool,
         line: u32,
     },
+    /// Signals set from outside (`PUT .../io`) and the IPO cycle count they arrived at: they
+    /// act from the next cycle on, so the same inputs at the same counts replay a run exactly.
+    InputsChanged {
+        tick: u64,
+        inputs: Vec<SignalLevel>,
+        outputs: Vec<SignalLevel>,
+        analog_inputs: Vec<AnalogLevel>,
+    },
+}
+
+/// A digital signal's number and level.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct SignalLevel {
+    pub signal: usize,
+    pub value: bool,
+}
+
+/// An analog signal's number and value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct AnalogLevel {
+    pub signal: usize,
+    pub value: f64,
+}
+
+/// A synchronized action as the state lists it.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct SyncActionState {
+    /// `ID=n`/`IDS=n`; `null` for a block-modal action.
+    pub id: Option<u32>,
+    /// `block` (no ID: while its motion block runs), `modal` (`ID`: until program end or
+    /// CANCEL) or `static` (`IDS`: until CANCEL, beyond program end and reset).
+    #[schema(example = "modal")]
+    pub kind: String,
+    /// `WHEN`, `WHENEVER`, `FROM`, `EVERY` or `DO` (no condition).
+    #[schema(example = "WHENEVER")]
+    pub trigger: String,
+    /// The condition as written (upper case); empty for `DO` alone.
+    #[schema(example = "$AA_IM[X]>20")]
+    pub condition: String,
+    /// The actions ran (WHEN/FROM/EVERY: since activation; WHENEVER/DO: in the last cycle).
+    pub fired: bool,
+    /// Suspended by LOCK.
+    pub locked: bool,
+    /// The line that defined it.
+    pub line: u32,
+}
+
+impl From<&nctwin_engine::channel::sync_actions::SyncActionInfo> for SyncActionState {
+    fn from(a: &nctwin_engine::channel::sync_actions::SyncActionInfo) -> SyncActionState {
+        SyncActionState {
+            id: a.id,
+            kind: a.kind.into(),
+            trigger: a.trigger.into(),
+            condition: a.condition.clone(),
+            fired: a.fired,
+            locked: a.locked,
+            line: a.line,
+        }
+    }
 }
 
 impl From<&Event> for EventMessage {
@@ -1063,6 +1127,16 @@ impl From<&Event> for EventMessage {
             },
             Event::DigitalOutput { signal, on, line } => {
                 EventMessage::DigitalOutput { signal: *signal, value: *on, line: *line }
+            }
+            Event::InputsChanged(r) => {
+                let levels =
+                    |l: &[(usize, bool)]| l.iter().map(|&(signal, value)| SignalLevel { signal, value }).collect();
+                EventMessage::InputsChanged {
+                    tick: r.tick,
+                    inputs: levels(&r.inputs),
+                    outputs: levels(&r.outputs),
+                    analog_inputs: r.analog.iter().map(|&(signal, value)| AnalogLevel { signal, value }).collect(),
+                }
             }
         }
     }
@@ -1104,6 +1178,7 @@ mod tests {
             referenced: None,
             repos_pending: None,
             referencing: None,
+            synchronized_actions: vec![],
         }
     }
 

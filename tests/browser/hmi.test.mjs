@@ -168,6 +168,17 @@ async function main() {
       await page.waitForFunction(() => /^[1-9]\d* watching$/.test(document.getElementById("viewers")?.textContent || ""));
     });
 
+    await step("PLC signals panel switches an input and the server reports it", async () => {
+      const input = '#signal-inputs button[data-signal="3"]';
+      await page.waitForSelector(input);
+      await page.click(input);
+      await page.waitForSelector(`${input}[aria-pressed="true"]`);
+      const io = await page.evaluate(async (id) => (await fetch(`/api/v1/sessions/${id}/io`)).json(), sessionId);
+      if (io.inputs[2] !== true) throw new Error(`input 3 is ${io.inputs[2]} on the server`);
+      await page.click(input);
+      await page.waitForSelector(`${input}[aria-pressed="false"]`);
+    });
+
     await step("MCS/WCS toggle switches the coordinate display", async () => {
       await page.click('#coords-toggle [data-frame="machine"]');
       await page.waitForSelector('#positions [data-frame="machine"][data-axis="X"]');

@@ -21,6 +21,7 @@ import { mountHeader } from "./machine/header";
 import { mountOverrides } from "./machine/overrides";
 import { mountPositions } from "./machine/positions";
 import { mountProgress } from "./machine/progress";
+import { mountSignals } from "./machine/signals";
 import { mountTfs } from "./machine/tfs";
 import { mountAxisPlot } from "./plot/axisPlot";
 import { EditorArea } from "./program/editorArea";
@@ -49,6 +50,7 @@ async function main(): Promise<void> {
   mountJog(session);
   mountSwivel(session);
   mountAlarms(session);
+  mountSignals(session);
   mountEvents(session);
   mountPreview(session, mountMachineView(session));
   mountAxisPlot(session);

@@ -28,6 +28,13 @@ impl Channel {
             io.set_output(n, on);
         }
         self.set_digital_io(io);
+        let record = super::sync_actions::InputRecord {
+            tick: self.tick,
+            inputs: inputs.to_vec(),
+            outputs: outputs.to_vec(),
+            analog: Vec::new(),
+        };
+        self.log_inputs(record);
         Ok(())
     }
 

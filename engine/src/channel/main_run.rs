@@ -350,6 +350,14 @@ impl Channel {
                     self.enter_block(line);
                     self.execute_digital_output(signal, on, line);
                 }
+                Item::SyncAction { def, line } => {
+                    self.enter_block(line);
+                    self.activate_sync(def);
+                }
+                Item::SyncControl { op, ids, line } => {
+                    self.enter_block(line);
+                    self.control_sync(op, &ids);
+                }
             }
         }
     }
@@ -363,6 +371,7 @@ impl Channel {
         self.status = Status::Idle;
         self.prep_done = true;
         self.current_line = None;
+        self.sync.end_program();
         self.interp.end_program(&self.cfg);
         // Program end returns the offsets to their reset values (G500); the display follows.
         self.offsets = self.interp.offsets();

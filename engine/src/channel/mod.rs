@@ -27,6 +27,7 @@ pub mod servo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
+pub mod sync_actions;
 mod toff;
 pub mod tool_list;
 mod trafo;
@@ -39,7 +40,7 @@ pub use jog_settings::OrientationJogKind;
 pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
-pub use resume::{ResumeProgram, ResumeState};
+pub use resume::{ResumeProgram, ResumeState, SavedInputs};
 pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
@@ -128,6 +129,10 @@ pub enum Event {
         on: bool,
         line: u32,
     },
+    /// Inputs set from outside ([`Channel::set_signals`], [`Channel::set_analog_inputs`]),
+    /// with the IPO cycle count they arrived at: they act from the next cycle on, so a run fed
+    /// the same inputs at the same counts is identical (see [`Channel::input_log`]).
+    InputsChanged(sync_actions::InputRecord),
 }
 
 /// A command the channel refuses in its current state.
@@ -289,6 +294,8 @@ pub struct Channel {
     io: crate::interp::io::DigitalIo,
     /// The axes' position loops: actual values and following errors.
     servo: servo::Servo,
+    /// Motion-synchronous actions and their data (`sync_actions.rs`).
+    sync: sync_actions::SyncActions,
 }
 
 impl Channel {
@@ -363,6 +370,7 @@ impl Channel {
             servo,
             referenced,
             referencing: None,
+            sync: Default::default(),
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -542,6 +550,8 @@ impl Channel {
         self.queued_blocks.clear();
         self.current_block = None;
         self.prep_done = false;
+        // Modal synchronized actions of an earlier run (one ended by an alarm) end here.
+        self.sync.end_program();
         self.interp.begin_program(text, &self.machine);
         self.status = Status::Running;
         Ok(())
@@ -630,6 +640,7 @@ impl Channel {
         self.current_line = None;
         self.current_block = None;
         self.message = None;
+        self.sync.end_program();
         let pos = *self.planner.position();
         for s in &mut self.spindles {
             s.leave_axis_mode(pos[s.axis]);
@@ -694,6 +705,7 @@ impl Channel {
             self.prepare();
             self.feed_planner();
         }
+        self.step_sync_actions();
         self.planner.step();
         self.update_machine_position();
         self.servo.step(&self.machine, self.offsets.gcodes.ffw_on());

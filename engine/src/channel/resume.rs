@@ -43,6 +43,20 @@ pub struct ResumeProgram {
 pub struct ResumeState {
     pub retained: Retained,
     pub program: Option<ResumeProgram>,
+    /// The inputs set from outside (the machine's wiring keeps them over a restart); the
+    /// outputs start off, as after power on. `None` in checkpoints written before.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
+    pub inputs: Option<SavedInputs>,
+}
+
+/// The inputs of a checkpoint.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SavedInputs {
+    /// `$A_IN[n]` is bit n−1.
+    pub digital: u64,
+    /// `$A_INA[1..]`.
+    pub analog: Vec<f64>,
 }
 
 impl Channel {
@@ -80,7 +94,10 @@ impl Channel {
             None => (None, Vec::new()),
         };
         let program = text.map(|_| ResumeProgram { text: String::new(), line, path, after_stop });
-        (ResumeState { retained: self.interp.retained(), program }, text.cloned())
+        let (digital, analog) = (self.io.inputs, self.sync.analog_in);
+        let inputs = (digital != 0 || analog.iter().any(|v| *v != 0.0))
+            .then(|| SavedInputs { digital, analog: analog.to_vec() });
+        (ResumeState { retained: self.interp.retained(), program, inputs }, text.cloned())
     }
 
     /// Takes back a saved resumable state; only in reset state with nothing moving. The
@@ -97,6 +114,9 @@ impl Channel {
         // The online offset is in force at once, without a ramp: no axis moves.
         self.toff = super::toff::OnlineOffset::at(self.offsets.toff);
         self.adopt_transformation();
+        if let Some(inputs) = &state.inputs {
+            self.restore_inputs(inputs.digital, &inputs.analog);
+        }
         let Some(program) = &state.program else { return Ok(()) };
         CommandError::check(&program.text)?;
         match program.line {

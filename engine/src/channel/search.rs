@@ -286,7 +286,9 @@ impl Channel {
                     Item::Dwell { .. }
                     | Item::Stop { kind: StopKind::M0 | StopKind::M1, .. }
                     | Item::Aux { .. }
-                    | Item::DigitalOutput { .. } => {}
+                    | Item::DigitalOutput { .. }
+                    | Item::SyncAction { .. }
+                    | Item::SyncControl { .. } => {}
                     Item::Stop { kind: StopKind::End, .. } => return Err(target_not_found(line)),
                     Item::Alarm(alarm) => return Err(alarm),
                 }

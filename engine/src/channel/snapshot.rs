@@ -79,6 +79,8 @@ pub struct Snapshot {
     pub jog_serial: u64,
     /// The program was interrupted and axes moved by JOG: NC start repositions first (REPOS).
     pub repos_pending: bool,
+    /// The active synchronized actions (ID order, then block-modal ones).
+    pub sync_actions: Vec<super::sync_actions::SyncActionInfo>,
 }
 
 /// The G functions a snapshot's `gcodes` names were written from, so that a refresh rewrites
@@ -123,6 +125,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         referencing: None,
         jog_serial: 0,
         repos_pending: false,
+        sync_actions: Vec::new(),
     };
     super::snapshot_refresh::refresh(ch, &mut s);
     s

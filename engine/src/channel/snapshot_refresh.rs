@@ -206,6 +206,7 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     }
     s.jog_serial = ch.jog_serial;
     s.repos_pending = ch.repos_pending();
+    ch.sync.refresh_list(&mut s.sync_actions);
 }
 
 /// Sets `to` to `text`, keeping its buffer.

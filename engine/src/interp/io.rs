@@ -53,9 +53,10 @@ impl DigitalIo {
     }
 }
 
-/// True for the names this module reads and writes.
+/// True for the names of NCK signals, which are main-run variables: this module's digital
+/// ones and the analog `$A_INA`/`$A_OUTA` (read through `synchronized.rs`).
 pub(crate) fn is_io_name(name: &str) -> bool {
-    matches!(name, "$A_IN" | "$A_OUT")
+    matches!(name, "$A_IN" | "$A_OUT" | "$A_INA" | "$A_OUTA")
 }
 
 /// The signal number of `name[n]`, checked against the image's size (17020 outside).

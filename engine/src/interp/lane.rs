@@ -234,6 +234,7 @@ impl Interpreter {
             && !self.modal.dynamics.shapes_moves()
             && !self.call_unbound()
             && self.spindles_plain()
+            && !self.sync_wait_pending()
     }
 
     /// Prepares the next block if it is a plain motion line and the state is simple; `None`

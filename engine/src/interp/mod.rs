@@ -24,6 +24,7 @@ mod published;
 pub mod retained;
 pub mod spindles;
 mod statements;
+pub mod synchronized;
 mod tools;
 mod transform;
 
@@ -142,6 +143,17 @@ pub enum Item {
         on: bool,
         line: u32,
     },
+    /// A synchronized action, active from when the main run reaches it (`synchronized.rs`).
+    SyncAction {
+        def: std::sync::Arc<synchronized::SyncDef>,
+        line: u32,
+    },
+    /// CANCEL/LOCK/UNLOCK/RESET of synchronized actions by ID.
+    SyncControl {
+        op: synchronized::SyncControl,
+        ids: Vec<u32>,
+        line: u32,
+    },
 }
 
 /// Marker in [`Interpreter::take_data_writes`]: activate the machine data written so far.
@@ -178,7 +190,9 @@ impl Item {
             | Item::Message { line, .. }
             | Item::SpindleToAxis { line, .. }
             | Item::Aux { line, .. }
-            | Item::DigitalOutput { line, .. } => Some(*line),
+            | Item::DigitalOutput { line, .. }
+            | Item::SyncAction { line, .. }
+            | Item::SyncControl { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -255,6 +269,10 @@ pub struct Interpreter {
     stored: std::sync::Arc<crate::machine_data::MachineData>,
     /// The digital inputs and outputs as the main run last reported them.
     io: io::DigitalIo,
+    /// Preparation held back behind a block-modal DELDTG (`synchronized.rs`).
+    sync_wait: synchronized::PrepWait,
+    /// The main run's `$AC_MARKER`, `$AC_PARAM`, `$AC_DELT` ... as last handed over.
+    sync_data: synchronized::MainRunData,
 }
 
 impl Interpreter {
@@ -293,6 +311,8 @@ impl Interpreter {
             lane_memo: Default::default(),
             stored: Default::default(),
             io: io::DigitalIo::default(),
+            sync_wait: synchronized::PrepWait::None,
+            sync_data: Default::default(),
         }
     }
 
@@ -307,6 +327,7 @@ impl Interpreter {
         self.held = None;
         self.capture = None;
         self.splines = None;
+        self.sync_wait = synchronized::PrepWait::None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
         self.spindles.reset(cfg, true);
@@ -568,6 +589,9 @@ impl Interpreter {
         let line = block.line;
         let (base_cfg, derived) = (cfg, self.trafo.config());
         let cfg = derived.as_deref().unwrap_or(base_cfg);
+        if self.synchronized_block(block, cfg, out)? {
+            return Ok(());
+        }
         {
             let sys = sys_view!(self, cfg);
             modal::collect(words, block, cfg, &mut self.vars, &sys, programs)?;

@@ -940,8 +940,12 @@ pub(super) fn assign(
     if super::io::is_io_name(name) {
         let ctx = Ctx { vars, sys };
         let idx = indices.iter().map(|e| eval(e, &ctx, line)).collect::<Result<Vec<_>, _>>()?;
-        if name == "$A_IN" {
+        if name == "$A_IN" || name == "$A_INA" {
             return Err(Alarm::write_protected(line, name));
+        }
+        if name == "$A_OUTA" {
+            // Analog outputs are written by synchronized actions only in NCTwin.
+            return Err(Alarm::unknown_name(line, name));
         }
         let signal = super::io::signal(name, &idx, line)?;
         return Ok(Assigned::DigitalOutput(signal, super::io::level(&eval(expr, &ctx, line)?, line)?));

@@ -50,7 +50,7 @@ impl Interpreter {
             alarm.number = d.alarm;
             alarm
         })?;
-        if !main_run_idle && block.reads_main_run() {
+        if self.sync_wait.holds(&self.pos, main_run_idle) || !main_run_idle && block.reads_main_run() {
             // The control's implicit preprocessing stop: wait for the main run, then read again.
             flow.next = next;
             flow.current = current;

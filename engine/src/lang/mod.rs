@@ -13,6 +13,7 @@ mod parser;
 mod plain_line;
 mod statement_scan;
 mod structure;
+pub mod sync_action;
 #[cfg(test)]
 pub(crate) mod test_rng;
 mod text;

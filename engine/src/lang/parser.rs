@@ -215,6 +215,17 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
         }
     }
     cur.skip_ws();
+    if super::sync_action::opens(cur.slice(cur.pos, code.len())) {
+        // A synchronized action fills the rest of the line: checked here, compiled when the
+        // block is prepared (see `sync_action.rs`).
+        let rest = cur.slice(cur.pos, code.len());
+        super::sync_action::parse(rest).map_err(|e| (cur.pos + e.col, e.message))?;
+        if build {
+            let text = Expr::Str(rest.trim_end().to_string());
+            block.words.push(Word::Keyword { name: super::sync_action::SYNC_ACTION_WORD.into(), args: vec![text] });
+        }
+        return Ok(Some(block));
+    }
     let save = cur.pos;
     if let Some(span) = cur.ident_span() {
         if let Some(id) = statement(&cur, span) {
@@ -233,9 +244,9 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
             break;
         }
         if let Some(name) = synchronized_action(&mut cur) {
-            // NCTwin does not model synchronized actions: the block carries the opening word
-            // alone, which the interpreter refuses with 12550 naming it (the rest of the line,
-            // condition and actions, is of a syntax of its own).
+            // A synchronized action after other words of a block (a block's own words may not
+            // precede it): the block carries the opening word alone, which the interpreter
+            // refuses with 12550 naming it.
             if build {
                 block.words.push(Word::Keyword { name: name.to_string(), args: Vec::new() });
             }

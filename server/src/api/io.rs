@@ -1,11 +1,14 @@
-//! `GET/PUT /sessions/{id}/io`: the session's digital NCK inputs and outputs (`$A_IN[n]`,
-//! `$A_OUT[n]`, n = 1..40). Programs read both and write the outputs; a client stands in for
-//! the machine's wiring: it sets inputs (a part-present switch, a clamping signal) and may set
-//! outputs too, as a test bench would. The image is the channel's live state; it is not saved
-//! (the control's outputs are off after power on).
+//! `GET/PUT /sessions/{id}/io`: the session's NCK inputs and outputs, digital (`$A_IN[n]`,
+//! `$A_OUT[n]`, n = 1..40) and analog (`$A_INA[n]`, `$A_OUTA[n]`, n = 1..4). Programs and
+//! synchronized actions read them and write the outputs; a client stands in for the machine's
+//! wiring: it sets inputs (a part-present switch, a clamping signal, a gauge's voltage) and may
+//! set digital outputs too, as a test bench would. Inputs act from the next IPO cycle on and
+//! are logged with its count (the `inputs_changed` event), so a run replays exactly. The
+//! checkpoint keeps the inputs; the outputs are off after a restart, as after power on.
 
 use axum::Json;
 use axum::extract::{Path, State};
+use nctwin_engine::channel::sync_actions::ANALOG_IO;
 use nctwin_engine::interp::io::{DIGITAL_IO, DigitalIo};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -23,15 +26,33 @@ pub struct IoImage {
     pub inputs: Vec<bool>,
     /// `$A_OUT[1..40]`.
     pub outputs: Vec<bool>,
+    /// `$A_INA[1..4]`.
+    #[serde(default)]
+    pub analog_inputs: Vec<f64>,
+    /// `$A_OUTA[1..4]` (written by synchronized actions).
+    #[serde(default)]
+    pub analog_outputs: Vec<f64>,
 }
 
-impl From<DigitalIo> for IoImage {
-    fn from(io: DigitalIo) -> IoImage {
+impl IoImage {
+    fn of(io: DigitalIo, (analog_in, analog_out): ([f64; ANALOG_IO], [f64; ANALOG_IO])) -> IoImage {
         IoImage {
             inputs: (1..=DIGITAL_IO).map(|n| io.input(n).unwrap_or(false)).collect(),
             outputs: (1..=DIGITAL_IO).map(|n| io.output(n).unwrap_or(false)).collect(),
+            analog_inputs: analog_in.to_vec(),
+            analog_outputs: analog_out.to_vec(),
         }
     }
+}
+
+/// One analog input to set: its number (1..4) and value.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AnalogSignal {
+    #[schema(example = 1)]
+    pub signal: u32,
+    #[schema(example = 2.5)]
+    pub value: f64,
 }
 
 /// One signal to set: its number (1..40) and level.
@@ -51,6 +72,8 @@ pub struct IoChange {
     pub inputs: Vec<Signal>,
     #[serde(default)]
     pub outputs: Vec<Signal>,
+    #[serde(default)]
+    pub analog_inputs: Vec<AnalogSignal>,
 }
 
 /// The digital inputs and outputs as the main run holds them.
@@ -66,13 +89,17 @@ pub struct IoChange {
 )]
 pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Result<Json<IoImage>, ApiError> {
     let session = find_session(&state, &id)?;
-    let io = session.with_channel(|ch| ch.digital_io()).await.map_err(|e| ApiError::from_session(&id, e))?;
-    Ok(Json(io.into()))
+    let io = session
+        .with_channel(|ch| IoImage::of(ch.digital_io(), ch.analog_io()))
+        .await
+        .map_err(|e| ApiError::from_session(&id, e))?;
+    Ok(Json(io))
 }
 
-/// Sets digital inputs (and outputs) at once, in any mode and while a program runs: a block
-/// that reads `$A_IN` after this sees the new level. All or nothing: a signal outside 1..40
-/// is a `400` and changes nothing.
+/// Sets digital inputs (and outputs) and analog inputs at once, in any mode and while a program
+/// runs: a block that reads `$A_IN` after this sees the new level, a synchronized action the
+/// next IPO cycle. All or nothing: a signal outside 1..40 (analog: 1..4, or a value that is not
+/// finite) is a `400` and changes nothing.
 #[utoipa::path(
     put,
     path = "/sessions/{id}/io",
@@ -81,7 +108,7 @@ pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Re
     request_body = IoChange,
     responses(
         (status = 200, description = "The I/O image after the change", body = IoImage),
-        (status = 400, description = "A signal number outside 1..40; nothing changed", body = ErrorBody),
+        (status = 400, description = "A signal number outside 1..40 (analog 1..4) or an analog value not finite; nothing changed", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
     )
 )]
@@ -92,11 +119,26 @@ pub async fn put_io(
 ) -> Result<Json<IoImage>, ApiError> {
     let list = |s: &[Signal]| s.iter().map(|s| (s.signal as usize, s.value)).collect::<Vec<_>>();
     let (inputs, outputs) = (list(&change.inputs), list(&change.outputs));
+    let analog: Vec<(usize, f64)> = change.analog_inputs.iter().map(|s| (s.signal as usize, s.value)).collect();
+    // Checked before anything is set, so a bad analog input leaves the digital ones too.
+    if let Some((n, v)) = analog.iter().find(|(n, v)| !(1..=ANALOG_IO).contains(n) || !v.is_finite()) {
+        return Err(ApiError::bad_request(format!(
+            "analog input {n} = {v}: analog inputs are 1..{ANALOG_IO} with finite values"
+        )));
+    }
     let session = find_session(&state, &id)?;
     let result = session
-        .with_channel(move |ch| ch.set_signals(&inputs, &outputs).map(|()| ch.digital_io()))
+        .with_channel(move |ch| {
+            if !inputs.is_empty() || !outputs.is_empty() {
+                ch.set_signals(&inputs, &outputs)?;
+            }
+            if !analog.is_empty() {
+                ch.set_analog_inputs(&analog)?;
+            }
+            Ok::<_, nctwin_engine::CommandError>(IoImage::of(ch.digital_io(), ch.analog_io()))
+        })
         .await
         .map_err(|e| ApiError::from_session(&id, e))?;
     let io = result.map_err(|e| ApiError::bad_request(e.to_string()))?;
-    Ok(Json(io.into()))
+    Ok(Json(io))
 }

@@ -9,6 +9,7 @@
 
 use axum::extract::ws::Utf8Bytes;
 use nctwin_engine::channel::ReferencePhase;
+use nctwin_engine::channel::sync_actions::SyncActionInfo;
 use nctwin_engine::{Mode, Overrides, Snapshot, Status};
 
 /// Room for a whole state message of a 7-axis machine, so the buffer is allocated once.
@@ -38,6 +39,7 @@ struct Tail {
     referenced: Vec<(String, bool)>,
     repos_pending: bool,
     referencing: Option<(String, ReferencePhase)>,
+    sync_actions: Vec<SyncActionInfo>,
 }
 
 impl Tail {
@@ -51,6 +53,7 @@ impl Tail {
             referenced: s.referenced.clone(),
             repos_pending: s.repos_pending,
             referencing: s.referencing.clone(),
+            sync_actions: s.sync_actions.clone(),
         }
     }
 
@@ -64,6 +67,7 @@ impl Tail {
         self.referenced.clone_from(&s.referenced);
         self.repos_pending = s.repos_pending;
         self.referencing.clone_from(&s.referencing);
+        self.sync_actions.clone_from(&s.sync_actions);
     }
 
     fn matches(&self, s: &Snapshot) -> bool {
@@ -75,6 +79,7 @@ impl Tail {
             && self.referenced == s.referenced
             && self.repos_pending == s.repos_pending
             && self.referencing == s.referencing
+            && self.sync_actions == s.sync_actions
     }
 }
 
@@ -236,6 +241,33 @@ fn write_tail(out: &mut String, s: &Snapshot) {
         write_str(out, phase_name(*phase));
         out.push('}');
     }
+    if !s.sync_actions.is_empty() {
+        out.push_str(",\"synchronized_actions\":[");
+        for (i, a) in s.sync_actions.iter().enumerate() {
+            if i > 0 {
+                out.push(',');
+            }
+            out.push_str("{\"id\":");
+            match a.id {
+                Some(n) => write_int(out, n),
+                None => out.push_str("null"),
+            }
+            out.push_str(",\"kind\":");
+            write_str(out, a.kind);
+            out.push_str(",\"trigger\":");
+            write_str(out, a.trigger);
+            out.push_str(",\"condition\":");
+            write_str(out, &a.condition);
+            out.push_str(",\"fired\":");
+            write_bool(out, a.fired);
+            out.push_str(",\"locked\":");
+            write_bool(out, a.locked);
+            out.push_str(",\"line\":");
+            write_int(out, a.line);
+            out.push('}');
+        }
+        out.push(']');
+    }
     out.push('}');
 }
 
@@ -370,6 +402,8 @@ mod tests {
         assert!(run(&mut encoder, "transmit-example", transmit) > 10);
         assert!(run(&mut encoder, "lathe-2axis", "T1 D1 S500 M4\nG0 X40 Z5\nG1 Z-20 F200\nM30") > 10);
         assert!(run(&mut encoder, "mill7-generic", "G1 X10 Y5 Z-2 A10 F2000\nGOTOF NOWHERE\nM30") > 1);
+        let sync = "ID=2 WHENEVER $AA_IM[X]>5 DO $AC_OVR=50\nWHEN $A_IN[1]==1 DO DELDTG\nG1 X10 F600\nM30";
+        assert!(run(&mut encoder, "mill-3axis", sync) > 10);
     }
 
     #[test]
@@ -428,7 +462,7 @@ mod tests {
         let mut s = channel.snapshot();
         let mut encoder = StateEncoder::default();
         check(&mut encoder, &s);
-        let changes: [&dyn Fn(&mut Snapshot); 9] = [
+        let changes: [&dyn Fn(&mut Snapshot); 11] = [
             &|s| s.message = Some("MSG 1".into()),
             &|s| s.message = Some("MSG 2".into()),
             &|s| s.overrides.feed = 50.0,
@@ -438,6 +472,29 @@ mod tests {
             &|s| s.referenced[0].1 = false,
             &|s| s.repos_pending = true,
             &|s| s.referencing = Some(("X1".into(), ReferencePhase::Cam)),
+            &|s| {
+                s.sync_actions = vec![SyncActionInfo {
+                    id: None,
+                    kind: "block",
+                    trigger: "WHEN",
+                    condition: "$A_IN[1]==\"1\"".into(),
+                    fired: false,
+                    locked: false,
+                    line: 4,
+                }]
+            },
+            &|s| {
+                s.sync_actions[0].fired = true;
+                s.sync_actions.push(SyncActionInfo {
+                    id: Some(255),
+                    kind: "static",
+                    trigger: "DO",
+                    condition: String::new(),
+                    fired: true,
+                    locked: true,
+                    line: 1,
+                });
+            },
         ];
         for change in changes {
             change(&mut s);

@@ -4,6 +4,8 @@ import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
   ControlState,
   Diagnostic,
+  IoChange,
+  IoImage,
   JogCommand,
   MachineDatumDef,
   MachineDetail,
@@ -112,6 +114,8 @@ export const api = {
   jogStop: (id: string) => request<State>("POST", `${s(id)}/jog/stop`, {}),
   setOverrides: (id: string, o: Partial<Overrides>) => request<State>("PUT", `${s(id)}/overrides`, o),
   setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),
+  io: (id: string) => request<IoImage>("GET", `${s(id)}/io`),
+  setIo: (id: string, change: IoChange) => request<IoImage>("PUT", `${s(id)}/io`, change),
 
   machineData: (id: string) => request<{ text: string }>("GET", `${s(id)}/machine-data`),
   /** The chain data ($NK_/$NT_) as a part program (plain text). */

@@ -56,6 +56,33 @@ export interface State {
   referenced?: Record<string, boolean>;
   /** The program was interrupted and axes moved by JOG: NC start repositions first (REPOS). */
   repos_pending?: boolean;
+  /** Active synchronized actions, by ID then block-modal (absent when none). */
+  synchronized_actions?: SyncActionState[];
+}
+
+/** A synchronized action as the state lists it. */
+export interface SyncActionState {
+  id: number | null;
+  kind: "block" | "modal" | "static";
+  trigger: string;
+  condition: string;
+  fired: boolean;
+  locked: boolean;
+  line: number;
+}
+
+/** GET/PUT .../io: the inputs and outputs, element 0 is signal 1. */
+export interface IoImage {
+  inputs: boolean[];
+  outputs: boolean[];
+  analog_inputs: number[];
+  analog_outputs: number[];
+}
+
+/** PUT .../io: signals to change. */
+export interface IoChange {
+  inputs?: { signal: number; value: boolean }[];
+  analog_inputs?: { signal: number; value: number }[];
 }
 
 /** Override switches in percent. */

@@ -36,6 +36,8 @@ pub(crate) struct SysView<'a> {
     pub stored: &'a crate::machine_data::MachineData,
     /// The digital inputs and outputs (`$A_IN`, `$A_OUT`).
     pub io: &'a crate::interp::io::DigitalIo,
+    /// Markers, parameters, timers, analog signals, `$AC_DELT` of synchronized actions.
+    pub sync: &'a crate::interp::synchronized::MainRunData,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -56,6 +58,7 @@ macro_rules! sys_view {
             holder: &$interp.holder,
             stored: &$interp.stored,
             io: &$interp.io,
+            sync: &$interp.sync_data,
         }
     };
 }
@@ -121,6 +124,9 @@ impl Scope for Ctx<'_> {
             return v;
         }
         if let Some(v) = sys.io.read(name, indices, line) {
+            return v;
+        }
+        if let Some(v) = sys.sync.read(name, indices, line) {
             return v;
         }
         Ok(match name {
