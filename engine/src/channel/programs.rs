@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use super::{Channel, CommandError};
 use crate::interp::Programs;
-use crate::programs::Kind;
+use crate::programs::{Kind, StoredProgram};
 
 impl Channel {
     /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
@@ -49,9 +49,68 @@ impl Channel {
             .collect())
     }
 
-    /// A stored program's text.
+    /// A stored program's text (a file a running program wrote or deleted as it is now).
     pub fn stored_program(&self, name: &str) -> Option<&str> {
-        self.programs.get(&program_name(name).ok()?).map(|t| &**t)
+        let name = program_name(name).ok()?;
+        match self.interp.files().pending(&name) {
+            Some(p) => p.text.as_deref(),
+            None => self.programs.get(&name).map(|t| &**t),
+        }
+    }
+
+    /// Stores `text` under `name` without checking it: a file that need not be a program (a
+    /// log a program wrote with WRITE), checked only if it is ever called.
+    pub fn store_file(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
+        let name = program_name(name)?;
+        self.programs.add(StoredProgram::unchecked(name.clone(), None, None, Arc::from(text)));
+        Ok(name)
+    }
+
+    /// Takes the file functions' changes into the store (when the program no longer runs, so
+    /// a log written line by line is copied once) and sets the files' clock; called every
+    /// cycle, it costs a comparison when no file changed.
+    pub(super) fn sync_files(&mut self) {
+        let files = self.interp.files_mut();
+        files.set_now((self.tick as f64 * self.cfg.ipo_cycle) as u64);
+        if !files.has_pending() || self.status == super::Status::Running {
+            return;
+        }
+        for (name, change) in files.take_pending() {
+            match change.text {
+                Some(text) => {
+                    // Replaces the program of that name in the directory it was found in.
+                    let kind = Some(change.kind);
+                    self.programs.add(StoredProgram::unchecked(name.clone(), change.dir, kind, Arc::from(text)));
+                }
+                None => {
+                    self.programs.remove(&name);
+                }
+            }
+            self.changed_files.insert(name);
+        }
+    }
+
+    /// Takes pending file changes into the store; the names changed since the shell last asked.
+    pub(super) fn take_changed_file_names(&mut self) -> std::collections::BTreeSet<String> {
+        if self.interp.files().has_pending() {
+            let status = std::mem::replace(&mut self.status, super::Status::Idle);
+            self.sync_files();
+            self.status = status;
+        }
+        std::mem::take(&mut self.changed_files)
+    }
+
+    /// The programs the file functions wrote or deleted since the last call, each once, with
+    /// their text now (`None`: deleted): what the shell persists. Pending changes of a program
+    /// that still runs are taken into the store first.
+    pub fn take_program_changes(&mut self) -> Vec<(String, Option<String>)> {
+        self.take_changed_file_names()
+            .into_iter()
+            .map(|name| {
+                let text = self.programs.get(&name).map(|t| t.to_string());
+                (name, text)
+            })
+            .collect()
     }
 
     /// Removes a stored program; false if there was none.
@@ -70,9 +129,22 @@ impl Channel {
         &mut self.programs
     }
 
-    /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet).
+    /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet), with
+    /// the files a running program wrote or deleted as they are now.
     pub fn stored_programs(&self) -> Vec<(String, usize)> {
-        self.programs.iter().map(|p| (p.name().to_string(), p.text().map_or(0, |t| t.len()))).collect()
+        let stored = self.programs.iter().map(|p| (p.name().to_string(), p.text().map_or(0, |t| t.len())));
+        let files = self.interp.files();
+        if !files.has_pending() {
+            return stored.collect();
+        }
+        let mut all: std::collections::BTreeMap<String, usize> = stored.collect();
+        for (name, p) in files.pending_all() {
+            match &p.text {
+                Some(text) => all.insert(name.clone(), text.len()),
+                None => all.remove(name),
+            };
+        }
+        all.into_iter().collect()
     }
 }
 

@@ -1,0 +1,108 @@
+//! The file functions of the Programming Manual Job Planning on the session's program store:
+//! `WRITE`, `READ`, `DELETE`, `ISFILE`, `FILEDATE`, `FILETIME`, `FILESIZE`, `FILESTAT`,
+//! `FILEINFO`.
+//!
+//! They run once, when their block is read in preprocessing; a block with a file procedure
+//! first waits for the main run to reach it (as if a `STOPRE` stood before it), so a log line
+//! is written when the blocks before it have run, and carries that time. `ISFILE` in an
+//! expression does not wait. The engine does no I/O: a file is a program of the store
+//! ([`crate::programs::Programs`]). Changes are kept here, in [`Files`], until the channel
+//! takes them into its store when the program is no longer running (a log written line by line
+//! is copied into the store once, not once per line); the interpreter's own reads, and the
+//! channel's listing, see them at once.
+//!
+//! Error codes in the program's error variable are the manual's: 0 no error, 1 path not
+//! permitted, 2 path not found, 3 file not found, 4 wrong file type, 10 file full (longer than
+//! MD11420 $MN_LEN_PROTOCOL_FILE kilobytes), 11 file in use, 13 no access right, 20 other error,
+//! and for READ 21 line does not exist, 22 the result array is too short, 23 the line range
+//! reaches past the end of the file.
+
+mod clock;
+mod functions;
+pub mod path;
+
+use std::collections::BTreeMap;
+
+use crate::programs::{Dir, Kind};
+
+pub use clock::{date, time};
+
+/// No error.
+pub const OK: i64 = 0;
+/// Path not permitted: a directory of the control that holds no part programs.
+pub const PATH_NOT_PERMITTED: i64 = 1;
+/// Path not found.
+pub const PATH_NOT_FOUND: i64 = 2;
+/// File not found.
+pub const FILE_NOT_FOUND: i64 = 3;
+/// Wrong file type.
+pub const WRONG_TYPE: i64 = 4;
+/// The file would grow past MD11420 $MN_LEN_PROTOCOL_FILE.
+pub const FILE_FULL: i64 = 10;
+/// The file runs (the program or one of its callers): it may not be written or deleted.
+pub const FILE_IN_USE: i64 = 11;
+/// Other error (a file whose text cannot be read).
+pub const OTHER: i64 = 20;
+/// READ: the first line asked for is not in the file.
+pub const NO_SUCH_LINE: i64 = 21;
+/// READ: the result array has fewer elements than lines asked for.
+pub const ARRAY_TOO_SHORT: i64 = 22;
+/// READ: the lines asked for reach past the end of the file.
+pub const RANGE_TOO_LARGE: i64 = 23;
+
+/// The procedures (`WRITE(err, ...)`): statements of a block.
+pub const PROCEDURES: &[&str] = &["WRITE", "READ", "DELETE", "FILEDATE", "FILETIME", "FILESIZE", "FILESTAT", "FILEINFO"];
+
+/// A file written or deleted by the program, not yet in the channel's store.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pending {
+    /// The directory of the stored program it replaces, or of its path.
+    pub dir: Option<Dir>,
+    pub kind: Kind,
+    /// The whole text; `None`: deleted.
+    pub text: Option<String>,
+}
+
+/// The interpreter's side of the file functions: changes not yet in the store, the time each
+/// file was last written, and the session's clock.
+#[derive(Debug, Clone, Default)]
+pub struct Files {
+    pending: BTreeMap<String, Pending>,
+    /// Seconds of session time at each file's last WRITE (files not written by a program of
+    /// this channel carry none and show the clock's origin).
+    stamps: BTreeMap<String, u64>,
+    /// Seconds of session time now (the channel's IPO cycles; the engine reads no clock).
+    now: u64,
+}
+
+impl Files {
+    /// Whether there are changes the channel has not taken yet.
+    pub fn has_pending(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
+    /// The change to `name` not yet in the store, if any.
+    pub fn pending(&self, name: &str) -> Option<&Pending> {
+        self.pending.get(name)
+    }
+
+    /// Every change not yet in the store, by name.
+    pub fn pending_all(&self) -> impl Iterator<Item = (&String, &Pending)> {
+        self.pending.iter()
+    }
+
+    /// Takes the changes for the store.
+    pub fn take_pending(&mut self) -> BTreeMap<String, Pending> {
+        std::mem::take(&mut self.pending)
+    }
+
+    /// Sets the session clock (seconds since the channel's power on).
+    pub fn set_now(&mut self, seconds: u64) {
+        self.now = seconds;
+    }
+
+    /// Seconds of session time at the last WRITE to `name`; 0 if none.
+    pub fn stamp(&self, name: &str) -> u64 {
+        self.stamps.get(name).copied().unwrap_or(0)
+    }
+}
