@@ -170,7 +170,10 @@ impl Interpreter {
         if !matches!(self.files.pending.get(&f.name), Some(Pending { text: Some(_), .. })) {
             // The first line since the store last took the changes: start from the stored text.
             let stored = programs.file(&f.name, f.dir.as_ref());
-            let dir = stored.map_or(f.dir.clone(), |p| p.dir().cloned());
+            // A new file goes where its path says in a store of directories; the session's
+            // flat store (programs PUT over REST, archives) has one program per name.
+            let new_dir = || programs.main_dir().and(f.dir.clone());
+            let dir = stored.map_or_else(new_dir, |p| p.dir().cloned());
             let base = match stored.filter(|_| !self.files.pending.contains_key(&f.name)) {
                 Some(p) => p.raw_text().map_err(|_| ()).map(|t| t.to_string()).unwrap_or_default(),
                 None => String::new(),
