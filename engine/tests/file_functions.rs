@@ -228,3 +228,36 @@ fn a_log_of_ten_thousand_lines_is_written_in_one_copy() {
     assert!(log.ends_with("LINE 9999\nLINE 10000\n"));
     eprintln!("10,000 WRITE lines: {took:?} (debug build)");
 }
+
+#[test]
+fn the_stores_quota_is_no_free_resources() {
+    // Quota 20 bytes; "M17" (3) is stored: "0123456789" and its line feed make 14, then a second
+    // line would make 25 > 20: error 12, nothing written.
+    let mut ch = channel();
+    ch.store_program("SUB", "M17").unwrap();
+    ch.set_program_budget(Some(20));
+    run_on(&mut ch, "DEF INT E1, E2\nWRITE(E1, \"LOG\", \"0123456789\")\nWRITE(E2, \"LOG\", \"0123456789\")\nM30");
+    ok(&ch);
+    assert_eq!((int(&ch, "E1", 0), int(&ch, "E2", 0)), (0, 12));
+    assert_eq!(ch.stored_program("LOG"), Some("0123456789\n"));
+}
+
+#[test]
+fn string_conversions_in_programs() {
+    let mut ch = channel();
+    run_on(
+        &mut ch,
+        "DEF STRING[16] S\nR1=TOINT(2.5)\nR2=TOREAL(\"1.25\")*2\nS=SPRINT(\"%S-%03D\", \"T\", 7)\nR3=STRLEN(S)\n\
+         R4=ISNUMBER(\"12.5\")\nR5=NUMBER(\"3.5\")+1\nR6=INDEX(S, \"-\")\nS=TOUPPER(SUBSTR(\"abcdef\", 1, 3))\nM30",
+    );
+    ok(&ch);
+    // TOINT rounds half away from zero; "%03D" pads 7 to width 3 with zeros, so S = "T-007", 5
+    // long with "-" at index 1; SUBSTR from index 1, 3 characters.
+    assert_eq!(
+        [ch.r_param(1), ch.r_param(2), ch.r_param(3), ch.r_param(4), ch.r_param(5), ch.r_param(6)],
+        [3.0, 2.5, 5.0, 1.0, 4.5, 1.0]
+    );
+    assert_eq!(text(&ch, "S", 0), "BCD");
+    run_on(&mut ch, "DEF STRING[16] S\nS=SPRINT(\"%S-%03D\", \"T\", 7)\nM30");
+    assert_eq!(text(&ch, "S", 0), "T-007");
+}

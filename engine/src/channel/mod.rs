@@ -432,6 +432,7 @@ impl Channel {
         let changed = self.take_changed_file_names();
         let mut next = Channel::with_config(data, cfg, std::mem::take(&mut self.programs));
         next.changed_files = changed;
+        next.set_program_budget(self.interp.files().budget());
         let mut pos = [0.0; MAX_CHANNEL_AXES];
         for (k, ch) in next.cfg.channel_axes.iter().enumerate() {
             let name = &next.cfg.machine_axes[ch.machine_axis].name;

@@ -90,6 +90,12 @@ impl Channel {
         }
     }
 
+    /// Sets the quota of the program store in bytes (`None`: none) that the file functions keep
+    /// to: a WRITE that would make the store larger answers error 12 (no free resources).
+    pub fn set_program_budget(&mut self, bytes: Option<usize>) {
+        self.interp.files_mut().set_budget(bytes);
+    }
+
     /// Takes pending file changes into the store; the names changed since the shell last asked.
     pub(super) fn take_changed_file_names(&mut self) -> std::collections::BTreeSet<String> {
         if self.interp.files().has_pending() {

@@ -391,10 +391,12 @@ impl AppState {
         id: &str,
         number: u64,
         machine: &str,
-        channel: Channel,
+        mut channel: Channel,
         client_ip: Option<IpAddr>,
         tokens: storage::TokenHashes,
     ) -> Arc<SessionEntry> {
+        // Files programs write (WRITE) keep to the session's quota, as programs PUT over REST do.
+        channel.set_program_budget(Some(self.limits().session_program_bytes));
         let program_bytes = stored_bytes(&channel);
         let handle = SessionHandle::spawn(id, machine, channel, self.limits().actor_config());
         let entry = Arc::new(SessionEntry::new(handle.clone(), number, client_ip, tokens, self.limits()));

@@ -8,7 +8,8 @@ use crate::alarm::Alarm;
 /// `SPRINT("format", values...)`: the format with each `%` field replaced by the next value.
 /// Fields: `%D` integer (a REAL rounded), `%F` REAL with 6 decimals, `%E` exponential, `%G`
 /// the shorter of both, `%S` string, `%B` TRUE/FALSE, `%C` a character, `%X` hexadecimal,
-/// `%%` a percent sign; `%<width>` pads on the left, `%.<n>F` / `%.<n>E` give the decimals.
+/// `%%` a percent sign; `%<width>` pads on the left with blanks (`%0<width>` a number with
+/// zeros), `%.<n>F` / `%.<n>E` give the decimals.
 /// A field without its value, or a value left over, is an alarm naming it.
 pub fn sprint(vals: &[Value], line: u32) -> Result<Value, Alarm> {
     let Some((format, args)) = vals.split_first() else {
@@ -72,10 +73,19 @@ pub fn sprint(vals: &[Value], line: u32) -> Result<Value, Alarm> {
             }
             other => return Err(Alarm::type_error(line, &format!("SPRINT: unknown field %{other}"))),
         };
+        let zeros = width.starts_with('0') && matches!(kind, 'D' | 'I' | 'F' | 'E' | 'G' | 'X');
         let width = width.parse::<usize>().unwrap_or(0);
         let pad = width.saturating_sub(field.chars().count());
-        out.extend(std::iter::repeat_n(' ', pad));
-        out.push_str(&field);
+        if zeros {
+            // `%05D`: zeros after the sign, as C pads.
+            let (sign, digits) = field.strip_prefix('-').map_or(("", field.as_str()), |d| ("-", d));
+            out.push_str(sign);
+            out.extend(std::iter::repeat_n('0', pad));
+            out.push_str(digits);
+        } else {
+            out.extend(std::iter::repeat_n(' ', pad));
+            out.push_str(&field);
+        }
     }
     if args.next().is_some() {
         return Err(Alarm::type_error(line, "SPRINT: more values than % fields"));
@@ -137,6 +147,7 @@ mod tests {
         assert_eq!(sp(&[f("%E"), Value::Real(1234.5)]), "1.234500e+03");
         assert_eq!(sp(&[f("%S=%B %%"), f("ON"), Value::Bool(true)]), "ON=TRUE %");
         assert_eq!(sp(&[f("%5D|%X"), Value::Int(42), Value::Int(255)]), "   42|FF");
+        assert_eq!(sp(&[f("%05D"), Value::Int(-42)]), "-0042");
         assert!(sprint(&[f("%D %D"), Value::Int(1)], 3).is_err());
         assert!(sprint(&[f("%D"), Value::Int(1), Value::Int(2)], 3).is_err());
     }

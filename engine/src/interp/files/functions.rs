@@ -167,6 +167,9 @@ impl Interpreter {
         if current + text.len() + 1 > limit {
             return Ok(super::FILE_FULL);
         }
+        if self.files.budget.is_some_and(|b| self.files.total_bytes(programs) + text.len() + 1 > b) {
+            return Ok(super::NO_RESOURCES);
+        }
         if !matches!(self.files.pending.get(&f.name), Some(Pending { text: Some(_), .. })) {
             // The first line since the store last took the changes: start from the stored text.
             let stored = programs.file(&f.name, f.dir.as_ref());

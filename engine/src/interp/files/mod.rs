@@ -13,7 +13,8 @@
 //!
 //! Error codes in the program's error variable are the manual's: 0 no error, 1 path not
 //! permitted, 2 path not found, 3 file not found, 4 wrong file type, 10 file full (longer than
-//! MD11420 $MN_LEN_PROTOCOL_FILE kilobytes), 11 file in use, 13 no access right, 20 other error,
+//! MD11420 $MN_LEN_PROTOCOL_FILE kilobytes), 11 file in use, 12 no free resources (the
+//! session's store would exceed the quota the shell set), 20 other error,
 //! and for READ 21 line does not exist, 22 the result array is too short, 23 the line range
 //! reaches past the end of the file.
 
@@ -41,6 +42,8 @@ pub const WRONG_TYPE: i64 = 4;
 pub const FILE_FULL: i64 = 10;
 /// The file runs (the program or one of its callers): it may not be written or deleted.
 pub const FILE_IN_USE: i64 = 11;
+/// No free resources: the session's program store would exceed its quota.
+pub const NO_RESOURCES: i64 = 12;
 /// Other error (a file whose text cannot be read).
 pub const OTHER: i64 = 20;
 /// READ: the first line asked for is not in the file.
@@ -73,6 +76,8 @@ pub struct Files {
     stamps: BTreeMap<String, u64>,
     /// Seconds of session time now (the channel's IPO cycles; the engine reads no clock).
     now: u64,
+    /// Bytes all programs of the store may hold together (the shell's quota); `None`: no limit.
+    budget: Option<usize>,
 }
 
 impl Files {
@@ -99,6 +104,24 @@ impl Files {
     /// Sets the session clock (seconds since the channel's power on).
     pub fn set_now(&mut self, seconds: u64) {
         self.now = seconds;
+    }
+
+    /// Sets the quota of the whole program store, in bytes, that WRITE keeps to (error 12).
+    pub fn set_budget(&mut self, bytes: Option<usize>) {
+        self.budget = bytes;
+    }
+
+    /// The quota [`Files::set_budget`] set.
+    pub fn budget(&self) -> Option<usize> {
+        self.budget
+    }
+
+    /// Bytes of every program in `programs` with the pending changes applied (a program not
+    /// read yet counts 0, as the store's listing shows it).
+    fn total_bytes(&self, programs: &crate::programs::Programs) -> usize {
+        let stored: usize =
+            programs.iter().filter(|p| !self.pending.contains_key(p.name())).map(|p| p.text().map_or(0, |t| t.len())).sum();
+        stored + self.pending.values().map(|p| p.text.as_ref().map_or(0, String::len)).sum::<usize>()
     }
 
     /// Seconds of session time at the last WRITE to `name`; 0 if none.
