@@ -261,3 +261,31 @@ fn string_conversions_in_programs() {
     run_on(&mut ch, "DEF STRING[16] S\nS=SPRINT(\"%S-%03D\", \"T\", 7)\nM30");
     assert_eq!(text(&ch, "S", 0), "T-007");
 }
+
+// --- Data files -------------------------------------------------------------------------------
+
+/// A tool-data file in inch: 1 in = 25.4 mm exactly.
+const TOA_INCH: &str = "%_N_TOA_INI\r\n;$PATH=/_N_WKS_DIR/_N_SHAFT_WPD\r\nCHANDATA(1)\r\nINCH\r\n\
+                        $TC_TP2[1]=\"DRILL_HALF\"\r\n$TC_DP1[1,1]=200\r\n$TC_DP3[1,1]=4\r\n$TC_DP6[1,1]=0.25\r\n\
+                        METRIC\r\n$TC_DP1[2,1]=120\r\n$TC_DP3[2,1]=100\r\nM17\r\n";
+
+#[test]
+fn an_inch_tool_data_file_run_as_a_program_loads_its_lengths_in_mm() {
+    // Selected and started like a program, the _INI file loads its data: tool 1's length 4 in
+    // = 101.6 mm and radius 0.25 in = 6.35 mm; tool 2 after METRIC 100 mm.
+    let mut ch = channel();
+    run_on(&mut ch, TOA_INCH);
+    ok(&ch);
+    run_on(&mut ch, "R1=$TC_DP3[1,1]\nR2=$TC_DP6[1,1]\nR3=$TC_DP3[2,1]\nR4=$TC_DP1[1,1]\nM30");
+    ok(&ch);
+    assert_eq!([ch.r_param(1), ch.r_param(2), ch.r_param(3), ch.r_param(4)], [4.0 * 25.4, 0.25 * 25.4, 100.0, 200.0]);
+    assert_eq!(ch.r_param(1), 101.6);
+
+    // With T1 D1 active the tool length 101.6 mm lifts the tool tip: G0 Z0 puts the flange
+    // (machine Z) at 101.6.
+    run_on(&mut ch, "T1 M6\nD1\nG0 G90 X0 Y0 Z0\nM30");
+    ok(&ch);
+    let s = ch.snapshot();
+    let z = s.machine.iter().find(|(n, _)| n == "Z").map(|(_, v)| *v);
+    assert!(z.is_some_and(|z| (z - 101.6).abs() < 1e-9), "{:?}", s.machine);
+}

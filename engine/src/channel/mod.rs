@@ -541,6 +541,9 @@ impl Channel {
         if self.status == Status::Alarm {
             return Err(CommandError::AlarmActive);
         }
+        if programs::is_data_file(&text) {
+            return self.run_data_file(&text);
+        }
         self.check_start_lock()?;
         self.set_mode(mode)?;
         self.program_mode = mode;

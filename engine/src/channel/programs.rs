@@ -90,6 +90,13 @@ impl Channel {
         }
     }
 
+    /// Runs an NC data file as the control runs a selected `_INI` file at NC start: its data
+    /// (tool offsets, frames, setting data, `CHANDATA`, `METRIC`/`INCH`) are loaded and
+    /// activated as [`Channel::apply_machine_data`] does, and the run is over at once.
+    pub fn run_data_file(&mut self, text: &str) -> Result<(), CommandError> {
+        self.apply_machine_data(text)
+    }
+
     /// Sets the quota of the program store in bytes (`None`: none) that the file functions keep
     /// to: a WRITE that would make the store larger answers error 12 (no free resources).
     pub fn set_program_budget(&mut self, bytes: Option<usize>) {
@@ -152,6 +159,14 @@ impl Channel {
         }
         all.into_iter().collect()
     }
+}
+
+/// Whether `text` is an NC data file: its first line that is not blank is the archive header
+/// of an `_INI` file (`%_N_TOA_INI`).
+pub fn is_data_file(text: &str) -> bool {
+    let first = text.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("");
+    let upper = first.to_ascii_uppercase();
+    upper.starts_with("%_N_") && upper.ends_with("_INI")
 }
 
 /// The canonical name of a stored program: letters, digits and `_`, starting with a letter,
