@@ -541,7 +541,7 @@ impl Channel {
         if self.status == Status::Alarm {
             return Err(CommandError::AlarmActive);
         }
-        if programs::is_data_file(&text) {
+        if crate::programs::archive::is_data_file(&text) {
             return self.run_data_file(&text);
         }
         self.check_start_lock()?;

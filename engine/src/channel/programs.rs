@@ -161,14 +161,6 @@ impl Channel {
     }
 }
 
-/// Whether `text` is an NC data file: its first line that is not blank is the archive header
-/// of an `_INI` file (`%_N_TOA_INI`).
-pub fn is_data_file(text: &str) -> bool {
-    let first = text.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("");
-    let upper = first.to_ascii_uppercase();
-    upper.starts_with("%_N_") && upper.ends_with("_INI")
-}
-
 /// The canonical name of a stored program: letters, digits and `_`, starting with a letter,
 /// at most 32 characters, upper-cased; a `.MPF` or `.SPF` ending is dropped.
 pub(super) fn program_name(name: &str) -> Result<String, CommandError> {
