@@ -163,7 +163,8 @@ fn delete_and_isfile() {
 #[test]
 fn a_running_subprogram_is_in_use() {
     let mut ch = channel();
-    ch.store_program("SUB", "DEF INT E1, E2\nDELETE(E1, \"SUB\")\nWRITE(E2, \"SUB.SPF\", \"X\")\nR1=E1\nR2=E2\nM17").unwrap();
+    ch.store_program("SUB", "DEF INT E1, E2\nDELETE(E1, \"SUB\")\nWRITE(E2, \"SUB.SPF\", \"X\")\nR1=E1\nR2=E2\nM17")
+        .unwrap();
     run_on(&mut ch, "SUB\nM30");
     ok(&ch);
     assert_eq!((ch.r_param(1), ch.r_param(2)), (11.0, 11.0));
@@ -201,10 +202,7 @@ fn file_information_in_the_manuals_formats() {
 fn the_shell_learns_each_changed_file_once() {
     let mut ch = channel();
     ch.store_program("GONE", "M17").unwrap();
-    run_on(
-        &mut ch,
-        "DEF INT E, N\nFOR N=1 TO 5\nWRITE(E, \"LOG\", \"LINE \"<<N)\nENDFOR\nDELETE(E, \"GONE\")\nM30",
-    );
+    run_on(&mut ch, "DEF INT E, N\nFOR N=1 TO 5\nWRITE(E, \"LOG\", \"LINE \"<<N)\nENDFOR\nDELETE(E, \"GONE\")\nM30");
     ok(&ch);
     let changes = ch.take_program_changes();
     assert_eq!(

@@ -18,7 +18,10 @@ async fn restart(server: Server) -> Server {
 async fn a_file_written_by_a_program_is_listed_and_survives_a_restart() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;
-    assert_eq!(server.put(&format!("/sessions/{id}/programs/OLD"), json!({"text": "M17"})).await.status, StatusCode::OK);
+    assert_eq!(
+        server.put(&format!("/sessions/{id}/programs/OLD"), json!({"text": "M17"})).await.status,
+        StatusCode::OK
+    );
     // The log's second line is no NC block: a file keeps any text.
     let program = "DEF INT E\nR1=12.5\nWRITE(E, \"/_N_MPF_DIR/_N_SHIFTLOG_MPF\", \"; PART 1\")\n\
                    WRITE(E, \"SHIFTLOG\", SPRINT(\"RESULT: %.1F mm\", R1))\nDELETE(E, \"OLD\")\nM30";

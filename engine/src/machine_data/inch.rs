@@ -22,7 +22,9 @@ pub(super) fn to_metric(l: &mut Line) -> Result<(), MdError> {
     if name.starts_with("$M") || name.starts_with("$S") {
         return Err(MdError::at(
             *line,
-            format!("{name} after INCH: machine and setting data are in the machine's basic system; write them before INCH or after METRIC"),
+            format!(
+                "{name} after INCH: machine and setting data are in the machine's basic system; write them before INCH or after METRIC"
+            ),
         ));
     }
     if let Literal::Number(v) = value

@@ -44,9 +44,8 @@ pub fn sprint(vals: &[Value], line: u32) -> Result<Value, Alarm> {
         let Some(kind) = chars.next().map(|k| k.to_ascii_uppercase()) else {
             return Err(Alarm::type_error(line, "SPRINT: the format ends inside a % field"));
         };
-        let value = args
-            .next()
-            .ok_or_else(|| Alarm::type_error(line, &format!("SPRINT: no value for the field %{kind}")))?;
+        let value =
+            args.next().ok_or_else(|| Alarm::type_error(line, &format!("SPRINT: no value for the field %{kind}")))?;
         let number = || value.as_f64().map_err(|e| Alarm::type_error(line, &format!("SPRINT %{kind}: {}", e.0)));
         let field = match kind {
             'D' | 'I' => format!("{}", number()?.round() as i64),

@@ -154,11 +154,11 @@ impl Interpreter {
         if self.level().is_some_and(|l| l.within(&f.name)) {
             return Ok(super::FILE_IN_USE);
         }
-        let limit_kb = match crate::interp::eval::machine_data::read(&self.stored, cfg, "$MN_LEN_PROTOCOL_FILE", &[], line)
-        {
-            Some(Ok(v)) => v.as_i64().unwrap_or(1),
-            _ => 1,
-        };
+        let limit_kb =
+            match crate::interp::eval::machine_data::read(&self.stored, cfg, "$MN_LEN_PROTOCOL_FILE", &[], line) {
+                Some(Ok(v)) => v.as_i64().unwrap_or(1),
+                _ => 1,
+            };
         let limit = usize::try_from(limit_kb).unwrap_or(0).saturating_mul(1024);
         let current = match view(&self.files, programs, f) {
             Err(code) => return Ok(code),

@@ -54,7 +54,8 @@ pub const ARRAY_TOO_SHORT: i64 = 22;
 pub const RANGE_TOO_LARGE: i64 = 23;
 
 /// The procedures (`WRITE(err, ...)`): statements of a block.
-pub const PROCEDURES: &[&str] = &["WRITE", "READ", "DELETE", "FILEDATE", "FILETIME", "FILESIZE", "FILESTAT", "FILEINFO"];
+pub const PROCEDURES: &[&str] =
+    &["WRITE", "READ", "DELETE", "FILEDATE", "FILETIME", "FILESIZE", "FILESTAT", "FILEINFO"];
 
 /// A file written or deleted by the program, not yet in the channel's store.
 #[derive(Debug, Clone, PartialEq)]
@@ -119,8 +120,11 @@ impl Files {
     /// Bytes of every program in `programs` with the pending changes applied (a program not
     /// read yet counts 0, as the store's listing shows it).
     fn total_bytes(&self, programs: &crate::programs::Programs) -> usize {
-        let stored: usize =
-            programs.iter().filter(|p| !self.pending.contains_key(p.name())).map(|p| p.text().map_or(0, |t| t.len())).sum();
+        let stored: usize = programs
+            .iter()
+            .filter(|p| !self.pending.contains_key(p.name()))
+            .map(|p| p.text().map_or(0, |t| t.len()))
+            .sum();
         stored + self.pending.values().map(|p| p.text.as_ref().map_or(0, String::len)).sum::<usize>()
     }
 

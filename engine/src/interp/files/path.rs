@@ -81,7 +81,10 @@ mod tests {
         assert_eq!(ok("LOG.SPF"), ("LOG".into(), None, Kind::Sub));
         assert_eq!(ok("_N_MY_LOG_MPF"), ("MY_LOG".into(), None, Kind::Main));
         assert_eq!(ok("/_N_MPF_DIR/_N_LOG_MPF"), ("LOG".into(), Some(Dir::Mpf), Kind::Main));
-        assert_eq!(ok("/_N_WKS_DIR/_N_SHAFT_WPD/_N_M1_SPF"), ("M1".into(), Some(Dir::Workpiece("SHAFT".into())), Kind::Sub));
+        assert_eq!(
+            ok("/_N_WKS_DIR/_N_SHAFT_WPD/_N_M1_SPF"),
+            ("M1".into(), Some(Dir::Workpiece("SHAFT".into())), Kind::Sub)
+        );
         assert_eq!(ok("/_N_SPF_DIR/LOG"), ("LOG".into(), Some(Dir::Spf), Kind::Main));
     }
 
