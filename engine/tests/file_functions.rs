@@ -287,3 +287,26 @@ fn an_inch_tool_data_file_run_as_a_program_loads_its_lengths_in_mm() {
     let z = s.machine.iter().find(|(n, _)| n == "Z").map(|(_, v)| *v);
     assert!(z.is_some_and(|z| (z - 101.6).abs() < 1e-9), "{:?}", s.machine);
 }
+
+#[test]
+fn a_program_stored_by_the_shell_while_a_file_is_pending_wins() {
+    // WRITE while the program runs (a dwell of 1 s follows): the listing shows the line at
+    // once; the shell then stores LOG itself: its text stands, the run's change is dropped.
+    let mut ch = channel();
+    ch.run_program("DEF INT E\nWRITE(E, \"LOG\", \"A\")\nG4 F1\nM30").unwrap();
+    let mut ticks = 0;
+    while ch.stored_program("LOG").is_none() {
+        ch.step();
+        ticks += 1;
+        assert!(ticks < 1000, "WRITE not done");
+    }
+    assert!(ch.is_busy());
+    assert_eq!(ch.stored_program("LOG"), Some("A\n"));
+    ch.store_program("LOG", "M17").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    ok(&ch);
+    assert_eq!(ch.stored_program("LOG"), Some("M17"));
+    assert!(ch.take_program_changes().is_empty());
+}

@@ -12,6 +12,7 @@ impl Channel {
     pub fn store_program(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
         let name = program_name(name)?;
         CommandError::check(text)?;
+        self.interp.files_mut().discard(&name);
         self.programs.insert(name.clone(), Arc::from(text));
         Ok(name)
     }
@@ -43,6 +44,7 @@ impl Channel {
         Ok(checked
             .into_iter()
             .map(|(name, body)| {
+                self.interp.files_mut().discard(&name);
                 self.programs.insert(name.clone(), Arc::from(body));
                 name
             })
@@ -62,6 +64,7 @@ impl Channel {
     /// log a program wrote with WRITE), checked only if it is ever called.
     pub fn store_file(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
         let name = program_name(name)?;
+        self.interp.files_mut().discard(&name);
         self.programs.add(StoredProgram::unchecked(name.clone(), None, None, Arc::from(text)));
         Ok(name)
     }
@@ -69,13 +72,18 @@ impl Channel {
     /// Takes the file functions' changes into the store (when the program no longer runs, so
     /// a log written line by line is copied once) and sets the files' clock; called every
     /// cycle, it costs a comparison when no file changed.
+    #[inline]
     pub(super) fn sync_files(&mut self) {
         let files = self.interp.files_mut();
-        files.set_now((self.tick as f64 * self.cfg.ipo_cycle) as u64);
-        if !files.has_pending() || self.status == super::Status::Running {
-            return;
+        files.set_tick(self.tick);
+        if files.has_pending() && self.status != super::Status::Running {
+            self.store_pending_files();
         }
-        for (name, change) in files.take_pending() {
+    }
+
+    #[cold]
+    fn store_pending_files(&mut self) {
+        for (name, change) in self.interp.files_mut().take_pending() {
             match change.text {
                 Some(text) => {
                     // Replaces the program of that name in the directory it was found in.
@@ -128,7 +136,12 @@ impl Channel {
 
     /// Removes a stored program; false if there was none.
     pub fn delete_program(&mut self, name: &str) -> bool {
-        program_name(name).is_ok_and(|n| self.programs.remove(&n))
+        program_name(name).is_ok_and(|n| {
+            // A file the running program wrote and not yet stored counts as there.
+            let pending = self.interp.files().pending(&n).is_some_and(|p| p.text.is_some());
+            self.interp.files_mut().discard(&n);
+            self.programs.remove(&n) || pending
+        })
     }
 
     /// The program store (directories, programs read when first called).

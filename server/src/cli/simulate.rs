@@ -71,7 +71,8 @@ pub struct SimulateArgs {
     /// Print the JSON on one line.
     #[arg(long)]
     pub compact: bool,
-    /// The part program (main program) to run.
+    /// The part program (main program) to run; an NC data file (`.INI`, or an archive whose
+    /// header is `%_N_<NAME>_INI`) runs as the control runs it: its data are loaded.
     pub program: PathBuf,
 }
 

@@ -188,7 +188,8 @@ impl Interpreter {
             body.push_str(text);
             body.push('\n');
         }
-        self.files.stamps.insert(f.name.clone(), self.files.now);
+        let now = self.files.now(cfg.ipo_cycle);
+        self.files.stamps.insert(f.name.clone(), now);
         Ok(super::OK)
     }
 

@@ -75,8 +75,8 @@ pub struct Files {
     /// Seconds of session time at each file's last WRITE (files not written by a program of
     /// this channel carry none and show the clock's origin).
     stamps: BTreeMap<String, u64>,
-    /// Seconds of session time now (the channel's IPO cycles; the engine reads no clock).
-    now: u64,
+    /// The channel's IPO cycles so far: session time (the engine reads no clock).
+    tick: u64,
     /// Bytes all programs of the store may hold together (the shell's quota); `None`: no limit.
     budget: Option<usize>,
 }
@@ -97,14 +97,27 @@ impl Files {
         self.pending.iter()
     }
 
+    /// Drops the change to `name` not yet in the store: the shell stored or deleted the program
+    /// itself, and the last writer wins.
+    pub fn discard(&mut self, name: &str) {
+        self.pending.remove(name);
+    }
+
     /// Takes the changes for the store.
     pub fn take_pending(&mut self) -> BTreeMap<String, Pending> {
         std::mem::take(&mut self.pending)
     }
 
-    /// Sets the session clock (seconds since the channel's power on).
-    pub fn set_now(&mut self, seconds: u64) {
-        self.now = seconds;
+    /// Sets the session clock: IPO cycles since the channel's power on (a store per cycle; the
+    /// seconds are worked out only when a file is written).
+    #[inline]
+    pub fn set_tick(&mut self, tick: u64) {
+        self.tick = tick;
+    }
+
+    /// Whole seconds of session time now, for an IPO cycle of `ipo_cycle` seconds.
+    fn now(&self, ipo_cycle: f64) -> u64 {
+        (self.tick as f64 * ipo_cycle) as u64
     }
 
     /// Sets the quota of the whole program store, in bytes, that WRITE keeps to (error 12).
