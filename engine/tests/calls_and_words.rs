@@ -336,12 +336,11 @@ fn h_functions_and_m_functions_with_address_extension_are_read() {
 #[test]
 fn an_unmodelled_reserved_name_is_12550_naming_it_and_its_line() {
     for (word, name) in [
-        // WORKPIECE and ACTBLOCNO are accepted now (program_data.rs); probing and the file
-        // functions are not modelled.
+        // WORKPIECE and ACTBLOCNO are accepted now (program_data.rs), the file functions too
+        // (file_functions.rs); probing is not modelled.
         ("MEAS=1 G1 X10 F100", "MEAS"),
-        ("CYCLE61(10,0,2,0,0,0,80,60,5,80,0,100,31,0)", "CYCLE61"),
+        ("CYCLE79(10,0,2,-5,0,0,6,40)", "CYCLE79"),
         ("R1=$MN_INTERPOLATOR_CYCLE", "$MN_INTERPOLATOR_CYCLE"),
-        ("WRITE(R1,\"LOG\",\"done\")", "WRITE"),
         // Synchronized actions are modelled now (synchronized_actions.rs); a name in one that
         // is not a variable of synchronized actions is still 12550 naming it.
         ("WHEN $AA_IM[X]>5 DO $P_UIFR[1]=1", "$P_UIFR"),

@@ -16,6 +16,8 @@
 //! - `; input 3`                digital input 3 (`$A_IN[3]`) is on when the program starts
 //! - `; expect OUT 2=1`         digital output 2 (`$A_OUT[2]`) at the end
 //! - `; expect AUX M8 H2=1.5 M30` the M and H functions put out, in order, as written
+//! - `; expect FILE LOG=A|B`    the stored program or file LOG holds the lines A and B (`|`
+//!   between lines, each ending with a line feed; `FILE LOG=` with nothing: no such file)
 //!
 //! A line `;;; NAME` starts a subprogram stored under NAME; the main program is what comes first.
 
@@ -114,6 +116,13 @@ fn run_fixture(path: &Path) -> Result<(), String> {
             let got = ch.digital_io().output(n).ok_or("no such output")?;
             if got != (want.trim() == "1") {
                 return fail(format!("{}", u8::from(got)));
+            }
+        } else if let Some(file) = e.strip_prefix("FILE ") {
+            let (name, want) = file.split_once('=').ok_or("bad FILE expectation")?;
+            let want: Option<String> = (!want.is_empty()).then(|| want.split('|').map(|l| format!("{l}\n")).collect());
+            let got = ch.stored_program(name.trim()).map(str::to_string);
+            if got != want {
+                return fail(format!("{got:?}"));
             }
         } else if let Some(text) = e.strip_prefix("MSG ") {
             if snap.message.as_deref() != Some(text) {

@@ -209,6 +209,21 @@ async function main() {
       if (await page.isHidden("#area-program")) throw new Error("a program with errors was selected");
     });
 
+    await step("an archive file uploaded in the program manager stores each of its programs", async () => {
+      await page.click('[data-goto="manager"]');
+      const archive = ["%_N_UPMAIN_MPF", ";$PATH=/_N_MPF_DIR", "UPSUB", "M30", "%_N_UPSUB_SPF", ";$PATH=/_N_SPF_DIR", "G0 X1", "M17", ""];
+      await page.setInputFiles("#programs-upload-file", {
+        name: "PARTS.ARC",
+        mimeType: "text/plain",
+        buffer: Buffer.from(archive.join("\r\n")),
+      });
+      await page.waitForSelector('#programs tr[data-program="UPMAIN"]');
+      await page.waitForSelector('#programs tr[data-program="UPSUB"]');
+      const message = await page.textContent("#message-text");
+      if (!message?.includes("stored UPMAIN, UPSUB")) throw new Error(`message: ${message}`);
+      await page.click('[data-goto="program"]');
+    });
+
     await step("program saved, listed by the program manager, selected", async () => {
       await page.fill(EDITOR, PROGRAM);
       await page.click("#btn-editor-check");

@@ -224,6 +224,8 @@ pub struct Channel {
     program: Option<ProgramText>,
     /// Stored programs (main programs and subprograms) by upper-case name.
     programs: Programs,
+    /// Programs the file functions changed since the shell last took them (by name, once).
+    changed_files: std::collections::BTreeSet<String>,
     /// The prepared blocks whose items are still queued, with where their text is (for display).
     queued_blocks: VecDeque<main_run::QueuedBlock>,
     /// Block preparation has reached the end of the program or stopped on an alarm.
@@ -336,6 +338,7 @@ impl Channel {
             program: None,
             queued_blocks: VecDeque::new(),
             programs,
+            changed_files: Default::default(),
             prep_done: true,
             pending: VecDeque::new(),
             planner,
@@ -433,7 +436,11 @@ impl Channel {
     fn replace_data(&mut self, data: MachineData, cfg: MachineConfig) {
         let old_pos = *self.planner.position();
         let old_names: Vec<String> = self.cfg.machine_axes.iter().map(|a| a.name.clone()).collect();
+        // The files a program wrote go into the store first, and stay listed as changed.
+        let changed = self.take_changed_file_names();
         let mut next = Channel::with_config(data, cfg, std::mem::take(&mut self.programs));
+        next.changed_files = changed;
+        next.set_program_budget(self.interp.files().budget());
         let mut pos = [0.0; MAX_CHANNEL_AXES];
         for (k, ch) in next.cfg.channel_axes.iter().enumerate() {
             let name = &next.cfg.machine_axes[ch.machine_axis].name;
@@ -541,6 +548,9 @@ impl Channel {
         }
         if self.status == Status::Alarm {
             return Err(CommandError::AlarmActive);
+        }
+        if crate::programs::archive::is_data_file(&text) {
+            return self.run_data_file(&text);
         }
         self.check_start_lock()?;
         self.set_mode(mode)?;
@@ -728,6 +738,7 @@ impl Channel {
         if self.status == Status::Running && self.planner.is_empty() {
             self.execute_actions();
         }
+        self.sync_files();
     }
 
     /// Removes alarms that the cancel key clears.

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use super::{Channel, CommandError};
 use crate::interp::Programs;
-use crate::programs::Kind;
+use crate::programs::{Kind, StoredProgram};
 
 impl Channel {
     /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
@@ -12,6 +12,7 @@ impl Channel {
     pub fn store_program(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
         let name = program_name(name)?;
         CommandError::check(text)?;
+        self.interp.files_mut().discard(&name);
         self.programs.insert(name.clone(), Arc::from(text));
         Ok(name)
     }
@@ -43,20 +44,104 @@ impl Channel {
         Ok(checked
             .into_iter()
             .map(|(name, body)| {
+                self.interp.files_mut().discard(&name);
                 self.programs.insert(name.clone(), Arc::from(body));
                 name
             })
             .collect())
     }
 
-    /// A stored program's text.
+    /// A stored program's text (a file a running program wrote or deleted as it is now).
     pub fn stored_program(&self, name: &str) -> Option<&str> {
-        self.programs.get(&program_name(name).ok()?).map(|t| &**t)
+        let name = program_name(name).ok()?;
+        match self.interp.files().pending(&name) {
+            Some(p) => p.text.as_deref(),
+            None => self.programs.get(&name).map(|t| &**t),
+        }
+    }
+
+    /// Stores `text` under `name` without checking it: a file that need not be a program (a
+    /// log a program wrote with WRITE), checked only if it is ever called.
+    pub fn store_file(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
+        let name = program_name(name)?;
+        self.interp.files_mut().discard(&name);
+        self.programs.add(StoredProgram::unchecked(name.clone(), None, None, Arc::from(text)));
+        Ok(name)
+    }
+
+    /// Takes the file functions' changes into the store (when the program no longer runs, so
+    /// a log written line by line is copied once) and sets the files' clock; called every
+    /// cycle, it costs a comparison when no file changed.
+    #[inline]
+    pub(super) fn sync_files(&mut self) {
+        let files = self.interp.files_mut();
+        files.set_tick(self.tick);
+        if files.has_pending() && self.status != super::Status::Running {
+            self.store_pending_files();
+        }
+    }
+
+    #[cold]
+    fn store_pending_files(&mut self) {
+        for (name, change) in self.interp.files_mut().take_pending() {
+            match change.text {
+                Some(text) => {
+                    // Replaces the program of that name in the directory it was found in.
+                    let kind = Some(change.kind);
+                    self.programs.add(StoredProgram::unchecked(name.clone(), change.dir, kind, Arc::from(text)));
+                }
+                None => {
+                    self.programs.remove(&name);
+                }
+            }
+            self.changed_files.insert(name);
+        }
+    }
+
+    /// Runs an NC data file as the control runs a selected `_INI` file at NC start: its data
+    /// (tool offsets, frames, setting data, `CHANDATA`, `METRIC`/`INCH`) are loaded and
+    /// activated as [`Channel::apply_machine_data`] does, and the run is over at once.
+    pub fn run_data_file(&mut self, text: &str) -> Result<(), CommandError> {
+        self.apply_machine_data(text)
+    }
+
+    /// Sets the quota of the program store in bytes (`None`: none) that the file functions keep
+    /// to: a WRITE that would make the store larger answers error 12 (no free resources).
+    pub fn set_program_budget(&mut self, bytes: Option<usize>) {
+        self.interp.files_mut().set_budget(bytes);
+    }
+
+    /// Takes pending file changes into the store; the names changed since the shell last asked.
+    pub(super) fn take_changed_file_names(&mut self) -> std::collections::BTreeSet<String> {
+        if self.interp.files().has_pending() {
+            let status = std::mem::replace(&mut self.status, super::Status::Idle);
+            self.sync_files();
+            self.status = status;
+        }
+        std::mem::take(&mut self.changed_files)
+    }
+
+    /// The programs the file functions wrote or deleted since the last call, each once, with
+    /// their text now (`None`: deleted): what the shell persists. Pending changes of a program
+    /// that still runs are taken into the store first.
+    pub fn take_program_changes(&mut self) -> Vec<(String, Option<String>)> {
+        self.take_changed_file_names()
+            .into_iter()
+            .map(|name| {
+                let text = self.programs.get(&name).map(|t| t.to_string());
+                (name, text)
+            })
+            .collect()
     }
 
     /// Removes a stored program; false if there was none.
     pub fn delete_program(&mut self, name: &str) -> bool {
-        program_name(name).is_ok_and(|n| self.programs.remove(&n))
+        program_name(name).is_ok_and(|n| {
+            // A file the running program wrote and not yet stored counts as there.
+            let pending = self.interp.files().pending(&n).is_some_and(|p| p.text.is_some());
+            self.interp.files_mut().discard(&n);
+            self.programs.remove(&n) || pending
+        })
     }
 
     /// The program store (directories, programs read when first called).
@@ -70,9 +155,22 @@ impl Channel {
         &mut self.programs
     }
 
-    /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet).
+    /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet), with
+    /// the files a running program wrote or deleted as they are now.
     pub fn stored_programs(&self) -> Vec<(String, usize)> {
-        self.programs.iter().map(|p| (p.name().to_string(), p.text().map_or(0, |t| t.len()))).collect()
+        let stored = self.programs.iter().map(|p| (p.name().to_string(), p.text().map_or(0, |t| t.len())));
+        let files = self.interp.files();
+        if !files.has_pending() {
+            return stored.collect();
+        }
+        let mut all: std::collections::BTreeMap<String, usize> = stored.collect();
+        for (name, p) in files.pending_all() {
+            match &p.text {
+                Some(text) => all.insert(name.clone(), text.len()),
+                None => all.remove(name),
+            };
+        }
+        all.into_iter().collect()
     }
 }
 

@@ -7,6 +7,7 @@ pub(super) mod indirect_axis;
 pub(crate) mod machine_data;
 pub(super) mod numeric;
 pub(super) mod scope;
+pub(super) mod strings;
 pub mod value;
 pub(super) mod value_lists;
 pub mod vars;
@@ -294,6 +295,11 @@ fn call(name: &str, vals: &[Value], line: u32) -> Result<Value, Alarm> {
         | "STRLEN" | "TOUPPER" | "TOLOWER" | "NUMBER" | "ISNUMBER" | "AXNAME" | "AXSTRING" => arity(1)?,
         "ATAN2" | "MINVAL" | "MAXVAL" | "INDEX" | "RINDEX" => arity(2)?,
         "BOUND" | "SUBSTR" => arity(3)?,
+        "SPRINT" => return strings::sprint(vals, line),
+        "TOINT" | "TOREAL" => {
+            arity(1)?;
+            return if name == "TOINT" { strings::to_int(&vals[0], line) } else { strings::to_real(&vals[0], line) };
+        }
         "_OMITTED" => return Err(Alarm::syntax(line, "a value is missing: an empty argument where one is needed")),
         "SET" | "REP" => {
             return Err(Alarm::syntax(line, &format!("{name}(..) only as the value of a DEF or of an array element")));

@@ -12,6 +12,7 @@ mod contour;
 pub mod dynamics;
 pub mod eval;
 mod everyday;
+pub mod files;
 mod flow;
 mod frames;
 pub mod gcodes;
@@ -236,6 +237,8 @@ pub struct Interpreter {
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
     /// not applied yet.
     data_writes: Vec<(u32, String)>,
+    /// Files written or deleted by the file functions (WRITE, DELETE) not yet in the store.
+    files: files::Files,
     /// Alarms that only inform (10910): shown while the program goes on.
     warnings: Vec<Alarm>,
     /// A move held back until the next block decides its corner (RND, CHF, CHR).
@@ -295,6 +298,7 @@ impl Interpreter {
             read_line: 0,
             call_state: Default::default(),
             data_writes: Vec::new(),
+            files: files::Files::default(),
             warnings: Vec::new(),
             held: None,
             capture: None,
@@ -376,6 +380,16 @@ impl Interpreter {
     /// [`NEWCONF`]): the channel applies them before the next block is prepared.
     pub fn take_data_writes(&mut self) -> Vec<(u32, String)> {
         std::mem::take(&mut self.data_writes)
+    }
+
+    /// The file functions' changes not yet in the program store, and their clock.
+    pub fn files(&self) -> &files::Files {
+        &self.files
+    }
+
+    /// See [`Interpreter::files`]: the channel takes the changes and sets the clock.
+    pub fn files_mut(&mut self) -> &mut files::Files {
+        &mut self.files
     }
 
     /// Alarms raised by the blocks prepared since the last call that do not stop the program

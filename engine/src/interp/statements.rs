@@ -56,12 +56,13 @@ impl Interpreter {
             flow.current = current;
             return Ok(Prep::WaitForMainRun);
         }
-        // DELOBJ/CORRTRAFO as functions and CORRTRAFO as a statement run once, here, after
+        // DELOBJ/CORRTRAFO/ISFILE as functions, CORRTRAFO and the file procedures as statements
+        // run once, here, after
         // any wait for the main run.
         let mut block = block;
         if block.has_effect_calls() {
             self.check_unbound(block.line)?;
-            self.run_effect_calls(block.to_mut(), cfg, out)?;
+            self.run_effect_calls(block.to_mut(), cfg, programs, out)?;
         }
         match &block.stmt {
             Some(Stmt::Proc { params, save, .. }) => self.bind_params(params, *save, block.line)?,
@@ -341,7 +342,11 @@ pub(super) fn reads_main_run(block: &Block) -> bool {
         Word::Address { indices, value, .. } => {
             expr_reads_main_run(&value.expr) || indices.iter().any(expr_reads_main_run)
         }
-        Word::Keyword { args, .. } => args.iter().any(expr_reads_main_run),
+        // The file procedures act when the main run has reached them, as after a STOPRE: a
+        // log line is written when the blocks before it have run, with that time.
+        Word::Keyword { name, args } => {
+            super::files::PROCEDURES.contains(&name.as_str()) || args.iter().any(expr_reads_main_run)
+        }
         _ => false,
     });
     words

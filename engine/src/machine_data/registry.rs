@@ -196,6 +196,8 @@ pub static DEFS: &[Def] = &[
     def("MM_NUM_GLOBAL_BASE_FRAMES", 18602, N, Kind::Int, 1, Default::Int(0), 0.0, 16.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
     def("MM_NUM_TOOL_CARRIER", 18088, N, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
+    // Largest file WRITE appends to, in kilobytes (file functions: error 10 beyond it).
+    def("LEN_PROTOCOL_FILE", 11420, N, Kind::Int, 1, Default::Int(1), 1.0, 1_000_000.0),
     def("ENABLE_CHAN_AX_GAP", 11640, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
     // Kinematic chains (K12): root element name and the sizes of the $NK_/$NT_ data. The
     // defaults are this product's choice (the manual names the data, not their defaults).

@@ -39,7 +39,16 @@ pub enum Line {
 /// Splits NC data text into lines; the first syntax error is returned with its line number.
 pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
     let mut out = Vec::new();
+    // After `INCH` (until `METRIC`) the file's lengths are inch; they are stored in mm.
+    let mut inch = false;
+    let mut converted = 0;
     for (i, raw) in text.lines().enumerate() {
+        if inch {
+            for l in &mut out[converted..] {
+                super::inch::to_metric(l)?;
+            }
+        }
+        converted = out.len();
         let line = i as u32 + 1;
         let src = strip_comment(raw).trim();
         if src.is_empty() {
@@ -47,21 +56,14 @@ pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
         }
         let upper = src.to_ascii_uppercase();
         // Archives end with M17/M30; they carry no data. Their header line (`%_N_TOA_INI`)
-        // names the file; `METRIC` says the values are in mm, as NCTwin reads them anyway.
-        if upper == "M17"
-            || upper == "M30"
-            || upper == "M02"
-            || upper == "M2"
-            || upper == "METRIC"
-            || src.starts_with('%')
-        {
+        // names the file.
+        if upper == "M17" || upper == "M30" || upper == "M02" || upper == "M2" || src.starts_with('%') {
             continue;
         }
-        if upper == "INCH" {
-            return Err(MdError::at(
-                line,
-                "INCH: NC data in inch are not converted; NCTwin reads NC data in mm (METRIC)".to_string(),
-            ));
+        // `METRIC`: the values that follow are in mm, as NCTwin stores them; `INCH`: in inch.
+        if upper == "METRIC" || upper == "INCH" {
+            inch = upper == "INCH";
+            continue;
         }
         if let Some(frames) = frame_constructors(line, src)? {
             out.extend(frames);
@@ -80,11 +82,16 @@ pub fn parse(text: &str) -> Result<Vec<Line>, MdError> {
         }
         out.push(parse_assignment(line, src)?);
     }
+    if inch {
+        for l in &mut out[converted..] {
+            super::inch::to_metric(l)?;
+        }
+    }
     Ok(out)
 }
 
 /// The frame variables a data file may assign as a whole.
-const FRAME_NAMES: [&str; 4] = ["$P_UIFR", "$P_CHBFR", "$P_NCBFR", "$P_UBFR"];
+pub(super) const FRAME_NAMES: [&str; 4] = ["$P_UIFR", "$P_CHBFR", "$P_NCBFR", "$P_UBFR"];
 
 /// `$P_UIFR[1]=CTRANS(X,10,Y,0):CROT(Z,45):CSCALE(X,2):CMIRROR(Y)`, as `_N_UFR_INI` files write
 /// whole frames: one component assignment (`$P_UIFR[1,X,TR]=10`) per axis value. `None` for
@@ -372,7 +379,8 @@ mod tests {
             lines[2..],
             [frame("X", "TR", 10.5), frame("Y", "TR", -2.0), frame("Z", "RT", 45.0), frame("Y", "MI", 1.0)]
         );
-        assert_eq!(parse("INCH\n").unwrap_err().line, Some(1));
+        // INCH switches the units (machine_data::inch): alone it carries no data.
+        assert_eq!(parse("INCH\n"), Ok(Vec::new()));
     }
 
     #[test]

@@ -162,6 +162,14 @@ pub fn write(out: &mut String, name: &str, kind: &Kind, dir: Option<&Dir>, body:
     }
 }
 
+/// Whether `text` is an NC data file: its first line that is not blank is the archive header
+/// of an `_INI` file (`%_N_TOA_INI`).
+pub fn is_data_file(text: &str) -> bool {
+    let first = text.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("");
+    let upper = first.to_ascii_uppercase();
+    upper.starts_with("%_N_") && upper.ends_with("_INI")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -81,6 +81,15 @@ impl StoredProgram {
         }
     }
 
+    /// The text as stored, checked or not, read by its loader if it is not in memory yet: what
+    /// the file functions (`READ`, `FILESIZE`, ...) see, for a log file need not be a program.
+    pub fn raw_text(&self) -> Result<Arc<str>, String> {
+        match (&self.0.source, self.0.ready.get()) {
+            (Source::Text(text), _) | (_, Some(Ok(text))) => Ok(text.clone()),
+            (Source::Load(load), _) => load().map(Arc::from),
+        }
+    }
+
     /// The checked text: read and checked on the first call, the answer kept.
     pub fn ready(&self) -> Result<&Arc<str>, &CallError> {
         self.0
@@ -144,6 +153,16 @@ impl Programs {
     /// is in memory; never one of the standard cycle library, which is no program of the session.
     pub fn get(&self, name: &str) -> Option<&Arc<str>> {
         self.find_stored(name, self.main_dir.as_ref(), None).and_then(StoredProgram::text)
+    }
+
+    /// The session's own program `name` (never one of the standard cycle library) as a file
+    /// function names it: the one in `dir` if there is one, else the one of the main program's
+    /// search (its directory, `_N_SPF_DIR`, the cycle directories, the flat store).
+    pub fn file(&self, name: &str, dir: Option<&Dir>) -> Option<&StoredProgram> {
+        let candidates = self.by_name.get(name)?;
+        dir.and_then(|d| candidates.iter().find(|p| p.dir() == Some(d)))
+            .or_else(|| self.find_stored(name, self.main_dir.as_ref(), None))
+            .or_else(|| candidates.first())
     }
 
     /// Removes program `name` from every directory; false if there was none.

@@ -71,7 +71,8 @@ pub struct SimulateArgs {
     /// Print the JSON on one line.
     #[arg(long)]
     pub compact: bool,
-    /// The part program (main program) to run.
+    /// The part program (main program) to run; an NC data file (`.INI`, or an archive whose
+    /// header is `%_N_<NAME>_INI`) runs as the control runs it: its data are loaded.
     pub program: PathBuf,
 }
 
@@ -304,7 +305,15 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     }
     // Pages of a mapped program are given back until the run is over.
     let (mut text, release) = read_shared_text(&args.program)?;
-    if archive::is_archive(&text) {
+    // A data file (`_N_TOA_INI` archive, `.INI` file) runs as the control runs it: its data
+    // are loaded (the channel does so for a text with the `_INI` header; a `.INI` file without
+    // one is loaded here, with its own line numbers, and leaves nothing to run).
+    let ini = args.program.extension().is_some_and(|e| e.eq_ignore_ascii_case("ini"));
+    if ini && !archive::is_data_file(&text) {
+        channel.run_data_file(&text).map_err(|e| UsageError(format!("{}: {e}", args.program.display())))?;
+        text = ProgramText::from(String::new());
+    }
+    if archive::is_archive(&text) && !archive::is_data_file(&text) {
         text = main_from_archive(&mut channel, &args.program, &text, &mut notes)?;
     }
     let program_bytes = text.len();

@@ -391,10 +391,12 @@ impl AppState {
         id: &str,
         number: u64,
         machine: &str,
-        channel: Channel,
+        mut channel: Channel,
         client_ip: Option<IpAddr>,
         tokens: storage::TokenHashes,
     ) -> Arc<SessionEntry> {
+        // Files programs write (WRITE) keep to the session's quota, as programs PUT over REST do.
+        channel.set_program_budget(Some(self.limits().session_program_bytes));
         let program_bytes = stored_bytes(&channel);
         let handle = SessionHandle::spawn(id, machine, channel, self.limits().actor_config());
         let entry = Arc::new(SessionEntry::new(handle.clone(), number, client_ip, tokens, self.limits()));
@@ -418,14 +420,23 @@ impl AppState {
     /// the last write is always of the newest state.
     pub async fn persist_checkpoint(&self, entry: &SessionEntry) -> Result<(), ApiError> {
         let _guard = entry.save_lock.lock().await;
-        let (mut checkpoint, text) = entry
+        // The files the program wrote since the last checkpoint are saved with it.
+        let ((mut checkpoint, text), changes, bytes) = entry
             .handle
-            .with_channel(|ch| persist::checkpoint_unhashed(ch))
+            .with_channel(|ch| {
+                let changes = ch.take_program_changes();
+                let bytes = (!changes.is_empty()).then(|| stored_bytes(ch));
+                (persist::checkpoint_unhashed(ch), changes, bytes)
+            })
             .await
             .map_err(|e| ApiError::from_session(entry.id(), e))?;
+        if let Some(bytes) = bytes {
+            entry.program_bytes.store(bytes, Ordering::Release);
+        }
         let id = entry.id().to_string();
         let hashes = entry.program_hash.clone();
         self.storage_call(move |s| {
+            persist::save_program_changes(s, &id, &changes)?;
             checkpoint.active_program = hashes.checkpointed(text);
             s.save_checkpoint(&id, &checkpoint)
         })
@@ -625,6 +636,13 @@ impl AppState {
         let mut checkpoints = Vec::with_capacity(all.len());
         for entry in &all {
             guards.push(entry.save_lock.lock().await);
+            let changes = entry.handle.with_channel(|ch| ch.take_program_changes()).await.unwrap_or_default();
+            if !changes.is_empty() {
+                let id = entry.id().to_string();
+                if let Err(e) = self.storage_call(move |s| persist::save_program_changes(s, &id, &changes)).await {
+                    tracing::warn!(session = %entry.id(), error = %e, "files written by programs not saved at shutdown");
+                }
+            }
             match entry.handle.with_channel(|ch| persist::checkpoint_unhashed(ch)).await {
                 Ok((mut checkpoint, text)) => {
                     // Cached: hashed when the program was checkpointed last, unless it changed.

@@ -26,7 +26,24 @@ use nctwin_engine::channel::ResumeState;
 use nctwin_engine::lang::ProgramText;
 use nctwin_engine::{Channel, MachineData, Mode};
 
-use crate::storage::{ActiveProgram, Checkpoint, SavedSession};
+use crate::storage::{ActiveProgram, Checkpoint, SavedSession, Storage, StorageError};
+
+/// Files a program wrote or deleted with the file functions (WRITE, DELETE), each once with its
+/// text when taken (`None`: deleted), as [`Channel::take_program_changes`] gives them.
+pub type ProgramChanges = Vec<(String, Option<String>)>;
+
+/// Saves the files a program wrote or deleted: one program row each, the text as it is when the
+/// checkpoint is taken. The engine collects the changes by name, so a log written line by line
+/// is one row write per checkpoint, not one per line.
+pub fn save_program_changes(storage: &dyn Storage, id: &str, changes: &ProgramChanges) -> Result<(), StorageError> {
+    for (name, text) in changes {
+        match text {
+            Some(text) => storage.put_program(id, name, text)?,
+            None => storage.delete_program(id, name)?,
+        }
+    }
+    Ok(())
+}
 
 /// The current checkpoint of a channel, with its AUTO program hashed.
 pub fn checkpoint(channel: &Channel) -> Checkpoint {
@@ -119,7 +136,8 @@ pub fn rebuild(saved: &SavedSession) -> Result<Channel, String> {
         tracing::warn!(session = %record.id, error = %e, "saved positions not restored");
     }
     for (name, text) in &saved.programs {
-        if let Err(e) = channel.store_program(name, text) {
+        // A file a program wrote (a log) need not be a program: kept unchecked, as it was.
+        if let Err(e) = channel.store_program(name, text).or_else(|_| channel.store_file(name, text)) {
             tracing::warn!(session = %record.id, program = %name, error = %e, "saved program not restored");
         }
     }

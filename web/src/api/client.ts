@@ -2,6 +2,7 @@
 
 import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
+  ArchiveImport,
   ControlState,
   Diagnostic,
   IoChange,
@@ -47,7 +48,11 @@ async function request<T>(method: string, path: string, body?: unknown, tokenOf?
   const token = session ? tokenFor(session) : undefined;
   if (token) headers.Authorization = `Bearer ${token}`;
   const init: RequestInit = { method, headers };
-  if (body !== undefined) {
+  if (body instanceof Blob) {
+    // A file as it is (an archive: the server detects its encoding).
+    headers["Content-Type"] = "text/plain";
+    init.body = body;
+  } else if (body !== undefined) {
     headers["Content-Type"] = "application/json";
     init.body = JSON.stringify(body);
   }
@@ -127,6 +132,8 @@ export const api = {
   program: (id: string, name: string) => request<{ text: string }>("GET", p(id, name)),
   saveProgram: (id: string, name: string, text: string) => request<unknown>("PUT", p(id, name), { text }),
   deleteProgram: (id: string, name: string) => request<unknown>("DELETE", p(id, name)),
+  /** Stores every program of an archive file (`%_N_NAME_MPF` headers), all or nothing. */
+  importArchive: (id: string, file: Blob) => request<ArchiveImport>("POST", `${s(id)}/program-archive`, file),
   control: (id: string) => request<ControlState>("GET", `${s(id)}/control`),
   viewers: (id: string) => request<{ streams: number }>("GET", `${s(id)}/viewers`),
   takeControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/take`, {}),

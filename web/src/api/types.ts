@@ -137,6 +137,12 @@ export interface StoredProgram {
   size: number;
 }
 
+/** Answer of `POST /sessions/{id}/program-archive`: the programs stored and the sections skipped. */
+export interface ArchiveImport {
+  programs: { name: string; type: string; directory: string; size: number }[];
+  skipped: { name: string; line: number; reason: string }[];
+}
+
 export interface Diagnostic {
   line: number;
   column?: number | null;

@@ -15,6 +15,13 @@ export class ProgramManager {
     private readonly editor: EditorArea,
   ) {
     byId("btn-programs-refresh").addEventListener("click", () => void this.refresh());
+    const upload = byId<HTMLInputElement>("programs-upload-file");
+    byId("btn-programs-upload").addEventListener("click", () => upload.click());
+    upload.addEventListener("change", () => {
+      const file = upload.files?.[0];
+      upload.value = "";
+      if (file) void this.upload(file);
+    });
     byId("btn-programs-new").addEventListener("click", () => {
       this.editor.open("NEW", "");
       showArea("program");
@@ -39,6 +46,23 @@ export class ProgramManager {
     note.hidden = programs.length > 0;
     note.textContent = "No stored programs yet: write one in the Program area and save it.";
     byId<HTMLTableElement>("programs").tBodies[0]!.replaceChildren(...programs.map((p) => this.row(p)));
+  }
+
+  /** Uploads an archive file into the session's store (all or nothing) and says what it held. */
+  async upload(file: File): Promise<void> {
+    const id = this.session.id;
+    if (!id) return;
+    try {
+      const result = await api.importArchive(id, file);
+      const stored = result.programs.map((p) => p.name).join(", ") || "none";
+      const skipped = result.skipped.length
+        ? `; skipped: ${result.skipped.map((s) => `${s.name} (${s.reason})`).join(", ")}`
+        : "";
+      showMessage(`${file.name}: stored ${stored}${skipped}`, "info");
+    } catch (e) {
+      showMessage(`${file.name}: ${(e as Error).message}`);
+    }
+    await this.refresh();
   }
 
   private row(p: StoredProgram): HTMLTableRowElement {

@@ -1,15 +1,16 @@
-//! Predefined functions with side effects inside a block: `DELOBJ(...)` and `CORRTRAFO(...)`
-//! in any expression (`IF (DELOBJ("TRAFO_DATA") < 0)`, `R1=CORRTRAFO(...)`) and CORRTRAFO as
-//! a statement. They run once, innermost and left to right, before the block is prepared, and
+//! Predefined functions with side effects inside a block: `DELOBJ(...)`, `CORRTRAFO(...)` and
+//! `ISFILE(...)` in any expression (`IF (DELOBJ("TRAFO_DATA") < 0)`, `R1=CORRTRAFO(...)`),
+//! CORRTRAFO and the file procedures (`WRITE(err, ...)`, [`crate::interp::files`]) as
+//! statements. They run once, innermost and left to right, before the block is prepared, and
 //! are replaced by their values, so conditions and assignments then read plain numbers.
 
 use crate::alarm::Alarm;
 use crate::interp::eval::scope::{Ctx, sys_view};
-use crate::interp::{Interpreter, Item, calls::delobj};
+use crate::interp::{Interpreter, Item, Programs, calls::delobj, files};
 use crate::lang::{Block, Expr, Stmt, Word};
 use crate::machine_data::MachineConfig;
 
-const FUNCTIONS: &[&str] = &["DELOBJ", "CORRTRAFO"];
+const FUNCTIONS: &[&str] = &["DELOBJ", "CORRTRAFO", "ISFILE"];
 
 fn calls_any(e: &Expr) -> bool {
     match e {
@@ -55,7 +56,9 @@ pub(in crate::interp) fn present(block: &Block) -> bool {
     };
     stmt || block.words.iter().any(|w| match w {
         Word::Address { indices, value, .. } => indices.iter().any(calls_any) || calls_any(&value.expr),
-        Word::Keyword { name, args } => name == "CORRTRAFO" || args.iter().any(calls_any),
+        Word::Keyword { name, args } => {
+            name == "CORRTRAFO" || files::PROCEDURES.contains(&name.as_str()) || args.iter().any(calls_any)
+        }
         _ => false,
     })
 }
@@ -67,11 +70,12 @@ impl Interpreter {
         &mut self,
         block: &mut Block,
         cfg: &MachineConfig,
+        programs: &Programs,
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
         let line = block.line;
         for e in expressions(block) {
-            self.resolve_calls(e, cfg, line, out)?;
+            self.resolve_calls(e, cfg, programs, line, out)?;
         }
         let mut words = std::mem::take(&mut block.words);
         let mut kept = Vec::with_capacity(words.len());
@@ -79,6 +83,9 @@ impl Interpreter {
             match w {
                 Word::Keyword { name, args } if name == "CORRTRAFO" => {
                     self.corrtrafo(&args, cfg, line, out)?;
+                }
+                Word::Keyword { name, args } if files::PROCEDURES.contains(&name.as_str()) => {
+                    self.file_procedure(&name, &args, cfg, programs, line)?;
                 }
                 w => kept.push(w),
             }
@@ -91,13 +98,14 @@ impl Interpreter {
         &mut self,
         e: &mut Expr,
         cfg: &MachineConfig,
+        programs: &Programs,
         line: u32,
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
         match e {
             Expr::Call(name, args) => {
                 for a in args.iter_mut() {
-                    self.resolve_calls(a, cfg, line, out)?;
+                    self.resolve_calls(a, cfg, programs, line, out)?;
                 }
                 let value = match name.as_str() {
                     "DELOBJ" => {
@@ -110,19 +118,23 @@ impl Interpreter {
                         value
                     }
                     "CORRTRAFO" => self.corrtrafo(args, cfg, line, out)?,
+                    "ISFILE" => {
+                        *e = Expr::Bool(self.isfile(args, cfg, programs, line)?);
+                        return Ok(());
+                    }
                     _ => return Ok(()),
                 };
                 *e = Expr::Number(value as f64);
             }
             Expr::Var { indices, .. } => {
                 for i in indices.iter_mut() {
-                    self.resolve_calls(i, cfg, line, out)?;
+                    self.resolve_calls(i, cfg, programs, line, out)?;
                 }
             }
-            Expr::RParam(i) | Expr::Unary(_, i) => self.resolve_calls(i, cfg, line, out)?,
+            Expr::RParam(i) | Expr::Unary(_, i) => self.resolve_calls(i, cfg, programs, line, out)?,
             Expr::Binary(_, a, b) => {
-                self.resolve_calls(a, cfg, line, out)?;
-                self.resolve_calls(b, cfg, line, out)?;
+                self.resolve_calls(a, cfg, programs, line, out)?;
+                self.resolve_calls(b, cfg, programs, line, out)?;
             }
             Expr::Number(_) | Expr::Str(_) | Expr::Bool(_) => {}
         }
