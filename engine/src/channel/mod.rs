@@ -29,6 +29,7 @@ mod snapshot_refresh;
 mod spindle;
 mod toff;
 pub mod tool_list;
+mod tool_monitor;
 mod trafo;
 
 use std::collections::VecDeque;
@@ -289,6 +290,8 @@ pub struct Channel {
     io: crate::interp::io::DigitalIo,
     /// The axes' position loops: actual values and following errors.
     servo: servo::Servo,
+    /// Tool life and count monitoring (`tool_monitor.rs`).
+    tool_monitor: tool_monitor::ToolMonitor,
 }
 
 impl Channel {
@@ -363,6 +366,7 @@ impl Channel {
             servo,
             referenced,
             referencing: None,
+            tool_monitor: Default::default(),
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -695,6 +699,7 @@ impl Channel {
             self.feed_planner();
         }
         self.planner.step();
+        self.monitor_tools();
         self.update_machine_position();
         self.servo.step(&self.machine, self.offsets.gcodes.ffw_on());
         if let Some(lag) = self.servo.take_changed() {
