@@ -789,6 +789,41 @@ async function main() {
       if (row[6] !== "4.200" || row[7] !== "-0.050") throw new Error(`row after PUT: ${JSON.stringify(row)}`);
     });
 
+    await step("Work offsets: G500 and G54..G57 (MD28080 = 5), one edited and selected by a program, marked active", async () => {
+      await page.click('[data-tools-tab="offsets"]');
+      await page.waitForSelector('#offset-list tr[data-frame="G57"]');
+      const frames = await page.$$eval("#offset-list tbody tr", (rows) => rows.map((r) => r.dataset.frame));
+      if (frames.join() !== "G500,G54,G55,G56,G57") throw new Error(`frames: ${frames.join()}`);
+      await page.waitForSelector('#offset-list tr.active[data-frame="G500"]');
+      const x = page.locator('#offset-list input[data-edit="1/X/TR"]');
+      await x.fill("100");
+      await x.dispatchEvent("change");
+      await page.click("#btn-tools-apply");
+      await page.waitForFunction(() => !document.querySelector("#offset-list input.changed"));
+      const text = await page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        return (await (await fetch(`/api/v1/sessions/${id}/machine-data`)).json()).text;
+      });
+      if (!/^\$P_UIFR\[1,X,TR\]=100(\.0)?$/m.test(text)) throw new Error("$P_UIFR[1,X,TR] not in the NC data");
+      // G54 G0 X0: the workpiece zero is X100 in machine coordinates; at M0 G54 is active.
+      await page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        const body = JSON.stringify({ program: "G54 G0 X0 Y0 Z50\nM0\nM30\n", pace: "fast" });
+        const res = await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body });
+        if (!res.ok) throw new Error(`run: ${res.status} ${await res.text()}`);
+      });
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped", null, { timeout: 30_000 });
+      await page.waitForSelector('#offset-list tr.active[data-frame="G54"]');
+      const machineX = await page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        return (await (await fetch(`/api/v1/sessions/${id}/state`)).json()).positions.machine.X;
+      });
+      if (Math.abs(machineX - 100) > 1e-6) throw new Error(`machine X ${machineX} at G54 X0`);
+      await page.locator("#area-tools").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-offsets.png") });
+      await page.click('[data-goto="machine"]');
+      await page.click("#btn-reset");
+    });
+
     await step("no error in the message bar", async () => {
       if (!(await page.locator("#message").isHidden())) {
         throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);

@@ -1,4 +1,4 @@
-// The Tools area, like Operate's "Parameter > Tool list" and "Magazine": one row per cutting
+// The Parameter area, like Operate's "Tool list", "Magazine" and "Work offset" (offsets/): one row per cutting
 // edge (place, type symbol and short name, tool name, duplo, D, length, radius, wear, state,
 // remaining life) and a view of the magazines' places. Fed by GET .../tools; the geometry and
 // wear cells are editable and sent back whole with PUT .../tools (reset state only, as on the
@@ -15,6 +15,7 @@ import type { SessionController } from "../core/session";
 import { areaChanged, currentArea, showArea } from "../ui/areas";
 import { toolsApi, type Magazine, type ToolEdge, type ToolEntry, type ToolList } from "./toolsApi";
 import { placeText, remainingLife, stateOf, typeOf } from "./toolText";
+import { OffsetScreen } from "../offsets/offsetScreen";
 import "./tools.css";
 
 /** The editable cells: field of the edge and how it is shown. */
@@ -32,6 +33,8 @@ const EDITABLE = [
 
 const REFRESH_RUNNING_MS = 2000;
 
+type Tab = "list" | "magazine" | "offsets";
+
 class ToolScreen {
   private list: ToolList | null = null;
   /** Edits not yet sent: "T/D/key" → value. */
@@ -41,6 +44,8 @@ class ToolScreen {
   private loading = false;
   private lastLoad = 0;
   private running = false;
+  private tab: Tab = "list";
+  private readonly offsets: OffsetScreen;
   private readonly body: HTMLTableSectionElement;
   private readonly magazineView: HTMLDivElement;
   private readonly table: HTMLTableElement;
@@ -55,6 +60,7 @@ class ToolScreen {
     for (const [tab, label] of [
       ["list", "Tool list"],
       ["magazine", "Magazine"],
+      ["offsets", "Work offsets"],
     ] as const) {
       const b = el("button", { type: "button", "data-tools-tab": tab }, label);
       b.addEventListener("click", () => this.showTab(tab));
@@ -63,6 +69,11 @@ class ToolScreen {
     this.pending = el("span", { id: "tools-pending", class: "muted" });
     const reload = el("button", { id: "btn-tools-reload", type: "button", title: "Read the tool list again and drop unapplied changes" }, "Reload");
     reload.addEventListener("click", () => {
+      if (this.tab === "offsets") {
+        this.offsets.dropEdits();
+        void this.offsets.load();
+        return;
+      }
       this.edits.clear();
       void this.load();
     });
@@ -71,7 +82,7 @@ class ToolScreen {
       { id: "btn-tools-apply", type: "button", class: "primary", title: "Send the changed offsets (reset state only)" },
       "Apply",
     );
-    apply.addEventListener("click", () => void this.apply());
+    apply.addEventListener("click", () => void (this.tab === "offsets" ? this.offsets.apply() : this.apply()));
     bar.append(tabs, el("div", { class: "spacer" }), this.pending, reload, apply);
 
     this.table = el("table", { id: "tool-list", class: "md-table tool-list" });
@@ -87,14 +98,15 @@ class ToolScreen {
     this.note.hidden = true;
     this.magazineView = el("div", { id: "magazine-view", class: "magazine-view" });
     this.magazineView.hidden = true;
+    this.offsets = new OffsetScreen(session);
     const content = el("div", { class: "md-body" });
-    content.append(this.note, this.table, this.magazineView);
+    content.append(this.note, this.table, this.magazineView, this.offsets.node);
     section.append(bar, content);
     const areas = document.querySelector("[data-area='data']");
     if (areas?.parentElement) areas.after(section);
     else document.body.append(section);
 
-    const key = el("button", { type: "button", "data-goto": "tools" }, "Tools");
+    const key = el("button", { type: "button", "data-goto": "tools", title: "Tool list, magazine, work offsets" }, "Parameter");
     key.addEventListener("click", () => showArea("tools"));
     const softkeys = document.querySelector("nav.softkeys");
     const before = softkeys?.querySelector("[data-goto='sessions']");
@@ -110,7 +122,9 @@ class ToolScreen {
     });
     session.on("state", (st) => this.observe(st));
     areaChanged.on("change", (area) => {
-      if (area === "tools" && this.stale) void this.load();
+      if (area !== "tools") return;
+      if (this.stale) void this.load();
+      if (this.tab === "offsets") void this.offsets.load();
     });
   }
 
@@ -149,12 +163,15 @@ class ToolScreen {
     }
   }
 
-  private showTab(tab: "list" | "magazine"): void {
+  private showTab(tab: Tab): void {
+    this.tab = tab;
     for (const b of document.querySelectorAll<HTMLElement>("[data-tools-tab]")) {
       b.classList.toggle("active", b.dataset.toolsTab === tab);
     }
     this.table.hidden = tab !== "list";
     this.magazineView.hidden = tab !== "magazine";
+    this.offsets.node.hidden = tab !== "offsets";
+    if (tab === "offsets" && this.visible()) void this.offsets.load();
   }
 
   private render(): void {
