@@ -111,9 +111,32 @@ impl Alarm {
         Alarm::new(17191, format!("Channel 1 block {line} T= {name} not existing"), Some(line))
     }
 
-    /// 17192: every tool of the programmed name is disabled (no usable duplo).
+    /// 22069: every duplo of the programmed name is disabled, so the tool group has no tool
+    /// ready for use.
     pub fn no_usable_tool(line: u32, name: &str) -> Alarm {
-        Alarm::new(17192, format!("Channel 1 block {line} T= {name}: no enabled tool of this name"), Some(line))
+        Alarm::new(
+            22069,
+            format!("Channel 1 tool management: no tool ready in tool group {name}, block {line}"),
+            Some(line),
+        )
+    }
+
+    /// 6411: a cutting edge of the tool in the spindle reached its prewarning limit while the
+    /// program ran (time or count). Information only: the program goes on.
+    pub fn tool_prewarning(name: &str, d: u32) -> Alarm {
+        Alarm {
+            clear: Clear::Cancel,
+            ..Alarm::new(6411, format!("Channel 1 tool {name} has reached its prewarning limit with D = {d}"), None)
+        }
+    }
+
+    /// 6413: a cutting edge reached its monitoring limit while the program ran; the tool is
+    /// disabled. Information only: the tool in the spindle keeps cutting until it is changed.
+    pub fn tool_limit(name: &str, d: u32) -> Alarm {
+        Alarm {
+            clear: Clear::Cancel,
+            ..Alarm::new(6413, format!("Channel 1 tool {name} has reached its monitoring limit with D = {d}"), None)
+        }
     }
 
     /// 14760: the same auxiliary function group programmed twice (M3 with M5, M0 with M30, ...).

@@ -114,3 +114,29 @@ async fn tools_are_unloaded_and_loaded_and_the_list_survives_a_restart() {
     let list = server.get(&format!("/sessions/{id}/tools")).await.body;
     assert_eq!(tool(&list, 2)["place"], json!({"magazine": 1, "place": 7}));
 }
+
+#[tokio::test]
+async fn tool_monitoring_shows_in_the_list_the_counted_life_and_the_disabled_state() {
+    // MILL_D10 time-monitored with 0.5 min left: 36 s of G1 at F100 (X0 to X60) use 0.6 min,
+    // so the list shows -0.1 min left, $TC_TP8 = 2 (enabled) + 4 (disabled), and the state
+    // alarm 6413 (information: the program ran to its end).
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let mut list = server.get(&format!("/sessions/{id}/tools")).await.body;
+    let mill = list["tools"].as_array_mut().unwrap().iter_mut().find(|t| t["number"] == 1).unwrap();
+    mill["monitoring"] = json!(1);
+    mill["edges"][0]["monitoring"] = json!({"2": 0.5});
+    let reply = server.put(&format!("/sessions/{id}/tools"), list).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let program = "T=\"MILL_D10\"\nG0 X0 Y0 Z50\nG1 F100 X60\nM30";
+    let reply =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let alarms: Vec<_> = reply.body["alarms"].as_array().unwrap().iter().map(|a| a["number"].clone()).collect();
+    assert_eq!(alarms, vec![json!(6413)], "{}", reply.body);
+    let list = server.get(&format!("/sessions/{id}/tools")).await.body;
+    let mill = tool(&list, 1);
+    assert_eq!(mill["state"], 6);
+    let left = mill["edges"][0]["monitoring"]["2"].as_f64().unwrap();
+    assert!((left + 0.1).abs() < 1e-4, "{left}");
+}

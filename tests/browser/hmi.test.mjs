@@ -749,6 +749,107 @@ async function main() {
       await page.click("#btn-reset");
     });
 
+    const toolRow = (t) =>
+      page.evaluate(
+        (t) => [...document.querySelectorAll(`#tool-list tr[data-tool="${t}"] td`)].map((td) => td.querySelector("input")?.value ?? td.textContent.trim()),
+        t,
+      );
+    const toolsOf = () =>
+      page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        return (await fetch(`/api/v1/sessions/${id}/tools`)).json();
+      });
+
+    await step("Tools: the tool list shows place, type, name, duplo, D, length, radius, wear and state", async () => {
+      // mill-3axis (presets.rs): MILL_D10 = T1, end mill (type 120), length 100, radius 5, in
+      // magazine 1 place 1; DRILL_8 = T2, twist drill (type 200), length 120, radius 4, place 2;
+      // both duplo 1 and enabled ($TC_TP8 = 2), no wear.
+      await page.goto(`${BASE}/?machine=mill-3axis`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.click('[data-goto="tools"]');
+      await page.waitForSelector('#tool-list tr[data-tool="2"]');
+      const expected = {
+        1: ["1/1", "⌀ END MILL", "MILL_D10", "1", "1", "100.000", "5.000", "0.000", "0.000", "enabled", ""],
+        2: ["1/2", "▽ DRILL", "DRILL_8", "1", "1", "120.000", "4.000", "0.000", "0.000", "enabled", ""],
+      };
+      for (const [t, want] of Object.entries(expected)) {
+        const got = await toolRow(t);
+        if (JSON.stringify(got) !== JSON.stringify(want)) throw new Error(`T${t} row: ${JSON.stringify(got)}`);
+      }
+      await page.locator("#area-tools").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-tools.png") });
+    });
+
+    await step("Tools: a tool change refreshes the list; the magazine view shows the spindle", async () => {
+      await page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        const body = JSON.stringify({ program: 'T="DRILL_8" M6\nD1\nM30\n', pace: "fast" });
+        const res = await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body });
+        if (!res.ok) throw new Error(`run: ${res.status} ${await res.text()}`);
+      });
+      await page.waitForFunction(() => document.querySelector('#tool-list tr[data-tool="2"]')?.classList.contains("in-spindle"), null, {
+        timeout: 30_000,
+      });
+      const place = (await toolRow(2))[0];
+      if (place !== "Spindle") throw new Error(`DRILL_8's place shows ${place}`);
+      await page.click('[data-tools-tab="magazine"]');
+      const spindle = await page.textContent("#spindle-place");
+      if (!/DRILL_8/.test(spindle)) throw new Error(`spindle place: ${spindle}`);
+      const p1 = await page.textContent('#magazine-view [data-magazine="1"] [data-place="1"]');
+      if (!/MILL_D10/.test(p1)) throw new Error(`magazine 1 place 1: ${p1}`);
+      await page.click('[data-tools-tab="list"]');
+    });
+
+    await step("Tools: an edited radius and length wear go to the tool data with PUT", async () => {
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      const radius = page.locator('#tool-list input[data-edit="2/1/radius"]');
+      await radius.fill("4.2");
+      await radius.dispatchEvent("change");
+      const wear = page.locator('#tool-list input[data-edit="2/1/wear_length"]');
+      await wear.fill("-0.05");
+      await wear.dispatchEvent("change");
+      await page.click("#btn-tools-apply");
+      await page.waitForFunction(() => (document.getElementById("tools-pending")?.textContent ?? "x") === "");
+      const edge = (await toolsOf()).tools.find((t) => t.number === 2).edges[0];
+      if (edge.radius !== 4.2 || edge.wear_lengths[0] !== -0.05) throw new Error(`edge after PUT: ${JSON.stringify(edge)}`);
+      const row = await toolRow(2);
+      if (row[6] !== "4.200" || row[7] !== "-0.050") throw new Error(`row after PUT: ${JSON.stringify(row)}`);
+    });
+
+    await step("Work offsets: G500 and G54..G57 (MD28080 = 5), one edited and selected by a program, marked active", async () => {
+      await page.click('[data-tools-tab="offsets"]');
+      await page.waitForSelector('#offset-list tr[data-frame="G57"]');
+      const frames = await page.$$eval("#offset-list tbody tr", (rows) => rows.map((r) => r.dataset.frame));
+      if (frames.join() !== "G500,G54,G55,G56,G57") throw new Error(`frames: ${frames.join()}`);
+      await page.waitForSelector('#offset-list tr.active[data-frame="G500"]');
+      const x = page.locator('#offset-list input[data-edit="1/X/TR"]');
+      await x.fill("100");
+      await x.dispatchEvent("change");
+      await page.click("#btn-tools-apply");
+      await page.waitForFunction(() => !document.querySelector("#offset-list input.changed"));
+      const text = await page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        return (await (await fetch(`/api/v1/sessions/${id}/machine-data`)).json()).text;
+      });
+      if (!/^\$P_UIFR\[1,X,TR\]=100(\.0)?$/m.test(text)) throw new Error("$P_UIFR[1,X,TR] not in the NC data");
+      // G54 G0 X0: the workpiece zero is X100 in machine coordinates; at M0 G54 is active.
+      await page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        const body = JSON.stringify({ program: "G54 G0 X0 Y0 Z50\nM0\nM30\n", pace: "fast" });
+        const res = await fetch(`/api/v1/sessions/${id}/run`, { method: "POST", headers: { "content-type": "application/json" }, body });
+        if (!res.ok) throw new Error(`run: ${res.status} ${await res.text()}`);
+      });
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped", null, { timeout: 30_000 });
+      await page.waitForSelector('#offset-list tr.active[data-frame="G54"]');
+      const machineX = await page.evaluate(async () => {
+        const id = new URL(location.href).searchParams.get("session");
+        return (await (await fetch(`/api/v1/sessions/${id}/state`)).json()).positions.machine.X;
+      });
+      if (Math.abs(machineX - 100) > 1e-6) throw new Error(`machine X ${machineX} at G54 X0`);
+      await page.locator("#area-tools").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-offsets.png") });
+      await page.click('[data-goto="machine"]');
+      await page.click("#btn-reset");
+    });
+
     await step("no error in the message bar", async () => {
       if (!(await page.locator("#message").isHidden())) {
         throw new Error(`message bar shows: ${await page.textContent("#message-text")}`);

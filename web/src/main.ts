@@ -27,6 +27,7 @@ import { mountAxisPlot } from "./plot/axisPlot";
 import { EditorArea } from "./program/editorArea";
 import { ProgramManager } from "./program/manager";
 import { mountMachineData } from "./setup/machineData";
+import { mountTools } from "./tools/toolScreen";
 import { showArea, wireAreas } from "./ui/areas";
 import { mountMachineView } from "./view3d/machineView";
 import { mountPreview } from "./view3d/preview";
@@ -57,6 +58,7 @@ async function main(): Promise<void> {
   const editor = new EditorArea(session);
   new ProgramManager(session, editor);
   mountMachineData(session);
+  mountTools(session);
   const lobby = new Lobby(session);
   showArea("machine");
 

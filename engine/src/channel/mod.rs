@@ -30,6 +30,7 @@ mod spindle;
 pub mod sync_actions;
 mod toff;
 pub mod tool_list;
+mod tool_monitor;
 mod trafo;
 
 use std::collections::VecDeque;
@@ -298,6 +299,8 @@ pub struct Channel {
     servo: servo::Servo,
     /// Motion-synchronous actions and their data (`sync_actions.rs`).
     sync: sync_actions::SyncActions,
+    /// Tool life and count monitoring (`tool_monitor.rs`).
+    tool_monitor: tool_monitor::ToolMonitor,
 }
 
 impl Channel {
@@ -374,6 +377,7 @@ impl Channel {
             referenced,
             referencing: None,
             sync: Default::default(),
+            tool_monitor: Default::default(),
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -717,6 +721,7 @@ impl Channel {
         }
         self.step_sync_actions();
         self.planner.step();
+        self.monitor_tools();
         self.update_machine_position();
         self.servo.step(&self.machine, self.offsets.gcodes.ffw_on());
         if let Some(lag) = self.servo.take_changed() {

@@ -109,10 +109,13 @@ impl Channel {
         }
     }
 
-    fn require_reset(&self, why: &'static str) -> Result<(), CommandError> {
+    /// Refuses an edit unless in reset state; the tool life counted so far goes into the data
+    /// first, so the edit does not lose it.
+    fn require_reset(&mut self, why: &'static str) -> Result<(), CommandError> {
         if self.is_active() || self.status == Status::Stopped {
             return Err(CommandError::Busy(why));
         }
+        self.flush_tool_monitor();
         Ok(())
     }
 

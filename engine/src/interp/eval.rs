@@ -87,8 +87,8 @@ fn operate(op: BinOp, a: Value, b: Value, scope: &dyn Scope, line: u32) -> Resul
 fn apply(name: &str, vals: &[Value], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
     match FRAME_FUNCTIONS.contains(&name) {
         true => frame_function(name, vals, scope, line),
-        // GETT reads the tool list, which the scope holds.
-        false if name == "GETT" => scope.system(name, vals, line),
+        // GETT and CHKDNO read the tool list, which the scope holds.
+        false if name == "GETT" || name == "CHKDNO" => scope.system(name, vals, line),
         false => call(name, vals, line),
     }
 }

@@ -339,6 +339,9 @@ pub(super) fn reads_main_run(block: &Block) -> bool {
         Word::Address { name, .. } if name == "SPOS" || name == "SPOSA" => true,
         // M19/M70 and rigid tapping start from the spindle's angle, too.
         Word::M(19 | 70) | Word::G(331 | 332) => true,
+        // STOPRE: the programmed preprocessing stop (e.g. before a T="name" that must see
+        // what tool monitoring did in the main run).
+        Word::Keyword { name, args } if args.is_empty() && name == "STOPRE" => true,
         Word::Address { indices, value, .. } => {
             expr_reads_main_run(&value.expr) || indices.iter().any(expr_reads_main_run)
         }

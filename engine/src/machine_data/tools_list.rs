@@ -17,6 +17,11 @@ use super::{EdgeParams, Value};
 
 /// `$TC_TP8` bit 2: the tool is disabled and is not selected by name.
 pub const STATE_DISABLED: i64 = 1 << 2;
+/// `$TC_TP8` bit 4: a cutting edge reached its prewarning limit.
+pub const STATE_PREWARNING: i64 = 1 << 4;
+/// `$TC_TP9` bit 0: time monitoring; bit 1: count monitoring.
+pub const MONITOR_TIME: i64 = 1;
+pub const MONITOR_COUNT: i64 = 2;
 /// `$TC_MPP4` bit 0: the place is disabled.
 const PLACE_DISABLED: i64 = 1;
 /// `$TC_MPP1` place kind 1: an ordinary magazine place; 2: a spindle (toolholder) place.
@@ -80,6 +85,9 @@ pub struct ToolList {
     pub magazines: Vec<Magazine>,
     /// The data as written, for reads of the values the list does not type.
     pub raw: ToolMgmtData,
+    /// Some tool has time or count monitoring (`$TC_TP9` bit 0 or 1): only then does the main
+    /// run count (the per-IPO-cycle guard).
+    pub monitored: bool,
 }
 
 impl ToolList {
@@ -195,7 +203,8 @@ impl ToolList {
                 e.auto_placed = true;
             }
         }
-        Ok(ToolList { tools, magazines, raw: tm.clone() })
+        let monitored = tools.values().any(|e| e.monitoring & (MONITOR_TIME | MONITOR_COUNT) != 0);
+        Ok(ToolList { tools, magazines, raw: tm.clone(), monitored })
     }
 
     /// The tool `T="name"` selects: among the tools of that name the enabled one with the

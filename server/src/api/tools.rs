@@ -127,7 +127,11 @@ async fn tool_list(state: &AppState, id: &str) -> Result<ToolList, ApiError> {
     session
         .with_channel(|ch| {
             let s = ch.snapshot();
-            ToolList::from_config(ch.config(), s.tool.0, s.prepared_tool)
+            let list = ToolList::from_config(ch.config(), s.tool.0, s.prepared_tool);
+            match ch.monitored_edge() {
+                Some((t, d, minutes)) => list.with_remaining_time(t, d, minutes),
+                None => list,
+            }
         })
         .await
         .map_err(|e| ApiError::from_session(id, e))

@@ -151,6 +151,17 @@ pub struct UnloadQuery {
 const NAMED_DP: [usize; 10] = [0, 1, 2, 3, 4, 5, 11, 12, 13, 14];
 
 impl ToolList {
+    /// Shows the live remaining life (`$TC_MOP2`, minutes) of the edge whose cutting time the
+    /// main run is counting: the tool data get the count only at thresholds, edge changes and
+    /// the end of the program.
+    pub fn with_remaining_time(mut self, t: u32, d: u32, minutes: f64) -> ToolList {
+        let edge = self.tools.iter_mut().filter(|e| e.number == t).flat_map(|e| e.edges.iter_mut()).find(|e| e.d == d);
+        if let Some(edge) = edge {
+            edge.monitoring.insert(2, minutes);
+        }
+        self
+    }
+
     /// The list as the engine activated it, with the spindle and prepared tools.
     pub fn from_config(cfg: &MachineConfig, spindle: u32, prepared: u32) -> ToolList {
         let list = &cfg.tool_list;

@@ -42,7 +42,7 @@ export class ApiError extends Error {
 }
 
 /** `tokenOf`: the session whose token to present when the path names none. */
-async function request<T>(method: string, path: string, body?: unknown, tokenOf?: string | null): Promise<T> {
+export async function request<T>(method: string, path: string, body?: unknown, tokenOf?: string | null): Promise<T> {
   const headers: Record<string, string> = { Accept: "application/json" };
   const session = sessionOfPath(path) ?? tokenOf;
   const token = session ? tokenFor(session) : undefined;

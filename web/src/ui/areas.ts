@@ -1,8 +1,8 @@
-// Operating areas (Machine, Program, Program manager, Machine data, Sessions), switched by the softkey bar.
+// Operating areas (Machine, Program, Program manager, Machine data, Tools, Sessions), switched by the softkey bar.
 
 import { Emitter } from "../core/emitter";
 
-export type Area = "machine" | "program" | "manager" | "data" | "sessions";
+export type Area = "machine" | "program" | "manager" | "data" | "tools" | "sessions";
 
 export const areaChanged = new Emitter<{ change: Area }>();
 

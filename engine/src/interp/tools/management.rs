@@ -10,8 +10,9 @@
 //!
 //! A name selects the enabled tool of that name with the lowest duplo number
 //! ([`crate::machine_data::tools_list::ToolList::by_name`]); an unknown name is alarm 17191,
-//! a name whose duplos are all disabled 17192 (this product's reading: the control names it a
-//! tool group without a usable tool). `TCA` takes the named duplo whatever its state.
+//! a name whose duplos are all disabled 22069 (the tool group has no tool ready). A tool that
+//! tool monitoring disabled while the program ran is seen by the next `T="name"` prepared
+//! after it: block preparation runs ahead, so a program that must see it waits with `STOPRE`. `TCA` takes the named duplo whatever its state.
 
 use super::super::eval::eval;
 use super::super::eval::scope::Ctx;
