@@ -27,6 +27,14 @@ pub struct MachineAxis {
     pub modulo: Option<(f64, f64)>,
     /// Spindle number when the axis is a spindle (`$MA_SPIND_ASSIGN_TO_MACHAX`).
     pub spindle: Option<u32>,
+    /// A spindle without axis function: its channel axis has no name
+    /// (`$MC_AXCONF_CHANAX_NAME_TAB` empty), so programs reach it only through S, M3/M4/M5,
+    /// SPOS and the like, and the state shows it under `spindles` as `S<n>`, never among the
+    /// positions (the tool spindle of a mill, which the contract lists as X, Y, Z).
+    pub spindle_only: bool,
+    /// MD35300 `$MA_SPIND_POSCTRL_VELO`: speed of positioning in position control (SPOS,
+    /// M19), rev/min.
+    pub spindle_posctrl_velo: f64,
     /// Maximum velocity in mm/s or deg/s.
     pub max_velocity: f64,
     /// Maximum acceleration in mm/s² or deg/s².
@@ -268,8 +276,19 @@ impl MachineConfig {
                 machine_axis: order.iter().position(|o| o == m).expect("machine axis listed"),
             })
             .collect();
+        let mut machine_axes = machine_axes;
         unique_names(&machine_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_MACHAX_NAME_TAB")?;
-        unique_names(&channel_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_CHANAX_NAME_TAB")?;
+        // A spindle's channel axis may go without a name: a spindle without axis function.
+        for c in channel_axes.iter().filter(|c| c.name.is_empty()) {
+            let m = &mut machine_axes[c.machine_axis];
+            m.spindle_only = m.spindle.is_some();
+        }
+        let named: Vec<&str> = channel_axes
+            .iter()
+            .filter(|c| !machine_axes[c.machine_axis].spindle_only)
+            .map(|a| a.name.as_str())
+            .collect();
+        unique_names(&named, "AXCONF_CHANAX_NAME_TAB")?;
 
         // Geometry axes.
         let geo_names: [String; 3] = std::array::from_fn(|g| md.string("$MC_AXCONF_GEOAX_NAME_TAB", g));
@@ -444,6 +463,26 @@ impl MachineConfig {
         }
     }
 
+    /// Whether channel axis `idx` is shown among the positions (every axis but a spindle
+    /// without axis function, see [`MachineAxis::spindle_only`]).
+    pub fn shown(&self, idx: usize) -> bool {
+        !self.axis(idx).spindle_only
+    }
+
+    /// The name the state gives the spindle on channel axis `idx`: its channel axis name, or
+    /// `S<n>` for a spindle without axis function.
+    pub fn spindle_name(&self, idx: usize) -> &str {
+        const NAMES: [&str; 20] = [
+            "S1", "S2", "S3", "S4", "S5", "S6", "S7", "S8", "S9", "S10", "S11", "S12", "S13", "S14", "S15", "S16",
+            "S17", "S18", "S19", "S20",
+        ];
+        let a = self.axis(idx);
+        match a.spindle.filter(|_| a.spindle_only).and_then(|n| NAMES.get((n as usize).wrapping_sub(1))) {
+            Some(name) => name,
+            None => self.program_axis_name(idx),
+        }
+    }
+
     /// The machine axis driving channel axis `idx`.
     pub fn axis(&self, idx: usize) -> &MachineAxis {
         &self.machine_axes[self.channel_axes[idx].machine_axis]
@@ -507,6 +546,8 @@ fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationEr
         rotary,
         modulo: modulo_flag.then(|| (num("$MA_MODULO_RANGE_START"), num("$MA_MODULO_RANGE"))),
         spindle: (spindle != 0).then_some(spindle),
+        spindle_only: false,
+        spindle_posctrl_velo: num("$MA_SPIND_POSCTRL_VELO"),
         max_velocity: num("$MA_MAX_AX_VELO") * velo,
         max_accel: num("$MA_MAX_AX_ACCEL") * accel,
         accel_overload: num("$MA_MAX_ACCEL_OVL_FACTOR"),

@@ -175,7 +175,9 @@ impl Interpreter {
         self.pos = end;
         let length = (end[axis] - start[axis]).abs();
         let path = Path::line(start, end);
-        Ok((Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line), Feed::Rapid, axis))
+        // Position control moves at MD35300 `$MA_SPIND_POSCTRL_VELO` (rev/min → °/s).
+        let feed = Feed::Path(cfg.axis(axis).spindle_posctrl_velo * 6.0);
+        Ok((Move::new(path, length, feed, &AxisLimit::for_channel(cfg), true, line), feed, axis))
     }
 
     /// The transverse axis (MD20100 `$MC_DIAMETER_AX_DEF`, else the first geometry axis) and
