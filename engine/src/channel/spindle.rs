@@ -103,12 +103,13 @@ impl Spindle {
         let (mode, speed, angle) = if self.axis_mode {
             (SpindleMode::Positioning, self.axis_speed, planner_angle)
         } else {
-            let mode = match self.target.signum() as i8 {
-                _ if self.target == 0.0 && self.speed == 0.0 => SpindleMode::M5,
-                1 => SpindleMode::M3,
-                -1 => SpindleMode::M4,
-                // Braking to a stop after M5.
-                _ => SpindleMode::M5,
+            // A spindle braking after M5 (target 0) shows M5 at once.
+            let mode = if self.target > 0.0 {
+                SpindleMode::M3
+            } else if self.target < 0.0 {
+                SpindleMode::M4
+            } else {
+                SpindleMode::M5
             };
             (mode, self.speed, self.position)
         };

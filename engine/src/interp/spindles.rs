@@ -14,6 +14,7 @@
 
 mod block;
 mod motion;
+pub(super) mod vars;
 pub(super) mod words;
 
 use crate::alarm::Alarm;
@@ -96,7 +97,7 @@ pub enum Thread {
 }
 
 #[derive(Debug, Clone)]
-pub(super) struct Spindles {
+pub(in crate::interp) struct Spindles {
     /// Channel axis of the master spindle.
     master: Option<usize>,
     /// Programmed speed (rev/min) by channel axis.
@@ -182,6 +183,17 @@ impl Spindles {
     /// Whether the spindle on channel axis `axis` was programmed to turn.
     pub fn turns(&self, axis: usize) -> bool {
         self.direction[axis] != 0
+    }
+
+    /// The programmed speed of the spindle on channel axis `axis` (rev/min).
+    pub fn speed_of(&self, axis: usize) -> f64 {
+        self.speed[axis]
+    }
+
+    /// The programmed direction of the spindle on channel axis `axis`: +1 M3, −1 M4, 0 M5 or
+    /// positioned.
+    pub fn direction_of(&self, axis: usize) -> i8 {
+        self.direction[axis]
     }
 
     /// Stops the spindle on `axis` in preparation's view (SPOS puts it in position control).

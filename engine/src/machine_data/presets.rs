@@ -991,8 +991,11 @@ mod tests {
     fn the_mill_has_three_linear_geometry_axes_and_a_4ms_ipo_cycle() {
         let cfg = MachineData::default().apply_text(find("mill-3axis").unwrap().text).unwrap();
         let names: Vec<_> = cfg.machine_axes.iter().map(|a| a.name.as_str()).collect();
-        assert_eq!(names, ["X", "Y", "Z"]);
-        assert!(cfg.machine_axes.iter().all(|a| !a.rotary));
+        // The 4th machine axis is the tool spindle, a spindle without axis function.
+        assert_eq!(names, ["X", "Y", "Z", "SP1"]);
+        assert!(cfg.machine_axes[..3].iter().all(|a| !a.rotary));
+        assert_eq!((cfg.machine_axes[3].spindle, cfg.machine_axes[3].spindle_only), (Some(1), true));
+        assert_eq!(cfg.master_spindle, Some(3));
         assert_eq!(cfg.geo_axes, [Some(0), Some(1), Some(2)]);
         assert!((cfg.ipo_cycle - 0.004).abs() < 1e-12);
         // 30000 mm/min = 500 mm/s, 3 m/s² = 3000 mm/s².

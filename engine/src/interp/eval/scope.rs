@@ -36,6 +36,8 @@ pub(crate) struct SysView<'a> {
     pub stored: &'a crate::machine_data::MachineData,
     /// The digital inputs and outputs (`$A_IN`, `$A_OUT`).
     pub io: &'a crate::interp::io::DigitalIo,
+    /// The spindles as preparation sees them (`$P_S`, `$P_SDIR`).
+    pub spindles: &'a crate::interp::spindles::Spindles,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -56,6 +58,7 @@ macro_rules! sys_view {
             holder: &$interp.holder,
             stored: &$interp.stored,
             io: &$interp.io,
+            spindles: &$interp.spindles,
         }
     };
 }
@@ -112,6 +115,9 @@ impl Scope for Ctx<'_> {
             sys.offsets.frame.unapply(&sys.cfg.geo_axes, &basic).map_or(f64::NAN, |w| w[k])
         };
         if let Some(v) = crate::interp::orientation::vars::read(sys, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = crate::interp::spindles::vars::read(sys, name, indices, line) {
             return v;
         }
         if let Some(v) = super::cycle_vars::read(sys, name, indices, line) {
