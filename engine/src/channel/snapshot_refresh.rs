@@ -140,7 +140,10 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     }
     fill_named(&mut s.basic, order.iter().map(|&k| (name(k), show(k, basic_vec[k]))));
     let wcs = offsets.frame.unapply(&geo_axes, &basic_vec).unwrap_or(basic_vec);
-    fill_named(&mut s.workpiece, order.iter().map(|&k| (name(k), show(k, wcs[k]))));
+    // Diameter programming (G group 29): the transverse axis shows the diameter in the WCS.
+    let diameter_axis = cfg.transverse_axis.filter(|_| ch.trafo.is_none() && ch.offsets.gcodes.diameter_display());
+    let wcs_value = |k: usize| if Some(k) == diameter_axis { 2.0 * wcs[k] } else { wcs[k] };
+    fill_named(&mut s.workpiece, order.iter().map(|&k| (name(k), show(k, wcs_value(k)))));
 
     // The tool direction in the WCS: through the orientation transformation when one is
     // active, else the fixed +Z of a milling head (when the channel has three geometry axes).

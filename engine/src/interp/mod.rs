@@ -899,6 +899,7 @@ impl Interpreter {
                 Some(_) => true,
                 None => self.modal.absolute,
             };
+            let v = v * self.spindles.diameter.factor(cfg, k, absolute);
             target[k] = match (ax.modulo, absolute) {
                 (Some((mstart, range)), true) => {
                     let wrapped = mstart + (v - mstart).rem_euclid(range);

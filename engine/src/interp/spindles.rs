@@ -13,6 +13,7 @@
 //! `channel/spindle.rs`: it receives [`Control`] items for what is more than a speed.
 
 mod block;
+pub mod diameter;
 mod motion;
 pub(super) mod vars;
 pub(super) mod words;
@@ -118,6 +119,8 @@ pub(in crate::interp) struct Spindles {
     pub start_angle: f64,
     /// The block before was a G33 block: a chained thread block starts without a new sync.
     pub thread_chained: bool,
+    /// G group 29: diameter programming of the transverse axis.
+    pub diameter: diameter::Diameter,
 }
 
 impl Spindles {
@@ -134,6 +137,7 @@ impl Spindles {
             thread: None,
             start_angle: 0.0,
             thread_chained: false,
+            diameter: diameter::Diameter::reset(cfg),
         }
     }
 
@@ -146,6 +150,7 @@ impl Spindles {
         self.thread = None;
         self.thread_chained = false;
         self.start_angle = 0.0;
+        self.diameter = diameter::Diameter::reset(cfg);
         if stop {
             self.direction = [0; MAX_CHANNEL_AXES];
         }

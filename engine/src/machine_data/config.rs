@@ -72,6 +72,12 @@ pub struct MachineConfig {
     pub geo_names: [String; 3],
     /// Channel axis of the master spindle, if the channel has one.
     pub master_spindle: Option<usize>,
+    /// Channel axis of the transverse axis (MD20100 `$MC_DIAMETER_AX_DEF`), if one is named:
+    /// the axis of diameter programming and constant cutting speed.
+    pub transverse_axis: Option<usize>,
+    /// Reset position of G group 29 (MD20150 `$MC_GCODE_RESET_VALUES[28]`): 1 DIAMOF,
+    /// 2 DIAMON, 3 DIAM90, 4 DIAMCYCOF.
+    pub diameter_reset: u8,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
     pub tools: BTreeMap<(u32, u32), EdgeParams>,
     /// The tool list: names, duplo numbers, states, magazines and places.
@@ -321,6 +327,28 @@ impl MachineConfig {
             geo_axes.iter().zip(&geo_names).filter(|(a, _)| a.is_some()).map(|(_, n)| n.as_str()).collect();
         unique_names(&active_geo, "AXCONF_GEOAX_NAME_TAB")?;
 
+        let transverse_name = md.string("$MC_DIAMETER_AX_DEF", 0);
+        let transverse_axis = if transverse_name.is_empty() {
+            None
+        } else {
+            let g = geo_names.iter().position(|n| n.eq_ignore_ascii_case(&transverse_name)).ok_or_else(|| {
+                ActivationError {
+                    datum: Some("DIAMETER_AX_DEF"),
+                    message: format!("$MC_DIAMETER_AX_DEF=\"{transverse_name}\" is no geometry axis"),
+                }
+            })?;
+            Some(geo_axes[g].ok_or_else(|| ActivationError {
+                datum: Some("DIAMETER_AX_DEF"),
+                message: format!("$MC_DIAMETER_AX_DEF: geometry axis {transverse_name} is not assigned"),
+            })?)
+        };
+        let diameter_reset = md.num("$MC_GCODE_RESET_VALUES", 0, 28) as u8;
+        if !(1..=4).contains(&diameter_reset) {
+            return fail(
+                "GCODE_RESET_VALUES",
+                format!("$MC_GCODE_RESET_VALUES[28]={diameter_reset}: G group 29 has 1 DIAMOF .. 4 DIAMCYCOF"),
+            );
+        }
         let master = md.num("$MC_SPIND_DEF_MASTER_SPIND", 0, 0) as u32;
         let master_spindle = channel_axes.iter().position(|c| machine_axes[c.machine_axis].spindle == Some(master));
 
@@ -340,6 +368,8 @@ impl MachineConfig {
             geo_axes,
             geo_names,
             master_spindle,
+            transverse_axis,
+            diameter_reset,
             tools: BTreeMap::new(),
             tool_list: Default::default(),
             tool_change: ToolChange {
@@ -461,6 +491,13 @@ impl MachineConfig {
             Some(g) => &self.geo_names[g],
             None => &self.channel_axes[idx].name,
         }
+    }
+
+    /// The number of channel axes without the trailing spindles without axis function: the
+    /// axes a program moves by name (the mill's X, Y, Z without its tool spindle).
+    pub fn axes_len(&self) -> usize {
+        let n = self.channel_axes.len();
+        n - (0..n).rev().take_while(|&k| !self.shown(k)).count()
     }
 
     /// Whether channel axis `idx` is shown among the positions (every axis but a spindle

@@ -179,6 +179,8 @@ $MA_IS_ROT_AX[SP1]=TRUE
 $MA_ROT_IS_MODULO[SP1]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
 $MA_MAX_AX_VELO[SP1]=1440000.
+; X is the transverse axis (diameter programming, constant cutting speed).
+$MC_DIAMETER_AX_DEF="X"
 $MA_MAX_AX_ACCEL[SP1]=30.
 ; Main spindle: 4000 rev/min, 30 rev/s² in speed control.
 $MA_SPIND_VELO_LIMIT[SP1]=4000.

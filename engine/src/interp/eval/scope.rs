@@ -199,6 +199,9 @@ impl Scope for Ctx<'_> {
                     [g] => g.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
                     _ => return Err(Alarm::index_error(line, name, "needs one G group number")),
                 };
+                if group == 29 {
+                    return Ok(Value::Int(sys.spindles.diameter.mode.position().into()));
+                }
                 Value::Int(
                     g_group_index(sys.modal, sys.holder, group)
                         .ok_or_else(|| Alarm::index_error(line, name, &format!("G group {group} is not modelled")))?,

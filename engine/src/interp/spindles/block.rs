@@ -21,6 +21,10 @@ impl Interpreter {
         out: &mut Vec<Item>,
     ) -> Result<bool, Alarm> {
         let sw = &words.spindle;
+        if let Some(mode) = sw.diameter {
+            self.spindles.diameter.select(mode, cfg, line)?;
+        }
+        self.modal.diameter_slot = self.spindles.diameter.gcode_slot();
         let was_css = self.spindles.feed_type.css();
         if let Some(t) = sw.feed_type {
             self.spindles.feed_type = t;
@@ -184,7 +188,7 @@ impl Interpreter {
     /// the machine position of the turning centre on it: where the workpiece coordinate is 0
     /// through the active frame and tool length (a frame that only translates on that axis).
     pub(in crate::interp) fn turning_centre(&self, cfg: &MachineConfig) -> Option<(usize, f64)> {
-        let tx = cfg.geo_axes[0]?;
+        let tx = cfg.transverse_axis.or(cfg.geo_axes[0])?;
         let mut basic = self.pos;
         for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
             *b -= t;
