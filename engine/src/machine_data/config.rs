@@ -282,19 +282,18 @@ impl MachineConfig {
                 machine_axis: order.iter().position(|o| o == m).expect("machine axis listed"),
             })
             .collect();
-        let mut machine_axes = machine_axes;
+        let (mut machine_axes, mut channel_axes) = (machine_axes, channel_axes);
         unique_names(&machine_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_MACHAX_NAME_TAB")?;
-        // A spindle's channel axis may go without a name: a spindle without axis function.
-        for c in channel_axes.iter().filter(|c| c.name.is_empty()) {
+        // A spindle's channel axis may go without a name: a spindle without axis function. It
+        // goes by its machine axis name inside (frames and stored data list every channel axis).
+        for c in channel_axes.iter_mut().filter(|c| c.name.is_empty()) {
             let m = &mut machine_axes[c.machine_axis];
-            m.spindle_only = m.spindle.is_some();
+            if m.spindle.is_some() {
+                m.spindle_only = true;
+                c.name = m.name.clone();
+            }
         }
-        let named: Vec<&str> = channel_axes
-            .iter()
-            .filter(|c| !machine_axes[c.machine_axis].spindle_only)
-            .map(|a| a.name.as_str())
-            .collect();
-        unique_names(&named, "AXCONF_CHANAX_NAME_TAB")?;
+        unique_names(&channel_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_CHANAX_NAME_TAB")?;
 
         // Geometry axes.
         let geo_names: [String; 3] = std::array::from_fn(|g| md.string("$MC_AXCONF_GEOAX_NAME_TAB", g));
