@@ -130,3 +130,15 @@ fn g96_under_diamon_follows_the_radius() {
     let n = ch.snapshot().spindles.iter().find(|(n, _)| n == "SP").unwrap().1;
     assert!((n - 200_000.0 / (std::f64::consts::PI * 50.0)).abs() < 0.01, "{n}");
 }
+
+#[test]
+fn g4_s_under_g96_counts_revolutions_at_the_speed_of_the_diameter() {
+    // At diameter 50 G96 S200 gives n = 200000 / (π · 50) = 1273.24 rev/min; G4 S10 takes
+    // 10 / 1273.24 min = 0.4712 s more than the same program without it.
+    let with = run("lathe-2axis", "", "DIAMON\nG0 X50 Z2\nG96 S200 M3 LIMS=3000\nG4 F2\nG4 S10\nM5\nM30");
+    let without = run("lathe-2axis", "", "DIAMON\nG0 X50 Z2\nG96 S200 M3 LIMS=3000\nG4 F2\nM5\nM30");
+    assert!(with.snapshot().alarms.is_empty(), "{:?}", with.snapshot().alarms);
+    let dt = with.time() - without.time();
+    let want = 10.0 * 60.0 / (200_000.0 / (std::f64::consts::PI * 50.0));
+    assert!((dt - want).abs() <= 2.0 * with.config().ipo_cycle, "{dt} s, want {want} s");
+}

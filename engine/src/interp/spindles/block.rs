@@ -184,6 +184,17 @@ impl Interpreter {
         Ok((Move::new(path, length, feed, &AxisLimit::for_channel(cfg), true, line), feed, axis))
     }
 
+    /// The master spindle speed `G4 S` counts revolutions at (rev/min): the programmed speed,
+    /// under constant cutting speed (G96/G961) the speed at the diameter where the tool
+    /// stands, within LIMS and G26.
+    pub(in crate::interp) fn dwell_speed(&self, cfg: &MachineConfig) -> f64 {
+        if self.spindles.feed_type.css() {
+            self.css_speed(cfg, &self.pos).unwrap_or(0.0)
+        } else {
+            self.spindles.master_speed()
+        }
+    }
+
     /// The transverse axis (MD20100 `$MC_DIAMETER_AX_DEF`, else the first geometry axis) and
     /// the machine position of the turning centre on it: where the workpiece coordinate is 0
     /// through the active frame and tool length (a frame that only translates on that axis).
