@@ -142,3 +142,17 @@ fn g4_s_under_g96_counts_revolutions_at_the_speed_of_the_diameter() {
     let want = 10.0 * 60.0 / (200_000.0 / (std::f64::consts::PI * 50.0));
     assert!((dt - want).abs() <= 2.0 * with.config().ipo_cycle, "{dt} s, want {want} s");
 }
+
+#[test]
+fn md20150_5_gives_the_reset_plane() {
+    // The lathe preset sets G18 (2); on the mill MD20150[5] = 3 makes G19 the reset plane.
+    let check = |preset: &str, md: &str, want: i64| {
+        let text = format!("R1=$P_GG[6]\nIF R1<>{want}\nSETAL(61000)\nENDIF\nM30");
+        let ch = run(preset, md, &text);
+        assert!(ch.snapshot().alarms.is_empty(), "{preset} {md}: {:?}", ch.snapshot().alarms);
+    };
+    check("lathe-2axis", "", 2);
+    check("mill-3axis", "", 1);
+    check("mill-3axis", "$MC_GCODE_RESET_VALUES[5]=3", 3);
+    assert!(Channel::from_preset("mill-3axis", "$MC_GCODE_RESET_VALUES[5]=4").is_err());
+}

@@ -125,12 +125,17 @@ impl PtpMode {
 }
 
 impl Modal {
-    /// Reset values (MD20150 GCODE_RESET_VALUES defaults): G1, G17 (G18 on a machine without a
-    /// 2nd geometry axis), G90, G71, G94, G60, G500; no feed.
+    /// Reset values (MD20150 GCODE_RESET_VALUES defaults): G1, the plane of MD20150[5] (G17 by
+    /// default; G18 on a machine without a 2nd geometry axis), G90, G71, G94, G60, G500; no feed.
     pub fn reset(cfg: &MachineConfig) -> Modal {
         Modal {
             motion: MotionMode::Linear,
-            plane: if cfg.geo_axes[1].is_none() { Plane::G18 } else { Plane::G17 },
+            plane: match cfg.plane_reset {
+                2 => Plane::G18,
+                3 => Plane::G19,
+                _ if cfg.geo_axes[1].is_none() => Plane::G18,
+                _ => Plane::G17,
+            },
             absolute: true,
             inch: false,
             inch_feed: false,

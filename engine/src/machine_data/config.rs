@@ -78,6 +78,8 @@ pub struct MachineConfig {
     /// Reset position of G group 29 (MD20150 `$MC_GCODE_RESET_VALUES[28]`): 1 DIAMOF,
     /// 2 DIAMON, 3 DIAM90, 4 DIAMCYCOF.
     pub diameter_reset: u8,
+    /// Reset position of G group 6 (MD20150 `$MC_GCODE_RESET_VALUES[5]`): 1 G17, 2 G18, 3 G19.
+    pub plane_reset: u8,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
     pub tools: BTreeMap<(u32, u32), EdgeParams>,
     /// The tool list: names, duplo numbers, states, magazines and places.
@@ -348,6 +350,13 @@ impl MachineConfig {
                 format!("$MC_GCODE_RESET_VALUES[28]={diameter_reset}: G group 29 has 1 DIAMOF .. 4 DIAMCYCOF"),
             );
         }
+        let plane_reset = md.num("$MC_GCODE_RESET_VALUES", 0, 5) as u8;
+        if !(1..=3).contains(&plane_reset) {
+            return fail(
+                "GCODE_RESET_VALUES",
+                format!("$MC_GCODE_RESET_VALUES[5]={plane_reset}: G group 6 has 1 G17, 2 G18, 3 G19"),
+            );
+        }
         let master = md.num("$MC_SPIND_DEF_MASTER_SPIND", 0, 0) as u32;
         let master_spindle = channel_axes.iter().position(|c| machine_axes[c.machine_axis].spindle == Some(master));
 
@@ -369,6 +378,7 @@ impl MachineConfig {
             master_spindle,
             transverse_axis,
             diameter_reset,
+            plane_reset,
             tools: BTreeMap::new(),
             tool_list: Default::default(),
             tool_change: ToolChange {

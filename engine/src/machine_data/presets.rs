@@ -181,6 +181,9 @@ $MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
 $MA_MAX_AX_VELO[SP1]=1440000.
 ; X is the transverse axis (diameter programming, constant cutting speed).
 $MC_DIAMETER_AX_DEF="X"
+; A lathe starts in G18 (MD20150[5]); radius programming (MD20150[28] = 1, DIAMOF) as the
+; preset has always been; `$MC_GCODE_RESET_VALUES[28]=2` makes DIAMON the reset value.
+$MC_GCODE_RESET_VALUES[5]=2
 $MA_MAX_AX_ACCEL[SP1]=30.
 ; Main spindle: 4000 rev/min, 30 rev/s² in speed control.
 $MA_SPIND_VELO_LIMIT[SP1]=4000.
@@ -247,6 +250,9 @@ $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
 $MA_IS_ROT_AX[CM]=TRUE
 $MA_ROT_IS_MODULO[CM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+; X is the transverse axis (diameter programming, constant cutting speed); G18 at reset.
+$MC_DIAMETER_AX_DEF="X"
+$MC_GCODE_RESET_VALUES[5]=2
 $MA_IS_ROT_AX[ASM]=TRUE
 $MA_ROT_IS_MODULO[ASM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[ASM]=2
@@ -312,6 +318,9 @@ $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
 $MA_IS_ROT_AX[CM]=TRUE
 $MA_ROT_IS_MODULO[CM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+; X is the transverse axis (diameter programming, constant cutting speed); G18 at reset.
+$MC_DIAMETER_AX_DEF="X"
+$MC_GCODE_RESET_VALUES[5]=2
 $MA_IS_ROT_AX[ASM]=TRUE
 $MA_ROT_IS_MODULO[ASM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[ASM]=2
