@@ -122,11 +122,7 @@ fn md20100_must_name_a_geometry_axis() {
 #[test]
 fn g96_under_diamon_follows_the_radius() {
     // G96 S200 at programmed diameter 50 (radius 25): n = 200000 / (π · 50) = 1273.2 rev/min.
-    let ch = run(
-        "lathe-2axis",
-        "",
-        "DIAMON\nG0 X50 Z2\nG96 S200 M3 LIMS=3000\nG4 F3\nM30",
-    );
+    let ch = run("lathe-2axis", "", "DIAMON\nG0 X50 Z2\nG96 S200 M3 LIMS=3000\nG4 F3\nM30");
     let n = ch.snapshot().spindles.iter().find(|(n, _)| n == "SP").unwrap().1;
     assert!((n - 200_000.0 / (std::f64::consts::PI * 50.0)).abs() < 0.01, "{n}");
 }

@@ -188,4 +188,3 @@ fn s_above_md35100_is_limited_to_12000() {
     }
     assert_eq!(s1(&ch).speed, 12000.0);
 }
-

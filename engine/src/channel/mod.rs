@@ -42,8 +42,8 @@ pub use repos_modes::ReposMode;
 pub use resume::{ResumeProgram, ResumeState};
 pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
-pub use spindle::{SpindleMode, SpindleState};
 use spindle::Spindle;
+pub use spindle::{SpindleMode, SpindleState};
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, Programs, SharedOffsets};

@@ -514,7 +514,8 @@ pub(super) fn collect(
                 });
             }
             Word::Keyword { name, args } if args.is_empty() && w.dynamics.keyword(name) => {}
-            Word::Keyword { name, args } if args.is_empty() && super::spindles::words::keyword(&mut w.spindle, name, line)? => {}
+            Word::Keyword { name, args }
+                if args.is_empty() && super::spindles::words::keyword(&mut w.spindle, name, line)? => {}
             Word::Keyword { name, args } if args.is_empty() && holder_keyword(w, name, line)? => {}
             Word::Keyword { name, args } if name == "CYCLE800" => {
                 if w.swivel.is_some() {

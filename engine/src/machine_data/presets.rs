@@ -1005,7 +1005,9 @@ $MC_TRAFO5_POLE_LIMIT_1=2.
     };
 }
 
-const MILL6_GENERIC: &str = concat!(mill6_generic_text!(), r#"; The tool spindle S1: a spindle without axis function, as on mill-3axis.
+const MILL6_GENERIC: &str = concat!(
+    mill6_generic_text!(),
+    r#"; The tool spindle S1: a spindle without axis function, as on mill-3axis.
 $MN_AXCONF_MACHAX_NAME_TAB[6]="SP1"
 $MC_AXCONF_MACHAX_USED[6]=7
 $MC_AXCONF_CHANAX_NAME_TAB[6]=""
@@ -1018,7 +1020,8 @@ $MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
 $MA_SPIND_POSCTRL_VELO[SP1]=1000.
 $MA_MAX_AX_VELO[SP1]=12000.
 $MA_MAX_AX_ACCEL[SP1]=100.
-"#);
+"#
+);
 
 const MILL7_GENERIC: &str = concat!(
     mill6_generic_text!(),
