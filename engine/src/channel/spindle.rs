@@ -209,6 +209,11 @@ impl Spindle {
             self.previous = angle;
             return;
         }
+        // At rest in speed control nothing moves (the common case on a mill: keep it cheap).
+        if self.css.is_none() && self.speed == 0.0 && self.target == 0.0 {
+            self.previous = self.position;
+            return;
+        }
         if let Some(c) = self.css {
             let diameter = 2.0 * (machine[c.transverse] - c.centre).abs();
             let n =
