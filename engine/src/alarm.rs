@@ -53,6 +53,11 @@ impl Alarm {
         Alarm::new(10860, format!("Channel 1 block {line} feedrate not programmed"), Some(line))
     }
 
+    /// 16510: diameter programming without a transverse axis (MD20100 empty).
+    pub fn no_transverse_axis(line: u32) -> Alarm {
+        Alarm::new(16510, format!("Channel 1 block {line} no transverse axis available"), Some(line))
+    }
+
     /// 12080: syntax error.
     pub fn syntax(line: u32, detail: &str) -> Alarm {
         Alarm::new(12080, format!("Channel 1 block {line} syntax error in text area {detail}"), Some(line))

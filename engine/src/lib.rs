@@ -23,5 +23,7 @@ pub mod motion;
 pub mod programs;
 
 pub use alarm::Alarm;
-pub use channel::{Channel, CommandError, Event, JogRequest, Mode, Overrides, Snapshot, Status};
+pub use channel::{
+    Channel, CommandError, Event, JogRequest, Mode, Overrides, Snapshot, SpindleMode, SpindleState, Status,
+};
 pub use machine_data::{MachineConfig, MachineData, MdError};

@@ -268,6 +268,10 @@ pub struct State {
     /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub spindles: AxisValues,
+    /// Each spindle's speed, mode (M3/M4/M5/SPOS), angle and master flag, by the names of
+    /// `spindles`.
+    #[schema(value_type = std::collections::HashMap<String, crate::api::spindle_dto::SpindleInfo>)]
+    pub spindle_info: crate::api::spindle_dto::SpindleInfos,
     /// The program's last MSG text, if any.
     pub message: Option<String>,
     /// Feed, rapid and spindle override in percent.
@@ -438,6 +442,7 @@ impl From<&Snapshot> for State {
             tool: Tool { t: s.tool.0, d: s.tool.1, name: s.tool_name.clone(), prepared: s.prepared_tool },
             path_velocity: s.path_velocity,
             spindles: AxisValues(s.spindles.clone()),
+            spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
             message: s.message.clone(),
             overrides: OverridesInfo { feed: s.overrides.feed, rapid: s.overrides.rapid, spindle: s.overrides.spindle },
             single_block: s.single_block,
@@ -1170,6 +1175,7 @@ mod tests {
             tool: Tool { t: 0, d: 0, name: String::new(), prepared: 0 },
             path_velocity: 0.0,
             spindles: AxisValues::default(),
+            spindle_info: Default::default(),
             message: None,
             overrides: OverridesInfo { feed: 100.0, rapid: 100.0, spindle: 100.0 },
             single_block: false,

@@ -320,7 +320,7 @@ impl Channel {
                 Item::SpindleToAxis { axis, angle, line } => {
                     self.enter_block(line);
                     if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
-                        s.enter_axis_mode();
+                        s.enter_axis_mode(angle);
                     }
                     let mut pos = *self.planner.position();
                     pos[axis] = angle;

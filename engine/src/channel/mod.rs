@@ -45,6 +45,7 @@ pub use resume::{ResumeProgram, ResumeState, SavedInputs};
 pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
+pub use spindle::{SpindleMode, SpindleState};
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, Programs, SharedOffsets};
@@ -762,7 +763,10 @@ impl Channel {
         if self.is_busy() || self.status == Status::Stopped {
             return Err(CommandError::Busy("positions can only be restored in reset state"));
         }
-        if positions.len() != self.cfg.channel_axes.len() || positions.iter().any(|p| !p.is_finite()) {
+        // Without the trailing spindles without axis function (as `axis_positions` gives them)
+        // those spindles start at 0°, as after power on.
+        let lengths = [self.cfg.channel_axes.len(), self.cfg.axes_len()];
+        if !lengths.contains(&positions.len()) || positions.iter().any(|p| !p.is_finite()) {
             return Err(CommandError::Invalid(format!("expected {} finite positions", self.cfg.channel_axes.len())));
         }
         let mut pos = [0.0; MAX_CHANNEL_AXES];
@@ -794,8 +798,9 @@ impl Channel {
     }
 
     /// Interpolated positions of the channel axes (machine coordinates, channel order); cheap
-    /// to call every cycle, for recording IPO samples.
+    /// to call every cycle, for recording IPO samples. Trailing spindles without axis function
+    /// (the mill's tool spindle) are left out: they are no axes of the program.
     pub fn axis_positions(&self) -> &[f64] {
-        &self.machine[..self.cfg.channel_axes.len()]
+        &self.machine[..self.cfg.axes_len()]
     }
 }

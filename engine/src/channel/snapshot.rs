@@ -60,6 +60,8 @@ pub struct Snapshot {
     pub path_velocity: f64,
     /// Spindles: (channel axis name, speed in rev/min, signed: + = M3).
     pub spindles: Vec<(String, f64)>,
+    /// Spindles with mode and angle, by the same names and in the same order as `spindles`.
+    pub spindle_states: Vec<(String, super::spindle::SpindleState)>,
     /// The program's last MSG text.
     pub message: Option<String>,
     /// Feed, rapid and spindle override.
@@ -115,6 +117,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         prepared_tool: 0,
         path_velocity: 0.0,
         spindles: Vec::new(),
+        spindle_states: Vec::new(),
         message: None,
         overrides: Overrides::default(),
         single_block: false,

@@ -62,8 +62,14 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     s.tick = ch.tick;
 
     // MCS and reference state: channel axes in machine axis order.
+    // A spindle without axis function is shown only under `spindles`.
     let mut by_machine: [usize; MAX_CHANNEL_AXES] = std::array::from_fn(|k| k);
-    let by_machine = &mut by_machine[..n];
+    let mut shown = 0;
+    for k in (0..n).filter(|&k| cfg.shown(k)) {
+        by_machine[shown] = k;
+        shown += 1;
+    }
+    let by_machine = &mut by_machine[..shown];
     by_machine.sort_unstable_by_key(|&k| (cfg.channel_axes[k].machine_axis, k));
     fill_named(&mut s.machine, by_machine.iter().map(|&k| (cfg.axis(k).name.as_str(), display(k, value(k)))));
     let error = |k: usize| ch.servo.following_error(k);
@@ -114,7 +120,7 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     // Geometry axes first, then the other channel axes the transformation does not drive.
     let mut order = [0usize; MAX_CHANNEL_AXES + 3];
     let mut len = 0;
-    for k in geo_axes.iter().flatten().copied().chain((0..n).filter(|&k| !is_geo[k] && !driven[k])) {
+    for k in geo_axes.iter().flatten().copied().chain((0..n).filter(|&k| !is_geo[k] && !driven[k] && cfg.shown(k))) {
         order[len] = k;
         len += 1;
     }
@@ -134,7 +140,10 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     }
     fill_named(&mut s.basic, order.iter().map(|&k| (name(k), show(k, basic_vec[k]))));
     let wcs = offsets.frame.unapply(&geo_axes, &basic_vec).unwrap_or(basic_vec);
-    fill_named(&mut s.workpiece, order.iter().map(|&k| (name(k), show(k, wcs[k]))));
+    // Diameter programming (G group 29): the transverse axis shows the diameter in the WCS.
+    let diameter_axis = cfg.transverse_axis.filter(|_| ch.trafo.is_none() && ch.offsets.gcodes.diameter_display());
+    let wcs_value = |k: usize| if Some(k) == diameter_axis { 2.0 * wcs[k] } else { wcs[k] };
+    fill_named(&mut s.workpiece, order.iter().map(|&k| (name(k), show(k, wcs_value(k)))));
 
     // The tool direction in the WCS: through the orientation transformation when one is
     // active, else the fixed +Z of a milling head (when the channel has three geometry axes).
@@ -180,7 +189,14 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     s.prepared_tool = ch.offsets.prepared;
     set_text(&mut s.tool_name, cfg.tool_list.tools.get(&s.tool.0).map_or("", |e| e.name.as_str()));
     s.path_velocity = ch.planner.velocity() * 60.0;
-    fill_named(&mut s.spindles, ch.spindles.iter().map(|sp| (cfg.program_axis_name(sp.axis), sp.speed)));
+    fill_named(&mut s.spindles, ch.spindles.iter().map(|sp| (cfg.spindle_name(sp.axis), sp.speed)));
+    fill_named(
+        &mut s.spindle_states,
+        ch.spindles.iter().map(|sp| {
+            let number = cfg.axis(sp.axis).spindle.unwrap_or(0);
+            (cfg.spindle_name(sp.axis), sp.state(number, Some(sp.axis) == cfg.master_spindle, pos[sp.axis]))
+        }),
+    );
     match &ch.message {
         None => s.message = None,
         Some(m) => set_text(s.message.get_or_insert_with(String::new), m),

@@ -12,6 +12,46 @@
 use crate::interp::spindles::Control;
 use crate::machine_data::{MachineConfig, MachineData};
 
+/// What a spindle is doing, as the T/F/S display shows it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpindleMode {
+    /// M3: clockwise (seen from the spindle's rear towards the tool or workpiece).
+    M3,
+    /// M4: counter-clockwise.
+    M4,
+    /// M5 (or reset): stopped in speed control.
+    #[default]
+    M5,
+    /// Position control (SPOS, M19, M70, G331/G332): the spindle is moved as an axis.
+    Positioning,
+}
+
+impl SpindleMode {
+    /// The name the state gives the mode.
+    pub fn name(self) -> &'static str {
+        match self {
+            SpindleMode::M3 => "M3",
+            SpindleMode::M4 => "M4",
+            SpindleMode::M5 => "M5",
+            SpindleMode::Positioning => "SPOS",
+        }
+    }
+}
+
+/// One spindle in the state: the published view of [`Spindle`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpindleState {
+    /// Spindle number (`$MA_SPIND_ASSIGN_TO_MACHAX`).
+    pub number: u32,
+    /// Actual speed in rev/min (signed: + = M3); 0 in position control when at rest.
+    pub speed: f64,
+    pub mode: SpindleMode,
+    /// Angle in degrees, 0 ≤ angle < 360.
+    pub position: f64,
+    /// The channel's master spindle (MD20090, SETMS).
+    pub master: bool,
+}
+
 /// Constant cutting speed as the main run evaluates it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Css {
@@ -42,6 +82,9 @@ pub(super) struct Spindle {
     previous: f64,
     /// Position control after SPOS: the spindle is a rotary axis moved by the planner.
     pub axis_mode: bool,
+    /// In position control: the speed the planner moved it at in the last cycle (rev/min,
+    /// signed), for the display only.
+    axis_speed: f64,
     /// Programmed speed before the override (signed).
     programmed: f64,
     override_factor: f64,
@@ -54,6 +97,25 @@ pub(super) struct Spindle {
 }
 
 impl Spindle {
+    /// The published view: `planner_angle` is the spindle's axis position, which is its
+    /// angle while in position control.
+    pub fn state(&self, number: u32, master: bool, planner_angle: f64) -> SpindleState {
+        let (mode, speed, angle) = if self.axis_mode {
+            (SpindleMode::Positioning, self.axis_speed, planner_angle)
+        } else {
+            // A spindle braking after M5 (target 0) shows M5 at once.
+            let mode = if self.target > 0.0 {
+                SpindleMode::M3
+            } else if self.target < 0.0 {
+                SpindleMode::M4
+            } else {
+                SpindleMode::M5
+            };
+            (mode, self.speed, self.position)
+        };
+        SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master }
+    }
+
     pub fn is_turning(&self) -> bool {
         self.speed != 0.0 || self.target != 0.0
     }
@@ -80,9 +142,11 @@ impl Spindle {
     }
 
     /// SPOS: stops where it is; from now on the planner moves it.
-    pub fn enter_axis_mode(&mut self) {
+    pub fn enter_axis_mode(&mut self, angle: f64) {
         self.stop_now();
         self.axis_mode = true;
+        self.previous = angle;
+        self.axis_speed = 0.0;
     }
 
     /// M3/M4/M5 after SPOS: speed control again, from the angle the planner left it at.
@@ -139,6 +203,15 @@ impl Spindle {
     /// machine position `machine`, then the ramp and the angle.
     pub fn step(&mut self, dt: f64, machine: &[f64]) {
         if self.axis_mode {
+            // rev/min from the axis' travel in °: ×60/360.
+            let angle = machine[self.axis];
+            self.axis_speed = (angle - self.previous) / dt / 6.0;
+            self.previous = angle;
+            return;
+        }
+        // At rest in speed control nothing moves (the common case on a mill: keep it cheap).
+        if self.css.is_none() && self.speed == 0.0 && self.target == 0.0 {
+            self.previous = self.position;
             return;
         }
         if let Some(c) = self.css {
@@ -182,6 +255,7 @@ pub(super) fn for_config(cfg: &MachineConfig, data: &MachineData) -> Vec<Spindle
                 position: 0.0,
                 previous: 0.0,
                 axis_mode: false,
+                axis_speed: 0.0,
                 programmed: 0.0,
                 override_factor: 1.0,
                 lower: 0.0,

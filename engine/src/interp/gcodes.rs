@@ -23,7 +23,7 @@ impl PartialEq for GCodes {
 
 /// The displayed groups in Operate's order: (group number, names by index). Group 8 (settable
 /// frame) is named from its number instead.
-const GROUPS: [(u8, &[&str]); 19] = [
+const GROUPS: [(u8, &[&str]); 20] = [
     (1, &["G0", "G1", "G2", "G3"]),
     (6, &["G17", "G18", "G19"]),
     (7, &["G40", "G41", "G42"]),
@@ -43,7 +43,11 @@ const GROUPS: [(u8, &[&str]); 19] = [
     (21, &["BRISK", "SOFT", "DRIVE"]),
     (24, &["FFWOF", "FFWON"]),
     (59, &["DYNNORM", "DYNPOS", "DYNROUGH", "DYNSEMIFIN", "DYNFINISH"]),
+    (29, &["DIAMOF", "DIAMON", "DIAM90", "DIAMCYCOF"]),
 ];
+
+/// Position of G group 29 (diameter programming) in [`GROUPS`].
+const DIAMETER_SLOT: usize = 19;
 
 /// Position of G group 24 (feed-forward) in [`GROUPS`].
 const FFW_SLOT: usize = 17;
@@ -125,12 +129,18 @@ impl GCodes {
             m.dynamics.profile as u8,
             u8::from(m.dynamics.ffw),
             m.dynamics.mode as u8,
+            m.diameter_slot,
         ])
     }
 
     /// FFWON (G group 24) is active in the block: the main run's servo model reads it.
     pub fn ffw_on(&self) -> bool {
         self.0[FFW_SLOT] == 1
+    }
+
+    /// Whether the WCS display shows the transverse axis as a diameter (G group 29).
+    pub fn diameter_display(&self) -> bool {
+        super::spindles::diameter::slot_shows_diameter(self.0[DIAMETER_SLOT])
     }
 
     /// The names of the active functions, one per displayed group (`G1`, `G17`, `G54`, ...).
@@ -152,6 +162,8 @@ impl GCodes {
                 (8, 0) => name.write_str("G500"),
                 (8, n @ 1..=4) => write!(name, "G{}", 53 + n),
                 (8, n) => write!(name, "G{}", 500 + u32::from(n)),
+                // The slot carries the display flag in bit 2.
+                (29, i) => name.write_str(list.get(usize::from(i & 3)).copied().unwrap_or("?")),
                 (_, i) => name.write_str(list.get(usize::from(i)).copied().unwrap_or("?")),
             };
         }

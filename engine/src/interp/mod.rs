@@ -673,7 +673,7 @@ impl Interpreter {
         if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
-                (None, Some(revs)) if self.spindles.master_speed() > 0.0 => revs * 60.0 / self.spindles.master_speed(),
+                (None, Some(revs)) if self.dwell_speed(cfg) > 0.0 => revs * 60.0 / self.dwell_speed(cfg),
                 (None, Some(_)) => return Err(Alarm::value_out_of_range(line, "G4 S (spindle stands)")),
                 _ => return Err(Alarm::syntax(line, "G4 needs F<seconds> or S<revolutions>")),
             };
@@ -978,6 +978,7 @@ impl Interpreter {
                 Some(_) => true,
                 None => self.modal.absolute,
             };
+            let v = v * self.spindles.diameter.factor(cfg, k, absolute);
             target[k] = match (ax.modulo, absolute) {
                 (Some((mstart, range)), true) => {
                     let wrapped = mstart + (v - mstart).rem_euclid(range);

@@ -66,6 +66,8 @@ pub struct Modal {
     /// G group 15 beyond G94/G95 for the display: index into its names (0: from
     /// `feed_per_rev`), set by `spindles/block.rs`.
     pub feed_type_index: u8,
+    /// G group 29 as `spindles::diameter::Diameter::gcode_slot` gives it.
+    pub diameter_slot: u8,
     /// G60 (true) or G64.
     pub exact_stop: bool,
     /// Active settable frame: 0 = G500, 1..4 = G54..G57, 5.. = G505...
@@ -127,17 +129,23 @@ impl PtpMode {
 }
 
 impl Modal {
-    /// Reset values (MD20150 GCODE_RESET_VALUES defaults): G1, G17 (G18 on a machine without a
-    /// 2nd geometry axis), G90, G71, G94, G60, G500; no feed.
+    /// Reset values (MD20150 GCODE_RESET_VALUES defaults): G1, the plane of MD20150[5] (G17 by
+    /// default; G18 on a machine without a 2nd geometry axis), G90, G71, G94, G60, G500; no feed.
     pub fn reset(cfg: &MachineConfig) -> Modal {
         Modal {
             motion: MotionMode::Linear,
-            plane: if cfg.geo_axes[1].is_none() { Plane::G18 } else { Plane::G17 },
+            plane: match cfg.plane_reset {
+                2 => Plane::G18,
+                3 => Plane::G19,
+                _ if cfg.geo_axes[1].is_none() => Plane::G18,
+                _ => Plane::G17,
+            },
             absolute: true,
             inch: false,
             inch_feed: false,
             feed_per_rev: false,
             feed_type_index: 0,
+            diameter_slot: 0,
             exact_stop: true,
             work_offset: 0,
             feed: None,
@@ -525,6 +533,8 @@ pub(super) fn collect(
                 });
             }
             Word::Keyword { name, args } if args.is_empty() && w.dynamics.keyword(name) => {}
+            Word::Keyword { name, args }
+                if args.is_empty() && super::spindles::words::keyword(&mut w.spindle, name, line)? => {}
             Word::Keyword { name, args } if args.is_empty() && holder_keyword(w, name, line)? => {}
             Word::Keyword { name, args } if name == "CYCLE800" => {
                 if w.swivel.is_some() {

@@ -13,7 +13,9 @@
 //! `channel/spindle.rs`: it receives [`Control`] items for what is more than a speed.
 
 mod block;
+pub mod diameter;
 mod motion;
+pub(super) mod vars;
 pub(super) mod words;
 
 use crate::alarm::Alarm;
@@ -96,7 +98,7 @@ pub enum Thread {
 }
 
 #[derive(Debug, Clone)]
-pub(super) struct Spindles {
+pub(in crate::interp) struct Spindles {
     /// Channel axis of the master spindle.
     master: Option<usize>,
     /// Programmed speed (rev/min) by channel axis.
@@ -117,6 +119,8 @@ pub(super) struct Spindles {
     pub start_angle: f64,
     /// The block before was a G33 block: a chained thread block starts without a new sync.
     pub thread_chained: bool,
+    /// G group 29: diameter programming of the transverse axis.
+    pub diameter: diameter::Diameter,
 }
 
 impl Spindles {
@@ -133,6 +137,7 @@ impl Spindles {
             thread: None,
             start_angle: 0.0,
             thread_chained: false,
+            diameter: diameter::Diameter::reset(cfg),
         }
     }
 
@@ -145,6 +150,7 @@ impl Spindles {
         self.thread = None;
         self.thread_chained = false;
         self.start_angle = 0.0;
+        self.diameter = diameter::Diameter::reset(cfg);
         if stop {
             self.direction = [0; MAX_CHANNEL_AXES];
         }
@@ -182,6 +188,17 @@ impl Spindles {
     /// Whether the spindle on channel axis `axis` was programmed to turn.
     pub fn turns(&self, axis: usize) -> bool {
         self.direction[axis] != 0
+    }
+
+    /// The programmed speed of the spindle on channel axis `axis` (rev/min).
+    pub fn speed_of(&self, axis: usize) -> f64 {
+        self.speed[axis]
+    }
+
+    /// The programmed direction of the spindle on channel axis `axis`: +1 M3, −1 M4, 0 M5 or
+    /// positioned.
+    pub fn direction_of(&self, axis: usize) -> i8 {
+        self.direction[axis]
     }
 
     /// Stops the spindle on `axis` in preparation's view (SPOS puts it in position control).

@@ -27,6 +27,14 @@ pub struct MachineAxis {
     pub modulo: Option<(f64, f64)>,
     /// Spindle number when the axis is a spindle (`$MA_SPIND_ASSIGN_TO_MACHAX`).
     pub spindle: Option<u32>,
+    /// A spindle without axis function: its channel axis has no name
+    /// (`$MC_AXCONF_CHANAX_NAME_TAB` empty), so programs reach it only through S, M3/M4/M5,
+    /// SPOS and the like, and the state shows it under `spindles` as `S<n>`, never among the
+    /// positions (the tool spindle of a mill, which the contract lists as X, Y, Z).
+    pub spindle_only: bool,
+    /// MD35300 `$MA_SPIND_POSCTRL_VELO`: speed of positioning in position control (SPOS,
+    /// M19), rev/min.
+    pub spindle_posctrl_velo: f64,
     /// Maximum velocity in mm/s or deg/s.
     pub max_velocity: f64,
     /// Maximum acceleration in mm/s² or deg/s².
@@ -64,6 +72,14 @@ pub struct MachineConfig {
     pub geo_names: [String; 3],
     /// Channel axis of the master spindle, if the channel has one.
     pub master_spindle: Option<usize>,
+    /// Channel axis of the transverse axis (MD20100 `$MC_DIAMETER_AX_DEF`), if one is named:
+    /// the axis of diameter programming and constant cutting speed.
+    pub transverse_axis: Option<usize>,
+    /// Reset position of G group 29 (MD20150 `$MC_GCODE_RESET_VALUES[28]`): 1 DIAMOF,
+    /// 2 DIAMON, 3 DIAM90, 4 DIAMCYCOF.
+    pub diameter_reset: u8,
+    /// Reset position of G group 6 (MD20150 `$MC_GCODE_RESET_VALUES[5]`): 1 G17, 2 G18, 3 G19.
+    pub plane_reset: u8,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
     pub tools: BTreeMap<(u32, u32), EdgeParams>,
     /// The tool list: names, duplo numbers, states, magazines and places.
@@ -268,7 +284,17 @@ impl MachineConfig {
                 machine_axis: order.iter().position(|o| o == m).expect("machine axis listed"),
             })
             .collect();
+        let (mut machine_axes, mut channel_axes) = (machine_axes, channel_axes);
         unique_names(&machine_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_MACHAX_NAME_TAB")?;
+        // A spindle's channel axis may go without a name: a spindle without axis function. It
+        // goes by its machine axis name inside (frames and stored data list every channel axis).
+        for c in channel_axes.iter_mut().filter(|c| c.name.is_empty()) {
+            let m = &mut machine_axes[c.machine_axis];
+            if m.spindle.is_some() {
+                m.spindle_only = true;
+                c.name = m.name.clone();
+            }
+        }
         unique_names(&channel_axes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), "AXCONF_CHANAX_NAME_TAB")?;
 
         // Geometry axes.
@@ -302,6 +328,35 @@ impl MachineConfig {
             geo_axes.iter().zip(&geo_names).filter(|(a, _)| a.is_some()).map(|(_, n)| n.as_str()).collect();
         unique_names(&active_geo, "AXCONF_GEOAX_NAME_TAB")?;
 
+        let transverse_name = md.string("$MC_DIAMETER_AX_DEF", 0);
+        let transverse_axis = if transverse_name.is_empty() {
+            None
+        } else {
+            let g = geo_names.iter().position(|n| n.eq_ignore_ascii_case(&transverse_name)).ok_or_else(|| {
+                ActivationError {
+                    datum: Some("DIAMETER_AX_DEF"),
+                    message: format!("$MC_DIAMETER_AX_DEF=\"{transverse_name}\" is no geometry axis"),
+                }
+            })?;
+            Some(geo_axes[g].ok_or_else(|| ActivationError {
+                datum: Some("DIAMETER_AX_DEF"),
+                message: format!("$MC_DIAMETER_AX_DEF: geometry axis {transverse_name} is not assigned"),
+            })?)
+        };
+        let diameter_reset = md.num("$MC_GCODE_RESET_VALUES", 0, 28) as u8;
+        if !(1..=4).contains(&diameter_reset) {
+            return fail(
+                "GCODE_RESET_VALUES",
+                format!("$MC_GCODE_RESET_VALUES[28]={diameter_reset}: G group 29 has 1 DIAMOF .. 4 DIAMCYCOF"),
+            );
+        }
+        let plane_reset = md.num("$MC_GCODE_RESET_VALUES", 0, 5) as u8;
+        if !(1..=3).contains(&plane_reset) {
+            return fail(
+                "GCODE_RESET_VALUES",
+                format!("$MC_GCODE_RESET_VALUES[5]={plane_reset}: G group 6 has 1 G17, 2 G18, 3 G19"),
+            );
+        }
         let master = md.num("$MC_SPIND_DEF_MASTER_SPIND", 0, 0) as u32;
         let master_spindle = channel_axes.iter().position(|c| machine_axes[c.machine_axis].spindle == Some(master));
 
@@ -321,6 +376,9 @@ impl MachineConfig {
             geo_axes,
             geo_names,
             master_spindle,
+            transverse_axis,
+            diameter_reset,
+            plane_reset,
             tools: BTreeMap::new(),
             tool_list: Default::default(),
             tool_change: ToolChange {
@@ -444,6 +502,33 @@ impl MachineConfig {
         }
     }
 
+    /// The number of channel axes without the trailing spindles without axis function: the
+    /// axes a program moves by name (the mill's X, Y, Z without its tool spindle).
+    pub fn axes_len(&self) -> usize {
+        let n = self.channel_axes.len();
+        n - (0..n).rev().take_while(|&k| !self.shown(k)).count()
+    }
+
+    /// Whether channel axis `idx` is shown among the positions (every axis but a spindle
+    /// without axis function, see [`MachineAxis::spindle_only`]).
+    pub fn shown(&self, idx: usize) -> bool {
+        !self.axis(idx).spindle_only
+    }
+
+    /// The name the state gives the spindle on channel axis `idx`: its channel axis name, or
+    /// `S<n>` for a spindle without axis function.
+    pub fn spindle_name(&self, idx: usize) -> &str {
+        const NAMES: [&str; 20] = [
+            "S1", "S2", "S3", "S4", "S5", "S6", "S7", "S8", "S9", "S10", "S11", "S12", "S13", "S14", "S15", "S16",
+            "S17", "S18", "S19", "S20",
+        ];
+        let a = self.axis(idx);
+        match a.spindle.filter(|_| a.spindle_only).and_then(|n| NAMES.get((n as usize).wrapping_sub(1))) {
+            Some(name) => name,
+            None => self.program_axis_name(idx),
+        }
+    }
+
     /// The machine axis driving channel axis `idx`.
     pub fn axis(&self, idx: usize) -> &MachineAxis {
         &self.machine_axes[self.channel_axes[idx].machine_axis]
@@ -507,6 +592,8 @@ fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationEr
         rotary,
         modulo: modulo_flag.then(|| (num("$MA_MODULO_RANGE_START"), num("$MA_MODULO_RANGE"))),
         spindle: (spindle != 0).then_some(spindle),
+        spindle_only: false,
+        spindle_posctrl_velo: num("$MA_SPIND_POSCTRL_VELO"),
         max_velocity: num("$MA_MAX_AX_VELO") * velo,
         max_accel: num("$MA_MAX_AX_ACCEL") * accel,
         accel_overload: num("$MA_MAX_ACCEL_OVL_FACTOR"),

@@ -96,13 +96,30 @@ const MILL_3AXIS: &str = r#"; 3-axis vertical milling machine
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
+$MN_AXCONF_MACHAX_NAME_TAB[3]="SP1"
 $MC_AXCONF_MACHAX_USED[0]=1
 $MC_AXCONF_MACHAX_USED[1]=2
 $MC_AXCONF_MACHAX_USED[2]=3
-$MC_AXCONF_MACHAX_USED[3]=0
+$MC_AXCONF_MACHAX_USED[3]=4
+$MC_AXCONF_MACHAX_USED[4]=0
 $MC_AXCONF_CHANAX_NAME_TAB[0]="X"
 $MC_AXCONF_CHANAX_NAME_TAB[1]="Y"
 $MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
+; The tool spindle S1: a spindle without axis function (no channel axis name), so the
+; positions show X, Y, Z only and the spindle appears under the state's spindles as S1.
+$MC_AXCONF_CHANAX_NAME_TAB[3]=""
+$MC_SPIND_DEF_MASTER_SPIND=1
+$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+; 12000 rev/min, 50 rev/s² (3000 rev/min per second) in speed control; position control
+; (SPOS, M19, G331) at up to 1000 rev/min (MD35300), 100 rev/s² as an axis.
+$MA_SPIND_VELO_LIMIT[SP1]=12000.
+$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
+$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
+$MA_SPIND_POSCTRL_VELO[SP1]=1000.
+$MA_MAX_AX_VELO[SP1]=12000.
+$MA_MAX_AX_ACCEL[SP1]=100.
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -162,6 +179,11 @@ $MA_IS_ROT_AX[SP1]=TRUE
 $MA_ROT_IS_MODULO[SP1]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
 $MA_MAX_AX_VELO[SP1]=1440000.
+; X is the transverse axis (diameter programming, constant cutting speed).
+$MC_DIAMETER_AX_DEF="X"
+; A lathe starts in G18 (MD20150[5]); radius programming (MD20150[28] = 1, DIAMOF) as the
+; preset has always been; `$MC_GCODE_RESET_VALUES[28]=2` makes DIAMON the reset value.
+$MC_GCODE_RESET_VALUES[5]=2
 $MA_MAX_AX_ACCEL[SP1]=30.
 ; Main spindle: 4000 rev/min, 30 rev/s² in speed control.
 $MA_SPIND_VELO_LIMIT[SP1]=4000.
@@ -228,6 +250,9 @@ $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
 $MA_IS_ROT_AX[CM]=TRUE
 $MA_ROT_IS_MODULO[CM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+; X is the transverse axis (diameter programming, constant cutting speed); G18 at reset.
+$MC_DIAMETER_AX_DEF="X"
+$MC_GCODE_RESET_VALUES[5]=2
 $MA_IS_ROT_AX[ASM]=TRUE
 $MA_ROT_IS_MODULO[ASM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[ASM]=2
@@ -293,6 +318,9 @@ $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
 $MA_IS_ROT_AX[CM]=TRUE
 $MA_ROT_IS_MODULO[CM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+; X is the transverse axis (diameter programming, constant cutting speed); G18 at reset.
+$MC_DIAMETER_AX_DEF="X"
+$MC_GCODE_RESET_VALUES[5]=2
 $MA_IS_ROT_AX[ASM]=TRUE
 $MA_ROT_IS_MODULO[ASM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[ASM]=2
@@ -566,7 +594,20 @@ $MC_AXCONF_MACHAX_USED[1]=2
 $MC_AXCONF_MACHAX_USED[2]=3
 $MC_AXCONF_MACHAX_USED[3]=4
 $MC_AXCONF_MACHAX_USED[4]=5
-$MC_AXCONF_MACHAX_USED[5]=0
+; The tool spindle S1: a spindle without axis function, as on mill-3axis.
+$MN_AXCONF_MACHAX_NAME_TAB[5]="SP1"
+$MC_AXCONF_MACHAX_USED[5]=6
+$MC_AXCONF_CHANAX_NAME_TAB[5]=""
+$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+$MA_SPIND_VELO_LIMIT[SP1]=12000.
+$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
+$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
+$MA_SPIND_POSCTRL_VELO[SP1]=1000.
+$MA_MAX_AX_VELO[SP1]=12000.
+$MA_MAX_AX_ACCEL[SP1]=100.
+$MC_AXCONF_MACHAX_USED[6]=0
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -663,7 +704,20 @@ $MC_AXCONF_MACHAX_USED[1]=2
 $MC_AXCONF_MACHAX_USED[2]=3
 $MC_AXCONF_MACHAX_USED[3]=4
 $MC_AXCONF_MACHAX_USED[4]=5
-$MC_AXCONF_MACHAX_USED[5]=0
+; The tool spindle S1: a spindle without axis function, as on mill-3axis.
+$MN_AXCONF_MACHAX_NAME_TAB[5]="SP1"
+$MC_AXCONF_MACHAX_USED[5]=6
+$MC_AXCONF_CHANAX_NAME_TAB[5]=""
+$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+$MA_SPIND_VELO_LIMIT[SP1]=12000.
+$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
+$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
+$MA_SPIND_POSCTRL_VELO[SP1]=1000.
+$MA_MAX_AX_VELO[SP1]=12000.
+$MA_MAX_AX_ACCEL[SP1]=100.
+$MC_AXCONF_MACHAX_USED[6]=0
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -764,7 +818,20 @@ $MC_AXCONF_MACHAX_USED[1]=2
 $MC_AXCONF_MACHAX_USED[2]=3
 $MC_AXCONF_MACHAX_USED[3]=4
 $MC_AXCONF_MACHAX_USED[4]=5
-$MC_AXCONF_MACHAX_USED[5]=0
+; The tool spindle S1: a spindle without axis function, as on mill-3axis.
+$MN_AXCONF_MACHAX_NAME_TAB[5]="SP1"
+$MC_AXCONF_MACHAX_USED[5]=6
+$MC_AXCONF_CHANAX_NAME_TAB[5]=""
+$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+$MA_SPIND_VELO_LIMIT[SP1]=12000.
+$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
+$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
+$MA_SPIND_POSCTRL_VELO[SP1]=1000.
+$MA_MAX_AX_VELO[SP1]=12000.
+$MA_MAX_AX_ACCEL[SP1]=100.
+$MC_AXCONF_MACHAX_USED[6]=0
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -938,7 +1005,23 @@ $MC_TRAFO5_POLE_LIMIT_1=2.
     };
 }
 
-const MILL6_GENERIC: &str = mill6_generic_text!();
+const MILL6_GENERIC: &str = concat!(
+    mill6_generic_text!(),
+    r#"; The tool spindle S1: a spindle without axis function, as on mill-3axis.
+$MN_AXCONF_MACHAX_NAME_TAB[6]="SP1"
+$MC_AXCONF_MACHAX_USED[6]=7
+$MC_AXCONF_CHANAX_NAME_TAB[6]=""
+$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+$MA_SPIND_VELO_LIMIT[SP1]=12000.
+$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
+$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
+$MA_SPIND_POSCTRL_VELO[SP1]=1000.
+$MA_MAX_AX_VELO[SP1]=12000.
+$MA_MAX_AX_ACCEL[SP1]=100.
+"#
+);
 
 const MILL7_GENERIC: &str = concat!(
     mill6_generic_text!(),
@@ -955,6 +1038,20 @@ $MC_TRAFO_AXES_IN_1[6]=7      ; C1: 7th axis (rotary table)
 ; The table axis runs through the BCS zero point (machine X0 Y0) along +Z.
 $MC_TRAFO7_EXT_AXIS1_1[2]=1.
 $MC_TRAFO7_EXT_ROT_AX_OFFSET_1=0.
+"#,
+    r#"; The tool spindle S1: a spindle without axis function, as on mill-3axis.
+$MN_AXCONF_MACHAX_NAME_TAB[7]="SP1"
+$MC_AXCONF_MACHAX_USED[7]=8
+$MC_AXCONF_CHANAX_NAME_TAB[7]=""
+$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+$MA_SPIND_VELO_LIMIT[SP1]=12000.
+$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
+$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
+$MA_SPIND_POSCTRL_VELO[SP1]=1000.
+$MA_MAX_AX_VELO[SP1]=12000.
+$MA_MAX_AX_ACCEL[SP1]=100.
 "#
 );
 
@@ -974,8 +1071,11 @@ mod tests {
     fn the_mill_has_three_linear_geometry_axes_and_a_4ms_ipo_cycle() {
         let cfg = MachineData::default().apply_text(find("mill-3axis").unwrap().text).unwrap();
         let names: Vec<_> = cfg.machine_axes.iter().map(|a| a.name.as_str()).collect();
-        assert_eq!(names, ["X", "Y", "Z"]);
-        assert!(cfg.machine_axes.iter().all(|a| !a.rotary));
+        // The 4th machine axis is the tool spindle, a spindle without axis function.
+        assert_eq!(names, ["X", "Y", "Z", "SP1"]);
+        assert!(cfg.machine_axes[..3].iter().all(|a| !a.rotary));
+        assert_eq!((cfg.machine_axes[3].spindle, cfg.machine_axes[3].spindle_only), (Some(1), true));
+        assert_eq!(cfg.master_spindle, Some(3));
         assert_eq!(cfg.geo_axes, [Some(0), Some(1), Some(2)]);
         assert!((cfg.ipo_cycle - 0.004).abs() < 1e-12);
         // 30000 mm/min = 500 mm/s, 3 m/s² = 3000 mm/s².

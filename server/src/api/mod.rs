@@ -16,6 +16,7 @@ pub mod program_archive;
 pub mod programs;
 pub mod roles;
 pub mod sessions;
+pub mod spindle_dto;
 pub mod state_json;
 pub mod stream;
 pub mod stream_frame;

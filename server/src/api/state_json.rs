@@ -204,6 +204,25 @@ fn write_head(out: &mut String, s: &Snapshot) {
     write_f64(out, s.path_velocity);
     out.push_str(",\"spindles\":");
     write_named(out, &s.spindles, write_f64);
+    out.push_str(",\"spindle_info\":{");
+    for (i, (name, sp)) in s.spindle_states.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        write_str(out, name);
+        out.push_str(":{\"number\":");
+        write_int(out, sp.number);
+        out.push_str(",\"speed\":");
+        write_f64(out, sp.speed);
+        out.push_str(",\"mode\":");
+        write_str(out, sp.mode.name());
+        out.push_str(",\"position\":");
+        write_f64(out, sp.position);
+        out.push_str(",\"master\":");
+        write_bool(out, sp.master);
+        out.push('}');
+    }
+    out.push('}');
 }
 
 /// The message from `message` to its end.

@@ -45,6 +45,8 @@ export interface State {
   tool: { t: number; d: number; name: string; prepared: number };
   path_velocity: number;
   spindles: Record<string, number>;
+  /** Each spindle's mode (M3/M4/M5/SPOS), angle in degrees and master flag, by the names of `spindles`. */
+  spindle_info?: Record<string, SpindleInfo>;
   /** The program's last MSG text. */
   message?: string | null;
   overrides: Overrides;
@@ -212,4 +214,13 @@ export interface PreviewResponse {
   alarm?: Alarm | null;
   time: number;
   samples: number;
+}
+
+/** One spindle in the state's `spindle_info`. */
+export interface SpindleInfo {
+  number: number;
+  speed: number;
+  mode: "M3" | "M4" | "M5" | "SPOS";
+  position: number;
+  master: boolean;
 }

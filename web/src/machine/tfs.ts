@@ -1,12 +1,13 @@
 // The T, F, S window: active tool and edge, path feed, spindle speeds, transformation, active
 // G functions, time.
 
-import type { State } from "../api/types";
+import type { SpindleInfo, State } from "../api/types";
 import { byId, fmt, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
 
-function spindleText(name: string, rpm: number): string {
-  const dir = rpm > 0 ? "M3" : rpm < 0 ? "M4" : "M5";
+function spindleText(name: string, rpm: number, info?: SpindleInfo): string {
+  if (info?.mode === "SPOS") return `${name} SPOS ${fmt(info.position, 1)}°`;
+  const dir = info ? info.mode : rpm > 0 ? "M3" : rpm < 0 ? "M4" : "M5";
   return `${name} ${fmt(Math.abs(rpm), 0)} rpm ${dir}`;
 }
 
@@ -16,7 +17,7 @@ function render(st: State): void {
   setText(byId("tool"), `${named}  D${st.tool.d}${prepared}`);
   setText(byId("path-feed"), fmt(st.path_velocity, 1));
   const spindles = Object.entries(st.spindles);
-  setText(byId("spindles"), spindles.length ? spindles.map(([n, rpm]) => spindleText(n, rpm)).join("   ") : "–");
+  setText(byId("spindles"), spindles.length ? spindles.map(([n, rpm]) => spindleText(n, rpm, st.spindle_info?.[n])).join("   ") : "–");
   const tr = st.transformation;
   setText(byId("transformation"), tr ? `${tr.name} (${tr.index})` : "none");
   setText(byId("gcodes"), st.gcodes.length ? st.gcodes.join(" ") : "–");

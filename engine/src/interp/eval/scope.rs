@@ -38,6 +38,8 @@ pub(crate) struct SysView<'a> {
     pub io: &'a crate::interp::io::DigitalIo,
     /// Markers, parameters, timers, analog signals, `$AC_DELT` of synchronized actions.
     pub sync: &'a crate::interp::synchronized::MainRunData,
+    /// The spindles as preparation sees them (`$P_S`, `$P_SDIR`).
+    pub spindles: &'a crate::interp::spindles::Spindles,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -59,6 +61,7 @@ macro_rules! sys_view {
             stored: &$interp.stored,
             io: &$interp.io,
             sync: &$interp.sync_data,
+            spindles: &$interp.spindles,
         }
     };
 }
@@ -115,6 +118,9 @@ impl Scope for Ctx<'_> {
             sys.offsets.frame.unapply(&sys.cfg.geo_axes, &basic).map_or(f64::NAN, |w| w[k])
         };
         if let Some(v) = crate::interp::orientation::vars::read(sys, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = crate::interp::spindles::vars::read(sys, name, indices, line) {
             return v;
         }
         if let Some(v) = super::cycle_vars::read(sys, name, indices, line) {
@@ -200,6 +206,9 @@ impl Scope for Ctx<'_> {
                     [g] => g.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
                     _ => return Err(Alarm::index_error(line, name, "needs one G group number")),
                 };
+                if group == 29 {
+                    return Ok(Value::Int(sys.spindles.diameter.mode.position().into()));
+                }
                 Value::Int(
                     g_group_index(sys.modal, sys.holder, group)
                         .ok_or_else(|| Alarm::index_error(line, name, &format!("G group {group} is not modelled")))?,

@@ -21,6 +21,10 @@ impl Interpreter {
         out: &mut Vec<Item>,
     ) -> Result<bool, Alarm> {
         let sw = &words.spindle;
+        if let Some(mode) = sw.diameter {
+            self.spindles.diameter.select(mode, cfg, line)?;
+        }
+        self.modal.diameter_slot = self.spindles.diameter.gcode_slot();
         let was_css = self.spindles.feed_type.css();
         if let Some(t) = sw.feed_type {
             self.spindles.feed_type = t;
@@ -175,14 +179,27 @@ impl Interpreter {
         self.pos = end;
         let length = (end[axis] - start[axis]).abs();
         let path = Path::line(start, end);
-        Ok((Move::new(path, length, Feed::Rapid, &AxisLimit::for_channel(cfg), true, line), Feed::Rapid, axis))
+        // Position control moves at MD35300 `$MA_SPIND_POSCTRL_VELO` (rev/min → °/s).
+        let feed = Feed::Path(cfg.axis(axis).spindle_posctrl_velo * 6.0);
+        Ok((Move::new(path, length, feed, &AxisLimit::for_channel(cfg), true, line), feed, axis))
+    }
+
+    /// The master spindle speed `G4 S` counts revolutions at (rev/min): the programmed speed,
+    /// under constant cutting speed (G96/G961) the speed at the diameter where the tool
+    /// stands, within LIMS and G26.
+    pub(in crate::interp) fn dwell_speed(&self, cfg: &MachineConfig) -> f64 {
+        if self.spindles.feed_type.css() {
+            self.css_speed(cfg, &self.pos).unwrap_or(0.0)
+        } else {
+            self.spindles.master_speed()
+        }
     }
 
     /// The transverse axis (MD20100 `$MC_DIAMETER_AX_DEF`, else the first geometry axis) and
     /// the machine position of the turning centre on it: where the workpiece coordinate is 0
     /// through the active frame and tool length (a frame that only translates on that axis).
     pub(in crate::interp) fn turning_centre(&self, cfg: &MachineConfig) -> Option<(usize, f64)> {
-        let tx = cfg.geo_axes[0]?;
+        let tx = cfg.transverse_axis.or(cfg.geo_axes[0])?;
         let mut basic = self.pos;
         for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
             *b -= t;

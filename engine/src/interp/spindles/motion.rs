@@ -10,9 +10,10 @@ use crate::machine_data::MachineConfig;
 use crate::motion::{AxisLimit, Feed, Move};
 
 impl Interpreter {
-    /// Whether the fast lane may prepare plain blocks: feed per minute and no thread.
+    /// Whether the fast lane may prepare plain blocks: feed per minute, no thread and no
+    /// diameter programming.
     pub(in crate::interp) fn spindles_plain(&self) -> bool {
-        self.spindles.feed_type == FeedType::G94 && self.spindles.thread.is_none()
+        self.spindles.feed_type == FeedType::G94 && self.spindles.thread.is_none() && !self.spindles.diameter.active()
     }
 
     /// Gives the block's move `mv` (just built, feed from F) what the feed type and thread

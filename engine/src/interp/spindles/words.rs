@@ -35,6 +35,17 @@ pub struct SpindleWords {
     /// G63 (tapping with a compensating chuck, non-modal).
     pub g63: bool,
     pub sf: Option<f64>,
+    /// DIAMON/DIAMOF/DIAM90/DIAMCYCOF (G group 29).
+    pub diameter: Option<super::diameter::DiamMode>,
+}
+
+/// A keyword of this module without arguments (G group 29); false for any other name.
+pub(in crate::interp) fn keyword(w: &mut SpindleWords, name: &str, line: u32) -> Result<bool, Alarm> {
+    let Some(mode) = super::diameter::DiamMode::of_keyword(name) else { return Ok(false) };
+    if w.diameter.replace(mode).is_some() {
+        return Err(Alarm::conflicting_functions(line, "DIAMON/DIAMOF/DIAM90/DIAMCYCOF"));
+    }
+    Ok(true)
 }
 
 /// The G functions of this module; false for any other code.

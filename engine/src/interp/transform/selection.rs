@@ -312,6 +312,8 @@ fn derive(cfg: &MachineConfig, trafo: &AnyTrafo) -> MachineConfig {
             rotary: false,
             modulo: None,
             spindle: None,
+            spindle_only: false,
+            spindle_posctrl_velo: 0.0,
             // The transformation planning limits the path by the real axes.
             max_velocity: f64::INFINITY,
             max_accel: f64::INFINITY,
