@@ -186,6 +186,10 @@ impl Channel {
     }
 
     pub(super) fn retire_finished_moves(&mut self) {
+        // Most cycles finish nothing: the list stays where it is.
+        if !self.planner.has_finished() {
+            return;
+        }
         let finished = self.planner.take_finished();
         if finished.is_empty() {
             return;

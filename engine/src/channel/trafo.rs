@@ -9,7 +9,11 @@ impl Channel {
     /// transformation of the move the position lies on, continuous with the last cycle.
     pub(super) fn update_machine_position(&mut self) {
         let tag = self.planner.position_tag();
-        let meta = tag.and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t));
+        // Mostly the oldest move in the planner: found without the queue's iterator.
+        let meta = match self.in_planner.front() {
+            Some(front) if Some(front.0) == tag => Some(front),
+            _ => tag.and_then(|t| self.in_planner.iter().find(|(tag, _)| *tag == t)),
+        };
         // A new move, and every position at rest (a block end with a stop, a hold), is solved
         // directly: stepped angles differ from it in the last digits, which a modulo axis at
         // rest would show (−1e-14° displays as 360°).

@@ -79,8 +79,7 @@ impl Planner {
         let (lo, hi) = if lo > hi { (hi.min(a).max(-a), hi.min(a).max(-a)) } else { (lo, hi) };
         // No transition farther than the longest stop any candidate needs (with the smallest
         // acceleration and jerk queued) can bind: the checks look no farther.
-        let (a_min, j_min) =
-            self.queue.iter().fold((f64::INFINITY, f64::INFINITY), |(a, j), m| (a.min(m.a_max), j.min(m.jerk)));
+        let (a_min, j_min) = (self.a_min, self.j_min);
         let v_hi = self.v + hi.max(0.0) * dt;
         let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, a_min, j_min) + v_hi * dt;
         let acc = if self.soft_safe(hi, target, horizon) {
