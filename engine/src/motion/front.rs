@@ -62,6 +62,17 @@ impl SinCosStep {
     }
 }
 
+/// The moving axes' positions on a free-form element at `u` (out of the line's and the arc's
+/// code).
+#[inline(never)]
+fn curve_position(c: &Curve, m: &Moving, u: f64, out: &mut AxisVec) {
+    let mut p = [0.0; MAX_CHANNEL_AXES];
+    c.at(u, &mut p);
+    for &k in &m.slot[..m.len] {
+        out[k] = p[k];
+    }
+}
+
 /// The moving axes of the front move: slot, start and travel (`end − start`), and for an arc
 /// the plane vectors' components. Compact: only the first `len` entries are used.
 #[derive(Debug, Clone)]
@@ -99,6 +110,7 @@ pub(super) struct FrontMove {
 impl FrontMove {
     /// Sets up the cycles of `path`, and puts every axis it does not move at the value
     /// [`Path::at`] gives it for every `s < 1` (`start + 0.0`: a −0.0 start reads +0.0 there).
+    #[inline(never)]
     pub(super) fn new(path: &Path, position: &mut AxisVec) -> FrontMove {
         let mut moving = Moving {
             slot: [0; MAX_CHANNEL_AXES],
@@ -150,13 +162,7 @@ impl FrontMove {
                     out[k] = a + t * u;
                 }
             }
-            (None, Some(c)) => {
-                let mut p = [0.0; MAX_CHANNEL_AXES];
-                c.at(u, &mut p);
-                for i in 0..n {
-                    out[m.slot[i]] = p[m.slot[i]];
-                }
-            }
+            (None, Some(c)) => curve_position(c, m, u, out),
             (Some(arc), _) => {
                 // Circle minus its chord: zero at both ends.
                 let [(sin0, cos0), (sin1, cos1)] = arc.ends;
@@ -174,6 +180,7 @@ impl FrontMove {
     }
 
     /// [`OriPath::at`] at `u` with the rotation angle stepped from the last cycle's.
+    #[inline(never)]
     pub(super) fn orientation(&mut self, ori: &OriPath, u: f64) -> Vec3 {
         if let Some(c) = &ori.curve {
             return c.at(u);

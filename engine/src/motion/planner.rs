@@ -514,25 +514,36 @@ impl Planner {
             }
             // The move ends within this cycle.
             d -= remaining;
-            self.position = front.path.end;
-            self.orientation = front.path.orientation_at(1.0);
-            self.position_tag = Some(front.tag);
-            let stop_here = self.v_end[0] == 0.0;
-            let done = self.queue.pop_front().expect("front exists");
-            self.front_move = None;
-            if done.a_max <= self.a_min || done.jerk <= self.j_min {
-                self.rescan_minima();
-            }
-            self.v_end.pop_front();
-            self.corner.pop_front();
-            self.finished.push(done.tag);
-            self.s = 0.0;
-            if stop_here || self.queue.is_empty() {
-                self.v = 0.0;
-                self.acc = 0.0;
+            if self.finish_front() {
                 break;
             }
         }
+    }
+
+    /// The front move ends within this cycle: the position is its end, the next move comes to
+    /// the front. True if the path stops there (or nothing follows). Once per move: kept out
+    /// of the cycle's code.
+    #[inline(never)]
+    fn finish_front(&mut self) -> bool {
+        let Some(done) = self.queue.pop_front() else { return true };
+        self.position = done.path.end;
+        self.orientation = done.path.orientation_at(1.0);
+        self.position_tag = Some(done.tag);
+        let stop_here = self.v_end[0] == 0.0;
+        self.front_move = None;
+        if done.a_max <= self.a_min || done.jerk <= self.j_min {
+            self.rescan_minima();
+        }
+        self.v_end.pop_front();
+        self.corner.pop_front();
+        self.finished.push(done.tag);
+        self.s = 0.0;
+        if stop_here || self.queue.is_empty() {
+            self.v = 0.0;
+            self.acc = 0.0;
+            return true;
+        }
+        false
     }
 
     /// The smallest acceleration and jerk of the queued moves, from scratch (the move that
@@ -557,8 +568,8 @@ impl Planner {
         let n = self.queue.len();
         // The front move's own transition first, without the queue's iterators: most cycles
         // look no farther. The same arithmetic as the loop's first pass.
-        let mut distance = -self.s + front.length;
-        let mut a = f64::INFINITY.min(front.a_max);
+        let distance = -self.s + front.length;
+        let a = f64::INFINITY.min(front.a_max);
         let mut limit = v;
         let reserve = if n > 1 { v_end * dt } else { 0.0 };
         let d = distance - reserve;
@@ -568,6 +579,16 @@ impl Planner {
         if v_end == 0.0 || distance > limit * limit / a_min {
             return limit;
         }
+        self.brake_limited_ahead(distance, a, limit)
+    }
+
+    /// [`Planner::brake_limited`] past the front move, from the distance to its end, the
+    /// smallest deceleration so far and the limit so far (out of line: rarely reached).
+    #[inline(never)]
+    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64) -> f64 {
+        let dt = self.dt;
+        let a_min = self.a_min;
+        let n = self.queue.len();
         for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate().skip(1) {
             distance += mv.length;
             a = a.min(mv.a_max);
