@@ -3,6 +3,7 @@
 
 use super::Channel;
 use crate::kinematics::{ActiveTrafo, Transformation};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 impl Channel {
     /// Maps the planner's position of this cycle to machine positions: through the
@@ -26,7 +27,10 @@ impl Channel {
             // moves) already holds machine positions, the offset included.
             None if machine_space => self.machine = *self.planner.position(),
             None => {
-                self.machine = *self.planner.position();
+                // In two halves: a 160-byte copy is a call to memcpy, 80 bytes are moves inline.
+                let (position, half) = (self.planner.position(), MAX_CHANNEL_AXES / 2);
+                self.machine[..half].copy_from_slice(&position[..half]);
+                self.machine[half..].copy_from_slice(&position[half..]);
                 // Without a transformation the tool directions are the geometry axes.
                 for (g, k) in self.cfg.geo_axes.iter().enumerate() {
                     if let Some(k) = k {

@@ -82,15 +82,18 @@ impl Planner {
         let (a_min, j_min) = (self.a_min, self.j_min);
         let v_hi = self.v + hi.max(0.0) * dt;
         let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, a_min, j_min) + v_hi * dt;
-        let acc = if self.soft_safe(hi, target, horizon) {
+        // Far from every transition (most cycles of a long move), the candidates need only
+        // the target's tests: the same answers without a stop distance each.
+        let near = self.transition_near(lo, hi, horizon);
+        let acc = if self.soft_safe(hi, target, horizon, near) {
             hi
-        } else if !self.soft_safe(lo, target, horizon) {
+        } else if !self.soft_safe(lo, target, horizon, near) {
             lo
         } else {
             let (mut ok, mut bad) = (lo, hi);
             for _ in 0..REFINE {
                 let mid = 0.5 * (ok + bad);
-                if self.soft_safe(mid, target, horizon) {
+                if self.soft_safe(mid, target, horizon, near) {
                     ok = mid;
                 } else {
                     bad = mid;
@@ -123,8 +126,9 @@ impl Planner {
 
     /// True when the path, accelerating with `acc` this cycle, can still keep the velocity
     /// target and brake to every planned transition speed ahead with its jerk (those within
-    /// `horizon` of the position after this cycle: no stop is longer).
-    fn soft_safe(&self, acc: f64, target: f64, horizon: f64) -> bool {
+    /// `horizon` of the position after this cycle: no stop is longer). `near`: false when
+    /// [`Planner::transition_near`] found that no transition can bind.
+    fn soft_safe(&self, acc: f64, target: f64, horizon: f64, near: bool) -> bool {
         let dt = self.dt;
         let front = &self.queue[0];
         let j_front = front.jerk;
@@ -140,6 +144,9 @@ impl Planner {
         } else if v1 > target && acc > (self.acc - j_front * dt).max(-front.a_max) {
             // Above the target: only the hardest braking the jerk allows.
             return false;
+        }
+        if !near {
+            return true;
         }
         let n = self.queue.len();
         let mut distance = -self.s - v1 * dt;
@@ -159,6 +166,50 @@ impl Planner {
             }
         }
         true
+    }
+
+    /// False when no planned transition can fail [`Planner::soft_safe`]'s test for any
+    /// acceleration in `lo..=hi` this cycle; true when one might (the candidates then test
+    /// each transition). A bound, not the test: per transition the candidates' stop distance
+    /// is at most the highest velocity reached (`V = v₁ + acc⁺²/2j` with the highest `v₁` and
+    /// `acc`) times an upper bound of [`stop_distance`]'s phase times (`t₁ ≤ (acc⁺ + P)/j`,
+    /// hold `≤ E/a`, `t₃ ≤ P/j`, where `E` bounds the velocity to lose and `P` the peak
+    /// deceleration: `max(√(j·E), −lo)`), and the distance left is at least the one after the
+    /// fastest candidate's cycle. It looks at least as far ahead as any candidate (their
+    /// distances are not smaller), and keeps a margin far above rounding.
+    fn transition_near(&self, lo: f64, hi: f64, horizon: f64) -> bool {
+        let dt = self.dt;
+        let v_hi = self.v + hi * dt;
+        if v_hi < 0.0 {
+            // Every candidate stands still after this cycle: none reaches the transitions.
+            return false;
+        }
+        let v_lo = (self.v + lo * dt).max(0.0);
+        let acc_up = hi.max(0.0);
+        let n = self.queue.len();
+        let mut distance = -self.s - v_hi * dt;
+        let (mut a, mut j) = (f64::INFINITY, f64::INFINITY);
+        for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate() {
+            distance += mv.length;
+            a = a.min(mv.a_max);
+            j = j.min(mv.jerk);
+            let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
+            let room = distance - reserve;
+            let peak_v = v_hi + acc_up * acc_up / (2.0 * j);
+            if v_end < peak_v * (1.0 + 1e-9) + 1e-9 {
+                let lose = (peak_v - v_end).max(0.0);
+                let peak_dec = (j * lose).sqrt().max(-lo).max(0.0);
+                let time = (acc_up + 2.0 * peak_dec) / j + lose / a;
+                let stop = peak_v * time - (v_lo - v_end) * dt / 2.0;
+                if !(stop.is_finite() && stop * (1.0 + 1e-9) + 1e-9 < room - 1e-9 * room.abs()) {
+                    return true;
+                }
+            }
+            if v_end == 0.0 || room > horizon {
+                break;
+            }
+        }
+        false
     }
 }
 
