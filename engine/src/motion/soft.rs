@@ -215,7 +215,54 @@ impl Planner {
 
 #[cfg(test)]
 mod tests {
+    use super::super::{AxisLimit, Feed, Move, Path, Planner};
     use super::stop_distance;
+    use crate::machine_data::registry::MAX_CHANNEL_AXES;
+
+    #[test]
+    fn far_from_every_transition_the_bound_gives_the_answers_of_the_full_test() {
+        // SOFT along a zigzag of short and long lines (corners of 90° and less, so planned
+        // transition speeds between 0 and the feed): every cycle, candidates across the
+        // cycle's acceleration range get the same answer with the bound as with every
+        // transition tested; and the bound does spare the tests in many cycles.
+        let lim = vec![AxisLimit { max_velocity: 200.0, max_accel: 1000.0, accel_overload: 1.2 }; 3];
+        let mut p = Planner::new(0.004, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        let mut at: [f64; MAX_CHANNEL_AXES] = [0.0; MAX_CHANNEL_AXES];
+        for i in 0..24u32 {
+            let mut to = at;
+            to[0] += [0.4, 3.0, 12.0][i as usize % 3];
+            to[1] += if i % 2 == 0 { 0.8 } else { -0.5 };
+            let len = ((to[0] - at[0]).powi(2) + (to[1] - at[1]).powi(2)).sqrt();
+            let mut mv = Move::new(Path::line(at, to), len, Feed::Path(20.0), &lim, false, i);
+            mv.jerk = 20_000.0;
+            p.push(mv);
+            at = to;
+        }
+        let (mut checked, mut far) = (0, 0);
+        while !p.is_idle() {
+            if let Some(front) = p.queue.front() {
+                let dt = p.dt;
+                let (a, j) = (front.a_max, front.jerk);
+                let target = front.capped(1.0, 1.0, 0.0);
+                let (lo, hi) = ((p.acc - j * dt).max(-a), (p.acc + j * dt).min(a));
+                if lo <= hi {
+                    let v_hi = p.v + hi.max(0.0) * dt;
+                    let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, p.a_min, p.j_min) + v_hi * dt;
+                    let near = p.transition_near(lo, hi, horizon);
+                    far += usize::from(!near);
+                    for i in 0..=40 {
+                        let acc = lo + (hi - lo) * f64::from(i) / 40.0;
+                        let full = p.soft_safe(acc, target, horizon, true);
+                        assert_eq!(p.soft_safe(acc, target, horizon, near), full, "s {} v {} acc {acc}", p.s, p.v);
+                        checked += 1;
+                    }
+                }
+            }
+            p.step();
+            assert!(checked < 10_000_000);
+        }
+        assert!(far > 100 && checked > 10_000, "{far} cycles far of {checked} answers");
+    }
 
     #[test]
     fn the_stop_distance_of_a_full_s_curve_is_the_mean_velocity_times_its_time() {
