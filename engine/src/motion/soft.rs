@@ -54,7 +54,10 @@ pub(super) fn stop_distance(v: f64, acc: f64, v_to: f64, a: f64, j: f64) -> f64 
 /// cycles where that is positive.
 fn ramp_gain(acc: f64, j: f64, dt: f64) -> f64 {
     let step = j * dt;
-    let m = (acc / step).floor();
+    let q = acc / step;
+    // `floor` is a library call on the baseline x86-64 target, and this runs for most SOFT
+    // candidates: below 2⁵² a non-negative quotient truncates to the same integer.
+    let m = if (0.0..4.5e15).contains(&q) { q as u64 as f64 } else { q.floor() };
     dt * (m * acc - step * m * (m + 1.0) / 2.0)
 }
 
