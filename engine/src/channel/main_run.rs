@@ -10,6 +10,7 @@ use crate::motion::{AxisLimit, Move};
 
 impl Channel {
     /// Block preparation: interpret blocks until the look-ahead is full.
+    #[inline]
     pub(super) fn prepare(&mut self) {
         // Most cycles find the look-ahead full: nothing to do then.
         if self.program.is_none()
@@ -19,6 +20,14 @@ impl Channel {
         {
             return;
         }
+        self.prepare_blocks();
+    }
+
+    /// [`Channel::prepare`]'s work, kept out of the IPO cycle's code: every cycle runs that
+    /// code, only about one in fifty prepares a block, and the interpreter between them would
+    /// otherwise push the cycle's instructions out of the cache.
+    #[inline(never)]
+    fn prepare_blocks(&mut self) {
         for s in self.spindles.iter().filter(|s| !s.axis_mode) {
             self.interp.observe_spindle(s.axis, s.position);
         }
@@ -126,11 +135,19 @@ impl Channel {
 
     /// Hands consecutive moves from the front of the prepared items to the planner. A move
     /// followed by anything else ends with an exact stop.
+    #[inline]
     pub(super) fn feed_planner(&mut self) {
-        // A dwell (G4) is a standstill: the next move starts when it has run out.
-        if self.dwell_ticks > 0 {
+        // A dwell (G4) is a standstill: the next move starts when it has run out. Most cycles
+        // have no prepared move waiting.
+        if self.dwell_ticks > 0 || !matches!(self.pending.front(), Some(Item::Move { .. })) {
             return;
         }
+        self.feed_moves();
+    }
+
+    /// [`Channel::feed_planner`]'s work, out of the IPO cycle's code (see `prepare_blocks`).
+    #[inline(never)]
+    fn feed_moves(&mut self) {
         // Single block: one block's moves at a time, and only once the last one is done.
         let single = self.single_block.then(|| self.pending.front().and_then(Item::line));
         if single.is_some() && (!self.planner.is_empty() || self.sbl_done.is_some()) {
@@ -185,7 +202,17 @@ impl Channel {
         self.sync_current_block();
     }
 
+    #[inline]
     pub(super) fn retire_finished_moves(&mut self) {
+        // Most cycles finish nothing: the list stays where it is.
+        if self.planner.has_finished() {
+            self.retire_moves();
+        }
+    }
+
+    /// [`Channel::retire_finished_moves`]' work, once per move (out of the cycle's code).
+    #[inline(never)]
+    fn retire_moves(&mut self) {
         let finished = self.planner.take_finished();
         if finished.is_empty() {
             return;
@@ -254,6 +281,7 @@ impl Channel {
     }
 
     /// Executes non-motion items at the head of the queue once all motion before them is done.
+    #[inline(never)]
     pub(super) fn execute_actions(&mut self) {
         if self.dwell_ticks > 0 {
             self.dwell_ticks -= 1;

@@ -100,6 +100,12 @@ impl Servo {
             self.stale = true;
             return;
         }
+        self.track(setpoint, ffw_program);
+    }
+
+    /// [`Servo::step`] with a loop to compute (out of line: the idle cycle stays small).
+    #[inline(never)]
+    fn track(&mut self, setpoint: &AxisVec, ffw_program: bool) {
         if std::mem::take(&mut self.stale) {
             // Back from idle (FFWOF programmed): this cycle's velocity is not known, the loop
             // starts lagging from the next one.

@@ -199,6 +199,15 @@ impl Spindle {
         (self.speed > 0.0 && now > before) || (self.speed < 0.0 && now < before)
     }
 
+    /// Constant cutting speed: the target from the transverse axis' position (out of the
+    /// plain cycle's code).
+    #[inline(never)]
+    fn follow_diameter(&mut self, c: Css, machine: &[f64]) {
+        let diameter = 2.0 * (machine[c.transverse] - c.centre).abs();
+        let n = if diameter > 1e-9 { c.cutting_speed * 1000.0 / (std::f64::consts::PI * diameter) } else { f64::MAX };
+        self.retarget(n);
+    }
+
     /// One IPO cycle: under constant cutting speed the target from the transverse axis'
     /// machine position `machine`, then the ramp and the angle.
     pub fn step(&mut self, dt: f64, machine: &[f64]) {
@@ -215,10 +224,7 @@ impl Spindle {
             return;
         }
         if let Some(c) = self.css {
-            let diameter = 2.0 * (machine[c.transverse] - c.centre).abs();
-            let n =
-                if diameter > 1e-9 { c.cutting_speed * 1000.0 / (std::f64::consts::PI * diameter) } else { f64::MAX };
-            self.retarget(n);
+            self.follow_diameter(c, machine);
         }
         let dv = self.accel * dt;
         let before = self.speed;

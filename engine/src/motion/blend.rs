@@ -98,12 +98,10 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     }
     let (ua, ub) = (1.0 - d / a.length, d / b.length);
     let curve = element(a, b, d, metric)?;
-    let mut first = a.clone();
-    first.path = a.path.slice(0.0, ua);
+    let mut first = with_path(a, a.path.slice(0.0, ua));
     first.set_limits(a.length * ua, feed_of(a.feed), limits);
     first.blend = None;
-    let mut second = b.clone();
-    second.path = b.path.slice(ub, 1.0);
+    let mut second = with_path(b, b.path.slice(ub, 1.0));
     second.set_limits(b.length * (1.0 - ub), feed_of(b.feed), limits);
     let mut curve = curve;
     curve.finish();
@@ -118,6 +116,27 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     let mut corner = Move::unlimited(path, false, a.tag);
     corner.set_limits(length, feed_of(a.feed.min(b.feed)), limits);
     Some(Rounded { first, corner, second })
+}
+
+/// `m` on another `path`: its data copied, its own path not (a clone would copy and drop it,
+/// an arc's box included, at every corner).
+fn with_path(m: &Move, path: Path) -> Move {
+    Move {
+        path,
+        length: m.length,
+        v_max: m.v_max,
+        v_axes: m.v_axes,
+        feed: m.feed,
+        a_max: m.a_max,
+        exact_stop: m.exact_stop,
+        tag: m.tag,
+        machine_space: m.machine_space,
+        axis_tangents: m.axis_tangents.clone(),
+        per_rev: m.per_rev,
+        jerk: m.jerk,
+        blend: m.blend,
+        compress: m.compress,
+    }
 }
 
 /// Share of each axis' acceleration a rounding element leaves to the centripetal part; the

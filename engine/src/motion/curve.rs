@@ -28,8 +28,10 @@ pub struct Curve {
     table: Vec<(f64, f64, f64)>,
     /// The part of the whole length this path runs, as fractions (0..=1).
     range: (f64, f64),
-    /// [`Curve::rates`] of the run, worked out once (the planner asks for them per move).
-    rates: Box<(AxisVec, AxisVec)>,
+    /// [`Curve::rates`] of the run, worked out once (the planner asks for them per move);
+    /// `None` (zero rates) until [`Curve::finish`]: the search for an element's size makes
+    /// many elements, and none of them needs the allocation.
+    rates: Option<Box<(AxisVec, AxisVec)>>,
 }
 
 impl Curve {
@@ -61,7 +63,7 @@ impl Curve {
             coef[4][k] = 15.0 * p0[k] + 8.0 * v0[k] + 1.5 * a0[k] - a1[k] + 7.0 * v1[k] - 15.0 * p1[k];
             coef[5][k] = -6.0 * p0[k] - 3.0 * v0[k] - 0.5 * a0[k] + 0.5 * a1[k] - 3.0 * v1[k] + 6.0 * p1[k];
         }
-        Curve { coef, metric, axes, n_axes, table: Vec::new(), range: (0.0, 1.0), rates: Box::default() }
+        Curve { coef, metric, axes, n_axes, table: Vec::new(), range: (0.0, 1.0), rates: None }
     }
 
     /// The smallest distance (in the feed's axes) of the element from `point`: 17 samples,
@@ -103,12 +105,17 @@ impl Curve {
     /// Builds the length table of an element made with [`Curve::hermite_untabled`].
     pub fn finish(&mut self) {
         self.build_table();
-        *self.rates = self.sample_rates();
+        self.rates = Some(Box::new(self.sample_rates()));
     }
 
     /// Simpson's rule on each interval, `dt/ds` at every knot for the inversion.
     fn build_table(&mut self) {
-        let speed = |t: f64| self.norm(&self.d1(t));
+        // One buffer for every knot (only the moving axes are written and read).
+        let mut d = [0.0; MAX_CHANNEL_AXES];
+        let mut speed = |t: f64| {
+            self.d1_into(t, &mut d);
+            self.norm(&d)
+        };
         let h = 1.0 / TABLE as f64;
         let mut s = 0.0;
         let mut table = Vec::with_capacity(TABLE + 1);
@@ -147,7 +154,7 @@ impl Curve {
     pub fn slice(&self, u0: f64, u1: f64) -> Curve {
         let (a, b) = self.range;
         let mut c = Curve { range: (a + (b - a) * u0, a + (b - a) * u1), ..self.clone() };
-        *c.rates = c.sample_rates();
+        c.rates = Some(Box::new(c.sample_rates()));
         c
     }
 
@@ -185,22 +192,32 @@ impl Curve {
 
     /// `p'(t)`.
     pub fn d1(&self, t: f64) -> AxisVec {
-        let c = &self.coef;
         let mut d = [0.0; MAX_CHANNEL_AXES];
+        self.d1_into(t, &mut d);
+        d
+    }
+
+    /// `p'(t)` of the moving axes into `d` (the others are left as they are).
+    fn d1_into(&self, t: f64, d: &mut AxisVec) {
+        let c = &self.coef;
         for &k in self.axes() {
             d[k] = c[1][k] + t * (2.0 * c[2][k] + t * (3.0 * c[3][k] + t * (4.0 * c[4][k] + t * 5.0 * c[5][k])));
         }
-        d
     }
 
     /// `p''(t)`.
     pub fn d2(&self, t: f64) -> AxisVec {
-        let c = &self.coef;
         let mut d = [0.0; MAX_CHANNEL_AXES];
+        self.d2_into(t, &mut d);
+        d
+    }
+
+    /// `p''(t)` of the moving axes into `d` (the others are left as they are).
+    fn d2_into(&self, t: f64, d: &mut AxisVec) {
+        let c = &self.coef;
         for &k in self.axes() {
             d[k] = 2.0 * c[2][k] + t * (6.0 * c[3][k] + t * (12.0 * c[4][k] + t * 20.0 * c[5][k]));
         }
-        d
     }
 
     /// Length of `v` in the feed's axes.
@@ -233,7 +250,7 @@ impl Curve {
     /// Per axis: the largest `|dp_k/ds|` and `|d²p_k/ds²|` over the run (sampled at 25
     /// points with 3 % margin, the element being smooth and short).
     pub fn rates(&self) -> (AxisVec, AxisVec) {
-        *self.rates
+        self.rates.as_deref().copied().unwrap_or(([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]))
     }
 
     fn sample_rates(&self) -> (AxisVec, AxisVec) {
@@ -242,9 +259,12 @@ impl Curve {
         // Evenly in the element's parameter over the run (no length-table lookups).
         const N: usize = 24;
         let (t0, t1) = (self.param(0.0), self.param(1.0));
+        // Buffers for every sample (only the moving axes are written and read).
+        let (mut d1, mut d2) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
         for i in 0..=N {
             let t = t0 + (t1 - t0) * (i as f64 / N as f64);
-            let (d1, d2) = (self.d1(t), self.d2(t));
+            self.d1_into(t, &mut d1);
+            self.d2_into(t, &mut d2);
             let v2 = self.norm(&d1).powi(2).max(1e-300);
             // d²p/ds² = (p'' − (p'·p''/|p'|²) p') / |p'|² in the feed's metric.
             let along = self.axes().iter().map(|&k| d1[k] * d2[k] * self.metric[k]).sum::<f64>() / v2;

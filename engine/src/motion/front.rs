@@ -62,6 +62,17 @@ impl SinCosStep {
     }
 }
 
+/// The moving axes' positions on a free-form element at `u` (out of the line's and the arc's
+/// code).
+#[inline(never)]
+fn curve_position(c: &Curve, m: &Moving, u: f64, out: &mut AxisVec) {
+    let mut p = [0.0; MAX_CHANNEL_AXES];
+    c.at(u, &mut p);
+    for &k in &m.slot[..m.len] {
+        out[k] = p[k];
+    }
+}
+
 /// The moving axes of the front move: slot, start and travel (`end − start`), and for an arc
 /// the plane vectors' components. Compact: only the first `len` entries are used.
 #[derive(Debug, Clone)]
@@ -99,6 +110,7 @@ pub(super) struct FrontMove {
 impl FrontMove {
     /// Sets up the cycles of `path`, and puts every axis it does not move at the value
     /// [`Path::at`] gives it for every `s < 1` (`start + 0.0`: a −0.0 start reads +0.0 there).
+    #[inline(never)]
     pub(super) fn new(path: &Path, position: &mut AxisVec) -> FrontMove {
         let mut moving = Moving {
             slot: [0; MAX_CHANNEL_AXES],
@@ -127,7 +139,8 @@ impl FrontMove {
             }
             moving.len += 1;
         }
-        let arc = path.arc.as_ref().map(|arc| ArcConst {
+        // A free-form element is its own path (it carries no arc; were one given, the curve wins).
+        let arc = path.arc.as_ref().filter(|_| path.curve.is_none()).map(|arc| ArcConst {
             start_angle: arc.start_angle,
             sweep: arc.sweep,
             radius: arc.radius,
@@ -141,36 +154,33 @@ impl FrontMove {
     pub(super) fn position(&mut self, u: f64, out: &mut AxisVec) {
         let m = &self.moving;
         let n = m.len;
-        if let Some(c) = &self.curve {
-            let mut p = [0.0; MAX_CHANNEL_AXES];
-            c.at(u, &mut p);
-            for i in 0..n {
-                out[m.slot[i]] = p[m.slot[i]];
-            }
-            return;
-        }
-        match &self.arc {
-            None => {
-                for i in 0..n {
-                    out[m.slot[i]] = m.start[i] + m.travel[i] * u;
+        // A rounding element has no arc: lines and arcs, the usual moves, test nothing else.
+        match (&self.arc, &self.curve) {
+            (None, None) => {
+                // Sliced once: the loop indexes no array but `out`.
+                for ((&k, &a), &t) in m.slot[..n].iter().zip(&m.start[..n]).zip(&m.travel[..n]) {
+                    out[k] = a + t * u;
                 }
             }
-            Some(arc) => {
+            (None, Some(c)) => curve_position(c, m, u, out),
+            (Some(arc), _) => {
                 // Circle minus its chord: zero at both ends.
                 let [(sin0, cos0), (sin1, cos1)] = arc.ends;
                 let now = SinCosStep::next(self.arc_angle, arc.start_angle + arc.sweep * u);
                 self.arc_angle = Some(now);
                 let cu = arc.radius * (now.cos - cos0 - u * (cos1 - cos0));
                 let cv = arc.radius * (now.sin - sin0 - u * (sin1 - sin0));
-                for i in 0..n {
-                    let o = m.start[i] + m.travel[i] * u;
-                    out[m.slot[i]] = o + (cu * m.arc_u[i] + cv * m.arc_v[i]);
+                let (start, travel) = (&m.start[..n], &m.travel[..n]);
+                for (i, &k) in m.slot[..n].iter().enumerate() {
+                    let o = start[i] + travel[i] * u;
+                    out[k] = o + (cu * m.arc_u[i] + cv * m.arc_v[i]);
                 }
             }
         }
     }
 
     /// [`OriPath::at`] at `u` with the rotation angle stepped from the last cycle's.
+    #[inline(never)]
     pub(super) fn orientation(&mut self, ori: &OriPath, u: f64) -> Vec3 {
         if let Some(c) = &ori.curve {
             return c.at(u);

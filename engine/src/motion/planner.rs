@@ -224,6 +224,8 @@ pub struct Planner {
     /// The smallest acceleration of the queued moves (kept up to date on push and pop, so the
     /// per-cycle braking check does not scan the queue).
     a_min: f64,
+    /// The smallest path jerk of the queued moves, kept like `a_min` (SOFT's look-ahead horizon).
+    j_min: f64,
     /// Planned velocity at the end of each queued move.
     v_end: VecDeque<f64>,
     /// The corner speed at the end of each queued move but the last ([`Planner::corner_speed`]):
@@ -264,6 +266,7 @@ impl Planner {
             limits: limits.into(),
             queue: VecDeque::new(),
             a_min: f64::INFINITY,
+            j_min: f64::INFINITY,
             v_end: VecDeque::new(),
             corner: VecDeque::new(),
             replan_all: false,
@@ -290,6 +293,7 @@ impl Planner {
             return;
         }
         self.a_min = self.a_min.min(mv.a_max);
+        self.j_min = self.j_min.min(mv.jerk);
         if self.queue.is_empty() {
             self.front_move = None;
         }
@@ -354,6 +358,12 @@ impl Planner {
         self.queue.front().map(|m| m.tag)
     }
 
+    /// True when a move finished since the last [`Planner::take_finished`].
+    #[inline]
+    pub fn has_finished(&self) -> bool {
+        !self.finished.is_empty()
+    }
+
     /// Tags of moves finished since the last call.
     pub fn take_finished(&mut self) -> Vec<u32> {
         std::mem::take(&mut self.finished)
@@ -394,6 +404,7 @@ impl Planner {
         self.queue.clear();
         self.front_move = None;
         self.a_min = f64::INFINITY;
+        self.j_min = f64::INFINITY;
         self.v_end.clear();
         self.corner.clear();
         self.s = 0.0;
@@ -441,7 +452,7 @@ impl Planner {
         self.v_end.pop_front();
         self.corner.pop_front();
         self.front_move = None;
-        self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
+        self.rescan_minima();
         self.position = done.path.end;
         self.orientation = done.path.orientation_at(1.0);
         self.position_tag = Some(done.tag);
@@ -490,7 +501,7 @@ impl Planner {
         }
         let mut d = v_new * dt;
         loop {
-            let front = &self.queue[0];
+            let Some(front) = self.queue.front() else { unreachable!("the queue holds the front move") };
             let remaining = front.length - self.s;
             if d < remaining - 1e-12 {
                 self.s += d;
@@ -503,25 +514,43 @@ impl Planner {
             }
             // The move ends within this cycle.
             d -= remaining;
-            self.position = front.path.end;
-            self.orientation = front.path.orientation_at(1.0);
-            self.position_tag = Some(front.tag);
-            let stop_here = self.v_end[0] == 0.0;
-            let done = self.queue.pop_front().expect("front exists");
-            self.front_move = None;
-            if done.a_max <= self.a_min {
-                self.a_min = self.queue.iter().map(|m| m.a_max).fold(f64::INFINITY, f64::min);
-            }
-            self.v_end.pop_front();
-            self.corner.pop_front();
-            self.finished.push(done.tag);
-            self.s = 0.0;
-            if stop_here || self.queue.is_empty() {
-                self.v = 0.0;
-                self.acc = 0.0;
+            if self.finish_front() {
                 break;
             }
         }
+    }
+
+    /// The front move ends within this cycle: the position is its end, the next move comes to
+    /// the front. True if the path stops there (or nothing follows). Once per move: kept out
+    /// of the cycle's code.
+    #[inline(never)]
+    fn finish_front(&mut self) -> bool {
+        let Some(done) = self.queue.pop_front() else { return true };
+        self.position = done.path.end;
+        self.orientation = done.path.orientation_at(1.0);
+        self.position_tag = Some(done.tag);
+        let stop_here = self.v_end[0] == 0.0;
+        self.front_move = None;
+        if done.a_max <= self.a_min || done.jerk <= self.j_min {
+            self.rescan_minima();
+        }
+        self.v_end.pop_front();
+        self.corner.pop_front();
+        self.finished.push(done.tag);
+        self.s = 0.0;
+        if stop_here || self.queue.is_empty() {
+            self.v = 0.0;
+            self.acc = 0.0;
+            return true;
+        }
+        false
+    }
+
+    /// The smallest acceleration and jerk of the queued moves, from scratch (the move that
+    /// held one of them left the queue).
+    fn rescan_minima(&mut self) {
+        (self.a_min, self.j_min) =
+            self.queue.iter().fold((f64::INFINITY, f64::INFINITY), |(a, j), m| (a.min(m.a_max), j.min(m.jerk)));
     }
 
     /// `v`, lowered to the highest speed from which every planned transition ahead can still be
@@ -532,14 +561,35 @@ impl Planner {
     #[inline(always)]
     fn brake_limited(&self, v: f64) -> f64 {
         let dt = self.dt;
-        let mut distance = -self.s;
-        let mut a = f64::INFINITY;
-        let mut limit = v;
+        let (Some(front), Some(&v_end)) = (self.queue.front(), self.v_end.front()) else { return v };
         // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
         // (moves split by a kinematic transformation may decelerate very differently).
         let a_min = self.a_min;
         let n = self.queue.len();
-        for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate() {
+        // The front move's own transition first, without the queue's iterators: most cycles
+        // look no farther. The same arithmetic as the loop's first pass.
+        let distance = -self.s + front.length;
+        let a = f64::INFINITY.min(front.a_max);
+        let mut limit = v;
+        let reserve = if n > 1 { v_end * dt } else { 0.0 };
+        let d = distance - reserve;
+        if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
+            limit = limit.min(brake_speed(d, v_end, a, dt));
+        }
+        if v_end == 0.0 || distance > limit * limit / a_min {
+            return limit;
+        }
+        self.brake_limited_ahead(distance, a, limit)
+    }
+
+    /// [`Planner::brake_limited`] past the front move, from the distance to its end, the
+    /// smallest deceleration so far and the limit so far (out of line: rarely reached).
+    #[inline(never)]
+    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64) -> f64 {
+        let dt = self.dt;
+        let a_min = self.a_min;
+        let n = self.queue.len();
+        for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate().skip(1) {
             distance += mv.length;
             a = a.min(mv.a_max);
             // One cycle at the transition speed is kept in reserve for the crossing cycle.

@@ -54,7 +54,10 @@ pub(super) fn stop_distance(v: f64, acc: f64, v_to: f64, a: f64, j: f64) -> f64 
 /// cycles where that is positive.
 fn ramp_gain(acc: f64, j: f64, dt: f64) -> f64 {
     let step = j * dt;
-    let m = (acc / step).floor();
+    let q = acc / step;
+    // `floor` is a library call on the baseline x86-64 target, and this runs for most SOFT
+    // candidates: below 2⁵² a non-negative quotient truncates to the same integer.
+    let m = if (0.0..4.5e15).contains(&q) { q as u64 as f64 } else { q.floor() };
     dt * (m * acc - step * m * (m + 1.0) / 2.0)
 }
 
@@ -79,19 +82,21 @@ impl Planner {
         let (lo, hi) = if lo > hi { (hi.min(a).max(-a), hi.min(a).max(-a)) } else { (lo, hi) };
         // No transition farther than the longest stop any candidate needs (with the smallest
         // acceleration and jerk queued) can bind: the checks look no farther.
-        let (a_min, j_min) =
-            self.queue.iter().fold((f64::INFINITY, f64::INFINITY), |(a, j), m| (a.min(m.a_max), j.min(m.jerk)));
+        let (a_min, j_min) = (self.a_min, self.j_min);
         let v_hi = self.v + hi.max(0.0) * dt;
         let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, a_min, j_min) + v_hi * dt;
-        let acc = if self.soft_safe(hi, target, horizon) {
+        // Far from every transition (most cycles of a long move), the candidates need only
+        // the target's tests: the same answers without a stop distance each.
+        let near = self.transition_near(lo, hi, horizon);
+        let acc = if self.soft_safe(hi, target, horizon, near) {
             hi
-        } else if !self.soft_safe(lo, target, horizon) {
+        } else if !self.soft_safe(lo, target, horizon, near) {
             lo
         } else {
             let (mut ok, mut bad) = (lo, hi);
             for _ in 0..REFINE {
                 let mid = 0.5 * (ok + bad);
-                if self.soft_safe(mid, target, horizon) {
+                if self.soft_safe(mid, target, horizon, near) {
                     ok = mid;
                 } else {
                     bad = mid;
@@ -124,8 +129,9 @@ impl Planner {
 
     /// True when the path, accelerating with `acc` this cycle, can still keep the velocity
     /// target and brake to every planned transition speed ahead with its jerk (those within
-    /// `horizon` of the position after this cycle: no stop is longer).
-    fn soft_safe(&self, acc: f64, target: f64, horizon: f64) -> bool {
+    /// `horizon` of the position after this cycle: no stop is longer). `near`: false when
+    /// [`Planner::transition_near`] found that no transition can bind.
+    fn soft_safe(&self, acc: f64, target: f64, horizon: f64, near: bool) -> bool {
         let dt = self.dt;
         let front = &self.queue[0];
         let j_front = front.jerk;
@@ -141,6 +147,9 @@ impl Planner {
         } else if v1 > target && acc > (self.acc - j_front * dt).max(-front.a_max) {
             // Above the target: only the hardest braking the jerk allows.
             return false;
+        }
+        if !near {
+            return true;
         }
         let n = self.queue.len();
         let mut distance = -self.s - v1 * dt;
@@ -161,11 +170,102 @@ impl Planner {
         }
         true
     }
+
+    /// False when no planned transition can fail [`Planner::soft_safe`]'s test for any
+    /// acceleration in `lo..=hi` this cycle; true when one might (the candidates then test
+    /// each transition). A bound, not the test: per transition the candidates' stop distance
+    /// is at most the highest velocity reached (`V = v₁ + acc⁺²/2j` with the highest `v₁` and
+    /// `acc`) times an upper bound of [`stop_distance`]'s phase times (`t₁ ≤ (acc⁺ + P)/j`,
+    /// hold `≤ E/a`, `t₃ ≤ P/j`, where `E` bounds the velocity to lose and `P` the peak
+    /// deceleration: `max(√(j·E), −lo)`), and the distance left is at least the one after the
+    /// fastest candidate's cycle. It looks at least as far ahead as any candidate (their
+    /// distances are not smaller), and keeps a margin far above rounding.
+    fn transition_near(&self, lo: f64, hi: f64, horizon: f64) -> bool {
+        let dt = self.dt;
+        let v_hi = self.v + hi * dt;
+        if v_hi < 0.0 {
+            // Every candidate stands still after this cycle: none reaches the transitions.
+            return false;
+        }
+        let v_lo = (self.v + lo * dt).max(0.0);
+        let acc_up = hi.max(0.0);
+        let n = self.queue.len();
+        let mut distance = -self.s - v_hi * dt;
+        let (mut a, mut j) = (f64::INFINITY, f64::INFINITY);
+        for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate() {
+            distance += mv.length;
+            a = a.min(mv.a_max);
+            j = j.min(mv.jerk);
+            let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
+            let room = distance - reserve;
+            let peak_v = v_hi + acc_up * acc_up / (2.0 * j);
+            if v_end < peak_v * (1.0 + 1e-9) + 1e-9 {
+                let lose = (peak_v - v_end).max(0.0);
+                let peak_dec = (j * lose).sqrt().max(-lo).max(0.0);
+                let time = (acc_up + 2.0 * peak_dec) / j + lose / a;
+                let stop = peak_v * time - (v_lo - v_end) * dt / 2.0;
+                if !(stop.is_finite() && stop * (1.0 + 1e-9) + 1e-9 < room - 1e-9 * room.abs()) {
+                    return true;
+                }
+            }
+            if v_end == 0.0 || room > horizon {
+                break;
+            }
+        }
+        false
+    }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::{AxisLimit, Feed, Move, Path, Planner};
     use super::stop_distance;
+    use crate::machine_data::registry::MAX_CHANNEL_AXES;
+
+    #[test]
+    fn far_from_every_transition_the_bound_gives_the_answers_of_the_full_test() {
+        // SOFT along a zigzag of short and long lines (corners of 90° and less, so planned
+        // transition speeds between 0 and the feed): every cycle, candidates across the
+        // cycle's acceleration range get the same answer with the bound as with every
+        // transition tested; and the bound does spare the tests in many cycles.
+        let lim = vec![AxisLimit { max_velocity: 200.0, max_accel: 1000.0, accel_overload: 1.2 }; 3];
+        let mut p = Planner::new(0.004, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        let mut at: [f64; MAX_CHANNEL_AXES] = [0.0; MAX_CHANNEL_AXES];
+        for i in 0..24u32 {
+            let mut to = at;
+            to[0] += [0.4, 3.0, 12.0][i as usize % 3];
+            to[1] += if i % 2 == 0 { 0.8 } else { -0.5 };
+            let len = ((to[0] - at[0]).powi(2) + (to[1] - at[1]).powi(2)).sqrt();
+            let mut mv = Move::new(Path::line(at, to), len, Feed::Path(20.0), &lim, false, i);
+            mv.jerk = 20_000.0;
+            p.push(mv);
+            at = to;
+        }
+        let (mut checked, mut far) = (0, 0);
+        while !p.is_idle() {
+            if let Some(front) = p.queue.front() {
+                let dt = p.dt;
+                let (a, j) = (front.a_max, front.jerk);
+                let target = front.capped(1.0, 1.0, 0.0);
+                let (lo, hi) = ((p.acc - j * dt).max(-a), (p.acc + j * dt).min(a));
+                if lo <= hi {
+                    let v_hi = p.v + hi.max(0.0) * dt;
+                    let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, p.a_min, p.j_min) + v_hi * dt;
+                    let near = p.transition_near(lo, hi, horizon);
+                    far += usize::from(!near);
+                    for i in 0..=40 {
+                        let acc = lo + (hi - lo) * f64::from(i) / 40.0;
+                        let full = p.soft_safe(acc, target, horizon, true);
+                        assert_eq!(p.soft_safe(acc, target, horizon, near), full, "s {} v {} acc {acc}", p.s, p.v);
+                        checked += 1;
+                    }
+                }
+            }
+            p.step();
+            assert!(checked < 10_000_000);
+        }
+        assert!(far > 100 && checked > 10_000, "{far} cycles far of {checked} answers");
+    }
 
     #[test]
     fn the_stop_distance_of_a_full_s_curve_is_the_mean_velocity_times_its_time() {
