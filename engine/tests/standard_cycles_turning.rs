@@ -16,6 +16,8 @@ struct Sample {
     x: f64,
     z: f64,
     sp: f64,
+    /// Machine X (the radius, whatever the programming mode).
+    mx: f64,
 }
 
 struct Trace {
@@ -73,7 +75,13 @@ fn run_clean_cycle(md: &str, main: &str) -> Trace {
 fn sample(ch: &Channel) -> Sample {
     let s = ch.snapshot();
     let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
-    Sample { t: s.time, x: get(&s.workpiece, "X"), z: get(&s.workpiece, "Z"), sp: get(&s.machine, "SP1") }
+    Sample {
+        t: s.time,
+        x: get(&s.workpiece, "X"),
+        z: get(&s.workpiece, "Z"),
+        sp: get(&s.machine, "SP1"),
+        mx: get(&s.machine, "X1"),
+    }
 }
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
@@ -743,4 +751,70 @@ fn cycle94_inside_undercut_lies_beyond_the_bore() {
     assert!(on > 20);
     let max_x = t.samples.iter().map(|s| s.x).fold(f64::NEG_INFINITY, f64::max);
     assert!(max_x <= 15.3 + 1e-9 && close(max_x, 15.3, 1e-5), "{max_x}");
+}
+
+/// Runs `main` twice, once in radius programming and once with `diameter` (the same program
+/// with DIAMON and every transverse value doubled), and checks that the tool takes the same
+/// machine path: the cycles' parameters are diameters either way, so only the display differs.
+/// Cycles in which the tool stands still (waiting for the spindle's start angle) are left out.
+fn assert_same_path_in_diameter_programming(radius: Trace, diameter: Trace) {
+    assert!(radius.alarms.is_empty() && diameter.alarms.is_empty(), "{:?} {:?}", radius.alarms, diameter.alarms);
+    let path = |t: &Trace| {
+        let mut points: Vec<(f64, f64)> = Vec::new();
+        for s in &t.samples {
+            if points.last().is_none_or(|p| !close(p.0, s.mx, 1e-12) || !close(p.1, s.z, 1e-12)) {
+                points.push((s.mx, s.z));
+            }
+        }
+        points
+    };
+    let (r, d) = (path(&radius), path(&diameter));
+    for (r, d) in r.iter().zip(&d) {
+        assert!(close(d.0, r.0, 1e-9) && close(d.1, r.1, 1e-9), "radius run {r:?} against diameter run {d:?}");
+    }
+    assert_eq!(r.len(), d.len(), "the same number of positions");
+}
+
+/// The machine X of every cut along Z: runs of more than 20 IPO cycles in which X stays and Z
+/// moves.
+fn cut_radii(t: &Trace) -> Vec<f64> {
+    let mut radii = Vec::new();
+    let mut run = 0;
+    for w in t.samples.windows(2) {
+        if close(w[0].mx, w[1].mx, 1e-12) && !close(w[0].z, w[1].z, 1e-12) {
+            run += 1;
+            if run == 20 {
+                radii.push(w[1].mx);
+            }
+        } else {
+            run = 0;
+        }
+    }
+    radii
+}
+
+#[test]
+fn cycle97_under_diamon_cuts_the_same_thread_as_in_radius_programming() {
+    // M20x2: DM1/DM2 are diameters in both modes. The approach X20 (radius) is X40 under DIAMON.
+    // The cuts run at the same machine radii (seven: four roughing, finishing, two idle; each
+    // followed by the return along Z at the retraction radius).
+    let call = "CYCLE97(2,,0,-30,20,20,4,2,1.23,0.05,0,0,4,2,3,1,0)\nG0 X25\nM30";
+    let radius = run("", &format!("{}{call}", THREAD.replace("G0 X20", "DIAMOF\nG0 X20")));
+    let diameter =
+        run("", &format!("{}{call}", THREAD.replace("G0 X20", "DIAMON\nG0 X40")).replace("G0 X25", "G0 X50"));
+    assert!(radius.alarms.is_empty() && diameter.alarms.is_empty(), "{:?} {:?}", radius.alarms, diameter.alarms);
+    let (r, d) = (cut_radii(&radius), cut_radii(&diameter));
+    assert_eq!(r.len(), 14, "{r:?}");
+    assert_points(&d, &r);
+}
+
+#[test]
+fn cycle95_under_diamon_reads_the_contour_in_diameters_and_turns_the_same_shaft() {
+    // The contour subprogram of a DIAMON program is written in diameters (CR stays a radius).
+    let shaft_in_diameters = "G18 G90\nG1 X20 Z0\nG1 Z-20\nG2 X30 Z-25 CR=5\nG1 X40\nG1 X50 Z-40\nM17\n";
+    let md = "$TC_DP6[1,1]=0\n";
+    let main = "G18 G90 G94\nT1 D1\nS800 M3\nG0 X30 Z10\nCYCLE95(\"SHAFT\",2,0.2,0.1,0,300,0,100,9,0,0,0)\nM30";
+    let radius = run_with(md, &main.replace("G0 X30", "DIAMOF\nG0 X30"), &[("SHAFT", SHAFT)]);
+    let diameter = run_with(md, &main.replace("G0 X30", "DIAMON\nG0 X60"), &[("SHAFT", shaft_in_diameters)]);
+    assert_same_path_in_diameter_programming(radius, diameter);
 }
