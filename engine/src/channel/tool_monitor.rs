@@ -50,10 +50,16 @@ struct Counting {
 
 impl Channel {
     /// One IPO cycle of tool monitoring (called once per [`Channel::step`]).
+    #[inline]
     pub(super) fn monitor_tools(&mut self) {
-        if !self.cfg.tool_list.monitored {
-            return;
+        if self.cfg.tool_list.monitored {
+            self.monitor_tools_cycle();
         }
+    }
+
+    /// Out of line: the IPO cycle's own code stays small when no tool is monitored.
+    #[inline(never)]
+    fn monitor_tools_cycle(&mut self) {
         let (t, d) = (self.offsets.t, self.offsets.d);
         let running = self.status == Status::Running && self.jog.is_none();
         if t != self.tool_monitor.last_tool {
