@@ -92,7 +92,40 @@ pub fn find(id: &str) -> Option<&'static Preset> {
     PRESETS.iter().find(|p| p.id == id)
 }
 
-const MILL_3AXIS: &str = r#"; 3-axis vertical milling machine
+/// The tool spindle S1 of the mills (a spindle without axis function, machine axis SP1): its
+/// machine data, shared by every mill preset; each preset names the machine axis itself.
+macro_rules! tool_spindle_sp1 {
+    () => {
+        r#"$MA_IS_ROT_AX[SP1]=TRUE
+$MA_ROT_IS_MODULO[SP1]=TRUE
+$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
+; 12000 rev/min, 50 rev/s² (3000 rev/min per second) in speed control; position control
+; (SPOS, M19, G331) at up to 1000 rev/min (MD35300), 100 rev/s² as an axis.
+$MA_SPIND_VELO_LIMIT[SP1]=12000.
+$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
+$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
+$MA_SPIND_POSCTRL_VELO[SP1]=1000.
+$MA_MAX_AX_VELO[SP1]=12000.
+$MA_MAX_AX_ACCEL[SP1]=100.
+"#
+    };
+}
+
+/// The chain magazine (magazine 1, 12 places) and the spindle's buffer place (magazine 9998)
+/// every preset's tool management starts from; each preset loads its own tools.
+macro_rules! chain_magazine {
+    () => {
+        r#"$TC_MAP1[1]=1
+$TC_MAP2[1]="CHAIN"
+$TC_MAP7[1]=12
+$TC_MAP1[9998]=7
+$TC_MPP1[9998,1]=2
+"#
+    };
+}
+
+const MILL_3AXIS: &str = concat!(
+    r#"; 3-axis vertical milling machine
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
@@ -109,18 +142,9 @@ $MC_AXCONF_CHANAX_NAME_TAB[2]="Z"
 ; positions show X, Y, Z only and the spindle appears under the state's spindles as S1.
 $MC_AXCONF_CHANAX_NAME_TAB[3]=""
 $MC_SPIND_DEF_MASTER_SPIND=1
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-; 12000 rev/min, 50 rev/s² (3000 rev/min per second) in speed control; position control
-; (SPOS, M19, G331) at up to 1000 rev/min (MD35300), 100 rev/s² as an axis.
-$MA_SPIND_VELO_LIMIT[SP1]=12000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
-$MA_SPIND_POSCTRL_VELO[SP1]=1000.
-$MA_MAX_AX_VELO[SP1]=12000.
-$MA_MAX_AX_ACCEL[SP1]=100.
-$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
+"#,
+    tool_spindle_sp1!(),
+    r#"$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
 $MA_MAX_AX_VELO[X]=30000.
@@ -146,12 +170,9 @@ $TC_DP6[2,1]=4.
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
 $MC_TOOL_CHANGE_TIME=2.
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D10"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
@@ -159,9 +180,11 @@ $TC_TP1[2]=1
 $TC_TP2[2]="DRILL_8"
 $TC_TP8[2]=2
 $TC_MPP6[1,2]=2
-"#;
+"#
+);
 
-const LATHE_2AXIS: &str = r#"; 2-axis lathe: X radial, Z along the spindle, main spindle as channel axis SP
+const LATHE_2AXIS: &str = concat!(
+    r#"; 2-axis lathe: X radial, Z along the spindle, main spindle as channel axis SP
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X1"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Z1"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="SP1"
@@ -211,12 +234,9 @@ $TC_DP4[2,1]=58.
 $TC_DP6[2,1]=0.4
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="ROUGH_R0_8"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
@@ -224,9 +244,11 @@ $TC_TP1[2]=1
 $TC_TP2[2]="FINISH_R0_4"
 $TC_TP8[2]=2
 $TC_MPP6[1,2]=2
-"#;
+"#
+);
 
-const TRANSMIT_EXAMPLE: &str = r#"; Axis configuration of the TRANSMIT example (Transformations Function Manual, M1)
+const TRANSMIT_EXAMPLE: &str = concat!(
+    r#"; Axis configuration of the TRANSMIT example (Transformations Function Manual, M1)
 $MN_AXCONF_MACHAX_NAME_TAB[0]="XM"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="CM"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="ZM"
@@ -283,18 +305,17 @@ $MC_TRANSMIT_BASE_TOOL_1[1]=0
 $MC_TRANSMIT_BASE_TOOL_1[2]=0
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D8"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
-const SLANT_LATHE_TRACON: &str = r#"; Slant-bed lathe with driven tools: the X slide MU is inclined by 30° towards Z, so a
+const SLANT_LATHE_TRACON: &str = concat!(
+    r#"; Slant-bed lathe with driven tools: the X slide MU is inclined by 30° towards Z, so a
 ; TRAANG data set is always active (persistent); TRANSMIT is chained in front of it (TRACON).
 $MN_AXCONF_MACHAX_NAME_TAB[0]="MU"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="CM"
@@ -367,18 +388,17 @@ $MC_RESET_MODE_MASK=1
 $MC_GEOAX_CHANGE_RESET=TRUE
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D8"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
-const TRACYL_XYZC: &str = r#"; TRACYL example machine X-Y-Z-C (Transformations FM, M1 TRACYL examples)
+const TRACYL_XYZC: &str = concat!(
+    r#"; TRACYL example machine X-Y-Z-C (Transformations FM, M1 TRACYL examples)
 $MN_AXCONF_MACHAX_NAME_TAB[0]="XM"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="YM"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="ZM"
@@ -431,18 +451,17 @@ $MC_TRACYL_BASE_TOOL_1[1]=0
 $MC_TRACYL_BASE_TOOL_1[2]=0
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D12"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
-const TRACYL_XYZAC: &str = r#"; TRACYL on an X-Y-Z-A-C milling machine (Transformations FM, M1 TRACYL examples): the
+const TRACYL_XYZAC: &str = concat!(
+    r#"; TRACYL on an X-Y-Z-A-C milling machine (Transformations FM, M1 TRACYL examples): the
 ; trunnion A (about X) carries the rotary table C. The TRACYL data assume A = -90°, which turns
 ; the C axis onto +Y: the vertical tool then stands radial to the cylinder clamped on C.
 $MN_AXCONF_MACHAX_NAME_TAB[0]="XM"
@@ -512,18 +531,17 @@ $MC_TRACYL_ROT_AX_OFFSET_1=0
 $MC_TRACYL_ROT_SIGN_IS_PLUS_1=TRUE
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D8"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
-const TRAANG_GRINDER: &str = r#"; Grinding machine with an inclined infeed axis (Transformations FM, M1 TRAANG)
+const TRAANG_GRINDER: &str = concat!(
+    r#"; Grinding machine with an inclined infeed axis (Transformations FM, M1 TRAANG)
 $MN_AXCONF_MACHAX_NAME_TAB[0]="MU"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="MZ"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="CM"
@@ -572,18 +590,17 @@ $MC_TRAANG_BASE_TOOL_1[1]=0
 $MC_TRAANG_BASE_TOOL_1[2]=0
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="WHEEL_D400"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
-const MILL5_HEAD_CA: &str = r#"; 5-axis vertical mill with a fork head: C turns about Z and carries A, which turns about X.
+const MILL5_HEAD_CA: &str = concat!(
+    r#"; 5-axis vertical mill with a fork head: C turns about Z and carries A, which turns about X.
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
@@ -598,16 +615,9 @@ $MC_AXCONF_MACHAX_USED[4]=5
 $MN_AXCONF_MACHAX_NAME_TAB[5]="SP1"
 $MC_AXCONF_MACHAX_USED[5]=6
 $MC_AXCONF_CHANAX_NAME_TAB[5]=""
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-$MA_SPIND_VELO_LIMIT[SP1]=12000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
-$MA_SPIND_POSCTRL_VELO[SP1]=1000.
-$MA_MAX_AX_VELO[SP1]=12000.
-$MA_MAX_AX_ACCEL[SP1]=100.
-$MC_AXCONF_MACHAX_USED[6]=0
+"#,
+    tool_spindle_sp1!(),
+    r#"$MC_AXCONF_MACHAX_USED[6]=0
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -682,18 +692,17 @@ $TC_CARR39[1]=0.
 $TC_CARR40[1]=250.            ; retraction position Z (machine)
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D10"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
-const MILL5_TABLE_AC: &str = r#"; 5-axis mill with a trunnion table: A tilts about X and carries the rotary table C.
+const MILL5_TABLE_AC: &str = concat!(
+    r#"; 5-axis mill with a trunnion table: A tilts about X and carries the rotary table C.
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
@@ -708,16 +717,9 @@ $MC_AXCONF_MACHAX_USED[4]=5
 $MN_AXCONF_MACHAX_NAME_TAB[5]="SP1"
 $MC_AXCONF_MACHAX_USED[5]=6
 $MC_AXCONF_CHANAX_NAME_TAB[5]=""
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-$MA_SPIND_VELO_LIMIT[SP1]=12000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
-$MA_SPIND_POSCTRL_VELO[SP1]=1000.
-$MA_MAX_AX_VELO[SP1]=12000.
-$MA_MAX_AX_ACCEL[SP1]=100.
-$MC_AXCONF_MACHAX_USED[6]=0
+"#,
+    tool_spindle_sp1!(),
+    r#"$MC_AXCONF_MACHAX_USED[6]=0
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -796,18 +798,17 @@ $TC_CARR37[1]=1005            ; all swivel modes; direction reference: rotary ax
 $TC_CARR40[1]=350.            ; retraction position Z (machine)
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D10"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
-const MILL5_MIXED_BC: &str = r#"; 5-axis mill with a swivel head B (about Y) and a rotary table C (about Z).
+const MILL5_MIXED_BC: &str = concat!(
+    r#"; 5-axis mill with a swivel head B (about Y) and a rotary table C (about Z).
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Y"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="Z"
@@ -822,16 +823,9 @@ $MC_AXCONF_MACHAX_USED[4]=5
 $MN_AXCONF_MACHAX_NAME_TAB[5]="SP1"
 $MC_AXCONF_MACHAX_USED[5]=6
 $MC_AXCONF_CHANAX_NAME_TAB[5]=""
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-$MA_SPIND_VELO_LIMIT[SP1]=12000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
-$MA_SPIND_POSCTRL_VELO[SP1]=1000.
-$MA_MAX_AX_VELO[SP1]=12000.
-$MA_MAX_AX_ACCEL[SP1]=100.
-$MC_AXCONF_MACHAX_USED[6]=0
+"#,
+    tool_spindle_sp1!(),
+    r#"$MC_AXCONF_MACHAX_USED[6]=0
 $MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
 $MC_AXCONF_GEOAX_ASSIGN_TAB[1]=2
 $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
@@ -907,16 +901,14 @@ $TC_CARR37[1]=1005            ; all swivel modes; direction reference: rotary ax
 $TC_CARR40[1]=350.            ; retraction position Z (machine)
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
-$TC_MAP1[1]=1
-$TC_MAP2[1]="CHAIN"
-$TC_MAP7[1]=12
-$TC_MAP1[9998]=7
-$TC_MPP1[9998,1]=2
-$TC_TP1[1]=1
+"#,
+    chain_magazine!(),
+    r#"$TC_TP1[1]=1
 $TC_TP2[1]="MILL_D10"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
-"#;
+"#
+);
 
 /// The text of `mill6-generic`, a macro so that `mill7-generic` can be built on it with `concat!`.
 macro_rules! mill6_generic_text {
@@ -1011,16 +1003,8 @@ const MILL6_GENERIC: &str = concat!(
 $MN_AXCONF_MACHAX_NAME_TAB[6]="SP1"
 $MC_AXCONF_MACHAX_USED[6]=7
 $MC_AXCONF_CHANAX_NAME_TAB[6]=""
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-$MA_SPIND_VELO_LIMIT[SP1]=12000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
-$MA_SPIND_POSCTRL_VELO[SP1]=1000.
-$MA_MAX_AX_VELO[SP1]=12000.
-$MA_MAX_AX_ACCEL[SP1]=100.
-"#
+"#,
+    tool_spindle_sp1!()
 );
 
 const MILL7_GENERIC: &str = concat!(
@@ -1043,16 +1027,8 @@ $MC_TRAFO7_EXT_ROT_AX_OFFSET_1=0.
 $MN_AXCONF_MACHAX_NAME_TAB[7]="SP1"
 $MC_AXCONF_MACHAX_USED[7]=8
 $MC_AXCONF_CHANAX_NAME_TAB[7]=""
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-$MA_SPIND_VELO_LIMIT[SP1]=12000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=12000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=50.
-$MA_SPIND_POSCTRL_VELO[SP1]=1000.
-$MA_MAX_AX_VELO[SP1]=12000.
-$MA_MAX_AX_ACCEL[SP1]=100.
-"#
+"#,
+    tool_spindle_sp1!()
 );
 
 #[cfg(test)]
