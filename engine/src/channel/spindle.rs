@@ -210,17 +210,25 @@ impl Spindle {
 
     /// One IPO cycle: under constant cutting speed the target from the transverse axis'
     /// machine position `machine`, then the ramp and the angle.
+    #[inline]
     pub fn step(&mut self, dt: f64, machine: &[f64]) {
+        // At rest in speed control nothing moves (the common case on a mill: one test inline).
+        if !self.axis_mode && self.css.is_none() && self.speed == 0.0 && self.target == 0.0 {
+            self.previous = self.position;
+            return;
+        }
+        self.step_moving(dt, machine);
+    }
+
+    /// [`Spindle::step`] of a turning, ramping or positioning spindle (out of line: the IPO
+    /// cycle's own code stays small).
+    #[inline(never)]
+    fn step_moving(&mut self, dt: f64, machine: &[f64]) {
         if self.axis_mode {
             // rev/min from the axis' travel in °: ×60/360.
             let angle = machine[self.axis];
             self.axis_speed = (angle - self.previous) / dt / 6.0;
             self.previous = angle;
-            return;
-        }
-        // At rest in speed control nothing moves (the common case on a mill: keep it cheap).
-        if self.css.is_none() && self.speed == 0.0 && self.target == 0.0 {
-            self.previous = self.position;
             return;
         }
         if let Some(c) = self.css {

@@ -54,6 +54,8 @@ pub struct SyncActions {
     pub params: [f64; PARAMS],
     /// Running timers' seconds (`None`: stopped).
     pub timers: [Option<f64>; TIMERS],
+    /// Whether any timer runs: kept with `timers`, so an idle cycle tests one flag.
+    timing: bool,
     pub analog_in: [f64; ANALOG_IO],
     pub analog_out: [f64; ANALOG_IO],
     /// `$AC_DELT`: what the last DELDTG deleted (mm of path).
@@ -83,6 +85,7 @@ impl Default for SyncActions {
             markers: [0.0; MARKERS],
             params: [0.0; PARAMS],
             timers: [None; TIMERS],
+            timing: false,
             analog_in: [0.0; ANALOG_IO],
             analog_out: [0.0; ANALOG_IO],
             deleted: 0.0,
@@ -130,7 +133,7 @@ pub struct SyncActionInfo {
 impl SyncActions {
     #[inline]
     fn idle(&self) -> bool {
-        self.active.is_empty() && !self.ovr_applied && !self.dirty && self.timers.iter().all(Option::is_none)
+        self.active.is_empty() && !self.ovr_applied && !self.dirty && !self.timing
     }
 
     /// The data as block preparation reads it.
@@ -462,6 +465,7 @@ impl Channel {
                 let i = self.sync_index(i, "$AC_TIMER", TIMERS, 0, line)?;
                 // A value of 0 or more starts the timer from there, a negative one stops it.
                 self.sync.timers[i] = (v >= 0.0).then_some(v);
+                self.sync.timing = self.sync.timers.iter().any(Option::is_some);
             }
             SyncVar::AcMarker(i) => {
                 let i = self.sync_index(i, "$AC_MARKER", MARKERS, 0, line)?;
