@@ -124,7 +124,7 @@ fn l_numbers_keep_their_leading_zeros() {
 #[test]
 fn l_with_arguments_binds_the_proc_parameters() {
     // PROC L140(REAL A, REAL B): R1 = A*10 + B = 21; an omitted argument keeps 0.
-    let sub = "PROC L140(REAL A, REAL B)\nR1=A*10+B\nR2=R2+1\nM17\n";
+    let sub = "PROC L140(REAL AA, REAL BB)\nR1=AA*10+BB\nR2=R2+1\nM17\n";
     let ch = run("L140(2, 1)\nR3=R1\nL140(, 4)\nM30\n", &[("L140", sub)]);
     ok(&ch);
     assert_eq!((ch.r_param(3), ch.r_param(1), ch.r_param(2)), (21.0, 4.0, 2.0));
@@ -144,7 +144,7 @@ fn named_calls_with_passes_call_pcall_and_extcall_reach_the_stored_program() {
 
 #[test]
 fn pcall_passes_its_arguments() {
-    let sub = "PROC SHAFT(REAL D, INT N)\nR1=D*N\nRET\n";
+    let sub = "PROC SHAFT(REAL DIA, INT NUM)\nR1=DIA*NUM\nRET\n";
     let ch = run("PCALL /_N_WKS_DIR/_N_SHAFT_WPD/SHAFT_SPF(2.5, 4)\nM30\n", &[("SHAFT", sub)]);
     ok(&ch);
     assert_eq!(ch.r_param(1), 10.0);
@@ -154,12 +154,14 @@ fn pcall_passes_its_arguments() {
 fn extern_declarations_check_the_arguments_of_a_call() {
     let sub = "PROC POCKET(REAL DEPTH, VAR REAL DONE)\nDONE=DONE+DEPTH\nRET\n";
     // Declared and called right: the VAR parameter writes back (0 + 3, then + 4).
-    let ch =
-        run("EXTERN POCKET(REAL, VAR REAL)\nDEF REAL D\nPOCKET(3, D)\nPOCKET(4, D)\nR1=D\nM30\n", &[("POCKET", sub)]);
+    let ch = run(
+        "EXTERN POCKET(REAL, VAR REAL)\nDEF REAL DIA\nPOCKET(3, DIA)\nPOCKET(4, DIA)\nR1=DIA\nM30\n",
+        &[("POCKET", sub)],
+    );
     ok(&ch);
     assert_eq!(ch.r_param(1), 7.0);
     // More arguments than declared: 12340 at the call, before the subprogram runs.
-    let ch = run("EXTERN POCKET(REAL, VAR REAL)\nDEF REAL D\nPOCKET(3, D, 1)\nM30\n", &[("POCKET", sub)]);
+    let ch = run("EXTERN POCKET(REAL, VAR REAL)\nDEF REAL DIA\nPOCKET(3, DIA, 1)\nM30\n", &[("POCKET", sub)]);
     assert_eq!(alarm(&ch), (12340, Some(3)));
     // A value for a VAR parameter: 12320.
     let ch = run("EXTERN POCKET(REAL, VAR REAL)\nPOCKET(3, 4)\nM30\n", &[("POCKET", sub)]);
@@ -178,12 +180,12 @@ fn ret_m17_m2_and_m30_return_from_a_subprogram() {
 #[test]
 fn call_block_runs_a_section_of_the_current_or_another_program() {
     // CALL BLOCK A TO B in this program: R1 += 1 + 10; the section of SUB: R2 = 0 + 10 + 100.
-    let main = "GOTOF GO\nA: R1=R1+1\nB: R1=R1+10\nGO: CALL BLOCK A TO B\nCALL \"SUB\" BLOCK S1 TO S2\nM30\n";
+    let main = "GOTOF GO\nAA: R1=R1+1\nBB: R1=R1+10\nGO: CALL BLOCK AA TO BB\nCALL \"SUB\" BLOCK S1 TO S2\nM30\n";
     let sub = "PROC SUB\nR2=1000\nS1: R2=R2+10\nS2: R2=R2+100\nR2=R2+5\nM17\n";
     let ch = run(main, &[("SUB", sub)]);
     ok(&ch);
     assert_eq!((ch.r_param(1), ch.r_param(2)), (11.0, 110.0));
-    assert_eq!(alarm(&run("CALL BLOCK NOWHERE TO B\nB: M30\n", &[])), (14080, Some(1)));
+    assert_eq!(alarm(&run("CALL BLOCK NOWHERE TO BB\nBB: M30\n", &[])), (14080, Some(1)));
 }
 
 // --- 3. MCALL -----------------------------------------------------------------------------
@@ -207,7 +209,7 @@ fn mcall_calls_after_every_block_with_path_motion_until_mcall_alone() {
 #[test]
 fn mcall_arguments_are_taken_once_and_an_l_program_can_be_modal() {
     // R10 changes after the MCALL: each call still gets 1. MCALL L30 replaces the modal call.
-    let subs = [("HOLE", "PROC HOLE(REAL V)\nR1=R1+V\nM17\n"), ("L30", "R2=R2+1\nM17\n")];
+    let subs = [("HOLE", "PROC HOLE(REAL VAL)\nR1=R1+VAL\nM17\n"), ("L30", "R2=R2+1\nM17\n")];
     let ch = run("R10=1\nMCALL HOLE(R10)\nR10=50\nG0 X1\nX2\nMCALL L30\nX3\nX4\nX5\nM30\n", &subs);
     ok(&ch);
     assert_eq!((ch.r_param(1), ch.r_param(2)), (2.0, 3.0));
@@ -271,7 +273,7 @@ fn repeat_with_endlabel_ends_the_section_there() {
 fn repeat_sections_nest_and_may_hold_calls() {
     // Inner: A..B (R1 += 1) 1 + 1 runs per outer run; outer: OUT..the REPEAT of the outer
     // section, 1 + 2 runs, each with one L10 (X + 10): R1 = 3 × 2 = 6, X = 30.
-    let main = "G0 X0\nOUT: L10\nA: R1=R1+1\nB: REPEAT A P=1\nREPEAT OUT P=2\nM30\n";
+    let main = "G0 X0\nOUT: L10\nAA: R1=R1+1\nBB: REPEAT AA P=1\nREPEAT OUT P=2\nM30\n";
     let ch = run(main, &[("L10", "G91 G0 X10\nG90\nM17\n")]);
     ok(&ch);
     assert_eq!((ch.r_param(1), wcs(&ch, "X")), (6.0, 30.0));
@@ -280,7 +282,7 @@ fn repeat_sections_nest_and_may_hold_calls() {
 #[test]
 fn repeat_errors_name_their_block() {
     assert_eq!(alarm(&run("R1=1\nREPEAT NOWHERE P=2\nM30\n", &[])), (14080, Some(2)));
-    assert_eq!(alarm(&run("A: R1=1\nREPEAT A P=0\nM30\n", &[])).1, Some(2));
+    assert_eq!(alarm(&run("AA: R1=1\nREPEAT AA P=0\nM30\n", &[])).1, Some(2));
     // A label after the REPEAT without ENDLABEL.
     assert_eq!(alarm(&run("REPEAT LATER P=2\nM30\nLATER: R1=1\n", &[])), (14080, Some(1)));
 }

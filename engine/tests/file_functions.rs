@@ -50,11 +50,11 @@ fn write_appends_lines_with_a_line_feed_and_creates_the_file() {
     let mut ch = channel();
     run_on(
         &mut ch,
-        "DEF INT E1, E2, E3\nWRITE(E1, \"LOG\", \"FIRST\")\nWRITE(E2, \"/_N_MPF_DIR/_N_LOG_MPF\", \"SECOND\")\n\
-         R1=4.5\nWRITE(E3, \"log.mpf\", SPRINT(\"R1=%.2F N=%D\", R1, 7))\nM30",
+        "DEF INT ERR1, ERR2, ERR3\nWRITE(ERR1, \"LOG\", \"FIRST\")\nWRITE(ERR2, \"/_N_MPF_DIR/_N_LOG_MPF\", \"SECOND\")\n\
+         R1=4.5\nWRITE(ERR3, \"log.mpf\", SPRINT(\"R1=%.2F N=%D\", R1, 7))\nM30",
     );
     ok(&ch);
-    assert_eq!([int(&ch, "E1", 0), int(&ch, "E2", 0), int(&ch, "E3", 0)], [0, 0, 0]);
+    assert_eq!([int(&ch, "ERR1", 0), int(&ch, "ERR2", 0), int(&ch, "ERR3", 0)], [0, 0, 0]);
     // The three names are one file: _N_LOG_MPF in the part-program store.
     assert_eq!(ch.stored_program("LOG"), Some("FIRST\nSECOND\nR1=4.50 N=7\n"));
     assert!(ch.stored_programs().iter().any(|(n, size)| n == "LOG" && *size == 25));
@@ -65,13 +65,13 @@ fn write_refuses_paths_types_and_names_with_the_manuals_codes() {
     let mut ch = channel();
     run_on(
         &mut ch,
-        "DEF INT E[5]\nWRITE(E[0], \"/_N_DEF_DIR/_N_X_MPF\", \"A\")\nWRITE(E[1], \"/TMP/_N_X_MPF\", \"A\")\n\
-         WRITE(E[2], \"_N_X_DEF\", \"A\")\nWRITE(E[3], \"1X\", \"A\")\nWRITE(E[4], \"_N_X_SPF\", \"A\")\nM30",
+        "DEF INT ERR[5]\nWRITE(ERR[0], \"/_N_DEF_DIR/_N_X_MPF\", \"A\")\nWRITE(ERR[1], \"/TMP/_N_X_MPF\", \"A\")\n\
+         WRITE(ERR[2], \"_N_X_DEF\", \"A\")\nWRITE(ERR[3], \"1X\", \"A\")\nWRITE(ERR[4], \"_N_X_SPF\", \"A\")\nM30",
     );
     ok(&ch);
     // 1 a control directory without part programs, 2 no such directory, 4 a definition file,
     // 1 a name the control does not allow; a subprogram is a file WRITE may write.
-    let codes: Vec<i64> = (0..5).map(|i| int(&ch, "E", i)).collect();
+    let codes: Vec<i64> = (0..5).map(|i| int(&ch, "ERR", i)).collect();
     assert_eq!(codes, [1, 2, 4, 1, 0]);
     assert_eq!(ch.stored_program("X"), Some("A\n"));
 }
@@ -83,8 +83,8 @@ fn a_file_larger_than_md11420_is_full() {
     let mut ch = channel();
     run_on(
         &mut ch,
-        "DEF INT E, N, FULL\nFOR N=1 TO 30\nWRITE(E, \"BIG\", \"0123456789012345678901234567890123456789\")\n\
-         IF E==10 GOTOF DONE\nENDFOR\nDONE:\nFULL=N\nM30",
+        "DEF INT ERR, NUM, FULL\nFOR NUM=1 TO 30\nWRITE(ERR, \"BIG\", \"0123456789012345678901234567890123456789\")\n\
+         IF ERR==10 GOTOF DONE\nENDFOR\nDONE:\nFULL=NUM\nM30",
     );
     ok(&ch);
     assert_eq!(int(&ch, "FULL", 0), 25);
@@ -94,8 +94,8 @@ fn a_file_larger_than_md11420_is_full() {
     let mut ch = Channel::from_preset("mill-3axis", "$MN_LEN_PROTOCOL_FILE=2\n").unwrap();
     run_on(
         &mut ch,
-        "DEF INT E, N, FULL\nFOR N=1 TO 60\nWRITE(E, \"BIG\", \"0123456789012345678901234567890123456789\")\n\
-         IF E==10 GOTOF DONE\nENDFOR\nDONE:\nFULL=N\nM30",
+        "DEF INT ERR, NUM, FULL\nFOR NUM=1 TO 60\nWRITE(ERR, \"BIG\", \"0123456789012345678901234567890123456789\")\n\
+         IF ERR==10 GOTOF DONE\nENDFOR\nDONE:\nFULL=NUM\nM30",
     );
     ok(&ch);
     assert_eq!(int(&ch, "FULL", 0), 50);
@@ -107,13 +107,13 @@ fn read_takes_lines_from_a_first_line_or_the_end() {
     ch.store_program("DATA", "; HEADER\nL2\r\nL3\nL4\n").unwrap();
     run_on(
         &mut ch,
-        "DEF INT E1, E2\nDEF STRING[10] A[3], B[2]\nREAD(E1, \"DATA\", 2, 3, A)\nREAD(E2, \"DATA\", 0, 2, B)\nM30",
+        "DEF INT ERR1, ERR2\nDEF STRING[10] LA[3], LB[2]\nREAD(ERR1, \"DATA\", 2, 3, LA)\nREAD(ERR2, \"DATA\", 0, 2, LB)\nM30",
     );
     ok(&ch);
-    assert_eq!((int(&ch, "E1", 0), int(&ch, "E2", 0)), (0, 0));
+    assert_eq!((int(&ch, "ERR1", 0), int(&ch, "ERR2", 0)), (0, 0));
     // Lines 2..4 (the CR of a CRLF line is no part of it); with 0 the last two.
-    assert_eq!([text(&ch, "A", 0), text(&ch, "A", 1), text(&ch, "A", 2)], ["L2", "L3", "L4"]);
-    assert_eq!([text(&ch, "B", 0), text(&ch, "B", 1)], ["L3", "L4"]);
+    assert_eq!([text(&ch, "LA", 0), text(&ch, "LA", 1), text(&ch, "LA", 2)], ["L2", "L3", "L4"]);
+    assert_eq!([text(&ch, "LB", 0), text(&ch, "LB", 1)], ["L3", "L4"]);
 }
 
 #[test]
@@ -122,24 +122,24 @@ fn read_errors_name_the_missing_file_line_and_array() {
     ch.store_program("DATA", "L1\nL2\nL3\n").unwrap();
     run_on(
         &mut ch,
-        "DEF INT E[5]\nDEF STRING[2] S[2]\nREAD(E[0], \"NONE\", 1, 1, S)\nREAD(E[1], \"DATA\", 4, 1, S)\n\
-         READ(E[2], \"DATA\", 1, 3, S)\nREAD(E[3], \"DATA\", 3, 2, S)\nREAD(E[4], \"/_N_SPF_DIR/DATA\", 1, 1, S)\nM30",
+        "DEF INT ERR[5]\nDEF STRING[2] TXT[2]\nREAD(ERR[0], \"NONE\", 1, 1, TXT)\nREAD(ERR[1], \"DATA\", 4, 1, TXT)\n\
+         READ(ERR[2], \"DATA\", 1, 3, TXT)\nREAD(ERR[3], \"DATA\", 3, 2, TXT)\nREAD(ERR[4], \"/_N_SPF_DIR/DATA\", 1, 1, TXT)\nM30",
     );
     ok(&ch);
     // 3 no such file; 21 line 4 of 3; 22 three lines for two elements; 23 lines 3..4 of 3;
     // the flat session store answers a path's directory with its program of that name.
-    let codes: Vec<i64> = (0..5).map(|i| int(&ch, "E", i)).collect();
+    let codes: Vec<i64> = (0..5).map(|i| int(&ch, "ERR", i)).collect();
     assert_eq!(codes, [3, 21, 22, 23, 0]);
-    assert_eq!(text(&ch, "S", 0), "L1");
+    assert_eq!(text(&ch, "TXT", 0), "L1");
 }
 
 #[test]
 fn a_line_longer_than_the_array_strings_is_cut() {
     let mut ch = channel();
     ch.store_program("DATA", "ABCDEFGH\n").unwrap();
-    run_on(&mut ch, "DEF INT E\nDEF STRING[4] S[1]\nREAD(E, \"DATA\", 1, 1, S)\nM30");
+    run_on(&mut ch, "DEF INT ERR\nDEF STRING[4] TXT[1]\nREAD(ERR, \"DATA\", 1, 1, TXT)\nM30");
     ok(&ch);
-    assert_eq!(text(&ch, "S", 0), "ABCD");
+    assert_eq!(text(&ch, "TXT", 0), "ABCD");
 }
 
 #[test]
@@ -148,14 +148,14 @@ fn delete_and_isfile() {
     ch.store_program("OLD", "M17").unwrap();
     run_on(
         &mut ch,
-        "DEF INT E1, E2\nDEF BOOL B1, B2\nB1=ISFILE(\"/_N_MPF_DIR/_N_OLD_MPF\")\nDELETE(E1, \"OLD\")\n\
-         B2=ISFILE(\"OLD\")\nDELETE(E2, \"OLD\")\nM30",
+        "DEF INT ERR1, ERR2\nDEF BOOL OK1, OK2\nOK1=ISFILE(\"/_N_MPF_DIR/_N_OLD_MPF\")\nDELETE(ERR1, \"OLD\")\n\
+         OK2=ISFILE(\"OLD\")\nDELETE(ERR2, \"OLD\")\nM30",
     );
     ok(&ch);
-    assert_eq!(ch.variable("B1", 0), Some(Value::Bool(true)));
-    assert_eq!(ch.variable("B2", 0), Some(Value::Bool(false)));
+    assert_eq!(ch.variable("OK1", 0), Some(Value::Bool(true)));
+    assert_eq!(ch.variable("OK2", 0), Some(Value::Bool(false)));
     // Deleted, then not there: 0, then 3.
-    assert_eq!((int(&ch, "E1", 0), int(&ch, "E2", 0)), (0, 3));
+    assert_eq!((int(&ch, "ERR1", 0), int(&ch, "ERR2", 0)), (0, 3));
     assert_eq!(ch.stored_program("OLD"), None);
     assert!(ch.stored_programs().iter().all(|(n, _)| n != "OLD"));
 }
@@ -163,8 +163,11 @@ fn delete_and_isfile() {
 #[test]
 fn a_running_subprogram_is_in_use() {
     let mut ch = channel();
-    ch.store_program("SUB", "DEF INT E1, E2\nDELETE(E1, \"SUB\")\nWRITE(E2, \"SUB.SPF\", \"X\")\nR1=E1\nR2=E2\nM17")
-        .unwrap();
+    ch.store_program(
+        "SUB",
+        "DEF INT ERR1, ERR2\nDELETE(ERR1, \"SUB\")\nWRITE(ERR2, \"SUB.SPF\", \"X\")\nR1=ERR1\nR2=ERR2\nM17",
+    )
+    .unwrap();
     run_on(&mut ch, "SUB\nM30");
     ok(&ch);
     assert_eq!((ch.r_param(1), ch.r_param(2)), (11.0, 11.0));
@@ -179,30 +182,33 @@ fn file_information_in_the_manuals_formats() {
     let mut ch = channel();
     run_on(
         &mut ch,
-        "DEF INT E[6], SIZE\nDEF STRING[8] D, T\nDEF STRING[5] ST\nDEF STRING[32] INFO\n\
-         G4 F3725\nSTOPRE\nWRITE(E[0], \"LOG\", \"ABC\")\nFILESIZE(E[1], \"LOG\", SIZE)\nFILEDATE(E[2], \"LOG\", D)\n\
-         FILETIME(E[3], \"LOG\", T)\nFILESTAT(E[4], \"LOG\", ST)\nFILEINFO(E[5], \"LOG\", INFO)\nM30",
+        "DEF INT ERR[6], SIZE\nDEF STRING[8] DAT, TIM\nDEF STRING[5] ST\nDEF STRING[32] INFO\n\
+         G4 F3725\nSTOPRE\nWRITE(ERR[0], \"LOG\", \"ABC\")\nFILESIZE(ERR[1], \"LOG\", SIZE)\nFILEDATE(ERR[2], \"LOG\", DAT)\n\
+         FILETIME(ERR[3], \"LOG\", TIM)\nFILESTAT(ERR[4], \"LOG\", ST)\nFILEINFO(ERR[5], \"LOG\", INFO)\nM30",
     );
     ok(&ch);
-    assert_eq!((0..6).map(|i| int(&ch, "E", i)).collect::<Vec<_>>(), [0; 6]);
+    assert_eq!((0..6).map(|i| int(&ch, "ERR", i)).collect::<Vec<_>>(), [0; 6]);
     // "ABC" and the line feed: 4 bytes; every right in the session's store.
     assert_eq!(int(&ch, "SIZE", 0), 4);
-    assert_eq!(text(&ch, "D", 0), "01.01.00");
-    assert_eq!(text(&ch, "T", 0), "01:02.05");
+    assert_eq!(text(&ch, "DAT", 0), "01.01.00");
+    assert_eq!(text(&ch, "TIM", 0), "01:02.05");
     assert_eq!(text(&ch, "ST", 0), "rwxsd");
     assert_eq!(text(&ch, "INFO", 0), "rwxsd 4 01.01.00 01:02.05");
 
     let mut ch = channel();
-    run_on(&mut ch, "DEF INT E\nDEF STRING[8] D\nFILEDATE(E, \"NONE\", D)\nM30");
+    run_on(&mut ch, "DEF INT ERR\nDEF STRING[8] DAT\nFILEDATE(ERR, \"NONE\", DAT)\nM30");
     ok(&ch);
-    assert_eq!(int(&ch, "E", 0), 3);
+    assert_eq!(int(&ch, "ERR", 0), 3);
 }
 
 #[test]
 fn the_shell_learns_each_changed_file_once() {
     let mut ch = channel();
     ch.store_program("GONE", "M17").unwrap();
-    run_on(&mut ch, "DEF INT E, N\nFOR N=1 TO 5\nWRITE(E, \"LOG\", \"LINE \"<<N)\nENDFOR\nDELETE(E, \"GONE\")\nM30");
+    run_on(
+        &mut ch,
+        "DEF INT ERR, NUM\nFOR NUM=1 TO 5\nWRITE(ERR, \"LOG\", \"LINE \"<<NUM)\nENDFOR\nDELETE(ERR, \"GONE\")\nM30",
+    );
     ok(&ch);
     let changes = ch.take_program_changes();
     assert_eq!(
@@ -218,7 +224,7 @@ fn a_log_of_ten_thousand_lines_is_written_in_one_copy() {
     // plus 10,000 x ("LINE " + LF) = 60,000: 98,894 bytes, under MD11420 = 100 KB.
     let mut ch = Channel::from_preset("mill-3axis", "$MN_LEN_PROTOCOL_FILE=100\n").unwrap();
     let started = std::time::Instant::now();
-    run_on(&mut ch, "DEF INT E, N\nFOR N=1 TO 10000\nWRITE(E, \"LOG\", \"LINE \"<<N)\nENDFOR\nM30");
+    run_on(&mut ch, "DEF INT ERR, NUM\nFOR NUM=1 TO 10000\nWRITE(ERR, \"LOG\", \"LINE \"<<NUM)\nENDFOR\nM30");
     let took = started.elapsed();
     ok(&ch);
     let log = ch.stored_program("LOG").expect("written");
@@ -234,9 +240,12 @@ fn the_stores_quota_is_no_free_resources() {
     let mut ch = channel();
     ch.store_program("SUB", "M17").unwrap();
     ch.set_program_budget(Some(20));
-    run_on(&mut ch, "DEF INT E1, E2\nWRITE(E1, \"LOG\", \"0123456789\")\nWRITE(E2, \"LOG\", \"0123456789\")\nM30");
+    run_on(
+        &mut ch,
+        "DEF INT ERR1, ERR2\nWRITE(ERR1, \"LOG\", \"0123456789\")\nWRITE(ERR2, \"LOG\", \"0123456789\")\nM30",
+    );
     ok(&ch);
-    assert_eq!((int(&ch, "E1", 0), int(&ch, "E2", 0)), (0, 12));
+    assert_eq!((int(&ch, "ERR1", 0), int(&ch, "ERR2", 0)), (0, 12));
     assert_eq!(ch.stored_program("LOG"), Some("0123456789\n"));
 }
 
@@ -245,19 +254,19 @@ fn string_conversions_in_programs() {
     let mut ch = channel();
     run_on(
         &mut ch,
-        "DEF STRING[16] S\nR1=TOINT(2.5)\nR2=TOREAL(\"1.25\")*2\nS=SPRINT(\"%S-%03D\", \"T\", 7)\nR3=STRLEN(S)\n\
-         R4=ISNUMBER(\"12.5\")\nR5=NUMBER(\"3.5\")+1\nR6=INDEX(S, \"-\")\nS=TOUPPER(SUBSTR(\"abcdef\", 1, 3))\nM30",
+        "DEF STRING[16] TXT\nR1=TOINT(2.5)\nR2=TOREAL(\"1.25\")*2\nTXT=SPRINT(\"%S-%03D\", \"T\", 7)\nR3=STRLEN(TXT)\n\
+         R4=ISNUMBER(\"12.5\")\nR5=NUMBER(\"3.5\")+1\nR6=INDEX(TXT, \"-\")\nTXT=TOUPPER(SUBSTR(\"abcdef\", 1, 3))\nM30",
     );
     ok(&ch);
-    // TOINT rounds half away from zero; "%03D" pads 7 to width 3 with zeros, so S = "T-007", 5
+    // TOINT rounds half away from zero; "%03D" pads 7 to width 3 with zeros, so TXT = "T-007", 5
     // long with "-" at index 1; SUBSTR from index 1, 3 characters.
     assert_eq!(
         [ch.r_param(1), ch.r_param(2), ch.r_param(3), ch.r_param(4), ch.r_param(5), ch.r_param(6)],
         [3.0, 2.5, 5.0, 1.0, 4.5, 1.0]
     );
-    assert_eq!(text(&ch, "S", 0), "BCD");
-    run_on(&mut ch, "DEF STRING[16] S\nS=SPRINT(\"%S-%03D\", \"T\", 7)\nM30");
-    assert_eq!(text(&ch, "S", 0), "T-007");
+    assert_eq!(text(&ch, "TXT", 0), "BCD");
+    run_on(&mut ch, "DEF STRING[16] TXT\nTXT=SPRINT(\"%S-%03D\", \"T\", 7)\nM30");
+    assert_eq!(text(&ch, "TXT", 0), "T-007");
 }
 
 // --- Data files -------------------------------------------------------------------------------
@@ -293,7 +302,7 @@ fn a_program_stored_by_the_shell_while_a_file_is_pending_wins() {
     // WRITE while the program runs (a dwell of 1 s follows): the listing shows the line at
     // once; the shell then stores LOG itself: its text stands, the run's change is dropped.
     let mut ch = channel();
-    ch.run_program("DEF INT E\nWRITE(E, \"LOG\", \"A\")\nG4 F1\nM30").unwrap();
+    ch.run_program("DEF INT ERR\nWRITE(ERR, \"LOG\", \"A\")\nG4 F1\nM30").unwrap();
     let mut ticks = 0;
     while ch.stored_program("LOG").is_none() {
         ch.step();

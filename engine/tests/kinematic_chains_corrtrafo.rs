@@ -50,7 +50,7 @@ const CORR_TOOL: usize = 11;
 /// Declares V, sets it, starts with T1 D1 at the tool tip (0, 0, 50) and selects the head.
 fn start(v: [f64; 3]) -> String {
     format!(
-        "DEF REAL V[3]\nV[0]={:?}\nV[1]={:?}\nV[2]={:?}\nT1 D1\nG0 X0 Y0 Z50\nTRAFOON(\"Head\")\n",
+        "DEF REAL VEC[3]\nVEC[0]={:?}\nVEC[1]={:?}\nVEC[2]={:?}\nT1 D1\nG0 X0 Y0 Z50\nTRAFOON(\"Head\")\n",
         v[0], v[1], v[2]
     )
 }
@@ -113,7 +113,7 @@ fn an_offset_correction_of_a_section_moves_the_machine_and_is_stored() {
     // Section 2 (A .. end) is (0, 0, −150) + Corr tool; absolute section length (0, 0, −150.2)
     // leaves Corr tool = (0, 0, −0.2): the pivot-to-tip reach grows from 250 to 250.2.
     let program = format!(
-        "{}R1=CORRTRAFO(2, 20, V)\nR2=$NK_OFF_DIR[{CORR_TOOL},2]\nG1 F3000 X0 Y0 Z50 A30 C40\nM30",
+        "{}R1=CORRTRAFO(2, 20, VEC)\nR2=$NK_OFF_DIR[{CORR_TOOL},2]\nG1 F3000 X0 Y0 Z50 A30 C40\nM30",
         start([0.0, 0.0, -150.2])
     );
     let mut ch = channel("");
@@ -145,13 +145,13 @@ fn direct_and_world_corrections_differ_by_the_constant_rotation() {
     // element takes R_z(−90°)·V = (0, −0.3, 0).
     let read = format!("R10=$NK_OFF_DIR[{CORR_CA},0]\nR11=$NK_OFF_DIR[{CORR_CA},1]\nR12=$NK_OFF_DIR[{CORR_CA},2]\n");
     let direct =
-        run(&format!("{}R1=CORRTRAFO(1, 0, V)\n{read}G1 F3000 X0 Y0 Z50 A30 C40\nM30", start([0.3, 0.0, 0.0])));
+        run(&format!("{}R1=CORRTRAFO(1, 0, VEC)\n{read}G1 F3000 X0 Y0 Z50 A30 C40\nM30", start([0.3, 0.0, 0.0])));
     assert_eq!(direct.status, Status::Idle, "{:?}", direct.alarms);
     assert!(near(&[r(&direct, 10), r(&direct, 11), r(&direct, 12)], &[0.3, 0.0, 0.0], 1e-12));
     let want = expected([0.0, 0.0, 50.0], 30.0, 40.0, [0.0, 0.3, 0.0], 0.0);
     assert!(near(&machine(&direct), &want, 1e-6), "{:?} vs {want:?}", machine(&direct));
     let world =
-        run(&format!("{}R1=CORRTRAFO(1, 10, V)\n{read}G1 F3000 X0 Y0 Z50 A30 C40\nM30", start([0.3, 0.0, 0.0])));
+        run(&format!("{}R1=CORRTRAFO(1, 10, VEC)\n{read}G1 F3000 X0 Y0 Z50 A30 C40\nM30", start([0.3, 0.0, 0.0])));
     assert_eq!(world.status, Status::Idle, "{:?}", world.alarms);
     assert!(near(&[r(&world, 10), r(&world, 11), r(&world, 12)], &[0.0, -0.3, 0.0], 1e-12));
     let want = expected([0.0, 0.0, 50.0], 30.0, 40.0, [0.3, 0.0, 0.0], 0.0);
@@ -162,7 +162,7 @@ fn direct_and_world_corrections_differ_by_the_constant_rotation() {
 fn incremental_corrections_add_to_the_element() {
     // Two incremental direct corrections of Corr tool by (0, 0, −0.1): −0.2 in all.
     let s = run(&format!(
-        "{}R1=CORRTRAFO(2, 100, V)\nR2=CORRTRAFO(2, 100, V)\nR3=$NK_OFF_DIR[{CORR_TOOL},2]\nM30",
+        "{}R1=CORRTRAFO(2, 100, VEC)\nR2=CORRTRAFO(2, 100, VEC)\nR3=$NK_OFF_DIR[{CORR_TOOL},2]\nM30",
         start([0.0, 0.0, -0.1])
     ));
     assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
@@ -174,7 +174,7 @@ fn incremental_corrections_add_to_the_element() {
 fn a_direction_correction_tilts_the_axis() {
     // A's direction becomes u = (1, 0.01, 0)/|…| (0.573° off X, inside SD41611's 1°). With C = 0
     // the tool turns about u by A: o = R(u, A)·(0, 0, 1), P = M + (0, 0, 150) − 250·o.
-    let s = run(&format!("{}CORRTRAFO(1, 1, V)\nG1 F3000 X0 Y0 Z50 A30 C0\nM30", start([1.0, 0.01, 0.0])));
+    let s = run(&format!("{}CORRTRAFO(1, 1, VEC)\nG1 F3000 X0 Y0 Z50 A30 C0\nM30", start([1.0, 0.01, 0.0])));
     assert_eq!(s.status, Status::Idle, "{:?}", s.alarms);
     let n = (1.0f64 + 0.0001).sqrt();
     let u = [1.0 / n, 0.01 / n, 0.0];
@@ -194,36 +194,36 @@ fn the_status_codes_and_alarm_14103() {
         r(&s, 1)
     };
     // 1: no transformation active.
-    assert_eq!(status("DEF REAL V[3]\nR1=CORRTRAFO(2, 0, V, , TRUE)\nM30"), 1.0);
+    assert_eq!(status("DEF REAL VEC[3]\nR1=CORRTRAFO(2, 0, VEC, , TRUE)\nM30"), 1.0);
     // 2: TRANSMIT is no orientation transformation.
     let mut lathe = Channel::from_preset("transmit-example", "").unwrap();
-    let s = run_on(&mut lathe, "DEF REAL V[3]\nTRANSMIT\nR1=CORRTRAFO(0, 0, V, , TRUE)\nM30");
+    let s = run_on(&mut lathe, "DEF REAL VEC[3]\nTRANSMIT\nR1=CORRTRAFO(0, 0, VEC, , TRUE)\nM30");
     assert_eq!((s.status, r(&s, 1)), (Status::Idle, 2.0), "{:?}", s.alarms);
     // 3: the machine data's TRAORI (the preset's data set 1) is not defined by chains.
-    assert_eq!(status("DEF REAL V[3]\nT1 D1\nTRAORI\nR1=CORRTRAFO(2, 0, V, , TRUE)\nM30"), 3.0);
+    assert_eq!(status("DEF REAL VEC[3]\nT1 D1\nTRAORI\nR1=CORRTRAFO(2, 0, VEC, , TRUE)\nM30"), 3.0);
     // 4: tens digit 3, or a section of a direction.
-    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 30, V, , TRUE)\nM30")), 4.0);
-    assert_eq!(status(&format!("{v}R1=CORRTRAFO(1, 21, V, , TRUE)\nM30")), 4.0);
+    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 30, VEC, , TRUE)\nM30")), 4.0);
+    assert_eq!(status(&format!("{v}R1=CORRTRAFO(1, 21, VEC, , TRUE)\nM30")), 4.0);
     // 5: no correction element at position 3, no chain 2, no orientation axis 2.
-    assert_eq!(status(&format!("{v}R1=CORRTRAFO(3, 0, V, , TRUE)\nM30")), 5.0);
-    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 0, V, 2, TRUE)\nM30")), 5.0);
-    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 1, V, , TRUE)\nM30")), 5.0);
+    assert_eq!(status(&format!("{v}R1=CORRTRAFO(3, 0, VEC, , TRUE)\nM30")), 5.0);
+    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 0, VEC, 2, TRUE)\nM30")), 5.0);
+    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 1, VEC, , TRUE)\nM30")), 5.0);
     // 41: a change of 5 mm exceeds SD41610's 1 mm; suppressed (thousands digit 1) it is done,
     // and with the setting datum raised to 10 mm too.
-    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 0, V, , TRUE)\nM30")), 41.0);
-    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 1000, V, , TRUE)\nM30")), 0.0);
-    assert_eq!(status(&format!("{v}$SN_CORR_TRAFO_LIN_MAX=10\nR1=CORRTRAFO(2, 0, V, , TRUE)\nM30")), 0.0);
+    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 0, VEC, , TRUE)\nM30")), 41.0);
+    assert_eq!(status(&format!("{v}R1=CORRTRAFO(2, 1000, VEC, , TRUE)\nM30")), 0.0);
+    assert_eq!(status(&format!("{v}$SN_CORR_TRAFO_LIN_MAX=10\nR1=CORRTRAFO(2, 0, VEC, , TRUE)\nM30")), 0.0);
     // 42: A's direction turned by atan(0.05) = 2.86° > SD41611's 1°.
     let tilt = start([1.0, 0.05, 0.0]);
-    assert_eq!(status(&format!("{tilt}R1=CORRTRAFO(1, 1, V, , TRUE)\nM30")), 42.0);
-    assert_eq!(status(&format!("{tilt}R1=CORRTRAFO(1, 1001, V, , TRUE)\nM30")), 0.0);
+    assert_eq!(status(&format!("{tilt}R1=CORRTRAFO(1, 1, VEC, , TRUE)\nM30")), 42.0);
+    assert_eq!(status(&format!("{tilt}R1=CORRTRAFO(1, 1001, VEC, , TRUE)\nM30")), 0.0);
     // In a condition, as a statement's value.
-    assert_eq!(status(&format!("{v}IF CORRTRAFO(2, 0, V, , TRUE)==41\nR1=99\nENDIF\nM30")), 99.0);
+    assert_eq!(status(&format!("{v}IF CORRTRAFO(2, 0, VEC, , TRUE)==41\nR1=99\nENDIF\nM30")), 99.0);
     // No_Alarm FALSE (omitted): alarm 14103 in the block's line, and the data stays.
-    let s = run(&format!("{v}R1=CORRTRAFO(2, 0, V)\nM30"));
+    let s = run(&format!("{v}R1=CORRTRAFO(2, 0, VEC)\nM30"));
     let alarm = s.alarms.iter().find(|a| a.number == 14103).unwrap_or_else(|| panic!("{:?}", s.alarms));
     assert_eq!(alarm.line, Some(8), "{alarm:?}");
-    let s = run(&format!("{v}CORRTRAFO(2, 0, V)\nM30"));
+    let s = run(&format!("{v}CORRTRAFO(2, 0, VEC)\nM30"));
     assert!(s.alarms.iter().any(|a| a.number == 14103), "{:?}", s.alarms);
 }
 
@@ -232,9 +232,9 @@ fn the_section_must_hold_its_correction_element() {
     // Corr tool listed at position 0 lies in section 2: the whole-section mode refuses (6);
     // the direct mode writes it.
     let mut ch = channel("$NT_CORR_ELEM_T[1,0]=\"Corr tool\"\n");
-    let s = run_on(&mut ch, &format!("{}R1=CORRTRAFO(0, 20, V, , TRUE)\nM30", start([0.0, 0.0, -0.5])));
+    let s = run_on(&mut ch, &format!("{}R1=CORRTRAFO(0, 20, VEC, , TRUE)\nM30", start([0.0, 0.0, -0.5])));
     assert_eq!(r(&s, 1), 6.0, "{:?}", s.alarms);
-    let s = run_on(&mut ch, &format!("{}R1=CORRTRAFO(0, 0, V, , TRUE)\nM30", start([0.0, 0.0, -0.5])));
+    let s = run_on(&mut ch, &format!("{}R1=CORRTRAFO(0, 0, VEC, , TRUE)\nM30", start([0.0, 0.0, -0.5])));
     assert_eq!(r(&s, 1), 0.0, "{:?}", s.alarms);
 }
 
@@ -286,7 +286,7 @@ fn the_workpiece_chain_is_corrected_with_corr_chain_1() {
               $NT_P_CHAIN_LAST_ELEM[1]=\"Corr WP\"\n$NT_CORR_ELEM_P[1,0]=\"Corr WP\"\n";
     let mut ch = channel(wp);
     let program = format!(
-        "{}R1=CORRTRAFO(0, 20, V, 1)\nR2=$NK_OFF_DIR[13,0]\nG1 F3000 X0 Y0 Z50 A30 C40\nM30",
+        "{}R1=CORRTRAFO(0, 20, VEC, 1)\nR2=$NK_OFF_DIR[13,0]\nG1 F3000 X0 Y0 Z50 A30 C40\nM30",
         start([5.3, 0.0, 0.0])
     );
     let s = run_on(&mut ch, &program);
@@ -296,6 +296,6 @@ fn the_workpiece_chain_is_corrected_with_corr_chain_1() {
     let want = expected([5.3, 0.0, 50.0], 30.0, 40.0, [0.0; 3], 0.0);
     assert!(near(&machine(&s), &want, 1e-6), "{:?} vs {want:?}", machine(&s));
     // The same element is no tool-chain correction element: Corr_Chain 0 finds nothing at 0.
-    let s = run_on(&mut ch, &format!("{}R1=CORRTRAFO(0, 20, V, 0, TRUE)\nM30", start([5.3, 0.0, 0.0])));
+    let s = run_on(&mut ch, &format!("{}R1=CORRTRAFO(0, 20, VEC, 0, TRUE)\nM30", start([5.3, 0.0, 0.0])));
     assert_eq!(r(&s, 1), 5.0, "{:?}", s.alarms);
 }

@@ -122,7 +122,8 @@ async fn a_corrtrafo_correction_is_in_the_export() {
     assert_eq!(put_text(&server, &id, CHAIN).await.status, StatusCode::OK);
     // A's direction (element 5, orientation axis 1) corrected to (1, 0.01, 0): 0.57°, inside
     // SD41611's 1°. The program's correction is what the archive carries afterwards.
-    let program = "DEF REAL V[3]\nV[0]=1\nV[1]=0.01\nTRAFOON(\"Fork head\")\nR1=CORRTRAFO(1, 1, V)\nTRAFOOF\nM30";
+    let program =
+        "DEF REAL VEC[3]\nVEC[0]=1\nVEC[1]=0.01\nTRAFOON(\"Fork head\")\nR1=CORRTRAFO(1, 1, VEC)\nTRAFOOF\nM30";
     let body = serde_json::json!({"program": program, "pace": "fast", "wait": true});
     let reply = server.post(&format!("/sessions/{id}/run"), body).await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);

@@ -23,8 +23,8 @@ async fn a_file_written_by_a_program_is_listed_and_survives_a_restart() {
         StatusCode::OK
     );
     // The log's second line is no NC block: a file keeps any text.
-    let program = "DEF INT E\nR1=12.5\nWRITE(E, \"/_N_MPF_DIR/_N_SHIFTLOG_MPF\", \"; PART 1\")\n\
-                   WRITE(E, \"SHIFTLOG\", SPRINT(\"RESULT: %.1F mm\", R1))\nDELETE(E, \"OLD\")\nM30";
+    let program = "DEF INT ERR\nR1=12.5\nWRITE(ERR, \"/_N_MPF_DIR/_N_SHIFTLOG_MPF\", \"; PART 1\")\n\
+                   WRITE(ERR, \"SHIFTLOG\", SPRINT(\"RESULT: %.1F mm\", R1))\nDELETE(ERR, \"OLD\")\nM30";
     let reply =
         server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
@@ -47,7 +47,7 @@ async fn a_file_written_by_a_program_is_listed_and_survives_a_restart() {
     let reply = server
         .post(
             &format!("/sessions/{id}/run"),
-            json!({"program": "DEF INT E\nWRITE(E, \"SHIFTLOG\", \"; PART 2\")\nM30", "pace": "fast", "wait": true}),
+            json!({"program": "DEF INT ERR\nWRITE(ERR, \"SHIFTLOG\", \"; PART 2\")\nM30", "pace": "fast", "wait": true}),
         )
         .await;
     assert_eq!(reply.body["status"], "idle", "{}", reply.body);

@@ -143,7 +143,7 @@ pub enum JumpTarget {
 /// Statements that fill a block (declarations and control flow).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stmt {
-    /// `DEF REAL A, B[3]=SET(1,2,3)`; `global` for `DEF CHAN`/`DEF NCK` (global user data).
+    /// `DEF REAL LEN, PTS[3]=SET(1,2,3)`; `global` for `DEF CHAN`/`DEF NCK` (global user data).
     Def {
         global: bool,
         ty: VarType,

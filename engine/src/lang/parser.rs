@@ -502,6 +502,7 @@ fn parse_def(cur: &mut Cursor) -> PResult<Stmt> {
         if name.starts_with('$') || is_statement(&name) {
             return Err((start, format!("{name} cannot be a variable name")));
         }
+        check_user_name(&name, start)?;
         let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
         cur.skip_ws();
         let init = if cur.eat(b'=') {
@@ -517,6 +518,19 @@ fn parse_def(cur: &mut Cursor) -> PResult<Stmt> {
         }
     }
     Ok(Stmt::Def { global, ty, vars })
+}
+
+/// The naming rule for user variables and parameters (Programming Manual, Fundamentals,
+/// "Identifiers"): the first two characters are letters or underscores. A name such as `E`,
+/// `I` or `E1` would read as an address with its value (`E1` = address E, value 1), so the
+/// control cannot take it as a name.
+fn check_user_name(name: &str, at: usize) -> PResult<()> {
+    let lead = |b: Option<&u8>| b.is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_');
+    let bytes = name.as_bytes();
+    if lead(bytes.first()) && lead(bytes.get(1)) {
+        return Ok(());
+    }
+    Err((at, format!("{name} is not a valid name: a user variable's name begins with two letters or underscores")))
 }
 
 /// `value`, `(v1, v2, ...)`, `SET(v1, ...)` or `REP(v)` (the latter as a one-element call).
@@ -572,7 +586,9 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
     let name = cur.ident().ok_or((cur.pos, "PROC needs a name".to_string()))?;
     let params = parse_param_list(cur, "PROC parameters", |cur, by_reference, ty| {
         cur.skip_ws();
-        let pname = cur.ident().ok_or((cur.pos, "parameter needs a name".to_string()))?;
+        let at = cur.pos;
+        let pname = cur.ident().ok_or((at, "parameter needs a name".to_string()))?;
+        check_user_name(&pname, at)?;
         let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
         Ok(Param { by_reference, ty, name: pname, dims })
     })?;

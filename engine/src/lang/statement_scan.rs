@@ -32,7 +32,7 @@ mod tests {
             "N10 WHILE R1<3",
             ":10ENDWHILE",
             "/ LABEL: GOTOF END",
-            "DEF REAL A",
+            "DEF REAL AA",
             "R1=R1 ; ELSE in a comment",
             "Ret",
             "CASE(R1) OF 1 GOTOF A",
@@ -72,7 +72,7 @@ mod tests {
             "(",
             ")",
             "F",
-            "DEF REAL A",
+            "DEF REAL AA",
         ];
         const TAILS: [&str; 5] = ["", "", " ", " ;x", " X1"];
         let mut next = crate::lang::test_rng::xorshift(0x9e37_79b9_7f4a_7c15u64);

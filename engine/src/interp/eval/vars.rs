@@ -61,11 +61,6 @@ impl Variables {
         self.locals.last().and_then(|l| l.get(name)).or_else(|| self.globals.get(name))
     }
 
-    /// True if no user variable is visible (only R parameters): no name can shadow an address.
-    pub fn no_user_names(&self) -> bool {
-        self.globals.is_empty() && self.locals.last().is_none_or(BTreeMap::is_empty)
-    }
-
     pub fn get_mut(&mut self, name: &str) -> Option<&mut Variable> {
         match self.locals.last_mut().filter(|l| l.contains_key(name)) {
             Some(l) => l.get_mut(name),

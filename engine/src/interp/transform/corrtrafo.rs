@@ -10,7 +10,7 @@
 //! position follows through the corrected model, and the next motion block uses it.
 //!
 //! Parameters (the manual summary gives no full list; this product's reading):
-//! `Corr_Vect` is a REAL array of three components (`DEF REAL V[3]`, passed by name);
+//! `Corr_Vect` is a REAL array of three components (`DEF REAL CORR[3]`, passed by name);
 //! `Corr_Chain` 0 (default) takes `$NT_CORR_ELEM_T`, 1 `$NT_CORR_ELEM_P`; `No_Alarm` FALSE
 //! (default) stops with alarm 14103 on an error, TRUE only returns the status.
 

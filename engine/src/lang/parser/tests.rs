@@ -186,19 +186,37 @@ fn assignments_to_array_elements_and_system_variables_are_words() {
 
 #[test]
 fn def_declares_typed_variables_with_arrays_and_initial_values() {
-    let s = stmt("DEF REAL A=1.5, B[3]=SET(1,2,3), C");
+    let s = stmt("DEF REAL AA=1.5, BB[3]=SET(1,2,3), CC");
     let Stmt::Def { ty, vars, global: false } = s else { panic!() };
     assert_eq!(ty, VarType::Real);
     assert_eq!(vars.len(), 3);
     assert_eq!(vars[1].init.len(), 3);
     assert_eq!(
-        stmt("DEF STRING[12] S=\"x\""),
+        stmt("DEF STRING[12] TXT=\"x\""),
         Stmt::Def {
             global: false,
             ty: VarType::Str(12),
-            vars: vec![VarDecl { name: "S".into(), dims: vec![], init: vec![Expr::Str("x".into())] }]
+            vars: vec![VarDecl { name: "TXT".into(), dims: vec![], init: vec![Expr::Str("x".into())] }]
         }
     );
+}
+
+#[test]
+fn user_names_begin_with_two_letters_or_underscores() {
+    // Programming Manual, Fundamentals, "Identifiers": the first two characters are letters or
+    // underscores. `E1` would read as address E with the value 1, `I` as the address I.
+    for bad in ["DEF INT E1", "DEF REAL I", "DEF INT N, COUNT", "DEF REAL _1", "DEF INT ROW, J"] {
+        let diagnostics = parse(bad).diagnostics;
+        assert!(
+            diagnostics.iter().any(|d| d.message.contains("begins with two letters or underscores")),
+            "{bad}: {diagnostics:?}"
+        );
+    }
+    assert!(!parse("PROC SUB(REAL A)").diagnostics.is_empty());
+    assert!(!parse("PROC SUB(REAL DIA, VAR INT N2)").diagnostics.is_empty());
+    for good in ["DEF INT ROW, COL", "DEF REAL _X", "DEF REAL A_", "DEF INT IX1", "PROC SUB(REAL DIA, VAR INT NN)"] {
+        assert!(parse(good).diagnostics.is_empty(), "{good}");
+    }
 }
 
 #[test]
@@ -210,14 +228,14 @@ fn control_flow_statements_are_recognised() {
     assert!(matches!(stmt("UNTIL R1>=3"), Stmt::Until(_)));
     assert_eq!(stmt("GOTOB N100"), Stmt::Goto(Goto { kind: GotoKind::Backward, target: JumpTarget::BlockNumber(100) }));
     assert!(matches!(stmt("PROC P DISPLOF SBLOF"), Stmt::Proc { save: false, .. }));
-    assert!(matches!(stmt("PROC P(INT A) DISPLOF, SAVE"), Stmt::Proc { save: true, .. }));
+    assert!(matches!(stmt("PROC P(INT COUNT) DISPLOF, SAVE"), Stmt::Proc { save: true, .. }));
     let Stmt::Case { arms, default, .. } = stmt("CASE(R1) OF 1 GOTOF ONE 2 GOTOF TWO DEFAULT GOTOF OTHER") else {
         panic!()
     };
     assert_eq!(arms.len(), 2);
     assert!(default.is_some());
     assert!(
-        matches!(stmt("PROC CONTOUR(REAL X1, VAR REAL RES) SAVE"), Stmt::Proc { params, save: true, .. } if params.len() == 2 && params[1].by_reference)
+        matches!(stmt("PROC CONTOUR(REAL XX1, VAR REAL RES) SAVE"), Stmt::Proc { params, save: true, .. } if params.len() == 2 && params[1].by_reference)
     );
 }
 
