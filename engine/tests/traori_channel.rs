@@ -267,9 +267,9 @@ fn orireset_moves_the_orientation_axes_to_their_rest_or_given_positions() {
 }
 
 /// PTP: the end point is transformed once and the machine axes travel linearly together, so
-/// the tool tip leaves the straight line; STAT= picks the orientation solution (bit 0: the
-/// higher position of the first orientation axis, C), TU= the turn ranges (bit 3: A negative,
-/// bit 4 clear: C in 0..360).
+/// the tool tip leaves the straight line; STAT= picks the orientation solution (bit 0 = 0 the
+/// one nearer to the start; from A0 C0 both are 135° away and the lower C stays STAT=0), TU=
+/// the turn ranges (bit 3: A negative, bit 4 clear: C in 0..360).
 #[test]
 fn ptp_moves_the_machine_axes_linearly_to_the_chosen_solution() {
     let h = std::f64::consts::FRAC_1_SQRT_2;
@@ -298,6 +298,30 @@ fn ptp_moves_the_machine_axes_linearly_to_the_chosen_solution() {
         // The tip does not follow the Cartesian line in between (it would under CP).
         assert!(off_line > 1.0, "{words}: tip stayed on the line ({off_line})");
     }
+}
+
+/// Programming Manual, Job planning, Cartesian PTP travel, generic 5/6-axis transformation:
+/// STAT=0 (the default) approaches the rotary-axis positions at the shorter distance from the
+/// start positions, STAT=1 those at the greater distance. From A5 C10 the orientation
+/// (1, 0, 1)/√2 has C90 A45 at |90 − 10| + |45 − 5| = 120° and C−90 (= 270) A−45 at
+/// |−90 − 10| + |−45 − 5| = 150°. The tip X10 Y0 Z20 with 250·(1, 0, 1)/√2 = (176.7767, 0,
+/// 176.7767) gives X186.7767 Y0 Z(20 − 150 + 176.7767) = 46.7767 for either solution.
+#[test]
+fn ptp_stat_picks_the_solution_nearer_to_or_farther_from_the_start() {
+    let h = 250.0 * std::f64::consts::FRAC_1_SQRT_2;
+    for (stat, a, c) in [("STAT=0", 45.0, 90.0), ("", 45.0, 90.0), ("STAT=1", -45.0, 270.0)] {
+        let program = format!(
+            "G17 G90 T1 D1\nG0 X0 Y0 Z50 A5 C10\nTRAORI\nPTP\nG1 X10 Y0 Z20 A3=1 B3=0 C3=1 {stat} F2000\nM0\nM30"
+        );
+        let (ch, _) = run("mill5-head-ca", &program);
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{stat}: {:?}", s.alarms);
+        assert_machine(&s, [10.0 + h, 0.0, 20.0 - 150.0 + h, a, c]);
+    }
+    // From A−5 C−10 the nearer one is the other: C−90 A−45 (120°) for STAT=0.
+    let program = "G17 G90 T1 D1\nG0 X0 Y0 Z50 A-5 C-10\nTRAORI\nPTP\nG1 X10 Y0 Z20 A3=1 B3=0 C3=1 STAT=0 F2000\nM0\nM30";
+    let (ch, _) = run("mill5-head-ca", program);
+    assert_machine(&ch.snapshot(), [10.0 + h, 0.0, 20.0 - 150.0 + h, -45.0, -90.0]);
 }
 
 #[test]

@@ -4,3 +4,4 @@
 
 pub(super) mod corrtrafo;
 pub(super) mod selection;
+pub(super) mod ptp_stat;
