@@ -365,6 +365,43 @@ fn lead_and_tilt_orient_the_tool_against_the_path() {
     }
 }
 
+/// ORIPATH holds LEAD/TILT relative to the path inside the block (Programming Manual,
+/// orientation relative to the path). On the CCW quarter circle about (0, 0) of radius 40 from
+/// (40, 0) to (0, 40) the tangent at angle a is t = (−sin a, cos a, 0); with LEAD=20 TILT=0 and
+/// the normal +Z the tool is o = (−sin a·sin 20°, cos a·sin 20°, cos 20°) at every point:
+/// o·t = sin 20° = 0.342020, o_z = cos 20° = 0.939693 (a great circle between the ends would
+/// give 0.249 and 0.968 mid-arc).
+#[test]
+fn oripath_holds_lead_and_tilt_at_every_point_of_an_arc() {
+    let program = "G17 G90 T1 D1\nG0 X40 Y-10 Z10 A20 C90\nTRAORI\nORIWKS\nG0 X40 Y-10 Z10\nORIPATH\n\
+                   G1 X40 Y0 Z10 LEAD=20 TILT=0 F2000\nG3 X0 Y40 CR=40 LEAD=20 TILT=0\nM0\nM30";
+    let (ch, samples) = run_with("mill5-head-ca", "$MC_ORI_IPO_WITH_G_CODE=1", program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let (s20, c20) = 20f64.to_radians().sin_cos();
+    let mut angles = Vec::new();
+    for p in &samples {
+        let tip = head_tip(&p.axes);
+        // On the arc: 40 from the centre at Z10, Y ≥ 0 (the line before it runs at X40, Y < 0).
+        if (tip[0].hypot(tip[1]) - 40.0).abs() > 1e-6 || (tip[2] - 10.0).abs() > 1e-6 || tip[1] < -1e-9 {
+            continue;
+        }
+        let a = tip[1].atan2(tip[0]);
+        let t = [-a.sin(), a.cos(), 0.0];
+        let o = head_orientation(p.axes[3], p.axes[4]);
+        let along = o[0] * t[0] + o[1] * t[1] + o[2] * t[2];
+        assert!((along - s20).abs() < 1e-6 && (o[2] - c20).abs() < 1e-6, "at {:.2}°: o {o:?}", a.to_degrees());
+        angles.push(a.to_degrees());
+    }
+    // Checked over the whole arc, not only at its ends: samples in every tenth of it.
+    for tenth in 0..9 {
+        let (lo, hi) = (tenth as f64 * 9.0, tenth as f64 * 9.0 + 9.0);
+        assert!(angles.iter().any(|&a| a > lo && a < hi), "no sample between {lo}° and {hi}°: {angles:?}");
+    }
+    // The end: tangent −X, o = (−sin 20°, 0, cos 20°) = head A20 C−90 (= 270).
+    assert_machine(&s, [-250.0 * s20, 40.0, 10.0 - 150.0 + 250.0 * c20, 20.0, 270.0]);
+}
+
 #[test]
 fn lead_beyond_md21090_is_refused() {
     let (ch, _) = run("mill5-head-ca", &format!("{START}LEAD=70 X100\nM30"));
