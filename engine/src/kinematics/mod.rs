@@ -14,6 +14,8 @@
 
 pub mod orient;
 pub mod plan;
+mod pole_approach;
+mod pole_turn;
 mod seventh;
 mod traang;
 mod tracon;
