@@ -319,7 +319,8 @@ fn ptp_stat_picks_the_solution_nearer_to_or_farther_from_the_start() {
         assert_machine(&s, [10.0 + h, 0.0, 20.0 - 150.0 + h, a, c]);
     }
     // From A−5 C−10 the nearer one is the other: C−90 A−45 (120°) for STAT=0.
-    let program = "G17 G90 T1 D1\nG0 X0 Y0 Z50 A-5 C-10\nTRAORI\nPTP\nG1 X10 Y0 Z20 A3=1 B3=0 C3=1 STAT=0 F2000\nM0\nM30";
+    let program =
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 A-5 C-10\nTRAORI\nPTP\nG1 X10 Y0 Z20 A3=1 B3=0 C3=1 STAT=0 F2000\nM0\nM30";
     let (ch, _) = run("mill5-head-ca", program);
     assert_machine(&ch.snapshot(), [10.0 + h, 0.0, 20.0 - 150.0 + h, -45.0, -90.0]);
 }

@@ -81,8 +81,7 @@ pub fn pole_turn(
     }
     let mid = at(0.5)?;
     let turn = slots.iter().flatten().map(|&k| (target[k] - start[k]).abs()).sum::<f64>();
-    let linear: Vec<usize> =
-        active.trafo.machine_slots().into_iter().filter(|&k| !slots.contains(&Some(k))).collect();
+    let linear: Vec<usize> = active.trafo.machine_slots().into_iter().filter(|&k| !slots.contains(&Some(k))).collect();
     let mut path = Path::line(*start, end);
     path.arc = circle_through(start, &mid, &end, &linear).map(Box::new);
     let mut m = Move::new(path, turn, Feed::Rapid, &AxisLimit::for_channel(cfg), true, mv.tag);

@@ -61,8 +61,13 @@ impl OriPath {
     /// turned with the frame (lead and tilt already held at the start) it is the pure cone.
     pub fn turning_with(start: Vec3, end: Vec3, k: Vec3, sweep: f64) -> Result<OriPath, Antiparallel> {
         let own_end = rotate(end, k, -sweep);
-        let own = OriPath::great_circle(start, own_end)?
-            .unwrap_or(OriPath { start, axis: k, angle: 0.0, curve: None, turn: None });
+        let own = OriPath::great_circle(start, own_end)?.unwrap_or(OriPath {
+            start,
+            axis: k,
+            angle: 0.0,
+            curve: None,
+            turn: None,
+        });
         Ok(OriPath { turn: Some((k, sweep)), ..own })
     }
 

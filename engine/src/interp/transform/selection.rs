@@ -450,7 +450,9 @@ impl Interpreter {
         }
         let derived = Arc::new(derive(cfg, &trafo));
         let trafo = ActiveTrafo { trafo, tool: [0.0; 3], number: set.number };
-        if !plan::takes_over(&trafo, machine, cfg) || (persistent && trafo.trafo.on_excluded_pole_side(machine, &trafo.tool)) {
+        if !plan::takes_over(&trafo, machine, cfg)
+            || (persistent && trafo.trafo.on_excluded_pole_side(machine, &trafo.tool))
+        {
             return Err(pole_side_fixed(line));
         }
         self.pos = trafo.forward(machine);
