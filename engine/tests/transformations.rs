@@ -1013,6 +1013,18 @@ fn a_persistent_transmit_keeps_refusing_the_excluded_pole_side() {
         ch.restore_positions(&positions).unwrap();
         ch.reset();
         assert_eq!(transformation_type(&ch).is_some(), taken, "fix {fix}");
+        if !taken {
+            // TRAFOOF returns to the persistent transformation: refused on its line with 21617,
+            // the machine where it stands.
+            ch.run_program("TRAFOOF\nM30").unwrap();
+            while ch.is_busy() {
+                ch.step();
+            }
+            let s = ch.snapshot();
+            assert_eq!(alarm_numbers(&s), [21617]);
+            assert_eq!(s.alarms[0].line, Some(1));
+            assert!(close(machine(&s, "XM"), 20.0, 1e-12), "{:?}", s.machine);
+        }
     }
 }
 
