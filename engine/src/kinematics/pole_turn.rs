@@ -45,8 +45,13 @@ pub fn pole_turn(
     let mut target = *start;
     let mut turned = false;
     for &k in slots.iter().flatten() {
-        if (probe[k] - start[k]).abs() > JUMP {
-            target[k] = probe[k];
+        let mut d = probe[k] - start[k];
+        // Whole turns of a modulo axis are the same position: no motion to plan.
+        if cfg.axis(k).modulo.is_some() {
+            d = (d + 180.0).rem_euclid(360.0) - 180.0;
+        }
+        if d.abs() > JUMP {
+            target[k] = start[k] + d;
             turned = true;
         }
     }
