@@ -203,8 +203,10 @@ fn traang_k_gives_the_hand_computed_position() {
 
 #[test]
 fn nt_pole_side_fix_keeps_transmit_k_on_one_side_of_the_pole() {
-    // $NT_POLE_SIDE_FIX[1] = 2 is TRANSMIT_POLE_SIDE_FIX_1 = 2: the radial axis stays negative,
-    // even where the positive side is nearer (previous position X = +40).
+    // $NT_POLE_SIDE_FIX[1] = 2 is TRANSMIT_POLE_SIDE_FIX_1 = 2: leaving the pole (previous
+    // radial position X + 12 = 0, C = 0) the radial axis goes negative (C = 180°), even where
+    // the positive side is nearer (C = 0). Standing on the excluded side (X = +40, as after a
+    // selection outside the pole, which does not evaluate the fixed side) it stays there.
     let (chain, md) = transmit();
     let (chain, md) = (chain + "$NT_POLE_SIDE_FIX[1]=2\n", md + "$MC_TRANSMIT_POLE_SIDE_FIX_1=2\n");
     let (ccfg, mcfg) = (config(&chain), config(&md));
@@ -215,11 +217,14 @@ fn nt_pole_side_fix_keeps_transmit_k_on_one_side_of_the_pole() {
         number: 1,
     };
     let (ct, mt) = (build(cset, &ccfg), build(&mcfg.trafos[0], &mcfg));
-    let prev = axes(&[40.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let prev = axes(&[-12.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
     let bcs = axes(&[30.0, 0.0, 0.0, 0.0, 0.0, 20.0]);
     let (ic, im) = (ct.inverse(&bcs, &prev).unwrap(), mt.inverse(&bcs, &prev).unwrap());
     // Radial position of the tool: X + 12 (base tool) < 0 on the negative side.
     assert!(ic[0] + 12.0 < 0.0 && near(&ic[..6], &im[..6], 1e-9), "{:?} vs {:?}", &ic[..6], &im[..6]);
+    let prev = axes(&[40.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let (ic, im) = (ct.inverse(&bcs, &prev).unwrap(), mt.inverse(&bcs, &prev).unwrap());
+    assert!(ic[0] + 12.0 > 0.0 && near(&ic[..6], &im[..6], 1e-9), "{:?} vs {:?}", &ic[..6], &im[..6]);
 }
 
 #[test]

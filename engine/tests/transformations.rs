@@ -948,21 +948,84 @@ fn the_manual_transmit_example_keeps_the_offset_square_in_the_rotated_frame() {
 }
 
 #[test]
-fn pole_side_fix_refuses_a_start_on_the_excluded_side_with_21617() {
-    // POLE_SIDE_FIX = 2 keeps the radial axis negative; the machine stands at XM = +20.
+fn transmit_selected_outside_the_pole_ignores_pole_side_fix_until_the_pole() {
+    // Transformations FM, TRANSMIT, "Transformation selection outside pole": the control
+    // traverses the axes without evaluating MD24911 $MC_TRANSMIT_POLE_SIDE_FIX_1. The issue's
+    // case: POLE_SIDE_FIX = 2 (radial axis negative only), the machine at XM = +60, C = 0.
     let md = "$MC_TRANSMIT_POLE_SIDE_FIX_1=2";
-    let (ch, _) = run("transmit-example", md, "G0 X20\nTRANSMIT\nG1 F1000 X10 Y0\nM30");
-    let s = ch.snapshot();
-    assert_eq!(alarm_numbers(&s), [21617]);
-    assert_eq!(s.alarms[0].line, Some(2), "refused at its selection");
-    assert!(close(machine(&s, "XM"), 20.0, 1e-12), "nothing moved: {:?}", s.machine);
-
-    // From the negative side the same point is reached there: XM = −10 with C = 180°.
-    let (ch, _) = run("transmit-example", md, "G0 X-20\nTRANSMIT\nG1 F1000 X10 Y0\nM0\nM30");
+    let (ch, _) = run("transmit-example", md, "G90 G0 X60 Z5\nSPOS=0\nTRANSMIT\nG1 X15 Y20 F800\nM0\nM30");
     let s = ch.snapshot();
     assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
-    assert!(close(machine(&s, "XM"), -10.0, 1e-9), "{:?}", s.machine);
-    assert!(close(angle_diff(machine(&s, "CM"), 180.0), 0.0, 1e-9), "{:?}", s.machine);
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    // On the side it stands on: r = √(15² + 20²) = 25, C = atan2(20, 15) = 53.130102°.
+    assert!(close(machine(&s, "XM"), 25.0, 1e-9), "{:?}", s.machine);
+    assert!(close(angle_diff(machine(&s, "CM"), 53.130102354), 0.0, 1e-6), "{:?}", s.machine);
+
+    // Through the pole along X the radial axis crosses zero into its allowed negative range
+    // (C keeps 0°); from there the fixed side holds: back to X10 it rotates C by 180° in the
+    // pole and ends at XM = −10, C = 180°, never positive again after the first pole passage.
+    let program = "G0 X20\nTRANSMIT\nG1 F1000 X10 Y0\nM0\nX-10 Y0\nM0\nX10 Y0\nM0\nM30";
+    let mut ch = Channel::from_preset("transmit-example", md).unwrap();
+    ch.run_program(program).unwrap();
+    let mut stops = Vec::new();
+    let mut went_negative = false;
+    while ch.is_busy() {
+        ch.step();
+        let s = ch.snapshot();
+        let x = machine(&s, "XM");
+        went_negative |= x < -1e-6;
+        assert!(!(went_negative && x > 1e-6), "positive again after the pole: {x}");
+        if s.status == Status::Stopped {
+            stops.push((x, machine(&s, "CM")));
+            ch.start().unwrap();
+        }
+        assert!(stops.len() < 4, "program does not end");
+    }
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
+    let want = [(10.0, 0.0), (-10.0, 0.0), (-10.0, 180.0)];
+    assert_eq!(stops.len(), 3, "{stops:?}");
+    for ((x, c), (wx, wc)) in stops.iter().zip(want) {
+        assert!(close(*x, wx, 1e-9) && close(angle_diff(*c, wc), 0.0, 1e-9), "{stops:?}");
+    }
+}
+
+/// TRANSMIT data set 1 of the TRANSMIT example as the persistent transformation.
+const PERSISTENT_TRANSMIT: &str = "\
+$MC_TRAFO_MODE_MASK=1
+$MC_TRAFO_RESET_VALUE=1
+$MC_RESET_MODE_MASK=1
+$MC_GEOAX_CHANGE_RESET=TRUE";
+
+#[test]
+fn a_persistent_transmit_keeps_refusing_the_excluded_pole_side() {
+    // The manual's persistent-transformation example: "$MC_TRANSMIT_POLE_SIDE_FIX_1 = 1 ; also
+    // 2, causes alarm 21617". Persistent TRANSMIT is not selected by a program outside the
+    // pole, so the fixed side is evaluated: with the machine at XM = +20 and POLE_SIDE_FIX = 2
+    // the reset cannot take the transformation over (the channel stays without it), with
+    // POLE_SIDE_FIX = 1 it does.
+    for (fix, taken) in [(2, false), (1, true)] {
+        let md = format!("{PERSISTENT_TRANSMIT}\n$MC_TRANSMIT_POLE_SIDE_FIX_1={fix}");
+        let mut ch = Channel::from_preset("transmit-example", &md).unwrap();
+        // Power on with the machine in the pole: nothing to refuse.
+        assert_eq!(transformation_type(&ch), Some(256), "fix {fix}");
+        let mut positions = ch.axis_positions().to_vec();
+        positions[0] = 20.0;
+        ch.restore_positions(&positions).unwrap();
+        ch.reset();
+        assert_eq!(transformation_type(&ch).is_some(), taken, "fix {fix}");
+        if !taken {
+            // TRAFOOF returns to the persistent transformation: refused on its line with 21617,
+            // the machine where it stands.
+            ch.run_program("TRAFOOF\nM30").unwrap();
+            while ch.is_busy() {
+                ch.step();
+            }
+            let s = ch.snapshot();
+            assert_eq!(alarm_numbers(&s), [21617]);
+            assert_eq!(s.alarms[0].line, Some(1));
+            assert!(close(machine(&s, "XM"), 20.0, 1e-12), "{:?}", s.machine);
+        }
+    }
 }
 
 #[test]

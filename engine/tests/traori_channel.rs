@@ -267,9 +267,9 @@ fn orireset_moves_the_orientation_axes_to_their_rest_or_given_positions() {
 }
 
 /// PTP: the end point is transformed once and the machine axes travel linearly together, so
-/// the tool tip leaves the straight line; STAT= picks the orientation solution (bit 0: the
-/// higher position of the first orientation axis, C), TU= the turn ranges (bit 3: A negative,
-/// bit 4 clear: C in 0..360).
+/// the tool tip leaves the straight line; STAT= picks the orientation solution (bit 0 = 0 the
+/// one nearer to the start; from A0 C0 both are 135° away and the lower C stays STAT=0), TU=
+/// the turn ranges (bit 3: A negative, bit 4 clear: C in 0..360).
 #[test]
 fn ptp_moves_the_machine_axes_linearly_to_the_chosen_solution() {
     let h = std::f64::consts::FRAC_1_SQRT_2;
@@ -298,6 +298,31 @@ fn ptp_moves_the_machine_axes_linearly_to_the_chosen_solution() {
         // The tip does not follow the Cartesian line in between (it would under CP).
         assert!(off_line > 1.0, "{words}: tip stayed on the line ({off_line})");
     }
+}
+
+/// Programming Manual, Job planning, Cartesian PTP travel, generic 5/6-axis transformation:
+/// STAT=0 (the default) approaches the rotary-axis positions at the shorter distance from the
+/// start positions, STAT=1 those at the greater distance. From A5 C10 the orientation
+/// (1, 0, 1)/√2 has C90 A45 at |90 − 10| + |45 − 5| = 120° and C−90 (= 270) A−45 at
+/// |−90 − 10| + |−45 − 5| = 150°. The tip X10 Y0 Z20 with 250·(1, 0, 1)/√2 = (176.7767, 0,
+/// 176.7767) gives X186.7767 Y0 Z(20 − 150 + 176.7767) = 46.7767 for either solution.
+#[test]
+fn ptp_stat_picks_the_solution_nearer_to_or_farther_from_the_start() {
+    let h = 250.0 * std::f64::consts::FRAC_1_SQRT_2;
+    for (stat, a, c) in [("STAT=0", 45.0, 90.0), ("", 45.0, 90.0), ("STAT=1", -45.0, 270.0)] {
+        let program = format!(
+            "G17 G90 T1 D1\nG0 X0 Y0 Z50 A5 C10\nTRAORI\nPTP\nG1 X10 Y0 Z20 A3=1 B3=0 C3=1 {stat} F2000\nM0\nM30"
+        );
+        let (ch, _) = run("mill5-head-ca", &program);
+        let s = ch.snapshot();
+        assert_eq!(s.status, Status::Stopped, "{stat}: {:?}", s.alarms);
+        assert_machine(&s, [10.0 + h, 0.0, 20.0 - 150.0 + h, a, c]);
+    }
+    // From A−5 C−10 the nearer one is the other: C−90 A−45 (120°) for STAT=0.
+    let program =
+        "G17 G90 T1 D1\nG0 X0 Y0 Z50 A-5 C-10\nTRAORI\nPTP\nG1 X10 Y0 Z20 A3=1 B3=0 C3=1 STAT=0 F2000\nM0\nM30";
+    let (ch, _) = run("mill5-head-ca", program);
+    assert_machine(&ch.snapshot(), [10.0 + h, 0.0, 20.0 - 150.0 + h, -45.0, -90.0]);
 }
 
 #[test]
@@ -339,6 +364,43 @@ fn lead_and_tilt_orient_the_tool_against_the_path() {
         let tip = head_tip(&p.axes);
         assert!((tip[2] - 50.0).abs() < 1e-6 && (tip[1].abs() < 1e-6 || (tip[0] - 100.0).abs() < 1e-6), "tip {tip:?}");
     }
+}
+
+/// ORIPATH holds LEAD/TILT relative to the path inside the block (Programming Manual,
+/// orientation relative to the path). On the CCW quarter circle about (0, 0) of radius 40 from
+/// (40, 0) to (0, 40) the tangent at angle a is t = (−sin a, cos a, 0); with LEAD=20 TILT=0 and
+/// the normal +Z the tool is o = (−sin a·sin 20°, cos a·sin 20°, cos 20°) at every point:
+/// o·t = sin 20° = 0.342020, o_z = cos 20° = 0.939693 (a great circle between the ends would
+/// give 0.249 and 0.968 mid-arc).
+#[test]
+fn oripath_holds_lead_and_tilt_at_every_point_of_an_arc() {
+    let program = "G17 G90 T1 D1\nG0 X40 Y-10 Z10 A20 C90\nTRAORI\nORIWKS\nG0 X40 Y-10 Z10\nORIPATH\n\
+                   G1 X40 Y0 Z10 LEAD=20 TILT=0 F2000\nG3 X0 Y40 CR=40 LEAD=20 TILT=0\nM0\nM30";
+    let (ch, samples) = run_with("mill5-head-ca", "$MC_ORI_IPO_WITH_G_CODE=1", program);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Stopped, "{:?}", s.alarms);
+    let (s20, c20) = 20f64.to_radians().sin_cos();
+    let mut angles = Vec::new();
+    for p in &samples {
+        let tip = head_tip(&p.axes);
+        // On the arc: 40 from the centre at Z10, Y ≥ 0 (the line before it runs at X40, Y < 0).
+        if (tip[0].hypot(tip[1]) - 40.0).abs() > 1e-6 || (tip[2] - 10.0).abs() > 1e-6 || tip[1] < -1e-9 {
+            continue;
+        }
+        let a = tip[1].atan2(tip[0]);
+        let t = [-a.sin(), a.cos(), 0.0];
+        let o = head_orientation(p.axes[3], p.axes[4]);
+        let along = o[0] * t[0] + o[1] * t[1] + o[2] * t[2];
+        assert!((along - s20).abs() < 1e-6 && (o[2] - c20).abs() < 1e-6, "at {:.2}°: o {o:?}", a.to_degrees());
+        angles.push(a.to_degrees());
+    }
+    // Checked over the whole arc, not only at its ends: samples in every tenth of it.
+    for tenth in 0..9 {
+        let (lo, hi) = (tenth as f64 * 9.0, tenth as f64 * 9.0 + 9.0);
+        assert!(angles.iter().any(|&a| a > lo && a < hi), "no sample between {lo}° and {hi}°: {angles:?}");
+    }
+    // The end: tangent −X, o = (−sin 20°, 0, cos 20°) = head A20 C−90 (= 270).
+    assert_machine(&s, [-250.0 * s20, 40.0, 10.0 - 150.0 + 250.0 * c20, 20.0, 270.0]);
 }
 
 #[test]

@@ -1063,6 +1063,10 @@ impl Interpreter {
         let (mut path, length) =
             block_path(&frame, geo, (pa, po, papp), &start, &end, &current, &target, circle.as_ref());
         path.ori = ori.map(Box::new);
+        if let Some(o) = self.orientation_on_arc(words, cfg, &frame, &path) {
+            self.modal.ori.last_change = o.end_direction();
+            path.ori = Some(Box::new(o));
+        }
         let length = feed_length(&path, length, n);
 
         check_software_limits(cfg, &path, line)?;

@@ -4,6 +4,7 @@
 
 pub(super) mod curve;
 pub(super) mod direct;
+pub(super) mod path_frame;
 pub(super) mod poly;
 pub(super) mod rotation;
 pub(super) mod vars;

@@ -3,4 +3,5 @@
 //! CORRTRAFO.
 
 pub(super) mod corrtrafo;
+pub(super) mod ptp_stat;
 pub(super) mod selection;

@@ -14,6 +14,8 @@
 
 pub mod orient;
 pub mod plan;
+mod pole_approach;
+mod pole_turn;
 mod seventh;
 mod traang;
 mod tracon;
@@ -80,6 +82,11 @@ pub trait Transformation {
     /// reserve on the parallel axis).
     fn limit_share(&self, _slot: usize) -> f64 {
         1.0
+    }
+    /// The machine stands on the side of a pole its machine data exclude (TRANSMIT's
+    /// `POLE_SIDE_FIX`): a program selection there is allowed, a persistent one is not (21617).
+    fn on_excluded_pole_side(&self, _machine: &AxisVec, _tool: &Vec3) -> bool {
+        false
     }
     /// Channel axes of the orientation axes (1st, 2nd, 3rd rotary axis of an orientation
     /// transformation). On the BCS side these slots hold the rotary axis positions themselves,
@@ -177,6 +184,9 @@ impl Transformation for AnyTrafo {
     }
     fn limit_share(&self, slot: usize) -> f64 {
         dispatch!(self, t => t.limit_share(slot))
+    }
+    fn on_excluded_pole_side(&self, machine: &AxisVec, tool: &Vec3) -> bool {
+        dispatch!(self, t => t.on_excluded_pole_side(machine, tool))
     }
     fn orientation_slots(&self) -> [Option<usize>; 3] {
         dispatch!(self, t => t.orientation_slots())

@@ -64,6 +64,12 @@ pub fn plan_block(
     start: &AxisVec,
     cfg: &MachineConfig,
 ) -> Result<PlannedBlock, PlanError> {
+    // Leaving the pole of an orientation transformation the pole axis turns first.
+    if let Some((turn, from)) = super::pole_turn::pole_turn(active, mv, start, cfg)? {
+        let mut rest = plan_block(active, mv, &from, cfg)?;
+        rest.moves.insert(0, turn);
+        return Ok(rest);
+    }
     let t = &active.trafo;
     let tool = &active.tool;
     let path = &mv.path;
@@ -162,6 +168,9 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
     }
 }
 
+/// Extra sample parameters towards the ends of an oriented piece (see `plan_piece`).
+const END_SAMPLES: [f64; 3] = [1e-4, 1e-3, 1e-2];
+
 /// Samples one pole-free piece and turns it into one or more moves with machine-derived limits.
 /// `slots` are the transformation's machine axes.
 #[allow(clippy::too_many_arguments)]
@@ -179,7 +188,13 @@ fn plan_piece(
     let n = ((len / 0.25).ceil() as usize).clamp(8, 400);
     let mut us: Vec<f64> = Vec::with_capacity(n + 1 + 3 * critical.len());
     us.extend((0..=n).map(|i| i as f64 / n as f64));
-    if !critical.is_empty() {
+    // An oriented piece may start or end beside an orientation pole, where the rotary axes'
+    // rates peak at the very end of the first or last interval: sample towards both ends.
+    let refine_ends = sub.ori.is_some();
+    if refine_ends {
+        us.extend(END_SAMPLES.iter().flat_map(|&e| [e, 1.0 - e]));
+    }
+    if !critical.is_empty() || refine_ends {
         for &c in critical {
             us.extend([c - 1e-4, c, c + 1e-4].into_iter().filter(|u| *u > 0.0 && *u < 1.0));
         }
@@ -260,11 +275,26 @@ fn plan_piece(
     }
     let (rates, curvatures) = (&*rates, &bends[..intervals * ns]);
     let rate = |j: usize, s: usize| rates[j * ns + s];
-    let curvature = |j: usize, s: usize| curvatures[j * ns + s];
+    // The curvature likewise: the largest of the interval's and its neighbours'.
+    let curvature = |j: usize, s: usize| {
+        let c = curvatures[j * ns + s];
+        let before = if j > 0 { curvatures[(j - 1) * ns + s] } else { c };
+        let after = if j + 1 < intervals { curvatures[(j + 1) * ns + s] } else { c };
+        c.max(before).max(after)
+    };
+    // An interval's rate is its mean; where the rate changes from one interval to the next
+    // (beside a pole it grows like the inverse distance) the largest value inside an interval
+    // lies beyond that mean, towards the steeper neighbour: the planning takes the largest of
+    // the interval's and its neighbours' rates, which is the mean itself on a smooth stretch.
+    let peak = |j: usize, s: usize| {
+        let r = rate(j, s).abs();
+        let before = if j > 0 { rate(j - 1, s).abs() } else { r };
+        let after = if j + 1 < intervals { rate(j + 1, s).abs() } else { r };
+        r.max(before).max(after)
+    };
     for (j, v_j) in v_allowed.iter_mut().enumerate() {
-        let (r_j, c_j) = (&rates[j * ns..(j + 1) * ns], &curvatures[j * ns..(j + 1) * ns]);
-        *v_j = limits.iter().zip(r_j.iter().zip(c_j)).fold(f64::INFINITY, |v, (&(vmax, amax), (&r, &c))| {
-            let r = r.abs();
+        *v_j = limits.iter().enumerate().fold(f64::INFINITY, |v, (s, &(vmax, amax))| {
+            let (r, c) = (peak(j, s), curvature(j, s));
             let v = if r > 1e-12 { v.min(vmax / r) } else { v };
             if c > 1e-12 { v.min((0.5 * amax / c).sqrt()) } else { v }
         });
@@ -287,7 +317,7 @@ fn plan_piece(
         let mut a_max = mv.a_max;
         for j in js {
             for (s, &(_, amax)) in limits.iter().enumerate() {
-                let r = rate(j, s).abs();
+                let r = peak(j, s);
                 if r > 1e-12 {
                     let left = (amax - curvature(j, s) * v_max * v_max).max(0.5 * amax);
                     a_max = a_max.min(left / r);

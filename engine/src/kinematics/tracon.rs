@@ -75,6 +75,10 @@ impl Transformation for Tracon {
         self.first.poles(path, tool)
     }
 
+    fn on_excluded_pole_side(&self, machine: &AxisVec, tool: &Vec3) -> bool {
+        self.first.on_excluded_pole_side(&self.intermediate(machine), tool)
+    }
+
     fn critical_params(&self, path: &Path, tool: &Vec3) -> Vec<f64> {
         self.first.critical_params(path, tool)
     }

@@ -12,7 +12,8 @@
 //! `qx = σ·√(r² − e²)`, `φ = atan2(y, x) − atan2(e, qx)`; points with `r < |e|` lie in the
 //! unmachinable cylinder. σ is the pole side (`TRANSMIT_POLE_SIDE_FIX`: 1 ⇒ +1, 2 ⇒ −1,
 //! 0 ⇒ the side that reaches the point fastest from the previous position, so a path through
-//! the pole passes it with the radial axis changing sign while C keeps its angle).
+//! the pole passes it with the radial axis changing sign while C keeps its angle). A machine
+//! standing on the excluded side when TRANSMIT is selected keeps that side until the pole.
 
 use super::{POLE_EPS, RotaryRoles, Transformation, Unreachable, Vec3, radial_minima, unwrap_near};
 use crate::machine_data::{MachineConfig, TrafoDataSet, TrafoParams};
@@ -96,12 +97,18 @@ impl Transformation for Transmit {
             // In the pole the angle is undefined: C keeps its position.
             (0.0, prev_c)
         } else {
+            let prev_qx = prev[self.axes.radial.0] + off_x;
             let sides: &[f64] = match self.pole_side_fix {
+                // Selected outside the pole on the side the machine data exclude, the axes
+                // traverse without evaluating POLE_SIDE_FIX (Transformations FM, "Transformation
+                // selection outside pole"): as with 0 the nearer side, so the radial axis keeps
+                // its side until the path crosses the pole into the allowed one, which then holds.
+                1 if prev_qx < -POLE_EPS => &[1.0, -1.0],
+                2 if prev_qx > POLE_EPS => &[1.0, -1.0],
                 1 => &[1.0],
                 2 => &[-1.0],
                 _ => &[1.0, -1.0],
             };
-            let prev_qx = prev[self.axes.radial.0] + off_x;
             sides
                 .iter()
                 .map(|&sigma| {
@@ -149,6 +156,15 @@ impl Transformation for Transmit {
             .filter(|&(_, r)| r < POLE_EPS)
             .map(|(u, _)| u)
             .collect()
+    }
+
+    fn on_excluded_pole_side(&self, machine: &AxisVec, tool: &Vec3) -> bool {
+        let qx = machine[self.axes.radial.0] + self.axes.off(tool, self.axes.radial.1);
+        match self.pole_side_fix {
+            1 => qx < -POLE_EPS,
+            2 => qx > POLE_EPS,
+            _ => false,
+        }
     }
 
     fn critical_params(&self, path: &Path, _tool: &Vec3) -> Vec<f64> {

@@ -22,7 +22,7 @@ use super::orient::{Chain, ChainKind};
 use super::seventh::Seventh;
 use super::{BuildError, SelectArgs, Transformation, Unreachable, Vec3, unwrap_near};
 use crate::machine_data::{MachineConfig, OriMachine, TrafoDataSet, TrafoParams};
-use crate::motion::AxisVec;
+use crate::motion::{AxisVec, Path};
 
 /// One rotary axis of the transformation as the inverse needs it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -452,6 +452,16 @@ impl Transformation for Traori {
 
     fn orientation_slots(&self) -> [Option<usize>; 3] {
         self.ori_slots
+    }
+
+    /// Where a vector-interpolated orientation passes closest to the pole (the pole axis'
+    /// rate peaks there), measured in the frame of the tool kinematics at the block start.
+    fn critical_params(&self, path: &Path, _tool: &Vec3) -> Vec<f64> {
+        let Some(ori) = path.ori.as_deref() else { return Vec::new() };
+        let start = path.start;
+        super::pole_approach::closest_to_pole(|u| self.pole_angle(&self.in_chain_frame(&ori.at(u), &start)))
+            .into_iter()
+            .collect()
     }
 
     fn orientation(&self, machine: &AxisVec) -> Option<Vec3> {

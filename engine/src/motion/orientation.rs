@@ -4,7 +4,9 @@
 //! Both kinds are a rotation of the start orientation about a fixed axis by an angle that grows
 //! uniformly with the path parameter: the great circle turns about `start × end`, the cone about
 //! its programmed axis. So one representation serves both, slices exactly, and costs one
-//! `sin_cos` per IPO point. ORICURVE instead follows a second curve ([`TwoCurves`]).
+//! `sin_cos` per IPO point. ORICURVE instead follows a second curve ([`TwoCurves`]). ORIPATH
+//! on an arc adds a second rotation ([`OriPath::turn`]): the path frame turning with the
+//! tangent, so lead and tilt hold at every point of the arc.
 
 use super::ori_curve::TwoCurves;
 
@@ -24,6 +26,9 @@ pub struct OriPath {
     /// ORICURVE: the orientation follows the direction from the tip line to the upper line
     /// instead of the rotation.
     pub curve: Option<TwoCurves>,
+    /// ORIPATH on an arc: the rotation (unit axis, radians over the block) of the path's
+    /// tangent frame, applied after the own rotation: `o(u) = R(turn, φ·u)·R(axis, angle·u)·start`.
+    pub turn: Option<(Vec3, f64)>,
 }
 
 /// Start and end orientation point in opposite directions: the plane of the great circle is
@@ -41,13 +46,29 @@ impl OriPath {
         if sin < 1e-9 {
             return if cos > 0.0 { Ok(None) } else { Err(Antiparallel) };
         }
-        Ok(Some(OriPath { start, axis: scale(c, 1.0 / sin), angle: sin.atan2(cos), curve: None }))
+        Ok(Some(OriPath { start, axis: scale(c, 1.0 / sin), angle: sin.atan2(cos), curve: None, turn: None }))
     }
 
     /// A rotation of `start` about `axis` (any length) by `angle` radians: the cone.
     pub fn cone(start: Vec3, axis: Vec3, angle: f64) -> Option<OriPath> {
         let n = norm(axis);
-        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle, curve: None })
+        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle, curve: None, turn: None })
+    }
+
+    /// An orientation carried by a frame turning about unit axis `k` by `sweep` radians (an
+    /// arc's tangent frame under ORIPATH): from `start` to `end`, the part not explained by
+    /// the turn interpolated as a great circle in the turning frame. When `end` is `start`
+    /// turned with the frame (lead and tilt already held at the start) it is the pure cone.
+    pub fn turning_with(start: Vec3, end: Vec3, k: Vec3, sweep: f64) -> Result<OriPath, Antiparallel> {
+        let own_end = rotate(end, k, -sweep);
+        let own = OriPath::great_circle(start, own_end)?.unwrap_or(OriPath {
+            start,
+            axis: k,
+            angle: 0.0,
+            curve: None,
+            turn: None,
+        });
+        Ok(OriPath { turn: Some((k, sweep)), ..own })
     }
 
     /// ORICURVE: the orientation from the tip line to the upper line of `curves`.
@@ -56,14 +77,16 @@ impl OriPath {
         let c = cross(start, end);
         let n = norm(c);
         let axis = if n > 1e-12 { scale(c, 1.0 / n) } else { [0.0, 0.0, 1.0] };
-        OriPath { start, axis, angle: n.atan2(dot(start, end)), curve: Some(curves) }
+        OriPath { start, axis, angle: n.atan2(dot(start, end)), curve: Some(curves), turn: None }
     }
 
     /// Orientation at path parameter `u` in 0..=1.
     pub fn at(&self, u: f64) -> Vec3 {
-        match &self.curve {
-            Some(c) => c.at(u),
-            None => rotate(self.start, self.axis, self.angle * u.clamp(0.0, 1.0)),
+        let u = u.clamp(0.0, 1.0);
+        match (&self.curve, self.turn) {
+            (Some(c), _) => c.at(u),
+            (None, None) => rotate(self.start, self.axis, self.angle * u),
+            (None, Some((k, sweep))) => rotate(rotate(self.start, self.axis, self.angle * u), k, sweep * u),
         }
     }
 
@@ -72,6 +95,15 @@ impl OriPath {
     pub fn end_direction(&self) -> Option<Vec3> {
         if let Some(c) = &self.curve {
             return c.end_direction();
+        }
+        if let Some((k, sweep)) = self.turn {
+            // do/du = R(k, φ)·(θ·a × own(1)) + φ·k × o(1).
+            let own = rotate(self.start, self.axis, self.angle);
+            let spin = rotate(scale(cross(self.axis, own), self.angle), k, sweep);
+            let carried = scale(cross(k, self.at(1.0)), sweep);
+            let d: Vec3 = std::array::from_fn(|i| spin[i] + carried[i]);
+            let n = norm(d);
+            return (n > 1e-12).then(|| scale(d, 1.0 / n));
         }
         let d = scale(cross(self.axis, self.at(1.0)), self.angle.signum());
         let n = norm(d);
@@ -82,7 +114,17 @@ impl OriPath {
     pub fn slice(&self, u0: f64, u1: f64) -> OriPath {
         match &self.curve {
             Some(c) => OriPath::two_curves(c.slice(u0, u1)),
-            None => OriPath { start: self.at(u0), angle: self.angle * (u1 - u0), ..*self },
+            None => match self.turn {
+                None => OriPath { start: self.at(u0), angle: self.angle * (u1 - u0), ..*self },
+                // The slice's own rotation is this one seen in the frame turned to u0.
+                Some((k, sweep)) => OriPath {
+                    start: self.at(u0),
+                    axis: rotate(self.axis, k, sweep * u0),
+                    angle: self.angle * (u1 - u0),
+                    curve: None,
+                    turn: Some((k, sweep * (u1 - u0))),
+                },
+            },
         }
     }
 }
@@ -161,5 +203,40 @@ mod tests {
         for i in 0..=8 {
             assert!((p.at(i as f64 / 8.0)[2] - h).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn a_turning_frame_holds_the_lead_on_a_quarter_circle() {
+        // Lead 20° on a CCW quarter circle about Z from (40, 0) to (0, 40): tangent +Y at the
+        // start, −X at the end; the tool (sin 20° along the tangent, cos 20° along Z) turns
+        // with it, so at angle a the tangent is (−sin a, cos a, 0) and the orientation
+        // (−sin a·sin 20°, cos a·sin 20°, cos 20°).
+        let (s20, c20) = 20f64.to_radians().sin_cos();
+        let at = |a: f64| [-a.sin() * s20, a.cos() * s20, c20];
+        let quarter = std::f64::consts::FRAC_PI_2;
+        let p = OriPath::turning_with(at(0.0), at(quarter), [0.0, 0.0, 1.0], quarter).unwrap();
+        for i in 0..=8 {
+            let u = i as f64 / 8.0;
+            assert!(close(p.at(u), at(quarter * u)), "{u}: {:?}", p.at(u));
+        }
+        // A slice continues the same orientation.
+        let s = p.slice(0.25, 0.75);
+        assert!(close(s.at(0.0), p.at(0.25)) && close(s.at(0.5), p.at(0.5)) && close(s.at(1.0), p.at(0.75)));
+        // Leaving along the cone: d/da of at(a) = (−cos a·s20, −sin a·s20, 0), at 90° −Y.
+        let d = p.end_direction().unwrap();
+        assert!(close(d, [0.0, -1.0, 0.0]), "{d:?}");
+    }
+
+    #[test]
+    fn a_turning_frame_from_another_start_still_meets_both_ends() {
+        // Start vertical (a corner before the arc), end with lead 20° at the quarter circle's
+        // end: the own great circle takes up the difference in the turning frame.
+        let (s20, c20) = 20f64.to_radians().sin_cos();
+        let quarter = std::f64::consts::FRAC_PI_2;
+        let end = [-s20, 0.0, c20];
+        let p = OriPath::turning_with([0.0, 0.0, 1.0], end, [0.0, 0.0, 1.0], quarter).unwrap();
+        assert!(close(p.at(0.0), [0.0, 0.0, 1.0]) && close(p.at(1.0), end));
+        let s = p.slice(0.3, 1.0);
+        assert!(close(s.at(1.0), end) && close(s.at(0.5), p.at(0.65)));
     }
 }

@@ -364,7 +364,7 @@ impl Interpreter {
             // TRAFOOF returns to a persistent transformation.
             Selection::Off => match persistent {
                 Some(n) if self.trafo.active.as_ref().is_some_and(|a| a.trafo.number == n) => {}
-                Some(n) => self.select_data_set(n, &SelectArgs::default(), cfg, &machine, line)?,
+                Some(n) => self.select_data_set(n, &SelectArgs::default(), cfg, &machine, line, true)?,
                 None => {
                     if self.trafo.active.take().is_some() {
                         self.pos = machine;
@@ -379,7 +379,7 @@ impl Interpreter {
                     .iter()
                     .find(|s| s.chain.as_ref().is_some_and(|c| c.name == name))
                     .ok_or_else(|| not_available(line, &unbuilt_reason(cfg, &name)))?;
-                self.select_data_set(set.number, &args, cfg, &machine, line)?;
+                self.select_data_set(set.number, &args, cfg, &machine, line, false)?;
             }
             Selection::On { kind, n, args } => {
                 // A chain-defined transformation linked by $NT_TRAFO_INDEX wins over the
@@ -392,7 +392,7 @@ impl Interpreter {
                     .or_else(|| cfg.trafos.iter().filter(|s| s.kind == kind && s.chain.is_none()).nth(n - 1))
                     .ok_or_else(|| not_available(line, &format!("{} data set {n}", kind.name())))?;
                 match persistent.filter(|p| *p != set.number && kind != TrafoKind::Tracon) {
-                    None => self.select_data_set(set.number, &args, cfg, &machine, line)?,
+                    None => self.select_data_set(set.number, &args, cfg, &machine, line, false)?,
                     // Next to a persistent transformation another one runs as the first member
                     // of the chain configured with it (the program names the first member).
                     Some(p) => {
@@ -410,7 +410,7 @@ impl Interpreter {
                                 )
                             })?;
                         let chain_args = SelectArgs { chain: [args.diameter.or(args.angle), None, None], ..args };
-                        self.select_data_set(chain.number, &chain_args, cfg, &machine, line)?;
+                        self.select_data_set(chain.number, &chain_args, cfg, &machine, line, false)?;
                     }
                 }
             }
@@ -419,6 +419,10 @@ impl Interpreter {
     }
 
     /// Makes data set `number` the active transformation, the machine standing at `machine`.
+    /// A program's selection outside the pole takes the machine on whichever side it stands
+    /// (TRANSMIT does not evaluate POLE_SIDE_FIX there); the `persistent` transformation
+    /// (reset, TRAFOOF back to it) refuses the excluded side with 21617, as in the manual's
+    /// persistent-transformation example ("also 2, causes alarm 21617").
     fn select_data_set(
         &mut self,
         number: usize,
@@ -426,6 +430,7 @@ impl Interpreter {
         cfg: &MachineConfig,
         machine: &AxisVec,
         line: u32,
+        persistent: bool,
     ) -> Result<(), Alarm> {
         let set = cfg
             .trafos
@@ -445,7 +450,9 @@ impl Interpreter {
         }
         let derived = Arc::new(derive(cfg, &trafo));
         let trafo = ActiveTrafo { trafo, tool: [0.0; 3], number: set.number };
-        if !plan::takes_over(&trafo, machine, cfg) {
+        if !plan::takes_over(&trafo, machine, cfg)
+            || (persistent && trafo.trafo.on_excluded_pole_side(machine, &trafo.tool))
+        {
             return Err(pole_side_fixed(line));
         }
         self.pos = trafo.forward(machine);
@@ -526,7 +533,7 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         self.clear_transformation();
         self.pos = *machine;
-        self.select_data_set(number, args, cfg, machine, 0)?;
+        self.select_data_set(number, args, cfg, machine, 0, false)?;
         self.absorb_tool_into_transformation();
         Ok(())
     }
@@ -544,7 +551,7 @@ impl Interpreter {
         self.clear_transformation();
         self.pos = *machine;
         if let Some(n) = cfg.reset_trafo.data_set {
-            if self.select_data_set(n, &SelectArgs::default(), cfg, machine, 0).is_err() {
+            if self.select_data_set(n, &SelectArgs::default(), cfg, machine, 0, cfg.reset_trafo.persistent).is_err() {
                 self.clear_transformation();
                 self.pos = *machine;
             }
@@ -760,27 +767,32 @@ impl Interpreter {
 /// solution STAT= picks and the turn ranges TU= asks for) transformed once, the machine axes
 /// moving linearly together from where the last block left them.
 ///
-/// STAT bit 0 selects between the two orientation solutions of TRAORI: 0 the one with the lower
-/// position of the first orientation axis, 1 the higher (this product's reading; the manual
-/// leaves the bits to the transformation). TU bit k (channel axis k+1) places a rotary
-/// orientation axis in 0..360 (bit 0) or −360..0 (bit 1).
+/// STAT bit 0 selects between the two orientation solutions of the generic 5/6-axis TRAORI
+/// relative to the start (Programming Manual, Job planning, Cartesian PTP travel): 0 (the
+/// default) the rotary-axis positions at the shorter distance from the start positions, 1 those
+/// at the greater distance. TU bit k (channel axis k+1) places a rotary orientation axis in
+/// 0..360 (bit 0) or −360..0 (bit 1); without TU a modulo axis takes the shortest way.
 fn point_to_point(a: &mut Active, mv: &Move, block: PtpBlock, line: u32) -> Result<Move, Alarm> {
     let mut end = mv.path.end;
     let slots = a.trafo.trafo.orientation_slots();
     if let (Some(stat), AnyTrafo::Traori(t)) = (block.stat, &a.trafo.trafo) {
         let o = t.orientation(&end).expect("TRAORI orients the tool");
-        let pick = t.solutions_at(&o, &end).map_err(|_| working_area(line))?[(stat & 1) as usize];
+        let both = t.solutions_at(&o, &end).map_err(|_| working_area(line))?;
+        let pick = super::ptp_stat::nearer_first(both, &slots, &a.machine, &a.base)[(stat & 1) as usize];
         for (role, slot) in slots.iter().enumerate() {
             if let Some(k) = slot {
                 end[*k] = pick[role];
             }
         }
     }
-    if let Some(tu) = block.tu {
-        for k in slots.iter().flatten() {
-            let turned = end[*k].rem_euclid(360.0);
-            end[*k] = if tu & (1 << k) != 0 && turned > 0.0 { turned - 360.0 } else { turned };
+    match block.tu {
+        Some(tu) => {
+            for k in slots.iter().flatten() {
+                let turned = end[*k].rem_euclid(360.0);
+                end[*k] = if tu & (1 << k) != 0 && turned > 0.0 { turned - 360.0 } else { turned };
+            }
         }
+        None => super::ptp_stat::shortest_way(&mut end, &slots, &a.machine, &a.base),
     }
     let machine = a.trafo.inverse(&end, &a.machine).map_err(|_| working_area(line))?;
     for k in a.trafo.trafo.machine_slots() {
