@@ -123,7 +123,7 @@ fn l_numbers_keep_their_leading_zeros() {
 
 #[test]
 fn l_with_arguments_binds_the_proc_parameters() {
-    // PROC L140(REAL A, REAL B): R1 = A*10 + B = 21; an omitted argument keeps 0.
+    // PROC L140(REAL AA, REAL BB): R1 = AA*10 + BB = 21; an omitted argument keeps 0.
     let sub = "PROC L140(REAL AA, REAL BB)\nR1=AA*10+BB\nR2=R2+1\nM17\n";
     let ch = run("L140(2, 1)\nR3=R1\nL140(, 4)\nM30\n", &[("L140", sub)]);
     ok(&ch);

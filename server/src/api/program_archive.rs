@@ -168,7 +168,7 @@ mod tests {
 
     #[test]
     fn subprograms_are_told_by_proc_or_their_return() {
-        assert!(is_subprogram("; cycle\n\nPROC DRILL(REAL D)\nG1 X=D\nRET\n"));
+        assert!(is_subprogram("; cycle\n\nPROC DRILL(REAL DEPTH)\nG1 X=DEPTH\nRET\n"));
         assert!(is_subprogram("G0 X1\nN20 M17 ; back\n"));
         assert!(!is_subprogram("G0 X1\nM30\n"));
         assert!(!is_subprogram("; PROC in a comment\nG0 X1\n"));
