@@ -83,6 +83,12 @@ pub struct Compensation {
     pub max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks examined for a bottleneck.
     pub max_check_blocks: usize,
+    /// MD20210 CUTCOM_CORNER_LIMIT (radians): from this change of direction at an outer
+    /// corner G451 takes the transition circle, not the far intersection.
+    pub corner_limit: f64,
+    /// CDON (G group 23): a bottleneck is bridged over up to MD20240 blocks (warning 10763);
+    /// CDOF stops with alarm 10751 before entering it.
+    pub collision_detection: bool,
     /// TRACYL groove-wall offset (513, 514 with k = 1): the channel slots of the unrolled
     /// peripheral coordinate and of the real Y axis. The part of the offset along the periphery
     /// is then travelled by the real Y axis, so the groove walls stay parallel.
@@ -923,8 +929,15 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
     let oa = offset_elem(a, d, None, None, line)?;
     let ob = offset_elem(b, d, None, None, line)?;
     if outer {
-        if let (CornerMode::Intersection, Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (mode, oa, ob)
-            && let Some(x) = line_line(s1, e1, s2, e2)
+        // G451: the intersection of the equidistants nearest the corner (lines and arcs), as
+        // long as the change of direction stays below MD20210 and the equidistants meet ahead
+        // of the first one's end and behind the second one's start.
+        let turn = cross.abs().atan2(ta.0 * tb.0 + ta.1 * tb.1);
+        if mode == CornerMode::Intersection
+            && turn < comp.corner_limit
+            && let Some(x) = intersection(&oa, &ob, p)
+            && (x.0 - q1.0) * ta.0 + (x.1 - q1.1) * ta.1 >= -1e-9
+            && (x.0 - q2.0) * tb.0 + (x.1 - q2.1) * tb.1 <= 1e-9
         {
             return Ok(Some((x, None, x)));
         }
