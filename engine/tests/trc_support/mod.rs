@@ -55,3 +55,13 @@ pub fn seg_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
     let t = if l2 > 0.0 { (((p.0 - a.0) * d.0 + (p.1 - a.1) * d.1) / l2).clamp(0.0, 1.0) } else { 0.0 };
     (p.0 - a.0 - t * d.0).hypot(p.1 - a.1 - t * d.1)
 }
+
+/// The smallest distance of the tool centre (x, y) from a programmed polyline.
+pub fn polyline_dist(p: (f64, f64), pts: &[(f64, f64)]) -> f64 {
+    pts.windows(2).map(|w| seg_dist(p, w[0], w[1])).fold(f64::INFINITY, f64::min)
+}
+
+/// The first sample closer than `r − 1e-6` to the polyline, if any.
+pub fn first_gouge(samples: &[Vec<f64>], pts: &[(f64, f64)], r: f64) -> Option<Vec<f64>> {
+    samples.iter().find(|s| polyline_dist((s[0], s[1]), pts) < r - 1e-6).cloned()
+}

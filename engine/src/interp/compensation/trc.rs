@@ -134,12 +134,34 @@ struct Held {
     /// Elements after it whose equidistants the tool cannot reach (bottleneck look-ahead,
     /// MD20240): they are bridged when a later element meets this one.
     skipped: Vec<(Prepared, Elem)>,
+    /// The elements after it, each joined to its predecessor but not released (at most
+    /// MD20240 of them): see [`Next`]. `skipped` follows the last of them.
+    chain: Vec<Next>,
     p: Prepared,
     /// The programmed contour element.
     contour: Elem,
     /// Where its equidistant starts (decided by the previous corner).
     start: P2,
     comp: Compensation,
+}
+
+/// An element after the held one, joined to its predecessor but not yet released. The join
+/// (the predecessor's end, the transition, this element's start) is final only once the
+/// corners after it are known not to reverse it: an element shorter than what the tool needs
+/// is omitted and its predecessor joined to a later element instead, going back as far as the
+/// look-ahead (MD20240) reaches. No motion of a corner leaves the compensator before the
+/// corner is resolved.
+#[derive(Debug, Clone)]
+struct Next {
+    /// Elements omitted between the predecessor and this one (only their motion outside the
+    /// plane runs, at the join).
+    omitted: Vec<(Prepared, Elem)>,
+    p: Prepared,
+    contour: Elem,
+    comp: Compensation,
+    meet: Meet,
+    /// How many of the pending items wait before it (they run at the held element's end).
+    mark: usize,
 }
 
 /// What waits behind the held move: blocks without motion in the compensation plane. They
@@ -364,22 +386,27 @@ impl Compensator {
         };
         self.block_plane_move = true;
         self.dummy_blocks = 0;
+        let waiting = self.pending.len();
         if let Some(h) = self.held.as_mut()
             && h.skipped.is_empty()
-            && self.pending.is_empty()
-            && let Some(corner) = h.p.corner.take()
         {
-            // The rounding or chamfer is part of the contour: insert it, then offset.
-            let mut next = p.clone();
-            if let Some((first, between)) = corners::split(&h.p.mv, corner, h.p.line, &mut next.mv, limits)?
-                && let (Some(shortened), Some(_)) = (element(&first, &h.comp), element(&next.mv, &comp))
-            {
-                h.p.mv = first;
-                h.contour = shortened;
-                let inserted = Prepared { mv: between, corner: None, ..h.p.clone() };
-                let prev_comp = h.comp;
-                self.push(inserted, Some(prev_comp), limits, out)?;
-                return self.push(next, Some(comp), limits, out);
+            // The last element received: the tentative one after the held element, if any.
+            let (last, last_contour, last_comp, quiet) = match h.chain.last_mut() {
+                Some(n) => (&mut n.p, &mut n.contour, n.comp, waiting == n.mark),
+                None => (&mut h.p, &mut h.contour, h.comp, waiting == 0),
+            };
+            if quiet && let Some(corner) = last.corner.take() {
+                // The rounding or chamfer is part of the contour: insert it, then offset.
+                let mut next = p.clone();
+                if let Some((first, between)) = corners::split(&last.mv, corner, last.line, &mut next.mv, limits)?
+                    && let (Some(shortened), Some(_)) = (element(&first, &last_comp), element(&next.mv, &comp))
+                {
+                    last.mv = first;
+                    *last_contour = shortened;
+                    let inserted = Prepared { mv: between, corner: None, ..last.clone() };
+                    self.push(inserted, Some(last_comp), limits, out)?;
+                    return self.push(next, Some(comp), limits, out);
+                }
             }
         }
         let d = comp.offset();
@@ -417,7 +444,7 @@ impl Compensator {
             }
             self.tool_at = Some(start);
             self.release_pending(limits, out);
-            self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+            self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             return Ok(());
         }
         match self.held.take() {
@@ -439,10 +466,13 @@ impl Compensator {
                     self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
-                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+                self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             }
             Some(prev)
-                if prev.skipped.is_empty() && (prev.comp.side != comp.side || prev.comp.radius != comp.radius) =>
+                if prev.skipped.is_empty() && {
+                    let last = prev.chain.last().map_or(&prev.comp, |n| &n.comp);
+                    last.side != comp.side || last.radius != comp.radius
+                } =>
             {
                 // G41 ⇄ G42 (or another radius) without G40: the old side ends perpendicular at
                 // its end point, a straight line leads to the perpendicular start of the new.
@@ -455,46 +485,139 @@ impl Compensator {
                     self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
-                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+                self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             }
             Some(mut prev) => {
-                let meet = match prev.skipped.last() {
-                    None => corner(&prev.contour, &contour, d, &comp, prev.p.line)?,
-                    Some((_, last)) => {
-                        let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), None, prev.p.line)?;
-                        bottleneck::bridge(&eq, last, &contour, d)
+                let max_check = comp.max_check_blocks.max(1);
+                let waiting = self.pending.len();
+                if prev.skipped.is_empty() {
+                    let (last, start) = match prev.chain.last() {
+                        Some(n) => (&n.contour, n.meet.2),
+                        None => (&prev.contour, prev.start),
+                    };
+                    let line_last = prev.chain.last().map_or(prev.p.line, |n| n.p.line);
+                    match corner(last, &contour, d, &comp, line_last)? {
+                        Some(meet) if forward(last, start, meet.0) => {
+                            prev.chain.push(Next { omitted: Vec::new(), p, contour, comp, meet, mark: waiting });
+                        }
+                        // p is too short for the tool: a later element may join (MD20240).
+                        None => prev.skipped.push((p, contour)),
+                        // The last element is shorter than its corners need: omit it.
+                        Some(_) => self.backtrack(&mut prev, p, contour, comp, waiting)?,
                     }
-                };
-                let Some((prev_end, transition, next_start)) = meet else {
-                    // Look further ahead for an element the tool can reach (MD20240).
-                    if prev.skipped.len() + 1 >= comp.max_check_blocks.max(1) {
-                        return Err(bottleneck(line));
+                } else {
+                    let (last, start, comp_last) = match prev.chain.last() {
+                        Some(n) => (&n.contour, n.meet.2, n.comp),
+                        None => (&prev.contour, prev.start, prev.comp),
+                    };
+                    let eq = offset_elem(last, comp_last.offset(), Some(start), None, prev.p.line)?;
+                    let skipped_last = &prev.skipped.last().expect("skipped").1;
+                    match bottleneck::bridge(&eq, skipped_last, &contour, d, comp.collision_detection || prev.skipped.len() == 1) {
+                        Some(meet) if forward(last, start, meet.0) => {
+                            let omitted = std::mem::take(&mut prev.skipped);
+                            prev.chain.push(Next { omitted, p, contour, comp, meet, mark: waiting });
+                        }
+                        _ => self.backtrack(&mut prev, p, contour, comp, waiting)?,
                     }
-                    prev.skipped.push((p, contour));
-                    self.held = Some(prev);
-                    return Ok(());
-                };
-                let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
-                let mv = finish(&prev.p, eq, &prev.comp, limits, true);
-                self.emit(prev.p.item_with(mv), out);
-                self.tool_at = Some(prev_end);
-                for (skipped, _) in std::mem::take(&mut prev.skipped) {
-                    // A bridged element leaves only its axes outside the plane to travel.
-                    let from = self.from(skipped.mv.path.start);
-                    let end = place(&skipped.mv.path.end, prev_end, &comp);
-                    self.emit(skipped.item_with(rebuild(&skipped, Path::line(from, end), limits)), out);
                 }
-                self.release_pending(limits, out);
-                if let Some(arc) = transition {
-                    // The transition belongs to the next block (its line and feed) and runs at
-                    // the tool's height after the dummy blocks.
-                    let from = self.from(prev.p.mv.path.end);
-                    let mv = finish_transition(&p, arc, from, &comp, limits);
-                    self.emit(p.item_with(mv), out);
+                if prev.skipped.len() >= max_check {
+                    return Err(bottleneck(line));
                 }
-                self.tool_at = Some(next_start);
-                self.held = Some(Held { skipped: Vec::new(), p, contour, start: next_start, comp });
+                self.held = Some(prev);
+                // Release what lies beyond the look-ahead window.
+                while self.held.as_ref().is_some_and(|h| h.chain.len() > max_check) {
+                    self.commit(limits, out)?;
+                }
             }
+        }
+        Ok(())
+    }
+
+    /// The element `p` cannot follow the last element joined (that one would run backwards, or
+    /// the bottleneck is not passed yet): omit joined elements from the end, joining each
+    /// predecessor to `p` through its transition circle or across the omitted elements, back
+    /// to the held element. Where no join is found `p` waits among the skipped elements.
+    fn backtrack(
+        &mut self,
+        prev: &mut Held,
+        p: Prepared,
+        contour: Elem,
+        comp: Compensation,
+        waiting: usize,
+    ) -> Result<(), Alarm> {
+        let d = comp.offset();
+        while let Some(n) = prev.chain.pop() {
+            let Next { omitted, p: np, contour: nc, meet: nmeet, .. } = n;
+            let mut skipped = omitted;
+            skipped.push((np, nc));
+            skipped.append(&mut prev.skipped);
+            prev.skipped = skipped;
+            let (last, start, comp_last) = match prev.chain.last() {
+                Some(n) => (&n.contour, n.meet.2, n.comp),
+                None => (&prev.contour, prev.start, prev.comp),
+            };
+            let joined = match nmeet.1.and_then(|arc| cut_transition(&arc, &contour, d)) {
+                Some((arc, x)) => Some((nmeet.0, arc, x)),
+                None => {
+                    let eq = offset_elem(last, comp_last.offset(), Some(start), None, prev.p.line)?;
+                    let skipped_last = &prev.skipped.last().expect("skipped").1;
+                    bottleneck::bridge(&eq, skipped_last, &contour, d, comp.collision_detection || prev.skipped.len() == 1)
+                        .filter(|m| forward(last, start, m.0))
+                }
+            };
+            if let Some(meet) = joined {
+                let omitted = std::mem::take(&mut prev.skipped);
+                prev.chain.push(Next { omitted, p, contour, comp, meet, mark: waiting });
+                return Ok(());
+            }
+        }
+        prev.skipped.push((p, contour));
+        Ok(())
+    }
+
+    /// Releases the held element up to its corner with the first joined element (and what was
+    /// omitted and what waited between them), which becomes the held element.
+    fn commit(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        let Some(mut prev) = self.held.take() else { return Ok(()) };
+        if prev.chain.is_empty() {
+            self.held = Some(prev);
+            return Ok(());
+        }
+        let Next { omitted, p, contour, comp, meet: (prev_end, transition, next_start), mark } = prev.chain.remove(0);
+        let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
+        let mv = finish(&prev.p, eq, &prev.comp, limits, true);
+        self.emit(prev.p.item_with(mv), out);
+        self.tool_at = Some(prev_end);
+        for (skipped, _) in omitted {
+            // An omitted element leaves only its axes outside the plane to travel.
+            let from = self.from(skipped.mv.path.start);
+            let end = place(&skipped.mv.path.end, prev_end, &comp);
+            self.emit(skipped.item_with(rebuild(&skipped, Path::line(from, end), limits)), out);
+        }
+        let mark = mark.min(self.pending.len());
+        let after = self.pending.split_off(mark);
+        self.release_pending(limits, out);
+        self.pending = after;
+        for n in &mut prev.chain {
+            n.mark = n.mark.saturating_sub(mark);
+        }
+        if let Some(arc) = transition {
+            // The transition belongs to the next block (its line and feed) and runs at the
+            // tool's height after the dummy blocks.
+            let from = self.from(prev.p.mv.path.end);
+            let mv = finish_transition(&p, arc, from, &comp, limits);
+            self.emit(p.item_with(mv), out);
+        }
+        self.tool_at = Some(next_start);
+        let chain = std::mem::take(&mut prev.chain);
+        self.held = Some(Held { skipped: prev.skipped, chain, p, contour, start: next_start, comp });
+        Ok(())
+    }
+
+    /// Releases every joined element up to the last one, which stays held.
+    fn commit_all(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        while self.held.as_ref().is_some_and(|h| !h.chain.is_empty()) {
+            self.commit(limits, out)?;
         }
         Ok(())
     }
@@ -503,6 +626,7 @@ impl Compensator {
     /// (NORM) or goes round its end point (KONT, KONTT, KONTC), then this move travels uncompensated
     /// to its programmed end.
     fn deselect(&mut self, p: Prepared, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.commit_all(limits, out)?;
         if let Some(sar) = self.sar.take() {
             return self.sar_retract(p, *sar, limits, out);
         }
@@ -595,10 +719,15 @@ impl Compensator {
             self.emit(approach.item_with(approach.mv.clone()), out);
             self.tool_at = None;
         }
+        self.commit_all(limits, out)?;
         if let Some(h) = self.held.take() {
             if let Some((skipped, _)) = h.skipped.last() {
                 // The contour ends inside the bottleneck.
                 return Err(bottleneck(skipped.line));
+            }
+            if !forward(&h.contour, h.start, offset_end(&h.contour, h.comp.offset())) {
+                // The last element is shorter than its start corner needs.
+                return Err(bottleneck(h.p.line));
             }
             let eq = offset_elem(&h.contour, h.comp.offset(), Some(h.start), None, h.p.line)?;
             self.tool_at = Some(elem_end(&eq));
@@ -871,6 +1000,62 @@ pub(in crate::interp) fn offset_start(e: &Elem, d: f64) -> P2 {
     (p.0 + d * n.0, p.1 + d * n.1)
 }
 
+/// End point of the equidistant at offset `d` (perpendicular at the contour end).
+fn offset_end(e: &Elem, d: f64) -> P2 {
+    let p = elem_end(e);
+    let n = left(tangent(e, true));
+    (p.0 + d * n.0, p.1 + d * n.1)
+}
+
+/// Whether the piece of an element's equidistant from `start` to `end` (both on it) runs in
+/// the element's direction: false when the corners at its ends have eaten it up and more (the
+/// element is shorter than the tool needs there).
+pub(in crate::interp) fn forward(e: &Elem, start: P2, end: P2) -> bool {
+    match *e {
+        Elem::Line { s, e } => (end.0 - start.0) * (e.0 - s.0) + (end.1 - start.1) * (e.1 - s.1) >= -1e-9,
+        Elem::Arc { c, a0, sweep, .. } => {
+            // The shifts of the start and the end against the contour's, in the sense of travel.
+            let sg = sweep.signum();
+            let angle = |p: P2| (p.1 - c.1).atan2(p.0 - c.0);
+            let wrap = |x: f64| {
+                let y = x.rem_euclid(std::f64::consts::TAU);
+                if y > std::f64::consts::PI { y - std::f64::consts::TAU } else { y }
+            };
+            let ds = wrap((angle(start) - a0) * sg);
+            let de = wrap((angle(end) - (a0 + sweep)) * sg);
+            sweep.abs() - ds + de >= -1e-9
+        }
+    }
+}
+
+/// The transition circle `arc` cut by the equidistant of `next` at offset `d`: the arc up to
+/// the first crossing (None where it has shrunk to nothing) and the crossing point. Used when
+/// the element after an outer corner is too short: the tool leaves the circle where it meets
+/// the equidistant of the element after.
+fn cut_transition(arc: &Elem, next: &Elem, d: f64) -> Option<(Option<Elem>, P2)> {
+    let Elem::Arc { c, r, a0, sweep } = *arc else { return None };
+    let eq = offset_elem(next, d, None, None, 0).ok()?;
+    let hits = match eq {
+        Elem::Line { s, e } => line_circle(s, e, c, r),
+        Elem::Arc { c: c2, r: r2, .. } => circle_circle(c, r, c2, r2),
+    };
+    let sg = sweep.signum();
+    let (w, x) = hits
+        .into_iter()
+        .map(|x| (((x.1 - c.1).atan2(x.0 - c.0) - a0) * sg, x))
+        .map(|(w, x)| (w.rem_euclid(std::f64::consts::TAU), x))
+        .filter(|(w, x)| {
+            // On the arc, and not beyond the end of the next equidistant.
+            *w <= sweep.abs() + 1e-9
+                && match eq {
+                    Elem::Line { s, e } => (x.0 - e.0) * (s.0 - e.0) + (x.1 - e.1) * (s.1 - e.1) >= -1e-9,
+                    Elem::Arc { .. } => true,
+                }
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))?;
+    Some(((w > 1e-12).then_some(Elem::Arc { c, r, a0, sweep: sg * w }), x))
+}
+
 /// The element offset by `d`, with its start and end optionally moved to given points on the
 /// equidistant (corners decide them).
 pub(in crate::interp) fn offset_elem(
@@ -966,18 +1151,12 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
     // Inner corner: cut both equidistants at their intersection nearest the corner.
     let x = intersection(&oa, &ob, p)
         .ok_or_else(|| Alarm::collision(line, "the equidistants of an inner corner do not meet"))?;
-    // The cut must lie on both equidistants, not beyond their other ends.
-    let behind_a = match oa {
-        Elem::Line { s, e } => ((x.0 - s.0) * (e.0 - s.0) + (x.1 - s.1) * (e.1 - s.1)) < -1e-9,
-        Elem::Arc { .. } => false,
-    };
+    // The cut must not lie beyond the second equidistant's end (whether the first one is long
+    // enough is the caller's question: its start may have moved).
     let beyond_b = match ob {
         Elem::Line { s, e } => ((x.0 - e.0) * (s.0 - e.0) + (x.1 - e.1) * (s.1 - e.1)) < -1e-9,
         Elem::Arc { .. } => false,
     };
-    if behind_a {
-        return Err(bottleneck(line));
-    }
     if beyond_b {
         return Ok(None);
     }
@@ -1018,7 +1197,11 @@ pub(in crate::interp) fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
     let d = (e.0 - s.0, e.1 - s.1);
     let f = (s.0 - c.0, s.1 - c.1);
     let (a, b, cc) = (d.0 * d.0 + d.1 * d.1, 2.0 * (f.0 * d.0 + f.1 * d.1), f.0 * f.0 + f.1 * f.1 - r * r);
-    let disc = b * b - 4.0 * a * cc;
+    let mut disc = b * b - 4.0 * a * cc;
+    if disc < 0.0 && disc > -1e-12 * (b * b).max(a) {
+        // A tangent line touches the circle (rounding must not lose the point).
+        disc = 0.0;
+    }
     if disc < 0.0 || a < 1e-18 {
         return Vec::new();
     }
