@@ -99,3 +99,52 @@ fn a_step_shorter_than_the_radius_is_resolved_before_its_corner_moves() {
     assert_eq!(first_gouge(&samples, &contour, 5.0), None);
     assert!(samples.iter().any(|p| (p[0] - 54.0).abs() < 1e-6 && (p[1] - 63.0).abs() < 1e-6), "leaves the circle at (54,63)");
 }
+
+/// RND between a line and an arc (issue 25, item 6): G42, line (0,0)→(30,0) with RND=3, then
+/// G2 to (50,0) about (40,0) (radius 10, over the top). The rounding circle (radius 3) touches
+/// y = 0 from above and the arc's circle from outside: centre (40 − √(13² − 3²), 3) =
+/// (27.351, 3). The tool (right of the path: below the line, inside the clockwise arc) runs on
+/// y = −5 to x = 27.351, round the rounding's equidistant (radius 3 + 5 = 8 about its centre)
+/// and on along the arc's equidistant (radius 10 − 5 = 5 about (40,0)); every sample keeps 5
+/// from the rounded contour.
+#[test]
+fn rnd_between_a_line_and_an_arc_is_compensated_on_the_rounded_contour() {
+    let prog = "G17 G90 T1 D1\nG0 X-20 Y-20 Z0\nG42 G1 X0 Y0 F1000\nG1 X30 Y0 RND=3\nG2 X50 Y0 I10 J0\nG40 G1 X60 Y-20\nM30";
+    let (ch, samples) = run_all(prog);
+    assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
+    let c = (40.0 - 160f64.sqrt(), 3.0);
+    // Distance from the rounded contour: the line up to c.x, the rounding arc (from straight
+    // below its centre to the tangent point towards (40,0)), the arc from there over the top.
+    let t = (40.0 + 10.0 * (c.0 - 40.0) / 13.0, 10.0 * 3.0 / 13.0);
+    let on_round = |p: (f64, f64)| {
+        // Angles of the rounding arc run from −90° to the direction of t, counter-clockwise.
+        let a = (p.1 - c.1).atan2(p.0 - c.0);
+        let (a0, a1) = (-std::f64::consts::FRAC_PI_2, (t.1 - c.1).atan2(t.0 - c.0));
+        if a >= a0 && a <= a1 { ((p.0 - c.0).hypot(p.1 - c.1) - 3.0).abs() } else { f64::INFINITY }
+    };
+    let on_arc = |p: (f64, f64)| {
+        let a = p.1.atan2(p.0 - 40.0);
+        let at = t.1.atan2(t.0 - 40.0);
+        if (0.0..=at).contains(&a) { ((p.0 - 40.0).hypot(p.1) - 10.0).abs() } else { f64::INFINITY }
+    };
+    let ends = |p: (f64, f64)| (p.0 - t.0).hypot(p.1 - t.1).min((p.0 - 50.0).hypot(p.1));
+    let dist = |p: (f64, f64)| trc_support::seg_dist(p, (0.0, 0.0), (c.0, 0.0)).min(on_round(p)).min(on_arc(p)).min(ends(p));
+    // Up to the end of the arc's equidistant (45,0): the G40 block then travels uncompensated
+    // to its end point and may pass the contour's end closer than the radius.
+    let run = trc_support::from_point(&samples, -20.0, -20.0);
+    let end = run.iter().rposition(|p| (p[0] - 45.0).abs() < 1e-9 && p[1].abs() < 1e-9).expect("arc end");
+    for s in &run[..=end] {
+        assert!(dist((s[0], s[1])) > 5.0 - 1e-6, "{s:?} closer than the radius to the rounded contour");
+    }
+    // On y = −5 up to below the rounding's centre.
+    for p in run[..=end].iter().filter(|p| p[0] > 1e-3 && p[0] < c.0 - 1e-3 && p[1] < 0.0) {
+        assert!((p[1] + 5.0).abs() < 1e-6, "{p:?}");
+    }
+    let round: Vec<_> = samples.iter().filter(|p| p[0] > c.0 + 1e-3 && p[1] < -1e-3 && p[0] < 35.0).collect();
+    assert!(!round.is_empty());
+    for p in round {
+        let r = (p[0] - c.0).hypot(p[1] - c.1);
+        let r_arc = (p[0] - 40.0).hypot(p[1]);
+        assert!((r - 8.0).abs() < 1e-6 || (r_arc - 5.0).abs() < 1e-6, "{p:?}: on the rounding's or the arc's equidistant");
+    }
+}

@@ -65,3 +65,9 @@ pub fn polyline_dist(p: (f64, f64), pts: &[(f64, f64)]) -> f64 {
 pub fn first_gouge(samples: &[Vec<f64>], pts: &[(f64, f64)], r: f64) -> Option<Vec<f64>> {
     samples.iter().find(|s| polyline_dist((s[0], s[1]), pts) < r - 1e-6).cloned()
 }
+
+/// The samples from the first one at (x, y) on (the program's first position).
+pub fn from_point(samples: &[Vec<f64>], x: f64, y: f64) -> &[Vec<f64>] {
+    let i = samples.iter().position(|p| (p[0] - x).abs() < 1e-9 && (p[1] - y).abs() < 1e-9).expect("reached");
+    &samples[i..]
+}

@@ -16,7 +16,7 @@
 use crate::alarm::Alarm;
 use crate::interp::compensation::approach::{self, ApproachMode};
 use crate::interp::contour::corners;
-use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation::disc};
+use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation::disc, compensation::rounding};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 
@@ -407,6 +407,20 @@ impl Compensator {
                     self.push(inserted, Some(last_comp), limits, out)?;
                     return self.push(next, Some(comp), limits, out);
                 }
+                // A rounding where an arc meets the corner, shaped in the plane.
+                if let corners::Corner::Round(rho) = corner
+                    && let Some((e1, round, e2)) = rounding::round(last_contour, &contour, rho, last.line)?
+                {
+                    let (s1, e1_3) = (last.mv.path.start, last.mv.path.end);
+                    last.mv = contour_move(last, e1, s1, e1_3, &last_comp, limits);
+                    *last_contour = e1;
+                    let between = contour_move(last, round, e1_3, e1_3, &last_comp, limits);
+                    let inserted = Prepared { mv: between, corner: None, ..last.clone() };
+                    let (s2, e2_3) = (next.mv.path.start, next.mv.path.end);
+                    next.mv = contour_move(&next, e2, s2, e2_3, &comp, limits);
+                    self.push(inserted, Some(last_comp), limits, out)?;
+                    return self.push(next, Some(comp), limits, out);
+                }
             }
         }
         let d = comp.offset();
@@ -762,6 +776,24 @@ impl Prepared {
 fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
     let start3 = place(&from3, elem_start(&elem), comp);
     let end3 = place(&to3, elem_end(&elem), comp);
+    let path = match elem {
+        Elem::Line { .. } => Path::line(start3, end3),
+        Elem::Arc { r, a0, sweep, .. } => Path {
+            start: start3,
+            end: end3,
+            arc: Some(Box::new(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep })),
+            ori: None,
+            curve: None,
+        },
+    };
+    rebuild(p, path, limits)
+}
+
+/// A programmed contour element as a move (the contour itself, not the tool centre): RND
+/// shaped in the plane. The axes outside the plane move from `from3` to `to3`.
+fn contour_move(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
+    let start3 = with_plane(&from3, elem_start(&elem), comp);
+    let end3 = with_plane(&to3, elem_end(&elem), comp);
     let path = match elem {
         Elem::Line { .. } => Path::line(start3, end3),
         Elem::Arc { r, a0, sweep, .. } => Path {
