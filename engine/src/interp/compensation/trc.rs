@@ -203,6 +203,10 @@ pub struct Compensator {
     /// The SAR words of an approach block without any motion and the feed before it: the next
     /// motion block runs them.
     sar_deferred: Option<(super::sar::SarWords, Option<Feed>)>,
+    /// The selection block's moves (and what waited with them), held back until the first
+    /// element's end corner is resolved: an alarm then stops the program before the tool
+    /// has moved onto a contour it cannot follow.
+    lead_in: Vec<Item>,
 }
 
 impl Compensator {
@@ -435,6 +439,10 @@ impl Compensator {
             let (a3, b3) = (approach.mv.path.start, approach.mv.path.end);
             let lift = outside_plane(&a3, &b3, &comp);
             let (segments, start) = approach::approach(approach.approach, s0, &contour, d, lift, &comp, line)?;
+            // The approach's items go to the lead-in buffer, released with the first corner.
+            let mut buf = Vec::new();
+            let out_mark = self.mark;
+            let out = &mut buf;
             if segments.is_empty() {
                 // Already on the equidistant: only the axes outside the plane move.
                 let end = place(&b3, start, &comp);
@@ -458,6 +466,8 @@ impl Compensator {
             }
             self.tool_at = Some(start);
             self.release_pending(limits, out);
+            self.lead_in = std::mem::take(out);
+            self.mark = out_mark;
             self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             return Ok(());
         }
@@ -589,9 +599,18 @@ impl Compensator {
         Ok(())
     }
 
+    /// Hands out the selection block's held-back moves.
+    fn release_lead_in(&mut self, out: &mut Vec<Item>) {
+        if !self.lead_in.is_empty() {
+            out.append(&mut self.lead_in);
+            self.mark = out.len();
+        }
+    }
+
     /// Releases the held element up to its corner with the first joined element (and what was
     /// omitted and what waited between them), which becomes the held element.
     fn commit(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.release_lead_in(out);
         let Some(mut prev) = self.held.take() else { return Ok(()) };
         if prev.chain.is_empty() {
             self.held = Some(prev);
@@ -630,6 +649,7 @@ impl Compensator {
 
     /// Releases every joined element up to the last one, which stays held.
     fn commit_all(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.release_lead_in(out);
         while self.held.as_ref().is_some_and(|h| !h.chain.is_empty()) {
             self.commit(limits, out)?;
         }
@@ -722,6 +742,7 @@ impl Compensator {
     /// Ends the held move perpendicular to its contour end (before anything that is not a
     /// compensated move, and at the end of the program).
     pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.release_lead_in(out);
         self.sar_virtual = false;
         if let Some(head) = self.sar_head.take() {
             self.sar = None;
@@ -1145,6 +1166,13 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
     let outer = cross * d < 0.0;
     let oa = offset_elem(a, d, None, None, line)?;
     let ob = offset_elem(b, d, None, None, line)?;
+    if outer && let Some(x) = crossing(&oa, &ob, b) {
+        // An outer corner whose equidistants cross before it (an arc curving back towards
+        // the other element): going round the corner would cut into the other element, so
+        // the tool stops at the crossing as at an inner corner.
+        clear_at(a, b, d, x, line)?;
+        return Ok(Some((x, None, x)));
+    }
     if outer {
         // G451: the intersection of the equidistants nearest the corner (lines and arcs), as
         // long as the change of direction stays below MD20210 and the equidistants meet ahead
@@ -1180,8 +1208,11 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
         }
         return Ok(Some((q1, Some(Elem::Arc { c: p, r: d.abs(), a0, sweep }), q2)));
     }
-    // Inner corner: cut both equidistants at their intersection nearest the corner.
-    let x = intersection(&oa, &ob, p)
+    // Inner corner: cut both equidistants where they first cross along the first one (with
+    // arcs they may cross twice: beyond the first crossing the tool would be nearer to the
+    // second element than the radius), else at their intersection nearest the corner.
+    let x = crossing(&oa, &ob, b)
+        .or_else(|| intersection(&oa, &ob, p))
         .ok_or_else(|| Alarm::collision(line, "the equidistants of an inner corner do not meet"))?;
     // The cut must not lie beyond the second equidistant's end (whether the first one is long
     // enough is the caller's question: its start may have moved).
@@ -1192,7 +1223,111 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
     if beyond_b {
         return Ok(None);
     }
+    clear_at(a, b, d, x, line)?;
     Ok(Some((x, None, x)))
+}
+
+/// Alarm 10751 where a corner cut at `x` would still bring the tool nearer than the radius
+/// to one of the two elements: the first equidistant up to `x` to the second contour element,
+/// or the second equidistant from `x` to the first (equidistants of arcs that cross twice
+/// with the tool too large for the pocket between them).
+fn clear_at(a: &Elem, b: &Elem, d: f64, x: P2, line: u32) -> Result<(), Alarm> {
+    let r = d.abs() - 1e-7;
+    let clear = |piece: Result<Elem, Alarm>, other: &Elem| {
+        piece.is_ok_and(|e| (0..=16).all(|k| contour_distance(point_at(&e, f64::from(k) / 16.0), other) >= r))
+    };
+    let before = offset_elem(a, d, None, Some(x), line);
+    let after = offset_elem(b, d, Some(x), None, line);
+    let reversed = |piece: &Result<Elem, Alarm>, e: &Elem| {
+        piece.as_ref().is_ok_and(|p| !forward(e, elem_start(p), elem_end(p)))
+    };
+    if reversed(&before, a) || reversed(&after, b) || (clear(before, b) && clear(after, a)) {
+        // A reversed piece is the look-ahead's business (the element is omitted).
+        return Ok(());
+    }
+    Err(bottleneck(line))
+}
+
+/// The point the share `t` (0..1) along an element.
+fn point_at(e: &Elem, t: f64) -> P2 {
+    match *e {
+        Elem::Line { s, e } => (s.0 + t * (e.0 - s.0), s.1 + t * (e.1 - s.1)),
+        Elem::Arc { c, r, a0, sweep } => (c.0 + r * (a0 + t * sweep).cos(), c.1 + r * (a0 + t * sweep).sin()),
+    }
+}
+
+/// Distance of `x` from a contour element (segment or arc with its end points).
+fn contour_distance(x: P2, e: &Elem) -> f64 {
+    let ends = dist(x, elem_start(e)).min(dist(x, elem_end(e)));
+    match *e {
+        Elem::Line { s, e } => {
+            let t = share(&Elem::Line { s, e }, x);
+            if (0.0..=1.0).contains(&t) { dist(x, point_at(&Elem::Line { s, e }, t)) } else { ends }
+        }
+        Elem::Arc { c, r, .. } => {
+            let t = share(e, x);
+            if (0.0..=1.0).contains(&t) { (dist(x, c) - r).abs().min(ends) } else { ends }
+        }
+    }
+}
+
+/// Where the equidistants `a` and `b` cross before the end of `a` and after the start of `b`
+/// (the first along `a`); None when they meet only on their extensions.
+fn crossing(a: &Elem, b: &Elem, b_contour: &Elem) -> Option<P2> {
+    let points: Vec<P2> = match (*a, *b) {
+        (Elem::Line { .. }, Elem::Line { .. }) => return None,
+        (Elem::Line { s, e }, Elem::Arc { c, r, .. }) | (Elem::Arc { c, r, .. }, Elem::Line { s, e }) => {
+            line_circle(s, e, c, r)
+        }
+        (Elem::Arc { c: c1, r: r1, .. }, Elem::Arc { c: c2, r: r2, .. }) => circle_circle(c1, r1, c2, r2),
+    };
+    points
+        .into_iter()
+        .filter(|x| {
+            let (ta, tb) = (share(a, *x), share(b, *x));
+            ta < 1.0 - 1e-6 && tb > 1e-6 && tb <= 1.0 + 1e-9 && enters(a, b, b_contour, *x)
+        })
+        // The first crossing along `a`: beyond it the tool would be nearer to `b` than the
+        // radius. One behind the tool's start on `a` makes `a` too short (the caller's check).
+        .min_by(|x, y| share(a, *x).total_cmp(&share(a, *y)))
+}
+
+/// Whether `a` (an equidistant) passes `x` into the band between `b`'s equidistant and its
+/// contour `b_contour`, where the tool would be nearer to that contour than the radius.
+fn enters(a: &Elem, b: &Elem, b_contour: &Elem, x: P2) -> bool {
+    let dir = match *a {
+        Elem::Line { s, e } => (e.0 - s.0, e.1 - s.1),
+        Elem::Arc { c, sweep, .. } => {
+            let sg = sweep.signum();
+            (-sg * (x.1 - c.1), sg * (x.0 - c.0))
+        }
+    };
+    let band = match (*b, *b_contour) {
+        (Elem::Line { s, .. }, Elem::Line { s: cs, .. }) => (cs.0 - s.0, cs.1 - s.1),
+        (Elem::Arc { c, r, .. }, Elem::Arc { r: r0, .. }) => {
+            let out = (x.0 - c.0, x.1 - c.1);
+            if r > r0 { (-out.0, -out.1) } else { out }
+        }
+        _ => return false,
+    };
+    dir.0 * band.0 + dir.1 * band.1 > 1e-12
+}
+
+/// How far along an element (0 at its start, 1 at its end) the point `x` on it lies.
+fn share(e: &Elem, x: P2) -> f64 {
+    match *e {
+        Elem::Line { s, e } => {
+            let d = (e.0 - s.0, e.1 - s.1);
+            ((x.0 - s.0) * d.0 + (x.1 - s.1) * d.1) / (d.0 * d.0 + d.1 * d.1)
+        }
+        Elem::Arc { c, a0, sweep, .. } => {
+            let tau = std::f64::consts::TAU;
+            let w = (((x.1 - c.1).atan2(x.0 - c.0) - a0) * sweep.signum()).rem_euclid(tau);
+            // Angles in the gap after the end, past its middle, lie behind the start.
+            let w = if w > sweep.abs() + (tau - sweep.abs()) / 2.0 { w - tau } else { w };
+            w / sweep.abs().max(1e-12)
+        }
+    }
 }
 
 /// The end of the first equidistant, the transition (if any) and the start of the next.
