@@ -108,7 +108,8 @@ fn arc_arc_without_an_intersection_takes_the_transition_circle() {
 /// perpendicular point) and goes round the tip on the circle of radius 5 about (100,0).
 #[test]
 fn a_pointed_corner_beyond_md20210_takes_the_transition_circle() {
-    let prog = "G17 G90 T1 D1\nG0 X-20 Y20 Z0\nG41 G451 G1 X0 Y0 F1000\nG1 X100 Y0\nM0\nG1 X56.699 Y-25\nG40 G1 X40 Y-40\nM30";
+    let prog =
+        "G17 G90 T1 D1\nG0 X-20 Y20 Z0\nG41 G451 G1 X0 Y0 F1000\nG1 X100 Y0\nM0\nG1 X56.699 Y-25\nG40 G1 X40 Y-40\nM30";
     let (mut ch, _) = run_to_stop("mill-3axis", "", prog);
     assert_eq!(ch.status(), Status::Stopped, "{:?}", ch.alarms());
     let at = ch.axis_positions();

@@ -92,12 +92,16 @@ fn cdon_bridges_the_slot_within_md20240_blocks() {
 /// the Y58 face's equidistant, no alarm.
 #[test]
 fn a_step_shorter_than_the_radius_is_resolved_before_its_corner_moves() {
-    let prog = "G17 G90 T1 D1\nG0 X-10 Y75 Z0\nG41 G1 X0 Y60 F1000\nG1 X50 Y60\nG1 X50 Y58\nG1 X100 Y58\nG40 G1 X110 Y75\nM30";
+    let prog =
+        "G17 G90 T1 D1\nG0 X-10 Y75 Z0\nG41 G1 X0 Y60 F1000\nG1 X50 Y60\nG1 X50 Y58\nG1 X100 Y58\nG40 G1 X110 Y75\nM30";
     let (ch, samples) = run_all(prog);
     assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
     let contour = [(0.0, 60.0), (50.0, 60.0), (50.0, 58.0), (100.0, 58.0)];
     assert_eq!(first_gouge(&samples, &contour, 5.0), None);
-    assert!(samples.iter().any(|p| (p[0] - 54.0).abs() < 1e-6 && (p[1] - 63.0).abs() < 1e-6), "leaves the circle at (54,63)");
+    assert!(
+        samples.iter().any(|p| (p[0] - 54.0).abs() < 1e-6 && (p[1] - 63.0).abs() < 1e-6),
+        "leaves the circle at (54,63)"
+    );
 }
 
 /// RND between a line and an arc (issue 25, item 6): G42, line (0,0)→(30,0) with RND=3, then
@@ -109,7 +113,8 @@ fn a_step_shorter_than_the_radius_is_resolved_before_its_corner_moves() {
 /// from the rounded contour.
 #[test]
 fn rnd_between_a_line_and_an_arc_is_compensated_on_the_rounded_contour() {
-    let prog = "G17 G90 T1 D1\nG0 X-20 Y-20 Z0\nG42 G1 X0 Y0 F1000\nG1 X30 Y0 RND=3\nG2 X50 Y0 I10 J0\nG40 G1 X60 Y-20\nM30";
+    let prog =
+        "G17 G90 T1 D1\nG0 X-20 Y-20 Z0\nG42 G1 X0 Y0 F1000\nG1 X30 Y0 RND=3\nG2 X50 Y0 I10 J0\nG40 G1 X60 Y-20\nM30";
     let (ch, samples) = run_all(prog);
     assert_eq!(ch.status(), Status::Idle, "{:?}", ch.alarms());
     let c = (40.0 - 160f64.sqrt(), 3.0);
@@ -128,7 +133,8 @@ fn rnd_between_a_line_and_an_arc_is_compensated_on_the_rounded_contour() {
         if (0.0..=at).contains(&a) { ((p.0 - 40.0).hypot(p.1) - 10.0).abs() } else { f64::INFINITY }
     };
     let ends = |p: (f64, f64)| (p.0 - t.0).hypot(p.1 - t.1).min((p.0 - 50.0).hypot(p.1));
-    let dist = |p: (f64, f64)| trc_support::seg_dist(p, (0.0, 0.0), (c.0, 0.0)).min(on_round(p)).min(on_arc(p)).min(ends(p));
+    let dist =
+        |p: (f64, f64)| trc_support::seg_dist(p, (0.0, 0.0), (c.0, 0.0)).min(on_round(p)).min(on_arc(p)).min(ends(p));
     // Up to the end of the arc's equidistant (45,0): the G40 block then travels uncompensated
     // to its end point and may pass the contour's end closer than the radius.
     let run = trc_support::from_point(&samples, -20.0, -20.0);
@@ -145,6 +151,9 @@ fn rnd_between_a_line_and_an_arc_is_compensated_on_the_rounded_contour() {
     for p in round {
         let r = (p[0] - c.0).hypot(p[1] - c.1);
         let r_arc = (p[0] - 40.0).hypot(p[1]);
-        assert!((r - 8.0).abs() < 1e-6 || (r_arc - 5.0).abs() < 1e-6, "{p:?}: on the rounding's or the arc's equidistant");
+        assert!(
+            (r - 8.0).abs() < 1e-6 || (r_arc - 5.0).abs() < 1e-6,
+            "{p:?}: on the rounding's or the arc's equidistant"
+        );
     }
 }

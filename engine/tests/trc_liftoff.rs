@@ -36,7 +36,8 @@ fn a_compensated_lift_off_turns_at_the_inner_corner_without_a_blend() {
         });
         assert!(corner.is_some(), "{lift}: the nose centre reaches (Z−19.6, X20.4)");
         // From the start point X30 Z5 on (carrier X72 Z63).
-        let from = samples.iter().position(|s| (s[0] - 72.0).abs() < 1e-9 && (s[1] - 63.0).abs() < 1e-9).expect("start");
+        let from =
+            samples.iter().position(|s| (s[0] - 72.0).abs() < 1e-9 && (s[1] - 63.0).abs() < 1e-9).expect("start");
         for s in &samples[from..] {
             let c = centre(s);
             if c.0 < 0.0 && c.1 < 25.0 {
@@ -66,7 +67,10 @@ fn g40_on_the_lift_off_ends_the_contour_at_its_normal_end_point() {
         let end = end.unwrap_or_else(|| panic!("{lift}: the G40 block ends at its programmed point"));
         for s in &samples[normal..=end] {
             let c = centre(s);
-            assert!(trc_support::seg_dist(c, (-20.0, 20.4), (-19.6, 30.4)) < 1e-6, "{lift}: {c:?} off the straight G40 move");
+            assert!(
+                trc_support::seg_dist(c, (-20.0, 20.4), (-19.6, 30.4)) < 1e-6,
+                "{lift}: {c:?} off the straight G40 move"
+            );
         }
     }
 }

@@ -77,9 +77,7 @@ fn points(e: &El, n: usize) -> Vec<P> {
 
 /// Whether elements that are not neighbours keep at least `gap` from each other.
 fn separated(els: &[El], gap: f64) -> bool {
-    (0..els.len()).all(|i| {
-        (i + 2..els.len()).all(|j| points(&els[i], 200).iter().all(|&p| dist(p, &els[j]) >= gap))
-    })
+    (0..els.len()).all(|i| (i + 2..els.len()).all(|j| points(&els[i], 200).iter().all(|&p| dist(p, &els[j]) >= gap)))
 }
 
 /// The contour and its program.

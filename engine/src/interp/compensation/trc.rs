@@ -5,8 +5,12 @@
 //! frame's images of the plane axes, so mirroring and rotation need no special cases), offset
 //! to the left (G41) or right (G42) by the radius, and joined to its neighbour at the corner:
 //! G450 inserts a transition arc about the contour corner (DISC pulls it towards the
-//! intersection), G451 extends both equidistants to their intersection; inner corners are cut
-//! at the intersection. A move is held back until its successor decides its end point; blocks
+//! intersection), G451 extends both equidistants to their intersection (the transition circle
+//! from MD20210's change of direction); inner corners are cut at the intersection, and
+//! equidistants of arcs that cross before a corner are cut at the first crossing. A move is
+//! held back until its successor decides its end point, and joined elements wait in a chain
+//! of at most MD20240 until the corners after them are resolved (`Next`): an element its
+//! corners would reverse is omitted, and no motion of a corner is released before that; blocks
 //! without motion in the plane wait behind it (at most MD20250 of them, else alarm 10762) and
 //! run at the corner point. Elements too short for the tool are bridged (`trc_bottleneck`),
 //! approach and retract follow G group 17 (`trc_approach`, KONTC in `trc_kontc`), RND/CHF are shaped on the
@@ -536,7 +540,13 @@ impl Compensator {
                     };
                     let eq = offset_elem(last, comp_last.offset(), Some(start), None, prev.p.line)?;
                     let skipped_last = &prev.skipped.last().expect("skipped").1;
-                    match bottleneck::bridge(&eq, skipped_last, &contour, d, comp.collision_detection || prev.skipped.len() == 1) {
+                    match bottleneck::bridge(
+                        &eq,
+                        skipped_last,
+                        &contour,
+                        d,
+                        comp.collision_detection || prev.skipped.len() == 1,
+                    ) {
                         Some(meet) if forward(last, start, meet.0) => {
                             let omitted = std::mem::take(&mut prev.skipped);
                             prev.chain.push(Next { omitted, p, contour, comp, meet, mark: waiting });
@@ -585,8 +595,14 @@ impl Compensator {
                 None => {
                     let eq = offset_elem(last, comp_last.offset(), Some(start), None, prev.p.line)?;
                     let skipped_last = &prev.skipped.last().expect("skipped").1;
-                    bottleneck::bridge(&eq, skipped_last, &contour, d, comp.collision_detection || prev.skipped.len() == 1)
-                        .filter(|m| forward(last, start, m.0))
+                    bottleneck::bridge(
+                        &eq,
+                        skipped_last,
+                        &contour,
+                        d,
+                        comp.collision_detection || prev.skipped.len() == 1,
+                    )
+                    .filter(|m| forward(last, start, m.0))
                 }
             };
             if let Some(meet) = joined {
@@ -812,7 +828,14 @@ fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensa
 
 /// A programmed contour element as a move (the contour itself, not the tool centre): RND
 /// shaped in the plane. The axes outside the plane move from `from3` to `to3`.
-fn contour_move(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
+fn contour_move(
+    p: &Prepared,
+    elem: Elem,
+    from3: AxisVec,
+    to3: AxisVec,
+    comp: &Compensation,
+    limits: &[AxisLimit],
+) -> Move {
     let start3 = with_plane(&from3, elem_start(&elem), comp);
     let end3 = with_plane(&to3, elem_end(&elem), comp);
     let path = match elem {
@@ -1238,9 +1261,8 @@ fn clear_at(a: &Elem, b: &Elem, d: f64, x: P2, line: u32) -> Result<(), Alarm> {
     };
     let before = offset_elem(a, d, None, Some(x), line);
     let after = offset_elem(b, d, Some(x), None, line);
-    let reversed = |piece: &Result<Elem, Alarm>, e: &Elem| {
-        piece.as_ref().is_ok_and(|p| !forward(e, elem_start(p), elem_end(p)))
-    };
+    let reversed =
+        |piece: &Result<Elem, Alarm>, e: &Elem| piece.as_ref().is_ok_and(|p| !forward(e, elem_start(p), elem_end(p)));
     if reversed(&before, a) || reversed(&after, b) || (clear(before, b) && clear(after, a)) {
         // A reversed piece is the look-ahead's business (the element is omitted).
         return Ok(());
