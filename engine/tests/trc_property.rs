@@ -7,8 +7,10 @@
 //! The oracle is independent of the engine's offset code: the distance of a point from each
 //! programmed element (segment: clamped projection; arc: radial distance inside its angular
 //! range, else the nearer end point). Contours are star-shaped about the origin (vertices at
-//! increasing angles, less than 300° in all), so they do not cross themselves; arcs bulge by
-//! at most 0.35 of their chord. Checked from the first arrival at the first element's
+//! increasing angles, less than 300° in all) and arcs bulge by at most 0.45 of their chord;
+//! cases where neighbours cross or elements that are not neighbours come nearer than the tool
+//! diameter are left out (a self-crossing contour has no tool side; distant bottlenecks are
+//! not what W1's look-ahead promises). 2000 cases passed when this was written; 64 run here. Checked from the first arrival at the first element's
 //! perpendicular start point to the last departure from the last element's perpendicular end
 //! point (the selection and deselection blocks are straight moves that may pass nearer).
 
@@ -75,9 +77,18 @@ fn points(e: &El, n: usize) -> Vec<P> {
         .collect()
 }
 
-/// Whether elements that are not neighbours keep at least `gap` from each other.
+/// Whether elements that are not neighbours keep at least `gap` from each other, and
+/// neighbours meet only at their common vertex (a bulging arc may cross its neighbour).
 fn separated(els: &[El], gap: f64) -> bool {
-    (0..els.len()).all(|i| (i + 2..els.len()).all(|j| points(&els[i], 200).iter().all(|&p| dist(p, &els[j]) >= gap)))
+    let apart = (0..els.len())
+        .all(|i| (i + 2..els.len()).all(|j| points(&els[i], 200).iter().all(|&p| dist(p, &els[j]) >= gap)));
+    let simple = els.windows(2).all(|w| {
+        let v = match w[0] {
+            El::Line(_, b) | El::Arc(_, b, ..) => b,
+        };
+        points(&w[1], 400).iter().all(|&p| (p.0 - v.0).hypot(p.1 - v.1) < 1.0 || dist(p, &w[0]) > 0.2)
+    });
+    apart && simple
 }
 
 /// The contour and its program.
@@ -134,10 +145,10 @@ proptest! {
 
     #[test]
     fn the_tool_centre_never_comes_nearer_than_the_radius(
-        radii in prop::collection::vec(30.0f64..50.0, 3..7),
-        step in 20.0f64..50.0,
+        radii in prop::collection::vec(25.0f64..55.0, 3..8),
+        step in 12.0f64..42.0,
         turn in 0.0f64..360.0,
-        bulges in prop::collection::vec(-0.35f64..0.35, 6),
+        bulges in prop::collection::vec(-0.45f64..0.45, 7),
         g42 in any::<bool>(),
         mode in prop::sample::select(vec!["G450", "G451", "G450 DISC=50", "G451 CDON", "G450 CDON"]),
     ) {
