@@ -7,6 +7,7 @@ pub(super) mod bottleneck;
 pub(super) mod cutting_edge;
 pub(super) mod disc;
 pub(super) mod kontc;
+pub(super) mod rounding;
 pub mod sar;
 mod sar_block;
 pub(super) mod toff;

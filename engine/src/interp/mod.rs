@@ -930,6 +930,8 @@ impl Interpreter {
             tip: if groove_wall.is_some() { (0.0, 0.0) } else { tip },
             max_dummy_blocks: cfg.cutcom_max_dummy_blocks,
             max_check_blocks: cfg.cutcom_max_check_blocks,
+            corner_limit: cfg.cutcom_corner_limit,
+            collision_detection: self.modal.collision_detection,
             groove_wall,
         }))
     }

@@ -92,6 +92,9 @@ pub struct Modal {
     pub disc: f64,
     /// Where the feed applies on compensated arcs (G group 16).
     pub arc_feed: ArcFeed,
+    /// G group 23: CDON, the radius compensation's bottleneck detection over MD20240 blocks
+    /// (false: CDOF, the reset value).
+    pub collision_detection: bool,
     /// Last polar angle AP (degrees) and radius RP.
     pub polar: (f64, f64),
     /// G groups 25, 50 and 51 of orientation programming.
@@ -159,6 +162,7 @@ impl Modal {
             approach: ApproachMode::Norm,
             disc: 0.0,
             arc_feed: ArcFeed::Contour,
+            collision_detection: false,
             ori: OriModal::reset(),
             ptp: PtpMode::Cp,
             dynamics: super::dynamics::DynModal::reset(cfg),
@@ -228,6 +232,9 @@ impl Modal {
         }
         if let Some(f) = w.arc_feed {
             self.arc_feed = f;
+        }
+        if let Some(c) = w.collision_detection {
+            self.collision_detection = c;
         }
         self.ori.apply(&w.ori);
         if let Some(p) = w.ptp {
@@ -385,6 +392,8 @@ pub(super) struct Words {
     pub disc: Option<f64>,
     /// CFC, CFTCP, CFIN.
     pub arc_feed: Option<ArcFeed>,
+    /// CDON (true), CDOF/CDOF2 (false).
+    pub collision_detection: Option<bool>,
     /// SPOS=: position the master spindle (it becomes a rotary axis).
     /// Spindle words beyond S and M3/M4/M5 (see `spindles/words.rs`).
     pub spindle: super::spindles::words::SpindleWords,
@@ -503,7 +512,19 @@ pub(super) fn collect(
                 if args.is_empty()
                     && matches!(
                         name.as_str(),
-                        "SUPA" | "STOPRE" | "NEWCONF" | "CFC" | "CFTCP" | "CFIN" | "NORM" | "KONT" | "KONTT" | "KONTC"
+                        "SUPA"
+                            | "STOPRE"
+                            | "NEWCONF"
+                            | "CFC"
+                            | "CFTCP"
+                            | "CFIN"
+                            | "NORM"
+                            | "KONT"
+                            | "KONTT"
+                            | "KONTC"
+                            | "CDON"
+                            | "CDOF"
+                            | "CDOF2"
                     ) =>
             {
                 match name.as_str() {
@@ -516,6 +537,9 @@ pub(super) fn collect(
                     "KONT" => w.approach = Some(ApproachMode::Kont),
                     "KONTT" => w.approach = Some(ApproachMode::Tangent),
                     "KONTC" => w.approach = Some(ApproachMode::Curvature),
+                    // G group 23; CDOF2 differs from CDOF only in 3D circumferential milling.
+                    "CDON" => w.collision_detection = Some(true),
+                    "CDOF" | "CDOF2" => w.collision_detection = Some(false),
                     _ => {}
                 }
             }

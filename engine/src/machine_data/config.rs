@@ -123,6 +123,9 @@ pub struct MachineConfig {
     pub cutcom_max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks the bottleneck detection examines.
     pub cutcom_max_check_blocks: usize,
+    /// MD20210 CUTCOM_CORNER_LIMIT in radians: from this change of direction at an outer
+    /// corner G451 inserts the transition circle.
+    pub cutcom_corner_limit: f64,
     /// Path jerk and the reset values of the dynamics G groups 21, 24, 59.
     pub dynamics: super::dynamics::ChannelDynamics,
     /// Tolerances of continuous-path mode, exact-stop windows and compressor limits.
@@ -417,6 +420,7 @@ impl MachineConfig {
             incremental_travels: IncrementalTravels::default(),
             cutcom_max_dummy_blocks: md.num("$MC_CUTCOM_MAXNUM_DUMMY_BLOCKS", 0, 0) as usize,
             cutcom_max_check_blocks: md.num("$MC_CUTCOM_MAXNUM_CHECK_BLOCKS", 0, 0) as usize,
+            cutcom_corner_limit: md.num("$MC_CUTCOM_CORNER_LIMIT", 0, 0).to_radians(),
             dynamics: super::dynamics::ChannelDynamics::read(md)
                 .map_err(|m| ActivationError { datum: Some("GCODE_RESET_VALUES"), message: m })?,
             path_control: super::path_control::PathControlData::read(md, &machine_numbers),

@@ -266,6 +266,9 @@ pub static DEFS: &[Def] = &[
     def("ORIAX_TURN_TAB_1", 21120, C, Kind::Int, 3, Default::Indexed(default_turn_tab_1), 0.0, 3.0),
     def("ORIAX_TURN_TAB_2", 21130, C, Kind::Int, 3, Default::Indexed(default_turn_tab_2), 0.0, 3.0),
     // NC start refused while an axis is not referenced (alarm 16905).
+    // MD20210: from this change of direction (degrees) G451 takes the transition circle at an
+    // outer corner instead of the far intersection of the equidistants.
+    def("CUTCOM_CORNER_LIMIT", 20210, C, Kind::Real, 1, Default::Real(100.0), 0.0, 150.0),
     def("CUTCOM_MAXNUM_CHECK_BLOCKS", 20240, C, Kind::Int, 1, Default::Int(3), 1.0, 100.0),
     def("CUTCOM_MAXNUM_DUMMY_BLOCKS", 20250, C, Kind::Int, 1, Default::Int(3), 0.0, 100.0),
     // Continuous-path mode and compressor (Function Manual B1): MD20170 the longest block the

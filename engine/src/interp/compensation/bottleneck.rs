@@ -16,13 +16,21 @@ use std::f64::consts::TAU;
 
 /// The join of the equidistant `a_eq` (its start is where the tool is) with the element `c`,
 /// or None if they do not meet ahead of the tool.
-pub(in crate::interp) fn bridge(a_eq: &Elem, last: &Elem, c: &Elem, d: f64) -> Option<Meet> {
+/// `across_outer`: whether the join may go round an outer corner (the circle about it). With
+/// CDOF the search goes back over earlier blocks at inside corners (W1); the circle about the
+/// corner of a single omitted element counts as the block inserted there. Only collision
+/// detection (CDON) joins the equidistants of blocks further apart across an outer corner
+/// (which is how it bridges a slot narrower than the tool).
+pub(in crate::interp) fn bridge(a_eq: &Elem, last: &Elem, c: &Elem, d: f64, across_outer: bool) -> Option<Meet> {
     let p = elem_end(last);
     let (tl, tc) = (tangent(last, true), tangent(c, false));
     let cross = tl.0 * tc.1 - tl.1 * tc.0;
     let nc = left(tc);
     let q2 = (p.0 + d * nc.0, p.1 + d * nc.1);
     if cross * d < 0.0 {
+        if !across_outer {
+            return None;
+        }
         let r = d.abs();
         let hits = match *a_eq {
             Elem::Line { s, e } => line_circle(s, e, p, r),

@@ -104,6 +104,8 @@ impl Interpreter {
                 tip: (0.0, 0.0),
                 max_dummy_blocks: cfg.cutcom_max_dummy_blocks,
                 max_check_blocks: cfg.cutcom_max_check_blocks,
+                corner_limit: cfg.cutcom_corner_limit,
+                collision_detection: self.modal.collision_detection,
                 groove_wall: None,
             }),
             line,

@@ -58,7 +58,7 @@ impl Compensator {
         self.emit_legs(&a, legs, &comp, limits, out);
         self.tool_at = Some(p4c);
         self.release_pending(limits, out);
-        self.held = Some(Held { skipped: Vec::new(), p, contour, start: p4c, comp });
+        self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start: p4c, comp });
         self.sar_virtual = sar.zero.is_some();
         Ok(())
     }

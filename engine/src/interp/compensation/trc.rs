@@ -5,8 +5,12 @@
 //! frame's images of the plane axes, so mirroring and rotation need no special cases), offset
 //! to the left (G41) or right (G42) by the radius, and joined to its neighbour at the corner:
 //! G450 inserts a transition arc about the contour corner (DISC pulls it towards the
-//! intersection), G451 extends both equidistants to their intersection; inner corners are cut
-//! at the intersection. A move is held back until its successor decides its end point; blocks
+//! intersection), G451 extends both equidistants to their intersection (the transition circle
+//! from MD20210's change of direction); inner corners are cut at the intersection, and
+//! equidistants of arcs that cross before a corner are cut at the first crossing. A move is
+//! held back until its successor decides its end point, and joined elements wait in a chain
+//! of at most MD20240 until the corners after them are resolved (`Next`): an element its
+//! corners would reverse is omitted, and no motion of a corner is released before that; blocks
 //! without motion in the plane wait behind it (at most MD20250 of them, else alarm 10762) and
 //! run at the corner point. Elements too short for the tool are bridged (`trc_bottleneck`),
 //! approach and retract follow G group 17 (`trc_approach`, KONTC in `trc_kontc`), RND/CHF are shaped on the
@@ -16,7 +20,7 @@
 use crate::alarm::Alarm;
 use crate::interp::compensation::approach::{self, ApproachMode};
 use crate::interp::contour::corners;
-use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation::disc};
+use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation::disc, compensation::rounding};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 
@@ -83,6 +87,12 @@ pub struct Compensation {
     pub max_dummy_blocks: usize,
     /// MD20240 CUTCOM_MAXNUM_CHECK_BLOCKS: blocks examined for a bottleneck.
     pub max_check_blocks: usize,
+    /// MD20210 CUTCOM_CORNER_LIMIT (radians): from this change of direction at an outer
+    /// corner G451 takes the transition circle, not the far intersection.
+    pub corner_limit: f64,
+    /// CDON (G group 23): a bottleneck is bridged over up to MD20240 blocks (warning 10763);
+    /// CDOF stops with alarm 10751 before entering it.
+    pub collision_detection: bool,
     /// TRACYL groove-wall offset (513, 514 with k = 1): the channel slots of the unrolled
     /// peripheral coordinate and of the real Y axis. The part of the offset along the periphery
     /// is then travelled by the real Y axis, so the groove walls stay parallel.
@@ -128,12 +138,34 @@ struct Held {
     /// Elements after it whose equidistants the tool cannot reach (bottleneck look-ahead,
     /// MD20240): they are bridged when a later element meets this one.
     skipped: Vec<(Prepared, Elem)>,
+    /// The elements after it, each joined to its predecessor but not released (at most
+    /// MD20240 of them): see [`Next`]. `skipped` follows the last of them.
+    chain: Vec<Next>,
     p: Prepared,
     /// The programmed contour element.
     contour: Elem,
     /// Where its equidistant starts (decided by the previous corner).
     start: P2,
     comp: Compensation,
+}
+
+/// An element after the held one, joined to its predecessor but not yet released. The join
+/// (the predecessor's end, the transition, this element's start) is final only once the
+/// corners after it are known not to reverse it: an element shorter than what the tool needs
+/// is omitted and its predecessor joined to a later element instead, going back as far as the
+/// look-ahead (MD20240) reaches. No motion of a corner leaves the compensator before the
+/// corner is resolved.
+#[derive(Debug, Clone)]
+struct Next {
+    /// Elements omitted between the predecessor and this one (only their motion outside the
+    /// plane runs, at the join).
+    omitted: Vec<(Prepared, Elem)>,
+    p: Prepared,
+    contour: Elem,
+    comp: Compensation,
+    meet: Meet,
+    /// How many of the pending items wait before it (they run at the held element's end).
+    mark: usize,
 }
 
 /// What waits behind the held move: blocks without motion in the compensation plane. They
@@ -175,6 +207,10 @@ pub struct Compensator {
     /// The SAR words of an approach block without any motion and the feed before it: the next
     /// motion block runs them.
     sar_deferred: Option<(super::sar::SarWords, Option<Feed>)>,
+    /// The selection block's moves (and what waited with them), held back until the first
+    /// element's end corner is resolved: an alarm then stops the program before the tool
+    /// has moved onto a contour it cannot follow.
+    lead_in: Vec<Item>,
 }
 
 impl Compensator {
@@ -358,22 +394,41 @@ impl Compensator {
         };
         self.block_plane_move = true;
         self.dummy_blocks = 0;
+        let waiting = self.pending.len();
         if let Some(h) = self.held.as_mut()
             && h.skipped.is_empty()
-            && self.pending.is_empty()
-            && let Some(corner) = h.p.corner.take()
         {
-            // The rounding or chamfer is part of the contour: insert it, then offset.
-            let mut next = p.clone();
-            if let Some((first, between)) = corners::split(&h.p.mv, corner, h.p.line, &mut next.mv, limits)?
-                && let (Some(shortened), Some(_)) = (element(&first, &h.comp), element(&next.mv, &comp))
-            {
-                h.p.mv = first;
-                h.contour = shortened;
-                let inserted = Prepared { mv: between, corner: None, ..h.p.clone() };
-                let prev_comp = h.comp;
-                self.push(inserted, Some(prev_comp), limits, out)?;
-                return self.push(next, Some(comp), limits, out);
+            // The last element received: the tentative one after the held element, if any.
+            let (last, last_contour, last_comp, quiet) = match h.chain.last_mut() {
+                Some(n) => (&mut n.p, &mut n.contour, n.comp, waiting == n.mark),
+                None => (&mut h.p, &mut h.contour, h.comp, waiting == 0),
+            };
+            if quiet && let Some(corner) = last.corner.take() {
+                // The rounding or chamfer is part of the contour: insert it, then offset.
+                let mut next = p.clone();
+                if let Some((first, between)) = corners::split(&last.mv, corner, last.line, &mut next.mv, limits)?
+                    && let (Some(shortened), Some(_)) = (element(&first, &last_comp), element(&next.mv, &comp))
+                {
+                    last.mv = first;
+                    *last_contour = shortened;
+                    let inserted = Prepared { mv: between, corner: None, ..last.clone() };
+                    self.push(inserted, Some(last_comp), limits, out)?;
+                    return self.push(next, Some(comp), limits, out);
+                }
+                // A rounding where an arc meets the corner, shaped in the plane.
+                if let corners::Corner::Round(rho) = corner
+                    && let Some((e1, round, e2)) = rounding::round(last_contour, &contour, rho, last.line)?
+                {
+                    let (s1, e1_3) = (last.mv.path.start, last.mv.path.end);
+                    last.mv = contour_move(last, e1, s1, e1_3, &last_comp, limits);
+                    *last_contour = e1;
+                    let between = contour_move(last, round, e1_3, e1_3, &last_comp, limits);
+                    let inserted = Prepared { mv: between, corner: None, ..last.clone() };
+                    let (s2, e2_3) = (next.mv.path.start, next.mv.path.end);
+                    next.mv = contour_move(&next, e2, s2, e2_3, &comp, limits);
+                    self.push(inserted, Some(last_comp), limits, out)?;
+                    return self.push(next, Some(comp), limits, out);
+                }
             }
         }
         let d = comp.offset();
@@ -388,6 +443,10 @@ impl Compensator {
             let (a3, b3) = (approach.mv.path.start, approach.mv.path.end);
             let lift = outside_plane(&a3, &b3, &comp);
             let (segments, start) = approach::approach(approach.approach, s0, &contour, d, lift, &comp, line)?;
+            // The approach's items go to the lead-in buffer, released with the first corner.
+            let mut buf = Vec::new();
+            let out_mark = self.mark;
+            let out = &mut buf;
             if segments.is_empty() {
                 // Already on the equidistant: only the axes outside the plane move.
                 let end = place(&b3, start, &comp);
@@ -411,7 +470,9 @@ impl Compensator {
             }
             self.tool_at = Some(start);
             self.release_pending(limits, out);
-            self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+            self.lead_in = std::mem::take(out);
+            self.mark = out_mark;
+            self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             return Ok(());
         }
         match self.held.take() {
@@ -433,10 +494,13 @@ impl Compensator {
                     self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
-                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+                self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             }
             Some(prev)
-                if prev.skipped.is_empty() && (prev.comp.side != comp.side || prev.comp.radius != comp.radius) =>
+                if prev.skipped.is_empty() && {
+                    let last = prev.chain.last().map_or(&prev.comp, |n| &n.comp);
+                    last.side != comp.side || last.radius != comp.radius
+                } =>
             {
                 // G41 ⇄ G42 (or another radius) without G40: the old side ends perpendicular at
                 // its end point, a straight line leads to the perpendicular start of the new.
@@ -449,46 +513,161 @@ impl Compensator {
                     self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
-                self.held = Some(Held { skipped: Vec::new(), p, contour, start, comp });
+                self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             }
             Some(mut prev) => {
-                let meet = match prev.skipped.last() {
-                    None => corner(&prev.contour, &contour, d, &comp, prev.p.line)?,
-                    Some((_, last)) => {
-                        let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), None, prev.p.line)?;
-                        bottleneck::bridge(&eq, last, &contour, d)
+                let max_check = comp.max_check_blocks.max(1);
+                let waiting = self.pending.len();
+                if prev.skipped.is_empty() {
+                    let (last, start) = match prev.chain.last() {
+                        Some(n) => (&n.contour, n.meet.2),
+                        None => (&prev.contour, prev.start),
+                    };
+                    let line_last = prev.chain.last().map_or(prev.p.line, |n| n.p.line);
+                    match corner(last, &contour, d, &comp, line_last)? {
+                        Some(meet) if forward(last, start, meet.0) => {
+                            prev.chain.push(Next { omitted: Vec::new(), p, contour, comp, meet, mark: waiting });
+                        }
+                        // p is too short for the tool: a later element may join (MD20240).
+                        None => prev.skipped.push((p, contour)),
+                        // The last element is shorter than its corners need: omit it.
+                        Some(_) => self.backtrack(&mut prev, p, contour, comp, waiting)?,
                     }
-                };
-                let Some((prev_end, transition, next_start)) = meet else {
-                    // Look further ahead for an element the tool can reach (MD20240).
-                    if prev.skipped.len() + 1 >= comp.max_check_blocks.max(1) {
-                        return Err(bottleneck(line));
+                } else {
+                    let (last, start, comp_last) = match prev.chain.last() {
+                        Some(n) => (&n.contour, n.meet.2, n.comp),
+                        None => (&prev.contour, prev.start, prev.comp),
+                    };
+                    let eq = offset_elem(last, comp_last.offset(), Some(start), None, prev.p.line)?;
+                    let skipped_last = &prev.skipped.last().expect("skipped").1;
+                    match bottleneck::bridge(
+                        &eq,
+                        skipped_last,
+                        &contour,
+                        d,
+                        comp.collision_detection || prev.skipped.len() == 1,
+                    ) {
+                        Some(meet) if forward(last, start, meet.0) => {
+                            let omitted = std::mem::take(&mut prev.skipped);
+                            prev.chain.push(Next { omitted, p, contour, comp, meet, mark: waiting });
+                        }
+                        _ => self.backtrack(&mut prev, p, contour, comp, waiting)?,
                     }
-                    prev.skipped.push((p, contour));
-                    self.held = Some(prev);
-                    return Ok(());
-                };
-                let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
-                let mv = finish(&prev.p, eq, &prev.comp, limits, true);
-                self.emit(prev.p.item_with(mv), out);
-                self.tool_at = Some(prev_end);
-                for (skipped, _) in std::mem::take(&mut prev.skipped) {
-                    // A bridged element leaves only its axes outside the plane to travel.
-                    let from = self.from(skipped.mv.path.start);
-                    let end = place(&skipped.mv.path.end, prev_end, &comp);
-                    self.emit(skipped.item_with(rebuild(&skipped, Path::line(from, end), limits)), out);
                 }
-                self.release_pending(limits, out);
-                if let Some(arc) = transition {
-                    // The transition belongs to the next block (its line and feed) and runs at
-                    // the tool's height after the dummy blocks.
-                    let from = self.from(prev.p.mv.path.end);
-                    let mv = finish_transition(&p, arc, from, &comp, limits);
-                    self.emit(p.item_with(mv), out);
+                if prev.skipped.len() >= max_check {
+                    return Err(bottleneck(line));
                 }
-                self.tool_at = Some(next_start);
-                self.held = Some(Held { skipped: Vec::new(), p, contour, start: next_start, comp });
+                self.held = Some(prev);
+                // Release what lies beyond the look-ahead window.
+                while self.held.as_ref().is_some_and(|h| h.chain.len() > max_check) {
+                    self.commit(limits, out)?;
+                }
             }
+        }
+        Ok(())
+    }
+
+    /// The element `p` cannot follow the last element joined (that one would run backwards, or
+    /// the bottleneck is not passed yet): omit joined elements from the end, joining each
+    /// predecessor to `p` through its transition circle or across the omitted elements, back
+    /// to the held element. Where no join is found `p` waits among the skipped elements.
+    fn backtrack(
+        &mut self,
+        prev: &mut Held,
+        p: Prepared,
+        contour: Elem,
+        comp: Compensation,
+        waiting: usize,
+    ) -> Result<(), Alarm> {
+        let d = comp.offset();
+        while let Some(n) = prev.chain.pop() {
+            let Next { omitted, p: np, contour: nc, meet: nmeet, .. } = n;
+            let mut skipped = omitted;
+            skipped.push((np, nc));
+            skipped.append(&mut prev.skipped);
+            prev.skipped = skipped;
+            let (last, start, comp_last) = match prev.chain.last() {
+                Some(n) => (&n.contour, n.meet.2, n.comp),
+                None => (&prev.contour, prev.start, prev.comp),
+            };
+            let joined = match nmeet.1.and_then(|arc| cut_transition(&arc, &contour, d)) {
+                Some((arc, x)) => Some((nmeet.0, arc, x)),
+                None => {
+                    let eq = offset_elem(last, comp_last.offset(), Some(start), None, prev.p.line)?;
+                    let skipped_last = &prev.skipped.last().expect("skipped").1;
+                    bottleneck::bridge(
+                        &eq,
+                        skipped_last,
+                        &contour,
+                        d,
+                        comp.collision_detection || prev.skipped.len() == 1,
+                    )
+                    .filter(|m| forward(last, start, m.0))
+                }
+            };
+            if let Some(meet) = joined {
+                let omitted = std::mem::take(&mut prev.skipped);
+                prev.chain.push(Next { omitted, p, contour, comp, meet, mark: waiting });
+                return Ok(());
+            }
+        }
+        prev.skipped.push((p, contour));
+        Ok(())
+    }
+
+    /// Hands out the selection block's held-back moves.
+    fn release_lead_in(&mut self, out: &mut Vec<Item>) {
+        if !self.lead_in.is_empty() {
+            out.append(&mut self.lead_in);
+            self.mark = out.len();
+        }
+    }
+
+    /// Releases the held element up to its corner with the first joined element (and what was
+    /// omitted and what waited between them), which becomes the held element.
+    fn commit(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.release_lead_in(out);
+        let Some(mut prev) = self.held.take() else { return Ok(()) };
+        if prev.chain.is_empty() {
+            self.held = Some(prev);
+            return Ok(());
+        }
+        let Next { omitted, p, contour, comp, meet: (prev_end, transition, next_start), mark } = prev.chain.remove(0);
+        let eq = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev_end), prev.p.line)?;
+        let mv = finish(&prev.p, eq, &prev.comp, limits, true);
+        self.emit(prev.p.item_with(mv), out);
+        self.tool_at = Some(prev_end);
+        for (skipped, _) in omitted {
+            // An omitted element leaves only its axes outside the plane to travel.
+            let from = self.from(skipped.mv.path.start);
+            let end = place(&skipped.mv.path.end, prev_end, &comp);
+            self.emit(skipped.item_with(rebuild(&skipped, Path::line(from, end), limits)), out);
+        }
+        let mark = mark.min(self.pending.len());
+        let after = self.pending.split_off(mark);
+        self.release_pending(limits, out);
+        self.pending = after;
+        for n in &mut prev.chain {
+            n.mark = n.mark.saturating_sub(mark);
+        }
+        if let Some(arc) = transition {
+            // The transition belongs to the next block (its line and feed) and runs at the
+            // tool's height after the dummy blocks.
+            let from = self.from(prev.p.mv.path.end);
+            let mv = finish_transition(&p, arc, from, &comp, limits);
+            self.emit(p.item_with(mv), out);
+        }
+        self.tool_at = Some(next_start);
+        let chain = std::mem::take(&mut prev.chain);
+        self.held = Some(Held { skipped: prev.skipped, chain, p, contour, start: next_start, comp });
+        Ok(())
+    }
+
+    /// Releases every joined element up to the last one, which stays held.
+    fn commit_all(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.release_lead_in(out);
+        while self.held.as_ref().is_some_and(|h| !h.chain.is_empty()) {
+            self.commit(limits, out)?;
         }
         Ok(())
     }
@@ -497,6 +676,7 @@ impl Compensator {
     /// (NORM) or goes round its end point (KONT, KONTT, KONTC), then this move travels uncompensated
     /// to its programmed end.
     fn deselect(&mut self, p: Prepared, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.commit_all(limits, out)?;
         if let Some(sar) = self.sar.take() {
             return self.sar_retract(p, *sar, limits, out);
         }
@@ -578,6 +758,7 @@ impl Compensator {
     /// Ends the held move perpendicular to its contour end (before anything that is not a
     /// compensated move, and at the end of the program).
     pub fn flush(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.release_lead_in(out);
         self.sar_virtual = false;
         if let Some(head) = self.sar_head.take() {
             self.sar = None;
@@ -589,10 +770,15 @@ impl Compensator {
             self.emit(approach.item_with(approach.mv.clone()), out);
             self.tool_at = None;
         }
+        self.commit_all(limits, out)?;
         if let Some(h) = self.held.take() {
             if let Some((skipped, _)) = h.skipped.last() {
                 // The contour ends inside the bottleneck.
                 return Err(bottleneck(skipped.line));
+            }
+            if !forward(&h.contour, h.start, offset_end(&h.contour, h.comp.offset())) {
+                // The last element is shorter than its start corner needs.
+                return Err(bottleneck(h.p.line));
             }
             let eq = offset_elem(&h.contour, h.comp.offset(), Some(h.start), None, h.p.line)?;
             self.tool_at = Some(elem_end(&eq));
@@ -627,6 +813,31 @@ impl Prepared {
 fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
     let start3 = place(&from3, elem_start(&elem), comp);
     let end3 = place(&to3, elem_end(&elem), comp);
+    let path = match elem {
+        Elem::Line { .. } => Path::line(start3, end3),
+        Elem::Arc { r, a0, sweep, .. } => Path {
+            start: start3,
+            end: end3,
+            arc: Some(Box::new(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep })),
+            ori: None,
+            curve: None,
+        },
+    };
+    rebuild(p, path, limits)
+}
+
+/// A programmed contour element as a move (the contour itself, not the tool centre): RND
+/// shaped in the plane. The axes outside the plane move from `from3` to `to3`.
+fn contour_move(
+    p: &Prepared,
+    elem: Elem,
+    from3: AxisVec,
+    to3: AxisVec,
+    comp: &Compensation,
+    limits: &[AxisLimit],
+) -> Move {
+    let start3 = with_plane(&from3, elem_start(&elem), comp);
+    let end3 = with_plane(&to3, elem_end(&elem), comp);
     let path = match elem {
         Elem::Line { .. } => Path::line(start3, end3),
         Elem::Arc { r, a0, sweep, .. } => Path {
@@ -865,6 +1076,62 @@ pub(in crate::interp) fn offset_start(e: &Elem, d: f64) -> P2 {
     (p.0 + d * n.0, p.1 + d * n.1)
 }
 
+/// End point of the equidistant at offset `d` (perpendicular at the contour end).
+fn offset_end(e: &Elem, d: f64) -> P2 {
+    let p = elem_end(e);
+    let n = left(tangent(e, true));
+    (p.0 + d * n.0, p.1 + d * n.1)
+}
+
+/// Whether the piece of an element's equidistant from `start` to `end` (both on it) runs in
+/// the element's direction: false when the corners at its ends have eaten it up and more (the
+/// element is shorter than the tool needs there).
+pub(in crate::interp) fn forward(e: &Elem, start: P2, end: P2) -> bool {
+    match *e {
+        Elem::Line { s, e } => (end.0 - start.0) * (e.0 - s.0) + (end.1 - start.1) * (e.1 - s.1) >= -1e-9,
+        Elem::Arc { c, a0, sweep, .. } => {
+            // The shifts of the start and the end against the contour's, in the sense of travel.
+            let sg = sweep.signum();
+            let angle = |p: P2| (p.1 - c.1).atan2(p.0 - c.0);
+            let wrap = |x: f64| {
+                let y = x.rem_euclid(std::f64::consts::TAU);
+                if y > std::f64::consts::PI { y - std::f64::consts::TAU } else { y }
+            };
+            let ds = wrap((angle(start) - a0) * sg);
+            let de = wrap((angle(end) - (a0 + sweep)) * sg);
+            sweep.abs() - ds + de >= -1e-9
+        }
+    }
+}
+
+/// The transition circle `arc` cut by the equidistant of `next` at offset `d`: the arc up to
+/// the first crossing (None where it has shrunk to nothing) and the crossing point. Used when
+/// the element after an outer corner is too short: the tool leaves the circle where it meets
+/// the equidistant of the element after.
+fn cut_transition(arc: &Elem, next: &Elem, d: f64) -> Option<(Option<Elem>, P2)> {
+    let Elem::Arc { c, r, a0, sweep } = *arc else { return None };
+    let eq = offset_elem(next, d, None, None, 0).ok()?;
+    let hits = match eq {
+        Elem::Line { s, e } => line_circle(s, e, c, r),
+        Elem::Arc { c: c2, r: r2, .. } => circle_circle(c, r, c2, r2),
+    };
+    let sg = sweep.signum();
+    let (w, x) = hits
+        .into_iter()
+        .map(|x| (((x.1 - c.1).atan2(x.0 - c.0) - a0) * sg, x))
+        .map(|(w, x)| (w.rem_euclid(std::f64::consts::TAU), x))
+        .filter(|(w, x)| {
+            // On the arc, and not beyond the end of the next equidistant.
+            *w <= sweep.abs() + 1e-9
+                && match eq {
+                    Elem::Line { s, e } => (x.0 - e.0) * (s.0 - e.0) + (x.1 - e.1) * (s.1 - e.1) >= -1e-9,
+                    Elem::Arc { .. } => true,
+                }
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))?;
+    Some(((w > 1e-12).then_some(Elem::Arc { c, r, a0, sweep: sg * w }), x))
+}
+
 /// The element offset by `d`, with its start and end optionally moved to given points on the
 /// equidistant (corners decide them).
 pub(in crate::interp) fn offset_elem(
@@ -922,9 +1189,23 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
     let outer = cross * d < 0.0;
     let oa = offset_elem(a, d, None, None, line)?;
     let ob = offset_elem(b, d, None, None, line)?;
+    if outer && let Some(x) = crossing(&oa, &ob, b) {
+        // An outer corner whose equidistants cross before it (an arc curving back towards
+        // the other element): going round the corner would cut into the other element, so
+        // the tool stops at the crossing as at an inner corner.
+        clear_at(a, b, d, x, line)?;
+        return Ok(Some((x, None, x)));
+    }
     if outer {
-        if let (CornerMode::Intersection, Elem::Line { s: s1, e: e1 }, Elem::Line { s: s2, e: e2 }) = (mode, oa, ob)
-            && let Some(x) = line_line(s1, e1, s2, e2)
+        // G451: the intersection of the equidistants nearest the corner (lines and arcs), as
+        // long as the change of direction stays below MD20210 and the equidistants meet ahead
+        // of the first one's end and behind the second one's start.
+        let turn = cross.abs().atan2(ta.0 * tb.0 + ta.1 * tb.1);
+        if mode == CornerMode::Intersection
+            && turn < comp.corner_limit
+            && let Some(x) = intersection(&oa, &ob, p)
+            && (x.0 - q1.0) * ta.0 + (x.1 - q1.1) * ta.1 >= -1e-9
+            && (x.0 - q2.0) * tb.0 + (x.1 - q2.1) * tb.1 <= 1e-9
         {
             return Ok(Some((x, None, x)));
         }
@@ -950,25 +1231,125 @@ fn corner(a: &Elem, b: &Elem, d: f64, comp: &Compensation, line: u32) -> Result<
         }
         return Ok(Some((q1, Some(Elem::Arc { c: p, r: d.abs(), a0, sweep }), q2)));
     }
-    // Inner corner: cut both equidistants at their intersection nearest the corner.
-    let x = intersection(&oa, &ob, p)
+    // Inner corner: cut both equidistants where they first cross along the first one (with
+    // arcs they may cross twice: beyond the first crossing the tool would be nearer to the
+    // second element than the radius), else at their intersection nearest the corner.
+    let x = crossing(&oa, &ob, b)
+        .or_else(|| intersection(&oa, &ob, p))
         .ok_or_else(|| Alarm::collision(line, "the equidistants of an inner corner do not meet"))?;
-    // The cut must lie on both equidistants, not beyond their other ends.
-    let behind_a = match oa {
-        Elem::Line { s, e } => ((x.0 - s.0) * (e.0 - s.0) + (x.1 - s.1) * (e.1 - s.1)) < -1e-9,
-        Elem::Arc { .. } => false,
-    };
+    // The cut must not lie beyond the second equidistant's end (whether the first one is long
+    // enough is the caller's question: its start may have moved).
     let beyond_b = match ob {
         Elem::Line { s, e } => ((x.0 - e.0) * (s.0 - e.0) + (x.1 - e.1) * (s.1 - e.1)) < -1e-9,
         Elem::Arc { .. } => false,
     };
-    if behind_a {
-        return Err(bottleneck(line));
-    }
     if beyond_b {
         return Ok(None);
     }
+    clear_at(a, b, d, x, line)?;
     Ok(Some((x, None, x)))
+}
+
+/// Alarm 10751 where a corner cut at `x` would still bring the tool nearer than the radius
+/// to one of the two elements: the first equidistant up to `x` to the second contour element,
+/// or the second equidistant from `x` to the first (equidistants of arcs that cross twice
+/// with the tool too large for the pocket between them).
+fn clear_at(a: &Elem, b: &Elem, d: f64, x: P2, line: u32) -> Result<(), Alarm> {
+    let r = d.abs() - 1e-7;
+    let clear = |piece: Result<Elem, Alarm>, other: &Elem| {
+        piece.is_ok_and(|e| (0..=16).all(|k| contour_distance(point_at(&e, f64::from(k) / 16.0), other) >= r))
+    };
+    let before = offset_elem(a, d, None, Some(x), line);
+    let after = offset_elem(b, d, Some(x), None, line);
+    let reversed =
+        |piece: &Result<Elem, Alarm>, e: &Elem| piece.as_ref().is_ok_and(|p| !forward(e, elem_start(p), elem_end(p)));
+    if reversed(&before, a) || reversed(&after, b) || (clear(before, b) && clear(after, a)) {
+        // A reversed piece is the look-ahead's business (the element is omitted).
+        return Ok(());
+    }
+    Err(bottleneck(line))
+}
+
+/// The point the share `t` (0..1) along an element.
+fn point_at(e: &Elem, t: f64) -> P2 {
+    match *e {
+        Elem::Line { s, e } => (s.0 + t * (e.0 - s.0), s.1 + t * (e.1 - s.1)),
+        Elem::Arc { c, r, a0, sweep } => (c.0 + r * (a0 + t * sweep).cos(), c.1 + r * (a0 + t * sweep).sin()),
+    }
+}
+
+/// Distance of `x` from a contour element (segment or arc with its end points).
+fn contour_distance(x: P2, e: &Elem) -> f64 {
+    let ends = dist(x, elem_start(e)).min(dist(x, elem_end(e)));
+    match *e {
+        Elem::Line { s, e } => {
+            let t = share(&Elem::Line { s, e }, x);
+            if (0.0..=1.0).contains(&t) { dist(x, point_at(&Elem::Line { s, e }, t)) } else { ends }
+        }
+        Elem::Arc { c, r, .. } => {
+            let t = share(e, x);
+            if (0.0..=1.0).contains(&t) { (dist(x, c) - r).abs().min(ends) } else { ends }
+        }
+    }
+}
+
+/// Where the equidistants `a` and `b` cross before the end of `a` and after the start of `b`
+/// (the first along `a`); None when they meet only on their extensions.
+fn crossing(a: &Elem, b: &Elem, b_contour: &Elem) -> Option<P2> {
+    let points: Vec<P2> = match (*a, *b) {
+        (Elem::Line { .. }, Elem::Line { .. }) => return None,
+        (Elem::Line { s, e }, Elem::Arc { c, r, .. }) | (Elem::Arc { c, r, .. }, Elem::Line { s, e }) => {
+            line_circle(s, e, c, r)
+        }
+        (Elem::Arc { c: c1, r: r1, .. }, Elem::Arc { c: c2, r: r2, .. }) => circle_circle(c1, r1, c2, r2),
+    };
+    points
+        .into_iter()
+        .filter(|x| {
+            let (ta, tb) = (share(a, *x), share(b, *x));
+            ta < 1.0 - 1e-6 && tb > 1e-6 && tb <= 1.0 + 1e-9 && enters(a, b, b_contour, *x)
+        })
+        // The first crossing along `a`: beyond it the tool would be nearer to `b` than the
+        // radius. One behind the tool's start on `a` makes `a` too short (the caller's check).
+        .min_by(|x, y| share(a, *x).total_cmp(&share(a, *y)))
+}
+
+/// Whether `a` (an equidistant) passes `x` into the band between `b`'s equidistant and its
+/// contour `b_contour`, where the tool would be nearer to that contour than the radius.
+fn enters(a: &Elem, b: &Elem, b_contour: &Elem, x: P2) -> bool {
+    let dir = match *a {
+        Elem::Line { s, e } => (e.0 - s.0, e.1 - s.1),
+        Elem::Arc { c, sweep, .. } => {
+            let sg = sweep.signum();
+            (-sg * (x.1 - c.1), sg * (x.0 - c.0))
+        }
+    };
+    let band = match (*b, *b_contour) {
+        (Elem::Line { s, .. }, Elem::Line { s: cs, .. }) => (cs.0 - s.0, cs.1 - s.1),
+        (Elem::Arc { c, r, .. }, Elem::Arc { r: r0, .. }) => {
+            let out = (x.0 - c.0, x.1 - c.1);
+            if r > r0 { (-out.0, -out.1) } else { out }
+        }
+        _ => return false,
+    };
+    dir.0 * band.0 + dir.1 * band.1 > 1e-12
+}
+
+/// How far along an element (0 at its start, 1 at its end) the point `x` on it lies.
+fn share(e: &Elem, x: P2) -> f64 {
+    match *e {
+        Elem::Line { s, e } => {
+            let d = (e.0 - s.0, e.1 - s.1);
+            ((x.0 - s.0) * d.0 + (x.1 - s.1) * d.1) / (d.0 * d.0 + d.1 * d.1)
+        }
+        Elem::Arc { c, a0, sweep, .. } => {
+            let tau = std::f64::consts::TAU;
+            let w = (((x.1 - c.1).atan2(x.0 - c.0) - a0) * sweep.signum()).rem_euclid(tau);
+            // Angles in the gap after the end, past its middle, lie behind the start.
+            let w = if w > sweep.abs() + (tau - sweep.abs()) / 2.0 { w - tau } else { w };
+            w / sweep.abs().max(1e-12)
+        }
+    }
 }
 
 /// The end of the first equidistant, the transition (if any) and the start of the next.
@@ -1005,7 +1386,11 @@ pub(in crate::interp) fn line_circle(s: P2, e: P2, c: P2, r: f64) -> Vec<P2> {
     let d = (e.0 - s.0, e.1 - s.1);
     let f = (s.0 - c.0, s.1 - c.1);
     let (a, b, cc) = (d.0 * d.0 + d.1 * d.1, 2.0 * (f.0 * d.0 + f.1 * d.1), f.0 * f.0 + f.1 * f.1 - r * r);
-    let disc = b * b - 4.0 * a * cc;
+    let mut disc = b * b - 4.0 * a * cc;
+    if disc < 0.0 && disc > -1e-12 * (b * b).max(a) {
+        // A tangent line touches the circle (rounding must not lose the point).
+        disc = 0.0;
+    }
     if disc < 0.0 || a < 1e-18 {
         return Vec::new();
     }
