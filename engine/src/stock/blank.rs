@@ -6,7 +6,7 @@
 //! - `type`: `"BOX"` or `"RECTANGLE"` (cuboid between corners X0/Y0 = v1/v2 and X1/Y1 = v3/v4),
 //!   `"CYLINDER"` (outer diameter XA = v1), `"PIPE"` or `"TUBE"` (XA = v1, XI = v2), `"POLYGON"`
 //!   (v1 edges, v2 width across flats, one flat parallel to X, centred on X0 Y0); `"NPRT"`
-//!   or an empty type deletes the blank. Other types are refused (alarm 14?? value range).
+//!   or an empty type deletes the blank. Other types are refused (alarm 12560, value out of range).
 //! - `flags`: bit 4 X values absolute, bit 5 Y values absolute, bit 6 Z1 absolute, bit 7 ZB
 //!   absolute (Operate writes 112, 192 or 240). A clear bit makes the value incremental: Z1
 //!   from Z0 (the bottom is Z0 + Z1), X1/Y1 from X0/Y0, and XI of a tube the wall thickness.
