@@ -129,7 +129,7 @@ pub(super) struct StockRun {
     segment: Option<Segment>,
     warnings: std::collections::VecDeque<StockWarning>,
     warnings_total: u64,
-    /// The line each check was last raised for (once per block and kind).
+    /// The line each check was last raised for (once per block and kind; JOG is line 0).
     reported: [u32; 3],
     skipped: u64,
 }
@@ -144,7 +144,7 @@ impl StockRun {
             segment: None,
             warnings: Default::default(),
             warnings_total: 0,
-            reported: [0; 3],
+            reported: [u32::MAX; 3],
             skipped: 0,
         }
     }
@@ -351,7 +351,7 @@ impl Channel {
         }
         for (i, check) in found.into_iter().enumerate() {
             let Some(check) = check else { continue };
-            if run.reported[i] == key.line && key.line != 0 {
+            if run.reported[i] == key.line {
                 continue;
             }
             run.reported[i] = key.line;
