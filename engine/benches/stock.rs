@@ -28,12 +28,33 @@ fn program(parts: usize) -> String {
     for p in 0..parts {
         let (ox, oy) = ((p % 4) as f64 * 50.0, (p / 4 % 2) as f64 * 50.0);
         out.push_str(&format!("G0 X{} Y{} Z2\nG1 Z0 F400\n", ox + 21.0, oy + 20.0));
-        out.push_str(&format!("G3 X{} Y{} Z-1.5 I-1 J0 F600\nG3 X{} Y{} Z-3 I1 J0\n", ox + 19.0, oy + 20.0, ox + 21.0, oy + 20.0));
+        out.push_str(&format!(
+            "G3 X{} Y{} Z-1.5 I-1 J0 F600\nG3 X{} Y{} Z-3 I1 J0\n",
+            ox + 19.0,
+            oy + 20.0,
+            ox + 21.0,
+            oy + 20.0
+        ));
         for r in 2..=8 {
             let r = f64::from(r);
-            out.push_str(&format!("G1 X{} F1000\nG3 X{} I{} J0\nG3 X{} I{} J0\n", ox + 20.0 + r, ox + 20.0 - r, -r, ox + 20.0 + r, r));
+            out.push_str(&format!(
+                "G1 X{} F1000\nG3 X{} I{} J0\nG3 X{} I{} J0\n",
+                ox + 20.0 + r,
+                ox + 20.0 - r,
+                -r,
+                ox + 20.0 + r,
+                r
+            ));
         }
-        out.push_str(&format!("G0 Z2\nG0 X{} Y{}\nG1 Z-2 F300\nG1 X{} F1200\nY{}\nX{}\nY{}\nG0 Z5\n", ox + 2.0, oy + 2.0, ox + 45.0, oy + 45.0, ox + 2.0, oy + 2.0));
+        out.push_str(&format!(
+            "G0 Z2\nG0 X{} Y{}\nG1 Z-2 F300\nG1 X{} F1200\nY{}\nX{}\nY{}\nG0 Z5\n",
+            ox + 2.0,
+            oy + 2.0,
+            ox + 45.0,
+            oy + 45.0,
+            ox + 2.0,
+            oy + 2.0
+        ));
     }
     out.push_str("M30\n");
     out

@@ -29,8 +29,14 @@ fn a_faced_tube_is_written_as_stl_and_its_removed_ring_reported() {
     let path = dir.join("face.mpf");
     std::fs::write(&path, program).unwrap();
     let stl = dir.join("part.stl");
-    let (code, r, err) =
-        simulate(&["--machine", "lathe-2axis", "--stock-out", stl.to_str().unwrap(), "--compact", path.to_str().unwrap()]);
+    let (code, r, err) = simulate(&[
+        "--machine",
+        "lathe-2axis",
+        "--stock-out",
+        stl.to_str().unwrap(),
+        "--compact",
+        path.to_str().unwrap(),
+    ]);
     assert_eq!(code, 0, "{r} {err}");
     let removed = r["state"]["stock"]["removed"].as_f64().unwrap();
     assert!((removed - std::f64::consts::PI * 400.0).abs() < 1e-6, "{removed}");
@@ -47,7 +53,8 @@ fn stock_out_without_a_blank_is_a_usage_error() {
     let path = dir.join("p.mpf");
     std::fs::write(&path, "G0 X10\nM30\n").unwrap();
     let stl = dir.join("part.stl");
-    let (code, _, err) = simulate(&["--machine", "mill-3axis", "--stock-out", stl.to_str().unwrap(), path.to_str().unwrap()]);
+    let (code, _, err) =
+        simulate(&["--machine", "mill-3axis", "--stock-out", stl.to_str().unwrap(), path.to_str().unwrap()]);
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("WORKPIECE"), "{err}");
 }

@@ -31,14 +31,18 @@ async fn a_rapid_through_a_blank_put_over_rest_is_reported_and_the_stock_downloa
 
     // Line 3: G0 at Z−3 through the block: a slot 10 wide, 60 long, 3 deep.
     let program = "S3000 M3\nG0 X-20 Y15 Z-3\nG0 X60\nG0 Z50\nM30";
-    let state = server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    let state =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
     assert_eq!(state.body["status"], "idle", "{}", state.body);
     let report = server.get(&format!("/sessions/{id}/stock")).await.body;
     assert_eq!(report["stock"]["removed"], 1800.0, "{report}");
     // Raised once for the block (at its first segment that cut), with that segment's depth.
     let warnings = report["warnings"].as_array().unwrap();
     assert_eq!(warnings.len(), 1, "{report}");
-    assert_eq!((&warnings[0]["check"], &warnings[0]["line"], &warnings[0]["depth"]), (&json!("rapid_into_stock"), &json!(3), &json!(3.0)));
+    assert_eq!(
+        (&warnings[0]["check"], &warnings[0]["line"], &warnings[0]["depth"]),
+        (&json!("rapid_into_stock"), &json!(3), &json!(3.0))
+    );
     let state = server.get(&format!("/sessions/{id}/state")).await.body;
     assert_eq!(state["stock"]["last_warning"]["line"], 3, "{state}");
 
@@ -62,7 +66,8 @@ async fn a_bad_blank_or_resolution_is_refused_naming_it() {
     assert!(error_message(&reply, StatusCode::BAD_REQUEST).contains("CYLINDER"), "{}", reply.body);
     let reply = server.put(&format!("/sessions/{id}/stock"), json!({"resolution": 0.001})).await;
     assert!(error_message(&reply, StatusCode::BAD_REQUEST).contains("resolution"), "{}", reply.body);
-    let huge = json!({"resolution": 0.01, "blank": {"shape": "cylinder", "top": 0, "bottom": -1000000, "diameter": 50}});
+    let huge =
+        json!({"resolution": 0.01, "blank": {"shape": "cylinder", "top": 0, "bottom": -1000000, "diameter": 50}});
     let reply = server.put(&format!("/sessions/{id}/stock"), huge).await;
     assert!(error_message(&reply, StatusCode::BAD_REQUEST).contains("slabs"), "{}", reply.body);
     // Nothing changed: the resolution is still the default.

@@ -232,7 +232,12 @@ impl Channel {
     }
 
     /// A `WORKPIECE(..)` reached the main run with the offsets of its block.
-    pub(super) fn execute_workpiece(&mut self, request: crate::stock::blank::Request, frame: &crate::interp::Frame, line: u32) {
+    pub(super) fn execute_workpiece(
+        &mut self,
+        request: crate::stock::blank::Request,
+        frame: &crate::interp::Frame,
+        line: u32,
+    ) {
         match request {
             crate::stock::blank::Request::Delete => self.stock = None,
             crate::stock::blank::Request::Define(blank) => {
@@ -246,10 +251,8 @@ impl Channel {
     /// Builds the stock of `blank` in the WCS of `frame`.
     fn place_stock(&mut self, blank: &Blank, frame: &crate::interp::Frame) -> Result<(), String> {
         let geo = self.cfg.geo_axes;
-        let placement = Placement {
-            lin: frame.lin,
-            trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])),
-        };
+        let placement =
+            Placement { lin: frame.lin, trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])) };
         // A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
         let turning = geo[1].is_none();
         let stock = Stock::new(blank, &placement, turning, self.stock_options.resolution)?;

@@ -22,9 +22,8 @@ pub(super) fn read(args: &[Expr], ctx: &Ctx, line: u32) -> Result<Request, Alarm
         Some(e) => eval(e, ctx, line)?.as_text().to_ascii_uppercase(),
         None => String::new(),
     };
-    let number = |e: &Expr| -> Result<f64, Alarm> {
-        eval(e, ctx, line)?.as_f64().map_err(|e| Alarm::type_error(line, &e.0))
-    };
+    let number =
+        |e: &Expr| -> Result<f64, Alarm> { eval(e, ctx, line)?.as_f64().map_err(|e| Alarm::type_error(line, &e.0)) };
     let flags = match arg(4) {
         Some(e) => number(e)?,
         None => 0.0,

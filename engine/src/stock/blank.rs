@@ -120,7 +120,7 @@ impl Request {
 impl Blank {
     /// `Err` for a blank without volume or with dimensions that contradict each other.
     pub fn check(&self) -> Result<(), String> {
-        if !(self.top > self.bottom) {
+        if self.top.partial_cmp(&self.bottom) != Some(std::cmp::Ordering::Greater) {
             return Err(format!("blank bottom Z{} is not below its top Z{}", self.bottom, self.top));
         }
         let ok = match self.shape {
@@ -205,14 +205,24 @@ mod tests {
     fn a_box_with_absolute_corners_spans_them() {
         // WORKPIECE(,"",,"BOX",112,0,-50,-80,0,0,100,100): X/Y/Z absolute.
         let r = Request::from_workpiece("BOX", 112, &numbers(&[0.0, -50.0, -80.0, 0.0, 0.0, 100.0, 100.0])).unwrap();
-        assert_eq!(r, Request::Define(Blank { shape: Shape::Box { x: [0.0, 100.0], y: [0.0, 100.0] }, top: 0.0, bottom: -50.0 }));
+        assert_eq!(
+            r,
+            Request::Define(Blank { shape: Shape::Box { x: [0.0, 100.0], y: [0.0, 100.0] }, top: 0.0, bottom: -50.0 })
+        );
     }
 
     #[test]
     fn incremental_values_count_from_the_first_corner_and_the_top() {
         // WORKPIECE(,"",,"BOX",0,2,-30,-80,-2,-2,184,170): 184 x 170 from X-2 Y-2, 30 deep from Z2.
         let r = Request::from_workpiece("BOX", 0, &numbers(&[2.0, -30.0, -80.0, -2.0, -2.0, 184.0, 170.0])).unwrap();
-        assert_eq!(r, Request::Define(Blank { shape: Shape::Box { x: [-2.0, 182.0], y: [-2.0, 168.0] }, top: 2.0, bottom: -28.0 }));
+        assert_eq!(
+            r,
+            Request::Define(Blank {
+                shape: Shape::Box { x: [-2.0, 182.0], y: [-2.0, 168.0] },
+                top: 2.0,
+                bottom: -28.0
+            })
+        );
     }
 
     #[test]
@@ -225,15 +235,23 @@ mod tests {
     #[test]
     fn a_tube_takes_the_wall_thickness_when_x_is_incremental() {
         let r = Request::from_workpiece("PIPE", 64, &numbers(&[0.0, -40.0, 0.0, 60.0, 5.0])).unwrap();
-        assert_eq!(r, Request::Define(Blank { shape: Shape::Tube { outer: 60.0, inner: 50.0 }, top: 0.0, bottom: -40.0 }));
+        assert_eq!(
+            r,
+            Request::Define(Blank { shape: Shape::Tube { outer: 60.0, inner: 50.0 }, top: 0.0, bottom: -40.0 })
+        );
         let r = Request::from_workpiece("PIPE", 64 | 16, &numbers(&[0.0, -40.0, 0.0, 60.0, 40.0])).unwrap();
-        assert_eq!(r, Request::Define(Blank { shape: Shape::Tube { outer: 60.0, inner: 40.0 }, top: 0.0, bottom: -40.0 }));
+        assert_eq!(
+            r,
+            Request::Define(Blank { shape: Shape::Tube { outer: 60.0, inner: 40.0 }, top: 0.0, bottom: -40.0 })
+        );
     }
 
     #[test]
     fn bad_blanks_are_refused_with_a_reason() {
         assert!(Request::from_workpiece("SPHERE", 0, &numbers(&[0.0, -1.0])).unwrap_err().contains("SPHERE"));
-        assert!(Request::from_workpiece("CYLINDER", 64, &numbers(&[0.0, 10.0, 0.0, 20.0])).unwrap_err().contains("below"));
+        assert!(
+            Request::from_workpiece("CYLINDER", 64, &numbers(&[0.0, 10.0, 0.0, 20.0])).unwrap_err().contains("below")
+        );
         assert!(Request::from_workpiece("CYLINDER", 64, &[Some(0.0), Some(-10.0)]).unwrap_err().contains("XA"));
         assert_eq!(Request::from_workpiece("NPRT", 0, &[]), Ok(Request::Delete));
     }

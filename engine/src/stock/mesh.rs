@@ -173,10 +173,16 @@ pub fn profile_stl(p: &Profile, segments: usize) -> Vec<u8> {
             for w in ring.windows(2) {
                 let ((c0, s0), (c1, s1)) = (w[0], w[1]);
                 let nrm = [(c0 + c1) / 2.0, (s0 + s1) / 2.0, 0.0];
-                stl.quad(nrm, [[ro * c0, ro * s0, z], [ro * c1, ro * s1, z], [ro * c1, ro * s1, z1], [ro * c0, ro * s0, z1]]);
+                stl.quad(
+                    nrm,
+                    [[ro * c0, ro * s0, z], [ro * c1, ro * s1, z], [ro * c1, ro * s1, z1], [ro * c0, ro * s0, z1]],
+                );
                 if ri > 0.0 {
                     let inward = [-nrm[0], -nrm[1], 0.0];
-                    stl.quad(inward, [[ri * c1, ri * s1, z], [ri * c0, ri * s0, z], [ri * c0, ri * s0, z1], [ri * c1, ri * s1, z1]]);
+                    stl.quad(
+                        inward,
+                        [[ri * c1, ri * s1, z], [ri * c0, ri * s0, z], [ri * c0, ri * s0, z1], [ri * c1, ri * s1, z1]],
+                    );
                 }
             }
         }

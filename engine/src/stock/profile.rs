@@ -87,13 +87,13 @@ impl Profile {
     }
 
     /// The slabs whose centres lie in `lo..=hi`.
-    fn slabs(&self, lo: f64, hi: f64) -> std::ops::RangeInclusive<usize> {
+    fn slabs(&self, lo: f64, hi: f64) -> std::ops::Range<usize> {
         let first = ((lo - self.z0) / self.res - 0.5).ceil().max(0.0) as usize;
         let last = ((hi - self.z0) / self.res - 0.5).floor();
         if last < 0.0 {
-            return 1..=0;
+            return 0..0;
         }
-        first..=(last as usize).min(self.outer.len() - 1)
+        first..(last as usize + 1).min(self.outer.len())
     }
 
     /// The nose circle (radius `r`) with its centre going from `s0` to `s1` (Z, X).

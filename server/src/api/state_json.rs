@@ -302,7 +302,12 @@ fn write_tail(out: &mut String, s: &Snapshot) {
 fn write_stock(out: &mut String, s: &StockInfo) {
     out.push_str(",\"stock\":{\"model\":");
     write_str(out, if s.turning { "turning" } else { "milling" });
-    for (key, v) in [("resolution", s.resolution), ("initial_volume", s.initial_volume), ("volume", s.volume), ("removed", s.removed)] {
+    for (key, v) in [
+        ("resolution", s.resolution),
+        ("initial_volume", s.initial_volume),
+        ("volume", s.volume),
+        ("removed", s.removed),
+    ] {
         out.push_str(",\"");
         out.push_str(key);
         out.push_str("\":");

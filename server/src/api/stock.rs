@@ -129,9 +129,10 @@ impl BlankSpec {
                 Shape::Box { x: [x[0].min(x[1]), x[0].max(x[1])], y: [y[0].min(y[1]), y[0].max(y[1])] }
             }
             "cylinder" => Shape::Cylinder { diameter: need(self.diameter, "diameter")? },
-            "tube" => {
-                Shape::Tube { outer: need(self.diameter, "diameter")?, inner: need(self.inner_diameter, "inner_diameter")? }
-            }
+            "tube" => Shape::Tube {
+                outer: need(self.diameter, "diameter")?,
+                inner: need(self.inner_diameter, "inner_diameter")?,
+            },
             "polygon" => {
                 let edges = self.edges.filter(|n| (3..=64).contains(n)).ok_or("blank `polygon` needs `edges` 3..64")?;
                 Shape::Polygon { edges, across_flats: need(self.across_flats, "across_flats")? }
@@ -226,7 +227,7 @@ pub async fn put_stock(
                 resolution: change.resolution.unwrap_or(before.resolution),
                 depth_limit: match change.depth_limit {
                     None => before.depth_limit,
-                    Some(d) if d == 0.0 => None,
+                    Some(0.0) => None,
                     Some(d) => Some(d),
                 },
             };
@@ -255,7 +256,10 @@ pub async fn put_stock(
         (status = 404, description = "No such session", body = ErrorBody),
     )
 )]
-pub async fn delete_stock(State(state): State<AppState>, Path(id): Path<String>) -> Result<Json<StockReport>, ApiError> {
+pub async fn delete_stock(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+) -> Result<Json<StockReport>, ApiError> {
     let session = find_session(&state, &id)?;
     let r = session
         .with_channel(|ch| {
@@ -281,7 +285,8 @@ pub async fn delete_stock(State(state): State<AppState>, Path(id): Path<String>)
 pub async fn get_stock_stl(State(state): State<AppState>, Path(id): Path<String>) -> Result<Response, ApiError> {
     let session = find_session(&state, &id)?;
     let stl = session.with_channel(|ch| ch.stock_stl()).await.map_err(|e| ApiError::from_session(&id, e))?;
-    let stl = stl.ok_or_else(|| ApiError::NotFound(format!("session `{id}` has no blank (WORKPIECE or PUT .../stock)")))?;
+    let stl =
+        stl.ok_or_else(|| ApiError::NotFound(format!("session `{id}` has no blank (WORKPIECE or PUT .../stock)")))?;
     Ok(([(CONTENT_TYPE, "model/stl")], stl).into_response())
 }
 

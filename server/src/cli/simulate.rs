@@ -309,10 +309,8 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         None => UsageError(e.message),
     })?;
     channel.optional_stop = args.optional_stop;
-    let options = nctwin_engine::channel::StockOptions {
-        resolution: args.stock_resolution,
-        depth_limit: args.depth_limit,
-    };
+    let options =
+        nctwin_engine::channel::StockOptions { resolution: args.stock_resolution, depth_limit: args.depth_limit };
     channel.set_stock_options(options).map_err(|e| UsageError(format!("--stock-resolution/--depth-limit: {e}")))?;
     let mut syntax_errors = Vec::new();
     let mut notes = warnings
@@ -376,7 +374,8 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         })?;
         std::fs::write(path, stl).map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
     }
-    let stock_warnings = channel.stock_warnings().iter().map(nctwin_server::api::stock::StockWarningInfo::from).collect();
+    let stock_warnings =
+        channel.stock_warnings().iter().map(nctwin_server::api::stock::StockWarningInfo::from).collect();
     let (ipo_cycles, simulated_time_s, state) = if loaded {
         (channel.ticks(), channel.time(), dto::State::from(&channel.snapshot()))
     } else {
