@@ -178,3 +178,48 @@ fn without_a_blank_nothing_is_kept() {
     }
     assert!(ch.stock_info().is_none() && ch.snapshot().stock.is_none());
 }
+
+#[test]
+fn a_blank_defined_under_a_rotation_lies_turned_in_the_bcs() {
+    // Under ROT Z90 the WCS box X0..40, Y0..10 lies at BCS X−10..0, Y0..40. With the frame
+    // cleared, a slot along Y at BCS X−5 (R5: X−10..0) takes the whole 10 mm width over the
+    // 40 mm, 2 deep: 800 mm³. Without the rotation the box would start at X0, beside the slot.
+    let program = "G17 G90 G94\nT1 D1\nG0 X-30 Y15 Z50\nROT Z90\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,0,0,40,10)\nROT\nS3000 M3\nG0 X-5 Y-20 Z-2\nG1 Y60 F500\nG0 Z50\nM30";
+    let (info, _, _) = mill(program);
+    assert!((info.initial_volume - 8000.0).abs() < 1e-6, "{info:?}");
+    assert!((info.removed - 800.0).abs() < 1e-6, "{info:?}");
+    let (info, _, _) = mill(&program.replace("ROT Z90\n", ""));
+    assert_eq!(info.removed, 0.0);
+}
+
+#[test]
+fn the_same_program_cuts_the_same_stock_bit_for_bit() {
+    let program = format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-3 F200\nG2 X25 Y15 CR=12 F900\nG3 X5 Y5 CR=15\nG0 Z10\nM30");
+    let (_, _, mut a) = mill(&program);
+    let (_, _, mut b) = mill(&program);
+    assert_eq!(a.stock_stl().unwrap(), b.stock_stl().unwrap());
+}
+
+#[test]
+fn a_block_search_past_the_blank_keeps_it_uncut() {
+    // The search to line 9 passes the blank's line 4 and the cut of line 7: the blank is
+    // defined, the skipped cut does not run; line 11 then slots 2 deep: 1200 mm³.
+    let program = format!(
+        "{BLOCK}S3000 M3\nG0 X-20 Y0 Z-4\nG1 X60 F500\nG0 Z50\nG0 X-20 Y15\nG0 Z-2\nG1 X60\nG0 Z50\nM30"
+    );
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    // The axes high above the blank first, so the search's approach passes over it.
+    ch.mda("T1 D1\nG0 Z150").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    ch.set_mode(nctwin_engine::Mode::Auto).unwrap();
+    ch.block_search(Some(&program), 9).unwrap();
+    ch.start().unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let info = ch.stock_info().expect("the blank of the skipped line 4");
+    assert!((info.removed - 1200.0).abs() < 1e-6, "{info:?}");
+}
