@@ -194,7 +194,8 @@ fn a_blank_defined_under_a_rotation_lies_turned_in_the_bcs() {
 
 #[test]
 fn the_same_program_cuts_the_same_stock_bit_for_bit() {
-    let program = format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-3 F200\nG2 X25 Y15 CR=12 F900\nG3 X5 Y5 CR=15\nG0 Z10\nM30");
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-3 F200\nG2 X25 Y15 CR=12 F900\nG3 X5 Y5 CR=15\nG0 Z10\nM30");
     let (_, _, mut a) = mill(&program);
     let (_, _, mut b) = mill(&program);
     assert_eq!(a.stock_stl().unwrap(), b.stock_stl().unwrap());
@@ -204,9 +205,8 @@ fn the_same_program_cuts_the_same_stock_bit_for_bit() {
 fn a_block_search_past_the_blank_keeps_it_uncut() {
     // The search to line 9 passes the blank's line 4 and the cut of line 7: the blank is
     // defined, the skipped cut does not run; line 11 then slots 2 deep: 1200 mm³.
-    let program = format!(
-        "{BLOCK}S3000 M3\nG0 X-20 Y0 Z-4\nG1 X60 F500\nG0 Z50\nG0 X-20 Y15\nG0 Z-2\nG1 X60\nG0 Z50\nM30"
-    );
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X-20 Y0 Z-4\nG1 X60 F500\nG0 Z50\nG0 X-20 Y15\nG0 Z-2\nG1 X60\nG0 Z50\nM30");
     let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
     // The axes high above the blank first, so the search's approach passes over it.
     ch.mda("T1 D1\nG0 Z150").unwrap();

@@ -64,6 +64,8 @@ pub struct StockWarning {
     pub volume: f64,
     /// Its depth of cut, mm.
     pub depth: f64,
+    /// Where the segment began that cut (tool tip, BCS, mm): the place to mark.
+    pub position: [f64; 3],
 }
 
 /// The settings of material removal a session chooses.
@@ -358,7 +360,7 @@ impl Channel {
                 continue;
             }
             run.reported[i] = key.line;
-            let w = StockWarning { check, line: key.line, volume: removal.volume, depth: removal.depth };
+            let w = StockWarning { check, line: key.line, volume: removal.volume, depth: removal.depth, position: a };
             if run.warnings.len() == KEEP_WARNINGS {
                 run.warnings.pop_front();
             }

@@ -327,7 +327,14 @@ fn write_stock(out: &mut String, s: &StockInfo) {
             write_f64(out, w.volume);
             out.push_str(",\"depth\":");
             write_f64(out, w.depth);
-            out.push('}');
+            out.push_str(",\"position\":[");
+            for (i, c) in w.position.iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                write_f64(out, *c);
+            }
+            out.push_str("]}");
         }
     }
     out.push('}');

@@ -34,11 +34,19 @@ pub struct StockWarningInfo {
     pub volume: f64,
     /// Its depth of cut, mm.
     pub depth: f64,
+    /// Where the segment that cut began: the tool tip in the BCS, mm (X, Y, Z).
+    pub position: [f64; 3],
 }
 
 impl From<&StockWarning> for StockWarningInfo {
     fn from(w: &StockWarning) -> StockWarningInfo {
-        StockWarningInfo { check: w.check.as_str().into(), line: w.line, volume: w.volume, depth: w.depth }
+        StockWarningInfo {
+            check: w.check.as_str().into(),
+            line: w.line,
+            volume: w.volume,
+            depth: w.depth,
+            position: w.position,
+        }
     }
 }
 

@@ -70,6 +70,8 @@ export interface StockWarning {
   line: number;
   volume: number;
   depth: number;
+  /** Where the segment that cut began (tool tip, BCS mm). */
+  position: [number, number, number];
 }
 
 /** The state's stock summary (GET .../stock for the list of checks). */

@@ -4,7 +4,7 @@
 // workpiece) and the programmed path (POST .../preview), orbit and zoom.
 
 import * as THREE from "three";
-import type { AxisValues, State } from "../api/types";
+import type { AxisValues, State, StockWarning } from "../api/types";
 import { byId, setText } from "../core/dom";
 import { NcData } from "../core/ncdata";
 import type { SessionController, SessionInfo } from "../core/session";
@@ -366,7 +366,7 @@ export class MachineView {
     this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
     this.programmed.line.renderOrder = 2;
     this.toolpath.line.renderOrder = 3;
-    this.model.part.add(this.triad, this.toolpath.line, this.programmed.line, this.stock.mesh);
+    this.model.part.add(this.triad, this.toolpath.line, this.programmed.line, this.stock.group);
     this.model.frame.add(this.tool.mesh);
     this.content.add(this.model.root);
     this.model.update({}, false);
@@ -418,6 +418,9 @@ export function mountMachineView(session: SessionController): MachineView {
   session.on("sample", (st) => {
     view.show(st);
     view.stock.show(st);
+  });
+  session.on("event", (ev) => {
+    if (ev.event === "stock" && ev.warning) view.stock.mark(ev.warning as StockWarning);
   });
   // New machine data (travel, tools): rebuild the model, keep the toolpath.
   session.on("machine", (info) => {
