@@ -10,10 +10,12 @@
 //!   manuals at hand keep no tip angle in the edge data, so this is a decision).
 //! - Turning tools (500..599): the nose circle of radius DP6 + DP15, its centre S placed from
 //!   the theoretical tip P by the cutting edge position DP2 (`P − S = r·(sx, sx)` in the plane's
-//!   abscissa Z and ordinate X, the table of `interp/compensation/cutting_edge.rs`).
+//!   abscissa Z and ordinate X, the table of `interp/compensation/cutting_edge.rs`). Positions
+//!   1, 2 and 6 have the tip on the far side of the nose from the axis: internal tools (boring).
 //!
-//! The shank and the holder are taken as lying above the lower surface (milling) or outside
-//! the nose, away from the spindle axis (turning): everything the tool sweeps over is removed.
+//! The shank and the holder are taken as lying above the lower surface (milling), outside the
+//! nose away from the spindle axis (external turning) or between the nose and the axis
+//! (internal turning): everything the tool sweeps over on that side is removed.
 
 use crate::machine_data::EdgeParams;
 
@@ -24,8 +26,10 @@ pub enum Kind {
     Mill { corner: f64 },
     /// Drill with a conical point: `cot` = 1 / tan(σ/2) of the point angle σ.
     Drill { cot: f64 },
-    /// Turning insert: the nose centre S = P + `centre` (in Z, X) from the theoretical tip P.
-    Turning { centre: [f64; 2] },
+    /// Turning insert: the nose centre S = P + `centre` (in Z, X) from the theoretical tip P;
+    /// `internal`: the tip points away from the spindle axis (positions 1, 2, 6: a boring bar,
+    /// its holder towards the axis).
+    Turning { centre: [f64; 2], internal: bool },
 }
 
 /// The cutting part of the active tool.
@@ -55,7 +59,7 @@ impl Cutter {
                     8 => (0.0, -1.0),
                     _ => (0.0, 0.0),
                 };
-                Kind::Turning { centre: [-radius * sz, -radius * sx] }
+                Kind::Turning { centre: [-radius * sz, -radius * sx], internal: sx > 0.0 }
             }
             200..=299 if tool_type != 210 && !(240..=249).contains(&tool_type) => {
                 let given = dp(24);
@@ -155,6 +159,9 @@ mod tests {
     fn the_external_turning_tool_has_its_nose_centre_above_and_right_of_the_tip() {
         // Position 3: P − S = r·(−1, −1) in (Z, X), so S = P + (r, r).
         let c = Cutter::from_edge(&edge(&[(1, 500.0), (2, 3.0), (6, 0.8)]));
-        assert_eq!(c.kind, Kind::Turning { centre: [0.8, 0.8] });
+        assert_eq!(c.kind, Kind::Turning { centre: [0.8, 0.8], internal: false });
+        // Position 2: the tip above the centre, pointing away from the axis: a boring bar.
+        let c = Cutter::from_edge(&edge(&[(1, 500.0), (2, 2.0), (6, 0.4)]));
+        assert_eq!(c.kind, Kind::Turning { centre: [0.4, -0.4], internal: true });
     }
 }

@@ -4,11 +4,12 @@
 //!
 //! A turning insert (nose circle of radius r, centre S) travelling a segment removes, in every
 //! slab its nose passes, the material outside the lowest radius the nose reaches there: the
-//! insert and its holder lie radially outside the nose (external turning, facing). A tool on
-//! the spindle axis (a drill, an end mill; within half a slab of X0) bores from the free end:
-//! the inner radius grows to what its lower surface reaches. Not modelled yet: boring with a
-//! turning insert inside the bore (its holder lies towards the axis), and tools off the axis
-//! that are not turning tools (driven tools), which break the symmetry.
+//! insert and its holder lie radially outside the nose (external turning, facing). An internal
+//! insert (a boring bar, its tip pointing away from the axis) removes the material inside the
+//! highest radius its nose reaches. A tool on the spindle axis (a drill, an end mill; within
+//! half a slab of X0) bores from the free end: the inner radius grows to what its lower surface
+//! reaches. Not modelled: tools off the axis that are not turning tools (driven tools), which
+//! break the symmetry.
 
 use super::blank::{Blank, Placement, Shape};
 use super::cutter::{Cutter, Kind};
@@ -76,10 +77,10 @@ impl Profile {
     /// along the spindle).
     pub fn cut(&mut self, cutter: &Cutter, a: [f64; 3], b: [f64; 3]) -> Removal {
         match cutter.kind {
-            Kind::Turning { centre } => {
+            Kind::Turning { centre, internal } => {
                 let s0 = [a[2] + centre[0], a[0] + centre[1]];
                 let s1 = [b[2] + centre[0], b[0] + centre[1]];
-                self.turn(cutter.radius, s0, s1)
+                if internal { self.bore_out(cutter.radius, s0, s1) } else { self.turn(cutter.radius, s0, s1) }
             }
             _ if a[0].abs().max(b[0].abs()) <= self.res / 2.0 => self.bore(cutter, a[2].min(b[2])),
             _ => Removal::default(),
@@ -106,6 +107,23 @@ impl Profile {
             let (outer, inner) = (self.outer[k], self.inner[k]);
             if low < outer - EPS {
                 self.take(k, low.max(inner), inner, &mut removal);
+            }
+        }
+        removal
+    }
+
+    /// An internal tool (a boring bar) with its nose centre going from `s0` to `s1` (Z, X): the
+    /// bore grows to the highest radius the nose reaches in each slab it passes.
+    fn bore_out(&mut self, r: f64, s0: [f64; 2], s1: [f64; 2]) -> Removal {
+        let (dz, dx) = (s1[0] - s0[0], s1[1] - s0[1]);
+        let mut removal = Removal::default();
+        for k in self.slabs(s0[0].min(s1[0]) - r, s0[0].max(s1[0]) + r) {
+            let z = self.z0 + (k as f64 + 0.5) * self.res;
+            // The highest point is the lowest of the nose mirrored at the axis.
+            let Some(high) = lowest_radius(r, [s0[0], -s0[1]], dz, -dx, z).map(|x| -x) else { continue };
+            let (outer, inner) = (self.outer[k], self.inner[k]);
+            if high > inner + EPS {
+                self.take(k, outer, high.min(outer), &mut removal);
             }
         }
         removal
@@ -199,11 +217,23 @@ mod tests {
     #[test]
     fn a_sharp_tool_along_z_leaves_the_turned_diameter() {
         let mut p = bar();
-        let sharp = Cutter { radius: 0.0, kind: Kind::Turning { centre: [0.0, 0.0] } };
+        let sharp = Cutter { radius: 0.0, kind: Kind::Turning { centre: [0.0, 0.0], internal: false } };
         let r = p.cut(&sharp, [23.0, 0.0, 2.0], [23.0, 0.0, -20.0]);
         // Ring Ø50 → Ø46 over 20 mm: π (25² − 23²) 20.
         assert!((r.volume - PI * 96.0 * 20.0).abs() < 1e-6, "{r:?}");
         assert!((r.depth - 2.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_boring_bar_opens_the_bore_of_a_tube() {
+        let blank = Blank { shape: Shape::Tube { outer: 50.0, inner: 30.0 }, top: 0.0, bottom: -60.0 };
+        let mut p = Profile::new(&blank, &Placement::default(), 0.25).unwrap();
+        let bar = Cutter { radius: 0.0, kind: Kind::Turning { centre: [0.0, 0.0], internal: true } };
+        // Ø30 → Ø32 over 10 mm: π (16² − 15²) · 10 = 973.89 mm³; the outside stays.
+        let r = p.cut(&bar, [16.0, 0.0, 2.0], [16.0, 0.0, -10.0]);
+        assert!((r.volume - PI * 31.0 * 10.0).abs() < 1e-6, "{r:?}");
+        assert_eq!(p.radii(239), (25.0, 16.0));
+        assert_eq!(p.radii(0), (25.0, 15.0));
     }
 
     #[test]
