@@ -223,3 +223,12 @@ fn a_block_search_past_the_blank_keeps_it_uncut() {
     let info = ch.stock_info().expect("the blank of the skipped line 4");
     assert!((info.removed - 1200.0).abs() < 1e-6, "{info:?}");
 }
+
+#[test]
+fn a_tool_change_moves_the_tip_without_cutting() {
+    // The blank first, at the spindle's zero; T1 D1 then puts the tip 100 below it, inside the
+    // blank's place, without motion: nothing is cut and nothing reported until the tool moves.
+    let program = "G17 G90 G94\nWORKPIECE(,\"\",,\"BOX\",112,0,-200,-80,-10,-10,50,40)\nT1 D1\nG4 F0.1\nM30";
+    let (info, warnings, _) = mill(program);
+    assert_eq!((info.removed, warnings.len()), (0.0, 0), "{warnings:?}");
+}

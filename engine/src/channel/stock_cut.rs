@@ -292,6 +292,14 @@ impl Channel {
             run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
             return;
         };
+        if seg.key.tool != key.tool {
+            // A new tool or cutting edge moves the tip without motion: the jump cuts nothing.
+            self.flush_stock();
+            if let Some(run) = self.stock.as_mut() {
+                run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
+            }
+            return;
+        }
         if tip == seg.end {
             // At rest: the open segment is cut now.
             if seg.start != seg.end || seg.key != key {
