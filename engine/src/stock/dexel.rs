@@ -113,7 +113,8 @@ impl DexelGrid {
         let sweep = Sweep::new(cutter, a, b);
         let res = self.res;
         let range = |lo: f64, hi: f64, origin: f64, n: usize| {
-            let first = ((lo - origin) / res - 0.5).ceil().max(0.0);
+            // Clamped to the grid (a segment far away must not wrap an index).
+            let first = ((lo - origin) / res - 0.5).ceil().clamp(0.0, n as f64);
             let last = ((hi - origin) / res - 0.5).floor().min(n as f64 - 1.0);
             (first as usize, last as isize)
         };
@@ -338,6 +339,9 @@ mod tests {
         let r = g.cut(&Cutter::end_mill(1.0), [-5.0, 5.0, -2.0], [15.0, 5.0, -2.0]);
         assert!((r.volume - 40.0).abs() < 1e-9, "{r:?}");
         assert!((r.depth - 2.0).abs() < 1e-6);
+        // Far beyond the grid: nothing, and no index wraps.
+        assert_eq!(g.cut(&Cutter::end_mill(1.0), [1e30, 5.0, -2.0], [2e30, 5.0, -2.0]).volume, 0.0);
+        assert_eq!(g.cut(&Cutter::end_mill(1.0), [-2e30, 5.0, -2.0], [-1e30, 5.0, -2.0]).volume, 0.0);
         // The same cut again removes nothing.
         assert_eq!(g.cut(&Cutter::end_mill(1.0), [-5.0, 5.0, -2.0], [15.0, 5.0, -2.0]).volume, 0.0);
     }
