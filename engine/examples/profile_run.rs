@@ -55,5 +55,16 @@ fn main() {
         let stopping: Vec<_> = channel.alarms().iter().filter(|a| a.clear == Clear::Reset).collect();
         assert!(stopping.is_empty(), "alarms: {stopping:?}");
         println!("ipo cycles {}", channel.ticks());
+        if let Some(s) = channel.stock_info() {
+            let warnings = channel.stock_warnings();
+            println!(
+                "stock: removed {:.1} of {:.1} mm3 at {} mm, {} warnings {:?}",
+                s.removed,
+                s.initial_volume,
+                s.resolution,
+                s.warnings,
+                warnings.iter().take(5).map(|w| (w.check, w.line)).collect::<Vec<_>>()
+            );
+        }
     }
 }

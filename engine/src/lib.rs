@@ -12,6 +12,7 @@
 //! - [`motion`]: look-ahead planning and IPO-cycle interpolation within every axis' limits.
 //! - [`channel`]: modes, program control, JOG, MDA, alarms, and the [`Snapshot`] of the state.
 //! - [`programs`]: program names, directories and archive files; the store calls are resolved in.
+//! - [`stock`]: material removal: the blank cut by the simulated motion (Z-dexels, turned profile).
 
 pub mod alarm;
 pub mod channel;
@@ -21,6 +22,7 @@ pub mod lang;
 pub mod machine_data;
 pub mod motion;
 pub mod programs;
+pub mod stock;
 
 pub use alarm::Alarm;
 pub use channel::{

@@ -301,6 +301,10 @@ pub struct State {
     /// block-modal ones (absent when none is active).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub synchronized_actions: Vec<SyncActionState>,
+    /// Material removal: volumes and the checks raised (absent without a blank; details in
+    /// `GET .../stock`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stock: Option<crate::api::stock::StockSummary>,
 }
 
 /// A reference point approach in progress (JOG REF, axes with an incremental encoder).
@@ -455,6 +459,7 @@ impl From<&Snapshot> for State {
                 .as_ref()
                 .map(|(axis, phase)| ReferencingInfo { axis: axis.clone(), phase: phase.as_str().into() }),
             synchronized_actions: s.sync_actions.iter().map(SyncActionState::from).collect(),
+            stock: s.stock.as_ref().map(crate::api::stock::StockSummary::from),
         }
     }
 }
@@ -1061,6 +1066,11 @@ pub enum EventMessage {
         outputs: Vec<SignalLevel>,
         analog_inputs: Vec<AnalogLevel>,
     },
+    /// A check of material removal found something: `rapid_into_stock`, `no_spindle` or
+    /// `depth_of_cut`, at the program line of the block that cut (`GET .../stock`).
+    Stock {
+        warning: crate::api::stock::StockWarningInfo,
+    },
 }
 
 /// A digital signal's number and level.
@@ -1143,6 +1153,7 @@ impl From<&Event> for EventMessage {
                     analog_inputs: r.analog.iter().map(|&(signal, value)| AnalogLevel { signal, value }).collect(),
                 }
             }
+            Event::Stock(w) => EventMessage::Stock { warning: w.into() },
         }
     }
 }
@@ -1185,6 +1196,7 @@ mod tests {
             repos_pending: None,
             referencing: None,
             synchronized_actions: vec![],
+            stock: None,
         }
     }
 

@@ -386,6 +386,10 @@ impl Channel {
                     self.enter_block(line);
                     self.control_sync(op, &ids);
                 }
+                Item::Workpiece { request, offsets, line } => {
+                    self.enter_block(line);
+                    self.execute_workpiece(request, &offsets.frame, line);
+                }
             }
         }
     }

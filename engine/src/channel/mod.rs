@@ -27,6 +27,7 @@ pub mod servo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
+mod stock_cut;
 pub mod sync_actions;
 mod toff;
 pub mod tool_list;
@@ -46,6 +47,7 @@ pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 pub use spindle::{SpindleMode, SpindleState};
+pub use stock_cut::{StockCheck, StockInfo, StockOptions, StockWarning};
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, Programs, SharedOffsets};
@@ -135,6 +137,8 @@ pub enum Event {
     /// with the IPO cycle count they arrived at: they act from the next cycle on, so a run fed
     /// the same inputs at the same counts is identical (see [`Channel::input_log`]).
     InputsChanged(sync_actions::InputRecord),
+    /// A check of material removal found something (`stock_cut.rs`).
+    Stock(StockWarning),
 }
 
 /// A command the channel refuses in its current state.
@@ -302,6 +306,9 @@ pub struct Channel {
     sync: sync_actions::SyncActions,
     /// Tool life and count monitoring (`tool_monitor.rs`).
     tool_monitor: tool_monitor::ToolMonitor,
+    /// The blank being cut, if one is defined (`stock_cut.rs`).
+    stock: Option<Box<stock_cut::StockRun>>,
+    stock_options: StockOptions,
 }
 
 impl Channel {
@@ -379,6 +386,8 @@ impl Channel {
             referencing: None,
             sync: Default::default(),
             tool_monitor: Default::default(),
+            stock: None,
+            stock_options: Default::default(),
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -458,6 +467,7 @@ impl Channel {
         next.mode = self.mode;
         next.tick = self.tick;
         next.set_digital_io(self.io);
+        (next.stock, next.stock_options) = (self.stock.take(), self.stock_options);
         *self = next;
     }
 
@@ -724,6 +734,9 @@ impl Channel {
         self.planner.step();
         self.monitor_tools();
         self.update_machine_position();
+        if self.stock.is_some() {
+            self.cut_stock();
+        }
         self.servo.step(&self.machine, self.offsets.gcodes.ffw_on());
         if let Some(lag) = self.servo.take_changed() {
             self.interp.observe_following_error(lag);

@@ -219,6 +219,7 @@ impl Channel {
         let mut offsets: Option<SharedOffsets> = None;
         let mut spindles: Vec<Item> = Vec::new();
         let mut message: Option<Item> = None;
+        let mut blank: Option<Item> = None;
         let mut out = Vec::new();
         let mut blocks = 0usize;
         loop {
@@ -282,6 +283,8 @@ impl Channel {
                         spindles.push(item);
                     }
                     Item::Message { .. } => message = Some(item),
+                    // The last blank of the skipped blocks is defined (uncut: their motion does not run).
+                    Item::Workpiece { .. } => blank = Some(item),
                     // Auxiliary functions and outputs of skipped blocks are not put out.
                     Item::Dwell { .. }
                     | Item::Stop { kind: StopKind::M0 | StopKind::M1, .. }
@@ -314,6 +317,7 @@ impl Channel {
                     set_line(&mut m, line);
                     m
                 }));
+                self.pending.extend(blank);
                 self.pending.extend(rest);
                 self.prep_done = prep == Prep::Done;
                 return Ok(level);

@@ -83,6 +83,8 @@ pub struct Snapshot {
     pub repos_pending: bool,
     /// The active synchronized actions (ID order, then block-modal ones).
     pub sync_actions: Vec<super::sync_actions::SyncActionInfo>,
+    /// Material removal: volumes and checks (`None` without a blank).
+    pub stock: Option<super::StockInfo>,
 }
 
 /// The G functions a snapshot's `gcodes` names were written from, so that a refresh rewrites
@@ -129,6 +131,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         jog_serial: 0,
         repos_pending: false,
         sync_actions: Vec::new(),
+        stock: None,
     };
     super::snapshot_refresh::refresh(ch, &mut s);
     s

@@ -223,6 +223,7 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     s.jog_serial = ch.jog_serial;
     s.repos_pending = ch.repos_pending();
     ch.sync.refresh_list(&mut s.sync_actions);
+    s.stock = ch.stock_summary();
 }
 
 /// Sets `to` to `text`, keeping its buffer.

@@ -11,8 +11,6 @@
 //! - `GROUP_BEGIN(..)`/`GROUP_END(..)`: the program editor's structure markers; no effect.
 //! - `ACTBLOCNO` (alarms of a cycle show the cycle's own block: what NCTwin does anyway, with
 //!   or without DISPLOF).
-//! - `WORKPIECE(..)`: the blank ShopMill/ShopTurn and CAM posts describe for the simulation's
-//!   display; accepted with any arguments, no effect on motion (the blank is not kept yet).
 //! - `H5`, `H=5`, `H2=5`: auxiliary functions for the PLC (with address extension); `M2=3`-style
 //!   M functions with an address extension. They go to the main run as `Item::Aux` and are
 //!   published there (`auxiliary.rs`); `M<n>=3/4/5` also act on spindle n, which must be the
@@ -24,7 +22,7 @@ use crate::alarm::Alarm;
 pub(super) fn is_inert_keyword(name: &str, has_args: bool) -> bool {
     match name {
         "FNORM" | "FLIN" | "FCUB" | "DRFOF" | "SBLOF" | "SBLON" | "DISPLOF" | "DISPLON" | "ACTBLOCNO" => !has_args,
-        "GROUP_BEGIN" | "GROUP_END" | "WORKPIECE" => true,
+        "GROUP_BEGIN" | "GROUP_END" => true,
         _ => false,
     }
 }

@@ -28,6 +28,7 @@ mod statements;
 pub mod synchronized;
 mod tools;
 mod transform;
+mod workpiece;
 
 use crate::alarm::Alarm;
 use crate::kinematics;
@@ -155,6 +156,12 @@ pub enum Item {
         ids: Vec<u32>,
         line: u32,
     },
+    /// `WORKPIECE(..)`: the blank, in the WCS of the block's frame (`workpiece.rs`).
+    Workpiece {
+        request: crate::stock::blank::Request,
+        offsets: SharedOffsets,
+        line: u32,
+    },
 }
 
 /// Marker in [`Interpreter::take_data_writes`]: activate the machine data written so far.
@@ -193,7 +200,8 @@ impl Item {
             | Item::Aux { line, .. }
             | Item::DigitalOutput { line, .. }
             | Item::SyncAction { line, .. }
-            | Item::SyncControl { line, .. } => Some(*line),
+            | Item::SyncControl { line, .. }
+            | Item::Workpiece { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -727,6 +735,9 @@ impl Interpreter {
 
         if let Some(text) = &words.message {
             out.push(Item::Message { text: text.clone(), line });
+        }
+        if let Some(request) = words.workpiece {
+            out.push(Item::Workpiece { request, offsets: self.shared_offsets(), line });
         }
         if let Some(alarm) = &words.user_alarm {
             out.push(Item::Alarm(calls::cycle_alarm::at_call(alarm, &self.calls)));

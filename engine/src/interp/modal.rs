@@ -425,6 +425,8 @@ pub(super) struct Words {
     pub g53_group: Option<i64>,
     /// G group 22: CUT2D, CUT2DF, CUT3DFS, CUT3DFF.
     pub cut: Option<CutMode>,
+    /// `WORKPIECE(..)`: the blank (`workpiece.rs`).
+    pub workpiece: Option<crate::stock::blank::Request>,
     /// `CYCLE800(...)`: the evaluated arguments (`None` = omitted).
     pub swivel: Option<Vec<Option<Value>>>,
     /// M and H functions for the PLC, in the order written.
@@ -583,6 +585,9 @@ pub(super) fn collect(
                 set_call(w, name.clone(), args.clone(), line)?
             }
             Word::Keyword { name, args } if name == "MCALL" && args.is_empty() => w.mcall = true,
+            Word::Keyword { name, args } if name == "WORKPIECE" => {
+                w.workpiece = Some(super::workpiece::read(args, &Ctx { vars, sys }, line)?);
+            }
             Word::Keyword { name, args } if super::everyday::is_inert_keyword(name, !args.is_empty()) => {}
             Word::Keyword { name, args } if name == "PCALL" => {
                 let Some(Expr::Str(path)) = args.first() else {

@@ -18,6 +18,7 @@ pub mod roles;
 pub mod sessions;
 pub mod spindle_dto;
 pub mod state_json;
+pub mod stock;
 pub mod stream;
 pub mod stream_frame;
 pub mod stream_gate;
@@ -96,7 +97,9 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(roles::take_control))
         .routes(routes!(roles::release_control))
         .routes(routes!(viewers::get_viewers))
-        .routes(routes!(io::get_io, io::put_io));
+        .routes(routes!(io::get_io, io::put_io))
+        .routes(routes!(stock::get_stock, stock::put_stock, stock::delete_stock))
+        .routes(routes!(stock::get_stock_stl));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
         .routes(routes!(program_archive::import_archive, program_archive::export_archive));

@@ -155,6 +155,8 @@ pub fn trace(
     max_points: usize,
 ) -> Result<PreviewResponse, ApiError> {
     channel.reset();
+    // The preview traces the path; the session's stock is not cut by it.
+    channel.clear_stock();
     channel.single_block = false;
     channel.optional_stop = false;
     channel.set_overrides(Overrides { feed: 100.0, rapid: 100.0, spindle: 100.0 })?;

@@ -9,6 +9,7 @@
 
 use axum::extract::ws::Utf8Bytes;
 use nctwin_engine::channel::ReferencePhase;
+use nctwin_engine::channel::StockInfo;
 use nctwin_engine::channel::sync_actions::SyncActionInfo;
 use nctwin_engine::{Mode, Overrides, Snapshot, Status};
 
@@ -40,6 +41,7 @@ struct Tail {
     repos_pending: bool,
     referencing: Option<(String, ReferencePhase)>,
     sync_actions: Vec<SyncActionInfo>,
+    stock: Option<StockInfo>,
 }
 
 impl Tail {
@@ -54,6 +56,7 @@ impl Tail {
             repos_pending: s.repos_pending,
             referencing: s.referencing.clone(),
             sync_actions: s.sync_actions.clone(),
+            stock: s.stock,
         }
     }
 
@@ -68,6 +71,7 @@ impl Tail {
         self.repos_pending = s.repos_pending;
         self.referencing.clone_from(&s.referencing);
         self.sync_actions.clone_from(&s.sync_actions);
+        self.stock = s.stock;
     }
 
     fn matches(&self, s: &Snapshot) -> bool {
@@ -80,6 +84,7 @@ impl Tail {
             && self.repos_pending == s.repos_pending
             && self.referencing == s.referencing
             && self.sync_actions == s.sync_actions
+            && self.stock == s.stock
     }
 }
 
@@ -287,6 +292,51 @@ fn write_tail(out: &mut String, s: &Snapshot) {
         }
         out.push(']');
     }
+    if let Some(stock) = &s.stock {
+        write_stock(out, stock);
+    }
+    out.push('}');
+}
+
+/// `,"stock":{...}` as serde writes `api::stock::StockSummary`.
+fn write_stock(out: &mut String, s: &StockInfo) {
+    out.push_str(",\"stock\":{\"model\":");
+    write_str(out, if s.turning { "turning" } else { "milling" });
+    for (key, v) in [
+        ("resolution", s.resolution),
+        ("initial_volume", s.initial_volume),
+        ("volume", s.volume),
+        ("removed", s.removed),
+    ] {
+        out.push_str(",\"");
+        out.push_str(key);
+        out.push_str("\":");
+        write_f64(out, v);
+    }
+    out.push_str(",\"warnings\":");
+    write_int(out, s.warnings);
+    out.push_str(",\"last_warning\":");
+    match &s.last_warning {
+        None => out.push_str("null"),
+        Some(w) => {
+            out.push_str("{\"check\":");
+            write_str(out, w.check.as_str());
+            out.push_str(",\"line\":");
+            write_int(out, w.line);
+            out.push_str(",\"volume\":");
+            write_f64(out, w.volume);
+            out.push_str(",\"depth\":");
+            write_f64(out, w.depth);
+            out.push_str(",\"position\":[");
+            for (i, c) in w.position.iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                write_f64(out, *c);
+            }
+            out.push_str("]}");
+        }
+    }
     out.push('}');
 }
 
@@ -423,6 +473,9 @@ mod tests {
         assert!(run(&mut encoder, "mill7-generic", "G1 X10 Y5 Z-2 A10 F2000\nGOTOF NOWHERE\nM30") > 1);
         let sync = "ID=2 WHENEVER $AA_IM[X]>5 DO $AC_OVR=50\nWHEN $A_IN[1]==1 DO DELDTG\nG1 X10 F600\nM30";
         assert!(run(&mut encoder, "mill-3axis", sync) > 10);
+        // A blank cut by a rapid (the stock summary with its last warning).
+        let stock = "T1 D1\nG0 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,-10,-10,50,40)\nG0 X-20 Y15 Z-3\nG0 X60\nM30";
+        assert!(run(&mut encoder, "mill-3axis", stock) > 10);
     }
 
     #[test]

@@ -71,6 +71,16 @@ pub struct SimulateArgs {
     /// Print the JSON on one line.
     #[arg(long)]
     pub compact: bool,
+    /// Write the stock (the blank of `WORKPIECE(..)` as the program cut it) as a binary STL
+    /// at the end (BCS, mm). A program without a blank is a usage error (exit code 1).
+    #[arg(long, value_name = "FILE")]
+    pub stock_out: Option<PathBuf>,
+    /// Resolution of material removal, mm: the dexel cell (milling) or slab (turning).
+    #[arg(long, value_name = "MM", default_value_t = nctwin_engine::stock::DEFAULT_RESOLUTION)]
+    pub stock_resolution: f64,
+    /// Depth of cut beyond which the `depth_of_cut` check is raised, mm.
+    #[arg(long, value_name = "MM")]
+    pub depth_limit: Option<f64>,
     /// The part program (main program) to run; an NC data file (`.INI`, or an archive whose
     /// header is `%_N_<NAME>_INI`) runs as the control runs it: its data are loaded.
     pub program: PathBuf,
@@ -165,6 +175,10 @@ pub struct Report {
     pub real_time_factor: f64,
     /// Peak resident set size of the process (VmHWM), KiB; `null` where /proc is missing.
     pub peak_rss_kib: Option<u64>,
+    /// The checks of material removal raised (the latest 64): rapid into stock, cutting
+    /// without the spindle, depth of cut; the volumes are in `state.stock`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stock_warnings: Vec<nctwin_server::api::stock::StockWarningInfo>,
 }
 
 /// Usage and I/O errors: printed on stderr, exit code 1.
@@ -295,6 +309,9 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         None => UsageError(e.message),
     })?;
     channel.optional_stop = args.optional_stop;
+    let options =
+        nctwin_engine::channel::StockOptions { resolution: args.stock_resolution, depth_limit: args.depth_limit };
+    channel.set_stock_options(options).map_err(|e| UsageError(format!("--stock-resolution/--depth-limit: {e}")))?;
     let mut syntax_errors = Vec::new();
     let mut notes = warnings
         .into_iter()
@@ -349,6 +366,16 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
     } else {
         Outcome::Ended
     };
+    // The stock's last segment is cut before the state shows its volumes.
+    let _ = channel.stock_info();
+    if let Some(path) = &args.stock_out {
+        let stl = channel.stock_stl().ok_or_else(|| {
+            UsageError(format!("--stock-out {}: the program defines no blank (WORKPIECE)", path.display()))
+        })?;
+        std::fs::write(path, stl).map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
+    }
+    let stock_warnings =
+        channel.stock_warnings().iter().map(nctwin_server::api::stock::StockWarningInfo::from).collect();
     let (ipo_cycles, simulated_time_s, state) = if loaded {
         (channel.ticks(), channel.time(), dto::State::from(&channel.snapshot()))
     } else {
@@ -378,6 +405,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         cycles_per_s: per_s(ipo_cycles as f64),
         real_time_factor: per_s(simulated_time_s),
         peak_rss_kib: peak_rss_kib(),
+        stock_warnings,
     })
 }
 
@@ -467,6 +495,7 @@ fn interpret_only(
         cycles_per_s: 0.0,
         real_time_factor: 0.0,
         peak_rss_kib: peak_rss_kib(),
+        stock_warnings: Vec::new(),
     }
 }
 

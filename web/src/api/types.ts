@@ -60,6 +60,29 @@ export interface State {
   repos_pending?: boolean;
   /** Active synchronized actions, by ID then block-modal (absent when none). */
   synchronized_actions?: SyncActionState[];
+  /** Material removal: volumes and checks (absent without a blank). */
+  stock?: StockSummary;
+}
+
+/** A check of material removal: rapid_into_stock, no_spindle or depth_of_cut. */
+export interface StockWarning {
+  check: string;
+  line: number;
+  volume: number;
+  depth: number;
+  /** Where the segment that cut began (tool tip, BCS mm). */
+  position: [number, number, number];
+}
+
+/** The state's stock summary (GET .../stock for the list of checks). */
+export interface StockSummary {
+  model: "milling" | "turning";
+  resolution: number;
+  initial_volume: number;
+  volume: number;
+  removed: number;
+  warnings: number;
+  last_warning: StockWarning | null;
 }
 
 /** A synchronized action as the state lists it. */

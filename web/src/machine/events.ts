@@ -14,6 +14,11 @@ function describe(ev: StreamEvent): string {
     return `${alarm.number}${alarm.line != null ? ` (line ${alarm.line})` : ""}: ${alarm.message ?? ""}`;
   }
   if (typeof rest.line === "number" && typeof rest.text === "string") return `line ${rest.line}: ${rest.text}`;
+  const warning = rest.warning as { check?: string; line?: number; volume?: number; depth?: number } | undefined;
+  if (warning && typeof warning === "object") {
+    const what = (warning.check ?? "").replace(/_/g, " ");
+    return `${what} at line ${warning.line}: ${fmt(warning.volume ?? 0, 1)} mm³, depth ${fmt(warning.depth ?? 0, 2)} mm`;
+  }
   return Object.entries(rest)
     .map(([k, v]) => `${k}=${typeof v === "object" ? JSON.stringify(v) : String(v)}`)
     .join(" ");

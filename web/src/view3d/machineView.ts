@@ -4,7 +4,7 @@
 // workpiece) and the programmed path (POST .../preview), orbit and zoom.
 
 import * as THREE from "three";
-import type { AxisValues, State } from "../api/types";
+import type { AxisValues, State, StockWarning } from "../api/types";
 import { byId, setText } from "../core/dom";
 import { NcData } from "../core/ncdata";
 import type { SessionController, SessionInfo } from "../core/session";
@@ -15,6 +15,7 @@ import { axisLookup, isOrientationTrafo, readStructure, type Structure } from ".
 import { buildMachine, type MachineModel } from "./machineModel";
 import { Toolpath } from "./toolpath";
 import { Viewport, type ViewName } from "./viewport";
+import { StockView } from "./stock";
 
 const AXIS_COLORS = { X: 0xe5534b, Y: 0x57ab5a, Z: 0x539bf5 } as const;
 const DEFAULT_TOOL_RADIUS = 5;
@@ -150,6 +151,8 @@ export class MachineView {
   readonly programmed = new ProgrammedPath();
   private readonly tool = new ToolSolid();
   private readonly content = new THREE.Group(); // what belongs to the attached machine
+  /** The cut stock (stock.ts), in the workpiece frame. */
+  readonly stock = new StockView(() => this.viewport.invalidate());
   private structure: Structure | null = null;
   private model: MachineModel | null = null;
   private triad: THREE.Group | null = null;
@@ -363,7 +366,7 @@ export class MachineView {
     this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
     this.programmed.line.renderOrder = 2;
     this.toolpath.line.renderOrder = 3;
-    this.model.part.add(this.triad, this.toolpath.line, this.programmed.line);
+    this.model.part.add(this.triad, this.toolpath.line, this.programmed.line, this.stock.group);
     this.model.frame.add(this.tool.mesh);
     this.content.add(this.model.root);
     this.model.update({}, false);
@@ -408,8 +411,17 @@ export class MachineView {
 
 export function mountMachineView(session: SessionController): MachineView {
   const view = new MachineView(byId("view3d"), byId("view3d-caption"));
-  session.on("session", (info) => view.attach(info));
-  session.on("sample", (st) => view.show(st));
+  session.on("session", (info) => {
+    view.attach(info);
+    view.stock.attach(info.id);
+  });
+  session.on("sample", (st) => {
+    view.show(st);
+    view.stock.show(st);
+  });
+  session.on("event", (ev) => {
+    if (ev.event === "stock" && ev.warning) view.stock.mark(ev.warning as StockWarning);
+  });
   // New machine data (travel, tools): rebuild the model, keep the toolpath.
   session.on("machine", (info) => {
     view.attach(info, { keepPath: true });

@@ -1,0 +1,380 @@
+//! The main run's side of material removal: the tool tip of every IPO cycle gathered into
+//! straight segments, each cut from the session's stock (`crate::stock`), and the checks on
+//! what a segment removed.
+//!
+//! Segments: consecutive IPO samples stay in one segment while they lie within a tenth of the
+//! resolution of its line (an arc becomes chords of that sagitta), for at most
+//! [`MAX_SEGMENT`] mm, and while the block, rapid or feed, the spindle state and the tool stay
+//! the same. A segment is cut when it ends, so nothing between IPO samples is missed and the
+//! cost is per segment, not per cycle; at rest the open segment is cut at once.
+//!
+//! Checks (each raised once per block and kind, as [`Event::Stock`] and in the state):
+//! - rapid traverse (G0) that removes material;
+//! - material removed while no spindle of the channel turns (a mill's tool spindle, a lathe's
+//!   work spindle);
+//! - a depth of cut beyond the limit the user set: the thickest material one dexel (one slab)
+//!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe.
+//!
+//! Left for later, and skipped while they are active (counted in `skipped`): transformations
+//! (TRAORI with a trunnion table would have to tilt the blank with the table: the stock would
+//! be kept in table coordinates and the tool mapped into them), tool orientations other than
+//! Z, holder collisions.
+
+use super::{Channel, CommandError, Event};
+use crate::stock::blank::{Blank, Placement};
+use crate::stock::cutter::Cutter;
+use crate::stock::{DEFAULT_RESOLUTION, Stock};
+
+/// Longest segment cut at once, mm: bounds the cells a segment's box holds beyond its path.
+const MAX_SEGMENT: f64 = 8.0;
+
+/// Material thinner than this (mm) removed by a segment does not raise a check.
+const CHECK_DEPTH: f64 = 1e-3;
+
+/// Warnings kept for `GET .../stock` (the latest; the count goes on).
+const KEEP_WARNINGS: usize = 64;
+
+/// What a check found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StockCheck {
+    /// G0 removed material.
+    RapidIntoStock,
+    /// Material removed with no spindle turning.
+    NoSpindle,
+    /// The depth of cut exceeded the user's limit.
+    DepthOfCut,
+}
+
+impl StockCheck {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            StockCheck::RapidIntoStock => "rapid_into_stock",
+            StockCheck::NoSpindle => "no_spindle",
+            StockCheck::DepthOfCut => "depth_of_cut",
+        }
+    }
+}
+
+/// One finding, with the program line of the block that made it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StockWarning {
+    pub check: StockCheck,
+    pub line: u32,
+    /// Volume the segment removed, mm³.
+    pub volume: f64,
+    /// Its depth of cut, mm.
+    pub depth: f64,
+    /// Where the segment began that cut (tool tip, BCS, mm): the place to mark.
+    pub position: [f64; 3],
+}
+
+/// The settings of material removal a session chooses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StockOptions {
+    /// Cell size (milling) or slab length (turning), mm; applies to the next blank.
+    pub resolution: f64,
+    /// Depth of cut beyond which [`StockCheck::DepthOfCut`] is raised; `None`: no limit.
+    pub depth_limit: Option<f64>,
+}
+
+impl Default for StockOptions {
+    fn default() -> Self {
+        StockOptions { resolution: DEFAULT_RESOLUTION, depth_limit: None }
+    }
+}
+
+/// The state's summary of the stock (no allocation: refreshed every snapshot).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StockInfo {
+    /// Turned profile (lathe) rather than dexels (mill).
+    pub turning: bool,
+    pub resolution: f64,
+    /// Blank volume at the resolution, mm³.
+    pub initial_volume: f64,
+    /// Material left, mm³.
+    pub volume: f64,
+    /// Material removed, mm³.
+    pub removed: f64,
+    /// Checks raised since the blank was defined.
+    pub warnings: u64,
+    /// The latest of them.
+    pub last_warning: Option<StockWarning>,
+    /// IPO cycles not cut because a transformation was active.
+    pub skipped: u64,
+}
+
+/// What decides where one segment ends besides its geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Key {
+    line: u32,
+    rapid: bool,
+    spindle: bool,
+    tool: (u32, u32),
+}
+
+#[derive(Debug, Clone)]
+struct Segment {
+    start: [f64; 3],
+    end: [f64; 3],
+    /// Unit direction from `start`, zero until the first step.
+    dir: [f64; 3],
+    key: Key,
+}
+
+/// The stock of a session with its segment in progress and its findings.
+#[derive(Debug, Clone)]
+pub(super) struct StockRun {
+    stock: Stock,
+    initial_volume: f64,
+    options: StockOptions,
+    cutter: Option<((u32, u32), Option<Cutter>)>,
+    segment: Option<Segment>,
+    warnings: std::collections::VecDeque<StockWarning>,
+    warnings_total: u64,
+    /// The line each check was last raised for (once per block and kind; JOG is line 0).
+    reported: [u32; 3],
+    skipped: u64,
+}
+
+impl StockRun {
+    fn new(stock: Stock, options: StockOptions) -> StockRun {
+        StockRun {
+            initial_volume: stock.volume(),
+            stock,
+            options,
+            cutter: None,
+            segment: None,
+            warnings: Default::default(),
+            warnings_total: 0,
+            reported: [u32::MAX; 3],
+            skipped: 0,
+        }
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl Channel {
+    /// Defines the blank: `blank` in the WCS of the active frame (the main run's), cut from now
+    /// on. Only while nothing moves.
+    pub fn define_stock(&mut self, blank: Blank) -> Result<(), CommandError> {
+        if self.is_busy() {
+            return Err(CommandError::Busy("the blank can only change while nothing moves"));
+        }
+        let offsets = self.offsets.clone();
+        self.place_stock(&blank, &offsets.frame).map_err(CommandError::Invalid)
+    }
+
+    /// Removes the blank: no material removal from now on.
+    pub fn clear_stock(&mut self) {
+        self.stock = None;
+    }
+
+    /// Sets resolution and depth limit; the resolution acts on the next blank.
+    pub fn set_stock_options(&mut self, options: StockOptions) -> Result<(), CommandError> {
+        if !(options.resolution.is_finite() && options.resolution >= crate::stock::MIN_RESOLUTION) {
+            return Err(CommandError::Invalid(format!(
+                "stock resolution {} mm: at least {} mm",
+                options.resolution,
+                crate::stock::MIN_RESOLUTION
+            )));
+        }
+        if options.depth_limit.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
+            return Err(CommandError::Invalid("the depth-of-cut limit must be a positive length".into()));
+        }
+        self.stock_options = options;
+        if let Some(run) = self.stock.as_mut() {
+            run.options.depth_limit = options.depth_limit;
+        }
+        Ok(())
+    }
+
+    /// The settings of material removal.
+    pub fn stock_options(&self) -> StockOptions {
+        self.stock_options
+    }
+
+    /// The stock's summary (`None` without a blank), the open segment cut first.
+    pub fn stock_info(&mut self) -> Option<StockInfo> {
+        self.flush_stock();
+        self.stock_summary()
+    }
+
+    /// The summary as the snapshot shows it (the open segment not yet cut).
+    pub(super) fn stock_summary(&self) -> Option<StockInfo> {
+        let run = self.stock.as_ref()?;
+        let volume = run.stock.volume();
+        Some(StockInfo {
+            turning: matches!(run.stock, Stock::Turning(_)),
+            resolution: run.stock.resolution(),
+            initial_volume: run.initial_volume,
+            volume,
+            removed: run.initial_volume - volume,
+            warnings: run.warnings_total,
+            last_warning: run.warnings.back().copied(),
+            skipped: run.skipped,
+        })
+    }
+
+    /// The latest warnings, oldest first (at most 64).
+    pub fn stock_warnings(&self) -> Vec<StockWarning> {
+        self.stock.as_ref().map(|r| r.warnings.iter().copied().collect()).unwrap_or_default()
+    }
+
+    /// The current stock as a binary STL (BCS, mm), the open segment cut first.
+    pub fn stock_stl(&mut self) -> Option<Vec<u8>> {
+        self.flush_stock();
+        self.stock.as_ref().map(|r| r.stock.stl())
+    }
+
+    /// A `WORKPIECE(..)` reached the main run with the offsets of its block.
+    pub(super) fn execute_workpiece(
+        &mut self,
+        request: crate::stock::blank::Request,
+        frame: &crate::interp::Frame,
+        line: u32,
+    ) {
+        match request {
+            crate::stock::blank::Request::Delete => self.stock = None,
+            crate::stock::blank::Request::Define(blank) => {
+                if let Err(message) = self.place_stock(&blank, frame) {
+                    self.raise(crate::alarm::Alarm::value_out_of_range(line, &format!("WORKPIECE: {message}")));
+                }
+            }
+        }
+    }
+
+    /// Builds the stock of `blank` in the WCS of `frame`.
+    fn place_stock(&mut self, blank: &Blank, frame: &crate::interp::Frame) -> Result<(), String> {
+        let geo = self.cfg.geo_axes;
+        let placement =
+            Placement { lin: frame.lin, trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])) };
+        // A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
+        let turning = geo[1].is_none();
+        let stock = Stock::new(blank, &placement, turning, self.stock_options.resolution)?;
+        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options)));
+        Ok(())
+    }
+
+    /// One IPO cycle of material removal (called only while a blank is defined).
+    #[inline(never)]
+    pub(super) fn cut_stock(&mut self) {
+        let tag = self.planner.position_tag();
+        let meta = match self.in_planner.front() {
+            Some((t, m)) if Some(*t) == tag => Some(m),
+            _ => tag.and_then(|t| self.in_planner.iter().find(|(x, _)| *x == t)).map(|(_, m)| m),
+        };
+        let (line, rapid, offsets) = match meta {
+            Some(m) => (m.line, !m.feed.is_finite(), &m.offsets),
+            None => (0, false, &self.offsets),
+        };
+        let tool = (offsets.t, offsets.d);
+        let geo = self.cfg.geo_axes;
+        let toff = self.toff.current;
+        let tip: [f64; 3] =
+            std::array::from_fn(|g| geo[g].map_or(0.0, |k| self.machine[k] - offsets.tool[k] - toff[g]));
+        let key = Key { line, rapid, spindle: self.spindles.iter().any(|s| s.is_turning()), tool };
+        let transformed = self.trafo.is_some();
+        let Some(run) = self.stock.as_mut() else { return };
+        if transformed {
+            run.skipped += 1;
+            run.segment = None;
+            return;
+        }
+        let tol = run.stock.resolution() / 10.0;
+        let Some(seg) = run.segment.as_mut() else {
+            run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
+            return;
+        };
+        if seg.key.tool != key.tool {
+            // A new tool or cutting edge moves the tip without motion: the jump cuts nothing.
+            self.flush_stock();
+            if let Some(run) = self.stock.as_mut() {
+                run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
+            }
+            return;
+        }
+        if tip == seg.end {
+            // At rest: the open segment is cut now.
+            if seg.start != seg.end || seg.key != key {
+                self.flush_stock();
+                if let Some(seg) = self.stock.as_mut().and_then(|r| r.segment.as_mut()) {
+                    seg.key = key;
+                }
+            }
+            return;
+        }
+        let v = sub(tip, seg.start);
+        let along = dot(v, seg.dir);
+        let off = dot(v, v) - along * along;
+        let straight = seg.dir != [0.0; 3] && along >= dot(sub(seg.end, seg.start), seg.dir) && off <= tol * tol;
+        if seg.key == key && (seg.dir == [0.0; 3] || (straight && along <= MAX_SEGMENT)) {
+            if seg.dir == [0.0; 3] {
+                let n = dot(v, v).sqrt();
+                seg.dir = v.map(|c| c / n);
+            }
+            seg.end = tip;
+            return;
+        }
+        // The segment ends at the last sample; the new one starts there.
+        let from = seg.end;
+        self.flush_stock();
+        let Some(run) = self.stock.as_mut() else { return };
+        let v = sub(tip, from);
+        let n = dot(v, v).sqrt();
+        run.segment = Some(Segment { start: from, end: tip, dir: v.map(|c| c / n), key });
+    }
+
+    /// Cuts the open segment (if it has length) and starts the next one at its end.
+    fn flush_stock(&mut self) {
+        let Some(run) = self.stock.as_mut() else { return };
+        let Some(seg) = run.segment.as_mut() else { return };
+        if seg.start == seg.end {
+            return;
+        }
+        let (a, b, key) = (seg.start, seg.end, seg.key);
+        seg.start = seg.end;
+        seg.dir = [0.0; 3];
+        if run.cutter.as_ref().is_none_or(|(k, _)| *k != key.tool) {
+            let cutter = (key.tool.0 != 0 && key.tool.1 != 0)
+                .then(|| self.cfg.tools.get(&key.tool).map(Cutter::from_edge))
+                .flatten();
+            run.cutter = Some((key.tool, cutter));
+        }
+        let Some((_, Some(cutter))) = run.cutter else { return };
+        let removal = run.stock.cut(&cutter, a, b);
+        if removal.depth < CHECK_DEPTH {
+            return;
+        }
+        let mut found = [None; 3];
+        if key.rapid {
+            found[0] = Some(StockCheck::RapidIntoStock);
+        }
+        if !key.spindle {
+            found[1] = Some(StockCheck::NoSpindle);
+        }
+        if run.options.depth_limit.is_some_and(|l| removal.depth > l) {
+            found[2] = Some(StockCheck::DepthOfCut);
+        }
+        for (i, check) in found.into_iter().enumerate() {
+            let Some(check) = check else { continue };
+            if run.reported[i] == key.line {
+                continue;
+            }
+            run.reported[i] = key.line;
+            let w = StockWarning { check, line: key.line, volume: removal.volume, depth: removal.depth, position: a };
+            if run.warnings.len() == KEEP_WARNINGS {
+                run.warnings.pop_front();
+            }
+            run.warnings.push_back(w);
+            run.warnings_total += 1;
+            self.events.push(Event::Stock(w));
+        }
+    }
+}

@@ -1,0 +1,234 @@
+//! Material removal (issue 28): volumes worked out by hand, and the checks while cutting.
+//!
+//! Presets (presets.rs): `mill-3axis` T1 D1 end mill R5 (type 120), T2 D1 twist drill R4
+//! (type 200, 118° point); `lathe-2axis` T1 D1 roughing tool SL3 nose 0.8, X as a radius.
+//! The default resolution is 0.25 mm. Milling volumes are sampled at the cells' centres, so
+//! the bound on the error is half the volume of the cells a curved rim crosses (straight
+//! walls on cell edges are exact); turning slabs tile the blank, so a face on a slab boundary
+//! is exact in Z and radii are exact.
+
+use std::f64::consts::PI;
+
+use nctwin_engine::channel::{StockCheck, StockInfo, StockOptions, StockWarning};
+use nctwin_engine::{Channel, Event};
+
+/// Runs `program` on `preset` to its end; its stock summary and the checks raised.
+fn run(preset: &str, md: &str, options: StockOptions, program: &str) -> (StockInfo, Vec<StockWarning>, Channel) {
+    let mut ch = Channel::from_preset(preset, md).unwrap();
+    ch.set_stock_options(options).unwrap();
+    ch.run_program(program).unwrap();
+    let mut warnings = Vec::new();
+    let mut cycles = 0u64;
+    while ch.is_busy() {
+        ch.step();
+        cycles += 1;
+        assert!(cycles < 5_000_000, "program does not end");
+        for e in ch.take_events() {
+            match e {
+                Event::Stock(w) => warnings.push(w),
+                Event::AlarmRaised(a) => panic!("alarm {a:?}"),
+                _ => {}
+            }
+        }
+    }
+    let info = ch.stock_info().expect("a blank is defined");
+    for e in ch.take_events() {
+        if let Event::Stock(w) = e {
+            warnings.push(w);
+        }
+    }
+    (info, warnings, ch)
+}
+
+fn mill(program: &str) -> (StockInfo, Vec<StockWarning>, Channel) {
+    run("mill-3axis", "", StockOptions::default(), program)
+}
+
+/// A 60 x 50 x 20 block, X−10..50, Y−10..40, Z−20..0; the tool is above it first (at power on
+/// the tip stands at Z−100, the tool's length below the spindle's zero).
+const BLOCK: &str = "G17 G90 G94\nT1 D1\nG0 X-30 Y15 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,-10,-10,50,40)\n";
+
+#[test]
+fn the_blank_of_workpiece_holds_its_volume() {
+    let (info, warnings, _) = mill(&format!("{BLOCK}M30"));
+    assert!((info.initial_volume - 60.0 * 50.0 * 20.0).abs() < 1e-6, "{info:?}");
+    assert_eq!((info.removed, warnings.len()), (0.0, 0));
+}
+
+#[test]
+fn a_pocket_40_by_30_by_5_removes_6000_less_its_corners() {
+    // The end mill R5 clears X0..40, Y0..30, 5 deep: its centre runs the raster Y5/12/19/25
+    // (rows 7 apart, less than the diameter) from X5 to X35 and the contour at 5 from the walls.
+    // The pocket's corners keep the tool's radius: 40·30·5 − 4·(1 − π/4)·5²·5 = 5892.70 mm³.
+    let program = format!(
+        "{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-5 F200\nG1 X35 F1000\nY12\nX5\nY19\nX35\nY25\nX5\nY5\nX35\nY25\nX5\nG0 Z10\nM30"
+    );
+    let (info, warnings, _) = mill(&program);
+    let expected = 6000.0 - 4.0 * (1.0 - PI / 4.0) * 25.0 * 5.0;
+    // The corner arcs (4 · π/2 · 5 mm) cross 126 cells of 0.0625 mm²; half of them, 5 deep.
+    let bound = 0.5 * (4.0 * PI / 2.0 * 5.0 / 0.25) * 0.0625 * 5.0;
+    assert!((info.removed - expected).abs() < bound, "removed {} vs {expected} ± {bound}", info.removed);
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
+#[test]
+fn a_drilled_hole_removes_the_cylinder_and_the_point_cone() {
+    // Drill R4, 118° point: the cone is h = 4 / tan 59° = 2.4034 high. Tip at Z−10:
+    // π·4²·(10 − h) + π·4²·h/3 = 422.12 mm³.
+    let program = "G17 G90 G94\nT2 D1\nG0 X20 Y15 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,-10,-10,50,40)\nS1000 M3\nG0 Z2\nG1 Z-10 F100\nG0 Z10\nM30";
+    let (info, warnings, _) = mill(program);
+    let h = 4.0 / 59f64.to_radians().tan();
+    let expected = PI * 16.0 * (10.0 - h) + PI * 16.0 * h / 3.0;
+    // The rim (2π·4) crosses about 101 cells: half of them over the 10 mm.
+    let bound = 0.5 * (2.0 * PI * 4.0 / 0.25) * 0.0625 * 10.0;
+    assert!((info.removed - expected).abs() < bound, "removed {} vs {expected} ± {bound}", info.removed);
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
+#[test]
+fn rapid_through_the_blank_is_reported_at_its_line_and_above_it_not() {
+    // Line 7 travels G0 at Z−3 through the block (X−20 → X60 at Y15).
+    let through = format!("{BLOCK}S3000 M3\nG0 X-20 Y15 Z-3\nG0 X60\nG0 Z50\nM30");
+    let (info, warnings, _) = mill(&through);
+    assert!(info.removed > 0.0);
+    assert_eq!(warnings.iter().map(|w| (w.check, w.line)).collect::<Vec<_>>(), vec![(StockCheck::RapidIntoStock, 7)]);
+    // The same at Z3, above the top at Z0: nothing removed, nothing reported.
+    let above = through.replace("Z-3", "Z3");
+    let (info, warnings, _) = mill(&above);
+    assert_eq!((info.removed, warnings.len()), (0.0, 0));
+}
+
+#[test]
+fn cutting_without_the_spindle_is_reported_once_per_block() {
+    // No M3: the slot of line 6 (and only it) cuts with the spindle at rest.
+    let program = format!("{BLOCK}G0 X-20 Y15 Z-2\nG1 X60 F500\nG0 Z50\nM30");
+    let (info, warnings, _) = mill(&program);
+    // A slot 10 wide (R5) through the 60 mm block, 2 deep, with round ends outside it: 1200 mm³.
+    assert!((info.removed - 1200.0).abs() < 1e-6, "{info:?}");
+    assert_eq!(warnings.iter().map(|w| (w.check, w.line)).collect::<Vec<_>>(), vec![(StockCheck::NoSpindle, 6)]);
+}
+
+#[test]
+fn a_depth_of_cut_beyond_the_limit_is_reported() {
+    let options = StockOptions { depth_limit: Some(3.0), ..StockOptions::default() };
+    // Line 7 cuts 2 deep (within), line 9 cuts 4 deep (beyond the 3 mm limit).
+    let program = format!("{BLOCK}S3000 M3\nG0 X-20 Y0 Z-2\nG1 X60 F500\nG0 Y25 Z-4\nG1 X-20\nG0 Z50\nM30");
+    let (_, warnings, _) = run("mill-3axis", "", options, &program);
+    assert_eq!(warnings.iter().map(|w| (w.check, w.line)).collect::<Vec<_>>(), vec![(StockCheck::DepthOfCut, 9)]);
+    assert!((warnings[0].depth - 4.0).abs() < 1e-4);
+}
+
+#[test]
+fn the_blank_lies_in_the_wcs_of_its_block() {
+    // G54 moves X by 100: the blank is at BCS X90..150. A slot under G54 at WCS Y15 cuts it;
+    // the same slot under G500 passes BCS X−20..60, beside it, and cuts nothing.
+    let md = "$P_UIFR[1,X,TR]=100\n";
+    let options = StockOptions::default();
+    let slot = "S3000 M3\nG0 X-20 Y15 Z-2\nG1 X60 F500\nG0 Z50\n";
+    let program = format!("G54\n{BLOCK}{slot}M30");
+    let (info, _, _) = run("mill-3axis", md, options, &program);
+    assert!((info.removed - 1200.0).abs() < 1e-6, "{info:?}");
+    let program = format!("G54\n{BLOCK}G500\n{slot}M30");
+    let (info, _, _) = run("mill-3axis", md, options, &program);
+    assert_eq!(info.removed, 0.0);
+}
+
+#[test]
+fn a_bad_blank_raises_an_alarm_at_its_line() {
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program("G0 X0\nWORKPIECE(,\"\",,\"SPHERE\",0,0,-10)\nM30").unwrap();
+    for _ in 0..1000 {
+        ch.step();
+    }
+    let alarm = &ch.alarms()[0];
+    assert_eq!((alarm.number, alarm.line), (12560, Some(2)), "{alarm:?}");
+}
+
+/// A tube Ø50/Ø30 (X absolute: flags 80), 60 long, Z−60..0, on the lathe; the tool far off.
+const TUBE: &str = "G18 G90 G94\nT1 D1\nG0 X60 Z50\nWORKPIECE(,\"\",,\"PIPE\",80,0,-60,-80,50,30)\nS1000 M3\n";
+
+#[test]
+fn facing_a_tube_removes_the_ring() {
+    // SL3 nose 0.8: the nose's lowest Z is the tip's, Z−1; the nose passes the inner radius
+    // 15 (to X14), so the whole end ring goes: π (25² − 15²) · 1 = 1256.64 mm³.
+    let program = format!("{TUBE}G0 X27 Z-1\nG1 X14 F200\nG0 Z5\nX60 Z50\nM30");
+    let (info, warnings, _) = run("lathe-2axis", "", StockOptions::default(), &program);
+    assert!(info.turning);
+    assert!((info.initial_volume - PI * 400.0 * 60.0).abs() < 1e-6);
+    assert!((info.removed - PI * 400.0).abs() < 1e-6, "{info:?}");
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
+#[test]
+fn turning_the_outside_removes_the_ring_of_the_diameters() {
+    // T3: a sharp tool (nose radius 0). Ø50 → Ø46 over the 20 mm from the end:
+    // π (25² − 23²) · 20 = 6031.86 mm³.
+    let md = "$TC_DP1[3,1]=500\n$TC_DP2[3,1]=3\n$TC_DP3[3,1]=40.\n$TC_DP4[3,1]=60.\n";
+    let program = format!("{}G0 X23 Z2\nG1 Z-20 F200\nG1 X30\nG0 X60 Z50\nM30", TUBE.replace("T1 D1", "T3 D1"));
+    let (info, _, _) = run("lathe-2axis", md, StockOptions::default(), &program);
+    assert!((info.removed - PI * 96.0 * 20.0).abs() < 1e-6, "{info:?}");
+}
+
+#[test]
+fn without_a_blank_nothing_is_kept() {
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program("G0 X10\nM30").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert!(ch.stock_info().is_none() && ch.snapshot().stock.is_none());
+}
+
+#[test]
+fn a_blank_defined_under_a_rotation_lies_turned_in_the_bcs() {
+    // Under ROT Z90 the WCS box X0..40, Y0..10 lies at BCS X−10..0, Y0..40. With the frame
+    // cleared, a slot along Y at BCS X−5 (R5: X−10..0) takes the whole 10 mm width over the
+    // 40 mm, 2 deep: 800 mm³. Without the rotation the box would start at X0, beside the slot.
+    let program = "G17 G90 G94\nT1 D1\nG0 X-30 Y15 Z50\nROT Z90\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,0,0,40,10)\nROT\nS3000 M3\nG0 X-5 Y-20 Z-2\nG1 Y60 F500\nG0 Z50\nM30";
+    let (info, _, _) = mill(program);
+    assert!((info.initial_volume - 8000.0).abs() < 1e-6, "{info:?}");
+    assert!((info.removed - 800.0).abs() < 1e-6, "{info:?}");
+    let (info, _, _) = mill(&program.replace("ROT Z90\n", ""));
+    assert_eq!(info.removed, 0.0);
+}
+
+#[test]
+fn the_same_program_cuts_the_same_stock_bit_for_bit() {
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-3 F200\nG2 X25 Y15 CR=12 F900\nG3 X5 Y5 CR=15\nG0 Z10\nM30");
+    let (_, _, mut a) = mill(&program);
+    let (_, _, mut b) = mill(&program);
+    assert_eq!(a.stock_stl().unwrap(), b.stock_stl().unwrap());
+}
+
+#[test]
+fn a_block_search_past_the_blank_keeps_it_uncut() {
+    // The search to line 9 passes the blank's line 4 and the cut of line 7: the blank is
+    // defined, the skipped cut does not run; line 11 then slots 2 deep: 1200 mm³.
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X-20 Y0 Z-4\nG1 X60 F500\nG0 Z50\nG0 X-20 Y15\nG0 Z-2\nG1 X60\nG0 Z50\nM30");
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    // The axes high above the blank first, so the search's approach passes over it.
+    ch.mda("T1 D1\nG0 Z150").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    ch.set_mode(nctwin_engine::Mode::Auto).unwrap();
+    ch.block_search(Some(&program), 9).unwrap();
+    ch.start().unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let info = ch.stock_info().expect("the blank of the skipped line 4");
+    assert!((info.removed - 1200.0).abs() < 1e-6, "{info:?}");
+}
+
+#[test]
+fn a_tool_change_moves_the_tip_without_cutting() {
+    // The blank first, at the spindle's zero; T1 D1 then puts the tip 100 below it, inside the
+    // blank's place, without motion: nothing is cut and nothing reported until the tool moves.
+    let program = "G17 G90 G94\nWORKPIECE(,\"\",,\"BOX\",112,0,-200,-80,-10,-10,50,40)\nT1 D1\nG4 F0.1\nM30";
+    let (info, warnings, _) = mill(program);
+    assert_eq!((info.removed, warnings.len()), (0.0, 0), "{warnings:?}");
+}
