@@ -257,7 +257,7 @@ fn postgres_nodes_share_one_database_and_the_schema_is_versioned() {
 
     let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
     let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
-    assert_eq!(version, 4);
+    assert_eq!(version, 5);
     let sync: String = admin.query_one("SHOW synchronous_commit", &[]).expect("show").get(0);
     assert!(!sync.is_empty());
     admin.execute("INSERT INTO nctwin_schema (version) VALUES (99)", &[]).expect("a newer schema");
@@ -370,7 +370,7 @@ fn postgres_schema_1_is_migrated_without_losing_data() {
     assert_eq!(all[0].programs, vec![("MAIN".to_string(), "G0 X1\nM30".to_string())]);
     assert_eq!(storage.next_session_number().expect("number"), Some(8), "above the stored s7");
     let version: i32 = admin.query_one("SELECT max(version) FROM nctwin_schema", &[]).expect("version").get(0);
-    assert_eq!(version, 4);
+    assert_eq!(version, 5);
 }
 
 #[test]
@@ -589,10 +589,13 @@ async fn session_of_node_a_taken_by_b(
     let key = id.clone();
     tokio::task::spawn_blocking(move || {
         let mut admin = postgres::Client::connect(&url, postgres::NoTls).expect("connect");
+        // The lease is node b's row (renewed per node); the session row names b as its holder.
         let statement = format!(
-            "UPDATE nctwin_sessions SET lease_node = 'b', lease_expires = now() + interval '{b_interval}' WHERE id = $1"
+            "INSERT INTO nctwin_nodes (node, expires) VALUES ('b', now() + interval '{b_interval}')
+             ON CONFLICT (node) DO UPDATE SET expires = excluded.expires"
         );
-        let n = admin.execute(statement.as_str(), &[&key]).expect("take over");
+        admin.execute(statement.as_str(), &[]).expect("node b");
+        let n = admin.execute("UPDATE nctwin_sessions SET lease_node = 'b' WHERE id = $1", &[&key]).expect("take over");
         assert_eq!(n, 1);
     })
     .await

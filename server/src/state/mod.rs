@@ -194,31 +194,57 @@ impl AppState {
 
     /// The session `id` this node serves: a live one, or, on a shared database, one this node
     /// takes over because its lease is free or expired. `421` names the node that holds it;
-    /// `404` if there is none.
+    /// `404` if there is none. A holder that looks dead (the proxy reported it unreachable, see
+    /// [`crate::cluster`], or it missed a renewal) is waited for: once its lease ran out the
+    /// session is taken over here, and the request is answered after that pause.
     pub async fn find_entry(&self, id: &str) -> Result<Arc<SessionEntry>, ApiError> {
         if let Some(entry) = self.entry(id) {
             return Ok(entry);
         }
-        if self.shared.storage.lease().is_none() {
+        let Some(period) = self.shared.storage.lease().map(|l| l.period) else {
             return Err(ApiError::SessionNotFound(id.to_string()));
-        }
-        let _claiming = self.shared.claim_lock.lock().await;
-        if let Some(entry) = self.entry(id) {
-            return Ok(entry);
-        }
-        let key = id.to_string();
-        match self.storage_call(move |s| s.claim_session(&key)).await? {
-            Claim::Claimed(saved) => {
-                tracing::info!(session = %id, "session taken over from the shared database");
-                self.start_saved(&saved).ok_or_else(|| {
-                    ApiError::StorageUnavailable(format!("session `{id}` is stored but cannot be restored here"))
-                })
+        };
+        let mut waited = false;
+        loop {
+            let claim = {
+                let _claiming = self.shared.claim_lock.lock().await;
+                if let Some(entry) = self.entry(id) {
+                    return Ok(entry);
+                }
+                let key = id.to_string();
+                let started = std::time::Instant::now();
+                match self.storage_call(move |s| s.claim_session(&key)).await? {
+                    Claim::Claimed(saved) => {
+                        self.shared.metrics.lease_takeover(started.elapsed());
+                        tracing::info!(session = %id, "session taken over from the shared database");
+                        return self.start_saved(&saved).ok_or_else(|| {
+                            ApiError::StorageUnavailable(format!(
+                                "session `{id}` is stored but cannot be restored here"
+                            ))
+                        });
+                    }
+                    other => other,
+                }
+            };
+            match claim {
+                Claim::HeldBy { node, seconds_left } => {
+                    let wait = (!waited).then(|| takeover_wait(&node, seconds_left, period)).flatten();
+                    let Some(wait) = wait else {
+                        crate::cluster::note_holder(&node);
+                        return Err(ApiError::WrongNode { session: id.to_string(), node, seconds_left });
+                    };
+                    tracing::info!(session = %id, holder = %node, wait_s = wait.as_secs_f64(), "waiting for a dead holder's lease to run out");
+                    waited = true;
+                    tokio::time::sleep(wait).await;
+                }
+                Claim::Missing | Claim::Claimed(_) => return Err(ApiError::SessionNotFound(id.to_string())),
             }
-            Claim::HeldBy { node, seconds_left } => {
-                Err(ApiError::WrongNode { session: id.to_string(), node, seconds_left })
-            }
-            Claim::Missing => Err(ApiError::SessionNotFound(id.to_string())),
         }
+    }
+
+    /// This node's name on a shared database (`None`: a single node, no leases).
+    pub fn node_name(&self) -> Option<String> {
+        self.shared.storage.lease().map(|l| l.node.clone())
     }
 
     /// With leases (a shared database): renews this node's leases three times per lease
@@ -239,7 +265,10 @@ impl AppState {
                 // leased after the renewal's snapshot would look lost.
                 let _creating = state.shared.create_lock.lock().await;
                 let _claiming = state.shared.claim_lock.lock().await;
-                match state.storage_call(|s| s.renew_leases()).await {
+                let started = std::time::Instant::now();
+                let renewed = state.storage_call(|s| s.renew_leases()).await;
+                state.shared.metrics.lease_renewal(renewed.as_ref().ok().and_then(Option::as_ref).map(Vec::len), started.elapsed());
+                match renewed {
                     Ok(Some(held)) => state.drop_lost_sessions(&held).await,
                     Ok(None) => return,
                     Err(e) => tracing::warn!(error = %e, "session leases not renewed"),
@@ -303,6 +332,7 @@ impl AppState {
             .unwrap_or_else(|e| Err(StorageError::new(format!("storage call failed: {e}"))));
         self.shared.metrics.storage_call(result.is_ok());
         if let Err(StorageError { held_by: Some(held), .. }) = &result {
+            crate::cluster::note_holder(&held.node);
             self.stop_serving(&held.session);
         }
         result
@@ -689,6 +719,20 @@ fn base36(mut n: u64) -> String {
     }
     out.reverse();
     String::from_utf8(out).unwrap_or_default()
+}
+
+/// How long to wait before claiming a session that node `holder` holds with `seconds_left` of
+/// its lease (period `period`, as this node's: every node of a database runs the same
+/// `--lease-seconds`), or `None` to answer `421` at once because the holder looks alive. A
+/// live holder renews three times per period, so its lease never runs below two thirds of the
+/// period (less a second of slack for a slow renewal); below that it missed a renewal. A holder
+/// the proxy reports unreachable is waited for whatever its lease says.
+fn takeover_wait(holder: &str, seconds_left: f64, period: std::time::Duration) -> Option<std::time::Duration> {
+    let reported_down = crate::cluster::unreachable_node().is_some_and(|n| n == holder);
+    let missed_renewal = seconds_left < period.as_secs_f64() * 2.0 / 3.0 - 1.0;
+    // 50 ms past the expiry: the database's clock decides, and this node's sleep is not exact.
+    (reported_down || missed_renewal)
+        .then(|| std::time::Duration::from_secs_f64(seconds_left.clamp(0.0, period.as_secs_f64()) + 0.05))
 }
 
 #[cfg(test)]
