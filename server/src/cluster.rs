@@ -6,12 +6,15 @@
 //!   `Location` names the session), the holder on a `421`. The proxy remembers it per session id
 //!   and sends the session's next requests to that node, so a client never sees the `421`
 //!   itself except once per proxy restart (the proxy turns it into a `307` to the same URL).
-//! - [`UNREACHABLE_HEADER`] (`nctwin-unreachable`) on a request, set by the proxy only, names
-//!   the node the proxy would have sent it to but finds down. A node asked for a session that
-//!   node holds then waits for the holder's lease to run out and takes the session over
-//!   (see [`crate::state::AppState::find_entry`]) instead of answering `421`: the takeover after
-//!   a node failure costs the client a pause, not an error. The header cannot steal a live
-//!   session: the storage hands a session over only when its holder stopped renewing.
+//! - [`ROUTED_HEADER`] (`nctwin-routed-holder`) on a request, set by the proxy only, names the
+//!   node the proxy believes holds the session and sent the request to. When the request
+//!   arrives at another node, the proxy could not reach that one: it is marked down, or the
+//!   connection failed and the proxy redispatched. A node asked for a session held by the node
+//!   this header names then waits for the holder's lease to run out and takes the session over
+//!   (see [`crate::state::AppState::find_entry`]) instead of answering `421` (which would send
+//!   the client back to the dead node): the takeover after a node failure costs the client a
+//!   pause, not an error. The header cannot steal a live session: the storage hands a session
+//!   over only when its holder stopped renewing; after one wait the node answers `421`.
 //!
 //! The per-request values travel in a task-local ([`RequestRouting`]): [`layer`] sets it
 //! around the handler, the lease code reads and fills it.
@@ -27,14 +30,14 @@ use crate::state::AppState;
 
 /// Response header: the node that holds the request's session.
 pub const HOLDER_HEADER: &str = "nctwin-holder";
-/// Request header (set by the proxy): a node the proxy found down.
-pub const UNREACHABLE_HEADER: &str = "nctwin-unreachable";
+/// Request header (set by the proxy): the node the proxy sent the request to as the holder.
+pub const ROUTED_HEADER: &str = "nctwin-routed-holder";
 
 /// What the cluster headers of one request carry.
 #[derive(Debug, Default)]
 pub struct RequestRouting {
-    /// The node the proxy reported down ([`UNREACHABLE_HEADER`]).
-    pub unreachable: Option<String>,
+    /// The node the proxy meant the request for ([`ROUTED_HEADER`]).
+    pub routed_to: Option<String>,
     /// The node found holding the session when this node could not serve it (`421`).
     pub holder: Option<String>,
 }
@@ -43,9 +46,9 @@ tokio::task_local! {
     static ROUTING: Arc<Mutex<RequestRouting>>;
 }
 
-/// The node the proxy reported down for the current request, if any.
-pub fn unreachable_node() -> Option<String> {
-    ROUTING.try_with(|r| r.lock().unwrap_or_else(|e| e.into_inner()).unreachable.clone()).ok().flatten()
+/// The node the proxy meant the current request for, if it said so.
+pub fn routed_to() -> Option<String> {
+    ROUTING.try_with(|r| r.lock().unwrap_or_else(|e| e.into_inner()).routed_to.clone()).ok().flatten()
 }
 
 /// Notes that `node` holds the current request's session (it is answered `421`).
@@ -58,9 +61,8 @@ pub fn note_holder(node: &str) {
 /// are unchanged.
 pub async fn layer(State(state): State<AppState>, request: Request, next: Next) -> Response {
     let Some(node) = state.node_name() else { return next.run(request).await };
-    let unreachable =
-        request.headers().get(UNREACHABLE_HEADER).and_then(|v| v.to_str().ok()).map(str::to_string);
-    let routing = Arc::new(Mutex::new(RequestRouting { unreachable, holder: None }));
+    let routed_to = request.headers().get(ROUTED_HEADER).and_then(|v| v.to_str().ok()).map(str::to_string);
+    let routing = Arc::new(Mutex::new(RequestRouting { routed_to, holder: None }));
     let mut response = ROUTING.scope(routing.clone(), next.run(request)).await;
     let holder = if response.status() == StatusCode::MISDIRECTED_REQUEST {
         routing.lock().unwrap_or_else(|e| e.into_inner()).holder.take()

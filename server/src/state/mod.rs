@@ -194,9 +194,10 @@ impl AppState {
 
     /// The session `id` this node serves: a live one, or, on a shared database, one this node
     /// takes over because its lease is free or expired. `421` names the node that holds it;
-    /// `404` if there is none. A holder that looks dead (the proxy reported it unreachable, see
-    /// [`crate::cluster`], or it missed a renewal) is waited for: once its lease ran out the
-    /// session is taken over here, and the request is answered after that pause.
+    /// `404` if there is none. A holder that looks dead (the proxy meant the request for it but
+    /// it arrived here, see [`crate::cluster`], or it missed a renewal) is waited for: once its
+    /// lease ran out the session is taken over here, and the request is answered after that
+    /// pause.
     pub async fn find_entry(&self, id: &str) -> Result<Arc<SessionEntry>, ApiError> {
         if let Some(entry) = self.entry(id) {
             return Ok(entry);
@@ -726,9 +727,9 @@ fn base36(mut n: u64) -> String {
 /// `--lease-seconds`), or `None` to answer `421` at once because the holder looks alive. A
 /// live holder renews three times per period, so its lease never runs below two thirds of the
 /// period (less a second of slack for a slow renewal); below that it missed a renewal. A holder
-/// the proxy reports unreachable is waited for whatever its lease says.
+/// the proxy meant the request for (it did not reach it) is waited for whatever its lease says.
 fn takeover_wait(holder: &str, seconds_left: f64, period: std::time::Duration) -> Option<std::time::Duration> {
-    let reported_down = crate::cluster::unreachable_node().is_some_and(|n| n == holder);
+    let reported_down = crate::cluster::routed_to().is_some_and(|n| n == holder);
     let missed_renewal = seconds_left < period.as_secs_f64() * 2.0 / 3.0 - 1.0;
     // 50 ms past the expiry: the database's clock decides, and this node's sleep is not exact.
     (reported_down || missed_renewal)
