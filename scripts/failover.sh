@@ -19,7 +19,9 @@ SESSIONS="${FAILOVER_SESSIONS:-300}"
 CYCLES="${FAILOVER_CYCLES:-20}"
 TARGET="${CARGO_TARGET_DIR:-$ROOT/target}/debug"
 
-cargo build -q -p nctwin-server -p nctwin-loadgen
+# One package per build: each keeps the feature set (and the artifacts) of its own builds.
+cargo build -q -p nctwin-server
+cargo build -q -p nctwin-loadgen
 # 300 viewers, the proxy's two sides of each, the nodes' database and client connections.
 ulimit -n 65536 2>/dev/null || ulimit -n "$(ulimit -Hn)"
 
