@@ -310,7 +310,12 @@ fn lease_metrics(out: &mut String, node: &str, held: usize, leases: &LeaseStats)
         let _ = writeln!(out, "# TYPE {name} {kind}");
         let _ = writeln!(out, "{name}{{{label}}} {value}");
     };
-    counter("nctwin_node_sessions_held", "Sessions this node holds the lease of and serves.", "gauge", held.to_string());
+    counter(
+        "nctwin_node_sessions_held",
+        "Sessions this node holds the lease of and serves.",
+        "gauge",
+        held.to_string(),
+    );
     counter(
         "nctwin_node_sessions_leased",
         "Sessions leased to this node at its last lease renewal (the database's count).",

@@ -268,7 +268,10 @@ impl AppState {
                 let _claiming = state.shared.claim_lock.lock().await;
                 let started = std::time::Instant::now();
                 let renewed = state.storage_call(|s| s.renew_leases()).await;
-                state.shared.metrics.lease_renewal(renewed.as_ref().ok().and_then(Option::as_ref).map(Vec::len), started.elapsed());
+                state
+                    .shared
+                    .metrics
+                    .lease_renewal(renewed.as_ref().ok().and_then(Option::as_ref).map(Vec::len), started.elapsed());
                 match renewed {
                     Ok(Some(held)) => state.drop_lost_sessions(&held).await,
                     Ok(None) => return,
@@ -746,5 +749,19 @@ mod tests {
         assert_eq!(base36(35), "z");
         assert_eq!(base36(36), "10");
         assert_eq!(base36(1_295), "zz");
+    }
+
+    /// Period 6 s, renewed every 2 s: a live holder has 4..6 s left; below 3 s (a second of
+    /// slack) it missed a renewal and its lease is waited out (plus 50 ms).
+    #[test]
+    fn a_holder_is_waited_for_only_when_it_missed_a_renewal() {
+        use std::time::Duration;
+        let period = Duration::from_secs(6);
+        assert_eq!(super::takeover_wait("b", 5.9, period), None);
+        assert_eq!(super::takeover_wait("b", 3.5, period), None);
+        assert_eq!(super::takeover_wait("b", 2.5, period), Some(Duration::from_secs_f64(2.55)));
+        assert_eq!(super::takeover_wait("b", 0.0, period), Some(Duration::from_millis(50)));
+        // A lease period of 1 s never leaves room for a missed renewal to be seen.
+        assert_eq!(super::takeover_wait("b", 0.1, Duration::from_secs(1)), None);
     }
 }

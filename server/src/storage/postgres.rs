@@ -202,6 +202,9 @@ impl PostgresStorage {
         let description = describe(&config);
         let mut client = connect(&config, &description)?;
         migrate(&mut client)?;
+        // The node's lease starts with the storage: the sessions it creates are its own from
+        // the first one, before any renewal.
+        client.execute(RENEW_NODE, &[&lease.node, &lease.period.as_secs_f64()])?;
         let fsync: String = client.query_one("SHOW fsync", &[])?.get(0);
         if fsync != "on" {
             tracing::warn!(database = %description, "the PostgreSQL server runs with fsync={fsync}: saved data may be lost in a crash");
@@ -455,6 +458,8 @@ impl Storage for PostgresStorage {
             if let Err(held) = fence(&mut tx, &record.id, node)? {
                 return Ok(Err(held));
             }
+            // The new session is leased for a whole period from now, as before schema 5.
+            tx.execute(RENEW_NODE, &[&node, &period])?;
             // Replacing a session replaces its programs too (ON DELETE CASCADE).
             tx.execute("DELETE FROM nctwin_sessions WHERE id = $1", &[&record.id])?;
             tx.execute(

@@ -128,7 +128,12 @@ struct Reply {
     body: Value,
 }
 
-async fn call(client: &reqwest::Client, method: reqwest::Method, url: &str, body: Option<&Value>) -> Result<Reply, String> {
+async fn call(
+    client: &reqwest::Client,
+    method: reqwest::Method,
+    url: &str,
+    body: Option<&Value>,
+) -> Result<Reply, String> {
     let mut request = client.request(method.clone(), url);
     if let Some(body) = body {
         request = request.json(body);
@@ -142,7 +147,12 @@ async fn call(client: &reqwest::Client, method: reqwest::Method, url: &str, body
 }
 
 /// `call` that must answer 2xx.
-async fn ok(client: &reqwest::Client, method: reqwest::Method, url: &str, body: Option<&Value>) -> Result<Reply, String> {
+async fn ok(
+    client: &reqwest::Client,
+    method: reqwest::Method,
+    url: &str,
+    body: Option<&Value>,
+) -> Result<Reply, String> {
     let reply = call(client, method.clone(), url, body).await?;
     if !(200..300).contains(&reply.status) {
         return Err(format!("{method} {url}: {} {}", reply.status, reply.body));
@@ -156,7 +166,13 @@ fn machine_positions(state: &Value) -> [f64; 3] {
 }
 
 /// Creates session `index` and gives it its writes; returns it with what it must keep.
-async fn prepare(client: &reqwest::Client, api: &str, machine: &str, index: usize, running: bool) -> Result<Session, String> {
+async fn prepare(
+    client: &reqwest::Client,
+    api: &str,
+    machine: &str,
+    index: usize,
+    running: bool,
+) -> Result<Session, String> {
     use reqwest::Method;
     let created = ok(client, Method::POST, &format!("{api}/sessions"), Some(&json!({ "machine": machine }))).await?;
     let id = created.body["id"].as_str().ok_or("no id")?.to_string();
@@ -351,8 +367,10 @@ async fn run(args: Args) -> Result<bool, String> {
         for s in sessions.iter() {
             by_node.entry(s.holder.lock().expect("holder").clone()).or_default().push(s.clone());
         }
-        let (victim, victims) =
-            by_node.iter().max_by_key(|(node, v)| (v.len(), std::cmp::Reverse((*node).clone()))).ok_or("no sessions")?;
+        let (victim, victims) = by_node
+            .iter()
+            .max_by_key(|(node, v)| (v.len(), std::cmp::Reverse((*node).clone())))
+            .ok_or("no sessions")?;
         let (victim, victims) = (victim.clone(), victims.clone());
         let stop_writers = Arc::new(AtomicBool::new(false));
         let tag = format!("c{cycle}_{}", write_seq.fetch_add(1, Ordering::Relaxed));
@@ -432,7 +450,8 @@ async fn run(args: Args) -> Result<bool, String> {
             .filter(|s| s.view.lock().expect("view").dropped_at.is_some_and(|t| t > killed_at))
             .count();
         resume.sort_by(f64::total_cmp);
-        let (p50, p99, max) = (percentile(&resume, 0.5), percentile(&resume, 0.99), resume.last().copied().unwrap_or(f64::NAN));
+        let (p50, p99, max) =
+            (percentile(&resume, 0.5), percentile(&resume, 0.99), resume.last().copied().unwrap_or(f64::NAN));
         eprintln!(
             "cycle {cycle}: killed {victim} holding {} sessions; resumed {} (p50 {p50:.2} s, p99 {p99:.2} s, max {max:.2} s), not back {not_back}; acknowledged writes {} lost {}; wrong after takeover {}; other nodes' viewers dropped {collateral}",
             victims.len(),
