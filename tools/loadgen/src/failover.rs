@@ -79,6 +79,8 @@ struct Expect {
     positions: [f64; 3],
     /// A running program's block line at its last checkpoint (its M0).
     block_line: Option<u64>,
+    /// A running program's status at that checkpoint.
+    status: String,
 }
 
 /// What one viewer saw.
@@ -191,7 +193,11 @@ async fn prepare(
         // NC start: it runs G1 X250 F10 (24 min) when its node dies.
         let body = json!({ "program": PROGRAM_TEXT_RUN, "pace": "realtime", "wait": true });
         let stopped = ok(client, Method::POST, &format!("{base}/run"), Some(&body)).await?;
-        expect.block_line = stopped.body["block"]["line"].as_u64();
+        expect.block_line = Some(stopped.body["block"]["line"].as_u64().ok_or("run: no block at the M0")?);
+        expect.status = stopped.body["status"].as_str().unwrap_or_default().to_string();
+        if expect.status == "running" {
+            return Err(format!("run with wait: still running: {}", stopped.body));
+        }
         expect.positions = machine_positions(&stopped.body);
         expect.mode = "AUTO".into();
         let started = ok(client, Method::POST, &format!("{base}/start"), Some(&json!({}))).await?;
@@ -304,13 +310,14 @@ async fn verify(client: &reqwest::Client, api: &str, s: &Session) -> Result<Vec<
     if pos.iter().zip(&expect.positions).any(|(a, b)| (a - b).abs() > 1e-6) {
         wrong.push(format!("positions {pos:?}, saved {:?}", expect.positions));
     }
-    if s.running {
-        if st["status"].as_str() == Some("running") || st["block"]["line"].as_u64() != expect.block_line {
-            wrong.push(format!(
-                "running program: status {} block {}, expected stopped at line {:?}",
-                st["status"], st["block"], expect.block_line
-            ));
-        }
+    // Back as at its last checkpoint: stopped (as it was at its M0) at the M0's block.
+    let stopped_at_block =
+        st["status"].as_str() == Some(expect.status.as_str()) && st["block"]["line"].as_u64() == expect.block_line;
+    if s.running && !stopped_at_block {
+        wrong.push(format!(
+            "running program: status {} block {}, expected {} at line {:?}",
+            st["status"], st["block"], expect.status, expect.block_line
+        ));
     }
     Ok(wrong)
 }
