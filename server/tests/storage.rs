@@ -390,6 +390,30 @@ fn a_lease_renewal_writes_one_row_per_node_whatever_the_sessions() {
     );
 }
 
+/// Claims of several sessions at once (a node taking over a dead node's sessions): each id
+/// gets its own outcome, in the order asked, in one transaction.
+#[test]
+fn several_sessions_are_claimed_at_once_each_with_its_outcome() {
+    let Some(url) = postgres_database("claims") else { return };
+    let a = PostgresStorage::open_as(&url, node("a", 1)).expect("open a");
+    let b = PostgresStorage::open_as(&url, node("b", 60)).expect("open b");
+    let c = PostgresStorage::open_as(&url, node("c", 60)).expect("open c");
+    a.create_session(&record("s1", 1)).expect("create on a");
+    a.create_session(&record("s2", 2)).expect("create on a");
+    c.create_session(&record("s3", 3)).expect("create on c");
+    // a stops renewing: after its 1 s lease, b may take s1 and s2 but not c's s3.
+    std::thread::sleep(Duration::from_millis(1_300));
+    let ids: Vec<String> = ["s2", "s3", "s9", "s1"].iter().map(|s| s.to_string()).collect();
+    let claims = b.claim_sessions(&ids).expect("claims");
+    let order: Vec<&str> = claims.iter().map(|(id, _)| id.as_str()).collect();
+    assert_eq!(order, ["s2", "s3", "s9", "s1"]);
+    assert!(matches!(&claims[0].1, Claim::Claimed(saved) if saved.record == record("s2", 2)), "{:?}", claims[0]);
+    assert!(matches!(&claims[1].1, Claim::HeldBy { node, seconds_left } if node == "c" && *seconds_left > 50.0));
+    assert_eq!(claims[2].1, Claim::Missing);
+    assert!(matches!(&claims[3].1, Claim::Claimed(saved) if saved.record == record("s1", 1)));
+    assert_eq!(b.renew_leases().expect("renew").map(sorted), Some(vec!["s1".to_string(), "s2".to_string()]));
+}
+
 fn sorted(mut v: Vec<String>) -> Vec<String> {
     v.sort();
     v

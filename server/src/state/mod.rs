@@ -87,6 +87,8 @@ struct Shared {
     /// Serialises taking over sessions from the shared database, so two requests for the same
     /// session cannot start it twice.
     claim_lock: tokio::sync::Mutex<()>,
+    /// Sessions requests wait to take over, claimed together by whoever holds `claim_lock`.
+    claim_queue: Mutex<std::collections::BTreeSet<String>>,
     /// Serialises the server-wide program budget's check and the session's new count (a std
     /// `Mutex` held for a sum over the registry, never across an await), so concurrent uploads
     /// to different sessions cannot together pass the budget.
@@ -127,6 +129,7 @@ impl AppState {
                 next_session: AtomicU64::new(1),
                 create_lock: tokio::sync::Mutex::new(()),
                 claim_lock: tokio::sync::Mutex::new(()),
+                claim_queue: Mutex::new(std::collections::BTreeSet::new()),
                 budget_lock: Mutex::new(()),
                 config,
                 storage,
@@ -208,24 +211,60 @@ impl AppState {
         let mut waited = false;
         loop {
             let claim = {
+                // Requests for sessions to take over queue their ids; whoever gets the lock
+                // claims every queued one in one storage call (after a node died, the requests
+                // for its sessions all wait for the same lease and come here together).
+                self.claim_queue().insert(id.to_string());
                 let _claiming = self.shared.claim_lock.lock().await;
                 if let Some(entry) = self.entry(id) {
+                    self.claim_queue().remove(id);
                     return Ok(entry);
                 }
-                let key = id.to_string();
-                let started = std::time::Instant::now();
-                match self.storage_call(move |s| s.claim_session(&key)).await? {
-                    Claim::Claimed(saved) => {
-                        self.shared.metrics.lease_takeover(started.elapsed());
-                        tracing::info!(session = %id, "session taken over from the shared database");
-                        return self.start_saved(&saved).ok_or_else(|| {
-                            ApiError::StorageUnavailable(format!(
-                                "session `{id}` is stored but cannot be restored here"
-                            ))
-                        });
-                    }
-                    other => other,
+                let mut ids: Vec<String> = std::mem::take(&mut *self.claim_queue()).into_iter().collect();
+                ids.retain(|queued| queued == id || self.entry(queued).is_none());
+                if !ids.iter().any(|queued| queued == id) {
+                    ids.push(id.to_string());
                 }
+                let started = std::time::Instant::now();
+                let key = ids.clone();
+                let claims = self.storage_call(move |s| s.claim_sessions(&key)).await?;
+                let claimed_in = started.elapsed();
+                let mut mine = Claim::Missing;
+                let mut taken = 0;
+                for (sid, claim) in claims {
+                    match claim {
+                        Claim::Claimed(saved) => {
+                            taken += 1;
+                            if self.start_saved(&saved).is_none() && sid == id {
+                                return Err(ApiError::StorageUnavailable(format!(
+                                    "session `{id}` is stored but cannot be restored here"
+                                )));
+                            }
+                            if sid == id {
+                                mine = Claim::Claimed(saved);
+                            }
+                        }
+                        other if sid == id => mine = other,
+                        _ => {}
+                    }
+                }
+                if taken > 0 {
+                    let total = started.elapsed();
+                    for _ in 0..taken {
+                        self.shared.metrics.lease_takeover(total / taken);
+                    }
+                    tracing::info!(
+                        sessions = taken,
+                        asked = ids.len(),
+                        claim_ms = claimed_in.as_secs_f64() * 1e3,
+                        restore_ms = (total - claimed_in).as_secs_f64() * 1e3,
+                        "sessions taken over from the shared database"
+                    );
+                }
+                if let Claim::Claimed(_) = mine {
+                    return self.entry(id).ok_or_else(|| ApiError::SessionEnded(id.to_string()));
+                }
+                mine
             };
             match claim {
                 Claim::HeldBy { node, seconds_left } => {
@@ -241,6 +280,11 @@ impl AppState {
                 Claim::Missing | Claim::Claimed(_) => return Err(ApiError::SessionNotFound(id.to_string())),
             }
         }
+    }
+
+    /// Ids of sessions that requests wait to take over (see [`AppState::find_entry`]).
+    fn claim_queue(&self) -> MutexGuard<'_, std::collections::BTreeSet<String>> {
+        self.shared.claim_queue.lock().unwrap_or_else(|e| e.into_inner())
     }
 
     /// This node's name on a shared database (`None`: a single node, no leases).

@@ -246,6 +246,11 @@ pub trait Storage: Send + Sync + Debug {
     fn claim_session(&self, _id: &str) -> Result<Claim, StorageError> {
         Ok(Claim::Missing)
     }
+    /// [`Storage::claim_session`] for several sessions at once (a node taking over the sessions
+    /// of a dead one), each with its outcome; a backend may do it in one transaction.
+    fn claim_sessions(&self, ids: &[String]) -> Result<Vec<(String, Claim)>, StorageError> {
+        ids.iter().map(|id| Ok((id.clone(), self.claim_session(id)?))).collect()
+    }
     /// Renews this node's leases; the ids still held (`None`: no leases).
     fn renew_leases(&self) -> Result<Option<Vec<String>>, StorageError> {
         Ok(None)

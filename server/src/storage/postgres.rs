@@ -648,6 +648,46 @@ impl Storage for PostgresStorage {
         })
     }
 
+    fn claim_sessions(&self, ids: &[String]) -> Result<Vec<(String, Claim)>, StorageError> {
+        // One transaction (one commit to flush) for all: after a node died, the requests for
+        // its sessions all wait for the same lease to run out and are claimed together.
+        let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
+        self.with(|c| {
+            let mut tx = c.transaction()?;
+            tx.execute(RENEW_NODE, &[&node, &period])?;
+            let claimed = tx.query(
+                &format!(
+                    "UPDATE nctwin_sessions s SET lease_node = $2 WHERE s.id = ANY($1) AND {}
+                     RETURNING {SESSION_COLUMNS}",
+                    claimable("$2")
+                ),
+                &[&ids, &node],
+            )?;
+            let mut outcome: HashMap<String, Claim> = saved_sessions(&mut tx, claimed)?
+                .into_iter()
+                .map(|saved| (saved.record.id.clone(), Claim::Claimed(Box::new(saved))))
+                .collect();
+            let rest: Vec<&String> = ids.iter().filter(|id| !outcome.contains_key(*id)).collect();
+            if !rest.is_empty() {
+                let held = tx.query(
+                    &format!(
+                        "SELECT s.id, s.lease_node, {HOLDER_SECONDS_LEFT} FROM nctwin_sessions s WHERE s.id = ANY($1)"
+                    ),
+                    &[&rest],
+                )?;
+                for row in held {
+                    let claim = Claim::HeldBy {
+                        node: row.get::<_, Option<String>>(1).unwrap_or_default(),
+                        seconds_left: row.get::<_, Option<f64>>(2).unwrap_or(0.0),
+                    };
+                    outcome.insert(row.get(0), claim);
+                }
+            }
+            tx.commit()?;
+            Ok(ids.iter().map(|id| (id.clone(), outcome.remove(id).unwrap_or(Claim::Missing))).collect())
+        })
+    }
+
     fn renew_leases(&self) -> Result<Option<Vec<String>>, StorageError> {
         let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
         // One row written per node, however many sessions it holds; the ids are read through
