@@ -5,12 +5,16 @@
 #   `cargo test` runs with a throwaway PostgreSQL server (scripts/postgres.sh) when Debian's
 #   postgresql package is installed, for the PostgreSQL storage tests.
 #
+#   the cluster failover test (scripts/failover.sh: three nodes behind HAProxy, kill -9 cycles).
+#
 #   scripts/test.sh            everything
 #   scripts/test.sh rust       only fmt, clippy and cargo test
 #   scripts/test.sh browser    only the HMI: type check, build, browser test
 #   scripts/test.sh fuzz       only the API bad-input campaign (schemathesis, scripts/fuzz-api.sh)
+#   scripts/test.sh failover   only the cluster failover test (FAILOVER_CYCLES, default 20)
 #
-# Needs /usr/bin/chromium (scripts/install-deps.sh installs it). Runs from any directory.
+# Installs what it lacks first (scripts/install-deps.sh: apt packages, npm packages, the Python
+# venv; a no-op of a few milliseconds when all is there). Runs from any directory.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -18,8 +22,8 @@ cd "$ROOT"
 
 WHAT="${1:-all}"
 case "$WHAT" in
-  all | rust | browser | fuzz) ;;
-  *) echo "usage: $0 [all|rust|browser|fuzz]" >&2; exit 2 ;;
+  all | rust | browser | fuzz | failover) ;;
+  *) echo "usage: $0 [all|rust|browser|fuzz|failover]" >&2; exit 2 ;;
 esac
 
 CHROMIUM="${CHROMIUM_PATH:-/usr/bin/chromium}"
@@ -28,8 +32,14 @@ STARTUP_TIMEOUT_S=60
 
 section() { printf '\n==> %s\n' "$*"; }
 
-if [ "$WHAT" != rust ] && [ "$WHAT" != fuzz ] && [ ! -x "$CHROMIUM" ]; then
-  echo "error: $CHROMIUM not found; the browser test needs it. Run scripts/install-deps.sh first." >&2
+if [ "$WHAT" = rust ] || [ "$WHAT" = failover ]; then
+  bash scripts/install-deps.sh rust
+else
+  bash scripts/install-deps.sh
+fi
+
+if [ "$WHAT" != rust ] && [ "$WHAT" != fuzz ] && [ "$WHAT" != failover ] && [ ! -x "$CHROMIUM" ]; then
+  echo "error: $CHROMIUM not found; the browser test needs it (scripts/install-deps.sh installs it)." >&2
   exit 1
 fi
 
@@ -59,7 +69,14 @@ if [ "$WHAT" = all ] || [ "$WHAT" = fuzz ]; then
   bash scripts/fuzz-api.sh
 fi
 
-if [ "$WHAT" = rust ] || [ "$WHAT" = fuzz ]; then exit 0; fi
+if [ "$WHAT" = all ] || [ "$WHAT" = failover ]; then
+  # 300 sessions, the issue's 20 kill cycles: about 4 minutes on 2 cores (README "A cluster of
+  # nodes" has the figures).
+  section "cluster failover: three nodes behind HAProxy, kill -9 cycles (scripts/failover.sh)"
+  FAILOVER_CYCLES="${FAILOVER_CYCLES:-20}" bash scripts/failover.sh
+fi
+
+if [ "$WHAT" = rust ] || [ "$WHAT" = fuzz ] || [ "$WHAT" = failover ]; then exit 0; fi
 
 section "HMI: type check and build (web/)"
 bash scripts/build-web.sh

@@ -54,6 +54,7 @@ pub fn app(state: AppState, bound: Option<SocketAddr>) -> Router {
         },
     );
     let metrics = Router::new().route(METRICS_PATH, get(metrics::metrics)).with_state(state.clone());
+    let state_for_cluster = state.clone();
     // The span names the path without the query: a stream's `?token=` stays out of the logs.
     let trace = TraceLayer::new_for_http().make_span_with(
         |request: &Request| tracing::info_span!("request", method = %request.method(), path = %request.uri().path()),
@@ -64,6 +65,7 @@ pub fn app(state: AppState, bound: Option<SocketAddr>) -> Router {
         .merge(SwaggerUi::new(openapi::SWAGGER_UI_PATH).url(openapi::DOCUMENT_PATH, document))
         .fallback_service(hmi)
         .layer(middleware::map_response(json_errors))
+        .layer(middleware::from_fn_with_state(state_for_cluster, crate::cluster::layer))
         .layer(CompressionLayer::new().compress_when(compress))
         .layer(site.cors())
         .layer(middleware::from_fn_with_state(site, site::guard))

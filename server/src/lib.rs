@@ -31,6 +31,7 @@
 
 pub mod api;
 pub mod auth;
+pub mod cluster;
 mod conn;
 pub mod dto;
 pub mod error;

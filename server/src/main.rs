@@ -36,9 +36,11 @@ struct Args {
     /// same name takes its sessions back at once.
     #[arg(long, value_name = "NAME")]
     node_id: Option<String>,
-    /// With `--database`: seconds a node's session lease lasts without renewal (renewed three
-    /// times per period). A node that died frees its sessions for other nodes after this long.
-    #[arg(long, value_name = "SECONDS", default_value_t = 15, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    /// With `--database`: seconds a node's lease lasts without renewal (renewed three times per
+    /// period, one database row per node). A node that died frees its sessions for other nodes
+    /// after at most this long: the default 6 keeps a takeover behind a proxy within 10 s.
+    /// Every node of a database should run the same value.
+    #[arg(long, value_name = "SECONDS", default_value_t = 6, value_parser = clap::value_parser!(u64).range(1..=3600))]
     lease_seconds: u64,
     /// Folder of the browser HMI's static files.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../web/dist"))]

@@ -42,6 +42,27 @@ pub struct Metrics {
     connections_refused: AtomicU64,
     /// Streams the server closed, by [`StreamClose`].
     stream_closes: [AtomicU64; StreamClose::ALL.len()],
+    /// Several nodes on one database: lease renewals and takeovers.
+    leases: Mutex<LeaseStats>,
+}
+
+/// Upper bounds (seconds) of the lease renewal latency histogram: one small transaction, up
+/// to the lease period a renewal must beat.
+const RENEWAL_BUCKETS: [f64; 10] = [0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.5, 1.0, 5.0];
+
+/// Lease renewals of this node (one per tick of its heartbeat) and sessions it took over.
+#[derive(Debug, Default, Clone)]
+struct LeaseStats {
+    renewals_ok: u64,
+    renewals_failed: u64,
+    /// Per bucket of [`RENEWAL_BUCKETS`] (not cumulative), plus one for +Inf.
+    renewal_buckets: [u64; RENEWAL_BUCKETS.len() + 1],
+    renewal_sum: f64,
+    /// Sessions the last successful renewal found leased to this node.
+    held_at_renewal: u64,
+    takeovers: u64,
+    /// Seconds spent claiming and loading the sessions taken over.
+    takeover_sum: f64,
 }
 
 /// Why the server closed a WebSocket stream on its client.
@@ -119,6 +140,30 @@ impl Metrics {
         self.stream_closes[i].fetch_add(1, Ordering::Relaxed);
     }
 
+    /// Counts one lease renewal: `held` sessions still leased to this node (`None`: it failed),
+    /// taking `elapsed`.
+    pub fn lease_renewal(&self, held: Option<usize>, elapsed: Duration) {
+        let seconds = elapsed.as_secs_f64();
+        let bucket = RENEWAL_BUCKETS.iter().position(|b| seconds <= *b).unwrap_or(RENEWAL_BUCKETS.len());
+        let mut leases = self.leases.lock().unwrap_or_else(|e| e.into_inner());
+        match held {
+            Some(n) => {
+                leases.renewals_ok += 1;
+                leases.held_at_renewal = n as u64;
+            }
+            None => leases.renewals_failed += 1,
+        }
+        leases.renewal_buckets[bucket] += 1;
+        leases.renewal_sum += seconds;
+    }
+
+    /// Counts a session taken over from the shared database (its claim took `elapsed`).
+    pub fn lease_takeover(&self, elapsed: Duration) {
+        let mut leases = self.leases.lock().unwrap_or_else(|e| e.into_inner());
+        leases.takeovers += 1;
+        leases.takeover_sum += elapsed.as_secs_f64();
+    }
+
     /// The text exposition of every metric, with the registry's gauges read now.
     pub fn render(&self, state: &AppState) -> String {
         let entries = state.list_entries();
@@ -158,6 +203,10 @@ impl Metrics {
             let _ = writeln!(out, "{closes}{{reason=\"{}\"}} {}", why.label(), n.load(Ordering::Relaxed));
         }
         wake_histogram(&mut out, &wake_stats().counts());
+        if let Some(node) = state.node_name() {
+            let leases = self.leases.lock().unwrap_or_else(|e| e.into_inner()).clone();
+            lease_metrics(&mut out, &node, entries.len(), &leases);
+        }
         let _ = writeln!(out, "# HELP nctwin_storage_operations_total Storage calls by result.");
         let _ = writeln!(out, "# TYPE nctwin_storage_operations_total counter");
         let _ = writeln!(
@@ -252,6 +301,59 @@ fn wake_histogram(out: &mut String, counts: &WakeCounts) {
     let _ = writeln!(out, "{dropped} {}", counts.dropped_cycles);
 }
 
+/// This node's leases: sessions held, renewals (count, failures, latency histogram) and
+/// takeovers, each labelled with the node's name.
+fn lease_metrics(out: &mut String, node: &str, held: usize, leases: &LeaseStats) {
+    let label = format!("node=\"{}\"", escape(node));
+    let mut counter = |name: &str, help: &str, kind: &str, value: String| {
+        let _ = writeln!(out, "# HELP {name} {help}");
+        let _ = writeln!(out, "# TYPE {name} {kind}");
+        let _ = writeln!(out, "{name}{{{label}}} {value}");
+    };
+    counter(
+        "nctwin_node_sessions_held",
+        "Sessions this node holds the lease of and serves.",
+        "gauge",
+        held.to_string(),
+    );
+    counter(
+        "nctwin_node_sessions_leased",
+        "Sessions leased to this node at its last lease renewal (the database's count).",
+        "gauge",
+        leases.held_at_renewal.to_string(),
+    );
+    counter(
+        "nctwin_node_takeovers_total",
+        "Sessions this node took over from the shared database (free, or their holder's lease expired).",
+        "counter",
+        leases.takeovers.to_string(),
+    );
+    counter(
+        "nctwin_node_takeover_seconds_total",
+        "Time spent claiming and restoring the sessions taken over.",
+        "counter",
+        leases.takeover_sum.to_string(),
+    );
+    counter(
+        "nctwin_node_lease_renewal_failures_total",
+        "Lease renewals that failed (the database did not answer).",
+        "counter",
+        leases.renewals_failed.to_string(),
+    );
+    let name = "nctwin_node_lease_renewal_seconds";
+    let _ = writeln!(out, "# HELP {name} Time of this node's lease renewals (one row per node, whatever it holds).");
+    let _ = writeln!(out, "# TYPE {name} histogram");
+    let mut cumulative = 0;
+    for (bound, n) in RENEWAL_BUCKETS.iter().zip(&leases.renewal_buckets) {
+        cumulative += n;
+        let _ = writeln!(out, "{name}_bucket{{{label},le=\"{bound}\"}} {cumulative}");
+    }
+    let count = leases.renewals_ok + leases.renewals_failed;
+    let _ = writeln!(out, "{name}_bucket{{{label},le=\"+Inf\"}} {count}");
+    let _ = writeln!(out, "{name}_sum{{{label}}} {}", leases.renewal_sum);
+    let _ = writeln!(out, "{name}_count{{{label}}} {count}");
+}
+
 /// Escapes a label value (backslash, double quote, newline).
 fn escape(value: &str) -> String {
     value.replace('\\', "\\\\").replace('"', "\\\"").replace('\n', "\\n")
@@ -334,6 +436,28 @@ mod tests {
         assert!(out.contains("nctwin_ipo_wake_lateness_seconds_count 6\n"), "{out}");
         assert!(out.contains("nctwin_ipo_wake_lateness_seconds_sum 2.5\n"), "{out}");
         assert!(out.contains("nctwin_ipo_cycles_dropped_total 40\n"), "{out}");
+    }
+
+    #[test]
+    fn lease_metrics_name_the_node_and_count_renewals_and_takeovers() {
+        let metrics = Metrics::default();
+        metrics.lease_renewal(Some(1500), Duration::from_micros(800));
+        metrics.lease_renewal(Some(1499), Duration::from_millis(30));
+        metrics.lease_renewal(None, Duration::from_secs(10));
+        metrics.lease_takeover(Duration::from_millis(250));
+        let leases = metrics.leases.lock().expect("lock").clone();
+        let mut out = String::new();
+        lease_metrics(&mut out, "n1", 1499, &leases);
+        assert!(out.contains("nctwin_node_sessions_held{node=\"n1\"} 1499\n"), "{out}");
+        assert!(out.contains("nctwin_node_sessions_leased{node=\"n1\"} 1499\n"), "{out}");
+        assert!(out.contains("nctwin_node_takeovers_total{node=\"n1\"} 1\n"), "{out}");
+        assert!(out.contains("nctwin_node_lease_renewal_failures_total{node=\"n1\"} 1\n"), "{out}");
+        // 0.8 ms in the first bucket, 30 ms in the 50 ms one, 10 s only in +Inf.
+        assert!(out.contains("nctwin_node_lease_renewal_seconds_bucket{node=\"n1\",le=\"0.001\"} 1\n"), "{out}");
+        assert!(out.contains("nctwin_node_lease_renewal_seconds_bucket{node=\"n1\",le=\"0.05\"} 2\n"), "{out}");
+        assert!(out.contains("nctwin_node_lease_renewal_seconds_bucket{node=\"n1\",le=\"5\"} 2\n"), "{out}");
+        assert!(out.contains("nctwin_node_lease_renewal_seconds_bucket{node=\"n1\",le=\"+Inf\"} 3\n"), "{out}");
+        assert!(out.contains("nctwin_node_lease_renewal_seconds_count{node=\"n1\"} 3\n"), "{out}");
     }
 
     #[test]

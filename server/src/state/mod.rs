@@ -87,6 +87,8 @@ struct Shared {
     /// Serialises taking over sessions from the shared database, so two requests for the same
     /// session cannot start it twice.
     claim_lock: tokio::sync::Mutex<()>,
+    /// Sessions requests wait to take over, claimed together by whoever holds `claim_lock`.
+    claim_queue: Mutex<std::collections::BTreeSet<String>>,
     /// Serialises the server-wide program budget's check and the session's new count (a std
     /// `Mutex` held for a sum over the registry, never across an await), so concurrent uploads
     /// to different sessions cannot together pass the budget.
@@ -127,6 +129,7 @@ impl AppState {
                 next_session: AtomicU64::new(1),
                 create_lock: tokio::sync::Mutex::new(()),
                 claim_lock: tokio::sync::Mutex::new(()),
+                claim_queue: Mutex::new(std::collections::BTreeSet::new()),
                 budget_lock: Mutex::new(()),
                 config,
                 storage,
@@ -194,31 +197,99 @@ impl AppState {
 
     /// The session `id` this node serves: a live one, or, on a shared database, one this node
     /// takes over because its lease is free or expired. `421` names the node that holds it;
-    /// `404` if there is none.
+    /// `404` if there is none. A holder that looks dead (the proxy meant the request for it but
+    /// it arrived here, see [`crate::cluster`], or it missed a renewal) is waited for: once its
+    /// lease ran out the session is taken over here, and the request is answered after that
+    /// pause.
     pub async fn find_entry(&self, id: &str) -> Result<Arc<SessionEntry>, ApiError> {
         if let Some(entry) = self.entry(id) {
             return Ok(entry);
         }
-        if self.shared.storage.lease().is_none() {
+        let Some(period) = self.shared.storage.lease().map(|l| l.period) else {
             return Err(ApiError::SessionNotFound(id.to_string()));
-        }
-        let _claiming = self.shared.claim_lock.lock().await;
-        if let Some(entry) = self.entry(id) {
-            return Ok(entry);
-        }
-        let key = id.to_string();
-        match self.storage_call(move |s| s.claim_session(&key)).await? {
-            Claim::Claimed(saved) => {
-                tracing::info!(session = %id, "session taken over from the shared database");
-                self.start_saved(&saved).ok_or_else(|| {
-                    ApiError::StorageUnavailable(format!("session `{id}` is stored but cannot be restored here"))
-                })
+        };
+        let mut waited = false;
+        loop {
+            let claim = {
+                // Requests for sessions to take over queue their ids; whoever gets the lock
+                // claims every queued one in one storage call (after a node died, the requests
+                // for its sessions all wait for the same lease and come here together).
+                self.claim_queue().insert(id.to_string());
+                let _claiming = self.shared.claim_lock.lock().await;
+                if let Some(entry) = self.entry(id) {
+                    self.claim_queue().remove(id);
+                    return Ok(entry);
+                }
+                let mut ids: Vec<String> = std::mem::take(&mut *self.claim_queue()).into_iter().collect();
+                ids.retain(|queued| queued == id || self.entry(queued).is_none());
+                if !ids.iter().any(|queued| queued == id) {
+                    ids.push(id.to_string());
+                }
+                let started = std::time::Instant::now();
+                let key = ids.clone();
+                let claims = self.storage_call(move |s| s.claim_sessions(&key)).await?;
+                let claimed_in = started.elapsed();
+                let mut mine = Claim::Missing;
+                let mut taken = 0;
+                for (sid, claim) in claims {
+                    match claim {
+                        Claim::Claimed(saved) => {
+                            taken += 1;
+                            if self.start_saved(&saved).is_none() && sid == id {
+                                return Err(ApiError::StorageUnavailable(format!(
+                                    "session `{id}` is stored but cannot be restored here"
+                                )));
+                            }
+                            if sid == id {
+                                mine = Claim::Claimed(saved);
+                            }
+                        }
+                        other if sid == id => mine = other,
+                        _ => {}
+                    }
+                }
+                if taken > 0 {
+                    let total = started.elapsed();
+                    for _ in 0..taken {
+                        self.shared.metrics.lease_takeover(total / taken);
+                    }
+                    tracing::info!(
+                        sessions = taken,
+                        asked = ids.len(),
+                        claim_ms = claimed_in.as_secs_f64() * 1e3,
+                        restore_ms = (total - claimed_in).as_secs_f64() * 1e3,
+                        "sessions taken over from the shared database"
+                    );
+                }
+                if let Claim::Claimed(_) = mine {
+                    return self.entry(id).ok_or_else(|| ApiError::SessionEnded(id.to_string()));
+                }
+                mine
+            };
+            match claim {
+                Claim::HeldBy { node, seconds_left } => {
+                    let wait = (!waited).then(|| takeover_wait(&node, seconds_left, period)).flatten();
+                    let Some(wait) = wait else {
+                        crate::cluster::note_holder(&node);
+                        return Err(ApiError::WrongNode { session: id.to_string(), node, seconds_left });
+                    };
+                    tracing::info!(session = %id, holder = %node, wait_s = wait.as_secs_f64(), "waiting for a dead holder's lease to run out");
+                    waited = true;
+                    tokio::time::sleep(wait).await;
+                }
+                Claim::Missing | Claim::Claimed(_) => return Err(ApiError::SessionNotFound(id.to_string())),
             }
-            Claim::HeldBy { node, seconds_left } => {
-                Err(ApiError::WrongNode { session: id.to_string(), node, seconds_left })
-            }
-            Claim::Missing => Err(ApiError::SessionNotFound(id.to_string())),
         }
+    }
+
+    /// Ids of sessions that requests wait to take over (see [`AppState::find_entry`]).
+    fn claim_queue(&self) -> MutexGuard<'_, std::collections::BTreeSet<String>> {
+        self.shared.claim_queue.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// This node's name on a shared database (`None`: a single node, no leases).
+    pub fn node_name(&self) -> Option<String> {
+        self.shared.storage.lease().map(|l| l.node.clone())
     }
 
     /// With leases (a shared database): renews this node's leases three times per lease
@@ -239,7 +310,13 @@ impl AppState {
                 // leased after the renewal's snapshot would look lost.
                 let _creating = state.shared.create_lock.lock().await;
                 let _claiming = state.shared.claim_lock.lock().await;
-                match state.storage_call(|s| s.renew_leases()).await {
+                let started = std::time::Instant::now();
+                let renewed = state.storage_call(|s| s.renew_leases()).await;
+                state
+                    .shared
+                    .metrics
+                    .lease_renewal(renewed.as_ref().ok().and_then(Option::as_ref).map(Vec::len), started.elapsed());
+                match renewed {
                     Ok(Some(held)) => state.drop_lost_sessions(&held).await,
                     Ok(None) => return,
                     Err(e) => tracing::warn!(error = %e, "session leases not renewed"),
@@ -303,6 +380,7 @@ impl AppState {
             .unwrap_or_else(|e| Err(StorageError::new(format!("storage call failed: {e}"))));
         self.shared.metrics.storage_call(result.is_ok());
         if let Err(StorageError { held_by: Some(held), .. }) = &result {
+            crate::cluster::note_holder(&held.node);
             self.stop_serving(&held.session);
         }
         result
@@ -691,6 +769,20 @@ fn base36(mut n: u64) -> String {
     String::from_utf8(out).unwrap_or_default()
 }
 
+/// How long to wait before claiming a session that node `holder` holds with `seconds_left` of
+/// its lease (period `period`, as this node's: every node of a database runs the same
+/// `--lease-seconds`), or `None` to answer `421` at once because the holder looks alive. A
+/// live holder renews three times per period, so its lease never runs below two thirds of the
+/// period (less a second of slack for a slow renewal); below that it missed a renewal. A holder
+/// the proxy meant the request for (it did not reach it) is waited for whatever its lease says.
+fn takeover_wait(holder: &str, seconds_left: f64, period: std::time::Duration) -> Option<std::time::Duration> {
+    let reported_down = crate::cluster::routed_to().is_some_and(|n| n == holder);
+    let missed_renewal = seconds_left < period.as_secs_f64() * 2.0 / 3.0 - 1.0;
+    // 50 ms past the expiry: the database's clock decides, and this node's sleep is not exact.
+    (reported_down || missed_renewal)
+        .then(|| std::time::Duration::from_secs_f64(seconds_left.clamp(0.0, period.as_secs_f64()) + 0.05))
+}
+
 #[cfg(test)]
 mod tests {
     use super::base36;
@@ -701,5 +793,19 @@ mod tests {
         assert_eq!(base36(35), "z");
         assert_eq!(base36(36), "10");
         assert_eq!(base36(1_295), "zz");
+    }
+
+    /// Period 6 s, renewed every 2 s: a live holder has 4..6 s left; below 3 s (a second of
+    /// slack) it missed a renewal and its lease is waited out (plus 50 ms).
+    #[test]
+    fn a_holder_is_waited_for_only_when_it_missed_a_renewal() {
+        use std::time::Duration;
+        let period = Duration::from_secs(6);
+        assert_eq!(super::takeover_wait("b", 5.9, period), None);
+        assert_eq!(super::takeover_wait("b", 3.5, period), None);
+        assert_eq!(super::takeover_wait("b", 2.5, period), Some(Duration::from_secs_f64(2.55)));
+        assert_eq!(super::takeover_wait("b", 0.0, period), Some(Duration::from_millis(50)));
+        // A lease period of 1 s never leaves room for a missed renewal to be seen.
+        assert_eq!(super::takeover_wait("b", 0.1, Duration::from_secs(1)), None);
     }
 }

@@ -7,10 +7,12 @@
 //! older versions (columns added, rows kept). Positions are a `double precision[]`, sent in
 //! binary: they round-trip bit for bit.
 //!
-//! Several nodes: each storage is opened for one node ([`Lease`]). A session row carries its
-//! lease (`lease_node`, `lease_expires`, on the database's clock): `load` and `claim_session`
-//! take the sessions that are free, expired or already this node's; `renew_leases` extends this
-//! node's; `release_leases` frees them. Every write to a session first locks its row and checks
+//! Several nodes: each storage is opened for one node ([`Lease`]). A session row names its
+//! holder (`lease_node`); the lease itself is the holder's row in `nctwin_nodes` (its expiry, on
+//! the database's clock), so a renewal writes one row per node however many sessions it holds.
+//! `load` and `claim_session` take the sessions that are free, already this node's or whose
+//! holder's node lease expired; `renew_leases` extends this node's row; `release_leases` frees
+//! its sessions and removes the row. Every write to a session first locks its row and checks
 //! that this node holds it (`fence`), so a node that lost a session can no longer change it.
 //! Session numbers come from the sequence `nctwin_session_numbers`.
 //!
@@ -43,7 +45,7 @@ use super::{
 };
 
 /// Version in `nctwin_schema`; migrations go from each version to the next.
-const SCHEMA_VERSION: i32 = 4;
+const SCHEMA_VERSION: i32 = 5;
 
 /// Key of the advisory lock held while the schema is created or migrated.
 const SCHEMA_LOCK: i64 = 0x6e63_7477_696e; // "nctwin"
@@ -99,6 +101,39 @@ ALTER TABLE nctwin_sessions
     ADD COLUMN persistent     BOOLEAN NOT NULL DEFAULT FALSE,
     ADD COLUMN last_active_ms BIGINT;
 ";
+
+/// Version 5: leases per node, not per session. A node renews one row of `nctwin_nodes`
+/// (its name and expiry), whatever number of sessions it holds; a session row names its holder
+/// (`lease_node`) and is claimable when that node's row has expired (or is missing).
+/// `lease_expires` of a session is no longer read. Existing holders get a row with the latest
+/// expiry of their sessions.
+const MIGRATE_V5: &str = "
+CREATE TABLE nctwin_nodes (
+    node    TEXT PRIMARY KEY,
+    expires TIMESTAMPTZ NOT NULL
+);
+INSERT INTO nctwin_nodes (node, expires)
+    SELECT lease_node, COALESCE(max(lease_expires), now()) FROM nctwin_sessions
+    WHERE lease_node IS NOT NULL GROUP BY lease_node;
+CREATE INDEX nctwin_sessions_lease_node ON nctwin_sessions (lease_node);
+";
+
+/// SQL condition: the session row `s` may be leased to node `$me` (a parameter named by the
+/// caller): it is free, already `$me`'s, or its holder's node lease has expired.
+fn claimable(me: &str) -> String {
+    format!(
+        "(s.lease_node IS NULL OR s.lease_node = {me} OR NOT EXISTS (
+            SELECT 1 FROM nctwin_nodes n WHERE n.node = s.lease_node AND n.expires >= now()))"
+    )
+}
+
+/// SQL: the seconds left of the node lease of session row `s`'s holder (0 if none or expired).
+const HOLDER_SECONDS_LEFT: &str = "GREATEST(COALESCE(EXTRACT(EPOCH FROM
+    (SELECT n.expires FROM nctwin_nodes n WHERE n.node = s.lease_node) - now()), 0), 0)::float8";
+
+/// SQL: registers or renews node `$1`'s lease for `$2` seconds.
+const RENEW_NODE: &str = "INSERT INTO nctwin_nodes (node, expires) VALUES ($1, now() + make_interval(secs => $2))
+     ON CONFLICT (node) DO UPDATE SET expires = excluded.expires";
 
 const UPDATE_CHECKPOINT: &str =
     "UPDATE nctwin_sessions SET machine_data = $2, positions = $3, mode = $4, channel_state = $5 WHERE id = $1";
@@ -167,6 +202,9 @@ impl PostgresStorage {
         let description = describe(&config);
         let mut client = connect(&config, &description)?;
         migrate(&mut client)?;
+        // The node's lease starts with the storage: the sessions it creates are its own from
+        // the first one, before any renewal.
+        client.execute(RENEW_NODE, &[&lease.node, &lease.period.as_secs_f64()])?;
         let fsync: String = client.query_one("SHOW fsync", &[])?.get(0);
         if fsync != "on" {
             tracing::warn!(database = %description, "the PostgreSQL server runs with fsync={fsync}: saved data may be lost in a crash");
@@ -245,16 +283,20 @@ fn migrate(client: &mut Client) -> Result<(), StorageError> {
             tx.batch_execute(MIGRATE_V2)?;
             tx.batch_execute(MIGRATE_V3)?;
             tx.batch_execute(MIGRATE_V4)?;
+            tx.batch_execute(MIGRATE_V5)?;
             tx.execute("INSERT INTO nctwin_schema (version) VALUES ($1)", &[&SCHEMA_VERSION])?;
         }
-        Some(version @ (1..=3)) => {
+        Some(version @ (1..=4)) => {
             if version == 1 {
                 tx.batch_execute(MIGRATE_V2)?;
             }
             if version <= 2 {
                 tx.batch_execute(MIGRATE_V3)?;
             }
-            tx.batch_execute(MIGRATE_V4)?;
+            if version <= 3 {
+                tx.batch_execute(MIGRATE_V4)?;
+            }
+            tx.batch_execute(MIGRATE_V5)?;
             tx.execute("UPDATE nctwin_schema SET version = $1", &[&SCHEMA_VERSION])?;
         }
         Some(SCHEMA_VERSION) => {}
@@ -322,8 +364,7 @@ fn record_from_row(r: &postgres::Row) -> SessionRecord {
 /// again first).
 fn fence(tx: &mut Transaction<'_>, id: &str, node: &str) -> Result<Result<bool, StorageError>, postgres::Error> {
     let row = tx.query_opt(
-        "SELECT lease_node, GREATEST(EXTRACT(EPOCH FROM lease_expires - now()), 0)::float8
-         FROM nctwin_sessions WHERE id = $1 FOR UPDATE",
+        &format!("SELECT s.lease_node, {HOLDER_SECONDS_LEFT} FROM nctwin_sessions s WHERE s.id = $1 FOR UPDATE OF s"),
         &[&id],
     )?;
     let Some(row) = row else { return Ok(Ok(false)) };
@@ -392,15 +433,15 @@ impl Storage for PostgresStorage {
             // Read committed is enough: the rows this statement leases stay locked until the
             // commit, and every other node's write to them checks the lease first (`fence`).
             let mut tx = c.transaction()?;
+            tx.execute(RENEW_NODE, &[&node, &period])?;
             // This node's own sessions (a restart under the same name), the free ones and those
             // whose holder stopped renewing.
             let sessions = tx.query(
                 &format!(
-                    "UPDATE nctwin_sessions SET lease_node = $1, lease_expires = now() + make_interval(secs => $2)
-                     WHERE lease_node IS NULL OR lease_node = $1 OR lease_expires < now()
-                     RETURNING {SESSION_COLUMNS}"
+                    "UPDATE nctwin_sessions s SET lease_node = $1 WHERE {} RETURNING {SESSION_COLUMNS}",
+                    claimable("$1")
                 ),
-                &[&node, &period],
+                &[&node],
             )?;
             let mut sessions = sessions;
             sessions.sort_by_key(|r| (r.get::<_, i64>(1), r.get::<_, String>(0)));
@@ -417,6 +458,8 @@ impl Storage for PostgresStorage {
             if let Err(held) = fence(&mut tx, &record.id, node)? {
                 return Ok(Err(held));
             }
+            // The new session is leased for a whole period from now, as before schema 5.
+            tx.execute(RENEW_NODE, &[&node, &period])?;
             // Replacing a session replaces its programs too (ON DELETE CASCADE).
             tx.execute("DELETE FROM nctwin_sessions WHERE id = $1", &[&record.id])?;
             tx.execute(
@@ -575,13 +618,15 @@ impl Storage for PostgresStorage {
         let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
         self.with(|c| {
             let mut tx = c.transaction()?;
+            // This node's own lease first: a node whose row expired (renewals failed) must not
+            // take sessions it could not keep.
+            tx.execute(RENEW_NODE, &[&node, &period])?;
             let claimed = tx.query(
                 &format!(
-                    "UPDATE nctwin_sessions SET lease_node = $2, lease_expires = now() + make_interval(secs => $3)
-                     WHERE id = $1 AND (lease_node IS NULL OR lease_node = $2 OR lease_expires < now())
-                     RETURNING {SESSION_COLUMNS}"
+                    "UPDATE nctwin_sessions s SET lease_node = $2 WHERE s.id = $1 AND {} RETURNING {SESSION_COLUMNS}",
+                    claimable("$2")
                 ),
-                &[&id, &node, &period],
+                &[&id, &node],
             )?;
             if !claimed.is_empty() {
                 let saved = saved_sessions(&mut tx, claimed)?;
@@ -589,8 +634,7 @@ impl Storage for PostgresStorage {
                 return Ok(saved.into_iter().next().map_or(Claim::Missing, |s| Claim::Claimed(Box::new(s))));
             }
             let holder = tx.query_opt(
-                "SELECT lease_node, GREATEST(EXTRACT(EPOCH FROM lease_expires - now()), 0)::float8
-                 FROM nctwin_sessions WHERE id = $1",
+                &format!("SELECT s.lease_node, {HOLDER_SECONDS_LEFT} FROM nctwin_sessions s WHERE s.id = $1"),
                 &[&id],
             )?;
             tx.commit()?;
@@ -604,12 +648,53 @@ impl Storage for PostgresStorage {
         })
     }
 
+    fn claim_sessions(&self, ids: &[String]) -> Result<Vec<(String, Claim)>, StorageError> {
+        // One transaction (one commit to flush) for all: after a node died, the requests for
+        // its sessions all wait for the same lease to run out and are claimed together.
+        let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
+        self.with(|c| {
+            let mut tx = c.transaction()?;
+            tx.execute(RENEW_NODE, &[&node, &period])?;
+            let claimed = tx.query(
+                &format!(
+                    "UPDATE nctwin_sessions s SET lease_node = $2 WHERE s.id = ANY($1) AND {}
+                     RETURNING {SESSION_COLUMNS}",
+                    claimable("$2")
+                ),
+                &[&ids, &node],
+            )?;
+            let mut outcome: HashMap<String, Claim> = saved_sessions(&mut tx, claimed)?
+                .into_iter()
+                .map(|saved| (saved.record.id.clone(), Claim::Claimed(Box::new(saved))))
+                .collect();
+            let rest: Vec<&String> = ids.iter().filter(|id| !outcome.contains_key(*id)).collect();
+            if !rest.is_empty() {
+                let held = tx.query(
+                    &format!(
+                        "SELECT s.id, s.lease_node, {HOLDER_SECONDS_LEFT} FROM nctwin_sessions s WHERE s.id = ANY($1)"
+                    ),
+                    &[&rest],
+                )?;
+                for row in held {
+                    let claim = Claim::HeldBy {
+                        node: row.get::<_, Option<String>>(1).unwrap_or_default(),
+                        seconds_left: row.get::<_, Option<f64>>(2).unwrap_or(0.0),
+                    };
+                    outcome.insert(row.get(0), claim);
+                }
+            }
+            tx.commit()?;
+            Ok(ids.iter().map(|id| (id.clone(), outcome.remove(id).unwrap_or(Claim::Missing))).collect())
+        })
+    }
+
     fn renew_leases(&self) -> Result<Option<Vec<String>>, StorageError> {
         let (node, period) = (self.lease.node.as_str(), self.lease.period.as_secs_f64());
+        // One row written per node, however many sessions it holds; the ids are read through
+        // the index on `lease_node` (one round trip for both).
         let rows = self.with(|c| {
             c.query(
-                "UPDATE nctwin_sessions SET lease_expires = now() + make_interval(secs => $2)
-                 WHERE lease_node = $1 RETURNING id",
+                &format!("WITH renewed AS ({RENEW_NODE}) SELECT id FROM nctwin_sessions WHERE lease_node = $1"),
                 &[&node, &period],
             )
         })?;
@@ -619,11 +704,13 @@ impl Storage for PostgresStorage {
     fn release_leases(&self) -> Result<(), StorageError> {
         let node = self.lease.node.as_str();
         self.with(|c| {
-            c.execute(
+            let mut tx = c.transaction()?;
+            tx.execute(
                 "UPDATE nctwin_sessions SET lease_node = NULL, lease_expires = NULL WHERE lease_node = $1",
                 &[&node],
-            )
-            .map(|_| ())
+            )?;
+            tx.execute("DELETE FROM nctwin_nodes WHERE node = $1", &[&node])?;
+            tx.commit()
         })
     }
 
