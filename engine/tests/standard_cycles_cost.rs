@@ -59,6 +59,12 @@ fn simulate(program: &str) -> (f64, Vec<f64>, std::time::Duration) {
 
 #[test]
 fn cycle83_at_1000_positions_gives_the_written_out_path() {
+    // `NCTWIN_CYCLE_ONLY=cycle` (or `hand`) runs one of the two, for a profiler.
+    match std::env::var("NCTWIN_CYCLE_ONLY").as_deref() {
+        Ok("cycle") => return drop(simulate(&with_cycle())),
+        Ok("hand") => return drop(simulate(&written_out())),
+        _ => {}
+    }
     let (t_cycle, end_cycle, cpu_cycle) = simulate(&with_cycle());
     let (t_hand, end_hand, cpu_hand) = simulate(&written_out());
     assert_eq!(end_cycle, end_hand);
