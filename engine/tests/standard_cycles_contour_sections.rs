@@ -66,7 +66,8 @@ fn cycle95_cuts_a_labelled_section_of_the_caller_as_it_cuts_the_subprogram() {
     let mut lines = CONTOUR.lines();
     let first = lines.next().unwrap();
     let middle: String = lines.map(|l| format!("{l}\n")).collect();
-    let labelled = format!("{SETUP}CYCLE95(\"CONT_A:CONT_E\",{CALL_ARGS}\nM30\nCONT_A: {first}\n{middle}CONT_E: {LAST}");
+    let labelled =
+        format!("{SETUP}CYCLE95(\"CONT_A:CONT_E\",{CALL_ARGS}\nM30\nCONT_A: {first}\n{middle}CONT_E: {LAST}");
     let numbered = format!(
         "{SETUP}CYCLE95(\"N100:N140\",{CALL_ARGS}\nM30\nN100 {first}\n{}N140 {LAST}",
         middle.lines().enumerate().map(|(i, l)| format!("N{} {l}\n", 110 + 10 * i)).collect::<String>()
@@ -84,7 +85,9 @@ fn cycle95_section_form_roughs_in_levels_and_finishes_on_the_contour() {
     // VARI 9 (longitudinal outside, complete), MID 2, FALZ 0.2, FALX 0.1: levels from the top
     // X25 down to the boundary's start X10.1: 14.9 / 2 gives 8 cuts of 1.8625 (X23.1375 ..
     // X10.1). Finishing runs on the contour from Z0 to Z-40 X25.
-    let main = format!("{SETUP}CYCLE95(\"A1:E1\",{CALL_ARGS}\nM30\nA1: G1 X10 Z0\nG1 Z-20\nG2 X15 Z-25 CR=5\nG1 X20\nE1: G1 X25 Z-40\n");
+    let main = format!(
+        "{SETUP}CYCLE95(\"A1:E1\",{CALL_ARGS}\nM30\nA1: G1 X10 Z0\nG1 Z-20\nG2 X15 Z-25 CR=5\nG1 X20\nE1: G1 X25 Z-40\n"
+    );
     let t = run(&main, &[]);
     assert!(t.alarms.is_empty(), "{:?}", t.alarms);
     let mut levels: Vec<f64> = Vec::new();
