@@ -113,9 +113,9 @@ fn cycle98_chains_a_cylindrical_and_a_tapered_section_at_their_pitches() {
     // Z-30 DM4 50 (taper from radius 20 to 25 over 10 mm: 26.6 degrees, lead along Z, PP3 3).
     // APP 4: the cuts start at Z4 on the cylinder extended (radius 20); ROP 2: they end at
     // Z-32 on the taper extended, radius 25 + 2 * 0.5 = 26. TDEP 1, NRC 2, VARI 1 (constant
-    // infeed, outside): depths 0.5 and 1.0. Each cut: G0 to Z4 X21 (_VRT 0: 1 mm above the
-    // surface), X down to 20 - d, G33 to Z-20 (K2, SF 0), G33 on to Z-32 X26 - d (K3), G0 out
-    // to X27.
+    // infeed, outside): depths 0.5 and 1.0. The safe level: 1 mm (_VRT 0) beyond the highest
+    // radius, the run-out's 26: X27. Each cut: G0 to X27, to Z4, down to 20 - d, G33 to Z-20
+    // (K2, SF 0), G33 on to Z-32 X26 - d (K3), G0 out to X27. At the end: Z4, then X21.
     let t = run_clean(&format!("{SETUP}CYCLE98(0,40,-20,40,-20,40,-30,50,4,2,1,0,0,0,2,0,2,0,3,1,1,0)\nM30"));
     let cuts = passes(&t, surface, -31.9, 3.9);
     assert_eq!(cuts.len(), 2, "two roughing cuts");
@@ -138,7 +138,7 @@ fn cycle98_chains_a_cylindrical_and_a_tapered_section_at_their_pitches() {
     let (a, b) = (angle_at(&cuts[0], -26.0), angle_at(&cuts[1], -26.0));
     let d = (a - b + 180.0).rem_euclid(360.0) - 180.0;
     assert!(d.abs() <= step + 1e-6, "angles at Z-26: {a} {b}");
-    // Out to 1 mm above the run-out's end (X27) after each cut, and back to the start (Z4 X21).
+    // Out to the safe level (X27) after each cut, and back to the start (Z4 X21).
     let end = t.samples.last().unwrap();
     assert!(close(end.z, 4.0, 1e-9) && close(end.x, 21.0, 1e-9), "end {end:?}");
     let xmax = t.samples.iter().filter(|s| s.z < -31.9).map(|s| s.x).fold(f64::NEG_INFINITY, f64::max);
@@ -196,4 +196,72 @@ fn cycle98_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
         assert_eq!(t.alarms.len(), 1, "{call}: {:?}", t.alarms);
         assert_eq!((t.alarms[0].number, t.alarms[0].line), (number, Some(6)), "{call}");
     }
+}
+
+/// The machine X (always a radius) and Z of every IPO cycle, consecutive repeats merged.
+fn machine_path(main: &str) -> Vec<(f64, f64)> {
+    let mut ch = Channel::from_preset("lathe-2axis", "").unwrap();
+    ch.run_program(main).unwrap_or_else(|e| panic!("not started: {e}"));
+    let mut points: Vec<(f64, f64)> = Vec::new();
+    while ch.is_busy() {
+        ch.step();
+        let s = ch.snapshot();
+        let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
+        let p = (get(&s.machine, "X1"), get(&s.workpiece, "Z"));
+        if points.last().is_none_or(|q| !close(q.0, p.0, 1e-12) || !close(q.1, p.1, 1e-12)) {
+            points.push(p);
+        }
+        assert!(points.len() < MAX_TICKS, "program does not end");
+    }
+    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
+    points
+}
+
+#[test]
+fn cycle98_under_diamon_cuts_the_same_chain_as_in_radius_programming() {
+    // DM1..DM4 are diameters in both modes; only the caller's approach X30 (radius) is X60
+    // under DIAMON. The cycle works in radii (DIAMCYCOF), so the machine path is the same.
+    let call = "CYCLE98(0,40,-20,40,-20,40,-30,50,4,2,1,0,0,0,2,0,2,0,3,1,1,0)\nM30";
+    let radius = machine_path(&format!("{}{call}", SETUP.replace("G0 X30", "DIAMOF\nG0 X30")));
+    let diameter = machine_path(&format!("{}{call}", SETUP.replace("G0 X30", "DIAMON\nG0 X60")));
+    assert!(radius.len() > 1000);
+    assert_eq!(radius.len(), diameter.len());
+    for (r, d) in radius.iter().zip(&diameter) {
+        assert!(close(r.0, d.0, 1e-9) && close(r.1, d.1, 1e-9), "radius run {r:?} against diameter run {d:?}");
+    }
+}
+
+#[test]
+fn cycle98_a_section_steeper_than_45_degrees_takes_its_lead_along_x() {
+    // Z0..Z-10 at radius 20 (PP1 2), a step up to radius 30 between Z-10 and Z-12 (10 mm of X
+    // over 2 mm of Z: steeper than 45 degrees, so its lead PP2 1.5 runs along X), then radius 30
+    // to Z-22 (PP3 2); APP 2, ROP 2. One cut to TDEP 0.5 (NRC 1): the surface less 0.5 radially.
+    let t = run_clean(&format!("{SETUP}CYCLE98(0,40,-10,40,-12,60,-22,60,2,2,0.5,0,0,0,1,0,2,1.5,2,1,1,0)\nM30"));
+    let step_surface = |z: f64| {
+        if z >= -10.0 {
+            20.0
+        } else if z >= -12.0 {
+            20.0 + (-10.0 - z) * 5.0
+        } else {
+            30.0
+        }
+    };
+    let cuts = passes(&t, step_surface, -23.9, 1.9);
+    assert_eq!(cuts.len(), 1, "the way back runs outside the step");
+    // Back at the safe level: 1 mm beyond the highest radius 30 (and the run-out's 30), X31.
+    let back: Vec<&Sample> = t.samples.iter().filter(|s| s.z > -23.9 && s.z < 1.9 && s.x > 30.0).collect();
+    assert!(back.len() > 10 && back.iter().all(|s| close(s.x, 31.0, 1e-9)), "the safe level");
+    let cut = &cuts[0];
+    assert!(cut.iter().all(|s| close(s.x, step_surface(s.z) - 0.5, 1e-6)), "depth 0.5 everywhere");
+    // On the step: 1.5 mm of X per revolution; before and after it 2 mm of Z.
+    let a = unwrapped(cut);
+    let on_step: Vec<f64> = (1..cut.len())
+        .filter(|&i| cut[i - 1].x > 21.0 && cut[i].x < 28.0 && a[i] > a[i - 1])
+        .map(|i| (cut[i].x - cut[i - 1].x) / (a[i] - a[i - 1]) * 360.0)
+        .collect();
+    assert!(!on_step.is_empty() && on_step.iter().all(|l| close(*l, 1.5, 1e-6)), "{on_step:?}");
+    let before = leads(cut, -8.0, 1.0);
+    let after = leads(cut, -22.0, -14.0);
+    assert!(!before.is_empty() && before.iter().all(|l| close(*l, 2.0, 1e-6)), "{before:?}");
+    assert!(!after.is_empty() && after.iter().all(|l| close(*l, 2.0, 1e-6)), "{after:?}");
 }
