@@ -72,12 +72,20 @@ impl Channel {
             // Remember where each block is, for showing it while its items execute: the block
             // just read is in `level`; a move held back from the block before in that one's.
             let read = (self.interp.read_line(), level);
+            let read_offset = self.interp.read_offset();
             let mut last = None;
             for line in out.iter().filter_map(Item::line) {
                 if last != Some(line) {
                     last = Some(line);
-                    let level = if line != read.0 && line == self.prev_read.0 { &self.prev_read.1 } else { &read.1 };
-                    self.queue_block(line, level.clone());
+                    if line != read.0 && line == self.prev_read.0 {
+                        self.queue_block(line, self.prev_read.1.clone());
+                    } else if line == read.0 {
+                        // Where the block just read starts is known: no counting of lines (a
+                        // loop's or a cycle's jump back would count from the text's start).
+                        self.queue_block_at(line, read_offset, read.1.clone());
+                    } else {
+                        self.queue_block(line, read.1.clone());
+                    }
                 }
             }
             self.prev_read = read;
@@ -250,6 +258,14 @@ impl Channel {
         let Some(text) = level.as_ref().map(|l| &l.text).or(self.program.as_ref()) else { return };
         let hint = self.queued_blocks.back().filter(|b| same_level(&b.level, &level)).map(|b| (b.line, b.offset));
         let offset = line_offset(text, line, hint.as_ref());
+        self.queue_block_at(line, offset, level);
+    }
+
+    /// [`Channel::queue_block`] of a block whose start in its text is known (`offset`).
+    fn queue_block_at(&mut self, line: u32, offset: usize, level: Option<Arc<Level>>) {
+        if level.is_none() && self.program.is_none() {
+            return;
+        }
         self.queued_blocks.push_back(QueuedBlock { line, offset, level });
         if self.queued_blocks.len() > 2 * LOOKAHEAD {
             self.queued_blocks.pop_front();

@@ -3,6 +3,7 @@
 //! `targets.rs`: the program a call word names and the EXTERN checks; `modal_call.rs`: MCALL;
 //! `section.rs`: REPEAT/REPEATB and CALL BLOCK.
 
+mod caller_section;
 pub(super) mod cycle_alarm;
 pub(super) mod delobj;
 pub(super) mod effects;
@@ -110,8 +111,12 @@ impl Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
+        let section = caller_section::labels(name);
         let caller_dir = self.calls.last().map_or(programs.main_dir(), |f| f.dir.as_ref());
-        let (text, dir) = programs.resolve_with_path(name, caller_dir, self.call_state.callpath.as_ref(), line)?;
+        let (text, dir) = match section {
+            Some(_) => self.caller_text(name, programs, line)?,
+            None => programs.resolve_with_path(name, caller_dir, self.call_state.callpath.as_ref(), line)?,
+        };
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::too_many_levels(line, MAX_LEVELS));
         }
@@ -157,7 +162,10 @@ impl Interpreter {
         });
         self.vars.push_frame();
         self.flow = Some(flow);
-        Ok(())
+        match section {
+            Some((start, end)) => self.enter_caller_section(&start, &end, line),
+            None => Ok(()),
+        }
     }
 
     /// The subprogram level being prepared; `None` in the main program.

@@ -182,7 +182,9 @@ impl Flow {
             match block {
                 Ok(block) if again => {
                     let block = Arc::new(CachedBlock::new(block));
-                    self.cache.get_or_insert_default().put(from, Arc::clone(&block), self.next);
+                    let text = &self.text;
+                    let cache = self.cache.get_or_insert_with(|| BlockCache::for_text(text));
+                    cache.put(from, Arc::clone(&block), self.next);
                     Ok(ReadBlock::Cached(block))
                 }
                 other => other.map(ReadBlock::Parsed),
@@ -431,7 +433,7 @@ mod tests {
 
     #[test]
     fn a_body_longer_than_the_cache_still_reads_every_line_right() {
-        let lines = 2 * block_cache::SLOTS + 7;
+        let lines = 2 * block_cache::MAX_SLOTS + 7;
         let mut text = String::from("LOOP\n");
         for i in 0..lines {
             text.push_str(&format!("R{}=R{}+{i}\n", i % 90, (i + 1) % 90));

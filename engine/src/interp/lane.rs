@@ -292,7 +292,7 @@ impl Interpreter {
     /// The read position after the line `at` (ending before `next`), and the compensator's
     /// start of the block, as `step_program` and `prepare_next` set them.
     fn commit_position(&mut self, at: Pos, next: Pos, out: &[Item]) {
-        self.read_line = at.line;
+        self.read_at = at;
         if let Some(flow) = self.flow.as_mut() {
             flow.current = at;
             flow.next = next;

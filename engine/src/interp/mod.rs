@@ -238,8 +238,9 @@ pub struct Interpreter {
     flow: Option<Flow>,
     /// Subprogram calls in progress, outermost first.
     calls: Vec<CallFrame>,
-    /// The line of the block read last, in the program level it was read in.
-    read_line: u32,
+    /// The line of the block read last, in the program level it was read in, and the byte
+    /// offset of its start there (the channel shows the block from it without counting lines).
+    read_at: flow::Pos,
     /// The modal call (MCALL) and EXTERN declarations.
     call_state: calls::CallState,
     /// Data written by prepared blocks (line, NC data text or `NEWCONF`) that the channel has
@@ -303,7 +304,7 @@ impl Interpreter {
             spindles: spindles::Spindles::new(cfg),
             flow: None,
             calls: Vec::new(),
-            read_line: 0,
+            read_at: flow::Pos { offset: 0, line: 0 },
             call_state: Default::default(),
             data_writes: Vec::new(),
             files: files::Files::default(),
@@ -438,7 +439,13 @@ impl Interpreter {
     /// it was read in (that level is [`Interpreter::level`] before the call: a block that
     /// calls or returns changes the level only after it was read).
     pub fn read_line(&self) -> u32 {
-        self.read_line
+        self.read_at.line
+    }
+
+    /// The byte offset where the line of [`Interpreter::read_line`] starts in its program's
+    /// text.
+    pub fn read_offset(&self) -> usize {
+        self.read_at.offset
     }
 
     /// Offsets currently selected by preprocessing.

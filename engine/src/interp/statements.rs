@@ -44,7 +44,7 @@ impl Interpreter {
             self.flow = None;
             return Ok(Prep::Done);
         };
-        self.read_line = at.line;
+        self.read_at = at;
         let block = block.map_err(|d| {
             let mut alarm = Alarm::syntax(d.line, &format!("column {}: {}", d.column, d.message));
             alarm.number = d.alarm;
@@ -74,8 +74,13 @@ impl Interpreter {
                 // Comment lines before a subprogram's PROC line leave its call unbound.
                 if !block.words.is_empty() || block.number.is_some() || block.label.is_some() {
                     self.check_unbound(block.line)?;
+                    self.prepare_block(&block, cfg, programs, out)?;
+                } else if !self.call_unbound() {
+                    self.prepare_block(&block, cfg, programs, out)?;
                 }
-                self.prepare_block(&block, cfg, programs, out)?;
+                // A comment line before the PROC line (a cycle's header, read at every call)
+                // does nothing: the calling block prepared the state it finds, and the call
+                // changed none of it.
             }
         }
         let line = block.line;

@@ -2,10 +2,13 @@
 //! parsing a line costs more than most of what preparing it does. A [`BlockCache`] keeps the
 //! parsed blocks of lines read a second time, so later passes take them without the parser.
 //!
-//! Memory stays flat in the program's length: a fixed number of slots, one per line number
-//! modulo [`SLOTS`] (the consecutive lines of a body up to [`SLOTS`] lines long never evict
-//! each other; a longer one only loses the cache's benefit). A cache belongs to one
-//! [`super::Flow`], whose program text never changes, so an entry never goes stale.
+//! Memory stays flat in the program's length: a bounded number of slots, one per line number
+//! modulo their count (the consecutive lines of a body up to that many lines long never evict
+//! each other; a longer one only loses the cache's benefit). A text of up to [`MAX_SLOTS`]
+//! lines gets a slot for each of its lines ([`BlockCache::for_text`]): a cycle called at every
+//! position keeps its whole body parsed, its last lines never evicting its first. A cache
+//! belongs to one [`super::Flow`], whose program text never changes, so an entry never goes
+//! stale.
 
 use std::ops::Deref;
 use std::sync::{Arc, OnceLock};
@@ -13,8 +16,10 @@ use std::sync::{Arc, OnceLock};
 use super::Pos;
 use crate::lang::Block;
 
-/// Slots of a cache: lines of a loop body kept parsed.
+/// The fewest slots of a cache: lines of a loop body kept parsed.
 pub(super) const SLOTS: usize = 128;
+/// The most slots of a cache (a text longer than this shares slots between its lines).
+pub(super) const MAX_SLOTS: usize = 1024;
 
 /// A block read from the program: parsed just now (its own to change and recycle), or shared
 /// with the cache. A parsed block stays unboxed: a box would cost an allocation per block read
@@ -104,19 +109,28 @@ impl Default for BlockCache {
 }
 
 impl BlockCache {
-    fn slot(from: Pos) -> usize {
-        from.line as usize % SLOTS
+    /// A cache with a slot for every line of `text` (at least [`SLOTS`], at most
+    /// [`MAX_SLOTS`]). Counting stops at the cap, so a long program costs no more than a
+    /// short one.
+    pub fn for_text(text: &str) -> BlockCache {
+        let lines = text.bytes().filter(|&b| b == b'\n').take(MAX_SLOTS).count() + 1;
+        BlockCache { slots: vec![None; lines.clamp(SLOTS, MAX_SLOTS)].into_boxed_slice() }
+    }
+
+    fn slot(&self, from: Pos) -> usize {
+        from.line as usize % self.slots.len()
     }
 
     /// The block a read from `from` found before, and the read position after it.
     pub fn get(&self, from: Pos) -> Option<(Arc<CachedBlock>, Pos)> {
-        let entry = self.slots[Self::slot(from)].as_ref().filter(|e| e.from == from.offset)?;
+        let entry = self.slots[self.slot(from)].as_ref().filter(|e| e.from == from.offset)?;
         Some((Arc::clone(&entry.block), entry.next))
     }
 
     /// Keeps the block a read from `from` found (replacing the slot's older line).
     pub fn put(&mut self, from: Pos, block: Arc<CachedBlock>, next: Pos) {
-        self.slots[Self::slot(from)] = Some(Entry { from: from.offset, block, next });
+        let slot = self.slot(from);
+        self.slots[slot] = Some(Entry { from: from.offset, block, next });
     }
 }
 
@@ -157,6 +171,22 @@ mod tests {
             (0..SLOTS as u32)
                 .all(|i| cache.get(pos(i)).is_some_and(|(b, n)| b.block.line == 100 + i && n == pos(i + 1)))
         );
+    }
+
+    #[test]
+    fn a_text_gets_a_slot_for_each_of_its_lines_within_the_bounds() {
+        // 200 lines (199 line breaks and a last line): 200 slots; 10 lines: the least, 128;
+        // 5000 lines: the most, 1024.
+        let text = |lines: usize| "R1=1\n".repeat(lines - 1) + "M17";
+        for (lines, slots) in [(200, 200), (10, SLOTS), (5000, MAX_SLOTS)] {
+            assert_eq!(BlockCache::for_text(&text(lines)).slots.len(), slots, "{lines} lines");
+        }
+        // Lines 1 and 129 of a 200-line text keep their own slots.
+        let mut cache = BlockCache::for_text(&text(200));
+        let (first, far) = (Pos { offset: 0, line: 1 }, Pos { offset: 640, line: 129 });
+        cache.put(first, block("R1=1", 1, 0), Pos { offset: 5, line: 2 });
+        cache.put(far, block("R1=1", 129, 640), Pos { offset: 645, line: 130 });
+        assert!(cache.get(first).is_some() && cache.get(far).is_some());
     }
 
     #[test]
