@@ -265,6 +265,9 @@ pub struct State {
     pub tool: Tool,
     /// Path velocity in mm/min.
     pub path_velocity: f64,
+    /// Counts the programs the channel loaded (a run, MDA, a block search, a restart that
+    /// resumed one): when it changes, `GET .../active-program` has another text.
+    pub program_serial: u64,
     /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub spindles: AxisValues,
@@ -441,6 +444,7 @@ impl From<&Snapshot> for State {
             alarms: s.alarms.iter().map(AlarmInfo::from).collect(),
             tool: Tool { t: s.tool.0, d: s.tool.1, name: s.tool_name.clone(), prepared: s.prepared_tool },
             path_velocity: s.path_velocity,
+            program_serial: s.program_serial,
             spindles: AxisValues(s.spindles.clone()),
             spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
             message: s.message.clone(),
@@ -513,6 +517,9 @@ pub struct RunRequest {
     pub wait: bool,
     /// Sets optional stop (M1 stops) before the start; absent keeps the current setting.
     pub optional_stop: Option<bool>,
+    /// The name the program is shown under (`GET .../active-program`), e.g. the stored program
+    /// it was read from. Absent: the name of a stored program with the same text, if any.
+    pub name: Option<String>,
 }
 
 /// Body of `POST /sessions/{id}/start`; may be empty.
@@ -1174,6 +1181,7 @@ mod tests {
             alarms: vec![],
             tool: Tool { t: 0, d: 0, name: String::new(), prepared: 0 },
             path_velocity: 0.0,
+            program_serial: 0,
             spindles: AxisValues::default(),
             spindle_info: Default::default(),
             message: None,

@@ -83,6 +83,9 @@ pub struct Snapshot {
     pub repos_pending: bool,
     /// The active synchronized actions (ID order, then block-modal ones).
     pub sync_actions: Vec<super::sync_actions::SyncActionInfo>,
+    /// Counts the programs loaded (see `Channel::active_program`): a display reloads the
+    /// program text when it changes.
+    pub program_serial: u64,
 }
 
 /// The G functions a snapshot's `gcodes` names were written from, so that a refresh rewrites
@@ -129,6 +132,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         jog_serial: 0,
         repos_pending: false,
         sync_actions: Vec::new(),
+        program_serial: 0,
     };
     super::snapshot_refresh::refresh(ch, &mut s);
     s

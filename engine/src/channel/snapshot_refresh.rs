@@ -203,6 +203,7 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     }
     s.overrides = ch.overrides;
     s.single_block = ch.single_block;
+    s.program_serial = ch.program_serial;
     s.optional_stop = ch.optional_stop;
     let gcodes = ch.offsets.gcodes;
     if s.gcodes_seen.0 != Some(gcodes) {

@@ -41,7 +41,7 @@ pub async fn run(
     Path(id): Path<String>,
     ApiJson(body): ApiJson<RunRequest>,
 ) -> Result<StateReply, ApiError> {
-    let action = Action::Run { program: body.program, optional_stop: body.optional_stop };
+    let action = Action::Run { program: body.program, optional_stop: body.optional_stop, name: body.name };
     command(&state, &id, action, Some(drive(body.pace, body.wait))).await
 }
 
