@@ -506,9 +506,10 @@ impl From<PaceOption> for Pace {
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RunRequest {
-    /// Part program text, one block per line.
+    /// Part program text, one block per line. Absent: the stored program `name` runs (its text
+    /// shared, not copied: a CAM program of any stored size).
     #[schema(example = "G0 X10 Y20 Z30\nM30")]
-    pub program: String,
+    pub program: Option<String>,
     #[serde(default)]
     pub pace: PaceOption,
     /// Answer when the program has ended, stopped (M0/M1, alarm) or a server-side limit was hit
@@ -519,6 +520,7 @@ pub struct RunRequest {
     pub optional_stop: Option<bool>,
     /// The name the program is shown under (`GET .../active-program`), e.g. the stored program
     /// it was read from. Absent: the name of a stored program with the same text, if any.
+    /// Without `program`: the stored program to run.
     pub name: Option<String>,
 }
 

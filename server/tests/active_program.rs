@@ -141,3 +141,28 @@ async fn the_preview_of_the_active_program_is_its_path() {
     let both = server.post(&format!("/sessions/{id}/preview"), json!({"active": true, "program": "G0 X1"})).await;
     error_message(&both, StatusCode::BAD_REQUEST);
 }
+
+#[tokio::test]
+async fn a_stored_program_runs_by_name_without_its_text_in_the_request() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    // Larger than a run's body limit (1 MiB): stored first, then run by name.
+    let mut text = String::from("G0 X0 Y0 Z10\n");
+    for i in 0..60_000 {
+        text.push_str(&format!("G1 X{}.{:03} Y1 F100000\n", i % 50, i % 1000));
+    }
+    text.push_str("M30\n");
+    assert!(text.len() > 1 << 20);
+    let put = server.put(&format!("/sessions/{id}/programs/CAM1"), json!({"text": text})).await;
+    assert!(put.status.is_success(), "{}", put.body);
+    let reply = server.post(&format!("/sessions/{id}/run"), json!({"name": "CAM1", "pace": "fast"})).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let b = server.get(&active(&id, "?from=60001&count=5")).await.body;
+    assert_eq!((b["name"].clone(), b["line_count"].clone()), (json!("CAM1"), json!(60_002)));
+    assert_eq!(b["lines"], json!(["G1 X49.999 Y1 F100000", "M30"]));
+    server.post_empty(&format!("/sessions/{id}/reset")).await;
+    let missing = server.post(&format!("/sessions/{id}/run"), json!({"name": "NOSUCH"})).await;
+    assert!(error_message(&missing, StatusCode::BAD_REQUEST).contains("NOSUCH"));
+    let neither = server.post(&format!("/sessions/{id}/run"), json!({"pace": "fast"})).await;
+    error_message(&neither, StatusCode::BAD_REQUEST);
+}

@@ -130,7 +130,13 @@ pub async fn get_active_program(
     let sub = match (&params.program, read.sub) {
         (None, _) => None,
         (Some(name), None) => return Err(ApiError::NotFound(format!("program `{name}`"))),
-        (Some(_), Some(text)) => Some(IndexedText::new(0, text)),
+        (Some(_), Some(text)) => {
+            let cache = session.active_cache().clone();
+            let indexed = tokio::task::spawn_blocking(move || cache.sub_indexed(text))
+                .await
+                .map_err(|e| ApiError::Conflict(format!("indexing the program failed: {e}")))?;
+            Some(indexed)
+        }
     };
     let shown = sub.as_ref().unwrap_or(&main);
     let total = shown.line_count();

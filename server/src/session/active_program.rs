@@ -32,6 +32,11 @@ impl IndexedText {
         IndexedText { serial, text, starts, sha256 }
     }
 
+    /// Indexes `text` for line ranges without its hash (a subprogram's).
+    pub fn lines_only(text: ProgramText) -> IndexedText {
+        IndexedText { serial: 0, starts: line_starts(&text), text, sha256: String::new() }
+    }
+
     /// Number of lines, as the control numbers them (a final line end adds no line).
     pub fn line_count(&self) -> usize {
         self.starts.len()
@@ -67,6 +72,8 @@ fn memchr_newlines(bytes: &[u8]) -> impl Iterator<Item = usize> + '_ {
 pub struct ActiveCache {
     label: Mutex<Option<(u64, Option<String>)>>,
     index: Mutex<Option<Arc<IndexedText>>>,
+    /// The subprogram indexed last (a CAM program called from a short main program).
+    sub_index: Mutex<Option<Arc<IndexedText>>>,
 }
 
 impl ActiveCache {
@@ -91,6 +98,17 @@ impl ActiveCache {
     /// Keeps `indexed` as the latest index (the previous program's is let go).
     pub fn store(&self, indexed: Arc<IndexedText>) {
         *self.index.lock().unwrap_or_else(|e| e.into_inner()) = Some(indexed);
+    }
+
+    /// The index of subprogram text `text`, made once while the same text is asked for.
+    pub fn sub_indexed(&self, text: ProgramText) -> Arc<IndexedText> {
+        let mut sub = self.sub_index.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(hit) = sub.as_ref().filter(|i| i.text.shares_text_with(&text)) {
+            return hit.clone();
+        }
+        let indexed = Arc::new(IndexedText::lines_only(text));
+        *sub = Some(indexed.clone());
+        indexed
     }
 }
 

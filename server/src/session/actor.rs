@@ -365,12 +365,19 @@ fn apply(channel: &mut Channel, action: Action, active: &ActiveCache) -> Result<
 
 fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
     match action {
-        Action::Run { program, optional_stop, name: _ } => {
+        Action::Run { program, optional_stop, name } => {
             let before = channel.optional_stop;
             if let Some(on) = optional_stop {
                 channel.optional_stop = on;
             }
-            let result = channel.run_program(&program);
+            let result = match (program, name) {
+                (Some(program), _) => channel.run_program(&program),
+                (None, Some(name)) => match channel.program_text(&name) {
+                    Some(text) => channel.run_program_shared(text),
+                    None => Err(CommandError::Invalid(format!("no stored program `{name}` to run"))),
+                },
+                (None, None) => Err(CommandError::Invalid("no program to run".into())),
+            };
             if result.is_err() {
                 channel.optional_stop = before;
             }

@@ -61,8 +61,9 @@ pub struct Drive {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
     /// Load a program and start it in AUTO mode; `optional_stop` sets M1 behaviour first.
+    /// `program: None`: the stored program `name`.
     Run {
-        program: String,
+        program: Option<String>,
         optional_stop: Option<bool>,
         /// The name the program is shown under (a stored program's); `None`: the server looks
         /// for a stored program with the same text.
@@ -372,7 +373,7 @@ mod tests {
     }
 
     fn run(program: &str) -> Action {
-        Action::Run { program: program.into(), optional_stop: None, name: None }
+        Action::Run { program: Some(program.into()), optional_stop: None, name: None }
     }
 
     fn x(snapshot: &Snapshot) -> f64 {
