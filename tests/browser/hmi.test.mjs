@@ -465,7 +465,9 @@ async function main() {
         await other.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
         const id = new URL(other.url()).searchParams.get("session");
         const text = ["G0 X0 Y0 Z50", "G1 X33 F6000", "M0", "G1 X40", "M30", ""].join("\n");
-        await pageFetch(other, "POST", `/sessions/${id}/run`, { program: text, pace: "fast", wait: true, name: "RESTART" });
+        // A stored program, run by name: after the restart the server names it by its text.
+        await pageFetch(other, "PUT", `/sessions/${id}/programs/RESTART`, { text });
+        await pageFetch(other, "POST", `/sessions/${id}/run`, { name: "RESTART", pace: "fast", wait: true });
         await other.waitForFunction(() => document.querySelector("#blocks li.current")?.dataset.line === "3");
         await other.evaluate(() => (window.__notReloaded = true));
         await stopServer(server.child);

@@ -42,7 +42,8 @@ class ActiveProgramStore extends Emitter<{ change: ActiveMeta | null; lines: voi
   attach(session: SessionController): void {
     this.session = session;
     session.on("session", () => this.reset());
-    session.on("reconnected", () => void this.reload());
+    // After a reconnect (a restarted server counts its serials afresh) the next state reloads.
+    session.on("reconnected", () => (this.wantedSerial = -1));
     session.on("sample", (st) => this.sample(st));
   }
 
@@ -104,7 +105,12 @@ class ActiveProgramStore extends Emitter<{ change: ActiveMeta | null; lines: voi
     const serial = st.program_serial ?? 0;
     if (serial === this.wantedSerial) return;
     this.wantedSerial = serial;
-    if (serial === 0 && this.meta === null) {
+    if (serial === 0) {
+      // No program loaded on this channel (yet): nothing to ask the server for.
+      this.generation++;
+      this.meta = null;
+      this.chunks.clear();
+      this.subCounts.clear();
       this.emit("change", null);
       return;
     }
