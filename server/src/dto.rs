@@ -268,6 +268,11 @@ pub struct State {
     /// Counts the programs the channel loaded (a run, MDA, a block search, a restart that
     /// resumed one): when it changes, `GET .../active-program` has another text.
     pub program_serial: u64,
+    /// Path length still to go of the block in execution (mm; 0 when nothing moves).
+    pub distance_to_go: f64,
+    /// Programmed path feed of the block in execution (mm/min); null for rapid traverse or
+    /// when no block moves.
+    pub programmed_feed: Option<f64>,
     /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub spindles: AxisValues,
@@ -445,6 +450,8 @@ impl From<&Snapshot> for State {
             tool: Tool { t: s.tool.0, d: s.tool.1, name: s.tool_name.clone(), prepared: s.prepared_tool },
             path_velocity: s.path_velocity,
             program_serial: s.program_serial,
+            distance_to_go: s.distance_to_go,
+            programmed_feed: s.programmed_feed,
             spindles: AxisValues(s.spindles.clone()),
             spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
             message: s.message.clone(),
@@ -1184,6 +1191,8 @@ mod tests {
             tool: Tool { t: 0, d: 0, name: String::new(), prepared: 0 },
             path_velocity: 0.0,
             program_serial: 0,
+            distance_to_go: 0.0,
+            programmed_feed: None,
             spindles: AxisValues::default(),
             spindle_info: Default::default(),
             message: None,

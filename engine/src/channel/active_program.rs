@@ -134,4 +134,30 @@ mod tests {
         );
         assert_eq!(ch.program_text("hole").as_deref(), Some("PROC HOLE\nG1 Z-1 F100\nG1 Z5 F100\nM17"));
     }
+
+    #[test]
+    fn the_snapshot_gives_the_blocks_distance_to_go_and_programmed_feed() {
+        let mut ch = mill();
+        // From X0: 100 mm at F600 (10 mm/s); after 2 s the axis is somewhere past the ramp.
+        ch.run_program("G1 X100 F600\nG0 X0\nM30").expect("run");
+        let cycles = (2.0 / ch.config().ipo_cycle).round() as u64;
+        for _ in 0..cycles {
+            ch.step();
+        }
+        let s = ch.snapshot();
+        let x = s.workpiece[0].1;
+        assert!(x > 5.0 && x < 20.0, "x {x}");
+        // What is left of the block is what X has still to travel.
+        assert!((s.distance_to_go - (100.0 - x)).abs() < 1e-6, "to go {} at x {x}", s.distance_to_go);
+        assert_eq!(s.programmed_feed, Some(600.0));
+        // The rapid block back has no programmed feed; at the end nothing is left to go.
+        while ch.snapshot().block.as_ref().is_some_and(|b| b.line == 1) {
+            ch.step();
+        }
+        assert_eq!(ch.snapshot().programmed_feed, None);
+        while ch.is_busy() {
+            ch.step();
+        }
+        assert_eq!((ch.snapshot().distance_to_go, ch.snapshot().programmed_feed), (0.0, None));
+    }
 }

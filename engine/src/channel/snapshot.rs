@@ -86,6 +86,11 @@ pub struct Snapshot {
     /// Counts the programs loaded (see `Channel::active_program`): a display reloads the
     /// program text when it changes.
     pub program_serial: u64,
+    /// Path length still to go of the block in execution (mm; 0 when nothing moves).
+    pub distance_to_go: f64,
+    /// Programmed path feed of the block in execution in mm/min; `None` for rapid traverse or
+    /// when no block moves.
+    pub programmed_feed: Option<f64>,
 }
 
 /// The G functions a snapshot's `gcodes` names were written from, so that a refresh rewrites
@@ -133,6 +138,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         repos_pending: false,
         sync_actions: Vec::new(),
         program_serial: 0,
+        distance_to_go: 0.0,
+        programmed_feed: None,
     };
     super::snapshot_refresh::refresh(ch, &mut s);
     s

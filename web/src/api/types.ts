@@ -46,6 +46,10 @@ export interface State {
   path_velocity: number;
   /** Counts the programs the channel loaded: when it changes, the active program is another. */
   program_serial?: number;
+  /** Path length still to go of the block in execution (mm). */
+  distance_to_go?: number;
+  /** Programmed path feed of the block in execution (mm/min); null for rapid or no motion. */
+  programmed_feed?: number | null;
   spindles: Record<string, number>;
   /** Each spindle's mode (M3/M4/M5/SPOS), angle in degrees and master flag, by the names of `spindles`. */
   spindle_info?: Record<string, SpindleInfo>;

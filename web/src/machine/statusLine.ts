@@ -3,8 +3,9 @@
 //
 // Read from the state alone. Why a stopped program stands is told by the state's flags and the
 // block in execution: REPOS pending (JOG in the interrupted program), an M0/M1 in the current
-// block, single block, else NC stop. The state carries no distance to go, programmed feed,
-// DRY/SKP or a "waiting for a preprocessing stop" flag; the line shows what it knows.
+// block, single block, else NC stop. Distance to go and programmed feed are the block's. The
+// state carries no DRY/SKP (the engine has neither) and no "waiting for a preprocessing stop"
+// flag; the line shows what it knows.
 
 import type { State } from "../api/types";
 import { byId, fmt, setText } from "../core/dom";
@@ -43,7 +44,9 @@ function render(st: State): void {
   setText(byId("channel-reason"), channelReason(st));
   const options = [st.single_block ? "SBL" : "", st.optional_stop ? "M01" : ""].filter(Boolean);
   setText(byId("channel-options"), options.join(" "));
-  setText(byId("channel-feed"), `F act ${fmt(st.path_velocity, 0)} mm/min`);
+  const programmed = st.programmed_feed == null ? (st.distance_to_go ? "rapid" : "–") : fmt(st.programmed_feed, 0);
+  setText(byId("channel-feed"), `F prog ${programmed} act ${fmt(st.path_velocity, 0)} mm/min`);
+  setText(byId("channel-dtg"), `DTG ${fmt(st.distance_to_go ?? 0, 3)}`);
 }
 
 export function mountStatusLine(session: SessionController): void {
