@@ -77,7 +77,10 @@ async fn mda_blocks_and_a_stored_programs_text_are_the_active_program() {
     let reply = server.post(&format!("/sessions/{id}/mda"), json!({"program": "G0 X5", "wait": true})).await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
     let mda = server.get(&active(&id, "")).await.body;
-    assert_eq!((mda["mode"].clone(), mda["name"].clone(), mda["lines"].clone()), (json!("MDA"), Value::Null, json!(["G0 X5"])));
+    assert_eq!(
+        (mda["mode"].clone(), mda["name"].clone(), mda["lines"].clone()),
+        (json!("MDA"), Value::Null, json!(["G0 X5"]))
+    );
     assert_eq!(mda["serial"], 1);
     server.post_empty(&format!("/sessions/{id}/reset")).await;
     server.put(&format!("/sessions/{id}/mode"), json!({"mode": "AUTO"})).await;
@@ -87,7 +90,10 @@ async fn mda_blocks_and_a_stored_programs_text_are_the_active_program() {
     assert!(put.status.is_success(), "{}", put.body);
     run(&server, &id, json!({"program": text, "pace": "fast", "wait": true})).await;
     let auto = server.get(&active(&id, "")).await.body;
-    assert_eq!((auto["mode"].clone(), auto["name"].clone(), auto["serial"].clone()), (json!("AUTO"), json!("WORK"), json!(2)));
+    assert_eq!(
+        (auto["mode"].clone(), auto["name"].clone(), auto["serial"].clone()),
+        (json!("AUTO"), json!("WORK"), json!(2))
+    );
 }
 
 #[tokio::test]
@@ -103,7 +109,10 @@ async fn a_subprograms_lines_come_with_the_call_stack() {
     assert_eq!(stopped["status"], "stopped");
     assert_eq!((stopped["block"]["program"].clone(), stopped["block"]["line"].clone()), (json!("HOLE"), json!(3)));
     let b = server.get(&active(&id, "?program=hole&from=3&count=1")).await.body;
-    assert_eq!((b["program"].clone(), b["program_line_count"].clone(), b["lines"].clone()), (json!("HOLE"), json!(5), json!(["M0"])));
+    assert_eq!(
+        (b["program"].clone(), b["program_line_count"].clone(), b["lines"].clone()),
+        (json!("HOLE"), json!(5), json!(["M0"]))
+    );
     assert_eq!(b["line_count"], 5, "the main program's line count");
     assert_eq!(b["call_stack"], json!([{"program": null, "line": 3}, {"program": "HOLE", "line": 3}]));
 }
@@ -132,7 +141,8 @@ async fn a_program_resumed_after_a_restart_is_the_active_program_with_the_same_v
 async fn the_preview_of_the_active_program_is_its_path() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;
-    run(&server, &id, json!({"program": "G0 X0 Y0 Z10\nG1 X20 F1000\nG1 Y10\nM30\n", "pace": "fast", "wait": true})).await;
+    run(&server, &id, json!({"program": "G0 X0 Y0 Z10\nG1 X20 F1000\nG1 Y10\nM30\n", "pace": "fast", "wait": true}))
+        .await;
     let reply = server.post(&format!("/sessions/{id}/preview"), json!({"active": true, "max_points": 50})).await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
     let last = reply.body["points"].as_array().unwrap().last().unwrap().clone();

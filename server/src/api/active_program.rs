@@ -6,8 +6,8 @@
 use std::sync::Arc;
 
 use axum::Json;
-use axum::extract::{Path, Query, State};
 use axum::extract::rejection::QueryRejection;
+use axum::extract::{Path, Query, State};
 use nctwin_engine::channel::{ActiveProgram, CallLevel};
 use nctwin_engine::{Channel, Mode};
 use serde::{Deserialize, Serialize};
@@ -143,9 +143,11 @@ pub async fn get_active_program(
     if from > total + 1 {
         return Err(ApiError::bad_request(format!("from {from} is past the end: the program has {total} lines")));
     }
-    let lines = (from..from.saturating_add(count).min(total + 1)).filter_map(|n| shown.line(n)).map(str::to_owned).collect();
+    let lines =
+        (from..from.saturating_add(count).min(total + 1)).filter_map(|n| shown.line(n)).map(str::to_owned).collect();
     let name = read.name;
-    let directory = name.as_deref().and_then(|n| n.rsplit_once('/')).map(|(dir, _)| dir.to_owned()).filter(|d| !d.is_empty());
+    let directory =
+        name.as_deref().and_then(|n| n.rsplit_once('/')).map(|(dir, _)| dir.to_owned()).filter(|d| !d.is_empty());
     Ok(Json(ActiveProgramResponse {
         serial: main.serial,
         name,

@@ -121,13 +121,10 @@ mod tests {
         let t = IndexedText::new(1, ProgramText::from("G0 X1\r\nG1 X2 F100\n\nM30\n"));
         // Four lines: the empty third line counts, the final line end adds none.
         assert_eq!(t.line_count(), 4);
-        assert_eq!((t.line(1), t.line(2), t.line(3), t.line(4), t.line(5)), (
-            Some("G0 X1"),
-            Some("G1 X2 F100"),
-            Some(""),
-            Some("M30"),
-            None
-        ));
+        assert_eq!(
+            (t.line(1), t.line(2), t.line(3), t.line(4), t.line(5)),
+            (Some("G0 X1"), Some("G1 X2 F100"), Some(""), Some("M30"), None)
+        );
         assert_eq!(t.line(0), None);
         let last_unterminated = IndexedText::new(1, ProgramText::from("G0 X1\nM30"));
         assert_eq!((last_unterminated.line_count(), last_unterminated.line(2)), (2, Some("M30")));

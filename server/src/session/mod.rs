@@ -11,8 +11,8 @@
 //!
 //! This module knows nothing of HTTP or JSON: it speaks engine types.
 
-mod actor;
 pub mod active_program;
+mod actor;
 mod pacer;
 mod snapshot_pool;
 mod wake_stats;
