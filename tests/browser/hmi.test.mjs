@@ -364,6 +364,25 @@ async function main() {
       await page.waitForFunction(() => /continues RESTPART/.test(document.getElementById("cycle-start-what")?.textContent || ""));
     });
 
+    await step("a block in a subprogram is shown with the subprogram's text, not the main program's", async () => {
+      const sub = ["PROC SUBHOLE", "G1 Z40 F3000", "M0", "G1 Z50", "M17", ""].join("\n");
+      await pageFetch(page, "PUT", `/sessions/${sessionId}/programs/SUBHOLE.SPF`, { text: sub });
+      const main = ["G0 X0 Y0 Z50", "SUBHOLE", "M30", ""].join("\n");
+      await pageFetch(page, "POST", `/sessions/${sessionId}/reset`);
+      await pageFetch(page, "POST", `/sessions/${sessionId}/run`, { program: main, pace: "fast", wait: true, name: "CALLER" });
+      // Line 3 of SUBHOLE is its M0; line 3 of the main program would be M30.
+      await page.waitForFunction(
+        () => /^SUBHOLE/.test(document.getElementById("blocks-name")?.textContent || "") && document.querySelector("#blocks li.current")?.dataset.line === "3",
+      );
+      const current = await page.textContent("#blocks li.current .line-code");
+      if (current.trim() !== "M0") throw new Error(`line 3 of SUBHOLE shown as ${current}`);
+      if (!/called by CALLER/.test(await page.textContent("#blocks-name"))) throw new Error(await page.textContent("#blocks-name"));
+      await pageFetch(page, "POST", `/sessions/${sessionId}/reset`);
+      const text = ["G0 X0 Y0 Z50", "G1 X10 F3000", "M0", "G1 X20", "M30", ""].join("\n");
+      await pageFetch(page, "POST", `/sessions/${sessionId}/run`, { program: text, pace: "fast", wait: true, name: "RESTPART" });
+      await page.waitForFunction(() => document.getElementById("blocks-name")?.textContent === "RESTPART" && document.querySelector("#blocks li.current")?.dataset.line === "3");
+    });
+
     await step("a second browser sees the same program at the same block", async () => {
       const other = await context.newPage();
       try {

@@ -150,7 +150,7 @@ pub async fn preview(
             .ok_or_else(|| ApiError::NotFound("a loaded program (none has run yet)".into()))?,
         _ => {
             return Err(ApiError::bad_request(
-                "give one of `program` (the text), `name` (a stored program) or `active: true` (the loaded program)",
+                "give either `program` (the text), `name` (a stored program) or `active: true` (the loaded program)",
             ));
         }
     };
