@@ -265,6 +265,14 @@ pub struct State {
     pub tool: Tool,
     /// Path velocity in mm/min.
     pub path_velocity: f64,
+    /// Counts the programs the channel loaded (a run, MDA, a block search, a restart that
+    /// resumed one): when it changes, `GET .../active-program` has another text.
+    pub program_serial: u64,
+    /// Path length still to go of the block in execution (mm; 0 when nothing moves).
+    pub distance_to_go: f64,
+    /// Programmed path feed of the block in execution (mm/min); null for rapid traverse or
+    /// when no block moves.
+    pub programmed_feed: Option<f64>,
     /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub spindles: AxisValues,
@@ -445,6 +453,9 @@ impl From<&Snapshot> for State {
             alarms: s.alarms.iter().map(AlarmInfo::from).collect(),
             tool: Tool { t: s.tool.0, d: s.tool.1, name: s.tool_name.clone(), prepared: s.prepared_tool },
             path_velocity: s.path_velocity,
+            program_serial: s.program_serial,
+            distance_to_go: s.distance_to_go,
+            programmed_feed: s.programmed_feed,
             spindles: AxisValues(s.spindles.clone()),
             spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
             message: s.message.clone(),
@@ -507,9 +518,10 @@ impl From<PaceOption> for Pace {
 #[derive(Debug, Clone, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RunRequest {
-    /// Part program text, one block per line.
+    /// Part program text, one block per line. Absent: the stored program `name` runs (its text
+    /// shared, not copied: a CAM program of any stored size).
     #[schema(example = "G0 X10 Y20 Z30\nM30")]
-    pub program: String,
+    pub program: Option<String>,
     #[serde(default)]
     pub pace: PaceOption,
     /// Answer when the program has ended, stopped (M0/M1, alarm) or a server-side limit was hit
@@ -518,6 +530,10 @@ pub struct RunRequest {
     pub wait: bool,
     /// Sets optional stop (M1 stops) before the start; absent keeps the current setting.
     pub optional_stop: Option<bool>,
+    /// The name the program is shown under (`GET .../active-program`), e.g. the stored program
+    /// it was read from. Absent: the name of a stored program with the same text, if any.
+    /// Without `program`: the stored program to run.
+    pub name: Option<String>,
 }
 
 /// Body of `POST /sessions/{id}/start`; may be empty.
@@ -1185,6 +1201,9 @@ mod tests {
             alarms: vec![],
             tool: Tool { t: 0, d: 0, name: String::new(), prepared: 0 },
             path_velocity: 0.0,
+            program_serial: 0,
+            distance_to_go: 0.0,
+            programmed_feed: None,
             spindles: AxisValues::default(),
             spindle_info: Default::default(),
             message: None,

@@ -208,7 +208,9 @@ mod tests {
     #[test]
     fn errors_name_the_problem() {
         assert!(message(r#"{"program": 5}"#).contains("`program`"), "{}", message(r#"{"program": 5}"#));
-        assert!(message(r#"{"wait": true}"#).contains("missing field `program`"));
+        // `run` may name a stored program instead of its text; MDA always needs its blocks.
+        let missing = parse::<crate::dto::MdaRequest>(br#"{"wait": true}"#).unwrap_err().body().error;
+        assert!(missing.contains("missing field `program`"), "{missing}");
         assert!(message(r#"{"program": "M30", "speed": 2}"#).contains("unknown field `speed`"));
         assert!(message(r#"{"program": "M30", "pace": "slow"}"#).contains("unknown variant `slow`"));
         assert!(message(r#"{"program": "#).contains("EOF"));

@@ -5,16 +5,25 @@
 // Starts nothing itself (scripts/test.sh starts the server). Exits non-zero on failure, with a
 // screenshot of the page at that moment. SHOTS_DIR=dir keeps the screenshots it takes.
 
+import { spawn } from "node:child_process";
 import { mkdtemp, readFile, rm } from "node:fs/promises";
 import { tmpdir } from "node:os";
-import { join } from "node:path";
+import { dirname, join, resolve } from "node:path";
+import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
 import { CHROMIUM_ARGS } from "./chromium.mjs";
 
 const BASE = (process.env.NCTWIN_URL || "").replace(/\/+$/, "");
 const CHROMIUM = process.env.CHROMIUM_PATH || "/usr/bin/chromium";
 const SHOTS_DIR = process.env.SHOTS_DIR || tmpdir();
-const TOTAL_TIMEOUT_MS = 180_000;
+const TOTAL_TIMEOUT_MS = 360_000;
+const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "../..");
+// The server binary the restart check starts (and stops) itself, on a data folder of its own.
+const NCTWIN_BIN = process.env.NCTWIN_BIN || join(process.env.CARGO_TARGET_DIR || join(ROOT, "target"), "debug", "nctwin");
+// A CAM-size program: 200,000 blocks, with a programmed stop at BIG_STOP_LINE.
+const BIG_BLOCKS = 200_000;
+// Early in the program: a debug build of the server prepares only some hundred blocks a second.
+const BIG_STOP_LINE = 300;
 
 // A program with a syntax error in line 2, to be caught before start.
 const BAD_PROGRAM = ["G0 X0 Y0 Z50", "IF R1 >", "M30", ""].join("\n");
@@ -93,6 +102,63 @@ async function canvasStats(page) {
     const n = data.length / 4;
     return { colours: colours.size, variance: sumSq / n - (sum / n) ** 2, programmed, width: gl.width, height: gl.height };
   });
+}
+
+
+/** Starts the server binary on `bind` with `dataDir`; resolves with its URL once it listens. */
+function startServer(bind, dataDir) {
+  return new Promise((resolveUrl, reject) => {
+    const child = spawn(NCTWIN_BIN, ["--bind", bind, "--data-dir", dataDir, "--web-dir", join(ROOT, "web", "dist")], {
+      env: { ...process.env, NO_COLOR: "1" },
+      stdio: ["ignore", "pipe", "pipe"],
+    });
+    let log = "";
+    const timer = setTimeout(() => reject(new Error(`${NCTWIN_BIN} did not listen within 30 s: ${log.slice(-500)}`)), 30_000);
+    const take = (chunk) => {
+      log += chunk.toString();
+      const m = /listening on (http:\/\/[^\s"]+)/.exec(log);
+      if (m) {
+        clearTimeout(timer);
+        resolveUrl({ child, url: m[1].replace(/[/.,;)]+$/, "") });
+      }
+    };
+    child.stdout.on("data", take);
+    child.stderr.on("data", take);
+    child.on("exit", (code) => reject(new Error(`${NCTWIN_BIN} exited (${code}) before listening: ${log.slice(-500)}`)));
+  });
+}
+
+/** Stops a server started by `startServer` (SIGTERM: it saves its sessions) and waits for it. */
+function stopServer(child) {
+  return new Promise((done) => {
+    if (child.exitCode !== null) return done();
+    child.once("exit", () => done());
+    child.kill("SIGTERM");
+  });
+}
+
+/** A program of `blocks` short moves with M0 at line `stopLine`, as a CAM post-processor writes them. */
+function camProgram(blocks, stopLine) {
+  const lines = ["G0 X0 Y0 Z5", "G1 Z0 F2000"];
+  for (let i = lines.length + 1; i <= blocks; i++) {
+    if (i === stopLine) lines.push("M0");
+    else if (i === blocks) lines.push("M30");
+    else lines.push(`G1 X${((i % 200) / 4).toFixed(2)} Y${(Math.floor(i / 200) % 200 / 4).toFixed(2)} F60000`);
+  }
+  return lines.join("\n") + "\n";
+}
+
+/** POST/PUT JSON from the page (the page's origin and credentials); the reply's JSON or null. */
+async function pageFetch(page, method, path, body) {
+  return page.evaluate(
+    async ({ method, path, body }) => {
+      const res = await fetch(`/api/v1${path}`, { method, headers: { "content-type": "application/json" }, body: body === undefined ? undefined : JSON.stringify(body) });
+      const text = await res.text();
+      if (!res.ok) throw new Error(`${method} ${path}: ${res.status} ${text}`);
+      return text ? JSON.parse(text) : null;
+    },
+    { method, path, body },
+  );
 }
 
 async function main() {
@@ -233,7 +299,7 @@ async function main() {
       await page.waitForSelector(`#programs tr[data-program="${PROGRAM_NAME}"]`);
       await page.click(`#programs tr[data-program="${PROGRAM_NAME}"] [data-action="execute"]`);
       await page.waitForSelector("#area-machine:not([hidden])");
-      await page.waitForFunction((name) => document.getElementById("blocks-name")?.textContent === name, PROGRAM_NAME);
+      await page.waitForFunction((name) => document.getElementById("blocks-name")?.textContent === `${name} (selected)`, PROGRAM_NAME);
       const lines = await page.locator("#blocks li").count();
       if (lines !== 5) throw new Error(`program display shows ${lines} lines, expected 5`);
     });
@@ -281,6 +347,166 @@ async function main() {
       await page.waitForFunction((t) => Number.parseFloat(document.getElementById("remaining-time")?.textContent || "") < t, first);
       await page.waitForFunction(() => document.getElementById("progress-bar")?.style.width === "100%", null, { timeout: 30_000 });
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+    });
+
+    await step("a program run over REST appears in the program panel with its block highlighted", async () => {
+      const text = ["G0 X0 Y0 Z50", "G1 X10 F3000", "M0", "G1 X20", "M30", ""].join("\n");
+      await pageFetch(page, "POST", `/sessions/${sessionId}/run`, { program: text, pace: "fast", wait: true, name: "RESTPART" });
+      await page.waitForFunction(
+        () => document.getElementById("blocks-name")?.textContent === "RESTPART" && document.querySelector("#blocks li.current")?.dataset.line === "3",
+      );
+      const current = await page.textContent("#blocks li.current .line-code");
+      if (current.trim() !== "M0") throw new Error(`highlighted block reads ${current}, expected M0`);
+      const header = (await page.textContent("#header-program")).trim();
+      if (header !== "RESTPART") throw new Error(`header names ${header}`);
+      const reason = await page.textContent("#channel-reason");
+      if (!/M0/.test(reason)) throw new Error(`status line: ${reason}`);
+      await page.waitForFunction(() => /continues RESTPART/.test(document.getElementById("cycle-start-what")?.textContent || ""));
+    });
+
+    await step("a block in a subprogram is shown with the subprogram's text, not the main program's", async () => {
+      const sub = ["PROC SUBHOLE", "G1 Z40 F3000", "M0", "G1 Z50", "M17", ""].join("\n");
+      await pageFetch(page, "PUT", `/sessions/${sessionId}/programs/SUBHOLE.SPF`, { text: sub });
+      const main = ["G0 X0 Y0 Z50", "SUBHOLE", "M30", ""].join("\n");
+      await pageFetch(page, "POST", `/sessions/${sessionId}/reset`);
+      await pageFetch(page, "POST", `/sessions/${sessionId}/run`, { program: main, pace: "fast", wait: true, name: "CALLER" });
+      // Line 3 of SUBHOLE is its M0; line 3 of the main program would be M30.
+      await page.waitForFunction(
+        () => /^SUBHOLE/.test(document.getElementById("blocks-name")?.textContent || "") && document.querySelector("#blocks li.current")?.dataset.line === "3",
+      );
+      const current = await page.textContent("#blocks li.current .line-code");
+      if (current.trim() !== "M0") throw new Error(`line 3 of SUBHOLE shown as ${current}`);
+      if (!/called by CALLER/.test(await page.textContent("#blocks-name"))) throw new Error(await page.textContent("#blocks-name"));
+      await pageFetch(page, "POST", `/sessions/${sessionId}/reset`);
+      const text = ["G0 X0 Y0 Z50", "G1 X10 F3000", "M0", "G1 X20", "M30", ""].join("\n");
+      await pageFetch(page, "POST", `/sessions/${sessionId}/run`, { program: text, pace: "fast", wait: true, name: "RESTPART" });
+      await page.waitForFunction(() => document.getElementById("blocks-name")?.textContent === "RESTPART" && document.querySelector("#blocks li.current")?.dataset.line === "3");
+    });
+
+    await step("a second browser sees the same program at the same block", async () => {
+      const other = await context.newPage();
+      try {
+        await other.goto(`${BASE}/?session=${encodeURIComponent(sessionId)}`, { waitUntil: "load" });
+        await other.waitForFunction(
+          () => document.getElementById("blocks-name")?.textContent === "RESTPART" && document.querySelector("#blocks li.current")?.dataset.line === "3",
+        );
+        const current = await other.textContent("#blocks li.current .line-code");
+        if (current.trim() !== "M0") throw new Error(`second browser highlights ${current}`);
+      } finally {
+        await other.close();
+      }
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+    });
+
+    await step("Execute from MDA selects AUTO, names what Cycle start starts, and starts it in AUTO", async () => {
+      await page.click('[data-set-mode="MDA"]');
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="MDA"]')?.classList.contains("active"));
+      await page.fill("#mda-input", "");
+      await page.waitForFunction(() => document.getElementById("cycle-start-what")?.textContent === "MDA buffer empty");
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => /MDA: the buffer is empty/.test(document.getElementById("message-text")?.textContent || ""));
+      await page.click("#btn-message-close");
+      await page.click('[data-goto="manager"]');
+      await page.waitForSelector(`#programs tr[data-program="${PROGRAM_NAME}"]`);
+      await page.click(`#programs tr[data-program="${PROGRAM_NAME}"] [data-action="execute"]`);
+      await page.waitForSelector("#area-machine:not([hidden])");
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="AUTO"]')?.classList.contains("active"));
+      await page.waitForFunction((name) => document.getElementById("cycle-start-what")?.textContent === `starts ${name}`, PROGRAM_NAME);
+      const [request] = await Promise.all([
+        page.waitForRequest((r) => r.url().endsWith("/run") && r.method() === "POST"),
+        page.click("#btn-cycle-start"),
+      ]);
+      const body = JSON.parse(request.postData() || "{}");
+      if (body.name !== PROGRAM_NAME) throw new Error(`run body: ${request.postData()}`);
+      await page.waitForFunction(() => window.__hmiLog && document.getElementById("status")?.textContent?.trim() === "running");
+      const mode = (await pageFetch(page, "GET", `/sessions/${sessionId}/state`)).mode;
+      if (mode !== "AUTO") throw new Error(`runs in ${mode}`);
+      await page.waitForFunction((name) => document.getElementById("blocks-name")?.textContent === name, PROGRAM_NAME);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle", null, { timeout: 30_000 });
+    });
+
+    await step(`a ${BIG_BLOCKS}-block program opens in the program panel and follows its block`, async () => {
+      const text = camProgram(BIG_BLOCKS, BIG_STOP_LINE);
+      await pageFetch(page, "PUT", `/sessions/${sessionId}/programs/CAM200K`, { text });
+      const t0 = Date.now();
+      await pageFetch(page, "POST", `/sessions/${sessionId}/run`, { name: "CAM200K", pace: "realtime" });
+      await page.waitForFunction(
+        () => document.getElementById("blocks-name")?.textContent === "CAM200K" && document.querySelector("#blocks li.current .line-code:not(.loading)"),
+        null,
+        { timeout: 30_000 },
+      );
+      console.log(`     ${BIG_BLOCKS} blocks: shown with the current block highlighted ${Date.now() - t0} ms after the run request`);
+      const total = await page.getAttribute("#blocks", "data-lines");
+      if (Number(total) !== BIG_BLOCKS) throw new Error(`the panel knows ${total} lines`);
+      // The current block follows, found by its line number; the rows are virtual.
+      const first = Number(await page.getAttribute("#blocks li.current", "data-line"));
+      await page.waitForFunction((n) => Number(document.querySelector("#blocks li.current")?.dataset.line) > n + 20, first, { timeout: 30_000 });
+      const rows = await page.locator("#blocks li").count();
+      if (rows > 200) throw new Error(`${rows} rows rendered for a ${BIG_BLOCKS}-line program`);
+      // Scrolled to the middle of the program, the rows there arrive from the server.
+      const t1 = Date.now();
+      await page.click("#btn-cycle-stop");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped", null, { timeout: 60_000 });
+      await page.evaluate(() => {
+        const list = document.getElementById("blocks");
+        list.scrollTop = list.scrollHeight / 2;
+      });
+      await page.waitForFunction(() => {
+        const rows = [...document.querySelectorAll("#blocks li")];
+        return rows.some((r) => Number(r.dataset.line) > 90_000) && !document.querySelector("#blocks .line-code.loading");
+      }, null, { timeout: 60_000 });
+      console.log(`     scrolled to the middle: rows filled in ${Date.now() - t1} ms`);
+      // On to the programmed stop (fast), which the panel shows as the current block.
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      const t2 = Date.now();
+      await pageFetch(page, "POST", `/sessions/${sessionId}/run`, { name: "CAM200K", pace: "fast", wait: true });
+      await page.waitForFunction(
+        (line) => document.querySelector("#blocks li.current")?.dataset.line === String(line) && document.querySelector("#blocks li.current .line-code")?.textContent === "M0",
+        BIG_STOP_LINE,
+        { timeout: 60_000 },
+      );
+      console.log(`     fast run to M0 at line ${BIG_STOP_LINE} shown ${Date.now() - t2} ms after the request`);
+      const heap = await page.evaluate(() => performance.memory?.usedJSHeapSize ?? 0);
+      if (heap) console.log(`     page JS heap ${(heap / 1e6).toFixed(1)} MB`);
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+    });
+
+    await step("server restart: stale banner while it is down, then live values without a reload", async () => {
+      const dataDir = await mkdtemp(join(tmpdir(), "nctwin-restart-"));
+      let server = await startServer("127.0.0.1:0", dataDir);
+      const bind = new URL(server.url).host;
+      const other = await context.newPage();
+      try {
+        await other.goto(`${server.url}/`, { waitUntil: "load" });
+        await other.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+        const id = new URL(other.url()).searchParams.get("session");
+        const text = ["G0 X0 Y0 Z50", "G1 X33 F6000", "M0", "G1 X40", "M30", ""].join("\n");
+        // A stored program, run by name: after the restart the server names it by its text.
+        await pageFetch(other, "PUT", `/sessions/${id}/programs/RESTART`, { text });
+        await pageFetch(other, "POST", `/sessions/${id}/run`, { name: "RESTART", pace: "fast", wait: true });
+        await other.waitForFunction(() => document.querySelector("#blocks li.current")?.dataset.line === "3");
+        await other.evaluate(() => (window.__notReloaded = true));
+        await stopServer(server.child);
+        await other.waitForFunction(() => document.body.classList.contains("stale"));
+        const banner = await other.textContent("#stale-banner");
+        if (!(await other.isVisible("#stale-banner")) || !/connection lost: values are stale/.test(banner)) throw new Error(`banner: ${banner}`);
+        server = await startServer(bind, dataDir);
+        await other.waitForFunction(() => !document.body.classList.contains("stale") && document.getElementById("connection")?.dataset.conn === "online", null, { timeout: 30_000 });
+        // The restarted session's time starts again near 0: its states are shown all the same.
+        await other.waitForFunction(() => Number(document.getElementById("sim-time")?.textContent) < 5);
+        await other.waitForFunction((sel) => Math.abs(Number(document.querySelector(sel)?.textContent) - 33) < 1e-3, WCS_X);
+        await other.waitForFunction(
+          () => document.getElementById("blocks-name")?.textContent === "RESTART" && document.querySelector("#blocks li.current")?.dataset.line === "3",
+        );
+        if (!(await other.evaluate(() => window.__notReloaded === true))) throw new Error("the page was reloaded");
+      } finally {
+        await other.close();
+        await stopServer(server.child);
+        await rm(dataDir, { recursive: true, force: true }).catch(() => {});
+      }
     });
 
     await step("event log shows block changes", async () => {

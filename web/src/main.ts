@@ -9,6 +9,8 @@ import { rememberToken } from "./api/tokens";
 import { showMessage, wireMessageBar } from "./core/message";
 import { SessionController } from "./core/session";
 import { selection } from "./program/selected";
+import { activeProgram } from "./program/active";
+import { mountStatusLine } from "./machine/statusLine";
 import { mountJog } from "./jog/jog";
 import { mountSwivel } from "./swivel/swivel";
 import { Lobby } from "./lobby/lobby";
@@ -38,6 +40,7 @@ async function main(): Promise<void> {
   const session = new SessionController();
   // First listener: the views that follow read the demo chosen for the session's machine.
   session.on("session", (info) => selection.adoptDemo(info.machine.machine_data));
+  activeProgram.attach(session);
   wireMessageBar();
   wireAreas();
   mountHeader(session);
@@ -46,6 +49,7 @@ async function main(): Promise<void> {
   mountTfs(session);
   mountBlocks(session);
   mountProgress(session);
+  mountStatusLine(session);
   mountOverrides(session);
   mountControls(session);
   mountJog(session);

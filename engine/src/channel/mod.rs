@@ -9,6 +9,7 @@
 //! calculation), `reference` (reference point state per axis), `programs` (stored programs),
 //! `spindle`, `trafo` (the active transformation per IPO cycle), `snapshot`.
 
+mod active_program;
 mod blending;
 mod cartesian_jog;
 mod io;
@@ -37,6 +38,7 @@ mod trafo;
 use std::collections::VecDeque;
 use std::sync::Arc;
 
+pub use active_program::{ActiveProgram, CallLevel};
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use jog_settings::OrientationJogKind;
 pub use referencing::ReferencePhase;
@@ -228,6 +230,8 @@ pub struct Channel {
     tick: u64,
     /// The active program's text; blocks are read from it one at a time.
     program: Option<ProgramText>,
+    /// Counts the programs loaded (see `active_program.rs`): a display reloads the text when it changes.
+    program_serial: u64,
     /// Stored programs (main programs and subprograms) by upper-case name.
     programs: Programs,
     /// Programs the file functions changed since the shell last took them (by name, once).
@@ -347,6 +351,7 @@ impl Channel {
             status: Status::Idle,
             tick: 0,
             program: None,
+            program_serial: 0,
             queued_blocks: VecDeque::new(),
             programs,
             changed_files: Default::default(),
@@ -571,7 +576,7 @@ impl Channel {
         self.set_mode(mode)?;
         self.program_mode = mode;
         self.search_approach = false;
-        self.program = Some(text.clone());
+        self.set_active_program(text.clone());
         self.queued_blocks.clear();
         self.current_block = None;
         self.prep_done = false;

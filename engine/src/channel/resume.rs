@@ -121,7 +121,7 @@ impl Channel {
         CommandError::check(&program.text)?;
         match program.line {
             None => {
-                self.program = Some(ProgramText::from(program.text.as_str()));
+                self.set_active_program(ProgramText::from(program.text.as_str()));
                 self.program_mode = Mode::Auto;
                 Ok(())
             }

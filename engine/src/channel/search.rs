@@ -182,7 +182,7 @@ impl Channel {
         let chain = chain_of(line, &steps);
         let target = steps.last().map_or(line, |s| s.line);
 
-        self.program = Some(text.clone());
+        self.set_active_program(text.clone());
         self.program_mode = Mode::Auto;
         self.queued_blocks.clear();
         self.current_block = None;

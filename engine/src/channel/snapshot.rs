@@ -85,6 +85,14 @@ pub struct Snapshot {
     pub sync_actions: Vec<super::sync_actions::SyncActionInfo>,
     /// Material removal: volumes and checks (`None` without a blank).
     pub stock: Option<super::StockInfo>,
+    /// Counts the programs loaded (see `Channel::active_program`): a display reloads the
+    /// program text when it changes.
+    pub program_serial: u64,
+    /// Path length still to go of the block in execution (mm; 0 when nothing moves).
+    pub distance_to_go: f64,
+    /// Programmed path feed of the block in execution in mm/min; `None` for rapid traverse or
+    /// when no block moves.
+    pub programmed_feed: Option<f64>,
 }
 
 /// The G functions a snapshot's `gcodes` names were written from, so that a refresh rewrites
@@ -132,6 +140,9 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         repos_pending: false,
         sync_actions: Vec::new(),
         stock: None,
+        program_serial: 0,
+        distance_to_go: 0.0,
+        programmed_feed: None,
     };
     super::snapshot_refresh::refresh(ch, &mut s);
     s

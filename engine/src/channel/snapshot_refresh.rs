@@ -203,6 +203,10 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     }
     s.overrides = ch.overrides;
     s.single_block = ch.single_block;
+    s.program_serial = ch.program_serial;
+    let to_go = ch.planner.block_to_go().filter(|_| ch.jog.is_none());
+    s.distance_to_go = to_go.map_or(0.0, |(d, _)| d);
+    s.programmed_feed = to_go.and_then(|(_, f)| f.is_finite().then_some(f * 60.0));
     s.optional_stop = ch.optional_stop;
     let gcodes = ch.offsets.gcodes;
     if s.gcodes_seen.0 != Some(gcodes) {

@@ -353,6 +353,15 @@ impl Planner {
         self.v
     }
 
+    /// For the display: the path length still to go of the block being executed (the moves of
+    /// its tag) and its programmed feed (infinite for rapid traverse); `None` when nothing is
+    /// queued.
+    pub fn block_to_go(&self) -> Option<(f64, f64)> {
+        let front = self.queue.front()?;
+        let rest: f64 = self.queue.iter().skip(1).take_while(|m| m.tag == front.tag).map(|m| m.length).sum();
+        Some(((front.length - self.s).max(0.0) + rest, front.feed))
+    }
+
     /// Tag of the move being executed.
     pub fn current_tag(&self) -> Option<u32> {
         self.queue.front().map(|m| m.tag)

@@ -13,7 +13,8 @@ use crate::extract::{ApiJson, OptionalJson};
 use crate::session::Action;
 use crate::state::AppState;
 
-/// Loads a part program and starts it in AUTO mode.
+/// Loads a part program and starts it in AUTO mode: the text of `program`, or without it the
+/// stored program `name` (as Operate's Select and Cycle start; its text is not copied).
 ///
 /// A program with syntax errors is not started (`400` with the line) and nothing moves.
 /// `pace: "fast"` computes as fast as possible (simulated time unaffected) for at most 3600 s of
@@ -31,7 +32,7 @@ use crate::state::AppState;
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
             headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
-        (status = 400, description = "Syntax error (with its line) or a malformed body", body = ErrorBody),
+        (status = 400, description = "Syntax error (with its line), neither `program` nor `name`, no stored program `name`, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "A program is active or an alarm needs a reset", body = ErrorBody),
     )
@@ -41,7 +42,10 @@ pub async fn run(
     Path(id): Path<String>,
     ApiJson(body): ApiJson<RunRequest>,
 ) -> Result<StateReply, ApiError> {
-    let action = Action::Run { program: body.program, optional_stop: body.optional_stop };
+    if body.program.is_none() && body.name.is_none() {
+        return Err(ApiError::bad_request("give `program` (the text) or `name` (a stored program to run)"));
+    }
+    let action = Action::Run { program: body.program, optional_stop: body.optional_stop, name: body.name };
     command(&state, &id, action, Some(drive(body.pace, body.wait))).await
 }
 

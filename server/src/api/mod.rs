@@ -2,6 +2,7 @@
 //!
 //! Handlers are thin: parse the request, send one command to the session, map the reply.
 
+pub mod active_program;
 pub mod control;
 pub mod cycles;
 pub mod health;
@@ -83,6 +84,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(jog::handwheel))
         .routes(routes!(jog::reference))
         .routes(routes!(control::search))
+        .routes(routes!(active_program::get_active_program))
         .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))
         .routes(routes!(kinematic_chains::get_kinematic_chains, kinematic_chains::put_kinematic_chains))
         .routes(routes!(tools::get_tools, tools::put_tools))

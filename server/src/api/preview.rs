@@ -47,6 +47,10 @@ pub struct PreviewRequest {
     pub program: Option<String>,
     /// A stored program of the session, by name. Not together with `program`.
     pub name: Option<String>,
+    /// `true`: the program the channel runs or ran last (`GET .../active-program`), e.g. a
+    /// CAM program of many blocks that the viewer need not download. Not together with
+    /// `program` or `name`.
+    pub active: Option<bool>,
     /// Most points in the answer (2..=20000, default 5000): the path is thinned to fit.
     pub max_points: Option<usize>,
     /// Simulated seconds after which the preview stops (0 < t <= 3600, default 600).
@@ -115,8 +119,8 @@ impl PreviewRequest {
     request_body = PreviewRequest,
     responses(
         (status = 200, description = "The programmed path", body = PreviewResponse),
-        (status = 400, description = "Neither or both of `program` and `name`, bad limits, a syntax error (with `line`), or a malformed body", body = ErrorBody),
-        (status = 404, description = "No such session, or no stored program of that name", body = ErrorBody),
+        (status = 400, description = "Not exactly one of `program`, `name` and `active`, bad limits, a syntax error (with `line`), or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session, no stored program of that name, or no loaded program", body = ErrorBody),
         (status = 409, description = "The copy cannot start the program (an alarm that a reset does not clear)", body = ErrorBody),
         (status = 429, description = "As many previews run on the server as allowed", body = ErrorBody),
     )
@@ -134,13 +138,21 @@ pub async fn preview(
     };
     let _permit = tokio::time::timeout(QUEUE_WAIT, RUNNING.acquire()).await.map_err(|_| busy())?.map_err(|_| busy())?;
     let copy = session.with_channel(|ch| Box::new(ch.clone())).await.map_err(|e| ApiError::from_session(&id, e))?;
-    let text = match (body.program, body.name) {
-        (Some(text), None) => text,
-        (None, Some(name)) => copy
+    let text = match (body.program, body.name, body.active.unwrap_or(false)) {
+        (Some(text), None, false) => text,
+        (None, Some(name), false) => copy
             .stored_program(&name)
             .map(str::to_owned)
             .ok_or_else(|| ApiError::NotFound(format!("program `{name}`")))?,
-        _ => return Err(ApiError::bad_request("give either `program` (the text) or `name` (a stored program)")),
+        (None, None, true) => copy
+            .active_program()
+            .map(|p| p.text.to_string())
+            .ok_or_else(|| ApiError::NotFound("a loaded program (none has run yet)".into()))?,
+        _ => {
+            return Err(ApiError::bad_request(
+                "give either `program` (the text), `name` (a stored program) or `active: true` (the loaded program)",
+            ));
+        }
     };
     let run = tokio::task::spawn_blocking(move || trace(copy, &text, max_time, max_points));
     let response = run.await.map_err(|e| ApiError::Conflict(format!("the preview failed: {e}")))??;

@@ -207,6 +207,15 @@ fn write_head(out: &mut String, s: &Snapshot) {
     write_int(out, s.prepared_tool);
     out.push_str("},\"path_velocity\":");
     write_f64(out, s.path_velocity);
+    out.push_str(",\"program_serial\":");
+    write_int(out, s.program_serial);
+    out.push_str(",\"distance_to_go\":");
+    write_f64(out, s.distance_to_go);
+    out.push_str(",\"programmed_feed\":");
+    match s.programmed_feed {
+        None => out.push_str("null"),
+        Some(f) => write_f64(out, f),
+    }
     out.push_str(",\"spindles\":");
     write_named(out, &s.spindles, write_f64);
     out.push_str(",\"spindle_info\":{");

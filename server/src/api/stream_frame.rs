@@ -79,7 +79,7 @@ struct StateMessage<'a>(&'a Snapshot);
 impl Serialize for StateMessage<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let s = self.0;
-        let mut m = serializer.serialize_struct("State", 24)?;
+        let mut m = serializer.serialize_struct("State", 27)?;
         m.serialize_field("type", "state")?;
         m.serialize_field("status", &ChannelStatus::from(s.status))?;
         m.serialize_field("mode", &OpMode::from(s.mode))?;
@@ -97,6 +97,9 @@ impl Serialize for StateMessage<'_> {
         let tool = Tool { t: s.tool.0, d: s.tool.1, name: s.tool_name.clone(), prepared: s.prepared_tool };
         m.serialize_field("tool", &tool)?;
         m.serialize_field("path_velocity", &s.path_velocity)?;
+        m.serialize_field("program_serial", &s.program_serial)?;
+        m.serialize_field("distance_to_go", &s.distance_to_go)?;
+        m.serialize_field("programmed_feed", &s.programmed_feed)?;
         m.serialize_field("spindles", &Named(&s.spindles))?;
         m.serialize_field("spindle_info", &super::spindle_dto::SpindleInfos::of(&s.spindle_states))?;
         m.serialize_field("message", &s.message)?;

@@ -20,6 +20,7 @@ use nctwin_engine::{Channel, CommandError, Event, Overrides, Snapshot, Status};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 use tokio::time::{Instant, sleep_until};
 
+use super::active_program::ActiveCache;
 use super::snapshot_pool::SnapshotPool;
 use super::wake_stats::wake_stats;
 use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
@@ -75,6 +76,8 @@ pub(super) struct Actor {
     dirty: bool,
     /// Lateness of the last real-time wake-up in microseconds (see `SessionHandle::ipo_lag`).
     lag_micros: Arc<AtomicU64>,
+    /// Where the name a program was started under is recorded.
+    active: Arc<super::active_program::ActiveCache>,
 }
 
 impl Actor {
@@ -84,6 +87,7 @@ impl Actor {
         events: broadcast::Sender<Event>,
         settled: watch::Sender<u64>,
         lag_micros: Arc<AtomicU64>,
+        active: Arc<super::active_program::ActiveCache>,
     ) -> Actor {
         Actor {
             config,
@@ -100,6 +104,7 @@ impl Actor {
             settled,
             dirty: false,
             lag_micros,
+            active,
         }
     }
 
@@ -171,8 +176,9 @@ impl Actor {
             let flow = self.handle(&mut channel, request);
             return Some((channel, flow));
         };
+        let active = self.active.clone();
         let joined = tokio::task::spawn_blocking(move || {
-            let result = apply(&mut channel, action);
+            let result = apply(&mut channel, action, &active);
             (channel, result)
         })
         .await;
@@ -198,7 +204,7 @@ impl Actor {
             }
             Request::Command { action, drive, reply } => (action, drive, reply),
         };
-        let result = apply(channel, action);
+        let result = apply(channel, action, &self.active);
         self.command_applied(channel, result, drive, reply)
     }
 
@@ -339,15 +345,39 @@ impl Actor {
     }
 }
 
-/// Applies one action; a refused action changes nothing.
-fn apply(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
+/// Applies one action; a refused action changes nothing. A program loaded by it is recorded in
+/// `active` with the name it was started under.
+fn apply(channel: &mut Channel, action: Action, active: &ActiveCache) -> Result<(), CommandError> {
+    let serial = channel.program_serial();
+    let label = match &action {
+        Action::Run { name, .. } => name.clone(),
+        Action::Search { name, .. } => name.clone(),
+        _ => None,
+    };
+    let result = apply_action(channel, action);
+    // Only a name given with the command is recorded; otherwise the reader looks for a stored
+    // program with the same text (see `api::active_program`).
+    if channel.program_serial() != serial && label.is_some() {
+        active.set_label(channel.program_serial(), label);
+    }
+    result
+}
+
+fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
     match action {
-        Action::Run { program, optional_stop } => {
+        Action::Run { program, optional_stop, name } => {
             let before = channel.optional_stop;
             if let Some(on) = optional_stop {
                 channel.optional_stop = on;
             }
-            let result = channel.run_program(&program);
+            let result = match (program, name) {
+                (Some(program), _) => channel.run_program(&program),
+                (None, Some(name)) => match channel.program_text(&name) {
+                    Some(text) => channel.run_program_shared(text),
+                    None => Err(CommandError::Invalid(format!("no stored program `{name}` to run"))),
+                },
+                (None, None) => Err(CommandError::Invalid("no program to run".into())),
+            };
             if result.is_err() {
                 channel.optional_stop = before;
             }

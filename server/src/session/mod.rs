@@ -11,6 +11,7 @@
 //!
 //! This module knows nothing of HTTP or JSON: it speaks engine types.
 
+pub mod active_program;
 mod actor;
 mod pacer;
 mod snapshot_pool;
@@ -60,9 +61,13 @@ pub struct Drive {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
     /// Load a program and start it in AUTO mode; `optional_stop` sets M1 behaviour first.
+    /// `program: None`: the stored program `name`.
     Run {
-        program: String,
+        program: Option<String>,
         optional_stop: Option<bool>,
+        /// The name the program is shown under (a stored program's); `None`: the server looks
+        /// for a stored program with the same text.
+        name: Option<String>,
     },
     /// Execute blocks in MDA mode.
     Mda {
@@ -230,6 +235,8 @@ pub struct SessionHandle {
     /// Set before the actor is ended for a server shutdown, so requests that lose their reply
     /// are told [`SessionError::ServerStopping`] rather than [`SessionError::Ended`].
     server_stopping: Arc<AtomicBool>,
+    /// The loaded program's name and line index (see `active_program`).
+    active: Arc<active_program::ActiveCache>,
 }
 
 impl SessionHandle {
@@ -240,7 +247,8 @@ impl SessionHandle {
         let (events, _) = broadcast::channel(EVENT_CAPACITY);
         let (settled_tx, settled) = watch::channel(0);
         let lag_micros = Arc::new(AtomicU64::new(0));
-        let actor = actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone());
+        let active = Arc::new(active_program::ActiveCache::default());
+        let actor = actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
         tokio::spawn(actor.run(Box::new(channel), rx));
         SessionHandle {
             id: id.into(),
@@ -251,6 +259,7 @@ impl SessionHandle {
             settled,
             lag_micros,
             server_stopping: Arc::default(),
+            active,
         }
     }
 
@@ -262,6 +271,11 @@ impl SessionHandle {
     /// The preset the session was created from.
     pub fn machine(&self) -> &str {
         &self.machine
+    }
+
+    /// The loaded program's name and line index cache.
+    pub fn active_cache(&self) -> &Arc<active_program::ActiveCache> {
+        &self.active
     }
 
     /// The latest published state; never waits for the actor.
@@ -359,7 +373,7 @@ mod tests {
     }
 
     fn run(program: &str) -> Action {
-        Action::Run { program: program.into(), optional_stop: None }
+        Action::Run { program: Some(program.into()), optional_stop: None, name: None }
     }
 
     fn x(snapshot: &Snapshot) -> f64 {

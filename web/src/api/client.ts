@@ -2,6 +2,7 @@
 
 import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
+  ActiveProgramRange,
   ArchiveImport,
   ControlState,
   Diagnostic,
@@ -105,7 +106,16 @@ export const api = {
   deleteSession: (id: string) => request<null>("DELETE", s(id)),
 
   state: (id: string) => request<State>("GET", `${s(id)}/state`),
-  run: (id: string, program: string, pace: Pace) => request<State>("POST", `${s(id)}/run`, { program, pace }),
+  run: (id: string, program: string, pace: Pace, name?: string) =>
+    request<State>("POST", `${s(id)}/run`, name ? { program, pace, name } : { program, pace }),
+  /** Runs the stored program `name` in AUTO (its text is not sent). */
+  runStored: (id: string, name: string, pace: Pace) => request<State>("POST", `${s(id)}/run`, { name, pace }),
+  /** Lines `from`.. of the loaded program, or of `program` (a subprogram of its call stack). */
+  activeProgram: (id: string, from = 1, count = 1, program?: string | null) => {
+    const q = new URLSearchParams({ from: String(from), count: String(count) });
+    if (program) q.set("program", program);
+    return request<ActiveProgramRange>("GET", `${s(id)}/active-program?${q}`);
+  },
   /** NC start; `repos`: where and how a repositioning after JOG returns (RMI.., REPOSL..). */
   start: (id: string, pace: Pace, repos?: { repos: string; approach: string; disr?: number } | null) =>
     request<State>("POST", `${s(id)}/start`, { pace, ...(repos ?? {}) }),

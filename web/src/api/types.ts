@@ -44,6 +44,12 @@ export interface State {
   /** Tool in the spindle (T, D, its $TC_TP2 name) and the programmed (prepared) tool. */
   tool: { t: number; d: number; name: string; prepared: number };
   path_velocity: number;
+  /** Counts the programs the channel loaded: when it changes, the active program is another. */
+  program_serial?: number;
+  /** Path length still to go of the block in execution (mm). */
+  distance_to_go?: number;
+  /** Programmed path feed of the block in execution (mm/min); null for rapid or no motion. */
+  programmed_feed?: number | null;
   spindles: Record<string, number>;
   /** Each spindle's mode (M3/M4/M5/SPOS), angle in degrees and master flag, by the names of `spindles`. */
   spindle_info?: Record<string, SpindleInfo>;
@@ -221,6 +227,8 @@ export interface ControlState {
 export interface PreviewRequest {
   program?: string;
   name?: string;
+  /** The program the channel runs or ran last (GET .../active-program). */
+  active?: boolean;
   max_points?: number;
   max_time?: number;
 }
@@ -246,4 +254,27 @@ export interface SpindleInfo {
   mode: "M3" | "M4" | "M5" | "SPOS";
   position: number;
   master: boolean;
+}
+
+/** One level of the call stack of the block in execution (program null: the main program). */
+export interface CallLevel {
+  program: string | null;
+  line: number;
+}
+
+/** GET .../active-program: the channel's loaded program and a range of its lines. */
+export interface ActiveProgramRange {
+  serial: number;
+  name: string | null;
+  directory: string | null;
+  mode: OpMode;
+  sha256: string;
+  line_count: number;
+  bytes: number;
+  /** The program the lines are from (null: the main program). */
+  program: string | null;
+  program_line_count: number;
+  from: number;
+  lines: string[];
+  call_stack: CallLevel[];
 }

@@ -25,6 +25,8 @@ type SessionEvents = {
   machine: SessionInfo;
   /** The server's `ack`/`error` to a message this page sent on the stream. */
   reply: StreamReply;
+  /** The stream is back after it was lost: what was read before may be stale. */
+  reconnected: SessionInfo;
 };
 
 export class SessionController extends Emitter<SessionEvents> {
@@ -33,6 +35,8 @@ export class SessionController extends Emitter<SessionEvents> {
   private stream: StateStream | null = null;
   private lastTime = -Infinity;
   private framePending = false;
+  /** The stream was lost and has not come back yet. */
+  private lost = false;
 
   get id(): string | null {
     return this.info?.id ?? null;
@@ -51,6 +55,8 @@ export class SessionController extends Emitter<SessionEvents> {
     this.info = { id, machine };
     this.latest = null;
     this.lastTime = -Infinity;
+    this.lost = false;
+    document.body.classList.remove("stale");
     this.emit("session", this.info);
     const url = new URL(location.href);
     url.searchParams.set("session", id);
@@ -60,12 +66,28 @@ export class SessionController extends Emitter<SessionEvents> {
       onState: (st) => this.accept(st),
       onEvent: (ev) => this.emit("event", ev),
       onReply: (reply) => this.emit("reply", reply),
-      onConnection: (conn) => {
-        this.emit("connection", conn);
-        if (conn === "offline") void this.checkAlive(id);
-      },
+      onConnection: (conn) => this.connectionChanged(id, conn),
     });
     this.accept(await api.state(id));
+  }
+
+  /**
+   * While the stream is down the screen shows stale values (greyed). Back online, the first
+   * state is taken whatever its time (a restarted server starts its session time afresh), the
+   * active program is read again and the messages of before are cleared.
+   */
+  private connectionChanged(id: string, conn: Connection): void {
+    const wasLost = this.lost;
+    if (conn === "offline") this.lost = true;
+    document.body.classList.toggle("stale", this.lost && conn !== "online");
+    this.emit("connection", conn);
+    if (conn === "offline") void this.checkAlive(id);
+    if (conn === "online" && wasLost && this.info && id === this.info.id) {
+      this.lost = false;
+      this.lastTime = -Infinity;
+      clearMessage();
+      this.emit("reconnected", this.info);
+    }
   }
 
   /** Whether client messages can go over the live stream now. */

@@ -1,15 +1,24 @@
-// The program display of the machine screen: the active program's text with the current block
-// highlighted and kept in view. Renders a window of lines around the current block, so long
-// programs cost no more than short ones.
+// The program display of the machine screen: the program the channel runs (from the server,
+// whoever started it) with the current block highlighted and kept in view. A block inside a
+// subprogram or cycle shows that program's text, as Operate does, with the calling line named.
+//
+// The list is virtualized: only the rows in view (plus a margin) exist, the rest is margin of
+// the list's fixed row height, and the lines come in chunks from the server (`active.ts`), so
+// a program of 200,000 blocks scrolls and follows its block as a short one does.
+//
+// Before the channel has loaded any program, and in reset state after Execute selected another
+// one, the selection (what Cycle start will run) is shown, marked as selected.
 
 import type { ChannelStatus, State } from "../api/types";
 import { byId, el, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
+import { activeName, activeProgram } from "../program/active";
 import { highlightLine } from "../program/highlight";
 import { selection } from "../program/selected";
 
-const WINDOW = 400; // lines rendered at once
-const MARGIN = 50; // re-window when the current line comes this close to an edge
+const ROW_PX = 18; // the list's line height (program.css .code-view)
+const OVERSCAN = 30; // rows rendered above and below the visible ones
+const MAX_ROWS = 200; // rows rendered at most, whatever the list's height claims
 
 const PROGRAM_STATUS: Record<ChannelStatus, string> = {
   idle: "RESET",
@@ -18,76 +27,180 @@ const PROGRAM_STATUS: Record<ChannelStatus, string> = {
   alarm: "INTERRUPTED",
 };
 
+/** Where the shown lines come from. */
+type Source =
+  | { kind: "active"; serial: number; program: string | null }
+  | { kind: "selected"; lines: string[] }
+  | { kind: "mda"; lines: string[] };
+
 class BlocksView {
-  private lines: string[] = [];
-  private first = 1; // line number of the first rendered line
+  private source: Source = { kind: "selected", lines: [] };
   private current: number | null = null;
-  private shownMda = false;
+  private renderedFirst = 0;
+  private renderedLast = -1;
+  private follow = true;
+  /** The current line is past the lines known so far: scroll to it when they arrive. */
+  private scrollPending = false;
+  private lastState: State | null = null;
+  /** Execute selected a program after the channel loaded its last one (reset state only). */
+  selectedSinceLoad = false;
   private readonly list = byId<HTMLOListElement>("blocks");
 
-  /** Shows the program the block lines refer to: the MDA blocks in MDA, else the selection. */
-  refresh(): void {
-    const { name, text } = this.shownMda ? { name: "MDA", text: selection.mdaText } : selection.current;
-    setText(byId("blocks-name"), name);
-    this.lines = text.split("\n");
-    if (this.lines.at(-1) === "") this.lines.pop();
-    this.renderWindow(1);
+  constructor() {
+    this.list.addEventListener("scroll", () => this.renderRows(false), { passive: true });
+    new ResizeObserver(() => this.renderRows(false)).observe(this.list);
   }
 
+  /** Picks the text to show from the state and what the server and the selection hold. */
   render(st: State): void {
+    this.lastState = st;
     const status = byId("program-status");
     status.dataset.status = st.status;
     setText(status, PROGRAM_STATUS[st.status]);
 
-    const mda = st.mode === "MDA";
-    if (mda !== this.shownMda) {
-      this.shownMda = mda;
-      this.refresh();
+    const meta = activeProgram.meta;
+    const inSub = st.block?.program ?? null;
+    let source: Source;
+    let name: string;
+    const stale = meta !== null && st.program_serial !== undefined && meta.serial !== st.program_serial;
+    if (stale && st.status !== "idle") {
+      // The channel has loaded another program whose name and text are still being read:
+      // nothing of the old one is shown meanwhile.
+      source = { kind: "selected", lines: [] };
+      name = "loading the active program …";
+    } else if (meta && !(st.status === "idle" && this.selectedSinceLoad)) {
+      source = { kind: "active", serial: meta.serial, program: inSub };
+      name = inSub ? `${inSub}  (called by ${activeName(meta)})` : activeName(meta);
+    } else if (st.mode === "MDA" && !meta) {
+      source = { kind: "mda", lines: splitLines(selection.mdaText) };
+      name = "MDA";
+    } else {
+      source = { kind: "selected", lines: splitLines(selection.current.text) };
+      name = `${selection.current.name} (selected)`;
     }
-    // The list shows the main program: a block inside a subprogram has a line of another text.
-    this.highlight(st.block && !st.block.program ? st.block.line : null);
+    setText(byId("blocks-name"), name);
+    this.list.dataset.source = source.kind;
+    if (!sameSource(source, this.source)) {
+      this.source = source;
+      this.current = null;
+      this.renderRows(true);
+    }
+    // Until the text of a newly loaded program is known, no line of the old one is marked.
+    const fresh = source.kind !== "active" || source.serial === (st.program_serial ?? source.serial);
+    const line = fresh && st.block && (source.kind === "active" || !inSub) ? st.block.line : null;
+    this.highlight(line);
+  }
+
+  /** Shows the selection again (Execute, new MDA blocks) or newly arrived lines. */
+  refresh(): void {
+    if (this.lastState) {
+      this.source = { kind: "selected", lines: [] }; // forces a new render
+      this.render(this.lastState);
+    } else {
+      this.source = { kind: "selected", lines: splitLines(selection.current.text) };
+      setText(byId("blocks-name"), `${selection.current.name} (selected)`);
+      this.renderRows(true);
+    }
+  }
+
+  /** Lines arrived from the server: fill the rows still waiting for them. */
+  linesArrived(): void {
+    this.renderRows(true);
+    // A subprogram's length is known only with its first lines: bring the block into view now
+    // (once: later arrivals are for rows the operator scrolled to).
+    const line = this.current;
+    if (!this.scrollPending || line == null || this.count() < line) return;
+    this.scrollPending = false;
+    this.scrollTo(line);
+    this.renderRows(false);
+  }
+
+  private scrollTo(line: number): void {
+    // Keep the current block in the upper third, as Operate does.
+    this.list.scrollTop = Math.max(0, (line - 1) * ROW_PX - this.list.clientHeight / 3);
+  }
+
+  private count(): number {
+    const s = this.source;
+    if (s.kind !== "active") return s.lines.length;
+    return activeProgram.lineCount(s.program) ?? activeProgram.meta?.lineCount ?? 0;
+  }
+
+  private text(n: number): string | undefined {
+    const s = this.source;
+    if (s.kind !== "active") return s.lines[n - 1];
+    return activeProgram.line({ serial: s.serial, program: s.program }, n);
   }
 
   private highlight(line: number | null): void {
     if (line === this.current) return;
-    this.list.querySelector(".current")?.classList.remove("current");
-    if (line != null && line >= 1 && line <= this.lines.length) {
-      const last = this.first + this.list.children.length - 1;
-      const above = line < this.first || (line < this.first + MARGIN && this.first > 1);
-      const below = line > last || (line > last - MARGIN && last < this.lines.length);
-      if (above || below) this.renderWindow(Math.max(1, line - MARGIN));
-    }
     this.current = line;
-    if (line == null) return;
-    const li = this.list.children[line - this.first] as HTMLElement | undefined;
-    if (!li) return;
-    li.classList.add("current");
-    // Keep the current block in the upper third, as Operate does.
-    const top = li.offsetTop - this.list.clientHeight / 3;
-    this.list.scrollTop = Math.max(0, top);
+    // The padding must be there before the list can scroll to the line.
+    this.renderRows(true);
+    if (line != null && this.follow) this.scrollTo(line);
+    this.scrollPending = line != null && this.count() < line;
+    this.renderRows(false);
   }
 
-  private renderWindow(first: number): void {
-    this.first = first;
-    const end = Math.min(this.lines.length, first + WINDOW - 1);
-    const items: HTMLElement[] = [];
-    for (let n = first; n <= end; n++) {
+  /** Renders the rows in view; `force` also when the same range is rendered already. */
+  private renderRows(force: boolean): void {
+    const total = this.count();
+    const height = this.list.clientHeight || 300;
+    const first = Math.max(1, Math.floor(this.list.scrollTop / ROW_PX) + 1 - OVERSCAN);
+    const last = Math.min(total, Math.ceil((this.list.scrollTop + height) / ROW_PX) + OVERSCAN, first + MAX_ROWS - 1);
+    if (!force && first === this.renderedFirst && last === this.renderedLast) return;
+    this.renderedFirst = first;
+    this.renderedLast = last;
+    const rows: HTMLElement[] = [];
+    for (let n = first; n <= last; n++) {
+      const text = this.text(n);
       const li = el("li", { "data-line": String(n) });
+      if (n === this.current) li.classList.add("current");
       li.append(el("span", { class: "line-no" }, String(n)));
       const code = el("span", { class: "line-code" });
-      code.innerHTML = highlightLine(this.lines[n - 1] ?? "") || " ";
+      if (text === undefined) {
+        code.classList.add("loading");
+        code.textContent = "…";
+      } else {
+        code.innerHTML = highlightLine(text) || " ";
+      }
       li.append(code);
-      items.push(li);
+      rows.push(li);
     }
-    this.list.replaceChildren(...items);
-    this.current = null;
+    // The rows not rendered are margins of the first and last row (scrollable overflow, which
+    // the list's `contain: size` keeps out of its own height, as padding would not be).
+    rows[0]?.style.setProperty("margin-top", `${(first - 1) * ROW_PX}px`);
+    rows.at(-1)?.style.setProperty("margin-bottom", `${Math.max(0, total - last) * ROW_PX}px`);
+    this.list.replaceChildren(...rows);
+    this.list.dataset.lines = String(total);
   }
 }
 
-export function mountBlocks(session: SessionController): void {
+function splitLines(text: string): string[] {
+  const lines = text.split("\n").map((l) => l.replace(/\r$/, ""));
+  if (lines.at(-1) === "") lines.pop();
+  return lines;
+}
+
+function sameSource(a: Source, b: Source): boolean {
+  if (a.kind !== b.kind) return false;
+  if (a.kind === "active" && b.kind === "active") return a.serial === b.serial && a.program === b.program;
+  return a.kind !== "active" && b.kind !== "active" && a.lines.length === b.lines.length && a.lines.every((l, i) => l === b.lines[i]);
+}
+
+export function mountBlocks(session: SessionController): BlocksView {
   const view = new BlocksView();
   view.refresh();
-  selection.on("change", () => view.refresh());
+  selection.on("change", () => {
+    view.selectedSinceLoad = true;
+    view.refresh();
+  });
   selection.on("mda", () => view.refresh());
+  activeProgram.on("change", () => {
+    view.selectedSinceLoad = false;
+    view.refresh();
+  });
+  activeProgram.on("lines", () => view.linesArrived());
   session.on("state", (st) => view.render(st));
+  return view;
 }

@@ -5,6 +5,7 @@ import type { Connection } from "../api/stream";
 import type { OpMode, State } from "../api/types";
 import { byId, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
+import { activeName, activeProgram } from "../program/active";
 import { selection } from "../program/selected";
 
 function renderState(st: State): void {
@@ -36,8 +37,14 @@ export function mountHeader(session: SessionController): void {
   });
   session.on("state", renderState);
   session.on("connection", renderConnection);
-  selection.on("change", (p) => setText(byId("header-program"), p.name));
-  setText(byId("header-program"), selection.current.name);
+  // The program the channel has loaded; the selection only until the channel has one.
+  const showProgram = () => {
+    const meta = activeProgram.meta;
+    setText(byId("header-program"), meta ? activeName(meta) : `${selection.current.name} (selected)`);
+  };
+  selection.on("change", showProgram);
+  activeProgram.on("change", showProgram);
+  showProgram();
 
   for (const b of document.querySelectorAll<HTMLButtonElement>("[data-set-mode]")) {
     b.addEventListener("click", () => session.act((id) => api.setMode(id, b.dataset.setMode as OpMode)));

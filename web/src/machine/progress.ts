@@ -9,13 +9,14 @@
 import type { State } from "../api/types";
 import { byId, fmt, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
-import { selection } from "../program/selected";
+import { activeProgram } from "../program/active";
 
 const STORE_PREFIX = "nctwin.runtime.";
 const MIN_LINE_FRACTION = 0.02; // below this, extrapolating from the line says nothing
 
 interface Run {
-  key: string;
+  serial: number; // the program serial of the run (its text is read from the server)
+  key: string | null; // machine and SHA-256 of the program, once the server named it
   start: number; // simulated time at cycle start
   fromStart: boolean; // seen from its start (else joined while running: no record)
   lines: number;
@@ -37,6 +38,7 @@ export class ProgressView {
 
   /** Called for every sample, so that no start or end is missed between two frames. */
   sample(st: State): void {
+    this.resolve();
     const prev = this.lastStatus;
     this.lastStatus = st.status;
     const auto = st.mode === "AUTO";
@@ -44,7 +46,7 @@ export class ProgressView {
       this.begin(st, prev !== null);
     } else if (this.run && st.status === "idle" && (prev === "running" || prev === "stopped")) {
       const duration = st.time - this.run.start;
-      if (this.run.fromStart && st.alarms.length === 0 && auto) {
+      if (this.run.fromStart && this.run.key && st.alarms.length === 0 && auto) {
         try {
           localStorage.setItem(STORE_PREFIX + this.run.key, String(duration));
         } catch {
@@ -60,6 +62,7 @@ export class ProgressView {
   }
 
   render(st: State): void {
+    this.resolve();
     const bar = byId("progress-bar");
     const box = byId("progress");
     const remaining = byId("remaining-time");
@@ -74,7 +77,7 @@ export class ProgressView {
         fraction = Math.min(0.99, runTime / run.previous);
         rest = Math.max(0, run.previous - runTime);
         how = `from the last complete run (${fmt(run.previous, 1)} s)`;
-      } else if (st.block && run.lines > 0) {
+      } else if (st.block && !st.block.program && run.lines > 0) {
         fraction = Math.min(1, Math.max(0, (st.block.line - 1) / run.lines));
         rest = fraction >= MIN_LINE_FRACTION && runTime > 0 ? (runTime * (1 - fraction)) / fraction : null;
         how = "extrapolated from the current line (no complete run yet)";
@@ -97,29 +100,26 @@ export class ProgressView {
   }
 
   private begin(st: State, seenStart: boolean): void {
-    const program = selection.current;
-    const key = `${this.machine}.${hash(program.text)}`;
-    let previous: number | null = null;
-    try {
-      const v = Number(localStorage.getItem(STORE_PREFIX + key));
-      previous = Number.isFinite(v) && v > 0 ? v : null;
-    } catch {
-      previous = null;
-    }
-    const lines = program.text.replace(/\n+$/, "").split("\n").length;
-    this.run = { key, start: st.time, fromStart: seenStart, lines, previous };
+    const serial = st.program_serial ?? 0;
+    this.run = { serial, key: null, start: st.time, fromStart: seenStart, lines: 0, previous: null };
     this.finished = null;
+    this.resolve();
   }
-}
 
-/** FNV-1a of the program text: the key of its recorded duration. */
-function hash(text: string): string {
-  let h = 0x811c9dc5;
-  for (let i = 0; i < text.length; i++) {
-    h ^= text.charCodeAt(i);
-    h = Math.imul(h, 0x01000193);
+  /** Names the run's program once the server's active program is the one the run started. */
+  private resolve(): void {
+    const run = this.run;
+    const meta = activeProgram.meta;
+    if (!run || run.key || !meta || meta.serial !== run.serial) return;
+    run.key = `${this.machine}.${meta.sha256}`;
+    run.lines = meta.lineCount;
+    try {
+      const v = Number(localStorage.getItem(STORE_PREFIX + run.key));
+      run.previous = Number.isFinite(v) && v > 0 ? v : null;
+    } catch {
+      run.previous = null;
+    }
   }
-  return (h >>> 0).toString(16);
 }
 
 export function mountProgress(session: SessionController): ProgressView {

@@ -9,6 +9,9 @@ import { areaChanged, showArea } from "../ui/areas";
 import type { EditorArea } from "./editorArea";
 import { selection } from "./selected";
 
+/** Stored programs larger than this are not loaded into the page on Execute. */
+const LOAD_LIMIT_BYTES = 256 * 1024;
+
 export class ProgramManager {
   constructor(
     private readonly session: SessionController,
@@ -66,7 +69,7 @@ export class ProgramManager {
   }
 
   private row(p: StoredProgram): HTMLTableRowElement {
-    const tr = el("tr", { "data-program": p.name });
+    const tr = el("tr", { "data-program": p.name, "data-size": String(p.size) });
     const actions = el("td", { class: "actions" });
     actions.append(
       el("button", { type: "button", "data-action": "open" }, "Open"),
@@ -91,8 +94,14 @@ export class ProgramManager {
           break;
         }
         case "execute": {
-          const { text } = await api.program(id, name);
-          selection.select({ name, text });
+          // A CAM-size program stays on the server: it runs by name and the program display
+          // reads its lines from there once it runs.
+          const size = Number(button.closest<HTMLElement>("tr[data-program]")?.dataset.size ?? "0");
+          const text = size > LOAD_LIMIT_BYTES ? "" : (await api.program(id, name)).text;
+          selection.select({ name, text, stored: true });
+          // As Operate's "Select": the program is for AUTO, so AUTO is selected (in reset state).
+          const st = this.session.latest;
+          if (st && st.mode !== "AUTO" && st.status === "idle") await this.session.act((sid) => api.setMode(sid, "AUTO"));
           showArea("machine");
           break;
         }

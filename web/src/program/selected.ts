@@ -4,7 +4,10 @@ import { Emitter } from "../core/emitter";
 
 export interface SelectedProgram {
   name: string;
+  /** The text; empty for a stored program too large to load into the page (`stored`). */
   text: string;
+  /** A stored program of the session: Cycle start runs it by name (its text stays on the server). */
+  stored?: boolean;
 }
 
 export const DEMO_PROGRAM: SelectedProgram = {

@@ -1,27 +1,42 @@
-// The programmed path in the 3D view: the selected program run on a throwaway copy of the
-// session's channel (POST .../preview), drawn in its own colour beside the executed path.
-// Asked again when another program is selected, the session changes, or on the Preview key.
+// The programmed path in the 3D view: the program the channel has loaded (or, before it has
+// one, the selected program) run on a throwaway copy of the session's channel
+// (POST .../preview), drawn in its own colour beside the executed path. The server thins the
+// path to MAX_POINTS, so a CAM program of any size costs the browser the same. Asked again
+// when the channel loads another program, another program is selected, the session changes,
+// or on the Preview key.
 
 import { api } from "../api/client";
 import { byId, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
+import { activeName, activeProgram } from "../program/active";
 import { selection } from "../program/selected";
 import type { MachineView } from "./machineView";
 
 /** Points asked for: enough for smooth arcs, small enough to draw at once. */
 const MAX_POINTS = 8000;
+/** Simulated seconds of a loaded program's path (the server's largest). */
+const ACTIVE_MAX_TIME_S = 3600;
 
 export function mountPreview(session: SessionController, view: MachineView): void {
   const note = byId("view3d-preview");
   let serial = 0;
+  // The selection while it is newer than the loaded program, else the loaded program.
+  let useSelection = true;
   const refresh = async () => {
     const id = session.id;
     if (!id) return;
     const mine = ++serial;
-    const program = selection.current;
+    const meta = activeProgram.meta;
+    const active = meta && !useSelection;
+    const program = active ? { name: activeName(meta) } : selection.current;
     setText(note, `preview ${program.name} …`);
     try {
-      const r = await api.preview(id, { program: program.text, max_points: MAX_POINTS });
+      const body = active
+        ? { active: true, max_points: MAX_POINTS, max_time: ACTIVE_MAX_TIME_S }
+        : selection.current.stored
+          ? { name: selection.current.name, max_points: MAX_POINTS }
+          : { program: selection.current.text, max_points: MAX_POINTS };
+      const r = await api.preview(id, body);
       if (mine !== serial || id !== session.id) return;
       view.setProgrammed(r.basic, r.axes, r.tracyl_diameter);
       const end =
@@ -44,6 +59,15 @@ export function mountPreview(session: SessionController, view: MachineView): voi
     void refresh();
   });
   session.on("machine", () => void refresh());
-  selection.on("change", () => void refresh());
+  selection.on("change", () => {
+    useSelection = true;
+    void refresh();
+  });
+  // MDA blocks (a swivel, a JOG-like move) do not replace the path of the AUTO program.
+  activeProgram.on("change", (meta) => {
+    if (!meta || meta.mode !== "AUTO") return;
+    useSelection = false;
+    void refresh();
+  });
   byId("btn-view-preview").addEventListener("click", () => void refresh());
 }

@@ -1,0 +1,54 @@
+// The channel status line under the program display, as Operate shows it: why the channel
+// stands or what it does, the active program-control options, and the actual path feed.
+//
+// Read from the state alone. Why a stopped program stands is told by the state's flags and the
+// block in execution: REPOS pending (JOG in the interrupted program), an M0/M1 in the current
+// block, single block, else NC stop. Distance to go and programmed feed are the block's. The
+// state carries no DRY/SKP (the engine has neither) and no "waiting for a preprocessing stop"
+// flag; the line shows what it knows.
+
+import type { State } from "../api/types";
+import { byId, fmt, setText } from "../core/dom";
+import type { SessionController } from "../core/session";
+
+/** The reason the channel stands (or what it does), in Operate's words. */
+export function channelReason(st: State): string {
+  switch (st.status) {
+    case "alarm": {
+      const a = st.alarms.at(-1);
+      return a ? `Alarm ${a.number}: the channel stands until a reset` : "Alarm: the channel stands until a reset";
+    }
+    case "stopped": {
+      if (st.repos_pending) return "Stop: program interrupted by JOG, NC start repositions (REPOS)";
+      const text = (st.block?.text ?? "").replace(/;.*$/, "").toUpperCase();
+      if (/(^|[^A-Z0-9_])M0*0(?![0-9])/.test(text)) return "Stop: M0 programmed stop";
+      if (/(^|[^A-Z0-9_])M0*1(?![0-9])/.test(text) && st.optional_stop) return "Stop: M1 optional stop";
+      if (st.single_block) return "Stop: block ended in single block";
+      return "Stop: NC stop";
+    }
+    case "running":
+      return st.mode === "JOG" ? "JOG motion" : `Program running (${st.mode})`;
+    case "idle": {
+      const missing = Object.entries(st.referenced ?? {})
+        .filter(([, ok]) => !ok)
+        .map(([axis]) => axis);
+      if (missing.length > 0) return `Reference point missing: ${missing.join(", ")}`;
+      return "Reset";
+    }
+  }
+}
+
+function render(st: State): void {
+  const line = byId("channel-status");
+  line.dataset.status = st.status;
+  setText(byId("channel-reason"), channelReason(st));
+  const options = [st.single_block ? "SBL" : "", st.optional_stop ? "M01" : ""].filter(Boolean);
+  setText(byId("channel-options"), options.join(" "));
+  const programmed = st.programmed_feed == null ? (st.distance_to_go ? "rapid" : "–") : fmt(st.programmed_feed, 0);
+  setText(byId("channel-feed"), `F prog ${programmed} act ${fmt(st.path_velocity, 0)} mm/min`);
+  setText(byId("channel-dtg"), `DTG ${fmt(st.distance_to_go ?? 0, 3)}`);
+}
+
+export function mountStatusLine(session: SessionController): void {
+  session.on("state", render);
+}
