@@ -386,6 +386,10 @@ impl Channel {
                     self.enter_block(line);
                     self.control_sync(op, &ids);
                 }
+                Item::SetPiece { pieces, line } => {
+                    self.enter_block(line);
+                    self.set_piece(pieces);
+                }
             }
         }
     }

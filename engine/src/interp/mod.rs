@@ -149,6 +149,12 @@ pub enum Item {
         def: std::sync::Arc<synchronized::SyncDef>,
         line: u32,
     },
+    /// SETPIECE: `pieces` workpieces done for the tools used in the spindle since the last one
+    /// (`tools/setpiece.rs`, counted in `channel/tool_monitor.rs`).
+    SetPiece {
+        pieces: u32,
+        line: u32,
+    },
     /// CANCEL/LOCK/UNLOCK/RESET of synchronized actions by ID.
     SyncControl {
         op: synchronized::SyncControl,
@@ -193,7 +199,8 @@ impl Item {
             | Item::Aux { line, .. }
             | Item::DigitalOutput { line, .. }
             | Item::SyncAction { line, .. }
-            | Item::SyncControl { line, .. } => Some(*line),
+            | Item::SyncControl { line, .. }
+            | Item::SetPiece { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -667,6 +674,16 @@ impl Interpreter {
         }
         for &(signal, on) in &words.digital_outputs {
             self.trc.emit_or_defer(Item::DigitalOutput { signal, on, line }, out);
+        }
+        if let Some(sp) = words.set_piece {
+            // The tools are in the master spindle's holder: another spindle used none.
+            let axis = match sp.spindle {
+                Some(n) => Some(spindles::axis_of(cfg, n, line, "SETPIECE")?),
+                None => self.spindles.master(),
+            };
+            if axis.is_none() || axis == self.spindles.master() {
+                self.trc.emit_or_defer(Item::SetPiece { pieces: sp.pieces, line }, out);
+            }
         }
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;

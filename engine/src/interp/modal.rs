@@ -343,6 +343,8 @@ pub(super) struct Words {
     pub spindle_ext: Option<u32>,
     /// SETMS(n): spindle n becomes the master spindle (`Some(None)`: SETMS, back to MD20090).
     pub set_master: Option<Option<u32>>,
+    /// SETPIECE(n[, spindle]): the piece count of count-monitored tools (`tools/setpiece.rs`).
+    pub set_piece: Option<super::tools::setpiece::SetPiece>,
     pub stop: Option<StopKind>,
     /// A jump at the end of the block (`... GOTOF LABEL`).
     pub goto: Option<Goto>,
@@ -670,6 +672,9 @@ pub(super) fn collect(
                     return Err(Alarm::value_out_of_range(line, &format!("SETMS({})", spindle.unwrap_or_default())));
                 }
                 w.set_master = Some(spindle.map(|n| n as u32));
+            }
+            Word::Keyword { name, args } if name == "SETPIECE" => {
+                w.set_piece = Some(super::tools::setpiece::statement(args, &Ctx { vars, sys }, line)?);
             }
             Word::Keyword { name, args } if name == "CALL" => {
                 let program = match args.first() {
