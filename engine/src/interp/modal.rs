@@ -673,6 +673,9 @@ pub(super) fn collect(
                 }
                 w.set_master = Some(spindle.map(|n| n as u32));
             }
+            Word::Keyword { name, args } if super::spindles::is_diameter_axis_keyword(name) => {
+                super::spindles::diameter_axis_word(&mut w.spindle, name, args, &Ctx { vars, sys }, cfg, line)?;
+            }
             Word::Keyword { name, args } if name == "SETPIECE" => {
                 w.set_piece = Some(super::tools::setpiece::statement(args, &Ctx { vars, sys }, line)?);
             }

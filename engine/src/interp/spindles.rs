@@ -14,9 +14,11 @@
 
 mod block;
 pub mod diameter;
+mod diameter_axes;
 mod motion;
 pub(super) mod vars;
 pub(super) mod words;
+pub(super) use diameter_axes::{is_keyword as is_diameter_axis_keyword, word as diameter_axis_word};
 
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;

@@ -407,6 +407,8 @@ pub static DEFS: &[Def] = &[
     def("MM_NUM_BASE_FRAMES", 28081, C, Kind::Int, 1, Default::Int(1), 0.0, 16.0),
     def("IS_ROT_AX", 30300, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("ROT_IS_MODULO", 30310, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    // MD30460 axis functions; bit 2: the axis may be diameter-programmed on its own (DIAMONA[ax]..).
+    def("BASE_FUNCTION_MASK", 30460, A, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
     def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
     // Distance of one increment (INC1, handwheel detent): [0] metric system, [1] inch system.

@@ -24,6 +24,12 @@ impl Interpreter {
         if let Some(mode) = sw.diameter {
             self.spindles.diameter.select(mode, cfg, line)?;
         }
+        for &(axis, mode) in &sw.axis_diameter {
+            match axis {
+                Some(k) => self.spindles.diameter.select_axis(k, mode, cfg, line)?,
+                None => self.spindles.diameter.link_all(cfg),
+            }
+        }
         self.modal.diameter_slot = self.spindles.diameter.gcode_slot();
         let was_css = self.spindles.feed_type.css();
         if let Some(t) = sw.feed_type {

@@ -37,6 +37,8 @@ pub struct SpindleWords {
     pub sf: Option<f64>,
     /// DIAMON/DIAMOF/DIAM90/DIAMCYCOF (G group 29).
     pub diameter: Option<super::diameter::DiamMode>,
+    /// DIAMONA[ax] .. DIAMCHAN in the order written (`diameter_axes.rs`).
+    pub axis_diameter: Vec<super::diameter_axes::AxisDiamOp>,
 }
 
 /// A keyword of this module without arguments (G group 29); false for any other name.
