@@ -302,6 +302,9 @@ pub struct Channel {
     sync: sync_actions::SyncActions,
     /// Tool life and count monitoring (`tool_monitor.rs`).
     tool_monitor: tool_monitor::ToolMonitor,
+    /// FPR: the axis a feed per revolution follows instead of the master spindle, with its
+    /// position at the last cycle (`spindle.rs`).
+    feed_reference: Option<(usize, f64)>,
 }
 
 impl Channel {
@@ -379,6 +382,7 @@ impl Channel {
             referencing: None,
             sync: Default::default(),
             tool_monitor: Default::default(),
+            feed_reference: None,
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -656,6 +660,7 @@ impl Channel {
         self.current_block = None;
         self.message = None;
         self.sync.end_program();
+        self.feed_reference = None;
         let pos = *self.planner.position();
         for s in &mut self.spindles {
             s.leave_axis_mode(pos[s.axis]);

@@ -188,7 +188,7 @@ impl Spindle {
                 self.css = Some(Css { cutting_speed, direction: f64::from(direction), transverse, centre });
                 self.programmed = f64::from(direction);
             }
-            Control::ThreadStart { .. } => {}
+            Control::ThreadStart { .. } | Control::FeedReference { .. } => {}
         }
     }
 
@@ -287,17 +287,33 @@ impl super::Channel {
     pub(super) fn step_spindles(&mut self) {
         let dt = self.cfg.ipo_cycle;
         let mut rate = 0.0;
+        let reference = self.feed_reference.map_or(self.cfg.master_spindle, |(k, _)| Some(k));
         for s in &mut self.spindles {
             s.step(dt, &self.machine);
-            if Some(s.axis) == self.cfg.master_spindle {
-                rate = s.speed.abs() / 60.0;
+            if Some(s.axis) == reference {
+                rate = if s.axis_mode { s.axis_speed.abs() } else { s.speed.abs() } / 60.0;
             }
+        }
+        if let Some((k, previous)) = self.feed_reference.filter(|&(k, _)| self.cfg.axis(k).spindle.is_none()) {
+            rate = self.fpr_axis_rate(k, previous, dt);
         }
         self.planner.set_spindle_rate(rate);
     }
 
+    /// FPR on a rotary axis that is no spindle: its actual speed in rev/s (out of line).
+    #[inline(never)]
+    fn fpr_axis_rate(&mut self, k: usize, previous: f64, dt: f64) -> f64 {
+        let now = self.machine[k];
+        self.feed_reference = Some((k, now));
+        (now - previous).abs() / 360.0 / dt
+    }
+
     /// A spindle command of the program; false while it has to wait (a thread's start angle).
     pub(super) fn spindle_control(&mut self, c: &Control) -> bool {
+        if let Control::FeedReference { axis } = *c {
+            self.feed_reference = Some((axis, self.machine[axis]));
+            return true;
+        }
         let Some(s) = self.spindles.iter_mut().find(|s| s.axis == c.axis()) else { return true };
         match *c {
             Control::ThreadStart { angle, .. } => s.passed(angle),

@@ -676,6 +676,9 @@ pub(super) fn collect(
             Word::Keyword { name, args } if super::spindles::is_diameter_axis_keyword(name) => {
                 super::spindles::diameter_axis_word(&mut w.spindle, name, args, &Ctx { vars, sys }, cfg, line)?;
             }
+            Word::Keyword { name, args } if name == "FPR" => {
+                w.spindle.fpr = Some(super::spindles::fpr_statement(args, &Ctx { vars, sys }, cfg, line)?);
+            }
             Word::Keyword { name, args } if name == "SETPIECE" => {
                 w.set_piece = Some(super::tools::setpiece::statement(args, &Ctx { vars, sys }, line)?);
             }

@@ -15,9 +15,11 @@
 mod block;
 pub mod diameter;
 mod diameter_axes;
+mod fpr;
 mod motion;
 pub(super) mod vars;
 pub(super) mod words;
+pub(super) use fpr::statement as fpr_statement;
 pub(super) use diameter_axes::{is_keyword as is_diameter_axis_keyword, word as diameter_axis_word};
 
 use crate::alarm::Alarm;
@@ -34,13 +36,19 @@ pub enum Control {
     Css { axis: usize, cutting_speed: f64, direction: i8, transverse: usize, centre: f64 },
     /// G33: the thread's move starts when the spindle passes `angle` degrees (SF).
     ThreadStart { axis: usize, angle: f64 },
+    /// FPR(axis): a feed per revolution follows the rotary axis or spindle on channel axis
+    /// `axis` instead of the master spindle (`fpr.rs`).
+    FeedReference { axis: usize },
 }
 
 impl Control {
     /// The channel axis of the spindle the command is for.
     pub fn axis(&self) -> usize {
         match *self {
-            Control::Limits { axis, .. } | Control::Css { axis, .. } | Control::ThreadStart { axis, .. } => axis,
+            Control::Limits { axis, .. }
+            | Control::Css { axis, .. }
+            | Control::ThreadStart { axis, .. }
+            | Control::FeedReference { axis } => axis,
         }
     }
 }
@@ -123,6 +131,11 @@ pub(in crate::interp) struct Spindles {
     pub thread_chained: bool,
     /// G group 29: diameter programming of the transverse axis.
     pub diameter: diameter::Diameter,
+    /// FPR(axis): the channel axis a feed per revolution refers to (`None`: the master
+    /// spindle).
+    pub fpr: Option<usize>,
+    /// `fpr`'s rotary axis is no spindle: its speed is unknown to preparation.
+    fpr_axis_max: Option<f64>,
 }
 
 impl Spindles {
@@ -140,6 +153,8 @@ impl Spindles {
             start_angle: 0.0,
             thread_chained: false,
             diameter: diameter::Diameter::reset(cfg),
+            fpr: None,
+            fpr_axis_max: None,
         }
     }
 
@@ -153,6 +168,8 @@ impl Spindles {
         self.thread_chained = false;
         self.start_angle = 0.0;
         self.diameter = diameter::Diameter::reset(cfg);
+        self.fpr = None;
+        self.fpr_axis_max = None;
         if stop {
             self.direction = [0; MAX_CHANNEL_AXES];
         }
@@ -180,6 +197,10 @@ impl Spindles {
     /// under constant cutting speed the highest the limits allow (the main run follows the
     /// actual speed; this only bounds the planned velocity).
     pub fn reference_speed(&self) -> f64 {
+        if let Some(k) = self.fpr {
+            // FPR: the programmed speed of that spindle, or a rotary axis' highest speed.
+            return self.fpr_axis_max.unwrap_or(self.speed[k]);
+        }
         if self.feed_type.css() || self.feed_type == FeedType::G97 {
             self.lims.min(self.upper).min(100_000.0)
         } else {

@@ -37,6 +37,9 @@ impl Interpreter {
         } else if let Some(per_rev) = words.feed_per_rev {
             self.spindles.feed_type = if per_rev { FeedType::G95 } else { FeedType::G94 };
         }
+        if let Some(k) = sw.fpr {
+            self.select_fpr(k, cfg, line, out);
+        }
         let t = self.spindles.feed_type;
         self.modal.feed_per_rev = t.per_rev();
         self.modal.feed_type_index = match t {

@@ -37,7 +37,10 @@ impl Interpreter {
         let f = self.modal.feed.unwrap_or(0.0) * self.modal.feed_factor();
         match thread {
             None => match self.spindles.feed_type {
-                FeedType::G95 | FeedType::G96 | FeedType::G97 => mv.per_rev = f,
+                FeedType::G95 | FeedType::G96 | FeedType::G97 => {
+                    self.check_fpr_move(mv, cfg, line)?;
+                    mv.per_rev = f;
+                }
                 FeedType::G93 => {
                     // F is the reciprocal of the block's time in minutes.
                     let length = mv.length;

@@ -39,6 +39,8 @@ pub struct SpindleWords {
     pub diameter: Option<super::diameter::DiamMode>,
     /// DIAMONA[ax] .. DIAMCHAN in the order written (`diameter_axes.rs`).
     pub axis_diameter: Vec<super::diameter_axes::AxisDiamOp>,
+    /// FPR(axis): the channel axis a feed per revolution follows from now on (`fpr.rs`).
+    pub fpr: Option<usize>,
 }
 
 /// A keyword of this module without arguments (G group 29); false for any other name.
