@@ -730,8 +730,12 @@ impl Interpreter {
                 }
                 self.spline_point(mv, words, line, offsets, cfg, out);
             } else if comp.is_none() && self.trc.idle() {
-                // Nothing to compensate and nothing held: the move goes straight out.
-                out.push(Item::Move { mv, line, offsets });
+                // Nothing to compensate and nothing held: the move goes straight out (a G34/G35
+                // thread in segments of its changing lead).
+                match self.spindles.variable_lead.take() {
+                    Some(lead) => lead.push_segments(mv, line, offsets, &limits, out),
+                    None => out.push(Item::Move { mv, line, offsets }),
+                }
                 self.trc.passed(out);
             } else {
                 let prepared = compensation::trc::Prepared { mv, feed, line, offsets, approach, corner };

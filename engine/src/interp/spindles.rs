@@ -16,6 +16,7 @@ mod block;
 pub mod diameter;
 mod diameter_axes;
 mod fpr;
+pub mod lead_change;
 mod motion;
 pub(super) mod vars;
 pub(super) mod words;
@@ -101,6 +102,9 @@ impl FeedType {
 pub enum Thread {
     /// G33: thread with constant lead, the path follows the spindle.
     G33,
+    /// G34/G35: thread with increasing/decreasing lead, F the change (`lead_change.rs`).
+    G34,
+    G35,
     /// G331: rigid tapping in, the spindle interpolates with the axis.
     G331,
     /// G332: rigid tapping out (the spindle reversed).
@@ -123,7 +127,7 @@ pub(in crate::interp) struct Spindles {
     pub lower: f64,
     pub upper: f64,
     pub lims: f64,
-    /// The thread function of G group 1 while one is active.
+    /// The thread function of G group 1 while one is active (G33, G34, G35, G331, G332).
     pub thread: Option<Thread>,
     /// SF: start angle offset of G33 threads (degrees).
     pub start_angle: f64,
@@ -136,6 +140,8 @@ pub(in crate::interp) struct Spindles {
     pub fpr: Option<usize>,
     /// `fpr`'s rotary axis is no spindle: its speed is unknown to preparation.
     fpr_axis_max: Option<f64>,
+    /// The G34/G35 lead of the block being prepared: its move goes out in segments.
+    pub variable_lead: Option<lead_change::LeadChange>,
 }
 
 impl Spindles {
@@ -155,6 +161,7 @@ impl Spindles {
             diameter: diameter::Diameter::reset(cfg),
             fpr: None,
             fpr_axis_max: None,
+            variable_lead: None,
         }
     }
 

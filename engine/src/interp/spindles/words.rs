@@ -65,6 +65,8 @@ pub(in crate::interp) fn g_code(w: &mut SpindleWords, code: u32, line: u32) -> R
         25 => w.limit = Some(SpeedLimit::G25),
         26 => w.limit = Some(SpeedLimit::G26),
         33 => w.thread = Some(Thread::G33),
+        34 => w.thread = Some(Thread::G34),
+        35 => w.thread = Some(Thread::G35),
         331 => w.thread = Some(Thread::G331),
         332 => w.thread = Some(Thread::G332),
         63 => w.g63 = true,
