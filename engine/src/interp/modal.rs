@@ -825,6 +825,7 @@ pub(super) fn collect(
                             super::auxiliary::AuxFunction { letter: letter as char, extension: ext, value: v };
                         w.aux.push(function);
                         if letter == b'M'
+                            && !super::spindles::words::extended_m(&mut w.spindle, ext, v)
                             && let Some(dir) = super::everyday::extended_m(ext, v, line)?
                         {
                             if w.spindle_dir.is_some() {

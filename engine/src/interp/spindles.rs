@@ -16,6 +16,7 @@ mod block;
 pub mod diameter;
 mod diameter_axes;
 mod fpr;
+mod gears;
 pub mod lead_change;
 mod motion;
 pub(super) mod vars;
@@ -40,6 +41,9 @@ pub enum Control {
     /// FPR(axis): a feed per revolution follows the rotary axis or spindle on channel axis
     /// `axis` instead of the master spindle (`fpr.rs`).
     FeedReference { axis: usize },
+    /// M40..M45: the spindle changes to gear stage `stage` (`gears.rs`); the block change
+    /// waits until it has.
+    Gear { axis: usize, stage: u8 },
 }
 
 impl Control {
@@ -49,7 +53,8 @@ impl Control {
             Control::Limits { axis, .. }
             | Control::Css { axis, .. }
             | Control::ThreadStart { axis, .. }
-            | Control::FeedReference { axis } => axis,
+            | Control::FeedReference { axis }
+            | Control::Gear { axis, .. } => axis,
         }
     }
 }
@@ -142,6 +147,10 @@ pub(in crate::interp) struct Spindles {
     fpr_axis_max: Option<f64>,
     /// The G34/G35 lead of the block being prepared: its move goes out in segments.
     pub variable_lead: Option<lead_change::LeadChange>,
+    /// Gear stage by channel axis as preparation selected it (1..=5), and whether M40
+    /// (automatic selection) is on.
+    gear: [u8; MAX_CHANNEL_AXES],
+    gear_auto: [bool; MAX_CHANNEL_AXES],
 }
 
 impl Spindles {
@@ -162,6 +171,8 @@ impl Spindles {
             fpr: None,
             fpr_axis_max: None,
             variable_lead: None,
+            gear: [1; MAX_CHANNEL_AXES],
+            gear_auto: [true; MAX_CHANNEL_AXES],
         }
     }
 
@@ -177,6 +188,8 @@ impl Spindles {
         self.diameter = diameter::Diameter::reset(cfg);
         self.fpr = None;
         self.fpr_axis_max = None;
+        // The stage engaged stays (it is mechanical); selection is automatic (M40) again.
+        self.gear_auto = [true; MAX_CHANNEL_AXES];
         if stop {
             self.direction = [0; MAX_CHANNEL_AXES];
         }

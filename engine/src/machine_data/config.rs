@@ -81,6 +81,8 @@ pub struct MachineConfig {
     /// Channel axes released for axis-specific diameter programming (DIAMONA[ax], DIAMCHAN):
     /// MD30460 `$MA_BASE_FUNCTION_MASK` bit 2, one bit per channel axis.
     pub diameter_axes: u32,
+    /// The gear stages of each spindle by channel axis (`gears.rs`).
+    pub gears: BTreeMap<usize, super::gears::Gears>,
     /// Reset position of G group 6 (MD20150 `$MC_GCODE_RESET_VALUES[5]`): 1 G17, 2 G18, 3 G19.
     pub plane_reset: u8,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
@@ -347,6 +349,12 @@ impl MachineConfig {
             })?)
         };
         let diameter_reset = md.num("$MC_GCODE_RESET_VALUES", 0, 28) as u8;
+        let gears = channel_axes
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| machine_axes[c.machine_axis].spindle.is_some())
+            .map(|(k, c)| (k, super::gears::Gears::read(md, order[c.machine_axis] - 1)))
+            .collect();
         let diameter_axes = channel_axes
             .iter()
             .enumerate()
@@ -387,6 +395,7 @@ impl MachineConfig {
             transverse_axis,
             diameter_reset,
             diameter_axes,
+            gears,
             plane_reset,
             tools: BTreeMap::new(),
             tool_list: Default::default(),

@@ -9,6 +9,7 @@ pub mod carrier;
 pub mod chains;
 mod config;
 pub mod dynamics;
+pub mod gears;
 pub mod inch;
 pub mod path_control;
 pub mod presets;

@@ -503,7 +503,14 @@ pub static DEFS: &[Def] = &[
     // (stage 1 is the one NCTwin runs: no gear stages are modelled); MD35200 acceleration in
     // speed control per gear stage (rev/s²); MD35300 speed of SPOS/M19 positioning (rev/min).
     def("SPIND_VELO_LIMIT", 35100, A, Kind::Real, 1, Default::Real(10000.0), 0.0, 1e6),
+    // Gear stages (machine_data/gears.rs): MD35010 bit 0 enables them, MD35090 stages in use,
+    // MD35110/35120 M40's switching range, MD35140 the lowest speed per stage.
+    def("GEAR_STEP_CHANGE_ENABLE", 35010, A, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("NUM_GEAR_STEPS", 35090, A, Kind::Int, 1, Default::Int(5), 1.0, 5.0),
+    def("GEAR_STEP_MAX_VELO", 35110, A, Kind::Real, 6, Default::Real(10000.0), 0.0, 1e6),
+    def("GEAR_STEP_MIN_VELO", 35120, A, Kind::Real, 6, Default::Real(0.0), 0.0, 1e6),
     def("GEAR_STEP_MAX_VELO_LIMIT", 35130, A, Kind::Real, 6, Default::Real(10000.0), 0.0, 1e6),
+    def("GEAR_STEP_MIN_VELO_LIMIT", 35140, A, Kind::Real, 6, Default::Real(0.0), 0.0, 1e6),
     def("GEAR_STEP_SPEEDCTRL_ACCEL", 35200, A, Kind::Real, 6, Default::Real(30.0), 1e-3, 1e6),
     def("SPIND_POSCTRL_VELO", 35300, A, Kind::Real, 1, Default::Real(500.0), 1e-3, 1e6),
     // Exact-stop windows of G602 (coarse, MD36000) and G601 (fine, MD36010), mm or degrees.
