@@ -889,7 +889,7 @@ impl Interpreter {
         line: u32,
     ) -> Result<Option<compensation::trc::Compensation>, Alarm> {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
-        let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
+        let edge = cfg.edge(self.offsets.t, self.offsets.d);
         let Some(edge) = edge else { return Err(Alarm::trc_without_tool(line)) };
         let tool_radius = edge[5] + edge[14];
         let tip = compensation::cutting_edge::tip_offset(edge[0], edge[1], tool_radius);
@@ -1352,7 +1352,7 @@ pub(super) fn basic_frame(cfg: &MachineConfig) -> Frame {
 /// geometry axes by tool type and plane (SD42940 = 0).
 fn tool_vector(cfg: &MachineConfig, modal: &Modal, t: u32, d: u32) -> AxisVec {
     let mut v = [0.0; MAX_CHANNEL_AXES];
-    let Some(p) = cfg.tools.get(&(t, d)).filter(|_| d != 0) else { return v };
+    let Some(p) = cfg.edge(t, d) else { return v };
     let lengths = [p[2] + p[11] + p[20], p[3] + p[12] + p[21], p[4] + p[13] + p[22]];
     let turning = (400.0..600.0).contains(&p[0]);
     // Geometry axis (0 = 1st) that receives L1, L2, L3.

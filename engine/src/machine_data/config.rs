@@ -81,6 +81,8 @@ pub struct MachineConfig {
     /// Channel axes released for axis-specific diameter programming (DIAMONA[ax], DIAMCHAN):
     /// MD30460 `$MA_BASE_FUNCTION_MASK` bit 2, one bit per channel axis.
     pub diameter_axes: u32,
+    /// MD18102 `$MN_MM_TYPE_OF_CUTTING_EDGE` = 1: flat D numbers (`flat_d.rs`).
+    pub flat_d: bool,
     /// The gear stages of each spindle by channel axis (`gears.rs`).
     pub gears: BTreeMap<usize, super::gears::Gears>,
     /// Reset position of G group 6 (MD20150 `$MC_GCODE_RESET_VALUES[5]`): 1 G17, 2 G18, 3 G19.
@@ -395,6 +397,7 @@ impl MachineConfig {
             transverse_axis,
             diameter_reset,
             diameter_axes,
+            flat_d: md.num("$MN_MM_TYPE_OF_CUTTING_EDGE", 0, 0) == 1.0,
             gears,
             plane_reset,
             tools: BTreeMap::new(),

@@ -195,6 +195,8 @@ pub static DEFS: &[Def] = &[
     // NCU-global basic frames $P_NCBFR[n] (K2; 0 = none, the control's default).
     def("MM_NUM_GLOBAL_BASE_FRAMES", 18602, N, Kind::Int, 1, Default::Int(0), 0.0, 16.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
+    // MD18102: 1 = flat D numbers (flat_d.rs).
+    def("MM_TYPE_OF_CUTTING_EDGE", 18102, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
     def("MM_NUM_TOOL_CARRIER", 18088, N, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
     // Largest file WRITE appends to, in kilobytes (file functions: error 10 beyond it).
     def("LEN_PROTOCOL_FILE", 11420, N, Kind::Int, 1, Default::Int(1), 1.0, 1_000_000.0),
