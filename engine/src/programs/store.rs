@@ -170,6 +170,23 @@ impl Programs {
         self.by_name.remove(name).is_some()
     }
 
+    /// The program `name` filed in exactly `dir` (`None`: the flat store).
+    pub fn in_dir(&self, name: &str, dir: Option<&Dir>) -> Option<&StoredProgram> {
+        self.by_name.get(name)?.iter().find(|p| p.dir() == dir)
+    }
+
+    /// Removes program `name` from `dir` only; false if it was not there.
+    pub fn remove_in(&mut self, name: &str, dir: Option<&Dir>) -> bool {
+        let Some(same) = self.by_name.get_mut(name) else { return false };
+        let before = same.len();
+        same.retain(|p| p.dir() != dir);
+        let removed = same.len() != before;
+        if same.is_empty() {
+            self.by_name.remove(name);
+        }
+        removed
+    }
+
     /// Every stored program, by name (and by directory within a name in the order stored).
     pub fn iter(&self) -> impl Iterator<Item = &StoredProgram> {
         self.by_name.values().flatten()
@@ -208,6 +225,13 @@ impl Programs {
             .or_else(|| callpath.and_then(|c| in_dir(Some(c))))
             .or_else(|| [Dir::Cus, Dir::Cma, Dir::Cst].iter().find_map(|d| in_dir(Some(d))))
             .or_else(|| in_dir(None))
+            // A program outside every directory (a session's MDA-like run) has no selected
+            // workpiece: NCTwin then finds a workpiece folder's program too (the first folder
+            // by name holding it), so programs imported into folders stay callable by name.
+            .or_else(|| {
+                let in_folder = |p: &&StoredProgram| matches!(p.dir(), Some(Dir::Workpiece(_)));
+                caller.is_none().then(|| candidates.iter().filter(in_folder).min_by_key(|p| p.dir())).flatten()
+            })
     }
 
     /// The checked text and directory of the program `name` called at `line` from a program in
