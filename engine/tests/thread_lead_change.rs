@@ -118,4 +118,3 @@ fn g35_whose_lead_falls_to_zero_is_refused() {
     let alarms: Vec<_> = ch.snapshot().alarms.iter().map(|a| (a.number, a.line)).collect();
     assert_eq!(alarms, vec![(12560, Some(3))]);
 }
-

@@ -189,8 +189,7 @@ impl Channel {
     /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet), with
     /// the files a running program wrote or deleted as they are now.
     pub fn stored_programs(&self) -> Vec<(String, usize)> {
-        let stored =
-            self.programs.iter().map(|p| (qualified_name(p.dir(), p.name()), p.text().map_or(0, |t| t.len())));
+        let stored = self.programs.iter().map(|p| (qualified_name(p.dir(), p.name()), p.text().map_or(0, |t| t.len())));
         let files = self.interp.files();
         if !files.has_pending() {
             return stored.collect();

@@ -21,8 +21,8 @@ pub mod lead_change;
 mod motion;
 pub(super) mod vars;
 pub(super) mod words;
-pub(super) use fpr::statement as fpr_statement;
 pub(super) use diameter_axes::{is_keyword as is_diameter_axis_keyword, word as diameter_axis_word};
+pub(super) use fpr::statement as fpr_statement;
 
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;

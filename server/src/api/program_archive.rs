@@ -30,10 +30,10 @@ use nctwin_engine::programs::{Dir, Kind, archive, canonical_name, qualified_name
 use super::machine_data::IGNORED_HEADER;
 use super::{command, find_entry, find_session};
 use crate::dto::{ArchiveImport, ArchiveNcData, ArchiveProgram, ArchiveSkipped, ErrorBody};
-use crate::session::Action;
-use crate::state::SessionEntry;
 use crate::error::ApiError;
+use crate::session::Action;
 use crate::state::AppState;
+use crate::state::SessionEntry;
 use crate::text_decode::decode;
 
 /// Stores the programs of an archive file (the body: the file's bytes, UTF-8 or a legacy code
@@ -144,11 +144,8 @@ pub async fn import_archive(
         }
         state.persist_checkpoint(&entry).await?;
     }
-    let import = ArchiveImport {
-        programs: programs.into_iter().map(|(p, _)| p).collect(),
-        nc_data: nc_data.sections,
-        skipped,
-    };
+    let import =
+        ArchiveImport { programs: programs.into_iter().map(|(p, _)| p).collect(), nc_data: nc_data.sections, skipped };
     let mut response = axum::Json(import).into_response();
     for warning in warnings {
         if let Ok(value) = HeaderValue::from_str(&warning) {
@@ -159,7 +156,12 @@ pub async fn import_archive(
 }
 
 /// Puts back what the names of `done` held before the import (`previous`, in order).
-async fn put_back(state: &AppState, entry: &SessionEntry, done: &[(ArchiveProgram, String)], previous: &[Option<String>]) {
+async fn put_back(
+    state: &AppState,
+    entry: &SessionEntry,
+    done: &[(ArchiveProgram, String)],
+    previous: &[Option<String>],
+) {
     for ((program, _), before) in done.iter().zip(previous).rev() {
         let _ = match before {
             Some(text) => state.put_program(entry, program.name.clone(), text.clone()).await.map(drop),

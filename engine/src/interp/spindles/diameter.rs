@@ -157,7 +157,9 @@ impl Diameter {
         }
         self.axes[k] = match (mode, self.axes[k]) {
             (None, _) => AxisDiam::Channel,
-            (Some(m), AxisDiam::Own { mode: before, shown }) => AxisDiam::Own { mode: m, shown: shown_after(m, before, shown) },
+            (Some(m), AxisDiam::Own { mode: before, shown }) => {
+                AxisDiam::Own { mode: m, shown: shown_after(m, before, shown) }
+            }
             (Some(m), AxisDiam::Channel) => AxisDiam::Own { mode: m, shown: shown_after(m, self.mode, self.shown) },
             (Some(m), AxisDiam::Radius) => AxisDiam::Own { mode: m, shown: shown_after(m, DiamMode::Of, DiamMode::Of) },
         };

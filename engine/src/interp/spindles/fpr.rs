@@ -49,8 +49,7 @@ impl Interpreter {
     /// FPR in a block: the reference changes for the main run before the block's motion.
     pub(in crate::interp) fn select_fpr(&mut self, k: usize, cfg: &MachineConfig, line: u32, out: &mut Vec<Item>) {
         self.spindles.fpr = Some(k);
-        self.spindles.fpr_axis_max =
-            cfg.axis(k).spindle.is_none().then(|| cfg.axis(k).max_velocity * 60.0 / 360.0);
+        self.spindles.fpr_axis_max = cfg.axis(k).spindle.is_none().then(|| cfg.axis(k).max_velocity * 60.0 / 360.0);
         let ctl = super::Control::FeedReference { axis: k };
         self.trc.emit_or_defer(Item::SpindleControl { ctl, line }, out);
     }

@@ -61,7 +61,8 @@ impl Interpreter {
                 self.spindles.gear_auto[k] = false;
                 change = Some((k, w.stage));
             }
-        } else if let Some((k, s)) = speed.filter(|(k, _)| self.spindles.gear_auto[*k] && !self.spindles.feed_type.css())
+        } else if let Some((k, s)) =
+            speed.filter(|(k, _)| self.spindles.gear_auto[*k] && !self.spindles.feed_type.css())
             && let Some(gears) = cfg.gears.get(&k)
         {
             change = gears.select(s, self.spindles.gear[k]).map(|n| (k, n));

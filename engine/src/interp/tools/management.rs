@@ -191,7 +191,13 @@ impl Interpreter {
     }
 
     /// A change of the tool in the spindle takes `$MC_TOOL_CHANGE_TIME`.
-    fn tool_change_time(&mut self, changes: bool, cfg: &MachineConfig, line: u32, out: &mut Vec<Item>) -> Result<(), Alarm> {
+    fn tool_change_time(
+        &mut self,
+        changes: bool,
+        cfg: &MachineConfig,
+        line: u32,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
         let seconds = cfg.tool_change.seconds;
         if changes && seconds > 0.0 {
             self.trc.emit_or_defer(Item::Dwell { seconds, line }, out);
