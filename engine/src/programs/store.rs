@@ -312,8 +312,10 @@ mod tests {
         p.by_name.get_mut("SUB").unwrap().retain(|s| s.dir() != Some(&Dir::Cus));
         assert_eq!(found(&p, None), "G0 X4\nM17");
         p.by_name.get_mut("SUB").unwrap().retain(|s| s.dir() != Some(&Dir::Cst));
-        // Only in workpiece A: not reachable from elsewhere.
-        assert_eq!(found(&p, None), "Channel 1 block 7 program SUB not available");
+        // Only in workpiece A: not reachable from another directory; a program outside every
+        // directory (a session's run, no workpiece selected) finds it (NCTwin's decision).
+        assert_eq!(found(&p, Some(&Dir::Mpf)), "Channel 1 block 7 program SUB not available");
+        assert_eq!(found(&p, None), "G0 X1\nM17");
     }
 
     #[test]
