@@ -52,8 +52,9 @@ async fn an_archive_stores_each_program_under_its_name_and_the_main_program_call
     );
     let flange = server.get(&format!("/sessions/{id}/programs/FLANGE")).await.body;
     assert_eq!(flange["text"], "; Фланец, Außenkontur\r\nG0 X10 Y5\r\nPOCKET\r\nM30\r\n");
-    // X10, then POCKET moves 7 more.
-    let run = json!({"program": "FLANGE\nM30", "pace": "fast", "wait": true});
+    // X10, then POCKET moves 7 more. FLANGE lives in its workpiece folder: a run outside every
+    // directory reaches it through CALLPATH, as on the control.
+    let run = json!({"program": "CALLPATH(\"/_N_WKS_DIR/_N_FLANGE_WPD\")\nFLANGE\nM30", "pace": "fast", "wait": true});
     let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
     assert_eq!(state["status"], "idle", "{state}");
     assert_eq!((pos(&state, "workpiece", "X"), pos(&state, "workpiece", "Y")), (17.0, 5.0));

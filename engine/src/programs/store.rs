@@ -225,13 +225,6 @@ impl Programs {
             .or_else(|| callpath.and_then(|c| in_dir(Some(c))))
             .or_else(|| [Dir::Cus, Dir::Cma, Dir::Cst].iter().find_map(|d| in_dir(Some(d))))
             .or_else(|| in_dir(None))
-            // A program outside every directory (a session's MDA-like run) has no selected
-            // workpiece: NCTwin then finds a workpiece folder's program too (the first folder
-            // by name holding it), so programs imported into folders stay callable by name.
-            .or_else(|| {
-                let in_folder = |p: &&StoredProgram| matches!(p.dir(), Some(Dir::Workpiece(_)));
-                caller.is_none().then(|| candidates.iter().filter(in_folder).min_by_key(|p| p.dir())).flatten()
-            })
     }
 
     /// The checked text and directory of the program `name` called at `line` from a program in
@@ -312,10 +305,8 @@ mod tests {
         p.by_name.get_mut("SUB").unwrap().retain(|s| s.dir() != Some(&Dir::Cus));
         assert_eq!(found(&p, None), "G0 X4\nM17");
         p.by_name.get_mut("SUB").unwrap().retain(|s| s.dir() != Some(&Dir::Cst));
-        // Only in workpiece A: not reachable from another directory; a program outside every
-        // directory (a session's run, no workpiece selected) finds it (NCTwin's decision).
-        assert_eq!(found(&p, Some(&Dir::Mpf)), "Channel 1 block 7 program SUB not available");
-        assert_eq!(found(&p, None), "G0 X1\nM17");
+        // Only in workpiece A: not reachable from elsewhere.
+        assert_eq!(found(&p, None), "Channel 1 block 7 program SUB not available");
     }
 
     #[test]
