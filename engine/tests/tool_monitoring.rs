@@ -1,7 +1,6 @@
 //! Tool monitoring on the 3-axis mill preset (Function Manual Tool Management, "Tool
 //! monitoring"): time monitoring counts `$TC_MOP2` (remaining minutes) down while the tool
-//! cuts in feed motion, count monitoring counts `$TC_MOP4` down at each change into the
-//! spindle; the prewarning limit sets `$TC_TP8` bit 4 (alarm 6411), the limit bit 2 (disabled,
+//! cuts in feed motion (count monitoring and `SETPIECE`: `setpiece.rs`); the prewarning limit sets `$TC_TP8` bit 4 (alarm 6411), the limit bit 2 (disabled,
 //! alarm 6413), and `T="name"` then selects an enabled duplo or raises 22069.
 //!
 //! The preset (presets.rs): T1 "MILL_D10" duplo 1 (length 100, radius 5) and T2 "DRILL_8"
@@ -127,31 +126,6 @@ fn a_name_without_an_enabled_duplo_is_alarm_22069_with_its_line() {
     finish(&mut ch);
     let s = ch.snapshot();
     assert_eq!(s.alarms.iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), vec![(22069, Some(1))]);
-}
-
-#[test]
-fn count_monitoring_counts_each_change_into_the_spindle() {
-    // DRILL_8 count-monitored: 3 pieces left, prewarning at 2. First change: 2 left, which is
-    // the prewarning limit (6411); second: 1; third: 0, the limit (6413, disabled). Changes to
-    // MILL_D10 between them count nothing for the drill.
-    let md = "$TC_TP9[2]=2\n$TC_MOP4[2,1]=3\n$TC_MOP3[2,1]=2\n";
-    let mut program = String::from("G0 X0 Y0 Z50\n");
-    for _ in 0..2 {
-        program += "T=\"DRILL_8\" M6\nG1 F1000 X10\nT=\"MILL_D10\" M6\nG1 X0\n";
-    }
-    let mut ch = channel(md, &(program.clone() + "M30"));
-    finish(&mut ch);
-    assert_eq!(mop(&ch, 4, 2, 1), 1.0);
-    assert_eq!(state(&ch, 2), 2 | 16);
-    assert_eq!(alarm_numbers(&ch.snapshot()), vec![6411]);
-
-    let mut ch = channel(md, &(program + "T=\"DRILL_8\" M6\nG1 X10\nM30"));
-    finish(&mut ch);
-    assert_eq!(mop(&ch, 4, 2, 1), 0.0);
-    assert_eq!(state(&ch, 2), 2 | 4 | 16);
-    assert_eq!(alarm_numbers(&ch.snapshot()), vec![6411, 6413]);
-    // A tool without monitoring data is left alone.
-    assert_eq!(state(&ch, 1), 2);
 }
 
 #[test]

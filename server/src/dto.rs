@@ -1323,19 +1323,33 @@ pub struct CheckResponse {
 pub struct ArchiveImport {
     /// The programs stored, in archive order.
     pub programs: Vec<ArchiveProgram>,
-    /// Sections of the archive that are no programs (INI data, ...), not stored.
+    /// The NC data sections (`_INI`: tool offsets, frames, setting data) loaded and activated,
+    /// in archive order, as the control loads an INI file it reads in.
+    pub nc_data: Vec<ArchiveNcData>,
+    /// Sections of the archive that are neither programs nor NC data, not stored.
     pub skipped: Vec<ArchiveSkipped>,
+}
+
+/// An NC data section (`%_N_TOA_INI` ...) of an archive, loaded.
+#[derive(Debug, Clone, Serialize, ToSchema)]
+pub struct ArchiveNcData {
+    /// Name and type as the header writes them, e.g. `TOA_INI`.
+    pub name: String,
+    /// Line of its header in the archive.
+    pub line: u32,
 }
 
 /// A program of an archive, stored under `name`.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct ArchiveProgram {
+    /// The stored name: with its directory when the archive's `;$PATH=` names one
+    /// (`/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE`), else the name alone (the session's flat store).
     pub name: String,
     /// `MPF` (main program) or `SPF` (subprogram), from its header.
     #[serde(rename = "type")]
     pub kind: String,
-    /// The directory of its `;$PATH=` line (else `_N_MPF_DIR`/`_N_SPF_DIR` by type). The
-    /// session keeps one program per name; the directory is not kept.
+    /// The directory of its `;$PATH=` line (else `_N_MPF_DIR`/`_N_SPF_DIR` by type, the
+    /// directory the export files it in).
     pub directory: String,
     /// Size of the program text (without its header lines) in bytes.
     pub size: usize,

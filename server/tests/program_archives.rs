@@ -1,6 +1,7 @@
-//! Archive files over HTTP: `POST .../program-archive` stores every program of an archive,
-//! `GET .../program-archive` writes the session's programs back in the same format, and NC
-//! data files (`_N_TOA_INI`) load through `PUT .../machine-data`.
+//! Archive files over HTTP: `POST .../program-archive` stores every program of an archive in
+//! the directory of its `;$PATH=` line and loads its NC data sections (`_N_TOA_INI`) as the
+//! control does, `GET .../program-archive` writes the session's programs back in the same
+//! format, and NC data files load through `PUT .../machine-data` too.
 
 mod common;
 
@@ -12,7 +13,7 @@ use serde_json::json;
 /// ends, Cyrillic and German comments, and a tool-data section.
 const ARCHIVE: &str = "%_N_FLANGE_MPF\r\n;$PATH=/_N_WKS_DIR/_N_FLANGE_WPD\r\n; Фланец, Außenkontur\r\nG0 X10 Y5\r\n\
                        POCKET\r\nM30\r\n%_N_POCKET_SPF\r\n;$PATH=/_N_SPF_DIR\r\nG91 G0 X7\r\nG90\r\nM17\r\n\
-                       %_N_TOA_INI\r\nCHANDATA(1)\r\n$TC_DP1[1,1]=120\r\nM17\r\n";
+                       %_N_TOA_INI\r\nCHANDATA(1)\r\n$TC_DP1[1,1]=120\r\n$TC_DP3[1,1]=77.5\r\nM17\r\n";
 
 async fn import(server: &Server, id: &str, body: impl Into<reqwest::Body>) -> common::Reply {
     let url = server.url(&format!("/sessions/{id}/program-archive"));
@@ -36,16 +37,24 @@ async fn an_archive_stores_each_program_under_its_name_and_the_main_program_call
         reply.body,
         json!({
             "programs": [
-                {"name": "FLANGE", "type": "MPF", "directory": "/_N_WKS_DIR/_N_FLANGE_WPD", "size": 54},
-                {"name": "POCKET", "type": "SPF", "directory": "/_N_SPF_DIR", "size": 21},
+                {"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "type": "MPF", "directory": "/_N_WKS_DIR/_N_FLANGE_WPD", "size": 54},
+                {"name": "/_N_SPF_DIR/POCKET", "type": "SPF", "directory": "/_N_SPF_DIR", "size": 21},
             ],
-            "skipped": [{"name": "TOA_INI", "line": 12, "reason": "NC data (INI): load it with PUT .../machine-data"}],
+            "nc_data": [{"name": "TOA_INI", "line": 12}],
+            "skipped": [],
         })
+    );
+    // Listed with their directories.
+    let list = server.get(&format!("/sessions/{id}/programs")).await.body;
+    assert_eq!(
+        list,
+        json!([{"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "size": 54}, {"name": "/_N_SPF_DIR/POCKET", "size": 21}])
     );
     let flange = server.get(&format!("/sessions/{id}/programs/FLANGE")).await.body;
     assert_eq!(flange["text"], "; Фланец, Außenkontur\r\nG0 X10 Y5\r\nPOCKET\r\nM30\r\n");
-    // X10, then POCKET moves 7 more.
-    let run = json!({"program": "FLANGE\nM30", "pace": "fast", "wait": true});
+    // X10, then POCKET moves 7 more. FLANGE lives in its workpiece folder: a run outside every
+    // directory reaches it through CALLPATH, as on the control.
+    let run = json!({"program": "CALLPATH(\"/_N_WKS_DIR/_N_FLANGE_WPD\")\nFLANGE\nM30", "pace": "fast", "wait": true});
     let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
     assert_eq!(state["status"], "idle", "{state}");
     assert_eq!((pos(&state, "workpiece", "X"), pos(&state, "workpiece", "Y")), (17.0, 5.0));
@@ -58,10 +67,10 @@ async fn export_writes_the_archive_format_back() {
     assert_eq!(import(&server, &id, ARCHIVE).await.status, StatusCode::OK);
     let (status, text) = export(&server, &id).await;
     assert_eq!(status, StatusCode::OK);
-    // By name; the workpiece folder is not kept (the session's store is flat).
+    // By name, each in its directory.
     assert_eq!(
         text,
-        "%_N_FLANGE_MPF\n;$PATH=/_N_MPF_DIR\n; Фланец, Außenkontur\r\nG0 X10 Y5\r\nPOCKET\r\nM30\r\n\
+        "%_N_FLANGE_MPF\n;$PATH=/_N_WKS_DIR/_N_FLANGE_WPD\n; Фланец, Außenkontur\r\nG0 X10 Y5\r\nPOCKET\r\nM30\r\n\
          %_N_POCKET_SPF\n;$PATH=/_N_SPF_DIR\nG91 G0 X7\r\nG90\r\nM17\r\n"
     );
     // And it reads back in.
@@ -143,4 +152,55 @@ async fn a_tool_data_file_loads_as_machine_data_with_its_tool_management_lines()
         (pos(&state, "machine", "X"), pos(&state, "machine", "Y"), pos(&state, "machine", "Z")),
         (10.0, 20.0, 130.5)
     );
+}
+
+#[tokio::test]
+async fn the_nc_data_of_an_archive_are_loaded() {
+    // The TOA section sets T1 D1's length to 77.5: T1 D1 at Z10 puts the machine Z at 87.5.
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let reply = import(&server, &id, ARCHIVE).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    let run = json!({"program": "T1 D1\nG0 X0 Y0 Z10\nM30", "pace": "fast", "wait": true});
+    let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
+    assert_eq!(state["status"], "idle", "{state}");
+    assert_eq!(pos(&state, "machine", "Z"), 87.5);
+}
+
+#[tokio::test]
+async fn bad_nc_data_name_their_archive_line_and_store_nothing() {
+    // The datum on archive line 6 does not exist: 400 with that line, no program kept.
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let archive = "%_N_A_MPF\nG0 X1\nM30\n%_N_TOA_INI\nCHANDATA(1)\n$TC_DP99[1,1]=1\nM17\n";
+    let reply = import(&server, &id, archive).await;
+    assert_eq!(reply.status, StatusCode::BAD_REQUEST, "{}", reply.body);
+    assert_eq!(reply.body["line"], 6, "{}", reply.body);
+    assert_eq!(server.get(&format!("/sessions/{id}/programs")).await.body, json!([]));
+}
+
+#[tokio::test]
+async fn programs_keep_their_directories_across_a_restart() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    assert_eq!(import(&server, &id, ARCHIVE).await.status, StatusCode::OK);
+    let dir = server.stop().await;
+    let server = Server::start_config(nctwin_server::Config::new(dir, common::WEB_DIR)).await;
+    let list = server.get(&format!("/sessions/{id}/programs")).await.body;
+    assert_eq!(
+        list,
+        json!([{"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "size": 54}, {"name": "/_N_SPF_DIR/POCKET", "size": 21}])
+    );
+    // The stored name reads back (the path URL-encoded), and the export keeps the folder.
+    let flange = server.get(&format!("/sessions/{id}/programs/%2F_N_WKS_DIR%2F_N_FLANGE_WPD%2FFLANGE")).await;
+    assert_eq!(flange.status, StatusCode::OK, "{}", flange.body);
+    assert_eq!(flange.body["text"], "; Фланец, Außenkontur\r\nG0 X10 Y5\r\nPOCKET\r\nM30\r\n");
+    let (_, text) = export(&server, &id).await;
+    assert!(text.starts_with("%_N_FLANGE_MPF\n;$PATH=/_N_WKS_DIR/_N_FLANGE_WPD\n"), "{text}");
+    // Deleting by the stored name removes that one program.
+    let url = server.url(&format!("/sessions/{id}/programs/%2F_N_SPF_DIR%2FPOCKET"));
+    let deleted = server.client.delete(url).send().await.expect("sent").status();
+    assert_eq!(deleted, StatusCode::NO_CONTENT);
+    let list = server.get(&format!("/sessions/{id}/programs")).await.body;
+    assert_eq!(list, json!([{"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "size": 54}]));
 }

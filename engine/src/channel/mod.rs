@@ -313,6 +313,9 @@ pub struct Channel {
     /// The blank being cut, if one is defined (`stock_cut.rs`).
     stock: Option<Box<stock_cut::StockRun>>,
     stock_options: StockOptions,
+    /// FPR: the axis a feed per revolution follows instead of the master spindle, with its
+    /// position at the last cycle (`spindle.rs`).
+    feed_reference: Option<(usize, f64)>,
 }
 
 impl Channel {
@@ -393,6 +396,7 @@ impl Channel {
             tool_monitor: Default::default(),
             stock: None,
             stock_options: Default::default(),
+            feed_reference: None,
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -671,6 +675,7 @@ impl Channel {
         self.current_block = None;
         self.message = None;
         self.sync.end_program();
+        self.feed_reference = None;
         let pos = *self.planner.position();
         for s in &mut self.spindles {
             s.leave_axis_mode(pos[s.axis]);

@@ -4,16 +4,26 @@ use std::sync::Arc;
 
 use super::{Channel, CommandError};
 use crate::interp::Programs;
-use crate::programs::{Kind, StoredProgram};
+use crate::programs::{Dir, Kind, StoredProgram, qualified_name, split_qualified};
 
 impl Channel {
     /// Stores a program under `name` (upper-cased; a `.MPF`/`.SPF` ending is dropped) for
-    /// calls by name. The text is checked first: a program with syntax errors is refused.
+    /// calls by name; a name with a directory (`/_N_WKS_DIR/_N_SHAFT_WPD/SHAFT`, see
+    /// [`crate::programs::qualified_name`]) files it there. The text is checked first: a
+    /// program with syntax errors is refused. Returns the stored name.
     pub fn store_program(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
-        let name = program_name(name)?;
+        let (dir, base) = split_qualified(name);
+        let name = program_name(base)?;
         CommandError::check(text)?;
         self.interp.files_mut().discard(&name);
-        self.programs.insert(name.clone(), Arc::from(text));
+        match dir {
+            None => self.programs.insert(name.clone(), Arc::from(text)),
+            Some(d) => {
+                let stored = qualified_name(Some(&d), &name);
+                self.programs.add(StoredProgram::checked(name, Some(d), None, Arc::from(text)));
+                return Ok(stored);
+            }
+        }
         Ok(name)
     }
 
@@ -51,22 +61,31 @@ impl Channel {
             .collect())
     }
 
-    /// A stored program's text (a file a running program wrote or deleted as it is now).
+    /// A stored program's text (a file a running program wrote or deleted as it is now): by
+    /// its stored name with a directory exactly that one, by its name alone the one the main
+    /// program would call, else the first directory's.
     pub fn stored_program(&self, name: &str) -> Option<&str> {
+        if let (Some(dir), base) = split_qualified(name) {
+            let base = program_name(base).ok()?;
+            return self.programs.in_dir(&base, Some(&dir)).and_then(|p| p.text()).map(|t| &**t);
+        }
         let name = program_name(name).ok()?;
         match self.interp.files().pending(&name) {
             Some(p) => p.text.as_deref(),
-            None => self.programs.get(&name).map(|t| &**t),
+            // As the main program would find it, else in whichever directory holds it.
+            None => self.programs.file(&name, None).and_then(|p| p.text()).map(|t| &**t),
         }
     }
 
     /// Stores `text` under `name` without checking it: a file that need not be a program (a
     /// log a program wrote with WRITE), checked only if it is ever called.
     pub fn store_file(&mut self, name: &str, text: &str) -> Result<String, CommandError> {
-        let name = program_name(name)?;
+        let (dir, base) = split_qualified(name);
+        let name = program_name(base)?;
         self.interp.files_mut().discard(&name);
-        self.programs.add(StoredProgram::unchecked(name.clone(), None, None, Arc::from(text)));
-        Ok(name)
+        let stored = qualified_name(dir.as_ref(), &name);
+        self.programs.add(StoredProgram::unchecked(name, dir, None, Arc::from(text)));
+        Ok(stored)
     }
 
     /// Takes the file functions' changes into the store (when the program no longer runs, so
@@ -88,13 +107,19 @@ impl Channel {
                 Some(text) => {
                     // Replaces the program of that name in the directory it was found in.
                     let kind = Some(change.kind);
+                    self.changed_files.insert(qualified_name(change.dir.as_ref(), &name));
                     self.programs.add(StoredProgram::unchecked(name.clone(), change.dir, kind, Arc::from(text)));
                 }
                 None => {
+                    // Deleted from every directory: each stored name is gone.
+                    let dirs: Vec<Option<Dir>> =
+                        self.programs.iter().filter(|p| p.name() == name).map(|p| p.dir().cloned()).collect();
+                    for dir in dirs {
+                        self.changed_files.insert(qualified_name(dir.as_ref(), &name));
+                    }
                     self.programs.remove(&name);
                 }
             }
-            self.changed_files.insert(name);
         }
     }
 
@@ -128,14 +153,20 @@ impl Channel {
         self.take_changed_file_names()
             .into_iter()
             .map(|name| {
-                let text = self.programs.get(&name).map(|t| t.to_string());
-                (name, text)
+                let text = match split_qualified(&name) {
+                    (Some(dir), base) => self.programs.in_dir(base, Some(&dir)).and_then(|p| p.text()),
+                    (None, base) => self.programs.in_dir(base, None).and_then(|p| p.text()),
+                };
+                (name.clone(), text.map(|t| t.to_string()))
             })
             .collect()
     }
 
     /// Removes a stored program; false if there was none.
     pub fn delete_program(&mut self, name: &str) -> bool {
+        if let (Some(dir), base) = split_qualified(name) {
+            return program_name(base).is_ok_and(|n| self.programs.remove_in(&n, Some(&dir)));
+        }
         program_name(name).is_ok_and(|n| {
             // A file the running program wrote and not yet stored counts as there.
             let pending = self.interp.files().pending(&n).is_some_and(|p| p.text.is_some());
@@ -158,7 +189,7 @@ impl Channel {
     /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet), with
     /// the files a running program wrote or deleted as they are now.
     pub fn stored_programs(&self) -> Vec<(String, usize)> {
-        let stored = self.programs.iter().map(|p| (p.name().to_string(), p.text().map_or(0, |t| t.len())));
+        let stored = self.programs.iter().map(|p| (qualified_name(p.dir(), p.name()), p.text().map_or(0, |t| t.len())));
         let files = self.interp.files();
         if !files.has_pending() {
             return stored.collect();

@@ -291,7 +291,8 @@ impl Channel {
                     | Item::Aux { .. }
                     | Item::DigitalOutput { .. }
                     | Item::SyncAction { .. }
-                    | Item::SyncControl { .. } => {}
+                    | Item::SyncControl { .. }
+                    | Item::SetPiece { .. } => {}
                     Item::Stop { kind: StopKind::End, .. } => return Err(target_not_found(line)),
                     Item::Alarm(alarm) => return Err(alarm),
                 }

@@ -10,6 +10,7 @@
 //! rotary axis moved by the planner and this model only keeps its angle.
 
 use crate::interp::spindles::Control;
+use crate::machine_data::gears::Gears;
 use crate::machine_data::{MachineConfig, MachineData};
 
 /// What a spindle is doing, as the T/F/S display shows it.
@@ -94,6 +95,13 @@ pub(super) struct Spindle {
     /// LIMS: upper limit under constant cutting speed.
     lims: f64,
     pub css: Option<Css>,
+    /// The gear stage engaged (1..=5) and the spindle's stages (`machine_data/gears.rs`).
+    gear: u8,
+    gears: Gears,
+    /// MD35100 `$MA_SPIND_VELO_LIMIT`: the highest speed in any stage.
+    velo_limit: f64,
+    /// MD35140 of the stage engaged: the lowest speed while turning.
+    min_speed: f64,
 }
 
 impl Spindle {
@@ -137,7 +145,8 @@ impl Spindle {
         if self.css.is_some() {
             upper = upper.min(self.lims);
         }
-        let n = (n * self.override_factor).min(upper).max(self.lower.min(upper));
+        let lower = self.lower.max(self.min_speed);
+        let n = (n * self.override_factor).min(upper).max(lower.min(upper));
         self.target = sign * n;
     }
 
@@ -188,8 +197,37 @@ impl Spindle {
                 self.css = Some(Css { cutting_speed, direction: f64::from(direction), transverse, centre });
                 self.programmed = f64::from(direction);
             }
-            Control::ThreadStart { .. } => {}
+            Control::ThreadStart { .. } | Control::FeedReference { .. } | Control::Gear { .. } => {}
         }
+    }
+
+    /// M40..M45 reached the main run: engages gear stage `stage`. The spindle brakes to a
+    /// standstill first (the simulated PLC then changes the gear at once) and afterwards
+    /// returns to its programmed speed within the new stage's limits. False while braking:
+    /// the block change waits, as the control's does for the PLC.
+    pub fn change_gear(&mut self, stage: u8) -> bool {
+        if stage == self.gear {
+            return true;
+        }
+        if self.speed != 0.0 {
+            self.target = 0.0;
+            return false;
+        }
+        self.engage(stage);
+        if self.css.is_none() {
+            self.retarget(self.programmed.abs());
+        }
+        true
+    }
+
+    /// Takes over the limits and acceleration of gear stage `stage`.
+    fn engage(&mut self, stage: u8) {
+        let st = *self.gears.stage(stage);
+        self.gear = stage;
+        self.max_speed = self.velo_limit.min(st.limit_max);
+        self.min_speed = st.limit_min;
+        // rev/s² → rev/min per s.
+        self.accel = st.accel * 60.0;
     }
 
     /// Whether the spindle's angle passed `angle` (degrees, modulo 360) in the last cycle.
@@ -258,14 +296,12 @@ pub(super) fn for_config(cfg: &MachineConfig, data: &MachineData) -> Vec<Spindle
         .filter(|&k| cfg.axis(k).spindle.is_some())
         .map(|k| {
             let m = cfg.channel_axes[k].machine_axis;
-            let max_speed = data.num("$MA_SPIND_VELO_LIMIT", m, 0).min(data.num("$MA_GEAR_STEP_MAX_VELO_LIMIT", m, 1));
-            Spindle {
+            let mut s = Spindle {
                 axis: k,
                 speed: 0.0,
                 target: 0.0,
-                // rev/s² → rev/min per s.
-                accel: data.num("$MA_GEAR_STEP_SPEEDCTRL_ACCEL", m, 1) * 60.0,
-                max_speed,
+                accel: 0.0,
+                max_speed: 0.0,
                 position: 0.0,
                 previous: 0.0,
                 axis_mode: false,
@@ -276,7 +312,14 @@ pub(super) fn for_config(cfg: &MachineConfig, data: &MachineData) -> Vec<Spindle
                 upper: f64::INFINITY,
                 lims: f64::INFINITY,
                 css: None,
-            }
+                gear: 1,
+                gears: cfg.gears.get(&k).cloned().unwrap_or_default(),
+                velo_limit: data.num("$MA_SPIND_VELO_LIMIT", m, 0),
+                min_speed: 0.0,
+            };
+            // Gear stage 1 after power on.
+            s.engage(1);
+            s
         })
         .collect()
 }
@@ -287,20 +330,37 @@ impl super::Channel {
     pub(super) fn step_spindles(&mut self) {
         let dt = self.cfg.ipo_cycle;
         let mut rate = 0.0;
+        let reference = self.feed_reference.map_or(self.cfg.master_spindle, |(k, _)| Some(k));
         for s in &mut self.spindles {
             s.step(dt, &self.machine);
-            if Some(s.axis) == self.cfg.master_spindle {
-                rate = s.speed.abs() / 60.0;
+            if Some(s.axis) == reference {
+                rate = if s.axis_mode { s.axis_speed.abs() } else { s.speed.abs() } / 60.0;
             }
+        }
+        if let Some((k, previous)) = self.feed_reference.filter(|&(k, _)| self.cfg.axis(k).spindle.is_none()) {
+            rate = self.fpr_axis_rate(k, previous, dt);
         }
         self.planner.set_spindle_rate(rate);
     }
 
+    /// FPR on a rotary axis that is no spindle: its actual speed in rev/s (out of line).
+    #[inline(never)]
+    fn fpr_axis_rate(&mut self, k: usize, previous: f64, dt: f64) -> f64 {
+        let now = self.machine[k];
+        self.feed_reference = Some((k, now));
+        (now - previous).abs() / 360.0 / dt
+    }
+
     /// A spindle command of the program; false while it has to wait (a thread's start angle).
     pub(super) fn spindle_control(&mut self, c: &Control) -> bool {
+        if let Control::FeedReference { axis } = *c {
+            self.feed_reference = Some((axis, self.machine[axis]));
+            return true;
+        }
         let Some(s) = self.spindles.iter_mut().find(|s| s.axis == c.axis()) else { return true };
         match *c {
             Control::ThreadStart { angle, .. } => s.passed(angle),
+            Control::Gear { stage, .. } => s.change_gear(stage),
             _ => {
                 let angle = self.planner.position()[s.axis];
                 s.leave_axis_mode(angle);

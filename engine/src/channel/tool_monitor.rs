@@ -5,8 +5,12 @@
 //! What counts, where the manuals leave it open:
 //! * Time: every IPO cycle in which a feed move (G1/G2/G3, not G0) of a program is executing
 //!   with a monitored edge active; dwells, tool changes and rapid traverse do not count.
-//! * Count: each change of the tool into the spindle in the main run counts one piece for the
-//!   edge that becomes active (this product's reading of MD20310; `SETPIECE` is not modelled).
+//! * Count: the control counts workpieces, not tool changes. The main run remembers each
+//!   cutting edge that is active in the spindle while a program runs; `SETPIECE(n)`
+//!   ([`crate::interp::Item::SetPiece`], `interp/tools/setpiece.rs`) lowers `$TC_MOP4` by n
+//!   for each remembered count-monitored edge, in the order they were first used, and forgets
+//!   all but the edge still in the spindle. The memory outlives program end and reset (as
+//!   the control's does until the next `SETPIECE`); it is no part of the checkpoint.
 //! * An edge is monitored when its tool has `$TC_TP9` bit 0 (time) or bit 1 (count) and the
 //!   edge's remaining value or setpoint (`$TC_MOP11`/`$TC_MOP13`) is set; an edge whose
 //!   monitoring data are all zero is left alone.
@@ -29,9 +33,10 @@ use crate::machine_data::tools_list::{MONITOR_COUNT, MONITOR_TIME, STATE_DISABLE
 pub(super) struct ToolMonitor {
     /// The edge whose cutting time is being counted.
     counting: Option<Counting>,
-    /// The tool the main run had in the spindle at the last cycle (count monitoring counts
-    /// its changes).
-    last_tool: u32,
+    /// The edge (T, D) the main run had active at the last cycle.
+    last_edge: (u32, u32),
+    /// The edges active in the spindle since the last `SETPIECE`, in the order first used.
+    used: Vec<(u32, u32)>,
 }
 
 #[derive(Debug, Clone)]
@@ -48,6 +53,15 @@ struct Counting {
     limited: bool,
 }
 
+impl ToolMonitor {
+    /// Notes edge `d` of tool `t` (none: 0) as used since the last `SETPIECE`.
+    fn remember(&mut self, t: u32, d: u32) {
+        if t != 0 && d != 0 && !self.used.contains(&(t, d)) {
+            self.used.push((t, d));
+        }
+    }
+}
+
 impl Channel {
     /// One IPO cycle of tool monitoring (called once per [`Channel::step`]).
     #[inline]
@@ -62,11 +76,9 @@ impl Channel {
     fn monitor_tools_cycle(&mut self) {
         let (t, d) = (self.offsets.t, self.offsets.d);
         let running = self.status == Status::Running && self.jog.is_none();
-        if t != self.tool_monitor.last_tool {
-            self.tool_monitor.last_tool = t;
-            if running && t != 0 {
-                self.count_piece(t, d);
-            }
+        if running && (t, d) != self.tool_monitor.last_edge {
+            self.tool_monitor.last_edge = (t, d);
+            self.tool_monitor.remember(t, d);
         }
         let cutting = running && self.in_planner.front().is_some_and(|(_, m)| m.feed.is_finite() && m.line > 0);
         if !cutting || t == 0 || d == 0 {
@@ -129,8 +141,23 @@ impl Channel {
         })
     }
 
-    /// Count monitoring: tool `t` came into the spindle with edge `d`.
-    fn count_piece(&mut self, t: u32, d: u32) {
+    /// `SETPIECE(pieces)` reached the main run: each count-monitored edge used since the
+    /// last one counts `pieces` workpieces; the memory keeps only the edge in the spindle.
+    pub(super) fn set_piece(&mut self, pieces: u32) {
+        let (t, d) = (self.offsets.t, self.offsets.d);
+        self.tool_monitor.remember(t, d);
+        let used = std::mem::take(&mut self.tool_monitor.used);
+        if pieces > 0 {
+            for &(t, d) in &used {
+                self.count_pieces(t, d, pieces);
+            }
+        }
+        self.tool_monitor.last_edge = (t, d);
+        self.tool_monitor.remember(t, d);
+    }
+
+    /// Count monitoring: edge `d` of tool `t` cut `pieces` more workpieces.
+    fn count_pieces(&mut self, t: u32, d: u32, pieces: u32) {
         let list = &self.cfg.tool_list;
         let Some(tool) = list.tools.get(&t) else { return };
         if tool.monitoring & MONITOR_COUNT == 0 || d == 0 {
@@ -141,7 +168,7 @@ impl Channel {
         if remaining == 0.0 && setpoint == 0.0 {
             return;
         }
-        let remaining = remaining - 1.0;
+        let remaining = remaining - f64::from(pieces);
         let warn = tool.state & STATE_PREWARNING == 0 && prewarning > 0.0 && remaining <= prewarning;
         let limit = tool.state & STATE_DISABLED == 0 && remaining <= 0.0;
         self.write_monitor_data(&format!("$TC_MOP4[{t},{d}]={remaining}\n"));

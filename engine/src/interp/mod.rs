@@ -150,6 +150,12 @@ pub enum Item {
         def: std::sync::Arc<synchronized::SyncDef>,
         line: u32,
     },
+    /// SETPIECE: `pieces` workpieces done for the tools used in the spindle since the last one
+    /// (`tools/setpiece.rs`, counted in `channel/tool_monitor.rs`).
+    SetPiece {
+        pieces: u32,
+        line: u32,
+    },
     /// CANCEL/LOCK/UNLOCK/RESET of synchronized actions by ID.
     SyncControl {
         op: synchronized::SyncControl,
@@ -201,7 +207,8 @@ impl Item {
             | Item::DigitalOutput { line, .. }
             | Item::SyncAction { line, .. }
             | Item::SyncControl { line, .. }
-            | Item::Workpiece { line, .. } => Some(*line),
+            | Item::Workpiece { line, .. }
+            | Item::SetPiece { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -683,6 +690,16 @@ impl Interpreter {
         for &(signal, on) in &words.digital_outputs {
             self.trc.emit_or_defer(Item::DigitalOutput { signal, on, line }, out);
         }
+        if let Some(sp) = words.set_piece {
+            // The tools are in the master spindle's holder: another spindle used none.
+            let axis = match sp.spindle {
+                Some(n) => Some(spindles::axis_of(cfg, n, line, "SETPIECE")?),
+                None => self.spindles.master(),
+            };
+            if axis.is_none() || axis == self.spindles.master() {
+                self.trc.emit_or_defer(Item::SetPiece { pieces: sp.pieces, line }, out);
+            }
+        }
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;
         if words.dwell {
@@ -728,8 +745,12 @@ impl Interpreter {
                 }
                 self.spline_point(mv, words, line, offsets, cfg, out);
             } else if comp.is_none() && self.trc.idle() {
-                // Nothing to compensate and nothing held: the move goes straight out.
-                out.push(Item::Move { mv, line, offsets });
+                // Nothing to compensate and nothing held: the move goes straight out (a G34/G35
+                // thread in segments of its changing lead).
+                match self.spindles.variable_lead.take() {
+                    Some(lead) => lead.push_segments(mv, line, offsets, &limits, out),
+                    None => out.push(Item::Move { mv, line, offsets }),
+                }
                 self.trc.passed(out);
             } else {
                 let prepared = compensation::trc::Prepared { mv, feed, line, offsets, approach, corner };
@@ -886,7 +907,7 @@ impl Interpreter {
         line: u32,
     ) -> Result<Option<compensation::trc::Compensation>, Alarm> {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
-        let edge = cfg.tools.get(&(self.offsets.t, self.offsets.d)).filter(|_| self.offsets.d != 0);
+        let edge = cfg.edge(self.offsets.t, self.offsets.d);
         let Some(edge) = edge else { return Err(Alarm::trc_without_tool(line)) };
         let tool_radius = edge[5] + edge[14];
         let tip = compensation::cutting_edge::tip_offset(edge[0], edge[1], tool_radius);
@@ -1355,7 +1376,7 @@ pub(super) fn basic_frame(cfg: &MachineConfig) -> Frame {
 /// geometry axes by tool type and plane (SD42940 = 0).
 fn tool_vector(cfg: &MachineConfig, modal: &Modal, t: u32, d: u32) -> AxisVec {
     let mut v = [0.0; MAX_CHANNEL_AXES];
-    let Some(p) = cfg.tools.get(&(t, d)).filter(|_| d != 0) else { return v };
+    let Some(p) = cfg.edge(t, d) else { return v };
     let lengths = [p[2] + p[11] + p[20], p[3] + p[12] + p[21], p[4] + p[13] + p[22]];
     let turning = (400.0..600.0).contains(&p[0]);
     // Geometry axis (0 = 1st) that receives L1, L2, L3.

@@ -350,6 +350,8 @@ pub(super) struct Words {
     pub spindle_ext: Option<u32>,
     /// SETMS(n): spindle n becomes the master spindle (`Some(None)`: SETMS, back to MD20090).
     pub set_master: Option<Option<u32>>,
+    /// SETPIECE(n[, spindle]): the piece count of count-monitored tools (`tools/setpiece.rs`).
+    pub set_piece: Option<super::tools::setpiece::SetPiece>,
     pub stop: Option<StopKind>,
     /// A jump at the end of the block (`... GOTOF LABEL`).
     pub goto: Option<Goto>,
@@ -700,6 +702,15 @@ pub(super) fn collect(
                 }
                 w.set_master = Some(spindle.map(|n| n as u32));
             }
+            Word::Keyword { name, args } if super::spindles::is_diameter_axis_keyword(name) => {
+                super::spindles::diameter_axis_word(&mut w.spindle, name, args, &Ctx { vars, sys }, cfg, line)?;
+            }
+            Word::Keyword { name, args } if name == "FPR" => {
+                w.spindle.fpr = Some(super::spindles::fpr_statement(args, &Ctx { vars, sys }, cfg, line)?);
+            }
+            Word::Keyword { name, args } if name == "SETPIECE" => {
+                w.set_piece = Some(super::tools::setpiece::statement(args, &Ctx { vars, sys }, line)?);
+            }
             Word::Keyword { name, args } if name == "CALL" => {
                 let program = match args.first() {
                     Some(e) if !targets::is_omitted(e) => {
@@ -843,6 +854,7 @@ pub(super) fn collect(
                             super::auxiliary::AuxFunction { letter: letter as char, extension: ext, value: v };
                         w.aux.push(function);
                         if letter == b'M'
+                            && !super::spindles::words::extended_m(&mut w.spindle, ext, v)
                             && let Some(dir) = super::everyday::extended_m(ext, v, line)?
                         {
                             if w.spindle_dir.is_some() {

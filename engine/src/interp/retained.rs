@@ -95,7 +95,7 @@ impl Interpreter {
 }
 
 fn check(saved: &Retained, cfg: &MachineConfig) -> Result<(), String> {
-    if saved.edge != 0 && !cfg.tools.contains_key(&(saved.tool, saved.edge)) {
+    if saved.edge != 0 && cfg.edge(saved.tool, saved.edge).is_none() {
         return Err(format!("tool T{} D{} has no offset data", saved.tool, saved.edge));
     }
     if saved.holder.number != 0 && !cfg.carriers.contains_key(&saved.holder.number) {

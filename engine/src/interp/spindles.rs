@@ -14,9 +14,15 @@
 
 mod block;
 pub mod diameter;
+mod diameter_axes;
+mod fpr;
+mod gears;
+pub mod lead_change;
 mod motion;
 pub(super) mod vars;
 pub(super) mod words;
+pub(super) use diameter_axes::{is_keyword as is_diameter_axis_keyword, word as diameter_axis_word};
+pub(super) use fpr::statement as fpr_statement;
 
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
@@ -32,13 +38,23 @@ pub enum Control {
     Css { axis: usize, cutting_speed: f64, direction: i8, transverse: usize, centre: f64 },
     /// G33: the thread's move starts when the spindle passes `angle` degrees (SF).
     ThreadStart { axis: usize, angle: f64 },
+    /// FPR(axis): a feed per revolution follows the rotary axis or spindle on channel axis
+    /// `axis` instead of the master spindle (`fpr.rs`).
+    FeedReference { axis: usize },
+    /// M40..M45: the spindle changes to gear stage `stage` (`gears.rs`); the block change
+    /// waits until it has.
+    Gear { axis: usize, stage: u8 },
 }
 
 impl Control {
     /// The channel axis of the spindle the command is for.
     pub fn axis(&self) -> usize {
         match *self {
-            Control::Limits { axis, .. } | Control::Css { axis, .. } | Control::ThreadStart { axis, .. } => axis,
+            Control::Limits { axis, .. }
+            | Control::Css { axis, .. }
+            | Control::ThreadStart { axis, .. }
+            | Control::FeedReference { axis }
+            | Control::Gear { axis, .. } => axis,
         }
     }
 }
@@ -91,6 +107,9 @@ impl FeedType {
 pub enum Thread {
     /// G33: thread with constant lead, the path follows the spindle.
     G33,
+    /// G34/G35: thread with increasing/decreasing lead, F the change (`lead_change.rs`).
+    G34,
+    G35,
     /// G331: rigid tapping in, the spindle interpolates with the axis.
     G331,
     /// G332: rigid tapping out (the spindle reversed).
@@ -113,7 +132,7 @@ pub(in crate::interp) struct Spindles {
     pub lower: f64,
     pub upper: f64,
     pub lims: f64,
-    /// The thread function of G group 1 while one is active.
+    /// The thread function of G group 1 while one is active (G33, G34, G35, G331, G332).
     pub thread: Option<Thread>,
     /// SF: start angle offset of G33 threads (degrees).
     pub start_angle: f64,
@@ -121,6 +140,17 @@ pub(in crate::interp) struct Spindles {
     pub thread_chained: bool,
     /// G group 29: diameter programming of the transverse axis.
     pub diameter: diameter::Diameter,
+    /// FPR(axis): the channel axis a feed per revolution refers to (`None`: the master
+    /// spindle).
+    pub fpr: Option<usize>,
+    /// `fpr`'s rotary axis is no spindle: its speed is unknown to preparation.
+    fpr_axis_max: Option<f64>,
+    /// The G34/G35 lead of the block being prepared: its move goes out in segments.
+    pub variable_lead: Option<lead_change::LeadChange>,
+    /// Gear stage by channel axis as preparation selected it (1..=5), and whether M40
+    /// (automatic selection) is on.
+    gear: [u8; MAX_CHANNEL_AXES],
+    gear_auto: [bool; MAX_CHANNEL_AXES],
 }
 
 impl Spindles {
@@ -138,6 +168,11 @@ impl Spindles {
             start_angle: 0.0,
             thread_chained: false,
             diameter: diameter::Diameter::reset(cfg),
+            fpr: None,
+            fpr_axis_max: None,
+            variable_lead: None,
+            gear: [1; MAX_CHANNEL_AXES],
+            gear_auto: [true; MAX_CHANNEL_AXES],
         }
     }
 
@@ -151,6 +186,10 @@ impl Spindles {
         self.thread_chained = false;
         self.start_angle = 0.0;
         self.diameter = diameter::Diameter::reset(cfg);
+        self.fpr = None;
+        self.fpr_axis_max = None;
+        // The stage engaged stays (it is mechanical); selection is automatic (M40) again.
+        self.gear_auto = [true; MAX_CHANNEL_AXES];
         if stop {
             self.direction = [0; MAX_CHANNEL_AXES];
         }
@@ -178,6 +217,10 @@ impl Spindles {
     /// under constant cutting speed the highest the limits allow (the main run follows the
     /// actual speed; this only bounds the planned velocity).
     pub fn reference_speed(&self) -> f64 {
+        if let Some(k) = self.fpr {
+            // FPR: the programmed speed of that spindle, or a rotary axis' highest speed.
+            return self.fpr_axis_max.unwrap_or(self.speed[k]);
+        }
         if self.feed_type.css() || self.feed_type == FeedType::G97 {
             self.lims.min(self.upper).min(100_000.0)
         } else {

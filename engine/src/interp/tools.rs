@@ -3,5 +3,6 @@
 
 pub(super) mod dnumbers;
 pub(super) mod management;
+pub mod setpiece;
 pub(super) mod swivel;
 pub mod toolholder;

@@ -708,7 +708,12 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
             return Ok(Word::Address { name, indices, value });
         }
         if !indices.is_empty() {
-            return Err((cur.pos, format!("expected `=` after {}[...]", cur.upper(span))));
+            let name = cur.upper(span);
+            // Axis-specific diameter programming: `DIAMONA[X]` is a keyword with its axis.
+            if matches!(name.as_str(), "DIAMONA" | "DIAM90A" | "DIAMOFA" | "DIACYCOFA" | "DIAMCHANA") {
+                return Ok(Word::Keyword { name, args: indices });
+            }
+            return Err((cur.pos, format!("expected `=` after {name}[...]")));
         }
     }
     cur.pos = save;

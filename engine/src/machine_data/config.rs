@@ -78,6 +78,13 @@ pub struct MachineConfig {
     /// Reset position of G group 29 (MD20150 `$MC_GCODE_RESET_VALUES[28]`): 1 DIAMOF,
     /// 2 DIAMON, 3 DIAM90, 4 DIAMCYCOF.
     pub diameter_reset: u8,
+    /// Channel axes released for axis-specific diameter programming (DIAMONA[ax], DIAMCHAN):
+    /// MD30460 `$MA_BASE_FUNCTION_MASK` bit 2, one bit per channel axis.
+    pub diameter_axes: u32,
+    /// MD18102 `$MN_MM_TYPE_OF_CUTTING_EDGE` = 1: flat D numbers (`flat_d.rs`).
+    pub flat_d: bool,
+    /// The gear stages of each spindle by channel axis (`gears.rs`).
+    pub gears: BTreeMap<usize, super::gears::Gears>,
     /// Reset position of G group 6 (MD20150 `$MC_GCODE_RESET_VALUES[5]`): 1 G17, 2 G18, 3 G19.
     pub plane_reset: u8,
     /// Cutting edges `(T, D)` → `$TC_DP1..25`.
@@ -347,6 +354,17 @@ impl MachineConfig {
             })?)
         };
         let diameter_reset = md.num("$MC_GCODE_RESET_VALUES", 0, 28) as u8;
+        let gears = channel_axes
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| machine_axes[c.machine_axis].spindle.is_some())
+            .map(|(k, c)| (k, super::gears::Gears::read(md, order[c.machine_axis] - 1)))
+            .collect();
+        let diameter_axes = channel_axes
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| md.num("$MA_BASE_FUNCTION_MASK", order[c.machine_axis] - 1, 0) as i64 & 4 != 0)
+            .fold(0u32, |mask, (k, _)| mask | 1 << k);
         if !(1..=4).contains(&diameter_reset) {
             return fail(
                 "GCODE_RESET_VALUES",
@@ -381,6 +399,9 @@ impl MachineConfig {
             master_spindle,
             transverse_axis,
             diameter_reset,
+            diameter_axes,
+            flat_d: md.num("$MN_MM_TYPE_OF_CUTTING_EDGE", 0, 0) == 1.0,
+            gears,
             plane_reset,
             tools: BTreeMap::new(),
             tool_list: Default::default(),

@@ -9,6 +9,8 @@ pub mod carrier;
 pub mod chains;
 mod config;
 pub mod dynamics;
+pub mod flat_d;
+pub mod gears;
 pub mod inch;
 pub mod path_control;
 pub mod presets;
@@ -348,6 +350,14 @@ impl MachineData {
         })?;
         let (t, d) = match indices {
             [IndexTok::Number(t), IndexTok::Number(d)] => (*t, *d),
+            // A flat D number (MD18102 = 1): the data set without a tool (`flat_d.rs`).
+            [IndexTok::Number(d)] if (1..=flat_d::MAX_FLAT_D).contains(d) => {
+                let Literal::Number(v) = value else {
+                    return Err(err(format!("{name}: expected a number")));
+                };
+                self.tools.entry((0, *d as u32)).or_insert([0.0; tool_orient::EDGE_SLOTS])[p] = *v;
+                return Ok(());
+            }
             _ => return Err(err(format!("{name} needs [tool number, cutting edge], e.g. {name}[1,1]"))),
         };
         if !(1..=MAX_TOOL_NUMBER).contains(&t) {
@@ -454,7 +464,10 @@ impl MachineData {
         }
         for ((t, d), params) in &self.tools {
             for (p, v) in params.iter().enumerate().filter(|(_, v)| **v != 0.0) {
-                out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", tool_orient::name(p));
+                match t {
+                    0 => out += &format!("$TC_DP{}[{d}]={v:?}\n", tool_orient::name(p)),
+                    _ => out += &format!("$TC_DP{}[{t},{d}]={v:?}\n", tool_orient::name(p)),
+                }
             }
         }
         out += &self.tm.to_text();

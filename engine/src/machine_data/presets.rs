@@ -204,6 +204,8 @@ $MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
 $MA_MAX_AX_VELO[SP1]=1440000.
 ; X is the transverse axis (diameter programming, constant cutting speed).
 $MC_DIAMETER_AX_DEF="X"
+; X may also be diameter-programmed on its own (DIAMONA[X], MD30460 bit 2).
+$MA_BASE_FUNCTION_MASK[X1]=4
 ; A lathe starts in G18 (MD20150[5]); radius programming (MD20150[28] = 1, DIAMOF) as the
 ; preset has always been; `$MC_GCODE_RESET_VALUES[28]=2` makes DIAMON the reset value.
 $MC_GCODE_RESET_VALUES[5]=2

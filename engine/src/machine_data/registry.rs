@@ -195,6 +195,8 @@ pub static DEFS: &[Def] = &[
     // NCU-global basic frames $P_NCBFR[n] (K2; 0 = none, the control's default).
     def("MM_NUM_GLOBAL_BASE_FRAMES", 18602, N, Kind::Int, 1, Default::Int(0), 0.0, 16.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
+    // MD18102: 1 = flat D numbers (flat_d.rs).
+    def("MM_TYPE_OF_CUTTING_EDGE", 18102, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
     def("MM_NUM_TOOL_CARRIER", 18088, N, Kind::Int, 1, Default::Int(0), 0.0, 99.0),
     // Largest file WRITE appends to, in kilobytes (file functions: error 10 beyond it).
     def("LEN_PROTOCOL_FILE", 11420, N, Kind::Int, 1, Default::Int(1), 1.0, 1_000_000.0),
@@ -410,6 +412,8 @@ pub static DEFS: &[Def] = &[
     def("MM_NUM_BASE_FRAMES", 28081, C, Kind::Int, 1, Default::Int(1), 0.0, 16.0),
     def("IS_ROT_AX", 30300, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("ROT_IS_MODULO", 30310, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
+    // MD30460 axis functions; bit 2: the axis may be diameter-programmed on its own (DIAMONA[ax]..).
+    def("BASE_FUNCTION_MASK", 30460, A, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
     def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
     // Distance of one increment (INC1, handwheel detent): [0] metric system, [1] inch system.
@@ -504,7 +508,14 @@ pub static DEFS: &[Def] = &[
     // (stage 1 is the one NCTwin runs: no gear stages are modelled); MD35200 acceleration in
     // speed control per gear stage (rev/s²); MD35300 speed of SPOS/M19 positioning (rev/min).
     def("SPIND_VELO_LIMIT", 35100, A, Kind::Real, 1, Default::Real(10000.0), 0.0, 1e6),
+    // Gear stages (machine_data/gears.rs): MD35010 bit 0 enables them, MD35090 stages in use,
+    // MD35110/35120 M40's switching range, MD35140 the lowest speed per stage.
+    def("GEAR_STEP_CHANGE_ENABLE", 35010, A, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
+    def("NUM_GEAR_STEPS", 35090, A, Kind::Int, 1, Default::Int(5), 1.0, 5.0),
+    def("GEAR_STEP_MAX_VELO", 35110, A, Kind::Real, 6, Default::Real(10000.0), 0.0, 1e6),
+    def("GEAR_STEP_MIN_VELO", 35120, A, Kind::Real, 6, Default::Real(0.0), 0.0, 1e6),
     def("GEAR_STEP_MAX_VELO_LIMIT", 35130, A, Kind::Real, 6, Default::Real(10000.0), 0.0, 1e6),
+    def("GEAR_STEP_MIN_VELO_LIMIT", 35140, A, Kind::Real, 6, Default::Real(0.0), 0.0, 1e6),
     def("GEAR_STEP_SPEEDCTRL_ACCEL", 35200, A, Kind::Real, 6, Default::Real(30.0), 1e-3, 1e6),
     def("SPIND_POSCTRL_VELO", 35300, A, Kind::Real, 1, Default::Real(500.0), 1e-3, 1e6),
     // Exact-stop windows of G602 (coarse, MD36000) and G601 (fine, MD36010), mm or degrees.

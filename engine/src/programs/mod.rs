@@ -9,7 +9,10 @@
 
 pub mod archive;
 pub mod cycles;
+mod qualified;
 mod store;
+
+pub use qualified::{qualified_name, split_qualified};
 
 pub use store::{CallError, Loader, Programs, StoredProgram};
 

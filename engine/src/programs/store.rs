@@ -170,6 +170,23 @@ impl Programs {
         self.by_name.remove(name).is_some()
     }
 
+    /// The program `name` filed in exactly `dir` (`None`: the flat store).
+    pub fn in_dir(&self, name: &str, dir: Option<&Dir>) -> Option<&StoredProgram> {
+        self.by_name.get(name)?.iter().find(|p| p.dir() == dir)
+    }
+
+    /// Removes program `name` from `dir` only; false if it was not there.
+    pub fn remove_in(&mut self, name: &str, dir: Option<&Dir>) -> bool {
+        let Some(same) = self.by_name.get_mut(name) else { return false };
+        let before = same.len();
+        same.retain(|p| p.dir() != dir);
+        let removed = same.len() != before;
+        if same.is_empty() {
+            self.by_name.remove(name);
+        }
+        removed
+    }
+
     /// Every stored program, by name (and by directory within a name in the order stored).
     pub fn iter(&self) -> impl Iterator<Item = &StoredProgram> {
         self.by_name.values().flatten()

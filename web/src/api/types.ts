@@ -168,9 +168,11 @@ export interface StoredProgram {
   size: number;
 }
 
-/** Answer of `POST /sessions/{id}/program-archive`: the programs stored and the sections skipped. */
+/** Answer of `POST /sessions/{id}/program-archive`: the programs stored (names with their
+ * directory when the archive gave one), the NC data sections loaded and the sections skipped. */
 export interface ArchiveImport {
   programs: { name: string; type: string; directory: string; size: number }[];
+  nc_data: { name: string; line: number }[];
   skipped: { name: string; line: number; reason: string }[];
 }
 

@@ -58,10 +58,11 @@ export class ProgramManager {
     try {
       const result = await api.importArchive(id, file);
       const stored = result.programs.map((p) => p.name).join(", ") || "none";
+      const data = result.nc_data.length ? `; NC data loaded: ${result.nc_data.map((d) => d.name).join(", ")}` : "";
       const skipped = result.skipped.length
         ? `; skipped: ${result.skipped.map((s) => `${s.name} (${s.reason})`).join(", ")}`
         : "";
-      showMessage(`${file.name}: stored ${stored}${skipped}`, "info");
+      showMessage(`${file.name}: stored ${stored}${data}${skipped}`, "info");
     } catch (e) {
       showMessage(`${file.name}: ${(e as Error).message}`);
     }

@@ -25,7 +25,7 @@ pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line
         // as on the control. Wear ($TC_DP15) is added as the control adds it.
         ("$P_TOOLR", _) => {
             let (t, d) = (sys.offsets.t, sys.offsets.d);
-            let edge = if d == 0 { None } else { sys.cfg.tools.get(&(t, d)) };
+            let edge = sys.cfg.edge(t, d);
             let slot = |n: &str| crate::machine_data::tool_orient::slot(n);
             let radius = edge.map_or(0.0, |e| slot("6").map_or(0.0, |i| e[i]) + slot("15").map_or(0.0, |i| e[i]));
             Value::Real(radius)

@@ -380,8 +380,12 @@ fn carrier_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) 
 
 fn tool_param(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
     let p = crate::machine_data::tool_orient::slot(&name[6..]).ok_or_else(|| Alarm::unknown_name(line, name))?;
-    let [t, d] = indices else { return Err(Alarm::index_error(line, name, "needs [tool, edge]")) };
-    let t = t.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    let (t, d) = match indices {
+        [t, d] => (t.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?, d),
+        // A flat D number (MD18102 = 1): `$TC_DPx[d]`.
+        [d] => (0, d),
+        _ => return Err(Alarm::index_error(line, name, "needs [tool, edge]")),
+    };
     let d = d.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
     let edge = u32::try_from(t).ok().zip(u32::try_from(d).ok()).and_then(|k| cfg.tools.get(&k));
     Ok(Value::Real(edge.map_or(0.0, |e| e[p])))

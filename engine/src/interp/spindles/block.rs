@@ -24,12 +24,21 @@ impl Interpreter {
         if let Some(mode) = sw.diameter {
             self.spindles.diameter.select(mode, cfg, line)?;
         }
+        for &(axis, mode) in &sw.axis_diameter {
+            match axis {
+                Some(k) => self.spindles.diameter.select_axis(k, mode, cfg, line)?,
+                None => self.spindles.diameter.link_all(cfg),
+            }
+        }
         self.modal.diameter_slot = self.spindles.diameter.gcode_slot();
         let was_css = self.spindles.feed_type.css();
         if let Some(t) = sw.feed_type {
             self.spindles.feed_type = t;
         } else if let Some(per_rev) = words.feed_per_rev {
             self.spindles.feed_type = if per_rev { FeedType::G95 } else { FeedType::G94 };
+        }
+        if let Some(k) = sw.fpr {
+            self.select_fpr(k, cfg, line, out);
         }
         let t = self.spindles.feed_type;
         self.modal.feed_per_rev = t.per_rev();
@@ -85,6 +94,9 @@ impl Interpreter {
             touched[k] = true;
             if Some(k) == master && t.css() { self.spindles.cutting_speed = v } else { self.spindles.speed[k] = v }
         }
+        // Gear stages (M40..M45, M40's choice for a new master speed) before the speed.
+        let new_speed = master.filter(|k| touched[*k] && !t.css()).map(|k| (k, self.spindles.speed[k]));
+        self.gear_block(sw.gear, new_speed, cfg, line, out)?;
         let mut old_direction = self.spindles.direction;
         if let Some(dir) = words.spindle_dir {
             // M3/M4/M5 act on the master spindle, M<n>=3/4/5 on spindle n.

@@ -28,7 +28,8 @@ impl Interpreter {
         out: &mut Vec<Item>,
     ) -> Result<(), Alarm> {
         let thread = self.spindles.thread;
-        if thread != Some(Thread::G33) {
+        self.spindles.variable_lead = None;
+        if !matches!(thread, Some(Thread::G33 | Thread::G34 | Thread::G35)) {
             self.spindles.thread_chained = false;
         }
         if mv.is_rapid() {
@@ -37,7 +38,10 @@ impl Interpreter {
         let f = self.modal.feed.unwrap_or(0.0) * self.modal.feed_factor();
         match thread {
             None => match self.spindles.feed_type {
-                FeedType::G95 | FeedType::G96 | FeedType::G97 => mv.per_rev = f,
+                FeedType::G95 | FeedType::G96 | FeedType::G97 => {
+                    self.check_fpr_move(mv, cfg, line)?;
+                    mv.per_rev = f;
+                }
                 FeedType::G93 => {
                     // F is the reciprocal of the block's time in minutes.
                     let length = mv.length;
@@ -50,7 +54,18 @@ impl Interpreter {
                 let master =
                     self.spindles.master().ok_or_else(|| Alarm::unknown_name(line, "G33 (no master spindle)"))?;
                 let length = mv.length;
-                if th == Thread::G33 {
+                if matches!(th, Thread::G33 | Thread::G34 | Thread::G35) {
+                    if th != Thread::G33 {
+                        // F is the lead change (mm/rev²); the move goes out in segments.
+                        if self.modal.trc.is_some() {
+                            return Err(Alarm::value_out_of_range(line, "G34/G35 under tool radius compensation"));
+                        }
+                        let change = self.modal.feed.unwrap_or(0.0) * self.modal.length_factor();
+                        let change = if th == Thread::G34 { change } else { -change };
+                        let reference = self.spindles.reference_speed();
+                        self.spindles.variable_lead =
+                            Some(super::lead_change::LeadChange::new(lead.abs(), change, dmaj, reference, line)?);
+                    }
                     mv.per_rev = lead.abs() * length / dmaj;
                     let bound = mv.per_rev * self.spindles.reference_speed().max(1.0) / 60.0;
                     mv.set_limits(length, Feed::Path(bound), limits);

@@ -37,6 +37,12 @@ pub struct SpindleWords {
     pub sf: Option<f64>,
     /// DIAMON/DIAMOF/DIAM90/DIAMCYCOF (G group 29).
     pub diameter: Option<super::diameter::DiamMode>,
+    /// DIAMONA[ax] .. DIAMCHAN in the order written (`diameter_axes.rs`).
+    pub axis_diameter: Vec<super::diameter_axes::AxisDiamOp>,
+    /// FPR(axis): the channel axis a feed per revolution follows from now on (`fpr.rs`).
+    pub fpr: Option<usize>,
+    /// M40..M45 (`gears.rs`).
+    pub gear: Option<super::gears::GearWord>,
 }
 
 /// A keyword of this module without arguments (G group 29); false for any other name.
@@ -61,6 +67,8 @@ pub(in crate::interp) fn g_code(w: &mut SpindleWords, code: u32, line: u32) -> R
         25 => w.limit = Some(SpeedLimit::G25),
         26 => w.limit = Some(SpeedLimit::G26),
         33 => w.thread = Some(Thread::G33),
+        34 => w.thread = Some(Thread::G34),
+        35 => w.thread = Some(Thread::G35),
         331 => w.thread = Some(Thread::G331),
         332 => w.thread = Some(Thread::G332),
         63 => w.g63 = true,
@@ -74,8 +82,13 @@ pub(in crate::interp) fn g_code(w: &mut SpindleWords, code: u32, line: u32) -> R
     Ok(true)
 }
 
-/// M19 (position the master spindle to SD43240 `M19_SPOS`, 0° here) and M70 (axis mode).
+/// M19 (position the master spindle to SD43240 `M19_SPOS`, 0° here), M70 (axis mode) and
+/// the gear stages M40..M45.
 pub(in crate::interp) fn m_code(w: &mut SpindleWords, code: u32) -> bool {
+    if let Some(g) = super::gears::of_m(code, None) {
+        w.gear = Some(g);
+        return true;
+    }
     match code {
         19 => w.spos = Some(Spos { spindle: None, angle: 0.0, mode: None }),
         70 => w.axis_mode = true,
@@ -145,4 +158,16 @@ pub(in crate::interp) fn address(
         }
     }
     Ok(true)
+}
+
+/// `M<n>=40..45`: a gear word for spindle n; false for any other value.
+pub(in crate::interp) fn extended_m(w: &mut SpindleWords, spindle: u32, value: f64) -> bool {
+    let code = value as u32;
+    match super::gears::of_m(code, Some(spindle)).filter(|_| value.fract() == 0.0) {
+        Some(g) => {
+            w.gear = Some(g);
+            true
+        }
+        None => false,
+    }
 }

@@ -10,9 +10,10 @@
 //! Decisions where this product differs from the control: the control writes the colliding
 //! tool and D numbers back into the arguments (they are VAR parameters); here CHKDNO only gives
 //! its value. A tool number that has no cutting edges checks as unique (no D number of its
-//! own). NCTwin's D numbers are the relative ones (1..12 per tool, MD18105/MD18106 and the
-//! flat D-number structure of MD18102 are not modelled), so a program uses CHKDNO to confirm a
-//! tool table in which every tool got its own D numbers.
+//! own). NCTwin's relative D numbers are 1..12 per tool (MD18105/MD18106 are not modelled),
+//! so a program uses CHKDNO to confirm a tool table in which every tool got its own D
+//! numbers; with flat D numbers (MD18102 = 1, `machine_data/flat_d.rs`) the numbers are
+//! unique by construction and CHKDNO looks at the tools' own edges only.
 
 use std::collections::BTreeMap;
 

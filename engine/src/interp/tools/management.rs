@@ -150,7 +150,7 @@ impl Interpreter {
             self.change_tool(self.offsets.prepared, cfg, line, out)?;
         }
         if let Some(d) = words.edge {
-            if d != 0 && !cfg.tools.contains_key(&(self.offsets.t, d)) {
+            if d != 0 && cfg.edge(self.offsets.t, d).is_none() {
                 return Err(Alarm::illegal_d(line, d));
             }
             self.offsets.d = d;
@@ -176,6 +176,10 @@ impl Interpreter {
     fn change_tool(&mut self, t: u32, cfg: &MachineConfig, line: u32, out: &mut Vec<Item>) -> Result<(), Alarm> {
         let changes = t != self.offsets.t;
         self.offsets.t = t;
+        if cfg.flat_d {
+            // Flat D numbers: the active D is independent of the tool (`flat_d.rs`).
+            return self.tool_change_time(changes, cfg, line, out);
+        }
         // MD20270 CUTTING_EDGE_DEFAULT = 1: a new tool brings its first cutting edge; a tool
         // that has edges but no D1 cannot (17180), one without any edges runs with D0.
         let has_edges = cfg.tools.range((t, 0)..=(t, u32::MAX)).next().is_some();
@@ -183,6 +187,17 @@ impl Interpreter {
         if has_edges && !cfg.tools.contains_key(&(t, 1)) {
             return Err(Alarm::illegal_d(line, 1));
         }
+        self.tool_change_time(changes, cfg, line, out)
+    }
+
+    /// A change of the tool in the spindle takes `$MC_TOOL_CHANGE_TIME`.
+    fn tool_change_time(
+        &mut self,
+        changes: bool,
+        cfg: &MachineConfig,
+        line: u32,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
         let seconds = cfg.tool_change.seconds;
         if changes && seconds > 0.0 {
             self.trc.emit_or_defer(Item::Dwell { seconds, line }, out);
