@@ -28,6 +28,7 @@ mod snapshot;
 mod snapshot_refresh;
 mod spindle;
 pub mod sync_actions;
+mod sync_eval;
 mod toff;
 pub mod tool_list;
 mod tool_monitor;
