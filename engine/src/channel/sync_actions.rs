@@ -399,7 +399,8 @@ impl Channel {
             self.raise(alarm);
             return;
         }
-        let axis = if self.sync.axis_ovr_written { self.sync.axis_ovr.iter().copied().fold(100.0, f64::min) } else { 100.0 };
+        let axis =
+            if self.sync.axis_ovr_written { self.sync.axis_ovr.iter().copied().fold(100.0, f64::min) } else { 100.0 };
         let factor = self.sync.ovr / 100.0 * axis / 100.0;
         if factor != 1.0 || self.sync.ovr_applied {
             let o = self.overrides;

@@ -7,8 +7,7 @@ use super::{Channel, Event};
 use crate::alarm::Alarm;
 use crate::interp::auxiliary::AuxFunction;
 use crate::interp::synchronized::flat::{
-    self, ANALOG_IN_BITS, Act, Array, DEP_BITS, DIGITAL_IN_BIT, DIGITAL_OUT_BIT, Fault, Reader,
-    Slot, TIMER_BIT, Target,
+    self, ANALOG_IN_BITS, Act, Array, DEP_BITS, DIGITAL_IN_BIT, DIGITAL_OUT_BIT, Fault, Reader, Slot, TIMER_BIT, Target,
 };
 
 /// Which main-run data changed when: a condition that reads only such data is evaluated
@@ -86,12 +85,9 @@ impl Reader for Channel {
             Slot::AOut(n) => f64::from(u8::from(self.io.output(n).unwrap_or(false))),
             Slot::AIna(i) => s.analog_in[i],
             Slot::AOuta(i) => s.analog_out[i],
-            Slot::R(n) => *self
-                .interp
-                .variables()
-                .r
-                .get(n)
-                .ok_or_else(|| Alarm::index_error(line, "$R", &format!("{n}")))?,
+            Slot::R(n) => {
+                *self.interp.variables().r.get(n).ok_or_else(|| Alarm::index_error(line, "$R", &format!("{n}")))?
+            }
         })
     }
 

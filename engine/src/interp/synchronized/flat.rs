@@ -201,8 +201,16 @@ pub enum Target {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Act {
     /// The value, then (for [`Target::At`]) the index.
-    Set { target: Target, value: Code, index: Code },
-    Aux { letter: char, extension: u32, value: Code },
+    Set {
+        target: Target,
+        value: Code,
+        index: Code,
+    },
+    Aux {
+        letter: char,
+        extension: u32,
+        value: Code,
+    },
     DelDtg,
 }
 
@@ -411,6 +419,8 @@ pub fn eval<R: Reader>(code: &Code, r: &R, line: u32) -> Result<f64, Fault> {
     }
 }
 
+/// The general case, out of line: [`eval`]'s single-operation cases stay small.
+#[inline(never)]
 fn run<R: Reader>(ops: &[Op], r: &R, line: u32, stack: &mut [f64]) -> Result<f64, Fault> {
     let mut sp = 0;
     for op in ops {
