@@ -30,6 +30,7 @@ mod snapshot_refresh;
 mod spindle;
 mod stock_cut;
 pub mod sync_actions;
+mod sync_eval;
 mod toff;
 pub mod tool_list;
 mod tool_monitor;

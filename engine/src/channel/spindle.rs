@@ -250,12 +250,29 @@ impl Spindle {
     /// machine position `machine`, then the ramp and the angle.
     #[inline]
     pub fn step(&mut self, dt: f64, machine: &[f64]) {
-        // At rest in speed control nothing moves (the common case on a mill: one test inline).
-        if !self.axis_mode && self.css.is_none() && self.speed == 0.0 && self.target == 0.0 {
+        // At rest or at constant speed in speed control (the common cases): only the angle
+        // advances, inline. The ramp's trapezoid at constant speed s is (s + s)·0.5·6·dt,
+        // exactly s·6·dt, so the angle is the same to the bit as the ramp would make it.
+        if !self.axis_mode && self.css.is_none() && self.speed == self.target {
             self.previous = self.position;
+            if self.speed != 0.0 {
+                self.position += self.speed * 6.0 * dt;
+                if self.position.abs() > 3.6e9 {
+                    self.wrap();
+                }
+            }
             return;
         }
         self.step_moving(dt, machine);
+    }
+
+    /// Keeps a long-turning spindle's angle small (whole turns taken off both angles).
+    #[cold]
+    #[inline(never)]
+    fn wrap(&mut self) {
+        let wrap = self.position - self.position.rem_euclid(360.0);
+        self.position -= wrap;
+        self.previous -= wrap;
     }
 
     /// [`Spindle::step`] of a turning, ramping or positioning spindle (out of line: the IPO
@@ -283,9 +300,7 @@ impl Spindle {
         // Trapezoidal integration of the angle: rev/min → deg/s is ×6.
         self.position += (before + self.speed) * 0.5 * 6.0 * dt;
         if self.position.abs() > 3.6e9 {
-            let wrap = self.position - self.position.rem_euclid(360.0);
-            self.position -= wrap;
-            self.previous -= wrap;
+            self.wrap();
         }
     }
 }

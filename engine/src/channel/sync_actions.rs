@@ -13,22 +13,18 @@
 
 use std::sync::Arc;
 
-use super::{Channel, Event};
+use super::Channel;
+use super::Event;
+use super::sync_eval::Stamps;
 use crate::alarm::Alarm;
-use crate::interp::Item;
-use crate::interp::auxiliary::AuxFunction;
-use crate::interp::synchronized::{CExpr, Func, MainRunData, SyncAct, SyncControl, SyncDef, SyncVar};
-use crate::lang::sync_action::{BinOp, SyncId, Trigger};
+use crate::interp::io::DigitalIo;
+use crate::interp::synchronized::flat::{self, DELT_BIT, Fault, TIMER_BIT};
+use crate::interp::synchronized::{MainRunData, SyncControl, SyncDef};
+use crate::interp::{Item, SharedOffsets};
+use crate::lang::sync_action::{SyncId, Trigger};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
-/// `$AC_MARKER[0..7]`: MD28256 MM_NUM_AC_MARKER's default.
-pub const MARKERS: usize = 8;
-/// `$AC_PARAM[0..49]`: MD28254 MM_NUM_AC_PARAM's default.
-pub const PARAMS: usize = 50;
-/// `$AC_TIMER[0..7]` (MD28258 MM_NUM_AC_TIMER; NCTwin keeps 8).
-pub const TIMERS: usize = 8;
-/// `$A_INA[1..4]`, `$A_OUTA[1..4]`: the default of 4 analog signals each (MD10300/10310).
-pub const ANALOG_IO: usize = 4;
+pub use crate::interp::synchronized::flat::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
 /// Active synchronized actions at most (MD28250 MM_NUM_SYNC_ELEMENTS bounds them on the control).
 pub const MAX_ACTIVE: usize = 64;
 /// Input changes kept in [`Channel::input_log`] (the oldest go first).
@@ -55,27 +51,38 @@ pub struct SyncActions {
     /// Running timers' seconds (`None`: stopped).
     pub timers: [Option<f64>; TIMERS],
     /// Whether any timer runs: kept with `timers`, so an idle cycle tests one flag.
-    timing: bool,
+    pub(super) timing: bool,
     pub analog_in: [f64; ANALOG_IO],
     pub analog_out: [f64; ANALOG_IO],
     /// `$AC_DELT`: what the last DELDTG deleted (mm of path).
     pub deleted: f64,
     /// `$AC_OVR` and `$AA_OVR` of this cycle (percent; 100 unless an action wrote them).
-    ovr: f64,
-    axis_ovr: [f64; MAX_CHANNEL_AXES],
+    pub(super) ovr: f64,
+    pub(super) axis_ovr: [f64; MAX_CHANNEL_AXES],
     /// An override of the actions is in the planner (restored when no longer written).
     ovr_applied: bool,
     /// The block `$AC_TIME` counts from, and the cycle it began.
     block: Option<u32>,
-    block_start: u64,
+    pub(super) block_start: u64,
     /// The setpoints of the cycle before, for `$AA_VACTM`.
-    prev_setpoint: [f64; MAX_CHANNEL_AXES],
+    pub(super) prev_setpoint: [f64; MAX_CHANNEL_AXES],
     /// Inputs set from outside, with their cycle counts.
     log: std::collections::VecDeque<InputRecord>,
     /// The data changed since it was last handed to block preparation.
-    dirty: bool,
+    pub(super) dirty: bool,
     /// The workpiece coordinates of this cycle, once an action read `$AA_IW`.
-    wcs: std::cell::Cell<Option<[f64; MAX_CHANNEL_AXES]>>,
+    /// One cell per axis and a bit per axis computed (nothing copied whole for each read).
+    pub(super) wcs: [std::cell::Cell<f64>; MAX_CHANNEL_AXES],
+    pub(super) wcs_valid: std::cell::Cell<u32>,
+    /// The offsets whose frame's inverse `$AA_IW` uses, and that inverse (`None`: singular).
+    pub(super) frame_inverse: Option<(SharedOffsets, Option<[[f64; 3]; 3]>)>,
+    /// A block-modal action is in `active` (they are bound to their block each cycle).
+    block_modal: bool,
+    /// An action wrote `$AA_OVR` in this cycle.
+    pub(super) axis_ovr_written: bool,
+    /// When the data the conditions read changed, and the digital signals last seen.
+    pub(super) stamps: Stamps,
+    pub(super) io_seen: DigitalIo,
 }
 
 impl Default for SyncActions {
@@ -98,6 +105,12 @@ impl Default for SyncActions {
             log: Default::default(),
             dirty: false,
             wcs: Default::default(),
+            wcs_valid: Default::default(),
+            frame_inverse: None,
+            block_modal: false,
+            axis_ovr_written: false,
+            stamps: Stamps::default(),
+            io_seen: DigitalIo::default(),
         }
     }
 }
@@ -113,6 +126,10 @@ struct ActiveSync {
     locked: bool,
     /// Block-modal: the line of the motion block it belongs to, once that block runs.
     bound: Option<u32>,
+    /// The condition's value when last evaluated, and the data count then (0: not yet; see
+    /// `sync_eval.rs`): a condition whose inputs did not change since keeps its value.
+    cond: bool,
+    seen: u64,
 }
 
 /// A synchronized action as the state shows it.
@@ -151,6 +168,7 @@ impl SyncActions {
     /// Program end or reset: modal and block-modal actions end, static ones stay.
     pub fn end_program(&mut self) {
         self.active.retain(|a| matches!(a.def.id, Some(SyncId::Static(_))));
+        self.block_modal = false;
     }
 
     /// Makes `out` the list of the active actions (nothing allocated while there are none).
@@ -201,6 +219,7 @@ impl Channel {
             self.sync.analog_in[n - 1] = v;
         }
         self.sync.dirty = true;
+        self.note_analog_inputs();
         self.publish_sync_data();
         self.log_inputs(InputRecord { tick: self.tick, inputs: vec![], outputs: vec![], analog: inputs.to_vec() });
         Ok(())
@@ -247,6 +266,7 @@ impl Channel {
             *to = if v.is_finite() { *v } else { 0.0 };
         }
         self.sync.dirty = true;
+        self.note_analog_inputs();
         self.publish_sync_data();
     }
 
@@ -267,7 +287,7 @@ impl Channel {
     /// Main run: a synchronized action's block is reached.
     pub(super) fn activate_sync(&mut self, def: Arc<SyncDef>) {
         let line = def.line;
-        let new = ActiveSync { def, fired: false, was_true: false, locked: false, bound: None };
+        let new = ActiveSync { def, fired: false, was_true: false, locked: false, bound: None, cond: false, seen: 0 };
         let list = &mut self.sync.active;
         match new.def.id {
             Some(id) => {
@@ -276,7 +296,10 @@ impl Channel {
                 let at = list.iter().position(|a| a.def.id.is_none_or(|i| i.number() > n)).unwrap_or(list.len());
                 list.insert(at, new);
             }
-            None => list.push(new),
+            None => {
+                list.push(new);
+                self.sync.block_modal = true;
+            }
         }
         if self.sync.active.len() > MAX_ACTIVE {
             self.sync.active.pop();
@@ -299,7 +322,7 @@ impl Channel {
                     match op {
                         SyncControl::Lock => a.locked = true,
                         SyncControl::Unlock => a.locked = false,
-                        _ => (a.fired, a.was_true) = (false, false),
+                        _ => (a.fired, a.was_true, a.seen) = (false, false, 0),
                     }
                 }
             }
@@ -318,32 +341,43 @@ impl Channel {
     #[inline(never)]
     fn run_sync_cycle(&mut self) {
         let dt = self.cfg.ipo_cycle;
-        for t in self.sync.timers.iter_mut().flatten() {
-            *t += dt;
+        if self.sync.timing {
+            for t in self.sync.timers.iter_mut().flatten() {
+                *t += dt;
+            }
             self.sync.dirty = true;
+            self.sync.stamps.touch(1 << TIMER_BIT);
         }
         if self.sync.block != self.current_line {
             self.sync.block = self.current_line;
             self.sync.block_start = self.tick;
         }
         self.sync.ovr = 100.0;
-        self.sync.axis_ovr = [100.0; MAX_CHANNEL_AXES];
-        self.sync.wcs.set(None);
-        let running = self.in_planner.front().map(|(_, m)| m.line);
+        if self.sync.axis_ovr_written {
+            self.sync.axis_ovr = [100.0; MAX_CHANNEL_AXES];
+            self.sync.axis_ovr_written = false;
+        }
+        self.sync.wcs_valid.set(0);
+        self.refresh_frame_inverse();
+        self.note_io();
         let mut active = std::mem::take(&mut self.sync.active);
         // Block-modal actions: bound to the first motion block after them, gone after it.
-        active.retain_mut(|a| {
-            if a.def.id.is_some() {
-                return true;
-            }
-            match a.bound {
-                None => {
-                    a.bound = running.filter(|l| *l != a.def.line);
-                    true
+        if self.sync.block_modal {
+            let running = self.in_planner.front().map(|(_, m)| m.line);
+            active.retain_mut(|a| {
+                if a.def.id.is_some() {
+                    return true;
                 }
-                Some(l) => running == Some(l),
-            }
-        });
+                match a.bound {
+                    None => {
+                        a.bound = running.filter(|l| *l != a.def.line);
+                        true
+                    }
+                    Some(l) => running == Some(l),
+                }
+            });
+            self.sync.block_modal = active.iter().any(|a| a.def.id.is_none());
+        }
         let mut failed = None;
         for a in active.iter_mut() {
             if a.locked || a.def.id.is_none() && a.bound.is_none() {
@@ -365,7 +399,9 @@ impl Channel {
             self.raise(alarm);
             return;
         }
-        let factor = self.sync.ovr / 100.0 * self.sync.axis_ovr.iter().copied().fold(100.0, f64::min) / 100.0;
+        let axis =
+            if self.sync.axis_ovr_written { self.sync.axis_ovr.iter().copied().fold(100.0, f64::min) } else { 100.0 };
+        let factor = self.sync.ovr / 100.0 * axis / 100.0;
         if factor != 1.0 || self.sync.ovr_applied {
             let o = self.overrides;
             self.planner.set_overrides(o.feed * factor, o.rapid * factor);
@@ -377,12 +413,18 @@ impl Channel {
     fn run_sync(&mut self, a: &mut ActiveSync) -> Result<(), Fault> {
         // The list is out of `self` while it runs: its definitions are borrowed, not cloned.
         let def = &*a.def;
-        if def.trigger == Trigger::When && a.fired {
-            return Ok(());
-        }
-        let cond = match &def.condition {
-            Some(c) => self.sync_eval(c, def.line)? != 0.0,
-            None => true,
+        let cond = match (def.trigger, &def.flat_condition) {
+            (Trigger::When, _) if a.fired => return Ok(()),
+            // FROM: once it held the actions run in every cycle, the condition no longer checked.
+            (Trigger::From, _) if a.fired => true,
+            (_, None) => true,
+            (_, Some(c)) if c.volatile || self.sync.stamps.changed_since(c.deps, a.seen) => {
+                let seen = self.sync.stamps.now();
+                a.cond = flat::eval(c, self, def.line)? != 0.0;
+                a.seen = seen;
+                a.cond
+            }
+            (_, Some(_)) => a.cond,
         };
         let run = match def.trigger {
             Trigger::Always => true,
@@ -397,41 +439,23 @@ impl Channel {
             _ => a.fired || run,
         };
         if run {
-            for act in &def.actions {
+            for act in &def.flat_actions {
                 self.sync_act(act, def.line)?;
             }
         }
         Ok(())
     }
 
-    fn sync_act(&mut self, act: &SyncAct, line: u32) -> Result<(), Fault> {
-        match act {
-            SyncAct::Set(var, e) => {
-                let v = self.sync_eval(e, line)?;
-                self.sync_write(var, v, line)
-            }
-            SyncAct::Aux { letter, extension, value } => {
-                let value = self.sync_eval(value, line)?;
-                let function = AuxFunction { letter: *letter, extension: *extension, value };
-                self.events.push(Event::AuxFunction { function, line });
-                Ok(())
-            }
-            SyncAct::DelDtg => {
-                self.delete_distance_to_go();
-                Ok(())
-            }
-        }
-    }
-
     /// DELDTG: the block running ends here; `$AC_DELT` keeps the path distance it had left.
     /// The path stops in this cycle (NCTwin does not brake it); preparation waited for the
     /// main run after this block (see `interp/synchronized.rs`) and continues from here.
-    fn delete_distance_to_go(&mut self) {
+    pub(super) fn delete_distance_to_go(&mut self) {
         let Some((_, meta)) = self.in_planner.front() else { return };
         let line = meta.line;
         let left = self.planner.front().map_or(0.0, |m| m.length * (1.0 - self.planner.front_fraction()));
         self.sync.deleted = left;
         self.sync.dirty = true;
+        self.sync.stamps.touch(1 << DELT_BIT);
         self.planner.abort();
         self.in_planner.clear();
         while matches!(self.pending.front(), Some(Item::Move { line: l, .. }) if *l == line) {
@@ -440,181 +464,4 @@ impl Channel {
         let pos = *self.planner.position();
         self.interp.sync_position(&pos);
     }
-
-    fn sync_index(&self, e: &CExpr, name: &str, size: usize, first: usize, line: u32) -> Result<usize, Fault> {
-        // Most indices are written as whole numbers: no rounding call for them.
-        let v = match e {
-            CExpr::Num(v) => *v,
-            e => self.sync_eval(e, line)?,
-        };
-        let n = if v.fract() == 0.0 { v } else { v.round() };
-        if v.is_finite() && n >= first as f64 && n < (size + first) as f64 {
-            Ok(n as usize - first)
-        } else {
-            Err(Box::new(Alarm::index_error(line, name, &format!("{v} ({first}..{})", size + first - 1))))
-        }
-    }
-
-    fn sync_write(&mut self, var: &SyncVar, v: f64, line: u32) -> Result<(), Fault> {
-        self.sync.dirty |=
-            matches!(var, SyncVar::AcTimer(_) | SyncVar::AcMarker(_) | SyncVar::AcParam(_) | SyncVar::AOuta(_));
-        match var {
-            SyncVar::AcOvr => self.sync.ovr = v.clamp(0.0, 200.0),
-            SyncVar::AaOvr(k) => self.sync.axis_ovr[*k] = v.clamp(0.0, 200.0),
-            SyncVar::AcTimer(i) => {
-                let i = self.sync_index(i, "$AC_TIMER", TIMERS, 0, line)?;
-                // A value of 0 or more starts the timer from there, a negative one stops it.
-                self.sync.timers[i] = (v >= 0.0).then_some(v);
-                self.sync.timing = self.sync.timers.iter().any(Option::is_some);
-            }
-            SyncVar::AcMarker(i) => {
-                let i = self.sync_index(i, "$AC_MARKER", MARKERS, 0, line)?;
-                // Markers are INT: a REAL assigned is rounded.
-                self.sync.markers[i] = v.round();
-            }
-            SyncVar::AcParam(i) => {
-                let i = self.sync_index(i, "$AC_PARAM", PARAMS, 0, line)?;
-                self.sync.params[i] = v;
-            }
-            SyncVar::R(i) => {
-                let n = self.sync_eval(i, line)?;
-                if !(n >= 0.0 && self.interp.write_r_param(n.round() as usize, v)) {
-                    return Err(Box::new(Alarm::index_error(line, "$R", &format!("{n}"))));
-                }
-            }
-            SyncVar::AOut(i) => {
-                let n = self.sync_index(i, "$A_OUT", crate::interp::io::DIGITAL_IO, 1, line)? + 1;
-                let on = v != 0.0;
-                if self.io.output(n) != Some(on) {
-                    self.execute_digital_output(n, on, line);
-                }
-            }
-            SyncVar::AOuta(i) => {
-                let i = self.sync_index(i, "$A_OUTA", ANALOG_IO, 1, line)?;
-                self.sync.analog_out[i] = v;
-            }
-            _ => return Err(Box::new(Alarm::write_protected(line, "synchronized action variable"))),
-        }
-        Ok(())
-    }
-
-    /// The value of a compiled expression in this cycle (booleans 1/0).
-    fn sync_eval(&self, e: &CExpr, line: u32) -> Result<f64, Fault> {
-        Ok(match e {
-            CExpr::Num(v) => *v,
-            CExpr::Var(v) => self.sync_read(v, line)?,
-            CExpr::Neg(x) => -self.sync_eval(x, line)?,
-            CExpr::Not(x) => f64::from(self.sync_eval(x, line)? == 0.0),
-            CExpr::Bin(op, a, b) => {
-                let (a, b) = (self.sync_eval(a, line)?, self.sync_eval(b, line)?);
-                match op {
-                    BinOp::Add => a + b,
-                    BinOp::Sub => a - b,
-                    BinOp::Mul => a * b,
-                    BinOp::Div | BinOp::IntDiv | BinOp::Mod if b == 0.0 => {
-                        return Err(Box::new(Alarm::arithmetic(line, "division by zero in a synchronized action")));
-                    }
-                    BinOp::Div => a / b,
-                    BinOp::IntDiv => (a / b).trunc(),
-                    BinOp::Mod => a % b,
-                    BinOp::And => f64::from(a != 0.0 && b != 0.0),
-                    BinOp::Or => f64::from(a != 0.0 || b != 0.0),
-                    BinOp::Xor => f64::from((a != 0.0) != (b != 0.0)),
-                    // REAL comparisons on the control are within 1e-12 relative (MD10280).
-                    BinOp::Eq => f64::from(same(a, b)),
-                    BinOp::Ne => f64::from(!same(a, b)),
-                    BinOp::Lt => f64::from(a < b && !same(a, b)),
-                    BinOp::Gt => f64::from(a > b && !same(a, b)),
-                    BinOp::Le => f64::from(a <= b || same(a, b)),
-                    BinOp::Ge => f64::from(a >= b || same(a, b)),
-                }
-            }
-            CExpr::Func(f, args) => {
-                let x = self.sync_eval(&args[0], line)?;
-                let y = || args.get(1).map_or(Ok(0.0), |a| self.sync_eval(a, line));
-                let v = match f {
-                    Func::Sin => x.to_radians().sin(),
-                    Func::Cos => x.to_radians().cos(),
-                    Func::Tan => x.to_radians().tan(),
-                    Func::Asin => x.asin().to_degrees(),
-                    Func::Acos => x.acos().to_degrees(),
-                    Func::Atan2 => x.atan2(y()?).to_degrees(),
-                    Func::Sqrt => x.sqrt(),
-                    Func::Abs => x.abs(),
-                    Func::Pot => x * x,
-                    Func::Trunc => x.trunc(),
-                    Func::Round => x.round(),
-                    Func::Ln => x.ln(),
-                    Func::Exp => x.exp(),
-                    Func::MinVal => x.min(y()?),
-                    Func::MaxVal => x.max(y()?),
-                };
-                if !v.is_finite() {
-                    return Err(Box::new(Alarm::arithmetic(line, "a function's argument outside its domain")));
-                }
-                v
-            }
-        })
-    }
-
-    fn sync_read(&self, var: &SyncVar, line: u32) -> Result<f64, Fault> {
-        let dt = self.cfg.ipo_cycle;
-        Ok(match var {
-            SyncVar::AaIm(k) => self.actual_position(*k),
-            SyncVar::AaIpo(k) => self.machine[*k],
-            SyncVar::AaIw(k) => {
-                if let Some(w) = self.sync.wcs.get() {
-                    return Ok(w[*k]);
-                }
-                let mut basic = [0.0; MAX_CHANNEL_AXES];
-                for (i, b) in basic.iter_mut().enumerate().take(self.cfg.channel_axes.len()) {
-                    *b = self.actual_position(i) - self.offsets.tool[i];
-                }
-                let w = self.offsets.frame.unapply(&self.cfg.geo_axes, &basic).unwrap_or([f64::NAN; MAX_CHANNEL_AXES]);
-                self.sync.wcs.set(Some(w));
-                w[*k]
-            }
-            SyncVar::AaVactm(k) => (self.machine[*k] - self.sync.prev_setpoint[*k]) / dt * 60.0,
-            SyncVar::AaOvr(k) => self.sync.axis_ovr[*k],
-            SyncVar::AcTime => (self.tick - self.sync.block_start) as f64 * dt,
-            SyncVar::AcPath => self.planner.front().map_or(0.0, |m| m.length * self.planner.front_fraction()),
-            SyncVar::AcDteb => self.planner.front().map_or(0.0, |m| m.length * (1.0 - self.planner.front_fraction())),
-            SyncVar::AcVactb => self.planner.velocity() * 60.0,
-            SyncVar::AcOvr => self.sync.ovr,
-            SyncVar::AcDelt => self.sync.deleted,
-            SyncVar::AcTimer(i) => self.sync.timers[self.sync_index(i, "$AC_TIMER", TIMERS, 0, line)?].unwrap_or(0.0),
-            SyncVar::AcMarker(i) => self.sync.markers[self.sync_index(i, "$AC_MARKER", MARKERS, 0, line)?],
-            SyncVar::AcParam(i) => self.sync.params[self.sync_index(i, "$AC_PARAM", PARAMS, 0, line)?],
-            SyncVar::R(i) => {
-                let n = self.sync_eval(i, line)?;
-                let r = &self.interp.variables().r;
-                *r.get(n.round().max(0.0) as usize)
-                    .filter(|_| n >= 0.0)
-                    .ok_or_else(|| Alarm::index_error(line, "$R", &format!("{n}")))?
-            }
-            SyncVar::AIn(i) => {
-                let n = self.sync_index(i, "$A_IN", crate::interp::io::DIGITAL_IO, 1, line)? + 1;
-                f64::from(u8::from(self.io.input(n).unwrap_or(false)))
-            }
-            SyncVar::AOut(i) => {
-                let n = self.sync_index(i, "$A_OUT", crate::interp::io::DIGITAL_IO, 1, line)? + 1;
-                f64::from(u8::from(self.io.output(n).unwrap_or(false)))
-            }
-            SyncVar::AIna(i) => self.sync.analog_in[self.sync_index(i, "$A_INA", ANALOG_IO, 1, line)?],
-            SyncVar::AOuta(i) => self.sync.analog_out[self.sync_index(i, "$A_OUTA", ANALOG_IO, 1, line)?],
-            SyncVar::AaS(i) => {
-                let n = self.sync_index(i, "$AA_S", self.spindles.len().max(1), 1, line)?;
-                self.spindles.get(n).map_or(0.0, |s| s.speed)
-            }
-        })
-    }
-}
-
-/// An alarm of the main run's evaluation, boxed: the evaluator's results stay two words wide,
-/// which keeps the IPO cycle's recursion cheap.
-type Fault = Box<Alarm>;
-
-/// Equal within the control's relative tolerance for REAL comparisons.
-fn same(a: f64, b: f64) -> bool {
-    a == b || (a - b).abs() <= 1e-12 * a.abs().max(b.abs())
 }

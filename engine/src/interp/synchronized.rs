@@ -8,6 +8,7 @@
 //! must start where the path was stopped, which only the main run knows.
 
 pub mod compile;
+pub mod flat;
 
 use std::sync::Arc;
 

@@ -221,7 +221,17 @@ impl Frame {
     /// Maps a point from parent back to child coordinates; `None` if the frame is singular
     /// (a scale factor of zero).
     pub fn unapply(&self, geo: &GeoAxes, p: &AxisVec) -> Option<AxisVec> {
-        let inv = invert3(&self.lin)?;
+        self.unapply_inverted(&self.linear_inverse()?, geo, p)
+    }
+
+    /// The inverse of the rotation and scale part, `None` if singular: kept by callers that
+    /// map many points back through one frame ([`Frame::unapply_inverted`]).
+    pub fn linear_inverse(&self) -> Option<[[f64; 3]; 3]> {
+        invert3(&self.lin)
+    }
+
+    /// [`Frame::unapply`] with the inverse of [`Frame::linear_inverse`] computed once.
+    pub fn unapply_inverted(&self, inv: &[[f64; 3]; 3], geo: &GeoAxes, p: &AxisVec) -> Option<AxisVec> {
         let mut out = *p;
         for k in 0..MAX_CHANNEL_AXES {
             if self.factor[k] == 0.0 {

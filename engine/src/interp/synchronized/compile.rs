@@ -8,6 +8,7 @@
 //! synchronized action may read but not write, 12571 for an action not admissible (or not
 //! modelled) in a synchronized action.
 
+use super::flat::{Act, Code};
 use crate::alarm::{Alarm, Clear};
 use crate::lang::sync_action::{BinOp, Index, SAction, SExpr, SyncAction, SyncId, Trigger, VarRef};
 use crate::machine_data::MachineConfig;
@@ -23,6 +24,9 @@ pub struct SyncDef {
     pub condition_text: String,
     /// The line that defined it.
     pub line: u32,
+    /// The condition and the actions in the flat form the main run evaluates (`flat.rs`).
+    pub flat_condition: Option<Code>,
+    pub flat_actions: Vec<Act>,
 }
 
 impl SyncDef {
@@ -116,7 +120,9 @@ pub fn compile(action: &SyncAction, cfg: &MachineConfig, line: u32) -> Result<Sy
     // G70/G700 in the condition: its lengths are read in inch (the basic system is metric).
     let inch = matches!(action.units, Some(70 | 700));
     let condition = action.condition.as_ref().map(|e| c.expr(e, inch)).transpose()?;
-    let actions = action.actions.iter().map(|a| c.action(a)).collect::<Result<_, _>>()?;
+    let actions: Vec<SyncAct> = action.actions.iter().map(|a| c.action(a)).collect::<Result<_, _>>()?;
+    let flat_condition = condition.as_ref().map(super::flat::lower);
+    let flat_actions = actions.iter().map(super::flat::lower_act).collect();
     Ok(SyncDef {
         id: action.id,
         trigger: action.trigger,
@@ -124,6 +130,8 @@ pub fn compile(action: &SyncAction, cfg: &MachineConfig, line: u32) -> Result<Sy
         actions,
         condition_text: action.condition_text.clone(),
         line,
+        flat_condition,
+        flat_actions,
     })
 }
 
