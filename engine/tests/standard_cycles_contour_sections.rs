@@ -3,55 +3,20 @@
 //! subprogram, so the cycle cuts the same path as with the subprogram, and the roughing levels
 //! and the finished contour are the ones worked out by hand for the shaft below.
 
-use nctwin_engine::Channel;
-use nctwin_engine::alarm::Alarm;
+mod turning_support;
 
-const MAX_TICKS: usize = 5_000_000;
+use turning_support::{Trace, close, run_lathe, shaft_radius};
 
-struct Trace {
-    /// WCS (X radius, Z) of every IPO cycle.
-    samples: Vec<[f64; 2]>,
-    alarms: Vec<Alarm>,
-}
-
+/// Runs `main` on the 2-axis lathe with a tool without nose radius (the theoretical tip is
+/// guided on the contour) and keeps the samples from the arrival at the approach point X30 Z10.
 fn run(main: &str, subs: &[(&str, &str)]) -> Trace {
-    // A tool without nose radius: the theoretical tip is guided on the contour.
-    let mut ch = Channel::from_preset("lathe-2axis", "$TC_DP6[1,1]=0\n").unwrap();
-    for (name, text) in subs {
-        ch.store_program(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
-    }
-    ch.run_program(main).unwrap_or_else(|e| panic!("not started: {e}"));
-    let mut samples: Vec<[f64; 2]> = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        let s = ch.snapshot();
-        let get = |n: &str| s.workpiece.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
-        samples.push([get("X"), get("Z")]);
-        assert!(samples.len() < MAX_TICKS, "program does not end");
-    }
-    // The cycle's samples: from the arrival at the approach point X30 Z10 on.
-    let from = samples.iter().position(|s| close(s[0], 30.0, 1e-9) && close(s[1], 10.0, 1e-9)).unwrap_or(0);
-    Trace { samples: samples.split_off(from), alarms: ch.snapshot().alarms }
-}
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol
+    run_lathe("$TC_DP6[1,1]=0\n", main, subs).after_reaching(30.0, 10.0)
 }
 
 /// The shaft: X10 from Z0 to Z-20, a fillet R5 (centre Z-20 X15) to Z-25, the shoulder up to
 /// X20, a taper to X25 at Z-40.
 const CONTOUR: &str = "G1 X10 Z0\nG1 Z-20\nG2 X15 Z-25 CR=5\nG1 X20\n";
 const LAST: &str = "G1 X25 Z-40\n";
-
-fn shaft_radius(z: f64) -> f64 {
-    if z >= -20.0 {
-        10.0
-    } else if z >= -25.0 {
-        15.0 - (25.0 - (z + 20.0) * (z + 20.0)).max(0.0).sqrt()
-    } else {
-        20.0 + (-25.0 - z) / 15.0 * 5.0
-    }
-}
 
 const SETUP: &str = "G18 G90 G94\nT1 D1\nS800 M3\nG0 X30 Z10\n";
 const CALL_ARGS: &str = "2,0.2,0.1,0,300,0,100,9,0,0,0)";
@@ -93,9 +58,9 @@ fn cycle95_section_form_roughs_in_levels_and_finishes_on_the_contour() {
     let mut levels: Vec<f64> = Vec::new();
     for w in t.samples.windows(2) {
         // A roughing cut leaves Z in front of the part (0 < Z <= 1.2) along -Z at one X.
-        let cut = close(w[0][0], w[1][0], 1e-12) && w[1][1] < w[0][1] - 1e-9 && w[0][1] > 0.0 && w[0][1] < 1.2 + 1e-9;
-        if cut && w[0][0] > 10.05 && levels.last().is_none_or(|l| !close(*l, w[0][0], 1e-9)) {
-            levels.push(w[0][0]);
+        let cut = close(w[0].x, w[1].x, 1e-12) && w[1].z < w[0].z - 1e-9 && w[0].z > 0.0 && w[0].z < 1.2 + 1e-9;
+        if cut && w[0].x > 10.05 && levels.last().is_none_or(|l| !close(*l, w[0].x, 1e-9)) {
+            levels.push(w[0].x);
         }
     }
     let want: Vec<f64> = (1..=8).map(|k| 25.0 - k as f64 * 1.8625).collect();
@@ -103,12 +68,12 @@ fn cycle95_section_form_roughs_in_levels_and_finishes_on_the_contour() {
     assert!(levels.iter().zip(&want).all(|(a, b)| close(*a, *b, 1e-6)), "{levels:?}");
     // The finished contour: every sample at the contour's height or outside it, and the
     // finishing pass reaches the contour's end.
-    for s in t.samples.iter().filter(|s| s[1] <= 0.0 && s[1] >= -40.0) {
-        let on_shoulder = close(s[1], -25.0, 1e-6) && s[0] >= 15.0 - 1e-6;
-        assert!(on_shoulder || s[0] >= shaft_radius(s[1]) - 1e-6, "inside the part at {s:?}");
+    for s in t.samples.iter().filter(|s| s.z <= 0.0 && s.z >= -40.0) {
+        let on_shoulder = close(s.z, -25.0, 1e-6) && s.x >= 15.0 - 1e-6;
+        assert!(on_shoulder || s.x >= shaft_radius(s.z) - 1e-6, "inside the part at {s:?}");
     }
-    assert!(t.samples.iter().any(|s| close(s[1], -40.0, 1e-9) && close(s[0], 25.0, 1e-9)));
-    assert!(t.samples.iter().filter(|s| s[1] < -1.0 && close(s[0], shaft_radius(s[1]), 1e-6)).count() > 100);
+    assert!(t.samples.iter().any(|s| close(s.z, -40.0, 1e-9) && close(s.x, 25.0, 1e-9)));
+    assert!(t.samples.iter().filter(|s| s.z < -1.0 && close(s.x, shaft_radius(s.z), 1e-6)).count() > 100);
 }
 
 #[test]

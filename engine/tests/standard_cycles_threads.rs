@@ -3,83 +3,22 @@
 //! documented parameter list (PO1..PO4, DM1..DM4, APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID,
 //! PP1..PP3, VARI, NUMTH, _VRT).
 
-use nctwin_engine::Channel;
-use nctwin_engine::alarm::Alarm;
+mod turning_support;
 
-const MAX_TICKS: usize = 5_000_000;
+use turning_support::{Sample, Trace, close, run_lathe, unwrapped};
 
-/// One IPO cycle: simulated time, WCS X (radius), WCS Z and the spindle's machine angle.
-#[derive(Clone, Copy, Debug)]
-struct Sample {
-    t: f64,
-    x: f64,
-    z: f64,
-    sp: f64,
-}
-
-struct Trace {
-    samples: Vec<Sample>,
-    alarms: Vec<Alarm>,
-}
-
+/// Runs `main` on the 2-axis lathe and keeps the cycle's samples: from the tool's arrival at
+/// the approach point (X30 Z10) on.
 fn run(main: &str) -> Trace {
-    let mut ch = Channel::from_preset("lathe-2axis", "").unwrap();
-    ch.run_program(main).unwrap_or_else(|e| panic!("not started: {e}"));
-    let mut samples = vec![sample(&ch)];
-    while ch.is_busy() {
-        ch.step();
-        samples.push(sample(&ch));
-        assert!(samples.len() < MAX_TICKS, "program does not end");
-    }
-    // The cycle's samples: from the tool's arrival at the approach point (X30 Z10) on.
-    let from = samples.iter().position(|s| close(s.x, 30.0, 1e-9) && close(s.z, 10.0, 1e-9)).unwrap_or(0);
-    Trace { samples: samples[from..].to_vec(), alarms: ch.snapshot().alarms }
+    run_lathe("", main, &[]).after_reaching(30.0, 10.0)
 }
 
 fn run_clean(main: &str) -> Trace {
-    let t = run(main);
-    assert!(t.alarms.is_empty(), "alarms: {:?}", t.alarms);
-    t
+    run(main).clean()
 }
 
-fn sample(ch: &Channel) -> Sample {
-    let s = ch.snapshot();
-    let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
-    Sample { t: s.time, x: get(&s.workpiece, "X"), z: get(&s.workpiece, "Z"), sp: get(&s.machine, "SP1") }
-}
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol
-}
-
-/// The runs of samples below `surface(z)` (cutting) with Z inside (lo, hi).
 fn passes(t: &Trace, surface: impl Fn(f64) -> f64, lo: f64, hi: f64) -> Vec<Vec<Sample>> {
-    let mut out: Vec<Vec<Sample>> = Vec::new();
-    let mut open = false;
-    for s in &t.samples {
-        let cutting = s.x < surface(s.z) - 1e-6 && s.z > lo && s.z < hi;
-        if cutting && !open {
-            out.push(Vec::new());
-        }
-        if cutting {
-            out.last_mut().unwrap().push(*s);
-        }
-        open = cutting;
-    }
-    out
-}
-
-/// The spindle's angle unwrapped along the samples (SP1 is a modulo axis turning forward).
-fn unwrapped(samples: &[Sample]) -> Vec<f64> {
-    let mut turns = 0.0;
-    let mut out: Vec<f64> = Vec::new();
-    for (i, s) in samples.iter().enumerate() {
-        if i > 0 && s.sp < samples[i - 1].sp - 180.0 {
-            turns += 360.0;
-        }
-        out.push(s.sp + turns);
-    }
-    out
+    t.passes(surface, lo, hi)
 }
 
 /// The Z travel per spindle revolution between every two samples with Z in (lo, hi).
@@ -200,20 +139,13 @@ fn cycle98_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
 
 /// The machine X (always a radius) and Z of every IPO cycle, consecutive repeats merged.
 fn machine_path(main: &str) -> Vec<(f64, f64)> {
-    let mut ch = Channel::from_preset("lathe-2axis", "").unwrap();
-    ch.run_program(main).unwrap_or_else(|e| panic!("not started: {e}"));
+    let t = run_lathe("", main, &[]).clean();
     let mut points: Vec<(f64, f64)> = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        let s = ch.snapshot();
-        let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
-        let p = (get(&s.machine, "X1"), get(&s.workpiece, "Z"));
+    for p in t.samples.iter().skip(1).map(|s| (s.mx, s.z)) {
         if points.last().is_none_or(|q| !close(q.0, p.0, 1e-12) || !close(q.1, p.1, 1e-12)) {
             points.push(p);
         }
-        assert!(points.len() < MAX_TICKS, "program does not end");
     }
-    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
     points
 }
 

@@ -3,89 +3,39 @@
 //! radius, DIAMOF): groove bases and flanks, undercut profiles and thread cuts worked out by
 //! hand from the documented parameter lists in each test's comments.
 
-use nctwin_engine::Channel;
-use nctwin_engine::alarm::Alarm;
+mod turning_support;
 
-const MAX_TICKS: usize = 5_000_000;
+use turning_support::{Sample, Trace, close, run_lathe, shaft_radius, unwrapped};
 
-/// One IPO cycle: simulated time, WCS X (radius), WCS Z and the spindle's machine angle
-/// (degrees).
-#[derive(Clone, Copy, Debug)]
-struct Sample {
-    t: f64,
-    x: f64,
-    z: f64,
-    sp: f64,
-    /// Machine X (the radius, whatever the programming mode).
-    mx: f64,
-}
-
-struct Trace {
-    samples: Vec<Sample>,
-    alarms: Vec<Alarm>,
-    /// R1..R6 at the end.
-    r: Vec<f64>,
-}
-
-/// Runs `main` on the 2-axis lathe with the machine data `md` added (tool data) and records
-/// every IPO cycle until the channel rests.
+/// Runs `main` on the 2-axis lathe with the machine data `md` added (tool data).
 fn run(md: &str, main: &str) -> Trace {
-    run_with(md, main, &[])
+    run_lathe(md, main, &[])
 }
 
 /// [`run`] with subprograms `subs` (name, text) stored first.
 fn run_with(md: &str, main: &str, subs: &[(&str, &str)]) -> Trace {
-    let mut ch = Channel::from_preset("lathe-2axis", md).unwrap();
-    for (name, text) in subs {
-        ch.store_program(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
-    }
-    ch.run_program(main).unwrap_or_else(|e| panic!("not started: {e}"));
-    let mut samples = vec![sample(&ch)];
-    while ch.is_busy() {
-        ch.step();
-        samples.push(sample(&ch));
-        assert!(samples.len() < MAX_TICKS, "program does not end");
-    }
-    let r = (1..=6).map(|i| ch.r_param(i)).collect();
-    Trace { samples, alarms: ch.snapshot().alarms, r }
+    run_lathe(md, main, subs)
 }
 
 fn run_clean(md: &str, main: &str) -> Trace {
-    let t = run(md, main);
-    assert!(t.alarms.is_empty(), "alarms: {:?}", t.alarms);
-    t
+    run(md, main).clean()
 }
 
 /// The samples from the tool's arrival at the approach point on: the program's last
-/// `G0 X.. Z..` block before the cycle's call (the snapshot's block line runs ahead of the
-/// motion, so the samples are cut by position).
+/// `G0 X.. Z..` block before the cycle's call.
 fn cycle(t: &Trace, main: &str) -> Trace {
     let approach = main.lines().rfind(|l| l.starts_with("G0 X")).expect("an approach block");
     let words: Vec<f64> = approach[3..].split(' ').map(|w| w[1..].parse().unwrap()).collect();
-    let from = t.samples.iter().position(|s| close(s.x, words[0], 1e-9) && close(s.z, words[1], 1e-9));
-    let from = from.expect("reaches the approach point");
-    Trace { samples: t.samples[from..].to_vec(), alarms: t.alarms.clone(), r: t.r.clone() }
+    assert!(
+        t.samples.iter().any(|s| close(s.x, words[0], 1e-9) && close(s.z, words[1], 1e-9)),
+        "reaches the approach point"
+    );
+    Trace { samples: t.samples.clone(), alarms: t.alarms.clone(), r: t.r.clone() }.after_reaching(words[0], words[1])
 }
 
 /// Runs `main` without alarms and keeps the samples of the cycle.
 fn run_clean_cycle(md: &str, main: &str) -> Trace {
     cycle(&run_clean(md, main), main)
-}
-
-fn sample(ch: &Channel) -> Sample {
-    let s = ch.snapshot();
-    let get = |l: &[(String, f64)], n: &str| l.iter().find(|(a, _)| a == n).map_or(f64::NAN, |a| a.1);
-    Sample {
-        t: s.time,
-        x: get(&s.workpiece, "X"),
-        z: get(&s.workpiece, "Z"),
-        sp: get(&s.machine, "SP1"),
-        mx: get(&s.machine, "X1"),
-    }
-}
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol
 }
 
 /// The values where `f` of the samples reverses direction (or starts or ends), consecutive
@@ -219,35 +169,9 @@ fn cycle93_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
     }
 }
 
-/// One G33 pass of a thread: the samples while the tool stands below the surface radius
-/// `surface` and within `(lo, hi)` along Z, consecutive.
+/// The runs of samples below the radius `surface` (cutting) with Z inside (lo, hi).
 fn passes(t: &Trace, surface: f64, lo: f64, hi: f64) -> Vec<Vec<Sample>> {
-    let mut out: Vec<Vec<Sample>> = Vec::new();
-    let mut open = false;
-    for s in &t.samples {
-        let cutting = s.x < surface - 1e-6 && s.z > lo && s.z < hi;
-        if cutting && !open {
-            out.push(Vec::new());
-        }
-        if cutting {
-            out.last_mut().unwrap().push(*s);
-        }
-        open = cutting;
-    }
-    out
-}
-
-/// The spindle's angle unwrapped along the samples (SP1 is a modulo axis turning forward).
-fn unwrapped(samples: &[Sample]) -> Vec<f64> {
-    let mut turns = 0.0;
-    let mut out: Vec<f64> = Vec::new();
-    for (i, s) in samples.iter().enumerate() {
-        if i > 0 && s.sp < samples[i - 1].sp - 180.0 {
-            turns += 360.0;
-        }
-        out.push(s.sp + turns);
-    }
-    out
+    t.passes(|_| surface, lo, hi)
 }
 
 const THREAD: &str = "G18 G90 G95 F0.2\nT1 D1\nS300 M3\nG4 F1\nG0 X20 Z10\n";
@@ -542,19 +466,6 @@ fn contour_capture_records_the_elements_in_the_plane_and_nothing_moves() {
     assert_eq!(t.r, vec![5.0, 2.0, -20.0, 15.0, -40.0, 10.0]);
     let from = t.samples.iter().position(|s| close(s.x, 30.0, 1e-9) && close(s.z, 10.0, 1e-9)).unwrap();
     assert!(t.samples[from..].iter().all(|s| close(s.z, 10.0, 1e-9) && s.x >= 30.0 - 1e-9));
-}
-
-/// The finished shaft of [`SHAFT`]: its radius at `z` (0 >= z >= -40), worked out from the
-/// blocks: X10 to Z-20, the fillet R5 about Z-20 X15 to Z-25, the shoulder to X20 at Z-25,
-/// the taper to X25 at Z-40. At the shoulder the lower value (the face is reached from +Z).
-fn shaft_radius(z: f64) -> f64 {
-    if z >= -20.0 {
-        10.0
-    } else if z >= -25.0 {
-        15.0 - (25.0 - (z + 20.0) * (z + 20.0)).max(0.0).sqrt()
-    } else {
-        20.0 + (-25.0 - z) / 15.0 * 5.0
-    }
 }
 
 #[test]

@@ -137,7 +137,7 @@ fn rnd_between_a_line_and_an_arc_is_compensated_on_the_rounded_contour() {
         |p: (f64, f64)| trc_support::seg_dist(p, (0.0, 0.0), (c.0, 0.0)).min(on_round(p)).min(on_arc(p)).min(ends(p));
     // Up to the end of the arc's equidistant (45,0): the G40 block then travels uncompensated
     // to its end point and may pass the contour's end closer than the radius.
-    let run = trc_support::from_point(&samples, -20.0, -20.0);
+    let run = trc_support::after_reaching(&samples, -20.0, -20.0);
     let end = run.iter().rposition(|p| (p[0] - 45.0).abs() < 1e-9 && p[1].abs() < 1e-9).expect("arc end");
     for s in &run[..=end] {
         assert!(dist((s[0], s[1])) > 5.0 - 1e-6, "{s:?} closer than the radius to the rounded contour");

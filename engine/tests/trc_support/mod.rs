@@ -67,7 +67,7 @@ pub fn first_gouge(samples: &[Vec<f64>], pts: &[(f64, f64)], r: f64) -> Option<V
 }
 
 /// The samples from the first one at (x, y) on (the program's first position).
-pub fn from_point(samples: &[Vec<f64>], x: f64, y: f64) -> &[Vec<f64>] {
+pub fn after_reaching(samples: &[Vec<f64>], x: f64, y: f64) -> &[Vec<f64>] {
     let i = samples.iter().position(|p| (p[0] - x).abs() < 1e-9 && (p[1] - y).abs() < 1e-9).expect("reached");
     &samples[i..]
 }
