@@ -38,7 +38,7 @@ async fn an_archive_stores_each_program_under_its_name_and_the_main_program_call
         json!({
             "programs": [
                 {"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "type": "MPF", "directory": "/_N_WKS_DIR/_N_FLANGE_WPD", "size": 54},
-                {"name": "/_N_SPF_DIR/POCKET", "type": "SPF", "directory": "/_N_SPF_DIR", "size": 21},
+                {"name": "POCKET", "type": "SPF", "directory": "/_N_SPF_DIR", "size": 21},
             ],
             "nc_data": [{"name": "TOA_INI", "line": 12}],
             "skipped": [],
@@ -46,10 +46,7 @@ async fn an_archive_stores_each_program_under_its_name_and_the_main_program_call
     );
     // Listed with their directories.
     let list = server.get(&format!("/sessions/{id}/programs")).await.body;
-    assert_eq!(
-        list,
-        json!([{"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "size": 54}, {"name": "/_N_SPF_DIR/POCKET", "size": 21}])
-    );
+    assert_eq!(list, json!([{"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "size": 54}, {"name": "POCKET", "size": 21}]));
     let flange = server.get(&format!("/sessions/{id}/programs/FLANGE")).await.body;
     assert_eq!(flange["text"], "; Фланец, Außenkontur\r\nG0 X10 Y5\r\nPOCKET\r\nM30\r\n");
     // X10, then POCKET moves 7 more. FLANGE lives in its workpiece folder: a run outside every
@@ -187,18 +184,16 @@ async fn programs_keep_their_directories_across_a_restart() {
     let dir = server.stop().await;
     let server = Server::start_config(nctwin_server::Config::new(dir, common::WEB_DIR)).await;
     let list = server.get(&format!("/sessions/{id}/programs")).await.body;
-    assert_eq!(
-        list,
-        json!([{"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "size": 54}, {"name": "/_N_SPF_DIR/POCKET", "size": 21}])
-    );
+    assert_eq!(list, json!([{"name": "/_N_WKS_DIR/_N_FLANGE_WPD/FLANGE", "size": 54}, {"name": "POCKET", "size": 21}]));
     // The stored name reads back (the path URL-encoded), and the export keeps the folder.
     let flange = server.get(&format!("/sessions/{id}/programs/%2F_N_WKS_DIR%2F_N_FLANGE_WPD%2FFLANGE")).await;
     assert_eq!(flange.status, StatusCode::OK, "{}", flange.body);
     assert_eq!(flange.body["text"], "; Фланец, Außenkontur\r\nG0 X10 Y5\r\nPOCKET\r\nM30\r\n");
     let (_, text) = export(&server, &id).await;
     assert!(text.starts_with("%_N_FLANGE_MPF\n;$PATH=/_N_WKS_DIR/_N_FLANGE_WPD\n"), "{text}");
-    // Deleting by the stored name removes that one program.
-    let url = server.url(&format!("/sessions/{id}/programs/%2F_N_SPF_DIR%2FPOCKET"));
+    // Deleting by the stored name removes that one program (the subprogram directory's
+    // programs are the session's flat store: their stored name is the bare name).
+    let url = server.url(&format!("/sessions/{id}/programs/POCKET"));
     let deleted = server.client.delete(url).send().await.expect("sent").status();
     assert_eq!(deleted, StatusCode::NO_CONTENT);
     let list = server.get(&format!("/sessions/{id}/programs")).await.body;

@@ -92,8 +92,10 @@ pub async fn import_archive(
                 e.line, e.name
             ))
         })?;
-        // Stored with its directory when the archive names one.
-        let name = qualified_name(e.dir.as_ref(), &name);
+        // Stored with its directory when the archive names one other than the part-program and
+        // subprogram directories: the session's flat store stands for those two (the control
+        // finds their programs by name), so `UPMAIN` stays `UPMAIN`.
+        let name = qualified_name(e.dir.as_ref().filter(|d| !matches!(d, Dir::Mpf | Dir::Spf)), &name);
         if programs.iter().any(|(p, _)| p.name == name) {
             return Err(bad(format!(
                 "archive line {}: a second program {name}: the session keeps one program per name and directory",
