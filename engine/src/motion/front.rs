@@ -151,6 +151,7 @@ impl FrontMove {
 
     /// The moving axes' positions at parameter `u` (0 ≤ u < 1) into `out`: [`Path::at`]'s
     /// arithmetic (bit for bit on a line), with the arc's angle stepped.
+    #[inline]
     pub(super) fn position(&mut self, u: f64, out: &mut AxisVec) {
         let m = &self.moving;
         let n = m.len;
