@@ -38,6 +38,7 @@ use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, OriPath, Path};
 use calls::CallFrame;
 pub use calls::{Level, Programs};
+pub(crate) use compensation::cutting_edge::edge_direction;
 pub use contour::corners::Corner;
 use eval::scope::sys_view;
 use eval::vars::Variables;

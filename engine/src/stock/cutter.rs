@@ -48,17 +48,8 @@ impl Cutter {
         let radius = (dp(6) + dp(15)).max(0.0);
         let kind = match tool_type {
             500..=599 => {
-                let (sz, sx) = match dp(2).round() as i64 {
-                    1 => (1.0, 1.0),
-                    2 => (-1.0, 1.0),
-                    3 => (-1.0, -1.0),
-                    4 => (1.0, -1.0),
-                    5 => (1.0, 0.0),
-                    6 => (0.0, 1.0),
-                    7 => (-1.0, 0.0),
-                    8 => (0.0, -1.0),
-                    _ => (0.0, 0.0),
-                };
+                // G18: the plane's abscissa is Z, its ordinate X.
+                let (sz, sx) = crate::interp::edge_direction(dp(2));
                 Kind::Turning { centre: [-radius * sz, -radius * sx], internal: sx > 0.0 }
             }
             200..=299 if tool_type != 210 && !(240..=249).contains(&tool_type) => {

@@ -10,13 +10,11 @@
 //! towards the chuck (−Z) and the axis (−X). The numbering follows the control's figure
 //! from memory; the geometry (tip on the tangents at the nose circle) is exact.
 
-/// P − S in plane coordinates for a tool of type `tool_type` ($TC_DP1) with cutting edge
-/// position `position` ($TC_DP2) and radius `r`; zero for milling tools, position 0 or 9.
-pub(in crate::interp) fn tip_offset(tool_type: f64, position: f64, r: f64) -> (f64, f64) {
-    if !(400.0..600.0).contains(&tool_type) {
-        return (0.0, 0.0);
-    }
-    let (sx, sy) = match position.round() as i64 {
+/// The direction of P − S for cutting edge position `position` ($TC_DP2) in the plane's
+/// (abscissa, ordinate), the table above; (0, 0) for 9 and positions outside 1..8. The
+/// material removal model places its turning inserts with it too.
+pub(crate) fn edge_direction(position: f64) -> (f64, f64) {
+    match position.round() as i64 {
         1 => (1.0, 1.0),
         2 => (-1.0, 1.0),
         3 => (-1.0, -1.0),
@@ -26,7 +24,16 @@ pub(in crate::interp) fn tip_offset(tool_type: f64, position: f64, r: f64) -> (f
         7 => (-1.0, 0.0),
         8 => (0.0, -1.0),
         _ => (0.0, 0.0),
-    };
+    }
+}
+
+/// P − S in plane coordinates for a tool of type `tool_type` ($TC_DP1) with cutting edge
+/// position `position` ($TC_DP2) and radius `r`; zero for milling tools, position 0 or 9.
+pub(in crate::interp) fn tip_offset(tool_type: f64, position: f64, r: f64) -> (f64, f64) {
+    if !(400.0..600.0).contains(&tool_type) {
+        return (0.0, 0.0);
+    }
+    let (sx, sy) = edge_direction(position);
     (r * sx, r * sy)
 }
 
