@@ -813,7 +813,12 @@ impl Prepared {
 fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensation, limits: &[AxisLimit]) -> Move {
     let start3 = place(&from3, elem_start(&elem), comp);
     let end3 = place(&to3, elem_end(&elem), comp);
-    let path = match elem {
+    rebuild(p, elem_path(elem, start3, end3, comp), limits)
+}
+
+/// The path of `elem` from `start3` to `end3` (a line, or the arc in the plane).
+fn elem_path(elem: Elem, start3: AxisVec, end3: AxisVec, comp: &Compensation) -> Path {
+    match elem {
         Elem::Line { .. } => Path::line(start3, end3),
         Elem::Arc { r, a0, sweep, .. } => Path {
             start: start3,
@@ -822,8 +827,7 @@ fn plain(p: &Prepared, elem: Elem, from3: AxisVec, to3: AxisVec, comp: &Compensa
             ori: None,
             curve: None,
         },
-    };
-    rebuild(p, path, limits)
+    }
 }
 
 /// A programmed contour element as a move (the contour itself, not the tool centre): RND
@@ -838,17 +842,7 @@ fn contour_move(
 ) -> Move {
     let start3 = with_plane(&from3, elem_start(&elem), comp);
     let end3 = with_plane(&to3, elem_end(&elem), comp);
-    let path = match elem {
-        Elem::Line { .. } => Path::line(start3, end3),
-        Elem::Arc { r, a0, sweep, .. } => Path {
-            start: start3,
-            end: end3,
-            arc: Some(Box::new(Arc { u: comp.u, v: comp.v, radius: r, start_angle: a0, sweep })),
-            ori: None,
-            curve: None,
-        },
-    };
-    rebuild(p, path, limits)
+    rebuild(p, elem_path(elem, start3, end3, comp), limits)
 }
 
 /// `a` moved the share `s` of the way to `b` (exactly `a` or `b` at the ends).
