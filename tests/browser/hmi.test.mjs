@@ -374,6 +374,12 @@ async function main() {
       await page.waitForFunction(
         () => /^SUBHOLE/.test(document.getElementById("blocks-name")?.textContent || "") && document.querySelector("#blocks li.current")?.dataset.line === "3",
       );
+      // The subprogram's lines arrive in a range request after the block change: its row shows
+      // "…" until they are there.
+      await page.waitForFunction(() => {
+        const code = document.querySelector("#blocks li.current .line-code")?.textContent?.trim();
+        return code !== undefined && code !== "" && code !== "…";
+      });
       const current = await page.textContent("#blocks li.current .line-code");
       if (current.trim() !== "M0") throw new Error(`line 3 of SUBHOLE shown as ${current}`);
       if (!/called by CALLER/.test(await page.textContent("#blocks-name"))) throw new Error(await page.textContent("#blocks-name"));
