@@ -207,6 +207,23 @@ impl Alarm {
 }
 
 impl Alarm {
+    /// The same alarm named at block `line` instead (its text's "block n" with it).
+    pub fn at_block(mut self, line: u32) -> Alarm {
+        if let Some(old) = self.line {
+            let from = format!("block {old}");
+            let at = self
+                .message
+                .match_indices(&from)
+                .map(|(i, _)| i)
+                .find(|&i| !self.message[i + from.len()..].starts_with(|c: char| c.is_ascii_digit()));
+            if let Some(i) = at {
+                self.message.replace_range(i..i + from.len(), &format!("block {line}"));
+            }
+        }
+        self.line = Some(line);
+        self
+    }
+
     /// 10751: the compensated path would violate the contour (bottleneck, radius too large).
     pub fn collision(line: u32, what: &str) -> Alarm {
         Alarm::new(
@@ -351,5 +368,23 @@ impl Alarm {
             format!("Channel 1 block {line} too many initialization values specified for {name}"),
             Some(line),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Alarm;
+
+    #[test]
+    fn an_alarm_moved_to_another_block_names_it_in_its_text() {
+        let moved = Alarm::no_feed(26).at_block(7);
+        assert_eq!(moved.line, Some(7));
+        assert_eq!(moved.message, "Channel 1 block 7 feedrate not programmed");
+    }
+
+    #[test]
+    fn only_the_whole_block_number_is_replaced() {
+        let alarm = Alarm::user(2, 65000, "block 26 then block 2 of 260");
+        assert_eq!(alarm.at_block(9).message, "block 26 then block 9 of 260");
     }
 }

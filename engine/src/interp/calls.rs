@@ -98,6 +98,8 @@ pub(super) struct CallFrame {
     /// return when the PROC line says SAVE.
     saved: Box<(super::Modal, super::Frame, Option<super::Frame>)>,
     save: bool,
+    /// The PROC line says `DISPLOF` without `ACTBLOCNO`: alarms here name the calling block.
+    alarms_at_call: bool,
 }
 
 impl Interpreter {
@@ -159,6 +161,7 @@ impl Interpreter {
             bound: false,
             saved: Box::new((self.modal.clone(), (*self.pframe).clone(), (*self.iframe).clone())),
             save: false,
+            alarms_at_call: false,
         });
         self.vars.push_frame();
         self.flow = Some(flow);
@@ -168,16 +171,34 @@ impl Interpreter {
         }
     }
 
+    /// `alarm` as the operator sees it: raised inside a subprogram whose blocks are not
+    /// displayed (`PROC .. DISPLOF` without `ACTBLOCNO`, as the standard cycles are written),
+    /// it names the block that called the outermost such subprogram (Programming Manual, Job
+    /// planning, "DISPLOF"/"ACTBLOCNO").
+    pub(super) fn alarm_as_displayed(&self, alarm: Alarm) -> Alarm {
+        let hidden = self.calls.iter().find(|f| f.bound && f.alarms_at_call);
+        match hidden.and_then(|f| f.level.calls.last()) {
+            Some(&(line, _)) if alarm.line.is_some() => alarm.at_block(line),
+            _ => alarm,
+        }
+    }
+
     /// The subprogram level being prepared; `None` in the main program.
     pub fn level(&self) -> Option<&Arc<Level>> {
         self.calls.last().map(|f| &f.level)
     }
 
     /// Binds the call's arguments to the parameters of the subprogram's PROC line.
-    pub(super) fn bind_params(&mut self, params: &[Param], save: bool, line: u32) -> Result<(), Alarm> {
+    pub(super) fn bind_params(
+        &mut self,
+        params: &[Param],
+        (save, alarms_at_call): (bool, bool),
+        line: u32,
+    ) -> Result<(), Alarm> {
         let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) else { return Ok(()) };
         frame.bound = true;
         frame.save = save;
+        frame.alarms_at_call = alarms_at_call;
         if frame.args.len() > params.len() {
             return Err(Alarm::too_many_arguments(
                 line,

@@ -9,8 +9,8 @@
 //!   cycle) in a block: accepted; the single-block stop and the block display are not
 //!   suppressed.
 //! - `GROUP_BEGIN(..)`/`GROUP_END(..)`: the program editor's structure markers; no effect.
-//! - `ACTBLOCNO` (alarms of a cycle show the cycle's own block: what NCTwin does anyway, with
-//!   or without DISPLOF).
+//! - `ACTBLOCNO` in a block (on the PROC line it keeps a DISPLOF subprogram's alarms at its own
+//!   block: `calls.rs`, `alarm_as_displayed`).
 //! - `H5`, `H=5`, `H2=5`: auxiliary functions for the PLC (with address extension); `M2=3`-style
 //!   M functions with an address extension. They go to the main run as `Item::Aux` and are
 //!   published there (`auxiliary.rs`); `M<n>=3/4/5` also act on spindle n, which must be the

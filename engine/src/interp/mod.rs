@@ -591,7 +591,7 @@ impl Interpreter {
     /// Ends preparation with `alarm`: it replaces what the block produced.
     fn fail(&mut self, alarm: Alarm, out: &mut Vec<Item>) -> Prep {
         out.clear();
-        out.push(Item::Alarm(alarm));
+        out.push(Item::Alarm(self.alarm_as_displayed(alarm)));
         self.flow = None;
         self.calls.clear();
         self.held = None;

@@ -196,6 +196,9 @@ pub enum Stmt {
         params: Vec<Param>,
         /// `SAVE`: the caller's modal G functions and frames come back at the return.
         save: bool,
+        /// `DISPLOF` without `ACTBLOCNO`: the subprogram's blocks are not displayed, so its
+        /// alarms name the block that called it.
+        alarms_at_call: bool,
     },
     /// `RET` (end of subprogram).
     Ret,

@@ -592,20 +592,25 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
         let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
         Ok(Param { by_reference, ty, name: pname, dims })
     })?;
-    // Attributes: SAVE matters to the interpreter; DISPLOF, SBLOF, ... need no action here.
-    let mut save = false;
+    // Attributes: SAVE, DISPLOF and ACTBLOCNO matter to the interpreter; SBLOF, ... need no
+    // action here.
+    let (mut save, mut displof, mut actblocno) = (false, false, false);
     loop {
         cur.skip_ws();
         if cur.eat(b',') {
             continue;
         }
         match cur.ident_span() {
-            Some(span) => save |= cur.span_is(span, "SAVE"),
+            Some(span) => {
+                save |= cur.span_is(span, "SAVE");
+                displof |= cur.span_is(span, "DISPLOF");
+                actblocno |= cur.span_is(span, "ACTBLOCNO");
+            }
             None if cur.at_end() => break,
             None => cur.pos += 1,
         }
     }
-    Ok(Stmt::Proc { name, params, save })
+    Ok(Stmt::Proc { name, params, save, alarms_at_call: displof && !actblocno })
 }
 
 /// `REPEAT START P=n`, `REPEAT START END P=n`, `REPEATB LABEL P=n`: program section
