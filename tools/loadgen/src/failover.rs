@@ -323,13 +323,8 @@ async fn verify(client: &reqwest::Client, api: &str, s: &Session) -> Result<Vec<
 }
 
 async fn run(args: Args) -> Result<bool, String> {
-    let api = format!("{}/api/v1", args.url.trim_end_matches('/'));
-    let ws_base = api.replacen("http", "ws", 1);
-    let client = reqwest::Client::builder()
-        .pool_max_idle_per_host(args.concurrency.max(64))
-        .timeout(Duration::from_secs(60))
-        .build()
-        .map_err(|e| e.to_string())?;
+    let (api, ws_base) = nctwin_loadgen::endpoints(&args.url);
+    let client = nctwin_loadgen::http_client(args.concurrency)?;
 
     let t = Instant::now();
     let prepared: Vec<Result<Session, String>> = stream::iter(0..args.sessions)

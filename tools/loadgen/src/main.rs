@@ -221,13 +221,8 @@ async fn main() -> std::process::ExitCode {
 
 async fn run(args: Args) -> Result<(), String> {
     let program = std::fs::read_to_string(&args.program).map_err(|e| format!("{}: {e}", args.program.display()))?;
-    let api = format!("{}/api/v1", args.url.trim_end_matches('/'));
-    let ws_base = api.replacen("http", "ws", 1);
-    let client = reqwest::Client::builder()
-        .pool_max_idle_per_host(args.concurrency.max(64))
-        .timeout(Duration::from_secs(60))
-        .build()
-        .map_err(|e| e.to_string())?;
+    let (api, ws_base) = nctwin_loadgen::endpoints(&args.url);
+    let client = nctwin_loadgen::http_client(args.concurrency)?;
     let shared = Arc::new(Shared {
         window_open: AtomicBool::new(false),
         window_start: std::sync::OnceLock::new(),
