@@ -118,3 +118,66 @@ fn cycle95_finishes_a_relief_cut_along_the_contour() {
     let rough = &t.samples[..from];
     assert!(rough.iter().any(|s| close(s.z, -17.5, 1e-6) && close(s.x, 12.0, 1e-9)));
 }
+
+#[test]
+fn cycle95_inside_relief_cut_is_the_outside_one_mirrored() {
+    // The bore X20 (Z0..-10), X15 (to Z-15), an internal groove out to X18 (to Z-20), X15 (to
+    // Z-30), X10: the outside shaft above mirrored about X15 (x -> 30 - x). Roughing inside
+    // (VARI 3) from X0 Z10 runs every sample at the mirror of the outside roughing (VARI 1)
+    // from X30 Z10: the same levels, reliefs and walls.
+    let bore = "G18 G90\nG1 X20 Z0\nG1 Z-10\nG1 X15\nG1 Z-15\nG1 X18\nG1 Z-20\nG1 X15\nG1 Z-30\nG1 X10\nM17\n";
+    let outside = run("CYCLE95(\"GROOVED\",2.5,0.2,0.1,0,300,50,100,1,0,0,0)");
+    let inside = run_lathe(
+        "$TC_DP6[1,1]=0\n",
+        "G18 G90 G94\nT1 D1\nS800 M3\nG0 X0 Z10\nCYCLE95(\"BORE\",2.5,0.2,0.1,0,300,50,100,3,0,0,0)\nM30",
+        &[("BORE", bore)],
+    )
+    .clean()
+    .after_reaching(0.0, 10.0);
+    assert_eq!(inside.samples.len(), outside.samples.len());
+    for (i, o) in inside.samples.iter().zip(&outside.samples) {
+        assert!(
+            close(i.z, o.z, 1e-9) && close(i.x, 30.0 - o.x, 1e-9),
+            "inside Z{} X{} vs outside Z{} X{}",
+            i.z,
+            i.x,
+            o.z,
+            o.x
+        );
+    }
+    // The groove's floor inside: X18 - 0.1.
+    assert!(inside.samples.iter().any(|s| close(s.x, 17.9, 1e-9) && close(s.z, -17.5, 1e-6)));
+}
+
+#[test]
+fn cycle95_round_relief_is_followed_down_its_arcs_to_the_floor() {
+    // A round groove R3 about (Z-17, X15) in the land X15 (Z-10..-30): G2 from Z-14 X15 to the
+    // floor Z-17 X12 and G2 on to Z-20 X15. No allowances, MID 2: the levels from X20 down to
+    // X10 in 5 steps of 2 (18, 16, 14, 12, 10) and the floor X12 (already one of them). The
+    // roughing never enters the part, follows both arcs (samples on the circle) and reaches
+    // the floor's lowest point.
+    let round =
+        "G18 G90\nG1 X10 Z0\nG1 Z-10\nG1 X15\nG1 Z-14\nG2 Z-17 X12 CR=3\nG2 Z-20 X15 CR=3\nG1 Z-30\nG1 X20\nM17\n";
+    let t = run_lathe(
+        "$TC_DP6[1,1]=0\n",
+        "G18 G90 G94\nT1 D1\nS800 M3\nG0 X30 Z10\nCYCLE95(\"ROUND\",2,0,0,0,300,50,100,1,0,0,0)\nM30",
+        &[("ROUND", round)],
+    )
+    .clean()
+    .after_reaching(30.0, 10.0);
+    let surface = |z: f64| -> f64 {
+        if z < -14.0 && z > -20.0 { 15.0 - (9.0 - (z + 17.0) * (z + 17.0)).max(0.0).sqrt() } else { part(z) }
+    };
+    // (A point on a shoulder's face, Z-10 or Z-30, lies on the part: the face's lower end counts.)
+    let face = |z: f64| surface(z - 1e-7).min(surface(z + 1e-7));
+    for s in t.samples.iter().filter(|s| s.z < 0.0 && s.z > -30.0) {
+        assert!(s.x >= face(s.z) - 1e-6, "inside the part at Z{} X{}", s.z, s.x);
+    }
+    let on_arc = t
+        .samples
+        .iter()
+        .filter(|s| s.z < -14.1 && s.z > -19.9 && close((s.z + 17.0).hypot(s.x - 15.0), 3.0, 1e-6))
+        .count();
+    assert!(on_arc > 20, "follows the arcs: {on_arc}");
+    assert!(t.samples.iter().any(|s| close(s.z, -17.0, 1e-6) && close(s.x, 12.0, 1e-6)), "the floor");
+}
