@@ -136,3 +136,22 @@ fn cycle92_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
         assert!(close(end.x, 40.0, 1e-9) && close(end.z, 10.0, 1e-9), "{call}: nothing moved");
     }
 }
+
+#[test]
+fn cycle92_under_diamon_parts_off_on_the_same_machine_path() {
+    // The cycle's diameters are diameters in both modes; the approach X40 (radius) is X80 under
+    // DIAMON. Every sample's machine X and Z agree, and so does the spindle (G96 reads the
+    // radius either way).
+    let main = |mode: &str, x: &str| {
+        format!(
+            "G18 G90 G95 F0.3\nT1 D1\nS500 M3\nG4 F1\n{mode}\nG0 {x} Z10\n\
+             CYCLE92(60,-20,20,-1,2,1,100,1000,3,0.2,0.05,0,0,11,0,0,0)\nM30"
+        )
+    };
+    let radius = run_lathe("", &main("DIAMOF", "X40"), &[]).clean();
+    let diameter = run_lathe("", &main("DIAMON", "X80"), &[]).clean();
+    assert_eq!(radius.samples.len(), diameter.samples.len());
+    for (r, d) in radius.samples.iter().zip(&diameter.samples) {
+        assert!(close(r.mx, d.mx, 1e-9) && close(r.z, d.z, 1e-9) && close(r.sp, d.sp, 1e-9), "{r:?} {d:?}");
+    }
+}

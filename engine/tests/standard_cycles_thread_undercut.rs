@@ -139,3 +139,18 @@ fn cycle96_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
         assert!(close(end.x, 40.0, 1e-9) && close(end.z, 10.0, 1e-9), "{call}: nothing moved");
     }
 }
+
+#[test]
+fn cycle96_under_diamon_cuts_the_same_undercut() {
+    // DIATH is a diameter in both modes; the approach X40 (radius) is X80 under DIAMON: every
+    // sample's machine X and Z agree.
+    let main = |mode: &str, x: &str| {
+        format!("G18 G90 G95 F0.1\nT2 D1\nS800 M3\n{mode}\nG0 {x} Z10\nCYCLE96(10,-20,\"A\",3)\nM30")
+    };
+    let radius = run_lathe("", &main("DIAMOF", "X40"), &[]).clean();
+    let diameter = run_lathe("", &main("DIAMON", "X80"), &[]).clean();
+    assert_eq!(radius.samples.len(), diameter.samples.len());
+    for (r, d) in radius.samples.iter().zip(&diameter.samples) {
+        assert!(close(r.mx, d.mx, 1e-9) && close(r.z, d.z, 1e-9), "{r:?} {d:?}");
+    }
+}
