@@ -559,11 +559,11 @@ fn cycle95_face_roughing_cuts_along_x_in_levels_of_z() {
 }
 
 #[test]
-fn cycle95_refuses_relief_cuts_sections_and_missing_feeds() {
-    // A contour that dips (X10 to X8 on the way) is a relief cut: 61605. "A:B" (a labelled
-    // section the calling program does not hold): 14080. VARI 13: 61002. Roughing without
-    // FF1: 61003.
-    let relief = "G18 G90\nG1 X10 Z0\nG1 Z-10\nG1 X8 Z-15\nG1 X20\nM17\n";
+fn cycle95_refuses_backward_contours_sections_and_missing_feeds() {
+    // A contour that goes back along the cut (Z-10 to Z-8 on the way): 61605. "A:B" (a
+    // labelled section the calling program does not hold): 14080. VARI 13: 61002. Roughing
+    // without FF1: 61003.
+    let relief = "G18 G90\nG1 X10 Z0\nG1 Z-10\nG1 X12 Z-8\nG1 X20\nM17\n";
     for (call, number) in [
         ("CYCLE95(\"RELIEF\",2,0,0,0,300,0,100,9,0,0,0)", 61605),
         ("CYCLE95(\"A:B\",2,0,0,0,300,0,100,9,0,0,0)", 14080),

@@ -40,6 +40,7 @@ const TEXTS: &[(u32, &str)] = &[
     (61605, "contour defined incorrectly"),
     (61607, "starting point defined incorrectly"),
     (61608, "wrong cutting edge position programmed"),
+    (61609, "form defined incorrectly"),
 ];
 
 /// `alarm` as the control reports it: a cycle alarm set in a cycle directory's program moves to
