@@ -635,7 +635,11 @@ impl Interpreter {
         }
         let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
-        self.corner_request = words.corner;
+        if let Some(r) = words.rndm {
+            self.modal.rndm = (r > 0.0).then_some(r);
+        }
+        // RND/CHF/CHR in the block take the place of the modal rounding at its corner.
+        self.corner_request = words.corner.or(self.modal.rndm.map(Corner::Round));
         if let Some(path) = &words.callpath {
             self.call_state.callpath = calls::callpath(path);
         }
