@@ -578,6 +578,8 @@ impl Interpreter {
             self.transform_moves(out)?;
             Ok(prep)
         });
+        // Blocks the radius compensation omitted (warning 10763).
+        self.warnings.append(&mut self.trc.take_warnings());
         // Data written may change the configuration before the next block.
         if !self.data_writes.is_empty() {
             self.lane_memo.forget();

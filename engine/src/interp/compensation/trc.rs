@@ -20,7 +20,9 @@
 use crate::alarm::Alarm;
 use crate::interp::compensation::approach::{self, ApproachMode};
 use crate::interp::contour::corners;
-use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation::disc, compensation::rounding};
+use crate::interp::{
+    Item, SharedOffsets, compensation::bottleneck, compensation::disc, compensation::distant, compensation::rounding,
+};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 
@@ -211,9 +213,16 @@ pub struct Compensator {
     /// element's end corner is resolved: an alarm then stops the program before the tool
     /// has moved onto a contour it cannot follow.
     lead_in: Vec<Item>,
+    /// Warnings (10763: a block omitted) for the interpreter's alarm display.
+    warnings: Vec<Alarm>,
 }
 
 impl Compensator {
+    /// The warnings raised since the last call (they do not stop the program).
+    pub fn take_warnings(&mut self) -> Vec<Alarm> {
+        std::mem::take(&mut self.warnings)
+    }
+
     /// True while a move is held back.
     pub fn holds(&self) -> bool {
         self.held.is_some() || self.approach.is_some() || !self.pending.is_empty() || self.sar_head.is_some()
@@ -624,8 +633,10 @@ impl Compensator {
     }
 
     /// Releases the held element up to its corner with the first joined element (and what was
-    /// omitted and what waited between them), which becomes the held element.
+    /// omitted and what waited between them), which becomes the held element. Before that the
+    /// held element is checked against the later elements in the look-ahead (`distant`).
     fn commit(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+        self.check_distant()?;
         self.release_lead_in(out);
         let Some(mut prev) = self.held.take() else { return Ok(()) };
         if prev.chain.is_empty() {
@@ -638,6 +649,7 @@ impl Compensator {
         self.emit(prev.p.item_with(mv), out);
         self.tool_at = Some(prev_end);
         for (skipped, _) in omitted {
+            self.warnings.push(Alarm::trc_block_omitted(skipped.line));
             // An omitted element leaves only its axes outside the plane to travel.
             let from = self.from(skipped.mv.path.start);
             let end = place(&skipped.mv.path.end, prev_end, &comp);
@@ -661,6 +673,59 @@ impl Compensator {
         let chain = std::mem::take(&mut prev.chain);
         self.held = Some(Held { skipped: prev.skipped, chain, p, contour, start: next_start, comp });
         Ok(())
+    }
+
+    /// Bottleneck detection between the held element and the later elements in the look-ahead
+    /// that are not its neighbour (`distant`): with CDON the elements between are skipped and
+    /// the held element joined to the later one where their tool paths cross; with CDOF alarm
+    /// 10751 before the held element moves. The last joined element's equidistant is left out:
+    /// where it ends is not known yet (the next corner, or the deselection's NORM or KONT, which
+    /// may end on an earlier element of a closed contour as the program asks).
+    fn check_distant(&mut self) -> Result<(), Alarm> {
+        let Some(prev) = self.held.as_mut() else { return Ok(()) };
+        if prev.chain.len() < 2 {
+            return Ok(());
+        }
+        let head = offset_elem(&prev.contour, prev.comp.offset(), Some(prev.start), Some(prev.chain[0].meet.0), 0)?;
+        let mut later = Vec::new();
+        for (k, n) in prev.chain.iter().enumerate().skip(1) {
+            if let Some(t) = n.meet.1 {
+                later.push((k, true, t));
+            }
+            let Some(end) = prev.chain.get(k + 1).map(|m| m.meet.0) else { continue };
+            if dist(end, n.meet.2) < 1e-9 {
+                continue;
+            }
+            later.push((k, false, offset_elem(&n.contour, n.comp.offset(), Some(n.meet.2), Some(end), n.p.line)?));
+        }
+        let Some((k, on_transition, x)) = distant::first_crossing(&head, &later) else {
+            // The last joined element is left out here too: a closed contour ends on the first
+            // element's start, which the approach put on its extension.
+            let n = prev.chain.len() - 1;
+            let contours: Vec<_> = prev.chain[..n].iter().enumerate().skip(1).map(|(k, n)| (k, n.contour)).collect();
+            let pieces: Vec<Elem> = std::iter::once(head).chain(prev.chain[0].meet.1).collect();
+            return match distant::too_near(&pieces, &prev.contour, &later, &contours, prev.comp.offset().abs()) {
+                Some(k) => Err(bottleneck(prev.chain[k].p.line)),
+                None => Ok(()),
+            };
+        };
+        if !prev.comp.collision_detection {
+            return Err(bottleneck(prev.chain[k].p.line));
+        }
+        let mut omitted = Vec::new();
+        for n in prev.chain.drain(..k) {
+            omitted.extend(n.omitted);
+            omitted.push((n.p, n.contour));
+        }
+        let target = &mut prev.chain[0];
+        omitted.append(&mut target.omitted);
+        target.omitted = omitted;
+        target.meet = match (on_transition, target.meet.1) {
+            (true, Some(arc)) => (x, distant::arc_from(&arc, x), target.meet.2),
+            _ => (x, None, x),
+        };
+        // What remains is checked again (another loop, or a band reached without a crossing).
+        self.check_distant()
     }
 
     /// Releases every joined element up to the last one, which stays held.
