@@ -59,6 +59,13 @@ pub(in crate::interp) fn too_near(
     }
 }
 
+/// Whether one of the tool-centre `pieces` comes nearer than the radius `r` to one of the
+/// `contours`.
+pub(in crate::interp) fn near_any(pieces: &[Elem], contours: impl Iterator<Item = Elem>, r: f64) -> bool {
+    let limit = r - 1e-7;
+    contours.into_iter().any(|c| pieces.iter().any(|p| least_distance(p, &c) < limit))
+}
+
 /// The least distance between two elements (segments or arcs), exactly: the minimum lies at
 /// an end point of one of them, at a crossing, or on the normal through a circle's centre
 /// (foot of the centre on a line, or the line through both centres).
