@@ -233,6 +233,20 @@ impl Alarm {
         )
     }
 
+    /// 10763: tool radius compensation omitted a block (its path in the compensation plane
+    /// becomes zero: too short for the tool, or skipped by bottleneck detection). Information
+    /// only: the program goes on, the block's motion outside the plane still runs.
+    pub fn trc_block_omitted(line: u32) -> Alarm {
+        Alarm {
+            clear: Clear::Cancel,
+            ..Alarm::new(
+                10763,
+                format!("Channel 1 block {line} path component of the block in the compensation plane becomes zero"),
+                Some(line),
+            )
+        }
+    }
+
     /// 10750: G41/G42 with no cutting edge active (D0).
     pub fn trc_without_tool(line: u32) -> Alarm {
         Alarm::new(

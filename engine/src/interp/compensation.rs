@@ -6,6 +6,7 @@ pub mod approach;
 pub(super) mod bottleneck;
 pub(super) mod cutting_edge;
 pub(super) mod disc;
+pub(super) mod distant;
 pub(super) mod kontc;
 pub(super) mod rounding;
 pub mod sar;

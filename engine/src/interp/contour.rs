@@ -2,5 +2,6 @@
 //! RND, CHF and CHR inserted between two blocks.
 
 pub mod arc;
+pub mod arc_rounding;
 pub mod capture;
 pub mod corners;

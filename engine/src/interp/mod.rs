@@ -578,6 +578,8 @@ impl Interpreter {
             self.transform_moves(out)?;
             Ok(prep)
         });
+        // Blocks the radius compensation omitted (warning 10763).
+        self.warnings.append(&mut self.trc.take_warnings());
         // Data written may change the configuration before the next block.
         if !self.data_writes.is_empty() {
             self.lane_memo.forget();
@@ -635,7 +637,11 @@ impl Interpreter {
         }
         let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
-        self.corner_request = words.corner;
+        if let Some(r) = words.rndm {
+            self.modal.rndm = (r > 0.0).then_some(r);
+        }
+        // RND/CHF/CHR in the block take the place of the modal rounding at its corner.
+        self.corner_request = words.corner.or(self.modal.rndm.map(Corner::Round));
         if let Some(path) = &words.callpath {
             self.call_state.callpath = calls::callpath(path);
         }

@@ -78,6 +78,8 @@ pub struct Modal {
     pub pole: (f64, f64),
     /// Tool radius compensation: G40 (None), G41, G42.
     pub trc: Option<Side>,
+    /// RNDM=: modal rounding radius of every following contour corner (None: RNDM=0).
+    pub rndm: Option<f64>,
     /// G450 (transition circle) or G451 (intersection) at outer corners.
     pub trc_corners: CornerMode,
     /// G groups 43 and 44 of smooth approach and retract (`compensation/sar.rs`).
@@ -155,6 +157,7 @@ impl Modal {
             pole: (0.0, 0.0),
             polar: (0.0, 0.0),
             trc: None,
+            rndm: None,
             trc_corners: CornerMode::Circle,
             sar: Default::default(),
             spline: Default::default(),
@@ -403,6 +406,8 @@ pub(super) struct Words {
     pub frame_writes: Vec<(ChainFrame, Frame)>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
     pub corner: Option<Corner>,
+    /// RNDM=: the modal rounding radius (0 switches it off).
+    pub rndm: Option<f64>,
     /// CONTCAPON(table, count) / CONTCAPOF: contour capture (`contour/capture.rs`).
     pub capture: Option<super::contour::capture::CaptureOp>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
@@ -833,6 +838,7 @@ pub(super) fn collect(
                     "OFFN" => w.offn = Some(v * sys.modal.length_factor()),
                     "DISC" => w.disc = Some(v),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
+                    "RNDM" => w.rndm = Some(v * sys.modal.length_factor()),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
                     "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
                     "AP" => w.ap = Some(v),
@@ -1175,6 +1181,7 @@ fn is_nc_address(name: &str) -> bool {
             | "AR"
             | "TURN"
             | "RND"
+            | "RNDM"
             | "CHF"
             | "CHR"
             | "STAT"

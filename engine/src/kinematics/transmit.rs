@@ -50,6 +50,58 @@ impl Transmit {
     }
 }
 
+impl Transmit {
+    /// The machine end position of a Cartesian PTP block to `bcs` with `STAT=` (Transformations
+    /// FM, Cartesian PTP travel, TRANSMIT: STAT resolves the ambiguity of the pole). It matters
+    /// only when the straight (CP) line from the start `prev` to the target passes through the
+    /// pole: the radial axis can then travel through the pole (changing sign, C keeping its
+    /// angle) or stay on its side while C turns by 180°.
+    /// - Bit 0 (the manual: only with POLE_SIDE_FIX 1/2): 0 turns C through +180°, 1 through −180°.
+    /// - Bit 1 (with POLE_SIDE_FIX 0; the excerpt names no meaning, decided here): 0 travels
+    ///   through the pole as CP would, 1 turns C (direction by bit 0).
+    ///
+    /// Anywhere else the target has the one solution the block would reach anyway.
+    pub fn ptp_end(&self, bcs: &AxisVec, prev: &AxisVec, tool: &Vec3, stat: u32) -> Result<AxisVec, Unreachable> {
+        let mut machine = *bcs;
+        self.inverse(bcs, prev, tool, &mut machine)?;
+        let mut start = *prev;
+        self.forward(prev, tool, &mut start);
+        let (a, b) = (
+            (start[self.axes.radial.0], start[self.axes.rotary.0]),
+            (bcs[self.axes.radial.0], bcs[self.axes.rotary.0]),
+        );
+        let e = self.axes.side_offset(bcs, tool);
+        // Distance of the pole (the rotary axis centre) from the straight line a → b.
+        let d = (b.0 - a.0, b.1 - a.1);
+        let len2 = d.0 * d.0 + d.1 * d.1;
+        let t = if len2 > 0.0 { (-(a.0 * d.0 + a.1 * d.1) / len2).clamp(0.0, 1.0) } else { 0.0 };
+        let through_pole = (a.0 + t * d.0).hypot(a.1 + t * d.1) < POLE_EPS && e.abs() < POLE_EPS && t > 0.0 && t < 1.0;
+        if !through_pole {
+            return Ok(machine);
+        }
+        let (radial, rotary) = (self.axes.radial.0, self.axes.rotary.0);
+        let off_x = self.axes.off(tool, self.axes.radial.1);
+        let prev_qx = prev[radial] + off_x;
+        let side = if prev_qx < 0.0 { -1.0 } else { 1.0 };
+        let r = b.0.hypot(b.1);
+        if self.pole_side_fix == 0 && stat & 2 == 0 {
+            // Through the pole: the radial axis changes sign, C keeps its angle.
+            machine[radial] = -side * r - off_x;
+            machine[rotary] = prev[rotary];
+        } else {
+            // Rotation in the pole: the radial axis keeps its side, C turns by ±180°.
+            let keep = match self.pole_side_fix {
+                1 => 1.0,
+                2 => -1.0,
+                _ => side,
+            };
+            machine[radial] = keep * r - off_x;
+            machine[rotary] = prev[rotary] + if stat & 1 == 0 { 180.0 } else { -180.0 };
+        }
+        Ok(machine)
+    }
+}
+
 impl Transformation for Transmit {
     fn name(&self) -> &'static str {
         "TRANSMIT"

@@ -2,6 +2,7 @@
 //! and record every IPO sample of the axes, stop at M0, read the first alarm.
 #![allow(dead_code)]
 
+use nctwin_engine::alarm::Clear;
 use nctwin_engine::{Channel, Status};
 
 /// Runs `program` on `preset` until the channel stops (M0, alarm) or ends; every IPO sample.
@@ -32,15 +33,22 @@ pub fn run_all(program: &str) -> (Channel, Vec<Vec<f64>>) {
 
 pub fn run_all_on(preset: &str, extra: &str, program: &str) -> (Channel, Vec<Vec<f64>>) {
     let (mut ch, mut samples) = run_to_stop(preset, extra, program);
-    while ch.status() == Status::Stopped && ch.alarms().is_empty() {
+    // Warnings (cleared by the cancel key, such as 10763) do not keep the program stopped.
+    while ch.status() == Status::Stopped && ch.alarms().iter().all(|a| a.clear == Clear::Cancel) {
         ch.start().unwrap();
         samples.extend(go_on(&mut ch));
     }
     (ch, samples)
 }
 
+/// The first alarm that stops the program (warnings left out).
 pub fn alarm_of(ch: &Channel) -> Option<u32> {
-    ch.snapshot().alarms.first().map(|a| a.number)
+    ch.alarms().iter().find(|a| a.clear != Clear::Cancel).map(|a| a.number)
+}
+
+/// The warnings shown (alarms cleared by the cancel key), by number and line.
+pub fn warnings_of(ch: &Channel) -> Vec<(u32, Option<u32>)> {
+    ch.alarms().iter().filter(|a| a.clear == Clear::Cancel).map(|a| (a.number, a.line)).collect()
 }
 
 /// Whether some sample lies within `tol` of (x, y).

@@ -20,7 +20,9 @@
 use crate::alarm::Alarm;
 use crate::interp::compensation::approach::{self, ApproachMode};
 use crate::interp::contour::corners;
-use crate::interp::{Item, SharedOffsets, compensation::bottleneck, compensation::disc, compensation::rounding};
+use crate::interp::{
+    Item, SharedOffsets, compensation::bottleneck, compensation::disc, compensation::distant, compensation::rounding,
+};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{Arc, AxisLimit, AxisVec, Feed, Move, Path};
 
@@ -211,9 +213,19 @@ pub struct Compensator {
     /// element's end corner is resolved: an alarm then stops the program before the tool
     /// has moved onto a contour it cannot follow.
     lead_in: Vec<Item>,
+    /// Warnings (10763: a block omitted) for the interpreter's alarm display.
+    warnings: Vec<Alarm>,
+    /// The first element of the compensated contour (where the approach put the tool): a
+    /// closed contour's last element is its neighbour for the bottleneck check.
+    first_contour: Option<Elem>,
 }
 
 impl Compensator {
+    /// The warnings raised since the last call (they do not stop the program).
+    pub fn take_warnings(&mut self) -> Vec<Alarm> {
+        std::mem::take(&mut self.warnings)
+    }
+
     /// True while a move is held back.
     pub fn holds(&self) -> bool {
         self.held.is_some() || self.approach.is_some() || !self.pending.is_empty() || self.sar_head.is_some()
@@ -472,6 +484,7 @@ impl Compensator {
             self.release_pending(limits, out);
             self.lead_in = std::mem::take(out);
             self.mark = out_mark;
+            self.first_contour = Some(contour);
             self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             return Ok(());
         }
@@ -494,6 +507,7 @@ impl Compensator {
                     self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
+                self.first_contour = Some(contour);
                 self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             }
             Some(prev)
@@ -513,6 +527,7 @@ impl Compensator {
                     self.emit(p.item_with(rebuild(&p, Path::line(from, to), limits)), out);
                 }
                 self.tool_at = Some(start);
+                self.first_contour = Some(contour);
                 self.held = Some(Held { skipped: Vec::new(), chain: Vec::new(), p, contour, start, comp });
             }
             Some(mut prev) => {
@@ -560,7 +575,7 @@ impl Compensator {
                 self.held = Some(prev);
                 // Release what lies beyond the look-ahead window.
                 while self.held.as_ref().is_some_and(|h| h.chain.len() > max_check) {
-                    self.commit(limits, out)?;
+                    self.commit(limits, out, false)?;
                 }
             }
         }
@@ -624,8 +639,11 @@ impl Compensator {
     }
 
     /// Releases the held element up to its corner with the first joined element (and what was
-    /// omitted and what waited between them), which becomes the held element.
-    fn commit(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
+    /// omitted and what waited between them), which becomes the held element. Before that the
+    /// held element is checked against the later elements in the look-ahead (`distant`);
+    /// `last`: no more elements follow (the last joined one ends perpendicular to its end).
+    fn commit(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>, last: bool) -> Result<(), Alarm> {
+        self.check_distant(last)?;
         self.release_lead_in(out);
         let Some(mut prev) = self.held.take() else { return Ok(()) };
         if prev.chain.is_empty() {
@@ -638,6 +656,7 @@ impl Compensator {
         self.emit(prev.p.item_with(mv), out);
         self.tool_at = Some(prev_end);
         for (skipped, _) in omitted {
+            self.warnings.push(Alarm::trc_block_omitted(skipped.line));
             // An omitted element leaves only its axes outside the plane to travel.
             let from = self.from(skipped.mv.path.start);
             let end = place(&skipped.mv.path.end, prev_end, &comp);
@@ -663,11 +682,89 @@ impl Compensator {
         Ok(())
     }
 
+    /// Bottleneck detection between the held element and the later elements in the look-ahead
+    /// that are not its neighbour (`distant`): with CDON the elements between are skipped and
+    /// the held element joined to the later one where their tool paths cross; with CDOF alarm
+    /// 10751 before the held element moves. The last joined element's equidistant is left out
+    /// until no more elements follow (where it ends is not known before). A closed contour's
+    /// last and first elements are neighbours: they are not checked against each other (the
+    /// approach and the deselection end on each other's extension, as programmed).
+    fn check_distant(&mut self, last: bool) -> Result<(), Alarm> {
+        let first = self.first_contour;
+        let Some(prev) = self.held.as_mut() else { return Ok(()) };
+        let Some(t) = prev.chain.first() else { return Ok(()) };
+        let d = prev.comp.offset();
+        let head = offset_elem(&prev.contour, d, Some(prev.start), Some(t.meet.0), 0)?;
+        if !t.omitted.is_empty() {
+            // A join across omitted elements (the look-ahead's, or a cut below): the joined
+            // paths may come nearer than the radius to the skipped contour, or to each other's
+            // element before they meet: alarm 10751.
+            let t_end = prev.chain.get(1).map(|m| m.meet.0);
+            let mut t_pieces: Vec<Elem> = t.meet.1.into_iter().collect();
+            if t_end.is_some() || last {
+                t_pieces.push(offset_elem(&t.contour, t.comp.offset(), Some(t.meet.2), t_end, t.p.line)?);
+            }
+            let skipped = || t.omitted.iter().map(|(_, c)| *c);
+            let r = d.abs();
+            if distant::near_any(&[head], skipped().chain(std::iter::once(t.contour)), r)
+                || distant::near_any(&t_pieces, skipped().chain(std::iter::once(prev.contour)), r)
+            {
+                return Err(bottleneck(t.p.line));
+            }
+        }
+        if prev.chain.len() < 2 {
+            return Ok(());
+        }
+        let mut later = Vec::new();
+        for (k, n) in prev.chain.iter().enumerate().skip(1) {
+            if let Some(t) = n.meet.1 {
+                later.push((k, true, t));
+            }
+            let end = prev.chain.get(k + 1).map(|m| m.meet.0);
+            if (end.is_none() && !last) || end.is_some_and(|e| dist(e, n.meet.2) < 1e-9) {
+                continue;
+            }
+            later.push((k, false, offset_elem(&n.contour, n.comp.offset(), Some(n.meet.2), end, n.p.line)?));
+        }
+        let n = prev.chain.len() - 1;
+        let closed =
+            first == Some(prev.contour) && dist(elem_end(&prev.chain[n].contour), elem_start(&prev.contour)) < 1e-6;
+        if closed {
+            later.retain(|&(k, ..)| k != n);
+        }
+        let Some((k, on_transition, x)) = distant::first_crossing(&head, &later) else {
+            let upto = if last && !closed { n + 1 } else { n };
+            let contours: Vec<_> = prev.chain[..upto].iter().enumerate().skip(1).map(|(k, n)| (k, n.contour)).collect();
+            let pieces: Vec<Elem> = std::iter::once(head).chain(prev.chain[0].meet.1).collect();
+            return match distant::too_near(&pieces, &prev.contour, &later, &contours, prev.comp.offset().abs()) {
+                Some(k) => Err(bottleneck(prev.chain[k].p.line)),
+                None => Ok(()),
+            };
+        };
+        if !prev.comp.collision_detection {
+            return Err(bottleneck(prev.chain[k].p.line));
+        }
+        let mut omitted = Vec::new();
+        for n in prev.chain.drain(..k) {
+            omitted.extend(n.omitted);
+            omitted.push((n.p, n.contour));
+        }
+        let target = &mut prev.chain[0];
+        omitted.append(&mut target.omitted);
+        target.omitted = omitted;
+        target.meet = match (on_transition, target.meet.1) {
+            (true, Some(arc)) => (x, distant::arc_from(&arc, x), target.meet.2),
+            _ => (x, None, x),
+        };
+        // What remains is checked again (another loop, or a band reached without a crossing).
+        self.check_distant(last)
+    }
+
     /// Releases every joined element up to the last one, which stays held.
     fn commit_all(&mut self, limits: &[AxisLimit], out: &mut Vec<Item>) -> Result<(), Alarm> {
         self.release_lead_in(out);
         while self.held.as_ref().is_some_and(|h| !h.chain.is_empty()) {
-            self.commit(limits, out)?;
+            self.commit(limits, out, true)?;
         }
         Ok(())
     }

@@ -2,8 +2,8 @@
 //! length along the contour) between two straight blocks.
 //!
 //! A block with a corner request is held back until the next block is prepared; then both are
-//! shortened and the rounding arc or chamfer is inserted between them. Lines only: a corner
-//! next to a circle is left sharp (the control rounds those too; noted as a limit).
+//! shortened and the rounding arc or chamfer is inserted between them. A rounding next to a
+//! circle is shaped by `arc_rounding`; a chamfer next to a circle is left sharp (a limit).
 
 use crate::alarm::Alarm;
 use crate::interp::{Interpreter, Item, Prep};
@@ -73,7 +73,8 @@ impl Interpreter {
 
 /// The corner between two programmed moves for the radius compensation, which shapes the
 /// contour before offsetting it: `first` shortened and the corner element, `next` shortened
-/// in place; None where the corner stays sharp (arcs, tangent blocks).
+/// in place; None where the corner stays sharp (tangent blocks) or an arc meets it (TRC
+/// shapes those in its plane with `compensation::rounding`).
 pub(in crate::interp) fn split(
     first: &Move,
     corner: Corner,
@@ -81,6 +82,9 @@ pub(in crate::interp) fn split(
     next: &mut Move,
     limits: &[AxisLimit],
 ) -> Result<Option<(Move, Move)>, Alarm> {
+    if first.path.arc.is_some() || next.path.arc.is_some() {
+        return Ok(None);
+    }
     let held = Held { item: Item::Move { mv: first.clone(), line, offsets: Default::default() }, corner, line };
     Ok(match corner_between(&held, next, limits)? {
         (Item::Move { mv: a, .. }, Some(Item::Move { mv: b, .. })) => Some((a, b)),
@@ -92,8 +96,15 @@ pub(in crate::interp) fn split(
 fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<(Item, Option<Item>), Alarm> {
     let Item::Move { mv: first, line, offsets } = &held.item else { unreachable!("only moves are held") };
     let sharp = || Ok((held.item.clone(), None));
+    let item = |mv: Move| Item::Move { mv, line: *line, offsets: offsets.clone() };
     if first.path.arc.is_some() || next.path.arc.is_some() {
-        return sharp();
+        return match held.corner {
+            Corner::Round(r) => match super::arc_rounding::round_at_arc(first, next, r, held.line, limits)? {
+                Some((shortened, corner)) => Ok((item(shortened), Some(item(corner)))),
+                None => sharp(),
+            },
+            _ => sharp(),
+        };
     }
     let p = first.path.end;
     let d1 = unit(&diff(&first.path.end, &first.path.start));
@@ -155,7 +166,6 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
     let next_len = scale_len(next, len2 - leg);
     next.path.start = b;
     next.length = next_len;
-    let item = |mv: Move| Item::Move { mv, line: *line, offsets: offsets.clone() };
     Ok((item(shortened), Some(item(corner))))
 }
 

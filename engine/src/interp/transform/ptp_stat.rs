@@ -9,10 +9,11 @@
 //! without TU. On equal distances (a start exactly between the two) bit 0 = 0 keeps the
 //! solution with the lower position of the first orientation axis.
 //!
-//! Other transformations: TRANSMIT uses STAT for its pole ambiguity (bit 0 only with
-//! POLE_SIDE_FIX 1/2: through +180° or −180°; Transformations FM, Cartesian PTP travel); the
-//! robot transformations (RCTRA, ROBX) use bits 0..2 for shoulder, elbow and hand flip, which
-//! this product does not model. TRACYL, TRAANG and TRACON's second member have one solution.
+//! Other transformations: TRANSMIT uses STAT for its pole ambiguity (`Transmit::ptp_end`:
+//! bit 0 turns C through +180° or −180°, bit 1 travels through the pole or rotates in it;
+//! Transformations FM, Cartesian PTP travel); the robot transformations (RCTRA, ROBX) use bits
+//! 0..2 for shoulder, elbow and hand flip, which this product does not have. TRACYL, TRAANG
+//! and TRACON's second member have one solution.
 
 use crate::kinematics::unwrap_near;
 use crate::machine_data::MachineConfig;

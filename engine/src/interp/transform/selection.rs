@@ -794,7 +794,12 @@ fn point_to_point(a: &mut Active, mv: &Move, block: PtpBlock, line: u32) -> Resu
         }
         None => super::ptp_stat::shortest_way(&mut end, &slots, &a.machine, &a.base),
     }
-    let machine = a.trafo.inverse(&end, &a.machine).map_err(|_| working_area(line))?;
+    let machine = match (block.stat, &a.trafo.trafo) {
+        // TRANSMIT: STAT resolves the pole (see `Transmit::ptp_end`); TU has no meaning there.
+        (Some(stat), AnyTrafo::Transmit(t)) => t.ptp_end(&end, &a.machine, &a.trafo.tool, stat),
+        _ => a.trafo.inverse(&end, &a.machine),
+    }
+    .map_err(|_| working_area(line))?;
     for k in a.trafo.trafo.machine_slots() {
         let ax = a.base.axis(k);
         if ax.modulo.is_none() && (machine[k] > ax.limit_plus + 1e-9 || machine[k] < ax.limit_minus - 1e-9) {
