@@ -406,6 +406,10 @@ impl Channel {
                     self.enter_block(line);
                     self.execute_workpiece(request, &offsets.frame, line);
                 }
+                Item::Measure { request, line } => {
+                    self.enter_block(line);
+                    self.arm_probe(request, line);
+                }
                 Item::SetPiece { pieces, line } => {
                     self.enter_block(line);
                     self.set_piece(pieces);

@@ -16,6 +16,7 @@ mod io;
 mod jog;
 mod jog_settings;
 mod main_run;
+mod probe;
 mod programs;
 mod reference;
 mod referencing;
@@ -50,6 +51,7 @@ pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 pub use spindle::{SpindleMode, SpindleState};
+pub use probe::{MAX_PROBE_TARGETS, ProbeTarget};
 pub use stock_cut::{StockCheck, StockInfo, StockOptions, StockWarning};
 
 use crate::alarm::{Alarm, Clear};
@@ -317,6 +319,8 @@ pub struct Channel {
     /// FPR: the axis a feed per revolution follows instead of the master spindle, with its
     /// position at the last cycle (`spindle.rs`).
     feed_reference: Option<(usize, f64)>,
+    /// The touch-trigger probe of MEAS/MEAW (`probe.rs`).
+    probe: probe::Probe,
 }
 
 impl Channel {
@@ -398,6 +402,7 @@ impl Channel {
             stock: None,
             stock_options: Default::default(),
             feed_reference: None,
+            probe: Default::default(),
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -478,6 +483,8 @@ impl Channel {
         next.tick = self.tick;
         next.set_digital_io(self.io);
         (next.stock, next.stock_options) = (self.stock.take(), self.stock_options);
+        next.probe = std::mem::take(&mut self.probe);
+        next.probe.disarm();
         *self = next;
     }
 
@@ -662,6 +669,7 @@ impl Channel {
     /// a reset clears and returns the modal state to its reset values.
     pub fn reset(&mut self) {
         self.sbl_done = None;
+        self.probe.disarm();
         self.planner.abort();
         self.pending.clear();
         self.in_planner.clear();
@@ -745,6 +753,9 @@ impl Channel {
         self.planner.step();
         self.monitor_tools();
         self.update_machine_position();
+        if self.probe.armed() {
+            self.step_probe();
+        }
         if self.stock.is_some() {
             self.cut_stock();
         }

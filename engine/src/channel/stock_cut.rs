@@ -137,6 +137,11 @@ pub(super) struct StockRun {
 }
 
 impl StockRun {
+    /// The stock as cut so far (the probe of MEAS reads it, `probe.rs`).
+    pub(super) fn stock(&self) -> &Stock {
+        &self.stock
+    }
+
     fn new(stock: Stock, options: StockOptions) -> StockRun {
         StockRun {
             initial_volume: stock.volume(),

@@ -399,6 +399,8 @@ pub(super) struct Words {
     /// SPOS=: position the master spindle (it becomes a rotary axis).
     /// Spindle words beyond S and M3/M4/M5 (see `spindles/words.rs`).
     pub spindle: super::spindles::words::SpindleWords,
+    /// MEAS=/MEAW=: measure with a probe in this block's motion (`measuring.rs`).
+    pub measure: Option<super::measuring::Request>,
     /// `$P_PFRAME=...`, `$P_SETFRAME=...`: links of the frame chain the block assigns.
     pub frame_writes: Vec<(ChainFrame, Frame)>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
@@ -824,6 +826,7 @@ pub(super) fn collect(
                 };
                 match &**name {
                     _ if super::spindles::words::address(&mut w.spindle, name, index, v, value.mode, line)? => {}
+                    _ if super::measuring::address(&mut w.measure, name, v, line)? => {}
                     "F" => w.feed = Some(v),
                     "S" => w.speed = Some(v),
                     "T" => w.tool = Some(whole("T")?),
@@ -1185,6 +1188,7 @@ fn is_nc_address(name: &str) -> bool {
             | "THETA"
     ) || words::is_address(name)
         || super::spindles::words::is_address(name)
+        || super::measuring::is_address(name)
         || super::path_control::is_address(name)
         || super::compensation::sar::is_address(name)
         || super::path_control::spline::is_address(name)
