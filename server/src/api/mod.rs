@@ -19,6 +19,7 @@ pub mod roles;
 pub mod sessions;
 pub mod spindle_dto;
 pub mod state_json;
+pub mod probe;
 pub mod stock;
 pub mod stream;
 pub mod stream_frame;
@@ -101,7 +102,8 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(viewers::get_viewers))
         .routes(routes!(io::get_io, io::put_io))
         .routes(routes!(stock::get_stock, stock::put_stock, stock::delete_stock))
-        .routes(routes!(stock::get_stock_stl));
+        .routes(routes!(stock::get_stock_stl))
+        .routes(routes!(probe::get_probe_targets, probe::put_probe_targets));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
         .routes(routes!(program_archive::import_archive, program_archive::export_archive));
