@@ -429,6 +429,7 @@ impl Channel {
         self.current_line = None;
         self.sync.end_program();
         self.feed_reference = None;
+        self.master_spindle = self.cfg.master_spindle;
         self.flush_tool_monitor();
         self.interp.end_program(&self.cfg);
         // Program end returns the offsets to their reset values (G500); the display follows.

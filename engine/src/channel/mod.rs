@@ -319,6 +319,8 @@ pub struct Channel {
     /// FPR: the axis a feed per revolution follows instead of the master spindle, with its
     /// position at the last cycle (`spindle.rs`).
     feed_reference: Option<(usize, f64)>,
+    /// The master spindle in the main run: MD20090's, or SETMS's until reset or program end.
+    master_spindle: Option<usize>,
     /// The touch-trigger probe of MEAS/MEAW (`probe.rs`).
     probe: probe::Probe,
 }
@@ -346,6 +348,7 @@ impl Channel {
     /// data or chain data) has to say which programs it keeps.
     fn with_config(data: MachineData, cfg: MachineConfig, programs: Programs) -> Channel {
         let cfg = Arc::new(cfg);
+        let master_spindle = cfg.master_spindle;
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg, &data);
         let servo = servo::Servo::new(&cfg, &[0.0; MAX_CHANNEL_AXES]);
@@ -402,6 +405,7 @@ impl Channel {
             stock: None,
             stock_options: Default::default(),
             feed_reference: None,
+            master_spindle,
             probe: Default::default(),
         };
         ch.publish_stored_data();
@@ -685,6 +689,7 @@ impl Channel {
         self.message = None;
         self.sync.end_program();
         self.feed_reference = None;
+        self.master_spindle = self.cfg.master_spindle;
         let pos = *self.planner.position();
         for s in &mut self.spindles {
             s.leave_axis_mode(pos[s.axis]);

@@ -194,7 +194,7 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
         &mut s.spindle_states,
         ch.spindles.iter().map(|sp| {
             let number = cfg.axis(sp.axis).spindle.unwrap_or(0);
-            (cfg.spindle_name(sp.axis), sp.state(number, Some(sp.axis) == cfg.master_spindle, pos[sp.axis]))
+            (cfg.spindle_name(sp.axis), sp.state(number, Some(sp.axis) == ch.master_spindle, pos[sp.axis]))
         }),
     );
     match &ch.message {

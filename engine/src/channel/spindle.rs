@@ -197,7 +197,7 @@ impl Spindle {
                 self.css = Some(Css { cutting_speed, direction: f64::from(direction), transverse, centre });
                 self.programmed = f64::from(direction);
             }
-            Control::ThreadStart { .. } | Control::FeedReference { .. } | Control::Gear { .. } => {}
+            Control::ThreadStart { .. } | Control::FeedReference { .. } | Control::Gear { .. } | Control::Master { .. } => {}
         }
     }
 
@@ -345,7 +345,7 @@ impl super::Channel {
     pub(super) fn step_spindles(&mut self) {
         let dt = self.cfg.ipo_cycle;
         let mut rate = 0.0;
-        let reference = self.feed_reference.map_or(self.cfg.master_spindle, |(k, _)| Some(k));
+        let reference = self.feed_reference.map_or(self.master_spindle, |(k, _)| Some(k));
         for s in &mut self.spindles {
             s.step(dt, &self.machine);
             if Some(s.axis) == reference {
@@ -368,9 +368,16 @@ impl super::Channel {
 
     /// A spindle command of the program; false while it has to wait (a thread's start angle).
     pub(super) fn spindle_control(&mut self, c: &Control) -> bool {
-        if let Control::FeedReference { axis } = *c {
-            self.feed_reference = Some((axis, self.machine[axis]));
-            return true;
+        match *c {
+            Control::FeedReference { axis } => {
+                self.feed_reference = Some((axis, self.machine[axis]));
+                return true;
+            }
+            Control::Master { axis } => {
+                self.master_spindle = Some(axis);
+                return true;
+            }
+            _ => {}
         }
         let Some(s) = self.spindles.iter_mut().find(|s| s.axis == c.axis()) else { return true };
         match *c {

@@ -40,6 +40,12 @@ impl Interpreter {
         if let Some(k) = sw.fpr {
             self.select_fpr(k, cfg, line, out);
         }
+        if words.set_master.is_some()
+            && let Some(axis) = self.spindles.master()
+        {
+            // SETMS (already applied to preparation): the main run's master follows.
+            self.trc.emit_or_defer(Item::SpindleControl { ctl: Control::Master { axis }, line }, out);
+        }
         let t = self.spindles.feed_type;
         self.modal.feed_per_rev = t.per_rev();
         self.modal.feed_type_index = match t {
