@@ -190,11 +190,16 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     set_text(&mut s.tool_name, cfg.tool_list.tools.get(&s.tool.0).map_or("", |e| e.name.as_str()));
     s.path_velocity = ch.planner.velocity() * 60.0;
     fill_named(&mut s.spindles, ch.spindles.iter().map(|sp| (cfg.spindle_name(sp.axis), sp.speed)));
+    let at_feed = ch.in_planner.front().is_some_and(|(_, m)| m.feed.is_finite());
+    let cutting = at_feed && ch.stock_removing() && ch.planner.velocity() > 0.0;
     fill_named(
         &mut s.spindle_states,
         ch.spindles.iter().map(|sp| {
             let number = cfg.axis(sp.axis).spindle.unwrap_or(0);
-            (cfg.spindle_name(sp.axis), sp.state(number, Some(sp.axis) == ch.master_spindle, pos[sp.axis]))
+            let master = Some(sp.axis) == ch.master_spindle;
+            let mut state = sp.state(number, master, pos[sp.axis]);
+            state.cutting = master && state.speed != 0.0 && cutting;
+            (cfg.spindle_name(sp.axis), state)
         }),
     );
     match &ch.message {

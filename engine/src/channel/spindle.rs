@@ -51,6 +51,12 @@ pub struct SpindleState {
     pub position: f64,
     /// The channel's master spindle (MD20090, SETMS).
     pub master: bool,
+    /// The gear stage engaged (M40..M45, MD35010); `None` for a spindle without gear stages.
+    pub gear: Option<u8>,
+    /// The spindle load symbol of the T/F/S display: the master spindle turns while the path
+    /// moves at feed and the last stretch of it (a stock segment, at most 8 mm) removed
+    /// material from the session's stock. Not a load value: NCTwin models no cutting forces.
+    pub cutting: bool,
 }
 
 /// Constant cutting speed as the main run evaluates it.
@@ -121,7 +127,8 @@ impl Spindle {
             };
             (mode, self.speed, self.position)
         };
-        SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master }
+        let gear = (self.gears.count > 0).then_some(self.gear);
+        SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master, gear, cutting: false }
     }
 
     pub fn is_turning(&self) -> bool {

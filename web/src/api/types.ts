@@ -256,6 +256,10 @@ export interface SpindleInfo {
   mode: "M3" | "M4" | "M5" | "SPOS";
   position: number;
   master: boolean;
+  /** The gear stage engaged (M40..M45); null without gear stages. Absent from older servers. */
+  gear?: number | null;
+  /** The spindle load symbol: the master spindle cuts (feed motion removing stock). */
+  cutting?: boolean;
 }
 
 /** One level of the call stack of the block in execution (program null: the main program). */
