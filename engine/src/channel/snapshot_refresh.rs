@@ -141,8 +141,10 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     fill_named(&mut s.basic, order.iter().map(|&k| (name(k), show(k, basic_vec[k]))));
     let wcs = offsets.frame.unapply(&geo_axes, &basic_vec).unwrap_or(basic_vec);
     // Diameter programming (G group 29): the transverse axis shows the diameter in the WCS.
+    // Other axes with axis-specific diameter programming (DIAMONA[ax]) show diameters too.
     let diameter_axis = cfg.transverse_axis.filter(|_| ch.trafo.is_none() && ch.offsets.gcodes.diameter_display());
-    let wcs_value = |k: usize| if Some(k) == diameter_axis { 2.0 * wcs[k] } else { wcs[k] };
+    let others = if ch.trafo.is_none() { offsets.diameter_axes } else { 0 };
+    let wcs_value = |k: usize| if Some(k) == diameter_axis || others & 1 << k != 0 { 2.0 * wcs[k] } else { wcs[k] };
     fill_named(&mut s.workpiece, order.iter().map(|&k| (name(k), show(k, wcs_value(k)))));
 
     // The tool direction in the WCS: through the orientation transformation when one is

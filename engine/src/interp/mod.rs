@@ -71,6 +71,9 @@ pub struct Offsets {
     pub trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Online tool length offset in the tool directions X, Y, Z (`$AA_TOFF`, see `toff.rs`).
     pub toff: [f64; 3],
+    /// Channel axes besides the transverse axis shown as diameters in the WCS (DIAMONA[ax]..;
+    /// bit k: channel axis k).
+    pub diameter_axes: u32,
 }
 
 /// The offsets an item carries: shared, because consecutive blocks mostly have the same
@@ -512,6 +515,9 @@ impl Interpreter {
         let gcodes = gcodes::GCodes::of(&self.modal);
         if self.offsets.gcodes != gcodes {
             self.offsets.gcodes = gcodes;
+        }
+        if self.offsets.diameter_axes != self.modal.diameter_display_axes {
+            self.offsets.diameter_axes = self.modal.diameter_display_axes;
         }
     }
 

@@ -68,6 +68,9 @@ pub struct Modal {
     pub feed_type_index: u8,
     /// G group 29 as `spindles::diameter::Diameter::gcode_slot` gives it.
     pub diameter_slot: u8,
+    /// Channel axes other than the transverse axis whose WCS display shows diameters
+    /// (bit k: channel axis k; `spindles::diameter::Diameter::display_mask`).
+    pub diameter_display_axes: u32,
     /// G60 (true) or G64.
     pub exact_stop: bool,
     /// Active settable frame: 0 = G500, 1..4 = G54..G57, 5.. = G505...
@@ -149,6 +152,7 @@ impl Modal {
             feed_per_rev: false,
             feed_type_index: 0,
             diameter_slot: 0,
+            diameter_display_axes: 0,
             exact_stop: true,
             work_offset: 0,
             feed: None,

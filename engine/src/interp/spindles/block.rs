@@ -31,6 +31,7 @@ impl Interpreter {
             }
         }
         self.modal.diameter_slot = self.spindles.diameter.gcode_slot();
+        self.modal.diameter_display_axes = self.spindles.diameter.display_mask();
         let was_css = self.spindles.feed_type.css();
         if let Some(t) = sw.feed_type {
             self.spindles.feed_type = t;
