@@ -429,6 +429,11 @@ impl Channel {
         &self.cfg
     }
 
+    /// The active frame chain link by link and its total (`interp/frames/overview.rs`).
+    pub fn frame_chain(&self) -> Vec<crate::interp::FrameChainLink> {
+        self.interp.frame_chain(&self.cfg)
+    }
+
     /// The stored machine data.
     pub fn machine_data(&self) -> &MachineData {
         &self.data

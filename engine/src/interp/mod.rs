@@ -46,6 +46,7 @@ use eval::vars::Variables;
 use flow::Flow;
 use frames::cache::{FrameCache, Tracked};
 pub use frames::frame::Frame;
+pub use frames::overview::ChainLink as FrameChainLink;
 use frames::frame::SystemFrames;
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
