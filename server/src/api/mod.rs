@@ -19,6 +19,7 @@ pub mod roles;
 pub mod sessions;
 pub mod spindle_dto;
 pub mod state_json;
+pub mod frames;
 pub mod probe;
 pub mod stock;
 pub mod stream;
@@ -103,7 +104,8 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(io::get_io, io::put_io))
         .routes(routes!(stock::get_stock, stock::put_stock, stock::delete_stock))
         .routes(routes!(stock::get_stock_stl))
-        .routes(routes!(probe::get_probe_targets, probe::put_probe_targets));
+        .routes(routes!(probe::get_probe_targets, probe::put_probe_targets))
+        .routes(routes!(frames::get_frames));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
         .routes(routes!(program_archive::import_archive, program_archive::export_archive));

@@ -249,6 +249,22 @@ export interface PreviewResponse {
   samples: number;
 }
 
+/** One link of GET .../frames: a frame of the active chain as frame data. */
+export interface FrameLink {
+  name: string;
+  neutral: boolean;
+  trans: number[];
+  rot: [number, number, number] | null;
+  scale: number[];
+  mirror: boolean[];
+}
+
+/** GET .../frames: the active frame chain (BCS towards WCS), the total last. */
+export interface FrameChain {
+  axes: string[];
+  links: FrameLink[];
+}
+
 /** One spindle in the state's `spindle_info`. */
 export interface SpindleInfo {
   number: number;
