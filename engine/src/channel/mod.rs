@@ -43,6 +43,7 @@ use std::sync::Arc;
 pub use active_program::{ActiveProgram, CallLevel};
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use jog_settings::OrientationJogKind;
+pub use probe::{MAX_PROBE_TARGETS, ProbeTarget};
 pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
@@ -51,7 +52,6 @@ pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 pub use spindle::{SpindleMode, SpindleState};
-pub use probe::{MAX_PROBE_TARGETS, ProbeTarget};
 pub use stock_cut::{StockCheck, StockInfo, StockOptions, StockWarning};
 
 use crate::alarm::{Alarm, Clear};

@@ -137,7 +137,10 @@ impl Channel {
             self.probe.job = None;
             self.notify_alarm(Alarm {
                 number: 21702,
-                message: format!("Channel 1 block {} probe {} measurement aborted: no switch", job.line, job.request.probe),
+                message: format!(
+                    "Channel 1 block {} probe {} measurement aborted: no switch",
+                    job.line, job.request.probe
+                ),
                 line: Some(job.line),
                 clear: Clear::Cancel,
             });
@@ -175,7 +178,11 @@ impl Channel {
                 basic[*k] -= self.toff.current[g];
             }
         }
-        results.workpiece = self.offsets.frame.unapply(&self.cfg.geo_axes, &basic).unwrap_or([f64::NAN; crate::machine_data::registry::MAX_CHANNEL_AXES]);
+        results.workpiece = self
+            .offsets
+            .frame
+            .unapply(&self.cfg.geo_axes, &basic)
+            .unwrap_or([f64::NAN; crate::machine_data::registry::MAX_CHANNEL_AXES]);
         self.interp.set_measured(self.probe.results);
         if !job.request.delete_distance {
             return;
@@ -233,10 +240,7 @@ impl Channel {
         let toff = self.toff.current;
         let offsets = &self.offsets;
         let centre: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| m[k] - offsets.tool[k] - toff[g]));
-        let radius = self
-            .cfg
-            .edge(offsets.t, offsets.d)
-            .map_or(0.0, |p| (p[5] + p[14]).max(0.0));
+        let radius = self.cfg.edge(offsets.t, offsets.d).map_or(0.0, |p| (p[5] + p[14]).max(0.0));
         if self.probe.targets.iter().any(|t| dot(sub(centre, t.point), t.normal) <= radius) {
             return true;
         }

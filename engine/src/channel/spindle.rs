@@ -204,7 +204,10 @@ impl Spindle {
                 self.css = Some(Css { cutting_speed, direction: f64::from(direction), transverse, centre });
                 self.programmed = f64::from(direction);
             }
-            Control::ThreadStart { .. } | Control::FeedReference { .. } | Control::Gear { .. } | Control::Master { .. } => {}
+            Control::ThreadStart { .. }
+            | Control::FeedReference { .. }
+            | Control::Gear { .. }
+            | Control::Master { .. } => {}
         }
     }
 

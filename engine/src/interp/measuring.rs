@@ -112,7 +112,7 @@ impl super::Interpreter {
     pub(super) fn measure_request(&self, request: Option<Request>, line: u32) -> Result<(), Alarm> {
         if request.is_some() && self.offsets.trafo.is_some() {
             // The probe is simulated in the BCS; a transformation's machine axes are not.
-            return Err(Alarm::conflicting_functions(line, "MEAS/MEAW with an active transformation"));
+            return Err(Alarm::unknown_name(line, "MEAS/MEAW with an active transformation"));
         }
         Ok(())
     }
@@ -131,7 +131,7 @@ impl super::Interpreter {
         if !self.trc.idle() {
             // The compensated move would be held for the next block, which itself waits for
             // the measurement: NCTwin measures without TRC only.
-            return Err(Alarm::conflicting_functions(line, "MEAS/MEAW with tool radius compensation G41/G42"));
+            return Err(Alarm::unknown_name(line, "MEAS/MEAW with tool radius compensation G41/G42"));
         }
         let Some(first) = out[mark..].iter().position(|i| matches!(i, super::Item::Move { .. })) else {
             return Err(Alarm::syntax(line, "MEAS/MEAW needs a motion in its block"));

@@ -46,8 +46,8 @@ use eval::vars::Variables;
 use flow::Flow;
 use frames::cache::{FrameCache, Tracked};
 pub use frames::frame::Frame;
-pub use frames::overview::ChainLink as FrameChainLink;
 use frames::frame::SystemFrames;
+pub use frames::overview::ChainLink as FrameChainLink;
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
 
