@@ -339,8 +339,7 @@ fn h_functions_and_m_functions_with_address_extension_are_read() {
 fn an_unmodelled_reserved_name_is_12550_naming_it_and_its_line() {
     for (word, name) in [
         // WORKPIECE and ACTBLOCNO are accepted now (program_data.rs), the file functions too
-        // (file_functions.rs); probing is not modelled.
-        ("MEAS=1 G1 X10 F100", "MEAS"),
+        // (file_functions.rs), MEAS/MEAW as well (measuring.rs).
         ("CYCLE952(\"PART\",,\"\",2101311,0.2,0.1,0,0.5,0.1,0.1,0.2,0.1,0.1,4,1,0,0,0)", "CYCLE952"),
         ("R1=$MN_INTERPOLATOR_CYCLE", "$MN_INTERPOLATOR_CYCLE"),
         // Synchronized actions are modelled now (synchronized_actions.rs); a name in one that

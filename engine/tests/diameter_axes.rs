@@ -135,3 +135,20 @@ fn an_axis_not_released_by_md30460_raises_16510_and_an_unknown_axis_12550() {
     finish(&mut ch, "DIAMONA[X]\nM30");
     assert_eq!(ch.snapshot().alarms.iter().map(|a| a.number).collect::<Vec<_>>(), vec![16510]);
 }
+
+#[test]
+fn an_axis_with_its_own_diameter_programming_shows_its_diameter_in_the_wcs() {
+    // Z released (MD30460 bit 2): DIAMONA[Z], Z40 is the radius 20 (machine Z20) and the WCS
+    // display shows the diameter 40, as for the transverse axis; X (channel DIAMOF) shows its
+    // radius 40. DIAMOFA[Z] afterwards: Z30 is a radius again and shows 30.
+    let md = "$MA_BASE_FUNCTION_MASK[Z1]=4";
+    let ch = lathe_md(md, "DIAMONA[Z]\nG0 X40 Z40\nM0\nM30");
+    assert!(close(machine(&ch, 1), 20.0));
+    assert!(close(wcs(&ch, "Z"), 40.0), "Z shows {}", wcs(&ch, "Z"));
+    assert!(close(wcs(&ch, "X"), 40.0), "X shows {}", wcs(&ch, "X"));
+    let ch = lathe_md(md, "DIAMONA[Z]\nG0 X40 Z40\nDIAMOFA[Z]\nG0 Z30\nM0\nM30");
+    assert!(close(wcs(&ch, "Z"), 30.0), "Z shows {}", wcs(&ch, "Z"));
+    // Linked to the channel by DIAMCHAN under DIAMON: Z shows its diameter with X.
+    let ch = lathe_md(md, "DIAMON\nDIAMCHAN\nG0 X40 Z40\nM0\nM30");
+    assert!(close(wcs(&ch, "Z"), 40.0) && close(wcs(&ch, "X"), 40.0));
+}

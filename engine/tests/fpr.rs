@@ -85,3 +85,25 @@ fn fpr_of_a_linear_or_unknown_axis_or_of_the_moving_axis_itself_is_refused() {
     let mut ch = channel("tracyl-xyzac", "FPR(C)\nG95 G1 F0.1 C90\nM30\n");
     assert_eq!(alarms(&mut ch), vec![(12560, Some(2))]);
 }
+
+#[test]
+fn g95_follows_the_master_spindle_setms_selects() {
+    // SETMS(2): spindle 2 is the master spindle; G95 F0.1 at its 1000 rev/min is 100 mm/min
+    // while spindle 1 stands (the main run used MD20090's spindle 1 before: no motion at all).
+    let mut ch = channel("transmit-example", "S2=1000 M2=3\nG4 F2\nSETMS(2)\nG95 G1 Z-50 F0.1\nM30\n");
+    let v = z_speed(&mut ch);
+    assert!((v - 100.0).abs() < 1e-6, "path speed {v} mm/min");
+    let snap = ch.snapshot();
+    let master: Vec<_> = snap.spindle_states.iter().filter(|(_, s)| s.master).map(|(n, _)| n.clone()).collect();
+    assert_eq!(master.len(), 1, "{master:?}");
+    assert_ne!(master[0], ch.config().spindle_name(ch.config().master_spindle.unwrap()), "the state marks spindle 2");
+}
+
+#[test]
+fn setms_without_a_spindle_gives_the_master_back_to_the_machine_data() {
+    // SETMS: spindle 1 again (it stands at S1=500 M3 → 0.1 · 500 = 50 mm/min).
+    let mut ch =
+        channel("transmit-example", "S1=500 M3\nS2=1000 M2=3\nG4 F2\nSETMS(2)\nSETMS\nG95 G1 Z-50 F0.1\nM30\n");
+    let v = z_speed(&mut ch);
+    assert!((v - 50.0).abs() < 1e-6, "path speed {v} mm/min");
+}

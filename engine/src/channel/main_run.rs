@@ -406,6 +406,10 @@ impl Channel {
                     self.enter_block(line);
                     self.execute_workpiece(request, &offsets.frame, line);
                 }
+                Item::Measure { request, line } => {
+                    self.enter_block(line);
+                    self.arm_probe(request, line);
+                }
                 Item::SetPiece { pieces, line } => {
                     self.enter_block(line);
                     self.set_piece(pieces);
@@ -425,6 +429,7 @@ impl Channel {
         self.current_line = None;
         self.sync.end_program();
         self.feed_reference = None;
+        self.master_spindle = self.cfg.master_spindle;
         self.flush_tool_monitor();
         self.interp.end_program(&self.cfg);
         // Program end returns the offsets to their reset values (G500); the display follows.

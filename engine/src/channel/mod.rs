@@ -16,6 +16,7 @@ mod io;
 mod jog;
 mod jog_settings;
 mod main_run;
+mod probe;
 mod programs;
 mod reference;
 mod referencing;
@@ -42,6 +43,7 @@ use std::sync::Arc;
 pub use active_program::{ActiveProgram, CallLevel};
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use jog_settings::OrientationJogKind;
+pub use probe::{MAX_PROBE_TARGETS, ProbeTarget};
 pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;
 pub use repos_modes::ReposMode;
@@ -317,6 +319,10 @@ pub struct Channel {
     /// FPR: the axis a feed per revolution follows instead of the master spindle, with its
     /// position at the last cycle (`spindle.rs`).
     feed_reference: Option<(usize, f64)>,
+    /// The master spindle in the main run: MD20090's, or SETMS's until reset or program end.
+    master_spindle: Option<usize>,
+    /// The touch-trigger probe of MEAS/MEAW (`probe.rs`).
+    probe: probe::Probe,
 }
 
 impl Channel {
@@ -342,6 +348,7 @@ impl Channel {
     /// data or chain data) has to say which programs it keeps.
     fn with_config(data: MachineData, cfg: MachineConfig, programs: Programs) -> Channel {
         let cfg = Arc::new(cfg);
+        let master_spindle = cfg.master_spindle;
         let planner = Planner::new(cfg.ipo_cycle, AxisLimit::for_channel(&cfg), [0.0; MAX_CHANNEL_AXES]);
         let spindles = spindle::for_config(&cfg, &data);
         let servo = servo::Servo::new(&cfg, &[0.0; MAX_CHANNEL_AXES]);
@@ -398,6 +405,8 @@ impl Channel {
             stock: None,
             stock_options: Default::default(),
             feed_reference: None,
+            master_spindle,
+            probe: Default::default(),
         };
         ch.publish_stored_data();
         // Power on acts like a reset: the reset transformation (if configured) is active.
@@ -418,6 +427,11 @@ impl Channel {
     /// The activated configuration.
     pub fn config(&self) -> &MachineConfig {
         &self.cfg
+    }
+
+    /// The active frame chain link by link and its total (`interp/frames/overview.rs`).
+    pub fn frame_chain(&self) -> Vec<crate::interp::FrameChainLink> {
+        self.interp.frame_chain(&self.cfg)
     }
 
     /// The stored machine data.
@@ -478,6 +492,8 @@ impl Channel {
         next.tick = self.tick;
         next.set_digital_io(self.io);
         (next.stock, next.stock_options) = (self.stock.take(), self.stock_options);
+        next.probe = std::mem::take(&mut self.probe);
+        next.probe.disarm();
         *self = next;
     }
 
@@ -662,6 +678,7 @@ impl Channel {
     /// a reset clears and returns the modal state to its reset values.
     pub fn reset(&mut self) {
         self.sbl_done = None;
+        self.probe.disarm();
         self.planner.abort();
         self.pending.clear();
         self.in_planner.clear();
@@ -677,6 +694,7 @@ impl Channel {
         self.message = None;
         self.sync.end_program();
         self.feed_reference = None;
+        self.master_spindle = self.cfg.master_spindle;
         let pos = *self.planner.position();
         for s in &mut self.spindles {
             s.leave_axis_mode(pos[s.axis]);
@@ -745,6 +763,9 @@ impl Channel {
         self.planner.step();
         self.monitor_tools();
         self.update_machine_position();
+        if self.probe.armed() {
+            self.step_probe();
+        }
         if self.stock.is_some() {
             self.cut_stock();
         }

@@ -292,7 +292,8 @@ impl Channel {
                     | Item::DigitalOutput { .. }
                     | Item::SyncAction { .. }
                     | Item::SyncControl { .. }
-                    | Item::SetPiece { .. } => {}
+                    | Item::SetPiece { .. }
+                    | Item::Measure { .. } => {}
                     Item::Stop { kind: StopKind::End, .. } => return Err(target_not_found(line)),
                     Item::Alarm(alarm) => return Err(alarm),
                 }

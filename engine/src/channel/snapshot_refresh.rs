@@ -141,8 +141,10 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     fill_named(&mut s.basic, order.iter().map(|&k| (name(k), show(k, basic_vec[k]))));
     let wcs = offsets.frame.unapply(&geo_axes, &basic_vec).unwrap_or(basic_vec);
     // Diameter programming (G group 29): the transverse axis shows the diameter in the WCS.
+    // Other axes with axis-specific diameter programming (DIAMONA[ax]) show diameters too.
     let diameter_axis = cfg.transverse_axis.filter(|_| ch.trafo.is_none() && ch.offsets.gcodes.diameter_display());
-    let wcs_value = |k: usize| if Some(k) == diameter_axis { 2.0 * wcs[k] } else { wcs[k] };
+    let others = if ch.trafo.is_none() { offsets.diameter_axes } else { 0 };
+    let wcs_value = |k: usize| if Some(k) == diameter_axis || others & 1 << k != 0 { 2.0 * wcs[k] } else { wcs[k] };
     fill_named(&mut s.workpiece, order.iter().map(|&k| (name(k), show(k, wcs_value(k)))));
 
     // The tool direction in the WCS: through the orientation transformation when one is
@@ -190,11 +192,16 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     set_text(&mut s.tool_name, cfg.tool_list.tools.get(&s.tool.0).map_or("", |e| e.name.as_str()));
     s.path_velocity = ch.planner.velocity() * 60.0;
     fill_named(&mut s.spindles, ch.spindles.iter().map(|sp| (cfg.spindle_name(sp.axis), sp.speed)));
+    let at_feed = ch.in_planner.front().is_some_and(|(_, m)| m.feed.is_finite());
+    let cutting = at_feed && ch.stock_removing() && ch.planner.velocity() > 0.0;
     fill_named(
         &mut s.spindle_states,
         ch.spindles.iter().map(|sp| {
             let number = cfg.axis(sp.axis).spindle.unwrap_or(0);
-            (cfg.spindle_name(sp.axis), sp.state(number, Some(sp.axis) == cfg.master_spindle, pos[sp.axis]))
+            let master = Some(sp.axis) == ch.master_spindle;
+            let mut state = sp.state(number, master, pos[sp.axis]);
+            state.cutting = master && state.speed != 0.0 && cutting;
+            (cfg.spindle_name(sp.axis), state)
         }),
     );
     match &ch.message {

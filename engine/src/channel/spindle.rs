@@ -51,6 +51,12 @@ pub struct SpindleState {
     pub position: f64,
     /// The channel's master spindle (MD20090, SETMS).
     pub master: bool,
+    /// The gear stage engaged (M40..M45, MD35010); `None` for a spindle without gear stages.
+    pub gear: Option<u8>,
+    /// The spindle load symbol of the T/F/S display: the master spindle turns while the path
+    /// moves at feed and the last stretch of it (a stock segment, at most 8 mm) removed
+    /// material from the session's stock. Not a load value: NCTwin models no cutting forces.
+    pub cutting: bool,
 }
 
 /// Constant cutting speed as the main run evaluates it.
@@ -121,7 +127,8 @@ impl Spindle {
             };
             (mode, self.speed, self.position)
         };
-        SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master }
+        let gear = (self.gears.count > 0).then_some(self.gear);
+        SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master, gear, cutting: false }
     }
 
     pub fn is_turning(&self) -> bool {
@@ -197,7 +204,10 @@ impl Spindle {
                 self.css = Some(Css { cutting_speed, direction: f64::from(direction), transverse, centre });
                 self.programmed = f64::from(direction);
             }
-            Control::ThreadStart { .. } | Control::FeedReference { .. } | Control::Gear { .. } => {}
+            Control::ThreadStart { .. }
+            | Control::FeedReference { .. }
+            | Control::Gear { .. }
+            | Control::Master { .. } => {}
         }
     }
 
@@ -345,7 +355,7 @@ impl super::Channel {
     pub(super) fn step_spindles(&mut self) {
         let dt = self.cfg.ipo_cycle;
         let mut rate = 0.0;
-        let reference = self.feed_reference.map_or(self.cfg.master_spindle, |(k, _)| Some(k));
+        let reference = self.feed_reference.map_or(self.master_spindle, |(k, _)| Some(k));
         for s in &mut self.spindles {
             s.step(dt, &self.machine);
             if Some(s.axis) == reference {
@@ -368,9 +378,16 @@ impl super::Channel {
 
     /// A spindle command of the program; false while it has to wait (a thread's start angle).
     pub(super) fn spindle_control(&mut self, c: &Control) -> bool {
-        if let Control::FeedReference { axis } = *c {
-            self.feed_reference = Some((axis, self.machine[axis]));
-            return true;
+        match *c {
+            Control::FeedReference { axis } => {
+                self.feed_reference = Some((axis, self.machine[axis]));
+                return true;
+            }
+            Control::Master { axis } => {
+                self.master_spindle = Some(axis);
+                return true;
+            }
+            _ => {}
         }
         let Some(s) = self.spindles.iter_mut().find(|s| s.axis == c.axis()) else { return true };
         match *c {

@@ -134,9 +134,17 @@ pub(super) struct StockRun {
     /// The line each check was last raised for (once per block and kind; JOG is line 0).
     reported: [u32; 3],
     skipped: u64,
+    /// The last segment cut removed material at feed with a spindle turning (the T/F/S
+    /// display's spindle load symbol, `snapshot_refresh.rs`).
+    removing: bool,
 }
 
 impl StockRun {
+    /// The stock as cut so far (the probe of MEAS reads it, `probe.rs`).
+    pub(super) fn stock(&self) -> &Stock {
+        &self.stock
+    }
+
     fn new(stock: Stock, options: StockOptions) -> StockRun {
         StockRun {
             initial_volume: stock.volume(),
@@ -148,6 +156,7 @@ impl StockRun {
             warnings_total: 0,
             reported: [u32::MAX; 3],
             skipped: 0,
+            removing: false,
         }
     }
 }
@@ -220,6 +229,11 @@ impl Channel {
             last_warning: run.warnings.back().copied(),
             skipped: run.skipped,
         })
+    }
+
+    /// Whether the last segment cut removed material at feed with a spindle turning.
+    pub(super) fn stock_removing(&self) -> bool {
+        self.stock.as_ref().is_some_and(|r| r.removing)
     }
 
     /// The latest warnings, oldest first (at most 64).
@@ -349,6 +363,7 @@ impl Channel {
         }
         let Some((_, Some(cutter))) = run.cutter else { return };
         let removal = run.stock.cut(&cutter, a, b);
+        run.removing = removal.volume > 0.0 && !key.rapid && key.spindle;
         if removal.depth < CHECK_DEPTH {
             return;
         }

@@ -4,5 +4,6 @@
 pub(super) mod cache;
 pub mod frame;
 pub(super) mod incremental;
+pub mod overview;
 pub(super) mod solid_angles;
 pub(super) mod vars;

@@ -18,6 +18,7 @@ mod frames;
 pub mod gcodes;
 pub mod io;
 mod lane;
+pub mod measuring;
 mod modal;
 mod orientation;
 mod path_control;
@@ -46,6 +47,7 @@ use flow::Flow;
 use frames::cache::{FrameCache, Tracked};
 pub use frames::frame::Frame;
 use frames::frame::SystemFrames;
+pub use frames::overview::ChainLink as FrameChainLink;
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
 
@@ -70,6 +72,9 @@ pub struct Offsets {
     pub trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Online tool length offset in the tool directions X, Y, Z (`$AA_TOFF`, see `toff.rs`).
     pub toff: [f64; 3],
+    /// Channel axes besides the transverse axis shown as diameters in the WCS (DIAMONA[ax]..;
+    /// bit k: channel axis k).
+    pub diameter_axes: u32,
 }
 
 /// The offsets an item carries: shared, because consecutive blocks mostly have the same
@@ -163,6 +168,11 @@ pub enum Item {
         ids: Vec<u32>,
         line: u32,
     },
+    /// MEAS/MEAW: the next move (of this line) measures with a probe (`measuring.rs`).
+    Measure {
+        request: measuring::Request,
+        line: u32,
+    },
     /// `WORKPIECE(..)`: the blank, in the WCS of the block's frame (`workpiece.rs`).
     Workpiece {
         request: crate::stock::blank::Request,
@@ -209,7 +219,8 @@ impl Item {
             | Item::SyncAction { line, .. }
             | Item::SyncControl { line, .. }
             | Item::Workpiece { line, .. }
-            | Item::SetPiece { line, .. } => Some(*line),
+            | Item::SetPiece { line, .. }
+            | Item::Measure { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -293,6 +304,8 @@ pub struct Interpreter {
     sync_wait: synchronized::PrepWait,
     /// The main run's `$AC_MARKER`, `$AC_PARAM`, `$AC_DELT` ... as last handed over.
     sync_data: synchronized::MainRunData,
+    /// The main run's probe results (`$AC_MEA`, `$AA_MM`, `$AA_MW`) as last handed over.
+    measured: measuring::Results,
 }
 
 impl Interpreter {
@@ -333,6 +346,7 @@ impl Interpreter {
             stored: Default::default(),
             io: io::DigitalIo::default(),
             sync_wait: synchronized::PrepWait::None,
+            measured: Default::default(),
             sync_data: Default::default(),
         }
     }
@@ -502,6 +516,9 @@ impl Interpreter {
         let gcodes = gcodes::GCodes::of(&self.modal);
         if self.offsets.gcodes != gcodes {
             self.offsets.gcodes = gcodes;
+        }
+        if self.offsets.diameter_axes != self.modal.diameter_display_axes {
+            self.offsets.diameter_axes = self.modal.diameter_display_axes;
         }
     }
 
@@ -707,6 +724,9 @@ impl Interpreter {
                 self.trc.emit_or_defer(Item::SetPiece { pieces: sp.pieces, line }, out);
             }
         }
+        // MEAS/MEAW: the request goes before the block's move (`measuring.rs`).
+        self.measure_request(words.measure, line)?;
+        let measure_mark = out.len();
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;
         if words.dwell {
@@ -768,6 +788,7 @@ impl Interpreter {
             out.push(Item::Offsets { line, offsets: self.shared_offsets() });
         }
 
+        self.measure_block_end(words.measure, measure_mark, line, out)?;
         if let Some(text) = &words.message {
             out.push(Item::Message { text: text.clone(), line });
         }

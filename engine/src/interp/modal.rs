@@ -68,6 +68,9 @@ pub struct Modal {
     pub feed_type_index: u8,
     /// G group 29 as `spindles::diameter::Diameter::gcode_slot` gives it.
     pub diameter_slot: u8,
+    /// Channel axes other than the transverse axis whose WCS display shows diameters
+    /// (bit k: channel axis k; `spindles::diameter::Diameter::display_mask`).
+    pub diameter_display_axes: u32,
     /// G60 (true) or G64.
     pub exact_stop: bool,
     /// Active settable frame: 0 = G500, 1..4 = G54..G57, 5.. = G505...
@@ -151,6 +154,7 @@ impl Modal {
             feed_per_rev: false,
             feed_type_index: 0,
             diameter_slot: 0,
+            diameter_display_axes: 0,
             exact_stop: true,
             work_offset: 0,
             feed: None,
@@ -402,6 +406,8 @@ pub(super) struct Words {
     /// SPOS=: position the master spindle (it becomes a rotary axis).
     /// Spindle words beyond S and M3/M4/M5 (see `spindles/words.rs`).
     pub spindle: super::spindles::words::SpindleWords,
+    /// MEAS=/MEAW=: measure with a probe in this block's motion (`measuring.rs`).
+    pub measure: Option<super::measuring::Request>,
     /// `$P_PFRAME=...`, `$P_SETFRAME=...`: links of the frame chain the block assigns.
     pub frame_writes: Vec<(ChainFrame, Frame)>,
     /// RND=, CHF=, CHR=: the corner at the end of this block.
@@ -829,6 +835,7 @@ pub(super) fn collect(
                 };
                 match &**name {
                     _ if super::spindles::words::address(&mut w.spindle, name, index, v, value.mode, line)? => {}
+                    _ if super::measuring::address(&mut w.measure, name, v, line)? => {}
                     "F" => w.feed = Some(v),
                     "S" => w.speed = Some(v),
                     "T" => w.tool = Some(whole("T")?),
@@ -1192,6 +1199,7 @@ fn is_nc_address(name: &str) -> bool {
             | "THETA"
     ) || words::is_address(name)
         || super::spindles::words::is_address(name)
+        || super::measuring::is_address(name)
         || super::path_control::is_address(name)
         || super::compensation::sar::is_address(name)
         || super::path_control::spline::is_address(name)

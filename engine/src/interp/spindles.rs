@@ -44,6 +44,9 @@ pub enum Control {
     /// M40..M45: the spindle changes to gear stage `stage` (`gears.rs`); the block change
     /// waits until it has.
     Gear { axis: usize, stage: u8 },
+    /// SETMS: the spindle on channel axis `axis` is the master spindle from here on (a feed
+    /// per revolution follows it in the main run, the state marks it).
+    Master { axis: usize },
 }
 
 impl Control {
@@ -54,7 +57,8 @@ impl Control {
             | Control::Css { axis, .. }
             | Control::ThreadStart { axis, .. }
             | Control::FeedReference { axis }
-            | Control::Gear { axis, .. } => axis,
+            | Control::Gear { axis, .. }
+            | Control::Master { axis } => axis,
         }
     }
 }

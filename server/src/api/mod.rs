@@ -5,6 +5,7 @@
 pub mod active_program;
 pub mod control;
 pub mod cycles;
+pub mod frames;
 pub mod health;
 pub mod io;
 pub mod jog;
@@ -13,6 +14,7 @@ pub mod machine_data;
 pub mod machine_data_read;
 pub mod machines;
 pub mod preview;
+pub mod probe;
 pub mod program_archive;
 pub mod programs;
 pub mod roles;
@@ -101,7 +103,9 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(viewers::get_viewers))
         .routes(routes!(io::get_io, io::put_io))
         .routes(routes!(stock::get_stock, stock::put_stock, stock::delete_stock))
-        .routes(routes!(stock::get_stock_stl));
+        .routes(routes!(stock::get_stock_stl))
+        .routes(routes!(probe::get_probe_targets, probe::put_probe_targets))
+        .routes(routes!(frames::get_frames));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
         .routes(routes!(program_archive::import_archive, program_archive::export_archive));

@@ -19,13 +19,27 @@ pub struct SpindleInfo {
     pub mode: &'static str,
     /// Angle in degrees, 0 ≤ angle < 360.
     pub position: f64,
-    /// Whether this is the configured master spindle (MD20090).
+    /// Whether this is the master spindle (MD20090, or the one SETMS selected).
     pub master: bool,
+    /// The gear stage engaged (M40..M45); `null` for a spindle without gear stages.
+    pub gear: Option<u8>,
+    /// The T/F/S display's spindle load symbol: the master spindle turns while the path moves
+    /// at feed and the last stretch cut (at most 8 mm) removed material from the stock. A flag,
+    /// not a load: no cutting forces are modelled.
+    pub cutting: bool,
 }
 
 impl From<&SpindleState> for SpindleInfo {
     fn from(s: &SpindleState) -> Self {
-        SpindleInfo { number: s.number, speed: s.speed, mode: s.mode.name(), position: s.position, master: s.master }
+        SpindleInfo {
+            number: s.number,
+            speed: s.speed,
+            mode: s.mode.name(),
+            position: s.position,
+            master: s.master,
+            gear: s.gear,
+            cutting: s.cutting,
+        }
     }
 }
 

@@ -234,6 +234,13 @@ fn write_head(out: &mut String, s: &Snapshot) {
         write_f64(out, sp.position);
         out.push_str(",\"master\":");
         write_bool(out, sp.master);
+        out.push_str(",\"gear\":");
+        match sp.gear {
+            None => out.push_str("null"),
+            Some(g) => write_int(out, g),
+        }
+        out.push_str(",\"cutting\":");
+        write_bool(out, sp.cutting);
         out.push('}');
     }
     out.push('}');

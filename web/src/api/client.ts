@@ -6,6 +6,7 @@ import type {
   ArchiveImport,
   ControlState,
   Diagnostic,
+  FrameChain,
   IoChange,
   IoImage,
   JogCommand,
@@ -133,6 +134,8 @@ export const api = {
   setIo: (id: string, change: IoChange) => request<IoImage>("PUT", `${s(id)}/io`, change),
 
   machineData: (id: string) => request<{ text: string }>("GET", `${s(id)}/machine-data`),
+  /** The active frame chain link by link and its total. */
+  frames: (id: string) => request<FrameChain>("GET", `${s(id)}/frames`),
   /** The chain data ($NK_/$NT_) as a part program (plain text). */
   kinematicChains: (id: string) => request<string>("GET", `${s(id)}/kinematic-chains`),
   putMachineData: (id: string, text: string) => request<State>("PUT", `${s(id)}/machine-data`, { text }),

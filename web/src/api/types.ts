@@ -249,6 +249,22 @@ export interface PreviewResponse {
   samples: number;
 }
 
+/** One link of GET .../frames: a frame of the active chain as frame data. */
+export interface FrameLink {
+  name: string;
+  neutral: boolean;
+  trans: number[];
+  rot: [number, number, number] | null;
+  scale: number[];
+  mirror: boolean[];
+}
+
+/** GET .../frames: the active frame chain (BCS towards WCS), the total last. */
+export interface FrameChain {
+  axes: string[];
+  links: FrameLink[];
+}
+
 /** One spindle in the state's `spindle_info`. */
 export interface SpindleInfo {
   number: number;
@@ -256,6 +272,10 @@ export interface SpindleInfo {
   mode: "M3" | "M4" | "M5" | "SPOS";
   position: number;
   master: boolean;
+  /** The gear stage engaged (M40..M45); null without gear stages. Absent from older servers. */
+  gear?: number | null;
+  /** The spindle load symbol: the master spindle cuts (feed motion removing stock). */
+  cutting?: boolean;
 }
 
 /** One level of the call stack of the block in execution (program null: the main program). */

@@ -40,6 +40,8 @@ pub(crate) struct SysView<'a> {
     pub sync: &'a crate::interp::synchronized::MainRunData,
     /// The spindles as preparation sees them (`$P_S`, `$P_SDIR`).
     pub spindles: &'a crate::interp::spindles::Spindles,
+    /// The probe's last results (`$AC_MEA`, `$AA_MM`, `$AA_MW`).
+    pub measured: &'a crate::interp::measuring::Results,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -62,6 +64,7 @@ macro_rules! sys_view {
             io: &$interp.io,
             sync: &$interp.sync_data,
             spindles: &$interp.spindles,
+            measured: &$interp.measured,
         }
     };
 }
@@ -133,6 +136,9 @@ impl Scope for Ctx<'_> {
             return v;
         }
         if let Some(v) = sys.sync.read(name, indices, line) {
+            return v;
+        }
+        if let Some(v) = sys.measured.read(sys.cfg, name, indices, line) {
             return v;
         }
         Ok(match name {

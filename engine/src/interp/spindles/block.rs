@@ -31,6 +31,7 @@ impl Interpreter {
             }
         }
         self.modal.diameter_slot = self.spindles.diameter.gcode_slot();
+        self.modal.diameter_display_axes = self.spindles.diameter.display_mask();
         let was_css = self.spindles.feed_type.css();
         if let Some(t) = sw.feed_type {
             self.spindles.feed_type = t;
@@ -39,6 +40,12 @@ impl Interpreter {
         }
         if let Some(k) = sw.fpr {
             self.select_fpr(k, cfg, line, out);
+        }
+        if words.set_master.is_some()
+            && let Some(axis) = self.spindles.master()
+        {
+            // SETMS (already applied to preparation): the main run's master follows.
+            self.trc.emit_or_defer(Item::SpindleControl { ctl: Control::Master { axis }, line }, out);
         }
         let t = self.spindles.feed_type;
         self.modal.feed_per_rev = t.per_rev();

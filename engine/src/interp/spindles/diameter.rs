@@ -213,6 +213,29 @@ impl Diameter {
     }
 }
 
+impl Diameter {
+    /// The channel axes other than the transverse axis whose WCS display shows diameters
+    /// (bit k: channel axis k): an axis with its own DIAMONA/DIAM90A (or DIACYCOFA after one),
+    /// or linked to the channel (DIAMCHANA) while the channel shows diameters. The control
+    /// shows such an axis as a diameter like the transverse axis (Programming Manual
+    /// "Axis-specific diameter programming").
+    pub fn display_mask(&self) -> u32 {
+        let channel = matches!(self.shown, DiamMode::On | DiamMode::D90);
+        let mut mask = 0;
+        for (k, a) in self.axes.iter().enumerate() {
+            let shown = match a {
+                AxisDiam::Channel => channel,
+                AxisDiam::Own { shown, .. } => matches!(shown, DiamMode::On | DiamMode::D90),
+                AxisDiam::Radius => false,
+            };
+            if shown && Some(k) != self.transverse {
+                mask |= 1 << k;
+            }
+        }
+        mask
+    }
+}
+
 /// Whether the G group 29 slot `slot` (see [`Diameter::gcode_slot`]) shows the transverse
 /// axis as a diameter.
 pub fn slot_shows_diameter(slot: u8) -> bool {

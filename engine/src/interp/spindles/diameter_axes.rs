@@ -8,8 +8,9 @@
 //!
 //! The effect is modal per axis until reset or program end (then the transverse axis of MD20100
 //! follows the channel again and every other axis is radius-programmed); `diameter.rs` keeps
-//! the state. NCTwin's WCS display shows the diameter for the transverse axis of MD20100
-//! (whether by the channel's mode or its own); other axes show their radius.
+//! the state. The WCS display shows the diameter for the transverse axis of MD20100 (whether
+//! by the channel's mode or its own) and for every other axis whose values are diameters
+//! (`Diameter::display_mask`, carried to the main run in `Offsets::diameter_axes`).
 
 use super::diameter::DiamMode;
 use super::words::SpindleWords;
