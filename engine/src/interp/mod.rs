@@ -20,7 +20,7 @@ pub mod io;
 mod lane;
 mod modal;
 mod orientation;
-mod path_control;
+pub(crate) mod path_control;
 mod published;
 pub mod retained;
 pub mod spindles;

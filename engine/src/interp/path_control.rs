@@ -16,10 +16,9 @@
 //! - The tolerance of G642..G645 is one distance for the geometry axes: `CTOL` when
 //!   programmed, else SD42465 when MD20480's units digit is 1 or 3, else the smallest MD33100
 //!   of the geometry axes (or `ATOL`). A negative `CTOL`/`OTOL`/`ATOL` returns to the data.
-//! - `G601`/`G602`/`G603`: the simulated axes follow their setpoint exactly, so the fine and
-//!   coarse exact-stop windows (MD36010/MD36000) and the interpolator end are reached in the
-//!   same IPO cycle; the words are kept (and read back through `$P_GG[12]`) but change no
-//!   timing.
+//! - `G601`/`G602`/`G603` travel with the block (`GCodes::stop_window`) to the main run,
+//!   where the block change after G60/G9 waits for the window (`channel/exact_stop.rs`); under
+//!   FFWON the following error is zero and the three are alike.
 //! - `ADIS`/`ADISPOS` are modal and 0 after reset: G641 without them rounds nothing.
 //! - `OTOL` and the orientation: moves with a vector-interpolated orientation (TRAORI with
 //!   ORIVECT ...) and moves split for a transformation are not rounded.
