@@ -27,8 +27,14 @@
 //! - `ADIS`/`ADISPOS` are modal and 0 after reset: G641 without them rounds nothing.
 //! - `OTOL` and the orientation: moves with a vector-interpolated orientation (TRAORI with
 //!   ORIVECT ...) and moves split for a transformation are not rounded.
-//! - `UPATH`/`SPATH` (the path parameter of FGROUP axes) are accepted; every path here is
-//!   parametrised by the geometry axes' length (SPATH), so UPATH changes nothing.
+//! - `UPATH`/`SPATH` (the path parameter of the axes outside FGROUP) are accepted and
+//!   change nothing: FGROUP is not modelled, so every axis moves with the geometry axes' path
+//!   length, and lines, circles and the rounding and compressor elements run at uniform path
+//!   speed, where the curve parameter is proportional to the length. (They would differ for
+//!   POLY/spline blocks moving further axes, whose parameter is not the length.)
+//! - Under TRC the rounding acts on the compensated moves (`compensation/trc.rs` hands the
+//!   block's [`Blend`] to each equidistant piece): the corners of the offset contour are
+//!   rounded, and G645 smooths the tangential joints of G450's transition circles.
 
 pub(super) mod spline;
 use crate::alarm::Alarm;
