@@ -28,8 +28,7 @@ fn run(md: &str, program: &str) -> Vec<[f64; 2]> {
 /// at the exact stop (1 when the next block starts in the cycle after the interpolator end).
 fn wait(samples: &[[f64; 2]], axis: usize, at: f64) -> usize {
     let arrive = samples.iter().position(|p| p[axis] == at).expect("reaches the end point");
-    let leave = samples[arrive..].iter().position(|p| p[axis] != at).expect("leaves again");
-    leave
+    samples[arrive..].iter().position(|p| p[axis] != at).expect("leaves again")
 }
 
 /// The samples from the first that leaves the start point (X0 Y0): a block that changes only G
@@ -97,4 +96,19 @@ fn with_ffwon_or_in_continuous_path_mode_the_windows_change_nothing() {
     assert!(wait(&g9, 0, 100.0).abs_diff(93) <= 2);
     // The time spent waiting is real time: the wait is 92 × 4 ms = 0.37 s.
     assert!((wait(&g9, 0, 100.0) as f64 * DT - 0.372).abs() <= 2.0 * DT);
+}
+
+#[test]
+fn exact_pos_mode_fixes_the_window_for_g0_and_for_g1() {
+    // MD20550 = 03: G0 always at the interpolator end (units digit 3), G1 as programmed (tens
+    // digit 0). A G0 move under G601 then starts the next block at once; the G1 move of the
+    // first test still waits its 93 cycles.
+    let md = "$MC_EXACT_POS_MODE=3";
+    let rapid = run(md, "FFWOF G60 G601\nG0 X100\nG1 X0 F6000\nM30");
+    assert_eq!(wait(&rapid, 0, 100.0), 1);
+    assert!(wait(&run(md, &program("G601", "FFWOF")), 0, 100.0).abs_diff(93) <= 2);
+    // MD20550 = 20: G1 always with the coarse window, whatever is programmed: G601 waits
+    // as G602 (73 cycles).
+    let coarse = wait(&run("$MC_EXACT_POS_MODE=20", &program("G601", "FFWOF")), 0, 100.0);
+    assert!(coarse.abs_diff(73) <= 2, "G601 under MD20550 = 20 waited {coarse} cycles");
 }

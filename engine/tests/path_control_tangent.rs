@@ -73,7 +73,9 @@ fn g645_smooths_a_line_into_a_tangent_arc_within_path_trans_pos_tol() {
     // is sampled several times). G642 leaves the transitions as programmed: every sample on
     // the contour.
     for tol in [0.005, 0.02] {
-        let md = format!("$MA_PATH_TRANS_POS_TOL[X]={tol}\n$MA_PATH_TRANS_POS_TOL[Y]={tol}\n$MA_PATH_TRANS_POS_TOL[Z]={tol}");
+        let md = format!(
+            "$MA_PATH_TRANS_POS_TOL[X]={tol}\n$MA_PATH_TRANS_POS_TOL[Y]={tol}\n$MA_PATH_TRANS_POS_TOL[Z]={tol}"
+        );
         let s = contour_part(run(&md, &contour("G645")));
         let worst = s.iter().map(|&p| to_contour(p)).fold(0.0, f64::max);
         assert!(worst <= tol * 1.0001 && worst >= 0.85 * tol, "tolerance {tol}: deviation {worst}");

@@ -1,7 +1,9 @@
 //! The block change after an exact stop (G60/G9) waits for the exact-stop window of G group 12
 //! (Function Manual B1 "Exact stop"): `G601` until every axis' following error is inside
 //! MD36010 `$MA_STOP_LIMIT_FINE`, `G602` inside MD36000 `$MA_STOP_LIMIT_COARSE`, `G603` at the
-//! interpolator's end (no wait).
+//! interpolator's end (no wait). MD20550 `$MC_EXACT_POS_MODE` may fix the window for G0
+//! (units digit) and for the other G group 1 functions (tens digit): 1 G601, 2 G602, 3 G603,
+//! 0 the programmed one.
 //!
 //! Input: the planner's front move before each IPO cycle, the servo model's following errors
 //! (`servo.rs`) and the finished block's G group 12. Output: whether the planner may step.
@@ -73,21 +75,29 @@ impl ExactStop {
         self.implicit.push_back(tag);
     }
 
-    /// Before the planner's step: the tag of the front move when it ends in an exact stop
-    /// while the position loops lag (only then can a window be outside after it).
+    /// Before the planner's step: the tag of the front move and whether it is rapid traverse,
+    /// when it ends in an exact stop while the position loops lag (only then can a window be
+    /// outside after it).
     #[inline]
-    pub(super) fn watch(planner: &Planner, servo: &Servo) -> Option<u32> {
+    pub(super) fn watch(planner: &Planner, servo: &Servo) -> Option<(u32, bool)> {
         if servo.is_settled() {
             return None;
         }
-        planner.front().filter(|m| m.exact_stop).map(|m| m.tag)
+        planner.front().filter(|m| m.exact_stop).map(|m| (m.tag, m.is_rapid()))
     }
 
-    /// After the planner's step, for a watched move `tag`: if it ended in this cycle
-    /// (`finished`) in a programmed exact stop, the next block waits for `window`, the
-    /// finished block's G group 12.
+    /// After the planner's step, for a watched move `(tag, rapid)`: if it ended in this cycle
+    /// (`finished`) in a programmed exact stop, the next block waits for `programmed`, the
+    /// finished block's G group 12, or the window MD20550 fixes for G0 or the other G group 1
+    /// functions.
     #[inline(never)]
-    pub(super) fn after_step(&mut self, tag: u32, finished: bool, window: StopWindow) {
+    pub(super) fn after_step(
+        &mut self,
+        (tag, rapid): (u32, bool),
+        finished: bool,
+        programmed: StopWindow,
+        cfg: &MachineConfig,
+    ) {
         if !finished {
             return;
         }
@@ -95,6 +105,13 @@ impl ExactStop {
             self.implicit.remove(i);
             return;
         }
+        let mode = cfg.path_control.exact_pos_mode;
+        let window = match if rapid { mode % 10 } else { mode / 10 % 10 } {
+            1 => StopWindow::Fine,
+            2 => StopWindow::Coarse,
+            3 => StopWindow::IpoEnd,
+            _ => programmed,
+        };
         if window != StopWindow::IpoEnd {
             self.waiting = Some(window);
         }

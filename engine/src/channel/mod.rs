@@ -751,7 +751,7 @@ impl Channel {
             self.planner.step();
             if let Some(tag) = watched {
                 let window = self.offsets.gcodes.stop_window();
-                self.exact_stop.after_step(tag, self.planner.has_finished(), window);
+                self.exact_stop.after_step(tag, self.planner.has_finished(), window, &self.cfg);
             }
         }
         self.monitor_tools();

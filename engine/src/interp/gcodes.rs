@@ -9,17 +9,17 @@ use super::orientation::rotation::RotReference;
 use super::orientation::words::{AngleDefinition, OriInterpolation, OriReference};
 
 /// One entry per displayed G group: the index of the active function in that group's list;
-/// then G group 12 (G601/G602/G603), which the main run's exact stop reads but the display
-/// does not list.
+/// then G group 12 (G601/G602/G603, [`WINDOW_SLOT`]), which the main run's exact stop reads
+/// but the display does not list.
 #[derive(Debug, Clone, Copy, Eq, Default)]
-pub struct GCodes([u8; GROUPS.len()], u8);
+pub struct GCodes([u8; GROUPS.len() + 1]);
 
 /// Compared once or twice per block: the first 16 groups as one 128-bit number, the rest
 /// byte by byte.
 impl PartialEq for GCodes {
     fn eq(&self, other: &GCodes) -> bool {
         let wide = |g: &GCodes| u128::from_ne_bytes(g.0[..16].try_into().expect("16 groups"));
-        wide(self) == wide(other) && self.0[16..] == other.0[16..] && self.1 == other.1
+        wide(self) == wide(other) && self.0[16..] == other.0[16..]
     }
 }
 
@@ -50,6 +50,9 @@ const GROUPS: [(u8, &[&str]); 20] = [
 
 /// Position of G group 29 (diameter programming) in [`GROUPS`].
 const DIAMETER_SLOT: usize = 19;
+
+/// Position of G group 12 (exact-stop window) after the displayed groups.
+const WINDOW_SLOT: usize = GROUPS.len();
 
 /// Position of G group 24 (feed-forward) in [`GROUPS`].
 const FFW_SLOT: usize = 17;
@@ -132,13 +135,14 @@ impl GCodes {
             u8::from(m.dynamics.ffw),
             m.dynamics.mode as u8,
             m.diameter_slot,
-        ], m.path.window as u8)
+            m.path.window as u8,
+        ])
     }
 
     /// The exact-stop window of G group 12 (G601/G602/G603) of the block.
     pub fn stop_window(&self) -> super::path_control::StopWindow {
         use super::path_control::StopWindow;
-        [StopWindow::Fine, StopWindow::Coarse, StopWindow::IpoEnd][usize::from(self.1.min(2))]
+        [StopWindow::Fine, StopWindow::Coarse, StopWindow::IpoEnd][usize::from(self.0[WINDOW_SLOT].min(2))]
     }
 
     /// FFWON (G group 24) is active in the block: the main run's servo model reads it.

@@ -20,6 +20,8 @@ pub struct PathControlData {
     /// MD36010 STOP_LIMIT_FINE (G601) and MD36000 STOP_LIMIT_COARSE (G602) per channel axis.
     pub stop_fine: Vec<f64>,
     pub stop_coarse: Vec<f64>,
+    /// MD20550 EXACT_POS_MODE: a fixed exact-stop window for G0 (units) and G1.. (tens).
+    pub exact_pos_mode: i64,
     /// SD42465 SMOOTH_CONTUR_TOL (mm): setting data, acting at once.
     pub contour_tol: f64,
     /// SD42466 SMOOTH_ORI_TOL (degrees).
@@ -39,6 +41,7 @@ impl PathControlData {
             trans_tol: axial("$MA_PATH_TRANS_POS_TOL"),
             stop_fine: axial("$MA_STOP_LIMIT_FINE"),
             stop_coarse: axial("$MA_STOP_LIMIT_COARSE"),
+            exact_pos_mode: md.num("$MC_EXACT_POS_MODE", 0, 0) as i64,
             contour_tol: 0.0,
             ori_tol: 0.0,
         };

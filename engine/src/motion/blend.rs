@@ -94,7 +94,9 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     let d = match spec {
         Blend::Distance(adis) => adis.min(d_max),
         // The cut grows in proportion to d between two lines, nearly so next to arcs.
-        Blend::Tolerance(tol) if tol > 0.0 => search(d_max, tol, 1.0, |d| Some(element(a, b, d, metric)?.distance_to(&corner)))?,
+        Blend::Tolerance(tol) if tol > 0.0 => {
+            search(d_max, tol, 1.0, |d| Some(element(a, b, d, metric)?.distance_to(&corner)))?
+        }
         // Along a tangential transition the deviation grows with d² (as a clothoid's shift).
         Blend::Smooth { tangent, .. } => search(d_max, tangent, 0.5, |d| {
             let (ua, ub) = (1.0 - d / a.length, d / b.length);
@@ -327,5 +329,4 @@ mod tests {
         let v = r.corner.v_max;
         assert!(v < 50.0 && v * v * second[0] <= 2000.0 * CENTRIPETAL * 1.0001, "v {v}");
     }
-
 }
