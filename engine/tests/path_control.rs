@@ -221,13 +221,18 @@ fn a_cam_surface_of_20000_chords_runs_fastest_with_g642_and_compcad() {
     };
     let (g60, g64, g642) = (cycles("G60"), cycles("G64"), cycles("G642 COMPCAD CTOL=0.01"));
     let g642_only = cycles("G642 CTOL=0.01");
+    // No two chords of the surface meet tangentially: G645 rounds each transition as a corner,
+    // exactly as G642 does.
+    let g645 = cycles("G645 CTOL=0.01");
     eprintln!(
-        "surface program, 20,000 chords: G60 {:.1} s, G64 {:.1} s, G642 {:.1} s, G642+COMPCAD {:.1} s",
+        "surface program, 20,000 chords: G60 {:.1} s, G64 {:.1} s, G642 {:.1} s, G645 {:.1} s, G642+COMPCAD {:.1} s",
         g60 as f64 * DT,
         g64 as f64 * DT,
         g642_only as f64 * DT,
+        g645 as f64 * DT,
         g642 as f64 * DT
     );
+    assert_eq!(g645, g642_only, "G645 differs from G642 on a surface without tangential transitions");
     assert!(g642 < g64 && 2 * g64 < g60, "G642+COMPCAD {g642}, G64 {g64}, G60 {g60} cycles");
     assert!(g642 <= g642_only, "the compressor helps: {g642} vs {g642_only}");
 }

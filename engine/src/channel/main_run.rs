@@ -182,12 +182,17 @@ impl Channel {
                 .pending
                 .front()
                 .is_some_and(|i| !matches!(i, Item::Move { .. }) || single.is_some() && i.line() != Some(line));
+            let programmed_stop = mv.exact_stop;
             if next_is_other || single.is_some() && self.pending.is_empty() {
                 mv.exact_stop = true;
             }
             // A change of the transformation or of the tool it includes needs standstill too.
             if matches!(self.pending.front(), Some(Item::Move { offsets: next, .. }) if next.trafo != offsets.trafo) {
                 mv.exact_stop = true;
+            }
+            if mv.exact_stop && !programmed_stop {
+                // The move is pushed next: its tag is `next_tag`.
+                self.exact_stop.implicit(self.next_tag);
             }
             let corner = if single.is_some() { None } else { self.round_corner(&mut mv) };
             let machine_space = mv.machine_space;

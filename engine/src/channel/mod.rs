@@ -12,6 +12,7 @@
 mod active_program;
 mod blending;
 mod cartesian_jog;
+mod exact_stop;
 mod io;
 mod jog;
 mod jog_settings;
@@ -309,6 +310,8 @@ pub struct Channel {
     io: crate::interp::io::DigitalIo,
     /// The axes' position loops: actual values and following errors.
     servo: servo::Servo,
+    /// The block change waiting for the G601/G602 exact-stop window (`exact_stop.rs`).
+    exact_stop: exact_stop::ExactStop,
     /// Motion-synchronous actions and their data (`sync_actions.rs`).
     sync: sync_actions::SyncActions,
     /// Tool life and count monitoring (`tool_monitor.rs`).
@@ -398,6 +401,7 @@ impl Channel {
             toff: Default::default(),
             io: Default::default(),
             servo,
+            exact_stop: Default::default(),
             referenced,
             referencing: None,
             sync: Default::default(),
@@ -760,7 +764,14 @@ impl Channel {
             self.feed_planner();
         }
         self.step_sync_actions();
-        self.planner.step();
+        if !self.exact_stop.holds(&self.servo, &self.cfg) {
+            let watched = exact_stop::ExactStop::watch(&self.planner, &self.servo);
+            self.planner.step();
+            if let Some(tag) = watched {
+                let window = self.offsets.gcodes.stop_window();
+                self.exact_stop.after_step(tag, self.planner.has_finished(), window, &self.cfg);
+            }
+        }
         self.monitor_tools();
         self.update_machine_position();
         if self.probe.armed() {
@@ -786,7 +797,7 @@ impl Channel {
             self.finish_repos_if_done();
             return;
         }
-        if self.status == Status::Running && self.planner.is_empty() {
+        if self.status == Status::Running && self.planner.is_empty() && !self.exact_stop.is_waiting() {
             self.execute_actions();
         }
         self.sync_files();

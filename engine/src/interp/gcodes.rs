@@ -8,9 +8,11 @@ use super::modal::{Modal, MotionMode, Plane, PtpMode};
 use super::orientation::rotation::RotReference;
 use super::orientation::words::{AngleDefinition, OriInterpolation, OriReference};
 
-/// One entry per displayed G group: the index of the active function in that group's list.
+/// One entry per displayed G group: the index of the active function in that group's list;
+/// then G group 12 (G601/G602/G603, [`WINDOW_SLOT`]), which the main run's exact stop reads
+/// but the display does not list.
 #[derive(Debug, Clone, Copy, Eq, Default)]
-pub struct GCodes([u8; GROUPS.len()]);
+pub struct GCodes([u8; GROUPS.len() + 1]);
 
 /// Compared once or twice per block: the first 16 groups as one 128-bit number, the rest
 /// byte by byte.
@@ -48,6 +50,9 @@ const GROUPS: [(u8, &[&str]); 20] = [
 
 /// Position of G group 29 (diameter programming) in [`GROUPS`].
 const DIAMETER_SLOT: usize = 19;
+
+/// Position of G group 12 (exact-stop window) after the displayed groups.
+const WINDOW_SLOT: usize = GROUPS.len();
 
 /// Position of G group 24 (feed-forward) in [`GROUPS`].
 const FFW_SLOT: usize = 17;
@@ -130,7 +135,14 @@ impl GCodes {
             u8::from(m.dynamics.ffw),
             m.dynamics.mode as u8,
             m.diameter_slot,
+            m.path.window as u8,
         ])
+    }
+
+    /// The exact-stop window of G group 12 (G601/G602/G603) of the block.
+    pub fn stop_window(&self) -> super::path_control::StopWindow {
+        use super::path_control::StopWindow;
+        [StopWindow::Fine, StopWindow::Coarse, StopWindow::IpoEnd][usize::from(self.0[WINDOW_SLOT].min(2))]
     }
 
     /// FFWON (G group 24) is active in the block: the main run's servo model reads it.

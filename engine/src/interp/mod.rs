@@ -21,7 +21,7 @@ mod lane;
 pub mod measuring;
 mod modal;
 mod orientation;
-mod path_control;
+pub(crate) mod path_control;
 mod published;
 pub mod retained;
 pub mod spindles;

@@ -8,23 +8,33 @@
 //! round the corner at its end (`motion::blend`).
 //!
 //! Modelled as follows where the manuals leave room:
-//! - `G643` (block-internal rounding) and `G644` (rounding with the greatest possible
-//!   dynamics) round like `G642`, with the axial tolerance MD33100 (or `ATOL`): the rounded
-//!   path is the same kind of element, inserted between the blocks.
-//! - `G645` rounds corners like `G642` (same tolerance rule); tangential transitions with a
-//!   jump in curvature are left as they are.
+//! - `G643` (block-internal rounding) rounds like `G642`: the rounded path is the same kind
+//!   of element, inserted between the blocks.
+//! - `G644` (rounding with the greatest possible dynamics, for moves in air) follows MD20480's
+//!   thousands digit: 1 and 5 round by `ADIS`/`ADISPOS` as G641 does, every other value by
+//!   the axial tolerance MD33100 (3, "neither tolerance nor distance", is read as 0). The
+//!   programmed `CTOL`/`ATOL` do not act on G644 (Function Manual B1, "Programmable contour
+//!   and orientation tolerance").
+//! - `G645` rounds corners like `G642` (same tolerance rule) and smooths tangential
+//!   transitions with a jump in curvature within MD33120 `$MA_PATH_TRANS_POS_TOL` (the
+//!   smallest of the geometry axes'), which `CTOL` does not change (B1, as for G644).
 //! - The tolerance of G642..G645 is one distance for the geometry axes: `CTOL` when
 //!   programmed, else SD42465 when MD20480's units digit is 1 or 3, else the smallest MD33100
 //!   of the geometry axes (or `ATOL`). A negative `CTOL`/`OTOL`/`ATOL` returns to the data.
-//! - `G601`/`G602`/`G603`: the simulated axes follow their setpoint exactly, so the fine and
-//!   coarse exact-stop windows (MD36010/MD36000) and the interpolator end are reached in the
-//!   same IPO cycle; the words are kept (and read back through `$P_GG[12]`) but change no
-//!   timing.
+//! - `G601`/`G602`/`G603` travel with the block (`GCodes::stop_window`) to the main run,
+//!   where the block change after G60/G9 waits for the window (`channel/exact_stop.rs`); under
+//!   FFWON the following error is zero and the three are alike.
 //! - `ADIS`/`ADISPOS` are modal and 0 after reset: G641 without them rounds nothing.
 //! - `OTOL` and the orientation: moves with a vector-interpolated orientation (TRAORI with
 //!   ORIVECT ...) and moves split for a transformation are not rounded.
-//! - `UPATH`/`SPATH` (the path parameter of FGROUP axes) are accepted; every path here is
-//!   parametrised by the geometry axes' length (SPATH), so UPATH changes nothing.
+//! - `UPATH`/`SPATH` (the path parameter of the axes outside FGROUP) are accepted and
+//!   change nothing: FGROUP is not modelled, so every axis moves with the geometry axes' path
+//!   length, and lines, circles and the rounding and compressor elements run at uniform path
+//!   speed, where the curve parameter is proportional to the length. (They would differ for
+//!   POLY/spline blocks moving further axes, whose parameter is not the length.)
+//! - Under TRC the rounding acts on the compensated moves (`compensation/trc.rs` hands the
+//!   block's [`Blend`] to each equidistant piece): the corners of the offset contour are
+//!   rounded, and G645 smooths the tangential joints of G450's transition circles.
 
 pub(super) mod spline;
 use crate::alarm::Alarm;
@@ -204,8 +214,11 @@ impl PathControl {
                 let d = if rapid { self.adispos } else { self.adis };
                 (d > 0.0).then_some(Blend::Distance(d))
             }
-            Smoothing::G642 | Smoothing::G643 | Smoothing::G644 | Smoothing::G645 => {
-                Some(Blend::Tolerance(self.tolerance(cfg)))
+            Smoothing::G642 | Smoothing::G643 => Some(Blend::Tolerance(self.tolerance(cfg))),
+            Smoothing::G644 => Some(self.g644(rapid, cfg)),
+            Smoothing::G645 => {
+                let tangent = geo_min(cfg, &cfg.path_control.trans_tol);
+                Some(Blend::Smooth { corner: self.tolerance(cfg), tangent })
             }
         }
     }
@@ -222,6 +235,15 @@ impl PathControl {
             block_limit: data.block_path_limit,
             velo_tol: data.velo_tol / 60.0,
         })
+    }
+
+    /// G644's rounding by MD20480's thousands digit (see the module doc).
+    fn g644(&self, rapid: bool, cfg: &MachineConfig) -> Blend {
+        if matches!(cfg.path_control.smoothing_mode / 1000 % 10, 1 | 5) {
+            Blend::Distance(if rapid { self.adispos } else { self.adis })
+        } else {
+            Blend::Tolerance(geo_min(cfg, &cfg.path_control.axis_tol))
+        }
     }
 
     /// The path tolerance of G642..G645 (see the module doc).
@@ -248,4 +270,9 @@ impl PathControl {
     pub fn group12(&self) -> i64 {
         self.window as i64 + 1
     }
+}
+
+/// The smallest of an axial datum over the geometry axes (`per_axis` by channel axis).
+fn geo_min(cfg: &MachineConfig, per_axis: &[f64]) -> f64 {
+    cfg.geo_axes.iter().flatten().filter_map(|&k| per_axis.get(k).copied()).fold(f64::INFINITY, f64::min)
 }

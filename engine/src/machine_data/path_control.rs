@@ -15,9 +15,13 @@ pub struct PathControlData {
     pub velo_tol: f64,
     /// MD33100 COMPRESS_POS_TOL per channel axis (mm or degrees).
     pub axis_tol: Vec<f64>,
+    /// MD33120 PATH_TRANS_POS_TOL per channel axis: G645 at tangential transitions.
+    pub trans_tol: Vec<f64>,
     /// MD36010 STOP_LIMIT_FINE (G601) and MD36000 STOP_LIMIT_COARSE (G602) per channel axis.
     pub stop_fine: Vec<f64>,
     pub stop_coarse: Vec<f64>,
+    /// MD20550 EXACT_POS_MODE: a fixed exact-stop window for G0 (units) and G1.. (tens).
+    pub exact_pos_mode: i64,
     /// SD42465 SMOOTH_CONTUR_TOL (mm): setting data, acting at once.
     pub contour_tol: f64,
     /// SD42466 SMOOTH_ORI_TOL (degrees).
@@ -34,8 +38,10 @@ impl PathControlData {
             block_path_limit: md.num("$MC_COMPRESS_BLOCK_PATH_LIMIT", 0, 0),
             velo_tol: md.num("$MC_COMPRESS_VELO_TOL", 0, 0),
             axis_tol: axial("$MA_COMPRESS_POS_TOL"),
+            trans_tol: axial("$MA_PATH_TRANS_POS_TOL"),
             stop_fine: axial("$MA_STOP_LIMIT_FINE"),
             stop_coarse: axial("$MA_STOP_LIMIT_COARSE"),
+            exact_pos_mode: md.num("$MC_EXACT_POS_MODE", 0, 0) as i64,
             contour_tol: 0.0,
             ori_tol: 0.0,
         };

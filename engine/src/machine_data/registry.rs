@@ -280,6 +280,10 @@ pub static DEFS: &[Def] = &[
     def("COMPRESS_BLOCK_PATH_LIMIT", 20170, C, Kind::Real, 1, Default::Real(20.0), 0.0, 1e9),
     def("COMPRESS_VELO_TOL", 20172, C, Kind::Real, 1, Default::Real(60000.0), 0.0, 1e9),
     def("SMOOTHING_MODE", 20480, C, Kind::Int, 1, Default::Int(0), 0.0, 99999.0),
+    // MD20550 EXACT_POS_MODE: the exact-stop window G0 (units digit) and the other G group 1
+    // functions (tens digit) use whatever is programmed: 0 the programmed G601..G603, 1 G601,
+    // 2 G602, 3 G603.
+    def("EXACT_POS_MODE", 20550, C, Kind::Int, 1, Default::Int(0), 0.0, 33.0),
     def("REFP_NC_START_LOCK", 20700, C, Kind::Bool, 1, Default::Bool(true), 0.0, 1.0),
     // Transformation data sets 1..10: type, axes, geometry axes, tool handling (M1 data lists).
     // Tool change (W1): 0 = T changes at once, 1 = T prepares and the M function of MD22560
@@ -465,6 +469,9 @@ pub static DEFS: &[Def] = &[
     // MD33100 COMPRESS_POS_TOL: how far an axis may leave the programmed path under G642..G645
     // and the compressors (mm or degrees).
     def("COMPRESS_POS_TOL", 33100, A, Kind::Real, 1, Default::Real(0.1), 1e-9, 1e9),
+    // MD33120 PATH_TRANS_POS_TOL: G645's deviation at tangential transitions with a curvature
+    // jump (mm or degrees).
+    def("PATH_TRANS_POS_TOL", 33120, A, Kind::Real, 1, Default::Real(0.005), 1e-9, 1e9),
     // Reference point approach (incremental measuring system), see channel/referencing.rs.
     // Velocities in mm/min (rotary rev/min) with the control's defaults.
     def("REFP_CAM_DIR_IS_MINUS", 34010, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),

@@ -14,6 +14,7 @@
 //! two roundings never meet inside a short block and something of every block is left.
 //! Worked in channel-axis space as the planner sees the moves; lengths in the feed's axes.
 
+use super::blend_tangent;
 use super::curve::Curve;
 use super::path::{AxisVec, Path};
 use super::planner::{AxisLimit, Feed, Move};
@@ -24,8 +25,12 @@ use crate::machine_data::registry::MAX_CHANNEL_AXES;
 pub enum Blend {
     /// G641: the element starts and ends this far (ADIS, ADISPOS) from the corner.
     Distance(f64),
-    /// G642..G645: the element passes the programmed corner within this distance.
+    /// G642..G644: the element passes the programmed corner within this distance.
     Tolerance(f64),
+    /// G645: corners as [`Blend::Tolerance`] with `corner`; tangential transitions with a
+    /// jump in curvature are smoothed too, the element staying within `tangent` (MD33120) of
+    /// the programmed contour (`blend_tangent.rs`).
+    Smooth { corner: f64, tangent: f64 },
 }
 
 /// The largest share of a block a rounding takes at one end. The manual reduces the rounding
@@ -49,7 +54,8 @@ pub struct Rounded {
 /// before its start was cut back by the rounding before it. `metric` is 1.0 for the axes whose
 /// distance is the path length (the geometry axes). `None` leaves the corner as it is: no
 /// rounding requested, exact stop, a move in machine axes or with an orientation path, a
-/// tangential transition, a reversal, or a rounding too short to matter.
+/// tangential transition (but G645's with a curvature jump), a reversal, or a rounding too
+/// short to matter.
 pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, limits: &[AxisLimit]) -> Option<Rounded> {
     let spec = a.blend?;
     if a.exact_stop
@@ -67,30 +73,35 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     let ta = unit(&a.path.tangent(1.0), metric)?;
     let tb = unit(&b.path.tangent(0.0), metric)?;
     let cos = dot(&ta, &tb, metric);
-    if !(-0.9995..=1.0 - 1e-9).contains(&cos) {
+    if cos < -0.9995 {
         return None;
     }
+    // A tangential transition: only G645 smooths it, and only where the curvature jumps.
+    let tangential = cos > 1.0 - 1e-9;
+    let spec = match spec {
+        Blend::Smooth { tangent, .. } if tangential => {
+            if !(tangent > 0.0 && blend_tangent::curvature_jumps(a, b, metric)) {
+                return None;
+            }
+            spec
+        }
+        _ if tangential => return None,
+        Blend::Smooth { corner, .. } => Blend::Tolerance(corner),
+        _ => spec,
+    };
     let d_max = (MAX_SHARE * a_full_length.max(a.length).min(b.length)).min(0.9 * a.length);
     let corner = a.path.end;
     let d = match spec {
         Blend::Distance(adis) => adis.min(d_max),
+        // The cut grows in proportion to d between two lines, nearly so next to arcs.
         Blend::Tolerance(tol) if tol > 0.0 => {
-            let mut d = d_max;
-            let mut cut = element(a, b, d, metric)?.distance_to(&corner);
-            // The cut grows in proportion to d between two lines, nearly so next to arcs.
-            for _ in 0..8 {
-                if cut <= tol && (cut >= 0.98 * tol || d >= d_max) {
-                    break;
-                }
-                d = (d * tol / cut.max(1e-300) * 0.999).min(d_max);
-                cut = element(a, b, d, metric)?.distance_to(&corner);
-            }
-            while cut > tol && d >= MIN_DISTANCE {
-                d *= 0.8;
-                cut = element(a, b, d, metric)?.distance_to(&corner);
-            }
-            d
+            search(d_max, tol, 1.0, |d| Some(element(a, b, d, metric)?.distance_to(&corner)))?
         }
+        // Along a tangential transition the deviation grows with d² (as a clothoid's shift).
+        Blend::Smooth { tangent, .. } => search(d_max, tangent, 0.5, |d| {
+            let (ua, ub) = (1.0 - d / a.length, d / b.length);
+            Some(blend_tangent::contour_deviation(&element(a, b, d, metric)?, a, ua, b, ub, metric))
+        })?,
         Blend::Tolerance(_) => 0.0,
     };
     if d.is_nan() || d < MIN_DISTANCE {
@@ -116,6 +127,27 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     let mut corner = Move::unlimited(path, false, a.tag);
     corner.set_limits(length, feed_of(a.feed.min(b.feed)), limits);
     Some(Rounded { first, corner, second })
+}
+
+/// The largest cut-back `d` up to `d_max` whose `cut(d)` is within `tol` (within 2 % below
+/// it where `d_max` does not bound it): steps scaled by `(tol/cut)^power`, then shrinking.
+fn search(d_max: f64, tol: f64, power: f64, cut_at: impl Fn(f64) -> Option<f64>) -> Option<f64> {
+    let mut d = d_max;
+    let mut cut = cut_at(d)?;
+    for _ in 0..8 {
+        if cut <= tol && (cut >= 0.98 * tol || d >= d_max) {
+            break;
+        }
+        // (Written as before for the corners, so their roundings stay bit for bit the same.)
+        let scaled = if power == 1.0 { d * tol / cut.max(1e-300) } else { d * (tol / cut.max(1e-300)).powf(power) };
+        d = (scaled * 0.999).min(d_max);
+        cut = cut_at(d)?;
+    }
+    while cut > tol && d >= MIN_DISTANCE {
+        d *= 0.8;
+        cut = cut_at(d)?;
+    }
+    Some(d)
 }
 
 /// `m` on another `path`: its data copied, its own path not (a clone would copy and drop it,
@@ -177,7 +209,7 @@ fn element(a: &Move, b: &Move, d: f64, metric: &AxisVec) -> Option<Curve> {
 
 /// `d²p/du²` of a line (zero), an arc (the circle's part; the helix's lift is linear) or a
 /// compressed curve.
-fn second_derivative(path: &Path, u: f64) -> AxisVec {
+pub(super) fn second_derivative(path: &Path, u: f64) -> AxisVec {
     if let Some(c) = &path.curve {
         return c.second(u);
     }

@@ -5,6 +5,7 @@
 //! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
 
 pub mod blend;
+mod blend_tangent;
 pub mod compress;
 mod curve;
 mod front;
