@@ -525,11 +525,26 @@ impl Planner {
         self.cross_ends(d);
     }
 
-    /// The position at fraction `u` of the front move (which ends after this cycle).
+    /// The position at fraction `u` of the front move (which ends after this cycle). A move
+    /// without an orientation path, once its [`FrontMove`] is built, needs nothing of the
+    /// queue: its cycles do not look the move up again.
     #[inline(always)]
     fn interpolate_front(&mut self, u: f64) {
+        if let Some(cycles) = &mut self.front_move
+            && !cycles.oriented
+        {
+            cycles.position(u, &mut self.position);
+            self.position_tag = Some(cycles.tag);
+            return;
+        }
+        self.interpolate_front_slow(u);
+    }
+
+    /// [`Planner::interpolate_front`] on the front move's first cycle, or with an orientation.
+    #[inline(never)]
+    fn interpolate_front_slow(&mut self, u: f64) {
         let Some(front) = self.queue.front() else { return };
-        let cycles = self.front_move.get_or_insert_with(|| FrontMove::new(&front.path, &mut self.position));
+        let cycles = self.front_move.get_or_insert_with(|| FrontMove::new(&front.path, &mut self.position, front.tag));
         cycles.position(u, &mut self.position);
         if let Some(o) = &front.path.ori {
             self.orientation = Some(cycles.orientation(o, u));
