@@ -587,7 +587,8 @@ impl Planner {
         self.position_tag = Some(done.tag);
         let stop_here = self.v_end[0] == 0.0;
         self.front_move = None;
-        if done.a_max <= self.a_min || done.jerk <= self.j_min {
+        // A BRISK move's infinite jerk leaves `j_min` as it is: no rescan of the queue then.
+        if done.a_max <= self.a_min || (done.jerk <= self.j_min && done.jerk.is_finite()) {
             self.rescan_minima();
         }
         self.v_end.pop_front();
