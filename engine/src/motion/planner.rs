@@ -501,7 +501,7 @@ impl Planner {
                 // SOFT's state: a later SOFT move starts from constant velocity.
                 self.acc = 0.0;
             }
-            self.brake_limited_at(v_new, remaining, a, v_end, many)
+            self.brake_limited_at(v_new, remaining, a, v_end, many, true)
         };
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
@@ -619,18 +619,20 @@ impl Planner {
     #[inline(always)]
     fn brake_limited(&self, v: f64) -> f64 {
         let (Some(front), Some(&v_end)) = (self.queue.front(), self.v_end.front()) else { return v };
-        self.brake_limited_at(v, front.length - self.s, front.a_max, v_end, self.queue.len() > 1)
+        self.brake_limited_at(v, front.length - self.s, front.a_max, v_end, self.queue.len() > 1, false)
     }
 
     /// [`Planner::brake_limited`] from the front move's scalars: the distance to its end, its
     /// deceleration, its planned end speed and whether another move follows.
     ///
-    /// A transition planned at or above the speed so far does not limit it: that speed may
-    /// cross it as it is. (The braking condition with its one-cycle reserve is conservative,
-    /// by `v_end·dt` and more: applied there it lowered the path speed for a cycle at every
-    /// seam of a chain of collinear or tangent moves, where the transition speed is the feed.)
+    /// With `seams` (BRISK), a transition planned at or above the speed so far does not limit
+    /// it: that speed may cross it as it is. (The braking condition with its one-cycle reserve
+    /// is conservative, by `v_end·dt` and more: applied there it lowered the path speed for a
+    /// cycle at every seam of a chain of collinear or tangent moves, where the transition
+    /// speed is the feed.) SOFT's fallback keeps the conservative limit its S curves were
+    /// tuned against (without it the jerk bound of `tests/dynamics.rs` is exceeded).
     #[inline(always)]
-    fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool) -> f64 {
+    fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool, seams: bool) -> f64 {
         let dt = self.dt;
         // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
         // (moves split by a kinematic transformation may decelerate very differently).
@@ -638,7 +640,7 @@ impl Planner {
         // The front move's own transition first, without the queue's iterators: most cycles
         // look no farther. The same arithmetic as the loop's first pass.
         let mut limit = v;
-        if limit > v_end {
+        if !seams || limit > v_end {
             let reserve = if many { v_end * dt } else { 0.0 };
             let d = distance - reserve;
             if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
@@ -648,13 +650,13 @@ impl Planner {
         if v_end == 0.0 || distance > limit * limit / a_min {
             return limit;
         }
-        self.brake_limited_ahead(distance, a, limit)
+        self.brake_limited_ahead(distance, a, limit, seams)
     }
 
     /// [`Planner::brake_limited`] past the front move, from the distance to its end, the
     /// smallest deceleration so far and the limit so far (out of line: rarely reached).
     #[inline(never)]
-    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64) -> f64 {
+    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64, seams: bool) -> f64 {
         let dt = self.dt;
         let a_min = self.a_min;
         let n = self.queue.len();
@@ -662,7 +664,7 @@ impl Planner {
             distance += mv.length;
             a = a.min(mv.a_max);
             // One cycle at the transition speed is kept in reserve for the crossing cycle.
-            if limit > v_end {
+            if !seams || limit > v_end {
                 let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
                 let d = distance - reserve;
                 if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
@@ -810,7 +812,8 @@ mod tests {
         for i in 0..=20 {
             p.s = p.queue[0].length * f64::from(i) / 20.0;
             for v in [0.0, 1.0, 10.0, 37.5, 80.0, 150.0, 400.0, f64::INFINITY] {
-                let (got, want) = (p.brake_limited(v), reference(&p, v));
+                let brisk = p.brake_limited_at(v, p.queue[0].length - p.s, p.queue[0].a_max, p.v_end[0], true, true);
+                let (got, want) = (brisk, reference(&p, v));
                 assert!((got - want).abs() <= 1e-12 * want.max(1.0), "s {} v {v}: {got} vs {want}", p.s);
                 checked += usize::from(want < v);
             }
