@@ -105,13 +105,18 @@ pub(super) struct FrontMove {
     ori_angle: Option<SinCosStep>,
     /// A corner rounding element, evaluated directly each cycle.
     curve: Option<std::sync::Arc<Curve>>,
+    /// The move's tag, so that its cycles need not look the move up.
+    pub(super) tag: u32,
+    /// The move interpolates an orientation (its cycles need the move's orientation path).
+    pub(super) oriented: bool,
 }
 
 impl FrontMove {
     /// Sets up the cycles of `path`, and puts every axis it does not move at the value
     /// [`Path::at`] gives it for every `s < 1` (`start + 0.0`: a −0.0 start reads +0.0 there).
+    /// `tag` is the move's.
     #[inline(never)]
-    pub(super) fn new(path: &Path, position: &mut AxisVec) -> FrontMove {
+    pub(super) fn new(path: &Path, position: &mut AxisVec, tag: u32) -> FrontMove {
         let mut moving = Moving {
             slot: [0; MAX_CHANNEL_AXES],
             start: [0.0; MAX_CHANNEL_AXES],
@@ -146,7 +151,15 @@ impl FrontMove {
             radius: arc.radius,
             ends: [arc.start_angle.sin_cos(), (arc.start_angle + arc.sweep).sin_cos()],
         });
-        FrontMove { moving, arc, arc_angle: None, ori_angle: None, curve: path.curve.clone() }
+        FrontMove {
+            moving,
+            arc,
+            arc_angle: None,
+            ori_angle: None,
+            curve: path.curve.clone(),
+            tag,
+            oriented: path.ori.is_some(),
+        }
     }
 
     /// The moving axes' positions at parameter `u` (0 ≤ u < 1) into `out`: [`Path::at`]'s
@@ -210,7 +223,7 @@ mod tests {
     fn a_line_is_interpolated_bit_for_bit_as_path_at() {
         let p = path(None);
         let mut got = [f64::NAN; MAX_CHANNEL_AXES];
-        let mut front = FrontMove::new(&p, &mut got);
+        let mut front = FrontMove::new(&p, &mut got, 0);
         for i in 0..1000 {
             let u = f64::from(i) / 1000.0;
             let mut expected = [0.0; MAX_CHANNEL_AXES];
@@ -230,7 +243,7 @@ mod tests {
         {
             let p = path(Some(arc));
             let mut got = [f64::NAN; MAX_CHANNEL_AXES];
-            let mut front = FrontMove::new(&p, &mut got);
+            let mut front = FrontMove::new(&p, &mut got, 0);
             let (mut u, mut worst) = (0.0f64, 0.0f64);
             for i in 0..steps {
                 // Accelerating steps, then even ones.
@@ -255,8 +268,11 @@ mod tests {
         // stepped orientation agrees with the direct Rodrigues rotation within 1e-13 (64 steps of
         // rounding at most).
         let ori = OriPath { start: [0.0, 0.0, 1.0], axis: [0.0, -1.0, 0.0], angle: 1.2, curve: None, turn: None };
-        let mut front =
-            FrontMove::new(&Path::line([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]), &mut [0.0; MAX_CHANNEL_AXES]);
+        let mut front = FrontMove::new(
+            &Path::line([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]),
+            &mut [0.0; MAX_CHANNEL_AXES],
+            0,
+        );
         let (mut u, mut du) = (0.0f64, 0.0f64);
         let mut cycles = 0;
         while u < 1.0 {

@@ -470,17 +470,24 @@ impl Planner {
     }
 
     /// Advances one IPO cycle.
+    ///
+    /// The front move's scalars (length, deceleration, planned end speed) are read from the
+    /// queues once per cycle and handed to the brake limit, and the usual cycle, which stays
+    /// within the front move, leaves without the loop over move ends.
     pub fn step(&mut self) {
         let dt = self.dt;
         let Some(front) = self.queue.front() else {
             self.v = 0.0;
             return;
         };
-        let a = front.a_max;
+        let many = self.queue.len() > 1;
+        let (a, length) = (front.a_max, front.length);
+        let soft = front.jerk.is_finite();
         let cap = front.capped(self.feed_override, self.rapid_override, self.spindle_rate);
-        let remaining = front.length - self.s;
+        let v_end = self.v_end[0];
+        let remaining = length - self.s;
         // Above the cap (override lowered) the path brakes at the axes' deceleration.
-        let mut v_new = if front.jerk.is_finite() {
+        let mut v_new = if soft {
             self.soft_velocity(cap)
         } else {
             let v_new = if self.hold {
@@ -494,12 +501,12 @@ impl Planner {
                 // SOFT's state: a later SOFT move starts from constant velocity.
                 self.acc = 0.0;
             }
-            self.brake_limited(v_new)
+            self.brake_limited_at(v_new, remaining, a, v_end, many, true)
         };
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
-        if self.queue.len() > 1 && v_new * dt >= remaining && v_new > self.v_end[0] {
-            v_new = self.v_end[0].max(self.v - a * dt).max(remaining / dt).min(v_new);
+        if many && v_new * dt >= remaining && v_new > v_end {
+            v_new = v_end.max(self.v - a * dt).max(remaining / dt).min(v_new);
         }
         self.v = v_new;
         if v_new == 0.0 && self.hold {
@@ -508,23 +515,63 @@ impl Planner {
             }
             return;
         }
-        let mut d = v_new * dt;
+        let d = v_new * dt;
+        if d < remaining - 1e-12 {
+            self.s += d;
+            let u = self.s / length;
+            self.interpolate_front(u);
+            return;
+        }
+        self.cross_ends(d);
+    }
+
+    /// The position at fraction `u` of the front move (which ends after this cycle). A move
+    /// without an orientation path, once its [`FrontMove`] is built, needs nothing of the
+    /// queue: its cycles do not look the move up again.
+    #[inline(always)]
+    fn interpolate_front(&mut self, u: f64) {
+        if let Some(cycles) = &mut self.front_move
+            && !cycles.oriented
+        {
+            cycles.position(u, &mut self.position);
+            self.position_tag = Some(cycles.tag);
+            return;
+        }
+        self.interpolate_front_slow(u);
+    }
+
+    /// [`Planner::interpolate_front`] on the front move's first cycle, or with an orientation.
+    #[inline(never)]
+    fn interpolate_front_slow(&mut self, u: f64) {
+        let Some(front) = self.queue.front() else { return };
+        let cycles = self.front_move.get_or_insert_with(|| FrontMove::new(&front.path, &mut self.position, front.tag));
+        cycles.position(u, &mut self.position);
+        if let Some(o) = &front.path.ori {
+            self.orientation = Some(cycles.orientation(o, u));
+        } else if self.orientation.is_some() {
+            self.orientation = None;
+        }
+        self.position_tag = Some(front.tag);
+    }
+
+    /// The cycle's travel `d` reaches the end of the front move: finishes it, and every later
+    /// move `d` also reaches, and interpolates within the move it ends in. Once per move: kept
+    /// out of the cycle's code.
+    #[inline(never)]
+    fn cross_ends(&mut self, mut d: f64) {
         loop {
-            let Some(front) = self.queue.front() else { unreachable!("the queue holds the front move") };
+            let Some(front) = self.queue.front() else { return };
             let remaining = front.length - self.s;
             if d < remaining - 1e-12 {
                 self.s += d;
                 let u = self.s / front.length;
-                let cycles = self.front_move.get_or_insert_with(|| FrontMove::new(&front.path, &mut self.position));
-                cycles.position(u, &mut self.position);
-                self.orientation = front.path.ori.as_ref().map(|o| cycles.orientation(o, u));
-                self.position_tag = Some(front.tag);
-                break;
+                self.interpolate_front(u);
+                return;
             }
             // The move ends within this cycle.
             d -= remaining;
             if self.finish_front() {
-                break;
+                return;
             }
         }
     }
@@ -540,7 +587,8 @@ impl Planner {
         self.position_tag = Some(done.tag);
         let stop_here = self.v_end[0] == 0.0;
         self.front_move = None;
-        if done.a_max <= self.a_min || done.jerk <= self.j_min {
+        // A BRISK move's infinite jerk leaves `j_min` as it is: no rescan of the queue then.
+        if done.a_max <= self.a_min || (done.jerk <= self.j_min && done.jerk.is_finite()) {
             self.rescan_minima();
         }
         self.v_end.pop_front();
@@ -566,35 +614,49 @@ impl Planner {
     /// met. Looks past the front move so that a cycle which crosses into the next move cannot
     /// arrive too fast. A transition that `v` can meet is recognised without the square root of
     /// [`brake_speed`] (`brake_speed(d, v_end, a) ≥ v ⇔ v·(v + a·dt) ≤ 2·a·d + v_end²`), so a
-    /// cycle far from any braking point takes none.
+    /// cycle far from any braking point takes none; one planned at or above `v` needs no
+    /// braking at all (see [`Planner::brake_limited_at`]).
     #[inline(always)]
     fn brake_limited(&self, v: f64) -> f64 {
-        let dt = self.dt;
         let (Some(front), Some(&v_end)) = (self.queue.front(), self.v_end.front()) else { return v };
+        self.brake_limited_at(v, front.length - self.s, front.a_max, v_end, self.queue.len() > 1, false)
+    }
+
+    /// [`Planner::brake_limited`] from the front move's scalars: the distance to its end, its
+    /// deceleration, its planned end speed and whether another move follows.
+    ///
+    /// With `seams` (BRISK), a transition planned at or above the speed so far does not limit
+    /// it: that speed may cross it as it is. (The braking condition with its one-cycle reserve
+    /// is conservative, by `v_end·dt` and more: applied there it lowered the path speed for a
+    /// cycle at every seam of a chain of collinear or tangent moves, where the transition
+    /// speed is the feed.) SOFT's fallback keeps the conservative limit its S curves were
+    /// tuned against (without it the jerk bound of `tests/dynamics.rs` is exceeded).
+    #[inline(always)]
+    fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool, seams: bool) -> f64 {
+        let dt = self.dt;
         // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
         // (moves split by a kinematic transformation may decelerate very differently).
         let a_min = self.a_min;
-        let n = self.queue.len();
         // The front move's own transition first, without the queue's iterators: most cycles
         // look no farther. The same arithmetic as the loop's first pass.
-        let distance = -self.s + front.length;
-        let a = f64::INFINITY.min(front.a_max);
         let mut limit = v;
-        let reserve = if n > 1 { v_end * dt } else { 0.0 };
-        let d = distance - reserve;
-        if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
-            limit = limit.min(brake_speed(d, v_end, a, dt));
+        if !seams || limit > v_end {
+            let reserve = if many { v_end * dt } else { 0.0 };
+            let d = distance - reserve;
+            if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
+                limit = limit.min(brake_speed(d, v_end, a, dt));
+            }
         }
         if v_end == 0.0 || distance > limit * limit / a_min {
             return limit;
         }
-        self.brake_limited_ahead(distance, a, limit)
+        self.brake_limited_ahead(distance, a, limit, seams)
     }
 
     /// [`Planner::brake_limited`] past the front move, from the distance to its end, the
     /// smallest deceleration so far and the limit so far (out of line: rarely reached).
     #[inline(never)]
-    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64) -> f64 {
+    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64, seams: bool) -> f64 {
         let dt = self.dt;
         let a_min = self.a_min;
         let n = self.queue.len();
@@ -602,10 +664,12 @@ impl Planner {
             distance += mv.length;
             a = a.min(mv.a_max);
             // One cycle at the transition speed is kept in reserve for the crossing cycle.
-            let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
-            let d = distance - reserve;
-            if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
-                limit = limit.min(brake_speed(d, v_end, a, dt));
+            if !seams || limit > v_end {
+                let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
+                let d = distance - reserve;
+                if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
+                    limit = limit.min(brake_speed(d, v_end, a, dt));
+                }
             }
             if v_end == 0.0 || distance > limit * limit / a_min {
                 break;
@@ -721,7 +785,8 @@ mod tests {
         // A queue of short and long moves with corners (planned transition speeds > 0): at
         // many points of the front move and candidate speeds, `brake_limited(v)` is
         // min(v, every transition's brake speed), the latter written out here for all moves
-        // (no early stop), with the one-cycle reserve before each transition but the last.
+        // (no early stop), with the one-cycle reserve before each transition but the last;
+        // a transition planned at or above the speed so far does not lower it.
         let lim = limits(1000.0, 500.0);
         let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
         let pts: [[f64; 3]; 6] =
@@ -735,8 +800,11 @@ mod tests {
             for (k, mv) in p.queue.iter().enumerate() {
                 distance += mv.length;
                 a = a.min(mv.a_max);
-                let reserve = if k + 1 < p.queue.len() { p.v_end[k] * DT } else { 0.0 };
-                out = out.min(brake_speed(distance - reserve, p.v_end[k], a, DT));
+                // A transition planned at or above the speed so far is crossed as it is.
+                if out > p.v_end[k] {
+                    let reserve = if k + 1 < p.queue.len() { p.v_end[k] * DT } else { 0.0 };
+                    out = out.min(brake_speed(distance - reserve, p.v_end[k], a, DT));
+                }
             }
             out
         };
@@ -744,7 +812,8 @@ mod tests {
         for i in 0..=20 {
             p.s = p.queue[0].length * f64::from(i) / 20.0;
             for v in [0.0, 1.0, 10.0, 37.5, 80.0, 150.0, 400.0, f64::INFINITY] {
-                let (got, want) = (p.brake_limited(v), reference(&p, v));
+                let brisk = p.brake_limited_at(v, p.queue[0].length - p.s, p.queue[0].a_max, p.v_end[0], true, true);
+                let (got, want) = (brisk, reference(&p, v));
                 assert!((got - want).abs() <= 1e-12 * want.max(1.0), "s {} v {v}: {got} vs {want}", p.s);
                 checked += usize::from(want < v);
             }
@@ -896,6 +965,33 @@ mod tests {
         assert!(time(false) < time(true));
         // Continuous: 100 mm at 100 mm/s plus one ramp of 0.2 s total (~1.2 s).
         assert!(((time(false) - 1) as f64 * DT - 1.2).abs() < 3.0 * DT);
+    }
+
+    #[test]
+    fn collinear_seams_are_crossed_at_the_feed() {
+        // 30 collinear moves of 2 mm at 100 mm/s, 500 mm/s², dt 4 ms: the path accelerates by
+        // a·dt = 2 mm/s per cycle to 100 mm/s (50 cycles, 0.004·(2+4+..+98) = 9.8 mm), and
+        // brakes the same way over the last 9.8 mm and more. Every transition is planned at
+        // the feed (no corner, the moves ahead are long enough to brake in), so every cycle in
+        // between moves exactly F·dt = 0.4 mm, across the seams too.
+        let lim = limits(1000.0, 500.0);
+        let mut p = Planner::new(DT, lim.clone(), [0.0; MAX_CHANNEL_AXES]);
+        for i in 0..30 {
+            let path = line([f64::from(i) * 2.0, 0.0, 0.0], [f64::from(i + 1) * 2.0, 0.0, 0.0]);
+            p.push(Move::new(path, 2.0, Feed::Path(100.0), &lim, false, i as u32));
+        }
+        let steps: Vec<f64> = run(&mut p).windows(2).map(|w| w[1][0] - w[0][0]).collect();
+        let full = |x: &f64| (x - 0.4).abs() < 1e-9;
+        let first = steps.iter().position(full).unwrap();
+        let last = steps.iter().rposition(full).unwrap();
+        assert_eq!(first, 49, "50 cycles of acceleration");
+        let slow: Vec<usize> = (first..=last).filter(|&i| !full(&steps[i])).collect();
+        assert!(slow.is_empty(), "cycles below the feed between the ramps: {slow:?}");
+        // 60 mm minus two ramps of 9.8 mm at 0.4 mm per cycle: 101 cycles at the feed with an
+        // exact braking point. The backward pass's brake speeds keep a margin of up to a cycle's
+        // travel for each of the last moves (5 moves of 2 mm in the 10 mm ramp), so the ramp
+        // down may begin up to 3 cycles early (safe side); but not one cycle dips at a seam.
+        assert!((98..=101).contains(&(last - first + 1)), "{} cycles at the feed", last - first + 1);
     }
 
     #[test]
