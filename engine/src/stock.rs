@@ -79,6 +79,19 @@ impl Stock {
         }
     }
 
+    /// [`Stock::cut`] with the tool's axis along the unit vector `axis` (tip → holder, in the
+    /// blank's frame) and its cutting part `length` long: 5-axis orientations and tilted
+    /// tables. A milling tool along +Z takes the exact path of [`Stock::cut`]; a turned stock
+    /// ignores the axis (a lathe's tools lie in the turning plane).
+    pub fn cut_oriented(&mut self, cutter: &Cutter, a: [f64; 3], b: [f64; 3], axis: [f64; 3], length: f64) -> Removal {
+        match self {
+            Stock::Milling(g) if axis[0].abs() > 1e-9 || axis[1].abs() > 1e-9 || axis[2] < 0.0 => {
+                g.cut_tilted(cutter, a, b, axis, length)
+            }
+            _ => self.cut(cutter, a, b),
+        }
+    }
+
     /// The material left, mm³.
     pub fn volume(&self) -> f64 {
         match self {

@@ -119,7 +119,14 @@ struct Segment {
     /// Unit direction from `start`, zero until the first step.
     dir: [f64; 3],
     key: Key,
+    /// The tool's axis (unit, tip → holder) and length in the blank's frame.
+    axis: [f64; 3],
+    length: f64,
 }
+
+/// Largest change of the tool's axis (unit vector difference) within one segment: 0.1 mrad,
+/// 0.01 mm at a 100 mm tool.
+const AXIS_TOLERANCE: f64 = 1e-4;
 
 /// The stock of a session with its segment in progress and its findings.
 #[derive(Debug, Clone)]
@@ -134,11 +141,14 @@ pub(super) struct StockRun {
     /// The line each check was last raised for (once per block and kind; JOG is line 0).
     reported: [u32; 3],
     skipped: u64,
+    /// The orientation kinematics the blank is mounted on (`stock_pose.rs`).
+    kin: Option<Box<crate::kinematics::Traori>>,
 }
 
 impl StockRun {
-    fn new(stock: Stock, options: StockOptions) -> StockRun {
+    fn new(stock: Stock, options: StockOptions, kin: Option<Box<crate::kinematics::Traori>>) -> StockRun {
         StockRun {
+            kin,
             initial_volume: stock.volume(),
             stock,
             options,
@@ -227,6 +237,13 @@ impl Channel {
         self.stock.as_ref().map(|r| r.warnings.iter().copied().collect()).unwrap_or_default()
     }
 
+    /// The current stock (its intervals, volumes, mesh), the open segment cut first: for
+    /// tests and for probing (where a measuring probe touches the blank).
+    pub fn stock(&mut self) -> Option<&Stock> {
+        self.flush_stock();
+        self.stock.as_ref().map(|r| &r.stock)
+    }
+
     /// The current stock as a binary STL (BCS, mm), the open segment cut first.
     pub fn stock_stl(&mut self) -> Option<Vec<u8>> {
         self.flush_stock();
@@ -258,7 +275,8 @@ impl Channel {
         // A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
         let turning = geo[1].is_none();
         let stock = Stock::new(blank, &placement, turning, self.stock_options.resolution)?;
-        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options)));
+        let kin = if turning { None } else { self.stock_kinematics() };
+        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options, kin)));
         Ok(())
     }
 
@@ -275,12 +293,12 @@ impl Channel {
             None => (0, false, &self.offsets),
         };
         let tool = (offsets.t, offsets.d);
-        let geo = self.cfg.geo_axes;
-        let toff = self.toff.current;
-        let tip: [f64; 3] =
-            std::array::from_fn(|g| geo[g].map_or(0.0, |k| self.machine[k] - offsets.tool[k] - toff[g]));
+        let pose = self.stock_tool_pose(offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref()));
+        let tip = pose.tip;
         let key = Key { line, rapid, spindle: self.spindles.iter().any(|s| s.is_turning()), tool };
-        let transformed = self.trafo.is_some();
+        // TRAORI is followed (`stock_pose.rs`); the other transformations are not yet.
+        let transformed =
+            self.trafo.as_ref().is_some_and(|t| !matches!(t.trafo, crate::kinematics::AnyTrafo::Traori(_)));
         let Some(run) = self.stock.as_mut() else { return };
         if transformed {
             run.skipped += 1;
@@ -289,18 +307,23 @@ impl Channel {
         }
         let tol = run.stock.resolution() / 10.0;
         let Some(seg) = run.segment.as_mut() else {
-            run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
+            run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
             return;
+        };
+        let turned = {
+            let d = sub(pose.axis, seg.axis);
+            dot(d, d) > AXIS_TOLERANCE * AXIS_TOLERANCE
         };
         if seg.key.tool != key.tool {
             // A new tool or cutting edge moves the tip without motion: the jump cuts nothing.
             self.flush_stock();
             if let Some(run) = self.stock.as_mut() {
-                run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
+                run.segment =
+                    Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
             }
             return;
         }
-        if tip == seg.end {
+        if tip == seg.end && !turned {
             // At rest: the open segment is cut now.
             if seg.start != seg.end || seg.key != key {
                 self.flush_stock();
@@ -314,7 +337,7 @@ impl Channel {
         let along = dot(v, seg.dir);
         let off = dot(v, v) - along * along;
         let straight = seg.dir != [0.0; 3] && along >= dot(sub(seg.end, seg.start), seg.dir) && off <= tol * tol;
-        if seg.key == key && (seg.dir == [0.0; 3] || (straight && along <= MAX_SEGMENT)) {
+        if seg.key == key && !turned && tip != seg.end && (seg.dir == [0.0; 3] || (straight && along <= MAX_SEGMENT)) {
             if seg.dir == [0.0; 3] {
                 let n = dot(v, v).sqrt();
                 seg.dir = v.map(|c| c / n);
@@ -328,17 +351,20 @@ impl Channel {
         let Some(run) = self.stock.as_mut() else { return };
         let v = sub(tip, from);
         let n = dot(v, v).sqrt();
-        run.segment = Some(Segment { start: from, end: tip, dir: v.map(|c| c / n), key });
+        let dir = if n > 0.0 { v.map(|c| c / n) } else { [0.0; 3] };
+        run.segment = Some(Segment { start: from, end: tip, dir, key, axis: pose.axis, length: pose.length });
     }
 
     /// Cuts the open segment (if it has length) and starts the next one at its end.
     fn flush_stock(&mut self) {
         let Some(run) = self.stock.as_mut() else { return };
         let Some(seg) = run.segment.as_mut() else { return };
-        if seg.start == seg.end {
+        // A tilted tool turning about its tip (a segment without length but with a new axis)
+        // still cuts where it stands.
+        if seg.start == seg.end && seg.axis[2] >= 1.0 - 1e-12 {
             return;
         }
-        let (a, b, key) = (seg.start, seg.end, seg.key);
+        let (a, b, key, axis, length) = (seg.start, seg.end, seg.key, seg.axis, seg.length);
         seg.start = seg.end;
         seg.dir = [0.0; 3];
         if run.cutter.as_ref().is_none_or(|(k, _)| *k != key.tool) {
@@ -348,7 +374,7 @@ impl Channel {
             run.cutter = Some((key.tool, cutter));
         }
         let Some((_, Some(cutter))) = run.cutter else { return };
-        let removal = run.stock.cut(&cutter, a, b);
+        let removal = run.stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius));
         if removal.depth < CHECK_DEPTH {
             return;
         }

@@ -14,6 +14,8 @@ use super::blank::{Blank, Placement};
 use super::cutter::Cutter;
 use super::{MAX_CELLS, Removal};
 
+mod tilted;
+
 /// Material of one cell below this thickness (mm) is not counted as removed: a tool sliding on
 /// a face it has just cut removes nothing.
 const EPS: f32 = 1e-5;
@@ -177,10 +179,39 @@ impl DexelGrid {
     /// Removes the band `lo..hi` (BCS Z) from cell (i, j): an undercut, which splits an
     /// interval in two (a T-slot cutter, a tool from below). The removed volume, mm³.
     pub fn remove_band(&mut self, i: usize, j: usize, lo: f64, hi: f64) -> f64 {
-        let k = j * self.nx + i;
-        let mut list = Vec::new();
-        self.intervals(i, j, &mut list);
-        let (lo, hi) = (lo as f32, hi as f32);
+        let t = self.band(j * self.nx + i, lo as f32, hi as f32);
+        let volume = f64::from(t) * self.res * self.res;
+        self.volume -= volume;
+        volume
+    }
+
+    /// Removes the band `lo..hi` from cell `k`; the thickness removed (the volume is the
+    /// caller's). A band over the top or under the bottom of a single interval shortens it in
+    /// place; only a band inside it splits it.
+    fn band(&mut self, k: usize, lo: f32, hi: f32) -> f32 {
+        if self.extra.is_empty() || !self.extra.contains_key(&(k as u32)) {
+            let s = self.spans[k];
+            if s[1] <= s[0] || s[1] <= lo + EPS || s[0] >= hi - EPS {
+                return 0.0;
+            }
+            if hi >= s[1] {
+                let new_top = s[0].max(lo);
+                self.spans[k][1] = new_top;
+                return s[1] - new_top;
+            }
+            if lo <= s[0] {
+                self.spans[k][0] = hi;
+                return hi - s[0];
+            }
+        }
+        let mut list: Vec<[f32; 2]> = Vec::with_capacity(4);
+        let first = self.spans[k];
+        if first[1] > first[0] {
+            list.push(first);
+        }
+        if let Some(more) = self.extra.get(&(k as u32)) {
+            list.extend_from_slice(more);
+        }
         let mut out: Vec<[f32; 2]> = Vec::with_capacity(list.len() + 1);
         let mut removed = 0.0f32;
         for [b, t] in list {
@@ -199,9 +230,7 @@ impl DexelGrid {
         } else {
             self.extra.remove(&(k as u32));
         }
-        let volume = f64::from(removed) * self.res * self.res;
-        self.volume -= volume;
-        volume
+        removed
     }
 }
 
