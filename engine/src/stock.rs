@@ -19,6 +19,7 @@
 pub mod blank;
 pub mod cutter;
 pub mod dexel;
+pub mod holder;
 pub mod mesh;
 pub mod profile;
 
@@ -89,6 +90,26 @@ impl Stock {
                 g.cut_tilted(cutter, a, b, axis, length)
             }
             _ => self.cut(cutter, a, b),
+        }
+    }
+
+    /// The material inside `holder` (on a tool `tool_length` long, axis `axis`) while the tip
+    /// goes from `a` to `b`: a collision where it is not zero. A turned stock has no holder
+    /// model (the default: nothing found).
+    pub fn holder_overlap(
+        &self,
+        holder: &holder::Holder,
+        tool_length: f64,
+        a: [f64; 3],
+        b: [f64; 3],
+        axis: [f64; 3],
+    ) -> dexel::Overlap {
+        match self {
+            Stock::Milling(g) => {
+                let cylinders: Vec<_> = holder.cylinders(tool_length).collect();
+                g.overlap(&cylinders, a, b, axis)
+            }
+            Stock::Turning(_) => dexel::Overlap::default(),
         }
     }
 

@@ -232,3 +232,38 @@ fn a_tool_change_moves_the_tip_without_cutting() {
     let (info, warnings, _) = mill(program);
     assert_eq!((info.removed, warnings.len()), (0.0, 0), "{warnings:?}");
 }
+
+#[test]
+fn a_short_tool_plunging_deep_brings_its_holder_into_the_stock() {
+    // T3 D1: an end mill R5 only 30 long (`$TC_DP3`), in a holder Ø40 × 50 above its gauge
+    // line. A plunge at X20 Y15 into a block Z−40..0: to Z−20 the holder's face stays at
+    // Z10, above the top: no collision. To Z−35 the face goes to Z−5: the holder's ring
+    // between radius 5 (the hole the tool made) and 20 holds the material of Z−5..0, 5 thick,
+    // π(20² − 5²)·5 = 5890.49 mm³ (the ring lies inside the block, X0..40, Y−5..35), at the
+    // plunge's line 7 with the tip at Z−35.
+    let md = "$TC_DP1[3,1]=120\n$TC_DP3[3,1]=30.\n$TC_DP6[3,1]=5.\n";
+    let holder = nctwin_engine::stock::holder::Holder::new(&[[40.0, 50.0]]).unwrap();
+    let options = StockOptions { holder: Some(holder), ..StockOptions::default() };
+    let program = |depth: f64| {
+        format!(
+            "G17 G90 G94\nT3 D1\nG0 X20 Y15 Z80\nWORKPIECE(,\"\",,\"BOX\",112,0,-40,-80,-10,-10,50,40)\nS1000 M3\nG0 Z2\nG1 Z{depth} F300\nG0 Z80\nM30"
+        )
+    };
+    let (_, warnings, _) = run("mill-3axis", md, options, &program(-20.0));
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let (_, warnings, _) = run("mill-3axis", md, options, &program(-35.0));
+    // The retract of line 8 starts with the holder still in the material: reported too
+    // (the model removes nothing with the holder, so it stays a collision until it is out).
+    assert_eq!(warnings.iter().map(|w| w.line).collect::<Vec<_>>(), vec![7, 8], "{warnings:?}");
+    let w = warnings[0];
+    assert_eq!((w.check, w.line), (StockCheck::HolderCollision, 7));
+    assert!((w.depth - 5.0).abs() < 1e-4, "{w:?}");
+    assert!((w.position[2] + 35.0).abs() < 1e-6, "{w:?}");
+    // The ring's two rims (2π·25 mm round) cross 628 cells; half a cell 5 deep each at most.
+    let expected = PI * (400.0 - 25.0) * 5.0;
+    let bound = 0.5 * (2.0 * PI * 25.0 / 0.25) * 0.0625 * 5.0;
+    assert!((w.volume - expected).abs() < bound, "{w:?} vs {expected} ± {bound}");
+    // Without a holder set, no check and no cost.
+    let (_, warnings, _) = run("mill-3axis", md, StockOptions::default(), &program(-35.0));
+    assert!(warnings.is_empty(), "{warnings:?}");
+}

@@ -13,12 +13,11 @@
 //! - material removed while no spindle of the channel turns (a mill's tool spindle, a lathe's
 //!   work spindle);
 //! - a depth of cut beyond the limit the user set: the thickest material one dexel (one slab)
-//!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe.
+//!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe;
+//! - the holder (optional, [`StockOptions::holder`]) touching the stock.
 //!
-//! Left for later, and skipped while they are active (counted in `skipped`): transformations
-//! (TRAORI with a trunnion table would have to tilt the blank with the table: the stock would
-//! be kept in table coordinates and the tool mapped into them), tool orientations other than
-//! Z, holder collisions.
+//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain).
+//! Skipped while they are active (counted in `skipped`): TRANSMIT, TRACYL, TRAANG.
 
 use super::{Channel, CommandError, Event};
 use crate::stock::blank::{Blank, Placement};
@@ -43,6 +42,8 @@ pub enum StockCheck {
     NoSpindle,
     /// The depth of cut exceeded the user's limit.
     DepthOfCut,
+    /// The holder (or spindle) touched the stock.
+    HolderCollision,
 }
 
 impl StockCheck {
@@ -51,6 +52,7 @@ impl StockCheck {
             StockCheck::RapidIntoStock => "rapid_into_stock",
             StockCheck::NoSpindle => "no_spindle",
             StockCheck::DepthOfCut => "depth_of_cut",
+            StockCheck::HolderCollision => "holder_collision",
         }
     }
 }
@@ -60,11 +62,14 @@ impl StockCheck {
 pub struct StockWarning {
     pub check: StockCheck,
     pub line: u32,
-    /// Volume the segment removed, mm³.
+    /// Volume the segment removed, mm³ (a holder collision: the material inside the holder
+    /// at the worst point).
     pub volume: f64,
-    /// Its depth of cut, mm.
+    /// Its depth of cut, mm (a holder collision: the thickest material inside the holder
+    /// on one dexel line).
     pub depth: f64,
-    /// Where the segment began that cut (tool tip, BCS, mm): the place to mark.
+    /// Where the segment began that cut (tool tip, BCS, mm): the place to mark (a holder
+    /// collision: the tip where the holder went deepest).
     pub position: [f64; 3],
 }
 
@@ -75,11 +80,14 @@ pub struct StockOptions {
     pub resolution: f64,
     /// Depth of cut beyond which [`StockCheck::DepthOfCut`] is raised; `None`: no limit.
     pub depth_limit: Option<f64>,
+    /// The holder whose touching the stock raises [`StockCheck::HolderCollision`]; `None`:
+    /// no holder check (and no cost).
+    pub holder: Option<crate::stock::holder::Holder>,
 }
 
 impl Default for StockOptions {
     fn default() -> Self {
-        StockOptions { resolution: DEFAULT_RESOLUTION, depth_limit: None }
+        StockOptions { resolution: DEFAULT_RESOLUTION, depth_limit: None, holder: None }
     }
 }
 
@@ -139,7 +147,7 @@ pub(super) struct StockRun {
     warnings: std::collections::VecDeque<StockWarning>,
     warnings_total: u64,
     /// The line each check was last raised for (once per block and kind; JOG is line 0).
-    reported: [u32; 3],
+    reported: [u32; 4],
     skipped: u64,
     /// The orientation kinematics the blank is mounted on (`stock_pose.rs`).
     kin: Option<Box<crate::kinematics::Traori>>,
@@ -156,9 +164,20 @@ impl StockRun {
             segment: None,
             warnings: Default::default(),
             warnings_total: 0,
-            reported: [u32::MAX; 3],
+            reported: [u32::MAX; 4],
             skipped: 0,
         }
+    }
+}
+
+impl StockRun {
+    /// Keeps `w` among the latest warnings and counts it.
+    fn push_warning(&mut self, w: StockWarning) {
+        if self.warnings.len() == KEEP_WARNINGS {
+            self.warnings.pop_front();
+        }
+        self.warnings.push_back(w);
+        self.warnings_total += 1;
     }
 }
 
@@ -201,6 +220,7 @@ impl Channel {
         self.stock_options = options;
         if let Some(run) = self.stock.as_mut() {
             run.options.depth_limit = options.depth_limit;
+            run.options.holder = options.holder;
         }
         Ok(())
     }
@@ -375,6 +395,22 @@ impl Channel {
         }
         let Some((_, Some(cutter))) = run.cutter else { return };
         let removal = run.stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius));
+        if let Some(holder) = run.options.holder {
+            let touch = run.stock.holder_overlap(&holder, length, a, b, axis);
+            if touch.depth >= CHECK_DEPTH && run.reported[3] != key.line {
+                run.reported[3] = key.line;
+                let w = StockWarning {
+                    check: StockCheck::HolderCollision,
+                    line: key.line,
+                    volume: touch.volume,
+                    depth: touch.depth,
+                    position: touch.at,
+                };
+                run.push_warning(w);
+                self.events.push(Event::Stock(w));
+            }
+        }
+        let Some(run) = self.stock.as_mut() else { return };
         if removal.depth < CHECK_DEPTH {
             return;
         }
@@ -395,11 +431,7 @@ impl Channel {
             }
             run.reported[i] = key.line;
             let w = StockWarning { check, line: key.line, volume: removal.volume, depth: removal.depth, position: a };
-            if run.warnings.len() == KEEP_WARNINGS {
-                run.warnings.pop_front();
-            }
-            run.warnings.push_back(w);
-            run.warnings_total += 1;
+            run.push_warning(w);
             self.events.push(Event::Stock(w));
         }
     }

@@ -14,7 +14,10 @@ use super::blank::{Blank, Placement};
 use super::cutter::Cutter;
 use super::{MAX_CELLS, Removal};
 
+mod overlap;
 mod tilted;
+
+pub use overlap::Overlap;
 
 /// Material of one cell below this thickness (mm) is not counted as removed: a tool sliding on
 /// a face it has just cut removes nothing.

@@ -126,7 +126,7 @@ impl DexelGrid {
 /// The Z range in which the vertical line through `w` (the line's point at Z = 0 minus the
 /// tool tip) lies inside the cylinder of radius `rho` about the unit axis `o` between the
 /// heights `h0` and `h1` above the tip; `None` if it misses.
-fn line_in_cylinder(w: [f64; 3], o: [f64; 3], rho: f64, h0: f64, h1: f64) -> Option<[f64; 2]> {
+pub(super) fn line_in_cylinder(w: [f64; 3], o: [f64; 3], rho: f64, h0: f64, h1: f64) -> Option<[f64; 2]> {
     // A point w + z·ez is at height h(z) = w·o + z·oz and radial distance² |w + z ez|² − h².
     let wo = w[0] * o[0] + w[1] * o[1] + w[2] * o[2];
     let qa = 1.0 - o[2] * o[2];
