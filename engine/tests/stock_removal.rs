@@ -267,3 +267,56 @@ fn a_short_tool_plunging_deep_brings_its_holder_into_the_stock() {
     let (_, warnings, _) = run("mill-3axis", md, StockOptions::default(), &program(-35.0));
     assert!(warnings.is_empty(), "{warnings:?}");
 }
+
+/// A binary STL of the box `lo`..`hi` (12 triangles, outward).
+fn box_stl(lo: [f32; 3], hi: [f32; 3]) -> Vec<u8> {
+    let c = |i: usize| [if i & 1 == 0 { lo[0] } else { hi[0] }, if i & 2 == 0 { lo[1] } else { hi[1] }, if i & 4 == 0 { lo[2] } else { hi[2] }];
+    // Faces as corner indices, counter-clockwise from outside.
+    let faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let mut out = vec![0u8; 80];
+    out.extend_from_slice(&12u32.to_le_bytes());
+    for f in faces {
+        for t in [[f[0], f[1], f[2]], [f[0], f[2], f[3]]] {
+            out.extend_from_slice(&[0u8; 12]);
+            for v in t {
+                for x in c(v) {
+                    out.extend_from_slice(&x.to_le_bytes());
+                }
+            }
+            out.extend_from_slice(&[0u8; 2]);
+        }
+    }
+    out
+}
+
+#[test]
+fn an_stl_blank_is_cut_and_compared_with_a_target_stl() {
+    use nctwin_engine::stock::target::Mesh;
+    // The blank as an STL: the block X−10..50, Y−10..40, Z−20..0 (60 000 mm³). The target:
+    // the same block faced to Z−1. The program slots Z−2 deep along Y15 with the R5 end mill:
+    // 10 mm wide (the 40 rows of cells within 5 of Y15) over the 60 mm: the slot is 1 mm below
+    // the target, 600 mm³ overcut; the rest of the top keeps 1 mm above it, (3000 − 600)·1 =
+    // 2400 mm³ undercut.
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.mda("T1 D1\nG0 X-30 Y15 Z50").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let blank = Mesh::from_stl(&box_stl([-10.0, -10.0, -20.0], [50.0, 40.0, 0.0])).unwrap();
+    ch.define_stock_mesh(&blank).unwrap();
+    assert!((ch.stock_info().unwrap().initial_volume - 60_000.0).abs() < 1e-6);
+    ch.mda("S3000 M3\nG0 Z-2\nG1 X60 F2000\nG0 Z50").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert!((ch.stock_info().unwrap().removed - 1200.0).abs() < 1e-6);
+    let target = Mesh::from_stl(&box_stl([-10.0, -10.0, -20.0], [50.0, 40.0, -1.0])).unwrap();
+    let c = ch.compare_stock(&target).unwrap();
+    assert!((c.overcut - 1.0).abs() < 1e-6 && (c.overcut_volume - 600.0).abs() < 1e-6, "{c:?}");
+    assert!((c.overcut_at[1] - 15.0).abs() <= 5.0 && (c.overcut_at[2] + 1.5).abs() < 1e-6, "{c:?}");
+    assert!((c.undercut - 1.0).abs() < 1e-6 && (c.undercut_volume - 2400.0).abs() < 1e-6, "{c:?}");
+    // A lathe refuses an STL blank, naming why.
+    let mut lathe = Channel::from_preset("lathe-2axis", "").unwrap();
+    let e = lathe.define_stock_mesh(&blank).unwrap_err();
+    assert!(e.to_string().contains("lathe"), "{e}");
+}

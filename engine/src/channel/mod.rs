@@ -29,6 +29,7 @@ mod snapshot;
 mod snapshot_refresh;
 mod spindle;
 mod stock_cut;
+mod stock_mesh;
 mod stock_pose;
 pub mod sync_actions;
 mod sync_eval;

@@ -289,15 +289,28 @@ impl Channel {
 
     /// Builds the stock of `blank` in the WCS of `frame`.
     fn place_stock(&mut self, blank: &Blank, frame: &crate::interp::Frame) -> Result<(), String> {
-        let geo = self.cfg.geo_axes;
-        let placement =
-            Placement { lin: frame.lin, trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])) };
-        // A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
-        let turning = geo[1].is_none();
+        let placement = self.stock_placement(frame);
+        let turning = self.stock_turns();
         let stock = Stock::new(blank, &placement, turning, self.stock_options.resolution)?;
-        let kin = if turning { None } else { self.stock_kinematics() };
-        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options, kin)));
+        self.install_stock(stock);
         Ok(())
+    }
+
+    /// Where the WCS of `frame` lies in the BCS.
+    pub(super) fn stock_placement(&self, frame: &crate::interp::Frame) -> Placement {
+        let geo = self.cfg.geo_axes;
+        Placement { lin: frame.lin, trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])) }
+    }
+
+    /// A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
+    pub(super) fn stock_turns(&self) -> bool {
+        self.cfg.geo_axes[1].is_none()
+    }
+
+    /// Makes `stock` the session's, cut from now on.
+    pub(super) fn install_stock(&mut self, stock: Stock) {
+        let kin = if matches!(stock, Stock::Turning(_)) { None } else { self.stock_kinematics() };
+        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options, kin)));
     }
 
     /// One IPO cycle of material removal (called only while a blank is defined).

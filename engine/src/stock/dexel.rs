@@ -76,6 +76,30 @@ impl DexelGrid {
         Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra: BTreeMap::new(), top_max: zt, volume })
     }
 
+    /// A grid from the material of some cells: `(cell, sorted intervals)` by cell, the others
+    /// empty (an STL blank, `target.rs`).
+    pub(crate) fn from_intervals(
+        res: f64,
+        x0: f64,
+        y0: f64,
+        nx: usize,
+        ny: usize,
+        top_max: f64,
+        cells: Vec<(u32, Vec<[f32; 2]>)>,
+    ) -> DexelGrid {
+        let mut spans = vec![[0.0f32; 2]; nx * ny];
+        let mut extra = BTreeMap::new();
+        let mut length = 0.0f64;
+        for (k, list) in cells {
+            length += list.iter().map(|iv| f64::from(iv[1] - iv[0])).sum::<f64>();
+            spans[k as usize] = list[0];
+            if list.len() > 1 {
+                extra.insert(k, list[1..].to_vec());
+            }
+        }
+        DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume: length * res * res }
+    }
+
     /// Cell size, mm.
     pub fn resolution(&self) -> f64 {
         self.res

@@ -50,7 +50,7 @@ impl Stl {
 }
 
 /// `a` minus `b`, both sorted lists of disjoint intervals, into `out` (cleared).
-fn subtract(a: &[[f32; 2]], b: &[[f32; 2]], out: &mut Vec<[f32; 2]>) {
+pub(crate) fn subtract(a: &[[f32; 2]], b: &[[f32; 2]], out: &mut Vec<[f32; 2]>) {
     out.clear();
     for &[mut lo, hi] in a {
         for &[blo, bhi] in b {

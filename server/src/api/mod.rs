@@ -20,6 +20,7 @@ pub mod sessions;
 pub mod spindle_dto;
 pub mod state_json;
 pub mod stock;
+pub mod stock_mesh;
 pub mod stream;
 pub mod stream_frame;
 pub mod stream_gate;
@@ -104,7 +105,9 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(stock::get_stock_stl));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
-        .routes(routes!(program_archive::import_archive, program_archive::export_archive));
+        .routes(routes!(program_archive::import_archive, program_archive::export_archive))
+        .routes(routes!(stock_mesh::put_stock_stl))
+        .routes(routes!(stock_mesh::compare_stock));
     let quick = with_body_limit(quick, limits.body_bytes)
         .merge(with_body_limit(uploads, limits.program_body_bytes()))
         .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, QUICK_TIMEOUT));

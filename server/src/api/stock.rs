@@ -186,7 +186,7 @@ pub struct StockChange {
     pub holder: Option<Vec<[f64; 2]>>,
 }
 
-fn report(ch: &mut nctwin_engine::Channel) -> StockReport {
+pub(super) fn report(ch: &mut nctwin_engine::Channel) -> StockReport {
     let info = ch.stock_info();
     let options = ch.stock_options();
     StockReport {
