@@ -22,6 +22,7 @@ pub mod dexel;
 pub mod holder;
 pub mod mesh;
 pub mod profile;
+pub mod saved;
 pub mod target;
 
 use blank::{Blank, Placement};

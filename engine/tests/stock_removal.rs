@@ -320,3 +320,33 @@ fn an_stl_blank_is_cut_and_compared_with_a_target_stl() {
     let e = lathe.define_stock_mesh(&blank).unwrap_err();
     assert!(e.to_string().contains("lathe"), "{e}");
 }
+
+#[test]
+fn a_restart_from_the_checkpoint_keeps_the_cut_part() {
+    // Line 7 slots Y15 2 deep (1200 mm³), M0 at line 9; the checkpoint there is restored in a
+    // new channel: the search back to the M0 passes the WORKPIECE of line 4, which must not
+    // replace the saved, cut stock. After the restart line 11 slots Y0 2 deep: 1200 more.
+    let program = format!("{BLOCK}S3000 M3\nG0 X-20 Y15 Z-2\nG1 X60 F2000\nG0 Z50\nM0\nG0 X-20 Y0 Z-2\nG1 X60\nG0 Z50\nM30");
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program(&program).unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert_eq!(ch.status(), nctwin_engine::Status::Stopped);
+    assert!((ch.stock_info().unwrap().removed - 1200.0).abs() < 1e-6);
+    let saved = ch.resume_state();
+    assert!(saved.stock.is_some());
+
+    let mut new = Channel::from_preset("mill-3axis", "").unwrap();
+    new.restore_positions(ch.axis_positions()).unwrap();
+    new.restore_resume_state(&saved).unwrap();
+    let info = new.stock_info().expect("the saved stock");
+    assert!((info.initial_volume - 60_000.0).abs() < 1e-6 && (info.removed - 1200.0).abs() < 1e-6, "{info:?}");
+    assert_eq!(new.stock_stl(), ch.stock_stl());
+    new.start().unwrap();
+    while new.is_busy() {
+        new.step();
+    }
+    assert!(new.alarms().is_empty(), "{:?}", new.alarms());
+    assert!((new.stock_info().unwrap().removed - 2400.0).abs() < 1e-6, "{:?}", new.stock_info());
+}

@@ -31,6 +31,7 @@ mod spindle;
 mod stock_cut;
 mod stock_mesh;
 mod stock_pose;
+mod stock_saved;
 pub mod sync_actions;
 mod sync_eval;
 mod toff;
@@ -53,6 +54,7 @@ pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 pub use spindle::{SpindleMode, SpindleState};
 pub use stock_cut::{StockCheck, StockInfo, StockOptions, StockWarning};
+pub use stock_saved::SavedStock;
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, Programs, SharedOffsets};

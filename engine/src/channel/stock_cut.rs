@@ -307,6 +307,18 @@ impl Channel {
         self.cfg.geo_axes[1].is_none()
     }
 
+    /// The stock and its blank's volume, for a checkpoint.
+    pub(super) fn stock_parts(&self) -> Option<(&Stock, f64)> {
+        self.stock.as_ref().map(|r| (&r.stock, r.initial_volume))
+    }
+
+    /// The blank's volume a restored stock was cut from.
+    pub(super) fn set_initial_stock_volume(&mut self, volume: f64) {
+        if let Some(run) = self.stock.as_mut() {
+            run.initial_volume = volume;
+        }
+    }
+
     /// Makes `stock` the session's, cut from now on.
     pub(super) fn install_stock(&mut self, stock: Stock) {
         let kin = if matches!(stock, Stock::Turning(_)) { None } else { self.stock_kinematics() };

@@ -100,6 +100,31 @@ impl DexelGrid {
         DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume: length * res * res }
     }
 
+    /// The grid from its parts as [`DexelGrid::raw`] gives them (a checkpoint, `saved.rs`);
+    /// `Err` if they do not fit together.
+    #[allow(clippy::too_many_arguments, reason = "the grid's own fields, one call site")]
+    pub(crate) fn from_raw(
+        res: f64,
+        x0: f64,
+        y0: f64,
+        nx: usize,
+        ny: usize,
+        spans: Vec<[f32; 2]>,
+        extra: BTreeMap<u32, Vec<[f32; 2]>>,
+        top_max: f64,
+        volume: f64,
+    ) -> Result<DexelGrid, String> {
+        if spans.len() != nx * ny || extra.keys().any(|k| *k as usize >= spans.len()) {
+            return Err("the saved stock's cells do not match its grid".into());
+        }
+        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume })
+    }
+
+    /// The grid's parts: first intervals, further intervals, highest top.
+    pub(crate) fn raw(&self) -> (&[[f32; 2]], &BTreeMap<u32, Vec<[f32; 2]>>, f64) {
+        (&self.spans, &self.extra, self.top_max)
+    }
+
     /// Cell size, mm.
     pub fn resolution(&self) -> f64 {
         self.res
