@@ -350,3 +350,38 @@ fn a_restart_from_the_checkpoint_keeps_the_cut_part() {
     assert!(new.alarms().is_empty(), "{:?}", new.alarms());
     assert!((new.stock_info().unwrap().removed - 2400.0).abs() < 1e-6, "{:?}", new.stock_info());
 }
+
+/// The pens (attribute bytes) of a binary STL's triangles.
+fn pens(stl: &[u8]) -> std::collections::BTreeSet<u16> {
+    let n = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
+    (0..n).map(|t| u16::from_le_bytes(stl[84 + 50 * t + 48..84 + 50 * t + 50].try_into().unwrap())).collect()
+}
+
+#[test]
+fn the_hmi_fetches_only_the_tiles_a_cut_changed_coloured_by_tool() {
+    // The 60 x 50 block from X−10 Y−10 at 0.25 mm: 240 x 200 cells, tiles of 64 cells (16 mm):
+    // 4 x 4. A plunge of T1 (R5) at X5 Y5 reaches X0..10, Y0..10: tiles 0..1 in X and in Y
+    // ((0 + 10) / 16 = 0.6, (10 + 10) / 16 = 1.25). T2 (R4) drilled at X40 Y30 reaches
+    // X36..44 (tiles 2, 3), Y26..34 (tile 2).
+    let program = format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-2 F500\nG0 Z50\nT2 D1\nG0 X40 Y30 Z2\nG1 Z-5 F300\nG0 Z50\nM30");
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program(&program).unwrap();
+    let mut first = None;
+    while ch.is_busy() {
+        ch.step();
+        if first.is_none() && ch.stock_info().is_some() {
+            first = ch.stock_changes(0);
+        }
+    }
+    let first = first.expect("the blank's tiles");
+    assert_eq!((first.version, first.tiles.len(), nctwin_engine::channel::STOCK_TILE), (1, 16, 64));
+    let all = ch.stock_changes(first.version).unwrap();
+    assert_eq!(all.tiles, vec![[0, 0], [1, 0], [0, 1], [1, 1], [2, 2], [3, 2]]);
+    assert_eq!(all.pens, vec![(1, 1), (2, 1)]);
+    assert!(ch.stock_changes(all.version).unwrap().tiles.is_empty());
+    // Tile (0, 0) holds the end mill's hole (pen 1) and the blank's faces (0); tile (3, 2)
+    // the drill's (pen 2).
+    assert_eq!(pens(&ch.stock_tile_stl(0, 0).unwrap()), [0, 1].into());
+    assert!(pens(&ch.stock_tile_stl(3, 2).unwrap()).contains(&2));
+    assert_eq!(ch.stock_tile_stl(4, 0), None);
+}

@@ -32,6 +32,7 @@ mod stock_cut;
 mod stock_mesh;
 mod stock_pose;
 mod stock_saved;
+mod stock_tiles;
 pub mod sync_actions;
 mod sync_eval;
 mod toff;
@@ -55,6 +56,7 @@ use spindle::Spindle;
 pub use spindle::{SpindleMode, SpindleState};
 pub use stock_cut::{StockCheck, StockInfo, StockOptions, StockWarning};
 pub use stock_saved::SavedStock;
+pub use stock_tiles::{StockChanges, TILE as STOCK_TILE};
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Item, Programs, SharedOffsets};

@@ -109,6 +109,9 @@ pub struct StockInfo {
     pub last_warning: Option<StockWarning>,
     /// IPO cycles not cut because a transformation was active.
     pub skipped: u64,
+    /// Grows with every cut that removed material: the HMI fetches the changed tiles when it
+    /// differs from the one it shows (`Channel::stock_changes`).
+    pub version: u32,
 }
 
 /// What decides where one segment ends besides its geometry.
@@ -139,7 +142,7 @@ const AXIS_TOLERANCE: f64 = 1e-4;
 /// The stock of a session with its segment in progress and its findings.
 #[derive(Debug, Clone)]
 pub(super) struct StockRun {
-    stock: Stock,
+    pub(super) stock: Stock,
     initial_volume: f64,
     options: StockOptions,
     cutter: Option<((u32, u32), Option<Cutter>)>,
@@ -151,11 +154,14 @@ pub(super) struct StockRun {
     skipped: u64,
     /// The orientation kinematics the blank is mounted on (`stock_pose.rs`).
     kin: Option<Box<crate::kinematics::Traori>>,
+    /// Changes for the HMI's incremental mesh (`stock_tiles.rs`).
+    pub(super) tiles: super::stock_tiles::TileLog,
 }
 
 impl StockRun {
     fn new(stock: Stock, options: StockOptions, kin: Option<Box<crate::kinematics::Traori>>) -> StockRun {
         StockRun {
+            tiles: super::stock_tiles::TileLog::new(&stock),
             kin,
             initial_volume: stock.volume(),
             stock,
@@ -249,6 +255,7 @@ impl Channel {
             warnings: run.warnings_total,
             last_warning: run.warnings.back().copied(),
             skipped: run.skipped,
+            version: run.tiles.version(),
         })
     }
 
@@ -400,6 +407,11 @@ impl Channel {
         run.segment = Some(Segment { start: from, end: tip, dir, key, axis: pose.axis, length: pose.length });
     }
 
+    /// [`Channel::flush_stock`] for the sibling modules.
+    pub(super) fn flush_stock_now(&mut self) {
+        self.flush_stock();
+    }
+
     /// Cuts the open segment (if it has length) and starts the next one at its end.
     fn flush_stock(&mut self) {
         let Some(run) = self.stock.as_mut() else { return };
@@ -419,7 +431,15 @@ impl Channel {
             run.cutter = Some((key.tool, cutter));
         }
         let Some((_, Some(cutter))) = run.cutter else { return };
+        let pen = run.tiles.pen(key.tool);
+        if let Stock::Milling(g) = &mut run.stock {
+            g.set_pen(pen);
+        }
         let removal = run.stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius));
+        if removal.volume > 0.0 {
+            let reach = cutter.radius + length * (1.0 - axis[2] * axis[2]).max(0.0).sqrt();
+            run.tiles.touch(&run.stock, a, b, reach);
+        }
         if let Some(holder) = run.options.holder {
             let touch = run.stock.holder_overlap(&holder, length, a, b, axis);
             if touch.depth >= CHECK_DEPTH && run.reported[3] != key.line {

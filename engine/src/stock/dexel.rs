@@ -39,6 +39,11 @@ pub struct DexelGrid {
     /// Highest top of any cell: a segment whose tool stays above it removes nothing.
     top_max: f64,
     volume: f64,
+    /// Per cell the pen (the session's index of the tool) that last removed material there;
+    /// 0: never cut. For the HMI's colours by tool.
+    marks: Vec<u8>,
+    /// The pen of the cuts from now on.
+    pen: u8,
 }
 
 impl DexelGrid {
@@ -73,7 +78,8 @@ impl DexelGrid {
             }
         }
         let volume = cells as f64 * res * res * (zt as f32 - zb as f32) as f64;
-        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra: BTreeMap::new(), top_max: zt, volume })
+        let marks = vec![0; nx * ny];
+        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra: BTreeMap::new(), top_max: zt, volume, marks, pen: 0 })
     }
 
     /// A grid from the material of some cells: `(cell, sorted intervals)` by cell, the others
@@ -97,7 +103,8 @@ impl DexelGrid {
                 extra.insert(k, list[1..].to_vec());
             }
         }
-        DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume: length * res * res }
+        let marks = vec![0; nx * ny];
+        DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume: length * res * res, marks, pen: 0 }
     }
 
     /// The grid from its parts as [`DexelGrid::raw`] gives them (a checkpoint, `saved.rs`);
@@ -113,16 +120,27 @@ impl DexelGrid {
         extra: BTreeMap<u32, Vec<[f32; 2]>>,
         top_max: f64,
         volume: f64,
+        marks: Vec<u8>,
     ) -> Result<DexelGrid, String> {
-        if spans.len() != nx * ny || extra.keys().any(|k| *k as usize >= spans.len()) {
+        if spans.len() != nx * ny || marks.len() != spans.len() || extra.keys().any(|k| *k as usize >= spans.len()) {
             return Err("the saved stock's cells do not match its grid".into());
         }
-        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume })
+        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume, marks, pen: 0 })
     }
 
-    /// The grid's parts: first intervals, further intervals, highest top.
-    pub(crate) fn raw(&self) -> (&[[f32; 2]], &BTreeMap<u32, Vec<[f32; 2]>>, f64) {
-        (&self.spans, &self.extra, self.top_max)
+    /// The grid's parts: first intervals, further intervals, highest top, pens.
+    pub(crate) fn raw(&self) -> (&[[f32; 2]], &BTreeMap<u32, Vec<[f32; 2]>>, f64, &[u8]) {
+        (&self.spans, &self.extra, self.top_max, &self.marks)
+    }
+
+    /// The pen (1..=255: the session's index of a tool; 0 leaves no mark) of the cuts from now.
+    pub fn set_pen(&mut self, pen: u8) {
+        self.pen = pen;
+    }
+
+    /// The pen that last cut cell (i, j); 0: never cut.
+    pub fn mark(&self, i: usize, j: usize) -> u8 {
+        self.marks[j * self.nx + i]
     }
 
     /// Cell size, mm.
@@ -209,6 +227,7 @@ impl DexelGrid {
             let new_top = span[0].max(s);
             total = span[1] - new_top;
             span[1] = new_top;
+            self.marks[k] = self.pen;
         }
         if !self.extra.is_empty()
             && let Some(more) = self.extra.get_mut(&(k as u32))
@@ -223,6 +242,9 @@ impl DexelGrid {
             more.retain(|iv| iv[1] > iv[0]);
             if more.is_empty() {
                 self.extra.remove(&(k as u32));
+            }
+            if total > 0.0 {
+                self.marks[k] = self.pen;
             }
         }
         total
@@ -246,6 +268,7 @@ impl DexelGrid {
             if s[1] <= s[0] || s[1] <= lo + EPS || s[0] >= hi - EPS {
                 return 0.0;
             }
+            self.marks[k] = self.pen;
             if hi >= s[1] {
                 let new_top = s[0].max(lo);
                 self.spans[k][1] = new_top;
@@ -276,6 +299,9 @@ impl DexelGrid {
             }
         }
         out.retain(|iv| iv[1] > iv[0]);
+        if removed > 0.0 {
+            self.marks[k] = self.pen;
+        }
         self.spans[k] = out.first().copied().unwrap_or([0.0, 0.0]);
         if out.len() > 1 {
             self.extra.insert(k as u32, out[1..].to_vec());

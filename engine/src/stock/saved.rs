@@ -4,7 +4,8 @@
 //!
 //! Format 1: `b'M'`, res, x0, y0 (f64), nx, ny (u32), top_max, volume (f64), the runs of first
 //! intervals (u32 count, then per run u32 length, f32 bottom, f32 top), the further intervals
-//! (u32 cells, per cell u32 index, u32 count, count × (f32, f32)); or `b'T'`, res, z0 (f64),
+//! (u32 cells, per cell u32 index, u32 count, count × (f32, f32)), the runs of pens (u32
+//! count, per run u32 length, u8 pen); or `b'T'`, res, z0 (f64),
 //! n (u32), volume (f64), then the runs of outer and of inner radii (u32 count, per run u32
 //! length, f64 radius).
 
@@ -22,7 +23,7 @@ pub fn encode(stock: &Stock) -> String {
     let mut w = Vec::new();
     match stock {
         Stock::Milling(g) => {
-            let (spans, extra, top_max) = g.raw();
+            let (spans, extra, top_max, marks) = g.raw();
             let (nx, ny) = g.size();
             let (x0, y0) = g.origin();
             w.push(b'M');
@@ -48,6 +49,12 @@ pub fn encode(stock: &Stock) -> String {
                     w.extend_from_slice(&b.to_le_bytes());
                     w.extend_from_slice(&t.to_le_bytes());
                 }
+            }
+            let runs: Vec<(u32, u8)> = marks.chunk_by(|a, b| a == b).map(|r| (r.len() as u32, r[0])).collect();
+            w.extend_from_slice(&(runs.len() as u32).to_le_bytes());
+            for (n, m) in runs {
+                w.extend_from_slice(&n.to_le_bytes());
+                w.push(m);
             }
         }
         Stock::Turning(p) => {
@@ -101,7 +108,15 @@ pub fn decode(format: u32, text: &str) -> Result<Stock, String> {
                 let list = (0..n).map(|_| Ok([r.f32()?, r.f32()?])).collect::<Result<Vec<_>, String>>()?;
                 extra.insert(k, list);
             }
-            Stock::Milling(DexelGrid::from_raw(res, x0, y0, nx, ny, spans, extra, top_max, volume)?)
+            let mut marks = Vec::with_capacity(nx * ny);
+            for _ in 0..r.u32()? {
+                let (n, m) = (r.u32()? as usize, r.take(1)?[0]);
+                if marks.len() + n > nx * ny {
+                    return Err("the saved stock has more pens than cells".into());
+                }
+                marks.extend(std::iter::repeat_n(m, n));
+            }
+            Stock::Milling(DexelGrid::from_raw(res, x0, y0, nx, ny, spans, extra, top_max, volume, marks)?)
         }
         b'T' => {
             let (res, z0) = (r.f64()?, r.f64()?);
@@ -218,9 +233,10 @@ mod tests {
         let tube = Blank { shape: Shape::Tube { outer: 50.0, inner: 30.0 }, top: 0.0, bottom: -10.0 };
         let t = Stock::new(&tube, &Placement::default(), true, 0.25).unwrap();
         assert_eq!(decode(FORMAT, &encode(&t)).unwrap(), t);
-        // A plate of 400 equal cells codes as one run: 1 + 24 + 8 + 16 + 4 + 12 + 4 bytes.
+        // A plate of 400 equal cells codes as one run: 1 + 24 + 8 + 16 + 4 + 12 + 4 bytes and
+        // one run of pens, 4 + 5.
         let plain = Stock::new(&blank, &Placement::default(), false, 0.5).unwrap();
-        assert_eq!(encode(&plain).len(), 69usize.div_ceil(3) * 4);
+        assert_eq!(encode(&plain).len(), 78usize.div_ceil(3) * 4);
         assert!(decode(2, "").unwrap_err().contains("format 2"));
         assert!(decode(FORMAT, "TQ==").unwrap_err().contains("ends early"));
     }
