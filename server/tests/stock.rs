@@ -152,3 +152,32 @@ async fn an_stl_blank_a_holder_and_a_target_comparison_over_rest() {
     assert!((c["overcut_volume"].as_f64().unwrap() - std::f64::consts::PI * 25.0 * 20.0).abs() < 40.0, "{c}");
     assert_eq!(c["undercut"], 0.0, "{c}");
 }
+
+#[tokio::test]
+async fn the_hmi_fetches_the_changed_tiles_of_the_stock_coloured_by_pen() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    // The 60 x 50 block from X−10 Y−10 (tiles of 64 cells, 16 mm: 4 x 4); T1 plunges at X5 Y5
+    // and reaches X0..10, Y0..10: tiles 0..1 in X and Y.
+    let program = "T1 D1\nG0 X5 Y5 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,-10,-10,50,40)\nS3000 M3\nG0 Z2\nG1 Z-2 F3000\nG0 Z50\nM30";
+    let state =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    assert_eq!(state.body["status"], "idle", "{}", state.body);
+    let version = state.body["stock"]["version"].as_u64().unwrap();
+    assert!(version > 1, "{}", state.body);
+    let all = server.get(&format!("/sessions/{id}/stock/changes")).await.body;
+    assert_eq!((all["tiles"].as_array().unwrap().len(), &all["tile_cells"]), (16, &json!(64)), "{all}");
+    let changed = server.get(&format!("/sessions/{id}/stock/changes?since=1")).await.body;
+    assert_eq!(changed["tiles"], json!([[0, 0], [1, 0], [0, 1], [1, 1]]), "{changed}");
+    assert_eq!(changed["pens"], json!([{"pen": 1, "t": 1, "d": 1}]));
+    assert_eq!(changed["version"], version);
+    let bad = server.get(&format!("/sessions/{id}/stock/changes?since=x")).await;
+    assert_eq!(bad.status, StatusCode::BAD_REQUEST);
+    let tile = reqwest::get(server.url(&format!("/sessions/{id}/stock/tiles/0/0"))).await.unwrap();
+    assert_eq!((tile.status(), tile.headers()["content-type"].to_str().unwrap()), (StatusCode::OK, "model/stl"));
+    let bytes = tile.bytes().await.unwrap();
+    let n = u32::from_le_bytes(bytes[80..84].try_into().unwrap()) as usize;
+    assert!((0..n).any(|t| bytes[84 + 50 * t + 48] == 1), "a face cut by pen 1");
+    let none = reqwest::get(server.url(&format!("/sessions/{id}/stock/tiles/9/0"))).await.unwrap();
+    assert_eq!(none.status(), StatusCode::NOT_FOUND);
+}

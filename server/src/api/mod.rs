@@ -21,6 +21,7 @@ pub mod spindle_dto;
 pub mod state_json;
 pub mod stock;
 pub mod stock_mesh;
+pub mod stock_tiles;
 pub mod stream;
 pub mod stream_frame;
 pub mod stream_gate;
@@ -102,7 +103,9 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(viewers::get_viewers))
         .routes(routes!(io::get_io, io::put_io))
         .routes(routes!(stock::get_stock, stock::put_stock, stock::delete_stock))
-        .routes(routes!(stock::get_stock_stl));
+        .routes(routes!(stock::get_stock_stl))
+        .routes(routes!(stock_tiles::get_stock_changes))
+        .routes(routes!(stock_tiles::get_stock_tile));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
         .routes(routes!(program_archive::import_archive, program_archive::export_archive))

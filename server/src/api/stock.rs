@@ -69,6 +69,9 @@ pub struct StockSummary {
     pub warnings: u64,
     /// The latest of them.
     pub last_warning: Option<StockWarningInfo>,
+    /// Grows with every cut that removed material: fetch `GET .../stock/changes?since=` when
+    /// it differs from the version shown.
+    pub version: u32,
 }
 
 impl From<&StockInfo> for StockSummary {
@@ -81,6 +84,7 @@ impl From<&StockInfo> for StockSummary {
             removed: s.removed,
             warnings: s.warnings,
             last_warning: s.last_warning.as_ref().map(StockWarningInfo::from),
+            version: s.version,
         }
     }
 }
