@@ -89,6 +89,8 @@ export interface StockSummary {
   removed: number;
   warnings: number;
   last_warning: StockWarning | null;
+  /** Grows with every cut: the tiles changed since the version shown are fetched again. */
+  version: number;
 }
 
 /** A synchronized action as the state lists it. */
