@@ -270,7 +270,13 @@ fn a_short_tool_plunging_deep_brings_its_holder_into_the_stock() {
 
 /// A binary STL of the box `lo`..`hi` (12 triangles, outward).
 fn box_stl(lo: [f32; 3], hi: [f32; 3]) -> Vec<u8> {
-    let c = |i: usize| [if i & 1 == 0 { lo[0] } else { hi[0] }, if i & 2 == 0 { lo[1] } else { hi[1] }, if i & 4 == 0 { lo[2] } else { hi[2] }];
+    let c = |i: usize| {
+        [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]
+    };
     // Faces as corner indices, counter-clockwise from outside.
     let faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
     let mut out = vec![0u8; 80];
@@ -326,7 +332,8 @@ fn a_restart_from_the_checkpoint_keeps_the_cut_part() {
     // Line 7 slots Y15 2 deep (1200 mm³), M0 at line 9; the checkpoint there is restored in a
     // new channel: the search back to the M0 passes the WORKPIECE of line 4, which must not
     // replace the saved, cut stock. After the restart line 11 slots Y0 2 deep: 1200 more.
-    let program = format!("{BLOCK}S3000 M3\nG0 X-20 Y15 Z-2\nG1 X60 F2000\nG0 Z50\nM0\nG0 X-20 Y0 Z-2\nG1 X60\nG0 Z50\nM30");
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X-20 Y15 Z-2\nG1 X60 F2000\nG0 Z50\nM0\nG0 X-20 Y0 Z-2\nG1 X60\nG0 Z50\nM30");
     let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
     ch.run_program(&program).unwrap();
     while ch.is_busy() {
@@ -363,7 +370,8 @@ fn the_hmi_fetches_only_the_tiles_a_cut_changed_coloured_by_tool() {
     // 4 x 4. A plunge of T1 (R5) at X5 Y5 reaches X0..10, Y0..10: tiles 0..1 in X and in Y
     // ((0 + 10) / 16 = 0.6, (10 + 10) / 16 = 1.25). T2 (R4) drilled at X40 Y30 reaches
     // X36..44 (tiles 2, 3), Y26..34 (tile 2).
-    let program = format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-2 F500\nG0 Z50\nT2 D1\nG0 X40 Y30 Z2\nG1 Z-5 F300\nG0 Z50\nM30");
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-2 F500\nG0 Z50\nT2 D1\nG0 X40 Y30 Z2\nG1 Z-5 F300\nG0 Z50\nM30");
     let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
     ch.run_program(&program).unwrap();
     let mut first = None;

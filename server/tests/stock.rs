@@ -77,7 +77,11 @@ async fn a_bad_blank_or_resolution_is_refused_naming_it() {
 /// A binary STL of the box `lo`..`hi` (12 triangles, outward).
 fn box_stl(lo: [f32; 3], hi: [f32; 3]) -> Vec<u8> {
     let c = |i: usize| {
-        [if i & 1 == 0 { lo[0] } else { hi[0] }, if i & 2 == 0 { lo[1] } else { hi[1] }, if i & 4 == 0 { lo[2] } else { hi[2] }]
+        [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]
     };
     let faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
     let mut out = vec![0u8; 80];
@@ -102,7 +106,10 @@ async fn an_stl_blank_a_holder_and_a_target_comparison_over_rest() {
     let id = server.session("mill-3axis").await;
     let client = reqwest::Client::new();
     let state = server
-        .post(&format!("/sessions/{id}/run"), json!({"program": "T1 D1\nG0 X20 Y15 Z50\nM30", "pace": "fast", "wait": true}))
+        .post(
+            &format!("/sessions/{id}/run"),
+            json!({"program": "T1 D1\nG0 X20 Y15 Z50\nM30", "pace": "fast", "wait": true}),
+        )
         .await;
     assert_eq!(state.body["status"], "idle", "{}", state.body);
     // The blank as an STL: 60 x 50 x 20.
@@ -116,7 +123,12 @@ async fn an_stl_blank_a_holder_and_a_target_comparison_over_rest() {
     let body: serde_json::Value = put.json().await.unwrap();
     assert_eq!(body["stock"]["initial_volume"], 60000.0, "{body}");
     // Not an STL: 400 naming it.
-    let bad = client.put(server.url(&format!("/sessions/{id}/stock.stl"))).body("solid x\nvertex 1\nendloop\n").send().await.unwrap();
+    let bad = client
+        .put(server.url(&format!("/sessions/{id}/stock.stl")))
+        .body("solid x\nvertex 1\nendloop\n")
+        .send()
+        .await
+        .unwrap();
     assert_eq!(bad.status(), StatusCode::BAD_REQUEST);
     assert!(bad.text().await.unwrap().contains("STL line 2"));
 

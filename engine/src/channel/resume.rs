@@ -122,7 +122,10 @@ impl Channel {
         if let Some(inputs) = &state.inputs {
             self.restore_inputs(inputs.digital, &inputs.analog);
         }
-        let Some(program) = &state.program else { return Ok(self.restore_saved_stock(state)) };
+        let Some(program) = &state.program else {
+            self.restore_saved_stock(state);
+            return Ok(());
+        };
         CommandError::check(&program.text)?;
         match program.line {
             None => {

@@ -359,7 +359,8 @@ impl Channel {
         }
         let tol = run.stock.resolution() / 10.0;
         let Some(seg) = run.segment.as_mut() else {
-            run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
+            run.segment =
+                Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
             return;
         };
         let turned = {

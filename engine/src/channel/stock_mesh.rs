@@ -19,7 +19,8 @@ impl Channel {
         let placement = self.stock_placement(&self.offsets.frame);
         placement.check_upright().map_err(CommandError::Invalid)?;
         let bcs = mesh.map(|p| placement.apply(p));
-        let grid = DexelGrid::from_mesh(&bcs, self.stock_options.resolution, MAX_CELLS).map_err(CommandError::Invalid)?;
+        let grid =
+            DexelGrid::from_mesh(&bcs, self.stock_options.resolution, MAX_CELLS).map_err(CommandError::Invalid)?;
         self.install_stock(Stock::Milling(grid));
         Ok(())
     }
@@ -35,7 +36,9 @@ impl Channel {
             Some(Stock::Turning(_)) => {
                 Err(CommandError::Invalid("comparing with a target STL needs a milled stock, not a turned one".into()))
             }
-            None => Err(CommandError::Invalid("no blank to compare: define one first (WORKPIECE or PUT .../stock)".into())),
+            None => {
+                Err(CommandError::Invalid("no blank to compare: define one first (WORKPIECE or PUT .../stock)".into()))
+            }
         }
     }
 }

@@ -108,7 +108,9 @@ impl Channel {
             return None;
         }
         Some(match &run.stock {
-            Stock::Milling(g) => crate::stock::mesh::dexel_stl_region(g, [i * TILE, (i + 1) * TILE], [j * TILE, (j + 1) * TILE]),
+            Stock::Milling(g) => {
+                crate::stock::mesh::dexel_stl_region(g, [i * TILE, (i + 1) * TILE], [j * TILE, (j + 1) * TILE])
+            }
             Stock::Turning(_) => run.stock.stl(),
         })
     }

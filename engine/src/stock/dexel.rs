@@ -129,6 +129,7 @@ impl DexelGrid {
     }
 
     /// The grid's parts: first intervals, further intervals, highest top, pens.
+    #[allow(clippy::type_complexity, reason = "the grid's own fields, read by the checkpoint codec")]
     pub(crate) fn raw(&self) -> (&[[f32; 2]], &BTreeMap<u32, Vec<[f32; 2]>>, f64, &[u8]) {
         (&self.spans, &self.extra, self.top_max, &self.marks)
     }

@@ -25,7 +25,11 @@ impl Holder {
         if sections.is_empty() || sections.len() > MAX_SECTIONS {
             return Err(format!("a holder has 1 to {MAX_SECTIONS} sections, not {}", sections.len()));
         }
-        if let Some((n, s)) = sections.iter().enumerate().find(|(_, s)| !(s[0].is_finite() && s[0] > 0.0 && s[1].is_finite() && s[1] > 0.0)) {
+        if let Some((n, s)) = sections
+            .iter()
+            .enumerate()
+            .find(|(_, s)| !(s[0].is_finite() && s[0] > 0.0 && s[1].is_finite() && s[1] > 0.0))
+        {
             return Err(format!("holder section {}: diameter {} and length {} must be positive", n + 1, s[0], s[1]));
         }
         let mut h = Holder { sections: [[0.0; 2]; MAX_SECTIONS], count: sections.len() };

@@ -59,7 +59,13 @@ impl Profile {
     }
 
     /// The profile from its parts (a checkpoint, `saved.rs`).
-    pub(crate) fn from_raw(res: f64, z0: f64, outer: Vec<f64>, inner: Vec<f64>, volume: f64) -> Result<Profile, String> {
+    pub(crate) fn from_raw(
+        res: f64,
+        z0: f64,
+        outer: Vec<f64>,
+        inner: Vec<f64>,
+        volume: f64,
+    ) -> Result<Profile, String> {
         if outer.len() != inner.len() {
             return Err("the saved profile's radii do not pair up".into());
         }

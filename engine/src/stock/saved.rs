@@ -91,7 +91,7 @@ pub fn decode(format: u32, text: &str) -> Result<Stock, String> {
             let (res, x0, y0) = (r.f64()?, r.f64()?, r.f64()?);
             let (nx, ny) = (r.u32()? as usize, r.u32()? as usize);
             let (top_max, volume) = (r.f64()?, r.f64()?);
-            if nx.saturating_mul(ny) > MAX_CELLS || !(res >= super::MIN_RESOLUTION) {
+            if nx.saturating_mul(ny) > MAX_CELLS || res.is_nan() || res < super::MIN_RESOLUTION {
                 return Err("the saved stock's grid is out of range".into());
             }
             let mut spans = Vec::with_capacity(nx * ny);
@@ -122,7 +122,7 @@ pub fn decode(format: u32, text: &str) -> Result<Stock, String> {
             let (res, z0) = (r.f64()?, r.f64()?);
             let n = r.u32()? as usize;
             let volume = r.f64()?;
-            if n > MAX_CELLS || !(res >= super::MIN_RESOLUTION) {
+            if n > MAX_CELLS || res.is_nan() || res < super::MIN_RESOLUTION {
                 return Err("the saved profile is out of range".into());
             }
             let mut sides = [Vec::new(), Vec::new()];
@@ -177,7 +177,8 @@ const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwx
 fn base64(bytes: &[u8]) -> String {
     let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for c in bytes.chunks(3) {
-        let n = (u32::from(c[0]) << 16) | (u32::from(*c.get(1).unwrap_or(&0)) << 8) | u32::from(*c.get(2).unwrap_or(&0));
+        let n =
+            (u32::from(c[0]) << 16) | (u32::from(*c.get(1).unwrap_or(&0)) << 8) | u32::from(*c.get(2).unwrap_or(&0));
         for i in 0..4 {
             if i <= c.len() {
                 out.push(ALPHABET[(n >> (18 - 6 * i)) as usize & 63] as char);

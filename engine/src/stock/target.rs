@@ -233,9 +233,10 @@ fn read_ascii(bytes: &[u8]) -> Result<Vec<[[f64; 3]; 3]>, String> {
         let mut words = line.split_whitespace();
         match words.next() {
             Some("vertex") => {
-                let v: Vec<f64> = words.map(str::parse).collect::<Result<_, _>>().map_err(|_| {
-                    format!("STL line {}: `vertex` needs three numbers", n + 1)
-                })?;
+                let v: Vec<f64> = words
+                    .map(str::parse)
+                    .collect::<Result<_, _>>()
+                    .map_err(|_| format!("STL line {}: `vertex` needs three numbers", n + 1))?;
                 let [x, y, z] = v[..] else { return Err(format!("STL line {}: `vertex` needs three numbers", n + 1)) };
                 corner.push([x, y, z]);
             }

@@ -100,9 +100,7 @@ pub async fn compare_stock(
 ) -> Result<Json<StockComparison>, ApiError> {
     let target = mesh(&body)?;
     let session = find_session(&state, &id)?;
-    let c = session
-        .with_channel(move |ch| ch.compare_stock(&target))
-        .await
-        .map_err(|e| ApiError::from_session(&id, e))?;
+    let c =
+        session.with_channel(move |ch| ch.compare_stock(&target)).await.map_err(|e| ApiError::from_session(&id, e))?;
     Ok(Json(c?.into()))
 }

@@ -66,7 +66,8 @@ pub async fn get_stock_changes(
 ) -> Result<Json<StockChangesReport>, ApiError> {
     let Query(q) = query.map_err(|e| ApiError::bad_request(e.body_text()))?;
     let session = find_session(&state, &id)?;
-    let c = session.with_channel(move |ch| ch.stock_changes(q.since)).await.map_err(|e| ApiError::from_session(&id, e))?;
+    let c =
+        session.with_channel(move |ch| ch.stock_changes(q.since)).await.map_err(|e| ApiError::from_session(&id, e))?;
     let c = c.ok_or_else(|| ApiError::NotFound(format!("session `{id}` has no blank (WORKPIECE or PUT .../stock)")))?;
     Ok(Json(StockChangesReport {
         version: c.version,
@@ -96,7 +97,8 @@ pub async fn get_stock_tile(
     Path((id, i, j)): Path<(String, usize, usize)>,
 ) -> Result<Response, ApiError> {
     let session = find_session(&state, &id)?;
-    let stl = session.with_channel(move |ch| ch.stock_tile_stl(i, j)).await.map_err(|e| ApiError::from_session(&id, e))?;
+    let stl =
+        session.with_channel(move |ch| ch.stock_tile_stl(i, j)).await.map_err(|e| ApiError::from_session(&id, e))?;
     let stl = stl.ok_or_else(|| ApiError::NotFound(format!("session `{id}` has no stock tile {i}, {j}")))?;
     Ok(([(CONTENT_TYPE, "model/stl")], stl).into_response())
 }

@@ -30,7 +30,7 @@ impl DexelGrid {
     /// above the tip.
     pub fn cut_tilted(&mut self, cutter: &Cutter, a: [f64; 3], b: [f64; 3], axis: [f64; 3], length: f64) -> Removal {
         let r = cutter.radius;
-        if r <= 0.0 || !(length > 0.0) {
+        if r <= 0.0 || length.is_nan() || length <= 0.0 {
             return Removal::default();
         }
         let o = axis;
@@ -97,9 +97,10 @@ impl DexelGrid {
                 let band = if steps.len() == 1 {
                     Some(outer)
                 } else {
-                    steps.iter().filter_map(|&(rho, h0)| line_in_cylinder(w, o, rho, h0, length)).reduce(|u, v| {
-                        [u[0].min(v[0]), u[1].max(v[1])]
-                    })
+                    steps
+                        .iter()
+                        .filter_map(|&(rho, h0)| line_in_cylinder(w, o, rho, h0, length))
+                        .reduce(|u, v| [u[0].min(v[0]), u[1].max(v[1])])
                 };
                 if let Some([lo, hi]) = band {
                     let t = self.band(k, lo as f32, hi as f32);
