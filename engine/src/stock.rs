@@ -19,8 +19,11 @@
 pub mod blank;
 pub mod cutter;
 pub mod dexel;
+pub mod holder;
 pub mod mesh;
 pub mod profile;
+pub mod saved;
+pub mod target;
 
 use blank::{Blank, Placement};
 use cutter::Cutter;
@@ -76,6 +79,39 @@ impl Stock {
         match self {
             Stock::Milling(g) => g.cut(cutter, a, b),
             Stock::Turning(p) => p.cut(cutter, a, b),
+        }
+    }
+
+    /// [`Stock::cut`] with the tool's axis along the unit vector `axis` (tip → holder, in the
+    /// blank's frame) and its cutting part `length` long: 5-axis orientations and tilted
+    /// tables. A milling tool along +Z takes the exact path of [`Stock::cut`]; a turned stock
+    /// ignores the axis (a lathe's tools lie in the turning plane).
+    pub fn cut_oriented(&mut self, cutter: &Cutter, a: [f64; 3], b: [f64; 3], axis: [f64; 3], length: f64) -> Removal {
+        match self {
+            Stock::Milling(g) if axis[0].abs() > 1e-9 || axis[1].abs() > 1e-9 || axis[2] < 0.0 => {
+                g.cut_tilted(cutter, a, b, axis, length)
+            }
+            _ => self.cut(cutter, a, b),
+        }
+    }
+
+    /// The material inside `holder` (on a tool `tool_length` long, axis `axis`) while the tip
+    /// goes from `a` to `b`: a collision where it is not zero. A turned stock has no holder
+    /// model (the default: nothing found).
+    pub fn holder_overlap(
+        &self,
+        holder: &holder::Holder,
+        tool_length: f64,
+        a: [f64; 3],
+        b: [f64; 3],
+        axis: [f64; 3],
+    ) -> dexel::Overlap {
+        match self {
+            Stock::Milling(g) => {
+                let cylinders: Vec<_> = holder.cylinders(tool_length).collect();
+                g.overlap(&cylinders, a, b, axis)
+            }
+            Stock::Turning(_) => dexel::Overlap::default(),
         }
     }
 

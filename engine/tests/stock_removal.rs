@@ -232,3 +232,164 @@ fn a_tool_change_moves_the_tip_without_cutting() {
     let (info, warnings, _) = mill(program);
     assert_eq!((info.removed, warnings.len()), (0.0, 0), "{warnings:?}");
 }
+
+#[test]
+fn a_short_tool_plunging_deep_brings_its_holder_into_the_stock() {
+    // T3 D1: an end mill R5 only 30 long (`$TC_DP3`), in a holder Ø40 × 50 above its gauge
+    // line. A plunge at X20 Y15 into a block Z−40..0: to Z−20 the holder's face stays at
+    // Z10, above the top: no collision. To Z−35 the face goes to Z−5: the holder's ring
+    // between radius 5 (the hole the tool made) and 20 holds the material of Z−5..0, 5 thick,
+    // π(20² − 5²)·5 = 5890.49 mm³ (the ring lies inside the block, X0..40, Y−5..35), at the
+    // plunge's line 7 with the tip at Z−35.
+    let md = "$TC_DP1[3,1]=120\n$TC_DP3[3,1]=30.\n$TC_DP6[3,1]=5.\n";
+    let holder = nctwin_engine::stock::holder::Holder::new(&[[40.0, 50.0]]).unwrap();
+    let options = StockOptions { holder: Some(holder), ..StockOptions::default() };
+    let program = |depth: f64| {
+        format!(
+            "G17 G90 G94\nT3 D1\nG0 X20 Y15 Z80\nWORKPIECE(,\"\",,\"BOX\",112,0,-40,-80,-10,-10,50,40)\nS1000 M3\nG0 Z2\nG1 Z{depth} F300\nG0 Z80\nM30"
+        )
+    };
+    let (_, warnings, _) = run("mill-3axis", md, options, &program(-20.0));
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let (_, warnings, _) = run("mill-3axis", md, options, &program(-35.0));
+    // The retract of line 8 starts with the holder still in the material: reported too
+    // (the model removes nothing with the holder, so it stays a collision until it is out).
+    assert_eq!(warnings.iter().map(|w| w.line).collect::<Vec<_>>(), vec![7, 8], "{warnings:?}");
+    let w = warnings[0];
+    assert_eq!((w.check, w.line), (StockCheck::HolderCollision, 7));
+    assert!((w.depth - 5.0).abs() < 1e-4, "{w:?}");
+    assert!((w.position[2] + 35.0).abs() < 1e-6, "{w:?}");
+    // The ring's two rims (2π·25 mm round) cross 628 cells; half a cell 5 deep each at most.
+    let expected = PI * (400.0 - 25.0) * 5.0;
+    let bound = 0.5 * (2.0 * PI * 25.0 / 0.25) * 0.0625 * 5.0;
+    assert!((w.volume - expected).abs() < bound, "{w:?} vs {expected} ± {bound}");
+    // Without a holder set, no check and no cost.
+    let (_, warnings, _) = run("mill-3axis", md, StockOptions::default(), &program(-35.0));
+    assert!(warnings.is_empty(), "{warnings:?}");
+}
+
+/// A binary STL of the box `lo`..`hi` (12 triangles, outward).
+fn box_stl(lo: [f32; 3], hi: [f32; 3]) -> Vec<u8> {
+    let c = |i: usize| {
+        [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]
+    };
+    // Faces as corner indices, counter-clockwise from outside.
+    let faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let mut out = vec![0u8; 80];
+    out.extend_from_slice(&12u32.to_le_bytes());
+    for f in faces {
+        for t in [[f[0], f[1], f[2]], [f[0], f[2], f[3]]] {
+            out.extend_from_slice(&[0u8; 12]);
+            for v in t {
+                for x in c(v) {
+                    out.extend_from_slice(&x.to_le_bytes());
+                }
+            }
+            out.extend_from_slice(&[0u8; 2]);
+        }
+    }
+    out
+}
+
+#[test]
+fn an_stl_blank_is_cut_and_compared_with_a_target_stl() {
+    use nctwin_engine::stock::target::Mesh;
+    // The blank as an STL: the block X−10..50, Y−10..40, Z−20..0 (60 000 mm³). The target:
+    // the same block faced to Z−1. The program slots Z−2 deep along Y15 with the R5 end mill:
+    // 10 mm wide (the 40 rows of cells within 5 of Y15) over the 60 mm: the slot is 1 mm below
+    // the target, 600 mm³ overcut; the rest of the top keeps 1 mm above it, (3000 − 600)·1 =
+    // 2400 mm³ undercut.
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.mda("T1 D1\nG0 X-30 Y15 Z50").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    let blank = Mesh::from_stl(&box_stl([-10.0, -10.0, -20.0], [50.0, 40.0, 0.0])).unwrap();
+    ch.define_stock_mesh(&blank).unwrap();
+    assert!((ch.stock_info().unwrap().initial_volume - 60_000.0).abs() < 1e-6);
+    ch.mda("S3000 M3\nG0 Z-2\nG1 X60 F2000\nG0 Z50").unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert!((ch.stock_info().unwrap().removed - 1200.0).abs() < 1e-6);
+    let target = Mesh::from_stl(&box_stl([-10.0, -10.0, -20.0], [50.0, 40.0, -1.0])).unwrap();
+    let c = ch.compare_stock(&target).unwrap();
+    assert!((c.overcut - 1.0).abs() < 1e-6 && (c.overcut_volume - 600.0).abs() < 1e-6, "{c:?}");
+    assert!((c.overcut_at[1] - 15.0).abs() <= 5.0 && (c.overcut_at[2] + 1.5).abs() < 1e-6, "{c:?}");
+    assert!((c.undercut - 1.0).abs() < 1e-6 && (c.undercut_volume - 2400.0).abs() < 1e-6, "{c:?}");
+    // A lathe refuses an STL blank, naming why.
+    let mut lathe = Channel::from_preset("lathe-2axis", "").unwrap();
+    let e = lathe.define_stock_mesh(&blank).unwrap_err();
+    assert!(e.to_string().contains("lathe"), "{e}");
+}
+
+#[test]
+fn a_restart_from_the_checkpoint_keeps_the_cut_part() {
+    // Line 7 slots Y15 2 deep (1200 mm³), M0 at line 9; the checkpoint there is restored in a
+    // new channel: the search back to the M0 passes the WORKPIECE of line 4, which must not
+    // replace the saved, cut stock. After the restart line 11 slots Y0 2 deep: 1200 more.
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X-20 Y15 Z-2\nG1 X60 F2000\nG0 Z50\nM0\nG0 X-20 Y0 Z-2\nG1 X60\nG0 Z50\nM30");
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program(&program).unwrap();
+    while ch.is_busy() {
+        ch.step();
+    }
+    assert_eq!(ch.status(), nctwin_engine::Status::Stopped);
+    assert!((ch.stock_info().unwrap().removed - 1200.0).abs() < 1e-6);
+    let saved = ch.resume_state();
+    assert!(saved.stock.is_some());
+
+    let mut new = Channel::from_preset("mill-3axis", "").unwrap();
+    new.restore_positions(ch.axis_positions()).unwrap();
+    new.restore_resume_state(&saved).unwrap();
+    let info = new.stock_info().expect("the saved stock");
+    assert!((info.initial_volume - 60_000.0).abs() < 1e-6 && (info.removed - 1200.0).abs() < 1e-6, "{info:?}");
+    assert_eq!(new.stock_stl(), ch.stock_stl());
+    new.start().unwrap();
+    while new.is_busy() {
+        new.step();
+    }
+    assert!(new.alarms().is_empty(), "{:?}", new.alarms());
+    assert!((new.stock_info().unwrap().removed - 2400.0).abs() < 1e-6, "{:?}", new.stock_info());
+}
+
+/// The pens (attribute bytes) of a binary STL's triangles.
+fn pens(stl: &[u8]) -> std::collections::BTreeSet<u16> {
+    let n = u32::from_le_bytes(stl[80..84].try_into().unwrap()) as usize;
+    (0..n).map(|t| u16::from_le_bytes(stl[84 + 50 * t + 48..84 + 50 * t + 50].try_into().unwrap())).collect()
+}
+
+#[test]
+fn the_hmi_fetches_only_the_tiles_a_cut_changed_coloured_by_tool() {
+    // The 60 x 50 block from X−10 Y−10 at 0.25 mm: 240 x 200 cells, tiles of 64 cells (16 mm):
+    // 4 x 4. A plunge of T1 (R5) at X5 Y5 reaches X0..10, Y0..10: tiles 0..1 in X and in Y
+    // ((0 + 10) / 16 = 0.6, (10 + 10) / 16 = 1.25). T2 (R4) drilled at X40 Y30 reaches
+    // X36..44 (tiles 2, 3), Y26..34 (tile 2).
+    let program =
+        format!("{BLOCK}S3000 M3\nG0 X5 Y5 Z2\nG1 Z-2 F500\nG0 Z50\nT2 D1\nG0 X40 Y30 Z2\nG1 Z-5 F300\nG0 Z50\nM30");
+    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+    ch.run_program(&program).unwrap();
+    let mut first = None;
+    while ch.is_busy() {
+        ch.step();
+        if first.is_none() && ch.stock_info().is_some() {
+            first = ch.stock_changes(0);
+        }
+    }
+    let first = first.expect("the blank's tiles");
+    assert_eq!((first.version, first.tiles.len(), nctwin_engine::channel::STOCK_TILE), (1, 16, 64));
+    let all = ch.stock_changes(first.version).unwrap();
+    assert_eq!(all.tiles, vec![[0, 0], [1, 0], [0, 1], [1, 1], [2, 2], [3, 2]]);
+    assert_eq!(all.pens, vec![(1, 1), (2, 1)]);
+    assert!(ch.stock_changes(all.version).unwrap().tiles.is_empty());
+    // Tile (0, 0) holds the end mill's hole (pen 1) and the blank's faces (0); tile (3, 2)
+    // the drill's (pen 2).
+    assert_eq!(pens(&ch.stock_tile_stl(0, 0).unwrap()), [0, 1].into());
+    assert!(pens(&ch.stock_tile_stl(3, 2).unwrap()).contains(&2));
+    assert_eq!(ch.stock_tile_stl(4, 0), None);
+}

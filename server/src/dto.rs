@@ -1082,7 +1082,7 @@ pub enum EventMessage {
         outputs: Vec<SignalLevel>,
         analog_inputs: Vec<AnalogLevel>,
     },
-    /// A check of material removal found something: `rapid_into_stock`, `no_spindle` or
+    /// A check of material removal found something: `rapid_into_stock`, `no_spindle`, `holder_collision` or
     /// `depth_of_cut`, at the program line of the block that cut (`GET .../stock`).
     Stock {
         warning: crate::api::stock::StockWarningInfo,

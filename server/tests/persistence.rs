@@ -286,3 +286,29 @@ async fn a_program_interrupted_by_the_shutdown_comes_back_stopped_at_its_block()
     near(pos(&reply.body, "machine", "Y"), 5.0, "Y");
     near(pos(&reply.body, "machine", "Z"), 23.0, "Z");
 }
+
+#[tokio::test]
+async fn the_cut_stock_survives_a_restart() {
+    // A 60 x 50 x 20 blank slotted 3 deep over 60 mm with the R5 end mill (1800 mm³ removed)
+    // comes back after the restart with its volumes and its holder setting; the STL is the
+    // same bytes.
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let program = "T1 D1\nG0 X-30 Y15 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,-10,-10,50,40)\nS3000 M3\nG0 Z-3\nG1 X60 F3000\nG0 Z50\nM30";
+    let reply =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    assert_eq!(reply.body["status"], "idle", "{}", reply.body);
+    let put = server.put(&format!("/sessions/{id}/stock"), json!({"holder": [[40, 60]]})).await;
+    assert_eq!(put.body["stock"]["removed"], 1800.0, "{}", put.body);
+    let stl = reqwest::get(server.url(&format!("/sessions/{id}/stock.stl"))).await.unwrap().bytes().await.unwrap();
+
+    let server = restart(server).await;
+    let report = server.get(&format!("/sessions/{id}/stock")).await.body;
+    assert_eq!(
+        (&report["stock"]["initial_volume"], &report["stock"]["removed"], &report["holder"]),
+        (&json!(60000.0), &json!(1800.0), &json!([[40.0, 60.0]])),
+        "{report}"
+    );
+    let again = reqwest::get(server.url(&format!("/sessions/{id}/stock.stl"))).await.unwrap().bytes().await.unwrap();
+    assert_eq!(again, stl);
+}

@@ -73,3 +73,123 @@ async fn a_bad_blank_or_resolution_is_refused_naming_it() {
     // Nothing changed: the resolution is still the default.
     assert_eq!(server.get(&format!("/sessions/{id}/stock")).await.body["resolution"], 0.25);
 }
+
+/// A binary STL of the box `lo`..`hi` (12 triangles, outward).
+fn box_stl(lo: [f32; 3], hi: [f32; 3]) -> Vec<u8> {
+    let c = |i: usize| {
+        [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]
+    };
+    let faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let mut out = vec![0u8; 80];
+    out.extend_from_slice(&12u32.to_le_bytes());
+    for f in faces {
+        for t in [[f[0], f[1], f[2]], [f[0], f[2], f[3]]] {
+            out.extend_from_slice(&[0u8; 12]);
+            for v in t {
+                for x in c(v) {
+                    out.extend_from_slice(&x.to_le_bytes());
+                }
+            }
+            out.extend_from_slice(&[0u8; 2]);
+        }
+    }
+    out
+}
+
+#[tokio::test]
+async fn an_stl_blank_a_holder_and_a_target_comparison_over_rest() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let client = reqwest::Client::new();
+    let state = server
+        .post(
+            &format!("/sessions/{id}/run"),
+            json!({"program": "T1 D1\nG0 X20 Y15 Z50\nM30", "pace": "fast", "wait": true}),
+        )
+        .await;
+    assert_eq!(state.body["status"], "idle", "{}", state.body);
+    // The blank as an STL: 60 x 50 x 20.
+    let put = client
+        .put(server.url(&format!("/sessions/{id}/stock.stl")))
+        .body(box_stl([-10.0, -10.0, -20.0], [50.0, 40.0, 0.0]))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(put.status(), StatusCode::OK);
+    let body: serde_json::Value = put.json().await.unwrap();
+    assert_eq!(body["stock"]["initial_volume"], 60000.0, "{body}");
+    // Not an STL: 400 naming it.
+    let bad = client
+        .put(server.url(&format!("/sessions/{id}/stock.stl")))
+        .body("solid x\nvertex 1\nendloop\n")
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(bad.status(), StatusCode::BAD_REQUEST);
+    assert!(bad.text().await.unwrap().contains("STL line 2"));
+
+    // A holder Ø60 × 40 above the gauge line of T1 (L100): a plunge to Z−101 puts its face at
+    // Z−1, 1 mm into the block beyond the tool's R5 hole.
+    let put = server.put(&format!("/sessions/{id}/stock"), json!({"holder": [[60, 40]]})).await;
+    assert_eq!((put.status, &put.body["holder"]), (StatusCode::OK, &json!([[60.0, 40.0]])), "{}", put.body);
+    let bad = server.put(&format!("/sessions/{id}/stock"), json!({"holder": [[0, 40]]})).await;
+    assert!(error_message(&bad, StatusCode::BAD_REQUEST).contains("section 1"), "{}", bad.body);
+    let program = "S3000 M3\nG0 Z2\nG1 Z-101 F5000\nG1 Z2\nM30";
+    let state =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    assert_eq!(state.body["status"], "idle", "{}", state.body);
+    let report = server.get(&format!("/sessions/{id}/stock")).await.body;
+    let first = &report["warnings"][0];
+    assert_eq!((&first["check"], &first["line"]), (&json!("holder_collision"), &json!(3)), "{report}");
+    // Raised at the plunge's first segment that touched (a few µm); the retract of line 4
+    // starts with the face 1 mm deep.
+    let second = &report["warnings"][1];
+    assert_eq!((&second["line"], &second["depth"]), (&json!(4), &json!(1.0)), "{report}");
+
+    // The target: the block with a Ø10 hole 20 deep would be exact; against the plain block
+    // the hole (π·25·20 ≈ 1571 mm³ at the grid's sampling) is all overcut, 20 mm thick.
+    let compare = client
+        .post(server.url(&format!("/sessions/{id}/stock/compare")))
+        .body(box_stl([-10.0, -10.0, -20.0], [50.0, 40.0, 0.0]))
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(compare.status(), StatusCode::OK);
+    let c: serde_json::Value = compare.json().await.unwrap();
+    assert!((c["overcut"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{c}");
+    assert!((c["overcut_volume"].as_f64().unwrap() - std::f64::consts::PI * 25.0 * 20.0).abs() < 40.0, "{c}");
+    assert_eq!(c["undercut"], 0.0, "{c}");
+}
+
+#[tokio::test]
+async fn the_hmi_fetches_the_changed_tiles_of_the_stock_coloured_by_pen() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    // The 60 x 50 block from X−10 Y−10 (tiles of 64 cells, 16 mm: 4 x 4); T1 plunges at X5 Y5
+    // and reaches X0..10, Y0..10: tiles 0..1 in X and Y.
+    let program = "T1 D1\nG0 X5 Y5 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,-10,-10,50,40)\nS3000 M3\nG0 Z2\nG1 Z-2 F3000\nG0 Z50\nM30";
+    let state =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    assert_eq!(state.body["status"], "idle", "{}", state.body);
+    let version = state.body["stock"]["version"].as_u64().unwrap();
+    assert!(version > 1, "{}", state.body);
+    let all = server.get(&format!("/sessions/{id}/stock/changes")).await.body;
+    assert_eq!((all["tiles"].as_array().unwrap().len(), &all["tile_cells"]), (16, &json!(64)), "{all}");
+    let changed = server.get(&format!("/sessions/{id}/stock/changes?since=1")).await.body;
+    assert_eq!(changed["tiles"], json!([[0, 0], [1, 0], [0, 1], [1, 1]]), "{changed}");
+    assert_eq!(changed["pens"], json!([{"pen": 1, "t": 1, "d": 1}]));
+    assert_eq!(changed["version"], version);
+    let bad = server.get(&format!("/sessions/{id}/stock/changes?since=x")).await;
+    assert_eq!(bad.status, StatusCode::BAD_REQUEST);
+    let tile = reqwest::get(server.url(&format!("/sessions/{id}/stock/tiles/0/0"))).await.unwrap();
+    assert_eq!((tile.status(), tile.headers()["content-type"].to_str().unwrap()), (StatusCode::OK, "model/stl"));
+    let bytes = tile.bytes().await.unwrap();
+    let n = u32::from_le_bytes(bytes[80..84].try_into().unwrap()) as usize;
+    assert!((0..n).any(|t| bytes[84 + 50 * t + 48] == 1), "a face cut by pen 1");
+    let none = reqwest::get(server.url(&format!("/sessions/{id}/stock/tiles/9/0"))).await.unwrap();
+    assert_eq!(none.status(), StatusCode::NOT_FOUND);
+}

@@ -47,6 +47,10 @@ pub struct ResumeState {
     /// outputs start off, as after power on. `None` in checkpoints written before.
     #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
     pub inputs: Option<SavedInputs>,
+    /// The stock being cut (`stock_saved.rs`). `None` without a blank and in checkpoints
+    /// written before.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
+    pub stock: Option<super::SavedStock>,
 }
 
 /// The inputs of a checkpoint.
@@ -97,7 +101,8 @@ impl Channel {
         let (digital, analog) = (self.io.inputs, self.sync.analog_in);
         let inputs = (digital != 0 || analog.iter().any(|v| *v != 0.0))
             .then(|| SavedInputs { digital, analog: analog.to_vec() });
-        (ResumeState { retained: self.interp.retained(), program, inputs }, text.cloned())
+        let stock = self.saved_stock();
+        (ResumeState { retained: self.interp.retained(), program, inputs, stock }, text.cloned())
     }
 
     /// Takes back a saved resumable state; only in reset state with nothing moving. The
@@ -117,12 +122,16 @@ impl Channel {
         if let Some(inputs) = &state.inputs {
             self.restore_inputs(inputs.digital, &inputs.analog);
         }
-        let Some(program) = &state.program else { return Ok(()) };
+        let Some(program) = &state.program else {
+            self.restore_saved_stock(state);
+            return Ok(());
+        };
         CommandError::check(&program.text)?;
         match program.line {
             None => {
                 self.set_active_program(ProgramText::from(program.text.as_str()));
                 self.program_mode = Mode::Auto;
+                self.restore_saved_stock(state);
                 Ok(())
             }
             Some(main_line) => {
@@ -137,6 +146,7 @@ impl Channel {
                         self.pending.remove(i);
                     }
                 }
+                self.restore_saved_stock(state);
                 Ok(())
             }
         }

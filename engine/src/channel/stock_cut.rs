@@ -13,12 +13,11 @@
 //! - material removed while no spindle of the channel turns (a mill's tool spindle, a lathe's
 //!   work spindle);
 //! - a depth of cut beyond the limit the user set: the thickest material one dexel (one slab)
-//!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe.
+//!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe;
+//! - the holder (optional, [`StockOptions::holder`]) touching the stock.
 //!
-//! Left for later, and skipped while they are active (counted in `skipped`): transformations
-//! (TRAORI with a trunnion table would have to tilt the blank with the table: the stock would
-//! be kept in table coordinates and the tool mapped into them), tool orientations other than
-//! Z, holder collisions.
+//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain).
+//! Skipped while they are active (counted in `skipped`): TRANSMIT, TRACYL, TRAANG.
 
 use super::{Channel, CommandError, Event};
 use crate::stock::blank::{Blank, Placement};
@@ -43,6 +42,8 @@ pub enum StockCheck {
     NoSpindle,
     /// The depth of cut exceeded the user's limit.
     DepthOfCut,
+    /// The holder (or spindle) touched the stock.
+    HolderCollision,
 }
 
 impl StockCheck {
@@ -51,6 +52,7 @@ impl StockCheck {
             StockCheck::RapidIntoStock => "rapid_into_stock",
             StockCheck::NoSpindle => "no_spindle",
             StockCheck::DepthOfCut => "depth_of_cut",
+            StockCheck::HolderCollision => "holder_collision",
         }
     }
 }
@@ -60,11 +62,14 @@ impl StockCheck {
 pub struct StockWarning {
     pub check: StockCheck,
     pub line: u32,
-    /// Volume the segment removed, mm³.
+    /// Volume the segment removed, mm³ (a holder collision: the material inside the holder
+    /// at the worst point).
     pub volume: f64,
-    /// Its depth of cut, mm.
+    /// Its depth of cut, mm (a holder collision: the thickest material inside the holder
+    /// on one dexel line).
     pub depth: f64,
-    /// Where the segment began that cut (tool tip, BCS, mm): the place to mark.
+    /// Where the segment began that cut (tool tip, BCS, mm): the place to mark (a holder
+    /// collision: the tip where the holder went deepest).
     pub position: [f64; 3],
 }
 
@@ -75,11 +80,14 @@ pub struct StockOptions {
     pub resolution: f64,
     /// Depth of cut beyond which [`StockCheck::DepthOfCut`] is raised; `None`: no limit.
     pub depth_limit: Option<f64>,
+    /// The holder whose touching the stock raises [`StockCheck::HolderCollision`]; `None`:
+    /// no holder check (and no cost).
+    pub holder: Option<crate::stock::holder::Holder>,
 }
 
 impl Default for StockOptions {
     fn default() -> Self {
-        StockOptions { resolution: DEFAULT_RESOLUTION, depth_limit: None }
+        StockOptions { resolution: DEFAULT_RESOLUTION, depth_limit: None, holder: None }
     }
 }
 
@@ -101,6 +109,9 @@ pub struct StockInfo {
     pub last_warning: Option<StockWarning>,
     /// IPO cycles not cut because a transformation was active.
     pub skipped: u64,
+    /// Grows with every cut that removed material: the HMI fetches the changed tiles when it
+    /// differs from the one it shows (`Channel::stock_changes`).
+    pub version: u32,
 }
 
 /// What decides where one segment ends besides its geometry.
@@ -119,12 +130,19 @@ struct Segment {
     /// Unit direction from `start`, zero until the first step.
     dir: [f64; 3],
     key: Key,
+    /// The tool's axis (unit, tip → holder) and length in the blank's frame.
+    axis: [f64; 3],
+    length: f64,
 }
+
+/// Largest change of the tool's axis (unit vector difference) within one segment: 0.1 mrad,
+/// 0.01 mm at a 100 mm tool.
+const AXIS_TOLERANCE: f64 = 1e-4;
 
 /// The stock of a session with its segment in progress and its findings.
 #[derive(Debug, Clone)]
 pub(super) struct StockRun {
-    stock: Stock,
+    pub(super) stock: Stock,
     initial_volume: f64,
     options: StockOptions,
     cutter: Option<((u32, u32), Option<Cutter>)>,
@@ -132,11 +150,15 @@ pub(super) struct StockRun {
     warnings: std::collections::VecDeque<StockWarning>,
     warnings_total: u64,
     /// The line each check was last raised for (once per block and kind; JOG is line 0).
-    reported: [u32; 3],
+    reported: [u32; 4],
     skipped: u64,
     /// The last segment cut removed material at feed with a spindle turning (the T/F/S
     /// display's spindle load symbol, `snapshot_refresh.rs`).
     removing: bool,
+    /// The orientation kinematics the blank is mounted on (`stock_pose.rs`).
+    kin: Option<Box<crate::kinematics::Traori>>,
+    /// Changes for the HMI's incremental mesh (`stock_tiles.rs`).
+    pub(super) tiles: super::stock_tiles::TileLog,
 }
 
 impl StockRun {
@@ -145,8 +167,10 @@ impl StockRun {
         &self.stock
     }
 
-    fn new(stock: Stock, options: StockOptions) -> StockRun {
+    fn new(stock: Stock, options: StockOptions, kin: Option<Box<crate::kinematics::Traori>>) -> StockRun {
         StockRun {
+            tiles: super::stock_tiles::TileLog::new(&stock),
+            kin,
             initial_volume: stock.volume(),
             stock,
             options,
@@ -154,10 +178,21 @@ impl StockRun {
             segment: None,
             warnings: Default::default(),
             warnings_total: 0,
-            reported: [u32::MAX; 3],
+            reported: [u32::MAX; 4],
             skipped: 0,
             removing: false,
         }
+    }
+}
+
+impl StockRun {
+    /// Keeps `w` among the latest warnings and counts it.
+    fn push_warning(&mut self, w: StockWarning) {
+        if self.warnings.len() == KEEP_WARNINGS {
+            self.warnings.pop_front();
+        }
+        self.warnings.push_back(w);
+        self.warnings_total += 1;
     }
 }
 
@@ -200,6 +235,7 @@ impl Channel {
         self.stock_options = options;
         if let Some(run) = self.stock.as_mut() {
             run.options.depth_limit = options.depth_limit;
+            run.options.holder = options.holder;
         }
         Ok(())
     }
@@ -228,6 +264,7 @@ impl Channel {
             warnings: run.warnings_total,
             last_warning: run.warnings.back().copied(),
             skipped: run.skipped,
+            version: run.tiles.version(),
         })
     }
 
@@ -239,6 +276,13 @@ impl Channel {
     /// The latest warnings, oldest first (at most 64).
     pub fn stock_warnings(&self) -> Vec<StockWarning> {
         self.stock.as_ref().map(|r| r.warnings.iter().copied().collect()).unwrap_or_default()
+    }
+
+    /// The current stock (its intervals, volumes, mesh), the open segment cut first: for
+    /// tests and for probing (where a measuring probe touches the blank).
+    pub fn stock(&mut self) -> Option<&Stock> {
+        self.flush_stock();
+        self.stock.as_ref().map(|r| &r.stock)
     }
 
     /// The current stock as a binary STL (BCS, mm), the open segment cut first.
@@ -266,14 +310,40 @@ impl Channel {
 
     /// Builds the stock of `blank` in the WCS of `frame`.
     fn place_stock(&mut self, blank: &Blank, frame: &crate::interp::Frame) -> Result<(), String> {
-        let geo = self.cfg.geo_axes;
-        let placement =
-            Placement { lin: frame.lin, trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])) };
-        // A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
-        let turning = geo[1].is_none();
+        let placement = self.stock_placement(frame);
+        let turning = self.stock_turns();
         let stock = Stock::new(blank, &placement, turning, self.stock_options.resolution)?;
-        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options)));
+        self.install_stock(stock);
         Ok(())
+    }
+
+    /// Where the WCS of `frame` lies in the BCS.
+    pub(super) fn stock_placement(&self, frame: &crate::interp::Frame) -> Placement {
+        let geo = self.cfg.geo_axes;
+        Placement { lin: frame.lin, trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])) }
+    }
+
+    /// A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
+    pub(super) fn stock_turns(&self) -> bool {
+        self.cfg.geo_axes[1].is_none()
+    }
+
+    /// The stock and its blank's volume, for a checkpoint.
+    pub(super) fn stock_parts(&self) -> Option<(&Stock, f64)> {
+        self.stock.as_ref().map(|r| (&r.stock, r.initial_volume))
+    }
+
+    /// The blank's volume a restored stock was cut from.
+    pub(super) fn set_initial_stock_volume(&mut self, volume: f64) {
+        if let Some(run) = self.stock.as_mut() {
+            run.initial_volume = volume;
+        }
+    }
+
+    /// Makes `stock` the session's, cut from now on.
+    pub(super) fn install_stock(&mut self, stock: Stock) {
+        let kin = if matches!(stock, Stock::Turning(_)) { None } else { self.stock_kinematics() };
+        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options, kin)));
     }
 
     /// One IPO cycle of material removal (called only while a blank is defined).
@@ -289,12 +359,12 @@ impl Channel {
             None => (0, false, &self.offsets),
         };
         let tool = (offsets.t, offsets.d);
-        let geo = self.cfg.geo_axes;
-        let toff = self.toff.current;
-        let tip: [f64; 3] =
-            std::array::from_fn(|g| geo[g].map_or(0.0, |k| self.machine[k] - offsets.tool[k] - toff[g]));
+        let pose = self.stock_tool_pose(offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref()));
+        let tip = pose.tip;
         let key = Key { line, rapid, spindle: self.spindles.iter().any(|s| s.is_turning()), tool };
-        let transformed = self.trafo.is_some();
+        // TRAORI is followed (`stock_pose.rs`); the other transformations are not yet.
+        let transformed =
+            self.trafo.as_ref().is_some_and(|t| !matches!(t.trafo, crate::kinematics::AnyTrafo::Traori(_)));
         let Some(run) = self.stock.as_mut() else { return };
         if transformed {
             run.skipped += 1;
@@ -303,18 +373,24 @@ impl Channel {
         }
         let tol = run.stock.resolution() / 10.0;
         let Some(seg) = run.segment.as_mut() else {
-            run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
+            run.segment =
+                Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
             return;
+        };
+        let turned = {
+            let d = sub(pose.axis, seg.axis);
+            dot(d, d) > AXIS_TOLERANCE * AXIS_TOLERANCE
         };
         if seg.key.tool != key.tool {
             // A new tool or cutting edge moves the tip without motion: the jump cuts nothing.
             self.flush_stock();
             if let Some(run) = self.stock.as_mut() {
-                run.segment = Some(Segment { start: tip, end: tip, dir: [0.0; 3], key });
+                run.segment =
+                    Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
             }
             return;
         }
-        if tip == seg.end {
+        if tip == seg.end && !turned {
             // At rest: the open segment is cut now.
             if seg.start != seg.end || seg.key != key {
                 self.flush_stock();
@@ -328,7 +404,7 @@ impl Channel {
         let along = dot(v, seg.dir);
         let off = dot(v, v) - along * along;
         let straight = seg.dir != [0.0; 3] && along >= dot(sub(seg.end, seg.start), seg.dir) && off <= tol * tol;
-        if seg.key == key && (seg.dir == [0.0; 3] || (straight && along <= MAX_SEGMENT)) {
+        if seg.key == key && !turned && tip != seg.end && (seg.dir == [0.0; 3] || (straight && along <= MAX_SEGMENT)) {
             if seg.dir == [0.0; 3] {
                 let n = dot(v, v).sqrt();
                 seg.dir = v.map(|c| c / n);
@@ -342,17 +418,25 @@ impl Channel {
         let Some(run) = self.stock.as_mut() else { return };
         let v = sub(tip, from);
         let n = dot(v, v).sqrt();
-        run.segment = Some(Segment { start: from, end: tip, dir: v.map(|c| c / n), key });
+        let dir = if n > 0.0 { v.map(|c| c / n) } else { [0.0; 3] };
+        run.segment = Some(Segment { start: from, end: tip, dir, key, axis: pose.axis, length: pose.length });
+    }
+
+    /// [`Channel::flush_stock`] for the sibling modules.
+    pub(super) fn flush_stock_now(&mut self) {
+        self.flush_stock();
     }
 
     /// Cuts the open segment (if it has length) and starts the next one at its end.
     fn flush_stock(&mut self) {
         let Some(run) = self.stock.as_mut() else { return };
         let Some(seg) = run.segment.as_mut() else { return };
-        if seg.start == seg.end {
+        // A tilted tool turning about its tip (a segment without length but with a new axis)
+        // still cuts where it stands.
+        if seg.start == seg.end && seg.axis[2] >= 1.0 - 1e-12 {
             return;
         }
-        let (a, b, key) = (seg.start, seg.end, seg.key);
+        let (a, b, key, axis, length) = (seg.start, seg.end, seg.key, seg.axis, seg.length);
         seg.start = seg.end;
         seg.dir = [0.0; 3];
         if run.cutter.as_ref().is_none_or(|(k, _)| *k != key.tool) {
@@ -362,8 +446,32 @@ impl Channel {
             run.cutter = Some((key.tool, cutter));
         }
         let Some((_, Some(cutter))) = run.cutter else { return };
-        let removal = run.stock.cut(&cutter, a, b);
+        let pen = run.tiles.pen(key.tool);
+        if let Stock::Milling(g) = &mut run.stock {
+            g.set_pen(pen);
+        }
+        let removal = run.stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius));
         run.removing = removal.volume > 0.0 && !key.rapid && key.spindle;
+        if removal.volume > 0.0 {
+            let reach = cutter.radius + length * (1.0 - axis[2] * axis[2]).max(0.0).sqrt();
+            run.tiles.touch(&run.stock, a, b, reach);
+        }
+        if let Some(holder) = run.options.holder {
+            let touch = run.stock.holder_overlap(&holder, length, a, b, axis);
+            if touch.depth >= CHECK_DEPTH && run.reported[3] != key.line {
+                run.reported[3] = key.line;
+                let w = StockWarning {
+                    check: StockCheck::HolderCollision,
+                    line: key.line,
+                    volume: touch.volume,
+                    depth: touch.depth,
+                    position: touch.at,
+                };
+                run.push_warning(w);
+                self.events.push(Event::Stock(w));
+            }
+        }
+        let Some(run) = self.stock.as_mut() else { return };
         if removal.depth < CHECK_DEPTH {
             return;
         }
@@ -384,11 +492,7 @@ impl Channel {
             }
             run.reported[i] = key.line;
             let w = StockWarning { check, line: key.line, volume: removal.volume, depth: removal.depth, position: a };
-            if run.warnings.len() == KEEP_WARNINGS {
-                run.warnings.pop_front();
-            }
-            run.warnings.push_back(w);
-            run.warnings_total += 1;
+            run.push_warning(w);
             self.events.push(Event::Stock(w));
         }
     }

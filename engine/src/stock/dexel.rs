@@ -14,6 +14,11 @@ use super::blank::{Blank, Placement};
 use super::cutter::Cutter;
 use super::{MAX_CELLS, Removal};
 
+mod overlap;
+mod tilted;
+
+pub use overlap::Overlap;
+
 /// Material of one cell below this thickness (mm) is not counted as removed: a tool sliding on
 /// a face it has just cut removes nothing.
 const EPS: f32 = 1e-5;
@@ -34,6 +39,11 @@ pub struct DexelGrid {
     /// Highest top of any cell: a segment whose tool stays above it removes nothing.
     top_max: f64,
     volume: f64,
+    /// Per cell the pen (the session's index of the tool) that last removed material there;
+    /// 0: never cut. For the HMI's colours by tool.
+    marks: Vec<u8>,
+    /// The pen of the cuts from now on.
+    pen: u8,
 }
 
 impl DexelGrid {
@@ -68,7 +78,70 @@ impl DexelGrid {
             }
         }
         let volume = cells as f64 * res * res * (zt as f32 - zb as f32) as f64;
-        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra: BTreeMap::new(), top_max: zt, volume })
+        let marks = vec![0; nx * ny];
+        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra: BTreeMap::new(), top_max: zt, volume, marks, pen: 0 })
+    }
+
+    /// A grid from the material of some cells: `(cell, sorted intervals)` by cell, the others
+    /// empty (an STL blank, `target.rs`).
+    pub(crate) fn from_intervals(
+        res: f64,
+        x0: f64,
+        y0: f64,
+        nx: usize,
+        ny: usize,
+        top_max: f64,
+        cells: Vec<(u32, Vec<[f32; 2]>)>,
+    ) -> DexelGrid {
+        let mut spans = vec![[0.0f32; 2]; nx * ny];
+        let mut extra = BTreeMap::new();
+        let mut length = 0.0f64;
+        for (k, list) in cells {
+            length += list.iter().map(|iv| f64::from(iv[1] - iv[0])).sum::<f64>();
+            spans[k as usize] = list[0];
+            if list.len() > 1 {
+                extra.insert(k, list[1..].to_vec());
+            }
+        }
+        let marks = vec![0; nx * ny];
+        DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume: length * res * res, marks, pen: 0 }
+    }
+
+    /// The grid from its parts as [`DexelGrid::raw`] gives them (a checkpoint, `saved.rs`);
+    /// `Err` if they do not fit together.
+    #[allow(clippy::too_many_arguments, reason = "the grid's own fields, one call site")]
+    pub(crate) fn from_raw(
+        res: f64,
+        x0: f64,
+        y0: f64,
+        nx: usize,
+        ny: usize,
+        spans: Vec<[f32; 2]>,
+        extra: BTreeMap<u32, Vec<[f32; 2]>>,
+        top_max: f64,
+        volume: f64,
+        marks: Vec<u8>,
+    ) -> Result<DexelGrid, String> {
+        if spans.len() != nx * ny || marks.len() != spans.len() || extra.keys().any(|k| *k as usize >= spans.len()) {
+            return Err("the saved stock's cells do not match its grid".into());
+        }
+        Ok(DexelGrid { res, x0, y0, nx, ny, spans, extra, top_max, volume, marks, pen: 0 })
+    }
+
+    /// The grid's parts: first intervals, further intervals, highest top, pens.
+    #[allow(clippy::type_complexity, reason = "the grid's own fields, read by the checkpoint codec")]
+    pub(crate) fn raw(&self) -> (&[[f32; 2]], &BTreeMap<u32, Vec<[f32; 2]>>, f64, &[u8]) {
+        (&self.spans, &self.extra, self.top_max, &self.marks)
+    }
+
+    /// The pen (1..=255: the session's index of a tool; 0 leaves no mark) of the cuts from now.
+    pub fn set_pen(&mut self, pen: u8) {
+        self.pen = pen;
+    }
+
+    /// The pen that last cut cell (i, j); 0: never cut.
+    pub fn mark(&self, i: usize, j: usize) -> u8 {
+        self.marks[j * self.nx + i]
     }
 
     /// Cell size, mm.
@@ -155,6 +228,7 @@ impl DexelGrid {
             let new_top = span[0].max(s);
             total = span[1] - new_top;
             span[1] = new_top;
+            self.marks[k] = self.pen;
         }
         if !self.extra.is_empty()
             && let Some(more) = self.extra.get_mut(&(k as u32))
@@ -170,6 +244,9 @@ impl DexelGrid {
             if more.is_empty() {
                 self.extra.remove(&(k as u32));
             }
+            if total > 0.0 {
+                self.marks[k] = self.pen;
+            }
         }
         total
     }
@@ -177,10 +254,40 @@ impl DexelGrid {
     /// Removes the band `lo..hi` (BCS Z) from cell (i, j): an undercut, which splits an
     /// interval in two (a T-slot cutter, a tool from below). The removed volume, mm³.
     pub fn remove_band(&mut self, i: usize, j: usize, lo: f64, hi: f64) -> f64 {
-        let k = j * self.nx + i;
-        let mut list = Vec::new();
-        self.intervals(i, j, &mut list);
-        let (lo, hi) = (lo as f32, hi as f32);
+        let t = self.band(j * self.nx + i, lo as f32, hi as f32);
+        let volume = f64::from(t) * self.res * self.res;
+        self.volume -= volume;
+        volume
+    }
+
+    /// Removes the band `lo..hi` from cell `k`; the thickness removed (the volume is the
+    /// caller's). A band over the top or under the bottom of a single interval shortens it in
+    /// place; only a band inside it splits it.
+    fn band(&mut self, k: usize, lo: f32, hi: f32) -> f32 {
+        if self.extra.is_empty() || !self.extra.contains_key(&(k as u32)) {
+            let s = self.spans[k];
+            if s[1] <= s[0] || s[1] <= lo + EPS || s[0] >= hi - EPS {
+                return 0.0;
+            }
+            self.marks[k] = self.pen;
+            if hi >= s[1] {
+                let new_top = s[0].max(lo);
+                self.spans[k][1] = new_top;
+                return s[1] - new_top;
+            }
+            if lo <= s[0] {
+                self.spans[k][0] = hi;
+                return hi - s[0];
+            }
+        }
+        let mut list: Vec<[f32; 2]> = Vec::with_capacity(4);
+        let first = self.spans[k];
+        if first[1] > first[0] {
+            list.push(first);
+        }
+        if let Some(more) = self.extra.get(&(k as u32)) {
+            list.extend_from_slice(more);
+        }
         let mut out: Vec<[f32; 2]> = Vec::with_capacity(list.len() + 1);
         let mut removed = 0.0f32;
         for [b, t] in list {
@@ -193,15 +300,16 @@ impl DexelGrid {
             }
         }
         out.retain(|iv| iv[1] > iv[0]);
+        if removed > 0.0 {
+            self.marks[k] = self.pen;
+        }
         self.spans[k] = out.first().copied().unwrap_or([0.0, 0.0]);
         if out.len() > 1 {
             self.extra.insert(k as u32, out[1..].to_vec());
         } else {
             self.extra.remove(&(k as u32));
         }
-        let volume = f64::from(removed) * self.res * self.res;
-        self.volume -= volume;
-        volume
+        removed
     }
 }
 

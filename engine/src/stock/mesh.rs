@@ -30,17 +30,26 @@ impl Stl {
     }
 
     fn triangle(&mut self, n: [f32; 3], v: [[f32; 3]; 3]) {
+        self.triangle_pen(n, v, 0);
+    }
+
+    /// A triangle with `pen` in its attribute bytes (the tool that cut the face).
+    fn triangle_pen(&mut self, n: [f32; 3], v: [[f32; 3]; 3], pen: u8) {
         for c in n.iter().chain(v.iter().flatten()) {
             self.bytes.extend_from_slice(&c.to_le_bytes());
         }
-        self.bytes.extend_from_slice(&0u16.to_le_bytes());
+        self.bytes.extend_from_slice(&u16::from(pen).to_le_bytes());
         self.count += 1;
     }
 
     /// A quad of corners in counter-clockwise order seen from outside (along `n`).
     fn quad(&mut self, n: [f32; 3], q: [[f32; 3]; 4]) {
-        self.triangle(n, [q[0], q[1], q[2]]);
-        self.triangle(n, [q[0], q[2], q[3]]);
+        self.quad_pen(n, q, 0);
+    }
+
+    fn quad_pen(&mut self, n: [f32; 3], q: [[f32; 3]; 4], pen: u8) {
+        self.triangle_pen(n, [q[0], q[1], q[2]], pen);
+        self.triangle_pen(n, [q[0], q[2], q[3]], pen);
     }
 
     fn finish(mut self) -> Vec<u8> {
@@ -50,7 +59,7 @@ impl Stl {
 }
 
 /// `a` minus `b`, both sorted lists of disjoint intervals, into `out` (cleared).
-fn subtract(a: &[[f32; 2]], b: &[[f32; 2]], out: &mut Vec<[f32; 2]>) {
+pub(crate) fn subtract(a: &[[f32; 2]], b: &[[f32; 2]], out: &mut Vec<[f32; 2]>) {
     out.clear();
     for &[mut lo, hi] in a {
         for &[blo, bhi] in b {
@@ -71,8 +80,17 @@ fn subtract(a: &[[f32; 2]], b: &[[f32; 2]], out: &mut Vec<[f32; 2]>) {
     }
 }
 
-/// The dexel stock as a binary STL.
+/// The dexel stock as a binary STL; each face's attribute bytes hold the pen of its cell (the
+/// session's index of the tool that last cut there, 0 for the blank's own faces).
 pub fn dexel_stl(g: &DexelGrid) -> Vec<u8> {
+    let (nx, ny) = g.size();
+    dexel_stl_region(g, [0, nx], [0, ny])
+}
+
+/// The faces of the cells `i` × `j` (half-open ranges) as a binary STL: a tile of the stock
+/// for the HMI's incremental updates. Walls look at the neighbours beyond the region, so the
+/// tiles of a grid fit together into [`dexel_stl`]'s solid.
+pub fn dexel_stl_region(g: &DexelGrid, i_range: [usize; 2], j_range: [usize; 2]) -> Vec<u8> {
     let mut stl = Stl::new();
     let (nx, ny) = g.size();
     let (x0, y0) = g.origin();
@@ -80,29 +98,32 @@ pub fn dexel_stl(g: &DexelGrid) -> Vec<u8> {
     let xc = |i: usize| (x0 + i as f64 * res) as f32;
     let yc = |j: usize| (y0 + j as f64 * res) as f32;
     let (mut here, mut there, mut wall) = (Vec::new(), Vec::new(), Vec::new());
-    for j in 0..ny {
-        // Tops and bottoms: runs of cells with the same single interval make one quad each.
-        let mut i = 0;
-        while i < nx {
+    let ([ia, ib], [ja, jb]) = ([i_range[0].min(nx), i_range[1].min(nx)], [j_range[0].min(ny), j_range[1].min(ny)]);
+    for j in ja..jb {
+        // Tops and bottoms: runs of cells with the same single interval and pen make one quad.
+        let mut i = ia;
+        while i < ib {
             g.intervals(i, j, &mut here);
+            let pen = g.mark(i, j);
             if here.len() == 1 {
                 let run = here[0];
                 let mut end = i + 1;
-                while end < nx {
+                while end < ib {
                     g.intervals(end, j, &mut there);
-                    if there.as_slice() != [run] {
+                    if there.as_slice() != [run] || g.mark(end, j) != pen {
                         break;
                     }
                     end += 1;
                 }
-                horizontal_faces(&mut stl, [xc(i), xc(end)], [yc(j), yc(j + 1)], &[run]);
+                horizontal_faces(&mut stl, [xc(i), xc(end)], [yc(j), yc(j + 1)], &[run], pen);
                 i = end;
             } else {
-                horizontal_faces(&mut stl, [xc(i), xc(i + 1)], [yc(j), yc(j + 1)], &here);
+                horizontal_faces(&mut stl, [xc(i), xc(i + 1)], [yc(j), yc(j + 1)], &here, pen);
                 i += 1;
             }
         }
-        for i in 0..nx {
+        for i in ia..ib {
+            let pen = g.mark(i, j);
             g.intervals(i, j, &mut here);
             // Walls towards −X/+X and −Y/+Y where the neighbour (or the grid's edge) has no
             // material at that height.
@@ -122,7 +143,7 @@ pub fn dexel_stl(g: &DexelGrid) -> Vec<u8> {
                         (_, -1) => [[x_lo, y_lo, lo], [x_hi, y_lo, lo], [x_hi, y_lo, hi], [x_lo, y_lo, hi]],
                         _ => [[x_hi, y_hi, lo], [x_lo, y_hi, lo], [x_lo, y_hi, hi], [x_hi, y_hi, hi]],
                     };
-                    stl.quad([di as f32, dj as f32, 0.0], q);
+                    stl.quad_pen([di as f32, dj as f32, 0.0], q, pen);
                 }
             }
         }
@@ -131,10 +152,10 @@ pub fn dexel_stl(g: &DexelGrid) -> Vec<u8> {
 }
 
 /// Top (+Z) and bottom (−Z) faces of `intervals` over the rectangle `x` × `y`.
-fn horizontal_faces(stl: &mut Stl, x: [f32; 2], y: [f32; 2], intervals: &[[f32; 2]]) {
+fn horizontal_faces(stl: &mut Stl, x: [f32; 2], y: [f32; 2], intervals: &[[f32; 2]], pen: u8) {
     for &[lo, hi] in intervals {
-        stl.quad([0.0, 0.0, 1.0], [[x[0], y[0], hi], [x[1], y[0], hi], [x[1], y[1], hi], [x[0], y[1], hi]]);
-        stl.quad([0.0, 0.0, -1.0], [[x[0], y[0], lo], [x[0], y[1], lo], [x[1], y[1], lo], [x[1], y[0], lo]]);
+        stl.quad_pen([0.0, 0.0, 1.0], [[x[0], y[0], hi], [x[1], y[0], hi], [x[1], y[1], hi], [x[0], y[1], hi]], pen);
+        stl.quad_pen([0.0, 0.0, -1.0], [[x[0], y[0], lo], [x[0], y[1], lo], [x[1], y[1], lo], [x[1], y[0], lo]], pen);
     }
 }
 
@@ -243,6 +264,12 @@ mod tests {
         g.remove_band(3, 3, -6.0, -4.0);
         // 1000 − 40 (slot) − 0.5 (band): a closed, outward mesh encloses exactly that.
         assert!((enclosed(&dexel_stl(&g)) - 959.5).abs() < 1e-3);
+        // Four tiles of 10 x 10 cells together are the same solid.
+        let tiles: f64 = [[0, 10], [10, 20]]
+            .iter()
+            .flat_map(|i| [[0, 10], [10, 20]].map(|j| enclosed(&dexel_stl_region(&g, *i, j))))
+            .sum();
+        assert!((tiles - 959.5).abs() < 1e-3, "{tiles}");
     }
 
     #[test]

@@ -58,6 +58,20 @@ impl Profile {
         self.res
     }
 
+    /// The profile from its parts (a checkpoint, `saved.rs`).
+    pub(crate) fn from_raw(
+        res: f64,
+        z0: f64,
+        outer: Vec<f64>,
+        inner: Vec<f64>,
+        volume: f64,
+    ) -> Result<Profile, String> {
+        if outer.len() != inner.len() {
+            return Err("the saved profile's radii do not pair up".into());
+        }
+        Ok(Profile { res, z0, outer, inner, volume })
+    }
+
     /// BCS Z of the low end of the first slab and the number of slabs.
     pub fn extent(&self) -> (f64, usize) {
         (self.z0, self.outer.len())

@@ -22,6 +22,8 @@ pub mod sessions;
 pub mod spindle_dto;
 pub mod state_json;
 pub mod stock;
+pub mod stock_mesh;
+pub mod stock_tiles;
 pub mod stream;
 pub mod stream_frame;
 pub mod stream_gate;
@@ -105,10 +107,14 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(stock::get_stock, stock::put_stock, stock::delete_stock))
         .routes(routes!(stock::get_stock_stl))
         .routes(routes!(probe::get_probe_targets, probe::put_probe_targets))
-        .routes(routes!(frames::get_frames));
+        .routes(routes!(frames::get_frames))
+        .routes(routes!(stock_tiles::get_stock_changes))
+        .routes(routes!(stock_tiles::get_stock_tile));
     let uploads = OpenApiRouter::new()
         .routes(routes!(programs::get_program, programs::put_program, programs::delete_program))
-        .routes(routes!(program_archive::import_archive, program_archive::export_archive));
+        .routes(routes!(program_archive::import_archive, program_archive::export_archive))
+        .routes(routes!(stock_mesh::put_stock_stl))
+        .routes(routes!(stock_mesh::compare_stock));
     let quick = with_body_limit(quick, limits.body_bytes)
         .merge(with_body_limit(uploads, limits.program_body_bytes()))
         .layer(TimeoutLayer::with_status_code(StatusCode::SERVICE_UNAVAILABLE, QUICK_TIMEOUT));

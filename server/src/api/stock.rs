@@ -13,6 +13,7 @@ use axum::http::header::CONTENT_TYPE;
 use axum::response::{IntoResponse, Response};
 use nctwin_engine::channel::{StockInfo, StockOptions, StockWarning};
 use nctwin_engine::stock::blank::{Blank, Shape};
+use nctwin_engine::stock::holder::Holder;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -25,7 +26,7 @@ use crate::state::AppState;
 /// One check's finding.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct StockWarningInfo {
-    /// `rapid_into_stock`, `no_spindle` or `depth_of_cut`.
+    /// `rapid_into_stock`, `no_spindle`, `depth_of_cut` or `holder_collision`.
     #[schema(example = "rapid_into_stock")]
     pub check: String,
     /// Program line of the block that cut.
@@ -68,6 +69,9 @@ pub struct StockSummary {
     pub warnings: u64,
     /// The latest of them.
     pub last_warning: Option<StockWarningInfo>,
+    /// Grows with every cut that removed material: fetch `GET .../stock/changes?since=` when
+    /// it differs from the version shown.
+    pub version: u32,
 }
 
 impl From<&StockInfo> for StockSummary {
@@ -80,6 +84,7 @@ impl From<&StockInfo> for StockSummary {
             removed: s.removed,
             warnings: s.warnings,
             last_warning: s.last_warning.as_ref().map(StockWarningInfo::from),
+            version: s.version,
         }
     }
 }
@@ -97,6 +102,9 @@ pub struct StockReport {
     pub resolution: f64,
     /// Depth-of-cut limit, mm; `null`: none.
     pub depth_limit: Option<f64>,
+    /// The holder checked for collisions: `[diameter, length]` sections from the tool's gauge
+    /// line up, mm; empty: no holder check.
+    pub holder: Vec<[f64; 2]>,
 }
 
 /// A blank in the WCS, as `WORKPIECE(..)` describes it.
@@ -176,9 +184,13 @@ pub struct StockChange {
     /// A new blank, placed in the WCS of the active frame (only while nothing moves).
     #[serde(default)]
     pub blank: Option<BlankSpec>,
+    /// The holder for the collision check: 1 to 4 `[diameter, length]` sections from the
+    /// tool's gauge line (the end its length is measured to) up, mm; `[]` removes it.
+    #[serde(default)]
+    pub holder: Option<Vec<[f64; 2]>>,
 }
 
-fn report(ch: &mut nctwin_engine::Channel) -> StockReport {
+pub(super) fn report(ch: &mut nctwin_engine::Channel) -> StockReport {
     let info = ch.stock_info();
     let options = ch.stock_options();
     StockReport {
@@ -187,6 +199,7 @@ fn report(ch: &mut nctwin_engine::Channel) -> StockReport {
         skipped_cycles: info.map_or(0, |i| i.skipped),
         resolution: options.resolution,
         depth_limit: options.depth_limit,
+        holder: options.holder.map(|h| h.sections().to_vec()).unwrap_or_default(),
     }
 }
 
@@ -216,7 +229,7 @@ pub async fn get_stock(State(state): State<AppState>, Path(id): Path<String>) ->
     request_body = StockChange,
     responses(
         (status = 200, description = "The stock after the change", body = StockReport),
-        (status = 400, description = "A resolution below 0.01 mm, a negative limit, a blank without volume or too fine for the cell limit; nothing changed", body = ErrorBody),
+        (status = 400, description = "A resolution below 0.01 mm, a negative limit, a holder section without size, a blank without volume or too fine for the cell limit; nothing changed", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "A blank while axes move", body = ErrorBody),
     )
@@ -227,6 +240,11 @@ pub async fn put_stock(
     ApiJson(change): ApiJson<StockChange>,
 ) -> Result<Json<StockReport>, ApiError> {
     let blank = change.blank.as_ref().map(BlankSpec::blank).transpose().map_err(ApiError::bad_request)?;
+    let holder = match change.holder.as_deref() {
+        None => None,
+        Some([]) => Some(None),
+        Some(sections) => Some(Some(Holder::new(sections).map_err(ApiError::bad_request)?)),
+    };
     let session = find_session(&state, &id)?;
     let result = session
         .with_channel(move |ch| {
@@ -238,6 +256,7 @@ pub async fn put_stock(
                     Some(0.0) => None,
                     Some(d) => Some(d),
                 },
+                holder: holder.unwrap_or(before.holder),
             };
             ch.set_stock_options(options)?;
             if let Some(blank) = blank

@@ -309,8 +309,11 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         None => UsageError(e.message),
     })?;
     channel.optional_stop = args.optional_stop;
-    let options =
-        nctwin_engine::channel::StockOptions { resolution: args.stock_resolution, depth_limit: args.depth_limit };
+    let options = nctwin_engine::channel::StockOptions {
+        resolution: args.stock_resolution,
+        depth_limit: args.depth_limit,
+        holder: None,
+    };
     channel.set_stock_options(options).map_err(|e| UsageError(format!("--stock-resolution/--depth-limit: {e}")))?;
     let mut syntax_errors = Vec::new();
     let mut notes = warnings

@@ -70,7 +70,7 @@ export interface State {
   stock?: StockSummary;
 }
 
-/** A check of material removal: rapid_into_stock, no_spindle or depth_of_cut. */
+/** A check of material removal: rapid_into_stock, no_spindle, depth_of_cut or holder_collision. */
 export interface StockWarning {
   check: string;
   line: number;
@@ -89,6 +89,8 @@ export interface StockSummary {
   removed: number;
   warnings: number;
   last_warning: StockWarning | null;
+  /** Grows with every cut: the tiles changed since the version shown are fetched again. */
+  version: number;
 }
 
 /** A synchronized action as the state lists it. */

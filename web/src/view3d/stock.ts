@@ -1,8 +1,12 @@
 // The stock of material removal in the 3D view: the session's workpiece as the program has cut
-// it so far, the server's binary STL (GET .../stock.stl, BCS mm) drawn in the workpiece frame.
-// Fetched when the state's `stock.removed` changes: at once when the program rests, at most
-// every REFRESH_MS while it cuts. The checks (rapid into stock, no spindle, depth of cut) are
-// marked where their segment began: red for a rapid, orange for the others.
+// it so far, drawn in the workpiece frame (BCS mm). A milled stock comes in tiles of 64 x 64
+// dexel cells: when the state's `stock.version` changes, GET .../stock/changes?since= names the
+// tiles cut since the version shown and only those are fetched again (GET .../stock/tiles/i/j,
+// binary STL); each face is coloured by the tool that cut it (the pen in the STL's attribute
+// bytes: 0 the blank's grey, then one colour per tool in the order they first cut). A turned
+// stock is one STL (GET .../stock.stl). At once when the program rests, at most every
+// REFRESH_MS while it cuts. The checks (rapid into stock, no spindle, depth of cut, holder
+// collision) are marked where their segment began: red for a rapid, orange for the others.
 
 import * as THREE from "three";
 import { tokenFor } from "../api/tokens";
@@ -10,6 +14,13 @@ import type { State, StockWarning } from "../api/types";
 
 const REFRESH_MS = 1500;
 const STOCK_COLOR = 0x9fb0c2;
+/** Colours of pens 1, 2, ... (the tools in the order they first cut), repeating. */
+const PEN_COLORS = [0x4f8fd6, 0xd9a03f, 0x5cb85c, 0xb565c9, 0xd9534f, 0x3fb8b0, 0x8d6e63, 0xc0ca33];
+
+/** The colour of a face cut by `pen` (0: the blank's own face). */
+export function penColor(pen: number): THREE.Color {
+  return new THREE.Color(pen === 0 ? STOCK_COLOR : PEN_COLORS[(pen - 1) % PEN_COLORS.length]);
+}
 const MAX_MARKS = 100;
 const MARK_RADIUS = 2.5;
 
@@ -20,19 +31,31 @@ export function parseStl(buf: ArrayBuffer): THREE.BufferGeometry {
   if (buf.byteLength < 84 + 50 * count) throw new Error(`STL of ${count} triangles is ${buf.byteLength} bytes`);
   const positions = new Float32Array(count * 9);
   const normals = new Float32Array(count * 9);
+  const colors = new Float32Array(count * 9);
+  const palette = new Map<number, THREE.Color>();
   for (let t = 0; t < count; t++) {
     const o = 84 + 50 * t;
     const n = [view.getFloat32(o, true), view.getFloat32(o + 4, true), view.getFloat32(o + 8, true)];
+    const pen = view.getUint16(o + 48, true);
+    let color = palette.get(pen);
+    if (!color) {
+      color = penColor(pen);
+      palette.set(pen, color);
+    }
     for (let v = 0; v < 3; v++) {
       for (let c = 0; c < 3; c++) {
         positions[9 * t + 3 * v + c] = view.getFloat32(o + 12 + 12 * v + 4 * c, true);
         normals[9 * t + 3 * v + c] = n[c];
       }
+      colors[9 * t + 3 * v] = color.r;
+      colors[9 * t + 3 * v + 1] = color.g;
+      colors[9 * t + 3 * v + 2] = color.b;
     }
   }
   const g = new THREE.BufferGeometry();
   g.setAttribute("position", new THREE.BufferAttribute(positions, 3));
   g.setAttribute("normal", new THREE.BufferAttribute(normals, 3));
+  g.setAttribute("color", new THREE.BufferAttribute(colors, 3));
   g.computeBoundingBox();
   return g;
 }
@@ -45,25 +68,30 @@ export class StockView {
   private readonly markGeometry = new THREE.SphereGeometry(MARK_RADIUS, 12, 8);
   private readonly rapidMaterial = new THREE.MeshBasicMaterial({ color: 0xe53935 });
   private readonly otherMaterial = new THREE.MeshBasicMaterial({ color: 0xfb8c00 });
-  readonly mesh = new THREE.Mesh(
-    new THREE.BufferGeometry(),
-    new THREE.MeshStandardMaterial({ color: STOCK_COLOR, metalness: 0.2, roughness: 0.7, side: THREE.DoubleSide }),
-  );
+  private readonly material = new THREE.MeshStandardMaterial({
+    vertexColors: true,
+    metalness: 0.2,
+    roughness: 0.7,
+    side: THREE.DoubleSide,
+  });
+  /** The stock's meshes: one per tile of a milled stock ("i,j"), one ("all") for a turned one. */
+  private readonly tiles = new Map<string, THREE.Mesh>();
+  private readonly meshes = new THREE.Group();
   private session = "";
-  private shown = Number.NaN;
+  /** The stock shown: its blank (volume, resolution, model) and version. */
+  private blankKey = "";
+  private shown = 0;
   private lastFetch = -Infinity;
   private busy = false;
 
   constructor(private readonly redraw: () => void) {
-    this.mesh.visible = false;
-    this.mesh.renderOrder = 1;
-    this.group.add(this.mesh, this.marks);
+    this.meshes.renderOrder = 1;
+    this.group.add(this.meshes, this.marks);
   }
 
   attach(id: string): void {
     this.session = id;
-    this.shown = Number.NaN;
-    this.mesh.visible = false;
+    this.clearMeshes();
     this.marks.clear();
     this.redraw();
   }
@@ -83,35 +111,75 @@ export class StockView {
   show(st: State, now = performance.now()): void {
     const stock = st.stock;
     if (!stock) {
-      if (this.mesh.visible || this.marks.children.length) {
-        this.mesh.visible = false;
+      if (this.tiles.size || this.marks.children.length) {
+        this.clearMeshes();
         this.marks.clear();
-        this.shown = Number.NaN;
         this.redraw();
       }
       return;
     }
-    if (this.busy || stock.removed === this.shown) return;
+    const key = `${stock.model} ${stock.resolution} ${stock.initial_volume}`;
+    if (key !== this.blankKey || stock.version < this.shown) {
+      // Another blank: everything anew.
+      this.clearMeshes();
+      this.blankKey = key;
+    }
+    if (this.busy || stock.version === this.shown) return;
     if (st.status === "running" && now - this.lastFetch < REFRESH_MS) return;
     this.lastFetch = now;
-    void this.fetch(stock.removed);
+    void this.fetch(stock.model, stock.version);
   }
 
-  private async fetch(removed: number): Promise<void> {
+  private clearMeshes(): void {
+    for (const m of this.tiles.values()) m.geometry.dispose();
+    this.tiles.clear();
+    this.meshes.clear();
+    this.blankKey = "";
+    this.shown = 0;
+  }
+
+  /** Puts `geometry` in place of the mesh `key`. */
+  private place(key: string, geometry: THREE.BufferGeometry): void {
+    const old = this.tiles.get(key);
+    if (old) {
+      old.geometry.dispose();
+      old.geometry = geometry;
+      return;
+    }
+    const m = new THREE.Mesh(geometry, this.material);
+    m.renderOrder = 1;
+    this.tiles.set(key, m);
+    this.meshes.add(m);
+  }
+
+  private async get(id: string, path: string): Promise<Response> {
+    const token = tokenFor(id);
+    return fetch(`/api/v1/sessions/${encodeURIComponent(id)}/${path}`, {
+      headers: token ? { Authorization: `Bearer ${token}` } : {},
+    });
+  }
+
+  private async fetch(model: string, version: number): Promise<void> {
     const id = this.session;
     if (!id) return;
     this.busy = true;
     try {
-      const token = tokenFor(id);
-      const res = await fetch(`/api/v1/sessions/${encodeURIComponent(id)}/stock.stl`, {
-        headers: token ? { Authorization: `Bearer ${token}` } : {},
-      });
-      if (!res.ok || id !== this.session) return;
-      const geometry = parseStl(await res.arrayBuffer());
-      this.mesh.geometry.dispose();
-      this.mesh.geometry = geometry;
-      this.mesh.visible = true;
-      this.shown = removed;
+      if (model === "turning") {
+        const res = await this.get(id, "stock.stl");
+        if (!res.ok || id !== this.session) return;
+        this.place("all", parseStl(await res.arrayBuffer()));
+        this.shown = version;
+      } else {
+        const res = await this.get(id, `stock/changes?since=${this.shown}`);
+        if (!res.ok || id !== this.session) return;
+        const changes = (await res.json()) as { version: number; tiles: [number, number][] };
+        for (const [i, j] of changes.tiles) {
+          const tile = await this.get(id, `stock/tiles/${i}/${j}`);
+          if (!tile.ok || id !== this.session) return;
+          this.place(`${i},${j}`, parseStl(await tile.arrayBuffer()));
+        }
+        this.shown = changes.version;
+      }
       this.redraw();
     } catch {
       // A failed fetch is retried with the next state that shows a change.

@@ -1,0 +1,60 @@
+//! Where the tool stands relative to the blank in one IPO cycle: its tip, its axis and its
+//! length in the blank's frame, for `stock_cut.rs`.
+//!
+//! On a machine with an orientation transformation (a TRAORI data set) the blank is fixed to
+//! the workpiece side of the kinematic chain: the frame the transformation's BCS is, which on
+//! a trunnion table turns and tilts with A/C. The chain's forward map gives tip and orientation
+//! there from the machine positions every cycle, whether TRAORI is active or the rotary axes
+//! were positioned directly (3+2, CYCLE800, TCARR): the table carries the blank either way.
+//! Without TRAORI active, the tool's length is taken along the chain's basic orientation (the
+//! length vector of the offsets may be turned by a toolholder, which the chain already does).
+//! Other machines keep the plain 3-axis view: tip = machine − tool length, axis +Z.
+
+use super::Channel;
+use crate::interp::Offsets;
+use crate::kinematics::AnyTrafo;
+use crate::kinematics::Traori;
+
+/// The tool in the blank's frame: tip (mm), unit axis (tip → holder), length (mm).
+pub(super) struct ToolPose {
+    pub tip: [f64; 3],
+    pub axis: [f64; 3],
+    pub length: f64,
+}
+
+impl Channel {
+    /// The orientation kinematics the blank is mounted on: the machine's first TRAORI data
+    /// set, `None` for a 3-axis machine, a lathe or a data set that cannot be built.
+    pub(super) fn stock_kinematics(&self) -> Option<Box<Traori>> {
+        let set = self.cfg.trafos.iter().find(|s| s.kind == crate::machine_data::TrafoKind::Traori)?;
+        match crate::kinematics::build(set, &self.cfg, &Default::default()) {
+            Ok(AnyTrafo::Traori(t)) => Some(t),
+            _ => None,
+        }
+    }
+
+    /// The tool this cycle for the stock mounted on `kin`, with the block's `offsets`.
+    pub(super) fn stock_tool_pose(&self, offsets: &Offsets, kin: Option<&Traori>) -> ToolPose {
+        let geo = self.cfg.geo_axes;
+        let toff = self.toff.current;
+        let plain: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
+        let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let active = self.trafo.as_ref().and_then(|a| match &a.trafo {
+            AnyTrafo::Traori(t) => Some((t.as_ref(), a.tool)),
+            _ => None,
+        });
+        let (kin, tool) = match (active, kin) {
+            (Some((t, tool)), _) => (t, std::array::from_fn(|g| tool[g] + toff[g])),
+            (None, Some(k)) => {
+                let n = norm(plain);
+                (k, k.chain().base.map(|c| c * n))
+            }
+            (None, None) => {
+                let tip = std::array::from_fn(|g| geo[g].map_or(0.0, |k| self.machine[k] - offsets.tool[k] - toff[g]));
+                return ToolPose { tip, axis: [0.0, 0.0, 1.0], length: norm(plain) };
+            }
+        };
+        let (tip, axis) = kin.tip_and_orientation(&self.machine, &tool);
+        ToolPose { tip, axis, length: norm(tool) }
+    }
+}
