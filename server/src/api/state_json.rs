@@ -353,6 +353,8 @@ fn write_stock(out: &mut String, s: &StockInfo) {
             out.push_str("]}");
         }
     }
+    out.push_str(",\"version\":");
+    write_int(out, s.version);
     out.push('}');
 }
 
