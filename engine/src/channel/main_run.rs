@@ -42,7 +42,8 @@ impl Channel {
             let main_run_idle = self.pending.is_empty()
                 && self.planner.is_empty()
                 && self.dwell_ticks == 0
-                && self.toff.settled(&self.offsets.toff);
+                && self.toff.settled(&self.offsets.toff)
+                && !self.positioning.program_moving();
             out.clear();
             let generation = self.interp.transformation_generation();
             // The level the block is read in (a call or return changes it after the read).
@@ -371,6 +372,11 @@ impl Channel {
                     self.planner.set_position(pos);
                     self.machine[axis] = angle;
                 }
+                Item::Stop { kind: StopKind::End, line } if self.positioning.program_moving() => {
+                    // The program ends when its positioning axes have arrived.
+                    self.pending.push_front(Item::Stop { kind: StopKind::End, line });
+                    return;
+                }
                 Item::Stop { kind, line } => {
                     self.enter_block(line);
                     match kind {
@@ -409,6 +415,16 @@ impl Channel {
                 Item::SetPiece { pieces, line } => {
                     self.enter_block(line);
                     self.set_piece(pieces);
+                }
+                Item::Positioning { axis, target, velocity, line } => {
+                    self.enter_block(line);
+                    self.start_positioning(axis, target, velocity, false);
+                }
+                Item::WaitPositioning { axes, strict, line } => {
+                    if self.wait_positioning(axes, strict, line) {
+                        self.pending.push_front(Item::WaitPositioning { axes, strict, line });
+                        return;
+                    }
                 }
             }
         }

@@ -16,6 +16,7 @@ mod io;
 mod jog;
 mod jog_settings;
 mod main_run;
+mod positioning_axes;
 mod programs;
 mod reference;
 mod referencing;
@@ -309,6 +310,8 @@ pub struct Channel {
     servo: servo::Servo,
     /// Motion-synchronous actions and their data (`sync_actions.rs`).
     sync: sync_actions::SyncActions,
+    /// Axes travelling outside the path: POS/POSA, command axes (`positioning_axes.rs`).
+    positioning: positioning_axes::PositioningAxes,
     /// Tool life and count monitoring (`tool_monitor.rs`).
     tool_monitor: tool_monitor::ToolMonitor,
     /// The blank being cut, if one is defined (`stock_cut.rs`).
@@ -394,6 +397,7 @@ impl Channel {
             referenced,
             referencing: None,
             sync: Default::default(),
+            positioning: Default::default(),
             tool_monitor: Default::default(),
             stock: None,
             stock_options: Default::default(),
@@ -676,6 +680,7 @@ impl Channel {
         self.current_block = None;
         self.message = None;
         self.sync.end_program();
+        self.reset_positioning_axes();
         self.feed_reference = None;
         let pos = *self.planner.position();
         for s in &mut self.spindles {
@@ -745,6 +750,7 @@ impl Channel {
         self.planner.step();
         self.monitor_tools();
         self.update_machine_position();
+        self.step_positioning_axes();
         if self.stock.is_some() {
             self.cut_stock();
         }

@@ -292,7 +292,11 @@ impl Channel {
                     | Item::DigitalOutput { .. }
                     | Item::SyncAction { .. }
                     | Item::SyncControl { .. }
-                    | Item::SetPiece { .. } => {}
+                    | Item::SetPiece { .. }
+                    // Positioning axes: the approach move takes them to where the
+                    // interpreter left them (the skipped blocks' targets).
+                    | Item::Positioning { .. }
+                    | Item::WaitPositioning { .. } => {}
                     Item::Stop { kind: StopKind::End, .. } => return Err(target_not_found(line)),
                     Item::Alarm(alarm) => return Err(alarm),
                 }

@@ -163,6 +163,23 @@ pub enum Item {
         ids: Vec<u32>,
         line: u32,
     },
+    /// POS/POSA (or a command axis): channel axis `axis` travels on its own interpolator to
+    /// the machine position `target` at `velocity` (mm/s, deg/s), from the main run's start of
+    /// the block (`path_control/positioning.rs`, `channel/positioning_axes.rs`).
+    Positioning {
+        axis: usize,
+        target: f64,
+        velocity: f64,
+        line: u32,
+    },
+    /// WAITP, or the end of a POS block: the items after it wait until the positioning axes of
+    /// `axes` (bit k: channel axis k) have arrived; `strict`: a path block programs them, so an
+    /// axis still travelling is alarm 14092 instead.
+    WaitPositioning {
+        axes: u32,
+        strict: bool,
+        line: u32,
+    },
     /// `WORKPIECE(..)`: the blank, in the WCS of the block's frame (`workpiece.rs`).
     Workpiece {
         request: crate::stock::blank::Request,
@@ -209,7 +226,9 @@ impl Item {
             | Item::SyncAction { line, .. }
             | Item::SyncControl { line, .. }
             | Item::Workpiece { line, .. }
-            | Item::SetPiece { line, .. } => Some(*line),
+            | Item::SetPiece { line, .. }
+            | Item::Positioning { line, .. }
+            | Item::WaitPositioning { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -270,6 +289,8 @@ pub struct Interpreter {
     trc: compensation::trc::Compensator,
     /// Spindles in position control (after SPOS), by channel axis.
     positioned: [bool; MAX_CHANNEL_AXES],
+    /// FA per axis and the POSA axes not yet waited for (`path_control/positioning.rs`).
+    positioning_axes: path_control::positioning::Positioning,
     /// The spindles' angles in the main run, as last observed (for SPOS).
     spindle_angles: AxisVec,
     /// The active kinematic transformation, if any (see `trafo.rs`).
@@ -323,6 +344,7 @@ impl Interpreter {
             corner_request: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
+            positioning_axes: Default::default(),
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
             holder: tools::toolholder::Holder { g53: 1, ..Default::default() },
@@ -351,6 +373,7 @@ impl Interpreter {
         self.sync_wait = synchronized::PrepWait::None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
+        self.positioning_axes = Default::default();
         self.spindles.reset(cfg, true);
         *self.pframe = Frame::identity();
         *self.iframe = None;
@@ -376,6 +399,7 @@ impl Interpreter {
         self.lane_memo.forget();
         self.pos = *pos;
         self.before_change = None;
+        self.positioning_axes.posa_open = 0;
         self.vars.reset_locals();
         self.calls.clear();
         self.call_state = Default::default();
@@ -701,6 +725,8 @@ impl Interpreter {
                 self.trc.emit_or_defer(Item::SetPiece { pieces: sp.pieces, line }, out);
             }
         }
+        // Positioning axes start at the block's start (POS, POSA); WAITP.
+        let pos_axes = self.positioning_block(words, cfg, line, out)?;
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;
         if words.dwell {
@@ -761,6 +787,7 @@ impl Interpreter {
             // A new shared value is made only when the offsets differ from the last one.
             out.push(Item::Offsets { line, offsets: self.shared_offsets() });
         }
+        self.end_positioning_block(pos_axes, line, out);
 
         if let Some(text) = &words.message {
             out.push(Item::Message { text: text.clone(), line });

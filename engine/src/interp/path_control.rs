@@ -26,6 +26,7 @@
 //! - `UPATH`/`SPATH` (the path parameter of FGROUP axes) are accepted; every path here is
 //!   parametrised by the geometry axes' length (SPATH), so UPATH changes nothing.
 
+pub(super) mod positioning;
 pub(super) mod spline;
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
