@@ -440,6 +440,7 @@ impl Channel {
         self.prep_done = true;
         self.current_line = None;
         self.sync.end_program();
+        self.end_command_axes();
         self.feed_reference = None;
         self.flush_tool_monitor();
         self.interp.end_program(&self.cfg);

@@ -12,6 +12,7 @@
 mod active_program;
 mod blending;
 mod cartesian_jog;
+mod command_axes;
 mod io;
 mod jog;
 mod jog_settings;

@@ -70,6 +70,10 @@ pub struct PositioningAxes {
     command: u32,
     /// Bit k: channel axis k has not arrived yet.
     moving: u32,
+    /// `FA[ax]` of synchronized actions in mm/s (deg/s); 0: MD32060.
+    command_feed: [f64; MAX_CHANNEL_AXES],
+    /// `S` of synchronized actions per spindle axis (rev/min), for their next M3/M4.
+    speeds: [f64; MAX_CHANNEL_AXES],
 }
 
 impl PositioningAxes {
@@ -92,14 +96,50 @@ impl PositioningAxes {
     pub fn position(&self, k: usize) -> Option<f64> {
         self.axes[k].map(|t| t.position)
     }
-
-    /// The signed velocity of axis `k` (0 when it is not here).
-    pub fn velocity(&self, k: usize) -> f64 {
-        self.axes[k].map_or(0.0, |t| t.velocity)
-    }
 }
 
 impl Channel {
+    /// `FA[ax]=` of an action: the axis' feed from now on, also while it travels.
+    pub(super) fn set_command_feed(&mut self, k: usize, feed: f64) {
+        let feed = feed.min(self.cfg.axis(k).max_velocity);
+        self.positioning.command_feed[k] = feed;
+        if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.feed = feed;
+        }
+    }
+
+    /// The feed of command axis `k`: its `FA`, else MD32060.
+    pub(super) fn command_feed(&self, k: usize) -> f64 {
+        match self.positioning.command_feed[k] {
+            f if f > 0.0 => f,
+            _ => self.cfg.axis(k).pos_velocity,
+        }
+    }
+
+    /// Remembers `S` of an action for spindle axis `k`.
+    pub(super) fn set_action_speed(&mut self, k: usize, rpm: f64) {
+        self.positioning.speeds[k] = rpm;
+    }
+
+    /// The last `S` of an action for spindle axis `k` (0: none).
+    pub(super) fn action_speed(&self, k: usize) -> f64 {
+        self.positioning.speeds[k]
+    }
+
+    /// Program end: the command axes brake and are handed back to the path once at rest; the
+    /// actions' FA and S are forgotten.
+    pub(super) fn end_command_axes(&mut self) {
+        let command = self.positioning.command;
+        for k in 0..MAX_CHANNEL_AXES {
+            if command & (1 << k) != 0 {
+                self.stop_positioning(k);
+            }
+        }
+        self.positioning.command = 0;
+        self.positioning.command_feed = [0.0; MAX_CHANNEL_AXES];
+        self.positioning.speeds = [0.0; MAX_CHANNEL_AXES];
+    }
+
     /// Starts (or retargets) axis `k` from where it stands towards `target` at `feed`.
     pub(super) fn start_positioning(&mut self, k: usize, target: f64, feed: f64, command: bool) {
         let accel = self.cfg.axis(k).max_accel;
@@ -139,8 +179,13 @@ impl Channel {
     /// Out of line: the IPO cycle's own code stays small (ARCHITECTURE: the IPO cycle's code).
     #[inline(never)]
     fn run_positioning_cycle(&mut self) {
+        if self.positioning.command != 0 && self.status == super::Status::Running {
+            self.check_command_axes();
+        }
         let dt = self.cfg.ipo_cycle;
-        let hold = self.status != super::Status::Running;
+        // NC stop and alarms brake them; after the program's end they run on (command axes
+        // braking to their stop).
+        let hold = matches!(self.status, super::Status::Stopped | super::Status::Alarm);
         let p = &mut self.positioning;
         for k in 0..MAX_CHANNEL_AXES {
             if p.active & (1 << k) == 0 {
@@ -179,6 +224,23 @@ impl Channel {
         p.active &= !mask;
         p.moving &= !mask;
         p.command &= !mask;
+        if mask == u32::MAX {
+            p.command_feed = [0.0; MAX_CHANNEL_AXES];
+            p.speeds = [0.0; MAX_CHANNEL_AXES];
+        }
+    }
+
+    /// The path's move in execution moves a command axis of a synchronized action: alarm
+    /// 20141 (the axis belongs to the action until the program ends).
+    fn check_command_axes(&mut self) {
+        let command = self.positioning.command;
+        let Some(mv) = self.planner.front().filter(|_| !self.planner.is_empty()) else { return };
+        if let Some(k) = (0..MAX_CHANNEL_AXES).find(|&k| command & (1 << k) != 0 && mv.path.start[k] != mv.path.end[k]) {
+            // The planner may have entered the move in this cycle, before the list follows.
+            let line = self.in_planner.iter().find(|(t, _)| *t == mv.tag).map_or(0, |(_, m)| m.line);
+            let name = self.cfg.program_axis_name(k).to_string();
+            self.raise(Alarm::sync_axis_type(Some(line), &name));
+        }
     }
 
     /// A WAITP (or a POS block's end) at the head of the items: true while it must wait.

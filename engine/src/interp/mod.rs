@@ -1309,7 +1309,7 @@ fn norm(v: &AxisVec) -> f64 {
 }
 
 /// Target of a modulo rotary axis: shortest way (G90, DC), or forced direction (ACP, ACN).
-fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>) -> f64 {
+pub(crate) fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>) -> f64 {
     let delta = (target - current).rem_euclid(range);
     match mode {
         Some(CoordMode::Acp) => current + delta,

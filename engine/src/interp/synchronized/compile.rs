@@ -11,6 +11,7 @@
 use super::flat::{Act, Code};
 use crate::alarm::{Alarm, Clear};
 use crate::lang::sync_action::{BinOp, Index, SAction, SExpr, SyncAction, SyncId, Trigger, VarRef};
+use crate::lang::CoordMode;
 use crate::machine_data::MachineConfig;
 
 /// A synchronized action ready for the main run.
@@ -110,8 +111,25 @@ pub enum Func {
 #[derive(Debug, Clone, PartialEq)]
 pub enum SyncAct {
     Set(SyncVar, CExpr),
+    /// M/H output to the PLC; `S` a spindle speed (extension: spindle number, 0 the master).
     Aux { letter: char, extension: u32, value: CExpr },
     DelDtg,
+    /// A command axis or spindle motion: `POS[ax]=`, `MOV[ax]=`, `FA[ax]=`, `SPOS[n]=`
+    /// (`axis`: the channel axis; for SPOS the spindle's).
+    Command { kind: CommandKind, axis: usize, value: CExpr, mode: Option<CoordMode> },
+}
+
+/// The motion words of synchronized actions (`channel/positioning_axes.rs` moves them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CommandKind {
+    /// `POS[ax]=v`: to a position (`IC`/`AC`/`DC`/`ACP`/`ACN`).
+    Pos,
+    /// `MOV[ax]=1/-1/0`: endless motion in the plus or minus direction, or stop.
+    Mov,
+    /// `FA[ax]=f`: the command axis' feed, mm/min (deg/min).
+    Fa,
+    /// `SPOS[n]=angle`: the spindle to an angle in position control.
+    Spos,
 }
 
 /// Compiles `action` (defined at `line`) for the channel described by `cfg`.
@@ -142,6 +160,57 @@ pub fn not_admissible(line: u32, what: &str) -> Alarm {
         message: format!("Channel 1 block {line} {what} not admissible in motion synchronized action"),
         line: Some(line),
         clear: Clear::Reset,
+    }
+}
+
+impl Compiler<'_> {
+    /// `POS[ax]=`, `MOV[ax]=`, `FA[ax]=`, `SPOS[n]=`: the axis resolved, the coordinate mode
+    /// (`IC(..)` ...) taken off the value. POSA is a program word only (12571).
+    fn command(&self, word: &str, axis: &str, value: &SExpr) -> Result<SyncAct, Alarm> {
+        let kind = match word {
+            "POS" => CommandKind::Pos,
+            "MOV" => CommandKind::Mov,
+            "FA" => CommandKind::Fa,
+            "SPOS" => CommandKind::Spos,
+            _ => return Err(not_admissible(self.line, &format!("{word}[{axis}]"))),
+        };
+        let k = if kind == CommandKind::Spos {
+            let spindle = match axis {
+                "" => self.cfg.master_spindle,
+                n => n.parse::<u32>().ok().and_then(|n| {
+                    self.cfg.channel_axes.iter().position(|c| self.cfg.machine_axes[c.machine_axis].spindle == Some(n))
+                }),
+            };
+            spindle.ok_or_else(|| Alarm::unknown_name(self.line, &format!("SPOS[{axis}]")))?
+        } else {
+            let k = self
+                .cfg
+                .program_axis(axis)
+                .ok_or_else(|| Alarm::unknown_name(self.line, &format!("{word}[{axis}]")))?;
+            if self.cfg.axis(k).spindle.is_some() {
+                return Err(Alarm::sync_axis_type(Some(self.line), axis));
+            }
+            k
+        };
+        let (mode, value) = match value {
+            SExpr::Call(f, args) if args.len() == 1 => match f.as_str() {
+                "AC" => (Some(CoordMode::Ac), &args[0]),
+                "IC" => (Some(CoordMode::Ic), &args[0]),
+                "DC" => (Some(CoordMode::Dc), &args[0]),
+                "ACP" => (Some(CoordMode::Acp), &args[0]),
+                "ACN" => (Some(CoordMode::Acn), &args[0]),
+                _ => (None, value),
+            },
+            _ => (None, value),
+        };
+        if mode.is_some() && matches!(kind, CommandKind::Mov | CommandKind::Fa)
+            || matches!(mode, Some(CoordMode::Dc | CoordMode::Acp | CoordMode::Acn))
+                && kind == CommandKind::Pos
+                && self.cfg.axis(k).modulo.is_none()
+        {
+            return Err(Alarm::value_out_of_range(self.line, &format!("{word}[{axis}]")));
+        }
+        Ok(SyncAct::Command { kind, axis: k, value: self.expr(value, false)?, mode })
     }
 }
 
@@ -279,15 +348,7 @@ impl Compiler<'_> {
                 SyncAct::Aux { letter: *letter, extension: *extension, value: self.expr(value, false)? }
             }
             SAction::DelDtg => SyncAct::DelDtg,
-            // NCTwin's channel moves its axes on one path only: no command or positioning axes.
-            SAction::AxisCommand { word, axis, .. } => {
-                return Err(not_admissible(
-                    self.line,
-                    &format!(
-                        "{word}[{axis}] (command axes are not modelled: the channel has no independent axis motion)"
-                    ),
-                ));
-            }
+            SAction::AxisCommand { word, axis, value } => self.command(word, axis, value)?,
             SAction::Word(w) | SAction::Call(w, _) => {
                 return Err(not_admissible(self.line, &format!("{w} (not modelled in NCTwin)")));
             }

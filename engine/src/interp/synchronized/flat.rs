@@ -212,6 +212,13 @@ pub enum Act {
         value: Code,
     },
     DelDtg,
+    /// A command axis or spindle motion (`compile::CommandKind`), its value computed.
+    Command {
+        kind: super::compile::CommandKind,
+        axis: usize,
+        value: Code,
+        mode: Option<crate::lang::CoordMode>,
+    },
 }
 
 /// Lowers a compiled expression.
@@ -245,6 +252,9 @@ pub fn lower_act(a: &SyncAct) -> Act {
             Act::Aux { letter: *letter, extension: *extension, value: lower(value) }
         }
         SyncAct::DelDtg => Act::DelDtg,
+        SyncAct::Command { kind, axis, value, mode } => {
+            Act::Command { kind: *kind, axis: *axis, value: lower(value), mode: *mode }
+        }
     }
 }
 
