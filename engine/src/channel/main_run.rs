@@ -43,12 +43,25 @@ impl Channel {
                 && self.planner.is_empty()
                 && self.dwell_ticks == 0
                 && self.toff.settled(&self.offsets.toff)
-                && !self.positioning.program_moving();
+                && !self.positioning.program_moving()
+                // STOPREOF of a synchronized action: the preprocessing stop is over.
+                || self.psync.stopreof;
             out.clear();
             let generation = self.interp.transformation_generation();
             // The level the block is read in (a call or return changes it after the read).
             let level = self.interp.level().cloned();
+            if self.psync.stopreof || self.positioning.has_command_axes() {
+                // `$AA_IM` reads where the main run stands (`program_sync.rs`).
+                self.interp.set_main_run_position(Some(self.machine));
+                self.psync.main_position_handed = true;
+            } else if self.psync.main_position_handed {
+                self.interp.set_main_run_position(None);
+                self.psync.main_position_handed = false;
+            }
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
+            if prep != Prep::WaitForMainRun {
+                self.psync.stopreof = false;
+            }
             self.blending.prep_waits_for_main_run = prep == Prep::WaitForMainRun;
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
@@ -157,8 +170,14 @@ impl Channel {
     /// [`Channel::feed_planner`]'s work, out of the IPO cycle's code (see `prepare_blocks`).
     #[inline(never)]
     fn feed_moves(&mut self) {
-        // Single block: one block's moves at a time, and only once the last one is done.
-        let single = self.single_block.then(|| self.pending.front().and_then(Item::line));
+        // RDISABLE of a synchronized action in this cycle: no block starts.
+        if self.psync.rdisable {
+            return;
+        }
+        // Single block: one block's moves at a time, and only once the last one is done. So
+        // too while an action holds RDISABLE (`program_sync.rs`).
+        let one_block = self.single_block || self.psync.rdisable_armed && self.sync.is_active();
+        let single = one_block.then(|| self.pending.front().and_then(Item::line));
         if single.is_some() && (!self.planner.is_empty() || self.sbl_done.is_some()) {
             return;
         }
@@ -304,6 +323,10 @@ impl Channel {
             self.dwell_ticks -= 1;
             return;
         }
+        if self.psync.rdisable {
+            // Read-in disabled by a synchronized action: the next block waits.
+            return;
+        }
         while self.status == Status::Running {
             // Like motion, a change of the online tool offset finishes before the next action.
             if !self.toff.settled(&self.offsets.toff) {
@@ -441,6 +464,7 @@ impl Channel {
         self.current_line = None;
         self.sync.end_program();
         self.end_command_axes();
+        self.psync.end_program();
         self.feed_reference = None;
         self.flush_tool_monitor();
         self.interp.end_program(&self.cfg);

@@ -18,6 +18,7 @@ mod jog;
 mod jog_settings;
 mod main_run;
 mod positioning_axes;
+mod program_sync;
 mod programs;
 mod reference;
 mod referencing;
@@ -313,6 +314,8 @@ pub struct Channel {
     sync: sync_actions::SyncActions,
     /// Axes travelling outside the path: POS/POSA, command axes (`positioning_axes.rs`).
     positioning: positioning_axes::PositioningAxes,
+    /// STOPREOF, RDISABLE, wait markers, technology cycles (`program_sync.rs`).
+    psync: program_sync::ProgramSync,
     /// Tool life and count monitoring (`tool_monitor.rs`).
     tool_monitor: tool_monitor::ToolMonitor,
     /// The blank being cut, if one is defined (`stock_cut.rs`).
@@ -399,6 +402,7 @@ impl Channel {
             referencing: None,
             sync: Default::default(),
             positioning: Default::default(),
+            psync: Default::default(),
             tool_monitor: Default::default(),
             stock: None,
             stock_options: Default::default(),
@@ -682,6 +686,7 @@ impl Channel {
         self.message = None;
         self.sync.end_program();
         self.reset_positioning_axes();
+        self.psync.reset();
         self.feed_reference = None;
         let pos = *self.planner.position();
         for s in &mut self.spindles {

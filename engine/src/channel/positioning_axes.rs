@@ -87,9 +87,10 @@ impl PositioningAxes {
         self.moving & !self.command != 0
     }
 
-    /// Bit k: channel axis k is a command axis of a synchronized action.
-    pub fn command_axes(&self) -> u32 {
-        self.command
+    /// Whether command axes of synchronized actions (or PRESETON axes) are here: the
+    /// programmed positions of the interpreter are not where they stand.
+    pub fn has_command_axes(&self) -> bool {
+        self.command != 0
     }
 
     /// The position of axis `k` if it is here.
@@ -165,6 +166,14 @@ impl Channel {
             if t.velocity == 0.0 {
                 t.target = t.position;
             }
+        }
+    }
+
+    /// PRESETON: axis `k` (here) and its target move by `d` in the machine system, no motion.
+    pub(super) fn shift_positioning_axis(&mut self, k: usize, d: f64) {
+        if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.position += d;
+            t.target += d;
         }
     }
 

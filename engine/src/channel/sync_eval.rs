@@ -201,6 +201,7 @@ impl Channel {
                 self.delete_distance_to_go();
                 Ok(())
             }
+            act => self.program_sync_act(act, line),
         }
     }
 

@@ -650,7 +650,7 @@ impl Interpreter {
         let line = block.line;
         let (base_cfg, derived) = (cfg, self.trafo.config());
         let cfg = derived.as_deref().unwrap_or(base_cfg);
-        if self.synchronized_block(block, cfg, out)? {
+        if self.synchronized_block(block, cfg, programs, out)? {
             return Ok(());
         }
         {

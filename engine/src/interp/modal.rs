@@ -712,6 +712,9 @@ pub(super) fn collect(
             Word::Keyword { name, args } if name == "FPR" => {
                 w.spindle.fpr = Some(super::spindles::fpr_statement(args, &Ctx { vars, sys }, cfg, line)?);
             }
+            Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
+                super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;
+            }
             Word::Keyword { name, args } if name == "WAITP" => {
                 w.waitp |= super::path_control::positioning::waitp(args, vars, sys, line)?;
             }

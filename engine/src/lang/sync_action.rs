@@ -537,6 +537,22 @@ impl P<'_> {
             }
             return Ok(SAction::AxisCommand { word, axis, value: self.expr(0)? });
         }
+        if word == "PRESETON" && self.eat(b'(') {
+            // PRESETON(axis, value): the first argument is an axis name.
+            self.ws();
+            let Some(axis) = self.ident() else { return self.err("axis name expected") };
+            self.ws();
+            if !self.eat(b',') {
+                return self.err("',' expected");
+            }
+            let value = self.expr(0)?;
+            self.ws();
+            if !self.eat(b')') {
+                return self.err("')' expected");
+            }
+            let axis = SExpr::Var(VarRef { name: axis, index: None });
+            return Ok(SAction::Call(word, vec![axis, value]));
+        }
         if self.eat(b'(') {
             return Ok(SAction::Call(word, self.args()?));
         }

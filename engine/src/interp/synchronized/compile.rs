@@ -36,6 +36,16 @@ impl SyncDef {
     pub fn deletes_distance(&self) -> bool {
         self.actions.iter().any(|a| matches!(a, SyncAct::DelDtg))
     }
+
+    /// True if an action ends the preprocessing stop after its motion block (STOPREOF).
+    pub fn ends_preprocessing_stop(&self) -> bool {
+        self.actions.iter().any(|a| matches!(a, SyncAct::StopReOf))
+    }
+
+    /// True if an action disables the read-in of blocks (RDISABLE).
+    pub fn disables_read_in(&self) -> bool {
+        self.actions.iter().any(|a| matches!(a, SyncAct::RDisable))
+    }
 }
 
 /// An expression with its names resolved; booleans are 0/1.
@@ -117,6 +127,17 @@ pub enum SyncAct {
     /// A command axis or spindle motion: `POS[ax]=`, `MOV[ax]=`, `FA[ax]=`, `SPOS[n]=`
     /// (`axis`: the channel axis; for SPOS the spindle's).
     Command { kind: CommandKind, axis: usize, value: CExpr, mode: Option<CoordMode> },
+    /// `STOPREOF`: ends the preprocessing stop after the action's motion block.
+    StopReOf,
+    /// `RDISABLE`: no further block enters the main run in a cycle it runs.
+    RDisable,
+    /// `PRESETON(ax, value)`: the axis' machine position becomes `value`, without motion.
+    Preset { axis: usize, value: CExpr },
+    /// `SETM(n)` (true) / `CLEARM(n)` (false): the channel's wait marker n.
+    WaitMarker { set: bool, marker: CExpr },
+    /// `NAME` (a technology cycle): the program `NAME`, a sequence of actions run block by
+    /// block from the main run (`interp/synchronized/technology.rs`).
+    Cycle(String),
 }
 
 /// The motion words of synchronized actions (`channel/positioning_axes.rs` moves them).
@@ -349,7 +370,28 @@ impl Compiler<'_> {
             }
             SAction::DelDtg => SyncAct::DelDtg,
             SAction::AxisCommand { word, axis, value } => self.command(word, axis, value)?,
-            SAction::Word(w) | SAction::Call(w, _) => {
+            SAction::Word(w) if w == "STOPREOF" => SyncAct::StopReOf,
+            SAction::Word(w) if w == "RDISABLE" => SyncAct::RDisable,
+            SAction::Call(w, args) if w == "PRESETON" => match args.as_slice() {
+                [SExpr::Var(VarRef { name, index: None })] | [SExpr::Var(VarRef { name, index: None }), _]
+                    if args.len() == 2 =>
+                {
+                    let axis = self
+                        .cfg
+                        .program_axis(name)
+                        .ok_or_else(|| Alarm::unknown_name(self.line, &format!("PRESETON({name})")))?;
+                    SyncAct::Preset { axis, value: self.expr(&args[1], false)? }
+                }
+                _ => return Err(Alarm::syntax(self.line, "PRESETON(axis, value)")),
+            },
+            SAction::Call(w, args) if w == "SETM" || w == "CLEARM" => match args.as_slice() {
+                [marker] => SyncAct::WaitMarker { set: w == "SETM", marker: self.expr(marker, false)? },
+                _ => return Err(Alarm::syntax(self.line, &format!("{w}(marker)"))),
+            },
+            // Any other word is the name of a technology cycle (found when the block is
+            // prepared, 12550 if there is none).
+            SAction::Word(w) => SyncAct::Cycle(w.clone()),
+            SAction::Call(w, _) => {
                 return Err(not_admissible(self.line, &format!("{w} (not modelled in NCTwin)")));
             }
         })
