@@ -152,3 +152,47 @@ fn rotary_modulo_axis_positions_with_acn_and_dc() {
     // DC(80) from 90: the short way, −10°.
     assert!((pos(&ch, k).rem_euclid(360.0) - 80.0).abs() < 1e-9, "C = {}", pos(&ch, k));
 }
+
+#[test]
+fn nc_stop_brakes_a_positioning_axis_and_nc_start_takes_it_on_to_its_target() {
+    let mut ch = channel("mill-3axis");
+    ch.run_program("POSA[Z]=-5 FA[Z]=300\nG4 F5\nM30").unwrap();
+    steps(&mut ch, 100); // Z ≈ −2 at 5 mm/s
+    ch.stop();
+    // From 5 mm/s at 3000 mm/s² it stands within two cycles.
+    steps(&mut ch, 3);
+    let z = pos(&ch, 2);
+    steps(&mut ch, 50);
+    assert_eq!(pos(&ch, 2), z, "Z stands while stopped");
+    assert!(z < -1.8 && z > -2.2, "Z = {z}");
+    ch.start().unwrap();
+    run_to_end(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    assert_eq!(pos(&ch, 2), -5.0);
+}
+
+#[test]
+fn reset_leaves_a_positioning_axis_where_it_is_and_the_next_program_starts_there() {
+    let mut ch = channel("mill-3axis");
+    ch.run_program("POSA[Z]=-5 FA[Z]=300\nG4 F5\nM30").unwrap();
+    steps(&mut ch, 100);
+    ch.reset();
+    let z = pos(&ch, 2);
+    assert!(z < -1.8 && z > -2.2, "Z = {z}");
+    steps(&mut ch, 10);
+    assert_eq!(pos(&ch, 2), z, "nothing moves after the reset");
+    // G91 Z1 goes from where Z stands.
+    ch.run_program("G91 G1 Z1 F600\nM30").unwrap();
+    run_to_end(&mut ch);
+    assert!((pos(&ch, 2) - (z + 1.0)).abs() < 1e-9, "Z = {}", pos(&ch, 2));
+}
+
+#[test]
+fn a_program_ends_only_when_its_posa_axes_have_arrived() {
+    // No WAITP: M30 waits for Z (1 s) although the path has nothing to do.
+    let mut ch = channel("mill-3axis");
+    ch.run_program("POSA[Z]=-5 FA[Z]=300\nM30").unwrap();
+    let n = run_to_end(&mut ch);
+    assert!((249..=256).contains(&n), "{n} cycles");
+    assert_eq!(pos(&ch, 2), -5.0);
+}

@@ -66,7 +66,8 @@ fn mov_runs_endlessly_until_mov_zero() {
     // Z at FA 600 (10 mm/s) from X = 10 (t ≈ 1 s) to X = 30 (t ≈ 3 s): 2 s at 10 mm/s; the ramp
     // up loses 10²/6000 mm and the braking ramp adds as much, so Z ≈ −20 (± a cycle's 0.04 mm).
     let mut ch = channel();
-    let program = "ID=1 WHEN $AA_IM[X]>=10 DO MOV[Z]=-1 FA[Z]=600\nID=2 WHEN $AA_IM[X]>=30 DO MOV[Z]=0\nG1 X40 F600\nM30";
+    let program =
+        "ID=1 WHEN $AA_IM[X]>=10 DO MOV[Z]=-1 FA[Z]=600\nID=2 WHEN $AA_IM[X]>=30 DO MOV[Z]=0\nG1 X40 F600\nM30";
     ch.run_program(program).unwrap();
     run_to_end(&mut ch);
     steps(&mut ch, 10);
@@ -148,4 +149,3 @@ fn bad_command_actions_are_refused_before_the_run() {
         assert_eq!(s.alarms.first().map(|a| a.number), Some(number), "{program}");
     }
 }
-

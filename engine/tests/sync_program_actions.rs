@@ -63,8 +63,7 @@ fn rdisable_holds_the_next_block_until_the_input_is_set() {
     // From X ≥ 5 on, the read-in is disabled while input 1 is 0: the block G1 X10 runs to its
     // end (1 s, about 251 cycles), G1 Y10 waits for the input.
     let mut ch = channel();
-    ch.run_program("ID=1 WHENEVER ($AA_IM[X]>=5) AND ($A_IN[1]==0) DO RDISABLE\nG1 X10 F600\nG1 Y10\nM30")
-        .unwrap();
+    ch.run_program("ID=1 WHENEVER ($AA_IM[X]>=5) AND ($A_IN[1]==0) DO RDISABLE\nG1 X10 F600\nG1 Y10\nM30").unwrap();
     steps(&mut ch, 400);
     assert!((pos(&ch, 0) - 10.0).abs() < 1e-9, "X = {}", pos(&ch, 0));
     assert_eq!(pos(&ch, 1), 0.0);
@@ -142,8 +141,11 @@ fn a_technology_cycle_runs_block_by_block_and_waits_for_its_axes() {
     // LOADER: Y to 2 at FA 600 (10 mm/s: 0.2 s + 3.3 ms ≈ 51 cycles), then back to 0
     // (≈ 51 cycles), then one count. Called at X ≥ 2 (about cycle 51); X's block takes 4 s.
     let mut ch = channel();
-    ch.store_program("LOADER", "PROC LOADER\nN10 POS[Y]=2 FA[Y]=600 ; out\nN20 POS[Y]=0\n$AC_MARKER[1]=$AC_MARKER[1]+1\nM17\n")
-        .unwrap();
+    ch.store_program(
+        "LOADER",
+        "PROC LOADER\nN10 POS[Y]=2 FA[Y]=600 ; out\nN20 POS[Y]=0\n$AC_MARKER[1]=$AC_MARKER[1]+1\nM17\n",
+    )
+    .unwrap();
     ch.run_program("ID=1 WHEN $AA_IM[X]>=2 DO LOADER\nG1 X40 F600\nR3=$AC_MARKER[1]\nM30").unwrap();
     steps(&mut ch, 51 + 40);
     let y = pos(&ch, 1);

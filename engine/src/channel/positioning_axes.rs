@@ -244,7 +244,8 @@ impl Channel {
     fn check_command_axes(&mut self) {
         let command = self.positioning.command;
         let Some(mv) = self.planner.front().filter(|_| !self.planner.is_empty()) else { return };
-        if let Some(k) = (0..MAX_CHANNEL_AXES).find(|&k| command & (1 << k) != 0 && mv.path.start[k] != mv.path.end[k]) {
+        if let Some(k) = (0..MAX_CHANNEL_AXES).find(|&k| command & (1 << k) != 0 && mv.path.start[k] != mv.path.end[k])
+        {
             // The planner may have entered the move in this cycle, before the list follows.
             let line = self.in_planner.iter().find(|(t, _)| *t == mv.tag).map_or(0, |(_, m)| m.line);
             let name = self.cfg.program_axis_name(k).to_string();

@@ -24,9 +24,9 @@ use std::sync::Arc;
 
 use super::Channel;
 use crate::alarm::Alarm;
+use crate::interp::synchronized::compile::CommandKind;
 use crate::interp::synchronized::flat::{self, Act, Fault};
 use crate::interp::synchronized::technology::TechCycle;
-use crate::interp::synchronized::compile::CommandKind;
 
 /// The program-facing state of the synchronized actions.
 #[derive(Debug, Clone, Default)]

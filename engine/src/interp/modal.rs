@@ -724,7 +724,16 @@ pub(super) fn collect(
                     && vars.get(name).is_none() =>
             {
                 let (index, mode) = (&indices[0], value.mode);
-                super::path_control::positioning::word(&mut w.positioning, name, index, &value.expr, mode, vars, sys, line)?;
+                super::path_control::positioning::word(
+                    &mut w.positioning,
+                    name,
+                    index,
+                    &value.expr,
+                    mode,
+                    vars,
+                    sys,
+                    line,
+                )?;
             }
             Word::Keyword { name, args } if name == "SETPIECE" => {
                 w.set_piece = Some(super::tools::setpiece::statement(args, &Ctx { vars, sys }, line)?);

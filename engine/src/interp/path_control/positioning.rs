@@ -17,14 +17,14 @@
 //! - `POS`/`POSA` again on a travelling POSA axis retargets it from where it is.
 
 use crate::alarm::Alarm;
+use crate::interp::Item;
+use crate::interp::eval::eval_f64;
 use crate::interp::eval::indirect_axis;
 use crate::interp::eval::scope::{Ctx, SysView};
 use crate::interp::eval::vars::Variables;
-use crate::interp::eval::eval_f64;
 use crate::lang::{CoordMode, Expr};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
-use crate::interp::Item;
 use crate::motion::AxisVec;
 
 /// Which positioning word.
@@ -92,7 +92,7 @@ pub(in crate::interp) fn word(
         return Err(Alarm::value_out_of_range(line, &label()));
     }
     if sys.cfg.axis(axis).spindle.is_some() {
-        return Err(Alarm::wrong_axis_type(line, &sys.cfg.program_axis_name(axis)));
+        return Err(Alarm::wrong_axis_type(line, sys.cfg.program_axis_name(axis)));
     }
     // One positioning word per axis and kind in a block.
     if out.iter().any(|w| w.axis == axis && (w.kind == kind || w.kind != Kind::Fa && kind != Kind::Fa)) {
@@ -114,7 +114,7 @@ pub(in crate::interp) fn waitp(args: &[Expr], vars: &Variables, sys: &SysView, l
             e => indirect_axis::resolve(e, vars, sys, line)?,
         };
         if sys.cfg.axis(k).spindle.is_some() {
-            return Err(Alarm::wrong_axis_type(line, &sys.cfg.program_axis_name(k)));
+            return Err(Alarm::wrong_axis_type(line, sys.cfg.program_axis_name(k)));
         }
         mask |= 1 << k;
     }

@@ -10,8 +10,8 @@
 
 use super::flat::{Act, Code};
 use crate::alarm::{Alarm, Clear};
-use crate::lang::sync_action::{BinOp, Index, SAction, SExpr, SyncAction, SyncId, Trigger, VarRef};
 use crate::lang::CoordMode;
+use crate::lang::sync_action::{BinOp, Index, SAction, SExpr, SyncAction, SyncId, Trigger, VarRef};
 use crate::machine_data::MachineConfig;
 
 /// A synchronized action ready for the main run.
@@ -122,19 +122,34 @@ pub enum Func {
 pub enum SyncAct {
     Set(SyncVar, CExpr),
     /// M/H output to the PLC; `S` a spindle speed (extension: spindle number, 0 the master).
-    Aux { letter: char, extension: u32, value: CExpr },
+    Aux {
+        letter: char,
+        extension: u32,
+        value: CExpr,
+    },
     DelDtg,
     /// A command axis or spindle motion: `POS[ax]=`, `MOV[ax]=`, `FA[ax]=`, `SPOS[n]=`
     /// (`axis`: the channel axis; for SPOS the spindle's).
-    Command { kind: CommandKind, axis: usize, value: CExpr, mode: Option<CoordMode> },
+    Command {
+        kind: CommandKind,
+        axis: usize,
+        value: CExpr,
+        mode: Option<CoordMode>,
+    },
     /// `STOPREOF`: ends the preprocessing stop after the action's motion block.
     StopReOf,
     /// `RDISABLE`: no further block enters the main run in a cycle it runs.
     RDisable,
     /// `PRESETON(ax, value)`: the axis' machine position becomes `value`, without motion.
-    Preset { axis: usize, value: CExpr },
+    Preset {
+        axis: usize,
+        value: CExpr,
+    },
     /// `SETM(n)` (true) / `CLEARM(n)` (false): the channel's wait marker n.
-    WaitMarker { set: bool, marker: CExpr },
+    WaitMarker {
+        set: bool,
+        marker: CExpr,
+    },
     /// `NAME` (a technology cycle): the program `NAME`, a sequence of actions run block by
     /// block from the main run (`interp/synchronized/technology.rs`).
     Cycle(String),

@@ -42,7 +42,13 @@ pub fn resolve(acts: &mut [Act], cfg: &MachineConfig, programs: &Programs, line:
     resolve_level(acts, cfg, programs, line, 0)
 }
 
-fn resolve_level(acts: &mut [Act], cfg: &MachineConfig, programs: &Programs, line: u32, depth: u32) -> Result<(), Alarm> {
+fn resolve_level(
+    acts: &mut [Act],
+    cfg: &MachineConfig,
+    programs: &Programs,
+    line: u32,
+    depth: u32,
+) -> Result<(), Alarm> {
     for act in acts.iter_mut() {
         if let Act::CycleName(name) = act {
             if depth >= 8 {
@@ -57,10 +63,8 @@ fn resolve_level(acts: &mut [Act], cfg: &MachineConfig, programs: &Programs, lin
 
 /// Reads and compiles the technology cycle `name`.
 fn load(name: &str, cfg: &MachineConfig, programs: &Programs, line: u32, depth: u32) -> Result<TechCycle, Alarm> {
-    let text = programs
-        .find(name, None)
-        .and_then(|p| p.raw_text().ok())
-        .ok_or_else(|| Alarm::unknown_name(line, name))?;
+    let text =
+        programs.find(name, None).and_then(|p| p.raw_text().ok()).ok_or_else(|| Alarm::unknown_name(line, name))?;
     let mut blocks = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let code = raw.split(';').next().unwrap_or("").trim();
