@@ -331,6 +331,8 @@ impl Channel {
             SyncControl::Cancel => self.sync.active.retain(|a| !hit(a)),
             _ => {
                 for a in self.sync.active.iter_mut().filter(|a| hit(a)) {
+                    // An unlocked RDISABLE counts again (see `run_sync_cycle`).
+                    self.psync.rdisable_armed |= op == SyncControl::Unlock && a.def.disables_read_in();
                     match op {
                         SyncControl::Lock => a.locked = true,
                         SyncControl::Unlock => a.locked = false,
@@ -405,7 +407,10 @@ impl Channel {
                 }
             }
         }
-        self.psync.rdisable_armed = active.iter().any(|a| !a.locked && a.def.disables_read_in());
+        if self.psync.rdisable_armed {
+            // Set when an action with RDISABLE was activated: nothing to look at without one.
+            self.psync.rdisable_armed = active.iter().any(|a| !a.locked && a.def.disables_read_in());
+        }
         // Actions only change the data, never the list: put it back.
         self.sync.active = active;
         if failed.is_none()
