@@ -128,6 +128,7 @@ fn bad_positioning_words_give_alarms() {
         ("FA[Z]=-5\nM30", 12560),
         ("POS[Z]=ACN(5)\nM30", 12560),
         ("POS[Z]=1 POSA[Z]=2\nM30", 12080),
+        ("G1 F100 Z1 POS[Z]=2\nM30", 12000),
     ] {
         let mut ch = channel("mill-3axis");
         ch.run_program(program).unwrap();

@@ -148,6 +148,10 @@ impl crate::interp::Interpreter {
             return Ok(0);
         }
         let path_axes = words.axes.iter().fold(0u32, |m, a| m | 1 << a.0);
+        // An axis is either a path axis or a positioning axis of a block, not both (12000).
+        if let Some(w) = words.positioning.iter().find(|w| w.kind != Kind::Fa && path_axes & (1 << w.axis) != 0) {
+            return Err(Alarm::repeated_address(line, cfg.program_axis_name(w.axis)));
+        }
         let open = self.positioning_axes.posa_open & path_axes;
         if open != 0 {
             self.trc.emit_or_defer(Item::WaitPositioning { axes: open, strict: true, line }, out);
