@@ -48,6 +48,18 @@ impl Alarm {
         }
     }
 
+    /// 14092: a path block programs an axis that still travels as a POSA positioning axis (no
+    /// WAITP between them), or WAITP names an axis that cannot be one (a spindle).
+    pub fn wrong_axis_type(line: u32, axis: &str) -> Alarm {
+        Alarm::new(14092, format!("Channel 1 block {line} axis {axis} is wrong axis type"), Some(line))
+    }
+
+    /// 20141: a synchronized action commands an axis (POS/MOV) that is a path axis of the
+    /// block in execution, or a spindle as an axis.
+    pub fn sync_axis_type(line: Option<u32>, axis: &str) -> Alarm {
+        Alarm::new(20141, format!("Channel 1 axis {axis} motion synchronous action: invalid axis type"), line)
+    }
+
     /// 10860: a feed motion without a feedrate.
     pub fn no_feed(line: u32) -> Alarm {
         Alarm::new(10860, format!("Channel 1 block {line} feedrate not programmed"), Some(line))

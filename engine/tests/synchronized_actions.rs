@@ -207,7 +207,8 @@ fn names_a_synchronized_action_cannot_use_give_the_controls_alarms() {
         ("G0 X0\nWHEN $AA_IM[Q]>1 DO M1\nM30", 12550),
         ("G0 X0\nWHEN $A_IN[1]==1 DO $AA_IM[X]=1\nM30", 12584),
         ("G0 X0\nID=1 WHEN $A_IN[1]==1 DO DELDTG\nM30", 12571),
-        ("G0 X0\nWHEN $A_IN[1]==1 DO POS[X]=10\nM30", 12571),
+        // POSA is a program word; synchronized actions move command axes with POS.
+        ("G0 X0\nWHEN $A_IN[1]==1 DO POSA[X]=10\nM30", 12571),
         ("G0 X0\nWHEN $P_EP[X]>1 DO M1\nM30", 12550),
     ] {
         let mut ch = channel();

@@ -42,12 +42,26 @@ impl Channel {
             let main_run_idle = self.pending.is_empty()
                 && self.planner.is_empty()
                 && self.dwell_ticks == 0
-                && self.toff.settled(&self.offsets.toff);
+                && self.toff.settled(&self.offsets.toff)
+                && !self.positioning.program_moving()
+                // STOPREOF of a synchronized action: the preprocessing stop is over.
+                || self.psync.stopreof;
             out.clear();
             let generation = self.interp.transformation_generation();
             // The level the block is read in (a call or return changes it after the read).
             let level = self.interp.level().cloned();
+            if self.psync.stopreof || self.positioning.has_command_axes() {
+                // `$AA_IM` reads where the main run stands (`program_sync.rs`).
+                self.interp.set_main_run_position(Some(self.machine));
+                self.psync.main_position_handed = true;
+            } else if self.psync.main_position_handed {
+                self.interp.set_main_run_position(None);
+                self.psync.main_position_handed = false;
+            }
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
+            if prep != Prep::WaitForMainRun {
+                self.psync.stopreof = false;
+            }
             self.blending.prep_waits_for_main_run = prep == Prep::WaitForMainRun;
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
@@ -156,8 +170,14 @@ impl Channel {
     /// [`Channel::feed_planner`]'s work, out of the IPO cycle's code (see `prepare_blocks`).
     #[inline(never)]
     fn feed_moves(&mut self) {
-        // Single block: one block's moves at a time, and only once the last one is done.
-        let single = self.single_block.then(|| self.pending.front().and_then(Item::line));
+        // RDISABLE of a synchronized action in this cycle: no block starts.
+        if self.psync.rdisable {
+            return;
+        }
+        // Single block: one block's moves at a time, and only once the last one is done. So
+        // too while an action holds RDISABLE (`program_sync.rs`).
+        let one_block = self.single_block || self.psync.rdisable_armed && self.sync.is_active();
+        let single = one_block.then(|| self.pending.front().and_then(Item::line));
         if single.is_some() && (!self.planner.is_empty() || self.sbl_done.is_some()) {
             return;
         }
@@ -308,6 +328,10 @@ impl Channel {
             self.dwell_ticks -= 1;
             return;
         }
+        if self.psync.rdisable {
+            // Read-in disabled by a synchronized action: the next block waits.
+            return;
+        }
         while self.status == Status::Running {
             // Like motion, a change of the online tool offset finishes before the next action.
             if !self.toff.settled(&self.offsets.toff) {
@@ -376,6 +400,11 @@ impl Channel {
                     self.planner.set_position(pos);
                     self.machine[axis] = angle;
                 }
+                Item::Stop { kind: StopKind::End, line } if self.positioning.program_moving() => {
+                    // The program ends when its positioning axes have arrived.
+                    self.pending.push_front(Item::Stop { kind: StopKind::End, line });
+                    return;
+                }
                 Item::Stop { kind, line } => {
                     self.enter_block(line);
                     match kind {
@@ -419,6 +448,16 @@ impl Channel {
                     self.enter_block(line);
                     self.set_piece(pieces);
                 }
+                Item::Positioning { axis, target, velocity, line } => {
+                    self.enter_block(line);
+                    self.start_positioning(axis, target, velocity, false);
+                }
+                Item::WaitPositioning { axes, strict, line } => {
+                    if self.wait_positioning(axes, strict, line) {
+                        self.pending.push_front(Item::WaitPositioning { axes, strict, line });
+                        return;
+                    }
+                }
             }
         }
     }
@@ -433,6 +472,8 @@ impl Channel {
         self.prep_done = true;
         self.current_line = None;
         self.sync.end_program();
+        self.end_command_axes();
+        self.psync.end_program();
         self.feed_reference = None;
         self.master_spindle = self.cfg.master_spindle;
         self.flush_tool_monitor();

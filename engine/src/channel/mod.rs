@@ -12,12 +12,15 @@
 mod active_program;
 mod blending;
 mod cartesian_jog;
+mod command_axes;
 mod exact_stop;
 mod io;
 mod jog;
 mod jog_settings;
 mod main_run;
+mod positioning_axes;
 mod probe;
+mod program_sync;
 mod programs;
 mod reference;
 mod referencing;
@@ -320,6 +323,10 @@ pub struct Channel {
     exact_stop: exact_stop::ExactStop,
     /// Motion-synchronous actions and their data (`sync_actions.rs`).
     sync: sync_actions::SyncActions,
+    /// Axes travelling outside the path: POS/POSA, command axes (`positioning_axes.rs`).
+    positioning: positioning_axes::PositioningAxes,
+    /// STOPREOF, RDISABLE, wait markers, technology cycles (`program_sync.rs`).
+    psync: program_sync::ProgramSync,
     /// Tool life and count monitoring (`tool_monitor.rs`).
     tool_monitor: tool_monitor::ToolMonitor,
     /// The blank being cut, if one is defined (`stock_cut.rs`).
@@ -411,6 +418,8 @@ impl Channel {
             referenced,
             referencing: None,
             sync: Default::default(),
+            positioning: Default::default(),
+            psync: Default::default(),
             tool_monitor: Default::default(),
             stock: None,
             stock_options: Default::default(),
@@ -703,6 +712,8 @@ impl Channel {
         self.current_block = None;
         self.message = None;
         self.sync.end_program();
+        self.reset_positioning_axes();
+        self.psync.reset();
         self.feed_reference = None;
         self.master_spindle = self.cfg.master_spindle;
         let pos = *self.planner.position();
@@ -780,6 +791,7 @@ impl Channel {
         }
         self.monitor_tools();
         self.update_machine_position();
+        self.step_positioning_axes();
         if self.probe.armed() {
             self.step_probe();
         }

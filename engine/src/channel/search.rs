@@ -293,7 +293,11 @@ impl Channel {
                     | Item::SyncAction { .. }
                     | Item::SyncControl { .. }
                     | Item::SetPiece { .. }
-                    | Item::Measure { .. } => {}
+                    | Item::Measure { .. }
+                    // Positioning axes: the approach move takes them to where the
+                    // interpreter left them (the skipped blocks' targets).
+                    | Item::Positioning { .. }
+                    | Item::WaitPositioning { .. } => {}
                     Item::Stop { kind: StopKind::End, .. } => return Err(target_not_found(line)),
                     Item::Alarm(alarm) => return Err(alarm),
                 }

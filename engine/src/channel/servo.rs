@@ -139,6 +139,11 @@ impl Servo {
         self.idle_while = (settled && all_fed).then_some(ffw_program);
     }
 
+    /// Axis `k`'s setpoint moved by `d` without motion (PRESETON): the loop follows at once.
+    pub fn shift(&mut self, k: usize, d: f64) {
+        self.setpoint[k] += d;
+    }
+
     /// The axes are put at `setpoint` at rest (reset, restored positions).
     pub fn place(&mut self, setpoint: &AxisVec) {
         self.setpoint = *setpoint;

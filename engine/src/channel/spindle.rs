@@ -131,6 +131,11 @@ impl Spindle {
         SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master, gear, cutting: false }
     }
 
+    /// The programmed speed before the override (signed: + = M3), 0 after M5.
+    pub fn programmed(&self) -> f64 {
+        self.programmed
+    }
+
     pub fn is_turning(&self) -> bool {
         self.speed != 0.0 || self.target != 0.0
     }

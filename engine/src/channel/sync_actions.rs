@@ -148,6 +148,11 @@ pub struct SyncActionInfo {
 }
 
 impl SyncActions {
+    /// Whether any synchronized action is active.
+    pub(super) fn is_active(&self) -> bool {
+        !self.active.is_empty()
+    }
+
     #[inline]
     fn idle(&self) -> bool {
         self.active.is_empty() && !self.ovr_applied && !self.dirty && !self.timing
@@ -162,6 +167,7 @@ impl SyncActions {
             analog_in: self.analog_in.to_vec(),
             analog_out: self.analog_out.to_vec(),
             deleted: self.deleted,
+            machine: None,
         }
     }
 
@@ -287,6 +293,12 @@ impl Channel {
     /// Main run: a synchronized action's block is reached.
     pub(super) fn activate_sync(&mut self, def: Arc<SyncDef>) {
         let line = def.line;
+        if def.disables_read_in() {
+            // Blocks go one at a time from now on; a modal RDISABLE is evaluated before the
+            // next block may start (`program_sync.rs`).
+            self.psync.rdisable_armed = true;
+            self.psync.rdisable |= def.id.is_some();
+        }
         let new = ActiveSync { def, fired: false, was_true: false, locked: false, bound: None, cond: false, seen: 0 };
         let list = &mut self.sync.active;
         match new.def.id {
@@ -319,6 +331,8 @@ impl Channel {
             SyncControl::Cancel => self.sync.active.retain(|a| !hit(a)),
             _ => {
                 for a in self.sync.active.iter_mut().filter(|a| hit(a)) {
+                    // An unlocked RDISABLE counts again (see `run_sync_cycle`).
+                    self.psync.rdisable_armed |= op == SyncControl::Unlock && a.def.disables_read_in();
                     match op {
                         SyncControl::Lock => a.locked = true,
                         SyncControl::Unlock => a.locked = false,
@@ -353,6 +367,7 @@ impl Channel {
             self.sync.block_start = self.tick;
         }
         self.sync.ovr = 100.0;
+        self.psync.rdisable = false;
         if self.sync.axis_ovr_written {
             self.sync.axis_ovr = [100.0; MAX_CHANNEL_AXES];
             self.sync.axis_ovr_written = false;
@@ -373,7 +388,8 @@ impl Channel {
                         a.bound = running.filter(|l| *l != a.def.line);
                         true
                     }
-                    Some(l) => running == Some(l),
+                    // RDISABLE holds the next block: it stays until that block has started.
+                    Some(l) => running == Some(l) || running.is_none() && a.def.disables_read_in(),
                 }
             });
             self.sync.block_modal = active.iter().any(|a| a.def.id.is_none());
@@ -391,8 +407,18 @@ impl Channel {
                 }
             }
         }
+        if self.psync.rdisable_armed {
+            // Set when an action with RDISABLE was activated: nothing to look at without one.
+            self.psync.rdisable_armed = active.iter().any(|a| !a.locked && a.def.disables_read_in());
+        }
         // Actions only change the data, never the list: put it back.
         self.sync.active = active;
+        if failed.is_none()
+            && self.psync.running_cycles()
+            && let Err(alarm) = self.advance_cycles()
+        {
+            failed = Some(*alarm);
+        }
         self.sync.prev_setpoint = self.machine;
         self.publish_sync_data();
         if let Some(alarm) = failed {

@@ -184,14 +184,24 @@ impl Channel {
             }
             Act::Aux { letter, extension, value } => {
                 let value = flat::eval(value, self, line)?;
-                let function = AuxFunction { letter: *letter, extension: *extension, value };
-                self.events.push(Event::AuxFunction { function, line });
+                if matches!(letter, 'M' | 'S') {
+                    self.sync_spindle_word(*letter, *extension, value);
+                }
+                if *letter != 'S' {
+                    let function = AuxFunction { letter: *letter, extension: *extension, value };
+                    self.events.push(Event::AuxFunction { function, line });
+                }
                 Ok(())
+            }
+            Act::Command { kind, axis, value, mode } => {
+                let v = flat::eval(value, self, line)?;
+                self.sync_command(*kind, *axis, v, *mode, line)
             }
             Act::DelDtg => {
                 self.delete_distance_to_go();
                 Ok(())
             }
+            act => self.program_sync_act(act, line),
         }
     }
 

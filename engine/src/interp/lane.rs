@@ -229,6 +229,7 @@ impl Interpreter {
             && !self.call_unbound()
             && self.spindles_plain()
             && !self.sync_wait_pending()
+            && self.positioning_axes.posa_open == 0
     }
 
     /// Prepares the next block if it is a plain motion line and the state is simple; `None`

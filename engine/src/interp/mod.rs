@@ -173,6 +173,23 @@ pub enum Item {
         request: measuring::Request,
         line: u32,
     },
+    /// POS/POSA (or a command axis): channel axis `axis` travels on its own interpolator to
+    /// the machine position `target` at `velocity` (mm/s, deg/s), from the main run's start of
+    /// the block (`path_control/positioning.rs`, `channel/positioning_axes.rs`).
+    Positioning {
+        axis: usize,
+        target: f64,
+        velocity: f64,
+        line: u32,
+    },
+    /// WAITP, or the end of a POS block: the items after it wait until the positioning axes of
+    /// `axes` (bit k: channel axis k) have arrived; `strict`: a path block programs them, so an
+    /// axis still travelling is alarm 14092 instead.
+    WaitPositioning {
+        axes: u32,
+        strict: bool,
+        line: u32,
+    },
     /// `WORKPIECE(..)`: the blank, in the WCS of the block's frame (`workpiece.rs`).
     Workpiece {
         request: crate::stock::blank::Request,
@@ -220,7 +237,9 @@ impl Item {
             | Item::SyncControl { line, .. }
             | Item::Workpiece { line, .. }
             | Item::SetPiece { line, .. }
-            | Item::Measure { line, .. } => Some(*line),
+            | Item::Measure { line, .. }
+            | Item::Positioning { line, .. }
+            | Item::WaitPositioning { line, .. } => Some(*line),
             Item::Alarm(a) => a.line,
         }
     }
@@ -281,6 +300,8 @@ pub struct Interpreter {
     trc: compensation::trc::Compensator,
     /// Spindles in position control (after SPOS), by channel axis.
     positioned: [bool; MAX_CHANNEL_AXES],
+    /// FA per axis and the POSA axes not yet waited for (`path_control/positioning.rs`).
+    positioning_axes: path_control::positioning::Positioning,
     /// The spindles' angles in the main run, as last observed (for SPOS).
     spindle_angles: AxisVec,
     /// The active kinematic transformation, if any (see `trafo.rs`).
@@ -336,6 +357,7 @@ impl Interpreter {
             corner_request: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
+            positioning_axes: Default::default(),
             spindle_angles: [0.0; MAX_CHANNEL_AXES],
             trafo: Default::default(),
             holder: tools::toolholder::Holder { g53: 1, ..Default::default() },
@@ -365,6 +387,7 @@ impl Interpreter {
         self.sync_wait = synchronized::PrepWait::None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
+        self.positioning_axes = Default::default();
         self.spindles.reset(cfg, true);
         *self.pframe = Frame::identity();
         *self.iframe = None;
@@ -390,6 +413,7 @@ impl Interpreter {
         self.lane_memo.forget();
         self.pos = *pos;
         self.before_change = None;
+        self.positioning_axes.posa_open = 0;
         self.vars.reset_locals();
         self.calls.clear();
         self.call_state = Default::default();
@@ -645,7 +669,7 @@ impl Interpreter {
         let line = block.line;
         let (base_cfg, derived) = (cfg, self.trafo.config());
         let cfg = derived.as_deref().unwrap_or(base_cfg);
-        if self.synchronized_block(block, cfg, out)? {
+        if self.synchronized_block(block, cfg, programs, out)? {
             return Ok(());
         }
         {
@@ -724,6 +748,8 @@ impl Interpreter {
                 self.trc.emit_or_defer(Item::SetPiece { pieces: sp.pieces, line }, out);
             }
         }
+        // Positioning axes start at the block's start (POS, POSA); WAITP.
+        let pos_axes = self.positioning_block(words, cfg, line, out)?;
         // MEAS/MEAW: the request goes before the block's move (`measuring.rs`).
         self.measure_request(words.measure, line)?;
         let measure_mark = out.len();
@@ -787,6 +813,7 @@ impl Interpreter {
             // A new shared value is made only when the offsets differ from the last one.
             out.push(Item::Offsets { line, offsets: self.shared_offsets() });
         }
+        self.end_positioning_block(pos_axes, line, out);
 
         self.measure_block_end(words.measure, measure_mark, line, out)?;
         if let Some(text) = &words.message {
@@ -1309,7 +1336,7 @@ fn norm(v: &AxisVec) -> f64 {
 }
 
 /// Target of a modulo rotary axis: shortest way (G90, DC), or forced direction (ACP, ACN).
-fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>) -> f64 {
+pub(crate) fn modulo_target(current: f64, target: f64, range: f64, mode: Option<CoordMode>) -> f64 {
     let delta = (target - current).rem_euclid(range);
     match mode {
         Some(CoordMode::Acp) => current + delta,

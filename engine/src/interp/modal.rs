@@ -359,6 +359,10 @@ pub(super) struct Words {
     pub set_master: Option<Option<u32>>,
     /// SETPIECE(n[, spindle]): the piece count of count-monitored tools (`tools/setpiece.rs`).
     pub set_piece: Option<super::tools::setpiece::SetPiece>,
+    /// POS/POSA/FA[ax] words (`path_control/positioning.rs`).
+    pub positioning: Vec<super::path_control::positioning::PosWord>,
+    /// WAITP(ax, ..): the axes as a bit mask.
+    pub waitp: u32,
     pub stop: Option<StopKind>,
     /// A jump at the end of the block (`... GOTOF LABEL`).
     pub goto: Option<Goto>,
@@ -718,6 +722,29 @@ pub(super) fn collect(
             }
             Word::Keyword { name, args } if name == "FPR" => {
                 w.spindle.fpr = Some(super::spindles::fpr_statement(args, &Ctx { vars, sys }, cfg, line)?);
+            }
+            Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
+                super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;
+            }
+            Word::Keyword { name, args } if name == "WAITP" => {
+                w.waitp |= super::path_control::positioning::waitp(args, vars, sys, line)?;
+            }
+            Word::Address { name, indices, value }
+                if indices.len() == 1
+                    && super::path_control::positioning::is_word(name)
+                    && vars.get(name).is_none() =>
+            {
+                let (index, mode) = (&indices[0], value.mode);
+                super::path_control::positioning::word(
+                    &mut w.positioning,
+                    name,
+                    index,
+                    &value.expr,
+                    mode,
+                    vars,
+                    sys,
+                    line,
+                )?;
             }
             Word::Keyword { name, args } if name == "SETPIECE" => {
                 w.set_piece = Some(super::tools::setpiece::statement(args, &Ctx { vars, sys }, line)?);

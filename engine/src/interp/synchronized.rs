@@ -9,6 +9,8 @@
 
 pub mod compile;
 pub mod flat;
+pub mod technology;
+pub(super) mod wait_markers;
 
 use std::sync::Arc;
 
@@ -35,6 +37,10 @@ pub struct MainRunData {
     pub analog_out: Vec<f64>,
     /// `$AC_DELT`.
     pub deleted: f64,
+    /// The main run's machine positions when they differ from the programmed ones at a
+    /// preprocessing stop (STOPREOF ended it while the path moves; command axes or PRESETON
+    /// moved axes the program did not): `$AA_IM`/`$AA_IPO` read these.
+    pub machine: Option<AxisVec>,
 }
 
 impl MainRunData {
@@ -130,6 +136,7 @@ impl Interpreter {
         &mut self,
         block: &Block,
         cfg: &MachineConfig,
+        programs: &crate::programs::Programs,
         out: &mut Vec<Item>,
     ) -> Result<bool, Alarm> {
         let line = block.line;
@@ -137,12 +144,17 @@ impl Interpreter {
         if name == SYNC_ACTION_WORD {
             let [Expr::Str(text)] = args.as_slice() else { return Ok(false) };
             let parsed = sync_action::parse(text).map_err(|e| Alarm::syntax(line, &e.message))?;
-            let def = compile::compile(&parsed, cfg, line)?;
+            let mut def = compile::compile(&parsed, cfg, line)?;
+            technology::resolve(&mut def.flat_actions, cfg, programs, line)?;
             if def.id.is_some() && def.deletes_distance() {
                 // DELDTG of the path belongs to the block it ends: non-modal actions only.
                 return Err(compile::not_admissible(line, "DELDTG in a modal or static action"));
             }
-            if def.deletes_distance() {
+            if def.id.is_some() && def.ends_preprocessing_stop() {
+                // STOPREOF ends the stop after the action's own motion block: non-modal only.
+                return Err(compile::not_admissible(line, "STOPREOF in a modal or static action"));
+            }
+            if def.deletes_distance() || def.ends_preprocessing_stop() {
                 self.sync_wait = PrepWait::AfterMotion(self.pos);
             }
             out.push(Item::SyncAction { def: Arc::new(def), line });
@@ -180,7 +192,15 @@ impl Interpreter {
 
     /// The main run's data of synchronized actions, after each change.
     pub fn set_sync_data(&mut self, data: MainRunData) {
+        let machine = self.sync_data.machine;
         self.sync_data = data;
+        self.sync_data.machine = machine;
+    }
+
+    /// The main run's machine positions for `$AA_IM` reads while they differ from the
+    /// programmed ones (see [`MainRunData::machine`]); `None` otherwise.
+    pub fn set_main_run_position(&mut self, machine: Option<AxisVec>) {
+        self.sync_data.machine = machine;
     }
 
     /// A synchronized action writes R parameter `n` in the main run.

@@ -495,8 +495,8 @@ impl P<'_> {
         }
         let at = self.pos;
         let Some(word) = self.ident() else { return self.err("action expected") };
-        // M and H functions: M99, M2=5, H7, H=1.5, H2=1.5.
-        if let Some(letter @ ('M' | 'H')) = word.chars().next() {
+        // M and H functions: M99, M2=5, H7, H=1.5, H2=1.5; spindle speeds S1000, S2=500.
+        if let Some(letter @ ('M' | 'H' | 'S')) = word.chars().next() {
             let rest = &word[1..];
             if rest.is_empty() || rest.bytes().all(|c| c.is_ascii_digit()) {
                 self.ws();
@@ -514,12 +514,19 @@ impl P<'_> {
         if word == "DELDTG" {
             return Ok(SAction::DelDtg);
         }
+        if word == "SPOS" && self.peek() == Some(b'=') {
+            // SPOS=.. positions the master spindle.
+            self.pos += 1;
+            return Ok(SAction::AxisCommand { word, axis: String::new(), value: self.expr(0)? });
+        }
         if matches!(word.as_str(), "POS" | "FA" | "MOV" | "SPOS" | "POSA") {
             if !self.eat(b'[') {
                 return self.err(&format!("{word}[axis] expected"));
             }
             self.ws();
-            let Some(axis) = self.ident() else { return self.err("axis name expected") };
+            // SPOS[n]: the spindle number.
+            let number = if word == "SPOS" { self.integer().map(|n| n.to_string()) } else { None };
+            let Some(axis) = number.or_else(|| self.ident()) else { return self.err("axis name expected") };
             self.ws();
             if !self.eat(b']') {
                 return self.err("']' expected");
@@ -529,6 +536,22 @@ impl P<'_> {
                 return self.err("'=' expected");
             }
             return Ok(SAction::AxisCommand { word, axis, value: self.expr(0)? });
+        }
+        if word == "PRESETON" && self.eat(b'(') {
+            // PRESETON(axis, value): the first argument is an axis name.
+            self.ws();
+            let Some(axis) = self.ident() else { return self.err("axis name expected") };
+            self.ws();
+            if !self.eat(b',') {
+                return self.err("',' expected");
+            }
+            let value = self.expr(0)?;
+            self.ws();
+            if !self.eat(b')') {
+                return self.err("')' expected");
+            }
+            let axis = SExpr::Var(VarRef { name: axis, index: None });
+            return Ok(SAction::Call(word, vec![axis, value]));
         }
         if self.eat(b'(') {
             return Ok(SAction::Call(word, self.args()?));

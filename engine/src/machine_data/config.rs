@@ -46,6 +46,8 @@ pub struct MachineAxis {
     /// JOG velocities in mm/s or deg/s.
     pub jog_velocity: f64,
     pub jog_rapid_velocity: f64,
+    /// MD32060 `$MA_POS_AX_VELO`: feed of a positioning axis without `FA[ax]`, mm/s or deg/s.
+    pub pos_velocity: f64,
     /// Software limit switches (MCS).
     pub limit_minus: f64,
     pub limit_plus: f64,
@@ -625,6 +627,7 @@ fn machine_axis(md: &MachineData, ax: usize) -> Result<MachineAxis, ActivationEr
         dynamics: super::dynamics::AxisDynamics::read(md, ax, accel),
         jog_velocity: num("$MA_JOG_VELO") * velo,
         jog_rapid_velocity: num("$MA_JOG_VELO_RAPID") * velo,
+        pos_velocity: num("$MA_POS_AX_VELO") * velo,
         limit_minus: minus,
         limit_plus: plus,
     })

@@ -434,6 +434,8 @@ pub static DEFS: &[Def] = &[
         0.0,
         1e9,
     ),
+    // MD32060: the feed of a positioning axis (POS/POSA, command axes) while no FA[ax] is programmed.
+    def("POS_AX_VELO", 32060, A, Kind::Real, 1, Default::RealByAxisType { linear: 10000.0, rotary: 27.77 }, 0.0, 1e9),
     def("JOG_VELO", 32020, A, Kind::Real, 1, Default::RealByAxisType { linear: 2000.0, rotary: 5.55 }, 0.0, 1e9),
     // Servo: position control gain Kv in (m/min)/mm per parameter set (set 0 is the one in
     // use); Kv = 1 means a following error of 1 mm at 1 m/min without feed-forward.

@@ -431,6 +431,12 @@ impl Planner {
         self.orientation = None;
     }
 
+    /// Puts axis `k` at `v` without a move: a positioning axis that travelled outside the
+    /// path has arrived there (`channel/positioning_axes.rs`); the queued moves do not move it.
+    pub fn place_axis(&mut self, k: usize, v: f64) {
+        self.position[k] = v;
+    }
+
     /// The move being executed (or next to execute), if any.
     pub fn front(&self) -> Option<&Move> {
         self.queue.front()

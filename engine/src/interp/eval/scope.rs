@@ -156,13 +156,17 @@ impl Scope for Ctx<'_> {
             // the servo model (channel/servo.rs); `$AA_IPO` the interpolator's setpoint.
             "$AA_IM" | "$VA_IM" | "$AA_IPO" => {
                 let k = axis()?;
-                let setpoint = crate::interp::compensation::toff::machine_in_force(
-                    sys.offsets.trafo.as_ref(),
-                    sys.trafo.machine(),
-                    sys.pos,
-                    &sys.offsets.toff,
-                    &sys.cfg.geo_axes,
-                )[k];
+                let setpoint = match &sys.sync.machine {
+                    // The main run stands elsewhere than programmed (STOPREOF, command axes).
+                    Some(machine) => machine[k],
+                    None => crate::interp::compensation::toff::machine_in_force(
+                        sys.offsets.trafo.as_ref(),
+                        sys.trafo.machine(),
+                        sys.pos,
+                        &sys.offsets.toff,
+                        &sys.cfg.geo_axes,
+                    )[k],
+                };
                 let v = if name == "$AA_IPO" { setpoint } else { setpoint - sys.lag[k] };
                 // A modulo rotary axis reads within its modulo range, as the display shows it.
                 Value::Real(match sys.cfg.axis(k).modulo {

@@ -10,6 +10,7 @@
 
 use super::flat::{Act, Code};
 use crate::alarm::{Alarm, Clear};
+use crate::lang::CoordMode;
 use crate::lang::sync_action::{BinOp, Index, SAction, SExpr, SyncAction, SyncId, Trigger, VarRef};
 use crate::machine_data::MachineConfig;
 
@@ -34,6 +35,16 @@ impl SyncDef {
     /// run, so that it starts where the path was stopped).
     pub fn deletes_distance(&self) -> bool {
         self.actions.iter().any(|a| matches!(a, SyncAct::DelDtg))
+    }
+
+    /// True if an action ends the preprocessing stop after its motion block (STOPREOF).
+    pub fn ends_preprocessing_stop(&self) -> bool {
+        self.actions.iter().any(|a| matches!(a, SyncAct::StopReOf))
+    }
+
+    /// True if an action disables the read-in of blocks (RDISABLE).
+    pub fn disables_read_in(&self) -> bool {
+        self.actions.iter().any(|a| matches!(a, SyncAct::RDisable))
     }
 }
 
@@ -110,8 +121,51 @@ pub enum Func {
 #[derive(Debug, Clone, PartialEq)]
 pub enum SyncAct {
     Set(SyncVar, CExpr),
-    Aux { letter: char, extension: u32, value: CExpr },
+    /// M/H output to the PLC; `S` a spindle speed (extension: spindle number, 0 the master).
+    Aux {
+        letter: char,
+        extension: u32,
+        value: CExpr,
+    },
     DelDtg,
+    /// A command axis or spindle motion: `POS[ax]=`, `MOV[ax]=`, `FA[ax]=`, `SPOS[n]=`
+    /// (`axis`: the channel axis; for SPOS the spindle's).
+    Command {
+        kind: CommandKind,
+        axis: usize,
+        value: CExpr,
+        mode: Option<CoordMode>,
+    },
+    /// `STOPREOF`: ends the preprocessing stop after the action's motion block.
+    StopReOf,
+    /// `RDISABLE`: no further block enters the main run in a cycle it runs.
+    RDisable,
+    /// `PRESETON(ax, value)`: the axis' machine position becomes `value`, without motion.
+    Preset {
+        axis: usize,
+        value: CExpr,
+    },
+    /// `SETM(n)` (true) / `CLEARM(n)` (false): the channel's wait marker n.
+    WaitMarker {
+        set: bool,
+        marker: CExpr,
+    },
+    /// `NAME` (a technology cycle): the program `NAME`, a sequence of actions run block by
+    /// block from the main run (`interp/synchronized/technology.rs`).
+    Cycle(String),
+}
+
+/// The motion words of synchronized actions (`channel/positioning_axes.rs` moves them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CommandKind {
+    /// `POS[ax]=v`: to a position (`IC`/`AC`/`DC`/`ACP`/`ACN`).
+    Pos,
+    /// `MOV[ax]=1/-1/0`: endless motion in the plus or minus direction, or stop.
+    Mov,
+    /// `FA[ax]=f`: the command axis' feed, mm/min (deg/min).
+    Fa,
+    /// `SPOS[n]=angle`: the spindle to an angle in position control.
+    Spos,
 }
 
 /// Compiles `action` (defined at `line`) for the channel described by `cfg`.
@@ -142,6 +196,57 @@ pub fn not_admissible(line: u32, what: &str) -> Alarm {
         message: format!("Channel 1 block {line} {what} not admissible in motion synchronized action"),
         line: Some(line),
         clear: Clear::Reset,
+    }
+}
+
+impl Compiler<'_> {
+    /// `POS[ax]=`, `MOV[ax]=`, `FA[ax]=`, `SPOS[n]=`: the axis resolved, the coordinate mode
+    /// (`IC(..)` ...) taken off the value. POSA is a program word only (12571).
+    fn command(&self, word: &str, axis: &str, value: &SExpr) -> Result<SyncAct, Alarm> {
+        let kind = match word {
+            "POS" => CommandKind::Pos,
+            "MOV" => CommandKind::Mov,
+            "FA" => CommandKind::Fa,
+            "SPOS" => CommandKind::Spos,
+            _ => return Err(not_admissible(self.line, &format!("{word}[{axis}]"))),
+        };
+        let k = if kind == CommandKind::Spos {
+            let spindle = match axis {
+                "" => self.cfg.master_spindle,
+                n => n.parse::<u32>().ok().and_then(|n| {
+                    self.cfg.channel_axes.iter().position(|c| self.cfg.machine_axes[c.machine_axis].spindle == Some(n))
+                }),
+            };
+            spindle.ok_or_else(|| Alarm::unknown_name(self.line, &format!("SPOS[{axis}]")))?
+        } else {
+            let k = self
+                .cfg
+                .program_axis(axis)
+                .ok_or_else(|| Alarm::unknown_name(self.line, &format!("{word}[{axis}]")))?;
+            if self.cfg.axis(k).spindle.is_some() {
+                return Err(Alarm::sync_axis_type(Some(self.line), axis));
+            }
+            k
+        };
+        let (mode, value) = match value {
+            SExpr::Call(f, args) if args.len() == 1 => match f.as_str() {
+                "AC" => (Some(CoordMode::Ac), &args[0]),
+                "IC" => (Some(CoordMode::Ic), &args[0]),
+                "DC" => (Some(CoordMode::Dc), &args[0]),
+                "ACP" => (Some(CoordMode::Acp), &args[0]),
+                "ACN" => (Some(CoordMode::Acn), &args[0]),
+                _ => (None, value),
+            },
+            _ => (None, value),
+        };
+        if mode.is_some() && matches!(kind, CommandKind::Mov | CommandKind::Fa)
+            || matches!(mode, Some(CoordMode::Dc | CoordMode::Acp | CoordMode::Acn))
+                && kind == CommandKind::Pos
+                && self.cfg.axis(k).modulo.is_none()
+        {
+            return Err(Alarm::value_out_of_range(self.line, &format!("{word}[{axis}]")));
+        }
+        Ok(SyncAct::Command { kind, axis: k, value: self.expr(value, false)?, mode })
     }
 }
 
@@ -279,16 +384,29 @@ impl Compiler<'_> {
                 SyncAct::Aux { letter: *letter, extension: *extension, value: self.expr(value, false)? }
             }
             SAction::DelDtg => SyncAct::DelDtg,
-            // NCTwin's channel moves its axes on one path only: no command or positioning axes.
-            SAction::AxisCommand { word, axis, .. } => {
-                return Err(not_admissible(
-                    self.line,
-                    &format!(
-                        "{word}[{axis}] (command axes are not modelled: the channel has no independent axis motion)"
-                    ),
-                ));
-            }
-            SAction::Word(w) | SAction::Call(w, _) => {
+            SAction::AxisCommand { word, axis, value } => self.command(word, axis, value)?,
+            SAction::Word(w) if w == "STOPREOF" => SyncAct::StopReOf,
+            SAction::Word(w) if w == "RDISABLE" => SyncAct::RDisable,
+            SAction::Call(w, args) if w == "PRESETON" => match args.as_slice() {
+                [SExpr::Var(VarRef { name, index: None })] | [SExpr::Var(VarRef { name, index: None }), _]
+                    if args.len() == 2 =>
+                {
+                    let axis = self
+                        .cfg
+                        .program_axis(name)
+                        .ok_or_else(|| Alarm::unknown_name(self.line, &format!("PRESETON({name})")))?;
+                    SyncAct::Preset { axis, value: self.expr(&args[1], false)? }
+                }
+                _ => return Err(Alarm::syntax(self.line, "PRESETON(axis, value)")),
+            },
+            SAction::Call(w, args) if w == "SETM" || w == "CLEARM" => match args.as_slice() {
+                [marker] => SyncAct::WaitMarker { set: w == "SETM", marker: self.expr(marker, false)? },
+                _ => return Err(Alarm::syntax(self.line, &format!("{w}(marker)"))),
+            },
+            // Any other word is the name of a technology cycle (found when the block is
+            // prepared, 12550 if there is none).
+            SAction::Word(w) => SyncAct::Cycle(w.clone()),
+            SAction::Call(w, _) => {
                 return Err(not_admissible(self.line, &format!("{w} (not modelled in NCTwin)")));
             }
         })

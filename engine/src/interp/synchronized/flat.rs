@@ -212,6 +212,27 @@ pub enum Act {
         value: Code,
     },
     DelDtg,
+    /// A command axis or spindle motion (`compile::CommandKind`), its value computed.
+    Command {
+        kind: super::compile::CommandKind,
+        axis: usize,
+        value: Code,
+        mode: Option<crate::lang::CoordMode>,
+    },
+    StopReOf,
+    RDisable,
+    Preset {
+        axis: usize,
+        value: Code,
+    },
+    WaitMarker {
+        set: bool,
+        marker: Code,
+    },
+    /// A technology cycle, resolved when the block is prepared (`technology.rs`).
+    Cycle(std::sync::Arc<super::technology::TechCycle>),
+    /// A technology cycle's name before it is resolved (never run).
+    CycleName(String),
 }
 
 /// Lowers a compiled expression.
@@ -245,6 +266,14 @@ pub fn lower_act(a: &SyncAct) -> Act {
             Act::Aux { letter: *letter, extension: *extension, value: lower(value) }
         }
         SyncAct::DelDtg => Act::DelDtg,
+        SyncAct::Command { kind, axis, value, mode } => {
+            Act::Command { kind: *kind, axis: *axis, value: lower(value), mode: *mode }
+        }
+        SyncAct::StopReOf => Act::StopReOf,
+        SyncAct::RDisable => Act::RDisable,
+        SyncAct::Preset { axis, value } => Act::Preset { axis: *axis, value: lower(value) },
+        SyncAct::WaitMarker { set, marker } => Act::WaitMarker { set: *set, marker: lower(marker) },
+        SyncAct::Cycle(name) => Act::CycleName(name.clone()),
     }
 }
 

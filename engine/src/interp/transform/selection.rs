@@ -321,6 +321,7 @@ fn derive(cfg: &MachineConfig, trafo: &AnyTrafo) -> MachineConfig {
             dynamics: crate::machine_data::dynamics::AxisDynamics::UNLIMITED,
             jog_velocity: real.jog_velocity,
             jog_rapid_velocity: real.jog_rapid_velocity,
+            pos_velocity: real.pos_velocity,
             limit_minus: f64::NEG_INFINITY,
             limit_plus: f64::INFINITY,
         });

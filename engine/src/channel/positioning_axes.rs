@@ -1,0 +1,290 @@
+//! Positioning axes in the main run (Function Manual P2): each axis that travels outside the
+//! path (POS/POSA in a program, a command axis of a synchronized action: `DO POS[ax]=`,
+//! `DO MOV[ax]=`) runs on its own single-axis interpolator, stepped once per IPO cycle after
+//! the path: a velocity ramp with the axis' acceleration MD32300 up to its feed (`FA[ax]`,
+//! else MD32060 `$MA_POS_AX_VELO`, never above MD32000), braking so that it stops on the target.
+//!
+//! The path planner keeps its own value for such an axis (the interpreter's end point, which
+//! the path's moves do not change); while an axis travels here the channel's machine position
+//! of that axis is this module's, and when a program axis arrives the planner is told where it
+//! stands. A command axis stays with this module until the program ends (the interpreter did
+//! not prepare its position), so the path cannot pull it back.
+//!
+//! Nothing of this runs in an IPO cycle while no axis is here: one test of a bit mask.
+//!
+//! Modelled as follows where the manuals leave room:
+//! - NC stop brakes the positioning axes with their acceleration; NC start continues to the
+//!   same target. A reset stops them at once, like the path.
+//! - The feed override of the path does not act on them (the manuals give them their own axial
+//!   override, `$AA_OVR`, not modelled here).
+//! - The profile is acceleration-limited (BRISK), whatever the path's SOFT/BRISK.
+
+use super::Channel;
+use crate::alarm::Alarm;
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+
+/// One axis travelling on its own.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Travel {
+    position: f64,
+    /// Signed velocity, units per second.
+    velocity: f64,
+    /// End point; ±∞ for endless motion (`MOV[ax]=±1`).
+    target: f64,
+    feed: f64,
+    accel: f64,
+}
+
+impl Travel {
+    /// One cycle of `dt`; true once the axis stands on its target. With `hold` it brakes.
+    fn step(&mut self, dt: f64, hold: bool) -> bool {
+        let rest = self.target - self.position;
+        if rest == 0.0 && self.velocity == 0.0 {
+            return true;
+        }
+        let dir = if hold { 0.0 } else { rest.signum() };
+        // The fastest speed from which the axis still stops on the target.
+        let stoppable = (2.0 * self.accel * rest.abs()).sqrt();
+        let wanted = dir * self.feed.min(stoppable);
+        let dv = (wanted - self.velocity).clamp(-self.accel * dt, self.accel * dt);
+        self.velocity += dv;
+        let next = self.position + self.velocity * dt;
+        if !hold && (self.target - next) * rest <= 0.0 {
+            // Reached or passed within this cycle: it stands on the target.
+            self.position = self.target;
+            self.velocity = 0.0;
+            return true;
+        }
+        self.position = next;
+        false
+    }
+}
+
+/// The channel's positioning axes.
+#[derive(Debug, Clone, Default)]
+pub struct PositioningAxes {
+    axes: [Option<Travel>; MAX_CHANNEL_AXES],
+    /// Bit k: channel axis k is here (travelling, or a command axis kept until program end).
+    active: u32,
+    /// Bit k: channel axis k is a command axis of a synchronized action.
+    command: u32,
+    /// Bit k: channel axis k has not arrived yet.
+    moving: u32,
+    /// `FA[ax]` of synchronized actions in mm/s (deg/s); 0: MD32060.
+    command_feed: [f64; MAX_CHANNEL_AXES],
+    /// `S` of synchronized actions per spindle axis (rev/min), for their next M3/M4.
+    speeds: [f64; MAX_CHANNEL_AXES],
+}
+
+impl PositioningAxes {
+    /// Whether any axis of `mask` is still on its way.
+    pub fn moving(&self, mask: u32) -> bool {
+        self.moving & mask != 0
+    }
+
+    /// Whether any axis started by the program (POS/POSA) is still on its way.
+    pub fn program_moving(&self) -> bool {
+        self.moving & !self.command != 0
+    }
+
+    /// Whether command axes of synchronized actions (or PRESETON axes) are here: the
+    /// programmed positions of the interpreter are not where they stand.
+    pub fn has_command_axes(&self) -> bool {
+        self.command != 0
+    }
+
+    /// The position of axis `k` if it is here.
+    pub fn position(&self, k: usize) -> Option<f64> {
+        self.axes[k].map(|t| t.position)
+    }
+}
+
+impl Channel {
+    /// `FA[ax]=` of an action: the axis' feed from now on, also while it travels.
+    pub(super) fn set_command_feed(&mut self, k: usize, feed: f64) {
+        let feed = feed.min(self.cfg.axis(k).max_velocity);
+        self.positioning.command_feed[k] = feed;
+        if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.feed = feed;
+        }
+    }
+
+    /// The feed of command axis `k`: its `FA`, else MD32060.
+    pub(super) fn command_feed(&self, k: usize) -> f64 {
+        match self.positioning.command_feed[k] {
+            f if f > 0.0 => f,
+            _ => self.cfg.axis(k).pos_velocity,
+        }
+    }
+
+    /// Remembers `S` of an action for spindle axis `k`.
+    pub(super) fn set_action_speed(&mut self, k: usize, rpm: f64) {
+        self.positioning.speeds[k] = rpm;
+    }
+
+    /// The last `S` of an action for spindle axis `k` (0: none).
+    pub(super) fn action_speed(&self, k: usize) -> f64 {
+        self.positioning.speeds[k]
+    }
+
+    /// Program end: the command axes brake and are handed back to the path once at rest; the
+    /// actions' FA and S are forgotten.
+    pub(super) fn end_command_axes(&mut self) {
+        let command = self.positioning.command;
+        for k in 0..MAX_CHANNEL_AXES {
+            if command & (1 << k) != 0 {
+                self.stop_positioning(k);
+            }
+        }
+        self.positioning.command = 0;
+        self.positioning.command_feed = [0.0; MAX_CHANNEL_AXES];
+        self.positioning.speeds = [0.0; MAX_CHANNEL_AXES];
+    }
+
+    /// Starts (or retargets) axis `k` from where it stands towards `target` at `feed`.
+    pub(super) fn start_positioning(&mut self, k: usize, target: f64, feed: f64, command: bool) {
+        let accel = self.cfg.axis(k).max_accel;
+        let feed = feed.min(self.cfg.axis(k).max_velocity);
+        let p = &mut self.positioning;
+        let (position, velocity) = match p.axes[k] {
+            Some(t) => (t.position, t.velocity),
+            None => (self.machine[k], 0.0),
+        };
+        p.axes[k] = Some(Travel { position, velocity, target, feed, accel });
+        p.active |= 1 << k;
+        p.moving |= 1 << k;
+        if command {
+            p.command |= 1 << k;
+        }
+    }
+
+    /// `MOV[ax]=0` on a command axis: it brakes to a stop where its ramp ends.
+    pub(super) fn stop_positioning(&mut self, k: usize) {
+        if let Some(t) = self.positioning.axes[k].as_mut() {
+            let brake = t.velocity * t.velocity / (2.0 * t.accel);
+            t.target = t.position + t.velocity.signum() * brake;
+            if t.velocity == 0.0 {
+                t.target = t.position;
+            }
+        }
+    }
+
+    /// PRESETON: axis `k` (here) and its target move by `d` in the machine system, no motion.
+    pub(super) fn shift_positioning_axis(&mut self, k: usize, d: f64) {
+        if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.position += d;
+            t.target += d;
+        }
+    }
+
+    /// One IPO cycle of the positioning axes: one test when none is here.
+    #[inline]
+    pub(super) fn step_positioning_axes(&mut self) {
+        if self.positioning.active != 0 {
+            self.run_positioning_cycle();
+        }
+    }
+
+    /// Out of line: the IPO cycle's own code stays small (ARCHITECTURE: the IPO cycle's code).
+    #[inline(never)]
+    fn run_positioning_cycle(&mut self) {
+        if self.positioning.command != 0 && self.status == super::Status::Running {
+            self.check_command_axes();
+        }
+        let dt = self.cfg.ipo_cycle;
+        // NC stop and alarms brake them; after the program's end they run on (command axes
+        // braking to their stop).
+        let hold = matches!(self.status, super::Status::Stopped | super::Status::Alarm);
+        let p = &mut self.positioning;
+        for k in 0..MAX_CHANNEL_AXES {
+            if p.active & (1 << k) == 0 {
+                continue;
+            }
+            let Some(t) = p.axes[k].as_mut() else { continue };
+            if p.moving & (1 << k) != 0 && t.step(dt, hold) {
+                p.moving &= !(1 << k);
+            }
+            self.machine[k] = t.position;
+            if p.moving & (1 << k) == 0 && p.command & (1 << k) == 0 {
+                // A program axis has arrived: the planner holds it there from now on.
+                p.axes[k] = None;
+                p.active &= !(1 << k);
+                self.planner.place_axis(k, self.machine[k]);
+            }
+        }
+    }
+
+    /// Reset: every positioning axis stands where it is; the planner takes it over.
+    pub(super) fn reset_positioning_axes(&mut self) {
+        self.release_positioning_axes(u32::MAX);
+    }
+
+    /// Hands the axes of `mask` back to the planner, standing where they are.
+    pub(super) fn release_positioning_axes(&mut self, mask: u32) {
+        let p = &mut self.positioning;
+        for k in 0..MAX_CHANNEL_AXES {
+            if p.active & mask & (1 << k) != 0
+                && let Some(t) = p.axes[k].take()
+            {
+                self.planner.place_axis(k, t.position);
+                self.machine[k] = t.position;
+            }
+        }
+        p.active &= !mask;
+        p.moving &= !mask;
+        p.command &= !mask;
+        if mask == u32::MAX {
+            p.command_feed = [0.0; MAX_CHANNEL_AXES];
+            p.speeds = [0.0; MAX_CHANNEL_AXES];
+        }
+    }
+
+    /// The path's move in execution moves a command axis of a synchronized action: alarm
+    /// 20141 (the axis belongs to the action until the program ends).
+    fn check_command_axes(&mut self) {
+        let command = self.positioning.command;
+        let Some(mv) = self.planner.front().filter(|_| !self.planner.is_empty()) else { return };
+        if let Some(k) = (0..MAX_CHANNEL_AXES).find(|&k| command & (1 << k) != 0 && mv.path.start[k] != mv.path.end[k])
+        {
+            // The planner may have entered the move in this cycle, before the list follows.
+            let line = self.in_planner.iter().find(|(t, _)| *t == mv.tag).map_or(0, |(_, m)| m.line);
+            let name = self.cfg.program_axis_name(k).to_string();
+            self.raise(Alarm::sync_axis_type(Some(line), &name));
+        }
+    }
+
+    /// A WAITP (or a POS block's end) at the head of the items: true while it must wait.
+    /// `strict`: a path block programs the axes, which must have arrived (alarm 14092).
+    pub(super) fn wait_positioning(&mut self, axes: u32, strict: bool, line: u32) -> bool {
+        if !self.positioning.moving(axes) {
+            return false;
+        }
+        if strict {
+            let k = (0..MAX_CHANNEL_AXES).find(|&k| self.positioning.moving(1 << k)).unwrap_or(0);
+            let name = self.cfg.program_axis_name(k).to_string();
+            self.raise(Alarm::wrong_axis_type(line, &name));
+            return false;
+        }
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Travel;
+
+    #[test]
+    fn a_travel_stops_exactly_on_its_target_within_the_ideal_time() {
+        // 5 mm at 1000 mm/min (16.67 mm/s) with 3000 mm/s²: ramp 5.6 ms, ideal time
+        // 5/16.67 + 16.67/3000 = 0.3056 s = 76.4 cycles of 4 ms.
+        let mut t = Travel { position: 0.0, velocity: 0.0, target: -5.0, feed: 1000.0 / 60.0, accel: 3000.0 };
+        let mut n = 0;
+        while !t.step(0.004, false) {
+            n += 1;
+            assert!(t.velocity.abs() <= 1000.0 / 60.0 + 1e-9);
+            assert!(n < 200);
+        }
+        assert_eq!(t.position, -5.0);
+        assert!((75..=79).contains(&n), "{n} cycles");
+    }
+}
