@@ -16,6 +16,7 @@ mod io;
 mod jog;
 mod jog_settings;
 mod main_run;
+mod pending;
 mod programs;
 mod reference;
 mod referencing;
@@ -53,7 +54,7 @@ pub use spindle::{SpindleMode, SpindleState};
 pub use stock_cut::{StockCheck, StockInfo, StockOptions, StockWarning};
 
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Interpreter, Item, Programs, SharedOffsets};
+use crate::interp::{Interpreter, Programs, SharedOffsets};
 use crate::kinematics::ActiveTrafo;
 use crate::lang::{self, ProgramText};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -214,6 +215,8 @@ pub struct JogRequest {
 #[derive(Debug, Clone)]
 struct MoveMeta {
     line: u32,
+    /// The sequence number of the move's block (`pending::NO_SEQ` for JOG, REPOS, approach).
+    seq: u32,
     offsets: SharedOffsets,
     /// The path is in machine axes although a transformation is active.
     machine_space: bool,
@@ -243,7 +246,7 @@ pub struct Channel {
     prep_done: bool,
     interp: Interpreter,
     /// Prepared items not yet handed to the planner.
-    pending: VecDeque<Item>,
+    pending: pending::PendingItems,
     planner: Planner,
     /// Meta data of the moves in the planner, in queue order, with their tags.
     in_planner: VecDeque<(u32, MoveMeta)>,
@@ -252,6 +255,10 @@ pub struct Channel {
     offsets: SharedOffsets,
     dwell_ticks: u64,
     current_line: Option<u32>,
+    /// The sequence number of the block shown as current (with `current_line`: which block).
+    current_seq: u32,
+    /// The sequence number the next prepared block gets (never `pending::NO_SEQ`).
+    next_block_seq: u32,
     /// The block shown as current: its program level and where its text is.
     current_block: Option<main_run::QueuedBlock>,
     /// The line and program level of the block prepared before the last one (a move it held
@@ -360,12 +367,14 @@ impl Channel {
             programs,
             changed_files: Default::default(),
             prep_done: true,
-            pending: VecDeque::new(),
+            pending: pending::PendingItems::default(),
             planner,
             in_planner: VecDeque::new(),
             next_tag: 0,
             dwell_ticks: 0,
             current_line: None,
+            current_seq: pending::NO_SEQ,
+            next_block_seq: 1,
             current_block: None,
             prev_read: (0, None),
             spindles,
