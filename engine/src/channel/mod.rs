@@ -26,6 +26,7 @@ mod repos_modes;
 mod resume;
 mod search;
 pub mod servo;
+mod set_wo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
