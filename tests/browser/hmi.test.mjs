@@ -626,6 +626,50 @@ async function main() {
       await page.click('#jog-coords [data-jog-coords="WCS"]');
     });
 
+    await step("JOG keyboard: 3 selects the third axis (Z), holding + moves it, releasing stops it", async () => {
+      await page.click("#coords-title"); // focus off any field
+      const wcsZ = async () => Number(await page.textContent('#positions [data-frame="workpiece"][data-axis="Z"]'));
+      sentFrames.length = 0;
+      const before = await wcsZ();
+      await page.keyboard.press("3");
+      await page.waitForSelector('#jog-axes .jog-axis.selected[data-axis="Z"]');
+      await page.keyboard.down("+");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "running");
+      await page.waitForTimeout(400);
+      await page.keyboard.up("+");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      if (!((await wcsZ()) > before)) throw new Error("Z did not move");
+      const jog = sentFrames.find((f) => f.type === "jog");
+      if (jog?.axis !== "Z" || jog.direction !== 1 || sentFrames.at(-1)?.type !== "jog_stop") {
+        throw new Error(`messages: ${JSON.stringify(sentFrames.slice(0, 2))} … ${sentFrames.at(-1)?.type}`);
+      }
+      // Space on a focused JOG key is that key: Y− held.
+      sentFrames.length = 0;
+      await page.focus('#jog-axes button[data-jog-axis="Y"][data-dir="-1"]');
+      await page.keyboard.down(" ");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "running");
+      await page.keyboard.up(" ");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      const y = sentFrames.find((f) => f.type === "jog");
+      if (y?.axis !== "Y" || y.direction !== -1) throw new Error(`Space on Y−: ${JSON.stringify(y)}`);
+    });
+
+    await step("Handwheel on X: two INC100 detents move X by +0.2 (2 × 100 × 0.001 mm)", async () => {
+      await page.selectOption("#jog-increment", "100");
+      await page.selectOption("#handwheel-axis", "X");
+      const before = await wcsX(page);
+      await page.click("#handwheel-plus");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      await page.click("#handwheel-plus");
+      await page.waitForFunction(
+        (want) => Math.abs(Number(document.querySelector('#positions [data-frame="workpiece"][data-axis="X"]')?.textContent) - want) < 1e-3,
+        before + 0.2,
+      );
+      await page.selectOption("#handwheel-axis", "");
+      await page.selectOption("#jog-increment", "");
+      if (!(await page.locator("#handwheel-plus").isHidden())) throw new Error("detent keys shown with the handwheel off");
+    });
+
     await step("machine data: a bad value is refused with the error at its field", async () => {
       await page.click('[data-goto="data"]');
       await page.click('[data-md-tab="axis"]');
@@ -1080,6 +1124,33 @@ async function main() {
       await page.locator("#area-tools").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-offsets.png") });
       await page.click('[data-goto="machine"]');
       await page.click("#btn-reset");
+    });
+
+    await step("Ref. point: an unreferenced Z shows 'not ref.'; the Ref. point key references it (⊕)", async () => {
+      const created = await pageFetch(page, "POST", "/sessions", {
+        machine: "mill-3axis",
+        // Without the NC start lock (MD20700 = 0) the demo's preview runs although Z is not
+        // referenced (with the lock the preview's copy is refused with 16905: a 409).
+        machine_data: "$MA_ENC_REFP_STATE[Z]=0\n$MA_ENC_REFP_MODE[Z]=0\n$MC_REFP_NC_START_LOCK=0",
+      });
+      await page.goto(`${BASE}/?session=${created.id}`, { waitUntil: "load" });
+      await page.waitForSelector('#positions td.ref[data-ref-axis="Z"][data-referenced="no"]');
+      await page.waitForSelector('#positions td.ref[data-ref-axis="X"][data-referenced="yes"]');
+      if ((await page.textContent('#positions td.ref[data-ref-axis="Z"]')).trim() !== "not ref.") throw new Error("Z not marked");
+      await page.click('[data-set-mode="JOG"]');
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="JOG"]')?.classList.contains("active"));
+      await page.click("#btn-ref-point");
+      await page.waitForSelector('#positions td.ref[data-ref-axis="Z"][data-referenced="yes"]');
+    });
+
+    await step("Set WO: X reads the typed 12.5 in the WCS, the machine position stays", async () => {
+      const machineX = async () => (await pageFetch(page, "GET", `/sessions/${new URL(page.url()).searchParams.get("session")}/state`)).positions.machine.X;
+      const before = await machineX();
+      await page.selectOption("#set-wo-axis", "X");
+      await page.fill("#set-wo-value", "12.5");
+      await page.click("#btn-set-wo");
+      await page.waitForFunction(() => document.querySelector('#positions [data-frame="workpiece"][data-axis="X"]')?.textContent?.trim() === "12.500");
+      if ((await machineX()) !== before) throw new Error("Set WO moved the axis");
     });
 
     await step("no error in the message bar", async () => {

@@ -12,6 +12,7 @@ import { selection } from "./program/selected";
 import { activeProgram } from "./program/active";
 import { mountStatusLine } from "./machine/statusLine";
 import { mountJog } from "./jog/jog";
+import { mountJogFunctions } from "./jog/jogFunctions";
 import { mountSwivel } from "./swivel/swivel";
 import { Lobby } from "./lobby/lobby";
 import { mountAlarms } from "./machine/alarms";
@@ -52,7 +53,7 @@ async function main(): Promise<void> {
   mountStatusLine(session);
   mountOverrides(session);
   mountControls(session);
-  mountJog(session);
+  mountJogFunctions(session, mountJog(session));
   mountSwivel(session);
   mountAlarms(session);
   mountSignals(session);

@@ -127,6 +127,13 @@ export const api = {
   jog: (id: string, jog: JogCommand) => request<State>("POST", `${s(id)}/jog`, jog),
   swivel: (id: string, swivel: SwivelCommand) => request<State>("POST", `${s(id)}/swivel`, swivel),
   jogStop: (id: string) => request<State>("POST", `${s(id)}/jog/stop`, {}),
+  /** Ref. point: references every unreferenced axis (JOG mode, reset state). */
+  reference: (id: string) => request<State>("POST", `${s(id)}/reference`, {}),
+  /** Handwheel detents on `axis` (INC1..INC1000 per detent). */
+  handwheel: (id: string, hw: { axis: string; pulses: number; inc: number; coordinates: string }) =>
+    request<State>("POST", `${s(id)}/jog/handwheel`, hw),
+  /** Set WO: the active work offset so that `axis` reads `value` in the WCS. */
+  setWorkOffset: (id: string, axis: string, value: number) => request<State>("POST", `${s(id)}/set-wo`, { axis, value }),
   setOverrides: (id: string, o: Partial<Overrides>) => request<State>("PUT", `${s(id)}/overrides`, o),
   setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),
   io: (id: string) => request<IoImage>("GET", `${s(id)}/io`),
