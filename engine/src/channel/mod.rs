@@ -9,6 +9,7 @@
 //! calculation), `reference` (reference point state per axis), `programs` (stored programs),
 //! `spindle`, `trafo` (the active transformation per IPO cycle), `snapshot`.
 
+pub mod action_log;
 mod active_program;
 mod blending;
 mod cartesian_jog;
@@ -144,6 +145,8 @@ pub enum Event {
     InputsChanged(sync_actions::InputRecord),
     /// A check of material removal found something (`stock_cut.rs`).
     Stock(StockWarning),
+    /// An operator's command, for the action log ("who did what", see `action_log.rs`).
+    OperatorAction(action_log::OperatorAction),
 }
 
 /// A command the channel refuses in its current state.
