@@ -39,6 +39,7 @@ const pageErrors = [];
 /** Client messages the page sent on its session streams (parsed JSON). */
 const sentFrames = [];
 let expectedBadRequests = 0;
+let expectedForbidden = 0;
 
 async function step(name, fn) {
   const t0 = Date.now();
@@ -197,6 +198,11 @@ async function main() {
         expectedBadRequests--;
         return;
       }
+      // The watcher's start the test sends on purpose.
+      if (/status of 403/.test(msg.text()) && url.endsWith("/start")) {
+        expectedForbidden--;
+        return;
+      }
       pageErrors.push(`console error: ${msg.text()} (${url})`);
     });
 
@@ -206,9 +212,20 @@ async function main() {
     });
 
     let sessionId = "";
-    await step("a new session is created and shown", async () => {
+    await step("start page at /: the machines and running sessions, no session created by the visit", async () => {
+      await page.waitForSelector("#area-sessions:not([hidden])");
+      await page.waitForFunction(() => document.querySelectorAll("#preset-select option").length > 0);
+      if ((await page.textContent("#session-id")).trim() !== "–") throw new Error("a session was attached by visiting /");
+      if (new URL(page.url()).searchParams.has("session")) throw new Error("the address names a session");
+    });
+
+    await step("a user who typed a name creates a new session from the start page and it is shown", async () => {
+      await page.fill("#display-name", "Trainer Anna");
+      await page.selectOption("#preset-select", "mill-3axis");
+      await page.click("#btn-create-session");
       await page.waitForFunction(() => /\S/.test(document.getElementById("session-id")?.textContent?.replace("–", "") || ""));
       sessionId = (await page.textContent("#session-id")).trim();
+      await page.waitForSelector("#area-machine:not([hidden])");
     });
 
     await step("coordinate display shows WCS X", async () => {
@@ -486,7 +503,7 @@ async function main() {
       const bind = new URL(server.url).host;
       const other = await context.newPage();
       try {
-        await other.goto(`${server.url}/`, { waitUntil: "load" });
+        await other.goto(`${server.url}/?machine=mill-3axis`, { waitUntil: "load" });
         await other.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
         const id = new URL(other.url()).searchParams.get("session");
         const text = ["G0 X0 Y0 Z50", "G1 X33 F6000", "M0", "G1 X40", "M30", ""].join("\n");
@@ -1151,6 +1168,119 @@ async function main() {
       await page.click("#btn-set-wo");
       await page.waitForFunction(() => document.querySelector('#positions [data-frame="workpiece"][data-axis="X"]')?.textContent?.trim() === "12.500");
       if ((await machineX()) !== before) throw new Error("Set WO moved the axis");
+    });
+
+    await step("accessibility: axe-core finds no contrast (4.5:1), name or label violation on the Machine area", async () => {
+      await page.click('[data-goto="machine"]');
+      await page.addScriptTag({ path: join(ROOT, "tests", "browser", "node_modules", "axe-core", "axe.min.js") });
+      const found = await page.evaluate(async () => {
+        const r = await window.axe.run(document.getElementById("area-machine"), {
+          runOnly: { type: "rule", values: ["color-contrast", "button-name", "label", "select-name", "nested-interactive", "scrollable-region-focusable"] },
+        });
+        return r.violations.map((v) => `${v.id}: ${v.nodes.slice(0, 4).map((n) => `${n.target.join(" ")} ${(n.any[0]?.message ?? "").slice(0, 90)}`).join(" | ")}`);
+      });
+      if (found.length) throw new Error(found.join(" ;; "));
+    });
+
+    await step("layout at 1280x720: nothing wider than the window, the Machine area's controls on screen; every control reachable by Tab", async () => {
+      await page.setViewportSize({ width: 1280, height: 720 });
+      await page.waitForTimeout(200);
+      const layout = await page.evaluate(() => {
+        const off = [];
+        for (const sel of ["#btn-cycle-start", "#btn-cycle-stop", "#btn-reset", "#positions", '[data-set-mode="JOG"]', "#status", "#view3d"]) {
+          const r = document.querySelector(sel)?.getBoundingClientRect();
+          if (!r || r.width === 0 || r.right > window.innerWidth + 1) off.push(sel);
+        }
+        return { scrollWidth: document.documentElement.scrollWidth, off };
+      });
+      if (layout.scrollWidth > 1281) throw new Error(`the page is ${layout.scrollWidth} px wide`);
+      if (layout.off.length) throw new Error(`off screen at 1280x720: ${layout.off.join(", ")}`);
+      // Tab from the top reaches Cycle start, Reset and a JOG key (no control is mouse-only).
+      await page.focus("body");
+      const reached = new Set();
+      for (let i = 0; i < 160 && reached.size < 3; i++) {
+        await page.keyboard.press("Tab");
+        const id = await page.evaluate(() => {
+          const a = document.activeElement;
+          return a?.id || (a?.dataset?.jogAxis ? "jog-key" : "");
+        });
+        if (["btn-cycle-start", "btn-reset", "jog-key"].includes(id)) reached.add(id);
+      }
+      if (reached.size < 3) throw new Error(`Tab reached only ${[...reached].join(", ")}`);
+      await page.locator("#area-machine").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-1280x720.png") });
+      await page.setViewportSize({ width: 1280, height: 800 });
+    });
+
+    await step("an unknown ?session= shows the start page with the reason, no new session", async () => {
+      const before = (await pageFetch(page, "GET", "/sessions")).length;
+      await page.goto(`${BASE}/?session=no-such-session`, { waitUntil: "load" });
+      await page.waitForSelector("#area-sessions:not([hidden])");
+      await page.waitForFunction(() => /no-such-session cannot be opened/.test(document.getElementById("message-text")?.textContent || ""));
+      if ((await page.textContent("#session-id")).trim() !== "–") throw new Error("a session was attached");
+      if ((await pageFetch(page, "GET", "/sessions")).length !== before) throw new Error("a session was created");
+      await page.click("#btn-message-close");
+    });
+
+    await step("class view: each session with status, alarms and current block; Watch opens it view-only in one click", async () => {
+      // A trainee's session stopped at M0 (current block) with an alarm raised by a second program.
+      const trainee = await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" });
+      await pageFetch(page, "POST", `/sessions/${trainee.id}/run`, { program: "G0 X10\nM0\nM30\n", pace: "fast", wait: true });
+      await page.click('[data-goto="sessions"]').catch(() => {});
+      await page.waitForSelector(`#sessions tr[data-session="${trainee.id}"]`);
+      await page.waitForFunction((id) => {
+        const row = document.querySelector(`#sessions tr[data-session="${id}"]`);
+        return /stopped/.test(row?.textContent || "") && /2: M0/.test(row?.querySelector(".class-block")?.textContent || "");
+      }, trainee.id);
+      await page.click(`#sessions button[data-watch="${trainee.id}"]`);
+      await page.waitForSelector("#area-machine:not([hidden])");
+      await page.waitForFunction((id) => document.getElementById("session-id")?.textContent?.trim() === id, trainee.id);
+      if (new URL(page.url()).searchParams.get("view") !== "watch") throw new Error("the address is no watch link");
+      // Controls off with the reason in plain words; the view controls stay usable.
+      await page.waitForFunction(() => /View only: you are watching/.test(document.getElementById("lock-banner")?.textContent || ""));
+      for (const sel of ["#btn-cycle-start", "#btn-reset", '[data-set-mode="JOG"]', "#btn-mda", "#btn-set-wo"]) {
+        if (!(await page.locator(sel).isDisabled())) throw new Error(`${sel} is enabled for a watcher`);
+      }
+      if ((await page.getAttribute("#btn-cycle-start", "title")) !== (await page.textContent("#lock-banner"))) throw new Error("no reason on the key");
+      if (await page.locator('#coords-toggle [data-frame="machine"]').isDisabled()) throw new Error("the view toggle is off");
+      // The server refuses a watcher's command too (--auth off): the page's own request is an observer's.
+      const refused = await page.evaluate(async (id) => {
+        const res = await fetch(`/api/v1/sessions/${id}/start`, { method: "POST", headers: { "content-type": "application/json", "nctwin-view-only": "1" }, body: "{}" });
+        return res.status;
+      }, trainee.id);
+      if (refused !== 403) throw new Error(`a watcher's start answered ${refused}`);
+      expectedForbidden++;
+    });
+
+    await step("Join drives again; the event log names who did what (name and role)", async () => {
+      const id = (await page.textContent("#session-id")).trim();
+      await page.click('[data-goto="sessions"]');
+      await page.fill("#display-name", "Trainee Ben");
+      await page.dispatchEvent("#display-name", "change");
+      await page.click(`#sessions button[data-open="${id}"]`);
+      await page.waitForFunction(() => document.getElementById("lock-banner")?.hidden === true);
+      if (new URL(page.url()).searchParams.has("view")) throw new Error("still a watch link");
+      await page.click("#btn-reset");
+      await page.waitForFunction(() =>
+        [...document.querySelectorAll('#events li[data-event="operator_action"] .event-detail')].some((e) => e.textContent === "Trainee Ben (owner): Reset"),
+      );
+    });
+
+    await step("ending a session asks first; cancelled it stays, confirmed it is gone", async () => {
+      const { id } = await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" });
+      await page.click('[data-goto="sessions"]');
+      await page.waitForSelector(`#sessions button[data-delete="${id}"]`);
+      page.once("dialog", (d) => d.dismiss());
+      await page.click(`#sessions button[data-delete="${id}"]`);
+      await page.waitForTimeout(300);
+      if (!(await pageFetch(page, "GET", "/sessions")).some((s) => s.id === id)) throw new Error("ended without confirmation");
+      let asked = "";
+      page.once("dialog", (d) => {
+        asked = d.message();
+        void d.accept();
+      });
+      await page.click(`#sessions button[data-delete="${id}"]`);
+      await page.waitForSelector(`#sessions tr[data-session="${id}"]`, { state: "detached" });
+      if (!/End session/.test(asked)) throw new Error(`confirmation: ${asked}`);
     });
 
     await step("no error in the message bar", async () => {

@@ -1,5 +1,6 @@
 // REST client for the NCTwin server (prefix /api/v1, JSON in and out).
 
+import { identityHeaders, viewOnly } from "./identity";
 import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
   ActiveProgramRange,
@@ -44,7 +45,7 @@ export class ApiError extends Error {
 
 /** `tokenOf`: the session whose token to present when the path names none. */
 export async function request<T>(method: string, path: string, body?: unknown, tokenOf?: string | null): Promise<T> {
-  const headers: Record<string, string> = { Accept: "application/json" };
+  const headers: Record<string, string> = { Accept: "application/json", ...identityHeaders() };
   const session = sessionOfPath(path) ?? tokenOf;
   const token = session ? tokenFor(session) : undefined;
   if (token) headers.Authorization = `Bearer ${token}`;
@@ -166,5 +167,6 @@ export function streamUrl(id: string, periodMs = 50): string {
   const proto = location.protocol === "https:" ? "wss:" : "ws:";
   const token = tokenFor(id);
   const auth = token ? `&token=${encodeURIComponent(token)}` : "";
-  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}${auth}`;
+  const watch = viewOnly() ? "&view_only=1" : "";
+  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}${auth}${watch}`;
 }

@@ -214,6 +214,7 @@ export class JogPanel {
 
   private pressKey(button: HTMLButtonElement): void {
     this.release();
+    if (document.body.dataset.locked) return; // view only / no control: see ui/lock.ts
     const jog = this.message(button);
     if (!jog) return;
     const continuous = jog.inc === undefined && jog.increment === undefined;
