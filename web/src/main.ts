@@ -41,7 +41,7 @@ const DEFAULT_MACHINE = "mill-3axis";
 async function main(): Promise<void> {
   const session = new SessionController();
   // First listener: the views that follow read the demo chosen for the session's machine.
-  session.on("session", (info) => selection.adoptDemo(info.machine.machine_data));
+  session.on("session", (info) => selection.adoptDemo(info.machine.machine_data, info.machine.id));
   activeProgram.attach(session);
   wireMessageBar();
   wireAreas();
