@@ -1178,6 +1178,32 @@ async function main() {
       if ((await machineX()) !== before) throw new Error("Set WO moved the axis");
     });
 
+    await step("editor: an undefined name is flagged at its line before Cycle start (trial run, 12550); New asks before it drops unsaved text", async () => {
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "UNDEF");
+      await page.fill(EDITOR, "G0 X1\nCYCLE999(1)\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => {
+        const li = document.querySelector('#diagnostics li[data-line="2"]');
+        return /12550/.test(li?.textContent || "") && /CYCLE999/.test(li?.textContent || "");
+      });
+      if (!(await page.locator("#area-program").isVisible())) throw new Error("selected despite the error");
+      await page.click("#btn-message-close");
+      let asked = "";
+      page.once("dialog", (d) => {
+        asked = d.message();
+        void d.dismiss();
+      });
+      await page.click("#btn-editor-new");
+      await page.waitForTimeout(200);
+      if (!/unsaved changes/.test(asked)) throw new Error(`no warning: ${asked}`);
+      if (!(await page.inputValue(EDITOR)).includes("CYCLE999")) throw new Error("the text was dropped although kept");
+      page.once("dialog", (d) => void d.accept());
+      await page.click("#btn-editor-new");
+      await page.waitForFunction((sel) => document.querySelector(sel)?.value === "", EDITOR);
+      await page.click('[data-goto="machine"]');
+    });
+
     await step("accessibility: axe-core finds no contrast (4.5:1), name or label violation on the Machine area", async () => {
       await page.click('[data-goto="machine"]');
       await page.addScriptTag({ path: join(ROOT, "tests", "browser", "node_modules", "axe-core", "axe.min.js") });
