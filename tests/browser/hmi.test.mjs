@@ -1299,6 +1299,19 @@ async function main() {
       );
     });
 
+    await step("multi-line MDA: two blocks typed on two lines run with Ctrl+Enter (X3, then Y4)", async () => {
+      await page.click('[data-goto="machine"]');
+      await page.click('[data-set-mode="MDA"]');
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="MDA"]')?.classList.contains("active"));
+      await page.fill("#mda-input", "G90 G0 X3\nG0 Y4");
+      await page.focus("#mda-input");
+      await page.keyboard.press("Control+Enter");
+      await page.waitForFunction(() => {
+        const v = (a) => Number(document.querySelector(`#positions [data-frame="workpiece"][data-axis="${a}"]`)?.textContent);
+        return Math.abs(v("X") - 3) < 1e-3 && Math.abs(v("Y") - 4) < 1e-3 && document.getElementById("status")?.textContent?.trim() === "idle";
+      });
+    });
+
     await step("ending a session asks first; cancelled it stays, confirmed it is gone", async () => {
       const { id } = await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" });
       await page.click('[data-goto="sessions"]');
