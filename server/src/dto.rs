@@ -1087,6 +1087,13 @@ pub enum EventMessage {
     Stock {
         warning: crate::api::stock::StockWarningInfo,
     },
+    /// The action log: an operator's command (`POST start`, `PUT mode`, ...), the role it was
+    /// done in and the display name sent with it (header `nctwin-user`; empty when none).
+    OperatorAction {
+        action: String,
+        role: String,
+        name: String,
+    },
 }
 
 /// A digital signal's number and level.
@@ -1170,6 +1177,9 @@ impl From<&Event> for EventMessage {
                 }
             }
             Event::Stock(w) => EventMessage::Stock { warning: w.into() },
+            Event::OperatorAction(a) => {
+                EventMessage::OperatorAction { action: a.action.clone(), role: a.role.clone(), name: a.name.clone() }
+            }
         }
     }
 }

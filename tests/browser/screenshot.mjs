@@ -14,7 +14,7 @@ import { CHROMIUM_ARGS } from "./chromium.mjs";
 
 const BASE = (process.env.NCTWIN_URL || "http://127.0.0.1:8080").replace(/\/+$/, "");
 const OUT = process.argv[2] || tmpdir();
-const PATH = process.argv[3] || "/";
+const PATH = process.argv[3] || "/?machine=mill-3axis"; // `/` is the start page
 const SIZES = [
   { width: 1280, height: 800 },
   { width: 1920, height: 1080 },

@@ -12,6 +12,7 @@ import { selection } from "./program/selected";
 import { activeProgram } from "./program/active";
 import { mountStatusLine } from "./machine/statusLine";
 import { mountJog } from "./jog/jog";
+import { mountJogFunctions } from "./jog/jogFunctions";
 import { mountSwivel } from "./swivel/swivel";
 import { Lobby } from "./lobby/lobby";
 import { mountAlarms } from "./machine/alarms";
@@ -31,6 +32,7 @@ import { ProgramManager } from "./program/manager";
 import { mountMachineData } from "./setup/machineData";
 import { mountTools } from "./tools/toolScreen";
 import { showArea, wireAreas } from "./ui/areas";
+import { mountLock } from "./ui/lockReasons";
 import { mountMachineView } from "./view3d/machineView";
 import { mountPreview } from "./view3d/preview";
 
@@ -39,7 +41,7 @@ const DEFAULT_MACHINE = "mill-3axis";
 async function main(): Promise<void> {
   const session = new SessionController();
   // First listener: the views that follow read the demo chosen for the session's machine.
-  session.on("session", (info) => selection.adoptDemo(info.machine.machine_data));
+  session.on("session", (info) => selection.adoptDemo(info.machine.machine_data, info.machine.id));
   activeProgram.attach(session);
   wireMessageBar();
   wireAreas();
@@ -52,7 +54,7 @@ async function main(): Promise<void> {
   mountStatusLine(session);
   mountOverrides(session);
   mountControls(session);
-  mountJog(session);
+  mountJogFunctions(session, mountJog(session));
   mountSwivel(session);
   mountAlarms(session);
   mountSignals(session);
@@ -64,14 +66,20 @@ async function main(): Promise<void> {
   mountMachineData(session);
   mountTools(session);
   const lobby = new Lobby(session);
+  mountLock(session);
   showArea("machine");
 
-  // ?session=ID joins that session; ?machine=PRESET picks the preset of a new one.
+  // `/` is the start page (running sessions and machines: join, watch or new); ?session=ID
+  // joins that session (?view=watch: watches it); ?machine=PRESET opens a new session of it.
   const params = new URLSearchParams(location.search);
-  const preset = params.get("machine") ?? DEFAULT_MACHINE;
-  await lobby.loadMachines(preset).catch((e: Error) => showMessage(`machine list: ${e.message}`));
+  const preset = params.get("machine");
+  await lobby.loadMachines(preset ?? DEFAULT_MACHINE).catch((e: Error) => showMessage(`machine list: ${e.message}`));
   const wanted = params.get("session");
-  if (!wanted) return lobby.create(preset);
+  if (!wanted) {
+    if (preset) return lobby.create(preset);
+    showArea("sessions");
+    return;
+  }
   // A shared link: keep its token, and keep it out of the address bar.
   const token = params.get("token");
   if (token) {
@@ -84,8 +92,12 @@ async function main(): Promise<void> {
     const existing = await api.session(wanted);
     await session.attach(existing.id, existing.machine);
   } catch (e) {
-    await lobby.create(preset);
-    showMessage(`session ${wanted}: ${(e as Error).message}; opened a new session`);
+    // No new session behind the user's back: the start page, with the reason.
+    const url = new URL(location.href);
+    url.search = "";
+    history.replaceState(null, "", url);
+    showArea("sessions");
+    showMessage(`session ${wanted} cannot be opened (${(e as Error).message}): join a running session or start a new one`);
   }
 }
 

@@ -140,7 +140,16 @@ impl Channel {
             .map(|&k| self.cfg.axis(k).jog_velocity.min(self.cfg.axis(k).max_velocity))
             .fold(f64::INFINITY, f64::min);
         let mv = Move::new(path, turned, Feed::Path(velocity), &AxisLimit::for_channel(&self.cfg), true, self.next_tag);
-        self.push_bcs_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space: false, feed: 0.0 });
+        self.push_bcs_move(
+            mv,
+            MoveMeta {
+                line: 0,
+                seq: super::pending::NO_SEQ,
+                offsets: self.offsets.clone(),
+                machine_space: false,
+                feed: 0.0,
+            },
+        );
         self.jog_serial = self.jog_serial.wrapping_add(1);
         let k = t.trafo.orientation_slots()[0].expect("an orientation axis");
         self.jog = Some(ActiveJog::orientation(k, end, resume));

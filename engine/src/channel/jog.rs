@@ -254,7 +254,10 @@ impl Channel {
             rapid_overlay(&mut mv, velocity);
         }
         mv.machine_space = machine_space;
-        self.push_bcs_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space, feed: 0.0 });
+        self.push_bcs_move(
+            mv,
+            MoveMeta { line: 0, seq: super::pending::NO_SEQ, offsets: self.offsets.clone(), machine_space, feed: 0.0 },
+        );
         self.jog_serial = self.jog_serial.wrapping_add(1);
         let plus = direction.map(|d| d * dir);
         self.jog = Some(ActiveJog { axis: k, direction, plus, end, machine_space, handwheel, resume });
@@ -289,7 +292,13 @@ impl Channel {
         mv.machine_space = jog.machine_space;
         self.push_move(
             mv,
-            MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space: jog.machine_space, feed: 0.0 },
+            MoveMeta {
+                line: 0,
+                seq: super::pending::NO_SEQ,
+                offsets: self.offsets.clone(),
+                machine_space: jog.machine_space,
+                feed: 0.0,
+            },
         );
         if let Some(j) = &mut self.jog {
             j.end = end;

@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use super::pending::NO_SEQ;
 use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{CORRTRAFO, DELOBJ, Item, Level, NEWCONF, Prep, StopKind};
@@ -88,22 +89,29 @@ impl Channel {
             let read = (self.interp.read_line(), level);
             let read_offset = self.interp.read_offset();
             let mut last = None;
-            for line in out.iter().filter_map(Item::line) {
-                if last != Some(line) {
+            let mut seq = NO_SEQ;
+            for item in out.drain(..) {
+                if let Some(line) = item.line()
+                    && last != Some(line)
+                {
                     last = Some(line);
-                    if line != read.0 && line == self.prev_read.0 {
-                        self.queue_block(line, self.prev_read.1.clone());
-                    } else if line == read.0 {
+                    seq = if line == read.0 {
                         // Where the block just read starts is known: no counting of lines (a
-                        // loop's or a cycle's jump back would count from the text's start).
-                        self.queue_block_at(line, read_offset, read.1.clone());
+                        // loop's or a cycle's jump back would count from the text's start). A
+                        // block read is a new block, whatever its line number.
+                        self.queue_block_at(line, read_offset, read.1.clone())
                     } else {
-                        self.queue_block(line, read.1.clone());
-                    }
+                        let level = if line == self.prev_read.0 { self.prev_read.1.clone() } else { read.1.clone() };
+                        // A move held back from the block before is still that block.
+                        match self.queued_blocks.back().filter(|b| b.line == line && same_level(&b.level, &level)) {
+                            Some(b) => b.seq,
+                            None => self.queue_block(line, level),
+                        }
+                    };
                 }
+                self.pending.push_back(seq, item);
             }
             self.prev_read = read;
-            self.pending.extend(out.drain(..));
             match prep {
                 Prep::Prepared => {}
                 Prep::WaitForMainRun => break,
@@ -192,6 +200,7 @@ impl Channel {
                 break;
             }
             let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
+            let seq = self.pending.popped_seq();
             if self.search_approach {
                 // Block search: approach the start of the first move of the target, like that move.
                 self.search_approach = false;
@@ -218,10 +227,10 @@ impl Channel {
             let machine_space = mv.machine_space;
             match corner {
                 Some(corner) => {
-                    self.push_move(mv, MoveMeta { line, offsets: offsets.clone(), machine_space, feed: 0.0 });
-                    self.push_move(corner, MoveMeta { line, offsets, machine_space, feed: 0.0 });
+                    self.push_move(mv, MoveMeta { line, seq, offsets: offsets.clone(), machine_space, feed: 0.0 });
+                    self.push_move(corner, MoveMeta { line, seq, offsets, machine_space, feed: 0.0 });
                 }
-                None => self.push_move(mv, MoveMeta { line, offsets, machine_space, feed: 0.0 }),
+                None => self.push_move(mv, MoveMeta { line, seq, offsets, machine_space, feed: 0.0 }),
             }
         }
     }
@@ -270,40 +279,48 @@ impl Channel {
     pub(super) fn sync_current_block(&mut self) {
         if let Some((_, meta)) = self.in_planner.front() {
             self.offsets = meta.offsets.clone();
-            let line = meta.line;
+            let (line, seq) = (meta.line, meta.seq);
             if line > 0 {
-                self.enter_block(line);
+                self.enter_block(line, seq);
             }
         }
     }
 
     /// Remembers where the text of a prepared block of `line` in `level` is (the main program
     /// when `None`).
-    pub(super) fn queue_block(&mut self, line: u32, level: Option<Arc<Level>>) {
-        let Some(text) = level.as_ref().map(|l| &l.text).or(self.program.as_ref()) else { return };
+    pub(super) fn queue_block(&mut self, line: u32, level: Option<Arc<Level>>) -> u32 {
+        let Some(text) = level.as_ref().map(|l| &l.text).or(self.program.as_ref()) else { return NO_SEQ };
         let hint = self.queued_blocks.back().filter(|b| same_level(&b.level, &level)).map(|b| (b.line, b.offset));
         let offset = line_offset(text, line, hint.as_ref());
-        self.queue_block_at(line, offset, level);
+        self.queue_block_at(line, offset, level)
     }
 
-    /// [`Channel::queue_block`] of a block whose start in its text is known (`offset`).
-    fn queue_block_at(&mut self, line: u32, offset: usize, level: Option<Arc<Level>>) {
+    /// [`Channel::queue_block`] of a block whose start in its text is known (`offset`). Returns
+    /// the block's sequence number ([`NO_SEQ`] without a program).
+    fn queue_block_at(&mut self, line: u32, offset: usize, level: Option<Arc<Level>>) -> u32 {
         if level.is_none() && self.program.is_none() {
-            return;
+            return NO_SEQ;
         }
-        self.queued_blocks.push_back(QueuedBlock { line, offset, level });
+        let seq = self.next_block_seq;
+        self.next_block_seq = self.next_block_seq.checked_add(1).unwrap_or(NO_SEQ + 1);
+        self.queued_blocks.push_back(QueuedBlock { line, seq, offset, level });
         if self.queued_blocks.len() > 2 * LOOKAHEAD {
             self.queued_blocks.pop_front();
         }
+        seq
     }
 
     /// The main run enters the block at `line`: the first queued block of that line is it (the
     /// main run executes blocks in the order they were prepared); the blocks queued before it
     /// are done with.
-    pub(super) fn enter_block(&mut self, line: u32) {
-        if self.current_line != Some(line) {
+    pub(super) fn enter_block(&mut self, line: u32, seq: u32) {
+        // The same line is another block when its sequence number differs (a subprogram's line
+        // 1 after the caller's line 1); an item without a number is taken for the shown block.
+        if self.current_line != Some(line) || seq != NO_SEQ && seq != self.current_seq {
             self.current_line = Some(line);
-            self.current_block = match self.queued_blocks.iter().position(|b| b.line == line) {
+            self.current_seq = seq;
+            let by_seq = (seq != NO_SEQ).then(|| self.queued_blocks.iter().position(|b| b.seq == seq)).flatten();
+            self.current_block = match by_seq.or_else(|| self.queued_blocks.iter().position(|b| b.line == line)) {
                 Some(i) => {
                     self.queued_blocks.drain(..i);
                     self.queued_blocks.front().cloned()
@@ -351,6 +368,7 @@ impl Channel {
                 Some(_) => {}
             }
             let item = self.pending.pop_front().expect("front exists");
+            let seq = self.pending.popped_seq();
             match item {
                 Item::Move { .. } => unreachable!(),
                 Item::Offsets { line, offsets } => {
@@ -360,14 +378,14 @@ impl Channel {
                         return;
                     }
                     self.offsets = offsets;
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                 }
                 Item::Message { text, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.message = (!text.is_empty()).then_some(text);
                 }
                 Item::Dwell { seconds, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.dwell_ticks = (seconds / self.cfg.ipo_cycle).round() as u64;
                     if self.dwell_ticks > 0 {
                         self.dwell_ticks -= 1;
@@ -375,7 +393,7 @@ impl Channel {
                     }
                 }
                 Item::Spindle { axis, rpm, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     let angle = self.planner.position()[axis];
                     if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
                         s.leave_axis_mode(angle);
@@ -383,7 +401,7 @@ impl Channel {
                     }
                 }
                 Item::SpindleControl { ctl, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     if !self.spindle_control(&ctl) {
                         // A thread waits for its start angle.
                         self.pending.push_front(Item::SpindleControl { ctl, line });
@@ -391,7 +409,7 @@ impl Channel {
                     }
                 }
                 Item::SpindleToAxis { axis, angle, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     if let Some(s) = self.spindles.iter_mut().find(|s| s.axis == axis) {
                         s.enter_axis_mode(angle);
                     }
@@ -406,7 +424,7 @@ impl Channel {
                     return;
                 }
                 Item::Stop { kind, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     match kind {
                         StopKind::M0 => self.program_stop(line),
                         StopKind::M1 if self.optional_stop => self.program_stop(line),
@@ -416,40 +434,40 @@ impl Channel {
                 }
                 Item::Alarm(alarm) => {
                     if let Some(line) = alarm.line {
-                        self.enter_block(line);
+                        self.enter_block(line, seq);
                     }
                     self.raise(alarm);
                 }
                 Item::Aux { function, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.events.push(Event::AuxFunction { function, line });
                 }
                 Item::DigitalOutput { signal, on, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.execute_digital_output(signal, on, line);
                 }
                 Item::SyncAction { def, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.activate_sync(def);
                 }
                 Item::SyncControl { op, ids, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.control_sync(op, &ids);
                 }
                 Item::Workpiece { request, offsets, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.execute_workpiece(request, &offsets.frame, line);
                 }
                 Item::Measure { request, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.arm_probe(request, line);
                 }
                 Item::SetPiece { pieces, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.set_piece(pieces);
                 }
                 Item::Positioning { axis, target, velocity, line } => {
-                    self.enter_block(line);
+                    self.enter_block(line, seq);
                     self.start_positioning(axis, target, velocity, false);
                 }
                 Item::WaitPositioning { axes, strict, line } => {
@@ -508,6 +526,8 @@ impl Channel {
 #[derive(Debug, Clone)]
 pub(super) struct QueuedBlock {
     pub line: u32,
+    /// The block's sequence number (see `pending.rs`): tells apart blocks of the same line.
+    pub seq: u32,
     pub offset: usize,
     pub level: Option<Arc<Level>>,
 }

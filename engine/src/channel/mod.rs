@@ -9,6 +9,7 @@
 //! calculation), `reference` (reference point state per axis), `programs` (stored programs),
 //! `spindle`, `trafo` (the active transformation per IPO cycle), `snapshot`.
 
+pub mod action_log;
 mod active_program;
 mod blending;
 mod cartesian_jog;
@@ -18,6 +19,7 @@ mod io;
 mod jog;
 mod jog_settings;
 mod main_run;
+mod pending;
 mod positioning_axes;
 mod probe;
 mod program_sync;
@@ -30,6 +32,7 @@ mod repos_modes;
 mod resume;
 mod search;
 pub mod servo;
+mod set_wo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
@@ -65,7 +68,7 @@ pub use stock_saved::SavedStock;
 pub use stock_tiles::{StockChanges, TILE as STOCK_TILE};
 
 use crate::alarm::{Alarm, Clear};
-use crate::interp::{Interpreter, Item, Programs, SharedOffsets};
+use crate::interp::{Interpreter, Programs, SharedOffsets};
 use crate::kinematics::ActiveTrafo;
 use crate::lang::{self, ProgramText};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -154,6 +157,8 @@ pub enum Event {
     InputsChanged(sync_actions::InputRecord),
     /// A check of material removal found something (`stock_cut.rs`).
     Stock(StockWarning),
+    /// An operator's command, for the action log ("who did what", see `action_log.rs`).
+    OperatorAction(action_log::OperatorAction),
 }
 
 /// A command the channel refuses in its current state.
@@ -226,6 +231,8 @@ pub struct JogRequest {
 #[derive(Debug, Clone)]
 struct MoveMeta {
     line: u32,
+    /// The sequence number of the move's block (`pending::NO_SEQ` for JOG, REPOS, approach).
+    seq: u32,
     offsets: SharedOffsets,
     /// The path is in machine axes although a transformation is active.
     machine_space: bool,
@@ -255,7 +262,7 @@ pub struct Channel {
     prep_done: bool,
     interp: Interpreter,
     /// Prepared items not yet handed to the planner.
-    pending: VecDeque<Item>,
+    pending: pending::PendingItems,
     planner: Planner,
     /// Meta data of the moves in the planner, in queue order, with their tags.
     in_planner: VecDeque<(u32, MoveMeta)>,
@@ -264,6 +271,10 @@ pub struct Channel {
     offsets: SharedOffsets,
     dwell_ticks: u64,
     current_line: Option<u32>,
+    /// The sequence number of the block shown as current (with `current_line`: which block).
+    current_seq: u32,
+    /// The sequence number the next prepared block gets (never `pending::NO_SEQ`).
+    next_block_seq: u32,
     /// The block shown as current: its program level and where its text is.
     current_block: Option<main_run::QueuedBlock>,
     /// The line and program level of the block prepared before the last one (a move it held
@@ -383,12 +394,14 @@ impl Channel {
             programs,
             changed_files: Default::default(),
             prep_done: true,
-            pending: VecDeque::new(),
+            pending: pending::PendingItems::default(),
             planner,
             in_planner: VecDeque::new(),
             next_tag: 0,
             dwell_ticks: 0,
             current_line: None,
+            current_seq: pending::NO_SEQ,
+            next_block_seq: 1,
             current_block: None,
             prev_read: (0, None),
             spindles,

@@ -151,7 +151,10 @@ impl Channel {
             self.next_tag,
         );
         mv.machine_space = machine_space;
-        self.push_move(mv, MoveMeta { line: 0, offsets: self.offsets.clone(), machine_space, feed: 0.0 });
+        self.push_move(
+            mv,
+            MoveMeta { line: 0, seq: super::pending::NO_SEQ, offsets: self.offsets.clone(), machine_space, feed: 0.0 },
+        );
     }
 
     fn enter_reference_phase(&mut self, phase: ReferencePhase) {

@@ -133,7 +133,7 @@ impl Channel {
         };
         let geo = self.repos_distance_axes(false);
         let offsets = self.offsets.clone();
-        let meta = MoveMeta { line: 0, offsets, machine_space: false, feed: 0.0 };
+        let meta = MoveMeta { line: 0, seq: super::pending::NO_SEQ, offsets, machine_space: false, feed: 0.0 };
         match repos_approach::approach_arc(approach, &here, &target, &tangent, &geo) {
             Some(arc) => {
                 // To the start of the circle on a straight line, then along the circle.

@@ -198,7 +198,7 @@ impl Channel {
                 self.prev_read = (0, None);
                 self.search_approach = true;
                 self.status = Status::Stopped;
-                self.enter_block(target);
+                self.enter_block(target, super::pending::NO_SEQ);
             }
             Err(alarm) => self.raise(alarm),
         }
@@ -341,7 +341,13 @@ impl Channel {
         let feed = if target.is_rapid() { Feed::Rapid } else { Feed::Path(target.feed) };
         let mut mv = self.straight_move(start, target.path.start, feed);
         mv.machine_space = target.machine_space;
-        let meta = MoveMeta { line, offsets: offsets.clone(), machine_space: target.machine_space, feed: 0.0 };
+        let meta = MoveMeta {
+            line,
+            seq: super::pending::NO_SEQ,
+            offsets: offsets.clone(),
+            machine_space: target.machine_space,
+            feed: 0.0,
+        };
         self.push_bcs_move(mv, meta);
     }
 }

@@ -19,6 +19,7 @@ pub mod program_archive;
 pub mod programs;
 pub mod roles;
 pub mod sessions;
+pub mod set_wo;
 pub mod spindle_dto;
 pub mod state_json;
 pub mod stock;
@@ -87,6 +88,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(jog::jog_stop))
         .routes(routes!(jog::handwheel))
         .routes(routes!(jog::reference))
+        .routes(routes!(set_wo::set_work_offset))
         .routes(routes!(control::search))
         .routes(routes!(active_program::get_active_program))
         .routes(routes!(machine_data::put_machine_data, machine_data_read::get_machine_data))

@@ -87,6 +87,9 @@ pub struct StreamParams {
     /// The session token when the server requires one (`--auth required`); browsers cannot set
     /// an `Authorization` header on a WebSocket. Any role may watch.
     pub token: Option<String>,
+    /// `1`: watch only (a watch link): this client's commands are refused as an observer's,
+    /// also with `--auth off`.
+    pub view_only: Option<u8>,
 }
 
 impl StreamParams {
@@ -423,7 +426,8 @@ impl Commander {
     /// The access policy of a REST command, applied to a client message; `count` also takes it
     /// from the session's command rate limit.
     fn authorize(&self, count: bool) -> Result<(), ApiError> {
-        if self.state.auth() == AuthMode::Required {
+        // A view-only client (`view_only=1` with auth off) is an observer too.
+        if self.state.auth() == AuthMode::Required || self.role == Role::Observer {
             check(Need::Command, self.role, self.entry.control_holder())?;
         }
         if count {

@@ -122,6 +122,11 @@ async fn authorize(state: &AppState, request: Request) -> Result<Request, ApiErr
     let entry = state.find_entry(&id).await?;
 
     let role = match state.auth() {
+        // A watch link asks for view-only access: an observer, refused as one.
+        AuthMode::Off if super::who::view_only(&request) => {
+            check(need, Role::Observer, None)?;
+            Role::Observer
+        }
         AuthMode::Off => Role::Owner,
         AuthMode::Required => {
             let token = presented_token(&request, &route).ok_or_else(|| {
@@ -138,6 +143,11 @@ async fn authorize(state: &AppState, request: Request) -> Result<Request, ApiErr
     }
     // Any request that passed the checks is use of the session (idle expiry).
     entry.touch();
+    if need == Need::Command {
+        let rest = route.strip_prefix(SESSION_ROUTE).unwrap_or_default();
+        super::who::log_command(&entry, request.method().as_str(), rest, role, super::who::display_name(&request))
+            .await;
+    }
     request.extensions_mut().insert(Caller(role));
     Ok(request)
 }

@@ -12,6 +12,7 @@
 //! [`access`]).
 
 pub mod access;
+pub mod who;
 
 use std::fmt;
 

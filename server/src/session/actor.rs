@@ -440,6 +440,7 @@ fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandErro
         }
         Action::Reference(axis) => channel.reference_axes(axis.as_deref()),
         Action::MachineData(text) => channel.apply_machine_data(&text),
+        Action::SetWorkOffset { axis, value } => channel.set_work_offset(&axis, value),
         Action::KinematicChains(text) => channel.import_kinematic_chains(&text),
         Action::ToolData(text) => channel.replace_tool_data(&text),
         Action::LoadTool { name, duplo, magazine, place } => {

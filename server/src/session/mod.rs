@@ -128,6 +128,11 @@ pub enum Action {
     Reference(Option<String>),
     /// Apply NC data text in reset state.
     MachineData(String),
+    /// Set WO: the active work offset so that `axis` reads `value` (reset state).
+    SetWorkOffset {
+        axis: String,
+        value: f64,
+    },
     /// Run a kinematic chain program ($NK_/$NT_ assignments) on the data in reset state.
     KinematicChains(String),
     /// Replace the tool data ($TC_DP/$TC_TP/$TC_MAP/$TC_MPP/$TC_MOP lines) in reset state.

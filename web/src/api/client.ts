@@ -1,5 +1,6 @@
 // REST client for the NCTwin server (prefix /api/v1, JSON in and out).
 
+import { identityHeaders, viewOnly } from "./identity";
 import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
   ActiveProgramRange,
@@ -45,7 +46,7 @@ export class ApiError extends Error {
 
 /** `tokenOf`: the session whose token to present when the path names none. */
 export async function request<T>(method: string, path: string, body?: unknown, tokenOf?: string | null): Promise<T> {
-  const headers: Record<string, string> = { Accept: "application/json" };
+  const headers: Record<string, string> = { Accept: "application/json", ...identityHeaders() };
   const session = sessionOfPath(path) ?? tokenOf;
   const token = session ? tokenFor(session) : undefined;
   if (token) headers.Authorization = `Bearer ${token}`;
@@ -128,6 +129,13 @@ export const api = {
   jog: (id: string, jog: JogCommand) => request<State>("POST", `${s(id)}/jog`, jog),
   swivel: (id: string, swivel: SwivelCommand) => request<State>("POST", `${s(id)}/swivel`, swivel),
   jogStop: (id: string) => request<State>("POST", `${s(id)}/jog/stop`, {}),
+  /** Ref. point: references every unreferenced axis (JOG mode, reset state). */
+  reference: (id: string) => request<State>("POST", `${s(id)}/reference`, {}),
+  /** Handwheel detents on `axis` (INC1..INC1000 per detent). */
+  handwheel: (id: string, hw: { axis: string; pulses: number; inc: number; coordinates: string }) =>
+    request<State>("POST", `${s(id)}/jog/handwheel`, hw),
+  /** Set WO: the active work offset so that `axis` reads `value` in the WCS. */
+  setWorkOffset: (id: string, axis: string, value: number) => request<State>("POST", `${s(id)}/set-wo`, { axis, value }),
   setOverrides: (id: string, o: Partial<Overrides>) => request<State>("PUT", `${s(id)}/overrides`, o),
   setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),
   io: (id: string) => request<IoImage>("GET", `${s(id)}/io`),
@@ -162,5 +170,6 @@ export function streamUrl(id: string, periodMs = 50): string {
   const proto = location.protocol === "https:" ? "wss:" : "ws:";
   const token = tokenFor(id);
   const auth = token ? `&token=${encodeURIComponent(token)}` : "";
-  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}${auth}`;
+  const watch = viewOnly() ? "&view_only=1" : "";
+  return `${proto}//${location.host}${BASE}${s(id)}/stream?period_ms=${periodMs}${auth}${watch}`;
 }

@@ -65,6 +65,8 @@ export class JogPanel {
   private call: Promise<unknown> = Promise.resolve();
   private axesKey = "";
   private coords: JogCoords = "WCS";
+  /** The axis the keyboard's + / − keys move (chosen with 1..9, as Operate's axis keys). */
+  private keyAxis = "";
   private readonly box = byId("jog-axes");
   private readonly oriBox = byId("jog-ori");
   private readonly rapidKey = byId<HTMLButtonElement>("jog-rapid");
@@ -101,6 +103,11 @@ export class JogPanel {
     showVar();
   }
 
+  /** The coordinate system the JOG keys (and the handwheel) move in. */
+  get coordinates(): JogCoords {
+    return this.coords;
+  }
+
   setCoords(coords: JogCoords): void {
     this.coords = coords;
     for (const b of document.querySelectorAll<HTMLButtonElement>("#jog-coords [data-jog-coords]")) {
@@ -121,6 +128,8 @@ export class JogPanel {
     if (key === this.axesKey) return;
     this.axesKey = key;
     this.box.replaceChildren(...axes.map((a) => keyRow(a)));
+    if (!axes.includes(this.keyAxis)) this.keyAxis = "";
+    for (const r of this.box.querySelectorAll<HTMLElement>(".jog-axis")) r.classList.toggle("selected", r.dataset.axis === this.keyAxis);
     this.oriBox.hidden = !ori;
     byId("jog-rotation-label").hidden = !ori;
     this.oriBox.replaceChildren(...(ori ? ORIENTATION_AXES.map((a) => keyRow(a, this.coords === "MCS")) : []));
@@ -153,13 +162,26 @@ export class JogPanel {
   }
 
   /**
-   * Keyboard: in JOG mode, while the Machine area shows and no text field has the focus, the arrow keys
-   * are X−/X+ (left/right) and Y−/Y+ (down/up), Page Down/Up Z−/Z+; held like the JOG keys.
+   * Keyboard, in JOG mode while the Machine area shows and no text field has the focus: the
+   * arrow keys are X−/X+ (left/right) and Y−/Y+ (down/up), Page Down/Up Z−/Z+; the digits 1..9
+   * select the n-th axis (as Operate's axis keys) and + / − move it, for every axis; Space or
+   * Enter on a focused JOG key acts as pressing it. All held like the JOG keys.
    */
   onKey(ev: KeyboardEvent, down: boolean): void {
     const target = ev.target as HTMLElement | null;
     if (target?.closest("input, textarea, select, [contenteditable]") || byId("area-machine").hidden) return;
     if (this.session.latest?.mode !== "JOG") return;
+    const focusedKey = target?.closest<HTMLButtonElement>("button[data-jog-axis]");
+    if (focusedKey && (ev.key === " " || ev.key === "Enter")) {
+      ev.preventDefault();
+      if (!down) return this.release();
+      if (!ev.repeat && !focusedKey.disabled) this.pressKey(focusedKey);
+      return;
+    }
+    if (/^[1-9]$/.test(ev.key)) {
+      if (down) this.selectKeyAxis(Number(ev.key) - 1);
+      return;
+    }
     const map: Record<string, [string, string]> = {
       ArrowLeft: ["X", "-1"],
       ArrowRight: ["X", "1"],
@@ -168,6 +190,10 @@ export class JogPanel {
       PageDown: ["Z", "-1"],
       PageUp: ["Z", "1"],
     };
+    if (this.keyAxis) {
+      map["+"] = [this.keyAxis, "1"];
+      map["-"] = [this.keyAxis, "-1"];
+    }
     const hit = map[ev.key];
     if (!hit) return;
     const button = this.box.querySelector<HTMLButtonElement>(`button[data-jog-axis="${hit[0]}"][data-dir="${hit[1]}"]`);
@@ -177,8 +203,18 @@ export class JogPanel {
     if (!ev.repeat) this.pressKey(button);
   }
 
+  /** Selects the `index`-th axis row for the + / − keys (marked in the panel). */
+  private selectKeyAxis(index: number): void {
+    const rows = [...this.box.querySelectorAll<HTMLElement>(".jog-axis")];
+    const row = rows[index];
+    if (!row) return;
+    this.keyAxis = row.dataset.axis ?? "";
+    for (const r of rows) r.classList.toggle("selected", r === row);
+  }
+
   private pressKey(button: HTMLButtonElement): void {
     this.release();
+    if (document.body.dataset.locked) return; // view only / no control: see ui/lock.ts
     const jog = this.message(button);
     if (!jog) return;
     const continuous = jog.inc === undefined && jog.increment === undefined;
@@ -216,7 +252,7 @@ export class JogPanel {
 }
 
 function keyRow(axis: string, disabled = false): HTMLElement {
-  const row = el("div", { class: "jog-axis" });
+  const row = el("div", { class: "jog-axis", "data-axis": axis });
   const key = (dir: string, label: string) => {
     const b = el("button", { type: "button", "data-jog-axis": axis, "data-dir": dir, title: `${axis} ${label}` }, label);
     b.disabled = disabled;

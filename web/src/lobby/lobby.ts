@@ -1,9 +1,11 @@
-// The Sessions area: machine presets, creating a session, and the list of running sessions
-// to join or end.
+// The Sessions area, also the start page at `/`: the user's display name, machine presets,
+// creating a session, and the class view: every running session with its status, alarms and
+// current block, to join (drive), watch (view only) or end (after a confirmation).
 
 import { api } from "../api/client";
+import { displayName, setDisplayName, setViewOnly } from "../api/identity";
 import { forgetTokens } from "../api/tokens";
-import type { MachineSummary, SessionSummary } from "../api/types";
+import type { MachineSummary, SessionSummary, State } from "../api/types";
 import { byId, el, setText } from "../core/dom";
 import { clearMessage, showMessage } from "../core/message";
 import type { SessionController } from "../core/session";
@@ -21,6 +23,9 @@ export class Lobby {
       void this.create();
     });
     byId("preset-select").addEventListener("change", () => this.describePreset());
+    const name = byId<HTMLInputElement>("display-name");
+    name.value = displayName();
+    name.addEventListener("change", () => setDisplayName(name.value));
     byId("btn-sessions-refresh").addEventListener("click", () => void this.refresh());
     byId("sessions").addEventListener("click", (ev) => this.onListClick(ev));
     // Keep the list current while it is on screen.
@@ -44,8 +49,10 @@ export class Lobby {
   async create(machine = byId<HTMLSelectElement>("preset-select").value): Promise<void> {
     const machineData = byId<HTMLTextAreaElement>("new-machine-data").value.trim();
     try {
+      setDisplayName(byId<HTMLInputElement>("display-name").value);
       const created = await api.createSession(machine, machineData || undefined);
       clearMessage();
+      setViewOnly(false);
       await this.session.attach(created.id, created.machine);
       showArea("machine");
     } catch (e) {
@@ -62,18 +69,35 @@ export class Lobby {
       return;
     }
     const names = new Map(this.machines.map((m) => [m.id, m.name]));
+    // The class view: each session's alarms and current block from its state (a session whose
+    // state this page may not read shows dashes).
+    const states = await Promise.all(sessions.map((s) => api.state(s.id).catch((): State | null => null)));
     byId<HTMLTableElement>("sessions").tBodies[0]!.replaceChildren(
-      ...sessions.map((s) => {
+      ...sessions.map((s, i) => {
+        const st = states[i];
         const tr = el("tr", { "data-session": s.id });
         if (s.id === this.session.id) tr.classList.add("attached");
         const status = el("td", {}, s.status);
         status.append(el("span", { class: "dot", "data-status": s.status }));
+        const alarms = st?.alarms.map((a) => String(a.number)).join(", ") ?? "–";
+        const alarmCell = el("td", { class: "class-alarms", title: st?.alarms.map((a) => `${a.number}: ${a.message}`).join("\n") ?? "" }, alarms);
+        if (st?.alarms.length) alarmCell.classList.add("has-alarm");
+        const block = st?.block ? `${st.block.line}: ${st.block.text}` : "–";
         const actions = el("td", { class: "actions" });
         actions.append(
-          el("button", { type: "button", "data-open": s.id, "data-machine": s.machine }, s.id === this.session.id ? "Shown" : "Open"),
-          el("button", { type: "button", "data-delete": s.id }, "End"),
+          el("button", { type: "button", "data-open": s.id, "data-machine": s.machine, title: "Join: operate this session" }, s.id === this.session.id ? "Shown" : "Join"),
+          el("button", { type: "button", "data-watch": s.id, "data-machine": s.machine, title: "Watch: view only, controls off" }, "Watch"),
+          el("button", { type: "button", "data-delete": s.id, title: "End this session (asks first)" }, "End"),
         );
-        tr.append(el("td", {}, s.id), el("td", {}, names.get(s.machine) ?? s.machine), el("td", {}, s.mode), status, actions);
+        tr.append(
+          el("td", {}, s.id),
+          el("td", {}, names.get(s.machine) ?? s.machine),
+          el("td", {}, s.mode),
+          status,
+          alarmCell,
+          el("td", { class: "class-block mono" }, block),
+          actions,
+        );
         return tr;
       }),
     );
@@ -87,13 +111,17 @@ export class Lobby {
   private onListClick(ev: Event): void {
     const button = (ev.target as HTMLElement).closest<HTMLButtonElement>("button");
     if (!button) return;
-    const { open, machine, delete: del } = button.dataset;
-    if (open && machine) {
-      void this.session.attach(open, machine).then(
+    const { open, watch, machine, delete: del } = button.dataset;
+    const target = open ?? watch;
+    if (target && machine) {
+      setDisplayName(byId<HTMLInputElement>("display-name").value);
+      setViewOnly(watch !== undefined);
+      void this.session.attach(target, machine).then(
         () => showArea("machine"),
-        (e: Error) => showMessage(`session ${open}: ${e.message}`),
+        (e: Error) => showMessage(`session ${target}: ${e.message}`),
       );
     } else if (del) {
+      if (!confirm(`End session ${del}? Its program, position and data are gone for everyone in it.`)) return;
       void api.deleteSession(del).then(
         () => {
           forgetTokens(del);

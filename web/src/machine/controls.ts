@@ -36,7 +36,7 @@ function cycleStart(session: SessionController): void {
 
 /** The MDA buffer: the blocks typed in the MDA panel, else the ones sent last. */
 function mdaBuffer(): string {
-  return byId<HTMLInputElement>("mda-input").value.trim() || selection.mdaText.trim();
+  return byId<HTMLTextAreaElement>("mda-input").value.trim() || selection.mdaText.trim();
 }
 
 /** What Cycle start will start now, named beside the key. */
@@ -60,14 +60,22 @@ export function mountControls(session: SessionController): void {
   selection.on("change", show);
   selection.on("mda", show);
   activeProgram.on("change", show);
-  byId("mda-input").addEventListener("input", show);
+  const mda = byId<HTMLTextAreaElement>("mda-input");
+  mda.addEventListener("input", show);
+  // The MDA editor takes several blocks (Enter: a new line); Ctrl+Enter starts them.
+  mda.addEventListener("keydown", (ev) => {
+    if (ev.key === "Enter" && (ev.ctrlKey || ev.metaKey)) {
+      ev.preventDefault();
+      byId<HTMLFormElement>("mda-form").requestSubmit();
+    }
+  });
   byId("btn-cycle-start").addEventListener("click", () => cycleStart(session));
   byId("btn-cycle-stop").addEventListener("click", () => session.act((id) => api.stop(id)));
   byId("btn-reset").addEventListener("click", () => session.act((id) => api.reset(id)));
 
   byId("mda-form").addEventListener("submit", (ev) => {
     ev.preventDefault();
-    const text = byId<HTMLInputElement>("mda-input").value.trim();
+    const text = byId<HTMLTextAreaElement>("mda-input").value.trim();
     if (!text) return;
     selection.setMda(text);
     void session.act((id) => api.mda(id, text, pace()));

@@ -7,8 +7,35 @@ import type { SessionController } from "../core/session";
 
 const MAX_EVENTS = 200;
 
+/** The action log's commands in the words of the screen. */
+const ACTIONS: Record<string, string> = {
+  "POST start": "Cycle start",
+  "POST stop": "Cycle stop",
+  "POST reset": "Reset",
+  "POST cancel": "cancel alarm",
+  "PUT mode": "operating mode",
+  "POST run": "program start (Execute)",
+  "POST mda": "MDA start",
+  "POST jog": "JOG",
+  "POST jog/stop": "JOG stop",
+  "POST jog/handwheel": "handwheel",
+  "POST reference": "Ref. point",
+  "POST set-wo": "Set WO",
+  "PUT overrides": "override",
+  "PUT options": "program control (SBL/M01)",
+  "PUT machine-data": "machine data",
+  "PUT tools": "tool data",
+  "POST swivel": "swivel (CYCLE800)",
+  "POST search": "block search",
+};
+
 function describe(ev: StreamEvent): string {
   const { type: _type, event: _event, ...rest } = ev;
+  if (ev.event === "operator_action") {
+    const who = typeof rest.name === "string" && rest.name ? `${rest.name} (${String(rest.role)})` : String(rest.role);
+    const action = String(rest.action ?? "");
+    return `${who}: ${ACTIONS[action] ?? action}`;
+  }
   const alarm = rest.alarm as { number?: number; message?: string; line?: number | null } | undefined;
   if (alarm && typeof alarm === "object") {
     return `${alarm.number}${alarm.line != null ? ` (line ${alarm.line})` : ""}: ${alarm.message ?? ""}`;

@@ -18,6 +18,8 @@ export class PositionsView {
   private frame: Frame = "workpiece";
   private rowsKey = "";
   private cells = new Map<string, HTMLElement>();
+  /** The reference point symbol cell of each row. */
+  private refCells = new Map<string, HTMLElement>();
   private latest: State | null = null;
   /** NC data text of the machine (which axes are rotary). */
   private machineData = "";
@@ -58,17 +60,44 @@ export class PositionsView {
       const td = this.cells.get(axis);
       if (td) setText(td, fmt(value));
     }
+    this.showReferenced(st, axes);
+  }
+
+  /**
+   * The reference point symbol beside each axis, as Operate shows it: ⊕ referenced, a warning
+   * "not ref." otherwise. The state names machine axes; a WCS/BCS row takes the machine axis of
+   * the same name, else the one at the same place (no transformation: the same order).
+   */
+  private showReferenced(st: State, axes: string[]): void {
+    const referenced = st.referenced ?? {};
+    const machine = Object.keys(st.positions.machine);
+    axes.forEach((axis, i) => {
+      const td = this.refCells.get(axis);
+      if (!td) return;
+      const name = axis in referenced ? axis : machine.length === axes.length ? machine[i] : undefined;
+      const known = name !== undefined && name in referenced;
+      const ok = known && referenced[name!] === true;
+      const state = !known ? "" : ok ? "yes" : "no";
+      if (td.dataset.referenced === state) return;
+      td.dataset.referenced = state;
+      setText(td, !known ? "" : ok ? "⊕" : "not ref.");
+      td.title = !known ? "" : ok ? `${name} is referenced` : `${name} is not referenced: JOG → Ref. point`;
+      td.setAttribute("aria-label", td.title);
+    });
   }
 
   /** Rotary axes and spindles count in degrees, everything else in mm. */
   private buildRows(axes: string[], key: string, spindles: Record<string, number>): void {
     this.rowsKey = key;
     this.cells.clear();
+    this.refCells.clear();
     const rows = axes.map((axis) => {
       const value = el("td", { class: "num value", "data-frame": this.frame, "data-axis": axis });
       this.cells.set(axis, value);
       const tr = el("tr");
-      tr.append(el("th", { class: "axis" }, axis), value, el("td", { class: "unit" }, axis in spindles || this.rotary.has(axis) ? "°" : "mm"));
+      const ref = el("td", { class: "ref", "data-ref-axis": axis });
+      this.refCells.set(axis, ref);
+      tr.append(ref, el("th", { class: "axis" }, axis), value, el("td", { class: "unit" }, axis in spindles || this.rotary.has(axis) ? "°" : "mm"));
       return tr;
     });
     byId<HTMLTableElement>("positions").tBodies[0]!.replaceChildren(...rows);

@@ -1,5 +1,8 @@
 // The Program area: edit a program, check it (errors at their lines), save it in the session's
-// program store, select it for execution.
+// program store, select it for execution. Check and Execute also make a trial run on a copy of
+// the channel (POST .../preview): what only the run finds (an undefined name: 12550, an unknown
+// G function: 12470, a software limit: 10720) is flagged at its line before Cycle start.
+// New/Open ask before they drop unsaved text.
 
 import { api, ApiError } from "../api/client";
 import type { Diagnostic } from "../api/types";
@@ -27,7 +30,7 @@ export class EditorArea {
     });
     byId("btn-editor-new").addEventListener("click", () => this.open("NEW", ""));
     byId("btn-editor-save").addEventListener("click", () => void this.save());
-    byId("btn-editor-check").addEventListener("click", () => void this.check());
+    byId("btn-editor-check").addEventListener("click", () => void this.checkAll());
     byId("btn-editor-execute").addEventListener("click", () => void this.execute());
     byId("diagnostics").addEventListener("click", (ev) => {
       const li = (ev.target as HTMLElement).closest<HTMLElement>("li[data-line]");
@@ -40,13 +43,50 @@ export class EditorArea {
     return this.nameInput.value.trim().toUpperCase();
   }
 
-  /** Loads a program into the editor (saved state = as given). */
-  open(name: string, text: string): void {
+  /** Whether the editor holds text that is not saved. */
+  get dirty(): boolean {
+    return this.editor.text !== this.savedText;
+  }
+
+  /**
+   * Loads a program into the editor (saved state = as given); asks first when that would drop
+   * unsaved text. False when the user kept the text.
+   */
+  open(name: string, text: string): boolean {
+    if (this.dirty && !confirm(`${this.name || "The program"} has unsaved changes. Drop them and open ${name}?`)) return false;
     this.nameInput.value = name;
     this.editor.text = text;
     this.savedText = text;
     this.showDiagnostics([]);
     this.updateDirty();
+    return true;
+  }
+
+  /** The syntax check, then a trial run when the syntax is right; shows and returns the errors. */
+  async checkAll(): Promise<Diagnostic[]> {
+    const errors = await this.check();
+    if (errors.length) return errors;
+    const trial = await this.trialRun();
+    if (trial.length) this.showDiagnostics(trial);
+    return trial;
+  }
+
+  /**
+   * Runs the text on a copy of the channel (the preview, no motion on the machine): its alarm
+   * at its line, or nothing (also when the trial is cut short by the server's limits or cannot
+   * run).
+   */
+  private async trialRun(): Promise<Diagnostic[]> {
+    const id = this.session.id;
+    if (!id) return [];
+    try {
+      const r = await api.preview(id, { program: this.editor.text, max_points: 2 });
+      if (r.outcome !== "alarm" || !r.alarm) return [];
+      const line = r.alarm.line ?? 1;
+      return [{ line, column: 1, message: `alarm ${r.alarm.number} in a trial run: ${r.alarm.message}` }];
+    } catch {
+      return [];
+    }
   }
 
   /** Checks the syntax on the server; shows and returns the errors (none if it cannot check). */
@@ -88,7 +128,7 @@ export class EditorArea {
 
   /** Checks, then selects the program for AUTO and switches to the machine screen. */
   async execute(): Promise<void> {
-    const errors = await this.check();
+    const errors = await this.checkAll();
     if (errors.length) {
       showMessage(`${this.name || "the program"} has ${errors.length} error(s): not selected`);
       const first = errors[0]!;
@@ -123,6 +163,6 @@ export class EditorArea {
   }
 
   private updateDirty(): void {
-    setText(byId("editor-dirty"), this.editor.text !== this.savedText ? "modified" : "");
+    setText(byId("editor-dirty"), this.dirty ? "modified" : "");
   }
 }

@@ -52,8 +52,40 @@ export const TURNING_DEMO: SelectedProgram = {
   ].join("\n"),
 };
 
-/** The demo that fits a machine's NC data: the turning demo when it has no Y geometry axis. */
-export function demoFor(machineData: string): SelectedProgram {
+/**
+ * The demo of the TRACYL lathe-mill (tracyl-xyzc): a groove around a 40 mm cylinder on the C
+ * axis (the milling demo's X-60 is outside its XM travel of -50..200: alarm 10720). Under
+ * TRACYL(40) Y is the unrolled arc length: Y60 turns C by 60 / 20 rad = 171.9°.
+ */
+export const TRACYL_DEMO: SelectedProgram = {
+  name: "DEMO",
+  text: [
+    "; Demo: a groove around a 40 mm cylinder with TRACYL (Y is the unrolled arc length)",
+    "T1 D1 G19 G90",
+    "G0 X60 Z-20",
+    "TRACYL(40)",
+    "G1 X20 Y0 Z-20 F3000",
+    "G1 Y60",
+    "G1 Z-40",
+    "G1 Y0",
+    "G1 X30",
+    "TRAFOOF",
+    "G0 X60",
+    "M30",
+    "",
+  ].join("\n"),
+};
+
+/** Presets whose machine the general demos do not fit, by preset id. */
+const PRESET_DEMOS: Record<string, SelectedProgram> = { "tracyl-xyzc": TRACYL_DEMO };
+
+/**
+ * The demo that fits a machine: its preset's own, else the turning demo when it has no Y
+ * geometry axis, else the milling demo.
+ */
+export function demoFor(machineData: string, preset = ""): SelectedProgram {
+  const own = PRESET_DEMOS[preset];
+  if (own) return own;
   const withoutY = /\$MC_AXCONF_GEOAX_ASSIGN_TAB\[1\]\s*=\s*0\b/.test(machineData);
   return withoutY ? TURNING_DEMO : DEMO_PROGRAM;
 }
@@ -73,8 +105,8 @@ class Selection extends Emitter<{ change: SelectedProgram; mda: string }> {
   }
 
   /** A new session: an untouched demo becomes the demo for its machine. */
-  adoptDemo(machineData: string): void {
-    const demo = demoFor(machineData);
+  adoptDemo(machineData: string, preset = ""): void {
+    const demo = demoFor(machineData, preset);
     if (this.program.name === "DEMO" && this.program.text !== demo.text) this.select(demo);
   }
 

@@ -1,10 +1,12 @@
 // The swivel form: CYCLE800's fields grouped as on the Operate screen (swivel data set,
 // retraction, swivel mode and axis sequence, reference point, angles, zero point, direction),
 // sent as POST .../swivel. The server runs the cycle as one MDA block and returns to JOG.
+// The swivel data set is a list of the machine's `$TC_CARR` data sets (by `$TC_CARR34` name,
+// else by number), the first one chosen; machines without swivel data do not show the screen.
 
 import { api } from "../api/client";
 import type { SwivelCommand } from "../api/types";
-import { byId } from "../core/dom";
+import { byId, el } from "../core/dom";
 import type { SessionController } from "../core/session";
 
 function command(form: HTMLFormElement): SwivelCommand {
@@ -32,8 +34,32 @@ function command(form: HTMLFormElement): SwivelCommand {
   };
 }
 
+/** The swivel data sets of NC data text: number and `$TC_CARR34` name, in number order. */
+export function swivelDataSets(machineData: string): { n: number; name: string }[] {
+  const sets = new Map<number, string>();
+  for (const m of machineData.matchAll(/^\s*\$TC_CARR(\d+)\[(\d+)\]\s*=\s*(.*)$/gm)) {
+    const n = Number(m[2]);
+    if (!sets.has(n)) sets.set(n, "");
+    if (m[1] === "34") sets.set(n, (/"([^"]*)"/.exec(m[3] ?? "")?.[1] ?? "").trim());
+  }
+  return [...sets].sort((a, b) => a[0] - b[0]).map(([n, name]) => ({ n, name }));
+}
+
+function showDataSets(machineData: string): void {
+  const sets = swivelDataSets(machineData);
+  byId("swivel-panel").hidden = sets.length === 0;
+  const select = byId<HTMLSelectElement>("swivel-tc");
+  const keep = select.value;
+  select.replaceChildren(
+    ...sets.map((s) => el("option", { value: s.name || String(s.n) }, s.name ? `${s.name} (${s.n})` : `data set ${s.n}`)),
+  );
+  if ([...select.options].some((o) => o.value === keep)) select.value = keep;
+}
+
 export function mountSwivel(session: SessionController): void {
   const form = byId<HTMLFormElement>("swivel-form");
+  session.on("session", (info) => showDataSets(info.machine.machine_data));
+  session.on("machine", (info) => showDataSets(info.machine.machine_data));
   form.addEventListener("submit", (ev) => {
     ev.preventDefault();
     const cmd = command(form);
