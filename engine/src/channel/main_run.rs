@@ -49,8 +49,10 @@ impl Channel {
                 || self.psync.stopreof;
             out.clear();
             let generation = self.interp.transformation_generation();
-            // The level the block is read in (a call or return changes it after the read).
+            // The level the block is read in (a call or return changes it after the read), and
+            // the calling block shown instead while a DISPLOF subprogram runs.
             let level = self.interp.level().cloned();
+            let hidden = self.interp.hidden_by_call();
             if self.psync.stopreof || self.positioning.has_command_axes() {
                 // `$AA_IM` reads where the main run stands (`program_sync.rs`).
                 self.interp.set_main_run_position(Some(self.machine));
@@ -86,7 +88,7 @@ impl Channel {
             }
             // Remember where each block is, for showing it while its items execute: the block
             // just read is in `level`; a move held back from the block before in that one's.
-            let read = (self.interp.read_line(), level);
+            let read = ReadBlock { line: self.interp.read_line(), level, hidden };
             let read_offset = self.interp.read_offset();
             let mut last = None;
             let mut seq = NO_SEQ;
@@ -95,18 +97,18 @@ impl Channel {
                     && last != Some(line)
                 {
                     last = Some(line);
-                    seq = if line == read.0 {
+                    let block = if line != read.line && line == self.prev_read.line { &self.prev_read } else { &read };
+                    seq = if let Some((call_line, caller)) = block.hidden.clone() {
+                        // DISPLOF: the calling block stands for all of the subprogram's.
+                        self.held_block_seq(call_line, caller)
+                    } else if line == read.line {
                         // Where the block just read starts is known: no counting of lines (a
                         // loop's or a cycle's jump back would count from the text's start). A
                         // block read is a new block, whatever its line number.
-                        self.queue_block_at(line, read_offset, read.1.clone())
+                        self.queue_block_at(line, read_offset, read.level.clone())
                     } else {
-                        let level = if line == self.prev_read.0 { self.prev_read.1.clone() } else { read.1.clone() };
                         // A move held back from the block before is still that block.
-                        match self.queued_blocks.back().filter(|b| b.line == line && same_level(&b.level, &level)) {
-                            Some(b) => b.seq,
-                            None => self.queue_block(line, level),
-                        }
+                        self.held_block_seq(line, block.level.clone())
                     };
                 }
                 self.pending.push_back(seq, item);
@@ -310,14 +312,26 @@ impl Channel {
         seq
     }
 
-    /// The main run enters the block at `line`: the first queued block of that line is it (the
-    /// main run executes blocks in the order they were prepared); the blocks queued before it
-    /// are done with.
+    /// The sequence number of the last queued block if it is `line` of `level` (the block
+    /// still being shown: a move held back from it, the call of a DISPLOF subprogram), else of
+    /// that block queued anew.
+    fn held_block_seq(&mut self, line: u32, level: Option<Arc<Level>>) -> u32 {
+        match self.queued_blocks.back().filter(|b| b.line == line && same_level(&b.level, &level)) {
+            Some(b) => b.seq,
+            None => self.queue_block(line, level),
+        }
+    }
+
+    /// The main run enters the block of `line` numbered `seq`: the queued block of that number
+    /// (or, without one, the first queued block of that line: the main run executes blocks in
+    /// the order they were prepared); the blocks queued before it are done with.
     pub(super) fn enter_block(&mut self, line: u32, seq: u32) {
         // The same line is another block when its sequence number differs (a subprogram's line
-        // 1 after the caller's line 1); an item without a number is taken for the shown block.
-        if self.current_line != Some(line) || seq != NO_SEQ && seq != self.current_seq {
-            self.current_line = Some(line);
+        // 1 after the caller's line 1), and another line the same block when the number is the
+        // same (the blocks of a DISPLOF subprogram show their call); an item without a number
+        // is taken for the shown block.
+        let changed = if seq == NO_SEQ { self.current_line != Some(line) } else { seq != self.current_seq };
+        if changed {
             self.current_seq = seq;
             let by_seq = (seq != NO_SEQ).then(|| self.queued_blocks.iter().position(|b| b.seq == seq)).flatten();
             self.current_block = match by_seq.or_else(|| self.queued_blocks.iter().position(|b| b.line == line)) {
@@ -327,7 +341,9 @@ impl Channel {
                 }
                 None => None,
             };
-            if let Some(b) = self.block_ref(line) {
+            let shown = self.current_block.as_ref().filter(|b| b.seq == seq && seq != NO_SEQ).map_or(line, |b| b.line);
+            self.current_line = Some(shown);
+            if let Some(b) = self.block_ref(shown) {
                 self.events.push(Event::BlockChanged(b));
             }
         }
@@ -519,6 +535,15 @@ impl Channel {
         self.events.push(Event::AlarmRaised(alarm.clone()));
         self.alarms.push(alarm);
     }
+}
+
+/// The block the interpreter read last: its line, its program level and, inside a DISPLOF
+/// subprogram, the calling block shown instead (`Interpreter::hidden_by_call`).
+#[derive(Debug, Clone, Default)]
+pub(super) struct ReadBlock {
+    pub line: u32,
+    pub level: Option<Arc<Level>>,
+    pub hidden: Option<(u32, Option<Arc<Level>>)>,
 }
 
 /// A prepared block whose items are queued: its line in its program level, where the line

@@ -279,7 +279,7 @@ pub struct Channel {
     current_block: Option<main_run::QueuedBlock>,
     /// The line and program level of the block prepared before the last one (a move it held
     /// back comes out with the next block's items).
-    prev_read: (u32, Option<Arc<crate::interp::Level>>),
+    prev_read: main_run::ReadBlock,
     spindles: Vec<Spindle>,
     alarms: Vec<Alarm>,
     events: Vec<Event>,
@@ -403,7 +403,7 @@ impl Channel {
             current_seq: pending::NO_SEQ,
             next_block_seq: 1,
             current_block: None,
-            prev_read: (0, None),
+            prev_read: main_run::ReadBlock::default(),
             spindles,
             alarms: Vec::new(),
             events: Vec::new(),

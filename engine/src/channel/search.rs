@@ -195,7 +195,7 @@ impl Channel {
             Ok(level) => {
                 self.queued_blocks.clear();
                 self.queue_block(target, level);
-                self.prev_read = (0, None);
+                self.prev_read = super::main_run::ReadBlock::default();
                 self.search_approach = true;
                 self.status = Status::Stopped;
                 self.enter_block(target, super::pending::NO_SEQ);

@@ -21,7 +21,7 @@ use super::eval::vars::Variable;
 use super::flow::Flow;
 use super::modal::assign;
 use crate::alarm::Alarm;
-use crate::lang::{Expr, Lvalue, Param, ProgramText};
+use crate::lang::{Expr, Lvalue, Param, ProcAttributes, ProgramText};
 use crate::machine_data::MachineConfig;
 
 /// The stored programs calls are resolved in (by name and directory).
@@ -97,9 +97,8 @@ pub(super) struct CallFrame {
     /// The caller's modal state, programmable and settable frame at the call; restored at each
     /// return when the PROC line says SAVE.
     saved: Box<(super::Modal, super::Frame, Option<super::Frame>)>,
-    save: bool,
-    /// The PROC line says `DISPLOF` without `ACTBLOCNO`: alarms here name the calling block.
-    alarms_at_call: bool,
+    /// The PROC line's SAVE, DISPLOF and ACTBLOCNO.
+    attributes: ProcAttributes,
 }
 
 impl Interpreter {
@@ -160,8 +159,7 @@ impl Interpreter {
             repeats_left: repeat.max(1) - 1,
             bound: false,
             saved: Box::new((self.modal.clone(), (*self.pframe).clone(), (*self.iframe).clone())),
-            save: false,
-            alarms_at_call: false,
+            attributes: ProcAttributes::default(),
         });
         self.vars.push_frame();
         self.flow = Some(flow);
@@ -176,11 +174,22 @@ impl Interpreter {
     /// it names the block that called the outermost such subprogram (Programming Manual, Job
     /// planning, "DISPLOF"/"ACTBLOCNO").
     pub(super) fn alarm_as_displayed(&self, alarm: Alarm) -> Alarm {
-        let hidden = self.calls.iter().find(|f| f.bound && f.alarms_at_call);
+        let hidden = self.calls.iter().find(|f| f.bound && f.attributes.displof && !f.attributes.actblocno);
         match hidden.and_then(|f| f.level.calls.last()) {
             Some(&(line, _)) if alarm.line.is_some() => alarm.at_block(line),
             _ => alarm,
         }
+    }
+
+    /// The block the display shows for the blocks being prepared when they run inside a
+    /// subprogram whose `PROC` line says `DISPLOF` (the standard cycles do): the line of the
+    /// block that called the outermost such subprogram and the level it is in (`None`: the
+    /// main program). `None` while the blocks are shown as themselves.
+    pub fn hidden_by_call(&self) -> Option<(u32, Option<Arc<Level>>)> {
+        let at = self.calls.iter().position(|f| f.bound && f.attributes.displof)?;
+        let &(line, _) = self.calls[at].level.calls.last()?;
+        let caller = at.checked_sub(1).map(|i| self.calls[i].level.clone());
+        Some((line, caller))
     }
 
     /// The subprogram level being prepared; `None` in the main program.
@@ -189,16 +198,10 @@ impl Interpreter {
     }
 
     /// Binds the call's arguments to the parameters of the subprogram's PROC line.
-    pub(super) fn bind_params(
-        &mut self,
-        params: &[Param],
-        (save, alarms_at_call): (bool, bool),
-        line: u32,
-    ) -> Result<(), Alarm> {
+    pub(super) fn bind_params(&mut self, params: &[Param], attributes: ProcAttributes, line: u32) -> Result<(), Alarm> {
         let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) else { return Ok(()) };
         frame.bound = true;
-        frame.save = save;
-        frame.alarms_at_call = alarms_at_call;
+        frame.attributes = attributes;
         if frame.args.len() > params.len() {
             return Err(Alarm::too_many_arguments(
                 line,
@@ -257,7 +260,7 @@ impl Interpreter {
             .iter()
             .filter_map(|(param, src)| self.vars.get(param).map(|v| (src.clone(), v.data[0].clone())))
             .collect();
-        if frame.save {
+        if frame.attributes.save {
             // PROC ... SAVE: the G functions and frames of the caller come back (the feed the
             // subprogram programmed stays, as F is no G function).
             let (modal, pframe, iframe) = (*frame.saved).clone();

@@ -65,9 +65,7 @@ impl Interpreter {
             self.run_effect_calls(block.to_mut(), cfg, programs, out)?;
         }
         match &block.stmt {
-            Some(Stmt::Proc { params, save, alarms_at_call, .. }) => {
-                self.bind_params(params, (*save, *alarms_at_call), block.line)?
-            }
+            Some(Stmt::Proc { params, attributes, .. }) => self.bind_params(params, *attributes, block.line)?,
             Some(stmt) => {
                 self.check_unbound(block.line)?;
                 self.statement(stmt, &block, at, cfg, out)?;

@@ -190,15 +190,11 @@ pub enum Stmt {
     },
     /// `GOTOF L` alone.
     Goto(Goto),
-    /// `PROC NAME(type param, ...) [SAVE ...]`.
+    /// `PROC NAME(type param, ...) [SAVE DISPLOF ACTBLOCNO ...]`.
     Proc {
         name: String,
         params: Vec<Param>,
-        /// `SAVE`: the caller's modal G functions and frames come back at the return.
-        save: bool,
-        /// `DISPLOF` without `ACTBLOCNO`: the subprogram's blocks are not displayed, so its
-        /// alarms name the block that called it.
-        alarms_at_call: bool,
+        attributes: ProcAttributes,
     },
     /// `RET` (end of subprogram).
     Ret,
@@ -297,4 +293,16 @@ pub enum BinOp {
     Div,
     IntDiv,
     Mod,
+}
+
+/// The attributes of a `PROC` line that change how the subprogram runs or is shown.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ProcAttributes {
+    /// `SAVE`: the caller's modal G functions and frames come back at the return.
+    pub save: bool,
+    /// `DISPLOF`: the subprogram's blocks are not displayed; the block display shows the
+    /// calling block while they run, and alarms name it.
+    pub displof: bool,
+    /// `ACTBLOCNO` (with DISPLOF): alarms name the subprogram's own block after all.
+    pub actblocno: bool,
 }

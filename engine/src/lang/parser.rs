@@ -594,7 +594,7 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
     })?;
     // Attributes: SAVE, DISPLOF and ACTBLOCNO matter to the interpreter; SBLOF, ... need no
     // action here.
-    let (mut save, mut displof, mut actblocno) = (false, false, false);
+    let mut attributes = ProcAttributes::default();
     loop {
         cur.skip_ws();
         if cur.eat(b',') {
@@ -602,15 +602,15 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
         }
         match cur.ident_span() {
             Some(span) => {
-                save |= cur.span_is(span, "SAVE");
-                displof |= cur.span_is(span, "DISPLOF");
-                actblocno |= cur.span_is(span, "ACTBLOCNO");
+                attributes.save |= cur.span_is(span, "SAVE");
+                attributes.displof |= cur.span_is(span, "DISPLOF");
+                attributes.actblocno |= cur.span_is(span, "ACTBLOCNO");
             }
             None if cur.at_end() => break,
             None => cur.pos += 1,
         }
     }
-    Ok(Stmt::Proc { name, params, save, alarms_at_call: displof && !actblocno })
+    Ok(Stmt::Proc { name, params, attributes })
 }
 
 /// `REPEAT START P=n`, `REPEAT START END P=n`, `REPEATB LABEL P=n`: program section

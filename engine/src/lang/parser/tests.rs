@@ -227,15 +227,21 @@ fn control_flow_statements_are_recognised() {
     assert!(matches!(stmt("WHILE R1<10"), Stmt::While(_)));
     assert!(matches!(stmt("UNTIL R1>=3"), Stmt::Until(_)));
     assert_eq!(stmt("GOTOB N100"), Stmt::Goto(Goto { kind: GotoKind::Backward, target: JumpTarget::BlockNumber(100) }));
-    assert!(matches!(stmt("PROC P DISPLOF SBLOF"), Stmt::Proc { save: false, .. }));
-    assert!(matches!(stmt("PROC P(INT COUNT) DISPLOF, SAVE"), Stmt::Proc { save: true, .. }));
+    assert!(matches!(
+        stmt("PROC P DISPLOF SBLOF"),
+        Stmt::Proc { attributes: ProcAttributes { save: false, displof: true, actblocno: false }, .. }
+    ));
+    assert!(matches!(
+        stmt("PROC P(INT COUNT) DISPLOF, SAVE"),
+        Stmt::Proc { attributes: ProcAttributes { save: true, displof: true, .. }, .. }
+    ));
     let Stmt::Case { arms, default, .. } = stmt("CASE(R1) OF 1 GOTOF ONE 2 GOTOF TWO DEFAULT GOTOF OTHER") else {
         panic!()
     };
     assert_eq!(arms.len(), 2);
     assert!(default.is_some());
     assert!(
-        matches!(stmt("PROC CONTOUR(REAL XX1, VAR REAL RES) SAVE"), Stmt::Proc { params, save: true, .. } if params.len() == 2 && params[1].by_reference)
+        matches!(stmt("PROC CONTOUR(REAL XX1, VAR REAL RES) SAVE"), Stmt::Proc { params, attributes: ProcAttributes { save: true, displof: false, .. }, .. } if params.len() == 2 && params[1].by_reference)
     );
 }
 
