@@ -159,3 +159,22 @@ async fn points_under_tracyl_carry_the_working_diameter_and_the_others_none() {
         "{end:?}"
     );
 }
+
+#[tokio::test]
+async fn a_preview_runs_before_the_axes_are_referenced() {
+    // Z starts unreferenced (incremental encoder): NC start of the session is locked (16905),
+    // but the preview draws the path, as Operate's simulation does, and the session stays
+    // unreferenced.
+    let server = Server::start().await;
+    let created =
+        server.post("/sessions", json!({"machine": "mill-3axis", "machine_data": "$MA_ENC_REFP_STATE[Z]=0"})).await;
+    let id = created.body["id"].as_str().expect("id").to_string();
+    let program = "G0 X0 Y0 Z10\nG1 X20 F1000\nM30\n";
+    let reply = server.post(&format!("/sessions/{id}/preview"), json!({ "program": program })).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["outcome"], "ended");
+    let end = *points(&reply.body).last().unwrap();
+    assert!((0..3).all(|i| (end[i] - [20.0, 0.0, 10.0][i]).abs() < 1e-6), "{end:?}");
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!(state["referenced"]["Z"], false);
+}

@@ -91,6 +91,12 @@ impl Channel {
         Ok(())
     }
 
+    /// Marks every axis referenced: for a copy of the channel that only traces a program (the
+    /// HMI's preview, like Operate's simulation, runs whatever the machine's reference state).
+    pub fn reference_all_for_simulation(&mut self) {
+        self.referenced.iter_mut().for_each(|r| *r = true);
+    }
+
     /// The NC start lock (MD20700): alarm 16905 and a refusal while an axis that must be
     /// referenced (MD34110 not -1) is not.
     pub(super) fn check_start_lock(&mut self) -> Result<(), CommandError> {

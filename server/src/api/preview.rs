@@ -167,8 +167,10 @@ pub fn trace(
     max_points: usize,
 ) -> Result<PreviewResponse, ApiError> {
     channel.reset();
-    // The preview traces the path; the session's stock is not cut by it.
+    // The preview traces the path; the session's stock is not cut by it, and its NC start is
+    // not locked by axes the session has not referenced yet.
     channel.clear_stock();
+    channel.reference_all_for_simulation();
     channel.single_block = false;
     channel.optional_stop = false;
     channel.set_overrides(Overrides { feed: 100.0, rapid: 100.0, spindle: 100.0 })?;
