@@ -118,7 +118,9 @@ where
         let message = tokio::time::timeout(Duration::from_secs(10), ws.next()).await.expect("a message in time");
         let Some(Ok(Message::Text(text))) = message else { panic!("the stream ended: {message:?}") };
         let value: Value = serde_json::from_str(text.as_str()).expect("JSON");
-        if value["type"] != "state" {
+        // States and events (the flood's own commands are logged as operator actions) come
+        // between; a reply is an ack or an error.
+        if value["type"] != "state" && value["type"] != "event" {
             return value;
         }
     }
