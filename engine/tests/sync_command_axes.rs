@@ -6,23 +6,12 @@
 
 use nctwin_engine::{Channel, SpindleMode, Status};
 
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
+use settle::{run_to_end, steps};
+
 fn channel() -> Channel {
     Channel::from_preset("mill-3axis", "").unwrap()
-}
-
-fn steps(ch: &mut Channel, n: usize) {
-    for _ in 0..n {
-        ch.step();
-    }
-}
-
-fn run_to_end(ch: &mut Channel) {
-    let mut ticks = 0;
-    while ch.is_busy() {
-        ch.step();
-        ticks += 1;
-        assert!(ticks < 1_000_000, "program does not end");
-    }
 }
 
 fn pos(ch: &Channel, k: usize) -> f64 {

@@ -846,6 +846,44 @@ impl Interpreter {
         self.block_calls(words, path_motion, programs, cfg, line)
     }
 
+    /// Where the word `value` (with its `AC`/`IC`/`DC`/`ACP`/`ACN` mode, if any) sends channel
+    /// axis `k` in the WCS: inch or metric, G90/G91, diameter programming, a modulo axis's
+    /// way; an increment counts from `incremental_from`, a modulo target from `current`.
+    #[inline]
+    pub(crate) fn axis_word_target(
+        &self,
+        cfg: &MachineConfig,
+        k: usize,
+        (value, mode): (f64, Option<CoordMode>),
+        current: f64,
+        incremental_from: f64,
+        line: u32,
+    ) -> Result<f64, Alarm> {
+        let ax = cfg.axis(k);
+        let v = if ax.rotary { value } else { value * self.modal.length_factor() };
+        let absolute = match mode {
+            Some(CoordMode::Ac) => true,
+            Some(CoordMode::Ic) => false,
+            Some(CoordMode::Dc | CoordMode::Acp | CoordMode::Acn) if ax.modulo.is_none() => {
+                return Err(Alarm::value_out_of_range(
+                    line,
+                    &format!("{}: DC/ACP/ACN need a modulo rotary axis", cfg.program_axis_name(k)),
+                ));
+            }
+            Some(_) => true,
+            None => self.modal.absolute,
+        };
+        let v = v * self.spindles.diameter.factor(cfg, k, absolute);
+        Ok(match (ax.modulo, absolute) {
+            (Some((mstart, range)), true) => {
+                let wrapped = mstart + (v - mstart).rem_euclid(range);
+                modulo_target(current, wrapped, range, mode)
+            }
+            (_, true) => v,
+            (_, false) => incremental_from + v,
+        })
+    }
+
     /// TRANS/ROT/SCALE/MIRROR replace the programmable frame; ATRANS/AROT/ASCALE/AMIRROR add
     /// to it in the current (already transformed) system. The block's axis words are the
     /// instruction's values.
@@ -1060,29 +1098,7 @@ impl Interpreter {
         let mut target = current;
         let mut programmed = [false; MAX_CHANNEL_AXES];
         for &(k, value, mode) in &words.axes {
-            let ax = cfg.axis(k);
-            let v = if ax.rotary { value } else { value * self.modal.length_factor() };
-            let absolute = match mode {
-                Some(CoordMode::Ac) => true,
-                Some(CoordMode::Ic) => false,
-                Some(CoordMode::Dc | CoordMode::Acp | CoordMode::Acn) if ax.modulo.is_none() => {
-                    return Err(Alarm::value_out_of_range(
-                        line,
-                        &format!("{}: DC/ACP/ACN need a modulo rotary axis", cfg.program_axis_name(k)),
-                    ));
-                }
-                Some(_) => true,
-                None => self.modal.absolute,
-            };
-            let v = v * self.spindles.diameter.factor(cfg, k, absolute);
-            target[k] = match (ax.modulo, absolute) {
-                (Some((mstart, range)), true) => {
-                    let wrapped = mstart + (v - mstart).rem_euclid(range);
-                    modulo_target(current[k], wrapped, range, mode)
-                }
-                (_, true) => v,
-                (_, false) => incremental_from[k] + v,
-            };
+            target[k] = self.axis_word_target(cfg, k, (value, mode), current[k], incremental_from[k], line)?;
             programmed[k] = true;
         }
         // Polar coordinates: the working-plane end point from the pole, angle AP and radius RP.

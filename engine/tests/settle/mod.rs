@@ -20,6 +20,18 @@ pub fn settle(ch: &mut Channel) -> Vec<Vec<f64>> {
     panic!("the channel never came to rest");
 }
 
+/// Steps `n` IPO cycles.
+pub fn steps(ch: &mut Channel, n: usize) {
+    for _ in 0..n {
+        ch.step();
+    }
+}
+
+/// Steps until nothing moves (a program's end).
+pub fn run_to_end(ch: &mut Channel) {
+    settle(ch);
+}
+
 /// Creates a channel from a preset, starts `program` and steps it until nothing moves; returns
 /// the channel and the snapshot of every cycle.
 pub fn run_snapshots(preset: &str, md: &str, program: &str) -> (Channel, Vec<Snapshot>) {

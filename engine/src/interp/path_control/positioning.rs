@@ -217,28 +217,7 @@ impl crate::interp::Interpreter {
         let mut programmed = [false; MAX_CHANNEL_AXES];
         for w in words.positioning.iter().filter(|w| w.kind != Kind::Fa) {
             let k = w.axis;
-            let ax = cfg.axis(k);
-            let v = if ax.rotary { w.value } else { w.value * self.modal.length_factor() };
-            let absolute = match w.mode {
-                Some(CoordMode::Ic) => false,
-                Some(CoordMode::Dc | CoordMode::Acp | CoordMode::Acn) if ax.modulo.is_none() => {
-                    return Err(Alarm::value_out_of_range(
-                        line,
-                        &format!("{}: DC/ACP/ACN need a modulo rotary axis", cfg.program_axis_name(k)),
-                    ));
-                }
-                Some(_) => true,
-                None => self.modal.absolute,
-            };
-            let v = v * self.spindles.diameter.factor(cfg, k, absolute);
-            target[k] = match (ax.modulo, absolute) {
-                (Some((mstart, range)), true) => {
-                    let wrapped = mstart + (v - mstart).rem_euclid(range);
-                    crate::interp::modulo_target(current[k], wrapped, range, w.mode)
-                }
-                (_, true) => v,
-                (_, false) => current[k] + v,
-            };
+            target[k] = self.axis_word_target(cfg, k, (w.value, w.mode), current[k], current[k], line)?;
             programmed[k] = true;
         }
         // Only the positioning axes' own components are used: a frame that couples the
