@@ -49,34 +49,9 @@ pub fn contour_deviation(curve: &Curve, a: &Move, ua: f64, b: &Move, ub: f64, me
 /// golden-section search around the nearest (the pieces are short and gently curved).
 fn distance_to_piece(path: &Path, u0: f64, u1: f64, point: &AxisVec, metric: &AxisVec) -> f64 {
     let mut q = *point;
-    let mut dist = |u: f64| {
+    let dist = |u: f64| {
         path.at(u, &mut q);
         q.iter().zip(point).zip(metric).map(|((x, y), m)| (x - y) * (x - y) * m).sum::<f64>()
     };
-    const N: usize = 8;
-    let h = (u1 - u0) / N as f64;
-    let (mut best, mut best_u) = (f64::INFINITY, u0);
-    for i in 0..=N {
-        let u = u0 + h * i as f64;
-        let d = dist(u);
-        if d < best {
-            (best, best_u) = (d, u);
-        }
-    }
-    let (mut lo, mut hi) = ((best_u - h).max(u0), (best_u + h).min(u1));
-    const G: f64 = 0.618_033_988_749_894_8;
-    let (mut m1, mut m2) = (hi - G * (hi - lo), lo + G * (hi - lo));
-    let (mut f1, mut f2) = (dist(m1), dist(m2));
-    for _ in 0..24 {
-        if f1 < f2 {
-            (hi, m2, f2) = (m2, m1, f1);
-            m1 = hi - G * (hi - lo);
-            f1 = dist(m1);
-        } else {
-            (lo, m1, f1) = (m1, m2, f2);
-            m2 = lo + G * (hi - lo);
-            f2 = dist(m2);
-        }
-    }
-    best.min(f1).min(f2).sqrt()
+    super::nearest::least_distance(dist, (u0, u1), 8, 24)
 }

@@ -70,36 +70,12 @@ impl Curve {
     /// then a golden-section search around the nearest.
     pub fn distance_to(&self, point: &AxisVec) -> f64 {
         let mut p = *point;
-        let mut dist = |t: f64| {
+        let dist = |t: f64| {
             self.eval(t, &mut p);
             self.axes().iter().map(|&k| (p[k] - point[k]).powi(2) * self.metric[k]).sum::<f64>()
         };
-        const N: usize = 16;
-        let (mut best, mut best_t) = (f64::INFINITY, 0.0);
-        for i in 0..=N {
-            let t = i as f64 / N as f64;
-            let d = dist(t);
-            if d < best {
-                (best, best_t) = (d, t);
-            }
-        }
-        let (mut lo, mut hi) = ((best_t - 1.0 / N as f64).max(0.0), (best_t + 1.0 / N as f64).min(1.0));
-        const G: f64 = 0.618_033_988_749_894_8;
-        let (mut m1, mut m2) = (hi - G * (hi - lo), lo + G * (hi - lo));
-        let (mut f1, mut f2) = (dist(m1), dist(m2));
         // 16 steps shrink the bracket of 1/8 to 3e-5 of the element: far below a micrometre.
-        for _ in 0..16 {
-            if f1 < f2 {
-                (hi, m2, f2) = (m2, m1, f1);
-                m1 = hi - G * (hi - lo);
-                f1 = dist(m1);
-            } else {
-                (lo, m1, f1) = (m1, m2, f2);
-                m2 = lo + G * (hi - lo);
-                f2 = dist(m2);
-            }
-        }
-        best.min(f1).min(f2).sqrt()
+        super::nearest::least_distance(dist, (0.0, 1.0), 16, 16)
     }
 
     /// Builds the length table of an element made with [`Curve::hermite_untabled`].

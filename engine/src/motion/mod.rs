@@ -9,6 +9,7 @@ mod blend_tangent;
 pub mod compress;
 mod curve;
 mod front;
+mod nearest;
 mod ori_curve;
 mod orientation;
 mod path;
