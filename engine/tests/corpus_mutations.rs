@@ -6,7 +6,7 @@
 //!
 //! Random characters (`robustness.rs`) rarely get past the parser; these mutants do, and reach
 //! the cycles, compensation, transformations, synchronized actions and the stock model.
-//! `NCTWIN_MUTANTS=n` runs a longer campaign (CI runs the default).
+//! `NCTWIN_MUTANTS=n` runs a longer campaign (CI runs 32 cases).
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -15,9 +15,11 @@ use nctwin_engine::Channel;
 use nctwin_engine::machine_data::presets::PRESETS;
 use proptest::prelude::*;
 
-/// IPO cycles each mutant may run: enough for the corpus' typical program, bounded so an endless
-/// loop a mutation made costs little.
-const TICK_BUDGET: usize = 60_000;
+/// IPO cycles each mutant may run (40 s of machine time): most corpus programs end or fail
+/// within them, and an endless loop a mutation made costs little. Debug builds check every
+/// block of the fast lane against the general interpreter (`lane::cross_check`), which makes a
+/// cycle of short blocks dear: the budget keeps a case near a second.
+const TICK_BUDGET: usize = 10_000;
 
 /// Words pasted into programs: one of each family the engine models, with arguments that are
 /// plausible, extreme or wrong.
@@ -245,7 +247,7 @@ fn run_mutant(text: &str, preset: Option<&str>) {
 }
 
 fn cases() -> u32 {
-    std::env::var("NCTWIN_MUTANTS").ok().and_then(|n| n.parse().ok()).unwrap_or(48)
+    std::env::var("NCTWIN_MUTANTS").ok().and_then(|n| n.parse().ok()).unwrap_or(32)
 }
 
 proptest! {
