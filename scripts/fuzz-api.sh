@@ -78,7 +78,8 @@ campaign() {
   shift
   echo "==> schemathesis ($name) against $URL: ${EXAMPLES} cases per operation, seed $SEED"
   local status=0
-  "$ST" "$@" run "$URL/api/v1/openapi.json" \
+  SCHEMATHESIS_HOOKS=schemathesis_hooks PYTHONPATH="$ROOT/scripts${PYTHONPATH:+:$PYTHONPATH}" \
+    "$ST" "$@" run "$URL/api/v1/openapi.json" \
     --checks "$CHECKS" \
     --max-examples "$EXAMPLES" "${SEED_ARGS[@]}" \
     --generation-database none \

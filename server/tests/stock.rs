@@ -192,4 +192,7 @@ async fn the_hmi_fetches_the_changed_tiles_of_the_stock_coloured_by_pen() {
     assert!((0..n).any(|t| bytes[84 + 50 * t + 48] == 1), "a face cut by pen 1");
     let none = reqwest::get(server.url(&format!("/sessions/{id}/stock/tiles/9/0"))).await.unwrap();
     assert_eq!(none.status(), StatusCode::NOT_FOUND);
+    let negative = server.get(&format!("/sessions/{id}/stock/tiles/0/-1")).await;
+    assert_eq!(negative.status, StatusCode::BAD_REQUEST);
+    assert!(negative.body["error"].as_str().unwrap().contains("tile index j `-1`"), "{}", negative.body);
 }

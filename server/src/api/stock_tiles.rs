@@ -89,13 +89,19 @@ pub async fn get_stock_changes(
     ),
     responses(
         (status = 200, description = "Binary STL of the tile, faces' attribute = pen", content_type = "model/stl", body = Vec<u8>),
+        (status = 400, description = "A tile index that is not a whole number from 0", body = ErrorBody),
         (status = 404, description = "No such session, no blank, or no such tile", body = ErrorBody),
     )
 )]
 pub async fn get_stock_tile(
     State(state): State<AppState>,
-    Path((id, i, j)): Path<(String, usize, usize)>,
+    Path((id, i, j)): Path<(String, String, String)>,
 ) -> Result<Response, ApiError> {
+    let index = |name: &str, text: &str| {
+        text.parse::<usize>()
+            .map_err(|_| ApiError::bad_request(format!("tile index {name} `{text}` is not a whole number from 0")))
+    };
+    let (i, j) = (index("i", &i)?, index("j", &j)?);
     let session = find_session(&state, &id)?;
     let stl =
         session.with_channel(move |ch| ch.stock_tile_stl(i, j)).await.map_err(|e| ApiError::from_session(&id, e))?;
