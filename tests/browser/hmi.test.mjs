@@ -473,6 +473,14 @@ async function main() {
       const t1 = Date.now();
       await page.click("#btn-cycle-stop");
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "stopped", null, { timeout: 60_000 });
+      // NC stop brakes along the path: at F60000 over 0.25 mm blocks the current block still
+      // changes (and the panel follows it) until the axes stand. Scroll only then.
+      for (let i = 0; i < 100; i++) {
+        const state = await pageFetch(page, "GET", `/sessions/${sessionId}/state`);
+        if (state.path_velocity === 0) break;
+        await new Promise((r) => setTimeout(r, 100));
+      }
+      await page.waitForTimeout(300);
       await page.evaluate(() => {
         const list = document.getElementById("blocks");
         list.scrollTop = list.scrollHeight / 2;
