@@ -165,6 +165,12 @@ impl Alarm {
         )
     }
 
+    /// A number as an alarm text shows it: plain, or in exponent form beyond 1e12 so that a
+    /// programmed `1EX300` does not fill the alarm line with 300 digits.
+    pub fn shown(value: f64) -> String {
+        if value.abs() < 1e12 { value.to_string() } else { format!("{value:e}") }
+    }
+
     /// 12560: a value outside its allowed range.
     pub fn value_out_of_range(line: u32, what: &str) -> Alarm {
         Alarm::new(12560, format!("Channel 1 block {line} programmed value {what} exceeds allowed limits"), Some(line))
@@ -197,6 +203,15 @@ impl Alarm {
     /// 12640: control structures are not properly nested (ENDIF without IF, ...).
     pub fn nesting(line: u32, what: &str) -> Alarm {
         Alarm::new(12640, format!("Channel 1 block {line} invalid nesting of control structures: {what}"), Some(line))
+    }
+
+    /// 12380: the user memory of the channel cannot hold another variable.
+    pub fn user_memory_full(line: u32, name: &str) -> Alarm {
+        Alarm::new(
+            12380,
+            format!("Channel 1 block {line} maximum memory capacity reached: no room for {name}"),
+            Some(line),
+        )
     }
 
     /// 12170: a name defined twice.

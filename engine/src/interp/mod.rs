@@ -763,7 +763,7 @@ impl Interpreter {
                 _ => return Err(Alarm::syntax(line, "G4 needs F<seconds> or S<revolutions>")),
             };
             if !(0.0..=1e6).contains(&seconds) {
-                return Err(Alarm::value_out_of_range(line, &format!("G4 {seconds} s")));
+                return Err(Alarm::value_out_of_range(line, &format!("G4 {} s", Alarm::shown(seconds))));
             }
             out.push(Item::Dwell { seconds, line });
         } else if let Some(reference) = words.pole {

@@ -301,10 +301,16 @@ impl Interpreter {
             }
             dims.push(n as usize);
         }
-        let mut var = Variable::new(ty, dims);
-        if var.data.len() > 1_000_000 {
+        // Sized before anything is allocated: DEF REAL AA[30000,30000] would otherwise ask for
+        // 28.8 GB and abort the server.
+        let elements = dims.iter().try_fold(1usize, |n, &d| n.checked_mul(d)).unwrap_or(usize::MAX);
+        if elements > 1_000_000 {
             return Err(Alarm::index_error(line, &decl.name, "array larger than 1,000,000 elements"));
         }
+        if Variable::footprint(ty, elements) > self.vars.free_bytes() {
+            return Err(Alarm::user_memory_full(line, &decl.name));
+        }
+        let mut var = Variable::new(ty, dims);
         if !decl.init.is_empty() {
             List::of_init(&decl.init).write(&mut var, 0, &decl.name, line, |e| eval(e, &ctx, line))?;
         }

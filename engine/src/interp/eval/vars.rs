@@ -6,10 +6,17 @@
 use std::collections::BTreeMap;
 
 use crate::interp::eval::value::{TypeError, Value};
+use crate::interp::frames::frame::Frame;
 use crate::lang::VarType;
 
 /// Number of R parameters (MD28050 MM_NUM_R_PARAM default 100).
 pub const R_PARAMS: usize = 100;
+
+/// Bytes all user variables of a channel may hold together (global data, the locals of every
+/// open program level, PROC parameters): the simulated control's user memory (the control sizes
+/// it by MD18120/MD28040). A program that declares more gets alarm 12380 rather than the
+/// server's memory; 16 MiB is some 500,000 REAL elements.
+pub const USER_MEMORY_BYTES: usize = 16 << 20;
 
 /// One declared variable: its type, array dimensions and elements in row-major order.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,6 +27,21 @@ pub struct Variable {
 }
 
 impl Variable {
+    /// Bytes `elements` values of type `ty` occupy, counted against [`USER_MEMORY_BYTES`]
+    /// before anything is allocated.
+    pub fn footprint(ty: VarType, elements: usize) -> usize {
+        let payload = match ty {
+            VarType::Str(n) => usize::from(n),
+            VarType::Frame => std::mem::size_of::<Frame>(),
+            _ => 0,
+        };
+        elements.saturating_mul(std::mem::size_of::<Value>() + payload)
+    }
+
+    fn bytes(&self) -> usize {
+        Variable::footprint(self.ty, self.data.len())
+    }
+
     pub fn new(ty: VarType, dims: Vec<usize>) -> Variable {
         let n = dims.iter().product::<usize>().max(1);
         Variable { ty, dims, data: vec![Value::default_of(ty); n] }
@@ -48,11 +70,13 @@ pub struct Variables {
     globals: BTreeMap<String, Variable>,
     /// One frame of locals per active program level (main program, subprogram calls).
     locals: Vec<BTreeMap<String, Variable>>,
+    /// What all declared variables occupy, by [`Variable::footprint`].
+    bytes: usize,
 }
 
 impl Default for Variables {
     fn default() -> Self {
-        Variables { r: vec![0.0; R_PARAMS], globals: BTreeMap::new(), locals: vec![BTreeMap::new()] }
+        Variables { r: vec![0.0; R_PARAMS], globals: BTreeMap::new(), locals: vec![BTreeMap::new()], bytes: 0 }
     }
 }
 
@@ -68,12 +92,18 @@ impl Variables {
         }
     }
 
+    /// Bytes of [`USER_MEMORY_BYTES`] still free for declarations.
+    pub fn free_bytes(&self) -> usize {
+        USER_MEMORY_BYTES.saturating_sub(self.bytes)
+    }
+
     /// Declares a variable in the current program level or, for `global`, for the session.
     pub fn declare(&mut self, name: &str, var: Variable, global: bool) -> Result<(), TypeError> {
         let scope = if global { &mut self.globals } else { self.locals.last_mut().expect("a local frame") };
         if scope.contains_key(name) {
             return Err(TypeError(format!("{name} is already defined")));
         }
+        self.bytes += var.bytes();
         scope.insert(name.to_string(), var);
         Ok(())
     }
@@ -86,12 +116,14 @@ impl Variables {
     /// Leaves a subprogram level, dropping its locals.
     pub fn pop_frame(&mut self) {
         if self.locals.len() > 1 {
-            self.locals.pop();
+            let dropped: usize = self.locals.pop().into_iter().flatten().map(|(_, v)| v.bytes()).sum();
+            self.bytes -= dropped;
         }
     }
 
     /// Starts a new main program: its locals are fresh, R parameters and globals stay.
     pub fn reset_locals(&mut self) {
         self.locals = vec![BTreeMap::new()];
+        self.bytes = self.globals.values().map(Variable::bytes).sum();
     }
 }
