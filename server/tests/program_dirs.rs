@@ -94,7 +94,7 @@ fn check_prints_one_line_per_finding_and_exits_1() {
     assert_eq!(
         String::from_utf8_lossy(&out.stdout),
         "shop/README.txt: warning: not a program file (*.MPF, *.SPF or an archive): skipped\n\
-         shop/SPF/odd name (1).spf: error: not a program name (letters, digits and _, starting with a letter, at most 32): skipped\n\
+         shop/SPF/odd name (1).spf: error: not a program name (letters, digits and _, at most 32): skipped\n\
          shop/SPF/BROKEN.SPF:2:14: alarm 12080: missing `)`\n\
          shop/SPF/UNDECODABLE.SPF: error: not a text file: control character U+0003 at byte 2\n"
     );

@@ -205,14 +205,10 @@ impl Channel {
     }
 }
 
-/// The canonical name of a stored program: letters, digits and `_`, starting with a letter,
-/// at most 32 characters, upper-cased; a `.MPF` or `.SPF` ending is dropped.
+/// The canonical name of a stored program (see [`crate::programs::canonical_name`]).
 pub(super) fn program_name(name: &str) -> Result<String, CommandError> {
-    crate::programs::canonical_name(name).ok_or_else(|| {
-        CommandError::Invalid(format!(
-            "bad program name `{name}`: letters, digits and _, starting with a letter, at most 32"
-        ))
-    })
+    crate::programs::canonical_name(name)
+        .ok_or_else(|| CommandError::Invalid(format!("bad program name `{name}`: letters, digits and _, at most 32")))
 }
 
 #[cfg(test)]

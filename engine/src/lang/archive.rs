@@ -39,11 +39,7 @@ pub fn header(line: &str) -> Result<ArchiveHeader, String> {
     let text = line.split(';').next().unwrap_or("").trim_end().to_ascii_uppercase();
     let bad = || format!("bad archive header `{}`: expected %_N_<NAME>_MPF, _SPF or _INI", line.trim_end());
     let body = text.strip_prefix('%').ok_or_else(bad)?;
-    let valid_name = |n: &str| {
-        !n.is_empty()
-            && n.bytes().next().is_some_and(|b| b.is_ascii_alphabetic() || b == b'_')
-            && n.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')
-    };
+    let valid_name = |n: &str| crate::programs::canonical_name(n).is_some_and(|c| c == n);
     if let Some(rest) = body.strip_prefix("_N_") {
         let (name, ending) = rest.rsplit_once('_').ok_or_else(bad)?;
         let kind = match ending {

@@ -125,16 +125,28 @@ impl fmt::Display for Dir {
     }
 }
 
-/// The canonical name of a program: letters, digits and `_`, starting with a letter, at most
-/// 32 characters (the control allows 24 in its file names, some tools 32), upper-cased; a
-/// `.MPF`/`.SPF` ending is dropped. `None` for anything else.
+/// The canonical name of a program: letters, digits and `_`, at most 32 characters (the
+/// control allows 24 in its file names, some tools 32), upper-cased; a `.MPF`/`.SPF` ending is
+/// dropped. `None` for anything else. A name may start with a digit (part numbers such as
+/// `4711_OP10` are common; the Programming Manual allows them: such a program is called with
+/// `CALL "4711_OP10"`, not by its bare name), but not be one of the device names Windows
+/// reserves (`CON`, `PRN`, `AUX`, `NUL`, `COM1`..`COM9`, `LPT1`..`LPT9`), which the manual
+/// excludes.
 pub fn canonical_name(name: &str) -> Option<String> {
     let upper = name.trim().to_ascii_uppercase();
     let base = upper.strip_suffix(".MPF").or_else(|| upper.strip_suffix(".SPF")).unwrap_or(&upper);
-    let valid = base.len() <= 32
-        && base.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
-        && base.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let valid = !base.is_empty()
+        && base.len() <= 32
+        && base.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && !is_reserved_device_name(base);
     valid.then(|| base.to_string())
+}
+
+fn is_reserved_device_name(name: &str) -> bool {
+    matches!(name, "CON" | "PRN" | "AUX" | "NUL")
+        || ["COM", "LPT"]
+            .iter()
+            .any(|p| name.strip_prefix(p).is_some_and(|d| d.len() == 1 && d.as_bytes()[0].is_ascii_digit() && d != "0"))
 }
 
 #[cfg(test)]
@@ -155,7 +167,12 @@ mod tests {
     fn names_follow_the_controls_rules() {
         assert_eq!(canonical_name("part1.mpf").as_deref(), Some("PART1"));
         assert_eq!(canonical_name("L123.SPF").as_deref(), Some("L123"));
-        assert_eq!(canonical_name("1PART"), None);
+        assert_eq!(canonical_name("1001.mpf").as_deref(), Some("1001"));
+        assert_eq!(canonical_name("4711_op10").as_deref(), Some("4711_OP10"));
+        assert_eq!(canonical_name("CON"), None);
+        assert_eq!(canonical_name("lpt1.spf"), None);
+        assert_eq!(canonical_name("COM10").as_deref(), Some("COM10"));
+        assert_eq!(canonical_name(""), None);
         assert_eq!(canonical_name("PART-1"), None);
         assert_eq!(canonical_name(&"A".repeat(33)), None);
         assert_eq!(canonical_name(&"A".repeat(32)).map(|n| n.len()), Some(32));

@@ -87,10 +87,7 @@ pub async fn import_archive(
         }
         let bad = |message: String| ApiError::BadRequest { message, line: Some(e.line) };
         let name = canonical_name(&e.name).ok_or_else(|| {
-            bad(format!(
-                "archive line {}: `{}` is not a program name (letters, digits, _; starts with a letter; at most 32)",
-                e.line, e.name
-            ))
+            bad(format!("archive line {}: `{}` is not a program name (letters, digits, _; at most 32)", e.line, e.name))
         })?;
         // Stored with its directory when the archive names one other than the part-program and
         // subprogram directories: the session's flat store stands for those two (the control

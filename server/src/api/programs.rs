@@ -66,7 +66,7 @@ pub async fn get_program(
     put,
     path = "/sessions/{id}/programs/{name}",
     tag = "programs",
-    params(("id" = String, Path, description = "Session id"), ("name" = String, Path, description = "Program name: letters, digits, _; starts with a letter; at most 32; .MPF/.SPF dropped")),
+    params(("id" = String, Path, description = "Session id"), ("name" = String, Path, description = "Program name: letters, digits, _; at most 32; .MPF/.SPF dropped")),
     request_body = ProgramBody,
     responses(
         (status = 200, description = "Stored", body = ProgramInfo),

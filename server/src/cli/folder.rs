@@ -202,12 +202,9 @@ fn add_file(folder: &mut Folder, path: &Path, dir: Option<Dir>) {
             let program = StoredProgram::lazy(name, dir, Some(kind), loader);
             add(folder, program, Origin { path: path.to_path_buf(), first_line: 1 });
         }
-        Some((Err(_), _)) => finding(
-            folder,
-            path,
-            None,
-            "not a program name (letters, digits and _, starting with a letter, at most 32): skipped",
-        ),
+        Some((Err(_), _)) => {
+            finding(folder, path, None, "not a program name (letters, digits and _, at most 32): skipped")
+        }
         None => read_archive(folder, path, dir),
     }
 }

@@ -94,7 +94,8 @@ mod tests {
         assert_eq!(parse("/_N_LOG_MPF"), Err(NameError::PathNotPermitted));
         assert_eq!(parse("/TMP/_N_LOG_MPF"), Err(NameError::PathNotFound));
         assert_eq!(parse("_N_X_DEF"), Err(NameError::WrongType));
-        assert_eq!(parse("1LOG"), Err(NameError::BadName));
+        assert_eq!(parse("NUL"), Err(NameError::BadName));
+        assert_eq!(ok("1LOG"), ("1LOG".into(), None, Kind::Main));
         assert_eq!(parse("MY LOG"), Err(NameError::BadName));
         assert_eq!(parse(""), Err(NameError::BadName));
     }
