@@ -21,6 +21,7 @@
 
 use super::Channel;
 use crate::alarm::Alarm;
+use crate::interp::path_control::positioning::{Motion, Parts};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// One axis travelling on its own.
@@ -29,13 +30,34 @@ struct Travel {
     position: f64,
     /// Signed velocity, units per second.
     velocity: f64,
-    /// End point; ±∞ for endless motion (`MOV[ax]=±1`).
+    /// End point of the current part (the end point itself but for POSP); ±∞ for endless
+    /// motion (`MOV[ax]=±1`).
     target: f64,
     feed: f64,
     accel: f64,
+    /// POSP: the end point and the parts towards it.
+    parts: Option<(f64, Parts)>,
+    /// What started it, for the state.
+    motion: Option<Motion>,
 }
 
 impl Travel {
+    /// The end point the axis travels to (the last part's end for POSP).
+    fn end(&self) -> f64 {
+        self.parts.map_or(self.target, |(end, _)| end)
+    }
+
+    /// After a part of POSP has ended: the next part starts (true), or the end is reached.
+    fn next_part(&mut self) -> bool {
+        match self.parts {
+            Some((end, parts)) if self.position != end => {
+                self.target = parts.next_end(self.position, end);
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// One cycle of `dt`; true once the axis stands on its target. With `hold` it brakes.
     fn step(&mut self, dt: f64, hold: bool) -> bool {
         let rest = self.target - self.position;
@@ -141,6 +163,20 @@ impl Channel {
         self.positioning.speeds = [0.0; MAX_CHANNEL_AXES];
     }
 
+    /// A program's POS/POSA/POSP: axis `k` travels from where it stands to `target` at `feed`
+    /// (POSP in parts, counted from here).
+    pub(super) fn start_program_positioning(&mut self, k: usize, target: f64, feed: f64, motion: Motion) {
+        self.start_positioning(k, target, feed, false);
+        if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.motion = Some(motion);
+            if let Motion::Posp(parts) = motion {
+                let parts = parts.from_start(t.position, target);
+                t.parts = Some((target, parts));
+                t.target = parts.next_end(t.position, target);
+            }
+        }
+    }
+
     /// Starts (or retargets) axis `k` from where it stands towards `target` at `feed`.
     pub(super) fn start_positioning(&mut self, k: usize, target: f64, feed: f64, command: bool) {
         let accel = self.cfg.axis(k).max_accel;
@@ -150,7 +186,7 @@ impl Channel {
             Some(t) => (t.position, t.velocity),
             None => (self.machine[k], 0.0),
         };
-        p.axes[k] = Some(Travel { position, velocity, target, feed, accel });
+        p.axes[k] = Some(Travel { position, velocity, target, feed, accel, parts: None, motion: None });
         p.active |= 1 << k;
         p.moving |= 1 << k;
         if command {
@@ -161,6 +197,7 @@ impl Channel {
     /// `MOV[ax]=0` on a command axis: it brakes to a stop where its ramp ends.
     pub(super) fn stop_positioning(&mut self, k: usize) {
         if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.parts = None;
             let brake = t.velocity * t.velocity / (2.0 * t.accel);
             t.target = t.position + t.velocity.signum() * brake;
             if t.velocity == 0.0 {
@@ -174,6 +211,9 @@ impl Channel {
         if let Some(t) = self.positioning.axes[k].as_mut() {
             t.position += d;
             t.target += d;
+            if let Some((end, _)) = t.parts.as_mut() {
+                *end += d;
+            }
         }
     }
 
@@ -201,7 +241,7 @@ impl Channel {
                 continue;
             }
             let Some(t) = p.axes[k].as_mut() else { continue };
-            if p.moving & (1 << k) != 0 && t.step(dt, hold) {
+            if p.moving & (1 << k) != 0 && t.step(dt, hold) && !t.next_part() {
                 p.moving &= !(1 << k);
             }
             self.machine[k] = t.position;
@@ -277,7 +317,15 @@ mod tests {
     fn a_travel_stops_exactly_on_its_target_within_the_ideal_time() {
         // 5 mm at 1000 mm/min (16.67 mm/s) with 3000 mm/s²: ramp 5.6 ms, ideal time
         // 5/16.67 + 16.67/3000 = 0.3056 s = 76.4 cycles of 4 ms.
-        let mut t = Travel { position: 0.0, velocity: 0.0, target: -5.0, feed: 1000.0 / 60.0, accel: 3000.0 };
+        let mut t = Travel {
+            position: 0.0,
+            velocity: 0.0,
+            target: -5.0,
+            feed: 1000.0 / 60.0,
+            accel: 3000.0,
+            parts: None,
+            motion: None,
+        };
         let mut n = 0;
         while !t.step(0.004, false) {
             n += 1;

@@ -180,6 +180,8 @@ pub enum Item {
         axis: usize,
         target: f64,
         velocity: f64,
+        /// POS, POSA or POSP with its parts.
+        motion: path_control::positioning::Motion,
         line: u32,
     },
     /// WAITP, or the end of a POS block: the items after it wait until the positioning axes of
