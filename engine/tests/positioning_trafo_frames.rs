@@ -89,3 +89,22 @@ fn an_axis_outside_the_transformation_stays_a_positioning_axis() {
     assert!((p[a] + 90.0).abs() < 1e-9, "A = {}", p[a]);
     assert!((p[2] - 75.0).abs() < 1e-9, "ZC = {}", p[2]);
 }
+
+#[test]
+fn command_axes_of_synchronized_actions_follow_the_same_rules() {
+    for (preset, program, number) in [
+        ("mill-3axis", "ROT Z30\nID=1 WHEN TRUE DO POS[Z]=5\nG4 F0.2\nM30", 16430),
+        ("transmit-example", "T1 D1 G17\nG0 X20 Z10\nTRANSMIT\nID=1 WHEN TRUE DO POS[X]=5\nG4 F0.2\nM30", 17610),
+        ("transmit-example", "T1 D1 G17\nG0 X20 Z10\nTRANSMIT\nID=1 WHEN TRUE DO MOV[Z]=1\nG4 F0.2\nM30", 17610),
+    ] {
+        let mut ch = channel(preset, "");
+        let line = program.lines().position(|l| l.contains("DO")).unwrap() as u32 + 1;
+        assert_eq!(first_alarm(&mut ch, program), Some((number, Some(line))), "{preset}: {program}");
+    }
+    // The trunnion A outside TRACYL is a command axis as before: -90° at FA 7200°/min.
+    let mut ch = channel("tracyl-xyzac", "");
+    let a = axis(&ch, "A");
+    let program = "T1 D1\nG0 X20 Y0 Z0\nTRACYL(40)\nID=1 WHEN TRUE DO FA[A]=7200 POS[A]=-90\nG4 F1\nM30";
+    assert_eq!(first_alarm(&mut ch, program), None, "{:?}", ch.alarms());
+    assert!((ch.axis_positions()[a] + 90.0).abs() < 1e-9, "A = {}", ch.axis_positions()[a]);
+}

@@ -195,6 +195,29 @@ fn posp_list<'a>(
     Ok((&items[0], Some((length, mode == 0.0))))
 }
 
+/// Whether channel axis `k` may not be a positioning (or command) axis now: an axis of the
+/// active transformation `trafo` (its geometry, orientation and `TRAFO_AXES_IN_n` axes) is
+/// alarm 17610, a geometry axis under a `frame` with a rotation 16430.
+pub(crate) fn refused(
+    k: usize,
+    trafo: Option<&crate::kinematics::ActiveTrafo>,
+    frame: &crate::interp::Frame,
+    cfg: &MachineConfig,
+    line: u32,
+) -> Result<(), Alarm> {
+    if let Some(t) = trafo {
+        let slots = t.trafo.geo_slots().into_iter().chain(t.trafo.orientation_slots()).flatten();
+        let in_set = cfg.trafos.iter().find(|s| s.number == t.number).into_iter().flat_map(|s| s.axes_in.iter().flatten());
+        if slots.chain(t.trafo.machine_slots()).chain(in_set.copied()).any(|a| a == k) {
+            return Err(Alarm::positioning_trafo_axis(line, cfg.program_axis_name(k)));
+        }
+    }
+    if frame.couples_axes() && cfg.geo_axes.contains(&Some(k)) {
+        return Err(Alarm::positioning_rotated(line, cfg.program_axis_name(k)));
+    }
+    Ok(())
+}
+
 /// `WAITP(ax, ...)`: the axes as a bit mask.
 pub(in crate::interp) fn waitp(args: &[Expr], vars: &Variables, sys: &SysView, line: u32) -> Result<u32, Alarm> {
     if args.is_empty() {
@@ -303,26 +326,12 @@ impl crate::interp::Interpreter {
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(), Alarm> {
-        let mut trafo_axes = 0u32;
-        if let Some(t) = &self.offsets.trafo {
-            let slots = t.trafo.geo_slots().into_iter().chain(t.trafo.orientation_slots()).flatten();
-            trafo_axes = slots.chain(t.trafo.machine_slots()).fold(0, |m, k| m | 1 << k);
-            // Every axis of `TRAFO_AXES_IN_n` (a groove-wall offset axis, a 7th axis).
-            if let Some(set) = cfg.trafos.iter().find(|s| s.number == t.number) {
-                trafo_axes = set.axes_in.iter().flatten().fold(trafo_axes, |m, k| m | 1 << k);
-            }
-        }
-        let rotated = self.offsets.frame.couples_axes();
-        for w in words.positioning.iter().filter(|w| w.kind != Kind::Fa) {
-            let name = || cfg.program_axis_name(w.axis);
-            if trafo_axes & (1 << w.axis) != 0 {
-                return Err(Alarm::positioning_trafo_axis(line, name()));
-            }
-            if rotated && cfg.geo_axes.contains(&Some(w.axis)) {
-                return Err(Alarm::positioning_rotated(line, name()));
-            }
-        }
-        Ok(())
+        let offsets = &self.offsets;
+        words
+            .positioning
+            .iter()
+            .filter(|w| w.kind != Kind::Fa)
+            .try_for_each(|w| refused(w.axis, offsets.trafo.as_ref(), &offsets.frame, cfg, line))
     }
 
     /// The machine end positions of the block's POS/POSA/POSP words: each value in the WCS
