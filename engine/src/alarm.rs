@@ -69,7 +69,9 @@ impl Alarm {
     pub fn positioning_rotated(line: u32, axis: &str) -> Alarm {
         Alarm::new(
             16430,
-            format!("Channel 1 block {line} geometry axis {axis} cannot traverse as positioning axis in rotated coordinate system"),
+            format!(
+                "Channel 1 block {line} geometry axis {axis} cannot traverse as positioning axis in rotated coordinate system"
+            ),
             Some(line),
         )
     }

@@ -12,6 +12,7 @@
 //!   has one interpolator of its own). Axes outside the geometry are not rotated and position
 //!   through their own frame component.
 
+#[allow(dead_code)] // the shared helpers this file does not use
 mod settle;
 
 use nctwin_engine::{Channel, Status};
@@ -30,11 +31,7 @@ fn axis(ch: &Channel, name: &str) -> usize {
 
 #[test]
 fn a_geometry_axis_in_a_rotated_frame_is_alarm_16430() {
-    for program in [
-        "ROT Z30\nPOS[X]=10\nM30",
-        "ROT Z30\nPOSA[Z]=5\nM30",
-        "G0 X1\nAROT X10\nPOSP[Y]=(4, 1)\nM30",
-    ] {
+    for program in ["ROT Z30\nPOS[X]=10\nM30", "ROT Z30\nPOSA[Z]=5\nM30", "G0 X1\nAROT X10\nPOSP[Y]=(4, 1)\nM30"] {
         let mut ch = channel("mill-3axis", "");
         let line = program.lines().position(|l| l.contains("POS")).unwrap() as u32 + 1;
         assert_eq!(first_alarm(&mut ch, program), Some((16430, Some(line))), "{program}");

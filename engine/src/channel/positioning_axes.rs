@@ -208,7 +208,7 @@ impl Channel {
         if let Some(t) = self.positioning.axes[k].as_mut() {
             t.motion = Some(motion);
             if let Motion::Posp(parts) = motion {
-                let parts = parts.from_start(t.position, target);
+                let parts = parts.for_way(t.position, target);
                 t.parts = Some((target, parts));
                 t.target = parts.next_end(t.position, target);
             }

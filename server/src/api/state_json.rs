@@ -539,7 +539,8 @@ mod tests {
             channel.step();
         }
         let text = StateEncoder::default().encode(&channel.snapshot());
-        let want = r#","positioning":[{"axis":"Z","target":-5.0,"velocity":-300.0,"kind":"POSA","waiting":false}],"message""#;
+        let want =
+            r#","positioning":[{"axis":"Z","target":-5.0,"velocity":-300.0,"kind":"POSA","waiting":false}],"message""#;
         assert!(text.as_str().contains(want), "{}", text.as_str());
     }
 
@@ -577,7 +578,13 @@ mod tests {
         s.block = Some(nctwin_engine::channel::BlockRef { line: 3, text: String::new(), program: Some("HOLE".into()) });
         s.positioning = vec![
             PositioningInfo { axis: "Z\"1".into(), target: None, velocity: -0.0, kind: "MOV", waiting: false },
-            PositioningInfo { axis: "A".into(), target: Some(359.999_999_9), velocity: 1e-9, kind: "POSP", waiting: true },
+            PositioningInfo {
+                axis: "A".into(),
+                target: Some(359.999_999_9),
+                velocity: 1e-9,
+                kind: "POSP",
+                waiting: true,
+            },
         ];
         let mut encoder = StateEncoder::default();
         check(&mut encoder, &s);

@@ -73,7 +73,7 @@ pub struct Parts {
 impl Parts {
     /// The parts for the whole way from `start` to `end`: mode 1 (`!halves`) shortens the part
     /// so that a whole number of them fits; mode 0 keeps it.
-    pub fn from_start(self, start: f64, end: f64) -> Parts {
+    pub fn for_way(self, start: f64, end: f64) -> Parts {
         if self.halves {
             return self;
         }
@@ -152,7 +152,10 @@ pub(in crate::interp) fn word(
         _ => Kind::Fa,
     };
     let (expr, parts) = match kind {
-        Kind::Posp => posp_list(expr, vars, sys, line)?,
+        Kind::Posp => {
+            let (end, length, halves) = posp_list(expr, vars, sys, line)?;
+            (end, Some((length, halves)))
+        }
         _ => (expr, None),
     };
     let value = eval_f64(expr, &Ctx { vars, sys }, line)?;
@@ -173,12 +176,7 @@ pub(in crate::interp) fn word(
 
 /// `POSP[ax]=(end, part length[, mode])`: the end's expression and the part length and mode,
 /// checked (a length above 0, mode 0 or 1).
-fn posp_list<'a>(
-    expr: &'a Expr,
-    vars: &Variables,
-    sys: &SysView,
-    line: u32,
-) -> Result<(&'a Expr, Option<(f64, bool)>), Alarm> {
+fn posp_list<'a>(expr: &'a Expr, vars: &Variables, sys: &SysView, line: u32) -> Result<(&'a Expr, f64, bool), Alarm> {
     let items = match expr {
         Expr::Call(name, items) if name == COEFFICIENTS && (2..=3).contains(&items.len()) => items,
         _ => return Err(Alarm::syntax(line, "POSP[axis]=(end position, part length, mode)")),
@@ -192,7 +190,7 @@ fn posp_list<'a>(
     if mode != 0.0 && mode != 1.0 {
         return Err(Alarm::value_out_of_range(line, &format!("POSP mode {mode}")));
     }
-    Ok((&items[0], Some((length, mode == 0.0))))
+    Ok((&items[0], length, mode == 0.0))
 }
 
 /// Whether channel axis `k` may not be a positioning (or command) axis now: an axis of the
@@ -207,7 +205,8 @@ pub(crate) fn refused(
 ) -> Result<(), Alarm> {
     if let Some(t) = trafo {
         let slots = t.trafo.geo_slots().into_iter().chain(t.trafo.orientation_slots()).flatten();
-        let in_set = cfg.trafos.iter().find(|s| s.number == t.number).into_iter().flat_map(|s| s.axes_in.iter().flatten());
+        let in_set =
+            cfg.trafos.iter().find(|s| s.number == t.number).into_iter().flat_map(|s| s.axes_in.iter().flatten());
         if slots.chain(t.trafo.machine_slots()).chain(in_set.copied()).any(|a| a == k) {
             return Err(Alarm::positioning_trafo_axis(line, cfg.program_axis_name(k)));
         }
