@@ -213,10 +213,7 @@ fn write_head(out: &mut String, s: &Snapshot) {
     out.push_str(",\"distance_to_go\":");
     write_f64(out, s.distance_to_go);
     out.push_str(",\"programmed_feed\":");
-    match s.programmed_feed {
-        None => out.push_str("null"),
-        Some(f) => write_f64(out, f),
-    }
+    write_opt_f64(out, s.programmed_feed);
     out.push_str(",\"spindles\":");
     write_named(out, &s.spindles, write_f64);
     out.push_str(",\"spindle_info\":{");
@@ -252,18 +249,12 @@ fn write_head(out: &mut String, s: &Snapshot) {
 
 /// `,"positioning":[...]` as serde writes `api::positioning_dto::PositioningState`.
 fn write_positioning(out: &mut String, list: &[PositioningInfo]) {
-    out.push_str(",\"positioning\":[");
-    for (i, p) in list.iter().enumerate() {
-        if i > 0 {
-            out.push(',');
-        }
+    out.push_str(",\"positioning\":");
+    write_items(out, list, |out, p| {
         out.push_str("{\"axis\":");
         write_str(out, &p.axis);
         out.push_str(",\"target\":");
-        match p.target {
-            None => out.push_str("null"),
-            Some(v) => write_f64(out, v),
-        }
+        write_opt_f64(out, p.target);
         out.push_str(",\"velocity\":");
         write_f64(out, p.velocity);
         out.push_str(",\"kind\":");
@@ -271,8 +262,7 @@ fn write_positioning(out: &mut String, list: &[PositioningInfo]) {
         out.push_str(",\"waiting\":");
         write_bool(out, p.waiting);
         out.push('}');
-    }
-    out.push(']');
+    });
 }
 
 /// The message from `message` to its end.
@@ -311,11 +301,8 @@ fn write_tail(out: &mut String, s: &Snapshot) {
         out.push('}');
     }
     if !s.sync_actions.is_empty() {
-        out.push_str(",\"synchronized_actions\":[");
-        for (i, a) in s.sync_actions.iter().enumerate() {
-            if i > 0 {
-                out.push(',');
-            }
+        out.push_str(",\"synchronized_actions\":");
+        write_items(out, &s.sync_actions, |out, a| {
             out.push_str("{\"id\":");
             match a.id {
                 Some(n) => write_int(out, n),
@@ -334,8 +321,7 @@ fn write_tail(out: &mut String, s: &Snapshot) {
             out.push_str(",\"line\":");
             write_int(out, a.line);
             out.push('}');
-        }
-        out.push(']');
+        });
     }
     if let Some(stock) = &s.stock {
         write_stock(out, stock);
@@ -422,6 +408,26 @@ fn write_named<T: Copy>(out: &mut String, list: &[(String, T)], value: fn(&mut S
         value(out, *v);
     }
     out.push('}');
+}
+
+/// `[a,b,...]`, each item written by `item`.
+fn write_items<T>(out: &mut String, items: &[T], item: impl Fn(&mut String, &T)) {
+    out.push('[');
+    for (i, x) in items.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        item(out, x);
+    }
+    out.push(']');
+}
+
+/// A number, or `null` for `None`.
+fn write_opt_f64(out: &mut String, v: Option<f64>) {
+    match v {
+        None => out.push_str("null"),
+        Some(v) => write_f64(out, v),
+    }
 }
 
 /// A float as serde_json writes it: the shortest text that reads back the same (`zmij`, as serde_json 1.0.15x), `null`
