@@ -173,7 +173,7 @@ pub enum Item {
         request: measuring::Request,
         line: u32,
     },
-    /// POS/POSA (or a command axis): channel axis `axis` travels on its own interpolator to
+    /// POS/POSA/POSP (or a command axis): channel axis `axis` travels on its own interpolator to
     /// the machine position `target` at `velocity` (mm/s, deg/s), from the main run's start of
     /// the block (`path_control/positioning.rs`, `channel/positioning_axes.rs`).
     Positioning {
