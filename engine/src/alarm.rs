@@ -54,6 +54,28 @@ impl Alarm {
         Alarm::new(14092, format!("Channel 1 block {line} axis {axis} is wrong axis type"), Some(line))
     }
 
+    /// 17610: POS/POSA/POSP on an axis of the active transformation (Function Manual F2: the
+    /// kinematic transformation does not act on positioning axes, so its axes cannot be ones).
+    pub fn positioning_trafo_axis(line: u32, axis: &str) -> Alarm {
+        Alarm::new(
+            17610,
+            format!("Channel 1 block {line} axis {axis} involved in the transformation, action cannot be carried out"),
+            Some(line),
+        )
+    }
+
+    /// 16430: a geometry axis as a positioning axis under a frame with a rotation (its path
+    /// in the rotated system would move several machine axes, one interpolator cannot).
+    pub fn positioning_rotated(line: u32, axis: &str) -> Alarm {
+        Alarm::new(
+            16430,
+            format!(
+                "Channel 1 block {line} geometry axis {axis} cannot traverse as positioning axis in rotated coordinate system"
+            ),
+            Some(line),
+        )
+    }
+
     /// 20141: a synchronized action commands an axis (POS/MOV) that is a path axis of the
     /// block in execution, or a spindle as an axis.
     pub fn sync_axis_type(line: Option<u32>, axis: &str) -> Alarm {

@@ -280,6 +280,10 @@ pub struct State {
     /// `spindles`.
     #[schema(value_type = std::collections::HashMap<String, crate::api::spindle_dto::SpindleInfo>)]
     pub spindle_info: crate::api::spindle_dto::SpindleInfos,
+    /// The axes travelling on their own interpolators (POS/POSA/POSP, command axes of
+    /// synchronized actions), in channel axis order; absent when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub positioning: Vec<crate::api::positioning_dto::PositioningState>,
     /// The program's last MSG text, if any.
     pub message: Option<String>,
     /// Feed, rapid and spindle override in percent.
@@ -458,6 +462,7 @@ impl From<&Snapshot> for State {
             programmed_feed: s.programmed_feed,
             spindles: AxisValues(s.spindles.clone()),
             spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
+            positioning: s.positioning.iter().map(Into::into).collect(),
             message: s.message.clone(),
             overrides: OverridesInfo { feed: s.overrides.feed, rapid: s.overrides.rapid, spindle: s.overrides.spindle },
             single_block: s.single_block,
@@ -1216,6 +1221,7 @@ mod tests {
             programmed_feed: None,
             spindles: AxisValues::default(),
             spindle_info: Default::default(),
+            positioning: vec![],
             message: None,
             overrides: OverridesInfo { feed: 100.0, rapid: 100.0, spindle: 100.0 },
             single_block: false,

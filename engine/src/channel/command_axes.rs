@@ -10,7 +10,9 @@
 //!   and scale of that axis and the tool length on it (as `$AA_IW` reads it back); a rotation of
 //!   the frame is not applied (the manuals give command axes no geometry coupling). `IC(v)` is
 //!   relative to where the axis stands; `DC`/`ACP`/`ACN` (and a plain value on a modulo axis)
-//!   take the modulo way as in a program.
+//!   take the modulo way as in a program. An axis of the active transformation (17610) or a
+//!   geometry axis under a rotated frame (16430) cannot be a command axis, as it cannot be a
+//!   program's positioning axis (`path_control/positioning.rs`).
 //! - A command axis stays with the positioning interpolator until the program ends (the
 //!   interpreter has not prepared its position): it then brakes and the path takes it over.
 //! - `S` from an action sets the speed of a turning spindle at once (within its ramp); of a
@@ -39,6 +41,11 @@ impl Channel {
         }
         if matches!(kind, CommandKind::Pos | CommandKind::Mov) && self.path_moves_axis(k) {
             return Err(Box::new(Alarm::sync_axis_type(Some(line), self.cfg.program_axis_name(k))));
+        }
+        if matches!(kind, CommandKind::Pos | CommandKind::Mov) {
+            // As for a program's positioning axis: 17610 under a transformation, 16430 rotated.
+            let (trafo, frame) = (self.offsets.trafo.as_ref(), &self.offsets.frame);
+            crate::interp::path_control::positioning::refused(k, trafo, frame, &self.cfg, line).map_err(Box::new)?;
         }
         match kind {
             CommandKind::Fa => {

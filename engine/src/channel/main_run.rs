@@ -482,9 +482,9 @@ impl Channel {
                     self.enter_block(line, seq);
                     self.set_piece(pieces);
                 }
-                Item::Positioning { axis, target, velocity, line } => {
+                Item::Positioning { axis, target, velocity, motion, line } => {
                     self.enter_block(line, seq);
-                    self.start_positioning(axis, target, velocity, false);
+                    self.start_program_positioning(axis, target, velocity, motion);
                 }
                 Item::WaitPositioning { axes, strict, line } => {
                     if self.wait_positioning(axes, strict, line) {

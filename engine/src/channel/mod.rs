@@ -54,6 +54,7 @@ use std::sync::Arc;
 pub use active_program::{ActiveProgram, CallLevel};
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use jog_settings::OrientationJogKind;
+pub use positioning_axes::{PositioningInfo, SavedPositioning};
 pub use probe::{MAX_PROBE_TARGETS, ProbeTarget};
 pub use referencing::ReferencePhase;
 pub use repos_approach::ReposApproach;

@@ -21,6 +21,7 @@
 
 use super::Channel;
 use crate::alarm::Alarm;
+use crate::interp::path_control::positioning::{Motion, Parts};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// One axis travelling on its own.
@@ -29,13 +30,34 @@ struct Travel {
     position: f64,
     /// Signed velocity, units per second.
     velocity: f64,
-    /// End point; ±∞ for endless motion (`MOV[ax]=±1`).
+    /// End point of the current part (the end point itself but for POSP); ±∞ for endless
+    /// motion (`MOV[ax]=±1`).
     target: f64,
     feed: f64,
     accel: f64,
+    /// POSP: the end point and the parts towards it.
+    parts: Option<(f64, Parts)>,
+    /// What started it, for the state.
+    motion: Option<Motion>,
 }
 
 impl Travel {
+    /// The end point the axis travels to (the last part's end for POSP).
+    fn end(&self) -> f64 {
+        self.parts.map_or(self.target, |(end, _)| end)
+    }
+
+    /// After a part of POSP has ended: the next part starts (true), or the end is reached.
+    fn next_part(&mut self) -> bool {
+        match self.parts {
+            Some((end, parts)) if self.position != end => {
+                self.target = parts.next_end(self.position, end);
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// One cycle of `dt`; true once the axis stands on its target. With `hold` it brakes.
     fn step(&mut self, dt: f64, hold: bool) -> bool {
         let rest = self.target - self.position;
@@ -60,6 +82,42 @@ impl Travel {
     }
 }
 
+/// A positioning axis as the state shows it (`Snapshot::positioning`): one per axis that
+/// travels on its own interpolator, or a command axis held by a synchronized action.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PositioningInfo {
+    /// Machine axis name, as in `Snapshot::machine`.
+    pub axis: String,
+    /// The end point in machine coordinates (the last part's end for POSP); `None` for the
+    /// endless motion of `MOV[ax]=±1`.
+    pub target: Option<f64>,
+    /// Signed velocity in mm/min (deg/min).
+    pub velocity: f64,
+    /// `POS`, `POSA`, `POSP` (a program's), `command` (`POS`/`FA` of a synchronized action)
+    /// or `MOV` (an action's endless motion).
+    pub kind: &'static str,
+    /// The program waits for it (WAITP, or the end of its POS/POSP block).
+    pub waiting: bool,
+}
+
+/// A program's positioning axis still on its way when a checkpoint is taken: a restart sets it
+/// travelling again to the same end point (at NC start, like NC stop and start).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct SavedPositioning {
+    /// Channel axis name.
+    pub axis: String,
+    /// End point in machine coordinates.
+    pub end: f64,
+    /// Feed in mm/s (deg/s).
+    pub feed: f64,
+    /// `POS`, `POSA` or `POSP`.
+    pub kind: String,
+    /// POSP: the part length (machine units) and whether the last stretch is halved.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
+    pub parts: Option<(f64, bool)>,
+}
+
 /// The channel's positioning axes.
 #[derive(Debug, Clone, Default)]
 pub struct PositioningAxes {
@@ -74,6 +132,8 @@ pub struct PositioningAxes {
     command_feed: [f64; MAX_CHANNEL_AXES],
     /// `S` of synchronized actions per spindle axis (rev/min), for their next M3/M4.
     speeds: [f64; MAX_CHANNEL_AXES],
+    /// Bit k: the program's main run waits for channel axis k (WAITP, a POS block's end).
+    waited: u32,
 }
 
 impl PositioningAxes {
@@ -141,6 +201,20 @@ impl Channel {
         self.positioning.speeds = [0.0; MAX_CHANNEL_AXES];
     }
 
+    /// A program's POS/POSA/POSP: axis `k` travels from where it stands to `target` at `feed`
+    /// (POSP in parts, counted from here).
+    pub(super) fn start_program_positioning(&mut self, k: usize, target: f64, feed: f64, motion: Motion) {
+        self.start_positioning(k, target, feed, false);
+        if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.motion = Some(motion);
+            if let Motion::Posp(parts) = motion {
+                let parts = parts.for_way(t.position, target);
+                t.parts = Some((target, parts));
+                t.target = parts.next_end(t.position, target);
+            }
+        }
+    }
+
     /// Starts (or retargets) axis `k` from where it stands towards `target` at `feed`.
     pub(super) fn start_positioning(&mut self, k: usize, target: f64, feed: f64, command: bool) {
         let accel = self.cfg.axis(k).max_accel;
@@ -150,7 +224,7 @@ impl Channel {
             Some(t) => (t.position, t.velocity),
             None => (self.machine[k], 0.0),
         };
-        p.axes[k] = Some(Travel { position, velocity, target, feed, accel });
+        p.axes[k] = Some(Travel { position, velocity, target, feed, accel, parts: None, motion: None });
         p.active |= 1 << k;
         p.moving |= 1 << k;
         if command {
@@ -161,6 +235,7 @@ impl Channel {
     /// `MOV[ax]=0` on a command axis: it brakes to a stop where its ramp ends.
     pub(super) fn stop_positioning(&mut self, k: usize) {
         if let Some(t) = self.positioning.axes[k].as_mut() {
+            t.parts = None;
             let brake = t.velocity * t.velocity / (2.0 * t.accel);
             t.target = t.position + t.velocity.signum() * brake;
             if t.velocity == 0.0 {
@@ -174,6 +249,9 @@ impl Channel {
         if let Some(t) = self.positioning.axes[k].as_mut() {
             t.position += d;
             t.target += d;
+            if let Some((end, _)) = t.parts.as_mut() {
+                *end += d;
+            }
         }
     }
 
@@ -201,7 +279,7 @@ impl Channel {
                 continue;
             }
             let Some(t) = p.axes[k].as_mut() else { continue };
-            if p.moving & (1 << k) != 0 && t.step(dt, hold) {
+            if p.moving & (1 << k) != 0 && t.step(dt, hold) && !t.next_part() {
                 p.moving &= !(1 << k);
             }
             self.machine[k] = t.position;
@@ -217,6 +295,99 @@ impl Channel {
     /// Reset: every positioning axis stands where it is; the planner takes it over.
     pub(super) fn reset_positioning_axes(&mut self) {
         self.release_positioning_axes(u32::MAX);
+        self.positioning.waited = 0;
+    }
+
+    /// Writes the positioning axes into `list` (the state), reusing its names; empties it
+    /// at once when none is here.
+    pub(super) fn refresh_positioning(&self, list: &mut Vec<PositioningInfo>) {
+        let p = &self.positioning;
+        if p.active == 0 {
+            list.clear();
+            return;
+        }
+        let mut len = 0;
+        for k in (0..MAX_CHANNEL_AXES).filter(|&k| p.active & (1 << k) != 0) {
+            let Some(t) = p.axes[k] else { continue };
+            let ax = self.cfg.axis(k);
+            let display = |v: f64| match ax.modulo {
+                Some((start, range)) => start + (v - start).rem_euclid(range),
+                None => v,
+            };
+            let end = t.end();
+            let kind = match t.motion {
+                Some(Motion::Pos) => "POS",
+                Some(Motion::Posa) => "POSA",
+                Some(Motion::Posp(_)) => "POSP",
+                None if end.is_infinite() => "MOV",
+                None => "command",
+            };
+            let info = PositioningInfo {
+                axis: String::new(),
+                target: end.is_finite().then(|| display(end)),
+                velocity: t.velocity * 60.0,
+                kind,
+                waiting: p.waited & p.moving & (1 << k) != 0,
+            };
+            if len == list.len() {
+                list.push(info);
+            } else {
+                let name = std::mem::take(&mut list[len].axis);
+                list[len] = PositioningInfo { axis: name, ..info };
+            }
+            if list[len].axis != ax.name {
+                list[len].axis.clear();
+                list[len].axis.push_str(&ax.name);
+            }
+            len += 1;
+        }
+        list.truncate(len);
+    }
+
+    /// The program's positioning axes still on their way (for a checkpoint; command axes of
+    /// synchronized actions are not kept, as the actions are not).
+    pub(super) fn saved_positioning(&self) -> Vec<SavedPositioning> {
+        let p = &self.positioning;
+        let program = p.moving & !p.command;
+        (0..MAX_CHANNEL_AXES)
+            .filter(|&k| program & (1 << k) != 0)
+            .filter_map(|k| {
+                let t = p.axes[k]?;
+                let (kind, parts) = match t.motion? {
+                    Motion::Pos => ("POS", None),
+                    Motion::Posa => ("POSA", None),
+                    Motion::Posp(parts) => ("POSP", Some((parts.length, parts.halves))),
+                };
+                let axis = self.cfg.axis(k).name.clone();
+                Some(SavedPositioning { axis, end: t.end(), feed: t.feed, kind: kind.into(), parts })
+            })
+            .collect()
+    }
+
+    /// Sets the saved positioning axes travelling again from where they stand (a restart):
+    /// an axis the machine data no longer has, or an unknown kind, is an error and nothing
+    /// starts.
+    pub(super) fn restore_positioning(&mut self, saved: &[SavedPositioning]) -> Result<(), String> {
+        let mut starts = Vec::with_capacity(saved.len());
+        for s in saved {
+            let k = (0..self.cfg.channel_axes.len())
+                .find(|&k| self.cfg.axis(k).name == s.axis)
+                .ok_or_else(|| format!("positioning axis {} is not in the machine data", s.axis))?;
+            let motion = match (s.kind.as_str(), s.parts) {
+                ("POS", None) => Motion::Pos,
+                ("POSA", None) => Motion::Posa,
+                ("POSP", Some((length, halves))) if length > 0.0 => Motion::Posp(Parts { length, halves }),
+                _ => return Err(format!("positioning axis {}: kind {} not known", s.axis, s.kind)),
+            };
+            if !(s.end.is_finite() && s.feed.is_finite() && s.feed > 0.0) {
+                return Err(format!("positioning axis {}: end {} at feed {}", s.axis, s.end, s.feed));
+            }
+            starts.push((k, s.end, s.feed, motion));
+        }
+        for (k, end, feed, motion) in starts {
+            self.start_program_positioning(k, end, feed, motion);
+        }
+        Ok(())
     }
 
     /// Hands the axes of `mask` back to the planner, standing where they are.
@@ -257,6 +428,7 @@ impl Channel {
     /// `strict`: a path block programs the axes, which must have arrived (alarm 14092).
     pub(super) fn wait_positioning(&mut self, axes: u32, strict: bool, line: u32) -> bool {
         if !self.positioning.moving(axes) {
+            self.positioning.waited &= !axes;
             return false;
         }
         if strict {
@@ -265,6 +437,7 @@ impl Channel {
             self.raise(Alarm::wrong_axis_type(line, &name));
             return false;
         }
+        self.positioning.waited |= axes;
         true
     }
 }
@@ -277,7 +450,15 @@ mod tests {
     fn a_travel_stops_exactly_on_its_target_within_the_ideal_time() {
         // 5 mm at 1000 mm/min (16.67 mm/s) with 3000 mm/s²: ramp 5.6 ms, ideal time
         // 5/16.67 + 16.67/3000 = 0.3056 s = 76.4 cycles of 4 ms.
-        let mut t = Travel { position: 0.0, velocity: 0.0, target: -5.0, feed: 1000.0 / 60.0, accel: 3000.0 };
+        let mut t = Travel {
+            position: 0.0,
+            velocity: 0.0,
+            target: -5.0,
+            feed: 1000.0 / 60.0,
+            accel: 3000.0,
+            parts: None,
+            motion: None,
+        };
         let mut n = 0;
         while !t.step(0.004, false) {
             n += 1;

@@ -51,6 +51,11 @@ pub struct ResumeState {
     /// written before.
     #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
     pub stock: Option<super::SavedStock>,
+    /// The program's positioning axes still on their way (POS/POSA/POSP): after the restart
+    /// they travel on to their end points at NC start. Empty when none, and in checkpoints
+    /// written before.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Vec::is_empty"))]
+    pub positioning: Vec<super::SavedPositioning>,
 }
 
 /// The inputs of a checkpoint.
@@ -102,7 +107,9 @@ impl Channel {
         let inputs = (digital != 0 || analog.iter().any(|v| *v != 0.0))
             .then(|| SavedInputs { digital, analog: analog.to_vec() });
         let stock = self.saved_stock();
-        (ResumeState { retained: self.interp.retained(), program, inputs, stock }, text.cloned())
+        let positioning = if line.is_some() { self.saved_positioning() } else { Vec::new() };
+        let retained = self.interp.retained();
+        (ResumeState { retained, program, inputs, stock, positioning }, text.cloned())
     }
 
     /// Takes back a saved resumable state; only in reset state with nothing moving. The
@@ -147,7 +154,7 @@ impl Channel {
                     }
                 }
                 self.restore_saved_stock(state);
-                Ok(())
+                self.restore_positioning(&state.positioning).map_err(CommandError::Invalid)
             }
         }
     }

@@ -83,6 +83,9 @@ pub struct Snapshot {
     pub repos_pending: bool,
     /// The active synchronized actions (ID order, then block-modal ones).
     pub sync_actions: Vec<super::sync_actions::SyncActionInfo>,
+    /// The axes travelling on their own interpolators (POS/POSA/POSP, command axes), in
+    /// channel axis order; empty when none.
+    pub positioning: Vec<super::PositioningInfo>,
     /// Material removal: volumes and checks (`None` without a blank).
     pub stock: Option<super::StockInfo>,
     /// Counts the programs loaded (see `Channel::active_program`): a display reloads the
@@ -139,6 +142,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         jog_serial: 0,
         repos_pending: false,
         sync_actions: Vec::new(),
+        positioning: Vec::new(),
         stock: None,
         program_serial: 0,
         distance_to_go: 0.0,

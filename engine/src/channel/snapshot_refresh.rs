@@ -234,6 +234,7 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     s.jog_serial = ch.jog_serial;
     s.repos_pending = ch.repos_pending();
     ch.sync.refresh_list(&mut s.sync_actions);
+    ch.refresh_positioning(&mut s.positioning);
     s.stock = ch.stock_summary();
 }
 

@@ -173,13 +173,15 @@ pub enum Item {
         request: measuring::Request,
         line: u32,
     },
-    /// POS/POSA (or a command axis): channel axis `axis` travels on its own interpolator to
+    /// POS/POSA/POSP (or a command axis): channel axis `axis` travels on its own interpolator to
     /// the machine position `target` at `velocity` (mm/s, deg/s), from the main run's start of
     /// the block (`path_control/positioning.rs`, `channel/positioning_axes.rs`).
     Positioning {
         axis: usize,
         target: f64,
         velocity: f64,
+        /// POS, POSA or POSP with its parts.
+        motion: path_control::positioning::Motion,
         line: u32,
     },
     /// WAITP, or the end of a POS block: the items after it wait until the positioning axes of

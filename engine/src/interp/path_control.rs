@@ -36,7 +36,7 @@
 //!   block's [`Blend`] to each equidistant piece): the corners of the offset contour are
 //!   rounded, and G645 smooths the tangential joints of G450's transition circles.
 
-pub(super) mod positioning;
+pub(crate) mod positioning;
 pub(super) mod spline;
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;

@@ -13,6 +13,7 @@ pub mod kinematic_chains;
 pub mod machine_data;
 pub mod machine_data_read;
 pub mod machines;
+pub mod positioning_dto;
 pub mod preview;
 pub mod probe;
 pub mod program_archive;

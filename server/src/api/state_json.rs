@@ -8,6 +8,7 @@
 //! finite), integers through `itoa`, strings escaped as serde_json escapes them.
 
 use axum::extract::ws::Utf8Bytes;
+use nctwin_engine::channel::PositioningInfo;
 use nctwin_engine::channel::ReferencePhase;
 use nctwin_engine::channel::StockInfo;
 use nctwin_engine::channel::sync_actions::SyncActionInfo;
@@ -212,10 +213,7 @@ fn write_head(out: &mut String, s: &Snapshot) {
     out.push_str(",\"distance_to_go\":");
     write_f64(out, s.distance_to_go);
     out.push_str(",\"programmed_feed\":");
-    match s.programmed_feed {
-        None => out.push_str("null"),
-        Some(f) => write_f64(out, f),
-    }
+    write_opt_f64(out, s.programmed_feed);
     out.push_str(",\"spindles\":");
     write_named(out, &s.spindles, write_f64);
     out.push_str(",\"spindle_info\":{");
@@ -244,6 +242,27 @@ fn write_head(out: &mut String, s: &Snapshot) {
         out.push('}');
     }
     out.push('}');
+    if !s.positioning.is_empty() {
+        write_positioning(out, &s.positioning);
+    }
+}
+
+/// `,"positioning":[...]` as serde writes `api::positioning_dto::PositioningState`.
+fn write_positioning(out: &mut String, list: &[PositioningInfo]) {
+    out.push_str(",\"positioning\":");
+    write_items(out, list, |out, p| {
+        out.push_str("{\"axis\":");
+        write_str(out, &p.axis);
+        out.push_str(",\"target\":");
+        write_opt_f64(out, p.target);
+        out.push_str(",\"velocity\":");
+        write_f64(out, p.velocity);
+        out.push_str(",\"kind\":");
+        write_str(out, p.kind);
+        out.push_str(",\"waiting\":");
+        write_bool(out, p.waiting);
+        out.push('}');
+    });
 }
 
 /// The message from `message` to its end.
@@ -282,11 +301,8 @@ fn write_tail(out: &mut String, s: &Snapshot) {
         out.push('}');
     }
     if !s.sync_actions.is_empty() {
-        out.push_str(",\"synchronized_actions\":[");
-        for (i, a) in s.sync_actions.iter().enumerate() {
-            if i > 0 {
-                out.push(',');
-            }
+        out.push_str(",\"synchronized_actions\":");
+        write_items(out, &s.sync_actions, |out, a| {
             out.push_str("{\"id\":");
             match a.id {
                 Some(n) => write_int(out, n),
@@ -305,8 +321,7 @@ fn write_tail(out: &mut String, s: &Snapshot) {
             out.push_str(",\"line\":");
             write_int(out, a.line);
             out.push('}');
-        }
-        out.push(']');
+        });
     }
     if let Some(stock) = &s.stock {
         write_stock(out, stock);
@@ -393,6 +408,26 @@ fn write_named<T: Copy>(out: &mut String, list: &[(String, T)], value: fn(&mut S
         value(out, *v);
     }
     out.push('}');
+}
+
+/// `[a,b,...]`, each item written by `item`.
+fn write_items<T>(out: &mut String, items: &[T], item: impl Fn(&mut String, &T)) {
+    out.push('[');
+    for (i, x) in items.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        item(out, x);
+    }
+    out.push(']');
+}
+
+/// A number, or `null` for `None`.
+fn write_opt_f64(out: &mut String, v: Option<f64>) {
+    match v {
+        None => out.push_str("null"),
+        Some(v) => write_f64(out, v),
+    }
 }
 
 /// A float as serde_json writes it: the shortest text that reads back the same (`zmij`, as serde_json 1.0.15x), `null`
@@ -494,6 +529,25 @@ mod tests {
         // A blank cut by a rapid (the stock summary with its last warning).
         let stock = "T1 D1\nG0 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,-10,-10,50,40)\nG0 X-20 Y15 Z-3\nG0 X60\nM30";
         assert!(run(&mut encoder, "mill-3axis", stock) > 10);
+        // Positioning axes: POSA across a block, POS waited for, POSP in parts, a command axis.
+        let positioning = "POSA[Z]=-5 FA[Z]=300\nG1 X4 F600\nWAITP(Z)\nPOSP[Y]=(3, 1) FA[Y]=900\nM30";
+        assert!(run(&mut encoder, "mill-3axis", positioning) > 10);
+        let command = "ID=1 WHEN $AA_IM[X]>1 DO MOV[Z]=-1 FA[Z]=600\nG1 X6 F600\nM30";
+        assert!(run(&mut encoder, "mill-3axis", command) > 10);
+    }
+
+    #[test]
+    fn a_posa_axis_on_its_way_is_in_the_state_message() {
+        // FA[Z]=300 is 300 mm/min: at full speed after one cycle, towards machine Z −5.
+        let mut channel = Channel::from_preset("mill-3axis", "").expect("preset");
+        channel.run_program("POSA[Z]=-5 FA[Z]=300\nG4 F2\nM30").expect("program");
+        for _ in 0..30 {
+            channel.step();
+        }
+        let text = StateEncoder::default().encode(&channel.snapshot());
+        let want =
+            r#","positioning":[{"axis":"Z","target":-5.0,"velocity":-300.0,"kind":"POSA","waiting":false}],"message""#;
+        assert!(text.as_str().contains(want), "{}", text.as_str());
     }
 
     #[test]
@@ -528,6 +582,16 @@ mod tests {
         s.optional_stop = true;
         s.repos_pending = true;
         s.block = Some(nctwin_engine::channel::BlockRef { line: 3, text: String::new(), program: Some("HOLE".into()) });
+        s.positioning = vec![
+            PositioningInfo { axis: "Z\"1".into(), target: None, velocity: -0.0, kind: "MOV", waiting: false },
+            PositioningInfo {
+                axis: "A".into(),
+                target: Some(359.999_999_9),
+                velocity: 1e-9,
+                kind: "POSP",
+                waiting: true,
+            },
+        ];
         let mut encoder = StateEncoder::default();
         check(&mut encoder, &s);
         for phase in [ReferencePhase::Cam, ReferencePhase::Position] {

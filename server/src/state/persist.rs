@@ -286,6 +286,38 @@ mod tests {
     }
 
     #[test]
+    fn a_restart_mid_posa_takes_the_axis_on_to_its_end_and_older_states_have_none() {
+        // FA[Z]=300 (5 mm/s): after 100 cycles of 4 ms Z is about 2 mm on its way to −5.
+        let mut channel = Channel::from_preset("mill-3axis", "").expect("preset");
+        channel.run_program("POSA[Z]=-5 FA[Z]=300\nG4 F3\nM30").expect("run");
+        for _ in 0..100 {
+            channel.step();
+        }
+        let checkpoint = checkpoint(&channel);
+        let json = checkpoint.channel_state.as_deref().expect("state");
+        assert!(json.contains(r#""positioning":[{"axis":"Z","end":-5.0,"feed":5.0,"kind":"POSA"}]"#), "{json}");
+        let mut restored = rebuild(&saved(&channel, vec![])).expect("rebuild");
+        let p = restored.snapshot().positioning;
+        assert_eq!(p.iter().map(|p| (p.kind, p.target)).collect::<Vec<_>>(), [("POSA", Some(-5.0))]);
+        restored.start().expect("NC start");
+        for _ in 0..100_000 {
+            if !restored.is_busy() {
+                break;
+            }
+            restored.step();
+        }
+        assert!(restored.alarms().is_empty(), "{:?}", restored.alarms());
+        assert_eq!(restored.axis_positions()[2], -5.0);
+        // A checkpoint written before the field: the program comes back, no axis travels.
+        let mut old = saved(&channel, vec![]);
+        let without = json.replace(r#","positioning":[{"axis":"Z","end":-5.0,"feed":5.0,"kind":"POSA"}]"#, "");
+        old.record.checkpoint.channel_state = Some(without);
+        let restored = rebuild(&old).expect("rebuild");
+        assert_eq!(restored.snapshot().block.map(|b| b.line), Some(2));
+        assert!(restored.snapshot().positioning.is_empty());
+    }
+
+    #[test]
     fn machine_data_that_no_longer_applies_is_an_error_not_a_wrong_session() {
         let channel = Channel::from_preset("mill-3axis", "").expect("preset");
         let mut bad = saved(&channel, vec![]);

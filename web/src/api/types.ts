@@ -53,6 +53,8 @@ export interface State {
   spindles: Record<string, number>;
   /** Each spindle's mode (M3/M4/M5/SPOS), angle in degrees and master flag, by the names of `spindles`. */
   spindle_info?: Record<string, SpindleInfo>;
+  /** Axes travelling on their own interpolators (POS/POSA/POSP, command axes); absent when none. */
+  positioning?: PositioningState[];
   /** The program's last MSG text. */
   message?: string | null;
   overrides: Overrides;
@@ -91,6 +93,15 @@ export interface StockSummary {
   last_warning: StockWarning | null;
   /** Grows with every cut: the tiles changed since the version shown are fetched again. */
   version: number;
+}
+
+/** A positioning axis: machine axis name, end point (null: endless MOV), mm/min or deg/min. */
+export interface PositioningState {
+  axis: string;
+  target: number | null;
+  velocity: number;
+  kind: "POS" | "POSA" | "POSP" | "command" | "MOV";
+  waiting: boolean;
 }
 
 /** A synchronized action as the state lists it. */

@@ -5,6 +5,7 @@ import type { AxisValues, State } from "../api/types";
 import { byId, el, fmt, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
 import { rotaryAxisNames } from "../view3d/machineData";
+import { showPositioning } from "./positioningMark";
 
 export type Frame = "machine" | "workpiece" | "basic";
 
@@ -20,6 +21,8 @@ export class PositionsView {
   private cells = new Map<string, HTMLElement>();
   /** The reference point symbol cell of each row. */
   private refCells = new Map<string, HTMLElement>();
+  /** The positioning-axis badge beside each row's axis name. */
+  private posMarks = new Map<string, HTMLElement>();
   private latest: State | null = null;
   /** NC data text of the machine (which axes are rotary). */
   private machineData = "";
@@ -61,6 +64,7 @@ export class PositionsView {
       if (td) setText(td, fmt(value));
     }
     this.showReferenced(st, axes);
+    showPositioning(st, axes, this.posMarks);
   }
 
   /**
@@ -91,13 +95,18 @@ export class PositionsView {
     this.rowsKey = key;
     this.cells.clear();
     this.refCells.clear();
+    this.posMarks.clear();
     const rows = axes.map((axis) => {
       const value = el("td", { class: "num value", "data-frame": this.frame, "data-axis": axis });
       this.cells.set(axis, value);
       const tr = el("tr");
       const ref = el("td", { class: "ref", "data-ref-axis": axis });
       this.refCells.set(axis, ref);
-      tr.append(ref, el("th", { class: "axis" }, axis), value, el("td", { class: "unit" }, axis in spindles || this.rotary.has(axis) ? "°" : "mm"));
+      const mark = el("span", { class: "pos-mark" });
+      this.posMarks.set(axis, mark);
+      const name = el("th", { class: "axis" }, axis);
+      name.append(mark);
+      tr.append(ref, name, value, el("td", { class: "unit" }, axis in spindles || this.rotary.has(axis) ? "°" : "mm"));
       return tr;
     });
     byId<HTMLTableElement>("positions").tBodies[0]!.replaceChildren(...rows);
