@@ -85,6 +85,14 @@ pub struct PreviewResponse {
     /// are on the unrolled surface (X radial, Y the arc length on this diameter, Z axial); a
     /// view wraps them onto the cylinder.
     pub tracyl_diameter: Vec<Option<f64>>,
+    /// At each point: the unit tool direction (tip → holder) in the BCS while an orientation
+    /// transformation (TRAORI) is active, else null; a 5-axis view draws it along the path.
+    pub tool_direction: Vec<Option<[f64; 3]>>,
+    /// Where an axis reached its velocity or acceleration limit in feed motion, the first
+    /// [`LIMIT_HITS`] in program order (`nctwin_engine::channel::limit_watch`).
+    pub limit_hits: Vec<LimitHit>,
+    /// Every such hit, also those beyond the list.
+    pub limit_hits_total: usize,
     pub outcome: PreviewOutcome,
     /// The alarm that ended the run, when `outcome` is `alarm`.
     pub alarm: Option<AlarmInfo>,
@@ -92,6 +100,56 @@ pub struct PreviewResponse {
     pub time: f64,
     /// Samples taken before thinning.
     pub samples: usize,
+}
+
+/// Most limit hits listed in a preview.
+pub const LIMIT_HITS: usize = 200;
+
+/// Which limit an axis reached.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LimitKind {
+    /// `$MA_MAX_AX_VELO`.
+    Velocity,
+    /// `$MA_MAX_AX_ACCEL`.
+    Acceleration,
+}
+
+/// An axis reaching its velocity or acceleration limit in feed motion.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct LimitHit {
+    /// The channel axis.
+    #[schema(example = "X")]
+    pub axis: String,
+    pub kind: LimitKind,
+    /// Its velocity (mm/s, °/s) or acceleration (mm/s², °/s²) then, by magnitude.
+    pub value: f64,
+    /// The limit from the machine data, same unit.
+    pub limit: f64,
+    /// The program line in execution.
+    pub line: u32,
+    /// The tool tip in the BCS (geometry axes as `axes`), where a view marks it.
+    pub basic: [f64; 3],
+    /// Simulated program time in seconds.
+    pub time: f64,
+}
+
+impl From<&nctwin_engine::channel::limit_watch::LimitHit> for LimitHit {
+    fn from(h: &nctwin_engine::channel::limit_watch::LimitHit) -> Self {
+        use nctwin_engine::channel::limit_watch::LimitKind as K;
+        LimitHit {
+            axis: h.axis.clone(),
+            kind: match h.kind {
+                K::Velocity => LimitKind::Velocity,
+                K::Acceleration => LimitKind::Acceleration,
+            },
+            value: h.value,
+            limit: h.limit,
+            line: h.line,
+            basic: h.basic,
+            time: h.time,
+        }
+    }
 }
 
 impl PreviewRequest {
@@ -185,9 +243,11 @@ pub fn trace(
     let started = Instant::now();
     let mut samples = vec![tip(&channel, &axes)];
     let mut limited = false;
+    let mut watch = nctwin_engine::channel::limit_watch::LimitWatch::new(LIMIT_HITS);
     loop {
         while channel.is_busy() {
             channel.step();
+            watch.observe(&channel);
             if !channel.is_busy() {
                 break;
             }
@@ -230,6 +290,9 @@ pub fn trace(
         basic: kept.iter().map(|s| s.bcs).collect(),
         lines: kept.iter().map(|s| s.line).collect(),
         tracyl_diameter: kept.iter().map(|s| s.tracyl_diameter).collect(),
+        tool_direction: kept.iter().map(|s| s.tool_direction).collect(),
+        limit_hits: watch.hits().iter().map(LimitHit::from).collect(),
+        limit_hits_total: watch.total(),
         outcome,
         alarm,
         time: channel.time(),
@@ -245,6 +308,8 @@ pub struct Sample {
     pub line: u32,
     /// The TRACYL working diameter while TRACYL is active.
     pub tracyl_diameter: Option<f64>,
+    /// The unit tool direction in the BCS while an orientation transformation is active.
+    pub tool_direction: Option<[f64; 3]>,
 }
 
 /// The tool tip in the WCS and the BCS (geometry axes by name) and the current line.
@@ -264,6 +329,7 @@ fn tip(channel: &Channel, axes: &[String; 3]) -> Sample {
         bcs: pick(&snap.basic),
         line: snap.block.map_or(0, |b| b.line),
         tracyl_diameter: snap.transformation.and_then(|t| t.diameter),
+        tool_direction: channel.tool_direction_bcs(),
     }
 }
 
@@ -278,7 +344,12 @@ pub fn thin(samples: Vec<Sample>, max: usize) -> Vec<Sample> {
         // The previous point lies on the line from the one before it to this one: not needed.
         if kept.len() >= 2 {
             let (a, b) = (&kept[kept.len() - 2].wcs, &kept[kept.len() - 1].wcs);
-            let same = |k: &Sample| k.line == s.line && k.tracyl_diameter == s.tracyl_diameter;
+            // A turning tool keeps its points (a 5-axis view draws the tool axis at them).
+            let same = |k: &Sample| {
+                k.line == s.line
+                    && k.tracyl_diameter == s.tracyl_diameter
+                    && same_direction(k.tool_direction, s.tool_direction)
+            };
             if same(&kept[kept.len() - 1]) && off_line(a, &s.wcs, b) < COLLINEAR_TOL {
                 kept.pop();
             }
@@ -291,6 +362,15 @@ pub fn thin(samples: Vec<Sample>, max: usize) -> Vec<Sample> {
     let stride = kept.len().div_ceil(max - 1);
     let last = kept.len() - 1;
     kept.into_iter().enumerate().filter(|(i, _)| i % stride == 0 || *i == last).map(|(_, s)| s).collect()
+}
+
+/// Tool directions within 0.5° of each other (or both absent).
+fn same_direction(a: Option<[f64; 3]>, b: Option<[f64; 3]>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2] >= 0.5f64.to_radians().cos(),
+        _ => false,
+    }
 }
 
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -313,7 +393,7 @@ mod tests {
     #[test]
     fn collinear_samples_collapse_to_the_corners() {
         // A straight line in 11 samples, then a right-angle turn: only the ends and the corner stay.
-        let at = |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None };
+        let at = |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None, tool_direction: None };
         let mut s: Vec<Sample> = (0..=10).map(|i| at([f64::from(i), 0.0, 0.0])).collect();
         s.extend((1..=5).map(|i| at([10.0, f64::from(i), 0.0])));
         let kept: Vec<[f64; 3]> = thin(s, 100).into_iter().map(|k| k.wcs).collect();
@@ -326,7 +406,7 @@ mod tests {
         let s: Vec<Sample> = (0..1000)
             .map(|i| {
                 let p = [f64::from(i), f64::from(i % 2), 0.0];
-                Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None }
+                Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None, tool_direction: None }
             })
             .collect();
         let kept = thin(s, 100);
