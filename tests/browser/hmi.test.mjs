@@ -771,6 +771,32 @@ async function main() {
       );
     });
 
+    await step("active swivel beside T/F/S: HEAD_CA (1), A 30°, the plane X 30°; the WCS triad turned with it", async () => {
+      await page.waitForFunction(() => /^HEAD_CA \(1\): C 0\.0° A 30\.0° · plane X 30\.0° Y 0\.0° Z 0\.0°$/.test(document.getElementById("swivel-active")?.textContent ?? ""));
+      // Rx(30°): the WCS Z axis points to (0, −sin 30°, cos 30°) of the BCS (a head: the part frame is the BCS).
+      await page.waitForFunction(() => {
+        const z = window.__nctwin3d.wcsDirection("Z");
+        return z && Math.abs(z[0]) < 1e-6 && Math.abs(z[1] + 0.5) < 1e-6 && Math.abs(z[2] - Math.sqrt(0.75)) < 1e-6;
+      });
+    });
+
+    await step("a swivel that fails (B 120° beyond the head's ±110°) leaves JOG selected and says why", async () => {
+      await page.click('[data-set-mode="JOG"]');
+      await page.selectOption("#swivel-mode", "direct");
+      await page.fill('#swivel-form input[name="b"]', "120");
+      await page.click("#btn-swivel");
+      await page.waitForFunction(() => document.getElementById("swivel-outcome")?.dataset.failed === "true");
+      const why = await page.textContent("#swivel-outcome");
+      if (!/alarm 61184/.test(why) || !/in JOG again/.test(why)) throw new Error(`outcome: ${why}`);
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="JOG"]')?.classList.contains("active"));
+      // The swivel before stays active: the failed one moved nothing.
+      if (!/^HEAD_CA \(1\)/.test(await page.textContent("#swivel-active"))) throw new Error("active swivel lost");
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      await page.selectOption("#swivel-mode", "axis_by_axis");
+      await page.fill('#swivel-form input[name="b"]', "0");
+    });
+
     await step("3D view: a 5-axis head is drawn with its two rotary axes (non-empty canvas)", async () => {
       await page.waitForFunction(() => document.getElementById("view3d-caption")?.dataset.head === "2");
       const caption = await page.textContent("#view3d-caption");

@@ -16,22 +16,12 @@ import { buildMachine, type MachineModel } from "./machineModel";
 import { Toolpath } from "./toolpath";
 import { Viewport, type ViewName } from "./viewport";
 import { StockView } from "./stock";
+import { WcsTriad } from "./wcsTriad";
+import { activeSwivel } from "../swivel/activeSwivel";
 
-const AXIS_COLORS = { X: 0xe5534b, Y: 0x57ab5a, Z: 0x539bf5 } as const;
 const DEFAULT_TOOL_RADIUS = 5;
 export const EXECUTED_COLOR = 0xffb02e;
 export const PROGRAMMED_COLOR = 0x39c5cf;
-
-/** Three arrows at the WCS origin along the geometry axes (machine frame directions). */
-function wcsTriad(size: number, letters: string[]): THREE.Group {
-  const triad = new THREE.Group();
-  const dirs = { X: new THREE.Vector3(1, 0, 0), Y: new THREE.Vector3(0, 1, 0), Z: new THREE.Vector3(0, 0, 1) };
-  for (const letter of ["X", "Y", "Z"] as const) {
-    if (!letters.includes(letter)) continue;
-    triad.add(new THREE.ArrowHelper(dirs[letter], new THREE.Vector3(), size, AXIS_COLORS[letter], size * 0.2, size * 0.1));
-  }
-  return triad;
-}
 
 /** Geometry axis values (X, Y, Z by name) as a point of the machine's Cartesian frame. */
 function geometryPoint(values: AxisValues, out = new THREE.Vector3()): THREE.Vector3 {
@@ -155,7 +145,9 @@ export class MachineView {
   readonly stock = new StockView(() => this.viewport.invalidate());
   private structure: Structure | null = null;
   private model: MachineModel | null = null;
-  private triad: THREE.Group | null = null;
+  private triad: WcsTriad | null = null;
+  /** The WCS directions of the active frame chain (GET .../active-swivel), null: the BCS's. */
+  private wcsAxes: [number, number, number][] | null = null;
   private ncData = new NcData("");
   private buildKey = "";
   private info: SessionInfo | null = null;
@@ -246,13 +238,26 @@ export class MachineView {
     const comparable = s.kind === "mill" ? !trafo || isOrientationTrafo(trafo.type) : transmit;
     this.tipError = comparable ? this.tipPart.distanceTo(this.bcs) : null;
 
-    this.triad?.position.copy(this.workOffset);
+    this.triad?.place(this.bcs, this.wcs);
     this.toolpath.add(this.tipPart);
     if (this.framePending) {
       this.framePending = false;
       this.setView("iso");
     }
     this.viewport.invalidate();
+  }
+
+  /** Turns the WCS triad with the frame chain (unit WCS axes in the BCS; null: not turned). */
+  setWcsAxes(axes: [number, number, number][] | null): void {
+    this.wcsAxes = axes;
+    this.triad?.setAxes(axes);
+    if (this.latest) this.show(this.latest);
+    this.viewport.invalidate();
+  }
+
+  /** Where the triad's WCS axis `letter` points (part frame), for the browser test. */
+  wcsDirection(letter: "X" | "Y" | "Z"): [number, number, number] | null {
+    return this.triad?.direction(letter) ?? null;
   }
 
   /** Shows a programmed path (WCS points of the preview) at the current work offset. */
@@ -363,10 +368,11 @@ export class MachineView {
     this.structure = s;
     this.model = chain?.model ?? buildMachine(s);
     const letters = s.kind === "lathe" ? ["X", "Z", ...(s.linear.some((a) => a.letter === "Y") ? ["Y"] : [])] : ["X", "Y", "Z"];
-    this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
+    this.triad = new WcsTriad(Math.max(40, this.model.size * 0.08), letters);
+    this.triad.setAxes(this.wcsAxes);
     this.programmed.line.renderOrder = 2;
     this.toolpath.line.renderOrder = 3;
-    this.model.part.add(this.triad, this.toolpath.line, this.programmed.line, this.stock.group);
+    this.model.part.add(this.triad.group, this.toolpath.line, this.programmed.line, this.stock.group);
     this.model.frame.add(this.tool.mesh);
     this.content.add(this.model.root);
     this.model.update({}, false);
@@ -427,6 +433,7 @@ export function mountMachineView(session: SessionController): MachineView {
     view.attach(info, { keepPath: true });
     if (session.latest) view.show(session.latest);
   });
+  activeSwivel.on("change", (sw) => view.setWcsAxes(sw?.wcs_axes ?? null));
   const views: Record<string, ViewName> = { "btn-view-iso": "iso", "btn-view-top": "top", "btn-view-front": "front" };
   for (const [id, name] of Object.entries(views)) byId(id).addEventListener("click", () => view.setView(name));
   byId("btn-view-path").addEventListener("click", () => view.zoomToPath());
@@ -441,6 +448,8 @@ export function mountMachineView(session: SessionController): MachineView {
     programmedPoints: () => view.programmed.count,
     /** The programmed path as drawn (workpiece frame, TRACYL parts wrapped). */
     programmedPath: () => view.programmed.points(),
+    /** Where the WCS triad's axis points (part frame): turned with a swivelled frame. */
+    wcsDirection: (letter: "X" | "Y" | "Z") => view.wcsDirection(letter),
   };
   setText(byId("view3d-caption"), "");
   return view;
