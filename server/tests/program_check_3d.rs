@@ -88,3 +88,37 @@ async fn a_late_viewer_gets_the_executed_path_from_the_session() {
     assert_eq!(h["lines"].as_array().unwrap().len(), points.len());
     assert!(server.get("/sessions/nope/path-history").await.status == StatusCode::NOT_FOUND);
 }
+
+#[tokio::test]
+async fn each_preview_point_names_the_program_its_line_is_in() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let sub = "G1 Y20 F2000\nG1 X40\nM17\n";
+    let put = server.put(&format!("/sessions/{id}/programs/edge.spf"), json!({"text": sub})).await;
+    assert!(put.status.is_success(), "{}", put.body);
+    // Main line 2 moves X, the subprogram's lines 1 and 2 move Y and X, main line 4 moves Z.
+    let program = "G0 X0 Y0 Z0\nG1 X20 F2000\nEDGE\nG1 Z10\nM30";
+    let r = server.post(&format!("/sessions/{id}/preview"), json!({"program": program})).await;
+    assert_eq!(r.status, StatusCode::OK, "{}", r.body);
+    let names = r.body["programs"].as_array().unwrap();
+    assert_eq!(names.len(), 1, "{}", r.body);
+    assert!(names[0].as_str().unwrap().eq_ignore_ascii_case("edge"), "{names:?}");
+    let points = r.body["points"].as_array().unwrap();
+    let lines = r.body["lines"].as_array().unwrap();
+    let of = r.body["line_program"].as_array().unwrap();
+    assert_eq!((lines.len(), of.len()), (points.len(), points.len()));
+    // A point inside each move carries the line of that move (a point at a block change
+    // carries the next block's): Y at X20 is the subprogram's line 1, X at Y20 its line 2, Z the
+    // main program's line 4.
+    let inside = |f: &dyn Fn(f64, f64, f64) -> bool| {
+        let k = points
+            .iter()
+            .position(|q| f(q[0].as_f64().unwrap(), q[1].as_f64().unwrap(), q[2].as_f64().unwrap()))
+            .unwrap_or_else(|| panic!("no such point in {points:?}"));
+        (lines[k].clone(), of[k].clone())
+    };
+    assert_eq!(inside(&|x, y, _| x == 20.0 && y > 0.0 && y < 20.0), (json!(1), json!(1)), "{}", r.body);
+    assert_eq!(inside(&|x, y, _| y == 20.0 && x > 20.0 && x < 40.0), (json!(2), json!(1)), "{}", r.body);
+    assert_eq!(inside(&|_, _, z| z > 0.0 && z < 10.0), (json!(4), json!(0)), "{}", r.body);
+    assert_eq!(inside(&|x, y, _| y == 0.0 && x > 0.0 && x < 20.0), (json!(2), json!(0)), "{}", r.body);
+}

@@ -81,6 +81,10 @@ pub struct PreviewResponse {
     pub basic: Vec<[f64; 3]>,
     /// Program line (1-based) being executed at each point, 0 before the first block.
     pub lines: Vec<u32>,
+    /// The program each of `lines` is in: 0 the main program, k the subprogram `programs[k-1]`.
+    pub line_program: Vec<u32>,
+    /// The subprograms (and cycles) the path passed through, by stored name.
+    pub programs: Vec<String>,
     /// At each point: the working diameter (mm) while TRACYL was active, else null. Such points
     /// are on the unrolled surface (X radial, Y the arc length on this diameter, Z axial); a
     /// view wraps them onto the cylinder.
@@ -241,7 +245,8 @@ pub fn trace(
     let every = ((SAMPLE_S / cfg.ipo_cycle).round() as u64).max(1);
     let end_tick = channel.ticks() + (max_time / cfg.ipo_cycle).ceil() as u64;
     let started = Instant::now();
-    let mut samples = vec![tip(&channel, &axes)];
+    let mut programs = Vec::new();
+    let mut samples = vec![tip(&channel, &axes, &mut programs)];
     let mut limited = false;
     let mut watch = nctwin_engine::channel::limit_watch::LimitWatch::new(LIMIT_HITS);
     loop {
@@ -254,7 +259,7 @@ pub fn trace(
             // Also at every block change, so that corners are not cut by the sampling.
             let changed = channel.take_events().iter().any(|e| matches!(e, Event::BlockChanged(_)));
             if changed || channel.ticks().is_multiple_of(every) {
-                samples.push(tip(&channel, &axes));
+                samples.push(tip(&channel, &axes, &mut programs));
             }
             if channel.ticks() >= end_tick || (channel.ticks().is_multiple_of(4096) && started.elapsed() > WALL_LIMIT) {
                 limited = true;
@@ -269,7 +274,7 @@ pub fn trace(
     }
     // The end position. A program end resets the frames (the WCS display falls back to G500):
     // the end point keeps the work offset of the last sample taken while the program ran.
-    let mut end = tip(&channel, &axes);
+    let mut end = tip(&channel, &axes, &mut programs);
     if let Some(last) = samples.last() {
         end.wcs = std::array::from_fn(|i| end.bcs[i] - (last.bcs[i] - last.wcs[i]));
     }
@@ -289,6 +294,8 @@ pub fn trace(
         points: kept.iter().map(|s| s.wcs).collect(),
         basic: kept.iter().map(|s| s.bcs).collect(),
         lines: kept.iter().map(|s| s.line).collect(),
+        line_program: kept.iter().map(|s| s.program).collect(),
+        programs,
         tracyl_diameter: kept.iter().map(|s| s.tracyl_diameter).collect(),
         tool_direction: kept.iter().map(|s| s.tool_direction).collect(),
         limit_hits: watch.hits().iter().map(LimitHit::from).collect(),
@@ -306,14 +313,17 @@ pub struct Sample {
     pub wcs: [f64; 3],
     pub bcs: [f64; 3],
     pub line: u32,
+    /// The program `line` is in: 0 the main program, k the k-th subprogram met.
+    pub program: u32,
     /// The TRACYL working diameter while TRACYL is active.
     pub tracyl_diameter: Option<f64>,
     /// The unit tool direction in the BCS while an orientation transformation is active.
     pub tool_direction: Option<[f64; 3]>,
 }
 
-/// The tool tip in the WCS and the BCS (geometry axes by name) and the current line.
-fn tip(channel: &Channel, axes: &[String; 3]) -> Sample {
+/// The tool tip in the WCS and the BCS (geometry axes by name) and the current line; a
+/// subprogram met for the first time is added to `programs`.
+fn tip(channel: &Channel, axes: &[String; 3], programs: &mut Vec<String>) -> Sample {
     let snap = channel.snapshot();
     let pick = |values: &[(String, f64)]| {
         let mut p = [0.0; 3];
@@ -327,7 +337,17 @@ fn tip(channel: &Channel, axes: &[String; 3]) -> Sample {
     Sample {
         wcs: pick(&snap.workpiece),
         bcs: pick(&snap.basic),
-        line: snap.block.map_or(0, |b| b.line),
+        line: snap.block.as_ref().map_or(0, |b| b.line),
+        program: match snap.block.as_ref().and_then(|b| b.program.as_deref()) {
+            None => 0,
+            Some(name) => match programs.iter().position(|p| p == name) {
+                Some(k) => k as u32 + 1,
+                None => {
+                    programs.push(name.to_string());
+                    programs.len() as u32
+                }
+            },
+        },
         tracyl_diameter: snap.transformation.and_then(|t| t.diameter),
         tool_direction: channel.tool_direction_bcs(),
     }
@@ -347,6 +367,7 @@ pub fn thin(samples: Vec<Sample>, max: usize) -> Vec<Sample> {
             // A turning tool keeps its points (a 5-axis view draws the tool axis at them).
             let same = |k: &Sample| {
                 k.line == s.line
+                    && k.program == s.program
                     && k.tracyl_diameter == s.tracyl_diameter
                     && same_direction(k.tool_direction, s.tool_direction)
             };
@@ -393,7 +414,8 @@ mod tests {
     #[test]
     fn collinear_samples_collapse_to_the_corners() {
         // A straight line in 11 samples, then a right-angle turn: only the ends and the corner stay.
-        let at = |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None, tool_direction: None };
+        let at =
+            |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1, program: 0, tracyl_diameter: None, tool_direction: None };
         let mut s: Vec<Sample> = (0..=10).map(|i| at([f64::from(i), 0.0, 0.0])).collect();
         s.extend((1..=5).map(|i| at([10.0, f64::from(i), 0.0])));
         let kept: Vec<[f64; 3]> = thin(s, 100).into_iter().map(|k| k.wcs).collect();
@@ -406,7 +428,7 @@ mod tests {
         let s: Vec<Sample> = (0..1000)
             .map(|i| {
                 let p = [f64::from(i), f64::from(i % 2), 0.0];
-                Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None, tool_direction: None }
+                Sample { wcs: p, bcs: p, line: 1, program: 0, tracyl_diameter: None, tool_direction: None }
             })
             .collect();
         let kept = thin(s, 100);
