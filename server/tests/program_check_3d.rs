@@ -58,6 +58,12 @@ async fn under_traori_the_preview_gives_the_tool_direction_at_each_point() {
     // (Sampled at the block change: within 1e-4, 0.006°, of the end orientation.)
     assert!(dirs.iter().any(|d| close(d, [0.0, -h, h], 1e-4)), "{dirs:?}");
     assert!(dirs.last().unwrap().is_null(), "{dirs:?}");
+    // A slow turn (45° over 60 mm at F600: 0.05° per sample) still keeps a point every 0.5°
+    // or so: at least 45 / 0.5 = 90 points along line 4.
+    let slow = "T1 D1\nTRAORI\nG0 X0 Y0 Z100 A3=0 B3=0 C3=1\nG1 X60 A3=0 B3=-1 C3=1 F600\nM30";
+    let r = server.post(&format!("/sessions/{id}/preview"), json!({"program": slow})).await;
+    let in_line_4 = r.body["lines"].as_array().unwrap().iter().filter(|l| **l == 4).count();
+    assert!(in_line_4 >= 90, "{in_line_4} points in line 4");
     assert!(dirs.iter().any(|d| close(d, [0.0, 0.0, 1.0], 1e-6)), "{dirs:?}");
 }
 

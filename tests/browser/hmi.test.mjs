@@ -1093,6 +1093,62 @@ async function main() {
         return (await fetch(`/api/v1/sessions/${id}/tools`)).json();
       });
 
+    await step("3D program check: a late viewer gets the executed path; axis limits marked; the path framed", async () => {
+      const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" })).id;
+      // mill-3axis (presets.rs): X at most 30000 mm/min = 500 mm/s and 3 m/s². F40000 in line 2
+      // is more than X can do: it reaches its velocity limit (after 41.7 mm) and accelerates
+      // at its limit; line 3's F1000 stays below. The run (in real time: the history holds the
+      // published states, as a viewer's trace would) is over before this page joins.
+      const program = "G0 X0 Y0 Z10\nG1 X300 F40000\nG1 Y5 F1000\nM30\n";
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace: "realtime", wait: true });
+      await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.waitForFunction(() => window.__nctwin3d.historyPoints() >= 3);
+      const path = await page.evaluate(() => window.__nctwin3d.pathPoints(1000));
+      const near = (p, q, tol) => p.every((v, k) => Math.abs(v - q[k]) <= tol);
+      if (!path.some((p) => p[1] === 0 && p[2] === 10 && p[0] > 50 && p[0] < 300)) throw new Error(`no point of the X leg: ${JSON.stringify(path.slice(0, 20))}`);
+      if (!near(path.at(-1), [300, 5, 10], 1e-6)) throw new Error(`path ends at ${path.at(-1)}`);
+      await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.kind === "velocity" && m.axis === "X" && m.line === 2), null, { timeout: 30_000 });
+      const marks = await page.evaluate(() => window.__nctwin3d.limitMarks());
+      if (marks.some((m) => m.line === 1)) throw new Error(`a mark in the G0 block: ${JSON.stringify(marks)}`);
+      const v = marks.find((m) => m.kind === "velocity" && m.axis === "X");
+      if (!(v.basic[0] > 41.6 && v.basic[0] < 46 && v.basic[1] === 0)) throw new Error(`velocity mark at ${v.basic}`);
+      const caption = await page.textContent("#view3d-limits");
+      if (!/^axis limits: [1-9]\d* velocity, [1-9]\d* acceleration/.test(caption)) throw new Error(`limits caption: ${caption}`);
+      // Framed on the first run: every point of the programmed path is in the camera's view.
+      await page.waitForFunction(() => window.__nctwin3d.programmedInView() === 1);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-check.png") });
+    });
+
+    await step("3D program check on a 5-axis head: tool axis along the path, the tool vector, the slider names the block at its marker", async () => {
+      const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill5-head-ca" })).id;
+      // Line 4 tilts the tool from +Z to (0, −1, 1)/√2 (tip → holder) while X moves 60 mm.
+      const program = "T1 D1\nTRAORI\nG0 X0 Y0 Z100 A3=0 B3=0 C3=1\nG1 X60 A3=0 B3=-1 C3=1 F3000\nM0\nM30\n";
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace: "fast", wait: true });
+      await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.waitForFunction(() => window.__nctwin3d.toolAxisLines() > 5, null, { timeout: 30_000 });
+      // Stopped at M0 under TRAORI: the engine's orientation, (0, −0.707, 0.707) in the WCS.
+      await page.waitForFunction(() => document.getElementById("tool-vector")?.textContent === "tool vector 0.000 -0.707 0.707");
+      // The same preview as the page's (same session, program and limits): a point inside line 4.
+      const r = await pageFetch(page, "POST", `/sessions/${id}/preview`, { active: true, max_points: 8000, max_time: 3600 });
+      const i = r.lines.findIndex((l, k) => l === 4 && r.line_program[k] === 0 && r.basic[k][0] > 1 && r.basic[k][0] < 59);
+      if (i < 0) throw new Error(`no point inside line 4: ${JSON.stringify(r.lines)}`);
+      await page.waitForFunction((n) => Number(document.getElementById("path-scrub")?.max) === n - 1, r.points.length);
+      await page.$eval("#path-scrub", (el, k) => {
+        el.value = String(k);
+        el.dispatchEvent(new Event("input", { bubbles: true }));
+      }, i);
+      await page.waitForFunction(() => /· line 4: G1 X60 A3=0 B3=-1 C3=1 F3000$/.test(document.getElementById("path-scrub-label")?.textContent ?? ""));
+      const marker = await page.evaluate(() => window.__nctwin3d.marker());
+      if (!marker || !marker.every((v, k) => Math.abs(v - r.basic[i][k]) < 1e-3)) throw new Error(`marker ${marker} for ${r.basic[i]}`);
+      // Keyboard: End takes the marker to the last point (the program end).
+      await page.focus("#path-scrub");
+      await page.keyboard.press("End");
+      await page.waitForFunction(() => /program end$/.test(document.getElementById("path-scrub-label")?.textContent ?? ""));
+      await page.click("#btn-reset");
+    });
+
     await step("Tools: the tool list shows place, type, name, duplo, D, length, radius, wear and state", async () => {
       // mill-3axis (presets.rs): MILL_D10 = T1, end mill (type 120), length 100, radius 5, in
       // magazine 1 place 1; DRILL_8 = T2, twist drill (type 200), length 120, radius 4, place 2;

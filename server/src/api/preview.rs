@@ -364,14 +364,13 @@ pub fn thin(samples: Vec<Sample>, max: usize) -> Vec<Sample> {
         // The previous point lies on the line from the one before it to this one: not needed.
         if kept.len() >= 2 {
             let (a, b) = (&kept[kept.len() - 2].wcs, &kept[kept.len() - 1].wcs);
-            // A turning tool keeps its points (a 5-axis view draws the tool axis at them).
-            let same = |k: &Sample| {
-                k.line == s.line
-                    && k.program == s.program
-                    && k.tracyl_diameter == s.tracyl_diameter
-                    && same_direction(k.tool_direction, s.tool_direction)
-            };
-            if same(&kept[kept.len() - 1]) && off_line(a, &s.wcs, b) < COLLINEAR_TOL {
+            let same =
+                |k: &Sample| k.line == s.line && k.program == s.program && k.tracyl_diameter == s.tracyl_diameter;
+            // A turning tool keeps a point wherever it has turned 0.5° since the point before
+            // (a 5-axis view draws the tool axis there): compared with that point, not the
+            // middle one, so that a slow turn adds up.
+            let turned = !same_direction(kept[kept.len() - 2].tool_direction, s.tool_direction);
+            if same(&kept[kept.len() - 1]) && !turned && off_line(a, &s.wcs, b) < COLLINEAR_TOL {
                 kept.pop();
             }
         }

@@ -6,7 +6,9 @@
 //! on the straight line between its neighbours (within [`COLLINEAR_TOL`]) is replaced by the
 //! next; when [`CAPACITY`] points are held, every second one is dropped (the resolution halves,
 //! the path's extent stays). Memory per session is at most `CAPACITY` × 32 bytes. Points are
-//! the states a viewer would have seen: in fast pace the published states, not every IPO cycle.
+//! the states a viewer would have seen: every real-time period, but in fast pace only one per
+//! chunk of IPO cycles (recording every cycle would slow the fast lane), so a fast run's history
+//! is as coarse as a live viewer's trace of it.
 
 use nctwin_engine::Snapshot;
 

@@ -243,6 +243,10 @@ export interface PreviewResponse {
   points: [number, number, number][]; // WCS
   basic: [number, number, number][]; // BCS
   lines: number[];
+  /** Per point: the program its line is in (0 the main program, k `programs[k-1]`). */
+  line_program?: number[];
+  /** The subprograms the path passed through, by stored name. */
+  programs?: string[];
   /** Per point: the TRACYL working diameter while TRACYL was active (unrolled Y), else null. */
   tracyl_diameter?: (number | null)[];
   /** Per point: the unit tool direction (tip → holder) in the BCS under TRAORI, else null. */

@@ -47,6 +47,12 @@ export class WcsTriad {
     this.group.position.subVectors(bcs, this.scratch);
   }
 
+  /** A direction of the part frame (BCS) in WCS coordinates: Rᵀ·v. */
+  toWcs(v: THREE.Vector3): THREE.Vector3 {
+    return v.applyMatrix4(this.scratchInverse.copy(this.rotation).transpose());
+  }
+  private readonly scratchInverse = new THREE.Matrix4();
+
   /** The direction WCS axis `letter` points in (part frame), for the browser test. */
   direction(letter: "X" | "Y" | "Z"): [number, number, number] {
     const v = new THREE.Vector3(letter === "X" ? 1 : 0, letter === "Y" ? 1 : 0, letter === "Z" ? 1 : 0).applyQuaternion(this.group.quaternion);
