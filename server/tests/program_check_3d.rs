@@ -128,3 +128,23 @@ async fn each_preview_point_names_the_program_its_line_is_in() {
     assert_eq!(inside(&|_, _, z| z > 0.0 && z < 10.0), (json!(4), json!(0)), "{}", r.body);
     assert_eq!(inside(&|x, y, _| y == 0.0 && x > 0.0 && x < 20.0), (json!(2), json!(0)), "{}", r.body);
 }
+
+#[tokio::test]
+async fn the_preview_gives_the_blank_the_program_defines_before_it_is_cut() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    // BOX from X-10 Y-10 to X50 Y40, Z0 down to Z-20 (G54 neutral: WCS = BCS); the program
+    // then cuts 3 mm deep across it, which the box does not show.
+    let program = "T1 D1\nG0 X-30 Y15 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,-10,-10,50,40)\nS3000 M3\nG0 Z-3\nG1 X60 F3000\nG0 Z50\nM30";
+    let r = server.post(&format!("/sessions/{id}/preview"), json!({"program": program})).await;
+    assert_eq!(r.status, StatusCode::OK, "{}", r.body);
+    assert_eq!(
+        r.body["blank"],
+        json!({"turning": false, "min": [-10.0, -10.0, -20.0], "max": [50.0, 40.0, 0.0]}),
+        "{}",
+        r.body
+    );
+    // Without WORKPIECE: no blank.
+    let r = server.post(&format!("/sessions/{id}/preview"), json!({"program": "G1 X10 F1000\nM30"})).await;
+    assert_eq!(r.body["blank"], Value::Null, "{}", r.body);
+}

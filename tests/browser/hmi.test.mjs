@@ -1093,13 +1093,14 @@ async function main() {
         return (await fetch(`/api/v1/sessions/${id}/tools`)).json();
       });
 
-    await step("3D program check: a late viewer gets the executed path; axis limits marked; the path framed", async () => {
+    await step("3D program check: a late viewer gets the executed path; axis limits marked; the blank drawn; the path framed", async () => {
       const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" })).id;
-      // mill-3axis (presets.rs): X at most 30000 mm/min = 500 mm/s and 3 m/s². F40000 in line 2
+      // mill-3axis (presets.rs): X at most 30000 mm/min = 500 mm/s and 3 m/s². F40000 in line 3
       // is more than X can do: it reaches its velocity limit (after 41.7 mm) and accelerates
-      // at its limit; line 3's F1000 stays below. The run (in real time: the history holds the
+      // at its limit; line 4's F1000 stays below. The run (in real time: the history holds the
       // published states, as a viewer's trace would) is over before this page joins.
-      const program = "G0 X0 Y0 Z10\nG1 X300 F40000\nG1 Y5 F1000\nM30\n";
+      // Line 1 defines a blank below the path (X−10..310, Y−10..60, Z−20..0), drawn as a box.
+      const program = 'WORKPIECE(,"",,"BOX",112,0,-20,-80,-10,-10,310,60)\nG0 X0 Y0 Z10\nG1 X300 F40000\nG1 Y5 F1000\nM30\n';
       await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace: "realtime", wait: true });
       await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
       await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
@@ -1108,14 +1109,17 @@ async function main() {
       const near = (p, q, tol) => p.every((v, k) => Math.abs(v - q[k]) <= tol);
       if (!path.some((p) => p[1] === 0 && p[2] === 10 && p[0] > 50 && p[0] < 300)) throw new Error(`no point of the X leg: ${JSON.stringify(path.slice(0, 20))}`);
       if (!near(path.at(-1), [300, 5, 10], 1e-6)) throw new Error(`path ends at ${path.at(-1)}`);
-      await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.kind === "velocity" && m.axis === "X" && m.line === 2), null, { timeout: 30_000 });
+      await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.kind === "velocity" && m.axis === "X" && m.line === 3), null, { timeout: 30_000 });
       const marks = await page.evaluate(() => window.__nctwin3d.limitMarks());
-      if (marks.some((m) => m.line === 1)) throw new Error(`a mark in the G0 block: ${JSON.stringify(marks)}`);
+      if (marks.some((m) => m.line === 2)) throw new Error(`a mark in the G0 block: ${JSON.stringify(marks)}`);
+      const blank = await page.evaluate(() => window.__nctwin3d.blank());
+      if (JSON.stringify(blank) !== JSON.stringify([[-10, -10, -20], [310, 60, 0]])) throw new Error(`blank ${JSON.stringify(blank)}`);
       const v = marks.find((m) => m.kind === "velocity" && m.axis === "X");
       if (!(v.basic[0] > 41.6 && v.basic[0] < 46 && v.basic[1] === 0)) throw new Error(`velocity mark at ${v.basic}`);
       const caption = await page.textContent("#view3d-limits");
       if (!/^axis limits: [1-9]\d* velocity, [1-9]\d* acceleration/.test(caption)) throw new Error(`limits caption: ${caption}`);
-      // Framed on the first run: every point of the programmed path is in the camera's view.
+      // Framed on the first run: every point of the programmed path is in the camera's view
+      // (and the blank with it).
       await page.waitForFunction(() => window.__nctwin3d.programmedInView() === 1);
       await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-check.png") });
     });

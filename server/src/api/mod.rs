@@ -15,6 +15,7 @@ pub mod machine_data_read;
 pub mod machines;
 pub mod path_history;
 pub mod preview;
+pub mod preview_blank;
 pub mod probe;
 pub mod program_archive;
 pub mod programs;

@@ -97,6 +97,8 @@ pub struct PreviewResponse {
     pub limit_hits: Vec<LimitHit>,
     /// Every such hit, also those beyond the list.
     pub limit_hits_total: usize,
+    /// The blank the program defined (`WORKPIECE(...)`), as first seen; null without one.
+    pub blank: Option<super::preview_blank::PreviewBlank>,
     pub outcome: PreviewOutcome,
     /// The alarm that ended the run, when `outcome` is `alarm`.
     pub alarm: Option<AlarmInfo>,
@@ -249,6 +251,7 @@ pub fn trace(
     let mut samples = vec![tip(&channel, &axes, &mut programs)];
     let mut limited = false;
     let mut watch = nctwin_engine::channel::limit_watch::LimitWatch::new(LIMIT_HITS);
+    let mut blank = None;
     loop {
         while channel.is_busy() {
             channel.step();
@@ -258,6 +261,9 @@ pub fn trace(
             }
             // Also at every block change, so that corners are not cut by the sampling.
             let changed = channel.take_events().iter().any(|e| matches!(e, Event::BlockChanged(_)));
+            if changed && blank.is_none() {
+                blank = super::preview_blank::blank_of(&mut channel);
+            }
             if changed || channel.ticks().is_multiple_of(every) {
                 samples.push(tip(&channel, &axes, &mut programs));
             }
@@ -300,6 +306,7 @@ pub fn trace(
         tool_direction: kept.iter().map(|s| s.tool_direction).collect(),
         limit_hits: watch.hits().iter().map(LimitHit::from).collect(),
         limit_hits_total: watch.total(),
+        blank: blank.or_else(|| super::preview_blank::blank_of(&mut channel)),
         outcome,
         alarm,
         time: channel.time(),

@@ -254,6 +254,8 @@ export interface PreviewResponse {
   /** Where an axis reached its velocity or acceleration limit in feed motion (first 200). */
   limit_hits?: LimitHit[];
   limit_hits_total?: number;
+  /** The blank the program defined with WORKPIECE(...) (BCS box; turned: a cylinder about Z). */
+  blank?: { turning: boolean; min: [number, number, number]; max: [number, number, number] } | null;
   outcome: "ended" | "alarm" | "limit";
   alarm?: Alarm | null;
   time: number;

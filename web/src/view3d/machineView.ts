@@ -344,6 +344,7 @@ export class MachineView {
     this.content.updateMatrixWorld(true);
     const box = this.programmed.bounds();
     box.union(new THREE.Box3().setFromObject(this.stock.group));
+    if (this.check.blank) box.union(this.check.blank.clone().applyMatrix4(this.model.part.matrixWorld));
     const exec = this.toolpath.bounds();
     if (!exec.isEmpty()) box.union(exec.applyMatrix4(this.model.part.matrixWorld));
     box.expandByPoint(this.model.frame.localToWorld(this.tip.clone()));
@@ -579,6 +580,8 @@ export function mountMachineView(session: SessionController): MachineView {
     limitMarks: () => view.check.hits.map((h) => ({ kind: h.kind, axis: h.axis, line: h.line, basic: h.basic })),
     /** The slider's marker: visible and where (part frame). */
     marker: () => (view.check.marker.visible ? view.check.marker.position.toArray() : null),
+    /** The blank outline drawn (BCS min and max), null without one. */
+    blank: () => (view.check.blank ? [view.check.blank.min.toArray(), view.check.blank.max.toArray()] : null),
     /** Executed path points that came from the session's history. */
     historyPoints: () => view.historyPoints,
   };

@@ -2,7 +2,8 @@
 // POST .../preview): on 5-axis machines the tool axis as short lines every few mm along the
 // path (the preview's tool direction under TRAORI, interpolated between its points); the points
 // where an axis reached its velocity (violet) or acceleration (yellow) limit in feed motion;
-// and the position marker the path slider (scrub.ts) moves. All in the part frame (BCS mm), so
+// the blank the program defines with WORKPIECE(...) as an outline (a box, or a cylinder about Z
+// for a turned blank); and the position marker the path slider (scrub.ts) moves. All in the part frame (BCS mm), so
 // they turn with a rotary table as the programmed path does. Bounded whatever the program's
 // size: at most MAX_TOOL_AXES lines, the server's 200 limit hits, one marker.
 
@@ -13,6 +14,7 @@ export const TOOL_AXIS_COLOR = 0x9be7a0;
 export const VELOCITY_COLOR = 0xc77dff;
 export const ACCEL_COLOR = 0xffd166;
 const MARKER_COLOR = 0xffffff;
+const BLANK_COLOR = 0x9fb0c2;
 /** Most tool axis lines drawn along a path. */
 export const MAX_TOOL_AXES = 600;
 /** Smallest spacing of the tool axis lines (mm). */
@@ -92,13 +94,17 @@ export class PathCheck {
   hits: LimitHit[] = [];
   /** Tool axis lines drawn. */
   toolAxisCount = 0;
+  /** The blank's outline (part frame), null without one. */
+  private readonly blankOutline = new THREE.Group();
+  /** The blank drawn (BCS box), for framing and the browser test. */
+  blank: THREE.Box3 | null = null;
 
   constructor() {
     this.toolAxes.renderOrder = 4;
     this.limits.renderOrder = 5;
     this.marker.renderOrder = 6;
     this.marker.visible = false;
-    this.group.add(this.toolAxes, this.limits, this.marker);
+    this.group.add(this.toolAxes, this.limits, this.marker, this.blankOutline);
   }
 
   /** Draws the tool axes and limit marks of a preview answer (BCS = part frame). */
@@ -124,6 +130,24 @@ export class PathCheck {
       this.limits.add(mark);
     }
     this.marker.scale.setScalar(radius * 1.2);
+    if (r.blank) this.drawBlank(r.blank);
+  }
+
+  private drawBlank(b: NonNullable<PreviewResponse["blank"]>): void {
+    const [min, max] = [new THREE.Vector3(...b.min), new THREE.Vector3(...b.max)];
+    const size = max.clone().sub(min);
+    const center = min.clone().add(max).multiplyScalar(0.5);
+    const shape = b.turning
+      ? new THREE.CylinderGeometry(size.x / 2, size.x / 2, size.z, 48, 1).rotateX(Math.PI / 2)
+      : new THREE.BoxGeometry(size.x, size.y, size.z);
+    const edges = new THREE.LineSegments(
+      new THREE.EdgesGeometry(shape, 20),
+      new THREE.LineBasicMaterial({ color: BLANK_COLOR, transparent: true, opacity: 0.8 }),
+    );
+    shape.dispose();
+    edges.position.copy(center);
+    this.blankOutline.add(edges);
+    this.blank = new THREE.Box3(min, max);
   }
 
   /** Puts the marker at `p` (part frame); null hides it. */
@@ -138,6 +162,9 @@ export class PathCheck {
     this.toolAxisCount = 0;
     this.limits.clear();
     this.hits = [];
+    for (const c of this.blankOutline.children) (c as THREE.LineSegments).geometry.dispose();
+    this.blankOutline.clear();
+    this.blank = null;
     this.marker.visible = false;
   }
 }
