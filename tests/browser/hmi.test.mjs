@@ -885,6 +885,16 @@ async function main() {
       if (!stats || stats.colours < 20 || stats.variance < 50) throw new Error(`canvas looks empty: ${JSON.stringify(stats)}`);
     });
 
+    await step("3D view: a lathe's part ends at the WCS zero (G54 Z150), where turning programs put Z0", async () => {
+      // No offset: the zero is machine Z0. The part reaches from the chuck to it.
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.partEnd()) < 1e-6);
+      const id = new URL(page.url()).searchParams.get("session");
+      await pageFetch(page, "PUT", `/sessions/${id}/machine-data`, { text: "$P_UIFR[1,Z,TR]=150\n" });
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G54\nG0 X60 Z20\nM0\nM30\n", pace: "fast", wait: true });
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.partEnd() - 150) < 1e-6);
+      await page.click("#btn-reset");
+    });
+
     await step("3D view: under TRANSMIT the tool tip on the turned workpiece is the engine's Cartesian tip", async () => {
       // C = atan2(15, -10) = 123.7°: the workpiece frame of the view must turn the way the
       // engine's TRANSMIT does for the tip to land on (X-10, Y15); a sign error misses by 30 mm.

@@ -27,6 +27,8 @@ export interface MachineModel {
    * reaching back into the chuck; the part keeps its length when the zero is not in front of it.
    */
   placePart?(zeroZ: number): void;
+  /** A lathe's part: the machine Z of its end face as drawn. */
+  partEnd?(): number;
 }
 
 const MATERIALS = {
@@ -326,6 +328,9 @@ function buildLathe(s: Structure): MachineModel {
       // At least 10 mm out of the jaws; the default length when the zero lies behind that.
       const length = zeroZ - face;
       stretch.scale.z = Number.isFinite(length) && length >= 10 ? length / workL : 1;
+    },
+    partEnd() {
+      return face + workL * stretch.scale.z;
     },
   };
 }

@@ -290,6 +290,11 @@ export class MachineView {
     this.viewport.invalidate();
   }
 
+  /** A lathe's part end face (machine Z), null on other machines. */
+  partEnd(): number | null {
+    return this.model?.partEnd?.() ?? null;
+  }
+
   /** Draws the scene again at the next frame. */
   redraw(): void {
     this.viewport.invalidate();
@@ -580,6 +585,8 @@ export function mountMachineView(session: SessionController): MachineView {
     limitMarks: () => view.check.hits.map((h) => ({ kind: h.kind, axis: h.axis, line: h.line, basic: h.basic })),
     /** The slider's marker: visible and where (part frame). */
     marker: () => (view.check.marker.visible ? view.check.marker.position.toArray() : null),
+    /** A lathe's part: the machine Z of its end face (at the WCS zero). */
+    partEnd: () => view.partEnd(),
     /** The blank outline drawn (BCS min and max), null without one. */
     blank: () => (view.check.blank ? [view.check.blank.min.toArray(), view.check.blank.max.toArray()] : null),
     /** Executed path points that came from the session's history. */
