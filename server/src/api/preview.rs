@@ -400,12 +400,13 @@ fn same_direction(a: Option<[f64; 3]>, b: Option<[f64; 3]>) -> bool {
     }
 }
 
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+/// Distance of two points.
+pub(crate) fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// Distance of `p` from the segment `a`–`b`.
-fn off_line(a: &[f64; 3], b: &[f64; 3], p: &[f64; 3]) -> f64 {
+pub(crate) fn off_line(a: &[f64; 3], b: &[f64; 3], p: &[f64; 3]) -> f64 {
     let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let ap = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
     let len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];

@@ -36,7 +36,7 @@ pub fn blank_of(channel: &mut Channel) -> Option<PreviewBlank> {
                     }
                 }
             }
-            (lo < hi).then(|| PreviewBlank {
+            (lo < hi).then_some(PreviewBlank {
                 turning: false,
                 min: [x0, y0, lo],
                 max: [x0 + nx as f64 * res, y0 + ny as f64 * res, hi],
@@ -45,7 +45,7 @@ pub fn blank_of(channel: &mut Channel) -> Option<PreviewBlank> {
         Stock::Turning(p) => {
             let (z0, n) = p.extent();
             let r = (0..n).map(|k| p.radii(k).0).fold(0.0, f64::max);
-            (n > 0 && r > 0.0).then(|| PreviewBlank {
+            (n > 0 && r > 0.0).then_some(PreviewBlank {
                 turning: true,
                 min: [-r, -r, z0],
                 max: [r, r, z0 + n as f64 * p.resolution()],

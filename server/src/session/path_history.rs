@@ -12,6 +12,8 @@
 
 use nctwin_engine::Snapshot;
 
+use crate::api::preview::{dist, off_line};
+
 /// Points held at most.
 pub const CAPACITY: usize = 20_000;
 /// Smallest motion (mm) that adds a point.
@@ -83,19 +85,6 @@ impl PathHistory {
     pub fn recorded(&self) -> u64 {
         self.recorded
     }
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-/// Distance of `p` from the segment `a`–`b`.
-fn off_line(a: &[f64; 3], b: &[f64; 3], p: &[f64; 3]) -> f64 {
-    let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let ap = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
-    let len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
-    let t = if len2 > 0.0 { ((ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / len2).clamp(0.0, 1.0) } else { 0.0 };
-    dist(p, &[a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]])
 }
 
 #[cfg(test)]

@@ -85,13 +85,7 @@ class ProgrammedPath {
     diameters: (number | null)[] = [],
     cylinder: Structure["cylinder"] = null,
   ): void {
-    const slot = (name: string) => ({ X: 0, Y: 1, Z: 2 })[name as "X" | "Y" | "Z"] ?? -1;
-    const map = axes.map(slot);
-    const cartesian = (p: [number, number, number]) => {
-      const q = [0, 0, 0];
-      map.forEach((s, k) => s >= 0 && (q[s] = p[k] ?? 0));
-      return q as [number, number, number];
-    };
+    const cartesian = cartesianOf(axes);
     const out: number[] = [];
     this.index = [];
     points.forEach((p, i) => {
