@@ -771,6 +771,32 @@ async function main() {
       );
     });
 
+    await step("active swivel beside T/F/S: HEAD_CA (1), A 30°, the plane X 30°; the WCS triad turned with it", async () => {
+      await page.waitForFunction(() => /^HEAD_CA \(1\): C 0\.0° A 30\.0° · plane X 30\.0° Y 0\.0° Z 0\.0°$/.test(document.getElementById("swivel-active")?.textContent ?? ""));
+      // Rx(30°): the WCS Z axis points to (0, −sin 30°, cos 30°) of the BCS (a head: the part frame is the BCS).
+      await page.waitForFunction(() => {
+        const z = window.__nctwin3d.wcsDirection("Z");
+        return z && Math.abs(z[0]) < 1e-6 && Math.abs(z[1] + 0.5) < 1e-6 && Math.abs(z[2] - Math.sqrt(0.75)) < 1e-6;
+      });
+    });
+
+    await step("a swivel that fails (B 120° beyond the head's ±110°) leaves JOG selected and says why", async () => {
+      await page.click('[data-set-mode="JOG"]');
+      await page.selectOption("#swivel-mode", "direct");
+      await page.fill('#swivel-form input[name="b"]', "120");
+      await page.click("#btn-swivel");
+      await page.waitForFunction(() => document.getElementById("swivel-outcome")?.dataset.failed === "true");
+      const why = await page.textContent("#swivel-outcome");
+      if (!/alarm 61184/.test(why) || !/in JOG again/.test(why)) throw new Error(`outcome: ${why}`);
+      await page.waitForFunction(() => document.querySelector('[data-set-mode="JOG"]')?.classList.contains("active"));
+      // The swivel before stays active: the failed one moved nothing.
+      if (!/^HEAD_CA \(1\)/.test(await page.textContent("#swivel-active"))) throw new Error("active swivel lost");
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      await page.selectOption("#swivel-mode", "axis_by_axis");
+      await page.fill('#swivel-form input[name="b"]', "0");
+    });
+
     await step("3D view: a 5-axis head is drawn with its two rotary axes (non-empty canvas)", async () => {
       await page.waitForFunction(() => document.getElementById("view3d-caption")?.dataset.head === "2");
       const caption = await page.textContent("#view3d-caption");
@@ -857,6 +883,16 @@ async function main() {
       await page.waitForTimeout(300);
       const stats = await canvasStats(page);
       if (!stats || stats.colours < 20 || stats.variance < 50) throw new Error(`canvas looks empty: ${JSON.stringify(stats)}`);
+    });
+
+    await step("3D view: a lathe's part ends at the WCS zero (G54 Z150), where turning programs put Z0", async () => {
+      // No offset: the zero is machine Z0. The part reaches from the chuck to it.
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.partEnd()) < 1e-6);
+      const id = new URL(page.url()).searchParams.get("session");
+      await pageFetch(page, "PUT", `/sessions/${id}/machine-data`, { text: "$P_UIFR[1,Z,TR]=150\n" });
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G54\nG0 X60 Z20\nM0\nM30\n", pace: "fast", wait: true });
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.partEnd() - 150) < 1e-6);
+      await page.click("#btn-reset");
     });
 
     await step("3D view: under TRANSMIT the tool tip on the turned workpiece is the engine's Cartesian tip", async () => {
@@ -1066,6 +1102,66 @@ async function main() {
         const id = new URL(location.href).searchParams.get("session");
         return (await fetch(`/api/v1/sessions/${id}/tools`)).json();
       });
+
+    await step("3D program check: a late viewer gets the executed path; axis limits marked; the blank drawn; the path framed", async () => {
+      const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" })).id;
+      // mill-3axis (presets.rs): X at most 30000 mm/min = 500 mm/s and 3 m/s². F40000 in line 3
+      // is more than X can do: it reaches its velocity limit (after 41.7 mm) and accelerates
+      // at its limit; line 4's F1000 stays below. The run (in real time: the history holds the
+      // published states, as a viewer's trace would) is over before this page joins.
+      // Line 1 defines a blank below the path (X−10..310, Y−10..60, Z−20..0), drawn as a box.
+      const program = 'WORKPIECE(,"",,"BOX",112,0,-20,-80,-10,-10,310,60)\nG0 X0 Y0 Z10\nG1 X300 F40000\nG1 Y5 F1000\nM30\n';
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace: "realtime", wait: true });
+      await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.waitForFunction(() => window.__nctwin3d.historyPoints() >= 3);
+      const path = await page.evaluate(() => window.__nctwin3d.pathPoints(1000));
+      const near = (p, q, tol) => p.every((v, k) => Math.abs(v - q[k]) <= tol);
+      if (!path.some((p) => p[1] === 0 && p[2] === 10 && p[0] > 50 && p[0] < 300)) throw new Error(`no point of the X leg: ${JSON.stringify(path.slice(0, 20))}`);
+      if (!near(path.at(-1), [300, 5, 10], 1e-6)) throw new Error(`path ends at ${path.at(-1)}`);
+      await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.kind === "velocity" && m.axis === "X" && m.line === 3), null, { timeout: 30_000 });
+      const marks = await page.evaluate(() => window.__nctwin3d.limitMarks());
+      if (marks.some((m) => m.line === 2)) throw new Error(`a mark in the G0 block: ${JSON.stringify(marks)}`);
+      const blank = await page.evaluate(() => window.__nctwin3d.blank());
+      if (JSON.stringify(blank) !== JSON.stringify([[-10, -10, -20], [310, 60, 0]])) throw new Error(`blank ${JSON.stringify(blank)}`);
+      const v = marks.find((m) => m.kind === "velocity" && m.axis === "X");
+      if (!(v.basic[0] > 41.6 && v.basic[0] < 46 && v.basic[1] === 0)) throw new Error(`velocity mark at ${v.basic}`);
+      const caption = await page.textContent("#view3d-limits");
+      if (!/^axis limits: [1-9]\d* velocity, [1-9]\d* acceleration/.test(caption)) throw new Error(`limits caption: ${caption}`);
+      // Framed on the first run: every point of the programmed path is in the camera's view
+      // (and the blank with it).
+      await page.waitForFunction(() => window.__nctwin3d.programmedInView() === 1);
+      await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-check.png") });
+    });
+
+    await step("3D program check on a 5-axis head: tool axis along the path, the tool vector, the slider names the block at its marker", async () => {
+      const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill5-head-ca" })).id;
+      // Line 4 tilts the tool from +Z to (0, −1, 1)/√2 (tip → holder) while X moves 60 mm.
+      const program = "T1 D1\nTRAORI\nG0 X0 Y0 Z100 A3=0 B3=0 C3=1\nG1 X60 A3=0 B3=-1 C3=1 F3000\nM0\nM30\n";
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace: "fast", wait: true });
+      await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.waitForFunction(() => window.__nctwin3d.toolAxisLines() > 5, null, { timeout: 30_000 });
+      // Stopped at M0 under TRAORI: the engine's orientation, (0, −0.707, 0.707) in the WCS.
+      await page.waitForFunction(() => document.getElementById("tool-vector")?.textContent === "tool vector 0.000 -0.707 0.707");
+      // The same preview as the page's (same session, program and limits): a point inside line 4.
+      const r = await pageFetch(page, "POST", `/sessions/${id}/preview`, { active: true, max_points: 8000, max_time: 3600 });
+      const i = r.lines.findIndex((l, k) => l === 4 && r.line_program[k] === 0 && r.basic[k][0] > 1 && r.basic[k][0] < 59);
+      if (i < 0) throw new Error(`no point inside line 4: ${JSON.stringify(r.lines)}`);
+      await page.waitForFunction((n) => Number(document.getElementById("path-scrub")?.max) === n - 1, r.points.length);
+      await page.$eval("#path-scrub", (el, k) => {
+        el.value = String(k);
+        el.dispatchEvent(new Event("input", { bubbles: true }));
+      }, i);
+      await page.waitForFunction(() => /· line 4: G1 X60 A3=0 B3=-1 C3=1 F3000$/.test(document.getElementById("path-scrub-label")?.textContent ?? ""));
+      const marker = await page.evaluate(() => window.__nctwin3d.marker());
+      if (!marker || !marker.every((v, k) => Math.abs(v - r.basic[i][k]) < 1e-3)) throw new Error(`marker ${marker} for ${r.basic[i]}`);
+      // Keyboard: End takes the marker to the last point (the program end).
+      await page.focus("#path-scrub");
+      await page.keyboard.press("End");
+      await page.waitForFunction(() => /program end$/.test(document.getElementById("path-scrub-label")?.textContent ?? ""));
+      await page.click("#btn-reset");
+    });
 
     await step("Tools: the tool list shows place, type, name, duplo, D, length, radius, wear and state", async () => {
       // mill-3axis (presets.rs): MILL_D10 = T1, end mill (type 120), length 100, radius 5, in

@@ -14,6 +14,7 @@ import { mountStatusLine } from "./machine/statusLine";
 import { mountJog } from "./jog/jog";
 import { mountJogFunctions } from "./jog/jogFunctions";
 import { mountSwivel } from "./swivel/swivel";
+import { mountActiveSwivel } from "./swivel/activeSwivel";
 import { Lobby } from "./lobby/lobby";
 import { mountAlarms } from "./machine/alarms";
 import { mountControl } from "./machine/control";
@@ -56,6 +57,7 @@ async function main(): Promise<void> {
   mountControls(session);
   mountJogFunctions(session, mountJog(session));
   mountSwivel(session);
+  mountActiveSwivel(session);
   mountAlarms(session);
   mountSignals(session);
   mountEvents(session);

@@ -18,6 +18,7 @@ mod exact_stop;
 mod io;
 mod jog;
 mod jog_settings;
+pub mod limit_watch;
 mod main_run;
 mod pending;
 mod positioning_axes;
@@ -465,6 +466,19 @@ impl Channel {
     /// The active frame chain link by link and its total (`interp/frames/overview.rs`).
     pub fn frame_chain(&self) -> Vec<crate::interp::FrameChainLink> {
         self.interp.frame_chain(&self.cfg)
+    }
+
+    /// The active swivel (toolholder data set, axis angles, plane, WCS directions) for a
+    /// display beside T, F, S (`interp/tools/active_swivel.rs`).
+    pub fn active_swivel(&self) -> crate::interp::ActiveSwivel {
+        self.interp.active_swivel(&self.cfg)
+    }
+
+    /// The unit tool direction in the BCS while an orientation transformation is active (a
+    /// 5-axis program check draws it along the path); `None` otherwise.
+    pub fn tool_direction_bcs(&self) -> Option<[f64; 3]> {
+        use crate::kinematics::Transformation;
+        self.trafo.as_ref().and_then(|t| t.trafo.orientation(&self.machine))
     }
 
     /// The stored machine data.

@@ -50,6 +50,7 @@ use frames::frame::SystemFrames;
 pub use frames::overview::ChainLink as FrameChainLink;
 use modal::{FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
+pub use tools::active_swivel::ActiveSwivel;
 
 /// Offsets in effect for a block, per channel axis, and the tool that causes them.
 ///

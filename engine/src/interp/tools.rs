@@ -1,6 +1,7 @@
 //! Orientable toolholders (TCARR, TOFRAME, TOROT) and the swivel cycle CYCLE800 that drives
 //! them; tool selection and change by number or name (`management.rs`).
 
+pub mod active_swivel;
 pub(super) mod dnumbers;
 pub(super) mod management;
 pub mod setpiece;

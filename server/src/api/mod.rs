@@ -13,8 +13,10 @@ pub mod kinematic_chains;
 pub mod machine_data;
 pub mod machine_data_read;
 pub mod machines;
+pub mod path_history;
 pub mod positioning_dto;
 pub mod preview;
+pub mod preview_blank;
 pub mod probe;
 pub mod program_archive;
 pub mod programs;
@@ -30,6 +32,7 @@ pub mod stream;
 pub mod stream_frame;
 pub mod stream_gate;
 pub mod swivel;
+pub mod swivel_state;
 pub mod tools;
 pub mod tools_dto;
 pub mod viewers;
@@ -111,6 +114,8 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(stock::get_stock_stl))
         .routes(routes!(probe::get_probe_targets, probe::put_probe_targets))
         .routes(routes!(frames::get_frames))
+        .routes(routes!(swivel_state::get_active_swivel))
+        .routes(routes!(path_history::get_path_history))
         .routes(routes!(stock_tiles::get_stock_changes))
         .routes(routes!(stock_tiles::get_stock_tile));
     let uploads = OpenApiRouter::new()

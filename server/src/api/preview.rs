@@ -81,10 +81,24 @@ pub struct PreviewResponse {
     pub basic: Vec<[f64; 3]>,
     /// Program line (1-based) being executed at each point, 0 before the first block.
     pub lines: Vec<u32>,
+    /// The program each of `lines` is in: 0 the main program, k the subprogram `programs[k-1]`.
+    pub line_program: Vec<u32>,
+    /// The subprograms (and cycles) the path passed through, by stored name.
+    pub programs: Vec<String>,
     /// At each point: the working diameter (mm) while TRACYL was active, else null. Such points
     /// are on the unrolled surface (X radial, Y the arc length on this diameter, Z axial); a
     /// view wraps them onto the cylinder.
     pub tracyl_diameter: Vec<Option<f64>>,
+    /// At each point: the unit tool direction (tip → holder) in the BCS while an orientation
+    /// transformation (TRAORI) is active, else null; a 5-axis view draws it along the path.
+    pub tool_direction: Vec<Option<[f64; 3]>>,
+    /// Where an axis reached its velocity or acceleration limit in feed motion, the first
+    /// [`LIMIT_HITS`] in program order (`nctwin_engine::channel::limit_watch`).
+    pub limit_hits: Vec<LimitHit>,
+    /// Every such hit, also those beyond the list.
+    pub limit_hits_total: usize,
+    /// The blank the program defined (`WORKPIECE(...)`), as first seen; null without one.
+    pub blank: Option<super::preview_blank::PreviewBlank>,
     pub outcome: PreviewOutcome,
     /// The alarm that ended the run, when `outcome` is `alarm`.
     pub alarm: Option<AlarmInfo>,
@@ -92,6 +106,56 @@ pub struct PreviewResponse {
     pub time: f64,
     /// Samples taken before thinning.
     pub samples: usize,
+}
+
+/// Most limit hits listed in a preview.
+pub const LIMIT_HITS: usize = 200;
+
+/// Which limit an axis reached.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LimitKind {
+    /// `$MA_MAX_AX_VELO`.
+    Velocity,
+    /// `$MA_MAX_AX_ACCEL`.
+    Acceleration,
+}
+
+/// An axis reaching its velocity or acceleration limit in feed motion.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct LimitHit {
+    /// The channel axis.
+    #[schema(example = "X")]
+    pub axis: String,
+    pub kind: LimitKind,
+    /// Its velocity (mm/s, °/s) or acceleration (mm/s², °/s²) then, by magnitude.
+    pub value: f64,
+    /// The limit from the machine data, same unit.
+    pub limit: f64,
+    /// The program line in execution.
+    pub line: u32,
+    /// The tool tip in the BCS (geometry axes as `axes`), where a view marks it.
+    pub basic: [f64; 3],
+    /// Simulated program time in seconds.
+    pub time: f64,
+}
+
+impl From<&nctwin_engine::channel::limit_watch::LimitHit> for LimitHit {
+    fn from(h: &nctwin_engine::channel::limit_watch::LimitHit) -> Self {
+        use nctwin_engine::channel::limit_watch::LimitKind as K;
+        LimitHit {
+            axis: h.axis.clone(),
+            kind: match h.kind {
+                K::Velocity => LimitKind::Velocity,
+                K::Acceleration => LimitKind::Acceleration,
+            },
+            value: h.value,
+            limit: h.limit,
+            line: h.line,
+            basic: h.basic,
+            time: h.time,
+        }
+    }
 }
 
 impl PreviewRequest {
@@ -183,18 +247,25 @@ pub fn trace(
     let every = ((SAMPLE_S / cfg.ipo_cycle).round() as u64).max(1);
     let end_tick = channel.ticks() + (max_time / cfg.ipo_cycle).ceil() as u64;
     let started = Instant::now();
-    let mut samples = vec![tip(&channel, &axes)];
+    let mut programs = Vec::new();
+    let mut samples = vec![tip(&channel, &axes, &mut programs)];
     let mut limited = false;
+    let mut watch = nctwin_engine::channel::limit_watch::LimitWatch::new(LIMIT_HITS);
+    let mut blank = None;
     loop {
         while channel.is_busy() {
             channel.step();
+            watch.observe(&channel);
             if !channel.is_busy() {
                 break;
             }
             // Also at every block change, so that corners are not cut by the sampling.
             let changed = channel.take_events().iter().any(|e| matches!(e, Event::BlockChanged(_)));
+            if changed && blank.is_none() {
+                blank = super::preview_blank::blank_of(&mut channel);
+            }
             if changed || channel.ticks().is_multiple_of(every) {
-                samples.push(tip(&channel, &axes));
+                samples.push(tip(&channel, &axes, &mut programs));
             }
             if channel.ticks() >= end_tick || (channel.ticks().is_multiple_of(4096) && started.elapsed() > WALL_LIMIT) {
                 limited = true;
@@ -209,7 +280,7 @@ pub fn trace(
     }
     // The end position. A program end resets the frames (the WCS display falls back to G500):
     // the end point keeps the work offset of the last sample taken while the program ran.
-    let mut end = tip(&channel, &axes);
+    let mut end = tip(&channel, &axes, &mut programs);
     if let Some(last) = samples.last() {
         end.wcs = std::array::from_fn(|i| end.bcs[i] - (last.bcs[i] - last.wcs[i]));
     }
@@ -229,7 +300,13 @@ pub fn trace(
         points: kept.iter().map(|s| s.wcs).collect(),
         basic: kept.iter().map(|s| s.bcs).collect(),
         lines: kept.iter().map(|s| s.line).collect(),
+        line_program: kept.iter().map(|s| s.program).collect(),
+        programs,
         tracyl_diameter: kept.iter().map(|s| s.tracyl_diameter).collect(),
+        tool_direction: kept.iter().map(|s| s.tool_direction).collect(),
+        limit_hits: watch.hits().iter().map(LimitHit::from).collect(),
+        limit_hits_total: watch.total(),
+        blank: blank.or_else(|| super::preview_blank::blank_of(&mut channel)),
         outcome,
         alarm,
         time: channel.time(),
@@ -243,12 +320,17 @@ pub struct Sample {
     pub wcs: [f64; 3],
     pub bcs: [f64; 3],
     pub line: u32,
+    /// The program `line` is in: 0 the main program, k the k-th subprogram met.
+    pub program: u32,
     /// The TRACYL working diameter while TRACYL is active.
     pub tracyl_diameter: Option<f64>,
+    /// The unit tool direction in the BCS while an orientation transformation is active.
+    pub tool_direction: Option<[f64; 3]>,
 }
 
-/// The tool tip in the WCS and the BCS (geometry axes by name) and the current line.
-fn tip(channel: &Channel, axes: &[String; 3]) -> Sample {
+/// The tool tip in the WCS and the BCS (geometry axes by name) and the current line; a
+/// subprogram met for the first time is added to `programs`.
+fn tip(channel: &Channel, axes: &[String; 3], programs: &mut Vec<String>) -> Sample {
     let snap = channel.snapshot();
     let pick = |values: &[(String, f64)]| {
         let mut p = [0.0; 3];
@@ -262,8 +344,19 @@ fn tip(channel: &Channel, axes: &[String; 3]) -> Sample {
     Sample {
         wcs: pick(&snap.workpiece),
         bcs: pick(&snap.basic),
-        line: snap.block.map_or(0, |b| b.line),
+        line: snap.block.as_ref().map_or(0, |b| b.line),
+        program: match snap.block.as_ref().and_then(|b| b.program.as_deref()) {
+            None => 0,
+            Some(name) => match programs.iter().position(|p| p == name) {
+                Some(k) => k as u32 + 1,
+                None => {
+                    programs.push(name.to_string());
+                    programs.len() as u32
+                }
+            },
+        },
         tracyl_diameter: snap.transformation.and_then(|t| t.diameter),
+        tool_direction: channel.tool_direction_bcs(),
     }
 }
 
@@ -278,8 +371,13 @@ pub fn thin(samples: Vec<Sample>, max: usize) -> Vec<Sample> {
         // The previous point lies on the line from the one before it to this one: not needed.
         if kept.len() >= 2 {
             let (a, b) = (&kept[kept.len() - 2].wcs, &kept[kept.len() - 1].wcs);
-            let same = |k: &Sample| k.line == s.line && k.tracyl_diameter == s.tracyl_diameter;
-            if same(&kept[kept.len() - 1]) && off_line(a, &s.wcs, b) < COLLINEAR_TOL {
+            let same =
+                |k: &Sample| k.line == s.line && k.program == s.program && k.tracyl_diameter == s.tracyl_diameter;
+            // A turning tool keeps a point wherever it has turned 0.5° since the point before
+            // (a 5-axis view draws the tool axis there): compared with that point, not the
+            // middle one, so that a slow turn adds up.
+            let turned = !same_direction(kept[kept.len() - 2].tool_direction, s.tool_direction);
+            if same(&kept[kept.len() - 1]) && !turned && off_line(a, &s.wcs, b) < COLLINEAR_TOL {
                 kept.pop();
             }
         }
@@ -293,12 +391,22 @@ pub fn thin(samples: Vec<Sample>, max: usize) -> Vec<Sample> {
     kept.into_iter().enumerate().filter(|(i, _)| i % stride == 0 || *i == last).map(|(_, s)| s).collect()
 }
 
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+/// Tool directions within 0.5° of each other (or both absent).
+fn same_direction(a: Option<[f64; 3]>, b: Option<[f64; 3]>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2] >= 0.5f64.to_radians().cos(),
+        _ => false,
+    }
+}
+
+/// Distance of two points.
+pub(crate) fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 /// Distance of `p` from the segment `a`–`b`.
-fn off_line(a: &[f64; 3], b: &[f64; 3], p: &[f64; 3]) -> f64 {
+pub(crate) fn off_line(a: &[f64; 3], b: &[f64; 3], p: &[f64; 3]) -> f64 {
     let ab = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let ap = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
     let len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
@@ -313,7 +421,8 @@ mod tests {
     #[test]
     fn collinear_samples_collapse_to_the_corners() {
         // A straight line in 11 samples, then a right-angle turn: only the ends and the corner stay.
-        let at = |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None };
+        let at =
+            |p: [f64; 3]| Sample { wcs: p, bcs: p, line: 1, program: 0, tracyl_diameter: None, tool_direction: None };
         let mut s: Vec<Sample> = (0..=10).map(|i| at([f64::from(i), 0.0, 0.0])).collect();
         s.extend((1..=5).map(|i| at([10.0, f64::from(i), 0.0])));
         let kept: Vec<[f64; 3]> = thin(s, 100).into_iter().map(|k| k.wcs).collect();
@@ -326,7 +435,7 @@ mod tests {
         let s: Vec<Sample> = (0..1000)
             .map(|i| {
                 let p = [f64::from(i), f64::from(i % 2), 0.0];
-                Sample { wcs: p, bcs: p, line: 1, tracyl_diameter: None }
+                Sample { wcs: p, bcs: p, line: 1, program: 0, tracyl_diameter: None, tool_direction: None }
             })
             .collect();
         let kept = thin(s, 100);

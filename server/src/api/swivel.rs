@@ -79,7 +79,7 @@ pub fn cycle800(r: &SwivelRequest) -> Result<String, String> {
 
 /// Swivels the working plane (CYCLE800) in JOG or MDA, as the HMI's swivel function does: the
 /// parameters become one MDA block `CYCLE800(...)`. A swivel from JOG with `wait: true` returns
-/// to JOG when it ended without an alarm. Parameters that do not fit together are `400`;
+/// to JOG when it ended, also with an alarm (which stays, naming the reason). Parameters that do not fit together are `400`;
 /// those the kinematics cannot reach give the cycle's alarm (61184 ...) without motion.
 #[utoipa::path(
     post,
@@ -104,7 +104,10 @@ pub async fn swivel(
     let from_jog = find_session(&state, &id)?.snapshot().mode == Mode::Jog;
     let reply = command(&state, &id, Action::Mda { program }, Some(drive(body.pace, body.wait))).await?;
     let snapshot = &reply.0.snapshot;
-    if from_jog && body.wait && snapshot.alarms.is_empty() && snapshot.status == nctwin_engine::Status::Idle {
+    // Ended, with or without an alarm (a stopped or still running cycle stays in MDA): back to
+    // JOG, where the swivel was asked for. An alarm stays displayed: it says why it failed.
+    let ended = matches!(snapshot.status, nctwin_engine::Status::Idle | nctwin_engine::Status::Alarm);
+    if from_jog && body.wait && ended && snapshot.mode != Mode::Jog {
         return command(&state, &id, Action::SetMode(Mode::Jog), None).await;
     }
     Ok(reply)

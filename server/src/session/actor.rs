@@ -78,6 +78,9 @@ pub(super) struct Actor {
     lag_micros: Arc<AtomicU64>,
     /// Where the name a program was started under is recorded.
     active: Arc<super::active_program::ActiveCache>,
+    /// The executed path, recorded from every published state (a std mutex: held for one
+    /// push, never across an await).
+    pub(super) history: Arc<std::sync::Mutex<super::path_history::PathHistory>>,
 }
 
 impl Actor {
@@ -105,6 +108,7 @@ impl Actor {
             dirty: false,
             lag_micros,
             active,
+            history: Arc::default(),
         }
     }
 
@@ -317,7 +321,11 @@ impl Actor {
             // No subscribers is not an error: events are for whoever listens right now.
             let _ = self.events.send(event);
         }
-        self.snapshots.publish(channel, &self.state);
+        if self.snapshots.publish(channel, &self.state)
+            && let Ok(mut history) = self.history.lock()
+        {
+            history.record(&self.state.borrow(), &channel.config().geo_names);
+        }
     }
 
     /// Answers waiting requests whose motion is over or whose wall-time limit has come.

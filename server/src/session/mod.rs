@@ -14,6 +14,7 @@
 pub mod active_program;
 mod actor;
 mod pacer;
+pub mod path_history;
 mod snapshot_pool;
 mod wake_stats;
 
@@ -242,6 +243,8 @@ pub struct SessionHandle {
     server_stopping: Arc<AtomicBool>,
     /// The loaded program's name and line index (see `active_program`).
     active: Arc<active_program::ActiveCache>,
+    /// The executed path so far (see `path_history`); the actor records, REST reads.
+    history: Arc<std::sync::Mutex<path_history::PathHistory>>,
 }
 
 impl SessionHandle {
@@ -253,7 +256,10 @@ impl SessionHandle {
         let (settled_tx, settled) = watch::channel(0);
         let lag_micros = Arc::new(AtomicU64::new(0));
         let active = Arc::new(active_program::ActiveCache::default());
-        let actor = actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
+        let history = Arc::default();
+        let mut actor =
+            actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
+        actor.history = Arc::clone(&history);
         tokio::spawn(actor.run(Box::new(channel), rx));
         SessionHandle {
             id: id.into(),
@@ -265,6 +271,7 @@ impl SessionHandle {
             lag_micros,
             server_stopping: Arc::default(),
             active,
+            history,
         }
     }
 
@@ -276,6 +283,11 @@ impl SessionHandle {
     /// The preset the session was created from.
     pub fn machine(&self) -> &str {
         &self.machine
+    }
+
+    /// The executed path recorded so far (held only to copy it: the actor records into it).
+    pub fn path_history(&self) -> &Arc<std::sync::Mutex<path_history::PathHistory>> {
+        &self.history
     }
 
     /// The loaded program's name and line index cache.

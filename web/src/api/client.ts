@@ -4,6 +4,7 @@ import { identityHeaders, viewOnly } from "./identity";
 import { rememberTokens, sessionOfPath, tokenFor, type Tokens } from "./tokens";
 import type {
   ActiveProgramRange,
+  ActiveSwivel,
   ArchiveImport,
   ControlState,
   Diagnostic,
@@ -15,6 +16,7 @@ import type {
   MachineDetail,
   MachineSummary,
   OpMode,
+  PathHistory,
   PreviewRequest,
   PreviewResponse,
   Overrides,
@@ -161,6 +163,10 @@ export const api = {
   releaseControl: (id: string) => request<ControlState>("POST", `${s(id)}/control/release`, {}),
 
   preview: (id: string, body: PreviewRequest) => request<PreviewResponse>("POST", `${s(id)}/preview`, body),
+  /** The active swivel (CYCLE800/TCARR data set, angles, the WCS directions). */
+  activeSwivel: (id: string) => request<ActiveSwivel>("GET", `${s(id)}/active-swivel`),
+  /** The executed path since the session started (BCS, thinned by the server). */
+  pathHistory: (id: string) => request<PathHistory>("GET", `${s(id)}/path-history`),
   check: (id: string, program: string) =>
     request<{ diagnostics: Diagnostic[] }>("POST", `${s(id)}/check`, { program }),
 };

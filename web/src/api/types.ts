@@ -254,12 +254,57 @@ export interface PreviewResponse {
   points: [number, number, number][]; // WCS
   basic: [number, number, number][]; // BCS
   lines: number[];
+  /** Per point: the program its line is in (0 the main program, k `programs[k-1]`). */
+  line_program?: number[];
+  /** The subprograms the path passed through, by stored name. */
+  programs?: string[];
   /** Per point: the TRACYL working diameter while TRACYL was active (unrolled Y), else null. */
   tracyl_diameter?: (number | null)[];
+  /** Per point: the unit tool direction (tip → holder) in the BCS under TRAORI, else null. */
+  tool_direction?: ([number, number, number] | null)[];
+  /** Where an axis reached its velocity or acceleration limit in feed motion (first 200). */
+  limit_hits?: LimitHit[];
+  limit_hits_total?: number;
+  /** The blank the program defined with WORKPIECE(...) (BCS box; turned: a cylinder about Z). */
+  blank?: { turning: boolean; min: [number, number, number]; max: [number, number, number] } | null;
   outcome: "ended" | "alarm" | "limit";
   alarm?: Alarm | null;
   time: number;
   samples: number;
+}
+
+/** An axis at its velocity or acceleration limit in a preview. */
+export interface LimitHit {
+  axis: string;
+  kind: "velocity" | "acceleration";
+  value: number;
+  limit: number;
+  line: number;
+  /** Tool tip in the BCS (geometry axes as the preview's `axes`). */
+  basic: [number, number, number];
+  time: number;
+}
+
+/** GET .../active-swivel: the active swivel data set, its angles and the turned WCS. */
+export interface ActiveSwivel {
+  /** 0: no swivel data set active. */
+  data_set: number;
+  name: string;
+  /** Rotary axes 1 and 2 of the data set in degrees ($P_TCANG[1], [2]). */
+  axis_angles: [number, number];
+  /** The swivelled plane's rotation about X, Y, Z in degrees. */
+  plane: [number, number, number];
+  /** Unit directions of WCS X, Y, Z in the BCS. */
+  wcs_axes: [[number, number, number], [number, number, number], [number, number, number]];
+}
+
+/** GET .../path-history: the executed path since the session started (BCS, thinned). */
+export interface PathHistory {
+  axes: [string, string, string];
+  points: [number, number, number][];
+  lines: number[];
+  halvings: number;
+  recorded: number;
 }
 
 /** One link of GET .../frames: a frame of the active chain as frame data. */

@@ -1,12 +1,14 @@
 // The swivel form: CYCLE800's fields grouped as on the Operate screen (swivel data set,
 // retraction, swivel mode and axis sequence, reference point, angles, zero point, direction),
-// sent as POST .../swivel. The server runs the cycle as one MDA block and returns to JOG.
+// sent as POST .../swivel. The server runs the cycle as one MDA block and returns to JOG, also
+// after an alarm (shown under the form with the reason; the alarm stays until RESET).
 // The swivel data set is a list of the machine's `$TC_CARR` data sets (by `$TC_CARR34` name,
 // else by number), the first one chosen; machines without swivel data do not show the screen.
 
 import { api } from "../api/client";
 import type { SwivelCommand } from "../api/types";
-import { byId, el } from "../core/dom";
+import { byId, el, setText } from "../core/dom";
+import { showMessage } from "../core/message";
 import type { SessionController } from "../core/session";
 
 function command(form: HTMLFormElement): SwivelCommand {
@@ -60,13 +62,29 @@ export function mountSwivel(session: SessionController): void {
   const form = byId<HTMLFormElement>("swivel-form");
   session.on("session", (info) => showDataSets(info.machine.machine_data));
   session.on("machine", (info) => showDataSets(info.machine.machine_data));
+  const outcome = byId("swivel-outcome");
+  const swivel = async (cmd: SwivelCommand) => {
+    setText(outcome, "swivelling …");
+    delete outcome.dataset.failed;
+    const st = await session.act((id) => api.swivel(id, cmd));
+    if (!st) {
+      setText(outcome, "");
+      return;
+    }
+    const alarm = st.alarms[0];
+    if (alarm) {
+      // The server ran CYCLE800 as an MDA block and went back to JOG; the alarm stays.
+      const why = `swivel not done: alarm ${alarm.number} ${alarm.message}`;
+      setText(outcome, `${why} – the channel is in ${st.mode} again; RESET clears the alarm`);
+      outcome.dataset.failed = "true";
+      showMessage(why);
+    } else {
+      setText(outcome, cmd.data_set === "0" ? "swivel deselected" : `swivelled (${st.mode})`);
+    }
+  };
   form.addEventListener("submit", (ev) => {
     ev.preventDefault();
-    const cmd = command(form);
-    void session.act((id) => api.swivel(id, cmd));
+    void swivel(command(form));
   });
-  byId("btn-swivel-off").addEventListener("click", () => {
-    const cmd = { ...command(form), data_set: "0" };
-    void session.act((id) => api.swivel(id, cmd));
-  });
+  byId("btn-swivel-off").addEventListener("click", () => void swivel({ ...command(form), data_set: "0" }));
 }

@@ -22,6 +22,13 @@ export interface MachineModel {
   toolAxis(out: THREE.Vector3): THREE.Vector3;
   /** Characteristic size (mm) for the triad and the camera. */
   readonly size: number;
+  /**
+   * A lathe's part: its end face put at the WCS zero `zeroZ` (machine Z of the work offset),
+   * reaching back into the chuck; the part keeps its length when the zero is not in front of it.
+   */
+  placePart?(zeroZ: number): void;
+  /** A lathe's part: the machine Z of its end face as drawn. */
+  partEnd?(): number;
 }
 
 const MATERIALS = {
@@ -268,7 +275,12 @@ function buildLathe(s: Structure): MachineModel {
   });
   const work = cylinder(MATERIALS.work, workR, new THREE.Vector3(0, 0, face - 20), new THREE.Vector3(0, 0, face + workL), 48);
   const flat = box(MATERIALS.mark, workR - 2, workR + 1, -8, 8, face, face + workL); // shows the turn
-  const spindle = group(chuckBody, ...jaws, work, flat);
+  // The part stretched along Z about the chuck face (placePart): inner shifts the face to 0.
+  const inner = group(work, flat);
+  inner.position.z = -face;
+  const stretch = group(inner);
+  stretch.position.z = face;
+  const spindle = group(chuckBody, ...jaws, stretch);
   const part = group();
   spindle.add(part);
 
@@ -311,6 +323,14 @@ function buildLathe(s: Structure): MachineModel {
     },
     toolAxis(out) {
       return out.set(0, 0, 1);
+    },
+    placePart(zeroZ) {
+      // At least 10 mm out of the jaws; the default length when the zero lies behind that.
+      const length = zeroZ - face;
+      stretch.scale.z = Number.isFinite(length) && length >= 10 ? length / workL : 1;
+    },
+    partEnd() {
+      return face + workL * stretch.scale.z;
     },
   };
 }

@@ -4,8 +4,8 @@
 // workpiece) and the programmed path (POST .../preview), orbit and zoom.
 
 import * as THREE from "three";
-import type { AxisValues, State, StockWarning } from "../api/types";
-import { byId, setText } from "../core/dom";
+import type { AxisValues, PathHistory, State, StockWarning } from "../api/types";
+import { byId, fmt, setText } from "../core/dom";
 import { NcData } from "../core/ncdata";
 import type { SessionController, SessionInfo } from "../core/session";
 import { api } from "../api/client";
@@ -16,22 +16,13 @@ import { buildMachine, type MachineModel } from "./machineModel";
 import { Toolpath } from "./toolpath";
 import { Viewport, type ViewName } from "./viewport";
 import { StockView } from "./stock";
+import { WcsTriad } from "./wcsTriad";
+import { PathCheck, cartesianOf } from "./pathCheck";
+import { activeSwivel } from "../swivel/activeSwivel";
 
-const AXIS_COLORS = { X: 0xe5534b, Y: 0x57ab5a, Z: 0x539bf5 } as const;
 const DEFAULT_TOOL_RADIUS = 5;
 export const EXECUTED_COLOR = 0xffb02e;
 export const PROGRAMMED_COLOR = 0x39c5cf;
-
-/** Three arrows at the WCS origin along the geometry axes (machine frame directions). */
-function wcsTriad(size: number, letters: string[]): THREE.Group {
-  const triad = new THREE.Group();
-  const dirs = { X: new THREE.Vector3(1, 0, 0), Y: new THREE.Vector3(0, 1, 0), Z: new THREE.Vector3(0, 0, 1) };
-  for (const letter of ["X", "Y", "Z"] as const) {
-    if (!letters.includes(letter)) continue;
-    triad.add(new THREE.ArrowHelper(dirs[letter], new THREE.Vector3(), size, AXIS_COLORS[letter], size * 0.2, size * 0.1));
-  }
-  return triad;
-}
 
 /** Geometry axis values (X, Y, Z by name) as a point of the machine's Cartesian frame. */
 function geometryPoint(values: AxisValues, out = new THREE.Vector3()): THREE.Vector3 {
@@ -80,6 +71,8 @@ class ProgrammedPath {
     new THREE.LineBasicMaterial({ color: PROGRAMMED_COLOR, depthTest: false, transparent: true, opacity: 0.9 }),
   );
   count = 0;
+  /** Per preview point: the index of its drawn vertex (a wrapped helix adds vertices). */
+  private index: number[] = [];
 
   /**
    * `diameters[i]`: the TRACYL working diameter at point i (its X is radial, Y the arc length,
@@ -92,19 +85,15 @@ class ProgrammedPath {
     diameters: (number | null)[] = [],
     cylinder: Structure["cylinder"] = null,
   ): void {
-    const slot = (name: string) => ({ X: 0, Y: 1, Z: 2 })[name as "X" | "Y" | "Z"] ?? -1;
-    const map = axes.map(slot);
-    const cartesian = (p: [number, number, number]) => {
-      const q = [0, 0, 0];
-      map.forEach((s, k) => s >= 0 && (q[s] = p[k] ?? 0));
-      return q as [number, number, number];
-    };
+    const cartesian = cartesianOf(axes);
     const out: number[] = [];
+    this.index = [];
     points.forEach((p, i) => {
       const q = cartesian(p);
       const d = diameters[i];
       if (!cylinder || typeof d !== "number" || !(d > 0)) {
         out.push(q[0] + offset.x, q[1] + offset.y, q[2] + offset.z);
+        this.index.push(out.length / 3 - 1);
         return;
       }
       // A straight segment on the unrolled surface is a helix on the cylinder: subdivide it
@@ -117,6 +106,7 @@ class ProgrammedPath {
         const at = prev ? ([0, 1, 2].map((c) => prev[c]! + (q[c]! - prev[c]!) * t) as [number, number, number]) : q;
         out.push(...wrapOnCylinder(at, d, cylinder));
       }
+      this.index.push(out.length / 3 - 1);
     });
     const data = new Float32Array(out);
     this.line.geometry.dispose();
@@ -124,6 +114,14 @@ class ProgrammedPath {
     this.line.geometry.setAttribute("position", new THREE.BufferAttribute(data, 3));
     this.line.geometry.computeBoundingSphere();
     this.count = data.length / 3;
+  }
+
+  /** Where preview point `i` is drawn (part frame); null outside the path. */
+  pointAt(i: number, out = new THREE.Vector3()): THREE.Vector3 | null {
+    const a = this.line.geometry.getAttribute("position");
+    const k = this.index[i];
+    if (!a || k === undefined || k < 0 || k >= a.count) return null;
+    return out.set(a.getX(k), a.getY(k), a.getZ(k));
   }
 
   /** The drawn points (part frame), for the browser test. */
@@ -138,6 +136,7 @@ class ProgrammedPath {
     this.line.geometry.dispose();
     this.line.geometry = new THREE.BufferGeometry();
     this.count = 0;
+    this.index = [];
   }
 
   bounds(): THREE.Box3 {
@@ -149,13 +148,17 @@ export class MachineView {
   private readonly viewport: Viewport;
   private readonly toolpath = new Toolpath(EXECUTED_COLOR);
   readonly programmed = new ProgrammedPath();
+  /** Tool axes, limit marks and the slider's marker along the programmed path. */
+  readonly check = new PathCheck();
   private readonly tool = new ToolSolid();
   private readonly content = new THREE.Group(); // what belongs to the attached machine
   /** The cut stock (stock.ts), in the workpiece frame. */
   readonly stock = new StockView(() => this.viewport.invalidate());
   private structure: Structure | null = null;
   private model: MachineModel | null = null;
-  private triad: THREE.Group | null = null;
+  private triad: WcsTriad | null = null;
+  /** The WCS directions of the active frame chain (GET .../active-swivel), null: the BCS's. */
+  private wcsAxes: [number, number, number][] | null = null;
   private ncData = new NcData("");
   private buildKey = "";
   private info: SessionInfo | null = null;
@@ -178,6 +181,8 @@ export class MachineView {
    * while they are comparable (orientation transformation or none), for the browser test.
    */
   tipError: number | null = null;
+  /** Points of the executed path that came from the session's history, for the browser test. */
+  historyPoints = 0;
   /** Frame the working zone once the first state has placed the tool. */
   private framePending = false;
 
@@ -198,7 +203,28 @@ export class MachineView {
     if (!opts.keepPath) {
       this.toolpath.clear();
       this.programmed.clear();
+      this.check.clear();
+      void this.fetchHistory();
     }
+  }
+
+  /**
+   * The executed path from before this view joined (GET .../path-history, the tool tip in the
+   * BCS, thinned by the server), put before the points the stream has added since.
+   */
+  private async fetchHistory(): Promise<void> {
+    const id = this.info?.id;
+    if (!id) return;
+    let history: PathHistory;
+    try {
+      history = await api.pathHistory(id);
+    } catch {
+      return; // an older server: the path starts now
+    }
+    if (id !== this.info?.id) return;
+    const cart = cartesianOf(history.axes);
+    this.historyPoints = this.toolpath.prepend(history.points.map((p) => new THREE.Vector3(...cart(p))));
+    this.viewport.invalidate();
   }
 
   show(st: State): void {
@@ -246,23 +272,113 @@ export class MachineView {
     const comparable = s.kind === "mill" ? !trafo || isOrientationTrafo(trafo.type) : transmit;
     this.tipError = comparable ? this.tipPart.distanceTo(this.bcs) : null;
 
-    this.triad?.position.copy(this.workOffset);
+    this.triad?.place(this.bcs, this.wcs);
+    // A lathe's part ends at the WCS zero (its face, where turning programs put Z0).
+    if (s.kind === "lathe" && !trafo) model.placePart?.(this.workOffset.z);
     this.toolpath.add(this.tipPart);
     if (this.framePending) {
       this.framePending = false;
-      this.setView("iso");
+      if (this.programmed.count > 0) this.frameProgram();
+      else this.setView("iso");
     }
     this.viewport.invalidate();
   }
 
-  /** Shows a programmed path (WCS points of the preview) at the current work offset. */
-  setProgrammed(points: [number, number, number][], axes: string[], tracylDiameter: (number | null)[] = []): void {
-    const first = this.programmed.count === 0;
-    // The points are BCS: the part frame is the BCS, no offset to add.
-    this.programmed.set(points, axes, new THREE.Vector3(), tracylDiameter, this.structure?.cylinder ?? null);
-    if (first && points.length) this.setView("iso");
+  /** A lathe's part end face (machine Z), null on other machines. */
+  partEnd(): number | null {
+    return this.model?.partEnd?.() ?? null;
+  }
+
+  /** Draws the scene again at the next frame. */
+  redraw(): void {
     this.viewport.invalidate();
   }
+
+  /** Turns the WCS triad with the frame chain (unit WCS axes in the BCS; null: not turned). */
+  setWcsAxes(axes: [number, number, number][] | null): void {
+    this.wcsAxes = axes;
+    this.triad?.setAxes(axes);
+    if (this.latest) this.show(this.latest);
+    this.viewport.invalidate();
+  }
+
+  /**
+   * The tool direction (tip → holder) relative to the workpiece in the WCS: the engine's under
+   * an orientation transformation; otherwise the model's (the head's or table's rotary axes as
+   * they stand, which the engine reports only under TRAORI), turned into the WCS by the frame.
+   */
+  toolVector(st: State): [number, number, number] | null {
+    const trafo = st.transformation;
+    if (trafo && isOrientationTrafo(trafo.type) && st.orientation) return st.orientation;
+    if (!this.model || this.structure?.kind !== "mill") return null;
+    this.content.updateMatrixWorld(true);
+    const toPart = this.model.part.getWorldQuaternion(new THREE.Quaternion()).invert();
+    const v = this.axis.clone().applyQuaternion(this.model.frame.getWorldQuaternion(new THREE.Quaternion())).applyQuaternion(toPart);
+    const w = this.triad ? this.triad.toWcs(v) : v;
+    return [w.x, w.y, w.z];
+  }
+
+  /** Where the triad's WCS axis `letter` points (part frame), for the browser test. */
+  wcsDirection(letter: "X" | "Y" | "Z"): [number, number, number] | null {
+    return this.triad?.direction(letter) ?? null;
+  }
+
+  /** Shows a programmed path (WCS points of the preview) at the current work offset. */
+  setProgrammed(points: [number, number, number][], axes: string[], tracylDiameter: (number | null)[] = [], program = ""): void {
+    // Framed on the first path of each program (another program, or the first path at all).
+    const first = this.programmed.count === 0 || program !== this.framedProgram;
+    this.framedProgram = program;
+    // The points are BCS: the part frame is the BCS, no offset to add.
+    this.programmed.set(points, axes, new THREE.Vector3(), tracylDiameter, this.structure?.cylinder ?? null);
+    if (first && points.length) this.frameProgram();
+    this.viewport.invalidate();
+  }
+
+  /**
+   * Fits the camera to what a program check looks at: the programmed path, the stock (the
+   * blank of WORKPIECE(...) or PUT .../stock), the executed path and the tool tip.
+   */
+  frameProgram(view: ViewName = "iso"): void {
+    if (!this.model) return;
+    this.content.updateMatrixWorld(true);
+    const box = this.programmed.bounds();
+    box.union(new THREE.Box3().setFromObject(this.stock.group));
+    if (this.check.blank) box.union(this.check.blank.clone().applyMatrix4(this.model.part.matrixWorld));
+    const exec = this.toolpath.bounds();
+    if (!exec.isEmpty()) box.union(exec.applyMatrix4(this.model.part.matrixWorld));
+    box.expandByPoint(this.model.frame.localToWorld(this.tip.clone()));
+    if (box.isEmpty()) return;
+    const size = box.getSize(new THREE.Vector3()).length();
+    box.expandByScalar(Math.max(10, 0.12 * size));
+    this.viewport.frameBox(box, view);
+    this.framed = box.clone();
+  }
+
+  /**
+   * The share of the programmed path's points the camera sees (inside the view frustum), for
+   * the browser test: 1 when the path is framed.
+   */
+  programmedInView(): number {
+    const pts = this.programmed.points();
+    if (!pts.length || !this.model) return 0;
+    this.content.updateMatrixWorld(true);
+    const cam = this.viewport.camera;
+    cam.updateMatrixWorld(true);
+    const v = new THREE.Vector3();
+    let inside = 0;
+    for (const p of pts) {
+      v.set(...p);
+      this.model.part.localToWorld(v).project(cam);
+      if (Math.abs(v.x) <= 1 && Math.abs(v.y) <= 1 && v.z >= -1 && v.z <= 1) inside++;
+    }
+    return inside / pts.length;
+  }
+
+  /** The program whose path was framed last (a key the preview gives). */
+  private framedProgram = "";
+
+  /** The box the last frameProgram fitted (world), for the browser test. */
+  framed: THREE.Box3 | null = null;
 
   /** Looks at the working zone (tool, workpiece, paths) from a standard direction. */
   setView(view: ViewName): void {
@@ -324,6 +440,7 @@ export class MachineView {
   clearPath(): void {
     this.toolpath.clear();
     this.programmed.clear();
+    this.check.clear();
     this.viewport.invalidate();
   }
 
@@ -363,10 +480,11 @@ export class MachineView {
     this.structure = s;
     this.model = chain?.model ?? buildMachine(s);
     const letters = s.kind === "lathe" ? ["X", "Z", ...(s.linear.some((a) => a.letter === "Y") ? ["Y"] : [])] : ["X", "Y", "Z"];
-    this.triad = wcsTriad(Math.max(40, this.model.size * 0.08), letters);
+    this.triad = new WcsTriad(Math.max(40, this.model.size * 0.08), letters);
+    this.triad.setAxes(this.wcsAxes);
     this.programmed.line.renderOrder = 2;
     this.toolpath.line.renderOrder = 3;
-    this.model.part.add(this.triad, this.toolpath.line, this.programmed.line, this.stock.group);
+    this.model.part.add(this.triad.group, this.toolpath.line, this.programmed.line, this.check.group, this.stock.group);
     this.model.frame.add(this.tool.mesh);
     this.content.add(this.model.root);
     this.model.update({}, false);
@@ -427,6 +545,16 @@ export function mountMachineView(session: SessionController): MachineView {
     view.attach(info, { keepPath: true });
     if (session.latest) view.show(session.latest);
   });
+  activeSwivel.on("change", (sw) => view.setWcsAxes(sw?.wcs_axes ?? null));
+  const caption = byId("view3d-caption");
+  const toolVector = byId("tool-vector");
+  session.on("state", (st) => {
+    // The numeric tool vector on machines with two or more rotary axes (5-axis and more).
+    const rotary = Number(caption.dataset.head ?? 0) + Number(caption.dataset.table ?? 0);
+    const o = rotary >= 2 ? view.toolVector(st) : null;
+    toolVector.hidden = !o;
+    if (!toolVector.hidden && o) setText(toolVector, `tool vector ${o.map((c) => fmt(c, 3)).join(" ")}`);
+  });
   const views: Record<string, ViewName> = { "btn-view-iso": "iso", "btn-view-top": "top", "btn-view-front": "front" };
   for (const [id, name] of Object.entries(views)) byId(id).addEventListener("click", () => view.setView(name));
   byId("btn-view-path").addEventListener("click", () => view.zoomToPath());
@@ -441,6 +569,22 @@ export function mountMachineView(session: SessionController): MachineView {
     programmedPoints: () => view.programmed.count,
     /** The programmed path as drawn (workpiece frame, TRACYL parts wrapped). */
     programmedPath: () => view.programmed.points(),
+    /** Where the WCS triad's axis points (part frame): turned with a swivelled frame. */
+    wcsDirection: (letter: "X" | "Y" | "Z") => view.wcsDirection(letter),
+    /** Share of the programmed path's points inside the camera's view. */
+    programmedInView: () => view.programmedInView(),
+    /** Tool axis lines drawn along the programmed path (5-axis). */
+    toolAxisLines: () => view.check.toolAxisCount,
+    /** The limit marks drawn: kind, axis, line and position (part frame). */
+    limitMarks: () => view.check.hits.map((h) => ({ kind: h.kind, axis: h.axis, line: h.line, basic: h.basic })),
+    /** The slider's marker: visible and where (part frame). */
+    marker: () => (view.check.marker.visible ? view.check.marker.position.toArray() : null),
+    /** A lathe's part: the machine Z of its end face (at the WCS zero). */
+    partEnd: () => view.partEnd(),
+    /** The blank outline drawn (BCS min and max), null without one. */
+    blank: () => (view.check.blank ? [view.check.blank.min.toArray(), view.check.blank.max.toArray()] : null),
+    /** Executed path points that came from the session's history. */
+    historyPoints: () => view.historyPoints,
   };
   setText(byId("view3d-caption"), "");
   return view;

@@ -11,6 +11,8 @@ import type { SessionController } from "../core/session";
 import { activeName, activeProgram } from "../program/active";
 import { selection } from "../program/selected";
 import type { MachineView } from "./machineView";
+import { PathScrub } from "./scrub";
+import { showLimitHits } from "./limitCaption";
 
 /** Points asked for: enough for smooth arcs, small enough to draw at once. */
 const MAX_POINTS = 8000;
@@ -19,6 +21,7 @@ const ACTIVE_MAX_TIME_S = 3600;
 
 export function mountPreview(session: SessionController, view: MachineView): void {
   const note = byId("view3d-preview");
+  const scrub = new PathScrub(view);
   let serial = 0;
   // The selection while it is newer than the loaded program, else the loaded program.
   let useSelection = true;
@@ -38,7 +41,10 @@ export function mountPreview(session: SessionController, view: MachineView): voi
           : { program: selection.current.text, max_points: MAX_POINTS };
       const r = await api.preview(id, body);
       if (mine !== serial || id !== session.id) return;
-      view.setProgrammed(r.basic, r.axes, r.tracyl_diameter);
+      view.check.set(r); // first: the framing of a new path includes the blank
+      view.setProgrammed(r.basic, r.axes, r.tracyl_diameter, active ? `active ${meta.serial}` : `selected ${program.name}`);
+      scrub.set(r, active ? { active: true, serial: meta.serial } : { active: false, text: selection.current.text });
+      showLimitHits(r);
       const end =
         r.outcome === "alarm" && r.alarm ? ` – alarm ${r.alarm.number}${r.alarm.line ? ` in line ${r.alarm.line}` : ""}` : r.outcome === "limit" ? " – cut short" : "";
       setText(note, `programmed ${program.name}: ${r.time.toFixed(1)} s${end}`);
@@ -46,6 +52,9 @@ export function mountPreview(session: SessionController, view: MachineView): voi
     } catch (e) {
       if (mine !== serial) return;
       view.setProgrammed([], ["X", "Y", "Z"]);
+      view.check.clear();
+      scrub.set(null, { active: false, text: "" });
+      showLimitHits(null);
       setText(note, `no preview of ${program.name}: ${(e as Error).message}`);
       note.dataset.points = "0";
     }

@@ -41,6 +41,24 @@ export class Toolpath {
     return true;
   }
 
+  /**
+   * Puts `points` (an earlier path, oldest first) before the stored ones, the oldest dropped
+   * beyond the capacity. Returns how many of them were kept.
+   */
+  prepend(points: THREE.Vector3[]): number {
+    const room = CAPACITY - this.count;
+    const take = points.slice(Math.max(0, points.length - room));
+    if (take.length === 0) return 0;
+    this.positions.copyWithin(take.length * 3, 0, this.count * 3);
+    take.forEach((p, i) => this.positions.set([p.x, p.y, p.z], i * 3));
+    if (this.count === 0) this.last.copy(take[take.length - 1]!);
+    this.count += take.length;
+    this.attribute.clearUpdateRanges(); // upload everything once
+    this.attribute.needsUpdate = true;
+    this.line.geometry.setDrawRange(0, this.count);
+    return take.length;
+  }
+
   /** The box around the stored points (empty when there are none). */
   bounds(): THREE.Box3 {
     const box = new THREE.Box3();
