@@ -1150,6 +1150,9 @@ fn data_write(
     sys: &SysView,
     line: u32,
 ) -> Result<String, Alarm> {
+    if super::eval::nc_constants::is_constant(name) {
+        return Err(Alarm::write_protected(line, name));
+    }
     let writable = name.starts_with("$TC_DP")
         || crate::machine_data::tools_mgmt::ToolMgmtData::handles(name)
         || name.starts_with("$TC_CARR")
