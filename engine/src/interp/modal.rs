@@ -1,5 +1,7 @@
 //! The modal state (G groups, feed) and the words of one block sorted by meaning.
 
+pub(crate) mod vocabulary;
+
 use super::StopKind;
 use super::calls::{Programs, targets};
 use super::compensation::approach::ApproachMode;
