@@ -5,7 +5,7 @@
 //! them and judged at the end, when every `DEF`, `PROC` parameter, label and block number of
 //! the program is known (a jump may go forward).
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::NameContext;
 use crate::alarm::Alarm;
@@ -35,6 +35,9 @@ pub(super) struct Walker<'a> {
     numbers: BTreeSet<u32>,
     pending: Vec<Pending>,
     out: Vec<Diagnostic>,
+    /// What the plain-line scan learnt: G numbers and single letters known or not.
+    g_codes: BTreeMap<u32, bool>,
+    letters: [Option<bool>; 26],
 }
 
 impl<'a> Walker<'a> {
@@ -48,16 +51,26 @@ impl<'a> Walker<'a> {
             numbers: BTreeSet::new(),
             pending: Vec::new(),
             out: Vec::new(),
+            g_codes: BTreeMap::new(),
+            letters: [None; 26],
         }
     }
 
     pub(super) fn run(mut self) -> Vec<Diagnostic> {
+        let source = self.source;
         let (mut offset, mut line) = (0, 1);
-        while let Some((block, next_offset, next_line)) = crate::lang::read_block(self.source, offset, line) {
-            if let Ok(block) = block {
+        while offset < source.len() {
+            let end = source[offset..].find('\n').map_or(source.len(), |n| offset + n);
+            let text = source[offset..end].strip_suffix('\r').unwrap_or(&source[offset..end]);
+            // Most lines of a toolpath are letters and plain numbers: judged from one byte scan,
+            // the parser only for the others (and for a plain line with a word to report).
+            if !crate::lang::plain_words(text, |letter, _, value| self.plain_word(letter, value))
+                && let Some((Ok(block), _, _)) = crate::lang::read_block(source, offset, line)
+                && block.line == line
+            {
                 self.block(&block);
             }
-            (offset, line) = (next_offset, next_line);
+            (offset, line) = (end + 1, line + 1);
         }
         for p in std::mem::take(&mut self.pending) {
             let known = match p.jump {
@@ -75,6 +88,28 @@ impl<'a> Walker<'a> {
         self.out.sort_by_key(|d| (d.line, d.column));
         self.out.dedup_by(|a, b| a.line == b.line && a.message == b.message);
         self.out
+    }
+
+    /// Whether a word of a plain line (`G1`, `X10.5`, `N20`) is known; false sends the line to
+    /// the parser (`L12` is a call there, `R1` a parameter, an unknown letter a name).
+    fn plain_word(&mut self, letter: u8, value: f64) -> bool {
+        match letter {
+            b'G' => {
+                let code = value as u32;
+                *self.g_codes.entry(code).or_insert_with(|| vocabulary::is_g_function(code))
+            }
+            b'M' => true,
+            b'N' => {
+                self.numbers.insert(value as u32);
+                true
+            }
+            b'L' | b'R' => false,
+            b'A'..=b'Z' => *self.letters[usize::from(letter - b'A')].get_or_insert_with(|| {
+                let name = char::from(letter).to_string();
+                vocabulary::is_address(&name) || self.ctx.cfg.program_axis(&name).is_some()
+            }),
+            _ => false,
+        }
     }
 
     fn block(&mut self, b: &Block) {
