@@ -80,7 +80,7 @@ fn no_standard_cycle_is_flagged() {
     let ctx = Channel::from_preset("mill-3axis", "").expect("preset").name_context();
     for cycle in nctwin_engine::programs::cycles::library() {
         let text = cycle.ready().expect("cycle text");
-        let found = check::names(&text, &ctx);
+        let found = check::names(text, &ctx);
         assert!(found.is_empty(), "{}: {found:?}", cycle.name());
     }
 }
