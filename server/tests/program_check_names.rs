@@ -21,9 +21,10 @@ fn findings(body: &Value) -> Vec<(u64, u64, u64)> {
 async fn unknown_names_are_flagged_with_the_alarm_a_run_would_give() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;
-    // Line 2: G1234 (12470, column 5); line 3: a syntax error, the value missing after `X=` (12080, column 6); line 4: PART_B is
-    // neither a word nor a program (12550, column 1); line 5: L77 is missing (14011);
-    // line 6: SINN is no function (12550, column 8 of `G1 X=1+SINN(30)`).
+    // Line 2: G1234 (12470, column 5); line 3: a syntax error, the value missing after `X=`
+    // (12080, column 6); line 4: PART_B is neither a word nor a program (12550, column 1);
+    // line 5: L77 is missing (14011); line 6: SINN is no function (12550, column 8 of
+    // `G1 X=1+SINN(30)`).
     let program = "G17 G90 F100\nN10 G1234 X1\nG1 X=\nPART_B\nL77\nG1 X=1+SINN(30)\nM30\n";
     let reply = server.post(&format!("/sessions/{id}/check"), json!({ "program": program })).await;
     assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
