@@ -5,7 +5,8 @@
 //! names, the global user data defined so far). Output: [`Diagnostic`]s in line order, each
 //! with the alarm the control gives when the block is reached: 12470 for an unknown G
 //! function, 12550 for a name that is not defined, 14011 for a called program that does not
-//! exist, 14080 for a jump destination that is not in the program.
+//! exist, 14080 for a jump destination that is not in the program. A synchronized action is
+//! compiled as its block would be, and a name its compiler does not know is reported (12550).
 //!
 //! Why static: an HMI flags the names as the user types, for programs of millions of blocks,
 //! without a trial run of the channel. The check is conservative: it flags only what a run

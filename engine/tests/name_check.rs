@@ -112,6 +112,15 @@ fn unknown_words_g_functions_and_programs_are_flagged_at_their_line_and_column()
 }
 
 #[test]
+fn a_synchronized_action_is_judged_as_its_block_compiles_it() {
+    // Line 2: $AA_IMM is no variable of synchronized actions (12550), found at column 15 of
+    // `ID=1 WHENEVER $AA_IMM[X]>10 DO $R[1]=1`; line 3 reads known variables of X and writes
+    // an R parameter: nothing to flag.
+    let text = "G0 X0\nID=1 WHENEVER $AA_IMM[X]>10 DO $R[1]=1\nID=2 WHENEVER $AA_IM[X]>10 DO $R[1]=$PI\nM30\n";
+    assert_eq!(found(text), vec![(12550, 2, 15)]);
+}
+
+#[test]
 fn declared_names_labels_cycles_and_stored_programs_are_not_flagged() {
     // DEF and PROC parameters, a forward label, the cycle library (CYCLE81), the constants
     // $PI and _FINISH, axis names (X, Z) as values, and frame functions with axis arguments.

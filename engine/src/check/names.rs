@@ -215,6 +215,9 @@ impl<'a> Walker<'a> {
             }
             return;
         }
+        if name == crate::lang::sync_action::SYNC_ACTION_WORD {
+            return self.sync_action(args, b);
+        }
         if vocabulary::is_keyword(name, !args.is_empty()) {
             return;
         }
@@ -227,6 +230,23 @@ impl<'a> Walker<'a> {
             false => Alarm::unknown_name(b.line, name),
         };
         self.flag(alarm, b.line, b.offset, name);
+    }
+
+    /// A synchronized action: compiled as its block would be (without the session's
+    /// technology cycles), its variables, functions and axes judged there. Only a name the
+    /// compiler does not know is reported; its other alarms are the run's to give.
+    fn sync_action(&mut self, args: &[Expr], b: &Block) {
+        let [Expr::Str(text)] = args else { return };
+        let Ok(parsed) = crate::lang::sync_action::parse(text) else { return };
+        if let Err(alarm) = crate::interp::synchronized::compile::compile(&parsed, &self.ctx.cfg, b.line)
+            && alarm.number == 12550
+        {
+            // The column is that of the name the alarm's text names (`... name $AA_IMM[X] not
+            // defined ...`), without its index.
+            let named = alarm.message.split(" name ").nth(1).and_then(|m| m.split([' ', '[']).next());
+            let name = named.unwrap_or_default().to_string();
+            self.flag(alarm, b.line, b.offset, &name);
+        }
     }
 
     fn goto(&mut self, g: &Goto, b: &Block) {
