@@ -6,6 +6,7 @@
 //! Pipeline, one module per stage:
 //! - [`machine_data`]: NC data text → validated, typed [`MachineConfig`].
 //! - [`lang`]: program text → blocks of words with source lines (syntax only).
+//! - [`check`]: the check before Cycle start: syntax and, statically, the names a run refuses.
 //! - [`interp`]: block preparation: modal state, offsets, arc geometry → [`motion::Move`]s and
 //!   channel actions.
 //! - [`kinematics`]: TRANSMIT, TRACYL, TRAANG: BCS ↔ machine axes, poles, working areas.
@@ -16,6 +17,7 @@
 
 pub mod alarm;
 pub mod channel;
+pub mod check;
 pub mod interp;
 pub mod kinematics;
 pub mod lang;

@@ -2,9 +2,10 @@
 //! form, MCALL, program section repetition and the everyday words of shop and CAM programs.
 //! Expected values are worked out by hand from the Programming Manual's rules, noted at each test.
 
-use nctwin_engine::{Channel, CommandError, Status};
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
 
-const MAX_TICKS: usize = 2_000_000;
+use nctwin_engine::{Channel, CommandError, Status};
 
 /// Runs `main` on the 3-axis mill with `subs` stored; returns the channel at rest.
 fn run(main: &str, subs: &[(&str, &str)]) -> Channel {
@@ -12,22 +13,12 @@ fn run(main: &str, subs: &[(&str, &str)]) -> Channel {
     for (name, text) in subs {
         ch.store_program(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
     }
-    ch.run_program(main).unwrap_or_else(|e| panic!("not started: {e}"));
-    let mut ticks = 0;
-    while ch.is_busy() {
-        ch.step();
-        ticks += 1;
-        assert!(ticks < MAX_TICKS, "program does not end");
-    }
+    settle::finish(&mut ch, main);
     ch
 }
 
 /// The channel ended without an alarm.
-fn ok(ch: &Channel) {
-    let s = ch.snapshot();
-    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
-    assert_eq!(s.status, Status::Idle);
-}
+use settle::assert_ok as ok;
 
 /// The alarm the channel stopped with: (number, line).
 fn alarm(ch: &Channel) -> (u32, Option<u32>) {

@@ -5,20 +5,12 @@
 //! display keeps the diameter, and the WCS display shows the diameter when it is active.
 //! Display checks stop at M0: after M30 the G functions are back at their reset values.
 
-use nctwin_engine::{Channel, Status};
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
 
-fn run(preset: &str, md: &str, program: &str) -> Channel {
-    let mut ch = Channel::from_preset(preset, md).unwrap();
-    ch.run_program(program).unwrap();
-    for _ in 0..1_000_000 {
-        if !ch.is_busy() {
-            break;
-        }
-        ch.step();
-    }
-    assert_ne!(ch.status(), Status::Running);
-    ch
-}
+use nctwin_engine::Channel;
+
+use settle::ran as run;
 
 fn lathe(program: &str) -> Channel {
     let ch = run("lathe-2axis", "", program);

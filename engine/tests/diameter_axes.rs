@@ -6,22 +6,16 @@
 //! axis to the channel's group 29 again and DIAMCHAN links every released axis. The
 //! lathe-2axis preset releases X (MD30460 bit 2), not Z; its reset value is DIAMOF.
 
-use nctwin_engine::{Channel, Status};
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
+
+use nctwin_engine::Channel;
 
 fn channel(md: &str) -> Channel {
     Channel::from_preset("lathe-2axis", md).unwrap()
 }
 
-fn finish(ch: &mut Channel, program: &str) {
-    ch.run_program(program).unwrap();
-    for _ in 0..1_000_000 {
-        if !ch.is_busy() {
-            break;
-        }
-        ch.step();
-    }
-    assert_ne!(ch.status(), Status::Running);
-}
+use settle::finish;
 
 fn lathe_md(md: &str, program: &str) -> Channel {
     let mut ch = channel(md);

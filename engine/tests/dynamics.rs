@@ -2,29 +2,16 @@
 //! (G group 59), ACC/VELOLIM/JERKLIM, FFWON/FFWOF (G group 24) with the position loop.
 //! Expected values are worked out by hand in each test's comment.
 
-use nctwin_engine::Channel;
+#[allow(dead_code)] // the shared helpers this file does not use
+mod path_support;
 
-/// The 3-axis mill's IPO cycle (4 ms).
-const DT: f64 = 0.004;
+use nctwin_engine::Channel;
+use path_support::DT;
 
 /// Runs `program` on the 3-axis mill with `md` on top; the channel-axis setpoints of every
 /// IPO cycle.
 fn run(md: &str, program: &str) -> (Channel, Vec<[f64; 3]>) {
-    let mut ch = Channel::from_preset("mill-3axis", md).unwrap();
-    ch.run_program(program).unwrap();
-    let mut out = vec![pos(&ch)];
-    while ch.is_busy() {
-        ch.step();
-        out.push(pos(&ch));
-        assert!(out.len() < 2_000_000, "runs away");
-    }
-    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
-    (ch, out)
-}
-
-fn pos(ch: &Channel) -> [f64; 3] {
-    let p = ch.axis_positions();
-    [p[0], p[1], p[2]]
+    path_support::samples(md, program, 2_000_000)
 }
 
 /// The k-th finite difference of the samples divided by `dt^k`, per axis.

@@ -3,25 +3,16 @@
 //! inside MD36010 STOP_LIMIT_FINE (G601), MD36000 STOP_LIMIT_COARSE (G602), or at the
 //! interpolator's end (G603). Expected values are worked out by hand in each test's comment.
 
-use nctwin_engine::Channel;
+#[allow(dead_code)] // the shared helpers this file does not use
+mod path_support;
 
-/// The 3-axis mill's IPO cycle (4 ms).
-const DT: f64 = 0.004;
+use path_support::DT;
 
 /// Runs `program` on the 3-axis mill with `md` on top; the X and Y setpoints of every IPO
 /// cycle.
 fn run(md: &str, program: &str) -> Vec<[f64; 2]> {
-    let mut ch = Channel::from_preset("mill-3axis", md).unwrap();
-    ch.run_program(program).unwrap();
-    let mut out = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        let p = ch.axis_positions();
-        out.push([p[0], p[1]]);
-        assert!(out.len() < 100_000, "runs away");
-    }
-    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
-    out
+    // The cycles after the start: the first sample is the position after the first cycle.
+    path_support::samples(md, program, 100_000).1.split_off(1)
 }
 
 /// The cycles between the setpoint of `axis` reaching `at` and its first step away: the wait

@@ -6,30 +6,17 @@
 //! 10 file full (MD11420 $MN_LEN_PROTOCOL_FILE, 1 KB by default), 11 file in use, and for READ
 //! 21 no such line, 22 result array too short, 23 line range past the end.
 
-use nctwin_engine::interp::eval::value::Value;
-use nctwin_engine::{Channel, Status};
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
 
-const MAX_TICKS: usize = 2_000_000;
+use nctwin_engine::Channel;
+use nctwin_engine::interp::eval::value::Value;
 
 fn channel() -> Channel {
     Channel::from_preset("mill-3axis", "").unwrap()
 }
 
-fn run_on(ch: &mut Channel, program: &str) {
-    ch.run_program(program).unwrap_or_else(|e| panic!("not started: {e}"));
-    let mut ticks = 0;
-    while ch.is_busy() {
-        ch.step();
-        ticks += 1;
-        assert!(ticks < MAX_TICKS, "program does not end");
-    }
-}
-
-fn ok(ch: &Channel) {
-    let s = ch.snapshot();
-    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
-    assert_eq!(s.status, Status::Idle);
-}
+use settle::{assert_ok as ok, finish as run_on};
 
 fn int(ch: &Channel, name: &str, i: usize) -> i64 {
     match ch.variable(name, i) {

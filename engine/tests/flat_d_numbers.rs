@@ -5,7 +5,10 @@
 //! Worked by hand on the 3-axis mill (G17: the length L1 `$TC_DP3` lies along Z, so the
 //! machine Z of a tool tip at workpiece Z10 is 10 + L1; no work offset is active).
 
-use nctwin_engine::{Channel, Status};
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
+
+use nctwin_engine::Channel;
 
 const FLAT: &str = "$MN_MM_TYPE_OF_CUTTING_EDGE=1
 $MC_TOOL_CHANGE_MODE=0
@@ -18,16 +21,7 @@ $TC_DP3[12]=80.
 ";
 
 fn run(md: &str, program: &str) -> Channel {
-    let mut ch = Channel::from_preset("mill-3axis", md).unwrap();
-    ch.run_program(program).unwrap();
-    for _ in 0..1_000_000 {
-        if !ch.is_busy() {
-            break;
-        }
-        ch.step();
-    }
-    assert_ne!(ch.status(), Status::Running);
-    ch
+    settle::ran("mill-3axis", md, program)
 }
 
 fn machine_z(ch: &Channel) -> f64 {

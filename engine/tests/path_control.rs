@@ -9,31 +9,15 @@
 //!   the velocity is continuous;
 //! - rounding makes the program faster than G64's corners and much faster than G60.
 
-use nctwin_engine::Channel;
+#[allow(dead_code)] // the shared helpers this file does not use
+mod path_support;
 
-const DT: f64 = 0.004;
-const V_MAX: f64 = 500.0;
-const A_MAX: f64 = 3000.0;
-const OVERLOAD: f64 = 1.2;
+use nctwin_engine::Channel;
+use path_support::{DT, assert_dynamics};
 
 /// Runs `program` on the 3-axis mill; the X, Y, Z samples of every IPO cycle.
 fn run(program: &str) -> Vec<[f64; 3]> {
-    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
-    assert!((ch.config().ipo_cycle - DT).abs() < 1e-12);
-    ch.run_program(program).unwrap();
-    let mut samples = vec![xyz(&ch)];
-    while ch.is_busy() {
-        ch.step();
-        samples.push(xyz(&ch));
-        assert!(samples.len() < 3_000_000, "the program does not end");
-    }
-    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
-    samples
-}
-
-fn xyz(ch: &Channel) -> [f64; 3] {
-    let p = ch.axis_positions();
-    [p[0], p[1], p[2]]
+    path_support::samples("", program, 3_000_000).1
 }
 
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -58,22 +42,6 @@ fn to_contour(p: &[f64; 3], contour: &[[f64; 3]]) -> f64 {
 /// corner `c`: how far the path really leaves the corner (the samples lie on the path).
 fn corner_deviation(samples: &[[f64; 3]], contour: &[[f64; 3]], c: &[f64; 3], radius: f64) -> f64 {
     samples.iter().filter(|p| dist(p, c) <= radius).map(|p| to_contour(p, contour)).fold(0.0, f64::max)
-}
-
-/// Velocity at most V_MAX per axis, velocity change per cycle at most A·overload·dt.
-fn assert_dynamics(samples: &[[f64; 3]]) {
-    let vel: Vec<[f64; 3]> = samples.windows(2).map(|w| std::array::from_fn(|k| (w[1][k] - w[0][k]) / DT)).collect();
-    for (i, v) in vel.iter().enumerate() {
-        for (k, vk) in v.iter().enumerate() {
-            assert!(vk.abs() <= V_MAX * (1.0 + 1e-9), "axis {k} velocity {vk} in cycle {i}");
-        }
-    }
-    for (i, w) in vel.windows(2).enumerate() {
-        for (k, (v0, v1)) in w[0].iter().zip(&w[1]).enumerate() {
-            let acc = (v1 - v0).abs() / DT;
-            assert!(acc <= A_MAX * OVERLOAD * (1.0 + 1e-6), "axis {k} acceleration {acc} in cycle {i}");
-        }
-    }
 }
 
 /// The program's contour: the start point and the end points of `moves` (X, Y) at Z0.

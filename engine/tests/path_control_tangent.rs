@@ -2,24 +2,15 @@
 //! Manual B1 "Continuous-path mode"). Expected values are worked out by hand in each test's
 //! comment.
 
-use nctwin_engine::Channel;
+#[allow(dead_code)] // the shared helpers this file does not use
+mod path_support;
 
-/// The 3-axis mill's IPO cycle (4 ms).
-const DT: f64 = 0.004;
+use path_support::DT;
 
 /// Runs `program` on the 3-axis mill with `md` on top: the X, Y setpoints of every IPO cycle.
 fn run(md: &str, program: &str) -> Vec<[f64; 2]> {
-    let mut ch = Channel::from_preset("mill-3axis", md).unwrap();
-    ch.run_program(program).unwrap();
-    let mut out = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        let p = ch.axis_positions();
-        out.push([p[0], p[1]]);
-        assert!(out.len() < 200_000, "runs away");
-    }
-    assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
-    out
+    // The cycles after the start: the first sample is the position after the first cycle.
+    path_support::samples(md, program, 200_000).1.split_off(1)
 }
 
 /// The contour: X0 Y0 → X20 (line), counter-clockwise quarter circle about (20, 10) with

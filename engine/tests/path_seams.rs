@@ -7,29 +7,17 @@
 //! seam that slowed the path for one cycle (by about a·T/2 = 6 mm/s) shows as a step 0.024 mm
 //! short.
 
-use nctwin_engine::Channel;
+#[allow(dead_code)] // the shared helpers this file does not use
+mod path_support;
 
-const DT: f64 = 0.004;
+use path_support::DT;
+
 /// F6000 mm/min for one IPO cycle.
 const STEP: f64 = 100.0 * DT;
 
 /// The X, Y, Z samples of every IPO cycle of `program` on the 3-axis mill.
 fn run(program: &str) -> Vec<[f64; 3]> {
-    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
-    assert!((ch.config().ipo_cycle - DT).abs() < 1e-12);
-    ch.run_program(program).unwrap();
-    let xyz = |ch: &Channel| {
-        let p = ch.axis_positions();
-        [p[0], p[1], p[2]]
-    };
-    let mut samples = vec![xyz(&ch)];
-    while ch.is_busy() {
-        ch.step();
-        samples.push(xyz(&ch));
-        assert!(samples.len() < 1_000_000, "the program does not end");
-    }
-    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
-    samples
+    path_support::samples("", program, 1_000_000).1
 }
 
 /// The distance moved in each cycle.

@@ -4,6 +4,9 @@
 //! mill-3axis preset's machine data (engine/src/machine_data/presets.rs) and the registry's
 //! defaults, worked out at each test.
 
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
+
 use nctwin_engine::interp::auxiliary::AuxFunction;
 use nctwin_engine::interp::eval::value::Value;
 use nctwin_engine::{Channel, Event, Status};
@@ -30,11 +33,7 @@ fn run_on(ch: &mut Channel, program: &str) -> Vec<Event> {
     events
 }
 
-fn ok(ch: &Channel) {
-    let s = ch.snapshot();
-    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
-    assert_eq!(s.status, Status::Idle);
-}
+use settle::assert_ok as ok;
 
 fn alarm(ch: &Channel) -> (u32, Option<u32>) {
     let s = ch.snapshot();

@@ -3,31 +3,16 @@
 //! overload 1.2, IPO cycle 4 ms; no tool, so the axis positions are the WCS points), and the
 //! geometry module checked on its own. Expected values are worked out by hand in the comments.
 
+#[allow(dead_code)] // the shared helpers this file does not use
+mod path_support;
+
 use nctwin_engine::Channel;
 use nctwin_engine::motion::AxisVec;
 use nctwin_engine::motion::spline::{self, BSpline, EndCondition};
-
-const DT: f64 = 0.004;
-const V_MAX: f64 = 500.0;
-const A_MAX: f64 = 3000.0;
-const OVERLOAD: f64 = 1.2;
+use path_support::{DT, assert_dynamics};
 
 fn run(program: &str) -> Vec<[f64; 3]> {
-    let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
-    assert!((ch.config().ipo_cycle - DT).abs() < 1e-12);
-    ch.run_program(program).unwrap();
-    let xyz = |ch: &Channel| {
-        let p = ch.axis_positions();
-        [p[0], p[1], p[2]]
-    };
-    let mut samples = vec![xyz(&ch)];
-    while ch.is_busy() {
-        ch.step();
-        samples.push(xyz(&ch));
-        assert!(samples.len() < 3_000_000, "the program does not end");
-    }
-    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
-    samples
+    path_support::samples("", program, 3_000_000).1
 }
 
 fn first_alarm(program: &str) -> Option<u32> {
@@ -41,22 +26,6 @@ fn first_alarm(program: &str) -> Option<u32> {
 
 fn passes(samples: &[[f64; 3]], x: f64, y: f64) -> bool {
     samples.iter().any(|p| (p[0] - x).abs() < 1e-9 && (p[1] - y).abs() < 1e-9)
-}
-
-/// Velocity at most V_MAX per axis, velocity change per cycle at most A·overload·dt.
-fn assert_dynamics(samples: &[[f64; 3]]) {
-    let vel: Vec<[f64; 3]> = samples.windows(2).map(|w| std::array::from_fn(|k| (w[1][k] - w[0][k]) / DT)).collect();
-    for (i, v) in vel.iter().enumerate() {
-        for (k, vk) in v.iter().enumerate() {
-            assert!(vk.abs() <= V_MAX * (1.0 + 1e-9), "axis {k} velocity {vk} in cycle {i}");
-        }
-    }
-    for (i, w) in vel.windows(2).enumerate() {
-        for (k, (v0, v1)) in w[0].iter().zip(&w[1]).enumerate() {
-            let acc = (v1 - v0).abs() / DT;
-            assert!(acc <= A_MAX * OVERLOAD * (1.0 + 1e-6), "axis {k} acceleration {acc} in cycle {i}");
-        }
-    }
 }
 
 /// The largest turn of the direction of travel from one IPO step to the next (radians),

@@ -7,10 +7,13 @@
 //! walls on cell edges are exact); turning slabs tile the blank, so a face on a slab boundary
 //! is exact in Z and radii are exact.
 
+mod stl_support;
+
 use std::f64::consts::PI;
 
 use nctwin_engine::channel::{StockCheck, StockInfo, StockOptions, StockWarning};
 use nctwin_engine::{Channel, Event};
+use stl_support::box_stl;
 
 /// Runs `program` on `preset` to its end; its stock summary and the checks raised.
 fn run(preset: &str, md: &str, options: StockOptions, program: &str) -> (StockInfo, Vec<StockWarning>, Channel) {
@@ -266,33 +269,6 @@ fn a_short_tool_plunging_deep_brings_its_holder_into_the_stock() {
     // Without a holder set, no check and no cost.
     let (_, warnings, _) = run("mill-3axis", md, StockOptions::default(), &program(-35.0));
     assert!(warnings.is_empty(), "{warnings:?}");
-}
-
-/// A binary STL of the box `lo`..`hi` (12 triangles, outward).
-fn box_stl(lo: [f32; 3], hi: [f32; 3]) -> Vec<u8> {
-    let c = |i: usize| {
-        [
-            if i & 1 == 0 { lo[0] } else { hi[0] },
-            if i & 2 == 0 { lo[1] } else { hi[1] },
-            if i & 4 == 0 { lo[2] } else { hi[2] },
-        ]
-    };
-    // Faces as corner indices, counter-clockwise from outside.
-    let faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
-    let mut out = vec![0u8; 80];
-    out.extend_from_slice(&12u32.to_le_bytes());
-    for f in faces {
-        for t in [[f[0], f[1], f[2]], [f[0], f[2], f[3]]] {
-            out.extend_from_slice(&[0u8; 12]);
-            for v in t {
-                for x in c(v) {
-                    out.extend_from_slice(&x.to_le_bytes());
-                }
-            }
-            out.extend_from_slice(&[0u8; 2]);
-        }
-    }
-    out
 }
 
 #[test]

@@ -1304,11 +1304,12 @@ pub struct CheckRequest {
     pub program: String,
 }
 
-/// One syntax error found by `check`.
+/// One error found by `check`.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct DiagnosticInfo {
     /// The NC alarm number: 12080 syntax error, 12640 invalid nesting of control structures,
-    /// 12641 nesting too deep.
+    /// 12641 nesting too deep; for names: 12470 unknown G function, 12550 name not defined,
+    /// 14011 called program not available, 14080 jump destination not found.
     pub alarm: u32,
     /// 1-based line.
     pub line: u32,
@@ -1323,8 +1324,8 @@ impl From<&nctwin_engine::lang::Diagnostic> for DiagnosticInfo {
     }
 }
 
-/// The syntax errors of a program, found without running it: the first 1000 in program
-/// order, and the count of the others.
+/// The errors of a program found without running it (syntax, and names a run would refuse):
+/// the first 1000 in program order, and the count of the others.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 pub struct CheckResponse {
     pub diagnostics: Vec<DiagnosticInfo>,

@@ -186,6 +186,17 @@ impl Channel {
         &mut self.programs
     }
 
+    /// What the static name check of a program ([`crate::check`]) needs of this channel: its
+    /// machine (axis names), the names of its stored programs and its global user variables.
+    /// Cheap (names only), so a caller can take it and check a large program elsewhere.
+    pub fn name_context(&self) -> crate::check::NameContext {
+        crate::check::NameContext::new(
+            self.cfg.clone(),
+            self.programs.iter().map(|p| p.name().to_string()),
+            self.interp.variables().global_names().map(str::to_string),
+        )
+    }
+
     /// Names and sizes (bytes) of the stored programs, by name (0 for one not read yet), with
     /// the files a running program wrote or deleted as they are now.
     pub fn stored_programs(&self) -> Vec<(String, usize)> {

@@ -5,6 +5,7 @@ pub(super) mod cycle_constants;
 pub(super) mod cycle_vars;
 pub(super) mod indirect_axis;
 pub(crate) mod machine_data;
+pub(crate) mod nc_constants;
 pub(super) mod numeric;
 pub(super) mod scope;
 pub(super) mod strings;
@@ -144,6 +145,9 @@ fn r_param(n: Value, scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
 /// A system variable, user variable or axis name with evaluated indices.
 fn variable(name: &str, idx: &[Value], scope: &dyn Scope, line: u32) -> Result<Value, Alarm> {
     if name.starts_with('$') {
+        if let Some(v) = nc_constants::constant(name).filter(|_| idx.is_empty()) {
+            return Ok(v);
+        }
         return scope.system(name, idx, line);
     }
     if let Some(var) = scope.vars().get(name) {

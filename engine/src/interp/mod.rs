@@ -20,6 +20,8 @@ pub mod io;
 mod lane;
 pub mod measuring;
 mod modal;
+/// The words block preparation knows, for the static name check (`crate::check`).
+pub(crate) use modal::vocabulary;
 mod orientation;
 pub(crate) mod path_control;
 mod published;

@@ -1,5 +1,7 @@
 //! The modal state (G groups, feed) and the words of one block sorted by meaning.
 
+pub(crate) mod vocabulary;
+
 use super::StopKind;
 use super::calls::{Programs, targets};
 use super::compensation::approach::ApproachMode;
@@ -1150,6 +1152,9 @@ fn data_write(
     sys: &SysView,
     line: u32,
 ) -> Result<String, Alarm> {
+    if super::eval::nc_constants::is_constant(name) {
+        return Err(Alarm::write_protected(line, name));
+    }
     let writable = name.starts_with("$TC_DP")
         || crate::machine_data::tools_mgmt::ToolMgmtData::handles(name)
         || name.starts_with("$TC_CARR")

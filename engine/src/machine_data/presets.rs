@@ -189,8 +189,12 @@ $TC_MPP6[1,2]=2
 "#
 );
 
-const LATHE_2AXIS: &str = concat!(
-    r#"; 2-axis lathe: X radial, Z along the spindle, main spindle as channel axis SP
+/// The 2-axis lathe's data, a macro so that the counter-spindle lathe can be written as this
+/// machine plus its differences (`concat!` takes literals and macros only).
+macro_rules! lathe_2axis {
+    () => {
+        concat!(
+            r#"; 2-axis lathe: X radial, Z along the spindle, main spindle as channel axis SP
 $MN_AXCONF_MACHAX_NAME_TAB[0]="X1"
 $MN_AXCONF_MACHAX_NAME_TAB[1]="Z1"
 $MN_AXCONF_MACHAX_NAME_TAB[2]="SP1"
@@ -243,8 +247,8 @@ $TC_DP6[2,1]=0.4
 ; Tool management: a chain magazine with 12 places holding the tools, the spindle
 ; place in the buffer magazine 9998
 "#,
-    chain_magazine!(),
-    r#"$TC_TP1[1]=1
+            chain_magazine!(),
+            r#"$TC_TP1[1]=1
 $TC_TP2[1]="ROUGH_R0_8"
 $TC_TP8[1]=2
 $TC_MPP6[1,1]=1
@@ -253,45 +257,34 @@ $TC_TP2[2]="FINISH_R0_4"
 $TC_TP8[2]=2
 $TC_MPP6[1,2]=2
 "#
-);
+        )
+    };
+}
+
+const LATHE_2AXIS: &str = lathe_2axis!();
 
 /// A lathe with a counter spindle: the turret (X, Z) works on the main spindle SP1 or, after
 /// SETMS(2), on the counter spindle SP2, which faces the main spindle on its own slide Z2
 /// (machine travel −600..0; 0 is its stop nearest the main spindle). Spindle transfer with
 /// coupled spindles (COUPON) is not modelled: the slide and both spindles are programmed on
 /// their own.
+///
+/// Written as the 2-axis lathe plus its differences: data text applies line by line, so a
+/// later line replaces an earlier value, as on the control.
 const LATHE_COUNTER_SPINDLE: &str = concat!(
-    r#"; Lathe with counter spindle: X radial, Z along the spindles, main spindle SP1 (spindle 1),
-; counter spindle SP2 (spindle 2) on its slide Z2
-$MN_AXCONF_MACHAX_NAME_TAB[0]="X1"
-$MN_AXCONF_MACHAX_NAME_TAB[1]="Z1"
-$MN_AXCONF_MACHAX_NAME_TAB[2]="SP1"
+    lathe_2axis!(),
+    r#"; Lathe with counter spindle: the 2-axis lathe above, plus the counter spindle SP2
+; (spindle 2) on its slide Z2; the main spindle's channel axis is SP1.
 $MN_AXCONF_MACHAX_NAME_TAB[3]="Z2"
 $MN_AXCONF_MACHAX_NAME_TAB[4]="SP2"
-$MC_AXCONF_MACHAX_USED[0]=1
-$MC_AXCONF_MACHAX_USED[1]=2
-$MC_AXCONF_MACHAX_USED[2]=3
 $MC_AXCONF_MACHAX_USED[3]=4
 $MC_AXCONF_MACHAX_USED[4]=5
 $MC_AXCONF_MACHAX_USED[5]=0
-$MC_AXCONF_CHANAX_NAME_TAB[0]="X"
-$MC_AXCONF_CHANAX_NAME_TAB[1]="Z"
 $MC_AXCONF_CHANAX_NAME_TAB[2]="SP1"
 $MC_AXCONF_CHANAX_NAME_TAB[3]="Z2"
 $MC_AXCONF_CHANAX_NAME_TAB[4]="SP2"
-$MC_AXCONF_GEOAX_ASSIGN_TAB[0]=1
-$MC_AXCONF_GEOAX_ASSIGN_TAB[1]=0
-$MC_AXCONF_GEOAX_ASSIGN_TAB[2]=2
 ; Spindle 1 is the master spindle after reset (MD20090); SETMS(2) selects the counter spindle.
 $MC_SPIND_DEF_MASTER_SPIND=1
-$MA_IS_ROT_AX[SP1]=TRUE
-$MA_ROT_IS_MODULO[SP1]=TRUE
-$MA_SPIND_ASSIGN_TO_MACHAX[SP1]=1
-$MA_MAX_AX_VELO[SP1]=1440000.
-$MA_MAX_AX_ACCEL[SP1]=30.
-$MA_SPIND_VELO_LIMIT[SP1]=4000.
-$MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP1]=4000.
-$MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP1]=30.
 ; The counter spindle: smaller, faster.
 $MA_IS_ROT_AX[SP2]=TRUE
 $MA_ROT_IS_MODULO[SP2]=TRUE
@@ -301,47 +294,21 @@ $MA_MAX_AX_ACCEL[SP2]=40.
 $MA_SPIND_VELO_LIMIT[SP2]=5000.
 $MA_GEAR_STEP_MAX_VELO_LIMIT[1,SP2]=5000.
 $MA_GEAR_STEP_SPEEDCTRL_ACCEL[1,SP2]=40.
-; X is the transverse axis; the lathe starts in G18 with diameter programming (DIAMON).
-$MC_DIAMETER_AX_DEF="X"
-$MA_BASE_FUNCTION_MASK[X1]=4
-$MC_GCODE_RESET_VALUES[5]=2
+; Diameter programming (DIAMON) at reset.
 $MC_GCODE_RESET_VALUES[28]=2
-$MA_MAX_AX_VELO[X1]=20000.
-$MA_MAX_AX_VELO[Z1]=24000.
 $MA_MAX_AX_VELO[Z2]=20000.
-$MA_MAX_AX_ACCEL[X1]=4.
-$MA_MAX_AX_ACCEL[Z1]=4.
 $MA_MAX_AX_ACCEL[Z2]=3.
-$MA_POS_LIMIT_MINUS[X1]=-20.
-$MA_POS_LIMIT_PLUS[X1]=250.
-$MA_POS_LIMIT_MINUS[Z1]=-300.
-$MA_POS_LIMIT_PLUS[Z1]=400.
 $MA_POS_LIMIT_MINUS[Z2]=-600.
 $MA_POS_LIMIT_PLUS[Z2]=0.
-; T1 D1: roughing tool, cutting edge position 3, nose radius 0.8
-$TC_DP1[1,1]=500
-$TC_DP2[1,1]=3
-$TC_DP3[1,1]=40.
-$TC_DP4[1,1]=60.
-$TC_DP6[1,1]=0.8
-; T2 D1: roughing tool for the counter spindle (cutting edge position 4: it cuts towards +Z)
+; T2 D1 replaces the finishing tool: a roughing tool for the counter spindle (cutting edge
+; position 4: it cuts towards +Z)
 $TC_DP1[2,1]=500
 $TC_DP2[2,1]=4
 $TC_DP3[2,1]=40.
 $TC_DP4[2,1]=-60.
 $TC_DP6[2,1]=0.8
-; Tool management: a chain magazine with 12 places holding the tools, the spindle
-; place in the buffer magazine 9998
-"#,
-    chain_magazine!(),
-    r#"$TC_TP1[1]=1
 $TC_TP2[1]="ROUGH_MAIN"
-$TC_TP8[1]=2
-$TC_MPP6[1,1]=1
-$TC_TP1[2]=1
 $TC_TP2[2]="ROUGH_COUNTER"
-$TC_TP8[2]=2
-$TC_MPP6[1,2]=2
 "#
 );
 

@@ -52,3 +52,30 @@ pub fn run_snapshots(preset: &str, md: &str, program: &str) -> (Channel, Vec<Sna
 pub fn machine_axis(s: &Snapshot, name: &str) -> f64 {
     s.machine.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no axis {name}")).1
 }
+
+/// Runs `program` on `ch` until nothing moves; panics when it does not start or does not end
+/// within two million IPO cycles (it may end with an alarm).
+pub fn finish(ch: &mut Channel, program: &str) {
+    ch.run_program(program).unwrap_or_else(|e| panic!("not started: {e}"));
+    for _ in 0..2_000_000 {
+        if !ch.is_busy() {
+            return;
+        }
+        ch.step();
+    }
+    panic!("the program does not end");
+}
+
+/// A channel of `preset` with `md` on top that ran `program` to its end (see [`finish`]).
+pub fn ran(preset: &str, md: &str, program: &str) -> Channel {
+    let mut ch = channel(preset, md);
+    finish(&mut ch, program);
+    ch
+}
+
+/// Asserts that the channel stands idle without an alarm.
+pub fn assert_ok(ch: &Channel) {
+    let s = ch.snapshot();
+    assert!(s.alarms.is_empty(), "{:?}", s.alarms);
+    assert_eq!(s.status, nctwin_engine::Status::Idle);
+}

@@ -1,5 +1,5 @@
-//! Stored programs of a session (main programs and subprograms called by name) and the syntax
-//! check of a program text.
+//! Stored programs of a session (main programs and subprograms called by name) and the check
+//! of a program text (syntax and names) before Cycle start.
 
 use axum::Json;
 use axum::extract::{Path, State};
@@ -108,8 +108,11 @@ pub async fn delete_program(
     if deleted { Ok(StatusCode::NO_CONTENT) } else { Err(ApiError::NotFound(format!("program `{name}`"))) }
 }
 
-/// Checks a program's syntax without running it: every error with its line and column (the
-/// first 1000 listed, `omitted` counts the others). A check costs in proportion to its text, so
+/// Checks a program without running it: every syntax error, and every name a run would refuse
+/// (unknown G function 12470, name not defined 12550, called program missing 14011, jump
+/// destination missing 14080; judged against the session's machine, its stored programs, the
+/// cycle library and its global user data), with its line and column (the first 1000 listed,
+/// `omitted` counts the others). A check costs in proportion to its text, so
 /// each session may have 4 MiB of text per second checked, in bursts of 8 MiB (`429` with
 /// `Retry-After` beyond).
 #[utoipa::path(
@@ -119,7 +122,7 @@ pub async fn delete_program(
     params(("id" = String, Path, description = "Session id")),
     request_body = CheckRequest,
     responses(
-        (status = 200, description = "The syntax errors (empty when the program parses)", body = CheckResponse),
+        (status = 200, description = "The errors found (empty when the program parses and every name is defined)", body = CheckResponse),
         (status = 400, description = "Malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 429, description = "More program text checked per second than the session allows", body = ErrorBody,
@@ -133,13 +136,18 @@ pub async fn check(
 ) -> Result<Json<CheckResponse>, ApiError> {
     let entry = find_entry(&state, &id)?;
     entry.take_check(body.program.len(), state.limits())?;
+    // The names the program may use besides its own: taken from the session's channel (names
+    // only, cheap), so that the walk itself does not hold up the session's IPO cycles.
+    let session = find_session(&state, &id)?;
+    let names = session.with_channel(|ch| ch.name_context()).await.map_err(|e| ApiError::from_session(&id, e))?;
     // On a blocking worker: a check of a large program takes milliseconds of CPU.
-    let checked = tokio::task::spawn_blocking(move || first_diagnostics(&nctwin_engine::lang::check(&body.program)))
-        .await
-        .map_err(|e| {
-            tracing::error!(error = %e, "the syntax check failed");
-            ApiError::bad_request("the syntax check of this program failed")
-        })?;
+    let checked =
+        tokio::task::spawn_blocking(move || first_diagnostics(&nctwin_engine::check::program(&body.program, &names)))
+            .await
+            .map_err(|e| {
+                tracing::error!(error = %e, "the syntax check failed");
+                ApiError::bad_request("the syntax check of this program failed")
+            })?;
     let (diagnostics, omitted) = checked;
     Ok(Json(CheckResponse { diagnostics, omitted }))
 }

@@ -85,6 +85,11 @@ impl Variables {
         self.locals.last().and_then(|l| l.get(name)).or_else(|| self.globals.get(name))
     }
 
+    /// The names of the global user variables (`DEF NCK`/`DEF CHAN`) declared so far.
+    pub fn global_names(&self) -> impl Iterator<Item = &str> {
+        self.globals.keys().map(String::as_str)
+    }
+
     pub fn get_mut(&mut self, name: &str) -> Option<&mut Variable> {
         match self.locals.last_mut().filter(|l| l.contains_key(name)) {
             Some(l) => l.get_mut(name),

@@ -259,6 +259,9 @@ impl Compiler<'_> {
     fn expr(&self, e: &SExpr, inch: bool) -> Result<CExpr, Alarm> {
         Ok(match e {
             SExpr::Num(v) => CExpr::Num(*v),
+            SExpr::Var(VarRef { name, index: None }) if let Some(c) = crate::interp::eval::nc_constants::real(name) => {
+                CExpr::Num(c)
+            }
             SExpr::Var(v) => {
                 let var = self.var(v)?;
                 let length = matches!(
@@ -355,7 +358,11 @@ impl Compiler<'_> {
     fn action(&self, a: &SAction) -> Result<SyncAct, Alarm> {
         Ok(match a {
             SAction::Assign(v, e) => {
-                let var = self.var(v)?;
+                let var = match crate::interp::eval::nc_constants::is_constant(&v.name) {
+                    // A constant is read only: the alarm of a variable not writable in an action.
+                    true => return Err(not_changeable(self.line, &v.name)),
+                    false => self.var(v)?,
+                };
                 let writable = matches!(
                     var,
                     SyncVar::AcOvr
@@ -368,15 +375,7 @@ impl Compiler<'_> {
                         | SyncVar::AOuta(_)
                 );
                 if !writable {
-                    return Err(Alarm {
-                        number: 12584,
-                        message: format!(
-                            "Channel 1 block {} variable {} cannot be changed synchronously with motion",
-                            self.line, v.name
-                        ),
-                        line: Some(self.line),
-                        clear: Clear::Reset,
-                    });
+                    return Err(not_changeable(self.line, &v.name));
                 }
                 SyncAct::Set(var, self.expr(e, false)?)
             }
@@ -410,5 +409,15 @@ impl Compiler<'_> {
                 return Err(not_admissible(self.line, &format!("{w} (not modelled in NCTwin)")));
             }
         })
+    }
+}
+
+/// 12584: a synchronized action writes a variable that cannot change with the motion.
+fn not_changeable(line: u32, name: &str) -> Alarm {
+    Alarm {
+        number: 12584,
+        message: format!("Channel 1 block {line} variable {name} cannot be changed synchronously with motion"),
+        line: Some(line),
+        clear: Clear::Reset,
     }
 }
