@@ -85,6 +85,7 @@ impl Interpreter {
                         self.assignment_block(&block, cfg, out)?;
                     } else {
                         self.prepare_block(&block, cfg, programs, out)?;
+                        self.level_commands(&block);
                     }
                 } else if !self.call_unbound() {
                     self.prepare_block(&block, cfg, programs, out)?;
