@@ -75,8 +75,11 @@ fn a_subprogram_with_sblof_in_its_proc_line_is_one_step_shown_block_by_block() {
     );
 }
 
-/// Runs `main` to its end; the shown block (line, program) at every cycle with its X.
-fn shown_by_x(ch: &mut Channel, main: &str) -> Vec<(f64, Option<(u32, Option<String>)>)> {
+/// The block shown: its line and program (`None`: the main program).
+type Shown = (u32, Option<String>);
+
+/// Runs `main` to its end; the shown block at every cycle with its X.
+fn shown_by_x(ch: &mut Channel, main: &str) -> Vec<(f64, Option<Shown>)> {
     ch.run_program(main).unwrap();
     let mut samples = Vec::new();
     for _ in 0..1_000_000 {
@@ -91,7 +94,7 @@ fn shown_by_x(ch: &mut Channel, main: &str) -> Vec<(f64, Option<(u32, Option<Str
 }
 
 /// The block shown at every sample strictly between `from` and `to` in X: one block, checked.
-fn shown_between(samples: &[(f64, Option<(u32, Option<String>)>)], from: f64, to: f64) -> (u32, Option<String>) {
+fn shown_between(samples: &[(f64, Option<Shown>)], from: f64, to: f64) -> Shown {
     let inside: Vec<_> = samples.iter().filter(|(x, _)| *x > from + 1e-3 && *x < to - 1e-3).collect();
     assert!(!inside.is_empty(), "no cycle between X{from} and X{to}");
     let first = inside[0].1.clone().expect("a block is shown");

@@ -214,10 +214,9 @@ impl Channel {
                 self.push_approach(&mv, line, &offsets);
             }
             // Anything but a move next (a dwell, a stop, the end) needs standstill first.
-            let next_is_other = self
-                .pending
-                .front()
-                .is_some_and(|i| !matches!(i, Item::Move { .. }) || single.is_some() && self.pending.front_step() != Some(step));
+            let next_is_other = self.pending.front().is_some_and(|i| {
+                !matches!(i, Item::Move { .. }) || single.is_some() && self.pending.front_step() != Some(step)
+            });
             let programmed_stop = mv.exact_stop;
             if next_is_other || single.is_some() && self.pending.is_empty() {
                 mv.exact_stop = true;
