@@ -11,6 +11,14 @@
 //! instructions (callgrind) 1.107e9 against 0.583e9, 1.90x (before: 1.40e9, 2.41x). What is
 //! left is the general interpreter's per-statement cost (variables by name in B-trees, a block's
 //! word collection and offset refresh for every assignment).
+//! Session 12 (profiled with callgrind): variables in FNV-hashed maps, blocks that only assign
+//! to variables past the general block preparation (`eval/assignment_block.rs`), skipped
+//! branches looked at in the block cache, parsed blocks boxed (a read no longer copies a whole
+//! `Block` three times), later calls of a cycle starting at its PROC line (its header comments
+//! were 28 of the ~115 blocks read per call), and a leaner CYCLE83.SPF (MINVAL/MAXVAL clamps,
+//! rare branches under one test): CPU 78..80 ms against 41 ms, 1.92..1.95x (three pairs of
+//! perf stat runs of 10 at load 13; measured the same way before: 100.7 ms against 40.0 ms,
+//! 2.52x); instructions 0.901e9 against 0.600e9, 1.50x (before: 1.116e9 against 0.598e9).
 
 use std::time::Instant;
 

@@ -155,3 +155,25 @@ fn cycle92_under_diamon_parts_off_on_the_same_machine_path() {
         assert!(close(r.mx, d.mx, 1e-9) && close(r.z, d.z, 1e-9) && close(r.sp, d.sp, 1e-9), "{r:?} {d:?}");
     }
 }
+
+#[test]
+fn cycle92_with_a_second_edge_parts_with_that_edge_at_z0_and_gives_the_callers_edge_back() {
+    // T1's D2: the blade's other corner, 3 mm further along Z than D1 (L2 63 against 60).
+    // Without a chamfer, at the speed 500 rev/min, to the centre: the plunge runs at Z-20 with
+    // the cutting edge in use; with _DN 2 that is D2, so the machine Z is 3 mm more than with
+    // D1 (_DN 0) while the workpiece Z is -20 in both. R1 = $P_TOOL after the cycle: D1 again.
+    let md = "$TC_DP1[1,2]=500\n$TC_DP2[1,2]=4\n$TC_DP3[1,2]=40\n$TC_DP4[1,2]=63\n$TC_DP6[1,2]=0\n";
+    let plunge = |dn: u32| {
+        let call = format!("CYCLE92(60,-20,0,0,0,1,500,0,3,0.2,0,0,0,0,{dn},0,0)\nR1=$P_TOOL");
+        let t = run_lathe(md, &format!("{SETUP}{call}\nM30"), &[]).clean();
+        // The plunge: the samples at workpiece Z-20 on the way from X29 to the centre.
+        let cut: Vec<Sample> =
+            t.samples.iter().filter(|s| s.x < 29.0 && s.x > 0.5 && close(s.z, -20.0, 1e-9)).copied().collect();
+        assert!(cut.len() > 100, "the plunge is sampled");
+        let mz = cut[0].mz;
+        assert!(cut.iter().all(|s| close(s.mz, mz, 1e-9)), "one machine Z along the plunge");
+        assert_eq!(t.r[0], 1.0, "D1 is active after the cycle");
+        mz
+    };
+    assert!(close(plunge(2) - plunge(0), 3.0, 1e-9));
+}

@@ -110,13 +110,13 @@ fn cycle99_alternating_flanks_move_every_second_cut_forward() {
 #[test]
 fn cycle99_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
     // Units 5: 61002; hundreds 4: 61002; no cuts and no first depth: 61002; pitch 0: 61001; a
-    // pitch change: 61001.
+    // pitch change that leaves no pitch at the run-in's start (1.5^2 - 2 * 0.6 * 2 < 0): 61001.
     for (call, number) in [
         ("CYCLE99(0,40,-30,40,2,1,0.92,0.05,0,0,5,1,1.5,105,1,0,0,0,0,0,0,0)", 61002),
         ("CYCLE99(0,40,-30,40,2,1,0.92,0.05,0,0,5,1,1.5,401,1,0,0,0,0,0,0,0)", 61002),
         ("CYCLE99(0,40,-30,40,2,1,0.92,0.05,0,0,0,1,1.5,101,1,0,0,0,0,0,0,0)", 61002),
         ("CYCLE99(0,40,-30,40,2,1,0.92,0.05,0,0,5,1,0,101,1,0,0,0,0,0,0,0)", 61001),
-        ("CYCLE99(0,40,-30,40,2,1,0.92,0.05,0,0,5,1,1.5,101,1,0,0,0,0.01,0,0,0)", 61001),
+        ("CYCLE99(0,40,-30,40,2,1,0.92,0.05,0,0,5,1,1.5,101,1,0,0,0,0.6,0,0,0)", 61001),
     ] {
         let t = run(call);
         assert_eq!(t.alarms.len(), 1, "{call}: {:?}", t.alarms);
@@ -124,4 +124,41 @@ fn cycle99_bad_parameters_raise_the_cycle_alarms_at_the_calling_line() {
         let end = t.samples.last().unwrap();
         assert!(close(end.x, 30.0, 1e-9) && close(end.z, 10.0, 1e-9), "{call}: nothing moved");
     }
+}
+
+#[test]
+fn cycle99_with_a_pitch_change_cuts_the_pitch_growing_from_the_run_in() {
+    // One radial cut 1 deep (_NRC 1, _VARI 101: outside, constant infeed, roughing only) from
+    // Z0 to Z-30, run-in 2, run-out 1, pitch 2 at Z0 growing by G = 0.05 mm/rev per revolution
+    // (_PIT1). Along the cut (from Z2) the pitch after s mm is SQRT(P0^2 + 2 G s) with
+    // P0^2 = 4 - 2 * 0.05 * 2 = 3.8: 2 at Z0, SQRT(4 + 0.1 z) z mm past Z0. The first s mm
+    // take n(s) revolutions, s = P0 n + G n^2 / 2: n(s) = (SQRT(3.8 + 0.1 s) - SQRT(3.8)) / 0.05,
+    // so Z0 to Z-30 (s 2 to 32) take n(32) - n(2) = (SQRT(7) - 2) / 0.05 = 12.9150 revolutions
+    // (at the constant pitch 2: 15).
+    let t = run_clean("CYCLE99(0,40,-30,0,2,1,1,0,0,0,1,0,2,101,1,0,0,0,0.05,0,0,0)");
+    let c = cuts(&t);
+    assert_depths(&c, &[1.0]);
+    let cut: Vec<Sample> = c[0].iter().filter(|s| close(s.x, 19.0, 1e-9)).cloned().collect();
+    let a = unwrapped(&cut);
+    // The spindle angle where the cut passes `z`, between the samples either side.
+    let angle_at = |z: f64| {
+        let i = (1..cut.len()).find(|&i| cut[i - 1].z >= z && cut[i].z < z).expect("the cut passes z");
+        let f = (cut[i - 1].z - z) / (cut[i - 1].z - cut[i].z);
+        a[i - 1] + f * (a[i] - a[i - 1])
+    };
+    let revolutions = (angle_at(-30.0) - angle_at(0.0)) / 360.0;
+    assert!(close(revolutions, 12.9150, 0.005), "{revolutions}");
+    // Each revolution runs at its mean pitch (within G / 2 = 0.025 of the exact one).
+    let mut checked = 0;
+    for i in 1..cut.len() {
+        let (z0, z1) = (cut[i - 1].z, cut[i].z);
+        if z1 < -28.0 || z0 > 0.0 || a[i] <= a[i - 1] || z1 >= z0 {
+            continue;
+        }
+        let pitch = (z0 - z1) / (a[i] - a[i - 1]) * 360.0;
+        let past = -(z0 + z1) / 2.0;
+        assert!(close(pitch, (4.0 + 0.1 * past).sqrt(), 0.03), "Z{z1}: {pitch}");
+        checked += 1;
+    }
+    assert!(checked > 100, "{checked} samples along the thread");
 }

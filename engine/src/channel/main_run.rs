@@ -53,6 +53,7 @@ impl Channel {
             // the calling block shown instead while a DISPLOF subprogram runs.
             let level = self.interp.level().cloned();
             let hidden = self.interp.hidden_by_call();
+            let step = self.interp.single_block_anchor();
             if self.psync.stopreof || self.positioning.has_command_axes() {
                 // `$AA_IM` reads where the main run stands (`program_sync.rs`).
                 self.interp.set_main_run_position(Some(self.machine));
@@ -111,7 +112,7 @@ impl Channel {
                         self.held_block_seq(line, block.level.clone())
                     };
                 }
-                self.pending.push_back(seq, item);
+                self.pending.push_back(seq, step, item);
             }
             self.prev_read = read;
             match prep {
@@ -187,13 +188,15 @@ impl Channel {
         // Single block: one block's moves at a time, and only once the last one is done. So
         // too while an action holds RDISABLE (`program_sync.rs`).
         let one_block = self.single_block || self.psync.rdisable_armed && self.sync.is_active();
-        let single = one_block.then(|| self.pending.front().and_then(Item::line));
-        if single.is_some() && (!self.planner.is_empty() || self.sbl_done.is_some()) {
+        let single = one_block.then(|| self.pending.front_step());
+        // A step SBLOF joins goes on as its blocks' moves come in, one block after another.
+        let goes_on = single.is_some_and(|s| s.is_some() && s == self.sbl_step);
+        if single.is_some() && !goes_on && (!self.planner.is_empty() || self.sbl_done.is_some()) {
             return;
         }
-        while let Some(Item::Move { line: next, .. }) = self.pending.front() {
-            if let Some(Some(block)) = single
-                && *next != block
+        while let Some(Item::Move { .. }) = self.pending.front() {
+            if let Some(Some(step)) = single
+                && self.pending.front_step() != Some(step)
             {
                 break;
             }
@@ -203,16 +206,17 @@ impl Channel {
             }
             let Some(Item::Move { mut mv, line, offsets }) = self.pending.pop_front() else { unreachable!() };
             let seq = self.pending.popped_seq();
+            let step = self.pending.popped_step();
+            self.sbl_step = single.map(|_| step);
             if self.search_approach {
                 // Block search: approach the start of the first move of the target, like that move.
                 self.search_approach = false;
                 self.push_approach(&mv, line, &offsets);
             }
             // Anything but a move next (a dwell, a stop, the end) needs standstill first.
-            let next_is_other = self
-                .pending
-                .front()
-                .is_some_and(|i| !matches!(i, Item::Move { .. }) || single.is_some() && i.line() != Some(line));
+            let next_is_other = self.pending.front().is_some_and(|i| {
+                !matches!(i, Item::Move { .. }) || single.is_some() && self.pending.front_step() != Some(step)
+            });
             let programmed_stop = mv.exact_stop;
             if next_is_other || single.is_some() && self.pending.is_empty() {
                 mv.exact_stop = true;
@@ -266,7 +270,7 @@ impl Channel {
                 let done = *t == tag;
                 self.offsets = meta.offsets.clone();
                 if done && self.single_block && self.jog.is_none() && meta.line > 0 {
-                    self.sbl_done = Some(meta.line);
+                    self.sbl_done = Some(self.sbl_step.unwrap_or(meta.line));
                 }
                 self.in_planner.pop_front();
                 if done {
@@ -370,10 +374,12 @@ impl Channel {
             if !self.toff.settled(&self.offsets.toff) {
                 return;
             }
-            // Single block: the block is done once the items of its line are; then stop.
+            // Single block: the block is done once the items of its step are; then stop. Until
+            // the next item is prepared it is not known whether the step goes on.
             if let Some(line) = self.sbl_done
                 && self.planner.is_empty()
-                && self.pending.front().and_then(Item::line) != Some(line)
+                && (!self.pending.is_empty() || self.prep_done)
+                && self.pending.front_step() != Some(line)
             {
                 self.sbl_done = None;
                 self.program_stop(line);

@@ -290,8 +290,10 @@ pub struct Channel {
     /// Single block (SBL1): the program stops after each block that moves.
     pub single_block: bool,
     overrides: Overrides,
-    /// Single block: the line of the block whose moves have just finished.
+    /// Single block: the step (`pending.rs`) whose moves have just finished.
     sbl_done: Option<u32>,
+    /// Single block: the step whose moves are being fed (SBLOF joins blocks into one).
+    sbl_step: Option<u32>,
     /// The JOG motion in progress.
     jog: Option<jog::ActiveJog>,
     /// Counts JOG motions started, so a client can stop only the motion it started.
@@ -413,6 +415,7 @@ impl Channel {
             single_block: false,
             overrides: Overrides::default(),
             sbl_done: None,
+            sbl_step: None,
             jog: None,
             jog_serial: 0,
             interrupted: None,
@@ -725,6 +728,7 @@ impl Channel {
     /// a reset clears and returns the modal state to its reset values.
     pub fn reset(&mut self) {
         self.sbl_done = None;
+        self.sbl_step = None;
         self.probe.disarm();
         self.planner.abort();
         self.pending.clear();

@@ -5,6 +5,9 @@
 //! line 1, a one-line subprogram called with `P3` repeats its line. The main run shows the block
 //! whose item it executes by this number (one integer per item, beside the item rather than in
 //! it, so the `Item` enum and the interpreter stay as they are).
+//!
+//! Beside it, the line single block counts the item to: its own, or the line that names the
+//! step of blocks SBLOF joins (`interp/calls/suppression.rs`).
 
 use std::collections::VecDeque;
 
@@ -19,15 +22,21 @@ pub(super) const NO_SEQ: u32 = 0;
 pub(super) struct PendingItems {
     items: VecDeque<Item>,
     seqs: VecDeque<u32>,
+    /// The single block step of each item (see the module doc).
+    steps: VecDeque<u32>,
     /// The sequence number of the item [`PendingItems::pop_front`] took last, for
     /// [`PendingItems::push_front`].
     popped: u32,
+    /// Its single block step.
+    popped_step: u32,
 }
 
 impl PendingItems {
-    /// Appends an item prepared for the block numbered `seq`.
+    /// Appends an item prepared for the block numbered `seq`, counted to single block step
+    /// `step` when SBLOF joins its block to others (else to its own line).
     #[inline]
-    pub fn push_back(&mut self, seq: u32, item: Item) {
+    pub fn push_back(&mut self, seq: u32, step: Option<u32>, item: Item) {
+        self.steps.push_back(step.or(item.line()).unwrap_or(0));
         self.items.push_back(item);
         self.seqs.push_back(seq);
     }
@@ -36,6 +45,7 @@ impl PendingItems {
     pub fn push_front(&mut self, item: Item) {
         self.items.push_front(item);
         self.seqs.push_front(self.popped);
+        self.steps.push_front(self.popped_step);
     }
 
     /// Takes the front item (its block's number: [`PendingItems::popped_seq`]).
@@ -43,7 +53,20 @@ impl PendingItems {
     pub fn pop_front(&mut self) -> Option<Item> {
         let item = self.items.pop_front()?;
         self.popped = self.seqs.pop_front().unwrap_or(NO_SEQ);
+        self.popped_step = self.steps.pop_front().unwrap_or(0);
         Some(item)
+    }
+
+    /// The single block step of the item [`PendingItems::pop_front`] took last.
+    #[inline]
+    pub fn popped_step(&self) -> u32 {
+        self.popped_step
+    }
+
+    /// The single block step of the front item (see the module doc).
+    #[inline]
+    pub fn front_step(&self) -> Option<u32> {
+        self.steps.front().copied()
     }
 
     /// The block sequence number of the item [`PendingItems::pop_front`] took last.
@@ -78,27 +101,30 @@ impl PendingItems {
 
     pub fn remove(&mut self, i: usize) -> Option<Item> {
         self.seqs.remove(i);
+        self.steps.remove(i);
         self.items.remove(i)
     }
 
     pub fn clear(&mut self) {
         self.items.clear();
         self.seqs.clear();
+        self.steps.clear();
     }
 
     /// Keeps the items for which `keep` holds, each with its sequence number.
     pub fn retain(&mut self, mut keep: impl FnMut(&Item) -> bool) {
-        let mut seqs = std::mem::take(&mut self.seqs).into_iter();
-        let mut kept = VecDeque::with_capacity(self.items.len());
+        let mut tags = std::mem::take(&mut self.seqs).into_iter().zip(std::mem::take(&mut self.steps));
+        let (mut seqs, mut steps) = (VecDeque::with_capacity(self.items.len()), VecDeque::new());
         self.items.retain(|item| {
-            let seq = seqs.next().unwrap_or(NO_SEQ);
+            let (seq, step) = tags.next().unwrap_or((NO_SEQ, 0));
             let keep = keep(item);
             if keep {
-                kept.push_back(seq);
+                seqs.push_back(seq);
+                steps.push_back(step);
             }
             keep
         });
-        self.seqs = kept;
+        (self.seqs, self.steps) = (seqs, steps);
     }
 }
 
@@ -106,7 +132,7 @@ impl PendingItems {
 impl Extend<Item> for PendingItems {
     fn extend<I: IntoIterator<Item = Item>>(&mut self, iter: I) {
         for item in iter {
-            self.push_back(NO_SEQ, item);
+            self.push_back(NO_SEQ, None, item);
         }
     }
 }

@@ -9,6 +9,7 @@ pub(super) mod delobj;
 pub(super) mod effects;
 mod modal_call;
 mod section;
+pub(super) mod suppression;
 pub(super) mod targets;
 
 use std::sync::Arc;
@@ -35,6 +36,8 @@ pub(super) struct CallState {
     pub externs: targets::Externs,
     /// CALLPATH: the directory searched after `_N_SPF_DIR` for called programs.
     pub callpath: Option<crate::programs::Dir>,
+    /// SBLOF/SBLON written as block commands in the main program.
+    pub main_commands: suppression::LevelCommands,
 }
 
 /// The directory of `CALLPATH("path")`; an empty path ends the extension. Called programs are
@@ -99,6 +102,8 @@ pub(super) struct CallFrame {
     saved: Box<(super::Modal, super::Frame, Option<super::Frame>)>,
     /// The PROC line's SAVE, DISPLOF and ACTBLOCNO.
     attributes: ProcAttributes,
+    /// The display and single block suppression in force at this level (`suppression.rs`).
+    commands: suppression::LevelCommands,
 }
 
 impl Interpreter {
@@ -160,6 +165,7 @@ impl Interpreter {
             bound: false,
             saved: Box::new((self.modal.clone(), (*self.pframe).clone(), (*self.iframe).clone())),
             attributes: ProcAttributes::default(),
+            commands: suppression::LevelCommands::default(),
         });
         self.vars.push_frame();
         self.flow = Some(flow);
@@ -186,7 +192,7 @@ impl Interpreter {
     /// block that called the outermost such subprogram and the level it is in (`None`: the
     /// main program). `None` while the blocks are shown as themselves.
     pub fn hidden_by_call(&self) -> Option<(u32, Option<Arc<Level>>)> {
-        let at = self.calls.iter().position(|f| f.bound && f.attributes.displof)?;
+        let at = suppression::outermost_hiding(&self.calls)?;
         let &(line, _) = self.calls[at].level.calls.last()?;
         let caller = at.checked_sub(1).map(|i| self.calls[i].level.clone());
         Some((line, caller))
@@ -202,6 +208,7 @@ impl Interpreter {
         let Some(frame) = self.calls.last_mut().filter(|f| !f.bound) else { return Ok(()) };
         frame.bound = true;
         frame.attributes = attributes;
+        frame.commands = suppression::LevelCommands::of_proc(attributes);
         if frame.args.len() > params.len() {
             return Err(Alarm::too_many_arguments(
                 line,

@@ -1,10 +1,12 @@
 //! Evaluation of expressions: operators with the control's semantics, the predefined
 //! functions, variables and system variables.
 
+pub(super) mod assignment_block;
 pub(super) mod cycle_constants;
 pub(super) mod cycle_vars;
 pub(super) mod indirect_axis;
 pub(crate) mod machine_data;
+pub(super) mod name_hash;
 pub(crate) mod nc_constants;
 pub(super) mod numeric;
 pub(super) mod scope;

@@ -6,8 +6,8 @@
 //!   block) are accepted and run as FNORM's constant feed for now.
 //! - `DRFOF`: clears the handwheel (DRF) offsets; NCTwin applies none, so there is nothing to clear.
 //! - `SBLOF`/`SBLON` (single-block suppression) and `DISPLOF`/`DISPLON` (block display of a
-//!   cycle) in a block: accepted; the single-block stop and the block display are not
-//!   suppressed.
+//!   cycle) in a block: no word of the block's own; they act on the blocks after them
+//!   (`calls/suppression.rs`).
 //! - `GROUP_BEGIN(..)`/`GROUP_END(..)`: the program editor's structure markers; no effect.
 //! - `ACTBLOCNO` in a block (on the PROC line it keeps a DISPLOF subprogram's alarms at its own
 //!   block: `calls.rs`, `alarm_as_displayed`).

@@ -77,6 +77,10 @@ pub(super) struct Flow {
     /// What the last run of a subprogram called from here learned of its text, for the next
     /// call of the same text (a cycle called at every position).
     callee: Option<Box<Learned>>,
+    /// Where the PROC line of this subprogram text starts, once a call has bound its
+    /// parameters there with only comment lines before it (a cycle's header): later calls of
+    /// the same text start reading there, as those lines do nothing.
+    pub proc_at: Option<Pos>,
 }
 
 /// A finished run's `furthest` and cache, with the text they belong to (kept alive with them,
@@ -87,6 +91,7 @@ struct Learned {
     furthest: usize,
     cache: Option<BlockCache>,
     jumps: Option<Box<JumpMemo>>,
+    proc_at: Option<Pos>,
 }
 
 /// The state of the read, without what only saves work (`furthest`, the cache, the jump memo,
@@ -123,6 +128,7 @@ impl Flow {
             cache: None,
             jumps: None,
             callee: None,
+            proc_at: None,
         }
     }
 
@@ -132,6 +138,7 @@ impl Flow {
         let mut flow = Flow::new(text);
         if let Some(learned) = caller.callee.take().filter(|l| same_text(&l.text, &flow.text)) {
             (flow.furthest, flow.cache, flow.jumps) = (learned.furthest, learned.cache, learned.jumps);
+            flow.start_at_proc(learned.proc_at);
         }
         flow
     }
@@ -140,20 +147,28 @@ impl Flow {
     pub fn rerun(self) -> Flow {
         let mut flow = Flow::new(self.text);
         (flow.furthest, flow.cache, flow.jumps) = (self.furthest, self.cache, self.jumps);
+        flow.start_at_proc(self.proc_at);
         flow
+    }
+
+    /// Starts the read at the PROC line a run before learned (see [`Flow::proc_at`]).
+    fn start_at_proc(&mut self, proc_at: Option<Pos>) {
+        if let Some(at) = proc_at {
+            (self.next, self.current, self.proc_at) = (at, at, Some(at));
+        }
     }
 
     /// Hands what this finished subprogram run learned to the `caller` it returns to.
     pub fn return_to(self, caller: &mut Flow) {
-        let Flow { text, furthest, cache, jumps, .. } = self;
-        caller.callee = Some(Box::new(Learned { text, furthest, cache, jumps }));
+        let Flow { text, furthest, cache, jumps, proc_at, .. } = self;
+        caller.callee = Some(Box::new(Learned { text, furthest, cache, jumps, proc_at }));
     }
 
     /// Takes back a block that was read and is done with: a parsed block's word list serves
     /// the next block parsed.
     pub fn recycle(&mut self, block: ReadBlock) {
         match block {
-            ReadBlock::Parsed(block) => self.recycle_parsed(block),
+            ReadBlock::Parsed(block) => self.recycle_parsed(*block),
             ReadBlock::Cached(_) => {}
         }
     }
@@ -187,7 +202,7 @@ impl Flow {
                     cache.put(from, Arc::clone(&block), self.next);
                     Ok(ReadBlock::Cached(block))
                 }
-                other => other.map(ReadBlock::Parsed),
+                other => other.map(|b| ReadBlock::Parsed(Box::new(b))),
             },
             at,
         ))
@@ -201,7 +216,7 @@ impl Flow {
             return self.read();
         }
         let (block, at) = self.read_with(lang::read_statement_block)?;
-        Some((block.map(ReadBlock::Parsed), at))
+        Some((block.map(|b| ReadBlock::Parsed(Box::new(b))), at))
     }
 
     fn read_with(&mut self, reader: BlockReader) -> Option<(Result<Block, lang::Diagnostic>, Pos)> {
@@ -222,7 +237,14 @@ impl Flow {
     pub fn skip(&mut self, from_line: u32, stop: impl Fn(&Stmt) -> bool) -> Result<Stmt, Alarm> {
         let mut depth = 0usize;
         // Only statements open, close or end the skipped part.
-        while let Some((block, _)) = self.read_statement() {
+        loop {
+            if let Some(found) = self.skip_cached(&mut depth, &stop) {
+                match found {
+                    Some(stmt) => return Ok(stmt),
+                    None => continue,
+                }
+            }
+            let Some((block, _)) = self.read_statement() else { break };
             let Ok(block) = block else { continue };
             let Some(stmt) = block.stmt.as_ref() else {
                 self.recycle(block);
@@ -233,7 +255,7 @@ impl Flow {
                 let stmt = match block {
                     ReadBlock::Parsed(mut block) => {
                         let stmt = block.stmt.take();
-                        self.recycle_parsed(block);
+                        self.recycle_parsed(*block);
                         stmt
                     }
                     ReadBlock::Cached(_) => block.stmt.clone(),
@@ -248,6 +270,28 @@ impl Flow {
             }
         }
         Err(Alarm::nesting(from_line, "the structure is never closed"))
+    }
+
+    /// One step of [`Flow::skip`] over a line kept parsed (a branch skipped on every pass of a
+    /// loop or call), looked at in the cache without taking a share of it: `None` if the line
+    /// at the read position is not kept, else the statement found (`stop` at depth 0) or `None`.
+    fn skip_cached(&mut self, depth: &mut usize, stop: &impl Fn(&Stmt) -> bool) -> Option<Option<Stmt>> {
+        let (block, next) = self.cache.as_ref()?.peek(self.next)?;
+        let at = Pos { offset: block.offset, line: block.line };
+        let found = match block.stmt.as_ref() {
+            Some(stmt) if *depth == 0 && stop(stmt) => Some(stmt.clone()),
+            Some(stmt) if opens(stmt) => {
+                *depth += 1;
+                None
+            }
+            Some(stmt) if closes(stmt) => {
+                *depth = depth.saturating_sub(1);
+                None
+            }
+            _ => None,
+        };
+        (self.next, self.current) = (next, at);
+        Some(found)
     }
 
     /// Pushes a control structure, checking the nesting depth.
@@ -474,6 +518,27 @@ mod tests {
         // A repeated call (`CYC P3`) reruns with what its last run learned.
         let mut again = callee.rerun();
         assert!(run(&mut again).iter().all(|b| matches!(b, ReadBlock::Cached(_))));
+    }
+
+    #[test]
+    fn a_subprogram_called_again_starts_at_its_proc_line() {
+        // A cycle's header: two comment lines (9 and 7 bytes) before the PROC line.
+        let stored: Arc<str> = Arc::from("; header\n; more\nPROC CYC\nM17\n");
+        let mut caller = Flow::new(ProgramText::from_owner("CYC\nCYC\nM30\n".to_string()));
+        let mut first = Flow::for_call(ProgramText::from(Arc::clone(&stored)), &mut caller);
+        assert_eq!(first.next, Pos { offset: 0, line: 1 });
+        // What `step_program` notes when the PROC line binds the call.
+        first.proc_at = Some(Pos { offset: 16, line: 3 });
+        first.return_to(&mut caller);
+        let mut second = Flow::for_call(ProgramText::from(Arc::clone(&stored)), &mut caller);
+        assert_eq!(second.next, Pos { offset: 16, line: 3 });
+        let (block, at) = second.read().expect("the PROC line");
+        assert!(matches!(block.expect("no syntax error").stmt, Some(Stmt::Proc { .. })));
+        assert_eq!(at.line, 3);
+        // A repetition (`CYC P2`) starts there too; another text from its start.
+        assert_eq!(second.rerun().next.line, 3);
+        let other = ProgramText::from_owner("; header\n; more\nPROC CYC\nM17\n".to_string());
+        assert_eq!(Flow::for_call(other, &mut caller).next.line, 1);
     }
 
     #[test]

@@ -65,7 +65,14 @@ impl Interpreter {
             self.run_effect_calls(block.to_mut(), cfg, programs, out)?;
         }
         match &block.stmt {
-            Some(Stmt::Proc { params, attributes, .. }) => self.bind_params(params, *attributes, block.line)?,
+            Some(Stmt::Proc { params, attributes, .. }) => {
+                let unbound = self.call_unbound();
+                self.bind_params(params, *attributes, block.line)?;
+                if let Some(flow) = self.flow.as_mut().filter(|_| unbound) {
+                    // Only comment lines came before: the next call of this text starts here.
+                    flow.proc_at = Some(at);
+                }
+            }
             Some(stmt) => {
                 self.check_unbound(block.line)?;
                 self.statement(stmt, &block, at, cfg, out)?;
@@ -74,7 +81,12 @@ impl Interpreter {
                 // Comment lines before a subprogram's PROC line leave its call unbound.
                 if !block.words.is_empty() || block.number.is_some() || block.label.is_some() {
                     self.check_unbound(block.line)?;
-                    self.prepare_block(&block, cfg, programs, out)?;
+                    if self.assigns_variables_only(&block) {
+                        self.assignment_block(&block, cfg, out)?;
+                    } else {
+                        self.prepare_block(&block, cfg, programs, out)?;
+                        self.level_commands(&block);
+                    }
                 } else if !self.call_unbound() {
                     self.prepare_block(&block, cfg, programs, out)?;
                 }

@@ -305,4 +305,9 @@ pub struct ProcAttributes {
     pub displof: bool,
     /// `ACTBLOCNO` (with DISPLOF): alarms name the subprogram's own block after all.
     pub actblocno: bool,
+    /// `SBLOF`: in single block mode the subprogram runs as one step with its calling block
+    /// (the standard cycles stop once, after the cycle).
+    pub sblof: bool,
+    /// `DISPLON`: the subprogram's blocks are displayed although its caller's are not.
+    pub displon: bool,
 }

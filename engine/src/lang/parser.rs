@@ -592,8 +592,7 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
         let (dims, _) = parse_indices(cur, MAX_EXPR_DEPTH)?;
         Ok(Param { by_reference, ty, name: pname, dims })
     })?;
-    // Attributes: SAVE, DISPLOF and ACTBLOCNO matter to the interpreter; SBLOF, ... need no
-    // action here.
+    // Attributes: SAVE, DISPLOF, DISPLON, SBLOF and ACTBLOCNO matter to the interpreter.
     let mut attributes = ProcAttributes::default();
     loop {
         cur.skip_ws();
@@ -605,6 +604,8 @@ fn parse_proc(cur: &mut Cursor) -> PResult<Stmt> {
                 attributes.save |= cur.span_is(span, "SAVE");
                 attributes.displof |= cur.span_is(span, "DISPLOF");
                 attributes.actblocno |= cur.span_is(span, "ACTBLOCNO");
+                attributes.sblof |= cur.span_is(span, "SBLOF");
+                attributes.displon |= cur.span_is(span, "DISPLON");
             }
             None if cur.at_end() => break,
             None => cur.pos += 1,

@@ -9,8 +9,8 @@ use nctwin_engine::alarm::Alarm;
 
 const MAX_TICKS: usize = 5_000_000;
 
-/// One IPO cycle: simulated time, WCS X (radius), WCS Z, the spindle's machine angle (degrees)
-/// and machine X (the radius, whatever the programming mode).
+/// One IPO cycle: simulated time, WCS X (radius), WCS Z, the spindle's machine angle (degrees),
+/// machine X (the radius, whatever the programming mode) and machine Z.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
     pub t: f64,
@@ -18,6 +18,7 @@ pub struct Sample {
     pub z: f64,
     pub sp: f64,
     pub mx: f64,
+    pub mz: f64,
 }
 
 /// What a run leaves: every cycle's sample, the alarms raised and R1..R6 at the end.
@@ -54,6 +55,7 @@ fn sample(ch: &Channel) -> Sample {
         z: get(&s.workpiece, "Z"),
         sp: get(&s.machine, "SP1"),
         mx: get(&s.machine, "X1"),
+        mz: get(&s.machine, "Z1"),
     }
 }
 

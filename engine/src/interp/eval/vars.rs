@@ -3,8 +3,7 @@
 //! Global user data (GUD-like, `DEF CHAN ...` / `DEF NCK ...`) and R parameters live for the
 //! session; local variables (`DEF ...`) live for one program or subprogram call.
 
-use std::collections::BTreeMap;
-
+use crate::interp::eval::name_hash::NameMap;
 use crate::interp::eval::value::{TypeError, Value};
 use crate::interp::frames::frame::Frame;
 use crate::lang::VarType;
@@ -67,16 +66,17 @@ impl Variable {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Variables {
     pub r: Vec<f64>,
-    globals: BTreeMap<String, Variable>,
+    /// By name, hashed (`name_hash`): read at nearly every statement of a cycle.
+    globals: NameMap<Variable>,
     /// One frame of locals per active program level (main program, subprogram calls).
-    locals: Vec<BTreeMap<String, Variable>>,
+    locals: Vec<NameMap<Variable>>,
     /// What all declared variables occupy, by [`Variable::footprint`].
     bytes: usize,
 }
 
 impl Default for Variables {
     fn default() -> Self {
-        Variables { r: vec![0.0; R_PARAMS], globals: BTreeMap::new(), locals: vec![BTreeMap::new()], bytes: 0 }
+        Variables { r: vec![0.0; R_PARAMS], globals: NameMap::default(), locals: vec![NameMap::default()], bytes: 0 }
     }
 }
 
@@ -115,7 +115,7 @@ impl Variables {
 
     /// Enters a subprogram level.
     pub fn push_frame(&mut self) {
-        self.locals.push(BTreeMap::new());
+        self.locals.push(NameMap::default());
     }
 
     /// Leaves a subprogram level, dropping its locals.
@@ -128,7 +128,7 @@ impl Variables {
 
     /// Starts a new main program: its locals are fresh, R parameters and globals stay.
     pub fn reset_locals(&mut self) {
-        self.locals = vec![BTreeMap::new()];
+        self.locals = vec![NameMap::default()];
         self.bytes = self.globals.values().map(Variable::bytes).sum();
     }
 }

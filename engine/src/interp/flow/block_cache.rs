@@ -22,12 +22,13 @@ pub(super) const SLOTS: usize = 128;
 pub(super) const MAX_SLOTS: usize = 1024;
 
 /// A block read from the program: parsed just now (its own to change and recycle), or shared
-/// with the cache. A parsed block stays unboxed: a box would cost an allocation per block read
-/// on the way of every line that is read once.
+/// with the cache. A parsed block is boxed: the read is handed on by value three or four times
+/// before the block runs, and a whole `Block` copied each time cost more than the box's
+/// allocation (a cycle's body, read from the cache at every call, paid the copies of the big
+/// variant for a pointer).
 #[derive(Debug)]
-#[allow(clippy::large_enum_variant)]
 pub(crate) enum ReadBlock {
-    Parsed(Block),
+    Parsed(Box<Block>),
     Cached(Arc<CachedBlock>),
 }
 
@@ -61,7 +62,7 @@ impl ReadBlock {
     /// first, so the cache keeps the text's block.
     pub fn to_mut(&mut self) -> &mut Block {
         if let ReadBlock::Cached(shared) = self {
-            *self = ReadBlock::Parsed(shared.block.clone());
+            *self = ReadBlock::Parsed(Box::new(shared.block.clone()));
         }
         match self {
             ReadBlock::Parsed(b) => b,
@@ -125,6 +126,13 @@ impl BlockCache {
     pub fn get(&self, from: Pos) -> Option<(Arc<CachedBlock>, Pos)> {
         let entry = self.slots[self.slot(from)].as_ref().filter(|e| e.from == from.offset)?;
         Some((Arc::clone(&entry.block), entry.next))
+    }
+
+    /// As [`BlockCache::get`], lending the block instead of sharing it: a skipped line is only
+    /// looked at.
+    pub fn peek(&self, from: Pos) -> Option<(&Block, Pos)> {
+        let entry = self.slots[self.slot(from)].as_ref().filter(|e| e.from == from.offset)?;
+        Some((&entry.block.block, entry.next))
     }
 
     /// Keeps the block a read from `from` found (replacing the slot's older line).
@@ -204,7 +212,7 @@ mod tests {
         for (text, effects, main_run) in
             [("X10", false, false), ("SPOS=90", false, true), ("R1=DELOBJ(\"K\") X=$AA_IM[X]", true, true)]
         {
-            let parsed = ReadBlock::Parsed(parse_block(text, 1, 0).expect("valid").expect("not empty"));
+            let parsed = ReadBlock::Parsed(Box::new(parse_block(text, 1, 0).expect("valid").expect("not empty")));
             let cached = ReadBlock::Cached(block(text, 1, 0));
             for read in [&parsed, &cached, &cached] {
                 assert_eq!((read.has_effect_calls(), read.reads_main_run()), (effects, main_run), "{text}");

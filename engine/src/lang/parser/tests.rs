@@ -229,7 +229,14 @@ fn control_flow_statements_are_recognised() {
     assert_eq!(stmt("GOTOB N100"), Stmt::Goto(Goto { kind: GotoKind::Backward, target: JumpTarget::BlockNumber(100) }));
     assert!(matches!(
         stmt("PROC P DISPLOF SBLOF"),
-        Stmt::Proc { attributes: ProcAttributes { save: false, displof: true, actblocno: false }, .. }
+        Stmt::Proc {
+            attributes: ProcAttributes { save: false, displof: true, actblocno: false, sblof: true, displon: false },
+            ..
+        }
+    ));
+    assert!(matches!(
+        stmt("PROC P DISPLON"),
+        Stmt::Proc { attributes: ProcAttributes { displof: false, sblof: false, displon: true, .. }, .. }
     ));
     assert!(matches!(
         stmt("PROC P(INT COUNT) DISPLOF, SAVE"),
