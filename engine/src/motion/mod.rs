@@ -20,4 +20,4 @@ pub use curve::Curve;
 pub use ori_curve::TwoCurves;
 pub use orientation::{Antiparallel, OriPath, rotate};
 pub use path::{Arc, AxisVec, Path};
-pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed};
+pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed, stop_speed};
