@@ -507,7 +507,7 @@ impl Planner {
                 // SOFT's state: a later SOFT move starts from constant velocity.
                 self.acc = 0.0;
             }
-            self.brake_limited_at(v_new, remaining, a, v_end, many, true)
+            self.brake_limited_at(v_new, remaining, a, v_end, many, 0.0)
         };
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
@@ -620,25 +620,28 @@ impl Planner {
     /// met. Looks past the front move so that a cycle which crosses into the next move cannot
     /// arrive too fast. A transition that `v` can meet is recognised without the square root of
     /// [`brake_speed`] (`brake_speed(d, v_end, a) ≥ v ⇔ v·(v + a·dt) ≤ 2·a·d + v_end²`), so a
-    /// cycle far from any braking point takes none; one planned at or above `v` needs no
-    /// braking at all (see [`Planner::brake_limited_at`]).
+    /// cycle far from any braking point takes none; one planned at or above `v` and `free` needs
+    /// no braking at all (see [`Planner::brake_limited_at`]).
     #[inline(always)]
-    fn brake_limited(&self, v: f64) -> f64 {
+    fn brake_limited(&self, v: f64, free: f64) -> f64 {
         let (Some(front), Some(&v_end)) = (self.queue.front(), self.v_end.front()) else { return v };
-        self.brake_limited_at(v, front.length - self.s, front.a_max, v_end, self.queue.len() > 1, false)
+        self.brake_limited_at(v, front.length - self.s, front.a_max, v_end, self.queue.len() > 1, free)
     }
 
     /// [`Planner::brake_limited`] from the front move's scalars: the distance to its end, its
     /// deceleration, its planned end speed and whether another move follows.
     ///
-    /// With `seams` (BRISK), a transition planned at or above the speed so far does not limit
-    /// it: that speed may cross it as it is. (The braking condition with its one-cycle reserve
-    /// is conservative, by `v_end·dt` and more: applied there it lowered the path speed for a
+    /// A transition planned at or above both the speed so far and `free` does not limit it:
+    /// that speed may cross it as it is. (The braking condition with its one-cycle reserve is
+    /// conservative, by `v_end·dt` and more: applied there it lowered the path speed for a
     /// cycle at every seam of a chain of collinear or tangent moves, where the transition
-    /// speed is the feed.) SOFT's fallback keeps the conservative limit its S curves were
-    /// tuned against (without it the jerk bound of `tests/dynamics.rs` is exceeded).
+    /// speed is the feed.) BRISK passes 0. SOFT's fallback passes its velocity target: a
+    /// transition planned below the target is kept with the conservative limit its S curves
+    /// brake against (were it dropped, the fallback would let the path arrive faster than the
+    /// S curve planned, and the crossing clamp would jump), one at or above it is never
+    /// reached faster, as the S curve does not pass its target.
     #[inline(always)]
-    fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool, seams: bool) -> f64 {
+    fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool, free: f64) -> f64 {
         let dt = self.dt;
         // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
         // (moves split by a kinematic transformation may decelerate very differently).
@@ -646,20 +649,20 @@ impl Planner {
         // The front move's own transition first, without the queue's iterators: most cycles
         // look no farther. The same arithmetic as the loop's first pass.
         let mut limit = v;
-        if !seams || limit > v_end {
+        if limit.max(free) > v_end {
             let reserve = if many { v_end * dt } else { 0.0 };
             limit = brake_bound(limit, distance - reserve, v_end, a, dt);
         }
         if v_end == 0.0 || distance > limit * limit / a_min {
             return limit;
         }
-        self.brake_limited_ahead(distance, a, limit, seams)
+        self.brake_limited_ahead(distance, a, limit, free)
     }
 
     /// [`Planner::brake_limited`] past the front move, from the distance to its end, the
     /// smallest deceleration so far and the limit so far (out of line: rarely reached).
     #[inline(never)]
-    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64, seams: bool) -> f64 {
+    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64, free: f64) -> f64 {
         let dt = self.dt;
         let a_min = self.a_min;
         let n = self.queue.len();
@@ -667,7 +670,7 @@ impl Planner {
             distance += mv.length;
             a = a.min(mv.a_max);
             // One cycle at the transition speed is kept in reserve for the crossing cycle.
-            if !seams || limit > v_end {
+            if limit.max(free) > v_end {
                 let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
                 limit = brake_bound(limit, distance - reserve, v_end, a, dt);
             }
@@ -849,7 +852,7 @@ mod tests {
         for i in 0..=20 {
             p.s = p.queue[0].length * f64::from(i) / 20.0;
             for v in [0.0, 1.0, 10.0, 37.5, 80.0, 150.0, 400.0, f64::INFINITY] {
-                let brisk = p.brake_limited_at(v, p.queue[0].length - p.s, p.queue[0].a_max, p.v_end[0], true, true);
+                let brisk = p.brake_limited_at(v, p.queue[0].length - p.s, p.queue[0].a_max, p.v_end[0], true, 0.0);
                 let (got, want) = (brisk, reference(&p, v));
                 assert!((got - want).abs() <= 1e-12 * want.max(1.0), "s {} v {v}: {got} vs {want}", p.s);
                 checked += usize::from(want < v);
