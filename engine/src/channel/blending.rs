@@ -76,12 +76,12 @@ impl Channel {
         }
         mv.blend?;
         let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
-        if !(geo_moves(mv, &metric) && geo_moves(next, &metric)) {
-            return None;
-        }
         if mv.axis_tangents.is_some() {
             // A transformed move: rounded in the BCS, planned for the machine axes again.
-            return self.round_transformed(mv, full, &metric, &limits);
+            return self.round_transformed(mv, full, &limits);
+        }
+        if !(geo_moves(mv, &metric) && geo_moves(next, &metric)) {
+            return None;
         }
         let next_full = next.length;
         let Rounded { first, corner, second, .. } = blend::round_corner(mv, next, full, &metric, &limits)?;
@@ -98,6 +98,6 @@ fn moves_axis(mv: &Move, k: usize) -> bool {
 }
 
 /// True if `mv` moves a geometry axis (the feed's length is theirs).
-fn geo_moves(mv: &Move, metric: &AxisVec) -> bool {
+pub(super) fn geo_moves(mv: &Move, metric: &AxisVec) -> bool {
     (0..MAX_CHANNEL_AXES).any(|k| metric[k] > 0.0 && moves_axis(mv, k))
 }

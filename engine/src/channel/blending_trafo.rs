@@ -11,29 +11,34 @@
 //! it) or fails: the pieces must stay one move each.
 
 use super::Channel;
+use super::blending::geo_moves;
 use crate::interp::Item;
 use crate::kinematics::plan::plan_block;
 use crate::kinematics::{ActiveTrafo, Transformation};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::blend_ori::round_transformed_corner;
 use crate::motion::{AxisLimit, AxisVec, Move, Path};
 
 impl Channel {
     /// Rounds the corner between the transformed move `mv` and the next prepared move (see the
     /// module doc): as [`Channel::round_corner`], with `full` `mv`'s programmed length.
-    pub(super) fn round_transformed(
-        &mut self,
-        mv: &mut Move,
-        full: f64,
-        metric: &AxisVec,
-        limits: &[AxisLimit],
-    ) -> Option<Move> {
+    pub(super) fn round_transformed(&mut self, mv: &mut Move, full: f64, limits: &[AxisLimit]) -> Option<Move> {
         let Some(Item::Move { mv: next, offsets, .. }) = self.pending.front() else { return None };
         if next.axis_tangents.is_none() {
             return None;
         }
         let active = offsets.trafo.clone()?;
+        // The path length is the BCS geometry axes' (TRANSMIT's Y has no channel axis of its
+        // own outside the transformation).
+        let mut metric: AxisVec = [0.0; MAX_CHANNEL_AXES];
+        for k in active.trafo.geo_slots().into_iter().flatten() {
+            metric[k] = 1.0;
+        }
+        if !(geo_moves(mv, &metric) && geo_moves(next, &metric)) {
+            return None;
+        }
         let orientation_of = |p: &AxisVec| active.trafo.orientation(p);
-        let rounded = round_transformed_corner(mv, next, full, metric, limits, &orientation_of)?;
+        let rounded = round_transformed_corner(mv, next, full, &metric, limits, &orientation_of)?;
         let start = machine_at(&active, &mv.path)?;
         let (first, at) = plan_one(&active, &rounded.first, &start, &self.cfg)?;
         let (corner, at) = plan_one(&active, &rounded.corner, &at, &self.cfg)?;

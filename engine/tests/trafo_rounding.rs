@@ -1,6 +1,7 @@
-//! Corner rounding under TRAORI (Function Manual B1, G642 with the contour tolerance CTOL and
-//! the orientation tolerance OTOL): the tool tip's corner is rounded in the BCS within CTOL,
-//! the orientation within OTOL, and every machine axis keeps its limits. On the CA head preset
+//! Corner rounding under kinematic transformations (Function Manual B1, G642 with the contour
+//! tolerance CTOL and the orientation tolerance OTOL): the tool tip's corner is rounded in the
+//! BCS within CTOL, the orientation within OTOL, and every machine axis keeps its limits. The
+//! TRAORI tests run on the CA head preset
 //! (`mill5-head-ca`: C about Z carrying A about X, pivot 150 mm above the spindle nose, T1 of
 //! 100 mm), whose closed form gives the tip and the orientation of every machine sample:
 //! `o = (sin C·sin A, −cos C·sin A, cos A)`, tip `P = M − 250·o + (0, 0, 150)`.
@@ -141,4 +142,30 @@ fn a_corner_where_the_orientation_turns_too_is_rounded_within_otol() {
     assert!(wide_ori > 0.01, "OTOL=10: the orientation passes at {wide_ori}°, more than 0.01°");
     assert!(ori <= 0.01 * (1.0 + 1e-3) && ori > 0.0, "OTOL=0.01: the orientation passes at {ori}°");
     assert!(tip_d < wide_tip && tip_d > 0.0, "OTOL=0.01: the tip passes at {tip_d} mm");
+}
+
+#[test]
+fn a_square_on_the_face_under_transmit_is_rounded_within_ctol() {
+    // The manual's TRANSMIT square (Transformations FM, M1 §2.1.5: T1, the face milled with the
+    // radial axis XC and C) under G642 CTOL=0.05 at F60: the face corners (−10, −10),
+    // (−10, 10) and (10, 10), 14.1 mm from the centre, are rounded in the BCS as on a
+    // Cartesian machine: each passed at 0.049..0.05 mm (the samples 0.004 mm apart, the
+    // chords' sagitta below 1e-4 mm). Polar: x = XC·cos C, y = XC·sin C.
+    let program = "T1 D1 G17 G90 G94\nG0 X20 Z10\nTRANSMIT\nG1 F60 X10 Y-10\n\
+        G642 CTOL=0.05 X-10\nY10\nX10\nY-10\nM30";
+    let mut ch = Channel::from_preset("transmit-example", "").unwrap();
+    ch.run_program(program).unwrap();
+    let mut face = Vec::new();
+    while ch.is_busy() {
+        ch.step();
+        let p = ch.axis_positions();
+        let c = p[1].to_radians();
+        face.push([p[0] * c.cos(), p[0] * c.sin(), 0.0]);
+        assert!(face.len() < 1_000_000);
+    }
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    for c in [[-10.0, -10.0, 0.0], [-10.0, 10.0, 0.0], [10.0, 10.0, 0.0]] {
+        let d = to_polyline(c, &face);
+        assert!((0.049..=0.05 + 1e-4).contains(&d), "corner {c:?}: passed at {d} mm");
+    }
 }
