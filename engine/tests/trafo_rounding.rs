@@ -8,19 +8,23 @@
 
 use nctwin_engine::Channel;
 
-/// The machine positions (X, Y, Z, A, C) of every IPO cycle of `program`.
-fn run(program: &str) -> (Channel, Vec<[f64; 5]>) {
-    let mut ch = Channel::from_preset("mill5-head-ca", "").unwrap();
+/// `sample` of the channel axes' positions in every IPO cycle of `program` on `preset`.
+fn run_on<T>(preset: &str, program: &str, sample: impl Fn(&[f64]) -> T) -> (Channel, Vec<T>) {
+    let mut ch = Channel::from_preset(preset, "").unwrap();
     ch.run_program(program).unwrap();
     let mut out = Vec::new();
     while ch.is_busy() {
         ch.step();
-        let p = ch.axis_positions();
-        out.push([p[0], p[1], p[2], p[3], p[4]]);
+        out.push(sample(ch.axis_positions()));
         assert!(out.len() < 2_000_000, "the program does not end");
     }
     assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
     (ch, out)
+}
+
+/// The machine positions (X, Y, Z, A, C) of every IPO cycle of `program` on the CA head.
+fn run(program: &str) -> (Channel, Vec<[f64; 5]>) {
+    run_on("mill5-head-ca", program, |p| [p[0], p[1], p[2], p[3], p[4]])
 }
 
 fn orientation(m: &[f64; 5]) -> [f64; 3] {
@@ -153,17 +157,10 @@ fn a_square_on_the_face_under_transmit_is_rounded_within_ctol() {
     // chords' sagitta below 1e-4 mm). Polar: x = XC·cos C, y = XC·sin C.
     let program = "T1 D1 G17 G90 G94\nG0 X20 Z10\nTRANSMIT\nG1 F60 X10 Y-10\n\
         G642 CTOL=0.05 X-10\nY10\nX10\nY-10\nM30";
-    let mut ch = Channel::from_preset("transmit-example", "").unwrap();
-    ch.run_program(program).unwrap();
-    let mut face = Vec::new();
-    while ch.is_busy() {
-        ch.step();
-        let p = ch.axis_positions();
+    let (_, face) = run_on("transmit-example", program, |p| {
         let c = p[1].to_radians();
-        face.push([p[0] * c.cos(), p[0] * c.sin(), 0.0]);
-        assert!(face.len() < 1_000_000);
-    }
-    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+        [p[0] * c.cos(), p[0] * c.sin(), 0.0]
+    });
     for c in [[-10.0, -10.0, 0.0], [-10.0, 10.0, 0.0], [10.0, 10.0, 0.0]] {
         let d = to_polyline(c, &face);
         assert!((0.049..=0.05 + 1e-4).contains(&d), "corner {c:?}: passed at {d} mm");

@@ -24,9 +24,8 @@ impl Channel {
     /// module doc): as [`Channel::round_corner`], with `full` `mv`'s programmed length.
     pub(super) fn round_transformed(&mut self, mv: &mut Move, full: f64, limits: &[AxisLimit]) -> Option<Move> {
         let Some(Item::Move { mv: next, offsets, .. }) = self.pending.front() else { return None };
-        if next.axis_tangents.is_none() {
-            return None;
-        }
+        // Both transformed (the next move's machine rates are known).
+        next.axis_tangents.as_ref()?;
         let active = offsets.trafo.clone()?;
         // The path length is the BCS geometry axes' (TRANSMIT's Y has no channel axis of its
         // own outside the transformation).
