@@ -138,8 +138,11 @@ fn cycle832_tolerance_bounds_the_rounded_corner() {
     let (_, rough) = run_xy(&square("CYCLE832(0.1,_ROUGH,1)"));
     let (_, off) = run_xy(&square("CYCLE832(0.1,_OFF)"));
     let (f, r, o) = (corner_gap(&fine), corner_gap(&rough), corner_gap(&off));
-    assert!(f <= 0.01 + 1e-9 && f > 0.001, "finishing: {f}");
-    assert!(r <= 0.1 + 1e-9 && r > 0.01, "roughing: {r}");
+    // The samples, 0.004 mm apart, need not hit the path's point nearest the corner (at the
+    // tolerance): one within s = 0.002 mm of it along the path is about s²/(2·tol) farther
+    // from the corner (the path bends away from it), 0.0002 mm for 0.01: allowed 0.0005.
+    assert!(f <= 0.01 + 5e-4 && f > 0.001, "finishing: {f}");
+    assert!(r <= 0.1 + 5e-4 && r > 0.01, "roughing: {r}");
     // Deselected: G64 without rounding runs into the corner point (the last IPO sample before
     // the standstill may stop a few µm short of it under SOFT).
     assert!(o < 0.0005, "deselected: {o}");

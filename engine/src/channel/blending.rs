@@ -18,7 +18,7 @@ use crate::motion::{AxisLimit, AxisVec, Move};
 pub(super) struct Blending {
     /// The first prepared move was shortened at its start by the corner before it: its
     /// length now (bits) and its programmed length (the 36 % rule refers to that).
-    trimmed: Option<(u64, f64)>,
+    pub(super) trimmed: Option<(u64, f64)>,
     /// The compressor's passage through the start point of the first prepared move.
     junction: Option<Junction>,
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
@@ -76,11 +76,15 @@ impl Channel {
         }
         mv.blend?;
         let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
+        if mv.axis_tangents.is_some() {
+            // A transformed move: rounded in the BCS, planned for the machine axes again.
+            return self.round_transformed(mv, full, &limits);
+        }
         if !(geo_moves(mv, &metric) && geo_moves(next, &metric)) {
             return None;
         }
         let next_full = next.length;
-        let Rounded { first, corner, second } = blend::round_corner(mv, next, full, &metric, &limits)?;
+        let Rounded { first, corner, second, .. } = blend::round_corner(mv, next, full, &metric, &limits)?;
         *mv = first;
         *next = second;
         self.blending.trimmed = Some((next.length.to_bits(), next_full));
@@ -94,6 +98,6 @@ fn moves_axis(mv: &Move, k: usize) -> bool {
 }
 
 /// True if `mv` moves a geometry axis (the feed's length is theirs).
-fn geo_moves(mv: &Move, metric: &AxisVec) -> bool {
+pub(super) fn geo_moves(mv: &Move, metric: &AxisVec) -> bool {
     (0..MAX_CHANNEL_AXES).any(|k| metric[k] > 0.0 && moves_axis(mv, k))
 }

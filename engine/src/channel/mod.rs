@@ -12,6 +12,7 @@
 pub mod action_log;
 mod active_program;
 mod blending;
+mod blending_trafo;
 mod cartesian_jog;
 mod command_axes;
 mod exact_stop;

@@ -25,8 +25,9 @@
 //!   where the block change after G60/G9 waits for the window (`channel/exact_stop.rs`); under
 //!   FFWON the following error is zero and the three are alike.
 //! - `ADIS`/`ADISPOS` are modal and 0 after reset: G641 without them rounds nothing.
-//! - `OTOL` and the orientation: moves with a vector-interpolated orientation (TRAORI with
-//!   ORIVECT ...) and moves split for a transformation are not rounded.
+//! - `OTOL` and the orientation: under an orientation transformation the corner is rounded in
+//!   the BCS (the tool tip within the contour tolerance) and the orientation within the
+//!   orientation tolerance ([`PathControl::ori_tolerance`]; `channel/blending_trafo.rs`).
 //! - `UPATH`/`SPATH` (the path parameter of the axes outside FGROUP) are accepted and
 //!   change nothing: FGROUP is not modelled, so every axis moves with the geometry axes' path
 //!   length, and lines, circles and the rounding and compressor elements run at uniform path
@@ -215,11 +216,13 @@ impl PathControl {
                 let d = if rapid { self.adispos } else { self.adis };
                 (d > 0.0).then_some(Blend::Distance(d))
             }
-            Smoothing::G642 | Smoothing::G643 => Some(Blend::Tolerance(self.tolerance(cfg))),
+            Smoothing::G642 | Smoothing::G643 => {
+                Some(Blend::Tolerance { contour: self.tolerance(cfg), ori: self.ori_tolerance(cfg) })
+            }
             Smoothing::G644 => Some(self.g644(rapid, cfg)),
             Smoothing::G645 => {
                 let tangent = geo_min(cfg, &cfg.path_control.trans_tol);
-                Some(Blend::Smooth { corner: self.tolerance(cfg), tangent })
+                Some(Blend::Smooth { corner: self.tolerance(cfg), ori: self.ori_tolerance(cfg), tangent })
             }
         }
     }
@@ -243,7 +246,7 @@ impl PathControl {
         if matches!(cfg.path_control.smoothing_mode / 1000 % 10, 1 | 5) {
             Blend::Distance(if rapid { self.adispos } else { self.adis })
         } else {
-            Blend::Tolerance(geo_min(cfg, &cfg.path_control.axis_tol))
+            Blend::Tolerance { contour: geo_min(cfg, &cfg.path_control.axis_tol), ori: f64::INFINITY }
         }
     }
 
@@ -260,6 +263,24 @@ impl PathControl {
             return a;
         }
         cfg.geo_axes.iter().flatten().filter_map(|&k| data.axis_tol.get(k).copied()).fold(f64::INFINITY, f64::min)
+    }
+
+    /// The orientation tolerance of G642, G643, G645 in radians (it acts under an orientation
+    /// transformation only): `OTOL` when programmed, else SD42466 when MD20480's units digit
+    /// is 2 or 3 (the orientation axes by the orientation tolerance), else the smallest
+    /// MD33100 of the rotary axes, read as an angle of the orientation (the rotary axes by
+    /// their axial tolerance); infinite on a machine without rotary axes.
+    pub fn ori_tolerance(&self, cfg: &MachineConfig) -> f64 {
+        let data = &cfg.path_control;
+        let degrees = match self.otol {
+            Some(o) => o,
+            None if matches!(data.smoothing_mode % 10, 2 | 3) => data.ori_tol,
+            None => (0..cfg.channel_axes.len())
+                .filter(|&k| cfg.axis(k).rotary)
+                .filter_map(|k| data.axis_tol.get(k).copied())
+                .fold(f64::INFINITY, f64::min),
+        };
+        degrees.to_radians()
     }
 
     /// `$P_GG[10]`'s number in G group 10 when not under G60.

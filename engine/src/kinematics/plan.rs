@@ -348,7 +348,9 @@ fn plan_piece(
             axis_tangents,
             per_rev: mv.per_rev,
             jerk: mv.jerk,
-            blend: None,
+            // The block's rounding at its end (the channel rounds the corner in the BCS and plans
+            // the pieces here again: `channel/blending_trafo.rs`).
+            blend: if part + 1 == parts { mv.blend } else { None },
             compress: None,
         });
     }

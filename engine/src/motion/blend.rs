@@ -25,12 +25,14 @@ use crate::machine_data::registry::MAX_CHANNEL_AXES;
 pub enum Blend {
     /// G641: the element starts and ends this far (ADIS, ADISPOS) from the corner.
     Distance(f64),
-    /// G642..G644: the element passes the programmed corner within this distance.
-    Tolerance(f64),
-    /// G645: corners as [`Blend::Tolerance`] with `corner`; tangential transitions with a
-    /// jump in curvature are smoothed too, the element staying within `tangent` (MD33120) of
-    /// the programmed contour (`blend_tangent.rs`).
-    Smooth { corner: f64, tangent: f64 },
+    /// G642..G644: the element passes the programmed corner within `contour` (a length), and
+    /// under an orientation transformation the tool orientation within `ori` (radians) of the
+    /// programmed one at the corner (OTOL, SD42466; infinite where it does not act: G644).
+    Tolerance { contour: f64, ori: f64 },
+    /// G645: corners as [`Blend::Tolerance`] with `corner` and `ori`; tangential transitions
+    /// with a jump in curvature are smoothed too, the element staying within `tangent`
+    /// (MD33120) of the programmed contour (`blend_tangent.rs`).
+    Smooth { corner: f64, ori: f64, tangent: f64 },
 }
 
 /// The largest share of a block a rounding takes at one end. The manual reduces the rounding
@@ -48,6 +50,18 @@ pub struct Rounded {
     pub first: Move,
     pub corner: Move,
     pub second: Move,
+    /// Where the element leaves the first move and joins the second (their path parameters).
+    pub cut: (f64, f64),
+}
+
+/// The orientation deviation of a rounding element from the programmed corner orientation
+/// (radians), given the element and the two cut parameters: for rounding under an orientation
+/// transformation (`motion/blend_ori.rs`). [`no_orientation`] where nothing is oriented.
+pub type OriDeviation<'a> = &'a dyn Fn(&Curve, f64, f64) -> f64;
+
+/// The [`OriDeviation`] of moves without an orientation.
+pub fn no_orientation(_: &Curve, _: f64, _: f64) -> f64 {
+    0.0
 }
 
 /// Rounds the corner between `a` and `b` as `a.blend` asks. `a_full_length` is `a`'s length
@@ -57,6 +71,20 @@ pub struct Rounded {
 /// tangential transition (but G645's with a curvature jump), a reversal, or a rounding too
 /// short to matter.
 pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, limits: &[AxisLimit]) -> Option<Rounded> {
+    round_corner_oriented(a, b, a_full_length, metric, limits, &no_orientation)
+}
+
+/// [`round_corner`] with the orientation's deviation `ori_dev` bounded by the tolerance's
+/// `ori` as well (the caller has taken the moves' orientation paths and machine rates off; it
+/// puts them back on the pieces).
+pub fn round_corner_oriented(
+    a: &Move,
+    b: &Move,
+    a_full_length: f64,
+    metric: &AxisVec,
+    limits: &[AxisLimit],
+    ori_dev: OriDeviation,
+) -> Option<Rounded> {
     let spec = a.blend?;
     if a.exact_stop
         || a.machine_space
@@ -86,7 +114,7 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
             spec
         }
         _ if tangential => return None,
-        Blend::Smooth { corner, .. } => Blend::Tolerance(corner),
+        Blend::Smooth { corner, ori, .. } => Blend::Tolerance { contour: corner, ori },
         _ => spec,
     };
     let d_max = (MAX_SHARE * a_full_length.max(a.length).min(b.length)).min(0.9 * a.length);
@@ -94,15 +122,23 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     let d = match spec {
         Blend::Distance(adis) => adis.min(d_max),
         // The cut grows in proportion to d between two lines, nearly so next to arcs.
-        Blend::Tolerance(tol) if tol > 0.0 => {
-            search(d_max, tol, 1.0, |d| Some(element(a, b, d, metric)?.distance_to(&corner)))?
-        }
+        Blend::Tolerance { contour: tol, ori } if tol > 0.0 => search(d_max, tol, 1.0, |d| {
+            let curve = element(a, b, d, metric)?;
+            let cut = curve.distance_to(&corner);
+            if ori.is_finite() {
+                // The orientation's deviation in the contour's scale: within `ori` where this is
+                // within `tol`.
+                let (ua, ub) = (1.0 - d / a.length, d / b.length);
+                return Some(cut.max(ori_dev(&curve, ua, ub) * tol / ori.max(1e-12)));
+            }
+            Some(cut)
+        })?,
         // Along a tangential transition the deviation grows with d² (as a clothoid's shift).
         Blend::Smooth { tangent, .. } => search(d_max, tangent, 0.5, |d| {
             let (ua, ub) = (1.0 - d / a.length, d / b.length);
             Some(blend_tangent::contour_deviation(&element(a, b, d, metric)?, a, ua, b, ub, metric))
         })?,
-        Blend::Tolerance(_) => 0.0,
+        Blend::Tolerance { .. } => 0.0,
     };
     if d.is_nan() || d < MIN_DISTANCE {
         return None;
@@ -126,7 +162,7 @@ pub fn round_corner(a: &Move, b: &Move, a_full_length: f64, metric: &AxisVec, li
     };
     let mut corner = Move::unlimited(path, false, a.tag);
     corner.set_limits(length, feed_of(a.feed.min(b.feed)), limits);
-    Some(Rounded { first, corner, second })
+    Some(Rounded { first, corner, second, cut: (ua, ub) })
 }
 
 /// The largest cut-back `d` up to `d_max` whose `cut(d)` is within `tol` (within 2 % below
@@ -152,7 +188,7 @@ fn search(d_max: f64, tol: f64, power: f64, cut_at: impl Fn(f64) -> Option<f64>)
 
 /// `m` on another `path`: its data copied, its own path not (a clone would copy and drop it,
 /// an arc's box included, at every corner).
-fn with_path(m: &Move, path: Path) -> Move {
+pub(super) fn with_path(m: &Move, path: Path) -> Move {
     Move {
         path,
         length: m.length,
@@ -265,7 +301,7 @@ mod tests {
     #[test]
     fn a_right_angle_under_a_tolerance_is_passed_at_the_tolerance() {
         // X0→10 then Y0→10 with 0.05: the element passes (10, 0) at 0.05 (within 2 %).
-        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance(0.05)));
+        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance { contour: 0.05, ori: f64::INFINITY }));
         let b = line([10.0, 0.0], [10.0, 10.0], None);
         let r = round_corner(&a, &b, 10.0, &metric(), &limits()).expect("rounded");
         let c = r.corner.path.curve.as_ref().unwrap();
@@ -292,7 +328,7 @@ mod tests {
 
     #[test]
     fn collinear_blocks_and_exact_stop_get_no_rounding() {
-        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance(0.05)));
+        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance { contour: 0.05, ori: f64::INFINITY }));
         assert!(round_corner(&a, &line([10.0, 0.0], [20.0, 0.0], None), 10.0, &metric(), &limits()).is_none());
         let mut stop = a.clone();
         stop.exact_stop = true;
@@ -305,7 +341,7 @@ mod tests {
         // (10, 0) heading −Y, a 90° corner. With 0.03 the element passes the corner within
         // 2 % below the tolerance (the search iterates: an arc's cut is not proportional to
         // d), and its end lies on the circle.
-        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance(0.03)));
+        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance { contour: 0.03, ori: f64::INFINITY }));
         let (mut s, mut e) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
         (s[0], e[0]) = (10.0, 0.0);
         let arc = crate::motion::Arc::in_plane(0, 1, 5.0, 0.0, -std::f64::consts::PI);
@@ -322,7 +358,7 @@ mod tests {
     #[test]
     fn the_element_limits_its_speed_by_its_curvature() {
         // Tolerance 0.01 at 90°: a tight element; v²·|p''| stays within its share of 2000 mm/s².
-        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance(0.01)));
+        let a = line([0.0, 0.0], [10.0, 0.0], Some(Blend::Tolerance { contour: 0.01, ori: f64::INFINITY }));
         let b = line([10.0, 0.0], [10.0, 10.0], None);
         let r = round_corner(&a, &b, 10.0, &metric(), &limits()).unwrap();
         let (_, second) = r.corner.path.curve.as_ref().unwrap().rates();

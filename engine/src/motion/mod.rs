@@ -5,6 +5,7 @@
 //! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
 
 pub mod blend;
+pub mod blend_ori;
 mod blend_tangent;
 pub mod compress;
 mod curve;
@@ -20,4 +21,4 @@ pub use curve::Curve;
 pub use ori_curve::TwoCurves;
 pub use orientation::{Antiparallel, OriPath, rotate};
 pub use path::{Arc, AxisVec, Path};
-pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed};
+pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed, stop_speed};

@@ -507,7 +507,7 @@ impl Planner {
                 // SOFT's state: a later SOFT move starts from constant velocity.
                 self.acc = 0.0;
             }
-            self.brake_limited_at(v_new, remaining, a, v_end, many, true)
+            self.brake_limited_at(v_new, remaining, a, v_end, many, 0.0)
         };
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
@@ -620,25 +620,28 @@ impl Planner {
     /// met. Looks past the front move so that a cycle which crosses into the next move cannot
     /// arrive too fast. A transition that `v` can meet is recognised without the square root of
     /// [`brake_speed`] (`brake_speed(d, v_end, a) ≥ v ⇔ v·(v + a·dt) ≤ 2·a·d + v_end²`), so a
-    /// cycle far from any braking point takes none; one planned at or above `v` needs no
-    /// braking at all (see [`Planner::brake_limited_at`]).
+    /// cycle far from any braking point takes none; one planned at or above `v` and `free` needs
+    /// no braking at all (see [`Planner::brake_limited_at`]).
     #[inline(always)]
-    fn brake_limited(&self, v: f64) -> f64 {
+    fn brake_limited(&self, v: f64, free: f64) -> f64 {
         let (Some(front), Some(&v_end)) = (self.queue.front(), self.v_end.front()) else { return v };
-        self.brake_limited_at(v, front.length - self.s, front.a_max, v_end, self.queue.len() > 1, false)
+        self.brake_limited_at(v, front.length - self.s, front.a_max, v_end, self.queue.len() > 1, free)
     }
 
     /// [`Planner::brake_limited`] from the front move's scalars: the distance to its end, its
     /// deceleration, its planned end speed and whether another move follows.
     ///
-    /// With `seams` (BRISK), a transition planned at or above the speed so far does not limit
-    /// it: that speed may cross it as it is. (The braking condition with its one-cycle reserve
-    /// is conservative, by `v_end·dt` and more: applied there it lowered the path speed for a
+    /// A transition planned at or above both the speed so far and `free` does not limit it:
+    /// that speed may cross it as it is. (The braking condition with its one-cycle reserve is
+    /// conservative, by `v_end·dt` and more: applied there it lowered the path speed for a
     /// cycle at every seam of a chain of collinear or tangent moves, where the transition
-    /// speed is the feed.) SOFT's fallback keeps the conservative limit its S curves were
-    /// tuned against (without it the jerk bound of `tests/dynamics.rs` is exceeded).
+    /// speed is the feed.) BRISK passes 0. SOFT's fallback passes its velocity target: a
+    /// transition planned below the target is kept with the conservative limit its S curves
+    /// brake against (were it dropped, the fallback would let the path arrive faster than the
+    /// S curve planned, and the crossing clamp would jump), one at or above it is never
+    /// reached faster, as the S curve does not pass its target.
     #[inline(always)]
-    fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool, seams: bool) -> f64 {
+    fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool, free: f64) -> f64 {
         let dt = self.dt;
         // The smallest deceleration anywhere ahead bounds how far ahead a transition can matter
         // (moves split by a kinematic transformation may decelerate very differently).
@@ -646,23 +649,20 @@ impl Planner {
         // The front move's own transition first, without the queue's iterators: most cycles
         // look no farther. The same arithmetic as the loop's first pass.
         let mut limit = v;
-        if !seams || limit > v_end {
+        if limit.max(free) > v_end {
             let reserve = if many { v_end * dt } else { 0.0 };
-            let d = distance - reserve;
-            if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
-                limit = limit.min(brake_speed(d, v_end, a, dt));
-            }
+            limit = brake_bound(limit, distance - reserve, v_end, a, dt);
         }
         if v_end == 0.0 || distance > limit * limit / a_min {
             return limit;
         }
-        self.brake_limited_ahead(distance, a, limit, seams)
+        self.brake_limited_ahead(distance, a, limit, free)
     }
 
     /// [`Planner::brake_limited`] past the front move, from the distance to its end, the
     /// smallest deceleration so far and the limit so far (out of line: rarely reached).
     #[inline(never)]
-    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64, seams: bool) -> f64 {
+    fn brake_limited_ahead(&self, mut distance: f64, mut a: f64, mut limit: f64, free: f64) -> f64 {
         let dt = self.dt;
         let a_min = self.a_min;
         let n = self.queue.len();
@@ -670,12 +670,9 @@ impl Planner {
             distance += mv.length;
             a = a.min(mv.a_max);
             // One cycle at the transition speed is kept in reserve for the crossing cycle.
-            if !seams || limit > v_end {
+            if limit.max(free) > v_end {
                 let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
-                let d = distance - reserve;
-                if limit * (limit + a * dt) > 2.0 * a * d.max(0.0) + v_end * v_end {
-                    limit = limit.min(brake_speed(d, v_end, a, dt));
-                }
+                limit = brake_bound(limit, distance - reserve, v_end, a, dt);
             }
             if v_end == 0.0 || distance > limit * limit / a_min {
                 break;
@@ -750,9 +747,44 @@ impl Planner {
     }
 }
 
+/// `v`, lowered where needed so that braking with deceleration `a` from `d` before a transition
+/// still meets its speed `v_end`: [`brake_speed`], or [`stop_speed`] for a stop. The test
+/// without a square root first (`brake_speed(d, v_end, a) ≥ v ⇔ v·(v + a·dt) ≤ 2·a·d + v_end²`;
+/// for a stop with the `(a·dt)²/4` by which the exact stop may need more).
+#[inline(always)]
+fn brake_bound(v: f64, d: f64, v_end: f64, a: f64, dt: f64) -> f64 {
+    let b = a * dt;
+    if v_end == 0.0 {
+        if v * (v + b) + 0.25 * b * b > 2.0 * a * d.max(0.0) {
+            return v.min(stop_speed(d, a, dt));
+        }
+    } else if v * (v + b) > 2.0 * a * d.max(0.0) + v_end * v_end {
+        return v.min(brake_speed(d, v_end, a, dt));
+    }
+    v
+}
+
+/// The highest speed at a point `distance` before a standstill from which the path can stop on
+/// it, one IPO cycle at a time, never losing more than `a·dt` of speed in a cycle, the last
+/// cycle's speed included (it is followed by rest). From `v = (n + f)·a·dt` (`0 ≤ f < 1`) the
+/// shortest such stop runs `v, v − a·dt, …, f·a·dt, 0` and covers
+/// `S(v) = dt·(n + 1)·(v − n·a·dt/2)`: piecewise linear in `v`, so its inverse is exact.
+/// [`brake_speed`]'s `v²/(2a) + v·dt/2` is short by `a·dt²·f·(1 − f)/2`, up to an eighth of
+/// `a·dt²`: braking on that curve ended with a last cycle that lost more than `a·dt`.
+pub fn stop_speed(distance: f64, a: f64, dt: f64) -> f64 {
+    let b = a * dt;
+    let d = distance.max(0.0);
+    // The number n of whole steps: S(n·b) = b·dt·n(n+1)/2 ≤ d.
+    let q = (((1.0 + 8.0 * d / (b * dt)).sqrt() - 1.0) / 2.0).max(0.0);
+    // (`floor` is a library call on the baseline target; below 2⁵² truncation is the same.)
+    let n = if q < 4.5e15 { q as u64 as f64 } else { q.floor() };
+    let base = if n > 0.0 { n * b / 2.0 } else { 0.0 };
+    d / (dt * (n + 1.0)) + base
+}
+
 /// The highest speed at a point `distance` before a boundary from which cycle-wise braking
 /// with deceleration `a` reaches `v_end` at the boundary. Accounts for the cycle discretisation:
-/// braking from `v` in steps of `a·dt` covers `v²/(2a) + v·dt/2`.
+/// braking from `v` in steps of `a·dt` covers `v²/(2a) + v·dt/2` (a stop is [`stop_speed`]).
 pub fn brake_speed(distance: f64, v_end: f64, a: f64, dt: f64) -> f64 {
     let b = a * dt;
     (-b + (b * b + 4.0 * (2.0 * a * distance.max(0.0) + v_end * v_end)).sqrt()) / 2.0
@@ -809,7 +841,9 @@ mod tests {
                 // A transition planned at or above the speed so far is crossed as it is.
                 if out > p.v_end[k] {
                     let reserve = if k + 1 < p.queue.len() { p.v_end[k] * DT } else { 0.0 };
-                    out = out.min(brake_speed(distance - reserve, p.v_end[k], a, DT));
+                    let d = distance - reserve;
+                    let stop = if p.v_end[k] == 0.0 { stop_speed(d, a, DT) } else { brake_speed(d, p.v_end[k], a, DT) };
+                    out = out.min(stop);
                 }
             }
             out
@@ -818,13 +852,36 @@ mod tests {
         for i in 0..=20 {
             p.s = p.queue[0].length * f64::from(i) / 20.0;
             for v in [0.0, 1.0, 10.0, 37.5, 80.0, 150.0, 400.0, f64::INFINITY] {
-                let brisk = p.brake_limited_at(v, p.queue[0].length - p.s, p.queue[0].a_max, p.v_end[0], true, true);
+                let brisk = p.brake_limited_at(v, p.queue[0].length - p.s, p.queue[0].a_max, p.v_end[0], true, 0.0);
                 let (got, want) = (brisk, reference(&p, v));
                 assert!((got - want).abs() <= 1e-12 * want.max(1.0), "s {} v {v}: {got} vs {want}", p.s);
                 checked += usize::from(want < v);
             }
         }
         assert!(checked > 20, "the brake limit binds in {checked} of the cases");
+    }
+
+    #[test]
+    fn the_stop_speed_is_the_fastest_discrete_stop_that_fits() {
+        // a = 3000 mm/s², T = 4 ms: a cycle loses at most 12 mm/s. From 100 mm/s the fastest
+        // stop runs 100, 88, ..., 4 and rests: 0.004·468 = 1.872 mm. From 24: 24, 12, then rest:
+        // 0.144 mm. Below 12 mm/s the stop is the one cycle itself: 0.016 mm at 4 mm/s.
+        for (d, v) in [(1.872, 100.0), (0.144, 24.0), (0.016, 4.0), (0.0, 0.0)] {
+            assert!((stop_speed(d, 3000.0, DT) - v).abs() < 1e-9, "{d} mm: {}", stop_speed(d, 3000.0, DT));
+        }
+        // Everywhere: stepping down by a·T from the stop speed covers the distance exactly, and
+        // the old formula's speed is at least as high (up to a·T²/8 of distance short).
+        for i in 0..2000 {
+            let d = f64::from(i) * 0.00137;
+            let v = stop_speed(d, 3000.0, DT);
+            let (mut w, mut covered) = (v, 0.0);
+            while w > 0.0 {
+                covered += w * DT;
+                w -= 12.0;
+            }
+            assert!((covered - d).abs() < 1e-9, "{d}: {covered}");
+            assert!(brake_speed(d, 0.0, 3000.0, DT) >= v - 1e-9);
+        }
     }
 
     /// The backward pass from scratch over the whole queue, as it was before the corner speeds

@@ -87,7 +87,7 @@ impl Planner {
         let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, a_min, j_min) + v_hi * dt;
         // Far from every transition (most cycles of a long move), the candidates need only
         // the target's tests: the same answers without a stop distance each.
-        let near = self.transition_near(lo, hi, horizon);
+        let near = self.transition_near(lo, hi, horizon, target);
         let acc = if self.soft_safe(hi, target, horizon, near) {
             hi
         } else if !self.soft_safe(lo, target, horizon, near) {
@@ -105,6 +105,11 @@ impl Planner {
             ok
         };
         let mut v_new = self.v + acc * dt;
+        if v_new > target && v_new <= target * (1.0 + 1e-12) {
+            // The rounding of `v + acc·dt` at the target: at the target, so that the tests of
+            // transitions planned at the target (seams at the feed) see it as not faster.
+            v_new = target;
+        }
         // The last bit of a move that ends at standstill, shorter than a cycle's jerk-limited
         // step from rest: travelled in this cycle.
         let remaining = front.length - self.s;
@@ -119,7 +124,7 @@ impl Planner {
             return 0.0;
         }
         // The BRISK limit keeps every transition speed when the S curve cannot (see the doc).
-        let hard = self.brake_limited(v_new);
+        let hard = self.brake_limited(v_new, target);
         if hard < v_new {
             v_new = hard;
         }
@@ -144,8 +149,10 @@ impl Planner {
             if v1 + ramp_gain(acc, j_front, dt) > target * (1.0 + 1e-12) {
                 return false;
             }
-        } else if v1 > target && acc > (self.acc - j_front * dt).max(-front.a_max) {
-            // Above the target: only the hardest braking the jerk allows.
+        } else if v1 > target * (1.0 + 1e-12) && acc > (self.acc - j_front * dt).max(-front.a_max) {
+            // Above the target: only the hardest braking the jerk allows. (Not for the last
+            // bits of `v + acc·dt`'s rounding at the target: the bisection would brake for them
+            // by its resolution, a dip of 2·j·dt²/4096 at every seam.)
             return false;
         }
         if !near {
@@ -154,12 +161,18 @@ impl Planner {
         let n = self.queue.len();
         let mut distance = -self.s - v1 * dt;
         let (mut a, mut j) = (f64::INFINITY, f64::INFINITY);
+        // Not above the target, the path never passes it (the test above): a transition
+        // planned at or above the target binds only a path that is faster now. (With the
+        // one-cycle reserve such a seam, collinear or tangent at the feed, would otherwise slow
+        // the path before it.)
+        let free = target.max(v1);
         for (k, (mv, &v_end)) in self.queue.iter().zip(&self.v_end).enumerate() {
             distance += mv.length;
             a = a.min(mv.a_max);
             j = j.min(mv.jerk);
             let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
-            if v_end < v1 + acc.max(0.0) * acc.max(0.0) / (2.0 * j)
+            if v_end < free
+                && v_end < v1 + acc.max(0.0) * acc.max(0.0) / (2.0 * j)
                 && stop_distance(v1, acc, v_end, a, j) - (v1 - v_end) * dt / 2.0 > distance - reserve
             {
                 return false;
@@ -179,8 +192,9 @@ impl Planner {
     /// hold `≤ E/a`, `t₃ ≤ P/j`, where `E` bounds the velocity to lose and `P` the peak
     /// deceleration: `max(√(j·E), −lo)`), and the distance left is at least the one after the
     /// fastest candidate's cycle. It looks at least as far ahead as any candidate (their
-    /// distances are not smaller), and keeps a margin far above rounding.
-    fn transition_near(&self, lo: f64, hi: f64, horizon: f64) -> bool {
+    /// distances are not smaller), and keeps a margin far above rounding. A transition planned
+    /// at or above both `target` and the highest velocity is skipped, as every candidate does.
+    fn transition_near(&self, lo: f64, hi: f64, horizon: f64, target: f64) -> bool {
         let dt = self.dt;
         let v_hi = self.v + hi * dt;
         if v_hi < 0.0 {
@@ -199,7 +213,7 @@ impl Planner {
             let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
             let room = distance - reserve;
             let peak_v = v_hi + acc_up * acc_up / (2.0 * j);
-            if v_end < peak_v * (1.0 + 1e-9) + 1e-9 {
+            if v_end < target.max(v_hi) && v_end < peak_v * (1.0 + 1e-9) + 1e-9 {
                 let lose = (peak_v - v_end).max(0.0);
                 let peak_dec = (j * lose).sqrt().max(-lo).max(0.0);
                 let time = (acc_up + 2.0 * peak_dec) / j + lose / a;
@@ -251,7 +265,7 @@ mod tests {
                 if lo <= hi {
                     let v_hi = p.v + hi.max(0.0) * dt;
                     let horizon = stop_distance(v_hi, hi.max(0.0), 0.0, p.a_min, p.j_min) + v_hi * dt;
-                    let near = p.transition_near(lo, hi, horizon);
+                    let near = p.transition_near(lo, hi, horizon, target);
                     far += usize::from(!near);
                     for i in 0..=40 {
                         let acc = lo + (hi - lo) * f64::from(i) / 40.0;
