@@ -16,8 +16,9 @@
 //!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe;
 //! - the holder (optional, [`StockOptions::holder`]) touching the stock.
 //!
-//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain).
-//! Skipped while they are active (counted in `skipped`): TRANSMIT, TRACYL, TRAANG.
+//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain) and
+//! `stock_spindle.rs` (TRANSMIT, TRACYL and TRAANG; a blank turning with the spindle). Skipped
+//! (counted in `skipped`): what `stock_spindle.rs` names.
 
 use super::{Channel, CommandError, Event};
 use crate::stock::blank::{Blank, Placement};
@@ -121,6 +122,8 @@ struct Key {
     rapid: bool,
     spindle: bool,
     tool: (u32, u32),
+    /// A turning cut of a part that turns with the spindle (`stock_spindle.rs`).
+    ring: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -159,6 +162,8 @@ pub(super) struct StockRun {
     kin: Option<Box<crate::kinematics::Traori>>,
     /// Changes for the HMI's incremental mesh (`stock_tiles.rs`).
     pub(super) tiles: super::stock_tiles::TileLog,
+    /// The work spindle the blank turns with (a lathe with driven tools, `stock_spindle.rs`).
+    pub(super) mount: Option<super::stock_spindle::SpindleMount>,
 }
 
 impl StockRun {
@@ -169,6 +174,7 @@ impl StockRun {
 
     fn new(stock: Stock, options: StockOptions, kin: Option<Box<crate::kinematics::Traori>>) -> StockRun {
         StockRun {
+            mount: None,
             tiles: super::stock_tiles::TileLog::new(&stock),
             kin,
             initial_volume: stock.volume(),
@@ -186,6 +192,18 @@ impl StockRun {
 }
 
 impl StockRun {
+    /// The stock changed representation (`stock_spindle.rs`): the blank's volume moves by the
+    /// difference, so the removed volume goes on.
+    pub(super) fn shift_initial_volume(&mut self, dv: f64) {
+        self.initial_volume += dv;
+        self.segment = None;
+    }
+
+    /// Every tile changed (a new grid).
+    pub(super) fn restart_tiles(&mut self) {
+        self.tiles.restart(&self.stock);
+    }
+
     /// Keeps `w` among the latest warnings and counts it.
     fn push_warning(&mut self, w: StockWarning) {
         if self.warnings.len() == KEEP_WARNINGS {
@@ -310,8 +328,10 @@ impl Channel {
 
     /// Builds the stock of `blank` in the WCS of `frame`.
     fn place_stock(&mut self, blank: &Blank, frame: &crate::interp::Frame) -> Result<(), String> {
-        let placement = self.stock_placement(frame);
         let turning = self.stock_turns();
+        let placement = self.stock_placement(frame);
+        // Dexels on a work spindle (a lathe with a Y axis) turn with it.
+        let placement = if turning { placement } else { self.mount_placement(placement) };
         let stock = Stock::new(blank, &placement, turning, self.stock_options.resolution)?;
         self.install_stock(stock);
         Ok(())
@@ -343,34 +363,42 @@ impl Channel {
     /// Makes `stock` the session's, cut from now on.
     pub(super) fn install_stock(&mut self, stock: Stock) {
         let kin = if matches!(stock, Stock::Turning(_)) { None } else { self.stock_kinematics() };
-        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options, kin)));
+        let mount = self.stock_spindle_mount();
+        let mut run = StockRun::new(stock, self.stock_options, kin);
+        run.mount = mount;
+        self.stock = Some(Box::new(run));
     }
 
     /// One IPO cycle of material removal (called only while a blank is defined).
     #[inline(never)]
     pub(super) fn cut_stock(&mut self) {
-        let tag = self.planner.position_tag();
-        let meta = match self.in_planner.front() {
-            Some((t, m)) if Some(*t) == tag => Some(m),
-            _ => tag.and_then(|t| self.in_planner.iter().find(|(x, _)| *x == t)).map(|(_, m)| m),
-        };
-        let (line, rapid, offsets) = match meta {
-            Some(m) => (m.line, !m.feed.is_finite(), &m.offsets),
-            None => (0, false, &self.offsets),
-        };
+        let (line, rapid, offsets) = self.stock_meta();
         let tool = (offsets.t, offsets.d);
-        let pose = self.stock_tool_pose(offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref()));
+        let mounted = if self.trafo.is_some() || self.stock.as_ref().is_some_and(|r| r.mount.is_some()) {
+            let geo = self.cfg.geo_axes;
+            let toff = self.toff.current;
+            let plain = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
+            self.stock_mounted_pose(plain)
+        } else {
+            super::stock_spindle::Mounted::Plain
+        };
+        let (pose, ring) = match mounted {
+            super::stock_spindle::Mounted::At(pose, ring) => (pose, ring),
+            super::stock_spindle::Mounted::Plain => {
+                let offsets = self.stock_meta().2;
+                (self.stock_tool_pose(offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref())), false)
+            }
+            super::stock_spindle::Mounted::Skip => {
+                if let Some(run) = self.stock.as_mut() {
+                    run.skipped += 1;
+                    run.segment = None;
+                }
+                return;
+            }
+        };
         let tip = pose.tip;
-        let key = Key { line, rapid, spindle: self.spindles.iter().any(|s| s.is_turning()), tool };
-        // TRAORI is followed (`stock_pose.rs`); the other transformations are not yet.
-        let transformed =
-            self.trafo.as_ref().is_some_and(|t| !matches!(t.trafo, crate::kinematics::AnyTrafo::Traori(_)));
+        let key = Key { line, rapid, spindle: self.spindles.iter().any(|s| s.is_turning()), tool, ring };
         let Some(run) = self.stock.as_mut() else { return };
-        if transformed {
-            run.skipped += 1;
-            run.segment = None;
-            return;
-        }
         let tol = run.stock.resolution() / 10.0;
         let Some(seg) = run.segment.as_mut() else {
             run.segment =
@@ -422,6 +450,21 @@ impl Channel {
         run.segment = Some(Segment { start: from, end: tip, dir, key, axis: pose.axis, length: pose.length });
     }
 
+    /// Line, rapid traverse and offsets of the block the planner's position lies on (line 0
+    /// and the channel's offsets outside a move).
+    #[inline]
+    fn stock_meta(&self) -> (u32, bool, &crate::interp::Offsets) {
+        let tag = self.planner.position_tag();
+        let meta = match self.in_planner.front() {
+            Some((t, m)) if Some(*t) == tag => Some(m),
+            _ => tag.and_then(|t| self.in_planner.iter().find(|(x, _)| *x == t)).map(|(_, m)| m),
+        };
+        match meta {
+            Some(m) => (m.line, !m.feed.is_finite(), &m.offsets),
+            None => (0, false, &self.offsets),
+        }
+    }
+
     /// [`Channel::flush_stock`] for the sibling modules.
     pub(super) fn flush_stock_now(&mut self) {
         self.flush_stock();
@@ -450,7 +493,18 @@ impl Channel {
         if let Stock::Milling(g) = &mut run.stock {
             g.set_pen(pen);
         }
-        let removal = run.stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius));
+        let removal = match &mut run.stock {
+            Stock::Milling(g) if key.ring => match g.cut_ring(&cutter, a, b) {
+                Some(removal) => removal,
+                // A tool on the axis of the turning part (a drill) cuts as it stands.
+                None if a[0].hypot(a[1]).max(b[0].hypot(b[1])) <= g.resolution() / 2.0 => g.cut(&cutter, a, b),
+                None => {
+                    run.skipped += 1;
+                    crate::stock::Removal::default()
+                }
+            },
+            stock => stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius)),
+        };
         run.removing = removal.volume > 0.0 && !key.rapid && key.spindle;
         if removal.volume > 0.0 {
             let reach = cutter.radius + length * (1.0 - axis[2] * axis[2]).max(0.0).sqrt();

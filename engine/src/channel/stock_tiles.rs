@@ -49,6 +49,15 @@ impl TileLog {
         TileLog { version: 1, size, changed: vec![1; size.0 * size.1], pens: Vec::new() }
     }
 
+    /// The stock became another grid (`stock_spindle.rs`): its tiles, all changed, under a
+    /// new version (the versions go on, so the HMI fetches them all).
+    pub(super) fn restart(&mut self, stock: &Stock) {
+        let fresh = TileLog::new(stock);
+        self.version = self.version.wrapping_add(1).max(1);
+        self.size = fresh.size;
+        self.changed = vec![self.version; fresh.changed.len()];
+    }
+
     pub(super) fn version(&self) -> u32 {
         self.version
     }

@@ -113,7 +113,7 @@ impl DexelGrid {
     }
 
     /// True if cell `k` holds material inside the Z range `z`.
-    fn has_material(&self, k: usize, z: [f64; 2]) -> bool {
+    pub(super) fn has_material(&self, k: usize, z: [f64; 2]) -> bool {
         let (lo, hi) = (z[0] as f32, z[1] as f32);
         let s = self.spans[k];
         if s[1] > s[0] && s[1] > lo + EPS && s[0] < hi - EPS {
