@@ -11,25 +11,14 @@ use std::f64::consts::PI;
 
 use nctwin_engine::channel::{StockInfo, StockOptions};
 use nctwin_engine::stock::Stock;
-use nctwin_engine::{Channel, Event};
+use nctwin_engine::Channel;
+
+mod stock_support;
 
 /// Runs `program` on `preset` to its end (no alarm); the stock summary and the channel.
 fn run(preset: &str, md: &str, program: &str) -> (StockInfo, Channel) {
-    let mut ch = Channel::from_preset(preset, md).unwrap();
-    ch.set_stock_options(StockOptions::default()).unwrap();
-    ch.run_program(program).unwrap();
-    let mut cycles = 0u64;
-    while ch.is_busy() {
-        ch.step();
-        cycles += 1;
-        assert!(cycles < 5_000_000, "program does not end");
-        for e in ch.take_events() {
-            if let Event::AlarmRaised(a) = e {
-                panic!("alarm {a:?}");
-            }
-        }
-    }
-    (ch.stock_info().expect("a blank is defined"), ch)
+    let (info, _, ch) = stock_support::run(preset, md, StockOptions::default(), program);
+    (info, ch)
 }
 
 /// The top of the material of the cell whose centre is nearest to (x, y) (workpiece frame).

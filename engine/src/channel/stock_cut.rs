@@ -14,7 +14,8 @@
 //!   work spindle);
 //! - a depth of cut beyond the limit the user set: the thickest material one dexel (one slab)
 //!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe;
-//! - the holder (optional, [`StockOptions::holder`]) touching the stock.
+//! - the tool's shank, the holder ([`StockOptions::holder`]) or the spindle housing touching
+//!   the stock (`stock/body.rs`).
 //!
 //! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain) and
 //! `stock_spindle.rs` (TRANSMIT, TRACYL and TRAANG; a blank turning with the spindle). Skipped
@@ -148,7 +149,10 @@ pub(super) struct StockRun {
     pub(super) stock: Stock,
     initial_volume: f64,
     options: StockOptions,
-    cutter: Option<((u32, u32), Option<Cutter>)>,
+    /// The active edge's cutter and shank (`stock/body.rs`).
+    cutter: Option<((u32, u32), Option<Cutter>, Option<(f64, f64)>)>,
+    /// `$MC_SPINDLE_HOUSING`: diameter and length of the spindle round its nose.
+    housing: Option<[f64; 2]>,
     segment: Option<Segment>,
     warnings: std::collections::VecDeque<StockWarning>,
     warnings_total: u64,
@@ -175,6 +179,7 @@ impl StockRun {
     fn new(stock: Stock, options: StockOptions, kin: Option<Box<crate::kinematics::Traori>>) -> StockRun {
         StockRun {
             mount: None,
+            housing: None,
             tiles: super::stock_tiles::TileLog::new(&stock),
             kin,
             initial_volume: stock.volume(),
@@ -366,6 +371,8 @@ impl Channel {
         let mount = self.stock_spindle_mount();
         let mut run = StockRun::new(stock, self.stock_options, kin);
         run.mount = mount;
+        let housing = [0, 1].map(|i| self.data.num("$MC_SPINDLE_HOUSING", 0, i));
+        run.housing = (housing[0] > 0.0 && housing[1] > 0.0).then_some(housing);
         self.stock = Some(Box::new(run));
     }
 
@@ -482,13 +489,11 @@ impl Channel {
         let (a, b, key, axis, length) = (seg.start, seg.end, seg.key, seg.axis, seg.length);
         seg.start = seg.end;
         seg.dir = [0.0; 3];
-        if run.cutter.as_ref().is_none_or(|(k, _)| *k != key.tool) {
-            let cutter = (key.tool.0 != 0 && key.tool.1 != 0)
-                .then(|| self.cfg.tools.get(&key.tool).map(Cutter::from_edge))
-                .flatten();
-            run.cutter = Some((key.tool, cutter));
+        if run.cutter.as_ref().is_none_or(|(k, _, _)| *k != key.tool) {
+            let edge = (key.tool.0 != 0 && key.tool.1 != 0).then(|| self.cfg.tools.get(&key.tool)).flatten();
+            run.cutter = Some((key.tool, edge.map(Cutter::from_edge), edge.and_then(crate::stock::body::shank)));
         }
-        let Some((_, Some(cutter))) = run.cutter else { return };
+        let Some((_, Some(cutter), shank)) = run.cutter else { return };
         let pen = run.tiles.pen(key.tool);
         if let Stock::Milling(g) = &mut run.stock {
             g.set_pen(pen);
@@ -510,8 +515,9 @@ impl Channel {
             let reach = cutter.radius + length * (1.0 - axis[2] * axis[2]).max(0.0).sqrt();
             run.tiles.touch(&run.stock, a, b, reach);
         }
-        if let Some(holder) = run.options.holder {
-            let touch = run.stock.holder_overlap(&holder, length, a, b, axis);
+        let bodies = crate::stock::body::Bodies::new(shank, run.options.holder.as_ref(), run.housing, length);
+        if !bodies.cylinders().is_empty() {
+            let touch = run.stock.overlap(bodies.cylinders(), a, b, axis);
             if touch.depth >= CHECK_DEPTH && run.reported[3] != key.line {
                 run.reported[3] = key.line;
                 let w = StockWarning {
