@@ -78,6 +78,8 @@ pub(super) struct Actor {
     lag_micros: Arc<AtomicU64>,
     /// Where the name a program was started under is recorded.
     active: Arc<super::active_program::ActiveCache>,
+    /// The stock's changes for the streams (set by `SessionHandle::spawn`).
+    pub(super) stock_feed: Arc<super::stock_feed::StockFeed>,
 }
 
 impl Actor {
@@ -105,6 +107,7 @@ impl Actor {
             dirty: false,
             lag_micros,
             active,
+            stock_feed: Arc::default(),
         }
     }
 
@@ -317,6 +320,8 @@ impl Actor {
             // No subscribers is not an error: events are for whoever listens right now.
             let _ = self.events.send(event);
         }
+        // Before the state, so a stream never sees a stock version the feed does not know.
+        self.stock_feed.update(channel, self.events.receiver_count() > 0);
         self.snapshots.publish(channel, &self.state);
     }
 

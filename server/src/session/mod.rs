@@ -15,6 +15,7 @@ pub mod active_program;
 mod actor;
 mod pacer;
 mod snapshot_pool;
+pub mod stock_feed;
 mod wake_stats;
 
 use std::sync::Arc;
@@ -242,6 +243,8 @@ pub struct SessionHandle {
     server_stopping: Arc<AtomicBool>,
     /// The loaded program's name and line index (see `active_program`).
     active: Arc<active_program::ActiveCache>,
+    /// The stock's changes for the streams (see `stock_feed`).
+    stock_feed: Arc<stock_feed::StockFeed>,
 }
 
 impl SessionHandle {
@@ -253,7 +256,10 @@ impl SessionHandle {
         let (settled_tx, settled) = watch::channel(0);
         let lag_micros = Arc::new(AtomicU64::new(0));
         let active = Arc::new(active_program::ActiveCache::default());
-        let actor = actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
+        let mut actor =
+            actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
+        let stock_feed = Arc::new(stock_feed::StockFeed::default());
+        actor.stock_feed = stock_feed.clone();
         tokio::spawn(actor.run(Box::new(channel), rx));
         SessionHandle {
             id: id.into(),
@@ -265,6 +271,7 @@ impl SessionHandle {
             lag_micros,
             server_stopping: Arc::default(),
             active,
+            stock_feed,
         }
     }
 
@@ -281,6 +288,11 @@ impl SessionHandle {
     /// The loaded program's name and line index cache.
     pub fn active_cache(&self) -> &Arc<active_program::ActiveCache> {
         &self.active
+    }
+
+    /// The stock's changes for the streams.
+    pub fn stock_feed(&self) -> &Arc<stock_feed::StockFeed> {
+        &self.stock_feed
     }
 
     /// The latest published state; never waits for the actor.
