@@ -110,7 +110,10 @@ impl StreamParams {
 /// period while the state changes (on a fixed grid of the period, at most one per grid slot, up
 /// to a quarter period early; intermediate states are skipped), and every
 /// event as it happens (`{"type": "event", "event": "alarm_raised" | "alarm_cleared" |
-/// "block_changed" | "program_ended" | "program_stopped" | "mode_changed", ...}`). A client that
+/// "block_changed" | "program_ended" | "program_stopped" | "mode_changed", ...}`), and after a
+/// state whose stock version changed `{"type": "stock", ...}` with the tiles cut since (see
+/// `StockTilesMessage`; at most 4 meshes inline, `reload` when the client must fetch over
+/// REST). A client that
 /// falls more than 256 events behind skips the oldest. The server closes the socket when the
 /// session is deleted or the server shuts down (close code 1001). At most 64 clients per
 /// session (`429`).
