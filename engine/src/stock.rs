@@ -96,6 +96,23 @@ impl Stock {
         }
     }
 
+    /// [`Stock::cut_oriented`] with the axis turning from `axis_a` to `axis_b` on the way (on
+    /// their great circle): 5-axis simultaneous motion, a tool turning about its standing tip.
+    pub fn cut_swept(
+        &mut self,
+        cutter: &Cutter,
+        a: [f64; 3],
+        b: [f64; 3],
+        axis_a: [f64; 3],
+        axis_b: [f64; 3],
+        length: f64,
+    ) -> Removal {
+        match self {
+            Stock::Milling(g) if axis_a != axis_b => g.cut_swept(cutter, a, b, axis_a, axis_b, length),
+            _ => self.cut_oriented(cutter, a, b, axis_a, length),
+        }
+    }
+
     /// The material inside the `cylinders` (`(radius, from, to)` above the tip along the unit
     /// `axis`: shank, holder, spindle, [`body::Bodies`]) while the tip goes from `a` to `b`: a
     /// collision where it is not zero. A turned stock has no holder model (the default:

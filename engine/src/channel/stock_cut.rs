@@ -448,8 +448,19 @@ impl Channel {
             return;
         }
         // The segment ends at the last sample; the new one starts there.
-        let from = seg.end;
+        let (from, from_axis) = (seg.end, seg.axis);
         self.flush_stock();
+        if turned {
+            // The axis turned: from the last sample to this one the tool is swept with its
+            // axis turning (a tool turning about a standing tip sweeps its shank), and the next
+            // segment starts here.
+            self.cut_piece(from, tip, [from_axis, pose.axis], key, pose.length);
+            if let Some(run) = self.stock.as_mut() {
+                run.segment =
+                    Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
+            }
+            return;
+        }
         let Some(run) = self.stock.as_mut() else { return };
         let v = sub(tip, from);
         let n = dot(v, v).sqrt();
@@ -489,6 +500,14 @@ impl Channel {
         let (a, b, key, axis, length) = (seg.start, seg.end, seg.key, seg.axis, seg.length);
         seg.start = seg.end;
         seg.dir = [0.0; 3];
+        self.cut_piece(a, b, [axis, axis], key, length);
+    }
+
+    /// Cuts the tip's way from `a` to `b` with the tool's axis turning from `axes[0]` to
+    /// `axes[1]`, and raises the checks.
+    fn cut_piece(&mut self, a: [f64; 3], b: [f64; 3], axes: [[f64; 3]; 2], key: Key, length: f64) {
+        let Some(run) = self.stock.as_mut() else { return };
+        let axis = axes[0];
         if run.cutter.as_ref().is_none_or(|(k, _, _)| *k != key.tool) {
             let edge = (key.tool.0 != 0 && key.tool.1 != 0).then(|| self.cfg.tools.get(&key.tool)).flatten();
             run.cutter = Some((key.tool, edge.map(Cutter::from_edge), edge.and_then(crate::stock::body::shank)));
@@ -508,11 +527,12 @@ impl Channel {
                     crate::stock::Removal::default()
                 }
             },
-            stock => stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius)),
+            stock => stock.cut_swept(&cutter, a, b, axis, axes[1], length.max(4.0 * cutter.radius)),
         };
         run.removing = removal.volume > 0.0 && !key.rapid && key.spindle;
         if removal.volume > 0.0 {
-            let reach = cutter.radius + length * (1.0 - axis[2] * axis[2]).max(0.0).sqrt();
+            let side = |o: [f64; 3]| (1.0 - o[2] * o[2]).max(0.0).sqrt();
+            let reach = cutter.radius + length * side(axes[0]).max(side(axes[1]));
             run.tiles.touch(&run.stock, a, b, reach);
         }
         let bodies = crate::stock::body::Bodies::new(shank, run.options.holder.as_ref(), run.housing, length);

@@ -16,6 +16,7 @@ use super::{MAX_CELLS, Removal};
 
 mod overlap;
 mod tilted;
+mod swept;
 mod turned;
 
 pub use overlap::Overlap;
