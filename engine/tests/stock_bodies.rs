@@ -30,10 +30,10 @@ fn a_short_tool_plunging_deeper_than_its_flutes_brings_its_shank_into_the_stock(
     let (_, warnings, _) = stock_support::run("mill-3axis", md, StockOptions::default(), &plunge(-15.0));
     assert!(warnings.is_empty(), "{warnings:?}");
     let (info, warnings, _) = stock_support::run("mill-3axis", md, StockOptions::default(), &plunge(-20.0));
-    assert_eq!(warnings.iter().map(|w| (w.check, w.line)).collect::<Vec<_>>(), vec![
-        (StockCheck::HolderCollision, 7),
-        (StockCheck::HolderCollision, 8)
-    ]);
+    assert_eq!(
+        warnings.iter().map(|w| (w.check, w.line)).collect::<Vec<_>>(),
+        vec![(StockCheck::HolderCollision, 7), (StockCheck::HolderCollision, 8)]
+    );
     let w = warnings[0];
     assert!((w.depth - 2.0).abs() < 1e-4 && (w.position[2] + 20.0).abs() < 1e-6, "{w:?}");
     let bound = 0.5 * (2.0 * PI * 9.0 / 0.25) * 0.0625 * 2.0;

@@ -9,9 +9,9 @@
 
 use std::f64::consts::PI;
 
+use nctwin_engine::Channel;
 use nctwin_engine::channel::{StockInfo, StockOptions};
 use nctwin_engine::stock::Stock;
-use nctwin_engine::Channel;
 
 mod stock_support;
 

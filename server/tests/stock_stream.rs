@@ -23,9 +23,8 @@ async fn the_stream_pushes_the_tiles_a_cut_changed_with_their_meshes() {
     let run = server.post(&format!("/sessions/{id}/run"), json!({"program": program})).await;
     assert_eq!(run.body["status"], "running", "{}", run.body);
     let mut pushes: Vec<Value> = Vec::new();
-    let mut last_state = Value::Null;
     let mut ran = false;
-    loop {
+    let last_state = loop {
         let message = tokio::time::timeout(Duration::from_secs(20), socket.next()).await.expect("in time");
         let Some(Ok(Message::Text(text))) = message else { continue };
         let m: Value = serde_json::from_str(&text).unwrap();
@@ -33,15 +32,13 @@ async fn the_stream_pushes_the_tiles_a_cut_changed_with_their_meshes() {
             Some("stock") => pushes.push(m),
             Some("state") => {
                 ran |= m["status"] == "running";
-                let done = ran && m["status"] == "idle";
-                last_state = m;
-                if done {
-                    break;
+                if ran && m["status"] == "idle" {
+                    break m;
                 }
             }
             _ => {}
         }
-    }
+    };
     // A chain of versions from the blank (since 0: every tile named, the first four with
     // their meshes) to the version of the last state, each message starting where the last
     // one ended; no reload was needed.

@@ -143,6 +143,9 @@ struct Segment {
 /// 0.01 mm at a 100 mm tool.
 const AXIS_TOLERANCE: f64 = 1e-4;
 
+/// The cutting edge last used: tool and edge, its cutter and its shank (radius, height).
+type EdgeCache = ((u32, u32), Option<Cutter>, Option<(f64, f64)>);
+
 /// The stock of a session with its segment in progress and its findings.
 #[derive(Debug, Clone)]
 pub(super) struct StockRun {
@@ -150,7 +153,7 @@ pub(super) struct StockRun {
     initial_volume: f64,
     options: StockOptions,
     /// The active edge's cutter and shank (`stock/body.rs`).
-    cutter: Option<((u32, u32), Option<Cutter>, Option<(f64, f64)>)>,
+    cutter: Option<EdgeCache>,
     /// `$MC_SPINDLE_HOUSING`: diameter and length of the spindle round its nose.
     housing: Option<[f64; 2]>,
     segment: Option<Segment>,

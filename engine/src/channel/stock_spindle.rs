@@ -120,7 +120,10 @@ impl Channel {
         let Some(m) = self.stock_spindle_mount() else { return p };
         let rot = m.rotation(self.mount_angle(&m).0);
         let cols: [[f64; 3]; 3] = std::array::from_fn(|c| rot([p.lin[0][c], p.lin[1][c], p.lin[2][c]]));
-        crate::stock::blank::Placement { lin: std::array::from_fn(|r| std::array::from_fn(|c| cols[c][r])), trans: rot(p.trans) }
+        crate::stock::blank::Placement {
+            lin: std::array::from_fn(|r| std::array::from_fn(|c| cols[c][r])),
+            trans: rot(p.trans),
+        }
     }
 
     /// The tool this cycle under the active transformation or on the spindle the blank turns
@@ -133,7 +136,10 @@ impl Channel {
                 (Some(m), Some(Stock::Milling(_))) => {
                     let (c, ring) = self.mount_angle(&m);
                     let (q, l) = m.unturned(&self.machine, plain_tool, false);
-                    Mounted::At(pose(if ring { q } else { m.rotation(c)(q) }, if ring { l } else { m.rotation(c)(l) }), ring)
+                    Mounted::At(
+                        pose(if ring { q } else { m.rotation(c)(q) }, if ring { l } else { m.rotation(c)(l) }),
+                        ring,
+                    )
                 }
                 _ => Mounted::Plain,
             };

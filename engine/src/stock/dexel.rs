@@ -15,8 +15,8 @@ use super::cutter::Cutter;
 use super::{MAX_CELLS, Removal};
 
 mod overlap;
-mod tilted;
 mod swept;
+mod tilted;
 mod turned;
 
 pub use overlap::Overlap;

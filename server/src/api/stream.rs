@@ -688,8 +688,9 @@ mod tests {
         let (_replies_tx, replies) = mpsc::channel(1);
         let task = tokio::spawn(async move {
             let frames = FrameCache::default();
-        let stock = crate::session::stock_feed::StockFeed::default();
-            pump(sink, gone, state_rx, event_rx, replies, period, Feeds { frames: &frames, stock: &stock }, quiet()).await
+            let stock = crate::session::stock_feed::StockFeed::default();
+            pump(sink, gone, state_rx, event_rx, replies, period, Feeds { frames: &frames, stock: &stock }, quiet())
+                .await
         });
         Harness { states, events, out, client_gone: Some(gone_tx), task, channel }
     }
@@ -776,9 +777,19 @@ mod tests {
         let (_replies_tx, replies) = mpsc::channel(1);
         let task = tokio::spawn(async move {
             let frames = FrameCache::default();
-        let stock = crate::session::stock_feed::StockFeed::default();
+            let stock = crate::session::stock_feed::StockFeed::default();
             let period = Duration::from_millis(50);
-            pump(sink, std::future::pending(), state_rx, event_rx, replies, period, Feeds { frames: &frames, stock: &stock }, quiet()).await
+            pump(
+                sink,
+                std::future::pending(),
+                state_rx,
+                event_rx,
+                replies,
+                period,
+                Feeds { frames: &frames, stock: &stock },
+                quiet(),
+            )
+            .await
         });
         // The first state goes out at once; the next slot (50 ms) opens at 37.5 ms.
         tokio::time::sleep(Duration::from_millis(45)).await;
@@ -821,9 +832,19 @@ mod tests {
             let (_events_tx, events) = broadcast::channel(1);
             let (_replies_tx, replies) = mpsc::channel(1);
             let frames = FrameCache::default();
-        let stock = crate::session::stock_feed::StockFeed::default();
+            let stock = crate::session::stock_feed::StockFeed::default();
             let period = Duration::from_millis(50);
-            pump(sink, std::future::pending(), state_rx, events, replies, period, Feeds { frames: &frames, stock: &stock }, liveness).await
+            pump(
+                sink,
+                std::future::pending(),
+                state_rx,
+                events,
+                replies,
+                period,
+                Feeds { frames: &frames, stock: &stock },
+                liveness,
+            )
+            .await
         });
         (out, task, states)
     }

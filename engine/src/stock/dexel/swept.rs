@@ -91,7 +91,10 @@ mod tests {
         let tip = [0.125, 0.125, -5.0];
         let close = |iv: &[[f32; 2]], want: &[[f64; 2]]| {
             iv.len() == want.len()
-                && iv.iter().zip(want).all(|(a, b)| (f64::from(a[0]) - b[0]).abs() < 1e-3 && (f64::from(a[1]) - b[1]).abs() < 1e-3)
+                && iv
+                    .iter()
+                    .zip(want)
+                    .all(|(a, b)| (f64::from(a[0]) - b[0]).abs() < 1e-3 && (f64::from(a[1]) - b[1]).abs() < 1e-3)
         };
         let mut g = plate();
         g.cut_tilted(&Cutter::end_mill(1.0), tip, tip, [-s, 0.0, c], 30.0);
