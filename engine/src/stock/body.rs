@@ -74,15 +74,7 @@ pub fn shank(p: &EdgeParams) -> Option<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::machine_data::tool_orient::EDGE_SLOTS;
-
-    fn edge(values: &[(usize, f64)]) -> EdgeParams {
-        let mut p = [0.0; EDGE_SLOTS];
-        for &(n, v) in values {
-            p[n - 1] = v;
-        }
-        p
-    }
+    use crate::stock::cutter::edge;
 
     #[test]
     fn an_end_mill_has_its_shank_above_three_diameters_and_a_drill_above_five() {
