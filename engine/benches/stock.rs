@@ -7,6 +7,10 @@
 //! - `segment`: one straight segment of the R5 end mill cut into a fresh 100 x 100 mm blank,
 //!   1 mm and 8 mm long (the longest segment the channel cuts at once), level and ramping:
 //!   the cost of one cut at the default resolution.
+//! - `tilted`: one IPO cycle's stretch (0.2 mm: 1000 mm/min at 12 ms) of an R5 tool 100 long
+//!   tilted 30° about Y, its tip 2 mm deep at the end of a slot it has cut 20 mm into a
+//!   100 x 100 x 20 blank: a flat end mill and a ball nose (its tip a staircase of cylinders):
+//!   the 5-axis cost per cutting cycle.
 //!
 //! `cargo test -p nctwin-engine --benches` runs every case once (the smoke run).
 
@@ -89,5 +93,20 @@ fn segment(bencher: Bencher, length: f64) {
     bencher.with_inputs(|| fresh.clone()).bench_local_refs(|s| {
         black_box(s.cut(&cutter, [50.0, 50.0, -2.0], [50.0 + length, 50.0, -2.0]));
         black_box(s.cut(&cutter, [50.0, 60.0, -2.0], [50.0 + length, 60.0, -2.0 - length / 4.0]));
+    });
+}
+
+#[divan::bench(args = [0.0, 5.0])]
+fn tilted(bencher: Bencher, corner: f64) {
+    let blank = Blank { shape: Shape::Box { x: [0.0, 100.0], y: [0.0, 100.0] }, top: 0.0, bottom: -20.0 };
+    let fresh = Stock::new(&blank, &Placement::default(), false, DEFAULT_RESOLUTION).expect("stock");
+    let cutter = Cutter { radius: 5.0, kind: nctwin_engine::stock::cutter::Kind::Mill { corner } };
+    let (s, c) = 30f64.to_radians().sin_cos();
+    let axis = [s, 0.0, c];
+    // Steady state: the slot cut from X10 to X30 already, then one cycle's 0.2 mm further.
+    let mut slot = fresh.clone();
+    slot.cut_oriented(&cutter, [10.0, 50.0, -2.0], [30.0, 50.0, -2.0], axis, 100.0);
+    bencher.with_inputs(|| slot.clone()).bench_local_refs(|st| {
+        black_box(st.cut_oriented(&cutter, [30.0, 50.0, -2.0], [30.2, 50.0, -2.0], axis, 100.0));
     });
 }

@@ -17,6 +17,7 @@
 //! Pure and deterministic: no I/O, no clock; every loop runs in index order.
 
 pub mod blank;
+pub mod body;
 pub mod cutter;
 pub mod dexel;
 pub mod holder;
@@ -95,23 +96,31 @@ impl Stock {
         }
     }
 
-    /// The material inside `holder` (on a tool `tool_length` long, axis `axis`) while the tip
-    /// goes from `a` to `b`: a collision where it is not zero. A turned stock has no holder
-    /// model (the default: nothing found).
-    pub fn holder_overlap(
-        &self,
-        holder: &holder::Holder,
-        tool_length: f64,
+    /// [`Stock::cut_oriented`] with the axis turning from `axis_a` to `axis_b` on the way (on
+    /// their great circle): 5-axis simultaneous motion, a tool turning about its standing tip.
+    pub fn cut_swept(
+        &mut self,
+        cutter: &Cutter,
         a: [f64; 3],
         b: [f64; 3],
-        axis: [f64; 3],
-    ) -> dexel::Overlap {
+        axis_a: [f64; 3],
+        axis_b: [f64; 3],
+        length: f64,
+    ) -> Removal {
         match self {
-            Stock::Milling(g) => {
-                let cylinders: Vec<_> = holder.cylinders(tool_length).collect();
-                g.overlap(&cylinders, a, b, axis)
-            }
-            Stock::Turning(_) => dexel::Overlap::default(),
+            Stock::Milling(g) if axis_a != axis_b => g.cut_swept(cutter, a, b, axis_a, axis_b, length),
+            _ => self.cut_oriented(cutter, a, b, axis_a, length),
+        }
+    }
+
+    /// The material inside the `cylinders` (`(radius, from, to)` above the tip along the unit
+    /// `axis`: shank, holder, spindle, [`body::Bodies`]) while the tip goes from `a` to `b`: a
+    /// collision where it is not zero. A turned stock has no holder model (the default:
+    /// nothing found).
+    pub fn overlap(&self, cylinders: &[(f64, f64, f64)], a: [f64; 3], b: [f64; 3], axis: [f64; 3]) -> dexel::Overlap {
+        match self {
+            Stock::Milling(g) if !cylinders.is_empty() => g.overlap(cylinders, a, b, axis),
+            _ => dexel::Overlap::default(),
         }
     }
 

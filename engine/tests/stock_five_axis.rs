@@ -6,31 +6,17 @@
 
 use std::f64::consts::PI;
 
+use nctwin_engine::Channel;
 use nctwin_engine::channel::StockOptions;
 use nctwin_engine::stock::Stock;
-use nctwin_engine::{Channel, Event};
+
+mod stock_support;
 
 /// Runs `program` on `preset` to its end; the channel and the checks raised.
 fn run(preset: &str, program: &str) -> (Channel, usize) {
-    let mut ch = Channel::from_preset(preset, "").unwrap();
-    ch.set_stock_options(StockOptions::default()).unwrap();
-    ch.run_program(program).unwrap();
-    let mut checks = 0;
-    let mut cycles = 0u64;
-    while ch.is_busy() {
-        ch.step();
-        cycles += 1;
-        assert!(cycles < 2_000_000, "program does not end");
-        for e in ch.take_events() {
-            match e {
-                Event::Stock(_) => checks += 1,
-                Event::AlarmRaised(a) => panic!("alarm {a:?}"),
-                _ => {}
-            }
-        }
-    }
+    let (_, warnings, ch) = stock_support::run(preset, "", StockOptions::default(), program);
     assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
-    (ch, checks)
+    (ch, warnings.len())
 }
 
 /// The material intervals of the cell whose centre is (x, y) (a 0.25 mm grid from X−30 Y−30).

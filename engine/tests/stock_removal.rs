@@ -8,40 +8,14 @@
 //! is exact in Z and radii are exact.
 
 mod stl_support;
+mod stock_support;
 
 use std::f64::consts::PI;
 
+use nctwin_engine::Channel;
 use nctwin_engine::channel::{StockCheck, StockInfo, StockOptions, StockWarning};
-use nctwin_engine::{Channel, Event};
 use stl_support::box_stl;
-
-/// Runs `program` on `preset` to its end; its stock summary and the checks raised.
-fn run(preset: &str, md: &str, options: StockOptions, program: &str) -> (StockInfo, Vec<StockWarning>, Channel) {
-    let mut ch = Channel::from_preset(preset, md).unwrap();
-    ch.set_stock_options(options).unwrap();
-    ch.run_program(program).unwrap();
-    let mut warnings = Vec::new();
-    let mut cycles = 0u64;
-    while ch.is_busy() {
-        ch.step();
-        cycles += 1;
-        assert!(cycles < 5_000_000, "program does not end");
-        for e in ch.take_events() {
-            match e {
-                Event::Stock(w) => warnings.push(w),
-                Event::AlarmRaised(a) => panic!("alarm {a:?}"),
-                _ => {}
-            }
-        }
-    }
-    let info = ch.stock_info().expect("a blank is defined");
-    for e in ch.take_events() {
-        if let Event::Stock(w) = e {
-            warnings.push(w);
-        }
-    }
-    (info, warnings, ch)
-}
+use stock_support::run;
 
 fn mill(program: &str) -> (StockInfo, Vec<StockWarning>, Channel) {
     run("mill-3axis", "", StockOptions::default(), program)

@@ -982,6 +982,8 @@ pub enum StreamMessage {
     State(Box<State>),
     /// Something happened.
     Event(EventMessage),
+    /// The stock's tiles a cut changed, pushed after the state showing the new version.
+    Stock(crate::api::stock_tiles::StockTilesMessage),
     /// A client message (`jog`, `jog_stop`, `handwheel`) was carried out.
     Ack {
         /// The `type` of the client message.

@@ -122,10 +122,12 @@ async fn an_stl_blank_a_holder_and_a_target_comparison_over_rest() {
     let report = server.get(&format!("/sessions/{id}/stock")).await.body;
     let first = &report["warnings"][0];
     assert_eq!((&first["check"], &first["line"]), (&json!("holder_collision"), &json!(3)), "{report}");
-    // Raised at the plunge's first segment that touched (a few µm); the retract of line 4
-    // starts with the face 1 mm deep.
+    // Raised at the plunge's first segment that touched; the retract of line 4 starts with
+    // the holder's face 1 mm deep and T1's shank (it cuts over 3·D = 30 mm, above that a Ø20
+    // body up to the gauge line, `stock/body.rs`) through Z−20..−1 of the block: 19 mm on one
+    // dexel line, the thickest.
     let second = &report["warnings"][1];
-    assert_eq!((&second["line"], &second["depth"]), (&json!(4), &json!(1.0)), "{report}");
+    assert_eq!((&second["line"], &second["depth"]), (&json!(4), &json!(19.0)), "{report}");
 
     // The target: the block with a Ø10 hole 20 deep would be exact; against the plain block
     // the hole (π·25·20 ≈ 1571 mm³ at the grid's sampling) is all overcut, 20 mm thick.

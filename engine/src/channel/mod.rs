@@ -42,6 +42,7 @@ mod stock_cut;
 mod stock_mesh;
 mod stock_pose;
 mod stock_saved;
+mod stock_spindle;
 mod stock_tiles;
 pub mod sync_actions;
 mod sync_eval;

@@ -14,10 +14,12 @@
 //!   work spindle);
 //! - a depth of cut beyond the limit the user set: the thickest material one dexel (one slab)
 //!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe;
-//! - the holder (optional, [`StockOptions::holder`]) touching the stock.
+//! - the tool's shank, the holder ([`StockOptions::holder`]) or the spindle housing touching
+//!   the stock (`stock/body.rs`).
 //!
-//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain).
-//! Skipped while they are active (counted in `skipped`): TRANSMIT, TRACYL, TRAANG.
+//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain) and
+//! `stock_spindle.rs` (TRANSMIT, TRACYL and TRAANG; a blank turning with the spindle). Skipped
+//! (counted in `skipped`): what `stock_spindle.rs` names.
 
 use super::{Channel, CommandError, Event};
 use crate::stock::blank::{Blank, Placement};
@@ -121,6 +123,8 @@ struct Key {
     rapid: bool,
     spindle: bool,
     tool: (u32, u32),
+    /// A turning cut of a part that turns with the spindle (`stock_spindle.rs`).
+    ring: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -139,13 +143,19 @@ struct Segment {
 /// 0.01 mm at a 100 mm tool.
 const AXIS_TOLERANCE: f64 = 1e-4;
 
+/// The cutting edge last used: tool and edge, its cutter and its shank (radius, height).
+type EdgeCache = ((u32, u32), Option<Cutter>, Option<(f64, f64)>);
+
 /// The stock of a session with its segment in progress and its findings.
 #[derive(Debug, Clone)]
 pub(super) struct StockRun {
     pub(super) stock: Stock,
     initial_volume: f64,
     options: StockOptions,
-    cutter: Option<((u32, u32), Option<Cutter>)>,
+    /// The active edge's cutter and shank (`stock/body.rs`).
+    cutter: Option<EdgeCache>,
+    /// `$MC_SPINDLE_HOUSING`: diameter and length of the spindle round its nose.
+    housing: Option<[f64; 2]>,
     segment: Option<Segment>,
     warnings: std::collections::VecDeque<StockWarning>,
     warnings_total: u64,
@@ -159,6 +169,8 @@ pub(super) struct StockRun {
     kin: Option<Box<crate::kinematics::Traori>>,
     /// Changes for the HMI's incremental mesh (`stock_tiles.rs`).
     pub(super) tiles: super::stock_tiles::TileLog,
+    /// The work spindle the blank turns with (a lathe with driven tools, `stock_spindle.rs`).
+    pub(super) mount: Option<super::stock_spindle::SpindleMount>,
 }
 
 impl StockRun {
@@ -169,6 +181,8 @@ impl StockRun {
 
     fn new(stock: Stock, options: StockOptions, kin: Option<Box<crate::kinematics::Traori>>) -> StockRun {
         StockRun {
+            mount: None,
+            housing: None,
             tiles: super::stock_tiles::TileLog::new(&stock),
             kin,
             initial_volume: stock.volume(),
@@ -186,6 +200,18 @@ impl StockRun {
 }
 
 impl StockRun {
+    /// The stock changed representation (`stock_spindle.rs`): the blank's volume moves by the
+    /// difference, so the removed volume goes on.
+    pub(super) fn shift_initial_volume(&mut self, dv: f64) {
+        self.initial_volume += dv;
+        self.segment = None;
+    }
+
+    /// Every tile changed (a new grid).
+    pub(super) fn restart_tiles(&mut self) {
+        self.tiles.restart(&self.stock);
+    }
+
     /// Keeps `w` among the latest warnings and counts it.
     fn push_warning(&mut self, w: StockWarning) {
         if self.warnings.len() == KEEP_WARNINGS {
@@ -310,8 +336,10 @@ impl Channel {
 
     /// Builds the stock of `blank` in the WCS of `frame`.
     fn place_stock(&mut self, blank: &Blank, frame: &crate::interp::Frame) -> Result<(), String> {
-        let placement = self.stock_placement(frame);
         let turning = self.stock_turns();
+        let placement = self.stock_placement(frame);
+        // Dexels on a work spindle (a lathe with a Y axis) turn with it.
+        let placement = if turning { placement } else { self.mount_placement(placement) };
         let stock = Stock::new(blank, &placement, turning, self.stock_options.resolution)?;
         self.install_stock(stock);
         Ok(())
@@ -343,34 +371,44 @@ impl Channel {
     /// Makes `stock` the session's, cut from now on.
     pub(super) fn install_stock(&mut self, stock: Stock) {
         let kin = if matches!(stock, Stock::Turning(_)) { None } else { self.stock_kinematics() };
-        self.stock = Some(Box::new(StockRun::new(stock, self.stock_options, kin)));
+        let mount = self.stock_spindle_mount();
+        let mut run = StockRun::new(stock, self.stock_options, kin);
+        run.mount = mount;
+        let housing = [0, 1].map(|i| self.data.num("$MC_SPINDLE_HOUSING", 0, i));
+        run.housing = (housing[0] > 0.0 && housing[1] > 0.0).then_some(housing);
+        self.stock = Some(Box::new(run));
     }
 
     /// One IPO cycle of material removal (called only while a blank is defined).
     #[inline(never)]
     pub(super) fn cut_stock(&mut self) {
-        let tag = self.planner.position_tag();
-        let meta = match self.in_planner.front() {
-            Some((t, m)) if Some(*t) == tag => Some(m),
-            _ => tag.and_then(|t| self.in_planner.iter().find(|(x, _)| *x == t)).map(|(_, m)| m),
-        };
-        let (line, rapid, offsets) = match meta {
-            Some(m) => (m.line, !m.feed.is_finite(), &m.offsets),
-            None => (0, false, &self.offsets),
-        };
+        let (line, rapid, offsets) = self.stock_meta();
         let tool = (offsets.t, offsets.d);
-        let pose = self.stock_tool_pose(offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref()));
+        let mounted = if self.trafo.is_some() || self.stock.as_ref().is_some_and(|r| r.mount.is_some()) {
+            let geo = self.cfg.geo_axes;
+            let toff = self.toff.current;
+            let plain = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
+            self.stock_mounted_pose(plain)
+        } else {
+            super::stock_spindle::Mounted::Plain
+        };
+        let (pose, ring) = match mounted {
+            super::stock_spindle::Mounted::At(pose, ring) => (pose, ring),
+            super::stock_spindle::Mounted::Plain => {
+                let offsets = self.stock_meta().2;
+                (self.stock_tool_pose(offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref())), false)
+            }
+            super::stock_spindle::Mounted::Skip => {
+                if let Some(run) = self.stock.as_mut() {
+                    run.skipped += 1;
+                    run.segment = None;
+                }
+                return;
+            }
+        };
         let tip = pose.tip;
-        let key = Key { line, rapid, spindle: self.spindles.iter().any(|s| s.is_turning()), tool };
-        // TRAORI is followed (`stock_pose.rs`); the other transformations are not yet.
-        let transformed =
-            self.trafo.as_ref().is_some_and(|t| !matches!(t.trafo, crate::kinematics::AnyTrafo::Traori(_)));
+        let key = Key { line, rapid, spindle: self.spindles.iter().any(|s| s.is_turning()), tool, ring };
         let Some(run) = self.stock.as_mut() else { return };
-        if transformed {
-            run.skipped += 1;
-            run.segment = None;
-            return;
-        }
         let tol = run.stock.resolution() / 10.0;
         let Some(seg) = run.segment.as_mut() else {
             run.segment =
@@ -413,13 +451,39 @@ impl Channel {
             return;
         }
         // The segment ends at the last sample; the new one starts there.
-        let from = seg.end;
+        let (from, from_axis) = (seg.end, seg.axis);
         self.flush_stock();
+        if turned {
+            // The axis turned: from the last sample to this one the tool is swept with its
+            // axis turning (a tool turning about a standing tip sweeps its shank), and the next
+            // segment starts here.
+            self.cut_piece(from, tip, [from_axis, pose.axis], key, pose.length);
+            if let Some(run) = self.stock.as_mut() {
+                run.segment =
+                    Some(Segment { start: tip, end: tip, dir: [0.0; 3], key, axis: pose.axis, length: pose.length });
+            }
+            return;
+        }
         let Some(run) = self.stock.as_mut() else { return };
         let v = sub(tip, from);
         let n = dot(v, v).sqrt();
         let dir = if n > 0.0 { v.map(|c| c / n) } else { [0.0; 3] };
         run.segment = Some(Segment { start: from, end: tip, dir, key, axis: pose.axis, length: pose.length });
+    }
+
+    /// Line, rapid traverse and offsets of the block the planner's position lies on (line 0
+    /// and the channel's offsets outside a move).
+    #[inline]
+    fn stock_meta(&self) -> (u32, bool, &crate::interp::Offsets) {
+        let tag = self.planner.position_tag();
+        let meta = match self.in_planner.front() {
+            Some((t, m)) if Some(*t) == tag => Some(m),
+            _ => tag.and_then(|t| self.in_planner.iter().find(|(x, _)| *x == t)).map(|(_, m)| m),
+        };
+        match meta {
+            Some(m) => (m.line, !m.feed.is_finite(), &m.offsets),
+            None => (0, false, &self.offsets),
+        }
     }
 
     /// [`Channel::flush_stock`] for the sibling modules.
@@ -439,25 +503,44 @@ impl Channel {
         let (a, b, key, axis, length) = (seg.start, seg.end, seg.key, seg.axis, seg.length);
         seg.start = seg.end;
         seg.dir = [0.0; 3];
-        if run.cutter.as_ref().is_none_or(|(k, _)| *k != key.tool) {
-            let cutter = (key.tool.0 != 0 && key.tool.1 != 0)
-                .then(|| self.cfg.tools.get(&key.tool).map(Cutter::from_edge))
-                .flatten();
-            run.cutter = Some((key.tool, cutter));
+        self.cut_piece(a, b, [axis, axis], key, length);
+    }
+
+    /// Cuts the tip's way from `a` to `b` with the tool's axis turning from `axes[0]` to
+    /// `axes[1]`, and raises the checks.
+    fn cut_piece(&mut self, a: [f64; 3], b: [f64; 3], axes: [[f64; 3]; 2], key: Key, length: f64) {
+        let Some(run) = self.stock.as_mut() else { return };
+        let axis = axes[0];
+        if run.cutter.as_ref().is_none_or(|(k, _, _)| *k != key.tool) {
+            let edge = (key.tool.0 != 0 && key.tool.1 != 0).then(|| self.cfg.tools.get(&key.tool)).flatten();
+            run.cutter = Some((key.tool, edge.map(Cutter::from_edge), edge.and_then(crate::stock::body::shank)));
         }
-        let Some((_, Some(cutter))) = run.cutter else { return };
+        let Some((_, Some(cutter), shank)) = run.cutter else { return };
         let pen = run.tiles.pen(key.tool);
         if let Stock::Milling(g) = &mut run.stock {
             g.set_pen(pen);
         }
-        let removal = run.stock.cut_oriented(&cutter, a, b, axis, length.max(4.0 * cutter.radius));
+        let removal = match &mut run.stock {
+            Stock::Milling(g) if key.ring => match g.cut_ring(&cutter, a, b) {
+                Some(removal) => removal,
+                // A tool on the axis of the turning part (a drill) cuts as it stands.
+                None if a[0].hypot(a[1]).max(b[0].hypot(b[1])) <= g.resolution() / 2.0 => g.cut(&cutter, a, b),
+                None => {
+                    run.skipped += 1;
+                    crate::stock::Removal::default()
+                }
+            },
+            stock => stock.cut_swept(&cutter, a, b, axis, axes[1], length.max(4.0 * cutter.radius)),
+        };
         run.removing = removal.volume > 0.0 && !key.rapid && key.spindle;
         if removal.volume > 0.0 {
-            let reach = cutter.radius + length * (1.0 - axis[2] * axis[2]).max(0.0).sqrt();
+            let side = |o: [f64; 3]| (1.0 - o[2] * o[2]).max(0.0).sqrt();
+            let reach = cutter.radius + length * side(axes[0]).max(side(axes[1]));
             run.tiles.touch(&run.stock, a, b, reach);
         }
-        if let Some(holder) = run.options.holder {
-            let touch = run.stock.holder_overlap(&holder, length, a, b, axis);
+        let bodies = crate::stock::body::Bodies::new(shank, run.options.holder.as_ref(), run.housing, length);
+        if !bodies.cylinders().is_empty() {
+            let touch = run.stock.overlap(bodies.cylinders(), a, b, axis);
             if touch.depth >= CHECK_DEPTH && run.reported[3] != key.line {
                 run.reported[3] = key.line;
                 let w = StockWarning {

@@ -49,6 +49,15 @@ impl TileLog {
         TileLog { version: 1, size, changed: vec![1; size.0 * size.1], pens: Vec::new() }
     }
 
+    /// The stock became another grid (`stock_spindle.rs`): its tiles, all changed, under a
+    /// new version (the versions go on, so the HMI fetches them all).
+    pub(super) fn restart(&mut self, stock: &Stock) {
+        let fresh = TileLog::new(stock);
+        self.version = self.version.wrapping_add(1).max(1);
+        self.size = fresh.size;
+        self.changed = vec![self.version; fresh.changed.len()];
+    }
+
     pub(super) fn version(&self) -> u32 {
         self.version
     }
@@ -89,6 +98,13 @@ impl Channel {
     /// without a blank.
     pub fn stock_changes(&mut self, since: u32) -> Option<StockChanges> {
         self.flush_stock_now();
+        self.stock_delta(since)
+    }
+
+    /// [`Channel::stock_changes`] as the last cut left them (the open segment not yet cut, so
+    /// reading does not change where segments end): for the stream's pushes, taken between
+    /// IPO cycles.
+    pub fn stock_delta(&self, since: u32) -> Option<StockChanges> {
         let log = &self.stock.as_ref()?.tiles;
         let (nx, _) = log.size;
         let tiles = (0..log.changed.len())
@@ -98,10 +114,20 @@ impl Channel {
         Some(StockChanges { version: log.version, tile: TILE, tiles, pens: log.pens.clone() })
     }
 
+    /// The stock's version as the last cut left it; `None` without a blank.
+    pub fn stock_version(&self) -> Option<u32> {
+        self.stock.as_ref().map(|r| r.tiles.version())
+    }
+
     /// Tile (i, j) of a milled stock as a binary STL (faces' attribute: the pen); the whole
     /// stock for a turned one (tile 0, 0). `None` without a blank or outside the grid.
     pub fn stock_tile_stl(&mut self, i: usize, j: usize) -> Option<Vec<u8>> {
         self.flush_stock_now();
+        self.stock_tile_mesh(i, j)
+    }
+
+    /// [`Channel::stock_tile_stl`] as the last cut left it (see [`Channel::stock_delta`]).
+    pub fn stock_tile_mesh(&self, i: usize, j: usize) -> Option<Vec<u8>> {
         let run = self.stock.as_ref()?;
         let (tx, ty) = run.tiles.size;
         if i >= tx || j >= ty {

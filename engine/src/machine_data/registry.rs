@@ -292,6 +292,9 @@ pub static DEFS: &[Def] = &[
     def("TOOL_CHANGE_MODE", 22550, C, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
     def("TOOL_CHANGE_M_CODE", 22560, C, Kind::Int, 1, Default::Int(6), 0.0, 99999.0),
     def("TOOL_CHANGE_TIME", 0, C, Kind::Real, 1, Default::Real(0.0), 0.0, 3600.0),
+    // This product's datum (no number): the spindle housing round the spindle nose for the
+    // stock's collision check, [0] diameter, [1] length up from the nose (mm); 0: none.
+    def("SPINDLE_HOUSING", 0, C, Kind::Real, 2, Default::Real(0.0), 0.0, 1e5),
     def("TRAFO_TYPE_1", 24100, C, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("TRAFO_AXES_IN_1", 24110, C, Kind::Int, MAX_CHANNEL_AXES, Default::Indexed(default_trafo_axes_in), 0.0, 20.0),
     def("TRAFO_GEOAX_ASSIGN_TAB_1", 24120, C, Kind::Int, 3, Default::Int(0), 0.0, 20.0),

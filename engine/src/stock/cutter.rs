@@ -109,18 +109,19 @@ impl Cutter {
     }
 }
 
+/// Edge data with `$TC_DPn` = v for each `(n, v)`, the rest 0 (for tests).
+#[cfg(test)]
+pub(crate) fn edge(values: &[(usize, f64)]) -> EdgeParams {
+    let mut p = [0.0; crate::machine_data::tool_orient::EDGE_SLOTS];
+    for &(n, v) in values {
+        p[n - 1] = v;
+    }
+    p
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::machine_data::tool_orient::EDGE_SLOTS;
-
-    fn edge(values: &[(usize, f64)]) -> EdgeParams {
-        let mut p = [0.0; EDGE_SLOTS];
-        for &(n, v) in values {
-            p[n - 1] = v;
-        }
-        p
-    }
 
     #[test]
     fn a_ball_end_mill_rises_by_its_radius_at_its_rim() {

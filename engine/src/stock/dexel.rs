@@ -15,7 +15,9 @@ use super::cutter::Cutter;
 use super::{MAX_CELLS, Removal};
 
 mod overlap;
+mod swept;
 mod tilted;
+mod turned;
 
 pub use overlap::Overlap;
 

@@ -5,7 +5,8 @@
 //! to (`$TC_DP3` above the tip), and goes up the axis: each section a diameter and a length.
 //! The tool data of the control have no holder geometry (Operate keeps it in its simulation
 //! settings), so the user sets it for the session (`PUT .../stock` `holder`, or
-//! [`crate::channel::StockOptions::holder`]); the spindle nose is one more section if wanted.
+//! [`crate::channel::StockOptions::holder`]); the shank below the gauge line and the spindle
+//! housing come from the tool and machine data (`body.rs`).
 
 /// Most sections of one holder (nose, taper, collar, spindle).
 pub const MAX_SECTIONS: usize = 4;

@@ -177,7 +177,7 @@ impl Profile {
 
 /// The lowest radius (X) the nose circle of radius `r` reaches at `z` while its centre goes
 /// from `s0` by (`dz`, `dx`); `None` if it does not pass `z`.
-fn lowest_radius(r: f64, s0: [f64; 2], dz: f64, dx: f64, z: f64) -> Option<f64> {
+pub(crate) fn lowest_radius(r: f64, s0: [f64; 2], dz: f64, dx: f64, z: f64) -> Option<f64> {
     let at = |t: f64| {
         let u = z - (s0[0] + t * dz);
         s0[1] + t * dx - (r * r - u * u).max(0.0).sqrt()

@@ -173,8 +173,9 @@ impl Reader<'_> {
 
 const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
-/// Standard base64 with padding.
-fn base64(bytes: &[u8]) -> String {
+/// `bytes` as standard base64 with padding (RFC 4648): the checkpoint's text and the
+/// stream's tile meshes.
+pub fn base64(bytes: &[u8]) -> String {
     let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for c in bytes.chunks(3) {
         let n =

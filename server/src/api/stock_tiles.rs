@@ -35,6 +35,55 @@ pub struct PenTool {
     pub d: u32,
 }
 
+impl PenTool {
+    /// The pens of the engine's list (tool and edge of pen n at n − 1).
+    pub fn list(pens: &[(u32, u32)]) -> Vec<PenTool> {
+        pens.iter().enumerate().map(|(n, (t, d))| PenTool { pen: n as u32 + 1, t: *t, d: *d }).collect()
+    }
+}
+
+/// One tile's mesh on the stream.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct TileMesh {
+    pub i: u32,
+    pub j: u32,
+    /// The tile as binary STL (as `GET .../stock/tiles/{i}/{j}`), base64.
+    pub stl: String,
+}
+
+/// The stock's changes pushed on the stream (`{"type": "stock", ...}`): the tiles a cut changed
+/// from version `since` to `version`, the meshes of the first few (at most 4 and 512 kB of
+/// STL), the others to fetch with `GET .../stock/tiles/{i}/{j}`. `reload`: the client's version
+/// cannot be brought up to date from here (it joined later, fell behind, or the blank is new):
+/// fetch `GET .../stock/changes?since=0`.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct StockTilesMessage {
+    pub version: u32,
+    pub since: u32,
+    pub reload: bool,
+    /// Cells per tile edge.
+    pub tile_cells: usize,
+    /// The changed tiles, `[i, j]` (a turned stock: `[0, 0]`, the whole mesh).
+    pub tiles: Vec<[u32; 2]>,
+    pub pens: Vec<PenTool>,
+    pub meshes: Vec<TileMesh>,
+}
+
+impl StockTilesMessage {
+    /// "Fetch everything of version `version` over REST".
+    pub fn reload(version: u32) -> StockTilesMessage {
+        StockTilesMessage {
+            version,
+            since: 0,
+            reload: true,
+            tile_cells: nctwin_engine::channel::STOCK_TILE,
+            tiles: Vec::new(),
+            pens: Vec::new(),
+            meshes: Vec::new(),
+        }
+    }
+}
+
 /// The tiles changed since a version.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct StockChangesReport {
@@ -73,7 +122,7 @@ pub async fn get_stock_changes(
         version: c.version,
         tile_cells: c.tile,
         tiles: c.tiles,
-        pens: c.pens.iter().enumerate().map(|(n, (t, d))| PenTool { pen: n as u32 + 1, t: *t, d: *d }).collect(),
+        pens: PenTool::list(&c.pens),
     }))
 }
 

@@ -110,7 +110,10 @@ impl StreamParams {
 /// period while the state changes (on a fixed grid of the period, at most one per grid slot, up
 /// to a quarter period early; intermediate states are skipped), and every
 /// event as it happens (`{"type": "event", "event": "alarm_raised" | "alarm_cleared" |
-/// "block_changed" | "program_ended" | "program_stopped" | "mode_changed", ...}`). A client that
+/// "block_changed" | "program_ended" | "program_stopped" | "mode_changed", ...}`), and after a
+/// state whose stock version changed `{"type": "stock", ...}` with the tiles cut since (see
+/// `StockTilesMessage`; at most 4 meshes inline, `reload` when the client must fetch over
+/// REST). A client that
 /// falls more than 256 events behind skips the oldest. The server closes the socket when the
 /// session is deleted or the server shuts down (close code 1001). At most 64 clients per
 /// session (`429`).
@@ -208,7 +211,8 @@ async fn serve_socket(
         let close = reader.await.ok().flatten();
         let _ = close_tx.send(close);
     };
-    let end = pump(&mut sink, client_gone, states, events, replies, period, &entry.frames, liveness).await;
+    let feeds = Feeds { frames: &entry.frames, stock: entry.handle.stock_feed() };
+    let end = pump(&mut sink, client_gone, states, events, replies, period, feeds, liveness).await;
     stop_reader.abort();
     let close = match end {
         StreamEnd::SessionEnded => Some(CloseFrame { code: close_code::AWAY, reason: "session ended".into() }),
@@ -286,12 +290,21 @@ pub enum StreamEnd {
     PongsMissed,
 }
 
+/// The messages a session's streams share: its encoded state and its stock's changes.
+#[derive(Clone, Copy)]
+pub struct Feeds<'a> {
+    pub frames: &'a FrameCache,
+    pub stock: &'a crate::session::stock_feed::StockFeed,
+}
+
 /// Sends the current state, then state changes (one per `period` on a fixed grid, newest only,
 /// see [`FrameGate`]) and events, and pings (see [`Liveness`]), until the client goes, the
 /// session ends, a send fails or stalls, or pongs stop.
 ///
 /// Whatever is ready at one wake-up (replies, events, the state) goes out in one write. State
-/// messages come from `frames`, encoded once per snapshot for every client of the session.
+/// messages come from `feeds.frames`, encoded once per snapshot for every client of the
+/// session; after a state whose stock version differs from the one this client shows come the
+/// stock's changes (`feeds.stock`).
 #[allow(clippy::too_many_arguments)]
 pub async fn pump<S>(
     mut sink: S,
@@ -300,7 +313,7 @@ pub async fn pump<S>(
     mut events: broadcast::Receiver<Event>,
     mut replies: mpsc::Receiver<StreamMessage>,
     period: Duration,
-    frames: &FrameCache,
+    feeds: Feeds<'_>,
     liveness: Liveness,
 ) -> StreamEnd
 where
@@ -309,7 +322,9 @@ where
     tokio::pin!(client_gone);
     let stall = liveness.stall();
     let first = states.borrow_and_update().clone();
-    let mut batch: Vec<Message> = vec![Message::Text(frames.state(&first))];
+    let mut batch: Vec<Message> = vec![Message::Text(feeds.frames.state(&first))];
+    // The stock version this client shows: the first state's (it fetches that over REST).
+    let mut stock_shown = first.stock.as_ref().map(|s| s.version);
     if let Err(end) = send_all(&mut sink, &mut batch, stall).await {
         return end;
     }
@@ -377,7 +392,11 @@ where
             pending = false;
             gate.sent(now);
             let latest = states.borrow_and_update().clone();
-            batch.push(Message::Text(frames.state(&latest)));
+            batch.push(Message::Text(feeds.frames.state(&latest)));
+            let now = latest.stock.as_ref().map(|s| s.version);
+            if now != stock_shown {
+                stock_shown = feeds.stock.catch_up(stock_shown, now, &mut batch);
+            }
         }
         if !batch.is_empty()
             && let Err(end) = send_all(&mut sink, &mut batch, stall).await
@@ -669,7 +688,9 @@ mod tests {
         let (_replies_tx, replies) = mpsc::channel(1);
         let task = tokio::spawn(async move {
             let frames = FrameCache::default();
-            pump(sink, gone, state_rx, event_rx, replies, period, &frames, quiet()).await
+            let stock = crate::session::stock_feed::StockFeed::default();
+            pump(sink, gone, state_rx, event_rx, replies, period, Feeds { frames: &frames, stock: &stock }, quiet())
+                .await
         });
         Harness { states, events, out, client_gone: Some(gone_tx), task, channel }
     }
@@ -756,8 +777,19 @@ mod tests {
         let (_replies_tx, replies) = mpsc::channel(1);
         let task = tokio::spawn(async move {
             let frames = FrameCache::default();
+            let stock = crate::session::stock_feed::StockFeed::default();
             let period = Duration::from_millis(50);
-            pump(sink, std::future::pending(), state_rx, event_rx, replies, period, &frames, quiet()).await
+            pump(
+                sink,
+                std::future::pending(),
+                state_rx,
+                event_rx,
+                replies,
+                period,
+                Feeds { frames: &frames, stock: &stock },
+                quiet(),
+            )
+            .await
         });
         // The first state goes out at once; the next slot (50 ms) opens at 37.5 ms.
         tokio::time::sleep(Duration::from_millis(45)).await;
@@ -800,8 +832,19 @@ mod tests {
             let (_events_tx, events) = broadcast::channel(1);
             let (_replies_tx, replies) = mpsc::channel(1);
             let frames = FrameCache::default();
+            let stock = crate::session::stock_feed::StockFeed::default();
             let period = Duration::from_millis(50);
-            pump(sink, std::future::pending(), state_rx, events, replies, period, &frames, liveness).await
+            pump(
+                sink,
+                std::future::pending(),
+                state_rx,
+                events,
+                replies,
+                period,
+                Feeds { frames: &frames, stock: &stock },
+                liveness,
+            )
+            .await
         });
         (out, task, states)
     }
@@ -876,6 +919,7 @@ mod tests {
         let (_events_tx, events) = broadcast::channel(1);
         let (_replies_tx, replies) = mpsc::channel(1);
         let frames = FrameCache::default();
+        let stock = crate::session::stock_feed::StockFeed::default();
         let started = Instant::now();
         let end = pump(
             Stuck,
@@ -884,7 +928,7 @@ mod tests {
             events,
             replies,
             Duration::from_millis(50),
-            &frames,
+            Feeds { frames: &frames, stock: &stock },
             liveness(100, 3),
         )
         .await;

@@ -81,6 +81,8 @@ pub(super) struct Actor {
     /// The executed path, recorded from every published state (a std mutex: held for one
     /// push, never across an await).
     pub(super) history: Arc<std::sync::Mutex<super::path_history::PathHistory>>,
+    /// The stock's changes for the streams (set by `SessionHandle::spawn`).
+    pub(super) stock_feed: Arc<super::stock_feed::StockFeed>,
 }
 
 impl Actor {
@@ -109,6 +111,7 @@ impl Actor {
             lag_micros,
             active,
             history: Arc::default(),
+            stock_feed: Arc::default(),
         }
     }
 
@@ -321,6 +324,8 @@ impl Actor {
             // No subscribers is not an error: events are for whoever listens right now.
             let _ = self.events.send(event);
         }
+        // Before the state, so a stream never sees a stock version the feed does not know.
+        self.stock_feed.update(channel, self.events.receiver_count() > 0);
         if self.snapshots.publish(channel, &self.state)
             && let Ok(mut history) = self.history.lock()
         {

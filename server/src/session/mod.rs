@@ -16,6 +16,7 @@ mod actor;
 mod pacer;
 pub mod path_history;
 mod snapshot_pool;
+pub mod stock_feed;
 mod wake_stats;
 
 use std::sync::Arc;
@@ -245,6 +246,8 @@ pub struct SessionHandle {
     active: Arc<active_program::ActiveCache>,
     /// The executed path so far (see `path_history`); the actor records, REST reads.
     history: Arc<std::sync::Mutex<path_history::PathHistory>>,
+    /// The stock's changes for the streams (see `stock_feed`).
+    stock_feed: Arc<stock_feed::StockFeed>,
 }
 
 impl SessionHandle {
@@ -260,6 +263,10 @@ impl SessionHandle {
         let mut actor =
             actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
         actor.history = Arc::clone(&history);
+        let mut actor =
+            actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
+        let stock_feed = Arc::new(stock_feed::StockFeed::default());
+        actor.stock_feed = stock_feed.clone();
         tokio::spawn(actor.run(Box::new(channel), rx));
         SessionHandle {
             id: id.into(),
@@ -272,6 +279,7 @@ impl SessionHandle {
             server_stopping: Arc::default(),
             active,
             history,
+            stock_feed,
         }
     }
 
@@ -293,6 +301,11 @@ impl SessionHandle {
     /// The loaded program's name and line index cache.
     pub fn active_cache(&self) -> &Arc<active_program::ActiveCache> {
         &self.active
+    }
+
+    /// The stock's changes for the streams.
+    pub fn stock_feed(&self) -> &Arc<stock_feed::StockFeed> {
+        &self.stock_feed
     }
 
     /// The latest published state; never waits for the actor.

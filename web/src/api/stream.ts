@@ -1,5 +1,6 @@
 // Live stream of one session over WebSocket, reconnecting with back-off when it drops.
 
+import type { StockPush } from "./stockPush";
 import type { State, StreamEvent } from "./types";
 
 const MIN_DELAY_MS = 500;
@@ -20,6 +21,7 @@ export interface StreamHandlers {
   onEvent(event: StreamEvent): void;
   onConnection(conn: Connection): void;
   onReply?(reply: StreamReply): void;
+  onStock?(push: StockPush): void;
 }
 
 export class StateStream {
@@ -54,6 +56,7 @@ export class StateStream {
       if (msg.type === "state") this.handlers.onState(msg as unknown as State);
       else if (msg.type === "event") this.handlers.onEvent(msg as StreamEvent);
       else if (msg.type === "ack" || msg.type === "error") this.handlers.onReply?.(msg as StreamReply);
+      else if (msg.type === "stock") this.handlers.onStock?.(msg as StockPush);
     };
     ws.onclose = () => {
       if (this.ws !== ws) return;

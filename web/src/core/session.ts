@@ -3,6 +3,7 @@
 
 import { api, streamUrl } from "../api/client";
 import { StateStream, type Connection, type StreamReply } from "../api/stream";
+import type { StockPush } from "../api/stockPush";
 import type { MachineDetail, State, StreamEvent } from "../api/types";
 import { Emitter } from "./emitter";
 import { clearMessage, showMessage } from "./message";
@@ -27,6 +28,8 @@ type SessionEvents = {
   reply: StreamReply;
   /** The stream is back after it was lost: what was read before may be stale. */
   reconnected: SessionInfo;
+  /** The stock's changed tiles pushed on the stream. */
+  stock: StockPush;
 };
 
 export class SessionController extends Emitter<SessionEvents> {
@@ -66,6 +69,7 @@ export class SessionController extends Emitter<SessionEvents> {
       onState: (st) => this.accept(st),
       onEvent: (ev) => this.emit("event", ev),
       onReply: (reply) => this.emit("reply", reply),
+      onStock: (push) => this.emit("stock", push),
       onConnection: (conn) => this.connectionChanged(id, conn),
     });
     this.accept(await api.state(id));

@@ -540,6 +540,7 @@ export function mountMachineView(session: SessionController): MachineView {
   session.on("event", (ev) => {
     if (ev.event === "stock" && ev.warning) view.stock.mark(ev.warning as StockWarning);
   });
+  session.on("stock", (push) => view.stock.apply(push));
   // New machine data (travel, tools): rebuild the model, keep the toolpath.
   session.on("machine", (info) => {
     view.attach(info, { keepPath: true });

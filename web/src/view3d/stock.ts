@@ -4,15 +4,21 @@
 // tiles cut since the version shown and only those are fetched again (GET .../stock/tiles/i/j,
 // binary STL); each face is coloured by the tool that cut it (the pen in the STL's attribute
 // bytes: 0 the blank's grey, then one colour per tool in the order they first cut). A turned
-// stock is one STL (GET .../stock.stl). At once when the program rests, at most every
-// REFRESH_MS while it cuts. The checks (rapid into stock, no spindle, depth of cut, holder
+// stock is one STL (GET .../stock.stl). The stream pushes the changed tiles after each state
+// with a new version (`stock` messages, `apply`), the first few meshes inline: applied when
+// they continue the version shown, the tiles they only name fetched. REST is the fallback: at
+// once when the program rests and nothing was pushed within PUSH_GRACE_MS, at most every
+// REFRESH_MS while it cuts, and when a push says `reload`. The checks (rapid into stock, no spindle, depth of cut, holder
 // collision) are marked where their segment began: red for a rapid, orange for the others.
 
 import * as THREE from "three";
+import { fromBase64, type StockPush } from "../api/stockPush";
 import { tokenFor } from "../api/tokens";
 import type { State, StockWarning } from "../api/types";
 
 const REFRESH_MS = 1500;
+/** How long a state ahead of the stock shown waits for the stream's push before REST. */
+const PUSH_GRACE_MS = 300;
 const STOCK_COLOR = 0x9fb0c2;
 /** Colours of pens 1, 2, ... (the tools in the order they first cut), repeating. */
 const PEN_COLORS = [0x4f8fd6, 0xd9a03f, 0x5cb85c, 0xb565c9, 0xd9534f, 0x3fb8b0, 0x8d6e63, 0xc0ca33];
@@ -83,6 +89,12 @@ export class StockView {
   private shown = 0;
   private lastFetch = -Infinity;
   private busy = false;
+  /** The stock's model ("milling" or "turning") of the last state. */
+  private model = "";
+  /** When the state first showed a version ahead of the one shown (for PUSH_GRACE_MS). */
+  private behindSince = -Infinity;
+  /** Pushes arrive on this session's stream. */
+  private pushed = false;
 
   constructor(private readonly redraw: () => void) {
     this.meshes.renderOrder = 1;
@@ -124,10 +136,77 @@ export class StockView {
       this.clearMeshes();
       this.blankKey = key;
     }
-    if (this.busy || stock.version === this.shown) return;
+    this.model = stock.model;
+    if (this.busy || stock.version === this.shown) {
+      this.behindSince = -Infinity;
+      return;
+    }
+    if (this.behindSince === -Infinity) this.behindSince = now;
+    if (this.pushed && now - this.behindSince < PUSH_GRACE_MS) {
+      // The push follows the state on the stream; REST only if it does not come.
+      setTimeout(() => this.session && this.retry(st), PUSH_GRACE_MS);
+      return;
+    }
     if (st.status === "running" && now - this.lastFetch < REFRESH_MS) return;
     this.lastFetch = now;
     void this.fetch(stock.model, stock.version);
+  }
+
+  /** A state seen while waiting for a push: shown again once the grace is over. */
+  private retry(st: State): void {
+    if (st.stock && st.stock.version !== this.shown) this.show(st);
+  }
+
+  /** A `stock` message of the stream: applied when it continues the version shown. */
+  apply(push: StockPush): void {
+    this.pushed = true;
+    if (!this.session || this.busy || !this.blankKey) return;
+    if (push.reload) {
+      // The stream cannot bring this view up to date: everything anew over REST.
+      this.clearMeshes();
+      this.behindSince = -Infinity;
+      return;
+    }
+    if (push.since !== this.shown) return;
+    const turning = this.model === "turning";
+    const inline = new Set<string>();
+    try {
+      for (const m of push.meshes) {
+        const key = turning ? "all" : `${m.i},${m.j}`;
+        this.place(key, parseStl(fromBase64(m.stl)));
+        inline.add(`${m.i},${m.j}`);
+      }
+    } catch {
+      return; // a bad mesh: the REST fallback fetches the tiles
+    }
+    const rest = push.tiles.filter(([i, j]) => !inline.has(`${i},${j}`));
+    if (rest.length === 0) {
+      this.shown = push.version;
+      this.behindSince = -Infinity;
+      this.redraw();
+      return;
+    }
+    void this.fetchTiles(rest, push.version);
+  }
+
+  /** Fetches the tiles a push only named; then shows `version`. */
+  private async fetchTiles(tiles: [number, number][], version: number): Promise<void> {
+    const id = this.session;
+    this.busy = true;
+    try {
+      for (const [i, j] of tiles) {
+        const tile = await this.get(id, `stock/tiles/${i}/${j}`);
+        if (!tile.ok || id !== this.session) return;
+        this.place(this.model === "turning" ? "all" : `${i},${j}`, parseStl(await tile.arrayBuffer()));
+      }
+      this.shown = version;
+      this.behindSince = -Infinity;
+      this.redraw();
+    } catch {
+      // Retried over REST with the next state that shows a change.
+    } finally {
+      this.busy = false;
+    }
   }
 
   private clearMeshes(): void {

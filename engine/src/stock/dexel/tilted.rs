@@ -22,7 +22,7 @@ use crate::stock::cutter::Cutter;
 const LEVELS: usize = 6;
 
 /// One cylinder of the tool: radius and the height above the tip where it begins.
-type Step = (f64, f64);
+pub(super) type Step = (f64, f64);
 
 impl DexelGrid {
     /// Removes what `cutter` sweeps with its tip going from `a` to `b` (BCS of the blank, mm)
@@ -40,15 +40,7 @@ impl DexelGrid {
         if low >= self.top_max {
             return Removal::default();
         }
-        let mut steps: Vec<Step> = Vec::with_capacity(LEVELS);
-        if cutter.is_flat() {
-            steps.push((r, 0.0));
-        } else {
-            steps.extend((1..=LEVELS).map(|i| {
-                let rho = r * i as f64 / LEVELS as f64;
-                (rho, cutter.lower(rho))
-            }));
-        }
+        let steps = steps(cutter);
         let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         let n = ((len / (self.res / 2.0)).ceil() as usize).max(1);
@@ -67,24 +59,55 @@ impl DexelGrid {
 
     /// Removes the tool standing with its tip at `p`; the sum of the thicknesses removed and
     /// the largest of them.
-    fn remove_tool_at(&mut self, p: [f64; 3], o: [f64; 3], length: f64, steps: &[Step]) -> (f64, f32) {
+    ///
+    /// Only cells whose line can meet the tool below the stock's highest top are visited: the
+    /// axis is clipped to the heights whose slice of the tool reaches below that top (a slice
+    /// wholly above it meets no material, and a line that meets only such slices has its band
+    /// above it too), and each row to the stretch within the radius of the clipped axis' XY
+    /// projection. A tool tilted 30° with its tip 2 mm deep so visits some 2,000 cells
+    /// instead of the 10,000 of its whole 100 mm length's box.
+    pub(super) fn remove_tool_at(&mut self, p: [f64; 3], o: [f64; 3], length: f64, steps: &[Step]) -> (f64, f32) {
         let r = steps.last().map_or(0.0, |s| s.0);
-        let top = [p[0] + length * o[0], p[1] + length * o[1], p[2] + length * o[2]];
         let side = (1.0 - o[2] * o[2]).max(0.0).sqrt();
-        if p[2].min(top[2]) - r * side >= self.top_max {
+        // Heights h along the axis whose slice (z from p.z + h·o.z − r·side up) reaches below
+        // the top.
+        let reach = self.top_max - p[2] + r * side;
+        let (h0, h1) = if o[2] > 1e-12 {
+            (0.0, (reach / o[2]).min(length))
+        } else if o[2] < -1e-12 {
+            ((reach / o[2]).max(0.0), length)
+        } else if reach > 0.0 {
+            (0.0, length)
+        } else {
+            return (0.0, 0.0);
+        };
+        if h1 < h0 {
             return (0.0, 0.0);
         }
+        let a = [p[0] + h0 * o[0], p[1] + h0 * o[1]];
+        let d = [(h1 - h0) * o[0], (h1 - h0) * o[1]];
         let res = self.res;
         let range = |lo: f64, hi: f64, origin: f64, n: usize| {
             let first = ((lo - origin) / res - 0.5).ceil().clamp(0.0, n as f64);
             let last = ((hi - origin) / res - 0.5).floor().min(n as f64 - 1.0);
             (first as usize, last as isize)
         };
-        let (i0, i1) = range(p[0].min(top[0]) - r, p[0].max(top[0]) + r, self.x0, self.nx);
-        let (j0, j1) = range(p[1].min(top[1]) - r, p[1].max(top[1]) + r, self.y0, self.ny);
+        let (j0, j1) = range(a[1].min(a[1] + d[1]) - r, a[1].max(a[1] + d[1]) + r, self.y0, self.ny);
         let (mut removed, mut depth) = (0.0f64, 0.0f32);
         for j in j0 as isize..=j1 {
             let y = self.y0 + (j as f64 + 0.5) * res;
+            // The part of the projected axis within r of the row in Y: t in [ta, tb].
+            let (ta, tb) = if d[1].abs() < 1e-12 {
+                (0.0, 1.0)
+            } else {
+                let (u, v) = ((y - r - a[1]) / d[1], (y + r - a[1]) / d[1]);
+                (u.min(v).max(0.0), u.max(v).min(1.0))
+            };
+            if ta > tb {
+                continue;
+            }
+            let (xa, xb) = (a[0] + ta * d[0], a[0] + tb * d[0]);
+            let (i0, i1) = range(xa.min(xb) - r, xa.max(xb) + r, self.x0, self.nx);
             for i in i0 as isize..=i1 {
                 let x = self.x0 + (i as f64 + 0.5) * res;
                 let k = j as usize * self.nx + i as usize;
@@ -113,7 +136,7 @@ impl DexelGrid {
     }
 
     /// True if cell `k` holds material inside the Z range `z`.
-    fn has_material(&self, k: usize, z: [f64; 2]) -> bool {
+    pub(super) fn has_material(&self, k: usize, z: [f64; 2]) -> bool {
         let (lo, hi) = (z[0] as f32, z[1] as f32);
         let s = self.spans[k];
         if s[1] > s[0] && s[1] > lo + EPS && s[0] < hi - EPS {
@@ -122,6 +145,20 @@ impl DexelGrid {
         !self.extra.is_empty()
             && self.extra.get(&(k as u32)).is_some_and(|m| m.iter().any(|iv| iv[1] > lo + EPS && iv[0] < hi - EPS))
     }
+}
+
+/// The cylinders standing for `cutter` (see the module doc).
+pub(super) fn steps(cutter: &Cutter) -> Vec<Step> {
+    let r = cutter.radius;
+    if cutter.is_flat() {
+        return vec![(r, 0.0)];
+    }
+    (1..=LEVELS)
+        .map(|i| {
+            let rho = r * i as f64 / LEVELS as f64;
+            (rho, cutter.lower(rho))
+        })
+        .collect()
 }
 
 /// The Z range in which the vertical line through `w` (the line's point at Z = 0 minus the
