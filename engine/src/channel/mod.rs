@@ -43,6 +43,7 @@ mod stock_saved;
 mod stock_tiles;
 pub mod sync_actions;
 mod sync_eval;
+mod sync_horizon;
 mod toff;
 pub mod tool_list;
 mod tool_monitor;
@@ -450,6 +451,7 @@ impl Channel {
     /// displayed offsets and the transformation in line with it (power on, restore, new data).
     fn place_axes(&mut self, pos: AxisVec) {
         self.machine = pos;
+        self.sync.wake_all();
         self.servo.place(&pos);
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();

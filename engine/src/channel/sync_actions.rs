@@ -15,10 +15,11 @@ use std::sync::Arc;
 
 use super::Channel;
 use super::Event;
-use super::sync_eval::Stamps;
+use super::sync_eval::Touched;
 use crate::alarm::Alarm;
 use crate::interp::io::DigitalIo;
-use crate::interp::synchronized::flat::{self, DELT_BIT, Fault, TIMER_BIT};
+use crate::interp::synchronized::flat::{self, BLOCK_BIT, DELT_BIT, FRAME_BIT, Fault, MOTION_BIT, Slot, TIMER_BIT};
+use crate::interp::synchronized::horizon;
 use crate::interp::synchronized::{MainRunData, SyncControl, SyncDef};
 use crate::interp::{Item, SharedOffsets};
 use crate::lang::sync_action::{SyncId, Trigger};
@@ -80,9 +81,18 @@ pub struct SyncActions {
     block_modal: bool,
     /// An action wrote `$AA_OVR` in this cycle.
     pub(super) axis_ovr_written: bool,
-    /// When the data the conditions read changed, and the digital signals last seen.
-    pub(super) stamps: Stamps,
+    /// The data the conditions read that changed lately, and the digital signals last seen.
+    pub(super) touched: Touched,
     pub(super) io_seen: DigitalIo,
+    /// The first cycle in which any action has something to do (a condition whose horizon
+    /// ends, an action that runs in every cycle): until then the IPO cycle skips them all,
+    /// unless the block or the offsets change (see [`Channel::step_sync_actions`]).
+    pub(super) next_wake: u64,
+    /// An active action reads `$AA_VACTM` (the setpoints of the cycle before are kept).
+    reads_velocity: bool,
+    /// Test switch: every condition evaluated in every cycle (the reference the horizons
+    /// are checked against).
+    horizon_off: bool,
 }
 
 impl Default for SyncActions {
@@ -109,8 +119,11 @@ impl Default for SyncActions {
             frame_inverse: None,
             block_modal: false,
             axis_ovr_written: false,
-            stamps: Stamps::default(),
+            touched: Touched::default(),
             io_seen: DigitalIo::default(),
+            next_wake: 0,
+            reads_velocity: false,
+            horizon_off: false,
         }
     }
 }
@@ -126,10 +139,13 @@ struct ActiveSync {
     locked: bool,
     /// Block-modal: the line of the motion block it belongs to, once that block runs.
     bound: Option<u32>,
-    /// The condition's value when last evaluated, and the data count then (0: not yet; see
-    /// `sync_eval.rs`): a condition whose inputs did not change since keeps its value.
+    /// The condition's value when last evaluated: it keeps it until the cycle `wake` (its
+    /// horizon, `interp/synchronized/horizon.rs`) or until data or events of `deps` change.
     cond: bool,
-    seen: u64,
+    wake: u64,
+    deps: u64,
+    /// Its actions run in every cycle while it sleeps (WHENEVER true, FROM after it held, DO).
+    run_each: bool,
 }
 
 /// A synchronized action as the state shows it.
@@ -158,6 +174,47 @@ impl SyncActions {
         self.active.is_empty() && !self.ovr_applied && !self.dirty && !self.timing
     }
 
+    /// Data or an event of `bits` changed: the conditions reading it are looked at in the
+    /// next cycle checked, which is the next one.
+    #[inline]
+    pub(super) fn touch(&mut self, bits: u64) {
+        self.touched.touch(bits);
+        self.next_wake = 0;
+    }
+
+    /// The actions are checked in the next cycle (a signal or the offsets may have changed).
+    pub(super) fn wake(&mut self) {
+        self.next_wake = 0;
+    }
+
+    /// Every condition is evaluated again in the next cycle: the axes jumped (power on,
+    /// restore, preset, a probe's deletion, a new transformation) or the program ended.
+    pub(super) fn wake_all(&mut self) {
+        for a in &mut self.active {
+            a.wake = 0;
+        }
+        self.touch(1 << MOTION_BIT | 1 << FRAME_BIT | 1 << BLOCK_BIT);
+    }
+
+    /// Whether `offsets` are those `$AA_IW`'s inverse was made for.
+    #[inline]
+    pub(super) fn frame_of(&self, offsets: &SharedOffsets) -> bool {
+        self.frame_inverse.as_ref().is_some_and(|(o, _)| Arc::ptr_eq(o, offsets))
+    }
+
+    /// Test switch: `false` evaluates every condition in every cycle (no horizons).
+    fn set_horizons(&mut self, on: bool) {
+        self.horizon_off = !on;
+        self.wake_all();
+    }
+
+    /// Notes whether an active action reads `$AA_VACTM`; returns whether one began to.
+    fn note_velocity_readers(&mut self) -> bool {
+        let before = self.reads_velocity;
+        self.reads_velocity = self.active.iter().any(|a| reads_velocity(&a.def));
+        self.reads_velocity && !before
+    }
+
     /// The data as block preparation reads it.
     fn main_run_data(&self) -> MainRunData {
         MainRunData {
@@ -175,6 +232,8 @@ impl SyncActions {
     pub fn end_program(&mut self) {
         self.active.retain(|a| matches!(a.def.id, Some(SyncId::Static(_))));
         self.block_modal = false;
+        self.note_velocity_readers();
+        self.wake_all();
     }
 
     /// Makes `out` the list of the active actions (nothing allocated while there are none).
@@ -211,6 +270,13 @@ impl Channel {
     /// The synchronized actions and their data.
     pub fn sync_actions(&self) -> &SyncActions {
         &self.sync
+    }
+
+    /// Test switch: `false` evaluates every synchronized action's condition in every IPO
+    /// cycle, as without horizons (the reference the horizons are checked against).
+    #[doc(hidden)]
+    pub fn set_sync_horizons(&mut self, on: bool) {
+        self.sync.set_horizons(on);
     }
 
     /// Sets analog inputs `$A_INA[n]` from outside, each `(n, value)` with n = 1..[`ANALOG_IO`];
@@ -299,7 +365,9 @@ impl Channel {
             self.psync.rdisable_armed = true;
             self.psync.rdisable |= def.id.is_some();
         }
-        let new = ActiveSync { def, fired: false, was_true: false, locked: false, bound: None, cond: false, seen: 0 };
+        let deps = def.flat_condition.as_ref().map_or(0, |c| c.deps);
+        let new =
+            ActiveSync { def, fired: false, was_true: false, locked: false, bound: None, cond: false, wake: 0, deps, run_each: false };
         let list = &mut self.sync.active;
         match new.def.id {
             Some(id) => {
@@ -313,6 +381,7 @@ impl Channel {
                 self.sync.block_modal = true;
             }
         }
+        self.sync.wake();
         if self.sync.active.len() > MAX_ACTIVE {
             self.sync.active.pop();
             self.raise(Alarm {
@@ -321,6 +390,11 @@ impl Channel {
                 line: Some(line),
                 clear: crate::alarm::Clear::Reset,
             });
+        }
+        if self.sync.note_velocity_readers() {
+            // `$AA_VACTM` counts from the setpoints of now (main-run blocks are activated
+            // with the path at rest).
+            self.sync.prev_setpoint = self.machine;
         }
     }
 
@@ -336,17 +410,26 @@ impl Channel {
                     match op {
                         SyncControl::Lock => a.locked = true,
                         SyncControl::Unlock => a.locked = false,
-                        _ => (a.fired, a.was_true, a.seen) = (false, false, 0),
+                        _ => (a.fired, a.was_true) = (false, false),
                     }
+                    a.wake = 0;
                 }
             }
         }
+        self.sync.note_velocity_readers();
+        self.sync.wake();
     }
 
-    /// One IPO cycle of the synchronized actions: one test when none is active.
+    /// One IPO cycle of the synchronized actions: one test when none is active; while all
+    /// sleep (no horizon ends, none runs its actions in every cycle) three compares: the
+    /// wake cycle, the block (`$AC_TIME` counts from its start), the offsets (`$AA_IW`).
     #[inline]
     pub(super) fn step_sync_actions(&mut self) {
-        if !self.sync.idle() {
+        if !self.sync.idle()
+            && (self.tick >= self.sync.next_wake
+                || self.current_line != self.sync.block
+                || !self.sync.frame_of(&self.offsets))
+        {
             self.run_sync_cycle();
         }
     }
@@ -355,16 +438,18 @@ impl Channel {
     #[inline(never)]
     fn run_sync_cycle(&mut self) {
         let dt = self.cfg.ipo_cycle;
+        let tick = self.tick;
         if self.sync.timing {
             for t in self.sync.timers.iter_mut().flatten() {
                 *t += dt;
             }
             self.sync.dirty = true;
-            self.sync.stamps.touch(1 << TIMER_BIT);
+            self.sync.touch(1 << TIMER_BIT);
         }
         if self.sync.block != self.current_line {
             self.sync.block = self.current_line;
-            self.sync.block_start = self.tick;
+            self.sync.block_start = tick;
+            self.sync.touch(1 << BLOCK_BIT);
         }
         self.sync.ovr = 100.0;
         self.psync.rdisable = false;
@@ -373,7 +458,9 @@ impl Channel {
             self.sync.axis_ovr_written = false;
         }
         self.sync.wcs_valid.set(0);
-        self.refresh_frame_inverse();
+        if self.refresh_frame_inverse() {
+            self.sync.touch(1 << FRAME_BIT);
+        }
         self.note_io();
         let mut active = std::mem::take(&mut self.sync.active);
         // Block-modal actions: bound to the first motion block after them, gone after it.
@@ -395,17 +482,23 @@ impl Channel {
             self.sync.block_modal = active.iter().any(|a| a.def.id.is_none());
         }
         let mut failed = None;
+        // The first cycle an action has something to do in.
+        let mut next = u64::MAX;
         for a in active.iter_mut() {
             if a.locked || a.def.id.is_none() && a.bound.is_none() {
                 continue;
             }
-            match self.run_sync(a) {
-                Ok(()) => {}
-                Err(alarm) => {
-                    failed = Some(*alarm);
-                    break;
-                }
+            let done = if tick < a.wake && !self.sync.touched.any(a.deps) {
+                // Asleep: the condition has the value it had.
+                if a.run_each { self.run_actions(&a.def) } else { Ok(()) }
+            } else {
+                self.run_sync(a)
+            };
+            if let Err(alarm) = done {
+                failed = Some(*alarm);
+                break;
             }
+            next = next.min(if a.run_each { tick + 1 } else { a.wake });
         }
         if self.psync.rdisable_armed {
             // Set when an action with RDISABLE was activated: nothing to look at without one.
@@ -419,9 +512,21 @@ impl Channel {
         {
             failed = Some(*alarm);
         }
-        self.sync.prev_setpoint = self.machine;
+        if self.sync.reads_velocity {
+            self.sync.prev_setpoint = self.machine;
+        }
         self.publish_sync_data();
+        let each_cycle = self.sync.timing
+            || self.sync.dirty
+            || self.sync.block_modal
+            || self.sync.reads_velocity
+            || self.sync.axis_ovr_written
+            || self.psync.rdisable
+            || self.psync.running_cycles()
+            || self.sync.touched.in_this_cycle();
+        self.sync.touched.next_cycle();
         if let Some(alarm) = failed {
+            self.sync.next_wake = tick + 1;
             self.raise(alarm);
             return;
         }
@@ -433,24 +538,40 @@ impl Channel {
             self.planner.set_overrides(o.feed * factor, o.rapid * factor);
             self.sync.ovr_applied = factor != 1.0;
         }
+        self.sync.next_wake = if each_cycle || self.sync.ovr_applied { tick + 1 } else { next };
     }
 
-    /// Checks one action's condition and runs its actions as its trigger says.
+    /// Checks one action's condition and runs its actions as its trigger says; notes how
+    /// long the condition keeps its value (its horizon).
     fn run_sync(&mut self, a: &mut ActiveSync) -> Result<(), Fault> {
         // The list is out of `self` while it runs: its definitions are borrowed, not cloned.
         let def = &*a.def;
+        let tick = self.tick;
+        // Conditions no longer checked (WHEN after it acted, FROM after it held, DO) sleep
+        // for good: only RESET/UNLOCK or a new activation wakes them. One whose evaluation
+        // fails is due again.
+        a.wake = if def.flat_condition.is_some() { 0 } else { u64::MAX };
         let cond = match (def.trigger, &def.flat_condition) {
-            (Trigger::When, _) if a.fired => return Ok(()),
+            (Trigger::When, _) if a.fired => {
+                a.run_each = false;
+                a.wake = u64::MAX;
+                return Ok(());
+            }
             // FROM: once it held the actions run in every cycle, the condition no longer checked.
             (Trigger::From, _) if a.fired => true,
             (_, None) => true,
-            (_, Some(c)) if c.volatile || self.sync.stamps.changed_since(c.deps, a.seen) => {
-                let seen = self.sync.stamps.now();
+            (_, Some(c)) => {
                 a.cond = flat::eval(c, self, def.line)? != 0.0;
-                a.seen = seen;
+                a.wake = if self.sync.horizon_off {
+                    tick + 1
+                } else if c.volatile {
+                    // Data-only conditions wait for a change of their data (`deps`).
+                    tick + 1 + horizon::horizon(c, self, a.cond)
+                } else {
+                    u64::MAX
+                };
                 a.cond
             }
-            (_, Some(_)) => a.cond,
         };
         let run = match def.trigger {
             Trigger::Always => true,
@@ -464,10 +585,21 @@ impl Channel {
             Trigger::Always | Trigger::Whenever => run,
             _ => a.fired || run,
         };
-        if run {
-            for act in &def.flat_actions {
-                self.sync_act(act, def.line)?;
-            }
+        a.run_each = match def.trigger {
+            Trigger::Always | Trigger::Whenever => cond,
+            Trigger::From => a.fired,
+            Trigger::When | Trigger::Every => false,
+        };
+        if a.fired && matches!(def.trigger, Trigger::When | Trigger::From) {
+            a.wake = u64::MAX;
+        }
+        if run { self.run_actions(def) } else { Ok(()) }
+    }
+
+    /// Runs an action's actions.
+    fn run_actions(&mut self, def: &SyncDef) -> Result<(), Fault> {
+        for act in &def.flat_actions {
+            self.sync_act(act, def.line)?;
         }
         Ok(())
     }
@@ -481,7 +613,7 @@ impl Channel {
         let left = self.planner.front().map_or(0.0, |m| m.length * (1.0 - self.planner.front_fraction()));
         self.sync.deleted = left;
         self.sync.dirty = true;
-        self.sync.stamps.touch(1 << DELT_BIT);
+        self.sync.touch(1 << DELT_BIT);
         self.planner.abort();
         self.in_planner.clear();
         while matches!(self.pending.front(), Some(Item::Move { line: l, .. }) if *l == line) {
@@ -490,4 +622,19 @@ impl Channel {
         let pos = *self.planner.position();
         self.interp.sync_position(&pos);
     }
+}
+
+/// Whether an action reads `$AA_VACTM` (in its condition or its actions; a technology cycle
+/// counts as reading it).
+fn reads_velocity(def: &SyncDef) -> bool {
+    use crate::interp::synchronized::flat::{Act, Code, Op};
+    let reads = |c: &Code| c.ops.iter().any(|op| matches!(op, Op::Read(Slot::AaVactm(_)) | Op::Compare(Slot::AaVactm(_), _, _)));
+    def.flat_condition.as_ref().is_some_and(reads)
+        || def.flat_actions.iter().any(|act| match act {
+            Act::Set { value, index, .. } => reads(value) || reads(index),
+            Act::Aux { value, .. } | Act::Command { value, .. } | Act::Preset { value, .. } => reads(value),
+            Act::WaitMarker { marker, .. } => reads(marker),
+            Act::Cycle(_) | Act::CycleName(_) => true,
+            Act::DelDtg | Act::StopReOf | Act::RDisable => false,
+        })
 }

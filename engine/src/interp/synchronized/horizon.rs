@@ -1,0 +1,291 @@
+//! How many IPO cycles a synchronized action's condition provably keeps the value it has
+//! now: "a condition sleeps while it cannot change its truth value". The main run gives, for
+//! each variable the condition reads, its value and conservative bounds ([`Bound`]: the most
+//! it changes per cycle, the range it can ever take); [`horizon`] evaluates the condition over
+//! intervals (each variable within `value ± h·rate`, cut to its range) and finds the largest
+//! `h` for which the result is certainly the value the exact evaluation gave. The main run
+//! then skips the condition for `h` cycles, unless an event breaks the bounds (it wakes it).
+//!
+//! Everything here is conservative: rounding is covered by widening each result by far more
+//! than the arithmetic's error, comparisons count only when the operands are apart by more
+//! than the control's REAL tolerance (MD10280, 1e-12 relative) with a wide margin, and what
+//! is not modelled (computed indices, trigonometry, `DIV`/`MOD` of intervals, a divisor
+//! interval holding 0, a function outside its domain) gives "no horizon" (evaluate in every
+//! cycle). A horizon that is too short only costs an evaluation; one too long would change
+//! the program's behaviour, so every doubt shortens it.
+
+use super::compile::Func;
+use super::flat::{self, Code, Op, Slot};
+use crate::lang::sync_action::BinOp;
+
+/// What the main run guarantees about a variable a condition reads, until an event.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bound {
+    /// The value in this cycle (the one the condition's evaluation read).
+    pub value: f64,
+    /// The most it changes from one IPO cycle to the next (`INFINITY`: any amount).
+    pub rate: f64,
+    /// The values it can take at all.
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl Bound {
+    /// Data that changes only when written (markers, parameters, signals): the writes wake
+    /// the conditions that read it, so between them the value is fixed.
+    pub fn fixed(value: f64) -> Bound {
+        Bound { value, rate: 0.0, lo: f64::NEG_INFINITY, hi: f64::INFINITY }
+    }
+
+    /// The values possible `h` cycles from now.
+    fn after(self, h: f64) -> Iv {
+        if self.rate == 0.0 {
+            return Iv::point(self.value);
+        }
+        let reach = self.rate * h;
+        let lo = if reach.is_finite() { (self.value - reach).max(self.lo) } else { self.lo };
+        let hi = if reach.is_finite() { (self.value + reach).min(self.hi) } else { self.hi };
+        Iv { lo: lo.min(self.value), hi: hi.max(self.value) }
+    }
+}
+
+/// The bounds of the variables, as the main run knows them in this cycle.
+pub trait Bounds {
+    /// `None`: nothing is known (a condition reading it is evaluated in every cycle).
+    fn bound(&self, slot: Slot) -> Option<Bound>;
+}
+
+/// The longest horizon given (2^24 cycles, over 18 hours at 4 ms): then it is looked at again.
+pub const MAX_HORIZON: u64 = 1 << 24;
+/// Conditions longer than this (operations, stack depth) get no horizon.
+const MAX_OPS: usize = 32;
+/// Results are widened by this much relative to their operands (the arithmetic's error is
+/// about 1e-16 per operation).
+const WIDEN: f64 = 1e-12;
+/// Operands of a comparison count as apart when more than this relative distance separates
+/// them (1000 times the control's REAL tolerance).
+const APART: f64 = 1e-9;
+
+/// The number of cycles after this one in which `code` certainly keeps the value `now` it
+/// had in this cycle's evaluation (0: it may change in the next one).
+pub fn horizon<B: Bounds>(code: &Code, b: &B, now: bool) -> u64 {
+    if code.ops.len() > MAX_OPS || code.depth > MAX_OPS {
+        return 0;
+    }
+    // The bounds of the variables read, once (reading one may cost a frame transformation).
+    let mut bounds = [None; MAX_OPS];
+    for (slot, op) in bounds.iter_mut().zip(code.ops.iter()) {
+        *slot = match op {
+            Op::Read(s) | Op::Compare(s, _, _) => match b.bound(*s) {
+                Some(bound) if bound.value.is_finite() && !bound.rate.is_nan() => Some(bound),
+                _ => return 0,
+            },
+            Op::ReadAt(_) => return 0,
+            _ => None,
+        };
+    }
+    let holds = |h: u64| truth(&code.ops, &bounds, h as f64) == Some(now);
+    if !holds(1) {
+        return 0;
+    }
+    // Doubling, then bisection between the last horizon that holds and the first that not.
+    let mut good = 1;
+    let mut bad = loop {
+        if good >= MAX_HORIZON {
+            return MAX_HORIZON;
+        }
+        let next = (good * 2).min(MAX_HORIZON);
+        if !holds(next) {
+            break next;
+        }
+        good = next;
+    };
+    while bad - good > 1 {
+        let mid = good + (bad - good) / 2;
+        if holds(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    good
+}
+
+/// An interval of values; truth values are [0, 0], [1, 1] or [0, 1] (unknown).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Iv {
+    lo: f64,
+    hi: f64,
+}
+
+const UNKNOWN: Iv = Iv { lo: 0.0, hi: 1.0 };
+
+impl Iv {
+    fn point(v: f64) -> Iv {
+        Iv { lo: v, hi: v }
+    }
+
+    fn truth(b: bool) -> Iv {
+        Iv::point(f64::from(u8::from(b)))
+    }
+
+    fn is_point(self) -> bool {
+        self.lo == self.hi
+    }
+
+    /// Certainly nonzero (`Some(true)`), certainly zero (`Some(false)`) or either.
+    fn nonzero(self) -> Option<bool> {
+        if self.lo > 0.0 || self.hi < 0.0 {
+            Some(true)
+        } else if self.lo == 0.0 && self.hi == 0.0 {
+            Some(false)
+        } else {
+            None
+        }
+    }
+
+    fn magnitude(self) -> f64 {
+        self.lo.abs().max(self.hi.abs())
+    }
+
+    /// `[lo, hi]` widened by the rounding of a result computed from operands of `size`.
+    fn widened(lo: f64, hi: f64, size: f64) -> Option<Iv> {
+        let e = WIDEN * size + f64::MIN_POSITIVE;
+        let iv = Iv { lo: lo - e, hi: hi + e };
+        (!iv.lo.is_nan() && !iv.hi.is_nan() && iv.lo <= iv.hi).then_some(iv)
+    }
+}
+
+/// The condition's truth over all values `h` cycles from now, if certain.
+fn truth(ops: &[Op], bounds: &[Option<Bound>], h: f64) -> Option<bool> {
+    let mut stack = [Iv::point(0.0); MAX_OPS];
+    let mut sp = 0;
+    for (op, bound) in ops.iter().zip(bounds) {
+        match *op {
+            Op::Num(v) => {
+                stack[sp] = Iv::point(v);
+                sp += 1;
+            }
+            Op::Read(_) => {
+                stack[sp] = bound.as_ref()?.after(h);
+                sp += 1;
+            }
+            Op::Compare(_, cmp, k) => {
+                stack[sp] = compare(cmp, bound.as_ref()?.after(h), Iv::point(k));
+                sp += 1;
+            }
+            Op::ReadAt(_) => return None,
+            Op::Neg => stack[sp - 1] = Iv { lo: -stack[sp - 1].hi, hi: -stack[sp - 1].lo },
+            Op::Not => {
+                stack[sp - 1] = match stack[sp - 1].nonzero() {
+                    Some(b) => Iv::truth(!b),
+                    None => UNKNOWN,
+                }
+            }
+            Op::Bin(op) => {
+                sp -= 1;
+                stack[sp - 1] = binary(op, stack[sp - 1], stack[sp])?;
+            }
+            Op::Func(f) => {
+                let two = matches!(f, Func::Atan2 | Func::MinVal | Func::MaxVal);
+                let y = if two {
+                    sp -= 1;
+                    stack[sp]
+                } else {
+                    Iv::point(0.0)
+                };
+                stack[sp - 1] = function(f, stack[sp - 1], y)?;
+            }
+        }
+    }
+    stack[0].nonzero()
+}
+
+/// `a op b` over intervals; `None` where no bound is known.
+fn binary(op: BinOp, a: Iv, b: Iv) -> Option<Iv> {
+    if a.is_point() && b.is_point() {
+        // Exactly as the cycle computes it (an alarm there: no horizon, it is evaluated).
+        return flat::binary(op, a.lo, b.lo, 0).ok().map(Iv::point);
+    }
+    let size = a.magnitude() + b.magnitude();
+    match op {
+        BinOp::Add => Iv::widened(a.lo + b.lo, a.hi + b.hi, size),
+        BinOp::Sub => Iv::widened(a.lo - b.hi, a.hi - b.lo, size),
+        BinOp::Mul => {
+            let p = [a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi];
+            let (lo, hi) = p.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+            Iv::widened(lo, hi, a.magnitude() * b.magnitude())
+        }
+        BinOp::Div if b.lo > 0.0 || b.hi < 0.0 => {
+            let q = [a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi];
+            let (lo, hi) = q.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+            Iv::widened(lo, hi, lo.abs().max(hi.abs()))
+        }
+        BinOp::Div | BinOp::IntDiv | BinOp::Mod => None,
+        BinOp::And => Some(match (a.nonzero(), b.nonzero()) {
+            (Some(false), _) | (_, Some(false)) => Iv::truth(false),
+            (Some(true), Some(true)) => Iv::truth(true),
+            _ => UNKNOWN,
+        }),
+        BinOp::Or => Some(match (a.nonzero(), b.nonzero()) {
+            (Some(true), _) | (_, Some(true)) => Iv::truth(true),
+            (Some(false), Some(false)) => Iv::truth(false),
+            _ => UNKNOWN,
+        }),
+        BinOp::Xor => Some(match (a.nonzero(), b.nonzero()) {
+            (Some(x), Some(y)) => Iv::truth(x != y),
+            _ => UNKNOWN,
+        }),
+        cmp => Some(compare(cmp, a, b)),
+    }
+}
+
+/// A comparison over intervals: certain only when the operands are well apart.
+fn compare(op: BinOp, a: Iv, b: Iv) -> Iv {
+    if a.is_point() && b.is_point() {
+        return flat::binary(op, a.lo, b.lo, 0).map_or(UNKNOWN, Iv::point);
+    }
+    let margin = APART * a.magnitude().max(b.magnitude());
+    let below = a.hi < b.lo - margin;
+    let above = a.lo > b.hi + margin;
+    if !(below || above) {
+        return UNKNOWN;
+    }
+    Iv::truth(match op {
+        BinOp::Lt | BinOp::Le => below,
+        BinOp::Gt | BinOp::Ge => above,
+        BinOp::Ne => true,
+        _ => false,
+    })
+}
+
+/// A function over an interval; `None` where it is not monotone or leaves its domain.
+fn function(f: Func, x: Iv, y: Iv) -> Option<Iv> {
+    if x.is_point() && y.is_point() {
+        return flat::function(f, x.lo, y.lo, 0).ok().map(Iv::point);
+    }
+    let size = x.magnitude();
+    match f {
+        Func::Sqrt if x.lo >= 0.0 => Iv::widened(x.lo.sqrt(), x.hi.sqrt(), size.sqrt()),
+        Func::Abs if x.lo >= 0.0 => Some(x),
+        Func::Abs if x.hi <= 0.0 => Some(Iv { lo: -x.hi, hi: -x.lo }),
+        Func::Abs => Some(Iv { lo: 0.0, hi: size }),
+        Func::Pot => {
+            let lo = if x.lo > 0.0 {
+                x.lo * x.lo
+            } else if x.hi < 0.0 {
+                x.hi * x.hi
+            } else {
+                0.0
+            };
+            Iv::widened(lo, size * size, size * size).map(|iv| Iv { lo: iv.lo.max(0.0), ..iv })
+        }
+        Func::Trunc => Some(Iv { lo: x.lo.trunc(), hi: x.hi.trunc() }),
+        Func::Round => Some(Iv { lo: x.lo.round(), hi: x.hi.round() }),
+        Func::Exp if x.hi.exp().is_finite() => Iv::widened(x.lo.exp(), x.hi.exp(), x.hi.exp()),
+        Func::Ln if x.lo > 0.0 && x.hi.is_finite() => Iv::widened(x.lo.ln(), x.hi.ln(), x.lo.ln().abs().max(x.hi.ln().abs())),
+        Func::MinVal => Some(Iv { lo: x.lo.min(y.lo), hi: x.hi.min(y.hi) }),
+        Func::MaxVal => Some(Iv { lo: x.lo.max(y.lo), hi: x.hi.max(y.hi) }),
+        _ => None,
+    }
+}
