@@ -93,6 +93,8 @@ pub struct SyncActions {
     /// Test switch: every condition evaluated in every cycle (the reference the horizons
     /// are checked against).
     horizon_off: bool,
+    /// Conditions evaluated so far.
+    evaluations: u64,
 }
 
 impl Default for SyncActions {
@@ -124,6 +126,7 @@ impl Default for SyncActions {
             next_wake: 0,
             reads_velocity: false,
             horizon_off: false,
+            evaluations: 0,
         }
     }
 }
@@ -164,6 +167,12 @@ pub struct SyncActionInfo {
 }
 
 impl SyncActions {
+    /// How many conditions the main run evaluated so far (asleep ones are not): for tests
+    /// and measurements of the horizons.
+    pub fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
+
     /// Whether any synchronized action is active.
     pub(super) fn is_active(&self) -> bool {
         !self.active.is_empty()
@@ -561,6 +570,7 @@ impl Channel {
             (Trigger::From, _) if a.fired => true,
             (_, None) => true,
             (_, Some(c)) => {
+                self.sync.evaluations += 1;
                 a.cond = flat::eval(c, self, def.line)? != 0.0;
                 a.wake = if self.sync.horizon_off {
                     tick + 1

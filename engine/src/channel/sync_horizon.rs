@@ -67,7 +67,7 @@ impl Channel {
         if ax.spindle.is_some() || ax.modulo.is_some() {
             return None;
         }
-        let mut v = ax.max_velocity.max(ax.jog_velocity);
+        let mut v = fastest(ax);
         if self.cfg.geo_axes.contains(&Some(k)) {
             v += self.cfg.ori.toff_velocity;
         }
@@ -98,19 +98,22 @@ impl Channel {
     }
 
     /// The most the path velocity can be (mm/s): [`SAFETY`] times √n times the fastest axis
-    /// (a path of n axes moves one of them at least 1/√n of its speed); spindles count with
-    /// their axis velocity (one in axis mode may be a path axis).
+    /// (a path of n axes moves one of them at least 1/√n of its speed); spindles with axis
+    /// function count with their axis velocity (one in axis mode may be a path axis), those
+    /// without none.
     fn path_speed_bound(&self) -> Option<f64> {
         if self.trafo.is_some() || self.referencing.is_some() {
             return None;
         }
-        let n = self.cfg.channel_axes.len();
-        let fastest = (0..n)
-            .map(|k| self.cfg.axis(k))
-            .map(|ax| ax.max_velocity.max(ax.jog_velocity))
-            .fold(0.0f64, f64::max)
-            + self.cfg.ori.toff_velocity;
-        let v = SAFETY * fastest * (n as f64).sqrt();
+        let axes = (0..self.cfg.channel_axes.len()).map(|k| self.cfg.axis(k)).filter(|ax| !ax.spindle_only);
+        let (n, v) = axes.fold((0, 0.0f64), |(n, v), ax| (n + 1, v.max(fastest(ax))));
+        let v = SAFETY * (v + self.cfg.ori.toff_velocity) * f64::from(n).sqrt();
         v.is_finite().then_some(v)
     }
+}
+
+/// The fastest an axis moves in any mode: MD32000, the JOG velocities (JOG and REPOS stop at
+/// MD32000 too; taken for generosity).
+fn fastest(ax: &crate::machine_data::MachineAxis) -> f64 {
+    ax.max_velocity.max(ax.jog_velocity).max(ax.jog_rapid_velocity)
 }

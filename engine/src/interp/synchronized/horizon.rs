@@ -148,10 +148,16 @@ impl Iv {
         self.lo.abs().max(self.hi.abs())
     }
 
-    /// `[lo, hi]` widened by the rounding of a result computed from operands of `size`.
-    fn widened(lo: f64, hi: f64, size: f64) -> Option<Iv> {
-        let e = WIDEN * size + f64::MIN_POSITIVE;
-        let iv = Iv { lo: lo - e, hi: hi + e };
+    /// `[lo, hi]` computed from the operands' ends, widened. The cycle computes with the same
+    /// operations, rounded to nearest, which are monotone: its values lie between the ends
+    /// computed so; the widening (far more than one rounding) is a reserve, and for the
+    /// library's EXP/LN, which are not correctly rounded. The sign stays (monotone rounding
+    /// cannot cross zero): a sum of squares stays a valid argument of SQRT.
+    fn widened(lo: f64, hi: f64) -> Option<Iv> {
+        let (el, eh) = (WIDEN * lo.abs() + f64::MIN_POSITIVE, WIDEN * hi.abs() + f64::MIN_POSITIVE);
+        let lo = if lo >= 0.0 { (lo - el).max(0.0) } else { lo - el };
+        let hi = if hi <= 0.0 { (hi + eh).min(0.0) } else { hi + eh };
+        let iv = Iv { lo, hi };
         (!iv.lo.is_nan() && !iv.hi.is_nan() && iv.lo <= iv.hi).then_some(iv)
     }
 }
@@ -207,19 +213,18 @@ fn binary(op: BinOp, a: Iv, b: Iv) -> Option<Iv> {
         // Exactly as the cycle computes it (an alarm there: no horizon, it is evaluated).
         return flat::binary(op, a.lo, b.lo, 0).ok().map(Iv::point);
     }
-    let size = a.magnitude() + b.magnitude();
     match op {
-        BinOp::Add => Iv::widened(a.lo + b.lo, a.hi + b.hi, size),
-        BinOp::Sub => Iv::widened(a.lo - b.hi, a.hi - b.lo, size),
+        BinOp::Add => Iv::widened(a.lo + b.lo, a.hi + b.hi),
+        BinOp::Sub => Iv::widened(a.lo - b.hi, a.hi - b.lo),
         BinOp::Mul => {
             let p = [a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi];
             let (lo, hi) = p.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
-            Iv::widened(lo, hi, a.magnitude() * b.magnitude())
+            Iv::widened(lo, hi)
         }
         BinOp::Div if b.lo > 0.0 || b.hi < 0.0 => {
             let q = [a.lo / b.lo, a.lo / b.hi, a.hi / b.lo, a.hi / b.hi];
             let (lo, hi) = q.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
-            Iv::widened(lo, hi, lo.abs().max(hi.abs()))
+            Iv::widened(lo, hi)
         }
         BinOp::Div | BinOp::IntDiv | BinOp::Mod => None,
         BinOp::And => Some(match (a.nonzero(), b.nonzero()) {
@@ -245,9 +250,9 @@ fn compare(op: BinOp, a: Iv, b: Iv) -> Iv {
     if a.is_point() && b.is_point() {
         return flat::binary(op, a.lo, b.lo, 0).map_or(UNKNOWN, Iv::point);
     }
-    let margin = APART * a.magnitude().max(b.magnitude());
-    let below = a.hi < b.lo - margin;
-    let above = a.lo > b.hi + margin;
+    // The margin is relative to the ends compared (an unbounded range's other end is none).
+    let below = a.hi < b.lo - APART * a.hi.abs().max(b.lo.abs());
+    let above = a.lo > b.hi + APART * a.lo.abs().max(b.hi.abs());
     if !(below || above) {
         return UNKNOWN;
     }
@@ -266,7 +271,7 @@ fn function(f: Func, x: Iv, y: Iv) -> Option<Iv> {
     }
     let size = x.magnitude();
     match f {
-        Func::Sqrt if x.lo >= 0.0 => Iv::widened(x.lo.sqrt(), x.hi.sqrt(), size.sqrt()),
+        Func::Sqrt if x.lo >= 0.0 => Iv::widened(x.lo.sqrt(), x.hi.sqrt()),
         Func::Abs if x.lo >= 0.0 => Some(x),
         Func::Abs if x.hi <= 0.0 => Some(Iv { lo: -x.hi, hi: -x.lo }),
         Func::Abs => Some(Iv { lo: 0.0, hi: size }),
@@ -278,12 +283,12 @@ fn function(f: Func, x: Iv, y: Iv) -> Option<Iv> {
             } else {
                 0.0
             };
-            Iv::widened(lo, size * size, size * size).map(|iv| Iv { lo: iv.lo.max(0.0), ..iv })
+            Iv::widened(lo, size * size)
         }
         Func::Trunc => Some(Iv { lo: x.lo.trunc(), hi: x.hi.trunc() }),
         Func::Round => Some(Iv { lo: x.lo.round(), hi: x.hi.round() }),
-        Func::Exp if x.hi.exp().is_finite() => Iv::widened(x.lo.exp(), x.hi.exp(), x.hi.exp()),
-        Func::Ln if x.lo > 0.0 && x.hi.is_finite() => Iv::widened(x.lo.ln(), x.hi.ln(), x.lo.ln().abs().max(x.hi.ln().abs())),
+        Func::Exp if x.hi.exp().is_finite() => Iv::widened(x.lo.exp(), x.hi.exp()),
+        Func::Ln if x.lo > 0.0 && x.hi.is_finite() => Iv::widened(x.lo.ln(), x.hi.ln()),
         Func::MinVal => Some(Iv { lo: x.lo.min(y.lo), hi: x.hi.min(y.hi) }),
         Func::MaxVal => Some(Iv { lo: x.lo.max(y.lo), hi: x.hi.max(y.hi) }),
         _ => None,
