@@ -63,10 +63,14 @@ fn condition(r: &mut Rng) -> String {
 /// A random program: actions `ID=1..n` counting their firings in `$AC_PARAM[id]`, then moves.
 fn program(r: &mut Rng) -> String {
     let mut text = String::new();
-    if r.below(3) == 0 {
-        text.push_str("FFWOF\n");
+    for g in ["FFWOF", "G64", "SOFT"] {
+        if r.below(3) == 0 {
+            text.push_str(g);
+            text.push('\n');
+        }
     }
-    for id in 1..=(2 + r.below(7)) {
+    let count = 2 + r.below(7);
+    for id in 1..=count {
         let trigger = r.pick(&["WHEN", "WHENEVER", "FROM", "EVERY"]);
         let cond = condition(r);
         let mut action = format!("$AC_PARAM[{id}]=$AC_PARAM[{id}]+1");
@@ -77,10 +81,16 @@ fn program(r: &mut Rng) -> String {
             3 => action.push_str(&format!(" $AC_PARAM[{}]=$AA_IM[X]", 20 + id)),
             _ => {}
         }
-        text.push_str(&format!("ID={id} {trigger} {cond} DO {action}\n"));
+        let kind = if r.below(5) == 0 { "IDS" } else { "ID" };
+        text.push_str(&format!("{kind}={id} {trigger} {cond} DO {action}\n"));
     }
     for _ in 0..(3 + r.below(6)) {
-        match r.below(10) {
+        match r.below(14) {
+            // A block-modal action on the next motion block, which an input may cut short.
+            10 => text.push_str(&format!("WHEN $A_IN[{}]==1 DO DELDTG\n", 1 + r.below(3))),
+            11 => text.push_str(&format!("WHENEVER {} DO $AC_MARKER[6]=$AC_MARKER[6]+1\n", condition(r))),
+            12 => text.push_str(&format!("{}({})\n", r.pick(&["LOCK", "UNLOCK", "RESET", "CANCEL"]), 1 + r.below(count))),
+            13 => text.push_str(&format!("G2 X{} Y{} CR={} F{}\n", r.range(0.0, 60.0), r.range(0.0, 60.0), r.range(45.0, 90.0), r.pick(&["2000", "6000"]))),
             0 => text.push_str(&format!("TRANS X{} Y{}\n", r.range(-10.0, 10.0), r.range(-10.0, 10.0))),
             1 => text.push_str(&format!("AROT Z{}\n", r.range(-45.0, 45.0))),
             2 => text.push_str(&format!("G4 F{}\n", r.range(0.05, 0.3))),
@@ -114,7 +124,9 @@ fn sample(ch: &Channel) -> (Vec<u64>, Vec<u64>, Vec<u64>, u64, Vec<bool>) {
 fn random_actions_fire_in_the_same_cycles_with_and_without_horizons() {
     let mut saved = 0u64;
     let mut total = 0u64;
-    for seed in 1..=60u64 {
+    // NCTWIN_SYNC_SEEDS=n runs n programs (60 by default).
+    let seeds = std::env::var("NCTWIN_SYNC_SEEDS").ok().and_then(|n| n.parse().ok()).unwrap_or(60u64);
+    for seed in 1..=seeds {
         let mut r = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
         let text = program(&mut r);
         let mut with = channel("mill-3axis", "");
@@ -127,7 +139,7 @@ fn random_actions_fire_in_the_same_cycles_with_and_without_horizons() {
             (0..6).map(|_| (r.below(3000) as usize, 1 + r.below(3) as usize, r.range(0.0, 10.0))).collect();
         inputs.sort_by_key(|i| i.0);
         let mut tick = 0;
-        while (with.is_busy() || without.is_busy()) && tick < 20_000 {
+        while (with.is_busy() || without.is_busy()) && tick < 12_000 {
             for &(_, n, v) in inputs.iter().filter(|i| i.0 == tick) {
                 for ch in [&mut with, &mut without] {
                     ch.set_signals(&[(n, v > 5.0)], &[]).unwrap();
@@ -138,6 +150,16 @@ fn random_actions_fire_in_the_same_cycles_with_and_without_horizons() {
             without.step();
             tick += 1;
             assert_eq!(sample(&with), sample(&without), "seed {seed}, cycle {tick}:\n{text}");
+        }
+        // Static actions go on after the end and after a reset.
+        for n in 0..300 {
+            if n == 150 {
+                with.reset();
+                without.reset();
+            }
+            with.step();
+            without.step();
+            assert_eq!(sample(&with), sample(&without), "seed {seed}, {n} cycles after the end:\n{text}");
         }
         assert_eq!(with.snapshot(), without.snapshot(), "seed {seed}:\n{text}");
         assert_eq!(with.ticks(), without.ticks());

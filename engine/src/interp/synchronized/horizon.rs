@@ -294,3 +294,92 @@ fn function(f: Func, x: Iv, y: Iv) -> Option<Iv> {
         _ => None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interp::synchronized::compile::{CExpr as E, SyncVar};
+    use crate::interp::synchronized::flat::lower;
+
+    /// X (`$AA_IM[X]`) at 10 moving at most 1 per cycle, Y at 0 likewise, `$AC_TIME` at
+    /// 0.2 s growing 4 ms per cycle, `$AA_VACTM[X]` anywhere in ±100, marker 1 = 3, `$R` unknown.
+    struct Vars;
+
+    impl Bounds for Vars {
+        fn bound(&self, slot: Slot) -> Option<Bound> {
+            let (inf, ninf) = (f64::INFINITY, f64::NEG_INFINITY);
+            Some(match slot {
+                Slot::AaIm(0) => Bound { value: 10.0, rate: 1.0, lo: ninf, hi: inf },
+                Slot::AaIm(1) => Bound { value: 0.0, rate: 1.0, lo: ninf, hi: inf },
+                Slot::AcTime => Bound { value: 0.2, rate: 0.004, lo: 0.0, hi: inf },
+                Slot::AaVactm(0) => Bound { value: 7.0, rate: inf, lo: -100.0, hi: 100.0 },
+                Slot::Marker(1) => Bound::fixed(3.0),
+                _ => return None,
+            })
+        }
+    }
+
+    fn var(v: SyncVar) -> E {
+        E::Var(v)
+    }
+
+    fn bin(op: BinOp, a: E, b: E) -> E {
+        E::Bin(op, Box::new(a), Box::new(b))
+    }
+
+    fn h(e: &E, now: bool) -> u64 {
+        horizon(&lower(e), &Vars, now)
+    }
+
+    fn x() -> E {
+        var(SyncVar::AaIm(0))
+    }
+
+    #[test]
+    fn a_position_threshold_sleeps_until_the_axis_could_reach_it() {
+        // X = 10 at most 1 per cycle: X > 20 cannot hold in the next 9 cycles (X ≤ 19); in the
+        // 10th X may be 20 (within the margin): it is evaluated then.
+        assert_eq!(h(&bin(BinOp::Gt, x(), E::Num(20.0)), false), 9);
+        // X < 5 is false for 4 cycles (X ≥ 6), X >= 10 true for none (X may fall at once).
+        assert_eq!(h(&bin(BinOp::Lt, x(), E::Num(5.0)), false), 4);
+        assert_eq!(h(&bin(BinOp::Ge, x(), E::Num(10.0)), true), 0);
+        // A value that does not match the evaluation's (rounding): no horizon.
+        assert_eq!(h(&bin(BinOp::Gt, x(), E::Num(20.0)), true), 0);
+    }
+
+    #[test]
+    fn a_time_threshold_sleeps_until_the_cycle_before_it_flips() {
+        // 0.2 s + 4 ms·h stays below 0.5 s for h ≤ 74; in cycle 75 $AC_TIME is 0.5 (not above
+        // it within the REAL tolerance), in cycle 76 0.504: the evaluation in 75 comes first.
+        assert_eq!(h(&bin(BinOp::Gt, var(SyncVar::AcTime), E::Num(0.5)), false), 74);
+    }
+
+    #[test]
+    fn ranges_and_interval_arithmetic_give_long_horizons() {
+        // |$AA_VACTM[X]| ≤ 100: SQRT(POT(v)) > 1000 never holds.
+        let v = || var(SyncVar::AaVactm(0));
+        let pot = |e| E::Func(Func::Pot, vec![e]);
+        let sqrt = E::Func(Func::Sqrt, vec![pot(v())]);
+        assert_eq!(h(&bin(BinOp::Gt, sqrt, E::Num(1000.0)), false), MAX_HORIZON);
+        // SQRT(POT(X − 10) + POT(Y)) > 5 from X = 10, Y = 0: √2·h < 5 for h ≤ 3.
+        let dx = bin(BinOp::Sub, x(), E::Num(10.0));
+        let radius = E::Func(Func::Sqrt, vec![bin(BinOp::Add, pot(dx), pot(var(SyncVar::AaIm(1))))]);
+        assert_eq!(h(&bin(BinOp::Gt, radius, E::Num(5.0)), false), 3);
+        // AND is false while one side is: X > 100 (false for 89 cycles) AND an unbounded
+        // velocity comparison.
+        let and = bin(BinOp::And, bin(BinOp::Gt, x(), E::Num(100.0)), bin(BinOp::Gt, v(), E::Num(50.0)));
+        assert_eq!(h(&and, false), 89);
+    }
+
+    #[test]
+    fn data_and_constants_keep_their_value_and_unknowns_give_no_horizon() {
+        let marker = bin(BinOp::Eq, var(SyncVar::AcMarker(Box::new(E::Num(1.0)))), E::Num(3.0));
+        assert_eq!(h(&marker, true), MAX_HORIZON);
+        // $R is not bounded; a divisor that may be 0 neither; nor trigonometry.
+        assert_eq!(h(&bin(BinOp::Gt, var(SyncVar::R(Box::new(E::Num(1.0)))), E::Num(1.0)), false), 0);
+        let div = bin(BinOp::Div, E::Num(1.0), var(SyncVar::AaIm(1)));
+        assert_eq!(h(&bin(BinOp::Gt, div, E::Num(1.0)), false), 0);
+        let sin = E::Func(Func::Sin, vec![x()]);
+        assert_eq!(h(&bin(BinOp::Gt, sin, E::Num(2.0)), false), 0);
+    }
+}
