@@ -44,6 +44,7 @@ mod stock_tiles;
 pub mod sync_actions;
 mod sync_eval;
 mod sync_horizon;
+mod sync_schedule;
 mod toff;
 pub mod tool_list;
 mod tool_monitor;

@@ -18,11 +18,10 @@ use super::Event;
 use super::sync_eval::Touched;
 use crate::alarm::Alarm;
 use crate::interp::io::DigitalIo;
-use crate::interp::synchronized::flat::{self, BLOCK_BIT, DELT_BIT, FRAME_BIT, Fault, MOTION_BIT, Slot, TIMER_BIT};
-use crate::interp::synchronized::horizon;
+use crate::interp::synchronized::flat::{BLOCK_BIT, DELT_BIT, FRAME_BIT, MOTION_BIT, Slot, TIMER_BIT};
 use crate::interp::synchronized::{MainRunData, SyncControl, SyncDef};
 use crate::interp::{Item, SharedOffsets};
-use crate::lang::sync_action::{SyncId, Trigger};
+use crate::lang::sync_action::SyncId;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 pub use crate::interp::synchronized::flat::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
@@ -46,7 +45,7 @@ pub struct InputRecord {
 #[derive(Debug, Clone)]
 pub struct SyncActions {
     /// Modal and static ones by ID, then block-modal ones in program order.
-    active: Vec<ActiveSync>,
+    pub(super) active: Vec<ActiveSync>,
     pub markers: [f64; MARKERS],
     pub params: [f64; PARAMS],
     /// Running timers' seconds (`None`: stopped).
@@ -78,7 +77,7 @@ pub struct SyncActions {
     /// The offsets whose frame's inverse `$AA_IW` uses, and that inverse (`None`: singular).
     pub(super) frame_inverse: Option<(SharedOffsets, Option<[[f64; 3]; 3]>)>,
     /// A block-modal action is in `active` (they are bound to their block each cycle).
-    block_modal: bool,
+    pub(super) block_modal: bool,
     /// An action wrote `$AA_OVR` in this cycle.
     pub(super) axis_ovr_written: bool,
     /// The data the conditions read that changed lately, and the digital signals last seen.
@@ -88,13 +87,18 @@ pub struct SyncActions {
     /// ends, an action that runs in every cycle): until then the IPO cycle skips them all,
     /// unless the block or the offsets change (see [`Channel::step_sync_actions`]).
     pub(super) next_wake: u64,
+    /// The first cycle in which a condition must be evaluated (0: all are looked at), and the
+    /// actions (bits of their places in `active`) that run their actions in every cycle
+    /// meanwhile (`sync_schedule.rs`).
+    pub(super) cond_wake: u64,
+    pub(super) each: u64,
     /// An active action reads `$AA_VACTM` (the setpoints of the cycle before are kept).
     reads_velocity: bool,
     /// Test switch: every condition evaluated in every cycle (the reference the horizons
     /// are checked against).
-    horizon_off: bool,
+    pub(super) horizon_off: bool,
     /// Conditions evaluated so far.
-    evaluations: u64,
+    pub(super) evaluations: u64,
 }
 
 impl Default for SyncActions {
@@ -124,6 +128,8 @@ impl Default for SyncActions {
             touched: Touched::default(),
             io_seen: DigitalIo::default(),
             next_wake: 0,
+            cond_wake: 0,
+            each: 0,
             reads_velocity: false,
             horizon_off: false,
             evaluations: 0,
@@ -133,22 +139,31 @@ impl Default for SyncActions {
 
 /// One active synchronized action.
 #[derive(Debug, Clone)]
-struct ActiveSync {
-    def: Arc<SyncDef>,
+pub(super) struct ActiveSync {
+    pub(super) def: Arc<SyncDef>,
     /// The action ran (WHEN, FROM, EVERY: since activation; WHENEVER, DO: in the last cycle).
-    fired: bool,
+    pub(super) fired: bool,
     /// The condition's value in the last cycle (EVERY's edge).
-    was_true: bool,
-    locked: bool,
-    /// Block-modal: the line of the motion block it belongs to, once that block runs.
-    bound: Option<u32>,
+    pub(super) was_true: bool,
+    pub(super) locked: bool,
+    /// Block-modal (no ID): the line of the motion block it belongs to, once that block runs.
+    pub(super) block_modal: bool,
+    pub(super) bound: Option<u32>,
     /// The condition's value when last evaluated: it keeps it until the cycle `wake` (its
     /// horizon, `interp/synchronized/horizon.rs`) or until data or events of `deps` change.
-    cond: bool,
-    wake: u64,
-    deps: u64,
+    pub(super) cond: bool,
+    pub(super) wake: u64,
+    pub(super) deps: u64,
     /// Its actions run in every cycle while it sleeps (WHENEVER true, FROM after it held, DO).
-    run_each: bool,
+    pub(super) run_each: bool,
+}
+
+impl ActiveSync {
+    /// Checked in this cycle at all (not locked; a block-modal one once bound to its block).
+    #[inline]
+    pub(super) fn checked(&self) -> bool {
+        !self.locked && (!self.block_modal || self.bound.is_some())
+    }
 }
 
 /// A synchronized action as the state shows it.
@@ -191,9 +206,11 @@ impl SyncActions {
         self.next_wake = 0;
     }
 
-    /// The actions are checked in the next cycle (a signal or the offsets may have changed).
+    /// The actions are checked in the next cycle (a signal or the offsets may have changed,
+    /// the list changed).
     pub(super) fn wake(&mut self) {
         self.next_wake = 0;
+        self.cond_wake = 0;
     }
 
     /// Every condition is evaluated again in the next cycle: the axes jumped (power on,
@@ -203,6 +220,7 @@ impl SyncActions {
             a.wake = 0;
         }
         self.touch(1 << MOTION_BIT | 1 << FRAME_BIT | 1 << BLOCK_BIT);
+        self.wake();
     }
 
     /// Whether `offsets` are those `$AA_IW`'s inverse was made for.
@@ -375,8 +393,19 @@ impl Channel {
             self.psync.rdisable |= def.id.is_some();
         }
         let deps = def.flat_condition.as_ref().map_or(0, |c| c.deps);
-        let new =
-            ActiveSync { def, fired: false, was_true: false, locked: false, bound: None, cond: false, wake: 0, deps, run_each: false };
+        let block_modal = def.id.is_none();
+        let new = ActiveSync {
+            def,
+            fired: false,
+            was_true: false,
+            locked: false,
+            block_modal,
+            bound: None,
+            cond: false,
+            wake: 0,
+            deps,
+            run_each: false,
+        };
         let list = &mut self.sync.active;
         match new.def.id {
             Some(id) => {
@@ -490,25 +519,7 @@ impl Channel {
             });
             self.sync.block_modal = active.iter().any(|a| a.def.id.is_none());
         }
-        let mut failed = None;
-        // The first cycle an action has something to do in.
-        let mut next = u64::MAX;
-        for a in active.iter_mut() {
-            if a.locked || a.def.id.is_none() && a.bound.is_none() {
-                continue;
-            }
-            let done = if tick < a.wake && !self.sync.touched.any(a.deps) {
-                // Asleep: the condition has the value it had.
-                if a.run_each { self.run_actions(&a.def) } else { Ok(()) }
-            } else {
-                self.run_sync(a)
-            };
-            if let Err(alarm) = done {
-                failed = Some(*alarm);
-                break;
-            }
-            next = next.min(if a.run_each { tick + 1 } else { a.wake });
-        }
+        let mut failed = self.check_actions(&mut active);
         if self.psync.rdisable_armed {
             // Set when an action with RDISABLE was activated: nothing to look at without one.
             self.psync.rdisable_armed = active.iter().any(|a| !a.locked && a.def.disables_read_in());
@@ -547,71 +558,8 @@ impl Channel {
             self.planner.set_overrides(o.feed * factor, o.rapid * factor);
             self.sync.ovr_applied = factor != 1.0;
         }
-        self.sync.next_wake = if each_cycle || self.sync.ovr_applied { tick + 1 } else { next };
-    }
-
-    /// Checks one action's condition and runs its actions as its trigger says; notes how
-    /// long the condition keeps its value (its horizon).
-    fn run_sync(&mut self, a: &mut ActiveSync) -> Result<(), Fault> {
-        // The list is out of `self` while it runs: its definitions are borrowed, not cloned.
-        let def = &*a.def;
-        let tick = self.tick;
-        // Conditions no longer checked (WHEN after it acted, FROM after it held, DO) sleep
-        // for good: only RESET/UNLOCK or a new activation wakes them. One whose evaluation
-        // fails is due again.
-        a.wake = if def.flat_condition.is_some() { 0 } else { u64::MAX };
-        let cond = match (def.trigger, &def.flat_condition) {
-            (Trigger::When, _) if a.fired => {
-                a.run_each = false;
-                a.wake = u64::MAX;
-                return Ok(());
-            }
-            // FROM: once it held the actions run in every cycle, the condition no longer checked.
-            (Trigger::From, _) if a.fired => true,
-            (_, None) => true,
-            (_, Some(c)) => {
-                self.sync.evaluations += 1;
-                a.cond = flat::eval(c, self, def.line)? != 0.0;
-                a.wake = if self.sync.horizon_off {
-                    tick + 1
-                } else if c.volatile {
-                    // Data-only conditions wait for a change of their data (`deps`).
-                    tick + 1 + horizon::horizon(c, self, a.cond)
-                } else {
-                    u64::MAX
-                };
-                a.cond
-            }
-        };
-        let run = match def.trigger {
-            Trigger::Always => true,
-            Trigger::Whenever => cond,
-            Trigger::When => cond,
-            Trigger::From => cond || a.fired,
-            Trigger::Every => cond && !a.was_true,
-        };
-        a.was_true = cond;
-        a.fired = match def.trigger {
-            Trigger::Always | Trigger::Whenever => run,
-            _ => a.fired || run,
-        };
-        a.run_each = match def.trigger {
-            Trigger::Always | Trigger::Whenever => cond,
-            Trigger::From => a.fired,
-            Trigger::When | Trigger::Every => false,
-        };
-        if a.fired && matches!(def.trigger, Trigger::When | Trigger::From) {
-            a.wake = u64::MAX;
-        }
-        if run { self.run_actions(def) } else { Ok(()) }
-    }
-
-    /// Runs an action's actions.
-    fn run_actions(&mut self, def: &SyncDef) -> Result<(), Fault> {
-        for act in &def.flat_actions {
-            self.sync_act(act, def.line)?;
-        }
-        Ok(())
+        self.sync.next_wake =
+            if each_cycle || self.sync.ovr_applied || self.sync.each != 0 { tick + 1 } else { self.sync.cond_wake };
     }
 
     /// DELDTG: the block running ends here; `$AC_DELT` keeps the path distance it had left.

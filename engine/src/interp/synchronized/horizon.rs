@@ -88,13 +88,14 @@ pub fn horizon<B: Bounds>(code: &Code, b: &B, now: bool) -> u64 {
     if !holds(1) {
         return 0;
     }
+    // A range decides at once (a speed beyond any the axes reach).
+    if holds(MAX_HORIZON) {
+        return MAX_HORIZON;
+    }
     // Doubling, then bisection between the last horizon that holds and the first that not.
     let mut good = 1;
     let mut bad = loop {
-        if good >= MAX_HORIZON {
-            return MAX_HORIZON;
-        }
-        let next = (good * 2).min(MAX_HORIZON);
+        let next = good * 2;
         if !holds(next) {
             break next;
         }
