@@ -92,6 +92,8 @@ pub struct SyncActions {
     /// meanwhile (`sync_schedule.rs`).
     pub(super) cond_wake: u64,
     pub(super) each: u64,
+    /// What the conditions of the checked actions read (their data and events together).
+    pub(super) deps: u64,
     /// An active action reads `$AA_VACTM` (the setpoints of the cycle before are kept).
     reads_velocity: bool,
     /// Test switch: every condition evaluated in every cycle (the reference the horizons
@@ -130,6 +132,7 @@ impl Default for SyncActions {
             next_wake: 0,
             cond_wake: 0,
             each: 0,
+            deps: 0,
             reads_velocity: false,
             horizon_off: false,
             evaluations: 0,
@@ -374,10 +377,13 @@ impl Channel {
     /// program's moves are queued no block that reads main-run data is prepared, so the copy
     /// is not made in every cycle.
     fn publish_sync_data(&mut self) {
+        if !self.sync.dirty {
+            return;
+        }
         let may_read = self.blending.prep_waits_for_main_run
             || self.status != super::Status::Running
             || self.pending.is_empty() && self.planner.is_empty();
-        if self.sync.dirty && may_read {
+        if may_read {
             self.sync.dirty = false;
             self.interp.set_sync_data(self.sync.main_run_data());
         }
@@ -533,7 +539,10 @@ impl Channel {
             failed = Some(*alarm);
         }
         if self.sync.reads_velocity {
-            self.sync.prev_setpoint = self.machine;
+            // In two halves: a 160-byte copy is a call to memcpy, 80 bytes are moves inline.
+            let half = MAX_CHANNEL_AXES / 2;
+            self.sync.prev_setpoint[..half].copy_from_slice(&self.machine[..half]);
+            self.sync.prev_setpoint[half..].copy_from_slice(&self.machine[half..]);
         }
         self.publish_sync_data();
         let each_cycle = self.sync.timing

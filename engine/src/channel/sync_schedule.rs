@@ -2,7 +2,8 @@
 //! while it provably keeps its value (its horizon, `interp/synchronized/horizon.rs`, ends at
 //! the cycle `ActiveSync::wake`) and no data or event it depends on changed (`Touched`).
 //!
-//! In a quiet cycle — no horizon ends, nothing changed in this cycle or the one before —
+//! In a quiet cycle — no horizon ends, nothing any condition reads changed in this cycle or
+//! the one before —
 //! only the actions that run in every cycle (WHENEVER while true, FROM after it held, DO)
 //! are visited, through a bit mask; the others cost nothing. Once one of them changes data
 //! the actions after it are checked one by one (the change may wake them in this cycle, in
@@ -20,7 +21,8 @@ impl Channel {
     /// Runs the actions of this cycle in order; returns the alarm of the first that failed.
     pub(super) fn check_actions(&mut self, active: &mut [ActiveSync]) -> Option<Alarm> {
         let tick = self.tick;
-        let quiet = tick < self.sync.cond_wake && !self.sync.touched.any(u64::MAX) && !self.sync.block_modal;
+        let deps = self.sync.deps;
+        let quiet = tick < self.sync.cond_wake && !self.sync.touched.any(deps) && !self.sync.block_modal;
         // Where the check one by one begins.
         let mut from = 0;
         if quiet {
@@ -32,7 +34,7 @@ impl Channel {
                 if let Err(alarm) = self.run_actions(&active[i].def) {
                     return Some(*alarm);
                 }
-                if self.sync.touched.in_this_cycle() {
+                if self.sync.touched.any(deps) {
                     from = i + 1;
                     break;
                 }
@@ -55,12 +57,13 @@ impl Channel {
                     break;
                 }
             }
-            let (mut wake, mut each) = (u64::MAX, 0);
+            let (mut wake, mut each, mut deps) = (u64::MAX, 0, 0);
             for (i, a) in active.iter().enumerate().filter(|(_, a)| a.checked()) {
                 wake = wake.min(a.wake);
                 each |= u64::from(a.run_each) << i;
+                deps |= a.deps;
             }
-            (self.sync.cond_wake, self.sync.each) = (wake, each);
+            (self.sync.cond_wake, self.sync.each, self.sync.deps) = (wake, each, deps);
         }
         failed
     }
@@ -87,10 +90,10 @@ impl Channel {
             (_, Some(c)) => {
                 self.sync.evaluations += 1;
                 a.cond = flat::eval(c, self, def.line)? != 0.0;
+                // Conditions on data only (markers, signals...) wait for a change of it (`deps`).
                 a.wake = if self.sync.horizon_off {
                     tick + 1
                 } else if c.volatile {
-                    // Data-only conditions wait for a change of their data (`deps`).
                     tick + 1 + horizon::horizon(c, self, a.cond)
                 } else {
                     u64::MAX

@@ -57,10 +57,12 @@ pub trait Bounds {
 
 /// The longest horizon given (2^24 cycles, over 18 hours at 4 ms): then it is looked at again.
 pub const MAX_HORIZON: u64 = 1 << 24;
-/// Conditions longer than this (operations, stack depth) get no horizon.
+/// Conditions with more operations, a deeper stack or more variables get no horizon (the
+/// interval evaluation stays on small arrays on the stack).
 const MAX_OPS: usize = 32;
-/// Results are widened by this much relative to their operands (the arithmetic's error is
-/// about 1e-16 per operation).
+const MAX_DEPTH: usize = 8;
+const MAX_READS: usize = 6;
+/// Results are widened by this much relative to their value (one rounding is about 1e-16).
 const WIDEN: f64 = 1e-12;
 /// Operands of a comparison count as apart when more than this relative distance separates
 /// them (1000 times the control's REAL tolerance).
@@ -69,38 +71,59 @@ const APART: f64 = 1e-9;
 /// The number of cycles after this one in which `code` certainly keeps the value `now` it
 /// had in this cycle's evaluation (0: it may change in the next one).
 pub fn horizon<B: Bounds>(code: &Code, b: &B, now: bool) -> u64 {
-    if code.ops.len() > MAX_OPS || code.depth > MAX_OPS {
+    if code.ops.len() > MAX_OPS || code.depth > MAX_DEPTH {
         return 0;
     }
-    // The bounds of the variables read, once (reading one may cost a frame transformation).
-    let mut bounds = [None; MAX_OPS];
-    for (slot, op) in bounds.iter_mut().zip(code.ops.iter()) {
-        *slot = match op {
-            Op::Read(s) | Op::Compare(s, _, _) => match b.bound(*s) {
-                Some(bound) if bound.value.is_finite() && !bound.rate.is_nan() => Some(bound),
+    // The bounds of the variables read, in the order read, once (reading one may cost a
+    // frame transformation).
+    let mut reads = [Bound::fixed(0.0); MAX_READS];
+    let mut n = 0;
+    for op in code.ops.iter() {
+        match op {
+            Op::Read(s) | Op::Compare(s, _, _) if n < MAX_READS => match b.bound(*s) {
+                Some(bound) if bound.value.is_finite() && !bound.rate.is_nan() => {
+                    reads[n] = bound;
+                    n += 1;
+                }
                 _ => return 0,
             },
-            Op::ReadAt(_) => return 0,
-            _ => None,
-        };
+            Op::Read(_) | Op::Compare(..) | Op::ReadAt(_) => return 0,
+            _ => {}
+        }
     }
-    let holds = |h: u64| truth(&code.ops, &bounds, h as f64) == Some(now);
-    if !holds(1) {
-        return 0;
-    }
-    // A range decides at once (a speed beyond any the axes reach).
+    let holds = |h: u64| truth(&code.ops, &reads[..n], h as f64) == Some(now);
+    // A range or fixed data decide at once (a speed beyond any the axes reach).
     if holds(MAX_HORIZON) {
         return MAX_HORIZON;
     }
+    // `variable <op> constant`: the cycles until the variable could reach the constant, one
+    // less where the margin of the comparison needs it.
+    let mut bad = MAX_HORIZON;
+    if let [Op::Compare(_, _, k)] = *code.ops {
+        let b = reads[0];
+        let reach = ((b.value - k).abs() / b.rate).floor();
+        if reach.is_finite() && reach < MAX_HORIZON as f64 {
+            let reach = reach as u64;
+            for h in [reach, reach.saturating_sub(1)] {
+                if h > 0 && holds(h) {
+                    return h;
+                }
+            }
+            bad = reach.saturating_sub(1).max(1);
+        }
+    }
+    if !holds(1) {
+        return 0;
+    }
     // Doubling, then bisection between the last horizon that holds and the first that not.
     let mut good = 1;
-    let mut bad = loop {
-        let next = good * 2;
-        if !holds(next) {
-            break next;
+    while good * 2 < bad {
+        if !holds(good * 2) {
+            bad = good * 2;
+            break;
         }
-        good = next;
-    };
+        good *= 2;
+    }
     while bad - good > 1 {
         let mid = good + (bad - good) / 2;
         if holds(mid) {
@@ -163,22 +186,24 @@ impl Iv {
     }
 }
 
-/// The condition's truth over all values `h` cycles from now, if certain.
-fn truth(ops: &[Op], bounds: &[Option<Bound>], h: f64) -> Option<bool> {
-    let mut stack = [Iv::point(0.0); MAX_OPS];
+/// The condition's truth over all values `h` cycles from now, if certain (`reads`: the
+/// variables' bounds in the order the operations read them).
+fn truth(ops: &[Op], reads: &[Bound], h: f64) -> Option<bool> {
+    let mut stack = [Iv::point(0.0); MAX_DEPTH];
     let mut sp = 0;
-    for (op, bound) in ops.iter().zip(bounds) {
+    let mut next = reads.iter();
+    for op in ops {
         match *op {
             Op::Num(v) => {
                 stack[sp] = Iv::point(v);
                 sp += 1;
             }
             Op::Read(_) => {
-                stack[sp] = bound.as_ref()?.after(h);
+                stack[sp] = next.next()?.after(h);
                 sp += 1;
             }
             Op::Compare(_, cmp, k) => {
-                stack[sp] = compare(cmp, bound.as_ref()?.after(h), Iv::point(k));
+                stack[sp] = compare(cmp, next.next()?.after(h), Iv::point(k));
                 sp += 1;
             }
             Op::ReadAt(_) => return None,
