@@ -89,12 +89,22 @@ fn program(r: &mut Rng) -> String {
             // A block-modal action on the next motion block, which an input may cut short.
             10 => text.push_str(&format!("WHEN $A_IN[{}]==1 DO DELDTG\n", 1 + r.below(3))),
             11 => text.push_str(&format!("WHENEVER {} DO $AC_MARKER[6]=$AC_MARKER[6]+1\n", condition(r))),
-            12 => text.push_str(&format!("{}({})\n", r.pick(&["LOCK", "UNLOCK", "RESET", "CANCEL"]), 1 + r.below(count))),
-            13 => text.push_str(&format!("G2 X{} Y{} CR={} F{}\n", r.range(0.0, 60.0), r.range(0.0, 60.0), r.range(45.0, 90.0), r.pick(&["2000", "6000"]))),
+            12 => {
+                text.push_str(&format!("{}({})\n", r.pick(&["LOCK", "UNLOCK", "RESET", "CANCEL"]), 1 + r.below(count)))
+            }
+            13 => text.push_str(&format!(
+                "G2 X{} Y{} CR={} F{}\n",
+                r.range(0.0, 60.0),
+                r.range(0.0, 60.0),
+                r.range(45.0, 90.0),
+                r.pick(&["2000", "6000"])
+            )),
             0 => text.push_str(&format!("TRANS X{} Y{}\n", r.range(-10.0, 10.0), r.range(-10.0, 10.0))),
             1 => text.push_str(&format!("AROT Z{}\n", r.range(-45.0, 45.0))),
             2 => text.push_str(&format!("G4 F{}\n", r.range(0.05, 0.3))),
-            3 => text.push_str(&format!("G0 X{} Y{} Z{}\n", r.range(0.0, 60.0), r.range(0.0, 60.0), r.range(-10.0, 5.0))),
+            3 => {
+                text.push_str(&format!("G0 X{} Y{} Z{}\n", r.range(0.0, 60.0), r.range(0.0, 60.0), r.range(-10.0, 5.0)))
+            }
             _ => text.push_str(&format!(
                 "G1 X{} Y{} Z{} F{}\n",
                 r.range(0.0, 60.0),

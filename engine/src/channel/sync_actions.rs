@@ -595,7 +595,9 @@ impl Channel {
 /// counts as reading it).
 fn reads_velocity(def: &SyncDef) -> bool {
     use crate::interp::synchronized::flat::{Act, Code, Op};
-    let reads = |c: &Code| c.ops.iter().any(|op| matches!(op, Op::Read(Slot::AaVactm(_)) | Op::Compare(Slot::AaVactm(_), _, _)));
+    let reads = |c: &Code| {
+        c.ops.iter().any(|op| matches!(op, Op::Read(Slot::AaVactm(_)) | Op::Compare(Slot::AaVactm(_), _, _)))
+    };
     def.flat_condition.as_ref().is_some_and(reads)
         || def.flat_actions.iter().any(|act| match act {
             Act::Set { value, index, .. } => reads(value) || reads(index),

@@ -16,9 +16,12 @@ use crate::interp::synchronized::flat::{
 /// the actions checked before it in the next cycle.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Touched {
-    /// Changed in this cycle (or from outside since the last cycle checked).
+    /// Changed before this cycle's actions were checked (every action sees these).
+    before: u64,
+    /// Changed by the actions of this cycle (or from outside since the last cycle checked).
     now: u64,
-    /// Changed in the cycle before.
+    /// Changed by the actions of the cycle before (the ones checked before the change have
+    /// not seen them yet).
     prev: u64,
 }
 
@@ -32,17 +35,24 @@ impl Touched {
     /// Whether data of `bits` changed in this cycle or the one before.
     #[inline]
     pub(super) fn any(&self, bits: u64) -> bool {
-        (self.now | self.prev) & bits != 0
+        (self.before | self.now | self.prev) & bits != 0
     }
 
-    /// Whether anything changed in this cycle.
+    /// The actions' checks begin: what changed so far every one of them sees.
+    #[inline]
+    pub(super) fn begin_checks(&mut self) {
+        self.before = std::mem::take(&mut self.now);
+    }
+
+    /// Whether an action changed anything in this cycle.
     pub(super) fn in_this_cycle(&self) -> bool {
         self.now != 0
     }
 
-    /// The cycle's checks are over: its changes become the cycle before's.
+    /// The cycle's checks are over: the actions' changes become the cycle before's.
     pub(super) fn next_cycle(&mut self) {
         self.prev = std::mem::take(&mut self.now);
+        self.before = 0;
     }
 }
 

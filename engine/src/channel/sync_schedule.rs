@@ -23,6 +23,7 @@ impl Channel {
         let tick = self.tick;
         let deps = self.sync.deps;
         let quiet = tick < self.sync.cond_wake && !self.sync.touched.any(deps) && !self.sync.block_modal;
+        self.sync.touched.begin_checks();
         // Where the check one by one begins.
         let mut from = 0;
         if quiet {

@@ -156,13 +156,14 @@ impl Slot {
         })
     }
 
-    /// The events after which a horizon computed with this variable no longer holds.
+    /// The events after which a horizon computed with this variable no longer holds (the
+    /// path's speed and distances have ranges only, which no event changes; a jump of the
+    /// axes makes `$AA_VACTM` leave its range for a cycle).
     pub fn events(self) -> u64 {
         match self {
-            Slot::AaIm(_) | Slot::AaIpo(_) | Slot::AaVactm(_) | Slot::AcVactb => 1 << MOTION_BIT,
+            Slot::AaIm(_) | Slot::AaIpo(_) | Slot::AaVactm(_) => 1 << MOTION_BIT,
             Slot::AaIw(_) => (1 << MOTION_BIT) | (1 << FRAME_BIT),
             Slot::AcTime => 1 << BLOCK_BIT,
-            Slot::AcPath | Slot::AcDteb => (1 << BLOCK_BIT) | (1 << MOTION_BIT),
             _ => 0,
         }
     }
@@ -500,18 +501,22 @@ fn run<R: Reader>(ops: &[Op], r: &R, line: u32, stack: &mut [f64]) -> Result<f64
                 };
             }
             Op::Func(f) => {
-                let two = matches!(f, Func::Atan2 | Func::MinVal | Func::MaxVal);
-                let y = if two {
-                    sp -= 1;
-                    stack[sp]
-                } else {
-                    0.0
-                };
+                let y = second_argument(f, stack, &mut sp, 0.0);
                 stack[sp - 1] = function(f, stack[sp - 1], y, line)?;
             }
         }
     }
     Ok(stack[0])
+}
+
+/// Pops the second argument of a function of two (ATAN2, MINVAL, MAXVAL), else `none`.
+pub(crate) fn second_argument<T: Copy>(f: Func, stack: &[T], sp: &mut usize, none: T) -> T {
+    if matches!(f, Func::Atan2 | Func::MinVal | Func::MaxVal) {
+        *sp -= 1;
+        stack[*sp]
+    } else {
+        none
+    }
 }
 
 /// `a op b` as the control computes it in a synchronized action.

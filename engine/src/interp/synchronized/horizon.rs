@@ -219,13 +219,7 @@ fn truth(ops: &[Op], reads: &[Bound], h: f64) -> Option<bool> {
                 stack[sp - 1] = binary(op, stack[sp - 1], stack[sp])?;
             }
             Op::Func(f) => {
-                let two = matches!(f, Func::Atan2 | Func::MinVal | Func::MaxVal);
-                let y = if two {
-                    sp -= 1;
-                    stack[sp]
-                } else {
-                    Iv::point(0.0)
-                };
+                let y = flat::second_argument(f, &stack, &mut sp, Iv::point(0.0));
                 stack[sp - 1] = function(f, stack[sp - 1], y)?;
             }
         }
