@@ -48,6 +48,7 @@ impl Channel {
 
     pub(super) fn set_digital_io(&mut self, io: DigitalIo) {
         self.io = io;
+        self.sync.wake();
         self.interp.set_io(io);
     }
 

@@ -136,6 +136,8 @@ impl Channel {
             }
             self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
+            // New velocities: the synchronized actions' horizons are computed again.
+            self.sync.wake_all();
             return Ok(());
         }
         if let Some(kind) = text.strip_prefix(DELOBJ) {

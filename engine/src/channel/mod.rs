@@ -46,6 +46,8 @@ mod stock_spindle;
 mod stock_tiles;
 pub mod sync_actions;
 mod sync_eval;
+mod sync_horizon;
+mod sync_schedule;
 mod toff;
 pub mod tool_list;
 mod tool_monitor;
@@ -457,6 +459,7 @@ impl Channel {
     /// displayed offsets and the transformation in line with it (power on, restore, new data).
     fn place_axes(&mut self, pos: AxisVec) {
         self.machine = pos;
+        self.sync.wake_all();
         self.servo.place(&pos);
         self.interp.reset(&self.cfg, &pos);
         self.offsets = self.interp.offsets();

@@ -195,6 +195,7 @@ impl Channel {
         }
         self.planner.set_position(at);
         self.machine = at;
+        self.sync.wake_all();
         self.interp.sync_position(&at);
     }
 

@@ -131,6 +131,7 @@ impl Channel {
         self.shift_positioning_axis(k, d);
         self.machine[k] += d;
         self.servo.shift(k, d);
+        self.sync.wake_all();
         Ok(())
     }
 

@@ -94,6 +94,7 @@ impl Channel {
         if machine_space {
             self.planner.set_position(self.machine);
         }
+        self.sync.wake_all();
         self.referencing = Some(Referencing {
             axis,
             phase: ReferencePhase::Cam,

@@ -15,13 +15,13 @@ use std::sync::Arc;
 
 use super::Channel;
 use super::Event;
-use super::sync_eval::Stamps;
+use super::sync_eval::Touched;
 use crate::alarm::Alarm;
 use crate::interp::io::DigitalIo;
-use crate::interp::synchronized::flat::{self, DELT_BIT, Fault, TIMER_BIT};
+use crate::interp::synchronized::flat::{BLOCK_BIT, DELT_BIT, FRAME_BIT, MOTION_BIT, Slot, TIMER_BIT};
 use crate::interp::synchronized::{MainRunData, SyncControl, SyncDef};
 use crate::interp::{Item, SharedOffsets};
-use crate::lang::sync_action::{SyncId, Trigger};
+use crate::lang::sync_action::SyncId;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 pub use crate::interp::synchronized::flat::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
@@ -45,7 +45,7 @@ pub struct InputRecord {
 #[derive(Debug, Clone)]
 pub struct SyncActions {
     /// Modal and static ones by ID, then block-modal ones in program order.
-    active: Vec<ActiveSync>,
+    pub(super) active: Vec<ActiveSync>,
     pub markers: [f64; MARKERS],
     pub params: [f64; PARAMS],
     /// Running timers' seconds (`None`: stopped).
@@ -77,12 +77,30 @@ pub struct SyncActions {
     /// The offsets whose frame's inverse `$AA_IW` uses, and that inverse (`None`: singular).
     pub(super) frame_inverse: Option<(SharedOffsets, Option<[[f64; 3]; 3]>)>,
     /// A block-modal action is in `active` (they are bound to their block each cycle).
-    block_modal: bool,
+    pub(super) block_modal: bool,
     /// An action wrote `$AA_OVR` in this cycle.
     pub(super) axis_ovr_written: bool,
-    /// When the data the conditions read changed, and the digital signals last seen.
-    pub(super) stamps: Stamps,
+    /// The data the conditions read that changed lately, and the digital signals last seen.
+    pub(super) touched: Touched,
     pub(super) io_seen: DigitalIo,
+    /// The first cycle in which any action has something to do (a condition whose horizon
+    /// ends, an action that runs in every cycle): until then the IPO cycle skips them all,
+    /// unless the block or the offsets change (see [`Channel::step_sync_actions`]).
+    pub(super) next_wake: u64,
+    /// The first cycle in which a condition must be evaluated (0: all are looked at), and the
+    /// actions (bits of their places in `active`) that run their actions in every cycle
+    /// meanwhile (`sync_schedule.rs`).
+    pub(super) cond_wake: u64,
+    pub(super) each: u64,
+    /// What the conditions of the checked actions read (their data and events together).
+    pub(super) deps: u64,
+    /// An active action reads `$AA_VACTM` (the setpoints of the cycle before are kept).
+    reads_velocity: bool,
+    /// Test switch: every condition evaluated in every cycle (the reference the horizons
+    /// are checked against).
+    pub(super) horizon_off: bool,
+    /// Conditions evaluated so far.
+    pub(super) evaluations: u64,
 }
 
 impl Default for SyncActions {
@@ -109,27 +127,46 @@ impl Default for SyncActions {
             frame_inverse: None,
             block_modal: false,
             axis_ovr_written: false,
-            stamps: Stamps::default(),
+            touched: Touched::default(),
             io_seen: DigitalIo::default(),
+            next_wake: 0,
+            cond_wake: 0,
+            each: 0,
+            deps: 0,
+            reads_velocity: false,
+            horizon_off: false,
+            evaluations: 0,
         }
     }
 }
 
 /// One active synchronized action.
 #[derive(Debug, Clone)]
-struct ActiveSync {
-    def: Arc<SyncDef>,
+pub(super) struct ActiveSync {
+    pub(super) def: Arc<SyncDef>,
     /// The action ran (WHEN, FROM, EVERY: since activation; WHENEVER, DO: in the last cycle).
-    fired: bool,
+    pub(super) fired: bool,
     /// The condition's value in the last cycle (EVERY's edge).
-    was_true: bool,
-    locked: bool,
-    /// Block-modal: the line of the motion block it belongs to, once that block runs.
-    bound: Option<u32>,
-    /// The condition's value when last evaluated, and the data count then (0: not yet; see
-    /// `sync_eval.rs`): a condition whose inputs did not change since keeps its value.
-    cond: bool,
-    seen: u64,
+    pub(super) was_true: bool,
+    pub(super) locked: bool,
+    /// Block-modal (no ID): the line of the motion block it belongs to, once that block runs.
+    pub(super) block_modal: bool,
+    pub(super) bound: Option<u32>,
+    /// The condition's value when last evaluated: it keeps it until the cycle `wake` (its
+    /// horizon, `interp/synchronized/horizon.rs`) or until data or events of `deps` change.
+    pub(super) cond: bool,
+    pub(super) wake: u64,
+    pub(super) deps: u64,
+    /// Its actions run in every cycle while it sleeps (WHENEVER true, FROM after it held, DO).
+    pub(super) run_each: bool,
+}
+
+impl ActiveSync {
+    /// Checked in this cycle at all (not locked; a block-modal one once bound to its block).
+    #[inline]
+    pub(super) fn checked(&self) -> bool {
+        !self.locked && (!self.block_modal || self.bound.is_some())
+    }
 }
 
 /// A synchronized action as the state shows it.
@@ -148,6 +185,12 @@ pub struct SyncActionInfo {
 }
 
 impl SyncActions {
+    /// How many conditions the main run evaluated so far (asleep ones are not): for tests
+    /// and measurements of the horizons.
+    pub fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
+
     /// Whether any synchronized action is active.
     pub(super) fn is_active(&self) -> bool {
         !self.active.is_empty()
@@ -156,6 +199,50 @@ impl SyncActions {
     #[inline]
     fn idle(&self) -> bool {
         self.active.is_empty() && !self.ovr_applied && !self.dirty && !self.timing
+    }
+
+    /// Data or an event of `bits` changed: the conditions reading it are looked at in the
+    /// next cycle checked, which is the next one.
+    #[inline]
+    pub(super) fn touch(&mut self, bits: u64) {
+        self.touched.touch(bits);
+        self.next_wake = 0;
+    }
+
+    /// The actions are checked in the next cycle (a signal or the offsets may have changed,
+    /// the list changed).
+    pub(super) fn wake(&mut self) {
+        self.next_wake = 0;
+        self.cond_wake = 0;
+    }
+
+    /// Every condition is evaluated again in the next cycle: the axes jumped (power on,
+    /// restore, preset, a probe's deletion, a new transformation) or the program ended.
+    pub(super) fn wake_all(&mut self) {
+        for a in &mut self.active {
+            a.wake = 0;
+        }
+        self.touch(1 << MOTION_BIT | 1 << FRAME_BIT | 1 << BLOCK_BIT);
+        self.wake();
+    }
+
+    /// Whether `offsets` are those `$AA_IW`'s inverse was made for.
+    #[inline]
+    pub(super) fn frame_of(&self, offsets: &SharedOffsets) -> bool {
+        self.frame_inverse.as_ref().is_some_and(|(o, _)| Arc::ptr_eq(o, offsets))
+    }
+
+    /// Test switch: `false` evaluates every condition in every cycle (no horizons).
+    fn set_horizons(&mut self, on: bool) {
+        self.horizon_off = !on;
+        self.wake_all();
+    }
+
+    /// Notes whether an active action reads `$AA_VACTM`; returns whether one began to.
+    fn note_velocity_readers(&mut self) -> bool {
+        let before = self.reads_velocity;
+        self.reads_velocity = self.active.iter().any(|a| reads_velocity(&a.def));
+        self.reads_velocity && !before
     }
 
     /// The data as block preparation reads it.
@@ -175,6 +262,8 @@ impl SyncActions {
     pub fn end_program(&mut self) {
         self.active.retain(|a| matches!(a.def.id, Some(SyncId::Static(_))));
         self.block_modal = false;
+        self.note_velocity_readers();
+        self.wake_all();
     }
 
     /// Makes `out` the list of the active actions (nothing allocated while there are none).
@@ -211,6 +300,13 @@ impl Channel {
     /// The synchronized actions and their data.
     pub fn sync_actions(&self) -> &SyncActions {
         &self.sync
+    }
+
+    /// Test switch: `false` evaluates every synchronized action's condition in every IPO
+    /// cycle, as without horizons (the reference the horizons are checked against).
+    #[doc(hidden)]
+    pub fn set_sync_horizons(&mut self, on: bool) {
+        self.sync.set_horizons(on);
     }
 
     /// Sets analog inputs `$A_INA[n]` from outside, each `(n, value)` with n = 1..[`ANALOG_IO`];
@@ -281,10 +377,13 @@ impl Channel {
     /// program's moves are queued no block that reads main-run data is prepared, so the copy
     /// is not made in every cycle.
     fn publish_sync_data(&mut self) {
+        if !self.sync.dirty {
+            return;
+        }
         let may_read = self.blending.prep_waits_for_main_run
             || self.status != super::Status::Running
             || self.pending.is_empty() && self.planner.is_empty();
-        if self.sync.dirty && may_read {
+        if may_read {
             self.sync.dirty = false;
             self.interp.set_sync_data(self.sync.main_run_data());
         }
@@ -299,7 +398,20 @@ impl Channel {
             self.psync.rdisable_armed = true;
             self.psync.rdisable |= def.id.is_some();
         }
-        let new = ActiveSync { def, fired: false, was_true: false, locked: false, bound: None, cond: false, seen: 0 };
+        let deps = def.flat_condition.as_ref().map_or(0, |c| c.deps);
+        let block_modal = def.id.is_none();
+        let new = ActiveSync {
+            def,
+            fired: false,
+            was_true: false,
+            locked: false,
+            block_modal,
+            bound: None,
+            cond: false,
+            wake: 0,
+            deps,
+            run_each: false,
+        };
         let list = &mut self.sync.active;
         match new.def.id {
             Some(id) => {
@@ -313,6 +425,7 @@ impl Channel {
                 self.sync.block_modal = true;
             }
         }
+        self.sync.wake();
         if self.sync.active.len() > MAX_ACTIVE {
             self.sync.active.pop();
             self.raise(Alarm {
@@ -321,6 +434,11 @@ impl Channel {
                 line: Some(line),
                 clear: crate::alarm::Clear::Reset,
             });
+        }
+        if self.sync.note_velocity_readers() {
+            // `$AA_VACTM` counts from the setpoints of now (main-run blocks are activated
+            // with the path at rest).
+            self.sync.prev_setpoint = self.machine;
         }
     }
 
@@ -336,17 +454,26 @@ impl Channel {
                     match op {
                         SyncControl::Lock => a.locked = true,
                         SyncControl::Unlock => a.locked = false,
-                        _ => (a.fired, a.was_true, a.seen) = (false, false, 0),
+                        _ => (a.fired, a.was_true) = (false, false),
                     }
+                    a.wake = 0;
                 }
             }
         }
+        self.sync.note_velocity_readers();
+        self.sync.wake();
     }
 
-    /// One IPO cycle of the synchronized actions: one test when none is active.
+    /// One IPO cycle of the synchronized actions: one test when none is active; while all
+    /// sleep (no horizon ends, none runs its actions in every cycle) three compares: the
+    /// wake cycle, the block (`$AC_TIME` counts from its start), the offsets (`$AA_IW`).
     #[inline]
     pub(super) fn step_sync_actions(&mut self) {
-        if !self.sync.idle() {
+        if !self.sync.idle()
+            && (self.tick >= self.sync.next_wake
+                || self.current_line != self.sync.block
+                || !self.sync.frame_of(&self.offsets))
+        {
             self.run_sync_cycle();
         }
     }
@@ -355,16 +482,18 @@ impl Channel {
     #[inline(never)]
     fn run_sync_cycle(&mut self) {
         let dt = self.cfg.ipo_cycle;
+        let tick = self.tick;
         if self.sync.timing {
             for t in self.sync.timers.iter_mut().flatten() {
                 *t += dt;
             }
             self.sync.dirty = true;
-            self.sync.stamps.touch(1 << TIMER_BIT);
+            self.sync.touch(1 << TIMER_BIT);
         }
         if self.sync.block != self.current_line {
             self.sync.block = self.current_line;
-            self.sync.block_start = self.tick;
+            self.sync.block_start = tick;
+            self.sync.touch(1 << BLOCK_BIT);
         }
         self.sync.ovr = 100.0;
         self.psync.rdisable = false;
@@ -373,7 +502,9 @@ impl Channel {
             self.sync.axis_ovr_written = false;
         }
         self.sync.wcs_valid.set(0);
-        self.refresh_frame_inverse();
+        if self.refresh_frame_inverse() {
+            self.sync.touch(1 << FRAME_BIT);
+        }
         self.note_io();
         let mut active = std::mem::take(&mut self.sync.active);
         // Block-modal actions: bound to the first motion block after them, gone after it.
@@ -394,19 +525,7 @@ impl Channel {
             });
             self.sync.block_modal = active.iter().any(|a| a.def.id.is_none());
         }
-        let mut failed = None;
-        for a in active.iter_mut() {
-            if a.locked || a.def.id.is_none() && a.bound.is_none() {
-                continue;
-            }
-            match self.run_sync(a) {
-                Ok(()) => {}
-                Err(alarm) => {
-                    failed = Some(*alarm);
-                    break;
-                }
-            }
-        }
+        let mut failed = self.check_actions(&mut active);
         if self.psync.rdisable_armed {
             // Set when an action with RDISABLE was activated: nothing to look at without one.
             self.psync.rdisable_armed = active.iter().any(|a| !a.locked && a.def.disables_read_in());
@@ -419,9 +538,24 @@ impl Channel {
         {
             failed = Some(*alarm);
         }
-        self.sync.prev_setpoint = self.machine;
+        if self.sync.reads_velocity {
+            // In two halves: a 160-byte copy is a call to memcpy, 80 bytes are moves inline.
+            let half = MAX_CHANNEL_AXES / 2;
+            self.sync.prev_setpoint[..half].copy_from_slice(&self.machine[..half]);
+            self.sync.prev_setpoint[half..].copy_from_slice(&self.machine[half..]);
+        }
         self.publish_sync_data();
+        let each_cycle = self.sync.timing
+            || self.sync.dirty
+            || self.sync.block_modal
+            || self.sync.reads_velocity
+            || self.sync.axis_ovr_written
+            || self.psync.rdisable
+            || self.psync.running_cycles()
+            || self.sync.touched.in_this_cycle();
+        self.sync.touched.next_cycle();
         if let Some(alarm) = failed {
+            self.sync.next_wake = tick + 1;
             self.raise(alarm);
             return;
         }
@@ -433,43 +567,8 @@ impl Channel {
             self.planner.set_overrides(o.feed * factor, o.rapid * factor);
             self.sync.ovr_applied = factor != 1.0;
         }
-    }
-
-    /// Checks one action's condition and runs its actions as its trigger says.
-    fn run_sync(&mut self, a: &mut ActiveSync) -> Result<(), Fault> {
-        // The list is out of `self` while it runs: its definitions are borrowed, not cloned.
-        let def = &*a.def;
-        let cond = match (def.trigger, &def.flat_condition) {
-            (Trigger::When, _) if a.fired => return Ok(()),
-            // FROM: once it held the actions run in every cycle, the condition no longer checked.
-            (Trigger::From, _) if a.fired => true,
-            (_, None) => true,
-            (_, Some(c)) if c.volatile || self.sync.stamps.changed_since(c.deps, a.seen) => {
-                let seen = self.sync.stamps.now();
-                a.cond = flat::eval(c, self, def.line)? != 0.0;
-                a.seen = seen;
-                a.cond
-            }
-            (_, Some(_)) => a.cond,
-        };
-        let run = match def.trigger {
-            Trigger::Always => true,
-            Trigger::Whenever => cond,
-            Trigger::When => cond,
-            Trigger::From => cond || a.fired,
-            Trigger::Every => cond && !a.was_true,
-        };
-        a.was_true = cond;
-        a.fired = match def.trigger {
-            Trigger::Always | Trigger::Whenever => run,
-            _ => a.fired || run,
-        };
-        if run {
-            for act in &def.flat_actions {
-                self.sync_act(act, def.line)?;
-            }
-        }
-        Ok(())
+        self.sync.next_wake =
+            if each_cycle || self.sync.ovr_applied || self.sync.each != 0 { tick + 1 } else { self.sync.cond_wake };
     }
 
     /// DELDTG: the block running ends here; `$AC_DELT` keeps the path distance it had left.
@@ -481,7 +580,7 @@ impl Channel {
         let left = self.planner.front().map_or(0.0, |m| m.length * (1.0 - self.planner.front_fraction()));
         self.sync.deleted = left;
         self.sync.dirty = true;
-        self.sync.stamps.touch(1 << DELT_BIT);
+        self.sync.touch(1 << DELT_BIT);
         self.planner.abort();
         self.in_planner.clear();
         while matches!(self.pending.front(), Some(Item::Move { line: l, .. }) if *l == line) {
@@ -490,4 +589,21 @@ impl Channel {
         let pos = *self.planner.position();
         self.interp.sync_position(&pos);
     }
+}
+
+/// Whether an action reads `$AA_VACTM` (in its condition or its actions; a technology cycle
+/// counts as reading it).
+fn reads_velocity(def: &SyncDef) -> bool {
+    use crate::interp::synchronized::flat::{Act, Code, Op};
+    let reads = |c: &Code| {
+        c.ops.iter().any(|op| matches!(op, Op::Read(Slot::AaVactm(_)) | Op::Compare(Slot::AaVactm(_), _, _)))
+    };
+    def.flat_condition.as_ref().is_some_and(reads)
+        || def.flat_actions.iter().any(|act| match act {
+            Act::Set { value, index, .. } => reads(value) || reads(index),
+            Act::Aux { value, .. } | Act::Command { value, .. } | Act::Preset { value, .. } => reads(value),
+            Act::WaitMarker { marker, .. } => reads(marker),
+            Act::Cycle(_) | Act::CycleName(_) => true,
+            Act::DelDtg | Act::StopReOf | Act::RDisable => false,
+        })
 }

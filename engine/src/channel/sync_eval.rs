@@ -7,57 +7,52 @@ use super::{Channel, Event};
 use crate::alarm::Alarm;
 use crate::interp::auxiliary::AuxFunction;
 use crate::interp::synchronized::flat::{
-    self, ANALOG_IN_BITS, Act, Array, DEP_BITS, DIGITAL_IN_BIT, DIGITAL_OUT_BIT, Fault, Reader, Slot, TIMER_BIT, Target,
+    self, ANALOG_IN_BITS, Act, Array, DIGITAL_IN_BIT, DIGITAL_OUT_BIT, Fault, Reader, Slot, TIMER_BIT, Target,
 };
 
-/// Which main-run data changed when: a condition that reads only such data is evaluated
-/// again only once one of its inputs changed after its last evaluation.
-#[derive(Debug, Clone)]
-pub(super) struct Stamps {
-    /// Counts the changes.
+/// Which main-run data (and which events, `flat::BLOCK_BIT`...) changed lately: a condition
+/// asleep (`sync_actions.rs`) is evaluated again when data it reads changed in this cycle or
+/// the one before. Two masks, not counts: a change made by an action late in a cycle reaches
+/// the actions checked before it in the next cycle.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Touched {
+    /// Changed before this cycle's actions were checked (every action sees these).
+    before: u64,
+    /// Changed by the actions of this cycle (or from outside since the last cycle checked).
     now: u64,
-    /// The count of each data bit's last change (bits as `flat::MARKER_BITS`...).
-    changed: [u64; DEP_BITS],
+    /// Changed by the actions of the cycle before (the ones checked before the change have
+    /// not seen them yet).
+    prev: u64,
 }
 
-impl Default for Stamps {
-    fn default() -> Self {
-        // Count 1 from the start: a condition's "evaluated at" of 0 means never.
-        Stamps { now: 1, changed: [1; DEP_BITS] }
-    }
-}
-
-impl Stamps {
+impl Touched {
     /// The data of `bits` changed.
     #[inline]
     pub(super) fn touch(&mut self, bits: u64) {
-        self.now += 1;
-        let mut b = bits;
-        while b != 0 {
-            self.changed[b.trailing_zeros() as usize] = self.now;
-            b &= b - 1;
-        }
+        self.now |= bits;
     }
 
-    /// The count to remember with a value computed now.
-    pub(super) fn now(&self) -> u64 {
-        self.now
-    }
-
-    /// Whether data of `bits` changed after count `seen` (0: never evaluated).
+    /// Whether data of `bits` changed in this cycle or the one before.
     #[inline]
-    pub(super) fn changed_since(&self, bits: u64, seen: u64) -> bool {
-        if seen == 0 {
-            return true;
-        }
-        let mut b = bits;
-        while b != 0 {
-            if self.changed[b.trailing_zeros() as usize] > seen {
-                return true;
-            }
-            b &= b - 1;
-        }
-        false
+    pub(super) fn any(&self, bits: u64) -> bool {
+        (self.before | self.now | self.prev) & bits != 0
+    }
+
+    /// The actions' checks begin: what changed so far every one of them sees.
+    #[inline]
+    pub(super) fn begin_checks(&mut self) {
+        self.before = std::mem::take(&mut self.now);
+    }
+
+    /// Whether an action changed anything in this cycle.
+    pub(super) fn in_this_cycle(&self) -> bool {
+        self.now != 0
+    }
+
+    /// The cycle's checks are over: the actions' changes become the cycle before's.
+    pub(super) fn next_cycle(&mut self) {
+        self.prev = std::mem::take(&mut self.now);
+        self.before = 0;
     }
 }
 
@@ -166,13 +161,15 @@ impl Channel {
     /// `None` where [`Frame::unapply`] has no result (a scale factor of zero).
     ///
     /// [`Frame::unapply`]: crate::interp::frames::frame::Frame::unapply
-    pub(super) fn refresh_frame_inverse(&mut self) {
-        let same = self.sync.frame_inverse.as_ref().is_some_and(|(o, _)| std::sync::Arc::ptr_eq(o, &self.offsets));
+    /// Returns whether the offsets changed.
+    pub(super) fn refresh_frame_inverse(&mut self) -> bool {
+        let same = self.sync.frame_of(&self.offsets);
         if !same {
             let frame = &self.offsets.frame;
             let inv = frame.linear_inverse().filter(|_| frame.factor.iter().all(|f| *f != 0.0));
             self.sync.frame_inverse = Some((self.offsets.clone(), inv));
         }
+        !same
     }
 
     /// Runs one action of a synchronized action defined at `line`.
@@ -245,16 +242,16 @@ impl Channel {
                 // A value of 0 or more starts the timer from there, a negative one stops it.
                 s.timers[i] = (v >= 0.0).then_some(v);
                 s.timing = s.timers.iter().any(Option::is_some);
-                s.stamps.touch(1 << TIMER_BIT);
+                s.touch(1 << TIMER_BIT);
             }
             Target::Marker(i) => {
                 debug_assert!(i < MARKERS);
                 // Markers are INT: a REAL assigned is rounded.
-                set(&mut s.markers[i], v.round(), 1 << i, &mut s.stamps);
+                set(&mut s.markers[i], v.round(), 1 << i, &mut s.touched);
             }
             Target::Param(i) => {
                 debug_assert!(i < PARAMS);
-                set(&mut s.params[i], v, 1 << (8 + i % 32), &mut s.stamps);
+                set(&mut s.params[i], v, 1 << (8 + i % 32), &mut s.touched);
             }
             Target::R(n) => {
                 if !self.interp.write_r_param(n, v) {
@@ -270,7 +267,7 @@ impl Channel {
             }
             Target::AOuta(i) => {
                 debug_assert!(i < ANALOG_IO);
-                set(&mut s.analog_out[i], v, 1 << (44 + i), &mut s.stamps);
+                set(&mut s.analog_out[i], v, 1 << (44 + i), &mut s.touched);
             }
             Target::ReadOnly => return Err(Box::new(Alarm::write_protected(line, "synchronized action variable"))),
         }
@@ -285,22 +282,22 @@ impl Channel {
         if io != seen {
             let bits = (u64::from(io.inputs != seen.inputs) << DIGITAL_IN_BIT)
                 | (u64::from(io.outputs != seen.outputs) << DIGITAL_OUT_BIT);
-            self.sync.stamps.touch(bits);
+            self.sync.touch(bits);
             self.sync.io_seen = io;
         }
     }
 
     /// Notes that analog inputs were set from outside.
     pub(super) fn note_analog_inputs(&mut self) {
-        self.sync.stamps.touch(ANALOG_IN_BITS);
+        self.sync.touch(ANALOG_IN_BITS);
     }
 }
 
 /// Stores `v` and notes a change (bit for bit) of the data of `bit`.
 #[inline]
-fn set(to: &mut f64, v: f64, bit: u64, stamps: &mut Stamps) {
+fn set(to: &mut f64, v: f64, bit: u64, touched: &mut Touched) {
     if to.to_bits() != v.to_bits() {
         *to = v;
-        stamps.touch(bit);
+        touched.touch(bit);
     }
 }

@@ -65,6 +65,7 @@ impl Channel {
             _ => return,
         };
         self.trafo = trafo;
+        self.sync.wake_all();
     }
 
     /// The planner's position through the active transformation into `machine` (out of line:
@@ -109,6 +110,7 @@ impl Channel {
             }
         }
         self.trafo = new;
+        self.sync.wake_all();
         let space = self.space_of_machine();
         self.planner.set_position(space);
         if self.prep_waits_for_trafo {
@@ -122,6 +124,7 @@ impl Channel {
     /// chose (none, the one that stays, or the reset data set); the axes stay where they are.
     pub(super) fn adopt_transformation(&mut self) {
         self.trafo = self.interp.offsets().trafo.clone();
+        self.sync.wake_all();
         let space = self.space_of_machine();
         self.planner.set_position(space);
     }

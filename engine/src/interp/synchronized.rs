@@ -9,6 +9,7 @@
 
 pub mod compile;
 pub mod flat;
+pub mod horizon;
 pub mod technology;
 pub(super) mod wait_markers;
 

@@ -132,8 +132,12 @@ pub const DIGITAL_IN_BIT: u32 = 48;
 pub const DIGITAL_OUT_BIT: u32 = 49;
 pub const DELT_BIT: u32 = 50;
 pub const TIMER_BIT: u32 = 51;
-/// The number of bits used.
-pub const DEP_BITS: usize = 52;
+/// Events that break the bounds of the horizon (`horizon.rs`) of a condition reading
+/// positions, speeds or times: the block changed (`$AC_TIME`), the offsets changed (`$AA_IW`),
+/// the axes jumped (a preset, a probe's deletion, a new transformation, reset).
+pub const BLOCK_BIT: u32 = 52;
+pub const FRAME_BIT: u32 = 53;
+pub const MOTION_BIT: u32 = 54;
 
 impl Slot {
     /// The main-run data bit this variable is, or `None` for one that may change in any cycle
@@ -150,6 +154,18 @@ impl Slot {
             Slot::Timer(_) => 1 << TIMER_BIT,
             _ => return None,
         })
+    }
+
+    /// The events after which a horizon computed with this variable no longer holds (the
+    /// path's speed and distances have ranges only, which no event changes; a jump of the
+    /// axes makes `$AA_VACTM` leave its range for a cycle).
+    pub fn events(self) -> u64 {
+        match self {
+            Slot::AaIm(_) | Slot::AaIpo(_) | Slot::AaVactm(_) => 1 << MOTION_BIT,
+            Slot::AaIw(_) => (1 << MOTION_BIT) | (1 << FRAME_BIT),
+            Slot::AcTime => 1 << BLOCK_BIT,
+            _ => 0,
+        }
     }
 }
 
@@ -174,9 +190,11 @@ pub enum Op {
 pub struct Code {
     pub ops: Box<[Op]>,
     pub depth: usize,
-    /// The main-run data it reads (bits as [`MARKER_BITS`]...).
+    /// The main-run data it reads (bits as [`MARKER_BITS`]...), and the events that end the
+    /// horizon of a volatile one ([`BLOCK_BIT`]...).
     pub deps: u64,
-    /// It reads something that may change in any cycle: it has to be evaluated every time.
+    /// It reads something that may change in any cycle: it has to be evaluated again when
+    /// its horizon (`horizon.rs`) ends.
     pub volatile: bool,
 }
 
@@ -365,7 +383,10 @@ fn is_comparison(op: BinOp) -> bool {
 fn note(slot: Slot, c: &mut Code) {
     match slot.dep() {
         Some(bit) => c.deps |= bit,
-        None => c.volatile = true,
+        None => {
+            c.volatile = true;
+            c.deps |= slot.events();
+        }
     }
 }
 
@@ -480,18 +501,22 @@ fn run<R: Reader>(ops: &[Op], r: &R, line: u32, stack: &mut [f64]) -> Result<f64
                 };
             }
             Op::Func(f) => {
-                let two = matches!(f, Func::Atan2 | Func::MinVal | Func::MaxVal);
-                let y = if two {
-                    sp -= 1;
-                    stack[sp]
-                } else {
-                    0.0
-                };
+                let y = second_argument(f, stack, &mut sp, 0.0);
                 stack[sp - 1] = function(f, stack[sp - 1], y, line)?;
             }
         }
     }
     Ok(stack[0])
+}
+
+/// Pops the second argument of a function of two (ATAN2, MINVAL, MAXVAL), else `none`.
+pub(crate) fn second_argument<T: Copy>(f: Func, stack: &[T], sp: &mut usize, none: T) -> T {
+    if matches!(f, Func::Atan2 | Func::MinVal | Func::MaxVal) {
+        *sp -= 1;
+        stack[*sp]
+    } else {
+        none
+    }
 }
 
 /// `a op b` as the control computes it in a synchronized action.
@@ -527,7 +552,7 @@ fn compare(op: BinOp, a: f64, b: f64) -> bool {
     }
 }
 
-fn function(f: Func, x: f64, y: f64, line: u32) -> Result<f64, Fault> {
+pub(crate) fn function(f: Func, x: f64, y: f64, line: u32) -> Result<f64, Fault> {
     let v = match f {
         Func::Sin => x.to_radians().sin(),
         Func::Cos => x.to_radians().cos(),

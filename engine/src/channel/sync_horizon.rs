@@ -1,0 +1,119 @@
+//! The bounds the main run guarantees for the variables a synchronized action's condition
+//! reads ([`Bounds`] for the channel), from which `interp/synchronized/horizon.rs` computes how
+//! long the condition sleeps.
+//!
+//! The bounds are generous (correctness first): an axis moves at most [`SAFETY`] times its
+//! MD32000 MAX_AX_VELO (or its JOG velocity, if higher) per IPO cycle, whatever the override
+//! (the planner, JOG, REPOS and the positioning axes all stop at MAX_AX_VELO; the servo's lag
+//! only smooths it), plus the TOFF velocity on the geometry axes. What jumps — power on,
+//! restore, PRESETON, a probe's deletion of the distance to go, a new transformation, reset —
+//! wakes every condition (`SyncActions::wake_all`). Not bounded at all (evaluated in every
+//! cycle): spindles and modulo axes (their angles wrap), every axis under a transformation or
+//! while referencing, the overrides, `$R`. `$AA_VACTM` and `$AC_VACTB` have no per-cycle bound
+//! (a DELDTG or `$AC_OVR=0` stops the path at once) but a range: at most [`SAFETY`] times the
+//! axes' maximum velocity. `$AC_DTEB` and `$AC_PATH` only have their sign (the planner's front
+//! move may be shortened by a blend when the next one arrives): a threshold on them is
+//! evaluated in every cycle unless it lies below zero. `$AC_TIME` grows by one IPO cycle per
+//! cycle and starts again with each block (the block change wakes its readers).
+
+use super::Channel;
+use crate::interp::synchronized::flat::{Reader, Slot};
+use crate::interp::synchronized::horizon::{Bound, Bounds};
+
+/// How many times its maximum velocity an axis is assumed to move at most.
+pub const SAFETY: f64 = 4.0;
+/// How far below zero `$AC_DTEB`/`$AC_PATH` may round (mm).
+const LENGTH_SLACK: f64 = 1e-3;
+
+impl Bounds for Channel {
+    fn bound(&self, slot: Slot) -> Option<Bound> {
+        let dt = self.cfg.ipo_cycle;
+        let value = self.read(slot, 0).ok()?;
+        let (lo, hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        let (rate, lo, hi) = match slot {
+            Slot::AaIm(k) | Slot::AaIpo(k) => (self.axis_step(k)?, lo, hi),
+            Slot::AaIw(k) => (self.workpiece_step(k)?, lo, hi),
+            Slot::AaVactm(k) => {
+                let v = self.axis_step(k)? / dt * 60.0;
+                (hi, -v, v)
+            }
+            Slot::AcVactb => {
+                let v = self.path_speed_bound()? * 60.0;
+                (hi, -v, v)
+            }
+            Slot::AcTime => (dt, 0.0, hi),
+            Slot::AcPath | Slot::AcDteb => (hi, -LENGTH_SLACK, hi),
+            Slot::Timer(_)
+            | Slot::Marker(_)
+            | Slot::Param(_)
+            | Slot::AIn(_)
+            | Slot::AOut(_)
+            | Slot::AIna(_)
+            | Slot::AOuta(_)
+            | Slot::AcDelt => return Some(Bound::fixed(value)),
+            Slot::AaOvr(_) | Slot::AcOvr | Slot::R(_) => return None,
+        };
+        (!rate.is_nan()).then_some(Bound { value, rate, lo, hi })
+    }
+}
+
+impl Channel {
+    /// The most machine axis `k` moves in one IPO cycle, if bounded now.
+    fn axis_step(&self, k: usize) -> Option<f64> {
+        if k >= self.cfg.channel_axes.len() || self.trafo.is_some() || self.referencing.is_some() {
+            return None;
+        }
+        let ax = self.cfg.axis(k);
+        if ax.spindle.is_some() || ax.modulo.is_some() {
+            return None;
+        }
+        let mut v = fastest(ax);
+        if self.cfg.geo_axes.contains(&Some(k)) {
+            v += self.cfg.ori.toff_velocity;
+        }
+        let step = SAFETY * v * self.cfg.ipo_cycle;
+        (step.is_finite() && step >= 0.0).then_some(step)
+    }
+
+    /// The most `$AA_IW[k]` changes in one IPO cycle: through the frame's inverse from the
+    /// axes' steps (the offsets stay: their change wakes the conditions).
+    fn workpiece_step(&self, k: usize) -> Option<f64> {
+        let inv = self.sync.frame_inverse.as_ref().and_then(|(_, inv)| inv.as_ref())?;
+        let geo = &self.cfg.geo_axes;
+        match geo.iter().position(|a| *a == Some(k)) {
+            Some(g) => {
+                let mut step = 0.0;
+                for (j, axis) in geo.iter().enumerate() {
+                    if let Some(i) = axis {
+                        step += inv[g][j].abs() * self.axis_step(*i)?;
+                    }
+                }
+                Some(step)
+            }
+            None => {
+                let factor = self.offsets.frame.factor[k].abs();
+                (factor > 0.0).then(|| self.axis_step(k).map(|s| s / factor)).flatten()
+            }
+        }
+    }
+
+    /// The most the path velocity can be (mm/s): [`SAFETY`] times √n times the fastest axis
+    /// (a path of n axes moves one of them at least 1/√n of its speed); spindles with axis
+    /// function count with their axis velocity (one in axis mode may be a path axis), those
+    /// without none.
+    fn path_speed_bound(&self) -> Option<f64> {
+        if self.trafo.is_some() || self.referencing.is_some() {
+            return None;
+        }
+        let axes = (0..self.cfg.channel_axes.len()).map(|k| self.cfg.axis(k)).filter(|ax| !ax.spindle_only);
+        let (n, v) = axes.fold((0, 0.0f64), |(n, v), ax| (n + 1, v.max(fastest(ax))));
+        let v = SAFETY * (v + self.cfg.ori.toff_velocity) * f64::from(n).sqrt();
+        v.is_finite().then_some(v)
+    }
+}
+
+/// The fastest an axis moves in any mode: MD32000, the JOG velocities (JOG and REPOS stop at
+/// MD32000 too; taken for generosity).
+fn fastest(ax: &crate::machine_data::MachineAxis) -> f64 {
+    ax.max_velocity.max(ax.jog_velocity).max(ax.jog_rapid_velocity)
+}
