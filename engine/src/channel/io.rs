@@ -51,6 +51,12 @@ impl Channel {
         self.interp.set_io(io);
     }
 
+    /// Marks this channel's program runs as a simulation: `$P_SIM` reads TRUE (the HMI's
+    /// preview copy; a session's own channel is the machine and reads FALSE).
+    pub fn set_simulation(&mut self, simulation: bool) {
+        self.interp.set_simulation(simulation);
+    }
+
     /// Hands the stored machine data to the interpreter, after every change of it, for the
     /// programs' `$MN_`... reads.
     pub(super) fn publish_stored_data(&mut self) {

@@ -6,6 +6,7 @@ pub(super) mod cycle_vars;
 pub(super) mod indirect_axis;
 pub(crate) mod machine_data;
 pub(super) mod numeric;
+pub mod run_vars;
 pub(super) mod scope;
 pub(super) mod strings;
 pub mod value;

@@ -321,6 +321,8 @@ pub struct Interpreter {
     stored: std::sync::Arc<crate::machine_data::MachineData>,
     /// The digital inputs and outputs as the main run last reported them.
     io: io::DigitalIo,
+    /// How the shell runs the channel's programs (`$P_SIM`, `eval/run_vars.rs`).
+    env: eval::run_vars::RunEnv,
     /// Preparation held back behind a block-modal DELDTG (`synchronized.rs`).
     sync_wait: synchronized::PrepWait,
     /// The main run's `$AC_MARKER`, `$AC_PARAM`, `$AC_DELT` ... as last handed over.
@@ -367,6 +369,7 @@ impl Interpreter {
             lane_memo: Default::default(),
             stored: Default::default(),
             io: io::DigitalIo::default(),
+            env: Default::default(),
             sync_wait: synchronized::PrepWait::None,
             measured: Default::default(),
             sync_data: Default::default(),
@@ -424,6 +427,11 @@ impl Interpreter {
     /// channel made to its stored data).
     pub fn set_stored_data(&mut self, stored: std::sync::Arc<crate::machine_data::MachineData>) {
         self.stored = stored;
+    }
+
+    /// Marks the channel's runs as a simulation (`$P_SIM` TRUE) or the machine's own.
+    pub fn set_simulation(&mut self, simulation: bool) {
+        self.env.simulation = simulation;
     }
 
     /// The digital I/O image as the main run holds it (read by blocks that waited for it).

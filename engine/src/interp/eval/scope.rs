@@ -42,6 +42,8 @@ pub(crate) struct SysView<'a> {
     pub spindles: &'a crate::interp::spindles::Spindles,
     /// The probe's last results (`$AC_MEA`, `$AA_MM`, `$AA_MW`).
     pub measured: &'a crate::interp::measuring::Results,
+    /// How the program runs (`$P_SIM`, see `run_vars.rs`).
+    pub env: &'a crate::interp::eval::run_vars::RunEnv,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -65,6 +67,7 @@ macro_rules! sys_view {
             sync: &$interp.sync_data,
             spindles: &$interp.spindles,
             measured: &$interp.measured,
+            env: &$interp.env,
         }
     };
 }
@@ -124,6 +127,9 @@ impl Scope for Ctx<'_> {
             return v;
         }
         if let Some(v) = crate::interp::spindles::vars::read(sys, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = super::run_vars::read(sys, name, indices, line) {
             return v;
         }
         if let Some(v) = super::cycle_vars::read(sys, name, indices, line) {
