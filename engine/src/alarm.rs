@@ -171,6 +171,13 @@ impl Alarm {
         if value.abs() < 1e12 { value.to_string() } else { format!("{value:e}") }
     }
 
+    /// 17620 (G75) / 17630 (G74): a fixed or reference point approach of an axis that an
+    /// active transformation moves.
+    pub fn fixed_point_transformed(line: u32, reference: bool, axis: &str) -> Alarm {
+        let (number, what) = if reference { (17630, "reference point") } else { (17620, "fixed point") };
+        Alarm::new(number, format!("Channel 1 block {line} axis {axis} {what} approach not allowed for a transformed axis"), Some(line))
+    }
+
     /// 12560: a value outside its allowed range.
     pub fn value_out_of_range(line: u32, what: &str) -> Alarm {
         Alarm::new(12560, format!("Channel 1 block {line} programmed value {what} exceeds allowed limits"), Some(line))

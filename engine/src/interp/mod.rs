@@ -774,6 +774,8 @@ impl Interpreter {
                 return Err(Alarm::value_out_of_range(line, &format!("G4 {} s", Alarm::shown(seconds))));
             }
             out.push(Item::Dwell { seconds, line });
+        } else if let Some(approach) = words.fixed_point {
+            self.fixed_point_block(approach, words, cfg, line, out)?;
         } else if let Some(reference) = words.pole {
             self.define_pole(reference, words, cfg, line)?;
         } else if words.frame_op.is_none() && !words.axes.is_empty()

@@ -333,6 +333,9 @@ pub(super) struct Words {
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
+    /// G74/G75: the block's axes travel to the reference or a fixed point (`FP=`).
+    pub fixed_point: Option<super::path_control::fixed_point::Approach>,
+    pub fixed_point_number: Option<u32>,
     /// G9 non-modal exact stop.
     pub g9: bool,
     /// G07 (approach the start of an oblique plunge) or G05 (oblique plunge), TRAANG.
@@ -886,6 +889,7 @@ pub(super) fn collect(
                     _ if w.spline.address(name, v, line)? => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
+                    "FP" => w.fixed_point_number = Some(whole("FP=")?),
                     // `P3`: three runs of the block's subprogram call.
                     "P" => w.repeat = Some(whole("P")?),
                     _ if super::everyday::extended_address(name).is_some() => {
@@ -1220,6 +1224,7 @@ fn is_nc_address(name: &str) -> bool {
             | "CHR"
             | "STAT"
             | "TU"
+            | "FP"
             | "OFFN"
             | "DISC"
             | "TCARR"
@@ -1287,6 +1292,8 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         2 => w.motion = Some(MotionMode::Cw),
         3 => w.motion = Some(MotionMode::Ccw),
         4 => w.dwell = true,
+        74 => w.fixed_point = Some(super::path_control::fixed_point::Approach::Reference),
+        75 => w.fixed_point = Some(super::path_control::fixed_point::Approach::FixedPoint),
         9 => w.g9 = true,
         5 => w.oblique = Some(Oblique::Plunge),
         7 => w.oblique = Some(Oblique::Approach),

@@ -420,6 +420,10 @@ pub static DEFS: &[Def] = &[
     def("BASE_FUNCTION_MASK", 30460, A, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
     def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
+    // G75 FP=n: the fixed points of the axis (MD30600, 4 per axis) and how many are in use
+    // (MD30610, 0 by default: G75 is refused until the data define one).
+    def("FIX_POINT_POS", 30600, A, Kind::Real, 4, Default::Real(0.0), -1e9, 1e9),
+    def("NUM_FIX_POINT_POS", 30610, A, Kind::Int, 1, Default::Int(0), 0.0, 4.0),
     // Distance of one increment (INC1, handwheel detent): [0] metric system, [1] inch system.
     def("JOG_INCR_WEIGHT", 31090, A, Kind::Real, 2, Default::Real(0.001), 1e-6, 1000.0),
     // Linear axes: mm/min and m/s²; rotary axes: rev/min and rev/s², as on the control.
