@@ -890,6 +890,7 @@ pub(super) fn collect(
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
                     "FP" => w.fixed_point_number = Some(whole("FP=")?),
+                    _ if super::everyday::retraction_address(name, v, line)? => {}
                     // `P3`: three runs of the block's subprogram call.
                     "P" => w.repeat = Some(whole("P")?),
                     _ if super::everyday::extended_address(name).is_some() => {
@@ -1225,6 +1226,8 @@ fn is_nc_address(name: &str) -> bool {
             | "STAT"
             | "TU"
             | "FP"
+            | "ALF"
+            | "DILF"
             | "OFFN"
             | "DISC"
             | "TCARR"
