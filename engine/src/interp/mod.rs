@@ -1190,6 +1190,7 @@ impl Interpreter {
             path.ori = Some(Box::new(o));
         }
         let length = feed_length(&path, length, n);
+        let length = self.modal.feed_group.as_ref().map_or(length, |g| g.path_length(&path, length, cfg));
 
         check_software_limits(cfg, &path, line)?;
 

@@ -110,6 +110,8 @@ pub struct Modal {
     pub dynamics: super::dynamics::DynModal,
     /// G groups 10 (G64x), 12 and 30, ADIS and the tolerances (`path_control.rs`).
     pub path: super::path_control::PathControl,
+    /// FGROUP/FGREF (`path_control/feed_group.rs`); `None` until a program writes one.
+    pub feed_group: Option<Box<super::path_control::feed_group::FeedGroup>>,
 }
 
 /// G group 49: how a transformation's machine axes travel between the block end points.
@@ -174,6 +176,7 @@ impl Modal {
             ptp: PtpMode::Cp,
             dynamics: super::dynamics::DynModal::reset(cfg),
             path: Default::default(),
+            feed_group: None,
         }
     }
 
@@ -218,6 +221,7 @@ impl Modal {
             self.exact_stop = e;
         }
         self.path.apply(&w.path, self.length_factor());
+        super::path_control::feed_group::FeedGroup::apply(&mut self.feed_group, &w.feed_group);
         if let Some(side) = w.trc {
             self.trc = side;
         }
@@ -333,6 +337,8 @@ pub(super) struct Words {
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
+    /// FGROUP(..), FGREF[ax]= (`path_control/feed_group.rs`).
+    pub feed_group: super::path_control::feed_group::FeedGroupWords,
     /// G74/G75: the block's axes travel to the reference or a fixed point (`FP=`).
     pub fixed_point: Option<super::path_control::fixed_point::Approach>,
     pub fixed_point_number: Option<u32>,
@@ -728,6 +734,19 @@ pub(super) fn collect(
             }
             Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
                 super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;
+            }
+            Word::Keyword { name, args } if name == "FGROUP" => {
+                w.feed_group.axes = Some(super::path_control::feed_group::axes(args, cfg, line)?);
+            }
+            Word::Address { name, indices, value }
+                if name == "FGREF"
+                    && let [Expr::Var { name: axis, indices: none }] = indices.as_slice()
+                    && none.is_empty()
+                    && vars.get(name).is_none() =>
+            {
+                let k = cfg.program_axis(axis).ok_or_else(|| Alarm::unknown_name(line, &format!("FGREF[{axis}]")))?;
+                let r = eval_f64(&value.expr, &Ctx { vars, sys }, line)? * sys.modal.length_factor();
+                w.feed_group.fgref.push(super::path_control::feed_group::fgref(cfg, k, r, line)?);
             }
             Word::Keyword { name, args } if name == "WAITP" => {
                 w.waitp |= super::path_control::positioning::waitp(args, vars, sys, line)?;

@@ -36,6 +36,7 @@
 //!   block's [`Blend`] to each equidistant piece): the corners of the offset contour are
 //!   rounded, and G645 smooths the tangential joints of G450's transition circles.
 
+pub(super) mod feed_group;
 pub(super) mod fixed_point;
 pub(super) mod positioning;
 pub(super) mod spline;
