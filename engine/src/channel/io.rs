@@ -51,6 +51,11 @@ impl Channel {
         self.interp.set_io(io);
     }
 
+    /// The PLC data area `$A_DBB[n]`.. as programs wrote it (bytes up to the last non-zero one).
+    pub fn plc_data(&self) -> &[u8] {
+        self.interp.plc_data().bytes()
+    }
+
     /// Marks this channel's program runs as a simulation: `$P_SIM` reads TRUE (the HMI's
     /// preview copy; a session's own channel is the machine and reads FALSE).
     pub fn set_simulation(&mut self, simulation: bool) {

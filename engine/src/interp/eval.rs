@@ -4,6 +4,7 @@
 pub(super) mod cycle_constants;
 pub(super) mod cycle_vars;
 pub(super) mod indirect_axis;
+pub(super) mod isvar;
 pub(crate) mod machine_data;
 pub(super) mod numeric;
 pub mod run_vars;
@@ -90,6 +91,7 @@ fn apply(name: &str, vals: &[Value], scope: &dyn Scope, line: u32) -> Result<Val
         true => frame_function(name, vals, scope, line),
         // GETT and CHKDNO read the tool list, which the scope holds.
         false if name == "GETT" || name == "CHKDNO" => scope.system(name, vals, line),
+        false if name == "ISVAR" => isvar::isvar(scope, vals, line),
         false => call(name, vals, line),
     }
 }

@@ -323,6 +323,8 @@ pub struct Interpreter {
     io: io::DigitalIo,
     /// How the shell runs the channel's programs (`$P_SIM`, `eval/run_vars.rs`).
     env: eval::run_vars::RunEnv,
+    /// The PLC data area `$A_DBB`.. (`io/plc_data.rs`).
+    plc: io::plc_data::PlcData,
     /// Preparation held back behind a block-modal DELDTG (`synchronized.rs`).
     sync_wait: synchronized::PrepWait,
     /// The main run's `$AC_MARKER`, `$AC_PARAM`, `$AC_DELT` ... as last handed over.
@@ -370,6 +372,7 @@ impl Interpreter {
             stored: Default::default(),
             io: io::DigitalIo::default(),
             env: Default::default(),
+            plc: Default::default(),
             sync_wait: synchronized::PrepWait::None,
             measured: Default::default(),
             sync_data: Default::default(),
@@ -427,6 +430,11 @@ impl Interpreter {
     /// channel made to its stored data).
     pub fn set_stored_data(&mut self, stored: std::sync::Arc<crate::machine_data::MachineData>) {
         self.stored = stored;
+    }
+
+    /// The PLC data area (`$A_DBB`..) as programs left it.
+    pub fn plc_data(&self) -> &io::plc_data::PlcData {
+        &self.plc
     }
 
     /// Marks the channel's runs as a simulation (`$P_SIM` TRUE) or the machine's own.
@@ -686,6 +694,9 @@ impl Interpreter {
         }
         let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
+        for (at, bytes) in &words.plc_writes {
+            self.plc.put(*at, bytes);
+        }
         if let Some(r) = words.rndm {
             self.modal.rndm = (r > 0.0).then_some(r);
         }

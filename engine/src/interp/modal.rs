@@ -457,6 +457,8 @@ pub(super) struct Words {
     pub swivel: Option<Vec<Option<Value>>>,
     /// M and H functions for the PLC, in the order written.
     pub aux: Vec<super::auxiliary::AuxFunction>,
+    /// `$A_DBB[n]=..`: PLC data the block writes (offset, bytes; `io/plc_data.rs`).
+    pub plc_writes: Vec<(usize, Vec<u8>)>,
     /// `$A_OUT[n]=..`: digital outputs the block sets (signal, level).
     pub digital_outputs: Vec<(usize, bool)>,
     /// CALLPATH: `Some(path)` extends the call search path, `Some("")` ends the extension.
@@ -735,6 +737,22 @@ pub(super) fn collect(
             Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
                 super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;
             }
+            Word::Keyword { name, args } if name == "GETSELT" => {
+                // GETSELT(VAR INT tool[, spindle]): the tool selected for the (master) spindle
+                // and not yet changed in, `$P_TOOLP`, written into the variable.
+                let (target, indices) = match args.first() {
+                    Some(Expr::Var { name, indices }) => (name.as_str(), indices.as_slice()),
+                    Some(Expr::RParam(i)) => ("R", std::slice::from_ref(&**i)),
+                    _ => return Err(Alarm::syntax(line, "GETSELT needs a variable for the tool number")),
+                };
+                let tool = Expr::Number(f64::from(sys.offsets.prepared));
+                if assign(target, indices, &tool, cfg, vars, sys, line)? != Assigned::Variable {
+                    return Err(Alarm::syntax(line, "GETSELT needs a variable for the tool number"));
+                }
+            }
+            // CLEARM(n, ..) in a block deletes wait markers of channel coordination (WAITM);
+            // with one channel no marker waits for another, so nothing is left to delete.
+            Word::Keyword { name, .. } if name == "CLEARM" => {}
             Word::Keyword { name, args } if name == "FGROUP" => {
                 w.feed_group.axes = Some(super::path_control::feed_group::axes(args, cfg, line)?);
             }
@@ -834,6 +852,10 @@ pub(super) fn collect(
                     }
                     Assigned::OnlineToolOffset(op) => {
                         w.toff.push(op);
+                        continue;
+                    }
+                    Assigned::PlcData(at, bytes) => {
+                        w.plc_writes.push((at, bytes));
                         continue;
                     }
                     Assigned::DigitalOutput(signal, on) => {
@@ -1005,6 +1027,8 @@ pub(super) enum Assigned {
     OnlineToolOffset(super::compensation::toff::ToffOp),
     /// `$A_OUT[n] = value`: digital output n set (true) or cleared.
     DigitalOutput(usize, bool),
+    /// `$A_DBB[n] = value` ..: the bytes written into the PLC data area at an offset.
+    PlcData(usize, Vec<u8>),
 }
 
 pub(super) fn assign(
@@ -1064,6 +1088,12 @@ pub(super) fn assign(
         }
         let signal = super::io::signal(name, &idx, line)?;
         return Ok(Assigned::DigitalOutput(signal, super::io::level(&eval(expr, &ctx, line)?, line)?));
+    }
+    if super::io::plc_data::is_name(name) {
+        let ctx = Ctx { vars, sys };
+        let idx = indices.iter().map(|e| eval(e, &ctx, line)).collect::<Result<Vec<_>, _>>()?;
+        let (at, bytes) = super::io::plc_data::write(name, &idx, &eval(expr, &ctx, line)?, line)?;
+        return Ok(Assigned::PlcData(at, bytes));
     }
     if name.starts_with('$') {
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);

@@ -13,6 +13,9 @@
 //!   program the operator started.
 //! - `$AC_PROG` (INT): the program status, 0 not started, 1 running, 2 stopped, 3 waiting,
 //!   4 aborted. A program reading it runs: 1.
+//! - `$P_SUBPAR[n]` (BOOL): whether the call of the running subprogram gave its n-th parameter
+//!   (`NAME(1,,3)`: 1 and 3 TRUE, 2 FALSE); FALSE in the main program and beyond the arguments
+//!   written; n < 1: 17020.
 //! - `$P_MSNUM` / `$AC_MSNUM` (INT): the number of the master spindle (SETMS or MD20090), 0
 //!   without one. Preparation and main run agree because SETMS reaches the main run in order.
 
@@ -29,6 +32,9 @@ pub struct RunEnv {
 
 /// The value of `name`, or `None` if it is not one of these variables.
 pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line: u32) -> Option<Result<Value, Alarm>> {
+    if name == "$P_SUBPAR" {
+        return Some(subpar(sys, indices, line));
+    }
     let value = match name {
         "$P_SIM" => Value::Bool(sys.env.simulation),
         "$P_ISTEST" => Value::Bool(false),
@@ -44,4 +50,11 @@ pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line
         return Some(Err(Alarm::index_error(line, name, "takes no index")));
     }
     Some(Ok(value))
+}
+
+fn subpar(sys: &SysView, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    let [n] = indices else { return Err(Alarm::index_error(line, "$P_SUBPAR", "needs one parameter number")) };
+    let n = n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?;
+    let k = usize::try_from(n - 1).map_err(|_| Alarm::index_error(line, "$P_SUBPAR", &format!("parameter {n}")))?;
+    Ok(Value::Bool(sys.call_args.get(k).is_some_and(Option::is_some)))
 }

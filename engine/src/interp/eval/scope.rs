@@ -44,6 +44,10 @@ pub(crate) struct SysView<'a> {
     pub measured: &'a crate::interp::measuring::Results,
     /// How the program runs (`$P_SIM`, see `run_vars.rs`).
     pub env: &'a crate::interp::eval::run_vars::RunEnv,
+    /// The arguments of the running subprogram's call (`None`: left out), for `$P_SUBPAR`.
+    pub call_args: &'a [Option<Value>],
+    /// The PLC data area (`$A_DBB`..).
+    pub plc: &'a crate::interp::io::plc_data::PlcData,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -68,6 +72,8 @@ macro_rules! sys_view {
             spindles: &$interp.spindles,
             measured: &$interp.measured,
             env: &$interp.env,
+            plc: &$interp.plc,
+            call_args: $crate::interp::calls::call_args(&$interp.calls),
         }
     };
 }
@@ -136,6 +142,9 @@ impl Scope for Ctx<'_> {
             return v;
         }
         if let Some(v) = crate::interp::eval::machine_data::read(sys.stored, sys.cfg, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = sys.plc.read(name, indices, line) {
             return v;
         }
         if let Some(v) = sys.io.read(name, indices, line) {
