@@ -30,6 +30,16 @@ impl Alarm {
         Alarm::new(10720, format!("Channel 1 block {line} axis {axis} software limit switch {sign}"), Some(line))
     }
 
+    /// 10730: a programmed point lies behind the working-area limitation (G25/G26, SD43400..).
+    pub fn work_area_limit(line: u32, axis: &str, plus: bool) -> Alarm {
+        let sign = if plus { '+' } else { '-' };
+        Alarm::new(
+            10730,
+            format!("Channel 1 block {line} axis {axis} programmed end point behind working area limitation {sign}"),
+            Some(line),
+        )
+    }
+
     /// 10910: near a pole the machine axes cannot follow the programmed path velocity; the
     /// block runs at the velocity they allow. Information only: the program goes on.
     pub fn irregular_velocity(line: u32) -> Alarm {

@@ -325,6 +325,9 @@ pub struct Interpreter {
     env: eval::run_vars::RunEnv,
     /// The PLC data area `$A_DBB`.. (`io/plc_data.rs`).
     plc: io::plc_data::PlcData,
+    /// The enabled working-area limits (`path_control/work_area.rs`): `None` until read from
+    /// the stored data after a change, `Some(None)` when no limit is enabled.
+    work_area: Option<Option<Box<path_control::work_area::WorkArea>>>,
     /// Preparation held back behind a block-modal DELDTG (`synchronized.rs`).
     sync_wait: synchronized::PrepWait,
     /// The main run's `$AC_MARKER`, `$AC_PARAM`, `$AC_DELT` ... as last handed over.
@@ -373,6 +376,7 @@ impl Interpreter {
             io: io::DigitalIo::default(),
             env: Default::default(),
             plc: Default::default(),
+            work_area: None,
             sync_wait: synchronized::PrepWait::None,
             measured: Default::default(),
             sync_data: Default::default(),
@@ -430,6 +434,7 @@ impl Interpreter {
     /// channel made to its stored data).
     pub fn set_stored_data(&mut self, stored: std::sync::Arc<crate::machine_data::MachineData>) {
         self.stored = stored;
+        self.work_area = None;
     }
 
     /// The PLC data area (`$A_DBB`..) as programs left it.
@@ -785,6 +790,10 @@ impl Interpreter {
                 return Err(Alarm::value_out_of_range(line, &format!("G4 {} s", Alarm::shown(seconds))));
             }
             out.push(Item::Dwell { seconds, line });
+        } else if let Some(upper) = words.spindle.work_area_limit(words) {
+            // G25/G26 with axes and no S: working-area limits into the setting data.
+            let lines = path_control::work_area::limit_lines(&self.stored, cfg, upper, &words.axes, self.modal.length_factor());
+            self.data_writes.extend(lines.into_iter().map(|t| (line, t)));
         } else if let Some(approach) = words.fixed_point {
             self.fixed_point_block(approach, words, cfg, line, out)?;
         } else if let Some(reference) = words.pole {
@@ -1204,6 +1213,12 @@ impl Interpreter {
         let length = self.modal.feed_group.as_ref().map_or(length, |g| g.path_length(&path, length, cfg));
 
         check_software_limits(cfg, &path, line)?;
+        if !self.modal.walimof {
+            let area = self.work_area.get_or_insert_with(|| path_control::work_area::WorkArea::of(&self.stored, cfg));
+            if let Some(area) = area {
+                area.check(cfg, &path, &tool, line)?;
+            }
+        }
 
         // A captured contour's move does not run: it needs no feed.
         let feed = if self.capture.is_some() { Feed::Rapid } else { self.path_feed(line)? };

@@ -110,6 +110,8 @@ pub struct Modal {
     pub dynamics: super::dynamics::DynModal,
     /// G groups 10 (G64x), 12 and 30, ADIS and the tolerances (`path_control.rs`).
     pub path: super::path_control::PathControl,
+    /// G group 28: WALIMOF (true) or WALIMON, the reset value (`path_control/work_area.rs`).
+    pub walimof: bool,
     /// FGROUP/FGREF (`path_control/feed_group.rs`); `None` until a program writes one.
     pub feed_group: Option<Box<super::path_control::feed_group::FeedGroup>>,
 }
@@ -177,6 +179,7 @@ impl Modal {
             dynamics: super::dynamics::DynModal::reset(cfg),
             path: Default::default(),
             feed_group: None,
+            walimof: false,
         }
     }
 
@@ -222,6 +225,9 @@ impl Modal {
         }
         self.path.apply(&w.path, self.length_factor());
         super::path_control::feed_group::FeedGroup::apply(&mut self.feed_group, &w.feed_group);
+        if let Some(off) = w.walimof {
+            self.walimof = off;
+        }
         if let Some(side) = w.trc {
             self.trc = side;
         }
@@ -337,6 +343,8 @@ pub(super) struct Words {
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
+    /// WALIMON (`Some(false)`) / WALIMOF (`Some(true)`).
+    pub walimof: Option<bool>,
     /// FGROUP(..), FGREF[ax]= (`path_control/feed_group.rs`).
     pub feed_group: super::path_control::feed_group::FeedGroupWords,
     /// G74/G75: the block's axes travel to the reference or a fixed point (`FP=`).
@@ -736,6 +744,9 @@ pub(super) fn collect(
             }
             Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
                 super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;
+            }
+            Word::Keyword { name, args } if args.is_empty() && (name == "WALIMON" || name == "WALIMOF") => {
+                w.walimof = Some(name == "WALIMOF");
             }
             Word::Keyword { name, args } if name == "GETSELT" => {
                 // GETSELT(VAR INT tool[, spindle]): the tool selected for the (master) spindle

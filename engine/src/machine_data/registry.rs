@@ -555,6 +555,12 @@ pub static DEFS: &[Def] = &[
     sd("CORR_TRAFO_LIN_MAX", 41610, N, Kind::Real, Default::Real(1.0), 0.0, INF),
     sd("CORR_TRAFO_DIR_MAX", 41611, N, Kind::Real, Default::Real(1.0), 0.0, 180.0),
     // SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
+    // SD43400..43430: working-area limitation per axis (G25/G26 with axes write the limits;
+    // WALIMON/WALIMOF, `interp/path_control/work_area.rs`); disabled by default.
+    sd("WORKAREA_PLUS_ENABLE", 43400, A, Kind::Bool, Default::Bool(false), 0.0, 1.0),
+    sd("WORKAREA_MINUS_ENABLE", 43410, A, Kind::Bool, Default::Bool(false), 0.0, 1.0),
+    sd("WORKAREA_LIMIT_PLUS", 43420, A, Kind::Real, Default::Real(1e8), -1e9, 1e9),
+    sd("WORKAREA_LIMIT_MINUS", 43430, A, Kind::Real, Default::Real(-1e8), -1e9, 1e9),
     sd("TOCARR_FINE_CORRECTION", 42974, C, Kind::Bool, Default::Bool(false), 0.0, 1.0),
     // SD42980 TOFRAME_MODE: 0/1 as MD21110; 2000 X/Y compromise, 2001 new X in the old X-Z
     // plane, 2002 new Y in the old Y-Z plane (808D list manual p.360). Default 2000, the value
