@@ -21,11 +21,6 @@
 //! - `LFON`/`LFOF`, `LFTXT`/`LFWP`/`LFPOS`, `ALF=`, `DILF=` (fast retraction from a thread after
 //!   NC stop or an alarm): the retraction is not modelled, an NC stop in G33 brakes on the path as
 //!   in any block. Accepted; `ALF=` (0..8) and `DILF=` (≥ 0) are checked (12560).
-//! - `RTLION` (G0 with linear interpolation, the reset value of MD20730 G0_LINEAR_MODE=1 and
-//!   NCTwin's only G0) is accepted; `RTLIOF` (each axis at its own rapid velocity) is accepted
-//!   and runs as RTLION: the end points are the same and the block time nearly so (the slowest
-//!   axis decides both), but the path between differs: on the control the axis with the shorter
-//!   travel arrives first, NCTwin's trace shows a straight line.
 //! - `H5`, `H=5`, `H2=5`: auxiliary functions for the PLC (with address extension); `M2=3`-style
 //!   M functions with an address extension. They go to the main run as `Item::Aux` and are
 //!   published there (`auxiliary.rs`); `M<n>=3/4/5` also act on spindle n, which must be the
@@ -38,7 +33,7 @@ pub(super) fn is_inert_keyword(name: &str, has_args: bool) -> bool {
     match name {
         "FNORM" | "FLIN" | "FCUB" | "DRFOF" | "SBLOF" | "SBLON" | "DISPLOF" | "DISPLON" | "ACTBLOCNO" => !has_args,
         "FIFOCTRL" | "STOPFIFO" | "STARTFIFO" | "IPTRLOCK" | "IPTRUNLOCK" | "LFON" | "LFOF" | "LFTXT" | "LFWP"
-        | "LFPOS" | "RTLION" | "RTLIOF" => !has_args,
+        | "LFPOS" => !has_args,
         "GROUP_BEGIN" | "GROUP_END" => true,
         _ => false,
     }

@@ -219,6 +219,7 @@ impl Interpreter {
             && self.held.is_none()
             && self.modal.rndm.is_none()
             && self.modal.feed_group.is_none()
+            && !self.modal.rtliof
             && matches!(self.work_area, Some(None))
             && self.modal.spline.kind.is_none()
             && self.modal.trc.is_none()

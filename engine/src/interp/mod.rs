@@ -832,6 +832,7 @@ impl Interpreter {
                 // thread in segments of its changing lead).
                 match self.spindles.variable_lead.take() {
                     Some(lead) => lead.push_segments(mv, line, offsets, &limits, out),
+                    None if self.rapid_apart(&mv, &offsets, cfg, line, out) => {}
                     None => out.push(Item::Move { mv, line, offsets }),
                 }
                 self.trc.passed(out);

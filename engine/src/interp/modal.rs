@@ -110,6 +110,8 @@ pub struct Modal {
     pub dynamics: super::dynamics::DynModal,
     /// G groups 10 (G64x), 12 and 30, ADIS and the tolerances (`path_control.rs`).
     pub path: super::path_control::PathControl,
+    /// G group 55: RTLIOF (true) or RTLION, the reset value (`path_control/rapid_apart.rs`).
+    pub rtliof: bool,
     /// G group 28: WALIMOF (true) or WALIMON, the reset value (`path_control/work_area.rs`).
     pub walimof: bool,
     /// FGROUP/FGREF (`path_control/feed_group.rs`); `None` until a program writes one.
@@ -180,6 +182,7 @@ impl Modal {
             path: Default::default(),
             feed_group: None,
             walimof: false,
+            rtliof: false,
         }
     }
 
@@ -227,6 +230,9 @@ impl Modal {
         super::path_control::feed_group::FeedGroup::apply(&mut self.feed_group, &w.feed_group);
         if let Some(off) = w.walimof {
             self.walimof = off;
+        }
+        if let Some(off) = w.rtliof {
+            self.rtliof = off;
         }
         if let Some(side) = w.trc {
             self.trc = side;
@@ -343,6 +349,8 @@ pub(super) struct Words {
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
+    /// RTLION (`Some(false)`) / RTLIOF (`Some(true)`).
+    pub rtliof: Option<bool>,
     /// WALIMON (`Some(false)`) / WALIMOF (`Some(true)`).
     pub walimof: Option<bool>,
     /// FGROUP(..), FGREF[ax]= (`path_control/feed_group.rs`).
@@ -747,6 +755,9 @@ pub(super) fn collect(
             }
             Word::Keyword { name, args } if args.is_empty() && (name == "WALIMON" || name == "WALIMOF") => {
                 w.walimof = Some(name == "WALIMOF");
+            }
+            Word::Keyword { name, args } if args.is_empty() && (name == "RTLION" || name == "RTLIOF") => {
+                w.rtliof = Some(name == "RTLIOF");
             }
             Word::Keyword { name, args } if name == "GETSELT" => {
                 // GETSELT(VAR INT tool[, spindle]): the tool selected for the (master) spindle

@@ -39,6 +39,7 @@
 pub(super) mod feed_group;
 pub(super) mod fixed_point;
 pub(super) mod positioning;
+pub(super) mod rapid_apart;
 pub(super) mod work_area;
 pub(super) mod spline;
 use crate::alarm::Alarm;
