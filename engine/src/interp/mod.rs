@@ -442,6 +442,11 @@ impl Interpreter {
         &self.plc
     }
 
+    /// Writes `bytes` into the PLC data area at byte `at` (checked by the caller).
+    pub fn write_plc_data(&mut self, at: usize, bytes: &[u8]) {
+        self.plc.put(at, bytes);
+    }
+
     /// Marks the channel's runs as a simulation (`$P_SIM` TRUE) or the machine's own.
     pub fn set_simulation(&mut self, simulation: bool) {
         self.env.simulation = simulation;
