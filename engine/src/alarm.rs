@@ -185,7 +185,11 @@ impl Alarm {
     /// active transformation moves.
     pub fn fixed_point_transformed(line: u32, reference: bool, axis: &str) -> Alarm {
         let (number, what) = if reference { (17630, "reference point") } else { (17620, "fixed point") };
-        Alarm::new(number, format!("Channel 1 block {line} axis {axis} {what} approach not allowed for a transformed axis"), Some(line))
+        Alarm::new(
+            number,
+            format!("Channel 1 block {line} axis {axis} {what} approach not allowed for a transformed axis"),
+            Some(line),
+        )
     }
 
     /// 12560: a value outside its allowed range.

@@ -797,7 +797,8 @@ impl Interpreter {
             out.push(Item::Dwell { seconds, line });
         } else if let Some(upper) = words.spindle.work_area_limit(words) {
             // G25/G26 with axes and no S: working-area limits into the setting data.
-            let lines = path_control::work_area::limit_lines(&self.stored, cfg, upper, &words.axes, self.modal.length_factor());
+            let lines =
+                path_control::work_area::limit_lines(&self.stored, cfg, upper, &words.axes, self.modal.length_factor());
             self.data_writes.extend(lines.into_iter().map(|t| (line, t)));
         } else if let Some(approach) = words.fixed_point {
             self.fixed_point_block(approach, words, cfg, line, out)?;

@@ -111,10 +111,7 @@ pub struct IoChange {
 )]
 pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Result<Json<IoImage>, ApiError> {
     let session = find_session(&state, &id)?;
-    let io = session
-        .with_channel(|ch| IoImage::of(ch))
-        .await
-        .map_err(|e| ApiError::from_session(&id, e))?;
+    let io = session.with_channel(|ch| IoImage::of(ch)).await.map_err(|e| ApiError::from_session(&id, e))?;
     Ok(Json(io))
 }
 

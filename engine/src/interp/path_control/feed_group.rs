@@ -54,7 +54,12 @@ pub(in crate::interp) fn axes(args: &[Expr], cfg: &MachineConfig, line: u32) -> 
 }
 
 /// `FGREF[ax]` of channel axis `axis` with value `radius`, checked.
-pub(in crate::interp) fn fgref(cfg: &MachineConfig, axis: usize, radius: f64, line: u32) -> Result<(usize, f64), Alarm> {
+pub(in crate::interp) fn fgref(
+    cfg: &MachineConfig,
+    axis: usize,
+    radius: f64,
+    line: u32,
+) -> Result<(usize, f64), Alarm> {
     if !cfg.axis(axis).rotary || !radius.is_finite() || radius <= 0.0 {
         return Err(Alarm::value_out_of_range(
             line,
