@@ -592,6 +592,10 @@ impl Interpreter {
         out: &mut Vec<Item>,
     ) -> Prep {
         let first = out.len();
+        if self.work_area.is_none() {
+            // Read once per change of the stored data: without enabled limits the lane stays open.
+            self.work_area = Some(path_control::work_area::WorkArea::of(&self.stored, cfg));
+        }
         let prep = self.prepare_next_block(cfg, programs, main_run_idle, out);
         if let Some(items) = out.get_mut(first..) {
             dynamics::apply(&self.modal.dynamics, cfg, items);
