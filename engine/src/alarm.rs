@@ -30,6 +30,16 @@ impl Alarm {
         Alarm::new(10720, format!("Channel 1 block {line} axis {axis} software limit switch {sign}"), Some(line))
     }
 
+    /// 10730: a programmed point lies behind the working-area limitation (G25/G26, SD43400..).
+    pub fn work_area_limit(line: u32, axis: &str, plus: bool) -> Alarm {
+        let sign = if plus { '+' } else { '-' };
+        Alarm::new(
+            10730,
+            format!("Channel 1 block {line} axis {axis} programmed end point behind working area limitation {sign}"),
+            Some(line),
+        )
+    }
+
     /// 10910: near a pole the machine axes cannot follow the programmed path velocity; the
     /// block runs at the velocity they allow. Information only: the program goes on.
     pub fn irregular_velocity(line: u32) -> Alarm {
@@ -191,6 +201,17 @@ impl Alarm {
     /// programmed `1EX300` does not fill the alarm line with 300 digits.
     pub fn shown(value: f64) -> String {
         if value.abs() < 1e12 { value.to_string() } else { format!("{value:e}") }
+    }
+
+    /// 17620 (G75) / 17630 (G74): a fixed or reference point approach of an axis that an
+    /// active transformation moves.
+    pub fn fixed_point_transformed(line: u32, reference: bool, axis: &str) -> Alarm {
+        let (number, what) = if reference { (17630, "reference point") } else { (17620, "fixed point") };
+        Alarm::new(
+            number,
+            format!("Channel 1 block {line} axis {axis} {what} approach not allowed for a transformed axis"),
+            Some(line),
+        )
     }
 
     /// 12560: a value outside its allowed range.

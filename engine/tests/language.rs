@@ -13,6 +13,7 @@
 //! - `; expect MSG text`        the last MSG text
 //! - `; machine lathe-2axis`    preset (default mill-3axis)
 //! - `; md $P_UIFR[1,X,TR]=100` machine data applied on top of the preset
+//! - `; simulation`             the run is a simulation like the HMI's preview (`$P_SIM` TRUE)
 //! - `; input 3`                digital input 3 (`$A_IN[3]`) is on when the program starts
 //! - `; expect OUT 2=1`         digital output 2 (`$A_OUT[2]`) at the end
 //! - `; expect AUX M8 H2=1.5 M30` the M and H functions put out, in order, as written
@@ -44,6 +45,7 @@ fn run_fixture(path: &Path) -> Result<(), String> {
         .map(|n| (n, true))
         .collect();
     ch.set_signals(&inputs, &[]).map_err(|e| e.to_string())?;
+    ch.set_simulation(text.lines().any(|l| l.trim() == "; simulation"));
     let mut parts = text.split("\n;;; ");
     let main = parts.next().unwrap_or_default();
     for part in parts {

@@ -33,6 +33,30 @@ async fn inputs_set_over_rest_steer_a_program_whose_outputs_read_back() {
 }
 
 #[tokio::test]
+async fn plc_data_set_over_rest_is_read_by_a_program_and_its_writes_read_back() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    // Bytes 10, 11 = 0x12, 0x34: $A_DBW[10] reads 0x1234 = 4660 (big-endian, as the PLC).
+    let body = json!({"plc_data": [{"offset": 10, "bytes": [18, 52]}]});
+    let reply = server.put(&format!("/sessions/{id}/io"), body).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!(reply.body["plc_data"].as_array().map(Vec::len), Some(12), "up to the last non-zero byte");
+    // The program copies the word to bytes 20/21 plus one: 4661 = 0x1235 -> 18, 53.
+    let program = "$A_DBW[20]=$A_DBW[10]+1\nM30";
+    let state =
+        server.post(&format!("/sessions/{id}/run"), json!({"program": program, "pace": "fast", "wait": true})).await;
+    assert_eq!(state.body["status"], "idle", "{}", state.body);
+    let io = server.get(&format!("/sessions/{id}/io")).await.body;
+    assert_eq!((io["plc_data"][20].as_u64(), io["plc_data"][21].as_u64()), (Some(18), Some(53)));
+    // Beyond the 4096 bytes: 400, nothing written.
+    let body = json!({"plc_data": [{"offset": 0, "bytes": [1]}, {"offset": 4095, "bytes": [1, 2]}]});
+    let reply = server.put(&format!("/sessions/{id}/io"), body).await;
+    assert_eq!(reply.status, StatusCode::BAD_REQUEST, "{}", reply.body);
+    let io = server.get(&format!("/sessions/{id}/io")).await.body;
+    assert_eq!(io["plc_data"][0].as_u64(), Some(0));
+}
+
+#[tokio::test]
 async fn a_signal_outside_the_image_is_refused_and_changes_nothing() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;

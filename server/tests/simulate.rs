@@ -142,6 +142,27 @@ fn the_time_limit_stops_with_exit_code_3() {
 }
 
 #[test]
+fn a_thread_with_the_spindle_stopped_ends_as_standstill_with_exit_code_4() {
+    let dir = folder("standstill");
+    // G33 with M5: the control waits for the spindle for ever (no alarm). The run ends after
+    // 60 s of simulated time without any change, at the thread's line 3, with NC stop.
+    let program = write(&dir, "thread.mpf", "G0 X20 Z5\nM5\nG33 Z-20 K1.5\nM30\n");
+    let (code, r) = simulate(&["--machine", "lathe-2axis", program.to_str().unwrap()]);
+    assert_eq!(code, 4, "{r:#}");
+    assert_eq!(r["outcome"], "standstill");
+    assert_eq!(r["standstill"]["line"], 3);
+    assert!(r["standstill"]["message"].as_str().unwrap().contains("line 3"));
+    let t = r["simulated_time_s"].as_f64().unwrap();
+    // Checked every 4096 IPO cycles: at most two such chunks beyond the 60 s.
+    assert!((60.0..100.0).contains(&t), "{t}");
+    // A long dwell is no standstill: G4 F100 runs out and the program ends normally.
+    let program = write(&dir, "dwell.mpf", "G4 F100\nM30\n");
+    let (code, r) = simulate(&["--machine", "lathe-2axis", program.to_str().unwrap()]);
+    assert_eq!(code, 0, "{r:#}");
+    assert_eq!(r["outcome"], "ended");
+}
+
+#[test]
 fn usage_and_io_errors_exit_with_1() {
     let dir = folder("usage");
     let missing = dir.join("missing.mpf");

@@ -52,6 +52,31 @@ impl Channel {
         self.interp.set_io(io);
     }
 
+    /// The PLC data area `$A_DBB[n]`.. as programs wrote it (bytes up to the last non-zero one).
+    pub fn plc_data(&self) -> &[u8] {
+        self.interp.plc_data().bytes()
+    }
+
+    /// Writes `bytes` into the PLC data area from byte `at` on, as the PLC would (the shell's
+    /// `PUT .../io`); blocks prepared after this read them. Beyond the area: nothing changes.
+    pub fn set_plc_data(&mut self, at: usize, bytes: &[u8]) -> Result<(), CommandError> {
+        use crate::interp::io::plc_data::PLC_DATA_BYTES;
+        if at.checked_add(bytes.len()).is_none_or(|end| end > PLC_DATA_BYTES) {
+            return Err(CommandError::Invalid(format!(
+                "PLC data: {} bytes from byte {at} reach beyond the area of {PLC_DATA_BYTES} bytes",
+                bytes.len()
+            )));
+        }
+        self.interp.write_plc_data(at, bytes);
+        Ok(())
+    }
+
+    /// Marks this channel's program runs as a simulation: `$P_SIM` reads TRUE (the HMI's
+    /// preview copy; a session's own channel is the machine and reads FALSE).
+    pub fn set_simulation(&mut self, simulation: bool) {
+        self.interp.set_simulation(simulation);
+    }
+
     /// Hands the stored machine data to the interpreter, after every change of it, for the
     /// programs' `$MN_`... reads.
     pub(super) fn publish_stored_data(&mut self) {

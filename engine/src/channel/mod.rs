@@ -38,6 +38,7 @@ mod set_wo;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
+pub mod standstill;
 mod stock_cut;
 mod stock_mesh;
 mod stock_pose;

@@ -106,6 +106,11 @@ pub(super) struct CallFrame {
     commands: suppression::LevelCommands,
 }
 
+/// The arguments of the innermost call (`None`: left out); empty in the main program.
+pub(in crate::interp) fn call_args(calls: &[CallFrame]) -> &[Option<Value>] {
+    calls.last().map_or(&[], |f| &f.args)
+}
+
 impl Interpreter {
     /// Calls program `name` with `args`, `repeat` times, from the block at `line`.
     pub(super) fn call(

@@ -5,10 +5,12 @@ pub(super) mod assignment_block;
 pub(super) mod cycle_constants;
 pub(super) mod cycle_vars;
 pub(super) mod indirect_axis;
+pub(super) mod isvar;
 pub(crate) mod machine_data;
 pub(super) mod name_hash;
 pub(crate) mod nc_constants;
 pub(super) mod numeric;
+pub mod run_vars;
 pub(super) mod scope;
 pub(super) mod strings;
 pub mod value;
@@ -92,6 +94,7 @@ fn apply(name: &str, vals: &[Value], scope: &dyn Scope, line: u32) -> Result<Val
         true => frame_function(name, vals, scope, line),
         // GETT and CHKDNO read the tool list, which the scope holds.
         false if name == "GETT" || name == "CHKDNO" => scope.system(name, vals, line),
+        false if name == "ISVAR" => isvar::isvar(scope, vals, line),
         false => call(name, vals, line),
     }
 }

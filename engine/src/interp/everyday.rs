@@ -11,6 +11,16 @@
 //! - `GROUP_BEGIN(..)`/`GROUP_END(..)`: the program editor's structure markers; no effect.
 //! - `ACTBLOCNO` in a block (on the PROC line it keeps a DISPLOF subprogram's alarms at its own
 //!   block: `calls.rs`, `alarm_as_displayed`).
+//! - `FIFOCTRL`, `STOPFIFO`, `STARTFIFO` (how full the preprocessing buffer is kept before the
+//!   main run starts): NCTwin prepares a bounded number of items ahead (`channel::LOOKAHEAD`)
+//!   and its preparation takes no simulated time, so the buffer is never what the main run
+//!   waits for; the path and its timing come out the same. Accepted.
+//! - `IPTRLOCK`/`IPTRUNLOCK` (freeze the block search's interruption pointer at the block of a
+//!   section, e.g. a probing cycle, so a search after an interruption starts before it): NCTwin
+//!   keeps no interruption pointer for the operator's search; accepted.
+//! - `LFON`/`LFOF`, `LFTXT`/`LFWP`/`LFPOS`, `ALF=`, `DILF=` (fast retraction from a thread after
+//!   NC stop or an alarm): the retraction is not modelled, an NC stop in G33 brakes on the path as
+//!   in any block. Accepted; `ALF=` (0..8) and `DILF=` (≥ 0) are checked (12560).
 //! - `H5`, `H=5`, `H2=5`: auxiliary functions for the PLC (with address extension); `M2=3`-style
 //!   M functions with an address extension. They go to the main run as `Item::Aux` and are
 //!   published there (`auxiliary.rs`); `M<n>=3/4/5` also act on spindle n, which must be the
@@ -22,9 +32,25 @@ use crate::alarm::Alarm;
 pub(super) fn is_inert_keyword(name: &str, has_args: bool) -> bool {
     match name {
         "FNORM" | "FLIN" | "FCUB" | "DRFOF" | "SBLOF" | "SBLON" | "DISPLOF" | "DISPLON" | "ACTBLOCNO" => !has_args,
+        "FIFOCTRL" | "STOPFIFO" | "STARTFIFO" | "IPTRLOCK" | "IPTRUNLOCK" | "LFON" | "LFOF" | "LFTXT" | "LFWP"
+        | "LFPOS" => !has_args,
         "GROUP_BEGIN" | "GROUP_END" => true,
         _ => false,
     }
+}
+
+/// `ALF=` (retraction direction code 0..8) and `DILF=` (retraction length, mm): checked and
+/// accepted (see the module doc); `false` for any other address.
+pub(super) fn retraction_address(name: &str, value: f64, line: u32) -> Result<bool, Alarm> {
+    let ok = match name {
+        "ALF" => (0.0..=8.0).contains(&value) && value.fract() == 0.0,
+        "DILF" => value >= 0.0 && value.is_finite(),
+        _ => return Ok(false),
+    };
+    if !ok {
+        return Err(Alarm::value_out_of_range(line, &format!("{name}={}", Alarm::shown(value))));
+    }
+    Ok(true)
 }
 
 /// An address with an extension, `H2`, `M1`, `S2`: the letter and the extension number.

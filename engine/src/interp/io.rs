@@ -7,6 +7,8 @@
 //! the motion before it. The inputs are set from outside (the server's `PUT .../io`, standing
 //! in for the machine's wiring); a program writing `$A_IN` gets alarm 17070.
 
+pub mod plc_data;
+
 use crate::alarm::Alarm;
 use crate::interp::eval::value::Value;
 

@@ -218,6 +218,9 @@ impl Interpreter {
             && self.call_state.mcall.is_none()
             && self.held.is_none()
             && self.modal.rndm.is_none()
+            && self.modal.feed_group.is_none()
+            && !self.modal.rtliof
+            && matches!(self.work_area, Some(None))
             && self.modal.spline.kind.is_none()
             && self.modal.trc.is_none()
             && self.trc.idle()

@@ -326,6 +326,13 @@ pub struct Interpreter {
     stored: std::sync::Arc<crate::machine_data::MachineData>,
     /// The digital inputs and outputs as the main run last reported them.
     io: io::DigitalIo,
+    /// How the shell runs the channel's programs (`$P_SIM`, `eval/run_vars.rs`).
+    env: eval::run_vars::RunEnv,
+    /// The PLC data area `$A_DBB`.. (`io/plc_data.rs`).
+    plc: io::plc_data::PlcData,
+    /// The enabled working-area limits (`path_control/work_area.rs`): `None` until read from
+    /// the stored data after a change, `Some(None)` when no limit is enabled.
+    work_area: Option<Option<Box<path_control::work_area::WorkArea>>>,
     /// Preparation held back behind a block-modal DELDTG (`synchronized.rs`).
     sync_wait: synchronized::PrepWait,
     /// The main run's `$AC_MARKER`, `$AC_PARAM`, `$AC_DELT` ... as last handed over.
@@ -372,6 +379,9 @@ impl Interpreter {
             lane_memo: Default::default(),
             stored: Default::default(),
             io: io::DigitalIo::default(),
+            env: Default::default(),
+            plc: Default::default(),
+            work_area: None,
             sync_wait: synchronized::PrepWait::None,
             measured: Default::default(),
             sync_data: Default::default(),
@@ -429,6 +439,22 @@ impl Interpreter {
     /// channel made to its stored data).
     pub fn set_stored_data(&mut self, stored: std::sync::Arc<crate::machine_data::MachineData>) {
         self.stored = stored;
+        self.work_area = None;
+    }
+
+    /// The PLC data area (`$A_DBB`..) as programs left it.
+    pub fn plc_data(&self) -> &io::plc_data::PlcData {
+        &self.plc
+    }
+
+    /// Writes `bytes` into the PLC data area at byte `at` (checked by the caller).
+    pub fn write_plc_data(&mut self, at: usize, bytes: &[u8]) {
+        self.plc.put(at, bytes);
+    }
+
+    /// Marks the channel's runs as a simulation (`$P_SIM` TRUE) or the machine's own.
+    pub fn set_simulation(&mut self, simulation: bool) {
+        self.env.simulation = simulation;
     }
 
     /// The digital I/O image as the main run holds it (read by blocks that waited for it).
@@ -571,6 +597,10 @@ impl Interpreter {
         out: &mut Vec<Item>,
     ) -> Prep {
         let first = out.len();
+        if self.work_area.is_none() {
+            // Read once per change of the stored data: without enabled limits the lane stays open.
+            self.work_area = Some(path_control::work_area::WorkArea::of(&self.stored, cfg));
+        }
         let prep = self.prepare_next_block(cfg, programs, main_run_idle, out);
         if let Some(items) = out.get_mut(first..) {
             dynamics::apply(&self.modal.dynamics, cfg, items);
@@ -683,6 +713,9 @@ impl Interpreter {
         }
         let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
+        for (at, bytes) in &words.plc_writes {
+            self.plc.put(*at, bytes);
+        }
         if let Some(r) = words.rndm {
             self.modal.rndm = (r > 0.0).then_some(r);
         }
@@ -771,6 +804,13 @@ impl Interpreter {
                 return Err(Alarm::value_out_of_range(line, &format!("G4 {} s", Alarm::shown(seconds))));
             }
             out.push(Item::Dwell { seconds, line });
+        } else if let Some(upper) = words.spindle.work_area_limit(words) {
+            // G25/G26 with axes and no S: working-area limits into the setting data.
+            let lines =
+                path_control::work_area::limit_lines(&self.stored, cfg, upper, &words.axes, self.modal.length_factor());
+            self.data_writes.extend(lines.into_iter().map(|t| (line, t)));
+        } else if let Some(approach) = words.fixed_point {
+            self.fixed_point_block(approach, words, cfg, line, out)?;
         } else if let Some(reference) = words.pole {
             self.define_pole(reference, words, cfg, line)?;
         } else if words.frame_op.is_none() && !words.axes.is_empty()
@@ -807,6 +847,7 @@ impl Interpreter {
                 // thread in segments of its changing lead).
                 match self.spindles.variable_lead.take() {
                     Some(lead) => lead.push_segments(mv, line, offsets, &limits, out),
+                    None if self.rapid_apart(&mv, &offsets, cfg, line, out) => {}
                     None => out.push(Item::Move { mv, line, offsets }),
                 }
                 self.trc.passed(out);
@@ -1185,8 +1226,15 @@ impl Interpreter {
             path.ori = Some(Box::new(o));
         }
         let length = feed_length(&path, length, n);
+        let length = self.modal.feed_group.as_ref().map_or(length, |g| g.path_length(&path, length, cfg));
 
         check_software_limits(cfg, &path, line)?;
+        if !self.modal.walimof {
+            let area = self.work_area.get_or_insert_with(|| path_control::work_area::WorkArea::of(&self.stored, cfg));
+            if let Some(area) = area {
+                area.check(cfg, &path, &tool, line)?;
+            }
+        }
 
         // A captured contour's move does not run: it needs no feed.
         let feed = if self.capture.is_some() { Feed::Rapid } else { self.path_feed(line)? };

@@ -112,6 +112,12 @@ pub struct Modal {
     pub dynamics: super::dynamics::DynModal,
     /// G groups 10 (G64x), 12 and 30, ADIS and the tolerances (`path_control.rs`).
     pub path: super::path_control::PathControl,
+    /// G group 55: RTLIOF (true) or RTLION, the reset value (`path_control/rapid_apart.rs`).
+    pub rtliof: bool,
+    /// G group 28: WALIMOF (true) or WALIMON, the reset value (`path_control/work_area.rs`).
+    pub walimof: bool,
+    /// FGROUP/FGREF (`path_control/feed_group.rs`); `None` until a program writes one.
+    pub feed_group: Option<Box<super::path_control::feed_group::FeedGroup>>,
 }
 
 /// G group 49: how a transformation's machine axes travel between the block end points.
@@ -176,6 +182,9 @@ impl Modal {
             ptp: PtpMode::Cp,
             dynamics: super::dynamics::DynModal::reset(cfg),
             path: Default::default(),
+            feed_group: None,
+            walimof: false,
+            rtliof: false,
         }
     }
 
@@ -220,6 +229,13 @@ impl Modal {
             self.exact_stop = e;
         }
         self.path.apply(&w.path, self.length_factor());
+        super::path_control::feed_group::FeedGroup::apply(&mut self.feed_group, &w.feed_group);
+        if let Some(off) = w.walimof {
+            self.walimof = off;
+        }
+        if let Some(off) = w.rtliof {
+            self.rtliof = off;
+        }
         if let Some(side) = w.trc {
             self.trc = side;
         }
@@ -335,6 +351,15 @@ pub(super) struct Words {
     pub work_offset: Option<usize>,
     /// G4 dwell (F and S of the block are dwell values then).
     pub dwell: bool,
+    /// RTLION (`Some(false)`) / RTLIOF (`Some(true)`).
+    pub rtliof: Option<bool>,
+    /// WALIMON (`Some(false)`) / WALIMOF (`Some(true)`).
+    pub walimof: Option<bool>,
+    /// FGROUP(..), FGREF[ax]= (`path_control/feed_group.rs`).
+    pub feed_group: super::path_control::feed_group::FeedGroupWords,
+    /// G74/G75: the block's axes travel to the reference or a fixed point (`FP=`).
+    pub fixed_point: Option<super::path_control::fixed_point::Approach>,
+    pub fixed_point_number: Option<u32>,
     /// G9 non-modal exact stop.
     pub g9: bool,
     /// G07 (approach the start of an oblique plunge) or G05 (oblique plunge), TRAANG.
@@ -450,6 +475,8 @@ pub(super) struct Words {
     pub swivel: Option<Vec<Option<Value>>>,
     /// M and H functions for the PLC, in the order written.
     pub aux: Vec<super::auxiliary::AuxFunction>,
+    /// `$A_DBB[n]=..`: PLC data the block writes (offset, bytes; `io/plc_data.rs`).
+    pub plc_writes: Vec<(usize, Vec<u8>)>,
     /// `$A_OUT[n]=..`: digital outputs the block sets (signal, level).
     pub digital_outputs: Vec<(usize, bool)>,
     /// CALLPATH: `Some(path)` extends the call search path, `Some("")` ends the extension.
@@ -728,6 +755,41 @@ pub(super) fn collect(
             Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
                 super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;
             }
+            Word::Keyword { name, args } if args.is_empty() && (name == "WALIMON" || name == "WALIMOF") => {
+                w.walimof = Some(name == "WALIMOF");
+            }
+            Word::Keyword { name, args } if args.is_empty() && (name == "RTLION" || name == "RTLIOF") => {
+                w.rtliof = Some(name == "RTLIOF");
+            }
+            Word::Keyword { name, args } if name == "GETSELT" => {
+                // GETSELT(VAR INT tool[, spindle]): the tool selected for the (master) spindle
+                // and not yet changed in, `$P_TOOLP`, written into the variable.
+                let (target, indices) = match args.first() {
+                    Some(Expr::Var { name, indices }) => (name.as_str(), indices.as_slice()),
+                    Some(Expr::RParam(i)) => ("R", std::slice::from_ref(&**i)),
+                    _ => return Err(Alarm::syntax(line, "GETSELT needs a variable for the tool number")),
+                };
+                let tool = Expr::Number(f64::from(sys.offsets.prepared));
+                if assign(target, indices, &tool, cfg, vars, sys, line)? != Assigned::Variable {
+                    return Err(Alarm::syntax(line, "GETSELT needs a variable for the tool number"));
+                }
+            }
+            // CLEARM(n, ..) in a block deletes wait markers of channel coordination (WAITM);
+            // with one channel no marker waits for another, so nothing is left to delete.
+            Word::Keyword { name, .. } if name == "CLEARM" => {}
+            Word::Keyword { name, args } if name == "FGROUP" => {
+                w.feed_group.axes = Some(super::path_control::feed_group::axes(args, cfg, line)?);
+            }
+            Word::Address { name, indices, value }
+                if name == "FGREF"
+                    && let [Expr::Var { name: axis, indices: none }] = indices.as_slice()
+                    && none.is_empty()
+                    && vars.get(name).is_none() =>
+            {
+                let k = cfg.program_axis(axis).ok_or_else(|| Alarm::unknown_name(line, &format!("FGREF[{axis}]")))?;
+                let r = eval_f64(&value.expr, &Ctx { vars, sys }, line)? * sys.modal.length_factor();
+                w.feed_group.fgref.push(super::path_control::feed_group::fgref(cfg, k, r, line)?);
+            }
             Word::Keyword { name, args } if name == "WAITP" => {
                 w.waitp |= super::path_control::positioning::waitp(args, vars, sys, line)?;
             }
@@ -816,6 +878,10 @@ pub(super) fn collect(
                         w.toff.push(op);
                         continue;
                     }
+                    Assigned::PlcData(at, bytes) => {
+                        w.plc_writes.push((at, bytes));
+                        continue;
+                    }
                     Assigned::DigitalOutput(signal, on) => {
                         w.digital_outputs.push((signal, on));
                         continue;
@@ -888,6 +954,8 @@ pub(super) fn collect(
                     _ if w.spline.address(name, v, line)? => {}
                     "STAT" => w.stat = Some(whole("STAT=")?),
                     "TU" => w.tu = Some(whole("TU=")?),
+                    "FP" => w.fixed_point_number = Some(whole("FP=")?),
+                    _ if super::everyday::retraction_address(name, v, line)? => {}
                     // `P3`: three runs of the block's subprogram call.
                     "P" => w.repeat = Some(whole("P")?),
                     _ if super::everyday::extended_address(name).is_some() => {
@@ -983,6 +1051,8 @@ pub(super) enum Assigned {
     OnlineToolOffset(super::compensation::toff::ToffOp),
     /// `$A_OUT[n] = value`: digital output n set (true) or cleared.
     DigitalOutput(usize, bool),
+    /// `$A_DBB[n] = value` ..: the bytes written into the PLC data area at an offset.
+    PlcData(usize, Vec<u8>),
 }
 
 pub(super) fn assign(
@@ -1042,6 +1112,12 @@ pub(super) fn assign(
         }
         let signal = super::io::signal(name, &idx, line)?;
         return Ok(Assigned::DigitalOutput(signal, super::io::level(&eval(expr, &ctx, line)?, line)?));
+    }
+    if super::io::plc_data::is_name(name) {
+        let ctx = Ctx { vars, sys };
+        let idx = indices.iter().map(|e| eval(e, &ctx, line)).collect::<Result<Vec<_>, _>>()?;
+        let (at, bytes) = super::io::plc_data::write(name, &idx, &eval(expr, &ctx, line)?, line)?;
+        return Ok(Assigned::PlcData(at, bytes));
     }
     if name.starts_with('$') {
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
@@ -1225,6 +1301,9 @@ fn is_nc_address(name: &str) -> bool {
             | "CHR"
             | "STAT"
             | "TU"
+            | "FP"
+            | "ALF"
+            | "DILF"
             | "OFFN"
             | "DISC"
             | "TCARR"
@@ -1292,6 +1371,8 @@ fn g_function(w: &mut Words, code: u32, line: u32) -> Result<(), Alarm> {
         2 => w.motion = Some(MotionMode::Cw),
         3 => w.motion = Some(MotionMode::Ccw),
         4 => w.dwell = true,
+        74 => w.fixed_point = Some(super::path_control::fixed_point::Approach::Reference),
+        75 => w.fixed_point = Some(super::path_control::fixed_point::Approach::FixedPoint),
         9 => w.g9 = true,
         5 => w.oblique = Some(Oblique::Plunge),
         7 => w.oblique = Some(Oblique::Approach),

@@ -37,8 +37,12 @@
 //!   block's [`Blend`] to each equidistant piece): the corners of the offset contour are
 //!   rounded, and G645 smooths the tangential joints of G450's transition circles.
 
+pub(super) mod feed_group;
+pub(super) mod fixed_point;
 pub(crate) mod positioning;
+pub(super) mod rapid_apart;
 pub(super) mod spline;
+pub(super) mod work_area;
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
 use crate::motion::blend::Blend;

@@ -47,6 +47,9 @@ pub struct Retained {
     /// reset here (see `toff.rs`), and the saved machine position already includes it.
     #[cfg_attr(feature = "serde", serde(default))]
     pub toff: [f64; 3],
+    /// The PLC data area (`$A_DBB`..) up to its last non-zero byte; PLC memory survives reset.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub plc: Vec<u8>,
 }
 
 impl Interpreter {
@@ -62,6 +65,7 @@ impl Interpreter {
             r: self.vars.r[..used].to_vec(),
             transformation: self.active_selection().map(|(data_set, args)| RetainedTransformation { data_set, args }),
             toff: self.offsets.toff,
+            plc: self.plc.bytes().to_vec(),
         }
     }
 
@@ -80,6 +84,7 @@ impl Interpreter {
         *self.system = saved.frames.clone();
         self.vars.r[..saved.r.len()].copy_from_slice(&saved.r);
         self.vars.r[saved.r.len()..].fill(0.0);
+        self.plc = super::io::plc_data::PlcData::from_bytes(&saved.plc);
         self.reset(cfg, machine);
         let Some(t) = saved.transformation.as_ref().filter(|_| cfg.reset_trafo.keep_active) else { return Ok(()) };
         // The reset may have put the tool into the reset transformation: start from the plain
@@ -100,6 +105,9 @@ fn check(saved: &Retained, cfg: &MachineConfig) -> Result<(), String> {
     }
     if saved.holder.number != 0 && !cfg.carriers.contains_key(&saved.holder.number) {
         return Err(format!("toolholder {} is not defined", saved.holder.number));
+    }
+    if saved.plc.len() > super::io::plc_data::PLC_DATA_BYTES {
+        return Err(format!("PLC data: at most {} bytes", super::io::plc_data::PLC_DATA_BYTES));
     }
     if saved.r.len() > R_PARAMS || saved.r.iter().any(|v| !v.is_finite()) {
         return Err(format!("R parameters: at most {R_PARAMS} finite values"));

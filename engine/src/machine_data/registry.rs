@@ -423,6 +423,10 @@ pub static DEFS: &[Def] = &[
     def("BASE_FUNCTION_MASK", 30460, A, Kind::Int, 1, Default::Int(0), 0.0, 65535.0),
     def("MODULO_RANGE", 30330, A, Kind::Real, 1, Default::Real(360.0), 1.0, 360_000.0),
     def("MODULO_RANGE_START", 30340, A, Kind::Real, 1, Default::Real(0.0), -360_000.0, 360_000.0),
+    // G75 FP=n: the fixed points of the axis (MD30600, 4 per axis) and how many are in use
+    // (MD30610, 0 by default: G75 is refused until the data define one).
+    def("FIX_POINT_POS", 30600, A, Kind::Real, 4, Default::Real(0.0), -1e9, 1e9),
+    def("NUM_FIX_POINT_POS", 30610, A, Kind::Int, 1, Default::Int(0), 0.0, 4.0),
     // Distance of one increment (INC1, handwheel detent): [0] metric system, [1] inch system.
     def("JOG_INCR_WEIGHT", 31090, A, Kind::Real, 2, Default::Real(0.001), 1e-6, 1000.0),
     // Linear axes: mm/min and m/s²; rotary axes: rev/min and rev/s², as on the control.
@@ -554,6 +558,12 @@ pub static DEFS: &[Def] = &[
     sd("CORR_TRAFO_LIN_MAX", 41610, N, Kind::Real, Default::Real(1.0), 0.0, INF),
     sd("CORR_TRAFO_DIR_MAX", 41611, N, Kind::Real, Default::Real(1.0), 0.0, 180.0),
     // SD42974: add the fine offsets $TC_CARR41.. to the toolholder vectors.
+    // SD43400..43430: working-area limitation per axis (G25/G26 with axes write the limits;
+    // WALIMON/WALIMOF, `interp/path_control/work_area.rs`); disabled by default.
+    sd("WORKAREA_PLUS_ENABLE", 43400, A, Kind::Bool, Default::Bool(false), 0.0, 1.0),
+    sd("WORKAREA_MINUS_ENABLE", 43410, A, Kind::Bool, Default::Bool(false), 0.0, 1.0),
+    sd("WORKAREA_LIMIT_PLUS", 43420, A, Kind::Real, Default::Real(1e8), -1e9, 1e9),
+    sd("WORKAREA_LIMIT_MINUS", 43430, A, Kind::Real, Default::Real(-1e8), -1e9, 1e9),
     sd("TOCARR_FINE_CORRECTION", 42974, C, Kind::Bool, Default::Bool(false), 0.0, 1.0),
     // SD42980 TOFRAME_MODE: 0/1 as MD21110; 2000 X/Y compromise, 2001 new X in the old X-Z
     // plane, 2002 new Y in the old Y-Z plane (808D list manual p.360). Default 2000, the value

@@ -5,11 +5,14 @@
 //! set digital outputs too, as a test bench would. Inputs act from the next IPO cycle on and
 //! are logged with its count (the `inputs_changed` event), so a run replays exactly. The
 //! checkpoint keeps the inputs; the outputs are off after a restart, as after power on.
+//! The PLC data area programs read and write as `$A_DBB[n]`, `$A_DBW[n]`, `$A_DBD[n]`,
+//! `$A_DBR[n]` (4096 bytes, big-endian words) is shown and set here too (`plc_data`), standing
+//! in for the PLC; the checkpoint keeps it.
 
 use axum::Json;
 use axum::extract::{Path, State};
 use nctwin_engine::channel::sync_actions::ANALOG_IO;
-use nctwin_engine::interp::io::{DIGITAL_IO, DigitalIo};
+use nctwin_engine::interp::io::DIGITAL_IO;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -32,15 +35,21 @@ pub struct IoImage {
     /// `$A_OUTA[1..4]` (written by synchronized actions).
     #[serde(default)]
     pub analog_outputs: Vec<f64>,
+    /// The PLC data area from byte 0 (`$A_DBB[0]`) up to its last non-zero byte (the rest of
+    /// the 4096 bytes are 0).
+    #[serde(default)]
+    pub plc_data: Vec<u8>,
 }
 
 impl IoImage {
-    fn of(io: DigitalIo, (analog_in, analog_out): ([f64; ANALOG_IO], [f64; ANALOG_IO])) -> IoImage {
+    fn of(ch: &nctwin_engine::Channel) -> IoImage {
+        let (io, (analog_in, analog_out)) = (ch.digital_io(), ch.analog_io());
         IoImage {
             inputs: (1..=DIGITAL_IO).map(|n| io.input(n).unwrap_or(false)).collect(),
             outputs: (1..=DIGITAL_IO).map(|n| io.output(n).unwrap_or(false)).collect(),
             analog_inputs: analog_in.to_vec(),
             analog_outputs: analog_out.to_vec(),
+            plc_data: ch.plc_data().to_vec(),
         }
     }
 }
@@ -64,6 +73,16 @@ pub struct Signal {
     pub value: bool,
 }
 
+/// Bytes to write into the PLC data area from byte `offset` on.
+#[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PlcBytes {
+    #[schema(example = 10)]
+    pub offset: u32,
+    #[schema(example = json!([18, 52]))]
+    pub bytes: Vec<u8>,
+}
+
 /// Signals to change; the others keep their level.
 #[derive(Debug, Clone, PartialEq, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -74,6 +93,9 @@ pub struct IoChange {
     pub outputs: Vec<Signal>,
     #[serde(default)]
     pub analog_inputs: Vec<AnalogSignal>,
+    /// PLC data to write (`$A_DBB[offset]`..).
+    #[serde(default)]
+    pub plc_data: Vec<PlcBytes>,
 }
 
 /// The digital inputs and outputs as the main run holds them.
@@ -89,10 +111,7 @@ pub struct IoChange {
 )]
 pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Result<Json<IoImage>, ApiError> {
     let session = find_session(&state, &id)?;
-    let io = session
-        .with_channel(|ch| IoImage::of(ch.digital_io(), ch.analog_io()))
-        .await
-        .map_err(|e| ApiError::from_session(&id, e))?;
+    let io = session.with_channel(|ch| IoImage::of(ch)).await.map_err(|e| ApiError::from_session(&id, e))?;
     Ok(Json(io))
 }
 
@@ -108,7 +127,7 @@ pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Re
     request_body = IoChange,
     responses(
         (status = 200, description = "The I/O image after the change", body = IoImage),
-        (status = 400, description = "A signal number outside 1..40 (analog 1..4) or an analog value not finite; nothing changed", body = ErrorBody),
+        (status = 400, description = "A signal number outside 1..40 (analog 1..4), an analog value not finite or PLC data beyond the 4096 bytes; nothing changed", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
     )
 )]
@@ -126,6 +145,16 @@ pub async fn put_io(
             "analog input {n} = {v}: analog inputs are 1..{ANALOG_IO} with finite values"
         )));
     }
+    // Checked before anything is set, like the analog inputs.
+    let area = nctwin_engine::interp::io::plc_data::PLC_DATA_BYTES;
+    if let Some(w) = change.plc_data.iter().find(|w| w.offset as usize + w.bytes.len() > area) {
+        return Err(ApiError::bad_request(format!(
+            "PLC data: {} bytes from byte {} reach beyond the area of {area} bytes",
+            w.bytes.len(),
+            w.offset
+        )));
+    }
+    let plc = change.plc_data;
     let session = find_session(&state, &id)?;
     let result = session
         .with_channel(move |ch| {
@@ -135,7 +164,10 @@ pub async fn put_io(
             if !analog.is_empty() {
                 ch.set_analog_inputs(&analog)?;
             }
-            Ok::<_, nctwin_engine::CommandError>(IoImage::of(ch.digital_io(), ch.analog_io()))
+            for w in &plc {
+                ch.set_plc_data(w.offset as usize, &w.bytes)?;
+            }
+            Ok::<_, nctwin_engine::CommandError>(IoImage::of(ch))
         })
         .await
         .map_err(|e| ApiError::from_session(&id, e))?;

@@ -231,6 +231,8 @@ pub fn trace(
     max_points: usize,
 ) -> Result<PreviewResponse, ApiError> {
     channel.reset();
+    // Operate's simulation: programs read `$P_SIM` TRUE and skip probing and PLC handshakes.
+    channel.set_simulation(true);
     // The preview traces the path; the session's stock is not cut by it, and its NC start is
     // not locked by axes the session has not referenced yet.
     channel.clear_stock();

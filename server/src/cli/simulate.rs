@@ -5,7 +5,10 @@
 //! the same shape as `GET /api/v1/sessions/{id}/state`, and the timing figures.
 //!
 //! Exit codes: 0 the program ended normally; 2 it ended in an alarm or has syntax errors;
-//! 3 it was stopped by `--max-sim-time`; 1 usage or I/O error (message on stderr).
+//! 3 it was stopped by `--max-sim-time`; 4 the channel stood still with nothing left that could
+//! change (a thread or G95 block with the spindle stopped, a wait for an input): a real control
+//! stands there without an alarm until the operator acts, so the run ends with a message instead
+//! of running for ever; 1 usage or I/O error (message on stderr).
 
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -32,6 +35,14 @@ use serde::Serialize;
 pub const EXIT_ALARM: u8 = 2;
 /// Exit code: `--max-sim-time` stopped the program.
 pub const EXIT_LIMIT: u8 = 3;
+
+/// Exit code: the channel could make no more progress (see [`STANDSTILL_S`]).
+pub const EXIT_STANDSTILL: u8 = 4;
+
+/// Simulated seconds over which a busy channel's progress mark must stay the same before the
+/// run ends as standing still. Every countdown (G4, a tool change's time) is in the mark, so
+/// this only needs to be longer than a check interval; a minute leaves room.
+const STANDSTILL_S: f64 = 60.0;
 
 /// How many IPO cycles run between two looks at the events, the time limit and the syntax check.
 const CHUNK: u64 = 4096;
@@ -98,6 +109,8 @@ pub enum Outcome {
     Alarm,
     /// `--max-sim-time` stopped the program.
     Limit,
+    /// The channel stood still with nothing that could change any more (`standstill` says where).
+    Standstill,
     /// The program (or a stored subprogram) did not pass the syntax check; nothing ran.
     SyntaxError,
 }
@@ -142,6 +155,9 @@ pub struct Report {
     pub moves: Option<u64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub alarm: Option<dto::AlarmInfo>,
+    /// With outcome `standstill`: the block the channel stood at and why the run ended there.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub standstill: Option<Standstill>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub syntax_errors: Vec<SyntaxError>,
     /// Files of `--program-dir` (and lines of archives) that were skipped, and NC data lines
@@ -181,6 +197,16 @@ pub struct Report {
     pub stock_warnings: Vec<nctwin_server::api::stock::StockWarningInfo>,
 }
 
+/// Where a run that could make no more progress stood.
+#[derive(Debug, Clone, Serialize)]
+pub struct Standstill {
+    /// The line of the block shown when the channel stood (`null` before the first block).
+    pub line: Option<u32>,
+    /// Simulated seconds the channel stood before the run ended.
+    pub stood_s: f64,
+    pub message: String,
+}
+
 /// Usage and I/O errors: printed on stderr, exit code 1.
 #[derive(Debug)]
 struct UsageError(String);
@@ -208,6 +234,12 @@ pub fn main(args: &SimulateArgs) -> ExitCode {
                 Outcome::Ended | Outcome::Stopped => ExitCode::SUCCESS,
                 Outcome::Alarm | Outcome::SyntaxError => ExitCode::from(EXIT_ALARM),
                 Outcome::Limit => ExitCode::from(EXIT_LIMIT),
+                Outcome::Standstill => {
+                    if let Some(s) = &report.standstill {
+                        eprintln!("nctwin simulate: {}", s.message);
+                    }
+                    ExitCode::from(EXIT_STANDSTILL)
+                }
             }
         }
         Err(UsageError(message)) => {
@@ -364,6 +396,8 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         Outcome::Alarm
     } else if run.limit_hit {
         Outcome::Limit
+    } else if run.standstill.is_some() {
+        Outcome::Standstill
     } else if channel.status() == Status::Stopped {
         Outcome::Stopped
     } else {
@@ -392,6 +426,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         state: Some(state),
         moves: None,
         alarm: None,
+        standstill: run.standstill,
         syntax_errors,
         notes,
         program_bytes,
@@ -482,6 +517,7 @@ fn interpret_only(
         state: None,
         moves: Some(moves),
         alarm,
+        standstill: None,
         syntax_errors,
         notes,
         program_bytes,
@@ -575,6 +611,7 @@ struct Run {
     block_changes: u64,
     program_stops: u64,
     limit_hit: bool,
+    standstill: Option<Standstill>,
 }
 
 /// Steps the channel until the program is over (or stopped at M0 with `--stop-at-m0`, or by
@@ -583,6 +620,9 @@ struct Run {
 fn run_to_end(channel: &mut Channel, args: &SimulateArgs, verdict: &Verdict) -> Run {
     let mut run = Run::default();
     let limit_tick = args.max_sim_time.map(|t| channel.ticks() + (t / channel.config().ipo_cycle).ceil() as u64);
+    // The last progress mark and the IPO cycle it was first seen at.
+    let mut mark = (channel.progress_mark(), channel.ticks());
+    let standstill_ticks = (STANDSTILL_S / channel.config().ipo_cycle).ceil() as u64;
     loop {
         while channel.is_busy() {
             if verdict.failed() {
@@ -606,6 +646,18 @@ fn run_to_end(channel: &mut Channel, args: &SimulateArgs, verdict: &Verdict) -> 
                 }
             }
             count_events(channel, &mut run);
+            if !channel.is_busy() || run.limit_hit {
+                continue;
+            }
+            let now = channel.progress_mark();
+            if now != mark.0 {
+                mark = (now, channel.ticks());
+            } else if channel.ticks() - mark.1 >= standstill_ticks {
+                run.standstill = Some(standstill(channel, channel.ticks() - mark.1));
+                // NC stop, as the operator would press it; nothing moves, so it stops at once.
+                channel.stop();
+                return run;
+            }
         }
         count_events(channel, &mut run);
         if channel.status() == Status::Stopped && !run.limit_hit && !args.stop_at_m0 {
@@ -617,6 +669,20 @@ fn run_to_end(channel: &mut Channel, args: &SimulateArgs, verdict: &Verdict) -> 
         }
         return run;
     }
+}
+
+/// What the run reports when the channel stood still for `ticks` IPO cycles.
+fn standstill(channel: &Channel, ticks: u64) -> Standstill {
+    let line = channel.snapshot().block.map(|b| b.line);
+    let stood_s = ticks as f64 * channel.config().ipo_cycle;
+    let at = line.map_or_else(|| "before the first block".to_string(), |l| format!("at line {l}"));
+    let message = format!(
+        "the channel stood still {at} for {stood_s:.0} s of simulated time with nothing left that could change \
+         (no axis, spindle, dwell or synchronized action): a thread or feed per revolution with the spindle \
+         stopped, or a wait for an input? A real control stands there until the operator acts; the run was \
+         ended with NC stop"
+    );
+    Standstill { line, stood_s, message }
 }
 
 fn count_events(channel: &mut Channel, run: &mut Run) {

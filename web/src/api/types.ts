@@ -121,12 +121,15 @@ export interface IoImage {
   outputs: boolean[];
   analog_inputs: number[];
   analog_outputs: number[];
+  /** The PLC data area ($A_DBB[0]..) up to its last non-zero byte. */
+  plc_data: number[];
 }
 
 /** PUT .../io: signals to change. */
 export interface IoChange {
   inputs?: { signal: number; value: boolean }[];
   analog_inputs?: { signal: number; value: number }[];
+  plc_data?: { offset: number; bytes: number[] }[];
 }
 
 /** Override switches in percent. */

@@ -42,6 +42,12 @@ pub(crate) struct SysView<'a> {
     pub spindles: &'a crate::interp::spindles::Spindles,
     /// The probe's last results (`$AC_MEA`, `$AA_MM`, `$AA_MW`).
     pub measured: &'a crate::interp::measuring::Results,
+    /// How the program runs (`$P_SIM`, see `run_vars.rs`).
+    pub env: &'a crate::interp::eval::run_vars::RunEnv,
+    /// The arguments of the running subprogram's call (`None`: left out), for `$P_SUBPAR`.
+    pub call_args: &'a [Option<Value>],
+    /// The PLC data area (`$A_DBB`..).
+    pub plc: &'a crate::interp::io::plc_data::PlcData,
 }
 
 /// A [`SysView`] of an interpreter's fields. A macro rather than a method so that the
@@ -65,6 +71,9 @@ macro_rules! sys_view {
             sync: &$interp.sync_data,
             spindles: &$interp.spindles,
             measured: &$interp.measured,
+            env: &$interp.env,
+            plc: &$interp.plc,
+            call_args: $crate::interp::calls::call_args(&$interp.calls),
         }
     };
 }
@@ -126,10 +135,16 @@ impl Scope for Ctx<'_> {
         if let Some(v) = crate::interp::spindles::vars::read(sys, name, indices, line) {
             return v;
         }
+        if let Some(v) = super::run_vars::read(sys, name, indices, line) {
+            return v;
+        }
         if let Some(v) = super::cycle_vars::read(sys, name, indices, line) {
             return v;
         }
         if let Some(v) = crate::interp::eval::machine_data::read(sys.stored, sys.cfg, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = sys.plc.read(name, indices, line) {
             return v;
         }
         if let Some(v) = sys.io.read(name, indices, line) {

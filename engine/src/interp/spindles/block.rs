@@ -70,7 +70,7 @@ impl Interpreter {
         if let Some(l) = sw.lims {
             self.spindles.lims = l;
         }
-        if let Some(which) = sw.limit {
+        if let Some(which) = sw.limit.filter(|_| sw.work_area_limit(words).is_none()) {
             let s = words.speed.ok_or_else(|| Alarm::syntax(line, "G25/G26 need S<speed limit>"))?;
             match which {
                 super::words::SpeedLimit::G25 => self.spindles.lower = s,

@@ -14,6 +14,15 @@ pub struct Spos {
     pub mode: Option<CoordMode>,
 }
 
+impl SpindleWords {
+    /// G25/G26 with axis words and no S: a working-area limit (`path_control/work_area.rs`),
+    /// `Some(true)` for G26's upper one; `None` when the block's G25/G26 limit the spindle.
+    pub(in crate::interp) fn work_area_limit(&self, w: &crate::interp::modal::Words) -> Option<bool> {
+        let limit = self.limit.filter(|_| w.speed.is_none() && !w.axes.is_empty())?;
+        Some(limit == SpeedLimit::G26)
+    }
+}
+
 /// G25 (lower) or G26 (upper speed limit) in the block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SpeedLimit {
