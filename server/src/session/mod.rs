@@ -263,8 +263,6 @@ impl SessionHandle {
         let mut actor =
             actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
         actor.history = Arc::clone(&history);
-        let mut actor =
-            actor::Actor::new(config, state_tx, events.clone(), settled_tx, lag_micros.clone(), active.clone());
         let stock_feed = Arc::new(stock_feed::StockFeed::default());
         actor.stock_feed = stock_feed.clone();
         tokio::spawn(actor.run(Box::new(channel), rx));

@@ -40,7 +40,8 @@ impl Interpreter {
         for k in 0..cfg.channel_axes.len() {
             if (path.end[k] - path.start[k]).abs() > 1e-12 {
                 let velocity = cfg.axis(k).max_velocity;
-                out.push(Item::Positioning { axis: k, target: path.end[k], velocity, line });
+                let motion = super::positioning::Motion::Pos;
+                out.push(Item::Positioning { axis: k, target: path.end[k], velocity, motion, line });
                 axes |= 1 << k;
             }
         }
