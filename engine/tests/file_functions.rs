@@ -53,11 +53,11 @@ fn write_refuses_paths_types_and_names_with_the_manuals_codes() {
     run_on(
         &mut ch,
         "DEF INT ERR[5]\nWRITE(ERR[0], \"/_N_DEF_DIR/_N_X_MPF\", \"A\")\nWRITE(ERR[1], \"/TMP/_N_X_MPF\", \"A\")\n\
-         WRITE(ERR[2], \"_N_X_DEF\", \"A\")\nWRITE(ERR[3], \"1X\", \"A\")\nWRITE(ERR[4], \"_N_X_SPF\", \"A\")\nM30",
+         WRITE(ERR[2], \"_N_X_DEF\", \"A\")\nWRITE(ERR[3], \"NUL\", \"A\")\nWRITE(ERR[4], \"_N_X_SPF\", \"A\")\nM30",
     );
     ok(&ch);
     // 1 a control directory without part programs, 2 no such directory, 4 a definition file,
-    // 1 a name the control does not allow; a subprogram is a file WRITE may write.
+    // 1 a name the control does not allow (a Windows device name); a subprogram is a file WRITE may write.
     let codes: Vec<i64> = (0..5).map(|i| int(&ch, "ERR", i)).collect();
     assert_eq!(codes, [1, 2, 4, 1, 0]);
     assert_eq!(ch.stored_program("X"), Some("A\n"));

@@ -48,12 +48,17 @@ async fn programs_are_listed_read_replaced_and_deleted() {
 async fn bad_names_and_programs_with_syntax_errors_are_refused() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;
-    let reply = server.put(&format!("/sessions/{id}/programs/1ABC"), json!({"text": "G0 X1"})).await;
+    let reply = server.put(&format!("/sessions/{id}/programs/A-BC"), json!({"text": "G0 X1"})).await;
+    assert_eq!(reply.status, StatusCode::BAD_REQUEST, "{}", reply.body);
+    let reply = server.put(&format!("/sessions/{id}/programs/CON"), json!({"text": "G0 X1"})).await;
     assert_eq!(reply.status, StatusCode::BAD_REQUEST, "{}", reply.body);
     let reply = server.put(&format!("/sessions/{id}/programs/OK"), json!({"text": "G0 X1\nG1 X=\n"})).await;
     assert_eq!(reply.status, StatusCode::BAD_REQUEST);
     assert_eq!(reply.body["line"], 2);
     assert_eq!(server.get(&format!("/sessions/{id}/programs")).await.body, json!([]));
+    // A name may start with digits (a part number), as the Programming Manual allows.
+    let reply = server.put(&format!("/sessions/{id}/programs/4711_OP10"), json!({"text": "G0 X1"})).await;
+    assert!(reply.status.is_success(), "{}", reply.body);
 }
 
 #[tokio::test]

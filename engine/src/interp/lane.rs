@@ -238,6 +238,10 @@ impl Interpreter {
     /// Prepares the next block if it is a plain motion line and the state is simple; `None`
     /// (and nothing changed that the general path would not change the same way) otherwise.
     pub(super) fn prepare_plain(&mut self, cfg: &MachineConfig, out: &mut Vec<Item>) -> Option<Prep> {
+        if self.work_area.is_none() {
+            // Read once per change of the stored data, as `prepare_next` does.
+            self.work_area = Some(super::path_control::work_area::WorkArea::of(&self.stored, cfg));
+        }
         if !self.lane_open() {
             return None;
         }

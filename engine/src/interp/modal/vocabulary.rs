@@ -57,6 +57,14 @@ const KEYWORDS: &[&str] = &[
     "LOCK",
     "UNLOCK",
     "RESET",
+    "WALIMON",
+    "WALIMOF",
+    "RTLION",
+    "RTLIOF",
+    "GETSELT",
+    "CLEARM",
+    "FGROUP",
+    "FGREF",
 ];
 
 /// Predefined functions of expressions (`eval.rs`: `call`, the frame functions; the tool list
@@ -109,6 +117,7 @@ const FUNCTIONS: &[&str] = &[
     "ISFILE",
     "PM",
     "PR",
+    "ISVAR",
 ];
 
 /// Whether `G<code>` is a G function of block preparation (else the run gives 12470).
@@ -153,7 +162,8 @@ pub(crate) fn is_address(name: &str) -> bool {
     is_nc_address(name)
         || crate::interp::everyday::extended_address(name).is_some()
         || crate::interp::dynamics::Percent::of(name).is_some()
-        || matches!(name, "AX" | "PO" | "R")
+        || matches!(name, "AX" | "PO" | "R" | "FGREF")
+        || crate::interp::path_control::positioning::is_word(name)
         || name.strip_prefix('R').is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
