@@ -195,6 +195,8 @@ export interface ArchiveImport {
 export interface Diagnostic {
   line: number;
   column?: number | null;
+  /** The alarm the control would give (12080 syntax, 12550 unknown name, ...), when known. */
+  alarm?: number | null;
   message: string;
 }
 

@@ -147,7 +147,7 @@ export class EditorArea {
         const li = el("li", { "data-line": String(d.line), "data-column": String(d.column ?? "") });
         li.append(
           el("span", { class: "diag-pos" }, `line ${d.line}${d.column != null ? `:${d.column}` : ""}`),
-          el("span", {}, d.message),
+          el("span", {}, d.alarm != null ? `alarm ${d.alarm}: ${d.message}` : d.message),
         );
         return li;
       }),
