@@ -57,6 +57,16 @@ fn set_wo_is_refused_while_a_program_runs_and_for_an_unknown_axis() {
     let mut ch = channel("mill-3axis", "");
     assert!(matches!(ch.set_work_offset("Q", 1.0), Err(CommandError::UnknownAxis(_))));
     assert!(matches!(ch.set_work_offset("X", f64::NAN), Err(CommandError::Invalid(_))));
+    // A typo of 1e308 would overflow the translation (found by probing the server, where it
+    // surfaced as "bad value `-inf` for $P_UIFR"): refused, and the offset is unchanged.
+    for typo in [1e308, -1e308, 1.000001e6] {
+        let Err(CommandError::Invalid(why)) = ch.set_work_offset("X", typo) else { panic!("{typo} taken") };
+        assert!(why.contains("no position"), "{why}");
+    }
+    assert_eq!(ch.config().work_offsets[0].trans[0], 0.0);
+    ch.set_work_offset("X", -1e6).unwrap();
+    assert_eq!(wcs(&ch, "X"), -1e6);
+    ch.set_work_offset("X", 0.0).unwrap();
     ch.run_program("G1 X100 F1000\nM30").unwrap();
     ch.step();
     assert!(matches!(ch.set_work_offset("X", 0.0), Err(CommandError::Busy(_))));

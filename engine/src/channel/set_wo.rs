@@ -18,8 +18,11 @@ impl Channel {
         if self.is_active() || self.status == Status::Stopped {
             return Err(CommandError::Busy("Set WO is possible in reset state only"));
         }
-        if !value.is_finite() {
-            return Err(CommandError::Invalid(format!("Set WO: {value} is no position")));
+        if !value.is_finite() || value.abs() > SET_WO_LIMIT {
+            return Err(CommandError::Invalid(format!(
+                "Set WO: {} is no position (finite, within ±{SET_WO_LIMIT} mm or degrees)",
+                crate::alarm::Alarm::shown(value)
+            )));
         }
         if self.trafo.is_some() {
             return Err(CommandError::Invalid(
@@ -74,6 +77,10 @@ impl Channel {
         Ok(())
     }
 }
+
+/// The largest position Set WO takes, as the swivel screen's fields: an operator's typo of
+/// 1e308 would otherwise overflow the offset's translation.
+const SET_WO_LIMIT: f64 = 1e6;
 
 /// A translation to 1e-9 mm: what the data text keeps without float noise (0.1 + 0.2).
 fn round_nm(v: f64) -> f64 {
