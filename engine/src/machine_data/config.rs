@@ -521,6 +521,14 @@ impl MachineConfig {
         resolve_program_axis(name, &self.geo_axes, &self.geo_names, &self.channel_axes)
     }
 
+    /// Channel axis by any name the control's axial variables take: geometry, channel or
+    /// machine axis name (`$AA_IM[X1]` on a machine whose channel calls X1 `X`).
+    pub fn axis_by_any_name(&self, name: &str) -> Option<usize> {
+        self.program_axis(name).or_else(|| {
+            self.channel_axes.iter().position(|c| self.machine_axes[c.machine_axis].name.eq_ignore_ascii_case(name))
+        })
+    }
+
     /// The name under which the program and the state show channel axis `idx`.
     pub fn program_axis_name(&self, idx: usize) -> &str {
         match self.geo_axes.iter().position(|g| *g == Some(idx)) {

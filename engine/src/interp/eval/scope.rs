@@ -122,6 +122,16 @@ impl Scope for Ctx<'_> {
                 _ => Err(Alarm::index_error(line, name, "needs one axis name")),
             }
         };
+        // The machine-side values also take the names of the axes an active transformation
+        // hides behind its geometry axes (`$AA_IM[MU]` under TRAANG) and machine axis names.
+        let machine_axis = || -> Result<usize, Alarm> {
+            axis().or_else(|alarm| match indices {
+                [Value::Axis(a) | Value::Str(a)] => {
+                    sys.trafo.base_config().unwrap_or(sys.cfg).axis_by_any_name(a).ok_or(alarm)
+                }
+                _ => Err(alarm),
+            })
+        };
         let wcs = |k: usize| {
             let mut basic = *sys.pos;
             for (b, t) in basic.iter_mut().zip(&sys.offsets.tool) {
@@ -170,7 +180,7 @@ impl Scope for Ctx<'_> {
             // encoder's `$VA_IM`) is the actual value, the setpoint less the following error of
             // the servo model (channel/servo.rs); `$AA_IPO` the interpolator's setpoint.
             "$AA_IM" | "$VA_IM" | "$AA_IPO" => {
-                let k = axis()?;
+                let k = machine_axis()?;
                 let setpoint = match &sys.sync.machine {
                     // The main run stands elsewhere than programmed (STOPREOF, command axes).
                     Some(machine) => machine[k],
@@ -183,8 +193,9 @@ impl Scope for Ctx<'_> {
                     )[k],
                 };
                 let v = if name == "$AA_IPO" { setpoint } else { setpoint - sys.lag[k] };
-                // A modulo rotary axis reads within its modulo range, as the display shows it.
-                Value::Real(match sys.cfg.axis(k).modulo {
+                // A modulo rotary axis reads within its modulo range, as the display shows it
+                // (the machine axis' range: TRANSMIT's C under its virtual Y).
+                Value::Real(match sys.trafo.base_config().unwrap_or(sys.cfg).axis(k).modulo {
                     Some((start, range)) => start + (v - start).rem_euclid(range),
                     None => v,
                 })
@@ -207,7 +218,7 @@ impl Scope for Ctx<'_> {
                 })
             }
             "$AA_IBC" => {
-                let k = axis()?;
+                let k = machine_axis()?;
                 let machine = sys.trafo.machine().unwrap_or(sys.pos);
                 Value::Real(sys.trafo.intermediate().map_or(machine[k], |mid| mid[k]))
             }
