@@ -41,6 +41,14 @@ impl NameContext {
         NameContext { cfg, programs: programs.into_iter().collect(), globals: globals.into_iter().collect() }
     }
 
+    /// Whether `name` is an axis a block may program: a channel or geometry axis, or, on a
+    /// machine with transformation data, a geometry axis a transformation provides (TRANSMIT's
+    /// Y on a lathe, which has no Y until TRANSMIT is selected).
+    fn is_axis(&self, name: &str) -> bool {
+        self.cfg.program_axis(name).is_some()
+            || (!self.cfg.trafos.is_empty() && self.cfg.geo_names.iter().any(|g| g.eq_ignore_ascii_case(name)))
+    }
+
     /// Whether a call finds program `name`: the session's programs, then the standard cycles.
     fn program_exists(&self, name: &str) -> bool {
         self.programs.contains(name) || crate::programs::cycles::find(name).is_some()

@@ -170,3 +170,17 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_geometry_axis_a_transformation_provides_is_not_flagged() {
+    // The TRANSMIT lathe has no Y until TRANSMIT maps it onto C; a face-milling program writes
+    // Y in the blocks after TRANSMIT, and the check cannot know which blocks those are: Y is
+    // known on a machine with transformation data. The plain 2-axis lathe has none, so a Y
+    // there is what its run refuses (12550).
+    let text = "G17 T1 D1\nTRANSMIT\nG1 X10 Y5 F100\nTRAFOOF\nM30\n";
+    let lathe = |preset: &str| Channel::from_preset(preset, "").expect("preset").name_context();
+    assert_eq!(check::names(text, &lathe("transmit-example")), Vec::new());
+    let plain: Vec<(u32, u32)> =
+        check::names("G1 X10 Y5 F100\nM30\n", &lathe("lathe-2axis")).iter().map(|d| (d.alarm, d.line)).collect();
+    assert_eq!(plain, vec![(12550, 1)]);
+}

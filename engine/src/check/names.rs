@@ -106,7 +106,7 @@ impl<'a> Walker<'a> {
             b'L' | b'R' => false,
             b'A'..=b'Z' => *self.letters[usize::from(letter - b'A')].get_or_insert_with(|| {
                 let name = char::from(letter).to_string();
-                vocabulary::is_address(&name) || self.ctx.cfg.program_axis(&name).is_some()
+                vocabulary::is_address(&name) || self.ctx.is_axis(&name)
             }),
             _ => false,
         }
@@ -192,7 +192,7 @@ impl<'a> Walker<'a> {
             Word::Goto(g) => self.goto(g, b),
             Word::Address { name, indices, value } => {
                 if !name.starts_with('$') {
-                    if !vocabulary::is_address(name) && self.ctx.cfg.program_axis(name).is_none() {
+                    if !vocabulary::is_address(name) && !self.ctx.is_axis(name) {
                         self.note(false, name, b);
                     }
                     indices.iter().for_each(|e| self.expr(e, b));
@@ -272,7 +272,7 @@ impl<'a> Walker<'a> {
             // A system variable's indices may be words of their own (`$P_UIFR[1,X,TR]`).
             Expr::Var { name, .. } if name.starts_with('$') => {}
             Expr::Var { name, indices } => {
-                let known = self.ctx.cfg.program_axis(name).is_some() || vocabulary::is_constant(name);
+                let known = self.ctx.is_axis(name) || vocabulary::is_constant(name);
                 if !known {
                     self.note(false, name, b);
                 }
