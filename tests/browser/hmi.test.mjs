@@ -581,6 +581,35 @@ async function main() {
       }
     });
 
+    await step("channel status line: why the channel stands (single block, M0), SBL shown, distance to go and feed", async () => {
+      // Single block on: the run stops at the end of each block (Operate: "block ended in
+      // single block"); line 3's M0 stops as a programmed stop. G1 X10 F1000 from X0 takes
+      // 0.6 s: while it runs the line shows the programmed F1000.
+      const id = new URL(page.url()).searchParams.get("session");
+      const text = (sel) => page.evaluate((s) => document.querySelector(s)?.textContent ?? "", sel);
+      // The server runs two previews at once: let the 200,000-block program's end first.
+      const previewDone = () =>
+        page.waitForFunction(() => !/…$/.test(document.getElementById("view3d-preview")?.textContent || ""), null, { timeout: 30_000 });
+      await previewDone();
+      await page.click("#btn-sbl");
+      await page.waitForSelector('#btn-sbl[aria-pressed="true"]');
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G0 X0 Y0 Z50\nG1 X10 F1000\nM0\nM30\n", pace: "realtime" });
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Stop: block ended in single block", null, { timeout: 30_000 });
+      if ((await text("#channel-options")) !== "SBL") throw new Error(`options: ${await text("#channel-options")}`);
+      if ((await text("#channel-dtg")) !== "DTG 0.000") throw new Error(`at a block end: ${await text("#channel-dtg")}`);
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => /^F prog 1000 act [1-9]/.test(document.getElementById("channel-feed")?.textContent || ""));
+      if ((await text("#channel-reason")) !== "Program running (AUTO)") throw new Error(`running: ${await text("#channel-reason")}`);
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Stop: block ended in single block", null, { timeout: 30_000 });
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Stop: M0 programmed stop", null, { timeout: 30_000 });
+      await page.click("#btn-sbl");
+      await page.waitForSelector('#btn-sbl[aria-pressed="false"]');
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      await previewDone();
+    });
+
     await step("JOG over the WebSocket: holding X+ moves X past the dead-man time, release stops it", async () => {
       await page.click('[data-set-mode="JOG"]');
       await page.waitForFunction(() => document.querySelector('[data-set-mode="JOG"]')?.classList.contains("active"));
@@ -1352,15 +1381,22 @@ async function main() {
       if ((await machineX()) !== before) throw new Error("Set WO moved the axis");
     });
 
-    await step("editor: an undefined name is flagged at its line before Cycle start (trial run, 12550); New asks before it drops unsaved text", async () => {
+    await step("editor: an undefined name is flagged at its line by the check before Cycle start (12550); New asks before it drops unsaved text", async () => {
       await page.click('[data-goto="program"]');
       await page.fill("#editor-name", "UNDEF");
+      // The check (POST .../check) finds it, not a trial run: typing alone (no Execute) flags it.
+      const previews = [];
+      const onRequest = (r) => r.url().endsWith("/preview") && previews.push(r.url());
+      page.on("request", onRequest);
       await page.fill(EDITOR, "G0 X1\nCYCLE999(1)\nM30\n");
-      await page.click("#btn-editor-execute");
       await page.waitForFunction(() => {
         const li = document.querySelector('#diagnostics li[data-line="2"]');
-        return /12550/.test(li?.textContent || "") && /CYCLE999/.test(li?.textContent || "");
+        return /^line 2:\d+alarm 12550: /.test(li?.textContent || "") && /CYCLE999/.test(li?.textContent || "");
       });
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /UNDEF has 1 error\(s\): not selected/.test(document.getElementById("message")?.textContent || ""));
+      page.off("request", onRequest);
+      if (previews.length) throw new Error(`a trial run was made although the check found the error: ${previews}`);
       if (!(await page.locator("#area-program").isVisible())) throw new Error("selected despite the error");
       await page.click("#btn-message-close");
       let asked = "";
@@ -1375,6 +1411,21 @@ async function main() {
       page.once("dialog", (d) => void d.accept());
       await page.click("#btn-editor-new");
       await page.waitForFunction((sel) => document.querySelector(sel)?.value === "", EDITOR);
+      await page.click('[data-goto="machine"]');
+    });
+
+    await step("editor: what only a run can find (software limit 10720) is flagged by the trial run at its line", async () => {
+      // mill-3axis: X travels at most to +500 (POS_LIMIT_PLUS): X5000 in line 2 passes the
+      // check (the names are all defined) and fails the trial run on a copy of the channel.
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "TOOFAR");
+      await page.fill(EDITOR, "G0 X0 Y0 Z10\nG1 X5000 F1000\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /^line 2(:\d+)?alarm 10720: .*\(trial run\)$/.test(document.querySelector('#diagnostics li[data-line="2"]')?.textContent || ""));
+      if (!(await page.locator("#area-program").isVisible())) throw new Error("selected despite the alarm");
+      await page.click("#btn-message-close");
+      page.once("dialog", (d) => void d.accept());
+      await page.click("#btn-editor-new");
       await page.click('[data-goto="machine"]');
     });
 
