@@ -1441,7 +1441,7 @@ async function main() {
       if (found.length) throw new Error(found.join(" ;; "));
     });
 
-    await step("layout at 1280x720: nothing wider than the window, the Machine area's controls on screen; every control reachable by Tab", async () => {
+    await step("layout at 1280x720: nothing wider than the window, the Machine area's controls on screen; every control reachable by Tab; no text under 12 px", async () => {
       await page.setViewportSize({ width: 1280, height: 720 });
       await page.waitForTimeout(200);
       const layout = await page.evaluate(() => {
@@ -1466,6 +1466,23 @@ async function main() {
         if (["btn-cycle-start", "btn-reset", "jog-key"].includes(id)) reached.add(id);
       }
       if (reached.size < 3) throw new Error(`Tab reached only ${[...reached].join(", ")}`);
+      // Every visible, enabled control of the Machine area is in the Tab order, and every text
+      // there is at least 12 px (readable on a projector in a class room).
+      const found = await page.evaluate(() => {
+        const area = document.getElementById("area-machine");
+        const shown = (e) => e.checkVisibility({ visibilityProperty: true });
+        const controls = area.querySelectorAll("button, input, select, textarea, a[href], [role=button], [role=slider], [role=tab]");
+        const untabbable = [...controls].filter((e) => shown(e) && !e.disabled && e.tabIndex < 0).map((e) => e.id || e.textContent.trim() || e.tagName);
+        const small = [];
+        for (const e of area.querySelectorAll("*")) {
+          if (!shown(e) || ![...e.childNodes].some((n) => n.nodeType === Node.TEXT_NODE && n.textContent.trim())) continue;
+          const px = parseFloat(getComputedStyle(e).fontSize);
+          if (px < 12) small.push(`${e.tagName.toLowerCase()}${e.id ? `#${e.id}` : ""}.${e.className} ${px}px "${e.textContent.trim().slice(0, 20)}"`);
+        }
+        return { untabbable, small };
+      });
+      if (found.untabbable.length) throw new Error(`not reachable by Tab: ${found.untabbable.slice(0, 8).join(", ")}`);
+      if (found.small.length) throw new Error(`text under 12 px: ${found.small.slice(0, 8).join(" | ")}`);
       await page.locator("#area-machine").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-1280x720.png") });
       await page.setViewportSize({ width: 1280, height: 800 });
     });
