@@ -507,7 +507,7 @@ async function main() {
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
     });
 
-    await step("server restart: stale banner while it is down, then live values without a reload", async () => {
+    await step("server restart: stale banner while it is down, then live values without a reload, old messages cleared", async () => {
       const dataDir = await mkdtemp(join(tmpdir(), "nctwin-restart-"));
       let server = await startServer("127.0.0.1:0", dataDir);
       const bind = new URL(server.url).host;
@@ -522,6 +522,12 @@ async function main() {
         await pageFetch(other, "POST", `/sessions/${id}/run`, { name: "RESTART", pace: "fast", wait: true });
         await other.waitForFunction(() => document.querySelector("#blocks li.current")?.dataset.line === "3");
         await other.evaluate(() => (window.__notReloaded = true));
+        // A message of before the outage (saving without a name), to be cleared on reconnecting.
+        await other.click('[data-goto="program"]');
+        await other.fill("#editor-name", "");
+        await other.click("#btn-editor-save");
+        await other.waitForFunction(() => /give the program a name first/.test(document.getElementById("message-text")?.textContent || ""));
+        await other.click('[data-goto="machine"]');
         await stopServer(server.child);
         await other.waitForFunction(() => document.body.classList.contains("stale"));
         const banner = await other.textContent("#stale-banner");
@@ -535,6 +541,7 @@ async function main() {
           () => document.getElementById("blocks-name")?.textContent === "RESTART" && document.querySelector("#blocks li.current")?.dataset.line === "3",
         );
         if (!(await other.evaluate(() => window.__notReloaded === true))) throw new Error("the page was reloaded");
+        if (await other.isVisible("#message")) throw new Error(`an old message stayed: ${await other.textContent("#message-text")}`);
       } finally {
         await other.close();
         await stopServer(server.child);
@@ -1570,6 +1577,20 @@ async function main() {
       await page.click(`#sessions button[data-delete="${id}"]`);
       await page.waitForSelector(`#sessions tr[data-session="${id}"]`, { state: "detached" });
       if (!/End session/.test(asked)) throw new Error(`confirmation: ${asked}`);
+    });
+
+    await step("every preset's demo program previews to its end without an alarm", async () => {
+      // A trainee opening any machine gets a demo that fits it (the milling demo ran the TRACYL
+      // lathe-mill into its XM software limit: 10720).
+      const machines = await pageFetch(page, "GET", "/machines");
+      const failed = [];
+      for (const m of machines) {
+        await page.goto(`${BASE}/?machine=${encodeURIComponent(m.id)}`, { waitUntil: "load" });
+        await page.waitForFunction(() => /^(programmed|no preview of) DEMO/.test(document.getElementById("view3d-preview")?.textContent || ""), null, { timeout: 30_000 });
+        const note = await page.textContent("#view3d-preview");
+        if (!/^programmed DEMO: [\d.]+ s$/.test(note)) failed.push(`${m.id}: ${note}`);
+      }
+      if (failed.length) throw new Error(failed.join(" | "));
     });
 
     await step("no error in the message bar", async () => {
