@@ -507,7 +507,7 @@ async function main() {
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
     });
 
-    await step("server restart: stale banner while it is down, then live values without a reload", async () => {
+    await step("server restart: stale banner while it is down, then live values without a reload, old messages cleared", async () => {
       const dataDir = await mkdtemp(join(tmpdir(), "nctwin-restart-"));
       let server = await startServer("127.0.0.1:0", dataDir);
       const bind = new URL(server.url).host;
@@ -522,6 +522,12 @@ async function main() {
         await pageFetch(other, "POST", `/sessions/${id}/run`, { name: "RESTART", pace: "fast", wait: true });
         await other.waitForFunction(() => document.querySelector("#blocks li.current")?.dataset.line === "3");
         await other.evaluate(() => (window.__notReloaded = true));
+        // A message of before the outage (saving without a name), to be cleared on reconnecting.
+        await other.click('[data-goto="program"]');
+        await other.fill("#editor-name", "");
+        await other.click("#btn-editor-save");
+        await other.waitForFunction(() => /give the program a name first/.test(document.getElementById("message-text")?.textContent || ""));
+        await other.click('[data-goto="machine"]');
         await stopServer(server.child);
         await other.waitForFunction(() => document.body.classList.contains("stale"));
         const banner = await other.textContent("#stale-banner");
@@ -535,6 +541,7 @@ async function main() {
           () => document.getElementById("blocks-name")?.textContent === "RESTART" && document.querySelector("#blocks li.current")?.dataset.line === "3",
         );
         if (!(await other.evaluate(() => window.__notReloaded === true))) throw new Error("the page was reloaded");
+        if (await other.isVisible("#message")) throw new Error(`an old message stayed: ${await other.textContent("#message-text")}`);
       } finally {
         await other.close();
         await stopServer(server.child);
@@ -579,6 +586,35 @@ async function main() {
         await page.click(key);
         await page.waitForSelector(`${key}[aria-pressed="false"]`);
       }
+    });
+
+    await step("channel status line: why the channel stands (single block, M0), SBL shown, distance to go and feed", async () => {
+      // Single block on: the run stops at the end of each block (Operate: "block ended in
+      // single block"); line 3's M0 stops as a programmed stop. G1 X10 F1000 from X0 takes
+      // 0.6 s: while it runs the line shows the programmed F1000.
+      const id = new URL(page.url()).searchParams.get("session");
+      const text = (sel) => page.evaluate((s) => document.querySelector(s)?.textContent ?? "", sel);
+      // The server runs two previews at once: let the 200,000-block program's end first.
+      const previewDone = () =>
+        page.waitForFunction(() => !/…$/.test(document.getElementById("view3d-preview")?.textContent || ""), null, { timeout: 30_000 });
+      await previewDone();
+      await page.click("#btn-sbl");
+      await page.waitForSelector('#btn-sbl[aria-pressed="true"]');
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G0 X0 Y0 Z50\nG1 X10 F1000\nM0\nM30\n", pace: "realtime" });
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Stop: block ended in single block", null, { timeout: 30_000 });
+      if ((await text("#channel-options")) !== "SBL") throw new Error(`options: ${await text("#channel-options")}`);
+      if ((await text("#channel-dtg")) !== "DTG 0.000") throw new Error(`at a block end: ${await text("#channel-dtg")}`);
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => /^F prog 1000 act [1-9]/.test(document.getElementById("channel-feed")?.textContent || ""));
+      if ((await text("#channel-reason")) !== "Program running (AUTO)") throw new Error(`running: ${await text("#channel-reason")}`);
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Stop: block ended in single block", null, { timeout: 30_000 });
+      await page.click("#btn-cycle-start");
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Stop: M0 programmed stop", null, { timeout: 30_000 });
+      await page.click("#btn-sbl");
+      await page.waitForSelector('#btn-sbl[aria-pressed="false"]');
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      await previewDone();
     });
 
     await step("JOG over the WebSocket: holding X+ moves X past the dead-man time, release stops it", async () => {
@@ -1107,17 +1143,20 @@ async function main() {
       const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" })).id;
       // mill-3axis (presets.rs): X at most 30000 mm/min = 500 mm/s and 3 m/s². F40000 in line 3
       // is more than X can do: it reaches its velocity limit (after 41.7 mm) and accelerates
-      // at its limit; line 4's F1000 stays below. The run (in real time: the history holds the
-      // published states, as a viewer's trace would) is over before this page joins.
+      // at its limit; line 4's F1000 stays below. The run (in fast pace: the history looks at
+      // every IPO cycle, thinned by geometry) is over before this page joins.
       // Line 1 defines a blank below the path (X−10..310, Y−10..60, Z−20..0), drawn as a box.
       const program = 'WORKPIECE(,"",,"BOX",112,0,-20,-80,-10,-10,310,60)\nG0 X0 Y0 Z10\nG1 X300 F40000\nG1 Y5 F1000\nM30\n';
-      await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace: "realtime", wait: true });
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace: "fast", wait: true });
       await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
       await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
       await page.waitForFunction(() => window.__nctwin3d.historyPoints() >= 3);
       const path = await page.evaluate(() => window.__nctwin3d.pathPoints(1000));
       const near = (p, q, tol) => p.every((v, k) => Math.abs(v - q[k]) <= tol);
-      if (!path.some((p) => p[1] === 0 && p[2] === 10 && p[0] > 50 && p[0] < 300)) throw new Error(`no point of the X leg: ${JSON.stringify(path.slice(0, 20))}`);
+      // The X leg is straight: thinned by geometry to its two ends (the corner kept exactly).
+      if (!path.some((p) => near(p, [0, 0, 10], 1e-6)) || !path.some((p) => near(p, [300, 0, 10], 1e-6))) {
+        throw new Error(`the X leg's ends are missing: ${JSON.stringify(path.slice(0, 20))}`);
+      }
       if (!near(path.at(-1), [300, 5, 10], 1e-6)) throw new Error(`path ends at ${path.at(-1)}`);
       await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.kind === "velocity" && m.axis === "X" && m.line === 3), null, { timeout: 30_000 });
       const marks = await page.evaluate(() => window.__nctwin3d.limitMarks());
@@ -1132,6 +1171,73 @@ async function main() {
       // (and the blank with it).
       await page.waitForFunction(() => window.__nctwin3d.programmedInView() === 1);
       await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-check.png") });
+    });
+
+    await step("executed path: a circle run in fast pace is as fine for a late viewer as one run in real time", async () => {
+      // A full circle of radius 10 about X10 Y0 at F6000. Within the 0.01 mm display tolerance
+      // a chord is at most 2·√(10² − 9.99²) = 0.894 mm, so the 62.8 mm circle needs at least
+      // 71 chords; a history of the published states of a fast run had a handful.
+      const program = "G0 X0 Y0 Z0\nG2 X0 Y0 I10 J0 F6000\nM30\n";
+      const circle = async (pace) => {
+        const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill-3axis" })).id;
+        await pageFetch(page, "POST", `/sessions/${id}/run`, { program, pace, wait: true });
+        await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+        await page.waitForFunction(() => window.__nctwin3d.historyPoints() >= 3);
+        return page.evaluate(() => window.__nctwin3d.pathPoints(100000).filter((p) => Math.hypot(p[0], p[1]) > 1e-6));
+      };
+      const fast = await circle("fast");
+      const live = await circle("realtime");
+      if (fast.length < 71) throw new Error(`only ${fast.length} points on the circle`);
+      if (fast.length !== live.length) throw new Error(`fast ${fast.length} points, real time ${live.length}`);
+      const off = fast.find((p) => Math.abs(Math.hypot(p[0] - 10, p[1]) - 10) > 1e-3);
+      if (off) throw new Error(`point ${off} off the circle`);
+    });
+
+    await step("executed path on a trunnion table turned without TRAORI: drawn on the table, history and live alike", async () => {
+      // mill5-table-ac, no TRAORI: the tip stands at machine X10 Y0 Z50 (T1 L100) while C turns
+      // the table by 90° (type 33, DIN-reversed: the tool moves +90° about +Z relative to the
+      // part, about the table centre). On the table (the part frame) the tip runs a quarter
+      // circle of radius 10 from X10 Y0 to X0 Y10; the BCS stays at X10 Y0, which drawn would
+      // be a dot. A late viewer gets the quarter from the session's history; C back to 0 in
+      // real time adds the same quarter backwards from the stream.
+      const id = (await pageFetch(page, "POST", "/sessions", { machine: "mill5-table-ac" })).id;
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "T1 D1\nG0 X10 Y0 Z50\nG1 C90 F3000\nM30\n", pace: "fast", wait: true });
+      await page.goto(`${BASE}/?session=${encodeURIComponent(id)}`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.waitForFunction(() => window.__nctwin3d.historyPoints() >= 10);
+      const onQuarter = (points) => points.filter((p) => Math.abs(p[2] - 50) < 1e-3 && Math.abs(Math.hypot(p[0], p[1]) - 10) < 1e-3);
+      const before = await page.evaluate(() => window.__nctwin3d.pathPoints(100000));
+      const arc = onQuarter(before);
+      if (arc.length < 10) throw new Error(`history: ${arc.length} points on the quarter circle of ${before.length}`);
+      const end = before.at(-1);
+      if (!(Math.abs(end[0]) < 1e-3 && Math.abs(end[1] - 10) < 1e-3)) throw new Error(`history ends at ${end}, not X0 Y10`);
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G1 C0 F3000\nM30\n", pace: "realtime", wait: true });
+      await page.waitForFunction(() => {
+        const p = window.__nctwin3d.pathPoints(1)[0];
+        return p && Math.abs(p[0] - 10) < 1e-3 && Math.abs(p[1]) < 1e-3;
+      });
+      const after = await page.evaluate(() => window.__nctwin3d.pathPoints(100000));
+      const live = after.slice(before.length);
+      const stray = live.find((p) => !(Math.abs(p[2] - 50) < 0.01 && Math.abs(Math.hypot(p[0], p[1]) - 10) < 0.01));
+      if (live.length < 3 || stray) throw new Error(`live path ${live.length} points, off the quarter: ${stray}`);
+    });
+
+    await step("limit marks under TRACYL lie on the cylinder where the groove is", async () => {
+      // tracyl-xyzac: the cylinder on CM turns about machine +Y; TRACYL(60), X30 is radius 30,
+      // Z−20 the axial position (machine Y −20). Y60 at F100000 asks C for 100000 / 30 mm/min
+      // = 3333 rad/min, far beyond its 18000°/min: C runs at its limit and is marked. Drawn
+      // unrolled a mark would be √(30² + 20²) = 36 mm from the axis, not 30.
+      await page.goto(`${BASE}/?machine=tracyl-xyzac`, { waitUntil: "load" });
+      await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "FASTGROOVE");
+      await page.fill(EDITOR, "T1 D1 G17\nG0 X0 Y-20 Z150\nG19 TRACYL(60)\nG1 X30 Y0 Z-20 F3000\nG1 Y60 F100000\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /programmed FASTGROOVE/.test(document.getElementById("view3d-preview")?.textContent || ""));
+      await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.line === 5));
+      const marks = await page.evaluate(() => window.__nctwin3d.limitMarks().filter((m) => m.line === 5));
+      const off = marks.find((m) => !(Math.abs(Math.hypot(m.at[0], m.at[2]) - 30) < 0.01 && Math.abs(m.at[1] + 20) < 0.01));
+      if (off) throw new Error(`mark at ${off.at} (${off.axis} ${off.kind}): not on the cylinder of radius 30 at Y−20`);
     });
 
     await step("3D program check on a 5-axis head: tool axis along the path, the tool vector, the slider names the block at its marker", async () => {
@@ -1282,15 +1388,22 @@ async function main() {
       if ((await machineX()) !== before) throw new Error("Set WO moved the axis");
     });
 
-    await step("editor: an undefined name is flagged at its line before Cycle start (trial run, 12550); New asks before it drops unsaved text", async () => {
+    await step("editor: an undefined name is flagged at its line by the check before Cycle start (12550); New asks before it drops unsaved text", async () => {
       await page.click('[data-goto="program"]');
       await page.fill("#editor-name", "UNDEF");
+      // The check (POST .../check) finds it, not a trial run: typing alone (no Execute) flags it.
+      const previews = [];
+      const onRequest = (r) => r.url().endsWith("/preview") && previews.push(r.url());
+      page.on("request", onRequest);
       await page.fill(EDITOR, "G0 X1\nCYCLE999(1)\nM30\n");
-      await page.click("#btn-editor-execute");
       await page.waitForFunction(() => {
         const li = document.querySelector('#diagnostics li[data-line="2"]');
-        return /12550/.test(li?.textContent || "") && /CYCLE999/.test(li?.textContent || "");
+        return /^line 2:\d+alarm 12550: /.test(li?.textContent || "") && /CYCLE999/.test(li?.textContent || "");
       });
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /UNDEF has 1 error\(s\): not selected/.test(document.getElementById("message")?.textContent || ""));
+      page.off("request", onRequest);
+      if (previews.length) throw new Error(`a trial run was made although the check found the error: ${previews}`);
       if (!(await page.locator("#area-program").isVisible())) throw new Error("selected despite the error");
       await page.click("#btn-message-close");
       let asked = "";
@@ -1308,6 +1421,21 @@ async function main() {
       await page.click('[data-goto="machine"]');
     });
 
+    await step("editor: what only a run can find (software limit 10720) is flagged by the trial run at its line", async () => {
+      // mill-3axis: X travels at most to +500 (POS_LIMIT_PLUS): X5000 in line 2 passes the
+      // check (the names are all defined) and fails the trial run on a copy of the channel.
+      await page.click('[data-goto="program"]');
+      await page.fill("#editor-name", "TOOFAR");
+      await page.fill(EDITOR, "G0 X0 Y0 Z10\nG1 X5000 F1000\nM30\n");
+      await page.click("#btn-editor-execute");
+      await page.waitForFunction(() => /^line 2(:\d+)?alarm 10720: .*\(trial run\)$/.test(document.querySelector('#diagnostics li[data-line="2"]')?.textContent || ""));
+      if (!(await page.locator("#area-program").isVisible())) throw new Error("selected despite the alarm");
+      await page.click("#btn-message-close");
+      page.once("dialog", (d) => void d.accept());
+      await page.click("#btn-editor-new");
+      await page.click('[data-goto="machine"]');
+    });
+
     await step("accessibility: axe-core finds no contrast (4.5:1), name or label violation on the Machine area", async () => {
       await page.click('[data-goto="machine"]');
       await page.addScriptTag({ path: join(ROOT, "tests", "browser", "node_modules", "axe-core", "axe.min.js") });
@@ -1320,7 +1448,7 @@ async function main() {
       if (found.length) throw new Error(found.join(" ;; "));
     });
 
-    await step("layout at 1280x720: nothing wider than the window, the Machine area's controls on screen; every control reachable by Tab", async () => {
+    await step("layout at 1280x720: nothing wider than the window, the Machine area's controls on screen; every control reachable by Tab; no text under 12 px", async () => {
       await page.setViewportSize({ width: 1280, height: 720 });
       await page.waitForTimeout(200);
       const layout = await page.evaluate(() => {
@@ -1345,6 +1473,23 @@ async function main() {
         if (["btn-cycle-start", "btn-reset", "jog-key"].includes(id)) reached.add(id);
       }
       if (reached.size < 3) throw new Error(`Tab reached only ${[...reached].join(", ")}`);
+      // Every visible, enabled control of the Machine area is in the Tab order, and every text
+      // there is at least 12 px (readable on a projector in a class room).
+      const found = await page.evaluate(() => {
+        const area = document.getElementById("area-machine");
+        const shown = (e) => e.checkVisibility({ visibilityProperty: true });
+        const controls = area.querySelectorAll("button, input, select, textarea, a[href], [role=button], [role=slider], [role=tab]");
+        const untabbable = [...controls].filter((e) => shown(e) && !e.disabled && e.tabIndex < 0).map((e) => e.id || e.textContent.trim() || e.tagName);
+        const small = [];
+        for (const e of area.querySelectorAll("*")) {
+          if (!shown(e) || ![...e.childNodes].some((n) => n.nodeType === Node.TEXT_NODE && n.textContent.trim())) continue;
+          const px = parseFloat(getComputedStyle(e).fontSize);
+          if (px < 12) small.push(`${e.tagName.toLowerCase()}${e.id ? `#${e.id}` : ""}.${e.className} ${px}px "${e.textContent.trim().slice(0, 20)}"`);
+        }
+        return { untabbable, small };
+      });
+      if (found.untabbable.length) throw new Error(`not reachable by Tab: ${found.untabbable.slice(0, 8).join(", ")}`);
+      if (found.small.length) throw new Error(`text under 12 px: ${found.small.slice(0, 8).join(" | ")}`);
       await page.locator("#area-machine").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-1280x720.png") });
       await page.setViewportSize({ width: 1280, height: 800 });
     });
@@ -1432,6 +1577,20 @@ async function main() {
       await page.click(`#sessions button[data-delete="${id}"]`);
       await page.waitForSelector(`#sessions tr[data-session="${id}"]`, { state: "detached" });
       if (!/End session/.test(asked)) throw new Error(`confirmation: ${asked}`);
+    });
+
+    await step("every preset's demo program previews to its end without an alarm", async () => {
+      // A trainee opening any machine gets a demo that fits it (the milling demo ran the TRACYL
+      // lathe-mill into its XM software limit: 10720).
+      const machines = await pageFetch(page, "GET", "/machines");
+      const failed = [];
+      for (const m of machines) {
+        await page.goto(`${BASE}/?machine=${encodeURIComponent(m.id)}`, { waitUntil: "load" });
+        await page.waitForFunction(() => /^(programmed|no preview of) DEMO/.test(document.getElementById("view3d-preview")?.textContent || ""), null, { timeout: 30_000 });
+        const note = await page.textContent("#view3d-preview");
+        if (!/^programmed DEMO: [\d.]+ s$/.test(note)) failed.push(`${m.id}: ${note}`);
+      }
+      if (failed.length) throw new Error(failed.join(" | "));
     });
 
     await step("no error in the message bar", async () => {

@@ -14,6 +14,7 @@
 //! channel that is not observed pays nothing.
 
 use super::Channel;
+use super::workpiece_tip::TipProbe;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 /// Share of the limit at which a hit begins (numerical slack of the differenced setpoints).
@@ -45,8 +46,14 @@ pub struct LimitHit {
     pub limit: f64,
     /// Program line of the block in execution (0 when none).
     pub line: u32,
-    /// The tool tip's geometry axes in the BCS then (in `geo_names` order; absent ones 0).
+    /// The tool tip on the workpiece then (`workpiece_tip.rs`: through the kinematics on a
+    /// turned table; the unrolled surface under TRACYL), in `geo_names` order, absent ones 0.
     pub basic: [f64; 3],
+    /// The TRACYL working diameter when the hit was under TRACYL (`basic` is then unrolled).
+    pub tracyl_diameter: Option<f64>,
+    /// `false`: a rotary axis the kinematics do not describe had turned the workpiece, so
+    /// `basic` is the BCS, not known to be on the workpiece.
+    pub exact: bool,
     /// Simulated time of the cycle in seconds.
     pub time: f64,
 }
@@ -61,6 +68,8 @@ pub struct LimitWatch {
     prev_vel: Option<[f64; MAX_CHANNEL_AXES]>,
     /// Per axis: an episode of (velocity, acceleration) is in progress.
     active: [[bool; 2]; MAX_CHANNEL_AXES],
+    /// Where a hit is on the workpiece (asked only when a hit is kept).
+    probe: TipProbe,
 }
 
 impl Default for LimitWatch {
@@ -79,6 +88,7 @@ impl LimitWatch {
             prev_pos: None,
             prev_vel: None,
             active: [[false; 2]; MAX_CHANNEL_AXES],
+            probe: TipProbe::default(),
         }
     }
 
@@ -140,16 +150,16 @@ impl LimitWatch {
                 }
                 self.total += 1;
                 if self.hits.len() < self.kept {
-                    let basic = std::array::from_fn(|g| {
-                        snap.basic.iter().find(|(name, _)| *name == cfg.geo_names[g]).map_or(0.0, |(_, v)| *v)
-                    });
+                    let at = self.probe.tip(ch);
                     self.hits.push(LimitHit {
                         axis: cfg.program_axis_name(k).to_string(),
                         kind,
                         value: values[i],
                         limit: limits[i],
                         line: snap.block.as_ref().map_or(0, |b| b.line),
-                        basic,
+                        basic: at.tip,
+                        tracyl_diameter: at.tracyl_diameter,
+                        exact: at.exact,
                         time: ch.time(),
                     });
                 }

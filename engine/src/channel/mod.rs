@@ -53,6 +53,7 @@ mod toff;
 pub mod tool_list;
 mod tool_monitor;
 mod trafo;
+pub mod workpiece_tip;
 
 use std::collections::VecDeque;
 use std::sync::Arc;

@@ -134,8 +134,16 @@ pub struct LimitHit {
     pub limit: f64,
     /// The program line in execution.
     pub line: u32,
-    /// The tool tip in the BCS (geometry axes as `axes`), where a view marks it.
+    /// The tool tip on the workpiece (geometry axes as `axes`), where a view marks it: the
+    /// BCS, or on a table turned without TRAORI the tip through the machine's kinematics (the
+    /// frame the table carries); under TRACYL on the unrolled surface (see `tracyl_diameter`).
     pub basic: [f64; 3],
+    /// The TRACYL working diameter when the hit was under TRACYL, else null: `basic` is then
+    /// radial, arc length on this diameter, axial, and a view wraps it onto the cylinder.
+    pub tracyl_diameter: Option<f64>,
+    /// `false`: a rotary axis the machine data's kinematics do not describe had turned the
+    /// workpiece; `basic` is the BCS and may not be where the tool was on the part.
+    pub exact: bool,
     /// Simulated program time in seconds.
     pub time: f64,
 }
@@ -153,6 +161,8 @@ impl From<&nctwin_engine::channel::limit_watch::LimitHit> for LimitHit {
             limit: h.limit,
             line: h.line,
             basic: h.basic,
+            tracyl_diameter: h.tracyl_diameter,
+            exact: h.exact,
             time: h.time,
         }
     }

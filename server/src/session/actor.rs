@@ -260,12 +260,16 @@ impl Actor {
         self.lag_micros.store(u64::try_from(late.as_micros()).unwrap_or(u64::MAX), Ordering::Relaxed);
         let (owed, dropped) = self.pacer.as_mut().map_or((0, 0), |p| (p.owed(now), p.take_dropped()));
         wake_stats().record(late, dropped);
+        // The executed path sees every cycle (held for this wake-up only; REST reads wait).
+        let mut history = self.history.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         for _ in 0..owed {
             if !channel.is_active() {
                 break;
             }
             channel.step();
+            history.observe(channel);
         }
+        drop(history);
         self.next_wake += self.config.period;
         if self.next_wake <= now {
             self.next_wake = now + self.config.period;
@@ -278,8 +282,9 @@ impl Actor {
     async fn fast_chunk(&mut self, mut channel: Box<Channel>) -> Option<Box<Channel>> {
         let (steps, limit) = (self.config.fast_chunk, self.fast_limit_tick);
         let deadline = self.fast_deadline.into_std();
+        let history = self.history.clone();
         let joined = tokio::task::spawn_blocking(move || {
-            step_fast(&mut channel, steps, limit, deadline);
+            step_fast(&mut channel, steps, limit, deadline, &history);
             channel
         })
         .await;
@@ -326,11 +331,7 @@ impl Actor {
         }
         // Before the state, so a stream never sees a stock version the feed does not know.
         self.stock_feed.update(channel, self.events.receiver_count() > 0);
-        if self.snapshots.publish(channel, &self.state)
-            && let Ok(mut history) = self.history.lock()
-        {
-            history.record(&self.state.borrow(), &channel.config().geo_names);
-        }
+        self.snapshots.publish(channel, &self.state);
     }
 
     /// Answers waiting requests whose motion is over or whose wall-time limit has come.
@@ -463,8 +464,15 @@ fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandErro
     }
 }
 
-/// Steps up to `max_steps` cycles while something moves and the limit tick is not reached.
-fn step_fast(channel: &mut Channel, max_steps: u64, limit_tick: u64, deadline: std::time::Instant) {
+/// Steps up to `max_steps` cycles while something moves and the limit tick is not reached;
+/// the executed path looks at every one.
+fn step_fast(
+    channel: &mut Channel,
+    max_steps: u64,
+    limit_tick: u64,
+    deadline: std::time::Instant,
+    history: &std::sync::Mutex<super::path_history::PathHistory>,
+) {
     for i in 0..max_steps {
         if !channel.is_busy() || channel.ticks() >= limit_tick {
             break;
@@ -474,5 +482,7 @@ fn step_fast(channel: &mut Channel, max_steps: u64, limit_tick: u64, deadline: s
             break;
         }
         channel.step();
+        // Locked per cycle (uncontended: some ten ns), so a REST reader never waits a chunk.
+        history.lock().unwrap_or_else(std::sync::PoisonError::into_inner).observe(channel);
     }
 }

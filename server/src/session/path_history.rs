@@ -1,63 +1,123 @@
-//! The executed path of a session: the tool tip (geometry axes in the BCS) of every published
-//! state, kept so that a viewer who joins later sees where the tool has been
-//! (`GET /sessions/{id}/path-history`).
+//! The executed path of a session: the tool tip on the workpiece, looked at in every IPO cycle
+//! the session interpolates (real time and fast pace alike), kept so that a viewer who joins
+//! later sees where the tool has been (`GET /sessions/{id}/path-history`).
 //!
-//! Bounded and thinned: a point is kept only when the tip moved at least [`MIN_STEP`]; a point
-//! on the straight line between its neighbours (within [`COLLINEAR_TOL`]) is replaced by the
-//! next; when [`CAPACITY`] points are held, every second one is dropped (the resolution halves,
-//! the path's extent stays). Memory per session is at most `CAPACITY` × 32 bytes. Points are
-//! the states a viewer would have seen: every real-time period, but in fast pace only one per
-//! chunk of IPO cycles (recording every cycle would slow the fast lane), so a fast run's history
-//! is as coarse as a live viewer's trace of it.
+//! Thinned by geometry, not by time, so that a fast-pace run and a real-time run of the same
+//! program give the same picture: the last kept point and the newest tip span a chord; the
+//! tip of the cycle before becomes a kept point as soon as that chord passes farther than
+//! [`TOLERANCE`] from it or from the samples taken since the last kept point (at most
+//! [`PROBES`], at least [`TOLERANCE`] apart; halved when full). Every block end is kept (the
+//! line in execution changes), and so is a change of TRACYL diameter or of exactness (see
+//! `nctwin_engine::channel::workpiece_tip`). Bounded: when [`CAPACITY`] points are held,
+//! every second one is dropped (the resolution halves, the path's extent stays). Memory per
+//! session is at most `CAPACITY` points; the work per cycle is one tip and at most
+//! `PROBES + 1` distances.
+//!
+//! The tip is the one on the workpiece (`workpiece_tip.rs`): through the kinematics on a
+//! trunnion table moved without TRAORI, unrolled (with its diameter) under TRACYL.
 
-use nctwin_engine::Snapshot;
+use nctwin_engine::Channel;
+use nctwin_engine::channel::workpiece_tip::TipProbe;
 
 use crate::api::preview::{dist, off_line};
 
 /// Points held at most.
 pub const CAPACITY: usize = 20_000;
-/// Smallest motion (mm) that adds a point.
-pub const MIN_STEP: f64 = 0.01;
-/// A middle point closer than this (mm) to the line of its neighbours is dropped.
-pub const COLLINEAR_TOL: f64 = 0.002;
+/// Display tolerance (mm): no part of the path is farther than this from the drawn polyline
+/// (up to the spacing of the samples checked).
+pub const TOLERANCE: f64 = 0.01;
+/// Samples between two kept points the chord is checked against.
+pub const PROBES: usize = 32;
 
 /// One point of the executed path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HistoryPoint {
-    /// Tool tip, geometry axes in the BCS (mm); a missing axis reads 0.
+    /// Tool tip on the workpiece, geometry axes (mm); a missing axis reads 0.
     pub basic: [f64; 3],
     /// Program line in execution (0: none).
     pub line: u32,
+    /// The TRACYL working diameter while TRACYL is active (`basic` is then unrolled).
+    pub tracyl_diameter: Option<f64>,
+    /// `false`: the tip is the BCS of a workpiece turned by axes the kinematics do not know.
+    pub exact: bool,
+}
+
+impl HistoryPoint {
+    /// Same block, same kind of coordinates.
+    fn same_kind(&self, other: &HistoryPoint) -> bool {
+        self.line == other.line && self.tracyl_diameter == other.tracyl_diameter && self.exact == other.exact
+    }
 }
 
 /// The thinned executed path of one session.
 #[derive(Debug, Default)]
 pub struct PathHistory {
+    /// The kept points, oldest first.
     points: Vec<HistoryPoint>,
+    /// Samples since the last kept point, checked against the chord.
+    since: Vec<[f64; 3]>,
+    /// The newest tip (the end of the path; kept once the path turns away from it).
+    head: Option<HistoryPoint>,
     /// Times the path was halved since the session started.
     halvings: u32,
-    /// States recorded (kept or not).
+    /// IPO cycles looked at.
     recorded: u64,
+    probe: TipProbe,
 }
 
 impl PathHistory {
-    /// Records the tip of a published state; `geo` names the geometry axes.
-    pub fn record(&mut self, snap: &Snapshot, geo: &[String; 3]) {
+    /// Looks at the cycle the channel has just interpolated.
+    pub fn observe(&mut self, ch: &Channel) {
         self.recorded += 1;
-        let basic = std::array::from_fn(|g| snap.basic.iter().find(|(n, _)| *n == geo[g]).map_or(0.0, |(_, v)| *v));
-        let p = HistoryPoint { basic, line: snap.block.as_ref().map_or(0, |b| b.line) };
-        self.push(p);
+        let t = self.probe.tip(ch);
+        self.push(HistoryPoint {
+            basic: t.tip,
+            line: ch.line_in_execution(),
+            tracyl_diameter: t.tracyl_diameter,
+            exact: t.exact,
+        });
     }
 
     fn push(&mut self, p: HistoryPoint) {
+        let Some(head) = self.head.replace(p) else {
+            self.keep(p);
+            return;
+        };
+        let anchor = self.points.last().copied().unwrap_or(head);
+        if !head.same_kind(&p) {
+            // A block end (or another kind of coordinates): the point it ended at stays.
+            if head != anchor {
+                self.keep(head);
+            }
+            return;
+        }
+        if dist(&head.basic, &p.basic) == 0.0 {
+            // Standing: the head stays where it was.
+            self.head = Some(head);
+            return;
+        }
+        let off = |q: &[f64; 3]| off_line(&anchor.basic, &p.basic, q) > TOLERANCE;
+        if off(&head.basic) || self.since.iter().any(off) {
+            self.keep(head);
+            return;
+        }
+        let from = self.since.last().unwrap_or(&anchor.basic);
+        if dist(from, &head.basic) >= TOLERANCE {
+            if self.since.len() >= PROBES {
+                let mut i = 0;
+                self.since.retain(|_| {
+                    i += 1;
+                    i % 2 == 0
+                });
+            }
+            self.since.push(head.basic);
+        }
+    }
+
+    /// Makes `p` a kept point (the chord starts anew there).
+    fn keep(&mut self, p: HistoryPoint) {
+        self.since.clear();
         let n = self.points.len();
-        if n > 0 && dist(&self.points[n - 1].basic, &p.basic) < MIN_STEP {
-            return;
-        }
-        if n >= 2 && off_line(&self.points[n - 2].basic, &p.basic, &self.points[n - 1].basic) < COLLINEAR_TOL {
-            self.points[n - 1] = p;
-            return;
-        }
         if n >= CAPACITY {
             let last = n - 1;
             let mut i = 0;
@@ -71,9 +131,15 @@ impl PathHistory {
         self.points.push(p);
     }
 
-    /// The points held, oldest first.
-    pub fn points(&self) -> &[HistoryPoint] {
-        &self.points
+    /// The path, oldest first: the kept points and the newest tip.
+    pub fn points(&self) -> Vec<HistoryPoint> {
+        let mut out = self.points.clone();
+        if let Some(head) = self.head
+            && out.last() != Some(&head)
+        {
+            out.push(head);
+        }
+        out
     }
 
     /// How often the path was halved to stay within [`CAPACITY`].
@@ -81,7 +147,7 @@ impl PathHistory {
         self.halvings
     }
 
-    /// States recorded since the session started.
+    /// IPO cycles looked at since the session started.
     pub fn recorded(&self) -> u64 {
         self.recorded
     }
@@ -92,7 +158,11 @@ mod tests {
     use super::*;
 
     fn at(x: f64, y: f64) -> HistoryPoint {
-        HistoryPoint { basic: [x, y, 0.0], line: 1 }
+        HistoryPoint { basic: [x, y, 0.0], line: 1, tracyl_diameter: None, exact: true }
+    }
+
+    fn kept(h: &PathHistory) -> Vec<[f64; 3]> {
+        h.points().iter().map(|p| p.basic).collect()
     }
 
     #[test]
@@ -104,30 +174,71 @@ mod tests {
         for i in 1..=50 {
             h.push(at(10.0, f64::from(i) * 0.1));
         }
-        let kept: Vec<[f64; 3]> = h.points().iter().map(|p| p.basic).collect();
+        let kept = kept(&h);
         assert_eq!(kept.len(), 3, "{kept:?}");
         assert!(dist(&kept[1], &[10.0, 0.0, 0.0]) < 1e-9 && dist(&kept[2], &[10.0, 5.0, 0.0]) < 1e-9, "{kept:?}");
     }
 
     #[test]
+    fn an_arc_is_kept_within_the_tolerance_whatever_the_sampling() {
+        // A quarter circle of radius 10 sampled every 0.01 rad (0.1 mm: a fast cycle) and every
+        // 0.001 rad. A chord of a circle of radius R deviates from the arc by its sagitta
+        // R − √(R² − (c/2)²); within 0.01 mm for R = 10: c ≤ 2√(100 − 9.99²) = 0.894 mm, so the
+        // quarter (15.71 mm) needs at least 15.71 / 0.894 = 17.6, i.e. 18 chords; and every
+        // chord's middle is within 0.01 mm (+ one sample's sagitta) of the circle.
+        for step in [0.01, 0.001] {
+            let mut h = PathHistory::default();
+            let n = (std::f64::consts::FRAC_PI_2 / step).round() as usize;
+            for i in 0..=n {
+                let a = i as f64 * step;
+                h.push(at(10.0 * a.cos(), 10.0 * a.sin()));
+            }
+            let kept = kept(&h);
+            assert!(kept.len() >= 19, "{step}: {}", kept.len());
+            assert!(kept.len() <= 40, "{step}: thinned by geometry, not by time: {}", kept.len());
+            for w in kept.windows(2) {
+                let mid = [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0, 0.0];
+                let r = (mid[0] * mid[0] + mid[1] * mid[1]).sqrt();
+                assert!(10.0 - r <= TOLERANCE + 1e-3, "{step}: chord {w:?} sags {}", 10.0 - r);
+            }
+        }
+    }
+
+    #[test]
+    fn a_block_end_is_kept_even_on_a_straight_line() {
+        let mut h = PathHistory::default();
+        for i in 0..=20 {
+            h.push(HistoryPoint { line: if i <= 10 { 1 } else { 2 }, ..at(f64::from(i), 0.0) });
+        }
+        let lines: Vec<u32> = h.points().iter().map(|p| p.line).collect();
+        assert_eq!(kept(&h), vec![[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [20.0, 0.0, 0.0]]);
+        assert_eq!(lines, vec![1, 1, 2]);
+    }
+
+    #[test]
     fn a_long_path_is_halved_and_stays_bounded_with_its_last_point() {
         let mut h = PathHistory::default();
-        // A zigzag of 3 × CAPACITY points: none collinear, none too close.
+        // A zigzag of 3 × CAPACITY points: every one a corner.
         let n = 3 * CAPACITY;
         for i in 0..n {
             h.push(at(i as f64, (i % 2) as f64));
         }
-        assert!(h.points().len() <= CAPACITY, "{}", h.points().len());
+        assert!(h.points().len() <= CAPACITY + 1, "{}", h.points().len());
         assert!(h.halvings() >= 2);
         assert_eq!(h.points().first().map(|p| p.basic), Some([0.0, 0.0, 0.0]));
         assert_eq!(h.points().last().map(|p| p.basic), Some([(n - 1) as f64, 1.0, 0.0]));
     }
 
     #[test]
-    fn motion_below_the_smallest_step_adds_nothing() {
+    fn a_reversal_on_a_line_keeps_its_turning_point() {
+        // X 0 → 10 → 5: the chord 0 → 5 passes 5 mm from the turning point.
         let mut h = PathHistory::default();
-        h.push(at(0.0, 0.0));
-        h.push(at(0.005, 0.0));
-        assert_eq!(h.points().len(), 1);
+        for i in 0..=10 {
+            h.push(at(f64::from(i), 0.0));
+        }
+        for i in 1..=5 {
+            h.push(at(10.0 - f64::from(i), 0.0));
+        }
+        assert_eq!(kept(&h), vec![[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [5.0, 0.0, 0.0]]);
     }
 }

@@ -285,8 +285,15 @@ export interface LimitHit {
   value: number;
   limit: number;
   line: number;
-  /** Tool tip in the BCS (geometry axes as the preview's `axes`). */
+  /**
+   * Tool tip on the workpiece (geometry axes as the preview's `axes`): the BCS, or on a table
+   * turned without TRAORI the tip through the kinematics; under TRACYL unrolled.
+   */
   basic: [number, number, number];
+  /** The TRACYL working diameter when the hit was under TRACYL (`basic` is unrolled). */
+  tracyl_diameter?: number | null;
+  /** false: a rotary axis the kinematics do not describe had turned the workpiece. */
+  exact?: boolean;
   time: number;
 }
 
@@ -303,11 +310,18 @@ export interface ActiveSwivel {
   wcs_axes: [[number, number, number], [number, number, number], [number, number, number]];
 }
 
-/** GET .../path-history: the executed path since the session started (BCS, thinned). */
+/**
+ * GET .../path-history: the executed path since the session started (the tool tip on the
+ * workpiece, thinned by geometry to 0.01 mm).
+ */
 export interface PathHistory {
   axes: [string, string, string];
   points: [number, number, number][];
   lines: number[];
+  /** Per point: the TRACYL working diameter (the point is unrolled), else null. */
+  tracyl_diameter?: (number | null)[];
+  /** Per point: false where the table was turned by axes the kinematics do not describe. */
+  exact?: boolean[];
   halvings: number;
   recorded: number;
 }

@@ -1,8 +1,12 @@
 // The Program area: edit a program, check it (errors at their lines), save it in the session's
-// program store, select it for execution. Check and Execute also make a trial run on a copy of
-// the channel (POST .../preview): what only the run finds (an undefined name: 12550, an unknown
-// G function: 12470, a software limit: 10720) is flagged at its line before Cycle start.
-// New/Open ask before they drop unsaved text.
+// program store, select it for execution. The check is the server's (POST .../check): syntax,
+// and names that are not defined (12550), unknown G functions (12470), called programs that do
+// not exist (14011) and missing jump destinations (14080), each with its alarm number.
+// Check and Execute then make a trial run on a copy of the channel (POST .../preview), kept
+// only for what no static check can find because it depends on the values the program
+// computes and the machine it runs on: a software limit (10720), a working-area limit, an
+// arithmetic alarm, a tool that is not there, an alarm the program raises with SETAL. New/Open
+// ask before they drop unsaved text.
 
 import { api, ApiError } from "../api/client";
 import type { Diagnostic } from "../api/types";
@@ -62,7 +66,10 @@ export class EditorArea {
     return true;
   }
 
-  /** The syntax check, then a trial run when the syntax is right; shows and returns the errors. */
+  /**
+   * The server's check (syntax and names), then a trial run when it finds nothing; shows and
+   * returns the errors.
+   */
   async checkAll(): Promise<Diagnostic[]> {
     const errors = await this.check();
     if (errors.length) return errors;
@@ -74,7 +81,7 @@ export class EditorArea {
   /**
    * Runs the text on a copy of the channel (the preview, no motion on the machine): its alarm
    * at its line, or nothing (also when the trial is cut short by the server's limits or cannot
-   * run).
+   * run). Only what the run finds beyond the check: see the head of this file.
    */
   private async trialRun(): Promise<Diagnostic[]> {
     const id = this.session.id;
@@ -83,13 +90,16 @@ export class EditorArea {
       const r = await api.preview(id, { program: this.editor.text, max_points: 2 });
       if (r.outcome !== "alarm" || !r.alarm) return [];
       const line = r.alarm.line ?? 1;
-      return [{ line, column: 1, message: `alarm ${r.alarm.number} in a trial run: ${r.alarm.message}` }];
+      return [{ line, column: 1, alarm: r.alarm.number, message: `${r.alarm.message} (trial run)` }];
     } catch {
       return [];
     }
   }
 
-  /** Checks the syntax on the server; shows and returns the errors (none if it cannot check). */
+  /**
+   * The server's check (syntax and undefined names, POST .../check); shows and returns the
+   * errors (none if it cannot check).
+   */
   async check(): Promise<Diagnostic[]> {
     clearTimeout(this.checkTimer);
     const id = this.session.id;

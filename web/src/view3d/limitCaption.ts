@@ -16,9 +16,13 @@ export function showLimitHits(r: PreviewResponse | null): void {
   caption.dataset.total = String(total);
   if (total === 0) return;
   const more = total > hits.length ? ` (${total} in all)` : "";
+  // Marks the server could not place on the part are drawn grey: say why.
+  const inexact = hits.filter((h) => h.exact === false).length;
+  caption.dataset.inexact = String(inexact);
+  const grey = inexact ? `; ${inexact} grey: the table was turned by axes the machine data do not describe` : "";
   setText(
     caption,
-    `axis limits: ${caption.dataset.velocity} velocity, ${caption.dataset.acceleration} acceleration${more}`,
+    `axis limits: ${caption.dataset.velocity} velocity, ${caption.dataset.acceleration} acceleration${more}${grey}`,
   );
   caption.title = hits
     .slice(0, 12)

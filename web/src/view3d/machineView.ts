@@ -18,6 +18,7 @@ import { Viewport, type ViewName } from "./viewport";
 import { StockView } from "./stock";
 import { WcsTriad } from "./wcsTriad";
 import { PathCheck, cartesianOf } from "./pathCheck";
+import { wrapOnCylinder } from "./cylinderWrap";
 import { activeSwivel } from "../swivel/activeSwivel";
 
 const DEFAULT_TOOL_RADIUS = 5;
@@ -48,19 +49,6 @@ class ToolSolid {
     this.mesh.quaternion.setFromUnitVectors(this.up, this.dir.divideScalar(length));
     this.mesh.scale.set(radius, length, radius);
   }
-}
-
-/**
- * A TRACYL point (X radial, Y arc length on diameter d, Z axial) on the cylinder: at X from
- * the axis, turned by Y / (d/2) from the radial direction towards parallel × radial (the way
- * the engine's TRACYL turns the workpiece under the tool), Z along the axis.
- */
-export function wrapOnCylinder(p: [number, number, number], d: number, c: NonNullable<Structure["cylinder"]>): [number, number, number] {
-  const [r, u] = [c.radial, c.parallel];
-  const perp = [u[1] * r[2] - u[2] * r[1], u[2] * r[0] - u[0] * r[2], u[0] * r[1] - u[1] * r[0]];
-  const theta = p[1] / (d / 2);
-  const [cos, sin] = [Math.cos(theta), Math.sin(theta)];
-  return [0, 1, 2].map((i) => r[i]! * p[0] * cos + perp[i]! * p[0] * sin + u[i]! * p[2]) as [number, number, number];
 }
 
 /** The programmed path: a fixed polyline of WCS points placed at the work offset. */
@@ -209,12 +197,16 @@ export class MachineView {
   }
 
   /**
-   * The executed path from before this view joined (GET .../path-history, the tool tip in the
-   * BCS, thinned by the server), put before the points the stream has added since.
+   * The executed path from before this view joined (GET .../path-history: the tool tip on the
+   * workpiece, thinned by the server), put before the points the stream has added since once
+   * the model is built (TRACYL points are wrapped onto its cylinder). Points the server could
+   * not place on the part (a table turned by axes the kinematics do not describe) are left out
+   * and counted in the caption rather than drawn where the tool was not.
    */
   private async fetchHistory(): Promise<void> {
     const id = this.info?.id;
     if (!id) return;
+    this.pendingHistory = null;
     let history: PathHistory;
     try {
       history = await api.pathHistory(id);
@@ -222,9 +214,45 @@ export class MachineView {
       return; // an older server: the path starts now
     }
     if (id !== this.info?.id) return;
+    this.pendingHistory = history;
+    if (this.structure) this.applyHistory();
+  }
+
+  private pendingHistory: PathHistory | null = null;
+
+  private applyHistory(): void {
+    const history = this.pendingHistory;
+    this.pendingHistory = null;
+    if (!history) return;
     const cart = cartesianOf(history.axes);
-    this.historyPoints = this.toolpath.prepend(history.points.map((p) => new THREE.Vector3(...cart(p))));
+    const cylinder = this.structure?.cylinder ?? null;
+    const points: THREE.Vector3[] = [];
+    let inexact = 0;
+    history.points.forEach((p, i) => {
+      if (history.exact?.[i] === false) {
+        inexact++;
+        return;
+      }
+      const d = history.tracyl_diameter?.[i];
+      const q = cylinder && typeof d === "number" && d > 0 ? wrapOnCylinder(cart(p), d, cylinder) : cart(p);
+      points.push(new THREE.Vector3(...q));
+    });
+    this.historyPoints = this.toolpath.prepend(points);
+    this.historyInexact = inexact;
+    const note = document.getElementById("view3d-history");
+    if (note) {
+      note.hidden = inexact === 0;
+      note.textContent = inexact ? `earlier path: ${inexact} points not shown (table turned by axes the machine data do not describe)` : "";
+    }
     this.viewport.invalidate();
+  }
+
+  /** Points of the fetched history left out (not known to be on the part). */
+  historyInexact = 0;
+
+  /** The TRACYL cylinder of the model (null: none, or no model yet). */
+  cylinder(): Structure["cylinder"] {
+    return this.structure?.cylinder ?? null;
   }
 
   show(st: State): void {
@@ -493,6 +521,7 @@ export class MachineView {
     this.caption.dataset.head = String(chain ? chain.toolRotary : s.head.length);
     this.caption.dataset.table = String(chain ? chain.partRotary : s.table.length);
     this.framePending = true;
+    if (this.pendingHistory) this.applyHistory();
   }
 
   private edge(t: number, d: number): string {
@@ -577,7 +606,10 @@ export function mountMachineView(session: SessionController): MachineView {
     /** Tool axis lines drawn along the programmed path (5-axis). */
     toolAxisLines: () => view.check.toolAxisCount,
     /** The limit marks drawn: kind, axis, line and position (part frame). */
-    limitMarks: () => view.check.hits.map((h) => ({ kind: h.kind, axis: h.axis, line: h.line, basic: h.basic })),
+    limitMarks: () => {
+      const at = view.check.markPositions();
+      return view.check.hits.map((h, i) => ({ kind: h.kind, axis: h.axis, line: h.line, basic: h.basic, at: at[i], exact: h.exact !== false }));
+    },
     /** The slider's marker: visible and where (part frame). */
     marker: () => (view.check.marker.visible ? view.check.marker.position.toArray() : null),
     /** A lathe's part: the machine Z of its end face (at the WCS zero). */
@@ -586,6 +618,8 @@ export function mountMachineView(session: SessionController): MachineView {
     blank: () => (view.check.blank ? [view.check.blank.min.toArray(), view.check.blank.max.toArray()] : null),
     /** Executed path points that came from the session's history. */
     historyPoints: () => view.historyPoints,
+    /** Points of the fetched history left out (a table turned outside the kinematics). */
+    historyInexact: () => view.historyInexact,
   };
   setText(byId("view3d-caption"), "");
   return view;

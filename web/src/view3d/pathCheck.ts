@@ -9,10 +9,14 @@
 
 import * as THREE from "three";
 import type { LimitHit, PreviewResponse } from "../api/types";
+import { wrapOnCylinder } from "./cylinderWrap";
+import type { Structure } from "./machineData";
 
 export const TOOL_AXIS_COLOR = 0x9be7a0;
 export const VELOCITY_COLOR = 0xc77dff;
 export const ACCEL_COLOR = 0xffd166;
+/** A mark whose place on the part is not known (a table turned outside the kinematics). */
+export const INEXACT_COLOR = 0x8a949e;
 const MARKER_COLOR = 0xffffff;
 const BLANK_COLOR = 0x9fb0c2;
 /** Most tool axis lines drawn along a path. */
@@ -88,10 +92,16 @@ export class PathCheck {
   private readonly limitGeometry = new THREE.OctahedronGeometry(1);
   private readonly velocityMaterial = new THREE.MeshBasicMaterial({ color: VELOCITY_COLOR, depthTest: false });
   private readonly accelMaterial = new THREE.MeshBasicMaterial({ color: ACCEL_COLOR, depthTest: false });
+  private readonly inexactMaterial = new THREE.MeshBasicMaterial({ color: INEXACT_COLOR, depthTest: false, wireframe: true });
   /** The slider's position on the programmed path. */
   readonly marker = new THREE.Mesh(new THREE.SphereGeometry(1, 16, 12), new THREE.MeshBasicMaterial({ color: MARKER_COLOR, depthTest: false }));
   /** The limit hits drawn, for the caption and the browser test. */
   hits: LimitHit[] = [];
+
+  /** Where each of `hits` is drawn (part frame), for the browser test. */
+  markPositions(): [number, number, number][] {
+    return this.limits.children.map((m) => m.position.toArray() as [number, number, number]);
+  }
   /** Tool axis lines drawn. */
   toolAxisCount = 0;
   /** The blank's outline (part frame), null without one. */
@@ -107,8 +117,12 @@ export class PathCheck {
     this.group.add(this.toolAxes, this.limits, this.marker, this.blankOutline);
   }
 
-  /** Draws the tool axes and limit marks of a preview answer (BCS = part frame). */
-  set(r: PreviewResponse): void {
+  /**
+   * Draws the tool axes and limit marks of a preview answer (BCS = part frame); a mark under
+   * TRACYL is wrapped onto `cylinder` as the programmed path is. A mark the server could not
+   * place on the part (`exact: false`) is drawn grey and hollow.
+   */
+  set(r: PreviewResponse, cylinder: Structure["cylinder"] = null): void {
     this.clear();
     const cart = cartesianOf(r.axes);
     const points = r.basic.map(cart);
@@ -123,8 +137,10 @@ export class PathCheck {
     const radius = Math.min(6, Math.max(0.8, size * 0.008));
     this.hits = r.limit_hits ?? [];
     for (const h of this.hits) {
-      const mark = new THREE.Mesh(this.limitGeometry, h.kind === "velocity" ? this.velocityMaterial : this.accelMaterial);
-      mark.position.set(...cart(h.basic));
+      const material = h.exact === false ? this.inexactMaterial : h.kind === "velocity" ? this.velocityMaterial : this.accelMaterial;
+      const mark = new THREE.Mesh(this.limitGeometry, material);
+      const d = h.tracyl_diameter;
+      mark.position.set(...(cylinder && typeof d === "number" && d > 0 ? wrapOnCylinder(cart(h.basic), d, cylinder) : cart(h.basic)));
       mark.scale.setScalar(radius * 1.4);
       mark.renderOrder = 5;
       this.limits.add(mark);

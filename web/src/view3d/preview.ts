@@ -41,7 +41,7 @@ export function mountPreview(session: SessionController, view: MachineView): voi
           : { program: selection.current.text, max_points: MAX_POINTS };
       const r = await api.preview(id, body);
       if (mine !== serial || id !== session.id) return;
-      view.check.set(r); // first: the framing of a new path includes the blank
+      view.check.set(r, view.cylinder()); // first: the framing of a new path includes the blank
       view.setProgrammed(r.basic, r.axes, r.tracyl_diameter, active ? `active ${meta.serial}` : `selected ${program.name}`);
       scrub.set(r, active ? { active: true, serial: meta.serial } : { active: false, text: selection.current.text });
       showLimitHits(r);
