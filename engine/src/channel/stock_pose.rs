@@ -14,6 +14,7 @@ use super::Channel;
 use crate::interp::Offsets;
 use crate::kinematics::AnyTrafo;
 use crate::kinematics::Traori;
+use crate::motion::AxisVec;
 
 /// The tool in the blank's frame: tip (mm), unit axis (tip → holder), length (mm).
 pub(super) struct ToolPose {
@@ -33,8 +34,20 @@ impl Channel {
         }
     }
 
-    /// The tool this cycle for the stock mounted on `kin`, with the block's `offsets`.
-    pub(super) fn stock_tool_pose(&self, offsets: &Offsets, kin: Option<&Traori>) -> ToolPose {
+    /// The tool tip in the stock's frame at machine position `machine` with the channel's
+    /// offsets: on a rotary table (`stock_table.rs`) or a TRAORI chain's workpiece side
+    /// turned back with the table; the plain BCS tip elsewhere (the probe's ball centre).
+    pub(super) fn stock_tip_at(&self, machine: &AxisVec) -> [f64; 3] {
+        let run = self.stock.as_deref();
+        if let Some(t) = run.and_then(|r| r.table) {
+            return self.table_tool_pose(&t, machine, self.machine_tool_vector(&self.offsets)).tip;
+        }
+        self.stock_tool_pose(machine, &self.offsets, run.and_then(|r| r.kin.as_deref())).tip
+    }
+
+    /// The tool at machine position `machine` for the stock mounted on `kin`, with the block's
+    /// `offsets`.
+    pub(super) fn stock_tool_pose(&self, machine: &AxisVec, offsets: &Offsets, kin: Option<&Traori>) -> ToolPose {
         let geo = self.cfg.geo_axes;
         let toff = self.toff.current;
         let plain: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
@@ -50,11 +63,11 @@ impl Channel {
                 (k, k.chain().base.map(|c| c * n))
             }
             (None, None) => {
-                let tip = std::array::from_fn(|g| geo[g].map_or(0.0, |k| self.machine[k] - offsets.tool[k] - toff[g]));
+                let tip = std::array::from_fn(|g| geo[g].map_or(0.0, |k| machine[k] - offsets.tool[k] - toff[g]));
                 return ToolPose { tip, axis: [0.0, 0.0, 1.0], length: norm(plain) };
             }
         };
-        let (tip, axis) = kin.tip_and_orientation(&self.machine, &tool);
+        let (tip, axis) = kin.tip_and_orientation(machine, &tool);
         ToolPose { tip, axis, length: norm(tool) }
     }
 }
