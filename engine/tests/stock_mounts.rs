@@ -134,3 +134,40 @@ fn meas_finds_the_face_where_the_turned_table_has_put_it() {
     assert!((r(3) - 95.0).abs() < 1e-6, "Z {}", r(3));
     assert!((r(4) + 43.0).abs() < 1e-6, "stopped at Y {}", r(4));
 }
+
+/// `frame` against the rows of `[R | t]` expected, to 1e-9.
+fn assert_frame(info: &StockInfo, expected: [[f64; 4]; 3]) {
+    let frame = info.frame.expect("the blank moves with a table");
+    for (row, want) in frame.iter().zip(&expected) {
+        for (a, b) in row.iter().zip(want) {
+            assert!((a - b).abs() < 1e-9, "{frame:?} vs {expected:?}");
+        }
+    }
+}
+
+#[test]
+fn the_state_carries_the_tables_pose_for_the_hmi() {
+    // mill5-table-ac, C90 by the axis (no TRAORI): type 33 turns the part by −90° about Z
+    // through the table zero, the machine zero: machine = R_z(−90)·p, (x, y) → (y, −x).
+    let program = "G17 G90 G94\nT1 D1\nG0 X0 Y0 Z80\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,0,-10,40,10)\nG0 C90\nM30";
+    let (info, _) = run("mill5-table-ac", "", program);
+    assert_frame(&info, [[0.0, 1.0, 0.0, 0.0], [-1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]);
+    // Tilted too: A30 turns the part by −30° about X about the A axis 100 below and 20 behind
+    // the table zero (the table zero at A0 C0 is the machine zero). With C0: a table point p
+    // lies at q + R_x(−30)·(p − q), q = (0, 20, −100): the translation q − R_x(−30)·q with
+    // R_x(−30)·(0, 20, −100) = (0, 20·cos30 − 100·sin30, −20·sin30 − 100·cos30)
+    // = (0, −32.6795, −96.6025): t = (0, 52.6795, −3.3975).
+    let program = "G17 G90 G94\nT1 D1\nG0 X0 Y0 Z80\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,0,-10,40,10)\nG0 A30\nM30";
+    let (info, _) = run("mill5-table-ac", "", program);
+    let (s, c) = 30f64.to_radians().sin_cos();
+    let t = [0.0, 20.0 - (20.0 * c - 100.0 * s), -100.0 - (-20.0 * s - 100.0 * c)];
+    assert!((t[1] - 52.6795).abs() < 1e-4 && (t[2] + 3.3975).abs() < 1e-4, "{t:?}");
+    assert_frame(&info, [[1.0, 0.0, 0.0, t[0]], [0.0, c, s, t[1]], [0.0, -s, c, t[2]]]);
+    // tracyl-xyzac, A−90 C90: machine (X, Y, Z) = (y, z, x) of the table's point (see above).
+    let program = "T1 D1 G17 G90 G94\nG0 A-90 C90\nG0 X0 Y10 Z130\nWORKPIECE(,\"\",,\"CYLINDER\",0,0,-50,-80,60)\nM30";
+    let (info, _) = run("tracyl-xyzac", "", program);
+    assert_frame(&info, [[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [1.0, 0.0, 0.0, 0.0]]);
+    // A 3-axis mill's blank does not move: no frame.
+    let (info, _) = run("mill-3axis", "", "T1 D1\nG0 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,-10,-10,50,40)\nM30");
+    assert_eq!(info.frame, None);
+}

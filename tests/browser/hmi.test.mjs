@@ -953,6 +953,23 @@ async function main() {
       await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-mill7.png") });
     });
 
+    await step("3D view: the stock turns with the table (C90 turns the mesh by −90° about Z with the part)", async () => {
+      // mill5-table-ac, type 33: the table axes are DIN-reversed, so C+90 turns the part by −90°
+      // about machine Z. The mesh hangs in the machine frame with the engine's pose of the
+      // table (state stock.frame); the part frame of the view turns the same way.
+      const blank = 'WORKPIECE(,"",,"BOX",112,0,-20,-80,0,-10,40,10)';
+      await runOn("mill5-table-ac", `T1 D1\nG0 Z80\n${blank}\nG0 C90\nM0\nM30\n`);
+      await axisShows("C", 90);
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.stockTurn([0, 0, 1]) + 90) < 1e-6);
+      const part = await page.evaluate(() => window.__nctwin3d.partTurn([0, 0, 1]));
+      if (!(Math.abs(part + 90) < 1e-6)) throw new Error(`part frame turned by ${part}°, the stock by −90°`);
+      // tracyl-xyzac without a transformation: the blank stands on C (A0); C90 turns it by
+      // −90° about Z, the sign of its TRACYL data, whatever the view's cylinder frame does.
+      await runOn("tracyl-xyzac", `T1 D1 G17\nG0 Z130\n${blank}\nG0 C90\nM0\nM30\n`);
+      await axisShows("C", 90);
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.stockTurn([0, 0, 1]) + 90) < 1e-6);
+    });
+
     await step("3D view: a TRAORI_DYN chain (K12) builds the model from its elements; its tip is the engine's", async () => {
       // The K12 C-A fork head: C 200 mm beside and 300 mm above the Z slide, A 100 below C,
       // the tool reference 50 below A. The machine data's own TRAORI (A pivot 150 above the

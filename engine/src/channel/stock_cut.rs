@@ -116,6 +116,10 @@ pub struct StockInfo {
     /// Grows with every cut that removed material: the HMI fetches the changed tiles when it
     /// differs from the one it shows (`Channel::stock_changes`).
     pub version: u32,
+    /// Where the stock's frame lies in the machine's Cartesian frame now, rows of `[R | t]`
+    /// (`machine = R·p + t`): the pose of the table carrying the blank, so the HMI draws the
+    /// mesh turned with C and tilted with A/B; `None` where the blank does not move.
+    pub frame: Option<[[f64; 4]; 3]>,
 }
 
 /// What decides where one segment ends besides its geometry.
@@ -296,6 +300,7 @@ impl Channel {
             last_warning: run.warnings.back().copied(),
             skipped: run.skipped,
             version: run.tiles.version(),
+            frame: self.stock_frame(),
         })
     }
 
