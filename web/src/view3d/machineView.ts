@@ -585,6 +585,9 @@ export function mountMachineView(session: SessionController): MachineView {
     partEnd: () => view.partEnd(),
     /** The angle (degrees) the stock mesh is turned about the machine axis `about`. */
     stockTurn: (about: [number, number, number]) => view.stock.turn(about),
+    /** The stock's meshes shown and their version; the check marks (check, line). */
+    stockMeshes: () => view.stock.shownMeshes(),
+    stockMarks: () => view.stock.markList(),
     /** The blank outline drawn (BCS min and max), null without one. */
     blank: () => (view.check.blank ? [view.check.blank.min.toArray(), view.check.blank.max.toArray()] : null),
     /** Executed path points that came from the session's history. */

@@ -139,6 +139,16 @@ export class StockView {
     }
   }
 
+  /** The meshes shown and the stock version they show (for the browser test). */
+  shownMeshes(): { meshes: number; version: number } {
+    return { meshes: this.tiles.size, version: this.shown };
+  }
+
+  /** The check marks drawn: which check and the program line (for the browser test). */
+  markList(): { check: string; line: number }[] {
+    return this.marks.children.map((m) => ({ check: String(m.userData.check), line: Number(m.userData.line) }));
+  }
+
   /**
    * The angle (degrees) the stock is turned about the machine axis `about` relative to the
    * machine frame (for the browser test); null before a model is mounted.
