@@ -135,6 +135,24 @@ fn meas_finds_the_face_where_the_turned_table_has_put_it() {
     assert!((r(4) + 43.0).abs() < 1e-6, "stopped at Y {}", r(4));
 }
 
+#[test]
+fn meas_finds_the_face_where_the_spindle_has_turned_a_milled_blank() {
+    // tracyl-xyzc: a lathe with Y, so the box is milled as dexels clamped in the spindle C.
+    // SPOS=90 turns the part with it: TRACYL's sign (plus, offset 0) puts a workpiece point p
+    // at R_z(−90)·p in the machine, (x, y) → (y, −x), as on the table above: the face x = 40
+    // at machine Y−40, the ball (R3, its centre 50 below the holder) at X5 Z−5 travelling +Y
+    // switches at Y = −40 − 3 = −43.
+    let program = "G17 G90 G94\nT1 D1\nG0 X5 Y-55 Z50\n\
+                   WORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,0,-10,40,10)\nSPOS=90\nG0 Z-5\n\
+                   MEAS=1 G1 Y0 F500\nR1=$AC_MEA[1] R2=$AA_MM[Y] R3=$AA_IW[Y]\nM30";
+    let md = "$TC_DP1[1,1]=710\n$TC_DP3[1,1]=50\n$TC_DP6[1,1]=3\n";
+    let (info, ch) = run("tracyl-xyzc", md, program);
+    assert!(!info.turning);
+    let r = |n| ch.r_param(n);
+    assert_eq!(r(1), 1.0, "the probe switched");
+    assert!((r(2) + 43.0).abs() < 1e-6 && (r(3) + 43.0).abs() < 1e-6, "switched at Y {}, stopped at {}", r(2), r(3));
+}
+
 /// `frame` against the rows of `[R | t]` expected, to 1e-9.
 fn assert_frame(info: &StockInfo, expected: [[f64; 4]; 3]) {
     let frame = info.frame.expect("the blank moves with a table");

@@ -411,7 +411,10 @@ impl Channel {
             super::stock_spindle::Mounted::At(pose, ring) => (pose, ring),
             super::stock_spindle::Mounted::Plain => {
                 let offsets = self.stock_meta().2;
-                (self.stock_tool_pose(&self.machine, offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref())), false)
+                (
+                    self.stock_tool_pose(&self.machine, offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref())),
+                    false,
+                )
             }
             super::stock_spindle::Mounted::Skip => {
                 if let Some(run) = self.stock.as_mut() {

@@ -37,11 +37,17 @@ impl Channel {
 
     /// The tool tip in the stock's frame at machine position `machine` with the channel's
     /// offsets: on a rotary table (`stock_table.rs`) or a TRAORI chain's workpiece side
-    /// turned back with the table; the plain BCS tip elsewhere (the probe's ball centre).
+    /// turned back with the table, in a lathe's spindle turned with it (no transformation
+    /// active); the plain BCS tip elsewhere (the probe's ball centre).
     pub(super) fn stock_tip_at(&self, machine: &AxisVec) -> [f64; 3] {
         let run = self.stock.as_deref();
         if let Some(t) = run.and_then(|r| r.table) {
             return self.table_tool_pose(&t, machine, self.machine_tool_vector(&self.offsets)).tip;
+        }
+        if let Some(run) = run
+            && let (Some(m), crate::stock::Stock::Milling(_), None) = (run.mount, &run.stock, &self.trafo)
+        {
+            return self.mount_tip_at(&m, machine, self.machine_tool_vector(&self.offsets));
         }
         self.stock_tool_pose(machine, &self.offsets, run.and_then(|r| r.kin.as_deref())).tip
     }

@@ -116,6 +116,17 @@ impl Channel {
         }
     }
 
+    /// The tool tip at machine position `machine` in the frame of a milled blank clamped in the
+    /// spindle `m` (no transformation active; the probe of MEAS): `R_z(φ)·q` with the spindle's
+    /// angle now, its position from `machine` while it is an axis.
+    pub(super) fn mount_tip_at(&self, m: &SpindleMount, machine: &AxisVec, plain_tool: [f64; 3]) -> [f64; 3] {
+        let c = match self.spindles.iter().find(|s| s.axis == m.rotary) {
+            Some(s) if !s.axis_mode => s.position,
+            _ => machine[m.rotary],
+        };
+        m.rotation(c)(m.unturned(machine, plain_tool, false).0)
+    }
+
     /// The blank's placement in the workpiece frame of a spindle standing at its current angle
     /// (a blank defined on a lathe with a Y axis is milled as dexels that turn with C).
     pub(super) fn mount_placement(&self, p: crate::stock::blank::Placement) -> crate::stock::blank::Placement {
@@ -171,7 +182,13 @@ impl Channel {
     /// The tool under TRANSMIT or TRACYL whose rotary axis is `rotary`, from the positions
     /// `machine` of the axes it moves: in the turning part's frame if that axis is the spindle
     /// the blank is clamped in (the profile made dexels first), else skipped.
-    fn polar_pose(&mut self, mount: Option<SpindleMount>, rotary: Option<usize>, machine: &AxisVec, tool: [f64; 3]) -> Mounted {
+    fn polar_pose(
+        &mut self,
+        mount: Option<SpindleMount>,
+        rotary: Option<usize>,
+        machine: &AxisVec,
+        tool: [f64; 3],
+    ) -> Mounted {
         let Some(m) = mount.filter(|m| rotary == Some(m.rotary)) else {
             return Mounted::Skip;
         };

@@ -79,9 +79,8 @@ impl Channel {
         }
         self.cfg.trafos.iter().find_map(|set| {
             let (rot_offset, sign_plus) = match set.params {
-                TrafoParams::Transmit { rot_offset, sign_plus, .. } | TrafoParams::Tracyl { rot_offset, sign_plus, .. } => {
-                    (rot_offset, sign_plus)
-                }
+                TrafoParams::Transmit { rot_offset, sign_plus, .. }
+                | TrafoParams::Tracyl { rot_offset, sign_plus, .. } => (rot_offset, sign_plus),
                 _ => return None,
             };
             let rotary = set.axes_in[1]?;
