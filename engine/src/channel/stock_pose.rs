@@ -90,7 +90,7 @@ impl Channel {
     pub(super) fn stock_frame(&self) -> Option<[[f64; 4]; 3]> {
         let run = self.stock.as_deref()?;
         if let Some(t) = run.table {
-            let r = t.to_machine(&self.machine);
+            let r = t.pose(&self.machine);
             return Some(std::array::from_fn(|i| [r[i][0], r[i][1], r[i][2], 0.0]));
         }
         let kin = run.kin.as_deref()?;

@@ -42,7 +42,7 @@ pub(super) struct TableMount {
 impl TableMount {
     /// The table's turn at machine position `machine`: `machine = R·p` for `p` in the table's
     /// frame.
-    pub(super) fn to_machine(&self, machine: &AxisVec) -> Mat3 {
+    pub(super) fn pose(&self, machine: &AxisVec) -> Mat3 {
         let turn = rotation(2, -self.sign * (machine[self.rotary] - self.rot_offset));
         match self.tilt {
             Some((k, about)) => mul(&rotation(about, machine[k]), &turn),
@@ -107,7 +107,7 @@ impl Channel {
     /// length vector by geometry axis of the machine (no transformation).
     pub(super) fn table_tool_pose(&self, m: &TableMount, machine: &AxisVec, tool: [f64; 3]) -> ToolPose {
         let geo = self.cfg.geo_axes;
-        let r = m.to_machine(machine);
+        let r = m.pose(machine);
         let tip: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| machine[k]) - tool[g]);
         let n = (tool[0] * tool[0] + tool[1] * tool[1] + tool[2] * tool[2]).sqrt();
         let dir = if n > 1e-9 { tool.map(|c| c / n) } else { [0.0, 0.0, 1.0] };
