@@ -12,7 +12,6 @@
 
 use nctwin_engine::Channel;
 use nctwin_engine::channel::{StockInfo, StockOptions};
-use nctwin_engine::stock::Stock;
 
 mod stock_support;
 
@@ -22,16 +21,7 @@ fn run(preset: &str, md: &str, program: &str) -> (StockInfo, Channel) {
     (info, ch)
 }
 
-/// The material intervals along Z of the cell whose centre is nearest to (x, y).
-fn cell(ch: &mut Channel, x: f64, y: f64) -> Vec<[f32; 2]> {
-    let Some(Stock::Milling(g)) = ch.stock() else { panic!("the stock is not dexels") };
-    let (x0, y0) = g.origin();
-    let res = g.resolution();
-    let (i, j) = (((x - x0) / res) as usize, ((y - y0) / res) as usize);
-    let mut iv = Vec::new();
-    g.intervals(i, j, &mut iv);
-    iv
-}
+use stock_support::cell;
 
 #[test]
 fn a_tracyl_groove_on_the_trunnion_table_removes_its_stadium_where_the_table_put_it() {
