@@ -175,6 +175,10 @@ fn the_state_carries_the_tables_pose_for_the_hmi() {
     let program = "T1 D1 G17 G90 G94\nG0 A-90 C90\nG0 X0 Y10 Z130\nWORKPIECE(,\"\",,\"CYLINDER\",0,0,-50,-80,60)\nM30";
     let (info, _) = run("tracyl-xyzac", "", program);
     assert_frame(&info, [[0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [1.0, 0.0, 0.0, 0.0]]);
+    // A swivel head turns the tool, not the blank: no frame.
+    let program = "G17 G90 G94\nT1 D1\nG0 Z80\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,-80,0,-10,40,10)\nG0 A30 C45\nM30";
+    let (info, _) = run("mill5-head-ca", "", program);
+    assert_eq!(info.frame, None);
     // A 3-axis mill's blank does not move: no frame.
     let (info, _) = run("mill-3axis", "", "T1 D1\nG0 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,-10,-10,50,40)\nM30");
     assert_eq!(info.frame, None);

@@ -94,6 +94,9 @@ impl Channel {
             return Some(std::array::from_fn(|i| [r[i][0], r[i][1], r[i][2], 0.0]));
         }
         let kin = run.kin.as_deref()?;
+        if kin.chain().kind == ChainKind::Tool && kin.seventh_slot().is_none() {
+            return None; // a swivel head: the blank stands still in the BCS
+        }
         let set = self.cfg.trafos.iter().find(|s| s.kind == crate::machine_data::TrafoKind::Traori)?;
         let lin = [set.axes_in[0]?, set.axes_in[1]?, set.axes_in[2]?];
         let at = |unit: Option<usize>| {
