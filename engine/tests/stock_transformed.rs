@@ -23,13 +23,7 @@ fn run(preset: &str, md: &str, program: &str) -> (StockInfo, Channel) {
 
 /// The top of the material of the cell whose centre is nearest to (x, y) (workpiece frame).
 fn top_at(ch: &mut Channel, x: f64, y: f64) -> Option<f32> {
-    let Some(Stock::Milling(g)) = ch.stock() else { panic!("the stock is not dexels") };
-    let (x0, y0) = g.origin();
-    let res = g.resolution();
-    let (i, j) = (((x - x0) / res) as usize, ((y - y0) / res) as usize);
-    let mut iv = Vec::new();
-    g.intervals(i, j, &mut iv);
-    iv.last().map(|v| v[1])
+    stock_support::cell(ch, x, y).last().map(|v| v[1])
 }
 
 #[test]

@@ -989,6 +989,40 @@ async function main() {
       await page.locator("#view3d").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-3d-mill7.png") });
     });
 
+    await step("3D view: the cut stock is drawn, the rapid through it marked at its line and in the event log", async () => {
+      // A blank X−10..50, Y−10..40, Z−20..0; line 6 rapids through it at Z−3 (the rapid into
+      // stock check), the approach of line 5 stays outside it (X−20 minus the tool radius).
+      const program = 'T1 D1\nG0 Z50\nWORKPIECE(,"",,"BOX",112,0,-20,,-10,-10,50,40)\nS2000 M3\nG0 X-20 Y15 Z-3\nG0 X60\nM0\nM30\n';
+      await runOn("mill-3axis", program);
+      await page.waitForFunction(() => window.__nctwin3d.stockMeshes().meshes > 0 && window.__nctwin3d.stockMeshes().version > 0);
+      await page.waitForFunction(() => window.__nctwin3d.stockMarks().some((m) => m.check === "rapid_into_stock" && m.line === 6));
+      const marks = await page.evaluate(() => window.__nctwin3d.stockMarks());
+      if (marks.some((m) => m.line !== 6)) throw new Error(`marks: ${JSON.stringify(marks)}`);
+      await page.waitForFunction(() =>
+        [...document.querySelectorAll('#events li[data-event="stock"]')].some((li) => /rapid into stock at line 6/.test(li.textContent ?? "")),
+      );
+      // A blank that does not move: no frame, the stock in the part frame unturned.
+      const turn = await page.evaluate(() => window.__nctwin3d.stockTurn([0, 0, 1]));
+      if (!(Math.abs(turn) < 1e-9)) throw new Error(`stock turned by ${turn}°`);
+    });
+
+    await step("3D view: the stock turns with the table (C90 turns the mesh by −90° about Z with the part)", async () => {
+      // mill5-table-ac, type 33: the table axes are DIN-reversed, so C+90 turns the part by −90°
+      // about machine Z. The mesh hangs in the machine frame with the engine's pose of the
+      // table (state stock.frame); the part frame of the view turns the same way.
+      const blank = 'WORKPIECE(,"",,"BOX",112,0,-20,-80,0,-10,40,10)';
+      await runOn("mill5-table-ac", `T1 D1\nG0 Z80\n${blank}\nG0 C90\nM0\nM30\n`);
+      await axisShows("C", 90);
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.stockTurn([0, 0, 1]) + 90) < 1e-6);
+      const part = await page.evaluate(() => window.__nctwin3d.partTurn([0, 0, 1]));
+      if (!(Math.abs(part + 90) < 1e-6)) throw new Error(`part frame turned by ${part}°, the stock by −90°`);
+      // tracyl-xyzac without a transformation: the blank stands on C (A0); C90 turns it by
+      // −90° about Z, the sign of its TRACYL data, whatever the view's cylinder frame does.
+      await runOn("tracyl-xyzac", `T1 D1 G17\nG0 Z130\n${blank}\nG0 C90\nM0\nM30\n`);
+      await axisShows("C", 90);
+      await page.waitForFunction(() => Math.abs(window.__nctwin3d.stockTurn([0, 0, 1]) + 90) < 1e-6);
+    });
+
     await step("3D view: a TRAORI_DYN chain (K12) builds the model from its elements; its tip is the engine's", async () => {
       // The K12 C-A fork head: C 200 mm beside and 300 mm above the Z slide, A 100 below C,
       // the tool reference 50 below A. The machine data's own TRAORI (A pivot 150 above the

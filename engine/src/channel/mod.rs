@@ -44,6 +44,7 @@ mod stock_mesh;
 mod stock_pose;
 mod stock_saved;
 mod stock_spindle;
+mod stock_table;
 mod stock_tiles;
 pub mod sync_actions;
 mod sync_eval;

@@ -6,7 +6,10 @@
 //! the stock's public cells and slabs) or one of the probe-target planes set over the API
 //! ([`ProbeTarget`]). The ball touches the stock when its point ahead in the direction of travel
 //! (rising edge; the point behind for a falling edge) is inside it; it touches a plane when its
-//! centre is no more than the radius in front of it.
+//! centre is no more than the radius in front of it. The stock is tested in its own frame: on a
+//! table that has turned or tilted it (a TRAORI chain's workpiece side, `stock_table.rs`) the
+//! ball's centre and direction of travel are taken back through the table's pose
+//! (`Channel::stock_tip_at`), so the face is found where the table has put it.
 //!
 //! Each IPO cycle of a measuring block the probe looks at the straight piece between the last
 //! sample and this one: in steps of at most half the stock's resolution, then by bisection to
@@ -205,8 +208,12 @@ impl Channel {
         let geo = self.cfg.geo_axes;
         let dir: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| b[k] - a[k]));
         let len = dot(dir, dir).sqrt();
-        let unit = if len > 0.0 { dir.map(|c| c / len) } else { [0.0; 3] };
         let at = |s: f64| -> AxisVec { std::array::from_fn(|k| a[k] + s * (b[k] - a[k])) };
+        // The direction of travel relative to the stock (a table may have turned it).
+        let (sa, sb) = (self.stock_tip_at(a), self.stock_tip_at(b));
+        let rel = sub(sb, sa);
+        let n = dot(rel, rel).sqrt();
+        let unit = if n > 0.0 { rel.map(|c| c / n) } else { [0.0; 3] };
         let step = match &self.stock {
             Some(run) => run.stock().resolution() / 2.0,
             None => f64::INFINITY,
@@ -234,8 +241,9 @@ impl Channel {
         Some(hi)
     }
 
-    /// Whether the probe ball at machine position `m`, travelling along `unit` (BCS), touches
-    /// material; the stock is tested at the ball's point ahead (`rising`) or behind.
+    /// Whether the probe ball at machine position `m`, travelling along `unit` (the stock's
+    /// frame), touches material; the stock is tested at the ball's point ahead (`rising`) or
+    /// behind, in its own frame (on a turned table where the table has put it).
     fn probe_touches(&mut self, m: &AxisVec, unit: [f64; 3], rising: bool) -> bool {
         let geo = self.cfg.geo_axes;
         let toff = self.toff.current;
@@ -245,6 +253,10 @@ impl Channel {
         if self.probe.targets.iter().any(|t| dot(sub(centre, t.point), t.normal) <= radius) {
             return true;
         }
+        if self.stock.is_none() {
+            return false;
+        }
+        let centre = self.stock_tip_at(m);
         let Some(run) = &self.stock else { return false };
         let sign = if rising { radius } else { -radius };
         let p: [f64; 3] = std::array::from_fn(|g| centre[g] + sign * unit[g]);

@@ -17,8 +17,10 @@
 //! - the tool's shank, the holder ([`StockOptions::holder`]) or the spindle housing touching
 //!   the stock (`stock/body.rs`).
 //!
-//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain) and
-//! `stock_spindle.rs` (TRANSMIT, TRACYL and TRAANG; a blank turning with the spindle). Skipped
+//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain),
+//! `stock_table.rs` (a rotary table without TRAORI data: TRACYL on a trunnion table) and
+//! `stock_spindle.rs` (TRANSMIT, TRACYL, TRAANG and their TRACON chain; a blank turning with
+//! the spindle). Skipped
 //! (counted in `skipped`): what `stock_spindle.rs` names.
 
 use super::{Channel, CommandError, Event};
@@ -114,6 +116,10 @@ pub struct StockInfo {
     /// Grows with every cut that removed material: the HMI fetches the changed tiles when it
     /// differs from the one it shows (`Channel::stock_changes`).
     pub version: u32,
+    /// Where the stock's frame lies in the machine's Cartesian frame now, rows of `[R | t]`
+    /// (`machine = R·p + t`): the pose of the table carrying the blank, so the HMI draws the
+    /// mesh turned with C and tilted with A/B; `None` where the blank does not move.
+    pub frame: Option<[[f64; 4]; 3]>,
 }
 
 /// What decides where one segment ends besides its geometry.
@@ -166,11 +172,13 @@ pub(super) struct StockRun {
     /// display's spindle load symbol, `snapshot_refresh.rs`).
     removing: bool,
     /// The orientation kinematics the blank is mounted on (`stock_pose.rs`).
-    kin: Option<Box<crate::kinematics::Traori>>,
+    pub(super) kin: Option<Box<crate::kinematics::Traori>>,
     /// Changes for the HMI's incremental mesh (`stock_tiles.rs`).
     pub(super) tiles: super::stock_tiles::TileLog,
     /// The work spindle the blank turns with (a lathe with driven tools, `stock_spindle.rs`).
     pub(super) mount: Option<super::stock_spindle::SpindleMount>,
+    /// The rotary table the blank turns and tilts with (`stock_table.rs`).
+    pub(super) table: Option<super::stock_table::TableMount>,
 }
 
 impl StockRun {
@@ -182,6 +190,7 @@ impl StockRun {
     fn new(stock: Stock, options: StockOptions, kin: Option<Box<crate::kinematics::Traori>>) -> StockRun {
         StockRun {
             mount: None,
+            table: None,
             housing: None,
             tiles: super::stock_tiles::TileLog::new(&stock),
             kin,
@@ -291,6 +300,7 @@ impl Channel {
             last_warning: run.warnings.back().copied(),
             skipped: run.skipped,
             version: run.tiles.version(),
+            frame: self.stock_frame(),
         })
     }
 
@@ -374,6 +384,7 @@ impl Channel {
         let mount = self.stock_spindle_mount();
         let mut run = StockRun::new(stock, self.stock_options, kin);
         run.mount = mount;
+        run.table = if matches!(run.stock, Stock::Milling(_)) { self.stock_table_mount() } else { None };
         let housing = [0, 1].map(|i| self.data.num("$MC_SPINDLE_HOUSING", 0, i));
         run.housing = (housing[0] > 0.0 && housing[1] > 0.0).then_some(housing);
         self.stock = Some(Box::new(run));
@@ -384,7 +395,11 @@ impl Channel {
     pub(super) fn cut_stock(&mut self) {
         let (line, rapid, offsets) = self.stock_meta();
         let tool = (offsets.t, offsets.d);
-        let mounted = if self.trafo.is_some() || self.stock.as_ref().is_some_and(|r| r.mount.is_some()) {
+        let table = self.stock.as_ref().and_then(|r| r.table);
+        let mounted = if let Some(m) = table {
+            let length = self.machine_tool_vector(offsets);
+            super::stock_spindle::Mounted::At(self.table_tool_pose(&m, &self.machine, length), false)
+        } else if self.trafo.is_some() || self.stock.as_ref().is_some_and(|r| r.mount.is_some()) {
             let geo = self.cfg.geo_axes;
             let toff = self.toff.current;
             let plain = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
@@ -396,7 +411,10 @@ impl Channel {
             super::stock_spindle::Mounted::At(pose, ring) => (pose, ring),
             super::stock_spindle::Mounted::Plain => {
                 let offsets = self.stock_meta().2;
-                (self.stock_tool_pose(offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref())), false)
+                (
+                    self.stock_tool_pose(&self.machine, offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref())),
+                    false,
+                )
             }
             super::stock_spindle::Mounted::Skip => {
                 if let Some(run) = self.stock.as_mut() {

@@ -14,6 +14,8 @@ use super::Channel;
 use crate::interp::Offsets;
 use crate::kinematics::AnyTrafo;
 use crate::kinematics::Traori;
+use crate::kinematics::orient::chain::ChainKind;
+use crate::motion::AxisVec;
 
 /// The tool in the blank's frame: tip (mm), unit axis (tip → holder), length (mm).
 pub(super) struct ToolPose {
@@ -33,8 +35,26 @@ impl Channel {
         }
     }
 
-    /// The tool this cycle for the stock mounted on `kin`, with the block's `offsets`.
-    pub(super) fn stock_tool_pose(&self, offsets: &Offsets, kin: Option<&Traori>) -> ToolPose {
+    /// The tool tip in the stock's frame at machine position `machine` with the channel's
+    /// offsets: on a rotary table (`stock_table.rs`) or a TRAORI chain's workpiece side
+    /// turned back with the table, in a lathe's spindle turned with it (no transformation
+    /// active); the plain BCS tip elsewhere (the probe's ball centre).
+    pub(super) fn stock_tip_at(&self, machine: &AxisVec) -> [f64; 3] {
+        let run = self.stock.as_deref();
+        if let Some(t) = run.and_then(|r| r.table) {
+            return self.table_tool_pose(&t, machine, self.machine_tool_vector(&self.offsets)).tip;
+        }
+        if let Some(run) = run
+            && let (Some(m), crate::stock::Stock::Milling(_), None) = (run.mount, &run.stock, &self.trafo)
+        {
+            return self.mount_tip_at(&m, machine, self.machine_tool_vector(&self.offsets));
+        }
+        self.stock_tool_pose(machine, &self.offsets, run.and_then(|r| r.kin.as_deref())).tip
+    }
+
+    /// The tool at machine position `machine` for the stock mounted on `kin`, with the block's
+    /// `offsets`.
+    pub(super) fn stock_tool_pose(&self, machine: &AxisVec, offsets: &Offsets, kin: Option<&Traori>) -> ToolPose {
         let geo = self.cfg.geo_axes;
         let toff = self.toff.current;
         let plain: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
@@ -50,11 +70,58 @@ impl Channel {
                 (k, k.chain().base.map(|c| c * n))
             }
             (None, None) => {
-                let tip = std::array::from_fn(|g| geo[g].map_or(0.0, |k| self.machine[k] - offsets.tool[k] - toff[g]));
+                let tip = std::array::from_fn(|g| geo[g].map_or(0.0, |k| machine[k] - offsets.tool[k] - toff[g]));
                 return ToolPose { tip, axis: [0.0, 0.0, 1.0], length: norm(plain) };
             }
         };
-        let (tip, axis) = kin.tip_and_orientation(&self.machine, &tool);
+        let (tip, axis) = kin.tip_and_orientation(machine, &tool);
         ToolPose { tip, axis, length: norm(tool) }
+    }
+
+    /// Where the stock's frame lies in the machine's Cartesian frame now (the frame of the
+    /// linear axes and the tool, which the HMI draws the machine in): the rows of `[R | t]`
+    /// with `machine = R·p + t` for a point `p` of the stock. `None` where the blank stands
+    /// still in the BCS (a 3-axis mill, a lathe's spindle, which the HMI turns itself).
+    ///
+    /// On a TRAORI chain the forward map `P(M)` of the linear axes (tool length zero) is
+    /// affine, `A·M + b`, with `A` the table's turn back: a workpiece-side chain's point lies at
+    /// `M = Aᵀ·(P − b)`; a mixed chain's table (axis 2) at `R2·P + l3 + R2·l4`; a head's
+    /// workpiece does not move (only a 7th axis turns it, `A` alone).
+    pub(super) fn stock_frame(&self) -> Option<[[f64; 4]; 3]> {
+        let run = self.stock.as_deref()?;
+        if let Some(t) = run.table {
+            let r = t.pose(&self.machine);
+            return Some(std::array::from_fn(|i| [r[i][0], r[i][1], r[i][2], 0.0]));
+        }
+        let kin = run.kin.as_deref()?;
+        if kin.chain().kind == ChainKind::Tool && kin.seventh_slot().is_none() {
+            return None; // a swivel head: the blank stands still in the BCS
+        }
+        let set = self.cfg.trafos.iter().find(|s| s.kind == crate::machine_data::TrafoKind::Traori)?;
+        let lin = [set.axes_in[0]?, set.axes_in[1]?, set.axes_in[2]?];
+        let at = |unit: Option<usize>| {
+            let mut m = self.machine;
+            for (i, k) in lin.iter().enumerate() {
+                m[*k] = if unit == Some(i) { 1.0 } else { 0.0 };
+            }
+            kin.tip_and_orientation(&m, &[0.0; 3]).0
+        };
+        let b = at(None);
+        // Rows of R = Aᵀ are the columns of A: the images of the unit moves.
+        let r: [[f64; 3]; 3] = std::array::from_fn(|i| {
+            let e = at(Some(i));
+            [e[0] - b[0], e[1] - b[1], e[2] - b[2]]
+        });
+        let apply = |v: [f64; 3]| -> [f64; 3] { std::array::from_fn(|i| (0..3).map(|c| r[i][c] * v[c]).sum()) };
+        let chain = kin.chain();
+        let t = match chain.kind {
+            ChainKind::Part => apply(b).map(|c| -c),
+            ChainKind::Mixed => {
+                let l4 = apply(chain.l4);
+                std::array::from_fn(|i| chain.l3[i] + l4[i])
+            }
+            ChainKind::Tool => [0.0; 3],
+        };
+        Some(std::array::from_fn(|i| [r[i][0], r[i][1], r[i][2], t[i]]))
     }
 }

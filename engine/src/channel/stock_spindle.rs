@@ -13,9 +13,11 @@
 //! the work spindle turns in speed control removes a ring of that grid (`ring`).
 //!
 //! TRAANG does not turn the part: the tip is the transformation's Cartesian BCS position
-//! (the inclined axis resolved into X and Z). Still skipped (counted): TRACON chains, and a
-//! TRANSMIT/TRACYL whose rotary axis is not the spindle holding the blank (a rotary table
-//! tilted by a trunnion: its TRACYL data assume the A position, which the stock does not know).
+//! (the inclined axis resolved into X and Z). A TRACON chain is its first member working on the
+//! position between the members (`Tracon::intermediate`: TRAANG's Cartesian slide), so a
+//! TRANSMIT chained before a slant bed's TRAANG cuts as TRANSMIT does. A TRANSMIT/TRACYL whose
+//! rotary axis is a table's, not a spindle's, is `stock_table.rs`'s; one whose rotary axis is
+//! neither (or a chain starting with TRAORI) is still skipped (counted).
 
 use super::Channel;
 use super::stock_pose::ToolPose;
@@ -114,6 +116,17 @@ impl Channel {
         }
     }
 
+    /// The tool tip at machine position `machine` in the frame of a milled blank clamped in the
+    /// spindle `m` (no transformation active; the probe of MEAS): `R_z(φ)·q` with the spindle's
+    /// angle now, its position from `machine` while it is an axis.
+    pub(super) fn mount_tip_at(&self, m: &SpindleMount, machine: &AxisVec, plain_tool: [f64; 3]) -> [f64; 3] {
+        let c = match self.spindles.iter().find(|s| s.axis == m.rotary) {
+            Some(s) if !s.axis_mode => s.position,
+            _ => machine[m.rotary],
+        };
+        m.rotation(c)(m.unturned(machine, plain_tool, false).0)
+    }
+
     /// The blank's placement in the workpiece frame of a spindle standing at its current angle
     /// (a blank defined on a lathe with a Y axis is milled as dexels that turn with C).
     pub(super) fn mount_placement(&self, p: crate::stock::blank::Placement) -> crate::stock::blank::Placement {
@@ -147,27 +160,44 @@ impl Channel {
         let tool = std::array::from_fn(|g| active.tool[g] + toff[g]);
         match &active.trafo {
             AnyTrafo::Traori(_) => Mounted::Plain,
-            AnyTrafo::Traang(t) => {
-                let mut bcs = self.machine;
-                t.forward(&self.machine, &tool, &mut bcs);
-                let geo = t.geo_slots();
-                let tip = std::array::from_fn(|g| geo[g].map_or(0.0, |k| bcs[k]));
-                let n = norm(tool);
-                Mounted::At(ToolPose { tip, axis: [0.0, 0.0, 1.0], length: n }, false)
-            }
+            AnyTrafo::Traang(_) => cartesian_pose(&active.trafo, &self.machine, tool),
             AnyTrafo::Transmit(_) | AnyTrafo::Tracyl(_) => {
-                let Some(m) = run_mount.filter(|m| active.trafo.rotary_slot() == Some(m.rotary)) else {
-                    return Mounted::Skip;
-                };
-                if !self.turn_stock_into_dexels() {
-                    return Mounted::Skip;
-                }
-                let rot = m.rotation(self.machine[m.rotary]);
-                let (q, l) = m.unturned(&self.machine, tool, true);
-                Mounted::At(pose(rot(q), rot(l)), false)
+                let rotary = active.trafo.rotary_slot();
+                let machine = self.machine;
+                self.polar_pose(run_mount, rotary, &machine, tool)
             }
-            AnyTrafo::Tracon(_) => Mounted::Skip,
+            // A chain: its first member works on the position between the members (the
+            // Cartesian slide of a slant bed), as it would on the machine's own axes.
+            AnyTrafo::Tracon(t) => match &t.first {
+                AnyTrafo::Traang(_) => cartesian_pose(&active.trafo, &self.machine, tool),
+                AnyTrafo::Transmit(_) | AnyTrafo::Tracyl(_) => {
+                    let (rotary, mid) = (t.first.rotary_slot(), t.intermediate(&self.machine));
+                    self.polar_pose(run_mount, rotary, &mid, tool)
+                }
+                _ => Mounted::Skip,
+            },
         }
+    }
+
+    /// The tool under TRANSMIT or TRACYL whose rotary axis is `rotary`, from the positions
+    /// `machine` of the axes it moves: in the turning part's frame if that axis is the spindle
+    /// the blank is clamped in (the profile made dexels first), else skipped.
+    fn polar_pose(
+        &mut self,
+        mount: Option<SpindleMount>,
+        rotary: Option<usize>,
+        machine: &AxisVec,
+        tool: [f64; 3],
+    ) -> Mounted {
+        let Some(m) = mount.filter(|m| rotary == Some(m.rotary)) else {
+            return Mounted::Skip;
+        };
+        if !self.turn_stock_into_dexels() {
+            return Mounted::Skip;
+        }
+        let rot = m.rotation(machine[m.rotary]);
+        let (q, l) = m.unturned(machine, tool, true);
+        Mounted::At(pose(rot(q), rot(l)), false)
     }
 
     /// Makes a turned profile the dexels of the part (once, at the first milling cut under
@@ -187,6 +217,15 @@ impl Channel {
         run.restart_tiles();
         true
     }
+}
+
+/// The Cartesian tool tip of a transformation that does not turn the part (TRAANG): its BCS.
+fn cartesian_pose(trafo: &AnyTrafo, machine: &AxisVec, tool: [f64; 3]) -> Mounted {
+    let mut bcs = *machine;
+    trafo.forward(machine, &tool, &mut bcs);
+    let geo = trafo.geo_slots();
+    let tip = std::array::from_fn(|g| geo[g].map_or(0.0, |k| bcs[k]));
+    Mounted::At(ToolPose { tip, axis: [0.0, 0.0, 1.0], length: norm(tool) }, false)
 }
 
 fn norm(v: [f64; 3]) -> f64 {

@@ -31,3 +31,16 @@ pub fn run(preset: &str, md: &str, options: StockOptions, program: &str) -> (Sto
     }
     (info, warnings, ch)
 }
+
+/// The material intervals along Z of the dexel cell whose square holds (x, y) (the stock's
+/// frame); panics if the stock is not dexels. Not every test file reads cells.
+#[allow(dead_code)]
+pub fn cell(ch: &mut Channel, x: f64, y: f64) -> Vec<[f32; 2]> {
+    let Some(nctwin_engine::stock::Stock::Milling(g)) = ch.stock() else { panic!("the stock is not dexels") };
+    let (x0, y0) = g.origin();
+    let res = g.resolution();
+    let (i, j) = (((x - x0) / res) as usize, ((y - y0) / res) as usize);
+    let mut iv = Vec::new();
+    g.intervals(i, j, &mut iv);
+    iv
+}

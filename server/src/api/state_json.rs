@@ -370,6 +370,22 @@ fn write_stock(out: &mut String, s: &StockInfo) {
     }
     out.push_str(",\"version\":");
     write_int(out, s.version);
+    out.push_str(",\"frame\":");
+    match &s.frame {
+        None => out.push_str("null"),
+        Some(rows) => {
+            for (i, row) in rows.iter().enumerate() {
+                out.push_str(if i == 0 { "[[" } else { "],[" });
+                for (j, v) in row.iter().enumerate() {
+                    if j > 0 {
+                        out.push(',');
+                    }
+                    write_f64(out, *v);
+                }
+            }
+            out.push_str("]]");
+        }
+    }
     out.push('}');
 }
 
@@ -529,6 +545,9 @@ mod tests {
         // A blank cut by a rapid (the stock summary with its last warning).
         let stock = "T1 D1\nG0 Z50\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,-10,-10,50,40)\nG0 X-20 Y15 Z-3\nG0 X60\nM30";
         assert!(run(&mut encoder, "mill-3axis", stock) > 10);
+        // A blank on a trunnion table that turns: the stock's frame in the summary.
+        let table = "T1 D1\nG0 Z80\nWORKPIECE(,\"\",,\"BOX\",112,0,-20,,-10,-10,30,10)\nG0 A20 C30\nM30";
+        assert!(run(&mut encoder, "mill5-table-ac", table) > 10);
         // Positioning axes: POSA across a block, POS waited for, POSP in parts, a command axis.
         let positioning = "POSA[Z]=-5 FA[Z]=300\nG1 X4 F600\nWAITP(Z)\nPOSP[Y]=(3, 1) FA[Y]=900\nM30";
         assert!(run(&mut encoder, "mill-3axis", positioning) > 10);

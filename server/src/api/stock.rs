@@ -72,6 +72,11 @@ pub struct StockSummary {
     /// Grows with every cut that removed material: fetch `GET .../stock/changes?since=` when
     /// it differs from the version shown.
     pub version: u32,
+    /// Where the stock's frame lies in the machine's Cartesian frame now, as the rows of
+    /// `[R | t]` (`machine = R·p + t`, mm): the pose of the rotary table carrying the blank,
+    /// so the mesh (given in the stock's frame) turns with C and tilts with A/B on screen.
+    /// `null` where the blank does not move (a 3-axis mill, a lathe).
+    pub frame: Option<[[f64; 4]; 3]>,
 }
 
 impl From<&StockInfo> for StockSummary {
@@ -85,6 +90,7 @@ impl From<&StockInfo> for StockSummary {
             warnings: s.warnings,
             last_warning: s.last_warning.as_ref().map(StockWarningInfo::from),
             version: s.version,
+            frame: s.frame,
         }
     }
 }

@@ -93,6 +93,12 @@ export interface StockSummary {
   last_warning: StockWarning | null;
   /** Grows with every cut: the tiles changed since the version shown are fetched again. */
   version: number;
+  /**
+   * Where the stock's frame lies in the machine's Cartesian frame now, rows of [R | t]
+   * (machine = R·p + t): the pose of the table carrying the blank; null (or absent, an older
+   * server) where the blank does not move.
+   */
+  frame?: [number, number, number, number][] | null;
 }
 
 /** A positioning axis: machine axis name, end point (null: endless MOV), mm/min or deg/min. */

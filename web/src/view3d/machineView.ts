@@ -512,7 +512,8 @@ export class MachineView {
     this.triad.setAxes(this.wcsAxes);
     this.programmed.line.renderOrder = 2;
     this.toolpath.line.renderOrder = 3;
-    this.model.part.add(this.triad.group, this.toolpath.line, this.programmed.line, this.check.group, this.stock.group);
+    this.model.part.add(this.triad.group, this.toolpath.line, this.programmed.line, this.check.group);
+    this.stock.mount(this.model.part, this.model.frame);
     this.model.frame.add(this.tool.mesh);
     this.content.add(this.model.root);
     this.model.update({}, false);
@@ -614,6 +615,11 @@ export function mountMachineView(session: SessionController): MachineView {
     marker: () => (view.check.marker.visible ? view.check.marker.position.toArray() : null),
     /** A lathe's part: the machine Z of its end face (at the WCS zero). */
     partEnd: () => view.partEnd(),
+    /** The angle (degrees) the stock mesh is turned about the machine axis `about`. */
+    stockTurn: (about: [number, number, number]) => view.stock.turn(about),
+    /** The stock's meshes shown and their version; the check marks (check, line). */
+    stockMeshes: () => view.stock.shownMeshes(),
+    stockMarks: () => view.stock.markList(),
     /** The blank outline drawn (BCS min and max), null without one. */
     blank: () => (view.check.blank ? [view.check.blank.min.toArray(), view.check.blank.max.toArray()] : null),
     /** Executed path points that came from the session's history. */

@@ -10,6 +10,10 @@
 // once when the program rests and nothing was pushed within PUSH_GRACE_MS, at most every
 // REFRESH_MS while it cuts, and when a push says `reload`. The checks (rapid into stock, no spindle, depth of cut, holder
 // collision) are marked where their segment began: red for a rapid, orange for the others.
+// The stock lives in the frame of the table that carries it: where the state names that
+// frame's pose (`stock.frame`, a blank on a rotary or trunnion table), the mesh hangs in the
+// machine frame placed by it, so it turns with C and tilts with A/B as the engine cuts it;
+// elsewhere it stays in the part frame (the BCS, a lathe's spindle).
 
 import * as THREE from "three";
 import { fromBase64, type StockPush } from "../api/stockPush";
@@ -95,10 +99,71 @@ export class StockView {
   private behindSince = -Infinity;
   /** Pushes arrive on this session's stream. */
   private pushed = false;
+  /** The part frame (BCS) and the machine frame of the model the stock hangs in. */
+  private part: THREE.Object3D | null = null;
+  private machine: THREE.Object3D | null = null;
+  private readonly pose = new THREE.Matrix4();
 
   constructor(private readonly redraw: () => void) {
     this.meshes.renderOrder = 1;
     this.group.add(this.meshes, this.marks);
+    this.group.matrixAutoUpdate = false;
+  }
+
+  /** Hangs the stock in a (new) machine model: its part frame and its machine frame. */
+  mount(part: THREE.Object3D, machine: THREE.Object3D): void {
+    this.part = part;
+    this.machine = machine;
+    part.add(this.group);
+    this.group.matrix.identity();
+  }
+
+  /**
+   * Places the stock with the table's pose of the state (rows of [R | t], machine frame), or
+   * in the part frame without one.
+   */
+  private placeFrame(frame: [number, number, number, number][] | null | undefined): void {
+    const parent = frame ? this.machine : this.part;
+    if (!parent) return;
+    if (this.group.parent !== parent) parent.add(this.group);
+    if (frame) {
+      const [a, b, c] = frame;
+      this.pose.set(a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3], c[0], c[1], c[2], c[3], 0, 0, 0, 1);
+    } else {
+      this.pose.identity();
+    }
+    if (!this.pose.equals(this.group.matrix)) {
+      this.group.matrix.copy(this.pose);
+      this.group.matrixWorldNeedsUpdate = true;
+      this.redraw();
+    }
+  }
+
+  /** The meshes shown and the stock version they show (for the browser test). */
+  shownMeshes(): { meshes: number; version: number } {
+    return { meshes: this.tiles.size, version: this.shown };
+  }
+
+  /** The check marks drawn: which check and the program line (for the browser test). */
+  markList(): { check: string; line: number }[] {
+    return this.marks.children.map((m) => ({ check: String(m.userData.check), line: Number(m.userData.line) }));
+  }
+
+  /**
+   * The angle (degrees) the stock is turned about the machine axis `about` relative to the
+   * machine frame (for the browser test); null before a model is mounted.
+   */
+  turn(about: [number, number, number]): number | null {
+    if (!this.machine) return null;
+    this.group.updateWorldMatrix(true, false);
+    this.machine.updateWorldMatrix(true, false);
+    const q = this.group.getWorldQuaternion(new THREE.Quaternion());
+    q.premultiply(this.machine.getWorldQuaternion(new THREE.Quaternion()).invert());
+    const axis = new THREE.Vector3(...about).normalize();
+    const ref = Math.abs(axis.z) < 0.9 ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(1, 0, 0);
+    ref.sub(axis.clone().multiplyScalar(ref.dot(axis))).normalize();
+    const turned = ref.clone().applyQuaternion(q);
+    return THREE.MathUtils.radToDeg(Math.atan2(axis.dot(ref.clone().cross(turned)), ref.dot(turned)));
   }
 
   attach(id: string): void {
@@ -122,6 +187,7 @@ export class StockView {
 
   show(st: State, now = performance.now()): void {
     const stock = st.stock;
+    this.placeFrame(stock?.frame);
     if (!stock) {
       if (this.tiles.size || this.marks.children.length) {
         this.clearMeshes();
