@@ -99,8 +99,12 @@ pub struct SyncActions {
     /// Test switch: every condition evaluated in every cycle (the reference the horizons
     /// are checked against).
     pub(super) horizon_off: bool,
+    /// Actions not run but computed when read, and their inputs (`sync_lazy.rs`).
+    pub(super) deferred: super::sync_lazy::Deferred,
     /// Conditions evaluated so far.
     pub(super) evaluations: u64,
+    /// IPO cycles in which the actions' cycle ran (not skipped while all sleep).
+    pub(super) cycles_run: u64,
 }
 
 impl Default for SyncActions {
@@ -135,7 +139,9 @@ impl Default for SyncActions {
             deps: 0,
             reads_velocity: false,
             horizon_off: false,
+            deferred: Default::default(),
             evaluations: 0,
+            cycles_run: 0,
         }
     }
 }
@@ -191,9 +197,22 @@ impl SyncActions {
         self.evaluations
     }
 
+    /// In how many IPO cycles the actions' cycle ran (the others cost a few compares): the
+    /// deterministic measure of their cost for tests.
+    pub fn cycles_run(&self) -> u64 {
+        self.cycles_run
+    }
+
     /// Whether any synchronized action is active.
     pub(super) fn is_active(&self) -> bool {
         !self.active.is_empty()
+    }
+
+    /// Data block preparation has not seen: changed (`dirty`), or changing unseen in every
+    /// cycle (deferred actions).
+    #[inline]
+    fn unpublished(&self) -> bool {
+        self.dirty || self.deferred.any()
     }
 
     #[inline]
@@ -234,7 +253,9 @@ impl SyncActions {
 
     /// Test switch: `false` evaluates every condition in every cycle (no horizons).
     fn set_horizons(&mut self, on: bool) {
+        self.store_deferred();
         self.horizon_off = !on;
+        self.replan_deferred();
         self.wake_all();
     }
 
@@ -245,22 +266,26 @@ impl SyncActions {
         self.reads_velocity && !before
     }
 
-    /// The data as block preparation reads it.
+    /// The data as block preparation reads it (the deferred actions' values computed).
     fn main_run_data(&self) -> MainRunData {
+        let data = self.with_deferred();
+        let data = &*data;
         MainRunData {
-            markers: self.markers.to_vec(),
-            params: self.params.to_vec(),
-            timers: self.timers.to_vec(),
-            analog_in: self.analog_in.to_vec(),
-            analog_out: self.analog_out.to_vec(),
-            deleted: self.deleted,
+            markers: data.markers.to_vec(),
+            params: data.params.to_vec(),
+            timers: data.timers.to_vec(),
+            analog_in: data.analog_in.to_vec(),
+            analog_out: data.analog_out.to_vec(),
+            deleted: data.deleted,
             machine: None,
         }
     }
 
     /// Program end or reset: modal and block-modal actions end, static ones stay.
     pub fn end_program(&mut self) {
+        self.store_deferred();
         self.active.retain(|a| matches!(a.def.id, Some(SyncId::Static(_))));
+        self.replan_deferred();
         self.block_modal = false;
         self.note_velocity_readers();
         self.wake_all();
@@ -297,9 +322,10 @@ impl SyncActions {
 }
 
 impl Channel {
-    /// The synchronized actions and their data.
-    pub fn sync_actions(&self) -> &SyncActions {
-        &self.sync
+    /// The synchronized actions and their data (with the values of deferred actions,
+    /// `sync_lazy.rs`, computed: then a copy).
+    pub fn sync_actions(&self) -> std::borrow::Cow<'_, SyncActions> {
+        self.sync.with_deferred()
     }
 
     /// Test switch: `false` evaluates every synchronized action's condition in every IPO
@@ -377,13 +403,10 @@ impl Channel {
     /// program's moves are queued no block that reads main-run data is prepared, so the copy
     /// is not made in every cycle.
     fn publish_sync_data(&mut self) {
-        if !self.sync.dirty {
+        if !self.sync.unpublished() {
             return;
         }
-        let may_read = self.blending.prep_waits_for_main_run
-            || self.status != super::Status::Running
-            || self.pending.is_empty() && self.planner.is_empty();
-        if may_read {
+        if self.prep_may_read() {
             self.sync.dirty = false;
             self.interp.set_sync_data(self.sync.main_run_data());
         }
@@ -412,6 +435,7 @@ impl Channel {
             deps,
             run_each: false,
         };
+        self.sync.store_deferred();
         let list = &mut self.sync.active;
         match new.def.id {
             Some(id) => {
@@ -435,6 +459,7 @@ impl Channel {
                 clear: crate::alarm::Clear::Reset,
             });
         }
+        self.sync.replan_deferred();
         if self.sync.note_velocity_readers() {
             // `$AA_VACTM` counts from the setpoints of now (main-run blocks are activated
             // with the path at rest).
@@ -445,6 +470,7 @@ impl Channel {
     /// Main run: CANCEL/LOCK/UNLOCK/RESET(ids). An ID no action has is passed over.
     pub(super) fn control_sync(&mut self, op: SyncControl, ids: &[u32]) {
         let hit = |a: &ActiveSync| a.def.id.is_some_and(|i| ids.contains(&i.number()));
+        self.sync.store_deferred();
         match op {
             SyncControl::Cancel => self.sync.active.retain(|a| !hit(a)),
             _ => {
@@ -460,27 +486,56 @@ impl Channel {
                 }
             }
         }
+        self.sync.replan_deferred();
         self.sync.note_velocity_readers();
         self.sync.wake();
     }
 
     /// One IPO cycle of the synchronized actions: one test when none is active; while all
     /// sleep (no horizon ends, none runs its actions in every cycle) three compares: the
-    /// wake cycle, the block (`$AC_TIME` counts from its start), the offsets (`$AA_IW`).
+    /// wake cycle, the block (`$AC_TIME` counts from its start), the offsets (`$AA_IW`); then
+    /// the setpoints for `$AA_VACTM` and the inputs of deferred actions are kept
+    /// (`sync_lazy.rs`), and the cycle runs when block preparation may read their values.
     #[inline]
     pub(super) fn step_sync_actions(&mut self) {
-        if !self.sync.idle()
-            && (self.tick >= self.sync.next_wake
-                || self.current_line != self.sync.block
-                || !self.sync.frame_of(&self.offsets))
+        if !self.sync.idle() {
+            self.step_active_sync();
+        }
+    }
+
+    /// [`Channel::step_sync_actions`] with actions (or their data) active.
+    #[inline]
+    fn step_active_sync(&mut self) {
+        if self.tick >= self.sync.next_wake
+            || self.current_line != self.sync.block
+            || !self.sync.frame_of(&self.offsets)
+            || self.sync.unpublished() && self.prep_may_read()
         {
             self.run_sync_cycle();
+        } else {
+            self.keep_sync_history();
+        }
+    }
+
+    /// What a cycle in which the actions sleep keeps for later ones: the setpoints of now
+    /// for `$AA_VACTM`, the deferred actions' inputs.
+    #[inline]
+    fn keep_sync_history(&mut self) {
+        if self.sync.reads_velocity {
+            // In two halves: a 160-byte copy is a call to memcpy, 80 bytes are moves inline.
+            let half = MAX_CHANNEL_AXES / 2;
+            self.sync.prev_setpoint[..half].copy_from_slice(&self.machine[..half]);
+            self.sync.prev_setpoint[half..].copy_from_slice(&self.machine[half..]);
+        }
+        if self.sync.deferred.any() {
+            self.keep_deferred_inputs();
         }
     }
 
     /// Out of line: the IPO cycle's own code stays small (ARCHITECTURE: the IPO cycle's code).
     #[inline(never)]
     fn run_sync_cycle(&mut self) {
+        self.sync.cycles_run += 1;
         let dt = self.cfg.ipo_cycle;
         let tick = self.tick;
         if self.sync.timing {
@@ -510,6 +565,7 @@ impl Channel {
         // Block-modal actions: bound to the first motion block after them, gone after it.
         if self.sync.block_modal {
             let running = self.in_planner.front().map(|(_, m)| m.line);
+            let before = active.len();
             active.retain_mut(|a| {
                 if a.def.id.is_some() {
                     return true;
@@ -524,8 +580,22 @@ impl Channel {
                 }
             });
             self.sync.block_modal = active.iter().any(|a| a.def.id.is_none());
+            if active.len() != before {
+                // The places changed: the mask of the actions run in every cycle is made
+                // again by a full check (a stale bit pointed past the list's end).
+                self.sync.cond_wake = 0;
+            }
         }
-        let mut failed = self.check_actions(&mut active);
+        let failed = self.check_actions(&mut active);
+        if self.sync.deferred.any()
+            && let Some((at, _)) = failed
+        {
+            // The deferred actions after the failed one did not run in this cycle.
+            self.sync.active = std::mem::take(&mut active);
+            self.keep_deferred_inputs_until(at);
+            active = std::mem::take(&mut self.sync.active);
+        }
+        let mut failed = failed.map(|(_, alarm)| alarm);
         if self.psync.rdisable_armed {
             // Set when an action with RDISABLE was activated: nothing to look at without one.
             self.psync.rdisable_armed = active.iter().any(|a| !a.locked && a.def.disables_read_in());
@@ -538,17 +608,19 @@ impl Channel {
         {
             failed = Some(*alarm);
         }
-        if self.sync.reads_velocity {
-            // In two halves: a 160-byte copy is a call to memcpy, 80 bytes are moves inline.
-            let half = MAX_CHANNEL_AXES / 2;
-            self.sync.prev_setpoint[..half].copy_from_slice(&self.machine[..half]);
-            self.sync.prev_setpoint[half..].copy_from_slice(&self.machine[half..]);
+        if failed.is_some() {
+            // Only the setpoints: the deferred inputs were kept as far as the actions ran.
+            let deferred = std::mem::take(&mut self.sync.deferred);
+            self.keep_sync_history();
+            self.sync.deferred = deferred;
+        } else {
+            self.keep_sync_history();
         }
         self.publish_sync_data();
+        // Data not yet handed to block preparation (`dirty`) waits for `prep_may_read`, which
+        // `step_active_sync` tests in every cycle.
         let each_cycle = self.sync.timing
-            || self.sync.dirty
             || self.sync.block_modal
-            || self.sync.reads_velocity
             || self.sync.axis_ovr_written
             || self.psync.rdisable
             || self.psync.running_cycles()
