@@ -94,8 +94,9 @@ pub struct SyncActions {
     pub(super) each: u64,
     /// What the conditions of the checked actions read (their data and events together).
     pub(super) deps: u64,
-    /// An active action reads `$AA_VACTM` (the setpoints of the cycle before are kept).
-    reads_velocity: bool,
+    /// The channel axes whose `$AA_VACTM` an active action reads (their setpoints of the
+    /// cycle before are kept; all of them for a technology cycle).
+    velocity_axes: u32,
     /// Test switch: every condition evaluated in every cycle (the reference the horizons
     /// are checked against).
     pub(super) horizon_off: bool,
@@ -137,7 +138,7 @@ impl Default for SyncActions {
             cond_wake: 0,
             each: 0,
             deps: 0,
-            reads_velocity: false,
+            velocity_axes: 0,
             horizon_off: false,
             deferred: Default::default(),
             evaluations: 0,
@@ -259,11 +260,11 @@ impl SyncActions {
         self.wake_all();
     }
 
-    /// Notes whether an active action reads `$AA_VACTM`; returns whether one began to.
-    fn note_velocity_readers(&mut self) -> bool {
-        let before = self.reads_velocity;
-        self.reads_velocity = self.active.iter().any(|a| reads_velocity(&a.def));
-        self.reads_velocity && !before
+    /// Notes the axes whose `$AA_VACTM` active actions read; returns those read from now on.
+    fn note_velocity_readers(&mut self) -> u32 {
+        let before = self.velocity_axes;
+        self.velocity_axes = self.active.iter().fold(0, |axes, a| axes | velocity_axes(&a.def));
+        self.velocity_axes & !before
     }
 
     /// The data as block preparation reads it (the deferred actions' values computed).
@@ -460,10 +461,11 @@ impl Channel {
             });
         }
         self.sync.replan_deferred();
-        if self.sync.note_velocity_readers() {
+        let new = self.sync.note_velocity_readers();
+        for k in (0..MAX_CHANNEL_AXES).filter(|k| new & (1 << k) != 0) {
             // `$AA_VACTM` counts from the setpoints of now (main-run blocks are activated
             // with the path at rest).
-            self.sync.prev_setpoint = self.machine;
+            self.sync.prev_setpoint[k] = self.machine[k];
         }
     }
 
@@ -521,11 +523,11 @@ impl Channel {
     /// for `$AA_VACTM`, the deferred actions' inputs.
     #[inline]
     fn keep_sync_history(&mut self) {
-        if self.sync.reads_velocity {
-            // In two halves: a 160-byte copy is a call to memcpy, 80 bytes are moves inline.
-            let half = MAX_CHANNEL_AXES / 2;
-            self.sync.prev_setpoint[..half].copy_from_slice(&self.machine[..half]);
-            self.sync.prev_setpoint[half..].copy_from_slice(&self.machine[half..]);
+        let mut axes = self.sync.velocity_axes;
+        while axes != 0 {
+            let k = axes.trailing_zeros() as usize;
+            axes &= axes - 1;
+            self.sync.prev_setpoint[k] = self.machine[k];
         }
         if self.sync.deferred.any() {
             self.keep_deferred_inputs();
@@ -663,19 +665,27 @@ impl Channel {
     }
 }
 
-/// Whether an action reads `$AA_VACTM` (in its condition or its actions; a technology cycle
-/// counts as reading it).
-fn reads_velocity(def: &SyncDef) -> bool {
+/// The channel axes whose `$AA_VACTM` an action reads (in its condition or its actions; a
+/// technology cycle counts as reading all).
+fn velocity_axes(def: &SyncDef) -> u32 {
     use crate::interp::synchronized::flat::{Act, Code, Op};
-    let reads = |c: &Code| {
-        c.ops.iter().any(|op| matches!(op, Op::Read(Slot::AaVactm(_)) | Op::Compare(Slot::AaVactm(_), _, _)))
-    };
-    def.flat_condition.as_ref().is_some_and(reads)
-        || def.flat_actions.iter().any(|act| match act {
-            Act::Set { value, index, .. } => reads(value) || reads(index),
-            Act::Aux { value, .. } | Act::Command { value, .. } | Act::Preset { value, .. } => reads(value),
-            Act::WaitMarker { marker, .. } => reads(marker),
-            Act::Cycle(_) | Act::CycleName(_) => true,
-            Act::DelDtg | Act::StopReOf | Act::RDisable => false,
+    let axes = |c: &Code| {
+        c.ops.iter().fold(0u32, |axes, op| match op {
+            Op::Read(Slot::AaVactm(k)) | Op::Compare(Slot::AaVactm(k), _, _) => {
+                axes | 1u32.checked_shl(*k as u32).unwrap_or(0)
+            }
+            _ => axes,
         })
+    };
+    let mut all = def.flat_condition.as_ref().map_or(0, axes);
+    for act in &def.flat_actions {
+        all |= match act {
+            Act::Set { value, index, .. } => axes(value) | axes(index),
+            Act::Aux { value, .. } | Act::Command { value, .. } | Act::Preset { value, .. } => axes(value),
+            Act::WaitMarker { marker, .. } => axes(marker),
+            Act::Cycle(_) | Act::CycleName(_) => u32::MAX >> (32 - MAX_CHANNEL_AXES),
+            Act::DelDtg | Act::StopReOf | Act::RDisable => 0,
+        };
+    }
+    all
 }
