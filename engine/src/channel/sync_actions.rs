@@ -505,8 +505,9 @@ impl Channel {
         }
     }
 
-    /// [`Channel::step_sync_actions`] with actions (or their data) active.
-    #[inline]
+    /// [`Channel::step_sync_actions`] with actions (or their data) active. Out of line: the
+    /// IPO cycle without actions keeps its one test.
+    #[inline(never)]
     fn step_active_sync(&mut self) {
         if self.tick >= self.sync.next_wake
             || self.current_line != self.sync.block
