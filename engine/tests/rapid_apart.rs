@@ -31,11 +31,11 @@ fn rtliof_moves_each_axis_at_its_own_rapid() {
     let ipo = channel("mill-3axis", "").config().ipo_cycle;
     let (y, cycles) = y_at_x50("RTLIOF");
     assert!((y - 10.0).abs() < 1e-9, "Y at X=50: {y}");
-    // The single-axis interpolator of POS (channel/positioning_axes.rs) brakes along √(2·a·rest)
-    // evaluated once per cycle and ends about 7 % early (85 cycles of 4 ms instead of 92): the
-    // block time is held to 8 % of the hand value until that profile is exact.
-    let t = cycles as f64 * ipo;
-    assert!((t - 0.3667).abs() < 0.08 * 0.3667, "block time {t}, ipo {ipo}, cycles {cycles}");
+    // The single-axis interpolator of POS (channel/positioning_axes.rs) runs the exact discrete
+    // trapezoid, which is L/(V·dt) + V/(a·dt) − 1 = 50 + 41.67 − 1 = 90.67 cycles of 4 ms with
+    // a·dt = 12 mm/s: 91 moving cycles, the last one landing on X100; counted here from the
+    // first sample past 0 to the last one short of the end, 90.
+    assert_eq!(cycles, 90, "block time {} s", cycles as f64 * ipo);
 }
 
 #[test]

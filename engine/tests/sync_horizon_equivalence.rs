@@ -53,7 +53,9 @@ fn condition(r: &mut Rng) -> String {
         9 => format!("$A_INA[1]{cmp}{}", r.range(0.0, 10.0)),
         10 => format!("SQRT(POT($AA_IM[X])+POT($AA_IM[Y])){cmp}{}", r.range(0.0, 100.0)),
         11 => format!("($AA_IM[X]>{}) AND ($AA_IW[Z]<{})", r.range(0.0, 60.0), r.range(-15.0, 5.0)),
-        12 => format!("$AC_MARKER[7]>{}", r.below(4)),
+        12 if r.below(2) == 0 => format!("$AC_MARKER[7]>{}", r.below(4)),
+        // A reader of a deferred action's parameter: that action is run, not deferred.
+        12 => format!("$AC_PARAM[31]{cmp}{}", r.range(-60.0, 120.0)),
         13 => format!("ABS($AA_IW[Y]-{}){cmp}{}", r.range(0.0, 60.0), r.range(0.0, 10.0)),
         14 => format!("($AA_IM[Y]*2-$AA_IM[X])/4{cmp}{}", r.range(-20.0, 40.0)),
         _ => format!("$AC_OVR<{} OR $AA_IM[X]>{}", r.range(60.0, 120.0), r.range(0.0, 80.0)),
@@ -71,6 +73,16 @@ fn program(r: &mut Rng) -> String {
     }
     let count = 2 + r.below(7);
     for id in 1..=count {
+        if r.below(4) == 0 {
+            // Deferred (`sync_lazy.rs`) unless another action reads or writes the element
+            // (marker 5 when two of them write it, parameter 31 when a condition reads it).
+            let kind = if r.below(3) == 0 { "IDS" } else { "ID" };
+            text.push_str(&format!(
+                "{kind}={id} DO $AC_PARAM[{}]=$AA_IM[X]*2-$AA_IPO[Y] $AC_MARKER[5]=$AA_IM[Z]*10+{id}\n",
+                30 + id
+            ));
+            continue;
+        }
         let trigger = r.pick(&["WHEN", "WHENEVER", "FROM", "EVERY"]);
         let cond = condition(r);
         let mut action = format!("$AC_PARAM[{id}]=$AC_PARAM[{id}]+1");
@@ -85,7 +97,12 @@ fn program(r: &mut Rng) -> String {
         text.push_str(&format!("{kind}={id} {trigger} {cond} DO {action}\n"));
     }
     for _ in 0..(3 + r.below(6)) {
-        match r.below(14) {
+        match r.below(15) {
+            // Block preparation reads what deferred actions wrote (it waits for the main run).
+            14 => text.push_str(&format!(
+                "G1 X=ABS($AC_PARAM[{}]) MOD 40 Y=ABS($AC_MARKER[5]) MOD 30 F6000\n",
+                31 + r.below(count)
+            )),
             // A block-modal action on the next motion block, which an input may cut short.
             10 => text.push_str(&format!("WHEN $A_IN[{}]==1 DO DELDTG\n", 1 + r.below(3))),
             11 => text.push_str(&format!("WHENEVER {} DO $AC_MARKER[6]=$AC_MARKER[6]+1\n", condition(r))),

@@ -49,6 +49,7 @@ mod stock_tiles;
 pub mod sync_actions;
 mod sync_eval;
 mod sync_horizon;
+mod sync_lazy;
 mod sync_schedule;
 mod toff;
 pub mod tool_list;

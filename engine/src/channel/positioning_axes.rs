@@ -23,6 +23,7 @@ use super::Channel;
 use crate::alarm::Alarm;
 use crate::interp::path_control::positioning::{Motion, Parts};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::stop_speed;
 
 /// One axis travelling on its own.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,20 +60,29 @@ impl Travel {
     }
 
     /// One cycle of `dt`; true once the axis stands on its target. With `hold` it brakes.
+    ///
+    /// The exact discrete trapezoid: this cycle's speed is the lowest of the feed, the last
+    /// speed plus `a·dt`, and the path planner's [`stop_speed`] of the rest (the fastest speed
+    /// from which cycle-wise braking by `a·dt` stops on the target, the stop after the last
+    /// cycle included), so no cycle changes speed by more than `a·dt` and the last cycle's
+    /// travel ends on the target. (Braking along the continuous `√(2·a·rest)` ended a few
+    /// percent early with a last step above the acceleration.)
     fn step(&mut self, dt: f64, hold: bool) -> bool {
         let rest = self.target - self.position;
         if rest == 0.0 && self.velocity == 0.0 {
             return true;
         }
         let dir = if hold { 0.0 } else { rest.signum() };
-        // The fastest speed from which the axis still stops on the target.
-        let stoppable = (2.0 * self.accel * rest.abs()).sqrt();
+        // Endless motion (`MOV`) has no stop to brake for.
+        let stoppable = if rest.is_finite() { stop_speed(rest.abs(), self.accel, dt) } else { f64::INFINITY };
         let wanted = dir * self.feed.min(stoppable);
         let dv = (wanted - self.velocity).clamp(-self.accel * dt, self.accel * dt);
         self.velocity += dv;
         let next = self.position + self.velocity * dt;
-        if !hold && (self.target - next) * rest <= 0.0 {
-            // Reached or passed within this cycle: it stands on the target.
+        // Reached within this cycle (up to the rounding of the speed's inverse: a last step of
+        // less than a nanometre would be a cycle of its own), or passed after a change of
+        // target the axis could not brake for: it stands on the target.
+        if !hold && ((self.target - next) * rest <= 0.0 || (self.target - next).abs() < LANDING) {
             self.position = self.target;
             self.velocity = 0.0;
             return true;
@@ -80,6 +90,18 @@ impl Travel {
         self.position = next;
         false
     }
+}
+
+/// Below this rest (mm or degrees) a cycle's travel counts as landing on the target: far below
+/// any control's position resolution, far above the rounding of [`stop_speed`].
+const LANDING: f64 = 1e-9;
+
+/// The travel while braking at once from `v` by `a·dt` per cycle to rest: the speeds
+/// `v − a·dt, v − 2·a·dt, ..` while positive, one cycle each.
+fn brake_distance(v: f64, a: f64, dt: f64) -> f64 {
+    let b = a * dt;
+    let m = (v / b).ceil() - 1.0;
+    if m <= 0.0 { 0.0 } else { dt * (m * v - b * m * (m + 1.0) / 2.0) }
 }
 
 /// A positioning axis as the state shows it (`Snapshot::positioning`): one per axis that
@@ -236,7 +258,7 @@ impl Channel {
     pub(super) fn stop_positioning(&mut self, k: usize) {
         if let Some(t) = self.positioning.axes[k].as_mut() {
             t.parts = None;
-            let brake = t.velocity * t.velocity / (2.0 * t.accel);
+            let brake = brake_distance(t.velocity.abs(), t.accel, self.cfg.ipo_cycle);
             t.target = t.position + t.velocity.signum() * brake;
             if t.velocity == 0.0 {
                 t.target = t.position;

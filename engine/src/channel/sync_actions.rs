@@ -94,13 +94,18 @@ pub struct SyncActions {
     pub(super) each: u64,
     /// What the conditions of the checked actions read (their data and events together).
     pub(super) deps: u64,
-    /// An active action reads `$AA_VACTM` (the setpoints of the cycle before are kept).
-    reads_velocity: bool,
+    /// The channel axes whose `$AA_VACTM` an active action reads (their setpoints of the
+    /// cycle before are kept; all of them for a technology cycle).
+    velocity_axes: u32,
     /// Test switch: every condition evaluated in every cycle (the reference the horizons
     /// are checked against).
     pub(super) horizon_off: bool,
+    /// Actions not run but computed when read, and their inputs (`sync_lazy.rs`).
+    pub(super) deferred: super::sync_lazy::Deferred,
     /// Conditions evaluated so far.
     pub(super) evaluations: u64,
+    /// IPO cycles in which the actions' cycle ran (not skipped while all sleep).
+    pub(super) cycles_run: u64,
 }
 
 impl Default for SyncActions {
@@ -133,9 +138,11 @@ impl Default for SyncActions {
             cond_wake: 0,
             each: 0,
             deps: 0,
-            reads_velocity: false,
+            velocity_axes: 0,
             horizon_off: false,
+            deferred: Default::default(),
             evaluations: 0,
+            cycles_run: 0,
         }
     }
 }
@@ -191,9 +198,22 @@ impl SyncActions {
         self.evaluations
     }
 
+    /// In how many IPO cycles the actions' cycle ran (the others cost a few compares): the
+    /// deterministic measure of their cost for tests.
+    pub fn cycles_run(&self) -> u64 {
+        self.cycles_run
+    }
+
     /// Whether any synchronized action is active.
     pub(super) fn is_active(&self) -> bool {
         !self.active.is_empty()
+    }
+
+    /// Data block preparation has not seen: changed (`dirty`), or changing unseen in every
+    /// cycle (deferred actions).
+    #[inline]
+    fn unpublished(&self) -> bool {
+        self.dirty || self.deferred.any()
     }
 
     #[inline]
@@ -234,33 +254,39 @@ impl SyncActions {
 
     /// Test switch: `false` evaluates every condition in every cycle (no horizons).
     fn set_horizons(&mut self, on: bool) {
+        self.store_deferred();
         self.horizon_off = !on;
+        self.replan_deferred();
         self.wake_all();
     }
 
-    /// Notes whether an active action reads `$AA_VACTM`; returns whether one began to.
-    fn note_velocity_readers(&mut self) -> bool {
-        let before = self.reads_velocity;
-        self.reads_velocity = self.active.iter().any(|a| reads_velocity(&a.def));
-        self.reads_velocity && !before
+    /// Notes the axes whose `$AA_VACTM` active actions read; returns those read from now on.
+    fn note_velocity_readers(&mut self) -> u32 {
+        let before = self.velocity_axes;
+        self.velocity_axes = self.active.iter().fold(0, |axes, a| axes | velocity_axes(&a.def));
+        self.velocity_axes & !before
     }
 
-    /// The data as block preparation reads it.
+    /// The data as block preparation reads it (the deferred actions' values computed).
     fn main_run_data(&self) -> MainRunData {
+        let data = self.with_deferred();
+        let data = &*data;
         MainRunData {
-            markers: self.markers.to_vec(),
-            params: self.params.to_vec(),
-            timers: self.timers.to_vec(),
-            analog_in: self.analog_in.to_vec(),
-            analog_out: self.analog_out.to_vec(),
-            deleted: self.deleted,
+            markers: data.markers.to_vec(),
+            params: data.params.to_vec(),
+            timers: data.timers.to_vec(),
+            analog_in: data.analog_in.to_vec(),
+            analog_out: data.analog_out.to_vec(),
+            deleted: data.deleted,
             machine: None,
         }
     }
 
     /// Program end or reset: modal and block-modal actions end, static ones stay.
     pub fn end_program(&mut self) {
+        self.store_deferred();
         self.active.retain(|a| matches!(a.def.id, Some(SyncId::Static(_))));
+        self.replan_deferred();
         self.block_modal = false;
         self.note_velocity_readers();
         self.wake_all();
@@ -297,9 +323,10 @@ impl SyncActions {
 }
 
 impl Channel {
-    /// The synchronized actions and their data.
-    pub fn sync_actions(&self) -> &SyncActions {
-        &self.sync
+    /// The synchronized actions and their data (with the values of deferred actions,
+    /// `sync_lazy.rs`, computed: then a copy).
+    pub fn sync_actions(&self) -> std::borrow::Cow<'_, SyncActions> {
+        self.sync.with_deferred()
     }
 
     /// Test switch: `false` evaluates every synchronized action's condition in every IPO
@@ -377,13 +404,10 @@ impl Channel {
     /// program's moves are queued no block that reads main-run data is prepared, so the copy
     /// is not made in every cycle.
     fn publish_sync_data(&mut self) {
-        if !self.sync.dirty {
+        if !self.sync.unpublished() {
             return;
         }
-        let may_read = self.blending.prep_waits_for_main_run
-            || self.status != super::Status::Running
-            || self.pending.is_empty() && self.planner.is_empty();
-        if may_read {
+        if self.prep_may_read() {
             self.sync.dirty = false;
             self.interp.set_sync_data(self.sync.main_run_data());
         }
@@ -412,6 +436,7 @@ impl Channel {
             deps,
             run_each: false,
         };
+        self.sync.store_deferred();
         let list = &mut self.sync.active;
         match new.def.id {
             Some(id) => {
@@ -435,16 +460,19 @@ impl Channel {
                 clear: crate::alarm::Clear::Reset,
             });
         }
-        if self.sync.note_velocity_readers() {
+        self.sync.replan_deferred();
+        let new = self.sync.note_velocity_readers();
+        for k in (0..MAX_CHANNEL_AXES).filter(|k| new & (1 << k) != 0) {
             // `$AA_VACTM` counts from the setpoints of now (main-run blocks are activated
             // with the path at rest).
-            self.sync.prev_setpoint = self.machine;
+            self.sync.prev_setpoint[k] = self.machine[k];
         }
     }
 
     /// Main run: CANCEL/LOCK/UNLOCK/RESET(ids). An ID no action has is passed over.
     pub(super) fn control_sync(&mut self, op: SyncControl, ids: &[u32]) {
         let hit = |a: &ActiveSync| a.def.id.is_some_and(|i| ids.contains(&i.number()));
+        self.sync.store_deferred();
         match op {
             SyncControl::Cancel => self.sync.active.retain(|a| !hit(a)),
             _ => {
@@ -460,27 +488,57 @@ impl Channel {
                 }
             }
         }
+        self.sync.replan_deferred();
         self.sync.note_velocity_readers();
         self.sync.wake();
     }
 
     /// One IPO cycle of the synchronized actions: one test when none is active; while all
     /// sleep (no horizon ends, none runs its actions in every cycle) three compares: the
-    /// wake cycle, the block (`$AC_TIME` counts from its start), the offsets (`$AA_IW`).
+    /// wake cycle, the block (`$AC_TIME` counts from its start), the offsets (`$AA_IW`); then
+    /// the setpoints for `$AA_VACTM` and the inputs of deferred actions are kept
+    /// (`sync_lazy.rs`), and the cycle runs when block preparation may read their values.
     #[inline]
     pub(super) fn step_sync_actions(&mut self) {
-        if !self.sync.idle()
-            && (self.tick >= self.sync.next_wake
-                || self.current_line != self.sync.block
-                || !self.sync.frame_of(&self.offsets))
+        if !self.sync.idle() {
+            self.step_active_sync();
+        }
+    }
+
+    /// [`Channel::step_sync_actions`] with actions (or their data) active. Out of line: the
+    /// IPO cycle without actions keeps its one test.
+    #[inline(never)]
+    fn step_active_sync(&mut self) {
+        if self.tick >= self.sync.next_wake
+            || self.current_line != self.sync.block
+            || !self.sync.frame_of(&self.offsets)
+            || self.sync.unpublished() && self.prep_may_read()
         {
             self.run_sync_cycle();
+        } else {
+            self.keep_sync_history();
+        }
+    }
+
+    /// What a cycle in which the actions sleep keeps for later ones: the setpoints of now
+    /// for `$AA_VACTM`, the deferred actions' inputs.
+    #[inline]
+    fn keep_sync_history(&mut self) {
+        let mut axes = self.sync.velocity_axes;
+        while axes != 0 {
+            let k = axes.trailing_zeros() as usize;
+            axes &= axes - 1;
+            self.sync.prev_setpoint[k] = self.machine[k];
+        }
+        if self.sync.deferred.any() {
+            self.keep_deferred_inputs();
         }
     }
 
     /// Out of line: the IPO cycle's own code stays small (ARCHITECTURE: the IPO cycle's code).
     #[inline(never)]
     fn run_sync_cycle(&mut self) {
+        self.sync.cycles_run += 1;
         let dt = self.cfg.ipo_cycle;
         let tick = self.tick;
         if self.sync.timing {
@@ -510,6 +568,7 @@ impl Channel {
         // Block-modal actions: bound to the first motion block after them, gone after it.
         if self.sync.block_modal {
             let running = self.in_planner.front().map(|(_, m)| m.line);
+            let before = active.len();
             active.retain_mut(|a| {
                 if a.def.id.is_some() {
                     return true;
@@ -524,8 +583,22 @@ impl Channel {
                 }
             });
             self.sync.block_modal = active.iter().any(|a| a.def.id.is_none());
+            if active.len() != before {
+                // The places changed: the mask of the actions run in every cycle is made
+                // again by a full check (a stale bit pointed past the list's end).
+                self.sync.cond_wake = 0;
+            }
         }
-        let mut failed = self.check_actions(&mut active);
+        let failed = self.check_actions(&mut active);
+        if self.sync.deferred.any()
+            && let Some((at, _)) = failed
+        {
+            // The deferred actions after the failed one did not run in this cycle.
+            self.sync.active = std::mem::take(&mut active);
+            self.keep_deferred_inputs_until(at);
+            active = std::mem::take(&mut self.sync.active);
+        }
+        let mut failed = failed.map(|(_, alarm)| alarm);
         if self.psync.rdisable_armed {
             // Set when an action with RDISABLE was activated: nothing to look at without one.
             self.psync.rdisable_armed = active.iter().any(|a| !a.locked && a.def.disables_read_in());
@@ -538,17 +611,19 @@ impl Channel {
         {
             failed = Some(*alarm);
         }
-        if self.sync.reads_velocity {
-            // In two halves: a 160-byte copy is a call to memcpy, 80 bytes are moves inline.
-            let half = MAX_CHANNEL_AXES / 2;
-            self.sync.prev_setpoint[..half].copy_from_slice(&self.machine[..half]);
-            self.sync.prev_setpoint[half..].copy_from_slice(&self.machine[half..]);
+        if failed.is_some() {
+            // Only the setpoints: the deferred inputs were kept as far as the actions ran.
+            let deferred = std::mem::take(&mut self.sync.deferred);
+            self.keep_sync_history();
+            self.sync.deferred = deferred;
+        } else {
+            self.keep_sync_history();
         }
         self.publish_sync_data();
+        // Data not yet handed to block preparation (`dirty`) waits for `prep_may_read`, which
+        // `step_active_sync` tests in every cycle.
         let each_cycle = self.sync.timing
-            || self.sync.dirty
             || self.sync.block_modal
-            || self.sync.reads_velocity
             || self.sync.axis_ovr_written
             || self.psync.rdisable
             || self.psync.running_cycles()
@@ -591,19 +666,27 @@ impl Channel {
     }
 }
 
-/// Whether an action reads `$AA_VACTM` (in its condition or its actions; a technology cycle
-/// counts as reading it).
-fn reads_velocity(def: &SyncDef) -> bool {
+/// The channel axes whose `$AA_VACTM` an action reads (in its condition or its actions; a
+/// technology cycle counts as reading all).
+fn velocity_axes(def: &SyncDef) -> u32 {
     use crate::interp::synchronized::flat::{Act, Code, Op};
-    let reads = |c: &Code| {
-        c.ops.iter().any(|op| matches!(op, Op::Read(Slot::AaVactm(_)) | Op::Compare(Slot::AaVactm(_), _, _)))
-    };
-    def.flat_condition.as_ref().is_some_and(reads)
-        || def.flat_actions.iter().any(|act| match act {
-            Act::Set { value, index, .. } => reads(value) || reads(index),
-            Act::Aux { value, .. } | Act::Command { value, .. } | Act::Preset { value, .. } => reads(value),
-            Act::WaitMarker { marker, .. } => reads(marker),
-            Act::Cycle(_) | Act::CycleName(_) => true,
-            Act::DelDtg | Act::StopReOf | Act::RDisable => false,
+    let axes = |c: &Code| {
+        c.ops.iter().fold(0u32, |axes, op| match op {
+            Op::Read(Slot::AaVactm(k)) | Op::Compare(Slot::AaVactm(k), _, _) => {
+                axes | 1u32.checked_shl(*k as u32).unwrap_or(0)
+            }
+            _ => axes,
         })
+    };
+    let mut all = def.flat_condition.as_ref().map_or(0, axes);
+    for act in &def.flat_actions {
+        all |= match act {
+            Act::Set { value, index, .. } => axes(value) | axes(index),
+            Act::Aux { value, .. } | Act::Command { value, .. } | Act::Preset { value, .. } => axes(value),
+            Act::WaitMarker { marker, .. } => axes(marker),
+            Act::Cycle(_) | Act::CycleName(_) => u32::MAX >> (32 - MAX_CHANNEL_AXES),
+            Act::DelDtg | Act::StopReOf | Act::RDisable => 0,
+        };
+    }
+    all
 }

@@ -14,7 +14,8 @@
 //! axes' maximum velocity. `$AC_DTEB` and `$AC_PATH` only have their sign (the planner's front
 //! move may be shortened by a blend when the next one arrives): a threshold on them is
 //! evaluated in every cycle unless it lies below zero. `$AC_TIME` grows by one IPO cycle per
-//! cycle and starts again with each block (the block change wakes its readers).
+//! cycle and starts again with each block (the block change wakes its readers): it never
+//! falls below its value of now.
 
 use super::Channel;
 use crate::interp::synchronized::flat::{Reader, Slot};
@@ -41,7 +42,9 @@ impl Bounds for Channel {
                 let v = self.path_speed_bound()? * 60.0;
                 (hi, -v, v)
             }
-            Slot::AcTime => (dt, 0.0, hi),
+            // It only grows until the block changes (which wakes its readers): a condition
+            // that has flipped stays so, instead of being looked at again and again.
+            Slot::AcTime => (dt, value, hi),
             Slot::AcPath | Slot::AcDteb => (hi, -LENGTH_SLACK, hi),
             Slot::Timer(_)
             | Slot::Marker(_)

@@ -18,8 +18,9 @@ use crate::interp::synchronized::{SyncDef, horizon};
 use crate::lang::sync_action::Trigger;
 
 impl Channel {
-    /// Runs the actions of this cycle in order; returns the alarm of the first that failed.
-    pub(super) fn check_actions(&mut self, active: &mut [ActiveSync]) -> Option<Alarm> {
+    /// Runs the actions of this cycle in order; returns the place and the alarm of the first
+    /// that failed. Deferred actions (`sync_lazy.rs`) are not run: they show as fired.
+    pub(super) fn check_actions(&mut self, active: &mut [ActiveSync]) -> Option<(usize, Alarm)> {
         let tick = self.tick;
         let deps = self.sync.deps;
         let quiet = tick < self.sync.cond_wake && !self.sync.touched.any(deps) && !self.sync.block_modal;
@@ -33,7 +34,7 @@ impl Channel {
                 let i = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
                 if let Err(alarm) = self.run_actions(&active[i].def) {
-                    return Some(*alarm);
+                    return Some((i, *alarm));
                 }
                 if self.sync.touched.any(deps) {
                     from = i + 1;
@@ -43,8 +44,13 @@ impl Channel {
         }
         let mut failed = None;
         if from < active.len() {
-            for a in active[from..].iter_mut() {
+            let deferred = self.sync.deferred_actions();
+            for (i, a) in active.iter_mut().enumerate().skip(from) {
                 if !a.checked() {
+                    continue;
+                }
+                if deferred & (1 << i) != 0 {
+                    (a.fired, a.run_each, a.wake) = (true, false, u64::MAX);
                     continue;
                 }
                 let done = if tick < a.wake && !self.sync.touched.any(a.deps) {
@@ -54,7 +60,7 @@ impl Channel {
                     self.run_sync(a)
                 };
                 if let Err(alarm) = done {
-                    failed = Some(*alarm);
+                    failed = Some((i, *alarm));
                     break;
                 }
             }

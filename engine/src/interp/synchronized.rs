@@ -28,7 +28,7 @@ use crate::motion::AxisVec;
 /// The main-run data of synchronized actions as block preparation reads them (`R1=$AC_DELT`,
 /// `IF $AC_MARKER[1]==1 ...`): like every `$AC_` variable, a block reading them waits for the
 /// main run; the channel hands over each new state ([`Interpreter::set_sync_data`]).
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct MainRunData {
     pub markers: Vec<f64>,
     pub params: Vec<f64>,
@@ -42,6 +42,23 @@ pub struct MainRunData {
     /// preprocessing stop (STOPREOF ended it while the path moves; command axes or PRESETON
     /// moved axes the program did not): `$AA_IM`/`$AA_IPO` read these.
     pub machine: Option<AxisVec>,
+}
+
+/// Before the channel handed any state over: everything zero in the control's sizes (an empty
+/// list read 17020 for `$AC_PARAM[0]` and underflowed forming its message).
+impl Default for MainRunData {
+    fn default() -> Self {
+        use flat::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
+        MainRunData {
+            markers: vec![0.0; MARKERS],
+            params: vec![0.0; PARAMS],
+            timers: vec![None; TIMERS],
+            analog_in: vec![0.0; ANALOG_IO],
+            analog_out: vec![0.0; ANALOG_IO],
+            deleted: 0.0,
+            machine: None,
+        }
+    }
 }
 
 impl MainRunData {
