@@ -241,6 +241,11 @@ pub struct Planner {
     acc: f64,
     /// Feed hold: brake to standstill on the path.
     hold: bool,
+    /// The path stopped at the end of a move in the last cycle: the next cycle stands. The
+    /// cycle that lands on the end point still moved the axes (by up to `a·dt²`, see
+    /// [`stop_speed`]); an exact stop means the axes are at rest before the next move starts,
+    /// and a move that reversed an axis in the very next cycle stepped it by up to `2·a·dt`.
+    rest_due: bool,
     /// Feed override and rapid traverse override as factors (1.0 = 100 %).
     feed_override: f64,
     rapid_override: f64,
@@ -274,6 +279,7 @@ impl Planner {
             v: 0.0,
             acc: 0.0,
             hold: false,
+            rest_due: false,
             feed_override: 1.0,
             rapid_override: 1.0,
             spindle_rate: 0.0,
@@ -420,7 +426,15 @@ impl Planner {
         self.v = 0.0;
         self.acc = 0.0;
         self.hold = false;
+        self.rest_due = false;
         self.flush_at_standstill = false;
+    }
+
+    /// The caller let a cycle pass without [`Planner::step`] (the wait for an exact-stop
+    /// window): the axes stood in it, which is the stop's cycle at rest.
+    #[inline]
+    pub fn stood(&mut self) {
+        self.rest_due = false;
     }
 
     /// Sets the position of a stationary machine (after reset or a configuration change).
@@ -484,8 +498,14 @@ impl Planner {
         let dt = self.dt;
         let Some(front) = self.queue.front() else {
             self.v = 0.0;
+            self.rest_due = false;
             return;
         };
+        if self.rest_due {
+            // The cycle at rest after a stop (see the field).
+            self.rest_due = false;
+            return;
+        }
         let many = self.queue.len() > 1;
         let (a, length) = (front.a_max, front.length);
         let soft = front.jerk.is_finite();
@@ -604,6 +624,7 @@ impl Planner {
         if stop_here || self.queue.is_empty() {
             self.v = 0.0;
             self.acc = 0.0;
+            self.rest_due = true;
             return true;
         }
         false
