@@ -34,7 +34,8 @@ const SOFT_MD: &str = "$MA_MAX_AX_JERK[X]=20\n$MA_MAX_AX_JERK[Y]=20\n$MA_MAX_AX_
 fn soft_keeps_every_axis_within_its_jerk() {
     // A square, a diagonal and short blocks, exact stop and continuous path. No axis' third
     // difference of the sampled positions may exceed 20 m/s³ = 20 000 mm/s³; the bound
-    // allows 10 % for the discretisation.
+    // allows 10 % for the discretisation. (Measured 20 104 on X: 0.5 % over the jerk in some
+    // cycle of the G64 part; not explained yet, so the bound is not tightened.)
     let program = "SOFT F6000\nG1 X100\nY50\nX0 Y0\nG64 X10\nX20 Y1\nX30 Y3\nX40 Y2\nG0 X80 Y40 Z-20\nM30";
     let (_, s) = run(SOFT_MD, program);
     let jerk = diff(&s, 3);
@@ -53,7 +54,7 @@ fn brisk_has_the_acceleration_steps_soft_removes() {
     let (_, brisk) = run(SOFT_MD, &program("BRISK"));
     let (_, soft) = run(SOFT_MD, &program("SOFT"));
     assert!(max_abs(&diff(&brisk, 3), 0) > 500_000.0);
-    assert!(max_abs(&diff(&soft, 3), 0) <= 22_000.0);
+    assert!(max_abs(&diff(&soft, 3), 0) <= 20_000.0 * (1.0 + 1e-6));
     // Time: BRISK takes L/v + v/a = 100/100 + 100/3000 = 1.0333 s. Under SOFT the jerk
     // would need a/j = 0.15 s to reach 3000 mm/s², but the 100 mm/s are gained before that:
     // the acceleration rises to sqrt(j·Δv) = sqrt(20000·100) = 1414 mm/s² and falls again,
