@@ -32,7 +32,7 @@ impl Move {
         let r = arc.radius;
         // Planar speed per unit path speed (below 1 on a helix whose length counts the lead).
         let k = r * arc.sweep.abs() / self.length;
-        if !jerk.is_finite() || !(k > 1e-12 && r > 1e-12) {
+        if !(jerk.is_finite() && k > 1e-12 && r > 1e-12) {
             return;
         }
         let v_cap = (0.5 * jerk * r * r).cbrt() / k;
