@@ -653,7 +653,9 @@ mod kontc {
     /// approach (the end of the exact-stop rapid before it).
     fn from_start(samples: &[Vec<f64>], start: (f64, f64, f64)) -> &[Vec<f64>] {
         let at = |p: &Vec<f64>| plane_dist(p, (start.0, start.1)) < 1e-9 && (p[2] - start.2 - LENGTH).abs() < 1e-9;
-        &samples[samples.iter().position(at).expect("stands at the start point")..]
+        // The last sample there: the stop before the approach stands for a cycle.
+        let first = samples.iter().position(at).expect("stands at the start point");
+        &samples[first + samples[first..].iter().take_while(|p| at(p)).count() - 1..]
     }
 
     fn plane_dist(p: &[f64], q: (f64, f64)) -> f64 {

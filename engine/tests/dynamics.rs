@@ -34,7 +34,8 @@ const SOFT_MD: &str = "$MA_MAX_AX_JERK[X]=20\n$MA_MAX_AX_JERK[Y]=20\n$MA_MAX_AX_
 fn soft_keeps_every_axis_within_its_jerk() {
     // A square, a diagonal and short blocks, exact stop and continuous path. No axis' third
     // difference of the sampled positions may exceed 20 m/s³ = 20 000 mm/s³; the bound
-    // allows 10 % for the discretisation.
+    // allows 10 % for the discretisation. (Measured 20 104 on X: 0.5 % over the jerk in some
+    // cycle of the G64 part; not explained yet, so the bound is not tightened.)
     let program = "SOFT F6000\nG1 X100\nY50\nX0 Y0\nG64 X10\nX20 Y1\nX30 Y3\nX40 Y2\nG0 X80 Y40 Z-20\nM30";
     let (_, s) = run(SOFT_MD, program);
     let jerk = diff(&s, 3);
@@ -53,7 +54,7 @@ fn brisk_has_the_acceleration_steps_soft_removes() {
     let (_, brisk) = run(SOFT_MD, &program("BRISK"));
     let (_, soft) = run(SOFT_MD, &program("SOFT"));
     assert!(max_abs(&diff(&brisk, 3), 0) > 500_000.0);
-    assert!(max_abs(&diff(&soft, 3), 0) <= 22_000.0);
+    assert!(max_abs(&diff(&soft, 3), 0) <= 20_000.0 * (1.0 + 1e-6));
     // Time: BRISK takes L/v + v/a = 100/100 + 100/3000 = 1.0333 s. Under SOFT the jerk
     // would need a/j = 0.15 s to reach 3000 mm/s², but the 100 mm/s are gained before that:
     // the acceleration rises to sqrt(j·Δv) = sqrt(20000·100) = 1414 mm/s² and falls again,
@@ -283,16 +284,21 @@ fn fingerprint(preset: &str, program: &str) -> (usize, u64, Vec<f64>) {
 /// 59 existed) gave for them: the number of IPO samples, the FNV-1a hash of every channel
 /// axis' setpoint bits in every cycle, and X of a few samples. The hashes were taken again
 /// when braking to a standstill became the exact discrete stop (`motion::stop_speed`): the
-/// cycles before each stop differ by up to a·T/8, the counts and picks are f728866's.
+/// cycles before each stop differ by up to a·T/8, the counts and picks are f728866's. Taken
+/// again when a stop a move follows got its cycle at rest (`exact_stop_reversal.rs`): the
+/// first program stops twice before a move (G0 in the reset mode G60, and `G60 X50 Y-20`),
+/// the third twice (its G0 and G1 under G60), so both run two cycles longer and the picks
+/// after the first stop are taken one cycle earlier on the path; the second (G64, then the
+/// end) is unchanged.
 #[allow(clippy::type_complexity, reason = "a table of literal expectations")]
 const UNCHANGED_TRACES: [(usize, u64, &[f64]); 3] = [
     (
-        2321,
-        0xeb4dfdc345d6c595,
-        &[4.367999999999999, 10.0, 10.0, 12.63570671352037, 19.482460893713807, 26.625536270009462],
+        2323,
+        0x204c025444cad350,
+        &[4.367999999999999, 10.0, 10.0, 12.581821788405735, 19.402585517592634, 26.565403734731305],
     ),
     (85, 0xb89cae5715f70472, &[1.7315852079504221]),
-    (276, 0x66bcb8007cc35a36, &[1.2479999998293931, 18.39289957750375, 18.27827082332505]),
+    (278, 0x771c48df95968537, &[1.2479999998293931, 18.245897604453177, 18.587734195874187]),
 ];
 
 #[test]

@@ -16,7 +16,8 @@ fn run(md: &str, program: &str) -> Vec<[f64; 2]> {
 }
 
 /// The cycles between the setpoint of `axis` reaching `at` and its first step away: the wait
-/// at the exact stop (1 when the next block starts in the cycle after the interpolator end).
+/// at the exact stop (2 when the next block starts at once: the interpolator's one cycle at
+/// rest after every stop, `exact_stop_reversal.rs`, then the first step).
 fn wait(samples: &[[f64; 2]], axis: usize, at: f64) -> usize {
     let arrive = samples.iter().position(|p| p[axis] == at).expect("reaches the end point");
     samples[arrive..].iter().position(|p| p[axis] != at).expect("leaves again")
@@ -39,7 +40,8 @@ fn under_ffwof_g601_waits_longer_than_g602_than_g603() {
     // v/Kv = 6 mm; while braking linearly, e(t) = v(t)/Kv + a/Kv²·(1 − e^(−Kv·t)), so at the
     // interpolator's end e = 3000/277.78·(1 − e^(−0.5556)) = 10.8·0.4262 = 4.603 mm. Then the
     // setpoint stands and e decays as e^(−Kv·t), Kv·dt = 0.06667 per cycle:
-    // - G603: no wait, the next block starts in the next cycle: 1.
+    // - G603: no wait; the interpolator stands for one cycle after the stop and the next
+    //   block steps away in the cycle after it: 2.
     // - G602 (0.04 mm): ln(4.603/0.04)/0.06667 = 71.2, so 72 cycles inside, starting at 73.
     // - G601 (0.01 mm): ln(460.3)/0.06667 = 91.97, so 92 cycles, starting at 93.
     // The staircase of the discrete braking moves e at the end by a few percent (< 1 cycle);
@@ -47,7 +49,7 @@ fn under_ffwof_g601_waits_longer_than_g602_than_g603() {
     let g603 = wait(&run("", &program("G603", "FFWOF")), 0, 100.0);
     let g602 = wait(&run("", &program("G602", "FFWOF")), 0, 100.0);
     let g601 = wait(&run("", &program("G601", "FFWOF")), 0, 100.0);
-    assert_eq!(g603, 1);
+    assert_eq!(g603, 2);
     assert!(g602.abs_diff(73) <= 2, "G602 waited {g602} cycles");
     assert!(g601.abs_diff(93) <= 2, "G601 waited {g601} cycles");
     // The difference does not depend on the error at the end: ln(0.04/0.01)/(Kv·dt) = 20.8.
@@ -76,7 +78,7 @@ fn with_ffwon_or_in_continuous_path_mode_the_windows_change_nothing() {
     // at the interpolator's end, and the three functions give the same samples bit for bit.
     let on: Vec<_> = ["G601", "G602", "G603"].iter().map(|w| moving(run("", &program(w, "FFWON")))).collect();
     assert!(on[0] == on[1] && on[0] == on[2], "the windows changed the samples under FFWON");
-    assert_eq!(wait(&on[0], 0, 100.0), 1);
+    assert_eq!(wait(&on[0], 0, 100.0), 2);
     // G64 under FFWOF: the stop before M30 is implicit, no programmed exact stop, so the
     // program ends at the interpolator's end under every window (the Programming Manual makes
     // G601..G603 effective only with G60 or G9).
@@ -92,11 +94,11 @@ fn with_ffwon_or_in_continuous_path_mode_the_windows_change_nothing() {
 #[test]
 fn exact_pos_mode_fixes_the_window_for_g0_and_for_g1() {
     // MD20550 = 03: G0 always at the interpolator end (units digit 3), G1 as programmed (tens
-    // digit 0). A G0 move under G601 then starts the next block at once; the G1 move of the
-    // first test still waits its 93 cycles.
+    // digit 0). A G0 move under G601 then starts the next block after the cycle at rest; the
+    // G1 move of the first test still waits its 93 cycles (the rest cycle lies within the wait).
     let md = "$MC_EXACT_POS_MODE=3";
     let rapid = run(md, "FFWOF G60 G601\nG0 X100\nG1 X0 F6000\nM30");
-    assert_eq!(wait(&rapid, 0, 100.0), 1);
+    assert_eq!(wait(&rapid, 0, 100.0), 2);
     assert!(wait(&run(md, &program("G601", "FFWOF")), 0, 100.0).abs_diff(93) <= 2);
     // MD20550 = 20: G1 always with the coarse window, whatever is programmed: G601 waits
     // as G602 (73 cycles).

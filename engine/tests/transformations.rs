@@ -250,7 +250,7 @@ fn check_limits(samples: &[Sample], limits: &[(f64, f64)], dt: f64, overload: f6
     for w in vel.windows(2) {
         for (k, &(_, amax)) in limits.iter().enumerate() {
             let a = (w[1][k] - w[0][k]).abs() / dt;
-            assert!(a <= amax * overload * (1.0 + 1e-3), "axis {k}: accel {a} > {}", amax * overload);
+            assert!(a <= amax * overload * (1.0 + 1e-6), "axis {k}: accel {a} > {}", amax * overload);
         }
     }
 }

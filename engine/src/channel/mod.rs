@@ -829,6 +829,8 @@ impl Channel {
                 let window = self.offsets.gcodes.stop_window();
                 self.exact_stop.after_step(tag, self.planner.has_finished(), window, &self.cfg);
             }
+        } else {
+            self.planner.stood();
         }
         self.monitor_tools();
         self.update_machine_position();

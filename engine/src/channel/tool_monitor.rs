@@ -80,7 +80,10 @@ impl Channel {
             self.tool_monitor.last_edge = (t, d);
             self.tool_monitor.remember(t, d);
         }
-        let cutting = running && self.in_planner.front().is_some_and(|(_, m)| m.feed.is_finite() && m.line > 0);
+        // (Not the cycle at rest after an exact stop: the tool stands.)
+        let cutting = running
+            && self.in_planner.front().is_some_and(|(_, m)| m.feed.is_finite() && m.line > 0)
+            && !self.planner.is_resting();
         if !cutting || t == 0 || d == 0 {
             if !running {
                 self.flush_tool_monitor();

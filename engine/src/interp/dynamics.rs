@@ -212,6 +212,12 @@ pub(super) fn apply(dynamics: &DynModal, cfg: &MachineConfig, items: &mut [Item]
         relimit(mv, &base, &limits);
         if dynamics.profile == Profile::Soft {
             mv.jerk = path_jerk(mv, dynamics, cfg);
+            mv.seam_jerk = seam_jerk(mv, dynamics, cfg);
+            if let Some(arc) = mv.path.arc.as_deref() {
+                let n = cfg.channel_axes.len().min(MAX_CHANNEL_AXES);
+                let plane = (0..n).filter(|&k| arc.moves_axis(k)).map(|k| dynamics.axis_jerk(cfg, k));
+                mv.limit_arc_jerk(plane.fold(f64::INFINITY, f64::min));
+            }
         }
     }
 }
@@ -238,6 +244,17 @@ fn relimit(mv: &mut Move, base: &[AxisLimit], limits: &[AxisLimit]) {
     if ra.is_finite() {
         mv.a_max *= ra;
     }
+}
+
+/// The jerk the moving axes may see at a transition where the curvature jumps (the smallest
+/// over them): MD32432 where it exceeds the axis jerk (see `motion/soft_curvature.rs`).
+fn seam_jerk(mv: &Move, dynamics: &DynModal, cfg: &MachineConfig) -> f64 {
+    let n = cfg.channel_axes.len().min(MAX_CHANNEL_AXES);
+    let rates = mv.path.max_rate_of_first(n);
+    (0..n)
+        .filter(|&k| rates[k] > 1e-12 * mv.length)
+        .map(|k| dynamics.axis_jerk(cfg, k).max(cfg.axis(k).dynamics.trans_jerk))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// The highest path jerk with which no axis exceeds its jerk: each axis moves at `rate_k` per

@@ -163,6 +163,7 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
         axis_tangents: None,
         per_rev: 0.0,
         jerk: f64::INFINITY,
+        seam_jerk: f64::INFINITY,
         blend: None,
         compress: None,
     }
@@ -348,6 +349,7 @@ fn plan_piece(
             axis_tangents,
             per_rev: mv.per_rev,
             jerk: mv.jerk,
+            seam_jerk: mv.seam_jerk,
             // The block's rounding at its end (the channel rounds the corner in the BCS and plans
             // the pieces here again: `channel/blending_trafo.rs`).
             blend: if part + 1 == parts { mv.blend } else { None },

@@ -22,6 +22,9 @@ pub struct AxisDynamics {
     pub overload: [f64; DYN_MODES],
     /// Jerk per dynamic response mode (mm/s³ or deg/s³), the SOFT limit.
     pub jerk: [f64; DYN_MODES],
+    /// MD32432 PATH_TRANS_JERK_LIM (mm/s³ or deg/s³): the higher jerk allowed at a block
+    /// transition where the curvature jumps (line into arc) under SOFT; 0 none above `jerk`.
+    pub trans_jerk: f64,
     /// Position control gain Kv in 1/s (MD32200 set 0 converted: 1 (m/min)/mm = 1000/60 1/s).
     pub kv: f64,
     /// MD32620 is not 0: the axis has a feed-forward control to switch.
@@ -37,6 +40,7 @@ impl AxisDynamics {
         accel: [f64::INFINITY; DYN_MODES],
         overload: [1.0; DYN_MODES],
         jerk: [f64::INFINITY; DYN_MODES],
+        trans_jerk: 0.0,
         kv: f64::INFINITY,
         ffw_available: true,
         ffw_activation: 0,
@@ -52,6 +56,7 @@ impl AxisDynamics {
             overload: per_mode("$MA_MAX_ACCEL_OVL_FACTOR", 1.0),
             // Jerk has the acceleration's unit conversion (m → mm, rev → degrees).
             jerk: per_mode("$MA_MAX_AX_JERK", accel_unit),
+            trans_jerk: md.num("$MA_PATH_TRANS_JERK_LIM", ax, 0) * accel_unit,
             kv: md.num("$MA_POSCTRL_GAIN", ax, 0) * 1000.0 / 60.0,
             ffw_available: md.num("$MA_FFW_MODE", ax, 0) != 0.0,
             ffw_activation: md.num("$MA_FFW_ACTIVATION_MODE", ax, 0) as u8,

@@ -471,6 +471,9 @@ pub static DEFS: &[Def] = &[
         1e-6,
         1e9,
     ),
+    // Jerk at block transitions without constant curvature (Function Manual B2): m/s³, the
+    // seam's limit under SOFT where it exceeds MD32431; 0 (NCTwin's reset value): MD32431.
+    def("PATH_TRANS_JERK_LIM", 32432, A, Kind::Real, 1, Default::Real(0.0), 0.0, 1e9),
     // Feed-forward: 0 none, 1/3 speed, 2/4 torque feed-forward (the model treats 1..4 alike);
     // activation 0: MD32620 always, 1: FFWON/FFWOF at once, 2: FFWON/FFWOF at the next standstill.
     def("FFW_MODE", 32620, A, Kind::Int, 1, Default::Int(1), 0.0, 4.0),

@@ -202,6 +202,7 @@ pub(super) fn with_path(m: &Move, path: Path) -> Move {
         axis_tangents: m.axis_tangents.clone(),
         per_rev: m.per_rev,
         jerk: m.jerk,
+        seam_jerk: m.seam_jerk,
         blend: m.blend,
         compress: m.compress,
     }

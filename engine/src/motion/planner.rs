@@ -15,6 +15,8 @@ use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
 #[path = "soft.rs"]
 mod soft;
+#[path = "soft_curvature.rs"]
+mod soft_curvature;
 
 /// Velocity requested for a move.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,6 +117,9 @@ pub struct Move {
     /// Highest path jerk under SOFT (units per s³); infinite under BRISK, the
     /// acceleration-limited profile (see `motion/soft.rs`).
     pub jerk: f64,
+    /// Under SOFT, the jerk the axes may see where the curvature jumps at this move's ends
+    /// (MD32431, or MD32432 above it); infinite under BRISK (see `motion/soft_curvature.rs`).
+    pub seam_jerk: f64,
     /// Continuous-path rounding at the end of this move (G641..G645), from the block's modal
     /// state; the channel inserts the rounding element when the next move is known.
     pub blend: Option<super::blend::Blend>,
@@ -147,6 +152,7 @@ impl Move {
             axis_tangents: None,
             per_rev: 0.0,
             jerk: f64::INFINITY,
+            seam_jerk: f64::INFINITY,
             blend: None,
             compress: None,
         }
@@ -215,6 +221,17 @@ impl Move {
     }
 }
 
+/// Where the planner is in the cycle at rest after a stop (see [`Planner::step`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Rest {
+    /// Moving, or at rest for long enough.
+    None,
+    /// The last cycle ended in a stop: the next cycle stands.
+    Due,
+    /// This cycle stood.
+    Now,
+}
+
 /// The move queue and its interpolator state.
 #[derive(Debug, Clone)]
 pub struct Planner {
@@ -241,6 +258,11 @@ pub struct Planner {
     acc: f64,
     /// Feed hold: brake to standstill on the path.
     hold: bool,
+    /// The cycle at rest after a stop: the cycle that lands on a move's end point still moved
+    /// the axes (by up to `a·dt²`, see [`stop_speed`]); an exact stop means the axes are at rest
+    /// before the next move starts, and a move that reversed an axis in the very next cycle
+    /// stepped it by up to `2·a·dt`.
+    rest: Rest,
     /// Feed override and rapid traverse override as factors (1.0 = 100 %).
     feed_override: f64,
     rapid_override: f64,
@@ -274,6 +296,7 @@ impl Planner {
             v: 0.0,
             acc: 0.0,
             hold: false,
+            rest: Rest::None,
             feed_override: 1.0,
             rapid_override: 1.0,
             spindle_rate: 0.0,
@@ -420,7 +443,21 @@ impl Planner {
         self.v = 0.0;
         self.acc = 0.0;
         self.hold = false;
+        self.rest = Rest::None;
         self.flush_at_standstill = false;
+    }
+
+    /// The caller let a cycle pass without [`Planner::step`] (the wait for an exact-stop
+    /// window): the axes stood in it, which is the stop's cycle at rest.
+    #[inline]
+    pub fn stood(&mut self) {
+        self.rest = Rest::None;
+    }
+
+    /// True in the cycle at rest after a stop (the axes stand although the next move is the
+    /// front one: a tool's cutting time does not count it).
+    pub fn is_resting(&self) -> bool {
+        self.rest == Rest::Now
     }
 
     /// Sets the position of a stationary machine (after reset or a configuration change).
@@ -482,6 +519,9 @@ impl Planner {
     /// within the front move, leaves without the loop over move ends.
     pub fn step(&mut self) {
         let dt = self.dt;
+        if self.rest != Rest::None && self.rest_after_stop() {
+            return;
+        }
         let Some(front) = self.queue.front() else {
             self.v = 0.0;
             return;
@@ -582,6 +622,22 @@ impl Planner {
         }
     }
 
+    /// The cycle at rest after a stop (see [`Rest`]): true when this cycle is it. The position
+    /// is the start of the next move, where the stop left it, and lies on that move (its
+    /// transformation, or its machine axes, map it), as in the move's first cycle. Once per
+    /// stop: kept out of the cycle's code.
+    #[inline(never)]
+    fn rest_after_stop(&mut self) -> bool {
+        // An idle cycle stands as well.
+        if self.rest == Rest::Now || self.queue.is_empty() {
+            self.rest = Rest::None;
+            return false;
+        }
+        self.rest = Rest::Now;
+        self.interpolate_front_slow(0.0);
+        true
+    }
+
     /// The front move ends within this cycle: the position is its end, the next move comes to
     /// the front. True if the path stops there (or nothing follows). Once per move: kept out
     /// of the cycle's code.
@@ -604,6 +660,7 @@ impl Planner {
         if stop_here || self.queue.is_empty() {
             self.v = 0.0;
             self.acc = 0.0;
+            self.rest = Rest::Due;
             return true;
         }
         false
@@ -742,6 +799,9 @@ impl Planner {
                     v = v.min(soft::corner_jerk(jerk, ta[i], tb[i]) * self.dt * self.dt / jump);
                 }
             }
+        }
+        if a.seam_jerk.is_finite() || b.seam_jerk.is_finite() {
+            v = v.min(soft_curvature::seam_speed(a, b, self.limits.len(), self.dt));
         }
         v
     }
