@@ -82,7 +82,7 @@ impl TipProbe {
             }
             None => {}
         }
-        let pose = ch.stock_tool_pose(&ch.offsets, self.kin.as_deref());
+        let pose = ch.stock_tool_pose(&ch.machine, &ch.offsets, self.kin.as_deref());
         WorkpieceTip { tip: pose.tip, tracyl_diameter: None, exact: true }
     }
 }
