@@ -137,3 +137,56 @@ fn cycle72_refuses_a_missing_contour_and_wrong_parameters() {
     let t = run(&main_with(&format!("CYCLE72(\"CONT_A:CONT_E\",{}", ARGS.replacen("300,100", "0,100", 1)), &section("CONT_A", "CONT_E")));
     assert_eq!(t.alarms.first().map(|a| a.number), Some(61003), "{:?}", t.alarms);
 }
+
+/// The same rectangle counter-clockwise: from (30, 0) along +X first.
+fn ccw_section(a: &str, e: &str) -> String {
+    format!("{a}: G1 X30 Y0\nG1 X60\nG1 Y40\nG1 X0\nG1 Y0\n{e}: G1 X30\n")
+}
+
+#[test]
+fn cycle72_right_of_a_counter_clockwise_contour_approaches_on_a_quadrant() {
+    // _RL 42, _AS1 2 / _AS2 2 (quadrants of radius 5), one infeed (_MID 0) to Z-10. Right of
+    // +X is -Y: the compensated start is (30, -5); the quadrant's centre lies 5 further right,
+    // (30, -10), and it starts a quarter turn back along the tangent at (25, -10), where the
+    // infeed runs. The retraction: the quadrant about (30, -10) from (30, -5) to (35, -10).
+    let args = ARGS.replacen(",4,0,0,", ",0,0,0,", 1).replacen(",41,1,5,1000,1,5,", ",42,2,5,1000,2,5,", 1);
+    let t = run_clean(&main_with(&format!("CYCLE72(\"CONT_A:CONT_E\",{args}"), &ccw_section("CONT_A", "CONT_E")));
+    let s = after_start(&t);
+    let below: Vec<&Sample> = s.iter().filter(|p| p.b[Z] < -1e-9).collect();
+    for p in &below {
+        assert!(off_rectangle(p.b[0], p.b[1]) >= 5.0 - 1e-6, "({}, {}, {}) cuts into the part", p.b[0], p.b[1], p.b[Z]);
+        // One level: off Z-10 only the infeed at (25, -10) and the lift at (35, -10).
+        let (infeed, lift) = ((25.0, -10.0), (35.0, -10.0));
+        let on = |(x, y): (f64, f64)| close(p.b[0], x, 1e-9) && close(p.b[1], y, 1e-9);
+        assert!(close(p.b[Z], -10.0, 1e-9) || on(infeed) || on(lift), "({}, {}, {})", p.b[0], p.b[1], p.b[Z]);
+    }
+    let at = |x: f64, y: f64| below.iter().any(|p| close(p.b[0], x, 1e-6) && close(p.b[1], y, 1e-6) && close(p.b[Z], -10.0, 1e-9));
+    assert!(at(25.0, -10.0) && at(45.0, -5.0) && at(65.0, 20.0) && at(30.0, 45.0) && at(-5.0, 20.0));
+    // The approach quadrant: 5 from (30, -10) between (25, -10) and (30, -5).
+    let arc: Vec<&&Sample> = below.iter().filter(|p| p.b[0] < 30.0 - 1e-6 && p.b[1] < -5.0 - 1e-6).collect();
+    assert!(!arc.is_empty());
+    for p in arc {
+        assert!(close((p.b[0] - 30.0).hypot(p.b[1] + 10.0), 5.0, 1e-6), "({}, {})", p.b[0], p.b[1]);
+    }
+    let end = t.end();
+    assert!(close(end[0], 35.0, 1e-9) && close(end[1], -10.0, 1e-9) && close(end[Z], 10.0, 1e-9), "{end:?}");
+}
+
+#[test]
+fn cycle72_on_the_contour_runs_the_tool_centre_on_it_with_straight_approach_and_retraction() {
+    // _RL 40: no compensation. The approach line starts _LP1 5 back along the first edge's
+    // direction (-X) from (30, 0): at (35, 0); the retraction ends 5 on along the last edge's
+    // direction at (25, 0). Everything below the surface lies on the rectangle's outline.
+    let args = ARGS.replacen(",41,", ",40,", 1);
+    let t = run_clean(&main_with(&format!("CYCLE72(\"CONT_A:CONT_E\",{args}"), &section("CONT_A", "CONT_E")));
+    let s = after_start(&t);
+    for p in s.iter().filter(|p| p.b[Z] < -1e-9) {
+        let (x, y) = (p.b[0], p.b[1]);
+        let to_edge = x.min(60.0 - x).min(y).min(40.0 - y).abs().max(off_rectangle(x, y));
+        assert!(to_edge < 1e-6, "({x}, {y}, {}) off the outline", p.b[Z]);
+    }
+    let infeeds = s.windows(2).filter(|w| close(w[0].b[0], 35.0, 1e-9) && w[1].b[Z] < w[0].b[Z] - 1e-9 && w[0].b[Z] <= 0.0).count();
+    assert!(infeeds > 0, "the infeed runs at (35, 0)");
+    let end = t.end();
+    assert!(close(end[0], 25.0, 1e-9) && close(end[1], 0.0, 1e-9) && close(end[Z], 10.0, 1e-9), "{end:?}");
+}
