@@ -70,7 +70,9 @@ fn cycle72_left_of_a_rectangle_runs_the_tool_centre_5_outside_in_three_depth_inf
     // Each level's approach: G341 infeeds at (40, -5), the tangent line's start (DISR 5 plus
     // the radius 5 back from the compensated start (30, -5)); the top edge's centre (30, 45).
     for z in [-10.0 / 3.0, -20.0 / 3.0, -10.0] {
-        let at = |x: f64, y: f64| s.iter().any(|p| close(p.b[0], x, 1e-6) && close(p.b[1], y, 1e-6) && close(p.b[Z], z, 1e-6));
+        let at = |x: f64, y: f64| {
+            s.iter().any(|p| close(p.b[0], x, 1e-6) && close(p.b[1], y, 1e-6) && close(p.b[Z], z, 1e-6))
+        };
         assert!(at(40.0, -5.0), "no infeed at (40, -5, {z})");
         assert!(at(30.0, 45.0) && at(65.0, 20.0) && at(15.0, -5.0), "edges at {z}");
     }
@@ -132,9 +134,15 @@ fn cycle72_refuses_a_missing_contour_and_wrong_parameters() {
     assert_eq!(t.alarms.first().map(|a| a.number), Some(14080), "{:?}", t.alarms);
     let t = run(&main_with(&format!("CYCLE72(\"\",{ARGS}"), ""));
     assert_eq!(t.alarms.first().map(|a| a.number), Some(61605), "{:?}", t.alarms);
-    let t = run(&main_with(&format!("CYCLE72(\"CONT_A:CONT_E\",{}", ARGS.replacen(",41,", ",43,", 1)), &section("CONT_A", "CONT_E")));
+    let t = run(&main_with(
+        &format!("CYCLE72(\"CONT_A:CONT_E\",{}", ARGS.replacen(",41,", ",43,", 1)),
+        &section("CONT_A", "CONT_E"),
+    ));
     assert_eq!(t.alarms.first().map(|a| (a.number, a.line)), Some((61002, Some(3))), "{:?}", t.alarms);
-    let t = run(&main_with(&format!("CYCLE72(\"CONT_A:CONT_E\",{}", ARGS.replacen("300,100", "0,100", 1)), &section("CONT_A", "CONT_E")));
+    let t = run(&main_with(
+        &format!("CYCLE72(\"CONT_A:CONT_E\",{}", ARGS.replacen("300,100", "0,100", 1)),
+        &section("CONT_A", "CONT_E"),
+    ));
     assert_eq!(t.alarms.first().map(|a| a.number), Some(61003), "{:?}", t.alarms);
 }
 
@@ -160,7 +168,9 @@ fn cycle72_right_of_a_counter_clockwise_contour_approaches_on_a_quadrant() {
         let on = |(x, y): (f64, f64)| close(p.b[0], x, 1e-9) && close(p.b[1], y, 1e-9);
         assert!(close(p.b[Z], -10.0, 1e-9) || on(infeed) || on(lift), "({}, {}, {})", p.b[0], p.b[1], p.b[Z]);
     }
-    let at = |x: f64, y: f64| below.iter().any(|p| close(p.b[0], x, 1e-6) && close(p.b[1], y, 1e-6) && close(p.b[Z], -10.0, 1e-9));
+    let at = |x: f64, y: f64| {
+        below.iter().any(|p| close(p.b[0], x, 1e-6) && close(p.b[1], y, 1e-6) && close(p.b[Z], -10.0, 1e-9))
+    };
     assert!(at(25.0, -10.0) && at(45.0, -5.0) && at(65.0, 20.0) && at(30.0, 45.0) && at(-5.0, 20.0));
     // The approach quadrant: 5 from (30, -10) between (25, -10) and (30, -5).
     let arc: Vec<&&Sample> = below.iter().filter(|p| p.b[0] < 30.0 - 1e-6 && p.b[1] < -5.0 - 1e-6).collect();
@@ -185,7 +195,10 @@ fn cycle72_on_the_contour_runs_the_tool_centre_on_it_with_straight_approach_and_
         let to_edge = x.min(60.0 - x).min(y).min(40.0 - y).abs().max(off_rectangle(x, y));
         assert!(to_edge < 1e-6, "({x}, {y}, {}) off the outline", p.b[Z]);
     }
-    let infeeds = s.windows(2).filter(|w| close(w[0].b[0], 35.0, 1e-9) && w[1].b[Z] < w[0].b[Z] - 1e-9 && w[0].b[Z] <= 0.0).count();
+    let infeeds = s
+        .windows(2)
+        .filter(|w| close(w[0].b[0], 35.0, 1e-9) && w[1].b[Z] < w[0].b[Z] - 1e-9 && w[0].b[Z] <= 0.0)
+        .count();
     assert!(infeeds > 0, "the infeed runs at (35, 0)");
     let end = t.end();
     assert!(close(end[0], 25.0, 1e-9) && close(end[1], 0.0, 1e-9) && close(end[Z], 10.0, 1e-9), "{end:?}");

@@ -58,7 +58,10 @@ pub(in crate::interp) fn present(block: &Block) -> bool {
     stmt || block.words.iter().any(|w| match w {
         Word::Address { indices, value, .. } => indices.iter().any(calls_any) || calls_any(&value.expr),
         Word::Keyword { name, args } => {
-            name == "CORRTRAFO" || name == "DELT" || files::PROCEDURES.contains(&name.as_str()) || args.iter().any(calls_any)
+            name == "CORRTRAFO"
+                || name == "DELT"
+                || files::PROCEDURES.contains(&name.as_str())
+                || args.iter().any(calls_any)
         }
         _ => false,
     })

@@ -22,8 +22,8 @@ use crate::interp::eval::eval;
 use crate::interp::eval::scope::Ctx;
 use crate::interp::eval::value::Value;
 use crate::lang::Expr;
-use crate::machine_data::MachineConfig;
 use crate::machine_data::MAX_TOOL_NUMBER;
+use crate::machine_data::MachineConfig;
 
 /// Prefix of the data-write entry of DELT, followed by the T number.
 pub const DELT: &str = "DELT:";
@@ -47,7 +47,10 @@ fn name_and_duplo(what: &str, args: &[Expr], ctx: &Ctx, line: u32) -> Result<(St
         Some(e) => Some(eval(e, ctx, line)?.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?),
     };
     if duplo.is_some_and(|d| !(1..=32000).contains(&d)) {
-        return Err(Alarm::value_out_of_range(line, &format!("{what}: duplo number {} (1..32000)", duplo.unwrap_or(0))));
+        return Err(Alarm::value_out_of_range(
+            line,
+            &format!("{what}: duplo number {} (1..32000)", duplo.unwrap_or(0)),
+        ));
     }
     Ok((name, duplo))
 }
