@@ -203,3 +203,24 @@ fn cycle72_on_the_contour_runs_the_tool_centre_on_it_with_straight_approach_and_
     let end = t.end();
     assert!(close(end[0], 25.0, 1e-9) && close(end[1], 0.0, 1e-9) && close(end[Z], 10.0, 1e-9), "{end:?}");
 }
+
+#[test]
+fn cycle72_approach_in_space_descends_along_the_approach_line() {
+    // _AS1 11: the tangential line in space (G340). The tool comes down at (40, -5) only to
+    // the safety plane Z2 and descends along the line to the compensated start (30, -5) at
+    // the first depth -10/3: Z = 2 + (-10/3 - 2) · (40 - X) / 10.
+    let args = ARGS.replacen(",41,1,5,", ",41,11,5,", 1);
+    let t = run_clean(&main_with(&format!("CYCLE72(\"CONT_A:CONT_E\",{args}"), &section("CONT_A", "CONT_E")));
+    let s = after_start(&t);
+    let first = -10.0 / 3.0;
+    let arrive = s
+        .iter()
+        .position(|p| close(p.b[0], 30.0, 1e-9) && close(p.b[1], -5.0, 1e-9) && close(p.b[Z], first, 1e-9))
+        .unwrap();
+    let leave = s[..arrive].iter().rposition(|p| close(p.b[0], 40.0, 1e-9) && close(p.b[Z], 2.0, 1e-9)).unwrap();
+    for p in &s[leave..=arrive] {
+        let want = 2.0 + (first - 2.0) * (40.0 - p.b[0]) / 10.0;
+        assert!(close(p.b[1], -5.0, 1e-9) && close(p.b[Z], want, 1e-6), "({}, {}, {})", p.b[0], p.b[1], p.b[Z]);
+    }
+    assert!(!s[..arrive].iter().any(|p| close(p.b[0], 40.0, 1e-9) && p.b[Z] < 2.0 - 1e-6), "no infeed at (40, -5)");
+}

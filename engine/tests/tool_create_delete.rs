@@ -84,3 +84,10 @@ fn newt_without_a_name_is_refused_with_its_line() {
     assert_eq!(line, Some(2));
     assert_ne!(number, 12550, "NEWT is known");
 }
+
+#[test]
+fn the_name_check_knows_newt_and_delt() {
+    let ctx = settle::channel("mill-3axis", "").name_context();
+    let text = "DEF INT TNR\nTNR=NEWT(\"FACE_D50\", 2)\nDELT(\"FACE_D50\", 2)\nM30\n";
+    assert!(nctwin_engine::check::names(text, &ctx).is_empty());
+}
