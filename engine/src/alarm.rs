@@ -160,6 +160,24 @@ impl Alarm {
         Alarm::new(17191, format!("Channel 1 block {line} T= {name} not existing"), Some(line))
     }
 
+    /// 17230: NEWT names a tool whose name and duplo number another tool already has.
+    pub fn duplo_assigned(line: u32, name: &str, duplo: i64) -> Alarm {
+        Alarm::new(
+            17230,
+            format!("Channel 1 block {line} duplo no. {duplo} of tool {name} already assigned"),
+            Some(line),
+        )
+    }
+
+    /// 17200: DELT names the tool in the spindle or the one prepared for the change.
+    pub fn tool_in_use(line: u32, t: u32) -> Alarm {
+        Alarm::new(
+            17200,
+            format!("Channel 1 block {line} tool data of T{t} cannot be deleted: tool in use"),
+            Some(line),
+        )
+    }
+
     /// 22069: every duplo of the programmed name is disabled, so the tool group has no tool
     /// ready for use.
     pub fn no_usable_tool(line: u32, name: &str) -> Alarm {

@@ -151,6 +151,11 @@ impl Channel {
             self.data.delete_kin(kind == "KIN_CHAIN_ELEM", kind == "TRAFO_DATA");
             return Ok(());
         }
+        if let Some(t) = text.strip_prefix(crate::interp::DELT) {
+            self.data.delete_tool(t.parse().map_err(|_| bad(text.to_string()))?);
+            Arc::make_mut(&mut self.cfg).refresh_data(&self.data).map_err(|e| bad(e.message))?;
+            return Ok(());
+        }
         if let Some(n) = text.strip_prefix(CORRTRAFO) {
             // The corrected $NK_OFF_DIR came just before: the record's data set follows it.
             let n = n.parse().map_err(|_| bad(text.to_string()))?;

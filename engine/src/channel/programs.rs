@@ -193,7 +193,11 @@ impl Channel {
         crate::check::NameContext::new(
             self.cfg.clone(),
             self.programs.iter().map(|p| p.name().to_string()),
-            self.interp.variables().global_names().map(str::to_string),
+            self.interp
+                .variables()
+                .global_names()
+                .chain(crate::programs::cycles::GLOBALS.iter().copied())
+                .map(str::to_string),
         )
     }
 

@@ -124,9 +124,10 @@ impl Interpreter {
     ) -> Result<(), Alarm> {
         let section = caller_section::labels(name);
         let caller_dir = self.calls.last().map_or(programs.main_dir(), |f| f.dir.as_ref());
+        let program = caller_section::in_program(name).map_or(name, |(program, _)| program);
         let (text, dir) = match section {
-            Some(_) => self.caller_text(name, programs, line)?,
-            None => programs.resolve_with_path(name, caller_dir, self.call_state.callpath.as_ref(), line)?,
+            Some(_) if program == name => self.caller_text(name, programs, line)?,
+            _ => programs.resolve_with_path(program, caller_dir, self.call_state.callpath.as_ref(), line)?,
         };
         if self.calls.len() + 1 >= MAX_LEVELS {
             return Err(Alarm::too_many_levels(line, MAX_LEVELS));

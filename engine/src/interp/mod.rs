@@ -206,6 +206,7 @@ pub enum Item {
 /// Marker in [`Interpreter::take_data_writes`]: activate the machine data written so far.
 pub const NEWCONF: &str = "NEWCONF";
 
+pub use tools::create_delete::DELT;
 /// Prefix of the data-write entry of `DELOBJ("type")`, followed by the object type.
 pub const DELOBJ: &str = "DELOBJ:";
 

@@ -1,7 +1,9 @@
 //! Orientable toolholders (TCARR, TOFRAME, TOROT) and the swivel cycle CYCLE800 that drives
-//! them; tool selection and change by number or name (`management.rs`).
+//! them; tool selection and change by number or name (`management.rs`); NEWT/DELT
+//! (`create_delete.rs`).
 
 pub mod active_swivel;
+pub(super) mod create_delete;
 pub(super) mod dnumbers;
 pub(super) mod management;
 pub mod setpiece;

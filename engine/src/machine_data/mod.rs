@@ -498,6 +498,12 @@ impl MachineData {
         self.tm = Default::default();
     }
 
+    /// Deletes tool `t` (DELT): its cutting edges, tool and monitoring data and its place.
+    pub fn delete_tool(&mut self, t: u32) {
+        self.tools.retain(|(tool, _), _| *tool != t);
+        self.tm.delete_tool(t);
+    }
+
     /// Moves tool `t` into place (m, p): its old place entry is removed.
     pub fn move_tool(&mut self, t: u32, m: u32, p: u32) {
         self.tm.clear_places_of(t);

@@ -188,6 +188,12 @@ impl ToolMgmtData {
         self.values.retain(|(f, _, _, n), v| !(*f == Family::Place && *n == 6 && *v == Value::Int(t.into())));
     }
 
+    /// Removes every datum of tool `t`: tool data, monitoring data and its place entry.
+    pub fn delete_tool(&mut self, t: u32) {
+        self.clear_places_of(t);
+        self.values.retain(|(f, a, _, _), _| !(matches!(f, Family::Tool | Family::Monitoring) && *a == t));
+    }
+
     /// Puts tool `t` into place (m, p), or empties the place for `None` (loading/unloading).
     pub fn set_place_tool(&mut self, m: u32, p: u32, t: Option<u32>) {
         match t {

@@ -24,6 +24,11 @@ static LIBRARY: LazyLock<Vec<StoredProgram>> = LazyLock::new(|| {
         .collect()
 });
 
+/// The channel data the library declares for itself (`CYC_CONT_DEF.SPF`: the contour CYCLE62
+/// names for CYCLE72), as the cycle package's definitions file does on the control: the name
+/// check knows them before the first call declares them.
+pub const GLOBALS: &[&str] = &["_CYC_CONT"];
+
 /// Every cycle of the library, by name.
 pub fn library() -> &'static [StoredProgram] {
     &LIBRARY

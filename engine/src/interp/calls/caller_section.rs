@@ -3,7 +3,8 @@
 //! subprogram, as a program level of its own, and returns after END. The standard cycles that
 //! take a contour as a labelled section of the calling program (CYCLE95's NPP `"START:END"`)
 //! read it so: on the control the contour lies in the part program, usually behind its M30.
-//! A program name never holds a colon, so no stored program is shadowed.
+//! A program name never holds a colon, so no stored program is shadowed. `CALL
+//! "PROGRAM:START:END"` runs the section of the stored program PROGRAM instead.
 
 use super::{Interpreter, Programs};
 use crate::alarm::Alarm;
@@ -11,8 +12,10 @@ use crate::interp::flow::{Pos, Section};
 use crate::lang::{JumpTarget, ProgramText};
 use crate::programs::Dir;
 
-/// The labels of a section name `"START:END"`; `None` for a program name.
+/// The labels of a section name `"START:END"` (or `"PROGRAM:START:END"`, see
+/// [`in_program`]); `None` for a program name.
 pub(super) fn labels(name: &str) -> Option<(JumpTarget, JumpTarget)> {
+    let name = in_program(name).map_or(name, |(_, section)| section);
     let (start, end) = name.split_once(':')?;
     let target = |t: &str| {
         let t = t.trim();
@@ -22,6 +25,13 @@ pub(super) fn labels(name: &str) -> Option<(JumpTarget, JumpTarget)> {
         }
     };
     Some((target(start), target(end)))
+}
+
+/// `"PROGRAM:START:END"`: the section START..END of the stored program PROGRAM (CYCLE62's
+/// contour as a label pair in a subprogram), split into the program's name and `"START:END"`.
+pub(super) fn in_program(name: &str) -> Option<(&str, &str)> {
+    let (program, section) = name.split_once(':')?;
+    section.contains(':').then_some((program.trim(), section))
 }
 
 impl Interpreter {

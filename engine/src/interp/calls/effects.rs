@@ -1,16 +1,17 @@
-//! Predefined functions with side effects inside a block: `DELOBJ(...)`, `CORRTRAFO(...)` and
-//! `ISFILE(...)` in any expression (`IF (DELOBJ("TRAFO_DATA") < 0)`, `R1=CORRTRAFO(...)`),
-//! CORRTRAFO and the file procedures (`WRITE(err, ...)`, [`crate::interp::files`]) as
+//! Predefined functions with side effects inside a block: `DELOBJ(...)`, `CORRTRAFO(...)`,
+//! `NEWT(...)` and `ISFILE(...)` in any expression (`IF (DELOBJ("TRAFO_DATA") < 0)`, `R1=CORRTRAFO(...)`),
+//! CORRTRAFO, DELT and the file procedures (`WRITE(err, ...)`, [`crate::interp::files`]) as
 //! statements. They run once, innermost and left to right, before the block is prepared, and
 //! are replaced by their values, so conditions and assignments then read plain numbers.
 
 use crate::alarm::Alarm;
 use crate::interp::eval::scope::{Ctx, sys_view};
+use crate::interp::tools::create_delete;
 use crate::interp::{Interpreter, Item, Programs, calls::delobj, files};
 use crate::lang::{Block, Expr, Stmt, Word};
 use crate::machine_data::MachineConfig;
 
-const FUNCTIONS: &[&str] = &["DELOBJ", "CORRTRAFO", "ISFILE"];
+const FUNCTIONS: &[&str] = &["DELOBJ", "CORRTRAFO", "ISFILE", "NEWT"];
 
 fn calls_any(e: &Expr) -> bool {
     match e {
@@ -57,7 +58,10 @@ pub(in crate::interp) fn present(block: &Block) -> bool {
     stmt || block.words.iter().any(|w| match w {
         Word::Address { indices, value, .. } => indices.iter().any(calls_any) || calls_any(&value.expr),
         Word::Keyword { name, args } => {
-            name == "CORRTRAFO" || files::PROCEDURES.contains(&name.as_str()) || args.iter().any(calls_any)
+            name == "CORRTRAFO"
+                || name == "DELT"
+                || files::PROCEDURES.contains(&name.as_str())
+                || args.iter().any(calls_any)
         }
         _ => false,
     })
@@ -84,6 +88,10 @@ impl Interpreter {
                 Word::Keyword { name, args } if name == "CORRTRAFO" => {
                     self.corrtrafo(&args, cfg, line, out)?;
                 }
+                Word::Keyword { name, args } if name == "DELT" => {
+                    let write = self.delt(&args, cfg, line)?;
+                    self.data_writes.push((line, write));
+                }
                 Word::Keyword { name, args } if files::PROCEDURES.contains(&name.as_str()) => {
                     self.file_procedure(&name, &args, cfg, programs, line)?;
                 }
@@ -92,6 +100,14 @@ impl Interpreter {
         }
         block.words = kept;
         Ok(())
+    }
+
+    /// `DELT(...)` as a statement: its data-write entry (the tool in the spindle and the one
+    /// prepared cannot go).
+    fn delt(&self, args: &[Expr], cfg: &MachineConfig, line: u32) -> Result<String, Alarm> {
+        let sys = sys_view!(self, cfg);
+        let in_use = [self.offsets.t, self.offsets.prepared];
+        create_delete::delt(args, &Ctx { vars: &self.vars, sys: &sys }, cfg, in_use, line)
     }
 
     fn resolve_calls(
@@ -118,6 +134,13 @@ impl Interpreter {
                         value
                     }
                     "CORRTRAFO" => self.corrtrafo(args, cfg, line, out)?,
+                    "NEWT" => {
+                        let sys = sys_view!(self, cfg);
+                        let ctx = Ctx { vars: &self.vars, sys: &sys };
+                        let (t, writes) = create_delete::newt(args, &ctx, cfg, &self.data_writes, line)?;
+                        self.data_writes.extend(writes.into_iter().map(|w| (line, w)));
+                        i64::from(t)
+                    }
                     "ISFILE" => {
                         *e = Expr::Bool(self.isfile(args, cfg, programs, line)?);
                         return Ok(());
