@@ -433,6 +433,7 @@ impl Interpreter {
         self.calls.clear();
         self.call_state = Default::default();
         self.flow = Some(Flow::new(text.into()));
+        self.env.last_search = 0;
     }
 
     /// The machine and setting data programs read from now on (after every change the
@@ -455,6 +456,15 @@ impl Interpreter {
     /// Marks the channel's runs as a simulation (`$P_SIM` TRUE) or the machine's own.
     pub fn set_simulation(&mut self, simulation: bool) {
         self.env.simulation = simulation;
+    }
+
+    /// A block search starts (`$P_SEARCH` 1, `$P_SEARCHL` its type) or has found its target
+    /// (`$P_SEARCH` 0 again).
+    pub fn set_searching(&mut self, searching: bool) {
+        self.env.searching = searching;
+        if searching {
+            self.env.last_search = eval::run_vars::SEARCH_TO_CONTOUR;
+        }
     }
 
     /// The digital I/O image as the main run holds it (read by blocks that waited for it).

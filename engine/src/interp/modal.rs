@@ -920,6 +920,13 @@ pub(super) fn collect(
                         Ok(v as u32)
                     }
                 };
+                // `M=3`, `M=R1`: an M function by expression, as `M3` (several per block).
+                if &**name == "M" {
+                    let code = whole("M=")?;
+                    m_function(w, code, line)?;
+                    w.tool_change |= code == cfg.tool_change.m_code;
+                    continue;
+                }
                 // AX[...] words are told apart by the axis they name (below), not by "AX".
                 if &**name != "AX" && !seen.insert(name) {
                     return Err(Alarm::repeated_address(line, name));
@@ -1281,6 +1288,7 @@ fn is_nc_address(name: &str) -> bool {
     matches!(
         name,
         "F" | "S"
+            | "M"
             | "T"
             | "D"
             | "CR"

@@ -1,0 +1,47 @@
+//! Words of shop and machine-builder programs that need more than a fixture program to check:
+//! a block search (`$P_SEARCH`), the feed of chamfers read from the IPO samples (`FRC`).
+
+#[allow(dead_code)] // the shared helpers this file does not use
+mod settle;
+
+use nctwin_engine::Status;
+use settle::{channel, settle};
+
+/// A tool-change program's guard: `IF $P_SEARCH GOTOF` skips the change during a search.
+const GUARDED: &str = "G0 X0 Y0
+R1=$P_SEARCH R2=$P_SEARCHL
+IF $P_SEARCH GOTOF SKIP
+R3=7
+SKIP:
+G0 X5
+R4=$P_SEARCH R5=$P_SEARCHL
+M30";
+
+#[test]
+fn p_search_is_one_only_while_a_block_search_prepares_the_blocks_before_its_target() {
+    // A plain run: no search, so the guarded block runs and both variables read 0.
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program(GUARDED).unwrap();
+    settle(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let r = |ch: &nctwin_engine::Channel| [1, 2, 3, 4, 5].map(|n| ch.r_param(n));
+    assert_eq!(r(&ch), [0.0, 0.0, 7.0, 0.0, 0.0]);
+
+    // A search to line 6 (G0 X5): lines 1..5 are computed with $P_SEARCH = 1 and the type of
+    // the search, 2 (with calculation to the contour), in $P_SEARCHL; R3=7 is jumped over.
+    // After NC start line 7 reads $P_SEARCH 0 while $P_SEARCHL keeps 2 until the next start.
+    let mut ch = channel("mill-3axis", "");
+    ch.block_search(Some(GUARDED), 6).unwrap();
+    assert_eq!(ch.status(), Status::Stopped, "{:?}", ch.alarms());
+    assert_eq!(r(&ch), [1.0, 2.0, 0.0, 0.0, 0.0]);
+    ch.start().unwrap();
+    settle(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    assert_eq!(r(&ch), [1.0, 2.0, 0.0, 0.0, 2.0]);
+    assert_eq!(ch.axis_positions()[0], 5.0);
+
+    // The next program starts without a search: both read 0 again.
+    ch.run_program("R4=$P_SEARCH R5=$P_SEARCHL\nM30").unwrap();
+    settle(&mut ch);
+    assert_eq!(r(&ch)[3..], [0.0, 0.0]);
+}
