@@ -45,3 +45,44 @@ fn p_search_is_one_only_while_a_block_search_prepares_the_blocks_before_its_targ
     settle(&mut ch);
     assert_eq!(r(&ch)[3..], [0.0, 0.0]);
 }
+
+/// The mill's tool spindle S1 (master spindle 1, 3000 rev/min per second).
+fn s1(ch: &nctwin_engine::Channel) -> nctwin_engine::SpindleState {
+    ch.snapshot().spindle_states.iter().find(|(n, _)| n == "S1").expect("S1").1
+}
+
+#[test]
+fn spcon_puts_the_turning_spindle_into_position_control_until_spcof() {
+    use nctwin_engine::SpindleMode;
+    // M3 S1000 reaches 1000 rev/min in 1/3 s; SPCON keeps it turning (speed control in a
+    // position loop), the state shows position control; SPCOF ends it, still at M3.
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("M3 S1000\nG4 F0.5\nSPCON\nM0\nSPCOF\nM0\nSPOS=90\nSPCOF(1)\nM0\nM30").unwrap();
+    settle(&mut ch);
+    assert_eq!(ch.status(), Status::Stopped, "{:?}", ch.alarms());
+    let s = s1(&ch);
+    assert!(s.position_control);
+    assert_eq!((s.mode, s.speed), (SpindleMode::M3, 1000.0));
+    ch.start().unwrap();
+    settle(&mut ch);
+    let s = s1(&ch);
+    assert!(!s.position_control);
+    assert_eq!((s.mode, s.speed), (SpindleMode::M3, 1000.0));
+    // SPOS=90 stops the spindle at 90° in position control; SPCOF(1) returns it to speed
+    // control where it stands: M5, 90°.
+    ch.start().unwrap();
+    settle(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let s = s1(&ch);
+    assert!(!s.position_control);
+    assert_eq!(s.mode, SpindleMode::M5);
+    assert!((s.position - 90.0).abs() < 1e-6, "{}", s.position);
+}
+
+#[test]
+fn spcon_of_a_spindle_the_channel_does_not_have_is_12560() {
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("SPCON(2)\nM30").unwrap();
+    settle(&mut ch);
+    assert_eq!(ch.alarms().iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), [(12560, Some(1))]);
+}

@@ -749,8 +749,17 @@ pub(super) fn collect(
             Word::Keyword { name, args } if super::spindles::is_diameter_axis_keyword(name) => {
                 super::spindles::diameter_axis_word(&mut w.spindle, name, args, &Ctx { vars, sys }, cfg, line)?;
             }
+            Word::Keyword { name, args } if name == "SPCON" || name == "SPCOF" => {
+                let switch = super::spindles::position_control::statement(name, args, &Ctx { vars, sys }, line)?;
+                if w.spindle.position_control.replace(switch).is_some() {
+                    return Err(Alarm::syntax(line, "one SPCON/SPCOF per block"));
+                }
+            }
             Word::Keyword { name, args } if name == "FPR" => {
                 w.spindle.fpr = Some(super::spindles::fpr_statement(args, &Ctx { vars, sys }, cfg, line)?);
+            }
+            Word::Keyword { name, args } if super::synchronized::channel_coordination::is_keyword(name) => {
+                super::synchronized::channel_coordination::statement(name, args, cfg, &Ctx { vars, sys }, line)?;
             }
             Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
                 super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;

@@ -11,6 +11,7 @@ pub mod compile;
 pub mod flat;
 pub mod horizon;
 pub mod technology;
+pub(super) mod channel_coordination;
 pub(super) mod wait_markers;
 
 use std::sync::Arc;

@@ -65,6 +65,12 @@ const KEYWORDS: &[&str] = &[
     "CLEARM",
     "FGROUP",
     "FGREF",
+    "SPCON",
+    "SPCOF",
+    "WAITE",
+    "GET",
+    "GETD",
+    "RELEASE",
 ];
 
 /// Predefined functions of expressions (`eval.rs`: `call`, the frame functions; the tool list
