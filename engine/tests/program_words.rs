@@ -86,3 +86,32 @@ fn spcon_of_a_spindle_the_channel_does_not_have_is_12560() {
     settle(&mut ch);
     assert_eq!(ch.alarms().iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), [(12560, Some(1))]);
 }
+
+#[test]
+fn ct_continues_a_line_along_x_on_the_circle_about_10_10() {
+    // G1 to (10,0) heading +X, then CT X20 Y10: centre (10,10), radius 10, counter-clockwise
+    // (worked out in tests/programs/lang/161_ct_tangential_circle.mpf). Under G60 (exact stop,
+    // the reset state) every sample past X10 lies on that circle.
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("G0 X0 Y0\nG1 X10 F3000\nCT X20 Y10\nM30").unwrap();
+    let samples = settle(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let on_arc: Vec<_> = samples.iter().filter(|p| p[0] > 10.0 + 1e-6).collect();
+    assert!(on_arc.len() > 50, "{}", on_arc.len());
+    for p in &on_arc {
+        let r = (p[0] - 10.0).hypot(p[1] - 10.0);
+        assert!((r - 10.0).abs() < 1e-6, "{p:?}: r = {r}");
+        assert!(p[1] <= 10.0 + 1e-9, "{p:?} beyond the quarter");
+    }
+    let end = samples.last().unwrap();
+    assert!((end[0] - 20.0).abs() < 1e-9 && (end[1] - 10.0).abs() < 1e-9, "{end:?}");
+}
+
+#[test]
+fn ct_with_its_end_point_straight_ahead_is_14040() {
+    // The end point on the tangent leaves no circle: 14040 at the CT block.
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("G1 X10 F3000\nCT X30\nM30").unwrap();
+    settle(&mut ch);
+    assert_eq!(ch.alarms().iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), [(14040, Some(2))]);
+}

@@ -5,3 +5,4 @@ pub mod arc;
 pub mod arc_rounding;
 pub mod capture;
 pub mod corners;
+pub mod tangent_circle;

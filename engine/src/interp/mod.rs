@@ -321,6 +321,8 @@ pub struct Interpreter {
     fast_lane: bool,
     /// What the lane keeps between its blocks (a cache, cleared by the general path).
     lane_memo: lane::LaneMemo,
+    /// The last path block in the working plane, for CT (`contour/tangent_circle.rs`).
+    last_move: contour::tangent_circle::LastMove,
     /// The session's machine and setting data as stored, for programs' `$MN_`... reads
     /// (the channel hands over each new state, [`Interpreter::set_stored_data`]).
     stored: std::sync::Arc<crate::machine_data::MachineData>,
@@ -377,6 +379,7 @@ impl Interpreter {
             spare_words: modal::SpareWords::default(),
             fast_lane: true,
             lane_memo: Default::default(),
+            last_move: Default::default(),
             stored: Default::default(),
             io: io::DigitalIo::default(),
             env: Default::default(),
@@ -1179,6 +1182,17 @@ impl Interpreter {
 
         // The circle in the WCS plane (it may decide the end point: centre plus AR=).
         let circle = match self.modal.motion {
+            MotionMode::Cw | MotionMode::Ccw if self.modal.tangent_circle => {
+                let (Some(ka), Some(ko)) = plane else {
+                    return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
+                };
+                let tangent = self.last_move.end_direction().ok_or_else(|| Alarm::circle_end_point(line))?;
+                let (c, turn) = contour::tangent_circle::circle((current[ka], current[ko]), (target[ka], target[ko]), tangent)
+                    .map_err(|_| Alarm::circle_end_point(line))?;
+                self.modal.motion =
+                    if turn == contour::arc::Turn::Clockwise { MotionMode::Cw } else { MotionMode::Ccw };
+                Some(contour::arc::with_turns(c, words.turn.unwrap_or(0)))
+            }
             MotionMode::Cw | MotionMode::Ccw => {
                 let (Some(ka), Some(ko)) = plane else {
                     return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
@@ -1211,6 +1225,9 @@ impl Interpreter {
             _ => None,
         };
 
+        if let (Some(ka), Some(ko)) = plane {
+            self.last_move.record((current[ka], current[ko]), (target[ka], target[ko]), circle.as_ref());
+        }
         if let (Some(capture), (Some(ka), Some(ko))) = (self.capture.as_mut(), plane) {
             let center = circle.as_ref().map(|c| c.center);
             capture.record(self.modal.motion, (current[ka], current[ko]), (target[ka], target[ko]), center);

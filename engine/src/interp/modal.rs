@@ -85,6 +85,9 @@ pub struct Modal {
     pub trc: Option<Side>,
     /// RNDM=: modal rounding radius of every following contour corner (None: RNDM=0).
     pub rndm: Option<f64>,
+    /// CT (G group 1): circles continue the path tangentially (`contour/tangent_circle.rs`);
+    /// `motion` holds the turn of the last one.
+    pub tangent_circle: bool,
     /// G450 (transition circle) or G451 (intersection) at outer corners.
     pub trc_corners: CornerMode,
     /// G groups 43 and 44 of smooth approach and retract (`compensation/sar.rs`).
@@ -170,6 +173,7 @@ impl Modal {
             polar: (0.0, 0.0),
             trc: None,
             rndm: None,
+            tangent_circle: false,
             trc_corners: CornerMode::Circle,
             sar: Default::default(),
             spline: Default::default(),
@@ -202,6 +206,7 @@ impl Modal {
     pub(super) fn apply(&mut self, w: &Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
         if let Some(m) = w.motion {
             self.motion = m;
+            self.tangent_circle = w.tangent_circle;
         }
         self.spline.apply(&w.spline, w.motion.is_some());
         if w.spline.kind.is_some() {
@@ -445,6 +450,8 @@ pub(super) struct Words {
     pub corner: Option<Corner>,
     /// RNDM=: the modal rounding radius (0 switches it off).
     pub rndm: Option<f64>,
+    /// CT: a circle with tangential transition (G group 1, with `motion` a circle).
+    pub tangent_circle: bool,
     /// CONTCAPON(table, count) / CONTCAPOF: contour capture (`contour/capture.rs`).
     pub capture: Option<super::contour::capture::CaptureOp>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
@@ -594,6 +601,13 @@ pub(super) fn collect(
             Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.path.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.spline.keyword(name) => {}
+            Word::Keyword { name, args } if args.is_empty() && name == "CT" => {
+                if w.motion.is_some() {
+                    return Err(Alarm::syntax(line, "CT and another G function of group 1 in a block"));
+                }
+                // The turn follows from the geometry when the block is prepared.
+                (w.motion, w.tangent_circle) = (Some(MotionMode::Ccw), true);
+            }
             Word::Keyword { name, args }
                 if args.is_empty() && matches!(name.as_str(), "CP" | "PTP" | "PTPG0" | "PTPWOC") =>
             {

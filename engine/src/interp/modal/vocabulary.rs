@@ -65,6 +65,7 @@ const KEYWORDS: &[&str] = &[
     "CLEARM",
     "FGROUP",
     "FGREF",
+    "CT",
     "SPCON",
     "SPCOF",
     "WAITE",
