@@ -115,3 +115,51 @@ fn ct_with_its_end_point_straight_ahead_is_14040() {
     settle(&mut ch);
     assert_eq!(ch.alarms().iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), [(14040, Some(2))]);
 }
+
+/// The highest path speed (mm/s, X and Y) between consecutive samples for which `inside`
+/// holds at both ends.
+fn top_speed(samples: &[Vec<f64>], dt: f64, inside: impl Fn(&[f64]) -> bool) -> f64 {
+    samples
+        .windows(2)
+        .filter(|w| inside(&w[0]) && inside(&w[1]))
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]) / dt)
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn frc_gives_the_chamfer_its_own_feed_and_the_blocks_keep_f() {
+    // G1 X20 at F600 (10 mm/s) with CHF=2√2 at the corner to +Y: the chamfer cuts 2 mm off
+    // each block (leg = CHF / (2 cos 45°)), from (18,0) to (20,2). FRC=120 → 2 mm/s on the
+    // chamfer only; the Y block runs at F again (10 mm/s).
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("G0 X0 Y0\nG1 X20 F600 CHF=2.8284271 FRC=120\nY20\nM30").unwrap();
+    let samples = settle(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let dt = ch.time() / ch.ticks() as f64;
+    let chamfer = top_speed(&samples, dt, |p| p[0] > 18.0 + 1e-6 && p[1] > 1e-6 && p[1] < 2.0 - 1e-6);
+    assert!((chamfer - 2.0).abs() < 0.02, "chamfer at {chamfer} mm/s");
+    let first = top_speed(&samples, dt, |p| p[0] < 18.0 && p[1] == 0.0);
+    let second = top_speed(&samples, dt, |p| p[1] > 2.0 + 1e-6);
+    assert!((first - 10.0).abs() < 0.05 && (second - 10.0).abs() < 0.05, "{first} {second}");
+}
+
+#[test]
+fn frcm_is_modal_per_revolution_under_g95_and_frcm_0_returns_to_f() {
+    // G95 with S1000: F0.6 = 600 mm/min (10 mm/s), FRCM=0.12 = 120 mm/min (2 mm/s) on each
+    // following corner. Corner 1 at (20,0), CHF as above: 2 mm/s. Corner 2 at (20,20) (Y+ then
+    // X−), RND=2: an arc of radius 2 from (20,18) to (18,20), still at FRCM. FRCM=0 in the X
+    // block: corner 3 at (0,20) (X− then Y−), RND=2, runs at the block's F, 10 mm/s.
+    let mut ch = channel("mill-3axis", "");
+    let program = "G0 X0 Y0\nM3 S1000\nG4 F1\nG95 G1 X20 F0.6 CHF=2.8284271 FRCM=0.12\n\
+                   Y20 RND=2\nX0 RND=2 FRCM=0\nY0\nM30";
+    ch.run_program(program).unwrap();
+    let samples = settle(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let dt = ch.time() / ch.ticks() as f64;
+    let corner1 = top_speed(&samples, dt, |p| p[0] > 18.0 + 1e-6 && p[1] > 1e-6 && p[1] < 2.0 - 1e-6);
+    let corner2 = top_speed(&samples, dt, |p| p[0] > 18.0 + 1e-6 && p[1] > 18.0 + 1e-6 && p[0] < 20.0 - 1e-6);
+    let corner3 = top_speed(&samples, dt, |p| p[0] < 2.0 - 1e-6 && p[1] > 18.0 + 1e-6 && p[0] > 1e-6);
+    assert!((corner1 - 2.0).abs() < 0.02, "corner 1 at {corner1} mm/s");
+    assert!((corner2 - 2.0).abs() < 0.02, "corner 2 at {corner2} mm/s");
+    assert!((corner3 - 10.0).abs() < 0.1, "corner 3 at {corner3} mm/s");
+}

@@ -4,5 +4,6 @@
 pub mod arc;
 pub mod arc_rounding;
 pub mod capture;
+pub mod corner_feed;
 pub mod corners;
 pub mod tangent_circle;

@@ -299,6 +299,8 @@ pub struct Interpreter {
     splines: Option<Box<path_control::spline::SplineRun>>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
+    /// FRC= of the block whose corner is requested (`contour/corner_feed.rs`).
+    corner_frc: Option<f64>,
     /// CONTCAPON..CONTCAPOF: motions recorded, not run (`contour/capture.rs`).
     capture: Option<Box<contour::capture::Capture>>,
     /// Tool radius compensation: moves held until their successor decides their end.
@@ -369,6 +371,7 @@ impl Interpreter {
             capture: None,
             splines: None,
             corner_request: None,
+            corner_frc: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
             positioning_axes: Default::default(),
@@ -734,6 +737,7 @@ impl Interpreter {
         }
         // RND/CHF/CHR in the block take the place of the modal rounding at its corner.
         self.corner_request = words.corner.or(self.modal.rndm.map(Corner::Round));
+        self.corner_feed_words(words.frc, words.frcm, line)?;
         if let Some(path) = &words.callpath {
             self.call_state.callpath = calls::callpath(path);
         }

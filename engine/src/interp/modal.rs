@@ -85,6 +85,8 @@ pub struct Modal {
     pub trc: Option<Side>,
     /// RNDM=: modal rounding radius of every following contour corner (None: RNDM=0).
     pub rndm: Option<f64>,
+    /// FRCM=: modal feed of chamfers and roundings (None: FRCM=0, F applies).
+    pub frcm: Option<f64>,
     /// CT (G group 1): circles continue the path tangentially (`contour/tangent_circle.rs`);
     /// `motion` holds the turn of the last one.
     pub tangent_circle: bool,
@@ -174,6 +176,7 @@ impl Modal {
             trc: None,
             rndm: None,
             tangent_circle: false,
+            frcm: None,
             trc_corners: CornerMode::Circle,
             sar: Default::default(),
             spline: Default::default(),
@@ -450,6 +453,9 @@ pub(super) struct Words {
     pub corner: Option<Corner>,
     /// RNDM=: the modal rounding radius (0 switches it off).
     pub rndm: Option<f64>,
+    /// FRC= / FRCM=: feed of the corner (`contour/corner_feed.rs`).
+    pub frc: Option<f64>,
+    pub frcm: Option<f64>,
     /// CT: a circle with tangential transition (G group 1, with `motion` a circle).
     pub tangent_circle: bool,
     /// CONTCAPON(table, count) / CONTCAPOF: contour capture (`contour/capture.rs`).
@@ -971,6 +977,8 @@ pub(super) fn collect(
                     "DISC" => w.disc = Some(v),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
                     "RNDM" => w.rndm = Some(v * sys.modal.length_factor()),
+                    "FRC" => w.frc = Some(v),
+                    "FRCM" => w.frcm = Some(v),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
                     "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
                     "AP" => w.ap = Some(v),
@@ -1328,6 +1336,8 @@ fn is_nc_address(name: &str) -> bool {
             | "TURN"
             | "RND"
             | "RNDM"
+            | "FRC"
+            | "FRCM"
             | "CHF"
             | "CHR"
             | "STAT"
