@@ -1543,9 +1543,15 @@ fn tool_vector(cfg: &MachineConfig, modal: &Modal, t: u32, d: u32) -> AxisVec {
         (true, Plane::G18) => [0, 2, 1],
         (true, Plane::G19) => [2, 1, 0],
     };
-    for (l, g) in lengths.iter().zip(map) {
+    let programmed = &modal.tool_offsets;
+    for ((l, extra), g) in lengths.iter().zip(programmed.lengths).zip(map) {
         if let Some(k) = cfg.geo_axes[g] {
-            v[k] += l;
+            v[k] += l + extra;
+        }
+    }
+    for (g, extra) in programmed.axes.iter().enumerate() {
+        if let Some(k) = cfg.geo_axes[g] {
+            v[k] += extra;
         }
     }
     v

@@ -85,6 +85,8 @@ pub struct Modal {
     pub trc: Option<Side>,
     /// RNDM=: modal rounding radius of every following contour corner (None: RNDM=0).
     pub rndm: Option<f64>,
+    /// TOFFL/TOFF[axis]: programmed tool offsets (`tools/programmable_offset.rs`).
+    pub tool_offsets: super::tools::programmable_offset::ProgrammedOffsets,
     /// FRCM=: modal feed of chamfers and roundings (None: FRCM=0, F applies).
     pub frcm: Option<f64>,
     /// CT (G group 1): circles continue the path tangentially (`contour/tangent_circle.rs`);
@@ -177,6 +179,7 @@ impl Modal {
             rndm: None,
             tangent_circle: false,
             frcm: None,
+            tool_offsets: Default::default(),
             trc_corners: CornerMode::Circle,
             sar: Default::default(),
             spline: Default::default(),
@@ -211,6 +214,7 @@ impl Modal {
             self.motion = m;
             self.tangent_circle = w.tangent_circle;
         }
+        self.tool_offsets.apply(&w.tool_offsets);
         self.spline.apply(&w.spline, w.motion.is_some());
         if w.spline.kind.is_some() {
             // A spline block is prepared like a G1 block (`path_control/spline.rs`).
@@ -453,6 +457,8 @@ pub(super) struct Words {
     pub corner: Option<Corner>,
     /// RNDM=: the modal rounding radius (0 switches it off).
     pub rndm: Option<f64>,
+    /// TOFFL=, TOFFL[i]=, TOFF[axis]= in the order written (mm).
+    pub tool_offsets: Vec<(super::tools::programmable_offset::Slot, f64)>,
     /// FRC= / FRCM=: feed of the corner (`contour/corner_feed.rs`).
     pub frc: Option<f64>,
     pub frcm: Option<f64>,
@@ -808,6 +814,14 @@ pub(super) fn collect(
             Word::Keyword { name, .. } if name == "CLEARM" => {}
             Word::Keyword { name, args } if name == "FGROUP" => {
                 w.feed_group.axes = Some(super::path_control::feed_group::axes(args, cfg, line)?);
+            }
+            Word::Address { name, indices, value }
+                if super::tools::programmable_offset::is_word(name) && vars.get(name).is_none() =>
+            {
+                let ctx = Ctx { vars, sys };
+                let slot = super::tools::programmable_offset::slot(name, indices, cfg, &ctx, line)?;
+                let v = eval_f64(&value.expr, &ctx, line)? * sys.modal.length_factor();
+                w.tool_offsets.push((slot, v));
             }
             Word::Address { name, indices, value }
                 if name == "FGREF"
