@@ -1184,6 +1184,14 @@ impl Interpreter {
             programmed[ko] = true;
         }
 
+        if let Some(ang) = words.ang {
+            let (Some(ka), Some(ko)) = plane else {
+                return Err(Alarm::value_out_of_range(line, "ANG= in a plane without both geometry axes"));
+            };
+            let given = (programmed[ka].then_some(target[ka]), programmed[ko].then_some(target[ko]));
+            (target[ka], target[ko]) = contour::angle_line::end_point((current[ka], current[ko]), given, ang, line)?;
+            (programmed[ka], programmed[ko]) = (true, true);
+        }
         // The circle in the WCS plane (it may decide the end point: centre plus AR=).
         let circle = match self.modal.motion {
             MotionMode::Cw | MotionMode::Ccw if self.modal.tangent_circle => {

@@ -459,6 +459,8 @@ pub(super) struct Words {
     pub rndm: Option<f64>,
     /// TOFFL=, TOFFL[i]=, TOFF[axis]= in the order written (mm).
     pub tool_offsets: Vec<(super::tools::programmable_offset::Slot, f64)>,
+    /// ANG=: the angle of a straight line given by one end coordinate (`contour/angle_line.rs`).
+    pub ang: Option<f64>,
     /// FRC= / FRCM=: feed of the corner (`contour/corner_feed.rs`).
     pub frc: Option<f64>,
     pub frcm: Option<f64>,
@@ -992,6 +994,7 @@ pub(super) fn collect(
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
                     "RNDM" => w.rndm = Some(v * sys.modal.length_factor()),
                     "FRC" => w.frc = Some(v),
+                    "ANG" => w.ang = Some(v),
                     "FRCM" => w.frcm = Some(v),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
                     "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
@@ -1352,6 +1355,7 @@ fn is_nc_address(name: &str) -> bool {
             | "RNDM"
             | "FRC"
             | "FRCM"
+            | "ANG"
             | "CHF"
             | "CHR"
             | "STAT"
