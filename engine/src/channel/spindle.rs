@@ -134,7 +134,16 @@ impl Spindle {
         };
         let gear = (self.gears.count > 0).then_some(self.gear);
         let position_control = self.position_control || self.axis_mode;
-        SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master, gear, cutting: false, position_control }
+        SpindleState {
+            number,
+            speed,
+            mode,
+            position: angle.rem_euclid(360.0),
+            master,
+            gear,
+            cutting: false,
+            position_control,
+        }
     }
 
     /// The programmed speed before the override (signed: + = M3), 0 after M5.

@@ -1199,8 +1199,9 @@ impl Interpreter {
                     return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
                 };
                 let tangent = self.last_move.end_direction().ok_or_else(|| Alarm::circle_end_point(line))?;
-                let (c, turn) = contour::tangent_circle::circle((current[ka], current[ko]), (target[ka], target[ko]), tangent)
-                    .map_err(|_| Alarm::circle_end_point(line))?;
+                let (c, turn) =
+                    contour::tangent_circle::circle((current[ka], current[ko]), (target[ka], target[ko]), tangent)
+                        .map_err(|_| Alarm::circle_end_point(line))?;
                 self.modal.motion =
                     if turn == contour::arc::Turn::Clockwise { MotionMode::Cw } else { MotionMode::Ccw };
                 Some(contour::arc::with_turns(c, words.turn.unwrap_or(0)))

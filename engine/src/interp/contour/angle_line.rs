@@ -13,7 +13,12 @@ use crate::alarm::Alarm;
 
 /// The missing plane coordinate of a line from `start` (abscissa, ordinate) at `angle`
 /// degrees with the abscissa `end.0` or the ordinate `end.1` given: the full end point.
-pub fn end_point(start: (f64, f64), end: (Option<f64>, Option<f64>), angle: f64, line: u32) -> Result<(f64, f64), Alarm> {
+pub fn end_point(
+    start: (f64, f64),
+    end: (Option<f64>, Option<f64>),
+    angle: f64,
+    line: u32,
+) -> Result<(f64, f64), Alarm> {
     let (sin, cos) = angle.to_radians().sin_cos();
     let refuse = |why: &str| Err(Alarm::value_out_of_range(line, &format!("ANG={}: {why}", Alarm::shown(angle))));
     match end {

@@ -61,7 +61,8 @@ impl Interpreter {
                 // Speed control again: axis words need SPOS before they position it.
                 self.positioned[axis] = false;
             }
-            self.trc.emit_or_defer(Item::SpindleControl { ctl: Control::PositionControl { axis, on: sw.on }, line }, out);
+            self.trc
+                .emit_or_defer(Item::SpindleControl { ctl: Control::PositionControl { axis, on: sw.on }, line }, out);
         }
         Ok(())
     }
