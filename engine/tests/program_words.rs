@@ -4,8 +4,26 @@
 #[allow(dead_code)] // the shared helpers this file does not use
 mod settle;
 
-use nctwin_engine::Status;
+use nctwin_engine::{Channel, Status};
 use settle::{channel, settle};
+
+/// Runs `program` on the 3-axis mill to its end without an alarm; the channel and the
+/// channel-axis samples of every IPO cycle.
+fn run_clean(program: &str) -> (Channel, Vec<Vec<f64>>) {
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program(program).unwrap();
+    let samples = settle(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    (ch, samples)
+}
+
+/// The (number, line) of the alarms `program` ends with on the 3-axis mill.
+fn alarms_of(program: &str) -> Vec<(u32, Option<u32>)> {
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program(program).unwrap();
+    settle(&mut ch);
+    ch.alarms().iter().map(|a| (a.number, a.line)).collect()
+}
 
 /// A tool-change program's guard: `IF $P_SEARCH GOTOF` skips the change during a search.
 const GUARDED: &str = "G0 X0 Y0
@@ -24,7 +42,7 @@ fn p_search_is_one_only_while_a_block_search_prepares_the_blocks_before_its_targ
     ch.run_program(GUARDED).unwrap();
     settle(&mut ch);
     assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
-    let r = |ch: &nctwin_engine::Channel| [1, 2, 3, 4, 5].map(|n| ch.r_param(n));
+    let r = |ch: &Channel| [1, 2, 3, 4, 5].map(|n| ch.r_param(n));
     assert_eq!(r(&ch), [0.0, 0.0, 7.0, 0.0, 0.0]);
 
     // A search to line 6 (G0 X5): lines 1..5 are computed with $P_SEARCH = 1 and the type of
@@ -47,7 +65,7 @@ fn p_search_is_one_only_while_a_block_search_prepares_the_blocks_before_its_targ
 }
 
 /// The mill's tool spindle S1 (master spindle 1, 3000 rev/min per second).
-fn s1(ch: &nctwin_engine::Channel) -> nctwin_engine::SpindleState {
+fn s1(ch: &Channel) -> nctwin_engine::SpindleState {
     ch.snapshot().spindle_states.iter().find(|(n, _)| n == "S1").expect("S1").1
 }
 
@@ -81,10 +99,7 @@ fn spcon_puts_the_turning_spindle_into_position_control_until_spcof() {
 
 #[test]
 fn spcon_of_a_spindle_the_channel_does_not_have_is_12560() {
-    let mut ch = channel("mill-3axis", "");
-    ch.run_program("SPCON(2)\nM30").unwrap();
-    settle(&mut ch);
-    assert_eq!(ch.alarms().iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), [(12560, Some(1))]);
+    assert_eq!(alarms_of("SPCON(2)\nM30"), [(12560, Some(1))]);
 }
 
 #[test]
@@ -92,10 +107,7 @@ fn ct_continues_a_line_along_x_on_the_circle_about_10_10() {
     // G1 to (10,0) heading +X, then CT X20 Y10: centre (10,10), radius 10, counter-clockwise
     // (worked out in tests/programs/lang/161_ct_tangential_circle.mpf). Under G60 (exact stop,
     // the reset state) every sample past X10 lies on that circle.
-    let mut ch = channel("mill-3axis", "");
-    ch.run_program("G0 X0 Y0\nG1 X10 F3000\nCT X20 Y10\nM30").unwrap();
-    let samples = settle(&mut ch);
-    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let (_, samples) = run_clean("G0 X0 Y0\nG1 X10 F3000\nCT X20 Y10\nM30");
     let on_arc: Vec<_> = samples.iter().filter(|p| p[0] > 10.0 + 1e-6).collect();
     assert!(on_arc.len() > 50, "{}", on_arc.len());
     for p in &on_arc {
@@ -110,10 +122,7 @@ fn ct_continues_a_line_along_x_on_the_circle_about_10_10() {
 #[test]
 fn ct_with_its_end_point_straight_ahead_is_14040() {
     // The end point on the tangent leaves no circle: 14040 at the CT block.
-    let mut ch = channel("mill-3axis", "");
-    ch.run_program("G1 X10 F3000\nCT X30\nM30").unwrap();
-    settle(&mut ch);
-    assert_eq!(ch.alarms().iter().map(|a| (a.number, a.line)).collect::<Vec<_>>(), [(14040, Some(2))]);
+    assert_eq!(alarms_of("G1 X10 F3000\nCT X30\nM30"), [(14040, Some(2))]);
 }
 
 /// The highest path speed (mm/s, X and Y) between consecutive samples for which `inside`
@@ -131,10 +140,7 @@ fn frc_gives_the_chamfer_its_own_feed_and_the_blocks_keep_f() {
     // G1 X20 at F600 (10 mm/s) with CHF=2√2 at the corner to +Y: the chamfer cuts 2 mm off
     // each block (leg = CHF / (2 cos 45°)), from (18,0) to (20,2). FRC=120 → 2 mm/s on the
     // chamfer only; the Y block runs at F again (10 mm/s).
-    let mut ch = channel("mill-3axis", "");
-    ch.run_program("G0 X0 Y0\nG1 X20 F600 CHF=2.8284271 FRC=120\nY20\nM30").unwrap();
-    let samples = settle(&mut ch);
-    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let (ch, samples) = run_clean("G0 X0 Y0\nG1 X20 F600 CHF=2.8284271 FRC=120\nY20\nM30");
     let dt = ch.time() / ch.ticks() as f64;
     let chamfer = top_speed(&samples, dt, |p| p[0] > 18.0 + 1e-6 && p[1] > 1e-6 && p[1] < 2.0 - 1e-6);
     assert!((chamfer - 2.0).abs() < 0.02, "chamfer at {chamfer} mm/s");
@@ -149,12 +155,9 @@ fn frcm_is_modal_per_revolution_under_g95_and_frcm_0_returns_to_f() {
     // following corner. Corner 1 at (20,0), CHF as above: 2 mm/s. Corner 2 at (20,20) (Y+ then
     // X−), RND=2: an arc of radius 2 from (20,18) to (18,20), still at FRCM. FRCM=0 in the X
     // block: corner 3 at (0,20) (X− then Y−), RND=2, runs at the block's F, 10 mm/s.
-    let mut ch = channel("mill-3axis", "");
-    let program = "G0 X0 Y0\nM3 S1000\nG4 F1\nG95 G1 X20 F0.6 CHF=2.8284271 FRCM=0.12\n\
-                   Y20 RND=2\nX0 RND=2 FRCM=0\nY0\nM30";
-    ch.run_program(program).unwrap();
-    let samples = settle(&mut ch);
-    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let (ch, samples) = run_clean(
+        "G0 X0 Y0\nM3 S1000\nG4 F1\nG95 G1 X20 F0.6 CHF=2.8284271 FRCM=0.12\nY20 RND=2\nX0 RND=2 FRCM=0\nY0\nM30",
+    );
     let dt = ch.time() / ch.ticks() as f64;
     let corner1 = top_speed(&samples, dt, |p| p[0] > 18.0 + 1e-6 && p[1] > 1e-6 && p[1] < 2.0 - 1e-6);
     let corner2 = top_speed(&samples, dt, |p| p[0] > 18.0 + 1e-6 && p[1] > 18.0 + 1e-6 && p[0] < 20.0 - 1e-6);
