@@ -25,9 +25,13 @@ pub struct LastMove {
 
 impl LastMove {
     /// Records a block from `start` to `end` (plane coordinates), on `circle` if it is one.
+    /// Zeros are stored unsigned (`+ 0.0`): the fast lane maps coordinates to −0.0 where the
+    /// general path has 0.0, and debug builds compare the two paths' state.
     #[inline]
     pub fn record(&mut self, start: (f64, f64), end: (f64, f64), circle: Option<&Circle>) {
-        *self = LastMove { start, end, circle: circle.copied() };
+        let unsigned = |(a, o): (f64, f64)| (a + 0.0, o + 0.0);
+        let circle = circle.map(|c| Circle { center: unsigned(c.center), start_angle: c.start_angle + 0.0, ..*c });
+        *self = LastMove { start: unsigned(start), end: unsigned(end), circle };
     }
 
     /// The unit direction the block ended in, if it moved in the plane.
