@@ -191,7 +191,10 @@ impl Channel {
         self.prep_waits_for_trafo = false;
         self.search_approach = false;
         self.interp.begin_program(text.clone(), &self.machine);
-        match self.search_to(target, &chain, go_on) {
+        self.interp.set_searching(true);
+        let searched = self.search_to(target, &chain, go_on);
+        self.interp.set_searching(false);
+        match searched {
             Ok(level) => {
                 self.queued_blocks.clear();
                 self.queue_block(target, level);

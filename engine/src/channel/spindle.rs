@@ -57,6 +57,9 @@ pub struct SpindleState {
     /// moves at feed and the last stretch of it (a stock segment, at most 8 mm) removed
     /// material from the session's stock. Not a load value: NCTwin models no cutting forces.
     pub cutting: bool,
+    /// The spindle is in position control: SPCON until SPCOF, or moved as an axis (SPOS,
+    /// M19, M70, G331/G332). Machine-builder programs switch with SPCON before they orient.
+    pub position_control: bool,
 }
 
 /// Constant cutting speed as the main run evaluates it.
@@ -89,6 +92,8 @@ pub(super) struct Spindle {
     previous: f64,
     /// Position control after SPOS: the spindle is a rotary axis moved by the planner.
     pub axis_mode: bool,
+    /// SPCON: speed control in a closed position loop, until SPCOF.
+    position_control: bool,
     /// In position control: the speed the planner moved it at in the last cycle (rev/min,
     /// signed), for the display only.
     axis_speed: f64,
@@ -128,7 +133,17 @@ impl Spindle {
             (mode, self.speed, self.position)
         };
         let gear = (self.gears.count > 0).then_some(self.gear);
-        SpindleState { number, speed, mode, position: angle.rem_euclid(360.0), master, gear, cutting: false }
+        let position_control = self.position_control || self.axis_mode;
+        SpindleState {
+            number,
+            speed,
+            mode,
+            position: angle.rem_euclid(360.0),
+            master,
+            gear,
+            cutting: false,
+            position_control,
+        }
     }
 
     /// The programmed speed before the override (signed: + = M3), 0 after M5.
@@ -212,7 +227,8 @@ impl Spindle {
             Control::ThreadStart { .. }
             | Control::FeedReference { .. }
             | Control::Gear { .. }
-            | Control::Master { .. } => {}
+            | Control::Master { .. }
+            | Control::PositionControl { .. } => {}
         }
     }
 
@@ -335,6 +351,7 @@ pub(super) fn for_config(cfg: &MachineConfig, data: &MachineData) -> Vec<Spindle
                 position: 0.0,
                 previous: 0.0,
                 axis_mode: false,
+                position_control: false,
                 axis_speed: 0.0,
                 programmed: 0.0,
                 override_factor: 1.0,
@@ -398,6 +415,15 @@ impl super::Channel {
         match *c {
             Control::ThreadStart { angle, .. } => s.passed(angle),
             Control::Gear { stage, .. } => s.change_gear(stage),
+            Control::PositionControl { on, .. } => {
+                if !on {
+                    // SPCOF ends an axis mode as well: speed control, stopped.
+                    let angle = self.planner.position()[s.axis];
+                    s.leave_axis_mode(angle);
+                }
+                s.position_control = on;
+                true
+            }
             _ => {
                 let angle = self.planner.position()[s.axis];
                 s.leave_axis_mode(angle);

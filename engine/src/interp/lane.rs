@@ -218,6 +218,7 @@ impl Interpreter {
             && self.call_state.mcall.is_none()
             && self.held.is_none()
             && self.modal.rndm.is_none()
+            && !self.modal.tangent_circle
             && self.modal.feed_group.is_none()
             && !self.modal.rtliof
             && matches!(self.work_area, Some(None))
@@ -362,6 +363,9 @@ impl Interpreter {
             }
             _ => None,
         };
+        if let (Some(ka), Some(ko)) = (geo[pa], geo[po]) {
+            self.last_move.record((current[ka], current[ko]), (target[ka], target[ko]), circle.as_ref());
+        }
         let feed = self.path_feed(line).ok()?;
         // The move is made in its place in `out` (see `Move::unlimited`) and leaves again if
         // the software limits refuse it.

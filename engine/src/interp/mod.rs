@@ -300,6 +300,8 @@ pub struct Interpreter {
     splines: Option<Box<path_control::spline::SplineRun>>,
     /// The corner the block being prepared asks for.
     corner_request: Option<Corner>,
+    /// FRC= of the block whose corner is requested (`contour/corner_feed.rs`).
+    corner_frc: Option<f64>,
     /// CONTCAPON..CONTCAPOF: motions recorded, not run (`contour/capture.rs`).
     capture: Option<Box<contour::capture::Capture>>,
     /// Tool radius compensation: moves held until their successor decides their end.
@@ -322,6 +324,8 @@ pub struct Interpreter {
     fast_lane: bool,
     /// What the lane keeps between its blocks (a cache, cleared by the general path).
     lane_memo: lane::LaneMemo,
+    /// The last path block in the working plane, for CT (`contour/tangent_circle.rs`).
+    last_move: contour::tangent_circle::LastMove,
     /// The session's machine and setting data as stored, for programs' `$MN_`... reads
     /// (the channel hands over each new state, [`Interpreter::set_stored_data`]).
     stored: std::sync::Arc<crate::machine_data::MachineData>,
@@ -368,6 +372,7 @@ impl Interpreter {
             capture: None,
             splines: None,
             corner_request: None,
+            corner_frc: None,
             trc: compensation::trc::Compensator::default(),
             positioned: [false; MAX_CHANNEL_AXES],
             positioning_axes: Default::default(),
@@ -378,6 +383,7 @@ impl Interpreter {
             spare_words: modal::SpareWords::default(),
             fast_lane: true,
             lane_memo: Default::default(),
+            last_move: Default::default(),
             stored: Default::default(),
             io: io::DigitalIo::default(),
             env: Default::default(),
@@ -434,6 +440,7 @@ impl Interpreter {
         self.calls.clear();
         self.call_state = Default::default();
         self.flow = Some(Flow::new(text.into()));
+        self.env.last_search = 0;
     }
 
     /// The machine and setting data programs read from now on (after every change the
@@ -456,6 +463,15 @@ impl Interpreter {
     /// Marks the channel's runs as a simulation (`$P_SIM` TRUE) or the machine's own.
     pub fn set_simulation(&mut self, simulation: bool) {
         self.env.simulation = simulation;
+    }
+
+    /// A block search starts (`$P_SEARCH` 1, `$P_SEARCHL` its type) or has found its target
+    /// (`$P_SEARCH` 0 again).
+    pub fn set_searching(&mut self, searching: bool) {
+        self.env.searching = searching;
+        if searching {
+            self.env.last_search = eval::run_vars::SEARCH_TO_CONTOUR;
+        }
     }
 
     /// The digital I/O image as the main run holds it (read by blocks that waited for it).
@@ -722,6 +738,7 @@ impl Interpreter {
         }
         // RND/CHF/CHR in the block take the place of the modal rounding at its corner.
         self.corner_request = words.corner.or(self.modal.rndm.map(Corner::Round));
+        self.corner_feed_words(words.frc, words.frcm, line)?;
         if let Some(path) = &words.callpath {
             self.call_state.callpath = calls::callpath(path);
         }
@@ -1168,8 +1185,28 @@ impl Interpreter {
             programmed[ko] = true;
         }
 
+        if let Some(ang) = words.ang {
+            let (Some(ka), Some(ko)) = plane else {
+                return Err(Alarm::value_out_of_range(line, "ANG= in a plane without both geometry axes"));
+            };
+            let given = (programmed[ka].then_some(target[ka]), programmed[ko].then_some(target[ko]));
+            (target[ka], target[ko]) = contour::angle_line::end_point((current[ka], current[ko]), given, ang, line)?;
+            (programmed[ka], programmed[ko]) = (true, true);
+        }
         // The circle in the WCS plane (it may decide the end point: centre plus AR=).
         let circle = match self.modal.motion {
+            MotionMode::Cw | MotionMode::Ccw if self.modal.tangent_circle => {
+                let (Some(ka), Some(ko)) = plane else {
+                    return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
+                };
+                let tangent = self.last_move.end_direction().ok_or_else(|| Alarm::circle_end_point(line))?;
+                let (c, turn) =
+                    contour::tangent_circle::circle((current[ka], current[ko]), (target[ka], target[ko]), tangent)
+                        .map_err(|_| Alarm::circle_end_point(line))?;
+                self.modal.motion =
+                    if turn == contour::arc::Turn::Clockwise { MotionMode::Cw } else { MotionMode::Ccw };
+                Some(contour::arc::with_turns(c, words.turn.unwrap_or(0)))
+            }
             MotionMode::Cw | MotionMode::Ccw => {
                 let (Some(ka), Some(ko)) = plane else {
                     return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
@@ -1202,6 +1239,9 @@ impl Interpreter {
             _ => None,
         };
 
+        if let (Some(ka), Some(ko)) = plane {
+            self.last_move.record((current[ka], current[ko]), (target[ka], target[ko]), circle.as_ref());
+        }
         if let (Some(capture), (Some(ka), Some(ko))) = (self.capture.as_mut(), plane) {
             let center = circle.as_ref().map(|c| c.center);
             capture.record(self.modal.motion, (current[ka], current[ko]), (target[ka], target[ko]), center);
@@ -1513,9 +1553,15 @@ fn tool_vector(cfg: &MachineConfig, modal: &Modal, t: u32, d: u32) -> AxisVec {
         (true, Plane::G18) => [0, 2, 1],
         (true, Plane::G19) => [2, 1, 0],
     };
-    for (l, g) in lengths.iter().zip(map) {
+    let programmed = &modal.tool_offsets;
+    for ((l, extra), g) in lengths.iter().zip(programmed.lengths).zip(map) {
         if let Some(k) = cfg.geo_axes[g] {
-            v[k] += l;
+            v[k] += l + extra;
+        }
+    }
+    for (g, extra) in programmed.axes.iter().enumerate() {
+        if let Some(k) = cfg.geo_axes[g] {
+            v[k] += extra;
         }
     }
     v

@@ -85,6 +85,13 @@ pub struct Modal {
     pub trc: Option<Side>,
     /// RNDM=: modal rounding radius of every following contour corner (None: RNDM=0).
     pub rndm: Option<f64>,
+    /// TOFFL/TOFF[axis]: programmed tool offsets (`tools/programmable_offset.rs`).
+    pub tool_offsets: super::tools::programmable_offset::ProgrammedOffsets,
+    /// FRCM=: modal feed of chamfers and roundings (None: FRCM=0, F applies).
+    pub frcm: Option<f64>,
+    /// CT (G group 1): circles continue the path tangentially (`contour/tangent_circle.rs`);
+    /// `motion` holds the turn of the last one.
+    pub tangent_circle: bool,
     /// G450 (transition circle) or G451 (intersection) at outer corners.
     pub trc_corners: CornerMode,
     /// G groups 43 and 44 of smooth approach and retract (`compensation/sar.rs`).
@@ -170,6 +177,9 @@ impl Modal {
             polar: (0.0, 0.0),
             trc: None,
             rndm: None,
+            tangent_circle: false,
+            frcm: None,
+            tool_offsets: Default::default(),
             trc_corners: CornerMode::Circle,
             sar: Default::default(),
             spline: Default::default(),
@@ -202,7 +212,9 @@ impl Modal {
     pub(super) fn apply(&mut self, w: &Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
         if let Some(m) = w.motion {
             self.motion = m;
+            self.tangent_circle = w.tangent_circle;
         }
+        self.tool_offsets.apply(&w.tool_offsets);
         self.spline.apply(&w.spline, w.motion.is_some());
         if w.spline.kind.is_some() {
             // A spline block is prepared like a G1 block (`path_control/spline.rs`).
@@ -445,6 +457,15 @@ pub(super) struct Words {
     pub corner: Option<Corner>,
     /// RNDM=: the modal rounding radius (0 switches it off).
     pub rndm: Option<f64>,
+    /// TOFFL=, TOFFL[i]=, TOFF[axis]= in the order written (mm).
+    pub tool_offsets: Vec<(super::tools::programmable_offset::Slot, f64)>,
+    /// ANG=: the angle of a straight line given by one end coordinate (`contour/angle_line.rs`).
+    pub ang: Option<f64>,
+    /// FRC= / FRCM=: feed of the corner (`contour/corner_feed.rs`).
+    pub frc: Option<f64>,
+    pub frcm: Option<f64>,
+    /// CT: a circle with tangential transition (G group 1, with `motion` a circle).
+    pub tangent_circle: bool,
     /// CONTCAPON(table, count) / CONTCAPOF: contour capture (`contour/capture.rs`).
     pub capture: Option<super::contour::capture::CaptureOp>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
@@ -594,6 +615,13 @@ pub(super) fn collect(
             Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.path.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.spline.keyword(name) => {}
+            Word::Keyword { name, args } if args.is_empty() && name == "CT" => {
+                if w.motion.is_some() {
+                    return Err(Alarm::syntax(line, "CT and another G function of group 1 in a block"));
+                }
+                // The turn follows from the geometry when the block is prepared.
+                (w.motion, w.tangent_circle) = (Some(MotionMode::Ccw), true);
+            }
             Word::Keyword { name, args }
                 if args.is_empty() && matches!(name.as_str(), "CP" | "PTP" | "PTPG0" | "PTPWOC") =>
             {
@@ -749,8 +777,17 @@ pub(super) fn collect(
             Word::Keyword { name, args } if super::spindles::is_diameter_axis_keyword(name) => {
                 super::spindles::diameter_axis_word(&mut w.spindle, name, args, &Ctx { vars, sys }, cfg, line)?;
             }
+            Word::Keyword { name, args } if name == "SPCON" || name == "SPCOF" => {
+                let switch = super::spindles::position_control::statement(name, args, &Ctx { vars, sys }, line)?;
+                if w.spindle.position_control.replace(switch).is_some() {
+                    return Err(Alarm::syntax(line, "one SPCON/SPCOF per block"));
+                }
+            }
             Word::Keyword { name, args } if name == "FPR" => {
                 w.spindle.fpr = Some(super::spindles::fpr_statement(args, &Ctx { vars, sys }, cfg, line)?);
+            }
+            Word::Keyword { name, args } if super::synchronized::channel_coordination::is_keyword(name) => {
+                super::synchronized::channel_coordination::statement(name, args, cfg, &Ctx { vars, sys }, line)?;
             }
             Word::Keyword { name, args } if name == "WAITM" || name == "WAITMC" => {
                 super::synchronized::wait_markers::statement(name, args, &Ctx { vars, sys }, line)?;
@@ -779,6 +816,14 @@ pub(super) fn collect(
             Word::Keyword { name, .. } if name == "CLEARM" => {}
             Word::Keyword { name, args } if name == "FGROUP" => {
                 w.feed_group.axes = Some(super::path_control::feed_group::axes(args, cfg, line)?);
+            }
+            Word::Address { name, indices, value }
+                if super::tools::programmable_offset::is_word(name) && vars.get(name).is_none() =>
+            {
+                let ctx = Ctx { vars, sys };
+                let slot = super::tools::programmable_offset::slot(name, indices, cfg, &ctx, line)?;
+                let v = eval_f64(&value.expr, &ctx, line)? * sys.modal.length_factor();
+                w.tool_offsets.push((slot, v));
             }
             Word::Address { name, indices, value }
                 if name == "FGREF"
@@ -920,6 +965,13 @@ pub(super) fn collect(
                         Ok(v as u32)
                     }
                 };
+                // `M=3`, `M=R1`: an M function by expression, as `M3` (several per block).
+                if &**name == "M" {
+                    let code = whole("M=")?;
+                    m_function(w, code, line)?;
+                    w.tool_change |= code == cfg.tool_change.m_code;
+                    continue;
+                }
                 // AX[...] words are told apart by the axis they name (below), not by "AX".
                 if &**name != "AX" && !seen.insert(name) {
                     return Err(Alarm::repeated_address(line, name));
@@ -941,6 +993,9 @@ pub(super) fn collect(
                     "DISC" => w.disc = Some(v),
                     "RND" => w.corner = Some(Corner::Round(v * sys.modal.length_factor())),
                     "RNDM" => w.rndm = Some(v * sys.modal.length_factor()),
+                    "FRC" => w.frc = Some(v),
+                    "ANG" => w.ang = Some(v),
+                    "FRCM" => w.frcm = Some(v),
                     "CHF" => w.corner = Some(Corner::Chamfer(v * sys.modal.length_factor())),
                     "CHR" => w.corner = Some(Corner::ChamferLeg(v * sys.modal.length_factor())),
                     "AP" => w.ap = Some(v),
@@ -1281,6 +1336,7 @@ fn is_nc_address(name: &str) -> bool {
     matches!(
         name,
         "F" | "S"
+            | "M"
             | "T"
             | "D"
             | "CR"
@@ -1297,6 +1353,9 @@ fn is_nc_address(name: &str) -> bool {
             | "TURN"
             | "RND"
             | "RNDM"
+            | "FRC"
+            | "FRCM"
+            | "ANG"
             | "CHF"
             | "CHR"
             | "STAT"

@@ -19,6 +19,7 @@ mod fpr;
 mod gears;
 pub mod lead_change;
 mod motion;
+pub(super) mod position_control;
 pub(super) mod vars;
 pub(super) mod words;
 pub(super) use diameter_axes::{is_keyword as is_diameter_axis_keyword, word as diameter_axis_word};
@@ -47,6 +48,9 @@ pub enum Control {
     /// SETMS: the spindle on channel axis `axis` is the master spindle from here on (a feed
     /// per revolution follows it in the main run, the state marks it).
     Master { axis: usize },
+    /// SPCON (`on`) / SPCOF: the spindle changes to position control or back to speed
+    /// control (`position_control.rs`).
+    PositionControl { axis: usize, on: bool },
 }
 
 impl Control {
@@ -58,7 +62,8 @@ impl Control {
             | Control::ThreadStart { axis, .. }
             | Control::FeedReference { axis }
             | Control::Gear { axis, .. }
-            | Control::Master { axis } => axis,
+            | Control::Master { axis }
+            | Control::PositionControl { axis, .. } => axis,
         }
     }
 }

@@ -7,6 +7,7 @@
 //! main run (the control's preprocessing stop after a distance-to-go deletion): that block
 //! must start where the path was stopped, which only the main run knows.
 
+pub(super) mod channel_coordination;
 pub mod compile;
 pub mod flat;
 pub mod horizon;

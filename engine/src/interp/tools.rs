@@ -6,6 +6,7 @@ pub mod active_swivel;
 pub(super) mod create_delete;
 pub(super) mod dnumbers;
 pub(super) mod management;
+pub(super) mod programmable_offset;
 pub mod setpiece;
 pub(super) mod swivel;
 pub mod toolholder;

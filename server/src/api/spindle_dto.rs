@@ -27,6 +27,9 @@ pub struct SpindleInfo {
     /// at feed and the last stretch cut (at most 8 mm) removed material from the stock. A flag,
     /// not a load: no cutting forces are modelled.
     pub cutting: bool,
+    /// Position control: SPCON (until SPCOF) or a spindle moved as an axis (SPOS, M19, M70,
+    /// G331/G332).
+    pub position_control: bool,
 }
 
 impl From<&SpindleState> for SpindleInfo {
@@ -39,6 +42,7 @@ impl From<&SpindleState> for SpindleInfo {
             master: s.master,
             gear: s.gear,
             cutting: s.cutting,
+            position_control: s.position_control,
         }
     }
 }

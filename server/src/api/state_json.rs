@@ -239,6 +239,8 @@ fn write_head(out: &mut String, s: &Snapshot) {
         }
         out.push_str(",\"cutting\":");
         write_bool(out, sp.cutting);
+        out.push_str(",\"position_control\":");
+        write_bool(out, sp.position_control);
         out.push('}');
     }
     out.push('}');

@@ -27,6 +27,8 @@ pub(in crate::interp) struct Held {
     item: Item,
     corner: Corner,
     line: u32,
+    /// FRC/FRCM of the block (`corner_feed.rs`); `None`: the block's own feed.
+    feed: Option<super::corner_feed::CornerFeed>,
 }
 
 impl Interpreter {
@@ -59,7 +61,9 @@ impl Interpreter {
             let line = *line;
             if prep == Prep::Prepared {
                 let item = out.pop().expect("checked above");
-                self.held = Some(Held { item, corner, line });
+                let rapid = matches!(&item, Item::Move { mv, .. } if mv.is_rapid());
+                let feed = if rapid { None } else { self.corner_feed() };
+                self.held = Some(Held { item, corner, line, feed });
             }
         }
         Ok(())
@@ -85,7 +89,8 @@ pub(in crate::interp) fn split(
     if first.path.arc.is_some() || next.path.arc.is_some() {
         return Ok(None);
     }
-    let held = Held { item: Item::Move { mv: first.clone(), line, offsets: Default::default() }, corner, line };
+    let held =
+        Held { item: Item::Move { mv: first.clone(), line, offsets: Default::default() }, corner, line, feed: None };
     Ok(match corner_between(&held, next, limits)? {
         (Item::Move { mv: a, .. }, Some(Item::Move { mv: b, .. })) => Some((a, b)),
         _ => None,
@@ -100,7 +105,10 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
     if first.path.arc.is_some() || next.path.arc.is_some() {
         return match held.corner {
             Corner::Round(r) => match super::arc_rounding::round_at_arc(first, next, r, held.line, limits)? {
-                Some((shortened, corner)) => Ok((item(shortened), Some(item(corner)))),
+                Some((shortened, mut corner)) => {
+                    super::corner_feed::apply(&mut corner, held.feed, limits);
+                    Ok((item(shortened), Some(item(corner))))
+                }
                 None => sharp(),
             },
             _ => sharp(),
@@ -161,8 +169,10 @@ fn corner_between(held: &Held, next: &mut Move, limits: &[AxisLimit]) -> Result<
         Corner::Round(r) => r * phi,
         _ => norm(&diff(&b, &a)),
     };
-    // The corner runs at the held block's feed, within the axes' limits on its arc.
-    let corner = Move::new(corner_path, corner_len, Feed::Path(first.v_max), limits, first.exact_stop, first.tag);
+    // The corner runs at the held block's feed (or its FRC/FRCM), within the axes' limits on
+    // its arc.
+    let mut corner = Move::new(corner_path, corner_len, Feed::Path(first.v_max), limits, first.exact_stop, first.tag);
+    super::corner_feed::apply(&mut corner, held.feed, limits);
     let next_len = scale_len(next, len2 - leg);
     next.path.start = b;
     next.length = next_len;
@@ -220,6 +230,7 @@ mod tests {
             item: Item::Move { mv: line([0.0, 0.0], [10.0, 0.0]), line: 1, offsets: Default::default() },
             corner: Corner::Round(2.0),
             line: 1,
+            feed: None,
         };
         let mut next = line([10.0, 0.0], [10.0, 10.0]);
         let limits = vec![AxisLimit { max_velocity: 100.0, max_accel: 1000.0, accel_overload: 1.2 }; 3];

@@ -16,6 +16,14 @@
 //! - `$P_SUBPAR[n]` (BOOL): whether the call of the running subprogram gave its n-th parameter
 //!   (`NAME(1,,3)`: 1 and 3 TRUE, 2 FALSE); FALSE in the main program and beyond the arguments
 //!   written; n < 1: 17020.
+//! - `$P_SEARCH` (INT): 1 while a block search (with calculation, `channel/search.rs`)
+//!   prepares the blocks up to its target, else 0 (K1: "`$P_SEARCH == 1` ; block search
+//!   active"); tool-change programs skip what the search must not do: `IF $P_SEARCH GOTOF ..`.
+//!   The blocks from the target on, prepared after the search, read 0.
+//! - `$P_SEARCHL` (INT): the type of the last block search, set when it starts and kept until
+//!   the next program start (the control resets it with RESET): 0 none, 2 with calculation
+//!   to the contour (K1's numbering: 1 without calculation, 2 to the contour, 4 to the block
+//!   end point, 5 SERUPRO). NCTwin's search is type 2.
 //! - `$P_MSNUM` / `$AC_MSNUM` (INT): the number of the master spindle (SETMS or MD20090), 0
 //!   without one. Preparation and main run agree because SETMS reaches the main run in order.
 
@@ -28,7 +36,14 @@ use crate::interp::eval::value::Value;
 pub struct RunEnv {
     /// The run is a simulation (the HMI's preview): `$P_SIM` reads TRUE.
     pub simulation: bool,
+    /// A block search prepares blocks up to its target: `$P_SEARCH` reads 1.
+    pub searching: bool,
+    /// The type of the last block search since the program started (`$P_SEARCHL`), 0 none.
+    pub last_search: u8,
 }
+
+/// `$P_SEARCHL` of NCTwin's block search: with calculation to the contour.
+pub const SEARCH_TO_CONTOUR: u8 = 2;
 
 /// The value of `name`, or `None` if it is not one of these variables.
 pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line: u32) -> Option<Result<Value, Alarm>> {
@@ -38,6 +53,8 @@ pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line
     let value = match name {
         "$P_SIM" => Value::Bool(sys.env.simulation),
         "$P_ISTEST" => Value::Bool(false),
+        "$P_SEARCH" => Value::Int(sys.env.searching.into()),
+        "$P_SEARCHL" => Value::Int(sys.env.last_search.into()),
         "$P_PROG_EVENT" => Value::Int(0),
         "$AC_PROG" => Value::Int(1),
         "$P_MSNUM" | "$AC_MSNUM" => {

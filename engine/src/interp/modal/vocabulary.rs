@@ -66,6 +66,13 @@ const KEYWORDS: &[&str] = &[
     "CLEARM",
     "FGROUP",
     "FGREF",
+    "CT",
+    "SPCON",
+    "SPCOF",
+    "WAITE",
+    "GET",
+    "GETD",
+    "RELEASE",
 ];
 
 /// Predefined functions of expressions (`eval.rs`: `call`, the frame functions; the tool list
@@ -165,6 +172,7 @@ pub(crate) fn is_address(name: &str) -> bool {
         || crate::interp::everyday::extended_address(name).is_some()
         || crate::interp::dynamics::Percent::of(name).is_some()
         || matches!(name, "AX" | "PO" | "R" | "FGREF")
+        || crate::interp::tools::programmable_offset::is_word(name)
         || crate::interp::path_control::positioning::is_word(name)
         || name.strip_prefix('R').is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }

@@ -104,6 +104,7 @@ impl Interpreter {
         // Gear stages (M40..M45, M40's choice for a new master speed) before the speed.
         let new_speed = master.filter(|k| touched[*k] && !t.css()).map(|k| (k, self.spindles.speed[k]));
         self.gear_block(sw.gear, new_speed, cfg, line, out)?;
+        self.position_control_block(sw.position_control.as_ref(), cfg, line, out)?;
         let mut old_direction = self.spindles.direction;
         if let Some(dir) = words.spindle_dir {
             // M3/M4/M5 act on the master spindle, M<n>=3/4/5 on spindle n.

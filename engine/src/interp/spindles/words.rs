@@ -52,6 +52,8 @@ pub struct SpindleWords {
     pub fpr: Option<usize>,
     /// M40..M45 (`gears.rs`).
     pub gear: Option<super::gears::GearWord>,
+    /// SPCON/SPCOF (`position_control.rs`).
+    pub position_control: Option<super::position_control::Switch>,
 }
 
 /// A keyword of this module without arguments (G group 29); false for any other name.
