@@ -53,7 +53,7 @@ impl Channel {
 
 /// The machine position at the start of `path` (whose orientation slots hold the rotary axes
 /// there, the continuity reference of the solution).
-fn machine_at(active: &ActiveTrafo, path: &Path) -> Option<AxisVec> {
+pub(super) fn machine_at(active: &ActiveTrafo, path: &Path) -> Option<AxisVec> {
     let bcs = path.start;
     match path.orientation_at(0.0) {
         Some(o) => active.inverse_oriented(&bcs, &o, &bcs).ok(),
@@ -66,7 +66,7 @@ fn machine_at(active: &ActiveTrafo, path: &Path) -> Option<AxisVec> {
 /// first (a pole). Where the planning splits the piece into parts (the velocity the axes allow
 /// varies along it), the piece stays one move with the smallest limits of its parts: slower
 /// than need be on the faster parts, never faster than an axis allows.
-fn plan_one(
+pub(super) fn plan_one(
     active: &ActiveTrafo,
     mv: &Move,
     start: &AxisVec,
