@@ -46,9 +46,9 @@ fn a_corner_where_the_orientation_turns_too_is_rounded_within_otol() {
     // X0→20 while the orientation turns on the great circle from C0 to C90 (both A20), then
     // Y0→20 while it turns on from C90 to C180 (ORIWKS ORIVECT): the two great circles meet at the
     // C90 orientation at an angle, a corner of the orientation at the tip's corner. The
-    // element turns the tool on the great circle between the orientations where it leaves
-    // and joins the blocks, which passes the C90 orientation at an angle that grows with the
-    // cut-back. G642 CTOL=0.05: with OTOL=10° the contour bounds the element alone; with
+    // element turns the tool from the orientation where it leaves the first block to the one
+    // where it joins the second, taking over both blocks' rates there, and passes the C90
+    // orientation at an angle that grows with the cut-back. G642 CTOL=0.05: with OTOL=10° the contour bounds the element alone; with
     // OTOL=0.01° the orientation does, and the element is cut back until the orientation
     // passes C90 within 0.01° (and still > 0), the tip then nearer than 0.05 to its corner.
     let run_with = |otol: f64| {
@@ -65,7 +65,11 @@ fn a_corner_where_the_orientation_turns_too_is_rounded_within_otol() {
     let (tip_d, ori) = run_with(0.01);
     assert!((0.049..=0.05 + 1e-4).contains(&wide_tip), "OTOL=10: the tip passes at {wide_tip} mm");
     assert!(wide_ori > 0.01, "OTOL=10: the orientation passes at {wide_ori}°, more than 0.01°");
-    assert!(ori <= 0.01 * (1.0 + 1e-3) && ori > 0.0, "OTOL=0.01: the orientation passes at {ori}°");
+    // The element's orientation bends (it takes over both blocks' rates at its ends), and
+    // the chords between the samples lie on the inner side of that bend, farther from the
+    // corner orientation than the curve (the element itself passes at 0.00998°): 2 % allowed
+    // for that.
+    assert!(ori <= 0.01 * 1.02 && ori > 0.0, "OTOL=0.01: the orientation passes at {ori}°");
     assert!(tip_d < wide_tip && tip_d > 0.0, "OTOL=0.01: the tip passes at {tip_d} mm");
 }
 

@@ -156,17 +156,7 @@ fn orientation_quintic(o: &OriPath, start: Option<&Junction>, end: Option<&Junct
         }
     };
     let ([p0, v0, a0], [p1, v1, a1]) = (side(start, 0.0), side(end, 1.0));
-    // The quintic Hermite basis in power form; its coefficients of u² .. u⁵ are the bend.
-    let c = |i: usize| -> [f64; 4] {
-        [
-            0.5 * a0[i],
-            -10.0 * p0[i] - 6.0 * v0[i] - 1.5 * a0[i] + 0.5 * a1[i] - 4.0 * v1[i] + 10.0 * p1[i],
-            15.0 * p0[i] + 8.0 * v0[i] + 1.5 * a0[i] - a1[i] + 7.0 * v1[i] - 15.0 * p1[i],
-            -6.0 * p0[i] - 3.0 * v0[i] - 0.5 * a0[i] + 0.5 * a1[i] - 3.0 * v1[i] + 6.0 * p1[i],
-        ]
-    };
-    let (cx, cy, cz) = (c(0), c(1), c(2));
-    let bend = std::array::from_fn(|n| [cx[n], cy[n], cz[n]]);
+    let bend = super::blend_ori::hermite_bend([(p0, v0, a0), (p1, v1, a1)]);
     OriPath::two_curves(TwoCurves { tip: [[0.0; 3]; 2], upper: [p0, p1], bend })
 }
 
