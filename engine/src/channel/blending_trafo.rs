@@ -7,8 +7,10 @@
 //! TRANSMIT, TRACYL, TRAANG: B1 rounds the path of the geometry axes, which the
 //! transformation maps; only Cartesian PTP blends in the MCS, Transformations FM p.115, and
 //! its moves are in machine space: never rounded here). A corner stays sharp where planning
-//! a piece for the machine axes would split it (a pole nearby, a velocity that varies along
-//! it) or fails: the pieces must stay one move each.
+//! a piece for the machine axes turns a pole axis alone first (F2 "Behavior at pole", MD21108
+//! units digit 0; TRANSMIT leaving its pole at another angle: the path stands while that axis
+//! turns, so there is no motion to blend into) or fails. A piece whose velocity varies along
+//! it (beside a pole) stays one move with the smallest limits of its parts.
 
 use super::Channel;
 use super::blending::geo_moves;
