@@ -94,9 +94,10 @@ fn axis_deviation(samples: &[[f64; 5]]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The samples of the chords alone: from the first cycle away from point 0.
+/// The samples of the chords alone: from the cycle before C first turns past 90° (point 0's
+/// C; the positioning before stands at it).
 fn chords(samples: &[[f64; 5]]) -> &[[f64; 5]] {
-    let first = samples.iter().position(|m| to_polyline(tip(m), &[point(0)]) > 1e-9 && m[4] > 90.0).unwrap();
+    let first = samples.iter().position(|m| m[4] > 90.0 + 1e-9).unwrap();
     &samples[first - 1..]
 }
 
@@ -152,64 +153,74 @@ fn a_tolerance_too_small_for_the_chords_leaves_them_as_programmed() {
     assert!(d < 1e-6, "the tip leaves the polyline by {d} mm");
 }
 
+/// A circle of radius 10 in 45 chords of 2° in the plane of a 2-axis transformation: `at(i)`
+/// the programmed point `i` (its plane's two coordinates), `words` the block that goes there,
+/// `sample` the plane point of a machine sample. Runs the chords after `start` under COMPCAD
+/// CTOL=0.01 and under COMPOF; returns the compressed path's largest distance from the chords
+/// (from the last sample at point 0 on: the approach ends there) and both cycle counts.
+fn plane_circle(
+    preset: &str,
+    start: &str,
+    at: impl Fn(usize) -> [f64; 2],
+    words: impl Fn([f64; 2]) -> String,
+    sample: impl Fn(&[f64]) -> [f64; 3] + Copy,
+) -> (f64, usize, usize) {
+    let run_with = |header: &str| {
+        let mut p = format!("{start}{header} G64\n");
+        for i in 1..=45 {
+            p += &words(at(i));
+            p += "\n";
+        }
+        p += "M30";
+        run_on(preset, &p, sample).1
+    };
+    let (compressed, plain) = (run_with("COMPCAD CTOL=0.01"), run_with("COMPOF"));
+    let pts: Vec<[f64; 3]> = (0..=45).map(|i| [at(i)[0], at(i)[1], 0.0]).collect();
+    let from = compressed.iter().rposition(|&p| dot(sub(p, pts[0]), sub(p, pts[0])) < 1e-12).unwrap();
+    let d = compressed[from..].iter().map(|&p| to_polyline(p, &pts)).fold(0.0, f64::max);
+    (d, compressed.len(), plain.len())
+}
+
 #[test]
 fn face_chords_under_transmit_are_compressed_within_ctol() {
     // TRANSMIT (transmit-example: the face milled with XC and C; x = XC·cos C, y = XC·sin C):
-    // a circle of radius 10 about the centre in 45 chords of 2° at F3000. The manual (B1)
-    // compresses the geometry axes' path, which TRANSMIT maps: the face path stays within
-    // CTOL 0.01 of the chords, 10·(1 − cos 1°) = 1.52 µm outside them at their middles, and
-    // the program takes fewer cycles than without the compressor.
-    let run_face = |header: &str| {
-        let mut p = String::from("T1 D1 G17 G90 G94\nG0 X20 Z10\nTRANSMIT\nG1 F3000 X10 Y0\n");
-        p += &format!("{header} G64\n");
-        for i in 1..=45 {
+    // a circle of radius 10 about the centre at F3000. The manual (B1) compresses the
+    // geometry axes' path, which TRANSMIT maps: the face path stays within CTOL 0.01 of the
+    // chords, 10·(1 − cos 1°) = 1.52 µm outside them at their middles, and the program takes
+    // fewer cycles than without the compressor.
+    let (d, compressed, plain) = plane_circle(
+        "transmit-example",
+        "T1 D1 G17 G90 G94\nG0 X20 Z10\nTRANSMIT\nG1 F3000 X10 Y0\n",
+        |i| {
             let (s, c) = phi(i).to_radians().sin_cos();
-            p += &format!("X{:.12} Y{:.12}\n", 10.0 * c, 10.0 * s);
-        }
-        p += "M30";
-        run_on("transmit-example", &p, |m| {
+            [10.0 * c, 10.0 * s]
+        },
+        |[x, y]| format!("X{x:.12} Y{y:.12}"),
+        |m| {
             let c = m[1].to_radians();
             [m[0] * c.cos(), m[0] * c.sin(), 0.0]
-        })
-        .1
-    };
-    let (compressed, plain) = (run_face("COMPCAD CTOL=0.01"), run_face("COMPOF"));
-    let pts: Vec<[f64; 3]> = (0..=45)
-        .map(|i| {
-            let (s, c) = phi(i).to_radians().sin_cos();
-            [10.0 * c, 10.0 * s, 0.0]
-        })
-        .collect();
-    let from = compressed.iter().position(|p| p[1] > 1e-9).unwrap();
-    let d = compressed[from..].iter().map(|&p| to_polyline(p, &pts)).fold(0.0, f64::max);
+        },
+    );
     assert!((0.0013..=0.01).contains(&d), "the face path leaves the chords by {d} mm");
-    assert!(compressed.len() < plain.len(), "{} cycles against {}", compressed.len(), plain.len());
+    assert!(compressed < plain, "{compressed} cycles against {plain}");
 }
 
 #[test]
 fn surface_chords_under_tracyl_are_compressed_within_ctol() {
     // TRACYL(40) (tracyl-xyzc: the surface unrolled, y = C·π·40/360 along the periphery, z =
-    // Z): a circle of radius 10 about (y, z) = (0, −10) in 45 chords of 2° at F3000. As under
-    // TRANSMIT the unrolled path is compressed: within CTOL 0.01 of the chords and 10·(1 −
-    // cos 1°) = 1.52 µm outside them at their middles, in fewer cycles than without.
-    let run_surface = |header: &str| {
-        let mut p = String::from("G0 X20 Y0 Z0\nTRACYL(40)\nG1 F3000 Y0 Z0\n");
-        p += &format!("{header} G64\n");
-        for i in 1..=45 {
+    // Z): a circle of radius 10 about (y, z) = (0, −10) at F3000. As under TRANSMIT the
+    // unrolled path is compressed: within CTOL 0.01 of the chords and 1.52 µm outside them at
+    // their middles, in fewer cycles than without.
+    let (d, compressed, plain) = plane_circle(
+        "tracyl-xyzc",
+        "G0 X20 Y0 Z0\nTRACYL(40)\nG1 F3000 Y0 Z0\n",
+        |i| {
             let (s, c) = phi(i).to_radians().sin_cos();
-            p += &format!("Y{:.12} Z{:.12}\n", 10.0 * s, -10.0 + 10.0 * c);
-        }
-        p += "M30";
-        run_on("tracyl-xyzc", &p, |m| [m[3] * std::f64::consts::PI * 40.0 / 360.0, m[2], 0.0]).1
-    };
-    let (compressed, plain) = (run_surface("COMPCAD CTOL=0.01"), run_surface("COMPOF"));
-    let pts: Vec<[f64; 3]> = (0..=45)
-        .map(|i| {
-            let (s, c) = phi(i).to_radians().sin_cos();
-            [10.0 * s, -10.0 + 10.0 * c, 0.0]
-        })
-        .collect();
-    let d = compressed.iter().map(|&p| to_polyline(p, &pts)).fold(0.0, f64::max);
+            [10.0 * s, -10.0 + 10.0 * c]
+        },
+        |[y, z]| format!("Y{y:.12} Z{z:.12}"),
+        |m| [m[3] * std::f64::consts::PI * 40.0 / 360.0, m[2], 0.0],
+    );
     assert!((0.0013..=0.01).contains(&d), "the unrolled path leaves the chords by {d} mm");
-    assert!(compressed.len() < plain.len(), "{} cycles against {}", compressed.len(), plain.len());
+    assert!(compressed < plain, "{compressed} cycles against {plain}");
 }

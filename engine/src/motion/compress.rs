@@ -167,14 +167,14 @@ pub fn smoothed_move(mv: &Move, curve: Curve, limits: &[AxisLimit]) -> Move {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn lim() -> Vec<AxisLimit> {
+    pub(in crate::motion) fn lim() -> Vec<AxisLimit> {
         vec![AxisLimit { max_velocity: 500.0, max_accel: 3000.0, accel_overload: 1.2 }; 3]
     }
 
-    fn metric() -> AxisVec {
+    pub(in crate::motion) fn metric() -> AxisVec {
         let mut m = [0.0; MAX_CHANNEL_AXES];
         m[..3].fill(1.0);
         m

@@ -178,18 +178,9 @@ fn cross3(a: Vec3, b: Vec3) -> Vec3 {
 mod tests {
     use super::*;
     use crate::motion::compress::Compress;
+    use crate::motion::compress::tests::{lim as limits, metric};
     use crate::motion::path::Path;
     use crate::motion::planner::Feed;
-
-    fn limits() -> Vec<AxisLimit> {
-        vec![AxisLimit { max_velocity: 500.0, max_accel: 3000.0, accel_overload: 1.2 }; 5]
-    }
-
-    fn metric() -> AxisVec {
-        let mut m = [0.0; MAX_CHANNEL_AXES];
-        m[..3].fill(1.0);
-        m
-    }
 
     /// The chord between the 2° points `i` and `i + 1` of a circle of radius 50 in X/Y, the
     /// tool tilted 20° outwards (vector) or the C slot (4) turning with the point (axes).
