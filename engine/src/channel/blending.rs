@@ -85,6 +85,10 @@ impl Channel {
         }
         mv.blend?;
         let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
+        // B1: a change between BRISK and SOFT (a jerk limit or none) inserts no rounding.
+        if mv.jerk.is_finite() != next.jerk.is_finite() {
+            return None;
+        }
         if mv.axis_tangents.is_some() {
             // A transformed move: rounded in the BCS, planned for the machine axes again.
             return self.round_transformed(mv, full, &limits);
