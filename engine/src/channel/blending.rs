@@ -4,7 +4,8 @@
 //! needs a stop in between, the same transformation), the compressor first makes a smooth
 //! passage through the point between them (`motion::compress`); where it does not, the
 //! corner is rounded (`motion::blend`): the shortened move and the rounding element go on,
-//! the shortened next move waits for its own successor.
+//! the shortened next move waits for its own successor. Transformed moves are compressed in
+//! `compress_trafo.rs`.
 
 use super::Channel;
 use crate::interp::Item;
@@ -20,7 +21,9 @@ pub(super) struct Blending {
     /// length now (bits) and its programmed length (the 36 % rule refers to that).
     pub(super) trimmed: Option<(u64, f64)>,
     /// The compressor's passage through the start point of the first prepared move.
-    junction: Option<Junction>,
+    pub(super) junction: Option<Junction>,
+    /// The transformation the passage was made under (`compress_trafo.rs`).
+    pub(super) junction_trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
     /// waiting move is handed on without its successor.
     pub(super) prep_waits_for_main_run: bool,
@@ -52,6 +55,7 @@ impl Channel {
             return None;
         }
         let start = self.blending.junction.take();
+        let start_trafo = self.blending.junction_trafo.take();
         let mut metric: AxisVec = [0.0; MAX_CHANNEL_AXES];
         for &k in self.cfg.geo_axes.iter().flatten() {
             metric[k] = 1.0;
@@ -61,7 +65,12 @@ impl Channel {
             Some(Item::Move { mv: next, .. }) => Some(next),
             _ => None,
         };
-        if compress::compressible(mv) {
+        if mv.axis_tangents.is_some() {
+            // A transformed move: compressed in the BCS, planned for the machine axes again.
+            if self.compress_transformed(mv, start, start_trafo) {
+                return None;
+            }
+        } else if compress::compressible(mv) {
             let start = start.filter(|j| j.point == mv.path.start);
             let end = next.and_then(|next| compress::junction(mv, next, &metric));
             // Where the curve would leave the chord, the line stays, and so does its corner.
@@ -76,6 +85,10 @@ impl Channel {
         }
         mv.blend?;
         let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
+        // B1: a change between BRISK and SOFT (a jerk limit or none) inserts no rounding.
+        if mv.jerk.is_finite() != next.jerk.is_finite() {
+            return None;
+        }
         if mv.axis_tangents.is_some() {
             // A transformed move: rounded in the BCS, planned for the machine axes again.
             return self.round_transformed(mv, full, &limits);

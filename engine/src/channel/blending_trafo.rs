@@ -7,8 +7,10 @@
 //! TRANSMIT, TRACYL, TRAANG: B1 rounds the path of the geometry axes, which the
 //! transformation maps; only Cartesian PTP blends in the MCS, Transformations FM p.115, and
 //! its moves are in machine space: never rounded here). A corner stays sharp where planning
-//! a piece for the machine axes would split it (a pole nearby, a velocity that varies along
-//! it) or fails: the pieces must stay one move each.
+//! a piece for the machine axes turns a pole axis alone first (F2 "Behavior at pole", MD21108
+//! units digit 0; TRANSMIT leaving its pole at another angle: the path stands while that axis
+//! turns, so there is no motion to blend into) or fails. A piece whose velocity varies along
+//! it (beside a pole) stays one move with the smallest limits of its parts.
 
 use super::Channel;
 use super::blending::geo_moves;
@@ -53,7 +55,7 @@ impl Channel {
 
 /// The machine position at the start of `path` (whose orientation slots hold the rotary axes
 /// there, the continuity reference of the solution).
-fn machine_at(active: &ActiveTrafo, path: &Path) -> Option<AxisVec> {
+pub(super) fn machine_at(active: &ActiveTrafo, path: &Path) -> Option<AxisVec> {
     let bcs = path.start;
     match path.orientation_at(0.0) {
         Some(o) => active.inverse_oriented(&bcs, &o, &bcs).ok(),
@@ -66,7 +68,7 @@ fn machine_at(active: &ActiveTrafo, path: &Path) -> Option<AxisVec> {
 /// first (a pole). Where the planning splits the piece into parts (the velocity the axes allow
 /// varies along it), the piece stays one move with the smallest limits of its parts: slower
 /// than need be on the faster parts, never faster than an axis allows.
-fn plan_one(
+pub(super) fn plan_one(
     active: &ActiveTrafo,
     mv: &Move,
     start: &AxisVec,

@@ -15,6 +15,7 @@ mod blending;
 mod blending_trafo;
 mod cartesian_jog;
 mod command_axes;
+mod compress_trafo;
 mod exact_stop;
 mod io;
 mod jog;

@@ -242,6 +242,7 @@ impl PathControl {
             tol: self.ctol.or(self.atol).unwrap_or_else(|| axial.fold(f64::INFINITY, f64::min)),
             block_limit: data.block_path_limit,
             velo_tol: data.velo_tol / 60.0,
+            ori: self.otol.unwrap_or_else(|| rotary_min(cfg, &data.axis_tol)),
         })
     }
 
@@ -279,10 +280,7 @@ impl PathControl {
         let degrees = match self.otol {
             Some(o) => o,
             None if matches!(data.smoothing_mode % 10, 2 | 3) => data.ori_tol,
-            None => (0..cfg.channel_axes.len())
-                .filter(|&k| cfg.axis(k).rotary)
-                .filter_map(|k| data.axis_tol.get(k).copied())
-                .fold(f64::INFINITY, f64::min),
+            None => rotary_min(cfg, &data.axis_tol),
         };
         degrees.to_radians()
     }
@@ -301,4 +299,13 @@ impl PathControl {
 /// The smallest of an axial datum over the geometry axes (`per_axis` by channel axis).
 fn geo_min(cfg: &MachineConfig, per_axis: &[f64]) -> f64 {
     cfg.geo_axes.iter().flatten().filter_map(|&k| per_axis.get(k).copied()).fold(f64::INFINITY, f64::min)
+}
+
+/// The smallest of the rotary axes' entries of the axial datum `per_axis` (MD33100: the
+/// orientation's tolerance where the rotary axes carry it); infinite without rotary axes.
+fn rotary_min(cfg: &MachineConfig, per_axis: &[f64]) -> f64 {
+    (0..cfg.channel_axes.len())
+        .filter(|&k| cfg.axis(k).rotary)
+        .filter_map(|k| per_axis.get(k).copied())
+        .fold(f64::INFINITY, f64::min)
 }

@@ -85,6 +85,10 @@ pub fn plan_block(
         if let Some(last) = piece.moves.last_mut() {
             last.exact_stop |= mv.exact_stop;
         }
+        // A block that stays one move may be compressed (`motion/compress_ori.rs`).
+        if let [one] = piece.moves.as_mut_slice() {
+            one.compress = mv.compress;
+        }
         return Ok(piece);
     }
     let mut cuts = vec![0.0, 1.0];

@@ -8,9 +8,12 @@
 //! corner within the contour tolerance. The orientation is rounded with it:
 //! - ORIAXES: the element is a curve in every channel axis, the rotary axes' slots included,
 //!   so they pass from one block's motion to the next with the same quintic;
-//! - a vector-interpolated orientation: the element turns the tool on the great circle from
-//!   the orientation where it leaves the first block to the one where it joins the second
-//!   (ORIVECT's interpolation of the element).
+//! - a vector-interpolated orientation: the element turns the tool from the orientation where
+//!   it leaves the first block to the one where it joins the second, along a quintic whose
+//!   direction is the orientation, with both blocks' orientation rates (first and second
+//!   derivative per unit length) at its ends: the tool vector's angular velocity goes on
+//!   without a jump at the element's seams (a great circle between the cut points turned at
+//!   its own rate, in its own direction, and the planner had to slow the path for the jump).
 //!
 //! Either way the element's orientation comes no farther than the orientation tolerance from
 //! the programmed orientation at the corner (the angle from that orientation to the nearest
@@ -20,6 +23,7 @@
 
 use super::blend::{self, Rounded};
 use super::curve::Curve;
+use super::ori_curve::TwoCurves;
 use super::orientation::{OriPath, Vec3};
 use super::path::{AxisVec, Path};
 use super::planner::{AxisLimit, Move};
@@ -53,7 +57,7 @@ pub fn round_transformed_corner(
         let Some(c) = corner_ori else { return 0.0 };
         if vector {
             let (Some(o0), Some(o1)) = (ori_at(a, ua), ori_at(b, ub)) else { return 0.0 };
-            let arc = element_orientation(o0, o1);
+            let arc = element_orientation(a, ua, b, ub, o0, o1, chord_length(curve, metric));
             return least_angle(c, |w| arc.at(w));
         }
         // The element writes the axes it moves only: the others stand where it starts.
@@ -71,7 +75,9 @@ pub fn round_transformed_corner(
     r.second.path.ori = b.path.ori.as_ref().map(|o| Box::new(o.slice(ub, 1.0)));
     if vector {
         let (o0, o1) = (ori_at(a, ua)?, ori_at(b, ub)?);
-        r.corner.path.ori = Some(Box::new(element_orientation(o0, o1)));
+        // The element's length as the search measured it, so the orientation is the one checked.
+        let len = r.corner.path.curve.as_deref().map_or(r.corner.length, |c| chord_length(c, metric));
+        r.corner.path.ori = Some(Box::new(element_orientation(a, ua, b, ub, o0, o1, len)));
     }
     Some(r)
 }
@@ -86,13 +92,69 @@ fn bare(m: &Move) -> Move {
     out
 }
 
-/// The element's orientation: the great circle from `o0` to `o1` (a standing orientation
-/// where they coincide; antiparallel ends cannot occur within a tolerance of degrees).
-fn element_orientation(o0: Vec3, o1: Vec3) -> OriPath {
+/// The element's orientation from `o0` (where it leaves `a`, at `ua`) to `o1` (where it
+/// joins `b`, at `ub`), `len` its length: where both blocks turn the tool as a vector, a
+/// quintic whose direction is the orientation (an ORICURVE-like [`TwoCurves`] with a bent
+/// upper curve) with the orientation's first and second derivative per unit length of both
+/// blocks at its ends, so that the tool vector's angular velocity and acceleration go on
+/// without a jump where the element starts and ends; else the great circle from `o0` to `o1`
+/// (a standing orientation where they coincide; antiparallel ends cannot occur within a
+/// tolerance of degrees).
+fn element_orientation(a: &Move, ua: f64, b: &Move, ub: f64, o0: Vec3, o1: Vec3, len: f64) -> OriPath {
+    if let (Some(oa), Some(ob)) = (a.path.ori.as_deref(), b.path.ori.as_deref())
+        && len > 0.0
+    {
+        let ([d0, dd0], [d1, dd1]) = (rates(oa, ua, a.length / len), rates(ob, ub, b.length / len));
+        let bend = hermite_bend([(o0, d0, dd0), (o1, d1, dd1)]);
+        return OriPath::two_curves(TwoCurves { tip: [[0.0; 3]; 2], upper: [o0, o1], bend });
+    }
     match OriPath::great_circle(o0, o1) {
         Ok(Some(arc)) => arc,
         _ => OriPath { start: o0, axis: [0.0, 0.0, 1.0], angle: 0.0, curve: None, turn: None },
     }
+}
+
+/// The first and second derivative of `o` at `u` (central differences, one-sided at the
+/// ends), per unit of a parameter `stretch` times longer (the element's, against the block's).
+fn rates(o: &OriPath, u: f64, stretch: f64) -> [Vec3; 2] {
+    const H: f64 = 1e-4;
+    let c = u.clamp(H, 1.0 - H);
+    let (m, z, p) = (o.at(c - H), o.at(c), o.at(c + H));
+    let d: Vec3 = std::array::from_fn(|i| (p[i] - m[i]) / (2.0 * H) / stretch);
+    let dd: Vec3 = std::array::from_fn(|i| (p[i] - 2.0 * z[i] + m[i]) / (H * H) / (stretch * stretch));
+    // From `c` to `u` along the first derivative (the ends lie H beyond the central point).
+    let d = std::array::from_fn(|i| d[i] + dd[i] * (u - c) * stretch);
+    [d, dd]
+}
+
+/// The bend ([`TwoCurves::bend`]: power coefficients of u² .. u⁵) of the quintic with value,
+/// first and second derivative `ends` at 0 and 1.
+pub(super) fn hermite_bend(ends: [(Vec3, Vec3, Vec3); 2]) -> [Vec3; 4] {
+    let [(p0, v0, a0), (p1, v1, a1)] = ends;
+    let c = |i: usize| -> [f64; 4] {
+        [
+            0.5 * a0[i],
+            -10.0 * p0[i] - 6.0 * v0[i] - 1.5 * a0[i] + 0.5 * a1[i] - 4.0 * v1[i] + 10.0 * p1[i],
+            15.0 * p0[i] + 8.0 * v0[i] + 1.5 * a0[i] - a1[i] + 7.0 * v1[i] - 15.0 * p1[i],
+            -6.0 * p0[i] - 3.0 * v0[i] - 0.5 * a0[i] + 0.5 * a1[i] - 3.0 * v1[i] + 6.0 * p1[i],
+        ]
+    };
+    let (cx, cy, cz) = (c(0), c(1), c(2));
+    std::array::from_fn(|n| [cx[n], cy[n], cz[n]])
+}
+
+/// The length of `curve` in the metric's axes, by 16 chords (the element's length before its
+/// table is built; within a fraction of a per cent for a rounding element).
+fn chord_length(curve: &Curve, metric: &AxisVec) -> f64 {
+    let (mut p, mut q) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
+    curve.eval(0.0, &mut p);
+    let mut len = 0.0;
+    for i in 1..=16 {
+        curve.eval(f64::from(i) / 16.0, &mut q);
+        len += (0..MAX_CHANNEL_AXES).map(|k| metric[k] * (q[k] - p[k]).powi(2)).sum::<f64>().sqrt();
+        p = q;
+    }
+    len
 }
 
 /// The smallest angle (radians) between `c` and the orientations `at(w)`, `w` in 0..=1.
@@ -148,9 +210,9 @@ mod tests {
         // X0→10 tilting the tool from Z towards +X by 10°, then Y0→10 tilting it on towards +Y
         // by another 10°: a corner of the orientation at the corner of the tip. With a contour
         // tolerance of 0.05 mm alone the element cuts back about 0.05/(1 − cos 45°)·... mm of
-        // each block, and its great circle passes the corner orientation at some angle; with
-        // OTOL 0.05° the angle is within 0.05° (and > 0: the orientation is rounded), and the
-        // element is shorter than without it.
+        // each block, and its orientation (taking over both blocks' rates: 1°/mm) passes the
+        // corner orientation at some angle (0.045°); with OTOL 0.02° the angle is within 0.02°
+        // (and > 0: the orientation is rounded), and the element is shorter than without it.
         let z = [0.0, 0.0, 1.0];
         let tilt = unit([10f64.to_radians().tan(), 0.0, 1.0]);
         let on = unit([tilt[0], 10f64.to_radians().tan(), tilt[2]]);
@@ -164,9 +226,9 @@ mod tests {
             (r, angle)
         };
         let (wide, wide_angle) = run(90.0);
-        let (tight, tight_angle) = run(0.05);
+        let (tight, tight_angle) = run(0.02);
         assert!(
-            tight_angle <= 0.05f64.to_radians() * (1.0 + 1e-9) && tight_angle > 0.0,
+            tight_angle <= 0.02f64.to_radians() * (1.0 + 1e-9) && tight_angle > 0.0,
             "{}",
             tight_angle.to_degrees()
         );
@@ -179,5 +241,40 @@ mod tests {
         let element_end = tight.corner.path.orientation_at(1.0).unwrap();
         let second_start = tight.second.path.orientation_at(0.0).unwrap();
         assert!((0..3).all(|k| (element_end[k] - second_start[k]).abs() < 1e-12));
+    }
+
+    #[test]
+    fn the_element_takes_over_the_orientation_rate_of_both_blocks() {
+        // Both blocks turn the tool by 10° over 10 mm: 1°/mm, along the great circle of
+        // each. Where the element starts, its orientation moves at 1°/mm along block a's
+        // circle, where it ends at 1°/mm along block b's: the angular velocity has no jump at
+        // either seam (a great circle between the cut points would turn at its own rate, the
+        // angle between them over the element's length, in another direction).
+        let z = [0.0, 0.0, 1.0];
+        let tilt = unit([10f64.to_radians().tan(), 0.0, 1.0]);
+        let on = unit([tilt[0], 10f64.to_radians().tan(), tilt[2]]);
+        let spec = Blend::Tolerance { contour: 0.05, ori: 90f64.to_radians() };
+        let a = oriented([0.0, 0.0], [10.0, 0.0], z, tilt, Some(spec));
+        let b = oriented([10.0, 0.0], [10.0, 10.0], tilt, on, None);
+        let r = round_transformed_corner(&a, &b, 10.0, &metric(), &limits(), &|_| None).expect("rounded");
+        let e = r.corner.path.ori.as_ref().unwrap();
+        let h = 1e-6;
+        let per_mm = |o: &OriPath, u: f64, len: f64| -> Vec3 {
+            let (p, q) = (o.at(u), o.at(u + h));
+            std::array::from_fn(|i| (q[i] - p[i]) / (h * len))
+        };
+        let (first, second) = (r.first.path.ori.as_ref().unwrap(), r.second.path.ori.as_ref().unwrap());
+        let leaving = per_mm(first, 1.0 - h, r.first.length);
+        let entering = per_mm(e, 0.0, r.corner.length);
+        let arriving = per_mm(e, 1.0 - h, r.corner.length);
+        let joining = per_mm(second, 0.0, r.second.length);
+        let deg = |v: Vec3| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().to_degrees();
+        // 1°/mm on the great circle through Z and the 10° tilt: (1 − 1e-3) for the
+        // difference quotients.
+        assert!((deg(leaving) - 1.0).abs() < 1e-3, "{}", deg(leaving));
+        for (x, y) in [(leaving, entering), (arriving, joining)] {
+            let d: Vec3 = std::array::from_fn(|i| x[i] - y[i]);
+            assert!(deg(d) < 2e-3, "{x:?} against {y:?}: {}°/mm apart", deg(d));
+        }
     }
 }

@@ -26,6 +26,10 @@ pub struct Compress {
     pub block_limit: f64,
     /// MD20172 COMPRESS_VELO_TOL in units per second: a larger feed change ends a section.
     pub velo_tol: f64,
+    /// Under an orientation transformation: how far the orientation may leave the programmed
+    /// one, in degrees (`OTOL`, else the rotary axes' MD33100): the tool vector's angle, or
+    /// each rotary axis' position where the rotary axes interpolate (`compress_ori.rs`).
+    pub ori: f64,
 }
 
 /// Blocks meeting at a larger angle keep their corner (the section ends there). The value
@@ -39,6 +43,9 @@ pub struct Junction {
     pub point: AxisVec,
     pub tangent: AxisVec,
     pub curvature: AxisVec,
+    /// A vector-interpolated orientation: its value and its first and second derivative
+    /// per unit of path length there (`compress_ori.rs`).
+    pub ori: Option<[super::orientation::Vec3; 3]>,
 }
 
 /// True if `mv` can be part of a compressed section.
@@ -62,6 +69,13 @@ pub fn junction(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
     if a.exact_stop || !compressible(a) || !compressible(b) || (a.feed - b.feed).abs() > spec.velo_tol {
         return None;
     }
+    passage(a, b, metric)
+}
+
+/// The geometry of [`junction`], without its checks: the passage through the point between
+/// `a` and `b` on the circle through `a`'s start, that point and `b`'s end, if the directions
+/// differ by at most [`MAX_ANGLE_DEG`].
+pub fn passage(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
     let (pa, pb, pc) = (a.path.start, a.path.end, b.path.end);
     let u: AxisVec = std::array::from_fn(|k| pa[k] - pb[k]);
     let w: AxisVec = std::array::from_fn(|k| pc[k] - pb[k]);
@@ -89,7 +103,7 @@ pub fn junction(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
         let t: AxisVec = std::array::from_fn(|k| chord[k] - along * r[k]);
         (unit(&t, metric)?, r.map(|x| x / rr))
     };
-    Some(Junction { point: pb, tangent, curvature })
+    Some(Junction { point: pb, tangent, curvature, ori: None })
 }
 
 /// `mv` as a quintic with the passages `start` and `end` (`None`: the chord's own direction,
@@ -102,6 +116,13 @@ pub fn smooth(
     metric: &AxisVec,
     limits: &[AxisLimit],
 ) -> Option<Move> {
+    let mut curve = quintic(mv, start, end, metric)?;
+    curve.finish();
+    Some(smoothed_move(mv, curve, limits))
+}
+
+/// The quintic of [`smooth`], without its length table; `None` as there.
+pub fn quintic(mv: &Move, start: Option<&Junction>, end: Option<&Junction>, metric: &AxisVec) -> Option<Curve> {
     let spec = mv.compress?;
     if start.is_none() && end.is_none() {
         return None;
@@ -115,7 +136,7 @@ pub fn smooth(
         None => (dir.map(|x| x * l), zero),
     };
     let ((v0, a0), (v1, a1)) = (side(start), side(end));
-    let mut curve = Curve::hermite_untabled([(p0, v0, a0), (p1, v1, a1)], *metric);
+    let curve = Curve::hermite_untabled([(p0, v0, a0), (p1, v1, a1)], *metric);
     // The largest distance from the chord, at 15 inner points.
     let chord_len2 = dot(&dir, &dir, metric) * l * l;
     let mut p = p0;
@@ -128,28 +149,32 @@ pub fn smooth(
             return None;
         }
     }
-    curve.finish();
+    Some(curve)
+}
+
+/// `mv` running `curve` (finished) instead of its chord, at its feed.
+pub fn smoothed_move(mv: &Move, curve: Curve, limits: &[AxisLimit]) -> Move {
     let length = curve.length();
     let mut out = Move::unlimited(
-        Path { start: p0, end: p1, arc: None, ori: None, curve: Some(std::sync::Arc::new(curve)) },
+        Path { start: mv.path.start, end: mv.path.end, arc: None, ori: None, curve: Some(std::sync::Arc::new(curve)) },
         mv.exact_stop,
         mv.tag,
     );
     out.set_limits(length, Feed::Path(mv.feed), limits);
     out.blend = mv.blend;
     out.compress = mv.compress;
-    Some(out)
+    out
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn lim() -> Vec<AxisLimit> {
+    pub(in crate::motion) fn lim() -> Vec<AxisLimit> {
         vec![AxisLimit { max_velocity: 500.0, max_accel: 3000.0, accel_overload: 1.2 }; 3]
     }
 
-    fn metric() -> AxisVec {
+    pub(in crate::motion) fn metric() -> AxisVec {
         let mut m = [0.0; MAX_CHANNEL_AXES];
         m[..3].fill(1.0);
         m
@@ -160,7 +185,7 @@ mod tests {
         (s[0], s[1], e[0], e[1]) = (a[0], a[1], b[0], b[1]);
         let len = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
         let mut mv = Move::new(Path::line(s, e), len, Feed::Path(50.0), &lim(), false, 1);
-        mv.compress = Some(Compress { tol: 0.01, block_limit: 20.0, velo_tol: 1000.0 });
+        mv.compress = Some(Compress { tol: 0.01, block_limit: 20.0, velo_tol: 1000.0, ori: 1.0 });
         mv
     }
 

@@ -8,6 +8,7 @@ pub mod blend;
 pub mod blend_ori;
 mod blend_tangent;
 pub mod compress;
+pub mod compress_ori;
 mod curve;
 mod front;
 mod nearest;

@@ -80,7 +80,7 @@ impl Interpreter {
                 add(&tip0, &scale(&o0, reach))
             }
         };
-        let path = OriPath::two_curves(TwoCurves { tip: [tip0, tip1], upper: [upper0, upper1] });
+        let path = OriPath::two_curves(TwoCurves::lines([tip0, tip1], [upper0, upper1]));
         active.trafo.orientation_axes(&path.at(1.0), machine, end).map_err(|_| {
             Alarm::value_out_of_range(line, "orientation not reachable by the rotary axes of the transformation")
         })?;
