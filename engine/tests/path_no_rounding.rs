@@ -26,6 +26,6 @@ fn a_change_between_brisk_and_soft_keeps_the_corner_sharp() {
     // The nearest sample to (20, 20) and the chords between samples: the path bends away
     // from the corner, so the nearest sample lies at least at the element's distance.
     let nearest = samples.iter().map(|p| dist(p, [20.0, 20.0])).fold(f64::INFINITY, f64::min);
-    assert!(nearest >= 0.049 && nearest < 0.06, "the corner (20, 20) is passed at {nearest} mm");
+    assert!((0.049..0.06).contains(&nearest), "the corner (20, 20) is passed at {nearest} mm");
     path_support::assert_dynamics(&samples);
 }

@@ -55,8 +55,10 @@ async fn under_traori_the_preview_gives_the_tool_direction_at_each_point() {
     assert_eq!(dirs.len(), reply.body["points"].as_array().unwrap().len());
     let h = 0.5f64.sqrt();
     // The end of line 4 (the program end deselects TRAORI: the last point has none).
-    // (Sampled at the block change: within 1e-4, 0.006°, of the end orientation.)
-    assert!(dirs.iter().any(|d| close(d, [0.0, -h, h], 1e-4)), "{dirs:?}");
+    // (Sampled in the last cycle before the block change, one braking step short of the end
+    // orientation: since the planner brakes on the exact discrete stop speed, that step is
+    // about 1.5e-4 (0.009°); 2e-4 is still far from the next sample, 0.005 away.)
+    assert!(dirs.iter().any(|d| close(d, [0.0, -h, h], 2e-4)), "{dirs:?}");
     assert!(dirs.last().unwrap().is_null(), "{dirs:?}");
     // A slow turn (45° over 60 mm at F600: 0.05° per sample) still keeps a point every 0.5°
     // or so: at least 45 / 0.5 = 90 points along line 4.
