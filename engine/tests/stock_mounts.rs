@@ -89,10 +89,8 @@ fn a_tracon_face_slot_on_the_slant_bed_removes_the_chord_strip() {
     // (tip at Z−2) runs along Y10 from X40 to X−35 across the face while C turns under it:
     // the strip 6 ≤ y ≤ 14 of the face's disc, 2 deep. Area ∫₆¹⁴ 2√(625 − y²) dy with
     // F(y) = y√(625 − y²) + 625·asin(y/25): F(14) − F(6) = 661.463 − 297.095 = 364.369;
-    // volume 728.74 mm³, its two rims on the disc about 64 cells: ±4. (STOPRE: the engine's
-    // TRACON selection straight after a move starts the next block from MU = MZ = 0 through
-    // the bar, a motion bug outside material removal.)
-    let program = "G17 G90 G94 T1 D1\nG0 X120 Z50\nWORKPIECE(,\"\",,\"CYLINDER\",0,0,-40,-80,50)\nSTOPRE\n\
+    // volume 728.74 mm³, its two rims on the disc about 64 cells: ±4.
+    let program = "G17 G90 G94 T1 D1\nG0 X120 Z50\nWORKPIECE(,\"\",,\"CYLINDER\",0,0,-40,-80,50)\n\
                    TRANSMIT\nG1 X40 Y10 Z5 F1000\nG1 Z-2\nG1 X-35\nG1 Z5\nTRAFOOF\nM30";
     let (info, mut ch) = run("slant-lathe-tracon", "", program);
     assert_eq!(info.skipped, 0, "{info:?}");

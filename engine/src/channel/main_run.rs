@@ -69,6 +69,9 @@ impl Channel {
             self.blending.prep_waits_for_main_run = prep == Prep::WaitForMainRun;
             // A transformation change: continue once the main run has executed it.
             self.prep_waits_for_trafo = self.interp.transformation_generation() != generation;
+            if self.prep_waits_for_trafo {
+                self.trafo_selection = mark_selection(&mut out, &self.interp);
+            }
             for warning in self.interp.take_warnings() {
                 // One entry per alarm number until it is cancelled: a contour near a pole
                 // would otherwise list every block.
@@ -406,6 +409,15 @@ impl Channel {
                         self.pending.push_front(Item::Offsets { line, offsets });
                         return;
                     }
+                    if self.prep_waits_for_trafo
+                        && self.trafo_selection.as_ref().is_some_and(|s| Arc::ptr_eq(s, &offsets))
+                    {
+                        // The selection is executed: preparation goes on from where the
+                        // machine stands now.
+                        self.prep_waits_for_trafo = false;
+                        self.trafo_selection = None;
+                        self.interp.sync_transformation(&self.machine);
+                    }
                     self.offsets = offsets;
                     self.enter_block(line, seq);
                 }
@@ -594,4 +606,33 @@ pub(super) fn line_offset(program: &str, line: u32, last: Option<&(u32, usize)>)
         at_line += 1;
     }
     offset
+}
+
+/// Gives the offsets item of a block that selected or deselected a transformation a value of
+/// its own, so the main run knows when it executes that block: preparation waits for it and
+/// then goes on from where the machine stands. An earlier block's switch still in the queue (a
+/// tool length taken into the persistent transformation, ahead of the move that follows it)
+/// must not end the wait: it would hand back a machine position the prepared moves have not
+/// reached yet, and the block after the selection would start from there. A selection that
+/// leaves the offsets as they were (the same data set again) gets an item all the same.
+/// `None` when the block ended in an alarm.
+fn mark_selection(out: &mut Vec<Item>, interp: &crate::interp::Interpreter) -> Option<crate::interp::SharedOffsets> {
+    if out.iter().any(|i| matches!(i, Item::Alarm(_))) {
+        return None;
+    }
+    let last = out.iter_mut().rev().find_map(|i| match i {
+        Item::Offsets { offsets, .. } => Some(offsets),
+        _ => None,
+    });
+    match last {
+        Some(offsets) => {
+            *offsets = Arc::new((**offsets).clone());
+            Some(offsets.clone())
+        }
+        None => {
+            let offsets = interp.offsets();
+            out.push(Item::Offsets { line: interp.read_line(), offsets: offsets.clone() });
+            Some(offsets)
+        }
+    }
 }

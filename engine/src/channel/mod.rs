@@ -329,6 +329,10 @@ pub struct Channel {
     /// Preparation waits until a transformation change it prepared has been executed, then
     /// continues from the machine position the main run reached.
     prep_waits_for_trafo: bool,
+    /// The offsets item of the block whose selection preparation waits for (a value of its own,
+    /// told apart by identity): executing it ends the wait. `None` after a block search, whose
+    /// wait ends at the next switch of the transformation.
+    trafo_selection: Option<crate::interp::SharedOffsets>,
     /// Corner rounding of continuous-path mode between prepared moves (`blending.rs`).
     blending: blending::Blending,
     /// The move whose transformation the main run has taken over (checked once per move, not
@@ -435,6 +439,7 @@ impl Channel {
             machine: [0.0; MAX_CHANNEL_AXES],
             trafo: None,
             prep_waits_for_trafo: false,
+            trafo_selection: None,
             blending: Default::default(),
             trafo_tag: None,
             ori_memo: Default::default(),

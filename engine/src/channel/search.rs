@@ -313,6 +313,7 @@ impl Channel {
                 } else {
                     // The target selects it: the main run executes it after NC start.
                     self.prep_waits_for_trafo = true;
+                    self.trafo_selection = None;
                 }
             }
             if found.is_some() {

@@ -113,7 +113,9 @@ impl Channel {
         self.sync.wake_all();
         let space = self.space_of_machine();
         self.planner.set_position(space);
-        if self.prep_waits_for_trafo {
+        // After a block search the wait for the target's selection ends at its switch; a
+        // program's selection ends it when its own block executes (`main_run.rs`).
+        if self.prep_waits_for_trafo && self.trafo_selection.is_none() {
             self.prep_waits_for_trafo = false;
             self.interp.sync_transformation(&self.machine);
         }
