@@ -1006,6 +1006,24 @@ async function main() {
       if (!(Math.abs(turn) < 1e-9)) throw new Error(`stock turned by ${turn}°`);
     });
 
+    await step("3D view: the stock's faces are coloured by the tool that cut them", async () => {
+      // The blank of the step before; T1 (end mill R5) mills a slot at Y15 (Y10..20), then T2
+      // (drill R4) drills at X20 Y30 (Y26..34), apart from the slot. The faces each cut show
+      // the pen colours in the order the tools first cut (stock.ts: pen 1 0x4f8fd6, pen 2
+      // 0xd9a03f), the untouched faces the blank's grey 0x9fb0c2.
+      const program =
+        'T1 D1\nG0 Z50\nWORKPIECE(,"",,"BOX",112,0,-20,,-10,-10,50,40)\nS2000 M3\nG0 X0 Y15 Z5\nG1 Z-2 F500\nG1 X40\nG0 Z50\n' +
+        "T2 D1\nG0 X20 Y30 Z5\nG1 Z-10 F200\nG0 Z50\nM0\nM30\n";
+      await runOn("mill-3axis", program);
+      await page.waitForFunction(() => {
+        const c = window.__nctwin3d.stockColors();
+        return c.includes(0x9fb0c2) && c.includes(0x4f8fd6) && c.includes(0xd9a03f);
+      });
+      const colors = await page.evaluate(() => window.__nctwin3d.stockColors());
+      const expected = [0x9fb0c2, 0x4f8fd6, 0xd9a03f];
+      if (colors.some((c) => !expected.includes(c))) throw new Error(`colours beyond the three pens: ${colors.map((c) => c.toString(16))}`);
+    });
+
     await step("3D view: the stock turns with the table (C90 turns the mesh by −90° about Z with the part)", async () => {
       // mill5-table-ac, type 33: the table axes are DIN-reversed, so C+90 turns the part by −90°
       // about machine Z. The mesh hangs in the machine frame with the engine's pose of the

@@ -619,6 +619,7 @@ export function mountMachineView(session: SessionController): MachineView {
     stockTurn: (about: [number, number, number]) => view.stock.turn(about),
     /** The stock's meshes shown and their version; the check marks (check, line). */
     stockMeshes: () => view.stock.shownMeshes(),
+    stockColors: () => view.stock.shownColors(),
     stockMarks: () => view.stock.markList(),
     /** The blank outline drawn (BCS min and max), null without one. */
     blank: () => (view.check.blank ? [view.check.blank.min.toArray(), view.check.blank.max.toArray()] : null),

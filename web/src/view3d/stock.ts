@@ -144,6 +144,18 @@ export class StockView {
     return { meshes: this.tiles.size, version: this.shown };
   }
 
+  /** The face colours the meshes show, as hex numbers (for the browser test: one per pen). */
+  shownColors(): number[] {
+    const seen = new Set<number>();
+    const c = new THREE.Color();
+    for (const mesh of this.tiles.values()) {
+      const attr = mesh.geometry.getAttribute("color");
+      if (!attr) continue;
+      for (let i = 0; i < attr.count; i += 3) seen.add(c.fromBufferAttribute(attr as THREE.BufferAttribute, i).getHex());
+    }
+    return [...seen].sort((a, b) => a - b);
+  }
+
   /** The check marks drawn: which check and the program line (for the browser test). */
   markList(): { check: string; line: number }[] {
     return this.marks.children.map((m) => ({ check: String(m.userData.check), line: Number(m.userData.line) }));
