@@ -1638,8 +1638,17 @@ async function main() {
       const failed = [];
       for (const m of machines) {
         await page.goto(`${BASE}/?machine=${encodeURIComponent(m.id)}`, { waitUntil: "load" });
-        await page.waitForFunction(() => /^(programmed|no preview of) DEMO/.test(document.getElementById("view3d-preview")?.textContent || ""), null, { timeout: 30_000 });
-        const note = await page.textContent("#view3d-preview");
+        // The note as it was when it settled, read in the same evaluation (a later refresh
+        // would show "preview DEMO …" again).
+        const settled = await page.waitForFunction(
+          () => {
+            const text = document.getElementById("view3d-preview")?.textContent || "";
+            return /^(programmed|no preview of) DEMO/.test(text) ? text : null;
+          },
+          null,
+          { timeout: 30_000 },
+        );
+        const note = await settled.jsonValue();
         if (!/^programmed DEMO: [\d.]+ s$/.test(note)) failed.push(`${m.id}: ${note}`);
       }
       if (failed.length) throw new Error(failed.join(" | "));

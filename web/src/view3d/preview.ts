@@ -59,18 +59,23 @@ export function mountPreview(session: SessionController, view: MachineView): voi
       note.dataset.points = "0";
     }
   };
-  let pending = false;
-  // After the first state of a new session (the model needs its axes first).
-  session.on("session", () => (pending = true));
+  // After the first state of a new session (the model needs its axes first). Until then a
+  // change (the new session adopting its machine's demo) waits for it: one preview per new
+  // session, not two racing each other.
+  let shownFor: string | null = null;
+  const ready = () => shownFor !== null && shownFor === session.id;
+  session.on("session", () => (shownFor = null));
   session.on("state", () => {
-    if (!pending) return;
-    pending = false;
+    if (ready()) return;
+    shownFor = session.id;
     void refresh();
   });
-  session.on("machine", () => void refresh());
+  session.on("machine", () => {
+    if (ready()) void refresh();
+  });
   selection.on("change", () => {
     useSelection = true;
-    void refresh();
+    if (ready()) void refresh();
   });
   // MDA blocks (a swivel, a JOG-like move) do not replace the path of the AUTO program.
   activeProgram.on("change", (meta) => {
