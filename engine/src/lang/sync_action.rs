@@ -309,17 +309,27 @@ impl P<'_> {
         while self.peek().is_some_and(|c| c.is_ascii_digit() || c == b'.') {
             self.pos += 1;
         }
-        if matches!(self.peek(), Some(b'E' | b'e'))
-            && self.src.get(self.pos + 1).is_some_and(|c| c.is_ascii_digit() || *c == b'-' || *c == b'+')
-        {
-            self.pos += 2;
-            while self.peek().is_some_and(|c| c.is_ascii_digit()) {
-                self.pos += 1;
+        // The exponent as in the part program: `1.5EX3`, `2EX-4` (see `Cursor::number`).
+        let mantissa_end = self.pos;
+        let mut exponent = None;
+        if self.src.get(self.pos..self.pos + 2).is_some_and(|x| x.eq_ignore_ascii_case(b"EX")) {
+            let after = self.pos + 2;
+            let signed = usize::from(matches!(self.src.get(after), Some(b'-' | b'+')));
+            if self.src.get(after + signed).is_some_and(u8::is_ascii_digit) {
+                self.pos = after + signed;
+                while self.peek().is_some_and(|c| c.is_ascii_digit()) {
+                    self.pos += 1;
+                }
+                exponent = Some(&self.text[after..self.pos]);
             }
         }
-        match self.text[start..self.pos].parse() {
-            Ok(v) => Ok(v),
-            Err(_) => {
+        let text = match exponent {
+            Some(e) => format!("{}e{e}", &self.text[start..mantissa_end]),
+            None => self.text[start..mantissa_end].to_string(),
+        };
+        match text.parse::<f64>().ok().filter(|v| v.is_finite()) {
+            Some(v) => Ok(v),
+            None => {
                 self.pos = start;
                 self.err("invalid number")
             }
@@ -625,6 +635,19 @@ mod tests {
         assert!(parse("WHEN R1==1 DO M1").is_err());
         assert!(parse("WHEN $A_IN[1]==1 DO R1=2").is_err());
         assert!(parse("WHEN ($A_IN[1]==1 DO M1").is_err());
+    }
+
+    #[test]
+    fn numbers_take_the_part_programs_ex_exponent() {
+        // 1.5EX3 = 1500, 2EX-4 = 0.0002 (the exponent form of the Programming Manual); a plain E
+        // is a name as in the part program, and a value beyond f64 is no number.
+        let a = parse("WHEN $AA_IM[X]>1.5EX3 DO $AC_PARAM[1]=2EX-4 $AC_PARAM[2]=1ex+2").unwrap();
+        let Some(SExpr::Bin(_, _, limit)) = a.condition else { panic!() };
+        assert_eq!(*limit, SExpr::Num(1500.0));
+        assert!(matches!(&a.actions[0], SAction::Assign(_, SExpr::Num(v)) if *v == 0.0002));
+        assert!(matches!(&a.actions[1], SAction::Assign(_, SExpr::Num(v)) if *v == 100.0));
+        assert!(parse("WHEN $AA_IM[X]>1E3 DO M1").is_err());
+        assert_eq!(parse("DO $AC_PARAM[1]=1EX400").unwrap_err().message, "invalid number");
     }
 
     #[test]
