@@ -507,6 +507,35 @@ async function main() {
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
     });
 
+    await step(`the editor opens the ${BIG_BLOCKS}-block program and draws only the lines in view`, async () => {
+      await page.click('[data-goto="manager"]');
+      await page.waitForSelector('#programs tr[data-program="CAM200K"]');
+      const t0 = Date.now();
+      await page.click('#programs tr[data-program="CAM200K"] [data-action="open"]');
+      await page.waitForFunction(() => document.querySelector("#editor textarea")?.value.length > 1_000_000, null, { timeout: 30_000 });
+      await page.waitForSelector("#editor .code-gutter div div");
+      console.log(`     ${BIG_BLOCKS} blocks in the editor ${Date.now() - t0} ms after Open`);
+      const drawn = () => page.evaluate(() => [...document.querySelectorAll("#editor .code-gutter div div")].map((d) => Number(d.textContent)));
+      const top = await drawn();
+      if (top[0] !== 1 || top.length > 400) throw new Error(`numbered lines ${top[0]}..${top.at(-1)} (${top.length})`);
+      // At the end of the text: the last block, M30 in line 200,000, is drawn and numbered.
+      const t1 = Date.now();
+      await page.evaluate(() => {
+        const input = document.querySelector("#editor textarea");
+        input.scrollTop = input.scrollHeight;
+      });
+      await page.waitForFunction((n) => [...document.querySelectorAll("#editor .code-gutter div div")].some((d) => d.textContent === String(n)), BIG_BLOCKS);
+      const end = await drawn();
+      if (end.length > 400) throw new Error(`${end.length} lines drawn at the end`);
+      const code = await page.textContent("#editor .code-highlight code");
+      if (!code.trimEnd().endsWith("M30")) throw new Error(`the drawn text ends with ${JSON.stringify(code.slice(-40))}`);
+      // The drawn layer lies under the textarea's lines: as tall as the text.
+      const heights = await page.evaluate(() => [document.querySelector("#editor textarea").scrollHeight, document.querySelector("#editor .code-highlight").scrollHeight]);
+      if (Math.abs(heights[0] - heights[1]) > 40) throw new Error(`textarea ${heights[0]} px, highlight ${heights[1]} px`);
+      console.log(`     scrolled to its end: lines ${end[0]}..${end.at(-1)} drawn ${Date.now() - t1} ms later`);
+      await page.click('[data-goto="machine"]');
+    });
+
     await step("server restart: stale banner while it is down, then live values without a reload, old messages cleared", async () => {
       const dataDir = await mkdtemp(join(tmpdir(), "nctwin-restart-"));
       let server = await startServer("127.0.0.1:0", dataDir);
