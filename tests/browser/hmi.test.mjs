@@ -40,6 +40,8 @@ const pageErrors = [];
 const sentFrames = [];
 let expectedBadRequests = 0;
 let expectedForbidden = 0;
+/** While a step keeps the server's preview workers busy on purpose: its 429s are expected. */
+let previewsBusy = false;
 
 async function step(name, fn) {
   const t0 = Date.now();
@@ -198,6 +200,8 @@ async function main() {
         expectedBadRequests--;
         return;
       }
+      // The previews refused while the test keeps the server's preview workers busy.
+      if (previewsBusy && /status of 429/.test(msg.text()) && url.endsWith("/preview")) return;
       // The unknown session the test opens on purpose.
       if (/status of 404/.test(msg.text()) && url.endsWith("/sessions/no-such-session")) return;
       // The watcher's start the test sends on purpose.
@@ -834,6 +838,10 @@ async function main() {
       await page.waitForFunction(
         () => Math.abs(Number(document.querySelector('#positions [data-frame="machine"][data-axis="A"]')?.textContent) - 30) < 1e-3,
       );
+      // The program panel shows the swivel's MDA block (the channel ran CYCLE800 in MDA).
+      await page.waitForFunction(() => document.getElementById("blocks-name")?.textContent === "MDA");
+      const rows = await page.locator("#blocks li .line-code").allTextContents();
+      if (rows.length !== 1 || !/^CYCLE800\(0,"HEAD_CA",/.test(rows[0])) throw new Error(`program panel after the swivel: ${rows.join(" | ")}`);
     });
 
     await step("active swivel beside T/F/S: HEAD_CA (1), A 30°, the plane X 30°; the WCS triad turned with it", async () => {
@@ -1640,6 +1648,10 @@ async function main() {
         const v = (a) => Number(document.querySelector(`#positions [data-frame="workpiece"][data-axis="${a}"]`)?.textContent);
         return Math.abs(v("X") - 3) < 1e-3 && Math.abs(v("Y") - 4) < 1e-3 && document.getElementById("status")?.textContent?.trim() === "idle";
       });
+      // The program panel shows the MDA blocks the channel ran, not the selected program.
+      await page.waitForFunction(() => document.getElementById("blocks-name")?.textContent === "MDA");
+      const rows = await page.locator("#blocks li .line-code").allTextContents();
+      if (rows.join("|") !== "G90 G0 X3|G0 Y4") throw new Error(`program panel after MDA: ${rows.join(" | ")}`);
     });
 
     await step("ending a session asks first; cancelled it stays, confirmed it is gone", async () => {
@@ -1658,6 +1670,30 @@ async function main() {
       await page.click(`#sessions button[data-delete="${id}"]`);
       await page.waitForSelector(`#sessions tr[data-session="${id}"]`, { state: "detached" });
       if (!/End session/.test(asked)) throw new Error(`confirmation: ${asked}`);
+    });
+
+    await step("a preview the busy server refuses (429) is asked again and arrives", async () => {
+      // Two previews of an endless loop hold the server's two preview workers until their wall
+      // limit (10 s); the HMI's preview waits 5 s in the queue, gets 429 and asks again.
+      await page.click('[data-goto="machine"]');
+      const loop = "LOOP\nR1=R1+1\nENDLOOP\nM30\n";
+      const hold = () => pageFetch(page, "POST", `/sessions/${sessionId}/preview`, { program: loop, max_points: 2 }).catch(() => null);
+      previewsBusy = true;
+      const holders = [hold(), hold()];
+      await page.waitForTimeout(500);
+      await page.evaluate(() => {
+        const note = document.getElementById("view3d-preview");
+        window.__previewNotes = [];
+        new MutationObserver(() => window.__previewNotes.push(note.textContent)).observe(note, { childList: true, characterData: true, subtree: true });
+      });
+      await page.click("#btn-view-preview");
+      await page.waitForFunction(() => /^(programmed|no preview of) /.test(document.getElementById("view3d-preview")?.textContent || ""), null, { timeout: 60_000 });
+      const notes = await page.evaluate(() => window.__previewNotes);
+      const last = notes.at(-1) || "";
+      if (!notes.some((n) => /busy/.test(n))) throw new Error(`no busy note (the workers were free?): ${notes.join(" | ")}`);
+      if (!/^programmed /.test(last)) throw new Error(`preview ended with: ${last}`);
+      await Promise.all(holders);
+      previewsBusy = false;
     });
 
     await step("every preset's demo program previews to its end without an alarm", async () => {

@@ -5,7 +5,7 @@
 // when the channel loads another program, another program is selected, the session changes,
 // or on the Preview key.
 
-import { api } from "../api/client";
+import { api, ApiError } from "../api/client";
 import { byId, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
 import { activeName, activeProgram } from "../program/active";
@@ -18,6 +18,12 @@ import { showLimitHits } from "./limitCaption";
 const MAX_POINTS = 8000;
 /** Simulated seconds of a loaded program's path (the server's largest). */
 const ACTIVE_MAX_TIME_S = 3600;
+/**
+ * The server runs a few previews at once and answers 429 after a wait (a class previewing the
+ * same CAM program): asked again this much later, this many times, before the note says so.
+ */
+const BUSY_RETRY_MS = 2000;
+const BUSY_RETRIES = 5;
 
 export function mountPreview(session: SessionController, view: MachineView): void {
   const note = byId("view3d-preview");
@@ -25,7 +31,7 @@ export function mountPreview(session: SessionController, view: MachineView): voi
   let serial = 0;
   // The selection while it is newer than the loaded program, else the loaded program.
   let useSelection = true;
-  const refresh = async () => {
+  const refresh = async (retries = BUSY_RETRIES) => {
     const id = session.id;
     if (!id) return;
     const mine = ++serial;
@@ -51,6 +57,13 @@ export function mountPreview(session: SessionController, view: MachineView): voi
       note.dataset.points = String(r.points.length);
     } catch (e) {
       if (mine !== serial) return;
+      if (e instanceof ApiError && e.status === 429 && retries > 0) {
+        setText(note, `preview ${program.name}: the server is busy with other previews, asking again …`);
+        setTimeout(() => {
+          if (mine === serial && id === session.id) void refresh(retries - 1);
+        }, BUSY_RETRY_MS);
+        return;
+      }
       view.setProgrammed([], ["X", "Y", "Z"]);
       view.check.clear();
       scrub.set(null, { active: false, text: "" });
