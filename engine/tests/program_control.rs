@@ -204,6 +204,14 @@ fn dry_run_leaves_rapid_traverse_and_the_feed_override_acts_on_it() {
 }
 
 #[test]
+fn programs_read_the_dry_run_setting_data() {
+    // SD42100 defaults to 5000 mm/min, SD42101 to 0; a program reads them as `$SC_..`.
+    let (ch, _) = run("$SC_DRY_RUN_FEED_MODE=12\n", &[], false, "R1=$SC_DRY_RUN_FEED\nR2=$SC_DRY_RUN_FEED_MODE\nM30");
+    assert_ok(&ch);
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (5000.0, 12.0));
+}
+
+#[test]
 fn dry_run_off_runs_the_programmed_feed() {
     // DRY off, SD42100 = 5000 mode 2 set: F6000 = 100 mm/s: 1 + 100/3000 = 1.0333 s.
     let (ch, xs) = run("$SC_DRY_RUN_FEED_MODE=2\n", &[], false, "BRISK G1 X100 F6000\nM30");
