@@ -165,6 +165,18 @@ fn dry_run_mode_0_takes_the_larger_feed() {
 }
 
 #[test]
+fn plain_lines_of_the_fast_lane_take_the_dry_run_feed_too() {
+    // `G1 X100 F100` is a plain line (the fast lane prepares it); BRISK is the preset's
+    // default: 1.2278 s as above, and the next plain line F100 again at 5000.
+    let md = "$SC_DRY_RUN_FEED=5000\n$SC_DRY_RUN_FEED_MODE=0\n";
+    let (ch, xs) = run(md, &[], true, "G1 X100 F100\nX0\nM30");
+    assert_ok(&ch);
+    let last_at_100 = xs.iter().rposition(|&x| x == 100.0).unwrap();
+    let (t1, t2) = (move_time(&xs[..=last_at_100]), move_time(&xs[last_at_100..]));
+    assert!((t1 - 1.2278).abs() <= 2.0 * DT && (t2 - 1.2278).abs() <= 2.0 * DT, "{t1} s, {t2} s");
+}
+
+#[test]
 fn dry_run_mode_1_takes_the_smaller_feed() {
     // F8000 → min(8000, 5000) = 5000: 1.2278 s. (F100 would stay 100: 60 s.)
     let t = dry_time(1, 8000.0);
