@@ -292,6 +292,11 @@ pub struct State {
     pub single_block: bool,
     /// Optional stop (M1) selected.
     pub optional_stop: bool,
+    /// Dry-run feed (DRY) selected: path feeds are SD42100 `$SC_DRY_RUN_FEED` as SD42101 says.
+    pub dry_run: bool,
+    /// Skip levels (SKP) selected, ascending: blocks marked `/n` with one of them are skipped
+    /// (`/` is level 0).
+    pub skip_levels: Vec<u8>,
     /// Active G functions of the block in execution, one per displayed G group (motion, plane,
     /// radius compensation, settable frame, exact stop, units, dimensions, feed type, arc feed,
     /// corner type, orientation reference, PTP, angle definition, orientation interpolation).
@@ -467,6 +472,8 @@ impl From<&Snapshot> for State {
             overrides: OverridesInfo { feed: s.overrides.feed, rapid: s.overrides.rapid, spindle: s.overrides.spindle },
             single_block: s.single_block,
             optional_stop: s.optional_stop,
+            dry_run: s.dry_run,
+            skip_levels: s.skip_levels.levels(),
             gcodes: s.gcodes.clone(),
             referenced: Some(AxisFlags(s.referenced.clone())),
             repos_pending: Some(s.repos_pending),
@@ -535,6 +542,11 @@ pub struct RunRequest {
     pub wait: bool,
     /// Sets optional stop (M1 stops) before the start; absent keeps the current setting.
     pub optional_stop: Option<bool>,
+    /// Sets dry-run feed (DRY) before the start; absent keeps the current setting.
+    pub dry_run: Option<bool>,
+    /// Sets the skip levels (SKP, 0..=9) before the start; absent keeps the current setting.
+    #[schema(example = json!([0]))]
+    pub skip_levels: Option<Vec<i64>>,
     /// The name the program is shown under (`GET .../active-program`), e.g. the stored program
     /// it was read from. Absent: the name of a stored program with the same text, if any.
     /// Without `program`: the stored program to run.
@@ -746,6 +758,16 @@ pub struct OptionsRequest {
     pub single_block: Option<bool>,
     /// Optional stop: M1 stops the program.
     pub optional_stop: Option<bool>,
+    /// Dry-run feed (DRY): the path feed of G1/G2/G3.. blocks prepared from now on is SD42100
+    /// `$SC_DRY_RUN_FEED`, combined with the programmed feed as SD42101 says (0 max, 1 min,
+    /// 2 dry-run feed; 10..12 the same, threads as programmed); G0 stays rapid, the feed
+    /// override still acts.
+    pub dry_run: Option<bool>,
+    /// Skip levels (SKP): the active levels 0..=9 (`[]` none); blocks marked `/n` (`/` = `/0`)
+    /// with an active level are skipped when they are prepared, statements included. Blocks
+    /// prepared already keep running (a STOPRE before them makes a change certain).
+    #[schema(example = json!([0, 2]))]
+    pub skip_levels: Option<Vec<i64>>,
 }
 
 /// Override switches in percent.
@@ -1228,6 +1250,8 @@ mod tests {
             overrides: OverridesInfo { feed: 100.0, rapid: 100.0, spindle: 100.0 },
             single_block: false,
             optional_stop: false,
+            dry_run: false,
+            skip_levels: vec![],
             gcodes: vec!["G1".into(), "G17".into()],
             referenced: None,
             repos_pending: None,

@@ -574,6 +574,45 @@ async fn single_block_stops_after_each_moving_block() {
 }
 
 #[tokio::test]
+async fn skip_levels_and_dry_run_are_options_published_in_the_state() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    let reply = server.put(&format!("/sessions/{id}/options"), json!({"skip_levels": [2, 0], "dry_run": true})).await;
+    assert_eq!(reply.status, StatusCode::OK);
+    assert_eq!((reply.body["skip_levels"].clone(), reply.body["dry_run"].clone()), (json!([0, 2]), json!(true)));
+    // /0 and /2 active: lines 2 and 4 are skipped, /1 on line 3 runs: X 30, Y 0.
+    // DRY (SD42100 5000 mm/min, mode 0): the 30 mm of F100 take 30/83.33 + 83.33/3000 = 0.39 s
+    // at the dry-run feed instead of 18 s at F100.
+    let program = "G1 X10 F100\n/G1 X20\n/1 G1 X30\n/2 G1 Y5\nM30";
+    let run = json!({"program": program, "pace": "fast", "wait": true});
+    let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
+    assert_eq!((pos(&state, "machine", "X"), pos(&state, "machine", "Y")), (30.0, 0.0));
+    let time = state["time"].as_f64().unwrap();
+    assert!(time < 1.0, "DRY: {time} s");
+    // The run's body sets them too: no level, DRY off.
+    let run = json!({"program": "G1 X0 F6000\n/G1 Y5\nM30", "pace": "fast", "wait": true, "skip_levels": [], "dry_run": false});
+    let state = server.post(&format!("/sessions/{id}/run"), run).await.body;
+    assert_eq!((state["skip_levels"].clone(), state["dry_run"].clone()), (json!([]), json!(false)));
+    assert_eq!(pos(&state, "machine", "Y"), 5.0);
+}
+
+#[tokio::test]
+async fn a_skip_level_outside_0_to_9_is_400_naming_it() {
+    let server = Server::start().await;
+    let id = server.session("mill-3axis").await;
+    for bad in [10, -1, 300] {
+        let reply = server.put(&format!("/sessions/{id}/options"), json!({"skip_levels": [0, bad]})).await;
+        let message = error_message(&reply, StatusCode::BAD_REQUEST);
+        assert!(message.contains(&format!("skip level {bad}")), "{message}");
+    }
+    let run = json!({"program": "G0 X5\nM30", "pace": "fast", "wait": true, "skip_levels": [12]});
+    let reply = server.post(&format!("/sessions/{id}/run"), run).await;
+    assert!(error_message(&reply, StatusCode::BAD_REQUEST).contains("skip level 12"));
+    let state = server.get(&format!("/sessions/{id}/state")).await.body;
+    assert_eq!((state["skip_levels"].clone(), pos(&state, "machine", "X")), (json!([]), 0.0));
+}
+
+#[tokio::test]
 async fn a_program_that_computes_forever_is_stopped_by_the_fast_wall_time_limit() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;

@@ -650,6 +650,33 @@ async function main() {
       await previewDone();
     });
 
+    await step("DRY and SKP keys: G1 F100 runs at the dry-run feed, a / block is skipped, the status line shows DRY SKP", async () => {
+      // DRY with SD42100 = 5000 mm/min and SD42101 = 0 (the larger of 5000 and F100): the
+      // state's programmed feed of the G1 block is 5000 (200 mm take 2.4 s instead of 120 s).
+      // SKP /0: line 3 (/G1 X400) is skipped, so X stands at 200 when line 4's M0 stops.
+      const id = new URL(page.url()).searchParams.get("session");
+      const text = (sel) => page.evaluate((s) => document.querySelector(s)?.textContent ?? "", sel);
+      for (const key of ["#btn-dry", "#btn-skp"]) {
+        await page.click(key);
+        await page.waitForSelector(`${key}[aria-pressed="true"]`);
+      }
+      if ((await text("#channel-options")) !== "DRY SKP") throw new Error(`options: ${await text("#channel-options")}`);
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G0 X0 Y0 Z50\nG1 X200 F100\n/G1 X400\nM0\nM30\n", pace: "realtime" });
+      await page.waitForFunction(() => /^F prog 5000 /.test(document.getElementById("channel-feed")?.textContent || ""), null, { timeout: 30_000 });
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Stop: M0 programmed stop", null, { timeout: 30_000 });
+      const state = await pageFetch(page, "GET", `/sessions/${id}/state`);
+      if (state.positions.machine.X !== 200 || !state.dry_run || state.skip_levels.join() !== "0") {
+        throw new Error(`at M0: X ${state.positions.machine.X}, dry_run ${state.dry_run}, skip_levels ${state.skip_levels}`);
+      }
+      for (const key of ["#btn-dry", "#btn-skp"]) {
+        await page.click(key);
+        await page.waitForSelector(`${key}[aria-pressed="false"]`);
+      }
+      if ((await text("#channel-options")) !== "") throw new Error(`options left: ${await text("#channel-options")}`);
+      await page.click("#btn-reset");
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+    });
+
     await step("JOG over the WebSocket: holding X+ moves X past the dead-man time, release stops it", async () => {
       await page.click('[data-set-mode="JOG"]');
       await page.waitForFunction(() => document.querySelector('[data-set-mode="JOG"]')?.classList.contains("active"));

@@ -6,6 +6,7 @@ use std::sync::Arc;
 use super::pending::NO_SEQ;
 use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
+use crate::interp::program_control::{DryRunFeed, ProgramControl};
 use crate::interp::{CORRTRAFO, DELOBJ, Item, Level, NEWCONF, Prep, StopKind};
 use crate::motion::{AxisLimit, Move};
 
@@ -24,6 +25,13 @@ impl Channel {
         self.prepare_blocks();
     }
 
+    /// Hands SKP and DRY to the interpreter: they act on the blocks it prepares next.
+    pub(super) fn hand_program_control(&mut self) {
+        let (feed, mode) = self.cfg.dry_run_feed;
+        let dry_run = self.dry_run.then(|| DryRunFeed::from_settings(feed, mode));
+        self.interp.set_program_control(ProgramControl { dry_run, skip_levels: self.skip_levels });
+    }
+
     /// [`Channel::prepare`]'s work, kept out of the IPO cycle's code: every cycle runs that
     /// code, only about one in fifty prepares a block, and the interpreter between them would
     /// otherwise push the cycle's instructions out of the cache.
@@ -32,6 +40,7 @@ impl Channel {
         for s in self.spindles.iter().filter(|s| !s.axis_mode) {
             self.interp.observe_spindle(s.axis, s.position);
         }
+        self.hand_program_control();
         let mut out = Vec::new();
         let mut budget = MAX_BLOCKS_PER_CYCLE;
         while !self.prep_done

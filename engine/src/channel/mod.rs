@@ -298,6 +298,10 @@ pub struct Channel {
     pub optional_stop: bool,
     /// Single block (SBL1): the program stops after each block that moves.
     pub single_block: bool,
+    /// DRY: path feeds of blocks prepared from now on are SD42100's dry-run feed.
+    pub dry_run: bool,
+    /// SKP: blocks marked with an active level are skipped when prepared.
+    pub skip_levels: crate::interp::program_control::SkipLevels,
     overrides: Overrides,
     /// Single block: the step (`pending.rs`) whose moves have just finished.
     sbl_done: Option<u32>,
@@ -426,6 +430,8 @@ impl Channel {
             events: Vec::new(),
             optional_stop: false,
             single_block: false,
+            dry_run: false,
+            skip_levels: Default::default(),
             overrides: Overrides::default(),
             sbl_done: None,
             sbl_step: None,

@@ -239,6 +239,7 @@ impl Channel {
                 Some(level) => level.calls == chain,
             };
             let level = if at_level { self.interp.level().cloned() } else { None };
+            self.hand_program_control();
             let prep = self.interp.prepare_next(&self.cfg, &self.programs, true, &mut out);
             // The block read is the target even when it puts out nothing (a call: the search
             // stops before the subprogram runs; an R parameter assignment).

@@ -69,6 +69,9 @@ pub struct Snapshot {
     /// Single block (SBL1) and optional stop (M1) selected.
     pub single_block: bool,
     pub optional_stop: bool,
+    /// DRY (dry-run feed) and SKP (the active skip levels) selected.
+    pub dry_run: bool,
+    pub skip_levels: crate::interp::program_control::SkipLevels,
     /// The active G functions of the block in execution, one per displayed G group.
     pub gcodes: Vec<String>,
     /// What `gcodes` was written from (see `Channel::refresh_snapshot`).
@@ -135,6 +138,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         overrides: Overrides::default(),
         single_block: false,
         optional_stop: false,
+        dry_run: false,
+        skip_levels: Default::default(),
         gcodes: Vec::new(),
         gcodes_seen: GCodesSeen(None),
         referenced: Vec::new(),

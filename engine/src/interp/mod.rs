@@ -24,6 +24,7 @@ mod modal;
 pub(crate) use modal::vocabulary;
 mod orientation;
 pub(crate) mod path_control;
+pub mod program_control;
 mod published;
 pub mod retained;
 pub mod spindles;
@@ -322,6 +323,8 @@ pub struct Interpreter {
     spare_words: modal::SpareWords,
     /// Plain motion lines take the fast lane (`lane.rs`).
     fast_lane: bool,
+    /// SKP and DRY as the channel last handed them (`program_control.rs`).
+    program_control: program_control::ProgramControl,
     /// What the lane keeps between its blocks (a cache, cleared by the general path).
     lane_memo: lane::LaneMemo,
     /// The last path block in the working plane, for CT (`contour/tangent_circle.rs`).
@@ -382,6 +385,7 @@ impl Interpreter {
             tool_cycle: None,
             spare_words: modal::SpareWords::default(),
             fast_lane: true,
+            program_control: Default::default(),
             lane_memo: Default::default(),
             last_move: Default::default(),
             stored: Default::default(),
@@ -1300,8 +1304,11 @@ impl Interpreter {
             _ if self.spindles.thread.is_some() => Feed::Path(1.0),
             _ => {
                 let f = self.modal.feed.ok_or_else(|| Alarm::no_feed(line))?;
-                let per_min = if self.modal.feed_per_rev { f * self.spindles.reference_speed() } else { f }
+                let mut per_min = if self.modal.feed_per_rev { f * self.spindles.reference_speed() } else { f }
                     * self.modal.feed_factor();
+                if let Some(dry) = &self.program_control.dry_run {
+                    per_min = dry.path_feed(per_min);
+                }
                 if per_min <= 0.0 {
                     return Err(Alarm::feed_not_positive(line));
                 }

@@ -50,6 +50,11 @@ impl Interpreter {
             alarm.number = d.alarm;
             alarm
         })?;
+        if self.program_control.skips(&block) {
+            // SKP: the block is read (its line counts) but nothing of it is executed.
+            flow.recycle(block);
+            return Ok(Prep::Prepared);
+        }
         if self.sync_wait.holds(&self.pos, main_run_idle) || !main_run_idle && block.reads_main_run() {
             // The control's implicit preprocessing stop: wait for the main run, then read again.
             flow.next = next;

@@ -53,8 +53,9 @@ pub struct Block {
     /// Byte offset of the line's start within the program (for highlighting in an HMI; the
     /// line's text is the program's from there to the line break).
     pub offset: usize,
-    /// `/` at the start: skippable block.
-    pub skip: bool,
+    /// `/` or `/0`..`/9` at the start: the skip level (`/` is level 0) under which the block
+    /// is skipped when that level is active (SKP, see `interp::program_control`).
+    pub skip: Option<u8>,
     /// `N10` or `:10` block number.
     pub number: Option<u32>,
     /// `LABEL:` jump label.

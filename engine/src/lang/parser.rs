@@ -175,7 +175,7 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
     let mut block = Block {
         line,
         offset,
-        skip: false,
+        skip: None,
         number: None,
         label: None,
         stmt: None,
@@ -190,7 +190,8 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
     };
     cur.skip_ws();
     if cur.eat(b'/') {
-        block.skip = true;
+        let level = cur.peek().filter(u8::is_ascii_digit).map_or(0, |d| d - b'0');
+        block.skip = Some(level);
         cur.eat_digit();
         cur.skip_ws();
     }
@@ -261,7 +262,7 @@ fn parse_line(text: &str, line: u32, offset: usize, build: bool, spare: &mut Vec
         && block.stmt.is_none()
         && block.number.is_none()
         && block.label.is_none()
-        && !block.skip;
+        && block.skip.is_none();
     if empty && block.comment.is_none() {
         // Nothing to hand out: the (empty) word list goes back for the next line.
         if block.words.capacity() > spare.capacity() {

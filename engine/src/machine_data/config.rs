@@ -100,6 +100,8 @@ pub struct MachineConfig {
     pub carriers: BTreeMap<u32, super::Carrier>,
     /// SD42980 TOFRAME_MODE.
     pub toframe_mode: i64,
+    /// SD42100 `$SC_DRY_RUN_FEED` (mm/min) and SD42101 `$SC_DRY_RUN_FEED_MODE`: DRY's feed.
+    pub dry_run_feed: (f64, i64),
     /// MD55410 MILL_SWIVEL_ALARM_MASK (CYCLE800 alarms 61186/61187).
     pub swivel_alarm_mask: i64,
     /// Settable frames G500, G54.. (`$P_UIFR[n]`).
@@ -421,6 +423,7 @@ impl MachineConfig {
             },
             carriers: BTreeMap::new(),
             toframe_mode: md.num("$SC_TOFRAME_MODE", 0, 0) as i64,
+            dry_run_feed: (0.0, 0),
             swivel_alarm_mask: md.num("$MC_MILL_SWIVEL_ALARM_MASK", 0, 0) as i64,
             work_offsets: Vec::new(),
             base_frames: Vec::new(),
@@ -459,6 +462,7 @@ impl MachineConfig {
             self.kin = md.kin().clone();
         }
         self.toframe_mode = md.num("$SC_TOFRAME_MODE", 0, 0) as i64;
+        self.dry_run_feed = (md.num("$SC_DRY_RUN_FEED", 0, 0), md.num("$SC_DRY_RUN_FEED_MODE", 0, 0) as i64);
         self.path_control.refresh_settings(md);
         self.corr_limits = super::chains::correct::Limits {
             lin_max: md.num("$SN_CORR_TRAFO_LIN_MAX", 0, 0),

@@ -550,6 +550,11 @@ pub static DEFS: &[Def] = &[
     // MD20480 SMOOTHING_MODE selects them; CTOL=/OTOL= override them in a program.
     sd("SMOOTH_CONTUR_TOL", 42465, C, Kind::Real, Default::Real(0.05), 0.0, 1e9),
     sd("SMOOTH_ORI_TOL", 42466, C, Kind::Real, Default::Real(0.05), 0.0, 360.0),
+    // SD42100 DRY_RUN_FEED (mm/min) and SD42101 DRY_RUN_FEED_MODE: the feed of DRY and how it
+    // combines with the programmed one (0 max, 1 min, 2 direct; 10/11/12 the same but threads
+    // as programmed; `interp/program_control.rs`).
+    sd("DRY_RUN_FEED", 42100, C, Kind::Real, Default::Real(5000.0), 0.0, INF),
+    sd("DRY_RUN_FEED_MODE", 42101, C, Kind::Int, Default::Int(0), 0.0, 12.0),
     sd("CART_JOG_MODE", 42650, C, Kind::Int, Default::Int(0), 0.0, 1799.0),
     sd("ORI_JOG_MODE", 42660, C, Kind::Int, Default::Int(0), 0.0, 5.0),
     // SD41610/SD41611: the largest change CORRTRAFO makes to an offset vector (mm) / turns a

@@ -2,6 +2,7 @@
 
 use axum::extract::{Path, State};
 use nctwin_engine::channel::{PathStep, ReposApproach, ReposMode};
+use nctwin_engine::interp::program_control::SkipLevels;
 
 use super::{StateReply, command};
 use crate::dto::{
@@ -10,7 +11,7 @@ use crate::dto::{
 };
 use crate::error::ApiError;
 use crate::extract::{ApiJson, OptionalJson};
-use crate::session::Action;
+use crate::session::{Action, ProgramOptions};
 use crate::state::AppState;
 
 /// Loads a part program and starts it in AUTO mode: the text of `program`, or without it the
@@ -32,7 +33,7 @@ use crate::state::AppState;
     responses(
         (status = 200, description = "The state after the start, or at the end of the wait", body = dto::State,
             headers(("nctwin-limit" = String, description = "`fast-sim-time`, `fast-wall-time` or `wait-wall-time` when a server-side limit ended the command or its wait"))),
-        (status = 400, description = "Syntax error (with its line), neither `program` nor `name`, no stored program `name`, or a malformed body", body = ErrorBody),
+        (status = 400, description = "Syntax error (with its line), neither `program` nor `name`, no stored program `name`, a skip level outside 0..9, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
         (status = 409, description = "A program is active or an alarm needs a reset", body = ErrorBody),
     )
@@ -45,7 +46,13 @@ pub async fn run(
     if body.program.is_none() && body.name.is_none() {
         return Err(ApiError::bad_request("give `program` (the text) or `name` (a stored program to run)"));
     }
-    let action = Action::Run { program: body.program, optional_stop: body.optional_stop, name: body.name };
+    let options = ProgramOptions {
+        single_block: None,
+        optional_stop: body.optional_stop,
+        dry_run: body.dry_run,
+        skip_levels: body.skip_levels.as_deref().map(skip_levels).transpose()?,
+    };
+    let action = Action::Run { program: body.program, options, name: body.name };
     command(&state, &id, action, Some(drive(body.pace, body.wait))).await
 }
 
@@ -196,7 +203,15 @@ pub async fn set_overrides(
     command(&state, &id, action, None).await
 }
 
-/// Switches single block (SBL1) and optional stop (M1).
+/// The skip levels of a request: 0..=9, else 400 naming the level.
+fn skip_levels(levels: &[i64]) -> Result<SkipLevels, ApiError> {
+    let max = i64::from(SkipLevels::MAX_LEVEL);
+    let bad = |l: i64| ApiError::bad_request(format!("skip level {l} is not one of 0..{max} (/0../9)"));
+    let levels = levels.iter().map(|&l| u8::try_from(l).map_err(|_| bad(l))).collect::<Result<Vec<_>, _>>()?;
+    SkipLevels::from_levels(&levels).map_err(|l| bad(i64::from(l)))
+}
+
+/// Switches single block (SBL1), optional stop (M1), dry-run feed (DRY) and skip levels (SKP).
 #[utoipa::path(
     put,
     path = "/sessions/{id}/options",
@@ -205,7 +220,7 @@ pub async fn set_overrides(
     request_body = OptionsRequest,
     responses(
         (status = 200, description = "The state with the new options", body = dto::State),
-        (status = 400, description = "Malformed body", body = ErrorBody),
+        (status = 400, description = "A skip level outside 0..9, or a malformed body", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
     )
 )]
@@ -214,7 +229,12 @@ pub async fn set_options(
     Path(id): Path<String>,
     ApiJson(body): ApiJson<OptionsRequest>,
 ) -> Result<StateReply, ApiError> {
-    let action = Action::SetOptions { single_block: body.single_block, optional_stop: body.optional_stop };
+    let action = Action::SetOptions(ProgramOptions {
+        single_block: body.single_block,
+        optional_stop: body.optional_stop,
+        dry_run: body.dry_run,
+        skip_levels: body.skip_levels.as_deref().map(skip_levels).transpose()?,
+    });
     command(&state, &id, action, None).await
 }
 

@@ -184,7 +184,9 @@ impl PreviewRequest {
 
 /// Runs a program on a throwaway copy of the session's channel in fast pace and answers the
 /// programmed tool tip path in the WCS as a thinned polyline. The session does not move and
-/// may be in any state; the copy starts from the session's axis positions after a reset.
+/// may be in any state; the copy starts from the session's axis positions after a reset. The
+/// session's skip levels (SKP) and dry-run feed (DRY) act in the copy: the path and time are
+/// those the program would run with; single block and M1 do not stop it.
 #[utoipa::path(
     post,
     path = "/sessions/{id}/preview",
@@ -247,6 +249,7 @@ pub fn trace(
     // not locked by axes the session has not referenced yet.
     channel.clear_stock();
     channel.reference_all_for_simulation();
+    // Operator stops would end the trace; SKP and DRY stay as the session has them.
     channel.single_block = false;
     channel.optional_stop = false;
     channel.set_overrides(Overrides { feed: 100.0, rapid: 100.0, spindle: 100.0 })?;

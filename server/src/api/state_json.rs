@@ -12,6 +12,7 @@ use nctwin_engine::channel::PositioningInfo;
 use nctwin_engine::channel::ReferencePhase;
 use nctwin_engine::channel::StockInfo;
 use nctwin_engine::channel::sync_actions::SyncActionInfo;
+use nctwin_engine::interp::program_control::SkipLevels;
 use nctwin_engine::{Mode, Overrides, Snapshot, Status};
 
 /// Room for a whole state message of a 7-axis machine, so the buffer is allocated once.
@@ -37,6 +38,8 @@ struct Tail {
     overrides: Overrides,
     single_block: bool,
     optional_stop: bool,
+    dry_run: bool,
+    skip_levels: SkipLevels,
     gcodes: Vec<String>,
     referenced: Vec<(String, bool)>,
     repos_pending: bool,
@@ -52,6 +55,8 @@ impl Tail {
             overrides: s.overrides,
             single_block: s.single_block,
             optional_stop: s.optional_stop,
+            dry_run: s.dry_run,
+            skip_levels: s.skip_levels,
             gcodes: s.gcodes.clone(),
             referenced: s.referenced.clone(),
             repos_pending: s.repos_pending,
@@ -67,6 +72,8 @@ impl Tail {
         self.overrides = s.overrides;
         self.single_block = s.single_block;
         self.optional_stop = s.optional_stop;
+        self.dry_run = s.dry_run;
+        self.skip_levels = s.skip_levels;
         self.gcodes.clone_from(&s.gcodes);
         self.referenced.clone_from(&s.referenced);
         self.repos_pending = s.repos_pending;
@@ -80,6 +87,8 @@ impl Tail {
             && self.overrides == s.overrides
             && self.single_block == s.single_block
             && self.optional_stop == s.optional_stop
+            && self.dry_run == s.dry_run
+            && self.skip_levels == s.skip_levels
             && self.gcodes == s.gcodes
             && self.referenced == s.referenced
             && self.repos_pending == s.repos_pending
@@ -284,6 +293,16 @@ fn write_tail(out: &mut String, s: &Snapshot) {
     write_bool(out, s.single_block);
     out.push_str(",\"optional_stop\":");
     write_bool(out, s.optional_stop);
+    out.push_str(",\"dry_run\":");
+    write_bool(out, s.dry_run);
+    out.push_str(",\"skip_levels\":[");
+    for (i, level) in s.skip_levels.levels().into_iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        out.push(char::from(b'0' + level));
+    }
+    out.push(']');
     out.push_str(",\"gcodes\":[");
     for (i, g) in s.gcodes.iter().enumerate() {
         if i > 0 {
@@ -601,6 +620,8 @@ mod tests {
         (s.tool_name, s.prepared_tool) = ("DRILL_\"8\"".into(), 7);
         s.single_block = true;
         s.optional_stop = true;
+        s.dry_run = true;
+        s.skip_levels = SkipLevels::from_levels(&[0, 4, 9]).unwrap();
         s.repos_pending = true;
         s.block = Some(nctwin_engine::channel::BlockRef { line: 3, text: String::new(), program: Some("HOLE".into()) });
         s.positioning = vec![
@@ -637,12 +658,14 @@ mod tests {
         let mut s = channel.snapshot();
         let mut encoder = StateEncoder::default();
         check(&mut encoder, &s);
-        let changes: [&dyn Fn(&mut Snapshot); 11] = [
+        let changes: [&dyn Fn(&mut Snapshot); 13] = [
             &|s| s.message = Some("MSG 1".into()),
             &|s| s.message = Some("MSG 2".into()),
             &|s| s.overrides.feed = 50.0,
             &|s| s.single_block = true,
             &|s| s.optional_stop = true,
+            &|s| s.dry_run = true,
+            &|s| s.skip_levels = SkipLevels::from_levels(&[3]).unwrap(),
             &|s| s.gcodes[0] = "G3".into(),
             &|s| s.referenced[0].1 = false,
             &|s| s.repos_pending = true,

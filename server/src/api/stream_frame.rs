@@ -79,7 +79,7 @@ struct StateMessage<'a>(&'a Snapshot);
 impl Serialize for StateMessage<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let s = self.0;
-        let mut m = serializer.serialize_struct("State", 27)?;
+        let mut m = serializer.serialize_struct("State", 29)?;
         m.serialize_field("type", "state")?;
         m.serialize_field("status", &ChannelStatus::from(s.status))?;
         m.serialize_field("mode", &OpMode::from(s.mode))?;
@@ -107,6 +107,8 @@ impl Serialize for StateMessage<'_> {
         m.serialize_field("overrides", &OverridesInfo { feed: o.feed, rapid: o.rapid, spindle: o.spindle })?;
         m.serialize_field("single_block", &s.single_block)?;
         m.serialize_field("optional_stop", &s.optional_stop)?;
+        m.serialize_field("dry_run", &s.dry_run)?;
+        m.serialize_field("skip_levels", &s.skip_levels.levels())?;
         m.serialize_field("gcodes", &s.gcodes)?;
         m.serialize_field("referenced", &Named(&s.referenced))?;
         m.serialize_field("repos_pending", &s.repos_pending)?;

@@ -23,7 +23,7 @@ use tokio::time::{Instant, sleep_until};
 use super::active_program::ActiveCache;
 use super::snapshot_pool::SnapshotPool;
 use super::wake_stats::wake_stats;
-use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, Request};
+use super::{Action, ActorConfig, Limit, Outcome, Pace, Pacer, ProgramOptions, Request};
 
 /// Wall time a block search may compute before it gives up with alarm 15370 (a program that
 /// never reaches its target, a LOOP without end); the engine's own limit is
@@ -379,11 +379,9 @@ fn apply(channel: &mut Channel, action: Action, active: &ActiveCache) -> Result<
 
 fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandError> {
     match action {
-        Action::Run { program, optional_stop, name } => {
-            let before = channel.optional_stop;
-            if let Some(on) = optional_stop {
-                channel.optional_stop = on;
-            }
+        Action::Run { program, options, name } => {
+            let before = ProgramOptions::of(channel);
+            options.apply(channel);
             let result = match (program, name) {
                 (Some(program), _) => channel.run_program(&program),
                 (None, Some(name)) => match channel.program_text(&name) {
@@ -393,7 +391,7 @@ fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandErro
                 (None, None) => Err(CommandError::Invalid("no program to run".into())),
             };
             if result.is_err() {
-                channel.optional_stop = before;
+                before.apply(channel);
             }
             result
         }
@@ -421,13 +419,8 @@ fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandErro
                 spindle: spindle.unwrap_or(now.spindle),
             })
         }
-        Action::SetOptions { single_block, optional_stop } => {
-            if let Some(on) = single_block {
-                channel.single_block = on;
-            }
-            if let Some(on) = optional_stop {
-                channel.optional_stop = on;
-            }
+        Action::SetOptions(options) => {
+            options.apply(channel);
             Ok(())
         }
         Action::Jog { mut request, system, rotation, inc } => {

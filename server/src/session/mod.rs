@@ -24,6 +24,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
 
 use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReposApproach, ReposMode};
+use nctwin_engine::interp::program_control::SkipLevels;
 use nctwin_engine::{Channel, CommandError, Event, JogRequest, Mode, Snapshot};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 
@@ -59,14 +60,55 @@ pub struct Drive {
     pub wait: bool,
 }
 
+/// Program control switches (Operate's "Program control"); `None` keeps a value.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ProgramOptions {
+    /// SBL1: stop after each block that moves.
+    pub single_block: Option<bool>,
+    /// M01: M1 stops the program.
+    pub optional_stop: Option<bool>,
+    /// DRY: path feeds become SD42100's dry-run feed.
+    pub dry_run: Option<bool>,
+    /// SKP: the active skip levels.
+    pub skip_levels: Option<SkipLevels>,
+}
+
+impl ProgramOptions {
+    /// The channel's current switches, all given (to put them back).
+    pub fn of(channel: &Channel) -> ProgramOptions {
+        ProgramOptions {
+            single_block: Some(channel.single_block),
+            optional_stop: Some(channel.optional_stop),
+            dry_run: Some(channel.dry_run),
+            skip_levels: Some(channel.skip_levels),
+        }
+    }
+
+    /// Sets the switches given on `channel`.
+    pub fn apply(&self, channel: &mut Channel) {
+        if let Some(on) = self.single_block {
+            channel.single_block = on;
+        }
+        if let Some(on) = self.optional_stop {
+            channel.optional_stop = on;
+        }
+        if let Some(on) = self.dry_run {
+            channel.dry_run = on;
+        }
+        if let Some(levels) = self.skip_levels {
+            channel.skip_levels = levels;
+        }
+    }
+}
+
 /// What a command asks the channel to do.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
-    /// Load a program and start it in AUTO mode; `optional_stop` sets M1 behaviour first.
-    /// `program: None`: the stored program `name`.
+    /// Load a program and start it in AUTO mode; `options` set program control first (kept
+    /// as they were if the start fails). `program: None`: the stored program `name`.
     Run {
         program: Option<String>,
-        optional_stop: Option<bool>,
+        options: ProgramOptions,
         /// The name the program is shown under (a stored program's); `None`: the server looks
         /// for a stored program with the same text.
         name: Option<String>,
@@ -93,11 +135,8 @@ pub enum Action {
         rapid: Option<f64>,
         spindle: Option<f64>,
     },
-    /// Single block and optional stop; `None` keeps a value.
-    SetOptions {
-        single_block: Option<bool>,
-        optional_stop: Option<bool>,
-    },
+    /// Program control: single block, optional stop, dry run, skip levels.
+    SetOptions(ProgramOptions),
     /// Start a JOG motion; `inc` (INC steps of MD31090) replaces `request.increment`.
     Jog {
         request: JogRequest,
@@ -401,7 +440,7 @@ mod tests {
     }
 
     fn run(program: &str) -> Action {
-        Action::Run { program: Some(program.into()), optional_stop: None, name: None }
+        Action::Run { program: Some(program.into()), options: ProgramOptions::default(), name: None }
     }
 
     fn x(snapshot: &Snapshot) -> f64 {

@@ -60,6 +60,10 @@ export interface State {
   overrides: Overrides;
   single_block: boolean;
   optional_stop: boolean;
+  /** Dry-run feed (DRY) selected. */
+  dry_run?: boolean;
+  /** Active skip levels (SKP), ascending; `/` is level 0. */
+  skip_levels?: number[];
   /** Active G functions of the block in execution, one per displayed G group. */
   gcodes: string[];
   /** Reference point state by machine axis name. */
@@ -148,6 +152,9 @@ export interface Overrides {
 export interface ProgramOptions {
   single_block?: boolean;
   optional_stop?: boolean;
+  dry_run?: boolean;
+  /** The active skip levels 0..9 (`[]`: none). */
+  skip_levels?: number[];
 }
 
 /** One datum of the server's machine-data registry. */

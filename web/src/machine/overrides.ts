@@ -1,5 +1,6 @@
 // Override switches (feed 0-120 %, rapid 0-100 %, spindle 50-120 %) and the program control
-// keys single block (SBL1) and optional stop (M01). The sliders send on every step (the server
+// keys single block (SBL1), optional stop (M01), dry-run feed (DRY) and skip level /0 (SKP; the
+// key leaves other levels set through the API as they are). The sliders send on every step (the server
 // applies overrides at once, also to a running program); what they show afterwards is what the
 // state reports, except while the operator is dragging one.
 
@@ -36,6 +37,8 @@ export class OverridePanel {
     }
     byId("btn-sbl").addEventListener("click", () => this.toggle("single_block"));
     byId("btn-m1").addEventListener("click", () => this.toggle("optional_stop"));
+    byId("btn-dry").addEventListener("click", () => this.toggle("dry_run"));
+    byId("btn-skp").addEventListener("click", () => this.toggleSkipLevel0());
   }
 
   render(st: State): void {
@@ -53,6 +56,8 @@ export class OverridePanel {
     }
     setPressed(byId("btn-sbl"), st.single_block);
     setPressed(byId("btn-m1"), st.optional_stop);
+    setPressed(byId("btn-dry"), st.dry_run ?? false);
+    setPressed(byId("btn-skp"), (st.skip_levels ?? []).includes(0));
   }
 
   private showValue(name: OverrideName, value: number): void {
@@ -68,7 +73,13 @@ export class OverridePanel {
     });
   }
 
-  private toggle(option: "single_block" | "optional_stop"): void {
+  private toggleSkipLevel0(): void {
+    const levels = this.session.latest?.skip_levels ?? [];
+    const next = levels.includes(0) ? levels.filter((l) => l !== 0) : [0, ...levels];
+    void this.session.act((id) => api.setOptions(id, { skip_levels: next }));
+  }
+
+  private toggle(option: "single_block" | "optional_stop" | "dry_run"): void {
     const current = this.session.latest?.[option] ?? false;
     void this.session.act((id) => api.setOptions(id, { [option]: !current }));
   }

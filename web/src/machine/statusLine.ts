@@ -3,9 +3,11 @@
 //
 // Read from the state alone. Why a stopped program stands is told by the state's flags and the
 // block in execution: REPOS pending (JOG in the interrupted program), an M0/M1 in the current
-// block, single block, else NC stop. Distance to go and programmed feed are the block's. The
-// state carries no DRY/SKP (the engine has neither) and no "waiting for a preprocessing stop"
-// flag; the line shows what it knows.
+// block, single block, else NC stop. Distance to go and programmed feed are the block's (under
+// DRY the programmed feed is the dry-run feed the block was prepared with). The options show as
+// Operate abbreviates them: SBL M01 DRY SKP. The state has no "waiting for a preprocessing
+// stop" flag: a preprocessing stop (STOPRE, a read of main-run values) waits only until the
+// main run has ended the blocks before it, and the next block is prepared in the same cycle.
 
 import type { State } from "../api/types";
 import { byId, fmt, setText } from "../core/dom";
@@ -42,7 +44,12 @@ function render(st: State): void {
   const line = byId("channel-status");
   line.dataset.status = st.status;
   setText(byId("channel-reason"), channelReason(st));
-  const options = [st.single_block ? "SBL" : "", st.optional_stop ? "M01" : ""].filter(Boolean);
+  const options = [
+    st.single_block ? "SBL" : "",
+    st.optional_stop ? "M01" : "",
+    st.dry_run ? "DRY" : "",
+    (st.skip_levels ?? []).length > 0 ? "SKP" : "",
+  ].filter(Boolean);
   setText(byId("channel-options"), options.join(" "));
   const programmed = st.programmed_feed == null ? (st.distance_to_go ? "rapid" : "–") : fmt(st.programmed_feed, 0);
   setText(byId("channel-feed"), `F prog ${programmed} act ${fmt(st.path_velocity, 0)} mm/min`);

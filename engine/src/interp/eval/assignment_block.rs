@@ -22,7 +22,7 @@ impl Interpreter {
     pub(in crate::interp) fn assigns_variables_only(&self, block: &Block) -> bool {
         block.number.is_none()
             && block.label.is_none()
-            && !block.skip
+            && block.skip.is_none()
             && !block.words.is_empty()
             && block.words.iter().all(|w| match w {
                 Word::Address { name, value: AddressValue { mode: None, .. }, .. } => {

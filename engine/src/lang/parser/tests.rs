@@ -56,12 +56,20 @@ fn leading_zeros_and_trailing_points_are_numbers() {
 fn block_numbers_skip_marks_labels_and_comments_are_recognised() {
     let p = parse("/N20 G0 X1 ; rapid\nSTART: G1 X2\n:30 M30");
     let b = &p.blocks;
-    assert!(b[0].skip);
+    assert_eq!(b[0].skip, Some(0), "a plain slash is level /0");
     assert_eq!(b[0].number, Some(20));
     assert_eq!(b[0].comment.as_deref(), Some("rapid"));
     assert_eq!(b[1].label.as_deref(), Some("START"));
     assert_eq!(b[2].number, Some(30));
     assert_eq!(b[2].words, vec![Word::M(30)]);
+}
+
+#[test]
+fn skip_levels_keep_their_digit() {
+    let p = parse("/0 X1\n/7N70 X2\n  /9 X3\nX4");
+    let levels: Vec<_> = p.blocks.iter().map(|b| b.skip).collect();
+    assert_eq!(levels, vec![Some(0), Some(7), Some(9), None]);
+    assert_eq!(p.blocks[1].number, Some(70));
 }
 
 #[test]
