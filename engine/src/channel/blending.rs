@@ -5,7 +5,7 @@
 //! passage through the point between them (`motion::compress`); where it does not, the
 //! corner is rounded (`motion::blend`): the shortened move and the rounding element go on,
 //! the shortened next move waits for its own successor. Transformed moves are compressed in
-//! `compress_trafo.rs`.
+//! `compress_trafo.rs`; under ORISON their orientation is smoothed first (`orison.rs`).
 
 use super::Channel;
 use crate::interp::Item;
@@ -38,7 +38,8 @@ impl Channel {
             && !self.prep_waits_for_trafo
             && !self.blending.prep_waits_for_main_run
             && matches!(self.pending.front(), Some(Item::Move { mv, .. })
-                if (mv.blend.is_some() || mv.compress.is_some()) && !mv.exact_stop)
+                if (mv.blend.is_some() || mv.compress.is_some() || mv.orison.is_some() && mv.axis_tangents.is_some())
+                    && !mv.exact_stop)
     }
 
     /// Rounds the corner between `mv` (just taken from the prepared items) and the next
@@ -50,6 +51,10 @@ impl Channel {
             Some((bits, full)) if bits == mv.length.to_bits() => full,
             _ => mv.length,
         };
+        if mv.orison.is_some() && !mv.exact_stop {
+            // ORISON: the orientation smoothed across the end (`orison.rs`), before rounding.
+            self.smooth_orientation(mv);
+        }
         if mv.blend.is_none() && mv.compress.is_none() {
             self.blending.junction = None;
             return None;

@@ -16,6 +16,7 @@ mod blending_trafo;
 mod cartesian_jog;
 mod command_axes;
 mod compress_trafo;
+mod orison;
 mod exact_stop;
 mod io;
 mod jog;
