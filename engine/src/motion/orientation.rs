@@ -58,7 +58,14 @@ impl OriPath {
         if sin < 1e-9 {
             return if cos > 0.0 { Ok(None) } else { Err(Antiparallel) };
         }
-        Ok(Some(OriPath { start, axis: scale(c, 1.0 / sin), angle: sin.atan2(cos), curve: None, turn: None, ends: None }))
+        Ok(Some(OriPath {
+            start,
+            axis: scale(c, 1.0 / sin),
+            angle: sin.atan2(cos),
+            curve: None,
+            turn: None,
+            ends: None,
+        }))
     }
 
     /// A rotation of `start` about `axis` (any length) by `angle` radians: the cone.

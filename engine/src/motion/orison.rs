@@ -223,7 +223,8 @@ mod tests {
         assert!(angle(oa.at(0.25), o(-1.0)) < 1e-12);
         // The rate per mm is the same on both sides of the block end (zero: the top).
         let h = 1e-6;
-        let (left, right) = ((theta(oa.at(1.0)) - theta(oa.at(1.0 - h))) / h, (theta(ob.at(h)) - theta(ob.at(0.0))) / h);
+        let (left, right) =
+            ((theta(oa.at(1.0)) - theta(oa.at(1.0 - h))) / h, (theta(ob.at(h)) - theta(ob.at(0.0))) / h);
         assert!(left.abs() < 1e-3 && right.abs() < 1e-3, "{left} {right}");
         // Where the zone meets the programmed circle the rate is 4°/mm from both sides.
         let at_seam = (theta(oa.at(0.5 + h)) - theta(oa.at(0.5))) / h;
