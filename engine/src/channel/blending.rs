@@ -24,6 +24,9 @@ pub(super) struct Blending {
     pub(super) junction: Option<Junction>,
     /// The transformation the passage was made under (`compress_trafo.rs`).
     pub(super) junction_trafo: Option<crate::kinematics::ActiveTrafo>,
+    /// The transformation under which ORISON put a zone's head on the first prepared move
+    /// (`orison.rs`), which plans it when it is taken.
+    pub(super) head_trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
     /// waiting move is handed on without its successor.
     pub(super) prep_waits_for_main_run: bool,
@@ -51,9 +54,9 @@ impl Channel {
             Some((bits, full)) if bits == mv.length.to_bits() => full,
             _ => mv.length,
         };
-        if mv.orison.is_some() && !mv.exact_stop {
+        if mv.orison.is_some() {
             // ORISON: the orientation smoothed across the end (`orison.rs`), before rounding.
-            self.smooth_orientation(mv);
+            self.smooth_orientation(mv, true);
         }
         if mv.blend.is_none() && mv.compress.is_none() {
             self.blending.junction = None;
