@@ -88,7 +88,7 @@ pub fn plan_block(
         // A block that stays one move may be compressed (`motion/compress_ori.rs`).
         if let [one] = piece.moves.as_mut_slice() {
             one.compress = mv.compress;
-            one.orison = mv.orison;
+            one.orison = mv.orison.clone();
         }
         return Ok(piece);
     }

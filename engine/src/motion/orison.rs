@@ -56,7 +56,7 @@ const SAMPLES: u32 = 64;
 
 /// True if `mv` is a block ORISON smooths at its ends (see the module doc).
 pub fn smoothable(mv: &Move) -> bool {
-    let Some(spec) = mv.orison else { return false };
+    let Some(spec) = mv.orison.as_deref() else { return false };
     mv.axis_tangents.is_some()
         && mv.compress.is_none()
         && !mv.machine_space
@@ -75,7 +75,7 @@ pub fn smoothable(mv: &Move) -> bool {
 /// The zone at the end between `a` and the next move `b` (see the module doc), or `None`
 /// where the orientation stays as programmed.
 pub fn zone(a: &Move, b: &Move) -> Option<Zone> {
-    let spec = a.orison?;
+    let spec = a.orison.as_deref().copied()?;
     if a.exact_stop || !smoothable(a) || !smoothable(b) || !(spec.tol > 0.0 && spec.dist > 0.0) {
         return None;
     }
@@ -194,7 +194,7 @@ mod tests {
         let lim = vec![AxisLimit { max_velocity: 200.0, max_accel: 2000.0, accel_overload: 1.2 }; 6];
         let mut mv = Move::new(path, 1.0, Feed::Path(10.0), &lim, false, 1);
         mv.axis_tangents = Some(Box::new(([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES])));
-        mv.orison = Some(OriSmoothing { tol: tol_deg.to_radians(), dist, block_limit: 50.0 });
+        mv.orison = Some(Box::new(OriSmoothing { tol: tol_deg.to_radians(), dist, block_limit: 50.0 }));
         mv
     }
 

@@ -126,8 +126,9 @@ pub struct Move {
     /// The compressor (COMPON, COMPCAD ...) is on for this move's block: its limits.
     pub compress: Option<super::compress::Compress>,
     /// ORISON is on for this move's block (under an orientation transformation the channel
-    /// smooths the orientation across its ends, `motion/orison.rs`): its limits.
-    pub orison: Option<super::orison::OriSmoothing>,
+    /// smooths the orientation across its ends, `motion/orison.rs`): its limits (boxed: a
+    /// move is copied often, and most moves have none).
+    pub orison: Option<Box<super::orison::OriSmoothing>>,
 }
 
 impl Move {

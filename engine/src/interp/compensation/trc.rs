@@ -968,7 +968,7 @@ fn rebuild(p: &Prepared, path: Path, limits: &[AxisLimit]) -> Move {
 
 /// The programmed block's corner rounding, compressor and ORISON limits on a move made from it.
 fn continuous_path(p: &Prepared, mut mv: Move) -> Move {
-    (mv.blend, mv.compress, mv.orison) = (p.mv.blend, p.mv.compress, p.mv.orison);
+    (mv.blend, mv.compress, mv.orison) = (p.mv.blend, p.mv.compress, p.mv.orison.clone());
     mv
 }
 
