@@ -203,3 +203,37 @@ fn without_memory_for_orison_or_a_tolerance_nothing_is_smoothed() {
         assert!(dev < 1e-6, "{data}: {dev}°");
     }
 }
+
+#[test]
+fn corners_of_the_tip_path_are_still_rounded_by_g642() {
+    // The tip zig-zags too: Y ±0.1 mm at every block end (a corner of about 11.3° each), under
+    // G642 CTOL=0.01 OTOL=0.5 with ORISON: the corners are rounded within CTOL of the
+    // programmed polyline (the tip does not leave it by more), the smoothed orientation goes
+    // through the rounding element (within ORISON_TOL + OTOL of the programmed one), and every
+    // machine axis keeps its limits.
+    let y = |i: usize| if i % 2 == 0 { 0.0 } else { 0.1 };
+    let mut p = String::from("T1 D1\nG0 X0 Y0 Z100 A20 C90\nTRAORI\nG4 F0.02\n");
+    p +=
+        &format!("ORIWKS ORIVECT G0 X0 Y0 Z50 {}\nG4 F0.02\nORISON G642 CTOL=0.01 OTOL=0.5 G1 F600\n", vector(o(-2.0)));
+    for i in 1..=BLOCKS {
+        p += &format!("X{i} Y{} {}\n", y(i), vector(o(theta_at_end(i))));
+    }
+    p += "M30";
+    let (ch, samples) = run_with(DATA, &p);
+    let pts: Vec<[f64; 3]> = (0..=BLOCKS).map(|i| [i as f64, y(i), 50.0]).collect();
+    let tips: Vec<[f64; 3]> = samples.iter().map(tip).filter(|t| t[0] > 1e-6).collect();
+    let off = tips.iter().map(|&t| to_polyline(t, &pts)).fold(0.0, f64::max);
+    assert!(off <= 0.01 + 1e-6, "{off}");
+    // The rounding really happened: some tip passes a corner at more than 1 µm.
+    let at_corners = (1..BLOCKS)
+        .map(|i| {
+            tips.iter()
+                .map(|t| ((t[0] - i as f64).powi(2) + (t[1] - y(i)).powi(2)).sqrt())
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max);
+    assert!(at_corners > 1e-3, "{at_corners}");
+    let dev = on_zigzag(&samples).iter().map(|s| s.2).fold(0.0, f64::max);
+    assert!(dev <= 1.5 + 1e-6 && dev > 0.5, "{dev}°");
+    assert_machine_limits(&ch, &samples);
+}
