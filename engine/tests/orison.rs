@@ -30,7 +30,7 @@ fn theta(v: [f64; 3]) -> f64 {
 
 /// The programmed θ at block end i: −2° at even i, +2° at odd.
 fn theta_at_end(i: usize) -> f64 {
-    if i % 2 == 0 { -2.0 } else { 2.0 }
+    if i.is_multiple_of(2) { -2.0 } else { 2.0 }
 }
 
 /// The programmed θ at tip position x in 0..=BLOCKS (linear within each block).
@@ -211,7 +211,7 @@ fn corners_of_the_tip_path_are_still_rounded_by_g642() {
     // programmed polyline (the tip does not leave it by more), the smoothed orientation goes
     // through the rounding element (within ORISON_TOL + OTOL of the programmed one), and every
     // machine axis keeps its limits.
-    let y = |i: usize| if i % 2 == 0 { 0.0 } else { 0.1 };
+    let y = |i: usize| if i.is_multiple_of(2) { 0.0 } else { 0.1 };
     let mut p = String::from("T1 D1\nG0 X0 Y0 Z100 A20 C90\nTRAORI\nG4 F0.02\n");
     p +=
         &format!("ORIWKS ORIVECT G0 X0 Y0 Z50 {}\nG4 F0.02\nORISON G642 CTOL=0.01 OTOL=0.5 G1 F600\n", vector(o(-2.0)));

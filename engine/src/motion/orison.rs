@@ -76,7 +76,8 @@ pub fn smoothable(mv: &Move) -> bool {
 /// where the orientation stays as programmed.
 pub fn zone(a: &Move, b: &Move) -> Option<Zone> {
     let spec = a.orison.as_deref().copied()?;
-    if a.exact_stop || !smoothable(a) || !smoothable(b) || !(spec.tol > 0.0 && spec.dist > 0.0) {
+    let limits_allow = spec.tol > 0.0 && spec.dist > 0.0;
+    if a.exact_stop || !limits_allow || !smoothable(a) || !smoothable(b) {
         return None;
     }
     let (oa, ob) = (a.path.ori.as_deref()?, b.path.ori.as_deref()?);
