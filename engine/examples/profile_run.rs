@@ -2,8 +2,9 @@
 //! (`valgrind --tool=callgrind`): builds in a fraction of the server binary's time.
 //!
 //! `cargo run --release -p nctwin-engine --example profile_run -- PRESET FILE [--interpret-only]
-//! [--no-fast-lane]` prints the blocks prepared (moves) or the IPO cycles run; `--no-fast-lane`
-//! sends every block the general way (the figure before the lane). `nctwin simulate` is the measuring
+//! [--no-fast-lane] [--md=DATA_FILE]` prints the blocks prepared (moves) or the IPO cycles run;
+//! `--no-fast-lane` sends every block the general way (the figure before the lane); `--md=`
+//! loads machine and setting data text over the preset (e.g. ORISON's MD28590/SD42678). `nctwin simulate` is the measuring
 //! tool with timing and RSS; this one only drives the same engine calls.
 
 use std::sync::Arc;
@@ -20,7 +21,12 @@ fn main() {
         std::process::exit(1);
     };
     let text: Arc<str> = Arc::from(std::fs::read_to_string(file).expect("readable program"));
-    let mut channel = Channel::from_preset(preset, "").expect("known preset");
+    let data = args
+        .iter()
+        .find_map(|a| a.strip_prefix("--md="))
+        .map(|f| std::fs::read_to_string(f).expect("readable machine data"))
+        .unwrap_or_default();
+    let mut channel = Channel::from_preset(preset, &data).expect("known preset");
     if args.iter().any(|a| a == "--interpret-only") {
         let cfg = channel.config();
         let mut interp = Interpreter::new(cfg);

@@ -5,7 +5,7 @@
 //! passage through the point between them (`motion::compress`); where it does not, the
 //! corner is rounded (`motion::blend`): the shortened move and the rounding element go on,
 //! the shortened next move waits for its own successor. Transformed moves are compressed in
-//! `compress_trafo.rs`.
+//! `compress_trafo.rs`; under ORISON their orientation is smoothed first (`orison.rs`).
 
 use super::Channel;
 use crate::interp::Item;
@@ -24,6 +24,9 @@ pub(super) struct Blending {
     pub(super) junction: Option<Junction>,
     /// The transformation the passage was made under (`compress_trafo.rs`).
     pub(super) junction_trafo: Option<crate::kinematics::ActiveTrafo>,
+    /// The transformation under which ORISON put a zone's head on the first prepared move
+    /// (`orison.rs`), which plans it when it is taken.
+    pub(super) head_trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
     /// waiting move is handed on without its successor.
     pub(super) prep_waits_for_main_run: bool,
@@ -38,7 +41,8 @@ impl Channel {
             && !self.prep_waits_for_trafo
             && !self.blending.prep_waits_for_main_run
             && matches!(self.pending.front(), Some(Item::Move { mv, .. })
-                if (mv.blend.is_some() || mv.compress.is_some()) && !mv.exact_stop)
+                if (mv.blend.is_some() || mv.compress.is_some() || mv.orison.is_some() && mv.axis_tangents.is_some())
+                    && !mv.exact_stop)
     }
 
     /// Rounds the corner between `mv` (just taken from the prepared items) and the next
@@ -50,6 +54,10 @@ impl Channel {
             Some((bits, full)) if bits == mv.length.to_bits() => full,
             _ => mv.length,
         };
+        if mv.orison.is_some() {
+            // ORISON: the orientation smoothed across the end (`orison.rs`), before rounding.
+            self.smooth_orientation(mv, true);
+        }
         if mv.blend.is_none() && mv.compress.is_none() {
             self.blending.junction = None;
             return None;

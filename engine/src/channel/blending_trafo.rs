@@ -91,6 +91,8 @@ pub(super) fn plan_one(
     if let Some(end) = end_rates {
         one.path = mv.path.clone();
         one.length = mv.length;
+        // Still the block's move: ORISON smooths its ends (`orison.rs`).
+        one.orison = mv.orison.clone();
         if let Some(t) = one.axis_tangents.as_mut() {
             t.1 = end;
         }

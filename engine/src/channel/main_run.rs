@@ -248,7 +248,15 @@ impl Channel {
                 // The move is pushed next: its tag is `next_tag`.
                 self.exact_stop.implicit(self.next_tag);
             }
-            let corner = if single.is_some() { None } else { self.round_corner(&mut mv) };
+            let corner = if single.is_some() {
+                if mv.orison.is_some() {
+                    // A head of ORISON's last zone is planned; no new zone in single block.
+                    self.smooth_orientation(&mut mv, false);
+                }
+                None
+            } else {
+                self.round_corner(&mut mv)
+            };
             let machine_space = mv.machine_space;
             match corner {
                 Some(corner) => {

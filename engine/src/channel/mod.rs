@@ -22,6 +22,7 @@ mod jog;
 mod jog_settings;
 pub mod limit_watch;
 mod main_run;
+mod orison;
 mod pending;
 mod positioning_axes;
 mod probe;

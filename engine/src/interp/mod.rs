@@ -1289,6 +1289,7 @@ impl Interpreter {
         if !exact_stop {
             mv.blend = self.modal.path.blend(false, matches!(feed, Feed::Rapid), cfg);
             mv.compress = self.modal.path.compress(cfg);
+            mv.orison = self.modal.path.orison(cfg).map(Box::new);
         }
         Ok((mv, feed))
     }

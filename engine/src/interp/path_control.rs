@@ -1,7 +1,8 @@
 //! The NC words of continuous-path control (Function Manual B1, Programming Manual "Job
 //! planning"): G group 10 beyond G60/G64 (`G641` with `ADIS`/`ADISPOS`, `G642`..`G645`), G group
 //! 12 (`G601`/`G602`/`G603`), the programmable tolerances `CTOL`/`OTOL`/`ATOL`, the compressors
-//! `COMPON`/`COMPCURV`/`COMPCAD`/`COMPSURF`/`COMPOF` and `UPATH`/`SPATH`.
+//! `COMPON`/`COMPCURV`/`COMPCAD`/`COMPSURF`/`COMPOF`, `UPATH`/`SPATH` and G group 61
+//! `ORISOF`/`ORISON` (smoothing of the orientation characteristic, `motion/orison.rs`).
 //!
 //! What the words turn into: each move of a block in continuous-path mode carries a
 //! [`Blend`] (read from the machine data at block preparation) that tells the channel how to
@@ -47,6 +48,7 @@ use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
 use crate::motion::blend::Blend;
 use crate::motion::compress::Compress;
+use crate::motion::orison::OriSmoothing;
 
 /// G group 10 in continuous-path mode (G60 is `Modal::exact_stop`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -98,6 +100,8 @@ pub struct PathControl {
     pub compressor: Compressor,
     /// UPATH (true) or SPATH.
     pub upath: bool,
+    /// G group 61: ORISON (true) or ORISOF (the reset value).
+    pub orison: bool,
 }
 
 /// The words of one block that change [`PathControl`].
@@ -112,6 +116,7 @@ pub struct PathWords {
     atol: Option<f64>,
     compressor: Option<Compressor>,
     upath: Option<bool>,
+    orison: Option<bool>,
 }
 
 impl PathWords {
@@ -153,9 +158,14 @@ impl PathWords {
         Ok(true)
     }
 
-    /// COMPON, COMPCURV, COMPCAD, COMPSURF, COMPOF, UPATH, SPATH; false for any other keyword.
+    /// COMPON, COMPCURV, COMPCAD, COMPSURF, COMPOF, UPATH, SPATH, ORISON, ORISOF; false for
+    /// any other keyword.
     pub fn keyword(&mut self, name: &str) -> bool {
         let compressor = match name {
+            "ORISON" | "ORISOF" => {
+                self.orison = Some(name == "ORISON");
+                return true;
+            }
             "COMPOF" => Compressor::Off,
             "COMPON" => Compressor::On,
             "COMPCURV" => Compressor::Curv,
@@ -207,6 +217,20 @@ impl PathControl {
         if let Some(u) = w.upath {
             self.upath = u;
         }
+        if let Some(o) = w.orison {
+            self.orison = o;
+        }
+    }
+
+    /// ORISON's limits for a move of this block (`None` under ORISOF, or while MD28590
+    /// reserves fewer than the 4 blocks the function needs).
+    pub fn orison(&self, cfg: &MachineConfig) -> Option<OriSmoothing> {
+        let data = &cfg.path_control;
+        (self.orison && data.orison_blocks >= 4).then(|| OriSmoothing {
+            tol: data.orison_tol.to_radians(),
+            dist: data.orison_dist,
+            block_limit: data.orison_block_limit,
+        })
     }
 
     /// The rounding at the end of a move of this block (`None` under G60/G9 and G64).

@@ -88,6 +88,7 @@ pub fn plan_block(
         // A block that stays one move may be compressed (`motion/compress_ori.rs`).
         if let [one] = piece.moves.as_mut_slice() {
             one.compress = mv.compress;
+            one.orison = mv.orison.clone();
         }
         return Ok(piece);
     }
@@ -170,6 +171,7 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
         seam_jerk: f64::INFINITY,
         blend: None,
         compress: None,
+        orison: None,
     }
 }
 
@@ -358,6 +360,7 @@ fn plan_piece(
             // the pieces here again: `channel/blending_trafo.rs`).
             blend: if part + 1 == parts { mv.blend } else { None },
             compress: None,
+            orison: None,
         });
     }
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the

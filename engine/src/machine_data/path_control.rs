@@ -26,6 +26,13 @@ pub struct PathControlData {
     pub contour_tol: f64,
     /// SD42466 SMOOTH_ORI_TOL (degrees).
     pub ori_tol: f64,
+    /// MD20178 ORISON_BLOCK_PATH_LIMIT (mm): longer blocks interrupt ORISON's smoothing.
+    pub orison_block_limit: f64,
+    /// MD28590 MM_ORISON_BLOCKS: ORISON acts from 4 on.
+    pub orison_blocks: i64,
+    /// SD42678 ORISON_TOL (degrees) and SD42680 ORISON_DIST (mm).
+    pub orison_tol: f64,
+    pub orison_dist: f64,
 }
 
 impl PathControlData {
@@ -44,6 +51,10 @@ impl PathControlData {
             exact_pos_mode: md.num("$MC_EXACT_POS_MODE", 0, 0) as i64,
             contour_tol: 0.0,
             ori_tol: 0.0,
+            orison_block_limit: md.num("$MC_ORISON_BLOCK_PATH_LIMIT", 0, 0),
+            orison_blocks: md.num("$MC_MM_ORISON_BLOCKS", 0, 0) as i64,
+            orison_tol: 0.0,
+            orison_dist: 0.0,
         };
         data.refresh_settings(md);
         data
@@ -53,5 +64,7 @@ impl PathControlData {
     pub(super) fn refresh_settings(&mut self, md: &MachineData) {
         self.contour_tol = md.num("$SC_SMOOTH_CONTUR_TOL", 0, 0);
         self.ori_tol = md.num("$SC_SMOOTH_ORI_TOL", 0, 0);
+        self.orison_tol = md.num("$SC_ORISON_TOL", 0, 0);
+        self.orison_dist = md.num("$SC_ORISON_DIST", 0, 0);
     }
 }

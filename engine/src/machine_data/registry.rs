@@ -280,6 +280,11 @@ pub static DEFS: &[Def] = &[
     def("COMPRESS_BLOCK_PATH_LIMIT", 20170, C, Kind::Real, 1, Default::Real(20.0), 0.0, 1e9),
     def("COMPRESS_VELO_TOL", 20172, C, Kind::Real, 1, Default::Real(60000.0), 0.0, 1e9),
     def("SMOOTHING_MODE", 20480, C, Kind::Int, 1, Default::Int(0), 0.0, 99999.0),
+    // Smoothing of the orientation characteristic (F2 3.9.4, ORISON): MD20178 the longest
+    // block (mm) it smooths, MD28590 the blocks it may consider (memory; below 4 ORISON has
+    // no effect). Defaults from memory of the lists (not in the consulted sources).
+    def("ORISON_BLOCK_PATH_LIMIT", 20178, C, Kind::Real, 1, Default::Real(50.0), 0.0, 1e9),
+    def("MM_ORISON_BLOCKS", 28590, C, Kind::Int, 1, Default::Int(0), 0.0, 100.0),
     // MD20550 EXACT_POS_MODE: the exact-stop window G0 (units digit) and the other G group 1
     // functions (tens digit) use whatever is programmed: 0 the programmed G601..G603, 1 G601,
     // 2 G602, 3 G603.
@@ -555,6 +560,11 @@ pub static DEFS: &[Def] = &[
     // as programmed; `interp/program_control.rs`).
     sd("DRY_RUN_FEED", 42100, C, Kind::Real, Default::Real(5000.0), 0.0, INF),
     sd("DRY_RUN_FEED_MODE", 42101, C, Kind::Int, Default::Int(0), 0.0, 12.0),
+    // SD42678/SD42680: ORISON's largest angle from the programmed orientation (degrees) and
+    // the longest path (mm) one smoothing spans (828D Programming Manual 6.7 names SD42680
+    // ORISON_DIST); 0 smooths nothing. Defaults from memory.
+    sd("ORISON_TOL", 42678, C, Kind::Real, Default::Real(0.0), 0.0, 90.0),
+    sd("ORISON_DIST", 42680, C, Kind::Real, Default::Real(0.0), 0.0, 1e9),
     sd("CART_JOG_MODE", 42650, C, Kind::Int, Default::Int(0), 0.0, 1799.0),
     sd("ORI_JOG_MODE", 42660, C, Kind::Int, Default::Int(0), 0.0, 5.0),
     // SD41610/SD41611: the largest change CORRTRAFO makes to an offset vector (mm) / turns a

@@ -205,6 +205,7 @@ pub(super) fn with_path(m: &Move, path: Path) -> Move {
         seam_jerk: m.seam_jerk,
         blend: m.blend,
         compress: m.compress,
+        orison: m.orison.clone(),
     }
 }
 

@@ -14,12 +14,13 @@ mod front;
 mod nearest;
 mod ori_curve;
 mod orientation;
+pub mod orison;
 mod path;
 mod planner;
 pub mod spline;
 
 pub use curve::Curve;
 pub use ori_curve::TwoCurves;
-pub use orientation::{Antiparallel, OriPath, rotate};
+pub use orientation::{Antiparallel, OriPath, SmoothEnds, rotate};
 pub use path::{Arc, AxisVec, Path};
 pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed, stop_speed};

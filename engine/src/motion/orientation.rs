@@ -6,7 +6,8 @@
 //! its programmed axis. So one representation serves both, slices exactly, and costs one
 //! `sin_cos` per IPO point. ORICURVE instead follows a second curve ([`TwoCurves`]). ORIPATH
 //! on an arc adds a second rotation ([`OriPath::turn`]): the path frame turning with the
-//! tangent, so lead and tilt hold at every point of the arc.
+//! tangent, so lead and tilt hold at every point of the arc. ORISON replaces the ends of a
+//! great circle by pieces of a smoothing zone ([`SmoothEnds`], `motion/orison.rs`).
 
 use super::ori_curve::TwoCurves;
 
@@ -14,7 +15,7 @@ use super::ori_curve::TwoCurves;
 pub type Vec3 = [f64; 3];
 
 /// The orientation along a block: `o(u) = R(axis, angle·u) · start`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct OriPath {
     /// Unit orientation at the block start.
     pub start: Vec3,
@@ -29,6 +30,17 @@ pub struct OriPath {
     /// ORIPATH on an arc: the rotation (unit axis, radians over the block) of the path's
     /// tangent frame, applied after the own rotation: `o(u) = R(turn, φ·u)·R(axis, angle·u)·start`.
     pub turn: Option<(Vec3, f64)>,
+    /// ORISON: the orientation near the block's ends follows a smoothing zone instead of the
+    /// programmed great circle (which the other fields still describe).
+    pub ends: Option<Box<SmoothEnds>>,
+}
+
+/// The parts of a block's orientation that ORISON smooths: `head` over `u` in `0..=h` (the
+/// curve's parameter `u/h`), `tail` over `t..=1` (parameter `(u−t)/(1−t)`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SmoothEnds {
+    pub head: Option<(f64, TwoCurves)>,
+    pub tail: Option<(f64, TwoCurves)>,
 }
 
 /// Start and end orientation point in opposite directions: the plane of the great circle is
@@ -46,13 +58,20 @@ impl OriPath {
         if sin < 1e-9 {
             return if cos > 0.0 { Ok(None) } else { Err(Antiparallel) };
         }
-        Ok(Some(OriPath { start, axis: scale(c, 1.0 / sin), angle: sin.atan2(cos), curve: None, turn: None }))
+        Ok(Some(OriPath {
+            start,
+            axis: scale(c, 1.0 / sin),
+            angle: sin.atan2(cos),
+            curve: None,
+            turn: None,
+            ends: None,
+        }))
     }
 
     /// A rotation of `start` about `axis` (any length) by `angle` radians: the cone.
     pub fn cone(start: Vec3, axis: Vec3, angle: f64) -> Option<OriPath> {
         let n = norm(axis);
-        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle, curve: None, turn: None })
+        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle, curve: None, turn: None, ends: None })
     }
 
     /// An orientation carried by a frame turning about unit axis `k` by `sweep` radians (an
@@ -67,6 +86,7 @@ impl OriPath {
             angle: 0.0,
             curve: None,
             turn: None,
+            ends: None,
         });
         Ok(OriPath { turn: Some((k, sweep)), ..own })
     }
@@ -77,11 +97,29 @@ impl OriPath {
         let c = cross(start, end);
         let n = norm(c);
         let axis = if n > 1e-12 { scale(c, 1.0 / n) } else { [0.0, 0.0, 1.0] };
-        OriPath { start, axis, angle: n.atan2(dot(start, end)), curve: Some(curves), turn: None }
+        OriPath { start, axis, angle: n.atan2(dot(start, end)), curve: Some(curves), turn: None, ends: None }
     }
 
     /// Orientation at path parameter `u` in 0..=1.
     pub fn at(&self, u: f64) -> Vec3 {
+        let u = u.clamp(0.0, 1.0);
+        if let Some(e) = &self.ends {
+            if let Some((h, c)) = &e.head
+                && u <= *h
+            {
+                return c.at(u / h);
+            }
+            if let Some((t, c)) = &e.tail
+                && u >= *t
+            {
+                return c.at((u - t) / (1.0 - t));
+            }
+        }
+        self.programmed_at(u)
+    }
+
+    /// The programmed orientation at `u` in 0..=1 (without ORISON's smoothed ends).
+    pub fn programmed_at(&self, u: f64) -> Vec3 {
         let u = u.clamp(0.0, 1.0);
         match (&self.curve, self.turn) {
             (Some(c), _) => c.at(u),
@@ -93,6 +131,11 @@ impl OriPath {
     /// Unit direction in which the orientation moves at the block end (for ORICONTO's
     /// tangential transition); `None` for a path that does not turn.
     pub fn end_direction(&self) -> Option<Vec3> {
+        if let Some(e) = &self.ends
+            && let Some((_, c)) = e.tail.as_ref().or(e.head.as_ref().filter(|(h, _)| *h >= 1.0))
+        {
+            return c.end_direction();
+        }
         if let Some(c) = &self.curve {
             return c.end_direction();
         }
@@ -112,20 +155,48 @@ impl OriPath {
 
     /// The part between parameters `u0` and `u1`.
     pub fn slice(&self, u0: f64, u1: f64) -> OriPath {
-        match &self.curve {
+        let mut out = match &self.curve {
             Some(c) => OriPath::two_curves(c.slice(u0, u1)),
             None => match self.turn {
-                None => OriPath { start: self.at(u0), angle: self.angle * (u1 - u0), ..*self },
+                None => OriPath {
+                    start: self.programmed_at(u0),
+                    axis: self.axis,
+                    angle: self.angle * (u1 - u0),
+                    curve: None,
+                    turn: None,
+                    ends: None,
+                },
                 // The slice's own rotation is this one seen in the frame turned to u0.
                 Some((k, sweep)) => OriPath {
-                    start: self.at(u0),
+                    start: self.programmed_at(u0),
                     axis: rotate(self.axis, k, sweep * u0),
                     angle: self.angle * (u1 - u0),
                     curve: None,
                     turn: Some((k, sweep * (u1 - u0))),
+                    ends: None,
                 },
             },
+        };
+        if let Some(e) = &self.ends {
+            out.ends = e.slice(u0, u1).map(Box::new);
         }
+        out
+    }
+}
+
+impl SmoothEnds {
+    /// The pieces of the part between `u0` and `u1` (`None` if it lies between them).
+    fn slice(&self, u0: f64, u1: f64) -> Option<SmoothEnds> {
+        let d = u1 - u0;
+        let head = self.head.as_ref().filter(|(h, _)| u0 < *h && d > 0.0).map(|(h, c)| {
+            let end = u1.min(*h);
+            ((end - u0) / d, c.slice(u0 / h, end / h))
+        });
+        let tail = self.tail.as_ref().filter(|(t, _)| u1 > *t && d > 0.0).map(|(t, c)| {
+            let from = u0.max(*t);
+            ((from - u0) / d, c.slice((from - t) / (1.0 - t), (u1 - t) / (1.0 - t)))
+        });
+        (head.is_some() || tail.is_some()).then_some(SmoothEnds { head, tail })
     }
 }
 

@@ -125,6 +125,10 @@ pub struct Move {
     pub blend: Option<super::blend::Blend>,
     /// The compressor (COMPON, COMPCAD ...) is on for this move's block: its limits.
     pub compress: Option<super::compress::Compress>,
+    /// ORISON is on for this move's block (under an orientation transformation the channel
+    /// smooths the orientation across its ends, `motion/orison.rs`): its limits (boxed: a
+    /// move is copied often, and most moves have none).
+    pub orison: Option<Box<super::orison::OriSmoothing>>,
 }
 
 impl Move {
@@ -155,6 +159,7 @@ impl Move {
             seam_jerk: f64::INFINITY,
             blend: None,
             compress: None,
+            orison: None,
         }
     }
 

@@ -966,9 +966,9 @@ fn rebuild(p: &Prepared, path: Path, limits: &[AxisLimit]) -> Move {
     continuous_path(p, Move::new(path, length, p.feed, limits, p.mv.exact_stop, p.mv.tag))
 }
 
-/// The programmed block's corner rounding and compressor limits on a move made from it.
+/// The programmed block's corner rounding, compressor and ORISON limits on a move made from it.
 fn continuous_path(p: &Prepared, mut mv: Move) -> Move {
-    (mv.blend, mv.compress) = (p.mv.blend, p.mv.compress);
+    (mv.blend, mv.compress, mv.orison) = (p.mv.blend, p.mv.compress, p.mv.orison.clone());
     mv
 }
 

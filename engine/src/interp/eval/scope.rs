@@ -458,6 +458,8 @@ fn g_group_index(m: &Modal, h: &crate::interp::tools::toolholder::Holder, group:
         59 => return Some(m.dynamics.mode as i64 + 1),
         // Group 30: COMPOF 1, COMPON 2, COMPCURV 3, COMPCAD 4, COMPSURF 5.
         30 => return Some(m.path.compressor as i64 + 1),
+        // Group 61: ORISOF 1 (the reset value), ORISON 2.
+        61 => return Some(i64::from(m.path.orison) + 1),
         53 => return Some(h.g53),
         // Group 1's spline types: ASPLINE 6, BSPLINE 7, CSPLINE 8, POLY 9. Groups 19/20: BNAT/
         // ENAT 1, BTAN/ETAN 2, BAUTO/EAUTO 3. Group 43: G140..G143 1..4. Group 44: G340 1, G341 2.
