@@ -213,15 +213,15 @@ pub(super) fn rotate_by(v: Vec3, k: Vec3, s: f64, c: f64) -> Vec3 {
     std::array::from_fn(|i| v[i] * c + kxv[i] * s + k[i] * kv)
 }
 
-fn dot(a: Vec3, b: Vec3) -> f64 {
+pub(super) fn dot(a: Vec3, b: Vec3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
+pub(super) fn cross(a: Vec3, b: Vec3) -> Vec3 {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
-fn norm(a: Vec3) -> f64 {
+pub(super) fn norm(a: Vec3) -> f64 {
     dot(a, a).sqrt()
 }
 

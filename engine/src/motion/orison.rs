@@ -26,7 +26,7 @@
 
 use super::blend_ori::hermite_bend;
 use super::ori_curve::TwoCurves;
-use super::orientation::{OriPath, SmoothEnds, Vec3};
+use super::orientation::{OriPath, SmoothEnds, Vec3, cross, dot, norm};
 use super::planner::Move;
 
 /// The limits ORISON smooths within, read at block preparation.
@@ -156,18 +156,6 @@ fn rate(o: &OriPath, u: f64, l: f64) -> Vec3 {
 /// The angle (radians) between unit vectors `a` and `b`.
 pub fn angle(a: Vec3, b: Vec3) -> f64 {
     norm(cross(a, b)).atan2(dot(a, b))
-}
-
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn norm(a: Vec3) -> f64 {
-    dot(a, a).sqrt()
 }
 
 #[cfg(test)]
