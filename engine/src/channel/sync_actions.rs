@@ -279,6 +279,7 @@ impl SyncActions {
             analog_out: data.analog_out.to_vec(),
             deleted: data.deleted,
             machine: None,
+            velocity: [0.0; MAX_CHANNEL_AXES],
         }
     }
 
