@@ -161,6 +161,7 @@ impl Channel {
             }
             self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
+            self.size_signals();
             // New velocities: the synchronized actions' horizons are computed again.
             self.sync.wake_all();
             return Ok(());

@@ -52,13 +52,13 @@ pub struct MainRunData {
 /// list read 17020 for `$AC_PARAM[0]` and underflowed forming its message).
 impl Default for MainRunData {
     fn default() -> Self {
-        use flat::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
+        let z = flat::SyncSizes::default();
         MainRunData {
-            markers: vec![0.0; MARKERS],
-            params: vec![0.0; PARAMS],
-            timers: vec![None; TIMERS],
-            analog_in: vec![0.0; ANALOG_IO],
-            analog_out: vec![0.0; ANALOG_IO],
+            markers: vec![0.0; z.markers],
+            params: vec![0.0; z.params],
+            timers: vec![None; z.timers],
+            analog_in: vec![0.0; z.analog_in],
+            analog_out: vec![0.0; z.analog_out],
             deleted: 0.0,
             machine: None,
             velocity: [0.0; crate::machine_data::registry::MAX_CHANNEL_AXES],
