@@ -280,6 +280,9 @@ impl Channel {
         self.next_tag = self.next_tag.wrapping_add(1);
         self.in_planner.push_back((mv.tag, meta));
         self.planner.push(mv);
+        if !self.sync.active.is_empty() {
+            self.note_pushed_move();
+        }
         self.sync_current_block();
     }
 

@@ -257,6 +257,7 @@ impl Channel {
         if command {
             p.command |= 1 << k;
         }
+        self.wake_motion_readers();
     }
 
     /// `MOV[ax]=0` on a command axis: it brakes to a stop where its ramp ends.

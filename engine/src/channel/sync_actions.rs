@@ -103,6 +103,8 @@ pub struct SyncActions {
     pub(super) horizon_off: bool,
     /// Actions not run but computed when read, and their inputs (`sync_lazy.rs`).
     pub(super) deferred: super::sync_lazy::Deferred,
+    /// The speed bound of the moves in the planner (`sync_horizon.rs`).
+    pub(super) speed_caps: super::sync_horizon::SpeedCaps,
     /// Conditions evaluated so far.
     pub(super) evaluations: u64,
     /// IPO cycles in which the actions' cycle ran (not skipped while all sleep).
@@ -143,6 +145,7 @@ impl Default for SyncActions {
             velocity_axes: 0,
             horizon_off: false,
             deferred: Default::default(),
+            speed_caps: Default::default(),
             evaluations: 0,
             cycles_run: 0,
         }
@@ -468,6 +471,8 @@ impl Channel {
             }
         }
         self.sync.wake();
+        // The moves queued before it bound the axes' speeds for its horizons.
+        self.recompute_speed_caps();
         if self.sync.active.len() > MAX_ACTIVE {
             self.sync.active.pop();
             self.raise(Alarm {
