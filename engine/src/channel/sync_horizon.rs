@@ -37,8 +37,10 @@ use crate::motion::{AxisVec, Move};
 pub struct SpeedCaps {
     speed: f64,
     rate: AxisVec,
-    /// Moves pushed since the bound was last computed from the queue alone (it only grows
-    /// in between: a fast move that left keeps it high until then).
+    /// Moves pushed since the speed was last computed from the queue alone (it only grows
+    /// in between: a fast move that left keeps it high until then). The rates are never
+    /// lowered: an axis' rate per path length is at most about 1 on the usual paths, so they
+    /// settle soon, and lowering them would wake the conditions each time they grow again.
     pushes: u32,
 }
 
@@ -48,9 +50,9 @@ impl Default for SpeedCaps {
     }
 }
 
-/// Every this many pushes the bound is computed again from the queue (so it comes down
-/// after a rapid move has left).
-const RECOMPUTE_EVERY: u32 = 16;
+/// Every this many pushes the speed is computed again from the queue (so it comes down
+/// after a rapid move has left): once per look-ahead's length.
+const RECOMPUTE_EVERY: u32 = super::LOOKAHEAD as u32;
 
 impl SpeedCaps {
     /// The most axis `k` moves per second under the bound.
@@ -60,21 +62,32 @@ impl SpeedCaps {
 
     /// Takes `mv` in; true if that raised the bound.
     fn include(&mut self, mv: &Move, axes: usize) -> bool {
+        let faster = self.include_speed(mv);
+        self.include_rates(mv, axes) || faster
+    }
+
+    /// Takes `mv`'s speed in; true if that raised it.
+    fn include_speed(&mut self, mv: &Move) -> bool {
+        // A length of zero moves no axis.
+        let speed = if mv.length > 0.0 { mv.speed_cap() } else { 0.0 };
+        let speed = if speed.is_nan() { f64::INFINITY } else { speed };
+        let raised = speed > self.speed;
+        self.speed = self.speed.max(speed);
+        raised
+    }
+
+    /// Takes `mv`'s axis rates per path length in; true if one grew.
+    fn include_rates(&mut self, mv: &Move, axes: usize) -> bool {
         if !(mv.length > 0.0) {
-            // Nothing moves along it (a length of zero moves no axis).
             return false;
         }
         let mut raised = false;
-        let speed = mv.speed_cap();
-        if speed > self.speed || speed.is_nan() {
-            self.speed = if speed.is_nan() { f64::INFINITY } else { speed };
-            raised = true;
-        }
         let rates = mv.path.max_rate_of_first(axes);
         for (r, q) in self.rate.iter_mut().zip(&rates[..axes]) {
             let q = q / mv.length;
-            if q > *r || q.is_nan() {
-                *r = if q.is_nan() { f64::INFINITY } else { q };
+            let q = if q.is_nan() { f64::INFINITY } else { q };
+            if q > *r {
+                *r = q;
                 raised = true;
             }
         }
@@ -139,19 +152,22 @@ impl Channel {
         }
     }
 
-    /// The bound computed from the moves queued now (when actions become active, after
-    /// REPOS, every few pushes); wakes the conditions on positions when it grew.
+    /// The speed computed from the moves queued now (when actions become active, after
+    /// REPOS, every [`RECOMPUTE_EVERY`] pushes), the rates grown by theirs; wakes the
+    /// conditions on positions when either grew.
     pub(super) fn recompute_speed_caps(&mut self) {
         let axes = self.cfg.channel_axes.len();
-        let mut caps = SpeedCaps::default();
+        let caps = &mut self.sync.speed_caps;
+        let old = caps.speed;
+        (caps.speed, caps.pushes) = (0.0, 0);
+        let mut grew = false;
         for mv in self.planner.queued() {
-            caps.include(mv, axes);
+            caps.include_speed(mv);
+            grew |= caps.include_rates(mv, axes);
         }
-        let old = &self.sync.speed_caps;
-        if caps.speed > old.speed || caps.rate.iter().zip(&old.rate).any(|(n, o)| n > o) {
+        if grew || caps.speed > old {
             self.sync.touch(1 << MOTION_BIT);
         }
-        self.sync.speed_caps = caps;
     }
 
     /// JOG, REPOS or a positioning axis starts: the conditions on positions are evaluated
