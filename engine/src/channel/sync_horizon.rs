@@ -78,7 +78,7 @@ impl SpeedCaps {
 
     /// Takes `mv`'s axis rates per path length in; true if one grew.
     fn include_rates(&mut self, mv: &Move, axes: usize) -> bool {
-        if !(mv.length > 0.0) {
+        if mv.length.is_nan() || mv.length <= 0.0 {
             return false;
         }
         let mut raised = false;

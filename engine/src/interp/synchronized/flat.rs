@@ -718,11 +718,11 @@ mod tests {
     fn assignments_to_known_elements_need_no_index_code() {
         let set = SyncAct::Set(SyncVar::AcParam(num(4.0)), E::Num(1.0));
         assert_eq!(
-            lower_act(&set),
+            lower_act(&set, &SyncSizes::default()),
             Act::Set { target: Target::Param(4), value: lower(&E::Num(1.0)), index: Code::default() }
         );
         let set = SyncAct::Set(SyncVar::R(Box::new(E::Var(SyncVar::AcMarker(num(2.0))))), E::Num(1.0));
-        let Act::Set { target, index, .. } = lower_act(&set) else { panic!() };
+        let Act::Set { target, index, .. } = lower_act(&set, &SyncSizes::default()) else { panic!() };
         assert_eq!(target, Target::At(Array::R));
         assert_eq!(&*index.ops, &[Op::Read(Slot::Marker(2))]);
     }
