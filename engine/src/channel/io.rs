@@ -20,12 +20,12 @@ impl Channel {
         let (ins, outs) = self.io.counts();
         if let Some((n, _)) = inputs.iter().find(|(n, _)| !(1..=ins).contains(n)) {
             return Err(CommandError::Invalid(format!(
-                "digital input {n} does not exist (1..{ins}: MD10350 FASTIO_DIG_NUM_INPUTS, bytes of 8)"
+                "signal {n} does not exist: digital inputs are 1..{ins} (MD10350 FASTIO_DIG_NUM_INPUTS, bytes of 8)"
             )));
         }
         if let Some((n, _)) = outputs.iter().find(|(n, _)| !(1..=outs).contains(n)) {
             return Err(CommandError::Invalid(format!(
-                "digital output {n} does not exist (1..{outs}: MD10360 FASTIO_DIG_NUM_OUTPUTS, bytes of 8)"
+                "signal {n} does not exist: digital outputs are 1..{outs} (MD10360 FASTIO_DIG_NUM_OUTPUTS, bytes of 8)"
             )));
         }
         let mut io = self.io;
