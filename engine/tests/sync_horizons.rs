@@ -118,3 +118,40 @@ fn a_preset_wakes_a_sleeping_position_condition() {
         assert_eq!(ch.sync_actions().markers[2], 104.0, "horizons {horizons}");
     }
 }
+
+#[test]
+fn a_far_threshold_sleeps_through_a_slow_move() {
+    // G1 X100 F600: 10 mm/s, 2,500 cycles. While only the path moves X, X moves at most
+    // F600 under the highest override (120 %: 12 mm/s), counted four times: 0.192 mm per
+    // cycle, so from X ≤ 100 the threshold 1000 is at least 900 / 0.192 ≈ 4,688 cycles away:
+    // the condition is evaluated at the activation and the block change only (under
+    // 4 × MD32000, 8 mm per cycle, it was evaluated about every 112 cycles: over 20 times).
+    let mut ch = mill();
+    ch.run_program("ID=1 WHENEVER $AA_IM[X]>1000 DO $AC_OVR=50\nG1 X100 F600\nM30").unwrap();
+    let xs = run_x(&mut ch, 5000);
+    assert!((2500..2600).contains(&xs.len()), "{} cycles", xs.len());
+    let evaluated = ch.sync_actions().evaluations();
+    assert!(evaluated <= 4, "{evaluated} evaluations");
+}
+
+#[test]
+fn a_command_axis_starting_wakes_a_condition_counted_on_the_slow_path() {
+    // The path moves X slowly (F600) and Y not at all; after 0.1 s ID=1 sends Y to 50 at
+    // 30 m/min (500 mm/s, far above what the path's moves allow). ID=2 waits for Y > 30: it
+    // slept on the path's bound (Y does not move along G1 X10: for good), the positioning
+    // axis' start wakes it, and it fires in the same cycle as with evaluation in every cycle
+    // (without the wake it never fires).
+    let mut fired = Vec::new();
+    for horizons in [true, false] {
+        let mut ch = mill();
+        ch.set_sync_horizons(horizons);
+        let program = "ID=1 WHEN $AC_TIME>0.1 DO POS[Y]=50 FA[Y]=30000\n\
+                       ID=2 WHEN $AA_IM[Y]>30 DO $AC_MARKER[2]=$AC_TIME*1000\nG1 X10 F600\nM30";
+        ch.run_program(program).unwrap();
+        steps(&mut ch, 400);
+        assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+        fired.push(ch.sync_actions().markers[2]);
+    }
+    assert!(fired[0] > 100.0, "fired at {} ms", fired[0]);
+    assert_eq!(fired[0], fired[1]);
+}

@@ -88,3 +88,35 @@ async fn bad_synchronized_action_syntax_is_a_400_naming_the_line() {
     let message = error_message(&reply, StatusCode::BAD_REQUEST);
     assert!(message.contains("line 2") && message.contains("DO expected"), "{message}");
 }
+
+#[tokio::test]
+async fn the_io_lists_follow_the_machine_data_and_one_beyond_is_a_400_naming_the_limit() {
+    // MD10350 = 2 bytes of inputs (16), MD10360 = 1 byte of outputs (8), MD10300 = 6 analog
+    // inputs, MD10310 = 2 analog outputs.
+    let server = Server::start().await;
+    let md = "$MN_FASTIO_DIG_NUM_INPUTS=2\n$MN_FASTIO_DIG_NUM_OUTPUTS=1\n\
+              $MN_FASTIO_ANA_NUM_INPUTS=6\n$MN_FASTIO_ANA_NUM_OUTPUTS=2";
+    let reply = server.post("/sessions", json!({"machine": "mill-3axis", "machine_data": md})).await;
+    assert_eq!(reply.status, StatusCode::CREATED, "{}", reply.body);
+    let id = reply.body["id"].as_str().expect("id").to_string();
+    let io = server.get(&format!("/sessions/{id}/io")).await.body;
+    let len = |key: &str| io[key].as_array().map(Vec::len);
+    assert_eq!(
+        (len("inputs"), len("outputs"), len("analog_inputs"), len("analog_outputs")),
+        (Some(16), Some(8), Some(6), Some(2))
+    );
+    let last = json!({"inputs": [{"signal": 16, "value": true}], "outputs": [{"signal": 8, "value": true}],
+                      "analog_inputs": [{"signal": 6, "value": 1.5}]});
+    let reply = server.put(&format!("/sessions/{id}/io"), last).await;
+    assert_eq!(reply.status, StatusCode::OK, "{}", reply.body);
+    assert_eq!((&reply.body["inputs"][15], &reply.body["analog_inputs"][5]), (&json!(true), &json!(1.5)));
+    for (body, limit) in [
+        (json!({"inputs": [{"signal": 17, "value": true}]}), "1..16"),
+        (json!({"outputs": [{"signal": 9, "value": true}]}), "1..8"),
+        (json!({"analog_inputs": [{"signal": 7, "value": 1.0}]}), "1..6"),
+    ] {
+        let reply = server.put(&format!("/sessions/{id}/io"), body).await;
+        let message = error_message(&reply, StatusCode::BAD_REQUEST);
+        assert!(message.contains(limit), "{message}");
+    }
+}

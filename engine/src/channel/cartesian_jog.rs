@@ -153,6 +153,7 @@ impl Channel {
         self.jog_serial = self.jog_serial.wrapping_add(1);
         let k = t.trafo.orientation_slots()[0].expect("an orientation axis");
         self.jog = Some(ActiveJog::orientation(k, end, resume));
+        self.wake_motion_readers();
         self.status = Status::Running;
         Ok(())
     }

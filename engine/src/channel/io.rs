@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use super::{Channel, CommandError, Event};
-use crate::interp::io::{DIGITAL_IO, DigitalIo};
+use crate::interp::io::DigitalIo;
 
 impl Channel {
     /// The digital inputs and outputs as the main run holds them.
@@ -14,11 +14,19 @@ impl Channel {
     }
 
     /// Sets digital inputs and outputs from outside (the machine's wiring, a test bench),
-    /// each `(signal, level)` with signal 1..[`DIGITAL_IO`]. All or nothing: a signal out of
-    /// range changes nothing.
+    /// each `(signal, level)` with signal 1.. the count of MD10350 (inputs) or MD10360
+    /// (outputs). All or nothing: a signal out of range changes nothing.
     pub fn set_signals(&mut self, inputs: &[(usize, bool)], outputs: &[(usize, bool)]) -> Result<(), CommandError> {
-        if let Some((n, _)) = inputs.iter().chain(outputs).find(|(n, _)| !(1..=DIGITAL_IO).contains(n)) {
-            return Err(CommandError::Invalid(format!("signal {n} does not exist (1..{DIGITAL_IO})")));
+        let (ins, outs) = self.io.counts();
+        if let Some((n, _)) = inputs.iter().find(|(n, _)| !(1..=ins).contains(n)) {
+            return Err(CommandError::Invalid(format!(
+                "signal {n} does not exist: digital inputs are 1..{ins} (MD10350 FASTIO_DIG_NUM_INPUTS, bytes of 8)"
+            )));
+        }
+        if let Some((n, _)) = outputs.iter().find(|(n, _)| !(1..=outs).contains(n)) {
+            return Err(CommandError::Invalid(format!(
+                "signal {n} does not exist: digital outputs are 1..{outs} (MD10360 FASTIO_DIG_NUM_OUTPUTS, bytes of 8)"
+            )));
         }
         let mut io = self.io;
         for &(n, on) in inputs {
@@ -44,6 +52,25 @@ impl Channel {
         io.set_output(signal, on);
         self.set_digital_io(io);
         self.events.push(Event::DigitalOutput { signal, on, line });
+    }
+
+    /// The signal counts and array sizes of the machine data in force (at creation, reset,
+    /// NEWCONF).
+    pub(super) fn size_signals(&mut self) {
+        let z = self.cfg.sync_sizes;
+        if self.io.counts() != (z.digital_in, z.digital_out) {
+            self.set_digital_io(self.io.sized(z.digital_in, z.digital_out));
+        }
+        if self.sync.markers.len() != z.markers
+            || self.sync.params.len() != z.params
+            || self.sync.timers.len() != z.timers
+            || self.sync.analog_in.len() != z.analog_in
+            || self.sync.analog_out.len() != z.analog_out
+        {
+            self.sync.resize(&z);
+            self.interp.set_sync_data(self.sync.main_run_data());
+            self.sync.dirty = false;
+        }
     }
 
     pub(super) fn set_digital_io(&mut self, io: DigitalIo) {

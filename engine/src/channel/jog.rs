@@ -261,6 +261,7 @@ impl Channel {
         self.jog_serial = self.jog_serial.wrapping_add(1);
         let plus = direction.map(|d| d * dir);
         self.jog = Some(ActiveJog { axis: k, direction, plus, end, machine_space, handwheel, resume });
+        self.wake_motion_readers();
         self.status = Status::Running;
         Ok(())
     }

@@ -8,7 +8,8 @@ use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta,
 use crate::alarm::{Alarm, Clear};
 use crate::interp::program_control::{DryRunFeed, ProgramControl};
 use crate::interp::{CORRTRAFO, DELOBJ, Item, Level, NEWCONF, Prep, StopKind};
-use crate::motion::{AxisLimit, Move};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::{AxisLimit, AxisVec, Move};
 
 impl Channel {
     /// Block preparation: interpret blocks until the look-ahead is full.
@@ -64,8 +65,10 @@ impl Channel {
             let hidden = self.interp.hidden_by_call();
             let step = self.interp.single_block_anchor();
             if self.psync.stopreof || self.positioning.has_command_axes() {
-                // `$AA_IM` reads where the main run stands (`program_sync.rs`).
-                self.interp.set_main_run_position(Some(self.machine));
+                // `$AA_IM` reads where the main run stands (`program_sync.rs`), `$AA_VACTM`
+                // how fast it moves there.
+                let velocity = self.main_run_velocity();
+                self.interp.set_main_run_position(Some((self.machine, velocity)));
                 self.psync.main_position_handed = true;
             } else if self.psync.main_position_handed {
                 self.interp.set_main_run_position(None);
@@ -135,6 +138,25 @@ impl Channel {
         }
     }
 
+    /// The axes' velocities (mm/min, deg/min) while the main run stands elsewhere than
+    /// programmed: the path's last step after STOPREOF (at rest otherwise: the wait for the
+    /// main run), the speed of each positioning and command axis.
+    fn main_run_velocity(&self) -> AxisVec {
+        let dt = self.cfg.ipo_cycle;
+        let mut v = [0.0; MAX_CHANNEL_AXES];
+        if self.psync.stopreof {
+            for (k, v) in v.iter_mut().enumerate().take(self.cfg.channel_axes.len()) {
+                *v = (self.machine[k] - self.psync.stopreof_from[k]) / dt * 60.0;
+            }
+        }
+        for (k, v) in v.iter_mut().enumerate().take(self.cfg.channel_axes.len()) {
+            if let Some(speed) = self.positioning.velocity(k) {
+                *v = speed * 60.0;
+            }
+        }
+        v
+    }
+
     /// Applies data a program wrote: tool data and settable frames act at once, machine data
     /// waits for NEWCONF (or a reset).
     pub(super) fn apply_program_data(&mut self, line: u32, text: &str) -> Result<(), Alarm> {
@@ -148,6 +170,7 @@ impl Channel {
             }
             self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
+            self.size_signals();
             // New velocities: the synchronized actions' horizons are computed again.
             self.sync.wake_all();
             return Ok(());
@@ -274,6 +297,9 @@ impl Channel {
         self.next_tag = self.next_tag.wrapping_add(1);
         self.in_planner.push_back((mv.tag, meta));
         self.planner.push(mv);
+        if !self.sync.active.is_empty() {
+            self.note_pushed_move();
+        }
         self.sync_current_block();
     }
 

@@ -467,6 +467,7 @@ impl Channel {
             probe: Default::default(),
         };
         ch.publish_stored_data();
+        ch.size_signals();
         // Power on acts like a reset: the reset transformation (if configured) is active.
         ch.place_axes([0.0; MAX_CHANNEL_AXES]);
         ch
@@ -562,7 +563,8 @@ impl Channel {
         next.keep_reference_state(self);
         next.mode = self.mode;
         next.tick = self.tick;
-        next.set_digital_io(self.io);
+        let z = next.cfg.sync_sizes;
+        next.set_digital_io(self.io.sized(z.digital_in, z.digital_out));
         (next.stock, next.stock_options) = (self.stock.take(), self.stock_options);
         next.probe = std::mem::take(&mut self.probe);
         next.probe.disarm();
@@ -783,6 +785,7 @@ impl Channel {
         {
             self.planner.set_limits(AxisLimit::for_channel(&cfg));
             self.cfg = Arc::new(cfg);
+            self.size_signals();
         }
         let pos = self.machine;
         self.servo = servo::Servo::new(&self.cfg, &pos);

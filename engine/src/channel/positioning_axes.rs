@@ -175,6 +175,11 @@ impl PositioningAxes {
         self.command != 0
     }
 
+    /// The signed velocity of axis `k` (units per second) if it is here.
+    pub fn velocity(&self, k: usize) -> Option<f64> {
+        self.axes[k].map(|t| t.velocity)
+    }
+
     /// The position of axis `k` if it is here.
     pub fn position(&self, k: usize) -> Option<f64> {
         self.axes[k].map(|t| t.position)
@@ -252,6 +257,7 @@ impl Channel {
         if command {
             p.command |= 1 << k;
         }
+        self.wake_motion_readers();
     }
 
     /// `MOV[ax]=0` on a command axis: it brakes to a stop where its ramp ends.

@@ -27,12 +27,16 @@ use crate::alarm::Alarm;
 use crate::interp::synchronized::compile::CommandKind;
 use crate::interp::synchronized::flat::{self, Act, Fault};
 use crate::interp::synchronized::technology::TechCycle;
+use crate::motion::AxisVec;
 
 /// The program-facing state of the synchronized actions.
 #[derive(Debug, Clone, Default)]
 pub struct ProgramSync {
     /// STOPREOF ran: the next wait for the main run is over.
     pub(super) stopreof: bool,
+    /// The setpoints of the cycle before STOPREOF's: the block it lets through reads the
+    /// path's `$AA_VACTM` from them.
+    pub(super) stopreof_from: AxisVec,
     /// RDISABLE ran in this IPO cycle.
     pub(super) rdisable: bool,
     /// An active action holds RDISABLE: blocks go to the main run one at a time.
@@ -84,7 +88,11 @@ impl Channel {
     /// Runs one program-facing action (see the module doc); any other action does nothing here.
     pub(super) fn program_sync_act(&mut self, act: &Act, line: u32) -> Result<(), Fault> {
         match act {
-            Act::StopReOf => self.psync.stopreof = true,
+            Act::StopReOf => {
+                // The actions run before this cycle's step: `machine` is the cycle before's.
+                self.psync.stopreof = true;
+                self.psync.stopreof_from = self.machine;
+            }
             Act::RDisable => self.psync.rdisable = true,
             Act::Preset { axis, value } => {
                 let v = flat::eval(value, self, line)?;

@@ -68,6 +68,7 @@ impl Channel {
             // A REPOS motion stopped on its way (still braking): it goes on.
             self.planner.set_hold(false);
             self.repos_returning = true;
+            self.wake_motion_readers();
             return;
         }
         let Some(int) = &self.interrupted else {
@@ -152,6 +153,7 @@ impl Channel {
             }
         }
         self.repos_returning = true;
+        self.wake_motion_readers();
     }
 
     /// Queues a move of the program space. With a transformation active and the planner empty
@@ -194,6 +196,7 @@ impl Channel {
             }
             self.planner = planner;
             self.in_planner = in_planner;
+            self.recompute_speed_caps();
             self.planner.set_overrides(self.overrides.feed, self.overrides.rapid);
         }
         self.planner.set_hold(false);

@@ -103,7 +103,7 @@ impl Channel {
             None => (None, Vec::new()),
         };
         let program = text.map(|_| ResumeProgram { text: String::new(), line, path, after_stop });
-        let (digital, analog) = (self.io.inputs, self.sync.analog_in);
+        let (digital, analog) = (self.io.inputs, &self.sync.analog_in);
         let inputs = (digital != 0 || analog.iter().any(|v| *v != 0.0))
             .then(|| SavedInputs { digital, analog: analog.to_vec() });
         let stock = self.saved_stock();

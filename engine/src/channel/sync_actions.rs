@@ -24,7 +24,7 @@ use crate::interp::{Item, SharedOffsets};
 use crate::lang::sync_action::SyncId;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 
-pub use crate::interp::synchronized::flat::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
+use crate::machine_data::sync_sizes::SyncSizes;
 /// Active synchronized actions at most (MD28250 MM_NUM_SYNC_ELEMENTS bounds them on the control).
 pub const MAX_ACTIVE: usize = 64;
 /// Input changes kept in [`Channel::input_log`] (the oldest go first).
@@ -46,14 +46,15 @@ pub struct InputRecord {
 pub struct SyncActions {
     /// Modal and static ones by ID, then block-modal ones in program order.
     pub(super) active: Vec<ActiveSync>,
-    pub markers: [f64; MARKERS],
-    pub params: [f64; PARAMS],
+    /// Sized by the machine data ([`SyncSizes`]).
+    pub markers: Vec<f64>,
+    pub params: Vec<f64>,
     /// Running timers' seconds (`None`: stopped).
-    pub timers: [Option<f64>; TIMERS],
+    pub timers: Vec<Option<f64>>,
     /// Whether any timer runs: kept with `timers`, so an idle cycle tests one flag.
     pub(super) timing: bool,
-    pub analog_in: [f64; ANALOG_IO],
-    pub analog_out: [f64; ANALOG_IO],
+    pub analog_in: Vec<f64>,
+    pub analog_out: Vec<f64>,
     /// `$AC_DELT`: what the last DELDTG deleted (mm of path).
     pub deleted: f64,
     /// `$AC_OVR` and `$AA_OVR` of this cycle (percent; 100 unless an action wrote them).
@@ -102,6 +103,8 @@ pub struct SyncActions {
     pub(super) horizon_off: bool,
     /// Actions not run but computed when read, and their inputs (`sync_lazy.rs`).
     pub(super) deferred: super::sync_lazy::Deferred,
+    /// The speed bound of the moves in the planner (`sync_horizon.rs`).
+    pub(super) speed_caps: super::sync_horizon::SpeedCaps,
     /// Conditions evaluated so far.
     pub(super) evaluations: u64,
     /// IPO cycles in which the actions' cycle ran (not skipped while all sleep).
@@ -110,14 +113,15 @@ pub struct SyncActions {
 
 impl Default for SyncActions {
     fn default() -> Self {
+        let z = SyncSizes::default();
         SyncActions {
             active: Vec::new(),
-            markers: [0.0; MARKERS],
-            params: [0.0; PARAMS],
-            timers: [None; TIMERS],
+            markers: vec![0.0; z.markers],
+            params: vec![0.0; z.params],
+            timers: vec![None; z.timers],
             timing: false,
-            analog_in: [0.0; ANALOG_IO],
-            analog_out: [0.0; ANALOG_IO],
+            analog_in: vec![0.0; z.analog_in],
+            analog_out: vec![0.0; z.analog_out],
             deleted: 0.0,
             ovr: 100.0,
             axis_ovr: [100.0; MAX_CHANNEL_AXES],
@@ -141,6 +145,7 @@ impl Default for SyncActions {
             velocity_axes: 0,
             horizon_off: false,
             deferred: Default::default(),
+            speed_caps: Default::default(),
             evaluations: 0,
             cycles_run: 0,
         }
@@ -267,18 +272,31 @@ impl SyncActions {
         self.velocity_axes & !before
     }
 
+    /// The arrays take the sizes of the machine data `z` (the elements kept keep their values,
+    /// new ones are zero, a stopped timer).
+    pub(super) fn resize(&mut self, z: &SyncSizes) {
+        self.markers.resize(z.markers, 0.0);
+        self.params.resize(z.params, 0.0);
+        self.timers.resize(z.timers, None);
+        self.timing = self.timers.iter().any(Option::is_some);
+        self.analog_in.resize(z.analog_in, 0.0);
+        self.analog_out.resize(z.analog_out, 0.0);
+        self.dirty = true;
+    }
+
     /// The data as block preparation reads it (the deferred actions' values computed).
-    fn main_run_data(&self) -> MainRunData {
+    pub(super) fn main_run_data(&self) -> MainRunData {
         let data = self.with_deferred();
         let data = &*data;
         MainRunData {
-            markers: data.markers.to_vec(),
-            params: data.params.to_vec(),
-            timers: data.timers.to_vec(),
-            analog_in: data.analog_in.to_vec(),
-            analog_out: data.analog_out.to_vec(),
+            markers: data.markers.clone(),
+            params: data.params.clone(),
+            timers: data.timers.clone(),
+            analog_in: data.analog_in.clone(),
+            analog_out: data.analog_out.clone(),
             deleted: data.deleted,
             machine: None,
+            velocity: [0.0; MAX_CHANNEL_AXES],
         }
     }
 
@@ -336,12 +354,13 @@ impl Channel {
         self.sync.set_horizons(on);
     }
 
-    /// Sets analog inputs `$A_INA[n]` from outside, each `(n, value)` with n = 1..[`ANALOG_IO`];
-    /// all or nothing. They act from the next IPO cycle on.
+    /// Sets analog inputs `$A_INA[n]` from outside, each `(n, value)` with n = 1.. the count
+    /// of MD10300 FASTIO_ANA_NUM_INPUTS; all or nothing. They act from the next IPO cycle on.
     pub fn set_analog_inputs(&mut self, inputs: &[(usize, f64)]) -> Result<(), super::CommandError> {
-        if let Some((n, v)) = inputs.iter().find(|(n, v)| !(1..=ANALOG_IO).contains(n) || !v.is_finite()) {
+        let count = self.sync.analog_in.len();
+        if let Some((n, v)) = inputs.iter().find(|(n, v)| !(1..=count).contains(n) || !v.is_finite()) {
             return Err(super::CommandError::Invalid(format!(
-                "analog input {n} = {v}: inputs are 1..{ANALOG_IO} with finite values"
+                "analog input {n} = {v}: inputs are 1..{count} (MD10300 FASTIO_ANA_NUM_INPUTS) with finite values"
             )));
         }
         for &(n, v) in inputs {
@@ -355,8 +374,8 @@ impl Channel {
     }
 
     /// The analog inputs and outputs `$A_INA[1..]`, `$A_OUTA[1..]`.
-    pub fn analog_io(&self) -> ([f64; ANALOG_IO], [f64; ANALOG_IO]) {
-        (self.sync.analog_in, self.sync.analog_out)
+    pub fn analog_io(&self) -> (&[f64], &[f64]) {
+        (&self.sync.analog_in, &self.sync.analog_out)
     }
 
     /// The inputs set from outside, oldest first (at most [`INPUT_LOG`]), each with the cycle
@@ -389,7 +408,8 @@ impl Channel {
     /// Takes back the inputs of a checkpoint (digital input bits, analog input values).
     pub(super) fn restore_inputs(&mut self, digital: u64, analog: &[f64]) {
         let mut io = self.io;
-        io.inputs = digital & ((1u64 << crate::interp::io::DIGITAL_IO) - 1);
+        io.inputs = digital;
+        let io = io.sized(self.cfg.sync_sizes.digital_in, self.cfg.sync_sizes.digital_out);
         self.set_digital_io(io);
         for (to, v) in self.sync.analog_in.iter_mut().zip(analog) {
             *to = if v.is_finite() { *v } else { 0.0 };
@@ -451,6 +471,8 @@ impl Channel {
             }
         }
         self.sync.wake();
+        // The moves queued before it bound the axes' speeds for its horizons.
+        self.recompute_speed_caps();
         if self.sync.active.len() > MAX_ACTIVE {
             self.sync.active.pop();
             self.raise(Alarm {

@@ -2,12 +2,12 @@
 //! the variables it reads in this IPO cycle ([`Reader`] for the channel) and the actions it
 //! runs (assignments, M/H output, DELDTG).
 
-use super::sync_actions::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
 use super::{Channel, Event};
 use crate::alarm::Alarm;
 use crate::interp::auxiliary::AuxFunction;
 use crate::interp::synchronized::flat::{
-    self, ANALOG_IN_BITS, Act, Array, DIGITAL_IN_BIT, DIGITAL_OUT_BIT, Fault, Reader, Slot, TIMER_BIT, Target,
+    self, ANALOG_IN_BITS, Act, Array, DIGITAL_IN_BIT, DIGITAL_OUT_BIT, Fault, Reader, Slot, SyncSizes, TIMER_BIT,
+    Target,
 };
 
 /// Which main-run data (and which events, `flat::BLOCK_BIT`...) changed lately: a condition
@@ -99,15 +99,15 @@ impl Reader for Channel {
                 let n = index(v, "$AA_S", self.spindles.len().max(1), 1, line)?;
                 Ok(self.spindles.get(n).map_or(0.0, |s| s.speed))
             }
-            a => self.read(element(a, v, line)?, line),
+            a => self.read(element(a, v, &self.cfg.sync_sizes, line)?, line),
         }
     }
 }
 
 /// The element `v` of `array` (one with a fixed size), or alarm 17020.
-fn element(array: Array, v: f64, line: u32) -> Result<Slot, Fault> {
-    array.slot(v).ok_or_else(|| {
-        let (name, shape) = array.shape();
+fn element(array: Array, v: f64, z: &SyncSizes, line: u32) -> Result<Slot, Fault> {
+    array.slot(v, z).ok_or_else(|| {
+        let (name, shape) = array.shape(z);
         let (size, first) = shape.unwrap_or((0, 0));
         Box::new(Alarm::index_error(line, name, &format!("{v} ({first}..{})", size + first - 1)))
     })
@@ -227,7 +227,7 @@ impl Channel {
             }
             Target::At(array) => {
                 let i = flat::eval(index, self, line)?;
-                let t = match element(array, i, line)? {
+                let t = match element(array, i, &self.cfg.sync_sizes, line)? {
                     Slot::Timer(i) => Target::Timer(i),
                     Slot::Marker(i) => Target::Marker(i),
                     Slot::Param(i) => Target::Param(i),
@@ -238,20 +238,17 @@ impl Channel {
                 return self.sync_set(t, index, v, line);
             }
             Target::Timer(i) => {
-                debug_assert!(i < TIMERS);
                 // A value of 0 or more starts the timer from there, a negative one stops it.
                 s.timers[i] = (v >= 0.0).then_some(v);
                 s.timing = s.timers.iter().any(Option::is_some);
                 s.touch(1 << TIMER_BIT);
             }
             Target::Marker(i) => {
-                debug_assert!(i < MARKERS);
                 // Markers are INT: a REAL assigned is rounded.
-                set(&mut s.markers[i], v.round(), 1 << i, &mut s.touched);
+                set(&mut s.markers[i], v.round(), flat::marker_bit(i), &mut s.touched);
             }
             Target::Param(i) => {
-                debug_assert!(i < PARAMS);
-                set(&mut s.params[i], v, 1 << (8 + i % 32), &mut s.touched);
+                set(&mut s.params[i], v, flat::param_bit(i), &mut s.touched);
             }
             Target::R(n) => {
                 if !self.interp.write_r_param(n, v) {
@@ -266,8 +263,7 @@ impl Channel {
                 }
             }
             Target::AOuta(i) => {
-                debug_assert!(i < ANALOG_IO);
-                set(&mut s.analog_out[i], v, 1 << (44 + i), &mut s.touched);
+                set(&mut s.analog_out[i], v, flat::analog_out_bit(i), &mut s.touched);
             }
             Target::ReadOnly => return Err(Box::new(Alarm::write_protected(line, "synchronized action variable"))),
         }

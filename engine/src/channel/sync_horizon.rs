@@ -16,10 +16,84 @@
 //! evaluated in every cycle unless it lies below zero. `$AC_TIME` grows by one IPO cycle per
 //! cycle and starts again with each block (the block change wakes its readers): it never
 //! falls below its value of now.
+//!
+//! While only the path moves the axes (no JOG, REPOS, positioning or command axis travels,
+//! the position loops settled), an axis moves no faster than the moves in the planner allow
+//! ([`SpeedCaps`]): the highest path speed of any queued move (its feed under 120 % override,
+//! the axes' limit for G0) times the axis' highest rate per path length among them, usually
+//! far below MD32000. A move pushed later that raises it touches `MOTION_BIT` (the
+//! conditions on positions are evaluated again); so does JOG, REPOS or a positioning axis
+//! starting. The product of the two maxima covers a cycle that spans two moves.
 
 use super::Channel;
-use crate::interp::synchronized::flat::{Reader, Slot};
+use crate::interp::synchronized::flat::{MOTION_BIT, Reader, Slot};
 use crate::interp::synchronized::horizon::{Bound, Bounds};
+use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::{AxisVec, Move};
+
+/// The speed bound of the moves in the planner (see the module doc): at least the path speed
+/// any of them can reach and, per axis, its highest rate per unit path length.
+#[derive(Debug, Clone)]
+pub struct SpeedCaps {
+    speed: f64,
+    rate: AxisVec,
+    /// Moves pushed since the speed was last computed from the queue alone (it only grows
+    /// in between: a fast move that left keeps it high until then). The rates are never
+    /// lowered: an axis' rate per path length is at most about 1 on the usual paths, so they
+    /// settle soon, and lowering them would wake the conditions each time they grow again.
+    pushes: u32,
+}
+
+impl Default for SpeedCaps {
+    fn default() -> Self {
+        SpeedCaps { speed: 0.0, rate: [0.0; MAX_CHANNEL_AXES], pushes: 0 }
+    }
+}
+
+/// Every this many pushes the speed is computed again from the queue (so it comes down
+/// after a rapid move has left): once per look-ahead's length.
+const RECOMPUTE_EVERY: u32 = super::LOOKAHEAD as u32;
+
+impl SpeedCaps {
+    /// The most axis `k` moves per second under the bound.
+    fn axis(&self, k: usize) -> f64 {
+        if self.rate[k] == 0.0 { 0.0 } else { self.speed * self.rate[k] }
+    }
+
+    /// Takes `mv` in; true if that raised the bound.
+    fn include(&mut self, mv: &Move, axes: usize) -> bool {
+        let faster = self.include_speed(mv);
+        self.include_rates(mv, axes) || faster
+    }
+
+    /// Takes `mv`'s speed in; true if that raised it.
+    fn include_speed(&mut self, mv: &Move) -> bool {
+        // A length of zero moves no axis.
+        let speed = if mv.length > 0.0 { mv.speed_cap() } else { 0.0 };
+        let speed = if speed.is_nan() { f64::INFINITY } else { speed };
+        let raised = speed > self.speed;
+        self.speed = self.speed.max(speed);
+        raised
+    }
+
+    /// Takes `mv`'s axis rates per path length in; true if one grew.
+    fn include_rates(&mut self, mv: &Move, axes: usize) -> bool {
+        if mv.length.is_nan() || mv.length <= 0.0 {
+            return false;
+        }
+        let mut raised = false;
+        let rates = mv.path.max_rate_of_first(axes);
+        for (r, q) in self.rate.iter_mut().zip(&rates[..axes]) {
+            let q = q / mv.length;
+            let q = if q.is_nan() { f64::INFINITY } else { q };
+            if q > *r {
+                *r = q;
+                raised = true;
+            }
+        }
+        raised
+    }
+}
 
 /// How many times its maximum velocity an axis is assumed to move at most.
 pub const SAFETY: f64 = 4.0;
@@ -61,6 +135,52 @@ impl Bounds for Channel {
 }
 
 impl Channel {
+    /// After a move went into the planner (while actions are active): the bound takes it in,
+    /// and wakes the conditions on positions when it grew.
+    pub(super) fn note_pushed_move(&mut self) {
+        let axes = self.cfg.channel_axes.len();
+        let caps = &mut self.sync.speed_caps;
+        caps.pushes += 1;
+        if caps.pushes >= RECOMPUTE_EVERY {
+            self.recompute_speed_caps();
+            return;
+        }
+        if let Some(mv) = self.planner.queued().last()
+            && caps.include(mv, axes)
+        {
+            self.sync.touch(1 << MOTION_BIT);
+        }
+    }
+
+    /// The speed computed from the moves queued now (when actions become active, after
+    /// REPOS, every [`RECOMPUTE_EVERY`] pushes), the rates grown by theirs; wakes the
+    /// conditions on positions when either grew.
+    pub(super) fn recompute_speed_caps(&mut self) {
+        let axes = self.cfg.channel_axes.len();
+        let caps = &mut self.sync.speed_caps;
+        let old = caps.speed;
+        (caps.speed, caps.pushes) = (0.0, 0);
+        let mut grew = false;
+        for mv in self.planner.queued() {
+            caps.include_speed(mv);
+            grew |= caps.include_rates(mv, axes);
+        }
+        if grew || caps.speed > old {
+            self.sync.touch(1 << MOTION_BIT);
+        }
+    }
+
+    /// JOG, REPOS or a positioning axis starts: the conditions on positions are evaluated
+    /// again (their horizons counted on the path alone).
+    pub(super) fn wake_motion_readers(&mut self) {
+        self.sync.touch(1 << MOTION_BIT);
+    }
+
+    /// Only the path moves the axes, with no following error: [`SpeedCaps`] bound them.
+    fn only_the_path_moves(&self) -> bool {
+        self.jog.is_none() && !self.repos_returning && !self.positioning.moving(u32::MAX) && self.servo.is_settled()
+    }
+
     /// The most machine axis `k` moves in one IPO cycle, if bounded now.
     fn axis_step(&self, k: usize) -> Option<f64> {
         if k >= self.cfg.channel_axes.len() || self.trafo.is_some() || self.referencing.is_some() {
@@ -71,6 +191,9 @@ impl Channel {
             return None;
         }
         let mut v = fastest(ax);
+        if self.only_the_path_moves() {
+            v = v.min(self.sync.speed_caps.axis(k));
+        }
         if self.cfg.geo_axes.contains(&Some(k)) {
             v += self.cfg.ori.toff_velocity;
         }

@@ -1165,7 +1165,7 @@ pub(super) fn assign(
             // Analog outputs are written by synchronized actions only in NCTwin.
             return Err(Alarm::unknown_name(line, name));
         }
-        let signal = super::io::signal(name, &idx, line)?;
+        let signal = super::io::signal(name, &idx, sys.io.counts().1, line)?;
         return Ok(Assigned::DigitalOutput(signal, super::io::level(&eval(expr, &ctx, line)?, line)?));
     }
     if super::io::plc_data::is_name(name) {

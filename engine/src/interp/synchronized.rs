@@ -43,21 +43,25 @@ pub struct MainRunData {
     /// preprocessing stop (STOPREOF ended it while the path moves; command axes or PRESETON
     /// moved axes the program did not): `$AA_IM`/`$AA_IPO` read these.
     pub machine: Option<AxisVec>,
+    /// The velocities there (mm/min, deg/min per channel axis) for `$AA_VACTM`; without
+    /// [`MainRunData::machine`] the axes are at rest (the read waited for the main run).
+    pub velocity: AxisVec,
 }
 
 /// Before the channel handed any state over: everything zero in the control's sizes (an empty
 /// list read 17020 for `$AC_PARAM[0]` and underflowed forming its message).
 impl Default for MainRunData {
     fn default() -> Self {
-        use flat::{ANALOG_IO, MARKERS, PARAMS, TIMERS};
+        let z = flat::SyncSizes::default();
         MainRunData {
-            markers: vec![0.0; MARKERS],
-            params: vec![0.0; PARAMS],
-            timers: vec![None; TIMERS],
-            analog_in: vec![0.0; ANALOG_IO],
-            analog_out: vec![0.0; ANALOG_IO],
+            markers: vec![0.0; z.markers],
+            params: vec![0.0; z.params],
+            timers: vec![None; z.timers],
+            analog_in: vec![0.0; z.analog_in],
+            analog_out: vec![0.0; z.analog_out],
             deleted: 0.0,
             machine: None,
+            velocity: [0.0; crate::machine_data::registry::MAX_CHANNEL_AXES],
         }
     }
 }
@@ -211,15 +215,18 @@ impl Interpreter {
 
     /// The main run's data of synchronized actions, after each change.
     pub fn set_sync_data(&mut self, data: MainRunData) {
-        let machine = self.sync_data.machine;
+        let (machine, velocity) = (self.sync_data.machine, self.sync_data.velocity);
         self.sync_data = data;
         self.sync_data.machine = machine;
+        self.sync_data.velocity = velocity;
     }
 
     /// The main run's machine positions for `$AA_IM` reads while they differ from the
     /// programmed ones (see [`MainRunData::machine`]); `None` otherwise.
-    pub fn set_main_run_position(&mut self, machine: Option<AxisVec>) {
-        self.sync_data.machine = machine;
+    /// With it the velocities there (`$AA_VACTM`).
+    pub fn set_main_run_position(&mut self, machine: Option<(AxisVec, AxisVec)>) {
+        self.sync_data.machine = machine.map(|(m, _)| m);
+        self.sync_data.velocity = machine.map_or([0.0; crate::machine_data::registry::MAX_CHANNEL_AXES], |(_, v)| v);
     }
 
     /// A synchronized action writes R parameter `n` in the main run.

@@ -141,6 +141,8 @@ pub struct MachineConfig {
     pub dynamics: super::dynamics::ChannelDynamics,
     /// Tolerances of continuous-path mode, exact-stop windows and compressor limits.
     pub path_control: super::path_control::PathControlData,
+    /// Sizes of the synchronized actions' data and the NCK signals (MD28254.., MD10300..).
+    pub sync_sizes: super::sync_sizes::SyncSizes,
 }
 
 /// How a tool change is triggered and how long it takes.
@@ -450,6 +452,7 @@ impl MachineConfig {
             dynamics: super::dynamics::ChannelDynamics::read(md)
                 .map_err(|m| ActivationError { datum: Some("GCODE_RESET_VALUES"), message: m })?,
             path_control: super::path_control::PathControlData::read(md, &machine_numbers),
+            sync_sizes: super::sync_sizes::SyncSizes::read(md),
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

@@ -15,6 +15,7 @@ pub mod inch;
 pub mod path_control;
 pub mod presets;
 pub mod registry;
+pub mod sync_sizes;
 pub mod text;
 pub mod tool_orient;
 pub mod tools_list;

@@ -194,6 +194,12 @@ pub static DEFS: &[Def] = &[
     def("T_NO_FCT_CYCLE_NAME", 10717, N, Kind::Str, 1, Default::Str(""), 0.0, 0.0),
     // NCU-global basic frames $P_NCBFR[n] (K2; 0 = none, the control's default).
     def("MM_NUM_GLOBAL_BASE_FRAMES", 18602, N, Kind::Int, 1, Default::Int(0), 0.0, 16.0),
+    // The fast NCK I/Os (`sync_sizes.rs`): digital ones in bytes of 8 signals, analog ones
+    // in signals; NCTwin's defaults are its sizes of before (5 bytes, 4 signals).
+    def("FASTIO_ANA_NUM_INPUTS", 10300, N, Kind::Int, 1, Default::Int(4), 0.0, 8.0),
+    def("FASTIO_ANA_NUM_OUTPUTS", 10310, N, Kind::Int, 1, Default::Int(4), 0.0, 8.0),
+    def("FASTIO_DIG_NUM_INPUTS", 10350, N, Kind::Int, 1, Default::Int(5), 0.0, 5.0),
+    def("FASTIO_DIG_NUM_OUTPUTS", 10360, N, Kind::Int, 1, Default::Int(5), 0.0, 5.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
     // MD18102: 1 = flat D numbers (flat_d.rs).
     def("MM_TYPE_OF_CUTTING_EDGE", 18102, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),
@@ -421,6 +427,10 @@ pub static DEFS: &[Def] = &[
     def("TRACON_CHAIN_3", 24997, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("TRACON_CHAIN_4", 24998, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("MM_NUM_USER_FRAMES", 28080, C, Kind::Int, 1, Default::Int(5), 5.0, 100.0),
+    // Synchronized actions' data (`sync_sizes.rs`): `$AC_PARAM`, `$AC_MARKER`, `$AC_TIMER`.
+    def("MM_NUM_AC_PARAM", 28254, C, Kind::Int, 1, Default::Int(50), 0.0, 20000.0),
+    def("MM_NUM_AC_MARKER", 28256, C, Kind::Int, 1, Default::Int(8), 0.0, 20000.0),
+    def("MM_NUM_AC_TIMER", 28258, C, Kind::Int, 1, Default::Int(8), 0.0, 10000.0),
     def("MM_NUM_BASE_FRAMES", 28081, C, Kind::Int, 1, Default::Int(1), 0.0, 16.0),
     def("IS_ROT_AX", 30300, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def("ROT_IS_MODULO", 30310, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),

@@ -213,6 +213,17 @@ impl Move {
         self.feed.is_infinite()
     }
 
+    /// The fastest path speed the planner can give this move (units/s): its feed under the
+    /// highest feed override the planner takes (120 %), at most the axes' limit along it;
+    /// that limit for rapid traverse (its override stops at 100 %) and a feed per revolution.
+    pub fn speed_cap(&self) -> f64 {
+        if self.is_rapid() || self.per_rev > 0.0 {
+            self.v_axes
+        } else {
+            (self.feed * MAX_FEED_OVERRIDE).min(self.v_axes)
+        }
+    }
+
     /// The velocity cap under the overrides: the feed override scales the programmed feed (up to
     /// the axes' limit), the rapid override scales rapid traverse.
     fn capped(&self, feed_override: f64, rapid_override: f64, spindle_rate: f64) -> f64 {
@@ -225,6 +236,9 @@ impl Move {
         }
     }
 }
+
+/// The highest feed override the planner applies (a factor).
+pub const MAX_FEED_OVERRIDE: f64 = 1.2;
 
 /// Where the planner is in the cycle at rest after a stop (see [`Planner::step`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -381,6 +395,11 @@ impl Planner {
         self.v
     }
 
+    /// The moves queued now, the front one first.
+    pub fn queued(&self) -> impl Iterator<Item = &Move> {
+        self.queue.iter()
+    }
+
     /// For the display: the path length still to go of the block being executed (the moves of
     /// its tag) and its programmed feed (infinite for rapid traverse); `None` when nothing is
     /// queued.
@@ -408,7 +427,7 @@ impl Planner {
 
     /// Feed override and rapid traverse override in percent (0..=120; rapid above 100 acts as 100).
     pub fn set_overrides(&mut self, feed_percent: f64, rapid_percent: f64) {
-        self.feed_override = feed_percent.clamp(0.0, 120.0) / 100.0;
+        self.feed_override = feed_percent.clamp(0.0, 100.0 * MAX_FEED_OVERRIDE) / 100.0;
         self.rapid_override = rapid_percent.clamp(0.0, 120.0) / 100.0;
     }
 

@@ -1,5 +1,7 @@
 //! `GET/PUT /sessions/{id}/io`: the session's NCK inputs and outputs, digital (`$A_IN[n]`,
-//! `$A_OUT[n]`, n = 1..40) and analog (`$A_INA[n]`, `$A_OUTA[n]`, n = 1..4). Programs and
+//! `$A_OUT[n]`, n = 1..40) and analog (`$A_INA[n]`, `$A_OUTA[n]`, n = 1..4); the counts are
+//! the machine data's (MD10350/MD10360 bytes of 8 digital signals, MD10300/MD10310 analog
+//! signals), the numbers here NCTwin's defaults. Programs and
 //! synchronized actions read them and write the outputs; a client stands in for the machine's
 //! wiring: it sets inputs (a part-present switch, a clamping signal, a gauge's voltage) and may
 //! set digital outputs too, as a test bench would. Inputs act from the next IPO cycle on and
@@ -11,8 +13,6 @@
 
 use axum::Json;
 use axum::extract::{Path, State};
-use nctwin_engine::channel::sync_actions::ANALOG_IO;
-use nctwin_engine::interp::io::DIGITAL_IO;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -25,11 +25,11 @@ use crate::state::AppState;
 /// The digital I/O image: element 0 is signal 1 (`$A_IN[1]`, `$A_OUT[1]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct IoImage {
-    /// `$A_IN[1..40]`.
+    /// `$A_IN[1..40]` (as many as MD10350 FASTIO_DIG_NUM_INPUTS configures: 8 per byte).
     pub inputs: Vec<bool>,
-    /// `$A_OUT[1..40]`.
+    /// `$A_OUT[1..40]` (MD10360 FASTIO_DIG_NUM_OUTPUTS, 8 per byte).
     pub outputs: Vec<bool>,
-    /// `$A_INA[1..4]`.
+    /// `$A_INA[1..4]` (MD10300 FASTIO_ANA_NUM_INPUTS; `$A_OUTA`: MD10310).
     #[serde(default)]
     pub analog_inputs: Vec<f64>,
     /// `$A_OUTA[1..4]` (written by synchronized actions).
@@ -44,9 +44,10 @@ pub struct IoImage {
 impl IoImage {
     fn of(ch: &nctwin_engine::Channel) -> IoImage {
         let (io, (analog_in, analog_out)) = (ch.digital_io(), ch.analog_io());
+        let (ins, outs) = io.counts();
         IoImage {
-            inputs: (1..=DIGITAL_IO).map(|n| io.input(n).unwrap_or(false)).collect(),
-            outputs: (1..=DIGITAL_IO).map(|n| io.output(n).unwrap_or(false)).collect(),
+            inputs: (1..=ins).map(|n| io.input(n).unwrap_or(false)).collect(),
+            outputs: (1..=outs).map(|n| io.output(n).unwrap_or(false)).collect(),
             analog_inputs: analog_in.to_vec(),
             analog_outputs: analog_out.to_vec(),
             plc_data: ch.plc_data().to_vec(),
@@ -118,7 +119,8 @@ pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Re
 /// Sets digital inputs (and outputs) and analog inputs at once, in any mode and while a program
 /// runs: a block that reads `$A_IN` after this sees the new level, a synchronized action the
 /// next IPO cycle. All or nothing: a signal outside 1..40 (analog: 1..4, or a value that is not
-/// finite) is a `400` and changes nothing.
+/// finite; the counts the machine data configure) is a `400` naming the limit and changes
+/// nothing.
 #[utoipa::path(
     put,
     path = "/sessions/{id}/io",
@@ -127,7 +129,7 @@ pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Re
     request_body = IoChange,
     responses(
         (status = 200, description = "The I/O image after the change", body = IoImage),
-        (status = 400, description = "A signal number outside 1..40 (analog 1..4), an analog value not finite or PLC data beyond the 4096 bytes; nothing changed", body = ErrorBody),
+        (status = 400, description = "A signal number outside 1..40 (analog 1..4; the counts of MD10350/MD10360/MD10300), an analog value not finite or PLC data beyond the 4096 bytes; nothing changed", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
     )
 )]
@@ -139,13 +141,7 @@ pub async fn put_io(
     let list = |s: &[Signal]| s.iter().map(|s| (s.signal as usize, s.value)).collect::<Vec<_>>();
     let (inputs, outputs) = (list(&change.inputs), list(&change.outputs));
     let analog: Vec<(usize, f64)> = change.analog_inputs.iter().map(|s| (s.signal as usize, s.value)).collect();
-    // Checked before anything is set, so a bad analog input leaves the digital ones too.
-    if let Some((n, v)) = analog.iter().find(|(n, v)| !(1..=ANALOG_IO).contains(n) || !v.is_finite()) {
-        return Err(ApiError::bad_request(format!(
-            "analog input {n} = {v}: analog inputs are 1..{ANALOG_IO} with finite values"
-        )));
-    }
-    // Checked before anything is set, like the analog inputs.
+    // Checked before anything is set (the analog inputs in the channel, below).
     let area = nctwin_engine::interp::io::plc_data::PLC_DATA_BYTES;
     if let Some(w) = change.plc_data.iter().find(|w| w.offset as usize + w.bytes.len() > area) {
         return Err(ApiError::bad_request(format!(
@@ -158,6 +154,13 @@ pub async fn put_io(
     let session = find_session(&state, &id)?;
     let result = session
         .with_channel(move |ch| {
+            // Checked before anything is set, so a bad analog input leaves the digital ones too.
+            let count = ch.analog_io().0.len();
+            if let Some((n, v)) = analog.iter().find(|(n, v)| !(1..=count).contains(n) || !v.is_finite()) {
+                return Err(nctwin_engine::CommandError::Invalid(format!(
+                    "analog input {n} = {v}: analog inputs are 1..{count} (MD10300 FASTIO_ANA_NUM_INPUTS) with finite values"
+                )));
+            }
             if !inputs.is_empty() || !outputs.is_empty() {
                 ch.set_signals(&inputs, &outputs)?;
             }

@@ -132,8 +132,30 @@ impl Scope for Ctx<'_> {
                 _ => Err(alarm),
             })
         };
+        // `$AA_IW` stands where the main run stands: where it differs from the programmed
+        // position (command axes, STOPREOF) and no transformation lies between, the BCS is
+        // the machine position less the online tool offset (`$P_EP` stays the programmed one).
+        let main_run_basic = || match (&sys.sync.machine, sys.trafo.machine()) {
+            (Some(machine), None) => {
+                let mut basic = *machine;
+                for (g, k) in sys.cfg.geo_axes.iter().enumerate() {
+                    if let Some(k) = k {
+                        basic[*k] -= sys.offsets.toff[g];
+                    }
+                }
+                basic
+            }
+            _ => *sys.pos,
+        };
         let wcs = |k: usize| {
             let mut basic = *sys.pos;
+            for (b, t) in basic.iter_mut().zip(&sys.offsets.tool) {
+                *b -= t;
+            }
+            sys.offsets.frame.unapply(&sys.cfg.geo_axes, &basic).map_or(f64::NAN, |w| w[k])
+        };
+        let actual_wcs = |k: usize| {
+            let mut basic = main_run_basic();
             for (b, t) in basic.iter_mut().zip(&sys.offsets.tool) {
                 *b -= t;
             }
@@ -224,9 +246,12 @@ impl Scope for Ctx<'_> {
             }
             "$AA_IB" => {
                 let k = axis()?;
-                Value::Real(sys.pos[k] - sys.offsets.tool[k])
+                Value::Real(main_run_basic()[k] - sys.offsets.tool[k])
             }
-            "$AA_IW" => Value::Real(wcs(axis()?)),
+            "$AA_IW" => Value::Real(actual_wcs(axis()?)),
+            // The axis' velocity in the main run: 0 at rest, which the wait for the main run
+            // gives but for command and positioning axes and STOPREOF.
+            "$AA_VACTM" => Value::Real(sys.sync.velocity[machine_axis()?]),
             "$AA_TOFF" => {
                 let k = axis()?;
                 let dir = sys.cfg.geo_axes.iter().position(|g| *g == Some(k)).ok_or_else(|| {

@@ -175,8 +175,9 @@ pub fn compile(action: &SyncAction, cfg: &MachineConfig, line: u32) -> Result<Sy
     let inch = matches!(action.units, Some(70 | 700));
     let condition = action.condition.as_ref().map(|e| c.expr(e, inch)).transpose()?;
     let actions: Vec<SyncAct> = action.actions.iter().map(|a| c.action(a)).collect::<Result<_, _>>()?;
-    let flat_condition = condition.as_ref().map(super::flat::lower);
-    let flat_actions = actions.iter().map(super::flat::lower_act).collect();
+    let sizes = &cfg.sync_sizes;
+    let flat_condition = condition.as_ref().map(|e| super::flat::lower_sized(e, sizes));
+    let flat_actions = actions.iter().map(|a| super::flat::lower_act(a, sizes)).collect();
     Ok(SyncDef {
         id: action.id,
         trigger: action.trigger,

@@ -15,14 +15,7 @@ use super::compile::{CExpr, Func, SyncAct, SyncVar};
 use crate::alarm::Alarm;
 use crate::lang::sync_action::BinOp;
 
-/// `$AC_MARKER[0..7]`: MD28256 MM_NUM_AC_MARKER's default.
-pub const MARKERS: usize = 8;
-/// `$AC_PARAM[0..49]`: MD28254 MM_NUM_AC_PARAM's default.
-pub const PARAMS: usize = 50;
-/// `$AC_TIMER[0..7]` (MD28258 MM_NUM_AC_TIMER; NCTwin keeps 8).
-pub const TIMERS: usize = 8;
-/// `$A_INA[1..4]`, `$A_OUTA[1..4]`: the default of 4 analog signals each (MD10300/10310).
-pub const ANALOG_IO: usize = 4;
+pub use crate::machine_data::sync_sizes::SyncSizes;
 
 /// A variable read whose element is known before the run (indices are channel axes, array
 /// elements from 0).
@@ -68,24 +61,24 @@ pub enum Array {
 impl Array {
     /// The name, the element count and the first index (`None` for `$R` and `$AA_S`, whose
     /// sizes are the channel's).
-    pub fn shape(self) -> (&'static str, Option<(usize, usize)>) {
-        use crate::interp::io::DIGITAL_IO;
+    pub fn shape(self, z: &SyncSizes) -> (&'static str, Option<(usize, usize)>) {
         match self {
-            Array::Timer => ("$AC_TIMER", Some((TIMERS, 0))),
-            Array::Marker => ("$AC_MARKER", Some((MARKERS, 0))),
-            Array::Param => ("$AC_PARAM", Some((PARAMS, 0))),
-            Array::AIn => ("$A_IN", Some((DIGITAL_IO, 1))),
-            Array::AOut => ("$A_OUT", Some((DIGITAL_IO, 1))),
-            Array::AIna => ("$A_INA", Some((ANALOG_IO, 1))),
-            Array::AOuta => ("$A_OUTA", Some((ANALOG_IO, 1))),
+            Array::Timer => ("$AC_TIMER", Some((z.timers, 0))),
+            Array::Marker => ("$AC_MARKER", Some((z.markers, 0))),
+            Array::Param => ("$AC_PARAM", Some((z.params, 0))),
+            Array::AIn => ("$A_IN", Some((z.digital_in, 1))),
+            Array::AOut => ("$A_OUT", Some((z.digital_out, 1))),
+            Array::AIna => ("$A_INA", Some((z.analog_in, 1))),
+            Array::AOuta => ("$A_OUTA", Some((z.analog_out, 1))),
             Array::R => ("$R", None),
             Array::AaS => ("$AA_S", None),
         }
     }
 
-    /// The element of a known index, if it is in range (else the cycle raises the alarm).
-    pub fn slot(self, v: f64) -> Option<Slot> {
-        let (_, Some((size, first))) = self.shape() else {
+    /// The element of a known index, if it is in range of the sizes `z` (else the cycle
+    /// raises the alarm).
+    pub fn slot(self, v: f64, z: &SyncSizes) -> Option<Slot> {
+        let (_, Some((size, first))) = self.shape(z) else {
             // `$R[n]`: a whole number from 0 (its upper bound is checked when read).
             return (self == Array::R && v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v < 1e9)
                 .then_some(Slot::R(v as usize));
@@ -121,8 +114,9 @@ impl Array {
     }
 }
 
-/// Bits of [`Code::deps`]: markers 0..7, parameters 8..39 (parameter i on bit 8 + i mod 32),
-/// analog inputs 40..43, analog outputs 44..47, then the digital inputs, the digital
+/// Bits of [`Code::deps`]: markers 0..7 (marker i on bit i mod 8), parameters 8..39
+/// (parameter i on bit 8 + i mod 32), analog inputs 40..43, analog outputs 44..47 (signal i
+/// from 0 on i mod 4), then the digital inputs, the digital
 /// outputs, `$AC_DELT` and the timers.
 pub const MARKER_BITS: u64 = 0xff;
 pub const PARAM_BITS: u64 = 0xffff_ffff << 8;
@@ -139,15 +133,30 @@ pub const BLOCK_BIT: u32 = 52;
 pub const FRAME_BIT: u32 = 53;
 pub const MOTION_BIT: u32 = 54;
 
+/// The data bits of marker, parameter and analog signal `i` (from 0): sizes from the machine
+/// data may exceed the bits, so elements share them (a change wakes a few more readers).
+pub fn marker_bit(i: usize) -> u64 {
+    1 << (i % 8)
+}
+pub fn param_bit(i: usize) -> u64 {
+    1 << (8 + i % 32)
+}
+pub fn analog_in_bit(i: usize) -> u64 {
+    1 << (40 + i % 4)
+}
+pub fn analog_out_bit(i: usize) -> u64 {
+    1 << (44 + i % 4)
+}
+
 impl Slot {
     /// The main-run data bit this variable is, or `None` for one that may change in any cycle
     /// (positions, speeds, times, overrides, `$R`).
     pub fn dep(self) -> Option<u64> {
         Some(match self {
-            Slot::Marker(i) => 1 << i,
-            Slot::Param(i) => 1 << (8 + i % 32),
-            Slot::AIna(i) => 1 << (40 + i),
-            Slot::AOuta(i) => 1 << (44 + i),
+            Slot::Marker(i) => marker_bit(i),
+            Slot::Param(i) => param_bit(i),
+            Slot::AIna(i) => analog_in_bit(i),
+            Slot::AOuta(i) => analog_out_bit(i),
             Slot::AIn(_) => 1 << DIGITAL_IN_BIT,
             Slot::AOut(_) => 1 << DIGITAL_OUT_BIT,
             Slot::AcDelt => 1 << DELT_BIT,
@@ -253,29 +262,36 @@ pub enum Act {
     CycleName(String),
 }
 
-/// Lowers a compiled expression.
+/// Lowers a compiled expression (array sizes: the defaults).
 pub fn lower(e: &CExpr) -> Code {
+    lower_sized(e, &SyncSizes::default())
+}
+
+/// Lowers a compiled expression for the array sizes `z`: a constant index in range is
+/// resolved now, any other is checked in the main run.
+pub fn lower_sized(e: &CExpr, z: &SyncSizes) -> Code {
     let mut ops = Vec::new();
     let mut c = Code::default();
-    let depth = emit(e, &mut ops, &mut c);
+    let depth = emit(e, &mut ops, &mut c, z);
     c.ops = ops.into_boxed_slice();
     c.depth = depth;
     c
 }
 
-/// Lowers a compiled action.
-pub fn lower_act(a: &SyncAct) -> Act {
+/// Lowers a compiled action for the array sizes `z`.
+pub fn lower_act(a: &SyncAct, z: &SyncSizes) -> Act {
+    let lower = |e: &CExpr| lower_sized(e, z);
     match a {
         SyncAct::Set(var, e) => {
             let (target, index) = match var {
                 SyncVar::AcOvr => (Target::Ovr, Code::default()),
                 SyncVar::AaOvr(k) => (Target::AxisOvr(*k), Code::default()),
-                SyncVar::AcTimer(i) => element(Array::Timer, i),
-                SyncVar::AcMarker(i) => element(Array::Marker, i),
-                SyncVar::AcParam(i) => element(Array::Param, i),
-                SyncVar::R(i) => element(Array::R, i),
-                SyncVar::AOut(i) => element(Array::AOut, i),
-                SyncVar::AOuta(i) => element(Array::AOuta, i),
+                SyncVar::AcTimer(i) => element(Array::Timer, i, z),
+                SyncVar::AcMarker(i) => element(Array::Marker, i, z),
+                SyncVar::AcParam(i) => element(Array::Param, i, z),
+                SyncVar::R(i) => element(Array::R, i, z),
+                SyncVar::AOut(i) => element(Array::AOut, i, z),
+                SyncVar::AOuta(i) => element(Array::AOuta, i, z),
                 _ => (Target::ReadOnly, Code::default()),
             };
             Act::Set { target, value: lower(e), index }
@@ -296,9 +312,9 @@ pub fn lower_act(a: &SyncAct) -> Act {
 }
 
 /// The target of an assignment to `array[i]`: resolved when `i` is a number in range.
-fn element(array: Array, i: &CExpr) -> (Target, Code) {
+fn element(array: Array, i: &CExpr, z: &SyncSizes) -> (Target, Code) {
     if let CExpr::Num(v) = i
-        && let Some(slot) = array.slot(*v)
+        && let Some(slot) = array.slot(*v, z)
     {
         let t = match slot {
             Slot::Timer(i) => Target::Timer(i),
@@ -311,17 +327,17 @@ fn element(array: Array, i: &CExpr) -> (Target, Code) {
         };
         return (t, Code::default());
     }
-    (Target::At(array), lower(i))
+    (Target::At(array), lower_sized(i, z))
 }
 
 /// Appends `e`'s operations; returns the stack depth they need.
-fn emit(e: &CExpr, ops: &mut Vec<Op>, c: &mut Code) -> usize {
+fn emit(e: &CExpr, ops: &mut Vec<Op>, c: &mut Code, z: &SyncSizes) -> usize {
     match e {
         CExpr::Num(v) => {
             ops.push(Op::Num(*v));
             1
         }
-        CExpr::Var(v) => read(v, ops, c),
+        CExpr::Var(v) => read(v, ops, c, z),
         // A negative number (`$AC_DTEB<-1`) is a number: -v is exact.
         CExpr::Neg(x) if matches!(**x, CExpr::Num(_)) => {
             let CExpr::Num(v) = **x else { unreachable!() };
@@ -329,33 +345,33 @@ fn emit(e: &CExpr, ops: &mut Vec<Op>, c: &mut Code) -> usize {
             1
         }
         CExpr::Neg(x) => {
-            let d = emit(x, ops, c);
+            let d = emit(x, ops, c, z);
             ops.push(Op::Neg);
             d
         }
         CExpr::Not(x) => {
-            let d = emit(x, ops, c);
+            let d = emit(x, ops, c, z);
             ops.push(Op::Not);
             d
         }
         CExpr::Bin(op, a, b) => {
             if is_comparison(*op)
                 && let (CExpr::Var(v), Some(k)) = (&**a, number(b))
-                && let Some(slot) = fixed(v)
+                && let Some(slot) = fixed(v, z)
             {
                 note(slot, c);
                 ops.push(Op::Compare(slot, *op, k));
                 return 1;
             }
-            let da = emit(a, ops, c);
-            let db = emit(b, ops, c);
+            let da = emit(a, ops, c, z);
+            let db = emit(b, ops, c, z);
             ops.push(Op::Bin(*op));
             da.max(db + 1)
         }
         CExpr::Func(f, args) => {
             let mut depth = 0;
             for (i, a) in args.iter().enumerate() {
-                depth = depth.max(emit(a, ops, c) + i);
+                depth = depth.max(emit(a, ops, c, z) + i);
             }
             ops.push(Op::Func(*f));
             depth
@@ -391,9 +407,9 @@ fn note(slot: Slot, c: &mut Code) {
 }
 
 /// The slot of a variable whose element is known now.
-fn fixed(v: &SyncVar) -> Option<Slot> {
+fn fixed(v: &SyncVar, z: &SyncSizes) -> Option<Slot> {
     let at = |array: Array, i: &CExpr| match i {
-        CExpr::Num(n) => array.slot(*n),
+        CExpr::Num(n) => array.slot(*n, z),
         _ => None,
     };
     match v {
@@ -420,8 +436,8 @@ fn fixed(v: &SyncVar) -> Option<Slot> {
     }
 }
 
-fn read(v: &SyncVar, ops: &mut Vec<Op>, c: &mut Code) -> usize {
-    if let Some(slot) = fixed(v) {
+fn read(v: &SyncVar, ops: &mut Vec<Op>, c: &mut Code, z: &SyncSizes) -> usize {
+    if let Some(slot) = fixed(v, z) {
         note(slot, c);
         ops.push(Op::Read(slot));
         return 1;
@@ -438,7 +454,7 @@ fn read(v: &SyncVar, ops: &mut Vec<Op>, c: &mut Code) -> usize {
         SyncVar::AaS(i) => (Array::AaS, i),
         _ => unreachable!("scalars and axis variables are fixed"),
     };
-    let d = emit(i, ops, c);
+    let d = emit(i, ops, c, z);
     match array.deps() {
         Some(bits) => c.deps |= bits,
         None => c.volatile = true,
@@ -599,7 +615,9 @@ mod tests {
             }
         }
         fn read_at(&self, array: Array, index: f64, line: u32) -> Result<f64, Fault> {
-            let slot = array.slot(index).ok_or_else(|| Box::new(Alarm::index_error(line, "test", "range")))?;
+            let slot = array
+                .slot(index, &SyncSizes::default())
+                .ok_or_else(|| Box::new(Alarm::index_error(line, "test", "range")))?;
             self.read(slot, line)
         }
     }
@@ -700,11 +718,11 @@ mod tests {
     fn assignments_to_known_elements_need_no_index_code() {
         let set = SyncAct::Set(SyncVar::AcParam(num(4.0)), E::Num(1.0));
         assert_eq!(
-            lower_act(&set),
+            lower_act(&set, &SyncSizes::default()),
             Act::Set { target: Target::Param(4), value: lower(&E::Num(1.0)), index: Code::default() }
         );
         let set = SyncAct::Set(SyncVar::R(Box::new(E::Var(SyncVar::AcMarker(num(2.0))))), E::Num(1.0));
-        let Act::Set { target, index, .. } = lower_act(&set) else { panic!() };
+        let Act::Set { target, index, .. } = lower_act(&set, &SyncSizes::default()) else { panic!() };
         assert_eq!(target, Target::At(Array::R));
         assert_eq!(&*index.ops, &[Op::Read(Slot::Marker(2))]);
     }

@@ -92,8 +92,18 @@ pub fn horizon<B: Bounds>(code: &Code, b: &B, now: bool) -> u64 {
         }
     }
     let holds = |h: u64| truth(&code.ops, &reads[..n], h as f64) == Some(now);
-    // A range or fixed data decide at once (a speed beyond any the axes reach).
-    if holds(MAX_HORIZON) {
+    // A range or fixed data decide at once (a speed beyond any the axes reach). For
+    // `variable <op> constant` only when the variable's values after the longest horizon
+    // are one or leave out the constant (else the comparison is unknown there: the same
+    // answer, one interval evaluation less, in most evaluations of positions and times).
+    let for_good = match *code.ops {
+        [Op::Compare(_, _, k)] => {
+            let iv = reads[0].after(MAX_HORIZON as f64);
+            iv.is_point() || !(iv.lo..=iv.hi).contains(&k)
+        }
+        _ => true,
+    };
+    if for_good && holds(MAX_HORIZON) {
         return MAX_HORIZON;
     }
     // `variable <op> constant`: the cycles until the variable could reach the constant, one

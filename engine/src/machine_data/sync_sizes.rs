@@ -1,0 +1,59 @@
+//! The sizes of the synchronized actions' data and of the fast NCK inputs and outputs, read
+//! from the machine data that configure them on the control (Function Manual "Synchronized
+//! actions", "Digital and analog NCK I/Os"), so a session's data matches its machine's:
+//! MD28254 `$MC_MM_NUM_AC_PARAM` (`$AC_PARAM[0..n-1]`), MD28256 `$MC_MM_NUM_AC_MARKER`
+//! (`$AC_MARKER[0..n-1]`), MD28258 `$MC_MM_NUM_AC_TIMER` (`$AC_TIMER[0..n-1]`), MD10350/10360
+//! `$MN_FASTIO_DIG_NUM_INPUTS/OUTPUTS` (bytes of 8 signals: `$A_IN[1..8n]`, `$A_OUT[1..8n]`),
+//! MD10300/10310 `$MN_FASTIO_ANA_NUM_INPUTS/OUTPUTS` (signals: `$A_INA[1..n]`, `$A_OUTA[1..n]`).
+//! The defaults are NCTwin's sizes of before (8 markers and timers, 50 parameters, 40 digital
+//! and 4 analog signals each), so the presets behave as they did.
+
+use super::MachineData;
+
+/// Element counts of the synchronized actions' arrays and the NCK signals.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SyncSizes {
+    pub markers: usize,
+    pub params: usize,
+    pub timers: usize,
+    /// Digital inputs and outputs (8 per configured byte).
+    pub digital_in: usize,
+    pub digital_out: usize,
+    pub analog_in: usize,
+    pub analog_out: usize,
+}
+
+/// Bytes of digital signals at most (MD10350/MD10360's upper limit): the image is one `u64`.
+pub const MAX_DIGITAL_BYTES: usize = 5;
+/// Analog signals at most (MD10300/MD10310's upper limit).
+pub const MAX_ANALOG: usize = 8;
+
+impl Default for SyncSizes {
+    fn default() -> Self {
+        SyncSizes {
+            markers: 8,
+            params: 50,
+            timers: 8,
+            digital_in: 8 * MAX_DIGITAL_BYTES,
+            digital_out: 8 * MAX_DIGITAL_BYTES,
+            analog_in: 4,
+            analog_out: 4,
+        }
+    }
+}
+
+impl SyncSizes {
+    /// Reads the sizes (the registry bounds each datum, so none exceeds the image).
+    pub(super) fn read(md: &MachineData) -> SyncSizes {
+        let n = |name: &str| md.num(name, 0, 0).max(0.0) as usize;
+        SyncSizes {
+            markers: n("$MC_MM_NUM_AC_MARKER"),
+            params: n("$MC_MM_NUM_AC_PARAM"),
+            timers: n("$MC_MM_NUM_AC_TIMER"),
+            digital_in: 8 * n("$MN_FASTIO_DIG_NUM_INPUTS"),
+            digital_out: 8 * n("$MN_FASTIO_DIG_NUM_OUTPUTS"),
+            analog_in: n("$MN_FASTIO_ANA_NUM_INPUTS"),
+            analog_out: n("$MN_FASTIO_ANA_NUM_OUTPUTS"),
+        }
+    }
+}
