@@ -190,6 +190,9 @@ fn search(d_max: f64, tol: f64, power: f64, cut_at: impl Fn(f64) -> Option<f64>)
 /// an arc's box included, at every corner).
 pub(super) fn with_path(m: &Move, path: Path) -> Move {
     Move {
+        // A piece of a line keeps its DRIVE curve (the same axis shares); a rounding element
+        // plans with `a_max`, the curve's lowest value.
+        drive: if path.arc.is_none() && path.curve.is_none() { m.drive.clone() } else { None },
         path,
         length: m.length,
         v_max: m.v_max,

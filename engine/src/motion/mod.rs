@@ -10,6 +10,7 @@ mod blend_tangent;
 pub mod compress;
 pub mod compress_ori;
 mod curve;
+pub mod drive;
 mod front;
 mod nearest;
 mod ori_curve;
