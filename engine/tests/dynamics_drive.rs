@@ -53,7 +53,11 @@ fn drive_accelerates_along_the_characteristic_and_brakes_within_it() {
             assert!(w <= V_MAX * (1.0 + 1e-12), "type {kind} cycle {i}: {w} mm/s");
             let acc = (w - prev) / DT;
             if acc > 1e-6 && w < V_MAX - 1e-9 {
-                assert!((acc - a_of(w)).abs() <= 1e-6 * A_MAX, "type {kind} cycle {i} at {w} mm/s: {acc} vs {}", a_of(w));
+                assert!(
+                    (acc - a_of(w)).abs() <= 1e-6 * A_MAX,
+                    "type {kind} cycle {i} at {w} mm/s: {acc} vs {}",
+                    a_of(w)
+                );
                 rising += 1;
                 reduced += usize::from(w > V_RED);
             } else if acc < -1e-6 {

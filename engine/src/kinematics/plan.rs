@@ -359,7 +359,7 @@ fn plan_piece(
             // the pieces here again: `channel/blending_trafo.rs`).
             blend: if part + 1 == parts { mv.blend } else { None },
             compress: None,
-        drive: None,
+            drive: None,
         });
     }
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the

@@ -5,6 +5,7 @@
 //! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
 
 pub mod blend;
+pub mod blend_axial;
 pub mod blend_ori;
 mod blend_tangent;
 pub mod compress;
