@@ -74,13 +74,13 @@ fn jerklim_scales_the_axis_jerk_under_soft() {
     for (percent, j) in [(50.0, 10_000.0), (150.0, 30_000.0), (0.0, 20_000.0)] {
         let (_, s) = run(SOFT_MD, &format!("SOFT JERKLIM[X]={percent}\nG1 X100 F6000\nM30"));
         let jerk = max_abs(&diff(&s, 3), 0);
-        assert!(jerk <= j * (1.0 + 1e-6) && jerk >= 0.9 * j, "JERKLIM[X]={percent}: {jerk} mm/s³, limit {j}");
+        assert!((0.9 * j..=j * (1.0 + 1e-6)).contains(&jerk), "JERKLIM[X]={percent}: {jerk} mm/s³, limit {j}");
         assert_eq!(s.last().unwrap(), &[100.0, 0.0, 0.0]);
     }
     // JERKLIM on Y leaves an X move alone.
     let (_, s) = run(SOFT_MD, "SOFT JERKLIM[Y]=10\nG1 X100 F6000\nM30");
     let jerk = max_abs(&diff(&s, 3), 0);
-    assert!(jerk <= 20_000.0 * (1.0 + 1e-6) && jerk >= 18_000.0, "{jerk}");
+    assert!((18_000.0..=20_000.0 * (1.0 + 1e-6)).contains(&jerk), "{jerk}");
 }
 
 /// Runs `program` and returns the channel with the setpoint and the actual value (the servo

@@ -53,7 +53,7 @@ pub fn round_axial(
         }
     }
     let reach = d.iter().copied().fold(0.0, f64::max);
-    if !(reach >= MIN_DISTANCE) {
+    if reach.is_nan() || reach < MIN_DISTANCE {
         return None;
     }
     let corner = a.path.end;
