@@ -64,6 +64,25 @@ fn brisk_has_the_acceleration_steps_soft_removes() {
     assert!((extra - 0.1081).abs() <= 3.0 * DT, "SOFT took {extra} s more");
 }
 
+#[test]
+fn jerklim_scales_the_axis_jerk_under_soft() {
+    // MD32431 20 m/s³ on X; JERKLIM[X]=50 allows 10 m/s³ = 10 000 mm/s³, JERKLIM[X]=150
+    // 30 000 (MD20600 is 100 000 m/s³: no cap). G1 X100 F6000 under SOFT: the acceleration
+    // builds up to sqrt(j·Δv) at most (100 mm/s to gain), so every ramp runs at the jerk
+    // limit for a while: the sampled third difference of X stays within j and reaches
+    // at least 90 % of it (the ramps' first and last cycles may use less).
+    for (percent, j) in [(50.0, 10_000.0), (150.0, 30_000.0), (0.0, 20_000.0)] {
+        let (_, s) = run(SOFT_MD, &format!("SOFT JERKLIM[X]={percent}\nG1 X100 F6000\nM30"));
+        let jerk = max_abs(&diff(&s, 3), 0);
+        assert!((0.9 * j..=j * (1.0 + 1e-6)).contains(&jerk), "JERKLIM[X]={percent}: {jerk} mm/s³, limit {j}");
+        assert_eq!(s.last().unwrap(), &[100.0, 0.0, 0.0]);
+    }
+    // JERKLIM on Y leaves an X move alone.
+    let (_, s) = run(SOFT_MD, "SOFT JERKLIM[Y]=10\nG1 X100 F6000\nM30");
+    let jerk = max_abs(&diff(&s, 3), 0);
+    assert!((18_000.0..=20_000.0 * (1.0 + 1e-6)).contains(&jerk), "{jerk}");
+}
+
 /// Runs `program` and returns the channel with the setpoint and the actual value (the servo
 /// model) of X and Y in every IPO cycle, stepping on for 0.4 s after the end so the actual
 /// value settles.

@@ -75,3 +75,33 @@ fn path_trans_jerk_lim_raises_the_seam_speed_and_bounds_the_jump() {
         }
     }
 }
+
+/// Jerk 20 m/s³ on every axis.
+const SOFT_MD: &str = "$MA_MAX_AX_JERK[X]=20\n$MA_MAX_AX_JERK[Y]=20\n$MA_MAX_AX_JERK[Z]=20\n";
+
+#[test]
+fn soft_ramps_its_acceleration_down_before_a_move_with_less() {
+    // A short move at 3 m/s² (ACC 100 %) into a collinear one at ACC[X]=30 (900 mm/s²) or
+    // ACC[X]=10 (300 mm/s²) while the path still speeds up to F6000: the acceleration of the
+    // first move (up to sqrt(j·Δv) = 1414 mm/s² with j = 20 m/s³) must be down to the second
+    // move's before the path enters it, one jerk step j·T per cycle: the third difference of
+    // X stays within 20 000 mm/s³ in every cycle (it went to 62 000 and 245 000 before), and
+    // the acceleration never exceeds the second move's once the path is in it.
+    for (program, a_next) in [("X2 F6000\nACC[X]=30 X100", 900.0), ("X1 F6000\nACC[X]=10 X100", 300.0)] {
+        let (_, s) = path_support::samples::<3>(SOFT_MD, &format!("SOFT G64 G1 {program}\nM30"), 100_000);
+        let cube = DT * DT * DT;
+        let jerk = s
+            .windows(4)
+            .map(|w| ((w[3][0] - 3.0 * w[2][0] + 3.0 * w[1][0] - w[0][0]) / cube).abs())
+            .fold(0.0, f64::max);
+        assert!(jerk <= 20_000.0 * (1.0 + 1e-6), "{program}: jerk {jerk} mm/s³");
+        let seam: f64 = program[1..program.find(' ').unwrap()].parse().unwrap();
+        for (i, w) in s.windows(3).enumerate() {
+            let acc = (w[2][0] - 2.0 * w[1][0] + w[0][0]) / (DT * DT);
+            if w[0][0] >= seam {
+                assert!(acc.abs() <= a_next * (1.0 + 1e-6), "{program}: {acc} mm/s² in cycle {i} past the seam");
+            }
+        }
+        assert_eq!(s.last().unwrap(), &[100.0, 0.0, 0.0]);
+    }
+}

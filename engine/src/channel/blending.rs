@@ -10,7 +10,8 @@
 use super::Channel;
 use crate::interp::Item;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
-use crate::motion::blend::{self, Rounded};
+use crate::motion::blend::{self, Blend, Rounded};
+use crate::motion::blend_axial;
 use crate::motion::compress::{self, Junction};
 use crate::motion::{AxisLimit, AxisVec, Move};
 
@@ -30,6 +31,9 @@ pub(super) struct Blending {
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
     /// waiting move is handed on without its successor.
     pub(super) prep_waits_for_main_run: bool,
+    /// The elements after the one [`Channel::round_corner`] returned (G643's chain), to be
+    /// planned right after it.
+    pub(super) more: Vec<Move>,
 }
 
 impl Channel {
@@ -91,7 +95,17 @@ impl Channel {
                 }
             }
         }
-        mv.blend?;
+        let axial = match mv.blend? {
+            Blend::Axial { geo, other, ori } => {
+                let tol = self.axial_tolerances(geo, other, &metric);
+                // Where G643 rounds as G642: the geometry axes' smallest tolerance.
+                let common =
+                    (0..MAX_CHANNEL_AXES).filter(|&k| metric[k] > 0.0).map(|k| tol[k]).fold(f64::INFINITY, f64::min);
+                mv.blend = Some(Blend::Tolerance { contour: common, ori });
+                Some(tol)
+            }
+            _ => None,
+        };
         let Some(Item::Move { mv: next, .. }) = self.pending.front_mut() else { return None };
         // B1: a change between BRISK and SOFT (a jerk limit or none) inserts no rounding.
         if mv.jerk.is_finite() != next.jerk.is_finite() {
@@ -105,11 +119,29 @@ impl Channel {
             return None;
         }
         let next_full = next.length;
-        let Rounded { first, corner, second, .. } = blend::round_corner(mv, next, full, &metric, &limits)?;
+        let rounded = match &axial {
+            Some(tol) if mv.path.ori.is_none() => blend_axial::round_axial(mv, next, full, tol, &metric, &limits),
+            _ => None,
+        };
+        let Rounded { first, corner, second, more, .. } =
+            rounded.or_else(|| blend::round_corner(mv, next, full, &metric, &limits))?;
         *mv = first;
         *next = second;
+        self.blending.more = more;
         self.blending.trimmed = Some((next.length.to_bits(), next_full));
         Some(corner)
+    }
+}
+
+impl Channel {
+    /// G643's tolerance of every channel axis: `geo` for the geometry axes (`metric`) and
+    /// `other` for the rest where not negative, else the axis' MD33100.
+    fn axial_tolerances(&self, geo: f64, other: f64, metric: &AxisVec) -> AxisVec {
+        let data = &self.cfg.path_control.axis_tol;
+        std::array::from_fn(|k| {
+            let set = if metric[k] > 0.0 { geo } else { other };
+            if set >= 0.0 { set } else { data.get(k).copied().unwrap_or(0.0) }
+        })
     }
 }
 

@@ -284,10 +284,23 @@ impl Channel {
             match corner {
                 Some(corner) => {
                     self.push_move(mv, MoveMeta { line, seq, offsets: offsets.clone(), machine_space, feed: 0.0 });
-                    self.push_move(corner, MoveMeta { line, seq, offsets, machine_space, feed: 0.0 });
+                    if self.blending.more.is_empty() {
+                        self.push_move(corner, MoveMeta { line, seq, offsets, machine_space, feed: 0.0 });
+                    } else {
+                        self.push_chain(corner, MoveMeta { line, seq, offsets, machine_space, feed: 0.0 });
+                    }
                 }
                 None => self.push_move(mv, MoveMeta { line, seq, offsets, machine_space, feed: 0.0 }),
             }
+        }
+    }
+
+    /// Pushes a rounding element and the chain after it (G643, `Blending::more`).
+    #[inline(never)]
+    fn push_chain(&mut self, corner: Move, meta: MoveMeta) {
+        self.push_move(corner, meta.clone());
+        for piece in std::mem::take(&mut self.blending.more) {
+            self.push_move(piece, meta.clone());
         }
     }
 

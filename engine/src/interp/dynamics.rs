@@ -9,8 +9,13 @@
 //! through the block's G codes (`channel/servo.rs`).
 //!
 //! Decisions where the manuals leave room:
-//! - `DRIVE` (reduced acceleration above MD35220 ACCEL_REDUCTION_SPEED_POINT) is accepted and
-//!   run as BRISK: the reduction data is not modelled (its defaults reduce nothing).
+//! - `DRIVE` is BRISK with the knee-shaped acceleration of B2 (`motion/drive.rs`): a line
+//!   carries the speed-dependent curve of its axes (each read at its share of the path speed);
+//!   an arc, a rounding element and a move planned through a transformation get B2's
+//!   "substitute characteristic", a constant acceleration: the lowest the axes reach on the
+//!   move (at the move's top speed; under a transformation `a_red`). With the data's defaults
+//!   (MD35220 = 1, MD35230 = 0) DRIVE moves exactly as BRISK. Positioning axes (DRIVEA) are
+//!   not modelled.
 //! - `ACC[axis]=0`, `JERKLIM[axis]=0` and `VELOLIM[axis]=0` switch the limit back to 100 %, as
 //!   the Programming Manual describes for ACC; every percentage is back at 100 % after reset.
 //! - Moves already planned through a transformation (machine-axis rates) are scaled by the
@@ -25,6 +30,7 @@ use crate::lang::Expr;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::dynamics::{DYN_MODE_NAMES, Profile};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
+use crate::motion::drive::DriveCurve;
 use crate::motion::{AxisLimit, AxisLimits, Feed, Move};
 
 /// Which axial percentage a word sets.
@@ -78,19 +84,30 @@ pub struct DynModal {
     /// ACC, JERKLIM, VELOLIM per channel axis as factors; `None` while all are 100 %, so the
     /// modal state stays small and plain programs pay nothing.
     factors: Option<Box<[[f64; MAX_CHANNEL_AXES]; 3]>>,
+    /// Some channel axis reduces its acceleration under DRIVE (MD35220/MD35230): DRIVE
+    /// shapes the moves.
+    drive_reduces: bool,
 }
 
 impl DynModal {
     /// The reset state of the machine data (MD20150 for groups 21, 24, 59; all at 100 %).
     pub fn reset(cfg: &MachineConfig) -> DynModal {
         let d = &cfg.dynamics;
-        DynModal { profile: d.reset_profile, ffw: d.reset_ffw, mode: d.reset_mode, factors: None }
+        let n = cfg.channel_axes.len().min(MAX_CHANNEL_AXES);
+        let drive_reduces = (0..n).any(|k| {
+            let a = cfg.axis(k);
+            a.dynamics.knee(a.max_accel, a.max_velocity).is_some()
+        });
+        DynModal { profile: d.reset_profile, ffw: d.reset_ffw, mode: d.reset_mode, factors: None, drive_reduces }
     }
 
     /// True when moves are planned with other limits than the axes' DYNNORM data under BRISK
     /// (the fast lane steps aside then, and [`apply`] re-limits every move).
     pub fn shapes_moves(&self) -> bool {
-        self.profile == Profile::Soft || self.mode != 0 || self.factors.is_some()
+        self.profile == Profile::Soft
+            || self.mode != 0
+            || self.factors.is_some()
+            || (self.profile == Profile::Drive && self.drive_reduces)
     }
 
     /// The percentage of `which` for channel axis `k`, as a factor.
@@ -134,6 +151,11 @@ impl DynModal {
         }
         out = AxisLimits::from(&limits[..n]);
         out
+    }
+
+    /// The acceleration of channel axis `k`: the mode's, ACC applied.
+    fn axis_accel(&self, cfg: &MachineConfig, k: usize) -> f64 {
+        cfg.axis(k).dynamics.accel[self.mode] * self.factor(Percent::Acc, k)
     }
 
     /// The jerk of channel axis `k` under SOFT (mm/s³ or deg/s³), JERKLIM applied.
@@ -219,7 +241,41 @@ pub(super) fn apply(dynamics: &DynModal, cfg: &MachineConfig, items: &mut [Item]
                 mv.limit_arc_jerk(plane.fold(f64::INFINITY, f64::min));
             }
         }
+        if dynamics.profile == Profile::Drive {
+            drive(mv, dynamics, cfg);
+        }
     }
+}
+
+/// DRIVE: a line gets its axes' speed-dependent acceleration ([`DriveCurve`]) and the lowest
+/// value of it as `a_max` (what the look-ahead plans with); every other move a constant
+/// substitute (see the module doc).
+fn drive(mv: &mut Move, dynamics: &DynModal, cfg: &MachineConfig) {
+    let n = cfg.channel_axes.len().min(MAX_CHANNEL_AXES);
+    let knee = |k: usize| cfg.axis(k).dynamics.knee(dynamics.axis_accel(cfg, k), cfg.axis(k).max_velocity);
+    if mv.axis_tangents.is_some() || mv.machine_space {
+        // Planned through a transformation: the machine axes' speeds are not the path's
+        // shares; the lowest acceleration any axis reaches (at its MD32000).
+        let ratio = (0..n).filter_map(|k| knee(k).map(|kn| kn.a_red / kn.a_max)).fold(1.0, f64::min);
+        mv.a_max *= ratio;
+        return;
+    }
+    let rates = mv.path.max_rate_of_first(n);
+    let share = |k: usize| rates[k] / mv.length;
+    if mv.path.arc.is_none() && mv.path.curve.is_none() {
+        let axes = (0..n).filter_map(|k| knee(k).map(|kn| (kn, share(k))));
+        if let Some(curve) = DriveCurve::of(mv.a_max, axes) {
+            mv.a_max = curve.accel_at(mv.v_axes);
+            mv.drive = Some(Box::new(curve));
+        }
+        return;
+    }
+    // An arc or a curve: each axis at its highest share of the move's top speed.
+    let ratio = (0..n)
+        .filter(|&k| share(k) > 1e-12)
+        .filter_map(|k| knee(k).map(|kn| kn.accel_at(share(k) * mv.v_axes) / kn.a_max))
+        .fold(1.0, f64::min);
+    mv.a_max *= ratio;
 }
 
 /// Sets the move's velocity and acceleration limits to `limits` in place of `base`.

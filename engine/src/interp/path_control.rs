@@ -9,8 +9,13 @@
 //! round the corner at its end (`motion::blend`).
 //!
 //! Modelled as follows where the manuals leave room:
-//! - `G643` (block-internal rounding) rounds like `G642`: the rounded path is the same kind
-//!   of element, inserted between the blocks.
+//! - `G643` (block-internal rounding) rounds each axis within its own tolerance over its
+//!   own distance (`motion/blend_axial.rs`): the geometry axes by the tolerance G642 would
+//!   use where one is set (CTOL, SD42465 by MD20480, ATOL), else each axis by its MD33100,
+//!   the other axes by ATOL or their MD33100. Next to an arc, under a transformation or with
+//!   an orientation it rounds as G642 with the smallest of the geometry axes' tolerances.
+//!   (B1 gives G643 MD20480's units digit and G642 its tens digit; NCTwin reads the units
+//!   digit for both, as before.)
 //! - `G644` (rounding with the greatest possible dynamics, for moves in air) follows MD20480's
 //!   thousands digit: 1 and 5 round by `ADIS`/`ADISPOS` as G641 does, every other value by
 //!   the axial tolerance MD33100 (3, "neither tolerance nor distance", is read as 0). The
@@ -19,7 +24,7 @@
 //! - `G645` rounds corners like `G642` (same tolerance rule) and smooths tangential
 //!   transitions with a jump in curvature within MD33120 `$MA_PATH_TRANS_POS_TOL` (the
 //!   smallest of the geometry axes'), which `CTOL` does not change (B1, as for G644).
-//! - The tolerance of G642..G645 is one distance for the geometry axes: `CTOL` when
+//! - The tolerance of G642, G644, G645 is one distance for the geometry axes: `CTOL` when
 //!   programmed, else SD42465 when MD20480's units digit is 1 or 3, else the smallest MD33100
 //!   of the geometry axes (or `ATOL`). A negative `CTOL`/`OTOL`/`ATOL` returns to the data.
 //! - `G601`/`G602`/`G603` travel with the block (`GCodes::stop_window`) to the main run,
@@ -244,9 +249,8 @@ impl PathControl {
                 let d = if rapid { self.adispos } else { self.adis };
                 (d > 0.0).then_some(Blend::Distance(d))
             }
-            Smoothing::G642 | Smoothing::G643 => {
-                Some(Blend::Tolerance { contour: self.tolerance(cfg), ori: self.ori_tolerance(cfg) })
-            }
+            Smoothing::G642 => Some(Blend::Tolerance { contour: self.tolerance(cfg), ori: self.ori_tolerance(cfg) }),
+            Smoothing::G643 => Some(self.g643(cfg)),
             Smoothing::G644 => Some(self.g644(rapid, cfg)),
             Smoothing::G645 => {
                 let tangent = geo_min(cfg, &cfg.path_control.trans_tol);
@@ -268,6 +272,14 @@ impl PathControl {
             velo_tol: data.velo_tol / 60.0,
             ori: self.otol.unwrap_or_else(|| rotary_min(cfg, &data.axis_tol)),
         })
+    }
+
+    /// G643's axial tolerances (see the module doc): the geometry axes' as G642's rule gives
+    /// one (CTOL, SD42465, ATOL), the other axes' ATOL, else each axis' MD33100 (negative).
+    fn g643(&self, cfg: &MachineConfig) -> Blend {
+        let sd = matches!(cfg.path_control.smoothing_mode % 10, 1 | 3).then_some(cfg.path_control.contour_tol);
+        let geo = self.ctol.or(sd).or(self.atol).unwrap_or(-1.0);
+        Blend::Axial { geo, other: self.atol.unwrap_or(-1.0), ori: self.ori_tolerance(cfg) }
     }
 
     /// G644's rounding by MD20480's thousands digit (see the module doc).

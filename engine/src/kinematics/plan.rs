@@ -172,6 +172,7 @@ fn rotation(cfg: &MachineConfig, rot: usize, from: &AxisVec, to: &AxisVec, tag: 
         blend: None,
         compress: None,
         orison: None,
+        drive: None,
     }
 }
 
@@ -361,6 +362,7 @@ fn plan_piece(
             blend: if part + 1 == parts { mv.blend } else { None },
             compress: None,
             orison: None,
+            drive: None,
         });
     }
     // Alarm 10910 asks for a velocity the axes cannot give only where it varies along the

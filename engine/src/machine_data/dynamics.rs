@@ -9,6 +9,7 @@
 
 use super::MachineData;
 use super::registry::DYN_MODES;
+use crate::motion::drive::{Knee, ReductionKind};
 
 /// Dynamic response modes of G group 59 in the control's index order of the per-mode data.
 pub const DYN_MODE_NAMES: [&str; DYN_MODES] = ["DYNNORM", "DYNPOS", "DYNROUGH", "DYNSEMIFIN", "DYNFINISH"];
@@ -31,6 +32,12 @@ pub struct AxisDynamics {
     pub ffw_available: bool,
     /// MD32630: 0 the MD32620 state always, 1 FFWON/FFWOF at once, 2 at the next standstill.
     pub ffw_activation: u8,
+    /// MD35220 ACCEL_REDUCTION_SPEED_POINT: DRIVE's switching speed as a fraction of MD32000.
+    pub reduction_point: f64,
+    /// MD35230 ACCEL_REDUCTION_FACTOR: the share of the acceleration lost at MD32000 (DRIVE).
+    pub reduction_factor: f64,
+    /// MD35242 ACCEL_REDUCTION_TYPE.
+    pub reduction_kind: ReductionKind,
 }
 
 impl AxisDynamics {
@@ -44,6 +51,9 @@ impl AxisDynamics {
         kv: f64::INFINITY,
         ffw_available: true,
         ffw_activation: 0,
+        reduction_point: 1.0,
+        reduction_factor: 0.0,
+        reduction_kind: ReductionKind::Hyperbolic,
     };
 
     /// Reads the data of machine axis `ax`; `accel_unit`/`jerk_unit` convert the control's
@@ -60,7 +70,25 @@ impl AxisDynamics {
             kv: md.num("$MA_POSCTRL_GAIN", ax, 0) * 1000.0 / 60.0,
             ffw_available: md.num("$MA_FFW_MODE", ax, 0) != 0.0,
             ffw_activation: md.num("$MA_FFW_ACTIVATION_MODE", ax, 0) as u8,
+            reduction_point: md.num("$MA_ACCEL_REDUCTION_SPEED_POINT", ax, 0),
+            reduction_factor: md.num("$MA_ACCEL_REDUCTION_FACTOR", ax, 0),
+            // The registry keeps the value within 0..=2.
+            reduction_kind: ReductionKind::from_md(md.num("$MA_ACCEL_REDUCTION_TYPE", ax, 0) as i64)
+                .unwrap_or(ReductionKind::Hyperbolic),
         }
+    }
+
+    /// DRIVE's characteristic with acceleration `a_max` (the mode's, ACC applied) and
+    /// MD32000 `v_max`; `None` when the data reduce nothing.
+    pub fn knee(&self, a_max: f64, v_max: f64) -> Option<Knee> {
+        let knee = Knee {
+            kind: self.reduction_kind,
+            v_red: self.reduction_point * v_max,
+            v_max,
+            a_max,
+            a_red: (1.0 - self.reduction_factor) * a_max,
+        };
+        knee.reduces().then_some(knee)
     }
 }
 
@@ -72,8 +100,8 @@ pub enum Profile {
     Brisk,
     /// Jerk-limited (MD32431, MD20600).
     Soft,
-    /// DRIVE: the reduced acceleration above the switching speed of MD35220/MD35230; NCTwin
-    /// runs it as BRISK (see `interp/dynamics.rs`).
+    /// DRIVE: BRISK with the reduced acceleration above the switching speed of MD35220/MD35230
+    /// (`motion/drive.rs`).
     Drive,
 }
 

@@ -551,6 +551,12 @@ pub static DEFS: &[Def] = &[
     def("GEAR_STEP_MAX_VELO_LIMIT", 35130, A, Kind::Real, 6, Default::Real(10000.0), 0.0, 1e6),
     def("GEAR_STEP_MIN_VELO_LIMIT", 35140, A, Kind::Real, 6, Default::Real(0.0), 0.0, 1e6),
     def("GEAR_STEP_SPEEDCTRL_ACCEL", 35200, A, Kind::Real, 6, Default::Real(30.0), 1e-3, 1e6),
+    // DRIVE's knee-shaped acceleration (Function Manual B2): the switching speed as a fraction
+    // of MD32000, the reduction reached at MD32000, the shape (0 constant, 1 hyperbolic,
+    // 2 linear). The defaults reduce nothing.
+    def("ACCEL_REDUCTION_SPEED_POINT", 35220, A, Kind::Real, 1, Default::Real(1.0), 0.0, 1.0),
+    def("ACCEL_REDUCTION_FACTOR", 35230, A, Kind::Real, 1, Default::Real(0.0), 0.0, 0.95),
+    def("ACCEL_REDUCTION_TYPE", 35242, A, Kind::Int, 1, Default::Int(1), 0.0, 2.0),
     def("SPIND_POSCTRL_VELO", 35300, A, Kind::Real, 1, Default::Real(500.0), 1e-3, 1e6),
     // Exact-stop windows of G602 (coarse, MD36000) and G601 (fine, MD36010), mm or degrees.
     def("STOP_LIMIT_COARSE", 36000, A, Kind::Real, 1, Default::Real(0.04), 0.0, 1e9),

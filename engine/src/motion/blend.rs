@@ -33,6 +33,11 @@ pub enum Blend {
     /// with a jump in curvature are smoothed too, the element staying within `tangent`
     /// (MD33120) of the programmed contour (`blend_tangent.rs`).
     Smooth { corner: f64, ori: f64, tangent: f64 },
+    /// G643: every axis within its own tolerance (`blend_axial.rs`): `geo` for the geometry
+    /// axes and `other` for the rest where programmed or set (CTOL, SD42465, ATOL), negative
+    /// for each axis' MD33100; `ori` as for [`Blend::Tolerance`]. The channel resolves it per
+    /// axis ([`Blend::Tolerance`] where G643 rounds as G642).
+    Axial { geo: f64, other: f64, ori: f64 },
 }
 
 /// The largest share of a block a rounding takes at one end. The manual reduces the rounding
@@ -52,6 +57,8 @@ pub struct Rounded {
     pub second: Move,
     /// Where the element leaves the first move and joins the second (their path parameters).
     pub cut: (f64, f64),
+    /// Further elements after `corner`, in order (G643's chain; empty otherwise).
+    pub more: Vec<Move>,
 }
 
 /// The orientation deviation of a rounding element from the programmed corner orientation
@@ -115,6 +122,8 @@ pub fn round_corner_oriented(
         }
         _ if tangential => return None,
         Blend::Smooth { corner, ori, .. } => Blend::Tolerance { contour: corner, ori },
+        // Unresolved by the channel: the geometry axes' common tolerance where it is one.
+        Blend::Axial { geo, ori, .. } => Blend::Tolerance { contour: geo, ori },
         _ => spec,
     };
     let d_max = (MAX_SHARE * a_full_length.max(a.length).min(b.length)).min(0.9 * a.length);
@@ -138,7 +147,7 @@ pub fn round_corner_oriented(
             let (ua, ub) = (1.0 - d / a.length, d / b.length);
             Some(blend_tangent::contour_deviation(&element(a, b, d, metric)?, a, ua, b, ub, metric))
         })?,
-        Blend::Tolerance { .. } => 0.0,
+        Blend::Tolerance { .. } | Blend::Axial { .. } => 0.0,
     };
     if d.is_nan() || d < MIN_DISTANCE {
         return None;
@@ -162,7 +171,7 @@ pub fn round_corner_oriented(
     };
     let mut corner = Move::unlimited(path, false, a.tag);
     corner.set_limits(length, feed_of(a.feed.min(b.feed)), limits);
-    Some(Rounded { first, corner, second, cut: (ua, ub) })
+    Some(Rounded { first, corner, second, cut: (ua, ub), more: Vec::new() })
 }
 
 /// The largest cut-back `d` up to `d_max` whose `cut(d)` is within `tol` (within 2 % below
@@ -190,6 +199,9 @@ fn search(d_max: f64, tol: f64, power: f64, cut_at: impl Fn(f64) -> Option<f64>)
 /// an arc's box included, at every corner).
 pub(super) fn with_path(m: &Move, path: Path) -> Move {
     Move {
+        // A piece of a line keeps its DRIVE curve (the same axis shares); a rounding element
+        // plans with `a_max`, the curve's lowest value.
+        drive: if path.arc.is_none() && path.curve.is_none() { m.drive.clone() } else { None },
         path,
         length: m.length,
         v_max: m.v_max,
@@ -262,7 +274,7 @@ pub(super) fn second_derivative(path: &Path, u: f64) -> AxisVec {
     out
 }
 
-fn feed_of(feed: f64) -> Feed {
+pub(super) fn feed_of(feed: f64) -> Feed {
     if feed.is_infinite() { Feed::Rapid } else { Feed::Path(feed) }
 }
 

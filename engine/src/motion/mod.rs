@@ -5,11 +5,13 @@
 //! axes' [`AxisLimit`]s. Output: one position of every axis per [`Planner::step`].
 
 pub mod blend;
+pub mod blend_axial;
 pub mod blend_ori;
 mod blend_tangent;
 pub mod compress;
 pub mod compress_ori;
 mod curve;
+pub mod drive;
 mod front;
 mod nearest;
 mod ori_curve;

@@ -129,6 +129,9 @@ pub struct Move {
     /// smooths the orientation across its ends, `motion/orison.rs`): its limits (boxed: a
     /// move is copied often, and most moves have none).
     pub orison: Option<Box<super::orison::OriSmoothing>>,
+    /// Under DRIVE with a reducing axis: the speed-dependent acceleration (`motion/drive.rs`);
+    /// `a_max` is then its lowest value, the one the look-ahead plans with.
+    pub drive: Option<Box<super::drive::DriveCurve>>,
 }
 
 impl Move {
@@ -160,6 +163,7 @@ impl Move {
             blend: None,
             compress: None,
             orison: None,
+            drive: None,
         }
     }
 
@@ -560,18 +564,22 @@ impl Planner {
         let mut v_new = if soft {
             self.soft_velocity(cap)
         } else {
-            let v_new = if self.hold {
-                (self.v - a * dt).max(0.0)
-            } else if self.v > cap {
-                (self.v - a * dt).max(cap)
+            if let Some(curve) = front.drive.as_deref() {
+                self.drive_velocity(curve, cap, remaining, v_end, many)
             } else {
-                (self.v + a * dt).min(cap)
-            };
-            if self.acc != 0.0 {
-                // SOFT's state: a later SOFT move starts from constant velocity.
-                self.acc = 0.0;
+                let v_new = if self.hold {
+                    (self.v - a * dt).max(0.0)
+                } else if self.v > cap {
+                    (self.v - a * dt).max(cap)
+                } else {
+                    (self.v + a * dt).min(cap)
+                };
+                if self.acc != 0.0 {
+                    // SOFT's state: a later SOFT move starts from constant velocity.
+                    self.acc = 0.0;
+                }
+                self.brake_limited_at(v_new, remaining, a, v_end, many, 0.0)
             }
-            self.brake_limited_at(v_new, remaining, a, v_end, many, 0.0)
         };
         // A cycle that crosses into the next move crosses at no more than the planned
         // transition speed, so the corner's velocity jump stays as planned.
@@ -673,6 +681,11 @@ impl Planner {
         self.position_tag = Some(done.tag);
         let stop_here = self.v_end[0] == 0.0;
         self.front_move = None;
+        if done.drive.is_some() {
+            // SOFT's state: the DRIVE cycle leaves it alone, a later SOFT move starts from
+            // constant velocity.
+            self.acc = 0.0;
+        }
         // A BRISK move's infinite jerk leaves `j_min` as it is: no rescan of the queue then.
         if done.a_max <= self.a_min || (done.jerk <= self.j_min && done.jerk.is_finite()) {
             self.rescan_minima();
@@ -760,6 +773,36 @@ impl Planner {
             }
         }
         limit
+    }
+
+    /// The BRISK cycle of a move under DRIVE (`motion/drive.rs`): it speeds up along the
+    /// curve, loses at most `a(v)·dt` from speed `v` (hold, a lowered override) and stops at
+    /// its end as fast as the curve allows; a transition at speed and the moves ahead are
+    /// braked for with the move's lowest acceleration (`a_max`), which holds at every speed.
+    /// Out of line: the BRISK cycle stays as it was.
+    #[inline(never)]
+    fn drive_velocity(
+        &self,
+        curve: &super::drive::DriveCurve,
+        cap: f64,
+        remaining: f64,
+        v_end: f64,
+        many: bool,
+    ) -> f64 {
+        let (dt, v) = (self.dt, self.v);
+        let down = v - curve.accel_at(v) * dt;
+        let v_new = if self.hold {
+            down.max(0.0)
+        } else if v > cap {
+            down.max(cap)
+        } else {
+            curve.accelerate(v, dt).min(cap)
+        };
+        if v_end == 0.0 {
+            return curve.stop_speed(v_new, remaining, dt);
+        }
+        let a = self.queue.front().map_or(f64::INFINITY, |m| m.a_max);
+        self.brake_limited_at(v_new, remaining, a, v_end, many, 0.0)
     }
 
     /// Backward pass: the highest transition speed at each boundary from which every later

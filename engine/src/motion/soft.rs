@@ -155,6 +155,9 @@ impl Planner {
             // by its resolution, a dip of 2·j·dt²/4096 at every seam.)
             return false;
         }
+        if acc > 0.0 && self.queue.len() > 1 && !self.acceleration_fits_ahead(v1, acc) {
+            return false;
+        }
         if !near {
             return true;
         }
@@ -180,6 +183,33 @@ impl Planner {
             if v_end == 0.0 || distance - reserve > horizon {
                 break;
             }
+        }
+        true
+    }
+
+    /// True when the path, at `v1` with acceleration `acc > 0` after this cycle, can ramp the
+    /// acceleration down (by `j·dt` per cycle) to each later move's own `a_max` before it
+    /// reaches that move, one cycle to spare: else the first cycle in a move with less
+    /// acceleration would cut it at once, a jerk of `(acc − a)/dt`. Looks only as far as the
+    /// longest such ramp reaches (down to zero acceleration).
+    fn acceleration_fits_ahead(&self, v1: f64, acc: f64) -> bool {
+        let dt = self.dt;
+        let front = &self.queue[0];
+        let mut j = front.jerk;
+        let ramp = |to: f64, j: f64| {
+            let t = (acc - to) / j;
+            (v1 + acc * dt) * dt + v1 * t + acc * t * t / 2.0 - j * t * t * t / 6.0
+        };
+        let mut distance = front.length - self.s - v1 * dt;
+        for mv in self.queue.iter().skip(1) {
+            j = j.min(mv.jerk);
+            if distance > ramp(0.0, j) {
+                break;
+            }
+            if mv.a_max < acc && ramp(mv.a_max, j) > distance {
+                return false;
+            }
+            distance += mv.length;
         }
         true
     }
