@@ -18,6 +18,12 @@ import { CodeEditor } from "./codeEditor";
 import { selection } from "./selected";
 
 const CHECK_DELAY_MS = 600; // check this long after the last keystroke
+/**
+ * The longest text the check and the trial run take: their JSON body (newlines escaped) may be
+ * 1 MiB at most (the server's limit for all but program uploads, `413` beyond). A longer
+ * program (a CAM program) is saved and run by name from the store, where the run finds errors.
+ */
+const CHECK_LIMIT_CHARS = 900_000;
 
 export class EditorArea {
   readonly editor = new CodeEditor(byId("editor"));
@@ -30,7 +36,7 @@ export class EditorArea {
     this.editor.onInput(() => {
       this.updateDirty();
       clearTimeout(this.checkTimer);
-      this.checkTimer = setTimeout(() => void this.check(), CHECK_DELAY_MS);
+      if (!this.tooLargeToCheck) this.checkTimer = setTimeout(() => void this.check(), CHECK_DELAY_MS);
     });
     byId("btn-editor-new").addEventListener("click", () => this.open("NEW", ""));
     byId("btn-editor-save").addEventListener("click", () => void this.save());
@@ -41,6 +47,11 @@ export class EditorArea {
       if (li) this.editor.goToLine(Number(li.dataset.line), Number(li.dataset.column) || 1);
     });
     this.open(selection.current.name, selection.current.text);
+  }
+
+  /** Whether the text is beyond what the check takes (see [`CHECK_LIMIT_CHARS`]). */
+  get tooLargeToCheck(): boolean {
+    return this.editor.text.length > CHECK_LIMIT_CHARS;
   }
 
   get name(): string {
@@ -85,7 +96,7 @@ export class EditorArea {
    */
   private async trialRun(): Promise<Diagnostic[]> {
     const id = this.session.id;
-    if (!id) return [];
+    if (!id || this.tooLargeToCheck) return [];
     try {
       const r = await api.preview(id, { program: this.editor.text, max_points: 2 });
       if (r.outcome !== "alarm" || !r.alarm) return [];
@@ -104,6 +115,10 @@ export class EditorArea {
     clearTimeout(this.checkTimer);
     const id = this.session.id;
     if (!id) return [];
+    if (this.tooLargeToCheck) {
+      showMessage(`${this.name || "the program"} is too large to check here (more than about 1 MB): save it and run it from the program manager`, "info");
+      return [];
+    }
     const seq = ++this.checkSeq;
     try {
       const { diagnostics } = await api.check(id, this.editor.text);
@@ -138,6 +153,10 @@ export class EditorArea {
 
   /** Checks, then selects the program for AUTO and switches to the machine screen. */
   async execute(): Promise<void> {
+    if (this.tooLargeToCheck) {
+      showMessage(`${this.name || "the program"} is too large to select from the editor (more than about 1 MB): save it and Execute it in the program manager`);
+      return;
+    }
     const errors = await this.checkAll();
     if (errors.length) {
       showMessage(`${this.name || "the program"} has ${errors.length} error(s): not selected`);

@@ -80,8 +80,7 @@ export class MachineDataArea {
   private loadedFor: string | null = null;
 
   constructor(private readonly session: SessionController) {
-    this.text = new CodeEditor(byId("md-text"));
-    this.text.input.setAttribute("aria-label", "NC data text");
+    this.text = new CodeEditor(byId("md-text"), "NC data text");
     this.text.onInput(() => {
       this.textEdited = this.text.text !== this.serverText;
       this.updatePending();
