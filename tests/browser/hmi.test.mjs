@@ -1725,6 +1725,10 @@ async function main() {
         if (!(await page.locator(sel).isDisabled())) throw new Error(`${sel} is enabled for a watcher`);
       }
       if ((await page.getAttribute("#btn-cycle-start", "title")) !== (await page.textContent("#lock-banner"))) throw new Error("no reason on the key");
+      // The editors (CodeMirror, no form element) take no typing either.
+      for (const sel of ["#editor .cm-content", "#md-text .cm-content"]) {
+        if ((await page.getAttribute(sel, "contenteditable")) !== "false") throw new Error(`${sel} is editable for a watcher`);
+      }
       if (await page.locator('#coords-toggle [data-frame="machine"]').isDisabled()) throw new Error("the view toggle is off");
       // The server refuses a watcher's command too (--auth off): the page's own request is an observer's.
       const refused = await page.evaluate(async (id) => {
@@ -1743,6 +1747,7 @@ async function main() {
       await page.click(`#sessions button[data-open="${id}"]`);
       await page.waitForFunction(() => document.getElementById("lock-banner")?.hidden === true);
       if (new URL(page.url()).searchParams.has("view")) throw new Error("still a watch link");
+      if ((await page.getAttribute("#editor .cm-content", "contenteditable")) !== "true") throw new Error("the editor stays read-only after Join");
       await page.click("#btn-reset");
       await page.waitForFunction(() =>
         [...document.querySelectorAll('#events li[data-event="operator_action"] .event-detail')].some((e) => e.textContent === "Trainee Ben (owner): Reset"),

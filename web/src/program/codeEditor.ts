@@ -5,11 +5,12 @@
 // colouring (ncHighlight.ts). Tab inserts a tab (or indents the selected lines, Shift+Tab
 // outdents); Escape then Tab leaves the editor, as CodeMirror's keyboard-trap escape.
 
-import { EditorState, type Extension, type Text } from "@codemirror/state";
+import { Compartment, EditorState, type Extension, type Text } from "@codemirror/state";
 import { drawSelection, EditorView, keymap, lineNumbers } from "@codemirror/view";
 import { defaultKeymap, history, historyKeymap, indentLess, insertTab } from "@codemirror/commands";
 import { errorMarks, type LineMark, setLineMarks } from "./errorMarks";
 import { ncHighlighting } from "./ncHighlight";
+import { lockReason, onLockChange } from "../ui/lock";
 
 export type { LineMark } from "./errorMarks";
 
@@ -35,9 +36,16 @@ const theme = EditorView.theme(
 /** Tab inserts a tab at the caret (indents a selection); Shift+Tab outdents. */
 const tabKeys = keymap.of([{ key: "Tab", run: insertTab, shift: indentLess }]);
 
+/** Typing allowed or not (a locked editor still scrolls, selects and copies). */
+function editable(on: boolean): Extension {
+  return [EditorView.editable.of(on), EditorState.readOnly.of(!on)];
+}
+
 export class CodeEditor {
   private readonly view: EditorView;
   private readonly extensions: Extension;
+  /** Editable or read-only: read-only while the page's controls are locked (ui/lock.ts). */
+  private readonly access = new Compartment();
   private readonly listeners = new Set<() => void>();
   /** The text of `textOf` as one string: built once per document version, not per read. */
   private textOf: Text | null = null;
@@ -61,6 +69,7 @@ export class CodeEditor {
       }),
     ];
     this.view = new EditorView({ parent: host, state: this.stateOf("") });
+    onLockChange((why) => this.view.dispatch({ effects: this.access.reconfigure(editable(why === null)) }));
   }
 
   get text(): string {
@@ -97,6 +106,6 @@ export class CodeEditor {
   }
 
   private stateOf(text: string): EditorState {
-    return EditorState.create({ doc: text, extensions: this.extensions });
+    return EditorState.create({ doc: text, extensions: [this.extensions, this.access.of(editable(lockReason() === null))] });
   }
 }

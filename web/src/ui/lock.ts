@@ -14,6 +14,14 @@ const CONTROLS = "button, input, select, textarea";
 
 let reason: string | null = null;
 let observer: MutationObserver | null = null;
+/** Controls that are no form elements (the CodeMirror editors) and lock themselves. */
+const listeners = new Set<(why: string | null) => void>();
+
+/** Calls `fn` with the reason now and on every change (null: the controls are on). */
+export function onLockChange(fn: (why: string | null) => void): void {
+  listeners.add(fn);
+  fn(reason);
+}
 
 /** The reason the controls are off (null: they are on). */
 export function lockReason(): string | null {
@@ -30,6 +38,7 @@ export function lockControls(why: string | null): void {
   setText(banner, why ?? "");
   if (why === null) delete document.body.dataset.locked;
   else document.body.dataset.locked = "true";
+  for (const fn of listeners) fn(why);
   if (why === null) {
     observer?.disconnect();
     observer = null;
