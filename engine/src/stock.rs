@@ -3,7 +3,7 @@
 //! Input: a [`blank::Blank`] (from `WORKPIECE(..)` or an API call) placed in the BCS, a
 //! [`cutter::Cutter`] from the cutting edge's tool data and straight tool-tip segments in the
 //! BCS. Output: the remaining and removed volume, what each segment removed (for the checks
-//! of `channel/stock_cut.rs`) and a binary STL of the current stock ([`mesh`]).
+//! of `channel/stock/cut.rs`) and a binary STL of the current stock ([`mesh`]).
 //!
 //! Two representations, chosen by the machine (see ARCHITECTURE.md, "Material removal"):
 //! - milling ([`dexel::DexelGrid`]): Z-dexels, per grid cell of the XY plane a sorted list of

@@ -13,13 +13,11 @@ pub mod action_log;
 mod active_program;
 mod blending;
 mod blending_trafo;
-mod cartesian_jog;
 mod command_axes;
 mod compress_trafo;
 mod exact_stop;
 mod io;
 mod jog;
-mod jog_settings;
 pub mod limit_watch;
 mod main_run;
 mod orison;
@@ -29,10 +27,7 @@ mod probe;
 mod program_sync;
 mod programs;
 mod reference;
-mod referencing;
 mod repos;
-mod repos_approach;
-mod repos_modes;
 mod resume;
 mod search;
 pub mod servo;
@@ -41,21 +36,13 @@ mod snapshot;
 mod snapshot_refresh;
 mod spindle;
 pub mod standstill;
-mod stock_cut;
-mod stock_mesh;
-mod stock_pose;
-mod stock_saved;
-mod stock_spindle;
-mod stock_table;
-mod stock_tiles;
+mod stock;
 pub mod sync_actions;
 mod sync_eval;
 mod sync_horizon;
 mod sync_lazy;
 mod sync_schedule;
-mod toff;
-pub mod tool_list;
-mod tool_monitor;
+mod tools;
 mod trafo;
 pub mod workpiece_tip;
 
@@ -63,21 +50,21 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 
 pub use active_program::{ActiveProgram, CallLevel};
+pub use jog::settings::OrientationJogKind;
 pub use jog::{JOG_INCREMENTS, JogSystem};
-pub use jog_settings::OrientationJogKind;
 pub use positioning_axes::{PositioningInfo, SavedPositioning};
 pub use probe::{MAX_PROBE_TARGETS, ProbeTarget};
-pub use referencing::ReferencePhase;
-pub use repos_approach::ReposApproach;
-pub use repos_modes::ReposMode;
+pub use reference::approach::ReferencePhase;
+pub use repos::approach::ReposApproach;
+pub use repos::modes::ReposMode;
 pub use resume::{ResumeProgram, ResumeState, SavedInputs};
 pub use search::{PathStep, SEARCH_ASK_EVERY, SEARCH_BLOCK_BUDGET};
 pub use snapshot::{BlockRef, Snapshot, TransformationInfo};
 use spindle::Spindle;
 pub use spindle::{SpindleMode, SpindleState};
-pub use stock_cut::{StockCheck, StockInfo, StockOptions, StockWarning};
-pub use stock_saved::SavedStock;
-pub use stock_tiles::{StockChanges, TILE as STOCK_TILE};
+pub use stock::cut::{StockCheck, StockInfo, StockOptions, StockWarning};
+pub use stock::saved::SavedStock;
+pub use stock::tiles::{StockChanges, TILE as STOCK_TILE};
 
 use crate::alarm::{Alarm, Clear};
 use crate::interp::{Interpreter, Programs, SharedOffsets};
@@ -167,7 +154,7 @@ pub enum Event {
     /// with the IPO cycle count they arrived at: they act from the next cycle on, so a run fed
     /// the same inputs at the same counts is identical (see [`Channel::input_log`]).
     InputsChanged(sync_actions::InputRecord),
-    /// A check of material removal found something (`stock_cut.rs`).
+    /// A check of material removal found something (`stock/cut.rs`).
     Stock(StockWarning),
     /// An operator's command, for the action log ("who did what", see `action_log.rs`).
     OperatorAction(action_log::OperatorAction),
@@ -323,7 +310,7 @@ pub struct Channel {
     /// Reference point state per channel axis (spindles count as referenced).
     referenced: Vec<bool>,
     /// The reference point approach in progress.
-    referencing: Option<referencing::Referencing>,
+    referencing: Option<reference::approach::Referencing>,
     /// The last MSG text of the program.
     message: Option<String>,
     /// Machine position of every channel axis. Equals the planner's position without a
@@ -347,7 +334,7 @@ pub struct Channel {
     /// at every new move and at rest, so those positions are solved directly).
     ori_memo: crate::kinematics::AngleMemo,
     /// The online tool length offset reached by the main run (`$AA_TOFF`).
-    toff: toff::OnlineOffset,
+    toff: tools::toff::OnlineOffset,
     /// The digital inputs and outputs (`$A_IN`, `$A_OUT`; see `io.rs`).
     io: crate::interp::io::DigitalIo,
     /// The axes' position loops: actual values and following errors.
@@ -360,10 +347,10 @@ pub struct Channel {
     positioning: positioning_axes::PositioningAxes,
     /// STOPREOF, RDISABLE, wait markers, technology cycles (`program_sync.rs`).
     psync: program_sync::ProgramSync,
-    /// Tool life and count monitoring (`tool_monitor.rs`).
-    tool_monitor: tool_monitor::ToolMonitor,
-    /// The blank being cut, if one is defined (`stock_cut.rs`).
-    stock: Option<Box<stock_cut::StockRun>>,
+    /// Tool life and count monitoring (`tools/monitor.rs`).
+    tool_monitor: tools::monitor::ToolMonitor,
+    /// The blank being cut, if one is defined (`stock/cut.rs`).
+    stock: Option<Box<stock::cut::StockRun>>,
     stock_options: StockOptions,
     /// FPR: the axis a feed per revolution follows instead of the master spindle, with its
     /// position at the last cycle (`spindle.rs`).

@@ -2,12 +2,12 @@
 //!
 //! The probe is the active tool: a ball of the cutting edge's radius (`$TC_DP6` + `$TC_DP15`)
 //! whose centre is the tool tip (the tool length reaches the ball's centre). It is deflected
-//! while the ball touches material: the session's stock (`channel/stock_cut.rs`, read through
+//! while the ball touches material: the session's stock (`channel/stock/cut.rs`, read through
 //! the stock's public cells and slabs) or one of the probe-target planes set over the API
 //! ([`ProbeTarget`]). The ball touches the stock when its point ahead in the direction of travel
 //! (rising edge; the point behind for a falling edge) is inside it; it touches a plane when its
 //! centre is no more than the radius in front of it. The stock is tested in its own frame: on a
-//! table that has turned or tilted it (a TRAORI chain's workpiece side, `stock_table.rs`) the
+//! table that has turned or tilted it (a TRAORI chain's workpiece side, `stock/table.rs`) the
 //! ball's centre and direction of travel are taken back through the table's pose
 //! (`Channel::stock_tip_at`), so the face is found where the table has put it.
 //!

@@ -47,7 +47,7 @@ pub struct ResumeState {
     /// outputs start off, as after power on. `None` in checkpoints written before.
     #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
     pub inputs: Option<SavedInputs>,
-    /// The stock being cut (`stock_saved.rs`). `None` without a blank and in checkpoints
+    /// The stock being cut (`stock/saved.rs`). `None` without a blank and in checkpoints
     /// written before.
     #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
     pub stock: Option<super::SavedStock>,
@@ -124,7 +124,7 @@ impl Channel {
         self.interp.restore_retained(&state.retained, &self.cfg, &machine).map_err(CommandError::Invalid)?;
         self.offsets = self.interp.offsets();
         // The online offset is in force at once, without a ramp: no axis moves.
-        self.toff = super::toff::OnlineOffset::at(self.offsets.toff);
+        self.toff = super::tools::toff::OnlineOffset::at(self.offsets.toff);
         self.adopt_transformation();
         if let Some(inputs) = &state.inputs {
             self.restore_inputs(inputs.digital, &inputs.analog);

@@ -6,7 +6,7 @@
 //! TRAORI, the BCS tip stands still while the tool cuts around the part: drawn there, the
 //! path would be false. So the tip is taken through the machine's kinematics:
 //! - an orientation transformation active, or a TRAORI data set defined (active or not): the
-//!   chain's forward map from the machine positions (as the stock is cut, `stock_pose.rs`),
+//!   chain's forward map from the machine positions (as the stock is cut, `stock/pose.rs`),
 //!   i.e. the tip in the frame that turns with the table (the TRAORI BCS);
 //! - another transformation active (TRANSMIT, TRACYL, TRAANG): its BCS, which is Cartesian on
 //!   the part; under TRACYL that is the unrolled surface, so the working diameter goes along

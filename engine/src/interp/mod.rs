@@ -161,7 +161,7 @@ pub enum Item {
         line: u32,
     },
     /// SETPIECE: `pieces` workpieces done for the tools used in the spindle since the last one
-    /// (`tools/setpiece.rs`, counted in `channel/tool_monitor.rs`).
+    /// (`tools/setpiece.rs`, counted in `channel/tools/monitor.rs`).
     SetPiece {
         pieces: u32,
         line: u32,

@@ -183,7 +183,7 @@ impl Traori {
     /// The tool tip and the tool orientation (unit, tip → holder) in the workpiece frame (the
     /// BCS of this transformation) at machine positions `machine`, for the tool length vector
     /// `tool` (tip → holder, by geometry axis). Whether or not the transformation is active:
-    /// the stock turns with a table's rotary axes in any case (`channel/stock_pose.rs`).
+    /// the stock turns with a table's rotary axes in any case (`channel/stock/pose.rs`).
     pub fn tip_and_orientation(&self, machine: &AxisVec, tool: &Vec3) -> (Vec3, Vec3) {
         let pose = self.chain.pose(&self.angles(machine));
         let p = self.chain.tip(&self.linear(machine), &pose, &scale(tool, -1.0));

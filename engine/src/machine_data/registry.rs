@@ -499,7 +499,7 @@ pub static DEFS: &[Def] = &[
     // MD33120 PATH_TRANS_POS_TOL: G645's deviation at tangential transitions with a curvature
     // jump (mm or degrees).
     def("PATH_TRANS_POS_TOL", 33120, A, Kind::Real, 1, Default::Real(0.005), 1e-9, 1e9),
-    // Reference point approach (incremental measuring system), see channel/referencing.rs.
+    // Reference point approach (incremental measuring system), see channel/reference/approach.rs.
     // Velocities in mm/min (rotary rev/min) with the control's defaults.
     def("REFP_CAM_DIR_IS_MINUS", 34010, A, Kind::Bool, 1, Default::Bool(false), 0.0, 1.0),
     def(

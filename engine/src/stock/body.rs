@@ -1,5 +1,5 @@
 //! What of the tool and the spindle must not touch the stock: cylinders on the tool's axis,
-//! in heights above the tip, for the collision check of `channel/stock_cut.rs`.
+//! in heights above the tip, for the collision check of `channel/stock/cut.rs`.
 //!
 //! - The shank: the 840D's tool data have no flute length and no holder geometry (`$TC_DP`
 //!   holds lengths, radius, corner radius and angles; `$TC_DP21..23` are adapter lengths, not

@@ -11,7 +11,7 @@
 //! - `G74`: the target is MD34100 `$MA_REFP_SET_POS[0]`, the reference point. The axes are
 //!   referenced already (NCTwin's axes are, or the JOG reference point approach did it), so
 //!   the travel to the reference point is a rapid move there; the cam and zero-mark search of
-//!   `channel/referencing.rs` is not repeated.
+//!   `channel/reference/approach.rs` is not repeated.
 //! - Both run at rapid traverse, interpolated linearly in machine space (the control moves
 //!   each axis at its own rapid velocity; with one axis per block, as programs write them, the
 //!   two are the same), with exact stop at the end. An axis under an active transformation:

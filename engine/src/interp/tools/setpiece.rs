@@ -7,7 +7,7 @@
 //! was active in the spindle since the last `SETPIECE`; n is 0..32000 (`SETPIECE(0)` only
 //! clears that memory). The spindle number is optional; without it, and with 0, the master
 //! spindle is meant. Preparation checks the arguments and hands the count to the main run
-//! ([`crate::interp::Item::SetPiece`]), which knows the edges used (`channel/tool_monitor.rs`).
+//! ([`crate::interp::Item::SetPiece`]), which knows the edges used (`channel/tools/monitor.rs`).
 //!
 //! Decisions where the manuals leave it open: NCTwin has one tool holder per channel, and it
 //! is the master spindle's; `SETPIECE` for another spindle of the channel counts nothing (no

@@ -30,7 +30,7 @@ pub enum ReposApproach {
 
 /// The circle of the approach into `target`, where the path runs on along `tangent` (axis
 /// space); `None` for the straight line. Only the axes `geo` take part in the circle.
-pub(super) fn approach_arc(
+pub(in crate::channel) fn approach_arc(
     approach: ReposApproach,
     here: &AxisVec,
     target: &AxisVec,

@@ -15,15 +15,15 @@
 //! - a depth of cut beyond the limit the user set: the thickest material one dexel (one slab)
 //!   lost in one segment: the axial depth of a side cut, the radial depth on a lathe;
 //! - the tool's shank, the holder ([`StockOptions::holder`]) or the spindle housing touching
-//!   the stock (`stock/body.rs`).
+//!   the stock (`crate::stock::body`).
 //!
-//! Tip and tool axis come from `stock_pose.rs` (5-axis machines through the TRAORI chain),
-//! `stock_table.rs` (a rotary table without TRAORI data: TRACYL on a trunnion table) and
-//! `stock_spindle.rs` (TRANSMIT, TRACYL, TRAANG and their TRACON chain; a blank turning with
+//! Tip and tool axis come from `pose.rs` (5-axis machines through the TRAORI chain),
+//! `table.rs` (a rotary table without TRAORI data: TRACYL on a trunnion table) and
+//! `spindle.rs` (TRANSMIT, TRACYL, TRAANG and their TRACON chain; a blank turning with
 //! the spindle). Skipped
-//! (counted in `skipped`): what `stock_spindle.rs` names.
+//! (counted in `skipped`): what `spindle.rs` names.
 
-use super::{Channel, CommandError, Event};
+use crate::channel::{Channel, CommandError, Event};
 use crate::stock::blank::{Blank, Placement};
 use crate::stock::cutter::Cutter;
 use crate::stock::{DEFAULT_RESOLUTION, Stock};
@@ -129,7 +129,7 @@ struct Key {
     rapid: bool,
     spindle: bool,
     tool: (u32, u32),
-    /// A turning cut of a part that turns with the spindle (`stock_spindle.rs`).
+    /// A turning cut of a part that turns with the spindle (`spindle.rs`).
     ring: bool,
 }
 
@@ -154,11 +154,11 @@ type EdgeCache = ((u32, u32), Option<Cutter>, Option<(f64, f64)>);
 
 /// The stock of a session with its segment in progress and its findings.
 #[derive(Debug, Clone)]
-pub(super) struct StockRun {
-    pub(super) stock: Stock,
+pub(in crate::channel) struct StockRun {
+    pub(in crate::channel) stock: Stock,
     initial_volume: f64,
     options: StockOptions,
-    /// The active edge's cutter and shank (`stock/body.rs`).
+    /// The active edge's cutter and shank (`crate::stock::body`).
     cutter: Option<EdgeCache>,
     /// `$MC_SPINDLE_HOUSING`: diameter and length of the spindle round its nose.
     housing: Option<[f64; 2]>,
@@ -171,19 +171,19 @@ pub(super) struct StockRun {
     /// The last segment cut removed material at feed with a spindle turning (the T/F/S
     /// display's spindle load symbol, `snapshot_refresh.rs`).
     removing: bool,
-    /// The orientation kinematics the blank is mounted on (`stock_pose.rs`).
-    pub(super) kin: Option<Box<crate::kinematics::Traori>>,
-    /// Changes for the HMI's incremental mesh (`stock_tiles.rs`).
-    pub(super) tiles: super::stock_tiles::TileLog,
-    /// The work spindle the blank turns with (a lathe with driven tools, `stock_spindle.rs`).
-    pub(super) mount: Option<super::stock_spindle::SpindleMount>,
-    /// The rotary table the blank turns and tilts with (`stock_table.rs`).
-    pub(super) table: Option<super::stock_table::TableMount>,
+    /// The orientation kinematics the blank is mounted on (`pose.rs`).
+    pub(in crate::channel) kin: Option<Box<crate::kinematics::Traori>>,
+    /// Changes for the HMI's incremental mesh (`tiles.rs`).
+    pub(in crate::channel) tiles: super::tiles::TileLog,
+    /// The work spindle the blank turns with (a lathe with driven tools, `spindle.rs`).
+    pub(in crate::channel) mount: Option<super::spindle::SpindleMount>,
+    /// The rotary table the blank turns and tilts with (`table.rs`).
+    pub(in crate::channel) table: Option<super::table::TableMount>,
 }
 
 impl StockRun {
     /// The stock as cut so far (the probe of MEAS reads it, `probe.rs`).
-    pub(super) fn stock(&self) -> &Stock {
+    pub(in crate::channel) fn stock(&self) -> &Stock {
         &self.stock
     }
 
@@ -192,7 +192,7 @@ impl StockRun {
             mount: None,
             table: None,
             housing: None,
-            tiles: super::stock_tiles::TileLog::new(&stock),
+            tiles: super::tiles::TileLog::new(&stock),
             kin,
             initial_volume: stock.volume(),
             stock,
@@ -209,15 +209,15 @@ impl StockRun {
 }
 
 impl StockRun {
-    /// The stock changed representation (`stock_spindle.rs`): the blank's volume moves by the
+    /// The stock changed representation (`spindle.rs`): the blank's volume moves by the
     /// difference, so the removed volume goes on.
-    pub(super) fn shift_initial_volume(&mut self, dv: f64) {
+    pub(in crate::channel) fn shift_initial_volume(&mut self, dv: f64) {
         self.initial_volume += dv;
         self.segment = None;
     }
 
     /// Every tile changed (a new grid).
-    pub(super) fn restart_tiles(&mut self) {
+    pub(in crate::channel) fn restart_tiles(&mut self) {
         self.tiles.restart(&self.stock);
     }
 
@@ -287,7 +287,7 @@ impl Channel {
     }
 
     /// The summary as the snapshot shows it (the open segment not yet cut).
-    pub(super) fn stock_summary(&self) -> Option<StockInfo> {
+    pub(in crate::channel) fn stock_summary(&self) -> Option<StockInfo> {
         let run = self.stock.as_ref()?;
         let volume = run.stock.volume();
         Some(StockInfo {
@@ -305,7 +305,7 @@ impl Channel {
     }
 
     /// Whether the last segment cut removed material at feed with a spindle turning.
-    pub(super) fn stock_removing(&self) -> bool {
+    pub(in crate::channel) fn stock_removing(&self) -> bool {
         self.stock.as_ref().is_some_and(|r| r.removing)
     }
 
@@ -328,7 +328,7 @@ impl Channel {
     }
 
     /// A `WORKPIECE(..)` reached the main run with the offsets of its block.
-    pub(super) fn execute_workpiece(
+    pub(in crate::channel) fn execute_workpiece(
         &mut self,
         request: crate::stock::blank::Request,
         frame: &crate::interp::Frame,
@@ -356,30 +356,30 @@ impl Channel {
     }
 
     /// Where the WCS of `frame` lies in the BCS.
-    pub(super) fn stock_placement(&self, frame: &crate::interp::Frame) -> Placement {
+    pub(in crate::channel) fn stock_placement(&self, frame: &crate::interp::Frame) -> Placement {
         let geo = self.cfg.geo_axes;
         Placement { lin: frame.lin, trans: std::array::from_fn(|g| geo[g].map_or(0.0, |k| frame.trans[k])) }
     }
 
     /// A machine without a second geometry axis is a lathe: the workpiece turns on the spindle.
-    pub(super) fn stock_turns(&self) -> bool {
+    pub(in crate::channel) fn stock_turns(&self) -> bool {
         self.cfg.geo_axes[1].is_none()
     }
 
     /// The stock and its blank's volume, for a checkpoint.
-    pub(super) fn stock_parts(&self) -> Option<(&Stock, f64)> {
+    pub(in crate::channel) fn stock_parts(&self) -> Option<(&Stock, f64)> {
         self.stock.as_ref().map(|r| (&r.stock, r.initial_volume))
     }
 
     /// The blank's volume a restored stock was cut from.
-    pub(super) fn set_initial_stock_volume(&mut self, volume: f64) {
+    pub(in crate::channel) fn set_initial_stock_volume(&mut self, volume: f64) {
         if let Some(run) = self.stock.as_mut() {
             run.initial_volume = volume;
         }
     }
 
     /// Makes `stock` the session's, cut from now on.
-    pub(super) fn install_stock(&mut self, stock: Stock) {
+    pub(in crate::channel) fn install_stock(&mut self, stock: Stock) {
         let kin = if matches!(stock, Stock::Turning(_)) { None } else { self.stock_kinematics() };
         let mount = self.stock_spindle_mount();
         let mut run = StockRun::new(stock, self.stock_options, kin);
@@ -392,31 +392,31 @@ impl Channel {
 
     /// One IPO cycle of material removal (called only while a blank is defined).
     #[inline(never)]
-    pub(super) fn cut_stock(&mut self) {
+    pub(in crate::channel) fn cut_stock(&mut self) {
         let (line, rapid, offsets) = self.stock_meta();
         let tool = (offsets.t, offsets.d);
         let table = self.stock.as_ref().and_then(|r| r.table);
         let mounted = if let Some(m) = table {
             let length = self.machine_tool_vector(offsets);
-            super::stock_spindle::Mounted::At(self.table_tool_pose(&m, &self.machine, length), false)
+            super::spindle::Mounted::At(self.table_tool_pose(&m, &self.machine, length), false)
         } else if self.trafo.is_some() || self.stock.as_ref().is_some_and(|r| r.mount.is_some()) {
             let geo = self.cfg.geo_axes;
             let toff = self.toff.current;
             let plain = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
             self.stock_mounted_pose(plain)
         } else {
-            super::stock_spindle::Mounted::Plain
+            super::spindle::Mounted::Plain
         };
         let (pose, ring) = match mounted {
-            super::stock_spindle::Mounted::At(pose, ring) => (pose, ring),
-            super::stock_spindle::Mounted::Plain => {
+            super::spindle::Mounted::At(pose, ring) => (pose, ring),
+            super::spindle::Mounted::Plain => {
                 let offsets = self.stock_meta().2;
                 (
                     self.stock_tool_pose(&self.machine, offsets, self.stock.as_ref().and_then(|r| r.kin.as_deref())),
                     false,
                 )
             }
-            super::stock_spindle::Mounted::Skip => {
+            super::spindle::Mounted::Skip => {
                 if let Some(run) = self.stock.as_mut() {
                     run.skipped += 1;
                     run.segment = None;
@@ -505,7 +505,7 @@ impl Channel {
     }
 
     /// [`Channel::flush_stock`] for the sibling modules.
-    pub(super) fn flush_stock_now(&mut self) {
+    pub(in crate::channel) fn flush_stock_now(&mut self) {
         self.flush_stock();
     }
 

@@ -3,7 +3,7 @@
 //! `TOFF_VELO` and MD21196 `TOFF_ACCEL`, per tool direction, and the transformation maps the
 //! path with the tool lengthened by it.
 
-use super::Channel;
+use crate::channel::Channel;
 use crate::kinematics::ActiveTrafo;
 use crate::motion::AxisVec;
 
@@ -11,13 +11,13 @@ impl Channel {
     /// The active transformation as the main run maps with it: the tool lengthened by the
     /// online offset reached so far (JOG and REPOS plan with it, so they start where the
     /// machine stands).
-    pub(super) fn trafo_in_force(&self) -> Option<ActiveTrafo> {
+    pub(in crate::channel) fn trafo_in_force(&self) -> Option<ActiveTrafo> {
         self.trafo.as_ref().map(|t| t.lengthened(&self.toff.current))
     }
 
     /// The planner's (BCS) position of the machine position, through the active
     /// transformation with the tool lengthened by the online offset reached so far.
-    pub(super) fn space_of_machine(&self) -> AxisVec {
+    pub(in crate::channel) fn space_of_machine(&self) -> AxisVec {
         let toff = self.toff.current;
         match &self.trafo {
             Some(t) if toff == [0.0; 3] => t.forward(&self.machine),
@@ -37,7 +37,7 @@ impl Channel {
 
 /// The online tool offset as the main run has traversed it.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub(super) struct OnlineOffset {
+pub(in crate::channel) struct OnlineOffset {
     /// Offset reached in the tool directions X, Y, Z (mm).
     pub current: [f64; 3],
     /// Rate of each direction (mm/s, signed).

@@ -3,7 +3,7 @@
 //! changed since the version it shows; and the pens, the session's small numbers for the tools
 //! that cut (a face's colour).
 
-use super::Channel;
+use crate::channel::Channel;
 use crate::stock::Stock;
 
 /// Cells per tile edge: 64 × 64 cells are 16 mm square at the default 0.25 mm, a mesh of a
@@ -15,7 +15,7 @@ const MAX_PENS: usize = 255;
 
 /// Tile versions and pens of one stock.
 #[derive(Debug, Clone)]
-pub(super) struct TileLog {
+pub(in crate::channel) struct TileLog {
     version: u32,
     /// Tiles in X and Y; a turned stock has one.
     size: (usize, usize),
@@ -38,7 +38,7 @@ pub struct StockChanges {
 }
 
 impl TileLog {
-    pub(super) fn new(stock: &Stock) -> TileLog {
+    pub(in crate::channel) fn new(stock: &Stock) -> TileLog {
         let size = match stock {
             Stock::Milling(g) => {
                 let (nx, ny) = g.size();
@@ -49,21 +49,21 @@ impl TileLog {
         TileLog { version: 1, size, changed: vec![1; size.0 * size.1], pens: Vec::new() }
     }
 
-    /// The stock became another grid (`stock_spindle.rs`): its tiles, all changed, under a
+    /// The stock became another grid (`spindle.rs`): its tiles, all changed, under a
     /// new version (the versions go on, so the HMI fetches them all).
-    pub(super) fn restart(&mut self, stock: &Stock) {
+    pub(in crate::channel) fn restart(&mut self, stock: &Stock) {
         let fresh = TileLog::new(stock);
         self.version = self.version.wrapping_add(1).max(1);
         self.size = fresh.size;
         self.changed = vec![self.version; fresh.changed.len()];
     }
 
-    pub(super) fn version(&self) -> u32 {
+    pub(in crate::channel) fn version(&self) -> u32 {
         self.version
     }
 
     /// The pen of `tool`, given at its first cut.
-    pub(super) fn pen(&mut self, tool: (u32, u32)) -> u8 {
+    pub(in crate::channel) fn pen(&mut self, tool: (u32, u32)) -> u8 {
         if let Some(n) = self.pens.iter().position(|t| *t == tool) {
             return (n + 1) as u8;
         }
@@ -74,7 +74,7 @@ impl TileLog {
     }
 
     /// A cut that removed material from `a` to `b`, reaching `reach` mm sideways.
-    pub(super) fn touch(&mut self, stock: &Stock, a: [f64; 3], b: [f64; 3], reach: f64) {
+    pub(in crate::channel) fn touch(&mut self, stock: &Stock, a: [f64; 3], b: [f64; 3], reach: f64) {
         self.version = self.version.wrapping_add(1).max(1);
         let Stock::Milling(g) = stock else {
             self.changed[0] = self.version;

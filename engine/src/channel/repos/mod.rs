@@ -16,15 +16,18 @@
 //! interrupted (M0), of the next move; without either, the JOG velocity. Feed and rapid
 //! override act on it; NC stop stops it and the next NC start plans it anew from there.
 
+pub(super) mod approach;
+pub(super) mod modes;
+
 use std::collections::VecDeque;
 
-use super::repos_approach::{self, ReposApproach};
-use super::repos_modes::{self, ReposMode, Resume};
 use super::{Channel, MoveMeta, Status};
 use crate::interp::Item;
 use crate::kinematics::{Transformation, plan};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path, Planner};
+use approach::ReposApproach;
+use modes::{ReposMode, Resume};
 
 /// The main run of an interrupted program, put aside while the operator jogs.
 #[derive(Debug, Clone)]
@@ -61,7 +64,7 @@ impl Channel {
     }
 
     /// NC start in an interrupted program whose axes were moved by JOG; `mode` picks the point
-    /// of the interrupted block the program resumes at (see `repos_modes.rs`).
+    /// of the interrupted block the program resumes at (see `modes.rs`).
     pub(super) fn start_repos(&mut self, mode: ReposMode, approach: ReposApproach) {
         self.status = Status::Running;
         if !self.planner.is_empty() {
@@ -93,7 +96,7 @@ impl Channel {
         };
         let here_in_space = if machine_space { self.machine } else { *self.planner.position() };
         let axes = self.repos_distance_axes(machine_space);
-        let (mut target, resume) = repos_modes::target(&int.planner, mode, &here_in_space, &axes);
+        let (mut target, resume) = modes::target(&int.planner, mode, &here_in_space, &axes);
         if let (true, Some(t)) = (machine_space, self.trafo_in_force()) {
             // A machine-axis motion (the TRANSMIT pole): return to its BCS point.
             target = t.forward(&target);
@@ -135,7 +138,7 @@ impl Channel {
         let geo = self.repos_distance_axes(false);
         let offsets = self.offsets.clone();
         let meta = MoveMeta { line: 0, seq: super::pending::NO_SEQ, offsets, machine_space: false, feed: 0.0 };
-        match repos_approach::approach_arc(approach, &here, &target, &tangent, &geo) {
+        match approach::approach_arc(approach, &here, &target, &tangent, &geo) {
             Some(arc) => {
                 // To the start of the circle on a straight line, then along the circle.
                 let start = arc.start;

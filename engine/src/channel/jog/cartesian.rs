@@ -4,10 +4,10 @@
 //! tool tip stands still. The virtual orientation axes are addressed as A2, B2 and C2 (the names
 //! of MD10620 EULER_ANGLE_NAME_TAB): rotations about X, Y and Z of the chosen system.
 
-use super::jog::{ActiveJog, JogSystem};
-use super::jog_settings::{OrientationJogKind, angle_rotation_axis};
-use super::{Channel, CommandError, MoveMeta, Status};
+use super::settings::{OrientationJogKind, angle_rotation_axis};
+use super::{ActiveJog, JogSystem};
 use crate::alarm::Alarm;
+use crate::channel::{Channel, CommandError, MoveMeta, Status};
 use crate::kinematics::orient::vec3::cross;
 use crate::kinematics::{Transformation, Vec3};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -19,7 +19,7 @@ const MAX_ORIENTATION_JOG: f64 = 360.0;
 const ORI_STEP: f64 = 0.5;
 
 /// The virtual orientation axis an axis name addresses (0 = about X, 1 = Y, 2 = Z).
-pub(super) fn orientation_axis(name: &str) -> Option<usize> {
+pub(in crate::channel) fn orientation_axis(name: &str) -> Option<usize> {
     match name.to_ascii_uppercase().as_str() {
         "A2" => Some(0),
         "B2" => Some(1),
@@ -37,7 +37,7 @@ impl Channel {
     /// The axes of the tool coordinate system in the BCS: Z along the tool (tip → holder), X in
     /// the plane of the old X and Z (MD21110 X_AXIS_IN_OLD_X_Z_PLANE), Y completing a right-hand
     /// system. Without an orientation transformation the tool stands along Z.
-    pub(super) fn tool_axes(&self) -> [Vec3; 3] {
+    pub(in crate::channel) fn tool_axes(&self) -> [Vec3; 3] {
         let z = self.trafo.as_ref().and_then(|t| t.trafo.orientation(&self.machine)).unwrap_or([0.0, 0.0, 1.0]);
         let x = unit(cross(&[0.0, 1.0, 0.0], &z))
             .unwrap_or_else(|| unit(cross(&z, &[0.0, 0.0, 1.0])).unwrap_or([1.0, 0.0, 0.0]));
@@ -45,7 +45,7 @@ impl Channel {
     }
 
     /// The direction in the BCS slots of geometry axis `g` of the TCS.
-    pub(super) fn tool_direction(&self, g: usize, geo_slots: &[Option<usize>; 3]) -> AxisVec {
+    pub(in crate::channel) fn tool_direction(&self, g: usize, geo_slots: &[Option<usize>; 3]) -> AxisVec {
         let axis = self.tool_axes()[g];
         let mut d = [0.0; MAX_CHANNEL_AXES];
         for (i, slot) in geo_slots.iter().enumerate() {
@@ -83,7 +83,7 @@ impl Channel {
 
     /// Orientation JOG: turns the tool about axis `about` (0..2) of `system` by `distance`
     /// degrees (continuous: until released or until the axes cannot follow), the tool tip held.
-    pub(super) fn start_orientation_jog(
+    pub(in crate::channel) fn start_orientation_jog(
         &mut self,
         about: usize,
         dir: f64,
@@ -144,7 +144,7 @@ impl Channel {
             mv,
             MoveMeta {
                 line: 0,
-                seq: super::pending::NO_SEQ,
+                seq: crate::channel::pending::NO_SEQ,
                 offsets: self.offsets.clone(),
                 machine_space: false,
                 feed: 0.0,

@@ -1,7 +1,7 @@
 //! Meshes from outside for the session's stock: a blank from an STL, and the comparison of the
 //! cut stock with a target STL (both in the WCS of the active frame, like a `PUT` blank).
 
-use super::{Channel, CommandError};
+use crate::channel::{Channel, CommandError};
 use crate::stock::dexel::DexelGrid;
 use crate::stock::target::{Comparison, Mesh};
 use crate::stock::{MAX_CELLS, Stock};

@@ -17,8 +17,8 @@
 //! about that axis; the angles that do not influence the vector are taken as 0 (the free angle
 //! of a 5-axis orientation).
 
-use super::jog::JogSystem;
-use super::{Channel, CommandError};
+use crate::channel::JogSystem;
+use crate::channel::{Channel, CommandError};
 use crate::kinematics::Vec3;
 use crate::kinematics::orient::angles;
 use crate::kinematics::orient::vec3::{cross, norm, rotate, unit};
@@ -87,7 +87,7 @@ fn current_angles(kind: OrientationJogKind, tab: [u8; 3], o: &Vec3) -> Option<[f
 /// The fixed axis (unit, in the reference system) about which changing angle `which` (0 = A2,
 /// 1 = B2, 2 = C2) of `kind` turns orientation `o`; `Err` when that angle does not change the
 /// orientation vector there, or the turn table names no axis.
-pub(super) fn angle_rotation_axis(
+pub(in crate::channel) fn angle_rotation_axis(
     kind: OrientationJogKind,
     tab: [u8; 3],
     o: &Vec3,
@@ -119,7 +119,7 @@ impl Channel {
 
     /// The system of a translation JOG that names none: SD42650 bits 0..2 while a
     /// transformation is active, else the MCS.
-    pub(super) fn default_translation_system(&self) -> JogSystem {
+    pub(in crate::channel) fn default_translation_system(&self) -> JogSystem {
         let bits = self.cart_jog_mode();
         if self.trafo.is_none() {
             return JogSystem::Machine;
@@ -132,7 +132,7 @@ impl Channel {
     }
 
     /// The reference system of an orientation JOG that names none: SD42650 bits 8..10, else BCS.
-    pub(super) fn default_orientation_system(&self) -> JogSystem {
+    pub(in crate::channel) fn default_orientation_system(&self) -> JogSystem {
         let bits = self.cart_jog_mode();
         [JogSystem::Basic, JogSystem::Workpiece, JogSystem::Tool]
             .into_iter()
@@ -142,12 +142,12 @@ impl Channel {
     }
 
     /// The orientation JOG kind SD42660 `$SC_ORI_JOG_MODE` selects.
-    pub(super) fn default_orientation_kind(&self) -> OrientationJogKind {
+    pub(in crate::channel) fn default_orientation_kind(&self) -> OrientationJogKind {
         OrientationJogKind::from_setting(self.data.num("$SC_ORI_JOG_MODE", 0, 0) as i64)
     }
 
     /// MD21120 / MD21130 ORIAX_TURN_TAB_1/2 for the ORIVIRT kinds.
-    pub(super) fn turn_tab(&self, kind: OrientationJogKind) -> [u8; 3] {
+    pub(in crate::channel) fn turn_tab(&self, kind: OrientationJogKind) -> [u8; 3] {
         let name = if kind == OrientationJogKind::Virtual2 { "$MC_ORIAX_TURN_TAB_2" } else { "$MC_ORIAX_TURN_TAB_1" };
         std::array::from_fn(|i| self.data.num(name, 0, i) as u8)
     }

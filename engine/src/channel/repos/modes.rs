@@ -11,7 +11,7 @@
 //! pole) restarts from the start of the part being executed. Interrupted between blocks (M0),
 //! every mode returns to where the program stopped.
 
-use super::Channel;
+use crate::channel::Channel;
 use crate::kinematics::Transformation;
 use crate::motion::{AxisVec, Path, Planner};
 
@@ -50,7 +50,7 @@ impl ReposMode {
 
 /// How the program's main run takes over at the REPOS target.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Resume {
+pub(in crate::channel) enum Resume {
     /// Where it was interrupted (RMI, or nothing to choose).
     AsInterrupted,
     /// At this fraction of the interrupted move (RMB: 0, RMN: the nearest point).
@@ -62,7 +62,12 @@ pub(super) enum Resume {
 /// The REPOS target in the space of the interrupted planner's front move and how the program
 /// resumes there. `here` is the axes' position in that space; `dist_axes` the axes whose
 /// distance counts for RMN (the geometry axes).
-pub(super) fn target(planner: &Planner, mode: ReposMode, here: &AxisVec, dist_axes: &[usize]) -> (AxisVec, Resume) {
+pub(in crate::channel) fn target(
+    planner: &Planner,
+    mode: ReposMode,
+    here: &AxisVec,
+    dist_axes: &[usize],
+) -> (AxisVec, Resume) {
     let Some(front) = planner.front() else { return (*planner.position(), Resume::AsInterrupted) };
     match mode {
         ReposMode::Interruption => (*planner.position(), Resume::AsInterrupted),
@@ -103,7 +108,7 @@ fn nearest_fraction(path: &Path, p: &AxisVec, axes: &[usize]) -> f64 {
 impl Channel {
     /// The axes whose distance RMN measures: the geometry axes of the program space (all
     /// channel axes for a move in machine axes).
-    pub(super) fn repos_distance_axes(&self, machine_space: bool) -> Vec<usize> {
+    pub(in crate::channel) fn repos_distance_axes(&self, machine_space: bool) -> Vec<usize> {
         let geo = match &self.trafo {
             Some(t) if !machine_space => t.trafo.geo_slots(),
             Some(_) => return (0..self.cfg.channel_axes.len()).collect(),

@@ -24,13 +24,13 @@
 //! running; in between [`Channel::monitored_edge`] gives the live value. Without any monitored
 //! tool the per-cycle call is one test of a flag.
 
-use super::{Channel, Status};
 use crate::alarm::Alarm;
+use crate::channel::{Channel, Status};
 use crate::machine_data::tools_list::{MONITOR_COUNT, MONITOR_TIME, STATE_DISABLED, STATE_PREWARNING};
 
 /// The counting of the time-monitored edge in the spindle.
 #[derive(Debug, Clone, Default)]
-pub(super) struct ToolMonitor {
+pub(in crate::channel) struct ToolMonitor {
     /// The edge whose cutting time is being counted.
     counting: Option<Counting>,
     /// The edge (T, D) the main run had active at the last cycle.
@@ -65,7 +65,7 @@ impl ToolMonitor {
 impl Channel {
     /// One IPO cycle of tool monitoring (called once per [`Channel::step`]).
     #[inline]
-    pub(super) fn monitor_tools(&mut self) {
+    pub(in crate::channel) fn monitor_tools(&mut self) {
         if self.cfg.tool_list.monitored {
             self.monitor_tools_cycle();
         }
@@ -114,7 +114,7 @@ impl Channel {
     }
 
     /// Writes the counted time into the tool data and stops counting.
-    pub(super) fn flush_tool_monitor(&mut self) {
+    pub(in crate::channel) fn flush_tool_monitor(&mut self) {
         let Some(c) = self.tool_monitor.counting.take() else { return };
         if c.cycles > 0 {
             let remaining = c.start - c.cycles as f64 * self.cfg.ipo_cycle / 60.0;
@@ -146,7 +146,7 @@ impl Channel {
 
     /// `SETPIECE(pieces)` reached the main run: each count-monitored edge used since the
     /// last one counts `pieces` workpieces; the memory keeps only the edge in the spindle.
-    pub(super) fn set_piece(&mut self, pieces: u32) {
+    pub(in crate::channel) fn set_piece(&mut self, pieces: u32) {
         let (t, d) = (self.offsets.t, self.offsets.d);
         self.tool_monitor.remember(t, d);
         let used = std::mem::take(&mut self.tool_monitor.used);

@@ -2,8 +2,8 @@
 //! before): a restarted session keeps the cut part, its volumes and its settings. The checks'
 //! findings are not kept (a restart starts their list afresh).
 
-use super::Channel;
-use super::stock_cut::StockOptions;
+use super::cut::StockOptions;
+use crate::channel::Channel;
 use crate::stock::holder::Holder;
 use crate::stock::saved;
 
@@ -13,7 +13,7 @@ use crate::stock::saved;
 pub struct SavedStock {
     /// Format of `data` ([`saved::FORMAT`]).
     pub format: u32,
-    /// The stock, base64 of the run-length coded binary (`stock/saved.rs`).
+    /// The stock, base64 of the run-length coded binary (`saved.rs`).
     pub data: String,
     /// The blank's volume when it was defined, mm³.
     pub initial_volume: f64,
@@ -26,7 +26,7 @@ pub struct SavedStock {
 
 impl Channel {
     /// The stock for a checkpoint; `None` without a blank.
-    pub(super) fn saved_stock(&self) -> Option<SavedStock> {
+    pub(in crate::channel) fn saved_stock(&self) -> Option<SavedStock> {
         let (stock, initial_volume) = self.stock_parts()?;
         let o = self.stock_options;
         Some(SavedStock {
@@ -43,7 +43,7 @@ impl Channel {
     /// is dropped (the session comes back without a blank rather than not at all). The saved
     /// stock is the program's blank already cut: a blank a block search collected on the way
     /// would replace it uncut, so that one goes.
-    pub(super) fn restore_saved_stock(&mut self, state: &super::ResumeState) {
+    pub(in crate::channel) fn restore_saved_stock(&mut self, state: &crate::channel::ResumeState) {
         let Some(s) = &state.stock else { return };
         if self.restore_stock(s).is_ok() {
             self.pending.retain(|item| !matches!(item, crate::interp::Item::Workpiece { .. }));
@@ -51,7 +51,7 @@ impl Channel {
     }
 
     /// Takes back a saved stock; `Err` (nothing changed) if it does not decode.
-    pub(super) fn restore_stock(&mut self, s: &SavedStock) -> Result<(), String> {
+    pub(in crate::channel) fn restore_stock(&mut self, s: &SavedStock) -> Result<(), String> {
         let stock = saved::decode(s.format, &s.data)?;
         let holder = if s.holder.is_empty() { None } else { Some(Holder::new(&s.holder)?) };
         self.stock_options = StockOptions { resolution: s.resolution, depth_limit: s.depth_limit, holder };

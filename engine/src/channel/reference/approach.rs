@@ -21,7 +21,7 @@
 //! `reference_axes(None)` the axes that need an approach follow one another in the order of
 //! MD34110 REFP_CYCLE_NR (then channel order), as the channel-specific referencing does.
 
-use super::{Channel, MoveMeta, Status};
+use crate::channel::{Channel, MoveMeta, Status};
 use crate::motion::{AxisLimit, Feed, Move, Path};
 
 /// The phase of a reference point approach.
@@ -60,7 +60,7 @@ struct Plan {
 
 /// A reference point approach in progress.
 #[derive(Debug, Clone)]
-pub(super) struct Referencing {
+pub(in crate::channel) struct Referencing {
     axis: usize,
     phase: ReferencePhase,
     plan: Plan,
@@ -76,7 +76,7 @@ pub(super) struct Referencing {
 impl Channel {
     /// True when channel axis `k` is referenced by an approach motion (MD34200 = 1, no
     /// adjusted absolute encoder, not a spindle).
-    pub(super) fn needs_approach(&self, k: usize) -> bool {
+    pub(in crate::channel) fn needs_approach(&self, k: usize) -> bool {
         let m = self.cfg.channel_axes[k].machine_axis;
         self.cfg.axis(k).spindle.is_none()
             && self.data.num("$MA_ENC_REFP_MODE", m, 0) == 1.0
@@ -84,7 +84,7 @@ impl Channel {
     }
 
     /// Starts the approach of the first of `axes`; the others follow.
-    pub(super) fn start_referencing(&mut self, mut axes: Vec<usize>) {
+    pub(in crate::channel) fn start_referencing(&mut self, mut axes: Vec<usize>) {
         if axes.is_empty() {
             return;
         }
@@ -154,7 +154,13 @@ impl Channel {
         mv.machine_space = machine_space;
         self.push_move(
             mv,
-            MoveMeta { line: 0, seq: super::pending::NO_SEQ, offsets: self.offsets.clone(), machine_space, feed: 0.0 },
+            MoveMeta {
+                line: 0,
+                seq: crate::channel::pending::NO_SEQ,
+                offsets: self.offsets.clone(),
+                machine_space,
+                feed: 0.0,
+            },
         );
     }
 
@@ -171,7 +177,7 @@ impl Channel {
     }
 
     /// One IPO cycle of the approach: the cam signal, phase changes, the end.
-    pub(super) fn step_referencing(&mut self) {
+    pub(in crate::channel) fn step_referencing(&mut self) {
         let Some(r) = &mut self.referencing else { return };
         let pos = self.machine[r.axis];
         if r.phase == ReferencePhase::Cam && !r.braking && !r.aborted && r.plan.dir * (pos - r.plan.cam) >= 0.0 {
@@ -205,7 +211,7 @@ impl Channel {
     }
 
     /// NC stop: the axis brakes and the approach ends unreferenced.
-    pub(super) fn abort_referencing(&mut self) {
+    pub(in crate::channel) fn abort_referencing(&mut self) {
         if let Some(r) = &mut self.referencing {
             r.aborted = true;
             self.planner.stop_and_flush();

@@ -4,14 +4,17 @@
 //! the software limits (and, with a transformation active, where the machine axes cannot follow).
 //!
 //! With a program interrupted (NC stop, M0) JOG runs on a planner of its own and the program's
-//! main run waits (see `repos.rs`).
+//! main run waits (see `repos/mod.rs`).
 
-use super::jog_settings::OrientationJogKind;
+pub(super) mod cartesian;
+pub(super) mod settings;
+
 use super::{Channel, CommandError, JogRequest, Mode, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::kinematics::Transformation;
 use crate::machine_data::registry::{self, MAX_CHANNEL_AXES};
 use crate::motion::{AxisLimit, AxisVec, Feed, Move, Path};
+use settings::OrientationJogKind;
 
 /// The fixed increments of the machine control panel (INC1, INC10, INC100, INC1000); each step
 /// moves by MD31090 JOG_INCR_WEIGHT (0.001 mm or 0.001° by default).
@@ -40,7 +43,7 @@ pub enum JogSystem {
     /// channel axes move as in the MCS.
     Workpiece,
     /// TCS: a geometry axis moves along that axis of the tool coordinate system (Z along the
-    /// tool), the orientation held; see `cartesian_jog.rs`.
+    /// tool), the orientation held; see `cartesian.rs`.
     Tool,
 }
 
@@ -92,7 +95,7 @@ impl Channel {
 
     /// Starts a JOG motion; what the request leaves open comes from the setting data: the
     /// coordinate system from SD42650 `$SC_CART_JOG_MODE`, the orientation JOG kind (A2/B2/C2)
-    /// from SD42660 `$SC_ORI_JOG_MODE` (see `jog_settings.rs`).
+    /// from SD42660 `$SC_ORI_JOG_MODE` (see `settings.rs`).
     pub fn jog_with(
         &mut self,
         req: &JogRequest,
@@ -108,7 +111,7 @@ impl Channel {
             Some(inc) => return Err(CommandError::Invalid(format!("increment must be positive, not {inc}"))),
             None => None,
         };
-        if let Some(about) = super::cartesian_jog::orientation_axis(&req.axis) {
+        if let Some(about) = self::cartesian::orientation_axis(&req.axis) {
             let system = system.unwrap_or_else(|| self.default_orientation_system());
             let kind = rotation.unwrap_or_else(|| self.default_orientation_kind());
             return self.start_orientation_jog(about, f64::from(req.direction), distance, system, kind);

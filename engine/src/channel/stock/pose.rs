@@ -1,5 +1,5 @@
 //! Where the tool stands relative to the blank in one IPO cycle: its tip, its axis and its
-//! length in the blank's frame, for `stock_cut.rs`.
+//! length in the blank's frame, for `cut.rs`.
 //!
 //! On a machine with an orientation transformation (a TRAORI data set) the blank is fixed to
 //! the workpiece side of the kinematic chain: the frame the transformation's BCS is, which on
@@ -10,7 +10,7 @@
 //! length vector of the offsets may be turned by a toolholder, which the chain already does).
 //! Other machines keep the plain 3-axis view: tip = machine − tool length, axis +Z.
 
-use super::Channel;
+use crate::channel::Channel;
 use crate::interp::Offsets;
 use crate::kinematics::AnyTrafo;
 use crate::kinematics::Traori;
@@ -18,7 +18,7 @@ use crate::kinematics::orient::chain::ChainKind;
 use crate::motion::AxisVec;
 
 /// The tool in the blank's frame: tip (mm), unit axis (tip → holder), length (mm).
-pub(super) struct ToolPose {
+pub(in crate::channel) struct ToolPose {
     pub tip: [f64; 3],
     pub axis: [f64; 3],
     pub length: f64,
@@ -27,7 +27,7 @@ pub(super) struct ToolPose {
 impl Channel {
     /// The orientation kinematics the blank is mounted on: the machine's first TRAORI data
     /// set, `None` for a 3-axis machine, a lathe or a data set that cannot be built.
-    pub(super) fn stock_kinematics(&self) -> Option<Box<Traori>> {
+    pub(in crate::channel) fn stock_kinematics(&self) -> Option<Box<Traori>> {
         let set = self.cfg.trafos.iter().find(|s| s.kind == crate::machine_data::TrafoKind::Traori)?;
         match crate::kinematics::build(set, &self.cfg, &Default::default()) {
             Ok(AnyTrafo::Traori(t)) => Some(t),
@@ -36,10 +36,10 @@ impl Channel {
     }
 
     /// The tool tip in the stock's frame at machine position `machine` with the channel's
-    /// offsets: on a rotary table (`stock_table.rs`) or a TRAORI chain's workpiece side
+    /// offsets: on a rotary table (`table.rs`) or a TRAORI chain's workpiece side
     /// turned back with the table, in a lathe's spindle turned with it (no transformation
     /// active); the plain BCS tip elsewhere (the probe's ball centre).
-    pub(super) fn stock_tip_at(&self, machine: &AxisVec) -> [f64; 3] {
+    pub(in crate::channel) fn stock_tip_at(&self, machine: &AxisVec) -> [f64; 3] {
         let run = self.stock.as_deref();
         if let Some(t) = run.and_then(|r| r.table) {
             return self.table_tool_pose(&t, machine, self.machine_tool_vector(&self.offsets)).tip;
@@ -54,7 +54,12 @@ impl Channel {
 
     /// The tool at machine position `machine` for the stock mounted on `kin`, with the block's
     /// `offsets`.
-    pub(super) fn stock_tool_pose(&self, machine: &AxisVec, offsets: &Offsets, kin: Option<&Traori>) -> ToolPose {
+    pub(in crate::channel) fn stock_tool_pose(
+        &self,
+        machine: &AxisVec,
+        offsets: &Offsets,
+        kin: Option<&Traori>,
+    ) -> ToolPose {
         let geo = self.cfg.geo_axes;
         let toff = self.toff.current;
         let plain: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| offsets.tool[k]) + toff[g]);
@@ -87,7 +92,7 @@ impl Channel {
     /// affine, `A·M + b`, with `A` the table's turn back: a workpiece-side chain's point lies at
     /// `M = Aᵀ·(P − b)`; a mixed chain's table (axis 2) at `R2·P + l3 + R2·l4`; a head's
     /// workpiece does not move (only a 7th axis turns it, `A` alone).
-    pub(super) fn stock_frame(&self) -> Option<[[f64; 4]; 3]> {
+    pub(in crate::channel) fn stock_frame(&self) -> Option<[[f64; 4]; 3]> {
         let run = self.stock.as_deref()?;
         if let Some(t) = run.table {
             let r = t.pose(&self.machine);

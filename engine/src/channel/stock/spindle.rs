@@ -1,4 +1,4 @@
-//! The tool against a blank under TRANSMIT, TRACYL and TRAANG, for `stock_cut.rs`.
+//! The tool against a blank under TRANSMIT, TRACYL and TRAANG, for `cut.rs`.
 //!
 //! On a lathe with driven tools the blank is clamped in the work spindle, so it turns with C.
 //! The stock then lives in the workpiece's own frame, the frame TRANSMIT programs in: with `q`
@@ -9,18 +9,18 @@
 //! TRACYL moves C or the program positions C itself: the part is carried either way.
 //!
 //! The turned profile (axisymmetric) becomes Z-dexels about the spindle axis at the first cut
-//! under TRANSMIT/TRACYL (`stock/dexel/turned.rs`); afterwards a turning insert cutting while
+//! under TRANSMIT/TRACYL (`crate::stock::dexel::turned`); afterwards a turning insert cutting while
 //! the work spindle turns in speed control removes a ring of that grid (`ring`).
 //!
 //! TRAANG does not turn the part: the tip is the transformation's Cartesian BCS position
 //! (the inclined axis resolved into X and Z). A TRACON chain is its first member working on the
 //! position between the members (`Tracon::intermediate`: TRAANG's Cartesian slide), so a
 //! TRANSMIT chained before a slant bed's TRAANG cuts as TRANSMIT does. A TRANSMIT/TRACYL whose
-//! rotary axis is a table's, not a spindle's, is `stock_table.rs`'s; one whose rotary axis is
+//! rotary axis is a table's, not a spindle's, is `table.rs`'s; one whose rotary axis is
 //! neither (or a chain starting with TRAORI) is still skipped (counted).
 
-use super::Channel;
-use super::stock_pose::ToolPose;
+use super::pose::ToolPose;
+use crate::channel::Channel;
 use crate::kinematics::{AnyTrafo, Transformation};
 use crate::machine_data::TrafoParams;
 use crate::motion::AxisVec;
@@ -29,7 +29,7 @@ use crate::stock::Stock;
 /// The work spindle the blank is clamped in, with the axes of the machine's TRANSMIT or TRACYL
 /// data set: `(channel slot, geometry index)` of each role.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct SpindleMount {
+pub(in crate::channel) struct SpindleMount {
     rotary: usize,
     radial: (usize, usize),
     /// Geometry index of the rotary role's Cartesian axis: the tool's lateral offset.
@@ -42,9 +42,9 @@ pub(super) struct SpindleMount {
     sign: f64,
 }
 
-/// How `stock_cut.rs` finds the tool this cycle.
-pub(super) enum Mounted {
-    /// No transformation of concern: `stock_pose.rs` (3-axis, TRAORI chains, the profile).
+/// How `cut.rs` finds the tool this cycle.
+pub(in crate::channel) enum Mounted {
+    /// No transformation of concern: `pose.rs` (3-axis, TRAORI chains, the profile).
     Plain,
     /// The tool in the stock's frame; `ring`: a turning cut of the turning part.
     At(ToolPose, bool),
@@ -76,7 +76,7 @@ impl Channel {
     /// The spindle a blank is clamped in: the first TRANSMIT or TRACYL data set whose rotary
     /// axis is a spindle and whose radial and axial axes are the machine's own X and Z (a
     /// lathe); `None` on other machines.
-    pub(super) fn stock_spindle_mount(&self) -> Option<SpindleMount> {
+    pub(in crate::channel) fn stock_spindle_mount(&self) -> Option<SpindleMount> {
         let geo = self.cfg.geo_axes;
         self.cfg.trafos.iter().find_map(|set| {
             let (rot_offset, sign_plus, base, with_extra) = match set.params {
@@ -119,7 +119,12 @@ impl Channel {
     /// The tool tip at machine position `machine` in the frame of a milled blank clamped in the
     /// spindle `m` (no transformation active; the probe of MEAS): `R_z(φ)·q` with the spindle's
     /// angle now, its position from `machine` while it is an axis.
-    pub(super) fn mount_tip_at(&self, m: &SpindleMount, machine: &AxisVec, plain_tool: [f64; 3]) -> [f64; 3] {
+    pub(in crate::channel) fn mount_tip_at(
+        &self,
+        m: &SpindleMount,
+        machine: &AxisVec,
+        plain_tool: [f64; 3],
+    ) -> [f64; 3] {
         let c = match self.spindles.iter().find(|s| s.axis == m.rotary) {
             Some(s) if !s.axis_mode => s.position,
             _ => machine[m.rotary],
@@ -129,7 +134,10 @@ impl Channel {
 
     /// The blank's placement in the workpiece frame of a spindle standing at its current angle
     /// (a blank defined on a lathe with a Y axis is milled as dexels that turn with C).
-    pub(super) fn mount_placement(&self, p: crate::stock::blank::Placement) -> crate::stock::blank::Placement {
+    pub(in crate::channel) fn mount_placement(
+        &self,
+        p: crate::stock::blank::Placement,
+    ) -> crate::stock::blank::Placement {
         let Some(m) = self.stock_spindle_mount() else { return p };
         let rot = m.rotation(self.mount_angle(&m).0);
         let cols: [[f64; 3]; 3] = std::array::from_fn(|c| rot([p.lin[0][c], p.lin[1][c], p.lin[2][c]]));
@@ -141,7 +149,7 @@ impl Channel {
 
     /// The tool this cycle under the active transformation or on the spindle the blank turns
     /// with; `tool` is the length vector by geometry axis without a transformation.
-    pub(super) fn stock_mounted_pose(&mut self, plain_tool: [f64; 3]) -> Mounted {
+    pub(in crate::channel) fn stock_mounted_pose(&mut self, plain_tool: [f64; 3]) -> Mounted {
         let toff = self.toff.current;
         let run_mount = self.stock.as_ref().and_then(|r| r.mount);
         let Some(active) = self.trafo.as_ref() else {

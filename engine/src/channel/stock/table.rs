@@ -1,5 +1,5 @@
 //! The blank on a rotary table that no orientation transformation describes, for
-//! `stock_cut.rs`, `probe.rs` and the state's stock frame.
+//! `cut.rs`, `probe.rs` and the state's stock frame.
 //!
 //! A milling machine whose TRACYL (or TRANSMIT) data set names a rotary axis that is not a
 //! spindle carries the cylinder on a rotary table (`tracyl-xyzac`: a trunnion A about X holding
@@ -10,7 +10,7 @@
 //!
 //! The machine data say nothing of the table's geometry besides the TRACYL data, so (decision):
 //! - C turns the part about the table's Z through the machine zero by `φ = s·(C − c0)` with the
-//!   sign and offset of the TRACYL/TRANSMIT data set, the way `stock_spindle.rs` turns a blank
+//!   sign and offset of the TRACYL/TRANSMIT data set, the way `spindle.rs` turns a blank
 //!   in a work spindle: a point of the table frame lies at `R_z(−φ)·p` in the unturned frame.
 //!   TRACYL's own mapping then holds: the unrolled coordinate `Y = r·φ` is under the tool.
 //! - The tilting axis is the channel's other rotary axis that is no spindle, named A (about
@@ -21,8 +21,8 @@
 //! So `machine = R_tilt(A)·R_z(−φ)·p` for a point `p` of the table frame; the tool tip and
 //! axis of the vertical spindle are taken back through it every cycle.
 
-use super::Channel;
-use super::stock_pose::ToolPose;
+use super::pose::ToolPose;
+use crate::channel::Channel;
 use crate::machine_data::TrafoParams;
 use crate::motion::AxisVec;
 
@@ -31,7 +31,7 @@ pub type Mat3 = [[f64; 3]; 3];
 
 /// The rotary table a blank is clamped on (channel slots of its axes).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct TableMount {
+pub(in crate::channel) struct TableMount {
     rotary: usize,
     /// The tilting axis' slot and the machine axis it turns about (0 X for A, 1 Y for B).
     tilt: Option<(usize, usize)>,
@@ -42,7 +42,7 @@ pub(super) struct TableMount {
 impl TableMount {
     /// The table's turn at machine position `machine`: `machine = R·p` for `p` in the table's
     /// frame.
-    pub(super) fn pose(&self, machine: &AxisVec) -> Mat3 {
+    pub(in crate::channel) fn pose(&self, machine: &AxisVec) -> Mat3 {
         let turn = rotation(2, -self.sign * (machine[self.rotary] - self.rot_offset));
         match self.tilt {
             Some((k, about)) => mul(&rotation(about, machine[k]), &turn),
@@ -52,7 +52,7 @@ impl TableMount {
 }
 
 /// The right-handed rotation by `deg` degrees about machine axis `about` (0 X, 1 Y, 2 Z).
-pub(super) fn rotation(about: usize, deg: f64) -> Mat3 {
+pub(in crate::channel) fn rotation(about: usize, deg: f64) -> Mat3 {
     let (s, c) = deg.to_radians().sin_cos();
     match about {
         0 => [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]],
@@ -66,14 +66,14 @@ fn mul(a: &Mat3, b: &Mat3) -> Mat3 {
 }
 
 /// `mᵀ·v`: a machine vector in the table's frame.
-pub(super) fn apply_t(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
+pub(in crate::channel) fn apply_t(m: &Mat3, v: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|c| (0..3).map(|r| m[r][c] * v[r]).sum())
 }
 
 impl Channel {
     /// The rotary table the blank sits on: the first TRACYL or TRANSMIT data set of a milling
     /// machine without TRAORI data whose rotary axis is no spindle; `None` elsewhere.
-    pub(super) fn stock_table_mount(&self) -> Option<TableMount> {
+    pub(in crate::channel) fn stock_table_mount(&self) -> Option<TableMount> {
         if self.stock_turns() || self.cfg.trafos.iter().any(|s| s.kind == crate::machine_data::TrafoKind::Traori) {
             return None;
         }
@@ -105,7 +105,7 @@ impl Channel {
 
     /// The vertical spindle's tool in the frame of the table `m` at `machine`; `tool` is the
     /// length vector by geometry axis of the machine (no transformation).
-    pub(super) fn table_tool_pose(&self, m: &TableMount, machine: &AxisVec, tool: [f64; 3]) -> ToolPose {
+    pub(in crate::channel) fn table_tool_pose(&self, m: &TableMount, machine: &AxisVec, tool: [f64; 3]) -> ToolPose {
         let geo = self.cfg.geo_axes;
         let r = m.pose(machine);
         let tip: [f64; 3] = std::array::from_fn(|g| geo[g].map_or(0.0, |k| machine[k]) - tool[g]);
@@ -116,7 +116,7 @@ impl Channel {
 
     /// The tool's length vector by geometry axis of the machine: the active transformation's
     /// (by its own geometry axes) carried over through the channel slots, else the offsets'.
-    pub(super) fn machine_tool_vector(&self, offsets: &crate::interp::Offsets) -> [f64; 3] {
+    pub(in crate::channel) fn machine_tool_vector(&self, offsets: &crate::interp::Offsets) -> [f64; 3] {
         let geo = self.cfg.geo_axes;
         let toff = self.toff.current;
         match &self.trafo {

@@ -11,8 +11,10 @@
 //!
 //! Referencing (`reference_axes`) happens in JOG mode in reset state: axes with an incremental
 //! measuring system (MD34200 ENC_REFP_MODE = 1) travel the reference point approach
-//! (`referencing.rs`), the others are referenced at once. Spindles count as referenced. JOG of
+//! (`approach.rs`), the others are referenced at once. Spindles count as referenced. JOG of
 //! unreferenced axes is allowed, as on the control.
+
+pub(super) mod approach;
 
 use super::{Channel, CommandError, Mode, Status};
 use crate::alarm::{Alarm, Clear};
@@ -52,7 +54,7 @@ impl Channel {
 
     /// References the named axis (machine, geometry or channel axis name), or every
     /// unreferenced axis when `axis` is `None`. JOG mode, reset state. Axes with an incremental
-    /// measuring system travel the reference point approach (`referencing.rs`); the others are
+    /// measuring system travel the reference point approach (`approach.rs`); the others are
     /// referenced at once.
     pub fn reference_axes(&mut self, axis: Option<&str>) -> Result<(), CommandError> {
         if self.mode != Mode::Jog {

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use super::{Channel, CommandError, Status};
+use crate::channel::{Channel, CommandError, Status};
 use crate::machine_data::text::{self, Line};
 use crate::machine_data::tools_list::KIND_MAGAZINE_PLACE;
 use crate::machine_data::tools_mgmt::{BUFFER_MAGAZINE, MAX_PLACE, ToolMgmtData};
