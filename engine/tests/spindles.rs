@@ -120,6 +120,34 @@ fn g94_after_g96_keeps_the_speed_reached_at_the_block_start() {
 }
 
 #[test]
+fn scc_names_the_axis_constant_cutting_speed_reckons_the_diameter_on() {
+    // G96 S200 with SCC[Z] at Z30: D = 2·30 = 60 mm, n = 200000/(60π) = 1061.03 rev/min (X25
+    // would give D50, 1273.24). SCC[X] in the next block turns back to X: 1273.24. A CAM post
+    // writes `G96 S.. LIMS=.. SCC[X]` in one block, as here.
+    let run = |program: &str| {
+        let mut ch = channel("lathe-2axis", program);
+        for _ in 0..100_000 {
+            ch.step();
+            if ch.status() == nctwin_engine::Status::Idle {
+                break;
+            }
+        }
+        assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+        speed(&ch)
+    };
+    let on_z = run("G0 X25 Z30\nG96 S200 LIMS=3000 SCC[Z] M3\nG4 F3\nM30\n");
+    assert!((on_z - 200_000.0 / (std::f64::consts::PI * 60.0)).abs() < 1e-6, "{on_z}");
+    let back = run("G0 X25 Z30\nG96 S200 LIMS=3000 SCC[Z] M3\nG4 F3\nSCC[X]\nG4 F3\nM30\n");
+    assert!((back - 200_000.0 / (std::f64::consts::PI * 50.0)).abs() < 1e-6, "{back}");
+    // A spindle is no transverse axis.
+    let mut ch = channel("lathe-2axis", "G96 S200 SCC[SP] M3\nM30\n");
+    for _ in 0..10 {
+        ch.step();
+    }
+    assert!(ch.alarms().iter().any(|a| a.number == 12560 || a.number == 12550), "{:?}", ch.alarms());
+}
+
+#[test]
 fn g331_turns_the_spindle_by_the_travel_over_the_lead() {
     // G331 Z-20 K1.5 S500: 20/1.5 = 13.33 revolutions = 4800° with the axis, at 500·1.5 =
     // 750 mm/min on Z.

@@ -7,6 +7,7 @@ mod caller_section;
 pub(super) mod cycle_alarm;
 pub(super) mod delobj;
 pub(super) mod effects;
+pub(super) mod exec_string;
 mod modal_call;
 mod section;
 pub(super) mod suppression;

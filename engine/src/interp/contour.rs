@@ -8,3 +8,4 @@ pub mod capture;
 pub mod corner_feed;
 pub mod corners;
 pub mod tangent_circle;
+pub mod through_point;

@@ -4,7 +4,7 @@
 
 use super::compensation::approach::ApproachMode;
 use super::compensation::trc::{ArcFeed, CornerMode, Side};
-use super::modal::{Modal, MotionMode, Plane, PtpMode};
+use super::modal::{CircleForm, Modal, MotionMode, Plane, PtpMode};
 use super::orientation::rotation::RotReference;
 use super::orientation::words::{AngleDefinition, OriInterpolation, OriReference};
 
@@ -26,7 +26,7 @@ impl PartialEq for GCodes {
 /// The displayed groups in Operate's order: (group number, names by index). Group 8 (settable
 /// frame) is named from its number instead.
 const GROUPS: [(u8, &[&str]); 20] = [
-    (1, &["G0", "G1", "G2", "G3"]),
+    (1, &["G0", "G1", "G2", "G3", "CIP", "CT"]),
     (6, &["G17", "G18", "G19"]),
     (7, &["G40", "G41", "G42"]),
     (8, &[]),
@@ -62,11 +62,13 @@ impl GCodes {
     pub fn of(m: &Modal) -> GCodes {
         let ori = &m.ori;
         GCodes([
-            match m.motion {
-                MotionMode::Rapid => 0,
-                MotionMode::Linear => 1,
-                MotionMode::Cw => 2,
-                MotionMode::Ccw => 3,
+            match (m.motion, m.circle_form) {
+                (MotionMode::Rapid, _) => 0,
+                (MotionMode::Linear, _) => 1,
+                (MotionMode::Cw | MotionMode::Ccw, CircleForm::ThroughPoint) => 4,
+                (MotionMode::Cw | MotionMode::Ccw, CircleForm::Tangent) => 5,
+                (MotionMode::Cw, CircleForm::Standard) => 2,
+                (MotionMode::Ccw, CircleForm::Standard) => 3,
             },
             match m.plane {
                 Plane::G17 => 0,

@@ -218,7 +218,7 @@ impl Interpreter {
             && self.call_state.mcall.is_none()
             && self.held.is_none()
             && self.modal.rndm.is_none()
-            && !self.modal.tangent_circle
+            && self.modal.circle_form == super::modal::CircleForm::Standard
             && self.modal.feed_group.is_none()
             && !self.modal.rtliof
             && matches!(self.work_area, Some(None))

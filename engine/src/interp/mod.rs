@@ -51,7 +51,7 @@ use frames::cache::{FrameCache, Tracked};
 pub use frames::frame::Frame;
 use frames::frame::SystemFrames;
 pub use frames::overview::ChainLink as FrameChainLink;
-use modal::{FrameKind, FrameOp, PoleRef};
+use modal::{CircleForm, FrameKind, FrameOp, PoleRef};
 pub use modal::{Modal, MotionMode, Plane};
 pub use tools::active_swivel::ActiveSwivel;
 
@@ -1070,7 +1070,7 @@ impl Interpreter {
         let Some(mut side) = self.modal.trc else { return Ok(None) };
         let edge = cfg.edge(self.offsets.t, self.offsets.d);
         let Some(edge) = edge else { return Err(Alarm::trc_without_tool(line)) };
-        let tool_radius = edge[5] + edge[14];
+        let tool_radius = edge[5] + edge[14] + self.modal.tool_offsets.radius;
         let tip = compensation::cutting_edge::tip_offset(edge[0], edge[1], tool_radius);
         let groove_wall = self.groove_wall_axes();
         let offn = self.modal.offn;
@@ -1197,9 +1197,46 @@ impl Interpreter {
             (target[ka], target[ko]) = contour::angle_line::end_point((current[ka], current[ko]), given, ang, line)?;
             (programmed[ka], programmed[ko]) = (true, true);
         }
-        // The circle in the WCS plane (it may decide the end point: centre plus AR=).
+        // The circle in the WCS plane (it may decide the end point: centre plus AR=); a CIP
+        // circle outside it lies in space.
+        let mut space_circle = None;
         let circle = match self.modal.motion {
-            MotionMode::Cw | MotionMode::Ccw if self.modal.tangent_circle => {
+            MotionMode::Cw | MotionMode::Ccw if self.modal.circle_form == CircleForm::ThroughPoint => {
+                let (Some(ka), Some(ko)) = plane else {
+                    return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
+                };
+                let axes = [Some(ka), Some(ko), geo[papp]];
+                let at = |p: &AxisVec| axes.map(|k| k.map_or(0.0, |k| p[k]));
+                let start = at(&current);
+                let mid = contour::through_point::intermediate(
+                    &words.ijk1,
+                    (pa, po, papp),
+                    start,
+                    self.modal.absolute,
+                    self.modal.length_factor(),
+                );
+                let through = contour::through_point::circle(start, mid, at(&target))
+                    .map_err(|_| Alarm::circle_end_point(line))?;
+                match through {
+                    contour::through_point::ThroughPoint::InPlane(c, turn) => {
+                        self.modal.motion =
+                            if turn == contour::arc::Turn::Clockwise { MotionMode::Cw } else { MotionMode::Ccw };
+                        Some(c)
+                    }
+                    contour::through_point::ThroughPoint::Oblique(c) => {
+                        if self.modal.trc.is_some() || self.capture.is_some() {
+                            let why = if self.capture.is_some() { "in a captured contour" } else { "with G41/G42" };
+                            return Err(Alarm::value_out_of_range(
+                                line,
+                                &format!("CIP circle out of the working plane {why}"),
+                            ));
+                        }
+                        space_circle = Some(c);
+                        None
+                    }
+                }
+            }
+            MotionMode::Cw | MotionMode::Ccw if self.modal.circle_form == CircleForm::Tangent => {
                 let (Some(ka), Some(ko)) = plane else {
                     return Err(Alarm::value_out_of_range(line, "circle in a plane without both geometry axes"));
                 };
@@ -1263,8 +1300,11 @@ impl Interpreter {
             self.modal.ori.theta = theta;
         }
 
-        let (mut path, length) =
+        let (mut path, mut length) =
             block_path(&frame, geo, (pa, po, papp), &start, &end, &current, &target, circle.as_ref());
+        if let Some(c) = &space_circle {
+            length = oblique_arc(&mut path, &frame, geo, (pa, po, papp), c);
+        }
         path.ori = ori.map(Box::new);
         if let Some(o) = self.orientation_on_arc(words, cfg, &frame, &path) {
             self.modal.ori.last_change = o.end_direction();
@@ -1407,6 +1447,24 @@ fn shape_path(
         length = ((circle.radius * circle.sweep * scale).powi(2) + helix * helix).sqrt();
     }
     length
+}
+
+/// Puts the CIP circle `c` (lying obliquely in the WCS, coordinates of the plane's abscissa,
+/// ordinate and applicate) on the line `path` from its start to its end, mapped through the
+/// frame; returns its length.
+fn oblique_arc(
+    path: &mut Path,
+    frame: &Frame,
+    geo: &[Option<usize>; 3],
+    (pa, po, papp): (usize, usize, usize),
+    c: &contour::through_point::SpaceCircle,
+) -> f64 {
+    let dirs = [pa, po, papp].map(|g| frame.geo_direction(geo, g));
+    let image = |w: [f64; 3]| -> AxisVec { std::array::from_fn(|k| (0..3).map(|i| w[i] * dirs[i][k]).sum()) };
+    let (u, v) = (image(c.u), image(c.v));
+    let scale = (norm(&u) + norm(&v)) / 2.0;
+    path.arc = Some(Box::new(Arc { u, v, radius: c.radius, start_angle: 0.0, sweep: c.sweep }));
+    c.radius * c.sweep * scale
 }
 
 /// The length the feed refers to: the geometry axes' `length`, or when no geometry axis

@@ -33,6 +33,18 @@ pub enum MotionMode {
     Ccw,
 }
 
+/// How a circle of G group 1 is given: the G2/G3 forms (centre, radius, angle, polar), `CT`
+/// (tangential to the path before, `contour/tangent_circle.rs`) or `CIP` (through an
+/// intermediate point, `contour/through_point.rs`). For CT and CIP [`MotionMode`] holds the
+/// turn of the last circle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CircleForm {
+    #[default]
+    Standard,
+    Tangent,
+    ThroughPoint,
+}
+
 /// G group 6: working plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Plane {
@@ -89,9 +101,8 @@ pub struct Modal {
     pub tool_offsets: super::tools::programmable_offset::ProgrammedOffsets,
     /// FRCM=: modal feed of chamfers and roundings (None: FRCM=0, F applies).
     pub frcm: Option<f64>,
-    /// CT (G group 1): circles continue the path tangentially (`contour/tangent_circle.rs`);
-    /// `motion` holds the turn of the last one.
-    pub tangent_circle: bool,
+    /// CT or CIP (G group 1) instead of G2/G3 when `motion` is a circle.
+    pub circle_form: CircleForm,
     /// G450 (transition circle) or G451 (intersection) at outer corners.
     pub trc_corners: CornerMode,
     /// G groups 43 and 44 of smooth approach and retract (`compensation/sar.rs`).
@@ -177,7 +188,7 @@ impl Modal {
             polar: (0.0, 0.0),
             trc: None,
             rndm: None,
-            tangent_circle: false,
+            circle_form: CircleForm::Standard,
             frcm: None,
             tool_offsets: Default::default(),
             trc_corners: CornerMode::Circle,
@@ -212,7 +223,7 @@ impl Modal {
     pub(super) fn apply(&mut self, w: &Words, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
         if let Some(m) = w.motion {
             self.motion = m;
-            self.tangent_circle = w.tangent_circle;
+            self.circle_form = w.circle_form;
         }
         self.tool_offsets.apply(&w.tool_offsets);
         self.spline.apply(&w.spline, w.motion.is_some());
@@ -464,8 +475,10 @@ pub(super) struct Words {
     /// FRC= / FRCM=: feed of the corner (`contour/corner_feed.rs`).
     pub frc: Option<f64>,
     pub frcm: Option<f64>,
-    /// CT: a circle with tangential transition (G group 1, with `motion` a circle).
-    pub tangent_circle: bool,
+    /// CT or CIP: the circle's form (G group 1, with `motion` a circle).
+    pub circle_form: CircleForm,
+    /// `I1=`, `J1=`, `K1=`: the intermediate point of CIP per geometry axis (value, AC/IC).
+    pub ijk1: [Option<(f64, Option<CoordMode>)>; 3],
     /// CONTCAPON(table, count) / CONTCAPOF: contour capture (`contour/capture.rs`).
     pub capture: Option<super::contour::capture::CaptureOp>,
     /// `AR=` opening angle of a circle, `TURN=` extra full turns of a helix.
@@ -514,7 +527,10 @@ impl Words {
     }
 
     pub fn arc_params_given(&self) -> bool {
-        self.cr.is_some() || self.ar.is_some() || self.ijk.iter().any(Option::is_some)
+        self.cr.is_some()
+            || self.ar.is_some()
+            || self.ijk.iter().any(Option::is_some)
+            || self.ijk1.iter().any(Option::is_some)
     }
 
     /// Polar coordinates in the block.
@@ -615,12 +631,13 @@ pub(super) fn collect(
             Word::Keyword { name, args } if args.is_empty() && w.ori.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.path.keyword(name) => {}
             Word::Keyword { name, args } if args.is_empty() && w.spline.keyword(name) => {}
-            Word::Keyword { name, args } if args.is_empty() && name == "CT" => {
+            Word::Keyword { name, args } if args.is_empty() && matches!(name.as_str(), "CT" | "CIP") => {
                 if w.motion.is_some() {
-                    return Err(Alarm::syntax(line, "CT and another G function of group 1 in a block"));
+                    return Err(Alarm::syntax(line, &format!("{name} and another G function of group 1 in a block")));
                 }
                 // The turn follows from the geometry when the block is prepared.
-                (w.motion, w.tangent_circle) = (Some(MotionMode::Ccw), true);
+                let form = if name == "CT" { CircleForm::Tangent } else { CircleForm::ThroughPoint };
+                (w.motion, w.circle_form) = (Some(MotionMode::Ccw), form);
             }
             Word::Keyword { name, args }
                 if args.is_empty() && matches!(name.as_str(), "CP" | "PTP" | "PTPG0" | "PTPWOC") =>
@@ -782,6 +799,9 @@ pub(super) fn collect(
                 if w.spindle.position_control.replace(switch).is_some() {
                     return Err(Alarm::syntax(line, "one SPCON/SPCOF per block"));
                 }
+            }
+            Word::Keyword { name, args } if name == "SCC" => {
+                w.spindle.css_axis = Some(super::spindles::css_axis_word(args, cfg, line)?);
             }
             Word::Keyword { name, args } if name == "FPR" => {
                 w.spindle.fpr = Some(super::spindles::fpr_statement(args, &Ctx { vars, sys }, cfg, line)?);
@@ -1035,6 +1055,10 @@ pub(super) fn collect(
                     "I" | "J" | "K" => {
                         let g = (name.as_bytes()[0] - b'I') as usize;
                         w.ijk[g] = Some((v, value.mode == Some(CoordMode::Ac)));
+                    }
+                    "I1" | "J1" | "K1" => {
+                        let g = (name.as_bytes()[0] - b'I') as usize;
+                        w.ijk1[g] = Some((v, value.mode));
                     }
                     _ => {
                         let k = axis.ok_or_else(|| Alarm::unknown_name(line, name))?;
@@ -1344,6 +1368,9 @@ fn is_nc_address(name: &str) -> bool {
             | "I"
             | "J"
             | "K"
+            | "I1"
+            | "J1"
+            | "K1"
             | "L"
             | "P"
             | "RPL"

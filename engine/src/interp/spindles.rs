@@ -25,6 +25,22 @@ pub(super) mod words;
 pub(super) use diameter_axes::{is_keyword as is_diameter_axis_keyword, word as diameter_axis_word};
 pub(super) use fpr::statement as fpr_statement;
 
+/// The channel axis of `SCC[axis]` (Programming Manual "Constant cutting speed"): a linear
+/// axis of the channel; anything else 12550 (unknown) or 12560.
+pub(super) fn css_axis_word(args: &[crate::lang::Expr], cfg: &MachineConfig, line: u32) -> Result<usize, Alarm> {
+    let [crate::lang::Expr::Var { name, indices }] = args else {
+        return Err(Alarm::syntax(line, "SCC[axis]"));
+    };
+    let k = cfg
+        .program_axis(name)
+        .filter(|_| indices.is_empty())
+        .ok_or_else(|| Alarm::unknown_name(line, &format!("SCC[{name}]")))?;
+    if cfg.axis(k).rotary || cfg.axis(k).spindle.is_some() {
+        return Err(Alarm::value_out_of_range(line, &format!("SCC[{name}]: no linear axis")));
+    }
+    Ok(k)
+}
+
 use crate::alarm::Alarm;
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -152,6 +168,8 @@ pub(in crate::interp) struct Spindles {
     /// FPR(axis): the channel axis a feed per revolution refers to (`None`: the master
     /// spindle).
     pub fpr: Option<usize>,
+    /// SCC[axis]: the transverse axis G96/G961 reckon the diameter on (`None`: MD20100's).
+    pub css_axis: Option<usize>,
     /// `fpr`'s rotary axis is no spindle: its speed is unknown to preparation.
     fpr_axis_max: Option<f64>,
     /// The G34/G35 lead of the block being prepared: its move goes out in segments.
@@ -178,6 +196,7 @@ impl Spindles {
             thread_chained: false,
             diameter: diameter::Diameter::reset(cfg),
             fpr: None,
+            css_axis: None,
             fpr_axis_max: None,
             variable_lead: None,
             gear: [1; MAX_CHANNEL_AXES],
@@ -196,6 +215,7 @@ impl Spindles {
         self.start_angle = 0.0;
         self.diameter = diameter::Diameter::reset(cfg);
         self.fpr = None;
+        self.css_axis = None;
         self.fpr_axis_max = None;
         // The stage engaged stays (it is mechanical); selection is automatic (M40) again.
         self.gear_auto = [true; MAX_CHANNEL_AXES];

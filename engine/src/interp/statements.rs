@@ -82,6 +82,10 @@ impl Interpreter {
                 self.check_unbound(block.line)?;
                 self.statement(stmt, &block, at, cfg, out)?;
             }
+            None if let Some(arg) = super::calls::exec_string::argument(&block) => {
+                self.check_unbound(block.line)?;
+                self.exec_string(arg, &block, cfg, programs, out)?;
+            }
             None => {
                 // Comment lines before a subprogram's PROC line leave its call unbound.
                 if !block.words.is_empty() || block.number.is_some() || block.label.is_some() {

@@ -716,8 +716,9 @@ fn parse_word(cur: &mut Cursor, build: bool) -> PResult<Word> {
         }
         if !indices.is_empty() {
             let name = cur.upper(span);
-            // Axis-specific diameter programming: `DIAMONA[X]` is a keyword with its axis.
-            if matches!(name.as_str(), "DIAMONA" | "DIAM90A" | "DIAMOFA" | "DIACYCOFA" | "DIAMCHANA") {
+            // Axis-specific diameter programming (`DIAMONA[X]`) and the transverse axis of
+            // constant cutting speed (`SCC[X]`): keywords with their axis.
+            if matches!(name.as_str(), "DIAMONA" | "DIAM90A" | "DIAMOFA" | "DIACYCOFA" | "DIAMCHANA" | "SCC") {
                 return Ok(Word::Keyword { name, args: indices });
             }
             return Err((cur.pos, format!("expected `=` after {name}[...]")));

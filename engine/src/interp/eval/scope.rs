@@ -6,7 +6,7 @@ use crate::interp::eval::Scope;
 use crate::interp::eval::value::Value;
 use crate::interp::eval::vars::Variables;
 use crate::interp::frames::frame::{Frame, GeoAxes};
-use crate::interp::modal::{Modal, MotionMode, Plane};
+use crate::interp::modal::{CircleForm, Modal, MotionMode, Plane};
 use crate::machine_data::MachineConfig;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::AxisVec;
@@ -511,11 +511,14 @@ fn g_group_index(m: &Modal, h: &crate::interp::tools::toolholder::Holder, group:
         _ => {}
     }
     Some(match group {
-        1 => match m.motion {
-            MotionMode::Rapid => 1,
-            MotionMode::Linear => 2,
-            MotionMode::Cw => 3,
-            MotionMode::Ccw => 4,
+        // CIP 5, CT 15: the control's numbers of G group 1.
+        1 => match (m.motion, m.circle_form) {
+            (MotionMode::Rapid, _) => 1,
+            (MotionMode::Linear, _) => 2,
+            (MotionMode::Cw | MotionMode::Ccw, CircleForm::ThroughPoint) => 5,
+            (MotionMode::Cw | MotionMode::Ccw, CircleForm::Tangent) => 15,
+            (MotionMode::Cw, CircleForm::Standard) => 3,
+            (MotionMode::Ccw, CircleForm::Standard) => 4,
         },
         6 => match m.plane {
             Plane::G17 => 1,

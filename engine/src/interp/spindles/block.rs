@@ -41,6 +41,10 @@ impl Interpreter {
         if let Some(k) = sw.fpr {
             self.select_fpr(k, cfg, line, out);
         }
+        let css_axis_changed = sw.css_axis.is_some_and(|k| self.spindles.css_axis != Some(k));
+        if sw.css_axis.is_some() {
+            self.spindles.css_axis = sw.css_axis;
+        }
         if words.set_master.is_some()
             && let Some(axis) = self.spindles.master()
         {
@@ -121,8 +125,9 @@ impl Interpreter {
                 old_direction[k] = i8::MAX;
             }
         }
-        // G96 selected or left: the spindle changes its speed rule.
-        if let Some(k) = master.filter(|_| t.css() != was_css) {
+        // G96 selected or left, or its transverse axis changed (SCC): the spindle changes its
+        // speed rule.
+        if let Some(k) = master.filter(|_| t.css() != was_css || (t.css() && css_axis_changed)) {
             touched[k] = true;
             if !t.css() && was_css {
                 // G97/G971/G94/G95 after G96: the speed reached at the block's start point stays.
@@ -215,11 +220,11 @@ impl Interpreter {
         }
     }
 
-    /// The transverse axis (MD20100 `$MC_DIAMETER_AX_DEF`, else the first geometry axis) and
+    /// The transverse axis (SCC's, else MD20100 `$MC_DIAMETER_AX_DEF`, else the first geometry axis) and
     /// the machine position of the turning centre on it: where the workpiece coordinate is 0
     /// through the active frame and tool length (a frame that only translates on that axis).
     pub(in crate::interp) fn turning_centre(&self, cfg: &MachineConfig) -> Option<(usize, f64)> {
-        let tx = cfg.transverse_axis.or(cfg.geo_axes[0])?;
+        let tx = self.spindles.css_axis.or(cfg.transverse_axis).or(cfg.geo_axes[0])?;
         let mut basic = self.pos;
         for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
             *b -= t;

@@ -50,6 +50,8 @@ pub struct SpindleWords {
     pub axis_diameter: Vec<super::diameter_axes::AxisDiamOp>,
     /// FPR(axis): the channel axis a feed per revolution follows from now on (`fpr.rs`).
     pub fpr: Option<usize>,
+    /// SCC[axis]: the transverse axis of constant cutting speed from now on.
+    pub css_axis: Option<usize>,
     /// M40..M45 (`gears.rs`).
     pub gear: Option<super::gears::GearWord>,
     /// SPCON/SPCOF (`position_control.rs`).
