@@ -109,6 +109,17 @@ fn a_tool_larger_than_an_inner_arc_is_an_alarm() {
 }
 
 #[test]
+fn an_inner_rounding_smaller_than_the_tool_is_an_alarm_at_its_block() {
+    // RND=5 at the inner corners of a pocket outline with a radius-5 tool: the centre path's
+    // arc would have radius 5 − 5 = 0. The alarm names the block with the RND (line 4), not
+    // line 0 (found by probing: the bottleneck check raised it without a line).
+    let program = "T1 D1\nG17 G0 X-10 Y-10 Z-1\nG41 G1 X0 Y0 F600\nX50 RND=5\nY30\nX0\nY0\nG40 X-10 Y-10\nM30";
+    let (ch, _) = run(program);
+    let alarm = ch.snapshot().alarms.first().cloned().expect("an alarm");
+    assert_eq!((alarm.number, alarm.line), (10751, Some(4)), "{alarm:?}");
+}
+
+#[test]
 fn without_g41_nothing_is_compensated() {
     let (_, samples) = run(&SQUARE.replace("{sel}", ""));
     assert!(passes(&samples, 50.0, 0.0) && passes(&samples, 50.0, 50.0));

@@ -694,7 +694,7 @@ impl Compensator {
         let Some(prev) = self.held.as_mut() else { return Ok(()) };
         let Some(t) = prev.chain.first() else { return Ok(()) };
         let d = prev.comp.offset();
-        let head = offset_elem(&prev.contour, d, Some(prev.start), Some(t.meet.0), 0)?;
+        let head = offset_elem(&prev.contour, d, Some(prev.start), Some(t.meet.0), prev.p.line)?;
         if !t.omitted.is_empty() {
             // A join across omitted elements (the look-ahead's, or a cut below): the joined
             // paths may come nearer than the radius to the skipped contour, or to each other's
