@@ -815,6 +815,14 @@ impl Interpreter {
         let measure_mark = out.len();
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;
+        if words.ang.is_some() && words.axes.is_empty() && !words.polar() {
+            // `ANG=` alone opens the two- and three-block contour definitions, which are not
+            // modelled: refused rather than read over (the corner would silently go missing).
+            return Err(Alarm::value_out_of_range(
+                line,
+                "ANG= without an end coordinate (the contour definitions over two or three blocks are not modelled)",
+            ));
+        }
         if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
