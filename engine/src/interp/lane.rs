@@ -217,6 +217,7 @@ impl Interpreter {
         self.flow.as_ref().is_some_and(|f| f.sections.is_empty())
             && self.call_state.mcall.is_none()
             && self.held.is_none()
+            && self.pending_angle.is_none()
             && self.modal.rndm.is_none()
             && self.modal.circle_form == super::modal::CircleForm::Standard
             && self.modal.feed_group.is_none()

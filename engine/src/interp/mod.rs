@@ -329,6 +329,10 @@ pub struct Interpreter {
     lane_memo: lane::LaneMemo,
     /// The last path block in the working plane, for CT (`contour/tangent_circle.rs`).
     last_move: contour::tangent_circle::LastMove,
+    /// The first block of a two-block contour definition with ANG, waiting for the second
+    /// (`contour/angle_corner.rs`), and the corner it runs to once known.
+    pending_angle: Option<Box<contour::angle_corner::Pending>>,
+    angle_corner_end: Option<(f64, f64)>,
     /// The session's machine and setting data as stored, for programs' `$MN_`... reads
     /// (the channel hands over each new state, [`Interpreter::set_stored_data`]).
     stored: std::sync::Arc<crate::machine_data::MachineData>,
@@ -388,6 +392,8 @@ impl Interpreter {
             program_control: Default::default(),
             lane_memo: Default::default(),
             last_move: Default::default(),
+            pending_angle: None,
+            angle_corner_end: None,
             stored: Default::default(),
             io: io::DigitalIo::default(),
             env: Default::default(),
@@ -410,6 +416,7 @@ impl Interpreter {
         self.held = None;
         self.capture = None;
         self.splines = None;
+        self.pending_angle = None;
         self.sync_wait = synchronized::PrepWait::None;
         self.trc.clear();
         self.positioned = [false; MAX_CHANNEL_AXES];
@@ -725,12 +732,15 @@ impl Interpreter {
         let line = block.line;
         let (base_cfg, derived) = (cfg, self.trafo.config());
         let cfg = derived.as_deref().unwrap_or(base_cfg);
-        if self.synchronized_block(block, cfg, programs, out)? {
+        if self.synchronized_block(block, cfg, programs, out)? || self.defer_angle_block(block, cfg) {
             return Ok(());
         }
         {
             let sys = sys_view!(self, cfg);
             modal::collect(words, block, cfg, &mut self.vars, &sys, programs)?;
+        }
+        if let Some(first) = self.pending_angle.take() {
+            self.close_angle_corner(*first, words, cfg, programs, line, out)?;
         }
         let words = &*words;
         self.data_writes.extend(words.data_writes.iter().map(|t| (line, t.clone())));
@@ -815,14 +825,6 @@ impl Interpreter {
         let measure_mark = out.len();
         // The block moves on the path: a modal call (MCALL) follows it.
         let mut path_motion = false;
-        if words.ang.is_some() && words.axes.is_empty() && !words.polar() {
-            // `ANG=` alone opens the two- and three-block contour definitions, which are not
-            // modelled: refused rather than read over (the corner would silently go missing).
-            return Err(Alarm::value_out_of_range(
-                line,
-                "ANG= without an end coordinate (the contour definitions over two or three blocks are not modelled)",
-            ));
-        }
         if words.dwell {
             let seconds = match (words.feed, words.speed) {
                 (Some(f), None) => f,
@@ -844,6 +846,7 @@ impl Interpreter {
         } else if let Some(reference) = words.pole {
             self.define_pole(reference, words, cfg, line)?;
         } else if words.frame_op.is_none() && !words.axes.is_empty()
+            || self.angle_corner_end.is_some()
             || words.ori.moves()
             || words.polar()
             || (words.arc_params_given() && matches!(self.modal.motion, MotionMode::Cw | MotionMode::Ccw))
@@ -1197,7 +1200,11 @@ impl Interpreter {
             programmed[ko] = true;
         }
 
-        if let Some(ang) = words.ang {
+        if let (Some(end), (Some(ka), Some(ko))) = (self.angle_corner_end.take(), plane) {
+            // The first block of a two-block contour definition runs to the corner.
+            (target[ka], target[ko]) = end;
+            (programmed[ka], programmed[ko]) = (true, true);
+        } else if let Some(ang) = words.ang {
             let (Some(ka), Some(ko)) = plane else {
                 return Err(Alarm::value_out_of_range(line, "ANG= in a plane without both geometry axes"));
             };

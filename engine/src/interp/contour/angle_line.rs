@@ -6,8 +6,8 @@
 //!
 //! Refused: both plane coordinates with ANG (the line is over-determined) or neither, and an
 //! angle parallel to the axis whose coordinate is given (the line never reaches it): 12560,
-//! NCTwin's choice of number, the manual naming none. The two- and three-block forms (a corner
-//! found from ANG of both blocks, with RND/CHR between) are not modelled.
+//! NCTwin's choice of number, the manual naming none. The two-block form (the corner found from
+//! the ANG of both blocks) is `angle_corner.rs`; the three-block forms are not modelled.
 
 use crate::alarm::Alarm;
 
