@@ -12,25 +12,10 @@
 //! fit. The sweep runs from S through M to E: below a half turn when M lies on the short arc.
 
 use super::arc::{Circle, CircleError, Turn, from_center};
+use crate::kinematics::orient::vec3::{add, cross, dot, scale, sub};
 use crate::lang::CoordMode;
 
 type V3 = [f64; 3];
-
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn scaled(a: V3, s: f64) -> V3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
 
 /// A circle in space from `start`: centre, radius, the unit vector `u` from the centre to the
 /// start, `v` = normal × `u` (the direction of travel at the start) and the sweep (positive).
@@ -55,23 +40,17 @@ pub enum ThroughPoint {
 
 /// The circle from `start` through `mid` to `end` (each (abscissa, ordinate, applicate)).
 pub fn circle(start: V3, mid: V3, end: V3) -> Result<ThroughPoint, CircleError> {
-    let (a, b) = (sub(mid, start), sub(end, start));
-    let n = cross(a, b);
-    let n2 = dot(n, n);
-    let size = dot(a, a).max(dot(b, b));
+    let (a, b) = (sub(&mid, &start), sub(&end, &start));
+    let n = cross(&a, &b);
+    let n2 = dot(&n, &n);
+    let (a2, b2) = (dot(&a, &a), dot(&b, &b));
+    let size = a2.max(b2);
     // Collinear or coinciding points: no circle (relative to the points' spread).
     if size < 1e-18 || n2 <= 1e-18 * size * size {
         return Err(CircleError);
     }
-    let offset = scaled(
-        [
-            dot(a, a) * cross(b, n)[0] + dot(b, b) * cross(n, a)[0],
-            dot(a, a) * cross(b, n)[1] + dot(b, b) * cross(n, a)[1],
-            dot(a, a) * cross(b, n)[2] + dot(b, b) * cross(n, a)[2],
-        ],
-        1.0 / (2.0 * n2),
-    );
-    let center = [start[0] + offset[0], start[1] + offset[1], start[2] + offset[2]];
+    let offset = scale(&add(&scale(&cross(&b, &n), a2), &scale(&cross(&n, &a), b2)), 1.0 / (2.0 * n2));
+    let center = add(&start, &offset);
     let flat = (start[2] - mid[2]).abs().max((start[2] - end[2]).abs()) <= 1e-9 * size.sqrt().max(1.0);
     if flat {
         // Seen from the applicate's positive side, S → M → E turning left is G3.
@@ -79,13 +58,13 @@ pub fn circle(start: V3, mid: V3, end: V3) -> Result<ThroughPoint, CircleError> 
         let c = from_center((start[0], start[1]), (end[0], end[1]), (center[0], center[1]), turn)?;
         return Ok(ThroughPoint::InPlane(c, turn));
     }
-    let radius = dot(offset, offset).sqrt();
-    let normal = scaled(n, 1.0 / n2.sqrt());
-    let u = scaled(sub(start, center), 1.0 / radius);
-    let v = cross(normal, u);
+    let radius = dot(&offset, &offset).sqrt();
+    let normal = scale(&n, 1.0 / n2.sqrt());
+    let u = scale(&sub(&start, &center), 1.0 / radius);
+    let v = cross(&normal, &u);
     // The end's angle from u towards v; the normal n = a × b makes M lie before E on the way.
-    let to_end = sub(end, center);
-    let mut sweep = dot(to_end, v).atan2(dot(to_end, u));
+    let to_end = sub(&end, &center);
+    let mut sweep = dot(&to_end, &v).atan2(dot(&to_end, &u));
     if sweep <= 0.0 {
         sweep += std::f64::consts::TAU;
     }
