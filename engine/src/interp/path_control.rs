@@ -33,7 +33,7 @@
 //! - `ADIS`/`ADISPOS` are modal and 0 after reset: G641 without them rounds nothing.
 //! - `OTOL` and the orientation: under an orientation transformation the corner is rounded in
 //!   the BCS (the tool tip within the contour tolerance) and the orientation within the
-//!   orientation tolerance ([`PathControl::ori_tolerance`]; `channel/blending_trafo.rs`).
+//!   orientation tolerance ([`PathControl::ori_tolerance`]; `channel/smoothing/blending_trafo.rs`).
 //! - `UPATH`/`SPATH` (the path parameter of the axes outside FGROUP) are accepted and
 //!   change nothing: FGROUP is not modelled, so every axis moves with the geometry axes' path
 //!   length, and lines, circles and the rounding and compressor elements run at uniform path
