@@ -61,6 +61,9 @@ fn main() {
         let stopping: Vec<_> = channel.alarms().iter().filter(|a| a.clear == Clear::Reset).collect();
         assert!(stopping.is_empty(), "alarms: {stopping:?}");
         println!("ipo cycles {}", channel.ticks());
+        // The end position's bits: two builds that run a program alike print the same line.
+        let bits: Vec<String> = channel.axis_positions().iter().map(|p| format!("{:016x}", p.to_bits())).collect();
+        println!("end position {}", bits.join(" "));
         if let Some(s) = channel.stock_info() {
             let warnings = channel.stock_warnings();
             println!(

@@ -34,8 +34,11 @@ const SOFT_MD: &str = "$MA_MAX_AX_JERK[X]=20\n$MA_MAX_AX_JERK[Y]=20\n$MA_MAX_AX_
 fn soft_keeps_every_axis_within_its_jerk() {
     // A square, a diagonal and short blocks, exact stop and continuous path. No axis' third
     // difference of the sampled positions may exceed 20 m/s³ = 20 000 mm/s³; the bound
-    // allows 10 % for the discretisation. (Measured 20 104 on X: 0.5 % over the jerk in some
-    // cycle of the G64 part; not explained yet, so the bound is not tightened.)
+    // allows 10 % for the discretisation. (Measured 20 421 on X, 2 % over, at the G64 corner
+    // into the G0 block: the corner's velocity jump, planned within the jerk on its own, and
+    // the S curve's braking share the crossing cycle. Before session 15 the path crept into
+    // slowed corners below their planned speed, which hid most of it: 20 104. Without the
+    // hold of the acceleration in the cycle after a corner it was 24 598.)
     let program = "SOFT F6000\nG1 X100\nY50\nX0 Y0\nG64 X10\nX20 Y1\nX30 Y3\nX40 Y2\nG0 X80 Y40 Z-20\nM30";
     let (_, s) = run(SOFT_MD, program);
     let jerk = diff(&s, 3);

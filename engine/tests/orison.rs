@@ -237,3 +237,34 @@ fn corners_of_the_tip_path_are_still_rounded_by_g642() {
     assert!(dev <= 1.5 + 1e-6 && dev > 0.5, "{dev}°");
     assert_machine_limits(&ch, &samples);
 }
+
+#[test]
+fn osof_is_accepted_and_the_other_functions_of_g_group_34_are_refused_by_name() {
+    // G group 34 (orientation smoothing at block transitions): OSOF, its reset value, runs
+    // the zig-zag exactly as without it (bit for bit); OSC, OSS, OSSE, OSD and OST are not
+    // modelled: the run stops with 12550 naming the function at its line (2), as a control
+    // without the function does, and the static name check flags the same line beforehand.
+    let (_, plain) = run_with(DATA, &program(|_| ""));
+    let (_, osof) = run_with(DATA, &program(|i| if i == 1 { "OSOF " } else { "" }));
+    assert!(plain == osof, "OSOF changed the motion");
+    for f in ["OSC", "OSS", "OSSE", "OSD", "OST"] {
+        let text = format!("G1 X1 F600\n{f}\nG1 X2\nM30");
+        let mut ch = Channel::from_preset("mill5-head-ca", DATA).unwrap();
+        let flagged: Vec<(u32, u32)> =
+            nctwin_engine::check::names(&text, &ch.name_context()).iter().map(|d| (d.alarm, d.line)).collect();
+        assert_eq!(flagged, vec![(12550, 2)], "{f}");
+        ch.run_program(&text).unwrap();
+        for _ in 0..100_000 {
+            if !ch.is_busy() {
+                break;
+            }
+            ch.step();
+        }
+        let alarm = ch.alarms().first().unwrap_or_else(|| panic!("{f} ran"));
+        assert_eq!((alarm.number, alarm.line), (12550, Some(2)), "{f}");
+        assert!(alarm.message.contains(&format!("name {f} not defined")), "{}", alarm.message);
+    }
+    // And OSOF is known to the name check.
+    let ch = Channel::from_preset("mill5-head-ca", DATA).unwrap();
+    assert!(nctwin_engine::check::names("OSOF\nG1 X1 F600\nM30", &ch.name_context()).is_empty());
+}

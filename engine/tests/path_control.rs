@@ -199,14 +199,19 @@ fn a_cam_surface_of_20000_chords_runs_fastest_with_g642_and_compcad() {
     // No two chords of the surface meet tangentially: G645 rounds each transition as a corner,
     // exactly as G642 does.
     let g645 = cycles("G645 CTOL=0.01");
+    // The header a CAM system writes (issue 22's check): jerk-limited, with feed-forward.
+    let cam = cycles("G642 COMPCAD SOFT FFWON CTOL=0.01");
     eprintln!(
-        "surface program, 20,000 chords: G60 {:.1} s, G64 {:.1} s, G642 {:.1} s, G645 {:.1} s, G642+COMPCAD {:.1} s",
+        "surface program, 20,000 chords: G60 {:.1} s, G64 {:.1} s, G642 {:.1} s, G645 {:.1} s, G642+COMPCAD {:.1} s, \
+         G642+COMPCAD+SOFT+FFWON {:.1} s",
         g60 as f64 * DT,
         g64 as f64 * DT,
         g642_only as f64 * DT,
         g645 as f64 * DT,
-        g642 as f64 * DT
+        g642 as f64 * DT,
+        cam as f64 * DT
     );
+    assert!(cam < g64, "G642+COMPCAD+SOFT+FFWON {cam}, G64 {g64} cycles");
     assert_eq!(g645, g642_only, "G645 differs from G642 on a surface without tangential transitions");
     assert!(g642 < g64 && 2 * g64 < g60, "G642+COMPCAD {g642}, G64 {g64}, G60 {g60} cycles");
     assert!(g642 <= g642_only, "the compressor helps: {g642} vs {g642_only}");

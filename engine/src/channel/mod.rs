@@ -11,16 +11,12 @@
 
 pub mod action_log;
 mod active_program;
-mod blending;
-mod blending_trafo;
 mod command_axes;
-mod compress_trafo;
 mod exact_stop;
 mod io;
 mod jog;
 pub mod limit_watch;
 mod main_run;
-mod orison;
 mod pending;
 mod positioning_axes;
 mod probe;
@@ -32,6 +28,7 @@ mod resume;
 mod search;
 pub mod servo;
 mod set_wo;
+mod smoothing;
 mod snapshot;
 mod snapshot_refresh;
 mod spindle;
@@ -325,8 +322,8 @@ pub struct Channel {
     /// told apart by identity): executing it ends the wait. `None` after a block search, whose
     /// wait ends at the next switch of the transformation.
     trafo_selection: Option<crate::interp::SharedOffsets>,
-    /// Corner rounding of continuous-path mode between prepared moves (`blending.rs`).
-    blending: blending::Blending,
+    /// Corner rounding of continuous-path mode between prepared moves (`smoothing/`).
+    blending: smoothing::Blending,
     /// The move whose transformation the main run has taken over (checked once per move, not
     /// every cycle).
     trafo_tag: Option<u32>,

@@ -14,8 +14,13 @@
 //!   use where one is set (CTOL, SD42465 by MD20480, ATOL), else each axis by its MD33100,
 //!   the other axes by ATOL or their MD33100. Next to an arc, under a transformation or with
 //!   an orientation it rounds as G642 with the smallest of the geometry axes' tolerances.
-//!   (B1 gives G643 MD20480's units digit and G642 its tens digit; NCTwin reads the units
-//!   digit for both, as before.)
+//! - MD20480 `$MC_SMOOTHING_MODE` picks the data each function rounds by (B1 "Rounding
+//!   behavior"): its units digit for G643, its tens digit for G642 and for G645 (which B1
+//!   treats "virtually always" like G642). Per digit: 0 every axis by MD33100; 1 the geometry
+//!   axes by SD42465, the others by MD33100; 2 the orientation by SD42466, the others by
+//!   MD33100; 3 both. The hundreds digit (the velocity profile in the rounding element) and
+//!   the ten-thousands digit (jerk limitation in the element: BRISK without, SOFT with, as
+//!   NCTwin's elements run anyway) are not read.
 //! - `G644` (rounding with the greatest possible dynamics, for moves in air) follows MD20480's
 //!   thousands digit: 1 and 5 round by `ADIS`/`ADISPOS` as G641 does, every other value by
 //!   the axial tolerance MD33100 (3, "neither tolerance nor distance", is read as 0). The
@@ -24,16 +29,20 @@
 //! - `G645` rounds corners like `G642` (same tolerance rule) and smooths tangential
 //!   transitions with a jump in curvature within MD33120 `$MA_PATH_TRANS_POS_TOL` (the
 //!   smallest of the geometry axes'), which `CTOL` does not change (B1, as for G644).
-//! - The tolerance of G642, G644, G645 is one distance for the geometry axes: `CTOL` when
-//!   programmed, else SD42465 when MD20480's units digit is 1 or 3, else the smallest MD33100
-//!   of the geometry axes (or `ATOL`). A negative `CTOL`/`OTOL`/`ATOL` returns to the data.
+//! - The tolerance of G642, G645 is one distance for the geometry axes: `CTOL` when
+//!   programmed, else SD42465 when MD20480's tens digit is 1 or 3, else `ATOL`, else the
+//!   smallest MD33100 of the geometry axes (G644: always that MD33100). A negative `CTOL`/`OTOL`/`ATOL` returns to the data.
 //! - `G601`/`G602`/`G603` travel with the block (`GCodes::stop_window`) to the main run,
 //!   where the block change after G60/G9 waits for the window (`channel/exact_stop.rs`); under
 //!   FFWON the following error is zero and the three are alike.
 //! - `ADIS`/`ADISPOS` are modal and 0 after reset: G641 without them rounds nothing.
 //! - `OTOL` and the orientation: under an orientation transformation the corner is rounded in
 //!   the BCS (the tool tip within the contour tolerance) and the orientation within the
-//!   orientation tolerance ([`PathControl::ori_tolerance`]; `channel/blending_trafo.rs`).
+//!   orientation tolerance ([`PathControl::ori_tolerance`]; `channel/smoothing/blending_trafo.rs`).
+//! - G group 34 (orientation smoothing at block transitions): `OSOF`, its reset value, is
+//!   accepted and changes nothing; `OSC`, `OSS`, `OSSE`, `OSD`, `OST` are refused with 12550
+//!   naming the function (not modelled: CAM programs smooth the orientation with ORISON or
+//!   the corner rounding's OTOL, which NCTwin models).
 //! - `UPATH`/`SPATH` (the path parameter of the axes outside FGROUP) are accepted and
 //!   change nothing: FGROUP is not modelled, so every axis moves with the geometry axes' path
 //!   length, and lines, circles and the rounding and compressor elements run at uniform path
@@ -163,14 +172,19 @@ impl PathWords {
         Ok(true)
     }
 
-    /// COMPON, COMPCURV, COMPCAD, COMPSURF, COMPOF, UPATH, SPATH, ORISON, ORISOF; false for
-    /// any other keyword.
+    /// COMPON, COMPCURV, COMPCAD, COMPSURF, COMPOF, UPATH, SPATH, ORISON, ORISOF, OSOF; false
+    /// for any other keyword.
     pub fn keyword(&mut self, name: &str) -> bool {
         let compressor = match name {
             "ORISON" | "ORISOF" => {
                 self.orison = Some(name == "ORISON");
                 return true;
             }
+            // G group 34's reset value: the orientation smoothing at block transitions it
+            // deselects (OSC, OSS, OSSE, OSD, OST) is not modelled, so there is nothing to
+            // switch off. Those five stay unknown names (12550, "option/function not
+            // available", as on a control without the function).
+            "OSOF" => return true,
             "COMPOF" => Compressor::Off,
             "COMPON" => Compressor::On,
             "COMPCURV" => Compressor::Curv,
@@ -249,12 +263,16 @@ impl PathControl {
                 let d = if rapid { self.adispos } else { self.adis };
                 (d > 0.0).then_some(Blend::Distance(d))
             }
-            Smoothing::G642 => Some(Blend::Tolerance { contour: self.tolerance(cfg), ori: self.ori_tolerance(cfg) }),
+            Smoothing::G642 => {
+                let mode = ModeDigit::of_g642(cfg);
+                Some(Blend::Tolerance { contour: self.tolerance(cfg, mode), ori: self.ori_tolerance(cfg, mode) })
+            }
             Smoothing::G643 => Some(self.g643(cfg)),
             Smoothing::G644 => Some(self.g644(rapid, cfg)),
             Smoothing::G645 => {
                 let tangent = geo_min(cfg, &cfg.path_control.trans_tol);
-                Some(Blend::Smooth { corner: self.tolerance(cfg), ori: self.ori_tolerance(cfg), tangent })
+                let mode = ModeDigit::of_g642(cfg);
+                Some(Blend::Smooth { corner: self.tolerance(cfg, mode), ori: self.ori_tolerance(cfg, mode), tangent })
             }
         }
     }
@@ -277,9 +295,10 @@ impl PathControl {
     /// G643's axial tolerances (see the module doc): the geometry axes' as G642's rule gives
     /// one (CTOL, SD42465, ATOL), the other axes' ATOL, else each axis' MD33100 (negative).
     fn g643(&self, cfg: &MachineConfig) -> Blend {
-        let sd = matches!(cfg.path_control.smoothing_mode % 10, 1 | 3).then_some(cfg.path_control.contour_tol);
+        let mode = ModeDigit::of_g643(cfg);
+        let sd = mode.contour().then_some(cfg.path_control.contour_tol);
         let geo = self.ctol.or(sd).or(self.atol).unwrap_or(-1.0);
-        Blend::Axial { geo, other: self.atol.unwrap_or(-1.0), ori: self.ori_tolerance(cfg) }
+        Blend::Axial { geo, other: self.atol.unwrap_or(-1.0), ori: self.ori_tolerance(cfg, mode) }
     }
 
     /// G644's rounding by MD20480's thousands digit (see the module doc).
@@ -291,13 +310,13 @@ impl PathControl {
         }
     }
 
-    /// The path tolerance of G642..G645 (see the module doc).
-    pub fn tolerance(&self, cfg: &MachineConfig) -> f64 {
+    /// The path tolerance of G642 and G645 by MD20480's digit `mode` (see the module doc).
+    fn tolerance(&self, cfg: &MachineConfig, mode: ModeDigit) -> f64 {
         let data = &cfg.path_control;
         if let Some(c) = self.ctol {
             return c;
         }
-        if matches!(data.smoothing_mode % 10, 1 | 3) {
+        if mode.contour() {
             return data.contour_tol;
         }
         if let Some(a) = self.atol {
@@ -307,15 +326,15 @@ impl PathControl {
     }
 
     /// The orientation tolerance of G642, G643, G645 in radians (it acts under an orientation
-    /// transformation only): `OTOL` when programmed, else SD42466 when MD20480's units digit
+    /// transformation only): `OTOL` when programmed, else SD42466 when MD20480's digit `mode`
     /// is 2 or 3 (the orientation axes by the orientation tolerance), else the smallest
     /// MD33100 of the rotary axes, read as an angle of the orientation (the rotary axes by
     /// their axial tolerance); infinite on a machine without rotary axes.
-    pub fn ori_tolerance(&self, cfg: &MachineConfig) -> f64 {
+    fn ori_tolerance(&self, cfg: &MachineConfig, mode: ModeDigit) -> f64 {
         let data = &cfg.path_control;
         let degrees = match self.otol {
             Some(o) => o,
-            None if matches!(data.smoothing_mode % 10, 2 | 3) => data.ori_tol,
+            None if mode.orientation() => data.ori_tol,
             None => rotary_min(cfg, &data.axis_tol),
         };
         degrees.to_radians()
@@ -332,16 +351,77 @@ impl PathControl {
     }
 }
 
+/// One digit of MD20480 `$MC_SMOOTHING_MODE`: which data a rounding function keeps (B1
+/// "Rounding behavior": 0 MD33100 for every axis, 1 SD42465 for the geometry axes, 2 SD42466
+/// for the orientation, 3 both; the axes not named by MD33100).
+#[derive(Debug, Clone, Copy)]
+struct ModeDigit(i64);
+
+impl ModeDigit {
+    /// G642's digit, the tens (G645 rounds its corners as G642 does).
+    fn of_g642(cfg: &MachineConfig) -> ModeDigit {
+        ModeDigit(cfg.path_control.smoothing_mode / 10 % 10)
+    }
+
+    /// G643's digit, the units.
+    fn of_g643(cfg: &MachineConfig) -> ModeDigit {
+        ModeDigit(cfg.path_control.smoothing_mode % 10)
+    }
+
+    /// The geometry axes keep the contour tolerance SD42465.
+    fn contour(self) -> bool {
+        matches!(self.0, 1 | 3)
+    }
+
+    /// The orientation keeps the orientation tolerance SD42466.
+    fn orientation(self) -> bool {
+        matches!(self.0, 2 | 3)
+    }
+}
+
 /// The smallest of an axial datum over the geometry axes (`per_axis` by channel axis).
 fn geo_min(cfg: &MachineConfig, per_axis: &[f64]) -> f64 {
     cfg.geo_axes.iter().flatten().filter_map(|&k| per_axis.get(k).copied()).fold(f64::INFINITY, f64::min)
 }
 
 /// The smallest of the rotary axes' entries of the axial datum `per_axis` (MD33100: the
-/// orientation's tolerance where the rotary axes carry it); infinite without rotary axes.
+/// orientation's tolerance where the rotary axes carry it); infinite without rotary axes. A
+/// spindle is no orientation axis (its MD33100 took part before: the mill's tool spindle).
 fn rotary_min(cfg: &MachineConfig, per_axis: &[f64]) -> f64 {
     (0..cfg.channel_axes.len())
-        .filter(|&k| cfg.axis(k).rotary)
+        .filter(|&k| cfg.axis(k).rotary && cfg.axis(k).spindle.is_none())
         .filter_map(|k| per_axis.get(k).copied())
         .fold(f64::INFINITY, f64::min)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{PathControl, Smoothing};
+    use crate::Channel;
+    use crate::motion::blend::Blend;
+
+    /// The orientation tolerance (degrees) G642 and G643 round by on the 5-axis head with
+    /// MD33100 = 0.5° on its rotary axes A and C (0.1 on the tool spindle, no orientation
+    /// axis), SD42466 = 0.2° and MD20480 = `mode`.
+    fn ori(mode: u32, smoothing: Smoothing) -> f64 {
+        let md = format!(
+            "$MA_COMPRESS_POS_TOL[A]=0.5\n$MA_COMPRESS_POS_TOL[C]=0.5\n$SC_SMOOTH_ORI_TOL=0.2\n$MC_SMOOTHING_MODE={mode}"
+        );
+        let ch = Channel::from_preset("mill5-head-ca", &md).expect("preset");
+        let pc = PathControl { smoothing, ..Default::default() };
+        match pc.blend(false, false, ch.config()) {
+            Some(Blend::Tolerance { ori, .. } | Blend::Axial { ori, .. }) => ori.to_degrees(),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_orientation_keeps_sd42466_where_the_functions_digit_is_2_or_3() {
+        // B1: digit 2 or 3 rounds the orientation within SD42466 (0.2°), 0 or 1 by the
+        // rotary axes' MD33100 (0.5°). G642 reads the tens digit, G643 the units digit.
+        for (mode, g642, g643) in [(0, 0.5, 0.5), (2, 0.5, 0.2), (20, 0.2, 0.5), (31, 0.2, 0.5), (13, 0.5, 0.2)] {
+            assert!((ori(mode, Smoothing::G642) - g642).abs() < 1e-9, "G642 MD20480={mode}");
+            assert!((ori(mode, Smoothing::G643) - g643).abs() < 1e-9, "G643 MD20480={mode}");
+        }
+    }
 }

@@ -358,7 +358,7 @@ fn plan_piece(
             jerk: mv.jerk,
             seam_jerk: mv.seam_jerk,
             // The block's rounding at its end (the channel rounds the corner in the BCS and plans
-            // the pieces here again: `channel/blending_trafo.rs`).
+            // the pieces here again: `channel/smoothing/blending_trafo.rs`).
             blend: if part + 1 == parts { mv.blend } else { None },
             compress: None,
             orison: None,

@@ -7,7 +7,8 @@ use super::MachineData;
 /// the datum is axial.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PathControlData {
-    /// MD20480 SMOOTHING_MODE: which tolerances G642..G645 take (units digit).
+    /// MD20480 SMOOTHING_MODE: which tolerances G643 (units digit), G642 and G645 (tens digit)
+    /// and G644 (thousands digit) take.
     pub smoothing_mode: i64,
     /// MD20170 COMPRESS_BLOCK_PATH_LIMIT (mm): longer blocks end a compressed section.
     pub block_path_limit: f64,

@@ -16,7 +16,7 @@
 //!
 //! Decision where B1 is silent: the rounding is symmetric about the corner in `σ` for each
 //! axis; next to an arc, under a transformation or with an orientation G643 rounds as G642
-//! with the smallest of the geometry axes' tolerances (`channel/blending.rs`).
+//! with the smallest of the geometry axes' tolerances (`channel/smoothing/blending.rs`).
 
 use super::blend::{MAX_SHARE, Rounded, feed_of, with_path};
 use super::curve::Curve;

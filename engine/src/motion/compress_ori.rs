@@ -18,7 +18,7 @@
 //! rapid traverse and arcs. A curve that would leave a tolerance stays the programmed block.
 //! The tolerances: the contour `CTOL`/`ATOL`/MD33100 of the geometry axes, the orientation
 //! `OTOL` else the rotary axes' MD33100 (in degrees; [`Compress::ori`]). The caller plans the
-//! curve for the machine axes (`channel/compress_trafo.rs`), so every machine axis keeps its
+//! curve for the machine axes (`channel/smoothing/compress_trafo.rs`), so every machine axis keeps its
 //! velocity and acceleration limits on it.
 
 use super::compress::{self, Junction};

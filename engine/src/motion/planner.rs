@@ -279,6 +279,9 @@ pub struct Planner {
     v: f64,
     /// Path acceleration of the last cycle: the state of SOFT's jerk-limited profile.
     acc: f64,
+    /// SOFT crossed a corner (the axis rates jump) in the last cycle: the next keeps the path
+    /// acceleration from rising ([`Planner::soft_velocity`]).
+    kinked: bool,
     /// Feed hold: brake to standstill on the path.
     hold: bool,
     /// The cycle at rest after a stop: the cycle that lands on a move's end point still moved
@@ -318,6 +321,7 @@ impl Planner {
             s: 0.0,
             v: 0.0,
             acc: 0.0,
+            kinked: false,
             hold: false,
             rest: Rest::None,
             feed_override: 1.0,
@@ -470,6 +474,7 @@ impl Planner {
         self.s = 0.0;
         self.v = 0.0;
         self.acc = 0.0;
+        self.kinked = false;
         self.hold = false;
         self.rest = Rest::None;
         self.flush_at_standstill = false;
@@ -694,6 +699,9 @@ impl Planner {
         self.corner.pop_front();
         self.finished.push(done.tag);
         self.s = 0.0;
+        if done.jerk.is_finite() && !stop_here {
+            self.kinked = self.queue.front().is_some_and(|next| next.jerk.is_finite() && is_kink(&done, next));
+        }
         if stop_here || self.queue.is_empty() {
             self.v = 0.0;
             self.acc = 0.0;
@@ -733,7 +741,8 @@ impl Planner {
     /// transition planned below the target is kept with the conservative limit its S curves
     /// brake against (were it dropped, the fallback would let the path arrive faster than the
     /// S curve planned, and the crossing clamp would jump), one at or above it is never
-    /// reached faster, as the S curve does not pass its target.
+    /// reached faster, as the S curve does not pass its target; and SOFT's limit is never cut
+    /// below a transition's speed by that transition ([`soft_floor`]).
     #[inline(always)]
     fn brake_limited_at(&self, v: f64, distance: f64, a: f64, v_end: f64, many: bool, free: f64) -> f64 {
         let dt = self.dt;
@@ -745,7 +754,7 @@ impl Planner {
         let mut limit = v;
         if limit.max(free) > v_end {
             let reserve = if many { v_end * dt } else { 0.0 };
-            limit = brake_bound(limit, distance - reserve, v_end, a, dt);
+            limit = brake_bound(limit, distance - reserve, v_end, a, dt).max(soft_floor(limit, v_end, free));
         }
         if v_end == 0.0 || distance > limit * limit / a_min {
             return limit;
@@ -766,7 +775,7 @@ impl Planner {
             // One cycle at the transition speed is kept in reserve for the crossing cycle.
             if limit.max(free) > v_end {
                 let reserve = if k + 1 < n { v_end * dt } else { 0.0 };
-                limit = brake_bound(limit, distance - reserve, v_end, a, dt);
+                limit = brake_bound(limit, distance - reserve, v_end, a, dt).max(soft_floor(limit, v_end, free));
             }
             if v_end == 0.0 || distance > limit * limit / a_min {
                 break;
@@ -838,20 +847,7 @@ impl Planner {
         if a.machine_space != b.machine_space {
             return 0.0;
         }
-        // Axis rates per unit path length on either side of the transition.
-        let rates = |m: &Move, end: bool| -> AxisVec {
-            match &m.axis_tangents {
-                Some(t) => {
-                    if end {
-                        t.1
-                    } else {
-                        t.0
-                    }
-                }
-                None => m.path.tangent(if end { 1.0 } else { 0.0 }).map(|x| x / m.length),
-            }
-        };
-        let (ta, tb) = (rates(a, true), rates(b, false));
+        let (ta, tb) = (end_rates(a, true), end_rates(b, false));
         let mut v = a.v_max.min(b.v_max);
         // SOFT: the jump lasts one cycle, so it is an acceleration pulse; its jerk
         // `jump·v/dt²` stays within the axis jerk, of which the moves' path jerks give a lower
@@ -872,6 +868,38 @@ impl Planner {
         }
         v
     }
+}
+
+/// The axis rates per unit path length of move `m` at its end (`end`) or its start.
+fn end_rates(m: &Move, end: bool) -> AxisVec {
+    match &m.axis_tangents {
+        Some(t) => {
+            if end {
+                t.1
+            } else {
+                t.0
+            }
+        }
+        None => m.path.tangent(if end { 1.0 } else { 0.0 }).map(|x| x / m.length),
+    }
+}
+
+/// True when the axis rates jump between the end of move `a` and the start of move `b`: a
+/// corner, whose velocity jump is an acceleration pulse on the axes.
+fn is_kink(a: &Move, b: &Move) -> bool {
+    let (ta, tb) = (end_rates(a, true), end_rates(b, false));
+    ta.iter().zip(&tb).any(|(x, y)| (y - x).abs() > 1e-12)
+}
+
+/// The speed SOFT's fallback brake limit keeps at a transition planned at `v_end` (`free`, its
+/// velocity target, is positive; BRISK passes 0 and keeps none): the conservative bound with its
+/// one-cycle reserve lies below `v_end` in the last cycle or two before the transition, so a path
+/// that the S curve had brought to `v_end` was cut there, cycle after cycle, to
+/// `brake_speed(0, v_end)` and crept into the corner far below its planned speed. Not above
+/// `v_end` the path meets the transition as it is.
+#[inline(always)]
+fn soft_floor(limit: f64, v_end: f64, free: f64) -> f64 {
+    if free > 0.0 { limit.min(v_end) } else { 0.0 }
 }
 
 /// `v`, lowered where needed so that braking with deceleration `a` from `d` before a transition

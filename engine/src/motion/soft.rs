@@ -80,6 +80,10 @@ impl Planner {
         let (lo, hi) = ((self.acc - j * dt).max(-a), (self.acc + j * dt).min(a));
         // Above the jerk's reach of ±a (a lowered acceleration): back within it at once.
         let (lo, hi) = if lo > hi { (hi.min(a).max(-a), hi.min(a).max(-a)) } else { (lo, hi) };
+        // Right after a corner the axes' acceleration pulse of the velocity jump (its jerk
+        // planned up to the axis jerk, `corner_jerk`) is still in the third difference: the
+        // path acceleration does not rise in this cycle, so the two do not add up.
+        let hi = if std::mem::take(&mut self.kinked) { hi.min(self.acc.max(lo)) } else { hi };
         // No transition farther than the longest stop any candidate needs (with the smallest
         // acceleration and jerk queued) can bind: the checks look no farther.
         let (a_min, j_min) = (self.a_min, self.j_min);

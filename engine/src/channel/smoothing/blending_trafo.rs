@@ -12,8 +12,8 @@
 //! turns, so there is no motion to blend into) or fails. A piece whose velocity varies along
 //! it (beside a pole) stays one move with the smallest limits of its parts.
 
-use super::Channel;
 use super::blending::geo_moves;
+use crate::channel::Channel;
 use crate::interp::Item;
 use crate::kinematics::plan::plan_block;
 use crate::kinematics::{ActiveTrafo, Transformation};

@@ -10,8 +10,8 @@
 //! block that the planning splits (a pole passage, a velocity that varies along it) stays as
 //! programmed: its pieces carry no compressor (`plan.rs`).
 
-use super::Channel;
 use super::blending_trafo::{machine_at, plan_one};
+use crate::channel::Channel;
 use crate::interp::Item;
 use crate::kinematics::{ActiveTrafo, Transformation};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;

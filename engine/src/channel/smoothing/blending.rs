@@ -7,7 +7,7 @@
 //! the shortened next move waits for its own successor. Transformed moves are compressed in
 //! `compress_trafo.rs`; under ORISON their orientation is smoothed first (`orison.rs`).
 
-use super::Channel;
+use crate::channel::Channel;
 use crate::interp::Item;
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::blend::{self, Blend, Rounded};
@@ -17,7 +17,7 @@ use crate::motion::{AxisLimit, AxisVec, Move};
 
 /// What the rounding remembers between two corners.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Blending {
+pub(in crate::channel) struct Blending {
     /// The first prepared move was shortened at its start by the corner before it: its
     /// length now (bits) and its programmed length (the 36 % rule refers to that).
     pub(super) trimmed: Option<(u64, f64)>,
@@ -30,16 +30,16 @@ pub(super) struct Blending {
     pub(super) head_trafo: Option<crate::kinematics::ActiveTrafo>,
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
     /// waiting move is handed on without its successor.
-    pub(super) prep_waits_for_main_run: bool,
+    pub(in crate::channel) prep_waits_for_main_run: bool,
     /// The elements after the one [`Channel::round_corner`] returned (G643's chain), to be
     /// planned right after it.
-    pub(super) more: Vec<Move>,
+    pub(in crate::channel) more: Vec<Move>,
 }
 
 impl Channel {
     /// True if the move at the front of the prepared items waits for its successor to round
     /// the corner between them.
-    pub(super) fn waits_for_corner(&self) -> bool {
+    pub(in crate::channel) fn waits_for_corner(&self) -> bool {
         self.pending.len() == 1
             && !self.prep_done
             && !self.prep_waits_for_trafo
@@ -53,7 +53,7 @@ impl Channel {
     /// prepared move, if `mv` asks for it: `mv` becomes the shortened move, the next prepared
     /// move is shortened at its start, and the rounding element is returned to be planned
     /// right after `mv`.
-    pub(super) fn round_corner(&mut self, mv: &mut Move) -> Option<Move> {
+    pub(in crate::channel) fn round_corner(&mut self, mv: &mut Move) -> Option<Move> {
         let full = match self.blending.trimmed.take() {
             Some((bits, full)) if bits == mv.length.to_bits() => full,
             _ => mv.length,

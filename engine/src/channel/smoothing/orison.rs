@@ -12,8 +12,8 @@
 //! programmed orientation: no zone is made at its end, and a head it already carries keeps
 //! that plan's limits (the orientation stays continuous).
 
-use super::Channel;
 use super::blending_trafo::{machine_at, plan_one};
+use crate::channel::Channel;
 use crate::interp::Item;
 use crate::motion::{Move, orison};
 
@@ -21,7 +21,7 @@ impl Channel {
     /// Smooths the orientation at the end between `mv` (just taken from the prepared items)
     /// and the next prepared move if both are smoothable under ORISON and `with_next` (not in
     /// single block), and plans `mv` again if it carries a zone (see the module doc).
-    pub(super) fn smooth_orientation(&mut self, mv: &mut Move, with_next: bool) {
+    pub(in crate::channel) fn smooth_orientation(&mut self, mv: &mut Move, with_next: bool) {
         // The transformation a head was made under (the move's own: the same as the last's).
         let head_trafo = self.blending.head_trafo.take();
         let has_head = mv.path.ori.as_ref().is_some_and(|o| o.ends.is_some());
