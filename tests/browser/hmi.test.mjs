@@ -733,6 +733,14 @@ async function main() {
       await page.waitForSelector('#btn-sbl[aria-pressed="false"]');
       await page.click("#btn-reset");
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      // A STOPRE behind a POSA axis: Z travels 5 mm at FA 300 mm/min (1 s) while the path
+      // stands at the preprocessing stop (Programming Manual, POSA); X starts only after.
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G0 X0 Y0 Z50\nPOSA[Z]=45 FA[Z]=300\nSTOPRE\nG1 X10 F1000\nM30\n", pace: "realtime" });
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Wait: preprocessing stop, the main run finishes for positioning axis Z", null, { timeout: 30_000 });
+      const waiting = await pageFetch(page, "GET", `/sessions/${id}/state`);
+      if (!waiting.preprocessing_stop_wait && waiting.positions.machine.Z > 45.0) throw new Error(`state while waiting: ${JSON.stringify(waiting)}`);
+      if (waiting.positions.machine.X !== 0) throw new Error(`X moved before the stop ended: ${waiting.positions.machine.X}`);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle", null, { timeout: 30_000 });
       await previewDone();
     });
 
