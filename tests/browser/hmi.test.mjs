@@ -739,7 +739,7 @@ async function main() {
       await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Wait: preprocessing stop, the main run finishes for positioning axis Z", null, { timeout: 30_000 });
       const waiting = await pageFetch(page, "GET", `/sessions/${id}/state`);
       if (!waiting.preprocessing_stop_wait && waiting.positions.machine.Z > 45.0) throw new Error(`state while waiting: ${JSON.stringify(waiting)}`);
-      if (waiting.positions.machine.X !== 0) throw new Error(`X moved before the stop ended: ${waiting.positions.machine.X}`);
+      if (waiting.preprocessing_stop_wait && waiting.positions.machine.X !== 0) throw new Error(`X moved during the wait: ${waiting.positions.machine.X}`);
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle", null, { timeout: 30_000 });
       await previewDone();
     });
