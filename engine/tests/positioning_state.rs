@@ -84,3 +84,40 @@ fn a_checkpoint_without_positioning_axes_has_none() {
     run_to_end(&mut ch);
     assert!(ch.resume_state().positioning.is_empty());
 }
+
+#[test]
+fn a_preprocessing_stop_behind_a_posa_axis_is_shown_while_the_path_stands() {
+    // Programming Manual, POSA: a block after an (implicit or STOPRE) preprocessing stop runs
+    // only once the positioning axes have arrived. Z needs 5 mm at 5 mm/s: about 250 cycles
+    // (4 ms), so after 100 cycles the path stands at the STOPRE with X still at 0.
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("POSA[Z]=-5 FA[Z]=300\nSTOPRE\nG1 X10 F1000\nM30").unwrap();
+    steps(&mut ch, 100);
+    let s = ch.snapshot();
+    assert_eq!(s.status, Status::Running);
+    assert!(s.preprocessing_stop_wait, "the path waits for Z: {:?}", s.positioning);
+    assert_eq!(ch.axis_positions()[0], 0.0, "X has not started");
+    // Z arrives at cycle ~250; X then runs (10 mm at 1000 mm/min = 0.6 s = 150 cycles).
+    steps(&mut ch, 200);
+    let s = ch.snapshot();
+    assert!(ch.axis_positions()[0] > 0.0, "X runs after the stop");
+    assert!(!s.preprocessing_stop_wait, "the path moves: no wait");
+    run_to_end(&mut ch);
+    assert!(!ch.snapshot().preprocessing_stop_wait);
+}
+
+#[test]
+fn a_path_decelerating_into_a_stopre_or_a_dwell_is_no_preprocessing_stop_wait() {
+    // G1 into STOPRE: the path runs the block before the stop until its end, then the next
+    // block follows in the same cycle: never a standing wait. A dwell is its own reason.
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program("G1 X2 F600\nSTOPRE\nG4 F0.5\nR1=$AA_IM[X]\nG1 X4\nM30").unwrap();
+    let mut ticks = 0;
+    while ch.status() == Status::Running && ticks < 2000 {
+        ch.step();
+        ticks += 1;
+        assert!(!ch.snapshot().preprocessing_stop_wait, "cycle {ticks}");
+    }
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    assert_eq!(ch.axis_positions()[0], 4.0);
+}

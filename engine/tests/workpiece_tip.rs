@@ -57,14 +57,30 @@ fn the_tip_without_traori_is_where_traori_would_put_it() {
 }
 
 #[test]
-fn a_table_the_machine_data_do_not_describe_is_marked_not_exact() {
-    // tracyl-xyzac has a trunnion A/C but only TRACYL data: A turned without TRACYL is not
-    // known to the kinematics; at A0 the BCS is the part's frame.
+fn a_tilted_rotary_table_without_traori_gives_the_tip_on_the_table() {
+    // tracyl-xyzac: the trunnion A (about X) carries C, the blank is clamped on the table
+    // (stock_table.rs): machine = R_x(A)·R_z(−C)·p. The tip at machine (20, 10, 5) with A−90,
+    // C0 lies on the table at p = R_x(90)·(20, 10, 5) = (20, 10·cos 90° − 5·sin 90°,
+    // 10·sin 90° + 5·cos 90°) = (20, −5, 10). At A0 C0 the table's frame is the BCS.
     let mut ch = channel("tracyl-xyzac", "");
+    finish(&mut ch, "T1 D1\nG0 X20 Y10 Z5\nM30");
+    let t = TipProbe::default().tip(&ch);
+    assert!(t.exact && close(t.tip, [20.0, 10.0, 5.0]), "{t:?}");
+    finish(&mut ch, "G1 A-90 F5000\nM30");
+    let t = TipProbe::default().tip(&ch);
+    assert!(t.exact && close(t.tip, [20.0, -5.0, 10.0]), "{t:?}");
+}
+
+#[test]
+fn a_rotary_axis_the_machine_data_do_not_describe_is_marked_not_exact() {
+    // mill-3axis with a rotary axis A (5th machine axis) and no transformation data: where A turns the
+    // workpiece is unknown, so off 0° the BCS tip is not known to be on the part.
+    let md = "$MN_AXCONF_MACHAX_NAME_TAB[4]=\"A1\"\n$MC_AXCONF_MACHAX_USED[4]=5\n$MC_AXCONF_CHANAX_NAME_TAB[4]=\"A\"\n$MA_IS_ROT_AX[A1]=TRUE";
+    let mut ch = channel("mill-3axis", md);
     finish(&mut ch, "T1 D1\nG0 X20 Y0 Z0\nM30");
     assert!(TipProbe::default().tip(&ch).exact);
-    finish(&mut ch, "G1 A-90 F5000\nM30");
-    assert!(!TipProbe::default().tip(&ch).exact);
+    finish(&mut ch, "G0 A30\nM30");
+    assert!(!TipProbe::default().tip(&ch).exact, "{:?} {:?}", ch.axis_positions(), ch.alarms());
 }
 
 #[test]

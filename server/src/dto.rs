@@ -273,6 +273,11 @@ pub struct State {
     /// Programmed path feed of the block in execution (mm/min); null for rapid traverse or
     /// when no block moves.
     pub programmed_feed: Option<f64>,
+    /// The program stands at a preprocessing stop (STOPRE, a read of main-run values): block
+    /// preparation waits while the path has nothing left and another part of the main run
+    /// (a POSA axis, an online tool offset) still has to finish (absent when not).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub preprocessing_stop_wait: bool,
     /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub spindles: AxisValues,
@@ -465,6 +470,7 @@ impl From<&Snapshot> for State {
             program_serial: s.program_serial,
             distance_to_go: s.distance_to_go,
             programmed_feed: s.programmed_feed,
+            preprocessing_stop_wait: s.preprocessing_stop_wait,
             spindles: AxisValues(s.spindles.clone()),
             spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
             positioning: s.positioning.iter().map(Into::into).collect(),
@@ -1243,6 +1249,7 @@ mod tests {
             program_serial: 0,
             distance_to_go: 0.0,
             programmed_feed: None,
+            preprocessing_stop_wait: false,
             spindles: AxisValues::default(),
             spindle_info: Default::default(),
             positioning: vec![],

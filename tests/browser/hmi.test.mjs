@@ -733,6 +733,14 @@ async function main() {
       await page.waitForSelector('#btn-sbl[aria-pressed="false"]');
       await page.click("#btn-reset");
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle");
+      // A STOPRE behind a POSA axis: Z travels 5 mm at FA 300 mm/min (1 s) while the path
+      // stands at the preprocessing stop (Programming Manual, POSA); X starts only after.
+      await pageFetch(page, "POST", `/sessions/${id}/run`, { program: "G0 X0 Y0 Z50\nPOSA[Z]=45 FA[Z]=300\nSTOPRE\nG1 X10 F1000\nM30\n", pace: "realtime" });
+      await page.waitForFunction(() => document.getElementById("channel-reason")?.textContent === "Wait: preprocessing stop, the main run finishes for positioning axis Z", null, { timeout: 30_000 });
+      const waiting = await pageFetch(page, "GET", `/sessions/${id}/state`);
+      if (!waiting.preprocessing_stop_wait && waiting.positions.machine.Z > 45.0) throw new Error(`state while waiting: ${JSON.stringify(waiting)}`);
+      if (waiting.preprocessing_stop_wait && waiting.positions.machine.X !== 0) throw new Error(`X moved during the wait: ${waiting.positions.machine.X}`);
+      await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle", null, { timeout: 30_000 });
       await previewDone();
     });
 
@@ -1184,10 +1192,33 @@ async function main() {
       const part = await page.evaluate(() => window.__nctwin3d.partTurn([0, 0, 1]));
       if (!(Math.abs(part + 90) < 1e-6)) throw new Error(`part frame turned by ${part}°, the stock by −90°`);
       // tracyl-xyzac without a transformation: the blank stands on C (A0); C90 turns it by
-      // −90° about Z, the sign of its TRACYL data, whatever the view's cylinder frame does.
+      // −90° about Z, the sign of its TRACYL data; the view's part frame (paths, WCS) with it.
       await runOn("tracyl-xyzac", `T1 D1 G17\nG0 Z130\n${blank}\nG0 C90\nM0\nM30\n`);
       await axisShows("C", 90);
       await page.waitForFunction(() => Math.abs(window.__nctwin3d.stockTurn([0, 0, 1]) + 90) < 1e-6);
+      const turned = await page.evaluate(() => window.__nctwin3d.partTurn([0, 0, 1]));
+      if (!(Math.abs(turned + 90) < 1e-6)) throw new Error(`tracyl-xyzac part frame turned by ${turned}°, the stock by −90°`);
+    });
+
+    await step("3D view: on tracyl-xyzac A tilts the table carrying C: part frame and stock as the engine's table pose", async () => {
+      // The trunnion A (about machine X) carries C (about the table's Z, turning the part by
+      // −C, the TRACYL sign): machine = R_x(A)·R_z(−C)·p. At A−30 C40: table Z → R_x(−30)·(0,0,1)
+      // = (0, sin 30°, cos 30°) = (0, 0.5, 0.866); table X → R_z(−40)·(1,0,0) = (0.766, −0.643, 0),
+      // then R_x(−30): (0.766, 0.866·(−0.643), −0.5·(−0.643)) = (0.766, −0.557, 0.321).
+      const blank = 'WORKPIECE(,"",,"BOX",112,0,-20,-80,0,-10,40,10)';
+      await runOn("tracyl-xyzac", `T1 D1 G17\nG0 Z130\n${blank}\nG0 A-30 C40\nM0\nM30\n`);
+      await axisShows("C", 40);
+      await axisShows("A", -30);
+      const got = await page.evaluate(() => ({ z: window.__nctwin3d.partDirection([0, 0, 1]), x: window.__nctwin3d.partDirection([1, 0, 0]), caption: document.getElementById("view3d-caption")?.textContent }));
+      const near = (a, b) => a && a.every((v, i) => Math.abs(v - b[i]) < 1e-3);
+      if (!near(got.z, [0, 0.5, 0.866]) || !near(got.x, [0.766, -0.557, 0.321])) throw new Error(`part frame Z ${got.z}, X ${got.x}`);
+      // The engine's pose of the table (state stock.frame, rows of [R | t]): the same columns.
+      const id = new URL(page.url()).searchParams.get("session");
+      const frame = (await pageFetch(page, "GET", `/sessions/${id}/state`)).stock?.frame;
+      if (!frame || !near([frame[0][2], frame[1][2], frame[2][2]], got.z) || !near([frame[0][0], frame[1][0], frame[2][0]], got.x)) {
+        throw new Error(`stock frame ${JSON.stringify(frame)} against the part frame Z ${got.z}, X ${got.x}`);
+      }
+      if (!/carried by AM/.test(got.caption || "")) throw new Error(`caption: ${got.caption}`);
     });
 
     await step("3D view: a TRAORI_DYN chain (K12) builds the model from its elements; its tip is the engine's", async () => {
@@ -1299,14 +1330,16 @@ async function main() {
     });
 
     await step("3D view: TRACYL on a mill (tracyl-xyzac): programmed and executed groove on the cylinder about Y", async () => {
-      // The cylinder on CM turns about the axial YC (machine +Y) through the machine zero; G19
-      // puts the tool length on the radial X. X30 Y60 under TRACYL(60): radius 30, an arc of
-      // 60 / 30 rad = 114.59° at machine Y = Z = −20, drawn by the preview and by the run.
+      // A−90 lays the table's C axis onto machine +Y (the TRACYL data's pose); G19 puts the
+      // tool length on the radial X. X30 Y60 under TRACYL(60): radius 30, an arc of 60 / 30 rad
+      // = 114.59° at machine Y = −20, drawn by the preview and by the run. The points are in
+      // the table's frame: machine = R_x(−90)·p, so machine (x, y, z) = (p.x, p.z, −p.y): the
+      // axial machine Y is the table's z, the radial machine Z its −y.
       await page.goto(`${BASE}/?machine=tracyl-xyzac`, { waitUntil: "load" });
       await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
       await page.click('[data-goto="program"]');
       await page.fill("#editor-name", "GROOVE");
-      await page.fill(EDITOR, "T1 D1 G17\nG0 X0 Y-20 Z150\nG19 TRACYL(60)\nG1 X30 Y0 Z-20 F3000\nG1 Y60\nM0\nM30\n");
+      await page.fill(EDITOR, "T1 D1 G17\nG0 X0 Y-20 Z150\nG0 A-90\nG19 TRACYL(60)\nG1 X30 Y0 Z-20 F3000\nG1 Y60\nM0\nM30\n");
       await page.click("#btn-editor-execute");
       await page.waitForFunction(() => /programmed GROOVE/.test(document.getElementById("view3d-preview")?.textContent || ""));
       await page.click("#btn-cycle-start");
@@ -1314,7 +1347,7 @@ async function main() {
       const arcs = await page.evaluate(() => {
         const groove = (points) =>
           points
-            .map(([x, y, z]) => ({ y, r: Math.hypot(x, z), a: (Math.atan2(x, z) * 180) / Math.PI }))
+            .map(([x, y, z]) => ({ y: z, r: Math.hypot(x, y), a: (Math.atan2(x, -y) * 180) / Math.PI }))
             .filter((p) => Math.abs(p.y + 20) < 0.01 && p.r < 40 && Math.abs(p.a) > 1);
         return { executed: groove(window.__nctwin3d.pathPoints(100000)), programmed: groove(window.__nctwin3d.programmedPath()) };
       });
@@ -1424,20 +1457,21 @@ async function main() {
     });
 
     await step("limit marks under TRACYL lie on the cylinder where the groove is", async () => {
-      // tracyl-xyzac: the cylinder on CM turns about machine +Y; TRACYL(60), X30 is radius 30,
-      // Z−20 the axial position (machine Y −20). Y60 at F100000 asks C for 100000 / 30 mm/min
-      // = 3333 rad/min, far beyond its 18000°/min: C runs at its limit and is marked. Drawn
-      // unrolled a mark would be √(30² + 20²) = 36 mm from the axis, not 30.
+      // tracyl-xyzac: at A−90 the cylinder on CM turns about machine +Y (the table's z);
+      // TRACYL(60), X30 is radius 30, Z−20 the axial position (machine Y −20, table z −20).
+      // Y60 at F100000 asks C for 100000 / 30 mm/min = 3333 rad/min, far beyond its
+      // 18000°/min: C runs at its limit and is marked. Drawn unrolled a mark would be
+      // √(30² + 20²) = 36 mm from the axis, not 30.
       await page.goto(`${BASE}/?machine=tracyl-xyzac`, { waitUntil: "load" });
       await page.waitForFunction(() => document.getElementById("connection")?.dataset.conn === "online");
       await page.click('[data-goto="program"]');
       await page.fill("#editor-name", "FASTGROOVE");
-      await page.fill(EDITOR, "T1 D1 G17\nG0 X0 Y-20 Z150\nG19 TRACYL(60)\nG1 X30 Y0 Z-20 F3000\nG1 Y60 F100000\nM30\n");
+      await page.fill(EDITOR, "T1 D1 G17\nG0 X0 Y-20 Z150\nG0 A-90\nG19 TRACYL(60)\nG1 X30 Y0 Z-20 F3000\nG1 Y60 F100000\nM30\n");
       await page.click("#btn-editor-execute");
       await page.waitForFunction(() => /programmed FASTGROOVE/.test(document.getElementById("view3d-preview")?.textContent || ""));
-      await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.line === 5));
-      const marks = await page.evaluate(() => window.__nctwin3d.limitMarks().filter((m) => m.line === 5));
-      const off = marks.find((m) => !(Math.abs(Math.hypot(m.at[0], m.at[2]) - 30) < 0.01 && Math.abs(m.at[1] + 20) < 0.01));
+      await page.waitForFunction(() => window.__nctwin3d.limitMarks().some((m) => m.line === 6));
+      const marks = await page.evaluate(() => window.__nctwin3d.limitMarks().filter((m) => m.line === 6));
+      const off = marks.find((m) => !(Math.abs(Math.hypot(m.at[0], m.at[1]) - 30) < 0.01 && Math.abs(m.at[2] + 20) < 0.01));
       if (off) throw new Error(`mark at ${off.at} (${off.axis} ${off.kind}): not on the cylinder of radius 30 at Y−20`);
     });
 

@@ -26,6 +26,25 @@ impl Channel {
         self.prepare_blocks();
     }
 
+    /// The program stands at a preprocessing stop: block preparation waits for the main run
+    /// (STOPRE, a read of main-run values, a DELDTG's successor) and the path has nothing
+    /// left to execute, while something else of the main run still has to finish (a POSA
+    /// axis travelling, an online tool offset settling). Not a dwell: that has its own reason.
+    /// While the path still runs the blocks before the stop, the channel does not stand; once
+    /// all is done the next IPO cycle goes on, so only a wait that lasts shows.
+    pub fn stands_at_preprocessing_stop(&self) -> bool {
+        self.status == Status::Running
+            && self.program.is_some()
+            && !self.prep_done
+            && self.blending.prep_waits_for_main_run
+            && self.pending.is_empty()
+            && self.planner.is_empty()
+            && self.dwell_ticks == 0
+            && self.jog.is_none()
+            // Else the main run is done and the next cycle's preparation goes on.
+            && (self.positioning.program_moving() || !self.toff.settled(&self.offsets.toff))
+    }
+
     /// Hands SKP and DRY to the interpreter: they act on the blocks it prepares next.
     pub(super) fn hand_program_control(&mut self) {
         let (feed, mode) = self.cfg.dry_run_feed;

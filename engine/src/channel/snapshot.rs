@@ -99,6 +99,9 @@ pub struct Snapshot {
     /// Programmed path feed of the block in execution in mm/min; `None` for rapid traverse or
     /// when no block moves.
     pub programmed_feed: Option<f64>,
+    /// The program stands at a preprocessing stop, waiting for the main run
+    /// (`Channel::stands_at_preprocessing_stop`).
+    pub preprocessing_stop_wait: bool,
 }
 
 /// The G functions a snapshot's `gcodes` names were written from, so that a refresh rewrites
@@ -152,6 +155,7 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         program_serial: 0,
         distance_to_go: 0.0,
         programmed_feed: None,
+        preprocessing_stop_wait: false,
     };
     super::snapshot_refresh::refresh(ch, &mut s);
     s

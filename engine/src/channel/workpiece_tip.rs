@@ -11,12 +11,15 @@
 //! - another transformation active (TRANSMIT, TRACYL, TRAANG): its BCS, which is Cartesian on
 //!   the part; under TRACYL that is the unrolled surface, so the working diameter goes along
 //!   for a view to wrap the point onto the cylinder;
+//! - no transformation, and a rotary table the blank is clamped on (`stock_table.rs`: a
+//!   TRACYL/TRANSMIT rotary axis that is no spindle, tilted by A or B, as on `tracyl-xyzac`):
+//!   the tip in the table's frame, the frame the stock is cut in and the HMI draws it in;
 //! - no transformation and no data set: the BCS (machine − tool offsets − `$AA_TOFF`).
 //!
 //! Decision where the manuals are silent (they know no such display): in the last case a
 //! rotary axis that is not a spindle standing off 0° may turn the workpiece in a way the
-//! machine data does not describe (e.g. a table machine with only TRACYL data): the point is
-//! then marked `exact == false` rather than drawn as if it were true.
+//! machine data does not describe: the point is then marked `exact == false` rather than
+//! drawn as if it were true.
 
 use std::sync::Arc;
 
@@ -43,6 +46,10 @@ pub struct WorkpieceTip {
 pub struct TipProbe {
     built_for: Option<Arc<MachineConfig>>,
     kin: Option<Box<Traori>>,
+    /// The rotary axes that are no spindle (the ones that may turn the workpiece unseen).
+    turning: Vec<usize>,
+    /// The rotary table the blank is clamped on, without TRAORI data (`stock_table.rs`).
+    mount: Option<super::stock_table::TableMount>,
 }
 
 impl TipProbe {
@@ -51,6 +58,13 @@ impl TipProbe {
         if !self.built_for.as_ref().is_some_and(|c| Arc::ptr_eq(c, &ch.cfg)) {
             self.kin = ch.stock_kinematics();
             self.built_for = Some(ch.cfg.clone());
+            self.mount = ch.stock_table_mount();
+            self.turning = (0..ch.axis_positions().len())
+                .filter(|&k| {
+                    let a = ch.cfg.axis(k);
+                    a.rotary && a.spindle.is_none()
+                })
+                .collect();
         }
         let cfg = &ch.cfg;
         match ch.trafo.as_ref().map(|t| &t.trafo) {
@@ -66,18 +80,21 @@ impl TipProbe {
                 };
                 return WorkpieceTip { tip, tracyl_diameter, exact: true };
             }
+            None if self.mount.is_some() => {
+                if let Some(m) = &self.mount {
+                    let pose = ch.table_tool_pose(m, &ch.machine, ch.machine_tool_vector(&ch.offsets));
+                    return WorkpieceTip { tip: pose.tip, tracyl_diameter: None, exact: true };
+                }
+            }
             None if self.kin.is_none() => {
                 let toff = ch.toff.current;
                 let tip = std::array::from_fn(|g| {
                     cfg.geo_axes[g].map_or(0.0, |k| ch.machine[k] - ch.offsets.tool[k] - toff[g])
                 });
-                let n = ch.axis_positions().len();
-                let exact = (0..n).all(|k| {
-                    let a = cfg.axis(k);
-                    !a.rotary
-                        || a.spindle.is_some()
-                        || (ch.machine[k] / 360.0 - (ch.machine[k] / 360.0).round()).abs() < 1e-9
-                });
+                let exact = self
+                    .turning
+                    .iter()
+                    .all(|&k| (ch.machine[k] / 360.0 - (ch.machine[k] / 360.0).round()).abs() < 1e-9);
                 return WorkpieceTip { tip, tracyl_diameter: None, exact };
             }
             None => {}

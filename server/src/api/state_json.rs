@@ -223,6 +223,9 @@ fn write_head(out: &mut String, s: &Snapshot) {
     write_f64(out, s.distance_to_go);
     out.push_str(",\"programmed_feed\":");
     write_opt_f64(out, s.programmed_feed);
+    if s.preprocessing_stop_wait {
+        out.push_str(",\"preprocessing_stop_wait\":true");
+    }
     out.push_str(",\"spindles\":");
     write_named(out, &s.spindles, write_f64);
     out.push_str(",\"spindle_info\":{");
@@ -572,6 +575,9 @@ mod tests {
         // Positioning axes: POSA across a block, POS waited for, POSP in parts, a command axis.
         let positioning = "POSA[Z]=-5 FA[Z]=300\nG1 X4 F600\nWAITP(Z)\nPOSP[Y]=(3, 1) FA[Y]=900\nM30";
         assert!(run(&mut encoder, "mill-3axis", positioning) > 10);
+        // The path standing at a STOPRE while the POSA axis travels.
+        let stopre = "POSA[Z]=-5 FA[Z]=300\nSTOPRE\nG1 X4 F600\nM30";
+        assert!(run(&mut encoder, "mill-3axis", stopre) > 10);
         let command = "ID=1 WHEN $AA_IM[X]>1 DO MOV[Z]=-1 FA[Z]=600\nG1 X6 F600\nM30";
         assert!(run(&mut encoder, "mill-3axis", command) > 10);
     }
@@ -623,6 +629,7 @@ mod tests {
         s.dry_run = true;
         s.skip_levels = SkipLevels::from_levels(&[0, 4, 9]).unwrap();
         s.repos_pending = true;
+        s.preprocessing_stop_wait = true;
         s.block = Some(nctwin_engine::channel::BlockRef { line: 3, text: String::new(), program: Some("HOLE".into()) });
         s.positioning = vec![
             PositioningInfo { axis: "Z\"1".into(), target: None, velocity: -0.0, kind: "MOV", waiting: false },

@@ -457,6 +457,10 @@ fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandErro
     }
 }
 
+/// Cycles the fast pace steps between two locks of the executed path: a REST reader waits
+/// at most these (some µs), and the lock's cost is shared by all of them.
+const HISTORY_BATCH: u64 = 64;
+
 /// Steps up to `max_steps` cycles while something moves and the limit tick is not reached;
 /// the executed path looks at every one.
 fn step_fast(
@@ -466,16 +470,20 @@ fn step_fast(
     deadline: std::time::Instant,
     history: &std::sync::Mutex<super::path_history::PathHistory>,
 ) {
-    for i in 0..max_steps {
-        if !channel.is_busy() || channel.ticks() >= limit_tick {
-            break;
+    let mut i = 0;
+    while i < max_steps {
+        let mut history = history.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        for _ in 0..HISTORY_BATCH.min(max_steps - i) {
+            if !channel.is_busy() || channel.ticks() >= limit_tick {
+                return;
+            }
+            // Cycles that prepare many blocks are slow: look at the clock now and then.
+            if i % 1024 == 1023 && std::time::Instant::now() >= deadline {
+                return;
+            }
+            channel.step();
+            history.observe(channel);
+            i += 1;
         }
-        // Cycles that prepare many blocks are slow: look at the clock now and then.
-        if i % 1024 == 1023 && std::time::Instant::now() >= deadline {
-            break;
-        }
-        channel.step();
-        // Locked per cycle (uncontended: some ten ns), so a REST reader never waits a chunk.
-        history.lock().unwrap_or_else(std::sync::PoisonError::into_inner).observe(channel);
     }
 }

@@ -50,6 +50,8 @@ export interface State {
   distance_to_go?: number;
   /** Programmed path feed of the block in execution (mm/min); null for rapid or no motion. */
   programmed_feed?: number | null;
+  /** The program stands at a preprocessing stop waiting for the main run (absent: no). */
+  preprocessing_stop_wait?: boolean;
   spindles: Record<string, number>;
   /** Each spindle's mode (M3/M4/M5/SPOS), angle in degrees and master flag, by the names of `spindles`. */
   spindle_info?: Record<string, SpindleInfo>;

@@ -5,9 +5,10 @@
 // block in execution: REPOS pending (JOG in the interrupted program), an M0/M1 in the current
 // block, single block, else NC stop. Distance to go and programmed feed are the block's (under
 // DRY the programmed feed is the dry-run feed the block was prepared with). The options show as
-// Operate abbreviates them: SBL M01 DRY SKP. The state has no "waiting for a preprocessing
-// stop" flag: a preprocessing stop (STOPRE, a read of main-run values) waits only until the
-// main run has ended the blocks before it, and the next block is prepared in the same cycle.
+// Operate abbreviates them: SBL M01 DRY SKP. A preprocessing stop (STOPRE, a read of main-run
+// values) is shown only while the path stands at it for something else of the main run (a
+// POSA axis travelling: the state's `preprocessing_stop_wait`); behind the path's own blocks
+// it ends in the cycle they end, and the channel never stands.
 
 import type { State } from "../api/types";
 import { byId, fmt, setText } from "../core/dom";
@@ -28,8 +29,14 @@ export function channelReason(st: State): string {
       if (st.single_block) return "Stop: block ended in single block";
       return "Stop: NC stop";
     }
-    case "running":
+    case "running": {
+      if (st.preprocessing_stop_wait) {
+        const axes = (st.positioning ?? []).map((p) => p.axis);
+        const what = axes.length > 0 ? ` for positioning axis ${axes.join(", ")}` : "";
+        return `Wait: preprocessing stop, the main run finishes${what}`;
+      }
       return st.mode === "JOG" ? "JOG motion" : `Program running (${st.mode})`;
+    }
     case "idle": {
       const missing = Object.entries(st.referenced ?? {})
         .filter(([, ok]) => !ok)

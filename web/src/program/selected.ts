@@ -76,8 +76,34 @@ export const TRACYL_DEMO: SelectedProgram = {
   ].join("\n"),
 };
 
+/**
+ * The demo of the trunnion-table mill with TRACYL (tracyl-xyzac): A−90 lays the table's C
+ * axis onto +Y, as its TRACYL data assume; then a groove around a 60 mm cylinder (under
+ * TRACYL(60) X is radial, Y the arc length, Z along the cylinder), and the table back to A0.
+ */
+export const TRACYL_TABLE_DEMO: SelectedProgram = {
+  name: "DEMO",
+  text: [
+    "; Demo: A-90 lays the table's C axis onto +Y, then a groove around a 60 mm cylinder with TRACYL",
+    "T1 D1 G17 G90",
+    "G0 X0 Y-20 Z150",
+    "G0 A-90 C0",
+    "G19 TRACYL(60)",
+    "G1 X30 Y0 Z-20 F3000",
+    "G1 Y60",
+    "G1 Z-40",
+    "G1 Y0",
+    "G1 X45",
+    "TRAFOOF",
+    "G17 G0 Z150",
+    "G0 A0",
+    "M30",
+    "",
+  ].join("\n"),
+};
+
 /** Presets whose machine the general demos do not fit, by preset id. */
-const PRESET_DEMOS: Record<string, SelectedProgram> = { "tracyl-xyzc": TRACYL_DEMO };
+const PRESET_DEMOS: Record<string, SelectedProgram> = { "tracyl-xyzc": TRACYL_DEMO, "tracyl-xyzac": TRACYL_TABLE_DEMO };
 
 /**
  * The demo that fits a machine: its preset's own, else the turning demo when it has no Y

@@ -333,16 +333,30 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
     if (radial && parallel) s.cylinder = { radial: radial.dir, parallel: parallel.dir };
   }
   if (kind === "mill" && !s.table.length && !s.head.length && tracyl) {
+    // The table as the engine turns the blank on it (channel/stock_table.rs): C about the
+    // table's Z through the machine zero by the TRACYL sign and offset, carried by the
+    // channel's other rotary non-spindle axis named A (about machine X) or B (about Y).
     const [n] = tracyl;
     const k = md.ordinal(n, isTracyl);
     const rot = md.machineOfChannel(md.axesIn(n, 1));
     const parallel = linear.find((a) => a.name === md.machineOfChannel(md.axesIn(n, 2)));
     const raw = md.data.raw(`$MC_TRACYL_ROT_SIGN_IS_PLUS_${k}`);
     const sign = raw !== undefined && /^(FALSE|0)$/i.test(raw) ? 1 : -1;
-    if (rot && parallel) {
-      s.table = [{ name: rot, dir: scale(parallel.dir, sign), offset: [0, 0, 0], zero: md.num(`$MC_TRACYL_ROT_AX_OFFSET_${k}`) }];
+    const tilt = tiltAxis(md, rot);
+    if (rot && parallel && (tilt || Math.abs(parallel.dir[2]) > 0.999)) {
+      const turn: RotaryAxis = { name: rot, dir: [0, 0, sign], offset: [0, 0, 0], zero: md.num(`$MC_TRACYL_ROT_AX_OFFSET_${k}`) };
+      s.table = tilt ? [{ name: tilt.name, dir: UNIT[tilt.about]!, offset: [0, 0, 0], zero: 0 }, turn] : [turn];
       used.add(rot);
-      s.summary = `${linear.length}-axis mill, cylinder on ${rot} about ${parallel.letter} (TRACYL, data set ${n})`;
+      if (tilt) used.add(tilt.name);
+      // The TRACYL data describe the machine with C along `parallel`: the tilt that lays the
+      // table's Z there takes the radial and parallel directions into the table's frame.
+      const angle = tilt ? tiltTo(tilt.about, parallel.dir) : 0;
+      if (s.cylinder && angle !== null) {
+        s.cylinder = { radial: rotateAbout(tilt?.about ?? 0, -angle, s.cylinder.radial), parallel: rotateAbout(tilt?.about ?? 0, -angle, s.cylinder.parallel) };
+      }
+      const carried = tilt ? ` carried by ${tilt.name}` : "";
+      const along = tilt && angle !== null ? `, ${rot} along ${parallel.letter} at ${tilt.name} ${angle}°` : "";
+      s.summary = `${linear.length}-axis mill, cylinder on ${rot}${carried} (TRACYL, data set ${n}${along})`;
     }
   }
 
@@ -370,10 +384,44 @@ export function readStructure(text: string, machineAxes: string[], activeTrafo: 
   // The unrolled path is wrapped in the workpiece frame only where that frame turns with the
   // TRACYL rotary axis: a lathe's spindle, or the cylinder axis built above on a mill.
   const tracylRot = tracyl ? md.machineOfChannel(md.axesIn(tracyl[0], 1)) : null;
-  const turnsWithTracyl = kind === "lathe" ? s.spindle === tracylRot : s.table.length === 1 && s.table[0]!.name === tracylRot;
+  const turnsWithTracyl = kind === "lathe" ? s.spindle === tracylRot : s.table.at(-1)?.name === tracylRot;
   if (!turnsWithTracyl) s.cylinder = null;
   s.otherRotary = rotary.filter((a) => !used.has(a));
   return s;
+}
+
+/**
+ * The tilting axis of a TRACYL/TRANSMIT rotary table (engine channel/stock_table.rs): the
+ * first channel axis named A (about machine X) or B (about Y) that is rotary, no spindle and
+ * not the table's own rotary axis `rot`.
+ */
+function tiltAxis(md: Md, rot: string | null): { name: string; about: 0 | 1 } | null {
+  const defaults = ["X", "Y", "Z", "A", "B", "C", "U", "V"];
+  for (let k = 1; k <= 20; k++) {
+    const name = md.machineOfChannel(k);
+    if (!name || name === rot || !md.axisFlag(name, "$MA_IS_ROT_AX")) continue;
+    if ((md.axis(name, "$MA_SPIND_ASSIGN_TO_MACHAX") ?? 0) > 0) continue;
+    const chan = md.data.raw("$MC_AXCONF_CHANAX_NAME_TAB", String(k - 1))?.replace(/"/g, "") ?? defaults[k - 1];
+    if (chan === "A") return { name, about: 0 };
+    if (chan === "B") return { name, about: 1 };
+  }
+  return null;
+}
+
+/** `v` turned right-handedly by `deg` degrees about machine axis `about` (0 X, 1 Y, 2 Z). */
+export function rotateAbout(about: number, deg: number, v: Vec3): Vec3 {
+  const [s, c] = [Math.sin((deg * Math.PI) / 180), Math.cos((deg * Math.PI) / 180)];
+  const [x, y, z] = v;
+  const r: Vec3 = about === 0 ? [x, c * y - s * z, s * y + c * z] : about === 1 ? [c * x + s * z, y, -s * x + c * z] : [c * x - s * y, s * x + c * y, z];
+  return r.map((e) => (Math.abs(e) < 1e-12 ? 0 : e)) as Vec3;
+}
+
+/** The tilt (degrees) about `about` that turns the table's +Z onto `dir`; null if none does. */
+function tiltTo(about: 0 | 1, dir: Vec3): number | null {
+  // R_x(θ)·Z = (0, −sin θ, cos θ); R_y(θ)·Z = (sin θ, 0, cos θ).
+  if (Math.abs(dir[about]) > 1e-9) return null;
+  const deg = about === 0 ? Math.atan2(-dir[1], dir[2]) : Math.atan2(dir[0], dir[2]);
+  return Math.round(((deg * 180) / Math.PI) * 1e9) / 1e9;
 }
 
 export { add as addVec, scale as scaleVec };

@@ -465,6 +465,15 @@ export class MachineView {
     return THREE.MathUtils.radToDeg(Math.atan2(axis.dot(ref.clone().cross(turned)), ref.dot(turned)));
   }
 
+  /** Where the part frame's unit vector `v` points in the machine frame, for the browser test. */
+  partDirection(v: [number, number, number]): [number, number, number] | null {
+    if (!this.model) return null;
+    this.content.updateMatrixWorld(true);
+    const q = this.model.part.getWorldQuaternion(new THREE.Quaternion());
+    q.premultiply(this.model.frame.getWorldQuaternion(new THREE.Quaternion()).invert());
+    return new THREE.Vector3(...v).applyQuaternion(q).toArray();
+  }
+
   clearPath(): void {
     this.toolpath.clear();
     this.programmed.clear();
@@ -597,6 +606,8 @@ export function mountMachineView(session: SessionController): MachineView {
     pathPoints: (n: number) => view.pathPoints(n),
     /** The angle (degrees) the workpiece frame is turned about the machine axis `about`. */
     partTurn: (about: [number, number, number]) => view.partTurn(about),
+    /** Where the part frame's vector `v` points in the machine frame (a tilted table). */
+    partDirection: (v: [number, number, number]) => view.partDirection(v),
     programmedPoints: () => view.programmed.count,
     /** The programmed path as drawn (workpiece frame, TRACYL parts wrapped). */
     programmedPath: () => view.programmed.points(),
