@@ -59,7 +59,7 @@ fn the_tip_without_traori_is_where_traori_would_put_it() {
 #[test]
 fn a_tilted_rotary_table_without_traori_gives_the_tip_on_the_table() {
     // tracyl-xyzac: the trunnion A (about X) carries C, the blank is clamped on the table
-    // (stock_table.rs): machine = R_x(A)·R_z(−C)·p. The tip at machine (20, 10, 5) with A−90,
+    // (channel/stock/table.rs): machine = R_x(A)·R_z(−C)·p. The tip at machine (20, 10, 5) with A−90,
     // C0 lies on the table at p = R_x(90)·(20, 10, 5) = (20, 10·cos 90° − 5·sin 90°,
     // 10·sin 90° + 5·cos 90°) = (20, −5, 10). At A0 C0 the table's frame is the BCS.
     let mut ch = channel("tracyl-xyzac", "");

@@ -11,7 +11,7 @@
 //! - another transformation active (TRANSMIT, TRACYL, TRAANG): its BCS, which is Cartesian on
 //!   the part; under TRACYL that is the unrolled surface, so the working diameter goes along
 //!   for a view to wrap the point onto the cylinder;
-//! - no transformation, and a rotary table the blank is clamped on (`stock_table.rs`: a
+//! - no transformation, and a rotary table the blank is clamped on (`stock/table.rs`: a
 //!   TRACYL/TRANSMIT rotary axis that is no spindle, tilted by A or B, as on `tracyl-xyzac`):
 //!   the tip in the table's frame, the frame the stock is cut in and the HMI draws it in;
 //! - no transformation and no data set: the BCS (machine − tool offsets − `$AA_TOFF`).
@@ -48,8 +48,8 @@ pub struct TipProbe {
     kin: Option<Box<Traori>>,
     /// The rotary axes that are no spindle (the ones that may turn the workpiece unseen).
     turning: Vec<usize>,
-    /// The rotary table the blank is clamped on, without TRAORI data (`stock_table.rs`).
-    mount: Option<super::stock_table::TableMount>,
+    /// The rotary table the blank is clamped on, without TRAORI data (`stock/table.rs`).
+    mount: Option<super::stock::table::TableMount>,
 }
 
 impl TipProbe {
