@@ -23,7 +23,7 @@
 
 use super::compress::{self, Junction};
 use super::ori_curve::TwoCurves;
-use super::orientation::{OriPath, Vec3};
+use super::orientation::{OriPath, Vec3, angle, cross, dot};
 use super::path::AxisVec;
 use super::planner::{AxisLimit, Move};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -45,7 +45,7 @@ pub fn compressible(mv: &Move, metric: &AxisVec) -> bool {
 /// A plain great circle (ORIVECT, ORIPLANE): no curve, no turning frame, the rotation axis
 /// perpendicular to the start (a cone's is not).
 fn great_circle(o: &OriPath) -> bool {
-    o.curve.is_none() && o.turn.is_none() && o.ends.is_none() && dot3(o.axis, o.start).abs() < 1e-9
+    o.curve.is_none() && o.turn.is_none() && o.ends.is_none() && dot(o.axis, o.start).abs() < 1e-9
 }
 
 /// The tool tip's chord length of `mv`.
@@ -150,7 +150,7 @@ fn orientation_quintic(o: &OriPath, start: Option<&Junction>, end: Option<&Junct
             None => {
                 // The great circle: o' = θ·k × o, o'' = −θ²·o (k ⟂ o).
                 let p = o.at(u);
-                let c = cross3(o.axis, p);
+                let c = cross(o.axis, p);
                 [p, c.map(|x| x * o.angle), p.map(|x| -x * o.angle * o.angle)]
             }
         }
@@ -158,20 +158,6 @@ fn orientation_quintic(o: &OriPath, start: Option<&Junction>, end: Option<&Junct
     let ([p0, v0, a0], [p1, v1, a1]) = (side(start, 0.0), side(end, 1.0));
     let bend = super::blend_ori::hermite_bend([(p0, v0, a0), (p1, v1, a1)]);
     OriPath::two_curves(TwoCurves { tip: [[0.0; 3]; 2], upper: [p0, p1], bend })
-}
-
-/// The angle (radians) between unit vectors `a` and `b`.
-fn angle(a: Vec3, b: Vec3) -> f64 {
-    let c = cross3(a, b);
-    dot3(c, c).sqrt().atan2(dot3(a, b))
-}
-
-fn dot3(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross3(a: Vec3, b: Vec3) -> Vec3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 #[cfg(test)]
@@ -245,7 +231,7 @@ mod tests {
         let n = next.path.ori.as_ref().unwrap();
         let h = 1e-6;
         let d: Vec3 = std::array::from_fn(|k| (n.at(h)[k] - n.at(0.0)[k]) / h);
-        let dn = dot3(d, d).sqrt();
+        let dn = dot(d, d).sqrt();
         assert!(angle(e, d.map(|x| x / dn)) < 1e-3, "{e:?} vs {d:?}");
     }
 }

@@ -225,6 +225,11 @@ pub(super) fn norm(a: Vec3) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// The angle (radians) between unit vectors `a` and `b`.
+pub(super) fn angle(a: Vec3, b: Vec3) -> f64 {
+    norm(cross(a, b)).atan2(dot(a, b))
+}
+
 fn scale(a: Vec3, f: f64) -> Vec3 {
     a.map(|x| x * f)
 }

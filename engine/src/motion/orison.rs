@@ -26,7 +26,7 @@
 
 use super::blend_ori::hermite_bend;
 use super::ori_curve::TwoCurves;
-use super::orientation::{OriPath, SmoothEnds, Vec3, cross, dot, norm};
+use super::orientation::{OriPath, SmoothEnds, Vec3, angle, cross, dot, norm};
 use super::planner::Move;
 
 /// The limits ORISON smooths within, read at block preparation.
@@ -151,11 +151,6 @@ fn deviation(curve: &TwoCurves, oa: &OriPath, ob: &OriPath, la: f64, lb: f64, ha
 /// The orientation's rate per mm of a great circle `o` at `u` (`l` the block's length).
 fn rate(o: &OriPath, u: f64, l: f64) -> Vec3 {
     cross(o.axis, o.programmed_at(u)).map(|x| x * o.angle / l)
-}
-
-/// The angle (radians) between unit vectors `a` and `b`.
-pub fn angle(a: Vec3, b: Vec3) -> f64 {
-    norm(cross(a, b)).atan2(dot(a, b))
 }
 
 #[cfg(test)]
