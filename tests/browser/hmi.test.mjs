@@ -109,10 +109,10 @@ async function canvasStats(page) {
 }
 
 
-/** Starts the server binary on `bind` with `dataDir`; resolves with its URL once it listens. */
-function startServer(bind, dataDir) {
+/** Starts the server binary on `bind` with `dataDir` (and `extra` flags); resolves with its URL once it listens. */
+function startServer(bind, dataDir, extra = []) {
   return new Promise((resolveUrl, reject) => {
-    const child = spawn(NCTWIN_BIN, ["--bind", bind, "--data-dir", dataDir, "--web-dir", join(ROOT, "web", "dist")], {
+    const child = spawn(NCTWIN_BIN, ["--bind", bind, "--data-dir", dataDir, "--web-dir", join(ROOT, "web", "dist"), ...extra], {
       env: { ...process.env, NO_COLOR: "1" },
       stdio: ["ignore", "pipe", "pipe"],
     });
@@ -1727,6 +1727,37 @@ async function main() {
       if (found.small.length) throw new Error(`text under 12 px: ${found.small.slice(0, 8).join(" | ")}`);
       await page.locator("#area-machine").screenshot({ path: join(SHOTS_DIR, "nctwin-hmi-1280x720.png") });
       await page.setViewportSize({ width: 1280, height: 800 });
+    });
+
+    await step("--auth required: an operator's page names who has control, then drives after Take control", async () => {
+      const dataDir = await mkdtemp(join(tmpdir(), "nctwin-auth-"));
+      const server = await startServer("127.0.0.1:0", dataDir, ["--auth", "required"]);
+      const operator = await context.newPage();
+      try {
+        const api = async (method, path, token, body) => {
+          const headers = { "content-type": "application/json" };
+          if (token) headers.authorization = `Bearer ${token}`;
+          const res = await fetch(`${server.url}/api/v1${path}`, { method, headers, body: body && JSON.stringify(body) });
+          if (!res.ok) throw new Error(`${method} ${path}: ${res.status} ${await res.text()}`);
+          return res.status === 204 ? null : res.json();
+        };
+        // The trainer creates the session: the owner holds control from the start.
+        const { id, tokens } = await api("POST", "/sessions", null, { machine: "mill-3axis" });
+        await operator.goto(`${server.url}/?session=${id}&token=${tokens.operator}`, { waitUntil: "load" });
+        await operator.waitForFunction(() => /the trainer \(owner\) has control/.test(document.getElementById("lock-banner")?.textContent || ""));
+        if (!(await operator.locator("#btn-reset").isDisabled())) throw new Error("Reset is enabled without control");
+        // The trainer releases control: the page says so (it asks every 3 s) and takes it.
+        await api("POST", `/sessions/${id}/control/release`, tokens.owner);
+        await operator.waitForFunction(() => /Nobody has control/.test(document.getElementById("lock-banner")?.textContent || ""), null, { timeout: 15_000 });
+        await operator.click("#btn-control");
+        await operator.waitForFunction(() => document.getElementById("lock-banner")?.hidden === true);
+        await operator.waitForFunction(() => !document.getElementById("btn-reset")?.disabled);
+        const control = await api("GET", `/sessions/${id}/control`, tokens.owner);
+        if (control.holder !== "operator") throw new Error(`control: ${JSON.stringify(control)}`);
+      } finally {
+        await operator.close();
+        await stopServer(server.child);
+      }
     });
 
     await step("an unknown ?session= shows the start page with the reason, no new session", async () => {
