@@ -48,11 +48,7 @@ mod stock_saved;
 mod stock_spindle;
 mod stock_table;
 mod stock_tiles;
-pub mod sync_actions;
-mod sync_eval;
-mod sync_horizon;
-mod sync_lazy;
-mod sync_schedule;
+pub mod sync;
 mod toff;
 pub mod tool_list;
 mod tool_monitor;
@@ -166,7 +162,7 @@ pub enum Event {
     /// Inputs set from outside ([`Channel::set_signals`], [`Channel::set_analog_inputs`]),
     /// with the IPO cycle count they arrived at: they act from the next cycle on, so a run fed
     /// the same inputs at the same counts is identical (see [`Channel::input_log`]).
-    InputsChanged(sync_actions::InputRecord),
+    InputsChanged(sync::InputRecord),
     /// A check of material removal found something (`stock_cut.rs`).
     Stock(StockWarning),
     /// An operator's command, for the action log ("who did what", see `action_log.rs`).
@@ -354,8 +350,8 @@ pub struct Channel {
     servo: servo::Servo,
     /// The block change waiting for the G601/G602 exact-stop window (`exact_stop.rs`).
     exact_stop: exact_stop::ExactStop,
-    /// Motion-synchronous actions and their data (`sync_actions.rs`).
-    sync: sync_actions::SyncActions,
+    /// Motion-synchronous actions and their data (`sync/`).
+    sync: sync::SyncActions,
     /// Axes travelling outside the path: POS/POSA, command axes (`positioning_axes.rs`).
     positioning: positioning_axes::PositioningAxes,
     /// STOPREOF, RDISABLE, wait markers, technology cycles (`program_sync.rs`).
