@@ -9,6 +9,7 @@
 
 pub(super) mod channel_coordination;
 pub mod compile;
+pub mod elements;
 pub mod flat;
 pub mod horizon;
 pub mod technology;

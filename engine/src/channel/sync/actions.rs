@@ -435,7 +435,10 @@ impl Channel {
 
     /// Main run: a synchronized action's block is reached.
     pub(in crate::channel) fn activate_sync(&mut self, def: Arc<SyncDef>) {
-        let line = def.line;
+        if let Some(alarm) = self.sync_resources_short(&def) {
+            self.raise(alarm);
+            return;
+        }
         if def.disables_read_in() {
             // Blocks go one at a time from now on; a modal RDISABLE is evaluated before the
             // next block may start (`program_sync.rs`).
@@ -473,15 +476,6 @@ impl Channel {
         self.sync.wake();
         // The moves queued before it bound the axes' speeds for its horizons.
         self.recompute_speed_caps();
-        if self.sync.active.len() > MAX_ACTIVE {
-            self.sync.active.pop();
-            self.raise(Alarm {
-                number: 14751,
-                message: format!("Channel 1 block {line} resources for motion synchronous actions not sufficient"),
-                line: Some(line),
-                clear: crate::alarm::Clear::Reset,
-            });
-        }
         self.sync.replan_deferred();
         let new = self.sync.note_velocity_readers();
         for k in (0..MAX_CHANNEL_AXES).filter(|k| new & (1 << k) != 0) {
@@ -489,6 +483,34 @@ impl Channel {
             // with the path at rest).
             self.sync.prev_setpoint[k] = self.machine[k];
         }
+    }
+
+    /// Alarm 14751 if `def` does not fit beside the active actions: their elements together
+    /// beyond MD28250 `$MC_MM_NUM_SYNC_ELEMENTS`, or more than [`MAX_ACTIVE`] actions (NCTwin's
+    /// own bound: the schedule's masks have 64 bits). An action with the same ID is replaced,
+    /// so its elements are free.
+    fn sync_resources_short(&self, def: &SyncDef) -> Option<Alarm> {
+        let replaced = |a: &&ActiveSync| def.id.is_some_and(|n| a.def.id.map(SyncId::number) == Some(n.number()));
+        let kept = || self.sync.active.iter().filter(|a| !replaced(a));
+        let used: usize = kept().map(|a| a.def.elements()).sum();
+        let (need, limit) = (def.elements(), self.cfg.sync_sizes.elements);
+        let why = if used + need > limit {
+            format!(
+                "MD28250 MM_NUM_SYNC_ELEMENTS: {need} elements needed, {} of {limit} free",
+                limit.saturating_sub(used)
+            )
+        } else if kept().count() >= MAX_ACTIVE {
+            format!("at most {MAX_ACTIVE} active actions")
+        } else {
+            return None;
+        };
+        let line = def.line;
+        Some(Alarm {
+            number: 14751,
+            message: format!("Channel 1 block {line} resources for motion synchronous actions not sufficient ({why})"),
+            line: Some(line),
+            clear: crate::alarm::Clear::Reset,
+        })
     }
 
     /// Main run: CANCEL/LOCK/UNLOCK/RESET(ids). An ID no action has is passed over.
