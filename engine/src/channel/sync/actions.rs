@@ -569,6 +569,13 @@ impl Channel {
     #[inline]
     fn keep_sync_history(&mut self) {
         let mut axes = self.sync.velocity_axes;
+        if axes != 0 && axes < 1 << 4 {
+            // Readers among axes 0..3 (the usual): one copy of fixed size. The other axes'
+            // setpoints copied with them are read by no action (`velocity_axes` covers
+            // every reader; a new one takes its own at activation).
+            self.sync.prev_setpoint[..4].copy_from_slice(&self.machine[..4]);
+            axes = 0;
+        }
         while axes != 0 {
             let k = axes.trailing_zeros() as usize;
             axes &= axes - 1;

@@ -93,7 +93,15 @@ pub fn horizon<B: Bounds>(code: &Code, b: &B, now: bool) -> u64 {
             _ => {}
         }
     }
-    let holds = |h: u64| truth(&code.ops, &reads[..n], h as f64) == Some(now);
+    // `variable <op> constant` (most conditions): `truth` of its one operation, without the stack.
+    let single = match *code.ops {
+        [Op::Compare(_, cmp, k)] => Some((cmp, k)),
+        _ => None,
+    };
+    let holds = |h: u64| match single {
+        Some((cmp, k)) => compare(cmp, reads[0].after(h as f64), Iv::point(k)).nonzero() == Some(now),
+        None => truth(&code.ops, &reads[..n], h as f64) == Some(now),
+    };
     // A range or fixed data decide at once (a speed beyond any the axes reach). For
     // `variable <op> constant` only when the variable's values after the longest horizon
     // are one or leave out the constant (else the comparison is unknown there: the same
