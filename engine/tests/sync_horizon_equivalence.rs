@@ -74,7 +74,7 @@ fn program(r: &mut Rng) -> String {
     let count = 2 + r.below(7);
     for id in 1..=count {
         if r.below(4) == 0 {
-            // Deferred (`sync_lazy.rs`) unless another action reads or writes the element
+            // Deferred (`channel/sync/lazy.rs`) unless another action reads or writes the element
             // (marker 5 when two of them write it, parameter 31 when a condition reads it).
             let kind = if r.below(3) == 0 { "IDS" } else { "ID" };
             text.push_str(&format!(

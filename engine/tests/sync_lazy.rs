@@ -1,4 +1,4 @@
-//! Deferred synchronized actions (`channel/sync_lazy.rs`): an action without condition that
+//! Deferred synchronized actions (`channel/sync/lazy.rs`): an action without condition that
 //! only stores positions into a marker or parameter nobody else reads is not run in every IPO
 //! cycle; its value is computed from the inputs the cycle kept when someone reads it. What a
 //! reader sees must be what running it in every cycle gives (the random programs of

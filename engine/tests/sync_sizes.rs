@@ -3,7 +3,8 @@
 //! `$MC_MM_NUM_AC_TIMER`, MD10350/MD10360 `$MN_FASTIO_DIG_NUM_INPUTS/OUTPUTS` in bytes of 8
 //! signals, MD10300/MD10310 `$MN_FASTIO_ANA_NUM_INPUTS/OUTPUTS` in signals): the last element
 //! works, one beyond is alarm 17020 in the main run (in an action or a program block) and an
-//! error from outside (the REST side's 400).
+//! error from outside (the REST side's 400). MD28250 `$MC_MM_NUM_SYNC_ELEMENTS` bounds the active
+//! actions in elements: one beyond is alarm 14751 at the action's line.
 
 use nctwin_engine::{Channel, Status};
 
@@ -121,4 +122,52 @@ fn the_sizes_change_with_machine_data_applied_in_reset_state() {
     }
     assert!(ch.snapshot().alarms.is_empty(), "{:?}", ch.snapshot().alarms);
     assert_eq!(ch.r_param(1), 1.0);
+}
+
+/// The program ended in alarm 14751 (resources for synchronized actions) at `line`.
+fn resources_alarm(md: &str, program: &str, line: u32) {
+    let s = run(md, program).snapshot();
+    assert_eq!(s.status, Status::Alarm, "{program:?} with {md:?}: expected an alarm");
+    assert_eq!((s.alarms[0].number, s.alarms[0].line), (14751, Some(line)), "{:?}", s.alarms[0]);
+}
+
+/// `n` modal actions `ID=1..n WHEN $AC_TIME>100 DO $AC_MARKER[1]=1`, 4 elements each (2
+/// operands in the condition, one assignment of 2), then a move.
+fn actions(n: u32) -> String {
+    let mut text: String = (1..=n).map(|id| format!("ID={id} WHEN $AC_TIME>100 DO $AC_MARKER[1]=1\n")).collect();
+    text.push_str("G1 X1 F600\nM30");
+    text
+}
+
+#[test]
+fn active_actions_are_bounded_by_md28250_in_elements() {
+    // Two actions of 4 elements fill 8; the third (line 3) does not fit.
+    let md = "$MC_MM_NUM_SYNC_ELEMENTS=8";
+    ok(md, &actions(2));
+    resources_alarm(md, &actions(3), 3);
+    // Elements, not actions: 4 operands ($AA_IM[X], 20, $AA_IM[Y], 5) and one assignment (2)
+    // make 6; a compound value adds its further operands: $AC_MARKER[1]+1 is 2 + 1 = 3,
+    // raised to the minimum of 4.
+    let six = "ID=1 WHENEVER ($AA_IM[X]>20) AND ($AA_IM[Y]<5) DO $AC_OVR=50\nG1 X1 F600\nM30";
+    ok("$MC_MM_NUM_SYNC_ELEMENTS=6", six);
+    resources_alarm("$MC_MM_NUM_SYNC_ELEMENTS=5", six, 1);
+    let count = "ID=1 DO $AC_MARKER[1]=$AC_MARKER[1]+1\nID=2 DO $AC_MARKER[2]=$AC_MARKER[2]+1\nG1 X1 F600\nM30";
+    ok(md, count);
+    resources_alarm("$MC_MM_NUM_SYNC_ELEMENTS=7", count, 2);
+    // An action with the same ID replaces the old one, CANCEL frees its elements.
+    let md = "$MC_MM_NUM_SYNC_ELEMENTS=4";
+    ok(md, "ID=1 WHEN $AC_TIME>100 DO M99\nID=1 WHEN $AC_TIME>200 DO M98\nG1 X1 F600\nM30");
+    ok(md, "ID=1 WHEN $AC_TIME>100 DO M99\nG1 X1 F600\nCANCEL(1)\nID=2 WHEN $AC_TIME>100 DO M98\nG1 X2\nM30");
+    resources_alarm(md, "ID=1 WHEN $AC_TIME>100 DO M99\nG1 X1 F600\nID=2 WHEN $AC_TIME>100 DO M98\nG1 X2\nM30", 3);
+}
+
+#[test]
+fn the_default_159_elements_hold_39_small_actions() {
+    // 39 × 4 = 156 ≤ 159; the 40th needs 160.
+    ok("", &actions(39));
+    resources_alarm("", &actions(40), 40);
+    // Beyond the elements NCTwin keeps at most 64 active actions (its schedule's masks).
+    let md = "$MC_MM_NUM_SYNC_ELEMENTS=32000";
+    ok(md, &actions(64));
+    resources_alarm(md, &actions(65), 65);
 }

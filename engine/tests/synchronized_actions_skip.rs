@@ -1,6 +1,6 @@
 //! Synchronized actions whose condition reads only main-run data (signals, markers,
 //! parameters): the main run evaluates such a condition again only after one of its inputs
-//! changed (`channel/sync_eval.rs`). These runs check that the actions still act in the cycle
+//! changed (`channel/sync/eval.rs`). These runs check that the actions still act in the cycle
 //! a real control would: hand-worked on the mill-3axis preset, IPO cycle 4 ms, G1 F600 =
 //! 10 mm/s = 0.04 mm per cycle, 3 m/s² (10 mm/s is reached or lost in 3.3 ms, within one
 //! cycle), FFWON (no following error at constant speed).

@@ -1168,8 +1168,8 @@ pub struct SyncActionState {
     pub line: u32,
 }
 
-impl From<&nctwin_engine::channel::sync_actions::SyncActionInfo> for SyncActionState {
-    fn from(a: &nctwin_engine::channel::sync_actions::SyncActionInfo) -> SyncActionState {
+impl From<&nctwin_engine::channel::sync::SyncActionInfo> for SyncActionState {
+    fn from(a: &nctwin_engine::channel::sync::SyncActionInfo) -> SyncActionState {
         SyncActionState {
             id: a.id,
             kind: a.kind.into(),

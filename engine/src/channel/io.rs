@@ -36,7 +36,7 @@ impl Channel {
             io.set_output(n, on);
         }
         self.set_digital_io(io);
-        let record = super::sync_actions::InputRecord {
+        let record = super::sync::InputRecord {
             tick: self.tick,
             inputs: inputs.to_vec(),
             outputs: outputs.to_vec(),

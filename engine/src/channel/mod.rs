@@ -34,11 +34,7 @@ mod snapshot_refresh;
 mod spindle;
 pub mod standstill;
 mod stock;
-pub mod sync_actions;
-mod sync_eval;
-mod sync_horizon;
-mod sync_lazy;
-mod sync_schedule;
+pub mod sync;
 mod tools;
 mod trafo;
 pub mod workpiece_tip;
@@ -150,7 +146,7 @@ pub enum Event {
     /// Inputs set from outside ([`Channel::set_signals`], [`Channel::set_analog_inputs`]),
     /// with the IPO cycle count they arrived at: they act from the next cycle on, so a run fed
     /// the same inputs at the same counts is identical (see [`Channel::input_log`]).
-    InputsChanged(sync_actions::InputRecord),
+    InputsChanged(sync::InputRecord),
     /// A check of material removal found something (`stock/cut.rs`).
     Stock(StockWarning),
     /// An operator's command, for the action log ("who did what", see `action_log.rs`).
@@ -338,8 +334,8 @@ pub struct Channel {
     servo: servo::Servo,
     /// The block change waiting for the G601/G602 exact-stop window (`exact_stop.rs`).
     exact_stop: exact_stop::ExactStop,
-    /// Motion-synchronous actions and their data (`sync_actions.rs`).
-    sync: sync_actions::SyncActions,
+    /// Motion-synchronous actions and their data (`sync/`).
+    sync: sync::SyncActions,
     /// Axes travelling outside the path: POS/POSA, command axes (`positioning_axes.rs`).
     positioning: positioning_axes::PositioningAxes,
     /// STOPREOF, RDISABLE, wait markers, technology cycles (`program_sync.rs`).

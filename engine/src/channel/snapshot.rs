@@ -85,7 +85,7 @@ pub struct Snapshot {
     /// The program was interrupted and axes moved by JOG: NC start repositions first (REPOS).
     pub repos_pending: bool,
     /// The active synchronized actions (ID order, then block-modal ones).
-    pub sync_actions: Vec<super::sync_actions::SyncActionInfo>,
+    pub sync_actions: Vec<super::sync::SyncActionInfo>,
     /// The axes travelling on their own interpolators (POS/POSA/POSP, command axes), in
     /// channel axis order; empty when none.
     pub positioning: Vec<super::PositioningInfo>,

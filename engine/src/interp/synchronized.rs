@@ -1,6 +1,6 @@
 //! Motion-synchronous actions in block preparation: a block holding one is compiled once
 //! (`compile.rs`) and handed to the main run as [`Item::SyncAction`], which evaluates it in
-//! every IPO cycle (`channel/sync_actions.rs`). `CANCEL(n)`, `LOCK(n)`, `UNLOCK(n)` and
+//! every IPO cycle (`channel/sync/actions.rs`). `CANCEL(n)`, `LOCK(n)`, `UNLOCK(n)` and
 //! `RESET(n)` go to the main run as [`Item::SyncControl`] in program order.
 //!
 //! A block-modal action with `DELDTG` makes the block after its motion block wait for the
@@ -9,6 +9,7 @@
 
 pub(super) mod channel_coordination;
 pub mod compile;
+pub mod elements;
 pub mod flat;
 pub mod horizon;
 pub mod technology;

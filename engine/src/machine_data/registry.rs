@@ -427,7 +427,9 @@ pub static DEFS: &[Def] = &[
     def("TRACON_CHAIN_3", 24997, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("TRACON_CHAIN_4", 24998, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("MM_NUM_USER_FRAMES", 28080, C, Kind::Int, 1, Default::Int(5), 5.0, 100.0),
-    // Synchronized actions' data (`sync_sizes.rs`): `$AC_PARAM`, `$AC_MARKER`, `$AC_TIMER`.
+    // Synchronized actions' memory in elements (`interp/synchronized/elements.rs`) and data
+    // (`sync_sizes.rs`): `$AC_PARAM`, `$AC_MARKER`, `$AC_TIMER`.
+    def("MM_NUM_SYNC_ELEMENTS", 28250, C, Kind::Int, 1, Default::Int(159), 0.0, 32000.0),
     def("MM_NUM_AC_PARAM", 28254, C, Kind::Int, 1, Default::Int(50), 0.0, 20000.0),
     def("MM_NUM_AC_MARKER", 28256, C, Kind::Int, 1, Default::Int(8), 0.0, 20000.0),
     def("MM_NUM_AC_TIMER", 28258, C, Kind::Int, 1, Default::Int(8), 0.0, 10000.0),

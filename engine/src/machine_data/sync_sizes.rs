@@ -5,6 +5,8 @@
 //! (`$AC_MARKER[0..n-1]`), MD28258 `$MC_MM_NUM_AC_TIMER` (`$AC_TIMER[0..n-1]`), MD10350/10360
 //! `$MN_FASTIO_DIG_NUM_INPUTS/OUTPUTS` (bytes of 8 signals: `$A_IN[1..8n]`, `$A_OUT[1..8n]`),
 //! MD10300/10310 `$MN_FASTIO_ANA_NUM_INPUTS/OUTPUTS` (signals: `$A_INA[1..n]`, `$A_OUTA[1..n]`).
+//! MD28250 `$MC_MM_NUM_SYNC_ELEMENTS` bounds the active actions, in elements
+//! (`interp/synchronized/elements.rs`).
 //! The defaults are NCTwin's sizes of before (8 markers and timers, 50 parameters, 40 digital
 //! and 4 analog signals each), so the presets behave as they did.
 
@@ -13,6 +15,8 @@ use super::MachineData;
 /// Element counts of the synchronized actions' arrays and the NCK signals.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SyncSizes {
+    /// Elements all active synchronized actions may occupy together (MD28250).
+    pub elements: usize,
     pub markers: usize,
     pub params: usize,
     pub timers: usize,
@@ -31,6 +35,7 @@ pub const MAX_ANALOG: usize = 8;
 impl Default for SyncSizes {
     fn default() -> Self {
         SyncSizes {
+            elements: 159,
             markers: 8,
             params: 50,
             timers: 8,
@@ -47,6 +52,7 @@ impl SyncSizes {
     pub(super) fn read(md: &MachineData) -> SyncSizes {
         let n = |name: &str| md.num(name, 0, 0).max(0.0) as usize;
         SyncSizes {
+            elements: n("$MC_MM_NUM_SYNC_ELEMENTS"),
             markers: n("$MC_MM_NUM_AC_MARKER"),
             params: n("$MC_MM_NUM_AC_PARAM"),
             timers: n("$MC_MM_NUM_AC_TIMER"),

@@ -11,7 +11,7 @@ use axum::extract::ws::Utf8Bytes;
 use nctwin_engine::channel::PositioningInfo;
 use nctwin_engine::channel::ReferencePhase;
 use nctwin_engine::channel::StockInfo;
-use nctwin_engine::channel::sync_actions::SyncActionInfo;
+use nctwin_engine::channel::sync::SyncActionInfo;
 use nctwin_engine::interp::program_control::SkipLevels;
 use nctwin_engine::{Mode, Overrides, Snapshot, Status};
 

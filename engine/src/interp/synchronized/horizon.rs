@@ -18,6 +18,8 @@ use super::compile::Func;
 use super::flat::{self, Code, Op, Slot};
 use crate::lang::sync_action::BinOp;
 
+mod linear;
+
 /// What the main run guarantees about a variable a condition reads, until an event.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bound {
@@ -91,7 +93,15 @@ pub fn horizon<B: Bounds>(code: &Code, b: &B, now: bool) -> u64 {
             _ => {}
         }
     }
-    let holds = |h: u64| truth(&code.ops, &reads[..n], h as f64) == Some(now);
+    // `variable <op> constant` (most conditions): `truth` of its one operation, without the stack.
+    let single = match *code.ops {
+        [Op::Compare(_, cmp, k)] => Some((cmp, k)),
+        _ => None,
+    };
+    let holds = |h: u64| match single {
+        Some((cmp, k)) => compare(cmp, reads[0].after(h as f64), Iv::point(k)).nonzero() == Some(now),
+        None => truth(&code.ops, &reads[..n], h as f64) == Some(now),
+    };
     // A range or fixed data decide at once (a speed beyond any the axes reach). For
     // `variable <op> constant` only when the variable's values after the longest horizon
     // are one or leave out the constant (else the comparison is unknown there: the same
@@ -120,6 +130,20 @@ pub fn horizon<B: Bounds>(code: &Code, b: &B, now: bool) -> u64 {
                 }
             }
             bad = reach.saturating_sub(1).max(1);
+        }
+    }
+    // Any other condition linear in its variables: the cycles until the first comparison
+    // that decides it could flip, checked as above (the search below finds the same, by
+    // about 15 interval evaluations instead of 2).
+    if bad == MAX_HORIZON
+        && let Some(reach) = linear::reach(&code.ops, &reads[..n], now)
+        && reach < MAX_HORIZON as f64
+    {
+        let reach = reach as u64;
+        for h in [reach, reach.saturating_sub(1)] {
+            if h > 0 && holds(h) {
+                return h;
+            }
         }
     }
     if !holds(1) {
@@ -399,6 +423,43 @@ mod tests {
         // velocity comparison.
         let and = bin(BinOp::And, bin(BinOp::Gt, x(), E::Num(100.0)), bin(BinOp::Gt, v(), E::Num(50.0)));
         assert_eq!(h(&and, false), 89);
+    }
+
+    #[test]
+    fn linear_conditions_get_the_horizon_of_the_comparison_that_decides_them() {
+        let y = || var(SyncVar::AaIm(1));
+        let marker = || var(SyncVar::AcMarker(Box::new(E::Num(1.0))));
+        // (X > M1 + 2000) AND (Y < -100), X = 10, Y = 0, M1 = 3, 1 per cycle each: both false;
+        // the AND holds while the later one does: X stays below 2003 for 1992 cycles, after
+        // 1993 it may be 2003 (not above it by the margin); Y could flip after 100.
+        let far = bin(BinOp::Gt, x(), bin(BinOp::Add, marker(), E::Num(2000.0)));
+        let and = bin(BinOp::And, far.clone(), bin(BinOp::Lt, y(), E::Num(-100.0)));
+        assert_eq!(linear::reach(&lower(&and).ops, &reads(&and), false), Some(1993.0));
+        assert_eq!(h(&and, false), 1992);
+        // OR of two false sides: false while both are; (X−Y)/2 < −6 needs X−Y to fall by 2
+        // per cycle from 10 to −12: 11 cycles, at the 11th it may be −12 exactly.
+        let half = bin(BinOp::Div, bin(BinOp::Sub, x(), y()), E::Num(2.0));
+        let or = bin(BinOp::Or, far, bin(BinOp::Lt, half, E::Num(-6.0)));
+        assert_eq!(h(&or, false), 10);
+        // NOT and a true AND: true while both sides are: X < 30 for 19 cycles, Y > -5 for 4.
+        let both =
+            bin(BinOp::And, bin(BinOp::Lt, x(), E::Num(30.0)), E::Not(Box::new(bin(BinOp::Le, y(), E::Num(-5.0)))));
+        assert_eq!(h(&both, true), 4);
+        // Not linear (a product of two moving values): no guess, the search decides.
+        let product = bin(BinOp::Gt, bin(BinOp::Mul, x(), y()), E::Num(50.0));
+        assert_eq!(linear::reach(&lower(&product).ops, &reads(&product), false), None);
+    }
+
+    /// The bounds a condition reads, in order.
+    fn reads(e: &E) -> Vec<Bound> {
+        let code = lower(e);
+        code.ops
+            .iter()
+            .filter_map(|op| match op {
+                Op::Read(s) | Op::Compare(s, _, _) => Vars.bound(*s),
+                _ => None,
+            })
+            .collect()
     }
 
     #[test]

@@ -10,16 +10,16 @@
 //! ID order, as with evaluation in every cycle). After a full check the earliest wake cycle
 //! and the mask are computed again.
 
-use super::Channel;
-use super::sync_actions::ActiveSync;
+use super::actions::ActiveSync;
 use crate::alarm::Alarm;
+use crate::channel::Channel;
 use crate::interp::synchronized::flat::{self, Fault};
 use crate::interp::synchronized::{SyncDef, horizon};
 use crate::lang::sync_action::Trigger;
 
 impl Channel {
     /// Runs the actions of this cycle in order; returns the place and the alarm of the first
-    /// that failed. Deferred actions (`sync_lazy.rs`) are not run: they show as fired.
+    /// that failed. Deferred actions (`lazy.rs`) are not run: they show as fired.
     pub(super) fn check_actions(&mut self, active: &mut [ActiveSync]) -> Option<(usize, Alarm)> {
         let tick = self.tick;
         let deps = self.sync.deps;

@@ -2,8 +2,8 @@
 //! the variables it reads in this IPO cycle ([`Reader`] for the channel) and the actions it
 //! runs (assignments, M/H output, DELDTG).
 
-use super::{Channel, Event};
 use crate::alarm::Alarm;
+use crate::channel::{Channel, Event};
 use crate::interp::auxiliary::AuxFunction;
 use crate::interp::synchronized::flat::{
     self, ANALOG_IN_BITS, Act, Array, DIGITAL_IN_BIT, DIGITAL_OUT_BIT, Fault, Reader, Slot, SyncSizes, TIMER_BIT,
@@ -11,7 +11,7 @@ use crate::interp::synchronized::flat::{
 };
 
 /// Which main-run data (and which events, `flat::BLOCK_BIT`...) changed lately: a condition
-/// asleep (`sync_actions.rs`) is evaluated again when data it reads changed in this cycle or
+/// asleep (`actions.rs`) is evaluated again when data it reads changed in this cycle or
 /// the one before. Two masks, not counts: a change made by an action late in a cycle reaches
 /// the actions checked before it in the next cycle.
 #[derive(Debug, Clone, Default)]
@@ -173,7 +173,7 @@ impl Channel {
     }
 
     /// Runs one action of a synchronized action defined at `line`.
-    pub(super) fn sync_act(&mut self, act: &Act, line: u32) -> Result<(), Fault> {
+    pub(in crate::channel) fn sync_act(&mut self, act: &Act, line: u32) -> Result<(), Fault> {
         match act {
             Act::Set { target, value, index } => {
                 let v = flat::eval(value, self, line)?;

@@ -13,10 +13,10 @@
 
 use std::sync::Arc;
 
-use super::Channel;
-use super::Event;
-use super::sync_eval::Touched;
+use super::eval::Touched;
 use crate::alarm::Alarm;
+use crate::channel::Channel;
+use crate::channel::Event;
 use crate::interp::io::DigitalIo;
 use crate::interp::synchronized::flat::{BLOCK_BIT, DELT_BIT, FRAME_BIT, MOTION_BIT, Slot, TIMER_BIT};
 use crate::interp::synchronized::{MainRunData, SyncControl, SyncDef};
@@ -45,7 +45,7 @@ pub struct InputRecord {
 #[derive(Debug, Clone)]
 pub struct SyncActions {
     /// Modal and static ones by ID, then block-modal ones in program order.
-    pub(super) active: Vec<ActiveSync>,
+    pub(in crate::channel) active: Vec<ActiveSync>,
     /// Sized by the machine data ([`SyncSizes`]).
     pub markers: Vec<f64>,
     pub params: Vec<f64>,
@@ -70,7 +70,7 @@ pub struct SyncActions {
     /// Inputs set from outside, with their cycle counts.
     log: std::collections::VecDeque<InputRecord>,
     /// The data changed since it was last handed to block preparation.
-    pub(super) dirty: bool,
+    pub(in crate::channel) dirty: bool,
     /// The workpiece coordinates of this cycle, once an action read `$AA_IW`.
     /// One cell per axis and a bit per axis computed (nothing copied whole for each read).
     pub(super) wcs: [std::cell::Cell<f64>; MAX_CHANNEL_AXES],
@@ -90,7 +90,7 @@ pub struct SyncActions {
     pub(super) next_wake: u64,
     /// The first cycle in which a condition must be evaluated (0: all are looked at), and the
     /// actions (bits of their places in `active`) that run their actions in every cycle
-    /// meanwhile (`sync_schedule.rs`).
+    /// meanwhile (`schedule.rs`).
     pub(super) cond_wake: u64,
     pub(super) each: u64,
     /// What the conditions of the checked actions read (their data and events together).
@@ -101,10 +101,10 @@ pub struct SyncActions {
     /// Test switch: every condition evaluated in every cycle (the reference the horizons
     /// are checked against).
     pub(super) horizon_off: bool,
-    /// Actions not run but computed when read, and their inputs (`sync_lazy.rs`).
-    pub(super) deferred: super::sync_lazy::Deferred,
-    /// The speed bound of the moves in the planner (`sync_horizon.rs`).
-    pub(super) speed_caps: super::sync_horizon::SpeedCaps,
+    /// Actions not run but computed when read, and their inputs (`lazy.rs`).
+    pub(super) deferred: super::lazy::Deferred,
+    /// The speed bound of the moves in the planner (`horizon.rs`).
+    pub(super) speed_caps: super::horizon::SpeedCaps,
     /// Conditions evaluated so far.
     pub(super) evaluations: u64,
     /// IPO cycles in which the actions' cycle ran (not skipped while all sleep).
@@ -154,7 +154,7 @@ impl Default for SyncActions {
 
 /// One active synchronized action.
 #[derive(Debug, Clone)]
-pub(super) struct ActiveSync {
+pub(in crate::channel) struct ActiveSync {
     pub(super) def: Arc<SyncDef>,
     /// The action ran (WHEN, FROM, EVERY: since activation; WHENEVER, DO: in the last cycle).
     pub(super) fired: bool,
@@ -167,7 +167,7 @@ pub(super) struct ActiveSync {
     /// The condition's value when last evaluated: it keeps it until the cycle `wake` (its
     /// horizon, `interp/synchronized/horizon.rs`) or until data or events of `deps` change.
     pub(super) cond: bool,
-    pub(super) wake: u64,
+    pub(in crate::channel) wake: u64,
     pub(super) deps: u64,
     /// Its actions run in every cycle while it sleeps (WHENEVER true, FROM after it held, DO).
     pub(super) run_each: bool,
@@ -210,7 +210,7 @@ impl SyncActions {
     }
 
     /// Whether any synchronized action is active.
-    pub(super) fn is_active(&self) -> bool {
+    pub(in crate::channel) fn is_active(&self) -> bool {
         !self.active.is_empty()
     }
 
@@ -236,14 +236,14 @@ impl SyncActions {
 
     /// The actions are checked in the next cycle (a signal or the offsets may have changed,
     /// the list changed).
-    pub(super) fn wake(&mut self) {
+    pub(in crate::channel) fn wake(&mut self) {
         self.next_wake = 0;
         self.cond_wake = 0;
     }
 
     /// Every condition is evaluated again in the next cycle: the axes jumped (power on,
     /// restore, preset, a probe's deletion, a new transformation) or the program ended.
-    pub(super) fn wake_all(&mut self) {
+    pub(in crate::channel) fn wake_all(&mut self) {
         for a in &mut self.active {
             a.wake = 0;
         }
@@ -274,7 +274,7 @@ impl SyncActions {
 
     /// The arrays take the sizes of the machine data `z` (the elements kept keep their values,
     /// new ones are zero, a stopped timer).
-    pub(super) fn resize(&mut self, z: &SyncSizes) {
+    pub(in crate::channel) fn resize(&mut self, z: &SyncSizes) {
         self.markers.resize(z.markers, 0.0);
         self.params.resize(z.params, 0.0);
         self.timers.resize(z.timers, None);
@@ -285,7 +285,7 @@ impl SyncActions {
     }
 
     /// The data as block preparation reads it (the deferred actions' values computed).
-    pub(super) fn main_run_data(&self) -> MainRunData {
+    pub(in crate::channel) fn main_run_data(&self) -> MainRunData {
         let data = self.with_deferred();
         let data = &*data;
         MainRunData {
@@ -311,7 +311,7 @@ impl SyncActions {
     }
 
     /// Makes `out` the list of the active actions (nothing allocated while there are none).
-    pub(super) fn refresh_list(&self, out: &mut Vec<SyncActionInfo>) {
+    pub(in crate::channel) fn refresh_list(&self, out: &mut Vec<SyncActionInfo>) {
         if self.active.is_empty() {
             out.clear();
         } else {
@@ -342,7 +342,7 @@ impl SyncActions {
 
 impl Channel {
     /// The synchronized actions and their data (with the values of deferred actions,
-    /// `sync_lazy.rs`, computed: then a copy).
+    /// `lazy.rs`, computed: then a copy).
     pub fn sync_actions(&self) -> std::borrow::Cow<'_, SyncActions> {
         self.sync.with_deferred()
     }
@@ -356,10 +356,10 @@ impl Channel {
 
     /// Sets analog inputs `$A_INA[n]` from outside, each `(n, value)` with n = 1.. the count
     /// of MD10300 FASTIO_ANA_NUM_INPUTS; all or nothing. They act from the next IPO cycle on.
-    pub fn set_analog_inputs(&mut self, inputs: &[(usize, f64)]) -> Result<(), super::CommandError> {
+    pub fn set_analog_inputs(&mut self, inputs: &[(usize, f64)]) -> Result<(), crate::channel::CommandError> {
         let count = self.sync.analog_in.len();
         if let Some((n, v)) = inputs.iter().find(|(n, v)| !(1..=count).contains(n) || !v.is_finite()) {
-            return Err(super::CommandError::Invalid(format!(
+            return Err(crate::channel::CommandError::Invalid(format!(
                 "analog input {n} = {v}: inputs are 1..{count} (MD10300 FASTIO_ANA_NUM_INPUTS) with finite values"
             )));
         }
@@ -386,7 +386,7 @@ impl Channel {
     }
 
     /// Sets the signals of a logged record (a replay).
-    pub fn apply_inputs(&mut self, record: &InputRecord) -> Result<(), super::CommandError> {
+    pub fn apply_inputs(&mut self, record: &InputRecord) -> Result<(), crate::channel::CommandError> {
         if !record.inputs.is_empty() || !record.outputs.is_empty() {
             self.set_signals(&record.inputs, &record.outputs)?;
         }
@@ -397,7 +397,7 @@ impl Channel {
     }
 
     /// Logs signals set from outside and publishes them as an event.
-    pub(super) fn log_inputs(&mut self, record: InputRecord) {
+    pub(in crate::channel) fn log_inputs(&mut self, record: InputRecord) {
         if self.sync.log.len() == INPUT_LOG {
             self.sync.log.pop_front();
         }
@@ -406,7 +406,7 @@ impl Channel {
     }
 
     /// Takes back the inputs of a checkpoint (digital input bits, analog input values).
-    pub(super) fn restore_inputs(&mut self, digital: u64, analog: &[f64]) {
+    pub(in crate::channel) fn restore_inputs(&mut self, digital: u64, analog: &[f64]) {
         let mut io = self.io;
         io.inputs = digital;
         let io = io.sized(self.cfg.sync_sizes.digital_in, self.cfg.sync_sizes.digital_out);
@@ -434,8 +434,11 @@ impl Channel {
     }
 
     /// Main run: a synchronized action's block is reached.
-    pub(super) fn activate_sync(&mut self, def: Arc<SyncDef>) {
-        let line = def.line;
+    pub(in crate::channel) fn activate_sync(&mut self, def: Arc<SyncDef>) {
+        if let Some(alarm) = self.sync_resources_short(&def) {
+            self.raise(alarm);
+            return;
+        }
         if def.disables_read_in() {
             // Blocks go one at a time from now on; a modal RDISABLE is evaluated before the
             // next block may start (`program_sync.rs`).
@@ -473,15 +476,6 @@ impl Channel {
         self.sync.wake();
         // The moves queued before it bound the axes' speeds for its horizons.
         self.recompute_speed_caps();
-        if self.sync.active.len() > MAX_ACTIVE {
-            self.sync.active.pop();
-            self.raise(Alarm {
-                number: 14751,
-                message: format!("Channel 1 block {line} resources for motion synchronous actions not sufficient"),
-                line: Some(line),
-                clear: crate::alarm::Clear::Reset,
-            });
-        }
         self.sync.replan_deferred();
         let new = self.sync.note_velocity_readers();
         for k in (0..MAX_CHANNEL_AXES).filter(|k| new & (1 << k) != 0) {
@@ -491,8 +485,36 @@ impl Channel {
         }
     }
 
+    /// Alarm 14751 if `def` does not fit beside the active actions: their elements together
+    /// beyond MD28250 `$MC_MM_NUM_SYNC_ELEMENTS`, or more than [`MAX_ACTIVE`] actions (NCTwin's
+    /// own bound: the schedule's masks have 64 bits). An action with the same ID is replaced,
+    /// so its elements are free.
+    fn sync_resources_short(&self, def: &SyncDef) -> Option<Alarm> {
+        let replaced = |a: &&ActiveSync| def.id.is_some_and(|n| a.def.id.map(SyncId::number) == Some(n.number()));
+        let kept = || self.sync.active.iter().filter(|a| !replaced(a));
+        let used: usize = kept().map(|a| a.def.elements()).sum();
+        let (need, limit) = (def.elements(), self.cfg.sync_sizes.elements);
+        let why = if used + need > limit {
+            format!(
+                "MD28250 MM_NUM_SYNC_ELEMENTS: {need} elements needed, {} of {limit} free",
+                limit.saturating_sub(used)
+            )
+        } else if kept().count() >= MAX_ACTIVE {
+            format!("at most {MAX_ACTIVE} active actions")
+        } else {
+            return None;
+        };
+        let line = def.line;
+        Some(Alarm {
+            number: 14751,
+            message: format!("Channel 1 block {line} resources for motion synchronous actions not sufficient ({why})"),
+            line: Some(line),
+            clear: crate::alarm::Clear::Reset,
+        })
+    }
+
     /// Main run: CANCEL/LOCK/UNLOCK/RESET(ids). An ID no action has is passed over.
-    pub(super) fn control_sync(&mut self, op: SyncControl, ids: &[u32]) {
+    pub(in crate::channel) fn control_sync(&mut self, op: SyncControl, ids: &[u32]) {
         let hit = |a: &ActiveSync| a.def.id.is_some_and(|i| ids.contains(&i.number()));
         self.sync.store_deferred();
         match op {
@@ -519,9 +541,9 @@ impl Channel {
     /// sleep (no horizon ends, none runs its actions in every cycle) three compares: the
     /// wake cycle, the block (`$AC_TIME` counts from its start), the offsets (`$AA_IW`); then
     /// the setpoints for `$AA_VACTM` and the inputs of deferred actions are kept
-    /// (`sync_lazy.rs`), and the cycle runs when block preparation may read their values.
+    /// (`lazy.rs`), and the cycle runs when block preparation may read their values.
     #[inline]
-    pub(super) fn step_sync_actions(&mut self) {
+    pub(in crate::channel) fn step_sync_actions(&mut self) {
         if !self.sync.idle() {
             self.step_active_sync();
         }
@@ -547,6 +569,13 @@ impl Channel {
     #[inline]
     fn keep_sync_history(&mut self) {
         let mut axes = self.sync.velocity_axes;
+        if axes != 0 && axes < 1 << 4 {
+            // Readers among axes 0..3 (the usual): one copy of fixed size. The other axes'
+            // setpoints copied with them are read by no action (`velocity_axes` covers
+            // every reader; a new one takes its own at activation).
+            self.sync.prev_setpoint[..4].copy_from_slice(&self.machine[..4]);
+            axes = 0;
+        }
         while axes != 0 {
             let k = axes.trailing_zeros() as usize;
             axes &= axes - 1;

@@ -25,7 +25,7 @@
 //! conditions on positions are evaluated again); so does JOG, REPOS or a positioning axis
 //! starting. The product of the two maxima covers a cycle that spans two moves.
 
-use super::Channel;
+use crate::channel::Channel;
 use crate::interp::synchronized::flat::{MOTION_BIT, Reader, Slot};
 use crate::interp::synchronized::horizon::{Bound, Bounds};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -52,7 +52,7 @@ impl Default for SpeedCaps {
 
 /// Every this many pushes the speed is computed again from the queue (so it comes down
 /// after a rapid move has left): once per look-ahead's length.
-const RECOMPUTE_EVERY: u32 = super::LOOKAHEAD as u32;
+const RECOMPUTE_EVERY: u32 = crate::channel::LOOKAHEAD as u32;
 
 impl SpeedCaps {
     /// The most axis `k` moves per second under the bound.
@@ -137,7 +137,7 @@ impl Bounds for Channel {
 impl Channel {
     /// After a move went into the planner (while actions are active): the bound takes it in,
     /// and wakes the conditions on positions when it grew.
-    pub(super) fn note_pushed_move(&mut self) {
+    pub(in crate::channel) fn note_pushed_move(&mut self) {
         let axes = self.cfg.channel_axes.len();
         let caps = &mut self.sync.speed_caps;
         caps.pushes += 1;
@@ -155,7 +155,7 @@ impl Channel {
     /// The speed computed from the moves queued now (when actions become active, after
     /// REPOS, every [`RECOMPUTE_EVERY`] pushes), the rates grown by theirs; wakes the
     /// conditions on positions when either grew.
-    pub(super) fn recompute_speed_caps(&mut self) {
+    pub(in crate::channel) fn recompute_speed_caps(&mut self) {
         let axes = self.cfg.channel_axes.len();
         let caps = &mut self.sync.speed_caps;
         let old = caps.speed;
@@ -172,7 +172,7 @@ impl Channel {
 
     /// JOG, REPOS or a positioning axis starts: the conditions on positions are evaluated
     /// again (their horizons counted on the path alone).
-    pub(super) fn wake_motion_readers(&mut self) {
+    pub(in crate::channel) fn wake_motion_readers(&mut self) {
         self.sync.touch(1 << MOTION_BIT);
     }
 

@@ -26,8 +26,8 @@
 
 use std::borrow::Cow;
 
-use super::Channel;
-use super::sync_actions::{ActiveSync, SyncActions};
+use super::actions::{ActiveSync, SyncActions};
+use crate::channel::Channel;
 use crate::interp::synchronized::flat::{Act, Array, Code, Fault, Op, Reader, Slot, Target};
 use crate::lang::sync_action::{BinOp, SyncId, Trigger};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -279,7 +279,7 @@ impl Channel {
     #[inline]
     pub(super) fn prep_may_read(&self) -> bool {
         self.blending.prep_waits_for_main_run
-            || self.status != super::Status::Running
+            || self.status != crate::channel::Status::Running
             || self.pending.is_empty() && self.planner.is_empty()
     }
 }
