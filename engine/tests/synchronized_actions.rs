@@ -295,3 +295,20 @@ fn programs_read_markers_timers_and_analog_inputs_of_the_main_run() {
     run_to_end(&mut ch);
     assert_eq!(alarm(&ch), (17070, Some(2)));
 }
+
+#[test]
+fn bound_limits_a_value_in_an_action_as_in_the_program() {
+    // BOUND(min, max, value) clamps: DO $R1=BOUND(2, 5, $AA_IM[X]) while X runs 0 → 10 holds
+    // the last X at the block's end, clamped to 5; BOUND(2, 5, 1) = 2 (below the range).
+    let mut ch = channel();
+    ch.run_program("G0 X0\nID=1 WHENEVER $AA_IM[X]>=0 DO $R1=BOUND(2,5,$AA_IM[X]) $R2=BOUND(2,5,1)\nG1 X10 F3000\nM30")
+        .unwrap();
+    run_to_end(&mut ch);
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    assert_eq!((ch.r_param(1), ch.r_param(2)), (5.0, 2.0));
+    // Three arguments, as in the program.
+    let mut ch = channel();
+    ch.run_program("ID=1 WHENEVER TRUE DO $R1=BOUND(2,5)\nM30").unwrap();
+    run_to_end(&mut ch);
+    assert_eq!(alarm(&ch).0, 12080);
+}

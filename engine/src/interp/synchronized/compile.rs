@@ -283,6 +283,15 @@ impl Compiler<'_> {
             SExpr::Neg(x) => CExpr::Neg(Box::new(self.expr(x, inch)?)),
             SExpr::Not(x) => CExpr::Not(Box::new(self.expr(x, inch)?)),
             SExpr::Bin(op, a, b) => CExpr::Bin(*op, Box::new(self.expr(a, inch)?), Box::new(self.expr(b, inch)?)),
+            SExpr::Call(name, args) if name == "BOUND" => {
+                // BOUND(min, max, value) = MINVAL(MAXVAL(value, min), max), as in the part
+                // program: the flat code needs no function of three arguments.
+                let [min, max, value] = args.as_slice() else {
+                    return Err(Alarm::syntax(self.line, "BOUND needs 3 argument(s)"));
+                };
+                let (min, max, value) = (self.expr(min, inch)?, self.expr(max, inch)?, self.expr(value, inch)?);
+                CExpr::Func(Func::MinVal, vec![CExpr::Func(Func::MaxVal, vec![value, min]), max])
+            }
             SExpr::Call(name, args) => {
                 let (f, n) = match name.as_str() {
                     "SIN" => (Func::Sin, 1),
