@@ -1049,10 +1049,7 @@ impl Interpreter {
         let (Some(ka), Some(ko)) = (geo[pa], geo[po]) else {
             return Err(Alarm::value_out_of_range(line, "pole in a plane without both geometry axes"));
         };
-        let mut basic = self.pos;
-        for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
-            *b -= t;
-        }
+        let basic = self.basic_position();
         let current = self.offsets.frame.unapply(geo, &basic).unwrap_or(basic);
         let base = match reference {
             PoleRef::LastPosition => (current[ka], current[ko]),
@@ -1586,6 +1583,16 @@ impl Interpreter {
         self.frame_cache
             .get(cfg, work_offset, rotary_slot, changed.contains(&true), || sys_view!(self, cfg).chain(None))
             .clone()
+    }
+
+    /// Where block preparation stands less the active tool offset (the BCS point the frames
+    /// map into the WCS).
+    fn basic_position(&self) -> AxisVec {
+        let mut basic = self.pos;
+        for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
+            *b -= t;
+        }
+        basic
     }
 
     /// The frame a block's positions go through: the active frame, or what G53 (settable,

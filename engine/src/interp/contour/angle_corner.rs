@@ -117,12 +117,8 @@ impl Interpreter {
             return Err(refuse("incremental end coordinates count from the unknown corner"));
         }
         // The start in the WCS: nothing moved since the first block.
-        let mut basic = self.pos;
-        for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
-            *b -= t;
-        }
         let frame = self.block_frame(words, cfg);
-        let current = frame.unapply(&geo, &basic).ok_or_else(|| refuse("frame with scale 0"))?;
+        let current = frame.unapply(&geo, &self.basic_position()).ok_or_else(|| refuse("frame with scale 0"))?;
         let end = (
             self.axis_word_target(cfg, ka, wa, current[ka], current[ka], line)?,
             self.axis_word_target(cfg, ko, wo, current[ko], current[ko], line)?,

@@ -225,10 +225,7 @@ impl Interpreter {
     /// through the active frame and tool length (a frame that only translates on that axis).
     pub(in crate::interp) fn turning_centre(&self, cfg: &MachineConfig) -> Option<(usize, f64)> {
         let tx = self.spindles.css_axis.or(cfg.transverse_axis).or(cfg.geo_axes[0])?;
-        let mut basic = self.pos;
-        for (b, t) in basic.iter_mut().zip(&self.offsets.tool) {
-            *b -= t;
-        }
+        let basic = self.basic_position();
         let current = self.offsets.frame.unapply(&cfg.geo_axes, &basic).unwrap_or(basic);
         Some((tx, self.pos[tx] - current[tx]))
     }
