@@ -206,7 +206,7 @@ fn inputs_are_write_protected_and_signals_bounded() {
     run_on(&mut ch, "G0 X1\n$A_IN[1]=1\nM30");
     assert_eq!(alarm(&ch), (17070, Some(2)));
     let mut ch = channel();
-    run_on(&mut ch, "$A_OUT[41]=1\nM30");
+    run_on(&mut ch, "$A_OUT[17]=1\nM30");
     assert_eq!(alarm(&ch), (17020, Some(1)));
     let mut ch = channel();
     assert!(ch.set_signals(&[(1, true)], &[(0, true)]).is_err());

@@ -85,8 +85,8 @@ fn digital_signals_follow_md10350_and_md10360_in_bytes() {
     index_alarm(md, "$A_OUT[9]=1\nM30", 1);
     index_alarm(md, "WHEN $A_IN[17]==1 DO M99\nG1 X1 F600\nM30", 1);
     index_alarm(md, "DO $A_OUT[9]=1\nG1 X1 F600\nM30", 1);
-    // The default: 5 bytes, 40 of each.
-    assert_eq!(Channel::from_preset("mill-3axis", "").unwrap().digital_io().counts(), (40, 40));
+    // The default: 2 bytes, 16 of each (the "16 digital inputs and outputs").
+    assert_eq!(Channel::from_preset("mill-3axis", "").unwrap().digital_io().counts(), (16, 16));
 }
 
 #[test]
@@ -115,7 +115,7 @@ fn analog_signals_follow_md10300_and_md10310() {
 fn the_sizes_change_with_machine_data_applied_in_reset_state() {
     let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
     ch.apply_machine_data("$MC_MM_NUM_AC_MARKER=12\n$MN_FASTIO_DIG_NUM_INPUTS=1").unwrap();
-    assert_eq!(ch.digital_io().counts(), (8, 40));
+    assert_eq!(ch.digital_io().counts(), (8, 16));
     ch.run_program("DO $AC_MARKER[11]=1\nG1 X1 F600\nR1=$AC_MARKER[11]\nM30").unwrap();
     while ch.is_busy() {
         ch.step();

@@ -17,7 +17,7 @@ async fn inputs_set_over_rest_steer_a_program_whose_outputs_read_back() {
     let server = Server::start().await;
     let id = server.session("mill-3axis").await;
     let io = server.get(&format!("/sessions/{id}/io")).await.body;
-    assert_eq!(io["inputs"].as_array().map(Vec::len), Some(40));
+    assert_eq!(io["inputs"].as_array().map(Vec::len), Some(16), "2 bytes by default (MD10350)");
     assert!(io["outputs"].as_array().unwrap().iter().all(|v| v == false), "all off at power on");
 
     let reply = server.put(&format!("/sessions/{id}/io"), json!({"inputs": [{"signal": 3, "value": true}]})).await;

@@ -198,8 +198,8 @@ pub static DEFS: &[Def] = &[
     // in signals; NCTwin's defaults are its sizes of before (5 bytes, 4 signals).
     def("FASTIO_ANA_NUM_INPUTS", 10300, N, Kind::Int, 1, Default::Int(4), 0.0, 8.0),
     def("FASTIO_ANA_NUM_OUTPUTS", 10310, N, Kind::Int, 1, Default::Int(4), 0.0, 8.0),
-    def("FASTIO_DIG_NUM_INPUTS", 10350, N, Kind::Int, 1, Default::Int(5), 0.0, 5.0),
-    def("FASTIO_DIG_NUM_OUTPUTS", 10360, N, Kind::Int, 1, Default::Int(5), 0.0, 5.0),
+    def("FASTIO_DIG_NUM_INPUTS", 10350, N, Kind::Int, 1, Default::Int(2), 0.0, 5.0),
+    def("FASTIO_DIG_NUM_OUTPUTS", 10360, N, Kind::Int, 1, Default::Int(2), 0.0, 5.0),
     // Number of orientable toolholders $TC_CARR[1..n] (W1; 0 = none, as on the control).
     // MD18102: 1 = flat D numbers (flat_d.rs).
     def("MM_TYPE_OF_CUTTING_EDGE", 18102, N, Kind::Int, 1, Default::Int(0), 0.0, 1.0),

@@ -7,8 +7,8 @@
 //! MD10300/10310 `$MN_FASTIO_ANA_NUM_INPUTS/OUTPUTS` (signals: `$A_INA[1..n]`, `$A_OUTA[1..n]`).
 //! MD28250 `$MC_MM_NUM_SYNC_ELEMENTS` bounds the active actions, in elements
 //! (`interp/synchronized/elements.rs`).
-//! The defaults are NCTwin's sizes of before (8 markers and timers, 50 parameters, 40 digital
-//! and 4 analog signals each), so the presets behave as they did.
+//! The defaults: 8 markers and timers, 50 parameters (NCTwin's sizes of before), 2 bytes (16)
+//! of digital and 4 analog signals each (a small machine's simulated PLC; up to 5 bytes, 40).
 
 use super::MachineData;
 

@@ -25,9 +25,9 @@ use crate::state::AppState;
 /// The digital I/O image: element 0 is signal 1 (`$A_IN[1]`, `$A_OUT[1]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 pub struct IoImage {
-    /// `$A_IN[1..40]` (as many as MD10350 FASTIO_DIG_NUM_INPUTS configures: 8 per byte).
+    /// `$A_IN[1..16]` by default (as many as MD10350 FASTIO_DIG_NUM_INPUTS configures: 8 per byte, up to 40).
     pub inputs: Vec<bool>,
-    /// `$A_OUT[1..40]` (MD10360 FASTIO_DIG_NUM_OUTPUTS, 8 per byte).
+    /// `$A_OUT[1..16]` by default (MD10360 FASTIO_DIG_NUM_OUTPUTS, 8 per byte, up to 40).
     pub outputs: Vec<bool>,
     /// `$A_INA[1..4]` (MD10300 FASTIO_ANA_NUM_INPUTS; `$A_OUTA`: MD10310).
     #[serde(default)]
@@ -118,7 +118,7 @@ pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Re
 
 /// Sets digital inputs (and outputs) and analog inputs at once, in any mode and while a program
 /// runs: a block that reads `$A_IN` after this sees the new level, a synchronized action the
-/// next IPO cycle. All or nothing: a signal outside 1..40 (analog: 1..4, or a value that is not
+/// next IPO cycle. All or nothing: a signal outside 1..16 (analog: 1..4, or a value that is not
 /// finite; the counts the machine data configure) is a `400` naming the limit and changes
 /// nothing.
 #[utoipa::path(
@@ -129,7 +129,7 @@ pub async fn get_io(State(state): State<AppState>, Path(id): Path<String>) -> Re
     request_body = IoChange,
     responses(
         (status = 200, description = "The I/O image after the change", body = IoImage),
-        (status = 400, description = "A signal number outside 1..40 (analog 1..4; the counts of MD10350/MD10360/MD10300), an analog value not finite or PLC data beyond the 4096 bytes; nothing changed", body = ErrorBody),
+        (status = 400, description = "A signal number outside 1..16 (analog 1..4, by default; the counts of MD10350/MD10360/MD10300), an analog value not finite or PLC data beyond the 4096 bytes; nothing changed", body = ErrorBody),
         (status = 404, description = "No such session", body = ErrorBody),
     )
 )]

@@ -1,16 +1,14 @@
 // The simulated PLC's signals and the active synchronized actions: switches for the digital
-// inputs $A_IN[1..16] (the issue's default set; the channel has 40, the rest over REST), lamps
-// for the outputs $A_OUT[1..16], the analog inputs $A_INA[1..4] with the outputs $A_OUTA[1..4]
-// beside them, and the state's list of synchronized actions. A switched input goes to the
-// server at once; the server acts on it in the next IPO cycle.
+// inputs $A_IN[n], lamps for the outputs $A_OUT[n], the analog inputs $A_INA[n] with the outputs
+// $A_OUTA[n] beside them (as many as the session's machine data configure: 16, 16 and 4 each by
+// default), and the state's list of synchronized actions. A switched input goes to the server
+// at once; the server acts on it in the next IPO cycle.
 
 import { api } from "../api/client";
 import type { IoImage, State, SyncActionState } from "../api/types";
 import { byId, el, fmt, setText } from "../core/dom";
 import type { SessionController } from "../core/session";
 
-const SHOWN = 16;
-const ANALOG = 4;
 /** While something runs, the outputs are read again at most this often. */
 const REFRESH_MS = 500;
 
@@ -22,23 +20,25 @@ function renderIo(io: IoImage): void {
   image = io;
   const inputs = byId("signal-inputs");
   const outputs = byId("signal-outputs");
-  if (inputs.childElementCount !== SHOWN) {
+  if (inputs.childElementCount !== io.inputs.length) {
     inputs.replaceChildren(
-      ...Array.from({ length: SHOWN }, (_, i) => el("button", { type: "button", "data-signal": String(i + 1) }, String(i + 1))),
+      ...io.inputs.map((_, i) => el("button", { type: "button", "data-signal": String(i + 1) }, String(i + 1))),
     );
-    outputs.replaceChildren(...Array.from({ length: SHOWN }, (_, i) => el("span", {}, String(i + 1))));
   }
-  for (let i = 0; i < SHOWN; i++) {
-    const on = io.inputs[i] === true;
+  if (outputs.childElementCount !== io.outputs.length) {
+    outputs.replaceChildren(...io.outputs.map((_, i) => el("span", {}, String(i + 1))));
+  }
+  io.inputs.forEach((on, i) => {
     const button = inputs.children[i] as HTMLElement;
     button.classList.toggle("on", on);
     button.setAttribute("aria-pressed", String(on));
-    outputs.children[i]!.classList.toggle("on", io.outputs[i] === true);
-  }
+  });
+  io.outputs.forEach((on, i) => outputs.children[i]!.classList.toggle("on", on));
   const analog = byId("signal-analog");
-  if (analog.childElementCount !== ANALOG) {
+  const analogCount = io.analog_inputs.length;
+  if (analog.childElementCount !== analogCount) {
     analog.replaceChildren(
-      ...Array.from({ length: ANALOG }, (_, i) => {
+      ...Array.from({ length: analogCount }, (_, i) => {
         const label = el("label", {}, `A${i + 1} `);
         const input = el("input", { type: "number", step: "any", "data-analog": String(i + 1), "aria-label": `$A_INA[${i + 1}]` });
         label.append(input, el("span", { class: "muted" }));
@@ -46,11 +46,12 @@ function renderIo(io: IoImage): void {
       }),
     );
   }
-  for (let i = 0; i < ANALOG; i++) {
+  for (let i = 0; i < analogCount; i++) {
     const label = analog.children[i]!;
     const input = label.querySelector("input")!;
     if (document.activeElement !== input) input.value = String(io.analog_inputs[i] ?? 0);
-    setText(label.querySelector("span")!, ` → ${fmt(io.analog_outputs[i] ?? 0, 2)}`);
+    const out = io.analog_outputs[i];
+    setText(label.querySelector("span")!, out === undefined ? "" : ` → ${fmt(out, 2)}`);
   }
 }
 
