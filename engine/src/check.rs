@@ -67,5 +67,5 @@ pub fn program(source: &str, ctx: &NameContext) -> Vec<Diagnostic> {
 /// The names of `source` that a run would refuse (see the module doc); lines with syntax
 /// errors are left to [`crate::lang::check`].
 pub fn names(source: &str, ctx: &NameContext) -> Vec<Diagnostic> {
-    names::Walker::new(source, ctx).run()
+    names::Walker::new(&crate::lang::macros::expand(source), ctx).run()
 }

@@ -111,8 +111,14 @@ impl std::fmt::Debug for Flow {
 }
 
 impl Flow {
+    /// A reader of `text` from its start; a text defining macros (`DEFINE .. AS`) is read
+    /// with them replaced (`lang::macros`).
     pub fn new(text: ProgramText) -> Flow {
-        Flow::at(text, Pos { offset: 0, line: 1 })
+        let expanded = match lang::macros::expand(&text) {
+            std::borrow::Cow::Owned(expanded) => Some(expanded),
+            std::borrow::Cow::Borrowed(_) => None,
+        };
+        Flow::at(expanded.map_or(text, ProgramText::from), Pos { offset: 0, line: 1 })
     }
 
     /// A reader of `text` positioned at `pos`.

@@ -8,6 +8,7 @@ pub mod archive;
 pub mod ast;
 mod cursor;
 mod definitions;
+pub mod macros;
 pub mod name;
 mod parser;
 mod plain_line;

@@ -11,6 +11,8 @@ use super::structure::Structure;
 
 /// Parses a whole program into memory (tests, small programs).
 pub fn parse(source: &str) -> Program {
+    let expanded = super::macros::expand(source);
+    let source = &*expanded;
     let mut program = Program::default();
     for (line, offset, result) in Lines::new(source, 0, 1) {
         match result {
@@ -26,6 +28,8 @@ pub fn parse(source: &str) -> Program {
 /// syntax errors (one per line, the first of the line) and control structures that do not nest
 /// (ENDIF without IF, a WHILE never closed, more than 16 levels), in line order.
 pub fn check(source: &str) -> Vec<Diagnostic> {
+    let expanded = super::macros::expand(source);
+    let source = &*expanded;
     let mut structure = Structure::default();
     let mut definitions = DefinitionPart::default();
     let code = |offset: usize| next_line(source, offset).map_or("", |(text, _)| split_comment(text).0);
@@ -51,6 +55,11 @@ pub fn check(source: &str) -> Vec<Diagnostic> {
         out.push(Diagnostic::syntax(line, offset, 0, message.into()));
     }
     out.extend(structure.finish());
+    for bad in super::macros::malformed(source) {
+        if !out.iter().any(|d| d.line == bad.line) {
+            out.push(bad);
+        }
+    }
     out.sort_by_key(|d| (d.line, d.column));
     out
 }
