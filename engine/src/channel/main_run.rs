@@ -93,6 +93,10 @@ impl Channel {
                 self.interp.set_main_run_position(None);
                 self.psync.main_position_handed = false;
             }
+            if main_run_idle && self.interp.axes_to_adopt() != 0 {
+                // An oscillation has ended: preparation goes on from where the axis stands.
+                self.interp.adopt_axes(&self.machine);
+            }
             let mut prep = self.interp.prepare_next(&self.cfg, &self.programs, main_run_idle, &mut out);
             if prep != Prep::WaitForMainRun {
                 self.psync.stopreof = false;
@@ -535,7 +539,9 @@ impl Channel {
                     self.machine[axis] = angle;
                 }
                 Item::Stop { kind: StopKind::End, line } if self.positioning.program_moving() => {
-                    // The program ends when its positioning axes have arrived.
+                    // The program ends when its positioning axes have arrived; one still
+                    // oscillating brakes (`oscillation.rs`).
+                    self.brake_oscillations();
                     self.pending.push_front(Item::Stop { kind: StopKind::End, line });
                     return;
                 }

@@ -17,6 +17,7 @@ mod io;
 mod jog;
 pub mod limit_watch;
 mod main_run;
+mod oscillation;
 mod pending;
 mod positioning_axes;
 mod probe;

@@ -27,19 +27,21 @@ use crate::motion::stop_speed;
 
 /// One axis travelling on its own.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Travel {
-    position: f64,
+pub(super) struct Travel {
+    pub(super) position: f64,
     /// Signed velocity, units per second.
     velocity: f64,
     /// End point of the current part (the end point itself but for POSP); ±∞ for endless
     /// motion (`MOV[ax]=±1`).
-    target: f64,
-    feed: f64,
+    pub(super) target: f64,
+    pub(super) feed: f64,
     accel: f64,
     /// POSP: the end point and the parts towards it.
     parts: Option<(f64, Parts)>,
     /// What started it, for the state.
-    motion: Option<Motion>,
+    pub(super) motion: Option<Motion>,
+    /// OS[ax]=1: the oscillation's course (`oscillation.rs`).
+    pub(super) swing: Option<super::oscillation::Swing>,
 }
 
 impl Travel {
@@ -48,8 +50,16 @@ impl Travel {
         self.parts.map_or(self.target, |(end, _)| end)
     }
 
-    /// After a part of POSP has ended: the next part starts (true), or the end is reached.
+    /// After a part of POSP or a stroke of an oscillation has ended: the next one starts
+    /// (true), or the end is reached.
     fn next_part(&mut self) -> bool {
+        if let Some(swing) = self.swing.as_mut() {
+            match swing.arrived() {
+                Some(next) => self.target = next,
+                None => self.swing = None,
+            }
+            return self.swing.is_some();
+        }
         match self.parts {
             Some((end, parts)) if self.position != end => {
                 self.target = parts.next_end(self.position, end);
@@ -68,6 +78,13 @@ impl Travel {
     /// travel ends on the target. (Braking along the continuous `√(2·a·rest)` ended a few
     /// percent early with a last step above the acceleration.)
     fn step(&mut self, dt: f64, hold: bool) -> bool {
+        // An oscillation's stop time at a reversal point (it stands).
+        if let Some(swing) = self.swing.as_mut().filter(|s| s.dwell > 0.0) {
+            if !hold {
+                swing.dwell = if swing.dwell > dt * (1.0 + 1e-9) { swing.dwell - dt } else { 0.0 };
+            }
+            return false;
+        }
         let rest = self.target - self.position;
         if rest == 0.0 && self.velocity == 0.0 {
             return true;
@@ -143,7 +160,7 @@ pub struct SavedPositioning {
 /// The channel's positioning axes.
 #[derive(Debug, Clone, Default)]
 pub struct PositioningAxes {
-    axes: [Option<Travel>; MAX_CHANNEL_AXES],
+    pub(super) axes: [Option<Travel>; MAX_CHANNEL_AXES],
     /// Bit k: channel axis k is here (travelling, or a command axis kept until program end).
     active: u32,
     /// Bit k: channel axis k is a command axis of a synchronized action.
@@ -231,6 +248,11 @@ impl Channel {
     /// A program's POS/POSA/POSP: axis `k` travels from where it stands to `target` at `feed`
     /// (POSP in parts, counted from here).
     pub(super) fn start_program_positioning(&mut self, k: usize, target: f64, feed: f64, motion: Motion) {
+        match motion {
+            Motion::Oscillate(osc) => return self.start_oscillation(k, target, feed, osc),
+            Motion::EndOscillation => return self.end_oscillation(k),
+            _ => {}
+        }
         self.start_positioning(k, target, feed, false);
         if let Some(t) = self.positioning.axes[k].as_mut() {
             t.motion = Some(motion);
@@ -251,7 +273,7 @@ impl Channel {
             Some(t) => (t.position, t.velocity),
             None => (self.machine[k], 0.0),
         };
-        p.axes[k] = Some(Travel { position, velocity, target, feed, accel, parts: None, motion: None });
+        p.axes[k] = Some(Travel { position, velocity, target, feed, accel, parts: None, motion: None, swing: None });
         p.active |= 1 << k;
         p.moving |= 1 << k;
         if command {
@@ -347,6 +369,7 @@ impl Channel {
                 Some(Motion::Pos) => "POS",
                 Some(Motion::Posa) => "POSA",
                 Some(Motion::Posp(_)) => "POSP",
+                Some(Motion::Oscillate(_) | Motion::EndOscillation) => "OS",
                 None if end.is_infinite() => "MOV",
                 None => "command",
             };
@@ -385,6 +408,8 @@ impl Channel {
                     Motion::Pos => ("POS", None),
                     Motion::Posa => ("POSA", None),
                     Motion::Posp(parts) => ("POSP", Some((parts.length, parts.halves))),
+                    // An oscillation is not resumed after a restart (a reset ends it).
+                    Motion::Oscillate(_) | Motion::EndOscillation => return None,
                 };
                 let axis = self.cfg.axis(k).name.clone();
                 Some(SavedPositioning { axis, end: t.end(), feed: t.feed, kind: kind.into(), parts })
@@ -486,6 +511,7 @@ mod tests {
             accel: 3000.0,
             parts: None,
             motion: None,
+            swing: None,
         };
         let mut n = 0;
         while !t.step(0.004, false) {

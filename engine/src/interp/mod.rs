@@ -820,6 +820,9 @@ impl Interpreter {
         }
         // Positioning axes start at the block's start (POS, POSA); WAITP.
         let pos_axes = self.positioning_block(words, cfg, line, out)?;
+        if !words.oscillation.is_empty() {
+            self.oscillation_block(words, cfg, line, out)?;
+        }
         // MEAS/MEAW: the request goes before the block's move (`measuring.rs`).
         self.measure_request(words.measure, line)?;
         let measure_mark = out.len();

@@ -411,6 +411,8 @@ pub(super) struct Words {
     pub set_piece: Option<super::tools::setpiece::SetPiece>,
     /// POS/POSA/FA[ax] words (`path_control/positioning.rs`).
     pub positioning: Vec<super::path_control::positioning::PosWord>,
+    /// OS/OSP1/OSP2/OST1/OST2/OSE/OSB/OSNSC/OSCTRL[ax] words (`path_control/oscillation.rs`).
+    pub oscillation: Vec<super::path_control::oscillation::OscWord>,
     /// WAITP(ax, ..): the axes as a bit mask.
     pub waitp: u32,
     pub stop: Option<StopKind>,
@@ -870,6 +872,21 @@ pub(super) fn collect(
                     index,
                     &value.expr,
                     mode,
+                    vars,
+                    sys,
+                    line,
+                )?;
+            }
+            Word::Address { name, indices, value }
+                if indices.len() == 1
+                    && super::path_control::oscillation::is_word(name)
+                    && vars.get(name).is_none() =>
+            {
+                super::path_control::oscillation::word(
+                    &mut w.oscillation,
+                    name,
+                    &indices[0],
+                    &value.expr,
                     vars,
                     sys,
                     line,

@@ -54,6 +54,7 @@
 
 pub(super) mod feed_group;
 pub(super) mod fixed_point;
+pub mod oscillation;
 pub(crate) mod positioning;
 pub(super) mod rapid_apart;
 pub(super) mod spline;

@@ -177,6 +177,7 @@ pub(crate) fn is_address(name: &str) -> bool {
         || matches!(name, "AX" | "PO" | "R" | "FGREF")
         || crate::interp::tools::programmable_offset::is_word(name)
         || crate::interp::path_control::positioning::is_word(name)
+        || crate::interp::path_control::oscillation::is_word(name)
         || name.strip_prefix('R').is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 

@@ -60,6 +60,11 @@ pub enum Motion {
     Posa,
     /// POSP: like POS, in parts.
     Posp(Parts),
+    /// OS[ax]=1: to and fro between the reversal points (`oscillation.rs`); `target` is the
+    /// first point it travels to. Again while it oscillates: the new settings.
+    Oscillate(super::oscillation::Oscillation),
+    /// OS[ax]=0: the oscillation ends as its control bits say.
+    EndOscillation,
 }
 
 /// The parts of a POSP motion: every part `length` long (machine units, > 0), except that with
@@ -114,8 +119,10 @@ pub(in crate::interp) struct PosWord {
 pub(in crate::interp) struct Positioning {
     /// `FA[ax]` in mm/s (deg/s); 0 = MD32060.
     feed: [f64; MAX_CHANNEL_AXES],
-    /// Axes commanded by POSA and not yet waited for.
+    /// Axes commanded by POSA (or oscillating) and not yet waited for.
     pub posa_open: u32,
+    /// OS, OSP1, ... per axis (`oscillation.rs`).
+    pub oscillation: super::oscillation::Oscillations,
 }
 
 impl Positioning {
@@ -284,7 +291,7 @@ impl crate::interp::Interpreter {
             return Ok(0);
         }
         self.check_positioning_axes(words, cfg, line)?;
-        let (end, scale) = self.positioning_targets(words, cfg, line)?;
+        let (end, scale) = self.positioning_targets(&words.positioning, cfg, line)?;
         let mut pos_mask = 0;
         for w in words.positioning.iter().filter(|w| w.kind != Kind::Fa) {
             let k = w.axis;
@@ -337,9 +344,9 @@ impl crate::interp::Interpreter {
     /// (G90/G91, AC/IC, DC/ACP/ACN on modulo axes, diameter programming) through the frame and
     /// the tool offset, like a path word of that axis; and per axis the factor from WCS to
     /// machine distances (the frame's scale, 1 where the axis does not move).
-    fn positioning_targets(
+    pub(super) fn positioning_targets(
         &mut self,
-        words: &crate::interp::modal::Words,
+        words: &[PosWord],
         cfg: &MachineConfig,
         line: u32,
     ) -> Result<(AxisVec, AxisVec), Alarm> {
@@ -356,7 +363,7 @@ impl crate::interp::Interpreter {
             frame.unapply(geo, &basic).ok_or_else(|| Alarm::value_out_of_range(line, "frame with scale 0"))?;
         let mut target = current;
         let mut programmed = [false; MAX_CHANNEL_AXES];
-        for w in words.positioning.iter().filter(|w| w.kind != Kind::Fa) {
+        for w in words.iter().filter(|w| w.kind != Kind::Fa) {
             let k = w.axis;
             target[k] = self.axis_word_target(cfg, k, (w.value, w.mode), current[k], current[k], line)?;
             programmed[k] = true;
