@@ -132,8 +132,8 @@ pub struct PositioningInfo {
     pub target: Option<f64>,
     /// Signed velocity in mm/min (deg/min).
     pub velocity: f64,
-    /// `POS`, `POSA`, `POSP` (a program's), `command` (`POS`/`FA` of a synchronized action)
-    /// or `MOV` (an action's endless motion).
+    /// `POS`, `POSA`, `POSP` (a program's), `OS` (a program's oscillating axis), `command`
+    /// (`POS`/`FA` of a synchronized action) or `MOV` (an action's endless motion).
     pub kind: &'static str,
     /// The program waits for it (WAITP, or the end of its POS/POSP block).
     pub waiting: bool,

@@ -18,8 +18,9 @@ pub struct PositioningState {
     pub target: Option<f64>,
     /// Signed velocity in mm/min (deg/min).
     pub velocity: f64,
-    /// `POS`, `POSA`, `POSP` (a program's), `command` (`POS`/`FA` of a synchronized action)
-    /// or `MOV` (an action's endless motion).
+    /// `POS`, `POSA`, `POSP` (a program's), `OS` (a program's oscillating axis, `target` the
+    /// reversal point or end position it travels to), `command` (`POS`/`FA` of a synchronized
+    /// action) or `MOV` (an action's endless motion).
     #[schema(example = "POSA")]
     pub kind: &'static str,
     /// The program waits for the axis (WAITP, or the end of its POS/POSP block).

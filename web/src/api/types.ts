@@ -112,7 +112,7 @@ export interface PositioningState {
   axis: string;
   target: number | null;
   velocity: number;
-  kind: "POS" | "POSA" | "POSP" | "command" | "MOV";
+  kind: "POS" | "POSA" | "POSP" | "OS" | "command" | "MOV";
   waiting: boolean;
 }
 

@@ -30,5 +30,6 @@ export function showPositioning(st: State, axes: string[], marks: Map<string, HT
 function describe(p: PositioningState): string {
   const to = p.target === null ? "endless motion" : `to ${fmt(p.target)}`;
   const wait = p.waiting ? ", the program waits for it" : "";
-  return `${p.axis}: positioning axis (${p.kind}) ${to} at ${fmt(Math.abs(p.velocity), 0)}/min${wait}`;
+  const what = p.kind === "OS" ? "oscillating axis" : `positioning axis (${p.kind})`;
+  return `${p.axis}: ${what} ${to} at ${fmt(Math.abs(p.velocity), 0)}/min${wait}`;
 }
