@@ -486,6 +486,9 @@ $MC_AXCONF_GEOAX_ASSIGN_TAB[2]=3
 $MA_IS_ROT_AX[CM]=TRUE
 $MA_ROT_IS_MODULO[CM]=TRUE
 $MA_SPIND_ASSIGN_TO_MACHAX[CM]=1
+; X is the transverse axis, as on any lathe: DIAMON programs it in diameters (the reset
+; value stays DIAMOF), G96 keeps the cutting speed on it
+$MC_DIAMETER_AX_DEF="X"
 $MA_MAX_AX_VELO[XM]=15000.
 $MA_MAX_AX_VELO[YM]=10000.
 $MA_MAX_AX_VELO[ZM]=15000.
