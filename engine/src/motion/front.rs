@@ -267,8 +267,14 @@ mod tests {
         // A great circle of 1.2 rad run in uneven steps (accelerating, then cruising): every
         // stepped orientation agrees with the direct Rodrigues rotation within 1e-13 (64 steps of
         // rounding at most).
-        let ori =
-            OriPath { start: [0.0, 0.0, 1.0], axis: [0.0, -1.0, 0.0], angle: 1.2, curve: None, turn: None, kinks: Vec::new() };
+        let ori = OriPath {
+            start: [0.0, 0.0, 1.0],
+            axis: [0.0, -1.0, 0.0],
+            angle: 1.2,
+            curve: None,
+            turn: None,
+            kinks: Vec::new(),
+        };
         let mut front = FrontMove::new(
             &Path::line([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]),
             &mut [0.0; MAX_CHANNEL_AXES],

@@ -110,7 +110,14 @@ impl OriPath {
     /// A rotation of `start` about `axis` (any length) by `angle` radians: the cone.
     pub fn cone(start: Vec3, axis: Vec3, angle: f64) -> Option<OriPath> {
         let n = norm(axis);
-        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle, curve: None, turn: None, kinks: Vec::new() })
+        (n > 1e-12).then(|| OriPath {
+            start,
+            axis: scale(axis, 1.0 / n),
+            angle,
+            curve: None,
+            turn: None,
+            kinks: Vec::new(),
+        })
     }
 
     /// An orientation carried by a frame turning about unit axis `k` by `sweep` radians (an
@@ -225,8 +232,7 @@ impl OriPath {
             },
         };
         if u1 > u0 {
-            out.kinks =
-                self.kinks.iter().filter(|k| k.reaches(u0, u1)).map(|k| k.rescaled(u0, u1 - u0)).collect();
+            out.kinks = self.kinks.iter().filter(|k| k.reaches(u0, u1)).map(|k| k.rescaled(u0, u1 - u0)).collect();
         }
         out
     }

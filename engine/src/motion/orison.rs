@@ -74,7 +74,11 @@ pub fn smoothable(mv: &Move) -> bool {
         && mv.path.curve.is_none()
         && mv.length > 0.0
         && mv.length <= spec.block_limit
-        && mv.path.ori.as_deref().is_some_and(|o| o.curve.is_none() && o.turn.is_none() && dot(o.axis, o.start).abs() < 1e-9)
+        && mv
+            .path
+            .ori
+            .as_deref()
+            .is_some_and(|o| o.curve.is_none() && o.turn.is_none() && dot(o.axis, o.start).abs() < 1e-9)
 }
 
 /// True if a run under ORISON goes on from `a` into the next move `b` (the same
