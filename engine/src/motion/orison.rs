@@ -153,18 +153,22 @@ fn deviation(window: &Window, fixed: &[OriKink], step: &OriKink) -> f64 {
     let (from, to) = (step.at - step.half, step.at + step.half);
     let uniform = (1..SAMPLES).map(|i| from + (to - from) * f64::from(i) / f64::from(SAMPLES));
     let ends = window.blocks.iter().map(|b| b.0 + b.1).filter(|&e| e > from && e < to);
-    uniform
+    let fixed: Vec<&OriKink> = fixed.iter().filter(|k| k.reaches(from, to)).chain(std::iter::once(step)).collect();
+    // The squared chord between the unit vectors: the largest is the largest angle's.
+    let chord = uniform
         .chain(ends)
         .map(|s| {
             let programmed = window.programmed(s);
             let mut v = programmed;
-            for k in fixed.iter().chain(std::iter::once(step)) {
+            for k in &fixed {
                 let (d, _) = k.offset(s);
                 v = std::array::from_fn(|i| v[i] + d[i]);
             }
-            angle(v.map(|x| x / norm(v)), programmed)
+            let n = norm(v);
+            (0..3).map(|i| (v[i] / n - programmed[i]).powi(2)).sum::<f64>()
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, f64::max);
+    2.0 * (0.5 * chord.sqrt()).min(1.0).asin()
 }
 
 /// The orientation's rate per mm of a great circle `o` at `u` (`l` the block's length).

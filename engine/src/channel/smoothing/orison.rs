@@ -32,6 +32,10 @@ pub(in crate::channel) struct OriRun {
     next_step: usize,
     /// The steps decided whose sections reach past the front prepared move (mm of the run).
     steps: Vec<OriKink>,
+    /// The prepared items' count, the last block taken and the front move's length (bits)
+    /// when the window was last found short: while they stay, it still is (asked every IPO
+    /// cycle while it waits). Forgotten when a move is taken.
+    short: std::cell::Cell<(usize, u32, u64)>,
 }
 
 impl Channel {
@@ -41,13 +45,19 @@ impl Channel {
         let mut items = self.pending.iter();
         let Some(Item::Move { mv: front, .. }) = items.next() else { return false };
         let Some(spec) = front.orison.as_deref() else { return false };
-        let (mut prev, mut trafo, mut beyond) = (front, None, 0.0);
+        let key = (self.pending.len(), self.pending.popped_seq(), front.length.to_bits());
+        if self.blending.ori_run.short.get() == key {
+            return true;
+        }
+        // A change of the transformation is not looked for here (comparing it per move and
+        // cycle costs): the window then only waits for a few moves more, and
+        // `smooth_orientation` ends the run at the change.
+        let (mut prev, mut beyond) = (front, 0.0);
         for (i, item) in items.enumerate().map(|(i, item)| (i + 1, item)) {
-            let Item::Move { mv: next, offsets, .. } = item else { return false };
-            if i > 1 && offsets.trafo.as_ref() != trafo || !orison::continues(prev, next) {
+            let Item::Move { mv: next, .. } = item else { return false };
+            if !orison::continues(prev, next) {
                 return false;
             }
-            trafo = offsets.trafo.as_ref();
             if i > 1 {
                 beyond += next.length;
             }
@@ -56,6 +66,7 @@ impl Channel {
             }
             prev = next;
         }
+        self.blending.ori_run.short.set(key);
         true
     }
 
@@ -64,6 +75,7 @@ impl Channel {
     /// in single block); plans `mv` again if it carries steps (see the module doc).
     pub(in crate::channel) fn smooth_orientation(&mut self, mv: &mut Move, with_next: bool) {
         let final_trafo = self.blending.ori_run.front_final.take();
+        self.blending.ori_run.short.take();
         let first = final_trafo.is_none();
         if first {
             self.blending.ori_run = OriRun { front_end: mv.length, ..OriRun::default() };
