@@ -402,3 +402,30 @@ fn a_block_longer_than_md20178_interrupts_the_smoothing() {
     }
     assert!(z.iter().map(|s| s.2).fold(0.0, f64::max) <= 0.2);
 }
+
+#[test]
+fn single_block_smooths_into_no_block_not_yet_released() {
+    // In single block each block is released alone, after the last has stopped: no step is
+    // decided (its section would reach into the next block, not released), so the wobble
+    // runs as programmed, with every block's stop.
+    let ends = wobble(8);
+    let data = "$MC_MM_ORISON_BLOCKS=10\n$SC_ORISON_TOL=0.2\n$SC_ORISON_DIST=1\n";
+    let mut ch = Channel::from_preset("mill5-head-ca", data).unwrap();
+    ch.single_block = true;
+    ch.run_program(&profile_program(-0.1, &ends)).unwrap();
+    let mut samples = Vec::new();
+    while ch.is_busy() || ch.status() == nctwin_engine::Status::Stopped {
+        if ch.status() == nctwin_engine::Status::Stopped {
+            ch.start().unwrap();
+        }
+        ch.step();
+        let p = ch.axis_positions();
+        samples.push([p[0], p[1], p[2], p[3], p[4]]);
+        assert!(samples.len() < 2_000_000, "the program does not end");
+    }
+    assert!(ch.alarms().is_empty(), "{:?}", ch.alarms());
+    let z = on_profile(&samples, -0.1, &ends);
+    assert!(z.last().is_some_and(|s| (s.0 - 2.0).abs() < 1e-9), "{:?}", z.last());
+    let dev = z.iter().map(|s| s.2).fold(0.0, f64::max);
+    assert!(dev < 1e-6, "{dev}°");
+}
