@@ -22,7 +22,7 @@
 //!   over `2r` of path), so an orientation that wobbles from block to block is flattened to
 //!   its mean where the tolerance allows (with `r` a whole number of wobble periods exactly).
 //! - The deviation is the angle between the smoothed and the programmed tool vector at the
-//!   same path point (the tip path is untouched), sampled over the section (64 points and
+//!   same path point (the tip path is untouched), sampled over the section (32 points and
 //!   every block end in it) with all the steps decided before; where it passes SD42678
 //!   `$SC_ORISON_TOL` the section is made shorter until it keeps it. Each point is checked by
 //!   the last step decided whose section covers it, with all others covering it known, so
@@ -62,7 +62,7 @@ impl OriSmoothing {
 }
 
 /// Samples of a section checked against the tolerance, beside the block ends in it.
-const SAMPLES: u32 = 64;
+const SAMPLES: u32 = 32;
 
 /// True if `mv` is a block ORISON smooths at its ends (see the module doc).
 pub fn smoothable(mv: &Move) -> bool {
