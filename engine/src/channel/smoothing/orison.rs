@@ -39,6 +39,11 @@ pub(in crate::channel) struct OriRun {
 }
 
 impl Channel {
+    /// Forgets the run (the prepared items were dropped: reset, alarm, block search).
+    pub(in crate::channel) fn end_orison_run(&mut self) {
+        self.blending.ori_run = OriRun::default();
+    }
+
     /// True if the front prepared move (under ORISON) waits for more prepared moves before
     /// it is taken: its window is neither complete nor ended (see the module doc).
     pub(in crate::channel) fn orison_waits(&self) -> bool {
