@@ -300,6 +300,26 @@ mod tests {
     }
 
     #[test]
+    fn the_bump_cancels_a_kink_and_fades_out_c2() {
+        use crate::motion::orientation::bump;
+        // r = 0.5: bump(0) = r/6; its slope +½ left of 0 and −½ right (|x| less its mean
+        // slope); at ±r value, slope and curvature (2/r − 2|x|/r²)/2 reach 0.
+        let r = 0.5;
+        assert!((bump(0.0, r).0 - r / 6.0).abs() < 1e-15);
+        assert!((bump(-1e-12, r).1 - 0.5).abs() < 1e-9 && (bump(1e-12, r).1 + 0.5).abs() < 1e-9);
+        let h = 1e-4;
+        for x in [-r, r] {
+            let inside = x - x.signum() * h;
+            assert!(bump(inside, r).0.abs() < 1e-11 && bump(inside, r).1.abs() < 1e-7, "{x}");
+            let curvature = (bump(inside, r).1 - bump(inside - x.signum() * h, r).1) / h;
+            assert!(curvature.abs() < 1e-3, "{x}: {curvature}");
+        }
+        // At x = r/2 = 0.25 by hand: r/3 = 1/6, x²/r = 0.125, |x|³/(3r²) = 0.015625/0.75 =
+        // 0.125/6, |x| = 0.25: (1/6 + 0.125 − 0.125/6 − 0.25)/2 = 0.0104.
+        assert!((bump(0.25, r).0 - (1.0 / 6.0 + 0.125 - 0.125 / 6.0 - 0.25) / 2.0).abs() < 1e-15);
+    }
+
+    #[test]
     fn no_kink_or_no_orison_leaves_the_orientation() {
         let (a, b) = (block(0.0, 1.0, -2.0, 2.0, 1.0, 5.0), block(1.0, 1.0, 2.0, 6.0, 1.0, 5.0));
         assert!(continues(&a, &b) && norm(jump(&a, &b)) < 1e-9);
