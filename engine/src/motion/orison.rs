@@ -15,7 +15,9 @@
 //!   convolved with a triangle kernel of half width `r` less |x| (`orientation::bump`): it
 //!   cancels the kink and is C2, so the tool vector turns without a jump of its angular rate,
 //!   and is zero beyond `r`, so the section `s_j ± r` is the path the step may deviate over
-//!   (SD42680 `$SC_ORISON_DIST`: `2r` at most that).
+//!   (SD42680 `$SC_ORISON_DIST`: `2r` at most that). Where the rate's magnitude changes at a
+//!   step (the circles' curvature −κ²·o differs) a jump of the angular acceleration of the
+//!   order of that change times the deviation's sine remains: the rate is what is smoothed.
 //! - Sections of neighbouring steps may overlap: on blocks shorter than SD42680 a section
 //!   reaches over several blocks and several steps' corrections add up. With equal `r` the
 //!   sum is the programmed orientation convolved with the triangle kernel (a moving average
