@@ -627,6 +627,7 @@ impl Channel {
     pub(super) fn raise(&mut self, alarm: Alarm) {
         self.planner.abort();
         self.pending.clear();
+        self.end_orison_run();
         self.in_planner.clear();
         self.prep_done = true;
         self.prep_waits_for_trafo = false;

@@ -737,6 +737,7 @@ impl Channel {
         self.probe.disarm();
         self.planner.abort();
         self.pending.clear();
+        self.end_orison_run();
         self.in_planner.clear();
         self.prep_done = true;
         self.prep_waits_for_trafo = false;

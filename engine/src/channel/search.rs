@@ -187,6 +187,7 @@ impl Channel {
         self.queued_blocks.clear();
         self.current_block = None;
         self.pending.clear();
+        self.end_orison_run();
         self.prep_done = false;
         self.prep_waits_for_trafo = false;
         self.search_approach = false;

@@ -250,6 +250,7 @@ impl PathControl {
             tol: data.orison_tol.to_radians(),
             dist: data.orison_dist,
             block_limit: data.orison_block_limit,
+            reach: OriSmoothing::reach_of(data.orison_blocks),
         })
     }
 

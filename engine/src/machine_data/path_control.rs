@@ -29,7 +29,8 @@ pub struct PathControlData {
     pub ori_tol: f64,
     /// MD20178 ORISON_BLOCK_PATH_LIMIT (mm): longer blocks interrupt ORISON's smoothing.
     pub orison_block_limit: f64,
-    /// MD28590 MM_ORISON_BLOCKS: ORISON acts from 4 on.
+    /// MD28590 MM_ORISON_BLOCKS: ORISON acts from 4 on; it bounds how many blocks a
+    /// smoothing section reaches (`motion::orison`).
     pub orison_blocks: i64,
     /// SD42678 ORISON_TOL (degrees) and SD42680 ORISON_DIST (mm).
     pub orison_tol: f64,

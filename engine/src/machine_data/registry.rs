@@ -288,7 +288,7 @@ pub static DEFS: &[Def] = &[
     def("SMOOTHING_MODE", 20480, C, Kind::Int, 1, Default::Int(0), 0.0, 99999.0),
     // Smoothing of the orientation characteristic (F2 3.9.4, ORISON): MD20178 the longest
     // block (mm) it smooths, MD28590 the blocks it may consider (memory; below 4 ORISON has
-    // no effect). Defaults from memory of the lists (not in the consulted sources).
+    // no effect; a section reaches (MD28590 − 2)/2 blocks either side, `motion::orison`). Defaults from memory of the lists (not in the consulted sources).
     def("ORISON_BLOCK_PATH_LIMIT", 20178, C, Kind::Real, 1, Default::Real(50.0), 0.0, 1e9),
     def("MM_ORISON_BLOCKS", 28590, C, Kind::Int, 1, Default::Int(0), 0.0, 100.0),
     // MD20550 EXACT_POS_MODE: the exact-stop window G0 (units digit) and the other G group 1
@@ -579,7 +579,7 @@ pub static DEFS: &[Def] = &[
     sd("DRY_RUN_FEED", 42100, C, Kind::Real, Default::Real(5000.0), 0.0, INF),
     sd("DRY_RUN_FEED_MODE", 42101, C, Kind::Int, Default::Int(0), 0.0, 12.0),
     // SD42678/SD42680: ORISON's largest angle from the programmed orientation (degrees) and
-    // the longest path (mm) one smoothing spans (828D Programming Manual 6.7 names SD42680
+    // the longest path (mm) one step's smoothing spans (828D Programming Manual 6.7 names SD42680
     // ORISON_DIST); 0 smooths nothing. Defaults from memory.
     sd("ORISON_TOL", 42678, C, Kind::Real, Default::Real(0.0), 0.0, 90.0),
     sd("ORISON_DIST", 42680, C, Kind::Real, Default::Real(0.0), 0.0, 1e9),

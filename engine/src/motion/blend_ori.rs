@@ -110,7 +110,7 @@ fn element_orientation(a: &Move, ua: f64, b: &Move, ub: f64, o0: Vec3, o1: Vec3,
     }
     match OriPath::great_circle(o0, o1) {
         Ok(Some(arc)) => arc,
-        _ => OriPath { start: o0, axis: [0.0, 0.0, 1.0], angle: 0.0, curve: None, turn: None, ends: None },
+        _ => OriPath { start: o0, axis: [0.0, 0.0, 1.0], angle: 0.0, curve: None, turn: None, kinks: Vec::new() },
     }
 }
 

@@ -45,7 +45,7 @@ pub fn compressible(mv: &Move, metric: &AxisVec) -> bool {
 /// A plain great circle (ORIVECT, ORIPLANE): no curve, no turning frame, the rotation axis
 /// perpendicular to the start (a cone's is not).
 fn great_circle(o: &OriPath) -> bool {
-    o.curve.is_none() && o.turn.is_none() && o.ends.is_none() && dot(o.axis, o.start).abs() < 1e-9
+    o.curve.is_none() && o.turn.is_none() && o.kinks.is_empty() && dot(o.axis, o.start).abs() < 1e-9
 }
 
 /// The tool tip's chord length of `mv`.

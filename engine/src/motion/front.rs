@@ -196,7 +196,7 @@ impl FrontMove {
     /// [`OriPath::at`] at `u` with the rotation angle stepped from the last cycle's.
     #[inline(never)]
     pub(super) fn orientation(&mut self, ori: &OriPath, u: f64) -> Vec3 {
-        if ori.curve.is_some() || ori.turn.is_some() || ori.ends.is_some() {
+        if ori.curve.is_some() || ori.turn.is_some() || !ori.kinks.is_empty() {
             return ori.at(u);
         }
         let now = SinCosStep::next(self.ori_angle, ori.angle * u.clamp(0.0, 1.0));
@@ -267,8 +267,14 @@ mod tests {
         // A great circle of 1.2 rad run in uneven steps (accelerating, then cruising): every
         // stepped orientation agrees with the direct Rodrigues rotation within 1e-13 (64 steps of
         // rounding at most).
-        let ori =
-            OriPath { start: [0.0, 0.0, 1.0], axis: [0.0, -1.0, 0.0], angle: 1.2, curve: None, turn: None, ends: None };
+        let ori = OriPath {
+            start: [0.0, 0.0, 1.0],
+            axis: [0.0, -1.0, 0.0],
+            angle: 1.2,
+            curve: None,
+            turn: None,
+            kinks: Vec::new(),
+        };
         let mut front = FrontMove::new(
             &Path::line([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]),
             &mut [0.0; MAX_CHANNEL_AXES],

@@ -23,6 +23,6 @@ pub mod spline;
 
 pub use curve::Curve;
 pub use ori_curve::TwoCurves;
-pub use orientation::{Antiparallel, OriPath, SmoothEnds, rotate};
+pub use orientation::{Antiparallel, OriKink, OriPath, rotate};
 pub use path::{Arc, AxisVec, Path};
 pub use planner::{AxisLimit, AxisLimits, Feed, Move, Planner, brake_speed, stop_speed};

@@ -6,8 +6,8 @@
 //! its programmed axis. So one representation serves both, slices exactly, and costs one
 //! `sin_cos` per IPO point. ORICURVE instead follows a second curve ([`TwoCurves`]). ORIPATH
 //! on an arc adds a second rotation ([`OriPath::turn`]): the path frame turning with the
-//! tangent, so lead and tilt hold at every point of the arc. ORISON replaces the ends of a
-//! great circle by pieces of a smoothing zone ([`SmoothEnds`], `motion/orison.rs`).
+//! tangent, so lead and tilt hold at every point of the arc. ORISON adds to a great circle the
+//! smoothing of the orientation's steps near it ([`OriKink`], `motion/orison.rs`).
 
 use super::ori_curve::TwoCurves;
 
@@ -30,17 +30,56 @@ pub struct OriPath {
     /// ORIPATH on an arc: the rotation (unit axis, radians over the block) of the path's
     /// tangent frame, applied after the own rotation: `o(u) = R(turn, φ·u)·R(axis, angle·u)·start`.
     pub turn: Option<(Vec3, f64)>,
-    /// ORISON: the orientation near the block's ends follows a smoothing zone instead of the
-    /// programmed great circle (which the other fields still describe).
-    pub ends: Option<Box<SmoothEnds>>,
+    /// ORISON: the smoothing of the orientation's steps whose sections reach into this block
+    /// (empty without ORISON); the other fields still describe the programmed great circle.
+    pub kinks: Vec<OriKink>,
 }
 
-/// The parts of a block's orientation that ORISON smooths: `head` over `u` in `0..=h` (the
-/// curve's parameter `u/h`), `tail` over `t..=1` (parameter `(u−t)/(1−t)`).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct SmoothEnds {
-    pub head: Option<(f64, TwoCurves)>,
-    pub tail: Option<(f64, TwoCurves)>,
+/// ORISON's smoothing of one step of the orientation's rate (a kink at a block end): the
+/// vector `jump · bump(u − at, half)` added to the programmed orientation within `half` of
+/// `at`, then normalised (see `motion/orison.rs`). In units of the parameter it is kept in: a
+/// block's `u` on an [`OriPath`], mm of path where the main run decides it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OriKink {
+    /// Where the step is.
+    pub at: f64,
+    /// Half the section it is smoothed over.
+    pub half: f64,
+    /// The rate after the step less the rate before (per unit of the parameter).
+    pub jump: Vec3,
+}
+
+impl OriKink {
+    /// The step in another parameter: `u = (s − origin) / scale`.
+    pub fn rescaled(&self, origin: f64, scale: f64) -> OriKink {
+        OriKink { at: (self.at - origin) / scale, half: self.half / scale, jump: self.jump.map(|j| j * scale) }
+    }
+
+    /// True if its section reaches into the parameter interval `u0..u1`.
+    pub fn reaches(&self, u0: f64, u1: f64) -> bool {
+        self.at - self.half < u1 && self.at + self.half > u0
+    }
+
+    /// The correction at parameter `u` and its derivative (zero outside the section).
+    pub fn offset(&self, u: f64) -> (Vec3, Vec3) {
+        let (b, db) = bump(u - self.at, self.half);
+        (self.jump.map(|j| j * b), self.jump.map(|j| j * db))
+    }
+}
+
+/// Half the difference between |x| convolved with the triangle kernel of half width `r` and
+/// |x| itself, with its derivative (left-continuous at 0): `(r/3 + x²/r − |x|³/(3r²) − |x|)/2`
+/// inside `|x| < r`, zero outside. Added with a step's rate jump it cancels the step (its
+/// slope goes from +½ to −½ at 0) and is C2 at ±r (value, slope and curvature 0 there).
+pub fn bump(x: f64, r: f64) -> (f64, f64) {
+    let a = x.abs();
+    if a >= r {
+        return (0.0, 0.0);
+    }
+    let value = 0.5 * (r / 3.0 + x * x / r - a * a * a / (3.0 * r * r) - a);
+    let sign = if x > 0.0 { 1.0 } else { -1.0 };
+    let slope = 0.5 * (2.0 * x / r - x * a / (r * r) - sign);
+    (value, slope)
 }
 
 /// Start and end orientation point in opposite directions: the plane of the great circle is
@@ -64,14 +103,21 @@ impl OriPath {
             angle: sin.atan2(cos),
             curve: None,
             turn: None,
-            ends: None,
+            kinks: Vec::new(),
         }))
     }
 
     /// A rotation of `start` about `axis` (any length) by `angle` radians: the cone.
     pub fn cone(start: Vec3, axis: Vec3, angle: f64) -> Option<OriPath> {
         let n = norm(axis);
-        (n > 1e-12).then(|| OriPath { start, axis: scale(axis, 1.0 / n), angle, curve: None, turn: None, ends: None })
+        (n > 1e-12).then(|| OriPath {
+            start,
+            axis: scale(axis, 1.0 / n),
+            angle,
+            curve: None,
+            turn: None,
+            kinks: Vec::new(),
+        })
     }
 
     /// An orientation carried by a frame turning about unit axis `k` by `sweep` radians (an
@@ -86,7 +132,7 @@ impl OriPath {
             angle: 0.0,
             curve: None,
             turn: None,
-            ends: None,
+            kinks: Vec::new(),
         });
         Ok(OriPath { turn: Some((k, sweep)), ..own })
     }
@@ -97,25 +143,22 @@ impl OriPath {
         let c = cross(start, end);
         let n = norm(c);
         let axis = if n > 1e-12 { scale(c, 1.0 / n) } else { [0.0, 0.0, 1.0] };
-        OriPath { start, axis, angle: n.atan2(dot(start, end)), curve: Some(curves), turn: None, ends: None }
+        OriPath { start, axis, angle: n.atan2(dot(start, end)), curve: Some(curves), turn: None, kinks: Vec::new() }
     }
 
     /// Orientation at path parameter `u` in 0..=1.
     pub fn at(&self, u: f64) -> Vec3 {
         let u = u.clamp(0.0, 1.0);
-        if let Some(e) = &self.ends {
-            if let Some((h, c)) = &e.head
-                && u <= *h
-            {
-                return c.at(u / h);
-            }
-            if let Some((t, c)) = &e.tail
-                && u >= *t
-            {
-                return c.at((u - t) / (1.0 - t));
-            }
+        let programmed = self.programmed_at(u);
+        if self.kinks.is_empty() {
+            return programmed;
         }
-        self.programmed_at(u)
+        let mut v = programmed;
+        for k in &self.kinks {
+            let (d, _) = k.offset(u);
+            v = std::array::from_fn(|i| v[i] + d[i]);
+        }
+        scale(v, 1.0 / norm(v))
     }
 
     /// The programmed orientation at `u` in 0..=1 (without ORISON's smoothed ends).
@@ -131,10 +174,21 @@ impl OriPath {
     /// Unit direction in which the orientation moves at the block end (for ORICONTO's
     /// tangential transition); `None` for a path that does not turn.
     pub fn end_direction(&self) -> Option<Vec3> {
-        if let Some(e) = &self.ends
-            && let Some((_, c)) = e.tail.as_ref().or(e.head.as_ref().filter(|(h, _)| *h >= 1.0))
-        {
-            return c.end_direction();
+        if !self.kinks.is_empty() {
+            // ORISON (great circles only): d/du of v/|v| with v = o + Σ corrections.
+            let o = self.programmed_at(1.0);
+            let mut v = o;
+            let mut dv = scale(cross(self.axis, o), self.angle);
+            for k in &self.kinks {
+                let (d, dd) = k.offset(1.0);
+                v = std::array::from_fn(|i| v[i] + d[i]);
+                dv = std::array::from_fn(|i| dv[i] + dd[i]);
+            }
+            let n = scale(v, 1.0 / norm(v));
+            let along = dot(n, dv);
+            let t: Vec3 = std::array::from_fn(|i| dv[i] - along * n[i]);
+            let len = norm(t);
+            return (len > 1e-12).then(|| scale(t, 1.0 / len));
         }
         if let Some(c) = &self.curve {
             return c.end_direction();
@@ -164,7 +218,7 @@ impl OriPath {
                     angle: self.angle * (u1 - u0),
                     curve: None,
                     turn: None,
-                    ends: None,
+                    kinks: Vec::new(),
                 },
                 // The slice's own rotation is this one seen in the frame turned to u0.
                 Some((k, sweep)) => OriPath {
@@ -173,30 +227,14 @@ impl OriPath {
                     angle: self.angle * (u1 - u0),
                     curve: None,
                     turn: Some((k, sweep * (u1 - u0))),
-                    ends: None,
+                    kinks: Vec::new(),
                 },
             },
         };
-        if let Some(e) = &self.ends {
-            out.ends = e.slice(u0, u1).map(Box::new);
+        if u1 > u0 {
+            out.kinks = self.kinks.iter().filter(|k| k.reaches(u0, u1)).map(|k| k.rescaled(u0, u1 - u0)).collect();
         }
         out
-    }
-}
-
-impl SmoothEnds {
-    /// The pieces of the part between `u0` and `u1` (`None` if it lies between them).
-    fn slice(&self, u0: f64, u1: f64) -> Option<SmoothEnds> {
-        let d = u1 - u0;
-        let head = self.head.as_ref().filter(|(h, _)| u0 < *h && d > 0.0).map(|(h, c)| {
-            let end = u1.min(*h);
-            ((end - u0) / d, c.slice(u0 / h, end / h))
-        });
-        let tail = self.tail.as_ref().filter(|(t, _)| u1 > *t && d > 0.0).map(|(t, c)| {
-            let from = u0.max(*t);
-            ((from - u0) / d, c.slice((from - t) / (1.0 - t), (u1 - t) / (1.0 - t)))
-        });
-        (head.is_some() || tail.is_some()).then_some(SmoothEnds { head, tail })
     }
 }
 

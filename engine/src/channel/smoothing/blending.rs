@@ -25,9 +25,8 @@ pub(in crate::channel) struct Blending {
     pub(super) junction: Option<Junction>,
     /// The transformation the passage was made under (`compress_trafo.rs`).
     pub(super) junction_trafo: Option<crate::kinematics::ActiveTrafo>,
-    /// The transformation under which ORISON put a zone's head on the first prepared move
-    /// (`orison.rs`), which plans it when it is taken.
-    pub(super) head_trafo: Option<crate::kinematics::ActiveTrafo>,
+    /// ORISON's run of smoothed moves (`orison.rs`).
+    pub(super) ori_run: super::orison::OriRun,
     /// Preparation waits for the main run to empty (STOPRE, reading main-run values): a
     /// waiting move is handed on without its successor.
     pub(in crate::channel) prep_waits_for_main_run: bool,
@@ -38,15 +37,18 @@ pub(in crate::channel) struct Blending {
 
 impl Channel {
     /// True if the move at the front of the prepared items waits for its successor to round
-    /// the corner between them.
+    /// the corner between them (under ORISON: for the window of moves its orientation's
+    /// smoothing needs, `orison.rs`).
     pub(in crate::channel) fn waits_for_corner(&self) -> bool {
-        self.pending.len() == 1
-            && !self.prep_done
-            && !self.prep_waits_for_trafo
-            && !self.blending.prep_waits_for_main_run
-            && matches!(self.pending.front(), Some(Item::Move { mv, .. })
-                if (mv.blend.is_some() || mv.compress.is_some() || mv.orison.is_some() && mv.axis_tangents.is_some())
-                    && !mv.exact_stop)
+        let Some(Item::Move { mv, .. }) = self.pending.front() else { return false };
+        let can_wait = !self.prep_done && !self.prep_waits_for_trafo && !self.blending.prep_waits_for_main_run;
+        if !can_wait || mv.exact_stop {
+            return false;
+        }
+        if mv.orison.is_some() && mv.axis_tangents.is_some() {
+            return self.orison_waits();
+        }
+        self.pending.len() == 1 && (mv.blend.is_some() || mv.compress.is_some())
     }
 
     /// Rounds the corner between `mv` (just taken from the prepared items) and the next
