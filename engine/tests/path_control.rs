@@ -268,3 +268,38 @@ fn g642_rounds_the_corners_of_a_radius_compensated_contour_within_the_tolerance(
     }
     assert_dynamics(&samples);
 }
+
+#[test]
+fn under_soft_the_rounded_square_and_zigzag_keep_every_axis_jerk() {
+    // Issue 22's geometric check with SOFT: MD32431 20 m/s³ on X, Y, Z (the 3000 mm/s² take
+    // 0.15 s to build), so the jerk limit, not the acceleration, shapes every ramp. The third
+    // difference of the sampled positions is the jerk of a cycle. The rounding elements keep
+    // the axes' jerk as an arc does (`motion/soft_curvature.rs`); in the cycles where an
+    // element of the zigzag hands over to the next line, its turning jerk and the line's jerk
+    // onset meet: measured up to 1.16 J there (23 448 mm/s³ with G641 ADIS=0.3), 1.00 J on the
+    // square. Before the elements were limited, 11.3 J (225 953 mm/s³) on the square.
+    const MD: &str = "$MA_MAX_AX_JERK[X]=20\n$MA_MAX_AX_JERK[Y]=20\n$MA_MAX_AX_JERK[Z]=20\n";
+    for (header, moves, feed, tol, bound) in [
+        ("SOFT G642 CTOL=0.05", square(), 6000.0, 0.05, 1.0),
+        ("SOFT G641 ADIS=0.5", square(), 6000.0, 0.5, 1.0),
+        ("SOFT G642 CTOL=0.02", zigzag(), 3000.0, 0.02, 1.2),
+        ("SOFT G645 CTOL=0.02", zigzag(), 3000.0, 0.02, 1.2),
+        ("SOFT G642 CTOL=0.2", zigzag(), 3000.0, 0.2, 1.2),
+        ("SOFT G641 ADIS=0.3", zigzag(), 3000.0, 0.3, 1.2),
+    ] {
+        let (text, contour) = program(header, [0.0, 0.0], &moves, feed);
+        let samples = path_support::samples::<3>(MD, &text, 3_000_000).1;
+        let worst = samples.iter().map(|p| to_contour(p, &contour)).fold(0.0, f64::max);
+        assert!(worst <= tol * (1.0 + 1e-9), "{header}: a sample is {worst} from the contour");
+        assert_dynamics(&samples);
+        let d = |s: &[[f64; 3]]| -> Vec<[f64; 3]> {
+            s.windows(2).map(|w| std::array::from_fn(|k| (w[1][k] - w[0][k]) / DT)).collect()
+        };
+        let jerk = d(&d(&d(&samples)));
+        for (i, j) in jerk.iter().enumerate() {
+            for (k, jk) in j.iter().enumerate() {
+                assert!(jk.abs() <= 20_000.0 * bound * (1.0 + 1e-6), "{header}: axis {k} jerk {jk} mm/s³ in cycle {i}");
+            }
+        }
+    }
+}

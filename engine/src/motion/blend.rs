@@ -171,6 +171,7 @@ pub fn round_corner_oriented(
     };
     let mut corner = Move::unlimited(path, false, a.tag);
     corner.set_limits(length, feed_of(a.feed.min(b.feed)), limits);
+    corner.limit_element_jerk(a, b);
     Some(Rounded { first, corner, second, cut: (ua, ub), more: Vec::new() })
 }
 

@@ -19,6 +19,14 @@
 //! Input: the two moves of the transition. Output: the highest speed at the seam. Free-form
 //! elements (rounding curves, splines) and paths not in machine axes (a transformation's
 //! pieces) are not looked at: their curvature at the ends is not known here.
+//!
+//! A rounding element (G641..G645) under SOFT: its curvature changes along it, so an axis sees
+//! `w³·|d³p_k/ds³|` at planar speed `w` besides the arc's terms. [`limit_element_jerk`] shares
+//! the axis jerk out as for an arc (cruise `w³·|d³p_k/ds³| ≤ J_k/2`, path jerk
+//! `j·|dp_k/ds| + w³·|d³p_k/ds³| ≤ 0.8·J_k`, acceleration `3·w·a·|d²p_k/ds²| ≤ 0.6·J_k`). The
+//! element does not know the axes' jerk `J_k`; the two moves it joins do: each one's path jerk
+//! `j` is at most `J_k / |dp_k/ds|` for every axis along it, so `j·|dp_k/ds|` at the element's
+//! ends is a lower bound of `J_k`, and the larger of the two bounds is what the element keeps.
 
 use super::{AxisVec, Move};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -42,6 +50,72 @@ impl Move {
         self.jerk = self.jerk.min((0.8 * jerk - w * w * w / (r * r)) / k);
         self.a_max = self.a_max.min(0.2 * jerk * r / (w * k));
     }
+}
+
+impl Move {
+    /// Under SOFT (both moves with a finite path jerk), this rounding element between `a` and
+    /// `b` gets a cruise speed, acceleration and path jerk that keep every axis within its
+    /// jerk (see the module doc). Nothing for BRISK or a move without a curve.
+    pub fn limit_element_jerk(&mut self, a: &Move, b: &Move) {
+        limit_element_jerk(self, a, b);
+    }
+}
+
+fn limit_element_jerk(corner: &mut Move, a: &Move, b: &Move) {
+    if !(a.jerk.is_finite() && b.jerk.is_finite()) {
+        return;
+    }
+    let Some(curve) = corner.path.curve.as_deref() else { return };
+    if curve.length() <= 0.0 {
+        return;
+    }
+    // Lower bounds of the axes' jerk from the moves along the element's ends (unit tangents).
+    let (ta, tb) = (a.path.tangent(1.0), b.path.tangent(0.0));
+    let budget: AxisVec =
+        std::array::from_fn(|k| f64::max(a.jerk * (ta[k] / a.length).abs(), b.jerk * (tb[k] / b.length).abs()));
+    let (p1, p2) = curve.rates();
+    let p3 = third_rates(curve);
+    let mut v = corner.v_axes;
+    for k in 0..MAX_CHANNEL_AXES {
+        if p3[k] > 1e-12 {
+            v = v.min((0.5 * budget[k] / p3[k]).cbrt());
+        }
+    }
+    corner.v_max = corner.v_max.min(v);
+    corner.v_axes = v;
+    let mut jerk = a.jerk.min(b.jerk);
+    let mut accel = corner.a_max;
+    for k in 0..MAX_CHANNEL_AXES {
+        let turning = if v.is_finite() { v * v * v * p3[k] } else { 0.0 };
+        if p1[k] > 1e-12 {
+            jerk = jerk.min(((0.8 * budget[k] - turning) / p1[k]).max(0.0));
+        }
+        if p2[k] > 1e-12 && v.is_finite() && v > 0.0 {
+            accel = accel.min(0.2 * budget[k] / (v * p2[k]));
+        }
+    }
+    corner.jerk = jerk;
+    corner.a_max = accel;
+    corner.seam_jerk = a.seam_jerk.min(b.seam_jerk);
+}
+
+/// Per axis the largest `|d³p_k/ds³|` over a curve: the change of `d²p/ds²` between 32 steps
+/// of equal length, with a 10 % margin for the peaks between them.
+fn third_rates(curve: &crate::motion::Curve) -> AxisVec {
+    const N: usize = 32;
+    let len = curve.length();
+    let step = len / N as f64;
+    let scale = 1.0 / (len * len * step);
+    let mut out = [0.0; MAX_CHANNEL_AXES];
+    let mut last = curve.second(0.0);
+    for i in 1..=N {
+        let next = curve.second(i as f64 / N as f64);
+        for k in 0..MAX_CHANNEL_AXES {
+            out[k] = f64::max(out[k], ((next[k] - last[k]) * scale).abs());
+        }
+        last = next;
+    }
+    out.map(|x| x * 1.1)
 }
 
 /// `d²p/ds²` per axis at the start (`end == false`) or the end of `mv`, with `s` the path
