@@ -137,17 +137,28 @@ pub fn quintic(mv: &Move, start: Option<&Junction>, end: Option<&Junction>, metr
     };
     let ((v0, a0), (v1, a1)) = (side(start), side(end));
     let curve = Curve::hermite_untabled([(p0, v0, a0), (p1, v1, a1)], *metric);
-    // The largest distance from the chord, at 15 inner points.
+    // The largest distance from the chord, at 15 inner points: one axis at a time over all
+    // the points. Only the feed's moving axes add to the sums (the others add zeros).
     let chord_len2 = dot(&dir, &dir, metric) * l * l;
-    let mut p = p0;
-    for i in 1..16 {
-        curve.eval(f64::from(i) / 16.0, &mut p);
-        let rel: AxisVec = std::array::from_fn(|k| p[k] - p0[k]);
-        let t = (dot(&rel, &dir, metric) * l / chord_len2).clamp(0.0, 1.0);
-        let off: AxisVec = std::array::from_fn(|k| rel[k] - t * (p1[k] - p0[k]));
-        if dot(&off, &off, metric).sqrt() > spec.tol {
-            return None;
+    let ts: [f64; 15] = std::array::from_fn(|i| (i + 1) as f64 / 16.0);
+    let feed_axes = || curve.axes().iter().copied().filter(|&k| metric[k] != 0.0);
+    let mut along = [-0.0; 15];
+    for k in feed_axes() {
+        for (a, p) in along.iter_mut().zip(curve.eval_row(k, &ts)) {
+            *a += (p - p0[k]) * dir[k] * metric[k];
         }
+    }
+    let t = along.map(|a| (a * l / chord_len2).clamp(0.0, 1.0));
+    let mut off2 = [-0.0; 15];
+    for k in feed_axes() {
+        let p = curve.eval_row(k, &ts);
+        for i in 0..15 {
+            let off = p[i] - p0[k] - t[i] * (p1[k] - p0[k]);
+            off2[i] += off * off * metric[k];
+        }
+    }
+    if off2.iter().any(|&o| o.sqrt() > spec.tol) {
+        return None;
     }
     Some(curve)
 }
