@@ -121,21 +121,33 @@ impl Curve {
     /// `p_k(t)` of axis `k` at each of `ts` (the expression of [`Curve::eval`]).
     pub(super) fn eval_row<const N: usize>(&self, k: usize, ts: &[f64; N]) -> [f64; N] {
         let c: [f64; 6] = std::array::from_fn(|j| self.coef[j][k]);
-        ts.map(|t| c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5])))))
+        let mut out = [0.0; N];
+        for (o, &t) in out.iter_mut().zip(ts) {
+            *o = c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
+        }
+        out
     }
 
     /// `p_k'(t)` of axis `k` at each of `ts` (the expression of [`Curve::d1_into`]).
     fn d1_row<const N: usize>(&self, k: usize, ts: &[f64; N]) -> [f64; N] {
         let c = &self.coef;
         let (c1, c2, c3, c4, c5) = (c[1][k], 2.0 * c[2][k], 3.0 * c[3][k], 4.0 * c[4][k], c[5][k]);
-        ts.map(|t| c1 + t * (c2 + t * (c3 + t * (c4 + t * 5.0 * c5))))
+        let mut out = [0.0; N];
+        for (o, &t) in out.iter_mut().zip(ts) {
+            *o = c1 + t * (c2 + t * (c3 + t * (c4 + t * 5.0 * c5)));
+        }
+        out
     }
 
     /// `p_k''(t)` of axis `k` at each of `ts` (the expression of [`Curve::d2_into`]).
     fn d2_row<const N: usize>(&self, k: usize, ts: &[f64; N]) -> [f64; N] {
         let c = &self.coef;
         let (c2, c3, c4, c5) = (2.0 * c[2][k], 6.0 * c[3][k], 12.0 * c[4][k], c[5][k]);
-        ts.map(|t| c2 + t * (c3 + t * (c4 + t * 20.0 * c5)))
+        let mut out = [0.0; N];
+        for (o, &t) in out.iter_mut().zip(ts) {
+            *o = c2 + t * (c3 + t * (c4 + t * 20.0 * c5));
+        }
+        out
     }
 
     /// The axes that move along the element.
@@ -269,11 +281,24 @@ impl Curve {
         let (t0, t1) = (self.param(0.0), self.param(1.0));
         let ts: [f64; N + 1] = std::array::from_fn(|i| t0 + (t1 - t0) * (i as f64 / N as f64));
         // Per sample: |p'|² and p'·p'' in the feed's metric, one axis at a time over all the
-        // samples; then each axis' rates, its derivatives worked out again (cheaper than
-        // keeping a row per axis).
+        // samples. The derivatives of the first three axes are kept for their rates below
+        // (no buffer to clear), those of any further axis worked out again.
+        const KEPT: usize = 3;
+        let axes = self.axes();
+        let rows = |k: usize| [self.d1_row(k, &ts), self.d2_row(k, &ts)];
+        let kept: [[[f64; N + 1]; 2]; KEPT] =
+            std::array::from_fn(|j| axes.get(j).map_or([[0.0; N + 1]; 2], |&k| rows(k)));
         let (mut v2, mut along) = ([-0.0; N + 1], [-0.0; N + 1]);
-        for &k in self.axes() {
-            let (d1, d2, m) = (self.d1_row(k, &ts), self.d2_row(k, &ts), self.metric[k]);
+        for (j, &k) in axes.iter().enumerate() {
+            let other;
+            let [d1, d2] = match kept.get(j) {
+                Some(row) => row,
+                None => {
+                    other = rows(k);
+                    &other
+                }
+            };
+            let m = self.metric[k];
             for i in 0..=N {
                 v2[i] += d1[i] * d1[i] * m;
                 along[i] += d1[i] * d2[i] * m;
@@ -283,12 +308,21 @@ impl Curve {
         let v2 = v2.map(|x| x.sqrt().powi(2).max(1e-300));
         let speed = v2.map(f64::sqrt);
         let along: [f64; N + 1] = std::array::from_fn(|i| along[i] / v2[i]);
-        for &k in self.axes() {
-            let (d1, d2) = (self.d1_row(k, &ts), self.d2_row(k, &ts));
+        for (j, &k) in axes.iter().enumerate() {
+            let other;
+            let [d1, d2] = match kept.get(j) {
+                Some(row) => row,
+                None => {
+                    other = rows(k);
+                    &other
+                }
+            };
+            let (mut f, mut s) = (first[k], second[k]);
             for i in 0..=N {
-                first[k] = f64::max(first[k], d1[i].abs() / speed[i]);
-                second[k] = f64::max(second[k], (d2[i] - along[i] * d1[i]).abs() / v2[i]);
+                f = f64::max(f, d1[i].abs() / speed[i]);
+                s = f64::max(s, (d2[i] - along[i] * d1[i]).abs() / v2[i]);
             }
+            (first[k], second[k]) = (f, s);
         }
         // A margin for the peaks between the samples of a smooth short element.
         (first.map(|x| x * 1.03), second.map(|x| x * 1.03))
@@ -370,7 +404,7 @@ mod tests {
         assert!((p[0] - 0.9).abs() < 1e-12 && (p[1] - 1.2).abs() < 1e-12, "{:?}", &p[..2]);
     }
 
-    /// Hermite data of a bent element in four axes (the fourth outside the feed's metric),
+    /// Hermite data of a bent element in three or four axes (the fourth outside the feed's metric),
     /// from a small deterministic generator: values of either sign and several magnitudes.
     fn bent(seed: u64) -> Curve {
         let mut x = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
@@ -382,7 +416,8 @@ mod tests {
         };
         let mut ends = [([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]); 2];
         for (p, v, a) in &mut ends {
-            for k in 0..4 {
+            // Odd seeds move a fourth axis (past the three whose derivatives are kept).
+            for k in 0..3 + (seed % 2) as usize {
                 (p[k], v[k], a[k]) = (next() * 10.0, next(), next() * 0.1);
             }
         }
