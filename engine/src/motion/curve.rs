@@ -45,7 +45,7 @@ impl Curve {
     /// [`Curve::hermite`] without the length table: enough for [`Curve::eval`] and
     /// [`Curve::distance_to`], which a search for the right size of element calls many times.
     pub fn hermite_untabled(ends: [(AxisVec, AxisVec, AxisVec); 2], metric: AxisVec) -> Curve {
-        let [(p0, v0, a0), (p1, v1, a1)] = ends;
+        let [(p0, v0, a0), (p1, v1, a1)] = &ends;
         let mut coef = [[0.0; MAX_CHANNEL_AXES]; 6];
         let (mut axes, mut n_axes) = ([0; MAX_CHANNEL_AXES], 0);
         for k in 0..MAX_CHANNEL_AXES {
@@ -55,7 +55,7 @@ impl Curve {
             }
         }
         // An axis that does not move keeps `coef[0]`: its other coefficients are never read.
-        coef[0] = p0;
+        coef[0] = *p0;
         for &k in &axes[..n_axes] {
             // The quintic Hermite basis in power form.
             coef[1][k] = v0[k];
