@@ -116,9 +116,10 @@ pub fn smooth(
     metric: &AxisVec,
     limits: &[AxisLimit],
 ) -> Option<Move> {
-    let mut curve = quintic(mv, start, end, metric)?;
-    curve.finish();
-    Some(smoothed_move(mv, curve, limits))
+    // Finished in its shared place: a curve is ≈ 1.3 KB, and each pass by value copies it.
+    let mut curve = std::sync::Arc::new(quintic(mv, start, end, metric)?);
+    std::sync::Arc::get_mut(&mut curve).expect("a curve just made is not shared").finish();
+    Some(shared_smoothed_move(mv, curve, limits))
 }
 
 /// The quintic of [`smooth`], without its length table; `None` as there.
@@ -165,9 +166,14 @@ pub fn quintic(mv: &Move, start: Option<&Junction>, end: Option<&Junction>, metr
 
 /// `mv` running `curve` (finished) instead of its chord, at its feed.
 pub fn smoothed_move(mv: &Move, curve: Curve, limits: &[AxisLimit]) -> Move {
+    shared_smoothed_move(mv, std::sync::Arc::new(curve), limits)
+}
+
+/// [`smoothed_move`] with the curve already in its shared place.
+fn shared_smoothed_move(mv: &Move, curve: std::sync::Arc<Curve>, limits: &[AxisLimit]) -> Move {
     let length = curve.length();
     let mut out = Move::unlimited(
-        Path { start: mv.path.start, end: mv.path.end, arc: None, ori: None, curve: Some(std::sync::Arc::new(curve)) },
+        Path { start: mv.path.start, end: mv.path.end, arc: None, ori: None, curve: Some(curve) },
         mv.exact_stop,
         mv.tag,
     );

@@ -46,17 +46,26 @@ impl Curve {
     /// [`Curve::distance_to`], which a search for the right size of element calls many times.
     pub fn hermite_untabled(ends: [(AxisVec, AxisVec, AxisVec); 2], metric: AxisVec) -> Curve {
         let [(p0, v0, a0), (p1, v1, a1)] = &ends;
-        let mut coef = [[0.0; MAX_CHANNEL_AXES]; 6];
-        let (mut axes, mut n_axes) = ([0; MAX_CHANNEL_AXES], 0);
+        // Filled in the place it is returned from (no copy of the coefficients).
+        let mut c = Curve {
+            coef: [[0.0; MAX_CHANNEL_AXES]; 6],
+            metric,
+            axes: [0; MAX_CHANNEL_AXES],
+            n_axes: 0,
+            table: Vec::new(),
+            range: (0.0, 1.0),
+            rates: None,
+        };
         for k in 0..MAX_CHANNEL_AXES {
             if p0[k] != p1[k] || v0[k] != 0.0 || v1[k] != 0.0 || a0[k] != 0.0 || a1[k] != 0.0 {
-                axes[n_axes] = k;
-                n_axes += 1;
+                c.axes[c.n_axes] = k;
+                c.n_axes += 1;
             }
         }
         // An axis that does not move keeps `coef[0]`: its other coefficients are never read.
+        let coef = &mut c.coef;
         coef[0] = *p0;
-        for &k in &axes[..n_axes] {
+        for &k in &c.axes[..c.n_axes] {
             // The quintic Hermite basis in power form.
             coef[1][k] = v0[k];
             coef[2][k] = 0.5 * a0[k];
@@ -64,7 +73,7 @@ impl Curve {
             coef[4][k] = 15.0 * p0[k] + 8.0 * v0[k] + 1.5 * a0[k] - a1[k] + 7.0 * v1[k] - 15.0 * p1[k];
             coef[5][k] = -6.0 * p0[k] - 3.0 * v0[k] - 0.5 * a0[k] + 0.5 * a1[k] - 3.0 * v1[k] + 6.0 * p1[k];
         }
-        Curve { coef, metric, axes, n_axes, table: Vec::new(), range: (0.0, 1.0), rates: None }
+        c
     }
 
     /// The smallest distance (in the feed's axes) of the element from `point`: 17 samples,
