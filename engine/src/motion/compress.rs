@@ -76,7 +76,7 @@ pub fn junction(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
 /// `a` and `b` on the circle through `a`'s start, that point and `b`'s end, if the directions
 /// differ by at most [`MAX_ANGLE_DEG`].
 pub fn passage(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
-    let (pa, pb, pc) = (a.path.start, a.path.end, b.path.end);
+    let (pa, pb, pc) = (&a.path.start, &a.path.end, &b.path.end);
     let u: AxisVec = std::array::from_fn(|k| pa[k] - pb[k]);
     let w: AxisVec = std::array::from_fn(|k| pc[k] - pb[k]);
     let (uu, ww, uw) = (dot(&u, &u, metric), dot(&w, &w, metric), dot(&u, &w, metric));
@@ -103,7 +103,7 @@ pub fn passage(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
         let t: AxisVec = std::array::from_fn(|k| chord[k] - along * r[k]);
         (unit(&t, metric)?, r.map(|x| x / rr))
     };
-    Some(Junction { point: pb, tangent, curvature, ori: None })
+    Some(Junction { point: *pb, tangent, curvature, ori: None })
 }
 
 /// `mv` as a quintic with the passages `start` and `end` (`None`: the chord's own direction,
@@ -128,7 +128,7 @@ pub fn quintic(mv: &Move, start: Option<&Junction>, end: Option<&Junction>, metr
     if start.is_none() && end.is_none() {
         return None;
     }
-    let (p0, p1) = (mv.path.start, mv.path.end);
+    let (p0, p1) = (&mv.path.start, &mv.path.end);
     let dir: AxisVec = std::array::from_fn(|k| (p1[k] - p0[k]) / mv.length);
     let l = mv.length;
     let zero = [0.0; MAX_CHANNEL_AXES];
@@ -137,7 +137,7 @@ pub fn quintic(mv: &Move, start: Option<&Junction>, end: Option<&Junction>, metr
         None => (dir.map(|x| x * l), zero),
     };
     let ((v0, a0), (v1, a1)) = (side(start), side(end));
-    let curve = Curve::hermite_untabled([(p0, v0, a0), (p1, v1, a1)], *metric);
+    let curve = Curve::hermite_untabled([(*p0, v0, a0), (*p1, v1, a1)], *metric);
     // The largest distance from the chord, at 15 inner points: one axis at a time over all
     // the points. Only the feed's moving axes add to the sums (the others add zeros).
     let chord_len2 = dot(&dir, &dir, metric) * l * l;
