@@ -2,9 +2,11 @@
 //! (`valgrind --tool=callgrind`): builds in a fraction of the server binary's time.
 //!
 //! `cargo run --release -p nctwin-engine --example profile_run -- PRESET FILE [--interpret-only]
-//! [--no-fast-lane] [--md=DATA_FILE]` prints the blocks prepared (moves) or the IPO cycles run;
+//! [--no-fast-lane] [--md=DATA_FILE] [--trace]` prints the blocks prepared (moves) or the IPO cycles run;
 //! `--no-fast-lane` sends every block the general way (the figure before the lane); `--md=`
-//! loads machine and setting data text over the preset (e.g. ORISON's MD28590/SD42678). `nctwin simulate` is the measuring
+//! loads machine and setting data text over the preset (e.g. ORISON's MD28590/SD42678);
+//! `--trace` also prints the cycles run until the program ended and a hash of every cycle's
+//! axis positions (two builds that sample a path alike print the same line). `nctwin simulate` is the measuring
 //! tool with timing and RSS; this one only drives the same engine calls.
 
 use std::sync::Arc;
@@ -51,11 +53,25 @@ fn main() {
         println!("moves {moves}");
     } else {
         channel.run_program_shared(text).expect("program starts");
+        let trace = args.iter().any(|a| a == "--trace");
+        // FNV-1a over the bits of every cycle's axis positions.
+        let (mut hash, mut running) = (0xcbf2_9ce4_8422_2325_u64, 0u64);
         while channel.status() == Status::Running {
             for _ in 0..4096 {
                 channel.step();
+                if trace && channel.status() == Status::Running {
+                    running += 1;
+                    for p in channel.axis_positions() {
+                        for b in p.to_bits().to_le_bytes() {
+                            hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+                        }
+                    }
+                }
             }
             drop(channel.take_events());
+        }
+        if trace {
+            println!("trace: {running} cycles running, positions hash {hash:016x}");
         }
         // Alarms the cancel key clears only inform (10910 feed reduced): the run went on.
         let stopping: Vec<_> = channel.alarms().iter().filter(|a| a.clear == Clear::Reset).collect();

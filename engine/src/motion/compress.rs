@@ -76,7 +76,7 @@ pub fn junction(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
 /// `a` and `b` on the circle through `a`'s start, that point and `b`'s end, if the directions
 /// differ by at most [`MAX_ANGLE_DEG`].
 pub fn passage(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
-    let (pa, pb, pc) = (a.path.start, a.path.end, b.path.end);
+    let (pa, pb, pc) = (&a.path.start, &a.path.end, &b.path.end);
     let u: AxisVec = std::array::from_fn(|k| pa[k] - pb[k]);
     let w: AxisVec = std::array::from_fn(|k| pc[k] - pb[k]);
     let (uu, ww, uw) = (dot(&u, &u, metric), dot(&w, &w, metric), dot(&u, &w, metric));
@@ -103,7 +103,7 @@ pub fn passage(a: &Move, b: &Move, metric: &AxisVec) -> Option<Junction> {
         let t: AxisVec = std::array::from_fn(|k| chord[k] - along * r[k]);
         (unit(&t, metric)?, r.map(|x| x / rr))
     };
-    Some(Junction { point: pb, tangent, curvature, ori: None })
+    Some(Junction { point: *pb, tangent, curvature, ori: None })
 }
 
 /// `mv` as a quintic with the passages `start` and `end` (`None`: the chord's own direction,
@@ -116,9 +116,10 @@ pub fn smooth(
     metric: &AxisVec,
     limits: &[AxisLimit],
 ) -> Option<Move> {
-    let mut curve = quintic(mv, start, end, metric)?;
-    curve.finish();
-    Some(smoothed_move(mv, curve, limits))
+    // Finished in its shared place: a curve is ≈ 1.3 KB, and each pass by value copies it.
+    let mut curve = std::sync::Arc::new(quintic(mv, start, end, metric)?);
+    std::sync::Arc::get_mut(&mut curve).expect("a curve just made is not shared").finish();
+    Some(shared_smoothed_move(mv, curve, limits))
 }
 
 /// The quintic of [`smooth`], without its length table; `None` as there.
@@ -127,7 +128,7 @@ pub fn quintic(mv: &Move, start: Option<&Junction>, end: Option<&Junction>, metr
     if start.is_none() && end.is_none() {
         return None;
     }
-    let (p0, p1) = (mv.path.start, mv.path.end);
+    let (p0, p1) = (&mv.path.start, &mv.path.end);
     let dir: AxisVec = std::array::from_fn(|k| (p1[k] - p0[k]) / mv.length);
     let l = mv.length;
     let zero = [0.0; MAX_CHANNEL_AXES];
@@ -136,27 +137,43 @@ pub fn quintic(mv: &Move, start: Option<&Junction>, end: Option<&Junction>, metr
         None => (dir.map(|x| x * l), zero),
     };
     let ((v0, a0), (v1, a1)) = (side(start), side(end));
-    let curve = Curve::hermite_untabled([(p0, v0, a0), (p1, v1, a1)], *metric);
-    // The largest distance from the chord, at 15 inner points.
+    let curve = Curve::hermite_untabled([(*p0, v0, a0), (*p1, v1, a1)], *metric);
+    // The largest distance from the chord, at 15 inner points: one axis at a time over all
+    // the points. Only the feed's moving axes add to the sums (the others add zeros).
     let chord_len2 = dot(&dir, &dir, metric) * l * l;
-    let mut p = p0;
-    for i in 1..16 {
-        curve.eval(f64::from(i) / 16.0, &mut p);
-        let rel: AxisVec = std::array::from_fn(|k| p[k] - p0[k]);
-        let t = (dot(&rel, &dir, metric) * l / chord_len2).clamp(0.0, 1.0);
-        let off: AxisVec = std::array::from_fn(|k| rel[k] - t * (p1[k] - p0[k]));
-        if dot(&off, &off, metric).sqrt() > spec.tol {
-            return None;
+    let ts: [f64; 15] = std::array::from_fn(|i| (i + 1) as f64 / 16.0);
+    let feed_axes = || curve.axes().iter().copied().filter(|&k| metric[k] != 0.0);
+    let mut along = [-0.0; 15];
+    for k in feed_axes() {
+        for (a, p) in along.iter_mut().zip(curve.eval_row(k, &ts)) {
+            *a += (p - p0[k]) * dir[k] * metric[k];
         }
+    }
+    let t = along.map(|a| (a * l / chord_len2).clamp(0.0, 1.0));
+    let mut off2 = [-0.0; 15];
+    for k in feed_axes() {
+        let p = curve.eval_row(k, &ts);
+        for i in 0..15 {
+            let off = p[i] - p0[k] - t[i] * (p1[k] - p0[k]);
+            off2[i] += off * off * metric[k];
+        }
+    }
+    if off2.iter().any(|&o| o.sqrt() > spec.tol) {
+        return None;
     }
     Some(curve)
 }
 
 /// `mv` running `curve` (finished) instead of its chord, at its feed.
 pub fn smoothed_move(mv: &Move, curve: Curve, limits: &[AxisLimit]) -> Move {
+    shared_smoothed_move(mv, std::sync::Arc::new(curve), limits)
+}
+
+/// [`smoothed_move`] with the curve already in its shared place.
+fn shared_smoothed_move(mv: &Move, curve: std::sync::Arc<Curve>, limits: &[AxisLimit]) -> Move {
     let length = curve.length();
     let mut out = Move::unlimited(
-        Path { start: mv.path.start, end: mv.path.end, arc: None, ori: None, curve: Some(std::sync::Arc::new(curve)) },
+        Path { start: mv.path.start, end: mv.path.end, arc: None, ori: None, curve: Some(curve) },
         mv.exact_stop,
         mv.tag,
     );

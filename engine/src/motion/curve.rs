@@ -45,25 +45,35 @@ impl Curve {
     /// [`Curve::hermite`] without the length table: enough for [`Curve::eval`] and
     /// [`Curve::distance_to`], which a search for the right size of element calls many times.
     pub fn hermite_untabled(ends: [(AxisVec, AxisVec, AxisVec); 2], metric: AxisVec) -> Curve {
-        let [(p0, v0, a0), (p1, v1, a1)] = ends;
-        let mut coef = [[0.0; MAX_CHANNEL_AXES]; 6];
-        let (mut axes, mut n_axes) = ([0; MAX_CHANNEL_AXES], 0);
+        let [(p0, v0, a0), (p1, v1, a1)] = &ends;
+        // Filled in the place it is returned from (no copy of the coefficients).
+        let mut c = Curve {
+            coef: [[0.0; MAX_CHANNEL_AXES]; 6],
+            metric,
+            axes: [0; MAX_CHANNEL_AXES],
+            n_axes: 0,
+            table: Vec::new(),
+            range: (0.0, 1.0),
+            rates: None,
+        };
         for k in 0..MAX_CHANNEL_AXES {
             if p0[k] != p1[k] || v0[k] != 0.0 || v1[k] != 0.0 || a0[k] != 0.0 || a1[k] != 0.0 {
-                axes[n_axes] = k;
-                n_axes += 1;
+                c.axes[c.n_axes] = k;
+                c.n_axes += 1;
             }
         }
-        for k in 0..MAX_CHANNEL_AXES {
+        // An axis that does not move keeps `coef[0]`: its other coefficients are never read.
+        let coef = &mut c.coef;
+        coef[0] = *p0;
+        for &k in &c.axes[..c.n_axes] {
             // The quintic Hermite basis in power form.
-            coef[0][k] = p0[k];
             coef[1][k] = v0[k];
             coef[2][k] = 0.5 * a0[k];
             coef[3][k] = -10.0 * p0[k] - 6.0 * v0[k] - 1.5 * a0[k] + 0.5 * a1[k] - 4.0 * v1[k] + 10.0 * p1[k];
             coef[4][k] = 15.0 * p0[k] + 8.0 * v0[k] + 1.5 * a0[k] - a1[k] + 7.0 * v1[k] - 15.0 * p1[k];
             coef[5][k] = -6.0 * p0[k] - 3.0 * v0[k] - 0.5 * a0[k] + 0.5 * a1[k] - 3.0 * v1[k] + 6.0 * p1[k];
         }
-        Curve { coef, metric, axes, n_axes, table: Vec::new(), range: (0.0, 1.0), rates: None }
+        c
     }
 
     /// The smallest distance (in the feed's axes) of the element from `point`: 17 samples,
@@ -86,28 +96,71 @@ impl Curve {
 
     /// Simpson's rule on each interval, `dt/ds` at every knot for the inversion.
     fn build_table(&mut self) {
-        // One buffer for every knot (only the moving axes are written and read).
-        let mut d = [0.0; MAX_CHANNEL_AXES];
-        let mut speed = |t: f64| {
-            self.d1_into(t, &mut d);
-            self.norm(&d)
-        };
+        // The speed at the knots and the intervals' midpoints, t = j/32 (exact in binary), each
+        // once: a knot ends one interval and starts the next.
+        let ts: [f64; 2 * TABLE + 1] = std::array::from_fn(|j| j as f64 / (2 * TABLE) as f64);
+        let speed = self.speeds(&ts);
         let h = 1.0 / TABLE as f64;
         let mut s = 0.0;
         let mut table = Vec::with_capacity(TABLE + 1);
         for i in 0..=TABLE {
-            let t = i as f64 * h;
-            let v = speed(t);
-            table.push((s, t, if v > 0.0 { 1.0 / v } else { 0.0 }));
+            let v = speed[2 * i];
+            table.push((s, ts[2 * i], if v > 0.0 { 1.0 / v } else { 0.0 }));
             if i < TABLE {
-                s += h / 6.0 * (v + 4.0 * speed(t + 0.5 * h) + speed(t + h));
+                s += h / 6.0 * (v + 4.0 * speed[2 * i + 1] + speed[2 * i + 2]);
             }
         }
         self.table = table;
     }
 
+    /// `|p'(t)|` in the feed's metric at each of `ts`: one axis at a time over all the
+    /// points (a loop the compiler runs on vector registers), the same sums as [`Curve::norm`].
+    fn speeds<const N: usize>(&self, ts: &[f64; N]) -> [f64; N] {
+        let mut sum = [-0.0; N];
+        for &k in self.axes() {
+            let d = self.d1_row(k, ts);
+            let m = self.metric[k];
+            for (s, d) in sum.iter_mut().zip(d) {
+                *s += d * d * m;
+            }
+        }
+        sum.map(f64::sqrt)
+    }
+
+    /// `p_k(t)` of axis `k` at each of `ts` (the expression of [`Curve::eval`]).
+    pub(super) fn eval_row<const N: usize>(&self, k: usize, ts: &[f64; N]) -> [f64; N] {
+        let c: [f64; 6] = std::array::from_fn(|j| self.coef[j][k]);
+        let mut out = [0.0; N];
+        for (o, &t) in out.iter_mut().zip(ts) {
+            *o = c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
+        }
+        out
+    }
+
+    /// `p_k'(t)` of axis `k` at each of `ts` (the expression of [`Curve::d1_into`]).
+    fn d1_row<const N: usize>(&self, k: usize, ts: &[f64; N]) -> [f64; N] {
+        let c = &self.coef;
+        let (c1, c2, c3, c4, c5) = (c[1][k], 2.0 * c[2][k], 3.0 * c[3][k], 4.0 * c[4][k], c[5][k]);
+        let mut out = [0.0; N];
+        for (o, &t) in out.iter_mut().zip(ts) {
+            *o = c1 + t * (c2 + t * (c3 + t * (c4 + t * 5.0 * c5)));
+        }
+        out
+    }
+
+    /// `p_k''(t)` of axis `k` at each of `ts` (the expression of [`Curve::d2_into`]).
+    fn d2_row<const N: usize>(&self, k: usize, ts: &[f64; N]) -> [f64; N] {
+        let c = &self.coef;
+        let (c2, c3, c4, c5) = (2.0 * c[2][k], 6.0 * c[3][k], 12.0 * c[4][k], c[5][k]);
+        let mut out = [0.0; N];
+        for (o, &t) in out.iter_mut().zip(ts) {
+            *o = c2 + t * (c3 + t * (c4 + t * 20.0 * c5));
+        }
+        out
+    }
+
     /// The axes that move along the element.
-    fn axes(&self) -> &[usize] {
+    pub(super) fn axes(&self) -> &[usize] {
         &self.axes[..self.n_axes]
     }
 
@@ -235,14 +288,69 @@ impl Curve {
         // Evenly in the element's parameter over the run (no length-table lookups).
         const N: usize = 24;
         let (t0, t1) = (self.param(0.0), self.param(1.0));
-        // Buffers for every sample (only the moving axes are written and read).
+        let ts: [f64; N + 1] = std::array::from_fn(|i| t0 + (t1 - t0) * (i as f64 / N as f64));
+        // Per sample: |p'|² and p'·p'' in the feed's metric, one axis at a time over all the
+        // samples. The derivatives of the first three axes are kept for their rates below
+        // (no buffer to clear), those of any further axis worked out again.
+        const KEPT: usize = 3;
+        let axes = self.axes();
+        let rows = |k: usize| [self.d1_row(k, &ts), self.d2_row(k, &ts)];
+        let kept: [[[f64; N + 1]; 2]; KEPT] =
+            std::array::from_fn(|j| axes.get(j).map_or([[0.0; N + 1]; 2], |&k| rows(k)));
+        let (mut v2, mut along) = ([-0.0; N + 1], [-0.0; N + 1]);
+        for (j, &k) in axes.iter().enumerate() {
+            let other;
+            let [d1, d2] = match kept.get(j) {
+                Some(row) => row,
+                None => {
+                    other = rows(k);
+                    &other
+                }
+            };
+            let m = self.metric[k];
+            for i in 0..=N {
+                v2[i] += d1[i] * d1[i] * m;
+                along[i] += d1[i] * d2[i] * m;
+            }
+        }
+        // d²p/ds² = (p'' − (p'·p''/|p'|²) p') / |p'|² in the feed's metric.
+        let v2 = v2.map(|x| x.sqrt().powi(2).max(1e-300));
+        let speed = v2.map(f64::sqrt);
+        let along: [f64; N + 1] = std::array::from_fn(|i| along[i] / v2[i]);
+        for (j, &k) in axes.iter().enumerate() {
+            let other;
+            let [d1, d2] = match kept.get(j) {
+                Some(row) => row,
+                None => {
+                    other = rows(k);
+                    &other
+                }
+            };
+            let (mut f, mut s) = (first[k], second[k]);
+            for i in 0..=N {
+                f = f64::max(f, d1[i].abs() / speed[i]);
+                s = f64::max(s, (d2[i] - along[i] * d1[i]).abs() / v2[i]);
+            }
+            (first[k], second[k]) = (f, s);
+        }
+        // A margin for the peaks between the samples of a smooth short element.
+        (first.map(|x| x * 1.03), second.map(|x| x * 1.03))
+    }
+
+    /// The rates as the scalar code before [`Curve::sample_rates`] worked them out: one
+    /// sample at a time (a test compares the two bit for bit).
+    #[cfg(test)]
+    fn sample_rates_one_by_one(&self) -> (AxisVec, AxisVec) {
+        let mut first = [0.0; MAX_CHANNEL_AXES];
+        let mut second = [0.0; MAX_CHANNEL_AXES];
+        const N: usize = 24;
+        let (t0, t1) = (self.param(0.0), self.param(1.0));
         let (mut d1, mut d2) = ([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]);
         for i in 0..=N {
             let t = t0 + (t1 - t0) * (i as f64 / N as f64);
             self.d1_into(t, &mut d1);
             self.d2_into(t, &mut d2);
             let v2 = self.norm(&d1).powi(2).max(1e-300);
-            // d²p/ds² = (p'' − (p'·p''/|p'|²) p') / |p'|² in the feed's metric.
             let along = self.axes().iter().map(|&k| d1[k] * d2[k] * self.metric[k]).sum::<f64>() / v2;
             let speed = v2.sqrt();
             for &k in self.axes() {
@@ -250,8 +358,30 @@ impl Curve {
                 second[k] = f64::max(second[k], (d2[k] - along * d1[k]).abs() / v2);
             }
         }
-        // A margin for the peaks between the samples of a smooth short element.
         (first.map(|x| x * 1.03), second.map(|x| x * 1.03))
+    }
+
+    /// The length table as the scalar code before [`Curve::build_table`] built it: every
+    /// interval's three speeds evaluated on their own.
+    #[cfg(test)]
+    fn table_one_by_one(&self) -> Vec<(f64, f64, f64)> {
+        let mut d = [0.0; MAX_CHANNEL_AXES];
+        let mut speed = |t: f64| {
+            self.d1_into(t, &mut d);
+            self.norm(&d)
+        };
+        let h = 1.0 / TABLE as f64;
+        let mut s = 0.0;
+        let mut table = Vec::new();
+        for i in 0..=TABLE {
+            let t = i as f64 * h;
+            let v = speed(t);
+            table.push((s, t, if v > 0.0 { 1.0 / v } else { 0.0 }));
+            if i < TABLE {
+                s += h / 6.0 * (v + 4.0 * speed(t + 0.5 * h) + speed(t + h));
+            }
+        }
+        table
     }
 }
 
@@ -281,6 +411,44 @@ mod tests {
         let mut p = [0.0; MAX_CHANNEL_AXES];
         c.at(0.3, &mut p);
         assert!((p[0] - 0.9).abs() < 1e-12 && (p[1] - 1.2).abs() < 1e-12, "{:?}", &p[..2]);
+    }
+
+    /// Hermite data of a bent element in three or four axes (the fourth outside the feed's metric),
+    /// from a small deterministic generator: values of either sign and several magnitudes.
+    fn bent(seed: u64) -> Curve {
+        let mut x = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+        };
+        let mut ends = [([0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES], [0.0; MAX_CHANNEL_AXES]); 2];
+        for (p, v, a) in &mut ends {
+            // Odd seeds move a fourth axis (past the three whose derivatives are kept).
+            for k in 0..3 + (seed % 2) as usize {
+                (p[k], v[k], a[k]) = (next() * 10.0, next(), next() * 0.1);
+            }
+        }
+        let mut metric = [0.0; MAX_CHANNEL_AXES];
+        metric[..3].fill(1.0);
+        Curve::hermite(ends, metric)
+    }
+
+    #[test]
+    fn the_batched_table_and_rates_are_the_one_by_one_values_bit_for_bit() {
+        // The length table and the rates are worked out over all points at once; each point's
+        // arithmetic is that of the scalar code (kept in the tests), in the same order, so the
+        // planner sees the same limits and the path the same lengths.
+        let bits = |v: &AxisVec| v.map(f64::to_bits);
+        for seed in 1..200 {
+            let c = bent(seed);
+            assert_eq!(c.table, c.table_one_by_one(), "seed {seed}");
+            for c in [c.clone(), c.slice(0.13, 0.71)] {
+                let ((f, s), (f1, s1)) = (c.rates(), c.sample_rates_one_by_one());
+                assert_eq!((bits(&f), bits(&s)), (bits(&f1), bits(&s1)), "seed {seed}");
+            }
+        }
     }
 
     #[test]
