@@ -57,23 +57,7 @@ URL=""
 for _ in $(seq $((STARTUP_TIMEOUT_S * 10))); do
   URL="$(grep -oE 'listening on http://[^[:space:]"]+' "$LOG" | head -n 1 | sed -E 's/^listening on //')" || true
   [ -n "$URL" ] && break
-  # 5. NC-aware requests: sessions with resized synchronized-action memory and I/O, programs of
-#    the newer language, I/O and machine data changed while they run.
-if ! python3 "$ROOT/scripts/fuzz_nc_requests.py" "$URL" "${FUZZ_NC_ROUNDS:-40}"; then
-  echo "error: NC requests: server log:" >&2
-  tail -n 40 "$LOG" >&2
-  exit 1
-fi
-
-# An engine that panics ends its session and the client sees a 404 ("has ended"), which the
-# checks above accept for a session they did not create: the log says it.
-if grep -q "panicked" "$LOG"; then
-  echo "error: the engine panicked during the campaign:" >&2
-  grep -B2 -A12 "panicked" "$LOG" | head -n 60 >&2
-  exit 1
-fi
-
-if ! kill -0 "$SERVER_PID" 2>/dev/null; then
+  if ! kill -0 "$SERVER_PID" 2>/dev/null; then
     echo "error: the server exited before it was listening" >&2
     cat "$LOG" >&2
     exit 1
