@@ -450,7 +450,8 @@ fn run_watched(case: &Case) -> Result<Option<Outcome>, String> {
     let (tx, rx) = mpsc::channel();
     let owned = case.clone();
     std::thread::Builder::new()
-        .stack_size(32 << 20)
+        // The server runs a session's engine on tokio's blocking threads: 2 MiB of stack.
+        .stack_size(2 << 20)
         .spawn(move || {
             let _ = tx.send(run(&owned));
         })
