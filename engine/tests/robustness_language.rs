@@ -17,9 +17,9 @@ use std::time::Duration;
 use nctwin_engine::Channel;
 use proptest::prelude::*;
 
-/// IPO cycles a case may run: enough for the short moves of the generated programs to end or
-/// fail, small enough that an endless loop costs little in a debug build.
-const TICK_BUDGET: usize = 3_000;
+/// IPO cycles a case may run (4 s of machine time): enough for the short moves of the generated
+/// programs to end or fail, small enough that an endless loop costs little in a debug build.
+const TICK_BUDGET: usize = 1_000;
 
 /// Runs of one case: the first, and one more after each alarm with its line emptied.
 const ATTEMPTS: usize = 6;
@@ -177,6 +177,16 @@ const TEMPLATES: &[&str] = &[
     "STR_B=\"R2=\" << {n}",
     "STR_A=\"SUB1\"",
     "STR_A=\"",
+    // Strings broken only at run time (QT holds the quote character, 34).
+    "STR_A=\"EXECSTRING(\" << QT << \"G1 X5\"",
+    "STR_B=\"G1 X\" << QT",
+    "STR_A=\"G1 X=(1+\"",
+    "STR_B=\"IF R1>0\"",
+    "STR_A=\"ID={id} WHEN\"",
+    "STR_A=STR_A << STR_A << \"X\"",
+    // Loops without motion: each IPO cycle must still return.
+    "LOOP\nEXECSTRING(\"R1=R1+1\")\nENDLOOP",
+    "WHILE R1<{n}\nR1=R1+1\nSTR_B=STR_B << \"Y\"\nENDWHILE",
     // TOFFR, SCC.
     "TOFFR={n}",
     "TOFFR=-{n}",
@@ -301,7 +311,8 @@ fn line() -> impl Strategy<Value = String> {
 /// A program: string variables for EXECSTRING, then generated lines, often ending in M30.
 fn program() -> impl Strategy<Value = String> {
     (prop::collection::vec(line(), 1..14), any::<bool>()).prop_map(|(lines, end)| {
-        let mut text = String::from("DEF STRING[60] STR_A\nDEF STRING[60] STR_B\nN1 G17 G90 G1 F1000\n");
+        let mut text =
+            String::from("DEF STRING[60] STR_A\nDEF STRING[60] STR_B\nDEF CHAR QT=34\nN1 G17 G90 G1 F1000\n");
         text.push_str(&lines.join("\n"));
         if end {
             text.push_str("\nM30");

@@ -1546,8 +1546,7 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
             continue;
         }
         let (s, e) = (path.start[k], path.end[k]);
-        let moves =
-            (e - s).abs() > 1e-12 || path.arc.as_ref().is_some_and(|a| a.moves_axis(k)) || path.curve.is_some();
+        let moves = (e - s).abs() > 1e-12 || path.arc.as_ref().is_some_and(|a| a.moves_axis(k)) || path.curve.is_some();
         if !moves {
             continue;
         }
