@@ -262,8 +262,8 @@ const MACHINE_DATA: &[&str] = &[
     "$MN_FASTIO_DIG_NUM_OUTPUTS={n}",
 ];
 
-/// Presets the cases run on: a mill, a lathe (SCC, G18), a 5-axis table (A and C exist).
-const MACHINES: &[&str] = &["mill-3axis", "lathe-2axis", "mill5-table-ac"];
+/// Presets the cases run on: a mill, lathes (SCC, G18, two spindles), 5-axis table and head.
+const MACHINES: &[&str] = &["mill-3axis", "lathe-2axis", "mill5-table-ac", "lathe-counter-spindle", "mill5-head-ca"];
 
 /// Choices that fill one template: an index into each table, drawn per placeholder in turn.
 type Fill = Vec<(u8, u8, u8)>;
