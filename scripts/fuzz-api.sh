@@ -3,7 +3,9 @@
 # (/api/v1/openapi.json) and fails on any 5xx and on any response that does not match the
 # document (status code, content type, headers, body schema); then
 # scripts/fuzz_deep_expressions.py sends expressions thousands of levels deep or long in every
-# field that takes program text (a few seconds).
+# field that takes program text (a few seconds), and scripts/fuzz_nc_requests.py programs of the
+# newer language with I/O and machine data changed while they run (FUZZ_NC_ROUNDS sessions, 40).
+# A panic in the server's log fails the campaign too.
 #
 #   scripts/fuzz-api.sh              about 100 generated cases per operation, fixed seed
 #   FUZZ_EXAMPLES=500 scripts/fuzz-api.sh
@@ -136,6 +138,22 @@ expect_status 415 "a JSON body sent as text/plain" -X POST -H 'content-type: tex
   -d '{"program":"M30"}' "$URL/api/v1/sessions/$SESSION/run"
 expect_status 200 "the server's own origin" -X POST -H "origin: $URL" "$URL/api/v1/sessions/$SESSION/reset"
 echo "==> cross-site requests refused"
+
+# 5. NC-aware requests: sessions with resized synchronized-action memory and I/O, programs of
+#    the newer language, I/O and machine data changed while they run.
+if ! python3 "$ROOT/scripts/fuzz_nc_requests.py" "$URL" "${FUZZ_NC_ROUNDS:-40}"; then
+  echo "error: NC requests: server log:" >&2
+  tail -n 40 "$LOG" >&2
+  exit 1
+fi
+
+# An engine that panics ends its session and the client sees a 404 ("has ended"), which the
+# checks above accept for a session they did not create: the log says it.
+if grep -q "panicked" "$LOG"; then
+  echo "error: the engine panicked during the campaign:" >&2
+  grep -B2 -A12 "panicked" "$LOG" | head -n 60 >&2
+  exit 1
+fi
 
 if ! kill -0 "$SERVER_PID" 2>/dev/null; then
   echo "error: the server died during the campaign" >&2

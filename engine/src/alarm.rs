@@ -256,6 +256,16 @@ impl Alarm {
         Alarm::new(17020, format!("Channel 1 block {line} illegal array index of {name}: {what}"), Some(line))
     }
 
+    /// 17020 for index `shown` of a list of `size` elements numbered from `first`; a list the
+    /// machine data sized to nothing (MD28254 = 0 ..) says so instead of a range.
+    pub fn index_outside(line: u32, name: &str, shown: impl std::fmt::Display, size: usize, first: usize) -> Alarm {
+        let valid = match size {
+            0 => "none: size 0".to_string(),
+            _ => format!("{first}..{}", first + size - 1),
+        };
+        Alarm::index_error(line, name, &format!("{shown} ({valid})"))
+    }
+
     /// 14080: the jump destination does not exist.
     pub fn jump_not_found(line: u32, target: &str) -> Alarm {
         Alarm::new(14080, format!("Channel 1 block {line} jump destination {target} not found"), Some(line))

@@ -92,6 +92,24 @@ const PASTED: &[&str] = &[
     "SETPIECE(1)",
     "M40",
     "G34 Z-10 K2 F0.1",
+    // The language grown since (session 16): degenerate and broken on purpose.
+    "CIP X20 Y20 I1=10 J1=10",
+    "CIP X0 Y0 I1=0 J1=0",
+    "CT X5 Y5",
+    "ANG=45",
+    "X40 Y10 ANG=45",
+    "EXECSTRING(\"G1 X\")",
+    "EXECSTRING(\"G1 X5 F500)",
+    "EXECSTRING(\"EXECSTRING(\")",
+    "TOFFR=1EX9",
+    "SCC[Q]",
+    "G96 S100 SCC[X]",
+    "IDS=2 EVERY $AC_TIME>0.1 DO $AC_PARAM[1]=$AC_PARAM[1]/0",
+    "ID=3 WHENEVER $AA_IM[Q]>1 DO $AC_MARKER[99999999999]=1",
+    "DO $AC_PARAM[1]=BOUND(1,0,SQRT(-1))",
+    "POLY PO[X]=(0,0,1EX300)",
+    "DRIVE",
+    "G643",
 ];
 
 /// Numbers put in place of a number: zero, huge, tiny, negative, near a full turn.

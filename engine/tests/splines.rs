@@ -209,6 +209,33 @@ fn poly_with_pl_and_a_linear_axis() {
     assert_eq!(&s.last().unwrap()[..2], &[10.0, 10.0]);
 }
 
+/// A POLY block whose end points lie within the software limits can run out between them: with
+/// both ends at X0 PO[X]=(0, 0, c) is x = a1·p + c·p³ with a1 = −c, so x(p) = c·(p³ − p), least
+/// at p = 1/√3: x = −2c/(3√3) = −0.3849·c. Below X−500 (the mill's limit) for c > 1299:
+/// c = 1250 dips to −481.1, c = 1350 to −519.6 (10720 at the block, as for a circle that
+/// leaves the range, instead of running into the limit). Found by `robustness_language.rs`:
+/// c = 1EX300 overflowed, the positions became NaN and the block never ended.
+#[test]
+fn poly_beyond_the_software_limit_between_its_end_points_is_alarm_10720() {
+    let alarm = |c: &str| {
+        let mut ch = Channel::from_preset("mill-3axis", "").unwrap();
+        ch.run_program(&format!("G0 X0 Y0 Z0\nG1 F3000\nPOLY PO[X]=(0, 0, {c}) Y1\nM30")).unwrap();
+        for _ in 0..200_000 {
+            if !ch.is_busy() {
+                break;
+            }
+            ch.step();
+        }
+        assert!(!ch.is_busy(), "PO[X]=(0, 0, {c}) did not end");
+        assert!(ch.axis_positions().iter().all(|p| p.is_finite()), "{:?}", ch.axis_positions());
+        ch.snapshot().alarms.first().map(|a| (a.number, a.line, a.message.ends_with("software limit switch -")))
+    };
+    assert_eq!(alarm("1250"), None);
+    assert_eq!(alarm("1350"), Some((10720, Some(3), true)));
+    // Overflowed: no side to name, but the block is refused all the same.
+    assert_eq!(alarm("1EX300").map(|(n, line, _)| (n, line)), Some((10720, Some(3))));
+}
+
 #[test]
 fn invalid_spline_words_are_alarms() {
     // SD only 2 or 3, PW only 0..3: 12560 (programmed value exceeds allowed limits).

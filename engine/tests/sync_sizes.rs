@@ -171,3 +171,24 @@ fn the_default_159_elements_hold_39_small_actions() {
     ok(md, &actions(64));
     resources_alarm(md, &actions(65), 65);
 }
+
+/// Found by `robustness_language.rs`: with MD28254 = 0 `R3=$AC_PARAM[0]` panicked (the alarm's
+/// text computed the last valid index as 0 − 1). Every list may be sized to nothing: any index
+/// of it is then 17020 at its line (PM Job Planning: the data exist only as far as the machine
+/// data make them), in a program block, in an action's compiled index and in one computed
+/// in the main run.
+#[test]
+fn lists_sized_to_nothing_refuse_every_index() {
+    index_alarm("$MC_MM_NUM_AC_PARAM=0", "R3=$AC_PARAM[0]", 1);
+    index_alarm("$MC_MM_NUM_AC_PARAM=0", "G1 X1 F600\nR3=$AC_PARAM[0]\nM30", 2);
+    index_alarm("$MC_MM_NUM_AC_MARKER=0", "R3=$AC_MARKER[0]\nM30", 1);
+    index_alarm("$MC_MM_NUM_AC_TIMER=0", "R3=$AC_TIMER[0]\nM30", 1);
+    index_alarm("$MN_FASTIO_ANA_NUM_INPUTS=0", "R3=$A_INA[1]\nM30", 1);
+    index_alarm("$MN_FASTIO_ANA_NUM_OUTPUTS=0", "R3=$A_OUTA[1]\nM30", 1);
+    index_alarm("$MC_MM_NUM_AC_PARAM=0", "DO $AC_PARAM[0]=1\nG1 X1 F600\nM30", 1);
+    index_alarm("$MC_MM_NUM_AC_PARAM=0", "WHENEVER $AC_PARAM[$AC_MARKER[0]]>1 DO M99\nG1 X1 F600\nM30", 1);
+    index_alarm("$MC_MM_NUM_AC_MARKER=0", "DO $AC_MARKER[$AC_PARAM[0]]=1\nG1 X1 F600\nM30", 1);
+    index_alarm("$MN_FASTIO_ANA_NUM_OUTPUTS=0", "DO $A_OUTA[$AC_PARAM[0]+1]=1\nG1 X1 F600\nM30", 1);
+    let s = run("$MC_MM_NUM_AC_PARAM=0", "R3=$AC_PARAM[0]").snapshot();
+    assert!(s.alarms[0].message.contains("$AC_PARAM: 0 (none: size 0)"), "{}", s.alarms[0].message);
+}

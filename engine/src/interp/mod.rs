@@ -860,6 +860,8 @@ impl Interpreter {
             let (mut mv, feed) = self.motion(words, cfg, &limits, line)?;
             if self.modal.spline.kind == Some(path_control::spline::Kind::Poly) {
                 self.poly_move(&mut mv, words, cfg, &limits);
+                // The polynomial may leave the range its end points keep to (or overflow).
+                check_software_limits(cfg, &mv.path, line)?;
             }
             self.spindle_motion(&mut mv, words, cfg, &limits, line, out)?;
             self.request_point_to_point(mv.tag, mv.is_rapid(), words.stat, words.tu)?;
@@ -1547,12 +1549,17 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
             continue;
         }
         let (s, e) = (path.start[k], path.end[k]);
-        let moves = (e - s).abs() > 1e-12 || path.arc.as_ref().is_some_and(|a| a.moves_axis(k));
+        let moves = (e - s).abs() > 1e-12 || path.arc.as_ref().is_some_and(|a| a.moves_axis(k)) || path.curve.is_some();
         if !moves {
             continue;
         }
         let (lo, hi) = match &path.arc {
-            None => (s.min(e), s.max(e)),
+            None if path.curve.is_none() => (s.min(e), s.max(e)),
+            None => {
+                // A curve (POLY) may run out between its end points: its sampled extent.
+                let (lo, hi) = exact.get_or_insert_with(|| path.extent());
+                (lo[k], hi[k])
+            }
             Some(a) => {
                 // Every point of the arc lies within |e − s| + 4·r·ρ of its start (ρ: the
                 // circle's share in this axis): the linear part is at most |e − s| plus a
@@ -1566,10 +1573,11 @@ fn check_software_limits(cfg: &MachineConfig, path: &Path, line: u32) -> Result<
                 (lo[k], hi[k])
             }
         };
-        if hi > ax.limit_plus + 1e-9 {
+        // Written to be true for a NaN extent too (a curve whose coefficients overflow).
+        if hi.is_nan() || hi > ax.limit_plus + 1e-9 {
             return Err(Alarm::software_limit(line, &ax.name, true));
         }
-        if lo < ax.limit_minus - 1e-9 {
+        if lo.is_nan() || lo < ax.limit_minus - 1e-9 {
             return Err(Alarm::software_limit(line, &ax.name, false));
         }
     }

@@ -100,7 +100,7 @@ fn index(name: &str, indices: &[Value], len: usize, first: usize, line: u32) -> 
         .ok()
         .filter(|n| (first..first + len).contains(n))
         .map(|n| n - first)
-        .ok_or_else(|| Alarm::index_error(line, name, &format!("{n} ({first}..{})", first + len - 1)))
+        .ok_or_else(|| Alarm::index_outside(line, name, n, len, first))
 }
 
 /// The commands on synchronized actions by ID.

@@ -189,12 +189,15 @@ impl Path {
         }
         if self.curve.is_some() {
             // A short rounding element: its extent sampled finely enough for limit checks.
+            // A curve that overflowed (POLY coefficients near f64::MAX) has NaN points: its
+            // extent is NaN then, which no limit check passes.
             let mut p = [0.0; MAX_CHANNEL_AXES];
             for i in 1..64 {
                 self.at(f64::from(i) / 64.0, &mut p);
                 for k in 0..MAX_CHANNEL_AXES {
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
+                    let nan = p[k].is_nan() || lo[k].is_nan();
+                    lo[k] = if nan { f64::NAN } else { lo[k].min(p[k]) };
+                    hi[k] = if nan { f64::NAN } else { hi[k].max(p[k]) };
                 }
             }
             return (lo, hi);

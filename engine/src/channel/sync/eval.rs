@@ -109,7 +109,7 @@ fn element(array: Array, v: f64, z: &SyncSizes, line: u32) -> Result<Slot, Fault
     array.slot(v, z).ok_or_else(|| {
         let (name, shape) = array.shape(z);
         let (size, first) = shape.unwrap_or((0, 0));
-        Box::new(Alarm::index_error(line, name, &format!("{v} ({first}..{})", size + first - 1)))
+        Box::new(Alarm::index_outside(line, name, v, size, first))
     })
 }
 
@@ -119,7 +119,7 @@ fn index(v: f64, name: &str, size: usize, first: usize, line: u32) -> Result<usi
     if v.is_finite() && n >= first as f64 && n < (size + first) as f64 {
         Ok(n as usize - first)
     } else {
-        Err(Box::new(Alarm::index_error(line, name, &format!("{v} ({first}..{})", size + first - 1))))
+        Err(Box::new(Alarm::index_outside(line, name, v, size, first)))
     }
 }
 
