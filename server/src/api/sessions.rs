@@ -176,10 +176,13 @@ pub async fn delete_session(State(state): State<AppState>, Path(id): Path<String
     params(("id" = String, Path, description = "Session id")),
     responses(
         (status = 200, description = "The state", body = dto::State),
-        (status = 404, description = "No such session", body = ErrorBody),
+        (status = 404, description = "No such session, or its engine has ended (the last state would be stale)", body = ErrorBody),
     )
 )]
 pub async fn get_state(State(state): State<AppState>, Path(id): Path<String>) -> Result<Json<dto::State>, ApiError> {
     let session = find_session(&state, &id)?;
+    if session.has_ended() {
+        return Err(ApiError::SessionEnded(id));
+    }
     Ok(Json(dto::State::from(session.snapshot().as_ref())))
 }

@@ -345,6 +345,12 @@ impl SessionHandle {
         &self.stock_feed
     }
 
+    /// Whether the actor has ended (deleted, or its engine failed): its last published state
+    /// no longer changes.
+    pub fn has_ended(&self) -> bool {
+        self.state.has_changed().is_err()
+    }
+
     /// The latest published state; never waits for the actor.
     pub fn snapshot(&self) -> Arc<Snapshot> {
         self.state.borrow().clone()
@@ -520,5 +526,19 @@ mod tests {
         session.shutdown().await;
         assert_eq!(session.command(Action::Reset, None).await.unwrap_err(), SessionError::Ended);
         assert!(states.changed().await.is_err(), "the state channel is closed");
+    }
+
+    #[tokio::test(start_paused = true)]
+    async fn a_session_whose_engine_failed_reports_that_it_has_ended() {
+        // An engine panic ends the actor; its last published state no longer changes, and the
+        // state endpoint answers 404 instead of that stale picture (found by the fuzzers).
+        let session = mill();
+        assert!(!session.has_ended());
+        let failed = session.with_channel(|_| -> u32 { panic!("an engine defect") }).await;
+        assert_eq!(failed.unwrap_err(), SessionError::Ended);
+        assert!(session.has_ended());
+        let session = mill();
+        session.shutdown().await;
+        assert!(session.has_ended(), "a deleted session too");
     }
 }
