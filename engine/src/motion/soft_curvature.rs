@@ -25,8 +25,9 @@
 //! the axis jerk out as for an arc (cruise `w³·|d³p_k/ds³| ≤ J_k/2`, path jerk
 //! `j·|dp_k/ds| + w³·|d³p_k/ds³| ≤ 0.8·J_k`, acceleration `3·w·a·|d²p_k/ds²| ≤ 0.6·J_k`). The
 //! element does not know the axes' jerk `J_k`; the two moves it joins do: each one's path jerk
-//! `j` is at most `J_k / |dp_k/ds|` for every axis along it, so `j·|dp_k/ds|` at the element's
-//! ends is a lower bound of `J_k`, and the larger of the two bounds is what the element keeps.
+//! `j` is at most `J_k / |dp_k/ds|` for the largest rate of every axis along it, so `j` times
+//! that rate is a lower bound of `J_k`, and the larger of the two bounds is what the element
+//! keeps.
 
 use super::{AxisVec, Move};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
@@ -69,14 +70,16 @@ fn limit_element_jerk(corner: &mut Move, a: &Move, b: &Move) {
     if curve.length() <= 0.0 {
         return;
     }
-    // Lower bounds of the axes' jerk from the moves along the element's ends (unit tangents).
-    let (ta, tb) = (a.path.tangent(1.0), b.path.tangent(0.0));
-    let budget: AxisVec =
-        std::array::from_fn(|k| f64::max(a.jerk * (ta[k] / a.length).abs(), b.jerk * (tb[k] / b.length).abs()));
+    // Lower bounds of the axes' jerk from the two moves: each one's path jerk is at most
+    // `J_k` over its largest rate of axis k per unit length (`interp/dynamics.rs`).
+    let (ra, rb) = (a.path.max_rate_of_first(MAX_CHANNEL_AXES), b.path.max_rate_of_first(MAX_CHANNEL_AXES));
+    let budget: AxisVec = std::array::from_fn(|k| f64::max(a.jerk * ra[k] / a.length, b.jerk * rb[k] / b.length));
     let (p1, p2) = curve.rates();
     let p3 = third_rates(curve);
     let mut v = corner.v_axes;
-    for k in 0..MAX_CHANNEL_AXES {
+    // An axis neither move moves stays where it is along the element (its rates are rounding).
+    let moved = |k: usize| budget[k] > 0.0;
+    for k in (0..MAX_CHANNEL_AXES).filter(|&k| moved(k)) {
         if p3[k] > 1e-12 {
             v = v.min((0.5 * budget[k] / p3[k]).cbrt());
         }
@@ -85,7 +88,7 @@ fn limit_element_jerk(corner: &mut Move, a: &Move, b: &Move) {
     corner.v_axes = v;
     let mut jerk = a.jerk.min(b.jerk);
     let mut accel = corner.a_max;
-    for k in 0..MAX_CHANNEL_AXES {
+    for k in (0..MAX_CHANNEL_AXES).filter(|&k| moved(k)) {
         let turning = if v.is_finite() { v * v * v * p3[k] } else { 0.0 };
         if p1[k] > 1e-12 {
             jerk = jerk.min(((0.8 * budget[k] - turning) / p1[k]).max(0.0));
