@@ -279,9 +279,10 @@ pub struct Planner {
     v: f64,
     /// Path acceleration of the last cycle: the state of SOFT's jerk-limited profile.
     acc: f64,
-    /// SOFT crossed a corner (the axis rates jump) in the last cycle: the next keeps the path
-    /// acceleration from rising ([`Planner::soft_velocity`]).
-    kinked: bool,
+    /// SOFT crossed a corner (the axis rates jump) in the last cycle, or entered or left a
+    /// rounding curve: this many next cycles keep the path acceleration from rising
+    /// ([`Planner::soft_velocity`]).
+    kinked: u8,
     /// Feed hold: brake to standstill on the path.
     hold: bool,
     /// The cycle at rest after a stop: the cycle that lands on a move's end point still moved
@@ -321,7 +322,7 @@ impl Planner {
             s: 0.0,
             v: 0.0,
             acc: 0.0,
-            kinked: false,
+            kinked: 0,
             hold: false,
             rest: Rest::None,
             feed_override: 1.0,
@@ -474,7 +475,7 @@ impl Planner {
         self.s = 0.0;
         self.v = 0.0;
         self.acc = 0.0;
-        self.kinked = false;
+        self.kinked = 0;
         self.hold = false;
         self.rest = Rest::None;
         self.flush_at_standstill = false;
@@ -700,7 +701,14 @@ impl Planner {
         self.finished.push(done.tag);
         self.s = 0.0;
         if done.jerk.is_finite() && !stop_here {
-            self.kinked = self.queue.front().is_some_and(|next| next.jerk.is_finite() && is_kink(&done, next));
+            // Entering or leaving a free-form element (a rounding curve) from or for a line or an
+            // arc, the axes' turning acceleration it starts or ends lies in the crossing cycle
+            // and the next one: two cycles without a rise.
+            self.kinked = match self.queue.front() {
+                Some(next) if next.jerk.is_finite() && is_kink(&done, next) => 1,
+                Some(next) if next.jerk.is_finite() && done.path.curve.is_some() != next.path.curve.is_some() => 2,
+                _ => 0,
+            };
         }
         if stop_here || self.queue.is_empty() {
             self.v = 0.0;

@@ -83,7 +83,12 @@ impl Planner {
         // Right after a corner the axes' acceleration pulse of the velocity jump (its jerk
         // planned up to the axis jerk, `corner_jerk`) is still in the third difference: the
         // path acceleration does not rise in this cycle, so the two do not add up.
-        let hi = if std::mem::take(&mut self.kinked) { hi.min(self.acc.max(lo)) } else { hi };
+        let hi = if self.kinked > 0 {
+            self.kinked -= 1;
+            hi.min(self.acc.max(lo))
+        } else {
+            hi
+        };
         // No transition farther than the longest stop any candidate needs (with the smallest
         // acceleration and jerk queued) can bind: the checks look no farther.
         let (a_min, j_min) = (self.a_min, self.j_min);
