@@ -248,7 +248,16 @@ impl Scope for Ctx<'_> {
                 let k = axis()?;
                 Value::Real(main_run_basic()[k] - sys.offsets.tool[k])
             }
-            "$AA_IW" => Value::Real(actual_wcs(axis()?)),
+            // A modulo rotary axis reads within its modulo range in the WCS too, as the
+            // display shows it (the way to 0 from 300 the short way ends at 360 ≡ 0).
+            "$AA_IW" => {
+                let k = axis()?;
+                let v = actual_wcs(k);
+                Value::Real(match sys.cfg.axis(k).modulo {
+                    Some((start, range)) => start + (v - start).rem_euclid(range),
+                    None => v,
+                })
+            }
             // The axis' velocity in the main run: 0 at rest, which the wait for the main run
             // gives but for command and positioning axes and STOPREOF.
             "$AA_VACTM" => Value::Real(sys.sync.velocity[machine_axis()?]),
