@@ -31,7 +31,10 @@ const TOLERANCE: f64 = 1e-9;
 const MAX_TICKS: usize = 5_000_000;
 
 fn run_fixture(path: &Path) -> Result<(), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    // Files stored as on a Windows PC may hold comments in an 8-bit code page: they are read
+    // as the engine gets them from a reader that does not know the code page.
+    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    let text = String::from_utf8_lossy(&bytes).into_owned();
     let expectations: Vec<&str> = text.lines().filter_map(|l| l.trim().strip_prefix("; expect ")).collect();
     if expectations.is_empty() {
         return Err("no expectations".into());

@@ -22,6 +22,8 @@ use super::eval::value::Value;
 use super::eval::vars::Variable;
 use super::flow::Flow;
 use super::modal::assign;
+use super::spindles::FeedType;
+use super::spindles::diameter::Diameter;
 use crate::alarm::Alarm;
 use crate::lang::{Expr, Lvalue, Param, ProcAttributes, ProgramText};
 use crate::machine_data::MachineConfig;
@@ -98,9 +100,10 @@ pub(super) struct CallFrame {
     repeats_left: u32,
     /// Parameters are bound (the PROC line has been passed).
     bound: bool,
-    /// The caller's modal state, programmable and settable frame at the call; restored at each
-    /// return when the PROC line says SAVE.
-    saved: Box<(super::Modal, super::Frame, Option<super::Frame>)>,
+    /// The caller's modal state, programmable and settable frame, diameter programming (group
+    /// 29) and feed type (group 15) at the call; restored at each return when the PROC line
+    /// says SAVE.
+    saved: Box<(super::Modal, super::Frame, Option<super::Frame>, Diameter, FeedType)>,
     /// The PROC line's SAVE, DISPLOF and ACTBLOCNO.
     attributes: ProcAttributes,
     /// The display and single block suppression in force at this level (`suppression.rs`).
@@ -170,7 +173,13 @@ impl Interpreter {
             by_reference: Vec::new(),
             repeats_left: repeat.max(1) - 1,
             bound: false,
-            saved: Box::new((self.modal.clone(), (*self.pframe).clone(), (*self.iframe).clone())),
+            saved: Box::new((
+                self.modal.clone(),
+                (*self.pframe).clone(),
+                (*self.iframe).clone(),
+                self.spindles.diameter,
+                self.spindles.feed_type,
+            )),
             attributes: ProcAttributes::default(),
             commands: suppression::LevelCommands::default(),
         });
@@ -277,11 +286,21 @@ impl Interpreter {
         if frame.attributes.save {
             // PROC ... SAVE: the G functions and frames of the caller come back (the feed the
             // subprogram programmed stays, as F is no G function).
-            let (modal, pframe, iframe) = (*frame.saved).clone();
+            let (modal, pframe, iframe, diameter, feed_type) = (*frame.saved).clone();
             let feed = self.modal.feed;
+            let (per_rev, type_index) = (self.modal.feed_per_rev, self.modal.feed_type_index);
             self.modal = super::Modal { feed, ..modal };
             *self.pframe = pframe;
             *self.iframe = iframe;
+            self.spindles.diameter = diameter;
+            if feed_type.css() == self.spindles.feed_type.css() {
+                self.spindles.feed_type = feed_type;
+            } else {
+                // Constant cutting speed switched on or off in the subprogram stays (not
+                // modelled: giving it back would need a spindle command at the return).
+                self.modal.feed_per_rev = per_rev;
+                self.modal.feed_type_index = type_index;
+            }
         }
         let frame = self.calls.last_mut().expect("checked above");
         if frame.repeats_left > 0 {

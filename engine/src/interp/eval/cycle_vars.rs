@@ -43,3 +43,18 @@ pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line
         _ => unreachable!("matched above"),
     }))
 }
+
+/// `$P_TOOLL[n]`: total length n (1..3) of the active cutting edge: geometry ($TC_DP3..5) +
+/// wear ($TC_DP12..14) + adapter ($TC_DP21..23), as the length offset takes it; 0 with D0.
+pub(in crate::interp) fn tool_length(sys: &SysView, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    let n = match indices {
+        [n] => n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
+        _ => return Err(Alarm::index_error(line, "$P_TOOLL", "needs one index (length 1..3)")),
+    };
+    if !(1..=3).contains(&n) {
+        return Err(Alarm::index_error(line, "$P_TOOLL", &format!("length {n} is not 1..3")));
+    }
+    let i = n as usize - 1;
+    let edge = sys.cfg.edge(sys.offsets.t, sys.offsets.d);
+    Ok(Value::Real(edge.map_or(0.0, |e| e[2 + i] + e[11 + i] + e[20 + i])))
+}

@@ -193,6 +193,8 @@ impl Scope for Ctx<'_> {
             "$P_TOOL" => Value::Int(sys.offsets.d.into()),
             "$P_TOOLP" => Value::Int(sys.offsets.prepared.into()),
             "GETT" => crate::interp::tools::management::gett(sys.cfg, indices, line)?,
+            "$P_TOOLL" => super::cycle_vars::tool_length(sys, indices, line)?,
+            "$P_TOOLEXIST" => crate::interp::tools::management::tool_exists(sys.cfg, indices, line)?,
             "CHKDNO" => crate::interp::tools::dnumbers::chkdno(sys.cfg, indices, line)?,
             _ if crate::machine_data::tools_mgmt::ToolMgmtData::handles(name) => {
                 crate::interp::tools::management::read(sys.cfg, name, indices, line)?
@@ -248,7 +250,16 @@ impl Scope for Ctx<'_> {
                 let k = axis()?;
                 Value::Real(main_run_basic()[k] - sys.offsets.tool[k])
             }
-            "$AA_IW" => Value::Real(actual_wcs(axis()?)),
+            // A modulo rotary axis reads within its modulo range in the WCS too, as the
+            // display shows it (the way to 0 from 300 the short way ends at 360 ≡ 0).
+            "$AA_IW" => {
+                let k = axis()?;
+                let v = actual_wcs(k);
+                Value::Real(match sys.cfg.axis(k).modulo {
+                    Some((start, range)) => start + (v - start).rem_euclid(range),
+                    None => v,
+                })
+            }
             // The axis' velocity in the main run: 0 at rest, which the wait for the main run
             // gives but for command and positioning axes and STOPREOF.
             "$AA_VACTM" => Value::Real(sys.sync.velocity[machine_axis()?]),

@@ -170,7 +170,8 @@ pub(in crate::interp) fn word(
     if !value.is_finite() || kind == Kind::Fa && (value <= 0.0 || mode.is_some()) {
         return Err(Alarm::value_out_of_range(line, &label()));
     }
-    if sys.cfg.axis(axis).spindle.is_some() {
+    // A spindle is a positioning axis only in position control (after SPOS, M19 or M70).
+    if sys.cfg.axis(axis).spindle.is_some() && !sys.positioned[axis] {
         return Err(Alarm::wrong_axis_type(line, sys.cfg.program_axis_name(axis)));
     }
     // One positioning word per axis and kind in a block.
@@ -235,7 +236,7 @@ pub(in crate::interp) fn waitp(args: &[Expr], vars: &Variables, sys: &SysView, l
             Expr::Str(s) => sys.cfg.program_axis(s).ok_or_else(|| Alarm::unknown_name(line, s))?,
             e => indirect_axis::resolve(e, vars, sys, line)?,
         };
-        if sys.cfg.axis(k).spindle.is_some() {
+        if sys.cfg.axis(k).spindle.is_some() && !sys.positioned[k] {
             return Err(Alarm::wrong_axis_type(line, sys.cfg.program_axis_name(k)));
         }
         mask |= 1 << k;

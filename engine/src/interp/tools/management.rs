@@ -85,6 +85,16 @@ pub(in crate::interp) fn gett(cfg: &MachineConfig, args: &[Value], line: u32) ->
     Ok(Value::Int(resolve(&named, cfg, line).map_or(-1, i64::from)))
 }
 
+/// `$P_TOOLEXIST[t]`: whether tool `t` exists (has tool data or cutting edges), as programs
+/// check before they select a tool that a presetter may not have loaded.
+pub(in crate::interp) fn tool_exists(cfg: &MachineConfig, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    let t = match indices {
+        [t] => t.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
+        _ => return Err(Alarm::index_error(line, "$P_TOOLEXIST", "needs one index (the T number)")),
+    };
+    Ok(Value::Bool(u32::try_from(t).is_ok_and(|t| t != 0 && exists(cfg, t))))
+}
+
 /// A program's read of tool-management data (`$TC_TP2[t]`, `$TC_MPP6[m,p]`, ...).
 pub(in crate::interp) fn read(cfg: &MachineConfig, name: &str, indices: &[Value], line: u32) -> Result<Value, Alarm> {
     let mut idx = [0u32; 2];
