@@ -8,10 +8,15 @@
 //! definition, not an executable block, so DEFs may follow it), every later whole-word use
 //! outside strings and comments gets the replacement, and the lines keep their numbers.
 //! Decisions where the manual is silent or was not at hand:
+//! - Macros are defined in the definition part, with the DEFs (before the first executable
+//!   block; comments, archive headers, PROC and EXTERN may stand between them). A `DEFINE`
+//!   after it is no definition: the block runs into alarm 12550 naming DEFINE. So only the
+//!   head of a text is looked at, and a long program file is not read through for it (the
+//!   command line gives the pages of a mapped file back as the run passes them).
 //! - A macro holds for the rest of the program text it is defined in (a subprogram's macros are
 //!   its own); the global macro files of the control (`_N_SMAC_DEF` ...) are not read.
 //! - A replacement is not searched for macros again (the manual: macros do not nest).
-//! - A second definition of a name replaces the first from its line on.
+//! - A second definition of a name replaces the first.
 //! - A malformed definition (no name, no `AS`, a name that is not an identifier or an M/H/G/L
 //!   word) is left as it is, so the parser refuses it at its line as a syntax error.
 //! - Names are matched without regard to case, as all names of the language.
@@ -20,42 +25,41 @@ use std::borrow::Cow;
 
 use super::ast::Diagnostic;
 
-/// The text with its macros replaced, or the text itself when it defines none (a vectorised
-/// search for the letter D, so programs without macros cost next to nothing more).
+/// The text with its macros replaced, or the text itself when its definition part defines
+/// none.
 pub fn expand(text: &str) -> Cow<'_, str> {
-    if !may_define(text) {
+    if !definition_part(text).any(starts_with_define) {
         return Cow::Borrowed(text);
     }
     let mut macros: Vec<(String, String)> = Vec::new();
     let mut defined = false;
+    let mut in_head = true;
     let mut out = String::with_capacity(text.len() + text.len() / 8);
     for line in text.split_inclusive('\n') {
         let (body, end) = split_line_end(line);
-        if let Some((name, replacement)) = definition(body) {
-            macros.retain(|(n, _)| !n.eq_ignore_ascii_case(&name));
-            macros.push((name, replacement));
-            defined = true;
-            out.push(';');
-            out.push_str(body);
-        } else if macros.is_empty() {
-            out.push_str(body);
-        } else {
-            replace_words(body, &macros, &mut out);
+        in_head = in_head && in_definition_part(body);
+        match in_head.then(|| definition(body)).flatten() {
+            Some((name, replacement)) => {
+                macros.retain(|(n, _)| !n.eq_ignore_ascii_case(&name));
+                macros.push((name, replacement));
+                defined = true;
+                out.push(';');
+                out.push_str(body);
+            }
+            None if macros.is_empty() => out.push_str(body),
+            None => replace_words(body, &macros, &mut out),
         }
         out.push_str(end);
     }
     if defined { Cow::Owned(out) } else { Cow::Borrowed(text) }
 }
 
-/// Syntax errors (12080) for the lines of an expanded text that still start with `DEFINE`: the
-/// definitions [`expand`] could not read.
+/// Syntax errors (12080) for the lines of an expanded text's definition part that still start
+/// with `DEFINE`: the definitions [`expand`] could not read.
 pub fn malformed(expanded: &str) -> Vec<Diagnostic> {
     let mut out = Vec::new();
-    if !may_define(expanded) {
-        return out;
-    }
     let mut offset = 0;
-    for (i, line) in expanded.split('\n').enumerate() {
+    for (i, line) in definition_part(expanded).enumerate() {
         if starts_with_define(line) {
             let message =
                 "macro definition needs `DEFINE <name> AS <text>`, the name an identifier or an M, H, G or L word";
@@ -65,6 +69,25 @@ pub fn malformed(expanded: &str) -> Vec<Diagnostic> {
         offset += line.len() + 1;
     }
     out
+}
+
+/// The lines of the text's definition part (see the module doc), from its start.
+fn definition_part(text: &str) -> impl Iterator<Item = &str> {
+    text.split('\n').take_while(|line| in_definition_part(line))
+}
+
+/// Whether `line` may stand in the definition part: blank, a comment, an archive header, or a
+/// DEF, DEFINE, PROC or EXTERN statement (a block number may stand before it).
+fn in_definition_part(line: &str) -> bool {
+    let code = line.split(';').next().unwrap_or("").trim();
+    if code.is_empty() || code.starts_with('%') {
+        return true;
+    }
+    let code = strip_block_number(code);
+    ["DEF", "PROC", "EXTERN"].iter().any(|k| {
+        code.get(..k.len()).is_some_and(|w| w.eq_ignore_ascii_case(k))
+            && code[k.len()..].chars().next().is_none_or(|c| c == ' ' || c == '\t' || c.eq_ignore_ascii_case(&'I'))
+    })
 }
 
 /// `DEFINE <name> AS <replacement>` (a block number may stand before it): the name in upper
@@ -150,13 +173,6 @@ fn split_line_end(line: &str) -> (&str, &str) {
     (body, &line[body.len()..])
 }
 
-/// False only if no line of `text` can start with `DEFINE`: no `D`/`d` followed by `EFINE` at
-/// all (most programs have few D words, so the check looks at a handful of places).
-fn may_define(text: &str) -> bool {
-    let b = text.as_bytes();
-    memchr::memchr2_iter(b'D', b'd', b).any(|i| b.get(i + 1..i + 6).is_some_and(|w| w.eq_ignore_ascii_case(b"EFINE")))
-}
-
 /// Whether the line's code (after blanks and a block number) starts with `DEFINE`.
 fn starts_with_define(line: &str) -> bool {
     let code = strip_block_number(line.trim_start());
@@ -183,9 +199,16 @@ mod tests {
     }
 
     #[test]
-    fn address_words_strings_and_uses_before_the_definition_are_kept() {
-        let text = "M6\nDEFINE M6 AS L6\nT1 M6\nM66 MSG(\"M6\")\nDEFINE X1 AS Y1\nX1\n";
-        assert_eq!(expand(text), "M6\n;DEFINE M6 AS L6\nT1 L6\nM66 MSG(\"M6\")\nDEFINE X1 AS Y1\nX1\n");
+    fn address_words_and_strings_are_kept_and_only_m_h_g_l_words_are_macro_names() {
+        let text = "; header\nDEFINE M6 AS L6\nDEFINE X1 AS Y1\nT1 M6\nM66 MSG(\"M6\")\nX1\n";
+        assert_eq!(expand(text), "; header\n;DEFINE M6 AS L6\nDEFINE X1 AS Y1\nT1 L6\nM66 MSG(\"M6\")\nX1\n");
+    }
+
+    #[test]
+    fn a_define_after_the_first_executable_block_is_no_definition() {
+        let text = "DEF INT AA\nG0 X1\nDEFINE SPON AS M3\nSPON\n";
+        assert!(matches!(expand(text), std::borrow::Cow::Borrowed(_)));
+        assert!(crate::lang::check(text).is_empty(), "left to the run: 12550 naming DEFINE at line 3");
     }
 
     #[test]
@@ -198,14 +221,14 @@ mod tests {
 
     #[test]
     fn malformed_definitions_are_syntax_errors_at_their_line() {
-        let errors = crate::lang::check("G0 X1\nDEFINE CLAMP M10\nDEFINE OK AS M3\nOK\nM30\n");
+        let errors = crate::lang::check("; header\nDEFINE CLAMP M10\nDEFINE OK AS M3\nOK\nM30\n");
         assert_eq!(errors.iter().map(|d| (d.alarm, d.line)).collect::<Vec<_>>(), [(12080, 2)], "{errors:?}");
         assert!(errors[0].message.contains("DEFINE <name> AS <text>"));
     }
 
     #[test]
-    fn a_redefinition_holds_from_its_line_on_and_line_ends_are_kept() {
-        let text = "DEFINE SPON AS M3\r\nSPON\r\nDEFINE SPON AS M4\r\nSPON";
-        assert_eq!(expand(text), ";DEFINE SPON AS M3\r\nM3\r\n;DEFINE SPON AS M4\r\nM4");
+    fn a_redefinition_replaces_the_first_and_line_ends_are_kept() {
+        let text = "DEFINE SPON AS M3\r\nDEFINE SPON AS M4\r\nSPON\r\nSPON";
+        assert_eq!(expand(text), ";DEFINE SPON AS M3\r\n;DEFINE SPON AS M4\r\nM4\r\nM4");
     }
 }
