@@ -31,6 +31,9 @@ pub(super) struct Swing {
     toward: u8,
     /// Seconds of the stop time left at the reversal point it stands on.
     pub dwell: f64,
+    /// `OS=0` came while it stood at a reversal point: that point is where it stops, and its
+    /// stop time there is the one already running.
+    stood: bool,
 }
 
 impl Swing {
@@ -39,7 +42,7 @@ impl Swing {
     pub fn new(osc: Oscillation) -> Swing {
         let from_start = osc.start.is_some() && osc.control & ctrl::FROM_START != 0;
         let (phase, toward) = if from_start { (Phase::ToStart, 0) } else { (Phase::Running, 1) };
-        Swing { osc, phase, toward, dwell: 0.0 }
+        Swing { osc, phase, toward, dwell: 0.0, stood: false }
     }
 
     fn point(&self, n: u8) -> f64 {
@@ -55,7 +58,7 @@ impl Swing {
     /// The axis has landed on its target: the next target (after the stop time at a
     /// reversal point), or `None` when the oscillation is over.
     pub fn arrived(&mut self) -> Option<f64> {
-        if self.toward != 0 {
+        if self.toward != 0 && !std::mem::take(&mut self.stood) {
             self.dwell = if self.toward == 1 { self.osc.dwell1 } else { self.osc.dwell2 };
         }
         match self.phase {
@@ -105,6 +108,13 @@ impl Swing {
         }
     }
 
+    /// `OS=0` came while it stands on a reversal point (its stop time running): that point is
+    /// the next one, where it stops; landing there again adds no stop time.
+    fn stop_where_standing(&mut self) {
+        self.toward = if self.toward == 1 { 2 } else { 1 };
+        self.stood = true;
+    }
+
     /// `OS=0` reached the main run. Returns true if the axis is to brake where it is (OSCTRL 3
     /// without spark-out strokes); it then leaves from where it stops.
     fn end(&mut self) -> bool {
@@ -148,8 +158,7 @@ impl Channel {
         if swing.end() {
             self.stop_positioning(k);
         } else if dwelling {
-            // It stands on a reversal point: that is the next one, where it stops.
-            swing.toward = if swing.toward == 1 { 2 } else { 1 };
+            swing.stop_where_standing();
             t.target = t.position;
         }
     }
@@ -213,6 +222,21 @@ mod tests {
         assert_eq!(course(&mut Swing::new(osc(256, 1, None)), 2), [60.0, 10.0, 60.0, 10.0]);
         // An end position without bit 4 is not approached.
         assert_eq!(course(&mut Swing::new(osc(0, 0, Some(70.0))), 2), [60.0, 10.0]);
+    }
+
+    #[test]
+    fn ended_while_standing_at_a_point_it_stops_there_without_a_second_stop_time() {
+        // Landed on 2 (OST2 0.5 s running, on to 1 next); OS=0 now: it stops at 2, where it
+        // stands, and that landing adds no stop time of its own.
+        let mut s = Swing::new(osc(0, 0, None));
+        assert_eq!(s.arrived(), Some(60.0));
+        assert_eq!(s.arrived(), Some(10.0));
+        assert_eq!(s.dwell, 0.5);
+        s.end();
+        s.stop_where_standing();
+        s.dwell = 0.0; // the running stop time over
+        assert_eq!(s.arrived(), None, "stops at 2");
+        assert_eq!(s.dwell, 0.0);
     }
 
     #[test]
