@@ -58,48 +58,44 @@ impl Move {
     /// `b` gets a cruise speed, acceleration and path jerk that keep every axis within its
     /// jerk (see the module doc). Nothing for BRISK or a move without a curve.
     pub fn limit_element_jerk(&mut self, a: &Move, b: &Move) {
-        limit_element_jerk(self, a, b);
-    }
-}
-
-fn limit_element_jerk(corner: &mut Move, a: &Move, b: &Move) {
-    if !(a.jerk.is_finite() && b.jerk.is_finite()) {
-        return;
-    }
-    let Some(curve) = corner.path.curve.as_deref() else { return };
-    if curve.length() <= 0.0 {
-        return;
-    }
-    // Lower bounds of the axes' jerk from the two moves: each one's path jerk is at most
-    // `J_k` over its largest rate of axis k per unit length (`interp/dynamics.rs`).
-    let (ra, rb) = (a.path.max_rate_of_first(MAX_CHANNEL_AXES), b.path.max_rate_of_first(MAX_CHANNEL_AXES));
-    let budget: AxisVec = std::array::from_fn(|k| f64::max(a.jerk * ra[k] / a.length, b.jerk * rb[k] / b.length));
-    let (p1, p2) = curve.rates();
-    let p3 = third_rates(curve);
-    let mut v = corner.v_axes;
-    // An axis neither move moves stays where it is along the element (its rates are rounding).
-    let moved = |k: usize| budget[k] > 0.0;
-    for k in (0..MAX_CHANNEL_AXES).filter(|&k| moved(k)) {
-        if p3[k] > 1e-12 {
-            v = v.min((0.5 * budget[k] / p3[k]).cbrt());
+        if !(a.jerk.is_finite() && b.jerk.is_finite()) {
+            return;
         }
-    }
-    corner.v_max = corner.v_max.min(v);
-    corner.v_axes = v;
-    let mut jerk = a.jerk.min(b.jerk);
-    let mut accel = corner.a_max;
-    for k in (0..MAX_CHANNEL_AXES).filter(|&k| moved(k)) {
-        let turning = if v.is_finite() { v * v * v * p3[k] } else { 0.0 };
-        if p1[k] > 1e-12 {
-            jerk = jerk.min(((0.8 * budget[k] - turning) / p1[k]).max(0.0));
+        let Some(curve) = self.path.curve.as_deref() else { return };
+        if curve.length() <= 0.0 {
+            return;
         }
-        if p2[k] > 1e-12 && v.is_finite() && v > 0.0 {
-            accel = accel.min(0.2 * budget[k] / (v * p2[k]));
+        // Lower bounds of the axes' jerk from the two moves: each one's path jerk is at most
+        // `J_k` over its largest rate of axis k per unit length (`interp/dynamics.rs`).
+        let (ra, rb) = (a.path.max_rate_of_first(MAX_CHANNEL_AXES), b.path.max_rate_of_first(MAX_CHANNEL_AXES));
+        let budget: AxisVec = std::array::from_fn(|k| f64::max(a.jerk * ra[k] / a.length, b.jerk * rb[k] / b.length));
+        let (p1, p2) = curve.rates();
+        let p3 = third_rates(curve);
+        let mut v = self.v_axes;
+        // An axis neither move moves stays where it is along the element (its rates are rounding).
+        let moved = |k: usize| budget[k] > 0.0;
+        for k in (0..MAX_CHANNEL_AXES).filter(|&k| moved(k)) {
+            if p3[k] > 1e-12 {
+                v = v.min((0.5 * budget[k] / p3[k]).cbrt());
+            }
         }
+        self.v_max = self.v_max.min(v);
+        self.v_axes = v;
+        let mut jerk = a.jerk.min(b.jerk);
+        let mut accel = self.a_max;
+        for k in (0..MAX_CHANNEL_AXES).filter(|&k| moved(k)) {
+            let turning = if v.is_finite() { v * v * v * p3[k] } else { 0.0 };
+            if p1[k] > 1e-12 {
+                jerk = jerk.min(((0.8 * budget[k] - turning) / p1[k]).max(0.0));
+            }
+            if p2[k] > 1e-12 && v.is_finite() && v > 0.0 {
+                accel = accel.min(0.2 * budget[k] / (v * p2[k]));
+            }
+        }
+        self.jerk = jerk;
+        self.a_max = accel;
+        self.seam_jerk = a.seam_jerk.min(b.seam_jerk);
     }
-    corner.jerk = jerk;
-    corner.a_max = accel;
-    corner.seam_jerk = a.seam_jerk.min(b.seam_jerk);
 }
 
 /// Per axis the largest `|d³p_k/ds³|` over a curve: the change of `d²p/ds²` between 32 steps
