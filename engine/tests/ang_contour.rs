@@ -3,7 +3,7 @@
 //! line into the end point at α2 is worked out by hand in each test, and every IPO sample is
 //! checked against the expected lines.
 
-mod trc_support;
+use crate::trc_support;
 
 use trc_support::{alarm_of, passes_near, polyline_dist, run_all};
 

@@ -4,8 +4,7 @@
 
 use nctwin_engine::{Channel, Event, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::channel;
 
 type Shown = (u32, String, Option<String>);

@@ -2,8 +2,7 @@
 //! form, MCALL, program section repetition and the everyday words of shop and CAM programs.
 //! Expected values are worked out by hand from the Programming Manual's rules, noted at each test.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::{Channel, CommandError, Status};
 

@@ -4,7 +4,7 @@
 //! point as to the end point; the circle may lie obliquely in space. Expected centres and radii
 //! are worked out by hand in each test, and every IPO sample is checked against them.
 
-mod trc_support;
+use crate::trc_support;
 
 use trc_support::{alarm_of, passes_near, run_all, run_to_stop};
 

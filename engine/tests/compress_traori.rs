@@ -12,7 +12,7 @@
 //! turning with the point: at polar angle φ the orientation (sin 20°·cos φ, sin 20°·sin φ,
 //! cos 20°), on the CA head A20 and C = φ + 90°.
 
-mod head_support;
+use crate::head_support;
 use head_support::*;
 
 /// The polar angle (degrees) of point `i`.

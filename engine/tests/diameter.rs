@@ -5,8 +5,7 @@
 //! display keeps the diameter, and the WCS display shows the diameter when it is active.
 //! Display checks stop at M0: after M30 the G functions are back at their reset values.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::Channel;
 

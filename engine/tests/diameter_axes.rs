@@ -6,8 +6,7 @@
 //! axis to the channel's group 29 again and DIAMCHAN links every released axis. The
 //! lathe-2axis preset releases X (MD30460 bit 2), not Z; its reset value is DIAMOF.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::Channel;
 

@@ -2,8 +2,7 @@
 //! (G group 59), ACC/VELOLIM/JERKLIM, FFWON/FFWOF (G group 24) with the position loop.
 //! Expected values are worked out by hand in each test's comment.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use nctwin_engine::Channel;
 use path_support::DT;

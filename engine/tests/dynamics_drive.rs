@@ -3,8 +3,7 @@
 //! (1 − MD35230) · MD32300 at MD32000; MD35242 picks the shape (0 constant, 1 hyperbolic,
 //! 2 linear). Expected values worked out by hand in each test's comment.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use path_support::{A_MAX, DT, V_MAX};
 

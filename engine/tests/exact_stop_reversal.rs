@@ -7,8 +7,7 @@
 //! the axis by up to a·T², so the next one may not move it back by another a·T². The stop
 //! therefore has one IPO cycle at rest before the next move begins.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use nctwin_engine::Channel;
 use path_support::{A_MAX, DT};

@@ -3,8 +3,7 @@
 //! inside MD36010 STOP_LIMIT_FINE (G601), MD36000 STOP_LIMIT_COARSE (G602), or at the
 //! interpolator's end (G603). Expected values are worked out by hand in each test's comment.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use path_support::DT;
 

@@ -6,8 +6,7 @@
 //! 10 file full (MD11420 $MN_LEN_PROTOCOL_FILE, 1 KB by default), 11 file in use, and for READ
 //! 21 no such line, 22 result array too short, 23 line range past the end.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::Channel;
 use nctwin_engine::interp::eval::value::Value;

@@ -5,8 +5,7 @@
 //! Worked by hand on the 3-axis mill (G17: the length L1 `$TC_DP3` lies along Z, so the
 //! machine Z of a tool tip at workpiece Z10 is 10 + L1; no work offset is active).
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::Channel;
 

@@ -8,7 +8,7 @@ use nctwin_engine::machine_data::{MachineConfig, MachineData, presets};
 use nctwin_engine::{Channel, Snapshot, Status};
 use proptest::prelude::*;
 
-mod chain_support;
+use crate::chain_support;
 use chain_support::{SIX, axes, elements, near};
 
 /// Machine-data TRAORI set 1 of type `t` with rotary roles `rot` on the SIX machine.

@@ -10,7 +10,7 @@ use nctwin_engine::machine_data::{MachineConfig, MachineData};
 use nctwin_engine::{Channel, Snapshot, Status};
 use proptest::prelude::*;
 
-mod chain_support;
+use crate::chain_support;
 use chain_support::{SIX, axes, elements, near};
 
 /// Record n: name, type, tool and workpiece chain ends, rotary axis [n,1], geometry axes.

@@ -9,8 +9,7 @@
 
 use nctwin_engine::{Channel, Snapshot, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod chain_support;
+use crate::chain_support;
 use chain_support::{El, elements, near};
 
 const X: [f64; 3] = [1.0, 0.0, 0.0];

@@ -3,8 +3,7 @@
 //! (the control's implicit preprocessing stop) and reads the value of that moment.
 //! mill-3axis: IPO cycle 4 ms; `G1 X.. F600` is 10 mm/s, 0.04 mm per cycle.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::Channel;
 use settle::{channel, run_to_end, steps};

@@ -5,8 +5,7 @@
 use nctwin_engine::channel::JogSystem;
 use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Snapshot, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{channel, settle};
 
 fn pos(list: &[(String, f64)], name: &str) -> f64 {

@@ -8,8 +8,7 @@
 use nctwin_engine::channel::{JogSystem, OrientationJogKind, ReferencePhase, ReposApproach, ReposMode};
 use nctwin_engine::{Channel, CommandError, JogRequest, Mode, Overrides, Snapshot, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{channel, settle};
 
 fn machine(s: &Snapshot, name: &str) -> f64 {

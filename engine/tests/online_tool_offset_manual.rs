@@ -7,8 +7,7 @@
 use nctwin_engine::channel::JogSystem;
 use nctwin_engine::{Channel, JogRequest, Mode};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{channel, settle};
 
 fn head_machine(p: [f64; 3], a: f64, dl: f64) -> [f64; 3] {

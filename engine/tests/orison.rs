@@ -10,7 +10,7 @@
 //! zig-zag, linear within each block), its rate per mm of path between successive cycles, the
 //! tip's distance from the programmed line, and the machine axes' limits.
 
-mod head_support;
+use crate::head_support;
 use head_support::*;
 use nctwin_engine::Channel;
 

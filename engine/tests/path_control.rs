@@ -9,8 +9,7 @@
 //!   the velocity is continuous;
 //! - rounding makes the program faster than G64's corners and much faster than G60.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use nctwin_engine::Channel;
 use path_support::{DT, assert_dynamics};

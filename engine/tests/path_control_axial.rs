@@ -2,8 +2,7 @@
 //! mode"): each axis within its own MD33100, over its own distance. Expected values are worked
 //! out by hand in each test's comment.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use path_support::DT;
 

@@ -2,8 +2,7 @@
 //! Manual B1 "Continuous-path mode"). Expected values are worked out by hand in each test's
 //! comment.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use path_support::DT;
 

@@ -2,7 +2,7 @@
 //! inserted although G641..G645 is active, beyond those of `path_control.rs` (a dwell or G9
 //! between the blocks): a change of the acceleration profile between BRISK and SOFT.
 
-mod path_support;
+use crate::path_support;
 
 #[test]
 fn a_change_between_brisk_and_soft_keeps_the_corner_sharp() {

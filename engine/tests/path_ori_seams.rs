@@ -3,7 +3,7 @@
 //! the next, the tool vector's angular velocity goes on without a jump, so the rotary axes
 //! need no more than their acceleration there. On the CA head (`head_support`).
 
-mod head_support;
+use crate::head_support;
 use head_support::*;
 
 const START: &str = "T1 D1\nG0 X0 Y0 Z100 A20 C0\nTRAORI\nG4 F0.02\nG0 X0 Y0 Z50\n";

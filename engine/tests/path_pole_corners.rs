@@ -10,7 +10,7 @@
 //! distance, is rounded like any other within CTOL (the machine axes' limits then slow the
 //! path near the pole).
 
-mod head_support;
+use crate::head_support;
 use head_support::*;
 
 /// The TRANSMIT face: x = XC·cos C, y = XC·sin C.

@@ -8,8 +8,7 @@
 //! short. Under SOFT (G group 21) the same holds: a seam at the feed needs no braking, so the
 //! jerk-limited profile passes it without a change of acceleration.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use path_support::DT;
 

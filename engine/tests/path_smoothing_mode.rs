@@ -4,8 +4,7 @@
 //! contour tolerance SD42465, 2 the orientation by SD42466 (the geometry axes by MD33100),
 //! 3 both. Expected values are worked out by hand in each test's comment.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 /// MD33100 = 0.1 mm on X and Y (the preset's), SD42465 = 0.02 mm, and `mode` for MD20480.
 fn md(mode: u32) -> String {

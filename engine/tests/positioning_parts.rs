@@ -10,8 +10,7 @@
 //! travel ends up to 6 cycles before the ideal time (a plain POS of 3 mm: 97 cycles): the
 //! bounds below allow that per part.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::Channel;
 use settle::{channel, run_to_end};

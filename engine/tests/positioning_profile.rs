@@ -11,8 +11,7 @@
 //! 29 moving cycles (L/(V·dt) + V/(a·dt) − 1 = 20 + 10 − 1), against 30 of the continuous
 //! L/V + V/a = 0.12 s.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use settle::{channel, settle};
 

@@ -2,8 +2,7 @@
 //! (`ResumeState::positioning`). mill-3axis: IPO cycle 4 ms, 3 m/s²; `FA[Z]=300` is 5 mm/s, so
 //! Z is at full speed after one cycle and 100 cycles take it about 2 mm.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::channel::PositioningInfo;
 use nctwin_engine::{Channel, Status};

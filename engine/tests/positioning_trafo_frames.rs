@@ -12,8 +12,7 @@
 //!   has one interpolator of its own). Axes outside the geometry are not rotated and position
 //!   through their own frame component.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::{Channel, Status};
 use settle::{channel, run_to_end};

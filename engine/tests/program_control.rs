@@ -3,8 +3,7 @@
 //! move times worked out by hand in each test's comment: the 3-axis mill moves X at 3 m/s²
 //! under BRISK, so a line of length L at path speed v takes L/v + v/a (trapezoid).
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use nctwin_engine::Channel;
 use nctwin_engine::channel::Overrides;

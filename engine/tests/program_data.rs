@@ -4,8 +4,7 @@
 //! mill-3axis preset's machine data (engine/src/machine_data/presets.rs) and the registry's
 //! defaults, worked out at each test.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::interp::auxiliary::AuxFunction;
 use nctwin_engine::interp::eval::value::Value;

@@ -1,8 +1,7 @@
 //! Words of shop and machine-builder programs that need more than a fixture program to check:
 //! a block search (`$P_SEARCH`), the feed of chamfers read from the IPO samples (`FRC`).
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::{Channel, Status};
 use settle::{channel, settle};

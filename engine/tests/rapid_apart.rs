@@ -9,8 +9,7 @@
 //! - RTLION: Y = X/10 all along, 5 at X = 50; the path (100.499 mm) is limited by X: v =
 //!   502.5 mm/s, a = 3015 mm/s², time 100.499/502.5 + 502.5/3015 = 0.3667 s, the same.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use settle::{channel, settle};
 

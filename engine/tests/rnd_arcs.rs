@@ -5,7 +5,7 @@
 //! combination; RNDM does so modally until RNDM=0). Expected points are worked out here from
 //! the circle and line equations, not read from the engine.
 
-mod trc_support;
+use crate::trc_support;
 
 use nctwin_engine::Status;
 use trc_support::{alarm_of, passes_near, run_all};

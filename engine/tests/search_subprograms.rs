@@ -4,8 +4,7 @@
 use nctwin_engine::channel::PathStep;
 use nctwin_engine::{Channel, CommandError, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{channel, settle};
 
 /// Main program: X1, then the subprogram HOLE, then M30 (3 lines, fewer than HOLE has).

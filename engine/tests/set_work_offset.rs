@@ -3,8 +3,7 @@
 
 use nctwin_engine::{Channel, CommandError, Mode};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{channel, settle};
 
 fn wcs(ch: &Channel, axis: &str) -> f64 {

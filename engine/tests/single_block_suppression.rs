@@ -4,8 +4,7 @@
 
 use nctwin_engine::{Channel, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{channel, settle};
 
 /// Runs `main` in single block mode, starting again after each stop: the shown block's line

@@ -3,8 +3,7 @@
 //! "Acceleration and jerk": SOFT limits the jerk of the braking, it does not lower the
 //! velocity the look-ahead planned for the transition). The 3-axis mill: 3000 mm/s², 4 ms.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use path_support::{A_MAX, DT};
 

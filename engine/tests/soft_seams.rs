@@ -7,8 +7,7 @@
 //! tangent, 3·v·a/r along the radius) stays within MD32431 too (`motion/soft_curvature.rs`).
 //! The 3-axis mill: 3000 mm/s², T = 4 ms.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use path_support::DT;
 

@@ -3,8 +3,7 @@
 //! overload 1.2, IPO cycle 4 ms; no tool, so the axis positions are the WCS points), and the
 //! geometry module checked on its own. Expected values are worked out by hand in the comments.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod path_support;
+use crate::path_support;
 
 use nctwin_engine::Channel;
 use nctwin_engine::motion::AxisVec;

@@ -3,7 +3,7 @@
 //! subprogram, so the cycle cuts the same path as with the subprogram, and the roughing levels
 //! and the finished contour are the ones worked out by hand for the shaft below.
 
-mod turning_support;
+use crate::turning_support;
 
 use turning_support::{Trace, close, run_lathe, shaft_radius};
 

@@ -3,7 +3,7 @@
 //! by hand from the parameter list (SPD, SPL, DIAG1, DIAG2, RC, SDIS, SV1, SV2, SDAC, FF1, FF2,
 //! SS2, _VRT, _VARI, _DN, _DMODE, _AMODE).
 
-mod turning_support;
+use crate::turning_support;
 
 use turning_support::{Sample, Trace, close, run_lathe, unwrapped};
 

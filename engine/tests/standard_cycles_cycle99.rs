@@ -3,7 +3,7 @@
 //! _SDIS, _MID, ...) on the 2-axis lathe (X a radius, DIAMOF): number of cuts, depth of each
 //! cut, its start along the flank and the lead, worked out by hand in each test.
 
-mod turning_support;
+use crate::turning_support;
 
 use turning_support::{Sample, Trace, close, run_lathe, unwrapped};
 

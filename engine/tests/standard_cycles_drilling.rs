@@ -3,7 +3,7 @@
 //! parameter lists (Cycles Programming Manual: RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB,
 //! DTS, FRF, VARI, _AXN, _MDEP, _VRT, _DTD, _DIS1).
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 const Z: usize = 2;

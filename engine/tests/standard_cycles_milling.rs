@@ -4,7 +4,7 @@
 //! parameters (_LENG, _WID, _CRAD, _PA, _PO, _STA, _DP, _MID, _FAL, _FALD). The tool is T1 D1 of
 //! the 3-axis mill: radius 5.
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 const Z: usize = 2;

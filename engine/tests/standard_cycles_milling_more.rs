@@ -4,7 +4,7 @@
 //! hand from the documented parameters in each test's comments. The tool is T1 D1 of the
 //! 3-axis mill: radius 5.
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 const Z: usize = 2;

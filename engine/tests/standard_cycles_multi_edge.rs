@@ -3,7 +3,7 @@
 //! mill (T1 D1: radius 5), checked on every sampled IPO point against the polygon worked out by
 //! hand in each test.
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 /// A regular polygon with `n` edges, the first edge's normal at `sta` degrees, the edges

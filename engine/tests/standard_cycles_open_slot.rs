@@ -7,7 +7,7 @@
 //! behind its other end at X 77; the vortex circles about those two points reach 3 further
 //! (X 20 and X 80), in the air.
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 const Z: usize = 2;

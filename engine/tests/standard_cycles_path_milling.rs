@@ -7,7 +7,7 @@
 //! edge and back to (30, 0)). Left of it (G41) is outside: the tool centre runs 5 (the radius)
 //! outside the rectangle on the straight edges and on arcs of radius 5 about its corners (G450).
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 const Z: usize = 2;

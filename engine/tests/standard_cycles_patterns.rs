@@ -2,7 +2,7 @@
 //! with MCALL runs at every position of the pattern. Positions worked out by hand from the
 //! documented parameters (reference point, angle, distances, number of holes).
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 /// The (X, Y) of every hole drilled below Z0 and its depth.

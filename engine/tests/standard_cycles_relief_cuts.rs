@@ -3,7 +3,7 @@
 //! roughing keeps the allowances off every wall and floor, reaches the relief's floor, enters
 //! the relief down its falling wall; the finishing runs on the contour.
 
-mod turning_support;
+use crate::turning_support;
 
 use turning_support::{Trace, close, run_lathe};
 

@@ -3,7 +3,7 @@
 //! cycle, against values worked out by hand from the documented parameter lists
 //! (RTP, RFP, SDIS, DP, DPR, DTB, SDAC, MPIT, PIT, POSS, SST, SST1 / SDR, SDAC, ENC).
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::close;
 
 use nctwin_engine::{Channel, SpindleMode, SpindleState};

@@ -3,7 +3,7 @@
 //! 5), checked on every sampled IPO point: the helix radius of each cut, its pitch and sense,
 //! the number of turns and a comb's bands, worked out by hand in each test.
 
-mod cycles_support;
+use crate::cycles_support;
 use cycles_support::*;
 
 const START: &str = "G17 G90 T1 D1\nG0 X0 Y0 Z50 M3 S2000\n";

@@ -2,7 +2,7 @@
 //! DIAMOF), checked on the path of the tool's nose against the DIN profile worked out by hand in
 //! each test from the standard's table (DIATH, SPL, FORM, VARI).
 
-mod turning_support;
+use crate::turning_support;
 
 use turning_support::{Trace, close, run_lathe};
 

@@ -3,7 +3,7 @@
 //! documented parameter list (PO1..PO4, DM1..DM4, APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID,
 //! PP1..PP3, VARI, NUMTH, _VRT).
 
-mod turning_support;
+use crate::turning_support;
 
 use turning_support::{Sample, Trace, close, run_lathe, unwrapped};
 

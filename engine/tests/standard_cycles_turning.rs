@@ -3,7 +3,7 @@
 //! radius, DIAMOF): groove bases and flanks, undercut profiles and thread cuts worked out by
 //! hand from the documented parameter lists in each test's comments.
 
-mod turning_support;
+use crate::turning_support;
 
 use turning_support::{Sample, Trace, close, run_lathe, shaft_radius, unwrapped};
 

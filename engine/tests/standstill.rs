@@ -2,8 +2,7 @@
 //! stopped, as the control stands without an alarm) keeps the same mark; one that dwells, moves
 //! or waits on a spindle that turns changes it.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use settle::{channel, steps};
 

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use nctwin_engine::channel::{StockCheck, StockOptions};
 
-mod stock_support;
+use crate::stock_support;
 
 /// A 60 x 50 x 40 block X−10..50, Y−10..40, Z−40..0, and a plunge at X20 Y15 to `depth` with
 /// T3 D1 (line 7), then the retract (line 8).

@@ -10,7 +10,7 @@ use nctwin_engine::Channel;
 use nctwin_engine::channel::StockOptions;
 use nctwin_engine::stock::Stock;
 
-mod stock_support;
+use crate::stock_support;
 
 /// Runs `program` on `preset` to its end; the channel and the checks raised.
 fn run(preset: &str, program: &str) -> (Channel, usize) {

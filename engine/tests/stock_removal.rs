@@ -7,8 +7,8 @@
 //! walls on cell edges are exact); turning slabs tile the blank, so a face on a slab boundary
 //! is exact in Z and radii are exact.
 
-mod stl_support;
-mod stock_support;
+use crate::stl_support;
+use crate::stock_support;
 
 use std::f64::consts::PI;
 

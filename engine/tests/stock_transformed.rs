@@ -13,7 +13,7 @@ use nctwin_engine::Channel;
 use nctwin_engine::channel::{StockInfo, StockOptions};
 use nctwin_engine::stock::Stock;
 
-mod stock_support;
+use crate::stock_support;
 
 /// Runs `program` on `preset` to its end (no alarm); the stock summary and the channel.
 fn run(preset: &str, md: &str, program: &str) -> (StockInfo, Channel) {

@@ -6,8 +6,7 @@
 
 use nctwin_engine::{Channel, SpindleMode, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{run_to_end, steps};
 
 fn channel() -> Channel {

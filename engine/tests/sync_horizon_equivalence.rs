@@ -8,8 +8,7 @@
 
 use nctwin_engine::Channel;
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::channel;
 
 /// xorshift64*: deterministic, no dependency.

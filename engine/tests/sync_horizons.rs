@@ -5,8 +5,7 @@
 
 use nctwin_engine::{Channel, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{channel, steps};
 
 fn mill() -> Channel {

@@ -4,8 +4,7 @@
 //! reader sees must be what running it in every cycle gives (the random programs of
 //! `sync_horizon_equivalence.rs` compare both bit for bit); here the values by hand.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use settle::{channel, run_to_end};
 

@@ -7,8 +7,7 @@
 
 use nctwin_engine::{Channel, Status};
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use settle::{run_to_end, steps};
 
 fn channel() -> Channel {

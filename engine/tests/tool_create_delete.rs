@@ -6,8 +6,7 @@
 //! 120), both in the chain magazine. MD22550 = 0: `T=` changes the tool at once. In G17 the
 //! length acts on Z: Z_machine = Z_programmed + length.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::Channel;
 

@@ -2,7 +2,7 @@
 //! tool offset"): added to the cutting edge's radius where G41/G42 compensate, without changing
 //! the tool data. Expected distances are the radius plus the offset, worked out by hand.
 
-mod trc_support;
+use crate::trc_support;
 
 use trc_support::{alarm_of, run_all};
 

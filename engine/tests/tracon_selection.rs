@@ -8,8 +8,7 @@
 //! 120/cos 30° = 138.56 mm in one IPO cycle. The wait now ends when the selection's own
 //! block executes.
 
-#[allow(dead_code)]
-mod settle;
+use crate::settle;
 use settle::channel;
 
 /// Runs `program` to its end; returns the machine positions (axis name, value) of every IPO

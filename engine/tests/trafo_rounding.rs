@@ -6,7 +6,7 @@
 //! 100 mm), whose closed form gives the tip and the orientation of every machine sample:
 //! `o = (sin C·sin A, −cos C·sin A, cos A)`, tip `P = M − 250·o + (0, 0, 150)`.
 
-mod head_support;
+use crate::head_support;
 use head_support::*;
 
 /// The tool tilted 20° (A20 C0), TRAORI, the tip to X0 Y0 Z50. (Z reverses between the

@@ -3,8 +3,7 @@
 //! circle, followed continuously, would end on the other of the two solutions
 //! (A, C) ≡ (−A, C + 180°) of the CA head (o = (sin C·sin A, −cos C·sin A, cos A)).
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use nctwin_engine::{Snapshot, Status};
 
 fn run(program: &str) -> (Snapshot, Vec<Snapshot>) {

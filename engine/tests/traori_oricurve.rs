@@ -4,8 +4,7 @@
 //! type 20: o = (sin C·sin A, −cos C·sin A, cos A)) and `normalize(upper(t) − tip(t))` computed
 //! here.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 use nctwin_engine::{Channel, Snapshot, Status};
 
 fn run(program: &str) -> (Channel, Vec<Snapshot>) {

@@ -14,8 +14,7 @@ use nctwin_engine::machine_data::{MachineData, presets};
 use nctwin_engine::{Channel, Snapshot, Status};
 use proptest::prelude::*;
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 fn run_on(md: &str, program: &str) -> (Channel, Vec<Snapshot>) {
     settle::run_snapshots("mill7-generic", md, program)

@@ -13,7 +13,7 @@
 //! skips e2…e4 (warning 10763 for each, the program goes on); CDOF, the reset value, stops
 //! with alarm 10751 before the tool moves along e1.
 
-mod trc_support;
+use crate::trc_support;
 
 use nctwin_engine::Status;
 use trc_support::{alarm_of, run_to_stop, warnings_of};

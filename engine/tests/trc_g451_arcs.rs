@@ -5,7 +5,7 @@
 //! Manual W1, "Outside corners"). The mill's T1 D1 has radius 5. Expected points are worked
 //! out here from the circle and line equations, not taken from the engine.
 
-mod trc_support;
+use crate::trc_support;
 
 use nctwin_engine::Status;
 use trc_support::{alarm_of, go_on, passes_near, run_all, run_all_on, run_to_stop};

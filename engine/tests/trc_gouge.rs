@@ -15,7 +15,7 @@
 //! omitted blocks' other motions and functions (M0 here) run at the intersection. Warning
 //! 10763 (block omitted) is not shown.
 
-mod trc_support;
+use crate::trc_support;
 
 use nctwin_engine::Status;
 use trc_support::{alarm_of, first_gouge, go_on, run_all, run_all_on, run_to_stop};

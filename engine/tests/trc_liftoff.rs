@@ -12,7 +12,7 @@
 //!   contour's end (P at X20 Z−20.4); the G40 block starts there and travels to its
 //!   uncompensated end point (P at X30 Z−20).
 
-mod trc_support;
+use crate::trc_support;
 use trc_support::run_all_on;
 
 /// The nose centre (z, x) of a sample.

@@ -17,7 +17,7 @@
 //! perpendicular start point to the last departure from the last element's perpendicular end
 //! point (the selection and deselection blocks are straight moves that may pass nearer).
 
-mod trc_support;
+use crate::trc_support;
 
 use nctwin_engine::alarm::Clear;
 use proptest::prelude::*;

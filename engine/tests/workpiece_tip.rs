@@ -1,8 +1,7 @@
 //! The tool tip on the workpiece (`channel/workpiece_tip.rs`): what the executed path and the
 //! limit marks are drawn with. Values worked out by hand from the presets' machine data.
 
-#[allow(dead_code)] // the shared helpers this file does not use
-mod settle;
+use crate::settle;
 
 use nctwin_engine::channel::workpiece_tip::TipProbe;
 use settle::{channel, finish};

@@ -1,7 +1,7 @@
 //! `GET /sessions/{id}/active-program`: the program the channel runs, whoever started it, by
 //! line ranges; the state's `program_serial`; the preview of the loaded program.
 
-mod common;
+use crate::common;
 
 use common::{Server, error_message};
 use nctwin_server::Config;

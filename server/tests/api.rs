@@ -1,7 +1,7 @@
 //! The REST API over real HTTP on port 0: every endpoint, the behaviour of programs, and bad
 //! input of every kind.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

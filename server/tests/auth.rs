@@ -1,6 +1,6 @@
 //! Roles and tokens with `--auth required`, and that `--auth off` needs none.
 
-mod common;
+use crate::common;
 
 use common::{Reply, Server, error_message};
 use futures_util::StreamExt;

@@ -1,7 +1,7 @@
 //! The real `nctwin` binary: it logs the address it listens on, serves the API there, creates
 //! its data directory and shuts down cleanly on SIGINT.
 
-mod process;
+use crate::process;
 
 use process::{forward_lines, listening_address};
 use std::io::{Read, Write};

@@ -1,7 +1,7 @@
 //! A training class on one server with `--auth off`: a watch link (view-only) cannot drive,
 //! over REST or the stream, and the stream's action log names who did what.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -2,7 +2,7 @@
 //! server (CSRF with simple requests, DNS rebinding, cross-site WebSockets), while the HMI (same
 //! origin), `curl` and the operator's listed origins and names keep working.
 
-mod common;
+use crate::common;
 
 use std::net::SocketAddr;
 

@@ -3,7 +3,7 @@
 //! server's own worker threads, and the server keeps serving; expressions at the limit run.
 //! `nctwin simulate` on such a file reports the syntax error instead of aborting.
 
-mod process;
+use crate::process;
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};

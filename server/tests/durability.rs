@@ -7,8 +7,8 @@
 //! (`lifecycle.rs` has the plain program-writes SIGKILL test; this one adds the writes that
 //! rebuild the channel.)
 
-mod pg;
-mod process;
+use crate::pg;
+use crate::process;
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;

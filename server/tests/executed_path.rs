@@ -2,7 +2,7 @@
 //! same in fast pace and in real time, and true on a turned table; the preview's limit marks
 //! under TRACYL carry their diameter. Values worked out by hand in the comments.
 
-mod common;
+use crate::common;
 
 use common::Server;
 use reqwest::StatusCode;

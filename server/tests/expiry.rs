@@ -6,8 +6,8 @@
 //! The timeouts are short, and every wait is "until it happens, within a generous deadline":
 //! nothing asserts how fast the sweep is.
 
-mod common;
-mod pg;
+use crate::common;
+use crate::pg;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};

@@ -1,6 +1,6 @@
 //! `GET /sessions/{id}/frames`: the active frame chain over a real socket on port 0.
 
-mod common;
+use crate::common;
 
 use common::Server;
 use reqwest::StatusCode;

@@ -1,7 +1,7 @@
 //! The read-only views the HMI adds: a session's NC data as text, the registry of every datum,
 //! and the number of clients watching a session.
 
-mod common;
+use crate::common;
 
 use common::{Server, error_message};
 use reqwest::StatusCode;

@@ -1,7 +1,7 @@
 //! `GET/PUT /sessions/{id}/kinematic-chains`: a session's chain data out and back in as a part
 //! program in plain text; a bad line is a 400 that names it and changes nothing.
 
-mod common;
+use crate::common;
 
 use common::{Server, error_message};
 use reqwest::StatusCode;

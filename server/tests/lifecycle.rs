@@ -2,8 +2,8 @@
 //! down gracefully (saves, closes streams with a close frame, exits in bounded time), and
 //! SIGKILL loses no acknowledged write.
 
-mod pg;
-mod process;
+use crate::pg;
+use crate::process;
 
 use process::Nctwin;
 use std::path::{Path, PathBuf};

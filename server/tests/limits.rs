@@ -1,6 +1,6 @@
 //! Server-side limits answer 4xx/429 with a message, and `GET /metrics`.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -2,7 +2,7 @@
 //! session (listed, callable, deletable, counted against the session's quota) and in storage
 //! (an acknowledged delete stays deleted after a restart).
 
-mod common;
+use crate::common;
 
 use common::{Server, error_message};
 use nctwin_server::{Config, Limits};

@@ -1,7 +1,7 @@
 //! Manual operation over REST and the WebSocket: INC and handwheel JOG, JOG in the WCS, REPOS,
 //! block search, reference point state, and the dead-man JOG on the stream.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

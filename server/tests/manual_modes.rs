@@ -2,7 +2,7 @@
 //! SD42650 when absent, the orientation JOG `rotation` (SD42660), the REPOS target `repos` on
 //! NC start, and the reference point approach with its `referencing` state and `wait`.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -1,7 +1,7 @@
 //! Persistence through a restart: two in-process servers, one after the other, on the same data
 //! directory (SQLite). The real binary's restart, SIGTERM and SIGKILL are in `lifecycle.rs`.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -1,6 +1,6 @@
 //! `POST /sessions/{id}/preview`: the programmed toolpath from a throwaway copy of the channel.
 
-mod common;
+use crate::common;
 
 use common::{Server, error_message, pos};
 use reqwest::StatusCode;

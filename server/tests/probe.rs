@@ -1,7 +1,7 @@
 //! The probe-target planes of MEAS/MEAW over REST (`GET/PUT .../probe-targets`), over a real
 //! socket on port 0.
 
-mod common;
+use crate::common;
 
 use common::Server;
 use reqwest::StatusCode;

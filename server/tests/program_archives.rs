@@ -3,7 +3,7 @@
 //! control does, `GET .../program-archive` writes the session's programs back in the same
 //! format, and NC data files load through `PUT .../machine-data` too.
 
-mod common;
+use crate::common;
 
 use common::{Server, pos};
 use reqwest::StatusCode;

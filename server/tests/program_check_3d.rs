@@ -1,7 +1,7 @@
 //! What the HMI's 3D view checks programs with: the preview's limit hits and tool directions,
 //! and the executed path a late viewer fetches (`GET .../path-history`), over a real socket.
 
-mod common;
+use crate::common;
 
 use common::Server;
 use reqwest::StatusCode;

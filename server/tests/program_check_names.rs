@@ -2,7 +2,7 @@
 //! their line and column, judged against the session's machine, stored programs and the cycle
 //! library; syntax errors are reported as before, in the same list.
 
-mod common;
+use crate::common;
 
 use common::Server;
 use reqwest::StatusCode;

@@ -2,7 +2,7 @@
 //! session: listed, readable over REST, saved with the checkpoint and back after a restart,
 //! whatever their text (a log need not be a program).
 
-mod common;
+use crate::common;
 
 use common::Server;
 use nctwin_server::Config;

@@ -1,7 +1,7 @@
 //! The digital I/O image over REST (`GET/PUT /sessions/{id}/io`) and the M/H functions and
 //! output changes a program sends to the event stream, over a real socket on port 0.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -1,6 +1,6 @@
 //! Stored programs over HTTP: create, read, list, update, delete, call by name, check.
 
-mod common;
+use crate::common;
 
 use common::{Server, pos};
 use reqwest::StatusCode;

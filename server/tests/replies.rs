@@ -2,7 +2,7 @@
 //! connection closes, the limit header names the limit that ended a run, a request waiting at
 //! shutdown is told to come back, and a syntax check answers a bounded list.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -2,7 +2,7 @@
 //! of defect 11): a program stopped inside a subprogram, after more than 200,000 blocks, comes
 //! back there after a restart; a search goes into subprograms (`path`) and to a calling line.
 
-mod common;
+use crate::common;
 
 use common::{Server, pos};
 use nctwin_server::Config;

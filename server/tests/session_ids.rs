@@ -2,8 +2,8 @@
 //! restarted (a client still holding the old id would otherwise drive a stranger's session),
 //! on SQLite and on PostgreSQL, and not in a data file written before the counter was kept.
 
-mod common;
-mod pg;
+use crate::common;
+use crate::pg;
 
 use common::{Server, error_message};
 use nctwin_server::storage::{self, SqliteStorage, Storage};

@@ -1,6 +1,6 @@
 //! `POST .../set-wo`: Set WO of the JOG area over REST. Values by hand: WCS = BCS − TR of G500.
 
-mod common;
+use crate::common;
 
 use common::{Server, error_message, pos};
 use reqwest::StatusCode;

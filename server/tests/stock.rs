@@ -2,9 +2,8 @@
 //! and checks of `GET .../stock` and the state, the binary STL of `GET .../stock.stl`, over a
 //! real socket on port 0.
 
-mod common;
-#[path = "../../engine/tests/stl_support/mod.rs"]
-mod stl_support;
+use crate::common;
+use crate::stl_support;
 
 use common::{Server, error_message};
 use reqwest::StatusCode;

@@ -2,7 +2,7 @@
 //! version come `{"type": "stock"}` messages with the tiles cut since the version before and
 //! their meshes, so the HMI need not poll REST.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -1,7 +1,7 @@
 //! Commands that stop motion are never refused by the command rate limit: a client flooding a
 //! session with commands cannot keep another client from stopping the machine.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -5,8 +5,8 @@
 //! one and sets it). Each test gets a database of its own on it. Without the variable the
 //! PostgreSQL cases print a note and pass without running.
 
-mod common;
-mod pg;
+use crate::common;
+use crate::pg;
 
 use std::path::PathBuf;
 use std::sync::Arc;

@@ -1,6 +1,6 @@
 //! The WebSocket stream over a real socket on port 0.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

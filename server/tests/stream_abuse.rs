@@ -3,7 +3,7 @@
 //! more connections than one address may hold, and a stream client that stops answering pings.
 //! Each must end in bounded time with the server unharmed.
 
-mod common;
+use crate::common;
 
 use std::net::SocketAddr;
 use std::time::Duration;

@@ -1,7 +1,7 @@
 //! What the HMI shows of CYCLE800 (`GET .../active-swivel`) and where a swivel from JOG leaves
 //! the channel, over a real socket on port 0.
 
-mod common;
+use crate::common;
 
 use common::{Server, pos};
 use reqwest::StatusCode;

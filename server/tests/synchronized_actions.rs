@@ -2,7 +2,7 @@
 //! acts in the main run (DELDTG ends the block), the state lists the active actions, the
 //! event stream carries the input with its IPO cycle count, and analog inputs are checked.
 
-mod common;
+use crate::common;
 
 use std::time::Duration;
 

@@ -1,7 +1,7 @@
 //! The tool list over REST: `GET/PUT /sessions/{id}/tools`, loading and unloading tools, the
 //! state's tool name and prepared tool, and the list surviving a restart.
 
-mod common;
+use crate::common;
 
 use common::{Server, error_message, pos};
 use nctwin_server::Config;
