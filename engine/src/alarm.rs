@@ -49,6 +49,15 @@ impl Alarm {
         }
     }
 
+    /// 21800: the watched workpiece counter reached `$AC_REQUIRED_PARTS`
+    /// (`channel/counters.rs`). Information only: the program goes on.
+    pub fn workpiece_setpoint_reached(required: u32) -> Alarm {
+        Alarm {
+            clear: Clear::Cancel,
+            ..Alarm::new(21800, format!("Channel 1 workpiece setpoint {required} reached"), None)
+        }
+    }
+
     /// 10621: a JOG motion stopped at a software limit switch.
     pub fn rests_on_software_limit(axis: &str, plus: bool) -> Alarm {
         let sign = if plus { '+' } else { '-' };

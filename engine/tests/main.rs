@@ -70,6 +70,7 @@ mod positioning_profile;
 mod positioning_state;
 mod positioning_trafo_frames;
 mod preset_composition;
+mod process_counters;
 mod program_control;
 mod program_data;
 mod program_words;

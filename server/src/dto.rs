@@ -278,6 +278,10 @@ pub struct State {
     /// (a POSA axis, an online tool offset) still has to finish (absent when not).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub preprocessing_stop_wait: bool,
+    /// The workpiece counters (`$AC_..._PARTS`; `PUT .../counters` sets them).
+    pub parts: Parts,
+    /// The program runtimes (`$AC_OPERATING_TIME`, `$AC_CYCLE_TIME`, `$AC_CUTTING_TIME`).
+    pub runtimes: Runtimes,
     /// Spindle speeds in rev/min by channel axis name (signed: + is M3).
     #[schema(value_type = std::collections::HashMap<String, f64>)]
     pub spindles: AxisValues,
@@ -444,6 +448,48 @@ pub struct Tool {
     pub prepared: u32,
 }
 
+/// The workpiece counters of the channel (Function Manual K1, "workpiece counter"): what
+/// MD27880/MD27882 switch on counts in the main run, and programs read and write all four.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Parts {
+    /// `$AC_REQUIRED_PARTS`: the setpoint; at 0 nothing is watched.
+    #[schema(maximum = 999_999_999)]
+    pub required: u32,
+    /// `$AC_TOTAL_PARTS`.
+    #[schema(maximum = 999_999_999)]
+    pub total: u32,
+    /// `$AC_ACTUAL_PARTS`: starts again from 0 when it reaches a watched setpoint.
+    #[schema(maximum = 999_999_999)]
+    pub actual: u32,
+    /// `$AC_SPECIAL_PARTS`.
+    #[schema(maximum = 999_999_999)]
+    pub special: u32,
+}
+
+impl From<nctwin_engine::interp::eval::process_vars::PartCounts> for Parts {
+    fn from(p: nctwin_engine::interp::eval::process_vars::PartCounts) -> Parts {
+        Parts { required: p.required, total: p.total, actual: p.actual, special: p.special }
+    }
+}
+
+impl From<Parts> for nctwin_engine::interp::eval::process_vars::PartCounts {
+    fn from(p: Parts) -> Self {
+        Self { required: p.required, total: p.total, actual: p.actual, special: p.special }
+    }
+}
+
+/// The program runtimes in seconds, as MD27860 switches them on.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Runtimes {
+    /// `$AC_OPERATING_TIME`: all AUTO programs, start to end.
+    pub operating: f64,
+    /// `$AC_CYCLE_TIME`: the AUTO program started last.
+    pub cycle: f64,
+    /// `$AC_CUTTING_TIME`: path motion at feed with a tool.
+    pub cutting: f64,
+}
+
 impl From<&Snapshot> for State {
     fn from(s: &Snapshot) -> State {
         State {
@@ -471,6 +517,12 @@ impl From<&Snapshot> for State {
             distance_to_go: s.distance_to_go,
             programmed_feed: s.programmed_feed,
             preprocessing_stop_wait: s.preprocessing_stop_wait,
+            parts: s.parts.into(),
+            runtimes: Runtimes {
+                operating: s.runtimes.operating,
+                cycle: s.runtimes.cycle,
+                cutting: s.runtimes.cutting,
+            },
             spindles: AxisValues(s.spindles.clone()),
             spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
             positioning: s.positioning.iter().map(Into::into).collect(),
@@ -754,6 +806,25 @@ pub struct OverridesRequest {
     pub rapid: Option<f64>,
     /// Spindle speed override, 50..=120 %.
     pub spindle: Option<f64>,
+}
+
+/// Body of `PUT /sessions/{id}/parts`: the workpiece counters to set, each 0..=999,999,999, as
+/// the operator sets them on the control's times/counters page; absent fields keep their value.
+#[derive(Debug, Clone, Default, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PartsRequest {
+    /// `$AC_REQUIRED_PARTS` (0: not watched).
+    #[schema(maximum = 999_999_999)]
+    pub required: Option<u32>,
+    /// `$AC_TOTAL_PARTS`.
+    #[schema(maximum = 999_999_999)]
+    pub total: Option<u32>,
+    /// `$AC_ACTUAL_PARTS`.
+    #[schema(maximum = 999_999_999)]
+    pub actual: Option<u32>,
+    /// `$AC_SPECIAL_PARTS`.
+    #[schema(maximum = 999_999_999)]
+    pub special: Option<u32>,
 }
 
 /// Body of `PUT /sessions/{id}/options`: program control switches; absent fields keep their value.
@@ -1250,6 +1321,8 @@ mod tests {
             distance_to_go: 0.0,
             programmed_feed: None,
             preprocessing_stop_wait: false,
+            parts: Parts { required: 0, total: 0, actual: 0, special: 0 },
+            runtimes: Runtimes { operating: 0.0, cycle: 0.0, cutting: 0.0 },
             spindles: AxisValues::default(),
             spindle_info: Default::default(),
             positioning: vec![],

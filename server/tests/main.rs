@@ -27,6 +27,7 @@ mod limits;
 mod machine_data_programs;
 mod manual;
 mod manual_modes;
+mod parts;
 mod persistence;
 mod preview;
 mod probe;

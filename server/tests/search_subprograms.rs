@@ -5,13 +5,19 @@
 use crate::common;
 
 use common::{Server, pos};
-use nctwin_server::Config;
+use nctwin_server::{Config, Limits};
 use reqwest::StatusCode;
 use serde_json::{Value, json};
 
+/// The 300,000 blocks take seconds in a debug build on a loaded 2-core machine, more than the
+/// default 10 s a fast run may take; the test is about where the run stops, not how fast.
+fn patient() -> Limits {
+    Limits { fast_wall_time: std::time::Duration::from_secs(300), ..Limits::default() }
+}
+
 async fn restart(server: Server) -> Server {
     let dir = server.stop().await;
-    Server::start_config(Config::new(dir, common::WEB_DIR)).await
+    Server::start_config(Config { limits: patient(), ..Config::new(dir, common::WEB_DIR) }).await
 }
 
 /// 100,000 passes of a three-block loop (300,000 blocks), X1, then HOLE (line 6), then M30.
@@ -32,7 +38,7 @@ fn xyz(state: &Value) -> [f64; 3] {
 
 #[tokio::test]
 async fn a_program_stopped_inside_a_subprogram_after_300000_blocks_resumes_there_after_a_restart() {
-    let server = Server::start().await;
+    let server = Server::start_with(patient()).await;
     let id = session_with_hole(&server).await;
     let reply =
         server.post(&format!("/sessions/{id}/run"), json!({"program": MAIN, "pace": "fast", "wait": true})).await;

@@ -741,6 +741,11 @@ async function main() {
       if (!waiting.preprocessing_stop_wait && waiting.positions.machine.Z > 45.0) throw new Error(`state while waiting: ${JSON.stringify(waiting)}`);
       if (waiting.preprocessing_stop_wait && waiting.positions.machine.X !== 0) throw new Error(`X moved during the wait: ${waiting.positions.machine.X}`);
       await page.waitForFunction(() => document.getElementById("status")?.textContent?.trim() === "idle", null, { timeout: 30_000 });
+      // Its M30 counted a part (MD27880 'H901'); the line shows the count and the cycle time:
+      // the program took the 1 s of Z and 0.6 s of X, so it reads 0:00:01.
+      const ended = await pageFetch(page, "GET", `/sessions/${id}/state`);
+      if (ended.parts.actual < 1 || !(ended.runtimes.cycle >= 1.6 && ended.runtimes.cycle < 3)) throw new Error(`counters: ${JSON.stringify(ended.parts)} ${JSON.stringify(ended.runtimes)}`);
+      await page.waitForFunction((n) => document.getElementById("channel-times")?.textContent === `Parts ${n} · Cycle 0:00:01`, ended.parts.actual, { timeout: 10_000 });
       await previewDone();
     });
 

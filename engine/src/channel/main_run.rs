@@ -57,6 +57,10 @@ impl Channel {
     /// otherwise push the cycle's instructions out of the cache.
     #[inline(never)]
     fn prepare_blocks(&mut self) {
+        // A program's own writes to main-run data (`$AC_MARKER[1]=..`, a counter) reach a block
+        // that waited for the main run to read them.
+        self.hand_process_data();
+        self.publish_sync_data();
         for s in self.spindles.iter().filter(|s| !s.axis_mode) {
             self.interp.observe_spindle(s.axis, s.position);
         }
@@ -563,10 +567,17 @@ impl Channel {
                 Item::Aux { function, line } => {
                     self.enter_block(line, seq);
                     self.events.push(Event::AuxFunction { function, line });
+                    if function.letter == 'M' && function.extension == 0 {
+                        self.count_parts_on_m(function.value as u32);
+                    }
                 }
                 Item::DigitalOutput { signal, on, line } => {
                     self.enter_block(line, seq);
                     self.execute_digital_output(signal, on, line);
+                }
+                Item::MainRunWrite { write, line } => {
+                    self.enter_block(line, seq);
+                    self.execute_main_run_write(write, line);
                 }
                 Item::SyncAction { def, line } => {
                     self.enter_block(line, seq);

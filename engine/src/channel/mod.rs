@@ -12,6 +12,7 @@
 pub mod action_log;
 mod active_program;
 mod command_axes;
+mod counters;
 mod exact_stop;
 mod io;
 mod jog;
@@ -44,6 +45,7 @@ use std::collections::VecDeque;
 use std::sync::Arc;
 
 pub use active_program::{ActiveProgram, CallLevel};
+pub use counters::SavedCounters;
 pub use jog::settings::OrientationJogKind;
 pub use jog::{JOG_INCREMENTS, JogSystem};
 pub use positioning_axes::{PositioningInfo, SavedPositioning};
@@ -331,6 +333,8 @@ pub struct Channel {
     toff: tools::toff::OnlineOffset,
     /// The digital inputs and outputs (`$A_IN`, `$A_OUT`; see `io.rs`).
     io: crate::interp::io::DigitalIo,
+    /// Workpiece counters, program runtimes and the clock (`counters.rs`).
+    counters: counters::Counters,
     /// The axes' position loops: actual values and following errors.
     servo: servo::Servo,
     /// The block change waiting for the G601/G602 exact-stop window (`exact_stop.rs`).
@@ -433,6 +437,7 @@ impl Channel {
             ori_memo: Default::default(),
             toff: Default::default(),
             io: Default::default(),
+            counters: Default::default(),
             servo,
             exact_stop: Default::default(),
             referenced,
@@ -659,6 +664,7 @@ impl Channel {
         // Modal synchronized actions of an earlier run (one ended by an alarm) end here.
         self.sync.end_program();
         self.interp.begin_program(text, &self.machine);
+        self.start_cycle_time();
         self.status = Status::Running;
         Ok(())
     }
@@ -830,6 +836,7 @@ impl Channel {
         } else {
             self.planner.stood();
         }
+        let feed_motion = self.status == Status::Running && self.planner_moves_at_feed();
         self.monitor_tools();
         self.update_machine_position();
         self.step_positioning_axes();
@@ -858,6 +865,10 @@ impl Channel {
         }
         if self.status == Status::Running && self.planner.is_empty() && !self.exact_stop.is_waiting() {
             self.execute_actions();
+        }
+        if self.status == Status::Running {
+            // After the actions: a program started over by GOTOS counts this cycle anew.
+            self.count_runtimes(feed_motion);
         }
         self.sync_files();
     }

@@ -56,6 +56,10 @@ pub struct ResumeState {
     /// written before.
     #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Vec::is_empty"))]
     pub positioning: Vec<super::SavedPositioning>,
+    /// The workpiece counters and program runtimes (`counters.rs`): a restart keeps them, as
+    /// the control's power on does. `None` while all are 0, and in checkpoints written before.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Option::is_none"))]
+    pub counters: Option<super::SavedCounters>,
 }
 
 /// The inputs of a checkpoint.
@@ -109,7 +113,8 @@ impl Channel {
         let stock = self.saved_stock();
         let positioning = if line.is_some() { self.saved_positioning() } else { Vec::new() };
         let retained = self.interp.retained();
-        (ResumeState { retained, program, inputs, stock, positioning }, text.cloned())
+        let counters = self.saved_counters();
+        (ResumeState { retained, program, inputs, stock, positioning, counters }, text.cloned())
     }
 
     /// Takes back a saved resumable state; only in reset state with nothing moving. The
@@ -128,6 +133,9 @@ impl Channel {
         self.adopt_transformation();
         if let Some(inputs) = &state.inputs {
             self.restore_inputs(inputs.digital, &inputs.analog);
+        }
+        if let Some(counters) = &state.counters {
+            self.restore_counters(counters);
         }
         let Some(program) = &state.program else {
             self.restore_saved_stock(state);

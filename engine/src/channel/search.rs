@@ -295,6 +295,7 @@ impl Channel {
                     | Item::Stop { kind: StopKind::M0 | StopKind::M1, .. }
                     | Item::Aux { .. }
                     | Item::DigitalOutput { .. }
+                    | Item::MainRunWrite { .. }
                     | Item::SyncAction { .. }
                     | Item::SyncControl { .. }
                     | Item::SetPiece { .. }

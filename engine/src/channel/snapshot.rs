@@ -102,6 +102,10 @@ pub struct Snapshot {
     /// The program stands at a preprocessing stop, waiting for the main run
     /// (`Channel::stands_at_preprocessing_stop`).
     pub preprocessing_stop_wait: bool,
+    /// The workpiece counters (`$AC_REQUIRED_PARTS`..).
+    pub parts: crate::interp::eval::process_vars::PartCounts,
+    /// The program runtimes (`$AC_OPERATING_TIME`..).
+    pub runtimes: crate::interp::eval::process_vars::Runtimes,
 }
 
 /// The G functions a snapshot's `gcodes` names were written from, so that a refresh rewrites
@@ -156,6 +160,8 @@ pub(super) fn build(ch: &Channel) -> Snapshot {
         distance_to_go: 0.0,
         programmed_feed: None,
         preprocessing_stop_wait: false,
+        parts: Default::default(),
+        runtimes: Default::default(),
     };
     super::snapshot_refresh::refresh(ch, &mut s);
     s

@@ -215,6 +215,8 @@ pub(super) fn refresh(ch: &Channel, s: &mut Snapshot) {
     s.distance_to_go = to_go.map_or(0.0, |(d, _)| d);
     s.programmed_feed = to_go.and_then(|(_, f)| f.is_finite().then_some(f * 60.0));
     s.preprocessing_stop_wait = ch.stands_at_preprocessing_stop();
+    s.parts = ch.part_counts();
+    s.runtimes = ch.runtimes();
     s.optional_stop = ch.optional_stop;
     s.dry_run = ch.dry_run;
     s.skip_levels = ch.skip_levels;

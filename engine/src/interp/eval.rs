@@ -10,6 +10,7 @@ pub(crate) mod machine_data;
 pub(super) mod name_hash;
 pub(crate) mod nc_constants;
 pub(super) mod numeric;
+pub mod process_vars;
 pub mod run_vars;
 pub(super) mod scope;
 pub(super) mod strings;

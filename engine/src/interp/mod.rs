@@ -155,6 +155,12 @@ pub enum Item {
         on: bool,
         line: u32,
     },
+    /// `$AC_MARKER[n]=..`, a workpiece counter written, GOTOS: done in the main run
+    /// ([`synchronized::MainRunWrite`]).
+    MainRunWrite {
+        write: synchronized::MainRunWrite,
+        line: u32,
+    },
     /// A synchronized action, active from when the main run reaches it (`synchronized.rs`).
     SyncAction {
         def: std::sync::Arc<synchronized::SyncDef>,
@@ -240,6 +246,7 @@ impl Item {
             | Item::SpindleToAxis { line, .. }
             | Item::Aux { line, .. }
             | Item::DigitalOutput { line, .. }
+            | Item::MainRunWrite { line, .. }
             | Item::SyncAction { line, .. }
             | Item::SyncControl { line, .. }
             | Item::Workpiece { line, .. }
@@ -340,6 +347,9 @@ pub struct Interpreter {
     io: io::DigitalIo,
     /// How the shell runs the channel's programs (`$P_SIM`, `eval/run_vars.rs`).
     env: eval::run_vars::RunEnv,
+    /// The workpiece counters, runtimes and clock as the main run last handed them over
+    /// (`eval/process_vars.rs`).
+    process: eval::process_vars::ProcessData,
     /// The PLC data area `$A_DBB`.. (`io/plc_data.rs`).
     plc: io::plc_data::PlcData,
     /// The enabled working-area limits (`path_control/work_area.rs`): `None` until read from
@@ -397,6 +407,7 @@ impl Interpreter {
             stored: Default::default(),
             io: io::DigitalIo::default(),
             env: Default::default(),
+            process: Default::default(),
             plc: Default::default(),
             work_area: None,
             sync_wait: synchronized::PrepWait::None,
@@ -469,6 +480,12 @@ impl Interpreter {
     /// Writes `bytes` into the PLC data area at byte `at` (checked by the caller).
     pub fn write_plc_data(&mut self, at: usize, bytes: &[u8]) {
         self.plc.put(at, bytes);
+    }
+
+    /// The workpiece counters, runtimes and clock of the main run, for the blocks prepared
+    /// from now on (a block reading a counter or runtime has waited for the main run).
+    pub fn set_process_data(&mut self, data: eval::process_vars::ProcessData) {
+        self.process = data;
     }
 
     /// Marks the channel's runs as a simulation (`$P_SIM` TRUE) or the machine's own.
@@ -808,6 +825,9 @@ impl Interpreter {
         for &(signal, on) in &words.digital_outputs {
             self.trc.emit_or_defer(Item::DigitalOutput { signal, on, line }, out);
         }
+        for &write in &words.main_run_writes {
+            self.trc.emit_or_defer(Item::MainRunWrite { write, line }, out);
+        }
         if let Some(sp) = words.set_piece {
             // The tools are in the master spindle's holder: another spindle used none.
             let axis = match sp.spindle {
@@ -917,7 +937,7 @@ impl Interpreter {
             out.push(Item::Stop { kind, line });
         }
         if let Some(goto) = &words.goto {
-            self.jump(goto, cfg, line)?;
+            self.jump(goto, cfg, line, out)?;
         }
         if !path_motion && words.sar.contour.is_some() {
             // A SAR approach block without motion: the next motion block ends at P4 (with TRC

@@ -515,6 +515,8 @@ pub(super) struct Words {
     pub plc_writes: Vec<(usize, Vec<u8>)>,
     /// `$A_OUT[n]=..`: digital outputs the block sets (signal, level).
     pub digital_outputs: Vec<(usize, bool)>,
+    /// `$AC_MARKER[n]=..`, `$AC_ACTUAL_PARTS=..`: writes the main run does at the block.
+    pub main_run_writes: Vec<super::synchronized::MainRunWrite>,
     /// CALLPATH: `Some(path)` extends the call search path, `Some("")` ends the extension.
     pub callpath: Option<String>,
 }
@@ -968,6 +970,10 @@ pub(super) fn collect(
                         w.digital_outputs.push((signal, on));
                         continue;
                     }
+                    Assigned::MainRun(write) => {
+                        w.main_run_writes.push(write);
+                        continue;
+                    }
                     Assigned::Address(axis) => axis,
                 };
                 if name == "T"
@@ -1149,6 +1155,8 @@ pub(super) enum Assigned {
     DigitalOutput(usize, bool),
     /// `$A_DBB[n] = value` ..: the bytes written into the PLC data area at an offset.
     PlcData(usize, Vec<u8>),
+    /// `$AC_MARKER[n] = value`, a workpiece counter ..: done in the main run.
+    MainRun(super::synchronized::MainRunWrite),
 }
 
 pub(super) fn assign(
@@ -1216,6 +1224,9 @@ pub(super) fn assign(
         return Ok(Assigned::PlcData(at, bytes));
     }
     if name.starts_with('$') {
+        if let Some(write) = super::synchronized::program_write(name, indices, expr, cfg, &Ctx { vars, sys }, line)? {
+            return Ok(Assigned::MainRun(write));
+        }
         return data_write(name, indices, expr, vars, sys, line).map(Assigned::Data);
     }
     if name == "AX" && indices.len() == 1 && vars.get(name).is_none() {

@@ -18,6 +18,7 @@ use crate::lang::Block;
 impl Interpreter {
     /// Takes over SKP and DRY for the blocks prepared from now on.
     pub fn set_program_control(&mut self, control: ProgramControl) {
+        self.env.dry_run = control.dry_run.is_some();
         self.program_control = control;
     }
 }

@@ -152,7 +152,7 @@ impl Interpreter {
             }
             Stmt::If { cond: c, goto: Some(goto) } => {
                 if cond(self, c)? {
-                    self.jump(goto, cfg, line)?;
+                    self.jump(goto, cfg, line, out)?;
                 }
             }
             Stmt::If { cond: c, goto: None } => {
@@ -250,10 +250,10 @@ impl Interpreter {
                     }
                 }
                 if let Some(goto) = target.cloned() {
-                    self.jump(&goto, cfg, line)?;
+                    self.jump(&goto, cfg, line, out)?;
                 }
             }
-            Stmt::Goto(goto) => self.jump(goto, cfg, line)?,
+            Stmt::Goto(goto) => self.jump(goto, cfg, line, out)?,
             // PROC lines are bound in `step_program`.
             Stmt::Proc { .. } => {}
             Stmt::Extern { name, params } => self.call_state.externs.declare(name, params),

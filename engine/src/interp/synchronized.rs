@@ -92,6 +92,60 @@ impl MainRunData {
     }
 }
 
+/// A part program's write to data the main run keeps, done when its block reaches the main
+/// run ([`crate::interp::Item::MainRunWrite`]), in order with the motion before it: synchronized
+/// actions and the counters read the value from there on, and so does a block after it, which
+/// waits for the main run to read any `$AC_` variable.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MainRunWrite {
+    /// `$AC_MARKER[n] = v` (rounded: markers are INT).
+    Marker(usize, f64),
+    /// `$AC_PARAM[n] = v`.
+    Param(usize, f64),
+    /// `$AC_REQUIRED_PARTS = n` and the other workpiece counters.
+    Parts(crate::interp::eval::process_vars::PartCounter, u32),
+    /// GOTOS in the main program: it starts over, which counts workpieces and clears the cycle
+    /// time where MD27880/MD27860 say so.
+    StartOver,
+}
+
+/// `name[indices] = expr` as a [`MainRunWrite`], or `None` when `name` is none of that data.
+/// The runtimes are read only (write protected); an index outside its list is 17020, a count
+/// outside 0..999,999,999 is 12560.
+pub(super) fn program_write(
+    name: &str,
+    indices: &[Expr],
+    expr: &Expr,
+    cfg: &MachineConfig,
+    ctx: &crate::interp::eval::scope::Ctx,
+    line: u32,
+) -> Result<Option<MainRunWrite>, Alarm> {
+    use crate::interp::eval::process_vars::{MAX_PARTS, PartCounter};
+    use crate::interp::eval::{eval, eval_f64};
+    if matches!(name, "$AC_OPERATING_TIME" | "$AC_CYCLE_TIME" | "$AC_CUTTING_TIME") {
+        return Err(Alarm::write_protected(line, name));
+    }
+    if let Some(counter) = PartCounter::named(name) {
+        if !indices.is_empty() {
+            return Err(Alarm::index_error(line, name, "takes no index"));
+        }
+        let v = eval_f64(expr, ctx, line)?.round();
+        if !(0.0..=MAX_PARTS as f64).contains(&v) {
+            return Err(Alarm::value_out_of_range(line, &format!("{name} = {v}")));
+        }
+        return Ok(Some(MainRunWrite::Parts(counter, v as u32)));
+    }
+    let len = match name {
+        "$AC_MARKER" => cfg.sync_sizes.markers,
+        "$AC_PARAM" => cfg.sync_sizes.params,
+        _ => return Ok(None),
+    };
+    let idx = indices.iter().map(|e| eval(e, ctx, line)).collect::<Result<Vec<_>, _>>()?;
+    let i = index(name, &idx, len, 0, line)?;
+    let v = eval_f64(expr, ctx, line)?;
+    Ok(Some(if name == "$AC_MARKER" { MainRunWrite::Marker(i, v.round()) } else { MainRunWrite::Param(i, v) }))
+}
+
 /// The element of `name[n]` in a list of `len` numbered from `first` (17020 outside).
 fn index(name: &str, indices: &[Value], len: usize, first: usize, line: u32) -> Result<usize, Alarm> {
     let [n] = indices else { return Err(Alarm::index_error(line, name, "needs one index")) };

@@ -143,6 +143,8 @@ pub struct MachineConfig {
     pub path_control: super::path_control::PathControlData,
     /// Sizes of the synchronized actions' data and the NCK signals (MD28254.., MD10300..).
     pub sync_sizes: super::sync_sizes::SyncSizes,
+    /// Which program runtimes and workpiece counters run, and how (MD27860, MD27880/27882).
+    pub process_counting: super::process_counting::ProcessCounting,
 }
 
 /// How a tool change is triggered and how long it takes.
@@ -453,6 +455,7 @@ impl MachineConfig {
                 .map_err(|m| ActivationError { datum: Some("GCODE_RESET_VALUES"), message: m })?,
             path_control: super::path_control::PathControlData::read(md, &machine_numbers),
             sync_sizes: super::sync_sizes::SyncSizes::read(md),
+            process_counting: super::process_counting::ProcessCounting::read(md),
         };
         cfg.refresh_data(md)?;
         Ok(cfg)

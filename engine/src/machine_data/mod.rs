@@ -14,6 +14,7 @@ pub mod gears;
 pub mod inch;
 pub mod path_control;
 pub mod presets;
+pub mod process_counting;
 pub mod registry;
 pub mod sync_sizes;
 pub mod text;

@@ -426,6 +426,10 @@ pub static DEFS: &[Def] = &[
     def("TRACON_CHAIN_2", 24996, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("TRACON_CHAIN_3", 24997, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
     def("TRACON_CHAIN_4", 24998, C, Kind::Int, 4, Default::Int(0), 0.0, MAX_TRAFO_SETS as f64),
+    // Program runtimes and workpiece counters (`process_counting.rs`).
+    def("PROCESSTIMER_MODE", 27860, C, Kind::Int, 1, Default::Int(0x177), 0.0, 2047.0),
+    def("PART_COUNTER", 27880, C, Kind::Int, 1, Default::Int(0x901), 0.0, 268_435_455.0),
+    def("PART_COUNTER_MCODE", 27882, C, Kind::Int, 3, Default::Int(2), 0.0, 99999.0),
     def("MM_NUM_USER_FRAMES", 28080, C, Kind::Int, 1, Default::Int(5), 5.0, 100.0),
     // Synchronized actions' memory in elements (`interp/synchronized/elements.rs`) and data
     // (`sync_sizes.rs`): `$AC_PARAM`, `$AC_MARKER`, `$AC_TIMER`.

@@ -203,6 +203,32 @@ pub async fn set_overrides(
     command(&state, &id, action, None).await
 }
 
+/// Sets the workpiece counters (`$AC_REQUIRED_PARTS`, `$AC_TOTAL_PARTS`, `$AC_ACTUAL_PARTS`,
+/// `$AC_SPECIAL_PARTS`), as the operator does between batches; they act on the next count.
+#[utoipa::path(
+    put,
+    path = "/sessions/{id}/parts",
+    tag = "program",
+    params(("id" = String, Path, description = "Session id")),
+    request_body = dto::PartsRequest,
+    responses(
+        (status = 200, description = "The state with the new counts", body = dto::State),
+        (status = 400, description = "A count above 999,999,999, or a malformed body", body = ErrorBody),
+        (status = 404, description = "No such session", body = ErrorBody),
+    )
+)]
+pub async fn set_parts(
+    State(state): State<AppState>,
+    Path(id): Path<String>,
+    ApiJson(body): ApiJson<dto::PartsRequest>,
+) -> Result<StateReply, ApiError> {
+    let counts = [body.required, body.total, body.actual, body.special];
+    if let Some(n) = counts.iter().flatten().find(|&&n| n > 999_999_999) {
+        return Err(ApiError::bad_request(format!("a workpiece count is at most 999999999, not {n}")));
+    }
+    command(&state, &id, Action::SetParts(counts), None).await
+}
+
 /// The skip levels of a request: 0..=9, else 400 naming the level.
 fn skip_levels(levels: &[i64]) -> Result<SkipLevels, ApiError> {
     let max = i64::from(SkipLevels::MAX_LEVEL);

@@ -88,6 +88,7 @@ pub fn router(limits: &Limits) -> OpenApiRouter<AppState> {
         .routes(routes!(control::cancel))
         .routes(routes!(control::set_mode))
         .routes(routes!(control::set_overrides))
+        .routes(routes!(control::set_parts))
         .routes(routes!(control::set_options))
         .routes(routes!(jog::jog_stop))
         .routes(routes!(jog::handwheel))

@@ -80,7 +80,8 @@ pub async fn create_session(
         let known: Vec<&str> = presets::PRESETS.iter().map(|p| p.id).collect();
         return Err(ApiError::bad_request(format!("unknown machine preset `{machine}` (known: {})", known.join(", "))));
     }
-    let channel = Channel::from_preset(&machine, body.machine_data.as_deref().unwrap_or(""))?;
+    let mut channel = Channel::from_preset(&machine, body.machine_data.as_deref().unwrap_or(""))?;
+    crate::session::start_clock(&mut channel);
     let client_ip = peer.map(|Extension(ConnectInfo(addr))| addr.ip());
     let persistent = body.persistent.unwrap_or(false);
     let (entry, tokens) = state.create_session(&machine, channel, client_ip, persistent).await?;

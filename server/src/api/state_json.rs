@@ -226,6 +226,22 @@ fn write_head(out: &mut String, s: &Snapshot) {
     if s.preprocessing_stop_wait {
         out.push_str(",\"preprocessing_stop_wait\":true");
     }
+    let p = &s.parts;
+    out.push_str(",\"parts\":{\"required\":");
+    write_int(out, p.required);
+    out.push_str(",\"total\":");
+    write_int(out, p.total);
+    out.push_str(",\"actual\":");
+    write_int(out, p.actual);
+    out.push_str(",\"special\":");
+    write_int(out, p.special);
+    out.push_str("},\"runtimes\":{\"operating\":");
+    write_f64(out, s.runtimes.operating);
+    out.push_str(",\"cycle\":");
+    write_f64(out, s.runtimes.cycle);
+    out.push_str(",\"cutting\":");
+    write_f64(out, s.runtimes.cutting);
+    out.push('}');
     out.push_str(",\"spindles\":");
     write_named(out, &s.spindles, write_f64);
     out.push_str(",\"spindle_info\":{");
@@ -630,6 +646,14 @@ mod tests {
         s.skip_levels = SkipLevels::from_levels(&[0, 4, 9]).unwrap();
         s.repos_pending = true;
         s.preprocessing_stop_wait = true;
+        s.parts = nctwin_engine::interp::eval::process_vars::PartCounts {
+            required: 999_999_999,
+            total: 12,
+            actual: 0,
+            special: 7,
+        };
+        s.runtimes.cycle = 12.345_678_9;
+        s.runtimes.cutting = f64::MIN_POSITIVE;
         s.block = Some(nctwin_engine::channel::BlockRef { line: 3, text: String::new(), program: Some("HOLE".into()) });
         s.positioning = vec![
             PositioningInfo { axis: "Z\"1".into(), target: None, velocity: -0.0, kind: "MOV", waiting: false },

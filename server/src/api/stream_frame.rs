@@ -79,7 +79,7 @@ struct StateMessage<'a>(&'a Snapshot);
 impl Serialize for StateMessage<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let s = self.0;
-        let mut m = serializer.serialize_struct("State", 29)?;
+        let mut m = serializer.serialize_struct("State", 31)?;
         m.serialize_field("type", "state")?;
         m.serialize_field("status", &ChannelStatus::from(s.status))?;
         m.serialize_field("mode", &OpMode::from(s.mode))?;
@@ -100,6 +100,12 @@ impl Serialize for StateMessage<'_> {
         m.serialize_field("program_serial", &s.program_serial)?;
         m.serialize_field("distance_to_go", &s.distance_to_go)?;
         m.serialize_field("programmed_feed", &s.programmed_feed)?;
+        m.serialize_field("parts", &crate::dto::Parts::from(s.parts))?;
+        let t = s.runtimes;
+        m.serialize_field(
+            "runtimes",
+            &crate::dto::Runtimes { operating: t.operating, cycle: t.cycle, cutting: t.cutting },
+        )?;
         m.serialize_field("spindles", &Named(&s.spindles))?;
         m.serialize_field("spindle_info", &super::spindle_dto::SpindleInfos::of(&s.spindle_states))?;
         m.serialize_field("message", &s.message)?;

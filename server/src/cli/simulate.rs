@@ -341,6 +341,7 @@ fn simulate(args: &SimulateArgs) -> Result<Report, UsageError> {
         None => UsageError(e.message),
     })?;
     channel.optional_stop = args.optional_stop;
+    nctwin_server::session::start_clock(&mut channel);
     let options = nctwin_engine::channel::StockOptions {
         resolution: args.stock_resolution,
         depth_limit: args.depth_limit,

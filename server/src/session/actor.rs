@@ -423,6 +423,15 @@ fn apply_action(channel: &mut Channel, action: Action) -> Result<(), CommandErro
             options.apply(channel);
             Ok(())
         }
+        Action::SetParts([required, total, actual, special]) => {
+            let now = channel.part_counts();
+            channel.set_part_counts(nctwin_engine::interp::eval::process_vars::PartCounts {
+                required: required.unwrap_or(now.required),
+                total: total.unwrap_or(now.total),
+                actual: actual.unwrap_or(now.actual),
+                special: special.unwrap_or(now.special),
+            })
+        }
         Action::Jog { mut request, system, rotation, inc } => {
             if let Some(steps) = inc {
                 request.increment = Some(channel.increment_distance(&request.axis, steps)?);

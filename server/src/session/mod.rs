@@ -28,6 +28,13 @@ use nctwin_engine::interp::program_control::SkipLevels;
 use nctwin_engine::{Channel, CommandError, Event, JogRequest, Mode, Snapshot};
 use tokio::sync::{broadcast, mpsc, oneshot, watch};
 
+/// Sets `channel`'s clock (`$A_YEAR`..) to the wall time now: a new or restored session, or a
+/// run of `nctwin simulate`, stamps what its programs write with the day it runs on.
+pub fn start_clock(channel: &mut Channel) {
+    let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default();
+    channel.set_clock(i64::try_from(now.as_millis()).unwrap_or(i64::MAX));
+}
+
 pub use pacer::Pacer;
 pub use wake_stats::{LATENESS_BUCKETS, WakeCounts, wake_stats};
 
@@ -137,6 +144,8 @@ pub enum Action {
     },
     /// Program control: single block, optional stop, dry run, skip levels.
     SetOptions(ProgramOptions),
+    /// The workpiece counters (required, total, actual, special); `None` keeps a value.
+    SetParts([Option<u32>; 4]),
     /// Start a JOG motion; `inc` (INC steps of MD31090) replaces `request.increment`.
     Jog {
         request: JogRequest,

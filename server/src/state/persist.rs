@@ -132,6 +132,7 @@ pub fn rebuild(saved: &SavedSession) -> Result<Channel, String> {
     let mut data = MachineData::default();
     data.apply_text(&record.checkpoint.machine_data).map_err(|e| format!("machine data: {e}"))?;
     let mut channel = Channel::new(data).map_err(|e| format!("machine data: {e}"))?;
+    crate::session::start_clock(&mut channel);
     if let Err(e) = channel.restore_positions(&record.checkpoint.positions) {
         tracing::warn!(session = %record.id, error = %e, "saved positions not restored");
     }

@@ -52,6 +52,10 @@ export interface State {
   programmed_feed?: number | null;
   /** The program stands at a preprocessing stop waiting for the main run (absent: no). */
   preprocessing_stop_wait?: boolean;
+  /** Workpiece counters ($AC_REQUIRED_PARTS, $AC_TOTAL_PARTS, $AC_ACTUAL_PARTS, $AC_SPECIAL_PARTS). */
+  parts?: { required: number; total: number; actual: number; special: number };
+  /** Program runtimes in seconds ($AC_OPERATING_TIME, $AC_CYCLE_TIME, $AC_CUTTING_TIME). */
+  runtimes?: { operating: number; cycle: number; cutting: number };
   spindles: Record<string, number>;
   /** Each spindle's mode (M3/M4/M5/SPOS), angle in degrees and master flag, by the names of `spindles`. */
   spindle_info?: Record<string, SpindleInfo>;

@@ -8,7 +8,9 @@
 // Operate abbreviates them: SBL M01 DRY SKP. A preprocessing stop (STOPRE, a read of main-run
 // values) is shown only while the path stands at it for something else of the main run (a
 // POSA axis travelling: the state's `preprocessing_stop_wait`); behind the path's own blocks
-// it ends in the cycle they end, and the channel never stands.
+// it ends in the cycle they end, and the channel never stands. The workpiece count (against
+// the setpoint when one is set) and the running program's cycle time close the line, as
+// Operate's program status shows them.
 
 import type { State } from "../api/types";
 import { byId, fmt, setText } from "../core/dom";
@@ -47,6 +49,21 @@ export function channelReason(st: State): string {
   }
 }
 
+/** Seconds as H:MM:SS (whole seconds, as Operate shows a runtime). */
+export function clockTime(seconds: number): string {
+  const s = Math.max(0, Math.floor(seconds));
+  const two = (n: number) => String(n).padStart(2, "0");
+  return `${Math.floor(s / 3600)}:${two(Math.floor(s / 60) % 60)}:${two(s % 60)}`;
+}
+
+/** "Parts 3/5 · Cycle 0:01:23": the actual count (of the setpoint, if set) and cycle time. */
+export function partsAndTime(st: State): string {
+  const p = st.parts;
+  if (!p) return "";
+  const count = p.required > 0 ? `${p.actual}/${p.required}` : `${p.actual}`;
+  return `Parts ${count} · Cycle ${clockTime(st.runtimes?.cycle ?? 0)}`;
+}
+
 function render(st: State): void {
   const line = byId("channel-status");
   line.dataset.status = st.status;
@@ -61,6 +78,7 @@ function render(st: State): void {
   const programmed = st.programmed_feed == null ? (st.distance_to_go ? "rapid" : "–") : fmt(st.programmed_feed, 0);
   setText(byId("channel-feed"), `F prog ${programmed} act ${fmt(st.path_velocity, 0)} mm/min`);
   setText(byId("channel-dtg"), `DTG ${fmt(st.distance_to_go ?? 0, 3)}`);
+  setText(byId("channel-times"), partsAndTime(st));
 }
 
 export function mountStatusLine(session: SessionController): void {

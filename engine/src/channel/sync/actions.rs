@@ -423,7 +423,7 @@ impl Channel {
     /// waits for the main run, or would not wait (nothing queued, no program running). While a
     /// program's moves are queued no block that reads main-run data is prepared, so the copy
     /// is not made in every cycle.
-    fn publish_sync_data(&mut self) {
+    pub(in crate::channel) fn publish_sync_data(&mut self) {
         if !self.sync.unpublished() {
             return;
         }

@@ -40,6 +40,8 @@ pub struct RunEnv {
     pub searching: bool,
     /// The type of the last block search since the program started (`$P_SEARCHL`), 0 none.
     pub last_search: u8,
+    /// The dry-run feed (DRY) acts on the blocks prepared now (`$P_DRYRUN`).
+    pub dry_run: bool,
 }
 
 /// `$P_SEARCHL` of NCTwin's block search: with calculation to the contour.

@@ -44,6 +44,8 @@ pub(crate) struct SysView<'a> {
     pub measured: &'a crate::interp::measuring::Results,
     /// How the program runs (`$P_SIM`, see `run_vars.rs`).
     pub env: &'a crate::interp::eval::run_vars::RunEnv,
+    /// Workpiece counters, runtimes, the clock (`process_vars.rs`).
+    pub process: &'a crate::interp::eval::process_vars::ProcessData,
     /// The arguments of the running subprogram's call (`None`: left out), for `$P_SUBPAR`.
     pub call_args: &'a [Option<Value>],
     /// The PLC data area (`$A_DBB`..).
@@ -72,6 +74,7 @@ macro_rules! sys_view {
             spindles: &$interp.spindles,
             measured: &$interp.measured,
             env: &$interp.env,
+            process: &$interp.process,
             plc: &$interp.plc,
             call_args: $crate::interp::calls::call_args(&$interp.calls),
         }
@@ -88,7 +91,9 @@ pub(crate) struct Ctx<'a> {
 /// Main-run variables: reading them makes preparation wait until the main run has caught up
 /// (the control's implicit preprocessing stop), because their value is only known there.
 pub fn is_main_run_variable(name: &str) -> bool {
-    ["$AA_", "$AC_", "$VA_", "$VC_"].iter().any(|p| name.starts_with(p)) || crate::interp::io::is_io_name(name)
+    ["$AA_", "$AC_", "$VA_", "$VC_"].iter().any(|p| name.starts_with(p))
+        || crate::interp::io::is_io_name(name)
+        || super::process_vars::is_clock_name(name)
 }
 
 impl Scope for Ctx<'_> {
@@ -168,6 +173,9 @@ impl Scope for Ctx<'_> {
             return v;
         }
         if let Some(v) = super::run_vars::read(sys, name, indices, line) {
+            return v;
+        }
+        if let Some(v) = super::process_vars::read(sys, name, indices, line) {
             return v;
         }
         if let Some(v) = super::cycle_vars::read(sys, name, indices, line) {

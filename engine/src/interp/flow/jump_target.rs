@@ -3,16 +3,27 @@
 //! text names a label or a block number.
 
 use crate::alarm::Alarm;
-use crate::interp::Interpreter;
 use crate::interp::eval::eval;
 use crate::interp::eval::scope::{Ctx, sys_view};
 use crate::interp::eval::value::Value;
+use crate::interp::synchronized::MainRunWrite;
+use crate::interp::{Interpreter, Item};
 use crate::lang::{Goto, GotoKind, JumpTarget, VarType};
 use crate::machine_data::MachineConfig;
 
 impl Interpreter {
     /// Executes the jump `goto` of the block at `line`, reading a computed target first.
-    pub(in crate::interp) fn jump(&mut self, goto: &Goto, cfg: &MachineConfig, line: u32) -> Result<(), Alarm> {
+    pub(in crate::interp) fn jump(
+        &mut self,
+        goto: &Goto,
+        cfg: &MachineConfig,
+        line: u32,
+        out: &mut Vec<Item>,
+    ) -> Result<(), Alarm> {
+        if goto.target == JumpTarget::ProgramStart && self.calls.is_empty() {
+            // The main program starts over: workpiece counters and the cycle time see it.
+            self.trc.emit_or_defer(Item::MainRunWrite { write: MainRunWrite::StartOver, line }, out);
+        }
         let resolved = self.resolve_target(goto, cfg, line)?;
         if let Some(flow) = self.flow.as_mut() {
             flow.jump(resolved.as_ref().unwrap_or(goto))?;
