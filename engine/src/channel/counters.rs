@@ -13,13 +13,17 @@
 //!   not a dwell) with a tool active, in AUTO and MDA. None runs while the program is stopped
 //!   or in an alarm, nor with the feed override at 0 (MD27860 bit 9 lets the first two run),
 //!   nor under the dry-run feed without MD27860 bit 4.
+//! - The IPO cycle only counts: one increment while a program runs, one in the planner while
+//!   the path moves at feed. The times are worked out from the counts when read and settled at
+//!   each block prepared and before the feed override changes, so a change of DRY or the tool
+//!   is attributed to within one block; a cycle costs two increments instead of the tests.
 //! - The counters and runtimes are not touched by a mode change or reset, are kept in a
 //!   checkpoint, and can be written by programs (the counters) and over REST.
 //! - Decisions where the manuals leave it open: a counter switched on counts whatever
 //!   `$AC_REQUIRED_PARTS` holds (the watch needs it above 0); the alarm number 21800 could not
 //!   be confirmed in a public text.
 
-use super::{Channel, Mode, Status};
+use super::{Channel, Mode};
 use crate::alarm::Alarm;
 use crate::interp::eval::process_vars::{MAX_PARTS, PartCounter, PartCounts, ProcessData, Runtimes};
 use crate::interp::synchronized::MainRunWrite;
@@ -32,6 +36,13 @@ pub(super) struct Counters {
     pub times: Runtimes,
     /// The wall time (ms since 1970 UTC) at tick 0, as the shell set it.
     pub clock_base_ms: i64,
+    /// IPO cycles in which a program ran (not stopped, not JOG), ever.
+    pub run_cycles: u64,
+    /// `run_cycles` and the planner's feed cycles when `times` was last settled.
+    settled_run: u64,
+    settled_feed: u64,
+    /// A program is running or interrupted: its cycles count.
+    active: bool,
 }
 
 /// The counters and runtimes a checkpoint keeps.
@@ -66,11 +77,6 @@ impl Channel {
         self.counters.parts
     }
 
-    /// The program runtimes in seconds.
-    pub fn runtimes(&self) -> Runtimes {
-        self.counters.times
-    }
-
     /// Sets the workpiece counters, as the operator does on the control's times/counters page
     /// (each 0..999,999,999).
     pub fn set_part_counts(&mut self, parts: PartCounts) -> Result<(), super::CommandError> {
@@ -85,9 +91,8 @@ impl Channel {
 
     /// The counters and runtimes for a checkpoint.
     pub(super) fn saved_counters(&self) -> Option<SavedCounters> {
-        let c = &self.counters;
-        (c.parts != PartCounts::default() || c.times != Runtimes::default())
-            .then_some(SavedCounters { parts: c.parts, times: c.times })
+        let (parts, times) = (self.counters.parts, self.runtimes());
+        (parts != PartCounts::default() || times != Runtimes::default()).then_some(SavedCounters { parts, times })
     }
 
     /// Takes back the counters and runtimes of a checkpoint.
@@ -109,6 +114,7 @@ impl Channel {
 
     /// Block preparation reads the counters, runtimes and clock as they are now.
     pub(super) fn hand_process_data(&mut self) {
+        self.settle_runtimes();
         let powered_on_s = self.tick as f64 * self.cfg.ipo_cycle;
         let clock_ms = self.counters.clock_base_ms.saturating_add((powered_on_s * 1000.0).round() as i64);
         self.interp.set_process_data(ProcessData {
@@ -119,46 +125,57 @@ impl Channel {
         });
     }
 
-    /// A new program starts: its cycle time starts from 0.
-    pub(super) fn start_cycle_time(&mut self) {
+    /// A new program starts: its cycle time starts from 0, and the runtimes count from here.
+    pub(super) fn start_runtimes(&mut self) {
+        let c = &mut self.counters;
         if self.mode == Mode::Auto {
-            self.counters.times.cycle = 0.0;
+            c.times.cycle = 0.0;
         }
+        c.settled_run = c.run_cycles;
+        c.settled_feed = self.planner.feed_cycles();
+        c.active = true;
     }
 
-    /// Whether the path moves at feed in this cycle (not rapid traverse, not standing), for
-    /// the cutting time.
-    #[inline]
-    pub(super) fn planner_moves_at_feed(&self) -> bool {
-        self.planner.velocity() > 0.0 && self.planner.front().is_some_and(|m| !m.is_rapid())
+    /// The program ended (M30, reset, an alarm): its runtimes are taken over, and nothing
+    /// counts until the next one starts (JOG after it is no program time).
+    pub(super) fn end_runtimes(&mut self) {
+        self.settle_runtimes();
+        self.counters.active = false;
     }
 
-    /// One IPO cycle of the runtimes, at its end; called while the channel runs a program.
-    /// `feed_motion`: the path moved at feed in it ([`Channel::planner_moves_at_feed`]).
-    #[inline]
-    pub(super) fn count_runtimes(&mut self, feed_motion: bool) {
+    /// Takes the cycles since the last settling into the runtimes, under the conditions now
+    /// (feed override, DRY, the tool): called at every block prepared and whenever one of
+    /// those conditions is about to change, so a change is attributed to at most one block.
+    pub(super) fn settle_runtimes(&mut self) {
+        self.counters.times = self.runtimes();
+        self.counters.settled_run = self.counters.run_cycles;
+        self.counters.settled_feed = self.planner.feed_cycles();
+    }
+
+    /// The program runtimes in seconds: the settled ones plus what the cycles since add. The
+    /// IPO cycle only counts its cycles (one increment while a program runs, one in the
+    /// planner while the path moves at feed); this is where they become times.
+    pub fn runtimes(&self) -> Runtimes {
+        let c = &self.counters;
+        let mut times = c.times;
         let mode = self.cfg.process_counting;
-        if self.status != Status::Running
-            || self.program.is_none()
-            || self.dry_run && !mode.runs_in_dry_run()
-            || self.jog.is_some()
-        {
-            return;
+        if !c.active || self.dry_run && !mode.runs_in_dry_run() {
+            return times;
         }
         let dt = self.cfg.ipo_cycle;
-        let held = self.overrides.feed == 0.0;
-        let times = &mut self.counters.times;
-        if self.program_mode == Mode::Auto && (!held || mode.runs_at_zero_override()) {
+        let ran = (c.run_cycles - c.settled_run) as f64 * dt;
+        if self.program_mode == Mode::Auto && (self.overrides.feed > 0.0 || mode.runs_at_zero_override()) {
             if mode.runs(Runtime::Operating) {
-                times.operating += dt;
+                times.operating += ran;
             }
             if mode.runs(Runtime::Cycle) {
-                times.cycle += dt;
+                times.cycle += ran;
             }
         }
-        if feed_motion && mode.runs(Runtime::Cutting) && (self.offsets.t != 0 || mode.cuts_without_tool()) {
-            times.cutting += dt;
+        if mode.runs(Runtime::Cutting) && (self.offsets.t != 0 || mode.cuts_without_tool()) {
+            times.cutting += (self.planner.feed_cycles() - c.settled_feed) as f64 * dt;
         }
+        times
     }
 
     /// The main run outputs M function `m` (no address extension): the counters switched on
@@ -191,6 +208,7 @@ impl Channel {
                     }
                 }
                 if counting.gotos_clears_cycle_time() {
+                    self.settle_runtimes();
                     self.counters.times.cycle = 0.0;
                 }
             }

@@ -619,6 +619,7 @@ impl Channel {
     }
 
     pub(super) fn program_end(&mut self) {
+        self.end_runtimes();
         self.status = Status::Idle;
         self.prep_done = true;
         self.current_line = None;
@@ -636,6 +637,7 @@ impl Channel {
     }
 
     pub(super) fn raise(&mut self, alarm: Alarm) {
+        self.end_runtimes();
         self.planner.abort();
         self.pending.clear();
         self.end_orison_run();

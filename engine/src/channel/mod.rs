@@ -664,7 +664,7 @@ impl Channel {
         // Modal synchronized actions of an earlier run (one ended by an alarm) end here.
         self.sync.end_program();
         self.interp.begin_program(text, &self.machine);
-        self.start_cycle_time();
+        self.start_runtimes();
         self.status = Status::Running;
         Ok(())
     }
@@ -738,6 +738,7 @@ impl Channel {
     /// Channel reset: ends the program, stops every axis and spindle at once, clears the alarms
     /// a reset clears and returns the modal state to its reset values.
     pub fn reset(&mut self) {
+        self.end_runtimes();
         self.sbl_done = None;
         self.sbl_step = None;
         self.probe.disarm();
@@ -799,6 +800,8 @@ impl Channel {
         check("feed", o.feed, 0.0, 120.0)?;
         check("rapid", o.rapid, 0.0, 100.0)?;
         check("spindle", o.spindle, 50.0, 120.0)?;
+        // The runtimes stand at feed override 0: what ran before counts at the old one.
+        self.settle_runtimes();
         self.overrides = o;
         self.planner.set_overrides(o.feed, o.rapid);
         for s in &mut self.spindles {
@@ -822,6 +825,9 @@ impl Channel {
         self.tick += 1;
         self.step_spindles();
         if self.status == Status::Running && self.jog.is_none() && !self.repos_returning && self.referencing.is_none() {
+            // A program runs in this cycle: its runtimes are worked out from the count
+            // (`counters.rs`).
+            self.counters.run_cycles += 1;
             self.prepare();
             self.feed_planner();
         }
@@ -836,7 +842,6 @@ impl Channel {
         } else {
             self.planner.stood();
         }
-        let feed_motion = self.status == Status::Running && self.planner_moves_at_feed();
         self.monitor_tools();
         self.update_machine_position();
         self.step_positioning_axes();
@@ -865,10 +870,6 @@ impl Channel {
         }
         if self.status == Status::Running && self.planner.is_empty() && !self.exact_stop.is_waiting() {
             self.execute_actions();
-        }
-        if self.status == Status::Running {
-            // After the actions: a program started over by GOTOS counts this cycle anew.
-            self.count_runtimes(feed_motion);
         }
         self.sync_files();
     }

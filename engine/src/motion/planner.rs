@@ -259,6 +259,9 @@ enum Rest {
 #[derive(Debug, Clone)]
 pub struct Planner {
     dt: f64,
+    /// The cycles in which the path moved at feed (not rapid traverse), since the planner was
+    /// made: the channel's cutting time (`$AC_CUTTING_TIME`) is read off it.
+    feed_cycles: u64,
     limits: AxisLimits,
     queue: VecDeque<Move>,
     /// The smallest acceleration of the queued moves (kept up to date on push and pop, so the
@@ -312,6 +315,7 @@ impl Planner {
     pub fn new(dt: f64, limits: impl Into<AxisLimits>, position: AxisVec) -> Planner {
         Planner {
             dt,
+            feed_cycles: 0,
             limits: limits.into(),
             queue: VecDeque::new(),
             a_min: f64::INFINITY,
@@ -372,6 +376,11 @@ impl Planner {
     /// Number of queued moves.
     pub fn len(&self) -> usize {
         self.queue.len()
+    }
+
+    /// The cycles in which the path moved at feed since the planner was made.
+    pub fn feed_cycles(&self) -> u64 {
+        self.feed_cycles
     }
 
     pub fn is_empty(&self) -> bool {
@@ -562,6 +571,7 @@ impl Planner {
         };
         let many = self.queue.len() > 1;
         let (a, length) = (front.a_max, front.length);
+        let at_feed = !front.is_rapid();
         let soft = front.jerk.is_finite();
         let cap = front.capped(self.feed_override, self.rapid_override, self.spindle_rate);
         let v_end = self.v_end[0];
@@ -593,6 +603,7 @@ impl Planner {
             v_new = v_end.max(self.v - a * dt).max(remaining / dt).min(v_new);
         }
         self.v = v_new;
+        self.feed_cycles += u64::from(at_feed && v_new > 0.0);
         if v_new == 0.0 && self.hold {
             if self.flush_at_standstill {
                 self.abort();
