@@ -26,7 +26,6 @@
 use super::{Channel, Mode};
 use crate::alarm::Alarm;
 use crate::interp::eval::process_vars::{MAX_PARTS, PartCounter, PartCounts, ProcessData, Runtimes};
-use crate::interp::synchronized::MainRunWrite;
 use crate::machine_data::process_counting::{CountedParts, Runtime};
 
 /// The counters, runtimes and clock of one channel.
@@ -190,28 +189,25 @@ impl Channel {
         }
     }
 
-    /// A program's write to main-run data, as its block reaches the main run.
-    pub(super) fn execute_main_run_write(&mut self, write: MainRunWrite, line: u32) {
-        match write {
-            MainRunWrite::Marker(i, v) => self.write_marker_or_param(true, i, v, line),
-            MainRunWrite::Param(i, v) => self.write_marker_or_param(false, i, v, line),
-            MainRunWrite::Parts(counter, n) => {
-                *self.counters.parts.get_mut(counter) = n;
-                self.hand_process_data();
+    /// A program writes workpiece counter `counter`, as its block reaches the main run.
+    pub(super) fn write_part_count(&mut self, counter: PartCounter, n: u32) {
+        *self.counters.parts.get_mut(counter) = n;
+        self.hand_process_data();
+    }
+
+    /// GOTOS starts the main program over: the counters switched on for it count, and the
+    /// cycle time starts again if MD27860 bit 8 says so.
+    pub(super) fn start_over(&mut self) {
+        let mda = self.program_mode == Mode::Mda;
+        let counting = self.cfg.process_counting;
+        for counted in CountedParts::ALL {
+            if counting.counts_on_gotos(counted, mda) {
+                self.count_part(counted);
             }
-            MainRunWrite::StartOver => {
-                let mda = self.program_mode == Mode::Mda;
-                let counting = self.cfg.process_counting;
-                for counted in CountedParts::ALL {
-                    if counting.counts_on_gotos(counted, mda) {
-                        self.count_part(counted);
-                    }
-                }
-                if counting.gotos_clears_cycle_time() {
-                    self.settle_runtimes();
-                    self.counters.times.cycle = 0.0;
-                }
-            }
+        }
+        if counting.gotos_clears_cycle_time() {
+            self.settle_runtimes();
+            self.counters.times.cycle = 0.0;
         }
     }
 

@@ -7,6 +7,8 @@ use super::pending::NO_SEQ;
 use super::{BlockRef, Channel, Event, LOOKAHEAD, MAX_BLOCKS_PER_CYCLE, MoveMeta, Status};
 use crate::alarm::{Alarm, Clear};
 use crate::interp::program_control::{DryRunFeed, ProgramControl};
+use crate::interp::synchronized::MainRunWrite;
+use crate::interp::synchronized::flat::Target;
 use crate::interp::{CORRTRAFO, DELOBJ, Item, Level, NEWCONF, Prep, StopKind};
 use crate::machine_data::registry::MAX_CHANNEL_AXES;
 use crate::motion::{AxisLimit, AxisVec, Move};
@@ -577,7 +579,14 @@ impl Channel {
                 }
                 Item::MainRunWrite { write, line } => {
                     self.enter_block(line, seq);
-                    self.execute_main_run_write(write, line);
+                    match write {
+                        MainRunWrite::Marker(i, v) => self.write_sync_data(Target::Marker(i), v, line),
+                        MainRunWrite::Param(i, v) => self.write_sync_data(Target::Param(i), v, line),
+                        MainRunWrite::Timer(i, v) => self.write_sync_data(Target::Timer(i), v, line),
+                        MainRunWrite::Parts(counter, n) => self.write_part_count(counter, n),
+                        MainRunWrite::StartOver => self.start_over(),
+                        MainRunWrite::Preset(axis, position) => self.preset_machine_position(axis, position),
+                    }
                 }
                 Item::SyncAction { def, line } => {
                     self.enter_block(line, seq);

@@ -1,7 +1,7 @@
 //! The actions of synchronized actions that act on the program's run (Function Manual
 //! "Synchronized actions"): `STOPREOF` (ends the preprocessing stop after the action's motion
 //! block), `RDISABLE` (read-in disable: the next block waits while it holds), `PRESETON(ax, v)`
-//! (the axis' actual value set without motion), `SETM(n)`/`CLEARM(n)` (the channel's wait
+//! (the axis' actual value set without motion; in a program block too), `SETM(n)`/`CLEARM(n)` (the channel's wait
 //! markers) and technology cycles (`DO NAME`: a program of actions run one block per IPO cycle).
 //!
 //! Modelled as follows where the manuals leave room:
@@ -141,6 +141,22 @@ impl Channel {
         self.servo.shift(k, d);
         self.sync.wake_all();
         Ok(())
+    }
+
+    /// PRESETON in a program block, reached by the main run after the motion before it:
+    /// channel axis `k`'s machine position becomes `position`, without motion. Preparation has
+    /// taken the position over already (`interp/frames/preset.rs`).
+    pub(super) fn preset_machine_position(&mut self, k: usize, position: f64) {
+        let d = position - self.machine[k];
+        if self.positioning.position(k).is_some() {
+            self.shift_positioning_axis(k, d);
+        }
+        self.machine[k] = position;
+        self.servo.shift(k, d);
+        let mut at = *self.planner.position();
+        at[k] += d;
+        self.planner.set_position(at);
+        self.sync.wake_all();
     }
 
     /// Starts technology cycle `cycle` called from the action at `line`, unless it runs; its

@@ -5,6 +5,11 @@
 //!   programmed feed NCTwin runs; FLIN and FCUB (feed ramped linearly or as a spline over the
 //!   block) are accepted and run as FNORM's constant feed for now.
 //! - `DRFOF`: clears the handwheel (DRF) offsets; NCTwin applies none, so there is nothing to clear.
+//!   `CORROF()`, `CORROF(X,"DRF")`, `CORROF(X,"AA_OFF")` (deselect DRF and `$AA_OFF` offsets,
+//!   all or per axis, as tool-change and measuring cycles do) likewise.
+//! - `WAITS`, `WAITS(n, ..)`: wait for the spindles a SPOSA positions. NCTwin runs SPOSA like
+//!   SPOS, its block ending when the spindle stands at its angle, so there is nothing left to
+//!   wait for.
 //! - `SBLOF`/`SBLON` (single-block suppression) and `DISPLOF`/`DISPLON` (block display of a
 //!   cycle) in a block: no word of the block's own; they act on the blocks after them
 //!   (`calls/suppression.rs`).
@@ -34,7 +39,7 @@ pub(super) fn is_inert_keyword(name: &str, has_args: bool) -> bool {
         "FNORM" | "FLIN" | "FCUB" | "DRFOF" | "SBLOF" | "SBLON" | "DISPLOF" | "DISPLON" | "ACTBLOCNO" => !has_args,
         "FIFOCTRL" | "STOPFIFO" | "STARTFIFO" | "IPTRLOCK" | "IPTRUNLOCK" | "LFON" | "LFOF" | "LFTXT" | "LFWP"
         | "LFPOS" => !has_args,
-        "GROUP_BEGIN" | "GROUP_END" => true,
+        "GROUP_BEGIN" | "GROUP_END" | "CORROF" | "WAITS" => true,
         _ => false,
     }
 }

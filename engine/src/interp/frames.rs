@@ -5,5 +5,6 @@ pub(super) mod cache;
 pub mod frame;
 pub(super) mod incremental;
 pub mod overview;
+pub(super) mod preset;
 pub(super) mod solid_angles;
 pub(super) mod vars;

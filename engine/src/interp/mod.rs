@@ -828,6 +828,15 @@ impl Interpreter {
         for &write in &words.main_run_writes {
             self.trc.emit_or_defer(Item::MainRunWrite { write, line }, out);
         }
+        for &(axis, position) in &words.presets {
+            // The blocks after it are prepared from the new machine position (`frames/preset.rs`).
+            self.pos[axis] = position;
+            self.lane_memo.forget();
+            self.trc.emit_or_defer(
+                Item::MainRunWrite { write: synchronized::MainRunWrite::Preset(axis, position), line },
+                out,
+            );
+        }
         if let Some(sp) = words.set_piece {
             // The tools are in the master spindle's holder: another spindle used none.
             let axis = match sp.spindle {

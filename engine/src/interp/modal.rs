@@ -517,6 +517,8 @@ pub(super) struct Words {
     pub digital_outputs: Vec<(usize, bool)>,
     /// `$AC_MARKER[n]=..`, `$AC_ACTUAL_PARTS=..`: writes the main run does at the block.
     pub main_run_writes: Vec<super::synchronized::MainRunWrite>,
+    /// `PRESETON(ax, v)`: channel axes and their new machine positions (`frames/preset.rs`).
+    pub presets: Vec<(usize, f64)>,
     /// CALLPATH: `Some(path)` extends the call search path, `Some("")` ends the extension.
     pub callpath: Option<String>,
 }
@@ -858,6 +860,9 @@ pub(super) fn collect(
                 let k = cfg.program_axis(axis).ok_or_else(|| Alarm::unknown_name(line, &format!("FGREF[{axis}]")))?;
                 let r = eval_f64(&value.expr, &Ctx { vars, sys }, line)? * sys.modal.length_factor();
                 w.feed_group.fgref.push(super::path_control::feed_group::fgref(cfg, k, r, line)?);
+            }
+            Word::Keyword { name, args } if name == "PRESETON" => {
+                w.presets.extend(super::frames::preset::preset_pairs(args, vars, sys, line)?);
             }
             Word::Keyword { name, args } if name == "WAITP" => {
                 w.waitp |= super::path_control::positioning::waitp(args, vars, sys, line)?;

@@ -102,8 +102,13 @@ pub enum MainRunWrite {
     Marker(usize, f64),
     /// `$AC_PARAM[n] = v`.
     Param(usize, f64),
+    /// `$AC_TIMER[n] = v`: the timer runs from v seconds (a negative v stops it).
+    Timer(usize, f64),
     /// `$AC_REQUIRED_PARTS = n` and the other workpiece counters.
     Parts(crate::interp::eval::process_vars::PartCounter, u32),
+    /// `PRESETON(ax, v)` in a program block: channel axis `ax`'s machine position becomes `v`
+    /// without motion (`frames/preset.rs`).
+    Preset(usize, f64),
     /// GOTOS in the main program: it starts over, which counts workpieces and clears the cycle
     /// time where MD27880/MD27860 say so.
     StartOver,
@@ -138,12 +143,17 @@ pub(super) fn program_write(
     let len = match name {
         "$AC_MARKER" => cfg.sync_sizes.markers,
         "$AC_PARAM" => cfg.sync_sizes.params,
+        "$AC_TIMER" => cfg.sync_sizes.timers,
         _ => return Ok(None),
     };
     let idx = indices.iter().map(|e| eval(e, ctx, line)).collect::<Result<Vec<_>, _>>()?;
     let i = index(name, &idx, len, 0, line)?;
     let v = eval_f64(expr, ctx, line)?;
-    Ok(Some(if name == "$AC_MARKER" { MainRunWrite::Marker(i, v.round()) } else { MainRunWrite::Param(i, v) }))
+    Ok(Some(match name {
+        "$AC_MARKER" => MainRunWrite::Marker(i, v.round()),
+        "$AC_PARAM" => MainRunWrite::Param(i, v),
+        _ => MainRunWrite::Timer(i, v),
+    }))
 }
 
 /// The element of `name[n]` in a list of `len` numbered from `first` (17020 outside).

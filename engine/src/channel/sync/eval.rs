@@ -202,10 +202,10 @@ impl Channel {
         }
     }
 
-    /// A part program's `$AC_MARKER[i] = v` or `$AC_PARAM[i] = v` as its block reaches the
-    /// main run: as a synchronized action writes it (the index was checked in preparation).
-    pub(in crate::channel) fn write_marker_or_param(&mut self, marker: bool, i: usize, v: f64, line: u32) {
-        let target = if marker { Target::Marker(i) } else { Target::Param(i) };
+    /// A part program's `$AC_MARKER[i] = v`, `$AC_PARAM[i] = v` or `$AC_TIMER[i] = v` as its
+    /// block reaches the main run: as a synchronized action writes it (the index was checked in
+    /// preparation).
+    pub(in crate::channel) fn write_sync_data(&mut self, target: Target, v: f64, line: u32) {
         if let Err(alarm) = self.sync_set(target, &flat::Code::default(), v, line) {
             self.raise(*alarm);
         }

@@ -2,7 +2,8 @@
 //! (`$P_TOOLR`), the programmed feed (`$P_F`) and the names of the working plane's axes
 //! (`$P_AXN1` abscissa, `$P_AXN2` ordinate, `$P_AXN3` applicate). With these a cycle written once
 //! works in G17, G18 and G19 through indirect axis addressing (`AX[$P_AXN3]=...`) and keeps the
-//! pocket walls clear of the tool's radius.
+//! pocket walls clear of the tool's radius. Also the active edge's lengths (`$P_TOOLL[n]`) and
+//! parameters (`$P_AD[n]`) the measuring cycles compare against.
 
 use crate::alarm::Alarm;
 use crate::interp::eval::scope::SysView;
@@ -57,4 +58,20 @@ pub(in crate::interp) fn tool_length(sys: &SysView, indices: &[Value], line: u32
     let i = n as usize - 1;
     let edge = sys.cfg.edge(sys.offsets.t, sys.offsets.d);
     Ok(Value::Real(edge.map_or(0.0, |e| e[2 + i] + e[11 + i] + e[20 + i])))
+}
+
+/// `$P_AD[n]`: parameter n (1..25, `$TC_DPn`) of the active cutting edge, as the measuring and
+/// tool-check cycles read it (`$P_AD[6]` the radius); 0 with D0, as on the control. Beyond
+/// 1..25: 17020.
+pub(in crate::interp) fn active_edge_param(sys: &SysView, indices: &[Value], line: u32) -> Result<Value, Alarm> {
+    let n = match indices {
+        [n] => n.as_i64().map_err(|e| Alarm::type_error(line, &e.0))?,
+        _ => return Err(Alarm::index_error(line, "$P_AD", "needs one parameter number")),
+    };
+    let slot = usize::try_from(n)
+        .ok()
+        .and_then(|n| crate::machine_data::tool_orient::slot(&n.to_string()))
+        .ok_or_else(|| Alarm::index_error(line, "$P_AD", &format!("parameter {n} is not 1..25")))?;
+    let edge = sys.cfg.edge(sys.offsets.t, sys.offsets.d);
+    Ok(Value::Real(edge.map_or(0.0, |e| e[slot])))
 }

@@ -202,6 +202,7 @@ impl Scope for Ctx<'_> {
             "$P_TOOLP" => Value::Int(sys.offsets.prepared.into()),
             "GETT" => crate::interp::tools::management::gett(sys.cfg, indices, line)?,
             "$P_TOOLL" => super::cycle_vars::tool_length(sys, indices, line)?,
+            "$P_AD" => super::cycle_vars::active_edge_param(sys, indices, line)?,
             "$P_TOOLEXIST" => crate::interp::tools::management::tool_exists(sys.cfg, indices, line)?,
             "CHKDNO" => crate::interp::tools::dnumbers::chkdno(sys.cfg, indices, line)?,
             _ if crate::machine_data::tools_mgmt::ToolMgmtData::handles(name) => {

@@ -51,6 +51,7 @@ const KEYWORDS: &[&str] = &[
     "WAITM",
     "WAITMC",
     "WAITP",
+    "PRESETON",
     "SETPIECE",
     "CALL",
     "CORRTRAFO", // synchronized actions' block words
