@@ -226,10 +226,14 @@ impl Interpreter {
         frame.attributes = attributes;
         frame.commands = suppression::LevelCommands::of_proc(attributes);
         if frame.args.len() > params.len() {
-            return Err(Alarm::too_many_arguments(
-                line,
-                &format!("{} arguments for {} parameters", frame.args.len(), params.len()),
-            ));
+            if !newer_cycle_defaults(frame, params.len()) {
+                return Err(Alarm::too_many_arguments(
+                    line,
+                    &format!("{} arguments for {} parameters", frame.args.len(), params.len()),
+                ));
+            }
+            frame.args.truncate(params.len());
+            frame.sources.truncate(params.len());
         }
         let args = frame.args.clone();
         let sources = frame.sources.clone();
@@ -377,4 +381,22 @@ impl Interpreter {
         }
         Ok(())
     }
+}
+
+/// Whether the arguments of `frame` beyond its PROC's `known` parameters are a newer Operate's
+/// extra parameters of a library cycle left at their defaults (left out, 0 or an empty string):
+/// CAM posts for newer controls write the longer parameter lists (`_GMODE`, `_DMODE`, `_AMODE`
+/// ..) the library's cycles do not have; at their defaults they ask for what the library's
+/// cycle does. Any other value stays 12340, as the cycle cannot do what it asks.
+fn newer_cycle_defaults(frame: &CallFrame, known: usize) -> bool {
+    let Some((_, name)) = frame.level.calls.last() else { return false };
+    let is_library = crate::programs::cycles::find(name)
+        .and_then(|cycle| cycle.ready().ok())
+        .is_some_and(|text| **text == *frame.text);
+    is_library
+        && frame.args[known..].iter().all(|arg| match arg {
+            None => true,
+            Some(Value::Str(s)) => s.is_empty(),
+            Some(v) => v.as_f64().is_ok_and(|v| v == 0.0),
+        })
 }
