@@ -746,6 +746,15 @@ async function main() {
       const ended = await pageFetch(page, "GET", `/sessions/${id}/state`);
       if (ended.parts.actual < 1 || !(ended.runtimes.cycle >= 1.6 && ended.runtimes.cycle < 3)) throw new Error(`counters: ${JSON.stringify(ended.parts)} ${JSON.stringify(ended.runtimes)}`);
       await page.waitForFunction((n) => document.getElementById("channel-times")?.textContent === `Parts ${n} · Cycle 0:00:01`, ended.parts.actual, { timeout: 10_000 });
+      // The times/counter panel sets the batch: required 5, actual 2 (PUT .../parts); the
+      // status line then counts against the setpoint.
+      await page.fill("#parts-required", "5");
+      await page.fill("#parts-actual", "2");
+      await page.click("#btn-parts");
+      await page.waitForFunction(() => document.getElementById("channel-times")?.textContent?.startsWith("Parts 2/5 "), null, { timeout: 10_000 });
+      const set = await pageFetch(page, "GET", `/sessions/${id}/state`);
+      if (set.parts.required !== 5 || set.parts.actual !== 2) throw new Error(`parts after Set: ${JSON.stringify(set.parts)}`);
+      if (!/^Cycle 0:00:01 · Cutting 0:00:0\d · Operating \d+:\d\d:\d\d$/.test(await text("#runtimes"))) throw new Error(`runtimes: ${await text("#runtimes")}`);
       await previewDone();
     });
 

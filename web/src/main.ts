@@ -10,6 +10,7 @@ import { showMessage, wireMessageBar } from "./core/message";
 import { SessionController } from "./core/session";
 import { selection } from "./program/selected";
 import { activeProgram } from "./program/active";
+import { mountCounters } from "./machine/counters";
 import { mountStatusLine } from "./machine/statusLine";
 import { mountJog } from "./jog/jog";
 import { mountJogFunctions } from "./jog/jogFunctions";
@@ -54,6 +55,7 @@ async function main(): Promise<void> {
   mountProgress(session);
   mountStatusLine(session);
   mountOverrides(session);
+  mountCounters(session);
   mountControls(session);
   mountJogFunctions(session, mountJog(session));
   mountSwivel(session);

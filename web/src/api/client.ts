@@ -140,6 +140,9 @@ export const api = {
   setWorkOffset: (id: string, axis: string, value: number) => request<State>("POST", `${s(id)}/set-wo`, { axis, value }),
   setOverrides: (id: string, o: Partial<Overrides>) => request<State>("PUT", `${s(id)}/overrides`, o),
   setOptions: (id: string, o: ProgramOptions) => request<State>("PUT", `${s(id)}/options`, o),
+  /** Workpiece counts (required, total, actual, special); absent ones keep their value. */
+  setParts: (id: string, parts: Partial<Record<"required" | "total" | "actual" | "special", number>>) =>
+    request<State>("PUT", `${s(id)}/parts`, parts),
   io: (id: string) => request<IoImage>("GET", `${s(id)}/io`),
   setIo: (id: string, change: IoChange) => request<IoImage>("PUT", `${s(id)}/io`, change),
 
