@@ -30,7 +30,7 @@ CHROMIUM="${CHROMIUM_PATH:-/usr/bin/chromium}"
 TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
 STARTUP_TIMEOUT_S=60
 
-section() { printf '\n==> %s\n' "$*"; }
+section() { printf '\n==> %s (%s)\n' "$*" "$(date +%T)"; }
 
 if [ "$WHAT" = rust ] || [ "$WHAT" = failover ]; then
   bash scripts/install-deps.sh rust

@@ -528,7 +528,7 @@ proptest! {
 /// Replays one program from the file `NCTWIN_LANG_REPLAY` names (on `NCTWIN_LANG_MACHINE`, or
 /// the 3-axis mill) with the alarms printed: for looking at a case the campaign reported.
 #[test]
-#[ignore = "a tool: NCTWIN_LANG_REPLAY=file cargo test --test robustness_language -- --ignored --nocapture"]
+#[ignore = "a tool: NCTWIN_LANG_REPLAY=file cargo test -p nctwin-engine --test integration robustness_language -- --ignored --nocapture"]
 fn replay() {
     let Some(path) = std::env::var_os("NCTWIN_LANG_REPLAY") else { return };
     let main = std::fs::read_to_string(path).expect("program file");
