@@ -199,3 +199,27 @@ fn a_checkpoint_keeps_the_counters_and_runtimes() {
     // A fresh channel writes none.
     assert!(channel("mill-3axis", "").resume_state().counters.is_none());
 }
+
+#[test]
+fn a_program_resumed_after_a_restart_counts_on_from_its_checkpoints_cycle_time() {
+    // The program stops at M0 after a dwell of 1 s; the checkpoint has that second. A new
+    // channel takes the checkpoint back (block search to the M0), NC start runs the second
+    // dwell: the cycle time reads 2 s at the end, the operating time likewise.
+    let program = "G4 F1\nM0\nG4 F1\nR1=$AC_CYCLE_TIME\nM30";
+    let mut ch = channel("mill-3axis", "");
+    ch.run_program(program).unwrap();
+    for _ in 0..1000 {
+        ch.step();
+        if ch.snapshot().status == nctwin_engine::Status::Stopped {
+            break;
+        }
+    }
+    let saved = ch.resume_state();
+    let mut restored = channel("mill-3axis", "");
+    restored.restore_resume_state(&saved).unwrap();
+    restored.start().unwrap();
+    settle::settle(&mut restored);
+    let cycle = restored.r_param(1);
+    assert!((2.0 - 1e-9..2.0 + 10.0 * CYCLE).contains(&cycle), "{cycle}");
+    assert!((restored.runtimes().operating - restored.runtimes().cycle).abs() < 1e-9);
+}

@@ -126,10 +126,16 @@ impl Channel {
 
     /// A new program starts: its cycle time starts from 0, and the runtimes count from here.
     pub(super) fn start_runtimes(&mut self) {
-        let c = &mut self.counters;
         if self.mode == Mode::Auto {
-            c.times.cycle = 0.0;
+            self.counters.times.cycle = 0.0;
         }
+        self.resume_runtimes();
+    }
+
+    /// A program goes on after a block search (the operator's, or a restart's): the runtimes
+    /// count from here, the cycle time from where it stood.
+    pub(super) fn resume_runtimes(&mut self) {
+        let c = &mut self.counters;
         c.settled_run = c.run_cycles;
         c.settled_feed = self.planner.feed_cycles();
         c.active = true;

@@ -202,6 +202,9 @@ impl Channel {
                 self.prev_read = super::main_run::ReadBlock::default();
                 self.search_approach = true;
                 self.status = Status::Stopped;
+                // The program goes on from here at NC start: its runtimes count on (a restart
+                // resumed this way keeps the cycle time its checkpoint had).
+                self.resume_runtimes();
                 self.enter_block(target, super::pending::NO_SEQ);
             }
             Err(alarm) => self.raise(alarm),

@@ -10,8 +10,10 @@
 //! workpiece position moves by the same amount.
 //!
 //! Decisions where the manual leaves room: the axis stays referenced (a simulated axis has no
-//! encoder to lose its reference on); a spindle, or an axis while a transformation is active
-//! (whose machine positions follow from the geometry axes), is refused with 12550 naming the case.
+//! encoder to lose its reference on); a spindle, an axis while a transformation is active
+//! (whose machine positions follow from the geometry axes) and PRESETON under G41/G42 (whose
+//! look-ahead holds blocks computed from the old position) are refused with 12550 naming the
+//! case.
 
 use crate::alarm::Alarm;
 use crate::interp::eval::eval_f64;
@@ -42,6 +44,9 @@ pub(in crate::interp) fn preset_pairs(
         }
         if sys.trafo.machine().is_some() {
             return Err(Alarm::unknown_name(line, &format!("PRESETON({name}) while a transformation is active")));
+        }
+        if sys.modal.trc.is_some() {
+            return Err(Alarm::unknown_name(line, &format!("PRESETON({name}) under tool radius compensation")));
         }
         let v = eval_f64(&pair[1], &Ctx { vars, sys }, line)?;
         if !v.is_finite() {
