@@ -479,6 +479,12 @@ impl From<Parts> for nctwin_engine::interp::eval::process_vars::PartCounts {
     }
 }
 
+impl From<nctwin_engine::interp::eval::process_vars::Runtimes> for Runtimes {
+    fn from(t: nctwin_engine::interp::eval::process_vars::Runtimes) -> Runtimes {
+        Runtimes { operating: t.operating, cycle: t.cycle, cutting: t.cutting }
+    }
+}
+
 /// The program runtimes in seconds, as MD27860 switches them on.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct Runtimes {
@@ -518,11 +524,7 @@ impl From<&Snapshot> for State {
             programmed_feed: s.programmed_feed,
             preprocessing_stop_wait: s.preprocessing_stop_wait,
             parts: s.parts.into(),
-            runtimes: Runtimes {
-                operating: s.runtimes.operating,
-                cycle: s.runtimes.cycle,
-                cutting: s.runtimes.cutting,
-            },
+            runtimes: s.runtimes.into(),
             spindles: AxisValues(s.spindles.clone()),
             spindle_info: crate::api::spindle_dto::SpindleInfos::of(&s.spindle_states),
             positioning: s.positioning.iter().map(Into::into).collect(),

@@ -80,8 +80,8 @@ impl Channel {
     /// (each 0..999,999,999).
     pub fn set_part_counts(&mut self, parts: PartCounts) -> Result<(), super::CommandError> {
         let all = [parts.required, parts.total, parts.actual, parts.special];
-        if all.iter().any(|&n| i64::from(n) > MAX_PARTS) {
-            return Err(super::CommandError::Invalid(format!("a workpiece count is at most {MAX_PARTS}")));
+        if let Some(n) = all.iter().find(|&&n| i64::from(n) > MAX_PARTS) {
+            return Err(super::CommandError::Invalid(format!("a workpiece count is at most {MAX_PARTS}, not {n}")));
         }
         self.counters.parts = parts;
         self.hand_process_data();

@@ -223,9 +223,6 @@ pub async fn set_parts(
     ApiJson(body): ApiJson<dto::PartsRequest>,
 ) -> Result<StateReply, ApiError> {
     let counts = [body.required, body.total, body.actual, body.special];
-    if let Some(n) = counts.iter().flatten().find(|&&n| n > 999_999_999) {
-        return Err(ApiError::bad_request(format!("a workpiece count is at most 999999999, not {n}")));
-    }
     command(&state, &id, Action::SetParts(counts), None).await
 }
 

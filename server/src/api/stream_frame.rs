@@ -101,11 +101,7 @@ impl Serialize for StateMessage<'_> {
         m.serialize_field("distance_to_go", &s.distance_to_go)?;
         m.serialize_field("programmed_feed", &s.programmed_feed)?;
         m.serialize_field("parts", &crate::dto::Parts::from(s.parts))?;
-        let t = s.runtimes;
-        m.serialize_field(
-            "runtimes",
-            &crate::dto::Runtimes { operating: t.operating, cycle: t.cycle, cutting: t.cutting },
-        )?;
+        m.serialize_field("runtimes", &crate::dto::Runtimes::from(s.runtimes))?;
         m.serialize_field("spindles", &Named(&s.spindles))?;
         m.serialize_field("spindle_info", &super::spindle_dto::SpindleInfos::of(&s.spindle_states))?;
         m.serialize_field("message", &s.message)?;
