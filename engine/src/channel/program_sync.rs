@@ -1,8 +1,9 @@
 //! The actions of synchronized actions that act on the program's run (Function Manual
 //! "Synchronized actions"): `STOPREOF` (ends the preprocessing stop after the action's motion
 //! block), `RDISABLE` (read-in disable: the next block waits while it holds), `PRESETON(ax, v)`
-//! (the axis' actual value set without motion; in a program block too), `SETM(n)`/`CLEARM(n)` (the channel's wait
-//! markers) and technology cycles (`DO NAME`: a program of actions run one block per IPO cycle).
+//! (the axis' actual value set without motion; in a program block too), `SETM(n)`/`CLEARM(n)`
+//! (the channel's wait markers) and technology cycles (`DO NAME`: a program of actions run one
+//! block per IPO cycle).
 //!
 //! Modelled as follows where the manuals leave room:
 //! - `STOPREOF`: a block that waits for the main run after the action's motion block (a

@@ -98,7 +98,7 @@ impl MainRunData {
 /// waits for the main run to read any `$AC_` variable.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum MainRunWrite {
-    /// `$AC_MARKER[n] = v` (rounded: markers are INT).
+    /// `$AC_MARKER[n] = v` (rounded where it is written: markers are INT).
     Marker(usize, f64),
     /// `$AC_PARAM[n] = v`.
     Param(usize, f64),
@@ -150,7 +150,7 @@ pub(super) fn program_write(
     let i = index(name, &idx, len, 0, line)?;
     let v = eval_f64(expr, ctx, line)?;
     Ok(Some(match name {
-        "$AC_MARKER" => MainRunWrite::Marker(i, v.round()),
+        "$AC_MARKER" => MainRunWrite::Marker(i, v),
         "$AC_PARAM" => MainRunWrite::Param(i, v),
         _ => MainRunWrite::Timer(i, v),
     }))

@@ -117,7 +117,7 @@ pub(in crate::interp) fn read(sys: &SysView, name: &str, indices: &[Value], line
             Value::Int((0..sys.cfg.channel_axes.len()).filter(|&k| sys.cfg.axis(k).spindle.is_some()).count() as i64)
         }
         "$P_DRYRUN" => Value::Bool(sys.env.dry_run),
-        _ if name.starts_with("$A_") => Value::Int(clock_field(p.clock_ms, name)?),
+        _ if is_clock_name(name) => Value::Int(clock_field(p.clock_ms, name)?),
         _ => Value::Int(p.parts.get(PartCounter::named(name)?).into()),
     };
     if !indices.is_empty() {
